@@ -1,0 +1,38 @@
+//! bumpsim-core: units, sampled signals, the n-DOF chain mass-spring-damper
+//! car model of Isaksson (2006, thesis ch. 3.3), its state-space form, three
+//! discretisations and the simulation of a sampled force history.
+//!
+//! Everything is SI `f64`: kg, m, s, N, N/m, N·s/m, J. The modules:
+//!
+//! - [`units`]: unit parsing and formatting;
+//! - [`series`]: uniformly sampled signals;
+//! - [`model`]: the validated chain model and its parameter vector;
+//! - [`state_space`]: A, B and the elastic modes;
+//! - [`discrete`]: zoh, foh and taylor1 discretisations and the update loop;
+//! - [`energy`]: exact per-step energy integrals;
+//! - [`simulate`]: responses with forces and energies.
+//!
+//! ```
+//! use bumpsim_core::prelude::*;
+//! let car = MsdModel::new(vec![150.0, 500.0, 800.0], vec![1e2, 2e5], vec![5e5, 5e5]).unwrap();
+//! let force = UniformSeries::new(0.0, 1e-4, vec![1000.0; 500]).unwrap();
+//! let response = simulate(&car, &force, Method::Zoh, &InitialState::Rest).unwrap();
+//! assert!(response.energy.relative_error() < 1e-9);
+//! ```
+
+pub mod discrete;
+pub mod energy;
+pub mod model;
+pub mod series;
+pub mod simulate;
+pub mod state_space;
+pub mod units;
+
+/// The types most programs need.
+pub mod prelude {
+    pub use crate::discrete::{DiscreteModel, Method, Substeps};
+    pub use crate::model::MsdModel;
+    pub use crate::series::UniformSeries;
+    pub use crate::simulate::{InitialState, Response, Simulator, simulate};
+    pub use crate::units::{Dimension, Unit};
+}

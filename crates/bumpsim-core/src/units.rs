@@ -1,0 +1,394 @@
+//! Physical units: parsing the unit text of input files into SI factors, and
+//! formatting SI values for people.
+//!
+//! Every quantity inside bumpsim is an `f64` in SI (kg, m, s, N, N/m, N·s/m, J).
+//! Readers convert with [`Unit::to_si`]: `si = factor * value`. All units used
+//! in crash testing are pure scale factors (no offsets), so a single factor is
+//! exact. The standard gravity of `g` is 9.80665 m/s² (SAE J211-1, ISO 6487).
+//!
+//! Unit text is matched after a light normalisation: surrounding blanks,
+//! inner spaces and the product signs `·`, `*`, `⋅` are removed, `**` and `²`
+//! become `^`-powers. So `N·s/m`, `N*s/m`, `N s/m` and `Ns/m` are the same
+//! unit, and `m/s**2` equals `m/s^2`. Matching is case-sensitive (`mm` is not
+//! `Mm`); each unit's spellings are listed explicitly in one table, so an
+//! unknown or ambiguous text is an error, never a guess.
+//!
+//! ```
+//! use bumpsim_core::units::{Dimension, Unit};
+//! let u = Unit::parse("N/mm").unwrap();
+//! assert_eq!(u.dimension, Dimension::Stiffness);
+//! assert_eq!(u.to_si(4.0), 4000.0);
+//! assert!(Unit::parse("furlong").is_err());
+//! ```
+
+use std::fmt;
+
+/// Standard gravity in m/s² (SAE J211-1 and ISO 6487).
+pub const STANDARD_GRAVITY: f64 = 9.806_65;
+
+/// The physical dimension of a quantity.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Dimension {
+    /// A pure number (`-` or `1`).
+    Dimensionless,
+    /// Time, SI unit s.
+    Time,
+    /// Length or displacement, SI unit m.
+    Length,
+    /// Velocity, SI unit m/s.
+    Velocity,
+    /// Acceleration, SI unit m/s².
+    Acceleration,
+    /// Force, SI unit N.
+    Force,
+    /// Mass, SI unit kg.
+    Mass,
+    /// Spring stiffness, SI unit N/m.
+    Stiffness,
+    /// Viscous damping coefficient, SI unit N·s/m.
+    Damping,
+    /// Energy or work, SI unit J.
+    Energy,
+    /// Frequency, SI unit Hz.
+    Frequency,
+}
+
+impl Dimension {
+    /// The SI unit symbol as bumpsim writes it in file headers (ASCII, and
+    /// accepted back by [`Unit::parse`]).
+    pub fn si_symbol(self) -> &'static str {
+        match self {
+            Dimension::Dimensionless => "-",
+            Dimension::Time => "s",
+            Dimension::Length => "m",
+            Dimension::Velocity => "m/s",
+            Dimension::Acceleration => "m/s^2",
+            Dimension::Force => "N",
+            Dimension::Mass => "kg",
+            Dimension::Stiffness => "N/m",
+            Dimension::Damping => "Ns/m",
+            Dimension::Energy => "J",
+            Dimension::Frequency => "Hz",
+        }
+    }
+
+    /// A lower-case name for messages (`"force"`, `"time"`, ...).
+    pub fn name(self) -> &'static str {
+        match self {
+            Dimension::Dimensionless => "dimensionless",
+            Dimension::Time => "time",
+            Dimension::Length => "length",
+            Dimension::Velocity => "velocity",
+            Dimension::Acceleration => "acceleration",
+            Dimension::Force => "force",
+            Dimension::Mass => "mass",
+            Dimension::Stiffness => "stiffness",
+            Dimension::Damping => "damping",
+            Dimension::Energy => "energy",
+            Dimension::Frequency => "frequency",
+        }
+    }
+
+    /// The unit bumpsim uses to show this dimension to people: the unit a
+    /// bumper engineer reads (mm, kN, ms, N/mm, Ns/mm, g), not always SI.
+    pub fn display_unit(self) -> Unit {
+        let symbol = match self {
+            Dimension::Time => "ms",
+            Dimension::Length => "mm",
+            Dimension::Force => "kN",
+            Dimension::Stiffness => "N/mm",
+            Dimension::Damping => "Ns/mm",
+            Dimension::Acceleration => "g",
+            other => other.si_symbol(),
+        };
+        Unit::parse(symbol).unwrap_or(Unit::si(self))
+    }
+}
+
+impl fmt::Display for Dimension {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A unit: its canonical symbol, dimension and factor to SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Unit {
+    /// Canonical symbol, e.g. `"kN"`.
+    pub symbol: &'static str,
+    /// What the unit measures.
+    pub dimension: Dimension,
+    /// SI value = `factor` × value in this unit.
+    pub factor: f64,
+}
+
+/// A unit text that is not in bumpsim's table.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("unknown unit '{text}' (known units: {known})")]
+pub struct UnitError {
+    /// The text as given.
+    pub text: String,
+    /// The known spellings, for the message.
+    pub known: String,
+}
+
+/// One row of the unit table: spellings (after normalisation), dimension, factor.
+type UnitRow = (&'static [&'static str], Dimension, f64);
+
+/// The unit table. The first spelling is the canonical symbol.
+const UNITS: &[UnitRow] = &[
+    (&["-", "1"], Dimension::Dimensionless, 1.0),
+    (&["s"], Dimension::Time, 1.0),
+    (&["ms"], Dimension::Time, 1e-3),
+    (&["us", "µs", "μs"], Dimension::Time, 1e-6),
+    (&["m"], Dimension::Length, 1.0),
+    (&["mm"], Dimension::Length, 1e-3),
+    (&["cm"], Dimension::Length, 1e-2),
+    (&["m/s"], Dimension::Velocity, 1.0),
+    (&["mm/s"], Dimension::Velocity, 1e-3),
+    (&["mm/ms"], Dimension::Velocity, 1.0),
+    (&["km/h", "kph"], Dimension::Velocity, 1.0 / 3.6),
+    (&["mph"], Dimension::Velocity, 0.447_04),
+    (&["m/s^2"], Dimension::Acceleration, 1.0),
+    (&["mm/s^2"], Dimension::Acceleration, 1e-3),
+    (&["g", "G"], Dimension::Acceleration, STANDARD_GRAVITY),
+    (&["N"], Dimension::Force, 1.0),
+    (&["daN"], Dimension::Force, 10.0),
+    (&["kN"], Dimension::Force, 1e3),
+    (&["MN"], Dimension::Force, 1e6),
+    (&["kg"], Dimension::Mass, 1.0),
+    (&["t", "tonne"], Dimension::Mass, 1e3),
+    (&["N/m"], Dimension::Stiffness, 1.0),
+    (&["N/mm", "kN/m"], Dimension::Stiffness, 1e3),
+    (&["kN/mm", "MN/m"], Dimension::Stiffness, 1e6),
+    (&["Ns/m"], Dimension::Damping, 1.0),
+    (&["Ns/mm", "kNs/m"], Dimension::Damping, 1e3),
+    (&["kNs/mm"], Dimension::Damping, 1e6),
+    (&["J", "Nm"], Dimension::Energy, 1.0),
+    (&["Nmm", "mJ"], Dimension::Energy, 1e-3),
+    (&["kJ", "kNm"], Dimension::Energy, 1e3),
+    (&["Hz"], Dimension::Frequency, 1.0),
+    (&["kHz"], Dimension::Frequency, 1e3),
+];
+
+/// Removes blanks and product signs and writes powers as `^n`.
+fn normalise(text: &str) -> String {
+    text.trim()
+        .replace("**", "^")
+        .replace('²', "^2")
+        .chars()
+        .filter(|c| !matches!(c, ' ' | '\t' | '·' | '*' | '⋅' | '.'))
+        .collect()
+}
+
+impl Unit {
+    /// Parses a unit text such as `kN`, `N·s/m`, `m/s**2` or `km/h`.
+    pub fn parse(text: &str) -> Result<Unit, UnitError> {
+        let key = normalise(text);
+        UNITS
+            .iter()
+            .find(|(names, _, _)| names.contains(&key.as_str()))
+            .map(|&(names, dimension, factor)| Unit {
+                symbol: names[0],
+                dimension,
+                factor,
+            })
+            .ok_or_else(|| UnitError {
+                text: text.to_string(),
+                known: UNITS
+                    .iter()
+                    .map(|(names, _, _)| names[0])
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            })
+    }
+
+    /// The SI unit of a dimension.
+    pub fn si(dimension: Dimension) -> Unit {
+        Unit {
+            symbol: dimension.si_symbol(),
+            dimension,
+            factor: 1.0,
+        }
+    }
+
+    /// Converts a value in this unit to SI.
+    pub fn to_si(&self, value: f64) -> f64 {
+        value * self.factor
+    }
+
+    /// Converts an SI value to this unit.
+    pub fn from_si(&self, value: f64) -> f64 {
+        value / self.factor
+    }
+}
+
+impl fmt::Display for Unit {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.symbol)
+    }
+}
+
+/// Formats a number with `digits` significant digits: plain notation between
+/// 1e-3 and 1e6, scientific outside; trailing zeros are kept so that columns
+/// of numbers read alike.
+pub fn format_number(value: f64, digits: usize) -> String {
+    if !value.is_finite() {
+        return format!("{value}");
+    }
+    if value == 0.0 {
+        return "0".to_string();
+    }
+    let digits = digits.max(1);
+    let exponent = value.abs().log10().floor() as i32;
+    if (-3..6).contains(&exponent) {
+        let decimals = (digits as i32 - 1 - exponent).max(0) as usize;
+        format!("{value:.decimals$}")
+    } else {
+        format!("{value:.prec$e}", prec = digits - 1)
+    }
+}
+
+/// Formats an SI value in the display unit of its dimension with four
+/// significant digits, e.g. `Dimension::Force, 40_000.0` → `"40.00 kN"`.
+///
+/// ```
+/// use bumpsim_core::units::{format_quantity, Dimension};
+/// assert_eq!(format_quantity(0.1234, Dimension::Length), "123.4 mm");
+/// assert_eq!(format_quantity(5.0e5, Dimension::Stiffness), "500.0 N/mm");
+/// ```
+pub fn format_quantity(value_si: f64, dimension: Dimension) -> String {
+    format_in(value_si, dimension.display_unit())
+}
+
+/// Formats an SI value in a chosen unit with four significant digits.
+pub fn format_in(value_si: f64, unit: Unit) -> String {
+    format!("{} {}", format_number(unit.from_si(value_si), 4), unit.symbol)
+}
+
+/// Parses a quantity written as a number with an optional unit, such as
+/// `"1.67"`, `"6 km/h"` or `"6km/h"`. A bare number is taken in SI. The unit
+/// must measure `expected`.
+///
+/// ```
+/// use bumpsim_core::units::{parse_quantity, Dimension};
+/// let v = parse_quantity("36 km/h", Dimension::Velocity).unwrap();
+/// assert!((v - 10.0).abs() < 1e-12);
+/// assert!(parse_quantity("36 kN", Dimension::Velocity).is_err());
+/// ```
+pub fn parse_quantity(text: &str, expected: Dimension) -> Result<f64, QuantityError> {
+    let text = text.trim();
+    let split = text
+        .char_indices()
+        .find(|&(i, c)| !(c.is_ascii_digit() || "+-.eE".contains(c)) || is_unit_start(text, i))
+        .map_or(text.len(), |(i, _)| i);
+    let (number, unit_text) = text.split_at(split);
+    let value: f64 = number
+        .trim()
+        .parse()
+        .map_err(|_| QuantityError::NotANumber(text.to_string()))?;
+    if !value.is_finite() {
+        return Err(QuantityError::NotANumber(text.to_string()));
+    }
+    if unit_text.trim().is_empty() {
+        return Ok(value);
+    }
+    let unit = Unit::parse(unit_text)?;
+    if unit.dimension != expected {
+        return Err(QuantityError::WrongDimension {
+            text: text.to_string(),
+            expected,
+            found: unit.dimension,
+        });
+    }
+    Ok(unit.to_si(value))
+}
+
+/// An `e`/`E` that starts a unit rather than an exponent (no digit or sign follows).
+fn is_unit_start(text: &str, i: usize) -> bool {
+    let bytes = text.as_bytes();
+    matches!(bytes[i], b'e' | b'E')
+        && !bytes
+            .get(i + 1)
+            .is_some_and(|b| b.is_ascii_digit() || *b == b'-' || *b == b'+')
+}
+
+/// A quantity text that could not be read.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum QuantityError {
+    /// The number part is missing or not a finite number.
+    #[error("'{0}' is not a finite number with an optional unit (e.g. 1.67 or 6 km/h)")]
+    NotANumber(String),
+    /// The unit is unknown.
+    #[error(transparent)]
+    Unit(#[from] UnitError),
+    /// The unit measures something else.
+    #[error("'{text}' is a {found}, expected a {expected}")]
+    WrongDimension {
+        /// The text as given.
+        text: String,
+        /// What was expected.
+        expected: Dimension,
+        /// What the unit measures.
+        found: Dimension,
+    },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn spellings_of_one_unit_agree() {
+        for text in ["N·s/m", "N*s/m", "N s/m", "Ns/m", " N.s/m "] {
+            let unit = Unit::parse(text).unwrap();
+            assert_eq!(unit.dimension, Dimension::Damping, "{text}");
+            assert_relative_eq!(unit.factor, 1.0);
+        }
+        assert_eq!(Unit::parse("m/s**2").unwrap().dimension, Dimension::Acceleration);
+        assert_eq!(Unit::parse("m/s²").unwrap().dimension, Dimension::Acceleration);
+    }
+
+    #[test]
+    fn factors_convert_to_si() {
+        let cases = [
+            ("ms", 2.0, 2e-3),
+            ("kN", 3.0, 3e3),
+            ("mm", 5.0, 5e-3),
+            ("km/h", 36.0, 10.0),
+            ("g", 1.0, 9.80665),
+            ("t", 1.5, 1500.0),
+            ("N/mm", 4.0, 4e3),
+            ("Ns/mm", 0.2, 200.0),
+        ];
+        for (text, value, si) in cases {
+            assert_relative_eq!(Unit::parse(text).unwrap().to_si(value), si, max_relative = 1e-15);
+        }
+    }
+
+    #[test]
+    fn unknown_and_case_errors_are_reported() {
+        let err = Unit::parse("Mm").unwrap_err();
+        assert!(err.to_string().contains("unknown unit 'Mm'"), "{err}");
+        assert!(Unit::parse("").is_err());
+    }
+
+    #[test]
+    fn quantities_parse_with_and_without_unit() {
+        assert_relative_eq!(parse_quantity("1.67", Dimension::Velocity).unwrap(), 1.67);
+        assert_relative_eq!(parse_quantity("6km/h", Dimension::Velocity).unwrap(), 6.0 / 3.6);
+        assert_relative_eq!(parse_quantity("1e3 mm/s", Dimension::Velocity).unwrap(), 1.0);
+        assert!(parse_quantity("fast", Dimension::Velocity).is_err());
+        assert!(parse_quantity("nan", Dimension::Velocity).is_err());
+    }
+
+    #[test]
+    fn numbers_format_with_significant_digits() {
+        assert_eq!(format_number(123.456, 4), "123.5");
+        assert_eq!(format_number(0.012345, 3), "0.0123");
+        assert_eq!(format_number(1.5e7, 3), "1.50e7");
+        assert_eq!(format_quantity(40_000.0, Dimension::Force), "40.00 kN");
+        assert_eq!(format_quantity(9.80665, Dimension::Acceleration), "1.000 g");
+    }
+}

@@ -1,0 +1,193 @@
+//! Simulation checked against analytic solutions, conservation laws and an
+//! independent fine-step Runge–Kutta reference.
+
+use approx::assert_relative_eq;
+use bumpsim_core::prelude::*;
+use bumpsim_core::state_space::{StateSpace, elastic_modes};
+use proptest::prelude::*;
+
+fn thesis_model() -> MsdModel {
+    MsdModel::new(vec![1.8, 74.8, 1670.0], vec![6.46e6, 1.97e5], vec![4.75e5, 5.0e5]).unwrap()
+}
+
+/// A pendulum-like half-sine pulse, 40 kN for 60 ms, then zero; 10 kHz.
+fn half_sine(samples: usize) -> UniformSeries {
+    let values = (0..samples)
+        .map(|i| {
+            let t = i as f64 * 1e-4;
+            if t < 0.06 { 4e4 * (std::f64::consts::PI * t / 0.06).sin() } else { 0.0 }
+        })
+        .collect();
+    UniformSeries::new(0.0, 1e-4, values).unwrap()
+}
+
+/// Deterministic rough force (a linear congruential sequence), N.
+fn rough_force(samples: usize, step: f64) -> UniformSeries {
+    let mut state: u64 = 12345;
+    let values = (0..samples)
+        .map(|_| {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.3) * 2e4
+        })
+        .collect();
+    UniformSeries::new(0.0, step, values).unwrap()
+}
+
+#[test]
+fn free_mass_under_constant_force_is_exact_with_zoh_and_foh() {
+    let (mass, force) = (1450.0, 2.5e4);
+    let car = MsdModel::new(vec![mass], vec![], vec![]).unwrap();
+    let series = UniformSeries::new(0.0, 1e-4, vec![force; 1001]).unwrap();
+    for method in [Method::Zoh, Method::Foh] {
+        let r = simulate(&car, &series, method, &InitialState::Rest).unwrap();
+        for k in [1, 10, 500, 1000] {
+            let t = r.time[k];
+            assert_relative_eq!(r.displacement[0][k], force * t * t / (2.0 * mass), max_relative = 1e-12);
+            assert_relative_eq!(r.velocity[0][k], force * t / mass, max_relative = 1e-12);
+            assert_relative_eq!(r.acceleration[0][k], force / mass, max_relative = 1e-12);
+        }
+    }
+}
+
+#[test]
+fn foh_is_exact_for_a_force_ramp() {
+    // f = a t on a free mass: x = a t³ / 6m
+    let (mass, slope) = (2.0, 300.0);
+    let car = MsdModel::new(vec![mass], vec![], vec![]).unwrap();
+    let series = UniformSeries::new(0.0, 1e-3, (0..101).map(|i| slope * i as f64 * 1e-3).collect()).unwrap();
+    let r = simulate(&car, &series, Method::Foh, &InitialState::Rest).unwrap();
+    let t = r.time[100];
+    assert_relative_eq!(r.displacement[0][100], slope * t.powi(3) / (6.0 * mass), max_relative = 1e-11);
+    // zoh holds each sample: its error is first order in T, visibly larger
+    let z = simulate(&car, &series, Method::Zoh, &InitialState::Rest).unwrap();
+    assert!((z.displacement[0][100] / r.displacement[0][100] - 1.0).abs() > 1e-3);
+}
+
+#[test]
+fn two_dof_free_vibration_has_the_analytic_frequency() {
+    let (m1, m2, k): (f64, f64, f64) = (650.0, 400.0, 4e6);
+    let omega = (k * (1.0 / m1 + 1.0 / m2)).sqrt();
+    let car = MsdModel::new(vec![m1, m2], vec![0.0], vec![k]).unwrap();
+    let u0 = 1e-3;
+    let series = UniformSeries::new(0.0, 1e-4, vec![0.0; 5001]).unwrap();
+    let r = simulate(&car, &series, Method::Zoh, &InitialState::State(vec![u0, 0.0, 0.0, 0.0])).unwrap();
+    for k in 0..series.len() {
+        let u = r.displacement[0][k] - r.displacement[1][k];
+        assert_relative_eq!(u, u0 * (omega * r.time[k]).cos(), epsilon = 1e-12);
+    }
+    // frequency from the up-crossings of the relative displacement, independent of the formula above
+    let u: Vec<f64> = (0..series.len()).map(|k| r.displacement[0][k] - r.displacement[1][k]).collect();
+    let crossings: Vec<f64> = (1..u.len())
+        .filter(|&k| u[k - 1] < 0.0 && u[k] >= 0.0)
+        .map(|k| r.time[k - 1] + 1e-4 * u[k - 1] / (u[k - 1] - u[k]))
+        .collect();
+    let period = (crossings.last().unwrap() - crossings[0]) / (crossings.len() - 1) as f64;
+    assert_relative_eq!(std::f64::consts::TAU / period, omega, max_relative = 1e-5);
+    let mode = elastic_modes(&car).unwrap()[0];
+    assert_relative_eq!(mode.natural_frequency(), omega, max_relative = 1e-10);
+}
+
+#[test]
+fn momentum_equals_impulse() {
+    let car = MsdModel::new(vec![150.0, 500.0, 800.0], vec![1e2, 2e5], vec![5e5, 5e5]).unwrap();
+    let force = rough_force(2000, 1e-4);
+    for method in [Method::Zoh, Method::Foh] {
+        let r = simulate(&car, &force, method, &InitialState::UniformVelocity(1.5)).unwrap();
+        assert!(r.momentum_error() < 1e-9, "{method}: {}", r.momentum_error());
+    }
+}
+
+#[test]
+fn energy_balances_with_exact_holds() {
+    let car = MsdModel::new(vec![150.0, 500.0, 800.0], vec![1e2, 2e5], vec![5e5, 5e5]).unwrap();
+    let force = rough_force(2000, 1e-4);
+    for method in [Method::Zoh, Method::Foh] {
+        let r = simulate(&car, &force, method, &InitialState::Rest).unwrap();
+        assert!(r.energy.relative_error() < 1e-6, "{method}: {}", r.energy.relative_error());
+        assert!(r.energy.dissipated.last().unwrap() > &0.0);
+    }
+}
+
+#[test]
+fn thesis_model_runs_with_zoh_and_is_refused_by_taylor1() {
+    let car = thesis_model();
+    let force = half_sine(1500);
+    let r = simulate(&car, &force, Method::Zoh, &InitialState::Rest).unwrap();
+    assert!(r.displacement.iter().flatten().all(|v| v.is_finite()));
+    assert!(r.momentum_error() < 1e-9, "{}", r.momentum_error());
+    assert!(r.energy.relative_error() < 1e-6, "{}", r.energy.relative_error());
+    let refused = simulate(&car, &force, Method::Taylor1, &InitialState::Rest).unwrap_err();
+    let message = refused.to_string();
+    assert!(message.contains("unstable") && message.contains("largest stable step"), "{message}");
+}
+
+#[test]
+fn taylor1_with_substeps_approaches_zoh() {
+    let car = thesis_model();
+    let force = half_sine(1500);
+    let exact = simulate(&car, &force, Method::Zoh, &InitialState::Rest).unwrap();
+    let sim = Simulator::with_substeps(&car, Method::Taylor1, 1e-4, Substeps::Auto).unwrap();
+    let euler = sim.run(&force, &InitialState::Rest).unwrap();
+    let peak = exact.peak_displacement(0).1.abs();
+    let worst = exact.displacement[0].iter().zip(&euler.displacement[0]).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(worst < 1e-3 * peak, "taylor1 with {} sub-steps off by {worst} m", sim.discrete().substeps());
+}
+
+/// Classical RK4 on X' = A X + B f with f held over each sample, `sub` steps per sample.
+fn rk4_reference(car: &MsdModel, force: &UniformSeries, sub: usize) -> Vec<Vec<f64>> {
+    let ss = StateSpace::from_model(car);
+    let (a, b) = (ss.a(), ss.b());
+    let h = force.step() / sub as f64;
+    let mut x = nalgebra::DVector::zeros(ss.order());
+    let mut out = vec![x.as_slice().to_vec()];
+    for &f in &force.values()[..force.len() - 1] {
+        let rate = |x: &nalgebra::DVector<f64>| a * x + b * f;
+        for _ in 0..sub {
+            let k1 = rate(&x);
+            let k2 = rate(&(&x + &k1 * (h / 2.0)));
+            let k3 = rate(&(&x + &k2 * (h / 2.0)));
+            let k4 = rate(&(&x + &k3 * h));
+            x += (k1 + k2 * 2.0 + k3 * 2.0 + k4) * (h / 6.0);
+        }
+        out.push(x.as_slice().to_vec());
+    }
+    out
+}
+
+fn stable_model() -> impl Strategy<Value = MsdModel> {
+    (1usize..=5).prop_flat_map(|n| {
+        (
+            proptest::collection::vec(1.0f64..3.3, n),
+            proptest::collection::vec(0.0f64..4.0, n - 1),
+            proptest::collection::vec(4.0f64..7.0, n - 1),
+        )
+            .prop_map(|(m, c, k)| {
+                let pow = |v: Vec<f64>| v.into_iter().map(|e| 10f64.powf(e)).collect::<Vec<_>>();
+                MsdModel::new(pow(m), pow(c), pow(k)).unwrap()
+            })
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+    #[test]
+    fn zoh_agrees_with_fine_step_runge_kutta(car in stable_model(), seed in 0u64..1000) {
+        let step = 1e-4;
+        let fastest = elastic_modes(&car).unwrap().last().map_or(0.0, |m| m.natural_frequency());
+        let sub = ((step * fastest / 0.05).ceil() as usize).max(4);
+        prop_assume!(sub <= 2000);
+        let mut force = rough_force(60 + seed as usize % 40, step).values().to_vec();
+        force.rotate_left(seed as usize % 50);
+        let force = UniformSeries::new(0.0, step, force).unwrap();
+        let r = simulate(&car, &force, Method::Zoh, &InitialState::Rest).unwrap();
+        let reference = rk4_reference(&car, &force, sub);
+        let n = car.dof();
+        for i in 0..n {
+            let scale = reference.iter().fold(1e-300_f64, |s, x| s.max(x[i].abs()));
+            for (k, x) in reference.iter().enumerate() {
+                prop_assert!((r.displacement[i][k] - x[i]).abs() <= 1e-6 * scale,
+                    "x{} at sample {k}: zoh {} vs rk4 {}", i + 1, r.displacement[i][k], x[i]);
+            }
+        }
+    }
+}
