@@ -1,1 +1,39 @@
-fn main() {}
+//! `bumpsim`: the command-line front end. It converts arguments and files
+//! into calls of the library crates and prints their results; it holds no
+//! computation of its own.
+//!
+//! Exit codes: 0 success; 2 for anything the user can fix (bad arguments,
+//! unreadable or invalid files, a model the chosen method cannot run).
+
+mod simulate;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Low-speed bumper impact toolkit: MSD car models from crash tests.
+#[derive(Debug, Parser)]
+#[command(name = "bumpsim", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Simulate an MSD car model under a measured or synthetic force on m1.
+    Simulate(simulate::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Simulate(args) => simulate::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("error: {error:#}");
+            ExitCode::from(2)
+        }
+    }
+}

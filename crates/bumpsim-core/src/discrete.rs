@@ -80,7 +80,9 @@ impl FromStr for Method {
             "zoh" => Ok(Method::Zoh),
             "foh" => Ok(Method::Foh),
             "taylor1" => Ok(Method::Taylor1),
-            other => Err(format!("unknown method '{other}': expected zoh, foh or taylor1")),
+            other => Err(format!(
+                "unknown method '{other}': expected zoh, foh or taylor1"
+            )),
         }
     }
 }
@@ -239,7 +241,12 @@ impl DiscreteModel {
     /// Runs the update over a force history. `states` receives one row of N
     /// values per force sample (row 0 is `initial`); it must hold exactly
     /// `force.len() × N` values. Allocates nothing.
-    pub fn propagate(&self, initial: &[f64], force: &[f64], states: &mut [f64]) -> Result<(), LengthError> {
+    pub fn propagate(
+        &self,
+        initial: &[f64],
+        force: &[f64],
+        states: &mut [f64],
+    ) -> Result<(), LengthError> {
         let n = self.order;
         if initial.len() != n || states.len() != force.len() * n || force.is_empty() {
             return Err(LengthError {
@@ -279,23 +286,35 @@ pub struct LengthError {
     pub states: usize,
 }
 
-fn propagate_fixed<const N: usize>(model: &DiscreteModel, initial: &[f64], force: &[f64], states: &mut [f64]) {
-    let mut phi = [[0.0; N]; N];
-    for (row, source) in phi.iter_mut().zip(model.phi.chunks_exact(N)) {
-        row.copy_from_slice(source);
+fn propagate_fixed<const N: usize>(
+    model: &DiscreteModel,
+    initial: &[f64],
+    force: &[f64],
+    states: &mut [f64],
+) {
+    // columns of Φ: the product accumulates column by column, so the N rows
+    // are independent lanes the compiler vectorises
+    let mut columns = [[0.0; N]; N];
+    for (i, row) in model.phi.chunks_exact(N).enumerate() {
+        for (column, value) in columns.iter_mut().zip(row) {
+            column[i] = *value;
+        }
     }
-    let mut gamma = [[0.0; 2]; N];
-    for (g, (g0, g1)) in gamma.iter_mut().zip(model.gamma0.iter().zip(&model.gamma1)) {
-        *g = [*g0, *g1];
-    }
+    let mut gamma = [[0.0; N]; 2];
+    gamma[0].copy_from_slice(&model.gamma0);
+    gamma[1].copy_from_slice(&model.gamma1);
     let mut x = [0.0; N];
     x.copy_from_slice(initial);
     states[..N].copy_from_slice(&x);
     for (out, f) in states[N..].chunks_exact_mut(N).zip(force.windows(2)) {
         let mut next = [0.0; N];
-        for ((value, row), g) in next.iter_mut().zip(&phi).zip(&gamma) {
-            let input = g[0] * f[0] + g[1] * f[1];
-            *value = row.iter().zip(&x).fold(input, |sum, (p, xj)| sum + p * xj);
+        for ((value, g0), g1) in next.iter_mut().zip(&gamma[0]).zip(&gamma[1]) {
+            *value = g0 * f[0] + g1 * f[1];
+        }
+        for (column, xj) in columns.iter().zip(&x) {
+            for (value, p) in next.iter_mut().zip(column) {
+                *value += p * xj;
+            }
         }
         out.copy_from_slice(&next);
         x = next;
@@ -323,14 +342,24 @@ fn exact(ss: &StateSpace, method: Method, step: f64) -> DiscreteModel {
     let first: Vec<f64> = e.column(n).rows(0, n).iter().copied().collect();
     let (gamma0, gamma1) = if method == Method::Foh {
         let second: Vec<f64> = e.column(n + 1).rows(0, n).iter().copied().collect();
-        (first.iter().zip(&second).map(|(a, b)| a - b).collect(), second)
+        (
+            first.iter().zip(&second).map(|(a, b)| a - b).collect(),
+            second,
+        )
     } else {
         (first, vec![0.0; n])
     };
     build(method, step, 1, phi, gamma0, gamma1)
 }
 
-fn build(method: Method, step: f64, substeps: u64, phi: DMatrix<f64>, gamma0: Vec<f64>, gamma1: Vec<f64>) -> DiscreteModel {
+fn build(
+    method: Method,
+    step: f64,
+    substeps: u64,
+    phi: DMatrix<f64>,
+    gamma0: Vec<f64>,
+    gamma1: Vec<f64>,
+) -> DiscreteModel {
     DiscreteModel {
         method,
         step,
@@ -343,7 +372,10 @@ fn build(method: Method, step: f64, substeps: u64, phi: DMatrix<f64>, gamma0: Ve
 }
 
 /// The smallest sub-step count that makes explicit Euler stable, or the reason there is none.
-fn substeps_needed(modes: &[Mode], step: f64) -> Result<(u64, Option<(Mode, f64)>), DiscretiseError> {
+fn substeps_needed(
+    modes: &[Mode],
+    step: f64,
+) -> Result<(u64, Option<(Mode, f64)>), DiscretiseError> {
     let mut limit: Option<(Mode, f64)> = None;
     for &mode in modes {
         // undamped within rounding: |1 + λh| > 1 for every h
@@ -355,15 +387,26 @@ fn substeps_needed(modes: &[Mode], step: f64) -> Result<(u64, Option<(Mode, f64)
             limit = Some((mode, max_step));
         }
     }
-    let needed = limit.map_or(1, |(_, max_step)| (step / (0.9 * max_step)).ceil().max(1.0) as u64);
+    let needed = limit.map_or(1, |(_, max_step)| {
+        (step / (0.9 * max_step)).ceil().max(1.0) as u64
+    });
     Ok((needed, limit))
 }
 
-fn taylor1(ss: &StateSpace, modes: &[Mode], step: f64, substeps: Substeps) -> Result<DiscreteModel, DiscretiseError> {
+fn taylor1(
+    ss: &StateSpace,
+    modes: &[Mode],
+    step: f64,
+    substeps: Substeps,
+) -> Result<DiscreteModel, DiscretiseError> {
     let (needed, limit) = substeps_needed(modes, step)?;
     let count = match substeps {
         Substeps::Auto => needed,
-        Substeps::Count(0) => return Err(DiscretiseError::Substeps("sub-steps must be at least 1".into())),
+        Substeps::Count(0) => {
+            return Err(DiscretiseError::Substeps(
+                "sub-steps must be at least 1".into(),
+            ));
+        }
         Substeps::Count(c) => u64::from(c),
     };
     if count > MAX_SUBSTEPS {
@@ -374,14 +417,28 @@ fn taylor1(ss: &StateSpace, modes: &[Mode], step: f64, substeps: Substeps) -> Re
     let h = step / count as f64;
     if let Some((mode, radius)) = most_amplified(modes, h) {
         let max_stable_step = limit.map_or(0.0, |(_, s)| s);
-        return Err(DiscretiseError::Unstable { step, substeps: count, mode, radius, max_stable_step, needed });
+        return Err(DiscretiseError::Unstable {
+            step,
+            substeps: count,
+            mode,
+            radius,
+            max_stable_step,
+            needed,
+        });
     }
     let n = ss.order();
     let identity = DMatrix::<f64>::identity(n, n);
     let phi_h = &identity + ss.a() * h;
     let gamma_h = (&identity * h + ss.a() * (h * h / 2.0)) * ss.b();
     let (phi, gamma) = power(&phi_h, &gamma_h.as_slice().to_vec(), count);
-    Ok(build(Method::Taylor1, step, count, phi, gamma, vec![0.0; n]))
+    Ok(build(
+        Method::Taylor1,
+        step,
+        count,
+        phi,
+        gamma,
+        vec![0.0; n],
+    ))
 }
 
 /// The mode with the largest |1 + λh| above 1, if any.
@@ -415,14 +472,23 @@ mod tests {
     use approx::assert_relative_eq;
 
     fn thesis_model() -> MsdModel {
-        MsdModel::new(vec![1.8, 74.8, 1670.0], vec![6.46e6, 1.97e5], vec![4.75e5, 5.0e5]).unwrap()
+        MsdModel::new(
+            vec![1.8, 74.8, 1670.0],
+            vec![6.46e6, 1.97e5],
+            vec![4.75e5, 5.0e5],
+        )
+        .unwrap()
     }
 
     #[test]
     fn zoh_of_a_free_mass_is_the_exact_double_integrator() {
         let car = MsdModel::new(vec![2.0], vec![], vec![]).unwrap();
         let d = DiscreteModel::new(&car, Method::Zoh, 0.1).unwrap();
-        assert_relative_eq!(d.phi(), DMatrix::from_row_slice(2, 2, &[1.0, 0.1, 0.0, 1.0]), epsilon = 1e-15);
+        assert_relative_eq!(
+            d.phi(),
+            DMatrix::from_row_slice(2, 2, &[1.0, 0.1, 0.0, 1.0]),
+            epsilon = 1e-15
+        );
         // x = T²/(2m), v = T/m per unit force
         assert_relative_eq!(d.gamma0()[0], 0.01 / 4.0, max_relative = 1e-12);
         assert_relative_eq!(d.gamma0()[1], 0.05, max_relative = 1e-12);
@@ -442,20 +508,36 @@ mod tests {
     #[test]
     fn taylor1_refuses_the_thesis_model_and_names_the_cure() {
         let err = DiscreteModel::new(&thesis_model(), Method::Taylor1, 1e-4).unwrap_err();
-        let DiscretiseError::Unstable { needed, max_stable_step, mode, .. } = err.clone() else {
+        let DiscretiseError::Unstable {
+            needed,
+            max_stable_step,
+            mode,
+            ..
+        } = err.clone()
+        else {
             panic!("expected Unstable, got {err}");
         };
         assert!(mode.is_real());
         assert!((150..250).contains(&needed), "needed {needed}");
-        assert!(max_stable_step > 4e-7 && max_stable_step < 7e-7, "{max_stable_step}");
+        assert!(
+            max_stable_step > 4e-7 && max_stable_step < 7e-7,
+            "{max_stable_step}"
+        );
         assert!(err.to_string().contains("overdamped mode"), "{err}");
     }
 
     #[test]
     fn taylor1_with_enough_substeps_is_stable() {
-        let d = DiscreteModel::with_substeps(&thesis_model(), Method::Taylor1, 1e-4, Substeps::Auto).unwrap();
+        let d =
+            DiscreteModel::with_substeps(&thesis_model(), Method::Taylor1, 1e-4, Substeps::Auto)
+                .unwrap();
         assert!(d.substeps() > 150);
-        let ok = DiscreteModel::with_substeps(&thesis_model(), Method::Taylor1, 1e-4, Substeps::Count(d.substeps() as u32));
+        let ok = DiscreteModel::with_substeps(
+            &thesis_model(),
+            Method::Taylor1,
+            1e-4,
+            Substeps::Count(d.substeps() as u32),
+        );
         assert!(ok.is_ok());
     }
 
@@ -468,7 +550,9 @@ mod tests {
 
     #[test]
     fn substeps_are_refused_for_exact_methods() {
-        let err = DiscreteModel::with_substeps(&thesis_model(), Method::Zoh, 1e-4, Substeps::Count(4)).unwrap_err();
+        let err =
+            DiscreteModel::with_substeps(&thesis_model(), Method::Zoh, 1e-4, Substeps::Count(4))
+                .unwrap_err();
         assert!(err.to_string().contains("taylor1 only"));
     }
 
@@ -481,7 +565,8 @@ mod tests {
         for _ in 0..13 {
             x = &phi * x + nalgebra::DVector::from_column_slice(&gamma) * 2.0;
         }
-        let y = p * nalgebra::DVector::from_column_slice(&[1.0, -1.0]) + nalgebra::DVector::from_vec(g) * 2.0;
+        let y = p * nalgebra::DVector::from_column_slice(&[1.0, -1.0])
+            + nalgebra::DVector::from_vec(g) * 2.0;
         assert_relative_eq!(x, y, max_relative = 1e-12);
     }
 }

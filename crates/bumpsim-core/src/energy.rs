@@ -40,13 +40,19 @@ impl StepIntegrals {
     /// Builds the integrals for a model, a hold (zoh or foh; taylor1 uses zoh)
     /// and a step T (s).
     pub fn new(model: &MsdModel, method: Method, step: f64) -> Self {
-        let hold = if method == Method::Foh { Method::Foh } else { Method::Zoh };
+        let hold = if method == Method::Foh {
+            Method::Foh
+        } else {
+            Method::Zoh
+        };
         let ss = StateSpace::from_model(model);
         let generator = hold_generator(&ss, hold, step);
         let n = model.dof();
         let size = generator.nrows();
         let mut q_dissipation = DMatrix::zeros(size, size);
-        q_dissipation.view_mut((n, n), (n, n)).copy_from(&model.damping_matrix());
+        q_dissipation
+            .view_mut((n, n), (n, n))
+            .copy_from(&model.damping_matrix());
         let mut q_work = DMatrix::zeros(size, size);
         // f is augmented state 2n, v1 is state n: P = f v1 = zᵀ Q z with Q symmetric
         q_work[(n, 2 * n)] = 0.5;
@@ -86,12 +92,20 @@ fn quadratic_form(w: &[f64], z: &[f64]) -> f64 {
 pub fn step_integral(generator: &DMatrix<f64>, q: &DMatrix<f64>, step: f64) -> DMatrix<f64> {
     let size = generator.nrows();
     let norm = generator.abs().column_sum().max() * step;
-    let doublings = if norm > 0.25 { (norm / 0.25).log2().ceil() as u32 } else { 0 };
+    let doublings = if norm > 0.25 {
+        (norm / 0.25).log2().ceil() as u32
+    } else {
+        0
+    };
     let h = step / 2f64.powi(doublings as i32);
     let mut block = DMatrix::zeros(2 * size, 2 * size);
-    block.view_mut((0, 0), (size, size)).copy_from(&(-generator.transpose() * h));
+    block
+        .view_mut((0, 0), (size, size))
+        .copy_from(&(-generator.transpose() * h));
     block.view_mut((0, size), (size, size)).copy_from(&(q * h));
-    block.view_mut((size, size), (size, size)).copy_from(&(generator * h));
+    block
+        .view_mut((size, size), (size, size))
+        .copy_from(&(generator * h));
     let exp = block.exp();
     let mut e = exp.view((size, size), (size, size)).clone_owned();
     let mut w = e.transpose() * exp.view((0, size), (size, size));
@@ -126,7 +140,11 @@ mod tests {
         let car = MsdModel::new(vec![2.0], vec![], vec![]).unwrap();
         let integrals = StepIntegrals::new(&car, Method::Zoh, 0.1);
         let z = [0.0, 0.0, 3.0];
-        assert_relative_eq!(integrals.work(&z), 3.0 * 3.0 * 0.01 / 4.0, max_relative = 1e-12);
+        assert_relative_eq!(
+            integrals.work(&z),
+            3.0 * 3.0 * 0.01 / 4.0,
+            max_relative = 1e-12
+        );
         assert_relative_eq!(integrals.dissipated(&z), 0.0);
     }
 }

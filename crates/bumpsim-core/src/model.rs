@@ -230,7 +230,10 @@ fn check_count(kind: &'static str, dof: usize, count: usize) -> Result<(), Model
 fn check_value(dof: usize, index: usize, value: f64) -> Result<(), ModelError> {
     let (kind, _) = parameter_kind(dof, index);
     let (ok, requirement) = match kind {
-        ParameterKind::Damper => (value >= 0.0, "a damper must be finite and non-negative (0 = no damper)"),
+        ParameterKind::Damper => (
+            value >= 0.0,
+            "a damper must be finite and non-negative (0 = no damper)",
+        ),
         ParameterKind::Mass => (value > 0.0, "a mass must be positive and finite"),
         ParameterKind::Spring => (value > 0.0, "a spring must be positive and finite"),
     };
@@ -274,8 +277,19 @@ mod tests {
     #[test]
     fn counts_must_fit_a_chain() {
         let err = MsdModel::new(vec![1.0, 2.0, 3.0], vec![1.0], vec![1.0, 1.0]).unwrap_err();
-        assert!(matches!(err, ModelError::Count { kind: "dampers", expected: 2, count: 1, .. }));
-        assert_eq!(MsdModel::new(vec![], vec![], vec![]), Err(ModelError::NoMass));
+        assert!(matches!(
+            err,
+            ModelError::Count {
+                kind: "dampers",
+                expected: 2,
+                count: 1,
+                ..
+            }
+        ));
+        assert_eq!(
+            MsdModel::new(vec![], vec![], vec![]),
+            Err(ModelError::NoMass)
+        );
     }
 
     #[test]
@@ -292,7 +306,8 @@ mod tests {
     fn stiffness_matrix_is_the_chain_laplacian() {
         let model = MsdModel::new(vec![1.0; 3], vec![0.0, 0.0], vec![2.0, 3.0]).unwrap();
         let k = model.stiffness_matrix();
-        let expected = DMatrix::from_row_slice(3, 3, &[2.0, -2.0, 0.0, -2.0, 5.0, -3.0, 0.0, -3.0, 3.0]);
+        let expected =
+            DMatrix::from_row_slice(3, 3, &[2.0, -2.0, 0.0, -2.0, 5.0, -3.0, 0.0, -3.0, 3.0]);
         assert_eq!(k, expected);
         assert_eq!(k.row_sum().norm(), 0.0);
     }

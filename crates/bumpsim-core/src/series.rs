@@ -135,7 +135,10 @@ pub fn peak_of(values: &[f64]) -> (usize, f64) {
         .iter()
         .copied()
         .enumerate()
-        .fold((0, 0.0), |best, (i, v)| if v.abs() > best.1.abs() { (i, v) } else { best })
+        .fold(
+            (0, 0.0),
+            |best, (i, v)| if v.abs() > best.1.abs() { (i, v) } else { best },
+        )
 }
 
 #[cfg(test)]
@@ -145,9 +148,15 @@ mod tests {
 
     #[test]
     fn rejects_bad_time_base() {
-        assert_eq!(UniformSeries::new(0.0, 0.0, vec![1.0]), Err(SeriesError::Step { step: 0.0 }));
+        assert_eq!(
+            UniformSeries::new(0.0, 0.0, vec![1.0]),
+            Err(SeriesError::Step { step: 0.0 })
+        );
         assert!(UniformSeries::new(f64::NAN, 1.0, vec![1.0]).is_err());
-        assert_eq!(UniformSeries::new(0.0, 1.0, vec![]), Err(SeriesError::Empty));
+        assert_eq!(
+            UniformSeries::new(0.0, 1.0, vec![]),
+            Err(SeriesError::Empty)
+        );
     }
 
     #[test]

@@ -48,7 +48,9 @@ pub enum SimulationError {
     #[error(transparent)]
     Discretise(#[from] DiscretiseError),
     /// A full initial state of the wrong length.
-    #[error("the initial state has {found} values; a {dof}-DOF model needs {expected} (x1..x{dof}, v1..v{dof})")]
+    #[error(
+        "the initial state has {found} values; a {dof}-DOF model needs {expected} (x1..x{dof}, v1..v{dof})"
+    )]
     InitialLength {
         /// Number of masses.
         dof: usize,
@@ -66,7 +68,9 @@ pub enum SimulationError {
         value: f64,
     },
     /// The force's sample interval differs from the one the simulator was built for.
-    #[error("the force is sampled at {found:e} s but the simulator was discretised at {expected:e} s")]
+    #[error(
+        "the force is sampled at {found:e} s but the simulator was discretised at {expected:e} s"
+    )]
     SampleInterval {
         /// The simulator's T, s.
         expected: f64,
@@ -185,7 +189,12 @@ impl Simulator {
     }
 
     /// As [`Simulator::new`], with sub-steps for taylor1.
-    pub fn with_substeps(model: &MsdModel, method: Method, step: f64, substeps: Substeps) -> Result<Self, SimulationError> {
+    pub fn with_substeps(
+        model: &MsdModel,
+        method: Method,
+        step: f64,
+        substeps: Substeps,
+    ) -> Result<Self, SimulationError> {
         let discrete = DiscreteModel::with_substeps(model, method, step, substeps)?;
         Ok(Self {
             model: model.clone(),
@@ -200,10 +209,17 @@ impl Simulator {
     }
 
     /// Runs one force history from an initial state.
-    pub fn run(&self, force: &UniformSeries, initial: &InitialState) -> Result<Response, SimulationError> {
+    pub fn run(
+        &self,
+        force: &UniformSeries,
+        initial: &InitialState,
+    ) -> Result<Response, SimulationError> {
         let relative = (force.step() - self.discrete.step()).abs() / self.discrete.step();
         if relative > 1e-9 {
-            return Err(SimulationError::SampleInterval { expected: self.discrete.step(), found: force.step() });
+            return Err(SimulationError::SampleInterval {
+                expected: self.discrete.step(),
+                found: force.step(),
+            });
         }
         let x0 = self.initial_vector(initial)?;
         let order = x0.len();
@@ -212,8 +228,14 @@ impl Simulator {
         if let Err(e) = self.discrete.propagate(&x0, force.values(), &mut states) {
             unreachable!("{e}");
         }
-        if let Some(row) = states.chunks_exact(order).position(|x| x.iter().any(|v| !v.is_finite())) {
-            return Err(SimulationError::Diverged { time: force.time(row), method: self.discrete.method() });
+        if let Some(row) = states
+            .chunks_exact(order)
+            .position(|x| x.iter().any(|v| !v.is_finite()))
+        {
+            return Err(SimulationError::Diverged {
+                time: force.time(row),
+                method: self.discrete.method(),
+            });
         }
         Ok(self.response(force, &states))
     }
@@ -225,11 +247,18 @@ impl Simulator {
             InitialState::UniformVelocity(v) => [vec![0.0; n], vec![*v; n]].concat(),
             InitialState::State(x) if x.len() == 2 * n => x.clone(),
             InitialState::State(x) => {
-                return Err(SimulationError::InitialLength { dof: n, expected: 2 * n, found: x.len() });
+                return Err(SimulationError::InitialLength {
+                    dof: n,
+                    expected: 2 * n,
+                    found: x.len(),
+                });
             }
         };
         match x0.iter().position(|v| !v.is_finite()) {
-            Some(index) => Err(SimulationError::InitialValue { index, value: x0[index] }),
+            Some(index) => Err(SimulationError::InitialValue {
+                index,
+                value: x0[index],
+            }),
             None => Ok(x0),
         }
     }
@@ -237,14 +266,21 @@ impl Simulator {
     fn response(&self, force: &UniformSeries, states: &[f64]) -> Response {
         let n = self.model.dof();
         let samples = force.len();
-        let column = |offset: usize| -> Vec<f64> { states.chunks_exact(2 * n).map(|x| x[offset]).collect() };
+        let column =
+            |offset: usize| -> Vec<f64> { states.chunks_exact(2 * n).map(|x| x[offset]).collect() };
         let displacement: Vec<Vec<f64>> = (0..n).map(column).collect();
         let velocity: Vec<Vec<f64>> = (n..2 * n).map(column).collect();
         let link = |coefficients: &[f64], values: &[Vec<f64>]| -> Vec<Vec<f64>> {
             coefficients
                 .iter()
                 .enumerate()
-                .map(|(j, c)| values[j].iter().zip(&values[j + 1]).map(|(a, b)| c * (a - b)).collect())
+                .map(|(j, c)| {
+                    values[j]
+                        .iter()
+                        .zip(&values[j + 1])
+                        .map(|(a, b)| c * (a - b))
+                        .collect()
+                })
                 .collect()
         };
         let spring_force = link(self.model.springs(), &displacement);
@@ -255,7 +291,13 @@ impl Simulator {
             method: self.discrete.method(),
             time: force.times(),
             force: force.values().to_vec(),
-            momentum: (0..samples).map(|k| (0..n).map(|i| self.model.masses()[i] * velocity[i][k]).sum()).collect(),
+            momentum: (0..samples)
+                .map(|k| {
+                    (0..n)
+                        .map(|i| self.model.masses()[i] * velocity[i][k])
+                        .sum()
+                })
+                .collect(),
             impulse: impulse(self.discrete.method(), force),
             displacement,
             velocity,
@@ -266,13 +308,33 @@ impl Simulator {
         }
     }
 
-    fn energy(&self, force: &[f64], states: &[f64], velocity: &[Vec<f64>], spring_force: &[Vec<f64>]) -> Energy {
+    fn energy(
+        &self,
+        force: &[f64],
+        states: &[f64],
+        velocity: &[Vec<f64>],
+        spring_force: &[Vec<f64>],
+    ) -> Energy {
         let samples = force.len();
         let kinetic = (0..samples)
-            .map(|k| self.model.masses().iter().zip(velocity).map(|(m, v)| 0.5 * m * v[k] * v[k]).sum())
+            .map(|k| {
+                self.model
+                    .masses()
+                    .iter()
+                    .zip(velocity)
+                    .map(|(m, v)| 0.5 * m * v[k] * v[k])
+                    .sum()
+            })
             .collect();
         let spring = (0..samples)
-            .map(|k| self.model.springs().iter().zip(spring_force).map(|(s, f)| 0.5 * f[k] * f[k] / s).sum())
+            .map(|k| {
+                self.model
+                    .springs()
+                    .iter()
+                    .zip(spring_force)
+                    .map(|(s, f)| 0.5 * f[k] * f[k] / s)
+                    .sum()
+            })
             .collect();
         let order = 2 * self.model.dof();
         let mut z = vec![0.0; self.integrals.size()];
@@ -286,19 +348,37 @@ impl Simulator {
             dissipated[k] = dissipated[k - 1] + self.integrals.dissipated(&z);
             work[k] = work[k - 1] + self.integrals.work(&z);
         }
-        Energy { kinetic, spring, dissipated, work }
+        Energy {
+            kinetic,
+            spring,
+            dissipated,
+            work,
+        }
     }
 }
 
-fn accelerations(model: &MsdModel, force: &[f64], springs: &[Vec<f64>], dampers: &[Vec<f64>]) -> Vec<Vec<f64>> {
+fn accelerations(
+    model: &MsdModel,
+    force: &[f64],
+    springs: &[Vec<f64>],
+    dampers: &[Vec<f64>],
+) -> Vec<Vec<f64>> {
     let n = model.dof();
     (0..n)
         .map(|i| {
             (0..force.len())
                 .map(|k| {
                     let external = if i == 0 { force[k] } else { 0.0 };
-                    let behind = if i + 1 < n { springs[i][k] + dampers[i][k] } else { 0.0 };
-                    let ahead = if i > 0 { springs[i - 1][k] + dampers[i - 1][k] } else { 0.0 };
+                    let behind = if i + 1 < n {
+                        springs[i][k] + dampers[i][k]
+                    } else {
+                        0.0
+                    };
+                    let ahead = if i > 0 {
+                        springs[i - 1][k] + dampers[i - 1][k]
+                    } else {
+                        0.0
+                    };
                     (external - behind + ahead) / model.masses()[i]
                 })
                 .collect()
@@ -341,7 +421,13 @@ mod tests {
     fn uniform_velocity_drifts_without_force() {
         let car = MsdModel::new(vec![1.0, 2.0], vec![10.0], vec![100.0]).unwrap();
         let force = UniformSeries::new(0.0, 1e-3, vec![0.0; 11]).unwrap();
-        let r = simulate(&car, &force, Method::Zoh, &InitialState::UniformVelocity(2.0)).unwrap();
+        let r = simulate(
+            &car,
+            &force,
+            Method::Zoh,
+            &InitialState::UniformVelocity(2.0),
+        )
+        .unwrap();
         assert_relative_eq!(r.displacement[1][10], 0.02, max_relative = 1e-12);
         assert_relative_eq!(r.spring_force[0][10], 0.0, epsilon = 1e-9);
     }
@@ -351,8 +437,16 @@ mod tests {
         let car = MsdModel::new(vec![1.0], vec![], vec![]).unwrap();
         let force = UniformSeries::new(0.0, 1e-3, vec![0.0; 3]).unwrap();
         let short = simulate(&car, &force, Method::Zoh, &InitialState::State(vec![0.0]));
-        assert!(matches!(short, Err(SimulationError::InitialLength { expected: 2, .. })));
-        let nan = simulate(&car, &force, Method::Zoh, &InitialState::UniformVelocity(f64::NAN));
+        assert!(matches!(
+            short,
+            Err(SimulationError::InitialLength { expected: 2, .. })
+        ));
+        let nan = simulate(
+            &car,
+            &force,
+            Method::Zoh,
+            &InitialState::UniformVelocity(f64::NAN),
+        );
         assert!(matches!(nan, Err(SimulationError::InitialValue { .. })));
     }
 
@@ -361,6 +455,9 @@ mod tests {
         let car = MsdModel::new(vec![1.0], vec![], vec![]).unwrap();
         let sim = Simulator::new(&car, Method::Zoh, 1e-3).unwrap();
         let force = UniformSeries::new(0.0, 2e-3, vec![0.0; 3]).unwrap();
-        assert!(matches!(sim.run(&force, &InitialState::Rest), Err(SimulationError::SampleInterval { .. })));
+        assert!(matches!(
+            sim.run(&force, &InitialState::Rest),
+            Err(SimulationError::SampleInterval { .. })
+        ));
     }
 }

@@ -112,7 +112,6 @@ impl StateSpace {
     pub fn order(&self) -> usize {
         self.b.len()
     }
-
 }
 
 /// The eigenvalue iteration did not converge.
@@ -141,7 +140,9 @@ pub fn elastic_modes(model: &MsdModel) -> Result<Vec<Mode>, ModeError> {
     }
     let m = model.masses();
     let mut reduced = DMatrix::zeros(2 * links, 2 * links);
-    reduced.view_mut((0, links), (links, links)).fill_with_identity();
+    reduced
+        .view_mut((0, links), (links, links))
+        .fill_with_identity();
     for i in 0..links {
         for j in 0..links {
             // R = L M⁻¹ Lᵀ is tridiagonal: R_ii = 1/m_i + 1/m_(i+1), R_i,i±1 = −1/m_shared
@@ -155,7 +156,8 @@ pub fn elastic_modes(model: &MsdModel) -> Result<Vec<Mode>, ModeError> {
         }
     }
     let size = 2 * links;
-    let schur = nalgebra::linalg::Schur::try_new(reduced, f64::EPSILON, 10_000).ok_or(ModeError { size })?;
+    let schur = nalgebra::linalg::Schur::try_new(reduced, f64::EPSILON, 10_000)
+        .ok_or(ModeError { size })?;
     let mut modes: Vec<Mode> = schur
         .complex_eigenvalues()
         .iter()
@@ -175,7 +177,10 @@ mod tests {
     fn single_mass_is_a_double_integrator() {
         let car = MsdModel::new(vec![4.0], vec![], vec![]).unwrap();
         let ss = StateSpace::from_model(&car);
-        assert_eq!(ss.a(), &DMatrix::from_row_slice(2, 2, &[0.0, 1.0, 0.0, 0.0]));
+        assert_eq!(
+            ss.a(),
+            &DMatrix::from_row_slice(2, 2, &[0.0, 1.0, 0.0, 0.0])
+        );
         assert_relative_eq!(ss.b()[1], 0.25);
         assert!(elastic_modes(&car).unwrap().is_empty());
     }
@@ -186,17 +191,34 @@ mod tests {
         let car = MsdModel::new(vec![1.0, 1.0], vec![1.0], vec![4.0]).unwrap();
         let modes = elastic_modes(&car).unwrap();
         assert_eq!(modes.len(), 1);
-        assert_relative_eq!(modes[0].natural_frequency(), 8f64.sqrt(), max_relative = 1e-10);
-        assert_relative_eq!(modes[0].damping_ratio(), 1.0 / 8f64.sqrt(), max_relative = 1e-10);
+        assert_relative_eq!(
+            modes[0].natural_frequency(),
+            8f64.sqrt(),
+            max_relative = 1e-10
+        );
+        assert_relative_eq!(
+            modes[0].damping_ratio(),
+            1.0 / 8f64.sqrt(),
+            max_relative = 1e-10
+        );
     }
 
     #[test]
     fn stiff_thesis_model_has_a_fast_real_mode() {
-        let car = MsdModel::new(vec![1.8, 74.8, 1670.0], vec![6.46e6, 1.97e5], vec![4.75e5, 5.0e5]).unwrap();
+        let car = MsdModel::new(
+            vec![1.8, 74.8, 1670.0],
+            vec![6.46e6, 1.97e5],
+            vec![4.75e5, 5.0e5],
+        )
+        .unwrap();
         let modes = elastic_modes(&car).unwrap();
         let fastest = modes.last().unwrap();
         assert!(fastest.is_real());
         // dominated by c1 (1/m1 + 1/m2)
-        assert_relative_eq!(-fastest.re, 6.46e6 * (1.0 / 1.8 + 1.0 / 74.8), max_relative = 0.02);
+        assert_relative_eq!(
+            -fastest.re,
+            6.46e6 * (1.0 / 1.8 + 1.0 / 74.8),
+            max_relative = 0.02
+        );
     }
 }

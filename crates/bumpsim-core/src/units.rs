@@ -263,7 +263,11 @@ pub fn format_quantity(value_si: f64, dimension: Dimension) -> String {
 
 /// Formats an SI value in a chosen unit with four significant digits.
 pub fn format_in(value_si: f64, unit: Unit) -> String {
-    format!("{} {}", format_number(unit.from_si(value_si), 4), unit.symbol)
+    format!(
+        "{} {}",
+        format_number(unit.from_si(value_si), 4),
+        unit.symbol
+    )
 }
 
 /// Parses a quantity written as a number with an optional unit, such as
@@ -346,8 +350,14 @@ mod tests {
             assert_eq!(unit.dimension, Dimension::Damping, "{text}");
             assert_relative_eq!(unit.factor, 1.0);
         }
-        assert_eq!(Unit::parse("m/s**2").unwrap().dimension, Dimension::Acceleration);
-        assert_eq!(Unit::parse("m/s²").unwrap().dimension, Dimension::Acceleration);
+        assert_eq!(
+            Unit::parse("m/s**2").unwrap().dimension,
+            Dimension::Acceleration
+        );
+        assert_eq!(
+            Unit::parse("m/s²").unwrap().dimension,
+            Dimension::Acceleration
+        );
     }
 
     #[test]
@@ -363,7 +373,11 @@ mod tests {
             ("Ns/mm", 0.2, 200.0),
         ];
         for (text, value, si) in cases {
-            assert_relative_eq!(Unit::parse(text).unwrap().to_si(value), si, max_relative = 1e-15);
+            assert_relative_eq!(
+                Unit::parse(text).unwrap().to_si(value),
+                si,
+                max_relative = 1e-15
+            );
         }
     }
 
@@ -377,8 +391,14 @@ mod tests {
     #[test]
     fn quantities_parse_with_and_without_unit() {
         assert_relative_eq!(parse_quantity("1.67", Dimension::Velocity).unwrap(), 1.67);
-        assert_relative_eq!(parse_quantity("6km/h", Dimension::Velocity).unwrap(), 6.0 / 3.6);
-        assert_relative_eq!(parse_quantity("1e3 mm/s", Dimension::Velocity).unwrap(), 1.0);
+        assert_relative_eq!(
+            parse_quantity("6km/h", Dimension::Velocity).unwrap(),
+            6.0 / 3.6
+        );
+        assert_relative_eq!(
+            parse_quantity("1e3 mm/s", Dimension::Velocity).unwrap(),
+            1.0
+        );
         assert!(parse_quantity("fast", Dimension::Velocity).is_err());
         assert!(parse_quantity("nan", Dimension::Velocity).is_err());
     }

@@ -7,7 +7,12 @@ use bumpsim_core::state_space::{StateSpace, elastic_modes};
 use proptest::prelude::*;
 
 fn thesis_model() -> MsdModel {
-    MsdModel::new(vec![1.8, 74.8, 1670.0], vec![6.46e6, 1.97e5], vec![4.75e5, 5.0e5]).unwrap()
+    MsdModel::new(
+        vec![1.8, 74.8, 1670.0],
+        vec![6.46e6, 1.97e5],
+        vec![4.75e5, 5.0e5],
+    )
+    .unwrap()
 }
 
 /// A pendulum-like half-sine pulse, 40 kN for 60 ms, then zero; 10 kHz.
@@ -15,7 +20,11 @@ fn half_sine(samples: usize) -> UniformSeries {
     let values = (0..samples)
         .map(|i| {
             let t = i as f64 * 1e-4;
-            if t < 0.06 { 4e4 * (std::f64::consts::PI * t / 0.06).sin() } else { 0.0 }
+            if t < 0.06 {
+                4e4 * (std::f64::consts::PI * t / 0.06).sin()
+            } else {
+                0.0
+            }
         })
         .collect();
     UniformSeries::new(0.0, 1e-4, values).unwrap()
@@ -26,7 +35,9 @@ fn rough_force(samples: usize, step: f64) -> UniformSeries {
     let mut state: u64 = 12345;
     let values = (0..samples)
         .map(|_| {
-            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.3) * 2e4
         })
         .collect();
@@ -42,7 +53,11 @@ fn free_mass_under_constant_force_is_exact_with_zoh_and_foh() {
         let r = simulate(&car, &series, method, &InitialState::Rest).unwrap();
         for k in [1, 10, 500, 1000] {
             let t = r.time[k];
-            assert_relative_eq!(r.displacement[0][k], force * t * t / (2.0 * mass), max_relative = 1e-12);
+            assert_relative_eq!(
+                r.displacement[0][k],
+                force * t * t / (2.0 * mass),
+                max_relative = 1e-12
+            );
             assert_relative_eq!(r.velocity[0][k], force * t / mass, max_relative = 1e-12);
             assert_relative_eq!(r.acceleration[0][k], force / mass, max_relative = 1e-12);
         }
@@ -54,10 +69,19 @@ fn foh_is_exact_for_a_force_ramp() {
     // f = a t on a free mass: x = a t³ / 6m
     let (mass, slope) = (2.0, 300.0);
     let car = MsdModel::new(vec![mass], vec![], vec![]).unwrap();
-    let series = UniformSeries::new(0.0, 1e-3, (0..101).map(|i| slope * i as f64 * 1e-3).collect()).unwrap();
+    let series = UniformSeries::new(
+        0.0,
+        1e-3,
+        (0..101).map(|i| slope * i as f64 * 1e-3).collect(),
+    )
+    .unwrap();
     let r = simulate(&car, &series, Method::Foh, &InitialState::Rest).unwrap();
     let t = r.time[100];
-    assert_relative_eq!(r.displacement[0][100], slope * t.powi(3) / (6.0 * mass), max_relative = 1e-11);
+    assert_relative_eq!(
+        r.displacement[0][100],
+        slope * t.powi(3) / (6.0 * mass),
+        max_relative = 1e-11
+    );
     // zoh holds each sample: its error is first order in T, visibly larger
     let z = simulate(&car, &series, Method::Zoh, &InitialState::Rest).unwrap();
     assert!((z.displacement[0][100] / r.displacement[0][100] - 1.0).abs() > 1e-3);
@@ -70,13 +94,21 @@ fn two_dof_free_vibration_has_the_analytic_frequency() {
     let car = MsdModel::new(vec![m1, m2], vec![0.0], vec![k]).unwrap();
     let u0 = 1e-3;
     let series = UniformSeries::new(0.0, 1e-4, vec![0.0; 5001]).unwrap();
-    let r = simulate(&car, &series, Method::Zoh, &InitialState::State(vec![u0, 0.0, 0.0, 0.0])).unwrap();
+    let r = simulate(
+        &car,
+        &series,
+        Method::Zoh,
+        &InitialState::State(vec![u0, 0.0, 0.0, 0.0]),
+    )
+    .unwrap();
     for k in 0..series.len() {
         let u = r.displacement[0][k] - r.displacement[1][k];
         assert_relative_eq!(u, u0 * (omega * r.time[k]).cos(), epsilon = 1e-12);
     }
     // frequency from the up-crossings of the relative displacement, independent of the formula above
-    let u: Vec<f64> = (0..series.len()).map(|k| r.displacement[0][k] - r.displacement[1][k]).collect();
+    let u: Vec<f64> = (0..series.len())
+        .map(|k| r.displacement[0][k] - r.displacement[1][k])
+        .collect();
     let crossings: Vec<f64> = (1..u.len())
         .filter(|&k| u[k - 1] < 0.0 && u[k] >= 0.0)
         .map(|k| r.time[k - 1] + 1e-4 * u[k - 1] / (u[k - 1] - u[k]))
@@ -93,7 +125,11 @@ fn momentum_equals_impulse() {
     let force = rough_force(2000, 1e-4);
     for method in [Method::Zoh, Method::Foh] {
         let r = simulate(&car, &force, method, &InitialState::UniformVelocity(1.5)).unwrap();
-        assert!(r.momentum_error() < 1e-9, "{method}: {}", r.momentum_error());
+        assert!(
+            r.momentum_error() < 1e-9,
+            "{method}: {}",
+            r.momentum_error()
+        );
     }
 }
 
@@ -103,7 +139,11 @@ fn energy_balances_with_exact_holds() {
     let force = rough_force(2000, 1e-4);
     for method in [Method::Zoh, Method::Foh] {
         let r = simulate(&car, &force, method, &InitialState::Rest).unwrap();
-        assert!(r.energy.relative_error() < 1e-6, "{method}: {}", r.energy.relative_error());
+        assert!(
+            r.energy.relative_error() < 1e-6,
+            "{method}: {}",
+            r.energy.relative_error()
+        );
         assert!(r.energy.dissipated.last().unwrap() > &0.0);
     }
 }
@@ -115,10 +155,17 @@ fn thesis_model_runs_with_zoh_and_is_refused_by_taylor1() {
     let r = simulate(&car, &force, Method::Zoh, &InitialState::Rest).unwrap();
     assert!(r.displacement.iter().flatten().all(|v| v.is_finite()));
     assert!(r.momentum_error() < 1e-9, "{}", r.momentum_error());
-    assert!(r.energy.relative_error() < 1e-6, "{}", r.energy.relative_error());
+    assert!(
+        r.energy.relative_error() < 1e-6,
+        "{}",
+        r.energy.relative_error()
+    );
     let refused = simulate(&car, &force, Method::Taylor1, &InitialState::Rest).unwrap_err();
     let message = refused.to_string();
-    assert!(message.contains("unstable") && message.contains("largest stable step"), "{message}");
+    assert!(
+        message.contains("unstable") && message.contains("largest stable step"),
+        "{message}"
+    );
 }
 
 #[test]
@@ -129,8 +176,15 @@ fn taylor1_with_substeps_approaches_zoh() {
     let sim = Simulator::with_substeps(&car, Method::Taylor1, 1e-4, Substeps::Auto).unwrap();
     let euler = sim.run(&force, &InitialState::Rest).unwrap();
     let peak = exact.peak_displacement(0).1.abs();
-    let worst = exact.displacement[0].iter().zip(&euler.displacement[0]).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
-    assert!(worst < 1e-3 * peak, "taylor1 with {} sub-steps off by {worst} m", sim.discrete().substeps());
+    let worst = exact.displacement[0]
+        .iter()
+        .zip(&euler.displacement[0])
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(
+        worst < 1e-3 * peak,
+        "taylor1 with {} sub-steps off by {worst} m",
+        sim.discrete().substeps()
+    );
 }
 
 /// Classical RK4 on X' = A X + B f with f held over each sample, `sub` steps per sample.

@@ -1,0 +1,269 @@
+//! Runs the real `bumpsim` binary on the bundled example and on malformed
+//! inputs written here, and checks exit codes and messages.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn example(name: &str) -> PathBuf {
+    root().join("examples/simulate").join(name)
+}
+
+fn scratch(test: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("cli")
+        .join(test);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn bumpsim(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_bumpsim"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+fn simulate(car: &Path, force: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "simulate",
+        "--car",
+        car.to_str().unwrap(),
+        "--force",
+        force.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    bumpsim(&args)
+}
+
+#[test]
+fn simulates_the_bundled_example_and_writes_si_csv() {
+    let dir = scratch("example");
+    let out = dir.join("response.csv");
+    let run = simulate(
+        &example("car-3dof.toml"),
+        &example("pendulum-force.csv"),
+        &["-o", out.to_str().unwrap()],
+    );
+    let stdout = text(&run.stdout);
+    assert!(run.status.success(), "{stdout}{}", text(&run.stderr));
+    for expected in [
+        "3 DOF",
+        "1601 samples",
+        "peak 40.00 kN",
+        "energy balance error",
+        "wrote",
+    ] {
+        assert!(
+            stdout.contains(expected),
+            "missing '{expected}' in:\n{stdout}"
+        );
+    }
+    let csv = std::fs::read_to_string(&out).unwrap();
+    let header = csv.lines().next().unwrap();
+    assert!(
+        header.starts_with("time [s],force [N],x1 [m],x2 [m],x3 [m],v1 [m/s]"),
+        "{header}"
+    );
+    assert_eq!(csv.lines().count(), 1602);
+    // the force in kN/ms came out in N/s
+    let row: Vec<f64> = csv
+        .lines()
+        .nth(501)
+        .unwrap()
+        .split(',')
+        .map(|c| c.parse().unwrap())
+        .collect();
+    assert!(
+        (row[0] - 0.04).abs() < 1e-12 && (row[1] - 40_000.0).abs() < 1e-6,
+        "{row:?}"
+    );
+}
+
+#[test]
+fn taylor1_refuses_the_thesis_model_with_the_cure() {
+    let run = simulate(
+        &example("car-3dof.toml"),
+        &example("pendulum-force.csv"),
+        &["--method", "taylor1"],
+    );
+    assert_eq!(run.status.code(), Some(2));
+    let stderr = text(&run.stderr);
+    assert!(
+        stderr.contains("unstable") && stderr.contains("--substeps") && stderr.contains("zoh"),
+        "{stderr}"
+    );
+    let auto = simulate(
+        &example("car-3dof.toml"),
+        &example("pendulum-force.csv"),
+        &["--method", "taylor1", "--substeps", "auto"],
+    );
+    assert!(auto.status.success(), "{}", text(&auto.stderr));
+    assert!(text(&auto.stdout).contains("sub-steps per sample"));
+}
+
+#[test]
+fn initial_velocity_takes_units() {
+    let run = simulate(
+        &example("car-3dof.toml"),
+        &example("pendulum-force.csv"),
+        &["--initial-velocity", "16 km/h"],
+    );
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(
+        text(&run.stdout).contains("every mass at 4.444 m/s (16.00 km/h)"),
+        "{}",
+        text(&run.stdout)
+    );
+    let bad = simulate(
+        &example("car-3dof.toml"),
+        &example("pendulum-force.csv"),
+        &["--initial-velocity", "16 kN"],
+    );
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(
+        text(&bad.stderr).contains("expected a velocity"),
+        "{}",
+        text(&bad.stderr)
+    );
+}
+
+/// Each malformed force file: its text and a part of the expected message.
+const BAD_FORCES: &[(&str, &str, &str)] = &[
+    (
+        "unknown-unit",
+        "time [s],force [lbf]\n0,1\n0.1,2\n",
+        "unknown unit 'lbf'",
+    ),
+    (
+        "non-uniform",
+        "time [s],force [N]\n0,1\n0.1,1\n0.3,1\n0.4,1\n",
+        ":4: time is not uniformly sampled",
+    ),
+    (
+        "nan",
+        "time [s],force [N]\n0,1\n0.1,NaN\n",
+        ":3: column 'force [N]' holds 'NaN'",
+    ),
+    ("empty", "", "no header row"),
+    (
+        "ragged",
+        "time [s],force [N]\n0,1\n0.1\n",
+        ":3: 1 cells, but the header has 2",
+    ),
+    (
+        "no-force",
+        "time [s],x [mm]\n0,1\n0.1,2\n",
+        "no force column",
+    ),
+];
+
+#[test]
+fn malformed_force_files_exit_2_with_file_and_line() {
+    let dir = scratch("bad-force");
+    for (name, body, expected) in BAD_FORCES {
+        let path = dir.join(format!("{name}.csv"));
+        std::fs::write(&path, body).unwrap();
+        let run = simulate(&example("car-3dof.toml"), &path, &[]);
+        let stderr = text(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{name}: {stderr}");
+        assert!(
+            stderr.contains(&format!("{name}.csv")) && stderr.contains(expected),
+            "{name}: {stderr}"
+        );
+    }
+}
+
+#[test]
+fn malformed_car_files_exit_2_naming_the_parameter() {
+    let dir = scratch("bad-car");
+    let cases = [
+        (
+            "negative",
+            "masses = [1.0, -5.0]\ndampers = [1.0]\nsprings = [1.0]\n",
+            "m2 = -5 kg",
+        ),
+        (
+            "typo",
+            "masses = [1.0]\nspring = [1.0]\n",
+            "unknown field `spring`",
+        ),
+        (
+            "count",
+            "masses = [1.0, 2.0]\ndampers = [1.0]\n",
+            "0 springs given for 2 masses",
+        ),
+    ];
+    for (name, body, expected) in cases {
+        let path = dir.join(format!("{name}.toml"));
+        std::fs::write(&path, body).unwrap();
+        let run = simulate(&path, &example("pendulum-force.csv"), &[]);
+        let stderr = text(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{name}: {stderr}");
+        assert!(stderr.contains(expected), "{name}: {stderr}");
+    }
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    let missing = simulate(
+        Path::new("does-not-exist.toml"),
+        &example("pendulum-force.csv"),
+        &[],
+    );
+    assert_eq!(missing.status.code(), Some(2));
+    assert!(text(&missing.stderr).contains("does-not-exist.toml: cannot read"));
+    let method = simulate(
+        &example("car-3dof.toml"),
+        &example("pendulum-force.csv"),
+        &["--method", "rk45"],
+    );
+    assert_eq!(method.status.code(), Some(2));
+    assert!(text(&method.stderr).contains("expected zoh, foh or taylor1"));
+    let substeps = simulate(
+        &example("car-3dof.toml"),
+        &example("pendulum-force.csv"),
+        &["--substeps", "4"],
+    );
+    assert_eq!(substeps.status.code(), Some(2));
+    assert!(
+        text(&substeps.stderr).contains("taylor1 only"),
+        "{}",
+        text(&substeps.stderr)
+    );
+    let column = simulate(
+        &example("car-3dof.toml"),
+        &example("pendulum-force.csv"),
+        &["--column", "Fx"],
+    );
+    assert_eq!(column.status.code(), Some(2));
+    assert!(
+        text(&column.stderr).contains("no column 'Fx'; columns: force [kN]"),
+        "{}",
+        text(&column.stderr)
+    );
+}
+
+#[test]
+fn output_never_overwrites_an_input() {
+    let dir = scratch("overwrite");
+    let force = dir.join("force.csv");
+    std::fs::copy(example("pendulum-force.csv"), &force).unwrap();
+    let before = std::fs::read(&force).unwrap();
+    let run = simulate(
+        &example("car-3dof.toml"),
+        &force,
+        &["-o", force.to_str().unwrap()],
+    );
+    assert_eq!(run.status.code(), Some(2));
+    assert!(text(&run.stderr).contains("would overwrite the input"));
+    assert_eq!(std::fs::read(&force).unwrap(), before);
+}

@@ -1,0 +1,172 @@
+//! Car files: an MSD car model in TOML (docs/formats.md).
+//!
+//! ```toml
+//! name = "Volvo S40 2004, thesis 3-DOF result"   # optional
+//! masses = [1.8, 74.8, 1670.0]                   # kg, m1 carries the bumper
+//! dampers = [6.46e6, 1.97e5]                     # N·s/m, c1 between m1 and m2, ...
+//! springs = [4.75e5, 5.0e5]                      # N/m
+//! ```
+//!
+//! Values are SI. A one-mass car (a rigid vehicle) has empty or absent
+//! `dampers` and `springs`. Unknown keys are errors, so a typo such as
+//! `spring = [...]` is never silently ignored. The model is validated by
+//! [`bumpsim_core::model::MsdModel::new`]; its error names the parameter.
+//!
+//! ```
+//! use bumpsim_io::car::Car;
+//! let car = Car::parse("masses = [1000.0]", "rigid.toml".as_ref()).unwrap();
+//! assert_eq!(car.model.dof(), 1);
+//! assert!(Car::parse("masses = [1000.0]\nspring = [1.0]", "typo.toml".as_ref()).is_err());
+//! ```
+
+use bumpsim_core::model::{ModelError, MsdModel};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// A named car model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Car {
+    /// Optional name from the file.
+    pub name: Option<String>,
+    /// The validated model.
+    pub model: MsdModel,
+}
+
+/// A car file that cannot be used.
+#[derive(Debug, thiserror::Error)]
+pub enum CarError {
+    /// The file cannot be read.
+    #[error("{path}: cannot read: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// Not valid TOML, a key missing or unknown, or a value of the wrong type.
+    #[error("{path}: {message}")]
+    Syntax {
+        /// The file.
+        path: PathBuf,
+        /// The parser's message, with line and column.
+        message: String,
+    },
+    /// The values do not make a valid model.
+    #[error("{path}: {source}")]
+    Model {
+        /// The file.
+        path: PathBuf,
+        /// Which parameter and why.
+        source: ModelError,
+    },
+    /// The file cannot be written.
+    #[error("{path}: cannot write: {source}")]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+}
+
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CarFile {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    name: Option<String>,
+    masses: Vec<f64>,
+    #[serde(default)]
+    dampers: Vec<f64>,
+    #[serde(default)]
+    springs: Vec<f64>,
+}
+
+impl Car {
+    /// Reads a car file.
+    pub fn read(path: &Path) -> Result<Car, CarError> {
+        let text = std::fs::read_to_string(path).map_err(|source| CarError::Io {
+            path: path.into(),
+            source,
+        })?;
+        Self::parse(&text, path)
+    }
+
+    /// Parses car TOML; `path` is used in messages.
+    pub fn parse(text: &str, path: &Path) -> Result<Car, CarError> {
+        let file: CarFile = toml::from_str(text).map_err(|e| CarError::Syntax {
+            path: path.into(),
+            message: e.to_string().trim_end().to_string(),
+        })?;
+        let model = MsdModel::new(file.masses, file.dampers, file.springs).map_err(|source| {
+            CarError::Model {
+                path: path.into(),
+                source,
+            }
+        })?;
+        Ok(Car {
+            name: file.name,
+            model,
+        })
+    }
+
+    /// The car as TOML text, in the format [`Car::parse`] reads.
+    pub fn to_toml(&self) -> String {
+        let file = CarFile {
+            name: self.name.clone(),
+            masses: self.model.masses().to_vec(),
+            dampers: self.model.dampers().to_vec(),
+            springs: self.model.springs().to_vec(),
+        };
+        let body = toml::to_string(&file).unwrap_or_default();
+        format!("# bumpsim car model: masses kg, dampers N*s/m, springs N/m\n{body}")
+    }
+
+    /// Writes the car as TOML.
+    pub fn write(&self, path: &Path) -> Result<(), CarError> {
+        std::fs::write(path, self.to_toml()).map_err(|source| CarError::Write {
+            path: path.into(),
+            source,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Car, CarError> {
+        Car::parse(text, Path::new("car.toml"))
+    }
+
+    #[test]
+    fn round_trips_through_toml() {
+        let car = parse("name = \"S40\"\nmasses = [1.8, 74.8, 1670]\ndampers = [6.46e6, 1.97e5]\nsprings = [4.75e5, 5e5]\n").unwrap();
+        assert_eq!(parse(&car.to_toml()).unwrap(), car);
+    }
+
+    #[test]
+    fn errors_name_file_and_problem() {
+        let cases = [
+            (
+                "masses = [1.0, 2.0]\nsprings = [1.0]\n",
+                "0 dampers given for 2 masses",
+            ),
+            (
+                "masses = [1.0, -2.0]\ndampers = [0.0]\nsprings = [1.0]\n",
+                "m2 = -2 kg",
+            ),
+            ("masses = [1.0]\nmass = 2\n", "unknown field `mass`"),
+            ("dampers = []\n", "missing field `masses`"),
+            ("masses = [1.0,\n", "line 1"),
+            ("masses = [\"heavy\"]\n", "invalid type"),
+            ("masses = [nan]\n", "m1 = NaN kg"),
+        ];
+        for (text, expected) in cases {
+            let err = parse(text).unwrap_err().to_string();
+            assert!(
+                err.starts_with("car.toml: ") && err.contains(expected),
+                "{text:?}: {err}"
+            );
+        }
+    }
+}

@@ -1,0 +1,559 @@
+//! CSV tables with unit headers (docs/formats.md).
+//!
+//! The first row names each column as `name [unit]`; the first column is
+//! time. Units are converted to SI with [`bumpsim_core::units::Unit`]. Lines
+//! starting with `#` are comments (for provenance notes). The separator is a
+//! comma, or a semicolon when the header has semicolons and no commas (a
+//! common spreadsheet export).
+//!
+//! Checks, each reported with the file and line: a header cell without a
+//! unit or with an unknown one; a time column whose unit is not a time; a
+//! row with another number of cells than the header (ragged); a cell that is
+//! not a number, or is NaN or infinite; fewer than two samples; time not
+//! increasing; time not uniformly sampled. Uniform means every interval lies
+//! within 1 % of the median interval and every sample within 1 % of an
+//! interval of its place on the uniform grid of the mean interval (what printing times with a few digits
+//! leaves; a dropped or repeated sample is far outside).
+//!
+//! ```
+//! use bumpsim_io::table::Table;
+//! let text = "time [ms],force [kN]\n0,0\n0.1,1.5\n0.2,3.0\n";
+//! let table = Table::parse(text, "inline.csv".as_ref()).unwrap();
+//! let force = table.column("force").unwrap();
+//! assert_eq!(force.values[2], 3000.0);
+//! assert!((table.step - 1e-4).abs() < 1e-15);
+//! ```
+
+use bumpsim_core::series::UniformSeries;
+use bumpsim_core::units::{Dimension, Unit, UnitError};
+use std::path::{Path, PathBuf};
+
+/// A data column, values in SI.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Column {
+    /// Name without the unit.
+    pub name: String,
+    /// The unit the file used (values are already converted to SI).
+    pub unit: Unit,
+    /// Values, SI.
+    pub values: Vec<f64>,
+}
+
+/// A CSV file read into a uniform time base and SI columns.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Table {
+    /// Where it came from.
+    pub path: PathBuf,
+    /// Time of the first row, s.
+    pub start: f64,
+    /// Sample interval (mean of the file's intervals), s.
+    pub step: f64,
+    /// The data columns (time excluded).
+    pub columns: Vec<Column>,
+}
+
+/// A problem with a CSV file; every variant names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum TableError {
+    /// The file cannot be read.
+    #[error("{path}: cannot read: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The CSV layer failed (e.g. invalid UTF-8).
+    #[error("{path}:{line}: {message}")]
+    Syntax {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: u64,
+        /// What the parser said.
+        message: String,
+    },
+    /// No header or no rows.
+    #[error("{path}: {what}")]
+    Empty {
+        /// The file.
+        path: PathBuf,
+        /// What is missing.
+        what: &'static str,
+    },
+    /// A header cell is not `name [unit]` with a known unit.
+    #[error("{path}:{line}: column {column} '{text}': {reason}")]
+    Header {
+        /// The file.
+        path: PathBuf,
+        /// Line of the header.
+        line: u64,
+        /// 1-based column.
+        column: usize,
+        /// The cell.
+        text: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A row with a different number of cells than the header.
+    #[error("{path}:{line}: {found} cells, but the header has {expected} (ragged row)")]
+    Ragged {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: u64,
+        /// Header cells.
+        expected: usize,
+        /// Cells in this row.
+        found: usize,
+    },
+    /// A cell that is not a finite number.
+    #[error("{path}:{line}: column '{column}' holds '{text}', expected a finite number")]
+    Number {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: u64,
+        /// Column header.
+        column: String,
+        /// The cell.
+        text: String,
+    },
+    /// The time base is not usable.
+    #[error("{path}:{line}: {reason}")]
+    Time {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: u64,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A selected column does not exist or is ambiguous.
+    #[error("{path}: {reason}; columns: {available}")]
+    Column {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
+        reason: String,
+        /// The data columns there are.
+        available: String,
+    },
+    /// A file cannot be written.
+    #[error("{path}: cannot write: {source}")]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+}
+
+/// Splits `name [unit]` into its parts.
+pub fn split_header(text: &str) -> Option<(&str, &str)> {
+    let text = text.trim();
+    let open = text.rfind('[')?;
+    let unit = text[open + 1..].strip_suffix(']')?;
+    let name = text[..open].trim();
+    (!name.is_empty()).then_some((name, unit.trim()))
+}
+
+struct Row {
+    line: u64,
+    cells: Vec<String>,
+}
+
+impl Table {
+    /// Reads a CSV file.
+    pub fn read(path: &Path) -> Result<Table, TableError> {
+        let bytes = std::fs::read(path).map_err(|source| TableError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let text = String::from_utf8(bytes).map_err(|e| TableError::Syntax {
+            path: path.to_path_buf(),
+            line: line_of_offset(e.as_bytes(), e.utf8_error().valid_up_to()),
+            message: "not UTF-8 text".into(),
+        })?;
+        Self::parse(&text, path)
+    }
+
+    /// Parses CSV text; `path` is used in messages.
+    pub fn parse(text: &str, path: &Path) -> Result<Table, TableError> {
+        let rows = records(text, path)?;
+        let (header, data) = rows.split_first().ok_or_else(|| TableError::Empty {
+            path: path.into(),
+            what: "no header row",
+        })?;
+        let units = header_units(header, path)?;
+        if data.len() < 2 {
+            return Err(TableError::Empty {
+                path: path.into(),
+                what: "fewer than two data rows: no sample interval",
+            });
+        }
+        let mut values = vec![Vec::with_capacity(data.len()); units.len()];
+        for row in data {
+            if row.cells.len() != units.len() {
+                return Err(TableError::Ragged {
+                    path: path.into(),
+                    line: row.line,
+                    expected: units.len(),
+                    found: row.cells.len(),
+                });
+            }
+            for ((cell, (name, unit)), column) in row.cells.iter().zip(&units).zip(&mut values) {
+                column.push(unit.to_si(number(cell, name, unit, row.line, path)?));
+            }
+        }
+        let time = values.remove(0);
+        let (start, step) = uniform_time_base(&time, data, path)?;
+        let columns = units
+            .into_iter()
+            .skip(1)
+            .zip(values)
+            .map(|((name, unit), values)| Column { name, unit, values })
+            .collect();
+        Ok(Table {
+            path: path.into(),
+            start,
+            step,
+            columns,
+        })
+    }
+
+    /// Finds a data column by name (`force`) or by its full header (`force [kN]`).
+    pub fn column(&self, selector: &str) -> Result<&Column, TableError> {
+        let wanted = split_header(selector).map_or(selector.trim(), |(name, _)| name);
+        let mut found = self.columns.iter().filter(|c| c.name == wanted);
+        match (found.next(), found.next()) {
+            (Some(column), None) => Ok(column),
+            (first, _) => Err(self.column_error(format!(
+                "{} '{selector}'",
+                if first.is_some() {
+                    "more than one column named"
+                } else {
+                    "no column"
+                }
+            ))),
+        }
+    }
+
+    /// The only data column of a given dimension, or an error asking to choose.
+    pub fn only_column(&self, dimension: Dimension) -> Result<&Column, TableError> {
+        let matching: Vec<&Column> = self
+            .columns
+            .iter()
+            .filter(|c| c.unit.dimension == dimension)
+            .collect();
+        match matching.as_slice() {
+            [one] => Ok(one),
+            [] => Err(self.column_error(format!("no {dimension} column"))),
+            _ => Err(self.column_error(format!(
+                "{} {dimension} columns: choose one",
+                matching.len()
+            ))),
+        }
+    }
+
+    /// A column as a uniform series (SI).
+    pub fn series(&self, column: &Column) -> UniformSeries {
+        // start, step and values were all checked while reading
+        match UniformSeries::new(self.start, self.step, column.values.clone()) {
+            Ok(series) => series,
+            Err(e) => unreachable!("checked while reading: {e}"),
+        }
+    }
+
+    fn column_error(&self, reason: String) -> TableError {
+        let available = self
+            .columns
+            .iter()
+            .map(|c| format!("{} [{}]", c.name, c.unit))
+            .collect::<Vec<_>>()
+            .join(", ");
+        TableError::Column {
+            path: self.path.clone(),
+            reason,
+            available,
+        }
+    }
+}
+
+fn line_of_offset(bytes: &[u8], offset: usize) -> u64 {
+    1 + bytes[..offset].iter().filter(|&&b| b == b'\n').count() as u64
+}
+
+fn records(text: &str, path: &Path) -> Result<Vec<Row>, TableError> {
+    let first = text
+        .lines()
+        .find(|l| !l.trim_start().starts_with('#') && !l.trim().is_empty())
+        .unwrap_or("");
+    let delimiter = if first.contains(';') && !first.contains(',') {
+        b';'
+    } else {
+        b','
+    };
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .comment(Some(b'#'))
+        .delimiter(delimiter)
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
+    let mut rows = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(|e| TableError::Syntax {
+            path: path.into(),
+            line: e.position().map_or(0, |p| p.line()),
+            message: e.to_string(),
+        })?;
+        let line = record.position().map_or(0, |p| p.line());
+        if record.iter().all(|c| c.is_empty()) {
+            continue;
+        }
+        rows.push(Row {
+            line,
+            cells: record.iter().map(str::to_string).collect(),
+        });
+    }
+    Ok(rows)
+}
+
+fn header_units(header: &Row, path: &Path) -> Result<Vec<(String, Unit)>, TableError> {
+    let error = |column: usize, text: &str, reason: String| TableError::Header {
+        path: path.into(),
+        line: header.line,
+        column,
+        text: text.to_string(),
+        reason,
+    };
+    let mut units = Vec::with_capacity(header.cells.len());
+    for (index, cell) in header.cells.iter().enumerate() {
+        let (name, unit_text) = split_header(cell).ok_or_else(|| {
+            error(
+                index + 1,
+                cell,
+                "expected 'name [unit]', e.g. 'force [kN]'".into(),
+            )
+        })?;
+        let unit = Unit::parse(unit_text).map_err(|UnitError { known, .. }| {
+            error(
+                index + 1,
+                cell,
+                format!("unknown unit '{unit_text}' (known: {known})"),
+            )
+        })?;
+        if units.iter().any(|(n, _): &(String, Unit)| n == name) {
+            return Err(error(
+                index + 1,
+                cell,
+                format!("the name '{name}' is used twice"),
+            ));
+        }
+        units.push((name.to_string(), unit));
+    }
+    match units.first() {
+        Some((_, unit)) if unit.dimension != Dimension::Time => Err(error(
+            1,
+            &header.cells[0],
+            format!(
+                "the first column must be time (s, ms, ...), its unit is a {}",
+                unit.dimension
+            ),
+        )),
+        Some(_) if units.len() < 2 => Err(error(
+            1,
+            &header.cells[0],
+            "no data columns after time".into(),
+        )),
+        _ => Ok(units),
+    }
+}
+
+fn number(cell: &str, name: &str, unit: &Unit, line: u64, path: &Path) -> Result<f64, TableError> {
+    match cell.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(TableError::Number {
+            path: path.into(),
+            line,
+            column: format!("{name} [{unit}]"),
+            text: cell.to_string(),
+        }),
+    }
+}
+
+/// Start and mean interval of a time column, after the uniformity checks.
+fn uniform_time_base(time: &[f64], rows: &[Row], path: &Path) -> Result<(f64, f64), TableError> {
+    let error = |k: usize, reason: String| TableError::Time {
+        path: path.into(),
+        line: rows[k].line,
+        reason,
+    };
+    if let Some(k) = (1..time.len()).find(|&k| time[k] <= time[k - 1]) {
+        return Err(error(
+            k,
+            format!(
+                "time {} s does not increase (previous row {} s)",
+                time[k],
+                time[k - 1]
+            ),
+        ));
+    }
+    // the median interval is the nominal one: a dropped or repeated sample
+    // then shows up at its own row instead of shifting a mean
+    let mut intervals: Vec<f64> = time.windows(2).map(|w| w[1] - w[0]).collect();
+    intervals.sort_by(f64::total_cmp);
+    let nominal = intervals[intervals.len() / 2];
+    if let Some(k) =
+        (1..time.len()).find(|&k| (time[k] - time[k - 1] - nominal).abs() > 0.01 * nominal)
+    {
+        return Err(error(
+            k,
+            format!(
+                "time is not uniformly sampled: the interval before this row is {} s, the usual (median) interval is {nominal} s",
+                time[k] - time[k - 1]
+            ),
+        ));
+    }
+    let step = (time[time.len() - 1] - time[0]) / (time.len() - 1) as f64;
+    if let Some(k) =
+        (1..time.len()).find(|&k| (time[k] - time[0] - k as f64 * step).abs() > 0.01 * step)
+    {
+        let grid = time[0] + k as f64 * step;
+        return Err(error(
+            k,
+            format!(
+                "time {} s is off the uniform grid ({grid} s expected from the mean interval {step} s)",
+                time[k]
+            ),
+        ));
+    }
+    Ok((time[0], step))
+}
+
+/// A column to write: name, dimension (values are SI) and values.
+#[derive(Debug, Clone, Copy)]
+pub struct OutputColumn<'a> {
+    /// Name without unit.
+    pub name: &'a str,
+    /// The dimension; the header gets its SI unit.
+    pub dimension: Dimension,
+    /// Values, SI.
+    pub values: &'a [f64],
+}
+
+/// Writes `time [s]` and the columns as CSV with SI unit headers. Numbers are
+/// written in Rust's shortest round-trip form, so reading back is exact.
+pub fn write_table(
+    path: &Path,
+    time: &[f64],
+    columns: &[OutputColumn<'_>],
+) -> Result<(), TableError> {
+    let write_error = |source| TableError::Write {
+        path: path.into(),
+        source,
+    };
+    let mut text = String::with_capacity(time.len() * (columns.len() + 1) * 16);
+    text.push_str("time [s]");
+    for c in columns {
+        text.push_str(&format!(",{} [{}]", c.name, c.dimension.si_symbol()));
+    }
+    text.push('\n');
+    for (k, t) in time.iter().enumerate() {
+        text.push_str(&t.to_string());
+        for c in columns {
+            text.push(',');
+            text.push_str(&c.values[k].to_string());
+        }
+        text.push('\n');
+    }
+    std::fs::write(path, text).map_err(write_error)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Table, TableError> {
+        Table::parse(text, Path::new("f.csv"))
+    }
+
+    #[test]
+    fn headers_split_into_name_and_unit() {
+        assert_eq!(split_header(" force [kN] "), Some(("force", "kN")));
+        assert_eq!(split_header("a [b] [N/mm]"), Some(("a [b]", "N/mm")));
+        assert_eq!(split_header("force"), None);
+        assert_eq!(split_header("[kN]"), None);
+    }
+
+    #[test]
+    fn semicolons_comments_and_blank_lines_are_accepted() {
+        let t = parse("# from the lab\ntime [s];x1 [mm]\n\n0;1\n0.001;2\n0.002;3\n").unwrap();
+        assert_eq!(t.column("x1 [mm]").unwrap().values, vec![1e-3, 2e-3, 3e-3]);
+    }
+
+    #[test]
+    fn line_numbers_count_comments() {
+        let err = parse("# note\ntime [s],f [N]\n0,1\n0.1,x\n").unwrap_err();
+        assert!(
+            err.to_string()
+                .starts_with("f.csv:4: column 'f [N]' holds 'x'"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn each_bad_input_is_named() {
+        let cases = [
+            ("", "no header row"),
+            ("time [s],f [N]\n0,1\n", "fewer than two data rows"),
+            ("time,f [N]\n0,1\n1,2\n", "expected 'name [unit]'"),
+            ("time [s],f [lbf]\n0,1\n1,2\n", "unknown unit 'lbf'"),
+            ("x [mm],f [N]\n0,1\n1,2\n", "first column must be time"),
+            ("time [s]\n0\n1\n", "no data columns"),
+            ("time [s],f [N],f [kN]\n0,1,1\n1,2,2\n", "used twice"),
+            (
+                "time [s],f [N]\n0,1\n1,2,3\n",
+                "f.csv:3: 3 cells, but the header has 2",
+            ),
+            ("time [s],f [N]\n0,1\n1,NaN\n", "holds 'NaN'"),
+            ("time [s],f [N]\n0,1\n1,inf\n", "holds 'inf'"),
+            ("time [s],f [N]\n0,1\n1,1\n1,1\n", "does not increase"),
+            (
+                "time [s],f [N]\n0,1\n1,1\n3,1\n4,1\n",
+                "not uniformly sampled",
+            ),
+        ];
+        for (text, expected) in cases {
+            let err = parse(text).unwrap_err().to_string();
+            assert!(err.contains(expected), "{text:?}: {err}");
+        }
+    }
+
+    #[test]
+    fn rounded_times_are_uniform_enough() {
+        let mut text = String::from("time [ms],f [N]\n");
+        for k in 0..1000 {
+            text.push_str(&format!("{:.3},1\n", k as f64 / 3.0));
+        }
+        let t = parse(&text).unwrap();
+        assert!((t.step - 1.0 / 3000.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn column_selection_reports_the_choices() {
+        let t = parse("time [s],a [N],b [kN]\n0,1,1\n1,2,2\n").unwrap();
+        let err = t.column("c").unwrap_err().to_string();
+        assert!(
+            err.contains("no column 'c'") && err.contains("a [N], b [kN]"),
+            "{err}"
+        );
+        assert!(
+            t.only_column(Dimension::Force)
+                .unwrap_err()
+                .to_string()
+                .contains("2 force columns")
+        );
+    }
+}
