@@ -47,7 +47,7 @@ fn simulate(car: &Path, force: &Path, extra: &[&str]) -> Output {
 #[test]
 fn simulates_the_bundled_example_and_writes_si_csv() {
     let dir = scratch("example");
-    let out = dir.join("response.csv");
+    let out = dir.join("new-folder/response.csv");
     let run = simulate(
         &example("car-3dof.toml"),
         &example("pendulum-force.csv"),
@@ -266,4 +266,64 @@ fn output_never_overwrites_an_input() {
     assert_eq!(run.status.code(), Some(2));
     assert!(text(&run.stderr).contains("would overwrite the input"));
     assert_eq!(std::fs::read(&force).unwrap(), before);
+}
+
+/// Whether python3 with scipy is available; with `BUMPSIM_REQUIRE_PEERS` set
+/// (as `scripts/test` does) its absence is a failure, otherwise a skip.
+fn scipy_available() -> bool {
+    let found = Command::new("python3")
+        .args(["-c", "import scipy"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !found {
+        assert!(
+            std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_none(),
+            "BUMPSIM_REQUIRE_PEERS is set but python3 cannot import scipy"
+        );
+        eprintln!("skipped: python3 with scipy not found (scripts/test installs it)");
+    }
+    found
+}
+
+#[test]
+fn zoh_and_foh_match_scipy_cont2discrete() {
+    if !scipy_available() {
+        return;
+    }
+    let dir = scratch("scipy");
+    let soft = dir.join("soft.toml");
+    std::fs::write(
+        &soft,
+        "masses = [150.0, 500.0, 800.0]\ndampers = [100.0, 2e5]\nsprings = [5e5, 5e5]\n",
+    )
+    .unwrap();
+    for car in [example("car-3dof.toml"), soft] {
+        for method in ["zoh", "foh"] {
+            let out = dir.join(format!("{method}.csv"));
+            let run = simulate(
+                &car,
+                &example("pendulum-force.csv"),
+                &["--method", method, "-o", out.to_str().unwrap()],
+            );
+            assert!(run.status.success(), "{}", text(&run.stderr));
+            let script = root().join("tests/peers/scipy_simulate.py");
+            let check = Command::new("python3")
+                .args([
+                    script.as_os_str(),
+                    car.as_os_str(),
+                    example("pendulum-force.csv").as_os_str(),
+                    out.as_os_str(),
+                    method.as_ref(),
+                ])
+                .output()
+                .unwrap();
+            assert!(
+                check.status.success(),
+                "{method} {}: {}{}",
+                car.display(),
+                text(&check.stdout),
+                text(&check.stderr)
+            );
+        }
+    }
 }

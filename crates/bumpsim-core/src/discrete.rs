@@ -430,7 +430,7 @@ fn taylor1(
     let identity = DMatrix::<f64>::identity(n, n);
     let phi_h = &identity + ss.a() * h;
     let gamma_h = (&identity * h + ss.a() * (h * h / 2.0)) * ss.b();
-    let (phi, gamma) = power(&phi_h, &gamma_h.as_slice().to_vec(), count);
+    let (phi, gamma) = power(&phi_h, gamma_h.as_slice(), count);
     Ok(build(
         Method::Taylor1,
         step,

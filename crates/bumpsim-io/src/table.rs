@@ -443,7 +443,8 @@ pub struct OutputColumn<'a> {
     pub values: &'a [f64],
 }
 
-/// Writes `time [s]` and the columns as CSV with SI unit headers. Numbers are
+/// Writes `time [s]` and the columns as CSV with SI unit headers, creating the
+/// folder if needed. Numbers are
 /// written in Rust's shortest round-trip form, so reading back is exact.
 pub fn write_table(
     path: &Path,
@@ -468,7 +469,16 @@ pub fn write_table(
         }
         text.push('\n');
     }
+    create_parent(path).map_err(write_error)?;
     std::fs::write(path, text).map_err(write_error)
+}
+
+/// Creates the folder a file is to be written into, if it is missing.
+pub fn create_parent(path: &Path) -> std::io::Result<()> {
+    match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => std::fs::create_dir_all(parent),
+        _ => Ok(()),
+    }
 }
 
 #[cfg(test)]
