@@ -5,6 +5,7 @@
 //! Exit codes: 0 success; 2 for anything the user can fix (bad arguments,
 //! unreadable or invalid files, a model the chosen method cannot run).
 
+mod export;
 mod simulate;
 
 use clap::{Parser, Subcommand};
@@ -22,12 +23,16 @@ struct Cli {
 enum Command {
     /// Simulate an MSD car model under a measured or synthetic force on m1.
     Simulate(simulate::Args),
+    /// Export the car model to FE solver decks (LS-DYNA, CalculiX/Abaqus).
+    #[command(subcommand)]
+    Export(export::Command),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Simulate(args) => simulate::run(&args),
+        Command::Export(command) => export::run(&command),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -3,6 +3,7 @@
 
 use anyhow::{Context, Result, bail};
 use bumpsim_core::discrete::{Method, Substeps};
+use bumpsim_core::series::UniformSeries;
 use bumpsim_core::simulate::{InitialState, Simulator};
 use bumpsim_core::units::{Dimension, format_number, format_quantity, parse_quantity};
 use bumpsim_io::car::Car;
@@ -13,7 +14,7 @@ use std::path::{Path, PathBuf};
 /// Arguments of `bumpsim simulate`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Car model (TOML: masses, dampers, springs in SI).
+    /// Car model: a car file (TOML: masses, dampers, springs in SI) or an identification result (JSON).
     #[arg(long, value_name = "CAR.toml")]
     car: PathBuf,
     /// Force on m1 (CSV: `time [unit]`, then columns `name [unit]`).
@@ -51,7 +52,8 @@ fn substeps(text: Option<&str>) -> Result<Substeps> {
     }
 }
 
-fn refuse_overwriting_inputs(output: &Path, inputs: &[&Path]) -> Result<()> {
+/// Refuses an output path that is one of the inputs.
+pub fn refuse_overwriting_inputs(output: &Path, inputs: &[&Path]) -> Result<()> {
     let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
         (Ok(a), Ok(b)) => a == b,
         _ => false,
@@ -64,6 +66,25 @@ fn refuse_overwriting_inputs(output: &Path, inputs: &[&Path]) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// Reads the force column of a CSV file: the named one, or the only force column.
+pub fn force_series(path: &Path, column: Option<&str>) -> Result<(UniformSeries, String)> {
+    let table = Table::read(path)?;
+    let column = match column {
+        Some(name) => table.column(name)?,
+        None => table.only_column(Dimension::Force)?,
+    };
+    if column.unit.dimension != Dimension::Force {
+        bail!(
+            "{}: column '{}' is a {} [{}], expected a force",
+            table.path.display(),
+            column.name,
+            column.unit.dimension,
+            column.unit
+        );
+    }
+    Ok((table.series(column), column.name.clone()))
 }
 
 /// Runs the command.
@@ -137,7 +158,7 @@ fn print_summary(
     args: &Args,
     car: &Car,
     column: &str,
-    force: &bumpsim_core::series::UniformSeries,
+    force: &UniformSeries,
     simulator: &Simulator,
     response: &bumpsim_core::simulate::Response,
     initial: &InitialState,

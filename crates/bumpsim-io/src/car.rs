@@ -91,6 +91,52 @@ impl Car {
         Self::parse(&text, path)
     }
 
+    /// Reads a model from a car TOML file or, for a `.json` file, from the
+    /// `masses`, `dampers`, `springs` (SI) and optional `name` fields of a JSON
+    /// object such as an identification result; its other fields are not model
+    /// data and are left alone.
+    pub fn read_model_file(path: &Path) -> Result<Car, CarError> {
+        if path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("json"))
+        {
+            let text = std::fs::read_to_string(path).map_err(|source| CarError::Io {
+                path: path.into(),
+                source,
+            })?;
+            return Self::parse_json(&text, path);
+        }
+        Self::read(path)
+    }
+
+    /// Parses the model fields of a JSON object; `path` is used in messages.
+    pub fn parse_json(text: &str, path: &Path) -> Result<Car, CarError> {
+        #[derive(Deserialize)]
+        struct ModelFields {
+            name: Option<String>,
+            masses: Vec<f64>,
+            #[serde(default)]
+            dampers: Vec<f64>,
+            #[serde(default)]
+            springs: Vec<f64>,
+        }
+        let fields: ModelFields = serde_json::from_str(text).map_err(|e| CarError::Syntax {
+            path: path.into(),
+            message: e.to_string(),
+        })?;
+        let model =
+            MsdModel::new(fields.masses, fields.dampers, fields.springs).map_err(|source| {
+                CarError::Model {
+                    path: path.into(),
+                    source,
+                }
+            })?;
+        Ok(Car {
+            name: fields.name,
+            model,
+        })
+    }
+
     /// Parses car TOML; `path` is used in messages.
     pub fn parse(text: &str, path: &Path) -> Result<Car, CarError> {
         let file: CarFile = toml::from_str(text).map_err(|e| CarError::Syntax {
@@ -142,6 +188,17 @@ mod tests {
     fn round_trips_through_toml() {
         let car = parse("name = \"S40\"\nmasses = [1.8, 74.8, 1670]\ndampers = [6.46e6, 1.97e5]\nsprings = [4.75e5, 5e5]\n").unwrap();
         assert_eq!(parse(&car.to_toml()).unwrap(), car);
+    }
+
+    #[test]
+    fn json_results_provide_the_model_fields() {
+        let json = r#"{"dof": 2, "masses": [1.0, 2.0], "dampers": [3.0], "springs": [4.0], "objective": 0.5}"#;
+        let car = Car::parse_json(json, Path::new("r.json")).unwrap();
+        assert_eq!(car.model.parameters(), vec![1.0, 2.0, 3.0, 4.0]);
+        let err = Car::parse_json(r#"{"masses": [0.0]}"#, Path::new("r.json")).unwrap_err();
+        assert!(err.to_string().starts_with("r.json: m1 = 0 kg"), "{err}");
+        let err = Car::parse_json("{", Path::new("r.json")).unwrap_err();
+        assert!(err.to_string().contains("line 1"), "{err}");
     }
 
     #[test]

@@ -1,0 +1,245 @@
+//! `bumpsim export`: converts arguments into export options, writes decks and
+//! reads CalculiX results back.
+
+use crate::simulate::{force_series, refuse_overwriting_inputs};
+use anyhow::{Context, Result, bail};
+use bumpsim_core::units::{Dimension, parse_quantity};
+use bumpsim_export::calculix::{Analysis, CalculixOptions, calculix_deck, read_results};
+use bumpsim_export::layout::{Axis, Layout, UnitSystem};
+use bumpsim_export::lsdyna::{LsDynaOptions, lsdyna_include};
+use bumpsim_io::car::Car;
+use bumpsim_io::table::{OutputColumn, write_table};
+use std::path::{Path, PathBuf};
+
+/// The export subcommands.
+#[derive(Debug, clap::Subcommand)]
+pub enum Command {
+    /// Write an LS-DYNA keyword include file of the model.
+    Lsdyna(LsDynaArgs),
+    /// Write a CalculiX/Abaqus deck; with --force a complete transient analysis.
+    Calculix(CalculixArgs),
+    /// Read the .dat results of a CalculiX run of an exported deck into CSV (SI).
+    ReadCalculix(ReadArgs),
+}
+
+/// Options both decks share.
+#[derive(Debug, clap::Args)]
+pub struct Common {
+    /// The model: a car file (TOML) or an identification result (JSON).
+    #[arg(value_name = "CAR.toml|RESULT.json")]
+    model: PathBuf,
+    /// The deck to write.
+    #[arg(short, long, value_name = "FILE")]
+    output: PathBuf,
+    /// Deck unit system: si (kg, m, s, N), mm-s-t (t, mm, s, N) or mm-ms-kg (kg, mm, ms, kN).
+    #[arg(long, default_value = "si")]
+    units: UnitSystem,
+    /// Global axis of the model's +x (direction of the bumper force on m1, towards mn).
+    #[arg(long, default_value = "+x", allow_hyphen_values = true)]
+    axis: Axis,
+    /// Position of m1 as x,y,z in m, or with a unit ("0,0,500 mm" is not accepted: give m).
+    #[arg(
+        long,
+        default_value = "0,0,0",
+        allow_hyphen_values = true,
+        value_name = "X,Y,Z"
+    )]
+    origin: String,
+    /// Distance between neighbouring mass nodes, m or with a unit ("100 mm").
+    #[arg(long, default_value = "0.1")]
+    spacing: String,
+    /// Initial velocity of every mass along the axis, m/s or with a unit ("16 km/h").
+    #[arg(long, value_name = "V", allow_hyphen_values = true)]
+    initial_velocity: Option<String>,
+}
+
+/// Arguments of `bumpsim export lsdyna`.
+#[derive(Debug, clap::Args)]
+pub struct LsDynaArgs {
+    #[command(flatten)]
+    common: Common,
+    /// Added to every id of the include, to stay clear of the bumper model's ids.
+    #[arg(long, default_value_t = 0)]
+    id_offset: u64,
+    /// Bumper attachment node ids (the user's model) rigidly coupled to m1, comma-separated.
+    #[arg(long, value_delimiter = ',', value_name = "ID,ID,...")]
+    attach: Vec<u64>,
+}
+
+/// Arguments of `bumpsim export calculix`.
+#[derive(Debug, clap::Args)]
+pub struct CalculixArgs {
+    #[command(flatten)]
+    common: Common,
+    /// Force on m1 (CSV) to make a complete transient analysis.
+    #[arg(long, value_name = "FORCE.csv")]
+    force: Option<PathBuf>,
+    /// Force column, when the file has several force columns.
+    #[arg(long, value_name = "NAME", requires = "force")]
+    column: Option<String>,
+    /// Fixed time increment, s or with a unit ("0.05 ms"); default the force's sample interval.
+    #[arg(long, value_name = "DT", requires = "force")]
+    increment: Option<String>,
+    /// Write results every N increments.
+    #[arg(long, default_value_t = 1, value_name = "N", requires = "force")]
+    output_every: usize,
+}
+
+/// Arguments of `bumpsim export read-calculix`.
+#[derive(Debug, clap::Args)]
+pub struct ReadArgs {
+    /// The deck written by `bumpsim export calculix`; its .dat beside it is read.
+    #[arg(value_name = "DECK.inp")]
+    deck: PathBuf,
+    /// Write `time [s]`, `x1 [m]`, ... as CSV.
+    #[arg(short, long, value_name = "OUT.csv")]
+    output: PathBuf,
+}
+
+/// Runs an export subcommand.
+pub fn run(command: &Command) -> Result<()> {
+    match command {
+        Command::Lsdyna(args) => lsdyna(args),
+        Command::Calculix(args) => calculix(args),
+        Command::ReadCalculix(args) => read_calculix(args),
+    }
+}
+
+fn layout(common: &Common) -> Result<Layout> {
+    let parts: Vec<&str> = common.origin.split(',').collect();
+    let [x, y, z] = parts.as_slice() else {
+        bail!(
+            "--origin '{}': expected three coordinates x,y,z in m",
+            common.origin
+        );
+    };
+    let coordinate = |text: &str| {
+        parse_quantity(text, Dimension::Length)
+            .with_context(|| format!("--origin '{}'", common.origin))
+    };
+    let spacing = parse_quantity(&common.spacing, Dimension::Length).context("--spacing")?;
+    if spacing <= 0.0 {
+        bail!("--spacing {spacing} m: the distance between mass nodes must be positive");
+    }
+    Ok(Layout {
+        units: common.units,
+        axis: common.axis,
+        origin: [coordinate(x)?, coordinate(y)?, coordinate(z)?],
+        spacing,
+    })
+}
+
+fn initial_velocity(common: &Common) -> Result<Option<f64>> {
+    common
+        .initial_velocity
+        .as_deref()
+        .map(|text| parse_quantity(text, Dimension::Velocity).context("--initial-velocity"))
+        .transpose()
+}
+
+fn write_deck(common: &Common, inputs: &[&Path], text: &str, what: &str) -> Result<()> {
+    refuse_overwriting_inputs(&common.output, inputs)?;
+    if let Some(parent) = common.output.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(parent)
+            .with_context(|| format!("cannot create {}", parent.display()))?;
+    }
+    let existed = common.output.exists();
+    std::fs::write(&common.output, text)
+        .with_context(|| format!("cannot write {}", common.output.display()))?;
+    let note = if existed {
+        " (replaced the existing file)"
+    } else {
+        ""
+    };
+    println!(
+        "wrote {}: {what}, units {}{note}",
+        common.output.display(),
+        common.units
+    );
+    Ok(())
+}
+
+fn title(car: &Car, path: &Path) -> String {
+    format!(
+        "{} (from {})",
+        car.name.as_deref().unwrap_or("MSD car model"),
+        path.display()
+    )
+}
+
+fn lsdyna(args: &LsDynaArgs) -> Result<()> {
+    let common = &args.common;
+    let car = Car::read_model_file(&common.model)?;
+    let options = LsDynaOptions {
+        layout: layout(common)?,
+        id_offset: args.id_offset,
+        attach: args.attach.clone(),
+        initial_velocity: initial_velocity(common)?,
+        title: title(&car, &common.model),
+    };
+    let deck = lsdyna_include(&car.model, &options)?;
+    let what = format!(
+        "LS-DYNA include, {} masses on nodes {}..{}",
+        car.model.dof(),
+        args.id_offset + 1,
+        args.id_offset + car.model.dof() as u64
+    );
+    write_deck(common, &[&common.model], &deck, &what)
+}
+
+fn calculix(args: &CalculixArgs) -> Result<()> {
+    let common = &args.common;
+    let car = Car::read_model_file(&common.model)?;
+    let analysis = match &args.force {
+        Some(path) => Some(Analysis {
+            force: force_series(path, args.column.as_deref())?.0,
+            increment: args
+                .increment
+                .as_deref()
+                .map(|t| parse_quantity(t, Dimension::Time).context("--increment"))
+                .transpose()?,
+            output_every: args.output_every,
+        }),
+        None => None,
+    };
+    let what = if analysis.is_some() {
+        "CalculiX transient analysis (run: ccx JOB)"
+    } else {
+        "CalculiX model"
+    };
+    let options = CalculixOptions {
+        layout: layout(common)?,
+        initial_velocity: initial_velocity(common)?,
+        analysis,
+        title: title(&car, &common.model),
+    };
+    let deck = calculix_deck(&car.model, &options)?;
+    let inputs: Vec<&Path> = std::iter::once(common.model.as_path())
+        .chain(args.force.as_deref())
+        .collect();
+    write_deck(common, &inputs, &deck, what)
+}
+
+fn read_calculix(args: &ReadArgs) -> Result<()> {
+    let results = read_results(&args.deck)?;
+    let names: Vec<String> = (1..=results.displacement.len())
+        .map(|i| format!("x{i}"))
+        .collect();
+    let columns: Vec<OutputColumn<'_>> = names
+        .iter()
+        .zip(&results.displacement)
+        .map(|(name, values)| OutputColumn {
+            name,
+            dimension: Dimension::Length,
+            values,
+        })
+        .collect();
+    write_table(&args.output, &results.time, &columns)?;
+    println!(
+        "wrote {}: {} times × {} masses, displacement along the model axis, SI",
+        args.output.display(),
+        results.time.len(),
+        names.len()
+    );
+    Ok(())
+}

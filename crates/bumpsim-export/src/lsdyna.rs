@@ -1,0 +1,331 @@
+//! LS-DYNA keyword include file of an MSD car model (thesis ch. 3.3, paper B;
+//! spec §8; LS-DYNA Keyword User's Manual, vol. I and II).
+//!
+//! Cards, in fixed format (80 columns; 10-column fields, and the manual's
+//! 8/16-column fields for `*NODE`, `*ELEMENT_MASS` and `*ELEMENT_DISCRETE`):
+//!
+//! - `*NODE`: one node per mass on the axis; `TC`/`RC` leave only
+//!   translation along the axis (the thesis: "every lumped mass may only
+//!   translate longitudinally");
+//! - `*ELEMENT_MASS`: m_i on node i;
+//! - `*SECTION_DISCRETE` (translational), `*MAT_SPRING_ELASTIC` (K = k_j),
+//!   `*MAT_DAMPER_VISCOUS` (DC = c_j), one `*PART` per spring and damper, and
+//!   `*ELEMENT_DISCRETE` between nodes j and j+1 (a spring and a damper in
+//!   parallel); a zero damper gets no element;
+//! - with attachment nodes: `*SET_NODE_LIST` of m1's node and the user's
+//!   bumper attachment nodes, and `*CONSTRAINED_NODAL_RIGID_BODY_SPC` tying
+//!   them rigidly, its centre-of-mass constraint leaving translation along the
+//!   axis only (the thesis couples m1 to the side-member ends by rigid links);
+//! - optional `*INITIAL_VELOCITY_NODE` for every mass.
+//!
+//! Ids: every id is `offset + k` with k small, so the include cannot clash
+//! with the user's model when the offset is above the user's ids.
+
+use crate::ExportError;
+use crate::layout::{Layout, int_field, real_field};
+use bumpsim_core::model::MsdModel;
+use std::fmt::Write;
+
+/// Largest id an 8-column field holds.
+pub const MAX_ID: u64 = 99_999_999;
+
+/// Options of the LS-DYNA export.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LsDynaOptions {
+    /// Units, axis and node placement.
+    pub layout: Layout,
+    /// Added to every id (nodes, elements, parts, materials, sections, sets).
+    pub id_offset: u64,
+    /// The user's bumper attachment node ids coupled rigidly to m1.
+    pub attach: Vec<u64>,
+    /// Initial velocity of every mass along the axis, m/s (SI).
+    pub initial_velocity: Option<f64>,
+    /// Title line and origin note.
+    pub title: String,
+}
+
+/// The ids the include uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Ids {
+    offset: u64,
+    dof: u64,
+}
+
+impl Ids {
+    /// Node (and mass element) of mass `i` (0-based).
+    pub fn node(&self, i: usize) -> u64 {
+        self.offset + 1 + i as u64
+    }
+
+    /// Element, part and material of spring `j` (0-based).
+    pub fn spring(&self, j: usize) -> u64 {
+        self.offset + self.dof + 1 + j as u64
+    }
+
+    /// Element, part and material of damper `j` (0-based).
+    pub fn damper(&self, j: usize) -> u64 {
+        self.offset + 2 * self.dof + 1 + j as u64
+    }
+
+    /// The discrete section, node set and rigid-body part.
+    pub fn shared(&self) -> u64 {
+        self.offset + 3 * self.dof + 1
+    }
+}
+
+/// Checks the offset and the attachment nodes and returns the ids.
+fn ids(model: &MsdModel, options: &LsDynaOptions) -> Result<Ids, ExportError> {
+    let ids = Ids {
+        offset: options.id_offset,
+        dof: model.dof() as u64,
+    };
+    let last = ids.shared();
+    if last > MAX_ID {
+        return Err(ExportError::Ids(format!(
+            "id offset {} puts ids up to {last}, beyond the 8-column limit {MAX_ID}",
+            options.id_offset
+        )));
+    }
+    let ours = ids.node(0)..=ids.node(model.dof() - 1);
+    if let Some(node) = options.attach.iter().find(|n| ours.contains(n)) {
+        return Err(ExportError::Ids(format!(
+            "attachment node {node} clashes with the include's nodes {}..{}: choose an --id-offset above your model's ids",
+            ours.start(),
+            ours.end()
+        )));
+    }
+    if let Some(node) = options.attach.iter().find(|&&n| n == 0 || n > MAX_ID) {
+        return Err(ExportError::Ids(format!(
+            "attachment node {node} is not a valid node id (1..{MAX_ID})"
+        )));
+    }
+    Ok(ids)
+}
+
+/// Writes the include file text.
+pub fn lsdyna_include(model: &MsdModel, options: &LsDynaOptions) -> Result<String, ExportError> {
+    let ids = ids(model, options)?;
+    let mut deck = String::new();
+    header(&mut deck, model, options);
+    nodes(&mut deck, model, options, &ids);
+    masses(&mut deck, model, options, &ids);
+    links(&mut deck, model, options, &ids);
+    if !options.attach.is_empty() {
+        coupling(&mut deck, options, &ids);
+    }
+    if let Some(v) = options.initial_velocity {
+        initial_velocity(&mut deck, model, options, &ids, v);
+    }
+    deck.push_str("*END\n");
+    Ok(deck)
+}
+
+fn header(deck: &mut String, model: &MsdModel, options: &LsDynaOptions) {
+    let [m, l, t, f] = options.layout.units.symbols();
+    let _ = writeln!(deck, "*KEYWORD");
+    let _ = writeln!(deck, "$ {}", options.title);
+    let _ = writeln!(
+        deck,
+        "$ bumpsim {}: {}-DOF chain MSD car model (Isaksson 2006, ch. 3.3)",
+        env!("CARGO_PKG_VERSION"),
+        model.dof()
+    );
+    let _ = writeln!(
+        deck,
+        "$ units: mass {m}, length {l}, time {t}, force {f}; model +x = {} (direction of the bumper force on m1)",
+        options.layout.axis
+    );
+    let _ = writeln!(
+        deck,
+        "$ ids: offset {}; masses on nodes {}..",
+        options.id_offset,
+        options.id_offset + 1
+    );
+}
+
+fn nodes(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids) {
+    // TC: 5 = y and z fixed, 6 = z and x, 4 = x and y; RC 7 = all rotations
+    let tc = [5, 6, 4][options.layout.axis.component];
+    let _ = writeln!(
+        deck,
+        "*NODE\n$    nid               x               y               z      tc      rc"
+    );
+    for i in 0..model.dof() {
+        // m1 under a nodal rigid body is constrained through the rigid body
+        let (tc, rc) = if i == 0 && !options.attach.is_empty() {
+            (0, 0)
+        } else {
+            (tc, 7)
+        };
+        let p = options.layout.node_position(i);
+        let _ = writeln!(
+            deck,
+            "{}{}{}{}{}{}",
+            int_field(ids.node(i), 8),
+            real_field(p[0], 16),
+            real_field(p[1], 16),
+            real_field(p[2], 16),
+            int_field(tc, 8),
+            int_field(rc, 8)
+        );
+    }
+}
+
+fn masses(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids) {
+    let unit = options.layout.units.symbols()[0];
+    let _ = writeln!(
+        deck,
+        "*ELEMENT_MASS\n$    eid     nid            mass  ({unit})"
+    );
+    for (i, m) in model.masses().iter().enumerate() {
+        let mass = real_field(m * options.layout.units.mass(), 16);
+        let _ = writeln!(
+            deck,
+            "{}{}{mass}",
+            int_field(ids.node(i), 8),
+            int_field(ids.node(i), 8)
+        );
+    }
+}
+
+fn links(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids) {
+    let units = options.layout.units;
+    let [_, l, t, f] = units.symbols();
+    let section = ids.shared();
+    let _ = writeln!(
+        deck,
+        "*SECTION_DISCRETE\n$  secid       dro        kd        v0        cl        fd       cdl       tdl"
+    );
+    let _ = writeln!(deck, "{}{}", int_field(section, 10), int_field(0, 10));
+    for (j, k) in model.springs().iter().enumerate() {
+        let card = format!(
+            "*MAT_SPRING_ELASTIC\n$    mid         k  ({f}/{l})\n{}{}",
+            int_field(ids.spring(j), 10),
+            real_field(k * units.stiffness(), 10)
+        );
+        part(
+            deck,
+            &card,
+            &format!("spring k{} between m{} and m{}", j + 1, j + 1, j + 2),
+            ids.spring(j),
+            section,
+        );
+    }
+    for (j, c) in model
+        .dampers()
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| **c > 0.0)
+    {
+        let card = format!(
+            "*MAT_DAMPER_VISCOUS\n$    mid        dc  ({f}*{t}/{l})\n{}{}",
+            int_field(ids.damper(j), 10),
+            real_field(c * units.damping(), 10)
+        );
+        part(
+            deck,
+            &card,
+            &format!("damper c{} between m{} and m{}", j + 1, j + 1, j + 2),
+            ids.damper(j),
+            section,
+        );
+    }
+    let _ = writeln!(
+        deck,
+        "*ELEMENT_DISCRETE\n$    eid     pid      n1      n2     vid               s      pf          offset"
+    );
+    for j in 0..model.springs().len() {
+        discrete_element(deck, ids, ids.spring(j), j);
+    }
+    for (j, _) in model
+        .dampers()
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| **c > 0.0)
+    {
+        discrete_element(deck, ids, ids.damper(j), j);
+    }
+}
+
+/// One `*ELEMENT_DISCRETE` card between the nodes of link `j`; the part id is the element id.
+fn discrete_element(deck: &mut String, ids: &Ids, id: u64, j: usize) {
+    let nodes = format!(
+        "{}{}",
+        int_field(ids.node(j), 8),
+        int_field(ids.node(j + 1), 8)
+    );
+    let _ = writeln!(
+        deck,
+        "{}{}{nodes}{}{}",
+        int_field(id, 8),
+        int_field(id, 8),
+        int_field(0, 8),
+        real_field(1.0, 16)
+    );
+}
+
+fn part(deck: &mut String, material: &str, title: &str, id: u64, section: u64) {
+    let _ = writeln!(deck, "{material}");
+    let _ = writeln!(deck, "*PART\n{title}\n$    pid     secid       mid");
+    let _ = writeln!(
+        deck,
+        "{}{}{}",
+        int_field(id, 10),
+        int_field(section, 10),
+        int_field(id, 10)
+    );
+}
+
+fn coupling(deck: &mut String, options: &LsDynaOptions, ids: &Ids) {
+    let set = ids.shared();
+    let _ = writeln!(deck, "*SET_NODE_LIST\n$    sid\n{}", int_field(set, 10));
+    let members: Vec<u64> = std::iter::once(ids.node(0))
+        .chain(options.attach.iter().copied())
+        .collect();
+    for chunk in members.chunks(8) {
+        let _ = writeln!(
+            deck,
+            "{}",
+            chunk.iter().map(|n| int_field(*n, 10)).collect::<String>()
+        );
+    }
+    let tc = [5, 6, 4][options.layout.axis.component];
+    let _ = writeln!(
+        deck,
+        "*CONSTRAINED_NODAL_RIGID_BODY_SPC\n$    pid       cid      nsid\n{}{}{}",
+        int_field(set, 10),
+        int_field(0, 10),
+        int_field(set, 10)
+    );
+    let _ = writeln!(
+        deck,
+        "$    cmo      con1      con2\n{}{}{}",
+        real_field(1.0, 10),
+        real_field(f64::from(tc), 10),
+        real_field(7.0, 10)
+    );
+}
+
+fn initial_velocity(
+    deck: &mut String,
+    model: &MsdModel,
+    options: &LsDynaOptions,
+    ids: &Ids,
+    v: f64,
+) {
+    let units = options.layout.units;
+    let axis = options.layout.axis.vector();
+    let _ = writeln!(
+        deck,
+        "*INITIAL_VELOCITY_NODE\n$    nid        vx        vy        vz  ({}/{})",
+        units.symbols()[1],
+        units.symbols()[2]
+    );
+    for i in 0..model.dof() {
+        let components: String = axis
+            .iter()
+            .map(|a| real_field(a * v * units.velocity(), 10))
+            .collect();
+        let _ = writeln!(deck, "{}{components}", int_field(ids.node(i), 10));
+    }
+}
