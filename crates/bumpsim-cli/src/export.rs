@@ -37,7 +37,7 @@ pub struct Common {
     /// Global axis of the model's +x (direction of the bumper force on m1, towards mn).
     #[arg(long, default_value = "+x", allow_hyphen_values = true)]
     axis: Axis,
-    /// Position of m1 as x,y,z in m, or with a unit ("0,0,500 mm" is not accepted: give m).
+    /// Position of m1 as x,y,z, each in m or with a unit ("3.2,0,450 mm").
     #[arg(
         long,
         default_value = "0,0,0",
@@ -46,7 +46,7 @@ pub struct Common {
     )]
     origin: String,
     /// Distance between neighbouring mass nodes, m or with a unit ("100 mm").
-    #[arg(long, default_value = "0.1")]
+    #[arg(long, default_value = "0.1", allow_hyphen_values = true)]
     spacing: String,
     /// Initial velocity of every mass along the axis, m/s or with a unit ("16 km/h").
     #[arg(long, value_name = "V", allow_hyphen_values = true)]
@@ -78,7 +78,12 @@ pub struct CalculixArgs {
     #[arg(long, value_name = "NAME", requires = "force")]
     column: Option<String>,
     /// Fixed time increment, s or with a unit ("0.05 ms"); default the force's sample interval.
-    #[arg(long, value_name = "DT", requires = "force")]
+    #[arg(
+        long,
+        value_name = "DT",
+        requires = "force",
+        allow_hyphen_values = true
+    )]
     increment: Option<String>,
     /// Write results every N increments.
     #[arg(long, default_value_t = 1, value_name = "N", requires = "force")]

@@ -123,17 +123,19 @@ pub fn lsdyna_include(model: &MsdModel, options: &LsDynaOptions) -> Result<Strin
 fn header(deck: &mut String, model: &MsdModel, options: &LsDynaOptions) {
     let [m, l, t, f] = options.layout.units.symbols();
     let _ = writeln!(deck, "*KEYWORD");
-    let _ = writeln!(deck, "$ {}", options.title);
+    let title: String = options.title.chars().take(78).collect();
+    let _ = writeln!(deck, "$ {title}");
     let _ = writeln!(
         deck,
         "$ bumpsim {}: {}-DOF chain MSD car model (Isaksson 2006, ch. 3.3)",
         env!("CARGO_PKG_VERSION"),
         model.dof()
     );
+    let _ = writeln!(deck, "$ units: mass {m}, length {l}, time {t}, force {f}");
+    let axis = options.layout.axis;
     let _ = writeln!(
         deck,
-        "$ units: mass {m}, length {l}, time {t}, force {f}; model +x = {} (direction of the bumper force on m1)",
-        options.layout.axis
+        "$ model +x = global {axis}: direction of the bumper force on m1"
     );
     let _ = writeln!(
         deck,
