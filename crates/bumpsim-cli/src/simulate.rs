@@ -92,22 +92,8 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(output) = &args.output {
         refuse_overwriting_inputs(output, &[&args.car, &args.force])?;
     }
-    let car = Car::read(&args.car)?;
-    let table = Table::read(&args.force)?;
-    let column = match &args.column {
-        Some(name) => table.column(name)?,
-        None => table.only_column(Dimension::Force)?,
-    };
-    if column.unit.dimension != Dimension::Force {
-        bail!(
-            "{}: column '{}' is a {} [{}], expected a force",
-            table.path.display(),
-            column.name,
-            column.unit.dimension,
-            column.unit
-        );
-    }
-    let force = table.series(column);
+    let car = Car::read_model_file(&args.car)?;
+    let (force, column) = force_series(&args.force, args.column.as_deref())?;
     let initial = match &args.initial_velocity {
         Some(text) => InitialState::UniformVelocity(
             parse_quantity(text, Dimension::Velocity).context("--initial-velocity")?,
@@ -128,15 +114,7 @@ pub fn run(args: &Args) -> Result<()> {
         )
     })?;
     let response = simulator.run(&force, &initial)?;
-    print_summary(
-        args,
-        &car,
-        column.name.as_str(),
-        &force,
-        &simulator,
-        &response,
-        &initial,
-    );
+    print_summary(args, &car, &column, &force, &simulator, &response, &initial);
     if let Some(output) = &args.output {
         let existed = output.exists();
         let columns = write_response(output, &response)?;

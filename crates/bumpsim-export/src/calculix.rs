@@ -88,30 +88,34 @@ pub fn calculix_deck(model: &MsdModel, options: &CalculixOptions) -> Result<Stri
             real(mass * layout.units.mass())
         );
     }
-    for (j, k) in model.springs().iter().enumerate() {
-        let id = n + j + 1;
-        let _ = writeln!(
-            deck,
-            "*ELEMENT, TYPE=SPRINGA, ELSET=EK{0}\n{id}, {0}, {1}\n*SPRING, ELSET=EK{0}\n\n{2}",
-            j + 1,
-            j + 2,
-            real(k * layout.units.stiffness())
-        );
-    }
-    for (j, c) in model
-        .dampers()
-        .iter()
-        .enumerate()
-        .filter(|(_, c)| **c > 0.0)
-    {
-        let id = 2 * n + j + 1;
-        let _ = writeln!(
-            deck,
-            "*ELEMENT, TYPE=DASHPOTA, ELSET=EC{0}\n{id}, {0}, {1}\n*DASHPOT, ELSET=EC{0}\n\n{2}",
-            j + 1,
-            j + 2,
-            real(c * layout.units.damping())
-        );
+    // springs are elements n + j, dampers 2n + j; a zero damper gets no element
+    let links = [
+        (
+            "SPRINGA",
+            "SPRING",
+            "EK",
+            n,
+            model.springs(),
+            layout.units.stiffness(),
+        ),
+        (
+            "DASHPOTA",
+            "DASHPOT",
+            "EC",
+            2 * n,
+            model.dampers(),
+            layout.units.damping(),
+        ),
+    ];
+    for (element, card, set, base, values, factor) in links {
+        for (j, value) in values.iter().enumerate().filter(|(_, v)| **v > 0.0) {
+            let (id, value) = (base + j + 1, real(value * factor));
+            let (a, b) = (j + 1, j + 2);
+            let _ = writeln!(
+                deck,
+                "*ELEMENT, TYPE={element}, ELSET={set}{a}\n{id}, {a}, {b}\n*{card}, ELSET={set}{a}\n\n{value}"
+            );
+        }
     }
     let _ = writeln!(deck, "*BOUNDARY");
     for dof in layout.axis.other_dofs() {

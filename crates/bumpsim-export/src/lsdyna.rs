@@ -199,38 +199,46 @@ fn links(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids
         "*SECTION_DISCRETE\n$  secid       dro        kd        v0        cl        fd       cdl       tdl"
     );
     let _ = writeln!(deck, "{}{}", int_field(section, 10), int_field(0, 10));
-    for (j, k) in model.springs().iter().enumerate() {
-        let card = format!(
-            "*MAT_SPRING_ELASTIC\n$    mid         k  ({f}/{l})\n{}{}",
-            int_field(ids.spring(j), 10),
-            real_field(k * units.stiffness(), 10)
-        );
-        part(
-            deck,
-            &card,
-            &format!("spring k{} between m{} and m{}", j + 1, j + 1, j + 2),
-            ids.spring(j),
-            section,
-        );
-    }
-    for (j, c) in model
-        .dampers()
-        .iter()
-        .enumerate()
-        .filter(|(_, c)| **c > 0.0)
-    {
-        let card = format!(
-            "*MAT_DAMPER_VISCOUS\n$    mid        dc  ({f}*{t}/{l})\n{}{}",
-            int_field(ids.damper(j), 10),
-            real_field(c * units.damping(), 10)
-        );
-        part(
-            deck,
-            &card,
-            &format!("damper c{} between m{} and m{}", j + 1, j + 1, j + 2),
-            ids.damper(j),
-            section,
-        );
+    let links = [
+        LinkCard {
+            keyword: "*MAT_SPRING_ELASTIC",
+            field: "k",
+            unit: format!("{f}/{l}"),
+            what: "spring k",
+            values: model.springs(),
+            factor: units.stiffness(),
+            first_id: ids.spring(0),
+        },
+        LinkCard {
+            keyword: "*MAT_DAMPER_VISCOUS",
+            field: "dc",
+            unit: format!("{f}*{t}/{l}"),
+            what: "damper c",
+            values: model.dampers(),
+            factor: units.damping(),
+            first_id: ids.damper(0),
+        },
+    ];
+    for link in links {
+        // a zero damper gets no part and no element
+        for (j, value) in link.values.iter().enumerate().filter(|(_, v)| **v > 0.0) {
+            let id = link.first_id + j as u64;
+            let card = format!(
+                "{}\n$    mid{:>10}  ({})\n{}{}",
+                link.keyword,
+                link.field,
+                link.unit,
+                int_field(id, 10),
+                real_field(value * link.factor, 10)
+            );
+            part(
+                deck,
+                &card,
+                &format!("{}{} between m{} and m{}", link.what, j + 1, j + 1, j + 2),
+                id,
+                section,
+            );
+        }
     }
     let _ = writeln!(
         deck,
@@ -264,6 +272,17 @@ fn discrete_element(deck: &mut String, ids: &Ids, id: u64, j: usize) {
         int_field(0, 8),
         real_field(1.0, 16)
     );
+}
+
+/// The material, part and id numbering of the springs or of the dampers.
+struct LinkCard<'a> {
+    keyword: &'static str,
+    field: &'static str,
+    unit: String,
+    what: &'static str,
+    values: &'a [f64],
+    factor: f64,
+    first_id: u64,
 }
 
 fn part(deck: &mut String, material: &str, title: &str, id: u64, section: u64) {

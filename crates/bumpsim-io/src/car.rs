@@ -81,14 +81,32 @@ struct CarFile {
     springs: Vec<f64>,
 }
 
+impl CarFile {
+    fn into_car(self, path: &Path) -> Result<Car, CarError> {
+        let model = MsdModel::new(self.masses, self.dampers, self.springs).map_err(|source| {
+            CarError::Model {
+                path: path.into(),
+                source,
+            }
+        })?;
+        Ok(Car {
+            name: self.name,
+            model,
+        })
+    }
+}
+
+fn read_text(path: &Path) -> Result<String, CarError> {
+    std::fs::read_to_string(path).map_err(|source| CarError::Io {
+        path: path.into(),
+        source,
+    })
+}
+
 impl Car {
     /// Reads a car file.
     pub fn read(path: &Path) -> Result<Car, CarError> {
-        let text = std::fs::read_to_string(path).map_err(|source| CarError::Io {
-            path: path.into(),
-            source,
-        })?;
-        Self::parse(&text, path)
+        Self::parse(&read_text(path)?, path)
     }
 
     /// Reads a model from a car TOML file or, for a `.json` file, from the
@@ -100,11 +118,7 @@ impl Car {
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("json"))
         {
-            let text = std::fs::read_to_string(path).map_err(|source| CarError::Io {
-                path: path.into(),
-                source,
-            })?;
-            return Self::parse_json(&text, path);
+            return Self::parse_json(&read_text(path)?, path);
         }
         Self::read(path)
     }
@@ -120,21 +134,17 @@ impl Car {
             #[serde(default)]
             springs: Vec<f64>,
         }
-        let fields: ModelFields = serde_json::from_str(text).map_err(|e| CarError::Syntax {
+        let f: ModelFields = serde_json::from_str(text).map_err(|e| CarError::Syntax {
             path: path.into(),
             message: e.to_string(),
         })?;
-        let model =
-            MsdModel::new(fields.masses, fields.dampers, fields.springs).map_err(|source| {
-                CarError::Model {
-                    path: path.into(),
-                    source,
-                }
-            })?;
-        Ok(Car {
-            name: fields.name,
-            model,
-        })
+        CarFile {
+            name: f.name,
+            masses: f.masses,
+            dampers: f.dampers,
+            springs: f.springs,
+        }
+        .into_car(path)
     }
 
     /// Parses car TOML; `path` is used in messages.
@@ -143,16 +153,7 @@ impl Car {
             path: path.into(),
             message: e.to_string().trim_end().to_string(),
         })?;
-        let model = MsdModel::new(file.masses, file.dampers, file.springs).map_err(|source| {
-            CarError::Model {
-                path: path.into(),
-                source,
-            }
-        })?;
-        Ok(Car {
-            name: file.name,
-            model,
-        })
+        file.into_car(path)
     }
 
     /// The car as TOML text, in the format [`Car::parse`] reads.
