@@ -125,26 +125,17 @@ impl Car {
 
     /// Parses the model fields of a JSON object; `path` is used in messages.
     pub fn parse_json(text: &str, path: &Path) -> Result<Car, CarError> {
-        #[derive(Deserialize)]
-        struct ModelFields {
-            name: Option<String>,
-            masses: Vec<f64>,
-            #[serde(default)]
-            dampers: Vec<f64>,
-            #[serde(default)]
-            springs: Vec<f64>,
-        }
-        let f: ModelFields = serde_json::from_str(text).map_err(|e| CarError::Syntax {
+        let syntax = |e: serde_json::Error| CarError::Syntax {
             path: path.into(),
             message: e.to_string(),
-        })?;
-        CarFile {
-            name: f.name,
-            masses: f.masses,
-            dampers: f.dampers,
-            springs: f.springs,
-        }
-        .into_car(path)
+        };
+        let mut object: serde_json::Map<String, serde_json::Value> =
+            serde_json::from_str(text).map_err(syntax)?;
+        // the model fields only: a result's other fields are not car-file keys
+        object.retain(|key, _| ["name", "masses", "dampers", "springs"].contains(&key.as_str()));
+        let file: CarFile =
+            serde_json::from_value(serde_json::Value::Object(object)).map_err(syntax)?;
+        file.into_car(path)
     }
 
     /// Parses car TOML; `path` is used in messages.
