@@ -30,7 +30,7 @@ pub enum ExportError {
     #[error("{0}")]
     Option(String),
     /// A results file that cannot be read.
-    #[error("{path}:{line}: {reason}")]
+    #[error("{}{}: {reason}", path.display(), if *line > 0 { format!(":{line}") } else { String::new() })]
     Dat {
         /// The file.
         path: PathBuf,
