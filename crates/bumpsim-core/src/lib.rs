@@ -6,6 +6,7 @@
 //!
 //! - [`units`]: unit parsing and formatting;
 //! - [`series`]: uniformly sampled signals;
+//! - [`channel`]: a measured channel (series, code, name, unit, metadata);
 //! - [`model`]: the validated chain model and its parameter vector;
 //! - [`state_space`]: A, B and the elastic modes;
 //! - [`discrete`]: zoh, foh and taylor1 discretisations and the update loop;
@@ -20,6 +21,7 @@
 //! assert!(response.energy.relative_error() < 1e-9);
 //! ```
 
+pub mod channel;
 pub mod discrete;
 pub mod energy;
 pub mod model;
@@ -30,6 +32,7 @@ pub mod units;
 
 /// The types most programs need.
 pub mod prelude {
+    pub use crate::channel::Channel;
     pub use crate::discrete::{DiscreteModel, Method, Substeps};
     pub use crate::model::MsdModel;
     pub use crate::series::UniformSeries;

@@ -1,0 +1,326 @@
+//! NHTSA "EV5 ASCII X-Y" test data (spec §4).
+//!
+//! `<v>.EV5` holds sections `----- TEST -----`, `----- VEHICLE -----`,
+//! `----- INSTRUMENTATION -----`, ... with `|`-separated fields. Used here:
+//! - TEST: field 2 title, 15 closing speed (km/h), 19 number of curves;
+//! - VEHICLE: field 1 vehicle number, 11 test mass (kg);
+//! - INSTRUMENTATION, one row per curve: 1 vehicle number (0 = barrier),
+//!   2 curve number, 3 sensor type (`AC`, `LC`), 5 sensor location, 6 axis,
+//!   7 time unit, 8 value unit (`G'S`, `NWT`), 14 initial velocity (km/h),
+//!   15 and 16 first and last point, 17 sample interval (µs), 18 status
+//!   (`NO` = not installed), 19 primary/redundant (`P`/`R`), 20 comment.
+//!
+//! Each curve's samples are in `<v>.NNN` (curve number, 3 digits), one
+//! `time<TAB>value` line per sample. Channel codes are
+//! `VEHICLE-SENSOR-LOCATION-AXIS` (e.g. `0-LC-LC0601-XG`, `1-AC-FLLR-XG`),
+//! with `-R` appended for a redundant sensor. A curve whose comment says
+//! `No valid data` or whose status is `NO` is marked invalid.
+
+use crate::signal_error::{SignalFileError, parse_number, read_text};
+use crate::test_data::{Entry, Format, Store, TestData, Validity};
+use bumpsim_core::channel::Channel;
+use bumpsim_core::series::UniformSeries;
+use bumpsim_core::units::Unit;
+use std::path::{Path, PathBuf};
+
+/// The instrumentation field names, in order (1-based field = index + 1).
+const FIELDS: [&str; 20] = [
+    "Vehicle number",
+    "Curve number",
+    "Sensor type",
+    "Occupant location",
+    "Sensor location",
+    "Axis",
+    "Time unit",
+    "Units",
+    "Prefilter (Hz)",
+    "Sensor",
+    "Calibration date",
+    "Range",
+    "Channel",
+    "Initial velocity (km/h)",
+    "First point",
+    "Last point",
+    "Sample interval (us)",
+    "Status",
+    "Primary/redundant",
+    "Comment",
+];
+
+/// SI-convertible spelling of an NHTSA unit code.
+fn unit_text(code: &str) -> &str {
+    match code.trim().to_ascii_uppercase().as_str() {
+        "G'S" | "GS" | "G" => "g",
+        "NWT" => "N",
+        "KNW" => "kN",
+        "MMS" | "MM" => "mm",
+        "MPS" => "m/s",
+        "KPH" => "km/h",
+        "SEC" => "s",
+        "MSC" => "ms",
+        _ => code,
+    }
+}
+
+/// Opens an `.EV5` file; channel files are looked for beside it.
+pub fn open(path: &Path) -> Result<TestData, SignalFileError> {
+    let text = read_text(path)?;
+    let sections = sections(&text);
+    let test = first_row(&sections, "TEST").unwrap_or_default();
+    let vehicle = first_row(&sections, "VEHICLE").unwrap_or_default();
+    let field = |row: &[String], i: usize| {
+        row.get(i - 1)
+            .map(|s| s.trim().to_string())
+            .unwrap_or_default()
+    };
+    let rows = sections
+        .iter()
+        .filter(|(name, ..)| name == "INSTRUMENTATION");
+    let mut entries = Vec::new();
+    let mut files = Vec::new();
+    for (_, line, row) in rows {
+        let entry = instrument(row, path, *line)?;
+        let file = channel_file(path, entry.number);
+        entries.push(Entry {
+            present: file.is_some(),
+            ..entry
+        });
+        files.push(file);
+    }
+    let metadata = vec![
+        ("Title".to_string(), field(&test, 2)),
+        ("Test date".to_string(), field(&test, 4)),
+        ("Laboratory".to_string(), field(&test, 5)),
+        ("Closing speed (km/h)".to_string(), field(&test, 15)),
+        ("Number of curves".to_string(), field(&test, 19)),
+        ("Vehicle test mass (kg)".to_string(), field(&vehicle, 11)),
+    ];
+    Ok(TestData {
+        path: path.to_path_buf(),
+        format: Format::NhtsaEv5,
+        title: field(&test, 2),
+        speed: parse_number(&field(&test, 15)).map(|v| v / 3.6),
+        mass: parse_number(&field(&vehicle, 11)),
+        metadata,
+        entries,
+        store: Store::Ev5(files),
+    })
+}
+
+/// Rows of each section: (section name, 1-based line, fields).
+fn sections(text: &str) -> Vec<(String, usize, Vec<String>)> {
+    let mut current = String::new();
+    let mut rows = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let trimmed = line.trim();
+        if let Some(name) = trimmed
+            .strip_prefix("-----")
+            .and_then(|s| s.strip_suffix("-----"))
+        {
+            current = name.trim().to_string();
+        } else if !trimmed.is_empty() && !trimmed.starts_with('#') {
+            rows.push((
+                current.clone(),
+                i + 1,
+                line.split('|').map(str::to_string).collect(),
+            ));
+        }
+    }
+    rows
+}
+
+fn first_row(sections: &[(String, usize, Vec<String>)], name: &str) -> Option<Vec<String>> {
+    sections
+        .iter()
+        .find(|(n, ..)| n == name)
+        .map(|(_, _, row)| row.clone())
+}
+
+fn instrument(row: &[String], path: &Path, line: usize) -> Result<Entry, SignalFileError> {
+    if row.len() < FIELDS.len() {
+        let message = format!(
+            "instrumentation row has {} fields, expected {}",
+            row.len(),
+            FIELDS.len()
+        );
+        return Err(SignalFileError::line(path, line, message));
+    }
+    let f = |i: usize| row[i - 1].trim();
+    let number = f(2).parse().map_err(|_| {
+        SignalFileError::line(
+            path,
+            line,
+            format!("curve number '{}' is not a number", f(2)),
+        )
+    })?;
+    let mut code = format!("{}-{}-{}-{}", f(1), f(3), f(5), f(6));
+    if f(19).eq_ignore_ascii_case("R") {
+        code += "-R";
+    }
+    let comment = row[FIELDS.len() - 1..].join("|").trim().to_string();
+    let validity = match (f(18), comment.to_lowercase().contains("no valid data")) {
+        (_, true) => Validity::Invalid(comment.clone()),
+        (status, false) if status.eq_ignore_ascii_case("NO") => {
+            Validity::Invalid(format!("status NO: {comment}"))
+        }
+        _ => Validity::Valid,
+    };
+    let metadata = FIELDS
+        .iter()
+        .zip(row)
+        .map(|(k, v)| (k.to_string(), v.trim().to_string()))
+        .collect();
+    Ok(Entry {
+        number,
+        code,
+        name: comment,
+        unit: f(8).to_string(),
+        validity,
+        present: false,
+        metadata,
+    })
+}
+
+fn channel_file(ev5: &Path, number: usize) -> Option<PathBuf> {
+    let stem = ev5.file_stem()?.to_string_lossy().into_owned();
+    let path = ev5.with_file_name(format!("{stem}.{number:03}"));
+    path.is_file().then_some(path)
+}
+
+/// Reads the samples of one curve in SI units.
+pub(crate) fn load(
+    entry: &Entry,
+    file: Option<&Path>,
+    ev5: &Path,
+) -> Result<Channel, SignalFileError> {
+    let file = file.ok_or_else(|| {
+        let stem = ev5
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let expected = ev5.with_file_name(format!("{stem}.{:03}", entry.number));
+        SignalFileError::file(
+            expected,
+            format!(
+                "curve {} ({}) has no channel file",
+                entry.number, entry.code
+            ),
+        )
+    })?;
+    let unit_line = 0;
+    let unit = Unit::parse(unit_text(&entry.unit)).map_err(|e| {
+        SignalFileError::line(
+            ev5,
+            unit_line,
+            format!("curve {}: unit {}: {e}", entry.number, entry.unit),
+        )
+    })?;
+    let (times, values) = read_xy(file)?;
+    let meta = |key: &str| {
+        entry
+            .metadata
+            .iter()
+            .find(|(k, _)| k == key)
+            .and_then(|(_, v)| parse_number(v))
+    };
+    check_count(entry, &meta, values.len(), file)?;
+    let step = meta("Sample interval (us)").map(|us| us * 1e-6);
+    let (start, step) =
+        time_base(&times, step).map_err(|(line, m)| SignalFileError::line(file, line, m))?;
+    let values = values.into_iter().map(|v| unit.to_si(v)).collect();
+    let series = UniformSeries::new(start, step, values)
+        .map_err(|e| SignalFileError::file(file, e.to_string()))?;
+    let mut channel = Channel::new(&entry.code, &entry.name, unit.dimension, series);
+    channel.source_unit = entry.unit.clone();
+    channel.metadata = entry.metadata.clone();
+    Ok(channel)
+}
+
+fn check_count(
+    entry: &Entry,
+    meta: &dyn Fn(&str) -> Option<f64>,
+    found: usize,
+    file: &Path,
+) -> Result<(), SignalFileError> {
+    let (Some(first), Some(last)) = (meta("First point"), meta("Last point")) else {
+        return Ok(());
+    };
+    let expected = (last - first + 1.0).max(0.0) as usize;
+    if expected == found {
+        return Ok(());
+    }
+    let message = format!(
+        "curve {}: the EV5 header declares points {first}..{last} ({expected} samples) but the file holds {found} (truncated or sample count mismatch)",
+        entry.number
+    );
+    Err(SignalFileError::line(file, found, message))
+}
+
+/// Reads `time<TAB>value` lines.
+fn read_xy(file: &Path) -> Result<(Vec<f64>, Vec<f64>), SignalFileError> {
+    let text = read_text(file)?;
+    let mut times = Vec::new();
+    let mut values = Vec::new();
+    for (i, line) in text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty())
+    {
+        let mut cells = line.split(['\t', ' ', ',']).filter(|c| !c.is_empty());
+        match (
+            cells.next().and_then(parse_number),
+            cells.next().and_then(parse_number),
+        ) {
+            (Some(t), Some(v)) => {
+                times.push(t);
+                values.push(v);
+            }
+            _ => {
+                let message = format!(
+                    "'{}': expected time<TAB>value, two finite numbers",
+                    line.trim()
+                );
+                return Err(SignalFileError::line(file, i + 1, message));
+            }
+        }
+    }
+    Ok((times, values))
+}
+
+/// Start and interval, checked against the printed times (rounded to 1 µs).
+fn time_base(times: &[f64], step: Option<f64>) -> Result<(f64, f64), (usize, String)> {
+    let n = times.len();
+    if n < 2 {
+        return Err((n, format!("{n} samples: a curve needs at least 2")));
+    }
+    let step = step.unwrap_or((times[n - 1] - times[0]) / (n - 1) as f64);
+    let tolerance = 0.01 * step + 1e-6;
+    match (0..n).find(|&k| (times[k] - times[0] - k as f64 * step).abs() > tolerance) {
+        Some(k) => Err((
+            k + 1,
+            format!("time {} s breaks the uniform interval {step} s", times[k]),
+        )),
+        None => Ok((times[0], step)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unit_codes_map_to_units() {
+        assert_eq!(Unit::parse(unit_text("G'S")).unwrap().symbol, "g");
+        assert_eq!(Unit::parse(unit_text("NWT")).unwrap().symbol, "N");
+        assert!(Unit::parse(unit_text("NWM")).is_err());
+    }
+
+    #[test]
+    fn time_base_checks_uniformity() {
+        assert_eq!(
+            time_base(&[-0.0002, -0.0001, 0.0], Some(1e-4)).unwrap().0,
+            -0.0002
+        );
+        assert_eq!(time_base(&[0.0, 0.0001, 0.0005], None).unwrap_err().0, 2);
+    }
+}

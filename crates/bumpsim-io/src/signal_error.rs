@@ -1,0 +1,127 @@
+//! The error type of the test-data readers and writers (ISO-MME, EV5).
+//!
+//! Every variant names the file; parse errors also name the 1-based line.
+
+use std::path::PathBuf;
+
+/// A problem with a crash-test file or a channel selection.
+#[derive(Debug, thiserror::Error)]
+pub enum SignalFileError {
+    /// The file cannot be read or written.
+    #[error("{path}: {action}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// `cannot read`, `cannot write`, ...
+        action: &'static str,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// A line does not hold what it should.
+    #[error("{path}:{line}: {message}")]
+    Line {
+        /// The file (for a zip member: `archive.zip!member`).
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// What is wrong and what was expected.
+        message: String,
+    },
+    /// A whole-file problem (missing file, wrong layout).
+    #[error("{path}: {message}")]
+    File {
+        /// The file or folder.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+    /// A channel selection matched nothing usable.
+    #[error("{path}: channel '{selector}': {reason}")]
+    Select {
+        /// The test file.
+        path: PathBuf,
+        /// The selector as given.
+        selector: String,
+        /// Why it failed.
+        reason: String,
+    },
+}
+
+impl SignalFileError {
+    /// A line error.
+    pub fn line(path: impl Into<PathBuf>, line: usize, message: impl Into<String>) -> Self {
+        SignalFileError::Line {
+            path: path.into(),
+            line,
+            message: message.into(),
+        }
+    }
+
+    /// A whole-file error.
+    pub fn file(path: impl Into<PathBuf>, message: impl Into<String>) -> Self {
+        SignalFileError::File {
+            path: path.into(),
+            message: message.into(),
+        }
+    }
+
+    /// A read error.
+    pub fn read(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        SignalFileError::Io {
+            path: path.into(),
+            action: "cannot read",
+            source,
+        }
+    }
+
+    /// A write error.
+    pub fn write(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        SignalFileError::Io {
+            path: path.into(),
+            action: "cannot write",
+            source,
+        }
+    }
+}
+
+/// Decodes bytes as UTF-8, or as Latin-1 when they are not valid UTF-8
+/// (lab exports are often Latin-1). A UTF-8 byte-order mark is dropped.
+pub fn decode(bytes: &[u8]) -> String {
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+    match std::str::from_utf8(bytes) {
+        Ok(text) => text.to_string(),
+        Err(_) => bytes.iter().map(|&b| b as char).collect(),
+    }
+}
+
+/// Reads and decodes a text file.
+pub fn read_text(path: &std::path::Path) -> Result<String, SignalFileError> {
+    std::fs::read(path)
+        .map(|b| decode(&b))
+        .map_err(|e| SignalFileError::read(path, e))
+}
+
+/// Parses a number as labs write it (`1.0E-4`, `9.999999999999999e-05`,
+/// `+12`, `.5`), or `None`.
+pub fn parse_number(text: &str) -> Option<f64> {
+    let value: f64 = text.trim().parse().ok()?;
+    value.is_finite().then_some(value)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn latin1_and_numbers() {
+        assert_eq!(decode(b"Stra\xDFe"), "Straße");
+        assert_eq!(decode("\u{FEFF}ok".as_bytes()), "ok");
+        assert_eq!(parse_number(" 1.0E-4 "), Some(1e-4));
+        assert_eq!(
+            parse_number("9.999999999999999e-05"),
+            Some(9.999999999999999e-05)
+        );
+        assert_eq!(parse_number("NOVALUE"), None);
+        assert_eq!(parse_number("inf"), None);
+    }
+}

@@ -1,0 +1,18 @@
+//! bumpsim-signal: turning crash-test channels into the force and
+//! displacement signals that identification needs (thesis ch. 3.1, spec §4).
+//!
+//! - [`filter`]: SAE J211-1 / ISO 6487 CFC filters, Butterworth, moving average;
+//! - [`integrate`]: trapezoidal integration and differentiation;
+//! - [`window`]: contact windows from a force signal;
+//! - [`process`]: processing steps on channels, and their mean or sum.
+//!
+//! ```
+//! use bumpsim_signal::filter::{Cfc, CfcStandard};
+//! let cfc = Cfc::new(1000.0, CfcStandard::SaeJ211).unwrap();
+//! assert!((cfc.standard.factor() - 2.0775).abs() < 1e-12);
+//! ```
+
+pub mod filter;
+pub mod integrate;
+pub mod process;
+pub mod window;

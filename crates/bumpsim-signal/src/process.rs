@@ -1,0 +1,530 @@
+//! Processing steps on channels, composable into a pipeline (spec §4).
+//!
+//! Each [`Step`] maps a [`Channel`] to a new channel with the same identity:
+//! filters ([`filter`](crate::filter)), bias removal (subtract the mean over a
+//! pre-trigger interval, by default every sample before t = 0), scaling and
+//! sign, trapezoidal integration and differentiation
+//! ([`integrate`](crate::integrate), which also change the dimension:
+//! acceleration ↔ velocity ↔ displacement), trimming, time shift, linear
+//! resampling, and force from a rigid mass times its acceleration
+//! (`F = m a`, spec §4). [`combine`] forms the mean or sum of channels (left
+//! and right side members; the cells of a load-cell wall) on their common
+//! time base.
+//!
+//! In TOML a pipeline is a list of one-key tables, e.g.
+//! `steps = [{ cfc = 60 }, { bias = [-0.05, 0.0] }, { integrate = 15.86 }]`.
+//!
+//! ```
+//! use bumpsim_core::prelude::*;
+//! use bumpsim_signal::process::Step;
+//! let a = UniformSeries::new(0.0, 0.001, vec![-9.81; 1001]).unwrap();
+//! let ch = Channel::new("ACX", "decel", Dimension::Acceleration, a);
+//! let v = Step::Integrate(5.0).apply(&ch).unwrap();
+//! assert_eq!(v.dimension, Dimension::Velocity);
+//! assert!((v.series.values()[1000] - (5.0 - 9.81)).abs() < 1e-9);
+//! ```
+
+use crate::filter::{Butterworth, Cfc, CfcStandard, FilterError, moving_average};
+use crate::integrate::{cumulative_trapezoid, derivative};
+use crate::window::{ContactThreshold, WindowError};
+use bumpsim_core::channel::Channel;
+use bumpsim_core::series::{SeriesError, UniformSeries};
+use bumpsim_core::units::Dimension;
+use serde::Deserialize;
+
+/// Why a processing step failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ProcessError {
+    /// A filter could not be designed or run.
+    #[error("channel {channel}: {source}")]
+    Filter {
+        /// Channel code.
+        channel: String,
+        /// The filter error.
+        source: FilterError,
+    },
+    /// The step does not apply to the channel's dimension.
+    #[error("channel {channel}: step '{step}' needs {expected}, the channel is {found}")]
+    Dimension {
+        /// Channel code.
+        channel: String,
+        /// Step name.
+        step: &'static str,
+        /// What the step needs.
+        expected: &'static str,
+        /// The channel's dimension.
+        found: Dimension,
+    },
+    /// The result is not a valid series (empty, non-finite).
+    #[error("channel {channel}: step '{step}': {source}")]
+    Series {
+        /// Channel code.
+        channel: String,
+        /// Step name.
+        step: &'static str,
+        /// The series error.
+        source: SeriesError,
+    },
+    /// A parameter or time interval is out of range.
+    #[error("channel {channel}: step '{step}': {reason}")]
+    Range {
+        /// Channel code.
+        channel: String,
+        /// Step name.
+        step: &'static str,
+        /// What is wrong.
+        reason: String,
+    },
+    /// Contact detection failed.
+    #[error("channel {channel}: {source}")]
+    Window {
+        /// Channel code.
+        channel: String,
+        /// The window error.
+        source: WindowError,
+    },
+}
+
+/// A Butterworth low-pass step.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ButterworthStep {
+    /// Filter order.
+    pub order: usize,
+    /// Cut-off, Hz.
+    pub cutoff: f64,
+    /// Forward and backward (default) or forward only.
+    #[serde(default = "yes")]
+    pub zero_phase: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// One processing step. TOML spelling in parentheses.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum Step {
+    /// CFC filter of this class, SAE J211-1 constant (`cfc = 60`).
+    Cfc(f64),
+    /// CFC filter with the ISO 6487 constant (`cfc_iso = 60`).
+    CfcIso(f64),
+    /// Butterworth low-pass (`butterworth = { order = 4, cutoff = 300 }`).
+    Butterworth(ButterworthStep),
+    /// Centred N-point moving average (`moving_average = 10`).
+    MovingAverage(usize),
+    /// Subtract the mean over `[t0, t1]` s (`bias = [-0.05, 0.0]`).
+    Bias([f64; 2]),
+    /// Subtract the mean of every sample before t = 0 (`pretrigger_bias = true`).
+    PretriggerBias(bool),
+    /// Multiply by a factor, e.g. −1 to change sign (`scale = -1`).
+    Scale(f64),
+    /// Integrate with this initial value in SI (`integrate = 15.86`).
+    Integrate(f64),
+    /// Differentiate (`derivative = true`).
+    Derivative(bool),
+    /// Keep `[t0, t1]` s (`trim = [0.0, 0.12]`).
+    Trim([f64; 2]),
+    /// Add this many seconds to the time base (`shift = -0.002`).
+    Shift(f64),
+    /// Linear resampling to this interval, s (`resample = 1e-4`).
+    Resample(f64),
+    /// Force of a rigid body of this mass, kg, from its acceleration (`mass = 1719`).
+    Mass(f64),
+    /// Trim to the channel's own contact window (`contact = { rise = 0.05, fall = 0.02 }`).
+    Contact(ContactThreshold),
+}
+
+impl Step {
+    /// The step's name as written in TOML.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Step::Cfc(_) => "cfc",
+            Step::CfcIso(_) => "cfc_iso",
+            Step::Butterworth(_) => "butterworth",
+            Step::MovingAverage(_) => "moving_average",
+            Step::Bias(_) => "bias",
+            Step::PretriggerBias(_) => "pretrigger_bias",
+            Step::Scale(_) => "scale",
+            Step::Integrate(_) => "integrate",
+            Step::Derivative(_) => "derivative",
+            Step::Trim(_) => "trim",
+            Step::Shift(_) => "shift",
+            Step::Resample(_) => "resample",
+            Step::Mass(_) => "mass",
+            Step::Contact(_) => "contact",
+        }
+    }
+
+    /// Applies the step to a channel.
+    pub fn apply(&self, channel: &Channel) -> Result<Channel, ProcessError> {
+        let c = Context {
+            channel,
+            step: self.name(),
+        };
+        match self {
+            Step::Cfc(class) => c.cfc(*class, CfcStandard::SaeJ211),
+            Step::CfcIso(class) => c.cfc(*class, CfcStandard::Iso6487),
+            Step::Butterworth(b) => c.butterworth(b),
+            Step::MovingAverage(n) => c.filtered(moving_average(channel.series.values(), *n)),
+            Step::Bias([t0, t1]) => c.bias(
+                |t| (*t0..=*t1).contains(&t),
+                format!("in the bias window [{t0}, {t1}] s"),
+            ),
+            Step::PretriggerBias(false) | Step::Derivative(false) => Ok(channel.clone()),
+            Step::PretriggerBias(true) => {
+                c.bias(|t| t < 0.0, "before t = 0 (no pre-trigger)".into())
+            }
+            Step::Scale(factor) => c.map(|v| v * factor),
+            Step::Integrate(initial) => c.integrate(*initial),
+            Step::Derivative(true) => c.derivative(),
+            Step::Trim(window) => c.trim(window[0], window[1]),
+            Step::Shift(dt) => c.rebase(
+                channel.series.start() + dt,
+                channel.series.values().to_vec(),
+            ),
+            Step::Resample(step) => c.resample(*step),
+            Step::Mass(mass) => c.mass(*mass),
+            Step::Contact(threshold) => c.contact(threshold),
+        }
+    }
+}
+
+/// Applies steps in order.
+pub fn run(steps: &[Step], channel: &Channel) -> Result<Channel, ProcessError> {
+    steps
+        .iter()
+        .try_fold(channel.clone(), |c, step| step.apply(&c))
+}
+
+struct Context<'a> {
+    channel: &'a Channel,
+    step: &'static str,
+}
+
+impl Context<'_> {
+    fn range(&self, reason: String) -> ProcessError {
+        ProcessError::Range {
+            channel: self.channel.code.clone(),
+            step: self.step,
+            reason,
+        }
+    }
+
+    fn rebase(&self, start: f64, values: Vec<f64>) -> Result<Channel, ProcessError> {
+        let step = self.channel.series.step();
+        self.series(UniformSeries::new(start, step, values))
+    }
+
+    fn series(&self, series: Result<UniformSeries, SeriesError>) -> Result<Channel, ProcessError> {
+        let series = series.map_err(|source| ProcessError::Series {
+            channel: self.channel.code.clone(),
+            step: self.step,
+            source,
+        })?;
+        Ok(self.channel.with_series(series))
+    }
+
+    fn filtered(&self, values: Result<Vec<f64>, FilterError>) -> Result<Channel, ProcessError> {
+        let values = values.map_err(|source| ProcessError::Filter {
+            channel: self.channel.code.clone(),
+            source,
+        })?;
+        self.rebase(self.channel.series.start(), values)
+    }
+
+    fn map(&self, f: impl Fn(f64) -> f64) -> Result<Channel, ProcessError> {
+        let values = self.channel.series.values().iter().map(|&v| f(v)).collect();
+        self.rebase(self.channel.series.start(), values)
+    }
+
+    fn cfc(&self, class: f64, standard: CfcStandard) -> Result<Channel, ProcessError> {
+        let s = &self.channel.series;
+        self.filtered(Cfc::new(class, standard).and_then(|f| f.filter(s.values(), s.step())))
+    }
+
+    fn butterworth(&self, b: &ButterworthStep) -> Result<Channel, ProcessError> {
+        let s = &self.channel.series;
+        let values =
+            Butterworth::new(b.order, b.cutoff, s.step()).and_then(|f| match b.zero_phase {
+                true => f.zero_phase(s.values(), f.default_padding()),
+                false => Ok(f.causal(s.values())),
+            });
+        self.filtered(values)
+    }
+
+    fn bias(&self, inside: impl Fn(f64) -> bool, what: String) -> Result<Channel, ProcessError> {
+        let s = &self.channel.series;
+        let picked: Vec<f64> = (0..s.len())
+            .filter(|&i| inside(s.time(i)))
+            .map(|i| s.values()[i])
+            .collect();
+        if picked.is_empty() {
+            return Err(self.range(format!("no samples {what}")));
+        }
+        let mean = picked.iter().sum::<f64>() / picked.len() as f64;
+        self.map(|v| v - mean)
+    }
+
+    fn with_dimension(
+        &self,
+        found: Result<Dimension, &'static str>,
+    ) -> Result<Dimension, ProcessError> {
+        found.map_err(|expected| ProcessError::Dimension {
+            channel: self.channel.code.clone(),
+            step: self.step,
+            expected,
+            found: self.channel.dimension,
+        })
+    }
+
+    fn integrate(&self, initial: f64) -> Result<Channel, ProcessError> {
+        let dimension = self.with_dimension(match self.channel.dimension {
+            Dimension::Acceleration => Ok(Dimension::Velocity),
+            Dimension::Velocity => Ok(Dimension::Length),
+            _ => Err("an acceleration or a velocity"),
+        })?;
+        let s = &self.channel.series;
+        let mut out = self.filtered(Ok(cumulative_trapezoid(s.values(), s.step(), initial)))?;
+        out.dimension = dimension;
+        out.source_unit = dimension.si_symbol().to_string();
+        Ok(out)
+    }
+
+    fn derivative(&self) -> Result<Channel, ProcessError> {
+        let dimension = self.with_dimension(match self.channel.dimension {
+            Dimension::Length => Ok(Dimension::Velocity),
+            Dimension::Velocity => Ok(Dimension::Acceleration),
+            _ => Err("a displacement or a velocity"),
+        })?;
+        let s = &self.channel.series;
+        let mut out = self.filtered(Ok(derivative(s.values(), s.step())))?;
+        out.dimension = dimension;
+        out.source_unit = dimension.si_symbol().to_string();
+        Ok(out)
+    }
+
+    fn mass(&self, mass: f64) -> Result<Channel, ProcessError> {
+        if !(mass.is_finite() && mass > 0.0) {
+            return Err(self.range(format!("mass {mass} kg must be positive")));
+        }
+        self.with_dimension(match self.channel.dimension {
+            Dimension::Acceleration => Ok(Dimension::Force),
+            _ => Err("an acceleration"),
+        })?;
+        let mut out = self.map(|a| mass * a)?;
+        out.dimension = Dimension::Force;
+        out.source_unit = "N".into();
+        Ok(out)
+    }
+
+    fn trim(&self, t0: f64, t1: f64) -> Result<Channel, ProcessError> {
+        let s = &self.channel.series;
+        let inside: Vec<usize> = (0..s.len())
+            .filter(|&i| s.time(i) >= t0 - 1e-9 * s.step() && s.time(i) <= t1 + 1e-9 * s.step())
+            .collect();
+        match (inside.first(), inside.last()) {
+            (Some(&a), Some(&b)) => self.rebase(s.time(a), s.values()[a..=b].to_vec()),
+            _ => Err(self.range(format!(
+                "no samples in [{t0}, {t1}] s; the channel spans [{}, {}] s",
+                s.start(),
+                s.end()
+            ))),
+        }
+    }
+
+    fn contact(&self, threshold: &ContactThreshold) -> Result<Channel, ProcessError> {
+        let s = &self.channel.series;
+        let w = threshold
+            .detect(s.values())
+            .map_err(|source| ProcessError::Window {
+                channel: self.channel.code.clone(),
+                source,
+            })?;
+        self.rebase(s.time(w.first), s.values()[w.first..=w.last].to_vec())
+    }
+
+    fn resample(&self, step: f64) -> Result<Channel, ProcessError> {
+        if !(step.is_finite() && step > 0.0) {
+            return Err(self.range(format!("interval {step} s must be positive")));
+        }
+        let s = &self.channel.series;
+        let count = ((s.end() - s.start()) / step + 1e-9).floor() as usize + 1;
+        let values = (0..count)
+            .map(|k| interpolate(s, s.start() + k as f64 * step))
+            .collect();
+        self.series(UniformSeries::new(s.start(), step, values))
+    }
+}
+
+/// Linear interpolation of a series at time `t` (clamped to its ends).
+pub fn interpolate(series: &UniformSeries, t: f64) -> f64 {
+    let v = series.values();
+    let x = ((t - series.start()) / series.step()).clamp(0.0, (v.len() - 1) as f64);
+    let i = (x.floor() as usize).min(v.len().saturating_sub(2));
+    let frac = x - i as f64;
+    match v.len() {
+        1 => v[0],
+        _ => v[i] + frac * (v[i + 1] - v[i]),
+    }
+}
+
+/// How channels are combined.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Combine {
+    /// The arithmetic mean (left and right side members).
+    Mean,
+    /// The sum (the cells of a load-cell wall).
+    Sum,
+}
+
+/// Combines channels of one dimension on their common time base (the
+/// overlap of their spans, at the finest interval; linear interpolation
+/// where bases differ). The result takes the first channel's identity with
+/// a code listing all inputs.
+pub fn combine(channels: &[Channel], how: Combine, code: &str) -> Result<Channel, ProcessError> {
+    let first = channels.first().ok_or_else(|| ProcessError::Range {
+        channel: code.to_string(),
+        step: "combine",
+        reason: "no channels to combine".into(),
+    })?;
+    if let Some(odd) = channels.iter().find(|c| c.dimension != first.dimension) {
+        return Err(ProcessError::Range {
+            channel: code.to_string(),
+            step: "combine",
+            reason: format!(
+                "{} is {} but {} is {}",
+                first.code, first.dimension, odd.code, odd.dimension
+            ),
+        });
+    }
+    let base = common_base(channels).ok_or_else(|| ProcessError::Range {
+        channel: code.to_string(),
+        step: "combine",
+        reason: "the channels do not overlap in time".into(),
+    })?;
+    let scale = match how {
+        Combine::Mean => 1.0 / channels.len() as f64,
+        Combine::Sum => 1.0,
+    };
+    let values = base
+        .times()
+        .iter()
+        .map(|&t| {
+            scale
+                * channels
+                    .iter()
+                    .map(|c| sample_at(&c.series, t))
+                    .sum::<f64>()
+        })
+        .collect();
+    let series = UniformSeries::new(base.start(), base.step(), values).map_err(|source| {
+        ProcessError::Series {
+            channel: code.to_string(),
+            step: "combine",
+            source,
+        }
+    })?;
+    let mut out = first.with_series(series);
+    out.code = code.to_string();
+    Ok(out)
+}
+
+/// The value at `t`, exact when `t` falls on a sample.
+fn sample_at(series: &UniformSeries, t: f64) -> f64 {
+    let x = (t - series.start()) / series.step();
+    let k = x.round();
+    if (x - k).abs() < 1e-6 && k >= 0.0 && (k as usize) < series.len() {
+        return series.values()[k as usize];
+    }
+    interpolate(series, t)
+}
+
+/// The overlap of the channels' spans sampled at the finest interval.
+fn common_base(channels: &[Channel]) -> Option<UniformSeries> {
+    let start = channels
+        .iter()
+        .map(|c| c.series.start())
+        .fold(f64::NEG_INFINITY, f64::max);
+    let end = channels
+        .iter()
+        .map(|c| c.series.end())
+        .fold(f64::INFINITY, f64::min);
+    let step = channels
+        .iter()
+        .map(|c| c.series.step())
+        .fold(f64::INFINITY, f64::min);
+    if end < start {
+        return None;
+    }
+    let count = ((end - start) / step + 1e-6).floor() as usize + 1;
+    UniformSeries::new(start, step, vec![0.0; count]).ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    fn channel(start: f64, values: Vec<f64>, dimension: Dimension) -> Channel {
+        Channel::new(
+            "X",
+            "x",
+            dimension,
+            UniformSeries::new(start, 0.1, values).unwrap(),
+        )
+    }
+
+    #[test]
+    fn bias_trim_shift_and_mass() {
+        let c = channel(-0.2, vec![1.0, 1.0, 3.0, 5.0], Dimension::Acceleration);
+        let b = Step::PretriggerBias(true).apply(&c).unwrap();
+        assert_relative_eq!(b.series.values()[3], 4.0);
+        let t = Step::Trim([0.0, 0.1]).apply(&c).unwrap();
+        assert_eq!(t.series.values(), &[3.0, 5.0]);
+        let s = Step::Shift(0.2).apply(&c).unwrap();
+        assert_relative_eq!(s.series.start(), 0.0);
+        let f = Step::Mass(2.0).apply(&c).unwrap();
+        assert_eq!(f.dimension, Dimension::Force);
+        assert!(Step::Mass(2.0).apply(&f).is_err());
+        assert!(Step::Bias([5.0, 6.0]).apply(&c).is_err());
+        assert!(Step::Trim([5.0, 6.0]).apply(&c).is_err());
+        assert!(Step::Integrate(0.0).apply(&f).is_err());
+    }
+
+    #[test]
+    fn combine_mean_and_sum_on_the_overlap() {
+        let a = channel(0.0, vec![1.0, 2.0, 3.0], Dimension::Force);
+        let b = channel(0.1, vec![10.0, 20.0, 30.0], Dimension::Force);
+        let sum = combine(&[a.clone(), b.clone()], Combine::Sum, "A+B").unwrap();
+        assert_eq!(sum.series.values(), &[12.0, 23.0]);
+        let mean = combine(&[a.clone(), b], Combine::Mean, "m").unwrap();
+        assert_relative_eq!(mean.series.values()[0], 6.0);
+        let c = channel(0.0, vec![1.0], Dimension::Length);
+        assert!(combine(&[a, c], Combine::Sum, "bad").is_err());
+        assert!(combine(&[], Combine::Sum, "none").is_err());
+    }
+
+    #[test]
+    fn resample_interpolates_linearly() {
+        let a = channel(0.0, vec![0.0, 1.0, 2.0], Dimension::Length);
+        let r = Step::Resample(0.05).apply(&a).unwrap();
+        assert_eq!(r.series.len(), 5);
+        assert_relative_eq!(r.series.values()[3], 1.5, max_relative = 1e-12);
+    }
+
+    #[test]
+    fn steps_parse_from_toml_like_json() {
+        let steps: Vec<Step> = serde_json::from_str(r#"[{"cfc": 60}, {"bias": [-0.05, 0.0]}, {"butterworth": {"order": 4, "cutoff": 300}}]"#).unwrap();
+        assert_eq!(steps[0], Step::Cfc(60.0));
+        assert!(matches!(
+            steps[2],
+            Step::Butterworth(ButterworthStep {
+                zero_phase: true,
+                ..
+            })
+        ));
+    }
+}
