@@ -20,14 +20,11 @@
 pub fn cumulative_trapezoid(values: &[f64], step: f64, initial: f64) -> Vec<f64> {
     let mut out = Vec::with_capacity(values.len());
     let mut sum = initial;
-    let mut previous = values.first().copied().unwrap_or(0.0);
-    for &v in values {
-        sum += 0.5 * step * (previous + v);
-        previous = v;
+    for (k, &v) in values.iter().enumerate() {
+        if k > 0 {
+            sum += 0.5 * step * (values[k - 1] + v);
+        }
         out.push(sum);
-    }
-    if let Some(first) = out.first_mut() {
-        *first = initial;
     }
     out
 }

@@ -4,7 +4,8 @@
 //! - [`filter`]: SAE J211-1 / ISO 6487 CFC filters, Butterworth, moving average;
 //! - [`integrate`]: trapezoidal integration and differentiation;
 //! - [`window`]: contact windows from a force signal;
-//! - [`process`]: processing steps on channels, and their mean or sum.
+//! - [`process`]: processing steps on channels, and their mean or sum;
+//! - [`pipeline`]: repeatable processing of test files (TOML), momentum balance.
 //!
 //! ```
 //! use bumpsim_signal::filter::{Cfc, CfcStandard};
@@ -14,5 +15,6 @@
 
 pub mod filter;
 pub mod integrate;
+pub mod pipeline;
 pub mod process;
 pub mod window;

@@ -1,0 +1,375 @@
+//! Repeatable processing of test data: read channels, combine, process, check.
+//!
+//! A pipeline ([`Pipeline`], TOML) names output signals. Each is made from
+//! channels of a test file (selected by number, code or name, see
+//! `bumpsim_io::test_data`), combined by mean or sum when several match, or
+//! from an earlier output (`from`), then put through [`Step`]s. Paths are
+//! relative to the pipeline file.
+//!
+//! ```toml
+//! [[signal]]
+//! name = "barrier force"
+//! path = "v10146.EV5"
+//! channels = ["0-LC-*-XG"]
+//! combine = "sum"
+//! steps = [{ pretrigger_bias = true }, { cfc = 60 }]
+//!
+//! [[signal]]
+//! name = "velocity"
+//! path = "v10146.EV5"
+//! channels = ["93", "94"]
+//! combine = "mean"
+//! steps = [{ pretrigger_bias = true }, { cfc = 60 }, { integrate = 15.858 }]
+//!
+//! [balance]          # optional momentum check
+//! force = "barrier force"
+//! velocity = "velocity"
+//! ```
+//!
+//! The momentum balance compares the impulse of the force, `J = ∫ F dt`, with
+//! the momentum change of the rigid test mass, `Δp = m (v(t1) − v(t0))`, over
+//! the force's contact window (or a given window). A barrier load cell
+//! measures the force the car exerts on the wall; the force on the car is its
+//! negative, so the magnitudes are compared: `(|J| − |Δp|) / |Δp|`.
+
+use crate::process::{Combine, ProcessError, Step, combine, interpolate, run};
+use crate::window::ContactThreshold;
+use bumpsim_core::channel::Channel;
+use bumpsim_core::units::Dimension;
+use bumpsim_io::signal_error::SignalFileError;
+use bumpsim_io::test_data::TestData;
+use serde::Deserialize;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// Why a pipeline cannot run.
+#[derive(Debug, thiserror::Error)]
+pub enum PipelineError {
+    /// The pipeline file is unreadable or malformed.
+    #[error("{path}: {message}")]
+    File {
+        /// The pipeline file.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+    /// A test file or channel problem.
+    #[error(transparent)]
+    Data(#[from] SignalFileError),
+    /// A processing step failed.
+    #[error("signal '{signal}': {source}")]
+    Process {
+        /// The output signal.
+        signal: String,
+        /// The cause.
+        source: ProcessError,
+    },
+    /// A signal definition is inconsistent.
+    #[error("signal '{signal}': {message}")]
+    Definition {
+        /// The output signal.
+        signal: String,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// One output signal of a pipeline.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SignalSpec {
+    /// Output name (CSV column, plot legend).
+    pub name: String,
+    /// Test file (ISO-MME folder/.mme/.zip, .EV5, .csv), relative to the pipeline.
+    pub path: Option<PathBuf>,
+    /// Channel selectors.
+    #[serde(default)]
+    pub channels: Vec<String>,
+    /// An earlier output to continue from, instead of `path` and `channels`.
+    pub from: Option<String>,
+    /// How to combine several channels.
+    pub combine: Option<Combine>,
+    /// Processing steps, in order.
+    #[serde(default)]
+    pub steps: Vec<Step>,
+}
+
+/// The optional momentum check.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BalanceSpec {
+    /// The force signal (N).
+    pub force: String,
+    /// The velocity signal of the rigid mass (m/s).
+    pub velocity: String,
+    /// Mass, kg (default: the test mass stated by the force's test file).
+    pub mass: Option<f64>,
+    /// Window `[t0, t1]`, s (default: the contact window of the force).
+    pub window: Option<[f64; 2]>,
+}
+
+/// A pipeline file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Pipeline {
+    /// Default CSV output, relative to the pipeline file.
+    pub output: Option<PathBuf>,
+    /// The output signals, in order.
+    pub signal: Vec<SignalSpec>,
+    /// The momentum check.
+    pub balance: Option<BalanceSpec>,
+    /// Folder of the pipeline file (for relative paths).
+    #[serde(skip)]
+    pub base: PathBuf,
+}
+
+/// What a pipeline produced.
+#[derive(Debug, Clone)]
+pub struct PipelineResult {
+    /// The output signals, processed.
+    pub signals: Vec<Channel>,
+    /// The same signals before their steps (combined raw channels).
+    pub raw: Vec<Channel>,
+    /// Notes for the user (channels left out, invalid channels used).
+    pub warnings: Vec<String>,
+    /// The momentum check, if asked for.
+    pub balance: Option<Balance>,
+}
+
+/// The result of the momentum check.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Balance {
+    /// Window start and end, s.
+    pub window: [f64; 2],
+    /// Mass used, kg.
+    pub mass: f64,
+    /// Impulse of the force, N·s.
+    pub impulse: f64,
+    /// Momentum change of the mass, N·s.
+    pub momentum_change: f64,
+    /// `(|J| − |Δp|) / |Δp|`.
+    pub relative_difference: f64,
+}
+
+impl Pipeline {
+    /// Reads a pipeline file.
+    pub fn read(path: &Path) -> Result<Pipeline, PipelineError> {
+        let error = |message: String| PipelineError::File {
+            path: path.to_path_buf(),
+            message,
+        };
+        let text = std::fs::read_to_string(path).map_err(|e| error(format!("cannot read: {e}")))?;
+        let mut pipeline: Pipeline = toml::from_str(&text).map_err(|e| error(e.to_string()))?;
+        pipeline.base = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        Ok(pipeline)
+    }
+
+    /// Runs every signal, then the balance.
+    pub fn run(&self) -> Result<PipelineResult, PipelineError> {
+        let mut tests: HashMap<PathBuf, TestData> = HashMap::new();
+        let mut result = PipelineResult {
+            signals: Vec::new(),
+            raw: Vec::new(),
+            warnings: Vec::new(),
+            balance: None,
+        };
+        for spec in &self.signal {
+            let (raw, warnings) = self.source(spec, &mut tests, &result)?;
+            let named = warnings
+                .into_iter()
+                .map(|w| format!("signal '{}': {w}", spec.name));
+            result.warnings.extend(named);
+            let mut processed =
+                run(&spec.steps, &raw).map_err(|source| PipelineError::Process {
+                    signal: spec.name.clone(),
+                    source,
+                })?;
+            processed.code = spec.name.clone();
+            result.raw.push(raw);
+            result.signals.push(processed);
+        }
+        if let Some(spec) = &self.balance {
+            let mass = spec.mass.or_else(|| self.test_mass(&spec.force, &tests));
+            result.balance = Some(balance(&result.signals, spec, mass)?);
+        }
+        Ok(result)
+    }
+
+    fn test_mass(&self, force: &str, tests: &HashMap<PathBuf, TestData>) -> Option<f64> {
+        let spec = self.signal.iter().find(|s| s.name == force)?;
+        tests.get(&self.base.join(spec.path.as_ref()?))?.mass
+    }
+
+    fn source(
+        &self,
+        spec: &SignalSpec,
+        tests: &mut HashMap<PathBuf, TestData>,
+        done: &PipelineResult,
+    ) -> Result<(Channel, Vec<String>), PipelineError> {
+        let definition = |message: String| PipelineError::Definition {
+            signal: spec.name.clone(),
+            message,
+        };
+        if let Some(from) = &spec.from {
+            let earlier = done.signals.iter().find(|c| &c.code == from);
+            let earlier = earlier
+                .ok_or_else(|| definition(format!("'from = {from}' names no earlier signal")))?;
+            return Ok((earlier.clone(), Vec::new()));
+        }
+        let path = spec
+            .path
+            .as_ref()
+            .ok_or_else(|| definition("needs 'path' and 'channels', or 'from'".into()))?;
+        let path = self.base.join(path);
+        if !tests.contains_key(&path) {
+            tests.insert(path.clone(), TestData::open(&path)?);
+        }
+        let test = &tests[&path];
+        let (channels, warnings) = select_all(test, &spec.channels)?;
+        let combined = match (channels.len(), spec.combine) {
+            (0, _) => return Err(definition("'channels' is empty".into())),
+            (1, _) => channels[0].clone(),
+            (n, None) => {
+                return Err(definition(format!(
+                    "{n} channels selected: say combine = \"sum\" or \"mean\""
+                )));
+            }
+            (_, Some(how)) => {
+                combine(&channels, how, &spec.name).map_err(|source| PipelineError::Process {
+                    signal: spec.name.clone(),
+                    source,
+                })?
+            }
+        };
+        Ok((combined, warnings))
+    }
+}
+
+/// Loads every channel the selectors pick; returns them and notes about left-out channels.
+pub fn select_all(
+    test: &TestData,
+    selectors: &[String],
+) -> Result<(Vec<Channel>, Vec<String>), SignalFileError> {
+    let mut channels = Vec::new();
+    let mut notes = Vec::new();
+    for selector in selectors {
+        let selection = test.select(selector)?;
+        notes.extend(selection.warnings.iter().cloned());
+        for &i in &selection.excluded {
+            let e = &test.entries[i];
+            notes.push(format!(
+                "'{selector}': left out channel {} ({}): marked invalid",
+                e.number, e.code
+            ));
+        }
+        if !selection.absent.is_empty() {
+            notes.push(format!(
+                "'{selector}': left out {} matching channels whose files are absent",
+                selection.absent.len()
+            ));
+        }
+        channels.extend(test.load_all(&selection)?);
+    }
+    Ok((channels, notes))
+}
+
+fn find<'a>(
+    signals: &'a [Channel],
+    name: &str,
+    dimension: Dimension,
+) -> Result<&'a Channel, PipelineError> {
+    let definition = |message: String| PipelineError::Definition {
+        signal: name.to_string(),
+        message,
+    };
+    let channel = signals
+        .iter()
+        .find(|c| c.code == name)
+        .ok_or_else(|| definition("the balance names no such signal".into()))?;
+    if channel.dimension != dimension {
+        return Err(definition(format!(
+            "the balance needs {dimension}, the signal is {}",
+            channel.dimension
+        )));
+    }
+    Ok(channel)
+}
+
+/// The momentum check of [`BalanceSpec`].
+fn balance(
+    signals: &[Channel],
+    spec: &BalanceSpec,
+    mass: Option<f64>,
+) -> Result<Balance, PipelineError> {
+    let force = find(signals, &spec.force, Dimension::Force)?;
+    let velocity = find(signals, &spec.velocity, Dimension::Velocity)?;
+    let mass =
+        mass.filter(|m| m.is_finite() && *m > 0.0)
+            .ok_or_else(|| PipelineError::Definition {
+                signal: spec.force.clone(),
+                message: "the balance needs 'mass' (kg): the test file states none".into(),
+            })?;
+    let s = &force.series;
+    let window = match spec.window {
+        Some(w) => w,
+        None => {
+            let w = ContactThreshold::default()
+                .detect(s.values())
+                .map_err(|e| PipelineError::Definition {
+                    signal: spec.force.clone(),
+                    message: e.to_string(),
+                })?;
+            [s.time(w.first), s.time(w.last)]
+        }
+    };
+    let impulse = integral(s, window);
+    let momentum_change = mass
+        * (interpolate(&velocity.series, window[1]) - interpolate(&velocity.series, window[0]));
+    let relative_difference = (impulse.abs() - momentum_change.abs()) / momentum_change.abs();
+    Ok(Balance {
+        window,
+        mass,
+        impulse,
+        momentum_change,
+        relative_difference,
+    })
+}
+
+/// Trapezoidal integral of a series over `[t0, t1]` (whole samples inside).
+fn integral(series: &bumpsim_core::series::UniformSeries, [t0, t1]: [f64; 2]) -> f64 {
+    let inside: Vec<f64> = (0..series.len())
+        .filter(|&i| series.time(i) >= t0 - 1e-9 && series.time(i) <= t1 + 1e-9)
+        .map(|i| series.values()[i])
+        .collect();
+    inside
+        .windows(2)
+        .map(|w| 0.5 * series.step() * (w[0] + w[1]))
+        .sum()
+}
+
+/// A short description of a signal: peak magnitude with its time, minimum, maximum.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Extremes {
+    /// Value of largest magnitude, SI.
+    pub peak: f64,
+    /// Its time, s.
+    pub peak_time: f64,
+    /// Smallest value, SI.
+    pub min: f64,
+    /// Largest value, SI.
+    pub max: f64,
+}
+
+/// The extremes of a channel.
+pub fn extremes(channel: &Channel) -> Extremes {
+    let s = &channel.series;
+    let (index, _) = bumpsim_core::series::peak_of(s.values());
+    let min = s.values().iter().copied().fold(f64::INFINITY, f64::min);
+    let max = s.values().iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    Extremes {
+        peak: s.values()[index],
+        peak_time: s.time(index),
+        min,
+        max,
+    }
+}
