@@ -235,7 +235,7 @@ fn read_calculix(args: &ReadArgs) -> Result<()> {
         .zip(&results.displacement)
         .map(|(name, values)| OutputColumn {
             name,
-            dimension: Dimension::Length,
+            unit: bumpsim_core::units::Unit::si(Dimension::Length),
             values,
         })
         .collect();

@@ -6,6 +6,7 @@
 //! unreadable or invalid files, a model the chosen method cannot run).
 
 mod export;
+mod signal;
 mod simulate;
 
 use clap::{Parser, Subcommand};
@@ -23,6 +24,9 @@ struct Cli {
 enum Command {
     /// Simulate an MSD car model under a measured or synthetic force on m1.
     Simulate(simulate::Args),
+    /// Crash-test signals: channel tables, export with filters, processing pipelines.
+    #[command(subcommand)]
+    Signal(signal::Command),
     /// Export the car model to FE solver decks (LS-DYNA, CalculiX/Abaqus).
     #[command(subcommand)]
     Export(export::Command),
@@ -33,6 +37,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Simulate(args) => simulate::run(&args),
         Command::Export(command) => export::run(&command),
+        Command::Signal(command) => signal::run(&command),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -9,7 +9,7 @@
 
 use crate::table::{OutputColumn, TableError, write_table};
 use bumpsim_core::simulate::Response;
-use bumpsim_core::units::Dimension;
+use bumpsim_core::units::{Dimension, Unit};
 use std::path::Path;
 
 /// Column names and values of a response, in file order (time excluded).
@@ -47,7 +47,7 @@ pub fn write_response(path: &Path, response: &Response) -> Result<usize, TableEr
         .iter()
         .map(|(name, dimension, values)| OutputColumn {
             name,
-            dimension: *dimension,
+            unit: Unit::si(*dimension),
             values,
         })
         .collect();

@@ -437,13 +437,13 @@ fn uniform_time_base(time: &[f64], rows: &[Row], path: &Path) -> Result<(f64, f6
 pub struct OutputColumn<'a> {
     /// Name without unit.
     pub name: &'a str,
-    /// The dimension; the header gets its SI unit.
-    pub dimension: Dimension,
+    /// The unit to write in (values are converted from SI; the header names it).
+    pub unit: Unit,
     /// Values, SI.
     pub values: &'a [f64],
 }
 
-/// Writes `time [s]` and the columns as CSV with SI unit headers, creating the
+/// Writes `time [s]` and the columns as CSV with unit headers, creating the
 /// folder if needed. Numbers are
 /// written in Rust's shortest round-trip form, so reading back is exact.
 pub fn write_table(
@@ -458,14 +458,14 @@ pub fn write_table(
     let mut text = String::with_capacity(time.len() * (columns.len() + 1) * 16);
     text.push_str("time [s]");
     for c in columns {
-        text.push_str(&format!(",{} [{}]", c.name, c.dimension.si_symbol()));
+        text.push_str(&format!(",{} [{}]", c.name, c.unit.symbol));
     }
     text.push('\n');
     for (k, t) in time.iter().enumerate() {
         text.push_str(&t.to_string());
         for c in columns {
             text.push(',');
-            text.push_str(&c.values[k].to_string());
+            text.push_str(&c.unit.from_si(c.values[k]).to_string());
         }
         text.push('\n');
     }

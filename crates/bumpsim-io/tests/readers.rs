@@ -99,10 +99,10 @@ fn round_trip_folder_and_zip() {
     }
     isomme::write(&out.join("C"), "C", &b.metadata, &channels_b).unwrap();
     let c = TestData::open(&out.join("C/C.mme")).unwrap();
-    for i in 0..3 {
+    for (i, channel) in channels_b.iter().enumerate() {
         assert_eq!(
-            c.load(i).unwrap(),
-            channels_b[i],
+            &c.load(i).unwrap(),
+            channel,
             "second round trip is exact, metadata included"
         );
     }

@@ -373,3 +373,44 @@ pub fn extremes(channel: &Channel) -> Extremes {
         max,
     }
 }
+
+/// Processes channels of one test: each selector's channels (combined when
+/// `combine` is given, one output per selector) through `steps`. The
+/// signals keep their channel codes (a combination is named after its selector).
+pub fn export(
+    test: &TestData,
+    selectors: &[String],
+    steps: &[Step],
+    how: Option<Combine>,
+) -> Result<PipelineResult, PipelineError> {
+    let mut result = PipelineResult {
+        signals: Vec::new(),
+        raw: Vec::new(),
+        warnings: Vec::new(),
+        balance: None,
+    };
+    for selector in selectors {
+        let (channels, notes) = select_all(test, std::slice::from_ref(selector))?;
+        result.warnings.extend(notes);
+        let raws = match how {
+            Some(how) if channels.len() > 1 => {
+                vec![combine(&channels, how, selector).map_err(|source| {
+                    PipelineError::Process {
+                        signal: selector.clone(),
+                        source,
+                    }
+                })?]
+            }
+            _ => channels,
+        };
+        for raw in raws {
+            let processed = run(steps, &raw).map_err(|source| PipelineError::Process {
+                signal: raw.code.clone(),
+                source,
+            })?;
+            result.raw.push(raw);
+            result.signals.push(processed);
+        }
+    }
+    Ok(result)
+}

@@ -120,7 +120,8 @@ pub enum Step {
     PretriggerBias(bool),
     /// Multiply by a factor, e.g. −1 to change sign (`scale = -1`).
     Scale(f64),
-    /// Integrate with this initial value in SI (`integrate = 15.86`).
+    /// Integrate; the result equals this value (SI) at t = 0, or at the
+    /// first sample when the signal starts after t = 0 (`integrate = 15.86`).
     Integrate(f64),
     /// Differentiate (`derivative = true`).
     Derivative(bool),
@@ -286,7 +287,15 @@ impl Context<'_> {
             _ => Err("an acceleration or a velocity"),
         })?;
         let s = &self.channel.series;
-        let mut out = self.filtered(Ok(cumulative_trapezoid(s.values(), s.step(), initial)))?;
+        let mut integral = cumulative_trapezoid(s.values(), s.step(), 0.0);
+        let at_zero = if s.start() < 0.0 && s.end() >= 0.0 {
+            let series = UniformSeries::new(s.start(), s.step(), integral.clone());
+            series.map(|i| interpolate(&i, 0.0)).unwrap_or(0.0)
+        } else {
+            0.0
+        };
+        integral.iter_mut().for_each(|v| *v += initial - at_zero);
+        let mut out = self.filtered(Ok(integral))?;
         out.dimension = dimension;
         out.source_unit = dimension.si_symbol().to_string();
         Ok(out)
@@ -432,6 +441,26 @@ pub fn combine(channels: &[Channel], how: Combine, code: &str) -> Result<Channel
     Ok(out)
 }
 
+/// Samples every channel on their common time base (see [`combine`]):
+/// returns the times, s, and one value column per channel.
+pub fn align(channels: &[Channel]) -> Result<(Vec<f64>, Vec<Vec<f64>>), ProcessError> {
+    let base = common_base(channels).ok_or_else(|| ProcessError::Range {
+        channel: channels
+            .iter()
+            .map(|c| c.code.as_str())
+            .collect::<Vec<_>>()
+            .join(", "),
+        step: "align",
+        reason: "the channels do not overlap in time".into(),
+    })?;
+    let times = base.times();
+    let columns = channels
+        .iter()
+        .map(|c| times.iter().map(|&t| sample_at(&c.series, t)).collect())
+        .collect();
+    Ok((times, columns))
+}
+
 /// The value at `t`, exact when `t` falls on a sample.
 fn sample_at(series: &UniformSeries, t: f64) -> f64 {
     let x = (t - series.start()) / series.step();
@@ -444,6 +473,9 @@ fn sample_at(series: &UniformSeries, t: f64) -> f64 {
 
 /// The overlap of the channels' spans sampled at the finest interval.
 fn common_base(channels: &[Channel]) -> Option<UniformSeries> {
+    if channels.is_empty() {
+        return None;
+    }
     let start = channels
         .iter()
         .map(|c| c.series.start())

@@ -1,0 +1,410 @@
+//! `bumpsim signal`: test metadata, channel export and processing pipelines.
+//! Converts arguments to calls of bumpsim-io and bumpsim-signal and prints.
+
+use crate::simulate::refuse_overwriting_inputs;
+use anyhow::{Context, Result, bail};
+use bumpsim_core::channel::Channel;
+use bumpsim_core::units::{Dimension, Unit, format_in, format_quantity};
+use bumpsim_io::isomme;
+use bumpsim_io::table::{OutputColumn, write_table};
+use bumpsim_io::test_data::{TestData, Validity};
+use bumpsim_report::plot::{LinePlot, Series, Style};
+use bumpsim_signal::pipeline::{Pipeline, PipelineResult, export, extremes};
+use bumpsim_signal::process::{Combine, Step, align};
+use clap::{Subcommand, ValueEnum};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// `writeln!` into a String (cannot fail).
+macro_rules! outln {
+    ($out:expr, $($arg:tt)*) => {{
+        let _ = writeln!($out, $($arg)*);
+    }};
+}
+
+/// Prints long output; a closed pipe (`| head`) ends it quietly.
+fn emit(text: &str) -> Result<()> {
+    use std::io::Write;
+    match std::io::stdout().lock().write_all(text.as_bytes()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        other => Ok(other?),
+    }
+}
+
+/// The `signal` subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Test metadata and the channel table of an ISO-MME test, an NHTSA EV5 file or a CSV file.
+    Info {
+        /// ISO-MME folder, .mme or .zip; NHTSA .EV5; or .csv.
+        path: PathBuf,
+    },
+    /// Select channels, process them, and write CSV (and optionally ISO-MME).
+    Export(ExportArgs),
+    /// Run a processing pipeline file (TOML) and print its signals.
+    Process {
+        /// The pipeline file.
+        pipeline: PathBuf,
+        /// CSV output (default: the pipeline's `output`).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Write SVG plots of raw vs processed signals into this folder.
+        #[arg(long)]
+        plot: Option<PathBuf>,
+    },
+}
+
+/// How several channels of one selector are combined.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum CombineArg {
+    /// Arithmetic mean.
+    Mean,
+    /// Sum.
+    Sum,
+}
+
+/// Arguments of `signal export`. Processing runs in this order: bias,
+/// CFC filter, scale, integrations, trim, resample.
+#[derive(Debug, clap::Args)]
+pub struct ExportArgs {
+    /// ISO-MME folder, .mme or .zip; NHTSA .EV5; or .csv.
+    path: PathBuf,
+    /// Channel number, code (wildcards ? and *) or name substring; repeatable.
+    #[arg(long = "channel", short = 'c', required = true)]
+    channels: Vec<String>,
+    /// CFC filter class (60, 180, 600, 1000 or any positive number).
+    #[arg(long)]
+    cfc: Option<f64>,
+    /// Use the ISO 6487 constant for --cfc instead of SAE J211-1's.
+    #[arg(long)]
+    iso_6487: bool,
+    /// Remove the mean of the samples before t = 0.
+    #[arg(long)]
+    bias: bool,
+    /// Multiply by this factor (e.g. -1 to change sign).
+    #[arg(long, allow_negative_numbers = true)]
+    scale: Option<f64>,
+    /// Combine the channels of each --channel into one signal.
+    #[arg(long, value_enum)]
+    combine: Option<CombineArg>,
+    /// Integrate with this initial value (SI, or with a unit such as "57.09 km/h"); repeat to integrate twice.
+    #[arg(long, allow_negative_numbers = true)]
+    integrate: Vec<String>,
+    /// Keep only T0,T1 (s).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        num_args = 2,
+        allow_negative_numbers = true
+    )]
+    trim: Option<Vec<f64>>,
+    /// Resample to this interval (s).
+    #[arg(long)]
+    resample: Option<f64>,
+    /// CSV output: `time [s]` and one `CODE [unit]` column per signal, SI.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Write columns of this unit's dimension in it instead of SI (e.g. kN, mm, g); repeatable.
+    #[arg(long)]
+    unit: Vec<String>,
+    /// Also write the processed signals as an ISO-MME test folder.
+    #[arg(long)]
+    iso_mme: Option<PathBuf>,
+    /// Write SVG plots of raw vs processed signals into this folder.
+    #[arg(long)]
+    plot: Option<PathBuf>,
+}
+
+/// Runs a `signal` subcommand.
+pub fn run(command: &Command) -> Result<()> {
+    match command {
+        Command::Info { path } => info(path),
+        Command::Export(args) => run_export(args),
+        Command::Process {
+            pipeline,
+            output,
+            plot,
+        } => process(pipeline, output.as_deref(), plot.as_deref()),
+    }
+}
+
+fn info(path: &Path) -> Result<()> {
+    let test = TestData::open(path)?;
+    let mut out = String::new();
+    outln!(
+        out,
+        "{} test {}: {}",
+        test.format,
+        path.display(),
+        test.title
+    );
+    if let Some(v) = test.speed {
+        outln!(
+            out,
+            "  impact speed   {} = {}",
+            format_in(v, unit("km/h")),
+            format_in(v, unit("m/s"))
+        );
+    }
+    if let Some(m) = test.mass {
+        outln!(out, "  test mass      {}", format_in(m, unit("kg")));
+    }
+    for (key, value) in test.metadata.iter().filter(|(_, v)| !v.is_empty()) {
+        outln!(out, "  {key:<28} {value}");
+    }
+    let present = test.entries.iter().filter(|e| e.present).count();
+    let invalid: Vec<_> = test
+        .entries
+        .iter()
+        .filter(|e| e.validity != Validity::Valid)
+        .collect();
+    outln!(
+        out,
+        "{} channels listed, {present} with samples present, {} marked invalid",
+        test.entries.len(),
+        invalid.len()
+    );
+    outln!(
+        out,
+        "{:>5}  {:<24} {:<7} {:<8} name",
+        "no.",
+        "code",
+        "unit",
+        "data"
+    );
+    for e in &test.entries {
+        let data = match (&e.validity, e.present) {
+            (Validity::Invalid(_), true) => "INVALID",
+            (Validity::Invalid(_), false) => "invalid",
+            (Validity::Valid, true) => "present",
+            (Validity::Valid, false) => "absent",
+        };
+        outln!(
+            out,
+            "{:>5}  {:<24} {:<7} {:<8} {}",
+            e.number,
+            e.code,
+            e.unit,
+            data,
+            e.name
+        );
+    }
+    for e in invalid.iter().filter(|e| e.present) {
+        if let Validity::Invalid(why) = &e.validity {
+            outln!(
+                out,
+                "invalid: channel {} ({}) has samples but is marked: {why}",
+                e.number,
+                e.code
+            );
+        }
+    }
+    emit(&out)
+}
+
+fn unit(symbol: &str) -> Unit {
+    Unit::parse(symbol).unwrap_or(Unit::si(Dimension::Dimensionless))
+}
+
+fn export_steps(args: &ExportArgs) -> Result<Vec<Step>> {
+    let mut steps = Vec::new();
+    if args.bias {
+        steps.push(Step::PretriggerBias(true));
+    }
+    if let Some(class) = args.cfc {
+        steps.push(if args.iso_6487 {
+            Step::CfcIso(class)
+        } else {
+            Step::Cfc(class)
+        });
+    }
+    if let Some(factor) = args.scale {
+        steps.push(Step::Scale(factor));
+    }
+    for text in &args.integrate {
+        let value = text.trim().parse::<f64>().or_else(|_| initial_value(text));
+        steps.push(Step::Integrate(value?));
+    }
+    if let Some(t) = &args.trim {
+        steps.push(Step::Trim([t[0], t[1]]));
+    }
+    if let Some(step) = args.resample {
+        steps.push(Step::Resample(step));
+    }
+    Ok(steps)
+}
+
+fn initial_value(text: &str) -> Result<f64> {
+    bumpsim_core::units::parse_quantity(text, Dimension::Velocity).with_context(|| {
+        format!("--integrate '{text}': expected a number (SI) or a velocity such as '57.09 km/h'")
+    })
+}
+
+fn run_export(args: &ExportArgs) -> Result<()> {
+    refuse_overwriting_inputs(&args.output, &[&args.path])?;
+    let test = TestData::open(&args.path)?;
+    let how = args.combine.map(|c| match c {
+        CombineArg::Mean => Combine::Mean,
+        CombineArg::Sum => Combine::Sum,
+    });
+    let result = export(&test, &args.channels, &export_steps(args)?, how)?;
+    report(&result);
+    write_csv(&args.output, &result.signals, &output_units(&args.unit)?)?;
+    if let Some(folder) = &args.iso_mme {
+        refuse_existing(folder)?;
+        let name = folder
+            .file_name()
+            .map_or("bumpsim".into(), |n| n.to_string_lossy().into_owned());
+        let mme = isomme::write(
+            folder,
+            &name,
+            &[("Title".into(), test.title.clone())],
+            &result.signals,
+        )?;
+        println!("wrote {}", mme.display());
+    }
+    plot(args.plot.as_deref(), &result)
+}
+
+fn output_units(texts: &[String]) -> Result<Vec<Unit>> {
+    texts
+        .iter()
+        .map(|t| Unit::parse(t).with_context(|| format!("--unit '{t}'")))
+        .collect()
+}
+
+fn refuse_existing(folder: &Path) -> Result<()> {
+    let non_empty = std::fs::read_dir(folder).is_ok_and(|mut d| d.next().is_some());
+    if non_empty {
+        bail!(
+            "--iso-mme {}: the folder exists and is not empty; choose a new folder",
+            folder.display()
+        );
+    }
+    Ok(())
+}
+
+fn process(path: &Path, output: Option<&Path>, plot_dir: Option<&Path>) -> Result<()> {
+    let pipeline = Pipeline::read(path)?;
+    let result = pipeline.run()?;
+    report(&result);
+    if let Some(b) = &result.balance {
+        println!(
+            "momentum balance over {} .. {}: impulse {} vs momentum change {} of {} ({:+.2} %)",
+            format_quantity(b.window[0], Dimension::Time),
+            format_quantity(b.window[1], Dimension::Time),
+            newton_seconds(b.impulse),
+            newton_seconds(b.momentum_change),
+            format_in(b.mass, unit("kg")),
+            100.0 * b.relative_difference
+        );
+    }
+    let output = output
+        .map(Path::to_path_buf)
+        .or_else(|| pipeline.output.as_ref().map(|o| pipeline.base.join(o)));
+    match output {
+        Some(output) => write_csv(&output, &result.signals, &[])?,
+        None => println!("no CSV written: give -o OUT.csv or 'output' in the pipeline"),
+    }
+    plot(plot_dir, &result)
+}
+
+fn newton_seconds(value: f64) -> String {
+    format!("{} N·s", bumpsim_core::units::format_number(value, 4))
+}
+
+fn report(result: &PipelineResult) {
+    for w in &result.warnings {
+        eprintln!("warning: {w}");
+    }
+    for s in &result.signals {
+        let e = extremes(s);
+        println!(
+            "{}: peak {} at {}; min {}, max {}",
+            s.code,
+            format_quantity(e.peak, s.dimension),
+            format_quantity(e.peak_time, Dimension::Time),
+            format_quantity(e.min, s.dimension),
+            format_quantity(e.max, s.dimension)
+        );
+    }
+}
+
+fn write_csv(path: &Path, signals: &[Channel], units: &[Unit]) -> Result<()> {
+    let (time, columns) = align(signals)?;
+    let output: Vec<OutputColumn> = signals
+        .iter()
+        .zip(&columns)
+        .map(|(s, values)| OutputColumn {
+            name: &s.code,
+            unit: units
+                .iter()
+                .copied()
+                .find(|u| u.dimension == s.dimension)
+                .unwrap_or(Unit::si(s.dimension)),
+            values,
+        })
+        .collect();
+    write_table(path, &time, &output)?;
+    let note = if units.is_empty() {
+        "SI units"
+    } else {
+        "units as asked"
+    };
+    println!(
+        "wrote {}: {} rows × {} signals, {note}",
+        path.display(),
+        time.len(),
+        signals.len()
+    );
+    Ok(())
+}
+
+fn plot(folder: Option<&Path>, result: &PipelineResult) -> Result<()> {
+    let Some(folder) = folder else { return Ok(()) };
+    std::fs::create_dir_all(folder)
+        .with_context(|| format!("cannot create {}", folder.display()))?;
+    for (raw, processed) in result.raw.iter().zip(&result.signals) {
+        let curve = |c: &Channel, name: &str, style| {
+            Series::new(name, c.series.times(), c.series.values().to_vec(), style)
+        };
+        let mut plots = vec![LinePlot::new(
+            &processed.code,
+            Dimension::Time,
+            processed.dimension,
+        )];
+        if raw.dimension == processed.dimension {
+            plots[0].add(curve(raw, "raw", Style::Solid));
+        } else {
+            let mut raw_plot = LinePlot::new(
+                &format!("{} (raw)", processed.code),
+                Dimension::Time,
+                raw.dimension,
+            );
+            raw_plot.add(curve(raw, "raw", Style::Solid));
+            plots.push(raw_plot);
+        }
+        plots[0].add(curve(processed, "processed", Style::Dashed));
+        for (i, plot) in plots.iter().enumerate() {
+            let suffix = if i == 0 { "" } else { "-raw" };
+            let path = folder.join(format!("{}{suffix}.svg", file_name(&processed.code)));
+            std::fs::write(&path, plot.svg()?)
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            println!("wrote {}", path.display());
+        }
+    }
+    Ok(())
+}
+
+/// A file name from a signal name: letters, digits, `-` and `_` kept.
+fn file_name(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,314 @@
+//! Line plots of time histories as SVG.
+//!
+//! Values come in SI and are drawn in the display unit of their dimension
+//! (ms, mm, kN, g, ...; `bumpsim_core::units::Dimension::display_unit`), and
+//! each axis label states that unit. Measured data are drawn solid,
+//! simulated or processed data dashed, as in the thesis figures.
+
+use bumpsim_core::units::Dimension;
+use plotters::prelude::*;
+
+/// Why a plot cannot be drawn.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PlotError {
+    /// Nothing to draw.
+    #[error("plot '{title}': no series with finite points")]
+    Empty {
+        /// The plot title.
+        title: String,
+    },
+    /// A series has x and y of different lengths.
+    #[error("plot '{title}': series '{series}' has {x} x values and {y} y values")]
+    Length {
+        /// The plot title.
+        title: String,
+        /// The series.
+        series: String,
+        /// Number of x values.
+        x: usize,
+        /// Number of y values.
+        y: usize,
+    },
+    /// The drawing backend failed.
+    #[error("plot '{title}': {message}")]
+    Draw {
+        /// The plot title.
+        title: String,
+        /// What plotters said.
+        message: String,
+    },
+}
+
+/// Line style of a series.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Style {
+    /// Solid line (measured).
+    Solid,
+    /// Dashed line (simulated, processed).
+    Dashed,
+}
+
+/// One curve: name (legend), x and y values in SI, style.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    /// Legend entry.
+    pub name: String,
+    /// x values, SI.
+    pub x: Vec<f64>,
+    /// y values, SI.
+    pub y: Vec<f64>,
+    /// Line style.
+    pub style: Style,
+}
+
+impl Series {
+    /// A series.
+    pub fn new(name: &str, x: Vec<f64>, y: Vec<f64>, style: Style) -> Series {
+        Series {
+            name: name.to_string(),
+            x,
+            y,
+            style,
+        }
+    }
+}
+
+/// A line plot with a title, two axes of given dimensions and its series.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinePlot {
+    /// Title.
+    pub title: String,
+    /// x dimension (label and unit).
+    pub x: Dimension,
+    /// y dimension (label and unit).
+    pub y: Dimension,
+    /// The curves.
+    pub series: Vec<Series>,
+    /// Size in pixels.
+    pub size: (u32, u32),
+}
+
+const COLOURS: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(23, 190, 207),
+];
+
+/// The axis label of a dimension: `force [kN]`.
+pub fn axis_label(dimension: Dimension) -> String {
+    format!("{} [{}]", dimension.name(), dimension.display_unit().symbol)
+}
+
+impl LinePlot {
+    /// An empty plot.
+    pub fn new(title: &str, x: Dimension, y: Dimension) -> LinePlot {
+        LinePlot {
+            title: title.to_string(),
+            x,
+            y,
+            series: Vec::new(),
+            size: (800, 480),
+        }
+    }
+
+    /// Adds a series.
+    pub fn add(&mut self, series: Series) -> &mut Self {
+        self.series.push(series);
+        self
+    }
+
+    /// The data range in display units: (x0, x1, y0, y1), padded.
+    fn range(&self) -> Result<(f64, f64, f64, f64), PlotError> {
+        let (ux, uy) = (self.x.display_unit(), self.y.display_unit());
+        let mut r = (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        );
+        for s in &self.series {
+            if s.x.len() != s.y.len() {
+                let (title, series) = (self.title.clone(), s.name.clone());
+                return Err(PlotError::Length {
+                    title,
+                    series,
+                    x: s.x.len(),
+                    y: s.y.len(),
+                });
+            }
+            for (&x, &y) in
+                s.x.iter()
+                    .zip(&s.y)
+                    .filter(|(x, y)| x.is_finite() && y.is_finite())
+            {
+                let (x, y) = (ux.from_si(x), uy.from_si(y));
+                r = (r.0.min(x), r.1.max(x), r.2.min(y), r.3.max(y));
+            }
+        }
+        if !r.0.is_finite() {
+            return Err(PlotError::Empty {
+                title: self.title.clone(),
+            });
+        }
+        let pad = |a: f64, b: f64| {
+            if b > a {
+                0.05 * (b - a)
+            } else {
+                a.abs().max(1.0) * 0.05
+            }
+        };
+        let (px, py) = (pad(r.0, r.1), pad(r.2, r.3));
+        Ok((
+            r.0 - px * 0.0,
+            r.1 + px * f64::from(r.1 <= r.0),
+            r.2 - py,
+            r.3 + py,
+        ))
+    }
+
+    /// Draws the plot as an SVG document.
+    pub fn svg(&self) -> Result<String, PlotError> {
+        crate::register_font();
+        let range = self.range()?;
+        let mut svg = String::new();
+        let draw_error = |e: &dyn std::fmt::Display| PlotError::Draw {
+            title: self.title.clone(),
+            message: e.to_string(),
+        };
+        {
+            let root = SVGBackend::with_string(&mut svg, self.size).into_drawing_area();
+            root.fill(&WHITE).map_err(|e| draw_error(&e))?;
+            self.draw(&root, range).map_err(|e| draw_error(&e))?;
+            root.present().map_err(|e| draw_error(&e))?;
+        }
+        Ok(self.dash(svg))
+    }
+
+    /// Gives the polylines of dashed series a `stroke-dasharray`, so each
+    /// series stays one path (plotters' own dashed series draws one path per dash).
+    fn dash(&self, svg: String) -> String {
+        let mut svg = svg;
+        for (i, _) in self
+            .series
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.style == Style::Dashed)
+        {
+            let RGBColor(r, g, b) = COLOURS[i % COLOURS.len()];
+            let stroke = format!("stroke=\"#{r:02X}{g:02X}{b:02X}\" stroke-width=\"2\"");
+            svg = svg.replace(&stroke, &format!("{stroke} stroke-dasharray=\"8 5\""));
+        }
+        svg
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+        (x0, x1, y0, y1): (f64, f64, f64, f64),
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+        let mut chart = ChartBuilder::on(root)
+            .caption(&self.title, ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(44)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x0..x1, y0..y1)?;
+        chart
+            .configure_mesh()
+            .x_desc(axis_label(self.x))
+            .y_desc(axis_label(self.y))
+            .label_style(("sans-serif", 13))
+            .draw()?;
+        let (ux, uy) = (self.x.display_unit(), self.y.display_unit());
+        for (i, s) in self.series.iter().enumerate() {
+            let colour = COLOURS[i % COLOURS.len()];
+            let points: Vec<(f64, f64)> =
+                s.x.iter()
+                    .zip(&s.y)
+                    .filter(|(x, y)| x.is_finite() && y.is_finite())
+                    .map(|(&x, &y)| (ux.from_si(x), uy.from_si(y)))
+                    .collect();
+            let style = colour.stroke_width(2);
+            let legend =
+                move |(x, y): (i32, i32)| PathElement::new(vec![(x, y), (x + 20, y)], style);
+            chart
+                .draw_series(LineSeries::new(points, style))?
+                .label(s.name.clone())
+                .legend(legend);
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 13))
+            .draw()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn demo() -> LinePlot {
+        let t: Vec<f64> = (0..50).map(|k| k as f64 * 1e-3).collect();
+        let f: Vec<f64> = t.iter().map(|t| 2e4 * (60.0 * t).sin()).collect();
+        let mut p = LinePlot::new("Pendulum force", Dimension::Time, Dimension::Force);
+        p.add(Series::new("measured", t.clone(), f.clone(), Style::Solid));
+        p.add(Series::new("filtered", t, f, Style::Dashed));
+        p
+    }
+
+    /// Numbers inside `points="..."` or `d="..."` attributes of path-like elements.
+    fn coordinates(svg: &str) -> Vec<f64> {
+        svg.split("points=\"")
+            .skip(1)
+            .flat_map(|rest| rest.split('"').next().unwrap_or("").split([' ', ',']))
+            .filter(|s| !s.is_empty())
+            .map(|s| s.parse::<f64>().unwrap_or(f64::NAN))
+            .collect()
+    }
+
+    #[test]
+    fn axis_labels_carry_units_and_each_series_is_drawn() {
+        let svg = demo().svg().unwrap();
+        assert!(svg.contains("time [ms]"), "x label with unit");
+        assert!(svg.contains("force [kN]"), "y label with unit");
+        let texts: Vec<&str> = svg
+            .split("<text")
+            .skip(1)
+            .map(|t| {
+                t.split('>')
+                    .nth(1)
+                    .unwrap_or("")
+                    .split('<')
+                    .next()
+                    .unwrap_or("")
+                    .trim()
+            })
+            .collect();
+        assert!(
+            texts.contains(&"measured") && texts.contains(&"filtered"),
+            "legend: {texts:?}"
+        );
+        let long_paths = svg
+            .split("<polyline")
+            .filter(|p| p.split("/>").next().unwrap_or("").matches(',').count() > 40)
+            .count();
+        assert_eq!(long_paths, 2, "one path per series");
+        let dashed = svg.matches("stroke-dasharray").count();
+        assert_eq!(dashed, 2, "the dashed series and its legend sample");
+        let coords = coordinates(&svg);
+        assert!(!coords.is_empty() && coords.iter().all(|c| c.is_finite()));
+    }
+
+    #[test]
+    fn empty_and_ragged_plots_are_errors() {
+        let p = LinePlot::new("nothing", Dimension::Time, Dimension::Force);
+        assert!(matches!(p.svg(), Err(PlotError::Empty { .. })));
+        let mut q = LinePlot::new("ragged", Dimension::Time, Dimension::Force);
+        q.add(Series::new("s", vec![0.0], vec![], Style::Solid));
+        assert!(matches!(q.svg(), Err(PlotError::Length { .. })));
+    }
+}
