@@ -6,6 +6,7 @@
 //! unreadable or invalid files, a model the chosen method cannot run).
 
 mod export;
+mod identify;
 mod signal;
 mod simulate;
 
@@ -24,6 +25,10 @@ struct Cli {
 enum Command {
     /// Simulate an MSD car model under a measured or synthetic force on m1.
     Simulate(simulate::Args),
+    /// Identify one MSD car model from several load cases (the main job).
+    Identify(identify::Args),
+    /// Simulate load cases of a study with an identified model and report the fit (validation).
+    Predict(identify::PredictArgs),
     /// Crash-test signals: channel tables, export with filters, processing pipelines.
     #[command(subcommand)]
     Signal(signal::Command),
@@ -38,6 +43,8 @@ fn main() -> ExitCode {
         Command::Simulate(args) => simulate::run(&args),
         Command::Export(command) => export::run(&command),
         Command::Signal(command) => signal::run(&command),
+        Command::Identify(args) => identify::run(&args),
+        Command::Predict(args) => identify::run_predict(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,5 +1,7 @@
 //! bumpsim-report: pictures of results, for people who would rather look.
 //!
+//! - [`html`]: self-contained HTML reports;
+//! - [`identification`]: the identification report;
 //! - [`plot`]: line plots of time histories (measured solid, simulated
 //!   dashed, as in the thesis figures) with units on both axes, as SVG.
 //!
@@ -15,6 +17,8 @@
 //! assert!(svg.contains("<svg") && svg.contains("kN"));
 //! ```
 
+pub mod html;
+pub mod identification;
 pub mod plot;
 
 use std::sync::Once;

@@ -86,6 +86,8 @@ pub struct LinePlot {
     pub series: Vec<Series>,
     /// Size in pixels.
     pub size: (u32, u32),
+    /// Axis labels replacing the dimension's `name [unit]` (x, y).
+    pub labels: (Option<String>, Option<String>),
 }
 
 const COLOURS: [RGBColor; 6] = [
@@ -111,7 +113,15 @@ impl LinePlot {
             y,
             series: Vec::new(),
             size: (800, 480),
+            labels: (None, None),
         }
+    }
+
+    /// Replaces the axis labels, for quantities without a [`Dimension`]
+    /// (values are then drawn as given, in the unit the label states).
+    pub fn with_labels(mut self, x: Option<&str>, y: Option<&str>) -> Self {
+        self.labels = (x.map(str::to_string), y.map(str::to_string));
+        self
     }
 
     /// Adds a series.
@@ -217,8 +227,8 @@ impl LinePlot {
             .build_cartesian_2d(x0..x1, y0..y1)?;
         chart
             .configure_mesh()
-            .x_desc(axis_label(self.x))
-            .y_desc(axis_label(self.y))
+            .x_desc(self.labels.0.clone().unwrap_or_else(|| axis_label(self.x)))
+            .y_desc(self.labels.1.clone().unwrap_or_else(|| axis_label(self.y)))
             .label_style(("sans-serif", 13))
             .draw()?;
         let (ux, uy) = (self.x.display_unit(), self.y.display_unit());

@@ -1,0 +1,261 @@
+//! Load cases and the objective of spec §3.
+//!
+//! A load case is a force history on m1 (N) and the measured displacement
+//! (m) of one output DOF at the same sample times, an initial velocity of
+//! the whole car (m/s) and a fit window. The objective is
+//! `F(θ) = Σ_l Σ_{k ∈ window_l} (x_l[k](θ) − x̂_l[k])²` (m²), with the model
+//! simulated by the exact zoh discretisation from the first sample.
+//!
+//! [`Objective`] evaluates the residuals and their exact Jacobian with
+//! respect to the free log parameters ([`sensitivity`](crate::sensitivity)).
+
+use crate::lm::LeastSquares;
+use crate::sensitivity::Discretised;
+use bumpsim_core::model::{MsdModel, parameter_count};
+use nalgebra::DMatrix;
+use std::sync::Mutex;
+
+/// Why a load case or parameter set is not usable.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CaseError {
+    /// Force and displacement differ in length, or a case is empty.
+    #[error("load case '{case}': {reason}")]
+    Invalid {
+        /// The case name.
+        case: String,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+/// One load case, SI, on a uniform time base starting at `start`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadCase {
+    /// Name (e.g. `flat`, `pole`).
+    pub name: String,
+    /// Time of the first sample, s.
+    pub start: f64,
+    /// Sample interval, s.
+    pub step: f64,
+    /// Force on m1, N.
+    pub force: Vec<f64>,
+    /// Measured displacement of the output DOF, m.
+    pub measured: Vec<f64>,
+    /// Output DOF, 1-based (1 = m1).
+    pub output_dof: usize,
+    /// Velocity of every mass at the first sample, m/s.
+    pub initial_velocity: f64,
+    /// First and last sample of the fit window (inclusive).
+    pub window: (usize, usize),
+}
+
+impl LoadCase {
+    /// Checks lengths, window and values.
+    pub fn validate(&self) -> Result<(), CaseError> {
+        let invalid = |reason: String| CaseError::Invalid {
+            case: self.name.clone(),
+            reason,
+        };
+        if self.force.len() != self.measured.len() || self.force.len() < 2 {
+            return Err(invalid(format!(
+                "{} force samples and {} displacement samples: expected the same number, at least 2",
+                self.force.len(),
+                self.measured.len()
+            )));
+        }
+        let (a, b) = self.window;
+        if a > b || b >= self.force.len() {
+            return Err(invalid(format!(
+                "window samples {a}..{b} outside 0..{}",
+                self.force.len() - 1
+            )));
+        }
+        if !(self.step.is_finite() && self.step > 0.0) || self.output_dof == 0 {
+            return Err(invalid(format!(
+                "step {} s and output DOF {} must be positive",
+                self.step, self.output_dof
+            )));
+        }
+        let finite = self
+            .force
+            .iter()
+            .chain(&self.measured)
+            .all(|v| v.is_finite());
+        match finite && self.initial_velocity.is_finite() {
+            true => Ok(()),
+            false => Err(invalid(
+                "non-finite force, displacement or initial velocity".into(),
+            )),
+        }
+    }
+
+    /// Number of samples in the window.
+    pub fn window_len(&self) -> usize {
+        self.window.1 - self.window.0 + 1
+    }
+
+    /// The initial state [x; v] of a `dof`-mass chain.
+    pub fn initial_state(&self, dof: usize) -> Vec<f64> {
+        (0..2 * dof)
+            .map(|i| if i < dof { 0.0 } else { self.initial_velocity })
+            .collect()
+    }
+
+    /// The simulated output of `model` at every sample.
+    pub fn simulate(&self, model: &MsdModel) -> Vec<f64> {
+        let d = Discretised::plain(model, self.step);
+        let mut y = vec![0.0; self.force.len()];
+        let mut work = vec![0.0; (d.parameter_count() + 2) * d.order()];
+        d.simulate(
+            &self.force,
+            &self.initial_state(model.dof()),
+            self.output_dof - 1,
+            &mut y,
+            None,
+            &mut work,
+        );
+        y
+    }
+
+    /// Sum of squared errors over the window and the fit %
+    /// `100 (1 − ‖y − ŷ‖ / ‖y − ȳ‖)` of a simulated output.
+    pub fn fit(&self, simulated: &[f64]) -> (f64, f64) {
+        let (a, b) = self.window;
+        let measured = &self.measured[a..=b];
+        let mean = measured.iter().sum::<f64>() / measured.len() as f64;
+        let sse: f64 = measured
+            .iter()
+            .zip(&simulated[a..=b])
+            .map(|(y, s)| (y - s).powi(2))
+            .sum();
+        let spread: f64 = measured.iter().map(|y| (y - mean).powi(2)).sum();
+        (sse, 100.0 * (1.0 - (sse / spread).sqrt()))
+    }
+}
+
+/// Scratch buffers of one evaluation.
+struct Buffers {
+    y: Vec<f64>,
+    jac: Vec<f64>,
+    work: Vec<f64>,
+}
+
+/// The objective over several cases for a `dof`-mass model, as a function
+/// of the free log parameters (fixed parameters held at their values).
+pub struct Objective<'a> {
+    cases: &'a [LoadCase],
+    dof: usize,
+    /// Full log-parameter template: fixed entries set, free ones overwritten.
+    template: Vec<f64>,
+    /// Indices of the free parameters in thesis order.
+    free: Vec<usize>,
+    residuals: usize,
+    buffers: Mutex<Buffers>,
+}
+
+impl<'a> Objective<'a> {
+    /// The objective of `cases` for `dof` masses; `fixed[i]` holds a fixed
+    /// SI value of parameter i.
+    pub fn new(cases: &'a [LoadCase], dof: usize, fixed: &[Option<f64>]) -> Objective<'a> {
+        let p = parameter_count(dof);
+        let template = (0..p)
+            .map(|i| fixed.get(i).copied().flatten().map_or(0.0, f64::ln))
+            .collect();
+        let free = (0..p)
+            .filter(|&i| fixed.get(i).copied().flatten().is_none())
+            .collect();
+        let longest = cases.iter().map(|c| c.force.len()).max().unwrap_or(0);
+        let buffers = Buffers {
+            y: vec![0.0; longest],
+            jac: vec![0.0; longest * p],
+            work: vec![0.0; (p + 2) * 2 * dof],
+        };
+        let residuals = cases.iter().map(LoadCase::window_len).sum();
+        Objective {
+            cases,
+            dof,
+            template,
+            free,
+            residuals,
+            buffers: Mutex::new(buffers),
+        }
+    }
+
+    /// Indices of the free parameters.
+    pub fn free(&self) -> &[usize] {
+        &self.free
+    }
+
+    /// The full SI parameter vector of free log parameters `p`.
+    pub fn theta(&self, p: &[f64]) -> Vec<f64> {
+        let mut full = self.template.clone();
+        for (j, &i) in self.free.iter().enumerate() {
+            full[i] = p[j];
+        }
+        full.into_iter().map(f64::exp).collect()
+    }
+
+    /// The model of free log parameters `p`, if valid: every parameter
+    /// within `[1e-12, 1e15]` SI, beyond which the matrix exponential of a
+    /// sample step is meaningless (and nalgebra's Padé scaling would not end).
+    pub fn model(&self, p: &[f64]) -> Option<MsdModel> {
+        let theta = self.theta(p);
+        if theta.iter().any(|t| !(1e-12..=1e15).contains(t)) {
+            return None;
+        }
+        MsdModel::from_parameters(self.dof, &theta).ok()
+    }
+}
+
+impl LeastSquares for Objective<'_> {
+    fn residual_count(&self) -> usize {
+        self.residuals
+    }
+
+    fn parameter_count(&self) -> usize {
+        self.free.len()
+    }
+
+    fn evaluate(
+        &self,
+        p: &[f64],
+        residuals: &mut [f64],
+        mut jacobian: Option<&mut DMatrix<f64>>,
+    ) -> bool {
+        let Some(model) = self.model(p) else {
+            return false;
+        };
+        let mut guard = self.buffers.lock().unwrap_or_else(|e| e.into_inner());
+        let b = &mut *guard;
+        let full = parameter_count(self.dof);
+        let mut row = 0;
+        for case in self.cases {
+            let d = match jacobian.is_some() {
+                true => Discretised::new(&model, case.step),
+                false => Discretised::plain(&model, case.step),
+            };
+            let n = case.force.len();
+            let jac = jacobian.is_some().then_some(&mut b.jac[..n * full]);
+            let initial = case.initial_state(self.dof);
+            d.simulate(
+                &case.force,
+                &initial,
+                case.output_dof - 1,
+                &mut b.y[..n],
+                jac,
+                &mut b.work,
+            );
+            let (a, z) = case.window;
+            for k in a..=z {
+                residuals[row] = b.y[k] - case.measured[k];
+                if let Some(j) = jacobian.as_deref_mut() {
+                    for (col, &i) in self.free.iter().enumerate() {
+                        j[(row, col)] = b.jac[k * full + i];
+                    }
+                }
+                row += 1;
+            }
+        }
+        residuals.iter().all(|r| r.is_finite())
+    }
+}

@@ -1,0 +1,450 @@
+//! Multi-start bounded identification of one model from several load cases.
+//!
+//! Parameters are estimated as `p = ln θ` (kg, N·s/m and N/m spanning seven
+//! decades become comparable) with [`lm`](crate::lm) within the bounds
+//! (thesis: every parameter ≥ 1 SI). Starts: the user's start if given, the
+//! start derived from the data ([`data_start`]), then log-uniform random
+//! points within a factor 30 of the data start, drawn from a ChaCha8 stream
+//! seeded by `seed + start index` (the same starts on any number of
+//! threads). Starts run in parallel (rayon); a start whose model cannot be
+//! simulated is counted as failed, never propagated.
+
+use crate::case::{CaseError, LoadCase, Objective};
+use crate::lm::{self, LeastSquares, Outcome};
+use crate::stats::{Uncertainty, uncertainty};
+use bumpsim_core::model::{MsdModel, ParameterKind, parameter_count, parameter_kind};
+use rand_chacha::ChaCha8Rng;
+use rand_core::{Rng, SeedableRng};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::time::Instant;
+
+/// Why identification cannot run.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum IdentError {
+    /// A load case is unusable.
+    #[error(transparent)]
+    Case(#[from] CaseError),
+    /// A setting is out of range.
+    #[error("identification setting {name}: {reason}")]
+    Setting {
+        /// The setting.
+        name: &'static str,
+        /// What is wrong.
+        reason: String,
+    },
+    /// Every start failed.
+    #[error("all {starts} starts failed: the model could not be simulated from any of them")]
+    AllFailed {
+        /// Number of starts.
+        starts: usize,
+    },
+}
+
+/// Bounds and fixed values per parameter, SI, thesis order `[m.., c.., k..]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bounds {
+    /// Lower bounds (> 0).
+    pub lower: Vec<f64>,
+    /// Upper bounds (may be infinite).
+    pub upper: Vec<f64>,
+    /// Fixed values (not estimated).
+    pub fixed: Vec<Option<f64>>,
+}
+
+impl Bounds {
+    /// Every parameter in `[lower, ∞)`, none fixed (the thesis: `lower` = 1).
+    pub fn uniform(dof: usize, lower: f64) -> Bounds {
+        let p = parameter_count(dof);
+        Bounds {
+            lower: vec![lower; p],
+            upper: vec![f64::INFINITY; p],
+            fixed: vec![None; p],
+        }
+    }
+
+    fn check(&self, dof: usize) -> Result<(), IdentError> {
+        let p = parameter_count(dof);
+        let setting = |reason: String| IdentError::Setting {
+            name: "bounds",
+            reason,
+        };
+        if self.lower.len() != p || self.upper.len() != p || self.fixed.len() != p {
+            return Err(setting(format!("{p} parameters for {dof} DOF")));
+        }
+        for i in 0..p {
+            let (lo, hi) = (self.lower[i], self.upper[i]);
+            if !(lo > 0.0 && lo.is_finite() && hi > lo) {
+                let name = bumpsim_core::model::parameter_name(dof, i);
+                return Err(setting(format!(
+                    "{name}: need 0 < lower < upper, got [{lo}, {hi}]"
+                )));
+            }
+            if let Some(v) = self.fixed[i].filter(|v| !(v.is_finite() && *v > 0.0)) {
+                return Err(setting(format!("fixed value {v} must be positive")));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// What to estimate and how.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// Number of masses.
+    pub dof: usize,
+    /// Bounds and fixed values.
+    pub bounds: Bounds,
+    /// Number of starts (≥ 1).
+    pub starts: usize,
+    /// Seed of the random starts.
+    pub seed: u64,
+    /// The user's start, SI, thesis order.
+    pub start: Option<Vec<f64>>,
+    /// Solver tolerances.
+    pub solver: lm::Settings,
+}
+
+impl Settings {
+    /// Thesis defaults: every parameter ≥ 1, `starts` starts, seed 1.
+    pub fn new(dof: usize, starts: usize) -> Settings {
+        Settings {
+            dof,
+            bounds: Bounds::uniform(dof, 1.0),
+            starts,
+            seed: 1,
+            start: None,
+            solver: lm::Settings::default(),
+        }
+    }
+}
+
+/// Fit of one load case.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CaseFit {
+    /// Case name.
+    pub name: String,
+    /// Sum of squared errors in the window, m².
+    pub sse: f64,
+    /// `100 (1 − ‖y − ŷ‖ / ‖y − ȳ‖)`, %.
+    pub fit_percent: f64,
+    /// Samples in the window.
+    pub samples: usize,
+}
+
+/// Start statistics.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Starts {
+    /// Starts run.
+    pub total: usize,
+    /// Starts whose run converged.
+    pub converged: usize,
+    /// Starts that could not be evaluated or ended non-finite.
+    pub failed: usize,
+    /// Starts that reached the best objective (within 1e-6 relative).
+    pub reached_best: usize,
+    /// Index of the best start (0 = the user's or the data start).
+    pub best: usize,
+}
+
+/// The identified model and everything said about it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Identification {
+    /// Number of masses.
+    pub dof: usize,
+    /// Masses, kg.
+    pub masses: Vec<f64>,
+    /// Dampers, N·s/m.
+    pub dampers: Vec<f64>,
+    /// Springs, N/m.
+    pub springs: Vec<f64>,
+    /// `F = Σ (x − x̂)²` over all cases, m².
+    pub objective: f64,
+    /// Per-case fit.
+    pub cases: Vec<CaseFit>,
+    /// Overall fit %, from all windows together.
+    pub fit_percent: f64,
+    /// Akaike information criterion `n ln(F/n) + 2q`.
+    pub aic: f64,
+    /// Bayesian information criterion `n ln(F/n) + q ln n`.
+    pub bic: f64,
+    /// Residuals n.
+    pub residuals: usize,
+    /// Uncertainty of the estimate.
+    pub uncertainty: Uncertainty,
+    /// Starts.
+    pub starts: Starts,
+    /// Solver iterations of the best start.
+    pub iterations: usize,
+    /// Why the best start stopped.
+    pub stop: String,
+    /// Wall-clock time, s.
+    pub run_time: f64,
+    /// Warnings for the user.
+    pub warnings: Vec<String>,
+}
+
+impl Identification {
+    /// The identified model.
+    pub fn model(&self) -> MsdModel {
+        MsdModel::new(
+            self.masses.clone(),
+            self.dampers.clone(),
+            self.springs.clone(),
+        )
+        .expect("identified parameters are within positive bounds")
+    }
+}
+
+/// A start derived from the data: the total mass from impulse and velocity
+/// change of the output, `M = |∫F dt / Δv|`, split equally; one spring
+/// stiffness from the window length `D` taken as a half period,
+/// `k_eff = M π² / D²`, `k_i = (N − 1) k_eff` (springs in series); dampers at
+/// 30 % of critical for `k_i` and `M/N`.
+pub fn data_start(cases: &[LoadCase], dof: usize) -> Vec<f64> {
+    let estimates: Vec<(f64, f64)> = cases.iter().filter_map(case_estimate).collect();
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v.get(v.len() / 2).copied()
+    };
+    let mass = median(estimates.iter().map(|e| e.0).collect()).unwrap_or(1000.0);
+    let duration = median(estimates.iter().map(|e| e.1).collect()).unwrap_or(0.05);
+    let k_eff = mass * std::f64::consts::PI.powi(2) / duration.powi(2);
+    let spring = k_eff * (dof.max(2) - 1) as f64;
+    let damper = 2.0 * 0.3 * (spring * mass / dof as f64).sqrt();
+    (0..parameter_count(dof))
+        .map(|i| match parameter_kind(dof, i).0 {
+            ParameterKind::Mass => mass / dof as f64,
+            ParameterKind::Damper => damper,
+            ParameterKind::Spring => spring,
+        })
+        .collect()
+}
+
+/// Mass and window duration of one case, when they can be estimated.
+fn case_estimate(case: &LoadCase) -> Option<(f64, f64)> {
+    let (a, b) = case.window;
+    let impulse: f64 = case.force[a..=b]
+        .windows(2)
+        .map(|w| 0.5 * case.step * (w[0] + w[1]))
+        .sum();
+    let tail = ((b - a) / 20).max(1);
+    let velocity =
+        |k: usize| (case.measured[k] - case.measured[k - tail]) / (tail as f64 * case.step);
+    let end_velocity = if b >= a + tail {
+        velocity(b)
+    } else {
+        return None;
+    };
+    let start_velocity = if a >= tail {
+        velocity(a)
+    } else {
+        case.initial_velocity
+    };
+    let mass = (impulse / (end_velocity - start_velocity)).abs();
+    let duration = (b - a) as f64 * case.step;
+    (mass.is_finite() && mass > 0.0 && duration > 0.0).then_some((mass, duration))
+}
+
+/// The starting points, log space, free parameters only.
+fn starting_points(settings: &Settings, data: &[f64], free: &[usize]) -> Vec<Vec<f64>> {
+    let log = |theta: &[f64]| -> Vec<f64> { free.iter().map(|&i| theta[i].ln()).collect() };
+    let mut points = Vec::with_capacity(settings.starts);
+    if let Some(user) = &settings.start {
+        points.push(log(user));
+    }
+    points.push(log(data));
+    let spread = 30f64.ln();
+    let mut index = points.len() as u64;
+    while points.len() < settings.starts.max(1) {
+        let mut rng = ChaCha8Rng::seed_from_u64(settings.seed.wrapping_add(index));
+        let centre = log(data);
+        points.push(
+            centre
+                .iter()
+                .map(|c| c + spread * (2.0 * unit(&mut rng) - 1.0))
+                .collect(),
+        );
+        index += 1;
+    }
+    points.truncate(settings.starts.max(1));
+    points
+}
+
+/// A uniform number in [0, 1) from 53 random bits.
+fn unit(rng: &mut ChaCha8Rng) -> f64 {
+    (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+}
+
+fn check(cases: &[LoadCase], settings: &Settings) -> Result<(), IdentError> {
+    let setting = |name, reason: String| Err(IdentError::Setting { name, reason });
+    if settings.dof == 0 || settings.starts == 0 || cases.is_empty() {
+        return setting(
+            "dof/starts/cases",
+            "need at least one DOF, one start and one load case".into(),
+        );
+    }
+    for case in cases {
+        case.validate()?;
+        if case.output_dof > settings.dof {
+            return setting(
+                "output_dof",
+                format!(
+                    "case '{}' measures DOF {} of a {}-DOF model",
+                    case.name, case.output_dof, settings.dof
+                ),
+            );
+        }
+    }
+    if let Some(start) = &settings.start {
+        if start.len() != parameter_count(settings.dof)
+            || start.iter().any(|v| !(v.is_finite() && *v > 0.0))
+        {
+            return setting(
+                "start",
+                format!(
+                    "{} positive values expected for {} DOF",
+                    parameter_count(settings.dof),
+                    settings.dof
+                ),
+            );
+        }
+    }
+    settings.bounds.check(settings.dof)
+}
+
+/// Identifies a `settings.dof`-mass model from `cases`. `progress` is called
+/// once per finished start (from any thread).
+pub fn identify(
+    cases: &[LoadCase],
+    settings: &Settings,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Identification, IdentError> {
+    check(cases, settings)?;
+    let clock = Instant::now();
+    let objective = Objective::new(cases, settings.dof, &settings.bounds.fixed);
+    let free = objective.free().to_vec();
+    let lower: Vec<f64> = free
+        .iter()
+        .map(|&i| settings.bounds.lower[i].ln())
+        .collect();
+    let upper: Vec<f64> = free
+        .iter()
+        .map(|&i| settings.bounds.upper[i].ln())
+        .collect();
+    let data = data_start(cases, settings.dof);
+    let points = starting_points(settings, &data, &free);
+    let outcomes: Vec<Outcome> = points
+        .par_iter()
+        .map(|start| {
+            let objective = Objective::new(cases, settings.dof, &settings.bounds.fixed);
+            let outcome = lm::minimise(&objective, start, &lower, &upper, &settings.solver);
+            progress();
+            outcome
+        })
+        .collect();
+    let failed = outcomes.iter().filter(|o| !o.objective.is_finite()).count();
+    let (best, outcome) = outcomes
+        .iter()
+        .enumerate()
+        .filter(|(_, o)| o.objective.is_finite())
+        .min_by(|a, b| a.1.objective.total_cmp(&b.1.objective))
+        .ok_or(IdentError::AllFailed {
+            starts: outcomes.len(),
+        })?;
+    let reached_best = outcomes
+        .iter()
+        .filter(|o| o.objective <= outcome.objective * (1.0 + 1e-6) + 1e-300)
+        .count();
+    let converged = outcomes
+        .iter()
+        .filter(|o| o.objective.is_finite() && o.stop.converged())
+        .count();
+    let starts = Starts {
+        total: outcomes.len(),
+        converged,
+        failed,
+        reached_best,
+        best,
+    };
+    Ok(summarise(
+        cases, settings, &objective, outcome, starts, &lower, &upper, clock,
+    ))
+}
+
+#[allow(clippy::too_many_arguments)]
+fn summarise(
+    cases: &[LoadCase],
+    settings: &Settings,
+    objective: &Objective,
+    outcome: &Outcome,
+    starts: Starts,
+    lower: &[f64],
+    upper: &[f64],
+    clock: Instant,
+) -> Identification {
+    let theta = objective.theta(&outcome.parameters);
+    let model =
+        MsdModel::from_parameters(settings.dof, &theta).expect("bounded parameters are positive");
+    let fits: Vec<CaseFit> = cases
+        .iter()
+        .map(|c| {
+            let (sse, fit_percent) = c.fit(&c.simulate(&model));
+            CaseFit {
+                name: c.name.clone(),
+                sse,
+                fit_percent,
+                samples: c.window_len(),
+            }
+        })
+        .collect();
+    let n = objective.residual_count();
+    let q = objective.parameter_count();
+    let sse = outcome.objective;
+    let spread = total_spread(cases);
+    let uncertainty = uncertainty(objective, &outcome.parameters, lower, upper, settings.dof);
+    let mut warnings = uncertainty.warnings.clone();
+    if starts.failed > 0 {
+        warnings.push(format!(
+            "{} of {} starts failed (model not simulable) and were discarded",
+            starts.failed, starts.total
+        ));
+    }
+    if !outcome.stop.converged() {
+        warnings.push(format!(
+            "the best start stopped at the iteration limit ({} iterations)",
+            outcome.iterations
+        ));
+    }
+    let ln_term = n as f64 * (sse / n as f64).ln();
+    Identification {
+        dof: settings.dof,
+        masses: model.masses().to_vec(),
+        dampers: model.dampers().to_vec(),
+        springs: model.springs().to_vec(),
+        objective: sse,
+        fit_percent: 100.0 * (1.0 - (sse / spread).sqrt()),
+        cases: fits,
+        aic: ln_term + 2.0 * q as f64,
+        bic: ln_term + q as f64 * (n as f64).ln(),
+        residuals: n,
+        uncertainty,
+        starts,
+        iterations: outcome.iterations,
+        stop: format!("{:?}", outcome.stop),
+        run_time: clock.elapsed().as_secs_f64(),
+        warnings,
+    }
+}
+
+/// `Σ_l ‖y_l − ȳ_l‖²` over the windows (each case about its own mean).
+fn total_spread(cases: &[LoadCase]) -> f64 {
+    cases
+        .iter()
+        .map(|c| {
+            let w = &c.measured[c.window.0..=c.window.1];
+            let mean = w.iter().sum::<f64>() / w.len() as f64;
+            w.iter().map(|y| (y - mean).powi(2)).sum::<f64>()
+        })
+        .sum()
+}

@@ -1,0 +1,100 @@
+//! Looking at an identified model: predictions of load cases (validation on
+//! a test not used for fitting) and the one-at-a-time sensitivity of the
+//! objective (paper B figure 6: each parameter alone scaled by 1 + δ,
+//! δ ∈ [−3 %, +3 %]).
+
+use crate::case::LoadCase;
+use crate::estimate::CaseFit;
+use bumpsim_core::model::{MsdModel, parameter_count, parameter_name};
+use serde::Serialize;
+
+/// A simulated load case next to its measurement.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Prediction {
+    /// Fit in the window.
+    pub fit: CaseFit,
+    /// Sample times, s.
+    pub time: Vec<f64>,
+    /// Measured displacement, m.
+    pub measured: Vec<f64>,
+    /// Simulated displacement, m.
+    pub simulated: Vec<f64>,
+    /// Window start and end, s.
+    pub window: [f64; 2],
+}
+
+/// Simulates each case with `model`.
+pub fn predict(cases: &[LoadCase], model: &MsdModel) -> Vec<Prediction> {
+    cases
+        .iter()
+        .map(|c| {
+            let simulated = c.simulate(model);
+            let (sse, fit_percent) = c.fit(&simulated);
+            let time = (0..c.force.len())
+                .map(|k| c.start + k as f64 * c.step)
+                .collect::<Vec<_>>();
+            let window = [time[c.window.0], time[c.window.1]];
+            let fit = CaseFit {
+                name: c.name.clone(),
+                sse,
+                fit_percent,
+                samples: c.window_len(),
+            };
+            Prediction {
+                fit,
+                time,
+                measured: c.measured.clone(),
+                simulated,
+                window,
+            }
+        })
+        .collect()
+}
+
+/// The objective along one parameter.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Sweep {
+    /// Parameter name.
+    pub name: String,
+    /// Relative changes δ.
+    pub relative_change: Vec<f64>,
+    /// Objective at each δ, m².
+    pub objective: Vec<f64>,
+}
+
+/// The objective of `cases` when each parameter of `model` alone is scaled
+/// by `1 + δ` for `points` values of δ evenly over `[−fraction, fraction]`.
+pub fn sensitivity(
+    cases: &[LoadCase],
+    model: &MsdModel,
+    fraction: f64,
+    points: usize,
+) -> Vec<Sweep> {
+    let dof = model.dof();
+    let theta = model.parameters();
+    let deltas: Vec<f64> = (0..points.max(2))
+        .map(|j| fraction * (2.0 * j as f64 / (points.max(2) - 1) as f64 - 1.0))
+        .collect();
+    (0..parameter_count(dof))
+        .map(|i| {
+            let objective = deltas
+                .iter()
+                .map(|d| {
+                    let mut t = theta.clone();
+                    t[i] *= 1.0 + d;
+                    MsdModel::from_parameters(dof, &t).map_or(f64::NAN, |m| objective(cases, &m))
+                })
+                .collect();
+            Sweep {
+                name: parameter_name(dof, i),
+                relative_change: deltas.clone(),
+                objective,
+            }
+        })
+        .collect()
+}
+
+/// `F = Σ (x − x̂)²` over the windows of `cases`, m².
+pub fn objective(cases: &[LoadCase], model: &MsdModel) -> f64 {
+    cases.iter().map(|c| c.fit(&c.simulate(model)).0).sum()
+}

@@ -1,0 +1,89 @@
+//! Human-readable text for identification results: parameters with units,
+//! the DOF table, per-case fits. The CLI prints these strings; reports reuse them.
+
+use crate::estimate::Identification;
+use bumpsim_core::model::{ParameterKind, parameter_count, parameter_kind, parameter_name};
+use bumpsim_core::units::{Dimension, format_number, format_quantity};
+
+/// The dimension of a parameter kind.
+pub fn dimension(kind: ParameterKind) -> Dimension {
+    match kind {
+        ParameterKind::Mass => Dimension::Mass,
+        ParameterKind::Damper => Dimension::Damping,
+        ParameterKind::Spring => Dimension::Stiffness,
+    }
+}
+
+/// A parameter value with its display unit (kg, Ns/mm, N/mm).
+pub fn format_parameter(dof: usize, index: usize, value: f64) -> String {
+    format_quantity(value, dimension(parameter_kind(dof, index).0))
+}
+
+/// The parameter table: name, value, standard error, 95 % interval, flags.
+pub fn parameter_table(result: &Identification) -> String {
+    let dof = result.dof;
+    let theta = [&result.masses[..], &result.dampers, &result.springs].concat();
+    let u = &result.uncertainty;
+    let mut out = format!(
+        "{:<5} {:>14} {:>14} {:>32}  note\n",
+        "", "value", "std. error", "95 % interval"
+    );
+    for i in 0..parameter_count(dof) {
+        let se = u.standard_errors[i].map_or("-".to_string(), |s| format_parameter(dof, i, s));
+        let ci = u.ci95[i].map_or("-".to_string(), |[a, b]| {
+            format!(
+                "{} .. {}",
+                format_parameter(dof, i, a),
+                format_parameter(dof, i, b)
+            )
+        });
+        let note = match (u.fixed[i], u.at_bound[i]) {
+            (true, _) => "fixed",
+            (_, true) => "at bound",
+            _ => "",
+        };
+        let value = format_parameter(dof, i, theta[i]);
+        out += &format!(
+            "{:<5} {value:>14} {se:>14} {ci:>32}  {note}\n",
+            parameter_name(dof, i)
+        );
+    }
+    out
+}
+
+/// Per-case fit lines.
+pub fn case_lines(result: &Identification) -> String {
+    result
+        .cases
+        .iter()
+        .map(|c| {
+            format!(
+                "  {:<16} fit {:>7}  SSE {} m²  ({} samples)\n",
+                c.name,
+                format!("{} %", format_number(c.fit_percent, 4)),
+                format_number(c.sse, 4),
+                c.samples
+            )
+        })
+        .collect()
+}
+
+/// The thesis's table 1: DOF, objective, fit %, AIC, BIC, time.
+pub fn dof_table(results: &[Identification]) -> String {
+    let mut out = format!(
+        "{:>4} {:>14} {:>9} {:>12} {:>12} {:>10}\n",
+        "DOF", "objective m²", "fit %", "AIC", "BIC", "time"
+    );
+    for r in results {
+        out += &format!(
+            "{:>4} {:>14} {:>9} {:>12} {:>12} {:>10}\n",
+            r.dof,
+            format_number(r.objective, 5),
+            format_number(r.fit_percent, 4),
+            format_number(r.aic, 6),
+            format_number(r.bic, 6),
+            format_quantity(r.run_time, Dimension::Time)
+        );
+    }
+    out
+}

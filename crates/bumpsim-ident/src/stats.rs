@@ -1,0 +1,161 @@
+//! Uncertainty of the estimate from the Jacobian at the optimum.
+//!
+//! With the Jacobian `J` of the residuals with respect to the log
+//! parameters that are neither fixed nor at a bound (q of them), n
+//! residuals and `F = Σ r²`: `σ² = F / (n − q)`, `Cov(ln θ) = σ² (JᵀJ)⁻¹`
+//! (through the SVD `J = U S Vᵀ`: `(JᵀJ)⁻¹ = V S⁻² Vᵀ`). Standard errors of
+//! θ follow by the delta method, `SE(θ) = θ SE(ln θ)`; the 95 % intervals
+//! are `θ exp(± t₀.₉₇₅,ₙ₋q SE(ln θ))` (Student t; positive, as θ must be).
+//! A small ratio of the smallest to the largest singular value marks a
+//! poorly identifiable direction; its largest components are named.
+
+use crate::case::Objective;
+use crate::lm::LeastSquares;
+use bumpsim_core::model::{parameter_count, parameter_name};
+use nalgebra::DMatrix;
+use serde::Serialize;
+use statrs::distribution::{ContinuousCDF, StudentsT};
+
+/// Standard errors, intervals and correlations of the estimate.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Uncertainty {
+    /// Parameter names, thesis order.
+    pub names: Vec<String>,
+    /// Standard errors, SI; `None` for fixed parameters, parameters at a
+    /// bound, and when the Jacobian is rank deficient.
+    pub standard_errors: Vec<Option<f64>>,
+    /// 95 % intervals, SI.
+    pub ci95: Vec<Option<[f64; 2]>>,
+    /// Parameters at a bound.
+    pub at_bound: Vec<bool>,
+    /// Parameters held fixed.
+    pub fixed: Vec<bool>,
+    /// Correlation matrix of the estimated log parameters (p × p; `None`
+    /// where a parameter is not estimated).
+    pub correlation: Vec<Vec<Option<f64>>>,
+    /// Residual standard deviation σ, m.
+    pub residual_std: f64,
+    /// Degrees of freedom n − q.
+    pub degrees_of_freedom: usize,
+    /// Singular values of the log-parameter Jacobian, largest first.
+    pub singular_values: Vec<f64>,
+    /// Largest over smallest singular value.
+    pub condition: f64,
+    /// Warnings (parameters at bounds, poorly identifiable directions).
+    pub warnings: Vec<String>,
+}
+
+/// Uncertainty at free log parameters `p` of `objective`.
+pub fn uncertainty(
+    objective: &Objective,
+    p: &[f64],
+    lower: &[f64],
+    upper: &[f64],
+    dof: usize,
+) -> Uncertainty {
+    let total = parameter_count(dof);
+    let free = objective.free();
+    let (m, q_free) = (objective.residual_count(), free.len());
+    let mut r = vec![0.0; m];
+    let mut jac = DMatrix::zeros(m, q_free);
+    objective.evaluate(p, &mut r, Some(&mut jac));
+    let sse: f64 = r.iter().map(|v| v * v).sum();
+    let theta = objective.theta(p);
+    let names: Vec<String> = (0..total).map(|i| parameter_name(dof, i)).collect();
+    let bound_tolerance = 1e-6;
+    let at_bound_free: Vec<bool> = (0..q_free)
+        .map(|j| p[j] - lower[j] < bound_tolerance || upper[j] - p[j] < bound_tolerance)
+        .collect();
+    let estimated: Vec<usize> = (0..q_free).filter(|&j| !at_bound_free[j]).collect();
+    let mut result = Uncertainty {
+        standard_errors: vec![None; total],
+        ci95: vec![None; total],
+        at_bound: vec![false; total],
+        fixed: (0..total).map(|i| !free.contains(&i)).collect(),
+        correlation: vec![vec![None; total]; total],
+        residual_std: 0.0,
+        degrees_of_freedom: m.saturating_sub(estimated.len()),
+        singular_values: Vec::new(),
+        condition: f64::INFINITY,
+        warnings: Vec::new(),
+        names,
+    };
+    for (j, &i) in free.iter().enumerate().filter(|(j, _)| at_bound_free[*j]) {
+        result.at_bound[i] = true;
+        let side = if p[j] - lower[j] < bound_tolerance {
+            "lower"
+        } else {
+            "upper"
+        };
+        result.warnings.push(format!(
+            "{} is at its {side} bound ({}): not identifiable from these data within the bounds",
+            result.names[i],
+            crate::report::format_parameter(dof, i, theta[i])
+        ));
+    }
+    if estimated.is_empty() || result.degrees_of_freedom == 0 {
+        return result;
+    }
+    let je = DMatrix::from_fn(m, estimated.len(), |r, c| jac[(r, estimated[c])]);
+    let svd = je.svd(false, true);
+    let Some(v_t) = svd.v_t.as_ref() else {
+        return result;
+    };
+    let mut order: Vec<usize> = (0..estimated.len()).collect();
+    order.sort_by(|&a, &b| svd.singular_values[b].total_cmp(&svd.singular_values[a]));
+    result.singular_values = order.iter().map(|&k| svd.singular_values[k]).collect();
+    let (largest, smallest) = (
+        result.singular_values[0],
+        *result.singular_values.last().unwrap_or(&0.0),
+    );
+    result.condition = largest / smallest;
+    let variance = sse / result.degrees_of_freedom as f64;
+    result.residual_std = variance.sqrt();
+    if smallest <= 0.0 || !result.condition.is_finite() {
+        result
+            .warnings
+            .push("the Jacobian is rank deficient: no standard errors".into());
+        return result;
+    }
+    let k = estimated.len();
+    let cov = DMatrix::from_fn(k, k, |a, b| {
+        (0..k)
+            .map(|s| v_t[(s, a)] * v_t[(s, b)] / svd.singular_values[s].powi(2))
+            .sum::<f64>()
+            * variance
+    });
+    let t = StudentsT::new(0.0, 1.0, result.degrees_of_freedom as f64)
+        .map_or(1.96, |d| d.inverse_cdf(0.975));
+    for (a, &ja) in estimated.iter().enumerate() {
+        let i = free[ja];
+        let se_log = cov[(a, a)].sqrt();
+        let interval = [
+            theta[i] * (-t * se_log).exp(),
+            theta[i] * (t * se_log).exp(),
+        ];
+        let usable = se_log.is_finite() && interval.iter().all(|v| v.is_finite() && *v > 0.0);
+        result.standard_errors[i] = usable.then_some(theta[i] * se_log);
+        result.ci95[i] = usable.then_some(interval);
+        for (b, &jb) in estimated.iter().enumerate() {
+            result.correlation[i][free[jb]] = Some(cov[(a, b)] / (se_log * cov[(b, b)].sqrt()));
+        }
+    }
+    if result.condition > 1e6 {
+        let weakest = order[k - 1];
+        let mut parts: Vec<(f64, usize)> = (0..k)
+            .map(|c| (v_t[(weakest, c)].powi(2), free[estimated[c]]))
+            .collect();
+        parts.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let named: Vec<String> = parts
+            .iter()
+            .take(3)
+            .map(|(w, i)| format!("{} {:.0} %", result.names[*i], 100.0 * w))
+            .collect();
+        result.warnings.push(format!(
+            "poorly identifiable direction (condition number {:.2e}): mostly {}",
+            result.condition,
+            named.join(", ")
+        ));
+    }
+    result
+}

@@ -1,0 +1,232 @@
+//! The identification report: measured vs fitted displacement per case
+//! (solid vs dashed, as in the thesis figures), residuals, the DOF table and
+//! the ±3 % sensitivity of the objective, gathered in one HTML page.
+
+use crate::html::Html;
+use crate::plot::{LinePlot, PlotError, Series, Style};
+use bumpsim_core::units::{Dimension, format_number};
+use bumpsim_ident::estimate::Identification;
+use bumpsim_ident::explore::{Prediction, Sweep};
+use bumpsim_ident::report::{case_lines, dof_table, parameter_table};
+
+/// One DOF's outcome: identified (with its predictions) or failed.
+#[derive(Debug, Clone)]
+pub enum DofOutcome {
+    /// Identified.
+    Done {
+        /// The result.
+        result: Box<Identification>,
+        /// The cases simulated with the identified model.
+        predictions: Vec<Prediction>,
+    },
+    /// Could not be identified.
+    Failed {
+        /// Number of masses.
+        dof: usize,
+        /// Why.
+        reason: String,
+    },
+}
+
+/// An SVG file of the report: name and content.
+pub type Figure = (String, String);
+
+/// Measured (solid) vs fitted (dashed) displacement of one case.
+pub fn fit_plot(prediction: &Prediction, dof: usize) -> Result<String, PlotError> {
+    let title = format!(
+        "{}: measured vs {dof}-DOF model (fit {} %)",
+        prediction.fit.name,
+        format_number(prediction.fit.fit_percent, 4)
+    );
+    let mut plot = LinePlot::new(&title, Dimension::Time, Dimension::Length);
+    plot.add(Series::new(
+        "measured",
+        prediction.time.clone(),
+        prediction.measured.clone(),
+        Style::Solid,
+    ));
+    plot.add(Series::new(
+        "model",
+        prediction.time.clone(),
+        prediction.simulated.clone(),
+        Style::Dashed,
+    ));
+    plot.svg()
+}
+
+/// Residuals (model − measured) of every case in its window.
+pub fn residual_plot(predictions: &[Prediction], dof: usize) -> Result<String, PlotError> {
+    let mut plot = LinePlot::new(
+        &format!("Residuals of the {dof}-DOF model"),
+        Dimension::Time,
+        Dimension::Length,
+    );
+    for p in predictions {
+        let inside: Vec<usize> = (0..p.time.len())
+            .filter(|&k| p.time[k] >= p.window[0] && p.time[k] <= p.window[1])
+            .collect();
+        let t = inside.iter().map(|&k| p.time[k]).collect();
+        let r = inside
+            .iter()
+            .map(|&k| p.simulated[k] - p.measured[k])
+            .collect();
+        plot.add(Series::new(&p.fit.name, t, r, Style::Solid));
+    }
+    plot.svg()
+}
+
+/// The objective along each parameter (paper B figure 6).
+pub fn sensitivity_plot(sweeps: &[Sweep]) -> Result<String, PlotError> {
+    let plot = LinePlot::new(
+        "Objective when one parameter changes",
+        Dimension::Dimensionless,
+        Dimension::Dimensionless,
+    );
+    let mut plot = plot.with_labels(
+        Some("relative change of the parameter [%]"),
+        Some("objective F [m²]"),
+    );
+    for s in sweeps {
+        let x = s.relative_change.iter().map(|d| 100.0 * d).collect();
+        plot.add(Series::new(&s.name, x, s.objective.clone(), Style::Solid));
+    }
+    plot.svg()
+}
+
+/// Objective against the number of DOF.
+pub fn dof_plot(results: &[&Identification]) -> Result<String, PlotError> {
+    let plot = LinePlot::new(
+        "Objective against model size",
+        Dimension::Dimensionless,
+        Dimension::Dimensionless,
+    );
+    let mut plot = plot.with_labels(Some("number of masses [-]"), Some("objective F [m²]"));
+    let x = results.iter().map(|r| r.dof as f64).collect();
+    plot.add(Series::new(
+        "objective",
+        x,
+        results.iter().map(|r| r.objective).collect(),
+        Style::Solid,
+    ));
+    plot.svg()
+}
+
+/// Builds the SVG figures and the HTML page of an identification.
+/// `inputs` is the study file text; `settings` a one-line description.
+pub fn report(
+    title: &str,
+    inputs: &str,
+    settings: &str,
+    outcomes: &[DofOutcome],
+    sweeps: Option<&[Sweep]>,
+) -> Result<(String, Vec<Figure>), PlotError> {
+    let mut page = Html::new(title);
+    let mut figures = Vec::new();
+    page.heading("Inputs");
+    page.paragraph(settings);
+    page.preformatted(inputs);
+    let done: Vec<&Identification> = outcomes
+        .iter()
+        .filter_map(|o| match o {
+            DofOutcome::Done { result, .. } => Some(result.as_ref()),
+            DofOutcome::Failed { .. } => None,
+        })
+        .collect();
+    if done.len() > 1 {
+        page.heading("Model size (thesis table 1)");
+        let owned: Vec<Identification> = done.iter().map(|r| (*r).clone()).collect();
+        page.preformatted(&dof_table(&owned));
+        add(
+            &mut page,
+            &mut figures,
+            "dof.svg",
+            dof_plot(&done)?,
+            "objective against the number of masses",
+        );
+    }
+    for outcome in outcomes {
+        match outcome {
+            DofOutcome::Failed { dof, reason } => {
+                page.heading(&format!("{dof}-DOF model"));
+                page.failure(reason);
+            }
+            DofOutcome::Done {
+                result,
+                predictions,
+            } => section(&mut page, &mut figures, result, predictions)?,
+        }
+    }
+    if let Some(sweeps) = sweeps {
+        page.heading("Sensitivity of the objective");
+        add(
+            &mut page,
+            &mut figures,
+            "sensitivity.svg",
+            sensitivity_plot(sweeps)?,
+            "each parameter alone changed by up to ±3 %",
+        );
+    }
+    Ok((page.finish(), figures))
+}
+
+fn add(page: &mut Html, figures: &mut Vec<Figure>, name: &str, svg: String, caption: &str) {
+    page.figure(&svg, caption);
+    figures.push((name.to_string(), svg));
+}
+
+fn section(
+    page: &mut Html,
+    figures: &mut Vec<Figure>,
+    result: &Identification,
+    predictions: &[Prediction],
+) -> Result<(), PlotError> {
+    let dof = result.dof;
+    page.heading(&format!("{dof}-DOF model"));
+    page.paragraph(&format!(
+        "Objective {} m², overall fit {} %, {} of {} starts reached the best value ({} failed), {} s.",
+        format_number(result.objective, 5),
+        format_number(result.fit_percent, 4),
+        result.starts.reached_best,
+        result.starts.total,
+        result.starts.failed,
+        format_number(result.run_time, 3)
+    ));
+    page.preformatted(&parameter_table(result));
+    page.preformatted(&case_lines(result));
+    page.warnings(&result.warnings);
+    for p in predictions {
+        let name = format!("fit-{dof}dof-{}.svg", file_name(&p.fit.name));
+        add(
+            page,
+            figures,
+            &name,
+            fit_plot(p, dof)?,
+            &format!(
+                "{}: measured (solid) and simulated (dashed) displacement",
+                p.fit.name
+            ),
+        );
+    }
+    let name = format!("residuals-{dof}dof.svg");
+    add(
+        page,
+        figures,
+        &name,
+        residual_plot(predictions, dof)?,
+        "model minus measurement in the fit windows",
+    );
+    Ok(())
+}
+
+/// A file name from a case name.
+pub fn file_name(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
