@@ -229,16 +229,24 @@ impl LeastSquares for Objective<'_> {
         let b = &mut *guard;
         let full = parameter_count(self.dof);
         let mut row = 0;
+        let mut cached: Option<(f64, Discretised)> = None;
         for case in self.cases {
-            let d = match jacobian.is_some() {
-                true => Discretised::new(&model, case.step),
-                false => Discretised::plain(&model, case.step),
+            if cached.as_ref().is_none_or(|(step, _)| *step != case.step) {
+                let d = match jacobian.is_some() {
+                    true => Discretised::new(&model, case.step),
+                    false => Discretised::plain(&model, case.step),
+                };
+                cached = Some((case.step, d));
+            }
+            let Some((_, d)) = cached.as_ref() else {
+                return false;
             };
-            let n = case.force.len();
+            // nothing after the window enters the objective
+            let n = case.window.1 + 1;
             let jac = jacobian.is_some().then_some(&mut b.jac[..n * full]);
             let initial = case.initial_state(self.dof);
             d.simulate(
-                &case.force,
+                &case.force[..n],
                 &initial,
                 case.output_dof - 1,
                 &mut b.y[..n],

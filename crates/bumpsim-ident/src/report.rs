@@ -28,7 +28,7 @@ pub fn parameter_table(result: &Identification) -> String {
         "{:<5} {:>14} {:>14} {:>32}  note\n",
         "", "value", "std. error", "95 % interval"
     );
-    for i in 0..parameter_count(dof) {
+    for (i, &value) in theta.iter().enumerate().take(parameter_count(dof)) {
         let se = u.standard_errors[i].map_or("-".to_string(), |s| format_parameter(dof, i, s));
         let ci = u.ci95[i].map_or("-".to_string(), |[a, b]| {
             format!(
@@ -42,7 +42,7 @@ pub fn parameter_table(result: &Identification) -> String {
             (_, true) => "at bound",
             _ => "",
         };
-        let value = format_parameter(dof, i, theta[i]);
+        let value = format_parameter(dof, i, value);
         out += &format!(
             "{:<5} {value:>14} {se:>14} {ci:>32}  {note}\n",
             parameter_name(dof, i)

@@ -293,9 +293,9 @@ impl Study {
     /// Reads and processes the named cases (all when `names` is empty).
     pub fn cases_named(&self, dof: usize, names: &[String]) -> Result<Vec<LoadCase>, StudyError> {
         let mut tests = BTreeMap::new();
-        for name in names
+        if let Some(name) = names
             .iter()
-            .filter(|n| !self.case.iter().any(|c| &&c.name == n))
+            .find(|n| !self.case.iter().any(|c| &&c.name == n))
         {
             let known: Vec<&str> = self.case.iter().map(|c| c.name.as_str()).collect();
             return Err(StudyError::File {
