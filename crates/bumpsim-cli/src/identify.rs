@@ -191,12 +191,19 @@ fn write_outputs(
     }
     if let Some(dir) = &args.report {
         let inputs = std::fs::read_to_string(&args.study).unwrap_or_default();
+        let dofs: Vec<String> = outcomes
+            .iter()
+            .map(|o| match o {
+                DofOutcome::Done { result, .. } => result.dof.to_string(),
+                DofOutcome::Failed { dof, .. } => format!("{dof} (failed)"),
+            })
+            .collect();
+        let starts = args.starts.unwrap_or(study.model.starts);
+        let seed = args.seed.unwrap_or(study.model.seed);
         let settings = format!(
-            "Study {}; DOF {:?}; starts {}; seed {}.",
+            "Study {}; DOF {}; {starts} starts, seed {seed}; exact zoh discretisation.",
             args.study.display(),
-            outcomes.len(),
-            study.model.starts,
-            study.model.seed
+            dofs.join(", ")
         );
         let (html, figures) = report(
             "bumpsim identification",

@@ -675,3 +675,216 @@ fn signal_errors_exit_2_with_the_path_and_selector() {
     assert_eq!(missing.status.code(), Some(2));
     assert!(text(&missing.stderr).contains("no/such/test.mme"));
 }
+
+fn identify_example() -> PathBuf {
+    root().join("examples/identify/study.toml")
+}
+
+#[test]
+fn identify_the_bundled_example_writes_json_and_a_report() {
+    let dir = scratch("identify-example");
+    let json = dir.join("result.json");
+    let report = dir.join("report");
+    let run = bumpsim(&[
+        "identify",
+        identify_example().to_str().unwrap(),
+        "--starts",
+        "8",
+        "--json",
+        json.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let stdout = text(&run.stdout);
+    assert!(run.status.success(), "{stdout}{}", text(&run.stderr));
+    for expected in [
+        "3-DOF model",
+        "m1",
+        "kg",
+        "N/mm",
+        "Ns/mm",
+        "95 % interval",
+        "fit",
+    ] {
+        assert!(stdout.contains(expected), "missing '{expected}':\n{stdout}");
+    }
+    let result: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(result["dof"], 3);
+    for key in ["masses", "dampers", "springs"] {
+        assert!(
+            result[key]
+                .as_array()
+                .is_some_and(|a| a.iter().all(|v| v.as_f64().is_some_and(|x| x >= 1.0))),
+            "{key}"
+        );
+    }
+    assert!(result["objective"].as_f64().is_some_and(f64::is_finite));
+    let cases = result["cases"].as_array().unwrap();
+    assert_eq!(cases.len(), 3);
+    for case in cases {
+        assert!(case["fit_percent"].as_f64().unwrap() > 97.0, "{case}");
+        assert!(case["sse"].as_f64().is_some() && case["name"].is_string());
+    }
+    let html = std::fs::read_to_string(report.join("index.html")).unwrap();
+    assert!(html.contains("<svg") && html.contains("bumpsim 0.1.0"));
+    let predict = bumpsim(&[
+        "predict",
+        json.to_str().unwrap(),
+        identify_example().to_str().unwrap(),
+        "--case",
+        "pole",
+    ]);
+    let out = text(&predict.stdout);
+    assert!(
+        predict.status.success() && out.starts_with("pole: fit"),
+        "{out}{}",
+        text(&predict.stderr)
+    );
+}
+
+fn chromium() -> Option<PathBuf> {
+    let found = ["/usr/bin/chromium", "/usr/bin/chromium-browser"]
+        .into_iter()
+        .map(PathBuf::from)
+        .find(|p| p.exists());
+    if found.is_none() {
+        assert!(
+            std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_none(),
+            "BUMPSIM_REQUIRE_PEERS is set but chromium is not installed"
+        );
+        eprintln!("skipped: chromium not found (scripts/test installs it)");
+    }
+    found
+}
+
+#[test]
+fn the_identification_report_renders_in_headless_chromium() {
+    let Some(browser) = chromium() else { return };
+    let dir = scratch("report-browser");
+    let report = dir.join("report");
+    let run = bumpsim(&[
+        "identify",
+        identify_example().to_str().unwrap(),
+        "--dof",
+        "2,3",
+        "--starts",
+        "4",
+        "--report",
+        report.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let page = format!(
+        "file://{}",
+        report.join("index.html").canonicalize().unwrap().display()
+    );
+    let headless = |profile: &str, extra: &[&str]| {
+        Command::new(&browser)
+            .args([
+                "--headless",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--enable-logging=stderr",
+                "--v=0",
+            ])
+            .arg(format!("--user-data-dir={}", dir.join(profile).display()))
+            .args(extra)
+            .arg(&page)
+            .output()
+            .unwrap()
+    };
+    let dom = headless("profile-dom", &["--dump-dom"]);
+    let (html, log) = (text(&dom.stdout), text(&dom.stderr));
+    assert!(
+        html.contains("bumpsim identification") && html.trim_end().ends_with("</html>"),
+        "page did not load"
+    );
+    let svg_files = std::fs::read_dir(&report)
+        .unwrap()
+        .flatten()
+        .filter(|e| e.path().extension().is_some_and(|x| x == "svg"))
+        .count();
+    let figures: Vec<&str> = html.split("<figure class=\"plot\"").skip(1).collect();
+    assert_eq!(figures.len(), svg_files, "every plot is in the page");
+    for figure in &figures {
+        assert!(
+            figure.contains("<svg") && figure.contains("<polyline"),
+            "a plot is empty"
+        );
+    }
+    let console: Vec<&str> = log
+        .lines()
+        .filter(|l| l.contains("CONSOLE") || l.contains("Uncaught"))
+        .collect();
+    assert!(console.is_empty(), "console errors: {console:?}");
+    let artefacts = Path::new(env!("CARGO_TARGET_TMPDIR")).join("artefacts");
+    std::fs::create_dir_all(&artefacts).unwrap();
+    let shot = artefacts.join("identification-report.png");
+    let screenshot = headless(
+        "profile-shot",
+        &[
+            "--window-size=1200,2400",
+            &format!("--screenshot={}", shot.display()),
+        ],
+    );
+    assert!(screenshot.status.success(), "{}", text(&screenshot.stderr));
+    assert!(
+        std::fs::metadata(&shot).unwrap().len() > 10_000,
+        "screenshot kept at {}",
+        shot.display()
+    );
+}
+
+#[test]
+fn nhtsa_two_dof_fit_and_the_dof_table() {
+    let Some(_) = nhtsa_ev5() else { return };
+    let dir = scratch("identify-nhtsa");
+    let json = dir.join("result.json");
+    let study = root().join("examples/nhtsa-10146/study.toml");
+    let run = bumpsim(&[
+        "identify",
+        study.to_str().unwrap(),
+        "--dof",
+        "1..3",
+        "--json",
+        json.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let stdout = text(&run.stdout);
+    assert!(run.status.success(), "{stdout}{}", text(&run.stderr));
+    assert!(
+        stdout.contains(" DOF   objective m²     fit %          AIC          BIC       time"),
+        "{stdout}"
+    );
+    let result: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let results = result["results"].as_array().unwrap();
+    assert_eq!(results.len(), 3);
+    let two = &results[1];
+    assert_eq!(two["dof"], 2);
+    let fit = two["cases"][0]["fit_percent"].as_f64().unwrap();
+    assert!(fit >= 96.0, "2-DOF fit {fit} %");
+}
+
+#[test]
+fn identify_errors_exit_2() {
+    let missing = bumpsim(&["identify", "no/such/study.toml"]);
+    assert_eq!(missing.status.code(), Some(2));
+    assert!(text(&missing.stderr).contains("no/such/study.toml"));
+    let bad_dof = bumpsim(&[
+        "identify",
+        identify_example().to_str().unwrap(),
+        "--dof",
+        "0",
+    ]);
+    assert_eq!(bad_dof.status.code(), Some(2));
+    assert!(
+        text(&bad_dof.stderr).contains("--dof '0'"),
+        "{}",
+        text(&bad_dof.stderr)
+    );
+    let unknown_case = bumpsim(&["predict", "no.json", identify_example().to_str().unwrap()]);
+    assert_eq!(unknown_case.status.code(), Some(2));
+}

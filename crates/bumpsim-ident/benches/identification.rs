@@ -1,2 +1,83 @@
-//! placeholder
-fn main() {}
+//! Criterion benchmarks of identification: one Jacobian evaluation, a single
+//! start and the 32-start 3-DOF identification on three 500-sample load cases
+//! (the speed criterion: under 1 s on two cores). Figures: docs/benchmarks.md.
+
+use bumpsim_core::model::MsdModel;
+use bumpsim_ident::case::{LoadCase, Objective};
+use bumpsim_ident::estimate::{Settings, identify};
+use bumpsim_ident::lm::LeastSquares;
+use criterion::{Criterion, criterion_group, criterion_main};
+use nalgebra::DMatrix;
+use std::hint::black_box;
+
+const STEP: f64 = 2e-4;
+
+/// Three pendulum-like cases of 500 samples (0.1 s at 5 kHz) made with the
+/// exact zoh simulation of a known 3-DOF car, with a little deterministic noise.
+fn cases() -> Vec<LoadCase> {
+    let truth = MsdModel::new(
+        vec![30.0, 250.0, 1170.0],
+        vec![8e3, 2.5e4],
+        vec![1.5e6, 6e5],
+    )
+    .unwrap();
+    [(4.5e4, 0.06, 1.0), (3.5e4, 0.07, 1.5), (2.5e4, 0.085, 2.0)]
+        .iter()
+        .enumerate()
+        .map(|(l, &(peak, duration, shape))| {
+            let force: Vec<f64> = (0..500)
+                .map(|k| {
+                    let t = k as f64 * STEP;
+                    if t < duration {
+                        peak * (std::f64::consts::PI * t / duration).sin().powf(shape)
+                    } else {
+                        0.0
+                    }
+                })
+                .collect();
+            let mut c = LoadCase {
+                name: format!("case {l}"),
+                start: 0.0,
+                step: STEP,
+                force,
+                measured: vec![0.0; 500],
+                output_dof: 1,
+                initial_velocity: 0.0,
+                window: (0, 499),
+            };
+            c.measured = c
+                .simulate(&truth)
+                .iter()
+                .enumerate()
+                .map(|(k, x)| x + 5e-5 * ((k * 7 + l) as f64).sin())
+                .collect();
+            c
+        })
+        .collect()
+}
+
+fn benches(c: &mut Criterion) {
+    let cases = cases();
+    let objective = Objective::new(&cases, 3, &[None; 7]);
+    let p: Vec<f64> = [30.0f64, 250.0, 1170.0, 8e3, 2.5e4, 1.5e6, 6e5]
+        .iter()
+        .map(|v| v.ln())
+        .collect();
+    let mut r = vec![0.0; objective.residual_count()];
+    let mut jac = DMatrix::zeros(objective.residual_count(), 7);
+    c.bench_function("jacobian 3-DOF, 3 x 500 samples", |b| {
+        b.iter(|| objective.evaluate(black_box(&p), &mut r, Some(&mut jac)))
+    });
+    let mut group = c.benchmark_group("identify 3-DOF, 3 x 500 samples");
+    group.sample_size(10);
+    for starts in [1, 32] {
+        let settings = Settings::new(3, starts);
+        group.bench_function(format!("{starts} starts"), |b| {
+            b.iter(|| identify(black_box(&cases), &settings, &|| {}).unwrap())
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(identification, benches);
+criterion_main!(identification);
