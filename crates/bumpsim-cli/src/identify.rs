@@ -255,7 +255,7 @@ pub fn run_predict(args: &PredictArgs) -> Result<()> {
             write(
                 &dir.join(format!(
                     "predict-{}.svg",
-                    bumpsim_report::identification::file_name(&p.fit.name)
+                    bumpsim_report::file_name(&p.fit.name)
                 )),
                 &svg,
             )?;

@@ -8,6 +8,7 @@ use bumpsim_core::units::{Dimension, Unit, format_in, format_quantity};
 use bumpsim_io::isomme;
 use bumpsim_io::table::{OutputColumn, write_table};
 use bumpsim_io::test_data::{TestData, Validity};
+use bumpsim_report::file_name;
 use bumpsim_report::plot::{LinePlot, Series, Style};
 use bumpsim_signal::pipeline::{Pipeline, PipelineResult, export, extremes};
 use bumpsim_signal::process::{Combine, Step, align};
@@ -394,17 +395,4 @@ fn plot(folder: Option<&Path>, result: &PipelineResult) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// A file name from a signal name: letters, digits, `-` and `_` kept.
-fn file_name(name: &str) -> String {
-    name.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
 }

@@ -2,6 +2,7 @@
 //! (solid vs dashed, as in the thesis figures), residuals, the DOF table and
 //! the ±3 % sensitivity of the objective, gathered in one HTML page.
 
+use crate::file_name;
 use crate::html::Html;
 use crate::plot::{LinePlot, PlotError, Series, Style};
 use bumpsim_core::units::{Dimension, format_number};
@@ -216,17 +217,4 @@ fn section(
         "model minus measurement in the fit windows",
     );
     Ok(())
-}
-
-/// A file name from a case name.
-pub fn file_name(name: &str) -> String {
-    name.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
 }

@@ -35,3 +35,17 @@ pub(crate) fn register_font() {
             plotters::style::register_font("sans-serif", plotters::style::FontStyle::Normal, bytes);
     });
 }
+
+/// A file name from a signal or case name: ASCII letters, digits, `-` and
+/// `_` kept, anything else `_`.
+pub fn file_name(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
