@@ -7,6 +7,7 @@
 
 mod export;
 mod identify;
+mod impact;
 mod signal;
 mod simulate;
 
@@ -29,6 +30,12 @@ enum Command {
     Identify(identify::Args),
     /// Simulate load cases of a study with an identified model and report the fit (validation).
     Predict(identify::PredictArgs),
+    /// Simulate an impact: pendulum or barrier, bumper characteristic, MSD car.
+    Impact(impact::ImpactArgs),
+    /// Make a synthetic pendulum test series (ISO-MME and CSV) with a measurement chain.
+    Synth(impact::SynthArgs),
+    /// The reduced point mass of paper A: scale factor of a rigid test vehicle.
+    MassReduction(impact::ReductionArgs),
     /// Crash-test signals: channel tables, export with filters, processing pipelines.
     #[command(subcommand)]
     Signal(signal::Command),
@@ -44,6 +51,9 @@ fn main() -> ExitCode {
         Command::Export(command) => export::run(&command),
         Command::Signal(command) => signal::run(&command),
         Command::Identify(args) => identify::run(&args),
+        Command::Impact(args) => impact::run_impact(&args),
+        Command::MassReduction(args) => impact::run_reduction(&args),
+        Command::Synth(args) => impact::run_synth(&args),
         Command::Predict(args) => identify::run_predict(&args),
     };
     match result {

@@ -1,5 +1,6 @@
 //! bumpsim-report: pictures of results, for people who would rather look.
 //!
+//! - [`heatmap`]: heat maps of sweeps with a colour bar;
 //! - [`html`]: self-contained HTML reports;
 //! - [`identification`]: the identification report;
 //! - [`plot`]: line plots of time histories (measured solid, simulated
@@ -17,6 +18,7 @@
 //! assert!(svg.contains("<svg") && svg.contains("kN"));
 //! ```
 
+pub mod heatmap;
 pub mod html;
 pub mod identification;
 pub mod plot;

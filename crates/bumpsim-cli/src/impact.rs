@@ -1,0 +1,417 @@
+//! `bumpsim impact` and `bumpsim mass-reduction`: argument conversion and
+//! output around bumpsim-impact.
+
+use anyhow::{Context, Result, bail};
+use bumpsim_core::units::{Dimension, format_number, format_quantity, parse_quantity};
+use bumpsim_impact::bumper::Bumper;
+use bumpsim_impact::impact::{ImpactResult, Options, Scenario, simulate};
+use bumpsim_impact::presets::{PRESETS, find};
+use bumpsim_impact::reduction::{
+    Criterion, Grid, TwoDof, equivalent_mass, linspace, sweep_bumper, sweep_car,
+};
+use bumpsim_io::car::Car;
+use bumpsim_report::heatmap::HeatMap;
+use bumpsim_report::html::Html;
+use bumpsim_report::plot::{LinePlot, Series, Style};
+use indicatif::ProgressBar;
+use std::path::{Path, PathBuf};
+
+/// Arguments of `impact`.
+#[derive(Debug, clap::Args)]
+pub struct ImpactArgs {
+    /// The car (TOML or identification JSON); one mass = a rigid vehicle.
+    #[arg(long)]
+    car: PathBuf,
+    /// The bumper characteristic (TOML: ramp, plateau, unloading; or curve, unloading).
+    #[arg(long)]
+    bumper: PathBuf,
+    /// A load-case preset (`--case list` lists them).
+    #[arg(long, conflicts_with_all = ["pendulum", "barrier"])]
+    case: Option<String>,
+    /// An impactor (pendulum) of this mass, kg, hits the car at rest.
+    #[arg(long, conflicts_with = "barrier")]
+    pendulum: Option<f64>,
+    /// The car hits a rigid barrier.
+    #[arg(long)]
+    barrier: bool,
+    /// Impact speed: m/s, or with a unit ("8 km/h"); default: the preset's.
+    #[arg(long)]
+    speed: Option<String>,
+    /// Write the results as JSON.
+    #[arg(long)]
+    json: Option<PathBuf>,
+    /// Write the time histories as CSV (SI).
+    #[arg(long)]
+    csv: Option<PathBuf>,
+    /// Write SVG plots and an HTML report into this folder.
+    #[arg(long)]
+    report: Option<PathBuf>,
+}
+
+/// Arguments of `mass-reduction`.
+#[derive(Debug, clap::Args)]
+pub struct ReductionArgs {
+    /// Mass carrying the bumper, kg.
+    #[arg(long, default_value_t = 650.0)]
+    m1: f64,
+    /// The other mass, kg.
+    #[arg(long, default_value_t = 400.0)]
+    m2: f64,
+    /// Spring between them, N/m.
+    #[arg(long, default_value_t = 4e6)]
+    k: f64,
+    /// The bumper characteristic (TOML).
+    #[arg(long)]
+    bumper: PathBuf,
+    /// Impact speed into the rigid barrier: m/s or with a unit (default 8 km/h, paper A).
+    #[arg(long, default_value = "8 km/h")]
+    speed: String,
+    /// remaining (paper A figs 5–6) or maximum (fig. 7) deformation.
+    #[arg(long, default_value = "remaining")]
+    criterion: Criterion,
+    /// Also sweep: `car` (k 100..10000 kN/m × M1/(M1+M2) 0.52..0.95 at M1+M2)
+    /// or `bumper` (ramp 1000..8000 kN/m × F_max 40..200 kN).
+    #[arg(long)]
+    sweep: Option<String>,
+    /// Grid points per axis of the sweep.
+    #[arg(long, default_value_t = 50)]
+    points: usize,
+    /// Write the result as JSON.
+    #[arg(long)]
+    json: Option<PathBuf>,
+    /// Write the sweep grid as CSV.
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Write SVG plots and an HTML report into this folder.
+    #[arg(long)]
+    report: Option<PathBuf>,
+}
+
+fn speed(text: &str) -> Result<f64> {
+    parse_quantity(text, Dimension::Velocity).with_context(|| format!("--speed '{text}'"))
+}
+
+fn scenario(args: &ImpactArgs, car_mass: f64) -> Result<(Scenario, String)> {
+    let given = args.speed.as_deref().map(speed).transpose()?;
+    if let Some(name) = &args.case {
+        let preset = find(name).with_context(|| {
+            let names: Vec<&str> = PRESETS.iter().map(|p| p.name).collect();
+            format!("--case '{name}': known presets: {}", names.join(", "))
+        })?;
+        let label = format!(
+            "{} ({}, {}; {})",
+            preset.name,
+            preset.description,
+            format_number(preset.speed_kmh, 3) + " km/h",
+            preset.source
+        );
+        return Ok((preset.scenario(car_mass, given), label));
+    }
+    let v = given.context("--speed is needed without --case")?;
+    match (args.pendulum, args.barrier) {
+        (Some(mass), false) => Ok((
+            Scenario::Impactor { mass, speed: v },
+            format!("{mass} kg pendulum"),
+        )),
+        (None, true) => Ok((Scenario::Barrier { speed: v }, "rigid barrier".into())),
+        _ => bail!("say what hits: --case NAME, --pendulum MASS_KG or --barrier"),
+    }
+}
+
+/// Runs `impact`.
+pub fn run_impact(args: &ImpactArgs) -> Result<()> {
+    if args.case.as_deref() == Some("list") {
+        for p in PRESETS {
+            println!(
+                "{:<18} {:>6} km/h  {}  [{}]",
+                p.name,
+                format_number(p.speed_kmh, 3),
+                p.description,
+                p.source
+            );
+        }
+        return Ok(());
+    }
+    let car = Car::read_model_file(&args.car)?;
+    let bumper = Bumper::read(&args.bumper)?;
+    let (scenario, label) = scenario(args, car.model.total_mass())?;
+    let result = simulate(&car.model, &bumper, scenario, &Options::default())?;
+    let summary = summary(&result);
+    let name = car
+        .name
+        .clone()
+        .unwrap_or_else(|| args.car.display().to_string());
+    println!("{name} with {}: {label}", args.bumper.display());
+    print!("{summary}");
+    if let Some(path) = &args.json {
+        let json = serde_json::json!({
+            "scenario": scenario, "peak_force": result.peak_force, "max_compression": result.max_compression,
+            "remaining_compression": result.remaining_compression, "contact_time": result.contact_time,
+            "absorbed_energy": result.absorbed_energy, "energy": result.energy, "step": result.step,
+        });
+        write(path, &serde_json::to_string_pretty(&json)?)?;
+    }
+    if let Some(path) = &args.csv {
+        write(path, &histories(&result))?;
+    }
+    if let Some(dir) = &args.report {
+        impact_report(dir, &format!("{name} — {label}"), &summary, &result)?;
+    }
+    Ok(())
+}
+
+fn summary(r: &ImpactResult) -> String {
+    format!(
+        "  peak force {}\n  maximum compression {}, remaining {}\n  contact time {}\n  absorbed by the bumper {}; energy balance error {:.2e}\n",
+        format_quantity(r.peak_force, Dimension::Force),
+        format_quantity(r.max_compression, Dimension::Length),
+        format_quantity(r.remaining_compression, Dimension::Length),
+        format_quantity(r.contact_time, Dimension::Time),
+        format_quantity(r.absorbed_energy, Dimension::Energy),
+        r.energy.relative_error
+    )
+}
+
+fn histories(r: &ImpactResult) -> String {
+    let mut csv = String::from("time [s],force [N],compression [m]");
+    for b in &r.bodies {
+        csv += &format!(",x {b} [m],v {b} [m/s]");
+    }
+    csv.push('\n');
+    for k in 0..r.time.len() {
+        csv += &format!("{},{},{}", r.time[k], r.force[k], r.compression[k]);
+        for (x, v) in r.displacements.iter().zip(&r.velocities) {
+            csv += &format!(",{},{}", x[k], v[k]);
+        }
+        csv.push('\n');
+    }
+    csv
+}
+
+fn impact_report(dir: &Path, title: &str, summary: &str, r: &ImpactResult) -> Result<()> {
+    let mut page = Html::new(&format!("bumpsim impact: {title}"));
+    page.heading("Results");
+    page.preformatted(summary);
+    let mut force = LinePlot::new("Bumper force", Dimension::Time, Dimension::Force);
+    force.add(Series::new(
+        "force",
+        r.time.clone(),
+        r.force.clone(),
+        Style::Solid,
+    ));
+    let mut curve = LinePlot::new(
+        "Force against compression",
+        Dimension::Length,
+        Dimension::Force,
+    );
+    curve.add(Series::new(
+        "bumper",
+        r.compression.clone(),
+        r.force.clone(),
+        Style::Solid,
+    ));
+    let mut motion = LinePlot::new("Displacements", Dimension::Time, Dimension::Length);
+    for (b, x) in r.bodies.iter().zip(&r.displacements) {
+        motion.add(Series::new(b, r.time.clone(), x.clone(), Style::Solid));
+    }
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    for (name, plot, caption) in [
+        ("force.svg", force, "bumper force"),
+        ("force-compression.svg", curve, "force against compression"),
+        ("displacements.svg", motion, "displacements of the bodies"),
+    ] {
+        let svg = plot.svg()?;
+        page.figure(&svg, caption);
+        write(&dir.join(name), &svg)?;
+    }
+    write(&dir.join("index.html"), &page.finish())
+}
+
+fn write(path: &Path, text: &str) -> Result<()> {
+    bumpsim_io::table::create_parent(path)
+        .with_context(|| format!("cannot create the folder of {}", path.display()))?;
+    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))?;
+    println!("wrote {}", path.display());
+    Ok(())
+}
+
+/// Runs `mass-reduction`.
+pub fn run_reduction(args: &ReductionArgs) -> Result<()> {
+    let bumper = Bumper::read(&args.bumper)?;
+    let v0 = speed(&args.speed)?;
+    let car = TwoDof {
+        m1: args.m1,
+        m2: args.m2,
+        k: args.k,
+    };
+    let r = equivalent_mass(&car, &bumper, v0, args.criterion)?;
+    let text = format!(
+        "2-DOF car M1 {}, M2 {}, k {} at {} into a rigid barrier ({} criterion):\n  2-DOF deformation: maximum {}, remaining {}\n  equivalent single mass M* = {}, scale factor M*/(M1+M2) = {}\n",
+        format_quantity(car.m1, Dimension::Mass),
+        format_quantity(car.m2, Dimension::Mass),
+        format_quantity(car.k, Dimension::Stiffness),
+        format_quantity(v0, Dimension::Velocity),
+        if args.criterion == Criterion::Remaining {
+            "remaining"
+        } else {
+            "maximum"
+        },
+        format_quantity(r.max_compression, Dimension::Length),
+        format_quantity(r.remaining_compression, Dimension::Length),
+        format_quantity(r.equivalent_mass, Dimension::Mass),
+        format_number(r.scale_factor, 4)
+    );
+    print!("{text}");
+    if let Some(path) = &args.json {
+        write(path, &serde_json::to_string_pretty(&r)?)?;
+    }
+    let grid = args
+        .sweep
+        .as_deref()
+        .map(|which| sweep(args, &bumper, &car, v0, which))
+        .transpose()?;
+    if let (Some(grid), Some(path)) = (&grid, &args.output) {
+        write(path, &grid_csv(grid))?;
+    }
+    if let Some(dir) = &args.report {
+        let mut page = Html::new("bumpsim mass reduction (paper A)");
+        page.heading("Result");
+        page.preformatted(&text);
+        if let Some(grid) = &grid {
+            let svg = heat_map(grid).svg()?;
+            page.heading("Sweep");
+            page.figure(&svg, "scale factor M*/(M1+M2) over the grid");
+            write(&dir.join("sweep.svg"), &svg)?;
+        }
+        write(&dir.join("index.html"), &page.finish())?;
+    }
+    Ok(())
+}
+
+fn sweep(
+    args: &ReductionArgs,
+    bumper: &Bumper,
+    car: &TwoDof,
+    v0: f64,
+    which: &str,
+) -> Result<Grid> {
+    if args.points < 2 {
+        bail!("--points {}: at least 2 per axis", args.points);
+    }
+    let bar = ProgressBar::new(args.points as u64);
+    let n = args.points;
+    let grid = match which {
+        "car" => sweep_car(
+            car.m1 + car.m2,
+            linspace(1e5, 1e7, n),
+            linspace(0.52, 0.95, n),
+            bumper,
+            v0,
+            args.criterion,
+            &|| bar.inc(1),
+        ),
+        "bumper" => sweep_bumper(
+            car,
+            linspace(1e6, 8e6, n),
+            linspace(40e3, 200e3, n),
+            bumper.unloading_slope(),
+            v0,
+            args.criterion,
+            &|| bar.inc(1),
+        ),
+        other => bail!("--sweep '{other}': expected car or bumper"),
+    };
+    bar.finish_and_clear();
+    let found = grid.values.iter().flatten().flatten().count();
+    println!("sweep {which}: {n} × {n} grid, {found} cells with an answer");
+    Ok(grid)
+}
+
+fn grid_csv(grid: &Grid) -> String {
+    let mut csv = format!("{},{},scale factor [-]\n", grid.x_label, grid.y_label);
+    for (i, x) in grid.x.iter().enumerate() {
+        for (j, y) in grid.y.iter().enumerate() {
+            let value = grid.values[i][j].map_or(String::new(), |v| v.to_string());
+            csv += &format!("{x},{y},{value}\n");
+        }
+    }
+    csv
+}
+
+fn heat_map(grid: &Grid) -> HeatMap {
+    let scale = |label: &str, v: &[f64]| match label.contains("[N/m]") || label.contains("[N]") {
+        true => (
+            label.replace("[N/m]", "[kN/m]").replace("[N]", "[kN]"),
+            v.iter().map(|x| x / 1e3).collect(),
+        ),
+        false => (label.to_string(), v.to_vec()),
+    };
+    let (x_label, x) = scale(&grid.x_label, &grid.x);
+    let (y_label, y) = scale(&grid.y_label, &grid.y);
+    HeatMap {
+        title: "Scale factor for mass (paper A)".into(),
+        x_label,
+        y_label,
+        value_label: "M*/(M1+M2) [-]".into(),
+        x,
+        y,
+        values: grid.values.clone(),
+    }
+}
+
+/// Arguments of `synth`.
+#[derive(Debug, clap::Args)]
+pub struct SynthArgs {
+    /// The series file (TOML: car, seed, [chain], [[head]] with name, bumper, mass, speed).
+    series: PathBuf,
+    /// Output folder: one ISO-MME test and one CSV per head, plus `generated-by.toml`.
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+/// Runs `synth`.
+pub fn run_synth(args: &SynthArgs) -> Result<()> {
+    let (heads, provenance) = bumpsim_impact::synth::make_series(&args.series)?;
+    let existing = std::fs::read_dir(&args.output).is_ok_and(|mut d| d.next().is_some());
+    if existing {
+        bail!(
+            "-o {}: the folder exists and is not empty; choose a new folder",
+            args.output.display()
+        );
+    }
+    for (name, channels) in &heads {
+        let metadata = vec![(
+            "Title".to_string(),
+            format!("{name}: synthetic pendulum test (bumpsim synth)"),
+        )];
+        let mme = bumpsim_io::isomme::write(&args.output.join(name), name, &metadata, channels)?;
+        println!("wrote {}", mme.display());
+        let (time, columns) = bumpsim_signal::process::align(channels)?;
+        let output: Vec<bumpsim_io::table::OutputColumn> = channels
+            .iter()
+            .zip(&columns)
+            .map(|(c, values)| bumpsim_io::table::OutputColumn {
+                name: &c.code,
+                unit: bumpsim_core::units::Unit::si(c.dimension),
+                values,
+            })
+            .collect();
+        let csv = args.output.join(format!("{name}.csv"));
+        bumpsim_io::table::write_table(&csv, &time, &output)?;
+        println!("wrote {}", csv.display());
+    }
+    write(
+        &args.output.join("generated-by.toml"),
+        &provenance
+            .lines()
+            .map(|l| {
+                if l.starts_with('#') {
+                    l.to_string()
+                } else {
+                    format!("#   {l}")
+                }
+            })
+            .collect::<Vec<_>>()
+            .join("\n"),
+    )
+}

@@ -1,0 +1,319 @@
+//! Synthetic pendulum test series: what a lab would record if a pendulum
+//! hit this car through this bumper (spec §5), for examples and tests.
+//!
+//! For each head, the impact is simulated ([`impact`](crate::impact)) with
+//! histories every `T/10` (T the sample interval). The measurement chain:
+//! - the load cell measures the bumper force, plus Gaussian noise;
+//! - left and right side-member accelerometers on m1 measure its
+//!   acceleration (central differences of its velocity) in g, plus a bias
+//!   each and Gaussian noise;
+//! - every channel passes a causal 4th-order Butterworth anti-alias filter
+//!   at a quarter of the sampling rate, then is sampled every T;
+//! - a pre-trigger of zeros (plus noise and bias) precedes the impact.
+//!
+//! Noise comes from a ChaCha8 stream seeded per series (Box–Muller), so a
+//! series is reproducible bit for bit.
+
+use crate::bumper::Bumper;
+use crate::impact::{ImpactError, Options, Scenario, simulate};
+use bumpsim_core::channel::Channel;
+use bumpsim_core::model::MsdModel;
+use bumpsim_core::series::UniformSeries;
+use bumpsim_core::units::{Dimension, STANDARD_GRAVITY};
+use bumpsim_signal::filter::Butterworth;
+use rand_chacha::ChaCha8Rng;
+use rand_core::{Rng, SeedableRng};
+
+/// One impactor head: its name, the bumper characteristic it meets, the
+/// pendulum mass (kg) and speed (m/s).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Head {
+    /// Test name (also the ISO-MME folder name).
+    pub name: String,
+    /// The bumper as this head loads it.
+    pub bumper: Bumper,
+    /// Pendulum mass, kg.
+    pub mass: f64,
+    /// Impact speed, m/s.
+    pub speed: f64,
+}
+
+/// The measurement chain.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Chain {
+    /// Sample interval, s.
+    pub step: f64,
+    /// Pre-trigger, s.
+    pub pretrigger: f64,
+    /// Recorded time after contact, s.
+    pub duration: f64,
+    /// Load-cell noise, N rms.
+    pub force_noise: f64,
+    /// Accelerometer noise, m/s² rms.
+    pub acceleration_noise: f64,
+    /// Accelerometer biases (left, right), m/s².
+    pub biases: [f64; 2],
+    /// Seed of the noise.
+    pub seed: u64,
+}
+
+impl Default for Chain {
+    fn default() -> Self {
+        Chain {
+            step: 1e-4,
+            pretrigger: 0.01,
+            duration: 0.16,
+            force_noise: 150.0,
+            acceleration_noise: 0.4 * STANDARD_GRAVITY,
+            biases: [0.15 * STANDARD_GRAVITY, -0.10 * STANDARD_GRAVITY],
+            seed: 1,
+        }
+    }
+}
+
+/// Gaussian noise by Box–Muller.
+fn gaussian(rng: &mut ChaCha8Rng) -> f64 {
+    let u = |rng: &mut ChaCha8Rng| ((rng.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64;
+    let (a, b) = (u(rng), u(rng));
+    (-2.0 * a.ln()).sqrt() * (2.0 * std::f64::consts::PI * b).cos()
+}
+
+/// The three channels (load cell, left and right accelerometer) of one head.
+/// `index` selects the noise stream (the head's position in the series).
+pub fn record(
+    car: &MsdModel,
+    head: &Head,
+    chain: &Chain,
+    index: u64,
+) -> Result<Vec<Channel>, ImpactError> {
+    let fine = chain.step / 10.0;
+    let options = Options {
+        output_step: fine,
+        duration: chain.duration.max(1.0),
+        ..Options::default()
+    };
+    let impact = simulate(
+        car,
+        &head.bumper,
+        Scenario::Impactor {
+            mass: head.mass,
+            speed: head.speed,
+        },
+        &options,
+    )?;
+    let length = ((chain.pretrigger + chain.duration) / fine).round() as usize;
+    let pre = (chain.pretrigger / fine).round() as usize;
+    let at = |h: &[f64], k: usize| {
+        if k < pre {
+            0.0
+        } else {
+            h.get(k - pre).or(h.last()).copied().unwrap_or(0.0)
+        }
+    };
+    let force: Vec<f64> = (0..length).map(|k| at(&impact.force, k)).collect();
+    let v1 = &impact.velocities[1];
+    let accel: Vec<f64> = (0..length)
+        .map(|k| {
+            (at(v1, k + 1) - at(v1, k.saturating_sub(1))) / (fine * if k == 0 { 1.0 } else { 2.0 })
+        })
+        .collect();
+    let mut rng = ChaCha8Rng::seed_from_u64(chain.seed.wrapping_mul(1000).wrapping_add(index));
+    let anti_alias =
+        Butterworth::new(4, 0.25 / chain.step, fine).map_err(|_| ImpactError::Parameter {
+            name: "sample interval (s)",
+            value: chain.step,
+            expected: "positive and finite",
+        })?;
+    let sample = |signal: &[f64]| -> Vec<f64> {
+        anti_alias.causal(signal).into_iter().step_by(10).collect()
+    };
+    let mut channels = Vec::new();
+    let mut noisy = |values: Vec<f64>, sigma: f64, bias: f64| -> Vec<f64> {
+        values
+            .into_iter()
+            .map(|v| v + bias + sigma * gaussian(&mut rng))
+            .collect()
+    };
+    let load = noisy(sample(&force), chain.force_noise, 0.0);
+    let left = noisy(sample(&accel), chain.acceleration_noise, chain.biases[0]);
+    let right = noisy(sample(&accel), chain.acceleration_noise, chain.biases[1]);
+    for (code, name, dimension, values) in [
+        (
+            "P0IMPA000000FOXP",
+            "Pendulum load cell X",
+            Dimension::Force,
+            load,
+        ),
+        (
+            "10SIMELE0000ACXP",
+            "Side member left X",
+            Dimension::Acceleration,
+            left,
+        ),
+        (
+            "10SIMERI0000ACXP",
+            "Side member right X",
+            Dimension::Acceleration,
+            right,
+        ),
+    ] {
+        let series = UniformSeries::new(-chain.pretrigger, chain.step, values).map_err(|_| {
+            ImpactError::NoSeparation {
+                duration: chain.duration,
+            }
+        })?;
+        let mut c = Channel::new(code, name, dimension, series);
+        c.source_unit = if dimension == Dimension::Force {
+            "kN".into()
+        } else {
+            "g".into()
+        };
+        channels.push(c);
+    }
+    Ok(channels)
+}
+
+/// A series file (TOML): the car, the noise seed, optional chain settings
+/// and the heads. Paths relative to the file.
+#[derive(Debug, Clone, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SeriesFile {
+    /// Car file (TOML or model JSON).
+    pub car: std::path::PathBuf,
+    /// Noise seed.
+    #[serde(default = "one")]
+    pub seed: u64,
+    /// Chain settings (SI, accelerometer figures in g).
+    #[serde(default)]
+    pub chain: ChainFile,
+    /// The heads.
+    pub head: Vec<HeadFile>,
+}
+
+fn one() -> u64 {
+    1
+}
+
+/// `[chain]` of a series file.
+#[derive(Debug, Clone, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChainFile {
+    /// Sample interval, s.
+    pub step: Option<f64>,
+    /// Pre-trigger, s.
+    pub pretrigger: Option<f64>,
+    /// Recorded time after contact, s.
+    pub duration: Option<f64>,
+    /// Load-cell noise, N rms.
+    pub force_noise: Option<f64>,
+    /// Accelerometer noise, g rms.
+    pub acceleration_noise: Option<f64>,
+    /// Accelerometer biases (left, right), g.
+    pub biases: Option<[f64; 2]>,
+}
+
+/// `[[head]]` of a series file.
+#[derive(Debug, Clone, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HeadFile {
+    /// Test name.
+    pub name: String,
+    /// Bumper file as this head loads it.
+    pub bumper: std::path::PathBuf,
+    /// Pendulum mass, kg.
+    pub mass: f64,
+    /// Speed: m/s, or text with a unit ("6 km/h").
+    pub speed: toml::Value,
+}
+
+/// Why a series cannot be made.
+#[derive(Debug, thiserror::Error)]
+pub enum SynthError {
+    /// A file or value.
+    #[error("{path}: {message}")]
+    File {
+        /// The file.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// The impact.
+    #[error("head '{head}': {source}")]
+    Impact {
+        /// The head.
+        head: String,
+        /// The cause.
+        source: ImpactError,
+    },
+}
+
+/// Reads a series file and makes every head's channels; returns the car
+/// name, the heads' channels, and the text of every input (for provenance).
+#[allow(clippy::type_complexity)]
+pub fn make_series(
+    path: &std::path::Path,
+) -> Result<(Vec<(String, Vec<Channel>)>, String), SynthError> {
+    let error = |p: &std::path::Path, message: String| SynthError::File {
+        path: p.display().to_string(),
+        message,
+    };
+    let text =
+        std::fs::read_to_string(path).map_err(|e| error(path, format!("cannot read: {e}")))?;
+    let file: SeriesFile = toml::from_str(&text).map_err(|e| error(path, e.to_string()))?;
+    let base = path.parent().unwrap_or(std::path::Path::new("."));
+    let car_path = base.join(&file.car);
+    let car = bumpsim_io::car::Car::read_model_file(&car_path)
+        .map_err(|e| error(&car_path, e.to_string()))?;
+    let g = STANDARD_GRAVITY;
+    let d = Chain::default();
+    let c = &file.chain;
+    let chain = Chain {
+        step: c.step.unwrap_or(d.step),
+        pretrigger: c.pretrigger.unwrap_or(d.pretrigger),
+        duration: c.duration.unwrap_or(d.duration),
+        force_noise: c.force_noise.unwrap_or(d.force_noise),
+        acceleration_noise: c.acceleration_noise.map_or(d.acceleration_noise, |a| a * g),
+        biases: c.biases.map_or(d.biases, |[l, r]| [l * g, r * g]),
+        seed: file.seed,
+    };
+    let mut provenance = format!("# series file {}\n{text}\n", path.display());
+    provenance += &format!(
+        "# car file {}\n{}\n",
+        car_path.display(),
+        std::fs::read_to_string(&car_path).unwrap_or_default()
+    );
+    let mut out = Vec::new();
+    for (index, h) in file.head.iter().enumerate() {
+        let bumper_path = base.join(&h.bumper);
+        let bumper = Bumper::read(&bumper_path).map_err(|e| error(&bumper_path, e.to_string()))?;
+        provenance += &format!(
+            "# bumper file {}\n{}\n",
+            bumper_path.display(),
+            std::fs::read_to_string(&bumper_path).unwrap_or_default()
+        );
+        let speed = match &h.speed {
+            toml::Value::Float(v) => Ok(*v),
+            toml::Value::Integer(v) => Ok(*v as f64),
+            toml::Value::String(s) => bumpsim_core::units::parse_quantity(s, Dimension::Velocity)
+                .map_err(|e| e.to_string()),
+            other => Err(format!(
+                "speed {other}: expected m/s or text such as \"6 km/h\""
+            )),
+        }
+        .map_err(|m| error(path, format!("head '{}': {m}", h.name)))?;
+        let head = Head {
+            name: h.name.clone(),
+            bumper,
+            mass: h.mass,
+            speed,
+        };
+        let channels = record(&car.model, &head, &chain, index as u64).map_err(|source| {
+            SynthError::Impact {
+                head: h.name.clone(),
+                source,
+            }
+        })?;
+        out.push((h.name.clone(), channels));
+    }
+    Ok((out, provenance))
+}
