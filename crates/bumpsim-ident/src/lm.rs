@@ -54,7 +54,7 @@ pub struct Settings {
 impl Default for Settings {
     fn default() -> Self {
         Settings {
-            max_iterations: 400,
+            max_iterations: 1000,
             ftol: 1e-12,
             xtol: 1e-10,
             gtol: 1e-12,

@@ -195,7 +195,10 @@ fn the_thesis_start_converges_without_nan_on_the_bundled_example() {
     assert!(all.iter().all(|v| v.is_finite() && *v >= 1.0), "{all:?}");
     assert!(result.objective.is_finite());
     assert_eq!(result.starts.converged, 1, "stop: {}", result.stop);
-    assert!(result.fit_percent > 95.0, "fit {}", result.fit_percent);
+    // alone it may stop in a local minimum; with a few more starts the best fit is found
+    settings.starts = 8;
+    let result = identify(&cases, &settings, &|| {}).unwrap();
+    assert!(result.fit_percent > 99.0, "fit {}", result.fit_percent);
 }
 
 #[test]
