@@ -52,6 +52,9 @@ pub enum Command {
         /// Write SVG plots of raw vs processed signals into this folder.
         #[arg(long)]
         plot: Option<PathBuf>,
+        /// Write the plots and an HTML report into this folder.
+        #[arg(long)]
+        report: Option<PathBuf>,
     },
 }
 
@@ -125,7 +128,13 @@ pub fn run(command: &Command) -> Result<()> {
             pipeline,
             output,
             plot,
-        } => process(pipeline, output.as_deref(), plot.as_deref()),
+            report,
+        } => process(
+            pipeline,
+            output.as_deref(),
+            plot.as_deref(),
+            report.as_deref(),
+        ),
     }
 }
 
@@ -264,7 +273,7 @@ fn run_export(args: &ExportArgs) -> Result<()> {
         )?;
         println!("wrote {}", mme.display());
     }
-    plot(args.plot.as_deref(), &result)
+    plot(args.plot.as_deref(), &result).map(|_| ())
 }
 
 fn output_units(texts: &[String]) -> Result<Vec<Unit>> {
@@ -285,12 +294,18 @@ fn refuse_existing(folder: &Path) -> Result<()> {
     Ok(())
 }
 
-fn process(path: &Path, output: Option<&Path>, plot_dir: Option<&Path>) -> Result<()> {
+fn process(
+    path: &Path,
+    output: Option<&Path>,
+    plot_dir: Option<&Path>,
+    report_dir: Option<&Path>,
+) -> Result<()> {
     let pipeline = Pipeline::read(path)?;
     let result = pipeline.run()?;
     report(&result);
+    let mut balance = String::new();
     if let Some(b) = &result.balance {
-        println!(
+        balance = format!(
             "momentum balance over {} .. {}: impulse {} vs momentum change {} of {} ({:+.2} %)",
             format_quantity(b.window[0], Dimension::Time),
             format_quantity(b.window[1], Dimension::Time),
@@ -299,6 +314,7 @@ fn process(path: &Path, output: Option<&Path>, plot_dir: Option<&Path>) -> Resul
             format_in(b.mass, unit("kg")),
             100.0 * b.relative_difference
         );
+        println!("{balance}");
     }
     let output = output
         .map(Path::to_path_buf)
@@ -307,7 +323,23 @@ fn process(path: &Path, output: Option<&Path>, plot_dir: Option<&Path>) -> Resul
         Some(output) => write_csv(&output, &result.signals, &[])?,
         None => println!("no CSV written: give -o OUT.csv or 'output' in the pipeline"),
     }
-    plot(plot_dir, &result)
+    plot(plot_dir, &result)?;
+    let Some(dir) = report_dir else { return Ok(()) };
+    let mut page =
+        bumpsim_report::html::Html::new(&format!("bumpsim signal processing: {}", path.display()));
+    page.heading("Pipeline");
+    page.preformatted(&std::fs::read_to_string(path).unwrap_or_default());
+    page.heading("Signals");
+    page.preformatted(&format!("{}{balance}", summary(&result)));
+    page.warnings(&result.warnings);
+    for (name, svg) in plot(Some(dir), &result)? {
+        page.figure(&svg, &name);
+    }
+    let index = dir.join("index.html");
+    std::fs::write(&index, page.finish())
+        .with_context(|| format!("cannot write {}", index.display()))?;
+    println!("wrote {}", index.display());
+    Ok(())
 }
 
 fn newton_seconds(value: f64) -> String {
@@ -318,9 +350,16 @@ fn report(result: &PipelineResult) {
     for w in &result.warnings {
         eprintln!("warning: {w}");
     }
+    print!("{}", summary(result));
+}
+
+/// One line per signal: peak with its time, minimum and maximum, with units.
+fn summary(result: &PipelineResult) -> String {
+    let mut out = String::new();
     for s in &result.signals {
         let e = extremes(s);
-        println!(
+        outln!(
+            out,
             "{}: peak {} at {}; min {}, max {}",
             s.code,
             format_quantity(e.peak, s.dimension),
@@ -329,6 +368,7 @@ fn report(result: &PipelineResult) {
             format_quantity(e.max, s.dimension)
         );
     }
+    out
 }
 
 fn write_csv(path: &Path, signals: &[Channel], units: &[Unit]) -> Result<()> {
@@ -361,8 +401,12 @@ fn write_csv(path: &Path, signals: &[Channel], units: &[Unit]) -> Result<()> {
     Ok(())
 }
 
-fn plot(folder: Option<&Path>, result: &PipelineResult) -> Result<()> {
-    let Some(folder) = folder else { return Ok(()) };
+/// Writes raw-vs-processed plots into `folder`; returns (file name, SVG).
+fn plot(folder: Option<&Path>, result: &PipelineResult) -> Result<Vec<(String, String)>> {
+    let Some(folder) = folder else {
+        return Ok(Vec::new());
+    };
+    let mut written = Vec::new();
     std::fs::create_dir_all(folder)
         .with_context(|| format!("cannot create {}", folder.display()))?;
     for (raw, processed) in result.raw.iter().zip(&result.signals) {
@@ -388,11 +432,14 @@ fn plot(folder: Option<&Path>, result: &PipelineResult) -> Result<()> {
         plots[0].add(curve(processed, "processed", Style::Dashed));
         for (i, plot) in plots.iter().enumerate() {
             let suffix = if i == 0 { "" } else { "-raw" };
-            let path = folder.join(format!("{}{suffix}.svg", file_name(&processed.code)));
-            std::fs::write(&path, plot.svg()?)
+            let name = format!("{}{suffix}.svg", file_name(&processed.code));
+            let path = folder.join(&name);
+            let svg = plot.svg()?;
+            std::fs::write(&path, &svg)
                 .with_context(|| format!("cannot write {}", path.display()))?;
             println!("wrote {}", path.display());
+            written.push((name, svg));
         }
     }
-    Ok(())
+    Ok(written)
 }

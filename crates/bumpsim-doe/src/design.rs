@@ -1,0 +1,296 @@
+//! Experimental designs in coded units (spec §7, thesis ch. 3.5).
+//!
+//! Coded units: `z = (X − X_centre) / (X_high − X_centre)`, so the low and
+//! high levels are −1 and +1. Designs:
+//! - two-level full factorial 2^k (standard order, first factor fastest) with
+//!   centre points;
+//! - fractional factorial 2^(k−p) from generators such as `D=AB`, `E=-AC`;
+//!   its resolution is computed from the defining relation (the shortest
+//!   word among all products of the generator words), not assumed;
+//! - central composite: face-centred (α = 1) or circumscribed
+//!   (α = (2^k)^(1/4), rotatable);
+//! - Latin hypercube and uniform random samples on [−1, 1]^k from a seed.
+//!
+//! ```
+//! use bumpsim_doe::design::{fractional_factorial, resolution};
+//! let d = fractional_factorial(&["A", "B", "C", "D=AB", "E=AC", "F=BC", "G=ABC"]).unwrap();
+//! assert_eq!(d.runs.len(), 8);
+//! assert_eq!(resolution(&["D=AB", "E=AC", "F=BC", "G=ABC"]).unwrap(), 3);
+//! ```
+
+use rand_chacha::ChaCha8Rng;
+use rand_core::{Rng, SeedableRng};
+
+/// Why a design cannot be made.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum DesignError {
+    /// A generator is malformed.
+    #[error("generator '{generator}': {reason}")]
+    Generator {
+        /// The generator text.
+        generator: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A size is out of range.
+    #[error("design: {0}")]
+    Size(String),
+}
+
+/// A design: factor names and runs in coded units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Design {
+    /// Factor names.
+    pub factors: Vec<String>,
+    /// Runs, one row of coded levels per run.
+    pub runs: Vec<Vec<f64>>,
+}
+
+/// Full factorial 2^k in standard order (first factor alternates fastest),
+/// then `centre` centre points.
+pub fn full_factorial(factors: &[&str], centre: usize) -> Result<Design, DesignError> {
+    let k = factors.len();
+    if k == 0 || k > 20 {
+        return Err(DesignError::Size(format!("{k} factors: expected 1 to 20")));
+    }
+    let mut runs: Vec<Vec<f64>> = (0..1usize << k)
+        .map(|r| {
+            (0..k)
+                .map(|j| if r >> j & 1 == 1 { 1.0 } else { -1.0 })
+                .collect()
+        })
+        .collect();
+    runs.extend((0..centre).map(|_| vec![0.0; k]));
+    Ok(Design {
+        factors: factors.iter().map(|s| s.to_string()).collect(),
+        runs,
+    })
+}
+
+/// A generator `D=AB` (or `D=-AB`): the new factor, its sign and the base letters.
+fn parse_generator(text: &str, base: &[String]) -> Result<(String, f64, Vec<usize>), DesignError> {
+    let error = |reason: &str| DesignError::Generator {
+        generator: text.into(),
+        reason: reason.into(),
+    };
+    let (name, word) = text
+        .split_once('=')
+        .ok_or_else(|| error("expected NEW=WORD, e.g. D=AB"))?;
+    let word = word.trim();
+    let (sign, word) = match word.strip_prefix('-') {
+        Some(rest) => (-1.0, rest),
+        None => (1.0, word.trim_start_matches('+')),
+    };
+    let letters = word
+        .chars()
+        .map(|c| {
+            base.iter()
+                .position(|b| b == &c.to_string())
+                .ok_or_else(|| error(&format!("'{c}' is not a base factor ({})", base.join(", "))))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    if letters.len() < 2 {
+        return Err(error("the word needs at least two base factors"));
+    }
+    Ok((name.trim().to_string(), sign, letters))
+}
+
+/// Fractional factorial from base factor names and generators, e.g.
+/// `["A", "B", "C", "D=AB"]`: a full factorial in the base factors, the
+/// generated columns as signed products.
+pub fn fractional_factorial(columns: &[&str]) -> Result<Design, DesignError> {
+    let base: Vec<String> = columns
+        .iter()
+        .filter(|c| !c.contains('='))
+        .map(|c| c.trim().to_string())
+        .collect();
+    let names: Vec<&str> = base.iter().map(String::as_str).collect();
+    let full = full_factorial(&names, 0)?;
+    let generators = columns
+        .iter()
+        .filter(|c| c.contains('='))
+        .map(|g| parse_generator(g, &base))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut factors = base.clone();
+    factors.extend(generators.iter().map(|g| g.0.clone()));
+    let runs =
+        full.runs
+            .iter()
+            .map(|r| {
+                let mut row = r.clone();
+                row.extend(generators.iter().map(|(_, sign, letters)| {
+                    sign * letters.iter().map(|&l| r[l]).product::<f64>()
+                }));
+                row
+            })
+            .collect();
+    Ok(Design { factors, runs })
+}
+
+/// The resolution of the fraction defined by `generators` (`D=AB`, ...):
+/// the shortest word in the defining relation, built from every product of
+/// the generator words `I = D·AB = ...`. Base factors are the letters
+/// appearing on the right-hand sides.
+pub fn resolution(generators: &[&str]) -> Result<usize, DesignError> {
+    let mut letters: Vec<String> = Vec::new();
+    for g in generators {
+        let (name, word) = g.split_once('=').ok_or_else(|| DesignError::Generator {
+            generator: g.to_string(),
+            reason: "expected NEW=WORD".into(),
+        })?;
+        for c in word
+            .trim()
+            .trim_start_matches(['-', '+'])
+            .chars()
+            .map(|c| c.to_string())
+            .chain(std::iter::once(name.trim().to_string()))
+        {
+            if !letters.contains(&c) {
+                letters.push(c);
+            }
+        }
+    }
+    let words: Vec<u64> = generators
+        .iter()
+        .map(|g| {
+            let (name, word) = g.split_once('=').unwrap_or((g, ""));
+            let mut bits = 1u64 << letters.iter().position(|l| l == name.trim()).unwrap_or(0);
+            for c in word.trim().trim_start_matches(['-', '+']).chars() {
+                bits ^= 1u64
+                    << letters
+                        .iter()
+                        .position(|l| *l == c.to_string())
+                        .unwrap_or(0);
+            }
+            bits
+        })
+        .collect();
+    if words.is_empty() {
+        return Err(DesignError::Size(
+            "a full factorial has no defining relation (resolution is unlimited)".into(),
+        ));
+    }
+    let shortest = (1u64..1 << words.len())
+        .map(|subset| {
+            words
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| subset >> i & 1 == 1)
+                .fold(0u64, |acc, (_, w)| acc ^ w)
+                .count_ones() as usize
+        })
+        .min()
+        .unwrap_or(0);
+    Ok(shortest)
+}
+
+/// Central composite design: the 2^k factorial, 2k axial points at ±α,
+/// and `centre` centre points. `face_centred` uses α = 1; otherwise the
+/// circumscribed, rotatable α = (2^k)^(1/4).
+pub fn central_composite(
+    factors: &[&str],
+    centre: usize,
+    face_centred: bool,
+) -> Result<Design, DesignError> {
+    let mut design = full_factorial(factors, 0)?;
+    let k = factors.len();
+    let alpha = if face_centred {
+        1.0
+    } else {
+        ((1u64 << k) as f64).powf(0.25)
+    };
+    for j in 0..k {
+        for sign in [-1.0, 1.0] {
+            let mut row = vec![0.0; k];
+            row[j] = sign * alpha;
+            design.runs.push(row);
+        }
+    }
+    design.runs.extend((0..centre).map(|_| vec![0.0; k]));
+    Ok(design)
+}
+
+fn unit(rng: &mut ChaCha8Rng) -> f64 {
+    (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// Latin hypercube of `n` runs on [−1, 1]^k: each factor's range is cut
+/// into n equal strata, one run in each, strata shuffled per factor.
+pub fn latin_hypercube(factors: &[&str], n: usize, seed: u64) -> Design {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let k = factors.len();
+    let mut runs = vec![vec![0.0; k]; n];
+    for j in 0..k {
+        let mut strata: Vec<usize> = (0..n).collect();
+        for i in (1..n).rev() {
+            strata.swap(i, (unit(&mut rng) * (i + 1) as f64) as usize);
+        }
+        for (i, &s) in strata.iter().enumerate() {
+            runs[i][j] = -1.0 + 2.0 * (s as f64 + unit(&mut rng)) / n as f64;
+        }
+    }
+    Design {
+        factors: factors.iter().map(|s| s.to_string()).collect(),
+        runs,
+    }
+}
+
+/// `n` uniform random runs on [−1, 1]^k.
+pub fn uniform(factors: &[&str], n: usize, seed: u64) -> Design {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let runs = (0..n)
+        .map(|_| {
+            factors
+                .iter()
+                .map(|_| -1.0 + 2.0 * unit(&mut rng))
+                .collect()
+        })
+        .collect();
+    Design {
+        factors: factors.iter().map(|s| s.to_string()).collect(),
+        runs,
+    }
+}
+
+/// A random run order (Fisher–Yates from the seed), as indices.
+pub fn run_order(n: usize, seed: u64) -> Vec<usize> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut order: Vec<usize> = (0..n).collect();
+    for i in (1..n).rev() {
+        order.swap(i, (unit(&mut rng) * (i + 1) as f64) as usize);
+    }
+    order
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn resolutions_of_known_fractions() {
+        assert_eq!(resolution(&["D=ABC"]).unwrap(), 4);
+        assert_eq!(resolution(&["E=ABCD"]).unwrap(), 5);
+        assert_eq!(resolution(&["D=AB", "E=AC"]).unwrap(), 3);
+        assert_eq!(resolution(&["E=ABC", "F=BCD"]).unwrap(), 4);
+        assert!(resolution(&[]).is_err());
+    }
+
+    #[test]
+    fn composite_and_space_filling() {
+        let ccd = central_composite(&["A", "B"], 3, false).unwrap();
+        assert_eq!(ccd.runs.len(), 4 + 4 + 3);
+        assert!((ccd.runs[4][0] + 2f64.sqrt()).abs() < 1e-12);
+        let lhs = latin_hypercube(&["A", "B"], 10, 3);
+        for j in 0..2 {
+            let mut strata: Vec<usize> = lhs
+                .runs
+                .iter()
+                .map(|r| ((r[j] + 1.0) / 2.0 * 10.0) as usize)
+                .collect();
+            strata.sort();
+            assert_eq!(strata, (0..10).collect::<Vec<_>>(), "one run per stratum");
+        }
+        assert_eq!(latin_hypercube(&["A"], 5, 9), latin_hypercube(&["A"], 5, 9));
+        assert!(fractional_factorial(&["A", "B", "C=AX"]).is_err());
+    }
+}
