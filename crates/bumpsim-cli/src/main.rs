@@ -5,6 +5,7 @@
 //! Exit codes: 0 success; 2 for anything the user can fix (bad arguments,
 //! unreadable or invalid files, a model the chosen method cannot run).
 
+mod doe;
 mod export;
 mod identify;
 mod impact;
@@ -36,6 +37,9 @@ enum Command {
     Synth(impact::SynthArgs),
     /// The reduced point mass of paper A: scale factor of a rigid test vehicle.
     MassReduction(impact::ReductionArgs),
+    /// Design of Experiments: designs, regression, prediction, stiffness, reachable region.
+    #[command(subcommand)]
+    Doe(doe::Command),
     /// Crash-test signals: channel tables, export with filters, processing pipelines.
     #[command(subcommand)]
     Signal(signal::Command),
@@ -54,6 +58,7 @@ fn main() -> ExitCode {
         Command::Impact(args) => impact::run_impact(&args),
         Command::MassReduction(args) => impact::run_reduction(&args),
         Command::Synth(args) => impact::run_synth(&args),
+        Command::Doe(command) => doe::run(&command),
         Command::Predict(args) => identify::run_predict(&args),
     };
     match result {

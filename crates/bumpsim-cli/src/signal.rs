@@ -95,12 +95,7 @@ pub struct ExportArgs {
     #[arg(long, allow_negative_numbers = true)]
     integrate: Vec<String>,
     /// Keep only T0,T1 (s).
-    #[arg(
-        long,
-        value_delimiter = ',',
-        num_args = 2,
-        allow_negative_numbers = true
-    )]
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     trim: Option<Vec<f64>>,
     /// Resample to this interval (s).
     #[arg(long)]
@@ -236,6 +231,9 @@ fn export_steps(args: &ExportArgs) -> Result<Vec<Step>> {
         steps.push(Step::Integrate(value?));
     }
     if let Some(t) = &args.trim {
+        if t.len() != 2 {
+            anyhow::bail!("--trim: expected T0,T1 (two numbers, s)");
+        }
         steps.push(Step::Trim([t[0], t[1]]));
     }
     if let Some(step) = args.resample {

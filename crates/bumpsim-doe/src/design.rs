@@ -216,6 +216,7 @@ fn unit(rng: &mut ChaCha8Rng) -> f64 {
 
 /// Latin hypercube of `n` runs on [−1, 1]^k: each factor's range is cut
 /// into n equal strata, one run in each, strata shuffled per factor.
+#[allow(clippy::needless_range_loop)] // runs[i][j]: run i, factor j
 pub fn latin_hypercube(factors: &[&str], n: usize, seed: u64) -> Design {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let k = factors.len();

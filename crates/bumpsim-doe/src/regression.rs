@@ -330,3 +330,17 @@ fn anova(
         lack_of_fit,
     }
 }
+
+/// Points of a normal probability plot: (normal quantile, sorted residual),
+/// with Blom's plotting positions `(i − 3/8) / (n + 1/4)`.
+pub fn normal_scores(residuals: &[f64]) -> Vec<(f64, f64)> {
+    let mut sorted = residuals.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let n = sorted.len() as f64;
+    let normal = statrs::distribution::Normal::new(0.0, 1.0).expect("standard normal");
+    sorted
+        .iter()
+        .enumerate()
+        .map(|(i, &r)| (normal.inverse_cdf((i as f64 + 1.0 - 0.375) / (n + 0.25)), r))
+        .collect()
+}

@@ -1,5 +1,6 @@
 //! bumpsim-report: pictures of results, for people who would rather look.
 //!
+//! - [`bar`]: bar charts with error bars;
 //! - [`heatmap`]: heat maps of sweeps with a colour bar;
 //! - [`html`]: self-contained HTML reports;
 //! - [`identification`]: the identification report;
@@ -18,6 +19,7 @@
 //! assert!(svg.contains("<svg") && svg.contains("kN"));
 //! ```
 
+pub mod bar;
 pub mod heatmap;
 pub mod html;
 pub mod identification;

@@ -46,6 +46,8 @@ pub enum Style {
     Solid,
     /// Dashed line (simulated, processed).
     Dashed,
+    /// Markers only (scatter).
+    Points,
 }
 
 /// One curve: name (legend), x and y values in SI, style.
@@ -179,6 +181,21 @@ impl LinePlot {
         ))
     }
 
+    /// Draws the plot as a PNG image (bitmap backend, bundled font; no
+    /// system libraries), written to `path`.
+    pub fn png(&self, path: &std::path::Path) -> Result<(), PlotError> {
+        crate::register_font();
+        let range = self.range()?;
+        let draw_error = |e: &dyn std::fmt::Display| PlotError::Draw {
+            title: self.title.clone(),
+            message: e.to_string(),
+        };
+        let root = BitMapBackend::new(path, self.size).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| draw_error(&e))?;
+        self.draw(&root, range).map_err(|e| draw_error(&e))?;
+        root.present().map_err(|e| draw_error(&e))
+    }
+
     /// Draws the plot as an SVG document.
     pub fn svg(&self) -> Result<String, PlotError> {
         crate::register_font();
@@ -243,10 +260,13 @@ impl LinePlot {
             let style = colour.stroke_width(2);
             let legend =
                 move |(x, y): (i32, i32)| PathElement::new(vec![(x, y), (x + 20, y)], style);
-            chart
-                .draw_series(LineSeries::new(points, style))?
-                .label(s.name.clone())
-                .legend(legend);
+            let drawn = match s.style {
+                Style::Points => {
+                    chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, colour.filled())))?
+                }
+                _ => chart.draw_series(LineSeries::new(points, style))?,
+            };
+            drawn.label(s.name.clone()).legend(legend);
         }
         chart
             .configure_series_labels()
@@ -311,6 +331,36 @@ mod tests {
         assert_eq!(dashed, 2, "the dashed series and its legend sample");
         let coords = coordinates(&svg);
         assert!(!coords.is_empty() && coords.iter().all(|c| c.is_finite()));
+    }
+
+    #[test]
+    fn scatter_draws_one_marker_per_point_and_png_renders() {
+        let mut p = LinePlot::new(
+            "observed vs predicted",
+            Dimension::Dimensionless,
+            Dimension::Dimensionless,
+        )
+        .with_labels(Some("predicted m2 [kg]"), Some("observed m2 [kg]"));
+        p.add(Series::new(
+            "runs",
+            vec![1.0, 2.0, 3.0, 4.0],
+            vec![1.1, 1.9, 3.2, 3.9],
+            Style::Points,
+        ));
+        let svg = p.svg().unwrap();
+        assert!(svg.contains("predicted m2 [kg]") && svg.contains("observed m2 [kg]"));
+        assert_eq!(
+            svg.matches("<circle").count(),
+            4,
+            "one marker per point (the legend sample is a line)"
+        );
+        let path = std::env::temp_dir().join(format!("bumpsim-plot-{}.png", std::process::id()));
+        demo().png(&path).unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        assert!(
+            bytes.starts_with(b"\x89PNG") && bytes.len() > 5000,
+            "a PNG with content"
+        );
     }
 
     #[test]
