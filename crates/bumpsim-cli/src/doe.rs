@@ -88,6 +88,17 @@ pub enum Command {
         #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
         range: Option<Vec<f64>>,
     },
+    /// Stage 2: append identification results (JSON, one per run) to a design table.
+    Collect {
+        /// Design table (CSV, one row per run).
+        design: PathBuf,
+        /// Identification results in run order, comma-separated.
+        #[arg(long, value_delimiter = ',', required = true)]
+        results: Vec<PathBuf>,
+        /// Output CSV: the design columns and m1.., c1.., k1.. (SI).
+        #[arg(short, long)]
+        output: PathBuf,
+    },
     /// The reachable region of two linear responses and the corners of a cell.
     Reach {
         /// Model JSON with main-effect models of both responses.
@@ -156,6 +167,11 @@ pub fn run(command: &Command) -> Result<()> {
         }
         Command::Predict { model, at } => predict(model, at),
         Command::Stiffness { curve, range } => run_stiffness(curve, range.as_deref()),
+        Command::Collect {
+            design,
+            results,
+            output,
+        } => collect(design, results, output),
         Command::Reach {
             model,
             x,
@@ -696,6 +712,24 @@ fn reach(
         }
         write(&dir.join("reachable.svg"), &p.svg()?)?;
     }
+    Ok(())
+}
+
+fn collect(design: &Path, results: &[PathBuf], output: &Path) -> Result<()> {
+    let table = Data::read(design)?;
+    let identified = results
+        .iter()
+        .map(|r| bumpsim_doe::data::Identified::read(r))
+        .collect::<Result<Vec<_>, _>>()?;
+    let joined = table
+        .with_results(&identified)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", design.display()))?;
+    write(output, &joined.to_csv())?;
+    println!(
+        "{} runs × {} columns",
+        joined.rows.len(),
+        joined.names.len()
+    );
     Ok(())
 }
 

@@ -1355,3 +1355,51 @@ fn a_partial_identification_report_still_renders_and_says_what_failed() {
         "the failure is shown in the rendered page"
     );
 }
+
+#[test]
+fn doe_collect_appends_identified_parameters_to_the_design() {
+    let dir = scratch("doe-collect");
+    let design = dir.join("design.csv");
+    std::fs::write(&design, "Kax [N/mm],M [kg]\n21210,1375\n25684,1681\n").unwrap();
+    let mut results = Vec::new();
+    for (i, m2) in [1800.0, 2100.0].iter().enumerate() {
+        let path = dir.join(format!("r{i}.json"));
+        std::fs::write(&path, format!("{{\"dof\": 2, \"masses\": [1.0, {m2}], \"dampers\": [2.0e5], \"springs\": [4.0e6], \"objective\": 1e-4}}")).unwrap();
+        results.push(path.to_str().unwrap().to_string());
+    }
+    let out = dir.join("data.csv");
+    let run = bumpsim(&[
+        "doe",
+        "collect",
+        design.to_str().unwrap(),
+        "--results",
+        &results.join(","),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let csv = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(
+        csv.lines().next().unwrap(),
+        "Kax [N/mm],M [kg],m1 [kg],m2 [kg],c1 [Ns/m],k1 [N/m]"
+    );
+    assert_eq!(
+        csv.lines().nth(2).unwrap(),
+        "25684,1681,1,2100,200000,4000000"
+    );
+    let short = bumpsim(&[
+        "doe",
+        "collect",
+        design.to_str().unwrap(),
+        "--results",
+        &results[0],
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(short.status.code(), Some(2));
+    assert!(
+        text(&short.stderr).contains("1 results for 2 design runs"),
+        "{}",
+        text(&short.stderr)
+    );
+}
