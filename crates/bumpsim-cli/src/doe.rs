@@ -1,5 +1,6 @@
 //! `bumpsim doe`: argument conversion and output around bumpsim-doe.
 
+use crate::write;
 use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, Unit, format_number, format_quantity};
 use bumpsim_doe::data::Data;
@@ -730,13 +731,5 @@ fn collect(design: &Path, results: &[PathBuf], output: &Path) -> Result<()> {
         joined.rows.len(),
         joined.names.len()
     );
-    Ok(())
-}
-
-fn write(path: &Path, text: &str) -> Result<()> {
-    bumpsim_io::table::create_parent(path)
-        .with_context(|| format!("cannot create the folder of {}", path.display()))?;
-    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))?;
-    println!("wrote {}", path.display());
     Ok(())
 }

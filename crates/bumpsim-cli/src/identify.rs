@@ -1,6 +1,7 @@
 //! `bumpsim identify` and `bumpsim predict`: argument conversion and output
 //! around bumpsim-ident and the identification report.
 
+use crate::write;
 use anyhow::{Context, Result, bail};
 use bumpsim_ident::estimate::{Identification, identify};
 use bumpsim_ident::explore::{predict, sensitivity};
@@ -9,7 +10,7 @@ use bumpsim_ident::study::Study;
 use bumpsim_io::car::Car;
 use bumpsim_report::identification::{DofOutcome, report};
 use indicatif::{ProgressBar, ProgressStyle};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Arguments of `identify`.
 #[derive(Debug, clap::Args)]
@@ -218,14 +219,6 @@ fn write_outputs(
         }
         write(&dir.join("index.html"), &html)?;
     }
-    Ok(())
-}
-
-fn write(path: &Path, text: &str) -> Result<()> {
-    bumpsim_io::table::create_parent(path)
-        .with_context(|| format!("cannot create the folder of {}", path.display()))?;
-    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))?;
-    println!("wrote {}", path.display());
     Ok(())
 }
 

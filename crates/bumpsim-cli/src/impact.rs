@@ -1,6 +1,7 @@
 //! `bumpsim impact` and `bumpsim mass-reduction`: argument conversion and
 //! output around bumpsim-impact.
 
+use crate::write;
 use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, format_number, format_quantity, parse_quantity};
 use bumpsim_impact::bumper::Bumper;
@@ -225,14 +226,6 @@ fn impact_report(dir: &Path, title: &str, summary: &str, r: &ImpactResult) -> Re
         write(&dir.join(name), &svg)?;
     }
     write(&dir.join("index.html"), &page.finish())
-}
-
-fn write(path: &Path, text: &str) -> Result<()> {
-    bumpsim_io::table::create_parent(path)
-        .with_context(|| format!("cannot create the folder of {}", path.display()))?;
-    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))?;
-    println!("wrote {}", path.display());
-    Ok(())
 }
 
 /// Runs `mass-reduction`.

@@ -12,7 +12,9 @@ mod impact;
 mod signal;
 mod simulate;
 
+use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
+use std::path::Path;
 use std::process::ExitCode;
 
 /// Low-speed bumper impact toolkit: MSD car models from crash tests.
@@ -68,4 +70,13 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// Writes a text output file (creating its folder) and says so.
+pub(crate) fn write(path: &Path, text: &str) -> Result<()> {
+    bumpsim_io::table::create_parent(path)
+        .with_context(|| format!("cannot create the folder of {}", path.display()))?;
+    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))?;
+    println!("wrote {}", path.display());
+    Ok(())
 }

@@ -32,6 +32,13 @@ fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
 }
 
+/// Fails unless every expected piece is in `output`.
+fn assert_contains(output: &str, expected: &[&str]) {
+    for piece in expected {
+        assert!(output.contains(piece), "missing '{piece}' in:\n{output}");
+    }
+}
+
 fn simulate(car: &Path, force: &Path, extra: &[&str]) -> Output {
     let mut args = vec![
         "simulate",
@@ -55,18 +62,16 @@ fn simulates_the_bundled_example_and_writes_si_csv() {
     );
     let stdout = text(&run.stdout);
     assert!(run.status.success(), "{stdout}{}", text(&run.stderr));
-    for expected in [
-        "3 DOF",
-        "1601 samples",
-        "peak 40.00 kN",
-        "energy balance error",
-        "wrote",
-    ] {
-        assert!(
-            stdout.contains(expected),
-            "missing '{expected}' in:\n{stdout}"
-        );
-    }
+    assert_contains(
+        &stdout,
+        &[
+            "3 DOF",
+            "1601 samples",
+            "peak 40.00 kN",
+            "energy balance error",
+            "wrote",
+        ],
+    );
     let csv = std::fs::read_to_string(&out).unwrap();
     let header = csv.lines().next().unwrap();
     assert!(
@@ -698,17 +703,18 @@ fn identify_the_bundled_example_writes_json_and_a_report() {
     ]);
     let stdout = text(&run.stdout);
     assert!(run.status.success(), "{stdout}{}", text(&run.stderr));
-    for expected in [
-        "3-DOF model",
-        "m1",
-        "kg",
-        "N/mm",
-        "Ns/mm",
-        "95 % interval",
-        "fit",
-    ] {
-        assert!(stdout.contains(expected), "missing '{expected}':\n{stdout}");
-    }
+    assert_contains(
+        &stdout,
+        &[
+            "3-DOF model",
+            "m1",
+            "kg",
+            "N/mm",
+            "Ns/mm",
+            "95 % interval",
+            "fit",
+        ],
+    );
     let result: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert_eq!(result["dof"], 3);
@@ -962,16 +968,17 @@ fn impact_json_and_report_for_a_rigid_vehicle_into_a_barrier() {
     ]);
     let stdout = text(&run.stdout);
     assert!(run.status.success(), "{stdout}{}", text(&run.stderr));
-    for expected in [
-        "peak force",
-        "kN",
-        "maximum compression",
-        "mm",
-        "contact time",
-        "ms",
-    ] {
-        assert!(stdout.contains(expected), "missing {expected}: {stdout}");
-    }
+    assert_contains(
+        &stdout,
+        &[
+            "peak force",
+            "kN",
+            "maximum compression",
+            "mm",
+            "contact time",
+            "ms",
+        ],
+    );
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     // a rigid mass on a three-part bumper: ½ m V0² = area under the loading curve
@@ -1099,14 +1106,15 @@ fn doe_predict_reproduces_paper_c_table_4_and_flags_extrapolation() {
     ]);
     let stdout = text(&run.stdout);
     assert!(run.status.success(), "{}", text(&run.stderr));
-    for expected in [
-        "m1 = 1.000 kg",
-        "m2 = 2230 kg",
-        "c1 = 200.2 Ns/mm",
-        "k1 = 3.920 N/mm",
-    ] {
-        assert!(stdout.contains(expected), "missing '{expected}':\n{stdout}");
-    }
+    assert_contains(
+        &stdout,
+        &[
+            "m1 = 1.000 kg",
+            "m2 = 2230 kg",
+            "c1 = 200.2 Ns/mm",
+            "k1 = 3.920 N/mm",
+        ],
+    );
     let outside = bumpsim(&[
         "doe",
         "predict",
