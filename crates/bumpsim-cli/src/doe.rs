@@ -7,9 +7,8 @@ use bumpsim_doe::data::Data;
 use bumpsim_doe::design::{self, Design};
 use bumpsim_doe::model::{Factor, ModelFile, Response};
 use bumpsim_doe::reachable::{LinearMap, cell};
-use bumpsim_doe::regression::{fit, normal_scores, terms};
+use bumpsim_doe::regression::{fit, terms};
 use bumpsim_doe::stiffness::stiffness;
-use bumpsim_report::bar::BarPlot;
 use bumpsim_report::html::Html;
 use bumpsim_report::plot::{LinePlot, Series, Style};
 use clap::Subcommand;
@@ -370,14 +369,19 @@ fn run_fit(
         let unit = data.units[data.names.iter().position(|n| n == response).unwrap_or(0)].clone();
         let f = fit(&coded, &y, &model_terms, &names)
             .with_context(|| format!("response '{response}'"))?;
-        let text = fit_text(response, unit.as_deref(), &f);
+        let text = bumpsim_doe::text::fit_text(response, unit.as_deref(), &f);
         print!("{text}");
         page.heading(&format!(
             "{response}{}",
             unit.as_deref().map_or(String::new(), |u| format!(" [{u}]"))
         ));
         page.preformatted(&text);
-        figures.extend(fit_plots(response, unit.as_deref().unwrap_or("-"), &f, &y)?);
+        figures.extend(bumpsim_report::doe::fit_plots(
+            response,
+            unit.as_deref().unwrap_or("-"),
+            &f,
+            &y,
+        )?);
         model.responses.push(Response::from_fit(response, unit, &f));
     }
     if let Some(path) = json {
@@ -391,147 +395,6 @@ fn run_fit(
         write(&dir.join("index.html"), &page.finish())?;
     }
     Ok(())
-}
-
-fn fit_text(response: &str, unit: Option<&str>, f: &bumpsim_doe::regression::Fit) -> String {
-    let u = unit.unwrap_or("-");
-    let mut text = format!(
-        "{response} [{u}]: R² {}, adjusted R² {}, ",
-        format_number(f.r2, 4),
-        f.r2_adjusted.map_or("-".into(), |v| format_number(v, 4))
-    );
-    text += &match (f.q2, &f.q2_note) {
-        (Some(q2), _) => format!(
-            "Q² {} (PRESS {} {u}²)\n",
-            format_number(q2, 4),
-            format_number(f.press.unwrap_or(0.0), 4)
-        ),
-        (None, Some(note)) => format!("{note}\n"),
-        _ => "Q² undefined\n".into(),
-    };
-    text += &format!(
-        "  {:<12} {:>12} {:>12} {:>9} {:>9} {:>28}\n",
-        "term (coded)", "coefficient", "std. error", "t", "p", "95 % interval"
-    );
-    for j in 0..f.terms.len() {
-        let opt = |v: Option<f64>| v.map_or("-".to_string(), |v| format_number(v, 4));
-        let ci = f.ci95[j].map_or("-".to_string(), |[a, b]| {
-            format!("{} .. {}", format_number(a, 4), format_number(b, 4))
-        });
-        text += &format!(
-            "  {:<12} {:>12} {:>12} {:>9} {:>9} {:>28}\n",
-            f.terms[j],
-            format_number(f.coefficients[j], 5),
-            opt(f.std_errors[j]),
-            opt(f.t[j]),
-            opt(f.p[j]),
-            ci
-        );
-    }
-    if let Some(sd) = f.residual_sd {
-        text += &format!(
-            "  residual SD {} {u} ({} degrees of freedom)\n",
-            format_number(sd, 4),
-            f.dof_residual
-        );
-    }
-    if let Some(l) = &f.anova.lack_of_fit {
-        text += &format!(
-            "  lack of fit: F {} on ({}, {}) df, p {}\n",
-            format_number(l.f, 4),
-            l.df_lack_of_fit,
-            l.df_pure_error,
-            format_number(l.p, 3)
-        );
-    }
-    text
-}
-
-fn fit_plots(
-    response: &str,
-    unit: &str,
-    f: &bumpsim_doe::regression::Fit,
-    y: &[f64],
-) -> Result<Vec<(String, String, String)>> {
-    let file = bumpsim_report::file_name(response);
-    let skip_intercept = 1.min(f.terms.len());
-    let bars = BarPlot {
-        title: format!("{response}: coded coefficients with 95 % intervals"),
-        y_label: format!("coefficient [{unit}]"),
-        labels: f.terms[skip_intercept..].to_vec(),
-        values: f.coefficients[skip_intercept..].to_vec(),
-        errors: f.ci95[skip_intercept..].to_vec(),
-    };
-    let label = format!("{response} [{unit}]");
-    let mut observed = LinePlot::new(
-        &format!("{response}: observed against predicted"),
-        Dimension::Dimensionless,
-        Dimension::Dimensionless,
-    )
-    .with_labels(
-        Some(&format!("predicted {label}")),
-        Some(&format!("observed {label}")),
-    );
-    let lo = y
-        .iter()
-        .chain(&f.fitted)
-        .copied()
-        .fold(f64::INFINITY, f64::min);
-    let hi = y
-        .iter()
-        .chain(&f.fitted)
-        .copied()
-        .fold(f64::NEG_INFINITY, f64::max);
-    observed.add(Series::new(
-        "runs",
-        f.fitted.clone(),
-        y.to_vec(),
-        Style::Points,
-    ));
-    observed.add(Series::new(
-        "y = x",
-        vec![lo, hi],
-        vec![lo, hi],
-        Style::Dashed,
-    ));
-    let scores = normal_scores(&f.residuals);
-    let mut normal = LinePlot::new(
-        &format!("{response}: residuals, normal probability"),
-        Dimension::Dimensionless,
-        Dimension::Dimensionless,
-    )
-    .with_labels(
-        Some("normal quantile [-]"),
-        Some(&format!("residual [{unit}]")),
-    );
-    normal.add(Series::new(
-        "residuals",
-        scores.iter().map(|s| s.0).collect(),
-        scores.iter().map(|s| s.1).collect(),
-        Style::Points,
-    ));
-    let mut out = Vec::new();
-    if bars.values.is_empty() {
-        return Ok(out);
-    }
-    out.push((
-        format!("{file}-coefficients.svg"),
-        bars.svg()?,
-        format!("{response}: coefficients (coded units) with 95 % intervals"),
-    ));
-    out.push((
-        format!("{file}-observed.svg"),
-        observed.svg()?,
-        format!("{response}: observed against predicted"),
-    ));
-    if f.residuals.iter().any(|r| r.abs() > 0.0) {
-        out.push((
-            format!("{file}-residuals.svg"),
-            normal.svg()?,
-            format!("{response}: normal probability plot of the residuals"),
-        ));
-    }
-    Ok(out)
 }
 
 fn predict(path: &Path, at: &[String]) -> Result<()> {

@@ -5,17 +5,15 @@ use crate::write;
 use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, format_number, format_quantity, parse_quantity};
 use bumpsim_impact::bumper::Bumper;
-use bumpsim_impact::impact::{ImpactResult, Options, Scenario, simulate};
+use bumpsim_impact::impact::{Options, Scenario, simulate};
 use bumpsim_impact::presets::{PRESETS, find};
 use bumpsim_impact::reduction::{
     Criterion, Grid, TwoDof, equivalent_mass, linspace, sweep_bumper, sweep_car,
 };
 use bumpsim_io::car::Car;
-use bumpsim_report::heatmap::HeatMap;
 use bumpsim_report::html::Html;
-use bumpsim_report::plot::{LinePlot, Series, Style};
 use indicatif::ProgressBar;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Arguments of `impact`.
 #[derive(Debug, clap::Args)]
@@ -137,7 +135,7 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
     let bumper = Bumper::read(&args.bumper)?;
     let (scenario, label) = scenario(args, car.model.total_mass())?;
     let result = simulate(&car.model, &bumper, scenario, &Options::default())?;
-    let summary = summary(&result);
+    let summary = bumpsim_impact::text::summary(&result);
     let name = car
         .name
         .clone()
@@ -153,79 +151,17 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
         write(path, &serde_json::to_string_pretty(&json)?)?;
     }
     if let Some(path) = &args.csv {
-        write(path, &histories(&result))?;
+        write(path, &bumpsim_impact::text::histories(&result))?;
     }
     if let Some(dir) = &args.report {
-        impact_report(dir, &format!("{name} — {label}"), &summary, &result)?;
+        let (html, figures) =
+            bumpsim_report::impact::impact_report(&format!("{name} — {label}"), &summary, &result)?;
+        for (file, svg) in figures {
+            write(&dir.join(file), &svg)?;
+        }
+        write(&dir.join("index.html"), &html)?;
     }
     Ok(())
-}
-
-fn summary(r: &ImpactResult) -> String {
-    format!(
-        "  peak force {}\n  maximum compression {}, remaining {}\n  contact time {}\n  absorbed by the bumper {}; energy balance error {:.2e}\n",
-        format_quantity(r.peak_force, Dimension::Force),
-        format_quantity(r.max_compression, Dimension::Length),
-        format_quantity(r.remaining_compression, Dimension::Length),
-        format_quantity(r.contact_time, Dimension::Time),
-        format_quantity(r.absorbed_energy, Dimension::Energy),
-        r.energy.relative_error
-    )
-}
-
-fn histories(r: &ImpactResult) -> String {
-    let mut csv = String::from("time [s],force [N],compression [m]");
-    for b in &r.bodies {
-        csv += &format!(",x {b} [m],v {b} [m/s]");
-    }
-    csv.push('\n');
-    for k in 0..r.time.len() {
-        csv += &format!("{},{},{}", r.time[k], r.force[k], r.compression[k]);
-        for (x, v) in r.displacements.iter().zip(&r.velocities) {
-            csv += &format!(",{},{}", x[k], v[k]);
-        }
-        csv.push('\n');
-    }
-    csv
-}
-
-fn impact_report(dir: &Path, title: &str, summary: &str, r: &ImpactResult) -> Result<()> {
-    let mut page = Html::new(&format!("bumpsim impact: {title}"));
-    page.heading("Results");
-    page.preformatted(summary);
-    let mut force = LinePlot::new("Bumper force", Dimension::Time, Dimension::Force);
-    force.add(Series::new(
-        "force",
-        r.time.clone(),
-        r.force.clone(),
-        Style::Solid,
-    ));
-    let mut curve = LinePlot::new(
-        "Force against compression",
-        Dimension::Length,
-        Dimension::Force,
-    );
-    curve.add(Series::new(
-        "bumper",
-        r.compression.clone(),
-        r.force.clone(),
-        Style::Solid,
-    ));
-    let mut motion = LinePlot::new("Displacements", Dimension::Time, Dimension::Length);
-    for (b, x) in r.bodies.iter().zip(&r.displacements) {
-        motion.add(Series::new(b, r.time.clone(), x.clone(), Style::Solid));
-    }
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    for (name, plot, caption) in [
-        ("force.svg", force, "bumper force"),
-        ("force-compression.svg", curve, "force against compression"),
-        ("displacements.svg", motion, "displacements of the bodies"),
-    ] {
-        let svg = plot.svg()?;
-        page.figure(&svg, caption);
-        write(&dir.join(name), &svg)?;
-    }
-    write(&dir.join("index.html"), &page.finish())
 }
 
 /// Runs `mass-reduction`.
@@ -264,14 +200,14 @@ pub fn run_reduction(args: &ReductionArgs) -> Result<()> {
         .map(|which| sweep(args, &bumper, &car, v0, which))
         .transpose()?;
     if let (Some(grid), Some(path)) = (&grid, &args.output) {
-        write(path, &grid_csv(grid))?;
+        write(path, &bumpsim_impact::text::grid_csv(grid))?;
     }
     if let Some(dir) = &args.report {
         let mut page = Html::new("bumpsim mass reduction (paper A)");
         page.heading("Result");
         page.preformatted(&text);
         if let Some(grid) = &grid {
-            let svg = heat_map(grid).svg()?;
+            let svg = bumpsim_report::impact::heat_map(grid).svg()?;
             page.heading("Sweep");
             page.figure(&svg, "scale factor M*/(M1+M2) over the grid");
             write(&dir.join("sweep.svg"), &svg)?;
@@ -318,38 +254,6 @@ fn sweep(
     let found = grid.values.iter().flatten().flatten().count();
     println!("sweep {which}: {n} × {n} grid, {found} cells with an answer");
     Ok(grid)
-}
-
-fn grid_csv(grid: &Grid) -> String {
-    let mut csv = format!("{},{},scale factor [-]\n", grid.x_label, grid.y_label);
-    for (i, x) in grid.x.iter().enumerate() {
-        for (j, y) in grid.y.iter().enumerate() {
-            let value = grid.values[i][j].map_or(String::new(), |v| v.to_string());
-            csv += &format!("{x},{y},{value}\n");
-        }
-    }
-    csv
-}
-
-fn heat_map(grid: &Grid) -> HeatMap {
-    let scale = |label: &str, v: &[f64]| match label.contains("[N/m]") || label.contains("[N]") {
-        true => (
-            label.replace("[N/m]", "[kN/m]").replace("[N]", "[kN]"),
-            v.iter().map(|x| x / 1e3).collect(),
-        ),
-        false => (label.to_string(), v.to_vec()),
-    };
-    let (x_label, x) = scale(&grid.x_label, &grid.x);
-    let (y_label, y) = scale(&grid.y_label, &grid.y);
-    HeatMap {
-        title: "Scale factor for mass (paper A)".into(),
-        x_label,
-        y_label,
-        value_label: "M*/(M1+M2) [-]".into(),
-        x,
-        y,
-        values: grid.values.clone(),
-    }
 }
 
 /// Arguments of `synth`.

@@ -7,7 +7,8 @@
 //! - [`regression`]: least squares with standard errors, intervals, R², Q², ANOVA;
 //! - [`model`]: model files and prediction with intervals;
 //! - [`stiffness`]: the slope of a force–displacement curve;
-//! - [`reachable`]: the reachable region of two linear responses.
+//! - [`reachable`]: the reachable region of two linear responses;
+//! - [`text`]: human-readable summaries of fits.
 
 pub mod data;
 pub mod design;
@@ -15,3 +16,4 @@ pub mod model;
 pub mod reachable;
 pub mod regression;
 pub mod stiffness;
+pub mod text;

@@ -1,8 +1,10 @@
 //! bumpsim-report: pictures of results, for people who would rather look.
 //!
 //! - [`bar`]: bar charts with error bars;
+//! - [`doe`]: DOE coefficient, observed-vs-predicted and residual plots;
 //! - [`heatmap`]: heat maps of sweeps with a colour bar;
 //! - [`html`]: self-contained HTML reports;
+//! - [`impact`]: impact pages and mass-reduction heat maps;
 //! - [`identification`]: the identification report;
 //! - [`plot`]: line plots of time histories (measured solid, simulated
 //!   dashed, as in the thesis figures) with units on both axes, as SVG.
@@ -20,9 +22,11 @@
 //! ```
 
 pub mod bar;
+pub mod doe;
 pub mod heatmap;
 pub mod html;
 pub mod identification;
+pub mod impact;
 pub mod plot;
 
 use std::sync::Once;
