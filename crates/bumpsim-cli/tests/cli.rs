@@ -32,6 +32,14 @@ fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
 }
 
+/// Fails unless the run was refused as a user error (exit code 2) whose
+/// message contains `needle`.
+fn assert_user_error(run: &Output, needle: &str) {
+    let stderr = text(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains(needle), "missing '{needle}' in:\n{stderr}");
+}
+
 /// Fails unless every expected piece is in `output`.
 fn assert_contains(output: &str, expected: &[&str]) {
     for piece in expected {
@@ -133,12 +141,7 @@ fn initial_velocity_takes_units() {
         &example("pendulum-force.csv"),
         &["--initial-velocity", "16 kN"],
     );
-    assert_eq!(bad.status.code(), Some(2));
-    assert!(
-        text(&bad.stderr).contains("expected a velocity"),
-        "{}",
-        text(&bad.stderr)
-    );
+    assert_user_error(&bad, "expected a velocity");
 }
 
 /// Each malformed force file: its text and a part of the expected message.
@@ -238,23 +241,13 @@ fn usage_errors_exit_2() {
         &example("pendulum-force.csv"),
         &["--substeps", "4"],
     );
-    assert_eq!(substeps.status.code(), Some(2));
-    assert!(
-        text(&substeps.stderr).contains("taylor1 only"),
-        "{}",
-        text(&substeps.stderr)
-    );
+    assert_user_error(&substeps, "taylor1 only");
     let column = simulate(
         &example("car-3dof.toml"),
         &example("pendulum-force.csv"),
         &["--column", "Fx"],
     );
-    assert_eq!(column.status.code(), Some(2));
-    assert!(
-        text(&column.stderr).contains("no column 'Fx'; columns: force [kN]"),
-        "{}",
-        text(&column.stderr)
-    );
+    assert_user_error(&column, "no column 'Fx'; columns: force [kN]");
 }
 
 #[test]
@@ -488,12 +481,7 @@ fn lsdyna_export_writes_the_include_and_refuses_bad_options() {
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert_eq!(run.status.code(), Some(2));
-    assert!(
-        text(&run.stderr).contains("broken.toml: TOML parse error"),
-        "{}",
-        text(&run.stderr)
-    );
+    assert_user_error(&run, "broken.toml: TOML parse error");
 }
 
 fn nhtsa_ev5() -> Option<PathBuf> {
@@ -885,12 +873,7 @@ fn identify_errors_exit_2() {
         "--dof",
         "0",
     ]);
-    assert_eq!(bad_dof.status.code(), Some(2));
-    assert!(
-        text(&bad_dof.stderr).contains("--dof '0'"),
-        "{}",
-        text(&bad_dof.stderr)
-    );
+    assert_user_error(&bad_dof, "--dof '0'");
     let unknown_case = bumpsim(&["predict", "no.json", identify_example().to_str().unwrap()]);
     assert_eq!(unknown_case.status.code(), Some(2));
 }
@@ -1082,12 +1065,7 @@ fn impact_errors_exit_2() {
         "--speed",
         "0",
     ]);
-    assert_eq!(zero.status.code(), Some(2));
-    assert!(
-        text(&zero.stderr).contains("speed"),
-        "{}",
-        text(&zero.stderr)
-    );
+    assert_user_error(&zero, "speed");
 }
 
 fn doe_data(name: &str) -> PathBuf {
@@ -1130,12 +1108,7 @@ fn doe_predict_reproduces_paper_c_table_4_and_flags_extrapolation() {
         "--at",
         "Kax=23000",
     ]);
-    assert_eq!(missing.status.code(), Some(2));
-    assert!(
-        text(&missing.stderr).contains("no value for factor 'Kbnd'"),
-        "{}",
-        text(&missing.stderr)
-    );
+    assert_user_error(&missing, "no value for factor 'Kbnd'");
 }
 
 #[test]
@@ -1404,10 +1377,5 @@ fn doe_collect_appends_identified_parameters_to_the_design() {
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert_eq!(short.status.code(), Some(2));
-    assert!(
-        text(&short.stderr).contains("1 results for 2 design runs"),
-        "{}",
-        text(&short.stderr)
-    );
+    assert_user_error(&short, "1 results for 2 design runs");
 }

@@ -153,27 +153,26 @@ struct Chain<'a> {
 }
 
 impl Chain<'_> {
+    /// The car's links: (left body, right body, spring N/m, damper N·s/m).
+    fn links(&self) -> impl Iterator<Item = (usize, usize, f64, f64)> + '_ {
+        let o = usize::from(self.impactor);
+        let pairs = self.car.springs().iter().zip(self.car.dampers());
+        pairs
+            .enumerate()
+            .map(move |(j, (&k, &c))| (o + j, o + j + 1, k, c))
+    }
+
     /// Accelerations of all bodies from positions, half-step velocities and the bumper force.
     fn accelerations(&self, x: &[f64], v: &[f64], force: f64, a: &mut [f64]) {
-        let o = usize::from(self.impactor);
         a.iter_mut().for_each(|v| *v = 0.0);
-        for (j, (&k, &c)) in self
-            .car
-            .springs()
-            .iter()
-            .zip(self.car.dampers())
-            .enumerate()
-        {
-            let (i, l) = (o + j, o + j + 1);
+        for (i, l, k, c) in self.links() {
             let link = k * (x[i] - x[l]) + c * (v[i] - v[l]);
             a[i] -= link;
             a[l] += link;
         }
+        a[0] -= force;
         if self.impactor {
-            a[0] -= force;
             a[1] += force;
-        } else {
-            a[0] -= force;
         }
         a.iter_mut().zip(&self.masses).for_each(|(a, m)| *a /= m);
     }
@@ -183,40 +182,25 @@ impl Chain<'_> {
     }
 
     fn spring_energy(&self, x: &[f64]) -> f64 {
-        let o = usize::from(self.impactor);
-        self.car
-            .springs()
-            .iter()
-            .enumerate()
-            .map(|(j, k)| 0.5 * k * (x[o + j] - x[o + j + 1]).powi(2))
+        self.links()
+            .map(|(i, l, k, _)| 0.5 * k * (x[i] - x[l]).powi(2))
             .sum()
     }
 
     fn damper_power(&self, v: &[f64]) -> f64 {
-        let o = usize::from(self.impactor);
-        self.car
-            .dampers()
-            .iter()
-            .enumerate()
-            .map(|(j, c)| c * (v[o + j] - v[o + j + 1]).powi(2))
+        self.links()
+            .map(|(i, l, _, c)| c * (v[i] - v[l]).powi(2))
             .sum()
     }
 
     /// The critical-step bound: Gershgorin on M⁻¹K (with the bumper) and M⁻¹C.
     fn step(&self, bumper: &Bumper, options: &Options) -> f64 {
-        let o = usize::from(self.impactor);
         let n = self.masses.len();
         let (mut stiff, mut damp) = (vec![0.0; n], vec![0.0; n]);
-        for (j, (&k, &c)) in self
-            .car
-            .springs()
-            .iter()
-            .zip(self.car.dampers())
-            .enumerate()
-        {
-            for i in [o + j, o + j + 1] {
-                stiff[i] += 2.0 * k;
-                damp[i] += 2.0 * c;
+        for (i, l, k, c) in self.links() {
+            for body in [i, l] {
+                stiff[body] += 2.0 * k;
+                damp[body] += 2.0 * c;
             }
         }
         let s = bumper.stiffest();
