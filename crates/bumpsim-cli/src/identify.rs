@@ -98,13 +98,14 @@ pub fn run(args: &Args) -> Result<()> {
         Some(text) => parse_dofs(text)?,
         None => study.dofs(),
     };
+    let loaded = study.cases(dofs.iter().copied().max().unwrap_or(1))?;
     let mut outcomes = Vec::new();
     let mut done = Vec::new();
     for &dof in &dofs {
         let mut settings = study.settings(dof)?;
         settings.starts = args.starts.unwrap_or(settings.starts);
         settings.seed = args.seed.unwrap_or(settings.seed);
-        let cases = study.cases(dof)?;
+        let cases = study.retarget(&loaded, dof);
         let bar = progress(args.quiet, dof, settings.starts);
         let result = identify(&cases, &settings, &|| bar.inc(1));
         bar.finish_and_clear();

@@ -28,7 +28,7 @@ pub struct ImpactArgs {
     #[arg(long, conflicts_with_all = ["pendulum", "barrier"])]
     case: Option<String>,
     /// An impactor (pendulum) of this mass, kg, hits the car at rest.
-    #[arg(long, conflicts_with = "barrier")]
+    #[arg(long, conflicts_with = "barrier", allow_negative_numbers = true)]
     pendulum: Option<f64>,
     /// The car hits a rigid barrier.
     #[arg(long)]
@@ -51,13 +51,13 @@ pub struct ImpactArgs {
 #[derive(Debug, clap::Args)]
 pub struct ReductionArgs {
     /// Mass carrying the bumper, kg.
-    #[arg(long, default_value_t = 650.0)]
+    #[arg(long, default_value_t = 650.0, allow_negative_numbers = true)]
     m1: f64,
     /// The other mass, kg.
-    #[arg(long, default_value_t = 400.0)]
+    #[arg(long, default_value_t = 400.0, allow_negative_numbers = true)]
     m2: f64,
     /// Spring between them, N/m.
-    #[arg(long, default_value_t = 4e6)]
+    #[arg(long, default_value_t = 4e6, allow_negative_numbers = true)]
     k: f64,
     /// The bumper characteristic (TOML).
     #[arg(long)]

@@ -290,6 +290,21 @@ impl Study {
             .collect()
     }
 
+    /// The cases loaded once (for any DOF) adapted to `dof` masses: cases
+    /// whose output is `"last"` measure mass `dof`. Saves reading and
+    /// processing the test files again for every model size of a sweep.
+    pub fn retarget(&self, cases: &[LoadCase], dof: usize) -> Vec<LoadCase> {
+        let last = |spec: &CaseSpec| matches!(&spec.output_dof, Some(OutputDof::Named(s)) if s.eq_ignore_ascii_case("last"));
+        cases
+            .iter()
+            .zip(&self.case)
+            .map(|(case, spec)| LoadCase {
+                output_dof: if last(spec) { dof } else { case.output_dof },
+                ..case.clone()
+            })
+            .collect()
+    }
+
     /// Reads and processes the named cases (all when `names` is empty).
     pub fn cases_named(&self, dof: usize, names: &[String]) -> Result<Vec<LoadCase>, StudyError> {
         let mut tests = BTreeMap::new();

@@ -249,3 +249,28 @@ fn bad_settings_and_studies_are_clear_errors() {
         "{err}"
     );
 }
+
+#[test]
+fn retarget_moves_a_last_output_to_each_model_size() {
+    let example = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/identify");
+    let text = std::fs::read_to_string(example.join("study.toml")).unwrap();
+    let dir = std::env::temp_dir().join(format!("bumpsim-retarget-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("study.toml");
+    let text = text
+        .replacen("output_dof = 1", "output_dof = \"last\"", 1)
+        .replace("path = \"", &format!("path = \"{}/", example.display()));
+    std::fs::write(&path, text).unwrap();
+    let study = Study::read(&path).unwrap();
+    let loaded = study.cases(4).unwrap();
+    for dof in 1..=4 {
+        let cases = study.retarget(&loaded, dof);
+        assert_eq!(cases[0].output_dof, dof, "the case that says \"last\"");
+        assert_eq!(cases[1].output_dof, 1, "a case with a number keeps it");
+        assert_eq!(
+            cases,
+            study.cases(dof).unwrap(),
+            "the same as reading the files again"
+        );
+    }
+}
