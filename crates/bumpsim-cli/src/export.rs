@@ -144,13 +144,8 @@ fn initial_velocity(common: &Common) -> Result<Option<f64>> {
 
 fn write_deck(common: &Common, inputs: &[&Path], text: &str, what: &str) -> Result<()> {
     refuse_overwriting_inputs(&common.output, inputs)?;
-    if let Some(parent) = common.output.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent)
-            .with_context(|| format!("cannot create {}", parent.display()))?;
-    }
     let existed = common.output.exists();
-    std::fs::write(&common.output, text)
-        .with_context(|| format!("cannot write {}", common.output.display()))?;
+    bumpsim_io::output::write_file(&common.output, text.as_bytes())?;
     let note = if existed {
         " (replaced the existing file)"
     } else {

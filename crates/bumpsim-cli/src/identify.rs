@@ -1,12 +1,13 @@
 //! `bumpsim identify` and `bumpsim predict`: argument conversion and output
 //! around bumpsim-ident and the identification report.
 
-use crate::write;
-use anyhow::{Context, Result, bail};
+use crate::{Folder, write};
+use anyhow::{Context, Result};
+use bumpsim_ident::dofs::DofList;
 use bumpsim_ident::estimate::{Identification, identify};
 use bumpsim_ident::explore::{predict, sensitivity};
-use bumpsim_ident::report::{case_lines, dof_table, parameter_table};
-use bumpsim_ident::study::Study;
+use bumpsim_ident::study::{DofSpec, Study};
+use bumpsim_ident::text::{case_lines, dof_table, parameter_table};
 use bumpsim_io::car::Car;
 use bumpsim_report::identification::{DofOutcome, report};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -21,7 +22,7 @@ pub struct Args {
     #[arg(long)]
     dof: Option<String>,
     /// Number of starts (default: the study's).
-    #[arg(long)]
+    #[arg(long, value_parser = crate::count::<100_000>)]
     starts: Option<usize>,
     /// Seed of the random starts (default: the study's).
     #[arg(long)]
@@ -56,27 +57,8 @@ pub struct PredictArgs {
 }
 
 fn parse_dofs(text: &str) -> Result<Vec<usize>> {
-    let bad = || {
-        format!(
-            "--dof '{text}': expected a number (3), a range (1..5) or a list (1,2,3) of numbers ≥ 1"
-        )
-    };
-    let list: Vec<usize> = if let Some((a, b)) = text.split_once("..") {
-        let (a, b) = (
-            a.trim().parse::<usize>().with_context(bad)?,
-            b.trim().parse::<usize>().with_context(bad)?,
-        );
-        (a..=b).collect()
-    } else {
-        text.split(',')
-            .map(|s| s.trim().parse::<usize>())
-            .collect::<Result<_, _>>()
-            .with_context(bad)?
-    };
-    if list.is_empty() || list.contains(&0) {
-        bail!(bad());
-    }
-    Ok(list)
+    let dofs: DofList = text.parse().map_err(|e| anyhow::anyhow!("--dof {e}"))?;
+    Ok(dofs.0)
 }
 
 fn progress(quiet: bool, dof: usize, starts: usize) -> ProgressBar {
@@ -93,26 +75,28 @@ fn progress(quiet: bool, dof: usize, starts: usize) -> ProgressBar {
 
 /// Runs `identify`.
 pub fn run(args: &Args) -> Result<()> {
-    let study = Study::read(&args.study)?;
-    let dofs = match &args.dof {
-        Some(text) => parse_dofs(text)?,
-        None => study.dofs(),
-    };
-    let loaded = study.cases(dofs.iter().copied().max().unwrap_or(1))?;
+    let mut study = Study::read(&args.study)?;
+    if let Some(text) = &args.dof {
+        study.model.dof = DofSpec::Many(parse_dofs(text)?);
+    }
+    let dofs = study.dofs();
+    let loaded = study.load(dofs.iter().copied().max().unwrap_or(1))?;
+    let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
+    print_notes(&notes);
     let mut outcomes = Vec::new();
     let mut done = Vec::new();
     for &dof in &dofs {
         let mut settings = study.settings(dof)?;
         settings.starts = args.starts.unwrap_or(settings.starts);
         settings.seed = args.seed.unwrap_or(settings.seed);
-        let cases = study.retarget(&loaded, dof);
+        let cases = study.retarget(&loaded.cases, dof);
         let bar = progress(args.quiet, dof, settings.starts);
         let result = identify(&cases, &settings, &|| bar.inc(1));
         bar.finish_and_clear();
         match result {
             Ok(result) => {
                 print_result(&result);
-                let predictions = predict(&cases, &result.model());
+                let predictions = predict(&cases, &result.model)?;
                 done.push((result.clone(), cases));
                 outcomes.push(DofOutcome::Done {
                     result: Box::new(result),
@@ -135,11 +119,39 @@ pub fn run(args: &Args) -> Result<()> {
     }
     let sweeps = done
         .last()
-        .map(|(r, cases)| sensitivity(cases, &r.model(), 0.03, 13));
-    write_outputs(args, &study, &results, &outcomes, sweeps.as_deref())
+        .map(|(r, cases)| sensitivity(cases, &r.model, 0.03, 13))
+        .transpose()?;
+    let outputs = Outputs {
+        results: &results,
+        outcomes: &outcomes,
+        sweeps: sweeps.as_deref(),
+        notes: &notes,
+    };
+    write_outputs(args, &study, &outputs)
+}
+
+/// The selection notes (channels left out or used despite a mark).
+fn print_notes(notes: &[String]) {
+    for note in notes {
+        println!("note: {note}");
+    }
+}
+
+/// What `identify` writes.
+struct Outputs<'a> {
+    results: &'a [Identification],
+    outcomes: &'a [DofOutcome],
+    sweeps: Option<&'a [bumpsim_ident::explore::Sweep]>,
+    notes: &'a [String],
 }
 
 fn print_result(r: &Identification) {
+    if !(r.objective.is_finite() && r.fit_percent.is_finite()) {
+        crate::warn(&format!(
+            "{}-DOF model: objective {} m², fit {} %: the measured data do not determine the model",
+            r.dof, r.objective, r.fit_percent
+        ));
+    }
     println!(
         "\n{}-DOF model: objective {} m², fit {} %",
         r.dof,
@@ -162,19 +174,20 @@ fn print_result(r: &Identification) {
     }
 }
 
-fn write_outputs(
-    args: &Args,
-    study: &Study,
-    results: &[Identification],
-    outcomes: &[DofOutcome],
-    sweeps: Option<&[bumpsim_ident::explore::Sweep]>,
-) -> Result<()> {
+fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
+    let Outputs {
+        results,
+        outcomes,
+        sweeps,
+        notes,
+    } = *outputs;
     if let Some(path) = &args.json {
-        let json = match results {
-            [one] => serde_json::to_string_pretty(one)?,
-            many => serde_json::to_string_pretty(&serde_json::json!({ "results": many }))?,
+        let mut json = match results {
+            [one] => serde_json::to_value(one)?,
+            many => serde_json::json!({ "results": many }),
         };
-        write(path, &json)?;
+        json["notes"] = serde_json::json!(notes);
+        write(path, &serde_json::to_string_pretty(&json)?)?;
     }
     if let (Some(path), Some(sweeps)) = (&args.sensitivity, sweeps) {
         let mut csv = String::from("relative change [-]");
@@ -211,14 +224,16 @@ fn write_outputs(
             "bumpsim identification",
             &inputs,
             &settings,
+            notes,
             outcomes,
             sweeps,
         )?;
-        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        let folder = Folder::stage(dir)?;
         for (name, svg) in figures {
-            write(&dir.join(name), &svg)?;
+            folder.write(&name, &svg)?;
         }
-        write(&dir.join("index.html"), &html)?;
+        folder.write("index.html", &html)?;
+        folder.commit()?;
     }
     Ok(())
 }
@@ -232,8 +247,26 @@ pub fn run_predict(args: &PredictArgs) -> Result<()> {
         )
     })?;
     let study = Study::read(&args.study)?;
-    let cases = study.cases_named(car.model.dof(), &args.cases)?;
-    let predictions = predict(&cases, &car.model);
+    let loaded = study.load_named(car.model.dof(), &args.cases)?;
+    print_notes(
+        &loaded
+            .notes
+            .iter()
+            .map(ToString::to_string)
+            .collect::<Vec<_>>(),
+    );
+    let predictions = predict(&loaded.cases, &car.model)?;
+    if let Some(p) = predictions
+        .iter()
+        .find(|p| !(p.fit.fit_percent.is_finite() && p.fit.sse.is_finite()))
+    {
+        anyhow::bail!(
+            "case '{}': the simulation with {} is not finite (fit {} %): the model is beyond what the zoh discretisation can represent at this sample interval",
+            p.fit.name,
+            args.model.display(),
+            p.fit.fit_percent
+        );
+    }
     for p in &predictions {
         println!(
             "{}: fit {} %  SSE {} m²  ({} samples)",
@@ -244,16 +277,13 @@ pub fn run_predict(args: &PredictArgs) -> Result<()> {
         );
     }
     if let Some(dir) = &args.plot {
+        let folder = Folder::stage(dir)?;
         for p in &predictions {
             let svg = bumpsim_report::identification::fit_plot(p, car.model.dof())?;
-            write(
-                &dir.join(format!(
-                    "predict-{}.svg",
-                    bumpsim_report::file_name(&p.fit.name)
-                )),
-                &svg,
-            )?;
+            let name = bumpsim_report::file_name(&p.fit.name);
+            folder.write(&format!("predict-{name}.svg"), &svg)?;
         }
+        folder.commit()?;
     }
     Ok(())
 }

@@ -1,15 +1,13 @@
 //! `bumpsim impact` and `bumpsim mass-reduction`: argument conversion and
 //! output around bumpsim-impact.
 
-use crate::write;
+use crate::{Folder, write};
 use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, format_number, format_quantity, parse_quantity};
 use bumpsim_impact::bumper::Bumper;
 use bumpsim_impact::impact::{Options, Scenario, simulate};
 use bumpsim_impact::presets::{PRESETS, find};
-use bumpsim_impact::reduction::{
-    Criterion, Grid, TwoDof, equivalent_mass, linspace, sweep_bumper, sweep_car,
-};
+use bumpsim_impact::reduction::{Criterion, Grid, PaperSweep, TwoDof, equivalent_mass};
 use bumpsim_io::car::Car;
 use bumpsim_report::html::Html;
 use indicatif::ProgressBar;
@@ -73,7 +71,7 @@ pub struct ReductionArgs {
     #[arg(long)]
     sweep: Option<String>,
     /// Grid points per axis of the sweep.
-    #[arg(long, default_value_t = 50)]
+    #[arg(long, default_value_t = 50, value_parser = crate::count::<2_000>)]
     points: usize,
     /// Write the result as JSON.
     #[arg(long)]
@@ -135,7 +133,13 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
     let bumper = Bumper::read(&args.bumper)?;
     let (scenario, label) = scenario(args, car.model.total_mass())?;
     let result = simulate(&car.model, &bumper, scenario, &Options::default())?;
-    let summary = bumpsim_impact::text::summary(&result);
+    let warnings = result.warnings();
+    warnings.iter().for_each(|w| crate::warn(w));
+    let summary = bumpsim_impact::text::summary(&result)
+        + &warnings
+            .iter()
+            .map(|w| format!("warning: {w}\n"))
+            .collect::<String>();
     let name = car
         .name
         .clone()
@@ -147,6 +151,7 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
             "scenario": scenario, "peak_force": result.peak_force, "max_compression": result.max_compression,
             "remaining_compression": result.remaining_compression, "contact_time": result.contact_time,
             "absorbed_energy": result.absorbed_energy, "energy": result.energy, "step": result.step,
+            "warnings": warnings,
         });
         write(path, &serde_json::to_string_pretty(&json)?)?;
     }
@@ -156,10 +161,12 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
     if let Some(dir) = &args.report {
         let (html, figures) =
             bumpsim_report::impact::impact_report(&format!("{name} — {label}"), &summary, &result)?;
+        let folder = Folder::stage(dir)?;
         for (file, svg) in figures {
-            write(&dir.join(file), &svg)?;
+            folder.write(&file, &svg)?;
         }
-        write(&dir.join("index.html"), &html)?;
+        folder.write("index.html", &html)?;
+        folder.commit()?;
     }
     Ok(())
 }
@@ -203,6 +210,7 @@ pub fn run_reduction(args: &ReductionArgs) -> Result<()> {
         write(path, &bumpsim_impact::text::grid_csv(grid))?;
     }
     if let Some(dir) = &args.report {
+        let folder = Folder::stage(dir)?;
         let mut page = Html::new("bumpsim mass reduction (paper A)");
         page.heading("Result");
         page.preformatted(&text);
@@ -210,9 +218,10 @@ pub fn run_reduction(args: &ReductionArgs) -> Result<()> {
             let svg = bumpsim_report::impact::heat_map(grid).svg()?;
             page.heading("Sweep");
             page.figure(&svg, "scale factor M*/(M1+M2) over the grid");
-            write(&dir.join("sweep.svg"), &svg)?;
+            folder.write("sweep.svg", &svg)?;
         }
-        write(&dir.join("index.html"), &page.finish())?;
+        folder.write("index.html", &page.finish())?;
+        folder.commit()?;
     }
     Ok(())
 }
@@ -227,29 +236,10 @@ fn sweep(
     if args.points < 2 {
         bail!("--points {}: at least 2 per axis", args.points);
     }
+    let kind: PaperSweep = which.parse().map_err(|e| anyhow::anyhow!("--sweep {e}"))?;
     let bar = ProgressBar::new(args.points as u64);
     let n = args.points;
-    let grid = match which {
-        "car" => sweep_car(
-            car.m1 + car.m2,
-            linspace(1e5, 1e7, n),
-            linspace(0.52, 0.95, n),
-            bumper,
-            v0,
-            args.criterion,
-            &|| bar.inc(1),
-        ),
-        "bumper" => sweep_bumper(
-            car,
-            linspace(1e6, 8e6, n),
-            linspace(40e3, 200e3, n),
-            bumper.unloading_slope(),
-            v0,
-            args.criterion,
-            &|| bar.inc(1),
-        ),
-        other => bail!("--sweep '{other}': expected car or bumper"),
-    };
+    let grid = kind.run(n, (car, bumper), v0, args.criterion, &|| bar.inc(1));
     bar.finish_and_clear();
     let found = grid.values.iter().flatten().flatten().count();
     println!("sweep {which}: {n} × {n} grid, {found} cells with an answer");
@@ -259,7 +249,7 @@ fn sweep(
 /// Arguments of `synth`.
 #[derive(Debug, clap::Args)]
 pub struct SynthArgs {
-    /// The series file (TOML: car, seed, [chain], [[head]] with name, bumper, mass, speed).
+    /// The series file (TOML: car, seed, `[chain]`, `[[head]]` with name, bumper, mass, speed).
     series: PathBuf,
     /// Output folder: one ISO-MME test and one CSV per head, plus `generated-by.toml`.
     #[arg(short, long)]
@@ -276,13 +266,13 @@ pub fn run_synth(args: &SynthArgs) -> Result<()> {
             args.output.display()
         );
     }
-    for (name, channels) in &heads {
-        let metadata = vec![(
-            "Title".to_string(),
-            format!("{name}: synthetic pendulum test (bumpsim synth)"),
-        )];
-        let mme = bumpsim_io::isomme::write(&args.output.join(name), name, &metadata, channels)?;
-        println!("wrote {}", mme.display());
+    let folder = Folder::stage(&args.output)?;
+    for (name, metadata, channels) in &heads {
+        bumpsim_io::isomme::write(&folder.path().join(name), name, metadata, channels)?;
+        println!(
+            "wrote {}",
+            args.output.join(name).join(format!("{name}.mme")).display()
+        );
         let (time, columns) = bumpsim_signal::process::align(channels)?;
         let output: Vec<bumpsim_io::table::OutputColumn> = channels
             .iter()
@@ -293,12 +283,15 @@ pub fn run_synth(args: &SynthArgs) -> Result<()> {
                 values,
             })
             .collect();
-        let csv = args.output.join(format!("{name}.csv"));
+        let csv = folder.path().join(format!("{name}.csv"));
         bumpsim_io::table::write_table(&csv, &time, &output)?;
-        println!("wrote {}", csv.display());
+        println!(
+            "wrote {}",
+            args.output.join(format!("{name}.csv")).display()
+        );
     }
-    write(
-        &args.output.join("generated-by.toml"),
+    folder.write(
+        "generated-by.toml",
         &provenance
             .lines()
             .map(|l| {
@@ -310,5 +303,6 @@ pub fn run_synth(args: &SynthArgs) -> Result<()> {
             })
             .collect::<Vec<_>>()
             .join("\n"),
-    )
+    )?;
+    folder.commit()
 }

@@ -3,24 +3,36 @@
 //! computation of its own.
 //!
 //! Exit codes: 0 success; 2 for anything the user can fix (bad arguments,
-//! unreadable or invalid files, a model the chosen method cannot run).
+//! unreadable or invalid files, a model the chosen method cannot run), and
+//! under `--strict` for a result that failed its own checks (a warning).
+//!
+//! Outputs: every path on the command line that exists and is not an output
+//! option is registered as an input with [`bumpsim_io::output`]; every output
+//! is checked against them (and for file/folder kind) before the command
+//! runs, and written atomically.
 
 mod doe;
 mod export;
 mod identify;
 mod impact;
+mod output;
 mod signal;
 mod simulate;
 
-use anyhow::{Context, Result};
-use clap::{Parser, Subcommand};
-use std::path::Path;
+pub(crate) use output::{Folder, write};
+
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Low-speed bumper impact toolkit: MSD car models from crash tests.
 #[derive(Debug, Parser)]
 #[command(name = "bumpsim", version, about, long_about = None)]
 struct Cli {
+    /// Exit with code 2 when a result fails its own checks (energy balance,
+    /// momentum, fit, non-finite values); without it they are warnings.
+    #[arg(long, global = true)]
+    strict: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -50,8 +62,37 @@ enum Command {
     Export(export::Command),
 }
 
+/// Parses a count of at least 1 and at most `MAX` (a documented resource
+/// limit, docs/limits.md); clap names the option in its error.
+pub(crate) fn count<const MAX: usize>(text: &str) -> std::result::Result<usize, String> {
+    let n: usize = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{text}': expected a whole number from 1 to {MAX}"))?;
+    if n == 0 || n > MAX {
+        return Err(format!("{n}: expected 1 to {MAX} (resource limit)"));
+    }
+    Ok(n)
+}
+
+static WARNINGS: AtomicUsize = AtomicUsize::new(0);
+
+/// Prints a warning about a result (stderr) and counts it for `--strict`.
+pub(crate) fn warn(message: &str) {
+    WARNINGS.fetch_add(1, Ordering::Relaxed);
+    eprintln!("warning: {message}");
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let matches = Cli::command().get_matches();
+    let cli = match Cli::from_arg_matches(&matches) {
+        Ok(cli) => cli,
+        Err(e) => e.exit(),
+    };
+    if let Err(error) = output::guard_paths(&matches) {
+        eprintln!("error: {}", message(&error));
+        return ExitCode::from(2);
+    }
     let result = match cli.command {
         Command::Simulate(args) => simulate::run(&args),
         Command::Export(command) => export::run(&command),
@@ -63,22 +104,18 @@ fn main() -> ExitCode {
         Command::Doe(command) => doe::run(&command),
         Command::Predict(args) => identify::run_predict(&args),
     };
+    let warnings = WARNINGS.load(Ordering::Relaxed);
     match result {
+        Ok(()) if cli.strict && warnings > 0 => {
+            eprintln!("error: --strict: the results carry {warnings} warning(s) (see above)");
+            ExitCode::from(2)
+        }
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
             eprintln!("error: {}", message(&error));
             ExitCode::from(2)
         }
     }
-}
-
-/// Writes a text output file (creating its folder) and says so.
-pub(crate) fn write(path: &Path, text: &str) -> Result<()> {
-    bumpsim_io::table::create_parent(path)
-        .with_context(|| format!("cannot create the folder of {}", path.display()))?;
-    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))?;
-    println!("wrote {}", path.display());
-    Ok(())
 }
 
 /// The error and its causes, each cause once: library errors often already

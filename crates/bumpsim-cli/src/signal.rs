@@ -4,12 +4,10 @@
 use crate::simulate::refuse_overwriting_inputs;
 use anyhow::{Context, Result, bail};
 use bumpsim_core::channel::Channel;
-use bumpsim_core::units::{Dimension, Unit, format_in, format_quantity};
+use bumpsim_core::units::{Dimension, Unit, choose_units, format_in, format_quantity};
 use bumpsim_io::isomme;
-use bumpsim_io::table::{OutputColumn, write_table};
+use bumpsim_io::table::{OutputColumn, write_table_in};
 use bumpsim_io::test_data::{TestData, Validity};
-use bumpsim_report::file_name;
-use bumpsim_report::plot::{LinePlot, Series, Style};
 use bumpsim_signal::pipeline::{Pipeline, PipelineResult, export, extremes};
 use bumpsim_signal::process::{Combine, Step, align};
 use clap::{Subcommand, ValueEnum};
@@ -36,26 +34,34 @@ fn emit(text: &str) -> Result<()> {
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Test metadata and the channel table of an ISO-MME test, an NHTSA EV5 file or a CSV file.
-    Info {
-        /// ISO-MME folder, .mme or .zip; NHTSA .EV5; or .csv.
-        path: PathBuf,
-    },
+    Info(InfoArgs),
     /// Select channels, process them, and write CSV (and optionally ISO-MME).
     Export(ExportArgs),
     /// Run a processing pipeline file (TOML) and print its signals.
-    Process {
-        /// The pipeline file.
-        pipeline: PathBuf,
-        /// CSV output (default: the pipeline's `output`).
-        #[arg(short, long)]
-        output: Option<PathBuf>,
-        /// Write SVG plots of raw vs processed signals into this folder.
-        #[arg(long)]
-        plot: Option<PathBuf>,
-        /// Write the plots and an HTML report into this folder.
-        #[arg(long)]
-        report: Option<PathBuf>,
-    },
+    Process(ProcessArgs),
+}
+
+/// Arguments of `signal info`.
+#[derive(Debug, clap::Args)]
+pub struct InfoArgs {
+    /// ISO-MME folder, .mme or .zip; NHTSA .EV5; or .csv.
+    path: PathBuf,
+}
+
+/// Arguments of `signal process`.
+#[derive(Debug, clap::Args)]
+pub struct ProcessArgs {
+    /// The pipeline file.
+    pipeline: PathBuf,
+    /// CSV output (default: the pipeline's `output`).
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Write SVG plots of raw vs processed signals into this folder.
+    #[arg(long)]
+    plot: Option<PathBuf>,
+    /// Write the plots and an HTML report into this folder.
+    #[arg(long)]
+    report: Option<PathBuf>,
 }
 
 /// How several channels of one selector are combined.
@@ -117,18 +123,13 @@ pub struct ExportArgs {
 /// Runs a `signal` subcommand.
 pub fn run(command: &Command) -> Result<()> {
     match command {
-        Command::Info { path } => info(path),
+        Command::Info(args) => info(&args.path),
         Command::Export(args) => run_export(args),
-        Command::Process {
-            pipeline,
-            output,
-            plot,
-            report,
-        } => process(
-            pipeline,
-            output.as_deref(),
-            plot.as_deref(),
-            report.as_deref(),
+        Command::Process(args) => process(
+            &args.pipeline,
+            args.output.as_deref(),
+            args.plot.as_deref(),
+            args.report.as_deref(),
         ),
     }
 }
@@ -194,6 +195,11 @@ fn info(path: &Path) -> Result<()> {
             e.name
         );
     }
+    for e in test.entries.iter().filter(|e| !e.present) {
+        if let Some(why) = &e.absence {
+            outln!(out, "absent: channel {} ({}): {why}", e.number, e.code);
+        }
+    }
     for e in invalid.iter().filter(|e| e.present) {
         if let Validity::Invalid(why) = &e.validity {
             outln!(
@@ -250,6 +256,7 @@ fn initial_value(text: &str) -> Result<f64> {
 
 fn run_export(args: &ExportArgs) -> Result<()> {
     refuse_overwriting_inputs(&args.output, &[&args.path])?;
+    args.iso_mme.as_deref().map(refuse_existing).transpose()?;
     let test = TestData::open(&args.path)?;
     let how = args.combine.map(|c| match c {
         CombineArg::Mean => Combine::Mean,
@@ -259,16 +266,10 @@ fn run_export(args: &ExportArgs) -> Result<()> {
     report(&result);
     write_csv(&args.output, &result.signals, &output_units(&args.unit)?)?;
     if let Some(folder) = &args.iso_mme {
-        refuse_existing(folder)?;
         let name = folder
             .file_name()
             .map_or("bumpsim".into(), |n| n.to_string_lossy().into_owned());
-        let mme = isomme::write(
-            folder,
-            &name,
-            &[("Title".into(), test.title.clone())],
-            &result.signals,
-        )?;
+        let mme = isomme::write(folder, &name, &isomme::test_header(&test), &result.signals)?;
         println!("wrote {}", mme.display());
     }
     plot(args.plot.as_deref(), &result).map(|_| ())
@@ -333,11 +334,7 @@ fn process(
     for (name, svg) in plot(Some(dir), &result)? {
         page.figure(&svg, &name);
     }
-    let index = dir.join("index.html");
-    std::fs::write(&index, page.finish())
-        .with_context(|| format!("cannot write {}", index.display()))?;
-    println!("wrote {}", index.display());
-    Ok(())
+    crate::write(&dir.join("index.html"), &page.finish())
 }
 
 fn newton_seconds(value: f64) -> String {
@@ -346,7 +343,7 @@ fn newton_seconds(value: f64) -> String {
 
 fn report(result: &PipelineResult) {
     for w in &result.warnings {
-        eprintln!("warning: {w}");
+        crate::warn(w);
     }
     print!("{}", summary(result));
 }
@@ -371,20 +368,22 @@ fn summary(result: &PipelineResult) -> String {
 
 fn write_csv(path: &Path, signals: &[Channel], units: &[Unit]) -> Result<()> {
     let (time, columns) = align(signals)?;
+    let dimensions: Vec<Dimension> = std::iter::once(Dimension::Time)
+        .chain(signals.iter().map(|s| s.dimension))
+        .collect();
+    let chosen = choose_units(units, &dimensions)
+        .map_err(|u| anyhow::anyhow!("--unit {u}: no column measures {}", u.dimension))?;
     let output: Vec<OutputColumn> = signals
         .iter()
         .zip(&columns)
-        .map(|(s, values)| OutputColumn {
+        .zip(&chosen[1..])
+        .map(|((s, values), &unit)| OutputColumn {
             name: &s.code,
-            unit: units
-                .iter()
-                .copied()
-                .find(|u| u.dimension == s.dimension)
-                .unwrap_or(Unit::si(s.dimension)),
+            unit,
             values,
         })
         .collect();
-    write_table(path, &time, &output)?;
+    write_table_in(path, chosen[0], &time, &output)?;
     let note = if units.is_empty() {
         "SI units"
     } else {
@@ -404,40 +403,11 @@ fn plot(folder: Option<&Path>, result: &PipelineResult) -> Result<Vec<(String, S
     let Some(folder) = folder else {
         return Ok(Vec::new());
     };
-    let mut written = Vec::new();
-    std::fs::create_dir_all(folder)
-        .with_context(|| format!("cannot create {}", folder.display()))?;
-    for (raw, processed) in result.raw.iter().zip(&result.signals) {
-        let curve = |c: &Channel, name: &str, style| {
-            Series::new(name, c.series.times(), c.series.values().to_vec(), style)
-        };
-        let mut plots = vec![LinePlot::new(
-            &processed.code,
-            Dimension::Time,
-            processed.dimension,
-        )];
-        if raw.dimension == processed.dimension {
-            plots[0].add(curve(raw, "raw", Style::Solid));
-        } else {
-            let mut raw_plot = LinePlot::new(
-                &format!("{} (raw)", processed.code),
-                Dimension::Time,
-                raw.dimension,
-            );
-            raw_plot.add(curve(raw, "raw", Style::Solid));
-            plots.push(raw_plot);
-        }
-        plots[0].add(curve(processed, "processed", Style::Dashed));
-        for (i, plot) in plots.iter().enumerate() {
-            let suffix = if i == 0 { "" } else { "-raw" };
-            let name = format!("{}{suffix}.svg", file_name(&processed.code));
-            let path = folder.join(&name);
-            let svg = plot.svg()?;
-            std::fs::write(&path, &svg)
-                .with_context(|| format!("cannot write {}", path.display()))?;
-            println!("wrote {}", path.display());
-            written.push((name, svg));
-        }
+    let plots = bumpsim_report::signal::raw_and_processed(&result.raw, &result.signals)?;
+    let staged = crate::Folder::stage(folder)?;
+    for (name, svg) in &plots {
+        staged.write(name, svg)?;
     }
-    Ok(written)
+    staged.commit()?;
+    Ok(plots)
 }

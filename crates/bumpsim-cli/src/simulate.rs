@@ -52,20 +52,14 @@ fn substeps(text: Option<&str>) -> Result<Substeps> {
     }
 }
 
-/// Refuses an output path that is one of the inputs.
+/// Refuses an output path that is one of the inputs (same path, hard link
+/// or inside an input folder; see [`bumpsim_io::output`]).
 pub fn refuse_overwriting_inputs(output: &Path, inputs: &[&Path]) -> Result<()> {
-    let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
-    };
-    if let Some(input) = inputs.iter().find(|i| same(output, i)) {
-        bail!(
-            "-o {} would overwrite the input {}: choose another output file",
-            output.display(),
-            input.display()
-        );
-    }
-    Ok(())
+    inputs
+        .iter()
+        .for_each(|input| bumpsim_io::output::register_input(input));
+    bumpsim_io::output::check_file(output)
+        .with_context(|| format!("-o {}: choose another output file", output.display()))
 }
 
 /// Reads the force column of a CSV file: the named one, or the only force column.
@@ -114,6 +108,14 @@ pub fn run(args: &Args) -> Result<()> {
         )
     })?;
     let response = simulator.run(&force, &initial)?;
+    if !response.is_finite() {
+        bail!(
+            "the simulation of {} produced non-finite values (inf or NaN): the model, force or initial velocity is beyond what the {} discretisation can represent",
+            args.car.display(),
+            args.method
+        );
+    }
+    response.warnings().iter().for_each(|w| crate::warn(w));
     print_summary(args, &car, &column, &force, &simulator, &response, &initial);
     if let Some(output) = &args.output {
         let existed = output.exists();

@@ -17,9 +17,16 @@
 //!   held over the sample) make it usable; they are combined by binary
 //!   powering, so m may be large.
 //!
+//! The exact methods take Φ and Γ from one balanced matrix exponential
+//! (the private `exponential` module, the only place that computes them);
+//! [`DiscreteModel::with_sensitivities`] adds their exact derivatives with
+//! respect to the log parameters, for identification.
+//!
 //! The update loop ([`DiscreteModel::propagate`]) allocates nothing and runs
 //! on fixed-size arrays for n = 1..10 masses (N = 2..20), so the compiler
-//! unrolls the small matrix–vector product.
+//! unrolls the small matrix–vector product. [`DiscreteModel::output`]
+//! ([`crate::sensitivity`]) runs the same update for one output and its
+//! sensitivities.
 //!
 //! ```
 //! use bumpsim_core::{discrete::{DiscreteModel, Method}, model::MsdModel};
@@ -29,6 +36,7 @@
 //! assert!(refused.to_string().contains("largest stable step"));
 //! ```
 
+use crate::exponential::{Exponential, Hold, hold_exponential};
 use crate::model::MsdModel;
 use crate::state_space::{Mode, ModeError, StateSpace, elastic_modes};
 use nalgebra::DMatrix;
@@ -57,6 +65,15 @@ impl Method {
         }
     }
 
+    /// How the force is held between samples: first order for foh, zero
+    /// order otherwise (taylor1's energies use the zero-order hold).
+    pub(crate) fn hold(self) -> Hold {
+        match self {
+            Method::Foh => Hold::First,
+            _ => Hold::Zero,
+        }
+    }
+
     /// One line for people.
     pub fn description(self) -> &'static str {
         match self {
@@ -73,16 +90,19 @@ impl fmt::Display for Method {
     }
 }
 
+/// A method name that is not zoh, foh or taylor1.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown method '{0}': expected zoh, foh or taylor1")]
+pub struct UnknownMethod(pub String);
+
 impl FromStr for Method {
-    type Err = String;
+    type Err = UnknownMethod;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         match s {
             "zoh" => Ok(Method::Zoh),
             "foh" => Ok(Method::Foh),
             "taylor1" => Ok(Method::Taylor1),
-            other => Err(format!(
-                "unknown method '{other}': expected zoh, foh or taylor1"
-            )),
+            other => Err(UnknownMethod(other.to_string())),
         }
     }
 }
@@ -107,6 +127,7 @@ pub const MAX_SUBSTEPS: u64 = 100_000_000;
 
 /// Why a model cannot be discretised.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum DiscretiseError {
     /// The sample interval is not positive and finite.
     #[error("sample interval {step} s must be positive and finite")]
@@ -114,9 +135,21 @@ pub enum DiscretiseError {
         /// The interval given, s.
         step: f64,
     },
-    /// Zero sub-steps, or sub-steps asked of an exact method.
-    #[error("{0}")]
-    Substeps(String),
+    /// Sub-steps asked of an exact method.
+    #[error("sub-steps apply to taylor1 only; {method} is exact at any step")]
+    SubstepsOfExact {
+        /// The exact method.
+        method: Method,
+    },
+    /// Zero sub-steps.
+    #[error("sub-steps must be at least 1")]
+    NoSubsteps,
+    /// More sub-steps than [`MAX_SUBSTEPS`].
+    #[error("{count} sub-steps per sample exceed the limit of {MAX_SUBSTEPS}: use method zoh")]
+    TooManySubsteps {
+        /// Sub-steps asked or needed.
+        count: u64,
+    },
     /// Explicit Euler amplifies a mode at this step.
     #[error(
         "taylor1 (explicit Euler, thesis eq. 10) is unstable at T = {step:e} s: {mode} has |1 + λh| = {radius:.4} > 1 \
@@ -158,23 +191,15 @@ pub struct DiscreteModel {
     step: f64,
     substeps: u64,
     order: usize,
-    /// Φ, row-major N × N.
-    phi: Vec<f64>,
-    gamma0: Vec<f64>,
-    gamma1: Vec<f64>,
-}
-
-/// The hold-augmented generator matrix (see the module overview).
-pub(crate) fn hold_generator(ss: &StateSpace, method: Method, step: f64) -> DMatrix<f64> {
-    let n = ss.order();
-    let extra = if method == Method::Foh { 2 } else { 1 };
-    let mut m = DMatrix::zeros(n + extra, n + extra);
-    m.view_mut((0, 0), (n, n)).copy_from(ss.a());
-    m.view_mut((0, n), (n, 1)).copy_from(ss.b());
-    if method == Method::Foh {
-        m[(n, n + 1)] = 1.0 / step;
-    }
-    m
+    /// Φ, column-major N × N.
+    pub(crate) phi: Vec<f64>,
+    pub(crate) gamma0: Vec<f64>,
+    pub(crate) gamma1: Vec<f64>,
+    /// dΦ/dp_i for the log parameters p = ln θ, stacked, column-major each
+    /// (empty without sensitivities).
+    pub(crate) dphi: Vec<f64>,
+    /// dΓ0/dp_i stacked, p × N.
+    pub(crate) dgamma: Vec<f64>,
 }
 
 impl DiscreteModel {
@@ -193,14 +218,61 @@ impl DiscreteModel {
         if !(step.is_finite() && step > 0.0) {
             return Err(DiscretiseError::Step { step });
         }
-        let ss = StateSpace::from_model(model);
         match (method, substeps) {
-            (Method::Taylor1, _) => taylor1(&ss, &elastic_modes(model)?, step, substeps),
-            (_, Substeps::Count(1)) => Ok(exact(&ss, method, step)),
-            _ => Err(DiscretiseError::Substeps(format!(
-                "sub-steps apply to taylor1 only; {method} is exact at any step"
-            ))),
+            (Method::Taylor1, _) => taylor1(
+                &StateSpace::from_model(model),
+                &elastic_modes(model)?,
+                step,
+                substeps,
+            ),
+            (_, Substeps::Count(1)) => Ok(Self::exact(model, method, step, false)),
+            _ => Err(DiscretiseError::SubstepsOfExact { method }),
         }
+    }
+
+    /// Discretises `model` by zoh at sample interval `step` (s) with the exact
+    /// derivatives of Φ and Γ with respect to the log parameters
+    /// `p = ln θ`, thesis order `[m.., c.., k..]`, for
+    /// [`DiscreteModel::output`]'s Jacobian.
+    ///
+    /// ```
+    /// use bumpsim_core::{discrete::DiscreteModel, model::MsdModel};
+    /// let car = MsdModel::new(vec![100.0, 900.0], vec![2e3], vec![5e5]).unwrap();
+    /// let d = DiscreteModel::with_sensitivities(&car, 1e-4).unwrap();
+    /// assert_eq!(d.parameter_count(), 4);
+    /// ```
+    pub fn with_sensitivities(model: &MsdModel, step: f64) -> Result<Self, DiscretiseError> {
+        if !(step.is_finite() && step > 0.0) {
+            return Err(DiscretiseError::Step { step });
+        }
+        Ok(Self::exact(model, Method::Zoh, step, true))
+    }
+
+    fn exact(model: &MsdModel, method: Method, step: f64, sensitivities: bool) -> Self {
+        let Exponential {
+            phi,
+            gamma0,
+            gamma1,
+            dphi,
+            dgamma,
+        } = hold_exponential(model, method.hold(), step, sensitivities);
+        DiscreteModel {
+            method,
+            step,
+            substeps: 1,
+            order: gamma0.len(),
+            phi,
+            gamma0,
+            gamma1,
+            dphi,
+            dgamma,
+        }
+    }
+
+    /// Number of log parameters with sensitivities (0 unless built by
+    /// [`DiscreteModel::with_sensitivities`]).
+    pub fn parameter_count(&self) -> usize {
+        self.dgamma.len() / self.order
     }
 
     /// The method used.
@@ -225,10 +297,10 @@ impl DiscreteModel {
 
     /// Φ as a matrix.
     pub fn phi(&self) -> DMatrix<f64> {
-        DMatrix::from_row_slice(self.order, self.order, &self.phi)
+        DMatrix::from_column_slice(self.order, self.order, &self.phi)
     }
 
-    /// Γ0, the weight of f[k].
+    /// Γ0, the weight of `f[k]`.
     pub fn gamma0(&self) -> &[f64] {
         &self.gamma0
     }
@@ -292,32 +364,64 @@ fn propagate_fixed<const N: usize>(
     force: &[f64],
     states: &mut [f64],
 ) {
-    // columns of Φ: the product accumulates column by column, so the N rows
-    // are independent lanes the compiler vectorises
-    let mut columns = [[0.0; N]; N];
-    for (i, row) in model.phi.chunks_exact(N).enumerate() {
-        for (column, value) in columns.iter_mut().zip(row) {
-            column[i] = *value;
-        }
-    }
-    let mut gamma = [[0.0; N]; 2];
-    gamma[0].copy_from_slice(&model.gamma0);
-    gamma[1].copy_from_slice(&model.gamma1);
-    let mut x = [0.0; N];
-    x.copy_from_slice(initial);
+    let (phi, g0, g1) = model.fixed::<N>();
+    let mut x: [f64; N] = std::array::from_fn(|r| initial[r]);
     states[..N].copy_from_slice(&x);
     for (out, f) in states[N..].chunks_exact_mut(N).zip(force.windows(2)) {
-        let mut next = [0.0; N];
-        for ((value, g0), g1) in next.iter_mut().zip(&gamma[0]).zip(&gamma[1]) {
-            *value = g0 * f[0] + g1 * f[1];
+        x = advance(&phi, &g0, g1.as_ref(), &x, f[0], f[1]);
+        out.copy_from_slice(&x);
+    }
+}
+
+/// One update `Φ x + Γ0 f0 + Γ1 f1` on fixed-size arrays, Φ by columns: the
+/// product accumulates column by column, so the N rows are independent lanes
+/// the compiler vectorises. `g1` is `None` for the holds without a Γ1 term
+/// (zoh, taylor1), which skips N products per step. Every simulation path
+/// runs this update.
+#[inline(always)]
+pub(crate) fn advance<const N: usize>(
+    phi: &[[f64; N]; N],
+    g0: &[f64; N],
+    g1: Option<&[f64; N]>,
+    x: &[f64; N],
+    f0: f64,
+    f1: f64,
+) -> [f64; N] {
+    let mut next = g0.map(|a| a * f0);
+    if let Some(g1) = g1 {
+        for (value, b) in next.iter_mut().zip(g1) {
+            *value += b * f1;
         }
-        for (column, xj) in columns.iter().zip(&x) {
-            for (value, p) in next.iter_mut().zip(column) {
-                *value += p * xj;
-            }
+    }
+    for (column, xj) in phi.iter().zip(x) {
+        for (value, p) in next.iter_mut().zip(column) {
+            *value += p * xj;
         }
-        out.copy_from_slice(&next);
-        x = next;
+    }
+    next
+}
+
+/// One update on slices (any N), in the same order as [`advance`].
+pub(crate) fn advance_dynamic(
+    model: &DiscreteModel,
+    x: &[f64],
+    f0: f64,
+    f1: f64,
+    next: &mut [f64],
+) {
+    let n = model.order;
+    for (value, a) in next.iter_mut().zip(&model.gamma0) {
+        *value = a * f0;
+    }
+    if model.method == Method::Foh {
+        for (value, b) in next.iter_mut().zip(&model.gamma1) {
+            *value += b * f1;
+        }
+    }
+    for (column, xj) in model.phi.chunks_exact(n).zip(x) {
+        for (value, p) in next.iter_mut().zip(column) {
+            *value += p * xj;
+        }
     }
 }
 
@@ -326,30 +430,21 @@ fn propagate_dynamic(model: &DiscreteModel, initial: &[f64], force: &[f64], stat
     states[..n].copy_from_slice(initial);
     for (k, f) in force.windows(2).enumerate() {
         let (done, rest) = states.split_at_mut((k + 1) * n);
-        let x = &done[k * n..];
-        for (i, value) in rest[..n].iter_mut().enumerate() {
-            let row = &model.phi[i * n..(i + 1) * n];
-            let input = model.gamma0[i] * f[0] + model.gamma1[i] * f[1];
-            *value = row.iter().zip(x).fold(input, |sum, (p, xj)| sum + p * xj);
-        }
+        advance_dynamic(model, &done[k * n..], f[0], f[1], &mut rest[..n]);
     }
 }
 
-fn exact(ss: &StateSpace, method: Method, step: f64) -> DiscreteModel {
-    let n = ss.order();
-    let e = (hold_generator(ss, method, step) * step).exp();
-    let phi = e.view((0, 0), (n, n)).clone_owned();
-    let first: Vec<f64> = e.column(n).rows(0, n).iter().copied().collect();
-    let (gamma0, gamma1) = if method == Method::Foh {
-        let second: Vec<f64> = e.column(n + 1).rows(0, n).iter().copied().collect();
+impl DiscreteModel {
+    /// Φ by columns, Γ0 and (for foh) Γ1 as fixed-size arrays (N must be
+    /// the order).
+    #[allow(clippy::type_complexity)] // the three parts of the update, named at the call
+    pub(crate) fn fixed<const N: usize>(&self) -> ([[f64; N]; N], [f64; N], Option<[f64; N]>) {
         (
-            first.iter().zip(&second).map(|(a, b)| a - b).collect(),
-            second,
+            std::array::from_fn(|c| std::array::from_fn(|r| self.phi[c * N + r])),
+            std::array::from_fn(|r| self.gamma0[r]),
+            (self.method == Method::Foh).then(|| std::array::from_fn(|r| self.gamma1[r])),
         )
-    } else {
-        (first, vec![0.0; n])
-    };
-    build(method, step, 1, phi, gamma0, gamma1)
+    }
 }
 
 fn build(
@@ -365,9 +460,11 @@ fn build(
         step,
         substeps,
         order: phi.nrows(),
-        phi: phi.transpose().as_slice().to_vec(),
+        phi: phi.as_slice().to_vec(),
         gamma0,
         gamma1,
+        dphi: Vec::new(),
+        dgamma: Vec::new(),
     }
 }
 
@@ -402,17 +499,11 @@ fn taylor1(
     let (needed, limit) = substeps_needed(modes, step)?;
     let count = match substeps {
         Substeps::Auto => needed,
-        Substeps::Count(0) => {
-            return Err(DiscretiseError::Substeps(
-                "sub-steps must be at least 1".into(),
-            ));
-        }
+        Substeps::Count(0) => return Err(DiscretiseError::NoSubsteps),
         Substeps::Count(c) => u64::from(c),
     };
     if count > MAX_SUBSTEPS {
-        return Err(DiscretiseError::Substeps(format!(
-            "{count} sub-steps per sample exceed the limit of {MAX_SUBSTEPS}: use method zoh"
-        )));
+        return Err(DiscretiseError::TooManySubsteps { count });
     }
     let h = step / count as f64;
     if let Some((mode, radius)) = most_amplified(modes, h) {

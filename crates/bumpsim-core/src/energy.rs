@@ -20,7 +20,8 @@
 //! spring energies at the samples, they close the balance
 //! `ΔE_kin + ΔE_spring + E_dissipated = W_force` to rounding for zoh and foh.
 
-use crate::discrete::{Method, hold_generator};
+use crate::discrete::Method;
+use crate::exponential::hold_generator;
 use crate::model::MsdModel;
 use crate::state_space::StateSpace;
 use nalgebra::DMatrix;
@@ -40,11 +41,7 @@ impl StepIntegrals {
     /// Builds the integrals for a model, a hold (zoh or foh; taylor1 uses zoh)
     /// and a step T (s).
     pub fn new(model: &MsdModel, method: Method, step: f64) -> Self {
-        let hold = if method == Method::Foh {
-            Method::Foh
-        } else {
-            Method::Zoh
-        };
+        let hold = method.hold();
         let ss = StateSpace::from_model(model);
         let generator = hold_generator(&ss, hold, step);
         let n = model.dof();

@@ -9,7 +9,9 @@
 //! - [`channel`]: a measured channel (series, code, name, unit, metadata);
 //! - [`model`]: the validated chain model and its parameter vector;
 //! - [`state_space`]: A, B and the elastic modes;
-//! - [`discrete`]: zoh, foh and taylor1 discretisations and the update loop;
+//! - [`discrete`]: zoh, foh and taylor1 discretisations and the update loop
+//!   (Φ and Γ of the exact holds from one balanced exponential);
+//! - [`sensitivity`]: one output and its exact parameter sensitivities;
 //! - [`energy`]: exact per-step energy integrals;
 //! - [`simulate`]: responses with forces and energies.
 //!
@@ -24,11 +26,20 @@
 pub mod channel;
 pub mod discrete;
 pub mod energy;
+mod exponential;
 pub mod model;
+pub mod sensitivity;
 pub mod series;
 pub mod simulate;
 pub mod state_space;
 pub mod units;
+
+pub use channel::Channel;
+pub use discrete::{DiscreteModel, Method};
+pub use model::MsdModel;
+pub use series::UniformSeries;
+pub use simulate::{InitialState, Response, Simulator};
+pub use units::{Dimension, Unit};
 
 /// The types most programs need.
 pub mod prelude {

@@ -23,6 +23,11 @@
 //! physical (paper A's 2-DOF car has a spring only, and the undamped
 //! oscillator is the textbook check); identification bounds keep them ≥ 1.
 //!
+//! With the `serde` feature a model serialises as
+//! `{"masses": [..], "dampers": [..], "springs": [..]}` (SI) and deserialises
+//! only through [`MsdModel::new`], so a file can never hold an invalid model
+//! (`dampers` and `springs` may be absent for one mass).
+//!
 //! ```
 //! use bumpsim_core::model::MsdModel;
 //! let car = MsdModel::new(vec![1.8, 74.8, 1670.0], vec![6.46e6, 1.97e5], vec![4.75e5, 5.0e5]).unwrap();
@@ -31,10 +36,12 @@
 //! assert!(MsdModel::new(vec![-1.0], vec![], vec![]).is_err());
 //! ```
 
+use crate::units::{Dimension, format_quantity};
 use nalgebra::DMatrix;
 
 /// A validated chain MSD model; parameters in SI.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct MsdModel {
     masses: Vec<f64>,
     dampers: Vec<f64>,
@@ -43,10 +50,19 @@ pub struct MsdModel {
 
 /// Why a model cannot be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum ModelError {
     /// No masses given.
     #[error("a model needs at least one mass")]
     NoMass,
+    /// More masses than [`MAX_DOF`].
+    #[error(
+        "{dof} masses: at most {MAX_DOF} (limit MAX_DOF; the state matrices grow with the square of the DOF)"
+    )]
+    TooManyMasses {
+        /// The number given.
+        dof: usize,
+    },
     /// The number of dampers or springs does not fit the number of masses.
     #[error("{count} {kind} given for {dof} masses: a chain of n masses needs n - 1 = {expected}")]
     Count {
@@ -104,6 +120,15 @@ impl ParameterKind {
         }
     }
 
+    /// The physical dimension: mass, damping or stiffness.
+    pub fn dimension(self) -> Dimension {
+        match self {
+            ParameterKind::Mass => Dimension::Mass,
+            ParameterKind::Damper => Dimension::Damping,
+            ParameterKind::Spring => Dimension::Stiffness,
+        }
+    }
+
     /// The SI unit symbol.
     pub fn unit(self) -> &'static str {
         match self {
@@ -114,12 +139,19 @@ impl ParameterKind {
     }
 }
 
+/// Most masses of a model (a 1000-mass model already needs ~100 MB of
+/// state matrices per discretisation).
+pub const MAX_DOF: usize = 1000;
+
 impl MsdModel {
     /// Builds a model from masses (kg), dampers (N·s/m) and springs (N/m).
     pub fn new(masses: Vec<f64>, dampers: Vec<f64>, springs: Vec<f64>) -> Result<Self, ModelError> {
         let dof = masses.len();
         if dof == 0 {
             return Err(ModelError::NoMass);
+        }
+        if dof > MAX_DOF {
+            return Err(ModelError::TooManyMasses { dof });
         }
         check_count("dampers", dof, dampers.len())?;
         check_count("springs", dof, springs.len())?;
@@ -215,6 +247,17 @@ pub fn parameter_name(dof: usize, index: usize) -> String {
     format!("{}{number}", kind.letter())
 }
 
+/// Parameter `index` of a `dof`-mass model, SI value, with its display
+/// unit (kg, Ns/mm, N/mm).
+///
+/// ```
+/// use bumpsim_core::model::format_parameter;
+/// assert!(format_parameter(3, 0, 1.8).ends_with("kg"));
+/// ```
+pub fn format_parameter(dof: usize, index: usize, value: f64) -> String {
+    format_quantity(value, parameter_kind(dof, index).0.dimension())
+}
+
 fn check_count(kind: &'static str, dof: usize, count: usize) -> Result<(), ModelError> {
     if count == dof - 1 {
         return Ok(());
@@ -258,6 +301,29 @@ fn chain_matrix(dof: usize, links: &[f64]) -> DMatrix<f64> {
         matrix[(j + 1, j)] -= value;
     }
     matrix
+}
+
+/// The model's fields as a file holds them, before validation.
+#[cfg(feature = "serde")]
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ModelFields {
+    masses: Vec<f64>,
+    #[serde(default)]
+    dampers: Vec<f64>,
+    #[serde(default)]
+    springs: Vec<f64>,
+}
+
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for MsdModel {
+    /// Deserialises and validates like [`MsdModel::new`]; the error names
+    /// the parameter.
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let fields = ModelFields::deserialize(deserializer)?;
+        MsdModel::new(fields.masses, fields.dampers, fields.springs)
+            .map_err(serde::de::Error::custom)
+    }
 }
 
 #[cfg(test)]
@@ -310,5 +376,26 @@ mod tests {
             DMatrix::from_row_slice(3, 3, &[2.0, -2.0, 0.0, -2.0, 5.0, -3.0, 0.0, -3.0, 3.0]);
         assert_eq!(k, expected);
         assert_eq!(k.row_sum().norm(), 0.0);
+    }
+
+    #[cfg(feature = "serde")]
+    #[test]
+    fn serde_round_trips_and_validates() {
+        let car = MsdModel::new(vec![1.8, 74.8], vec![6.46e6], vec![4.75e5]).unwrap();
+        let json = serde_json::to_string(&car).unwrap();
+        assert_eq!(
+            json,
+            r#"{"masses":[1.8,74.8],"dampers":[6460000.0],"springs":[475000.0]}"#
+        );
+        assert_eq!(serde_json::from_str::<MsdModel>(&json).unwrap(), car);
+        let rigid: MsdModel = serde_json::from_str(r#"{"masses": [1000.0]}"#).unwrap();
+        assert_eq!(rigid.dof(), 1);
+        let err = serde_json::from_str::<MsdModel>(
+            r#"{"masses": [1.0, -2.0], "dampers": [0.0], "springs": [1.0]}"#,
+        )
+        .unwrap_err();
+        assert!(err.to_string().contains("m2 = -2 kg"), "{err}");
+        let err = serde_json::from_str::<MsdModel>(r#"{"masses": [1.0], "mass": 2}"#).unwrap_err();
+        assert!(err.to_string().contains("unknown field `mass`"), "{err}");
     }
 }

@@ -5,12 +5,30 @@
 //! are SI; this type only guarantees that the time base is valid and every
 //! value is finite, so that no NaN can enter a simulation.
 //!
+//! Windows and integrals between times share one rule for "inside": sample
+//! `i` lies in `[t0, t1]` when `t0 − ε T ≤ t_i ≤ t1 + ε T` with
+//! ε = [`WINDOW_TOLERANCE`] (1e-9 of the interval), so a boundary given as a
+//! sample time (`0.12` s, or `start + k T` computed with rounding) includes
+//! that sample. The integral is the trapezoidal rule
+//! `∫ x dt ≈ Σ T (x_k + x_{k+1}) / 2` over the samples inside, plus the
+//! partial intervals from `t0` to the first and from the last to `t1`
+//! (trapezoids with the linearly interpolated boundary value), so it is exact
+//! for piecewise-linear signals whatever the window.
+//!
 //! ```
 //! use bumpsim_core::series::UniformSeries;
 //! let s = UniformSeries::new(0.0, 1e-4, vec![0.0, 1.0, 2.0]).unwrap();
 //! assert!((s.time(2) - 2e-4).abs() < 1e-18);
 //! assert!(UniformSeries::new(0.0, 1e-4, vec![0.0, f64::NAN]).is_err());
+//! assert_eq!(s.window(1e-4, 1.0), Some(1..=2));
+//! assert!((s.integral(0.5e-4, 2e-4) - 1.875e-4).abs() < 1e-18);
 //! ```
+
+use std::ops::RangeInclusive;
+
+/// The tolerance of "inside a window", as a fraction of the sample
+/// interval: a sample within `1e-9 T` outside a boundary counts as inside.
+pub const WINDOW_TOLERANCE: f64 = 1e-9;
 
 /// A signal sampled at a constant interval, values in SI.
 #[derive(Debug, Clone, PartialEq)]
@@ -33,7 +51,9 @@ pub enum SeriesError {
         step: f64,
     },
     /// The start time is not finite.
-    #[error("start time {start} s must be finite")]
+    #[error(
+        "start time {start} s must be finite, and small enough that the sample interval is resolved next to it"
+    )]
     Start {
         /// The start given, s.
         start: f64,
@@ -56,7 +76,9 @@ impl UniformSeries {
         if !(step.is_finite() && step > 0.0) {
             return Err(SeriesError::Step { step });
         }
-        if !start.is_finite() {
+        // beyond ~1e15 intervals from zero, start + k·step no longer
+        // separates the samples (a 1e308 s start collapses every time)
+        if !start.is_finite() || start.abs() * 1e-15 > step {
             return Err(SeriesError::Start { start });
         }
         if values.is_empty() {
@@ -121,11 +143,90 @@ impl UniformSeries {
         peak_of(&self.values)
     }
 
-    /// Time integral by the trapezoidal rule (unit: value unit × s).
+    /// Time integral over the whole series by the trapezoidal rule (unit:
+    /// value unit × s).
     pub fn integral_trapezoidal(&self) -> f64 {
-        let inner: f64 = self.values.windows(2).map(|w| w[0] + w[1]).sum();
-        0.5 * inner * self.step
+        trapezoid(&self.values, self.step)
     }
+
+    /// The samples inside `[t0, t1]` s (with [`WINDOW_TOLERANCE`]), as an
+    /// index range; `None` when no sample is inside or a bound is NaN.
+    pub fn window(&self, t0: f64, t1: f64) -> Option<RangeInclusive<usize>> {
+        if t0.is_nan() || t1.is_nan() {
+            return None;
+        }
+        let slack = WINDOW_TOLERANCE * self.step;
+        let last_index = (self.len() - 1) as f64;
+        let first = ((t0 - slack - self.start) / self.step).ceil().max(0.0);
+        let last = ((t1 + slack - self.start) / self.step)
+            .floor()
+            .min(last_index);
+        (first.is_finite() && last.is_finite() && first <= last)
+            .then_some(first as usize..=last as usize)
+    }
+
+    /// Time integral between `t0` and `t1` s (`t0 ≤ t1`, clipped to the
+    /// series' span) by the trapezoidal rule, including the partial
+    /// intervals at both ends (unit: value unit × s). Zero when the window
+    /// holds no part of the series or a bound is NaN.
+    pub fn integral(&self, t0: f64, t1: f64) -> f64 {
+        if t0.is_nan() || t1.is_nan() || t0 > t1 {
+            return 0.0;
+        }
+        let (t0, t1) = (t0.max(self.start), t1.min(self.end()));
+        let Some(inside) = self.window(t0, t1) else {
+            return self.partial(t0, t1);
+        };
+        let (a, b) = (*inside.start(), *inside.end());
+        self.partial(t0, self.time(a))
+            + trapezoid(&self.values[a..=b], self.step)
+            + self.partial(self.time(b), t1)
+    }
+
+    /// Trapezoid from `t0` to `t1` with interpolated end values (zero when
+    /// the interval is within the window tolerance or reversed).
+    fn partial(&self, t0: f64, t1: f64) -> f64 {
+        if t1 - t0 <= WINDOW_TOLERANCE * self.step {
+            return 0.0;
+        }
+        0.5 * (t1 - t0) * (self.at(t0) + self.at(t1))
+    }
+
+    /// Linear interpolation at `t` s (clamped to the ends).
+    pub fn at(&self, t: f64) -> f64 {
+        let v = &self.values;
+        let x = ((t - self.start) / self.step).clamp(0.0, (v.len() - 1) as f64);
+        let i = (x.floor() as usize).min(v.len().saturating_sub(2));
+        match v.len() {
+            1 => v[0],
+            _ => v[i] + (x - i as f64) * (v[i + 1] - v[i]),
+        }
+    }
+}
+
+/// Trapezoidal integral `Σ T (x_k + x_{k+1}) / 2` of samples spaced `step`
+/// s (zero for fewer than two samples; unit: value unit × s).
+pub fn trapezoid(values: &[f64], step: f64) -> f64 {
+    values.windows(2).map(|w| interval(step, w[0], w[1])).sum()
+}
+
+/// The running trapezoidal integral of samples spaced `step` s, starting
+/// at `initial`: `y[0] = y0`, `y[k] = y[k−1] + T (x[k−1] + x[k]) / 2`.
+pub fn cumulative_trapezoid(values: &[f64], step: f64, initial: f64) -> Vec<f64> {
+    let mut out = Vec::with_capacity(values.len());
+    let mut sum = initial;
+    for (k, &v) in values.iter().enumerate() {
+        if k > 0 {
+            sum += interval(step, values[k - 1], v);
+        }
+        out.push(sum);
+    }
+    out
+}
+
+/// One trapezoid: `T (a + b) / 2`.
+fn interval(step: f64, a: f64, b: f64) -> f64 {
+    0.5 * step * (a + b)
 }
 
 /// Index and value of the largest absolute value of a non-empty slice
@@ -164,6 +265,64 @@ mod tests {
         let err = UniformSeries::new(1.0, 0.5, vec![0.0, 1.0, f64::INFINITY]).unwrap_err();
         assert!(matches!(err, SeriesError::NonFinite { index: 2, .. }));
         assert!(err.to_string().contains("t = 2 s"), "{err}");
+    }
+
+    fn ramp() -> UniformSeries {
+        UniformSeries::new(
+            -0.05,
+            1e-4,
+            (0..2100).map(|i| 3.0 * i as f64 * 1e-4).collect(),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn a_window_given_by_sample_times_includes_both_samples() {
+        let s = ramp();
+        assert_eq!(s.window(s.time(500), s.time(1700)), Some(500..=1700));
+        assert_eq!(s.window(0.0, 0.12), Some(500..=1700));
+        assert_eq!(s.window(0.5e-13, 0.12 - 0.5e-13), Some(500..=1700));
+        assert_eq!(s.window(2e-13, 0.12 - 2e-13), Some(501..=1699));
+        assert_eq!(s.window(0.5e-4, 1.5e-4), Some(501..=501));
+        assert_eq!(s.window(-1.0, 1.0), Some(0..=2099));
+        assert_eq!(s.window(0.2, 0.3), None);
+        assert_eq!(s.window(0.01e-4, 0.99e-4), None);
+        assert_eq!(s.window(f64::NAN, 1.0), None);
+        assert_eq!(s.window(0.1, 0.0), None);
+    }
+
+    #[test]
+    fn integral_between_times_is_exact_for_a_line() {
+        let s = ramp();
+        // x(t) = 3 (t + 0.05): ∫ from a to b = 1.5 ((b + 0.05)² − (a + 0.05)²).
+        let exact = |a: f64, b: f64| 1.5 * ((b + 0.05).powi(2) - (a + 0.05).powi(2));
+        for (a, b) in [
+            (0.0, 0.12),
+            (0.00003, 0.11997),
+            (-1.0, 0.0),
+            (0.01234, 0.01236),
+        ] {
+            assert_relative_eq!(
+                s.integral(a, b),
+                exact(a.max(-0.05), b),
+                max_relative = 1e-10
+            );
+        }
+        assert_eq!(s.integral(0.3, 0.4), 0.0);
+        assert_eq!(s.integral(0.1, 0.0), 0.0);
+        assert_eq!(s.integral(f64::NAN, 0.0), 0.0);
+    }
+
+    #[test]
+    fn on_sample_windows_sum_whole_trapezoids_only() {
+        let s = ramp();
+        let whole = trapezoid(&s.values()[500..=1700], s.step());
+        assert_eq!(s.integral(s.time(500), s.time(1700)), whole);
+        assert_eq!(trapezoid(&[1.0], 0.1), 0.0);
+        let running = cumulative_trapezoid(&s.values()[500..=1700], s.step(), 0.0);
+        assert_eq!(running.last().copied(), Some(whole));
+        assert_relative_eq!(s.at(0.00005), 3.0 * 0.05005, max_relative = 1e-12);
+        assert_eq!(s.at(-9.0), 0.0);
     }
 
     #[test]

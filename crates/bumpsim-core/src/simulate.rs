@@ -1,13 +1,13 @@
 //! Simulation of the chain MSD model under a sampled force on m1.
 //!
-//! The discrete update of [`crate::discrete`] gives the states X[k] at the
+//! The discrete update of [`crate::discrete`] gives the states `X[k]` at the
 //! force samples. From them, per sample:
 //!
 //! - displacement x_i, velocity v_i (m, m/s; positive in the force direction);
 //! - spring force s_j = k_j (x_j − x_(j+1)) and damper force
 //!   d_j = c_j (v_j − v_(j+1)) (N, positive in compression);
 //! - acceleration a_i = (f δ_i1 − s_i − d_i + s_(i−1) + d_(i−1)) / m_i
-//!   (m/s², with f = f[k]);
+//!   (m/s², with `f = f[k]`);
 //! - kinetic energy Σ ½ m_i v_i², spring energy Σ ½ k_j (x_j − x_(j+1))²,
 //!   and, summed from t0, the energy dissipated by the dampers and the work of
 //!   the force (J), integrated exactly over each step ([`crate::energy`]);
@@ -43,6 +43,7 @@ pub enum InitialState {
 
 /// Why a simulation cannot run.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum SimulationError {
     /// The model cannot be discretised at the force's sample interval.
     #[error(transparent)]
@@ -172,7 +173,50 @@ impl Response {
             .fold(0.0_f64, |m, (p, i)| m.max((p - p0 - i).abs()));
         if scale > 0.0 { worst / scale } else { 0.0 }
     }
+
+    /// Whether every history is finite (a model the discretisation cannot
+    /// represent, or an absurd initial velocity, gives inf or NaN).
+    pub fn is_finite(&self) -> bool {
+        let e = &self.energy;
+        [&self.displacement, &self.velocity, &self.acceleration]
+            .iter()
+            .flat_map(|h| h.iter().flatten())
+            .chain(
+                [
+                    &e.kinetic,
+                    &e.spring,
+                    &e.dissipated,
+                    &e.work,
+                    &self.momentum,
+                ]
+                .into_iter()
+                .flatten(),
+            )
+            .all(|v| v.is_finite())
+    }
+
+    /// The response's own checks against [`CHECK_TOLERANCE`]: the energy
+    /// balance (relative to the largest energy term) and the momentum
+    /// balance (relative to the impulse). Empty when both hold.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        if !self.is_finite() {
+            out.push("the response holds non-finite values (inf or NaN)".to_string());
+        }
+        let energy = self.energy.relative_error();
+        if energy > CHECK_TOLERANCE {
+            out.push(format!("energy balance error {energy:.3} of the largest energy term exceeds the tolerance {CHECK_TOLERANCE}: the sample interval does not resolve this model (use a finer force sampling or a softer/heavier model)"));
+        }
+        let momentum = self.momentum_error();
+        if momentum > CHECK_TOLERANCE {
+            out.push(format!("momentum error {momentum:.3} of the impulse exceeds the tolerance {CHECK_TOLERANCE}"));
+        }
+        out
+    }
 }
+
+/// Tolerance of the self-checks of [`Response::warnings`] (relative).
+pub const CHECK_TOLERANCE: f64 = 0.01;
 
 /// A model discretised for one sample interval, ready to run many force histories.
 #[derive(Debug, Clone)]

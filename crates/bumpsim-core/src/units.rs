@@ -51,6 +51,15 @@ pub enum Dimension {
     Energy,
     /// Frequency, SI unit Hz.
     Frequency,
+    /// Moment (torque), SI unit N·m; distinct from [`Dimension::Energy`]
+    /// although both are N·m (ISO/TS 13499 dimension `MO`).
+    Moment,
+    /// Angle, SI unit rad (ISO/TS 13499 `AN`).
+    Angle,
+    /// Angular velocity, SI unit rad/s (ISO/TS 13499 `AV`).
+    AngularVelocity,
+    /// Angular acceleration, SI unit rad/s² (ISO/TS 13499 `AA`).
+    AngularAcceleration,
 }
 
 impl Dimension {
@@ -69,6 +78,10 @@ impl Dimension {
             Dimension::Damping => "Ns/m",
             Dimension::Energy => "J",
             Dimension::Frequency => "Hz",
+            Dimension::Moment => "Nm",
+            Dimension::Angle => "rad",
+            Dimension::AngularVelocity => "rad/s",
+            Dimension::AngularAcceleration => "rad/s^2",
         }
     }
 
@@ -86,6 +99,10 @@ impl Dimension {
             Dimension::Damping => "damping",
             Dimension::Energy => "energy",
             Dimension::Frequency => "frequency",
+            Dimension::Moment => "moment",
+            Dimension::Angle => "angle",
+            Dimension::AngularVelocity => "angular velocity",
+            Dimension::AngularAcceleration => "angular acceleration",
         }
     }
 
@@ -99,6 +116,8 @@ impl Dimension {
             Dimension::Stiffness => "N/mm",
             Dimension::Damping => "Ns/mm",
             Dimension::Acceleration => "g",
+            Dimension::Angle => "deg",
+            Dimension::AngularVelocity => "deg/s",
             other => other.si_symbol(),
         };
         Unit::parse(symbol).unwrap_or(Unit::si(self))
@@ -135,28 +154,40 @@ pub struct UnitError {
 /// One row of the unit table: spellings (after normalisation), dimension, factor.
 type UnitRow = (&'static [&'static str], Dimension, f64);
 
-/// The unit table. The first spelling is the canonical symbol.
+/// The unit table. The first spelling is the canonical symbol. Besides the
+/// SI spellings it lists what the peers write: pyisomme (astropy's
+/// `m / s2`, `N m`, `rad / s2`, which normalise to `m/s2`, `Nm`, `rad/s2`)
+/// and NHTSA's upper-case unit codes (`G'S`, `NWT`, `NWM`, `MM`, `DEG`,
+/// `DPS`, `SEC`, ...; NHTSA Test Reference Guide, "Units" code table).
 const UNITS: &[UnitRow] = &[
-    (&["-", "1"], Dimension::Dimensionless, 1.0),
-    (&["s"], Dimension::Time, 1.0),
-    (&["ms"], Dimension::Time, 1e-3),
+    (&["-", "1", "NA", "NON"], Dimension::Dimensionless, 1.0),
+    (&["s", "SEC"], Dimension::Time, 1.0),
+    (&["ms", "MSC", "MSEC"], Dimension::Time, 1e-3),
     (&["us", "µs", "μs"], Dimension::Time, 1e-6),
-    (&["m"], Dimension::Length, 1.0),
-    (&["mm"], Dimension::Length, 1e-3),
-    (&["cm"], Dimension::Length, 1e-2),
-    (&["m/s"], Dimension::Velocity, 1.0),
+    (&["m", "MET"], Dimension::Length, 1.0),
+    (&["mm", "MM", "MMS"], Dimension::Length, 1e-3),
+    (&["cm", "CM"], Dimension::Length, 1e-2),
+    (&["m/s", "MPS"], Dimension::Velocity, 1.0),
     (&["mm/s"], Dimension::Velocity, 1e-3),
     (&["mm/ms"], Dimension::Velocity, 1.0),
-    (&["km/h", "kph"], Dimension::Velocity, 1.0 / 3.6),
-    (&["mph"], Dimension::Velocity, 0.447_04),
-    (&["m/s^2"], Dimension::Acceleration, 1.0),
-    (&["mm/s^2"], Dimension::Acceleration, 1e-3),
-    (&["g", "G"], Dimension::Acceleration, STANDARD_GRAVITY),
-    (&["N"], Dimension::Force, 1.0),
+    (&["km/h", "kph", "KPH"], Dimension::Velocity, 1.0 / 3.6),
+    (&["mph", "MPH"], Dimension::Velocity, 0.447_04),
+    (
+        &["m/s^2", "m/s2", "m/(s^2)", "m/(ss)"],
+        Dimension::Acceleration,
+        1.0,
+    ),
+    (&["mm/s^2", "mm/s2"], Dimension::Acceleration, 1e-3),
+    (
+        &["g", "G", "g0", "G'S", "GS", "g's"],
+        Dimension::Acceleration,
+        STANDARD_GRAVITY,
+    ),
+    (&["N", "NWT"], Dimension::Force, 1.0),
     (&["daN"], Dimension::Force, 10.0),
-    (&["kN"], Dimension::Force, 1e3),
+    (&["kN", "KN", "KNW"], Dimension::Force, 1e3),
     (&["MN"], Dimension::Force, 1e6),
-    (&["kg"], Dimension::Mass, 1.0),
+    (&["kg", "KG", "KGM"], Dimension::Mass, 1.0),
     (&["t", "tonne"], Dimension::Mass, 1e3),
     (&["N/m"], Dimension::Stiffness, 1.0),
     (&["N/mm", "kN/m"], Dimension::Stiffness, 1e3),
@@ -164,11 +195,47 @@ const UNITS: &[UnitRow] = &[
     (&["Ns/m"], Dimension::Damping, 1.0),
     (&["Ns/mm", "kNs/m"], Dimension::Damping, 1e3),
     (&["kNs/mm"], Dimension::Damping, 1e6),
-    (&["J", "Nm"], Dimension::Energy, 1.0),
-    (&["Nmm", "mJ"], Dimension::Energy, 1e-3),
-    (&["kJ", "kNm"], Dimension::Energy, 1e3),
-    (&["Hz"], Dimension::Frequency, 1.0),
+    (&["J"], Dimension::Energy, 1.0),
+    (&["mJ"], Dimension::Energy, 1e-3),
+    (&["kJ"], Dimension::Energy, 1e3),
+    (&["Nm", "NWM"], Dimension::Moment, 1.0),
+    (&["Nmm"], Dimension::Moment, 1e-3),
+    (&["kNm"], Dimension::Moment, 1e3),
+    (&["rad", "RAD"], Dimension::Angle, 1.0),
+    (
+        &["deg", "°", "DEG"],
+        Dimension::Angle,
+        std::f64::consts::PI / 180.0,
+    ),
+    (&["rad/s", "RPS", "RDS"], Dimension::AngularVelocity, 1.0),
+    (
+        &["deg/s", "°/s", "DPS"],
+        Dimension::AngularVelocity,
+        std::f64::consts::PI / 180.0,
+    ),
+    (
+        &["rad/s^2", "rad/s2", "rad/(s^2)", "rad/(ss)", "RS2"],
+        Dimension::AngularAcceleration,
+        1.0,
+    ),
+    (
+        &["deg/s^2", "deg/s2", "°/s^2", "°/s2", "DS2"],
+        Dimension::AngularAcceleration,
+        std::f64::consts::PI / 180.0,
+    ),
+    (&["Hz", "HZ"], Dimension::Frequency, 1.0),
     (&["kHz"], Dimension::Frequency, 1e3),
+];
+
+/// Spellings whose blanks carry meaning: astropy (hence pyisomme) writes the
+/// product N·m as `m N`, which without its blank would read as millinewton.
+const SPACED: &[(&str, &str)] = &[
+    ("m N", "Nm"),
+    ("N m", "Nm"),
+    ("mm N", "Nmm"),
+    ("N mm", "Nmm"),
+    ("kN m", "kNm"),
+    ("m kN", "kNm"),
 ];
 
 /// Removes blanks and product signs and writes powers as `^n`.
@@ -184,7 +251,11 @@ fn normalise(text: &str) -> String {
 impl Unit {
     /// Parses a unit text such as `kN`, `N·s/m`, `m/s**2` or `km/h`.
     pub fn parse(text: &str) -> Result<Unit, UnitError> {
-        let key = normalise(text);
+        let spaced = text.split_whitespace().collect::<Vec<_>>().join(" ");
+        let key = SPACED
+            .iter()
+            .find(|(written, _)| *written == spaced)
+            .map_or_else(|| normalise(text), |(_, symbol)| symbol.to_string());
         UNITS
             .iter()
             .find(|(names, _, _)| names.contains(&key.as_str()))
@@ -227,6 +298,33 @@ impl fmt::Display for Unit {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.symbol)
     }
+}
+
+/// The unit of each column of a table: the first of `asked` that measures
+/// the column's dimension, else its SI unit. Every asked unit must apply to
+/// some column (time included); the first that applies to none is the error.
+///
+/// ```
+/// use bumpsim_core::units::{choose_units, Dimension, Unit};
+/// let ms = Unit::parse("ms").unwrap();
+/// let chosen = choose_units(&[ms], &[Dimension::Time, Dimension::Force]).unwrap();
+/// assert_eq!((chosen[0].symbol, chosen[1].symbol), ("ms", "N"));
+/// assert!(choose_units(&[ms], &[Dimension::Force]).is_err());
+/// ```
+pub fn choose_units(asked: &[Unit], dimensions: &[Dimension]) -> Result<Vec<Unit>, Unit> {
+    if let Some(unused) = asked.iter().find(|u| !dimensions.contains(&u.dimension)) {
+        return Err(*unused);
+    }
+    Ok(dimensions
+        .iter()
+        .map(|&d| {
+            asked
+                .iter()
+                .copied()
+                .find(|u| u.dimension == d)
+                .unwrap_or(Unit::si(d))
+        })
+        .collect())
 }
 
 /// Formats a number with `digits` significant digits: plain notation between
@@ -358,6 +456,79 @@ mod tests {
             Unit::parse("m/s²").unwrap().dimension,
             Dimension::Acceleration
         );
+    }
+
+    /// Every spelling pyisomme (astropy) and NHTSA write, with what it means.
+    #[test]
+    fn peer_spellings_are_known() {
+        use std::f64::consts::PI;
+        let cases = [
+            // pyisomme / astropy
+            ("m / s2", Dimension::Acceleration, 1.0),
+            ("m/s**2", Dimension::Acceleration, 1.0),
+            ("m/(s*s)", Dimension::Acceleration, 1.0),
+            ("g", Dimension::Acceleration, STANDARD_GRAVITY),
+            ("m / s", Dimension::Velocity, 1.0),
+            ("km / h", Dimension::Velocity, 1.0 / 3.6),
+            ("m N", Dimension::Moment, 1.0),
+            ("N m", Dimension::Moment, 1.0),
+            ("Nm", Dimension::Moment, 1.0),
+            ("N·m", Dimension::Moment, 1.0),
+            ("rad / s", Dimension::AngularVelocity, 1.0),
+            ("deg / s", Dimension::AngularVelocity, PI / 180.0),
+            ("rad / s2", Dimension::AngularAcceleration, 1.0),
+            ("rad/(s*s)", Dimension::AngularAcceleration, 1.0),
+            ("deg", Dimension::Angle, PI / 180.0),
+            ("°", Dimension::Angle, PI / 180.0),
+            ("rad", Dimension::Angle, 1.0),
+            ("1", Dimension::Dimensionless, 1.0),
+            // NHTSA EV5 unit codes
+            ("G'S", Dimension::Acceleration, STANDARD_GRAVITY),
+            ("NWT", Dimension::Force, 1.0),
+            ("NWM", Dimension::Moment, 1.0),
+            ("KNW", Dimension::Force, 1e3),
+            ("MM", Dimension::Length, 1e-3),
+            ("MMS", Dimension::Length, 1e-3),
+            ("DEG", Dimension::Angle, PI / 180.0),
+            ("DPS", Dimension::AngularVelocity, PI / 180.0),
+            ("MPS", Dimension::Velocity, 1.0),
+            ("KPH", Dimension::Velocity, 1.0 / 3.6),
+            ("SEC", Dimension::Time, 1.0),
+            ("MSC", Dimension::Time, 1e-3),
+        ];
+        for (text, dimension, factor) in cases {
+            let unit = Unit::parse(text).unwrap_or_else(|e| panic!("{text}: {e}"));
+            assert_eq!(unit.dimension, dimension, "{text}");
+            assert_relative_eq!(unit.factor, factor, max_relative = 1e-15);
+        }
+        assert_eq!(Unit::parse("J").unwrap().dimension, Dimension::Energy);
+        assert_eq!(Unit::parse("mN").unwrap_err().text, "mN");
+    }
+
+    #[test]
+    fn every_dimension_writes_a_symbol_it_reads_back() {
+        use Dimension::*;
+        for d in [
+            Dimensionless,
+            Time,
+            Length,
+            Velocity,
+            Acceleration,
+            Force,
+            Mass,
+            Stiffness,
+            Damping,
+            Energy,
+            Frequency,
+            Moment,
+            Angle,
+            AngularVelocity,
+            AngularAcceleration,
+        ] {
+            let unit = Unit::parse(&d.si_symbol().replace('^', "**")).unwrap();
+            assert_eq!((unit.dimension, unit.factor), (d, 1.0), "{d}");
+            assert_eq!(d.display_unit().dimension, d);
+        }
     }
 
     #[test]

@@ -245,3 +245,68 @@ proptest! {
         }
     }
 }
+
+/// Issue 12: exactly one function in the workspace computes the zoh (and foh)
+/// Φ/Γ. Any Φ/Γ needs a matrix exponential; this scans every library and
+/// binary source that uses nalgebra (tests excluded) for `.exp()` calls and
+/// names the function each is in. Allowed: `exponential::hold_exponential`
+/// (Φ, Γ and their sensitivities), `energy::step_integral` (the energy
+/// integrals W of one step, which never yield Φ or Γ) and the scalar
+/// `f64::exp` of the confidence intervals in `stats::uncertainty`. A new
+/// matrix exponential anywhere fails here.
+#[test]
+fn exactly_one_function_computes_the_hold_discretisation() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut found = Vec::new();
+    let crates = std::fs::read_dir(root.join("crates")).unwrap();
+    let mut files = Vec::new();
+    for krate in crates {
+        collect_rust_files(&krate.unwrap().path().join("src"), &mut files);
+    }
+    for file in files {
+        let text = std::fs::read_to_string(&file).unwrap();
+        if !(text.contains("nalgebra") || text.contains("DMatrix")) {
+            continue;
+        }
+        let code = text.split("#[cfg(test)]").next().unwrap_or("");
+        let mut function = String::from("<top>");
+        for line in code.lines() {
+            if let Some(rest) = line.trim_start().split("fn ").nth(1)
+                && line.contains("fn ")
+                && !line.trim_start().starts_with("//")
+            {
+                function = rest
+                    .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                    .next()
+                    .unwrap_or("")
+                    .to_string();
+            }
+            if line.contains(".exp()") && !line.trim_start().starts_with("//") {
+                let name = file.file_stem().unwrap().to_string_lossy().to_string();
+                found.push(format!("{name}::{function}"));
+            }
+        }
+    }
+    found.sort();
+    found.dedup();
+    let allowed = [
+        "energy::step_integral",
+        "exponential::hold_exponential",
+        "stats::uncertainty",
+    ];
+    assert_eq!(found, allowed, "matrix exponentials found in {found:?}");
+}
+
+fn collect_rust_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            collect_rust_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}

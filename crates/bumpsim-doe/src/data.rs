@@ -2,10 +2,14 @@
 //! units in brackets (`Kax [N/mm]`), then one row of numbers per run. Errors
 //! name the file and line.
 
+use bumpsim_core::model::MsdModel;
+use bumpsim_io::car::{Car, CarError};
+use bumpsim_io::table::split_header;
 use std::path::{Path, PathBuf};
 
 /// Why a table cannot be read.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum DataError {
     /// The file cannot be read.
     #[error("{path}: cannot read: {source}")]
@@ -25,6 +29,31 @@ pub enum DataError {
         /// What is wrong.
         message: String,
     },
+    /// An identification result or car file cannot be used.
+    #[error(transparent)]
+    Result(#[from] CarError),
+}
+
+/// Identification results that do not fit a design.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ResultsError {
+    /// Not one result per design run.
+    #[error("{results} results for {runs} design runs: give one per run, in run order")]
+    Count {
+        /// Results given.
+        results: usize,
+        /// Design runs.
+        runs: usize,
+    },
+    /// A result with another number of masses than the first.
+    #[error("result {result} is not a {dof}-DOF model like the first")]
+    Dof {
+        /// 1-based result number.
+        result: usize,
+        /// The first result's number of masses.
+        dof: usize,
+    },
 }
 
 /// A table: column names (without units), units, rows.
@@ -39,58 +68,63 @@ pub struct Data {
 }
 
 impl Data {
-    /// Reads a CSV table (`#` lines are comments).
+    /// Reads a CSV table (`#` lines are comments; cells may be quoted).
+    /// Headers are split by [`bumpsim_io::table::split_header`], as for
+    /// channel tables.
     pub fn read(path: &Path) -> Result<Data, DataError> {
         let text = std::fs::read_to_string(path).map_err(|source| DataError::Io {
             path: path.into(),
             source,
         })?;
-        let line_error = |line: usize, message: String| DataError::Line {
+        Self::parse(&text, path)
+    }
+
+    /// Parses CSV text; `path` is used in messages.
+    pub fn parse(text: &str, path: &Path) -> Result<Data, DataError> {
+        let line_error = |line: u64, message: String| DataError::Line {
             path: path.into(),
-            line,
+            line: line as usize,
             message,
         };
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
-        let (_, header) = lines
+        let mut records = csv::ReaderBuilder::new()
+            .has_headers(false)
+            .flexible(true)
+            .comment(Some(b'#'))
+            .trim(csv::Trim::All)
+            .from_reader(text.as_bytes())
+            .into_records();
+        let header = records
             .next()
-            .ok_or_else(|| line_error(1, "no header row".into()))?;
+            .ok_or_else(|| line_error(1, "no header row".into()))?
+            .map_err(|e| line_error(csv_line(&e), e.to_string()))?;
         let (names, units): (Vec<String>, Vec<Option<String>>) = header
-            .split(',')
-            .map(|cell| match cell.split_once('[') {
-                Some((name, unit)) => (
-                    name.trim().to_string(),
-                    Some(unit.trim_end_matches([']', ' ']).trim().to_string()),
-                ),
-                None => (cell.trim().to_string(), None),
+            .iter()
+            .map(|cell| match split_header(cell) {
+                Some((name, unit)) => (name.to_string(), Some(unit.to_string())),
+                None => (cell.to_string(), None),
             })
             .unzip();
         let mut rows = Vec::new();
-        for (i, line) in lines {
-            let cells: Vec<&str> = line.split(',').collect();
-            if cells.len() != names.len() {
+        for record in records {
+            let record = record.map_err(|e| line_error(csv_line(&e), e.to_string()))?;
+            let line = record.position().map_or(0, csv::Position::line);
+            if record.len() != names.len() {
                 return Err(line_error(
-                    i + 1,
-                    format!("{} cells, the header has {}", cells.len(), names.len()),
+                    line,
+                    format!("{} cells, the header has {}", record.len(), names.len()),
                 ));
             }
-            let row = cells
+            let row = record
                 .iter()
                 .zip(&names)
                 .map(|(c, n)| {
-                    c.trim()
-                        .parse::<f64>()
+                    c.parse::<f64>()
                         .ok()
                         .filter(|v| v.is_finite())
                         .ok_or_else(|| {
                             line_error(
-                                i + 1,
-                                format!(
-                                    "column '{n}' holds '{}', expected a finite number",
-                                    c.trim()
-                                ),
+                                line,
+                                format!("column '{n}' holds '{c}', expected a finite number"),
                             )
                         })
                 })
@@ -107,53 +141,32 @@ impl Data {
     }
 }
 
-/// The parameters of an identified model, as `bumpsim identify --json` writes
-/// them (other keys are ignored): masses kg, dampers N·s/m, springs N/m.
-#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
-pub struct Identified {
-    /// Masses, kg.
-    pub masses: Vec<f64>,
-    /// Dampers, N·s/m.
-    pub dampers: Vec<f64>,
-    /// Springs, N/m.
-    pub springs: Vec<f64>,
+/// Reads the model of an identification result (`bumpsim identify --json`
+/// for one DOF) or a car file, through the one reader of both,
+/// [`bumpsim_io::car::Car::read_model_file`].
+pub fn read_result(path: &Path) -> Result<MsdModel, DataError> {
+    Ok(Car::read_model_file(path)?.model)
 }
 
-impl Identified {
-    /// Reads an identification result (one DOF).
-    pub fn read(path: &Path) -> Result<Identified, DataError> {
-        let text = std::fs::read_to_string(path).map_err(|source| DataError::Io {
-            path: path.into(),
-            source,
-        })?;
-        serde_json::from_str(&text).map_err(|e| DataError::Line {
-            path: path.into(),
-            line: e.line(),
-            message: format!("not an identification result of one DOF: {e}"),
-        })
-    }
+/// The line of a CSV error, when known.
+fn csv_line(error: &csv::Error) -> u64 {
+    error.position().map_or(0, csv::Position::line)
 }
 
 impl Data {
     /// The design table with one identification result per run appended as
     /// response columns `m1 [kg]`, ..., `c1 [Ns/m]`, ..., `k1 [N/m]` (stage 2
     /// of paper C). Every result must have the same number of masses.
-    pub fn with_results(&self, results: &[Identified]) -> Result<Data, String> {
+    pub fn with_results(&self, results: &[MsdModel]) -> Result<Data, ResultsError> {
         if results.len() != self.rows.len() {
-            return Err(format!(
-                "{} results for {} design runs: give one per run, in run order",
-                results.len(),
-                self.rows.len()
-            ));
+            return Err(ResultsError::Count {
+                results: results.len(),
+                runs: self.rows.len(),
+            });
         }
-        let dof = results.first().map_or(0, |r| r.masses.len());
-        if let Some((i, _)) = results.iter().enumerate().find(|(_, r)| {
-            r.masses.len() != dof || r.dampers.len() + 1 != dof || r.springs.len() + 1 != dof
-        }) {
-            return Err(format!(
-                "result {} is not a {dof}-DOF model like the first",
-                i + 1
-            ));
+        let dof = results.first().map_or(0, MsdModel::dof);
+        if let Some(i) = results.iter().position(|r| r.dof() != dof) {
+            return Err(ResultsError::Dof { result: i + 1, dof });
         }
         let mut out = self.clone();
         let columns = [
@@ -168,7 +181,7 @@ impl Data {
             }
         }
         for (row, r) in out.rows.iter_mut().zip(results) {
-            row.extend(r.masses.iter().chain(&r.dampers).chain(&r.springs));
+            row.extend(r.parameters());
         }
         Ok(out)
     }
@@ -187,5 +200,53 @@ impl Data {
             csv.push('\n');
         }
         csv
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Data, DataError> {
+        Data::parse(text, Path::new("design.csv"))
+    }
+
+    #[test]
+    fn headers_split_like_channel_tables_and_cells_may_be_quoted() {
+        let data = parse("# design\nKax [N/mm],\"M [kg]\",run\n1,2,3\n\n4,\"5\",6\n").unwrap();
+        assert_eq!(data.names, ["Kax", "M", "run"]);
+        assert_eq!(data.units, [Some("N/mm".into()), Some("kg".into()), None]);
+        assert_eq!(data.rows, [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]]);
+    }
+
+    #[test]
+    fn errors_name_file_line_and_column() {
+        let err = parse("a,b\n1,2\n3\n").unwrap_err().to_string();
+        assert_eq!(err, "design.csv:3: 1 cells, the header has 2");
+        let err = parse("a,b\n1,nan\n").unwrap_err().to_string();
+        assert_eq!(
+            err,
+            "design.csv:2: column 'b' holds 'nan', expected a finite number"
+        );
+    }
+
+    #[test]
+    fn results_must_fit_the_design() {
+        let data = parse("a\n1\n2\n").unwrap();
+        let two = MsdModel::new(vec![1.0, 2.0], vec![3.0], vec![4.0]).unwrap();
+        let one = MsdModel::new(vec![1.0], vec![], vec![]).unwrap();
+        let err = data.with_results(std::slice::from_ref(&two)).unwrap_err();
+        assert_eq!(
+            err,
+            ResultsError::Count {
+                results: 1,
+                runs: 2
+            }
+        );
+        let err = data.with_results(&[two.clone(), one]).unwrap_err();
+        assert_eq!(err, ResultsError::Dof { result: 2, dof: 2 });
+        let joined = data.with_results(&[two.clone(), two]).unwrap();
+        assert_eq!(joined.names, ["a", "m1", "m2", "c1", "k1"]);
+        assert_eq!(joined.rows[1], [2.0, 1.0, 2.0, 3.0, 4.0]);
     }
 }

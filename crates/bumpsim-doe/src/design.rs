@@ -18,11 +18,14 @@
 //! assert_eq!(resolution(&["D=AB", "E=AC", "F=BC", "G=ABC"]).unwrap(), 3);
 //! ```
 
+use crate::model::Factor;
 use rand_chacha::ChaCha8Rng;
 use rand_core::{Rng, SeedableRng};
+use std::str::FromStr;
 
 /// Why a design cannot be made.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum DesignError {
     /// A generator is malformed.
     #[error("generator '{generator}': {reason}")]
@@ -261,6 +264,129 @@ pub fn run_order(n: usize, seed: u64) -> Vec<usize> {
         order.swap(i, (unit(&mut rng) * (i + 1) as f64) as usize);
     }
     order
+}
+
+/// The kinds of design [`make`] builds, by their command-line names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DesignKind {
+    /// `full`: two-level full factorial.
+    Full,
+    /// `fractional`: 2^(k−p) from generators.
+    Fractional,
+    /// `ccf`: face-centred central composite.
+    CompositeFaceCentred,
+    /// `ccc`: circumscribed (rotatable) central composite.
+    CompositeCircumscribed,
+    /// `lhs`: Latin hypercube.
+    LatinHypercube,
+    /// `uniform`: uniform random runs.
+    Uniform,
+}
+
+/// A design name that is none of the kinds.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("design '{0}': expected full, fractional, ccf, ccc, lhs or uniform")]
+pub struct DesignKindError(pub String);
+
+impl FromStr for DesignKind {
+    type Err = DesignKindError;
+
+    fn from_str(text: &str) -> Result<DesignKind, DesignKindError> {
+        Ok(match text {
+            "full" => DesignKind::Full,
+            "fractional" => DesignKind::Fractional,
+            "ccf" => DesignKind::CompositeFaceCentred,
+            "ccc" => DesignKind::CompositeCircumscribed,
+            "lhs" => DesignKind::LatinHypercube,
+            "uniform" => DesignKind::Uniform,
+            other => return Err(DesignKindError(other.into())),
+        })
+    }
+}
+
+/// What a design needs besides its kind and factors.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct DesignOptions {
+    /// Generators of a fraction (`D=AB`), naming factors by name.
+    pub generators: Vec<String>,
+    /// Centre points (factorial and composite designs).
+    pub centre: usize,
+    /// Runs of a Latin hypercube or uniform design.
+    pub runs: usize,
+    /// Seed of the random designs and of the run order.
+    pub seed: u64,
+}
+
+/// Builds a design of `kind` over `names`; a fraction also returns its
+/// resolution. The generated factors of a fraction keep their place
+/// after the base factors.
+///
+/// ```
+/// use bumpsim_doe::design::{DesignKind, DesignOptions, make};
+/// let options = DesignOptions { generators: vec!["C=AB".into()], ..Default::default() };
+/// let (d, resolution) = make(DesignKind::Fractional, &["A", "B", "C"], &options).unwrap();
+/// assert_eq!((d.runs.len(), resolution), (4, Some(3)));
+/// ```
+pub fn make(
+    kind: DesignKind,
+    names: &[&str],
+    options: &DesignOptions,
+) -> Result<(Design, Option<usize>), DesignError> {
+    let (centre, runs, seed) = (options.centre, options.runs, options.seed);
+    Ok(match kind {
+        DesignKind::Full => (full_factorial(names, centre)?, None),
+        DesignKind::Fractional => {
+            let (design, resolution) = fraction(names, &options.generators)?;
+            (design, Some(resolution))
+        }
+        DesignKind::CompositeFaceCentred => (central_composite(names, centre, true)?, None),
+        DesignKind::CompositeCircumscribed => (central_composite(names, centre, false)?, None),
+        DesignKind::LatinHypercube => (latin_hypercube(names, runs, seed), None),
+        DesignKind::Uniform => (uniform(names, runs, seed), None),
+    })
+}
+
+/// The fraction whose generated factors are given by `generators`, and its
+/// resolution.
+fn fraction(names: &[&str], generators: &[String]) -> Result<(Design, usize), DesignError> {
+    let generated = |n: &&str| generators.iter().any(|g| g.starts_with(&format!("{n}=")));
+    let mut columns: Vec<&str> = names.iter().copied().filter(|n| !generated(n)).collect();
+    columns.extend(generators.iter().map(String::as_str));
+    let words: Vec<&str> = generators.iter().map(String::as_str).collect();
+    Ok((fractional_factorial(&columns)?, resolution(&words)?))
+}
+
+impl Design {
+    /// The design as CSV: run number, standard order, the physical levels
+    /// (from `factors` by name; a factor not found stays coded) and the
+    /// coded levels, one row per run in `order` (indices into the runs).
+    pub fn to_csv(&self, factors: &[Factor], order: &[usize]) -> String {
+        let by_name = |n: &String| factors.iter().find(|f| &f.name == n);
+        let mut csv = String::from("run,standard order");
+        self.factors.iter().for_each(|f| csv += &format!(",{f}"));
+        self.factors
+            .iter()
+            .for_each(|f| csv += &format!(",{f} (coded)"));
+        csv.push('\n');
+        for (run, &i) in order.iter().enumerate() {
+            let row = &self.runs[i];
+            csv += &format!("{},{}", run + 1, i + 1);
+            for (f, z) in self.factors.iter().zip(row) {
+                csv += &format!(",{}", by_name(f).map_or(*z, |f| f.physical(*z)));
+            }
+            row.iter().for_each(|z| csv += &format!(",{z}"));
+            csv.push('\n');
+        }
+        csv
+    }
+
+    /// The run order: random from `seed` when `randomise`, else standard.
+    pub fn order(&self, randomise: bool, seed: u64) -> Vec<usize> {
+        match randomise {
+            true => run_order(self.runs.len(), seed),
+            false => (0..self.runs.len()).collect(),
+        }
+    }
 }
 
 #[cfg(test)]

@@ -9,6 +9,27 @@
 //! - [`stiffness`]: the slope of a force–displacement curve;
 //! - [`reachable`]: the reachable region of two linear responses;
 //! - [`text`]: human-readable summaries of fits.
+//!
+//! A 2² factorial, its runs in physical units, a fitted main-effect model
+//! and a prediction at the centre:
+//!
+//! ```
+//! use bumpsim_doe::{DesignKind, DesignOptions, Factor, design};
+//! use bumpsim_doe::regression::{fit, terms};
+//! let factors: Vec<Factor> = ["k:1e5:3e5", "m:1000:1400"]
+//!     .iter()
+//!     .map(|s| s.parse().unwrap())
+//!     .collect();
+//! let names = ["k", "m"];
+//! let (d, _) = design::make(DesignKind::Full, &names, &DesignOptions::default()).unwrap();
+//! assert_eq!(d.runs.len(), 4);
+//! // a response exactly linear in the coded factors: y = 10 + 2 zk − 3 zm
+//! let y: Vec<f64> = d.runs.iter().map(|z| 10.0 + 2.0 * z[0] - 3.0 * z[1]).collect();
+//! let names: Vec<String> = names.iter().map(|s| s.to_string()).collect();
+//! let f = fit(&d.runs, &y, &terms(2, false, false), &names).unwrap();
+//! assert!((f.coefficients[1] - 2.0).abs() < 1e-12 && (f.coefficients[2] + 3.0).abs() < 1e-12);
+//! assert!(d.to_csv(&factors, &d.order(false, 1)).starts_with("run,standard order,k,m"));
+//! ```
 
 pub mod data;
 pub mod design;
@@ -17,3 +38,10 @@ pub mod reachable;
 pub mod regression;
 pub mod stiffness;
 pub mod text;
+
+pub use data::{Data, DataError};
+pub use design::{Design, DesignError, DesignKind, DesignOptions};
+pub use model::{Factor, ModelError, ModelFile};
+pub use reachable::LinearMap;
+pub use regression::{Fit, RegressionError};
+pub use stiffness::{Curve, Stiffness};

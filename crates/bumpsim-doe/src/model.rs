@@ -25,9 +25,12 @@ use crate::regression::Term;
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ContinuousCDF, StudentsT};
 use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
 
 /// Why a prediction cannot be made.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum ModelError {
     /// A factor value is missing or unknown.
     #[error("{0}")]
@@ -49,7 +52,90 @@ pub struct Factor {
     pub unit: Option<String>,
 }
 
+/// Why a factor's range is unusable.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum FactorError {
+    /// A `NAME:LOW:HIGH` specification that does not parse.
+    #[error("'{spec}': expected NAME:LOW:HIGH with finite LOW < HIGH")]
+    Spec {
+        /// The text as given.
+        spec: String,
+    },
+    /// A range whose low level is not below its high level.
+    #[error(
+        "factor '{name}': low {low} must be finite and below high {high} (a factor that does not vary cannot be fitted)"
+    )]
+    Range {
+        /// Factor name.
+        name: String,
+        /// Low level.
+        low: f64,
+        /// High level.
+        high: f64,
+    },
+}
+
+/// Parses `NAME:LOW:HIGH` (physical units, finite LOW < HIGH).
+///
+/// ```
+/// use bumpsim_doe::model::Factor;
+/// let f: Factor = "Kax:20000:26000".parse().unwrap();
+/// assert_eq!((f.name.as_str(), f.low, f.high), ("Kax", 20000.0, 26000.0));
+/// assert!("Kax:5:1".parse::<Factor>().is_err());
+/// ```
+impl FromStr for Factor {
+    type Err = FactorError;
+
+    fn from_str(spec: &str) -> Result<Factor, FactorError> {
+        let bad = || FactorError::Spec { spec: spec.into() };
+        let parts: Vec<&str> = spec.split(':').collect();
+        let [name, low, high] = parts[..] else {
+            return Err(bad());
+        };
+        let low: f64 = low.trim().parse().map_err(|_| bad())?;
+        let high: f64 = high.trim().parse().map_err(|_| bad())?;
+        Factor::new(name.trim(), low, high, None).map_err(|_| bad())
+    }
+}
+
 impl Factor {
+    /// A factor whose finite low level lies below its finite high level.
+    pub fn new(
+        name: &str,
+        low: f64,
+        high: f64,
+        unit: Option<String>,
+    ) -> Result<Factor, FactorError> {
+        if !(low.is_finite() && high.is_finite() && low < high) {
+            return Err(FactorError::Range {
+                name: name.into(),
+                low,
+                high,
+            });
+        }
+        Ok(Factor {
+            name: name.into(),
+            low,
+            high,
+            unit,
+        })
+    }
+
+    /// A factor over the levels given, each defaulting to the extreme of
+    /// the observed `values` (the data's minimum and maximum).
+    pub fn spanning(
+        name: &str,
+        values: &[f64],
+        low: Option<f64>,
+        high: Option<f64>,
+        unit: Option<String>,
+    ) -> Result<Factor, FactorError> {
+        let low = low.unwrap_or_else(|| values.iter().copied().fold(f64::INFINITY, f64::min));
+        let high = high.unwrap_or_else(|| values.iter().copied().fold(f64::NEG_INFINITY, f64::max));
+        Factor::new(name, low, high, unit)
+    }
+
     /// Coded value of a physical one.
     pub fn coded(&self, value: f64) -> f64 {
         (value - 0.5 * (self.low + self.high)) / (0.5 * (self.high - self.low))
@@ -143,9 +229,93 @@ pub struct Prediction {
     pub warnings: Vec<String>,
 }
 
+/// Why a model file cannot be read.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ModelFileError {
+    /// The file cannot be read.
+    #[error("cannot read {}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The reason.
+        source: std::io::Error,
+    },
+    /// The file is not a model file's JSON.
+    #[error("{}: not a DOE model file", path.display())]
+    Json {
+        /// The file.
+        path: PathBuf,
+        /// The reason.
+        source: serde_json::Error,
+    },
+}
+
 impl ModelFile {
+    /// Reads a model file (JSON, as `doe fit` writes it or by hand).
+    pub fn read(path: &Path) -> Result<ModelFile, ModelFileError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ModelFileError::Io {
+            path: path.into(),
+            source,
+        })?;
+        serde_json::from_str(&text).map_err(|source| ModelFileError::Json {
+            path: path.into(),
+            source,
+        })
+    }
+
+    /// Checks a model read from a file: finite factor ranges with low < high,
+    /// finite coefficients, a non-negative finite `residual_sd`, and an
+    /// `xtx_inverse` that is square with one row per term.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        let bad = |what: String| Err(ModelError::Input(format!("model file: {what}")));
+        for f in &self.factors {
+            if !(f.low.is_finite() && f.high.is_finite() && f.low < f.high) {
+                return bad(format!(
+                    "factor '{}': need finite low < high, got {}..{}",
+                    f.name, f.low, f.high
+                ));
+            }
+        }
+        for r in &self.responses {
+            if let Some((term, c)) = r.coefficients.iter().find(|(_, c)| !c.is_finite()) {
+                return bad(format!(
+                    "response '{}': coefficient of '{term}' is {c}",
+                    r.name
+                ));
+            }
+            if let Some(sd) = r.residual_sd.filter(|sd| !(sd.is_finite() && *sd >= 0.0)) {
+                return bad(format!(
+                    "response '{}': residual_sd = {sd}, expected a finite value ≥ 0",
+                    r.name
+                ));
+            }
+            let n = r.terms.as_ref().map_or(0, Vec::len);
+            if let Some(inverse) = &r.xtx_inverse {
+                let square = r.terms.is_some()
+                    && inverse.len() == n
+                    && inverse
+                        .iter()
+                        .all(|row| row.len() == n && row.iter().all(|v| v.is_finite()));
+                if !square {
+                    return bad(format!(
+                        "response '{}': xtx_inverse must be {n} × {n} finite values (one row and column per term)",
+                        r.name
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Predicts every response at physical factor values `(name, value)`.
     pub fn predict(&self, at: &[(String, f64)]) -> Result<Prediction, ModelError> {
+        self.validate()?;
+        if let Some((name, value)) = at.iter().find(|(_, v)| !v.is_finite()) {
+            return Err(ModelError::Input(format!(
+                "{name} = {value}: a factor value must be a finite number"
+            )));
+        }
         for (name, _) in at {
             if !self.factors.iter().any(|f| &f.name == name) {
                 let known: Vec<&str> = self.factors.iter().map(|f| f.name.as_str()).collect();

@@ -56,6 +56,7 @@ fn main_effects(r: &Response, factors: &[String]) -> Result<(f64, Vec<f64>), Rea
 impl LinearMap {
     /// The map of responses `x` and `y` of a model file.
     pub fn from_model(model: &ModelFile, x: &str, y: &str) -> Result<LinearMap, ReachError> {
+        model.validate().map_err(|e| ReachError(e.to_string()))?;
         let factors: Vec<String> = model.factors.iter().map(|f| f.name.clone()).collect();
         let find = |n: &str| {
             model

@@ -18,6 +18,7 @@ use statrs::distribution::{ContinuousCDF, FisherSnedecor, StudentsT};
 
 /// Why a regression cannot be fitted.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum RegressionError {
     /// Fewer runs than terms, or rank deficiency.
     #[error("regression: {0}")]
@@ -175,6 +176,19 @@ pub fn fit(
     if n < p || y.len() != n {
         return Err(RegressionError::Design(format!(
             "{n} runs for {p} terms: need at least as many runs as terms"
+        )));
+    }
+    if let Some(v) = y.iter().chain(z.iter().flatten()).find(|v| !v.is_finite()) {
+        return Err(RegressionError::Design(format!(
+            "a value of {v}: every factor and response value must be finite"
+        )));
+    }
+    let mean = y.iter().sum::<f64>() / n.max(1) as f64;
+    if y.iter()
+        .all(|v| (v - mean).abs() <= 1e-12 * mean.abs().max(f64::MIN_POSITIVE))
+    {
+        return Err(RegressionError::Design(format!(
+            "the response is constant ({mean} in every run): nothing to fit, R² is undefined"
         )));
     }
     let x = DMatrix::from_fn(n, p, |r, c| terms[c].value(&z[r]));

@@ -3,6 +3,8 @@
 //! Default range: the points whose force lies between 10 % and 90 % of the
 //! largest force (leaving out the settling start and any yield at the top).
 
+use crate::data::Data;
+use bumpsim_core::units::{Dimension, Unit, UnitError};
 use serde::Serialize;
 
 /// The linearised stiffness.
@@ -26,6 +28,95 @@ pub struct Stiffness {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("stiffness: {0}")]
 pub struct StiffnessError(pub String);
+
+/// Why a table is not a force–displacement curve.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum CurveError {
+    /// Fewer than two columns.
+    #[error("expected a displacement and a force column")]
+    Columns,
+    /// A column without a `[unit]`.
+    #[error("column '{column}' needs a unit, e.g. '{column} [mm]'")]
+    NoUnit {
+        /// Column name.
+        column: String,
+    },
+    /// A unit that does not parse.
+    #[error("column '{column}'")]
+    Unit {
+        /// Column name.
+        column: String,
+        /// The reason.
+        source: UnitError,
+    },
+    /// A unit of the wrong dimension.
+    #[error("column '{column}' is in {unit}, expected a {expected}")]
+    Dimension {
+        /// Column name.
+        column: String,
+        /// The unit as written.
+        unit: String,
+        /// The dimension needed.
+        expected: &'static str,
+    },
+}
+
+/// A force–displacement curve in SI, with the displacement unit of its file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Curve {
+    /// Displacements, m.
+    pub displacement: Vec<f64>,
+    /// Forces, N.
+    pub force: Vec<f64>,
+    /// The unit the file gave displacements in.
+    pub displacement_unit: Unit,
+}
+
+impl Curve {
+    /// The curve from a table's first two columns: displacement (a length
+    /// unit) and force (a force unit), converted to SI.
+    pub fn from_table(data: &Data) -> Result<Curve, CurveError> {
+        if data.names.len() < 2 {
+            return Err(CurveError::Columns);
+        }
+        let unit_of = |i: usize, dimension: Dimension| -> Result<Unit, CurveError> {
+            let column = data.names[i].clone();
+            let Some(text) = data.units[i].clone() else {
+                return Err(CurveError::NoUnit { column });
+            };
+            let unit = Unit::parse(&text).map_err(|source| CurveError::Unit {
+                column: column.clone(),
+                source,
+            })?;
+            if unit.dimension != dimension {
+                let expected = dimension.name();
+                return Err(CurveError::Dimension {
+                    column,
+                    unit: text,
+                    expected,
+                });
+            }
+            Ok(unit)
+        };
+        let (ud, uf) = (
+            unit_of(0, Dimension::Length)?,
+            unit_of(1, Dimension::Force)?,
+        );
+        Ok(Curve {
+            displacement: data.rows.iter().map(|r| ud.to_si(r[0])).collect(),
+            force: data.rows.iter().map(|r| uf.to_si(r[1])).collect(),
+            displacement_unit: ud,
+        })
+    }
+
+    /// The stiffness over `range` given in the file's displacement unit
+    /// (default: 10–90 % of the peak force).
+    pub fn stiffness(&self, range: Option<[f64; 2]>) -> Result<Stiffness, StiffnessError> {
+        let si = range.map(|r| r.map(|d| self.displacement_unit.to_si(d)));
+        stiffness(&self.displacement, &self.force, si)
+    }
+}
 
 /// Fits the line over `range` (displacement, m) or the default force range.
 pub fn stiffness(
@@ -56,7 +147,19 @@ pub fn stiffness(
         .iter()
         .map(|&i| (displacement[i] - mx) * (force[i] - my))
         .sum();
-    if sxx <= 0.0 {
+    if let Some(v) = inside
+        .iter()
+        .flat_map(|&i| [displacement[i], force[i]])
+        .find(|v| !v.is_finite())
+    {
+        return Err(StiffnessError(format!(
+            "a value of {v} in the fit range: displacement and force must be finite"
+        )));
+    }
+    let scale = inside
+        .iter()
+        .fold(0.0_f64, |m, &i| m.max(displacement[i].abs()));
+    if sxx <= n * (1e-9 * scale).powi(2) {
         return Err(StiffnessError(
             "the displacement does not vary in the fit range".into(),
         ));
@@ -82,6 +185,10 @@ pub fn stiffness(
         range: [lo, hi],
         points: inside.len(),
         residual_rms: (ss_res / n).sqrt(),
-        r2: 1.0 - ss_res / ss_tot,
+        r2: if ss_tot > 0.0 {
+            1.0 - ss_res / ss_tot
+        } else {
+            1.0
+        },
     })
 }

@@ -1,8 +1,12 @@
 //! Human-readable text of DOE results (terminal and reports share it):
 //! the coefficient table with standard errors, t, p and 95 % intervals,
-//! R², adjusted R², Q² (or why it is undefined), σ and lack of fit.
+//! R², adjusted R², Q² (or why it is undefined), σ and lack of fit; the
+//! predictions of a model file, a curve's stiffness and a reachable region.
 
-use bumpsim_core::units::format_number;
+use crate::model::{Factor, Prediction};
+use crate::reachable::Corner;
+use crate::stiffness::Stiffness;
+use bumpsim_core::units::{Dimension, format_number, format_quantity};
 
 /// The summary of one fitted response; `unit` of the response.
 pub fn fit_text(response: &str, unit: Option<&str>, f: &crate::regression::Fit) -> String {
@@ -57,4 +61,94 @@ pub fn fit_text(response: &str, unit: Option<&str>, f: &crate::regression::Fit) 
         );
     }
     text
+}
+
+/// A prediction: its warnings, then each response with its unit and, where
+/// known, the 95 % confidence and prediction intervals.
+pub fn prediction_text(p: &Prediction) -> String {
+    let mut text = String::new();
+    for w in &p.warnings {
+        text += &format!("warning: {w}\n");
+    }
+    let interval = |i: Option<[f64; 2]>, what: &str| {
+        i.map_or(String::new(), |[a, b]| {
+            format!(
+                "; {what} {} .. {}",
+                format_number(a, 4),
+                format_number(b, 4)
+            )
+        })
+    };
+    for v in &p.values {
+        let u = v.unit.clone().unwrap_or_default();
+        text += &format!(
+            "{} = {} {u}{}{}\n",
+            v.name,
+            format_number(v.value, 4),
+            interval(v.ci95, "95 % CI"),
+            interval(v.pi95, "95 % PI")
+        );
+    }
+    text
+}
+
+/// A curve's stiffness with its fit range, intercept, residual and R².
+pub fn stiffness_text(s: &Stiffness) -> String {
+    format!(
+        "stiffness {} (line through {} points, {} .. {}; intercept {}; residual RMS {}; R² {})\n",
+        format_quantity(s.slope, Dimension::Stiffness),
+        s.points,
+        format_quantity(s.range[0], Dimension::Length),
+        format_quantity(s.range[1], Dimension::Length),
+        format_quantity(s.intercept, Dimension::Force),
+        format_quantity(s.residual_rms, Dimension::Force),
+        format_number(s.r2, 5)
+    )
+}
+
+/// The reachable region of responses `x`, `y`: its vertices, then each
+/// cell corner with the coded factor set that reaches it (or comes closest).
+pub fn reach_text(
+    axes: [&str; 2],
+    polygon: &[[f64; 2]],
+    samples: usize,
+    corners: &[Corner],
+    factors: &[Factor],
+) -> String {
+    let [x, y] = axes;
+    let mut text = format!(
+        "reachable region of ({x}, {y}): {} vertices; {samples} random factor sets\n",
+        polygon.len()
+    );
+    for v in polygon {
+        text += &format!(
+            "  vertex {} {}\n",
+            format_number(v[0], 6),
+            format_number(v[1], 6)
+        );
+    }
+    corners
+        .iter()
+        .for_each(|c| text += &corner_line(c, factors));
+    text
+}
+
+fn corner_line(c: &Corner, factors: &[Factor]) -> String {
+    let set: Vec<String> = c
+        .factors
+        .iter()
+        .zip(factors)
+        .map(|(t, f)| format!("{}={}", f.name, format_number(*t, 4)))
+        .collect();
+    let (x, y, set) = (c.target[0], c.target[1], set.join(", "));
+    match c.reachable {
+        true => format!(
+            "corner ({x}, {y}): reachable with coded {set} (residual {})\n",
+            format_number(c.residual, 3)
+        ),
+        false => format!(
+            "corner ({x}, {y}): UNREACHABLE; closest coded {set} misses by {}\n",
+            format_number(c.residual, 4)
+        ),
+    }
 }

@@ -144,19 +144,15 @@ fn transient(deck: &mut String, analysis: &Analysis, layout: &Layout) -> Result<
     let force = &analysis.force;
     let increment = analysis.increment.unwrap_or(force.step());
     if !(increment.is_finite() && increment > 0.0) {
-        return Err(ExportError::Option(format!(
-            "time increment {increment} s must be positive"
-        )));
+        return Err(ExportError::Increment { increment });
     }
     if analysis.output_every == 0 {
-        return Err(ExportError::Option(
-            "the output interval must be at least 1 increment".into(),
-        ));
+        return Err(ExportError::OutputInterval);
     }
     if force.len() < 2 {
-        return Err(ExportError::Option(
-            "the force needs at least two samples".into(),
-        ));
+        return Err(ExportError::ForceSamples {
+            samples: force.len(),
+        });
     }
     let units = layout.units;
     let _ = writeln!(deck, "*AMPLITUDE, NAME=FORCE");
@@ -214,10 +210,24 @@ pub fn read_results(deck_path: &Path) -> Result<Results, ExportError> {
         line: 0,
         reason: "no '** bumpsim-deck:' line: not a deck written by bumpsim export calculix".into(),
     })?;
+    if meta.dof == 0 || meta.dof > MAX_DECK_DOF || !meta.start.is_finite() {
+        return Err(ExportError::Dat {
+            path: deck_path.into(),
+            line: 0,
+            reason: format!(
+                "'** bumpsim-deck:' line: dof = {} (expected 1 to {MAX_DECK_DOF}), start = {} s (expected finite)",
+                meta.dof, meta.start
+            ),
+        });
+    }
     let dat_path = deck_path.with_extension("dat");
     let dat = read(&dat_path)?;
     parse_dat(&dat, &dat_path, &meta)
 }
+
+/// Most masses a deck read back may declare (a guard against a corrupt
+/// `dof=` on the deck's `bumpsim-deck` line).
+pub const MAX_DECK_DOF: usize = 10_000;
 
 fn read(path: &Path) -> Result<String, ExportError> {
     std::fs::read_to_string(path).map_err(|e| ExportError::Dat {
@@ -269,8 +279,22 @@ fn parse_dat(text: &str, path: &Path, meta: &DeckMeta) -> Result<Results, Export
             let time: f64 = words
                 .last()
                 .and_then(|w| w.parse().ok())
-                .ok_or_else(|| error(index + 1, "block header without a time".into()))?;
-            results.time.push(time / meta.units.time() + meta.start);
+                .filter(|t: &f64| t.is_finite())
+                .ok_or_else(|| error(index + 1, "block header without a finite time".into()))?;
+            let time = time / meta.units.time() + meta.start;
+            if counts.iter().any(|&c| c != results.time.len()) {
+                return Err(error(
+                    index + 1,
+                    "the previous displacement block does not list every mass node once (truncated?)".into(),
+                ));
+            }
+            if results.time.last().is_some_and(|&last| time <= last) {
+                return Err(error(
+                    index + 1,
+                    format!("block time {time} s does not increase (a duplicate block?)"),
+                ));
+            }
+            results.time.push(time);
         } else if words.len() == 4 {
             let numbers: Option<Vec<f64>> = words.iter().map(|w| w.parse().ok()).collect();
             let numbers = numbers.ok_or_else(|| {
@@ -282,6 +306,12 @@ fn parse_dat(text: &str, path: &Path, meta: &DeckMeta) -> Result<Results, Export
                     ),
                 )
             })?;
+            if let Some(v) = numbers.iter().find(|v| !v.is_finite()) {
+                return Err(error(
+                    index + 1,
+                    format!("value {v}: expected finite numbers"),
+                ));
+            }
             let node = numbers[0] as usize;
             if node == 0 || node > meta.dof || results.time.is_empty() {
                 return Err(error(
@@ -290,6 +320,12 @@ fn parse_dat(text: &str, path: &Path, meta: &DeckMeta) -> Result<Results, Export
                         "node {node} is not a mass node 1..{} of a displacement block",
                         meta.dof
                     ),
+                ));
+            }
+            if counts[node - 1] == results.time.len() {
+                return Err(error(
+                    index + 1,
+                    format!("node {node} appears twice in one displacement block"),
                 ));
             }
             let along = numbers[meta.axis.component + 1] * meta.axis.sign / meta.units.length();

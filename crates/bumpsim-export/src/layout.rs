@@ -99,16 +99,30 @@ impl fmt::Display for UnitSystem {
     }
 }
 
+/// A unit-system or axis name that is not one of the choices.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown {what} '{given}': expected {expected}")]
+pub struct UnknownName {
+    /// `unit system` or `axis`.
+    pub what: &'static str,
+    /// The text given.
+    pub given: String,
+    /// The choices.
+    pub expected: &'static str,
+}
+
 impl FromStr for UnitSystem {
-    type Err = String;
+    type Err = UnknownName;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         match s {
             "si" => Ok(UnitSystem::Si),
             "mm-s-t" => Ok(UnitSystem::MmSTonne),
             "mm-ms-kg" => Ok(UnitSystem::MmMsKg),
-            other => Err(format!(
-                "unknown unit system '{other}': expected si, mm-s-t or mm-ms-kg"
-            )),
+            other => Err(UnknownName {
+                what: "unit system",
+                given: other.into(),
+                expected: "si, mm-s-t or mm-ms-kg",
+            }),
         }
     }
 }
@@ -162,7 +176,7 @@ impl fmt::Display for Axis {
 }
 
 impl FromStr for Axis {
-    type Err = String;
+    type Err = UnknownName;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         let (sign, name) = match s.as_bytes().first() {
             Some(b'-') => (-1.0, &s[1..]),
@@ -172,7 +186,11 @@ impl FromStr for Axis {
         let component = ["x", "y", "z"]
             .iter()
             .position(|&c| c.eq_ignore_ascii_case(name))
-            .ok_or_else(|| format!("unknown axis '{s}': expected +x, -x, +y, -y, +z or -z"))?;
+            .ok_or_else(|| UnknownName {
+                what: "axis",
+                given: s.into(),
+                expected: "+x, -x, +y, -y, +z or -z",
+            })?;
         Ok(Axis { component, sign })
     }
 }

@@ -18,17 +18,71 @@ pub mod calculix;
 pub mod layout;
 pub mod lsdyna;
 
+pub use calculix::{CalculixOptions, calculix_deck};
+pub use layout::{Axis, Layout, UnitSystem};
+pub use lsdyna::{LsDynaOptions, lsdyna_include};
+
 use std::path::PathBuf;
 
 /// Why a deck cannot be written or its results read.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum ExportError {
-    /// Ids out of range or clashing.
-    #[error("{0}")]
-    Ids(String),
-    /// An option out of range.
-    #[error("{0}")]
-    Option(String),
+    /// An id offset at or above the 8-column limit (checked before any id
+    /// is added to it, so that no sum wraps around).
+    #[error("id offset {offset}: must be below the 8-column id limit {limit}")]
+    IdOffset {
+        /// The offset given.
+        offset: u64,
+        /// The largest id LS-DYNA's fixed format holds.
+        limit: u64,
+    },
+    /// The id offset leaves no room for the include's ids in 8 columns.
+    #[error("id offset {offset} puts ids up to {last}, beyond the 8-column limit {limit}")]
+    IdRange {
+        /// The offset given.
+        offset: u64,
+        /// The largest id it would need.
+        last: u64,
+        /// The largest id LS-DYNA's fixed format holds.
+        limit: u64,
+    },
+    /// An attachment node is one of the include's own nodes.
+    #[error(
+        "attachment node {node} clashes with the include's nodes {first}..{last}: \
+         choose an --id-offset above your model's ids"
+    )]
+    IdClash {
+        /// The node given.
+        node: u64,
+        /// The include's first node id.
+        first: u64,
+        /// The include's last node id.
+        last: u64,
+    },
+    /// An attachment node id out of range.
+    #[error("attachment node {node} is not a valid node id (1..{limit})")]
+    NodeId {
+        /// The node given.
+        node: u64,
+        /// The largest valid id.
+        limit: u64,
+    },
+    /// A time increment that is not positive and finite.
+    #[error("time increment {increment} s must be positive")]
+    Increment {
+        /// The increment, s.
+        increment: f64,
+    },
+    /// An output interval of zero increments.
+    #[error("the output interval must be at least 1 increment")]
+    OutputInterval,
+    /// A force history too short for a transient analysis.
+    #[error("the force needs at least two samples, got {samples}")]
+    ForceSamples {
+        /// Samples given.
+        samples: usize,
+    },
     /// A results file that cannot be read.
     #[error("{}{}: {reason}", path.display(), if *line > 0 { format!(":{line}") } else { String::new() })]
     Dat {

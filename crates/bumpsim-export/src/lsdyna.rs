@@ -75,29 +75,38 @@ impl Ids {
 
 /// Checks the offset and the attachment nodes and returns the ids.
 fn ids(model: &MsdModel, options: &LsDynaOptions) -> Result<Ids, ExportError> {
+    if options.id_offset >= MAX_ID {
+        // checked first: offset + k would overflow (wrap) for offsets near u64::MAX
+        return Err(ExportError::IdOffset {
+            offset: options.id_offset,
+            limit: MAX_ID,
+        });
+    }
     let ids = Ids {
         offset: options.id_offset,
         dof: model.dof() as u64,
     };
     let last = ids.shared();
     if last > MAX_ID {
-        return Err(ExportError::Ids(format!(
-            "id offset {} puts ids up to {last}, beyond the 8-column limit {MAX_ID}",
-            options.id_offset
-        )));
+        return Err(ExportError::IdRange {
+            offset: options.id_offset,
+            last,
+            limit: MAX_ID,
+        });
     }
     let ours = ids.node(0)..=ids.node(model.dof() - 1);
     if let Some(node) = options.attach.iter().find(|n| ours.contains(n)) {
-        return Err(ExportError::Ids(format!(
-            "attachment node {node} clashes with the include's nodes {}..{}: choose an --id-offset above your model's ids",
-            ours.start(),
-            ours.end()
-        )));
+        return Err(ExportError::IdClash {
+            node: *node,
+            first: *ours.start(),
+            last: *ours.end(),
+        });
     }
     if let Some(node) = options.attach.iter().find(|&&n| n == 0 || n > MAX_ID) {
-        return Err(ExportError::Ids(format!(
-            "attachment node {node} is not a valid node id (1..{MAX_ID})"
-        )));
+        return Err(ExportError::NodeId {
+            node: *node,
+            limit: MAX_ID,
+        });
     }
     Ok(ids)
 }

@@ -312,7 +312,13 @@ fn clashing_and_oversized_ids_are_refused() {
     clash.attach = vec![9_000_002];
     let err = lsdyna_include(&thesis_model(), &clash).unwrap_err();
     assert!(
-        matches!(&err, ExportError::Ids(m) if m.contains("clashes")),
+        matches!(
+            &err,
+            ExportError::IdClash {
+                node: 9_000_002,
+                ..
+            }
+        ),
         "{err}"
     );
     let mut big = options(UnitSystem::Si);
@@ -327,6 +333,7 @@ fn clashing_and_oversized_ids_are_refused() {
         "imperial"
             .parse::<UnitSystem>()
             .unwrap_err()
+            .to_string()
             .contains("expected si, mm-s-t or mm-ms-kg")
     );
 }

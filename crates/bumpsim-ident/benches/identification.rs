@@ -47,6 +47,7 @@ fn cases() -> Vec<LoadCase> {
             };
             c.measured = c
                 .simulate(&truth)
+                .unwrap()
                 .iter()
                 .enumerate()
                 .map(|(k, x)| x + 5e-5 * ((k * 7 + l) as f64).sin())

@@ -7,16 +7,20 @@
 //! simulated by the exact zoh discretisation from the first sample.
 //!
 //! [`Objective`] evaluates the residuals and their exact Jacobian with
-//! respect to the free log parameters ([`sensitivity`](crate::sensitivity)).
+//! respect to the free log parameters. Simulation, prediction and the
+//! Jacobian all run core's one zoh discretisation
+//! ([`DiscreteModel`], [`bumpsim_core::sensitivity`]).
 
 use crate::lm::LeastSquares;
-use crate::sensitivity::Discretised;
+use bumpsim_core::discrete::{DiscreteModel, DiscretiseError, Method};
 use bumpsim_core::model::{MsdModel, parameter_count};
+use bumpsim_core::sensitivity::OutputError;
 use nalgebra::DMatrix;
 use std::sync::Mutex;
 
 /// Why a load case or parameter set is not usable.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum CaseError {
     /// Force and displacement differ in length, or a case is empty.
     #[error("load case '{case}': {reason}")]
@@ -25,6 +29,24 @@ pub enum CaseError {
         case: String,
         /// What is wrong.
         reason: String,
+    },
+    /// The model cannot be discretised at the case's sample interval.
+    #[error("load case '{case}': {source}")]
+    Discretise {
+        /// The case name.
+        case: String,
+        /// Why.
+        source: DiscretiseError,
+    },
+    /// The case does not fit the model (e.g. it measures a mass the model lacks).
+    #[error("load case '{case}' with a {dof}-DOF model: {source}")]
+    Output {
+        /// The case name.
+        case: String,
+        /// Number of masses of the model.
+        dof: usize,
+        /// Which buffer or index does not fit.
+        source: OutputError,
     },
 }
 
@@ -81,12 +103,25 @@ impl LoadCase {
             .iter()
             .chain(&self.measured)
             .all(|v| v.is_finite());
-        match finite && self.initial_velocity.is_finite() {
-            true => Ok(()),
-            false => Err(invalid(
+        if !(finite && self.initial_velocity.is_finite()) {
+            return Err(invalid(
                 "non-finite force, displacement or initial velocity".into(),
-            )),
+            ));
         }
+        // a constant measured displacement (all zero, say) determines no
+        // model: the fit measure divides by its variation
+        let window = &self.measured[a..=b];
+        let (lo, hi) = window
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                (l.min(*v), h.max(*v))
+            });
+        if hi - lo <= 1e-12 * hi.abs().max(lo.abs()) {
+            return Err(invalid(format!(
+                "the measured displacement is constant ({lo} m) over the window: it determines no model"
+            )));
+        }
+        Ok(())
     }
 
     /// Number of samples in the window.
@@ -101,20 +136,37 @@ impl LoadCase {
             .collect()
     }
 
-    /// The simulated output of `model` at every sample.
-    pub fn simulate(&self, model: &MsdModel) -> Vec<f64> {
-        let d = Discretised::plain(model, self.step);
+    /// The simulated output of `model` at every sample, by the zoh
+    /// discretisation of core (the same as `bumpsim simulate`'s).
+    pub fn simulate(&self, model: &MsdModel) -> Result<Vec<f64>, CaseError> {
+        if self.output_dof == 0 {
+            return Err(CaseError::Invalid {
+                case: self.name.clone(),
+                reason: "output DOF 0: the masses are numbered from 1".into(),
+            });
+        }
+        let d = DiscreteModel::new(model, Method::Zoh, self.step).map_err(|source| {
+            CaseError::Discretise {
+                case: self.name.clone(),
+                source,
+            }
+        })?;
         let mut y = vec![0.0; self.force.len()];
-        let mut work = vec![0.0; (d.parameter_count() + 2) * d.order()];
-        d.simulate(
-            &self.force,
+        let mut work = vec![0.0; d.work_len()];
+        d.output(
             &self.initial_state(model.dof()),
+            &self.force,
             self.output_dof - 1,
             &mut y,
             None,
             &mut work,
-        );
-        y
+        )
+        .map_err(|source| CaseError::Output {
+            case: self.name.clone(),
+            dof: model.dof(),
+            source,
+        })?;
+        Ok(y)
     }
 
     /// Sum of squared errors over the window and the fit %
@@ -135,6 +187,7 @@ impl LoadCase {
 
 /// Scratch buffers of one evaluation.
 struct Buffers {
+    initial: Vec<f64>,
     y: Vec<f64>,
     jac: Vec<f64>,
     work: Vec<f64>,
@@ -166,6 +219,7 @@ impl<'a> Objective<'a> {
             .collect();
         let longest = cases.iter().map(|c| c.force.len()).max().unwrap_or(0);
         let buffers = Buffers {
+            initial: vec![0.0; 2 * dof],
             y: vec![0.0; longest],
             jac: vec![0.0; longest * p],
             work: vec![0.0; (p + 2) * 2 * dof],
@@ -229,13 +283,14 @@ impl LeastSquares for Objective<'_> {
         let b = &mut *guard;
         let full = parameter_count(self.dof);
         let mut row = 0;
-        let mut cached: Option<(f64, Discretised)> = None;
+        let mut cached: Option<(f64, DiscreteModel)> = None;
         for case in self.cases {
             if cached.as_ref().is_none_or(|(step, _)| *step != case.step) {
                 let d = match jacobian.is_some() {
-                    true => Discretised::new(&model, case.step),
-                    false => Discretised::plain(&model, case.step),
+                    true => DiscreteModel::with_sensitivities(&model, case.step),
+                    false => DiscreteModel::new(&model, Method::Zoh, case.step),
                 };
+                let Ok(d) = d else { return false };
                 cached = Some((case.step, d));
             }
             let Some((_, d)) = cached.as_ref() else {
@@ -244,15 +299,20 @@ impl LeastSquares for Objective<'_> {
             // nothing after the window enters the objective
             let n = case.window.1 + 1;
             let jac = jacobian.is_some().then_some(&mut b.jac[..n * full]);
-            let initial = case.initial_state(self.dof);
-            d.simulate(
+            let (positions, velocities) = b.initial.split_at_mut(self.dof);
+            positions.fill(0.0);
+            velocities.fill(case.initial_velocity);
+            let simulated = d.output(
+                &b.initial,
                 &case.force[..n],
-                &initial,
                 case.output_dof - 1,
                 &mut b.y[..n],
                 jac,
                 &mut b.work,
             );
+            if simulated.is_err() {
+                return false;
+            }
             let (a, z) = case.window;
             for k in a..=z {
                 residuals[row] = b.y[k] - case.measured[k];

@@ -1,7 +1,7 @@
 //! Multi-start bounded identification of one model from several load cases.
 //!
 //! Parameters are estimated as `p = ln θ` (kg, N·s/m and N/m spanning seven
-//! decades become comparable) with [`lm`](crate::lm) within the bounds
+//! decades become comparable) with [`lm`] within the bounds
 //! (thesis: every parameter ≥ 1 SI). Starts: the user's start if given, the
 //! start derived from the data ([`data_start`]), then log-uniform random
 //! points within a factor 30 of the data start, drawn from a ChaCha8 stream
@@ -10,7 +10,7 @@
 //! simulated is counted as failed, never propagated.
 
 use crate::case::{CaseError, LoadCase, Objective};
-use crate::lm::{self, LeastSquares, Outcome};
+use crate::lm::{self, LeastSquares, Outcome, Stop};
 use crate::stats::{Uncertainty, uncertainty};
 use bumpsim_core::model::{MsdModel, ParameterKind, parameter_count, parameter_kind};
 use rand_chacha::ChaCha8Rng;
@@ -21,6 +21,7 @@ use std::time::Instant;
 
 /// Why identification cannot run.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum IdentError {
     /// A load case is unusable.
     #[error(transparent)]
@@ -32,6 +33,13 @@ pub enum IdentError {
         name: &'static str,
         /// What is wrong.
         reason: String,
+    },
+    /// The best start's parameters do not make a model (cannot happen within
+    /// the bounds; checked so that no invalid model is returned).
+    #[error("the best parameters {theta:?} (SI) do not make a valid model")]
+    Parameters {
+        /// The parameters, SI, thesis order.
+        theta: Vec<f64>,
     },
     /// Every start failed.
     #[error("all {starts} starts failed: the model could not be simulated from any of them")]
@@ -152,12 +160,10 @@ pub struct Starts {
 pub struct Identification {
     /// Number of masses.
     pub dof: usize,
-    /// Masses, kg.
-    pub masses: Vec<f64>,
-    /// Dampers, N·s/m.
-    pub dampers: Vec<f64>,
-    /// Springs, N/m.
-    pub springs: Vec<f64>,
+    /// The identified model; serialised as its `masses` (kg), `dampers`
+    /// (N·s/m) and `springs` (N/m) at the top level of the result.
+    #[serde(flatten)]
+    pub model: MsdModel,
     /// `F = Σ (x − x̂)²` over all cases, m².
     pub objective: f64,
     /// Per-case fit.
@@ -177,7 +183,7 @@ pub struct Identification {
     /// Solver iterations of the best start.
     pub iterations: usize,
     /// Why the best start stopped.
-    pub stop: String,
+    pub stop: Stop,
     /// Wall-clock time, s.
     pub run_time: f64,
     /// Warnings for the user.
@@ -186,13 +192,8 @@ pub struct Identification {
 
 impl Identification {
     /// The identified model.
-    pub fn model(&self) -> MsdModel {
-        MsdModel::new(
-            self.masses.clone(),
-            self.dampers.clone(),
-            self.springs.clone(),
-        )
-        .expect("identified parameters are within positive bounds")
+    pub fn model(&self) -> &MsdModel {
+        &self.model
     }
 }
 
@@ -224,10 +225,7 @@ pub fn data_start(cases: &[LoadCase], dof: usize) -> Vec<f64> {
 /// Mass and window duration of one case, when they can be estimated.
 fn case_estimate(case: &LoadCase) -> Option<(f64, f64)> {
     let (a, b) = case.window;
-    let impulse: f64 = case.force[a..=b]
-        .windows(2)
-        .map(|w| 0.5 * case.step * (w[0] + w[1]))
-        .sum();
+    let impulse = bumpsim_core::series::trapezoid(&case.force[a..=b], case.step);
     let tail = ((b - a) / 20).max(1);
     let velocity =
         |k: usize| (case.measured[k] - case.measured[k - tail]) / (tail as f64 * case.step);
@@ -276,8 +274,28 @@ fn unit(rng: &mut ChaCha8Rng) -> f64 {
     (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
 }
 
+/// Largest model identified (memory and time grow with the cube of the DOF).
+pub const MAX_DOF: usize = 50;
+/// Most starts of one identification.
+pub const MAX_STARTS: usize = 100_000;
+
 fn check(cases: &[LoadCase], settings: &Settings) -> Result<(), IdentError> {
     let setting = |name, reason: String| Err(IdentError::Setting { name, reason });
+    if settings.dof > MAX_DOF {
+        return setting(
+            "dof",
+            format!("{} masses: at most {MAX_DOF} (limit MAX_DOF)", settings.dof),
+        );
+    }
+    if settings.starts > MAX_STARTS {
+        return setting(
+            "starts",
+            format!(
+                "{} starts: at most {MAX_STARTS} (limit MAX_STARTS)",
+                settings.starts
+            ),
+        );
+    }
     if settings.dof == 0 || settings.starts == 0 || cases.is_empty() {
         return setting(
             "dof/starts/cases",
@@ -367,9 +385,9 @@ pub fn identify(
         reached_best,
         best,
     };
-    Ok(summarise(
+    summarise(
         cases, settings, &objective, outcome, starts, &lower, &upper, clock,
-    ))
+    )
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -382,22 +400,23 @@ fn summarise(
     lower: &[f64],
     upper: &[f64],
     clock: Instant,
-) -> Identification {
+) -> Result<Identification, IdentError> {
     let theta = objective.theta(&outcome.parameters);
-    let model =
-        MsdModel::from_parameters(settings.dof, &theta).expect("bounded parameters are positive");
-    let fits: Vec<CaseFit> = cases
+    let model = objective
+        .model(&outcome.parameters)
+        .ok_or(IdentError::Parameters { theta })?;
+    let fits = cases
         .iter()
         .map(|c| {
-            let (sse, fit_percent) = c.fit(&c.simulate(&model));
-            CaseFit {
+            let (sse, fit_percent) = c.fit(&c.simulate(&model)?);
+            Ok(CaseFit {
                 name: c.name.clone(),
                 sse,
                 fit_percent,
                 samples: c.window_len(),
-            }
+            })
         })
-        .collect();
+        .collect::<Result<Vec<_>, CaseError>>()?;
     let n = objective.residual_count();
     let q = objective.parameter_count();
     let sse = outcome.objective;
@@ -417,11 +436,9 @@ fn summarise(
         ));
     }
     let ln_term = n as f64 * (sse / n as f64).ln();
-    Identification {
+    Ok(Identification {
         dof: settings.dof,
-        masses: model.masses().to_vec(),
-        dampers: model.dampers().to_vec(),
-        springs: model.springs().to_vec(),
+        model,
         objective: sse,
         fit_percent: 100.0 * (1.0 - (sse / spread).sqrt()),
         cases: fits,
@@ -431,10 +448,10 @@ fn summarise(
         uncertainty,
         starts,
         iterations: outcome.iterations,
-        stop: format!("{:?}", outcome.stop),
+        stop: outcome.stop,
         run_time: clock.elapsed().as_secs_f64(),
         warnings,
-    }
+    })
 }
 
 /// `Σ_l ‖y_l − ȳ_l‖²` over the windows (each case about its own mean).

@@ -3,7 +3,7 @@
 //! objective (paper B figure 6: each parameter alone scaled by 1 + δ,
 //! δ ∈ [−3 %, +3 %]).
 
-use crate::case::LoadCase;
+use crate::case::{CaseError, LoadCase};
 use crate::estimate::CaseFit;
 use bumpsim_core::model::{MsdModel, parameter_count, parameter_name};
 use serde::Serialize;
@@ -23,12 +23,13 @@ pub struct Prediction {
     pub window: [f64; 2],
 }
 
-/// Simulates each case with `model`.
-pub fn predict(cases: &[LoadCase], model: &MsdModel) -> Vec<Prediction> {
+/// Simulates each case with `model` (core's zoh, as `simulate` and
+/// `identify` do); an error names a case the model cannot simulate.
+pub fn predict(cases: &[LoadCase], model: &MsdModel) -> Result<Vec<Prediction>, CaseError> {
     cases
         .iter()
         .map(|c| {
-            let simulated = c.simulate(model);
+            let simulated = c.simulate(model)?;
             let (sse, fit_percent) = c.fit(&simulated);
             let time = (0..c.force.len())
                 .map(|k| c.start + k as f64 * c.step)
@@ -40,13 +41,13 @@ pub fn predict(cases: &[LoadCase], model: &MsdModel) -> Vec<Prediction> {
                 fit_percent,
                 samples: c.window_len(),
             };
-            Prediction {
+            Ok(Prediction {
                 fit,
                 time,
                 measured: c.measured.clone(),
                 simulated,
                 window,
-            }
+            })
         })
         .collect()
 }
@@ -64,12 +65,14 @@ pub struct Sweep {
 
 /// The objective of `cases` when each parameter of `model` alone is scaled
 /// by `1 + δ` for `points` values of δ evenly over `[−fraction, fraction]`.
+/// A scaled model that is not a model (δ ≤ −100 %) has objective NaN; a case
+/// the model cannot simulate is an error.
 pub fn sensitivity(
     cases: &[LoadCase],
     model: &MsdModel,
     fraction: f64,
     points: usize,
-) -> Vec<Sweep> {
+) -> Result<Vec<Sweep>, CaseError> {
     let dof = model.dof();
     let theta = model.parameters();
     let deltas: Vec<f64> = (0..points.max(2))
@@ -82,19 +85,20 @@ pub fn sensitivity(
                 .map(|d| {
                     let mut t = theta.clone();
                     t[i] *= 1.0 + d;
-                    MsdModel::from_parameters(dof, &t).map_or(f64::NAN, |m| objective(cases, &m))
+                    MsdModel::from_parameters(dof, &t)
+                        .map_or(Ok(f64::NAN), |m| objective(cases, &m))
                 })
-                .collect();
-            Sweep {
+                .collect::<Result<_, _>>()?;
+            Ok(Sweep {
                 name: parameter_name(dof, i),
                 relative_change: deltas.clone(),
                 objective,
-            }
+            })
         })
         .collect()
 }
 
 /// `F = Σ (x − x̂)²` over the windows of `cases`, m².
-pub fn objective(cases: &[LoadCase], model: &MsdModel) -> f64 {
-    cases.iter().map(|c| c.fit(&c.simulate(model)).0).sum()
+pub fn objective(cases: &[LoadCase], model: &MsdModel) -> Result<f64, CaseError> {
+    cases.iter().map(|c| Ok(c.fit(&c.simulate(model)?).0)).sum()
 }

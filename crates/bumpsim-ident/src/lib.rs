@@ -2,13 +2,17 @@
 //! (thesis ch. 3.4, paper B, spec §3).
 //!
 //! - [`case`]: load cases and the objective `F = Σ (x − x̂)²`;
-//! - [`sensitivity`]: the zoh-discretised model and its exact sensitivities;
 //! - [`lm`]: bounded Levenberg–Marquardt;
 //! - [`estimate`]: the data-derived start, multi-start, results;
 //! - [`explore`]: predictions and the ±3 % sensitivity of the objective;
 //! - [`stats`]: standard errors, intervals, correlations, identifiability;
-//! - [`report`]: text tables of results;
+//! - [`text`]: text tables of results (as `doe::text` and `impact::text`);
 //! - [`study`]: study files (TOML) and the processing of their load cases.
+//!
+//! Simulation, prediction and the identification Jacobian all run core's one
+//! zoh discretisation ([`bumpsim_core::discrete::DiscreteModel`], with the
+//! exact sensitivities of [`bumpsim_core::sensitivity`]), so `bumpsim
+//! simulate`, `predict` and `identify` agree to the last bit.
 //!
 //! ```
 //! use bumpsim_core::prelude::*;
@@ -20,16 +24,21 @@
 //!     name: "flat".into(), start: 0.0, step: 5e-4, force, measured: vec![], output_dof: 1,
 //!     initial_velocity: 0.0, window: (0, 399),
 //! };
-//! case.measured = case.simulate(&truth);
+//! case.measured = case.simulate(&truth).unwrap();
 //! let result = identify(&[case], &Settings::new(2, 4), &|| {}).unwrap();
 //! assert!(result.cases[0].fit_percent > 99.9);
 //! ```
 
 pub mod case;
+pub mod dofs;
 pub mod estimate;
 pub mod explore;
 pub mod lm;
-pub mod report;
-pub mod sensitivity;
 pub mod stats;
 pub mod study;
+pub mod text;
+
+pub use case::LoadCase;
+pub use dofs::DofList;
+pub use estimate::{IdentError, Identification, Settings, identify};
+pub use study::{Study, StudyError};

@@ -63,8 +63,8 @@ impl Default for Settings {
     }
 }
 
-/// Why the solver stopped.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Why the solver stopped; serialised as the variant's name (`"Objective"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Stop {
     /// `|∇F · δ|` below the thesis tolerance.
     Directional,

@@ -90,7 +90,7 @@ pub fn uncertainty(
         result.warnings.push(format!(
             "{} is at its {side} bound ({}): not identifiable from these data within the bounds",
             result.names[i],
-            crate::report::format_parameter(dof, i, theta[i])
+            bumpsim_core::model::format_parameter(dof, i, theta[i])
         ));
     }
     if estimated.is_empty() || result.degrees_of_freedom == 0 {

@@ -10,21 +10,24 @@
 //! state applies; the fit window is the contact window of the force
 //! (5 % rise, 2 % fall) or `[t0, t1]` s. See docs/identify.md.
 
-use crate::case::LoadCase;
+use crate::case::{CaseError, LoadCase};
 use crate::estimate::{Bounds, Settings};
 use bumpsim_core::channel::Channel;
 use bumpsim_core::model::{parameter_count, parameter_name};
+use bumpsim_core::series::UniformSeries;
 use bumpsim_core::units::Dimension;
 use bumpsim_io::signal_error::SignalFileError;
-use bumpsim_io::test_data::TestData;
-use bumpsim_signal::process::{Combine, ProcessError, Step, align, combine, run};
-use bumpsim_signal::window::ContactThreshold;
+use bumpsim_signal::loader::{ChannelSource, LoadError, Loader, Note};
+use bumpsim_signal::process::{Combine, ProcessError, Step, align, run};
+use bumpsim_signal::window::{ContactThreshold, WindowError};
 use serde::Deserialize;
 use std::collections::BTreeMap;
+use std::fmt;
 use std::path::{Path, PathBuf};
 
 /// Why a study cannot be read.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum StudyError {
     /// The study file itself.
     #[error("{path}: {message}")]
@@ -33,6 +36,34 @@ pub enum StudyError {
         path: PathBuf,
         /// What is wrong.
         message: String,
+    },
+    /// A `bounds` or `fixed` entry names no parameter of the models.
+    #[error("{path}: {table}: no parameter '{name}' in a {dof}-DOF model ({})", valid.join(", "))]
+    Parameter {
+        /// The study file.
+        path: PathBuf,
+        /// `bounds` or `fixed`.
+        table: &'static str,
+        /// The name given.
+        name: String,
+        /// Masses of the largest model identified.
+        dof: usize,
+        /// The parameter names of that model.
+        valid: Vec<String>,
+    },
+    /// The `start` does not fit the models identified.
+    #[error("{path}: start: {masses} masses, {dampers} dampers, {springs} springs; {expected}")]
+    Start {
+        /// The study file.
+        path: PathBuf,
+        /// Masses given.
+        masses: usize,
+        /// Dampers given.
+        dampers: usize,
+        /// Springs given.
+        springs: usize,
+        /// What fits.
+        expected: String,
     },
     /// A test file or channel.
     #[error("case '{case}': {source}")]
@@ -51,13 +82,90 @@ pub enum StudyError {
         source: ProcessError,
     },
     /// A case definition.
-    #[error("case '{case}': {message}")]
+    #[error("case '{case}': {source}")]
     Case {
         /// The case.
         case: String,
         /// What is wrong.
-        message: String,
+        source: DefinitionError,
     },
+}
+
+/// What is wrong with a `[[case]]` definition or its data.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum DefinitionError {
+    /// Neither or both of `displacement` and `acceleration`.
+    #[error("give either 'displacement' or 'acceleration' (a list of channels)")]
+    Output,
+    /// A signal of the wrong physical dimension.
+    #[error("the {signal} is {found}, expected {expected}")]
+    Dimension {
+        /// Which signal (`force channel`, ...).
+        signal: &'static str,
+        /// Its dimension.
+        found: Dimension,
+        /// What it must be.
+        expected: &'static str,
+    },
+    /// The channels could not be made into one signal.
+    #[error(transparent)]
+    Load(LoadError),
+    /// The data end before t = 0.
+    #[error("no samples at or after t = 0")]
+    NoSamples,
+    /// `output_dof` is neither a number nor `"last"`.
+    #[error("output_dof '{0}': expected a number or \"last\"")]
+    OutputDof(String),
+    /// `output_dof` names no mass of the model.
+    #[error("output_dof = {output_dof}: the model has masses 1 to {dof}")]
+    OutputDofRange {
+        /// The mass given (1-based).
+        output_dof: usize,
+        /// The model's number of masses.
+        dof: usize,
+    },
+    /// `window` is neither `"contact"` nor two times.
+    #[error("window '{0}': expected \"contact\" or [t0, t1] in s")]
+    WindowName(String),
+    /// The window `[t0, t1]` s holds fewer than two samples.
+    #[error("window [{t0}, {t1}] s holds no samples of the data")]
+    EmptyWindow {
+        /// Start, s.
+        t0: f64,
+        /// End, s.
+        t1: f64,
+    },
+    /// No contact in the force.
+    #[error(transparent)]
+    Contact(#[from] WindowError),
+    /// The processed case is not usable.
+    #[error(transparent)]
+    Invalid(#[from] CaseError),
+}
+
+/// A note on the channels of one case (left out, or used despite a mark).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CaseNote {
+    /// The case.
+    pub case: String,
+    /// The note of its channel selection.
+    pub note: Note,
+}
+
+impl fmt::Display for CaseNote {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "case '{}': {}", self.case, self.note)
+    }
+}
+
+/// The load cases of a study and the notes of their channel selections.
+#[derive(Debug, Clone)]
+pub struct LoadedCases {
+    /// The cases, processed.
+    pub cases: Vec<LoadCase>,
+    /// What the channel selections left out or used despite a mark.
+    pub notes: Vec<CaseNote>,
 }
 
 /// `dof = 3` or `dof = [1, 2, 3]`.
@@ -212,7 +320,8 @@ impl Study {
             message,
         };
         let text = std::fs::read_to_string(path).map_err(|e| error(format!("cannot read: {e}")))?;
-        let mut study: Study = toml::from_str(&text).map_err(|e| error(e.to_string()))?;
+        let mut study: Study =
+            toml::from_str(&text).map_err(|e| error(bumpsim_io::toml_message(&text, &e)))?;
         study.base = path.parent().map(Path::to_path_buf).unwrap_or_default();
         study.path = path.to_path_buf();
         if !study.model.method.eq_ignore_ascii_case("zoh") {
@@ -226,6 +335,12 @@ impl Study {
                 "no [[case]]: a study needs at least one load case".into(),
             ));
         }
+        let max = crate::estimate::MAX_DOF;
+        if let Some(bad) = study.dofs().into_iter().find(|&n| n == 0 || n > max) {
+            return Err(error(format!(
+                "[model] dof = {bad}: expected 1 to {max} masses (limit MAX_DOF)"
+            )));
+        }
         Ok(study)
     }
 
@@ -237,12 +352,13 @@ impl Study {
         }
     }
 
-    /// Settings for `dof` masses.
+    /// Settings for `dof` masses. `bounds` and `fixed` entries must name
+    /// parameters of the largest model (of the study's DOF and `dof`); they
+    /// apply to each model that has them. A `start` must fit one of those
+    /// models (it is used for that one).
     pub fn settings(&self, dof: usize) -> Result<Settings, StudyError> {
-        let error = |message: String| StudyError::File {
-            path: self.path.clone(),
-            message,
-        };
+        let largest = self.dofs().into_iter().chain([dof]).max().unwrap_or(dof);
+        self.check_names(largest)?;
         let p = parameter_count(dof);
         let mut bounds = Bounds::uniform(dof, self.model.lower_bound);
         if let Some(upper) = self.model.upper_bound {
@@ -253,11 +369,6 @@ impl Study {
         for (name, [lo, hi]) in &self.model.bounds {
             if let Some(i) = index(name) {
                 (bounds.lower[i], bounds.upper[i]) = (*lo, *hi);
-            } else if dof == self.dofs().into_iter().max().unwrap_or(dof) {
-                return Err(error(format!(
-                    "bounds: no parameter '{name}' in a {dof}-DOF model ({})",
-                    names.join(", ")
-                )));
             }
         }
         for (name, value) in &self.model.fixed {
@@ -265,29 +376,84 @@ impl Study {
                 bounds.fixed[i] = Some(*value);
             }
         }
-        let start = match &self.model.start {
-            Some(s) if s.masses.len() == dof => {
-                Some([&s.masses[..], &s.dampers, &s.springs].concat())
-            }
-            _ => None,
-        };
         Ok(Settings {
             dof,
             bounds,
             starts: self.model.starts,
             seed: self.model.seed,
-            start,
+            start: self.start(dof)?,
             ..Settings::new(dof, 1)
+        })
+    }
+
+    /// Refuses `bounds` and `fixed` entries that name no parameter of a
+    /// `largest`-mass model (names of smaller models are a subset).
+    fn check_names(&self, largest: usize) -> Result<(), StudyError> {
+        let valid: Vec<String> = (0..parameter_count(largest))
+            .map(|i| parameter_name(largest, i))
+            .collect();
+        let tables = [
+            ("bounds", self.model.bounds.keys().collect::<Vec<_>>()),
+            ("fixed", self.model.fixed.keys().collect()),
+        ];
+        for (table, names) in tables {
+            if let Some(name) = names.into_iter().find(|n| !valid.contains(n)) {
+                return Err(StudyError::Parameter {
+                    path: self.path.clone(),
+                    table,
+                    name: name.clone(),
+                    dof: largest,
+                    valid,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The user's start for a `dof`-mass model: used when it has `dof`
+    /// masses, an error when it fits none of the models identified.
+    fn start(&self, dof: usize) -> Result<Option<Vec<f64>>, StudyError> {
+        let Some(s) = &self.model.start else {
+            return Ok(None);
+        };
+        let n = s.masses.len();
+        let consistent = n >= 1 && s.dampers.len() == n - 1 && s.springs.len() == n - 1;
+        let mut dofs = self.dofs();
+        dofs.push(dof);
+        if consistent && dofs.contains(&n) {
+            return Ok((n == dof).then(|| [&s.masses[..], &s.dampers, &s.springs].concat()));
+        }
+        dofs.sort_unstable();
+        dofs.dedup();
+        let sizes: Vec<String> = dofs
+            .iter()
+            .map(|d| format!("{d}, {}, {}", d - 1, d - 1))
+            .collect();
+        Err(StudyError::Start {
+            path: self.path.clone(),
+            masses: n,
+            dampers: s.dampers.len(),
+            springs: s.springs.len(),
+            expected: format!(
+                "the {} model needs {} (masses, dampers, springs)",
+                dofs.iter()
+                    .map(|d| format!("{d}-DOF"))
+                    .collect::<Vec<_>>()
+                    .join(" or "),
+                sizes.join(" or ")
+            ),
         })
     }
 
     /// Reads and processes every case for a `dof`-mass model.
     pub fn cases(&self, dof: usize) -> Result<Vec<LoadCase>, StudyError> {
-        let mut tests = BTreeMap::new();
-        self.case
-            .iter()
-            .map(|spec| self.load_case(spec, dof, &mut tests))
-            .collect()
+        Ok(self.load(dof)?.cases)
+    }
+
+    /// Reads and processes every case for a `dof`-mass model, with the
+    /// notes of the channel selections.
+    pub fn load(&self, dof: usize) -> Result<LoadedCases, StudyError> {
+        self.load_named(dof, &[])
     }
 
     /// The cases loaded once (for any DOF) adapted to `dof` masses: cases
@@ -307,7 +473,12 @@ impl Study {
 
     /// Reads and processes the named cases (all when `names` is empty).
     pub fn cases_named(&self, dof: usize, names: &[String]) -> Result<Vec<LoadCase>, StudyError> {
-        let mut tests = BTreeMap::new();
+        Ok(self.load_named(dof, names)?.cases)
+    }
+
+    /// Reads and processes the named cases (all when `names` is empty),
+    /// with the notes of the channel selections.
+    pub fn load_named(&self, dof: usize, names: &[String]) -> Result<LoadedCases, StudyError> {
         if let Some(name) = names
             .iter()
             .find(|n| !self.case.iter().any(|c| &&c.name == n))
@@ -318,50 +489,58 @@ impl Study {
                 message: format!("no case '{name}'; cases: {}", known.join(", ")),
             });
         }
-        self.case
+        let mut loader = Loader::new();
+        let mut loaded = LoadedCases {
+            cases: Vec::new(),
+            notes: Vec::new(),
+        };
+        for spec in self
+            .case
             .iter()
             .filter(|c| names.is_empty() || names.contains(&c.name))
-            .map(|spec| self.load_case(spec, dof, &mut tests))
-            .collect()
-    }
-
-    fn load_case(
-        &self,
-        spec: &CaseSpec,
-        dof: usize,
-        tests: &mut BTreeMap<PathBuf, TestData>,
-    ) -> Result<LoadCase, StudyError> {
-        let ctx = CaseContext { study: self, spec };
-        let force = ctx.force(tests)?;
-        let output = match (&spec.displacement, spec.acceleration.is_empty()) {
-            (Some(d), true) => ctx.channels(std::slice::from_ref(d), tests, Combine::Mean)?,
-            (None, false) => ctx.displacement_from_acceleration(tests)?,
-            _ => {
-                return Err(
-                    ctx.case("give either 'displacement' or 'acceleration' (a list of channels)")
-                );
-            }
-        };
-        if output.dimension != Dimension::Length {
-            return Err(ctx.case(&format!(
-                "the displacement channel is {}, expected a length",
-                output.dimension
-            )));
+        {
+            let mut ctx = CaseContext {
+                study: self,
+                spec,
+                loader: &mut loader,
+                notes: Vec::new(),
+            };
+            loaded.cases.push(ctx.load_case(dof)?);
+            loaded.notes.append(&mut ctx.notes);
         }
-        ctx.build(force, output, dof)
+        Ok(loaded)
     }
 }
 
 struct CaseContext<'a> {
     study: &'a Study,
     spec: &'a CaseSpec,
+    loader: &'a mut Loader,
+    notes: Vec<CaseNote>,
 }
 
 impl CaseContext<'_> {
-    fn case(&self, message: &str) -> StudyError {
+    fn load_case(&mut self, dof: usize) -> Result<LoadCase, StudyError> {
+        let spec = self.spec;
+        let force = self.force()?;
+        let output = match (&spec.displacement, spec.acceleration.is_empty()) {
+            (Some(d), true) => self.channels(std::slice::from_ref(d), Combine::Mean)?,
+            (None, false) => self.displacement_from_acceleration()?,
+            _ => return Err(self.case(DefinitionError::Output)),
+        };
+        self.expect(
+            &output,
+            Dimension::Length,
+            "displacement channel",
+            "a length",
+        )?;
+        self.build(force, output, dof)
+    }
+
+    fn case(&self, source: impl Into<DefinitionError>) -> StudyError {
         StudyError::Case {
             case: self.spec.name.clone(),
-            message: message.to_string(),
+            source: source.into(),
         }
     }
 
@@ -372,41 +551,50 @@ impl CaseContext<'_> {
         })
     }
 
-    fn data(&self, result: Result<TestData, SignalFileError>) -> Result<TestData, StudyError> {
-        result.map_err(|source| StudyError::Data {
-            case: self.spec.name.clone(),
-            source,
-        })
+    fn expect(
+        &self,
+        channel: &Channel,
+        dimension: Dimension,
+        signal: &'static str,
+        expected: &'static str,
+    ) -> Result<(), StudyError> {
+        if channel.dimension == dimension {
+            return Ok(());
+        }
+        Err(self.case(DefinitionError::Dimension {
+            signal,
+            found: channel.dimension,
+            expected,
+        }))
     }
 
-    /// Loads, scales and combines channel references.
-    fn channels(
-        &self,
-        refs: &[ChannelRef],
-        tests: &mut BTreeMap<PathBuf, TestData>,
-        how: Combine,
-    ) -> Result<Channel, StudyError> {
-        let mut loaded = Vec::new();
-        for r in refs {
-            let path = self.study.base.join(&r.path);
-            if !tests.contains_key(&path) {
-                let test = self.data(TestData::open(&path))?;
-                tests.insert(path.clone(), test);
-            }
-            let test = &tests[&path];
-            let wrap = |source| StudyError::Data {
-                case: self.spec.name.clone(),
-                source,
-            };
-            let selection = test.select(&r.channel).map_err(wrap)?;
-            for channel in test.load_all(&selection).map_err(wrap)? {
-                loaded.push(self.process(Step::Scale(r.scale).apply(&channel))?);
-            }
-        }
-        match loaded.len() {
-            1 => Ok(loaded.remove(0)),
-            _ => self.process(combine(&loaded, how, &self.spec.name)),
-        }
+    /// Loads, scales and combines channel references; keeps their notes.
+    fn channels(&mut self, refs: &[ChannelRef], how: Combine) -> Result<Channel, StudyError> {
+        let sources: Vec<ChannelSource> = refs
+            .iter()
+            .map(|r| ChannelSource::new(self.study.base.join(&r.path), &r.channel, r.scale))
+            .collect();
+        let name = &self.spec.name;
+        let loaded = self
+            .loader
+            .signal(&sources, Some(how), name)
+            .map_err(|e| match e {
+                LoadError::Data(source) => StudyError::Data {
+                    case: name.clone(),
+                    source,
+                },
+                LoadError::Process(source) => StudyError::Process {
+                    case: name.clone(),
+                    source,
+                },
+                other => self.case(DefinitionError::Load(other)),
+            })?;
+        let notes = loaded.notes.into_iter().map(|note| CaseNote {
+            case: name.clone(),
+            note,
+        });
+        self.notes.extend(notes);
+        Ok(loaded.data)
     }
 
     /// Bias removal and the CFC filter.
@@ -423,28 +611,16 @@ impl CaseContext<'_> {
         steps
     }
 
-    fn force(&self, tests: &mut BTreeMap<PathBuf, TestData>) -> Result<Channel, StudyError> {
-        let raw = self.channels(std::slice::from_ref(&self.spec.force), tests, Combine::Sum)?;
-        if raw.dimension != Dimension::Force {
-            return Err(self.case(&format!(
-                "the force channel is {}, expected a force",
-                raw.dimension
-            )));
-        }
+    fn force(&mut self) -> Result<Channel, StudyError> {
+        let raw = self.channels(std::slice::from_ref(&self.spec.force), Combine::Sum)?;
+        self.expect(&raw, Dimension::Force, "force channel", "a force")?;
         self.process(run(&self.conditioning(&raw), &raw))
     }
 
-    fn displacement_from_acceleration(
-        &self,
-        tests: &mut BTreeMap<PathBuf, TestData>,
-    ) -> Result<Channel, StudyError> {
-        let raw = self.channels(&self.spec.acceleration, tests, Combine::Mean)?;
-        if raw.dimension != Dimension::Acceleration {
-            return Err(self.case(&format!(
-                "the acceleration channels are {}, expected accelerations",
-                raw.dimension
-            )));
-        }
+    fn displacement_from_acceleration(&mut self) -> Result<Channel, StudyError> {
+        let raw = self.channels(&self.spec.acceleration, Combine::Mean)?;
+        let what = "acceleration channel";
+        self.expect(&raw, Dimension::Acceleration, what, "an acceleration")?;
         let mut steps = self.conditioning(&raw);
         steps.extend([
             Step::Integrate(self.spec.initial_velocity),
@@ -459,56 +635,71 @@ impl CaseContext<'_> {
             case: self.spec.name.clone(),
             source,
         })?;
-        let first = time
-            .iter()
-            .position(|&t| t >= -1e-9)
-            .ok_or_else(|| self.case("no samples at or after t = 0"))?;
-        let (force, measured) = (columns[0][first..].to_vec(), columns[1][first..].to_vec());
         let step = if time.len() > 1 {
             time[1] - time[0]
         } else {
-            0.0
+            1.0
         };
+        let name = &self.spec.name;
+        let aligned = UniformSeries::new(time[0], step, columns[0].clone()).map_err(|source| {
+            let source = ProcessError::Series {
+                channel: name.clone(),
+                step: "align",
+                source,
+            };
+            StudyError::Process {
+                case: name.clone(),
+                source,
+            }
+        })?;
+        let first = *aligned
+            .window(0.0, f64::INFINITY)
+            .ok_or_else(|| self.case(DefinitionError::NoSamples))?
+            .start();
+        let (force, measured) = (columns[0][first..].to_vec(), columns[1][first..].to_vec());
         let start = time[first];
-        let window = self.window(&force, start, step)?;
+        let window = self.window(&aligned, first)?;
         let output_dof = match &self.spec.output_dof {
             None => 1,
             Some(OutputDof::Number(n)) => *n,
             Some(OutputDof::Named(s)) if s.eq_ignore_ascii_case("last") => dof,
             Some(OutputDof::Named(s)) => {
-                return Err(self.case(&format!("output_dof '{s}': expected a number or \"last\"")));
+                return Err(self.case(DefinitionError::OutputDof(s.clone())));
             }
         };
+        if output_dof == 0 || output_dof > dof {
+            return Err(self.case(DefinitionError::OutputDofRange { output_dof, dof }));
+        }
         let case = LoadCase {
             name: self.spec.name.clone(),
             start,
-            step,
+            step: if time.len() > 1 { step } else { 0.0 },
             force,
             measured,
             output_dof,
             initial_velocity: self.spec.initial_velocity,
             window,
         };
-        case.validate().map_err(|e| self.case(&e.to_string()))?;
+        case.validate().map_err(|e| self.case(e))?;
         Ok(case)
     }
 
-    fn window(&self, force: &[f64], start: f64, step: f64) -> Result<(usize, usize), StudyError> {
+    /// The fit window as sample indices counted from `first` (the sample at
+    /// t = 0) in the aligned force.
+    fn window(&self, aligned: &UniformSeries, first: usize) -> Result<(usize, usize), StudyError> {
+        let force = &aligned.values()[first..];
         match &self.spec.window {
             None => self.contact(force),
             Some(WindowSpec::Named(s)) if s.eq_ignore_ascii_case("contact") => self.contact(force),
-            Some(WindowSpec::Named(s)) => Err(self.case(&format!(
-                "window '{s}': expected \"contact\" or [t0, t1] in s"
-            ))),
+            Some(WindowSpec::Named(s)) => Err(self.case(DefinitionError::WindowName(s.clone()))),
             Some(WindowSpec::Times([t0, t1])) => {
-                let index = |t: f64| ((t - start) / step).round().max(0.0) as usize;
-                let (a, b) = (index(*t0), index(*t1).min(force.len() - 1));
+                let empty = || self.case(DefinitionError::EmptyWindow { t0: *t0, t1: *t1 });
+                let inside = aligned.window(*t0, *t1).ok_or_else(empty)?;
+                let (a, b) = (*inside.start().max(&first), *inside.end());
                 if a >= b {
-                    return Err(self.case(&format!(
-                        "window [{t0}, {t1}] s holds no samples of the data"
-                    )));
+                    return Err(empty());
                 }
-                Ok((a, b))
+                Ok((a - first, b - first))
             }
         }
     }
@@ -516,7 +707,178 @@ impl CaseContext<'_> {
     fn contact(&self, force: &[f64]) -> Result<(usize, usize), StudyError> {
         let w = ContactThreshold::default()
             .detect(force)
-            .map_err(|e| self.case(&e.to_string()))?;
+            .map_err(|e| self.case(e))?;
         Ok((w.first, w.last))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::fmt::Write;
+
+    fn study(model: &str, case: &str, base: &Path) -> Study {
+        let text = format!("[model]\n{model}\n[[case]]\nname = \"a\"\n{case}\n");
+        let mut study: Study = toml::from_str(&text).unwrap();
+        study.base = base.to_path_buf();
+        study.path = base.join("study.toml");
+        study
+    }
+
+    const CASE: &str = "force = { path = \"t.EV5\", channel = \"0-LC-*-XG\" }\ndisplacement = { path = \"t.EV5\", channel = \"3\", scale = 2.0 }";
+
+    /// An EV5 test: a force pulse (curve 1), an invalid load cell (2), a
+    /// displacement (3), 0.02 s from t = −0.005 s at 10 kHz.
+    fn ev5(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("bumpsim-study-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let row = |vehicle: u8,
+                   curve: usize,
+                   kind: &str,
+                   location: &str,
+                   unit: &str,
+                   comment: &str| {
+            format!(
+                "{vehicle}|{curve}|{kind}|00|{location}|XG|SEC|{unit}|0|S|01/JAN/2020|1|1|0|-50|149|100|AM|P|{comment}\n"
+            )
+        };
+        let mut text = String::from("----- INSTRUMENTATION -----\n");
+        text += &row(0, 1, "LC", "WALL", "NWT", "WALL FX");
+        text += &row(0, 2, "LC", "WALX", "NWT", "No valid data");
+        text += &row(1, 3, "DS", "CG", "MM", "CG DX");
+        std::fs::write(dir.join("t.EV5"), text).unwrap();
+        let pulse = |t: f64| {
+            if (0.0..0.01).contains(&t) {
+                1e4 * (t * 100.0 * std::f64::consts::PI).sin()
+            } else {
+                0.0
+            }
+        };
+        let curves: [&dyn Fn(f64) -> f64; 3] = [&pulse, &|t| 5.0 * pulse(t), &|t| 1e-2 * pulse(t)];
+        for (curve, value) in curves.iter().enumerate() {
+            let mut samples = String::new();
+            for k in -50..150 {
+                let t = k as f64 * 1e-4;
+                writeln!(samples, "{t}\t{}", value(t)).unwrap();
+            }
+            std::fs::write(dir.join(format!("t.{:03}", curve + 1)), samples).unwrap();
+        }
+        dir
+    }
+
+    #[test]
+    fn unknown_bounds_and_fixed_names_are_errors_naming_them() {
+        let base = Path::new("/study");
+        let bad = study("dof = 3\nfixed = { M1 = 2.0 }", CASE, base);
+        let err = bad.settings(3).unwrap_err();
+        assert!(
+            matches!(&err, StudyError::Parameter { table: "fixed", name, dof: 3, .. } if name == "M1")
+        );
+        let text = err.to_string();
+        assert!(
+            text.contains("'M1'") && text.contains("m1, m2, m3, c1, c2, k1, k2"),
+            "{text}"
+        );
+        let bad = study("dof = 3\nbounds = { m9 = [1.0, 2.0] }", CASE, base);
+        assert!(
+            bad.settings(3)
+                .unwrap_err()
+                .to_string()
+                .contains("bounds: no parameter 'm9'")
+        );
+        // a name of the largest model of a sweep applies where it exists
+        let sweep = study(
+            "dof = [1, 2, 3]\nfixed = { m3 = 7.0 }\nbounds = { k2 = [5.0, 9.0] }",
+            CASE,
+            base,
+        );
+        assert!(
+            sweep
+                .settings(2)
+                .unwrap()
+                .bounds
+                .fixed
+                .iter()
+                .all(Option::is_none)
+        );
+        let three = sweep.settings(3).unwrap();
+        assert_eq!(three.bounds.fixed[2], Some(7.0));
+        assert_eq!((three.bounds.lower[6], three.bounds.upper[6]), (5.0, 9.0));
+    }
+
+    #[test]
+    fn a_start_that_fits_no_model_is_an_error() {
+        let base = Path::new("/study");
+        let start = "[model.start]\nmasses = [1.0, 2.0]\ndampers = [3.0]\nsprings = [4.0]";
+        let fits = study(&format!("dof = [2, 3]\n{start}"), CASE, base);
+        assert_eq!(
+            fits.settings(2).unwrap().start,
+            Some(vec![1.0, 2.0, 3.0, 4.0])
+        );
+        assert_eq!(fits.settings(3).unwrap().start, None);
+        let wrong = study(&format!("dof = 3\n{start}"), CASE, base);
+        let err = wrong.settings(3).unwrap_err().to_string();
+        assert!(
+            err.contains("start: 2 masses") && err.contains("3-DOF model needs 3, 2, 2"),
+            "{err}"
+        );
+        let ragged = "[model.start]\nmasses = [1.0, 2.0]\ndampers = [3.0, 1.0]\nsprings = [4.0]";
+        assert!(matches!(
+            study(&format!("dof = 2\n{ragged}"), CASE, base).settings(2),
+            Err(StudyError::Start { dampers: 2, .. })
+        ));
+    }
+
+    #[test]
+    fn a_case_keeps_the_notes_of_its_channel_selection() {
+        let dir = ev5("notes");
+        let loaded = study("dof = 1", CASE, &dir).load(1).unwrap();
+        let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
+        assert_eq!(
+            notes,
+            ["case 'a': '0-LC-*-XG': left out channel 2 (0-LC-WALX-XG): marked invalid"]
+        );
+        let case = &loaded.cases[0];
+        assert!(case.start.abs() < 1e-12, "{}", case.start);
+        assert_eq!(case.force.len(), 150);
+        // the invalid cell (5× the force) is not in the sum; the scale applies
+        let peak = case.force.iter().fold(0.0_f64, |m, f| m.max(*f));
+        approx::assert_relative_eq!(peak, 1e4, max_relative = 1e-3);
+        approx::assert_relative_eq!(
+            case.measured[25],
+            2.0 * 1e-5 * case.force[25],
+            max_relative = 1e-9
+        );
+        assert_eq!(study("dof = 1", CASE, &dir).cases(1).unwrap(), loaded.cases);
+    }
+
+    #[test]
+    fn a_window_in_seconds_takes_the_samples_inside() {
+        let dir = ev5("window");
+        let windowed = |w: &str| study("dof = 1", &format!("{CASE}\nwindow = {w}"), &dir).load(1);
+        assert_eq!(
+            windowed("[0.001, 0.005]").unwrap().cases[0].window,
+            (10, 50)
+        );
+        assert_eq!(
+            windowed("[-1.0, 0.00505]").unwrap().cases[0].window,
+            (0, 50)
+        );
+        for empty in ["[-1.0, -0.002]", "[0.00101, 0.00109]", "[0.5, 0.6]"] {
+            let err = windowed(empty).unwrap_err();
+            assert!(
+                matches!(
+                    err,
+                    StudyError::Case {
+                        source: DefinitionError::EmptyWindow { .. },
+                        ..
+                    }
+                ),
+                "{empty}: {err}"
+            );
+        }
+        let err = windowed("\"somewhere\"").unwrap_err().to_string();
+        assert!(err.contains("case 'a': window 'somewhere'"), "{err}");
     }
 }

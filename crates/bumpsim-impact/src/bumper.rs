@@ -26,6 +26,7 @@ use std::path::Path;
 
 /// Why a bumper is not valid.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum BumperError {
     /// A parameter is out of range.
     #[error("bumper {name} = {value}: {expected}")]
@@ -267,7 +268,8 @@ impl Bumper {
             message,
         };
         let text = std::fs::read_to_string(path).map_err(|e| error(format!("cannot read: {e}")))?;
-        let file: BumperFile = toml::from_str(&text).map_err(|e| error(e.to_string()))?;
+        let file: BumperFile =
+            toml::from_str(&text).map_err(|e| error(bumpsim_io::toml_message(&text, &e)))?;
         let result = match (file.ramp, file.plateau, file.curve) {
             (Some(ramp), Some(plateau), None) => Bumper::three_part(ramp, plateau, file.unloading),
             (None, None, Some(curve)) => {

@@ -39,6 +39,7 @@ use serde::Serialize;
 
 /// Why an impact cannot be simulated.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum ImpactError {
     /// A scenario or option value is out of range.
     #[error("impact {name} = {value}: {expected}")]
@@ -51,7 +52,9 @@ pub enum ImpactError {
         expected: &'static str,
     },
     /// The bodies never touched or never separated within the duration.
-    #[error("no contact ended within {duration} s: raise --duration")]
+    #[error(
+        "no contact ended within {duration} s (the simulated duration): the impact does not separate; check the bumper's unloading curve and the speed"
+    )]
     NoSeparation {
         /// The simulated duration, s.
         duration: f64,
@@ -266,7 +269,12 @@ pub fn simulate(
     )?;
     let (impactor, speed) = match scenario {
         Scenario::Impactor { mass, speed } => {
-            check("impactor mass (kg)", mass, "positive", mass > 0.0)?;
+            check(
+                "impactor mass (kg)",
+                mass,
+                "positive and finite",
+                mass > 0.0 && mass.is_finite(),
+            )?;
             (Some(mass), speed)
         }
         Scenario::Barrier { speed } => (None, speed),
@@ -274,8 +282,8 @@ pub fn simulate(
     check(
         "speed (m/s)",
         speed,
-        "positive (an impact needs a closing speed)",
-        speed > 0.0,
+        "positive and finite (an impact needs a closing speed)",
+        speed > 0.0 && speed.is_finite(),
     )?;
     let masses: Vec<f64> = impactor
         .into_iter()
@@ -287,7 +295,57 @@ pub fn simulate(
         impactor: impactor.is_some(),
     };
     let step = chain.step(bumper, options);
+    let steps = options.duration / step;
+    check(
+        "integration steps (duration / stable step)",
+        steps,
+        "at most 5e7 (limit MAX_STEPS): a mass too light or a bumper or spring too stiff for the duration",
+        steps.is_finite() && steps <= MAX_STEPS as f64,
+    )?;
     integrate(&chain, bumper, speed, step, options)
+}
+
+/// Most integration steps of one impact (a guard against runs that would
+/// not end: a 1e-9 kg mass on a stiff spring needs ~1e9 steps per second).
+pub const MAX_STEPS: usize = 50_000_000;
+
+/// Tolerance of the energy balance check of [`ImpactResult::warnings`].
+pub const ENERGY_TOLERANCE: f64 = 0.01;
+
+impl ImpactResult {
+    /// The result's own checks: every figure finite, the energy balance
+    /// within [`ENERGY_TOLERANCE`] of the initial energy, and the bumper's
+    /// absorbed energy not negative. Empty when the result can be trusted.
+    pub fn warnings(&self) -> Vec<String> {
+        let e = &self.energy;
+        let figures = [
+            ("peak force", self.peak_force),
+            ("largest compression", self.max_compression),
+            ("absorbed energy", self.absorbed_energy),
+            ("contact time", self.contact_time),
+            ("initial energy", e.initial),
+            ("final kinetic energy", e.kinetic),
+            ("energy balance error", e.relative_error),
+        ];
+        let mut out: Vec<String> = figures
+            .iter()
+            .filter(|(_, v)| !v.is_finite())
+            .map(|(name, v)| format!("{name} is {v}: the result is not usable"))
+            .collect();
+        if e.relative_error > ENERGY_TOLERANCE {
+            out.push(format!(
+                "energy balance error {:.3} of the initial energy exceeds the tolerance {ENERGY_TOLERANCE}",
+                e.relative_error
+            ));
+        }
+        if self.absorbed_energy < -ENERGY_TOLERANCE * e.initial.abs() {
+            out.push(format!(
+                "the bumper absorbed a negative energy ({:.4e} J): the integration did not resolve the bumper",
+                self.absorbed_energy
+            ));
+        }
+        out
+    }
 }
 
 struct Histories {

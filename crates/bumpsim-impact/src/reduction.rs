@@ -42,23 +42,29 @@ pub enum Criterion {
     Maximum,
 }
 
+/// A criterion name that is not `remaining` or `maximum`.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("criterion '{0}': expected remaining or maximum")]
+pub struct UnknownCriterion(pub String);
+
 impl std::str::FromStr for Criterion {
-    type Err = String;
-    fn from_str(text: &str) -> Result<Self, String> {
+    type Err = UnknownCriterion;
+    fn from_str(text: &str) -> Result<Self, UnknownCriterion> {
         match text {
             "remaining" => Ok(Criterion::Remaining),
             "maximum" => Ok(Criterion::Maximum),
-            _ => Err(format!("criterion '{text}': expected remaining or maximum")),
+            _ => Err(UnknownCriterion(text.into())),
         }
     }
 }
 
 /// Why the study cannot answer.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum ReductionError {
     /// The car is not valid.
     #[error("2-DOF car: {0}")]
-    Car(String),
+    Car(#[source] bumpsim_core::model::ModelError),
     /// The impact failed.
     #[error(transparent)]
     Impact(#[from] ImpactError),
@@ -82,8 +88,7 @@ pub struct TwoDof {
 
 impl TwoDof {
     fn model(&self) -> Result<MsdModel, ReductionError> {
-        MsdModel::new(vec![self.m1, self.m2], vec![0.0], vec![self.k])
-            .map_err(|e| ReductionError::Car(e.to_string()))
+        MsdModel::new(vec![self.m1, self.m2], vec![0.0], vec![self.k]).map_err(ReductionError::Car)
     }
 }
 
@@ -260,4 +265,62 @@ pub fn sweep_bumper(
         f,
         progress,
     )
+}
+
+/// The two sweeps of paper A's figures, over its parameter ranges.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PaperSweep {
+    /// The car: spring k from 1e5 to 1e7 N/m and mass ratio M1/(M1+M2)
+    /// from 0.52 to 0.95, at the car's total mass.
+    Car,
+    /// The bumper: ramp slope s from 1e6 to 8e6 N/m and plateau F_max from
+    /// 40 to 200 kN, unloading slope as the bumper's.
+    Bumper,
+}
+
+impl std::str::FromStr for PaperSweep {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<PaperSweep, String> {
+        match text {
+            "car" => Ok(PaperSweep::Car),
+            "bumper" => Ok(PaperSweep::Bumper),
+            other => Err(format!("'{other}': expected car or bumper")),
+        }
+    }
+}
+
+impl PaperSweep {
+    /// Runs the sweep with `points` values per axis around `car` and
+    /// `bumper` at `speed` (m/s); `progress` is called per row.
+    pub fn run(
+        self,
+        points: usize,
+        (car, bumper): (&TwoDof, &Bumper),
+        speed: f64,
+        criterion: Criterion,
+        progress: &(dyn Fn() + Sync),
+    ) -> Grid {
+        let n = points;
+        match self {
+            PaperSweep::Car => sweep_car(
+                car.m1 + car.m2,
+                linspace(1e5, 1e7, n),
+                linspace(0.52, 0.95, n),
+                bumper,
+                speed,
+                criterion,
+                progress,
+            ),
+            PaperSweep::Bumper => sweep_bumper(
+                car,
+                linspace(1e6, 8e6, n),
+                linspace(40e3, 200e3, n),
+                bumper.unloading_slope(),
+                speed,
+                criterion,
+                progress,
+            ),
+        }
+    }
 }

@@ -228,6 +228,7 @@ pub struct HeadFile {
 
 /// Why a series cannot be made.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum SynthError {
     /// A file or value.
     #[error("{path}: {message}")]
@@ -237,6 +238,9 @@ pub enum SynthError {
         /// What is wrong.
         message: String,
     },
+    /// The car file (its message names the file).
+    #[error(transparent)]
+    Car(#[from] bumpsim_io::car::CarError),
     /// The impact.
     #[error("head '{head}': {source}")]
     Impact {
@@ -247,23 +251,66 @@ pub enum SynthError {
     },
 }
 
-/// Reads a series file and makes every head's channels; returns the car
-/// name, the heads' channels, and the text of every input (for provenance).
-#[allow(clippy::type_complexity)]
-pub fn make_series(
-    path: &std::path::Path,
-) -> Result<(Vec<(String, Vec<Channel>)>, String), SynthError> {
+/// The chain's times are finite and positive, and the fine simulation grid
+/// (10 points per sample) stays within [`bumpsim_io::output::MAX_SAMPLES`].
+fn check_chain(chain: &Chain) -> Result<(), String> {
+    for (name, value) in [
+        ("step", chain.step),
+        ("pretrigger", chain.pretrigger),
+        ("duration", chain.duration),
+    ] {
+        if !(value.is_finite() && value >= 0.0) || (name != "pretrigger" && value == 0.0) {
+            return Err(format!(
+                "[chain] {name} = {value} s: expected a finite positive time"
+            ));
+        }
+    }
+    let max = bumpsim_io::output::MAX_SAMPLES / 10;
+    let samples = (chain.pretrigger + chain.duration.max(1.0)) / chain.step;
+    if samples > max as f64 {
+        return Err(format!(
+            "[chain] {samples:.3e} samples per channel (pretrigger + duration over step): at most {max} (limit MAX_SAMPLES); shorten duration or lengthen step"
+        ));
+    }
+    Ok(())
+}
+
+/// Head names become folder and file names: plain names, each once.
+fn check_names(heads: &[HeadFile]) -> Result<(), String> {
+    let mut seen = std::collections::BTreeSet::new();
+    for h in heads {
+        bumpsim_io::output::plain_name(&h.name).map_err(|e| format!("head name {e}"))?;
+        if !seen.insert(h.name.to_lowercase()) {
+            return Err(format!("head name '{}' is used twice", h.name));
+        }
+    }
+    Ok(())
+}
+
+/// The ISO-MME test header of a head: title, pendulum speed
+/// (`Velocity test object 1`, m/s) and mass (`Mass test object 1`, kg).
+pub fn test_header(head: &Head) -> Vec<(String, String)> {
+    let title = format!("{}: synthetic pendulum test (bumpsim synth)", head.name);
+    bumpsim_io::test_data::iso_header::test_header(&title, Some(head.speed), Some(head.mass))
+}
+
+/// One synthetic test: name, ISO-MME test header ([`test_header`]), channels.
+pub type SynthTest = (String, Vec<(String, String)>, Vec<Channel>);
+
+/// Reads a series file and makes every head's channels; returns the heads'
+/// tests, and the text of every input (for provenance).
+pub fn make_series(path: &std::path::Path) -> Result<(Vec<SynthTest>, String), SynthError> {
     let error = |p: &std::path::Path, message: String| SynthError::File {
         path: p.display().to_string(),
         message,
     };
     let text =
         std::fs::read_to_string(path).map_err(|e| error(path, format!("cannot read: {e}")))?;
-    let file: SeriesFile = toml::from_str(&text).map_err(|e| error(path, e.to_string()))?;
+    let file: SeriesFile =
+        toml::from_str(&text).map_err(|e| error(path, bumpsim_io::toml_message(&text, &e)))?;
     let base = path.parent().unwrap_or(std::path::Path::new("."));
     let car_path = base.join(&file.car);
-    let car = bumpsim_io::car::Car::read_model_file(&car_path)
-        .map_err(|e| error(&car_path, e.to_string()))?;
+    let car = bumpsim_io::car::Car::read_model_file(&car_path)?;
     let g = STANDARD_GRAVITY;
     let d = Chain::default();
     let c = &file.chain;
@@ -276,6 +323,8 @@ pub fn make_series(
         biases: c.biases.map_or(d.biases, |[l, r]| [l * g, r * g]),
         seed: file.seed,
     };
+    check_chain(&chain).map_err(|m| error(path, m))?;
+    check_names(&file.head).map_err(|m| error(path, m))?;
     let mut provenance = format!("# series file {}\n{text}\n", path.display());
     provenance += &format!(
         "# car file {}\n{}\n",
@@ -313,7 +362,7 @@ pub fn make_series(
                 source,
             }
         })?;
-        out.push((h.name.clone(), channels));
+        out.push((h.name.clone(), test_header(&head), channels));
     }
     Ok((out, provenance))
 }

@@ -34,6 +34,7 @@ pub struct Car {
 
 /// A car file that cannot be used.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum CarError {
     /// The file cannot be read.
     #[error("{path}: cannot read: {source}")]
@@ -67,6 +68,9 @@ pub enum CarError {
         /// The cause.
         source: std::io::Error,
     },
+    /// The output is refused (it would land on an input) or cannot be written.
+    #[error(transparent)]
+    Output(#[from] crate::output::OutputError),
 }
 
 #[derive(Debug, Serialize, Deserialize)]
@@ -142,7 +146,7 @@ impl Car {
     pub fn parse(text: &str, path: &Path) -> Result<Car, CarError> {
         let file: CarFile = toml::from_str(text).map_err(|e| CarError::Syntax {
             path: path.into(),
-            message: e.to_string().trim_end().to_string(),
+            message: crate::toml_message(text, &e),
         })?;
         file.into_car(path)
     }
@@ -161,10 +165,8 @@ impl Car {
 
     /// Writes the car as TOML.
     pub fn write(&self, path: &Path) -> Result<(), CarError> {
-        std::fs::write(path, self.to_toml()).map_err(|source| CarError::Write {
-            path: path.into(),
-            source,
-        })
+        crate::output::write_file(path, self.to_toml().as_bytes())?;
+        Ok(())
     }
 }
 

@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 /// A problem with a crash-test file or a channel selection.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum SignalFileError {
     /// The file cannot be read or written.
     #[error("{path}: {action}: {source}")]
@@ -45,6 +46,9 @@ pub enum SignalFileError {
         /// Why it failed.
         reason: String,
     },
+    /// The output is refused (it would land on an input) or cannot be written.
+    #[error(transparent)]
+    Output(#[from] crate::output::OutputError),
 }
 
 impl SignalFileError {

@@ -54,6 +54,7 @@ pub struct Table {
 
 /// A problem with a CSV file; every variant names the file.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum TableError {
     /// The file cannot be read.
     #[error("{path}: cannot read: {source}")]
@@ -147,6 +148,9 @@ pub enum TableError {
         /// The cause.
         source: std::io::Error,
     },
+    /// The output is refused (it would land on an input) or cannot be written.
+    #[error(transparent)]
+    Output(#[from] crate::output::OutputError),
 }
 
 /// Splits `name [unit]` into its parts.
@@ -445,39 +449,51 @@ pub struct OutputColumn<'a> {
 
 /// Writes `time [s]` and the columns as CSV with unit headers, creating the
 /// folder if needed. Numbers are
-/// written in Rust's shortest round-trip form, so reading back is exact.
+/// written in their shortest round-trip form ([`format_number`]), so reading back
+/// is exact. The file is replaced atomically and never over an input
+/// registered with [`crate::output`].
 pub fn write_table(
     path: &Path,
     time: &[f64],
     columns: &[OutputColumn<'_>],
 ) -> Result<(), TableError> {
-    let write_error = |source| TableError::Write {
-        path: path.into(),
-        source,
-    };
+    write_table_in(path, Unit::si(Dimension::Time), time, columns)
+}
+
+/// [`write_table`] with the time column in `time_unit` (`time [ms]`).
+pub fn write_table_in(
+    path: &Path,
+    time_unit: Unit,
+    time: &[f64],
+    columns: &[OutputColumn<'_>],
+) -> Result<(), TableError> {
     let mut text = String::with_capacity(time.len() * (columns.len() + 1) * 16);
-    text.push_str("time [s]");
+    text.push_str(&format!("time [{}]", time_unit.symbol));
     for c in columns {
         text.push_str(&format!(",{} [{}]", c.name, c.unit.symbol));
     }
     text.push('\n');
     for (k, t) in time.iter().enumerate() {
-        text.push_str(&t.to_string());
+        text.push_str(&format_number(time_unit.from_si(*t)));
         for c in columns {
             text.push(',');
-            text.push_str(&c.unit.from_si(c.values[k]).to_string());
+            text.push_str(&format_number(c.unit.from_si(c.values[k])));
         }
         text.push('\n');
     }
-    create_parent(path).map_err(write_error)?;
-    std::fs::write(path, text).map_err(write_error)
+    crate::output::write_file(path, text.as_bytes())?;
+    Ok(())
 }
 
-/// Creates the folder a file is to be written into, if it is missing.
-pub fn create_parent(path: &Path) -> std::io::Result<()> {
-    match path.parent() {
-        Some(parent) if !parent.as_os_str().is_empty() => std::fs::create_dir_all(parent),
-        _ => Ok(()),
+/// A number in its shortest round-trip form: plain decimal for ordinary
+/// magnitudes, compact scientific (`1.5e-12`) for tiny or huge ones, so a
+/// value such as 1e-300 takes 6 characters instead of 300.
+pub fn format_number(value: f64) -> String {
+    let magnitude = value.abs();
+    if magnitude != 0.0 && !(1e-5..1e12).contains(&magnitude) {
+        format!("{value:e}")
+    } else {
+        value.to_string()
     }
 }
 
@@ -539,6 +555,19 @@ mod tests {
             let err = parse(text).unwrap_err().to_string();
             assert!(err.contains(expected), "{text:?}: {err}");
         }
+    }
+
+    #[test]
+    fn tiny_and_huge_numbers_are_written_compactly_and_exactly() {
+        for v in [
+            1e-300, -2.5e-7, 1.234e20, 0.0, 1.5, -42.0, 1e-5, 9.99e15, 123456.789,
+        ] {
+            let text = format_number(v);
+            assert!(text.len() <= 12, "{v}: {text}");
+            assert_eq!(text.parse::<f64>().unwrap(), v, "{text}");
+        }
+        assert_eq!(format_number(1e-300), "1e-300");
+        assert_eq!(format_number(1.5), "1.5");
     }
 
     #[test]

@@ -38,6 +38,7 @@ impl BarPlot {
             (a.min(v), b.max(v))
         });
         let pad = 0.08 * (hi - lo).max(1e-12);
+        crate::plot::drawable(&self.title, lo - pad, hi + pad)?;
         let mut svg = String::new();
         let draw_error = |e: &dyn std::fmt::Display| PlotError::Draw {
             title: self.title.clone(),

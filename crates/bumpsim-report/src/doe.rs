@@ -1,5 +1,6 @@
 //! DOE plots: coefficients with 95 % error bars (MODDE style), observed
-//! against predicted, and the normal probability plot of the residuals.
+//! against predicted, the normal probability plot of the residuals, and the
+//! reachable region of two responses (random factor sets, exact boundary, cell).
 
 use crate::bar::BarPlot;
 use crate::plot::{LinePlot, PlotError, Series, Style};
@@ -90,4 +91,40 @@ pub fn fit_plots(response: &str, unit: &str, f: &Fit, y: &[f64]) -> Result<Vec<F
         ));
     }
     Ok(out)
+}
+
+/// The reachable region of responses `axes` (x, y): up to ~2000 of the
+/// random `points`, the exact boundary `polygon` closed, and the cell
+/// `[x0, x1, y0, y1]` dashed when given.
+pub fn reach_plot(
+    axes: [&str; 2],
+    points: &[[f64; 2]],
+    polygon: &[[f64; 2]],
+    cell: Option<[f64; 4]>,
+) -> Result<String, PlotError> {
+    let mut p = LinePlot::new(
+        "Reachable region",
+        Dimension::Dimensionless,
+        Dimension::Dimensionless,
+    )
+    .with_labels(Some(axes[0]), Some(axes[1]));
+    let shown = points.iter().step_by((points.len() / 2000).max(1));
+    let (sx, sy): (Vec<f64>, Vec<f64>) = shown.map(|p| (p[0], p[1])).unzip();
+    p.add(Series::new("random factor sets", sx, sy, Style::Points));
+    let closed: Vec<[f64; 2]> = polygon.iter().chain(polygon.first()).copied().collect();
+    p.add(Series::new(
+        "exact boundary",
+        closed.iter().map(|v| v[0]).collect(),
+        closed.iter().map(|v| v[1]).collect(),
+        Style::Solid,
+    ));
+    if let Some([x0, x1, y0, y1]) = cell {
+        p.add(Series::new(
+            "cell",
+            vec![x0, x1, x1, x0, x0],
+            vec![y0, y0, y1, y1, y0],
+            Style::Dashed,
+        ));
+    }
+    p.svg()
 }

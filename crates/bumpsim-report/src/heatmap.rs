@@ -78,6 +78,18 @@ impl HeatMap {
         if self.x.is_empty() || self.y.is_empty() || self.values.len() != self.x.len() {
             return Err(empty());
         }
+        let hi = if hi - lo > 1e-12 * lo.abs() {
+            hi
+        } else {
+            lo + lo.abs().max(1.0) * 1e-6
+        };
+        crate::plot::drawable(&self.title, lo, hi)?;
+        for axis in [&self.x, &self.y] {
+            let (a, b) = (axis[0], axis[axis.len() - 1]);
+            if !(a.is_finite() && b.is_finite()) {
+                return Err(empty());
+            }
+        }
         let mut svg = String::new();
         let draw_error = |e: &dyn std::fmt::Display| PlotError::Draw {
             title: self.title.clone(),

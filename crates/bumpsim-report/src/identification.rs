@@ -8,7 +8,7 @@ use crate::plot::{LinePlot, PlotError, Series, Style};
 use bumpsim_core::units::{Dimension, format_number};
 use bumpsim_ident::estimate::Identification;
 use bumpsim_ident::explore::{Prediction, Sweep};
-use bumpsim_ident::report::{case_lines, dof_table, parameter_table};
+use bumpsim_ident::text::{case_lines, dof_table, parameter_table};
 
 /// One DOF's outcome: identified (with its predictions) or failed.
 #[derive(Debug, Clone)]
@@ -113,11 +113,13 @@ pub fn dof_plot(results: &[&Identification]) -> Result<String, PlotError> {
 }
 
 /// Builds the SVG figures and the HTML page of an identification.
-/// `inputs` is the study file text; `settings` a one-line description.
+/// `inputs` is the study file text; `settings` a one-line description;
+/// `notes` what the channel selections left out or used despite a mark.
 pub fn report(
     title: &str,
     inputs: &str,
     settings: &str,
+    notes: &[String],
     outcomes: &[DofOutcome],
     sweeps: Option<&[Sweep]>,
 ) -> Result<(String, Vec<Figure>), PlotError> {
@@ -126,6 +128,7 @@ pub fn report(
     page.heading("Inputs");
     page.paragraph(settings);
     page.preformatted(inputs);
+    notes_section(&mut page, notes);
     let done: Vec<&Identification> = outcomes
         .iter()
         .filter_map(|o| match o {
@@ -168,6 +171,16 @@ pub fn report(
         );
     }
     Ok((page.finish(), figures))
+}
+
+/// The notes of the channel selections, when there are any.
+fn notes_section(page: &mut Html, notes: &[String]) {
+    if notes.is_empty() {
+        return;
+    }
+    page.heading("Channel selection");
+    page.paragraph("Channels the study's selectors left out, or used although marked invalid:");
+    page.warnings(notes);
 }
 
 fn add(page: &mut Html, figures: &mut Vec<Figure>, name: &str, svg: String, caption: &str) {

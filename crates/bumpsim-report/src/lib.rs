@@ -6,6 +6,7 @@
 //! - [`html`]: self-contained HTML reports;
 //! - [`impact`]: impact pages and mass-reduction heat maps;
 //! - [`identification`]: the identification report;
+//! - [`signal`]: raw against processed crash-test signals;
 //! - [`plot`]: line plots of time histories (measured solid, simulated
 //!   dashed, as in the thesis figures) with units on both axes, as SVG.
 //!
@@ -28,6 +29,12 @@ pub mod html;
 pub mod identification;
 pub mod impact;
 pub mod plot;
+pub mod signal;
+
+pub use bar::BarPlot;
+pub use heatmap::HeatMap;
+pub use html::Html;
+pub use plot::{LinePlot, PlotError, Series, Style};
 
 use std::sync::Once;
 

@@ -10,6 +10,7 @@ use plotters::prelude::*;
 
 /// Why a plot cannot be drawn.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum PlotError {
     /// Nothing to draw.
     #[error("plot '{title}': no series with finite points")]
@@ -173,16 +174,20 @@ impl LinePlot {
             }
         };
         let (px, py) = (pad(r.0, r.1), pad(r.2, r.3));
-        Ok((
+        let range = (
             r.0 - px * 0.0,
             r.1 + px * f64::from(r.1 <= r.0),
             r.2 - py,
             r.3 + py,
-        ))
+        );
+        drawable(&self.title, range.0, range.1)?;
+        drawable(&self.title, range.2, range.3)?;
+        Ok(range)
     }
 
     /// Draws the plot as a PNG image (bitmap backend, bundled font; no
-    /// system libraries), written to `path`.
+    /// system libraries), written to `path` atomically and never over an
+    /// input ([`bumpsim_io::output`]).
     pub fn png(&self, path: &std::path::Path) -> Result<(), PlotError> {
         crate::register_font();
         let range = self.range()?;
@@ -190,10 +195,13 @@ impl LinePlot {
             title: self.title.clone(),
             message: e.to_string(),
         };
-        let root = BitMapBackend::new(path, self.size).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| draw_error(&e))?;
-        self.draw(&root, range).map_err(|e| draw_error(&e))?;
-        root.present().map_err(|e| draw_error(&e))
+        bumpsim_io::output::write_rendered(path, |temp| {
+            let root = BitMapBackend::new(temp, self.size).into_drawing_area();
+            root.fill(&WHITE).map_err(|e| e.to_string())?;
+            self.draw(&root, range).map_err(|e| e.to_string())?;
+            root.present().map_err(|e| e.to_string())
+        })
+        .map_err(|e| draw_error(&e))
     }
 
     /// Draws the plot as an SVG document.
@@ -275,6 +283,20 @@ impl LinePlot {
             .label_font(("sans-serif", 13))
             .draw()
     }
+}
+
+/// Refuses an axis range plotters cannot draw (it asserts on non-finite or
+/// empty ranges): values near f64::MAX make the span overflow, and a span
+/// below the resolution of its ends is empty.
+pub(crate) fn drawable(title: &str, lo: f64, hi: f64) -> Result<(), PlotError> {
+    let span = hi - lo;
+    if span.is_finite() && span > 0.0 && span > 1e-12 * lo.abs().max(hi.abs()) {
+        return Ok(());
+    }
+    Err(PlotError::Draw {
+        title: title.into(),
+        message: format!("an axis spans [{lo}, {hi}]: too wide or too narrow to draw"),
+    })
 }
 
 #[cfg(test)]

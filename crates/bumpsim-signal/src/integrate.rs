@@ -15,19 +15,9 @@
 //! assert!((v[10] - (2.0 - 0.981)).abs() < 1e-12);
 //! ```
 
-/// The running trapezoidal integral of samples `values` spaced `step` s,
-/// starting at `initial`.
-pub fn cumulative_trapezoid(values: &[f64], step: f64, initial: f64) -> Vec<f64> {
-    let mut out = Vec::with_capacity(values.len());
-    let mut sum = initial;
-    for (k, &v) in values.iter().enumerate() {
-        if k > 0 {
-            sum += 0.5 * step * (values[k - 1] + v);
-        }
-        out.push(sum);
-    }
-    out
-}
+/// The running trapezoidal integral (kept in core beside the integral
+/// between times, so the workspace has one trapezoid rule).
+pub use bumpsim_core::series::cumulative_trapezoid;
 
 /// The time derivative of samples spaced `step` s (same length; a single
 /// sample has derivative 0).

@@ -5,6 +5,7 @@
 //! - [`integrate`]: trapezoidal integration and differentiation;
 //! - [`window`]: contact windows from a force signal;
 //! - [`process`]: processing steps on channels, and their mean or sum;
+//! - [`loader`]: channels from test files: open, select, scale, combine, with notes;
 //! - [`pipeline`]: repeatable processing of test files (TOML), momentum balance.
 //!
 //! ```
@@ -15,6 +16,12 @@
 
 pub mod filter;
 pub mod integrate;
+pub mod loader;
 pub mod pipeline;
 pub mod process;
 pub mod window;
+
+pub use filter::{Butterworth, Cfc, FilterError};
+pub use pipeline::{Pipeline, PipelineError, PipelineResult};
+pub use process::{ProcessError, Step};
+pub use window::ContactWindow;

@@ -2,9 +2,11 @@
 //!
 //! A pipeline ([`Pipeline`], TOML) names output signals. Each is made from
 //! channels of a test file (selected by number, code or name, see
-//! `bumpsim_io::test_data`), combined by mean or sum when several match, or
-//! from an earlier output (`from`), then put through [`Step`]s. Paths are
-//! relative to the pipeline file.
+//! `bumpsim_io::test_data`), combined by mean or sum when several match
+//! (both through the [`loader`](crate::loader), whose notes on left-out
+//! channels become [`PipelineResult::warnings`]), or from an earlier output
+//! (`from`), then put through [`Step`]s. Paths are relative to the pipeline
+//! file.
 //!
 //! ```toml
 //! [[signal]]
@@ -28,10 +30,13 @@
 //!
 //! The momentum balance compares the impulse of the force, `J = ∫ F dt`, with
 //! the momentum change of the rigid test mass, `Δp = m (v(t1) − v(t0))`, over
-//! the force's contact window (or a given window). A barrier load cell
+//! the force's contact window (or a given window; the trapezoidal rule of
+//! `UniformSeries::integral`, with partial intervals at off-sample ends). A barrier load cell
 //! measures the force the car exerts on the wall; the force on the car is its
 //! negative, so the magnitudes are compared: `(|J| − |Δp|) / |Δp|`.
 
+pub use crate::loader::select_all;
+use crate::loader::{ChannelSource, LoadError, Loader, Note};
 use crate::process::{Combine, ProcessError, Step, combine, interpolate, run};
 use crate::window::ContactThreshold;
 use bumpsim_core::channel::Channel;
@@ -39,11 +44,11 @@ use bumpsim_core::units::Dimension;
 use bumpsim_io::signal_error::SignalFileError;
 use bumpsim_io::test_data::TestData;
 use serde::Deserialize;
-use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 /// Why a pipeline cannot run.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum PipelineError {
     /// The pipeline file is unreadable or malformed.
     #[error("{path}: {message}")]
@@ -159,14 +164,15 @@ impl Pipeline {
             message,
         };
         let text = std::fs::read_to_string(path).map_err(|e| error(format!("cannot read: {e}")))?;
-        let mut pipeline: Pipeline = toml::from_str(&text).map_err(|e| error(e.to_string()))?;
+        let mut pipeline: Pipeline =
+            toml::from_str(&text).map_err(|e| error(bumpsim_io::toml_message(&text, &e)))?;
         pipeline.base = path.parent().map(Path::to_path_buf).unwrap_or_default();
         Ok(pipeline)
     }
 
     /// Runs every signal, then the balance.
     pub fn run(&self) -> Result<PipelineResult, PipelineError> {
-        let mut tests: HashMap<PathBuf, TestData> = HashMap::new();
+        let mut loader = Loader::new();
         let mut result = PipelineResult {
             signals: Vec::new(),
             raw: Vec::new(),
@@ -174,10 +180,10 @@ impl Pipeline {
             balance: None,
         };
         for spec in &self.signal {
-            let (raw, warnings) = self.source(spec, &mut tests, &result)?;
-            let named = warnings
+            let (raw, notes) = self.source(spec, &mut loader, &result)?;
+            let named = notes
                 .into_iter()
-                .map(|w| format!("signal '{}': {w}", spec.name));
+                .map(|note| format!("signal '{}': {note}", spec.name));
             result.warnings.extend(named);
             let mut processed =
                 run(&spec.steps, &raw).map_err(|source| PipelineError::Process {
@@ -189,23 +195,23 @@ impl Pipeline {
             result.signals.push(processed);
         }
         if let Some(spec) = &self.balance {
-            let mass = spec.mass.or_else(|| self.test_mass(&spec.force, &tests));
+            let mass = spec.mass.or_else(|| self.test_mass(&spec.force, &loader));
             result.balance = Some(balance(&result.signals, spec, mass)?);
         }
         Ok(result)
     }
 
-    fn test_mass(&self, force: &str, tests: &HashMap<PathBuf, TestData>) -> Option<f64> {
+    fn test_mass(&self, force: &str, loader: &Loader) -> Option<f64> {
         let spec = self.signal.iter().find(|s| s.name == force)?;
-        tests.get(&self.base.join(spec.path.as_ref()?))?.mass
+        loader.opened(&self.base.join(spec.path.as_ref()?))?.mass
     }
 
     fn source(
         &self,
         spec: &SignalSpec,
-        tests: &mut HashMap<PathBuf, TestData>,
+        loader: &mut Loader,
         done: &PipelineResult,
-    ) -> Result<(Channel, Vec<String>), PipelineError> {
+    ) -> Result<(Channel, Vec<Note>), PipelineError> {
         let definition = |message: String| PipelineError::Definition {
             signal: spec.name.clone(),
             message,
@@ -221,56 +227,31 @@ impl Pipeline {
             .as_ref()
             .ok_or_else(|| definition("needs 'path' and 'channels', or 'from'".into()))?;
         let path = self.base.join(path);
-        if !tests.contains_key(&path) {
-            tests.insert(path.clone(), TestData::open(&path)?);
-        }
-        let test = &tests[&path];
-        let (channels, warnings) = select_all(test, &spec.channels)?;
-        let combined = match (channels.len(), spec.combine) {
-            (0, _) => return Err(definition("'channels' is empty".into())),
-            (1, _) => channels[0].clone(),
-            (n, None) => {
-                return Err(definition(format!(
-                    "{n} channels selected: say combine = \"sum\" or \"mean\""
-                )));
-            }
-            (_, Some(how)) => {
-                combine(&channels, how, &spec.name).map_err(|source| PipelineError::Process {
-                    signal: spec.name.clone(),
-                    source,
-                })?
-            }
-        };
-        Ok((combined, warnings))
+        let sources: Vec<ChannelSource> = spec
+            .channels
+            .iter()
+            .map(|selector| ChannelSource::new(&path, selector, 1.0))
+            .collect();
+        let loaded = loader
+            .signal(&sources, spec.combine, &spec.name)
+            .map_err(|e| load_error(&spec.name, e))?;
+        Ok((loaded.data, loaded.notes))
     }
 }
 
-/// Loads every channel the selectors pick; returns them and notes about left-out channels.
-pub fn select_all(
-    test: &TestData,
-    selectors: &[String],
-) -> Result<(Vec<Channel>, Vec<String>), SignalFileError> {
-    let mut channels = Vec::new();
-    let mut notes = Vec::new();
-    for selector in selectors {
-        let selection = test.select(selector)?;
-        notes.extend(selection.warnings.iter().cloned());
-        for &i in &selection.excluded {
-            let e = &test.entries[i];
-            notes.push(format!(
-                "'{selector}': left out channel {} ({}): marked invalid",
-                e.number, e.code
-            ));
-        }
-        if !selection.absent.is_empty() {
-            notes.push(format!(
-                "'{selector}': left out {} matching channels whose files are absent",
-                selection.absent.len()
-            ));
-        }
-        channels.extend(test.load_all(&selection)?);
+/// The pipeline's words for a loading failure of signal `signal`.
+fn load_error(signal: &str, error: LoadError) -> PipelineError {
+    match error {
+        LoadError::Data(e) => PipelineError::Data(e),
+        LoadError::Process(source) => PipelineError::Process {
+            signal: signal.to_string(),
+            source,
+        },
+        other => PipelineError::Definition {
+            signal: signal.to_string(),
+            message: other.to_string(),
+        },
     }
-    Ok((channels, notes))
 }
 
 fn find<'a>(
@@ -322,7 +303,7 @@ fn balance(
             [s.time(w.first), s.time(w.last)]
         }
     };
-    let impulse = integral(s, window);
+    let impulse = s.integral(window[0], window[1]);
     let momentum_change = mass
         * (interpolate(&velocity.series, window[1]) - interpolate(&velocity.series, window[0]));
     let relative_difference = (impulse.abs() - momentum_change.abs()) / momentum_change.abs();
@@ -333,18 +314,6 @@ fn balance(
         momentum_change,
         relative_difference,
     })
-}
-
-/// Trapezoidal integral of a series over `[t0, t1]` (whole samples inside).
-fn integral(series: &bumpsim_core::series::UniformSeries, [t0, t1]: [f64; 2]) -> f64 {
-    let inside: Vec<f64> = (0..series.len())
-        .filter(|&i| series.time(i) >= t0 - 1e-9 && series.time(i) <= t1 + 1e-9)
-        .map(|i| series.values()[i])
-        .collect();
-    inside
-        .windows(2)
-        .map(|w| 0.5 * series.step() * (w[0] + w[1]))
-        .sum()
 }
 
 /// A short description of a signal: peak magnitude with its time, minimum, maximum.
@@ -391,7 +360,9 @@ pub fn export(
     };
     for selector in selectors {
         let (channels, notes) = select_all(test, std::slice::from_ref(selector))?;
-        result.warnings.extend(notes);
+        result
+            .warnings
+            .extend(notes.iter().map(ToString::to_string));
         let raws = match how {
             Some(how) if channels.len() > 1 => {
                 vec![combine(&channels, how, selector).map_err(|source| {

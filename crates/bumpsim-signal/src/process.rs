@@ -5,11 +5,17 @@
 //! pre-trigger interval, by default every sample before t = 0), scaling and
 //! sign, trapezoidal integration and differentiation
 //! ([`integrate`](crate::integrate), which also change the dimension:
-//! acceleration ↔ velocity ↔ displacement), trimming, time shift, linear
+//! acceleration ↔ velocity ↔ displacement, and the angular ones), trimming, time shift, linear
 //! resampling, and force from a rigid mass times its acceleration
 //! (`F = m a`, spec §4). [`combine`] forms the mean or sum of channels (left
 //! and right side members; the cells of a load-cell wall) on their common
 //! time base.
+//!
+//! Steps keep an ISO/TS 13499 code true to the data (see
+//! [`Channel::filtered`]): CFC sets the filter-class letter and `Channel
+//! frequency class`, integration and derivation the dimension letters
+//! (`AC` → `VE` → `DS`), F = m a `FO`, and a negative scale notes the sign
+//! change in `Comments`.
 //!
 //! In TOML a pipeline is a list of one-key tables, e.g.
 //! `steps = [{ cfc = 60 }, { bias = [-0.05, 0.0] }, { integrate = 15.86 }]`.
@@ -28,7 +34,7 @@ use crate::filter::{Butterworth, Cfc, CfcStandard, FilterError, moving_average};
 use crate::integrate::{cumulative_trapezoid, derivative};
 use crate::window::{ContactThreshold, WindowError};
 use bumpsim_core::channel::Channel;
-use bumpsim_core::series::{SeriesError, UniformSeries};
+use bumpsim_core::series::{SeriesError, UniformSeries, WINDOW_TOLERANCE};
 use bumpsim_core::units::Dimension;
 use serde::Deserialize;
 
@@ -165,8 +171,8 @@ impl Step {
             step: self.name(),
         };
         match self {
-            Step::Cfc(class) => c.cfc(*class, CfcStandard::SaeJ211),
-            Step::CfcIso(class) => c.cfc(*class, CfcStandard::Iso6487),
+            Step::Cfc(class) => Ok(c.cfc(*class, CfcStandard::SaeJ211)?.filtered(*class)),
+            Step::CfcIso(class) => Ok(c.cfc(*class, CfcStandard::Iso6487)?.filtered(*class)),
             Step::Butterworth(b) => c.butterworth(b),
             Step::MovingAverage(n) => c.filtered(moving_average(channel.series.values(), *n)),
             Step::Bias([t0, t1]) => c.bias(
@@ -177,7 +183,7 @@ impl Step {
             Step::PretriggerBias(true) => {
                 c.bias(|t| t < 0.0, "before t = 0 (no pre-trigger)".into())
             }
-            Step::Scale(factor) => c.map(|v| v * factor),
+            Step::Scale(factor) => Ok(c.map(|v| v * factor)?.scaled(*factor)),
             Step::Integrate(initial) => c.integrate(*initial),
             Step::Derivative(true) => c.derivative(),
             Step::Trim(window) => c.trim(window[0], window[1]),
@@ -284,7 +290,9 @@ impl Context<'_> {
         let dimension = self.with_dimension(match self.channel.dimension {
             Dimension::Acceleration => Ok(Dimension::Velocity),
             Dimension::Velocity => Ok(Dimension::Length),
-            _ => Err("an acceleration or a velocity"),
+            Dimension::AngularAcceleration => Ok(Dimension::AngularVelocity),
+            Dimension::AngularVelocity => Ok(Dimension::Angle),
+            _ => Err("an acceleration or a velocity (linear or angular)"),
         })?;
         let s = &self.channel.series;
         let mut integral = cumulative_trapezoid(s.values(), s.step(), 0.0);
@@ -295,23 +303,21 @@ impl Context<'_> {
             0.0
         };
         integral.iter_mut().for_each(|v| *v += initial - at_zero);
-        let mut out = self.filtered(Ok(integral))?;
-        out.dimension = dimension;
-        out.source_unit = dimension.si_symbol().to_string();
-        Ok(out)
+        Ok(self.filtered(Ok(integral))?.with_dimension(dimension))
     }
 
     fn derivative(&self) -> Result<Channel, ProcessError> {
         let dimension = self.with_dimension(match self.channel.dimension {
             Dimension::Length => Ok(Dimension::Velocity),
             Dimension::Velocity => Ok(Dimension::Acceleration),
-            _ => Err("a displacement or a velocity"),
+            Dimension::Angle => Ok(Dimension::AngularVelocity),
+            Dimension::AngularVelocity => Ok(Dimension::AngularAcceleration),
+            _ => Err("a displacement or a velocity (linear or angular)"),
         })?;
         let s = &self.channel.series;
-        let mut out = self.filtered(Ok(derivative(s.values(), s.step())))?;
-        out.dimension = dimension;
-        out.source_unit = dimension.si_symbol().to_string();
-        Ok(out)
+        Ok(self
+            .filtered(Ok(derivative(s.values(), s.step())))?
+            .with_dimension(dimension))
     }
 
     fn mass(&self, mass: f64) -> Result<Channel, ProcessError> {
@@ -322,20 +328,14 @@ impl Context<'_> {
             Dimension::Acceleration => Ok(Dimension::Force),
             _ => Err("an acceleration"),
         })?;
-        let mut out = self.map(|a| mass * a)?;
-        out.dimension = Dimension::Force;
-        out.source_unit = "N".into();
-        Ok(out)
+        Ok(self.map(|a| mass * a)?.with_dimension(Dimension::Force))
     }
 
     fn trim(&self, t0: f64, t1: f64) -> Result<Channel, ProcessError> {
         let s = &self.channel.series;
-        let inside: Vec<usize> = (0..s.len())
-            .filter(|&i| s.time(i) >= t0 - 1e-9 * s.step() && s.time(i) <= t1 + 1e-9 * s.step())
-            .collect();
-        match (inside.first(), inside.last()) {
-            (Some(&a), Some(&b)) => self.rebase(s.time(a), s.values()[a..=b].to_vec()),
-            _ => Err(self.range(format!(
+        match s.window(t0, t1).map(|w| w.into_inner()) {
+            Some((a, b)) => self.rebase(s.time(a), s.values()[a..=b].to_vec()),
+            None => Err(self.range(format!(
                 "no samples in [{t0}, {t1}] s; the channel spans [{}, {}] s",
                 s.start(),
                 s.end()
@@ -359,7 +359,14 @@ impl Context<'_> {
             return Err(self.range(format!("interval {step} s must be positive")));
         }
         let s = &self.channel.series;
-        let count = ((s.end() - s.start()) / step + 1e-9).floor() as usize + 1;
+        let count = ((s.end() - s.start()) / step + WINDOW_TOLERANCE).floor() + 1.0;
+        let max = bumpsim_io::output::MAX_SAMPLES;
+        if !count.is_finite() || count > max as f64 {
+            return Err(self.range(format!(
+                "interval {step} s gives {count:.3e} samples, at most {max} per channel (limit MAX_SAMPLES)"
+            )));
+        }
+        let count = count as usize;
         let values = (0..count)
             .map(|k| interpolate(s, s.start() + k as f64 * step))
             .collect();
@@ -369,14 +376,7 @@ impl Context<'_> {
 
 /// Linear interpolation of a series at time `t` (clamped to its ends).
 pub fn interpolate(series: &UniformSeries, t: f64) -> f64 {
-    let v = series.values();
-    let x = ((t - series.start()) / series.step()).clamp(0.0, (v.len() - 1) as f64);
-    let i = (x.floor() as usize).min(v.len().saturating_sub(2));
-    let frac = x - i as f64;
-    match v.len() {
-        1 => v[0],
-        _ => v[i] + frac * (v[i + 1] - v[i]),
-    }
+    series.at(t)
 }
 
 /// How channels are combined.

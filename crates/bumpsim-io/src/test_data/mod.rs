@@ -1,5 +1,5 @@
 //! One view of a crash test, whatever file it came in: ISO-MME
-//! ([`isomme`](crate::isomme)), NHTSA EV5 ([`ev5`](crate::ev5)) or CSV
+//! ([`isomme`]), NHTSA EV5 ([`ev5`]) or CSV
 //! ([`table`](crate::table)).
 //!
 //! [`TestData::open`] reads the test metadata and the list of channels
@@ -13,7 +13,10 @@
 //! Channels marked invalid by the lab (NHTSA comment `No valid data`, status
 //! `NO`) or whose file is absent are left out of wildcard and name
 //! selections and reported in [`Selection::excluded`]; asked for by number or
-//! exact code they are returned with a warning.
+//! exact code an invalid channel is returned with a warning, and an absent
+//! one is an error naming it and why ([`Entry::absence`]: missing, empty or
+//! truncated file). A test with some unusable channel files still opens:
+//! the rest is readable.
 //!
 //! ```no_run
 //! use bumpsim_io::test_data::TestData;
@@ -23,6 +26,11 @@
 //! println!("{} {}", first.code, first.series.len());
 //! # Ok::<(), bumpsim_io::signal_error::SignalFileError>(())
 //! ```
+
+pub mod csv;
+pub mod ev5;
+pub mod iso_header;
+pub mod isomme;
 
 use crate::signal_error::SignalFileError;
 use crate::table::Table;
@@ -74,6 +82,10 @@ pub struct Entry {
     pub validity: Validity,
     /// Whether its samples are available (NHTSA downloads may omit files).
     pub present: bool,
+    /// Why the samples are not usable when the file is missing, empty or
+    /// truncated (`None` for a present channel, and for an NHTSA curve that
+    /// is simply not part of the download).
+    pub absence: Option<String>,
     /// Header fields of the channel.
     pub metadata: Vec<(String, String)>,
 }
@@ -82,7 +94,7 @@ pub struct Entry {
 #[derive(Debug)]
 pub(crate) enum Store {
     /// Parsed ISO-MME channel files.
-    IsoMme(Vec<crate::isomme::RawChannel>),
+    IsoMme(Vec<isomme::RawChannel>),
     /// EV5 channel file per entry (absent: `None`).
     Ev5(Vec<Option<PathBuf>>),
     /// A CSV table; entry `i` is column `i`.
@@ -126,15 +138,16 @@ impl TestData {
     /// Opens a test: an ISO-MME folder, `.mme` file or `.zip`; an NHTSA
     /// `.EV5` file; or a CSV file.
     pub fn open(path: &Path) -> Result<TestData, SignalFileError> {
+        crate::output::register_input(path);
         let extension = path
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase());
         match extension.as_deref() {
-            _ if path.is_dir() => crate::isomme::open_folder(path),
-            Some("mme") => crate::isomme::open_mme(path),
-            Some("zip") => crate::isomme::open_zip(path),
-            Some("ev5") => crate::ev5::open(path),
-            Some("csv" | "txt") => open_csv(path),
+            _ if path.is_dir() => isomme::open_folder(path),
+            Some("mme") => isomme::open_mme(path),
+            Some("zip") => isomme::open_zip(path),
+            Some("ev5") => ev5::open(path),
+            Some("csv" | "txt") => csv::open(path),
             _ if !path.exists() => Err(SignalFileError::file(path, "no such file or folder")),
             _ => Err(SignalFileError::file(
                 path,
@@ -149,9 +162,10 @@ impl TestData {
             SignalFileError::file(&self.path, format!("no channel at index {index}"))
         })?;
         match &self.store {
+            _ if !entry.present && entry.absence.is_some() => Err(absent_error(&self.path, entry)),
             Store::IsoMme(raw) => raw[index].to_channel(entry, raw),
-            Store::Ev5(files) => crate::ev5::load(entry, files[index].as_deref(), &self.path),
-            Store::Csv(table) => Ok(csv_channel(table, index)),
+            Store::Ev5(files) => ev5::load(entry, files[index].as_deref(), &self.path),
+            Store::Csv(table) => Ok(csv::channel(table, index)),
         }
     }
 
@@ -198,7 +212,14 @@ impl TestData {
         for i in matched {
             let entry = &self.entries[i];
             match (&entry.validity, entry.present, explicit) {
-                (_, false, _) => selection.absent.push(i),
+                (_, false, true) => {
+                    return Err(SignalFileError::Select {
+                        path: self.path.clone(),
+                        selector: selector.to_string(),
+                        reason: absent_reason(entry),
+                    });
+                }
+                (_, false, false) => selection.absent.push(i),
                 (Validity::Invalid(why), true, true) => {
                     selection.warnings.push(format!(
                         "channel {} ({}) is marked invalid: {why}",
@@ -244,6 +265,23 @@ impl TestData {
     }
 }
 
+/// Why an absent channel cannot be read, naming it.
+fn absent_reason(entry: &Entry) -> String {
+    format!(
+        "channel {} ({}) has no usable samples: {}",
+        entry.number,
+        entry.code,
+        entry
+            .absence
+            .as_deref()
+            .unwrap_or("its file is absent (not part of the download)")
+    )
+}
+
+fn absent_error(path: &Path, entry: &Entry) -> SignalFileError {
+    SignalFileError::file(path, absent_reason(entry))
+}
+
 /// Case-insensitive wildcard match: `?` one character, `*` any run.
 pub fn glob(pattern: &str, text: &str) -> bool {
     let p: Vec<char> = pattern.to_uppercase().chars().collect();
@@ -261,50 +299,6 @@ pub fn glob(pattern: &str, text: &str) -> bool {
         }
     }
     p[pi..].iter().all(|&c| c == '*')
-}
-
-fn open_csv(path: &Path) -> Result<TestData, SignalFileError> {
-    let table = Table::read(path).map_err(|e| SignalFileError::file(path, e.to_string()))?;
-    let entries = table
-        .columns
-        .iter()
-        .enumerate()
-        .map(|(i, c)| Entry {
-            number: i + 1,
-            code: c.name.clone(),
-            name: c.name.clone(),
-            unit: c.unit.symbol.to_string(),
-            validity: Validity::Valid,
-            present: true,
-            metadata: Vec::new(),
-        })
-        .collect();
-    let title = path
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    Ok(TestData {
-        path: path.to_path_buf(),
-        format: Format::Csv,
-        title,
-        metadata: Vec::new(),
-        speed: None,
-        mass: None,
-        entries,
-        store: Store::Csv(table),
-    })
-}
-
-fn csv_channel(table: &Table, index: usize) -> Channel {
-    let column = &table.columns[index];
-    let mut channel = Channel::new(
-        &column.name,
-        &column.name,
-        column.unit.dimension,
-        table.series(column),
-    );
-    channel.source_unit = column.unit.symbol.to_string();
-    channel
 }
 
 #[cfg(test)]

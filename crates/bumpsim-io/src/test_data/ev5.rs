@@ -16,8 +16,8 @@
 //! with `-R` appended for a redundant sensor. A curve whose comment says
 //! `No valid data` or whose status is `NO` is marked invalid.
 
+use super::{Entry, Format, Store, TestData, Validity};
 use crate::signal_error::{SignalFileError, parse_number, read_text};
-use crate::test_data::{Entry, Format, Store, TestData, Validity};
 use bumpsim_core::channel::Channel;
 use bumpsim_core::series::UniformSeries;
 use bumpsim_core::units::Unit;
@@ -47,21 +47,6 @@ const FIELDS: [&str; 20] = [
     "Comment",
 ];
 
-/// SI-convertible spelling of an NHTSA unit code.
-fn unit_text(code: &str) -> &str {
-    match code.trim().to_ascii_uppercase().as_str() {
-        "G'S" | "GS" | "G" => "g",
-        "NWT" => "N",
-        "KNW" => "kN",
-        "MMS" | "MM" => "mm",
-        "MPS" => "m/s",
-        "KPH" => "km/h",
-        "SEC" => "s",
-        "MSC" => "ms",
-        _ => code,
-    }
-}
-
 /// Opens an `.EV5` file; channel files are looked for beside it.
 pub fn open(path: &Path) -> Result<TestData, SignalFileError> {
     let text = read_text(path)?;
@@ -81,8 +66,12 @@ pub fn open(path: &Path) -> Result<TestData, SignalFileError> {
     for (_, line, row) in rows {
         let entry = instrument(row, path, *line)?;
         let file = channel_file(path, entry.number);
+        let empty = file
+            .as_deref()
+            .is_some_and(|f| std::fs::metadata(f).is_ok_and(|m| m.len() == 0));
         entries.push(Entry {
-            present: file.is_some(),
+            present: file.is_some() && !empty,
+            absence: empty.then(|| "empty channel file".to_string()),
             ..entry
         });
         files.push(file);
@@ -105,6 +94,18 @@ pub fn open(path: &Path) -> Result<TestData, SignalFileError> {
         entries,
         store: Store::Ev5(files),
     })
+}
+
+/// The 1-based line of curve `number`'s instrumentation row (0 if not found).
+fn instrumentation_line(ev5: &Path, number: usize) -> usize {
+    let text = read_text(ev5).unwrap_or_default();
+    sections(&text)
+        .into_iter()
+        .find(|(name, _, row)| {
+            name == "INSTRUMENTATION"
+                && row.get(1).and_then(|f| f.trim().parse().ok()) == Some(number)
+        })
+        .map_or(0, |(_, line, _)| line)
 }
 
 /// Rows of each section: (section name, 1-based line, fields).
@@ -177,6 +178,7 @@ fn instrument(row: &[String], path: &Path, line: usize) -> Result<Entry, SignalF
         unit: f(8).to_string(),
         validity,
         present: false,
+        absence: None,
         metadata,
     })
 }
@@ -207,8 +209,8 @@ pub(crate) fn load(
             ),
         )
     })?;
-    let unit_line = 0;
-    let unit = Unit::parse(unit_text(&entry.unit)).map_err(|e| {
+    let unit_line = instrumentation_line(ev5, entry.number);
+    let unit = Unit::parse(&entry.unit).map_err(|e| {
         SignalFileError::line(
             ev5,
             unit_line,
@@ -310,9 +312,10 @@ mod tests {
 
     #[test]
     fn unit_codes_map_to_units() {
-        assert_eq!(Unit::parse(unit_text("G'S")).unwrap().symbol, "g");
-        assert_eq!(Unit::parse(unit_text("NWT")).unwrap().symbol, "N");
-        assert!(Unit::parse(unit_text("NWM")).is_err());
+        assert_eq!(Unit::parse("G'S").unwrap().symbol, "g");
+        assert_eq!(Unit::parse("NWT").unwrap().symbol, "N");
+        assert_eq!(Unit::parse("NWM").unwrap().symbol, "Nm");
+        assert!(Unit::parse("XYZ").is_err());
     }
 
     #[test]

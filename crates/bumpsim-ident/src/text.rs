@@ -2,27 +2,13 @@
 //! the DOF table, per-case fits. The CLI prints these strings; reports reuse them.
 
 use crate::estimate::Identification;
-use bumpsim_core::model::{ParameterKind, parameter_count, parameter_kind, parameter_name};
+use bumpsim_core::model::{format_parameter, parameter_count, parameter_name};
 use bumpsim_core::units::{Dimension, format_number, format_quantity};
-
-/// The dimension of a parameter kind.
-pub fn dimension(kind: ParameterKind) -> Dimension {
-    match kind {
-        ParameterKind::Mass => Dimension::Mass,
-        ParameterKind::Damper => Dimension::Damping,
-        ParameterKind::Spring => Dimension::Stiffness,
-    }
-}
-
-/// A parameter value with its display unit (kg, Ns/mm, N/mm).
-pub fn format_parameter(dof: usize, index: usize, value: f64) -> String {
-    format_quantity(value, dimension(parameter_kind(dof, index).0))
-}
 
 /// The parameter table: name, value, standard error, 95 % interval, flags.
 pub fn parameter_table(result: &Identification) -> String {
     let dof = result.dof;
-    let theta = [&result.masses[..], &result.dampers, &result.springs].concat();
+    let theta = result.model.parameters();
     let u = &result.uncertainty;
     let mut out = format!(
         "{:<5} {:>14} {:>14} {:>32}  note\n",

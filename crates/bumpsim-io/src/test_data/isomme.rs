@@ -15,65 +15,20 @@
 //! `Velocity test object 1` (m/s) and test mass `Mass test object 1` (kg).
 //!
 //! The writer writes SI values with the shortest decimal form that reads back
-//! to the same `f64`, so a written test reads back bit-identical.
+//! to the same `f64`, so a written test reads back bit-identical, under the
+//! full ISO/TS 13499 channel header ([`iso_header`]): codes that follow the
+//! processing, NHTSA codes mapped to ISO ones, transducer fields carried
+//! over, and the test object's speed and mass in the `.mme` file.
 
+use super::{Entry, Format, Store, TestData, Validity, iso_header};
 use crate::signal_error::{SignalFileError, decode, parse_number};
-use crate::test_data::{Entry, Format, Store, TestData, Validity};
 use bumpsim_core::channel::Channel;
 use bumpsim_core::series::UniformSeries;
 use bumpsim_core::units::{Dimension, Unit};
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
-/// The fields of a 16-character ISO/TS 13499 channel code.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ChannelCode {
-    /// Test object: `0`..`9` vehicles, `P` pendulum / impactor, `B` barrier, `D` dummy...
-    pub test_object: char,
-    /// Position (seat or side).
-    pub position: char,
-    /// Main location, 4 characters (`SIME` sill/side member, `HEAD`, `IMPA` impactor).
-    pub main_location: String,
-    /// Fine locations 1, 2 and 3, 2 characters each.
-    pub fine_locations: [String; 3],
-    /// Physical dimension, 2 characters (`AC`, `FO`, `DS`, `VE`).
-    pub dimension: String,
-    /// Direction (`X`, `Y`, `Z`, `R`, `0`).
-    pub direction: char,
-    /// Filter class (`A` CFC 1000, `B` 600, `C` 180, `D` 60, `P` prefiltered, `0`/`X` none).
-    pub filter_class: char,
-}
-
-impl ChannelCode {
-    /// Splits a 16-character code; `None` for other lengths.
-    pub fn parse(code: &str) -> Option<ChannelCode> {
-        let c: Vec<char> = code.trim().chars().collect();
-        if c.len() != 16 {
-            return None;
-        }
-        let s = |a: usize, b: usize| c[a..b].iter().collect::<String>();
-        Some(ChannelCode {
-            test_object: c[0],
-            position: c[1],
-            main_location: s(2, 6),
-            fine_locations: [s(6, 8), s(8, 10), s(10, 12)],
-            dimension: s(12, 14),
-            direction: c[14],
-            filter_class: c[15],
-        })
-    }
-
-    /// The CFC the filter-class letter stands for, if any.
-    pub fn cfc(&self) -> Option<f64> {
-        match self.filter_class.to_ascii_uppercase() {
-            'A' => Some(1000.0),
-            'B' => Some(600.0),
-            'C' => Some(180.0),
-            'D' => Some(60.0),
-            _ => None,
-        }
-    }
-}
+pub use bumpsim_core::channel::ChannelCode;
 
 /// A header line: key, value, 1-based line.
 type HeaderLine = (String, String, usize);
@@ -184,6 +139,14 @@ impl RawChannel {
     }
 
     fn unit(&self) -> Result<Unit, SignalFileError> {
+        // pyisomme writes a dimensionless unit as an empty `Unit :` line
+        let blank = self
+            .header
+            .iter()
+            .any(|(k, v, _)| normal_key(k) == "unit" && v.is_empty());
+        if blank && lookup(&self.header, "Unit").is_none() {
+            return Ok(Unit::si(Dimension::Dimensionless));
+        }
         let (_, text, line) = self.required("Unit")?;
         Unit::parse(text).map_err(|e| SignalFileError::line(&self.path, *line, e.to_string()))
     }
@@ -345,21 +308,44 @@ pub fn open_mme(path: &Path) -> Result<TestData, SignalFileError> {
     build(Source::Folder(root), &name, path)
 }
 
-/// Opens a `.zip` holding an ISO-MME test folder (at any depth).
+/// Most channels an ISO-MME test may list (`Number of channels` in the
+/// `.chn` file); channel files are numbered with up to four digits.
+pub const MAX_CHANNELS: usize = 9_999;
+/// Largest inflated size of an ISO-MME zip archive, in bytes.
+pub const MAX_ZIP_BYTES: u64 = 1 << 30;
+/// Most inflated bytes per byte of the archive (real tests compress ~5-20 ×).
+pub const MAX_ZIP_RATIO: u64 = 200;
+
+/// Opens a `.zip` holding an ISO-MME test folder (at any depth); inflating
+/// stops at [`MAX_ZIP_BYTES`] or [`MAX_ZIP_RATIO`] times the archive size.
 pub fn open_zip(path: &Path) -> Result<TestData, SignalFileError> {
     let file = std::fs::File::open(path).map_err(|e| SignalFileError::read(path, e))?;
     let zip_error = |e: zip::result::ZipError| {
         SignalFileError::file(path, format!("not a readable zip archive: {e}"))
     };
+    let archive_size = file.metadata().map_or(0, |m| m.len());
     let mut archive = zip::ZipArchive::new(file).map_err(zip_error)?;
     let mut members = Vec::new();
+    // inflate at most the limit (never trusting the declared sizes)
+    let limit = MAX_ZIP_BYTES.min(archive_size.saturating_mul(MAX_ZIP_RATIO).max(1 << 20));
+    let mut total = 0u64;
     for i in 0..archive.len() {
-        let mut member = archive.by_index(i).map_err(zip_error)?;
+        let member = archive.by_index(i).map_err(zip_error)?;
+        let name = member.name().map_err(zip_error)?.to_string();
         let mut bytes = Vec::new();
         member
+            .take(limit - total + 1)
             .read_to_end(&mut bytes)
             .map_err(|e| SignalFileError::read(path, e))?;
-        let name = member.name().map_err(zip_error)?.to_string();
+        total += bytes.len() as u64;
+        if total > limit {
+            return Err(SignalFileError::file(
+                path,
+                format!(
+                    "the archive inflates beyond {limit} bytes (limits: {MAX_ZIP_BYTES} bytes, {MAX_ZIP_RATIO} × the archive size): refused as a possible zip bomb"
+                ),
+            ));
+        }
         members.push((name, bytes));
     }
     let mme = members
@@ -403,18 +389,11 @@ fn build(source: Source, mme_name: &str, opened: &Path) -> Result<TestData, Sign
             })?;
     let (chn_header, _) = parse_header(&chn_text);
     let count = channel_count(&chn_header, &chn_path)?;
-    let raws = (1..=count)
-        .map(|i| {
-            source
-                .read(&format!("Channel/{stem}.{i:03}"))
-                .map(|(p, t)| RawChannel::new(p, t))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let entries = raws
-        .iter()
+    let read = (1..=count).map(|i| source.read(&format!("Channel/{stem}.{i:03}")));
+    let (entries, raws): (Vec<Entry>, Vec<RawChannel>) = read
         .enumerate()
-        .map(|(i, r)| entry(i + 1, r, &chn_header))
-        .collect();
+        .map(|(i, file)| channel_file(i + 1, file, &chn_header))
+        .unzip();
     let number = |key: &str| lookup(&mme_header, key).and_then(|(_, v, _)| parse_number(v));
     let title = lookup(&mme_header, "Title").map_or(stem.clone(), |(_, v, _)| v.clone());
     Ok(TestData {
@@ -432,13 +411,43 @@ fn build(source: Source, mme_name: &str, opened: &Path) -> Result<TestData, Sign
 fn channel_count(header: &[HeaderLine], path: &Path) -> Result<usize, SignalFileError> {
     let (_, value, line) = lookup(header, "Number of channels")
         .ok_or_else(|| SignalFileError::file(path, "'Number of channels' is missing"))?;
-    value.parse().map_err(|_| {
+    let count: usize = value.parse().map_err(|_| {
         SignalFileError::line(
             path,
             *line,
             format!("'Number of channels' is '{value}', expected a count"),
         )
-    })
+    })?;
+    if count > MAX_CHANNELS {
+        return Err(SignalFileError::line(
+            path,
+            *line,
+            format!("'Number of channels' is {count}, above the limit of {MAX_CHANNELS}"),
+        ));
+    }
+    Ok(count)
+}
+
+/// The entry of channel `number` and its file; the entry is absent (with
+/// the reason) when the file is missing, empty or truncated. A missing file
+/// is kept as an empty placeholder so that channels stay numbered.
+fn channel_file(
+    number: usize,
+    file: Result<(PathBuf, String), SignalFileError>,
+    chn: &[HeaderLine],
+) -> (Entry, RawChannel) {
+    let (raw, why) = match file {
+        Ok((path, text)) => (RawChannel::new(path, text), None),
+        Err(e) => (RawChannel::new(PathBuf::new(), String::new()), Some(e)),
+    };
+    let why = why.or_else(|| match raw.text.trim().is_empty() {
+        true => Some(SignalFileError::file(&raw.path, "empty channel file")),
+        false => raw.values().err(),
+    });
+    let mut entry = entry(number, &raw, chn);
+    entry.present = why.is_none();
+    entry.absence = why.map(|e| e.to_string());
+    (entry, raw)
 }
 
 fn entry(number: usize, raw: &RawChannel, chn: &[HeaderLine]) -> Entry {
@@ -446,21 +455,21 @@ fn entry(number: usize, raw: &RawChannel, chn: &[HeaderLine]) -> Entry {
     let (listed_code, listed_name) = listed
         .and_then(|v| v.split_once('/'))
         .unwrap_or((listed.unwrap_or(""), ""));
-    let code = raw
-        .value("Channel code")
+    let value = |key: &str| raw.value(key);
+    let code = value("Channel code")
         .unwrap_or(listed_code.trim())
         .to_string();
-    let name = raw
-        .value("Name of the channel")
+    let name = value("Name of the channel")
         .unwrap_or(listed_name.trim())
         .to_string();
     Entry {
         number,
         code,
         name,
-        unit: raw.value("Unit").unwrap_or("?").to_string(),
+        unit: value("Unit").unwrap_or("?").to_string(),
         validity: Validity::Valid,
         present: true,
+        absence: None,
         metadata: raw
             .header
             .iter()
@@ -469,32 +478,20 @@ fn entry(number: usize, raw: &RawChannel, chn: &[HeaderLine]) -> Entry {
     }
 }
 
-/// The keys the writer sets itself; metadata under these keys is replaced.
-const OWN_KEYS: [&str; 7] = [
-    "Name of the channel",
-    "Channel code",
-    "Unit",
-    "Time of first sample",
-    "Sampling interval",
-    "Number of samples",
-    "Reference channel",
-];
-
 fn header_line(key: &str, value: &str) -> String {
     format!("{key:<28}:{value}\r\n")
 }
 
-/// Writes channels (SI values) as an ISO-MME test `folder/<name>.mme`,
-/// `folder/Channel/<name>.chn` and `.001`... Test metadata lines are
-/// written to the `.mme` file in order. Returns the `.mme` path.
-pub fn write(
-    folder: &Path,
+/// The files of an ISO-MME test `name` (relative path, text): `<name>.mme`,
+/// `Channel/<name>.chn` and `Channel/<name>.001`... Test metadata lines go
+/// to the `.mme` file in order (see [`test_header`]); each channel gets the
+/// full ISO/TS 13499 header ([`iso_header::channel_header`]) and its SI
+/// values in the shortest text that reads back to the same `f64`.
+pub fn files(
     name: &str,
     metadata: &[(String, String)],
     channels: &[Channel],
-) -> Result<PathBuf, SignalFileError> {
-    let channel_dir = folder.join("Channel");
-    std::fs::create_dir_all(&channel_dir).map_err(|e| SignalFileError::write(&channel_dir, e))?;
+) -> Vec<(String, String)> {
     let mut mme = String::new();
     if !metadata
         .iter()
@@ -505,55 +502,50 @@ pub fn write(
     for (key, value) in metadata {
         mme += &header_line(key, value);
     }
-    let mme_path = folder.join(format!("{name}.mme"));
-    write_file(&mme_path, &mme)?;
+    let mut out = vec![(format!("{name}.mme"), mme)];
     let mut chn = header_line("Number of channels", &channels.len().to_string());
     for (i, c) in channels.iter().enumerate() {
+        let header = iso_header::channel_header(c);
+        let mut text: String = header.iter().map(|(k, v)| header_line(k, v)).collect();
+        for v in c.series.values() {
+            text += &iso_header::number(*v);
+            text += "\r\n";
+        }
         chn += &header_line(
             &format!("Name of channel {:03}", i + 1),
-            &format!("{} / {}", c.code, c.name),
+            &format!("{} / {}", header[3].1, c.name),
         );
-        write_file(
-            &channel_dir.join(format!("{name}.{:03}", i + 1)),
-            &channel_text(c),
-        )?;
+        out.push((format!("Channel/{name}.{:03}", i + 1), text));
     }
-    write_file(&channel_dir.join(format!("{name}.chn")), &chn)?;
-    Ok(mme_path)
+    out.push((format!("Channel/{name}.chn"), chn));
+    out
 }
 
-fn channel_text(channel: &Channel) -> String {
-    let s = &channel.series;
-    let own = [
-        channel.name.clone(),
-        channel.code.clone(),
-        channel.dimension.si_symbol().replace('^', "**"),
-        format!("{:e}", s.start()),
-        format!("{:e}", s.step()),
-        s.len().to_string(),
-        "implicit".to_string(),
-    ];
-    let mut text: String = OWN_KEYS
-        .iter()
-        .zip(&own)
-        .map(|(k, v)| header_line(k, v))
-        .collect();
-    let own_keys: Vec<String> = OWN_KEYS.iter().map(|k| normal_key(k)).collect();
-    for (key, value) in channel
-        .metadata
-        .iter()
-        .filter(|(k, _)| !own_keys.contains(&normal_key(k)))
-    {
-        text += &header_line(key, value);
+/// Writes channels (SI values) as an ISO-MME test `folder/<name>.mme`,
+/// `folder/Channel/<name>.chn` and `.001`... (the texts of [`files`]).
+/// Returns the `.mme` path. The test is staged and moved into place
+/// complete ([`crate::output`]); `name` must be a plain file name.
+pub fn write(
+    folder: &Path,
+    name: &str,
+    metadata: &[(String, String)],
+    channels: &[Channel],
+) -> Result<PathBuf, SignalFileError> {
+    crate::output::plain_name(name)?;
+    let staged = crate::output::stage_folder(folder)?;
+    let channel_dir = staged.path().join("Channel");
+    std::fs::create_dir_all(&channel_dir).map_err(|e| SignalFileError::write(&channel_dir, e))?;
+    for (relative, text) in files(name, metadata, channels) {
+        crate::output::write_atomic(&staged.path().join(relative), text.as_bytes())?;
     }
-    for v in s.values() {
-        text += &format!("{v:e}\r\n");
-    }
-    text
+    crate::output::commit(staged)?;
+    Ok(folder.join(format!("{name}.mme")))
 }
 
-fn write_file(path: &Path, text: &str) -> Result<(), SignalFileError> {
-    std::fs::write(path, text).map_err(|e| SignalFileError::write(path, e))
+/// The `.mme` lines bumpsim writes for a test it read: title, impact speed
+/// (`Velocity test object 1`, m/s) and mass (`Mass test object 1`, kg).
+pub fn test_header(test: &TestData) -> Vec<(String, String)> {
+    iso_header::test_header(&test.title, test.speed, test.mass)
 }
 
 #[cfg(test)]
@@ -570,6 +562,24 @@ mod tests {
         assert_eq!(code.direction, 'X');
         assert_eq!(code.cfc(), Some(60.0));
         assert!(ChannelCode::parse("short").is_none());
+    }
+
+    #[test]
+    fn an_empty_unit_line_is_dimensionless_and_a_missing_one_an_error() {
+        let raw = |t: &str| RawChannel::new(PathBuf::from("T.001"), t.to_string());
+        let blank = raw("Unit :\r\nNumber of samples :1\r\n1\r\n");
+        assert_eq!(blank.unit().unwrap().dimension, Dimension::Dimensionless);
+        assert!(raw("Number of samples :1\r\n1\r\n").unit().is_err());
+        assert!(raw("Unit :NOVALUE\r\n1\r\n").unit().is_err());
+    }
+
+    #[test]
+    fn a_huge_channel_count_is_refused_before_reading() {
+        let (header, _) = parse_header("Number of channels :18446744073709551615\r\n");
+        let e = channel_count(&header, Path::new("T.chn")).unwrap_err();
+        assert!(e.to_string().contains("above the limit of 9999"), "{e}");
+        let (header, _) = parse_header("Number of channels :3\r\n");
+        assert_eq!(channel_count(&header, Path::new("T.chn")).unwrap(), 3);
     }
 
     #[test]

@@ -1,0 +1,96 @@
+//! Every file and folder the commands write, in one place: the inputs are
+//! registered and each output checked against them before a command runs
+//! ([`guard_paths`]); single files are written atomically ([`write()`]),
+//! multi-file folders are staged and appear together ([`Folder`]). The
+//! guard itself lives in [`bumpsim_io::output`]; this module maps clap's
+//! arguments onto it.
+
+use anyhow::{Context, Result};
+use std::path::Path;
+
+/// Argument ids that name outputs; the rest that exist on disk are inputs.
+const OUTPUT_IDS: [&str; 7] = [
+    "output",
+    "json",
+    "csv",
+    "sensitivity",
+    "report",
+    "plot",
+    "iso_mme",
+];
+
+/// Output ids that name folders (`output` only for `synth`).
+fn is_folder_output(command: &str, id: &str) -> bool {
+    matches!(id, "report" | "plot" | "iso_mme") || (command == "synth" && id == "output")
+}
+
+/// Registers the inputs and checks every output before anything runs.
+pub(crate) fn guard_paths(matches: &clap::ArgMatches) -> Result<()> {
+    let mut matches = matches;
+    let mut command = String::new();
+    while let Some((name, sub)) = matches.subcommand() {
+        command = name.to_string();
+        matches = sub;
+    }
+    let values = |id: &str| -> Vec<std::path::PathBuf> {
+        matches
+            .get_raw(id)
+            .into_iter()
+            .flatten()
+            .map(std::path::PathBuf::from)
+            .collect()
+    };
+    let ids: Vec<String> = matches.ids().map(|id| id.to_string()).collect();
+    for id in ids.iter().filter(|id| !OUTPUT_IDS.contains(&id.as_str())) {
+        for path in values(id).iter().filter(|p| p.exists()) {
+            bumpsim_io::output::register_input(path);
+        }
+    }
+    for id in ids.iter().filter(|id| OUTPUT_IDS.contains(&id.as_str())) {
+        for path in values(id) {
+            if is_folder_output(&command, id) {
+                bumpsim_io::output::check_folder(&path)?;
+            } else {
+                bumpsim_io::output::check_file(&path)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Writes a text output file (creating its folder; atomically, never over
+/// an input) and says so.
+pub(crate) fn write(path: &Path, text: &str) -> Result<()> {
+    bumpsim_io::output::write_file(path, text.as_bytes())?;
+    println!("wrote {}", path.display());
+    Ok(())
+}
+
+/// A multi-file output folder: files are staged and appear together on
+/// [`Folder::commit`]; a run that fails before leaves the old folder as it was.
+pub(crate) struct Folder(bumpsim_io::output::StagedFolder);
+
+impl Folder {
+    /// Opens the staging for `dir`.
+    pub(crate) fn stage(dir: &Path) -> Result<Folder> {
+        Ok(Folder(bumpsim_io::output::stage_folder(dir)?))
+    }
+
+    /// The staging folder (for library writers that take a folder).
+    pub(crate) fn path(&self) -> &Path {
+        self.0.path()
+    }
+
+    /// Stages one file.
+    pub(crate) fn write(&self, name: &str, text: &str) -> Result<()> {
+        let path = self.0.write(name, text.as_bytes())?;
+        println!("wrote {}", path.display());
+        Ok(())
+    }
+
+    /// Moves the staged files into place.
+    pub(crate) fn commit(self) -> Result<()> {
+        bumpsim_io::output::commit(self.0)
+            .with_context(|| "the output folder was left as it was".to_string())
+    }
+}

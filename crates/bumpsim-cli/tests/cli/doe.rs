@@ -1,0 +1,259 @@
+//! `bumpsim doe`: design, fit, predict, stiffness, reach and collect.
+
+use std::path::PathBuf;
+
+use crate::util::*;
+
+fn doe_data(name: &str) -> PathBuf {
+    root().join("tests/data/doe").join(name)
+}
+
+#[test]
+fn doe_predict_reproduces_paper_c_table_4_and_flags_extrapolation() {
+    let model = doe_data("paper-c-stage2.json");
+    let run = bumpsim(&[
+        "doe",
+        "predict",
+        model.to_str().unwrap(),
+        "--at",
+        "Kax=21747,Kbnd=20630,M=1681",
+    ]);
+    let stdout = text(&run.stdout);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert_contains(
+        &stdout,
+        &[
+            "m1 = 1.000 kg",
+            "m2 = 2230 kg",
+            "c1 = 200.2 Ns/mm",
+            "k1 = 3.920 N/mm",
+        ],
+    );
+    let outside = bumpsim(&[
+        "doe",
+        "predict",
+        model.to_str().unwrap(),
+        "--at",
+        "Kax=27000,Kbnd=20630,M=1681",
+    ]);
+    assert!(text(&outside.stdout).contains("warning: Kax = 27000 is outside the design region"));
+    let missing = bumpsim(&[
+        "doe",
+        "predict",
+        model.to_str().unwrap(),
+        "--at",
+        "Kax=23000",
+    ]);
+    assert_user_error(&missing, "no value for factor 'Kbnd'");
+}
+
+#[test]
+fn doe_design_fit_report_and_saturated_model() {
+    let dir = scratch("doe-fit");
+    let design = dir.join("design.csv");
+    let run = bumpsim(&[
+        "doe",
+        "design",
+        "full",
+        "--factors",
+        "Kax:21210:25684,Kbnd:20217:23643,M:1375:1681",
+        "--centre",
+        "3",
+        "-o",
+        design.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    // responses from paper C's stage-2 coefficients plus a small deterministic disturbance
+    let rows: Vec<Vec<f64>> = std::fs::read_to_string(&design)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+        .collect();
+    let mut data = String::from("Kax [N/mm],Kbnd [N/mm],M [kg],m2 [kg],c1 [Ns/mm]\n");
+    for (i, r) in rows.iter().enumerate() {
+        let (z1, z2, z3) = (r[5], r[6], r[7]);
+        let wobble = ((i * 7) as f64).sin();
+        let m2 = 1987.0 - 52.38 * z1 + 16.63 * z2 + 215.63 * z3 + 3.0 * wobble;
+        let c1 = 206.4 + 27.39 * z1 - 10.63 * z2 + 6.53 * z3 + 0.5 * wobble;
+        data += &format!("{},{},{},{m2},{c1}\n", r[2], r[3], r[4]);
+    }
+    let csv = dir.join("data.csv");
+    std::fs::write(&csv, data).unwrap();
+    let json = dir.join("model.json");
+    let report = dir.join("report");
+    let fit = bumpsim(&[
+        "doe",
+        "fit",
+        csv.to_str().unwrap(),
+        "--factors",
+        "Kax,Kbnd,M",
+        "--responses",
+        "m2,c1",
+        "--json",
+        json.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+    ]);
+    let stdout = text(&fit.stdout);
+    assert!(fit.status.success(), "{stdout}{}", text(&fit.stderr));
+    assert!(
+        stdout.contains("m2 [kg]: R²") && stdout.contains("lack of fit"),
+        "{stdout}"
+    );
+    let model: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let m2 = &model["responses"][0];
+    for key in [
+        "coefficients",
+        "std_errors",
+        "ci95",
+        "r2",
+        "r2_adjusted",
+        "q2",
+        "press",
+    ] {
+        assert!(!m2[key].is_null(), "{key} in {m2}");
+    }
+    let coefficient = m2["coefficients"]["M"].as_f64().unwrap();
+    assert!((coefficient - 215.63).abs() < 5.0, "{coefficient}");
+    assert!(
+        std::fs::read_to_string(report.join("index.html"))
+            .unwrap()
+            .matches("<svg")
+            .count()
+            >= 6
+    );
+    let predicted = bumpsim(&[
+        "doe",
+        "predict",
+        json.to_str().unwrap(),
+        "--at",
+        "Kax=23447,Kbnd=21930,M=1528",
+    ]);
+    assert!(
+        text(&predicted.stdout).contains("95 % PI"),
+        "{}",
+        text(&predicted.stdout)
+    );
+    // a saturated model: 2^2 runs for intercept, two mains and the interaction
+    let small = dir.join("small.csv");
+    std::fs::write(&small, "A,B,y\n-1,-1,1\n1,-1,2\n-1,1,4\n1,1,7\n").unwrap();
+    let saturated = bumpsim(&[
+        "doe",
+        "fit",
+        small.to_str().unwrap(),
+        "--factors",
+        "A,B",
+        "--responses",
+        "y",
+        "--interactions",
+    ]);
+    assert!(saturated.status.success(), "{}", text(&saturated.stderr));
+    assert!(
+        text(&saturated.stdout).contains("Q² undefined: the model is saturated"),
+        "{}",
+        text(&saturated.stdout)
+    );
+}
+
+#[test]
+fn doe_reach_stiffness_and_fraction_resolution() {
+    let dir = scratch("doe-reach");
+    let run = bumpsim(&[
+        "doe",
+        "reach",
+        doe_data("paper-c-stage1.json").to_str().unwrap(),
+        "--x",
+        "Kax",
+        "--y",
+        "Kbnd",
+        "--cell",
+        "21210,25684,20217,23643",
+        "--plot",
+        dir.to_str().unwrap(),
+    ]);
+    let stdout = text(&run.stdout);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert_eq!(
+        stdout.matches(": reachable with coded").count(),
+        4,
+        "{stdout}"
+    );
+    assert!(dir.join("reachable.svg").exists());
+    let curve = dir.join("curve.csv");
+    let mut csv = String::from("displacement [mm],force [kN]\n");
+    for i in 0..=40 {
+        let d = i as f64 * 0.5;
+        csv += &format!("{d},{}\n", 2.5 * d + 0.01 * (i as f64).sin());
+    }
+    std::fs::write(&curve, csv).unwrap();
+    let stiff = bumpsim(&["doe", "stiffness", curve.to_str().unwrap()]);
+    assert!(
+        text(&stiff.stdout).starts_with("stiffness 2500 N/mm")
+            || text(&stiff.stdout).starts_with("stiffness 2499")
+            || text(&stiff.stdout).starts_with("stiffness 2501"),
+        "{}",
+        text(&stiff.stdout)
+    );
+    let fraction = bumpsim(&[
+        "doe",
+        "design",
+        "fractional",
+        "--factors",
+        "A:-1:1,B:-1:1,C:-1:1,D:-1:1,E:-1:1,F:-1:1,G:-1:1",
+        "--generators",
+        "D=AB,E=AC,F=BC,G=ABC",
+        "-o",
+        dir.join("f.csv").to_str().unwrap(),
+    ]);
+    let out = text(&fraction.stdout);
+    assert!(
+        out.contains("resolution 3") && out.contains("8 runs of 7 factors"),
+        "{out}{}",
+        text(&fraction.stderr)
+    );
+}
+
+#[test]
+fn doe_collect_appends_identified_parameters_to_the_design() {
+    let dir = scratch("doe-collect");
+    let design = dir.join("design.csv");
+    std::fs::write(&design, "Kax [N/mm],M [kg]\n21210,1375\n25684,1681\n").unwrap();
+    let mut results = Vec::new();
+    for (i, m2) in [1800.0, 2100.0].iter().enumerate() {
+        let path = dir.join(format!("r{i}.json"));
+        std::fs::write(&path, format!("{{\"dof\": 2, \"masses\": [1.0, {m2}], \"dampers\": [2.0e5], \"springs\": [4.0e6], \"objective\": 1e-4}}")).unwrap();
+        results.push(path.to_str().unwrap().to_string());
+    }
+    let out = dir.join("data.csv");
+    let run = bumpsim(&[
+        "doe",
+        "collect",
+        design.to_str().unwrap(),
+        "--results",
+        &results.join(","),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let csv = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(
+        csv.lines().next().unwrap(),
+        "Kax [N/mm],M [kg],m1 [kg],m2 [kg],c1 [Ns/m],k1 [N/m]"
+    );
+    assert_eq!(
+        csv.lines().nth(2).unwrap(),
+        "25684,1681,1,2100,200000,4000000"
+    );
+    let short = bumpsim(&[
+        "doe",
+        "collect",
+        design.to_str().unwrap(),
+        "--results",
+        &results[0],
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_user_error(&short, "1 results for 2 design runs");
+}

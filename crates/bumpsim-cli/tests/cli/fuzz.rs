@@ -1,0 +1,279 @@
+//! Stable-Rust fuzzing of the readers (proptest; no cargo fuzz, no nightly).
+//!
+//! Each target mutates seed files (tests/fuzz/ and examples/identify/) with a
+//! byte strategy (flips, inserts, deletes, truncation) and a structure
+//! strategy (a line or number replaced by hostile values: NaN, inf, 1e308,
+//! huge integers, empty), writes the result to a scratch file and runs the
+//! reader: it must return Ok or an error, never panic. Each target runs for
+//! `BUMPSIM_FUZZ_SECONDS` seconds (default 2, so `cargo test` stays quick;
+//! scripts/test sets 60). The generator is seeded (`BUMPSIM_FUZZ_SEED`,
+//! default below), so a run is reproducible: a longer run with the same seed
+//! covers every case a shorter one tries; set another seed to explore.
+
+use proptest::prelude::*;
+use proptest::test_runner::{Config, RngSeed, TestCaseError, TestRunner};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use crate::util::root;
+
+fn seed(path: &str) -> Vec<u8> {
+    std::fs::read(root().join(path)).unwrap()
+}
+
+fn scratch(target: &str) -> PathBuf {
+    crate::util::scratch(&format!("fuzz-{target}"))
+}
+
+fn seconds() -> u64 {
+    std::env::var("BUMPSIM_FUZZ_SECONDS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(2)
+}
+
+/// The generator seed: `BUMPSIM_FUZZ_SEED` or a fixed default.
+fn rng_seed() -> u64 {
+    std::env::var("BUMPSIM_FUZZ_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0x6275_6d70)
+}
+
+const HOSTILE: [&str; 12] = [
+    "NaN",
+    "inf",
+    "-inf",
+    "1e308",
+    "-1e308",
+    "1e-320",
+    "0",
+    "-0",
+    "18446744073709551615",
+    "-1",
+    "",
+    "99999999999999999999999",
+];
+
+/// One edit of a seed.
+#[derive(Debug, Clone)]
+enum Edit {
+    Flip(usize, u8),
+    Insert(usize, u8),
+    Delete(usize, usize),
+    Truncate(usize),
+    /// Replace the n-th number-like token by a hostile value.
+    Number(usize, usize),
+    /// Duplicate line n.
+    Repeat(usize),
+}
+
+fn edit() -> impl Strategy<Value = Edit> {
+    prop_oneof![
+        (any::<usize>(), any::<u8>()).prop_map(|(i, b)| Edit::Flip(i, b)),
+        (any::<usize>(), any::<u8>()).prop_map(|(i, b)| Edit::Insert(i, b)),
+        (any::<usize>(), 1usize..64).prop_map(|(i, n)| Edit::Delete(i, n)),
+        any::<usize>().prop_map(Edit::Truncate),
+        (any::<usize>(), 0..HOSTILE.len()).prop_map(|(i, h)| Edit::Number(i, h)),
+        (any::<usize>(), 0..HOSTILE.len()).prop_map(|(i, h)| Edit::Number(i, h)),
+        any::<usize>().prop_map(Edit::Repeat),
+    ]
+}
+
+fn apply(bytes: &mut Vec<u8>, edit: &Edit) {
+    let len = bytes.len().max(1);
+    match *edit {
+        Edit::Flip(i, b) if !bytes.is_empty() => bytes[i % len] ^= b,
+        Edit::Insert(i, b) => bytes.insert(i % (bytes.len() + 1), b),
+        Edit::Delete(i, n) if !bytes.is_empty() => {
+            let start = i % len;
+            let end = (start + n).min(bytes.len());
+            bytes.drain(start..end);
+        }
+        Edit::Truncate(i) => bytes.truncate(i % (bytes.len() + 1)),
+        Edit::Number(i, h) => replace_number(bytes, i, HOSTILE[h]),
+        Edit::Repeat(i) => {
+            let text = String::from_utf8_lossy(bytes).into_owned();
+            let lines: Vec<&str> = text.split_inclusive('\n').collect();
+            if !lines.is_empty() {
+                let k = i % lines.len();
+                let mut out: Vec<&str> = lines.clone();
+                out.insert(k, lines[k]);
+                *bytes = out.concat().into_bytes();
+            }
+        }
+        _ => {}
+    }
+}
+
+fn replace_number(bytes: &mut Vec<u8>, which: usize, value: &str) {
+    let is_num = |b: u8| b.is_ascii_digit() || b == b'.' || b == b'e' || b == b'E' || b == b'-';
+    let mut spans = Vec::new();
+    let mut k = 0;
+    while k < bytes.len() {
+        if bytes[k].is_ascii_digit() {
+            let start = k;
+            while k < bytes.len() && is_num(bytes[k]) {
+                k += 1;
+            }
+            spans.push((start, k));
+        } else {
+            k += 1;
+        }
+    }
+    if let Some(&(a, b)) = spans.get(which % spans.len().max(1)) {
+        bytes.splice(a..b, value.bytes());
+    }
+}
+
+fn mutated(seed: Vec<u8>) -> impl Strategy<Value = Vec<u8>> {
+    proptest::collection::vec(edit(), 1..8).prop_map(move |edits| {
+        let mut bytes = seed.clone();
+        edits.iter().for_each(|e| apply(&mut bytes, e));
+        bytes
+    })
+}
+
+/// Runs `check` on mutations of `seed` for the fuzz time.
+fn fuzz(name: &str, seed: Vec<u8>, check: impl Fn(&Path, &[u8])) {
+    let dir = scratch(name);
+    let deadline = Instant::now() + Duration::from_secs(seconds());
+    let mut runner = TestRunner::new(Config {
+        cases: 64,
+        failure_persistence: None,
+        rng_seed: RngSeed::Fixed(rng_seed()),
+        ..Config::default()
+    });
+    let strategy = mutated(seed);
+    let mut rounds = 0;
+    while rounds == 0 || Instant::now() < deadline {
+        rounds += 1;
+        let result = runner.run(&strategy, |bytes| {
+            check(&dir, &bytes);
+            Ok::<(), TestCaseError>(())
+        });
+        if let Err(e) = result {
+            panic!("fuzz target {name} (seed {}): {e}", rng_seed());
+        }
+    }
+}
+
+#[test]
+fn fuzz_csv_table() {
+    fuzz("csv", seed("tests/fuzz/table.csv"), |dir, bytes| {
+        let path = dir.join("t.csv");
+        std::fs::write(&path, bytes).unwrap();
+        let _ = bumpsim_io::table::Table::read(&path);
+        let _ = bumpsim_io::test_data::TestData::open(&path);
+    });
+}
+
+#[test]
+fn fuzz_car_and_bumper_toml() {
+    fuzz("car", seed("tests/fuzz/car.toml"), |dir, bytes| {
+        let text = String::from_utf8_lossy(bytes);
+        let _ = bumpsim_io::car::Car::parse(&text, Path::new("car.toml"));
+        let _ = bumpsim_io::car::Car::parse_json(&text, Path::new("car.json"));
+        let path = dir.join("b.toml");
+        std::fs::write(&path, bytes).unwrap();
+        let _ = bumpsim_impact::bumper::Bumper::read(&path);
+    });
+    fuzz("bumper", seed("tests/fuzz/bumper.toml"), |dir, bytes| {
+        let path = dir.join("b.toml");
+        std::fs::write(&path, bytes).unwrap();
+        if let Ok(b) = bumpsim_impact::bumper::Bumper::read(&path) {
+            let _ = b.stiffest();
+        }
+    });
+}
+
+#[test]
+fn fuzz_study_toml() {
+    fuzz(
+        "study",
+        seed("examples/identify/study.toml"),
+        |dir, bytes| {
+            let path = dir.join("study.toml");
+            std::fs::write(&path, bytes).unwrap();
+            if let Ok(study) = bumpsim_ident::study::Study::read(&path) {
+                for dof in study.dofs().into_iter().filter(|&d| d <= 3) {
+                    let _ = study.settings(dof);
+                }
+            }
+        },
+    );
+}
+
+#[test]
+fn fuzz_model_json() {
+    fuzz("model", seed("tests/fuzz/model.json"), |_, bytes| {
+        if let Ok(model) = serde_json::from_slice::<bumpsim_doe::model::ModelFile>(bytes) {
+            let _ = model.predict(&[("A".into(), 0.5)]);
+            if let Ok(map) = bumpsim_doe::reachable::LinearMap::from_model(&model, "y", "y") {
+                let _ = map.boundary();
+            }
+        }
+    });
+}
+
+#[test]
+fn fuzz_isomme_channel_files() {
+    let flat = root().join("examples/identify/FLAT");
+    let mut chn = seed("examples/identify/FLAT/Channel/FLAT.chn");
+    chn.extend(b"\r\n");
+    for (part, name) in [
+        (seed("examples/identify/FLAT/Channel/FLAT.001"), "FLAT.001"),
+        (chn, "FLAT.chn"),
+        (seed("examples/identify/FLAT/FLAT.mme"), "FLAT.mme"),
+    ] {
+        let name = name.to_string();
+        let flat = flat.clone();
+        fuzz(&format!("isomme-{name}"), part, move |dir, bytes| {
+            let test = dir.join("FLAT");
+            if !test.exists() {
+                std::fs::create_dir_all(test.join("Channel")).unwrap();
+                for f in [
+                    "FLAT.mme",
+                    "Channel/FLAT.chn",
+                    "Channel/FLAT.001",
+                    "Channel/FLAT.002",
+                    "Channel/FLAT.003",
+                ] {
+                    std::fs::copy(flat.join(f), test.join(f)).unwrap();
+                }
+            }
+            let target = if name.ends_with(".mme") {
+                test.join(&name)
+            } else {
+                test.join("Channel").join(&name)
+            };
+            let original = std::fs::read(flat.join(target.strip_prefix(&test).unwrap())).unwrap();
+            std::fs::write(&target, bytes).unwrap();
+            let _ = bumpsim_io::test_data::TestData::open(&test);
+            std::fs::write(&target, original).unwrap();
+        });
+    }
+}
+
+#[test]
+fn fuzz_ev5() {
+    fuzz("ev5", seed("tests/fuzz/test.ev5"), |dir, bytes| {
+        let path = dir.join("t.EV5");
+        std::fs::write(&path, bytes).unwrap();
+        let _ = bumpsim_io::test_data::TestData::open(&path);
+    });
+}
+
+#[test]
+fn fuzz_calculix_dat() {
+    let dir = scratch("calculix-setup");
+    let model =
+        bumpsim_core::model::MsdModel::new(vec![1.8, 74.8], vec![1.0e5], vec![4.75e5]).unwrap();
+    let deck = bumpsim_export::calculix::calculix_deck(&model, &Default::default()).unwrap();
+    let deck_path = dir.join("car.inp");
+    std::fs::write(&deck_path, deck).unwrap();
+    fuzz("calculix", seed("tests/fuzz/results.dat"), |_, bytes| {
+        std::fs::write(deck_path.with_extension("dat"), bytes).unwrap();
+        let _ = bumpsim_export::calculix::read_results(&deck_path);
+    });
+}

@@ -1,0 +1,195 @@
+//! `bumpsim synth`, `bumpsim impact` and `bumpsim mass-reduction`.
+
+use std::path::PathBuf;
+
+use crate::util::*;
+
+#[test]
+fn synth_remakes_the_bundled_series_bit_for_bit() {
+    let dir = scratch("synth").join("series");
+    let series = root().join("examples/identify/series.toml");
+    let run = bumpsim(&[
+        "synth",
+        series.to_str().unwrap(),
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    for head in ["FLAT", "P600", "POLE"] {
+        for file in [
+            format!("{head}.mme"),
+            format!("Channel/{head}.chn"),
+            format!("Channel/{head}.001"),
+            format!("Channel/{head}.002"),
+            format!("Channel/{head}.003"),
+        ] {
+            let made = std::fs::read(dir.join(head).join(&file)).unwrap();
+            let bundled =
+                std::fs::read(root().join("examples/identify").join(head).join(&file)).unwrap();
+            assert!(
+                made == bundled,
+                "{head}/{file} differs from the bundled file"
+            );
+        }
+        assert!(dir.join(format!("{head}.csv")).exists());
+    }
+    let refused = bumpsim(&[
+        "synth",
+        series.to_str().unwrap(),
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        refused.status.code(),
+        Some(2),
+        "an existing folder is not overwritten"
+    );
+}
+
+fn impact_example(name: &str) -> PathBuf {
+    root().join("examples/impact").join(name)
+}
+
+#[test]
+fn impact_json_and_report_for_a_rigid_vehicle_into_a_barrier() {
+    let dir = scratch("impact");
+    let car = dir.join("utv.toml");
+    std::fs::write(
+        &car,
+        "name = \"UTV\"\nmasses = [1050.0]\ndampers = []\nsprings = []\n",
+    )
+    .unwrap();
+    let json = dir.join("impact.json");
+    let report = dir.join("report");
+    let run = bumpsim(&[
+        "impact",
+        "--car",
+        car.to_str().unwrap(),
+        "--bumper",
+        impact_example("bumper-a.toml").to_str().unwrap(),
+        "--barrier",
+        "--speed",
+        "8 km/h",
+        "--json",
+        json.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+    ]);
+    let stdout = text(&run.stdout);
+    assert!(run.status.success(), "{stdout}{}", text(&run.stderr));
+    assert_contains(
+        &stdout,
+        &[
+            "peak force",
+            "kN",
+            "maximum compression",
+            "mm",
+            "contact time",
+            "ms",
+        ],
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    // a rigid mass on a three-part bumper: ½ m V0² = area under the loading curve
+    let (m, v0, s, fmax) = (1050.0, 8.0 / 3.6, 6.0e6, 110.0e3);
+    let knee = fmax / s;
+    let expected = (0.5 * m * v0 * v0 - 0.5 * fmax * knee) / fmax + knee;
+    let got = v["max_compression"].as_f64().unwrap();
+    assert!(
+        (got / expected - 1.0).abs() < 1e-3,
+        "max compression {got} vs {expected}"
+    );
+    for key in ["peak_force", "remaining_compression", "contact_time"] {
+        assert!(v[key].as_f64().is_some_and(|x| x > 0.0), "{key}");
+    }
+    assert!(
+        std::fs::read_to_string(report.join("index.html"))
+            .unwrap()
+            .contains("<svg")
+    );
+    let list = bumpsim(&[
+        "impact",
+        "--car",
+        car.to_str().unwrap(),
+        "--bumper",
+        impact_example("bumper-a.toml").to_str().unwrap(),
+        "--case",
+        "list",
+    ]);
+    assert!(text(&list.stdout).contains("thesis-pole") && text(&list.stdout).contains("paper A"));
+}
+
+#[test]
+fn mass_reduction_of_the_paper_a_example_and_its_sweep() {
+    let dir = scratch("mass-reduction");
+    let json = dir.join("mr.json");
+    let grid = dir.join("grid.csv");
+    let run = bumpsim(&[
+        "mass-reduction",
+        "--m1",
+        "650",
+        "--m2",
+        "400",
+        "--k",
+        "4e6",
+        "--bumper",
+        impact_example("bumper-a.toml").to_str().unwrap(),
+        "--speed",
+        "8 km/h",
+        "--criterion",
+        "remaining",
+        "--json",
+        json.to_str().unwrap(),
+        "--sweep",
+        "bumper",
+        "--points",
+        "6",
+        "-o",
+        grid.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let factor = v["scale_factor"].as_f64().unwrap();
+    assert!(factor > 650.0 / 1050.0 && factor < 1.0, "{factor}");
+    let mass = v["equivalent_mass"].as_f64().unwrap();
+    assert!((mass / 1050.0 - factor).abs() < 1e-12);
+    let csv = std::fs::read_to_string(&grid).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 36);
+    assert!(csv.starts_with("ramp slope s [N/m],plateau F_max [N],scale factor [-]"));
+}
+
+#[test]
+fn impact_errors_exit_2() {
+    let dir = scratch("impact-errors");
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, "ramp = -1.0e6\nplateau = 5.0e4\nunloading = 5.0e6\n").unwrap();
+    let car = root().join("examples/simulate/car-3dof.toml");
+    let run = bumpsim(&[
+        "impact",
+        "--car",
+        car.to_str().unwrap(),
+        "--bumper",
+        bad.to_str().unwrap(),
+        "--barrier",
+        "--speed",
+        "2",
+    ]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(
+        text(&run.stderr).contains("bad.toml") && text(&run.stderr).contains("ramp"),
+        "{}",
+        text(&run.stderr)
+    );
+    let zero = bumpsim(&[
+        "impact",
+        "--car",
+        car.to_str().unwrap(),
+        "--bumper",
+        impact_example("bumper-a.toml").to_str().unwrap(),
+        "--barrier",
+        "--speed",
+        "0",
+    ]);
+    assert_user_error(&zero, "speed");
+}

@@ -1,0 +1,18 @@
+//! Runs the real `bumpsim` binary on the bundled example and on malformed
+//! inputs written here, and checks exit codes and messages.
+//!
+//! One test binary (ripgrep's layout): one module per command, plus
+//! `formats` (ISO-MME and EV5 through the commands, pyisomme), `robustness`
+//! (hostile inputs, kills mid-write) and `fuzz` (the readers under mutated
+//! inputs; `BUMPSIM_FUZZ_SECONDS` per target).
+
+mod doe;
+mod export;
+mod formats;
+mod fuzz;
+mod identify;
+mod impact;
+mod robustness;
+mod signal;
+mod simulate;
+mod util;

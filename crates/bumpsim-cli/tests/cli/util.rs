@@ -1,0 +1,103 @@
+//! Helpers shared by the command tests: paths, scratch folders, running
+//! the real binary and checking its output.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+pub fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+pub fn example(name: &str) -> PathBuf {
+    root().join("examples/simulate").join(name)
+}
+
+pub fn scratch(test: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("cli")
+        .join(test);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+pub fn bumpsim(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_bumpsim"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+pub fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// Fails unless the run was refused as a user error (exit code 2) whose
+/// message contains `needle`.
+pub fn assert_user_error(run: &Output, needle: &str) {
+    let stderr = text(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains(needle), "missing '{needle}' in:\n{stderr}");
+}
+
+/// Fails unless every expected piece is in `output`.
+pub fn assert_contains(output: &str, expected: &[&str]) {
+    for piece in expected {
+        assert!(output.contains(piece), "missing '{piece}' in:\n{output}");
+    }
+}
+
+pub fn simulate(car: &Path, force: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "simulate",
+        "--car",
+        car.to_str().unwrap(),
+        "--force",
+        force.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    bumpsim(&args)
+}
+
+pub fn nhtsa_ev5() -> Option<PathBuf> {
+    let path = root().join("../shared/data/nhtsa-10146/v10146.EV5");
+    if !path.exists() {
+        eprintln!(
+            "SKIPPED: {} is absent (NHTSA test 10146 is read from ../shared)",
+            path.display()
+        );
+        return None;
+    }
+    Some(path)
+}
+
+/// Copies a folder tree.
+pub fn copy_tree(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap().flatten() {
+        let target = to.join(entry.file_name());
+        if entry.path().is_dir() {
+            copy_tree(&entry.path(), &target);
+        } else {
+            std::fs::copy(entry.path(), &target).unwrap();
+        }
+    }
+}
+
+/// Reads a bumpsim CSV into its header and rows of numbers.
+pub fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    (
+        header,
+        lines
+            .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+            .collect(),
+    )
+}

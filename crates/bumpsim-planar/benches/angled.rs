@@ -1,0 +1,40 @@
+//! Criterion benchmark: one 8 km/h angled-barrier impact of a planar car with
+//! a 10-segment bumper (target: under 5 ms on one core): the IIHS 30° angle
+//! barrier, a 1312 kg two-mass car, free-rolling tyres, bending coupling, the
+//! default step (safety 0.05) and output interval (0.1 ms), run until a tenth
+//! of the contact time after separation. Figures: docs/benchmarks.md.
+
+use bumpsim_core::model::MsdModel;
+use bumpsim_impact::bumper::Bumper;
+use bumpsim_planar::car::{Layout, PlanarCar};
+use bumpsim_planar::{Face, Settings, Side, Striker, simulate};
+use criterion::{Criterion, criterion_group, criterion_main};
+
+fn benches(c: &mut Criterion) {
+    let chain = MsdModel::new(vec![12.0, 1300.0], vec![2e3], vec![1.5e6]).unwrap();
+    let bumper = Bumper::three_part(3e6, 150e3, 1.2e7).unwrap();
+    let mut layout = Layout {
+        bending: 1e5,
+        ..Layout::default()
+    };
+    // free-rolling wheels: rolling resistance along, tyre grip across
+    for axle in [&mut layout.tyres.front, &mut layout.tyres.rear] {
+        axle.mu_longitudinal = 0.015;
+        axle.mu_lateral = 0.8;
+    }
+    let car = PlanarCar::symmetric(&chain, &bumper, &layout).unwrap();
+    let face = Face::Plane {
+        angle: 30f64.to_radians(),
+        overlap: 1.0,
+        side: Side::Left,
+    };
+    let striker = Striker::barrier(face, 8.0 / 3.6);
+    let mut group = c.benchmark_group("planar");
+    group.bench_function("8 km/h 30° angled barrier, 10 segments", |b| {
+        b.iter(|| simulate(&car, &striker, &Settings::default()).unwrap())
+    });
+    group.finish();
+}
+
+criterion_group!(planar, benches);
+criterion_main!(planar);

@@ -1,0 +1,527 @@
+//! The planar car (spec §9): a rigid body, a left and a right MSD chain, a
+//! segmented bumper beam and tyres.
+//!
+//! Frame: body x forward (towards the struck bumper), y left, origin at the
+//! centre of gravity (CG) of the rigid body. SI units: kg, m, N, s, rad.
+//!
+//! - **Body**: mass `M` and yaw inertia `I_z` about its own CG, which lies
+//!   `cg_behind_bumper` behind the bumper line (the beam's undeformed front,
+//!   body x = `x_f`).
+//! - **Side chains**: at `y = ±b` (`b` = half the side-member spacing), each a
+//!   1-D chain of spec §2 whose masses `m_1..m_k` move along the body x axis
+//!   (all lumped on the bumper line) and whose last link (`k_k`, `c_k`) joins
+//!   `m_k` to the body. Mass 1 carries the bumper beam. A side with no masses
+//!   attaches the beam to the body directly.
+//! - **Bumper beam**: `S` segments of equal width across `width`, each with a
+//!   characteristic of spec §5 (three-part or tabulated, elastic unloading;
+//!   force per segment) between the striker and the beam line. The beam line is
+//!   a lever through the two side-member tips, so a segment force at lateral
+//!   position `η` loads the left tip with the share `α = (η + b)/(2b)` and the
+//!   right tip with `1 − α` (overhang: α outside 0..1). Bending couples the
+//!   segments through the discrete energy `½ k_b Σ (d_{j−1} − 2 d_j + d_{j+1})²`
+//!   of the crush curvature; it vanishes for a uniform crush and for a crush
+//!   growing linearly across the beam (an angled wall), and stiffens a local
+//!   dent (pole, overlap edge). A loaded segment that leaves the face keeps
+//!   its deflection in this energy, so it never jumps (see `docs/planar.md`).
+//! - **Tyres**: four wheels at the axles (`±track/2`), static normal loads from
+//!   the total mass and the CG position, regularised Coulomb friction
+//!   `F = −μ N v / √(|v|² + v_s²)` per direction with `μ_x`, `μ_y` per axle
+//!   (μ = 0: no friction).
+//!
+//! [`PlanarCar::symmetric`] makes a planar car from a 1-D chain: the chain's
+//! last mass becomes the body, the others are halved onto the two sides with
+//! halved springs and dampers, and the bumper is split equally over the
+//! segments, so that a full-width flat impact reduces exactly to the 1-D model.
+
+use bumpsim_core::model::MsdModel;
+use bumpsim_impact::bumper::{Bumper, BumperError, Loading};
+use serde::Serialize;
+
+/// Standard gravity, m/s².
+pub const GRAVITY: f64 = 9.80665;
+
+/// Why a planar car, striker or simulation is not valid.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PlanarError {
+    /// A parameter is out of range.
+    #[error("{name} = {value} {unit}: {expected}")]
+    Parameter {
+        /// The parameter, as named in the car file.
+        name: String,
+        /// The value given.
+        value: f64,
+        /// Its unit.
+        unit: &'static str,
+        /// What is allowed.
+        expected: String,
+    },
+    /// A bumper characteristic is not valid.
+    #[error("{name}: {source}")]
+    Bumper {
+        /// Which characteristic (e.g. `bumper.segment[3]`).
+        name: String,
+        /// Why.
+        source: BumperError,
+    },
+    /// The file cannot be read or parsed.
+    #[error("{path}: {message}")]
+    File {
+        /// The file.
+        path: String,
+        /// What is wrong (with line and column where the parser gives them).
+        message: String,
+    },
+    /// The integration diverged (a step too large for the given safety factor).
+    #[error("the integration diverged at t = {time} s: lower the safety factor or the step")]
+    Diverged {
+        /// Time of the first non-finite state, s.
+        time: f64,
+    },
+    /// The striker cannot touch the car.
+    #[error("the striker never touches the car: {reason}")]
+    NoContact {
+        /// Why.
+        reason: String,
+    },
+}
+
+pub(crate) fn parameter(name: &str, value: f64, unit: &'static str, expected: &str) -> PlanarError {
+    PlanarError::Parameter {
+        name: name.into(),
+        value,
+        unit,
+        expected: expected.into(),
+    }
+}
+
+/// `Ok` when `value` is finite and `ok` holds, else a parameter error.
+pub(crate) fn require(
+    name: &str,
+    value: f64,
+    unit: &'static str,
+    expected: &str,
+    ok: bool,
+) -> Result<(), PlanarError> {
+    match value.is_finite() && ok {
+        true => Ok(()),
+        false => Err(parameter(name, value, unit, expected)),
+    }
+}
+
+fn positive(name: &str, value: f64, unit: &'static str) -> Result<(), PlanarError> {
+    require(
+        name,
+        value,
+        unit,
+        "must be a positive finite number",
+        value > 0.0,
+    )
+}
+
+/// The rigid body.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Body {
+    /// Mass M, kg.
+    pub mass: f64,
+    /// Yaw inertia I_z about the body's CG, kg·m².
+    pub yaw_inertia: f64,
+    /// Distance from the bumper line back to the CG, m (> 0).
+    pub cg_behind_bumper: f64,
+    /// Wheelbase, m.
+    pub wheelbase: f64,
+    /// Distance from the front axle back to the CG, m (0 < a < wheelbase).
+    pub cg_behind_front_axle: f64,
+    /// Track (wheel centre to wheel centre), m.
+    pub track: f64,
+}
+
+/// One side's chain: masses 1..k along the body x axis, link j joins mass j
+/// to mass j+1 and the last link joins mass k to the body.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct SideChain {
+    /// Masses, kg (mass 1 carries the bumper beam).
+    pub masses: Vec<f64>,
+    /// Dampers, N·s/m (one per mass).
+    pub dampers: Vec<f64>,
+    /// Springs, N/m (one per mass).
+    pub springs: Vec<f64>,
+}
+
+/// The segmented bumper beam.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Beam {
+    /// Width of the bumper face, m (centred on the car's axis).
+    pub width: f64,
+    /// Lateral distance between the side members, 2b, m.
+    pub side_member_spacing: f64,
+    /// One characteristic per segment, from right (−y) to left (+y); force per segment.
+    pub segments: Vec<Bumper>,
+    /// Bending coupling k_b of the crush curvature, N/m (≥ 0).
+    pub bending: f64,
+}
+
+/// Friction coefficients of one axle.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Axle {
+    /// Longitudinal friction coefficient μ_x (0: free rolling), 1.
+    pub mu_longitudinal: f64,
+    /// Lateral friction coefficient μ_y, 1.
+    pub mu_lateral: f64,
+}
+
+/// The tyres.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Tyres {
+    /// Front axle.
+    pub front: Axle,
+    /// Rear axle.
+    pub rear: Axle,
+    /// Regularisation speed v_s of the Coulomb law, m/s (> 0).
+    pub slip_speed: f64,
+}
+
+impl Default for Tyres {
+    /// Frictionless tyres (μ = 0), v_s = 0.05 m/s.
+    fn default() -> Self {
+        Tyres {
+            front: Axle::default(),
+            rear: Axle::default(),
+            slip_speed: 0.05,
+        }
+    }
+}
+
+/// A validated planar car.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlanarCar {
+    name: Option<String>,
+    body: Body,
+    left: SideChain,
+    right: SideChain,
+    beam: Beam,
+    tyres: Tyres,
+}
+
+/// Geometry and tyres that turn a 1-D chain into a symmetric planar car.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Layout {
+    /// Yaw inertia of the body, kg·m².
+    pub yaw_inertia: f64,
+    /// CG behind the bumper line, m.
+    pub cg_behind_bumper: f64,
+    /// Wheelbase, m.
+    pub wheelbase: f64,
+    /// Front axle to CG, m.
+    pub cg_behind_front_axle: f64,
+    /// Track, m.
+    pub track: f64,
+    /// Bumper width, m.
+    pub bumper_width: f64,
+    /// Side-member spacing 2b, m.
+    pub side_member_spacing: f64,
+    /// Number of bumper segments.
+    pub segments: usize,
+    /// Bending coupling, N/m.
+    pub bending: f64,
+    /// Tyres.
+    pub tyres: Tyres,
+}
+
+impl Default for Layout {
+    /// A mid-size saloon of the thesis's time (order of a Volvo S40: 4.5 m
+    /// long, 1.5 m track, 2.6 m wheelbase); I_z = 2000 kg·m², ten segments,
+    /// frictionless tyres.
+    fn default() -> Self {
+        Layout {
+            yaw_inertia: 2000.0,
+            cg_behind_bumper: 2.0,
+            wheelbase: 2.6,
+            cg_behind_front_axle: 1.1,
+            track: 1.5,
+            bumper_width: 1.6,
+            side_member_spacing: 1.0,
+            segments: 10,
+            bending: 0.0,
+            tyres: Tyres::default(),
+        }
+    }
+}
+
+/// The bumper with its forces scaled by `factor` (> 0).
+pub fn scaled(bumper: &Bumper, factor: f64) -> Result<Bumper, BumperError> {
+    let unloading = bumper.unloading_slope() * factor;
+    match bumper.loading() {
+        Loading::ThreePart { ramp, plateau } => {
+            Bumper::three_part(ramp * factor, plateau * factor, unloading)
+        }
+        Loading::Table { compression, force } => Bumper::table(
+            compression.clone(),
+            force.iter().map(|f| f * factor).collect(),
+            unloading,
+        ),
+    }
+}
+
+impl PlanarCar {
+    /// Validates and builds a planar car; errors name the parameter.
+    pub fn new(
+        body: Body,
+        left: SideChain,
+        right: SideChain,
+        beam: Beam,
+        tyres: Tyres,
+    ) -> Result<PlanarCar, PlanarError> {
+        check_body(&body)?;
+        check_chain("left", &left)?;
+        check_chain("right", &right)?;
+        check_beam(&beam)?;
+        check_tyres(&tyres)?;
+        Ok(PlanarCar {
+            name: None,
+            body,
+            left,
+            right,
+            beam,
+            tyres,
+        })
+    }
+
+    /// The symmetric planar car of a 1-D chain: the last mass is the body,
+    /// the others, the springs and the dampers are halved onto each side, and
+    /// the bumper's force is split equally over `layout.segments` segments.
+    pub fn symmetric(
+        chain: &MsdModel,
+        bumper: &Bumper,
+        layout: &Layout,
+    ) -> Result<PlanarCar, PlanarError> {
+        let n = chain.dof();
+        let half = |v: &[f64]| v.iter().map(|x| 0.5 * x).collect::<Vec<_>>();
+        let side = SideChain {
+            masses: half(&chain.masses()[..n - 1]),
+            dampers: half(chain.dampers()),
+            springs: half(chain.springs()),
+        };
+        if layout.segments == 0 {
+            return Err(parameter(
+                "bumper.segments",
+                0.0,
+                "1",
+                "at least one segment",
+            ));
+        }
+        let segment =
+            scaled(bumper, 1.0 / layout.segments as f64).map_err(|source| PlanarError::Bumper {
+                name: "bumper".into(),
+                source,
+            })?;
+        let body = Body {
+            mass: chain.masses()[n - 1],
+            yaw_inertia: layout.yaw_inertia,
+            cg_behind_bumper: layout.cg_behind_bumper,
+            wheelbase: layout.wheelbase,
+            cg_behind_front_axle: layout.cg_behind_front_axle,
+            track: layout.track,
+        };
+        let beam = Beam {
+            width: layout.bumper_width,
+            side_member_spacing: layout.side_member_spacing,
+            segments: vec![segment; layout.segments],
+            bending: layout.bending,
+        };
+        PlanarCar::new(body, side.clone(), side, beam, layout.tyres)
+    }
+
+    /// The same car with a name.
+    pub fn with_name(mut self, name: Option<String>) -> PlanarCar {
+        self.name = name;
+        self
+    }
+
+    /// The name, if any.
+    pub fn name(&self) -> Option<&str> {
+        self.name.as_deref()
+    }
+
+    /// The rigid body.
+    pub fn body(&self) -> &Body {
+        &self.body
+    }
+
+    /// The left chain (y = +b).
+    pub fn left(&self) -> &SideChain {
+        &self.left
+    }
+
+    /// The right chain (y = −b).
+    pub fn right(&self) -> &SideChain {
+        &self.right
+    }
+
+    /// The bumper beam.
+    pub fn beam(&self) -> &Beam {
+        &self.beam
+    }
+
+    /// The tyres.
+    pub fn tyres(&self) -> &Tyres {
+        &self.tyres
+    }
+
+    /// Total mass (body and both chains), kg.
+    pub fn total_mass(&self) -> f64 {
+        self.body.mass
+            + self.left.masses.iter().sum::<f64>()
+            + self.right.masses.iter().sum::<f64>()
+    }
+
+    /// Lateral centre of segment `j` (0 = rightmost), m.
+    pub fn segment_centre(&self, j: usize) -> f64 {
+        let s = self.beam.segments.len() as f64;
+        -0.5 * self.beam.width + (j as f64 + 0.5) * self.beam.width / s
+    }
+
+    /// Width of one segment, m.
+    pub fn segment_width(&self) -> f64 {
+        self.beam.width / self.beam.segments.len() as f64
+    }
+
+    /// The car mirrored about its x axis: left and right chains swap and the
+    /// segments reverse.
+    pub fn mirrored(&self) -> PlanarCar {
+        let mut car = self.clone();
+        std::mem::swap(&mut car.left, &mut car.right);
+        car.beam.segments.reverse();
+        car
+    }
+}
+
+fn check_body(body: &Body) -> Result<(), PlanarError> {
+    positive("body.mass", body.mass, "kg")?;
+    positive("body.yaw_inertia", body.yaw_inertia, "kg·m²")?;
+    positive("body.cg_behind_bumper", body.cg_behind_bumper, "m")?;
+    positive("body.wheelbase", body.wheelbase, "m")?;
+    positive("body.track", body.track, "m")?;
+    require(
+        "body.cg_behind_front_axle",
+        body.cg_behind_front_axle,
+        "m",
+        &format!(
+            "the CG must lie between the axles: 0 < a < wheelbase = {} m",
+            body.wheelbase
+        ),
+        body.cg_behind_front_axle > 0.0 && body.cg_behind_front_axle < body.wheelbase,
+    )
+}
+
+fn check_chain(side: &str, chain: &SideChain) -> Result<(), PlanarError> {
+    let n = chain.masses.len();
+    for (kind, len) in [
+        ("dampers", chain.dampers.len()),
+        ("springs", chain.springs.len()),
+    ] {
+        require(
+            &format!("{side}.{kind}"),
+            len as f64,
+            "values",
+            &format!("one per mass ({n}): the last joins mass {n} to the body"),
+            len == n,
+        )?;
+    }
+    for (i, &m) in chain.masses.iter().enumerate() {
+        positive(&format!("{side}.masses[{}]", i + 1), m, "kg")?;
+    }
+    for (i, &k) in chain.springs.iter().enumerate() {
+        positive(&format!("{side}.springs[{}]", i + 1), k, "N/m")?;
+    }
+    for (i, &c) in chain.dampers.iter().enumerate() {
+        let name = format!("{side}.dampers[{}]", i + 1);
+        require(
+            &name,
+            c,
+            "N·s/m",
+            "must be finite and not negative",
+            c >= 0.0,
+        )?;
+    }
+    Ok(())
+}
+
+fn check_beam(beam: &Beam) -> Result<(), PlanarError> {
+    positive("bumper.width", beam.width, "m")?;
+    positive("bumper.side_member_spacing", beam.side_member_spacing, "m")?;
+    require(
+        "bumper.bending",
+        beam.bending,
+        "N/m",
+        "must be finite and not negative",
+        beam.bending >= 0.0,
+    )?;
+    require(
+        "bumper.segments",
+        beam.segments.len() as f64,
+        "1",
+        "between 1 and 1000 segments",
+        (1..=1000).contains(&beam.segments.len()),
+    )
+}
+
+fn check_tyres(tyres: &Tyres) -> Result<(), PlanarError> {
+    for (axle, a) in [("front", tyres.front), ("rear", tyres.rear)] {
+        for (kind, mu) in [
+            ("mu_longitudinal", a.mu_longitudinal),
+            ("mu_lateral", a.mu_lateral),
+        ] {
+            let name = format!("tyres.{axle}.{kind}");
+            require(
+                &name,
+                mu,
+                "1",
+                "must be finite and not negative (0: no friction)",
+                mu >= 0.0,
+            )?;
+        }
+    }
+    positive("tyres.slip_speed", tyres.slip_speed, "m/s")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn chain() -> MsdModel {
+        MsdModel::new(vec![10.0, 20.0, 1000.0], vec![1e3, 2e3], vec![1e6, 2e6]).unwrap()
+    }
+
+    #[test]
+    fn symmetric_car_halves_the_chain_and_splits_the_bumper() {
+        let bumper = Bumper::three_part(1e6, 5e4, 4e6).unwrap();
+        let car = PlanarCar::symmetric(&chain(), &bumper, &Layout::default()).unwrap();
+        assert_eq!(car.left().masses, vec![5.0, 10.0]);
+        assert_eq!(car.right().springs, vec![5e5, 1e6]);
+        assert_eq!(car.body().mass, 1000.0);
+        assert_eq!(car.beam().segments.len(), 10);
+        assert!((car.beam().segments[0].loading_force(1.0) - 5e3).abs() < 1e-9);
+        assert!((car.total_mass() - 1030.0).abs() < 1e-12);
+        assert!((car.segment_centre(0) + 0.72).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bad_parameters_name_themselves() {
+        let bumper = Bumper::three_part(1e6, 5e4, 4e6).unwrap();
+        let mut layout = Layout {
+            yaw_inertia: -5.0,
+            ..Layout::default()
+        };
+        let err = PlanarCar::symmetric(&chain(), &bumper, &layout).unwrap_err();
+        assert!(err.to_string().contains("body.yaw_inertia = -5"), "{err}");
+        layout.yaw_inertia = 2000.0;
+        layout.cg_behind_front_axle = 3.0;
+        let err = PlanarCar::symmetric(&chain(), &bumper, &layout).unwrap_err();
+        assert!(err.to_string().contains("between the axles"), "{err}");
+        layout.cg_behind_front_axle = 1.0;
+        layout.tyres.front.mu_lateral = f64::NAN;
+        let err = PlanarCar::symmetric(&chain(), &bumper, &layout).unwrap_err();
+        assert!(err.to_string().contains("tyres.front.mu_lateral"), "{err}");
+    }
+}

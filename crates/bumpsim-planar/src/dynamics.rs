@@ -1,0 +1,604 @@
+//! Equations of motion of the planar car (see the `simulate` module for the
+//! derivation). Generalised coordinates `q = [X, Y, ψ, u_1..u_N, s]`: the
+//! body's CG in the world, its yaw, the chain masses' displacements along the
+//! body x axis relative to their rest position on the bumper line (left chain
+//! first), and the pendulum's travel along −x (unused for a fixed striker).
+//! Everything here works on preallocated buffers: nothing allocates per step.
+
+use crate::car::{GRAVITY, PlanarCar};
+use crate::striker::{Placed, pole_profile};
+use bumpsim_impact::bumper::BumperState;
+
+/// A chain link: `front` mass, `back` mass or the body, spring N/m, damper N·s/m.
+struct Link {
+    front: usize,
+    back: Option<usize>,
+    spring: f64,
+    damper: f64,
+}
+
+/// A wheel: body-frame position (m), normal load (N) and friction coefficients.
+struct Wheel {
+    xi: f64,
+    eta: f64,
+    load: f64,
+    mu_x: f64,
+    mu_y: f64,
+}
+
+/// The prepared model.
+pub(crate) struct Model {
+    pub body_mass: f64,
+    pub yaw_inertia: f64,
+    /// Chain masses, kg, and their lateral positions ±b, m.
+    pub masses: Vec<f64>,
+    pub eta: Vec<f64>,
+    links: Vec<Link>,
+    /// Index of the left and right front (bumper-carrying) chain masses.
+    fronts: [Option<usize>; 2],
+    pub b: f64,
+    pub x_f: f64,
+    pub segment_y: Vec<f64>,
+    half_width: f64,
+    pub bending: f64,
+    wheels: Vec<Wheel>,
+    slip: f64,
+    pub face: Placed,
+    pub pendulum: Option<f64>,
+    /// Half the integration step, s (for the full-step velocity estimate).
+    pub half_step: f64,
+}
+
+/// The contact state of the bumper segments.
+pub(crate) struct Contact {
+    pub states: Vec<BumperState>,
+    /// Penetration along the push direction, m (negative: no contact).
+    pub penetration: Vec<f64>,
+    /// Crush `d = max(penetration, 0)`, m.
+    pub crush: Vec<f64>,
+    /// Crush force from the characteristic, N.
+    pub force: Vec<f64>,
+    /// Crush force plus bending share, N.
+    pub total: Vec<f64>,
+    /// Push direction on the car, body frame (its x part is −1 for a pole).
+    pub direction: Vec<[f64; 2]>,
+    /// Application point, body frame, m.
+    pub point: Vec<[f64; 2]>,
+    /// Under the face (within the overlap) at the last evaluation.
+    covered: Vec<bool>,
+    /// Whether the coverage changed at the last evaluation.
+    pub switched: Vec<bool>,
+    /// Came under the face already inside it: no load until it is out.
+    blocked: Vec<bool>,
+    /// Beam deflection for the bending energy, m (see `Model::deflect`).
+    deflection: Vec<f64>,
+    /// Deflection kept after a loaded segment left the face, m.
+    rest: Vec<f64>,
+    /// Pushed by the striker beyond its rest deflection.
+    engaged: Vec<bool>,
+}
+
+/// Loads of one evaluation (world frame unless said otherwise).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Loads {
+    /// Resultant striker force on the car, N.
+    pub contact: [f64; 2],
+    /// Its moment about the body's CG, N·m.
+    pub contact_moment: f64,
+    /// Compressive force at the left and right side-member tips, N.
+    pub side: [f64; 2],
+    /// Resultant tyre force, N, and its moment about the CG, N·m.
+    pub tyre: [f64; 2],
+    pub tyre_moment: f64,
+}
+
+/// The body axes e (x) and n (y) in the world.
+#[derive(Clone, Copy)]
+struct Axes {
+    e: [f64; 2],
+    n: [f64; 2],
+}
+
+impl Axes {
+    fn of(yaw: f64) -> Axes {
+        let (sn, cs) = yaw.sin_cos();
+        Axes {
+            e: [cs, sn],
+            n: [-sn, cs],
+        }
+    }
+}
+
+fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+impl Model {
+    pub fn new(car: &PlanarCar, face: Placed, pendulum: Option<f64>) -> Model {
+        let (mut masses, mut eta, mut links) = (vec![], vec![], vec![]);
+        let b = 0.5 * car.beam().side_member_spacing;
+        let mut fronts = [None, None];
+        for (side, (chain, y)) in [(car.left(), b), (car.right(), -b)].into_iter().enumerate() {
+            let first = masses.len();
+            let n = chain.masses.len();
+            fronts[side] = (n > 0).then_some(first);
+            for i in 0..n {
+                masses.push(chain.masses[i]);
+                eta.push(y);
+                let back = (i + 1 < n).then_some(first + i + 1);
+                links.push(Link {
+                    front: first + i,
+                    back,
+                    spring: chain.springs[i],
+                    damper: chain.dampers[i],
+                });
+            }
+        }
+        let body = car.body();
+        let (a, l) = (body.cg_behind_front_axle, body.wheelbase);
+        let weight = car.total_mass() * GRAVITY;
+        let tyres = car.tyres();
+        let mut wheels = vec![];
+        for (xi, load, axle) in [
+            (a, weight * (l - a) / l, tyres.front),
+            (a - l, weight * a / l, tyres.rear),
+        ] {
+            for eta in [0.5 * body.track, -0.5 * body.track] {
+                wheels.push(Wheel {
+                    xi,
+                    eta,
+                    load: 0.5 * load,
+                    mu_x: axle.mu_longitudinal,
+                    mu_y: axle.mu_lateral,
+                });
+            }
+        }
+        Model {
+            body_mass: body.mass,
+            yaw_inertia: body.yaw_inertia,
+            masses,
+            eta,
+            links,
+            fronts,
+            b,
+            x_f: body.cg_behind_bumper,
+            segment_y: (0..car.beam().segments.len())
+                .map(|j| car.segment_centre(j))
+                .collect(),
+            half_width: 0.5 * car.segment_width(),
+            bending: car.beam().bending,
+            wheels,
+            slip: tyres.slip_speed,
+            face,
+            pendulum,
+            half_step: 0.0,
+        }
+    }
+
+    /// Number of generalised coordinates.
+    pub fn dof(&self) -> usize {
+        4 + self.masses.len()
+    }
+
+    /// Index of the pendulum travel.
+    pub fn travel(&self) -> usize {
+        3 + self.masses.len()
+    }
+
+    /// Left share α of a force at lateral position η on the beam lever.
+    fn share(&self, eta: f64) -> f64 {
+        (eta + self.b) / (2.0 * self.b)
+    }
+
+    /// Slope of the beam line `du/dη` from the side-member tips' displacements.
+    fn tilt(&self, q: &[f64]) -> f64 {
+        let tip = |side: usize| self.fronts[side].map_or(0.0, |i| q[3 + i]);
+        (tip(0) - tip(1)) / (2.0 * self.b)
+    }
+
+    /// The beam line's displacement along body x at η, m.
+    fn beam(&self, q: &[f64], eta: f64) -> f64 {
+        let tip = |side: usize| self.fronts[side].map_or(0.0, |i| q[3 + i]);
+        let alpha = self.share(eta);
+        alpha * tip(0) + (1.0 - alpha) * tip(1)
+    }
+
+    /// Penetration, push direction and point of segment `j`, body frame.
+    fn segment(
+        &self,
+        q: &[f64],
+        axes: Axes,
+        face: &Placed,
+        j: usize,
+    ) -> (f64, bool, [f64; 2], [f64; 2]) {
+        let Axes { e, n } = axes;
+        let y = self.segment_y[j];
+        match *face {
+            Placed::Plane {
+                normal,
+                offset,
+                edge,
+                sign,
+            } => {
+                let xi = self.x_f + self.beam(q, y);
+                let p = [q[0] + xi * e[0] + y * n[0], q[1] + xi * e[1] + y * n[1]];
+                let direction = [
+                    normal[0] * e[0] + normal[1] * e[1],
+                    normal[0] * n[0] + normal[1] * n[1],
+                ];
+                let covered = sign * (p[1] - edge) >= 0.0;
+                let depth = offset - (normal[0] * p[0] + normal[1] * p[1]);
+                (depth, covered, direction, [xi, y])
+            }
+            Placed::Pole { centre, radius } => {
+                let r = [centre[0] - q[0], centre[1] - q[1]];
+                let (xc, yc) = (r[0] * e[0] + r[1] * e[1], r[0] * n[0] + r[1] * n[1]);
+                let eta = yc.clamp(y - self.half_width, y + self.half_width);
+                let (reach, mut lateral) = pole_profile(radius, eta - yc);
+                if eta == yc {
+                    // the contact follows the axis along the tilted beam line
+                    lateral += self.tilt(q);
+                }
+                if reach <= 0.0 {
+                    return (-1.0, false, [-1.0, 0.0], [self.x_f, y]);
+                }
+                let depth = self.x_f + self.beam(q, eta) - (xc - reach);
+                // on the line of action through the axis, at the strip's lateral position
+                let along = match lateral == 0.0 {
+                    true => reach,
+                    false => (eta - yc) / lateral,
+                };
+                (depth, true, [-1.0, lateral], [xc - along, eta])
+            }
+        }
+    }
+
+    /// Updates the segments' penetration, crush and forces for positions `q`.
+    pub fn contact(&self, q: &[f64], car: &PlanarCar, c: &mut Contact) {
+        let face = match self.pendulum {
+            Some(_) => self.face.moved(q[self.travel()]),
+            None => self.face,
+        };
+        let axes = Axes::of(q[2]);
+        for (j, segment) in car.beam().segments.iter().enumerate() {
+            let (depth, covered, direction, point) = self.segment(q, axes, &face, j);
+            let depth = self.admit(c, j, depth, covered);
+            c.penetration[j] = depth;
+            c.crush[j] = depth.max(0.0);
+            c.direction[j] = direction;
+            c.point[j] = point;
+            c.force[j] = match depth > 0.0 {
+                true => segment.force(depth, &mut c.states[j]),
+                false => 0.0,
+            };
+            self.deflect(c, j, depth, covered);
+        }
+        self.bend(c);
+    }
+
+    /// The beam's deflection at segment `j` for the bending energy: the crush
+    /// while the striker pushes it; when a loaded segment leaves the face (an
+    /// overlap edge, a pole's side) the beam keeps that deflection (`rest`)
+    /// until the striker pushes it further again. So the deflection, and the
+    /// bending energy, never jump: the coupling stays conservative.
+    fn deflect(&self, c: &mut Contact, j: usize, depth: f64, covered: bool) {
+        if c.switched[j] && !covered {
+            c.rest[j] = c.deflection[j];
+        }
+        let engaged = depth > 0.0 && depth >= c.rest[j];
+        if engaged {
+            c.rest[j] = 0.0;
+        }
+        c.engaged[j] = engaged;
+        c.deflection[j] = if engaged { depth } else { c.rest[j] };
+    }
+
+    /// Adds the bending share `∂V_b/∂d_j` to the segments in contact.
+    fn bend(&self, c: &mut Contact) {
+        let last = c.crush.len() - 1;
+        let d = &c.deflection;
+        let curvature = |i: usize| d[i - 1] - 2.0 * d[i] + d[i + 1];
+        for j in 0..=last {
+            let mut bend = 0.0;
+            if c.engaged[j] && self.bending > 0.0 {
+                // d_j enters the curvatures at j − 1 (×1), j (×−2) and j + 1 (×1)
+                for (i, weight) in [(j.wrapping_sub(1), 1.0), (j, -2.0), (j + 1, 1.0)] {
+                    if i >= 1 && i < last {
+                        bend += weight * curvature(i);
+                    }
+                }
+            }
+            c.total[j] = c.force[j] + self.bending * bend;
+        }
+    }
+
+    /// A segment that comes under the face's edge already inside the face has
+    /// met the striker's side, not its face: it takes no load until it is out
+    /// again. Returns the penetration to use (−1: no contact).
+    fn admit(&self, c: &mut Contact, j: usize, depth: f64, covered: bool) -> f64 {
+        let was = c.covered[j];
+        c.covered[j] = covered;
+        c.switched[j] = was != covered;
+        if !covered || depth <= 0.0 {
+            c.blocked[j] = false;
+        } else if !was {
+            c.blocked[j] = true;
+        }
+        if covered && !c.blocked[j] {
+            depth
+        } else {
+            -1.0
+        }
+    }
+
+    /// Bending energy ½ k_b Σ (d_{j−1} − 2 d_j + d_{j+1})² of the deflections, J.
+    pub fn bending_energy(&self, c: &Contact) -> f64 {
+        let sum: f64 = c
+            .deflection
+            .windows(3)
+            .map(|w| (w[0] - 2.0 * w[1] + w[2]).powi(2))
+            .sum();
+        0.5 * self.bending * sum
+    }
+
+    /// Energy in the chain springs, J.
+    pub fn spring_energy(&self, q: &[f64]) -> f64 {
+        self.links
+            .iter()
+            .map(|l| {
+                let back = l.back.map_or(0.0, |i| q[3 + i]);
+                0.5 * l.spring * (q[3 + l.front] - back).powi(2)
+            })
+            .sum()
+    }
+
+    /// Power of the chain dampers' forces at velocities `v` on the motion at
+    /// velocities `w`, W (dissipated when positive).
+    pub fn damper_power(&self, v: &[f64], w: &[f64]) -> f64 {
+        let relative = |x: &[f64], l: &Link| x[3 + l.front] - l.back.map_or(0.0, |i| x[3 + i]);
+        self.links
+            .iter()
+            .map(|l| l.damper * relative(v, l) * relative(w, l))
+            .sum()
+    }
+
+    /// World velocity of chain mass `i`.
+    fn mass_velocity(&self, q: &[f64], v: &[f64], axes: Axes, i: usize) -> ([f64; 2], [f64; 2]) {
+        let Axes { e, n } = axes;
+        let (xi, eta) = (self.x_f + q[3 + i], self.eta[i]);
+        let p = [q[0] + xi * e[0] + eta * n[0], q[1] + xi * e[1] + eta * n[1]];
+        let w = v[2];
+        let u = v[3 + i];
+        let pv = [
+            v[0] + w * (xi * n[0] - eta * e[0]) + u * e[0],
+            v[1] + w * (xi * n[1] - eta * e[1]) + u * e[1],
+        ];
+        (p, pv)
+    }
+
+    /// Kinetic energy of car and pendulum, J.
+    pub fn kinetic(&self, q: &[f64], v: &[f64]) -> f64 {
+        let axes = Axes::of(q[2]);
+        let mut t = 0.5 * self.body_mass * (v[0] * v[0] + v[1] * v[1]);
+        t += 0.5 * self.yaw_inertia * v[2] * v[2];
+        for (i, m) in self.masses.iter().enumerate() {
+            let (_, pv) = self.mass_velocity(q, v, axes, i);
+            t += 0.5 * m * (pv[0] * pv[0] + pv[1] * pv[1]);
+        }
+        let s = v[self.travel()];
+        t + 0.5 * self.pendulum.unwrap_or(0.0) * s * s
+    }
+
+    /// Linear momentum (N·s) and angular momentum about the world origin
+    /// (N·m·s) of car and pendulum.
+    pub fn momentum(&self, q: &[f64], v: &[f64]) -> ([f64; 2], f64) {
+        let (m, axes) = (self.body_mass, Axes::of(q[2]));
+        let mut p = [m * v[0], m * v[1]];
+        let mut l = m * cross([q[0], q[1]], [v[0], v[1]]) + self.yaw_inertia * v[2];
+        for (i, mi) in self.masses.iter().enumerate() {
+            let (r, pv) = self.mass_velocity(q, v, axes, i);
+            p[0] += mi * pv[0];
+            p[1] += mi * pv[1];
+            l += mi * cross(r, pv);
+        }
+        if let Some(mp) = self.pendulum {
+            let s = q[self.travel()];
+            let vp = [-mp * v[self.travel()], 0.0];
+            p[0] += vp[0];
+            l += cross(self.face.moved(s).reference(), vp);
+        }
+        (p, l)
+    }
+
+    /// Generalised accelerations `a` from positions `q`, half-step velocities
+    /// `v` and the segment forces; `chain` is scratch of the chain's length.
+    pub fn accelerations(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        c: &Contact,
+        chain: &mut [f64],
+        a: &mut [f64],
+    ) -> Loads {
+        let (sn, cs) = q[2].sin_cos();
+        let (e, n) = ([cs, sn], [-sn, cs]);
+        let mut loads = Loads::default();
+        // external forces in the body frame: e, n and moment about the CG
+        let (mut fe, mut fn_, mut mz) = (0.0, 0.0, 0.0);
+        chain.iter_mut().for_each(|f| *f = 0.0);
+        for l in &self.links {
+            let (bx, bv) = l.back.map_or((0.0, 0.0), |i| (q[3 + i], v[3 + i]));
+            let f = l.spring * (q[3 + l.front] - bx) + l.damper * (v[3 + l.front] - bv);
+            chain[l.front] -= f;
+            if let Some(i) = l.back {
+                chain[i] += f;
+            }
+        }
+        let (mut ce, mut cn) = (0.0, 0.0);
+        for j in 0..c.total.len() {
+            let (f, d, p) = (c.total[j], c.direction[j], c.point[j]);
+            if f == 0.0 {
+                continue;
+            }
+            let (pe, pn) = (f * d[0], f * d[1]);
+            ce += pe;
+            cn += pn;
+            mz += p[0] * pn - p[1] * pe;
+            let alpha = self.share(p[1]);
+            loads.side[0] -= alpha * pe;
+            loads.side[1] -= (1.0 - alpha) * pe;
+            for (side, part) in [(0, alpha), (1, 1.0 - alpha)] {
+                if let Some(i) = self.fronts[side] {
+                    chain[i] += part * pe;
+                }
+            }
+        }
+        loads.contact = [ce * e[0] + cn * n[0], ce * e[1] + cn * n[1]];
+        loads.contact_moment = mz;
+        fe += ce;
+        fn_ += cn;
+        let tyre = self.tyres(v, e, n, &mut loads);
+        fe += tyre[0];
+        fn_ += tyre[1];
+        mz += loads.tyre_moment;
+        self.solve(q, v, [fe, fn_, mz], chain, a);
+        if let Some(mp) = self.pendulum {
+            a[self.travel()] = loads.contact[0] / mp;
+        } else {
+            a[self.travel()] = 0.0;
+        }
+        loads
+    }
+
+    /// Tyre forces (body frame e, n), filling their world resultant, moment and power.
+    fn tyres(&self, v: &[f64], e: [f64; 2], n: [f64; 2], loads: &mut Loads) -> [f64; 2] {
+        let (ve, vn, w) = (v[0] * e[0] + v[1] * e[1], v[0] * n[0] + v[1] * n[1], v[2]);
+        let (mut fe, mut fn_) = (0.0, 0.0);
+        for wheel in &self.wheels {
+            let (we, wn) = (ve - w * wheel.eta, vn + w * wheel.xi);
+            let scale = wheel.load / (we * we + wn * wn + self.slip * self.slip).sqrt();
+            let (pe, pn) = (-wheel.mu_x * scale * we, -wheel.mu_y * scale * wn);
+            fe += pe;
+            fn_ += pn;
+            loads.tyre_moment += wheel.xi * pn - wheel.eta * pe;
+        }
+        loads.tyre = [fe * e[0] + fn_ * n[0], fe * e[1] + fn_ * n[1]];
+        [fe, fn_]
+    }
+
+    /// Solves the Newton–Euler equations for the body and chain accelerations.
+    fn solve(&self, q: &[f64], v: &[f64], external: [f64; 3], chain: &[f64], a: &mut [f64]) {
+        // the inertial (Coriolis, centrifugal) terms take the velocities at
+        // the full step, extrapolated from v_{n−½} with the last accelerations
+        // still in `a`: second order, so momentum stays balanced when spinning
+        let h = self.half_step;
+        let w = v[2] + h * a[2];
+        let (mut sum_m, mut sum_mx, mut sum_mxx) = (0.0, 0.0, 0.0);
+        let (mut sum_q, mut sum_eta_q, mut cor_n, mut cor_m) = (0.0, 0.0, 0.0, 0.0);
+        for (i, &m) in self.masses.iter().enumerate() {
+            let (xi, eta) = (self.x_f + q[3 + i], self.eta[i]);
+            let coriolis = m * (2.0 * w * (v[3 + i] + h * a[3 + i]) - w * w * eta);
+            sum_m += m;
+            sum_mx += m * xi;
+            sum_mxx += m * xi * xi;
+            sum_q += chain[i];
+            sum_eta_q += eta * chain[i];
+            cor_n += coriolis;
+            cor_m += xi * coriolis;
+        }
+        let [fe, fn_, mz] = external;
+        let ax = (fe - sum_q) / self.body_mass;
+        let (a11, a12, a22) = (self.body_mass + sum_m, sum_mx, self.yaw_inertia + sum_mxx);
+        let (r1, r2) = (fn_ - cor_n, mz + sum_eta_q - cor_m);
+        let det = a11 * a22 - a12 * a12;
+        let ay = (r1 * a22 - a12 * r2) / det;
+        let yaw = (a11 * r2 - a12 * r1) / det;
+        let (sn, cs) = q[2].sin_cos();
+        a[0] = ax * cs - ay * sn;
+        a[1] = ax * sn + ay * cs;
+        a[2] = yaw;
+        for (i, &m) in self.masses.iter().enumerate() {
+            let xi = self.x_f + q[3 + i];
+            a[3 + i] = chain[i] / m - ax + yaw * self.eta[i] + w * w * xi;
+        }
+    }
+
+    /// Stiffness and damping bounds for the critical step: the largest
+    /// Gershgorin row sums of M⁻¹K and M⁻¹C over the coordinates, 1/s² and 1/s.
+    pub fn rates(&self, car: &PlanarCar) -> (f64, f64) {
+        let segments = &car.beam().segments;
+        let seg = |j: usize| segments[j].stiffest() + 16.0 * self.bending;
+        let total: f64 = (0..segments.len()).map(seg).sum();
+        let mut stiff = vec![0.0; self.masses.len()];
+        let mut damp = vec![0.0; self.masses.len()];
+        let (mut body_k, mut body_c) = (0.0, 0.0);
+        for l in &self.links {
+            stiff[l.front] += 2.0 * l.spring;
+            damp[l.front] += 2.0 * l.damper;
+            match l.back {
+                Some(i) => {
+                    stiff[i] += 2.0 * l.spring;
+                    damp[i] += 2.0 * l.damper;
+                }
+                None => {
+                    body_k += 2.0 * l.spring;
+                    body_c += 2.0 * l.damper;
+                }
+            }
+        }
+        let mut rot_k = 0.0;
+        for (j, &y) in self.segment_y.iter().enumerate() {
+            let alpha = self.share(y);
+            let lever = self.x_f * self.x_f + y * y;
+            let spread = alpha.abs() + (1.0 - alpha).abs();
+            rot_k += 2.0 * seg(j) * lever;
+            for (side, part) in [(0, alpha), (1, 1.0 - alpha)] {
+                match self.fronts[side] {
+                    Some(i) => stiff[i] += 2.0 * seg(j) * part.abs() * spread,
+                    None => body_k += 2.0 * seg(j) * part.abs(),
+                }
+            }
+        }
+        let friction: f64 = self
+            .wheels
+            .iter()
+            .map(|w| w.load * w.mu_x.max(w.mu_y) / self.slip)
+            .sum();
+        let rot_c: f64 = self
+            .wheels
+            .iter()
+            .map(|w| 2.0 * w.load * w.mu_x.max(w.mu_y) / self.slip * (w.xi * w.xi + w.eta * w.eta))
+            .sum();
+        let mut omega2 = (body_k / self.body_mass).max(rot_k / self.yaw_inertia);
+        let mut omega_c =
+            ((body_c + 2.0 * friction) / self.body_mass).max(rot_c / self.yaw_inertia);
+        for (i, m) in self.masses.iter().enumerate() {
+            omega2 = omega2.max(stiff[i] / m);
+            omega_c = omega_c.max(damp[i] / m);
+        }
+        if let Some(mp) = self.pendulum {
+            omega2 = omega2.max(2.0 * total / mp);
+        }
+        (omega2, omega_c)
+    }
+}
+
+impl Contact {
+    pub fn new(segments: usize) -> Contact {
+        Contact {
+            states: vec![BumperState::default(); segments],
+            penetration: vec![0.0; segments],
+            crush: vec![0.0; segments],
+            force: vec![0.0; segments],
+            total: vec![0.0; segments],
+            direction: vec![[0.0; 2]; segments],
+            point: vec![[0.0; 2]; segments],
+            covered: vec![true; segments],
+            switched: vec![false; segments],
+            blocked: vec![false; segments],
+            deflection: vec![0.0; segments],
+            rest: vec![0.0; segments],
+            engaged: vec![false; segments],
+        }
+    }
+}

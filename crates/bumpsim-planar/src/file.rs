@@ -1,0 +1,348 @@
+//! The planar car file (TOML). Unknown keys are errors; the car is validated
+//! by [`PlanarCar::new`], whose errors name the parameter (`body.yaw_inertia`,
+//! `left.springs[2]`, `bumper.segment[3]`, …).
+//!
+//! ```toml
+//! name = "mid-size saloon, planar"        # optional
+//! length_unit = "mm"                      # optional: "m" (default) or "mm"; applies to
+//!                                         # the keys marked (length) only
+//! [body]
+//! mass = 1300.0                           # kg, the rigid body (without the chains)
+//! yaw_inertia = 2000.0                    # kg·m², about the body's CG
+//! cg_behind_bumper = 2000.0               # (length) bumper line to CG
+//! wheelbase = 2600.0                      # (length)
+//! cg_behind_front_axle = 1100.0           # (length) front axle to CG
+//! track = 1500.0                          # (length)
+//!
+//! [left]                                  # chain at y = +b; mass 1 carries the beam
+//! masses = [5.0]                          # kg
+//! dampers = [1000.0]                      # N·s/m, the last joins the last mass to the body
+//! springs = [2e6]                         # N/m
+//! [right]                                 # chain at y = −b (absent: beam on the body)
+//! masses = [5.0]
+//! dampers = [1000.0]
+//! springs = [2e6]
+//!
+//! [bumper]
+//! width = 1600.0                          # (length), centred on the car's axis
+//! side_member_spacing = 1000.0            # (length) 2b
+//! segments = 10                           # the whole-bumper curve is split equally
+//! bending = 1e5                           # N/m between neighbouring segments
+//! ramp = 1.5e6                            # N/m  } the whole bumper's characteristic
+//! plateau = 60e3                          # N    } (spec §5), or `curve = [[d, F], ...]`
+//! unloading = 6e6                         # N/m  } with d in m and F in N
+//! # or, instead of the whole-bumper keys, one table per segment (right to left,
+//! # force per segment):  segment = [{ ramp = 1.5e5, plateau = 6e3, unloading = 6e5 }, ...]
+//!
+//! [tyres]                                 # optional; absent = frictionless
+//! slip_speed = 0.05                       # m/s, regularisation of the Coulomb law
+//! front = { mu_longitudinal = 0.0, mu_lateral = 0.8 }
+//! rear = { mu_longitudinal = 0.8, mu_lateral = 0.8 }   # e.g. parking brake on
+//! ```
+//!
+//! Slopes are always N/m and curve compressions always m: `length_unit` is
+//! only a convenience for the layout dimensions, which drawings give in mm.
+
+use crate::car::{Axle, Beam, Body, PlanarCar, PlanarError, SideChain, Tyres, scaled};
+use bumpsim_impact::bumper::Bumper;
+use serde::Deserialize;
+use std::path::Path;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PlanarFile {
+    name: Option<String>,
+    length_unit: Option<String>,
+    body: BodyFile,
+    #[serde(default)]
+    left: ChainFile,
+    #[serde(default)]
+    right: ChainFile,
+    bumper: BumperFile,
+    #[serde(default)]
+    tyres: Option<TyresFile>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BodyFile {
+    mass: f64,
+    yaw_inertia: f64,
+    cg_behind_bumper: f64,
+    wheelbase: f64,
+    cg_behind_front_axle: f64,
+    track: f64,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ChainFile {
+    #[serde(default)]
+    masses: Vec<f64>,
+    #[serde(default)]
+    dampers: Vec<f64>,
+    #[serde(default)]
+    springs: Vec<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Characteristic {
+    ramp: Option<f64>,
+    plateau: Option<f64>,
+    unloading: Option<f64>,
+    curve: Option<Vec<[f64; 2]>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BumperFile {
+    width: f64,
+    side_member_spacing: f64,
+    segments: Option<usize>,
+    #[serde(default)]
+    bending: f64,
+    ramp: Option<f64>,
+    plateau: Option<f64>,
+    unloading: Option<f64>,
+    curve: Option<Vec<[f64; 2]>>,
+    #[serde(default)]
+    segment: Vec<Characteristic>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TyresFile {
+    slip_speed: Option<f64>,
+    #[serde(default)]
+    front: Axle,
+    #[serde(default)]
+    rear: Axle,
+}
+
+fn characteristic(c: &Characteristic, name: &str) -> Result<Option<Bumper>, PlanarError> {
+    let bumper = |r| PlanarError::Bumper {
+        name: name.into(),
+        source: r,
+    };
+    let missing = |what: &str| PlanarError::Parameter {
+        name: name.into(),
+        value: f64::NAN,
+        unit: "",
+        expected: what.into(),
+    };
+    match (c.ramp, c.plateau, &c.curve, c.unloading) {
+        (None, None, None, None) => Ok(None),
+        (Some(ramp), Some(plateau), None, Some(u)) => Bumper::three_part(ramp, plateau, u)
+            .map(Some)
+            .map_err(bumper),
+        (None, None, Some(curve), Some(u)) => {
+            let (d, f) = curve.iter().map(|p| (p[0], p[1])).unzip();
+            Bumper::table(d, f, u).map(Some).map_err(bumper)
+        }
+        _ => Err(missing(
+            "give `unloading` with either `ramp` and `plateau`, or `curve`",
+        )),
+    }
+}
+
+fn segments(file: &BumperFile) -> Result<Vec<Bumper>, PlanarError> {
+    let whole = Characteristic {
+        ramp: file.ramp,
+        plateau: file.plateau,
+        unloading: file.unloading,
+        curve: file.curve.clone(),
+    };
+    let whole = characteristic(&whole, "bumper")?;
+    match (whole, file.segment.is_empty(), file.segments) {
+        (Some(b), true, Some(n)) if n > 0 => {
+            let one = scaled(&b, 1.0 / n as f64).map_err(|source| PlanarError::Bumper {
+                name: "bumper".into(),
+                source,
+            })?;
+            Ok(vec![one; n])
+        }
+        (None, false, count) if count.is_none_or(|n| n == file.segment.len()) => file
+            .segment
+            .iter()
+            .enumerate()
+            .map(|(j, c)| {
+                let name = format!("bumper.segment[{}]", j + 1);
+                characteristic(c, &name)?.ok_or_else(|| PlanarError::Parameter {
+                    name,
+                    value: f64::NAN,
+                    unit: "",
+                    expected: "a characteristic: `unloading` with `ramp` and `plateau` or `curve`".into(),
+                })
+            })
+            .collect(),
+        _ => Err(PlanarError::Parameter {
+            name: "bumper".into(),
+            value: file.segments.unwrap_or(0) as f64,
+            unit: "segments",
+            expected: "either a whole-bumper characteristic with `segments` ≥ 1, or a `segment` list (whose length `segments` must match if given)".into(),
+        }),
+    }
+}
+
+impl PlanarCar {
+    /// Parses a planar car file; `path` is used in messages.
+    ///
+    /// ```
+    /// use bumpsim_planar::PlanarCar;
+    /// let text = r#"
+    ///     [body]
+    ///     mass = 1200.0
+    ///     yaw_inertia = 1800.0
+    ///     cg_behind_bumper = 2.0
+    ///     wheelbase = 2.6
+    ///     cg_behind_front_axle = 1.1
+    ///     track = 1.5
+    ///     [bumper]
+    ///     width = 1.6
+    ///     side_member_spacing = 1.0
+    ///     segments = 8
+    ///     ramp = 1.5e6
+    ///     plateau = 60e3
+    ///     unloading = 6e6
+    /// "#;
+    /// let car = PlanarCar::parse(text, "car.toml".as_ref()).unwrap();
+    /// assert_eq!(car.beam().segments.len(), 8);
+    /// let bad = text.replace("yaw_inertia = 1800.0", "yaw_inertia = -1800.0");
+    /// let err = PlanarCar::parse(&bad, "car.toml".as_ref()).unwrap_err();
+    /// assert!(err.to_string().contains("body.yaw_inertia"));
+    /// ```
+    pub fn parse(text: &str, path: &Path) -> Result<PlanarCar, PlanarError> {
+        let error = |message: String| PlanarError::File {
+            path: path.display().to_string(),
+            message,
+        };
+        let file: PlanarFile = toml::from_str(text).map_err(|e| error(e.to_string()))?;
+        let unit = match file.length_unit.as_deref() {
+            None | Some("m") => 1.0,
+            Some("mm") => 1e-3,
+            Some(other) => {
+                return Err(error(format!(
+                    "length_unit = {other:?}: expected \"m\" or \"mm\""
+                )));
+            }
+        };
+        let b = &file.body;
+        let body = Body {
+            mass: b.mass,
+            yaw_inertia: b.yaw_inertia,
+            cg_behind_bumper: b.cg_behind_bumper * unit,
+            wheelbase: b.wheelbase * unit,
+            cg_behind_front_axle: b.cg_behind_front_axle * unit,
+            track: b.track * unit,
+        };
+        let chain = |c: ChainFile| SideChain {
+            masses: c.masses,
+            dampers: c.dampers,
+            springs: c.springs,
+        };
+        let beam = Beam {
+            width: file.bumper.width * unit,
+            side_member_spacing: file.bumper.side_member_spacing * unit,
+            segments: segments(&file.bumper)?,
+            bending: file.bumper.bending,
+        };
+        let tyres = file.tyres.map_or(Tyres::default(), |t| Tyres {
+            front: t.front,
+            rear: t.rear,
+            slip_speed: t.slip_speed.unwrap_or(Tyres::default().slip_speed),
+        });
+        let car = PlanarCar::new(body, chain(file.left), chain(file.right), beam, tyres)?;
+        Ok(car.with_name(file.name))
+    }
+
+    /// Reads a planar car file.
+    pub fn read(path: &Path) -> Result<PlanarCar, PlanarError> {
+        let text = std::fs::read_to_string(path).map_err(|e| PlanarError::File {
+            path: path.display().to_string(),
+            message: format!("cannot read: {e}"),
+        })?;
+        Self::parse(&text, path)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The example of the module documentation.
+    fn example() -> String {
+        let doc = include_str!("file.rs");
+        doc.lines()
+            .filter_map(|l| l.strip_prefix("//! "))
+            .skip_while(|l| !l.starts_with("```toml"))
+            .skip(1)
+            .take_while(|l| !l.starts_with("```"))
+            .map(|l| l.split('#').next().unwrap_or("").to_string() + "\n")
+            .collect()
+    }
+
+    #[test]
+    fn the_documented_example_reads() {
+        let car = PlanarCar::parse(&example(), "doc.toml".as_ref()).unwrap();
+        assert_eq!(car.name(), Some("mid-size saloon, planar"));
+        assert!((car.body().cg_behind_bumper - 2.0).abs() < 1e-12);
+        assert!((car.beam().width - 1.6).abs() < 1e-12);
+        assert_eq!(car.beam().segments.len(), 10);
+        assert!((car.beam().segments[3].loading_force(1.0) - 6e3).abs() < 1e-9);
+        assert!((car.tyres().rear.mu_longitudinal - 0.8).abs() < 1e-12);
+    }
+
+    #[test]
+    fn per_segment_characteristics_read_in_order() {
+        let text = "[body]\nmass = 1000.0\nyaw_inertia = 1500.0\ncg_behind_bumper = 2.0\n\
+            wheelbase = 2.5\ncg_behind_front_axle = 1.0\ntrack = 1.4\n\
+            [bumper]\nwidth = 1.2\nside_member_spacing = 0.9\nsegment = [\n\
+            { ramp = 1e5, plateau = 5e3, unloading = 4e5 },\n\
+            { curve = [[0.0, 0.0], [0.05, 8e3]], unloading = 4e5 },\n]\n";
+        let car = PlanarCar::parse(text, "seg.toml".as_ref()).unwrap();
+        assert_eq!(car.beam().segments.len(), 2);
+        assert!((car.beam().segments[1].loading_force(0.025) - 4e3).abs() < 1e-9);
+        assert!(
+            car.left().masses.is_empty(),
+            "no chain: the beam sits on the body"
+        );
+        let bad = text.replace(
+            "{ ramp = 1e5, plateau = 5e3, unloading = 4e5 }",
+            "{ ramp = 1e5 }",
+        );
+        let err = PlanarCar::parse(&bad, "seg.toml".as_ref())
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("bumper.segment[1]"), "{err}");
+        let both = text.replace("[bumper]\n", "[bumper]\nsegments = 3\n");
+        assert!(PlanarCar::parse(&both, "seg.toml".as_ref()).is_err());
+    }
+
+    #[test]
+    fn errors_name_the_file_and_the_parameter() {
+        let text = example().replace("yaw_inertia = 2000.0", "yaw_inertia = -1.0");
+        let err = PlanarCar::parse(&text, "car.toml".as_ref())
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("body.yaw_inertia = -1"), "{err}");
+        let text = example().replace("track =", "trak =");
+        let err = PlanarCar::parse(&text, "car.toml".as_ref())
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("car.toml") && err.contains("trak"), "{err}");
+        let text = example().replace("length_unit = \"mm\"", "length_unit = \"in\"");
+        let err = PlanarCar::parse(&text, "car.toml".as_ref())
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("length_unit"), "{err}");
+        let text = example().replace("unloading = 6e6", "unloading = 1e3");
+        let err = PlanarCar::parse(&text, "car.toml".as_ref())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("bumper") && err.contains("ramp slope"),
+            "{err}"
+        );
+    }
+}

@@ -1,0 +1,43 @@
+//! bumpsim-planar: the planar car of spec §9 (thesis ch. 5, paper A's future work).
+//!
+//! Angled, offset, corner and pole impacts turn the car, so the 1-D chain of
+//! spec §2 cannot describe them. This crate models the car in the ground plane
+//! (x forward towards the struck bumper, y left, yaw ψ counter-clockwise seen
+//! from above):
+//!
+//! - [`car`]: the planar car — rigid body, left/right MSD chains, a segmented
+//!   bumper beam, tyres — validated at construction;
+//! - [`file`](mod@file): the planar car TOML file;
+//! - [`striker`]: rigid planes at an angle with an overlap, poles, and pendulums
+//!   carrying either face;
+//! - [`simulate`](mod@simulate): the central-difference integrator and [`simulate()`];
+//! - [`result`]: histories, energy and momentum balances;
+//! - [`presets`]: RCAR and IIHS asymmetric load cases with their sources.
+//!
+//! ```
+//! use bumpsim_core::model::MsdModel;
+//! use bumpsim_impact::bumper::Bumper;
+//! use bumpsim_planar::car::{Layout, PlanarCar};
+//! use bumpsim_planar::striker::{Face, Side, Striker};
+//! use bumpsim_planar::simulate::{Settings, simulate};
+//! let chain = MsdModel::new(vec![10.0, 1200.0], vec![2e3], vec![2e6]).unwrap();
+//! let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+//! let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
+//! let rcar = Face::Plane { angle: 10f64.to_radians(), overlap: 0.4, side: Side::Left };
+//! let r = simulate(&car, &Striker::barrier(rcar, 15.0 / 3.6), &Settings::default()).unwrap();
+//! assert!(r.peak_yaw_rate > 0.0);                  // the left corner is struck: yaw to the left
+//! assert!(r.energy.relative_error < 1e-3);
+//! ```
+
+pub mod car;
+mod dynamics;
+pub mod file;
+pub mod presets;
+pub mod result;
+pub mod simulate;
+pub mod striker;
+
+pub use car::{PlanarCar, PlanarError};
+pub use result::PlanarResult;
+pub use simulate::{Settings, simulate};
+pub use striker::{Face, Motion, Side, Striker};

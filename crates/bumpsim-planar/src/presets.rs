@@ -1,0 +1,158 @@
+//! Asymmetric low-speed load cases with their sources (spec §9, thesis ch. 2.1).
+//!
+//! The model's x axis points towards the struck bumper, so a rear test is
+//! described with the car's rear as its "front": give the planar car of the
+//! rear structure (CG distance behind the rear bumper line, the rear chains)
+//! and read left/right as seen from behind the car. Figures, as best
+//! established from the public protocols (uncertainties stated per preset):
+//!
+//! - **RCAR structural test** — RCAR *Low-speed structural crash test
+//!   protocol*, Issue 2.2 (July 2011): front, the car at 15 km/h (+1/−0) into a
+//!   rigid barrier with a 10° face at 40 % overlap (the driver's side); rear, a
+//!   1400 kg mobile barrier at 15 km/h, 40 % overlap, 10°. The thesis (and the
+//!   older Allianz AZT test it descends from) gives 16 km/h; the protocol
+//!   issue used here gives 15 km/h.
+//! - **IIHS front-into-angle-barrier and rear-into-pole** — IIHS *Low-speed
+//!   crash test protocol* of the 1990s–2006 (superseded in 2006 by the
+//!   IIHS/RCAR bumper test): four 5 mph (8 km/h) tests — front and rear into a
+//!   flat barrier, front into an angle barrier, rear into a pole. Angle 30° and
+//!   a 7 in (178 mm) diameter pole centred on the rear are as reported in IIHS
+//!   status reports of the period; the original protocol document was not
+//!   available here, so read the angle and the pole diameter as uncertain.
+//! - **IIHS corner tests** — IIHS/RCAR *Bumper test protocol* (IIHS Version I,
+//!   2006; RCAR Bumper Test Issue 2.0, 2010): front and rear corner impacts at
+//!   3 mph (4.8 km/h; RCAR: 5 km/h) into the bumper barrier at 15 % overlap,
+//!   the barrier face angled 10°. The bumper barrier (RCAR *Dimensions and
+//!   specifications of the RCAR bumper barrier system*, Issue 1, September
+//!   2007) is a rigid steel beam 1500 mm wide whose face is curved with a
+//!   3400 mm radius, used with an energy absorber in front; here it is a flat
+//!   rigid plane (curvature and absorber neglected: put the absorber's
+//!   characteristic in series with the bumper's if it matters). The 10° angle
+//!   is from memory of the protocol figure, not checked against the document.
+
+use crate::striker::{Face, Motion, Side, Striker};
+
+/// A named planar load case.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanarPreset {
+    /// Name.
+    pub name: &'static str,
+    /// What it is.
+    pub description: &'static str,
+    /// Face and motion (SI: rad, m, kg, m/s).
+    pub striker: Striker,
+    /// The public document the figures come from.
+    pub source: &'static str,
+    /// What could not be confirmed.
+    pub uncertain: &'static str,
+}
+
+const KMH: f64 = 1.0 / 3.6;
+const DEG10: f64 = 10.0 * std::f64::consts::PI / 180.0;
+const DEG30: f64 = 30.0 * std::f64::consts::PI / 180.0;
+
+const fn plane(angle: f64, overlap: f64, side: Side) -> Face {
+    Face::Plane {
+        angle,
+        overlap,
+        side,
+    }
+}
+
+const fn fixed(face: Face, kmh: f64) -> Striker {
+    Striker {
+        face,
+        motion: Motion::Fixed { speed: kmh * KMH },
+    }
+}
+
+/// All planar presets.
+pub const PRESETS: &[PlanarPreset] = &[
+    PlanarPreset {
+        name: "rcar-structural-front",
+        description: "front, 15 km/h into a rigid 10° barrier at 40 % overlap, left (driver's) side",
+        striker: fixed(plane(DEG10, 0.4, Side::Left), 15.0),
+        source: "RCAR Low-speed structural crash test protocol, Issue 2.2 (2011)",
+        uncertain: "speed: the thesis and the older Allianz AZT test give 16 km/h",
+    },
+    PlanarPreset {
+        name: "rcar-structural-rear",
+        description: "rear, a 1400 kg mobile barrier at 15 km/h with a 10° face at 40 % overlap",
+        striker: Striker {
+            face: plane(DEG10, 0.4, Side::Left),
+            motion: Motion::Pendulum {
+                mass: 1400.0,
+                speed: 15.0 * KMH,
+            },
+        },
+        source: "RCAR Low-speed structural crash test protocol, Issue 2.2 (2011)",
+        uncertain: "the side struck depends on the market (driver's side); the mobile barrier is guided here",
+    },
+    PlanarPreset {
+        name: "iihs-angle-front",
+        description: "front, 8 km/h (5 mph) into a rigid barrier angled 30°, full width",
+        striker: fixed(plane(DEG30, 1.0, Side::Left), 8.0),
+        source: "IIHS low-speed crash test protocol (1990s to 2006), front-into-angle-barrier test",
+        uncertain: "angle (30°) and the side taken from IIHS status reports, not the protocol",
+    },
+    PlanarPreset {
+        name: "iihs-pole-rear",
+        description: "rear, 8 km/h (5 mph) into a rigid 178 mm (7 in) pole centred on the car",
+        striker: fixed(
+            Face::Pole {
+                radius: 0.0889,
+                lateral: 0.0,
+            },
+            8.0,
+        ),
+        source: "IIHS low-speed crash test protocol (1990s to 2006), rear-into-pole test",
+        uncertain: "pole diameter (7 in) from IIHS status reports, not the protocol",
+    },
+    PlanarPreset {
+        name: "iihs-corner-front",
+        description: "front corner, 4.8 km/h (3 mph) into the bumper barrier, 15 % overlap, 10°",
+        striker: fixed(plane(DEG10, 0.15, Side::Left), 4.8),
+        source: "IIHS/RCAR Bumper test protocol (IIHS Version I 2006; RCAR Issue 2.0 2010)",
+        uncertain: "the 10° face angle; RCAR runs the corner tests at 5 km/h; the barrier's 3.4 m face radius and energy absorber are neglected",
+    },
+    PlanarPreset {
+        name: "iihs-corner-rear",
+        description: "rear corner, 4.8 km/h (3 mph) into the bumper barrier, 15 % overlap, 10°",
+        striker: fixed(plane(-DEG10, 0.15, Side::Right), 4.8),
+        source: "IIHS/RCAR Bumper test protocol (IIHS Version I 2006; RCAR Issue 2.0 2010)",
+        uncertain: "the 10° face angle; RCAR runs the corner tests at 5 km/h; the barrier's 3.4 m face radius and energy absorber are neglected",
+    },
+];
+
+/// The preset of this name.
+pub fn find(name: &str) -> Option<&'static PlanarPreset> {
+    PRESETS.iter().find(|p| p.name == name)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::car::{Layout, PlanarCar};
+    use crate::simulate::{Settings, simulate};
+    use bumpsim_core::model::MsdModel;
+    use bumpsim_impact::bumper::Bumper;
+
+    #[test]
+    fn every_preset_runs_on_a_saloon_and_balances() {
+        let chain = MsdModel::new(vec![10.0, 1300.0], vec![2e3], vec![1.5e6]).unwrap();
+        let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
+        for preset in PRESETS {
+            let r = simulate(&car, &preset.striker, &Settings::default()).unwrap();
+            assert!(
+                r.energy.max_relative_error < 1e-3,
+                "{}: {:?}",
+                preset.name,
+                r.energy
+            );
+            assert!(r.peak_force > 1e3, "{}", preset.name);
+            assert!(!preset.source.is_empty() && !preset.uncertain.is_empty());
+        }
+        assert!(find("iihs-pole-rear").is_some() && find("nope").is_none());
+    }
+}

@@ -1,0 +1,401 @@
+//! Strikers: a rigid plane at an angle with an overlap, or a pole; fixed (the
+//! car moves into it) or carried by a pendulum that moves in a straight line
+//! (spec §9).
+//!
+//! World frame = the car's body frame at t = 0 (x forward towards the struck
+//! bumper, y left, origin at the body's CG). Both faces are frictionless: a
+//! plane pushes along its normal, a pole along the radius through its axis.
+//!
+//! - **Plane**: its face is turned counter-clockwise by `angle` θ from
+//!   perpendicular to the car's x axis; its normal towards the car is
+//!   `n = (−cos θ, −sin θ)`. It covers `overlap` (a fraction of the bumper
+//!   width, 0 < overlap ≤ 1) from the `side` given, measured in world y:
+//!   left covers `y ≥ w/2 − overlap·w`, right `y ≤ −w/2 + overlap·w`; a full
+//!   overlap covers everything. RCAR's structural test on the left corner is
+//!   θ = +10°, left, 0.4: the left corner is struck first. The mirror case is
+//!   (−θ, other side).
+//! - **Pole**: radius `r`, axis at world `y = lateral`.
+//!
+//! The striker is placed so that it just touches the nearest segment point at
+//! t = 0. A pendulum starts there at `speed` towards the car (along −x) with
+//! the car at rest; a fixed striker is hit by the car at `speed` along +x.
+//! The pendulum is guided: it neither turns nor moves sideways; its guide's
+//! reactions are reported in the momentum balance.
+
+use crate::car::{PlanarCar, PlanarError, require};
+use serde::Serialize;
+
+/// Largest lateral-to-longitudinal ratio of a pole's push on a segment strip
+/// grazing the pole (about 72°); keeps the wedge term bounded at the tangent.
+const GRAZING: f64 = 3.0;
+
+/// A pole's reach ahead of its axis at lateral distance `dy` from it, m, and
+/// the push's lateral-to-longitudinal ratio `−d reach / d dy`: the circle of
+/// radius `r` until its slope reaches [`GRAZING`], then its tangent line, so
+/// the push stays bounded and is still the gradient of the penetration
+/// (the contact stays conservative). Reach ≤ 0: the strip misses the pole.
+pub(crate) fn pole_profile(r: f64, dy: f64) -> (f64, f64) {
+    let s0 = r / (1.0 + GRAZING * GRAZING).sqrt();
+    let d0 = GRAZING * s0;
+    match dy.abs() <= d0 {
+        true => {
+            let s = (r * r - dy * dy).sqrt();
+            (s, dy / s)
+        }
+        false => (s0 - (dy.abs() - d0) * GRAZING, GRAZING * dy.signum()),
+    }
+}
+
+/// Which side an overlap is measured from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Side {
+    /// From the car's left (+y).
+    Left,
+    /// From the car's right (−y).
+    Right,
+}
+
+impl Side {
+    /// The other side.
+    pub fn other(self) -> Side {
+        match self {
+            Side::Left => Side::Right,
+            Side::Right => Side::Left,
+        }
+    }
+}
+
+/// The striker's rigid face.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum Face {
+    /// A plane at `angle` (rad) covering `overlap` (fraction) of the bumper from `side`.
+    Plane {
+        /// Angle θ of the face, rad (counter-clockwise, |θ| < 80°).
+        angle: f64,
+        /// Overlap, fraction of the bumper width (0 < overlap ≤ 1).
+        overlap: f64,
+        /// Side the overlap is measured from.
+        side: Side,
+    },
+    /// A vertical pole.
+    Pole {
+        /// Radius, m.
+        radius: f64,
+        /// Lateral position of its axis, world y, m.
+        lateral: f64,
+    },
+}
+
+impl Face {
+    /// A full-width flat barrier.
+    pub fn flat() -> Face {
+        Face::Plane {
+            angle: 0.0,
+            overlap: 1.0,
+            side: Side::Left,
+        }
+    }
+
+    /// The mirror image about the car's x axis.
+    pub fn mirrored(self) -> Face {
+        match self {
+            Face::Plane {
+                angle,
+                overlap,
+                side,
+            } => Face::Plane {
+                angle: -angle,
+                overlap,
+                side: side.other(),
+            },
+            Face::Pole { radius, lateral } => Face::Pole {
+                radius,
+                lateral: -lateral,
+            },
+        }
+    }
+}
+
+/// How the striker and the car move.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum Motion {
+    /// The car moves at `speed` (m/s, along +x) into the fixed face.
+    Fixed {
+        /// Car speed, m/s.
+        speed: f64,
+    },
+    /// A pendulum of `mass` (kg) carries the face at `speed` (m/s, along −x)
+    /// into the car at rest.
+    Pendulum {
+        /// Pendulum mass, kg.
+        mass: f64,
+        /// Pendulum speed, m/s.
+        speed: f64,
+    },
+}
+
+/// A face and its motion.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Striker {
+    /// The face.
+    pub face: Face,
+    /// The motion.
+    pub motion: Motion,
+}
+
+impl Striker {
+    /// The car at `speed` m/s into a fixed `face`.
+    pub fn barrier(face: Face, speed: f64) -> Striker {
+        Striker {
+            face,
+            motion: Motion::Fixed { speed },
+        }
+    }
+
+    /// A pendulum of `mass` kg carrying `face` at `speed` m/s into the car at rest.
+    pub fn pendulum(face: Face, mass: f64, speed: f64) -> Striker {
+        Striker {
+            face,
+            motion: Motion::Pendulum { mass, speed },
+        }
+    }
+
+    /// The mirror image about the car's x axis.
+    pub fn mirrored(self) -> Striker {
+        Striker {
+            face: self.face.mirrored(),
+            ..self
+        }
+    }
+}
+
+/// A face placed against a car, in the world frame at pendulum travel 0.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Placed {
+    /// Points p with `normal·p < offset` are inside; covered when
+    /// `sign·(p_y − edge) ≥ 0` (`sign` 0: everywhere).
+    Plane {
+        normal: [f64; 2],
+        offset: f64,
+        edge: f64,
+        sign: f64,
+    },
+    /// Axis at `centre`.
+    Pole { centre: [f64; 2], radius: f64 },
+}
+
+impl Placed {
+    /// The face after the pendulum travelled `s` along −x.
+    pub(crate) fn moved(&self, s: f64) -> Placed {
+        match *self {
+            Placed::Plane {
+                normal,
+                offset,
+                edge,
+                sign,
+            } => Placed::Plane {
+                normal,
+                offset: offset - s * normal[0],
+                edge,
+                sign,
+            },
+            Placed::Pole { centre, radius } => Placed::Pole {
+                centre: [centre[0] - s, centre[1]],
+                radius,
+            },
+        }
+    }
+
+    /// A reference point of the face (for the pendulum's angular momentum), world, m.
+    pub(crate) fn reference(&self) -> [f64; 2] {
+        match *self {
+            Placed::Plane { normal, offset, .. } => [offset * normal[0], offset * normal[1]],
+            Placed::Pole { centre, .. } => centre,
+        }
+    }
+}
+
+/// Checks the striker and places it against the car at rest in its initial pose.
+pub(crate) fn place(car: &PlanarCar, striker: &Striker) -> Result<Placed, PlanarError> {
+    let (mass, speed) = match striker.motion {
+        Motion::Fixed { speed } => (1.0, speed),
+        Motion::Pendulum { mass, speed } => (mass, speed),
+    };
+    require("striker mass", mass, "kg", "must be positive", mass > 0.0)?;
+    require(
+        "speed",
+        speed,
+        "m/s",
+        "must be positive (an impact needs a closing speed)",
+        speed > 0.0,
+    )?;
+    let x_f = car.body().cg_behind_bumper;
+    let half = 0.5 * car.beam().width;
+    match striker.face {
+        Face::Plane {
+            angle,
+            overlap,
+            side,
+        } => place_plane(car, angle, overlap, side, x_f),
+        Face::Pole { radius, lateral } => {
+            require("pole radius", radius, "m", "must be positive", radius > 0.0)?;
+            require(
+                "pole lateral position",
+                lateral,
+                "m",
+                &format!(
+                    "the pole cannot hit: |y| must be below half the bumper width plus the radius, {} m",
+                    half + radius
+                ),
+                lateral.abs() < half + radius,
+            )?;
+            place_pole(car, radius, lateral, x_f)
+        }
+    }
+}
+
+fn place_plane(
+    car: &PlanarCar,
+    angle: f64,
+    overlap: f64,
+    side: Side,
+    x_f: f64,
+) -> Result<Placed, PlanarError> {
+    require(
+        "barrier angle",
+        angle,
+        "rad",
+        "must lie within ±80° (±1.396 rad)",
+        angle.abs() <= 80f64.to_radians(),
+    )?;
+    require(
+        "overlap",
+        overlap,
+        "fraction of the bumper width",
+        "must lie in 0 < overlap ≤ 1 (0.4 is 40 %)",
+        overlap > 0.0 && overlap <= 1.0,
+    )?;
+    let w = car.beam().width;
+    let (edge, sign) = match (overlap >= 1.0, side) {
+        (true, _) => (0.0, 0.0),
+        (false, Side::Left) => (0.5 * w - overlap * w, 1.0),
+        (false, Side::Right) => (-0.5 * w + overlap * w, -1.0),
+    };
+    let normal = [-angle.cos(), -angle.sin()];
+    let offset = (0..car.beam().segments.len())
+        .map(|j| car.segment_centre(j))
+        .filter(|&y| sign * (y - edge) >= 0.0)
+        .map(|y| normal[0] * x_f + normal[1] * y)
+        .fold(f64::INFINITY, f64::min);
+    if !offset.is_finite() {
+        return Err(PlanarError::NoContact {
+            reason: format!(
+                "an overlap of {:.1} % of the {w} m bumper covers no segment centre; raise the overlap or the number of segments",
+                overlap * 100.0
+            ),
+        });
+    }
+    Ok(Placed::Plane {
+        normal,
+        offset,
+        edge,
+        sign,
+    })
+}
+
+fn place_pole(car: &PlanarCar, radius: f64, lateral: f64, x_f: f64) -> Result<Placed, PlanarError> {
+    // the pole's axis sits where its deepest reach into the nearest strip is zero
+    let h = 0.5 * car.segment_width();
+    let reach = (0..car.beam().segments.len())
+        .map(|j| {
+            let y = car.segment_centre(j);
+            pole_profile(radius, lateral.clamp(y - h, y + h) - lateral).0
+        })
+        .fold(f64::NEG_INFINITY, f64::max);
+    if reach <= 0.0 {
+        return Err(PlanarError::NoContact {
+            reason: format!(
+                "a pole of radius {radius} m at y = {lateral} m passes beside the {} m bumper",
+                car.beam().width
+            ),
+        });
+    }
+    Ok(Placed::Pole {
+        centre: [x_f + reach, lateral],
+        radius,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::car::Layout;
+    use bumpsim_core::model::MsdModel;
+    use bumpsim_impact::bumper::Bumper;
+
+    fn car() -> PlanarCar {
+        let chain = MsdModel::new(vec![1000.0], vec![], vec![]).unwrap();
+        let bumper = Bumper::three_part(1e6, 5e4, 4e6).unwrap();
+        PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap()
+    }
+
+    #[test]
+    fn bad_strikers_are_refused_with_reasons() {
+        let plane = |overlap| {
+            Striker::barrier(
+                Face::Plane {
+                    angle: 0.1,
+                    overlap,
+                    side: Side::Left,
+                },
+                2.0,
+            )
+        };
+        for overlap in [0.0, -0.2, 1.5, f64::NAN] {
+            let err = place(&car(), &plane(overlap)).unwrap_err().to_string();
+            assert!(err.contains("overlap"), "{err}");
+        }
+        let err = place(&car(), &plane(0.01)).unwrap_err().to_string();
+        assert!(err.contains("never touches"), "{err}");
+        let pole = Striker::barrier(
+            Face::Pole {
+                radius: 0.15,
+                lateral: 1.2,
+            },
+            2.0,
+        );
+        let err = place(&car(), &pole).unwrap_err().to_string();
+        assert!(err.contains("cannot hit"), "{err}");
+        let err = place(&car(), &Striker::pendulum(Face::flat(), -1.0, 2.0)).unwrap_err();
+        assert!(err.to_string().contains("striker mass"), "{err}");
+    }
+
+    #[test]
+    fn faces_touch_the_nearest_segment() {
+        let rcar = Striker::barrier(
+            Face::Plane {
+                angle: 10f64.to_radians(),
+                overlap: 0.4,
+                side: Side::Left,
+            },
+            2.0,
+        );
+        let Placed::Plane { normal, offset, .. } = place(&car(), &rcar).unwrap() else {
+            panic!("a plane")
+        };
+        // the left-most segment centre (y = 0.72 m) on the bumper line (x = 2 m) touches
+        let touch = normal[0] * 2.0 + normal[1] * 0.72;
+        assert!((touch - offset).abs() < 1e-12);
+        let pole = Striker::barrier(
+            Face::Pole {
+                radius: 0.15,
+                lateral: 0.0,
+            },
+            2.0,
+        );
+        let Placed::Pole { centre, .. } = place(&car(), &pole).unwrap() else {
+            panic!("a pole")
+        };
+        assert!((centre[0] - 2.15).abs() < 1e-12);
+    }
+}
