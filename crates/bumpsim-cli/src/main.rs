@@ -16,6 +16,7 @@ mod export;
 mod identify;
 mod impact;
 mod output;
+mod planar;
 mod signal;
 mod simulate;
 
@@ -47,6 +48,8 @@ enum Command {
     Predict(identify::PredictArgs),
     /// Simulate an impact: pendulum or barrier, bumper characteristic, MSD car.
     Impact(impact::ImpactArgs),
+    /// Simulate an angled, offset, corner or pole impact of the planar car (yaw).
+    Planar(planar::Args),
     /// Make a synthetic pendulum test series (ISO-MME and CSV) with a measurement chain.
     Synth(impact::SynthArgs),
     /// The reduced point mass of paper A: scale factor of a rigid test vehicle.
@@ -99,6 +102,7 @@ fn main() -> ExitCode {
         Command::Signal(command) => signal::run(&command),
         Command::Identify(args) => identify::run(&args),
         Command::Impact(args) => impact::run_impact(&args),
+        Command::Planar(args) => planar::run(&args),
         Command::MassReduction(args) => impact::run_reduction(&args),
         Command::Synth(args) => impact::run_synth(&args),
         Command::Doe(command) => doe::run(&command),

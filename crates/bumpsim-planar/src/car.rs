@@ -55,6 +55,14 @@ pub enum PlanarError {
         /// What is allowed.
         expected: String,
     },
+    /// A needed part of the car file is missing.
+    #[error("{name}: {expected}")]
+    Missing {
+        /// The part, as named in the car file.
+        name: String,
+        /// What is needed.
+        expected: String,
+    },
     /// A bumper characteristic is not valid.
     #[error("{name}: {source}")]
     Bumper {
@@ -84,6 +92,9 @@ pub enum PlanarError {
         reason: String,
     },
 }
+
+/// Most segments a bumper beam may have (docs/limits.md).
+pub const MAX_SEGMENTS: usize = 1000;
 
 pub(crate) fn parameter(name: &str, value: f64, unit: &'static str, expected: &str) -> PlanarError {
     PlanarError::Parameter {
@@ -461,8 +472,8 @@ fn check_beam(beam: &Beam) -> Result<(), PlanarError> {
         "bumper.segments",
         beam.segments.len() as f64,
         "1",
-        "between 1 and 1000 segments",
-        (1..=1000).contains(&beam.segments.len()),
+        &format!("between 1 and {MAX_SEGMENTS} segments"),
+        (1..=MAX_SEGMENTS).contains(&beam.segments.len()),
     )
 }
 

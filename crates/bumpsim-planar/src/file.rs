@@ -43,7 +43,9 @@
 //! Slopes are always N/m and curve compressions always m: `length_unit` is
 //! only a convenience for the layout dimensions, which drawings give in mm.
 
-use crate::car::{Axle, Beam, Body, PlanarCar, PlanarError, SideChain, Tyres, scaled};
+use crate::car::{
+    Axle, Beam, Body, MAX_SEGMENTS, PlanarCar, PlanarError, SideChain, Tyres, scaled,
+};
 use bumpsim_impact::bumper::Bumper;
 use serde::Deserialize;
 use std::path::Path;
@@ -125,10 +127,8 @@ fn characteristic(c: &Characteristic, name: &str) -> Result<Option<Bumper>, Plan
         name: name.into(),
         source: r,
     };
-    let missing = |what: &str| PlanarError::Parameter {
+    let missing = |what: &str| PlanarError::Missing {
         name: name.into(),
-        value: f64::NAN,
-        unit: "",
         expected: what.into(),
     };
     match (c.ramp, c.plateau, &c.curve, c.unloading) {
@@ -155,7 +155,7 @@ fn segments(file: &BumperFile) -> Result<Vec<Bumper>, PlanarError> {
     };
     let whole = characteristic(&whole, "bumper")?;
     match (whole, file.segment.is_empty(), file.segments) {
-        (Some(b), true, Some(n)) if n > 0 => {
+        (Some(b), true, Some(n)) if (1..=MAX_SEGMENTS).contains(&n) => {
             let one = scaled(&b, 1.0 / n as f64).map_err(|source| PlanarError::Bumper {
                 name: "bumper".into(),
                 source,
@@ -168,11 +168,10 @@ fn segments(file: &BumperFile) -> Result<Vec<Bumper>, PlanarError> {
             .enumerate()
             .map(|(j, c)| {
                 let name = format!("bumper.segment[{}]", j + 1);
-                characteristic(c, &name)?.ok_or_else(|| PlanarError::Parameter {
+                characteristic(c, &name)?.ok_or_else(|| PlanarError::Missing {
                     name,
-                    value: f64::NAN,
-                    unit: "",
-                    expected: "a characteristic: `unloading` with `ramp` and `plateau` or `curve`".into(),
+                    expected: "a characteristic: `unloading` with `ramp` and `plateau` or `curve`"
+                        .into(),
                 })
             })
             .collect(),
@@ -180,7 +179,9 @@ fn segments(file: &BumperFile) -> Result<Vec<Bumper>, PlanarError> {
             name: "bumper".into(),
             value: file.segments.unwrap_or(0) as f64,
             unit: "segments",
-            expected: "either a whole-bumper characteristic with `segments` ≥ 1, or a `segment` list (whose length `segments` must match if given)".into(),
+            expected: format!(
+                "either a whole-bumper characteristic with `segments` from 1 to {MAX_SEGMENTS}, or a `segment` list (whose length `segments` must match if given)"
+            ),
         }),
     }
 }

@@ -12,7 +12,8 @@
 //!   carrying either face;
 //! - [`simulate`](mod@simulate): the central-difference integrator and [`simulate()`];
 //! - [`result`]: histories, energy and momentum balances;
-//! - [`presets`]: RCAR and IIHS asymmetric load cases with their sources.
+//! - [`presets`]: RCAR and IIHS asymmetric load cases with their sources;
+//! - [`text`]: the summary with units and the CSV histories.
 //!
 //! ```
 //! use bumpsim_core::model::MsdModel;
@@ -36,6 +37,7 @@ pub mod presets;
 pub mod result;
 pub mod simulate;
 pub mod striker;
+pub mod text;
 
 pub use car::{PlanarCar, PlanarError};
 pub use result::PlanarResult;

@@ -138,6 +138,26 @@ fn check(settings: &Settings) -> Result<(), PlanarError> {
     )
 }
 
+/// Most integration steps one simulation may take (docs/limits.md): about
+/// ten seconds of work; an ordinary car needs 10⁴–10⁶.
+pub const MAX_STEPS: f64 = 5e7;
+
+/// Refuses a step that would need more than [`MAX_STEPS`] steps for the
+/// duration (an implausibly stiff or light element), instead of running for hours.
+fn check_steps(step: f64, settings: &Settings) -> Result<(), PlanarError> {
+    let steps = settings.duration / step;
+    require(
+        "integration step",
+        step,
+        "s",
+        &format!(
+            "needs {steps:.3e} steps for the {} s duration, above the limit of {MAX_STEPS:e}: check the car for an implausibly stiff or light element, or shorten the duration",
+            settings.duration
+        ),
+        step > 0.0 && steps <= MAX_STEPS,
+    )
+}
+
 /// Simulates a striker hitting a planar car.
 pub fn simulate(
     car: &PlanarCar,
@@ -160,6 +180,7 @@ pub fn simulate(
             settings.output_step / (settings.output_step / raw).ceil()
         }
     };
+    check_steps(step, settings)?;
     let mut v = vec![0.0; model.dof()];
     match pendulum {
         None => v[0] = speed,

@@ -65,6 +65,19 @@ impl Side {
     }
 }
 
+impl std::str::FromStr for Side {
+    type Err = String;
+
+    /// `left` or `right` (any case).
+    fn from_str(text: &str) -> Result<Side, String> {
+        match text.trim().to_ascii_lowercase().as_str() {
+            "left" => Ok(Side::Left),
+            "right" => Ok(Side::Right),
+            _ => Err(format!("'{text}': expected left or right")),
+        }
+    }
+}
+
 /// The striker's rigid face.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub enum Face {
@@ -93,6 +106,25 @@ impl Face {
             angle: 0.0,
             overlap: 1.0,
             side: Side::Left,
+        }
+    }
+
+    /// A plane in a test protocol's terms: `angle` in degrees
+    /// (counter-clockwise), `overlap` in percent of the bumper width, from
+    /// `side`. Ranges are checked when the striker is placed against a car.
+    pub fn plane_in_degrees(angle: f64, overlap: f64, side: Side) -> Face {
+        Face::Plane {
+            angle: angle.to_radians(),
+            overlap: overlap / 100.0,
+            side,
+        }
+    }
+
+    /// A pole of `diameter` (m) with its axis at world `lateral` (m).
+    pub fn pole_of_diameter(diameter: f64, lateral: f64) -> Face {
+        Face::Pole {
+            radius: 0.5 * diameter,
+            lateral,
         }
     }
 
@@ -158,6 +190,15 @@ impl Striker {
             face,
             motion: Motion::Pendulum { mass, speed },
         }
+    }
+
+    /// The same striker at another `speed`, m/s (car or pendulum).
+    pub fn with_speed(self, speed: f64) -> Striker {
+        let motion = match self.motion {
+            Motion::Fixed { .. } => Motion::Fixed { speed },
+            Motion::Pendulum { mass, .. } => Motion::Pendulum { mass, speed },
+        };
+        Striker { motion, ..self }
     }
 
     /// The mirror image about the car's x axis.

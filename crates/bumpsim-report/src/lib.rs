@@ -6,6 +6,7 @@
 //! - [`html`]: self-contained HTML reports;
 //! - [`impact`]: impact pages and mass-reduction heat maps;
 //! - [`identification`]: the identification report;
+//! - [`planar`]: planar impact pages (forces, yaw, crush per segment);
 //! - [`signal`]: raw against processed crash-test signals;
 //! - [`plot`]: line plots of time histories (measured solid, simulated
 //!   dashed, as in the thesis figures) with units on both axes, as SVG.
@@ -28,6 +29,7 @@ pub mod heatmap;
 pub mod html;
 pub mod identification;
 pub mod impact;
+pub mod planar;
 pub mod plot;
 pub mod signal;
 

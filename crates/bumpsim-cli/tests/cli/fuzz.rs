@@ -1,6 +1,7 @@
 //! Stable-Rust fuzzing of the readers (proptest; no cargo fuzz, no nightly).
 //!
-//! Each target mutates seed files (tests/fuzz/ and examples/identify/) with a
+//! Each target (CSV, EV5, ISO-MME, car/bumper/planar car TOML, study,
+//! model JSON, CalculiX results) mutates seed files (tests/fuzz/ and examples/identify/) with a
 //! byte strategy (flips, inserts, deletes, truncation) and a structure
 //! strategy (a line or number replaced by hostile values: NaN, inf, 1e308,
 //! huge integers, empty), writes the result to a scratch file and runs the
@@ -183,6 +184,26 @@ fn fuzz_car_and_bumper_toml() {
         std::fs::write(&path, bytes).unwrap();
         if let Ok(b) = bumpsim_impact::bumper::Bumper::read(&path) {
             let _ = b.stiffest();
+        }
+    });
+}
+
+#[test]
+fn fuzz_planar_car_toml() {
+    use bumpsim_planar::{Face, PlanarCar, Settings, Side, Striker, simulate};
+    // a fixed step keeps every case short; a diverging run must be an error
+    let settings = Settings {
+        step: Some(1e-5),
+        duration: 0.01,
+        ..Settings::default()
+    };
+    let face = Face::plane_in_degrees(10.0, 40.0, Side::Left);
+    fuzz("planar", seed("tests/fuzz/planar.toml"), |_, bytes| {
+        let text = String::from_utf8_lossy(bytes);
+        if let Ok(car) = PlanarCar::parse(&text, Path::new("planar.toml")) {
+            if let Ok(r) = simulate(&car, &Striker::barrier(face, 4.0), &settings) {
+                assert!(r.peak_force.is_finite() && r.energy.initial.is_finite());
+            }
         }
     });
 }

@@ -2,7 +2,7 @@
 //! inputs written here, and checks exit codes and messages.
 //!
 //! One test binary (ripgrep's layout): one module per command, plus
-//! `formats` (ISO-MME and EV5 through the commands, pyisomme), `robustness`
+//! `planar` (the planar car), `formats` (ISO-MME and EV5 through the commands, pyisomme), `robustness`
 //! (hostile inputs, kills mid-write) and `fuzz` (the readers under mutated
 //! inputs; `BUMPSIM_FUZZ_SECONDS` per target).
 
@@ -12,6 +12,7 @@ mod formats;
 mod fuzz;
 mod identify;
 mod impact;
+mod planar;
 mod robustness;
 mod signal;
 mod simulate;

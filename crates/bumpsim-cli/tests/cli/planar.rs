@@ -1,0 +1,251 @@
+//! `bumpsim planar` on the bundled planar car: presets, explicit faces,
+//! mirror symmetry through the JSON, outputs and hostile inputs.
+
+use crate::util::{assert_contains, assert_user_error, bumpsim, root, scratch, text};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+fn saloon() -> PathBuf {
+    root().join("examples/planar/saloon.toml")
+}
+
+fn run_json(dir: &Path, name: &str, extra: &[&str]) -> Value {
+    let json = dir.join(format!("{name}.json"));
+    let car = saloon();
+    let mut args = vec!["planar", "--car", car.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    args.extend_from_slice(&["--json", json.to_str().unwrap()]);
+    let run = bumpsim(&args);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap()
+}
+
+fn number(v: &Value, path: &[&str]) -> f64 {
+    path.iter()
+        .fold(v, |v, k| &v[*k])
+        .as_f64()
+        .unwrap_or_else(|| panic!("{path:?} is not a number"))
+}
+
+#[test]
+fn the_rcar_preset_prints_units_and_writes_json_csv_and_report() {
+    let dir = scratch("planar-rcar");
+    let (json, csv, report) = (dir.join("r.json"), dir.join("r.csv"), dir.join("report"));
+    let car = saloon();
+    let run = bumpsim(&[
+        "planar",
+        "--car",
+        car.to_str().unwrap(),
+        "--case",
+        "rcar-structural-front",
+        "--json",
+        json.to_str().unwrap(),
+        "--csv",
+        csv.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+    ]);
+    let stdout = text(&run.stdout);
+    assert!(run.status.success(), "{stdout}{}", text(&run.stderr));
+    assert_contains(
+        &stdout,
+        &[
+            "mid-size saloon",
+            "15 km/h",
+            "10°, 40 % overlap from the left",
+            "RCAR",
+            "kN",
+            "deg/s",
+            " J",
+        ],
+    );
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let result = &v["result"];
+    assert!(number(result, &["peak_force"]) > 10e3);
+    assert!(number(result, &["energy", "max_relative_error"]) < 1e-3);
+    // the left corner is struck behind the CG's line: the car turns left
+    assert!(number(result, &["peak_yaw_rate"]) > 0.0);
+    let rows = std::fs::read_to_string(&csv).unwrap().lines().count();
+    assert_eq!(rows, result["time"].as_array().unwrap().len() + 1);
+    let html = std::fs::read_to_string(report.join("index.html")).unwrap();
+    assert!(html.contains("<svg") && html.contains("remaining crush"));
+    for svg in ["forces.svg", "yaw.svg", "path.svg", "crush.svg"] {
+        assert!(report.join(svg).is_file(), "{svg}");
+    }
+}
+
+#[test]
+fn a_mirrored_face_mirrors_yaw_and_side_member_forces() {
+    let dir = scratch("planar-mirror");
+    let left = run_json(
+        &dir,
+        "l",
+        &[
+            "--angle",
+            "10",
+            "--overlap",
+            "40",
+            "--side",
+            "left",
+            "--speed",
+            "15 km/h",
+        ],
+    );
+    let right = run_json(
+        &dir,
+        "r",
+        &[
+            "--angle",
+            "-10",
+            "--overlap",
+            "40",
+            "--side",
+            "right",
+            "--speed",
+            "15 km/h",
+        ],
+    );
+    let (l, r) = (&left["result"], &right["result"]);
+    let peak = number(l, &["peak_force"]);
+    let tolerance = 1e-9;
+    assert!((number(l, &["peak_force"]) - number(r, &["peak_force"])).abs() < tolerance * peak);
+    let rate = number(l, &["peak_yaw_rate"]);
+    assert!((rate + number(r, &["peak_yaw_rate"])).abs() < tolerance * rate.abs());
+    let series = |v: &Value, k: &str| -> Vec<f64> {
+        v[k].as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    let (fl, fr) = (series(l, "side_force_left"), series(r, "side_force_right"));
+    assert_eq!(fl.len(), fr.len());
+    assert!(
+        fl.iter()
+            .zip(&fr)
+            .all(|(a, b)| (a - b).abs() < tolerance * peak)
+    );
+}
+
+#[test]
+fn a_pendulum_pole_and_the_preset_list_run() {
+    let dir = scratch("planar-pole");
+    let v = run_json(
+        &dir,
+        "pole",
+        &[
+            "--pole",
+            "178 mm",
+            "--pole-offset",
+            "-100 mm",
+            "--pendulum",
+            "1400",
+            "--speed",
+            "8 km/h",
+        ],
+    );
+    assert!(number(&v["result"], &["peak_force"]) > 1e3);
+    let list = bumpsim(&["planar", "--case", "list"]);
+    assert!(list.status.success());
+    assert_contains(
+        &text(&list.stdout),
+        &["rcar-structural-front", "iihs-pole-rear", "uncertain:"],
+    );
+}
+
+fn planar(dir: &Path, car_text: &str, extra: &[&str]) -> std::process::Output {
+    let car = dir.join("car.toml");
+    std::fs::write(&car, car_text).unwrap();
+    let mut args = vec!["planar", "--car", car.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    bumpsim(&args)
+}
+
+#[test]
+fn hostile_inputs_are_refused_with_exit_2_and_a_named_parameter() {
+    let dir = scratch("planar-hostile");
+    let good = std::fs::read_to_string(saloon()).unwrap();
+    let speed = ["--speed", "4"];
+    let with = |from: &str, to: &str| good.replacen(from, to, 1);
+    let cases: [(String, Vec<&str>, &str); 10] = [
+        (good.clone(), vec!["--overlap", "150"], "overlap"),
+        (good.clone(), vec!["--angle", "NaN"], "barrier angle"),
+        (
+            good.clone(),
+            vec!["--pole", "0.2", "--pole-offset", "5"],
+            "cannot hit",
+        ),
+        (good.clone(), vec!["--pendulum", "-5"], "striker mass"),
+        (good.clone(), vec!["--speed", "1e400"], "speed"),
+        (
+            with("yaw_inertia = 2200.0", "yaw_inertia = -2200.0"),
+            vec![],
+            "body.yaw_inertia",
+        ),
+        (
+            with("segments = 10", "segments = 1000000000000"),
+            vec![],
+            "segments",
+        ),
+        (with("mass = 1300.0", "mass = nan"), vec![], "body.mass"),
+        (with("springs = [3e6]", "springs = [3e30]"), vec![], "limit"),
+        (with("[tyres]", "[tyres]\ngrip = 1.0"), vec![], "grip"),
+    ];
+    for (car, extra, needle) in cases {
+        let mut args = extra.clone();
+        if !extra.contains(&"--speed") {
+            args.extend_from_slice(&speed);
+        }
+        let run = planar(&dir, &car, &args);
+        assert_user_error(&run, needle);
+        assert!(
+            !text(&run.stdout).to_lowercase().contains("nan"),
+            "{needle}"
+        );
+    }
+    assert_user_error(&planar(&dir, &good, &[]), "--speed");
+    assert_user_error(
+        &planar(&dir, &good, &["--case", "nope"]),
+        "rcar-structural-front",
+    );
+}
+
+#[test]
+fn outputs_never_land_on_inputs() {
+    let dir = scratch("planar-outputs");
+    let car = dir.join("car.toml");
+    std::fs::copy(saloon(), &car).unwrap();
+    let before = std::fs::read(&car).unwrap();
+    for option in ["--json", "--csv"] {
+        let run = bumpsim(&[
+            "planar",
+            "--car",
+            car.to_str().unwrap(),
+            "--speed",
+            "4",
+            option,
+            car.to_str().unwrap(),
+        ]);
+        assert_eq!(
+            run.status.code(),
+            Some(2),
+            "{option}: {}",
+            text(&run.stderr)
+        );
+    }
+    let report_on_file = bumpsim(&[
+        "planar",
+        "--car",
+        car.to_str().unwrap(),
+        "--speed",
+        "4",
+        "--report",
+        car.to_str().unwrap(),
+    ]);
+    assert_eq!(report_on_file.status.code(), Some(2));
+    assert_eq!(
+        std::fs::read(&car).unwrap(),
+        before,
+        "the car file was changed"
+    );
+}

@@ -1,0 +1,241 @@
+//! Human-readable and CSV text of planar impacts, shared by the terminal,
+//! the reports and the bindings: the striker in test terms (degrees,
+//! percent, km/h), the summary with units and the time histories (SI).
+//!
+//! Units and signs follow [`crate::result`]: forces are the striker's on the
+//! car in the world frame (N), side-member forces are compressive (N), yaw is
+//! counter-clockwise seen from above (shown in degrees).
+
+use crate::result::PlanarResult;
+use crate::striker::{Face, Motion, Side, Striker};
+use bumpsim_core::units::{Dimension, format_quantity};
+
+/// The striker in the words of a test protocol.
+///
+/// ```
+/// use bumpsim_planar::striker::{Face, Side, Striker};
+/// let face = Face::plane_in_degrees(10.0, 40.0, Side::Left);
+/// let text = bumpsim_planar::text::striker(&Striker::barrier(face, 15.0 / 3.6));
+/// assert_eq!(text, "the car at 15 km/h into a rigid plane at 10°, 40 % overlap from the left");
+/// ```
+pub fn striker(s: &Striker) -> String {
+    let face = match s.face {
+        Face::Plane { angle, overlap, .. } if overlap >= 1.0 && angle == 0.0 => {
+            "a full-width flat rigid face".to_string()
+        }
+        Face::Plane {
+            angle,
+            overlap,
+            side,
+        } => format!(
+            "a rigid plane at {}°, {} % overlap from the {}",
+            short(angle.to_degrees()),
+            short(overlap * 100.0),
+            side_name(side)
+        ),
+        Face::Pole { radius, lateral } => format!(
+            "a pole of diameter {} mm at y = {} mm",
+            short(2e3 * radius),
+            short(1e3 * lateral)
+        ),
+    };
+    let kmh = |v: f64| format!("{} km/h", short(v * 3.6));
+    match s.motion {
+        Motion::Fixed { speed } => format!("the car at {} into {face}", kmh(speed)),
+        Motion::Pendulum { mass, speed } => format!(
+            "a {} kg pendulum at {} carrying {face} into the car at rest",
+            short(mass),
+            kmh(speed)
+        ),
+    }
+}
+
+/// A test-protocol figure: at most three decimals, no trailing zeros.
+fn short(value: f64) -> String {
+    let rounded = (value * 1e3).round() / 1e3;
+    match rounded == 0.0 {
+        true => "0".to_string(),
+        false => format!("{rounded}"),
+    }
+}
+
+fn side_name(side: Side) -> &'static str {
+    match side {
+        Side::Left => "left",
+        Side::Right => "right",
+    }
+}
+
+/// The largest value of `values` and the time it occurs.
+fn peak(time: &[f64], values: &[f64]) -> (f64, f64) {
+    time.iter().zip(values).fold((0.0, 0.0), |best, (&t, &v)| {
+        if v.abs() > best.1.abs() { (t, v) } else { best }
+    })
+}
+
+/// The summary: forces, crush, contact, yaw, energies and balances.
+pub fn summary(r: &PlanarResult) -> String {
+    let q = format_quantity;
+    let (t_peak, _) = peak(&r.time, &r.force);
+    let (_, left) = peak(&r.time, &r.side_force_left);
+    let (_, right) = peak(&r.time, &r.side_force_right);
+    let deepest = (0..r.max_crush.len()).max_by(|&a, &b| r.max_crush[a].total_cmp(&r.max_crush[b]));
+    let remaining = r.remaining_crush.iter().copied().fold(0.0, f64::max);
+    let mut text = format!(
+        "  peak force {} at {}; side members: left {}, right {}\n",
+        q(r.peak_force, Dimension::Force),
+        q(t_peak, Dimension::Time),
+        q(left, Dimension::Force),
+        q(right, Dimension::Force)
+    );
+    if let Some(j) = deepest {
+        text += &format!(
+            "  maximum crush {} (segment {} of {}, at y = {}), largest remaining {}\n",
+            q(r.max_compression, Dimension::Length),
+            j + 1,
+            r.max_crush.len(),
+            q(
+                r.segment_centres.get(j).copied().unwrap_or(0.0),
+                Dimension::Length
+            ),
+            q(remaining, Dimension::Length)
+        );
+    }
+    text += &contact(r);
+    text += &motion(r);
+    text += &energy(r);
+    text
+}
+
+fn contact(r: &PlanarResult) -> String {
+    match (r.contact_start, r.contact_end) {
+        (Some(a), Some(b)) => format!(
+            "  contact from {} to {} ({})\n",
+            format_quantity(a, Dimension::Time),
+            format_quantity(b, Dimension::Time),
+            format_quantity(b - a, Dimension::Time)
+        ),
+        (Some(a), None) => format!(
+            "  contact from {}, not ended within the simulated time\n",
+            format_quantity(a, Dimension::Time)
+        ),
+        _ => "  no contact\n".to_string(),
+    }
+}
+
+fn motion(r: &PlanarResult) -> String {
+    let last = |v: &[f64]| v.last().copied().unwrap_or(0.0);
+    format!(
+        "  peak yaw rate {}, yaw at the end {}; CG velocity at the end {} along x, {} along y\n",
+        format_quantity(r.peak_yaw_rate, Dimension::AngularVelocity),
+        format_quantity(last(&r.yaw), Dimension::Angle),
+        format_quantity(last(&r.velocity_x), Dimension::Velocity),
+        format_quantity(last(&r.velocity_y), Dimension::Velocity)
+    )
+}
+
+fn energy(r: &PlanarResult) -> String {
+    let e = &r.energy;
+    let q = |v| format_quantity(v, Dimension::Energy);
+    format!(
+        "  energy {} at the start: bumper {}, dampers {}, tyres {}, springs and beam {}, kinetic at the end {}\n  energy balance error {:.2e} (largest {:.2e}); momentum residuals {:.2e} linear, {:.2e} angular\n",
+        q(e.initial),
+        q(e.crush),
+        q(e.dampers),
+        q(e.friction),
+        q(e.springs + e.bending),
+        q(e.kinetic),
+        e.relative_error,
+        e.max_relative_error,
+        r.momentum.linear_residual,
+        r.momentum.angular_residual
+    )
+}
+
+/// The time histories as CSV (SI units in the headers, one column per segment crush).
+pub fn histories(r: &PlanarResult) -> String {
+    let mut csv = String::from(
+        "time [s],force x [N],force y [N],force [N],side member left [N],side member right [N],x [m],y [m],yaw [rad],yaw rate [rad/s],velocity x [m/s],velocity y [m/s],pendulum travel [m]",
+    );
+    for j in 0..r.crush.len() {
+        csv += &format!(",crush segment {} [m]", j + 1);
+    }
+    csv.push('\n');
+    for k in 0..r.time.len() {
+        let row = [
+            r.time[k],
+            r.force_x[k],
+            r.force_y[k],
+            r.force[k],
+            r.side_force_left[k],
+            r.side_force_right[k],
+            r.x[k],
+            r.y[k],
+            r.yaw[k],
+            r.yaw_rate[k],
+            r.velocity_x[k],
+            r.velocity_y[k],
+            r.pendulum_travel[k],
+        ];
+        let crush = r.crush.iter().map(|c| c[k]);
+        let cells: Vec<String> = row
+            .into_iter()
+            .chain(crush)
+            .map(|v| v.to_string())
+            .collect();
+        csv += &cells.join(",");
+        csv.push('\n');
+    }
+    csv
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::car::{Layout, PlanarCar};
+    use crate::simulate::{Settings, simulate};
+    use bumpsim_core::model::MsdModel;
+    use bumpsim_impact::bumper::Bumper;
+
+    fn result(face: Face) -> PlanarResult {
+        let chain = MsdModel::new(vec![10.0, 1200.0], vec![2e3], vec![2e6]).unwrap();
+        let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
+        simulate(
+            &car,
+            &Striker::barrier(face, 15.0 / 3.6),
+            &Settings::default(),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn the_summary_carries_units_and_no_nan() {
+        let r = result(Face::plane_in_degrees(10.0, 40.0, Side::Left));
+        let s = summary(&r);
+        for part in ["kN", "mm", "ms", "deg/s", " J", "segment"] {
+            assert!(s.contains(part), "{part} missing in\n{s}");
+        }
+        assert!(!s.to_lowercase().contains("nan"), "{s}");
+    }
+
+    #[test]
+    fn histories_have_one_row_per_sample_and_a_column_per_segment() {
+        let r = result(Face::pole_of_diameter(0.178, 0.0));
+        let csv = histories(&r);
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(lines.len(), r.time.len() + 1);
+        let columns = 13 + r.crush.len();
+        assert!(lines.iter().all(|l| l.split(',').count() == columns));
+    }
+
+    #[test]
+    fn strikers_read_as_in_the_protocols() {
+        let pole = Striker::pendulum(Face::pole_of_diameter(0.178, 0.0), 1400.0, 8.0 / 3.6);
+        assert_eq!(
+            striker(&pole),
+            "a 1400 kg pendulum at 8 km/h carrying a pole of diameter 178 mm at y = 0 mm into the car at rest"
+        );
+        assert!(striker(&Striker::barrier(Face::flat(), 1.0)).contains("full-width"));
+    }
+}

@@ -1,0 +1,143 @@
+//! Planar impact pages: striker and side-member forces, yaw, the CG path and
+//! the crush of each bumper segment (spec §9 outputs). Units as in
+//! [`bumpsim_planar::result`]; plots show display units (kN, mm, deg).
+
+use crate::bar::BarPlot;
+use crate::html::Html;
+use crate::plot::{LinePlot, PlotError, Series, Style};
+use bumpsim_core::units::Dimension;
+use bumpsim_planar::PlanarResult;
+
+/// The planar impact report: the HTML page and its figures (file name, SVG).
+pub fn planar_report(
+    title: &str,
+    summary: &str,
+    r: &PlanarResult,
+) -> Result<(String, Vec<(String, String)>), PlotError> {
+    let mut page = Html::new(&format!("bumpsim planar impact: {title}"));
+    page.heading("Results");
+    page.preformatted(summary);
+    page.warnings(&r.warnings);
+    let mut figures = Vec::new();
+    for (name, svg, caption) in [
+        (
+            "forces.svg",
+            forces(r).svg()?,
+            "striker force and side-member forces",
+        ),
+        ("yaw.svg", yaw(r).svg()?, "yaw angle of the body"),
+        ("path.svg", path(r).svg()?, "body CG displacement"),
+        (
+            "crush.svg",
+            crush(r).svg()?,
+            "largest crush of each bumper segment (right to left)",
+        ),
+    ] {
+        page.figure(&svg, caption);
+        figures.push((name.to_string(), svg));
+    }
+    page.heading("Bumper segments");
+    page.table(
+        &[
+            "segment",
+            "lateral position [mm]",
+            "largest crush [mm]",
+            "remaining crush [mm]",
+        ],
+        &segment_rows(r),
+    );
+    Ok((page.finish(), figures))
+}
+
+fn line(name: &str, x: &[f64], y: &[f64], style: Style) -> Series {
+    Series::new(name, x.to_vec(), y.to_vec(), style)
+}
+
+fn forces(r: &PlanarResult) -> LinePlot {
+    let mut plot = LinePlot::new("Forces", Dimension::Time, Dimension::Force);
+    plot.add(line("striker force", &r.time, &r.force, Style::Solid));
+    plot.add(line(
+        "left side member",
+        &r.time,
+        &r.side_force_left,
+        Style::Dashed,
+    ));
+    plot.add(line(
+        "right side member",
+        &r.time,
+        &r.side_force_right,
+        Style::Dashed,
+    ));
+    plot
+}
+
+fn yaw(r: &PlanarResult) -> LinePlot {
+    let mut plot = LinePlot::new("Yaw", Dimension::Time, Dimension::Angle);
+    plot.add(line("yaw", &r.time, &r.yaw, Style::Solid));
+    plot
+}
+
+fn path(r: &PlanarResult) -> LinePlot {
+    let mut plot = LinePlot::new("Body CG", Dimension::Time, Dimension::Length);
+    plot.add(line("x", &r.time, &r.x, Style::Solid));
+    plot.add(line("y", &r.time, &r.y, Style::Solid));
+    plot
+}
+
+fn crush(r: &PlanarResult) -> BarPlot {
+    let labels = r
+        .segment_centres
+        .iter()
+        .enumerate()
+        .map(|(j, y)| format!("{} ({:.0})", j + 1, y * 1e3));
+    BarPlot {
+        title: "Crush per segment (lateral position in mm)".into(),
+        y_label: "crush [mm]".into(),
+        labels: labels.collect(),
+        values: r.max_crush.iter().map(|v| v * 1e3).collect(),
+        errors: vec![None; r.max_crush.len()],
+    }
+}
+
+fn segment_rows(r: &PlanarResult) -> Vec<Vec<String>> {
+    let mm = |v: f64| format!("{:.2}", v * 1e3);
+    (0..r.max_crush.len())
+        .map(|j| {
+            let y = r.segment_centres.get(j).copied().unwrap_or(0.0);
+            let remaining = r.remaining_crush.get(j).copied().unwrap_or(0.0);
+            vec![
+                (j + 1).to_string(),
+                mm(y),
+                mm(r.max_crush[j]),
+                mm(remaining),
+            ]
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bumpsim_core::model::MsdModel;
+    use bumpsim_impact::bumper::Bumper;
+    use bumpsim_planar::car::{Layout, PlanarCar};
+    use bumpsim_planar::{Face, Settings, Side, Striker, simulate};
+
+    #[test]
+    fn the_page_holds_four_figures_and_the_segment_table() {
+        let chain = MsdModel::new(vec![10.0, 1200.0], vec![2e3], vec![2e6]).unwrap();
+        let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
+        let face = Face::plane_in_degrees(10.0, 40.0, Side::Left);
+        let r = simulate(
+            &car,
+            &Striker::barrier(face, 15.0 / 3.6),
+            &Settings::default(),
+        )
+        .unwrap();
+        let (html, figures) = planar_report("RCAR", "summary", &r).unwrap();
+        assert_eq!(figures.len(), 4);
+        assert!(figures.iter().all(|(_, svg)| svg.starts_with("<svg")));
+        assert!(html.contains("remaining crush [mm]") && html.contains("<svg"));
+    }
+}
