@@ -84,11 +84,14 @@ pub fn run(args: &Args) -> Result<()> {
     let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
     print_notes(&notes);
     let mut outcomes = Vec::new();
-    let mut done = Vec::new();
+    let mut done: Vec<(Identification, Vec<bumpsim_ident::LoadCase>)> = Vec::new();
     for &dof in &dofs {
         let mut settings = study.settings(dof)?;
         settings.starts = args.starts.unwrap_or(settings.starts);
         settings.seed = args.seed.unwrap_or(settings.seed);
+        if let Some((previous, _)) = done.last() {
+            settings.continue_from(&previous.model);
+        }
         let cases = study.retarget(&loaded.cases, dof);
         let bar = progress(args.quiet, dof, settings.starts);
         let result = identify(&cases, &settings, &|| bar.inc(1));
@@ -160,15 +163,7 @@ fn print_result(r: &Identification) {
     );
     print!("{}", parameter_table(r));
     print!("{}", case_lines(r));
-    println!(
-        "  starts: {} run, {} converged, {} reached the best objective, {} failed; {} iterations; {}",
-        r.starts.total,
-        r.starts.converged,
-        r.starts.reached_best,
-        r.starts.failed,
-        r.iterations,
-        bumpsim_core::units::format_quantity(r.run_time, bumpsim_core::units::Dimension::Time)
-    );
+    println!("  {}", bumpsim_ident::text::starts_line(r));
     for w in &r.warnings {
         println!("  warning: {w}");
     }
@@ -184,7 +179,10 @@ fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
     if let Some(path) = &args.json {
         let mut json = match results {
             [one] => serde_json::to_value(one)?,
-            many => serde_json::json!({ "results": many }),
+            many => serde_json::json!({
+                "results": many,
+                "recommended_dof": bumpsim_ident::text::recommended_dof(many),
+            }),
         };
         json["notes"] = serde_json::json!(notes);
         write(path, &serde_json::to_string_pretty(&json)?)?;

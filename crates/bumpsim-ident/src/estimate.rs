@@ -2,19 +2,17 @@
 //!
 //! Parameters are estimated as `p = ln θ` (kg, N·s/m and N/m spanning seven
 //! decades become comparable) with [`lm`] within the bounds
-//! (thesis: every parameter ≥ 1 SI). Starts: the user's start if given, the
-//! start derived from the data ([`data_start`]), then log-uniform random
-//! points within a factor 30 of the data start, drawn from a ChaCha8 stream
-//! seeded by `seed + start index` (the same starts on any number of
-//! threads). Starts run in parallel (rayon); a start whose model cannot be
-//! simulated is counted as failed, never propagated.
+//! (thesis: every parameter ≥ 1 SI). Starts (the user's, the data-derived
+//! [`data_start`], continuation starts from a smaller model, random ones)
+//! are [`crate::search`]'s. Starts run in
+//! parallel (rayon); a start whose model cannot be simulated is counted as
+//! failed, never propagated.
 
 use crate::case::{CaseError, LoadCase, Objective};
 use crate::lm::{self, LeastSquares, Outcome, Stop};
+use crate::search::starting_points;
 use crate::stats::{Uncertainty, uncertainty};
 use bumpsim_core::model::{MsdModel, ParameterKind, parameter_count, parameter_kind};
-use rand_chacha::ChaCha8Rng;
-use rand_core::{Rng, SeedableRng};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::time::Instant;
@@ -109,6 +107,9 @@ pub struct Settings {
     pub seed: u64,
     /// The user's start, SI, thesis order.
     pub start: Option<Vec<f64>>,
+    /// Further given starts (e.g. [`Settings::continue_from`]), SI, thesis
+    /// order; they replace random starts, the total stays `starts`.
+    pub seeds: Vec<Vec<f64>>,
     /// Solver tolerances.
     pub solver: lm::Settings,
 }
@@ -122,7 +123,17 @@ impl Settings {
             starts,
             seed: 1,
             start: None,
+            seeds: Vec::new(),
             solver: lm::Settings::default(),
+        }
+    }
+
+    /// Adds the continuation starts from the optimum of the model with one
+    /// mass fewer ([`crate::search::continuation_starts`]); any other
+    /// `previous` adds nothing.
+    pub fn continue_from(&mut self, previous: &MsdModel) {
+        if previous.dof() + 1 == self.dof {
+            self.seeds = crate::search::continuation_starts(previous);
         }
     }
 }
@@ -244,36 +255,6 @@ fn case_estimate(case: &LoadCase) -> Option<(f64, f64)> {
     (mass.is_finite() && mass > 0.0 && duration > 0.0).then_some((mass, duration))
 }
 
-/// The starting points, log space, free parameters only.
-fn starting_points(settings: &Settings, data: &[f64], free: &[usize]) -> Vec<Vec<f64>> {
-    let log = |theta: &[f64]| -> Vec<f64> { free.iter().map(|&i| theta[i].ln()).collect() };
-    let mut points = Vec::with_capacity(settings.starts);
-    if let Some(user) = &settings.start {
-        points.push(log(user));
-    }
-    points.push(log(data));
-    let spread = 30f64.ln();
-    let mut index = points.len() as u64;
-    while points.len() < settings.starts.max(1) {
-        let mut rng = ChaCha8Rng::seed_from_u64(settings.seed.wrapping_add(index));
-        let centre = log(data);
-        points.push(
-            centre
-                .iter()
-                .map(|c| c + spread * (2.0 * unit(&mut rng) - 1.0))
-                .collect(),
-        );
-        index += 1;
-    }
-    points.truncate(settings.starts.max(1));
-    points
-}
-
-/// A uniform number in [0, 1) from 53 random bits.
-fn unit(rng: &mut ChaCha8Rng) -> f64 {
-    (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-}
-
 /// Largest model identified (memory and time grow with the cube of the DOF).
 pub const MAX_DOF: usize = 50;
 /// Most starts of one identification.
@@ -328,6 +309,17 @@ fn check(cases: &[LoadCase], settings: &Settings) -> Result<(), IdentError> {
             );
         }
     }
+    let p = parameter_count(settings.dof);
+    if let Some(bad) = settings
+        .seeds
+        .iter()
+        .position(|s| s.len() != p || s.iter().any(|v| !(v.is_finite() && *v > 0.0)))
+    {
+        return setting(
+            "seeds",
+            format!("seed start {}: {p} positive values expected", bad + 1),
+        );
+    }
     settings.bounds.check(settings.dof)
 }
 
@@ -351,7 +343,8 @@ pub fn identify(
         .map(|&i| settings.bounds.upper[i].ln())
         .collect();
     let data = data_start(cases, settings.dof);
-    let points = starting_points(settings, &data, &free);
+    let fixed = (&settings.start, data.as_slice(), settings.seeds.as_slice());
+    let points = starting_points(settings.starts, settings.seed, fixed, &free);
     let outcomes: Vec<Outcome> = points
         .par_iter()
         .map(|start| {
@@ -427,6 +420,12 @@ fn summarise(
         warnings.push(format!(
             "{} of {} starts failed (model not simulable) and were discarded",
             starts.failed, starts.total
+        ));
+    }
+    if starts.reached_best == 1 && starts.total > 1 {
+        warnings.push(format!(
+            "only one of {} starts reached the best objective: a better minimum may exist; raise the number of starts",
+            starts.total
         ));
     }
     if !outcome.stop.converged() {

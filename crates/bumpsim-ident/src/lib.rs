@@ -4,6 +4,7 @@
 //! - [`case`]: load cases and the objective `F = Σ (x − x̂)²`;
 //! - [`lm`]: bounded Levenberg–Marquardt;
 //! - [`estimate`]: the data-derived start, multi-start, results;
+//! - [`search`]: the starts, continuation across the DOF table, screening;
 //! - [`explore`]: predictions and the ±3 % sensitivity of the objective;
 //! - [`stats`]: standard errors, intervals, correlations, identifiability;
 //! - [`text`]: text tables of results (as `doe::text` and `impact::text`);
@@ -34,6 +35,7 @@ pub mod dofs;
 pub mod estimate;
 pub mod explore;
 pub mod lm;
+pub mod search;
 pub mod stats;
 pub mod study;
 pub mod text;

@@ -54,6 +54,31 @@ pub fn case_lines(result: &Identification) -> String {
         .collect()
 }
 
+/// The start statistics: run, converged, reached the best objective,
+/// failed; the best start's iterations; time.
+pub fn starts_line(result: &Identification) -> String {
+    let s = &result.starts;
+    format!(
+        "starts: {} run, {} converged, {} reached the best objective, {} failed; {} iterations; {}",
+        s.total,
+        s.converged,
+        s.reached_best,
+        s.failed,
+        result.iterations,
+        format_quantity(result.run_time, Dimension::Time)
+    )
+}
+
+/// The DOF with the lowest BIC among `results` (the recommended model
+/// order: the fit gained by a further mass must pay for its parameters).
+pub fn recommended_dof(results: &[Identification]) -> Option<usize> {
+    results
+        .iter()
+        .filter(|r| r.bic.is_finite())
+        .min_by(|a, b| a.bic.total_cmp(&b.bic))
+        .map(|r| r.dof)
+}
+
 /// The thesis's table 1: DOF, objective, fit %, AIC, BIC, time.
 pub fn dof_table(results: &[Identification]) -> String {
     let mut out = format!(
@@ -70,6 +95,9 @@ pub fn dof_table(results: &[Identification]) -> String {
             format_number(r.bic, 6),
             format_quantity(r.run_time, Dimension::Time)
         );
+    }
+    if let Some(dof) = recommended_dof(results) {
+        out += &format!("recommended: {dof} DOF (lowest BIC)\n");
     }
     out
 }

@@ -359,3 +359,54 @@ fn the_result_serialises_as_before() {
     let car = bumpsim_io::car::Car::parse_json(&json.to_string(), Path::new("r.json")).unwrap();
     assert_eq!(&car.model, result.model());
 }
+
+#[test]
+fn continuation_from_the_smaller_model_never_loses_its_fit() {
+    // data of a 2-mass car with noise: a 3-mass model can only fit the noise
+    // better. The 2-mass optimum split in each of its masses starts the
+    // 3-mass search where the smaller model ended, so with only the data
+    // start and the two split starts the 3-mass objective is at most the
+    // 2-mass one (1 % for the stiff link's own response)
+    let two_mass = MsdModel::new(vec![60.0, 1200.0], vec![8e3], vec![9e5]).unwrap();
+    let mut cases = series(&two_mass);
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    for c in &mut cases {
+        c.measured
+            .iter_mut()
+            .for_each(|m| *m += noise(&mut rng, 2e-5));
+    }
+    let two = identify(&cases, &Settings::new(2, 8), &|| {}).unwrap();
+    // each split start already fits as the 2-mass optimum does
+    let objective = Objective::new(&cases, 3, &[None; 8]);
+    let mut residuals = vec![0.0; objective.residual_count()];
+    for start in bumpsim_ident::search::continuation_starts(&two.model) {
+        let logs: Vec<f64> = start.iter().map(|v| v.ln()).collect();
+        assert!(objective.evaluate(&logs, &mut residuals, None));
+        let cost: f64 = residuals.iter().map(|r| r * r).sum();
+        assert!(
+            cost <= 1.01 * two.objective,
+            "split start {cost} m² vs {} m²",
+            two.objective
+        );
+    }
+    let mut settings = Settings::new(3, 3);
+    settings.continue_from(&two.model);
+    assert_eq!(settings.seeds.len(), 2);
+    let three = identify(&cases, &settings, &|| {}).unwrap();
+    assert!(
+        three.objective <= 1.01 * two.objective,
+        "3 masses {} m² vs 2 masses {} m²",
+        three.objective,
+        two.objective
+    );
+    let table = bumpsim_ident::text::dof_table(&[two.clone(), three.clone()]);
+    let best = if three.bic < two.bic { 3 } else { 2 };
+    assert!(
+        table.contains(&format!("recommended: {best} DOF (lowest BIC)")),
+        "{table}"
+    );
+    // a seed of the wrong size is refused, naming it
+    settings.seeds = vec![vec![1.0; 3]];
+    let error = identify(&cases, &settings, &|| {}).unwrap_err().to_string();
+    assert!(error.contains("seed start 1"), "{error}");
+}

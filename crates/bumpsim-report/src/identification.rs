@@ -197,13 +197,10 @@ fn section(
     let dof = result.dof;
     page.heading(&format!("{dof}-DOF model"));
     page.paragraph(&format!(
-        "Objective {} m², overall fit {} %, {} of {} starts reached the best value ({} failed), {} s.",
+        "Objective {} m², overall fit {} %; {}.",
         format_number(result.objective, 5),
         format_number(result.fit_percent, 4),
-        result.starts.reached_best,
-        result.starts.total,
-        result.starts.failed,
-        format_number(result.run_time, 3)
+        bumpsim_ident::text::starts_line(result)
     ));
     page.preformatted(&parameter_table(result));
     page.preformatted(&case_lines(result));

@@ -197,6 +197,23 @@ fn nhtsa_two_dof_fit_and_the_dof_table() {
     assert_eq!(two["dof"], 2);
     let fit = two["cases"][0]["fit_percent"].as_f64().unwrap();
     assert!(fit >= 96.0, "2-DOF fit {fit} %");
+    // the recommended DOF is the one with the lowest BIC, in print and JSON
+    let bic = |r: &serde_json::Value| r["bic"].as_f64().unwrap();
+    let lowest = results
+        .iter()
+        .min_by(|a, b| bic(a).total_cmp(&bic(b)))
+        .unwrap();
+    assert_eq!(result["recommended_dof"], lowest["dof"]);
+    let line = format!("recommended: {} DOF (lowest BIC)", lowest["dof"]);
+    assert!(stdout.contains(&line), "{stdout}");
+    // the DOF table never gets worse with a further mass: continuation
+    let objective = |r: &serde_json::Value| r["objective"].as_f64().unwrap();
+    for pair in results.windows(2) {
+        assert!(
+            objective(&pair[1]) <= 1.01 * objective(&pair[0]),
+            "{stdout}"
+        );
+    }
 }
 
 #[test]
