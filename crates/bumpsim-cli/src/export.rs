@@ -64,6 +64,26 @@ pub struct LsDynaArgs {
     /// Bumper attachment node ids (the user's model) rigidly coupled to m1, comma-separated.
     #[arg(long, value_delimiter = ',', value_name = "ID,ID,...")]
     attach: Vec<u64>,
+    /// Force on m1 (CSV): `*DEFINE_CURVE` and `*LOAD_NODE_POINT`.
+    #[arg(long, value_name = "FORCE.csv")]
+    force: Option<PathBuf>,
+    /// Force column, when the file has several force columns.
+    #[arg(long, value_name = "NAME", requires = "force")]
+    column: Option<String>,
+    /// History outputs (nodout, deforc, glstat, mass nodes) every DT: s or with a unit ("0.1 ms").
+    #[arg(long, value_name = "DT", allow_hyphen_values = true)]
+    output_interval: Option<String>,
+    /// A complete run: `*CONTROL_TERMINATION` at the end of the force.
+    #[arg(long, requires = "force")]
+    standalone: bool,
+    /// Warn when the car's critical explicit time step is below this: s or with a unit.
+    #[arg(
+        long,
+        default_value = "1 us",
+        value_name = "DT",
+        allow_hyphen_values = true
+    )]
+    min_time_step: String,
 }
 
 /// Arguments of `bumpsim export calculix`.
@@ -167,16 +187,44 @@ fn title(car: &Car, path: &Path) -> String {
     )
 }
 
+fn time(option: &str, text: &str) -> Result<f64> {
+    parse_quantity(text, Dimension::Time).with_context(|| format!("--{option} '{text}'"))
+}
+
 fn lsdyna(args: &LsDynaArgs) -> Result<()> {
     let common = &args.common;
     let car = Car::read_model_file(&common.model)?;
+    let force = args
+        .force
+        .as_deref()
+        .map(|path| force_series(path, args.column.as_deref()))
+        .transpose()?;
     let options = LsDynaOptions {
         layout: layout(common)?,
         id_offset: args.id_offset,
         attach: args.attach.clone(),
         initial_velocity: initial_velocity(common)?,
         title: title(&car, &common.model),
+        force: force.map(|(series, _)| series),
+        output_interval: args
+            .output_interval
+            .as_deref()
+            .map(|t| time("output-interval", t))
+            .transpose()?,
+        standalone: args.standalone,
     };
+    let step = bumpsim_export::timestep::critical_time_step(&car.model);
+    println!(
+        "critical explicit time step of the car alone: {}",
+        bumpsim_core::units::format_quantity(step, Dimension::Time)
+    );
+    if step < time("min-time-step", &args.min_time_step)? {
+        crate::warn(&format!(
+            "the car limits an explicit run to steps of {} (below --min-time-step {}): its stiffest or most damped link on a light mass governs",
+            bumpsim_core::units::format_quantity(step, Dimension::Time),
+            args.min_time_step
+        ));
+    }
     let deck = lsdyna_include(&car.model, &options)?;
     let what = format!(
         "LS-DYNA include, {} masses on nodes {}..{}",
@@ -184,7 +232,10 @@ fn lsdyna(args: &LsDynaArgs) -> Result<()> {
         args.id_offset + 1,
         args.id_offset + car.model.dof() as u64
     );
-    write_deck(common, &[&common.model], &deck, &what)
+    let inputs: Vec<&Path> = std::iter::once(common.model.as_path())
+        .chain(args.force.as_deref())
+        .collect();
+    write_deck(common, &inputs, &deck, &what)
 }
 
 fn calculix(args: &CalculixArgs) -> Result<()> {

@@ -4,7 +4,8 @@
 //! - [`lsdyna`]: an LS-DYNA keyword include file (fixed-format cards);
 //! - [`calculix`]: a CalculiX/Abaqus deck, optionally a complete transient
 //!   analysis under a force history, and reading its results back;
-//! - [`layout`]: unit systems, axis and node placement shared by both.
+//! - [`layout`]: unit systems, axis and node placement shared by both;
+//! - [`timestep`]: the car's explicit critical time step.
 //!
 //! ```
 //! use bumpsim_core::model::MsdModel;
@@ -17,6 +18,7 @@
 pub mod calculix;
 pub mod layout;
 pub mod lsdyna;
+pub mod timestep;
 
 pub use calculix::{CalculixOptions, calculix_deck};
 pub use layout::{Axis, Layout, UnitSystem};
@@ -60,6 +62,12 @@ pub enum ExportError {
         /// The include's last node id.
         last: u64,
     },
+    /// An attachment node given twice.
+    #[error("attachment node {node} is given twice")]
+    DuplicateNode {
+        /// The node.
+        node: u64,
+    },
     /// An attachment node id out of range.
     #[error("attachment node {node} is not a valid node id (1..{limit})")]
     NodeId {
@@ -83,6 +91,9 @@ pub enum ExportError {
         /// Samples given.
         samples: usize,
     },
+    /// A standalone deck without a force history to end at.
+    #[error("a standalone deck needs a force history (its end is the termination time)")]
+    Standalone,
     /// A results file that cannot be read.
     #[error("{}{}: {reason}", path.display(), if *line > 0 { format!(":{line}") } else { String::new() })]
     Dat {

@@ -7,7 +7,7 @@
 //! - `*NODE`: one node per mass on the axis; `TC`/`RC` leave only
 //!   translation along the axis (the thesis: "every lumped mass may only
 //!   translate longitudinally");
-//! - `*ELEMENT_MASS`: m_i on node i;
+//! - `*ELEMENT_MASS`: m_i on node i (one keyword per mass);
 //! - `*SECTION_DISCRETE` (translational), `*MAT_SPRING_ELASTIC` (K = k_j),
 //!   `*MAT_DAMPER_VISCOUS` (DC = c_j), one `*PART` per spring and damper, and
 //!   `*ELEMENT_DISCRETE` between nodes j and j+1 (a spring and a damper in
@@ -16,7 +16,13 @@
 //!   bumper attachment nodes, and `*CONSTRAINED_NODAL_RIGID_BODY_SPC` tying
 //!   them rigidly, its centre-of-mass constraint leaving translation along the
 //!   axis only (the thesis couples m1 to the side-member ends by rigid links);
-//! - optional `*INITIAL_VELOCITY_NODE` for every mass.
+//! - optional `*INITIAL_VELOCITY_NODE` for every mass;
+//! - with a force history: `*DEFINE_CURVE` (time shifted so the first sample
+//!   is at 0) and `*LOAD_NODE_POINT` on m1's node along the axis;
+//! - with an output interval: `*DATABASE_NODOUT`, `*DATABASE_DEFORC`,
+//!   `*DATABASE_GLSTAT` and `*DATABASE_HISTORY_NODE` of the mass nodes;
+//! - standalone: `*CONTROL_TERMINATION` at the end of the force history
+//!   and the car's critical explicit time step ([`crate::timestep`]) as a comment.
 //!
 //! Ids: every id is `offset + k` with k small, so the include cannot clash
 //! with the user's model when the offset is above the user's ids.
@@ -24,6 +30,7 @@
 use crate::ExportError;
 use crate::layout::{Layout, int_field, real_field};
 use bumpsim_core::model::MsdModel;
+use bumpsim_core::series::UniformSeries;
 use std::fmt::Write;
 
 /// Largest id an 8-column field holds.
@@ -42,6 +49,12 @@ pub struct LsDynaOptions {
     pub initial_velocity: Option<f64>,
     /// Title line and origin note.
     pub title: String,
+    /// Force on m1 along the axis, N (SI): `*DEFINE_CURVE` + `*LOAD_NODE_POINT`.
+    pub force: Option<UniformSeries>,
+    /// Interval of the history outputs (nodout, deforc, glstat), s.
+    pub output_interval: Option<f64>,
+    /// A complete run: `*CONTROL_TERMINATION` at the force's end (needs `force`).
+    pub standalone: bool,
 }
 
 /// The ids the include uses.
@@ -71,6 +84,11 @@ impl Ids {
     pub fn shared(&self) -> u64 {
         self.offset + 3 * self.dof + 1
     }
+
+    /// The force curve and the history node set.
+    pub fn curve(&self) -> u64 {
+        self.shared() + 1
+    }
 }
 
 /// Checks the offset and the attachment nodes and returns the ids.
@@ -86,7 +104,7 @@ fn ids(model: &MsdModel, options: &LsDynaOptions) -> Result<Ids, ExportError> {
         offset: options.id_offset,
         dof: model.dof() as u64,
     };
-    let last = ids.shared();
+    let last = ids.curve();
     if last > MAX_ID {
         return Err(ExportError::IdRange {
             offset: options.id_offset,
@@ -101,6 +119,10 @@ fn ids(model: &MsdModel, options: &LsDynaOptions) -> Result<Ids, ExportError> {
             first: *ours.start(),
             last: *ours.end(),
         });
+    }
+    let mut seen = std::collections::HashSet::new();
+    if let Some(node) = options.attach.iter().find(|n| !seen.insert(**n)) {
+        return Err(ExportError::DuplicateNode { node: *node });
     }
     if let Some(node) = options.attach.iter().find(|&&n| n == 0 || n > MAX_ID) {
         return Err(ExportError::NodeId {
@@ -125,8 +147,87 @@ pub fn lsdyna_include(model: &MsdModel, options: &LsDynaOptions) -> Result<Strin
     if let Some(v) = options.initial_velocity {
         initial_velocity(&mut deck, model, options, &ids, v);
     }
+    run_cards(&mut deck, model, options, &ids)?;
     deck.push_str("*END\n");
     Ok(deck)
+}
+
+/// The load, output and control cards of the options.
+fn run_cards(
+    deck: &mut String,
+    model: &MsdModel,
+    options: &LsDynaOptions,
+    ids: &Ids,
+) -> Result<(), ExportError> {
+    if let Some(force) = &options.force {
+        if force.len() < 2 {
+            return Err(ExportError::ForceSamples {
+                samples: force.len(),
+            });
+        }
+        load(deck, force, options, ids);
+    }
+    if let Some(dt) = options.output_interval {
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(ExportError::Increment { increment: dt });
+        }
+        history(deck, model, options, ids, dt);
+    }
+    if options.standalone {
+        let force = options.force.as_ref().ok_or(ExportError::Standalone)?;
+        let units = options.layout.units;
+        let _ = writeln!(
+            deck,
+            "$ critical explicit time step of the car alone: {:e} {}\n*CONTROL_TERMINATION\n$ endtim\n{}",
+            crate::timestep::critical_time_step(model) * units.time(),
+            units.symbols()[2],
+            real_field((force.end() - force.start()) * units.time(), 10)
+        );
+    }
+    Ok(())
+}
+
+/// The force history as a curve and a nodal load on m1 along the axis.
+fn load(deck: &mut String, force: &UniformSeries, options: &LsDynaOptions, ids: &Ids) {
+    let units = options.layout.units;
+    let _ = writeln!(
+        deck,
+        "*DEFINE_CURVE\n$   lcid      sidr       sfa       sfo\n{}{}{}{}",
+        int_field(ids.curve(), 10),
+        int_field(0, 10),
+        real_field(1.0, 10),
+        real_field(1.0, 10)
+    );
+    for k in 0..force.len() {
+        let t = (force.time(k) - force.start()) * units.time();
+        let f = force.values()[k] * units.force();
+        let _ = writeln!(deck, "{}{}", real_field(t, 20), real_field(f, 20));
+    }
+    let _ = writeln!(
+        deck,
+        "*LOAD_NODE_POINT\n$    nid       dof      lcid        sf\n{}{}{}{}",
+        int_field(ids.node(0), 10),
+        int_field(options.layout.axis.dof() as u64, 10),
+        int_field(ids.curve(), 10),
+        real_field(options.layout.axis.sign, 10)
+    );
+}
+
+/// History outputs of the mass nodes and the discrete elements every `dt` s.
+fn history(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids, dt: f64) {
+    let dt = real_field(dt * options.layout.units.time(), 10);
+    for keyword in ["*DATABASE_NODOUT", "*DATABASE_DEFORC", "*DATABASE_GLSTAT"] {
+        let _ = writeln!(deck, "{keyword}\n$     dt\n{dt}");
+    }
+    let _ = writeln!(deck, "*DATABASE_HISTORY_NODE\n$   id1       id2 ...");
+    let nodes: Vec<u64> = (0..model.dof()).map(|i| ids.node(i)).collect();
+    for chunk in nodes.chunks(8) {
+        let _ = writeln!(
+            deck,
+            "{}",
+            chunk.iter().map(|n| int_field(*n, 10)).collect::<String>()
+        );
+    }
 }
 
 fn header(deck: &mut String, model: &MsdModel, options: &LsDynaOptions) {
@@ -183,16 +284,13 @@ fn nodes(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids
 }
 
 fn masses(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids) {
+    // one keyword per mass: LS-DYNA reads either, some pre-processors only one row
     let unit = options.layout.units.symbols()[0];
-    let _ = writeln!(
-        deck,
-        "*ELEMENT_MASS\n$    eid     nid            mass  ({unit})"
-    );
     for (i, m) in model.masses().iter().enumerate() {
         let mass = real_field(m * options.layout.units.mass(), 16);
         let _ = writeln!(
             deck,
-            "{}{}{mass}",
+            "*ELEMENT_MASS\n$    eid     nid            mass  ({unit})\n{}{}{mass}",
             int_field(ids.node(i), 8),
             int_field(ids.node(i), 8)
         );
@@ -200,6 +298,9 @@ fn masses(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Id
 }
 
 fn links(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids) {
+    if model.dof() < 2 {
+        return; // a rigid vehicle: no links, no section, no discrete elements
+    }
     let units = options.layout.units;
     let [_, l, t, f] = units.symbols();
     let section = ids.shared();

@@ -33,6 +33,7 @@ fn options(units: UnitSystem) -> LsDynaOptions {
         attach: vec![1001, 1002, 2001, 2002],
         initial_velocity: Some(-4.0),
         title: "thesis 3-DOF model (Isaksson 2006, paper B, table 2)".into(),
+        ..Default::default()
     }
 }
 

@@ -109,8 +109,16 @@ fn lsdyna_export_writes_the_include_and_refuses_bad_options() {
         "{deck}"
     );
     assert!(deck.contains("-4444.4"), "16 km/h in mm/s: {deck}");
-    let cases: [(&[&str], &str); 4] = [
+    let cases: [(&[&str], &str); 6] = [
         (&["--units", "imperial"], "expected si, mm-s-t or mm-ms-kg"),
+        (
+            &["--attach", "1001,1001", "--id-offset", "5000"],
+            "attachment node 1001 is given twice",
+        ),
+        (
+            &["--output-interval", "-1"],
+            "time increment -1 s must be positive",
+        ),
         (&["--id-offset", "0", "--attach", "2"], "clashes"),
         (&["--axis", "w"], "unknown axis"),
         (&["--spacing", "-1"], "must be positive"),
@@ -142,4 +150,146 @@ fn lsdyna_export_writes_the_include_and_refuses_bad_options() {
         out.to_str().unwrap(),
     ]);
     assert_user_error(&run, "broken.toml: TOML parse error");
+}
+
+/// Whether python3 with ansys-dyna-core is available (required under
+/// `BUMPSIM_REQUIRE_PEERS`).
+fn dyna_core_available() -> bool {
+    let found = Command::new("python3")
+        .args(["-c", "import ansys.dyna.core"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !found {
+        assert!(
+            std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_none(),
+            "BUMPSIM_REQUIRE_PEERS is set but python3 cannot import ansys.dyna.core"
+        );
+        eprintln!("skipped: ansys-dyna-core not found (scripts/test installs it)");
+    }
+    found
+}
+
+/// The verdict of tests/peers/dyna_deck.py on a deck.
+fn dyna_core(deck: &std::path::Path, external: &[&str]) -> serde_json::Value {
+    let run = Command::new("python3")
+        .arg(root().join("tests/peers/dyna_deck.py"))
+        .arg(deck)
+        .args(external)
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "dyna_deck.py: {}", text(&run.stderr));
+    serde_json::from_slice(&run.stdout).unwrap()
+}
+
+#[test]
+fn every_lsdyna_deck_parses_in_ansys_dyna_core_with_its_ids_defined() {
+    if !dyna_core_available() {
+        return;
+    }
+    let dir = scratch("lsdyna-dyna-core");
+    let one = dir.join("rigid.toml");
+    std::fs::write(&one, "masses = [1050.0]\ndampers = []\nsprings = []\n").unwrap();
+    let (car, force) = (example("car-3dof.toml"), example("pendulum-force.csv"));
+    let (force_path, car_path, one_path) = (
+        force.to_str().unwrap(),
+        car.to_str().unwrap(),
+        one.to_str().unwrap(),
+    );
+    // the example force: time [ms], force [kN] after a comment and the header
+    let csv = std::fs::read_to_string(&force).unwrap();
+    let rows: Vec<(f64, f64)> = csv
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .map(|l| l.split_once(',').unwrap())
+        .map(|(t, f)| {
+            (
+                t.parse::<f64>().unwrap() * 1e-3,
+                f.parse::<f64>().unwrap() * 1e3,
+            )
+        })
+        .collect();
+    let seconds: Vec<f64> = rows.iter().map(|r| r.0).collect();
+    let newtons: Vec<f64> = rows.iter().map(|r| r.1).collect();
+    let full: &[&str] = &[
+        "--force",
+        force_path,
+        "--output-interval",
+        "0.1 ms",
+        "--standalone",
+        "--attach",
+        "91,92",
+        "--id-offset",
+        "100",
+        "--initial-velocity",
+        "2",
+    ];
+    // (units, time factor, force factor) of the deck against SI
+    for (units, time, newton) in [
+        ("si", 1.0, 1.0),
+        ("mm-s-t", 1.0, 1.0),
+        ("mm-ms-kg", 1e3, 1e-3),
+    ] {
+        for (name, model, extra) in [
+            ("car", car_path, &[][..]),
+            ("full", car_path, full),
+            ("rigid", one_path, full),
+        ] {
+            let deck = dir.join(format!("{name}-{units}.k"));
+            let mut args = vec![
+                "export",
+                "lsdyna",
+                model,
+                "-o",
+                deck.to_str().unwrap(),
+                "--units",
+                units,
+            ];
+            args.extend_from_slice(extra);
+            let run = bumpsim(&args);
+            assert!(
+                run.status.success(),
+                "{name} {units}: {}",
+                text(&run.stderr)
+            );
+            let verdict = dyna_core(&deck, &["91", "92"]);
+            let what = format!("{name} {units}: {verdict}");
+            assert_eq!(verdict["unprocessed"], serde_json::json!([]), "{what}");
+            assert_eq!(verdict["strings"], 0, "{what}");
+            assert_eq!(verdict["errors"], serde_json::json!([]), "{what}");
+            assert_eq!(verdict["undefined"], serde_json::json!([]), "{what}");
+            let dof = if name == "rigid" { 1 } else { 3 };
+            assert_eq!(
+                verdict["mass_nodes"].as_array().unwrap().len(),
+                dof,
+                "{what}"
+            );
+            let curve = verdict["curve"].as_array().unwrap();
+            if name == "car" {
+                assert!(curve.is_empty(), "{what}");
+                continue;
+            }
+            assert_eq!(
+                verdict["history_nodes"].as_array().unwrap().len(),
+                dof,
+                "{what}"
+            );
+            assert_eq!(curve.len(), newtons.len(), "{what}");
+            let peak = newtons.iter().fold(0.0f64, |a, f| a.max(f.abs()));
+            for (k, point) in curve.iter().enumerate() {
+                let (t, f) = (point[0].as_f64().unwrap(), point[1].as_f64().unwrap());
+                assert!(
+                    (t - time * (seconds[k] - seconds[0])).abs() < 1e-9 * time,
+                    "{what}: t[{k}]"
+                );
+                assert!(
+                    (f - newton * newtons[k]).abs() < 1e-6 * newton * peak,
+                    "{what}: F[{k}]"
+                );
+            }
+            let deck_text = std::fs::read_to_string(&deck).unwrap();
+            assert!(deck_text.contains("*CONTROL_TERMINATION"), "{what}");
+            assert_eq!(deck_text.contains("*SECTION_DISCRETE"), dof > 1, "{what}");
+        }
+    }
 }

@@ -1,0 +1,70 @@
+"""Independent check of an LS-DYNA deck written by `bumpsim export lsdyna`:
+ansys-dyna-core parses it; prints JSON with the keywords it could not
+process, validate() errors, ids referenced but not defined, and the force
+curve. Usage: dyna_deck.py DECK.k [EXTERNAL_NODE_ID ...] (external nodes are
+the user's attachment nodes, defined in the model the include goes into)."""
+import json
+import sys
+
+from ansys.dyna.core import Deck
+
+
+def column(keyword, frame, name):
+    data = getattr(keyword, frame)
+    return [int(v) for v in data[name].dropna().tolist()]
+
+
+def main():
+    path, external = sys.argv[1], {int(a) for a in sys.argv[2:]}
+    deck = Deck()
+    loaded = deck.loads(open(path).read())
+    kinds = {}
+    for k in deck.keywords:
+        kinds.setdefault(type(k).__name__, []).append(k)
+    nodes = set(column(kinds["Node"][0], "nodes", "nid")) if "Node" in kinds else set()
+    parts = {int(v) for p in kinds.get("Part", []) for v in p.parts["pid"].dropna()}
+    sections = {int(s.secid) for s in kinds.get("SectionDiscrete", [])}
+    materials = {int(m.mid) for k, ms in kinds.items() if k.startswith("Mat") for m in ms}
+    curves = {int(c.lcid): c for c in kinds.get("DefineCurve", [])}
+    undefined = []
+
+    def need(kind, ids, known):
+        undefined.extend(f"{kind} {i}" for i in ids if i not in known)
+
+    # this parser reads one row per *ELEMENT_MASS: bumpsim writes one per mass
+    masses = [int(m.nid) for m in kinds.get("ElementMass", [])]
+    need("node", masses, nodes)
+    for e in kinds.get("ElementDiscrete", []):
+        need("node", column(e, "elements", "n1") + column(e, "elements", "n2"), nodes)
+        need("part", column(e, "elements", "pid"), parts)
+    for p in kinds.get("Part", []):
+        need("section", [int(v) for v in p.parts["secid"].dropna()], sections)
+        need("material", [int(v) for v in p.parts["mid"].dropna()], materials)
+    for s in kinds.get("SetNodeList", []):
+        members = [int(s.nodes[i]) for i in range(len(s.nodes))]
+        need("node", [n for n in members if n not in external], nodes)
+    for load in kinds.get("LoadNodePoint", []):
+        need("node", column(load, "nodes", "nid"), nodes)
+        need("curve", column(load, "nodes", "lcid"), set(curves))
+    history = []
+    for h in kinds.get("DatabaseHistoryNode", []):
+        ids = [getattr(h, f"id{i}") for i in range(1, 9)]
+        history += [int(v) for v in ids if v is not None and int(v) != 0]
+    need("node", history, nodes)
+    curve = []
+    for c in curves.values():
+        curve = [[float(a), float(o)] for a, o in zip(c.curves["a1"], c.curves["o1"])]
+    result = deck.validate()
+    print(json.dumps({
+        "keywords": [type(k).__name__ for k in deck.all_keywords],
+        "unprocessed": list(loaded._unprocessed_keywords),
+        "strings": sum(isinstance(k, str) for k in deck.all_keywords),
+        "errors": [str(e) for e in result.errors],
+        "undefined": undefined,
+        "mass_nodes": masses,
+        "history_nodes": history,
+        "curve": curve,
+    }))
+
+
+main()
