@@ -108,6 +108,12 @@ pub struct CalculixArgs {
     /// Write results every N increments.
     #[arg(long, default_value_t = 1, value_name = "N", requires = "force")]
     output_every: usize,
+    /// Added to every node and element id, to stay clear of the main model's ids.
+    #[arg(long, default_value_t = 0)]
+    id_offset: u64,
+    /// Prefix of every set and amplitude name, to stay clear of the main model's names.
+    #[arg(long, default_value = bumpsim_export::calculix::DEFAULT_PREFIX)]
+    prefix: String,
 }
 
 /// Arguments of `bumpsim export read-calculix`.
@@ -263,6 +269,8 @@ fn calculix(args: &CalculixArgs) -> Result<()> {
         initial_velocity: initial_velocity(common)?,
         analysis,
         title: title(&car, &common.model),
+        id_offset: args.id_offset,
+        prefix: args.prefix.clone(),
     };
     let deck = calculix_deck(&car.model, &options)?;
     let inputs: Vec<&Path> = std::iter::once(common.model.as_path())

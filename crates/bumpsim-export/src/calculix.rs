@@ -1,15 +1,21 @@
 //! CalculiX/Abaqus input deck of an MSD car model, and reading its results
 //! back (spec §8; CalculiX CrunchiX User's Manual 2.20).
 //!
-//! The deck: `*NODE` (node i is m_i, on the axis), `*ELEMENT, TYPE=MASS` with
-//! `*MASS`, `TYPE=SPRINGA` with `*SPRING` (k_j) and `TYPE=DASHPOTA` with
-//! `*DASHPOT` (c_j) between nodes j and j+1, `*BOUNDARY` on the two
-//! directions across the axis, and optional `*INITIAL CONDITIONS,
-//! TYPE=VELOCITY`. With a force history it is a complete analysis:
-//! `*AMPLITUDE` (the force, time shifted so the first sample is at 0),
-//! `*CLOAD` on node 1 along the axis, `*DYNAMIC, DIRECT, ALPHA=0` (trapezoidal
-//! rule: no numerical damping, unconditionally stable, second order) with a
-//! fixed increment, and `*NODE PRINT` of U to the `.dat` file.
+//! The deck: `*NODE` (node offset + i is m_i, on the axis), `*ELEMENT,
+//! TYPE=MASS` with `*MASS`, `TYPE=SPRINGA` with `*SPRING` (k_j) and
+//! `TYPE=DASHPOTA` with `*DASHPOT` (c_j) between nodes j and j+1, `*BOUNDARY`
+//! on the two directions across the axis, and optional `*INITIAL
+//! CONDITIONS, TYPE=VELOCITY`. With a force history it is a complete
+//! analysis: `*AMPLITUDE` (the force, time shifted so the first sample is at
+//! 0), `*CLOAD` on m1 along the axis, `*DYNAMIC, DIRECT, ALPHA=0`
+//! (trapezoidal rule: no numerical damping, unconditionally stable, second
+//! order) with a fixed increment, and `*NODE PRINT` of U to the `.dat` file.
+//!
+//! **Include-safe.** Node and element ids are `id_offset + k`; every set and
+//! the amplitude carry a name prefix (default `BUMPSIM_`: `BUMPSIM_NALL`,
+//! `BUMPSIM_EM1`, `BUMPSIM_FORCE`), and constraints and initial conditions
+//! act on the car's own set only, so the deck can be `*INCLUDE`d in a model
+//! with its own `Nall` set and low node ids (issue 16; tested in `ccx`).
 //!
 //! A comment line `** bumpsim-deck: units=.. axis=.. start=.. dof=..` records
 //! what is needed to map the `.dat` results back to SI model displacements
@@ -34,7 +40,7 @@ pub struct Analysis {
 }
 
 /// Options of the CalculiX export.
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct CalculixOptions {
     /// Units, axis and node placement.
     pub layout: Layout,
@@ -44,12 +50,60 @@ pub struct CalculixOptions {
     pub analysis: Option<Analysis>,
     /// Title comment.
     pub title: String,
+    /// Added to every node and element id.
+    pub id_offset: u64,
+    /// Prefix of every set and amplitude name (letters, digits, `_`).
+    pub prefix: String,
+}
+
+impl Default for CalculixOptions {
+    fn default() -> Self {
+        CalculixOptions {
+            layout: Layout::default(),
+            initial_velocity: None,
+            analysis: None,
+            title: String::new(),
+            id_offset: 0,
+            prefix: DEFAULT_PREFIX.to_string(),
+        }
+    }
+}
+
+/// The default prefix of set and amplitude names.
+pub const DEFAULT_PREFIX: &str = "BUMPSIM_";
+
+/// Largest node or element id CalculiX reads (a 32-bit integer).
+pub const MAX_CALCULIX_ID: u64 = 2_147_483_647;
+
+fn check_names(model: &MsdModel, options: &CalculixOptions) -> Result<(), ExportError> {
+    let prefix = &options.prefix;
+    if !prefix
+        .chars()
+        .all(|c| c.is_ascii_alphanumeric() || c == '_')
+        || prefix.starts_with(|c: char| c.is_ascii_digit())
+        || prefix.len() > 40
+    {
+        return Err(ExportError::Prefix {
+            prefix: prefix.clone(),
+        });
+    }
+    let last = options.id_offset.saturating_add(3 * model.dof() as u64);
+    if last > MAX_CALCULIX_ID {
+        return Err(ExportError::IdRange {
+            offset: options.id_offset,
+            last,
+            limit: MAX_CALCULIX_ID,
+        });
+    }
+    Ok(())
 }
 
 /// Writes the deck text.
 pub fn calculix_deck(model: &MsdModel, options: &CalculixOptions) -> Result<String, ExportError> {
+    check_names(model, options)?;
     let layout = &options.layout;
     let n = model.dof();
+    let (offset, set) = (options.id_offset, &options.prefix);
     let mut deck = String::new();
     let start = options.analysis.as_ref().map_or(0.0, |a| a.force.start());
     let [m, l, t, f] = layout.units.symbols();
@@ -61,20 +115,21 @@ pub fn calculix_deck(model: &MsdModel, options: &CalculixOptions) -> Result<Stri
     );
     let _ = writeln!(
         deck,
-        "** units: mass {m}, length {l}, time {t}, force {f}; node i is mass m_i"
+        "** units: mass {m}, length {l}, time {t}, force {f}; node {} + i is mass m_i",
+        offset
     );
     let _ = writeln!(
         deck,
-        "** bumpsim-deck: units={} axis={} start={start:e} dof={n}",
+        "** bumpsim-deck: units={} axis={} start={start:e} dof={n} offset={offset} prefix={set}",
         layout.units, layout.axis
     );
-    let _ = writeln!(deck, "*NODE, NSET=NALL");
+    let _ = writeln!(deck, "*NODE, NSET={set}NALL");
     for i in 0..n {
         let p = layout.node_position(i);
         let _ = writeln!(
             deck,
             "{}, {}, {}, {}",
-            i + 1,
+            offset + i as u64 + 1,
             real(p[0]),
             real(p[1]),
             real(p[2])
@@ -83,12 +138,34 @@ pub fn calculix_deck(model: &MsdModel, options: &CalculixOptions) -> Result<Stri
     for (i, mass) in model.masses().iter().enumerate() {
         let _ = writeln!(
             deck,
-            "*ELEMENT, TYPE=MASS, ELSET=EM{0}\n{0}, {0}\n*MASS, ELSET=EM{0}\n{1}",
+            "*ELEMENT, TYPE=MASS, ELSET={set}EM{0}\n{1}, {1}\n*MASS, ELSET={set}EM{0}\n{2}",
             i + 1,
+            offset + i as u64 + 1,
             real(mass * layout.units.mass())
         );
     }
-    // springs are elements n + j, dampers 2n + j; a zero damper gets no element
+    links(&mut deck, model, options);
+    let _ = writeln!(deck, "*BOUNDARY");
+    for dof in layout.axis.other_dofs() {
+        let _ = writeln!(deck, "{set}NALL, {dof}, {dof}");
+    }
+    if let Some(v) = options.initial_velocity {
+        let _ = writeln!(
+            deck,
+            "*INITIAL CONDITIONS, TYPE=VELOCITY\n{set}NALL, {}, {}",
+            layout.axis.dof(),
+            real(v * layout.axis.sign * layout.units.velocity())
+        );
+    }
+    if let Some(analysis) = &options.analysis {
+        transient(&mut deck, analysis, options)?;
+    }
+    Ok(deck)
+}
+
+/// Springs are elements offset + n + j, dampers offset + 2n + j; a zero damper gets no element.
+fn links(deck: &mut String, model: &MsdModel, options: &CalculixOptions) {
+    let (n, units, set) = (model.dof() as u64, options.layout.units, &options.prefix);
     let links = [
         (
             "SPRINGA",
@@ -96,7 +173,7 @@ pub fn calculix_deck(model: &MsdModel, options: &CalculixOptions) -> Result<Stri
             "EK",
             n,
             model.springs(),
-            layout.units.stiffness(),
+            units.stiffness(),
         ),
         (
             "DASHPOTA",
@@ -104,35 +181,25 @@ pub fn calculix_deck(model: &MsdModel, options: &CalculixOptions) -> Result<Stri
             "EC",
             2 * n,
             model.dampers(),
-            layout.units.damping(),
+            units.damping(),
         ),
     ];
-    for (element, card, set, base, values, factor) in links {
+    for (element, card, kind, base, values, factor) in links {
         for (j, value) in values.iter().enumerate().filter(|(_, v)| **v > 0.0) {
-            let (id, value) = (base + j + 1, real(value * factor));
-            let (a, b) = (j + 1, j + 2);
+            let node = |k: usize| options.id_offset + k as u64;
+            let (id, value) = (
+                options.id_offset + base + j as u64 + 1,
+                real(value * factor),
+            );
             let _ = writeln!(
                 deck,
-                "*ELEMENT, TYPE={element}, ELSET={set}{a}\n{id}, {a}, {b}\n*{card}, ELSET={set}{a}\n\n{value}"
+                "*ELEMENT, TYPE={element}, ELSET={set}{kind}{0}\n{id}, {1}, {2}\n*{card}, ELSET={set}{kind}{0}\n\n{value}",
+                j + 1,
+                node(j + 1),
+                node(j + 2)
             );
         }
     }
-    let _ = writeln!(deck, "*BOUNDARY");
-    for dof in layout.axis.other_dofs() {
-        let _ = writeln!(deck, "NALL, {dof}, {dof}");
-    }
-    if let Some(v) = options.initial_velocity {
-        let _ = writeln!(
-            deck,
-            "*INITIAL CONDITIONS, TYPE=VELOCITY\nNALL, {}, {}",
-            layout.axis.dof(),
-            real(v * layout.axis.sign * layout.units.velocity())
-        );
-    }
-    if let Some(analysis) = &options.analysis {
-        transient(&mut deck, analysis, layout)?;
-    }
-    Ok(deck)
 }
 
 /// A real as CalculiX reads it: always with a decimal point (`5e5` is misread), 13 digits.
@@ -140,7 +207,12 @@ fn real(value: f64) -> String {
     format!("{:.12e}", value + 0.0)
 }
 
-fn transient(deck: &mut String, analysis: &Analysis, layout: &Layout) -> Result<(), ExportError> {
+fn transient(
+    deck: &mut String,
+    analysis: &Analysis,
+    options: &CalculixOptions,
+) -> Result<(), ExportError> {
+    let (layout, set) = (&options.layout, &options.prefix);
     let force = &analysis.force;
     let increment = analysis.increment.unwrap_or(force.step());
     if !(increment.is_finite() && increment > 0.0) {
@@ -155,7 +227,7 @@ fn transient(deck: &mut String, analysis: &Analysis, layout: &Layout) -> Result<
         });
     }
     let units = layout.units;
-    let _ = writeln!(deck, "*AMPLITUDE, NAME=FORCE");
+    let _ = writeln!(deck, "*AMPLITUDE, NAME={set}FORCE");
     let pairs: Vec<String> = (0..force.len())
         .map(|k| {
             format!(
@@ -179,13 +251,14 @@ fn transient(deck: &mut String, analysis: &Analysis, layout: &Layout) -> Result<
     );
     let _ = writeln!(
         deck,
-        "*CLOAD, AMPLITUDE=FORCE\n1, {}, {:.1}",
+        "*CLOAD, AMPLITUDE={set}FORCE\n{}, {}, {:.1}",
+        options.id_offset + 1,
         layout.axis.dof(),
         layout.axis.sign
     );
     let _ = writeln!(
         deck,
-        "*NODE PRINT, NSET=NALL, FREQUENCY={}\nU\n*END STEP",
+        "*NODE PRINT, NSET={set}NALL, FREQUENCY={}\nU\n*END STEP",
         analysis.output_every
     );
     Ok(())
@@ -242,6 +315,10 @@ struct DeckMeta {
     axis: Axis,
     start: f64,
     dof: usize,
+    /// Node id offset (0 in decks written before it existed).
+    offset: u64,
+    /// Set name prefix ("" in decks written before it existed).
+    prefix: String,
 }
 
 impl DeckMeta {
@@ -258,6 +335,8 @@ impl DeckMeta {
             axis: value("axis")?.parse().ok()?,
             start: value("start")?.parse().ok()?,
             dof: value("dof")?.parse().ok()?,
+            offset: value("offset").map_or(Some(0), |v| v.parse().ok())?,
+            prefix: value("prefix").unwrap_or("").to_string(),
         })
     }
 }
@@ -273,9 +352,16 @@ fn parse_dat(text: &str, path: &Path, meta: &DeckMeta) -> Result<Results, Export
         displacement: vec![Vec::new(); meta.dof],
     };
     let mut counts = vec![0usize; meta.dof];
+    // only the blocks of the car's own set: a main deck may print others
+    let ours = format!("for set {}nall and", meta.prefix.to_ascii_lowercase());
+    let mut inside = false;
     for (index, line) in text.lines().enumerate() {
         let words: Vec<&str> = line.split_whitespace().collect();
         if line.contains("displacements") {
+            inside = line.to_ascii_lowercase().contains(&ours);
+            if !inside {
+                continue;
+            }
             let time: f64 = words
                 .last()
                 .and_then(|w| w.parse().ok())
@@ -295,7 +381,7 @@ fn parse_dat(text: &str, path: &Path, meta: &DeckMeta) -> Result<Results, Export
                 ));
             }
             results.time.push(time);
-        } else if words.len() == 4 {
+        } else if inside && words.len() == 4 {
             let numbers: Option<Vec<f64>> = words.iter().map(|w| w.parse().ok()).collect();
             let numbers = numbers.ok_or_else(|| {
                 error(
@@ -312,20 +398,25 @@ fn parse_dat(text: &str, path: &Path, meta: &DeckMeta) -> Result<Results, Export
                     format!("value {v}: expected finite numbers"),
                 ));
             }
-            let node = numbers[0] as usize;
+            let node = (numbers[0] as u64).saturating_sub(meta.offset) as usize;
             if node == 0 || node > meta.dof || results.time.is_empty() {
                 return Err(error(
                     index + 1,
                     format!(
-                        "node {node} is not a mass node 1..{} of a displacement block",
-                        meta.dof
+                        "node {} is not a mass node {}..{} of a displacement block",
+                        numbers[0],
+                        meta.offset + 1,
+                        meta.offset + meta.dof as u64
                     ),
                 ));
             }
             if counts[node - 1] == results.time.len() {
                 return Err(error(
                     index + 1,
-                    format!("node {node} appears twice in one displacement block"),
+                    format!(
+                        "node {} appears twice in one displacement block",
+                        numbers[0]
+                    ),
                 ));
             }
             let along = numbers[meta.axis.component + 1] * meta.axis.sign / meta.units.length();
@@ -343,4 +434,59 @@ fn parse_dat(text: &str, path: &Path, meta: &DeckMeta) -> Result<Results, Export
         ));
     }
     Ok(results)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn results_come_from_the_cars_own_set_with_the_offset_undone() {
+        let meta = DeckMeta {
+            units: UnitSystem::Si,
+            axis: Axis::default(),
+            start: 0.0,
+            dof: 2,
+            offset: 1000,
+            prefix: "BUMPSIM_".into(),
+        };
+        let block = |set: &str, t: &str, nodes: [(u64, f64); 2]| {
+            let rows: String = nodes
+                .iter()
+                .map(|(n, u)| format!("  {n}  {u:e}  0.0  0.0\n"))
+                .collect();
+            format!(" displacements (vx,vy,vz) for set {set} and time  {t}\n\n{rows}\n")
+        };
+        let dat = block("NALL", "1e-3", [(1, 9.0), (2, 9.0)])
+            + &block("BUMPSIM_NALL", "1e-3", [(1001, 0.5), (1002, 0.25)]);
+        let r = parse_dat(&dat, Path::new("x.dat"), &meta).unwrap();
+        assert_eq!(r.time.len(), 1);
+        assert_eq!(r.displacement, vec![vec![0.5], vec![0.25]]);
+        let foreign = block("BUMPSIM_NALL", "1e-3", [(1, 0.5), (2, 0.25)]);
+        let e = parse_dat(&foreign, Path::new("x.dat"), &meta).unwrap_err();
+        assert!(e.to_string().contains("not a mass node 1001..1002"), "{e}");
+    }
+
+    #[test]
+    fn names_and_ids_calculix_cannot_read_are_refused() {
+        let model = MsdModel::new(vec![1.0, 2.0], vec![1.0], vec![1.0]).unwrap();
+        for prefix in ["BAD NAME", "1ST_", "A,B"] {
+            let options = CalculixOptions {
+                prefix: prefix.into(),
+                ..Default::default()
+            };
+            assert!(matches!(
+                calculix_deck(&model, &options),
+                Err(ExportError::Prefix { .. })
+            ));
+        }
+        let options = CalculixOptions {
+            id_offset: u64::MAX,
+            ..Default::default()
+        };
+        assert!(matches!(
+            calculix_deck(&model, &options),
+            Err(ExportError::IdRange { .. })
+        ));
+    }
 }

@@ -91,6 +91,12 @@ pub enum ExportError {
         /// Samples given.
         samples: usize,
     },
+    /// A set-name prefix CalculiX cannot read.
+    #[error("name prefix '{prefix}': use letters, digits and '_' (not first a digit), at most 40")]
+    Prefix {
+        /// The prefix given.
+        prefix: String,
+    },
     /// A standalone deck without a force history to end at.
     #[error("a standalone deck needs a force history (its end is the termination time)")]
     Standalone,

@@ -645,7 +645,7 @@ fn read_calculix_refuses_corrupt_results() {
     let deck = std::fs::read_to_string(dir.join("car.inp")).unwrap();
     let block = |t: &str, v: &str| {
         format!(
-            " displacements (vx,vy,vz) for set NALL and time  {t}\n\n         1  {v}  0.0  0.0\n         2  {v}  0.0  0.0\n         3  {v}  0.0  0.0\n\n"
+            " displacements (vx,vy,vz) for set BUMPSIM_NALL and time  {t}\n\n         1  {v}  0.0  0.0\n         2  {v}  0.0  0.0\n         3  {v}  0.0  0.0\n\n"
         )
     };
     let cases = [
@@ -654,7 +654,7 @@ fn read_calculix_refuses_corrupt_results() {
         (block("1e-4", "1e-3") + &block("1e-4", "1e-3"), "duplicate"),
         (
             block("1e-4", "1e-3")
-                + " displacements (vx,vy,vz) for set NALL and time  2e-4\n\n         1  1e-3 0.0 0.0\n",
+                + " displacements (vx,vy,vz) for set BUMPSIM_NALL and time  2e-4\n\n         1  1e-3 0.0 0.0\n",
             "truncated",
         ),
     ];
