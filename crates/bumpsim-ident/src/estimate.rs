@@ -199,6 +199,9 @@ pub struct Identification {
     pub run_time: f64,
     /// Warnings for the user.
     pub warnings: Vec<String>,
+    /// A simpler model that fits as well, when a spring is undetermined
+    /// ([`crate::reduce`]).
+    pub reduction: Option<crate::reduce::Reduction>,
 }
 
 impl Identification {
@@ -323,9 +326,26 @@ fn check(cases: &[LoadCase], settings: &Settings) -> Result<(), IdentError> {
     settings.bounds.check(settings.dof)
 }
 
-/// Identifies a `settings.dof`-mass model from `cases`. `progress` is called
-/// once per finished start (from any thread).
+/// Identifies a `settings.dof`-mass model from `cases`, with the reduced
+/// model that fits as well when a spring is undetermined
+/// ([`crate::reduce`]). `progress` is called once per finished start (from
+/// any thread).
 pub fn identify(
+    cases: &[LoadCase],
+    settings: &Settings,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Identification, IdentError> {
+    let mut result = identify_only(cases, settings, progress)?;
+    let refit = |cases: &[LoadCase], s: &Settings| identify_only(cases, s, &|| {});
+    result.reduction = crate::reduce::suggest(cases, &result, settings, &refit);
+    if let Some(r) = &result.reduction {
+        result.warnings.push(r.statement.clone());
+    }
+    Ok(result)
+}
+
+/// [`identify`] without looking for a reduced model.
+fn identify_only(
     cases: &[LoadCase],
     settings: &Settings,
     progress: &(dyn Fn() + Sync),
@@ -450,6 +470,7 @@ fn summarise(
         stop: outcome.stop,
         run_time: clock.elapsed().as_secs_f64(),
         warnings,
+        reduction: None,
     })
 }
 

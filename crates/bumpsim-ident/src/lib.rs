@@ -6,6 +6,7 @@
 //! - [`estimate`]: the data-derived start, multi-start, results;
 //! - [`search`]: the starts, continuation across the DOF table, screening;
 //! - [`explore`]: predictions and the ±3 % sensitivity of the objective;
+//! - [`reduce`]: the simpler model when a spring is undetermined;
 //! - [`stats`]: standard errors, intervals, correlations, identifiability;
 //! - [`text`]: text tables of results (as `doe::text` and `impact::text`);
 //! - [`study`]: study files (TOML) and the processing of their load cases.
@@ -35,6 +36,7 @@ pub mod dofs;
 pub mod estimate;
 pub mod explore;
 pub mod lm;
+pub mod reduce;
 pub mod search;
 pub mod stats;
 pub mod study;

@@ -410,3 +410,37 @@ fn continuation_from_the_smaller_model_never_loses_its_fit() {
     let error = identify(&cases, &settings, &|| {}).unwrap_err().to_string();
     assert!(error.contains("seed start 1"), "{error}");
 }
+
+#[test]
+fn an_undetermined_stiff_spring_is_named_and_the_merged_model_suggested() {
+    // m2 and m3 joined by a spring far stiffer than 10 kHz data resolve
+    let stiff =
+        MsdModel::new(vec![40.0, 300.0, 1100.0], vec![6e3, 2e4], vec![1.2e6, 5e10]).unwrap();
+    let mut cases = series(&stiff);
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    for c in &mut cases {
+        c.measured
+            .iter_mut()
+            .for_each(|m| *m += noise(&mut rng, 2e-5));
+    }
+    let result = identify(&cases, &Settings::new(3, 8), &|| {}).unwrap();
+    let reduction = result.reduction.as_ref().expect("a reduced model");
+    assert_eq!(reduction.parameter, "k2", "{}", reduction.statement);
+    assert!(
+        reduction.relative_objective <= 0.01,
+        "{}",
+        reduction.statement
+    );
+    assert!(
+        reduction.statement.contains("m2 and m3 move as one"),
+        "{}",
+        reduction.statement
+    );
+    assert_eq!(reduction.model.dof(), 2);
+    let merged = reduction.model.masses()[1];
+    assert!((merged / 1400.0 - 1.0).abs() < 0.1, "m2 + m3 = {merged} kg");
+    assert!(result.warnings.contains(&reduction.statement));
+    // a well-determined model gets no suggestion
+    let determined = identify(&series(&truth()), &Settings::new(3, 8), &|| {}).unwrap();
+    assert!(determined.reduction.is_none(), "{:?}", determined.reduction);
+}
