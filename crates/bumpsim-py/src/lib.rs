@@ -10,8 +10,11 @@
 //! Python API; docs/python.md is the tour.
 
 mod arrays;
+mod doe;
 mod errors;
+mod export;
 mod ident;
+mod impact;
 mod model;
 mod signal;
 
@@ -28,5 +31,8 @@ fn _bumpsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     model::register(m)?;
     signal::register(m)?;
     ident::register(m)?;
+    impact::register(m)?;
+    doe::register(m)?;
+    export::register(m)?;
     Ok(())
 }
