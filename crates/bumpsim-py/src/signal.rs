@@ -7,6 +7,7 @@ use crate::errors::{file_or_input, input};
 use bumpsim_core::channel::Channel as CoreChannel;
 use bumpsim_io::test_data::{Entry as CoreEntry, TestData, Validity};
 use bumpsim_signal::filter::{Cfc, CfcStandard};
+use bumpsim_signal::pipeline::{Pipeline, PipelineResult};
 use bumpsim_signal::process::Step;
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -20,7 +21,60 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Channel>()?;
     m.add_function(wrap_pyfunction!(read_test, m)?)?;
     m.add_function(wrap_pyfunction!(cfc, m)?)?;
+    m.add_function(wrap_pyfunction!(run_pipeline, m)?)?;
+    m.add_class::<PipelineRun>()?;
     Ok(())
+}
+
+/// Runs a processing pipeline file (TOML), as `bumpsim signal process`.
+#[pyfunction]
+fn run_pipeline(py: Python<'_>, path: PathBuf) -> PyResult<PipelineRun> {
+    let result = py
+        .detach(|| Pipeline::read(&path).and_then(|p| p.run()))
+        .map_err(file_or_input)?;
+    Ok(PipelineRun { inner: result })
+}
+
+/// The signals of a pipeline run, the raw ones, warnings and the momentum balance.
+#[pyclass(frozen, module = "bumpsim")]
+pub struct PipelineRun {
+    inner: PipelineResult,
+}
+
+#[pymethods]
+impl PipelineRun {
+    /// The processed signals, in file order.
+    #[getter]
+    fn signals(&self) -> Vec<Channel> {
+        let wrap = |c: &CoreChannel| Channel { inner: c.clone() };
+        self.inner.signals.iter().map(wrap).collect()
+    }
+    /// The signals as read, before processing.
+    #[getter]
+    fn raw(&self) -> Vec<Channel> {
+        let wrap = |c: &CoreChannel| Channel { inner: c.clone() };
+        self.inner.raw.iter().map(wrap).collect()
+    }
+    /// Warnings of the run.
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.inner.warnings.clone()
+    }
+    /// The momentum balance (window s, mass kg, impulse and momentum change
+    /// N·s, relative difference), or None when the pipeline asks for none.
+    #[getter]
+    fn balance<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Some(b) = &self.inner.balance else {
+            return Ok(None);
+        };
+        let d = PyDict::new(py);
+        d.set_item("window", (b.window[0], b.window[1]))?;
+        d.set_item("mass", b.mass)?;
+        d.set_item("impulse", b.impulse)?;
+        d.set_item("momentum_change", b.momentum_change)?;
+        d.set_item("relative_difference", b.relative_difference)?;
+        Ok(Some(d))
+    }
 }
 
 fn standard(name: &str) -> PyResult<CfcStandard> {

@@ -96,3 +96,30 @@ def test_to_pandas_when_pandas_is_installed(root):
     assert isinstance(series, pandas.Series)
     assert np.array_equal(series.to_numpy(), channel.data)
     assert np.array_equal(series.index.to_numpy(), channel.time)
+
+
+def test_pipeline_equals_the_cli(run, tmp_path, root):
+    p600 = root / "examples" / "identify" / "P600"
+    pipeline = tmp_path / "pipeline.toml"
+    pipeline.write_text(f"""
+[[signal]]
+name = "force"
+path = "{p600}"
+channels = ["P0IMPA*"]
+steps = [{{ pretrigger_bias = true }}, {{ cfc = 180 }}]
+
+[[signal]]
+name = "velocity"
+path = "{p600}"
+channels = ["10SIME*ACXP"]
+combine = "mean"
+steps = [{{ cfc = 180 }}, {{ integrate = 0.0 }}]
+""")
+    out = tmp_path / "out.csv"
+    run("signal", "process", pipeline, "-o", out)
+    table = read_csv(out)
+    result = bumpsim.run_pipeline(pipeline)
+    assert len(result.signals) == 2 and result.balance is None
+    for signal in result.signals:
+        assert np.array_equal(signal.data, table[f"{signal.code} [{signal.unit}]"])
+    assert len(result.raw) >= 2

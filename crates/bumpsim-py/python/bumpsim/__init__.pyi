@@ -345,3 +345,17 @@ def calculix(
     title: Optional[str] = None,
 ) -> str:
     """The CalculiX/Abaqus deck; with time and force a transient analysis."""
+
+# ---------------------------------------------------------------- pipelines
+
+class PipelineRun:
+    """The signals of a pipeline run (``bumpsim signal process``)."""
+
+    signals: list[Channel]
+    raw: list[Channel]
+    warnings: list[str]
+    balance: Optional[dict[str, Any]]
+    """window (s), mass (kg), impulse and momentum_change (N·s), relative_difference."""
+
+def run_pipeline(path: StrPath) -> PipelineRun:
+    """Runs a processing pipeline file (TOML; docs/signals.md)."""
