@@ -3,10 +3,13 @@
 //! load its cases for the DOF, take its settings with the caller's starts
 //! and seed, identify, and predict the cases with the result.
 
-use crate::arrays::array1;
+use crate::arrays::{array1, vector};
+use crate::errors::InputError;
 use crate::errors::{file_or_input, input};
 use crate::model::Car;
+use bumpsim_core::series::UniformSeries;
 use bumpsim_ident::case::LoadCase;
+use bumpsim_ident::estimate::Settings;
 use bumpsim_ident::estimate::{Identification as CoreIdentification, identify as core_identify};
 use bumpsim_ident::explore::predict;
 use bumpsim_ident::study::{DofSpec, Study};
@@ -20,7 +23,111 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Identification>()?;
     m.add_class::<Prediction>()?;
     m.add_function(wrap_pyfunction!(identify, m)?)?;
+    m.add_class::<Case>()?;
+    m.add_function(wrap_pyfunction!(identify_cases, m)?)?;
     Ok(())
+}
+
+/// A load case from numpy arrays: force on m1 (N) and the measured
+/// displacement (m) of mass `output_dof` (1 = m1) at uniform `time` (s);
+/// `window` (t0, t1) in s is the fit window (default: every sample).
+#[pyclass(frozen, module = "bumpsim", name = "LoadCase")]
+pub struct Case {
+    inner: LoadCase,
+}
+
+#[pymethods]
+impl Case {
+    #[new]
+    #[pyo3(signature = (name, time, force, displacement, output_dof = 1, initial_velocity = 0.0, window = None))]
+    fn new(
+        name: String,
+        time: &Bound<'_, PyAny>,
+        force: &Bound<'_, PyAny>,
+        displacement: &Bound<'_, PyAny>,
+        output_dof: usize,
+        initial_velocity: f64,
+        window: Option<(f64, f64)>,
+    ) -> PyResult<Self> {
+        let force = UniformSeries::from_times(&vector(time, "time")?, vector(force, "force")?)
+            .map_err(input)?;
+        let last = force.len() - 1;
+        let window = match window {
+            None => (0, last),
+            Some((t0, t1)) => force
+                .window(t0, t1)
+                .map(|w| (*w.start(), *w.end()))
+                .ok_or_else(|| {
+                    InputError::new_err(format!(
+                        "case '{name}': no sample inside the window [{t0}, {t1}] s"
+                    ))
+                })?,
+        };
+        let case = LoadCase {
+            start: force.start(),
+            step: force.step(),
+            measured: vector(displacement, "displacement")?,
+            force: force.values().to_vec(),
+            name,
+            output_dof,
+            initial_velocity,
+            window,
+        };
+        case.validate().map_err(input)?;
+        Ok(Case { inner: case })
+    }
+
+    /// Case name.
+    #[getter]
+    fn name(&self) -> String {
+        self.inner.name.clone()
+    }
+}
+
+/// Identifies one `dof`-mass model from load cases built in Python, with
+/// the library's default settings (every parameter ≥ 1 in SI) and `starts`
+/// seeded starts.
+#[pyfunction]
+#[pyo3(signature = (cases, dof, starts = 32, seed = 1, progress = None))]
+fn identify_cases(
+    py: Python<'_>,
+    cases: Vec<PyRef<'_, Case>>,
+    dof: usize,
+    starts: usize,
+    seed: u64,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Identification> {
+    let cases: Vec<LoadCase> = cases.iter().map(|c| c.inner.clone()).collect();
+    let mut settings = Settings::new(dof, starts);
+    settings.seed = seed;
+    let tick = progress_callback(&progress);
+    let result = py
+        .detach(|| core_identify(&cases, &settings, &tick))
+        .map_err(|e| {
+            crate::errors::InputError::new_err(format!(
+                "{dof}-DOF identification: {}",
+                crate::errors::message(&e)
+            ))
+        })?;
+    Ok(Identification {
+        result,
+        cases,
+        notes: Vec::new(),
+    })
+}
+
+/// The library's per-start progress hook calling a Python callable (if any)
+/// with the GIL; an exception in it is printed, not raised.
+fn progress_callback(progress: &Option<Py<PyAny>>) -> impl Fn() + Sync + '_ {
+    move || {
+        if let Some(callback) = progress {
+            Python::attach(|py| {
+                if let Err(e) = callback.call0(py) {
+                    e.print(py);
+                }
+            });
+        }
+    }
 }
 
 /// Parses JSON the library serialised into Python objects.
@@ -56,15 +163,7 @@ fn identify(
             study.display()
         )));
     };
-    let tick = || {
-        if let Some(callback) = &progress {
-            Python::attach(|py| {
-                if let Err(e) = callback.call0(py) {
-                    e.print(py);
-                }
-            });
-        }
-    };
+    let tick = progress_callback(&progress);
     let (result, cases, notes) = py.detach(|| {
         let loaded = file.load(dof).map_err(input)?;
         let mut settings = file.settings(dof).map_err(input)?;

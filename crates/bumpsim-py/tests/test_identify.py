@@ -87,3 +87,32 @@ def test_bad_study_raises_documented_errors(tmp_path, root):
     bad.write_text("[model]\ndof = 3\nstarts = 0\n")
     with pytest.raises(bumpsim.InputError, match=r"study\.toml"):
         bumpsim.identify(bad)
+
+
+def test_identify_from_numpy_recovers_the_car_that_made_the_data():
+    # independent check: data simulated from a known 2-DOF car, identified back
+    truth = bumpsim.Car([40.0, 900.0], [6e3], [8e5])
+    time = np.arange(3001) * 1e-4
+    cases = []
+    for name, peak, width in [("short", 2e4, 0.03), ("long", 1.2e4, 0.08)]:
+        force = np.where(time < width, peak * np.sin(np.pi * time / width), 0.0)
+        x1 = bumpsim.simulate(truth, time, force).displacement[0]
+        cases.append(bumpsim.LoadCase(name, time, force, x1, output_dof=1))
+    result = bumpsim.identify_cases(cases, dof=2, starts=8, seed=1)
+    np.testing.assert_allclose(result.masses, truth.masses, rtol=1e-5)
+    np.testing.assert_allclose(result.dampers, truth.dampers, rtol=1e-5)
+    np.testing.assert_allclose(result.springs, truth.springs, rtol=1e-5)
+    assert [c["name"] for c in result.cases] == ["short", "long"]
+    assert all(p.fit_percent > 99.99 for p in result.predict())
+
+
+def test_load_case_errors():
+    time = np.arange(10) * 1e-3
+    with pytest.raises(bumpsim.InputError, match="9 force samples and 10 displacement|expected the same number"):
+        bumpsim.LoadCase("a", time[:9], np.zeros(9), np.arange(10.0))
+    with pytest.raises(bumpsim.InputError, match="constant"):
+        bumpsim.LoadCase("a", time, np.ones(10), np.zeros(10))
+    with pytest.raises(bumpsim.InputError, match=r"no sample inside the window"):
+        bumpsim.LoadCase("a", time, np.ones(10), np.arange(10.0), window=(1.0, 2.0))
+    with pytest.raises(bumpsim.InputError, match=r"displacement: expected a 1-D numpy array of float64"):
+        bumpsim.LoadCase("a", time, np.ones(10), np.arange(10))

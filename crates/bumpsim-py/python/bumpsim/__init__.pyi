@@ -228,6 +228,33 @@ def identify(
     ``bumpsim identify STUDY --dof N --starts S --seed X``; ``progress`` is
     called once per finished start."""
 
+class LoadCase:
+    """A load case from numpy arrays: force on m1 (N) and the measured
+    displacement (m) of mass ``output_dof`` (1 = m1) at uniform ``time`` (s);
+    ``window`` (t0, t1) s is the fit window (default: every sample)."""
+
+    name: str
+    def __init__(
+        self,
+        name: str,
+        time: ArrayLike1D,
+        force: ArrayLike1D,
+        displacement: ArrayLike1D,
+        output_dof: int = 1,
+        initial_velocity: float = 0.0,
+        window: Optional[tuple[float, float]] = None,
+    ) -> None: ...
+
+def identify_cases(
+    cases: Sequence[LoadCase],
+    dof: int,
+    starts: int = 32,
+    seed: int = 1,
+    progress: Optional[Callable[[], Any]] = None,
+) -> Identification:
+    """Identifies one ``dof``-mass model from load cases built in Python
+    (library defaults: every parameter ≥ 1 in SI)."""
+
 # ---------------------------------------------------------------- impact
 
 class Bumper:
