@@ -16,6 +16,7 @@ mod export;
 mod ident;
 mod impact;
 mod model;
+mod planar;
 mod signal;
 
 use pyo3::prelude::*;
@@ -34,5 +35,6 @@ fn _bumpsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     impact::register(m)?;
     doe::register(m)?;
     export::register(m)?;
+    planar::register(m)?;
     Ok(())
 }

@@ -160,3 +160,31 @@ def test_export_errors(root):
         bumpsim.lsdyna_deck(car, units="furlongs")
     with pytest.raises(bumpsim.InputError, match="time and force go together"):
         bumpsim.calculix(car, time=np.arange(3.0))
+
+
+@pytest.mark.parametrize(
+    "cli_args, kwargs",
+    [
+        (["--case", "rcar-structural-front"], {"case": "rcar-structural-front"}),
+        (["--angle", "30", "--overlap", "40", "--side", "right", "--speed", "2.5"],
+         {"angle": 30.0, "overlap": 40.0, "side": "right", "speed": 2.5}),
+        (["--pole", "0.254", "--pole-offset", "0.2", "--pendulum", "1100", "--speed", "2.2"],
+         {"pole": 0.254, "pole_offset": 0.2, "pendulum": 1100.0, "speed": 2.2}),
+    ],
+)
+def test_planar_impact_equals_the_cli_json(run, tmp_path, root, cli_args, kwargs):
+    car_path = root / "examples" / "planar" / "saloon.toml"
+    out = tmp_path / "planar.json"
+    run("planar", "--car", car_path, *cli_args, "--json", out)
+    car = bumpsim.PlanarCar.from_file(car_path)
+    result = bumpsim.planar_impact(car, **kwargs)
+    numbers_equal(json.loads(result.to_json()), json.loads(out.read_text()))
+    assert result.result["peak_force"] == json.loads(out.read_text())["result"]["peak_force"]
+
+
+def test_planar_errors(root):
+    car = bumpsim.PlanarCar.from_file(root / "examples" / "planar" / "saloon.toml")
+    with pytest.raises(bumpsim.InputError, match="known presets"):
+        bumpsim.planar_impact(car, case="nope")
+    with pytest.raises(bumpsim.InputError, match="side"):
+        bumpsim.planar_impact(car, angle=10.0, side="middle", speed=2.0)

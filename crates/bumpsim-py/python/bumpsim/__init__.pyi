@@ -301,6 +301,38 @@ def mass_reduction(
 ) -> dict[str, Any]:
     """Paper A's equivalent single mass of a 2-DOF car into a rigid barrier."""
 
+# ---------------------------------------------------------------- planar car
+
+class PlanarCar:
+    """A planar car (yaw, left/right chains, segmented bumper, tyres; docs/planar.md)."""
+
+    name: Optional[str]
+    @staticmethod
+    def from_file(path: StrPath) -> "PlanarCar": ...
+
+class PlanarImpact:
+    """A planar impact's result with the fields of ``bumpsim planar --json``."""
+
+    result: dict[str, Any]
+    warnings: list[str]
+    def summary(self) -> str: ...
+    def to_json(self) -> str: ...
+
+def planar_impact(
+    car: PlanarCar,
+    case: Optional[str] = None,
+    angle: Optional[float] = None,
+    overlap: Optional[float] = None,
+    side: str = "left",
+    pole: Optional[float] = None,
+    pole_offset: float = 0.0,
+    pendulum: Optional[float] = None,
+    speed: Optional[float] = None,
+) -> PlanarImpact:
+    """A preset ``case``; or a barrier (or ``pendulum``, kg) at ``angle`` degrees
+    with ``overlap`` % from ``side``; or a pole of diameter ``pole`` m at
+    ``pole_offset`` m; ``speed`` in m/s."""
+
 # ---------------------------------------------------------------- DOE
 
 class Design:
