@@ -11,9 +11,10 @@ use bumpsim_core::series::UniformSeries;
 use bumpsim_ident::case::LoadCase;
 use bumpsim_ident::estimate::Settings;
 use bumpsim_ident::estimate::{Identification as CoreIdentification, identify as core_identify};
-use bumpsim_ident::explore::predict;
+use bumpsim_ident::explore::{predict, sensitivity};
 use bumpsim_ident::study::{DofSpec, Study};
 use bumpsim_io::car::Car as IoCar;
+use bumpsim_report::identification::{DofOutcome, report};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use std::path::PathBuf;
@@ -113,6 +114,8 @@ fn identify_cases(
         result,
         cases,
         notes: Vec::new(),
+        study: None,
+        seed,
     })
 }
 
@@ -164,7 +167,7 @@ fn identify(
         )));
     };
     let tick = progress_callback(&progress);
-    let (result, cases, notes) = py.detach(|| {
+    let (result, cases, notes, seed) = py.detach(|| {
         let loaded = file.load(dof).map_err(input)?;
         let mut settings = file.settings(dof).map_err(input)?;
         settings.starts = starts.unwrap_or(settings.starts);
@@ -177,12 +180,14 @@ fn identify(
             ))
         })?;
         let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
-        Ok::<_, PyErr>((result, cases, notes))
+        Ok::<_, PyErr>((result, cases, notes, settings.seed))
     })?;
     Ok(Identification {
         result,
         cases,
         notes,
+        study: Some(study),
+        seed,
     })
 }
 
@@ -193,6 +198,10 @@ pub struct Identification {
     result: CoreIdentification,
     cases: Vec<LoadCase>,
     notes: Vec<String>,
+    /// The study file, when identified from one.
+    study: Option<PathBuf>,
+    /// Seed of the starts.
+    seed: u64,
 }
 
 #[pymethods]
@@ -326,6 +335,43 @@ impl Identification {
                 simulated: array1(py, p.simulated),
             })
             .collect())
+    }
+    /// The HTML report `bumpsim identify --report` writes, as the page and
+    /// its SVG figures (file name → SVG text), with the ±3 % sensitivity.
+    fn report(
+        &self,
+        py: Python<'_>,
+    ) -> PyResult<(String, std::collections::BTreeMap<String, String>)> {
+        let (inputs, source) = match &self.study {
+            Some(path) => (
+                std::fs::read_to_string(path).unwrap_or_default(),
+                format!("Study {}", path.display()),
+            ),
+            None => (String::new(), "Load cases from Python".to_string()),
+        };
+        let settings = format!(
+            "{source}; DOF {}; {} starts, seed {}; exact zoh discretisation.",
+            self.result.dof, self.result.starts.total, self.seed
+        );
+        let (html, figures) = py.detach(|| {
+            let model = &self.result.model;
+            let predictions = predict(&self.cases, model).map_err(input)?;
+            let sweeps = sensitivity(&self.cases, model, 0.03, 13).map_err(input)?;
+            let outcomes = [DofOutcome::Done {
+                result: Box::new(self.result.clone()),
+                predictions,
+            }];
+            report(
+                "bumpsim identification",
+                &inputs,
+                &settings,
+                &self.notes,
+                &outcomes,
+                Some(&sweeps),
+            )
+            .map_err(input)
+        })?;
+        Ok((html, figures.into_iter().collect()))
     }
     fn __repr__(&self) -> String {
         format!(

@@ -116,3 +116,18 @@ def test_load_case_errors():
         bumpsim.LoadCase("a", time, np.ones(10), np.arange(10.0), window=(1.0, 2.0))
     with pytest.raises(bumpsim.InputError, match=r"displacement: expected a 1-D numpy array of float64"):
         bumpsim.LoadCase("a", time, np.ones(10), np.arange(10))
+
+
+def test_report_equals_the_cli_report(run, tmp_path, root, result):
+    import re
+
+    folder = tmp_path / "report"
+    run("identify", root / "examples" / "identify" / "study.toml", "--dof", "3", "--starts",
+        str(STARTS), "--seed", str(SEED), "--quiet", "--report", folder)
+    html, figures = result.report()
+    assert sorted(figures) == sorted(p.name for p in folder.glob("*.svg"))
+    for name, svg in figures.items():
+        assert svg == (folder / name).read_text(), name
+    # the wall-clock run time is the one thing that differs between two runs
+    run_time = re.compile(r"\d+(\.\d+)? (s|ms)\.</p>")
+    assert run_time.sub("T.</p>", html) == run_time.sub("T.</p>", (folder / "index.html").read_text())

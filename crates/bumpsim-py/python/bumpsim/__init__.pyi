@@ -216,6 +216,9 @@ class Identification:
         """The result as ``bumpsim identify --json`` writes it."""
     def predict(self) -> list[Prediction]:
         """Simulates the study's load cases with the identified model."""
+    def report(self) -> tuple[str, dict[str, str]]:
+        """The HTML report of ``bumpsim identify --report`` (with the ±3 %
+        sensitivity): the page and its SVG figures, file name → text."""
 
 def identify(
     study: StrPath,
