@@ -9,6 +9,7 @@ use bumpsim_io::test_data::{Entry as CoreEntry, TestData, Validity};
 use bumpsim_signal::filter::{Cfc, CfcStandard};
 use bumpsim_signal::pipeline::{Pipeline, PipelineResult};
 use bumpsim_signal::process::Step;
+use bumpsim_signal::window::ContactThreshold;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -22,6 +23,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_test, m)?)?;
     m.add_function(wrap_pyfunction!(cfc, m)?)?;
     m.add_function(wrap_pyfunction!(run_pipeline, m)?)?;
+    m.add_function(wrap_pyfunction!(contact_window, m)?)?;
     m.add_class::<PipelineRun>()?;
     Ok(())
 }
@@ -104,6 +106,18 @@ fn cfc(
         .detach(|| Cfc::new(cls, standard).and_then(|f| f.filter(&values, 1.0 / fs)))
         .map_err(input)?;
     Ok(array1(py, filtered))
+}
+
+/// The contact window of a force (any sign): first and last sample index
+/// (inclusive) where |F| rises to `rise` and last stays at `fall` of its peak.
+#[pyfunction]
+#[pyo3(signature = (force, rise = 0.05, fall = 0.02))]
+fn contact_window(force: &Bound<'_, PyAny>, rise: f64, fall: f64) -> PyResult<(usize, usize)> {
+    let values = vector(force, "force")?;
+    let window = ContactThreshold { rise, fall }
+        .detect(&values)
+        .map_err(input)?;
+    Ok((window.first, window.last))
 }
 
 /// Opens a crash test: an ISO-MME folder, `.mme` or `.zip`, an NHTSA `.EV5`
@@ -358,6 +372,18 @@ impl Channel {
     #[pyo3(signature = (initial = 0.0))]
     fn integrate(&self, py: Python<'_>, initial: f64) -> PyResult<Channel> {
         self.apply(py, Step::Integrate(initial))
+    }
+    /// Keeps only the samples in [t0, t1] s (`signal export --trim`).
+    fn trim(&self, py: Python<'_>, t0: f64, t1: f64) -> PyResult<Channel> {
+        self.apply(py, Step::Trim([t0, t1]))
+    }
+    /// Resamples to the interval `step` s (`signal export --resample`).
+    fn resample(&self, py: Python<'_>, step: f64) -> PyResult<Channel> {
+        self.apply(py, Step::Resample(step))
+    }
+    /// Centred moving average over `points` samples.
+    fn moving_average(&self, py: Python<'_>, points: usize) -> PyResult<Channel> {
+        self.apply(py, Step::MovingAverage(points))
     }
     /// The samples as a `pandas.Series` indexed by time (s), named by the code.
     fn to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {

@@ -123,3 +123,24 @@ steps = [{{ cfc = 180 }}, {{ integrate = 0.0 }}]
     for signal in result.signals:
         assert np.array_equal(signal.data, table[f"{signal.code} [{signal.unit}]"])
     assert len(result.raw) >= 2
+
+
+def test_trim_and_resample_equal_the_cli(run, tmp_path, root):
+    folder = root / "examples" / "identify" / "P600"
+    channel = bumpsim.read_test(folder).channel(1)
+    processed = channel.cfc(60).trim(0.0, 0.1).resample(2e-4)
+    time, data, header = cli_export(run, tmp_path, folder, "1", "--cfc", "60",
+                                    "--trim", "0,0.1", "--resample", "2e-4")
+    assert np.array_equal(processed.time, time)
+    assert np.array_equal(processed.data, data)
+
+
+def test_contact_window():
+    # independent check: |F| first reaches 5 % of the peak at 2 and last is
+    # at or above 2 % at 5 (the hysteresis keeps the dip at 4 inside)
+    assert bumpsim.contact_window([0.0, 0.0, 1.0, 10.0, 0.5, 3.0, 0.1, 0.0]) == (2, 5)
+    assert bumpsim.contact_window(-np.array([0.0, 0.0, 1.0, 10.0, 0.5, 3.0, 0.1, 0.0])) == (2, 5)
+    with pytest.raises(bumpsim.InputError, match="zero everywhere"):
+        bumpsim.contact_window(np.zeros(5))
+    with pytest.raises(bumpsim.InputError, match="fall <= rise"):
+        bumpsim.contact_window(np.ones(5), rise=0.01, fall=0.5)

@@ -145,6 +145,11 @@ class Channel:
     def bias(self) -> "Channel":
         """Removes the mean of the samples before t = 0."""
     def scale(self, factor: float) -> "Channel": ...
+    def trim(self, t0: float, t1: float) -> "Channel":
+        """Keeps the samples in [t0, t1] s."""
+    def resample(self, step: float) -> "Channel":
+        """Resamples to the interval ``step`` s."""
+    def moving_average(self, points: int) -> "Channel": ...
     def integrate(self, initial: float = 0.0) -> "Channel":
         """Integrates; the result equals ``initial`` (SI) at t = 0."""
     def to_pandas(self) -> Any:
@@ -173,6 +178,10 @@ class Test:
 
 def read_test(path: StrPath) -> Test:
     """Opens an ISO-MME folder, ``.mme`` or ``.zip``, an NHTSA ``.EV5`` file or a CSV file."""
+
+def contact_window(force: ArrayLike1D, rise: float = 0.05, fall: float = 0.02) -> tuple[int, int]:
+    """First and last sample (inclusive) of the contact: |F| rises to ``rise``
+    and last stays at ``fall`` of its peak."""
 
 def cfc(x: ArrayLike1D, fs: float, cls: float, standard: str = "sae-j211") -> FloatArray:
     """Filters ``x`` sampled at ``fs`` Hz with a CFC filter of class ``cls``, zero phase."""
