@@ -122,3 +122,15 @@ def test_bad_files_raise_file_and_input_errors(tmp_path):
     with pytest.raises(bumpsim.InputError, match=r"typo\.toml.*spring") as caught:
         bumpsim.Car.from_file(typo)
     assert not isinstance(caught.value, bumpsim.FileError)
+
+
+def test_strided_views_and_lists_give_the_same_result_as_contiguous_arrays():
+    car = bumpsim.Car([300.0, 900.0], [4e3], [8e5])
+    time = np.arange(401) * 1e-4
+    force = 1e4 * np.sin(np.arange(401) * 0.02)
+    both = np.column_stack([time, force])  # columns are strided views
+    reference = bumpsim.simulate(car, time, force)
+    strided = bumpsim.simulate(car, both[:, 0], both[:, 1])
+    listed = bumpsim.simulate(car, list(time), list(force))
+    assert np.array_equal(strided.displacement, reference.displacement)
+    assert np.array_equal(listed.displacement, reference.displacement)
