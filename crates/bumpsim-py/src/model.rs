@@ -3,7 +3,7 @@
 
 use crate::arrays::{array1, array2, vector};
 use crate::errors::{InputError, file_or_input, input};
-use bumpsim_core::discrete::Method;
+use bumpsim_core::discrete::{Method, Substeps};
 use bumpsim_core::model::MsdModel;
 use bumpsim_core::series::UniformSeries;
 use bumpsim_core::simulate::{InitialState, Response as CoreResponse, Simulator};
@@ -196,10 +196,26 @@ impl Response {
     }
 }
 
+/// taylor1's sub-steps per sample: a whole number ≥ 1 or "auto" (as `--substeps`).
+fn substeps(given: Option<&Bound<'_, PyAny>>) -> PyResult<Substeps> {
+    let Some(given) = given else {
+        return Ok(Substeps::default());
+    };
+    if given.extract::<String>().is_ok_and(|s| s == "auto") {
+        return Ok(Substeps::Auto);
+    }
+    match given.extract::<u32>() {
+        Ok(n) if n > 0 => Ok(Substeps::Count(n)),
+        _ => Err(InputError::new_err(format!(
+            "substeps {given}: expected a whole number of at least 1, or 'auto'"
+        ))),
+    }
+}
+
 /// Simulates `car` under `force` (N, on m1) sampled at `time` (s, uniform),
 /// every mass starting at `initial_velocity` (m/s), as `bumpsim simulate`.
 #[pyfunction]
-#[pyo3(signature = (car, time, force, method = "zoh", initial_velocity = 0.0))]
+#[pyo3(signature = (car, time, force, method = "zoh", initial_velocity = 0.0, substeps = None))]
 fn simulate(
     py: Python<'_>,
     car: &Car,
@@ -207,14 +223,16 @@ fn simulate(
     force: &Bound<'_, PyAny>,
     method: &str,
     initial_velocity: f64,
+    substeps: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Response> {
     let method: Method = method.parse().map_err(input)?;
+    let substeps = self::substeps(substeps)?;
     let time = vector(time, "time")?;
     let force = vector(force, "force")?;
     let model = &car.inner.model;
     let response = py.detach(|| {
         let force = UniformSeries::from_times(&time, force).map_err(input)?;
-        let simulator = Simulator::new(model, method, force.step()).map_err(|e| {
+        let simulator = Simulator::with_substeps(model, method, force.step(), substeps).map_err(|e| {
             InputError::new_err(format!(
                 "cannot simulate the car with {method}: {}",
                 crate::errors::message(&e)

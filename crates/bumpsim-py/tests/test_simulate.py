@@ -134,3 +134,21 @@ def test_strided_views_and_lists_give_the_same_result_as_contiguous_arrays():
     listed = bumpsim.simulate(car, list(time), list(force))
     assert np.array_equal(strided.displacement, reference.displacement)
     assert np.array_equal(listed.displacement, reference.displacement)
+
+
+def test_taylor1_with_substeps_equals_the_cli(run, tmp_path, root):
+    ex = root / "examples" / "simulate"
+    out = tmp_path / "taylor1.csv"
+    run("simulate", "--car", ex / "car-3dof.toml", "--force", ex / "pendulum-force.csv",
+        "--method", "taylor1", "--substeps", "auto", "-o", out)
+    table = read_csv(out)
+    car = bumpsim.Car.from_file(ex / "car-3dof.toml")
+    r = bumpsim.simulate(car, table["time [s]"], table["force [N]"], method="taylor1",
+                         substeps="auto")
+    for i in range(3):
+        close(r.displacement[i], table[f"x{i + 1} [m]"], f"x{i + 1}")
+    # without sub-steps the thesis's explicit scheme diverges here: refused with the stable step
+    with pytest.raises(bumpsim.InputError, match="taylor1"):
+        bumpsim.simulate(car, table["time [s]"], table["force [N]"], method="taylor1")
+    with pytest.raises(bumpsim.InputError, match="substeps 0"):
+        bumpsim.simulate(car, table["time [s]"], table["force [N]"], method="taylor1", substeps=0)

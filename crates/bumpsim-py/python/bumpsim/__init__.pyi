@@ -103,11 +103,13 @@ def simulate(
     force: ArrayLike1D,
     method: str = "zoh",
     initial_velocity: float = 0.0,
+    substeps: Union[int, str, None] = None,
 ) -> Response:
     """Simulates ``car`` under ``force`` (N, on m1) sampled at ``time`` (s;
     uniform: within 1e-6 of an interval of the mean grid), every mass starting
     at ``initial_velocity`` (m/s); ``method`` is ``zoh`` (exact, default),
-    ``foh`` or ``taylor1``. As ``bumpsim simulate``."""
+    ``foh`` or ``taylor1`` (with ``substeps`` per sample, a number or
+    ``"auto"``). As ``bumpsim simulate``."""
 
 # ---------------------------------------------------------------- signals
 
