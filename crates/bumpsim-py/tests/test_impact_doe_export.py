@@ -152,6 +152,19 @@ def test_lsdyna_and_calculix_decks_equal_the_cli(run, tmp_path, root):
     force = bumpsim.read_test(force_csv).channels[0]
     deck = bumpsim.calculix(car, time=force.time, force=force.data, title=title)
     assert deck == inp.read_text()
+    run("export", "calculix", car_path, "--force", force_csv, "--id-offset", "500",
+        "--prefix", "CAR_", "-o", inp)
+    deck = bumpsim.calculix(car, time=force.time, force=force.data, title=title,
+                            id_offset=500, prefix="CAR_")
+    assert deck == inp.read_text()
+    run("export", "lsdyna", car_path, "-o", k, "--force", force_csv, "--output-interval",
+        "1e-4", "--standalone")
+    deck = bumpsim.lsdyna_deck(car, time=force.time, force=force.data, output_interval=1e-4,
+                               standalone=True, title=title)
+    assert deck == k.read_text()
+    # independent check: the critical step of the lightest mass on its stiffest spring
+    # is of the order of sqrt(m1 / k1) (undamped; damping only shortens it)
+    assert 0 < bumpsim.critical_time_step(car) <= 2 * (1.8 / 4.75e5) ** 0.5
 
 
 def test_export_errors(root):

@@ -401,8 +401,17 @@ def lsdyna_deck(
     attach: Sequence[int] = (),
     initial_velocity: Optional[float] = None,
     title: Optional[str] = None,
+    time: Optional[ArrayLike1D] = None,
+    force: Optional[ArrayLike1D] = None,
+    output_interval: Optional[float] = None,
+    standalone: bool = False,
 ) -> str:
-    """The LS-DYNA keyword include (units si, mm-s-t or mm-ms-kg)."""
+    """The LS-DYNA keyword include (units si, mm-s-t or mm-ms-kg); with
+    ``time`` and ``force`` a load curve on m1, with ``output_interval`` (s)
+    history outputs, with ``standalone`` a complete run."""
+
+def critical_time_step(car: Car) -> float:
+    """The critical explicit time step of the car alone, s."""
 
 def calculix(
     car: Car,
@@ -416,8 +425,11 @@ def calculix(
     output_every: int = 1,
     initial_velocity: Optional[float] = None,
     title: Optional[str] = None,
+    id_offset: int = 0,
+    prefix: str = "BUMPSIM_",
 ) -> str:
-    """The CalculiX/Abaqus deck; with time and force a transient analysis."""
+    """The CalculiX/Abaqus deck; with time and force a transient analysis;
+    ids offset by ``id_offset`` and set names prefixed with ``prefix``."""
 
 # ---------------------------------------------------------------- pipelines
 
