@@ -307,6 +307,26 @@ impl Identification {
     fn warnings(&self) -> Vec<String> {
         self.result.warnings.clone()
     }
+    /// Number of residuals (samples in all windows).
+    #[getter]
+    fn residuals(&self) -> usize {
+        self.result.residuals
+    }
+    /// Solver iterations of the best start.
+    #[getter]
+    fn iterations(&self) -> usize {
+        self.result.iterations
+    }
+    /// Why the best start stopped (the JSON's `stop`).
+    #[getter]
+    fn stop<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        from_json(py, &self.result.stop)
+    }
+    /// Wall-clock time of the identification, s.
+    #[getter]
+    fn run_time(&self) -> f64 {
+        self.result.run_time
+    }
     /// What the channel selections left out or used despite a mark.
     #[getter]
     fn notes(&self) -> Vec<String> {

@@ -115,6 +115,11 @@ pub struct Impact {
 
 #[pymethods]
 impl Impact {
+    /// What hit what at which speed (the JSON's `scenario`).
+    #[getter]
+    fn scenario<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        from_json(py, &self.scenario)
+    }
     /// Peak contact force, N.
     #[getter]
     fn peak_force(&self) -> f64 {

@@ -50,6 +50,11 @@ def test_same_parameters_and_objective_as_the_cli(result, cli_json):
 def test_to_json_has_the_cli_fields(result, cli_json):
     ours = json.loads(result.to_json())
     assert set(ours) == set(cli_json)
+    # every field of the JSON is an attribute too (the model as masses/dampers/springs)
+    for field in set(cli_json) - {"notes"}:
+        assert hasattr(result, field), field
+    assert result.stop == cli_json["stop"] and result.iterations == cli_json["iterations"]
+    assert result.residuals == cli_json["residuals"]
     assert ours["objective"] == pytest.approx(cli_json["objective"], rel=1e-12)
     assert ours["notes"] == cli_json["notes"]
     assert ours["starts"] == cli_json["starts"]

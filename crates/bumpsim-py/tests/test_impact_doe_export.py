@@ -43,6 +43,7 @@ def test_impact_equals_the_cli_json(run, tmp_path, root, args, kwargs):
     result = bumpsim.impact(car, bumpsim.Bumper.from_file(bumper_path), **kwargs)
     theirs = json.loads(out.read_text())
     numbers_equal(json.loads(result.to_json()), theirs)
+    numbers_equal(result.scenario, theirs["scenario"])
     assert result.peak_force == pytest.approx(theirs["peak_force"], rel=1e-12)
     assert result.max_compression == pytest.approx(theirs["max_compression"], rel=1e-12)
     # independent check: the peak of the returned force history

@@ -221,6 +221,12 @@ class Identification:
     cases: list[dict[str, Any]]
     """Per-case fit: name, sse (m²), fit_percent, samples."""
     starts: dict[str, int]
+    residuals: int
+    iterations: int
+    stop: Any
+    """Why the best start stopped."""
+    run_time: float
+    """Wall-clock time, s."""
     warnings: list[str]
     notes: list[str]
     def to_json(self) -> str:
@@ -280,6 +286,7 @@ class Bumper:
 class Impact:
     """An impact's result, SI, with the fields of ``bumpsim impact --json``."""
 
+    scenario: dict[str, Any]
     peak_force: float
     max_compression: float
     remaining_compression: float
