@@ -2,7 +2,7 @@
 //! `fit` and `predict` make: designs as tables, regressions of data-file
 //! responses on factors in coded units, model files and predictions.
 
-use crate::arrays::array2;
+use crate::arrays::{array2, vector};
 use crate::errors::{InputError, file_or_input, input, message};
 use crate::ident::from_json;
 use bumpsim_doe::data::Data;
@@ -19,6 +19,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<DoeModel>()?;
     m.add_function(wrap_pyfunction!(doe_design, m)?)?;
     m.add_function(wrap_pyfunction!(doe_fit, m)?)?;
+    m.add_function(wrap_pyfunction!(doe_stiffness, m)?)?;
     Ok(())
 }
 
@@ -116,6 +117,26 @@ fn doe_design(
         order,
         resolution,
     })
+}
+
+/// The stiffness of a force–displacement curve (displacement m, force N):
+/// slope of the least-squares line over `range` (m; default the points
+/// between 10 % and 90 % of the peak force), as `bumpsim doe stiffness`.
+#[pyfunction]
+#[pyo3(signature = (displacement, force, range = None))]
+fn doe_stiffness<'py>(
+    py: Python<'py>,
+    displacement: &Bound<'py, PyAny>,
+    force: &Bound<'py, PyAny>,
+    range: Option<(f64, f64)>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let (d, f) = (
+        vector(displacement, "displacement")?,
+        vector(force, "force")?,
+    );
+    let result =
+        bumpsim_doe::stiffness::stiffness(&d, &f, range.map(|(a, b)| [a, b])).map_err(input)?;
+    from_json(py, &result)
 }
 
 /// A DOE model file: factors and fitted responses.

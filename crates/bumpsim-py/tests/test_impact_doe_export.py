@@ -202,3 +202,22 @@ def test_planar_errors(root):
         bumpsim.planar_impact(car, case="nope")
     with pytest.raises(bumpsim.InputError, match="side"):
         bumpsim.planar_impact(car, angle=10.0, side="middle", speed=2.0)
+
+
+def test_doe_stiffness_equals_the_cli(run, tmp_path):
+    # a curve in mm and kN, as the CLI reads it; the package takes SI arrays
+    d_mm = np.linspace(0.0, 40.0, 81)
+    f_kn = 2.5 * d_mm + 0.01 * np.sin(np.arange(81))
+    curve = tmp_path / "curve.csv"
+    curve.write_text("displacement [mm],force [kN]\n"
+                     + "".join(f"{float(d)!r},{float(f)!r}\n" for d, f in zip(d_mm, f_kn)))
+    text = run("doe", "stiffness", curve)
+    result = bumpsim.doe_stiffness(d_mm * 1e-3, f_kn * 1e3)
+    # independent check: the line's slope is 2.5 kN/mm = 2.5e6 N/m up to the wobble
+    assert result["slope"] == pytest.approx(2.5e6, rel=1e-3)
+    assert result["points"] > 3 and result["r2"] > 0.999
+    # the CLI prints rounded values: the same points and slope (N/mm, 4 digits)
+    assert f"line through {result['points']} points" in text
+    assert f"stiffness {result['slope'] * 1e-3:.4g} N/mm" in text
+    with pytest.raises(bumpsim.InputError, match="stiffness"):
+        bumpsim.doe_stiffness([0.0, 1.0], [0.0, 1.0])

@@ -377,6 +377,12 @@ def doe_design(
 ) -> Design:
     """``kind``: full, fractional, ccf, ccc, lhs, uniform; ``factors`` as ``"NAME:LOW:HIGH"``."""
 
+def doe_stiffness(
+    displacement: ArrayLike1D, force: ArrayLike1D, range: Optional[tuple[float, float]] = None
+) -> dict[str, Any]:
+    """Slope (N/m), intercept, range, points, residual_rms, r2 of the line through
+    the curve over ``range`` (m; default 10–90 % of the peak force)."""
+
 class DoeModel:
     @staticmethod
     def from_file(path: StrPath) -> "DoeModel": ...
