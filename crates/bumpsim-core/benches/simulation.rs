@@ -60,5 +60,28 @@ fn full_response(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, propagate, full_response);
+/// The Rust side of the Python package's benchmark (issue 18,
+/// bench/python_simulate_timing.py): a 1e6-sample force given as sample
+/// times and values, turned into a series, discretised and simulated with
+/// the full response, exactly the calls `bumpsim.simulate` makes.
+fn from_times_1e6(c: &mut Criterion) {
+    let samples = 1_000_000;
+    let car = chain(3);
+    let times: Vec<f64> = (0..samples).map(|i| i as f64 * 1e-4).collect();
+    let values = force(samples).values().to_vec();
+    let mut group = c.benchmark_group("simulate");
+    group.sample_size(10);
+    group.bench_function(BenchmarkId::new("3dof_response_from_times", samples), |b| {
+        b.iter(|| {
+            let force = UniformSeries::from_times(black_box(&times), values.clone()).unwrap();
+            Simulator::new(&car, Method::Zoh, force.step())
+                .unwrap()
+                .run(&force, &InitialState::UniformVelocity(0.0))
+                .unwrap()
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, propagate, full_response, from_times_1e6);
 criterion_main!(benches);

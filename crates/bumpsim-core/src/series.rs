@@ -68,7 +68,40 @@ pub enum SeriesError {
         /// The offending value.
         value: f64,
     },
+    /// Sample times and values of different lengths ([`UniformSeries::from_times`]).
+    #[error("{times} sample times for {values} values: expected one time per value")]
+    Lengths {
+        /// Number of times.
+        times: usize,
+        /// Number of values.
+        values: usize,
+    },
+    /// Fewer than two sample times: the interval is unknown.
+    #[error("{times} sample time(s): at least two are needed to know the sample interval")]
+    TooFewTimes {
+        /// Number of times.
+        times: usize,
+    },
+    /// A sample time off the uniform grid ([`UniformSeries::from_times`]).
+    #[error(
+        "time {index} is {time} s but the uniform grid of the mean interval {step} s puts it at {expected} s (more than {TIME_GRID_TOLERANCE:e} of the interval off): the times are not uniformly sampled"
+    )]
+    OffGrid {
+        /// Index of the sample.
+        index: usize,
+        /// Its time, s.
+        time: f64,
+        /// Where the grid puts it, s.
+        expected: f64,
+        /// The mean interval, s.
+        step: f64,
+    },
 }
+
+/// How far (fraction of the interval) a sample time given to
+/// [`UniformSeries::from_times`] may lie off the uniform grid: rounding of
+/// computed times (`start + k T`, `numpy.arange`), not a dropped sample.
+pub const TIME_GRID_TOLERANCE: f64 = 1e-6;
 
 impl UniformSeries {
     /// Builds a series from its first sample time (s), interval (s) and values (SI).
@@ -96,6 +129,44 @@ impl UniformSeries {
             step,
             values,
         })
+    }
+
+    /// Builds a series from sample times (s) and values (SI), as given by a
+    /// script: the interval is the mean one, `(t_last − t_0)/(n − 1)`, and
+    /// every time must lie within [`TIME_GRID_TOLERANCE`] of an interval of
+    /// its place on that grid.
+    ///
+    /// ```
+    /// use bumpsim_core::series::UniformSeries;
+    /// let s = UniformSeries::from_times(&[0.0, 1e-4, 2e-4], vec![0.0, 1.0, 2.0]).unwrap();
+    /// assert!((s.step() - 1e-4).abs() < 1e-18);
+    /// assert!(UniformSeries::from_times(&[0.0, 1e-4, 3e-4], vec![0.0; 3]).is_err());
+    /// ```
+    pub fn from_times(times: &[f64], values: Vec<f64>) -> Result<Self, SeriesError> {
+        if times.len() != values.len() {
+            return Err(SeriesError::Lengths {
+                times: times.len(),
+                values: values.len(),
+            });
+        }
+        let n = times.len();
+        if n < 2 {
+            return Err(SeriesError::TooFewTimes { times: n });
+        }
+        let step = (times[n - 1] - times[0]) / (n - 1) as f64;
+        let series = Self::new(times[0], step, values)?;
+        if let Some(index) = (0..n).find(|&k| {
+            let off = (times[k] - series.time(k)).abs();
+            off.is_nan() || off > TIME_GRID_TOLERANCE * step
+        }) {
+            return Err(SeriesError::OffGrid {
+                index,
+                time: times[index],
+                expected: series.time(index),
+                step,
+            });
+        }
+        Ok(series)
     }
 
     /// Time of the first sample, s.
@@ -246,6 +317,34 @@ pub fn peak_of(values: &[f64]) -> (usize, f64) {
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
+
+    #[test]
+    fn from_times_takes_the_mean_interval_and_refuses_gaps() {
+        let times: Vec<f64> = (0..1001).map(|k| -0.01 + k as f64 * 1e-4).collect();
+        let s = UniformSeries::from_times(&times, vec![0.0; 1001]).unwrap();
+        assert_relative_eq!(s.step(), 1e-4, max_relative = 1e-12);
+        assert_eq!(s.start(), -0.01);
+        let mut gap = times.clone();
+        gap[500] += 0.5e-4;
+        assert!(matches!(
+            UniformSeries::from_times(&gap, vec![0.0; 1001]),
+            Err(SeriesError::OffGrid { index: 500, .. })
+        ));
+        assert_eq!(
+            UniformSeries::from_times(&times[..3], vec![0.0; 2]),
+            Err(SeriesError::Lengths {
+                times: 3,
+                values: 2
+            })
+        );
+        assert_eq!(
+            UniformSeries::from_times(&[0.0], vec![0.0]),
+            Err(SeriesError::TooFewTimes { times: 1 })
+        );
+        let mut nan = times;
+        nan[7] = f64::NAN;
+        assert!(UniformSeries::from_times(&nan, vec![0.0; 1001]).is_err());
+    }
 
     #[test]
     fn rejects_bad_time_base() {

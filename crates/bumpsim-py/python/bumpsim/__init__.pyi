@@ -1,0 +1,459 @@
+"""bumpsim: low-speed bumper impact toolkit (Python bindings of the Rust crates).
+
+Units are SI throughout (kg, m, s, N). Arrays in are 1-D ``numpy.float64``
+arrays (or sequences of numbers); any other dtype or shape raises
+:class:`InputError` naming the argument. Arrays out are ``numpy.float64``.
+Every number comes from the Rust library; long calls release the GIL.
+"""
+
+import pathlib
+from os import PathLike
+from typing import Any, Callable, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+StrPath = Union[str, "PathLike[str]"]
+FloatArray = npt.NDArray[np.float64]
+# float64 at run time (other dtypes raise InputError); typed wide enough for
+# numpy expressions, which type as floating[Any]
+ArrayLike1D = Union[npt.NDArray[np.floating[Any]], Sequence[float]]
+
+class Error(Exception):
+    """Base class of every bumpsim error."""
+
+class InputError(Error):
+    """A value, array or file the library refuses; the message (the library's,
+    as the CLI prints it) names the parameter, file or line."""
+
+class FileError(InputError):
+    """A file that cannot be read (missing, unreadable) where the library
+    reports the operating system's error as the cause."""
+
+# ---------------------------------------------------------------- models
+
+class Car:
+    """An n-DOF chain mass-spring-damper car model, validated by the core.
+
+    ``Car([1.8, 74.8, 1670.0], [6.46e6, 1.97e5], [4.75e5, 5.0e5])``: masses
+    (kg, m1 carries the bumper), dampers c1..c(n-1) (N·s/m) and springs
+    k1..k(n-1) (N/m). Raises :class:`InputError` naming the bad parameter.
+    """
+
+    def __init__(
+        self,
+        masses: ArrayLike1D,
+        dampers: ArrayLike1D,
+        springs: ArrayLike1D,
+        name: Optional[str] = None,
+    ) -> None: ...
+    @staticmethod
+    def from_file(path: StrPath) -> "Car":
+        """Reads a car file (TOML) or an identification result (``identify --json``)."""
+    @property
+    def name(self) -> Optional[str]: ...
+    @property
+    def dof(self) -> int:
+        """Number of masses."""
+    @property
+    def masses(self) -> FloatArray:
+        """Masses, kg."""
+    @property
+    def dampers(self) -> FloatArray:
+        """Dampers, N·s/m."""
+    @property
+    def springs(self) -> FloatArray:
+        """Springs, N/m."""
+    @property
+    def total_mass(self) -> float:
+        """Total mass, kg."""
+    def to_toml(self) -> str:
+        """The car file text."""
+
+class Response:
+    """A simulation's response, SI: rows are masses (displacement, velocity,
+    acceleration) or links (spring and damper forces, positive in
+    compression), columns are samples."""
+
+    method: str
+    time: FloatArray
+    force: FloatArray
+    displacement: FloatArray
+    velocity: FloatArray
+    acceleration: FloatArray
+    spring_force: FloatArray
+    damper_force: FloatArray
+    kinetic_energy: FloatArray
+    spring_energy: FloatArray
+    dissipated_energy: FloatArray
+    work: FloatArray
+    impulse: FloatArray
+    momentum: FloatArray
+    energy_error: float
+    """Energy balance error relative to the largest energy term."""
+    momentum_error: float
+    """Momentum error relative to the impulse."""
+    warnings: list[str]
+
+def simulate(
+    car: Car,
+    time: ArrayLike1D,
+    force: ArrayLike1D,
+    method: str = "zoh",
+    initial_velocity: float = 0.0,
+    substeps: Union[int, str, None] = None,
+) -> Response:
+    """Simulates ``car`` under ``force`` (N, on m1) sampled at ``time`` (s;
+    uniform: within 1e-6 of an interval of the mean grid), every mass starting
+    at ``initial_velocity`` (m/s); ``method`` is ``zoh`` (exact, default),
+    ``foh`` or ``taylor1`` (with ``substeps`` per sample, a number or
+    ``"auto"``). As ``bumpsim simulate``."""
+
+# ---------------------------------------------------------------- signals
+
+class Entry:
+    """A channel as a test lists it, before its samples are read."""
+
+    number: int
+    code: str
+    name: str
+    unit: str
+    """The unit as the file writes it."""
+    invalid: Optional[str]
+    """None when usable, else the lab's reason for marking it invalid."""
+    present: bool
+    absence: Optional[str]
+    metadata: dict[str, str]
+
+class Channel:
+    """A loaded channel: code, name, SI unit, uniform time base, samples.
+    The processing methods return a new channel (its code follows the
+    processing, e.g. the filter class letter)."""
+
+    code: str
+    name: str
+    unit: str
+    """SI unit of ``data``."""
+    source_unit: str
+    metadata: dict[str, str]
+    start: float
+    step: float
+    time: FloatArray
+    data: FloatArray
+    def cfc(self, cls: float, standard: str = "sae-j211") -> "Channel":
+        """CFC filter (SAE J211-1, or ``iso-6487``), as ``signal export --cfc``."""
+    def bias(self) -> "Channel":
+        """Removes the mean of the samples before t = 0."""
+    def scale(self, factor: float) -> "Channel": ...
+    def trim(self, t0: float, t1: float) -> "Channel":
+        """Keeps the samples in [t0, t1] s."""
+    def resample(self, step: float) -> "Channel":
+        """Resamples to the interval ``step`` s."""
+    def moving_average(self, points: int) -> "Channel": ...
+    def integrate(self, initial: float = 0.0) -> "Channel":
+        """Integrates; the result equals ``initial`` (SI) at t = 0."""
+    def to_pandas(self) -> Any:
+        """A ``pandas.Series`` indexed by time (s); needs pandas."""
+    def __len__(self) -> int: ...
+
+class Test:
+    """A crash test (ISO-MME, NHTSA EV5 or CSV): metadata, channel list and
+    channels loaded on demand."""
+
+    path: pathlib.Path
+    format: str
+    title: str
+    metadata: dict[str, str]
+    speed: Optional[float]
+    """Impact speed, m/s, when the file states it."""
+    mass: Optional[float]
+    """Test mass, kg, when the file states it."""
+    entries: list[Entry]
+    channels: list[Channel]
+    """Every usable channel (valid, samples present)."""
+    def select(self, selector: str) -> list[Channel]:
+        """Channels by number, code (``?``/``*`` wildcards) or name substring."""
+    def channel(self, number: int) -> Channel:
+        """One channel by number, even if marked invalid."""
+
+def read_test(path: StrPath) -> Test:
+    """Opens an ISO-MME folder, ``.mme`` or ``.zip``, an NHTSA ``.EV5`` file or a CSV file."""
+
+def contact_window(force: ArrayLike1D, rise: float = 0.05, fall: float = 0.02) -> tuple[int, int]:
+    """First and last sample (inclusive) of the contact: |F| rises to ``rise``
+    and last stays at ``fall`` of its peak."""
+
+def cfc(x: ArrayLike1D, fs: float, cls: float, standard: str = "sae-j211") -> FloatArray:
+    """Filters ``x`` sampled at ``fs`` Hz with a CFC filter of class ``cls``, zero phase."""
+
+# ---------------------------------------------------------------- identification
+
+class Prediction:
+    """A load case simulated with an identified model next to its measurement."""
+
+    name: str
+    sse: float
+    fit_percent: float
+    window: tuple[float, float]
+    time: FloatArray
+    measured: FloatArray
+    simulated: FloatArray
+
+class Identification:
+    """An identified model with the fields of ``bumpsim identify --json``."""
+
+    dof: int
+    car: Car
+    masses: FloatArray
+    dampers: FloatArray
+    springs: FloatArray
+    parameters: list[dict[str, Any]]
+    """name, value, unit, standard_error, ci95 per parameter (thesis order)."""
+    standard_errors: list[Optional[float]]
+    uncertainty: dict[str, Any]
+    objective: float
+    """Σ (x − x̂)² over all cases, m²."""
+    fit_percent: float
+    aic: float
+    bic: float
+    cases: list[dict[str, Any]]
+    """Per-case fit: name, sse (m²), fit_percent, samples."""
+    starts: dict[str, int]
+    residuals: int
+    iterations: int
+    stop: Any
+    """Why the best start stopped."""
+    run_time: float
+    """Wall-clock time, s."""
+    warnings: list[str]
+    notes: list[str]
+    def to_json(self) -> str:
+        """The result as ``bumpsim identify --json`` writes it."""
+    def predict(self) -> list[Prediction]:
+        """Simulates the study's load cases with the identified model."""
+    def report(self) -> tuple[str, dict[str, str]]:
+        """The HTML report of ``bumpsim identify --report`` (with the ±3 %
+        sensitivity): the page and its SVG figures, file name → text."""
+
+def identify(
+    study: StrPath,
+    dof: Optional[int] = None,
+    starts: Optional[int] = None,
+    seed: Optional[int] = None,
+    progress: Optional[Callable[[], Any]] = None,
+) -> Identification:
+    """Identifies one MSD model from the study file's load cases, as
+    ``bumpsim identify STUDY --dof N --starts S --seed X``; ``progress`` is
+    called once per finished start."""
+
+class LoadCase:
+    """A load case from numpy arrays: force on m1 (N) and the measured
+    displacement (m) of mass ``output_dof`` (1 = m1) at uniform ``time`` (s);
+    ``window`` (t0, t1) s is the fit window (default: every sample)."""
+
+    name: str
+    def __init__(
+        self,
+        name: str,
+        time: ArrayLike1D,
+        force: ArrayLike1D,
+        displacement: ArrayLike1D,
+        output_dof: int = 1,
+        initial_velocity: float = 0.0,
+        window: Optional[tuple[float, float]] = None,
+    ) -> None: ...
+
+def identify_cases(
+    cases: Sequence[LoadCase],
+    dof: int,
+    starts: int = 32,
+    seed: int = 1,
+    progress: Optional[Callable[[], Any]] = None,
+) -> Identification:
+    """Identifies one ``dof``-mass model from load cases built in Python
+    (library defaults: every parameter ≥ 1 in SI)."""
+
+# ---------------------------------------------------------------- impact
+
+class Bumper:
+    """A bumper characteristic."""
+
+    @staticmethod
+    def from_file(path: StrPath) -> "Bumper": ...
+
+class Impact:
+    """An impact's result, SI, with the fields of ``bumpsim impact --json``."""
+
+    scenario: dict[str, Any]
+    peak_force: float
+    max_compression: float
+    remaining_compression: float
+    contact_time: float
+    absorbed_energy: float
+    energy: dict[str, float]
+    step: float
+    bodies: list[str]
+    time: FloatArray
+    force: FloatArray
+    compression: FloatArray
+    displacements: FloatArray
+    velocities: FloatArray
+    warnings: list[str]
+    def summary(self) -> str: ...
+    def to_json(self) -> str: ...
+
+def presets() -> list[dict[str, Any]]:
+    """The load-case presets (name, speed_kmh, description, source)."""
+
+def impact(
+    car: Car,
+    bumper: Bumper,
+    case: Optional[str] = None,
+    pendulum: Optional[float] = None,
+    barrier: bool = False,
+    speed: Optional[float] = None,
+) -> Impact:
+    """A preset ``case``, or a ``pendulum`` (kg) or rigid ``barrier`` at ``speed`` (m/s)."""
+
+def mass_reduction(
+    m1: float, m2: float, k: float, bumper: Bumper, speed: float, criterion: str = "remaining"
+) -> dict[str, Any]:
+    """Paper A's equivalent single mass of a 2-DOF car into a rigid barrier."""
+
+# ---------------------------------------------------------------- planar car
+
+class PlanarCar:
+    """A planar car (yaw, left/right chains, segmented bumper, tyres; docs/planar.md)."""
+
+    name: Optional[str]
+    @staticmethod
+    def from_file(path: StrPath) -> "PlanarCar": ...
+
+class PlanarImpact:
+    """A planar impact's result with the fields of ``bumpsim planar --json``."""
+
+    result: dict[str, Any]
+    warnings: list[str]
+    def summary(self) -> str: ...
+    def to_json(self) -> str: ...
+
+def planar_impact(
+    car: PlanarCar,
+    case: Optional[str] = None,
+    angle: Optional[float] = None,
+    overlap: Optional[float] = None,
+    side: str = "left",
+    pole: Optional[float] = None,
+    pole_offset: float = 0.0,
+    pendulum: Optional[float] = None,
+    speed: Optional[float] = None,
+) -> PlanarImpact:
+    """A preset ``case``; or a barrier (or ``pendulum``, kg) at ``angle`` degrees
+    with ``overlap`` % from ``side``; or a pole of diameter ``pole`` m at
+    ``pole_offset`` m; ``speed`` in m/s."""
+
+# ---------------------------------------------------------------- DOE
+
+class Design:
+    names: list[str]
+    order: list[int]
+    coded: FloatArray
+    """Runs (in run order) × factors, coded levels."""
+    physical: FloatArray
+    resolution: Optional[int]
+    def to_csv(self) -> str:
+        """The table ``bumpsim doe design -o`` writes."""
+
+def doe_design(
+    kind: str,
+    factors: Sequence[str],
+    generators: Sequence[str] = (),
+    centre: int = 0,
+    runs: int = 20,
+    seed: int = 1,
+    randomise: bool = False,
+) -> Design:
+    """``kind``: full, fractional, ccf, ccc, lhs, uniform; ``factors`` as ``"NAME:LOW:HIGH"``."""
+
+def doe_stiffness(
+    displacement: ArrayLike1D, force: ArrayLike1D, range: Optional[tuple[float, float]] = None
+) -> dict[str, Any]:
+    """Slope (N/m), intercept, range, points, residual_rms, r2 of the line through
+    the curve over ``range`` (m; default 10–90 % of the peak force)."""
+
+class DoeModel:
+    @staticmethod
+    def from_file(path: StrPath) -> "DoeModel": ...
+    def to_json(self) -> str: ...
+    def as_dict(self) -> dict[str, Any]: ...
+    def predict(self, at: Sequence[tuple[str, float]]) -> dict[str, Any]:
+        """Values with 95 % confidence and prediction intervals at physical factor values."""
+
+def doe_fit(
+    data: StrPath,
+    factors: Sequence[str],
+    responses: Sequence[str],
+    low: Sequence[float] = (),
+    high: Sequence[float] = (),
+    interactions: bool = False,
+    squares: bool = False,
+) -> DoeModel:
+    """Regression of data-file responses on factors in coded units, as ``bumpsim doe fit``."""
+
+# ---------------------------------------------------------------- export
+
+def lsdyna_deck(
+    car: Car,
+    units: str = "si",
+    axis: str = "+x",
+    origin: Sequence[float] = (0.0, 0.0, 0.0),
+    spacing: float = 0.1,
+    id_offset: int = 0,
+    attach: Sequence[int] = (),
+    initial_velocity: Optional[float] = None,
+    title: Optional[str] = None,
+    time: Optional[ArrayLike1D] = None,
+    force: Optional[ArrayLike1D] = None,
+    output_interval: Optional[float] = None,
+    standalone: bool = False,
+) -> str:
+    """The LS-DYNA keyword include (units si, mm-s-t or mm-ms-kg); with
+    ``time`` and ``force`` a load curve on m1, with ``output_interval`` (s)
+    history outputs, with ``standalone`` a complete run."""
+
+def critical_time_step(car: Car) -> float:
+    """The critical explicit time step of the car alone, s."""
+
+def calculix(
+    car: Car,
+    time: Optional[ArrayLike1D] = None,
+    force: Optional[ArrayLike1D] = None,
+    units: str = "si",
+    axis: str = "+x",
+    origin: Sequence[float] = (0.0, 0.0, 0.0),
+    spacing: float = 0.1,
+    increment: Optional[float] = None,
+    output_every: int = 1,
+    initial_velocity: Optional[float] = None,
+    title: Optional[str] = None,
+    id_offset: int = 0,
+    prefix: str = "BUMPSIM_",
+) -> str:
+    """The CalculiX/Abaqus deck; with time and force a transient analysis;
+    ids offset by ``id_offset`` and set names prefixed with ``prefix``."""
+
+# ---------------------------------------------------------------- pipelines
+
+class PipelineRun:
+    """The signals of a pipeline run (``bumpsim signal process``)."""
+
+    signals: list[Channel]
+    raw: list[Channel]
+    warnings: list[str]
+    balance: Optional[dict[str, Any]]
+    """window (s), mass (kg), impulse and momentum_change (N·s), relative_difference."""
+
+def run_pipeline(path: StrPath) -> PipelineRun:
+    """Runs a processing pipeline file (TOML; docs/signals.md)."""

@@ -1,0 +1,138 @@
+"""Identification against `bumpsim identify --json` on the bundled study
+(examples/identify/study.toml): same seed and starts, so the same
+parameters and objective; the result object's fields, predict and to_json."""
+
+import json
+
+import numpy as np
+import pytest
+
+import bumpsim
+
+STARTS, SEED = 8, 3
+
+
+@pytest.fixture(scope="module")
+def cli_json(tmp_path_factory, cli, root):
+    import subprocess
+
+    out = tmp_path_factory.mktemp("identify") / "result.json"
+    subprocess.run(
+        [cli, "identify", root / "examples" / "identify" / "study.toml", "--dof", "3",
+         "--starts", str(STARTS), "--seed", str(SEED), "--quiet", "--json", out],
+        check=True, capture_output=True,
+    )
+    return json.loads(out.read_text())
+
+
+@pytest.fixture(scope="module")
+def result(root):
+    return bumpsim.identify(root / "examples" / "identify" / "study.toml",
+                            dof=3, starts=STARTS, seed=SEED)
+
+
+def test_same_parameters_and_objective_as_the_cli(result, cli_json):
+    # same library, same inputs, same seed: the same numbers; 1e-12 leaves
+    # room only for the order of parallel sums
+    assert result.objective == pytest.approx(cli_json["objective"], rel=1e-12)
+    for name in ("masses", "dampers", "springs"):
+        np.testing.assert_allclose(getattr(result, name), cli_json[name], rtol=1e-12)
+    cli_se = cli_json["uncertainty"]["standard_errors"]
+    for ours, theirs in zip(result.standard_errors, cli_se):
+        assert (ours is None) == (theirs is None)
+        if ours is not None:
+            assert ours == pytest.approx(theirs, rel=1e-9)
+    assert [c["name"] for c in result.cases] == [c["name"] for c in cli_json["cases"]]
+    for ours, theirs in zip(result.cases, cli_json["cases"]):
+        assert ours["fit_percent"] == pytest.approx(theirs["fit_percent"], rel=1e-12)
+
+
+def test_to_json_has_the_cli_fields(result, cli_json):
+    ours = json.loads(result.to_json())
+    assert set(ours) == set(cli_json)
+    # every field of the JSON is an attribute too (the model as masses/dampers/springs)
+    for field in set(cli_json) - {"notes"}:
+        assert hasattr(result, field), field
+    assert result.stop == cli_json["stop"] and result.iterations == cli_json["iterations"]
+    assert result.residuals == cli_json["residuals"]
+    assert ours["objective"] == pytest.approx(cli_json["objective"], rel=1e-12)
+    assert ours["notes"] == cli_json["notes"]
+    assert ours["starts"] == cli_json["starts"]
+
+
+def test_parameters_carry_units_and_predict_reproduces_the_fit(result):
+    units = {p["name"][0]: p["unit"] for p in result.parameters}
+    assert units["m"] == "kg" and units["k"] == "N/m" and units["c"] in ("Ns/m", "N·s/m")
+    assert [p["value"] for p in result.parameters if p["name"].startswith("m")] == list(
+        result.masses
+    )
+    predictions = result.predict()
+    assert [p.name for p in predictions] == [c["name"] for c in result.cases]
+    for p, case in zip(predictions, result.cases):
+        assert p.fit_percent == pytest.approx(case["fit_percent"], rel=1e-9)
+        assert p.simulated.shape == p.measured.shape == p.time.shape
+    # the objective is the sum of the cases' squared errors
+    assert sum(p.sse for p in predictions) == pytest.approx(result.objective, rel=1e-9)
+    car = result.car
+    assert car.dof == 3 and list(car.masses) == list(result.masses)
+
+
+def test_progress_is_called_once_per_start(root):
+    calls = []
+    bumpsim.identify(root / "examples" / "identify" / "study.toml", dof=1, starts=4,
+                     seed=1, progress=lambda: calls.append(1))
+    assert len(calls) == 4
+
+
+def test_bad_study_raises_documented_errors(tmp_path, root):
+    # the study reader reports an unreadable file in its own words: InputError
+    with pytest.raises(bumpsim.InputError, match=r"missing\.toml: cannot read"):
+        bumpsim.identify(tmp_path / "missing.toml")
+    bad = tmp_path / "study.toml"
+    bad.write_text("[model]\ndof = 3\nstarts = 0\n")
+    with pytest.raises(bumpsim.InputError, match=r"study\.toml"):
+        bumpsim.identify(bad)
+
+
+def test_identify_from_numpy_recovers_the_car_that_made_the_data():
+    # independent check: data simulated from a known 2-DOF car, identified back
+    truth = bumpsim.Car([40.0, 900.0], [6e3], [8e5])
+    time = np.arange(3001) * 1e-4
+    cases = []
+    for name, peak, width in [("short", 2e4, 0.03), ("long", 1.2e4, 0.08)]:
+        force = np.where(time < width, peak * np.sin(np.pi * time / width), 0.0)
+        x1 = bumpsim.simulate(truth, time, force).displacement[0]
+        cases.append(bumpsim.LoadCase(name, time, force, x1, output_dof=1))
+    result = bumpsim.identify_cases(cases, dof=2, starts=8, seed=1)
+    np.testing.assert_allclose(result.masses, truth.masses, rtol=1e-5)
+    np.testing.assert_allclose(result.dampers, truth.dampers, rtol=1e-5)
+    np.testing.assert_allclose(result.springs, truth.springs, rtol=1e-5)
+    assert [c["name"] for c in result.cases] == ["short", "long"]
+    assert all(p.fit_percent > 99.99 for p in result.predict())
+
+
+def test_load_case_errors():
+    time = np.arange(10) * 1e-3
+    with pytest.raises(bumpsim.InputError, match="9 force samples and 10 displacement|expected the same number"):
+        bumpsim.LoadCase("a", time[:9], np.zeros(9), np.arange(10.0))
+    with pytest.raises(bumpsim.InputError, match="constant"):
+        bumpsim.LoadCase("a", time, np.ones(10), np.zeros(10))
+    with pytest.raises(bumpsim.InputError, match=r"no sample inside the window"):
+        bumpsim.LoadCase("a", time, np.ones(10), np.arange(10.0), window=(1.0, 2.0))
+    with pytest.raises(bumpsim.InputError, match=r"displacement: expected a 1-D numpy array of float64"):
+        bumpsim.LoadCase("a", time, np.ones(10), np.arange(10))
+
+
+def test_report_equals_the_cli_report(run, tmp_path, root, result):
+    import re
+
+    folder = tmp_path / "report"
+    run("identify", root / "examples" / "identify" / "study.toml", "--dof", "3", "--starts",
+        str(STARTS), "--seed", str(SEED), "--quiet", "--report", folder)
+    html, figures = result.report()
+    assert sorted(figures) == sorted(p.name for p in folder.glob("*.svg"))
+    for name, svg in figures.items():
+        assert svg == (folder / name).read_text(), name
+    # the wall-clock run time is the one thing that differs between two runs
+    run_time = re.compile(r"\d+(\.\d+)? (s|ms)\.</p>")
+    assert run_time.sub("T.</p>", html) == run_time.sub("T.</p>", (folder / "index.html").read_text())
