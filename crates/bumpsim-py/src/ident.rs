@@ -307,6 +307,12 @@ impl Identification {
     fn warnings(&self) -> Vec<String> {
         self.result.warnings.clone()
     }
+    /// The simpler model that fits as well when a spring is undetermined
+    /// (the JSON's `reduction`), or None.
+    #[getter]
+    fn reduction<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        from_json(py, &self.result.reduction)
+    }
     /// Number of residuals (samples in all windows).
     #[getter]
     fn residuals(&self) -> usize {

@@ -228,6 +228,10 @@ class Identification:
     run_time: float
     """Wall-clock time, s."""
     warnings: list[str]
+    reduction: Optional[dict[str, Any]]
+    """The simpler model that fits as well when a spring is undetermined:
+    parameter, statement, model (masses, dampers, springs; SI), objective (m²),
+    relative_objective; None otherwise."""
     notes: list[str]
     def to_json(self) -> str:
         """The result as ``bumpsim identify --json`` writes it."""
