@@ -186,6 +186,20 @@ pub fn simulate(
         None => v[0] = speed,
         Some(_) => v[model.travel()] = speed,
     }
+    // the balances are relative to the initial kinetic energy: a speed or a
+    // pendulum mass that makes it 0 (underflow) or infinite (overflow) gave
+    // "energy balance error NaN" with exit 0
+    let initial = model.kinetic(&vec![0.0; model.dof()], &v);
+    require(
+        "striker kinetic energy",
+        initial,
+        "J",
+        &format!(
+            "must be positive and finite: the speed {speed} m/s{} gives no usable closing energy",
+            pendulum.map_or(String::new(), |m| format!(" and the pendulum mass {m} kg"))
+        ),
+        initial > 0.0,
+    )?;
     Run::new(car, model, step, settings).integrate(v)
 }
 
@@ -617,5 +631,40 @@ mod tests {
             "{e:?}"
         );
         assert!(r.momentum.linear_residual <= 1e-6, "{:?}", r.momentum);
+    }
+}
+
+#[cfg(test)]
+mod hostile {
+    use super::*;
+    use crate::striker::Face;
+
+    /// A speed whose kinetic energy underflows to 0, or a pendulum mass whose
+    /// energy overflows, made the balances 0/0 = NaN with exit 0.
+    #[test]
+    fn an_unusable_closing_energy_is_refused_by_name() {
+        let car = tests_car();
+        for striker in [
+            Striker::barrier(Face::flat(), 1e-300),
+            Striker::pendulum(Face::flat(), 1e308, 2.0),
+            Striker::barrier(Face::flat(), 1e200),
+        ] {
+            let err = simulate(&car, &striker, &Settings::default())
+                .unwrap_err()
+                .to_string();
+            assert!(err.contains("striker kinetic energy"), "{err}");
+        }
+        let slow = Striker::barrier(Face::flat(), 1e-3);
+        let r = simulate(&car, &slow, &Settings::default()).unwrap();
+        assert!(r.energy.relative_error.is_finite());
+    }
+
+    fn tests_car() -> PlanarCar {
+        use crate::car::Layout;
+        use bumpsim_core::model::MsdModel;
+        use bumpsim_impact::bumper::Bumper;
+        let chain = MsdModel::new(vec![10.0, 1200.0], vec![2e3], vec![2e6]).unwrap();
+        let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap()
     }
 }
