@@ -101,6 +101,17 @@ fn check_names(model: &MsdModel, options: &CalculixOptions) -> Result<(), Export
 /// Writes the deck text.
 pub fn calculix_deck(model: &MsdModel, options: &CalculixOptions) -> Result<String, ExportError> {
     check_names(model, options)?;
+    let analysis = options.analysis.as_ref();
+    let increment = analysis
+        .and_then(|a| a.increment)
+        .map(|dt| ("the increment", dt));
+    crate::check_finite(
+        model,
+        &options.layout,
+        options.initial_velocity,
+        analysis.map(|a| &a.force),
+        increment.as_slice(),
+    )?;
     let layout = &options.layout;
     let n = model.dof();
     let (offset, set) = (options.id_offset, &options.prefix);
