@@ -491,13 +491,19 @@ mod tests {
                 Err(ExportError::Prefix { .. })
             ));
         }
-        let options = CalculixOptions {
-            id_offset: u64::MAX,
-            ..Default::default()
-        };
-        assert!(matches!(
-            calculix_deck(&model, &options),
-            Err(ExportError::IdRange { .. })
-        ));
+        for id_offset in [u64::MAX, MAX_CALCULIX_ID - 1] {
+            let options = CalculixOptions {
+                id_offset,
+                ..Default::default()
+            };
+            let err = calculix_deck(&model, &options).unwrap_err();
+            assert!(matches!(err, ExportError::IdRange { .. }), "{err}");
+            // the CalculiX bound was reported as LS-DYNA's "8-column limit"
+            let text = err.to_string();
+            assert!(
+                text.contains("CalculiX 32-bit id limit 2147483647"),
+                "{text}"
+            );
+        }
     }
 }

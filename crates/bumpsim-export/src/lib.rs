@@ -26,6 +26,15 @@ pub use lsdyna::{LsDynaOptions, lsdyna_include};
 
 use std::path::PathBuf;
 
+/// What bounds the ids of a deck: LS-DYNA's 8-column fields or CalculiX's
+/// 32-bit integers.
+fn id_limit(limit: u64) -> &'static str {
+    match limit {
+        lsdyna::MAX_ID => "8-column",
+        _ => "CalculiX 32-bit id",
+    }
+}
+
 /// Why a deck cannot be written or its results read.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -40,7 +49,7 @@ pub enum ExportError {
         limit: u64,
     },
     /// The id offset leaves no room for the include's ids in 8 columns.
-    #[error("id offset {offset} puts ids up to {last}, beyond the 8-column limit {limit}")]
+    #[error("id offset {offset} puts ids up to {last}, beyond the {} limit {limit}", id_limit(*limit))]
     IdRange {
         /// The offset given.
         offset: u64,
