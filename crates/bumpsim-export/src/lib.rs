@@ -120,6 +120,12 @@ pub enum ExportError {
         /// The deck's unit system.
         units: String,
     },
+    /// A minimum time step to warn below that is negative or not finite.
+    #[error("minimum time step {value} s: must be finite and not negative (0: never warn)")]
+    MinTimeStep {
+        /// The value given, s.
+        value: f64,
+    },
     /// A results file that cannot be read.
     #[error("{}{}: {reason}", path.display(), if *line > 0 { format!(":{line}") } else { String::new() })]
     Dat {
