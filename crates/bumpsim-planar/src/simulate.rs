@@ -190,13 +190,21 @@ pub fn simulate(
     // pendulum mass that makes it 0 (underflow) or infinite (overflow) gave
     // "energy balance error NaN" with exit 0
     let initial = model.kinetic(&vec![0.0; model.dof()], &v);
+    let figure = |x: f64| match x != 0.0 && !(1e-5..1e12).contains(&x.abs()) {
+        true => format!("{x:e}"),
+        false => format!("{x}"),
+    };
     require(
         "striker kinetic energy",
         initial,
         "J",
         &format!(
-            "must be positive and finite: the speed {speed} m/s{} gives no usable closing energy",
-            pendulum.map_or(String::new(), |m| format!(" and the pendulum mass {m} kg"))
+            "must be positive and finite: the speed {} m/s{} gives no usable closing energy",
+            figure(speed),
+            pendulum.map_or(String::new(), |m| format!(
+                " and the pendulum mass {} kg",
+                figure(m)
+            ))
         ),
         initial > 0.0,
     )?;
