@@ -272,3 +272,24 @@ fn strikers_that_overflow_or_underflow_are_refused_by_name() {
         assert!(out.is_empty(), "{extra:?}: no result is printed: {out}");
     }
 }
+
+/// `--json x --csv x` ran with exit 0 and left only the CSV in x.
+#[test]
+fn two_outputs_on_one_path_are_refused() {
+    let dir = scratch("planar-twice");
+    let same = dir.join("same.out");
+    let car = saloon();
+    let run = bumpsim(&[
+        "planar",
+        "--car",
+        car.to_str().unwrap(),
+        "--speed",
+        "4",
+        "--json",
+        same.to_str().unwrap(),
+        "--csv",
+        same.to_str().unwrap(),
+    ]);
+    assert_user_error(&run, "two outputs to one path");
+    assert!(!same.exists());
+}
