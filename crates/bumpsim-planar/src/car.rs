@@ -80,7 +80,9 @@ pub enum PlanarError {
         message: String,
     },
     /// The integration diverged (a step too large for the given safety factor).
-    #[error("the integration diverged at t = {time} s: lower the safety factor or the step")]
+    #[error(
+        "the integration diverged at t = {time} s: lower the safety factor or the step, or check the car for implausible geometry or stiffness"
+    )]
     Diverged {
         /// Time of the first non-finite state, s.
         time: f64,
