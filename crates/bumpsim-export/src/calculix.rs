@@ -253,7 +253,18 @@ fn transient(
     }
     let duration = (force.end() - force.start()) * units.time();
     let dt = increment * units.time();
-    let increments = (duration / dt).ceil() as u64 + 10;
+    // `as u64` saturated and `+ 10` overflowed (a panic in debug, INC=9 in
+    // release) for --increment 1e-300; INC is a 32-bit integer in CalculiX
+    let count = (duration / dt).ceil() + 10.0;
+    if count.is_nan() || count > MAX_CALCULIX_ID as f64 {
+        return Err(ExportError::Increments {
+            increment,
+            count,
+            duration: force.end() - force.start(),
+            limit: MAX_CALCULIX_ID,
+        });
+    }
+    let increments = count as u64;
     let _ = writeln!(
         deck,
         "*STEP, INC={increments}\n*DYNAMIC, DIRECT, ALPHA=0.0\n{}, {}",
@@ -490,6 +501,20 @@ mod tests {
                 calculix_deck(&model, &options),
                 Err(ExportError::Prefix { .. })
             ));
+        }
+        // an increment of 1e-300 s panicked on `u64::MAX + 10`
+        let force = UniformSeries::new(0.0, 1e-3, vec![0.0, 1.0, 0.0]).unwrap();
+        for increment in [1e-300, 1e-13] {
+            let options = CalculixOptions {
+                analysis: Some(Analysis {
+                    force: force.clone(),
+                    increment: Some(increment),
+                    output_every: 1,
+                }),
+                ..Default::default()
+            };
+            let err = calculix_deck(&model, &options).unwrap_err();
+            assert!(matches!(err, ExportError::Increments { .. }), "{err}");
         }
         for id_offset in [u64::MAX, MAX_CALCULIX_ID - 1] {
             let options = CalculixOptions {

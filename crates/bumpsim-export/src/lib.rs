@@ -120,6 +120,21 @@ pub enum ExportError {
         /// The deck's unit system.
         units: String,
     },
+    /// An increment so small that the analysis needs more increments than
+    /// CalculiX's `*STEP, INC=` (a 32-bit integer) holds.
+    #[error(
+        "time increment {increment:e} s needs {count:e} increments for the force's {duration:e} s, above CalculiX's limit {limit}: choose a larger --increment"
+    )]
+    Increments {
+        /// The increment, s.
+        increment: f64,
+        /// Increments needed.
+        count: f64,
+        /// Length of the force history, s.
+        duration: f64,
+        /// The largest count.
+        limit: u64,
+    },
     /// A minimum time step to warn below that is negative or not finite.
     #[error("minimum time step {value} s: must be finite and not negative (0: never warn)")]
     MinTimeStep {
