@@ -224,7 +224,10 @@ fn lsdyna(args: &LsDynaArgs) -> Result<()> {
         "critical explicit time step of the car alone: {}",
         bumpsim_core::units::format_quantity(step, Dimension::Time)
     );
-    if step < time("min-time-step", &args.min_time_step)? {
+    let minimum = time("min-time-step", &args.min_time_step)?;
+    let below = bumpsim_export::timestep::below_minimum(&car.model, minimum)
+        .with_context(|| format!("--min-time-step '{}'", args.min_time_step))?;
+    if below.is_some() {
         crate::warn(&format!(
             "the car limits an explicit run to steps of {} (below --min-time-step {}): its stiffest or most damped link on a light mass governs",
             bumpsim_core::units::format_quantity(step, Dimension::Time),

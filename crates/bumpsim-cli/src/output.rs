@@ -48,6 +48,7 @@ pub(crate) fn guard_paths(matches: &clap::ArgMatches) -> Result<()> {
     }
     for id in ids.iter().filter(|id| OUTPUT_IDS.contains(&id.as_str())) {
         for path in values(id) {
+            bumpsim_io::output::claim_output(&path)?;
             if is_folder_output(&command, id) {
                 bumpsim_io::output::check_folder(&path)?;
             } else {

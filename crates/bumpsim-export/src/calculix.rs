@@ -101,6 +101,17 @@ fn check_names(model: &MsdModel, options: &CalculixOptions) -> Result<(), Export
 /// Writes the deck text.
 pub fn calculix_deck(model: &MsdModel, options: &CalculixOptions) -> Result<String, ExportError> {
     check_names(model, options)?;
+    let analysis = options.analysis.as_ref();
+    let increment = analysis
+        .and_then(|a| a.increment)
+        .map(|dt| ("the increment", dt));
+    crate::check_finite(
+        model,
+        &options.layout,
+        options.initial_velocity,
+        analysis.map(|a| &a.force),
+        increment.as_slice(),
+    )?;
     let layout = &options.layout;
     let n = model.dof();
     let (offset, set) = (options.id_offset, &options.prefix);
@@ -242,7 +253,18 @@ fn transient(
     }
     let duration = (force.end() - force.start()) * units.time();
     let dt = increment * units.time();
-    let increments = (duration / dt).ceil() as u64 + 10;
+    // `as u64` saturated and `+ 10` overflowed (a panic in debug, INC=9 in
+    // release) for --increment 1e-300; INC is a 32-bit integer in CalculiX
+    let count = (duration / dt).ceil() + 10.0;
+    if count.is_nan() || count > MAX_CALCULIX_ID as f64 {
+        return Err(ExportError::Increments {
+            increment,
+            count,
+            duration: force.end() - force.start(),
+            limit: MAX_CALCULIX_ID,
+        });
+    }
+    let increments = count as u64;
     let _ = writeln!(
         deck,
         "*STEP, INC={increments}\n*DYNAMIC, DIRECT, ALPHA=0.0\n{}, {}",
@@ -480,13 +502,33 @@ mod tests {
                 Err(ExportError::Prefix { .. })
             ));
         }
-        let options = CalculixOptions {
-            id_offset: u64::MAX,
-            ..Default::default()
-        };
-        assert!(matches!(
-            calculix_deck(&model, &options),
-            Err(ExportError::IdRange { .. })
-        ));
+        // an increment of 1e-300 s panicked on `u64::MAX + 10`
+        let force = UniformSeries::new(0.0, 1e-3, vec![0.0, 1.0, 0.0]).unwrap();
+        for increment in [1e-300, 1e-13] {
+            let options = CalculixOptions {
+                analysis: Some(Analysis {
+                    force: force.clone(),
+                    increment: Some(increment),
+                    output_every: 1,
+                }),
+                ..Default::default()
+            };
+            let err = calculix_deck(&model, &options).unwrap_err();
+            assert!(matches!(err, ExportError::Increments { .. }), "{err}");
+        }
+        for id_offset in [u64::MAX, MAX_CALCULIX_ID - 1] {
+            let options = CalculixOptions {
+                id_offset,
+                ..Default::default()
+            };
+            let err = calculix_deck(&model, &options).unwrap_err();
+            assert!(matches!(err, ExportError::IdRange { .. }), "{err}");
+            // the CalculiX bound was reported as LS-DYNA's "8-column limit"
+            let text = err.to_string();
+            assert!(
+                text.contains("CalculiX 32-bit id limit 2147483647"),
+                "{text}"
+            );
+        }
     }
 }

@@ -26,6 +26,15 @@ pub use lsdyna::{LsDynaOptions, lsdyna_include};
 
 use std::path::PathBuf;
 
+/// What bounds the ids of a deck: LS-DYNA's 8-column fields or CalculiX's
+/// 32-bit integers.
+fn id_limit(limit: u64) -> &'static str {
+    match limit {
+        lsdyna::MAX_ID => "8-column",
+        _ => "CalculiX 32-bit id",
+    }
+}
+
 /// Why a deck cannot be written or its results read.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -40,7 +49,7 @@ pub enum ExportError {
         limit: u64,
     },
     /// The id offset leaves no room for the include's ids in 8 columns.
-    #[error("id offset {offset} puts ids up to {last}, beyond the 8-column limit {limit}")]
+    #[error("id offset {offset} puts ids up to {last}, beyond the {} limit {limit}", id_limit(*limit))]
     IdRange {
         /// The offset given.
         offset: u64,
@@ -100,6 +109,38 @@ pub enum ExportError {
     /// A standalone deck without a force history to end at.
     #[error("a standalone deck needs a force history (its end is the termination time)")]
     Standalone,
+    /// A value that is finite in SI but overflows in the deck's units (or
+    /// is not finite at all): the deck would carry `inf`.
+    #[error(
+        "{what} does not fit the deck's units ({units}): every value must stay finite after conversion"
+    )]
+    Overflow {
+        /// The value, as the user knows it (`node 3 position`, `force sample 2`, …).
+        what: String,
+        /// The deck's unit system.
+        units: String,
+    },
+    /// An increment so small that the analysis needs more increments than
+    /// CalculiX's `*STEP, INC=` (a 32-bit integer) holds.
+    #[error(
+        "time increment {increment:e} s needs {count:e} increments for the force's {duration:e} s, above CalculiX's limit {limit}: choose a larger --increment"
+    )]
+    Increments {
+        /// The increment, s.
+        increment: f64,
+        /// Increments needed.
+        count: f64,
+        /// Length of the force history, s.
+        duration: f64,
+        /// The largest count.
+        limit: u64,
+    },
+    /// A minimum time step to warn below that is negative or not finite.
+    #[error("minimum time step {value} s: must be finite and not negative (0: never warn)")]
+    MinTimeStep {
+        /// The value given, s.
+        value: f64,
+    },
     /// A results file that cannot be read.
     #[error("{}{}: {reason}", path.display(), if *line > 0 { format!(":{line}") } else { String::new() })]
     Dat {
@@ -110,4 +151,59 @@ pub enum ExportError {
         /// What is wrong.
         reason: String,
     },
+}
+
+/// Checks that every value a deck writes stays finite in the deck's units:
+/// node positions, masses, springs, dampers, initial velocity, force samples
+/// (value and shifted time) and the given extra times (increment, output
+/// interval), s. A value finite in SI can overflow on conversion
+/// (1e307 s → ms), and the writers would print `inf`.
+pub(crate) fn check_finite(
+    model: &bumpsim_core::model::MsdModel,
+    layout: &layout::Layout,
+    initial_velocity: Option<f64>,
+    force: Option<&bumpsim_core::series::UniformSeries>,
+    times: &[(&str, f64)],
+) -> Result<(), ExportError> {
+    let u = layout.units;
+    let overflow = |what: String| ExportError::Overflow {
+        what,
+        units: u.to_string(),
+    };
+    let fine = |v: f64| v.is_finite();
+    for i in 0..model.dof() {
+        if !layout.node_position(i).into_iter().all(fine) {
+            return Err(overflow(format!(
+                "the position of mass {} (--origin, --spacing)",
+                i + 1
+            )));
+        }
+        if !fine(model.masses()[i] * u.mass()) {
+            return Err(overflow(format!("mass {}", i + 1)));
+        }
+    }
+    for j in 0..model.springs().len() {
+        if !fine(model.springs()[j] * u.stiffness()) || !fine(model.dampers()[j] * u.damping()) {
+            return Err(overflow(format!("link {} (spring or damper)", j + 1)));
+        }
+    }
+    if let Some(v) = initial_velocity
+        && !fine(v * u.velocity())
+    {
+        return Err(overflow(format!("the initial velocity {v} m/s")));
+    }
+    if let Some(force) = force {
+        for k in 0..force.len() {
+            let t = (force.time(k) - force.start()) * u.time();
+            if !fine(t) || !fine(force.values()[k] * u.force()) {
+                return Err(overflow(format!("force sample {} (time or value)", k + 1)));
+            }
+        }
+    }
+    for &(what, t) in times {
+        if !fine(t * u.time()) {
+            return Err(overflow(format!("{what} {t} s")));
+        }
+    }
+    Ok(())
 }

@@ -136,6 +136,16 @@ fn ids(model: &MsdModel, options: &LsDynaOptions) -> Result<Ids, ExportError> {
 /// Writes the include file text.
 pub fn lsdyna_include(model: &MsdModel, options: &LsDynaOptions) -> Result<String, ExportError> {
     let ids = ids(model, options)?;
+    let interval = options
+        .output_interval
+        .map(|dt| ("the output interval", dt));
+    crate::check_finite(
+        model,
+        &options.layout,
+        options.initial_velocity,
+        options.force.as_ref(),
+        interval.as_slice(),
+    )?;
     let mut deck = String::new();
     header(&mut deck, model, options);
     nodes(&mut deck, model, options, &ids);

@@ -48,6 +48,18 @@ pub fn critical_time_step(model: &MsdModel) -> f64 {
     limit(omega).min(limit(gamma))
 }
 
+/// The critical time step of `model` when it is below `minimum` (s), the
+/// threshold of the export's warning; `None` when it is not. A negative or
+/// non-finite `minimum` is an error: `--min-time-step -1` silently switched
+/// the warning off.
+pub fn below_minimum(model: &MsdModel, minimum: f64) -> Result<Option<f64>, crate::ExportError> {
+    if !(minimum.is_finite() && minimum >= 0.0) {
+        return Err(crate::ExportError::MinTimeStep { value: minimum });
+    }
+    let step = critical_time_step(model);
+    Ok((step < minimum).then_some(step))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -63,5 +75,18 @@ mod tests {
             2.0 / (2.0 * k / m).sqrt(),
             max_relative = 1e-12
         );
+    }
+
+    #[test]
+    fn a_negative_minimum_is_refused_not_ignored() {
+        let model = MsdModel::new(vec![2.0, 2.0], vec![0.0], vec![800.0]).unwrap();
+        for bad in [-1.0, -0.0 - 1e-300, f64::NAN, f64::INFINITY] {
+            assert!(matches!(
+                below_minimum(&model, bad),
+                Err(crate::ExportError::MinTimeStep { .. })
+            ));
+        }
+        assert_eq!(below_minimum(&model, 0.0).unwrap(), None);
+        assert!(below_minimum(&model, 1.0).unwrap().is_some());
     }
 }

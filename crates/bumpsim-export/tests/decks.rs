@@ -368,3 +368,56 @@ fn calculix_model_deck_fixes_the_cross_directions() {
     }
     assert!(!deck.contains("*STEP"), "no analysis without a force");
 }
+
+/// Values finite in SI that overflow in the deck's units were written as
+/// `inf` (exit 0): a force history reaching 1e307 s is inf ms, an origin of
+/// 1e308 m is inf mm, a spacing of 1e308 m puts mass 3 at inf m.
+#[test]
+fn values_that_overflow_in_the_decks_units_are_refused() {
+    use bumpsim_core::series::UniformSeries;
+    use bumpsim_export::calculix::Analysis;
+    let force = UniformSeries::new(0.0, 1e307, vec![1.0, 2.0]).unwrap();
+    let mut run = options(UnitSystem::MmMsKg);
+    run.force = Some(force.clone());
+    run.standalone = true;
+    let mut far = options(UnitSystem::MmSTonne);
+    far.layout.origin = [1e308, 0.0, 0.0];
+    let mut spaced = options(UnitSystem::Si);
+    spaced.layout.spacing = 1e308;
+    let mut huge_dt = options(UnitSystem::MmMsKg);
+    huge_dt.output_interval = Some(1e308);
+    for (o, what) in [
+        (run, "force sample 2"),
+        (far, "position of mass 1"),
+        (spaced, "position of mass 3"),
+        (huge_dt, "output interval"),
+    ] {
+        let err = lsdyna_include(&thesis_model(), &o).unwrap_err();
+        assert!(
+            matches!(err, ExportError::Overflow { .. }) && err.to_string().contains(what),
+            "{err}"
+        );
+    }
+    let ccx = CalculixOptions {
+        layout: Layout {
+            units: UnitSystem::MmMsKg,
+            ..Layout::default()
+        },
+        analysis: Some(Analysis {
+            force,
+            increment: None,
+            output_every: 1,
+        }),
+        ..CalculixOptions::default()
+    };
+    let err = calculix_deck(&thesis_model(), &ccx).unwrap_err();
+    assert!(err.to_string().contains("force sample 2"), "{err}");
+    // the SI deck of the same force is fine
+    let mut si = options(UnitSystem::Si);
+    si.force = Some(UniformSeries::new(0.0, 1e307, vec![1.0, 2.0]).unwrap());
+    assert!(
+        !lsdyna_include(&thesis_model(), &si)
+            .unwrap()
+            .contains("inf")
+    );
+}

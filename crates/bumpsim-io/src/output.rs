@@ -73,6 +73,15 @@ pub enum OutputError {
         /// The input folder.
         folder: PathBuf,
     },
+    /// Two outputs of one command at the same path: the second would
+    /// silently replace the first.
+    #[error("{output}: refusing to write two outputs to one path (also given as {first})")]
+    Twice {
+        /// The second output path.
+        output: PathBuf,
+        /// The first one, as given.
+        first: PathBuf,
+    },
     /// A folder is needed but the path is an existing file.
     #[error("{path}: exists and is not a folder (a folder is needed here)")]
     NotAFolder {
@@ -126,6 +135,8 @@ struct Input {
 #[derive(Debug, Default, Clone)]
 pub struct Outputs {
     inputs: Vec<Input>,
+    /// Outputs claimed so far: (as given, canonical).
+    claimed: Vec<(PathBuf, PathBuf)>,
 }
 
 impl Outputs {
@@ -158,6 +169,25 @@ impl Outputs {
         if let (true, Some(parent)) = (mme, path.parent()) {
             self.input(&parent.join("Channel"));
         }
+    }
+
+    /// Claims `path` as one of the command's outputs: refuses a path (or a
+    /// link to a file) claimed before, so that `--json x --csv x` does not
+    /// leave only the CSV with exit 0.
+    pub fn claim(&mut self, path: &Path) -> Result<(), OutputError> {
+        let target = canonical(path);
+        let id = file_id(&target);
+        let same = |(_, c): &&(PathBuf, PathBuf)| {
+            *c == target || id.is_some_and(|id| file_id(c) == Some(id))
+        };
+        if let Some((first, _)) = self.claimed.iter().find(same) {
+            return Err(OutputError::Twice {
+                output: path.into(),
+                first: first.clone(),
+            });
+        }
+        self.claimed.push((path.into(), target));
+        Ok(())
     }
 
     /// Checks that `path` may be written as a file: not an existing folder,
@@ -499,7 +529,10 @@ fn sync_tree(root: &Path, files: &[PathBuf]) {
 }
 
 /// The process-wide guard used by the command line and the library writers.
-static GUARD: Mutex<Outputs> = Mutex::new(Outputs { inputs: Vec::new() });
+static GUARD: Mutex<Outputs> = Mutex::new(Outputs {
+    inputs: Vec::new(),
+    claimed: Vec::new(),
+});
 
 fn guard() -> std::sync::MutexGuard<'static, Outputs> {
     GUARD
@@ -510,6 +543,11 @@ fn guard() -> std::sync::MutexGuard<'static, Outputs> {
 /// Registers an input with the process-wide guard.
 pub fn register_input(path: &Path) {
     guard().input(path);
+}
+
+/// [`Outputs::claim`] with the process-wide guard.
+pub fn claim_output(path: &Path) -> Result<(), OutputError> {
+    guard().claim(path)
 }
 
 /// [`Outputs::check_file`] with the process-wide guard.
@@ -540,6 +578,26 @@ pub fn commit(staged: StagedFolder) -> Result<(), OutputError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `planar --json x --csv x` wrote both to x with exit 0: the CSV
+    /// silently replaced the JSON.
+    #[test]
+    fn one_path_cannot_take_two_outputs() {
+        let dir = temp("twice");
+        let mut guard = Outputs::new();
+        let out = dir.join("same.json");
+        guard.claim(&out).unwrap();
+        guard.claim(&dir.join("other.csv")).unwrap();
+        let err = guard.claim(&dir.join(".").join("same.json")).unwrap_err();
+        assert!(matches!(err, OutputError::Twice { .. }), "{err}");
+        assert!(err.to_string().contains("two outputs"), "{err}");
+        // a hard link to an existing output is the same file
+        std::fs::write(&out, "x").unwrap();
+        std::fs::hard_link(&out, dir.join("link.json")).unwrap();
+        let mut guard = Outputs::new();
+        guard.claim(&out).unwrap();
+        assert!(guard.claim(&dir.join("link.json")).is_err());
+    }
 
     fn temp(name: &str) -> PathBuf {
         let dir =

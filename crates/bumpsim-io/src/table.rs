@@ -404,6 +404,19 @@ fn uniform_time_base(time: &[f64], rows: &[Row], path: &Path) -> Result<(f64, f6
             ),
         ));
     }
+    // increasing finite times can still span more than the largest number
+    // (−1e308 to 1e308): the interval would be infinite
+    let last = time.len() - 1;
+    if !(time[last] - time[0]).is_finite() {
+        return Err(error(
+            last,
+            format!(
+                "time runs from {} s to {} s, a span too large to represent: expected a finite sample interval",
+                format_number(time[0]),
+                format_number(time[last])
+            ),
+        ));
+    }
     // the median interval is the nominal one: a dropped or repeated sample
     // then shows up at its own row instead of shifting a mean
     let mut intervals: Vec<f64> = time.windows(2).map(|w| w[1] - w[0]).collect();
@@ -546,6 +559,11 @@ mod tests {
             ("time [s],f [N]\n0,1\n1,NaN\n", "holds 'NaN'"),
             ("time [s],f [N]\n0,1\n1,inf\n", "holds 'inf'"),
             ("time [s],f [N]\n0,1\n1,1\n1,1\n", "does not increase"),
+            // a span beyond f64::MAX: the interval is infinite (was a panic in `series`)
+            (
+                "time [s],f [N]\n-1e308,1\n1e308,1\n",
+                "f.csv:3: time runs from -1e308 s to 1e308 s",
+            ),
             (
                 "time [s],f [N]\n0,1\n1,1\n3,1\n4,1\n",
                 "not uniformly sampled",

@@ -80,7 +80,9 @@ pub enum PlanarError {
         message: String,
     },
     /// The integration diverged (a step too large for the given safety factor).
-    #[error("the integration diverged at t = {time} s: lower the safety factor or the step")]
+    #[error(
+        "the integration diverged at t = {time} s: lower the safety factor or the step, or check the car for implausible geometry or stiffness"
+    )]
     Diverged {
         /// Time of the first non-finite state, s.
         time: f64,
@@ -427,6 +429,16 @@ fn check_body(body: &Body) -> Result<(), PlanarError> {
 
 fn check_chain(side: &str, chain: &SideChain) -> Result<(), PlanarError> {
     let n = chain.masses.len();
+    // the limit of every car model (docs/limits.md): 100 000 masses a side
+    // passed and ran for minutes (each step is linear in the masses)
+    let most = bumpsim_core::model::MAX_DOF;
+    require(
+        &format!("{side}.masses"),
+        n as f64,
+        "masses",
+        &format!("at most {most} masses a side (MAX_DOF, docs/limits.md)"),
+        n <= most,
+    )?;
     for (kind, len) in [
         ("dampers", chain.dampers.len()),
         ("springs", chain.springs.len()),
@@ -531,6 +543,21 @@ mod tests {
         let err = PlanarCar::symmetric(&chain(), &bumper, &layout).unwrap_err();
         assert!(err.to_string().contains("between the axles"), "{err}");
         layout.cg_behind_front_axle = 1.0;
+        let long = SideChain {
+            masses: vec![1.0; 1001],
+            dampers: vec![0.0; 1001],
+            springs: vec![1e6; 1001],
+        };
+        let car = PlanarCar::symmetric(&chain(), &bumper, &layout).unwrap();
+        let err = PlanarCar::new(
+            *car.body(),
+            long,
+            car.right().clone(),
+            car.beam().clone(),
+            *car.tyres(),
+        )
+        .unwrap_err();
+        assert!(err.to_string().contains("left.masses = 1001"), "{err}");
         layout.tyres.front.mu_lateral = f64::NAN;
         let err = PlanarCar::symmetric(&chain(), &bumper, &layout).unwrap_err();
         assert!(err.to_string().contains("tyres.front.mu_lateral"), "{err}");

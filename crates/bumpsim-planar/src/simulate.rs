@@ -186,6 +186,28 @@ pub fn simulate(
         None => v[0] = speed,
         Some(_) => v[model.travel()] = speed,
     }
+    // the balances are relative to the initial kinetic energy: a speed or a
+    // pendulum mass that makes it 0 (underflow) or infinite (overflow) gave
+    // "energy balance error NaN" with exit 0
+    let initial = model.kinetic(&vec![0.0; model.dof()], &v);
+    let figure = |x: f64| match x != 0.0 && !(1e-5..1e12).contains(&x.abs()) {
+        true => format!("{x:e}"),
+        false => format!("{x}"),
+    };
+    require(
+        "striker kinetic energy",
+        initial,
+        "J",
+        &format!(
+            "must be positive and finite: the speed {} m/s{} gives no usable closing energy",
+            figure(speed),
+            pendulum.map_or(String::new(), |m| format!(
+                " and the pendulum mass {} kg",
+                figure(m)
+            ))
+        ),
+        initial > 0.0,
+    )?;
     Run::new(car, model, step, settings).integrate(v)
 }
 
@@ -328,6 +350,13 @@ impl<'a> Run<'a> {
                     return Err(PlanarError::Diverged { time: t });
                 }
                 self.record(t, &s.q, &s.v_now, &s.loads, &sums);
+                // a passive car cannot end with more than twice the energy
+                // it started with: an error beyond 100 % is an unstable
+                // integration, not a result (side members 1000 m apart gave
+                // 1.8e10 with exit 0 and a warning)
+                if self.out.energy.relative_error > 1.0 {
+                    return Err(PlanarError::Diverged { time: t });
+                }
             }
             if let Some(end) = self.out.contact_end
                 && self.settings.stop_after_contact
@@ -617,5 +646,63 @@ mod tests {
             "{e:?}"
         );
         assert!(r.momentum.linear_residual <= 1e-6, "{:?}", r.momentum);
+    }
+}
+
+#[cfg(test)]
+mod hostile {
+    use super::*;
+    use crate::striker::{Face, Side};
+
+    /// A speed whose kinetic energy underflows to 0, or a pendulum mass whose
+    /// energy overflows, made the balances 0/0 = NaN with exit 0.
+    #[test]
+    fn an_unusable_closing_energy_is_refused_by_name() {
+        let car = tests_car();
+        for striker in [
+            Striker::barrier(Face::flat(), 1e-300),
+            Striker::pendulum(Face::flat(), 1e308, 2.0),
+            Striker::barrier(Face::flat(), 1e200),
+        ] {
+            let err = simulate(&car, &striker, &Settings::default())
+                .unwrap_err()
+                .to_string();
+            assert!(err.contains("striker kinetic energy"), "{err}");
+        }
+        // rails 1000 m apart: the balance error reached 1.8e10 before this
+        // counted as a divergence
+        let wide = wide_car(1e3);
+        let rcar = Striker::barrier(Face::plane_in_degrees(10.0, 40.0, Side::Left), 15.0 / 3.6);
+        let err = simulate(&wide, &rcar, &Settings::default());
+        assert!(matches!(err, Err(PlanarError::Diverged { .. })), "{err:?}");
+        let r = simulate(&wide_car(2.0), &rcar, &Settings::default()).unwrap();
+        assert!(r.energy.max_relative_error < 1e-3, "{:?}", r.energy);
+        let slow = Striker::barrier(Face::flat(), 1e-3);
+        let r = simulate(&car, &slow, &Settings::default()).unwrap();
+        assert!(r.energy.relative_error.is_finite());
+    }
+
+    fn wide_car(spacing: f64) -> PlanarCar {
+        use crate::car::Layout;
+        use bumpsim_core::model::MsdModel;
+        use bumpsim_impact::bumper::Bumper;
+        let chain = MsdModel::new(vec![16.0, 1300.0], vec![4e3], vec![6e6]).unwrap();
+        let bumper = Bumper::three_part(3e6, 200e3, 2e7).unwrap();
+        let layout = Layout {
+            side_member_spacing: spacing,
+            bumper_width: 1.5,
+            bending: 2e4,
+            ..Layout::default()
+        };
+        PlanarCar::symmetric(&chain, &bumper, &layout).unwrap()
+    }
+
+    fn tests_car() -> PlanarCar {
+        use crate::car::Layout;
+        use bumpsim_core::model::MsdModel;
+        use bumpsim_impact::bumper::Bumper;
+        let chain = MsdModel::new(vec![10.0, 1200.0], vec![2e3], vec![2e6]).unwrap();
+        let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap()
     }
 }

@@ -46,6 +46,9 @@ pub(crate) fn pole_profile(r: f64, dy: f64) -> (f64, f64) {
     }
 }
 
+/// Largest pole radius as a multiple of the bumper width.
+pub const MAX_POLE_TO_WIDTH: f64 = 1000.0;
+
 /// Which side an overlap is measured from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum Side {
@@ -279,7 +282,20 @@ pub(crate) fn place(car: &PlanarCar, striker: &Striker) -> Result<Placed, Planar
             side,
         } => place_plane(car, angle, overlap, side, x_f),
         Face::Pole { radius, lateral } => {
-            require("pole radius", radius, "m", "must be positive", radius > 0.0)?;
+            // a pole far wider than the bumper is a flat face to it, and its
+            // reach (≈ radius) swamps the millimetre crush in the contact
+            // geometry: 1e6 m already broke a centred hit's symmetry, 1e308 m
+            // overflowed to a pole that never touched (exit 0, "diameter inf mm")
+            let largest = MAX_POLE_TO_WIDTH * car.beam().width;
+            require(
+                "pole radius",
+                radius,
+                "m",
+                &format!(
+                    "must be positive and at most {MAX_POLE_TO_WIDTH} times the bumper width ({largest} m): a larger pole is a flat face to the bumper, use a plane"
+                ),
+                radius > 0.0 && radius <= largest,
+            )?;
             require(
                 "pole lateral position",
                 lateral,
@@ -408,7 +424,17 @@ mod tests {
         let err = place(&car(), &pole).unwrap_err().to_string();
         assert!(err.contains("cannot hit"), "{err}");
         let err = place(&car(), &Striker::pendulum(Face::flat(), -1.0, 2.0)).unwrap_err();
-        assert!(err.to_string().contains("striker mass"), "{err}");
+        assert!(err.to_string().contains("striker mass"), "{err}"); // a pole of 1e308 m diameter overflowed into one that never touched
+        for diameter in [1e308, 1e7] {
+            let pole = Striker::barrier(Face::pole_of_diameter(diameter, 0.0), 2.0);
+            let err = place(&car(), &pole).unwrap_err().to_string();
+            assert!(
+                err.contains("pole radius") && err.contains("1000 times the bumper width"),
+                "{err}"
+            );
+        }
+        let big = Striker::barrier(Face::pole_of_diameter(2e3 * 1.6, 0.0), 2.0);
+        assert!(place(&car(), &big).is_ok(), "the limit itself is allowed");
     }
 
     #[test]

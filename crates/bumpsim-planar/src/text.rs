@@ -52,6 +52,11 @@ pub fn striker(s: &Striker) -> String {
 
 /// A test-protocol figure: at most three decimals, no trailing zeros.
 fn short(value: f64) -> String {
+    // beyond 1e12 the decimals are meaningless and `value * 1e3` can overflow
+    // (a 1e308 kg pendulum printed as "inf kg")
+    if value.abs() >= 1e12 {
+        return format!("{value:.3e}");
+    }
     let rounded = (value * 1e3).round() / 1e3;
     match rounded == 0.0 {
         true => "0".to_string(),
@@ -236,6 +241,8 @@ mod tests {
             striker(&pole),
             "a 1400 kg pendulum at 8 km/h carrying a pole of diameter 178 mm at y = 0 mm into the car at rest"
         );
-        assert!(striker(&Striker::barrier(Face::flat(), 1.0)).contains("full-width"));
+        assert!(striker(&Striker::barrier(Face::flat(), 1.0)).contains("full-width")); // 1e308 kg: `value * 1e3` overflowed and printed "inf kg"
+        let heavy = striker(&Striker::pendulum(Face::flat(), 1e308, 2.0));
+        assert!(heavy.contains("1.000e308 kg"), "{heavy}");
     }
 }

@@ -386,3 +386,54 @@ fn a_calculix_car_included_in_a_model_with_its_own_nall_leaves_that_model_alone(
     let (clashed, clashed_response) = bumper_under_lateral_load(&dir, "clashed", include);
     assert!(clashed < with_car && clashed_response.iter().all(|u| u.abs() < 1e-12));
 }
+
+/// Wave-2 hostile findings for `export lsdyna`: a force CSV whose time span
+/// overflows panicked (exit 101); a force reaching 1e307 s was written as
+/// `inf` ms with exit 0; `--min-time-step -1` silently disabled the warning.
+#[test]
+fn lsdyna_force_and_time_step_overflows_are_user_errors() {
+    let dir = scratch("export-overflow");
+    let car = root().join("examples/simulate/car-3dof.toml");
+    let out = dir.join("car.k");
+    let force = |name: &str, rows: &str| {
+        let path = dir.join(name);
+        std::fs::write(&path, format!("time [s],force [N]\n{rows}")).unwrap();
+        path
+    };
+    let span = force("span.csv", "-1e308,1\n1e308,1\n");
+    let long = force("long.csv", "0,1\n1e307,2\n");
+    let ok = force("ok.csv", "0,1\n0.001,2\n");
+    let cases: [(Vec<&str>, &str); 3] = [
+        (
+            vec!["--force", span.to_str().unwrap()],
+            "span.csv:3: time runs from -1e308 s to 1e308 s",
+        ),
+        (
+            vec![
+                "--force",
+                long.to_str().unwrap(),
+                "--standalone",
+                "--units",
+                "mm-ms-kg",
+            ],
+            "force sample 2",
+        ),
+        (
+            vec!["--force", ok.to_str().unwrap(), "--min-time-step", "-1"],
+            "--min-time-step '-1'",
+        ),
+    ];
+    for (extra, needle) in cases {
+        let mut args = vec![
+            "export",
+            "lsdyna",
+            car.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(&extra);
+        let run = bumpsim(&args);
+        assert_user_error(&run, needle);
+        assert!(!out.exists(), "{extra:?} left a deck behind");
+    }
+}

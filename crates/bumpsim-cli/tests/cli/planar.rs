@@ -249,3 +249,47 @@ fn outputs_never_land_on_inputs() {
         "the car file was changed"
     );
 }
+
+/// Wave-2 hostile findings: each of these ran to exit 0 with NaN or inf in
+/// the printed result (energy balance error NaN, "inf kg", "diameter inf mm").
+#[test]
+fn strikers_that_overflow_or_underflow_are_refused_by_name() {
+    let dir = scratch("planar-overflow");
+    let good = std::fs::read_to_string(saloon()).unwrap();
+    let cases: [(&[&str], &str); 4] = [
+        (&["--speed", "1e-300"], "striker kinetic energy"),
+        (
+            &["--speed", "2", "--pendulum", "1e308"],
+            "striker kinetic energy",
+        ),
+        (&["--speed", "2", "--pole", "1e308"], "pole radius"),
+        (&["--speed", "2", "--pole", "1e7"], "use a plane"),
+    ];
+    for (extra, needle) in cases {
+        let run = planar(&dir, &good, extra);
+        assert_user_error(&run, needle);
+        let out = text(&run.stdout);
+        assert!(out.is_empty(), "{extra:?}: no result is printed: {out}");
+    }
+}
+
+/// `--json x --csv x` ran with exit 0 and left only the CSV in x.
+#[test]
+fn two_outputs_on_one_path_are_refused() {
+    let dir = scratch("planar-twice");
+    let same = dir.join("same.out");
+    let car = saloon();
+    let run = bumpsim(&[
+        "planar",
+        "--car",
+        car.to_str().unwrap(),
+        "--speed",
+        "4",
+        "--json",
+        same.to_str().unwrap(),
+        "--csv",
+        same.to_str().unwrap(),
+    ]);
+    assert_user_error(&run, "two outputs to one path");
+    assert!(!same.exists());
+}
