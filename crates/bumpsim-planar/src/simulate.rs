@@ -80,7 +80,9 @@ pub struct Settings {
     pub duration: f64,
     /// A given integration step, s, instead of the one from `safety`.
     pub step: Option<f64>,
-    /// Stop a tenth of the contact time after the first contact ends.
+    /// Stop a tenth of the contact time after the contact ends, once car
+    /// and striker no longer close along x (a beam that chatters off the
+    /// face and back has not ended its impact).
     pub stop_after_contact: bool,
 }
 
@@ -361,6 +363,7 @@ impl<'a> Run<'a> {
             if let Some(end) = self.out.contact_end
                 && self.settings.stop_after_contact
                 && t > end + 0.1 * (end - self.out.contact_start.unwrap_or(0.0))
+                && self.closing(&s.v_now) <= 0.0
             {
                 break;
             }
@@ -424,11 +427,25 @@ impl<'a> Run<'a> {
             .sum()
     }
 
+    /// The speed at which car and striker still close along x, m/s (car CG
+    /// forwards plus pendulum travel): a contact that ended while they
+    /// close is a bounce of the beam, not the end of the impact.
+    fn closing(&self, v: &[f64]) -> f64 {
+        let travel = match self.model.pendulum {
+            Some(_) => v[self.model.travel()],
+            None => 0.0,
+        };
+        v[0] + travel
+    }
+
     fn track_contact(&mut self, t: f64) {
         let touching = self.contact.total.iter().any(|&f| f != 0.0);
         match (self.out.contact_start, self.out.contact_end, touching) {
             (None, _, true) => self.out.contact_start = Some(t),
             (Some(_), None, false) => self.out.contact_end = Some(t),
+            // a stiff beam can chatter off the face and back: the contact
+            // ends at its last separation, not its first
+            (Some(_), Some(_), true) => self.out.contact_end = None,
             _ => {}
         }
     }

@@ -493,3 +493,34 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn a_stiff_beam_that_chatters_off_the_face_still_completes_the_impact() {
+    // bending 1e8 N/m (far above the segments' slopes) makes the beam bounce
+    // off the face within the first millisecond; the run used to stop there
+    // with the car still closing at full speed, as if it had passed through
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/planar/saloon.toml"),
+    )
+    .unwrap();
+    let stiff = text.replacen("bending = 2e4", "bending = 1e8", 1);
+    assert_ne!(stiff, text, "the example names its bending stiffness");
+    let car = PlanarCar::parse(&stiff, std::path::Path::new("stiff.toml")).unwrap();
+    for face in [rcar_left(), Face::pole_of_diameter(0.178, 0.0)] {
+        let r = simulate(
+            &car,
+            &Striker::barrier(face, 15.0 / 3.6),
+            &Settings::default(),
+        )
+        .unwrap();
+        let contact = r.contact_end.unwrap() - r.contact_start.unwrap();
+        assert!(contact > 0.02, "{face:?}: contact {contact} s");
+        let end = r.velocity_x.last().copied().unwrap();
+        assert!(end < 0.0, "{face:?}: the car still closes at {end} m/s");
+        assert!(
+            r.energy.max_relative_error < 1e-3,
+            "{face:?}: {:?}",
+            r.energy
+        );
+    }
+}
