@@ -226,12 +226,7 @@ fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
             outcomes,
             sweeps,
         )?;
-        let folder = Folder::stage(dir)?;
-        for (name, svg) in figures {
-            folder.write(&name, &svg)?;
-        }
-        folder.write("index.html", &html)?;
-        folder.commit()?;
+        Folder::report(dir, &html, &figures)?;
     }
     Ok(())
 }

@@ -161,12 +161,7 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
     if let Some(dir) = &args.report {
         let (html, figures) =
             bumpsim_report::impact::impact_report(&format!("{name} — {label}"), &summary, &result)?;
-        let folder = Folder::stage(dir)?;
-        for (file, svg) in figures {
-            folder.write(&file, &svg)?;
-        }
-        folder.write("index.html", &html)?;
-        folder.commit()?;
+        Folder::report(dir, &html, &figures)?;
     }
     Ok(())
 }

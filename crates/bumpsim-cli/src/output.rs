@@ -89,6 +89,17 @@ impl Folder {
         Ok(())
     }
 
+    /// Stages the report page and its figures (file name, SVG) and moves
+    /// them into `dir` together.
+    pub(crate) fn report(dir: &Path, html: &str, figures: &[(String, String)]) -> Result<()> {
+        let folder = Folder::stage(dir)?;
+        for (name, svg) in figures {
+            folder.write(name, svg)?;
+        }
+        folder.write("index.html", html)?;
+        folder.commit()
+    }
+
     /// Moves the staged files into place.
     pub(crate) fn commit(self) -> Result<()> {
         bumpsim_io::output::commit(self.0)

@@ -132,12 +132,7 @@ pub fn run(args: &Args) -> Result<()> {
     }
     if let Some(dir) = &args.report {
         let (html, figures) = bumpsim_report::planar::planar_report(&heading, &summary, &result)?;
-        let folder = Folder::stage(dir)?;
-        for (file, svg) in figures {
-            folder.write(&file, &svg)?;
-        }
-        folder.write("index.html", &html)?;
-        folder.commit()?;
+        Folder::report(dir, &html, &figures)?;
     }
     Ok(())
 }

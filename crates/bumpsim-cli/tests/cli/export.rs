@@ -4,21 +4,9 @@ use std::process::Command;
 
 use crate::util::*;
 
-/// Whether CalculiX's `ccx` is available; with `BUMPSIM_REQUIRE_PEERS` set its
-/// absence is a failure, otherwise a skip.
+/// Whether CalculiX's `ccx` is available (required under `BUMPSIM_REQUIRE_PEERS`).
 fn ccx_available() -> bool {
-    let found = Command::new("sh")
-        .args(["-c", "command -v ccx"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !found {
-        assert!(
-            std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_none(),
-            "BUMPSIM_REQUIRE_PEERS is set but ccx is not installed"
-        );
-        eprintln!("skipped: ccx not found (scripts/test installs calculix-ccx)");
-    }
-    found
+    peer_available("ccx (calculix-ccx)", "sh", &["-c", "command -v ccx"])
 }
 
 #[test]
@@ -152,21 +140,13 @@ fn lsdyna_export_writes_the_include_and_refuses_bad_options() {
     assert_user_error(&run, "broken.toml: TOML parse error");
 }
 
-/// Whether python3 with ansys-dyna-core is available (required under
-/// `BUMPSIM_REQUIRE_PEERS`).
+/// Whether python3 with ansys-dyna-core is available.
 fn dyna_core_available() -> bool {
-    let found = Command::new("python3")
-        .args(["-c", "import ansys.dyna.core"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !found {
-        assert!(
-            std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_none(),
-            "BUMPSIM_REQUIRE_PEERS is set but python3 cannot import ansys.dyna.core"
-        );
-        eprintln!("skipped: ansys-dyna-core not found (scripts/test installs it)");
-    }
-    found
+    peer_available(
+        "ansys-dyna-core",
+        "python3",
+        &["-c", "import ansys.dyna.core"],
+    )
 }
 
 /// The verdict of tests/peers/dyna_deck.py on a deck.

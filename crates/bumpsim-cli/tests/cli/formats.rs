@@ -8,21 +8,9 @@ use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// Whether python3 with pyisomme is available; with
-/// `BUMPSIM_REQUIRE_PEERS` set its absence is a failure, otherwise a skip.
+/// Whether python3 with pyisomme is available.
 fn pyisomme_available() -> bool {
-    let found = Command::new("python3")
-        .args(["-c", "import pyisomme"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !found {
-        assert!(
-            std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_none(),
-            "BUMPSIM_REQUIRE_PEERS is set but python3 cannot import pyisomme"
-        );
-        eprintln!("skipped: python3 with pyisomme not found (scripts/test installs it)");
-    }
-    found
+    peer_available("pyisomme", "python3", &["-c", "import pyisomme"])
 }
 
 fn pyisomme(args: &[&str]) -> Value {

@@ -212,21 +212,9 @@ fn output_never_overwrites_an_input() {
     assert_eq!(std::fs::read(&force).unwrap(), before);
 }
 
-/// Whether python3 with scipy is available; with `BUMPSIM_REQUIRE_PEERS` set
-/// (as `scripts/test` does) its absence is a failure, otherwise a skip.
+/// Whether python3 with scipy is available.
 fn scipy_available() -> bool {
-    let found = Command::new("python3")
-        .args(["-c", "import scipy"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !found {
-        assert!(
-            std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_none(),
-            "BUMPSIM_REQUIRE_PEERS is set but python3 cannot import scipy"
-        );
-        eprintln!("skipped: python3 with scipy not found (scripts/test installs it)");
-    }
-    found
+    peer_available("scipy", "python3", &["-c", "import scipy"])
 }
 
 #[test]
