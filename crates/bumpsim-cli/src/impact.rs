@@ -6,7 +6,7 @@ use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, format_number, format_quantity, parse_quantity};
 use bumpsim_impact::bumper::Bumper;
 use bumpsim_impact::impact::{Options, Scenario, simulate};
-use bumpsim_impact::presets::{PRESETS, find};
+use bumpsim_impact::presets::{PRESETS, ScenarioSpec};
 use bumpsim_impact::reduction::{Criterion, Grid, PaperSweep, TwoDof, equivalent_mass};
 use bumpsim_io::car::Car;
 use bumpsim_report::html::Html;
@@ -89,30 +89,27 @@ fn speed(text: &str) -> Result<f64> {
 }
 
 fn scenario(args: &ImpactArgs, car_mass: f64) -> Result<(Scenario, String)> {
-    let given = args.speed.as_deref().map(speed).transpose()?;
-    if let Some(name) = &args.case {
-        let preset = find(name).with_context(|| {
-            let names: Vec<&str> = PRESETS.iter().map(|p| p.name).collect();
-            format!("--case '{name}': known presets: {}", names.join(", "))
-        })?;
-        let label = format!(
+    let spec = ScenarioSpec {
+        case: args.case.clone(),
+        pendulum: args.pendulum,
+        barrier: args.barrier,
+        speed: args.speed.as_deref().map(speed).transpose()?,
+    };
+    let (scenario, preset) = spec
+        .scenario(car_mass)
+        .context("--case, --pendulum, --barrier, --speed")?;
+    let label = match (preset, scenario) {
+        (Some(p), _) => format!(
             "{} ({}, {}; {})",
-            preset.name,
-            preset.description,
-            format_number(preset.speed_kmh, 3) + " km/h",
-            preset.source
-        );
-        return Ok((preset.scenario(car_mass, given), label));
-    }
-    let v = given.context("--speed is needed without --case")?;
-    match (args.pendulum, args.barrier) {
-        (Some(mass), false) => Ok((
-            Scenario::Impactor { mass, speed: v },
-            format!("{mass} kg pendulum"),
-        )),
-        (None, true) => Ok((Scenario::Barrier { speed: v }, "rigid barrier".into())),
-        _ => bail!("say what hits: --case NAME, --pendulum MASS_KG or --barrier"),
-    }
+            p.name,
+            p.description,
+            format_number(p.speed_kmh, 3) + " km/h",
+            p.source
+        ),
+        (None, Scenario::Impactor { mass, .. }) => format!("{mass} kg pendulum"),
+        (None, Scenario::Barrier { .. }) => "rigid barrier".into(),
+    };
+    Ok((scenario, label))
 }
 
 /// Runs `impact`.

@@ -4,8 +4,8 @@
 use crate::{Folder, write};
 use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, parse_quantity};
-use bumpsim_planar::presets::{PRESETS, find};
-use bumpsim_planar::{Face, PlanarCar, Settings, Side, Striker, simulate};
+use bumpsim_planar::presets::{PRESETS, StrikerSpec};
+use bumpsim_planar::{PlanarCar, Settings, Side, Striker, simulate};
 use std::path::PathBuf;
 
 /// Arguments of `planar`.
@@ -56,41 +56,33 @@ fn quantity(option: &str, text: &str, dimension: Dimension) -> Result<f64> {
     parse_quantity(text, dimension).with_context(|| format!("--{option} '{text}'"))
 }
 
-fn face(args: &Args) -> Result<Face> {
-    if let Some(diameter) = &args.pole {
-        let offset = args.pole_offset.as_deref().unwrap_or("0");
-        return Ok(Face::pole_of_diameter(
-            quantity("pole", diameter, Dimension::Length)?,
-            quantity("pole-offset", offset, Dimension::Length)?,
-        ));
-    }
-    Ok(Face::plane_in_degrees(
-        args.angle.unwrap_or(0.0),
-        args.overlap.unwrap_or(100.0),
-        args.side.unwrap_or(Side::Left),
-    ))
-}
-
 fn striker(args: &Args) -> Result<(Striker, String)> {
-    let given = args
-        .speed
-        .as_deref()
-        .map(|s| quantity("speed", s, Dimension::Velocity))
-        .transpose()?;
-    if let Some(name) = &args.case {
-        let preset = find(name).with_context(|| {
-            let names: Vec<&str> = PRESETS.iter().map(|p| p.name).collect();
-            format!("--case '{name}': known presets: {}", names.join(", "))
-        })?;
-        let striker = given.map_or(preset.striker, |v| preset.striker.with_speed(v));
-        return Ok((striker, format!("{} [{}]", preset.name, preset.source)));
-    }
-    let v = given.context("--speed is needed without --case")?;
-    let face = face(args)?;
-    Ok(match args.pendulum {
-        Some(mass) => (Striker::pendulum(face, mass, v), "pendulum".into()),
-        None => (Striker::barrier(face, v), "barrier".into()),
-    })
+    let length = |option, text: &Option<String>| {
+        text.as_deref()
+            .map(|t| quantity(option, t, Dimension::Length))
+            .transpose()
+    };
+    let spec = StrikerSpec {
+        case: args.case.clone(),
+        angle: args.angle,
+        overlap: args.overlap,
+        side: args.side,
+        pole: length("pole", &args.pole)?,
+        pole_offset: length("pole-offset", &args.pole_offset)?,
+        pendulum: args.pendulum,
+        speed: args
+            .speed
+            .as_deref()
+            .map(|s| quantity("speed", s, Dimension::Velocity))
+            .transpose()?,
+    };
+    let (striker, preset) = spec.striker().context("--case or --speed")?;
+    let label = match (preset, args.pendulum) {
+        (Some(p), _) => format!("{} [{}]", p.name, p.source),
+        (None, Some(_)) => "pendulum".into(),
+        (None, None) => "barrier".into(),
+    };
+    Ok((striker, label))
 }
 
 fn list() {

@@ -51,6 +51,9 @@ pub enum ImpactError {
         /// What is allowed.
         expected: &'static str,
     },
+    /// The load case is not said, or names no preset.
+    #[error("{0}")]
+    LoadCase(String),
     /// The bodies never touched or never separated within the duration.
     #[error(
         "no contact ended within {duration} s (the simulated duration): the impact does not separate; check the bumper's unloading curve and the speed"

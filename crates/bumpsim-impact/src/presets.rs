@@ -10,7 +10,7 @@
 //! barrier stands in for the angled, pole and 40 % offset barriers, which a
 //! 1-D model cannot represent: read those presets as speed and energy only.
 
-use crate::impact::Scenario;
+use crate::impact::{ImpactError, Scenario};
 
 /// What the preset hits the car with.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -115,6 +115,57 @@ pub const PRESETS: &[Preset] = &[
 /// The preset of this name.
 pub fn find(name: &str) -> Option<&'static Preset> {
     PRESETS.iter().find(|p| p.name.eq_ignore_ascii_case(name))
+}
+
+/// An impact as a command line or a script names it: a preset, or a
+/// pendulum (kg) or a rigid barrier, at a speed (m/s; default the preset's).
+/// Every front end builds its scenario here.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ScenarioSpec {
+    /// A preset name ([`PRESETS`]).
+    pub case: Option<String>,
+    /// A pendulum of this mass, kg, hits the car at rest.
+    pub pendulum: Option<f64>,
+    /// The car hits a rigid barrier.
+    pub barrier: bool,
+    /// Speed, m/s.
+    pub speed: Option<f64>,
+}
+
+impl ScenarioSpec {
+    /// The scenario for a car of total mass `car_mass` kg, and the preset it came from.
+    ///
+    /// ```
+    /// use bumpsim_impact::presets::ScenarioSpec;
+    /// let spec = ScenarioSpec { pendulum: Some(1450.0), speed: Some(1.67), ..Default::default() };
+    /// assert!(spec.scenario(1300.0).is_ok());
+    /// assert!(ScenarioSpec { speed: Some(1.0), ..Default::default() }.scenario(1300.0).is_err());
+    /// ```
+    pub fn scenario(
+        &self,
+        car_mass: f64,
+    ) -> Result<(Scenario, Option<&'static Preset>), ImpactError> {
+        if let Some(name) = &self.case {
+            let preset = find(name).ok_or_else(|| {
+                let names: Vec<&str> = PRESETS.iter().map(|p| p.name).collect();
+                ImpactError::LoadCase(format!(
+                    "case '{name}': known presets: {}",
+                    names.join(", ")
+                ))
+            })?;
+            return Ok((preset.scenario(car_mass, self.speed), Some(preset)));
+        }
+        let speed = self.speed.ok_or_else(|| {
+            ImpactError::LoadCase("the speed is needed without a preset case".into())
+        })?;
+        match (self.pendulum, self.barrier) {
+            (Some(mass), false) => Ok((Scenario::Impactor { mass, speed }, None)),
+            (None, true) => Ok((Scenario::Barrier { speed }, None)),
+            _ => Err(ImpactError::LoadCase(
+                "say what hits: a preset case, a pendulum mass (kg) or the barrier".into(),
+            )),
+        }
+    }
 }
 
 impl Preset {

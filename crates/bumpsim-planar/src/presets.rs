@@ -30,6 +30,7 @@
 //!   characteristic in series with the bumper's if it matters). The 10° angle
 //!   is from memory of the protocol figure, not checked against the document.
 
+use crate::car::PlanarError;
 use crate::striker::{Face, Motion, Side, Striker};
 
 /// A named planar load case.
@@ -127,6 +128,80 @@ pub const PRESETS: &[PlanarPreset] = &[
 /// The preset of this name.
 pub fn find(name: &str) -> Option<&'static PlanarPreset> {
     PRESETS.iter().find(|p| p.name == name)
+}
+
+/// A striker as a test protocol, a command line or a script names it: a
+/// preset, or a plane (degrees, percent, side) or a pole (diameter and
+/// lateral position, m), carried by a pendulum (kg) or fixed, at a speed
+/// (m/s). Every front end builds its striker here.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct StrikerSpec {
+    /// A preset name ([`PRESETS`]): face, motion and speed.
+    pub case: Option<String>,
+    /// Plane angle, degrees, counter-clockwise seen from above (default 0).
+    pub angle: Option<f64>,
+    /// Overlap, percent of the bumper width (default 100).
+    pub overlap: Option<f64>,
+    /// Side the overlap is measured from (default left).
+    pub side: Option<Side>,
+    /// Pole diameter, m: a pole instead of a plane.
+    pub pole: Option<f64>,
+    /// Lateral position of the pole's axis, m, left positive (default 0).
+    pub pole_offset: Option<f64>,
+    /// Pendulum mass, kg (default: the car drives into the fixed face).
+    pub pendulum: Option<f64>,
+    /// Speed, m/s (default: the preset's; needed without a preset).
+    pub speed: Option<f64>,
+}
+
+impl StrikerSpec {
+    /// The striker, and the preset it came from.
+    ///
+    /// ```
+    /// use bumpsim_planar::presets::StrikerSpec;
+    /// let rcar = StrikerSpec { case: Some("rcar-structural-front".into()), ..Default::default() };
+    /// let (striker, preset) = rcar.striker().unwrap();
+    /// assert!(preset.is_some());
+    /// let pole = StrikerSpec { pole: Some(0.178), speed: Some(2.2), ..Default::default() };
+    /// assert!(pole.striker().unwrap().1.is_none());
+    /// assert!(StrikerSpec::default().striker().is_err()); // no preset, no speed
+    /// ```
+    pub fn striker(&self) -> Result<(Striker, Option<&'static PlanarPreset>), PlanarError> {
+        if let Some(name) = &self.case {
+            let preset = find(name).ok_or_else(|| PlanarError::Missing {
+                name: format!("case '{name}'"),
+                expected: format!(
+                    "known presets: {}",
+                    PRESETS
+                        .iter()
+                        .map(|p| p.name)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            })?;
+            let striker = self
+                .speed
+                .map_or(preset.striker, |v| preset.striker.with_speed(v));
+            return Ok((striker, Some(preset)));
+        }
+        let speed = self.speed.ok_or_else(|| PlanarError::Missing {
+            name: "speed".into(),
+            expected: "the impact speed is needed without a preset".into(),
+        })?;
+        let face = match self.pole {
+            Some(diameter) => Face::pole_of_diameter(diameter, self.pole_offset.unwrap_or(0.0)),
+            None => Face::plane_in_degrees(
+                self.angle.unwrap_or(0.0),
+                self.overlap.unwrap_or(100.0),
+                self.side.unwrap_or(Side::Left),
+            ),
+        };
+        let striker = match self.pendulum {
+            Some(mass) => Striker::pendulum(face, mass, speed),
+            None => Striker::barrier(face, speed),
+        };
+        Ok((striker, None))
+    }
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@ use crate::ident::from_json;
 use crate::model::Car;
 use bumpsim_impact::bumper::Bumper as CoreBumper;
 use bumpsim_impact::impact::{ImpactResult, Options, Scenario, simulate};
-use bumpsim_impact::presets::{PRESETS, find};
+use bumpsim_impact::presets::{PRESETS, ScenarioSpec};
 use bumpsim_impact::reduction::{Criterion, TwoDof, equivalent_mass};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -56,33 +56,6 @@ fn presets(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyAny>>> {
         .collect()
 }
 
-fn scenario(
-    car_mass: f64,
-    case: Option<&str>,
-    pendulum: Option<f64>,
-    barrier: bool,
-    speed: Option<f64>,
-) -> PyResult<Scenario> {
-    if let Some(name) = case {
-        let preset = find(name).ok_or_else(|| {
-            let names: Vec<&str> = PRESETS.iter().map(|p| p.name).collect();
-            InputError::new_err(format!(
-                "case '{name}': known presets: {}",
-                names.join(", ")
-            ))
-        })?;
-        return Ok(preset.scenario(car_mass, speed));
-    }
-    let v = speed.ok_or_else(|| InputError::new_err("speed (m/s) is needed without case"))?;
-    match (pendulum, barrier) {
-        (Some(mass), false) => Ok(Scenario::Impactor { mass, speed: v }),
-        (None, true) => Ok(Scenario::Barrier { speed: v }),
-        _ => Err(InputError::new_err(
-            "say what hits: case=NAME, pendulum=MASS_KG or barrier=True",
-        )),
-    }
-}
-
 /// Simulates an impact on `car` through `bumper`, as `bumpsim impact`:
 /// a preset `case`, or a `pendulum` of that mass (kg) or a rigid `barrier`,
 /// at `speed` (m/s; default the preset's).
@@ -98,7 +71,13 @@ fn impact(
     speed: Option<f64>,
 ) -> PyResult<Impact> {
     let model = &car.inner.model;
-    let scenario = scenario(model.total_mass(), case, pendulum, barrier, speed)?;
+    let spec = ScenarioSpec {
+        case: case.map(str::to_string),
+        pendulum,
+        barrier,
+        speed,
+    };
+    let (scenario, _) = spec.scenario(model.total_mass()).map_err(input)?;
     let result = py
         .detach(|| simulate(model, &bumper.inner, scenario, &Options::default()))
         .map_err(input)?;

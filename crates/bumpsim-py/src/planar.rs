@@ -4,10 +4,8 @@
 
 use crate::errors::{InputError, file_or_input, input};
 use crate::ident::from_json;
-use bumpsim_planar::presets::{PRESETS, find};
-use bumpsim_planar::{
-    Face, PlanarCar as CorePlanarCar, PlanarResult, Settings, Side, Striker, simulate,
-};
+use bumpsim_planar::presets::StrikerSpec;
+use bumpsim_planar::{PlanarCar as CorePlanarCar, PlanarResult, Settings, Side, Striker, simulate};
 use pyo3::prelude::*;
 use std::path::PathBuf;
 
@@ -41,29 +39,6 @@ impl PlanarCar {
     }
 }
 
-fn striker(
-    case: Option<&str>,
-    face: impl FnOnce() -> PyResult<Face>,
-    pendulum: Option<f64>,
-    speed: Option<f64>,
-) -> PyResult<Striker> {
-    if let Some(name) = case {
-        let preset = find(name).ok_or_else(|| {
-            let names: Vec<&str> = PRESETS.iter().map(|p| p.name).collect();
-            InputError::new_err(format!(
-                "case '{name}': known presets: {}",
-                names.join(", ")
-            ))
-        })?;
-        return Ok(speed.map_or(preset.striker, |v| preset.striker.with_speed(v)));
-    }
-    let v = speed.ok_or_else(|| InputError::new_err("speed (m/s) is needed without case"))?;
-    Ok(match pendulum {
-        Some(mass) => Striker::pendulum(face()?, mass, v),
-        None => Striker::barrier(face()?, v),
-    })
-}
-
 /// An angled, offset, corner or pole impact of the planar car, as
 /// `bumpsim planar`: a preset `case`, or a barrier (or a `pendulum` of that
 /// mass, kg) at `angle` degrees with `overlap` % from `side`, or a pole of
@@ -84,20 +59,20 @@ fn planar_impact(
     pendulum: Option<f64>,
     speed: Option<f64>,
 ) -> PyResult<PlanarImpact> {
-    let face = || -> PyResult<Face> {
-        if let Some(diameter) = pole {
-            return Ok(Face::pole_of_diameter(diameter, pole_offset));
-        }
-        let side: Side = side
-            .parse()
-            .map_err(|e: String| InputError::new_err(format!("side: {e}")))?;
-        Ok(Face::plane_in_degrees(
-            angle.unwrap_or(0.0),
-            overlap.unwrap_or(100.0),
-            side,
-        ))
+    let side: Side = side
+        .parse()
+        .map_err(|e: String| InputError::new_err(format!("side: {e}")))?;
+    let spec = StrikerSpec {
+        case: case.map(str::to_string),
+        angle,
+        overlap,
+        side: Some(side),
+        pole,
+        pole_offset: Some(pole_offset),
+        pendulum,
+        speed,
     };
-    let striker = striker(case, face, pendulum, speed)?;
+    let (striker, _) = spec.striker().map_err(input)?;
     let result = py
         .detach(|| simulate(&car.inner, &striker, &Settings::default()))
         .map_err(input)?;
