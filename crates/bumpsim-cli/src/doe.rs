@@ -11,7 +11,7 @@ use bumpsim_doe::stiffness::Curve;
 use bumpsim_doe::text::{prediction_text, reach_text, stiffness_text};
 use bumpsim_report::html::Html;
 use clap::Subcommand;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// The `doe` subcommands.
 #[derive(Debug, Subcommand)]
@@ -187,47 +187,12 @@ fn make_design(args: &DesignArgs) -> Result<()> {
     Ok(())
 }
 
-fn column(data: &Data, name: &str, path: &Path) -> Result<Vec<f64>> {
-    data.column(name).with_context(|| {
-        format!(
-            "{}: no column '{name}'; columns: {}",
-            path.display(),
-            data.names.join(", ")
-        )
-    })
-}
-
-fn unit(data: &Data, name: &str) -> Option<String> {
-    data.units[data.names.iter().position(|n| n == name).unwrap_or(0)].clone()
-}
-
 fn run_fit(args: &FitArgs) -> Result<()> {
     let path = args.data.as_path();
     let data = Data::read(path)?;
-    let columns = args
-        .factors
-        .iter()
-        .map(|f| column(&data, f, path))
-        .collect::<Result<Vec<_>>>()?;
-    let factors = args
-        .factors
-        .iter()
-        .zip(&columns)
-        .enumerate()
-        .map(|(i, (name, values))| {
-            let (low, high) = (args.low.get(i).copied(), args.high.get(i).copied());
-            Factor::spanning(name, values, low, high, unit(&data, name))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let coded: Vec<Vec<f64>> = (0..data.rows.len())
-        .map(|r| {
-            factors
-                .iter()
-                .zip(&columns)
-                .map(|(f, c)| f.coded(c[r]))
-                .collect()
-        })
-        .collect();
+    let (factors, coded) = data
+        .coded(&args.factors, &args.low, &args.high)
+        .with_context(|| path.display().to_string())?;
     let names: Vec<String> = factors.iter().map(|f| f.name.clone()).collect();
     let model_terms = terms(factors.len(), args.interactions, args.squares);
     let mut model = ModelFile {
@@ -237,8 +202,10 @@ fn run_fit(args: &FitArgs) -> Result<()> {
     let mut page = Html::new(&format!("bumpsim DOE fit: {}", path.display()));
     let mut figures = Vec::new();
     for response in &args.responses {
-        let y = column(&data, response, path)?;
-        let unit = unit(&data, response);
+        let y = data
+            .values(response)
+            .with_context(|| path.display().to_string())?;
+        let unit = data.unit(response);
         let f = fit(&coded, &y, &model_terms, &names)
             .with_context(|| format!("response '{response}'"))?;
         let text = bumpsim_doe::text::fit_text(response, unit.as_deref(), &f);

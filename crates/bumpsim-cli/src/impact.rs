@@ -34,15 +34,8 @@ pub struct ImpactArgs {
     /// Impact speed: m/s, or with a unit ("8 km/h"); default: the preset's.
     #[arg(long)]
     speed: Option<String>,
-    /// Write the results as JSON.
-    #[arg(long)]
-    json: Option<PathBuf>,
-    /// Write the time histories as CSV (SI).
-    #[arg(long)]
-    csv: Option<PathBuf>,
-    /// Write SVG plots and an HTML report into this folder.
-    #[arg(long)]
-    report: Option<PathBuf>,
+    #[command(flatten)]
+    files: crate::output::ResultFiles,
 }
 
 /// Arguments of `mass-reduction`.
@@ -143,7 +136,7 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
         .unwrap_or_else(|| args.car.display().to_string());
     println!("{name} with {}: {label}", args.bumper.display());
     print!("{summary}");
-    if let Some(path) = &args.json {
+    if let Some(path) = &args.files.json {
         let json = serde_json::json!({
             "scenario": scenario, "peak_force": result.peak_force, "max_compression": result.max_compression,
             "remaining_compression": result.remaining_compression, "contact_time": result.contact_time,
@@ -152,10 +145,10 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
         });
         write(path, &serde_json::to_string_pretty(&json)?)?;
     }
-    if let Some(path) = &args.csv {
+    if let Some(path) = &args.files.csv {
         write(path, &bumpsim_impact::text::histories(&result))?;
     }
-    if let Some(dir) = &args.report {
+    if let Some(dir) = &args.files.report {
         let (html, figures) =
             bumpsim_report::impact::impact_report(&format!("{name} — {label}"), &summary, &result)?;
         Folder::report(dir, &html, &figures)?;

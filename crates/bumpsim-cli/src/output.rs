@@ -24,6 +24,20 @@ fn is_folder_output(command: &str, id: &str) -> bool {
     matches!(id, "report" | "plot" | "iso_mme") || (command == "synth" && id == "output")
 }
 
+/// The result files of a simulation command (`impact`, `planar`).
+#[derive(Debug, clap::Args)]
+pub(crate) struct ResultFiles {
+    /// Write the results (and histories) as JSON.
+    #[arg(long)]
+    pub json: Option<std::path::PathBuf>,
+    /// Write the time histories as CSV (SI).
+    #[arg(long)]
+    pub csv: Option<std::path::PathBuf>,
+    /// Write SVG plots and an HTML report into this folder.
+    #[arg(long)]
+    pub report: Option<std::path::PathBuf>,
+}
+
 /// Registers the inputs and checks every output before anything runs.
 pub(crate) fn guard_paths(matches: &clap::ArgMatches) -> Result<()> {
     let mut matches = matches;

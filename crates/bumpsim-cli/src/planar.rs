@@ -41,15 +41,8 @@ pub struct Args {
     /// Impact speed: m/s, or with a unit ("15 km/h"); default: the preset's.
     #[arg(long)]
     speed: Option<String>,
-    /// Write the results and histories as JSON.
-    #[arg(long)]
-    json: Option<PathBuf>,
-    /// Write the time histories as CSV (SI).
-    #[arg(long)]
-    csv: Option<PathBuf>,
-    /// Write SVG plots and an HTML report into this folder.
-    #[arg(long)]
-    report: Option<PathBuf>,
+    #[command(flatten)]
+    files: crate::output::ResultFiles,
 }
 
 fn quantity(option: &str, text: &str, dimension: Dimension) -> Result<f64> {
@@ -115,14 +108,14 @@ pub fn run(args: &Args) -> Result<()> {
     );
     println!("{heading}");
     print!("{summary}");
-    if let Some(path) = &args.json {
+    if let Some(path) = &args.files.json {
         let json = serde_json::json!({ "car": name, "striker": striker, "result": result });
         write(path, &serde_json::to_string_pretty(&json)?)?;
     }
-    if let Some(path) = &args.csv {
+    if let Some(path) = &args.files.csv {
         write(path, &bumpsim_planar::text::histories(&result))?;
     }
-    if let Some(dir) = &args.report {
+    if let Some(dir) = &args.files.report {
         let (html, figures) = bumpsim_report::planar::planar_report(&heading, &summary, &result)?;
         Folder::report(dir, &html, &figures)?;
     }

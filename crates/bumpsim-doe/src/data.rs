@@ -2,6 +2,7 @@
 //! units in brackets (`Kax [N/mm]`), then one row of numbers per run. Errors
 //! name the file and line.
 
+use crate::model::{Factor, FactorError};
 use bumpsim_core::model::MsdModel;
 use bumpsim_io::car::{Car, CarError};
 use bumpsim_io::table::split_header;
@@ -139,6 +140,82 @@ impl Data {
         let i = self.names.iter().position(|n| n == name)?;
         Some(self.rows.iter().map(|r| r[i]).collect())
     }
+
+    /// The values of a named column, or an error listing the columns.
+    pub fn values(&self, name: &str) -> Result<Vec<f64>, ColumnError> {
+        self.column(name).ok_or_else(|| ColumnError::Missing {
+            name: name.to_string(),
+            columns: self.names.join(", "),
+        })
+    }
+
+    /// The unit written in a named column's header, if any.
+    pub fn unit(&self, name: &str) -> Option<String> {
+        let i = self.names.iter().position(|n| n == name)?;
+        self.units[i].clone()
+    }
+
+    /// Factors over the named columns (levels `low[i]`/`high[i]` where
+    /// given, else the observed extremes) and the coded design matrix, one
+    /// row per table row: what a regression of this table needs
+    /// (`bumpsim doe fit`, the Python package).
+    ///
+    /// ```
+    /// use bumpsim_doe::data::Data;
+    /// let data = Data::parse("t [mm],y [kN]\n2,10\n4,14\n3,12\n", std::path::Path::new("d.csv")).unwrap();
+    /// let (factors, coded) = data.coded(&["t".into()], &[], &[]).unwrap();
+    /// assert_eq!((factors[0].low, factors[0].high), (2.0, 4.0));   // the observed extremes
+    /// assert_eq!(coded, vec![vec![-1.0], vec![1.0], vec![0.0]]);
+    /// assert_eq!(data.unit("y").as_deref(), Some("kN"));
+    /// assert!(data.coded(&["w".into()], &[], &[]).unwrap_err().to_string().contains("columns: t, y"));
+    /// ```
+    pub fn coded(
+        &self,
+        names: &[String],
+        low: &[f64],
+        high: &[f64],
+    ) -> Result<(Vec<Factor>, Vec<Vec<f64>>), ColumnError> {
+        let columns = names
+            .iter()
+            .map(|name| self.values(name))
+            .collect::<Result<Vec<_>, _>>()?;
+        let factors = names
+            .iter()
+            .zip(&columns)
+            .enumerate()
+            .map(|(i, (name, values))| {
+                let (lo, hi) = (low.get(i).copied(), high.get(i).copied());
+                Factor::spanning(name, values, lo, hi, self.unit(name))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let coded = (0..self.rows.len())
+            .map(|r| {
+                factors
+                    .iter()
+                    .zip(&columns)
+                    .map(|(f, c)| f.coded(c[r]))
+                    .collect()
+            })
+            .collect();
+        Ok((factors, coded))
+    }
+}
+
+/// A table that lacks what a regression needs.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ColumnError {
+    /// A named column is not in the table.
+    #[error("no column '{name}'; columns: {columns}")]
+    Missing {
+        /// The name asked for.
+        name: String,
+        /// The table's columns.
+        columns: String,
+    },
+    /// A factor's levels are not valid.
+    #[error(transparent)]
+    Factor(#[from] FactorError),
 }
 
 /// Reads the model of an identification result (`bumpsim identify --json`

@@ -188,39 +188,10 @@ fn doe_fit(
 ) -> PyResult<DoeModel> {
     let path = data.as_path();
     let data = Data::read(path).map_err(file_or_input)?;
-    let column = |name: &str| {
-        data.column(name).ok_or_else(|| {
-            InputError::new_err(format!(
-                "{}: no column '{name}'; columns: {}",
-                path.display(),
-                data.names.join(", ")
-            ))
-        })
+    let in_file = |e: bumpsim_doe::data::ColumnError| {
+        InputError::new_err(format!("{}: {}", path.display(), message(&e)))
     };
-    let unit =
-        |name: &str| data.units[data.names.iter().position(|n| n == name).unwrap_or(0)].clone();
-    let columns = factors
-        .iter()
-        .map(|f| column(f))
-        .collect::<PyResult<Vec<_>>>()?;
-    let factors = factors
-        .iter()
-        .zip(&columns)
-        .enumerate()
-        .map(|(i, (name, values))| {
-            let (low, high) = (low.get(i).copied(), high.get(i).copied());
-            Factor::spanning(name, values, low, high, unit(name)).map_err(input)
-        })
-        .collect::<PyResult<Vec<_>>>()?;
-    let coded: Vec<Vec<f64>> = (0..data.rows.len())
-        .map(|r| {
-            factors
-                .iter()
-                .zip(&columns)
-                .map(|(f, c)| f.coded(c[r]))
-                .collect()
-        })
-        .collect();
+    let (factors, coded) = data.coded(&factors, &low, &high).map_err(in_file)?;
     let names: Vec<String> = factors.iter().map(|f| f.name.clone()).collect();
     let model_terms = terms(factors.len(), interactions, squares);
     let mut model = ModelFile {
@@ -228,13 +199,13 @@ fn doe_fit(
         responses: Vec::new(),
     };
     for response in &responses {
-        let y = column(response)?;
+        let y = data.values(response).map_err(in_file)?;
         let f = py
             .detach(|| core_fit(&coded, &y, &model_terms, &names))
             .map_err(|e| InputError::new_err(format!("response '{response}': {}", message(&e))))?;
         model
             .responses
-            .push(Response::from_fit(response, unit(response), &f));
+            .push(Response::from_fit(response, data.unit(response), &f));
     }
     Ok(DoeModel { inner: model })
 }
