@@ -2,7 +2,7 @@
 ansys-dyna-core parses it; prints JSON with the keywords it could not
 process, validate() errors, ids referenced but not defined, and the force
 curve. Usage: dyna_deck.py DECK.k [EXTERNAL_NODE_ID ...] (external nodes are
-the user's attachment nodes, defined in the model the include goes into)."""
+the user's attachment or spring nodes, defined in the model the include goes into)."""
 import json
 import sys
 
@@ -35,7 +35,8 @@ def main():
     masses = [int(m.nid) for m in kinds.get("ElementMass", [])]
     need("node", masses, nodes)
     for e in kinds.get("ElementDiscrete", []):
-        need("node", column(e, "elements", "n1") + column(e, "elements", "n2"), nodes)
+        ends = column(e, "elements", "n1") + column(e, "elements", "n2")
+        need("node", [n for n in ends if n not in external], nodes)
         need("part", column(e, "elements", "pid"), parts)
     for p in kinds.get("Part", []):
         need("section", [int(v) for v in p.parts["secid"].dropna()], sections)
@@ -51,8 +52,16 @@ def main():
         ids = [getattr(h, f"id{i}") for i in range(1, 9)]
         history += [int(v) for v in ids if v is not None and int(v) != 0]
     need("node", history, nodes)
+    for k, ms in kinds.items():
+        for m in ms if k.startswith("Mat") else []:
+            for field in ("lcd", "lcdl", "lcdu"):
+                value = getattr(m, field, None)
+                if value is not None and int(value) != 0:
+                    need("curve", [int(value)], set(curves))
     curve = []
+    every = {}
     for c in curves.values():
+        every[int(c.lcid)] = [[float(a), float(o)] for a, o in zip(c.curves["a1"], c.curves["o1"])]
         curve = [[float(a), float(o)] for a, o in zip(c.curves["a1"], c.curves["o1"])]
     result = deck.validate()
     print(json.dumps({
@@ -64,6 +73,7 @@ def main():
         "mass_nodes": masses,
         "history_nodes": history,
         "curve": curve,
+        "curves": every,
     }))
 
 

@@ -7,6 +7,7 @@ use bumpsim_core::units::{Dimension, parse_quantity};
 use bumpsim_export::calculix::{Analysis, CalculixOptions, calculix_deck, read_results};
 use bumpsim_export::layout::{Axis, Layout, UnitSystem};
 use bumpsim_export::lsdyna::{LsDynaOptions, lsdyna_include};
+use bumpsim_export::spring::{SpringCurve, SpringOptions, calculix_spring, lsdyna_spring};
 use bumpsim_io::car::Car;
 use bumpsim_io::table::{OutputColumn, write_table};
 use std::path::{Path, PathBuf};
@@ -20,6 +21,44 @@ pub enum Command {
     Calculix(CalculixArgs),
     /// Read the .dat results of a CalculiX run of an exported deck into CSV (SI).
     ReadCalculix(ReadArgs),
+    /// Write the bumper characteristic (impact's bumper TOML) as a nonlinear
+    /// discrete spring: LS-DYNA MAT_S06 or CalculiX SPRINGA.
+    Bumper(BumperArgs),
+}
+
+/// Arguments of `bumpsim export bumper`.
+#[derive(Debug, clap::Args)]
+pub struct BumperArgs {
+    /// The bumper characteristic (TOML: ramp, plateau, unloading; or curve, unloading).
+    #[arg(value_name = "BUMPER.toml")]
+    bumper: PathBuf,
+    /// lsdyna (keyword include) or calculix (deck lines to *INCLUDE).
+    #[arg(long)]
+    solver: Solver,
+    /// The deck to write.
+    #[arg(short, long, value_name = "FILE")]
+    output: PathBuf,
+    /// Deck unit system: si, mm-s-t or mm-ms-kg.
+    #[arg(long, default_value = "si")]
+    units: UnitSystem,
+    /// Added to every id written.
+    #[arg(long, default_value_t = 0)]
+    id_offset: u64,
+    /// The spring element's nodes: barrier side, then the car's m1 node.
+    #[arg(long, value_delimiter = ',', value_name = "FRONT,REAR", num_args = 1)]
+    nodes: Vec<u64>,
+    /// CalculiX set-name prefix.
+    #[arg(long, default_value = bumpsim_export::calculix::DEFAULT_PREFIX)]
+    prefix: String,
+}
+
+/// The solvers a bumper spring is written for.
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+enum Solver {
+    /// LS-DYNA keyword include.
+    Lsdyna,
+    /// CalculiX/Abaqus deck lines.
+    Calculix,
 }
 
 /// Options both decks share.
@@ -114,6 +153,9 @@ pub struct CalculixArgs {
     /// Prefix of every set and amplitude name, to stay clear of the main model's names.
     #[arg(long, default_value = bumpsim_export::calculix::DEFAULT_PREFIX)]
     prefix: String,
+    /// Bumper attachment node ids (the main model's) tied to m1 along the axis, comma-separated.
+    #[arg(long, value_delimiter = ',', value_name = "ID,ID,...")]
+    attach: Vec<u64>,
 }
 
 /// Arguments of `bumpsim export read-calculix`.
@@ -133,6 +175,7 @@ pub fn run(command: &Command) -> Result<()> {
         Command::Lsdyna(args) => lsdyna(args),
         Command::Calculix(args) => calculix(args),
         Command::ReadCalculix(args) => read_calculix(args),
+        Command::Bumper(args) => bumper(args),
     }
 }
 
@@ -274,12 +317,53 @@ fn calculix(args: &CalculixArgs) -> Result<()> {
         title: title(&car, &common.model),
         id_offset: args.id_offset,
         prefix: args.prefix.clone(),
+        attach: args.attach.clone(),
     };
     let deck = calculix_deck(&car.model, &options)?;
     let inputs: Vec<&Path> = std::iter::once(common.model.as_path())
         .chain(args.force.as_deref())
         .collect();
     write_deck(common, &inputs, &deck, what)
+}
+
+fn bumper(args: &BumperArgs) -> Result<()> {
+    let bumper = bumpsim_impact::bumper::Bumper::read(&args.bumper)?;
+    let curve = SpringCurve::new(bumper.loading_points(), bumper.unloading_slope())
+        .with_context(|| format!("{}", args.bumper.display()))?;
+    let nodes = match args.nodes.as_slice() {
+        [] => None,
+        [front, rear] => Some((*front, *rear)),
+        other => bail!(
+            "--nodes: expected two node ids FRONT,REAR, got {}",
+            other.len()
+        ),
+    };
+    let options = SpringOptions {
+        units: args.units,
+        id_offset: args.id_offset,
+        nodes,
+        title: format!("bumper characteristic from {}", args.bumper.display()),
+        prefix: args.prefix.clone(),
+    };
+    let (deck, what) = match args.solver {
+        Solver::Lsdyna => (
+            lsdyna_spring(&curve, &options)?,
+            "LS-DYNA MAT_SPRING_GENERAL_NONLINEAR",
+        ),
+        Solver::Calculix => (
+            calculix_spring(&curve, &options)?,
+            "CalculiX nonlinear SPRINGA",
+        ),
+    };
+    refuse_overwriting_inputs(&args.output, &[args.bumper.as_path()])?;
+    bumpsim_io::output::write_file(&args.output, deck.as_bytes())?;
+    println!(
+        "wrote {}: {what}, {} curve points, units {}",
+        args.output.display(),
+        curve.points().len(),
+        args.units
+    );
+    Ok(())
 }
 
 fn read_calculix(args: &ReadArgs) -> Result<()> {

@@ -17,6 +17,10 @@
 //! act on the car's own set only, so the deck can be `*INCLUDE`d in a model
 //! with its own `Nall` set and low node ids (issue 16; tested in `ccx`).
 //!
+//! **Coupling.** With attachment nodes, each follows m1 along the axis by a
+//! two-term `*EQUATION` (the axial part of LS-DYNA's nodal rigid body; the
+//! user's model supports the attachment nodes across the axis).
+//!
 //! A comment line `** bumpsim-deck: units=.. axis=.. start=.. dof=..` records
 //! what is needed to map the `.dat` results back to SI model displacements
 //! ([`read_results`]).
@@ -54,6 +58,8 @@ pub struct CalculixOptions {
     pub id_offset: u64,
     /// Prefix of every set and amplitude name (letters, digits, `_`).
     pub prefix: String,
+    /// The user's bumper attachment node ids, tied to m1 along the axis.
+    pub attach: Vec<u64>,
 }
 
 impl Default for CalculixOptions {
@@ -65,6 +71,7 @@ impl Default for CalculixOptions {
             title: String::new(),
             id_offset: 0,
             prefix: DEFAULT_PREFIX.to_string(),
+            attach: Vec::new(),
         }
     }
 }
@@ -75,8 +82,8 @@ pub const DEFAULT_PREFIX: &str = "BUMPSIM_";
 /// Largest node or element id CalculiX reads (a 32-bit integer).
 pub const MAX_CALCULIX_ID: u64 = 2_147_483_647;
 
-fn check_names(model: &MsdModel, options: &CalculixOptions) -> Result<(), ExportError> {
-    let prefix = &options.prefix;
+/// Checks a set-name prefix: letters, digits and `_`, not first a digit, at most 40.
+pub(crate) fn check_prefix(prefix: &str) -> Result<(), ExportError> {
     if !prefix
         .chars()
         .all(|c| c.is_ascii_alphanumeric() || c == '_')
@@ -84,9 +91,14 @@ fn check_names(model: &MsdModel, options: &CalculixOptions) -> Result<(), Export
         || prefix.len() > 40
     {
         return Err(ExportError::Prefix {
-            prefix: prefix.clone(),
+            prefix: prefix.to_string(),
         });
     }
+    Ok(())
+}
+
+fn check_names(model: &MsdModel, options: &CalculixOptions) -> Result<(), ExportError> {
+    check_prefix(&options.prefix)?;
     let last = options.id_offset.saturating_add(3 * model.dof() as u64);
     if last > MAX_CALCULIX_ID {
         return Err(ExportError::IdRange {
@@ -95,7 +107,28 @@ fn check_names(model: &MsdModel, options: &CalculixOptions) -> Result<(), Export
             limit: MAX_CALCULIX_ID,
         });
     }
-    Ok(())
+    let first = options.id_offset + 1;
+    crate::check_attach(
+        &options.attach,
+        first..=first + model.dof() as u64 - 1,
+        MAX_CALCULIX_ID,
+    )
+}
+
+/// The user's attachment nodes follow m1 along the axis: one two-term
+/// `*EQUATION` each (u_a − u_m1 = 0 in the axis direction).
+fn coupling(deck: &mut String, options: &CalculixOptions) {
+    if options.attach.is_empty() {
+        return;
+    }
+    let (dof, m1) = (options.layout.axis.dof(), options.id_offset + 1);
+    let _ = writeln!(
+        deck,
+        "** coupling: the attachment nodes follow m1 (node {m1}) along the axis\n*EQUATION"
+    );
+    for node in &options.attach {
+        let _ = writeln!(deck, "2\n{node}, {dof}, 1.0, {m1}, {dof}, -1.0");
+    }
 }
 
 /// Writes the deck text.
@@ -160,6 +193,7 @@ pub fn calculix_deck(model: &MsdModel, options: &CalculixOptions) -> Result<Stri
     for dof in layout.axis.other_dofs() {
         let _ = writeln!(deck, "{set}NALL, {dof}, {dof}");
     }
+    coupling(&mut deck, options);
     if let Some(v) = options.initial_velocity {
         let _ = writeln!(
             deck,
@@ -214,7 +248,7 @@ fn links(deck: &mut String, model: &MsdModel, options: &CalculixOptions) {
 }
 
 /// A real as CalculiX reads it: always with a decimal point (`5e5` is misread), 13 digits.
-fn real(value: f64) -> String {
+pub(crate) fn real(value: f64) -> String {
     format!("{:.12e}", value + 0.0)
 }
 

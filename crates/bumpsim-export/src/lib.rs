@@ -5,6 +5,7 @@
 //! - [`calculix`]: a CalculiX/Abaqus deck, optionally a complete transient
 //!   analysis under a force history, and reading its results back;
 //! - [`layout`]: unit systems, axis and node placement shared by both;
+//! - [`spring`]: the bumper characteristic as a nonlinear discrete spring;
 //! - [`timestep`]: the car's explicit critical time step.
 //!
 //! ```
@@ -18,6 +19,7 @@
 pub mod calculix;
 pub mod layout;
 pub mod lsdyna;
+pub mod spring;
 pub mod timestep;
 
 pub use calculix::{CalculixOptions, calculix_deck};
@@ -141,6 +143,14 @@ pub enum ExportError {
         /// The value given, s.
         value: f64,
     },
+    /// A bumper curve the solvers cannot take.
+    #[error("bumper curve point {point}: {reason}")]
+    Curve {
+        /// 1-based point (0: the curve as a whole).
+        point: usize,
+        /// What is wrong.
+        reason: String,
+    },
     /// A results file that cannot be read.
     #[error("{}{}: {reason}", path.display(), if *line > 0 { format!(":{line}") } else { String::new() })]
     Dat {
@@ -151,6 +161,30 @@ pub enum ExportError {
         /// What is wrong.
         reason: String,
     },
+}
+
+/// Checks the user's attachment nodes: none of the include's own nodes
+/// `ours`, none twice, each in 1..=`limit`.
+pub(crate) fn check_attach(
+    attach: &[u64],
+    ours: std::ops::RangeInclusive<u64>,
+    limit: u64,
+) -> Result<(), ExportError> {
+    if let Some(node) = attach.iter().find(|n| ours.contains(n)) {
+        return Err(ExportError::IdClash {
+            node: *node,
+            first: *ours.start(),
+            last: *ours.end(),
+        });
+    }
+    let mut seen = std::collections::HashSet::new();
+    if let Some(node) = attach.iter().find(|n| !seen.insert(**n)) {
+        return Err(ExportError::DuplicateNode { node: *node });
+    }
+    match attach.iter().find(|&&n| n == 0 || n > limit) {
+        Some(node) => Err(ExportError::NodeId { node: *node, limit }),
+        None => Ok(()),
+    }
 }
 
 /// Checks that every value a deck writes stays finite in the deck's units:

@@ -112,24 +112,11 @@ fn ids(model: &MsdModel, options: &LsDynaOptions) -> Result<Ids, ExportError> {
             limit: MAX_ID,
         });
     }
-    let ours = ids.node(0)..=ids.node(model.dof() - 1);
-    if let Some(node) = options.attach.iter().find(|n| ours.contains(n)) {
-        return Err(ExportError::IdClash {
-            node: *node,
-            first: *ours.start(),
-            last: *ours.end(),
-        });
-    }
-    let mut seen = std::collections::HashSet::new();
-    if let Some(node) = options.attach.iter().find(|n| !seen.insert(**n)) {
-        return Err(ExportError::DuplicateNode { node: *node });
-    }
-    if let Some(node) = options.attach.iter().find(|&&n| n == 0 || n > MAX_ID) {
-        return Err(ExportError::NodeId {
-            node: *node,
-            limit: MAX_ID,
-        });
-    }
+    crate::check_attach(
+        &options.attach,
+        ids.node(0)..=ids.node(model.dof() - 1),
+        MAX_ID,
+    )?;
     Ok(ids)
 }
 

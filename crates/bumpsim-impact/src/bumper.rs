@@ -184,6 +184,24 @@ impl Bumper {
         &self.loading
     }
 
+    /// The loading curve as (compression m, force N) points from (0, 0): a
+    /// table as given; the three-part curve as its knee and a plateau point
+    /// at ten times the knee's compression (solvers hold the last value or
+    /// extend the last, flat segment beyond it).
+    pub fn loading_points(&self) -> Vec<(f64, f64)> {
+        match &self.loading {
+            Loading::ThreePart { ramp, plateau } => {
+                let knee = plateau / ramp;
+                vec![(0.0, 0.0), (knee, *plateau), (10.0 * knee, *plateau)]
+            }
+            Loading::Table { compression, force } => compression
+                .iter()
+                .copied()
+                .zip(force.iter().copied())
+                .collect(),
+        }
+    }
+
     /// The unloading slope s_u, N/m.
     pub fn unloading_slope(&self) -> f64 {
         self.unloading

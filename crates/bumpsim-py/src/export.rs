@@ -113,7 +113,7 @@ fn lsdyna_deck(
 /// The CalculiX/Abaqus deck of `car` (as `bumpsim export calculix`); with
 /// `time` (s, uniform) and `force` (N on m1), a complete transient analysis.
 #[pyfunction]
-#[pyo3(signature = (car, time = None, force = None, units = "si", axis = "+x", origin = [0.0, 0.0, 0.0], spacing = 0.1, increment = None, output_every = 1, initial_velocity = None, title = None, id_offset = 0, prefix = DEFAULT_PREFIX.to_string()))]
+#[pyo3(signature = (car, time = None, force = None, units = "si", axis = "+x", origin = [0.0, 0.0, 0.0], spacing = 0.1, increment = None, output_every = 1, initial_velocity = None, title = None, id_offset = 0, prefix = DEFAULT_PREFIX.to_string(), attach = Vec::new()))]
 // one Rust argument per Python keyword argument
 #[allow(clippy::too_many_arguments)]
 fn calculix(
@@ -130,6 +130,7 @@ fn calculix(
     title: Option<String>,
     id_offset: u64,
     prefix: String,
+    attach: Vec<u64>,
 ) -> PyResult<String> {
     let analysis = force_history(time, force)?.map(|force| Analysis {
         force,
@@ -143,6 +144,7 @@ fn calculix(
         title: self::title(car, title),
         id_offset,
         prefix,
+        attach,
     };
     calculix_deck(&car.inner.model, &options).map_err(input)
 }

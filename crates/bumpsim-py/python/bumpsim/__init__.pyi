@@ -444,9 +444,11 @@ def calculix(
     title: Optional[str] = None,
     id_offset: int = 0,
     prefix: str = "BUMPSIM_",
+    attach: Sequence[int] = (),
 ) -> str:
     """The CalculiX/Abaqus deck; with time and force a transient analysis;
-    ids offset by ``id_offset`` and set names prefixed with ``prefix``."""
+    ids offset by ``id_offset`` and set names prefixed with ``prefix``;
+    ``attach`` node ids follow m1 along the axis (``*EQUATION``)."""
 
 # ---------------------------------------------------------------- pipelines
 
