@@ -13,6 +13,7 @@
 
 mod doe;
 mod export;
+mod fe;
 mod identify;
 mod impact;
 mod output;
@@ -63,6 +64,9 @@ enum Command {
     /// Export the car model to FE solver decks (LS-DYNA, CalculiX/Abaqus).
     #[command(subcommand)]
     Export(export::Command),
+    /// FE coupling: a bumper mesh coupled to the MSD car, run in CalculiX.
+    #[command(subcommand)]
+    Fe(fe::Command),
 }
 
 /// Parses a count of at least 1 and at most `MAX` (a documented resource
@@ -99,6 +103,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Simulate(args) => simulate::run(&args),
         Command::Export(command) => export::run(&command),
+        Command::Fe(command) => fe::run(&command),
         Command::Signal(command) => signal::run(&command),
         Command::Identify(args) => identify::run(&args),
         Command::Impact(args) => impact::run_impact(&args),

@@ -9,8 +9,9 @@ use anyhow::{Context, Result};
 use std::path::Path;
 
 /// Argument ids that name outputs; the rest that exist on disk are inputs.
-const OUTPUT_IDS: [&str; 7] = [
+const OUTPUT_IDS: [&str; 8] = [
     "output",
+    "work",
     "json",
     "csv",
     "sensitivity",
@@ -21,7 +22,7 @@ const OUTPUT_IDS: [&str; 7] = [
 
 /// Output ids that name folders (`output` only for `synth`).
 fn is_folder_output(command: &str, id: &str) -> bool {
-    matches!(id, "report" | "plot" | "iso_mme") || (command == "synth" && id == "output")
+    matches!(id, "report" | "plot" | "iso_mme" | "work") || (command == "synth" && id == "output")
 }
 
 /// The result files of a simulation command (`impact`, `planar`).

@@ -8,6 +8,7 @@
 
 mod doe;
 mod export;
+mod fe;
 mod formats;
 mod fuzz;
 mod identify;

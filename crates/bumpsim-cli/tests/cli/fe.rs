@@ -1,0 +1,222 @@
+//! `bumpsim fe impact`: the bumper mesh coupled to the car, run in CalculiX
+//! by the real binary (pendulum here; barrier cases in bumpsim-fe's tests),
+//! and its hostile inputs.
+
+use crate::util::*;
+
+fn ccx_available() -> bool {
+    peer_available("ccx (calculix-ccx)", "sh", &["-c", "command -v ccx"])
+}
+
+fn fe(args: &[&str]) -> std::process::Output {
+    let mut all = vec!["fe", "impact"];
+    all.extend_from_slice(args);
+    bumpsim(&all)
+}
+
+/// A 1000 kg pendulum at 2.2 m/s on the bundled car with the elastic mesh:
+/// summary with units, JSON, CSV and report; the FE peak force within 2 %
+/// and the largest compression within 4 % of `impact` with the equivalent
+/// spring (the beam's own 5.5 kg sits between face and spring here), energy
+/// closed within 2 %.
+#[test]
+fn a_pendulum_run_in_calculix_writes_the_impact_results() {
+    if !ccx_available() {
+        return;
+    }
+    let dir = scratch("fe-pendulum");
+    let (car, mesh) = (
+        root().join("examples/identify/car-truth.toml"),
+        root().join("examples/fe/bumper-elastic.toml"),
+    );
+    let (json, csv, report, work) = (
+        dir.join("fe.json"),
+        dir.join("fe.csv"),
+        dir.join("report"),
+        dir.join("work"),
+    );
+    let run = fe(&[
+        "--car",
+        car.to_str().unwrap(),
+        "--bumper",
+        mesh.to_str().unwrap(),
+        "--pendulum",
+        "1000",
+        "--speed",
+        "7.92 km/h",
+        "--work",
+        work.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+        "--csv",
+        csv.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+    ]);
+    let out = text(&run.stdout);
+    assert!(run.status.success(), "{out}{}", text(&run.stderr));
+    assert_contains(
+        &out,
+        &[
+            "1000 kg pendulum",
+            "peak force",
+            " kN",
+            "maximum compression",
+            " mm",
+            "equivalent characteristic",
+        ],
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let get = |k: &str| v[k].as_f64().unwrap();
+    let eq = |k: &str| v["equivalent"][k].as_f64().unwrap();
+    assert!(
+        (get("peak_force") - eq("peak_force")).abs() <= 0.02 * eq("peak_force"),
+        "{v}"
+    );
+    assert!(
+        (get("max_compression") - eq("max_compression")).abs() <= 0.04 * eq("max_compression"),
+        "{v}"
+    );
+    assert!(
+        v["energy"]["relative_error"].as_f64().unwrap() < 0.02,
+        "{v}"
+    );
+    assert!(get("peak_force_unfiltered") >= get("peak_force"));
+    let (header, rows) = read_csv(&csv);
+    assert_eq!(header[..3], ["time [s]", "force [N]", "compression [m]"]);
+    assert!(header.iter().any(|h| h == "x impactor [m]") && rows.len() > 100);
+    assert!(
+        std::fs::read_to_string(report.join("index.html"))
+            .unwrap()
+            .contains("<svg")
+    );
+    assert!(work.join("bumper.inp").exists() && work.join("bumper.dat").exists());
+}
+
+/// Hostile inputs: exit 2 with the parameter or file named, before
+/// CalculiX runs.
+#[test]
+fn bad_fe_input_is_a_user_error() {
+    let dir = scratch("fe-bad");
+    let car = root().join("examples/identify/car-truth.toml");
+    let good = std::fs::read_to_string(root().join("examples/fe/bumper-elastic.toml")).unwrap();
+    let write = |name: &str, text: &str| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let wall = write("wall.toml", &good.replace("wall = 0.0015", "wall = 0.05"));
+    let nan = write(
+        "nan.toml",
+        &good.replace("youngs_modulus = 3.2e8", "youngs_modulus = nan"),
+    );
+    let huge = write(
+        "huge.toml",
+        &good.replace("elements = 6", "elements = 100000000000"),
+    );
+    let mesh = root().join("examples/fe/bumper-elastic.toml");
+    let work = dir.join("work");
+    let (c, w) = (car.to_str().unwrap(), work.to_str().unwrap());
+    let cases: Vec<(Vec<&str>, String)> = vec![
+        (
+            vec![
+                "--bumper",
+                wall.to_str().unwrap(),
+                "--barrier",
+                "--speed",
+                "2",
+            ],
+            "crash_boxes.section.wall (m) = 0.05".into(),
+        ),
+        (
+            vec![
+                "--bumper",
+                nan.to_str().unwrap(),
+                "--barrier",
+                "--speed",
+                "2",
+            ],
+            "crash_boxes.material.youngs_modulus (Pa) = NaN".into(),
+        ),
+        (
+            vec![
+                "--bumper",
+                huge.to_str().unwrap(),
+                "--barrier",
+                "--speed",
+                "2",
+            ],
+            "beam.elements".into(),
+        ),
+        (
+            vec![
+                "--bumper",
+                mesh.to_str().unwrap(),
+                "--barrier",
+                "--speed",
+                "nan",
+            ],
+            "--speed 'nan'".into(),
+        ),
+        (
+            vec![
+                "--bumper",
+                mesh.to_str().unwrap(),
+                "--barrier",
+                "--speed",
+                "2",
+                "--increment",
+                "1e-300",
+            ],
+            "increments (duration / increment)".into(),
+        ),
+        (
+            vec![
+                "--bumper",
+                mesh.to_str().unwrap(),
+                "--barrier",
+                "--speed",
+                "2",
+                "--solver",
+                "/nonexistent/ccx",
+            ],
+            "/nonexistent/ccx: cannot start".into(),
+        ),
+        (
+            vec![
+                "--bumper",
+                mesh.to_str().unwrap(),
+                "--pendulum",
+                "-5",
+                "--speed",
+                "2",
+            ],
+            "impactor mass".into(),
+        ),
+    ];
+    for (extra, needle) in cases {
+        let mut args = vec!["--car", c, "--work", w];
+        args.extend_from_slice(&extra);
+        let run = fe(&args);
+        assert_user_error(&run, &needle);
+    }
+    // the work folder may not be an input's folder
+    // a work folder with the user's files in it (here the inputs' own
+    // folder) is refused: the run would write next to them
+    let examples = root().join("examples/fe");
+    let (m, e) = (mesh.to_str().unwrap(), examples.to_str().unwrap());
+    let run = fe(&[
+        "--car",
+        c,
+        "--bumper",
+        m,
+        "--barrier",
+        "--speed",
+        "2",
+        "--work",
+        e,
+    ]);
+    assert_user_error(&run, "which is not a file of a previous run");
+    assert!(!examples.join("bumper.inp").exists());
+}

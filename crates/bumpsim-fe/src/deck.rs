@@ -1,0 +1,361 @@
+//! The coupled CalculiX deck: the parametric bumper, the striker and the
+//! MSD car of `bumpsim export calculix`, joined by the export's coupling.
+//!
+//! Geometry (SI, the export's layout): the car's axis is +x, m1 at the
+//! origin and the car behind it (+x); the crash boxes run from their rear
+//! nodes at (0, ±y_c, 0) forward to the beam at x = −L_box; the beam spans
+//! y = ±W/2. Every beam node faces a striker node 0.1 m ahead with a
+//! compression-only `SPRINGA` (`*SPRING, NONLINEAR`: zero force in tension,
+//! k_contact / n per node in compression): the contact. A barrier's nodes are
+//! fixed; a pendulum's follow its mass node along x by `*EQUATION`.
+//!
+//! Coupling: the crash boxes' rear nodes are the export's attachment nodes
+//! (each follows m1 along x by `*EQUATION`), and are held across the axis
+//! and in rotation, as if bolted to a rigid rail. Beam nodes are held out
+//! of plane (z).
+//!
+//! Analysis: `*DYNAMIC, ALPHA=-0.05` (Hilber–Hughes–Taylor with CalculiX's
+//! default slight damping of the highest frequencies, see [`ALPHA`]; what
+//! it dissipates shows in the energy balance) at the given increment, which
+//! CalculiX cuts back (to 1/256) where the contact opens or closes and
+//! Newton's method would not converge at the full step; small strains
+//! (no NLGEOM: the beams stay in the small-strain range where B32R's
+//! expansion matches beam theory), fixed increment. Outputs to the `.dat`
+//! file: U, V of the car (and pendulum), U of the beam nodes, total internal
+//! (ELSE) and kinetic (ELKE) energies of beam, boxes and contact springs.
+
+use crate::FeError;
+use crate::bumper::BumperMesh;
+use bumpsim_core::model::MsdModel;
+use bumpsim_export::calculix::{CalculixOptions, calculix_deck};
+use bumpsim_impact::impact::Scenario;
+use std::fmt::Write;
+
+/// Distance of the striker's nodes ahead of the beam, m (the contact
+/// springs' length; any positive value, the springs act on elongation).
+pub const CONTACT_LENGTH: f64 = 0.1;
+
+/// Span of the contact springs' table, m (beyond any crush).
+pub const CONTACT_SPAN: f64 = 1.0;
+
+/// The Hilber–Hughes–Taylor α of the run: CalculiX's default, a slight
+/// numerical damping of the highest frequencies. With α = 0 (the
+/// trapezoidal rule) the contact's opening and closing pumped energy into
+/// the beam's fast modes and a run blew up after separation.
+pub const ALPHA: f64 = -0.05;
+
+/// The run settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Run {
+    /// Fixed time increment, s.
+    pub increment: f64,
+    /// Simulated time, s.
+    pub duration: f64,
+}
+
+/// What the reader needs to know about a written deck.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Layout {
+    /// Beam node ids, left to right.
+    pub beam: Vec<u64>,
+    /// Car node ids m1..mn.
+    pub car: Vec<u64>,
+    /// The pendulum's mass node, if any.
+    pub pendulum: Option<u64>,
+    /// Contact stiffness per beam node, N/m.
+    pub contact_node: f64,
+    /// Lateral positions of the crash boxes after snapping, m.
+    pub crash_box_y: [f64; 2],
+}
+
+/// Builds the deck text and its layout.
+pub fn coupled_deck(
+    mesh: &BumperMesh,
+    car: &MsdModel,
+    scenario: Scenario,
+    run: &Run,
+) -> Result<(String, Layout), FeError> {
+    mesh.validate()?;
+    let mut deck = String::new();
+    let _ = writeln!(
+        deck,
+        "*HEADING\nbumpsim {}: {} coupled to a {}-DOF MSD car (spec §8)\n** units: kg, m, s, N, Pa",
+        env!("CARGO_PKG_VERSION"),
+        mesh.name.as_deref().unwrap_or("parametric bumper"),
+        car.dof()
+    );
+    let mut ids = Ids::default();
+    let beam = beam_nodes(&mut deck, mesh, &mut ids);
+    let (chains, crash_box_y) = crash_boxes(&mut deck, mesh, &beam, &mut ids);
+    let rear = chains.clone().map(|c| c[c.len() - 1]);
+    let x = -mesh.crash_boxes.length - CONTACT_LENGTH;
+    let striker = striker_nodes(&mut deck, &beam, x, &mut ids);
+    let pendulum = pendulum_node(&mut deck, scenario, x - CONTACT_LENGTH, &mut ids);
+    elements(&mut deck, mesh, &beam, &striker, &chains, &mut ids);
+    let contact_node = mesh.contact() / beam.len() as f64;
+    materials(&mut deck, mesh, contact_node);
+    let speed = match scenario {
+        Scenario::Barrier { speed } => Some(-speed),
+        Scenario::Impactor { .. } => None,
+    };
+    // the car's ids follow the bumper's: CalculiX sizes its node arrays by
+    // the largest id, and a sparse numbering (offset 100 000) made every
+    // increment 20 times slower
+    let car_offset = ids.node.max(ids.element);
+    let options = CalculixOptions {
+        initial_velocity: speed,
+        title: "the MSD car".into(),
+        id_offset: car_offset,
+        attach: rear.to_vec(),
+        ..Default::default()
+    };
+    deck += &calculix_deck(car, &options)?;
+    supports(&mut deck, scenario, pendulum, &striker, &rear);
+    initial(&mut deck, scenario);
+    step(&mut deck, run, pendulum.is_some());
+    let layout = Layout {
+        beam: beam.iter().map(|b| b.0).collect(),
+        car: (1..=car.dof() as u64).map(|i| car_offset + i).collect(),
+        pendulum,
+        contact_node,
+        crash_box_y,
+    };
+    Ok((deck, layout))
+}
+
+#[derive(Default)]
+struct Ids {
+    node: u64,
+    element: u64,
+}
+
+impl Ids {
+    fn node(&mut self) -> u64 {
+        self.node += 1;
+        self.node
+    }
+    fn element(&mut self) -> u64 {
+        self.element += 1;
+        self.element
+    }
+}
+
+fn real(v: f64) -> String {
+    format!("{:.12e}", v + 0.0)
+}
+
+fn node(deck: &mut String, id: u64, p: [f64; 3]) {
+    let _ = writeln!(deck, "{id}, {}, {}, {}", real(p[0]), real(p[1]), real(p[2]));
+}
+
+/// 2·n + 1 nodes (B32R) along y at x = −L_box.
+fn beam_nodes(deck: &mut String, mesh: &BumperMesh, ids: &mut Ids) -> Vec<(u64, f64)> {
+    let (w, n) = (mesh.beam.width, 2 * mesh.beam.elements);
+    let x = -mesh.crash_boxes.length;
+    deck.push_str("*NODE, NSET=FE_BEAM\n");
+    (0..=n)
+        .map(|i| {
+            let y = -w / 2.0 + w * i as f64 / n as f64;
+            let id = ids.node();
+            node(deck, id, [x, y, 0.0]);
+            (id, y)
+        })
+        .collect()
+}
+
+/// Crash-box nodes from the beam node nearest ±offset back to x = 0;
+/// returns each box's node chain (front to rear) and the snapped positions.
+fn crash_boxes(
+    deck: &mut String,
+    mesh: &BumperMesh,
+    beam: &[(u64, f64)],
+    ids: &mut Ids,
+) -> ([Vec<u64>; 2], [f64; 2]) {
+    let c = &mesh.crash_boxes;
+    let nearest = |y: f64| {
+        *beam
+            .iter()
+            .min_by(|a, b| (a.1 - y).abs().total_cmp(&(b.1 - y).abs()))
+            .unwrap_or(&(0, y))
+    };
+    deck.push_str("*NODE, NSET=FE_BOXN\n");
+    let mut chain = |sign: f64| {
+        let (front, y) = nearest(sign * c.offset);
+        let mut nodes = vec![front];
+        for j in 1..=2 * c.elements {
+            let id = ids.node();
+            let x = -c.length + c.length * j as f64 / (2 * c.elements) as f64;
+            node(deck, id, [x, y, 0.0]);
+            nodes.push(id);
+        }
+        (nodes, y)
+    };
+    let (left, right) = (chain(-1.0), chain(1.0));
+    ([left.0, right.0], [left.1, right.1])
+}
+
+fn striker_nodes(deck: &mut String, beam: &[(u64, f64)], x: f64, ids: &mut Ids) -> Vec<u64> {
+    deck.push_str("*NODE, NSET=FE_STRIKER\n");
+    beam.iter()
+        .map(|&(_, y)| {
+            let id = ids.node();
+            node(deck, id, [x, y, 0.0]);
+            id
+        })
+        .collect()
+}
+
+fn pendulum_node(deck: &mut String, scenario: Scenario, x: f64, ids: &mut Ids) -> Option<u64> {
+    let Scenario::Impactor { mass, .. } = scenario else {
+        return None;
+    };
+    let id = ids.node();
+    let _ = writeln!(deck, "*NODE, NSET=FE_PENDULUM");
+    node(deck, id, [x, 0.0, 0.0]);
+    let e = ids.element();
+    let _ = writeln!(
+        deck,
+        "*ELEMENT, TYPE=MASS, ELSET=FE_EPENDULUM\n{e}, {id}\n*MASS, ELSET=FE_EPENDULUM\n{}",
+        real(mass)
+    );
+    Some(id)
+}
+
+fn elements(
+    deck: &mut String,
+    mesh: &BumperMesh,
+    beam: &[(u64, f64)],
+    striker: &[u64],
+    chains: &[Vec<u64>; 2],
+    ids: &mut Ids,
+) {
+    deck.push_str("*ELEMENT, TYPE=B32R, ELSET=FE_EBEAM\n");
+    for k in 0..mesh.beam.elements {
+        let e = ids.element();
+        let (a, b, c) = (beam[2 * k].0, beam[2 * k + 1].0, beam[2 * k + 2].0);
+        let _ = writeln!(deck, "{e}, {a}, {b}, {c}");
+    }
+    deck.push_str("*ELEMENT, TYPE=B32R, ELSET=FE_EBOX\n");
+    for chain in chains {
+        for k in 0..mesh.crash_boxes.elements {
+            let e = ids.element();
+            let nodes = &chain[2 * k..2 * k + 3];
+            let _ = writeln!(deck, "{e}, {}, {}, {}", nodes[0], nodes[1], nodes[2]);
+        }
+    }
+    deck.push_str("*ELEMENT, TYPE=SPRINGA, ELSET=FE_ECONTACT\n");
+    for (&(b, _), &s) in beam.iter().zip(striker) {
+        let e = ids.element();
+        let _ = writeln!(deck, "{e}, {b}, {s}");
+    }
+}
+
+fn material(deck: &mut String, name: &str, m: &crate::bumper::Material) {
+    let _ = writeln!(
+        deck,
+        "*MATERIAL, NAME={name}\n*ELASTIC\n{}, {}\n*DENSITY\n{}",
+        real(m.youngs_modulus),
+        real(m.poisson),
+        real(m.density)
+    );
+    if !m.yield_curve.is_empty() {
+        deck.push_str("*PLASTIC\n");
+        for p in &m.yield_curve {
+            let _ = writeln!(deck, "{}, {}", real(p[0]), real(p[1]));
+        }
+    }
+}
+
+fn materials(deck: &mut String, mesh: &BumperMesh, contact_node: f64) {
+    material(deck, "FE_BEAM_MATERIAL", &mesh.beam.material);
+    material(deck, "FE_BOX_MATERIAL", &mesh.crash_boxes.material);
+    let (b, c) = (&mesh.beam.section, &mesh.crash_boxes.section);
+    let _ = writeln!(
+        deck,
+        "*BEAM SECTION, ELSET=FE_EBEAM, MATERIAL=FE_BEAM_MATERIAL, SECTION=BOX\n{}, {}, {w}, {w}, {w}, {w}\n1.0, 0.0, 0.0",
+        real(b.depth),
+        real(b.height),
+        w = real(b.wall)
+    );
+    let _ = writeln!(
+        deck,
+        "*BEAM SECTION, ELSET=FE_EBOX, MATERIAL=FE_BOX_MATERIAL, SECTION=BOX\n{}, {}, {w}, {w}, {w}, {w}\n0.0, 1.0, 0.0",
+        real(c.depth),
+        real(c.height),
+        w = real(c.wall)
+    );
+    let _ = writeln!(
+        deck,
+        "** contact: compression only, {} N/m per beam node\n*SPRING, ELSET=FE_ECONTACT, NONLINEAR\n\n{}, {}\n0.0, 0.0\n0.0, {}",
+        real(contact_node),
+        real(-contact_node * CONTACT_SPAN),
+        real(-CONTACT_SPAN),
+        real(CONTACT_SPAN)
+    );
+}
+
+fn supports(
+    deck: &mut String,
+    scenario: Scenario,
+    pendulum: Option<u64>,
+    striker: &[u64],
+    rear: &[u64; 2],
+) {
+    deck.push_str("*BOUNDARY\nFE_BEAM, 3, 3\n");
+    for r in rear {
+        let _ = writeln!(deck, "{r}, 2, 6");
+    }
+    match (scenario, pendulum) {
+        (Scenario::Impactor { .. }, Some(p)) => {
+            let _ = writeln!(deck, "FE_STRIKER, 2, 3\n{p}, 2, 3\n*EQUATION");
+            for s in striker {
+                let _ = writeln!(deck, "2\n{s}, 1, 1.0, {p}, 1, -1.0");
+            }
+        }
+        _ => deck.push_str("FE_STRIKER, 1, 3\n"),
+    }
+}
+
+fn initial(deck: &mut String, scenario: Scenario) {
+    let (set, v) = match scenario {
+        Scenario::Barrier { speed } => ("FE_BEAM", -speed),
+        Scenario::Impactor { speed, .. } => ("FE_STRIKER", speed),
+    };
+    let _ = writeln!(
+        deck,
+        "*INITIAL CONDITIONS, TYPE=VELOCITY\n{set}, 1, {}",
+        real(v)
+    );
+    match scenario {
+        Scenario::Barrier { .. } => {
+            let _ = writeln!(deck, "FE_BOXN, 1, {}", real(v));
+        }
+        Scenario::Impactor { .. } => {
+            let _ = writeln!(deck, "FE_PENDULUM, 1, {}", real(v));
+        }
+    }
+}
+
+fn step(deck: &mut String, run: &Run, pendulum: bool) {
+    let count = 4 * ((run.duration / run.increment).ceil() as u64 + 10);
+    let _ = writeln!(
+        deck,
+        "*STEP, INC={count}\n*DYNAMIC, ALPHA={ALPHA}\n{}, {}, {}, {}",
+        real(run.increment),
+        real(run.duration),
+        real(run.increment / 256.0),
+        real(run.increment)
+    );
+    let _ = writeln!(deck, "*NODE PRINT, NSET=BUMPSIM_NALL, FREQUENCY=1\nU, V");
+    if pendulum {
+        deck.push_str("*NODE PRINT, NSET=FE_PENDULUM\nU, V\n");
+    }
+    deck.push_str("*NODE PRINT, NSET=FE_BEAM\nU\n");
+    for set in ["FE_EBEAM", "FE_EBOX", "FE_ECONTACT"] {
+        let _ = writeln!(deck, "*EL PRINT, ELSET={set}, TOTALS=ONLY\nELSE");
+    }
+    for set in ["FE_EBEAM", "FE_EBOX"] {
+        let _ = writeln!(deck, "*EL PRINT, ELSET={set}, TOTALS=ONLY\nELKE");
+    }
+    deck.push_str("*END STEP\n");
+}

@@ -1,0 +1,60 @@
+//! The coupled run in words and JSON: the figures of `bumpsim impact`, the
+//! unfiltered peak, and the comparison with the equivalent characteristic.
+
+use crate::run::FeResult;
+use bumpsim_core::units::{Dimension, format_quantity};
+
+/// Tolerance of the energy-balance warning (relative to the initial energy).
+pub const ENERGY_TOLERANCE: f64 = 0.02;
+
+/// The summary: impact's lines, then the FE-specific ones.
+pub fn summary(fe: &FeResult) -> String {
+    let (r, e) = (&fe.impact, &fe.equivalent);
+    bumpsim_impact::text::summary(r)
+        + &format!(
+            "  peak force unfiltered {} (the summary's peak is CFC 60, as a barrier load cell)\n  bumper internal energy at the end {} (plastic work and what stays elastic)\n  equivalent characteristic in `impact`: peak force {}, maximum compression {}\n  CalculiX: {} increments of {}, deck {}\n",
+            format_quantity(fe.raw_peak_force, Dimension::Force),
+            format_quantity(fe.bumper_internal_energy, Dimension::Energy),
+            format_quantity(e.peak_force, Dimension::Force),
+            format_quantity(e.max_compression, Dimension::Length),
+            r.time.len(),
+            format_quantity(fe.increment, Dimension::Time),
+            fe.deck.display()
+        )
+}
+
+/// The result's own checks: the energy balance within [`ENERGY_TOLERANCE`].
+pub fn warnings(fe: &FeResult) -> Vec<String> {
+    let error = fe.impact.energy.relative_error;
+    match error.is_finite() && error <= ENERGY_TOLERANCE {
+        true => vec![],
+        false => vec![format!(
+            "energy balance error {error:.3} of the initial energy exceeds {ENERGY_TOLERANCE}: use a smaller --increment"
+        )],
+    }
+}
+
+/// The JSON document (SI).
+pub fn json(fe: &FeResult, warnings: &[String]) -> serde_json::Value {
+    let r = &fe.impact;
+    serde_json::json!({
+        "peak_force": r.peak_force,
+        "peak_force_unfiltered": fe.raw_peak_force,
+        "force_filter": "SAE J211 CFC 60",
+        "max_compression": r.max_compression,
+        "remaining_compression": r.remaining_compression,
+        "contact_start": r.contact_start,
+        "contact_time": r.contact_time,
+        "bumper_internal_energy": fe.bumper_internal_energy,
+        "energy": r.energy,
+        "increment": fe.increment,
+        "crash_box_y": fe.crash_box_y,
+        "deck": fe.deck,
+        "equivalent": {
+            "peak_force": fe.equivalent.peak_force,
+            "max_compression": fe.equivalent.max_compression,
+            "contact_time": fe.equivalent.contact_time,
+        },
+        "warnings": warnings,
+    })
+}
