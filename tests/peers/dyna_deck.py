@@ -21,9 +21,10 @@ def main():
     kinds = {}
     for k in deck.keywords:
         kinds.setdefault(type(k).__name__, []).append(k)
-    nodes = set(column(kinds["Node"][0], "nodes", "nid")) if "Node" in kinds else set()
+    nodes = {n for k in kinds.get("Node", []) for n in column(k, "nodes", "nid")}
     parts = {int(v) for p in kinds.get("Part", []) for v in p.parts["pid"].dropna()}
-    sections = {int(s.secid) for s in kinds.get("SectionDiscrete", [])}
+    sections = {int(s.secid) for k, ss in kinds.items() if k.startswith("Section") for s in ss}
+    sets = {int(s.sid) for s in kinds.get("SetNodeList", [])}
     materials = {int(m.mid) for k, ms in kinds.items() if k.startswith("Mat") for m in ms}
     curves = {int(c.lcid): c for c in kinds.get("DefineCurve", [])}
     undefined = []
@@ -38,6 +39,15 @@ def main():
         ends = column(e, "elements", "n1") + column(e, "elements", "n2")
         need("node", [n for n in ends if n not in external], nodes)
         need("part", column(e, "elements", "pid"), parts)
+    for e in kinds.get("ElementBeam", []):
+        ends = [n for name in ("n1", "n2", "n3") for n in column(e, "elements", name)]
+        need("node", ends, nodes)
+        need("part", column(e, "elements", "pid"), parts)
+    for k, ks in kinds.items():
+        for item in ks if k.startswith(("Rigidwall", "BoundarySpcSet", "InitialVelocity")) and k != "InitialVelocityNode" else []:
+            sid = getattr(item, "nsid", None)
+            if sid is not None and int(sid) != 0:
+                need("node set", [int(sid)], sets)
     for p in kinds.get("Part", []):
         need("section", [int(v) for v in p.parts["secid"].dropna()], sections)
         need("material", [int(v) for v in p.parts["mid"].dropna()], materials)

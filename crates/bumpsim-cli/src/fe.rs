@@ -4,6 +4,7 @@
 use crate::{Folder, write};
 use anyhow::{Context, Result};
 use bumpsim_core::units::{Dimension, format_quantity, parse_quantity};
+use bumpsim_export::layout::UnitSystem;
 use bumpsim_fe::bumper::BumperMesh;
 use bumpsim_fe::run::{FeRun, run as run_fe};
 use bumpsim_impact::impact::Scenario;
@@ -15,11 +16,32 @@ use std::path::PathBuf;
 pub enum Command {
     /// Run a bumper mesh coupled to the MSD car in CalculiX: barrier or pendulum impact.
     Impact(ImpactArgs),
+    /// Write the same coupled model as an LS-DYNA keyword deck.
+    Lsdyna(LsDynaArgs),
 }
 
-/// Arguments of `bumpsim fe impact`.
+/// Arguments of `bumpsim fe lsdyna`.
 #[derive(Debug, clap::Args)]
-pub struct ImpactArgs {
+pub struct LsDynaArgs {
+    #[command(flatten)]
+    case: Case,
+    /// The deck to write.
+    #[arg(short, long, value_name = "DECK.k")]
+    output: PathBuf,
+    /// Deck unit system: si, mm-s-t or mm-ms-kg.
+    #[arg(long, default_value = "si")]
+    units: UnitSystem,
+    /// Termination time: s or with a unit; default 1.3 × the estimated contact time.
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    duration: Option<String>,
+    /// Interval of the history outputs: s or with a unit; default duration / 1000.
+    #[arg(long, value_name = "DT", allow_hyphen_values = true)]
+    output_interval: Option<String>,
+}
+
+/// The car, the bumper mesh and the load case.
+#[derive(Debug, clap::Args)]
+pub struct Case {
     /// The car (TOML or identification JSON).
     #[arg(long)]
     car: PathBuf,
@@ -35,6 +57,27 @@ pub struct ImpactArgs {
     /// Impact speed: m/s or with a unit ("8 km/h").
     #[arg(long)]
     speed: String,
+}
+
+impl Case {
+    fn read(&self) -> Result<(Car, BumperMesh, Scenario)> {
+        let car = Car::read_model_file(&self.car)?;
+        let mesh = BumperMesh::read(&self.bumper)?;
+        let speed = parse_quantity(&self.speed, Dimension::Velocity)
+            .with_context(|| format!("--speed '{}'", self.speed))?;
+        let scenario = match self.pendulum {
+            Some(mass) => Scenario::Impactor { mass, speed },
+            None => Scenario::Barrier { speed },
+        };
+        Ok((car, mesh, scenario))
+    }
+}
+
+/// Arguments of `bumpsim fe impact`.
+#[derive(Debug, clap::Args)]
+pub struct ImpactArgs {
+    #[command(flatten)]
+    case: Case,
     /// Folder for the deck and CalculiX's files (kept for inspection).
     #[arg(long, value_name = "DIR")]
     work: PathBuf,
@@ -55,6 +98,7 @@ pub struct ImpactArgs {
 pub fn run(command: &Command) -> Result<()> {
     match command {
         Command::Impact(args) => impact(args),
+        Command::Lsdyna(args) => lsdyna(args),
     }
 }
 
@@ -65,14 +109,7 @@ fn time(option: &str, text: &Option<String>) -> Result<Option<f64>> {
 }
 
 fn impact(args: &ImpactArgs) -> Result<()> {
-    let car = Car::read_model_file(&args.car)?;
-    let mesh = BumperMesh::read(&args.bumper)?;
-    let speed = parse_quantity(&args.speed, Dimension::Velocity)
-        .with_context(|| format!("--speed '{}'", args.speed))?;
-    let scenario = match args.pendulum {
-        Some(mass) => Scenario::Impactor { mass, speed },
-        None => Scenario::Barrier { speed },
-    };
+    let (car, mesh, scenario) = args.case.read()?;
     let mut settings = FeRun::new(mesh, car.model.clone(), scenario, args.work.clone());
     settings.increment = time("increment", &args.increment)?;
     settings.duration = time("duration", &args.duration)?;
@@ -92,7 +129,7 @@ fn impact(args: &ImpactArgs) -> Result<()> {
     println!(
         "{} with {}: {label}",
         car.name.as_deref().unwrap_or("car"),
-        args.bumper.display()
+        args.case.bumper.display()
     );
     print!("{summary}");
     if let Some(path) = &args.files.json {
@@ -105,9 +142,31 @@ fn impact(args: &ImpactArgs) -> Result<()> {
         write(path, &bumpsim_impact::text::histories(r))?;
     }
     if let Some(dir) = &args.files.report {
-        let title = format!("FE: {} — {label}", args.bumper.display());
+        let title = format!("FE: {} — {label}", args.case.bumper.display());
         let (html, figures) = bumpsim_report::impact::impact_report(&title, &summary, r)?;
         Folder::report(dir, &html, &figures)?;
     }
+    Ok(())
+}
+
+fn lsdyna(args: &LsDynaArgs) -> Result<()> {
+    let (car, mesh, scenario) = args.case.read()?;
+    let duration = match time("duration", &args.duration)? {
+        Some(t) => t,
+        None => 1.3 * bumpsim_fe::run::equivalent(&mesh, &car.model, scenario)?.contact_time,
+    };
+    let run = bumpsim_fe::lsdyna::LsDynaRun {
+        units: args.units,
+        duration,
+        output_interval: time("output-interval", &args.output_interval)?
+            .unwrap_or(duration / 1000.0),
+    };
+    let deck = bumpsim_fe::lsdyna::lsdyna_deck(&mesh, &car.model, scenario, &run)?;
+    write(&args.output, &deck)?;
+    println!(
+        "LS-DYNA deck of the coupled model: units {}, termination {}",
+        args.units,
+        format_quantity(duration, Dimension::Time)
+    );
     Ok(())
 }

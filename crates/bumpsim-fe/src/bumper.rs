@@ -235,6 +235,26 @@ impl BumperMesh {
         Ok(mesh)
     }
 
+    /// Lateral positions of the beam's 2n + 1 nodes (quadratic elements), m.
+    pub fn beam_node_y(&self) -> Vec<f64> {
+        let (w, n) = (self.beam.width, 2 * self.beam.elements);
+        (0..=n)
+            .map(|i| -w / 2.0 + w * i as f64 / n as f64)
+            .collect()
+    }
+
+    /// The beam node each crash box (left, right) starts at: the one
+    /// nearest ±offset.
+    pub fn crash_box_nodes(&self) -> [usize; 2] {
+        let y = self.beam_node_y();
+        [-1.0, 1.0].map(|sign| {
+            let target = sign * self.crash_boxes.offset;
+            (0..y.len())
+                .min_by(|&a, &b| (y[a] - target).abs().total_cmp(&(y[b] - target).abs()))
+                .unwrap_or(0)
+        })
+    }
+
     /// Axial stiffness of both crash boxes, N/m.
     pub fn crash_box_stiffness(&self) -> f64 {
         let c = &self.crash_boxes;

@@ -150,12 +150,11 @@ fn node(deck: &mut String, id: u64, p: [f64; 3]) {
 
 /// 2·n + 1 nodes (B32R) along y at x = −L_box.
 fn beam_nodes(deck: &mut String, mesh: &BumperMesh, ids: &mut Ids) -> Vec<(u64, f64)> {
-    let (w, n) = (mesh.beam.width, 2 * mesh.beam.elements);
     let x = -mesh.crash_boxes.length;
     deck.push_str("*NODE, NSET=FE_BEAM\n");
-    (0..=n)
-        .map(|i| {
-            let y = -w / 2.0 + w * i as f64 / n as f64;
+    mesh.beam_node_y()
+        .into_iter()
+        .map(|y| {
             let id = ids.node();
             node(deck, id, [x, y, 0.0]);
             (id, y)
@@ -172,15 +171,9 @@ fn crash_boxes(
     ids: &mut Ids,
 ) -> ([Vec<u64>; 2], [f64; 2]) {
     let c = &mesh.crash_boxes;
-    let nearest = |y: f64| {
-        *beam
-            .iter()
-            .min_by(|a, b| (a.1 - y).abs().total_cmp(&(b.1 - y).abs()))
-            .unwrap_or(&(0, y))
-    };
     deck.push_str("*NODE, NSET=FE_BOXN\n");
-    let mut chain = |sign: f64| {
-        let (front, y) = nearest(sign * c.offset);
+    let mut chain = |index: usize| {
+        let (front, y) = beam[index];
         let mut nodes = vec![front];
         for j in 1..=2 * c.elements {
             let id = ids.node();
@@ -190,7 +183,8 @@ fn crash_boxes(
         }
         (nodes, y)
     };
-    let (left, right) = (chain(-1.0), chain(1.0));
+    let [l, r] = mesh.crash_box_nodes();
+    let (left, right) = (chain(l), chain(r));
     ([left.0, right.0], [left.1, right.1])
 }
 

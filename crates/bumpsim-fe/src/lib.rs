@@ -8,6 +8,7 @@
 //!   characteristic against a flat face;
 //! - [`deck`]: the coupled deck (bumper, contact, barrier or pendulum, and
 //!   the car of `bumpsim export calculix` with its `*EQUATION` coupling);
+//! - [`lsdyna`]: the same coupled model as an LS-DYNA keyword deck;
 //! - [`run`]: runs `ccx`, reads the `.dat` file, and gives force,
 //!   compression, contact time, energies and an energy balance as an
 //!   [`bumpsim_impact::impact::ImpactResult`].
@@ -26,6 +27,7 @@
 pub mod bumper;
 pub mod dat;
 pub mod deck;
+pub mod lsdyna;
 pub mod run;
 pub mod text;
 

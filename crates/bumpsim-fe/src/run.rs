@@ -87,14 +87,7 @@ pub const MAX_INCREMENTS: f64 = 1e6;
 
 /// Writes the deck, runs CalculiX and reads the results.
 pub fn run(settings: &FeRun) -> Result<FeResult, FeError> {
-    let equivalent_bumper = settings.mesh.equivalent_bumper()?;
-    let equivalent = simulate(
-        &settings.car,
-        &equivalent_bumper,
-        settings.scenario,
-        &Options::default(),
-    )
-    .map_err(|e| FeError::Estimate(e.to_string()))?;
+    let equivalent = equivalent(&settings.mesh, &settings.car, settings.scenario)?;
     let duration = settings.duration.unwrap_or(1.3 * equivalent.contact_time);
     let increment = settings.increment.unwrap_or(duration / 1500.0);
     check_run(duration, increment)?;
@@ -134,6 +127,18 @@ pub fn run(settings: &FeRun) -> Result<FeResult, FeError> {
         increment,
         crash_box_y: layout.crash_box_y,
     })
+}
+
+/// `bumpsim impact` with the mesh's equivalent characteristic: the
+/// estimate of the contact end that sizes a run (1.3 × it).
+pub fn equivalent(
+    mesh: &BumperMesh,
+    car: &MsdModel,
+    scenario: Scenario,
+) -> Result<ImpactResult, FeError> {
+    let bumper = mesh.equivalent_bumper()?;
+    simulate(car, &bumper, scenario, &Options::default())
+        .map_err(|e| FeError::Estimate(e.to_string()))
 }
 
 fn check_run(duration: f64, increment: f64) -> Result<(), FeError> {

@@ -141,7 +141,7 @@ fn lsdyna_export_writes_the_include_and_refuses_bad_options() {
 }
 
 /// Whether python3 with ansys-dyna-core is available.
-fn dyna_core_available() -> bool {
+pub(crate) fn dyna_core_available() -> bool {
     peer_available(
         "ansys-dyna-core",
         "python3",
@@ -150,7 +150,7 @@ fn dyna_core_available() -> bool {
 }
 
 /// The verdict of tests/peers/dyna_deck.py on a deck.
-fn dyna_core(deck: &std::path::Path, external: &[&str]) -> serde_json::Value {
+pub(crate) fn dyna_core(deck: &std::path::Path, external: &[&str]) -> serde_json::Value {
     let run = Command::new("python3")
         .arg(root().join("tests/peers/dyna_deck.py"))
         .arg(deck)

@@ -220,3 +220,71 @@ fn bad_fe_input_is_a_user_error() {
     assert_user_error(&run, "which is not a file of a previous run");
     assert!(!examples.join("bumper.inp").exists());
 }
+
+/// The coupled model as LS-DYNA decks (barrier and pendulum, three unit
+/// systems) parses in ansys-dyna-core: every keyword processed, validate()
+/// clean, every node, part, section, material and set referenced defined.
+#[test]
+fn the_coupled_lsdyna_decks_parse_in_ansys_dyna_core() {
+    if !crate::export::dyna_core_available() {
+        return;
+    }
+    let dir = scratch("fe-lsdyna");
+    let car = root().join("examples/identify/car-truth.toml");
+    let mesh = root().join("examples/fe/bumper-plastic.toml");
+    for units in ["si", "mm-s-t", "mm-ms-kg"] {
+        for (case, striker) in [
+            (vec!["--barrier"], "RigidwallPlanar"),
+            (vec!["--pendulum", "1000"], "RigidwallPlanarMoving"),
+        ] {
+            let deck = dir.join(format!("fe-{units}-{striker}.k"));
+            let mut args = vec![
+                "fe",
+                "lsdyna",
+                "--car",
+                car.to_str().unwrap(),
+                "--bumper",
+                mesh.to_str().unwrap(),
+                "--speed",
+                "8 km/h",
+                "--units",
+                units,
+                "-o",
+                deck.to_str().unwrap(),
+            ];
+            args.extend_from_slice(&case);
+            let run = bumpsim(&args);
+            assert!(run.status.success(), "{}", text(&run.stderr));
+            assert_contains(&text(&run.stdout), &["termination", " ms"]);
+            let v = crate::export::dyna_core(&deck, &[]);
+            for key in ["unprocessed", "errors", "undefined"] {
+                assert_eq!(
+                    v[key],
+                    serde_json::json!([]),
+                    "{units} {striker} {key}: {v}"
+                );
+            }
+            assert_eq!(v["strings"], 0, "{v}");
+            let keywords: Vec<&str> = v["keywords"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|k| k.as_str().unwrap())
+                .collect();
+            for needed in [
+                striker,
+                "ElementBeam",
+                "SectionBeam",
+                "MatResultantPlasticity",
+                "ConstrainedNodalRigidBodySpc",
+                "ControlTermination",
+                "DatabaseRwforc",
+            ] {
+                assert!(
+                    keywords.contains(&needed),
+                    "{units}: no {needed} in {keywords:?}"
+                );
+            }
+        }
+    }
+}
