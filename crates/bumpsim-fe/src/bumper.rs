@@ -119,17 +119,29 @@ fn check(name: &str, value: f64, ok: bool, expected: &str) -> Result<(), FeError
     }
 }
 
-fn positive(name: &str, value: f64) -> Result<(), FeError> {
-    check(name, value, value > 0.0, "positive and finite")
+/// A positive value at most `max` (a plausibility bound that also keeps
+/// every derived coordinate and deck value finite).
+fn bounded(name: &str, value: f64, max: f64) -> Result<(), FeError> {
+    check(
+        name,
+        value,
+        value > 0.0 && value <= max,
+        &format!("positive, at most {max:e}"),
+    )
 }
 
 impl Material {
     fn validate(&self, part: &str) -> Result<(), FeError> {
-        positive(
+        bounded(
             &format!("{part}.material.youngs_modulus (Pa)"),
             self.youngs_modulus,
+            1e13,
         )?;
-        positive(&format!("{part}.material.density (kg/m³)"), self.density)?;
+        bounded(
+            &format!("{part}.material.density (kg/m³)"),
+            self.density,
+            1e5,
+        )?;
         let nu = self.poisson;
         check(
             &format!("{part}.material.poisson"),
@@ -139,7 +151,7 @@ impl Material {
         )?;
         let name = format!("{part}.material.yield_curve");
         for (i, w) in self.yield_curve.iter().enumerate() {
-            positive(&format!("{name}[{i}] stress (Pa)"), w[0])?;
+            bounded(&format!("{name}[{i}] stress (Pa)"), w[0], 1e12)?;
             check(
                 &format!("{name}[{i}] plastic strain"),
                 w[1],
@@ -174,8 +186,8 @@ impl Material {
 
 impl BoxSection {
     fn validate(&self, part: &str) -> Result<(), FeError> {
-        positive(&format!("{part}.section.depth (m)"), self.depth)?;
-        positive(&format!("{part}.section.height (m)"), self.height)?;
+        bounded(&format!("{part}.section.depth (m)"), self.depth, 1.0)?;
+        bounded(&format!("{part}.section.height (m)"), self.height, 1.0)?;
         let inner = self.depth.min(self.height) / 2.0;
         check(
             &format!("{part}.section.wall (m)"),
@@ -190,7 +202,7 @@ impl BumperMesh {
     /// Checks every parameter, naming the one out of range.
     pub fn validate(&self) -> Result<(), FeError> {
         let b = &self.beam;
-        positive("beam.width (m)", b.width)?;
+        bounded("beam.width (m)", b.width, 10.0)?;
         let n = b.elements as f64;
         check(
             "beam.elements",
@@ -207,7 +219,7 @@ impl BumperMesh {
             c.offset > 0.0 && c.offset <= b.width / 2.0,
             "positive and within half the beam width",
         )?;
-        positive("crash_boxes.length (m)", c.length)?;
+        bounded("crash_boxes.length (m)", c.length, 10.0)?;
         let n = c.elements as f64;
         check(
             "crash_boxes.elements",
@@ -218,7 +230,7 @@ impl BumperMesh {
         c.section.validate("crash_boxes")?;
         c.material.validate("crash_boxes")?;
         if let Some(k) = self.contact_stiffness {
-            positive("contact_stiffness (N/m)", k)?;
+            bounded("contact_stiffness (N/m)", k, 1e15)?;
         }
         Ok(())
     }

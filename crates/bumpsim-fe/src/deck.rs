@@ -260,24 +260,23 @@ fn material(deck: &mut String, name: &str, m: &crate::bumper::Material) {
     }
 }
 
+/// A box `*BEAM SECTION`; `first` is the section's local 1-direction
+/// (its depth).
+fn section(deck: &mut String, set: &str, s: &crate::bumper::BoxSection, first: &str) {
+    let _ = writeln!(
+        deck,
+        "*BEAM SECTION, ELSET=FE_E{set}, MATERIAL=FE_{set}_MATERIAL, SECTION=BOX\n{}, {}, {w}, {w}, {w}, {w}\n{first}",
+        real(s.depth),
+        real(s.height),
+        w = real(s.wall)
+    );
+}
+
 fn materials(deck: &mut String, mesh: &BumperMesh, contact_node: f64) {
     material(deck, "FE_BEAM_MATERIAL", &mesh.beam.material);
     material(deck, "FE_BOX_MATERIAL", &mesh.crash_boxes.material);
-    let (b, c) = (&mesh.beam.section, &mesh.crash_boxes.section);
-    let _ = writeln!(
-        deck,
-        "*BEAM SECTION, ELSET=FE_EBEAM, MATERIAL=FE_BEAM_MATERIAL, SECTION=BOX\n{}, {}, {w}, {w}, {w}, {w}\n1.0, 0.0, 0.0",
-        real(b.depth),
-        real(b.height),
-        w = real(b.wall)
-    );
-    let _ = writeln!(
-        deck,
-        "*BEAM SECTION, ELSET=FE_EBOX, MATERIAL=FE_BOX_MATERIAL, SECTION=BOX\n{}, {}, {w}, {w}, {w}, {w}\n0.0, 1.0, 0.0",
-        real(c.depth),
-        real(c.height),
-        w = real(c.wall)
-    );
+    section(deck, "BEAM", &mesh.beam.section, "1.0, 0.0, 0.0");
+    section(deck, "BOX", &mesh.crash_boxes.section, "0.0, 1.0, 0.0");
     let _ = writeln!(
         deck,
         "** contact: compression only, {} N/m per beam node\n*SPRING, ELSET=FE_ECONTACT, NONLINEAR\n\n{}, {}\n0.0, 0.0\n0.0, {}",

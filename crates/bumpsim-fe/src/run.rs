@@ -72,8 +72,9 @@ pub struct FeResult {
     /// Internal energy of beam and crash boxes at the end (plastic work and
     /// what stays elastic), J.
     pub bumper_internal_energy: f64,
-    /// `bumpsim impact` with the mesh's equivalent characteristic.
-    pub equivalent: ImpactResult,
+    /// `bumpsim impact` with the mesh's equivalent characteristic (none
+    /// when it failed and the duration was given).
+    pub equivalent: Option<ImpactResult>,
     /// The deck that ran.
     pub deck: PathBuf,
     /// Time increment, s.
@@ -87,8 +88,14 @@ pub const MAX_INCREMENTS: f64 = 1e6;
 
 /// Writes the deck, runs CalculiX and reads the results.
 pub fn run(settings: &FeRun) -> Result<FeResult, FeError> {
-    let equivalent = equivalent(&settings.mesh, &settings.car, settings.scenario)?;
-    let duration = settings.duration.unwrap_or(1.3 * equivalent.contact_time);
+    // the estimate may fail (a car too stiff for impact's explicit steps):
+    // then the user's --duration runs without it
+    let equivalent = equivalent(&settings.mesh, &settings.car, settings.scenario);
+    let duration = match (settings.duration, &equivalent) {
+        (Some(duration), _) => duration,
+        (None, Ok(e)) => 1.3 * e.contact_time,
+        (None, Err(e)) => return Err(e.clone()),
+    };
     let increment = settings.increment.unwrap_or(duration / 1500.0);
     check_run(duration, increment)?;
     check_work(&settings.work)?;
@@ -122,7 +129,7 @@ pub fn run(settings: &FeRun) -> Result<FeResult, FeError> {
         impact,
         raw_peak_force,
         bumper_internal_energy,
-        equivalent,
+        equivalent: equivalent.ok(),
         deck,
         increment,
         crash_box_y: layout.crash_box_y,

@@ -9,14 +9,20 @@ pub const ENERGY_TOLERANCE: f64 = 0.02;
 
 /// The summary: impact's lines, then the FE-specific ones.
 pub fn summary(fe: &FeResult) -> String {
-    let (r, e) = (&fe.impact, &fe.equivalent);
+    let r = &fe.impact;
+    let equivalent = match &fe.equivalent {
+        Some(e) => format!(
+            "peak force {}, maximum compression {}",
+            format_quantity(e.peak_force, Dimension::Force),
+            format_quantity(e.max_compression, Dimension::Length)
+        ),
+        None => "not available (impact could not run it)".into(),
+    };
     bumpsim_impact::text::summary(r)
         + &format!(
-            "  peak force unfiltered {} (the summary's peak is CFC 60, as a barrier load cell)\n  bumper internal energy at the end {} (plastic work and what stays elastic)\n  equivalent characteristic in `impact`: peak force {}, maximum compression {}\n  CalculiX: {} increments of {}, deck {}\n",
+            "  peak force unfiltered {} (the summary's peak is CFC 60, as a barrier load cell)\n  bumper internal energy at the end {} (plastic work and what stays elastic)\n  equivalent characteristic in `impact`: {equivalent}\n  CalculiX: {} printed increments, nominal {}, deck {}\n",
             format_quantity(fe.raw_peak_force, Dimension::Force),
             format_quantity(fe.bumper_internal_energy, Dimension::Energy),
-            format_quantity(e.peak_force, Dimension::Force),
-            format_quantity(e.max_compression, Dimension::Length),
             r.time.len(),
             format_quantity(fe.increment, Dimension::Time),
             fe.deck.display()
@@ -50,11 +56,11 @@ pub fn json(fe: &FeResult, warnings: &[String]) -> serde_json::Value {
         "increment": fe.increment,
         "crash_box_y": fe.crash_box_y,
         "deck": fe.deck,
-        "equivalent": {
-            "peak_force": fe.equivalent.peak_force,
-            "max_compression": fe.equivalent.max_compression,
-            "contact_time": fe.equivalent.contact_time,
-        },
+        "equivalent": fe.equivalent.as_ref().map(|e| serde_json::json!({
+            "peak_force": e.peak_force,
+            "max_compression": e.max_compression,
+            "contact_time": e.contact_time,
+        })),
         "warnings": warnings,
     })
 }

@@ -59,7 +59,7 @@ fn an_elastic_bumper_reproduces_impact_with_its_equivalent_spring() {
         "elastic",
     );
     let fe = run(&s).unwrap();
-    let (r, e) = (&fe.impact, &fe.equivalent);
+    let (r, e) = (&fe.impact, fe.equivalent.as_ref().unwrap());
     let close = |a: f64, b: f64| (a - b).abs() <= 0.02 * b.abs();
     assert!(
         close(r.peak_force, e.peak_force),

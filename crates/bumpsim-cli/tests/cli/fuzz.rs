@@ -1,7 +1,7 @@
 //! Stable-Rust fuzzing of the readers (proptest; no cargo fuzz, no nightly).
 //!
 //! Each target (CSV, EV5, ISO-MME, car/bumper/planar car TOML, study,
-//! model JSON, CalculiX results) mutates seed files (tests/fuzz/ and examples/identify/) with a
+//! model JSON, CalculiX results, the FE bumper mesh and its .dat) mutates seed files (tests/fuzz/ and examples/identify/) with a
 //! byte strategy (flips, inserts, deletes, truncation) and a structure
 //! strategy (a line or number replaced by hostile values: NaN, inf, 1e308,
 //! huge integers, empty), writes the result to a scratch file and runs the
@@ -296,5 +296,44 @@ fn fuzz_calculix_dat() {
     fuzz("calculix", seed("tests/fuzz/results.dat"), |_, bytes| {
         std::fs::write(deck_path.with_extension("dat"), bytes).unwrap();
         let _ = bumpsim_export::calculix::read_results(&deck_path);
+    });
+}
+
+#[test]
+fn fuzz_fe_bumper_mesh_and_dat() {
+    use bumpsim_fe::{bumper::BumperMesh, deck, lsdyna};
+    use bumpsim_impact::impact::Scenario;
+    let car =
+        bumpsim_core::model::MsdModel::new(vec![30.0, 1200.0], vec![8e3], vec![1.5e6]).unwrap();
+    let scenario = Scenario::Impactor {
+        mass: 900.0,
+        speed: 2.0,
+    };
+    let run = deck::Run {
+        increment: 1e-4,
+        duration: 0.1,
+    };
+    let ls = lsdyna::LsDynaRun {
+        units: Default::default(),
+        duration: 0.1,
+        output_interval: 1e-4,
+    };
+    fuzz(
+        "fe-mesh",
+        seed("examples/fe/bumper-plastic.toml"),
+        |dir, bytes| {
+            let path = dir.join("mesh.toml");
+            std::fs::write(&path, bytes).unwrap();
+            if let Ok(mesh) = BumperMesh::read(&path) {
+                let _ = mesh.equivalent_bumper();
+                if let Ok((text, _)) = deck::coupled_deck(&mesh, &car, scenario, &run) {
+                    assert!(!text.contains("NaN") && !text.contains("inf"), "{text}");
+                }
+                let _ = lsdyna::lsdyna_deck(&mesh, &car, scenario, &ls);
+            }
+        },
+    );
+    fuzz("fe-dat", seed("tests/fuzz/fe.dat"), |_, bytes| {
+        let _ = bumpsim_fe::dat::parse(&String::from_utf8_lossy(bytes), Path::new("fe.dat"));
     });
 }
