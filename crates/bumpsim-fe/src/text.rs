@@ -29,15 +29,24 @@ pub fn summary(fe: &FeResult) -> String {
         )
 }
 
-/// The result's own checks: the energy balance within [`ENERGY_TOLERANCE`].
+/// The result's own checks: the energy balance within [`ENERGY_TOLERANCE`],
+/// and the contact over before the run's end.
 pub fn warnings(fe: &FeResult) -> Vec<String> {
-    let error = fe.impact.energy.relative_error;
-    match error.is_finite() && error <= ENERGY_TOLERANCE {
-        true => vec![],
-        false => vec![format!(
+    let r = &fe.impact;
+    let error = r.energy.relative_error;
+    let mut out = Vec::new();
+    if !(error.is_finite() && error <= ENERGY_TOLERANCE) {
+        out.push(format!(
             "energy balance error {error:.3} of the initial energy exceeds {ENERGY_TOLERANCE}: use a smaller --increment"
-        )],
+        ));
     }
+    if r.force.last().is_some_and(|&f| f > 1e-2 * r.peak_force) {
+        out.push(format!(
+            "the contact had not ended at the end of the run ({}): contact time and remaining compression are not final; give a longer --duration",
+            format_quantity(r.time.last().copied().unwrap_or(0.0), Dimension::Time)
+        ));
+    }
+    out
 }
 
 /// The JSON document (SI).
