@@ -19,9 +19,10 @@ const OUTPUT_IDS: [&str; 7] = [
     "iso_mme",
 ];
 
-/// Output ids that name folders (`output` only for `synth`).
+/// Output ids that name folders (`output` only for `synth` and `campaign init`).
 fn is_folder_output(command: &str, id: &str) -> bool {
-    matches!(id, "report" | "plot" | "iso_mme") || (command == "synth" && id == "output")
+    matches!(id, "report" | "plot" | "iso_mme")
+        || (matches!(command, "synth" | "init") && id == "output")
 }
 
 /// The result files of a simulation command (`impact`, `planar`).

@@ -1,0 +1,113 @@
+//! The local executor: up to N task processes at once on this machine.
+//!
+//! A task is `sh run-point.sh POINT_FOLDER`, its job id `local:PID`. Tasks
+//! outlive a killed controller (they are not in its process group's line of
+//! fire: a SIGKILL of the controller leaves them running); a restarted
+//! controller adopts them by pid (`/proc/PID` still running `run-point.sh`)
+//! and learns their outcome from the exit marker they write.
+
+use super::{Executor, TaskState};
+use crate::error::{CampaignError, Result};
+use crate::init::TASK_SCRIPT;
+use crate::state::Point;
+use std::collections::HashMap;
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::time::Duration;
+
+/// A process pool.
+#[derive(Debug)]
+pub struct Local {
+    slots: usize,
+    children: HashMap<usize, Child>,
+}
+
+impl Local {
+    /// A pool of `slots` processes.
+    pub fn new(slots: usize) -> Local {
+        Local {
+            slots: slots.max(1),
+            children: HashMap::new(),
+        }
+    }
+
+    fn state(&mut self, point: &Point) -> TaskState {
+        if let Some(child) = self.children.get_mut(&point.run) {
+            return match child.try_wait() {
+                Ok(None) => TaskState::Running,
+                Ok(Some(status)) => {
+                    self.children.remove(&point.run);
+                    TaskState::Gone(format!(
+                        "the task ended ({status}) without recording an exit status"
+                    ))
+                }
+                Err(e) => TaskState::Gone(format!("cannot wait for the task: {e}")),
+            };
+        }
+        match point
+            .job
+            .strip_prefix("local:")
+            .and_then(|p| p.parse::<u32>().ok())
+        {
+            Some(pid) if task_alive(pid) => TaskState::Running,
+            _ => TaskState::Gone(
+                "the task's process ended without recording an exit status (controller restarted)"
+                    .into(),
+            ),
+        }
+    }
+}
+
+/// Whether `pid` is still a task of a campaign (`run-point.sh` in its command line).
+fn task_alive(pid: u32) -> bool {
+    std::fs::read(format!("/proc/{pid}/cmdline"))
+        .is_ok_and(|c| String::from_utf8_lossy(&c).contains(TASK_SCRIPT))
+}
+
+impl Executor for Local {
+    fn name(&self) -> &'static str {
+        "local"
+    }
+
+    fn free(&self, in_flight: usize) -> usize {
+        self.slots.saturating_sub(in_flight)
+    }
+
+    fn submit(&mut self, dir: &Path, points: &[&Point]) -> Result<Vec<String>> {
+        let mut ids = Vec::new();
+        for p in points {
+            let child = Command::new("sh")
+                .arg(dir.join(TASK_SCRIPT))
+                .arg(dir.join(&p.folder))
+                .stdin(Stdio::null())
+                .stdout(Stdio::null())
+                .stderr(Stdio::null())
+                .spawn()
+                .map_err(|source| CampaignError::Spawn {
+                    program: "sh".into(),
+                    source,
+                })?;
+            ids.push(format!("local:{}", child.id()));
+            self.children.insert(p.run, child);
+        }
+        Ok(ids)
+    }
+
+    fn poll(&mut self, _dir: &Path, points: &[&Point]) -> Result<Vec<TaskState>> {
+        Ok(points.iter().map(|p| self.state(p)).collect())
+    }
+
+    fn cancel(&mut self, points: &[&Point]) -> Result<()> {
+        for p in points {
+            if let Some(mut child) = self.children.remove(&p.run) {
+                let _ = child.kill();
+                let _ = child.wait();
+            }
+        }
+        Ok(())
+    }
+
+    fn interval(&self) -> Duration {
+        Duration::from_millis(5)
+    }
+}

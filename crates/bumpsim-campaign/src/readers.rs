@@ -1,0 +1,170 @@
+//! Reading a point's responses back: each `[[response]]` names a reader, a
+//! file in the point folder, a quantity and a statistic of its history.
+//!
+//! - `calculix`: the `.dat` results of a deck written by `bumpsim export
+//!   calculix` (read by [`bumpsim_export::calculix::read_results`], SI):
+//!   `displacement` of mass i, or `compression` x_i − x_(i+1), m;
+//! - `csv`: a column of a `time,...` table with unit headers (SI, read by
+//!   [`bumpsim_io::table::Table`]);
+//! - `lsdyna-glstat`: a quantity of LS-DYNA's ASCII `glstat` (`kinetic
+//!   energy`, `internal energy`, `total energy`, ...), in the deck's units.
+//!
+//! A missing, unreadable, empty or non-finite output is an error, never a
+//! zero: the point is then marked failed.
+
+use crate::spec::ResponseSpec;
+use std::path::Path;
+
+const READERS: [&str; 3] = ["calculix", "csv", "lsdyna-glstat"];
+const STATS: [&str; 4] = ["max", "min", "final", "max-abs"];
+
+/// Checks a response specification (reader, statistic, quantity).
+pub fn check(r: &ResponseSpec) -> Result<(), String> {
+    if !crate::spec::is_name(&r.name) {
+        return Err("the name must be letters, digits and _".into());
+    }
+    if !READERS.contains(&r.reader.as_str()) {
+        return Err(format!(
+            "reader '{}': expected {}",
+            r.reader,
+            READERS.join(", ")
+        ));
+    }
+    if !STATS.contains(&r.stat.as_str()) {
+        return Err(format!("stat '{}': expected {}", r.stat, STATS.join(", ")));
+    }
+    if r.file.is_empty() || r.file.contains("..") || r.file.starts_with('/') {
+        return Err(format!("file '{}': a file inside the point folder", r.file));
+    }
+    match (r.reader.as_str(), r.quantity.as_str(), r.mass) {
+        ("calculix", "displacement" | "compression", Some(m)) if m >= 1 => Ok(()),
+        ("calculix", _, _) => Err(
+            "calculix: quantity = \"displacement\" or \"compression\" with mass = 1, 2, ...".into(),
+        ),
+        _ => Ok(()),
+    }
+}
+
+/// Reads one response of the point in `folder`.
+pub fn read(folder: &Path, r: &ResponseSpec) -> Result<f64, String> {
+    let path = folder.join(&r.file);
+    let history = match r.reader.as_str() {
+        "calculix" => calculix(&path, r)?,
+        "csv" => csv_column(&path, &r.quantity)?,
+        _ => glstat(&path, &r.quantity)?,
+    };
+    statistic(&history, &r.stat)
+}
+
+/// The statistic of a history; an empty or non-finite history is an error.
+pub fn statistic(values: &[f64], stat: &str) -> Result<f64, String> {
+    if values.is_empty() {
+        return Err("no values".into());
+    }
+    if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+        return Err(format!("a value of {v}"));
+    }
+    let fold = |init: f64, f: fn(f64, f64) -> f64| values.iter().copied().fold(init, f);
+    Ok(match stat {
+        "max" => fold(f64::NEG_INFINITY, f64::max),
+        "min" => fold(f64::INFINITY, f64::min),
+        "max-abs" => values.iter().map(|v| v.abs()).fold(0.0, f64::max),
+        _ => values[values.len() - 1],
+    })
+}
+
+fn calculix(deck: &Path, r: &ResponseSpec) -> Result<Vec<f64>, String> {
+    let results = bumpsim_export::calculix::read_results(deck).map_err(|e| e.to_string())?;
+    let mass = r.mass.unwrap_or(1);
+    let x = |i: usize| {
+        results.displacement.get(i - 1).ok_or_else(|| {
+            format!(
+                "{}: mass {i}: the deck has {} masses",
+                deck.display(),
+                results.displacement.len()
+            )
+        })
+    };
+    match r.quantity.as_str() {
+        "displacement" => Ok(x(mass)?.clone()),
+        _ => Ok(x(mass)?
+            .iter()
+            .zip(x(mass + 1)?)
+            .map(|(a, b)| a - b)
+            .collect()),
+    }
+}
+
+fn csv_column(path: &Path, column: &str) -> Result<Vec<f64>, String> {
+    let table = bumpsim_io::table::Table::read(path).map_err(|e| e.to_string())?;
+    Ok(table
+        .column(column)
+        .map_err(|e| e.to_string())?
+        .values
+        .clone())
+}
+
+/// LS-DYNA `glstat`: blocks of `name ....... value` lines, one block per
+/// output time; the history of one quantity.
+fn glstat(path: &Path, quantity: &str) -> Result<Vec<f64>, String> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+    let wanted = quantity.trim().to_ascii_lowercase();
+    let mut values = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let Some((name, value)) = line.split_once("..") else {
+            continue;
+        };
+        if name.trim().to_ascii_lowercase() != wanted {
+            continue;
+        }
+        let value = value.trim_start_matches('.').trim();
+        let parsed: f64 = value
+            .parse()
+            .map_err(|_| format!("{}:{}: '{value}' is not a number", path.display(), i + 1))?;
+        values.push(parsed);
+    }
+    if values.is_empty() {
+        return Err(format!("{}: no '{quantity}' lines", path.display()));
+    }
+    Ok(values)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn statistics_refuse_empty_and_non_finite_histories() {
+        assert_eq!(statistic(&[1.0, -3.0, 2.0], "max").unwrap(), 2.0);
+        assert_eq!(statistic(&[1.0, -3.0, 2.0], "max-abs").unwrap(), 3.0);
+        assert_eq!(statistic(&[1.0, -3.0, 2.0], "final").unwrap(), 2.0);
+        assert!(statistic(&[], "max").is_err());
+        assert!(statistic(&[1.0, f64::NAN], "min").is_err());
+    }
+
+    #[test]
+    fn glstat_histories() {
+        let dir = std::env::temp_dir().join(format!("bumpsim-glstat-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let text = " dt of cycle   1 is controlled by\n time...........................   0.00000E+00\n kinetic energy..................   1.00000E+03\n internal energy.................   0.00000E+00\n\n time...........................   1.00000E-03\n kinetic energy..................   8.00000E+02\n internal energy.................   2.00000E+02\n";
+        std::fs::write(dir.join("glstat"), text).unwrap();
+        let r = ResponseSpec {
+            name: "ie".into(),
+            reader: "lsdyna-glstat".into(),
+            file: "glstat".into(),
+            quantity: "internal energy".into(),
+            mass: None,
+            stat: "max".into(),
+            unit: Some("J".into()),
+        };
+        assert_eq!(read(&dir, &r).unwrap(), 200.0);
+        std::fs::write(dir.join("glstat"), "kinetic energy....  1.0E+0x\n").unwrap();
+        let r = ResponseSpec {
+            quantity: "kinetic energy".into(),
+            ..r
+        };
+        assert!(read(&dir, &r).unwrap_err().contains("not a number"));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
