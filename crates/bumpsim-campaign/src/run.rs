@@ -67,6 +67,8 @@ pub fn executor(spec: &Spec, options: &RunOptions) -> Result<Box<dyn Executor>> 
 
 /// Runs campaign folder `dir` until every point is done or failed.
 pub fn run(dir: &Path, options: &RunOptions) -> Result<RunSummary> {
+    // absolute: job scripts run elsewhere (Slurm's --chdir, the task's own cd)
+    let dir = &absolute(dir)?;
     let spec = spec_of(dir)?;
     check_solver(&spec, dir)?;
     let mut executor = executor(&spec, options)?;
@@ -216,10 +218,8 @@ impl Controller<'_> {
         let point = &mut self.state.points[i];
         point.finished = now();
         match read {
-            Ok(()) => {
-                point.status = Status::Done;
-                point.reason.clear();
-            }
+            // a retried point keeps the reason of its last failed attempt
+            Ok(()) => point.status = Status::Done,
             // corrupt or missing output: failed, never read as zeros; a
             // deterministic solver would write it again, so no retry
             Err(e) => {
@@ -280,6 +280,12 @@ impl Controller<'_> {
     }
 }
 
+/// The campaign folder as an absolute path (it must exist).
+fn absolute(dir: &Path) -> Result<std::path::PathBuf> {
+    dir.canonicalize()
+        .map_err(|e| crate::error::read_error(dir, e))
+}
+
 /// The exit status a point's task recorded, if any.
 pub fn exit_marker(dir: &Path, point: &Point) -> Option<i32> {
     let text = std::fs::read_to_string(dir.join(&point.folder).join(EXIT_MARKER)).ok()?;
@@ -302,6 +308,7 @@ fn progress_bar(show: bool, total: usize) -> indicatif::ProgressBar {
 /// Cancels every in-flight task of campaign folder `dir` (`scancel` for
 /// Slurm) and marks those points pending again.
 pub fn abort(dir: &Path, options: &RunOptions) -> Result<usize> {
+    let dir = &absolute(dir)?;
     let spec = spec_of(dir)?;
     let mut executor = executor(&spec, options)?;
     let _lock = Lock::acquire(dir)?;
