@@ -30,6 +30,9 @@ pub struct InitArgs {
     /// The campaign folder (default: the campaign file's name without .toml).
     #[arg(short, long)]
     output: Option<PathBuf>,
+    /// Then run the campaign with its executor and collect it (init, run, collect in one).
+    #[arg(long)]
+    run: bool,
 }
 
 /// Arguments of `campaign run` and `campaign abort`.
@@ -97,6 +100,16 @@ fn run_init(args: &InitArgs) -> Result<()> {
         summary.points,
         summary.kept
     );
+    if args.run {
+        let run_args = RunArgs {
+            dir: dir.clone(),
+            executor: None,
+            slots: None,
+            retry_failed: false,
+        };
+        run_run(&run_args)?;
+        run_collect(&DirArgs { dir })?;
+    }
     Ok(())
 }
 
