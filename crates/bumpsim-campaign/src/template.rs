@@ -114,13 +114,21 @@ impl Template {
     }
 }
 
-/// A value as a deck number: the shortest round-trip digits, always with a
-/// decimal point (`400000.0`, `1.5e-7` → `1.5e-7`, `1e-7` → `1.0e-7`):
-/// CalculiX and Abaqus read an entry without one as an integer (a degree
-/// of freedom on `*SPRING`, for example).
+/// A value as a deck number: the shortest digits that read back exactly,
+/// always with a decimal point (`400000.0`, `0.0015`), in exponent form
+/// when the plain form would be long (`1.0e-20`, `2.5e300`): CalculiX and
+/// Abaqus read an entry without a point as an integer (a degree of freedom
+/// on `*SPRING`, for example).
 pub fn number(value: f64) -> String {
-    let text = value.to_string();
-    if text.contains('.') || !value.is_finite() {
+    let plain = value.to_string();
+    if !value.is_finite() {
+        return plain;
+    }
+    let text = match plain.len() <= 16 {
+        true => plain,
+        false => format!("{value:e}"),
+    };
+    if text.contains('.') {
         return text;
     }
     match text.split_once('e') {
@@ -161,8 +169,20 @@ mod tests {
         let v = |n: &str| Some(if n == "x" { 1.5 } else { 2.0 });
         assert_eq!(t.render(&v), "a\n1.5 2.0\n1.52.0");
         assert_eq!(
-            (number(4e5), number(1e-7), number(-2.5)),
-            ("400000.0".into(), "1.0e-7".into(), "-2.5".into())
+            (
+                number(4e5),
+                number(1e-7),
+                number(-2.5),
+                number(1e-20),
+                number(2.5e300)
+            ),
+            (
+                "400000.0".into(),
+                "0.0000001".into(),
+                "-2.5".into(),
+                "1.0e-20".into(),
+                "2.5e300".into()
+            )
         );
         let err = t.check(&["x".into()]).unwrap_err().to_string();
         assert!(
