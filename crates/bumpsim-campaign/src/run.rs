@@ -46,7 +46,7 @@ pub fn spec_of(dir: &Path) -> Result<Spec> {
 }
 
 /// The executor the options and the campaign file ask for (checked: sbatch on PATH).
-pub fn executor(spec: &Spec, options: &RunOptions) -> Result<Box<dyn Executor>> {
+pub fn executor(spec: &Spec, dir: &Path, options: &RunOptions) -> Result<Box<dyn Executor>> {
     let kind = options.executor.as_deref().unwrap_or(&spec.executor.kind);
     match kind {
         "local" => Ok(Box::new(Local::new(
@@ -55,6 +55,7 @@ pub fn executor(spec: &Spec, options: &RunOptions) -> Result<Box<dyn Executor>> 
         "slurm" => Ok(Box::new(Slurm::new(
             &spec.executor.slurm,
             &spec.name,
+            dir,
             spec.executor.poll_seconds,
         )?)),
         other => Err(CampaignError::Invalid {
@@ -71,10 +72,11 @@ pub fn run(dir: &Path, options: &RunOptions) -> Result<RunSummary> {
     let dir = &absolute(dir)?;
     let spec = spec_of(dir)?;
     check_solver(&spec, dir)?;
-    let mut executor = executor(&spec, options)?;
+    let mut executor = executor(&spec, dir, options)?;
     let _lock = Lock::acquire(dir)?;
     let mut state = State::read(dir)?;
-    let changed = prepare(dir, &spec, &mut state, options.retry_failed)?;
+    let mut changed = prepare(dir, &spec, &mut state, options.retry_failed)?;
+    changed |= adopt(dir, &mut state, executor.as_mut())?;
     if changed {
         state.write(dir)?;
     }
@@ -108,6 +110,24 @@ fn prepare(dir: &Path, spec: &Spec, state: &mut State, retry_failed: bool) -> Re
         }
     }
     Ok(changed)
+}
+
+/// Finds the tasks of points that a killed controller submitted without
+/// recording their job ids.
+fn adopt(dir: &Path, state: &mut State, executor: &mut dyn Executor) -> Result<bool> {
+    let orphans: Vec<usize> = (0..state.points.len())
+        .filter(|&i| state.points[i].status.in_flight() && state.points[i].job.is_empty())
+        .collect();
+    if orphans.is_empty() {
+        return Ok(false);
+    }
+    let points: Vec<&Point> = orphans.iter().map(|&i| &state.points[i]).collect();
+    let jobs = executor.adopt(dir, &points)?;
+    for (&i, job) in orphans.iter().zip(jobs) {
+        // no task found: the poll reports it lost, and it is retried
+        state.points[i].job = job.unwrap_or_default();
+    }
+    Ok(true)
 }
 
 struct Controller<'a> {
@@ -261,19 +281,32 @@ impl Controller<'_> {
         if chosen.is_empty() {
             return Ok(false);
         }
-        for &i in &chosen {
-            let folder = self.dir.join(&self.state.points[i].folder);
-            let _ = std::fs::remove_file(folder.join(EXIT_MARKER));
-        }
-        let points: Vec<&Point> = chosen.iter().map(|&i| &self.state.points[i]).collect();
-        let jobs = self.executor.submit(self.dir, &points)?;
+        // recorded before the tasks start: a controller killed between
+        // the two finds them submitted and adopts their tasks on restart
         let time = now();
-        for (&i, job) in chosen.iter().zip(jobs) {
+        for &i in &chosen {
             let p = &mut self.state.points[i];
+            let _ = std::fs::remove_file(self.dir.join(&p.folder).join(EXIT_MARKER));
             p.status = Status::Submitted;
             p.attempts += 1;
-            p.job = job;
+            p.job.clear();
             p.submitted = time.clone();
+        }
+        self.state.write(self.dir)?;
+        let points: Vec<&Point> = chosen.iter().map(|&i| &self.state.points[i]).collect();
+        let jobs = match self.executor.submit(self.dir, &points) {
+            Ok(jobs) => jobs,
+            Err(e) => {
+                for &i in &chosen {
+                    self.state.points[i].status = Status::Pending;
+                    self.state.points[i].attempts -= 1;
+                }
+                self.state.write(self.dir)?;
+                return Err(e);
+            }
+        };
+        for (&i, job) in chosen.iter().zip(jobs) {
+            self.state.points[i].job = job;
         }
         self.submitted += chosen.len();
         Ok(true)
@@ -310,7 +343,7 @@ fn progress_bar(show: bool, total: usize) -> indicatif::ProgressBar {
 pub fn abort(dir: &Path, options: &RunOptions) -> Result<usize> {
     let dir = &absolute(dir)?;
     let spec = spec_of(dir)?;
-    let mut executor = executor(&spec, options)?;
+    let mut executor = executor(&spec, dir, options)?;
     let _lock = Lock::acquire(dir)?;
     let mut state = State::read(dir)?;
     let flying: Vec<&Point> = state

@@ -163,6 +163,14 @@ pub fn input_hash(folder: &Path, files: &[String], command: &[String]) -> Result
     ))
 }
 
+/// The first 8 hex digits of the SHA-256 of `bytes` (a short stable id).
+pub fn short_hash(bytes: &[u8]) -> String {
+    Sha256::digest(bytes)[..4]
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
 /// The current time, UTC, as `YYYY-MM-DDThh:mm:ssZ`.
 pub fn now() -> String {
     let seconds = std::time::SystemTime::now()

@@ -64,6 +64,28 @@ fn task_alive(pid: u32) -> bool {
         .is_ok_and(|c| String::from_utf8_lossy(&c).contains(TASK_SCRIPT))
 }
 
+/// The running task processes on this machine: pid and arguments.
+fn running_tasks() -> Vec<(u32, Vec<String>)> {
+    let Ok(entries) = std::fs::read_dir("/proc") else {
+        return Vec::new();
+    };
+    entries
+        .flatten()
+        .filter_map(|e| {
+            let pid: u32 = e.file_name().to_str()?.parse().ok()?;
+            let raw = std::fs::read(e.path().join("cmdline")).ok()?;
+            let args: Vec<String> = raw
+                .split(|b| *b == 0)
+                .filter(|a| !a.is_empty())
+                .map(|a| String::from_utf8_lossy(a).into_owned())
+                .collect();
+            args.iter()
+                .any(|a| a.ends_with(TASK_SCRIPT))
+                .then_some((pid, args))
+        })
+        .collect()
+}
+
 impl Executor for Local {
     fn name(&self) -> &'static str {
         "local"
@@ -95,6 +117,20 @@ impl Executor for Local {
 
     fn poll(&mut self, _dir: &Path, points: &[&Point]) -> Result<Vec<TaskState>> {
         Ok(points.iter().map(|p| self.state(p)).collect())
+    }
+
+    fn adopt(&mut self, dir: &Path, points: &[&Point]) -> Result<Vec<Option<String>>> {
+        let tasks = running_tasks();
+        Ok(points
+            .iter()
+            .map(|p| {
+                let folder = dir.join(&p.folder).to_string_lossy().into_owned();
+                tasks
+                    .iter()
+                    .find(|(_, args)| args.last() == Some(&folder))
+                    .map(|(pid, _)| format!("local:{pid}"))
+            })
+            .collect())
     }
 
     fn cancel(&mut self, points: &[&Point]) -> Result<()> {

@@ -42,6 +42,10 @@ pub trait Executor {
     /// The state of each in-flight point's task.
     fn poll(&mut self, dir: &Path, points: &[&Point]) -> Result<Vec<TaskState>>;
 
+    /// The job ids of tasks already started for these points by a
+    /// controller that died before it recorded them (`None`: no such task).
+    fn adopt(&mut self, dir: &Path, points: &[&Point]) -> Result<Vec<Option<String>>>;
+
     /// Stops the tasks of these points (abort).
     fn cancel(&mut self, points: &[&Point]) -> Result<()>;
 

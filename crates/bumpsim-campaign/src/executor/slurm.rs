@@ -29,12 +29,16 @@ pub struct Slurm {
 }
 
 impl Slurm {
-    /// An executor for campaign `name`; fails when `sbatch` or `squeue` is not on PATH.
-    pub fn new(spec: &SlurmSpec, name: &str, poll_seconds: f64) -> Result<Slurm> {
+    /// An executor for campaign `name` in folder `dir`; fails when
+    /// `sbatch`, `squeue` or `scancel` is not on PATH. The job name is
+    /// `bumpsim-NAME-ID`, ID from the folder's path, so that a restarted
+    /// controller finds its campaign's tasks by name.
+    pub fn new(spec: &SlurmSpec, name: &str, dir: &Path, poll_seconds: f64) -> Result<Slurm> {
         check_programs()?;
+        let id = crate::state::short_hash(dir.to_string_lossy().as_bytes());
         Ok(Slurm {
             spec: spec.clone(),
-            name: name.into(),
+            name: format!("bumpsim-{name}-{id}"),
             poll: Duration::from_secs_f64(poll_seconds),
         })
     }
@@ -65,7 +69,7 @@ impl Slurm {
         let log = dir.join("slurm").join("%A_%a.out");
         let mut args = vec![
             "--parsable".to_string(),
-            format!("--job-name=bumpsim-{}", self.name),
+            format!("--job-name={}", self.name),
             array,
             format!("--output={}", log.display()),
             format!("--chdir={}", dir.display()),
@@ -155,6 +159,26 @@ impl Executor for Slurm {
                         "no longer known to Slurm (squeue) and no exit status recorded".into(),
                     ),
                 }
+            })
+            .collect())
+    }
+
+    fn adopt(&mut self, _dir: &Path, points: &[&Point]) -> Result<Vec<Option<String>>> {
+        let args = ["-h", "-r", "-t", "all", "-o", "%i", "--name"].map(String::from);
+        let mut args = args.to_vec();
+        args.push(self.name.clone());
+        let out = command_output("squeue", &args)?;
+        let tasks: Vec<&str> = out.lines().map(str::trim).collect();
+        Ok(points
+            .iter()
+            .map(|p| {
+                let suffix = format!("_{}", p.run);
+                // the newest task of this point (job ids increase)
+                tasks
+                    .iter()
+                    .filter(|t| t.ends_with(&suffix))
+                    .max_by_key(|t| t.split('_').next().and_then(|j| j.parse::<u64>().ok()))
+                    .map(|t| format!("slurm:{t}"))
             })
             .collect())
     }

@@ -575,3 +575,28 @@ fn slurm_faults_are_retried_recorded_and_survive_a_killed_controller() {
         .collect();
     assert_eq!(runs, ["1", "2", "4", "5", "6", "7", "8"], "{table}");
 }
+
+/// A controller killed after recording a submission but before recording
+/// its job id: the restarted one finds the running task and adopts it
+/// instead of starting the point twice.
+#[test]
+fn a_task_started_but_not_recorded_is_adopted_not_rerun() {
+    let fake = Fake::new("campaign-adopt", 0, &Faults { sleep: 1.0, ..NO_FAULTS }, "local");
+    let c = fake.campaign();
+    let mut orphan = Command::new("sh")
+        .arg(c.join("run-point.sh"))
+        .arg(c.join("points/0001"))
+        .spawn()
+        .unwrap();
+    let state = fake.state().replacen(
+        "status = \"pending\"\nattempts = 0\n",
+        "status = \"submitted\"\nattempts = 1\n",
+        1,
+    );
+    std::fs::write(c.join("state.toml"), state).unwrap();
+    let out = run(&["campaign", "run", path(&c)]);
+    assert_contains(&text(&out.stdout), &["4 points done, 0 failed (3 tasks submitted by this run)"]);
+    assert!(orphan.wait().unwrap().success());
+    assert_eq!(fake.invocations("0001"), 1, "{}", fake.state());
+    assert_contains(&point(&fake.state(), 1), &["attempts = 1", "job = \"local:"]);
+}
