@@ -112,9 +112,11 @@ fn reason_suffix(reason: &str) -> String {
     }
 }
 
+/// The point's responses, then its identified parameters.
 fn read_row(dir: &Path, spec: &Spec, run: usize, folder: &str) -> Result<Vec<f64>> {
     let folder = dir.join(folder);
-    spec.responses
+    let mut row = spec
+        .responses
         .iter()
         .map(|r| {
             readers::read(&folder, r).map_err(|message| CampaignError::Output {
@@ -123,7 +125,18 @@ fn read_row(dir: &Path, spec: &Spec, run: usize, folder: &str) -> Result<Vec<f64
                 message,
             })
         })
-        .collect()
+        .collect::<Result<Vec<f64>>>()?;
+    if let Some(identify) = &spec.identify {
+        let parameters = crate::identify::identify_point(&folder, identify).map_err(|message| {
+            CampaignError::Output {
+                run,
+                response: "identification".into(),
+                message,
+            }
+        })?;
+        row.extend(parameters);
+    }
+    Ok(row)
 }
 
 /// `run,standard order,<factors and derived> [unit],<coded>,<responses> [unit]`.
@@ -139,10 +152,10 @@ fn table_header(spec: &Spec) -> String {
         .factors
         .iter()
         .for_each(|f| out += &format!(",{} (coded)", f.name));
-    for r in &spec.responses {
-        out += &match &r.unit {
-            Some(u) => format!(",{} [{u}]", r.name),
-            None => format!(",{}", r.name),
+    for (name, unit) in spec.response_columns() {
+        out += &match unit {
+            Some(u) => format!(",{name} [{u}]"),
+            None => format!(",{name}"),
         };
     }
     out + "\n"

@@ -113,6 +113,9 @@ pub fn input_files(spec: &Spec) -> Vec<String> {
             .map(|n| n.to_string_lossy().into_owned()),
     );
     files.extend(spec.template.lsdyna_parameters.clone());
+    if spec.identify.is_some() {
+        files.push(crate::identify::STUDY_FILE.into());
+    }
     files
 }
 
@@ -134,6 +137,14 @@ pub fn init(path: &Path, dir: &Path) -> Result<InitSummary> {
     let mut known = spec.factor_names();
     known.extend(spec.derived.keys().cloned());
     template.check(&known)?;
+    let study = match &spec.identify {
+        Some(identify) => {
+            let study = Template::read(&base.join(&identify.study))?;
+            study.check(&known)?;
+            Some(study)
+        }
+        None => None,
+    };
     check_solver(&spec, base)?;
     let (points, resolution) = points(&spec, path)?;
     // re-initialising a campaign: not while a controller runs it
@@ -145,6 +156,9 @@ pub fn init(path: &Path, dir: &Path) -> Result<InitSummary> {
     let mut guard = Outputs::new();
     guard.input(path);
     guard.input(&base.join(&spec.template.file));
+    if let Some(identify) = &spec.identify {
+        guard.input(&base.join(&identify.study));
+    }
     let staged = guard.stage_folder(dir)?;
     let campaign_text = std::fs::read(path).map_err(|e| crate::error::read_error(path, e))?;
     staged.write(SPEC_FILE, &campaign_text)?;
@@ -159,7 +173,8 @@ pub fn init(path: &Path, dir: &Path) -> Result<InitSummary> {
     let mut kept = 0;
     for (i, p) in points.iter().enumerate() {
         let folder = point_folder(i + 1);
-        write_point(&staged, &spec, base, &template, p, &folder, i + 1)?;
+        let templates = (&template, study.as_ref());
+        write_point(&staged, &spec, base, templates, p, &folder, i + 1)?;
         let hash = input_hash(
             &staged.path().join(&folder),
             &input_files(&spec),
@@ -204,7 +219,7 @@ fn write_point(
     staged: &StagedFolder,
     spec: &Spec,
     base: &Path,
-    template: &Template,
+    (template, study): (&Template, Option<&Template>),
     p: &PointValues,
     folder: &str,
     run: usize,
@@ -224,6 +239,10 @@ fn write_point(
             .file_name()
             .map_or("file".into(), |n| n.to_string_lossy().into_owned());
         staged.write(&format!("{folder}/{name}"), &bytes)?;
+    }
+    if let Some(study) = study {
+        let path = format!("{folder}/{}", crate::identify::STUDY_FILE);
+        staged.write(&path, study.render(&value).as_bytes())?;
     }
     if let Some(name) = &spec.template.lsdyna_parameters {
         staged.write(

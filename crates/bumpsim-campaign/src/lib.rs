@@ -13,6 +13,7 @@
 //! - [`executor`]: local process pool and Slurm job arrays;
 //! - [`run`]: the controller loop with retries and resume;
 //! - [`readers`]: responses from CalculiX `.dat`, CSV and LS-DYNA `glstat`;
+//! - [`identify`]: per-point identification from a study template;
 //! - [`collect`]: status, the collected table and its regression.
 //!
 //! A two-factor campaign whose "solver" is `true` and whose response is a
@@ -56,6 +57,7 @@ pub mod collect;
 pub mod error;
 pub mod executor;
 pub mod expr;
+pub mod identify;
 pub mod init;
 pub mod readers;
 pub mod run;

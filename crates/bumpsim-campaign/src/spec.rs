@@ -33,6 +33,9 @@ pub struct Spec {
     /// What to read back per point.
     #[serde(default, rename = "response")]
     pub responses: Vec<ResponseSpec>,
+    /// Per-point identification from a study template.
+    #[serde(default)]
+    pub identify: Option<crate::identify::IdentifySpec>,
     /// The regression of the collected table.
     #[serde(default)]
     pub regress: RegressSpec,
@@ -356,10 +359,33 @@ impl Spec {
         })
     }
 
-    /// The responses to regress (default: all).
+    /// The response columns of the collected table: the `[[response]]`s,
+    /// then the identified parameters.
+    pub fn response_columns(&self) -> Vec<(String, Option<String>)> {
+        let mut columns: Vec<(String, Option<String>)> = self
+            .responses
+            .iter()
+            .map(|r| (r.name.clone(), r.unit.clone()))
+            .collect();
+        if let Some(identify) = &self.identify {
+            columns.extend(
+                identify
+                    .columns()
+                    .into_iter()
+                    .map(|(n, u)| (n, Some(u.to_string()))),
+            );
+        }
+        columns
+    }
+
+    /// The responses to regress (default: every response column).
     pub fn regressed(&self) -> Vec<String> {
         match self.regress.responses.is_empty() {
-            true => self.responses.iter().map(|r| r.name.clone()).collect(),
+            true => self
+                .response_columns()
+                .into_iter()
+                .map(|(n, _)| n)
+                .collect(),
             false => self.regress.responses.clone(),
         }
     }
@@ -376,10 +402,39 @@ impl Spec {
                 ));
             }
         }
+        let columns: Vec<String> = self
+            .response_columns()
+            .into_iter()
+            .map(|(n, _)| n)
+            .collect();
         for name in &self.regress.responses {
-            if !self.responses.iter().any(|r| &r.name == name) {
-                let message = format!("'{name}' is not a [[response]]");
+            if !columns.contains(name) {
+                let message = format!("'{name}' is not a response column ({})", columns.join(", "));
                 return Err(Spec::invalid(path, "regress.responses", message));
+            }
+        }
+        self.validate_identify(path, &columns)
+    }
+
+    fn validate_identify(&self, path: &Path, columns: &[String]) -> Result<()> {
+        let Some(identify) = &self.identify else {
+            return Ok(());
+        };
+        if identify.dof == 0 || identify.dof > 50 {
+            return Err(Spec::invalid(
+                path,
+                "identify.dof",
+                "expected 1 to 50".into(),
+            ));
+        }
+        let mut names = self.factor_names();
+        names.extend(self.derived.keys().cloned());
+        for (i, name) in columns.iter().enumerate() {
+            if names.contains(name) || columns[..i].contains(name) {
+                let message = format!(
+                    "column '{name}' twice: rename the factor, derived quantity or response (identified parameters are m1.., c1.., k1..)"
+                );
+                return Err(Spec::invalid(path, "identify", message));
             }
         }
         Ok(())

@@ -581,7 +581,15 @@ fn slurm_faults_are_retried_recorded_and_survive_a_killed_controller() {
 /// instead of starting the point twice.
 #[test]
 fn a_task_started_but_not_recorded_is_adopted_not_rerun() {
-    let fake = Fake::new("campaign-adopt", 0, &Faults { sleep: 1.0, ..NO_FAULTS }, "local");
+    let fake = Fake::new(
+        "campaign-adopt",
+        0,
+        &Faults {
+            sleep: 1.0,
+            ..NO_FAULTS
+        },
+        "local",
+    );
     let c = fake.campaign();
     let mut orphan = Command::new("sh")
         .arg(c.join("run-point.sh"))
@@ -595,8 +603,76 @@ fn a_task_started_but_not_recorded_is_adopted_not_rerun() {
     );
     std::fs::write(c.join("state.toml"), state).unwrap();
     let out = run(&["campaign", "run", path(&c)]);
-    assert_contains(&text(&out.stdout), &["4 points done, 0 failed (3 tasks submitted by this run)"]);
+    assert_contains(
+        &text(&out.stdout),
+        &["4 points done, 0 failed (3 tasks submitted by this run)"],
+    );
     assert!(orphan.wait().unwrap().success());
     assert_eq!(fake.invocations("0001"), 1, "{}", fake.state());
-    assert_contains(&point(&fake.state(), 1), &["attempts = 1", "job = \"local:"]);
+    assert_contains(
+        &point(&fake.state(), 1),
+        &["attempts = 1", "job = \"local:"],
+    );
+}
+
+/// Per-point identification (paper C stage 2): each point's "solver" is
+/// `bumpsim simulate` of a 2-DOF car whose body mass and front spring are
+/// the factors; `collect` identifies a 2-DOF model per point from the
+/// simulated force and bumper displacement and appends m1.., c1.., k1..;
+/// the identified m2 and k1 recover the factors, and the regression of
+/// them runs like `doe fit`.
+#[test]
+fn collect_identifies_a_model_per_point_and_regresses_its_parameters() {
+    let dir = scratch("campaign-identify");
+    std::fs::copy(root().join("examples/simulate/pendulum-force.csv"), dir.join("force.csv")).unwrap();
+    std::fs::write(
+        dir.join("car.tmpl"),
+        "name = \"point {{run}}\"\nmasses = [20.0, {{mb}}]\ndampers = [2.0e4]\nsprings = [{{kf}}]\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("study.tmpl"),
+        "[model]\ndof = 2\nlower_bound = 1.0\nstarts = 4\nseed = 1\n[[case]]\nname = \"pendulum {{run}}\"\n\
+         force = { path = \"response.csv\", channel = \"force\" }\ndisplacement = { path = \"response.csv\", channel = \"x1\" }\noutput_dof = 1\n",
+    )
+    .unwrap();
+    let campaign = format!(
+        r#"name = "identify"
+[design]
+kind = "full"
+factors = [{{ name = "mb", low = 1200, high = 1600, unit = "kg" }}, {{ name = "kf", low = 3e5, high = 7e5, unit = "N/m" }}]
+centre = 1
+[template]
+file = "car.tmpl"
+deck = "car.toml"
+files = ["force.csv"]
+[solver]
+command = ["{bin}", "simulate", "--car", "car.toml", "--force", "force.csv", "-o", "response.csv"]
+[identify]
+study = "study.tmpl"
+dof = 2
+[[response]]
+name = "x1_max"
+reader = "csv"
+file = "response.csv"
+quantity = "x1"
+unit = "m"
+[regress]
+responses = ["m2", "k1", "x1_max"]
+"#,
+        bin = env!("CARGO_BIN_EXE_bumpsim")
+    );
+    std::fs::write(dir.join("c.toml"), campaign).unwrap();
+    let c = dir.join("c");
+    let out = run(&["campaign", "init", path(&dir.join("c.toml")), "-o", path(&c), "--run"]);
+    assert_contains(&text(&out.stdout), &["5 points done, 0 failed", "m2 [kg]: R²", "k1 [N/m]: R²"]);
+    let table = std::fs::read_to_string(c.join("results/table.csv")).unwrap();
+    let header: Vec<&str> = table.lines().next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (mb, kf, m2, k1) = (column("mb [kg]"), column("kf [N/m]"), column("m2 [kg]"), column("k1 [N/m]"));
+    for line in table.lines().skip(1) {
+        let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        assert!((v[m2] / v[mb] - 1.0).abs() < 0.01, "m2 {} for body mass {} kg", v[m2], v[mb]);
+        assert!((v[k1] / v[kf] - 1.0).abs() < 0.01, "k1 {} for front spring {} N/m", v[k1], v[kf]);
+    }
 }
