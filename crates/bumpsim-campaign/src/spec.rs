@@ -113,12 +113,15 @@ pub struct ResponseSpec {
     /// Column name in the collected table.
     pub name: String,
     /// `calculix` (the `.dat` of a bumpsim MSD deck), `csv` (a `time,...` table
-    /// with unit headers) or `lsdyna-glstat`.
+    /// with unit headers), `lsdyna-glstat`, `lsdyna-nodout`, `lsdyna-rcforc`
+    /// or `lsdyna-deforc`.
     pub reader: String,
     /// The file in the point folder (`calculix`: the deck; the `.dat` beside it is read).
     pub file: String,
     /// `calculix`: `displacement` of `mass`, or `compression` x_mass − x_(mass+1);
-    /// `csv`: the column; `lsdyna-glstat`: the quantity (`kinetic energy`, ...).
+    /// `csv`: the column; `lsdyna-glstat`: the quantity (`kinetic energy`, ...);
+    /// `lsdyna-nodout`: `NODE COLUMN` (`1001 x-disp`); `lsdyna-rcforc`:
+    /// `master|slave ID x|y|z|mass`; `lsdyna-deforc`: `ELEMENT LABEL` (`12 x-force`).
     pub quantity: String,
     /// `calculix`: the 1-based mass.
     #[serde(default)]
@@ -258,7 +261,7 @@ impl Spec {
     }
 
     fn validate(&self, path: &Path) -> Result<()> {
-        self.design_kind(path)?;
+        self.validate_size(path)?;
         for f in &self.design.factors {
             Factor::new(&f.name, f.low, f.high, None)
                 .map_err(|e| Spec::invalid(path, "design.factors", e.to_string()))?;
@@ -273,6 +276,25 @@ impl Spec {
         }
         self.validate_responses(path)?;
         self.validate_executor(path)
+    }
+
+    /// Refuses designs beyond [`MAX_POINTS`] before any is made: the runs
+    /// of a space-filling design, 2^k of a factorial (k ≤ 16), centre points.
+    fn validate_size(&self, path: &Path) -> Result<()> {
+        let kind = self.design_kind(path)?;
+        let d = &self.design;
+        let random = matches!(kind, DesignKind::LatinHypercube | DesignKind::Uniform);
+        let too_many = match random {
+            true => d.runs == 0 || d.runs > MAX_POINTS,
+            false => d.factors.len() > 16 || d.centre > MAX_POINTS,
+        };
+        if too_many || d.factors.is_empty() {
+            let message = format!(
+                "1 to {MAX_POINTS} points (runs of lhs/uniform; at most 16 factors in a factorial or composite design; at least one factor) (docs/limits.md)"
+            );
+            return Err(Spec::invalid(path, "design", message));
+        }
+        Ok(())
     }
 
     /// The design kind, checked.

@@ -17,12 +17,16 @@ use std::time::{Duration, Instant};
 /// Whether a Slurm cluster answers; with `BUMPSIM_REQUIRE_SLURM` set (as
 /// scripts/test does after scripts/slurm-up) its absence fails the test.
 fn slurm_available() -> bool {
+    // idle, or busy with other tests' tasks: the node is up either way
     let up = Command::new("sinfo")
         .args(["-h", "-o", "%T"])
         .output()
         .is_ok_and(|o| {
-            o.status.success() && text(&o.stdout).contains("idle")
-                || text(&o.stdout).contains("mix")
+            let states = text(&o.stdout);
+            o.status.success()
+                && ["idle", "mix", "alloc", "completing"]
+                    .iter()
+                    .any(|s| states.contains(s))
         });
     if !up {
         assert!(
@@ -624,7 +628,11 @@ fn a_task_started_but_not_recorded_is_adopted_not_rerun() {
 #[test]
 fn collect_identifies_a_model_per_point_and_regresses_its_parameters() {
     let dir = scratch("campaign-identify");
-    std::fs::copy(root().join("examples/simulate/pendulum-force.csv"), dir.join("force.csv")).unwrap();
+    std::fs::copy(
+        root().join("examples/simulate/pendulum-force.csv"),
+        dir.join("force.csv"),
+    )
+    .unwrap();
     std::fs::write(
         dir.join("car.tmpl"),
         "name = \"point {{run}}\"\nmasses = [20.0, {{mb}}]\ndampers = [2.0e4]\nsprings = [{{kf}}]\n",
@@ -664,15 +672,40 @@ responses = ["m2", "k1", "x1_max"]
     );
     std::fs::write(dir.join("c.toml"), campaign).unwrap();
     let c = dir.join("c");
-    let out = run(&["campaign", "init", path(&dir.join("c.toml")), "-o", path(&c), "--run"]);
-    assert_contains(&text(&out.stdout), &["5 points done, 0 failed", "m2 [kg]: R²", "k1 [N/m]: R²"]);
+    let out = run(&[
+        "campaign",
+        "init",
+        path(&dir.join("c.toml")),
+        "-o",
+        path(&c),
+        "--run",
+    ]);
+    assert_contains(
+        &text(&out.stdout),
+        &["5 points done, 0 failed", "m2 [kg]: R²", "k1 [N/m]: R²"],
+    );
     let table = std::fs::read_to_string(c.join("results/table.csv")).unwrap();
     let header: Vec<&str> = table.lines().next().unwrap().split(',').collect();
     let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
-    let (mb, kf, m2, k1) = (column("mb [kg]"), column("kf [N/m]"), column("m2 [kg]"), column("k1 [N/m]"));
+    let (mb, kf, m2, k1) = (
+        column("mb [kg]"),
+        column("kf [N/m]"),
+        column("m2 [kg]"),
+        column("k1 [N/m]"),
+    );
     for line in table.lines().skip(1) {
         let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
-        assert!((v[m2] / v[mb] - 1.0).abs() < 0.01, "m2 {} for body mass {} kg", v[m2], v[mb]);
-        assert!((v[k1] / v[kf] - 1.0).abs() < 0.01, "k1 {} for front spring {} N/m", v[k1], v[kf]);
+        assert!(
+            (v[m2] / v[mb] - 1.0).abs() < 0.01,
+            "m2 {} for body mass {} kg",
+            v[m2],
+            v[mb]
+        );
+        assert!(
+            (v[k1] / v[kf] - 1.0).abs() < 0.01,
+            "k1 {} for front spring {} N/m",
+            v[k1],
+            v[kf]
+        );
     }
 }

@@ -1,7 +1,7 @@
 //! Stable-Rust fuzzing of the readers (proptest; no cargo fuzz, no nightly).
 //!
 //! Each target (CSV, EV5, ISO-MME, car/bumper/planar car TOML, study,
-//! model JSON, CalculiX results) mutates seed files (tests/fuzz/ and examples/identify/) with a
+//! model JSON, CalculiX results, campaign file and state) mutates seed files (tests/fuzz/ and examples/identify/) with a
 //! byte strategy (flips, inserts, deletes, truncation) and a structure
 //! strategy (a line or number replaced by hostile values: NaN, inf, 1e308,
 //! huge integers, empty), writes the result to a scratch file and runs the
@@ -297,4 +297,26 @@ fn fuzz_calculix_dat() {
         std::fs::write(deck_path.with_extension("dat"), bytes).unwrap();
         let _ = bumpsim_export::calculix::read_results(&deck_path);
     });
+}
+
+#[test]
+fn fuzz_campaign_file_and_state() {
+    fuzz(
+        "campaign-file",
+        seed("examples/campaign/campaign.toml"),
+        |path, bytes| {
+            let _ = bumpsim_campaign::spec::Spec::parse(&String::from_utf8_lossy(bytes), path);
+        },
+    );
+    let dir = scratch("campaign-state-setup");
+    fuzz(
+        "campaign-state",
+        seed("tests/fuzz/campaign-state.toml"),
+        |_, bytes| {
+            std::fs::write(dir.join(bumpsim_campaign::state::STATE_FILE), bytes).unwrap();
+            if let Ok(state) = bumpsim_campaign::state::State::read(&dir) {
+                let _ = state.counts();
+            }
+        },
+    );
 }

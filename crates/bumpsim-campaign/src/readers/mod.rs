@@ -6,16 +6,27 @@
 //!   `displacement` of mass i, or `compression` x_i − x_(i+1), m;
 //! - `csv`: a column of a `time,...` table with unit headers (SI, read by
 //!   [`bumpsim_io::table::Table`]);
-//! - `lsdyna-glstat`: a quantity of LS-DYNA's ASCII `glstat` (`kinetic
-//!   energy`, `internal energy`, `total energy`, ...), in the deck's units.
+//! - LS-DYNA ASCII outputs ([`lsdyna`]), in the deck's units:
+//!   `lsdyna-glstat` (`kinetic energy`, `internal energy`, ...),
+//!   `lsdyna-nodout` (`NODE x-disp`, ...), `lsdyna-rcforc` (`master 1 x`,
+//!   ...) and `lsdyna-deforc` (`ELEMENT x-force`, ...).
 //!
 //! A missing, unreadable, empty or non-finite output is an error, never a
 //! zero: the point is then marked failed.
 
+pub mod lsdyna;
+
 use crate::spec::ResponseSpec;
 use std::path::Path;
 
-const READERS: [&str; 3] = ["calculix", "csv", "lsdyna-glstat"];
+const READERS: [&str; 6] = [
+    "calculix",
+    "csv",
+    "lsdyna-glstat",
+    "lsdyna-nodout",
+    "lsdyna-rcforc",
+    "lsdyna-deforc",
+];
 const STATS: [&str; 4] = ["max", "min", "final", "max-abs"];
 
 /// Checks a response specification (reader, statistic, quantity).
@@ -41,6 +52,12 @@ pub fn check(r: &ResponseSpec) -> Result<(), String> {
         ("calculix", _, _) => Err(
             "calculix: quantity = \"displacement\" or \"compression\" with mass = 1, 2, ...".into(),
         ),
+        ("lsdyna-nodout" | "lsdyna-deforc", q, _) if q.split_whitespace().count() != 2 => Err(
+            format!("quantity '{q}': expected 'ID NAME' (\"1001 x-disp\", \"12 x-force\")"),
+        ),
+        ("lsdyna-rcforc", q, _) if q.split_whitespace().count() != 3 => Err(format!(
+            "quantity '{q}': expected 'master|slave ID x|y|z|mass'"
+        )),
         _ => Ok(()),
     }
 }
@@ -51,7 +68,10 @@ pub fn read(folder: &Path, r: &ResponseSpec) -> Result<f64, String> {
     let history = match r.reader.as_str() {
         "calculix" => calculix(&path, r)?,
         "csv" => csv_column(&path, &r.quantity)?,
-        _ => glstat(&path, &r.quantity)?,
+        "lsdyna-glstat" => lsdyna::glstat(&path, &r.quantity)?,
+        "lsdyna-nodout" => lsdyna::nodout(&path, &r.quantity)?,
+        "lsdyna-rcforc" => lsdyna::rcforc(&path, &r.quantity)?,
+        _ => lsdyna::deforc(&path, &r.quantity)?,
     };
     statistic(&history, &r.stat)
 }
@@ -104,32 +124,6 @@ fn csv_column(path: &Path, column: &str) -> Result<Vec<f64>, String> {
         .clone())
 }
 
-/// LS-DYNA `glstat`: blocks of `name ....... value` lines, one block per
-/// output time; the history of one quantity.
-fn glstat(path: &Path, quantity: &str) -> Result<Vec<f64>, String> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-    let wanted = quantity.trim().to_ascii_lowercase();
-    let mut values = Vec::new();
-    for (i, line) in text.lines().enumerate() {
-        let Some((name, value)) = line.split_once("..") else {
-            continue;
-        };
-        if name.trim().to_ascii_lowercase() != wanted {
-            continue;
-        }
-        let value = value.trim_start_matches('.').trim();
-        let parsed: f64 = value
-            .parse()
-            .map_err(|_| format!("{}:{}: '{value}' is not a number", path.display(), i + 1))?;
-        values.push(parsed);
-    }
-    if values.is_empty() {
-        return Err(format!("{}: no '{quantity}' lines", path.display()));
-    }
-    Ok(values)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -141,30 +135,5 @@ mod tests {
         assert_eq!(statistic(&[1.0, -3.0, 2.0], "final").unwrap(), 2.0);
         assert!(statistic(&[], "max").is_err());
         assert!(statistic(&[1.0, f64::NAN], "min").is_err());
-    }
-
-    #[test]
-    fn glstat_histories() {
-        let dir = std::env::temp_dir().join(format!("bumpsim-glstat-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let text = " dt of cycle   1 is controlled by\n time...........................   0.00000E+00\n kinetic energy..................   1.00000E+03\n internal energy.................   0.00000E+00\n\n time...........................   1.00000E-03\n kinetic energy..................   8.00000E+02\n internal energy.................   2.00000E+02\n";
-        std::fs::write(dir.join("glstat"), text).unwrap();
-        let r = ResponseSpec {
-            name: "ie".into(),
-            reader: "lsdyna-glstat".into(),
-            file: "glstat".into(),
-            quantity: "internal energy".into(),
-            mass: None,
-            stat: "max".into(),
-            unit: Some("J".into()),
-        };
-        assert_eq!(read(&dir, &r).unwrap(), 200.0);
-        std::fs::write(dir.join("glstat"), "kinetic energy....  1.0E+0x\n").unwrap();
-        let r = ResponseSpec {
-            quantity: "kinetic energy".into(),
-            ..r
-        };
-        assert!(read(&dir, &r).unwrap_err().contains("not a number"));
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
