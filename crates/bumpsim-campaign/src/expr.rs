@@ -56,7 +56,12 @@ struct Parser<'a> {
     chars: Vec<(usize, char)>,
     at: usize,
     text: &'a str,
+    /// Nesting of parentheses and unary minus (bounded: no stack overflow).
+    depth: usize,
 }
+
+/// Deepest nesting of parentheses and signs an expression may have.
+pub const MAX_DEPTH: usize = 64;
 
 impl Expr {
     /// Parses `text`.
@@ -65,6 +70,7 @@ impl Expr {
             chars: text.char_indices().collect(),
             at: 0,
             text,
+            depth: 0,
         };
         let expr = parser.sum()?;
         match parser.peek() {
@@ -168,11 +174,19 @@ impl Parser<'_> {
 
     /// unary := '-' unary | power
     fn unary(&mut self) -> Result<Expr, ExprError> {
-        if self.peek() == Some('-') {
-            self.at += 1;
-            return Ok(Expr::Negate(Box::new(self.unary()?)));
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return Err(self.error(&format!("nested deeper than {MAX_DEPTH}")));
         }
-        self.power()
+        let result = match self.peek() {
+            Some('-') => {
+                self.at += 1;
+                self.unary().map(|e| Expr::Negate(Box::new(e)))
+            }
+            _ => self.power(),
+        };
+        self.depth -= 1;
+        result
     }
 
     /// power := atom ('^' unary)?   (right-associative, binds tighter than unary minus on its left)
@@ -257,6 +271,14 @@ mod tests {
         assert!(Expr::parse("(1 + 2").is_err());
         assert!(Expr::parse("1 2").is_err());
         assert!(Expr::parse("").is_err());
+        let deep = format!("{}1{}", "(".repeat(100_000), ")".repeat(100_000));
+        assert!(
+            Expr::parse(&deep)
+                .unwrap_err()
+                .to_string()
+                .contains("nested deeper")
+        );
+        assert!(Expr::parse(&"-".repeat(100_000)).is_err());
         let unknown = Expr::parse("a + 1").unwrap().eval(&|_| None).unwrap_err();
         assert_eq!(unknown, ExprError::Unknown { name: "a".into() });
         let zero = Expr::parse("1 / (a - a)").unwrap().eval(&|_| Some(1.0));

@@ -338,24 +338,35 @@ fn progress_bar(show: bool, total: usize) -> indicatif::ProgressBar {
     bar
 }
 
-/// Cancels every in-flight task of campaign folder `dir` (`scancel` for
-/// Slurm) and marks those points pending again.
+/// Cancels every in-flight task of campaign folder `dir` and marks those
+/// points pending again: Slurm tasks by `scancel`, local ones by SIGTERM
+/// (by each point's job id, whichever executor submitted it). Stop the
+/// controller first (Ctrl-C): abort takes the lock.
 pub fn abort(dir: &Path, options: &RunOptions) -> Result<usize> {
     let dir = &absolute(dir)?;
     let spec = spec_of(dir)?;
-    let mut executor = executor(&spec, dir, options)?;
     let _lock = Lock::acquire(dir)?;
     let mut state = State::read(dir)?;
-    let flying: Vec<&Point> = state
-        .points
-        .iter()
-        .filter(|p| p.status.in_flight())
-        .collect();
-    let n = flying.len();
-    executor.cancel(&flying)?;
+    let flying = |prefix: &str| -> Vec<&Point> {
+        let in_flight = state.points.iter().filter(|p| p.status.in_flight());
+        in_flight.filter(|p| p.job.starts_with(prefix)).collect()
+    };
+    let slurm = flying("slurm:");
+    if !slurm.is_empty() {
+        let slurm_options = RunOptions {
+            executor: Some("slurm".into()),
+            ..options.clone()
+        };
+        executor(&spec, dir, &slurm_options)?.cancel(&slurm)?;
+    }
+    for p in flying("local:") {
+        crate::executor::local::terminate(p);
+    }
+    let mut n = 0;
     for p in state.points.iter_mut().filter(|p| p.status.in_flight()) {
         p.status = Status::Pending;
         p.reason = "cancelled by campaign abort".into();
+        n += 1;
     }
     state.write(dir)?;
     Ok(n)

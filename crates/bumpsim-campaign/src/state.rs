@@ -258,8 +258,15 @@ fn stale(holder: &str, host: &str) -> bool {
 }
 
 /// Whether process `pid` exists (Linux: `/proc/PID`).
+/// A zombie (ended, not yet reaped by its parent) counts as gone.
 pub fn process_alive(pid: u32) -> bool {
-    Path::new(&format!("/proc/{pid}")).exists()
+    match std::fs::read_to_string(format!("/proc/{pid}/stat")) {
+        // the state follows the command name in parentheses: "PID (NAME) S ..."
+        Ok(stat) => stat
+            .rsplit_once(')')
+            .is_some_and(|(_, rest)| !rest.trim_start().starts_with(['Z', 'X'])),
+        Err(_) => false,
+    }
 }
 
 /// This machine's host name.

@@ -58,6 +58,30 @@ impl Local {
     }
 }
 
+/// Stops the task of `point` (SIGTERM by `kill`, when its pid is still a
+/// campaign task; the task's solver gets it through the task's shell).
+pub fn terminate(point: &Point) {
+    let pid = point
+        .job
+        .strip_prefix("local:")
+        .and_then(|p| p.parse::<u32>().ok());
+    if let Some(pid) = pid.filter(|&pid| task_alive(pid)) {
+        // the task shell first (so it records no exit status), then the
+        // solver, its child, found before the shell goes
+        let children = Command::new("pgrep")
+            .args(["-P", &pid.to_string()])
+            .output()
+            .map(|o| String::from_utf8_lossy(&o.stdout).into_owned())
+            .unwrap_or_default();
+        let _ = Command::new("kill")
+            .args(["-TERM", &pid.to_string()])
+            .status();
+        for child in children.split_whitespace() {
+            let _ = Command::new("kill").args(["-TERM", child]).status();
+        }
+    }
+}
+
 /// Whether `pid` is still a task of a campaign (`run-point.sh` in its command line).
 fn task_alive(pid: u32) -> bool {
     std::fs::read(format!("/proc/{pid}/cmdline"))

@@ -709,3 +709,53 @@ responses = ["m2", "k1", "x1_max"]
         );
     }
 }
+
+/// `campaign abort` after the controller is stopped: the running tasks are
+/// stopped (SIGTERM locally, `scancel` on Slurm) and their points pending.
+fn abort_stops_the_running_tasks(executor: &str) {
+    let slow = Faults {
+        slow: &["0001", "0002", "0003", "0004"],
+        ..NO_FAULTS
+    };
+    let fake = Fake::new(&format!("campaign-abort-{executor}"), 0, &slow, executor);
+    let mut controller = fake.spawn_run(&[]);
+    let start = Instant::now();
+    while fake.state().matches("status = \"running\"").count() < 2 {
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "{}",
+            fake.state()
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    controller.kill().unwrap();
+    controller.wait().unwrap();
+    let out = run(&["campaign", "abort", path(&fake.campaign())]);
+    assert_contains(&text(&out.stdout), &["cancelled"]);
+    let state = fake.state();
+    assert_eq!(
+        state.matches("cancelled by campaign abort").count(),
+        state.matches("attempts = 1").count(),
+        "{state}"
+    );
+    assert!(!state.contains("status = \"running\"") && !state.contains("status = \"submitted\""));
+    std::thread::sleep(Duration::from_secs(2));
+    for run in 1..=4 {
+        let marker = fake
+            .campaign()
+            .join(format!("points/{run:04}/.bumpsim-exit"));
+        assert!(!marker.exists(), "run {run} finished after the abort");
+    }
+}
+
+#[test]
+fn abort_stops_local_tasks() {
+    abort_stops_the_running_tasks("local");
+}
+
+#[test]
+fn abort_cancels_slurm_tasks() {
+    if slurm_available() {
+        abort_stops_the_running_tasks("slurm");
+    }
+}
