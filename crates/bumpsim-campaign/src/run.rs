@@ -342,7 +342,7 @@ fn progress_bar(show: bool, total: usize) -> indicatif::ProgressBar {
 /// points pending again: Slurm tasks by `scancel`, local ones by SIGTERM
 /// (by each point's job id, whichever executor submitted it). Stop the
 /// controller first (Ctrl-C): abort takes the lock.
-pub fn abort(dir: &Path, options: &RunOptions) -> Result<usize> {
+pub fn abort(dir: &Path) -> Result<usize> {
     let dir = &absolute(dir)?;
     let spec = spec_of(dir)?;
     let _lock = Lock::acquire(dir)?;
@@ -355,7 +355,7 @@ pub fn abort(dir: &Path, options: &RunOptions) -> Result<usize> {
     if !slurm.is_empty() {
         let slurm_options = RunOptions {
             executor: Some("slurm".into()),
-            ..options.clone()
+            ..RunOptions::default()
         };
         executor(&spec, dir, &slurm_options)?.cancel(&slurm)?;
     }

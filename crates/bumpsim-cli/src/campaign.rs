@@ -18,8 +18,8 @@ pub enum Command {
     Status(DirArgs),
     /// Read the results into the design table, fit the regression, write the report.
     Collect(DirArgs),
-    /// Cancel the campaign's running tasks (scancel) and mark them pending.
-    Abort(RunArgs),
+    /// Stop the campaign's running tasks (scancel, SIGTERM) and mark them pending.
+    Abort(DirArgs),
 }
 
 /// Arguments of `campaign init`.
@@ -35,7 +35,7 @@ pub struct InitArgs {
     run: bool,
 }
 
-/// Arguments of `campaign run` and `campaign abort`.
+/// Arguments of `campaign run`.
 #[derive(Debug, clap::Args)]
 pub struct RunArgs {
     /// The campaign folder.
@@ -69,7 +69,7 @@ pub fn run(command: &Command) -> Result<()> {
         }
         Command::Collect(args) => run_collect(args),
         Command::Abort(args) => {
-            let n = run::abort(&args.dir, &options(args))?;
+            let n = run::abort(&args.dir)?;
             println!("cancelled {n} tasks; they are pending again");
             Ok(())
         }
