@@ -46,7 +46,7 @@ pub struct PointValues {
 pub struct InitSummary {
     /// Points of the design.
     pub points: usize,
-    /// Points kept as done from an earlier state (inputs unchanged).
+    /// Points kept from an earlier state: done or in flight, inputs unchanged.
     pub kept: usize,
     /// The design's resolution (fractions).
     pub resolution: Option<usize>,
@@ -133,18 +133,7 @@ pub fn check_solver(spec: &Spec, dir: &Path) -> Result<PathBuf> {
 pub fn init(path: &Path, dir: &Path) -> Result<InitSummary> {
     let spec = Spec::read(path)?;
     let base = path.parent().unwrap_or(Path::new("."));
-    let template = Template::read(&base.join(&spec.template.file))?;
-    let mut known = spec.factor_names();
-    known.extend(spec.derived.keys().cloned());
-    template.check(&known)?;
-    let study = match &spec.identify {
-        Some(identify) => {
-            let study = Template::read(&base.join(&identify.study))?;
-            study.check(&known)?;
-            Some(study)
-        }
-        None => None,
-    };
+    let templates = read_templates(&spec, base)?;
     check_solver(&spec, base)?;
     let (points, resolution) = points(&spec, path)?;
     // re-initialising a campaign: not while a controller runs it
@@ -164,27 +153,13 @@ pub fn init(path: &Path, dir: &Path) -> Result<InitSummary> {
     staged.write(SPEC_FILE, &campaign_text)?;
     staged.write("design.csv", design_csv(&spec, &points).as_bytes())?;
     staged.write(TASK_SCRIPT, task_script(&spec.solver.command).as_bytes())?;
-    let mut state = State {
-        format: 1,
-        campaign: spec.name.clone(),
-        updated: now(),
-        points: Vec::new(),
-    };
-    let mut kept = 0;
-    for (i, p) in points.iter().enumerate() {
-        let folder = point_folder(i + 1);
-        let templates = (&template, study.as_ref());
-        write_point(&staged, &spec, base, templates, p, &folder, i + 1)?;
-        let hash = input_hash(
-            &staged.path().join(&folder),
-            &input_files(&spec),
-            &spec.solver.command,
-        )?;
-        let point = carry_over(old.as_ref(), i + 1, &folder, hash);
-        kept += usize::from(point.status == Status::Done);
-        state.points.push(point);
-    }
-    state.write(staged.path())?;
+    let templates = (&templates.0, templates.1.as_ref());
+    let state = stage_points(&staged, &spec, base, templates, &points, old.as_ref())?;
+    let kept = state
+        .points
+        .iter()
+        .filter(|p| p.status != Status::Pending)
+        .count();
     staged.commit(&guard)?;
     Ok(InitSummary {
         points: points.len(),
@@ -193,13 +168,56 @@ pub fn init(path: &Path, dir: &Path) -> Result<InitSummary> {
     })
 }
 
-/// The point's state: an earlier done (or in-flight) point with the same
-/// input hash is kept, anything else starts pending.
+/// The deck template and the optional study template, their placeholders checked.
+fn read_templates(spec: &Spec, base: &Path) -> Result<(Template, Option<Template>)> {
+    let mut known = spec.factor_names();
+    known.extend(spec.derived.keys().cloned());
+    let template = Template::read(&base.join(&spec.template.file))?;
+    template.check(&known)?;
+    let study = match &spec.identify {
+        Some(identify) => {
+            let study = Template::read(&base.join(&identify.study))?;
+            study.check(&known)?;
+            Some(study)
+        }
+        None => None,
+    };
+    Ok((template, study))
+}
+
+/// Writes every point folder into the staging and the state beside them.
+fn stage_points(
+    staged: &StagedFolder,
+    spec: &Spec,
+    base: &Path,
+    templates: (&Template, Option<&Template>),
+    points: &[PointValues],
+    old: Option<&State>,
+) -> Result<State> {
+    let mut state = State {
+        format: 1,
+        campaign: spec.name.clone(),
+        updated: now(),
+        points: Vec::new(),
+    };
+    let files = input_files(spec);
+    for (i, p) in points.iter().enumerate() {
+        let folder = point_folder(i + 1);
+        write_point(staged, spec, base, templates, p, &folder, i + 1)?;
+        let hash = input_hash(&staged.path().join(&folder), &files, &spec.solver.command)?;
+        state.points.push(carry_over(old, i + 1, &folder, hash));
+    }
+    state.write(staged.path())?;
+    Ok(state)
+}
+
+/// The point's state: an earlier done or in-flight point with the same
+/// input hash is kept (its task may still be running: it is adopted, not
+/// started twice), anything else starts pending.
 fn carry_over(old: Option<&State>, run: usize, folder: &str, hash: String) -> Point {
-    if let Some(p) = old
-        .and_then(|s| s.points.get(run - 1))
-        .filter(|p| p.input_hash == hash && p.status == Status::Done)
-    {
+    let keep =
+        |p: &&Point| p.input_hash == hash && (p.status == Status::Done || p.status.in_flight());
+    if let Some(p) = old.and_then(|s| s.points.get(run - 1)).filter(keep) {
         return p.clone();
     }
     Point {

@@ -221,7 +221,7 @@ impl Controller<'_> {
             let folder = self.state.points[i].folder.clone();
             return self.failure(
                 i,
-                format!("solver exit code {code} (see {folder}/solver.log)"),
+                format!("{} (see {folder}/solver.log)", exit_reason(code)),
             );
         }
         let folder = self.dir.join(&self.state.points[i].folder);
@@ -317,6 +317,16 @@ impl Controller<'_> {
 fn absolute(dir: &Path) -> Result<std::path::PathBuf> {
     dir.canonicalize()
         .map_err(|e| crate::error::read_error(dir, e))
+}
+
+/// Why a solver with exit status `code` failed; above 128 the shell's code
+/// for a signal (SIGTERM is what scancel, time limits and pre-emption send).
+pub fn exit_reason(code: i32) -> String {
+    match code {
+        143 => "solver killed by signal 15, SIGTERM (exit code 143: cancelled, timed out or pre-empted?)".into(),
+        129..=192 => format!("solver killed by signal {} (exit code {code})", code - 128),
+        _ => format!("solver exit code {code}"),
+    }
 }
 
 /// The exit status a point's task recorded, if any.

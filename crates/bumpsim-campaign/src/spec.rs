@@ -101,8 +101,8 @@ pub struct TemplateSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSpec {
-    /// Program and arguments (`["ccx", "-i", "deck"]`); the program is
-    /// looked up on PATH when it has no `/`.
+    /// Program and arguments (`["ccx", "-i", "deck"]`): a program name
+    /// on PATH or an absolute path (it runs in each point folder).
     pub command: Vec<String>,
 }
 
@@ -271,8 +271,14 @@ impl Spec {
             }
         }
         self.derived_order(path)?;
-        if self.solver.command.is_empty() {
-            return Err(Spec::invalid(path, "solver.command", "is empty".into()));
+        match self.solver.command.first() {
+            None => return Err(Spec::invalid(path, "solver.command", "is empty".into())),
+            // the solver runs in each point folder: a relative path would mean another file there
+            Some(p) if p.contains('/') && !p.starts_with('/') => {
+                let message = format!("'{p}': give an absolute path or a program name on PATH");
+                return Err(Spec::invalid(path, "solver.command", message));
+            }
+            Some(_) => {}
         }
         self.validate_responses(path)?;
         self.validate_executor(path)
@@ -561,6 +567,14 @@ command = ["true"]
     fn bad_keys_and_values_are_named() {
         let err = parse("colour = 1\n").unwrap_err().to_string();
         assert!(err.contains("colour"), "{err}");
+        let relative = BASE.replace("[\"true\"]", "[\"./solver.sh\"]");
+        let err = Spec::parse(&relative, Path::new("c.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("solver.command: './solver.sh': give an absolute path"),
+            "{err}"
+        );
         let err = parse("[executor]\nkind = \"pbs\"\n")
             .unwrap_err()
             .to_string();

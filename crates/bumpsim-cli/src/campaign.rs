@@ -95,7 +95,7 @@ fn run_init(args: &InitArgs) -> Result<()> {
         println!("resolution {resolution}");
     }
     println!(
-        "campaign {}: {} points ({} kept as done from the earlier state)",
+        "campaign {}: {} points ({} kept from the earlier state: done or running, inputs unchanged)",
         dir.display(),
         summary.points,
         summary.kept
