@@ -61,8 +61,7 @@ impl Slurm {
     }
 
     fn sbatch_args(&self, dir: &Path, script: &Path, runs: &[usize]) -> Vec<String> {
-        let list: Vec<String> = runs.iter().map(usize::to_string).collect();
-        let mut array = format!("--array={}", list.join(","));
+        let mut array = format!("--array={}", ranges(runs));
         if let Some(k) = self.spec.max_concurrent {
             array += &format!("%{k}");
         }
@@ -87,6 +86,24 @@ impl Slurm {
         args.push(script.display().to_string());
         args
     }
+}
+
+/// Sorted run numbers as Slurm's array list with ranges (`1-8,10,12-13`).
+pub fn ranges(runs: &[usize]) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    let mut i = 0;
+    while i < runs.len() {
+        let mut j = i;
+        while j + 1 < runs.len() && runs[j + 1] == runs[j] + 1 {
+            j += 1;
+        }
+        parts.push(match j > i {
+            true => format!("{}-{}", runs[i], runs[j]),
+            false => runs[i].to_string(),
+        });
+        i = j + 1;
+    }
+    parts.join(",")
 }
 
 /// Checks that `sbatch`, `squeue` and `scancel` are on PATH.
@@ -247,6 +264,13 @@ mod tests {
     use super::*;
 
     #[test]
+    fn array_lists_use_ranges() {
+        assert_eq!(ranges(&[1, 2, 3, 5, 7, 8]), "1-3,5,7-8");
+        assert_eq!(ranges(&[4]), "4");
+        assert_eq!(ranges(&(1..=1000).collect::<Vec<_>>()), "1-1000");
+    }
+
+    #[test]
     fn states_map_to_retryable_losses() {
         assert_eq!(task_state("PENDING", "Priority"), TaskState::Queued);
         assert_eq!(task_state("RUNNING", "None"), TaskState::Running);
@@ -282,7 +306,7 @@ mod tests {
             )
             .join(" ");
         for piece in [
-            "--array=1,3,4%4",
+            "--array=1,3-4%4",
             "--partition=short",
             "--account=bumper",
             "--time=02:00:00",
