@@ -33,6 +33,13 @@ pub fn status(dir: &Path) -> Result<String> {
         state.points.len(),
         state.updated
     );
+    let _ = match crate::state::lock_holder(dir) {
+        Some((holder, false)) => writeln!(text, "  controller: {holder}"),
+        Some((holder, true)) => {
+            writeln!(text, "  controller: none running (stale lock of {holder})")
+        }
+        None => writeln!(text, "  controller: none running"),
+    };
     for p in state.points.iter().filter(|p| p.status.in_flight()) {
         let _ = writeln!(
             text,
@@ -70,6 +77,16 @@ pub fn collect(dir: &Path) -> Result<Collected> {
     let spec = spec_of(dir)?;
     let state = State::read(dir)?;
     let (points, _) = init::points(&spec, &dir.join(SPEC_FILE))?;
+    if points.len() != state.points.len() {
+        return Err(CampaignError::State {
+            path: dir.join(crate::state::STATE_FILE),
+            message: format!(
+                "{} points, but the design of {SPEC_FILE} has {}: the campaign file was edited; run `bumpsim campaign init` again",
+                state.points.len(),
+                points.len()
+            ),
+        });
+    }
     let mut csv = table_header(&spec);
     let mut rows = 0;
     let mut missing = Vec::new();

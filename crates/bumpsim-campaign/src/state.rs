@@ -239,6 +239,14 @@ impl Lock {
     }
 }
 
+/// Who holds the lock of campaign folder `dir` (`pid N on HOST since T`),
+/// and whether that controller is gone (a stale lock on this host).
+pub fn lock_holder(dir: &Path) -> Option<(String, bool)> {
+    let holder = std::fs::read_to_string(dir.join(LOCK_FILE)).ok()?;
+    let gone = stale(&holder, &hostname());
+    Some((holder.trim().to_string(), gone))
+}
+
 impl Drop for Lock {
     fn drop(&mut self) {
         let _ = std::fs::remove_file(&self.path);

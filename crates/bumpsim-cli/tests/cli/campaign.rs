@@ -390,6 +390,8 @@ fn a_killed_controller_resumes_without_rerunning_finished_points() {
         fake.campaign().join(".lock").exists(),
         "the killed controller left its lock"
     );
+    let status = text(&run(&["campaign", "status", path(&fake.campaign())]).stdout);
+    assert_contains(&status, &["controller: none running (stale lock of pid"]);
     let out = run(&["campaign", "run", path(&fake.campaign())]);
     assert_contains(&text(&out.stdout), &["8 points done, 0 failed"]);
     for run in 1..=8 {
