@@ -243,6 +243,26 @@ impl Spec {
     }
 
     /// Parses and validates campaign text; `path` is used in messages.
+    ///
+    /// ```
+    /// use bumpsim_campaign::spec::Spec;
+    /// let text = r#"
+    /// name = "c"
+    /// [design]
+    /// kind = "full"
+    /// factors = [{ name = "t_rail", low = 1.5e-3, high = 2.5e-3, unit = "m" }]
+    /// [derived]
+    /// t_mm = "t_rail * 1000"
+    /// [template]
+    /// file = "bumper.k.tmpl"
+    /// [solver]
+    /// command = ["lsdyna", "i=bumper.k"]
+    /// "#;
+    /// let spec = Spec::parse(text, "c.toml".as_ref()).unwrap();
+    /// assert_eq!(spec.deck_name(), "bumper.k.tmpl");
+    /// let bad = Spec::parse(&text.replace("t_rail * 1000", "t_beam * 1000"), "c.toml".as_ref());
+    /// assert!(bad.unwrap_err().to_string().contains("unknown name 't_beam'"));
+    /// ```
     pub fn parse(text: &str, path: &Path) -> Result<Spec> {
         let spec: Spec = toml::from_str(text).map_err(|e| CampaignError::Toml {
             path: path.into(),

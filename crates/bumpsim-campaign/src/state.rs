@@ -181,6 +181,10 @@ pub fn now() -> String {
 
 /// Seconds since 1970 as a UTC timestamp (the civil-from-days algorithm of
 /// H. Hinnant, `chrono`'s too).
+///
+/// ```
+/// assert_eq!(bumpsim_campaign::state::utc(951_782_400), "2000-02-29T00:00:00Z");
+/// ```
 pub fn utc(seconds: u64) -> String {
     let (days, rest) = ((seconds / 86_400) as i64, seconds % 86_400);
     let z = days + 719_468;

@@ -89,6 +89,10 @@ impl Slurm {
 }
 
 /// Sorted run numbers as Slurm's array list with ranges (`1-8,10,12-13`).
+///
+/// ```
+/// assert_eq!(bumpsim_campaign::executor::slurm::ranges(&[1, 2, 3, 5]), "1-3,5");
+/// ```
 pub fn ranges(runs: &[usize]) -> String {
     let mut parts: Vec<String> = Vec::new();
     let mut i = 0;
