@@ -107,6 +107,10 @@ impl Template {
         for part in &self.parts {
             match part {
                 Part::Text(t) => out.push_str(t),
+                // the run number is a count: written as an integer
+                Part::Slot(name, _) if name == "run" => {
+                    out.push_str(&value(name).map_or("nan".into(), |v| format!("{v:.0}")))
+                }
                 Part::Slot(name, _) => out.push_str(&number(value(name).unwrap_or(f64::NAN))),
             }
         }
@@ -167,7 +171,7 @@ mod tests {
         let t = Template::parse("a\n{{x}} {{ y }}\n{{x}}{{run}}", Path::new("t")).unwrap();
         assert_eq!(t.names(), ["x", "y", "run"]);
         let v = |n: &str| Some(if n == "x" { 1.5 } else { 2.0 });
-        assert_eq!(t.render(&v), "a\n1.5 2.0\n1.52.0");
+        assert_eq!(t.render(&v), "a\n1.5 2.0\n1.52");
         assert_eq!(
             (
                 number(4e5),

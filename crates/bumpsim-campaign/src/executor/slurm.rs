@@ -8,8 +8,9 @@
 //! tasks (Slurm keeps ended jobs for `MinJobAge`, 300 s by default) with
 //! their state and reason; a task that is gone from it without having
 //! recorded an exit status is lost (cancelled, timed out, pre-empted, node
-//! failure) and retried. `sacct` is not needed (clusters without
-//! accounting work too).
+//! failure) and retried. A task purged from `squeue` is looked up with
+//! `sacct` for its final state and reason where the cluster keeps
+//! accounting; without accounting it is simply lost (and retried).
 
 use super::{Executor, TaskState, command_output};
 use crate::error::{CampaignError, Result};
@@ -169,17 +170,24 @@ impl Executor for Slurm {
         let mut jobs: Vec<&str> = points.iter().filter_map(|p| job_of(p)).collect();
         jobs.sort_unstable();
         jobs.dedup();
-        let known = squeue(&jobs)?;
+        let mut known = squeue(&jobs)?;
+        let id = |p: &Point| p.job.trim_start_matches("slurm:").to_string();
+        let unknown: Vec<String> = points
+            .iter()
+            .map(|p| id(p))
+            .filter(|i| !known.contains_key(i))
+            .collect();
+        if !unknown.is_empty() {
+            // purged from squeue (MinJobAge): ask accounting, where there is one
+            known.extend(sacct(&unknown));
+        }
         Ok(points
             .iter()
-            .map(|p| {
-                let id = p.job.trim_start_matches("slurm:");
-                match known.get(id) {
-                    Some((state, reason)) => task_state(state, reason),
-                    None => TaskState::Gone(
-                        "no longer known to Slurm (squeue) and no exit status recorded".into(),
-                    ),
-                }
+            .map(|p| match known.get(&id(p)) {
+                Some((state, reason)) => task_state(state, reason),
+                None => TaskState::Gone(
+                    "no longer known to Slurm (squeue, sacct) and no exit status recorded".into(),
+                ),
             })
             .collect())
     }
@@ -247,6 +255,29 @@ fn squeue(jobs: &[&str]) -> Result<HashMap<String, (String, String)>> {
         }
     }
     Ok(known)
+}
+
+/// Task id → (state, reason) from `sacct` for tasks squeue no longer
+/// lists; empty where accounting is disabled or fails.
+fn sacct(tasks: &[String]) -> HashMap<String, (String, String)> {
+    let args = ["-n", "-P", "-X", "-o", "JobID,State,Reason", "-j"].map(String::from);
+    let mut args = args.to_vec();
+    args.push(tasks.join(","));
+    let Ok(out) = command_output("sacct", &args) else {
+        return HashMap::new();
+    };
+    out.lines()
+        .filter_map(|line| {
+            let mut parts = line.trim().splitn(3, '|');
+            let (id, state) = (parts.next()?, parts.next()?);
+            // "CANCELLED by 0" → CANCELLED
+            let state = state.split_whitespace().next()?.to_string();
+            Some((
+                id.to_string(),
+                (state, parts.next().unwrap_or("").to_string()),
+            ))
+        })
+        .collect()
 }
 
 /// A Slurm job state as a task state.

@@ -777,3 +777,36 @@ fn abort_cancels_slurm_tasks() {
         abort_stops_the_running_tasks("slurm");
     }
 }
+
+/// LS-DYNA `*PARAMETER` users: each point folder gets an include with one
+/// `R name value` card per factor and derived quantity, beside the deck.
+#[test]
+fn lsdyna_parameter_includes_are_written_per_point() {
+    let dir = scratch("campaign-parameters");
+    std::fs::write(
+        dir.join("main.k"),
+        "*KEYWORD\n*INCLUDE\nparams.k\n$ run {{run}}\n*END\n",
+    )
+    .unwrap();
+    let campaign = "name = \"p\"\n[design]\nkind = \"full\"\nfactors = [{ name = \"t_rail\", low = 1.5, high = 2.5, unit = \"mm\" }]\n\
+                    [derived]\nt2 = \"2 * t_rail\"\n[template]\nfile = \"main.k\"\nlsdyna_parameters = \"params.k\"\n[solver]\ncommand = [\"true\"]\n";
+    std::fs::write(dir.join("c.toml"), campaign).unwrap();
+    run(&[
+        "campaign",
+        "init",
+        path(&dir.join("c.toml")),
+        "-o",
+        path(&dir.join("c")),
+    ]);
+    let params = std::fs::read_to_string(dir.join("c/points/0002/params.k")).unwrap();
+    assert_contains(
+        &params,
+        &[
+            "*PARAMETER\n",
+            "R t_rail          2.5\n",
+            "R t2              5.0\n",
+        ],
+    );
+    let deck = std::fs::read_to_string(dir.join("c/points/0002/main.k")).unwrap();
+    assert!(deck.contains("$ run 2\n"), "{deck}");
+}
