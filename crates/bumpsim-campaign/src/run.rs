@@ -86,6 +86,7 @@ pub fn run(dir: &Path, options: &RunOptions) -> Result<RunSummary> {
         state,
         executor: executor.as_mut(),
         submitted: 0,
+        outage: None,
     }
     .drive(options.progress)
 }
@@ -130,19 +131,28 @@ fn adopt(dir: &Path, state: &mut State, executor: &mut dyn Executor) -> Result<b
     Ok(true)
 }
 
+/// How long the scheduler's status queries may keep failing (a slurmctld
+/// restart, a timeout) before the controller gives up; the state stays
+/// consistent and a later `run` resumes.
+pub const MAX_SCHEDULER_OUTAGE: std::time::Duration = std::time::Duration::from_secs(300);
+
 struct Controller<'a> {
     dir: &'a Path,
     spec: &'a Spec,
     state: State,
     executor: &'a mut dyn Executor,
     submitted: usize,
+    /// Since when status queries have been failing.
+    outage: Option<std::time::Instant>,
 }
 
 impl Controller<'_> {
     fn drive(mut self, progress: bool) -> Result<RunSummary> {
         let bar = progress_bar(progress, self.state.points.len());
         loop {
-            let mut changed = self.reconcile()?;
+            let mut changed = self.reconcile_tolerant()?;
+            // a failed submission is not retried here: sbatch errors are
+            // mostly settings (partition, account, limits) to fix first
             changed |= self.submit()?;
             if changed {
                 self.state.write(self.dir)?;
@@ -171,6 +181,27 @@ impl Controller<'_> {
                 .map(|p| (p.run, p.reason.clone()))
                 .collect(),
             submitted: self.submitted,
+        }
+    }
+
+    /// [`Self::reconcile`], riding out scheduler query failures for up to
+    /// [`MAX_SCHEDULER_OUTAGE`].
+    fn reconcile_tolerant(&mut self) -> Result<bool> {
+        match self.reconcile() {
+            Ok(changed) => {
+                self.outage = None;
+                Ok(changed)
+            }
+            Err(CampaignError::Scheduler { .. })
+                if self
+                    .outage
+                    .get_or_insert_with(std::time::Instant::now)
+                    .elapsed()
+                    < MAX_SCHEDULER_OUTAGE =>
+            {
+                Ok(false)
+            }
+            Err(e) => Err(e),
         }
     }
 
