@@ -837,3 +837,64 @@ fn a_refused_sbatch_stops_the_run_with_its_message() {
     );
     assert_eq!(std::fs::read_to_string(&fake.log).unwrap(), "");
 }
+
+/// Input hashes decide what runs again: re-initialising an unchanged
+/// campaign keeps every finished point; a point whose deck changed runs
+/// again, alone; `--retry-failed` gives failed points new attempts.
+#[test]
+fn input_hashes_decide_what_runs_again() {
+    let fake = Fake::new(
+        "campaign-hashes",
+        0,
+        &Faults {
+            fail_always: &["0004"],
+            ..NO_FAULTS
+        },
+        "local",
+    );
+    let c = fake.campaign();
+    run(&["campaign", "run", path(&c)]);
+    let reinit = run(&[
+        "campaign",
+        "init",
+        path(&fake.dir.join("campaign.toml")),
+        "-o",
+        path(&c),
+    ]);
+    assert_contains(
+        &text(&reinit.stdout),
+        &["4 points (3 kept from the earlier state"],
+    );
+    // the failed point starts afresh after init (3 attempts), the done ones stay
+    let out = run(&["campaign", "run", path(&c)]);
+    assert_contains(
+        &text(&out.stdout),
+        &["3 points done, 1 failed (3 tasks submitted by this run)"],
+    );
+    // a deck edited by hand: that point alone runs again
+    let deck = c.join("points/0002/in.csv");
+    std::fs::write(
+        &deck,
+        std::fs::read_to_string(&deck)
+            .unwrap()
+            .replace("1,", "1.0,"),
+    )
+    .unwrap();
+    let out = run(&["campaign", "run", path(&c)]);
+    assert_contains(&text(&out.stdout), &["(1 tasks submitted by this run)"]);
+    assert_eq!(
+        [
+            fake.invocations("0001"),
+            fake.invocations("0002"),
+            fake.invocations("0003")
+        ],
+        [1, 2, 1]
+    );
+    assert_eq!(fake.invocations("0004"), 6);
+    let out = run(&["campaign", "run", path(&c), "--retry-failed"]);
+    assert_contains(
+        &text(&out.stdout),
+        &["3 points done, 1 failed (3 tasks submitted by this run)"],
+    );
+    assert_eq!(fake.invocations("0004"), 9);
+}
