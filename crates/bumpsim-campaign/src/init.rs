@@ -97,7 +97,7 @@ pub fn points(spec: &Spec, path: &Path) -> Result<(Vec<PointValues>, Option<usiz
     Ok((out, resolution))
 }
 
-/// The folder of run `run` (of `total`), relative to the campaign folder.
+/// The folder of run `run` (`points/0007`), relative to the campaign folder.
 pub fn point_folder(run: usize) -> String {
     format!("points/{run:04}")
 }

@@ -1,16 +1,17 @@
 //! The local executor: up to N task processes at once on this machine.
 //!
-//! A task is `sh run-point.sh POINT_FOLDER`, its job id `local:PID`. Tasks
-//! outlive a killed controller (they are not in its process group's line of
-//! fire: a SIGKILL of the controller leaves them running); a restarted
-//! controller adopts them by pid (`/proc/PID` still running `run-point.sh`)
-//! and learns their outcome from the exit marker they write.
+//! A task is `sh run-point.sh POINT_FOLDER`, its job id `local:PID`, in a
+//! process group of its own: a Ctrl-C or a kill of the controller leaves
+//! the tasks running, as on a cluster; a restarted controller adopts them
+//! by pid (`/proc/PID` still running `run-point.sh`) and learns their
+//! outcome from the exit marker they write. `campaign abort` stops them.
 
 use super::{Executor, TaskState};
 use crate::error::{CampaignError, Result};
 use crate::init::TASK_SCRIPT;
 use crate::state::Point;
 use std::collections::HashMap;
+use std::os::unix::process::CommandExt;
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::Duration;
@@ -123,6 +124,7 @@ impl Executor for Local {
         let mut ids = Vec::new();
         for p in points {
             let child = Command::new("sh")
+                .process_group(0)
                 .arg(dir.join(TASK_SCRIPT))
                 .arg(dir.join(&p.folder))
                 .stdin(Stdio::null())
