@@ -187,7 +187,10 @@ fn header_names(spec: &Spec) -> Vec<(String, Option<String>)> {
         .map(|f| (f.name.clone(), f.unit.clone()))
         .collect();
     if let Ok(order) = spec.derived_order(Path::new(SPEC_FILE)) {
-        names.extend(order.into_iter().map(|(n, _)| (n, None)));
+        names.extend(order.into_iter().map(|(n, _)| {
+            let unit = spec.unit_of(&n);
+            (n, unit)
+        }));
     }
     names
 }

@@ -279,12 +279,7 @@ pub fn design_csv(spec: &Spec, points: &[PointValues]) -> String {
     for name in points.first().map_or(Vec::new(), |p| {
         p.values.iter().map(|(n, _)| n.clone()).collect()
     }) {
-        let unit = spec
-            .design
-            .factors
-            .iter()
-            .find(|f| f.name == name)
-            .and_then(|f| f.unit.clone());
+        let unit = spec.unit_of(&name);
         csv += &match unit {
             Some(u) => format!(",{name} [{u}]"),
             None => format!(",{name}"),

@@ -23,7 +23,8 @@ pub struct Spec {
     pub name: String,
     /// The design: any kind `bumpsim doe design` makes.
     pub design: DesignSpec,
-    /// Derived quantities: name = expression over factors and other derived ones.
+    /// Derived quantities: name = expression over factors and other derived
+    /// ones, with an optional unit at the end (`"2 * t_rail [m]"`).
     #[serde(default)]
     pub derived: BTreeMap<String, String>,
     /// The deck template and the files copied beside it.
@@ -350,6 +351,7 @@ impl Spec {
         let mut todo = Vec::new();
         for (name, text) in &self.derived {
             let key = format!("derived.{name}");
+            let (text, _) = split_unit(text);
             let expr = Expr::parse(text).map_err(|e| Spec::invalid(path, &key, e.to_string()))?;
             if known.contains(name) || !is_name(name) {
                 let message = format!("'{name}' is a factor already or not a plain name");
@@ -390,6 +392,18 @@ impl Spec {
             ),
         };
         Spec::invalid(path, &format!("derived.{name}"), message)
+    }
+
+    /// The unit of a factor or derived quantity, if given.
+    pub fn unit_of(&self, name: &str) -> Option<String> {
+        match self.design.factors.iter().find(|f| f.name == name) {
+            Some(f) => f.unit.clone(),
+            None => self
+                .derived
+                .get(name)
+                .and_then(|t| split_unit(t).1)
+                .map(String::from),
+        }
     }
 
     /// The factor names, in design order.
@@ -517,6 +531,19 @@ impl Spec {
     }
 }
 
+/// A derived quantity's text split into the expression and its optional
+/// trailing unit: `"5.0e5 * m3 / 1670 [N/m]"` → (`5.0e5 * m3 / 1670`, `N/m`).
+pub fn split_unit(text: &str) -> (&str, Option<&str>) {
+    let trimmed = text.trim_end();
+    match (trimmed.strip_suffix(']'), trimmed.rfind('[')) {
+        (Some(_), Some(open)) => (
+            &trimmed[..open],
+            Some(trimmed[open + 1..trimmed.len() - 1].trim()),
+        ),
+        _ => (text, None),
+    }
+}
+
 /// Whether `name` is a plain identifier (letters, digits, `_`; not starting with a digit).
 pub fn is_name(name: &str) -> bool {
     let mut chars = name.chars();
@@ -562,7 +589,11 @@ command = ["true"]
 
     #[test]
     fn derived_are_ordered_and_unknown_names_refused() {
-        let spec = parse("[derived]\nz = \"y * 2\"\ny = \"a + b\"\n").unwrap();
+        let spec = parse("[derived]\nz = \"y * 2 [kg]\"\ny = \"a + b\"\n").unwrap();
+        assert_eq!(
+            (spec.unit_of("z").as_deref(), spec.unit_of("y")),
+            (Some("kg"), None)
+        );
         let order: Vec<String> = spec
             .derived_order(Path::new("c"))
             .unwrap()

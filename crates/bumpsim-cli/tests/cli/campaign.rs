@@ -169,6 +169,7 @@ poll_seconds = 0.3
         Command::new(env!("CARGO_BIN_EXE_bumpsim"))
             .args(["campaign", "run", path(&self.campaign())])
             .args(extra)
+            .stdout(std::process::Stdio::null())
             .spawn()
             .unwrap()
     }
