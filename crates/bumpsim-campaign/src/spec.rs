@@ -113,13 +113,17 @@ pub struct SolverSpec {
 pub struct ResponseSpec {
     /// Column name in the collected table.
     pub name: String,
-    /// `calculix` (the `.dat` of a bumpsim MSD deck), `csv` (a `time,...` table
+    /// `calculix` (the `.dat` of a bumpsim MSD deck), `calculix-dat` (any
+    /// `*NODE PRINT`/`*EL PRINT` block of any deck's `.dat`), `calculix-frd`,
+    /// `csv` (a `time,...` table
     /// with unit headers), `lsdyna-glstat`, `lsdyna-nodout`, `lsdyna-rcforc`
     /// or `lsdyna-deforc`.
     pub reader: String,
     /// The file in the point folder (`calculix`: the deck; the `.dat` beside it is read).
     pub file: String,
     /// `calculix`: `displacement` of `mass`, or `compression` x_mass − x_(mass+1);
+    /// `calculix-dat`: the block name (`displacements`, `forces`, `total force`,
+    /// `stresses`, ...); `calculix-frd`: `DATASET COMPONENT NODE`;
     /// `csv`: the column; `lsdyna-glstat`: the quantity (`kinetic energy`, ...);
     /// `lsdyna-nodout`: `NODE COLUMN` (`1001 x-disp`); `lsdyna-rcforc`:
     /// `master|slave ID x|y|z|mass`; `lsdyna-deforc`: `ELEMENT LABEL` (`12 x-force`).
@@ -127,6 +131,16 @@ pub struct ResponseSpec {
     /// `calculix`: the 1-based mass.
     #[serde(default)]
     pub mass: Option<usize>,
+    /// `calculix-dat`: the node or element id of the rows to read (absent:
+    /// the row without an id, as in `total force` blocks).
+    #[serde(default)]
+    pub entity: Option<u64>,
+    /// `calculix-dat`: the 1-based value column after the id (default 1).
+    #[serde(default)]
+    pub column: Option<usize>,
+    /// `calculix-dat`: only blocks of this set (default: any).
+    #[serde(default)]
+    pub set: Option<String>,
     /// max | min | final | max-abs.
     #[serde(default = "default_stat")]
     pub stat: String,

@@ -4,6 +4,8 @@
 //! - `calculix`: the `.dat` results of a deck written by `bumpsim export
 //!   calculix` (read by [`bumpsim_export::calculix::read_results`], SI):
 //!   `displacement` of mass i, or `compression` x_i − x_(i+1), m;
+//! - `calculix-dat`: any `*NODE PRINT` / `*EL PRINT` block of a deck's
+//!   `.dat` ([`calculix::dat`]), in the deck's units;
 //! - `calculix-frd`: a nodal result component of CalculiX's `.frd` file
 //!   (`*NODE FILE` output): `DATASET COMPONENT NODE`, e.g. `DISP D1 1`,
 //!   one value per result block, in the deck's units;
@@ -17,13 +19,15 @@
 //! A missing, unreadable, empty or non-finite output is an error, never a
 //! zero: the point is then marked failed.
 
+pub mod calculix;
 pub mod lsdyna;
 
 use crate::spec::ResponseSpec;
 use std::path::Path;
 
-const READERS: [&str; 7] = [
+const READERS: [&str; 8] = [
     "calculix",
+    "calculix-dat",
     "calculix-frd",
     "csv",
     "lsdyna-glstat",
@@ -70,8 +74,9 @@ pub fn check(r: &ResponseSpec) -> Result<(), String> {
 pub fn read(folder: &Path, r: &ResponseSpec) -> Result<f64, String> {
     let path = folder.join(&r.file);
     let history = match r.reader.as_str() {
-        "calculix" => calculix(&path, r)?,
-        "calculix-frd" => frd(&path, &r.quantity)?,
+        "calculix" => msd_deck(&path, r)?,
+        "calculix-dat" => calculix::dat(&path, r)?,
+        "calculix-frd" => calculix::frd(&path, &r.quantity)?,
         "csv" => csv_column(&path, &r.quantity)?,
         "lsdyna-glstat" => lsdyna::glstat(&path, &r.quantity)?,
         "lsdyna-nodout" => lsdyna::nodout(&path, &r.quantity)?,
@@ -98,7 +103,7 @@ pub fn statistic(values: &[f64], stat: &str) -> Result<f64, String> {
     })
 }
 
-fn calculix(deck: &Path, r: &ResponseSpec) -> Result<Vec<f64>, String> {
+fn msd_deck(deck: &Path, r: &ResponseSpec) -> Result<Vec<f64>, String> {
     let results = bumpsim_export::calculix::read_results(deck).map_err(|e| e.to_string())?;
     let mass = r.mass.unwrap_or(1);
     let x = |i: usize| {
@@ -120,66 +125,6 @@ fn calculix(deck: &Path, r: &ResponseSpec) -> Result<Vec<f64>, String> {
     }
 }
 
-/// CalculiX `.frd`: blocks `-4 DATASET`, `-5 COMPONENT` lines naming the
-/// columns, `-1 NODE values` rows, `-3` at the end; one value per block of
-/// the dataset for the node.
-fn frd(path: &Path, quantity: &str) -> Result<Vec<f64>, String> {
-    let parts: Vec<&str> = quantity.split_whitespace().collect();
-    let [dataset, component, node] = parts.as_slice() else {
-        return Err(format!(
-            "quantity '{quantity}': expected 'DATASET COMPONENT NODE'"
-        ));
-    };
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-    let (mut inside, mut columns) = (false, Vec::<String>::new());
-    let mut values = Vec::new();
-    for (i, line) in text.lines().enumerate() {
-        let w = lsdyna::words(line);
-        match w.first().map(String::as_str) {
-            Some("-4") => {
-                inside = w.get(1).is_some_and(|d| d.eq_ignore_ascii_case(dataset));
-                columns.clear();
-            }
-            Some("-5") if inside => columns.extend(w.get(1).cloned()),
-            Some("-3") => inside = false,
-            Some("-1") if inside && w.get(1).map(String::as_str) == Some(*node) => {
-                let at = columns
-                    .iter()
-                    .position(|c| c.eq_ignore_ascii_case(component))
-                    .ok_or_else(|| {
-                        format!(
-                            "{}:{}: dataset {dataset} has no component {component} ({})",
-                            path.display(),
-                            i + 1,
-                            columns.join(", ")
-                        )
-                    })?;
-                let word = w.get(2 + at).ok_or_else(|| {
-                    format!(
-                        "{}:{}: the row has no {component} value",
-                        path.display(),
-                        i + 1
-                    )
-                })?;
-                let value = word.parse::<f64>().ok().filter(|v| v.is_finite());
-                values.push(value.ok_or_else(|| {
-                    format!(
-                        "{}:{}: '{word}' is not a finite number",
-                        path.display(),
-                        i + 1
-                    )
-                })?);
-            }
-            _ => {}
-        }
-    }
-    match values.is_empty() {
-        true => Err(format!("{}: no values of '{quantity}'", path.display())),
-        false => Ok(values),
-    }
-}
-
 fn csv_column(path: &Path, column: &str) -> Result<Vec<f64>, String> {
     let table = bumpsim_io::table::Table::read(path).map_err(|e| e.to_string())?;
     Ok(table
@@ -192,59 +137,6 @@ fn csv_column(path: &Path, column: &str) -> Result<Vec<f64>, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Two result blocks as CalculiX 2.20 writes them (`*NODE FILE` of the
-    /// exported 3-DOF deck; the second block's m1 row made negative so the
-    /// numbers touch).
-    const FRD: &str = "    1PSTEP                         1           1           1          
-  100CL  101 1.00000E-04           3                     1    1           1
- -4  DISP        4    1
- -5  D1          1    2    1    0
- -5  D2          1    2    2    0
- -5  D3          1    2    3    0
- -5  ALL         1    2    0    0    1ALL
- -1         1 0.00000E+00 0.00000E+00 0.00000E+00
- -1         2 0.00000E+00 0.00000E+00 0.00000E+00
- -3
-    1PSTEP                         2           2           1          
-  100CL  102 2.00000E-04           3                     1    2           1
- -4  DISP        4    1
- -5  D1          1    2    1    0
- -5  D2          1    2    2    0
- -5  D3          1    2    3    0
- -5  ALL         1    2    0    0    1ALL
- -1         1-1.35782E-01 2.50000E-02 0.00000E+00
- -1         2 1.35470E-01 0.00000E+00 0.00000E+00
- -3
- 9999
-";
-
-    #[test]
-    fn frd_components_of_one_node() {
-        let dir = std::env::temp_dir().join(format!("bumpsim-frd-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("deck.frd");
-        std::fs::write(&path, FRD).unwrap();
-        assert_eq!(frd(&path, "DISP D1 1").unwrap(), [0.0, -0.135782]);
-        assert_eq!(frd(&path, "DISP D2 1").unwrap(), [0.0, 0.025]);
-        assert_eq!(frd(&path, "DISP D1 2").unwrap(), [0.0, 0.13547]);
-        assert!(
-            frd(&path, "DISP D9 1")
-                .unwrap_err()
-                .contains("no component D9")
-        );
-        assert!(
-            frd(&path, "STRESS SXX 1")
-                .unwrap_err()
-                .contains("no values")
-        );
-        std::fs::write(&path, FRD.replace("2.50000E-02", "nan")).unwrap();
-        assert!(
-            frd(&path, "DISP D2 1")
-                .unwrap_err()
-                .contains("not a finite number")
-        );
-    }
 
     #[test]
     fn statistics_refuse_empty_and_non_finite_histories() {

@@ -222,14 +222,17 @@ fn the_bundled_calculix_campaign_runs_locally_and_fits_like_doe_fit() {
         &["x1_max [m]: R²", "d12_max [m]: R²", "table.csv (9 points)"],
     );
     assert!(c.join("results/report/index.html").exists());
-    // the .dat (6 significant digits) and .frd (5) readers agree on x1's maximum
+    // the .dat (7 significant digits) and .frd (6) readers agree on x1's
+    // maximum; the bumpsim-deck and the generic .dat readers exactly
     let table = std::fs::read_to_string(c.join("results/table.csv")).unwrap();
     let header: Vec<&str> = table.lines().next().unwrap().split(',').collect();
     let dat = header.iter().position(|h| *h == "x1_max [m]").unwrap();
     let frd = header.iter().position(|h| *h == "x1_max_frd [m]").unwrap();
+    let generic = header.iter().position(|h| *h == "x1_max_dat [m]").unwrap();
     for line in table.lines().skip(1) {
         let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
         assert!((v[dat] - v[frd]).abs() <= 1e-5 * v[dat].abs(), "{line}");
+        assert_eq!(v[dat], v[generic], "the two .dat readers: {line}");
     }
     let command = std::fs::read_to_string(c.join("results/fit-command.txt")).unwrap();
     let mut args: Vec<String> = command
