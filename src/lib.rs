@@ -16,6 +16,7 @@
 //! | [`export`] | bumpsim-export | LS-DYNA and CalculiX decks |
 //! | [`planar`] | bumpsim-planar | the planar car with yaw: angled, offset, corner and pole impacts |
 //! | [`report`] | bumpsim-report | SVG plots and self-contained HTML reports |
+//! | [`campaign`] | bumpsim-campaign | campaigns of FE runs: templates, local and Slurm executors, collection |
 //!
 //! and [`prelude`] brings the main types of all of them into scope. Units
 //! are SI throughout (kg, m, s, N). `examples/identify.rs` runs the main job
@@ -30,6 +31,7 @@
 
 #![forbid(unsafe_code)]
 
+pub use bumpsim_campaign as campaign;
 pub use bumpsim_core as core;
 pub use bumpsim_doe as doe;
 pub use bumpsim_export as export;
@@ -42,6 +44,7 @@ pub use bumpsim_signal as signal;
 
 /// The main types of every bumpsim crate.
 pub mod prelude {
+    pub use bumpsim_campaign::spec::Spec as CampaignSpec;
     pub use bumpsim_core::prelude::*;
     pub use bumpsim_doe::{Design, DesignKind, DesignOptions, Factor, Fit, ModelFile};
     pub use bumpsim_export::{CalculixOptions, LsDynaOptions, UnitSystem};

@@ -4,10 +4,10 @@ use crate::{Folder, write};
 use anyhow::{Context, Result, anyhow, bail};
 use bumpsim_doe::data::Data;
 use bumpsim_doe::design::{self, DesignKind, DesignOptions};
-use bumpsim_doe::model::{Factor, ModelFile, Response};
+use bumpsim_doe::model::{Factor, ModelFile};
 use bumpsim_doe::reachable::{LinearMap, cell};
-use bumpsim_doe::regression::{fit, terms};
 use bumpsim_doe::stiffness::Curve;
+use bumpsim_doe::table_fit::{TableFitSpec, fit_table};
 use bumpsim_doe::text::{prediction_text, reach_text, stiffness_text};
 use bumpsim_report::html::Html;
 use clap::Subcommand;
@@ -190,38 +190,32 @@ fn make_design(args: &DesignArgs) -> Result<()> {
 fn run_fit(args: &FitArgs) -> Result<()> {
     let path = args.data.as_path();
     let data = Data::read(path)?;
-    let (factors, coded) = data
-        .coded(&args.factors, &args.low, &args.high)
-        .with_context(|| path.display().to_string())?;
-    let names: Vec<String> = factors.iter().map(|f| f.name.clone()).collect();
-    let model_terms = terms(factors.len(), args.interactions, args.squares);
-    let mut model = ModelFile {
-        factors: factors.clone(),
-        responses: Vec::new(),
+    let spec = TableFitSpec {
+        factors: args.factors.clone(),
+        responses: args.responses.clone(),
+        low: args.low.clone(),
+        high: args.high.clone(),
+        interactions: args.interactions,
+        squares: args.squares,
     };
+    let (model, fits) = fit_table(&data, &spec).with_context(|| path.display().to_string())?;
     let mut page = Html::new(&format!("bumpsim DOE fit: {}", path.display()));
     let mut figures = Vec::new();
-    for response in &args.responses {
-        let y = data
-            .values(response)
-            .with_context(|| path.display().to_string())?;
-        let unit = data.unit(response);
-        let f = fit(&coded, &y, &model_terms, &names)
-            .with_context(|| format!("response '{response}'"))?;
-        let text = bumpsim_doe::text::fit_text(response, unit.as_deref(), &f);
+    for f in &fits {
+        let (response, unit) = (f.name.as_str(), f.unit.as_deref());
+        let text = bumpsim_doe::text::fit_text(response, unit, &f.fit);
         print!("{text}");
         page.heading(&format!(
             "{response}{}",
-            unit.as_deref().map_or(String::new(), |u| format!(" [{u}]"))
+            unit.map_or(String::new(), |u| format!(" [{u}]"))
         ));
         page.preformatted(&text);
         figures.extend(bumpsim_report::doe::fit_plots(
             response,
-            unit.as_deref().unwrap_or("-"),
-            &f,
-            &y,
+            unit.unwrap_or("-"),
+            &f.fit,
+            &f.observed,
         )?);
-        model.responses.push(Response::from_fit(response, unit, &f));
     }
     if let Some(path) = &args.json {
         write(path, &serde_json::to_string_pretty(&model)?)?;

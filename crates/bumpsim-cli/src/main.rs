@@ -11,6 +11,7 @@
 //! is checked against them (and for file/folder kind) before the command
 //! runs, and written atomically.
 
+mod campaign;
 mod doe;
 mod export;
 mod fe;
@@ -67,6 +68,9 @@ enum Command {
     /// FE coupling: a bumper mesh coupled to the MSD car, run in CalculiX.
     #[command(subcommand)]
     Fe(fe::Command),
+    /// Campaigns: a DOE whose points are FE runs, run locally or on Slurm, collected and regressed.
+    #[command(subcommand)]
+    Campaign(campaign::Command),
 }
 
 /// Parses a count of at least 1 and at most `MAX` (a documented resource
@@ -112,6 +116,7 @@ fn main() -> ExitCode {
         Command::Synth(args) => impact::run_synth(&args),
         Command::Doe(command) => doe::run(&command),
         Command::Predict(args) => identify::run_predict(&args),
+        Command::Campaign(command) => campaign::run(&command),
     };
     let warnings = WARNINGS.load(Ordering::Relaxed);
     match result {

@@ -20,9 +20,10 @@ const OUTPUT_IDS: [&str; 8] = [
     "iso_mme",
 ];
 
-/// Output ids that name folders (`output` only for `synth`).
+/// Output ids that name folders (`output` only for `synth` and `campaign init`).
 fn is_folder_output(command: &str, id: &str) -> bool {
-    matches!(id, "report" | "plot" | "iso_mme" | "work") || (command == "synth" && id == "output")
+    matches!(id, "report" | "plot" | "iso_mme" | "work")
+        || (matches!(command, "synth" | "init") && id == "output")
 }
 
 /// The result files of a simulation command (`impact`, `planar`).

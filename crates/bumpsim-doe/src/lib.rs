@@ -8,6 +8,7 @@
 //! - [`model`]: model files and prediction with intervals;
 //! - [`stiffness`]: the slope of a force–displacement curve;
 //! - [`reachable`]: the reachable region of two linear responses;
+//! - [`table_fit`]: the regression of a whole table (`doe fit`, campaigns);
 //! - [`text`]: human-readable summaries of fits.
 //!
 //! A 2² factorial, its runs in physical units, a fitted main-effect model
@@ -37,6 +38,7 @@ pub mod model;
 pub mod reachable;
 pub mod regression;
 pub mod stiffness;
+pub mod table_fit;
 pub mod text;
 
 pub use data::{Data, DataError};

@@ -1,7 +1,7 @@
 //! Stable-Rust fuzzing of the readers (proptest; no cargo fuzz, no nightly).
 //!
 //! Each target (CSV, EV5, ISO-MME, car/bumper/planar car TOML, study,
-//! model JSON, CalculiX results, the FE bumper mesh and its .dat) mutates seed files (tests/fuzz/ and examples/identify/) with a
+//! model JSON, CalculiX results, the FE bumper mesh and its .dat, campaign file and state) mutates seed files (tests/fuzz/ and examples/identify/) with a
 //! byte strategy (flips, inserts, deletes, truncation) and a structure
 //! strategy (a line or number replaced by hostile values: NaN, inf, 1e308,
 //! huge integers, empty), writes the result to a scratch file and runs the
@@ -336,4 +336,26 @@ fn fuzz_fe_bumper_mesh_and_dat() {
     fuzz("fe-dat", seed("tests/fuzz/fe.dat"), |_, bytes| {
         let _ = bumpsim_fe::dat::parse(&String::from_utf8_lossy(bytes), Path::new("fe.dat"));
     });
+}
+
+#[test]
+fn fuzz_campaign_file_and_state() {
+    fuzz(
+        "campaign-file",
+        seed("examples/campaign/campaign.toml"),
+        |path, bytes| {
+            let _ = bumpsim_campaign::spec::Spec::parse(&String::from_utf8_lossy(bytes), path);
+        },
+    );
+    let dir = scratch("campaign-state-setup");
+    fuzz(
+        "campaign-state",
+        seed("tests/fuzz/campaign-state.toml"),
+        |_, bytes| {
+            std::fs::write(dir.join(bumpsim_campaign::state::STATE_FILE), bytes).unwrap();
+            if let Ok(state) = bumpsim_campaign::state::State::read(&dir) {
+                let _ = state.counts();
+            }
+        },
+    );
 }

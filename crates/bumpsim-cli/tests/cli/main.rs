@@ -1,11 +1,13 @@
 //! Runs the real `bumpsim` binary on the bundled example and on malformed
 //! inputs written here, and checks exit codes and messages.
 //!
-//! One test binary (ripgrep's layout): one module per command, plus
+//! One test binary (ripgrep's layout): one module per command (`campaign`:
+//! local and real-Slurm campaigns), plus
 //! `planar` (the planar car), `formats` (ISO-MME and EV5 through the commands, pyisomme), `robustness`
 //! (hostile inputs, kills mid-write) and `fuzz` (the readers under mutated
 //! inputs; `BUMPSIM_FUZZ_SECONDS` per target).
 
+mod campaign;
 mod doe;
 mod export;
 mod fe;

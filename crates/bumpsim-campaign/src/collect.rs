@@ -1,0 +1,300 @@
+//! `campaign status` and `campaign collect`.
+//!
+//! Collecting reads every done point's responses again (reading twice is
+//! harmless: the same files give the same numbers), appends them to the
+//! design table (`results/table.csv`, the format `bumpsim doe fit` reads:
+//! `name [unit]` headers, one row per point, run order) and fits the
+//! regression with the very code of `doe fit`
+//! ([`bumpsim_doe::table_fit::fit_table`]): `results/model.json`, the HTML
+//! report `results/report/index.html` and `results/fit-command.txt`, the
+//! `bumpsim doe fit` command that gives the same model from the table.
+//! Points that failed, are not done, or whose output is now unreadable are
+//! left out of the table and listed; never filled with zeros.
+
+use crate::error::{CampaignError, Result};
+use crate::init::{self, SPEC_FILE};
+use crate::readers;
+use crate::run::spec_of;
+use crate::spec::Spec;
+use crate::state::{State, Status};
+use bumpsim_doe::data::Data;
+use bumpsim_doe::table_fit::{ResponseFit, TableFitSpec, fit_table};
+use bumpsim_io::output::Outputs;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// The status of a campaign as text: counts, in-flight jobs, failures.
+pub fn status(dir: &Path) -> Result<String> {
+    let state = State::read(dir)?;
+    let [pending, submitted, running, done, failed] = state.counts();
+    let mut text = format!(
+        "campaign '{}': {} points: {done} done, {failed} failed, {running} running, {submitted} submitted, {pending} pending (state of {})\n",
+        state.campaign,
+        state.points.len(),
+        state.updated
+    );
+    let _ = match crate::state::lock_holder(dir) {
+        Some((holder, false)) => writeln!(text, "  controller: {holder}"),
+        Some((holder, true)) => {
+            writeln!(text, "  controller: none running (stale lock of {holder})")
+        }
+        None => writeln!(text, "  controller: none running"),
+    };
+    for p in state.points.iter().filter(|p| p.status.in_flight()) {
+        let _ = writeln!(
+            text,
+            "  run {}: {} as {} since {} (attempt {})",
+            p.run,
+            p.status.name(),
+            p.job,
+            p.submitted,
+            p.attempts
+        );
+    }
+    for p in state.points.iter().filter(|p| {
+        p.status == Status::Failed || (p.status == Status::Pending && !p.reason.is_empty())
+    }) {
+        let _ = writeln!(text, "  run {}: {}: {}", p.run, p.status.name(), p.reason);
+    }
+    Ok(text)
+}
+
+/// What `collect` did.
+#[derive(Debug, Clone)]
+pub struct Collected {
+    /// Rows in the table.
+    pub rows: usize,
+    /// Points left out, with why.
+    pub missing: Vec<(usize, String)>,
+    /// The regression's summary text (empty without responses to regress).
+    pub fit_text: String,
+    /// The `doe fit` command equal to the regression.
+    pub fit_command: String,
+}
+
+/// Collects campaign folder `dir` into `dir/results`.
+pub fn collect(dir: &Path) -> Result<Collected> {
+    let spec = spec_of(dir)?;
+    let state = State::read(dir)?;
+    let (points, _) = init::points(&spec, &dir.join(SPEC_FILE))?;
+    if points.len() != state.points.len() {
+        return Err(CampaignError::State {
+            path: dir.join(crate::state::STATE_FILE),
+            message: format!(
+                "{} points, but the design of {SPEC_FILE} has {}: the campaign file was edited; run `bumpsim campaign init` again",
+                state.points.len(),
+                points.len()
+            ),
+        });
+    }
+    let mut csv = table_header(&spec);
+    let mut rows = 0;
+    let mut missing = Vec::new();
+    for (p, values) in state.points.iter().zip(&points) {
+        if p.status != Status::Done {
+            missing.push((
+                p.run,
+                format!("{}{}", p.status.name(), reason_suffix(&p.reason)),
+            ));
+            continue;
+        }
+        match read_row(dir, &spec, p.run, &p.folder) {
+            Ok(responses) => {
+                csv += &table_row(p.run, values, &responses);
+                rows += 1;
+            }
+            Err(e) => missing.push((p.run, e.to_string())),
+        }
+    }
+    if rows == 0 {
+        return Err(CampaignError::Collect(format!(
+            "{}: no point is done yet: nothing to collect (bumpsim campaign status {0})",
+            dir.display()
+        )));
+    }
+    let (fit_text, fit_command, files) = regression(&spec, &csv)?;
+    write_results(dir, &csv, &files)?;
+    Ok(Collected {
+        rows,
+        missing,
+        fit_text,
+        fit_command,
+    })
+}
+
+fn reason_suffix(reason: &str) -> String {
+    match reason.is_empty() {
+        true => String::new(),
+        false => format!(": {reason}"),
+    }
+}
+
+/// The point's responses, then its identified parameters.
+fn read_row(dir: &Path, spec: &Spec, run: usize, folder: &str) -> Result<Vec<f64>> {
+    let folder = dir.join(folder);
+    let mut row = spec
+        .responses
+        .iter()
+        .map(|r| {
+            readers::read(&folder, r).map_err(|message| CampaignError::Output {
+                run,
+                response: r.name.clone(),
+                message,
+            })
+        })
+        .collect::<Result<Vec<f64>>>()?;
+    if let Some(identify) = &spec.identify {
+        let parameters = crate::identify::identify_point(&folder, identify).map_err(|message| {
+            CampaignError::Output {
+                run,
+                response: "identification".into(),
+                message,
+            }
+        })?;
+        row.extend(parameters);
+    }
+    Ok(row)
+}
+
+/// `run,standard order,<factors and derived> [unit],<coded>,<responses> [unit]`.
+fn table_header(spec: &Spec) -> String {
+    let mut out = String::from("run,standard order");
+    for (name, unit) in header_names(spec) {
+        out += &match unit {
+            Some(u) => format!(",{name} [{u}]"),
+            None => format!(",{name}"),
+        };
+    }
+    spec.design
+        .factors
+        .iter()
+        .for_each(|f| out += &format!(",{} (coded)", f.name));
+    for (name, unit) in spec.response_columns() {
+        out += &match unit {
+            Some(u) => format!(",{name} [{u}]"),
+            None => format!(",{name}"),
+        };
+    }
+    out + "\n"
+}
+
+/// Factor and derived columns with units, in the design table's order.
+fn header_names(spec: &Spec) -> Vec<(String, Option<String>)> {
+    let mut names: Vec<(String, Option<String>)> = spec
+        .design
+        .factors
+        .iter()
+        .map(|f| (f.name.clone(), f.unit.clone()))
+        .collect();
+    if let Ok(order) = spec.derived_order(Path::new(SPEC_FILE)) {
+        names.extend(order.into_iter().map(|(n, _)| {
+            let unit = spec.unit_of(&n);
+            (n, unit)
+        }));
+    }
+    names
+}
+
+fn table_row(run: usize, p: &init::PointValues, responses: &[f64]) -> String {
+    let mut row = format!("{run},{}", p.standard);
+    p.values.iter().for_each(|(_, v)| row += &format!(",{v}"));
+    p.coded.iter().for_each(|z| row += &format!(",{z}"));
+    responses.iter().for_each(|v| row += &format!(",{v}"));
+    row + "\n"
+}
+
+/// The fit specification of a campaign: its factors at their design
+/// levels, the regressed responses, its terms.
+pub fn fit_spec(spec: &Spec) -> TableFitSpec {
+    TableFitSpec {
+        factors: spec.factor_names(),
+        responses: spec.regressed(),
+        low: spec.design.factors.iter().map(|f| f.low).collect(),
+        high: spec.design.factors.iter().map(|f| f.high).collect(),
+        interactions: spec.regress.interactions,
+        squares: spec.regress.squares,
+    }
+}
+
+/// The `bumpsim doe fit` command line equal to the campaign's regression.
+pub fn fit_command(spec: &TableFitSpec) -> String {
+    let join = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
+    let mut command = format!(
+        "bumpsim doe fit results/table.csv --factors {} --responses {} --low {} --high {}",
+        spec.factors.join(","),
+        spec.responses.join(","),
+        join(&spec.low),
+        join(&spec.high)
+    );
+    if spec.interactions {
+        command += " --interactions";
+    }
+    if spec.squares {
+        command += " --squares";
+    }
+    command
+}
+
+type Files = Vec<(String, String)>;
+
+/// Fits the table: summary text, the equal `doe fit` command, and the
+/// model JSON and report files.
+fn regression(spec: &Spec, csv: &str) -> Result<(String, String, Files)> {
+    let fit = fit_spec(spec);
+    let command = fit_command(&fit);
+    let mut files = vec![("fit-command.txt".to_string(), command.clone() + "\n")];
+    if fit.responses.is_empty() {
+        return Ok((String::new(), command, files));
+    }
+    let data = Data::parse(csv, Path::new("results/table.csv"))
+        .map_err(|e| CampaignError::Collect(e.to_string()))?;
+    let (model, fits) = fit_table(&data, &fit)?;
+    let json =
+        serde_json::to_string_pretty(&model).map_err(|e| CampaignError::Collect(e.to_string()))?;
+    files.push(("model.json".into(), json));
+    let (text, report) = report(spec, &fits)?;
+    files.extend(report);
+    Ok((text, command, files))
+}
+
+/// The HTML report of the regression (the `doe fit --report` page).
+fn report(spec: &Spec, fits: &[ResponseFit]) -> Result<(String, Files)> {
+    let mut page =
+        bumpsim_report::html::Html::new(&format!("bumpsim campaign '{}': regression", spec.name));
+    let mut all = String::new();
+    let mut files = Vec::new();
+    for f in fits {
+        let unit = f.unit.as_deref();
+        let text = bumpsim_doe::text::fit_text(&f.name, unit, &f.fit);
+        all += &text;
+        page.heading(&format!(
+            "{}{}",
+            f.name,
+            unit.map_or(String::new(), |u| format!(" [{u}]"))
+        ));
+        page.preformatted(&text);
+        let plots =
+            bumpsim_report::doe::fit_plots(&f.name, unit.unwrap_or("-"), &f.fit, &f.observed)
+                .map_err(|e| CampaignError::Report(e.to_string()))?;
+        for (name, svg, caption) in plots {
+            page.figure(&svg, &caption);
+            files.push((format!("report/{name}"), svg));
+        }
+    }
+    files.push(("report/index.html".into(), page.finish()));
+    Ok((all, files))
+}
+
+/// Writes `results/` whole (staged, then moved into place).
+fn write_results(dir: &Path, csv: &str, files: &Files) -> Result<()> {
+    let mut guard = Outputs::new();
+    guard.input(&dir.join("points"));
+    guard.input(&dir.join(SPEC_FILE));
+    let staged = guard.stage_folder(&dir.join("results"))?;
+    staged.write("table.csv", csv.as_bytes())?;
+    for (name, text) in files {
+        staged.write(name, text.as_bytes())?;
+    }
+    staged.commit(&guard)?;
+    Ok(())
+}

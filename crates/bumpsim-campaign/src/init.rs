@@ -1,0 +1,323 @@
+//! `campaign init`: the design, one folder per point with its rendered deck,
+//! the task script and the state file, in a new campaign folder:
+//!
+//! ```text
+//! DIR/campaign.toml   the campaign file (a copy; `run`, `status`, `collect` read it)
+//! DIR/design.csv      the design table (doe design's format)
+//! DIR/run-point.sh    runs the solver of one point and records its exit status
+//! DIR/points/0001/    the rendered deck and copied files of run 1, ...
+//! DIR/state.toml      the state of every point (crate::state)
+//! ```
+//!
+//! Everything is checked first (campaign file, template placeholders,
+//! solver on PATH); the folder is staged and appears whole
+//! ([`bumpsim_io::output::StagedFolder`]). Re-initialising over an existing
+//! campaign keeps the state of every point whose inputs are unchanged
+//! (same hash), so a finished point is never run again.
+
+use crate::error::{CampaignError, Result};
+use crate::spec::{MAX_POINTS, Spec, find_program};
+use crate::state::{Lock, Point, STATE_FILE, State, Status, input_hash, now};
+use crate::template::{Template, lsdyna_parameters};
+use bumpsim_doe::design;
+use bumpsim_io::output::{Outputs, StagedFolder};
+use std::path::{Path, PathBuf};
+
+/// The copy of the campaign file in the campaign folder.
+pub const SPEC_FILE: &str = "campaign.toml";
+/// The task script in the campaign folder.
+pub const TASK_SCRIPT: &str = "run-point.sh";
+/// The file a task writes when the solver ends: `exit N`.
+pub const EXIT_MARKER: &str = ".bumpsim-exit";
+
+/// One design point's values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointValues {
+    /// Standard order (1-based).
+    pub standard: usize,
+    /// Coded factor levels.
+    pub coded: Vec<f64>,
+    /// Factor and derived values by name, factors first.
+    pub values: Vec<(String, f64)>,
+}
+
+/// What `init` did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InitSummary {
+    /// Points of the design.
+    pub points: usize,
+    /// Points kept from an earlier state: done or in flight, inputs unchanged.
+    pub kept: usize,
+    /// The design's resolution (fractions).
+    pub resolution: Option<usize>,
+}
+
+/// The design points of `spec` in run order, with derived values.
+pub fn points(spec: &Spec, path: &Path) -> Result<(Vec<PointValues>, Option<usize>)> {
+    let names: Vec<String> = spec.factor_names();
+    let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+    let (d, resolution) = design::make(spec.design_kind(path)?, &refs, &spec.design_options())?;
+    if d.runs.len() > MAX_POINTS {
+        return Err(CampaignError::Invalid {
+            path: path.into(),
+            key: "design".into(),
+            message: format!(
+                "{} points: at most {MAX_POINTS} (docs/limits.md)",
+                d.runs.len()
+            ),
+        });
+    }
+    let derived = spec.derived_order(path)?;
+    let order = d.order(spec.design.randomise, spec.design.seed);
+    let mut out = Vec::with_capacity(order.len());
+    for &i in &order {
+        let coded = d.runs[i].clone();
+        let mut values: Vec<(String, f64)> = spec
+            .design
+            .factors
+            .iter()
+            .zip(&coded)
+            .map(|(f, z)| (f.name.clone(), f.physical(*z)))
+            .collect();
+        for (name, expr) in &derived {
+            let lookup = |n: &str| values.iter().find(|(k, _)| k == n).map(|(_, v)| *v);
+            let value = expr.eval(&lookup).map_err(|e| CampaignError::Invalid {
+                path: path.into(),
+                key: format!("derived.{name}"),
+                message: format!("run {}: {e}", out.len() + 1),
+            })?;
+            values.push((name.clone(), value));
+        }
+        out.push(PointValues {
+            standard: i + 1,
+            coded,
+            values,
+        });
+    }
+    Ok((out, resolution))
+}
+
+/// The folder of run `run` (`points/0007`), relative to the campaign folder.
+pub fn point_folder(run: usize) -> String {
+    format!("points/{run:04}")
+}
+
+/// The input files of a point (hashed): the deck, copied files, the parameter include.
+pub fn input_files(spec: &Spec) -> Vec<String> {
+    let mut files = vec![spec.deck_name()];
+    files.extend(
+        spec.template
+            .files
+            .iter()
+            .filter_map(|f| f.file_name())
+            .map(|n| n.to_string_lossy().into_owned()),
+    );
+    files.extend(spec.template.lsdyna_parameters.clone());
+    if spec.identify.is_some() {
+        files.push(crate::identify::STUDY_FILE.into());
+    }
+    files
+}
+
+/// Checks that the solver's program can be found (relative paths from `dir`).
+pub fn check_solver(spec: &Spec, dir: &Path) -> Result<PathBuf> {
+    let program = &spec.solver.command[0];
+    find_program(program, dir).ok_or_else(|| CampaignError::Program {
+        what: "solver".into(),
+        program: program.clone(),
+        hint: "install it, load its module, or give its full path in solver.command".into(),
+    })
+}
+
+/// Creates (or refreshes) campaign folder `dir` from campaign file `path`.
+pub fn init(path: &Path, dir: &Path) -> Result<InitSummary> {
+    let spec = Spec::read(path)?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    let templates = read_templates(&spec, base)?;
+    check_solver(&spec, base)?;
+    let (points, resolution) = points(&spec, path)?;
+    // re-initialising a campaign: not while a controller runs it
+    let _lock = match dir.join(STATE_FILE).exists() {
+        true => Some(Lock::acquire(dir)?),
+        false => None,
+    };
+    let old = State::read(dir).ok();
+    let mut guard = Outputs::new();
+    guard.input(path);
+    guard.input(&base.join(&spec.template.file));
+    if let Some(identify) = &spec.identify {
+        guard.input(&base.join(&identify.study));
+    }
+    let staged = guard.stage_folder(dir)?;
+    let campaign_text = std::fs::read(path).map_err(|e| crate::error::read_error(path, e))?;
+    staged.write(SPEC_FILE, &campaign_text)?;
+    staged.write("design.csv", design_csv(&spec, &points).as_bytes())?;
+    staged.write(TASK_SCRIPT, task_script(&spec.solver.command).as_bytes())?;
+    let templates = (&templates.0, templates.1.as_ref());
+    let state = stage_points(&staged, &spec, base, templates, &points, old.as_ref())?;
+    let kept = state
+        .points
+        .iter()
+        .filter(|p| p.status != Status::Pending)
+        .count();
+    staged.commit(&guard)?;
+    Ok(InitSummary {
+        points: points.len(),
+        kept,
+        resolution,
+    })
+}
+
+/// The deck template and the optional study template, their placeholders checked.
+fn read_templates(spec: &Spec, base: &Path) -> Result<(Template, Option<Template>)> {
+    let mut known = spec.factor_names();
+    known.extend(spec.derived.keys().cloned());
+    let template = Template::read(&base.join(&spec.template.file))?;
+    template.check(&known)?;
+    let study = match &spec.identify {
+        Some(identify) => {
+            let study = Template::read(&base.join(&identify.study))?;
+            study.check(&known)?;
+            Some(study)
+        }
+        None => None,
+    };
+    Ok((template, study))
+}
+
+/// Writes every point folder into the staging and the state beside them.
+fn stage_points(
+    staged: &StagedFolder,
+    spec: &Spec,
+    base: &Path,
+    templates: (&Template, Option<&Template>),
+    points: &[PointValues],
+    old: Option<&State>,
+) -> Result<State> {
+    let mut state = State {
+        format: 1,
+        campaign: spec.name.clone(),
+        updated: now(),
+        points: Vec::new(),
+    };
+    let files = input_files(spec);
+    for (i, p) in points.iter().enumerate() {
+        let folder = point_folder(i + 1);
+        write_point(staged, spec, base, templates, p, &folder, i + 1)?;
+        let hash = input_hash(&staged.path().join(&folder), &files, &spec.solver.command)?;
+        state.points.push(carry_over(old, i + 1, &folder, hash));
+    }
+    state.write(staged.path())?;
+    Ok(state)
+}
+
+/// The point's state: an earlier done or in-flight point with the same
+/// input hash is kept (its task may still be running: it is adopted, not
+/// started twice), anything else starts pending.
+fn carry_over(old: Option<&State>, run: usize, folder: &str, hash: String) -> Point {
+    let keep =
+        |p: &&Point| p.input_hash == hash && (p.status == Status::Done || p.status.in_flight());
+    if let Some(p) = old.and_then(|s| s.points.get(run - 1)).filter(keep) {
+        return p.clone();
+    }
+    Point {
+        run,
+        folder: folder.into(),
+        status: Status::Pending,
+        attempts: 0,
+        job: String::new(),
+        input_hash: hash,
+        submitted: String::new(),
+        finished: String::new(),
+        reason: String::new(),
+    }
+}
+
+fn write_point(
+    staged: &StagedFolder,
+    spec: &Spec,
+    base: &Path,
+    (template, study): (&Template, Option<&Template>),
+    p: &PointValues,
+    folder: &str,
+    run: usize,
+) -> Result<()> {
+    let value = |n: &str| match n {
+        "run" => Some(run as f64),
+        _ => p.values.iter().find(|(k, _)| k == n).map(|(_, v)| *v),
+    };
+    staged.write(
+        &format!("{folder}/{}", spec.deck_name()),
+        template.render(&value).as_bytes(),
+    )?;
+    for file in &spec.template.files {
+        let source = base.join(file);
+        let bytes = std::fs::read(&source).map_err(|e| crate::error::read_error(&source, e))?;
+        let name = file
+            .file_name()
+            .map_or("file".into(), |n| n.to_string_lossy().into_owned());
+        staged.write(&format!("{folder}/{name}"), &bytes)?;
+    }
+    if let Some(study) = study {
+        let path = format!("{folder}/{}", crate::identify::STUDY_FILE);
+        staged.write(&path, study.render(&value).as_bytes())?;
+    }
+    if let Some(name) = &spec.template.lsdyna_parameters {
+        staged.write(
+            &format!("{folder}/{name}"),
+            lsdyna_parameters(&p.values).as_bytes(),
+        )?;
+    }
+    Ok(())
+}
+
+/// The design table: `run`, `standard order`, factors (physical, with
+/// units), derived values, coded factors: what `doe design` writes, plus
+/// units and derived columns.
+pub fn design_csv(spec: &Spec, points: &[PointValues]) -> String {
+    let mut csv = String::from("run,standard order");
+    for name in points.first().map_or(Vec::new(), |p| {
+        p.values.iter().map(|(n, _)| n.clone()).collect()
+    }) {
+        let unit = spec.unit_of(&name);
+        csv += &match unit {
+            Some(u) => format!(",{name} [{u}]"),
+            None => format!(",{name}"),
+        };
+    }
+    spec.design
+        .factors
+        .iter()
+        .for_each(|f| csv += &format!(",{} (coded)", f.name));
+    csv.push('\n');
+    for (i, p) in points.iter().enumerate() {
+        csv += &format!("{},{}", i + 1, p.standard);
+        p.values.iter().for_each(|(_, v)| csv += &format!(",{v}"));
+        p.coded.iter().for_each(|z| csv += &format!(",{z}"));
+        csv.push('\n');
+    }
+    csv
+}
+
+/// The task script: `run-point.sh POINT_FOLDER` runs the solver there
+/// (output in `solver.log`) and records `exit N` in [`EXIT_MARKER`]
+/// atomically, so that a controller (this one or a restarted one) learns
+/// the outcome even when it was not the solver's parent.
+pub fn task_script(command: &[String]) -> String {
+    let words: Vec<String> = command.iter().map(|w| quote(w)).collect();
+    format!(
+        "#!/bin/sh\n# written by bumpsim campaign init: runs one point's solver in its folder\n\
+         cd \"$1\" || exit 97\n\
+         rm -f {EXIT_MARKER} {EXIT_MARKER}.tmp\n\
+         {} > solver.log 2>&1\n\
+         status=$?\n\
+         printf 'exit %s\\n' \"$status\" > {EXIT_MARKER}.tmp && mv -f {EXIT_MARKER}.tmp {EXIT_MARKER}\n\
+         exit \"$status\"\n",
+        words.join(" ")
+    )
+}
+
+/// A word quoted for `sh` (single quotes).
+pub fn quote(word: &str) -> String {
+    format!("'{}'", word.replace('\'', "'\\''"))
+}

@@ -1,0 +1,651 @@
+//! The campaign file (`CAMPAIGN.toml`, docs/campaign.md): the design, the
+//! deck template, derived quantities, the solver command, the responses to
+//! read back per point, the regression and the executor settings. Parsed
+//! with serde (unknown keys refused) and validated before anything is
+//! written or submitted.
+
+use crate::error::{CampaignError, Result, read_error};
+use crate::expr::Expr;
+use bumpsim_doe::model::Factor;
+use bumpsim_doe::{DesignKind, DesignOptions};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Most points a campaign may have (docs/limits.md).
+pub const MAX_POINTS: usize = 100_000;
+
+/// A parsed, validated campaign file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Spec {
+    /// Campaign name (job names, reports).
+    pub name: String,
+    /// The design: any kind `bumpsim doe design` makes.
+    pub design: DesignSpec,
+    /// Derived quantities: name = expression over factors and other derived
+    /// ones, with an optional unit at the end (`"2 * t_rail [m]"`).
+    #[serde(default)]
+    pub derived: BTreeMap<String, String>,
+    /// The deck template and the files copied beside it.
+    pub template: TemplateSpec,
+    /// The solver command.
+    pub solver: SolverSpec,
+    /// What to read back per point.
+    #[serde(default, rename = "response")]
+    pub responses: Vec<ResponseSpec>,
+    /// Per-point identification from a study template.
+    #[serde(default)]
+    pub identify: Option<crate::identify::IdentifySpec>,
+    /// The regression of the collected table.
+    #[serde(default)]
+    pub regress: RegressSpec,
+    /// Where and how the points run.
+    #[serde(default)]
+    pub executor: ExecutorSpec,
+}
+
+/// The design of a campaign.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DesignSpec {
+    /// full | fractional | ccf | ccc | lhs | uniform.
+    pub kind: String,
+    /// The factors with their physical ranges (SI recommended).
+    pub factors: Vec<Factor>,
+    /// Generators of a fraction (`D=AB`).
+    #[serde(default)]
+    pub generators: Vec<String>,
+    /// Centre points.
+    #[serde(default)]
+    pub centre: usize,
+    /// Runs of an lhs or uniform design.
+    #[serde(default = "default_runs")]
+    pub runs: usize,
+    /// Seed of random designs and of the run order.
+    #[serde(default = "default_seed")]
+    pub seed: u64,
+    /// Randomise the run order.
+    #[serde(default)]
+    pub randomise: bool,
+}
+
+fn default_runs() -> usize {
+    20
+}
+
+fn default_seed() -> u64 {
+    1
+}
+
+/// The deck template.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TemplateSpec {
+    /// The template file (relative to the campaign file): any text with
+    /// `{{name}}` placeholders.
+    pub file: PathBuf,
+    /// The rendered deck's file name in each point folder (default: the
+    /// template's file name).
+    #[serde(default)]
+    pub deck: Option<String>,
+    /// Files copied unchanged into each point folder (relative to the campaign file).
+    #[serde(default)]
+    pub files: Vec<PathBuf>,
+    /// For LS-DYNA `*PARAMETER` users: also write this include in each point
+    /// folder, one `R name value` card per factor and derived quantity.
+    #[serde(default)]
+    pub lsdyna_parameters: Option<String>,
+}
+
+/// The solver command, run in the point folder.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    /// Program and arguments (`["ccx", "-i", "deck"]`): a program name
+    /// on PATH or an absolute path (it runs in each point folder).
+    pub command: Vec<String>,
+}
+
+/// One response read back per point.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ResponseSpec {
+    /// Column name in the collected table.
+    pub name: String,
+    /// `calculix` (the `.dat` of a bumpsim MSD deck), `calculix-dat` (any
+    /// `*NODE PRINT`/`*EL PRINT` block of any deck's `.dat`), `calculix-frd`,
+    /// `csv` (a `time,...` table
+    /// with unit headers), `lsdyna-glstat`, `lsdyna-nodout`, `lsdyna-rcforc`
+    /// or `lsdyna-deforc`.
+    pub reader: String,
+    /// The file in the point folder (`calculix`: the deck; the `.dat` beside it is read).
+    pub file: String,
+    /// `calculix`: `displacement` of `mass`, or `compression` x_mass − x_(mass+1);
+    /// `calculix-dat`: the block name (`displacements`, `forces`, `total force`,
+    /// `stresses`, ...); `calculix-frd`: `DATASET COMPONENT NODE`;
+    /// `csv`: the column; `lsdyna-glstat`: the quantity (`kinetic energy`, ...);
+    /// `lsdyna-nodout`: `NODE COLUMN` (`1001 x-disp`); `lsdyna-rcforc`:
+    /// `master|slave ID x|y|z|mass`; `lsdyna-deforc`: `ELEMENT LABEL` (`12 x-force`).
+    pub quantity: String,
+    /// `calculix`: the 1-based mass.
+    #[serde(default)]
+    pub mass: Option<usize>,
+    /// `calculix-dat`: the node or element id of the rows to read (absent:
+    /// the row without an id, as in `total force` blocks).
+    #[serde(default)]
+    pub entity: Option<u64>,
+    /// `calculix-dat`: the 1-based value column after the id (default 1).
+    #[serde(default)]
+    pub column: Option<usize>,
+    /// `calculix-dat`: only blocks of this set (default: any).
+    #[serde(default)]
+    pub set: Option<String>,
+    /// max | min | final | max-abs.
+    #[serde(default = "default_stat")]
+    pub stat: String,
+    /// Unit of the value (SI), for the table header.
+    #[serde(default)]
+    pub unit: Option<String>,
+}
+
+fn default_stat() -> String {
+    "max".into()
+}
+
+/// The regression of the collected table (`doe fit`).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RegressSpec {
+    /// Responses to regress (default: all).
+    #[serde(default)]
+    pub responses: Vec<String>,
+    /// Two-factor interactions.
+    #[serde(default)]
+    pub interactions: bool,
+    /// Squares.
+    #[serde(default)]
+    pub squares: bool,
+}
+
+/// Executor settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExecutorSpec {
+    /// `local` (default) or `slurm`.
+    #[serde(default = "default_kind")]
+    pub kind: String,
+    /// Local process slots.
+    #[serde(default = "default_slots")]
+    pub slots: usize,
+    /// Retries of a failed, timed-out, pre-empted or lost task.
+    #[serde(default = "default_retries")]
+    pub retries: u32,
+    /// Seconds between status polls of Slurm.
+    #[serde(default = "default_poll")]
+    pub poll_seconds: f64,
+    /// Slurm settings.
+    #[serde(default)]
+    pub slurm: SlurmSpec,
+}
+
+fn default_kind() -> String {
+    "local".into()
+}
+
+fn default_slots() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
+fn default_retries() -> u32 {
+    2
+}
+
+fn default_poll() -> f64 {
+    2.0
+}
+
+impl Default for ExecutorSpec {
+    fn default() -> Self {
+        ExecutorSpec {
+            kind: default_kind(),
+            slots: default_slots(),
+            retries: default_retries(),
+            poll_seconds: default_poll(),
+            slurm: SlurmSpec::default(),
+        }
+    }
+}
+
+/// Per-task resources and site settings of the Slurm array.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SlurmSpec {
+    /// `--partition`.
+    #[serde(default)]
+    pub partition: Option<String>,
+    /// `--account`.
+    #[serde(default)]
+    pub account: Option<String>,
+    /// `--time` per task (`HH:MM:SS`).
+    #[serde(default)]
+    pub time: Option<String>,
+    /// `--cpus-per-task`.
+    #[serde(default)]
+    pub cpus_per_task: Option<u32>,
+    /// `--mem` per task (`4G`).
+    #[serde(default)]
+    pub mem: Option<String>,
+    /// The array's `%` limit: tasks running at once (default: no limit).
+    #[serde(default)]
+    pub max_concurrent: Option<usize>,
+    /// `module load` lines of the job script.
+    #[serde(default)]
+    pub modules: Vec<String>,
+    /// Shell lines run before the solver (environment setup).
+    #[serde(default)]
+    pub setup: Vec<String>,
+    /// Further `sbatch` options, verbatim (`--qos=normal`).
+    #[serde(default)]
+    pub options: Vec<String>,
+}
+
+impl Spec {
+    /// Reads and validates a campaign file.
+    pub fn read(path: &Path) -> Result<Spec> {
+        let text = std::fs::read_to_string(path).map_err(|e| read_error(path, e))?;
+        Spec::parse(&text, path)
+    }
+
+    /// Parses and validates campaign text; `path` is used in messages.
+    ///
+    /// ```
+    /// use bumpsim_campaign::spec::Spec;
+    /// let text = r#"
+    /// name = "c"
+    /// [design]
+    /// kind = "full"
+    /// factors = [{ name = "t_rail", low = 1.5e-3, high = 2.5e-3, unit = "m" }]
+    /// [derived]
+    /// t_mm = "t_rail * 1000"
+    /// [template]
+    /// file = "bumper.k.tmpl"
+    /// [solver]
+    /// command = ["lsdyna", "i=bumper.k"]
+    /// "#;
+    /// let spec = Spec::parse(text, "c.toml".as_ref()).unwrap();
+    /// assert_eq!(spec.deck_name(), "bumper.k.tmpl");
+    /// let bad = Spec::parse(&text.replace("t_rail * 1000", "t_beam * 1000"), "c.toml".as_ref());
+    /// assert!(bad.unwrap_err().to_string().contains("unknown name 't_beam'"));
+    /// ```
+    pub fn parse(text: &str, path: &Path) -> Result<Spec> {
+        let spec: Spec = toml::from_str(text).map_err(|e| CampaignError::Toml {
+            path: path.into(),
+            message: e.to_string(),
+        })?;
+        spec.validate(path)?;
+        Ok(spec)
+    }
+
+    fn invalid(path: &Path, key: &str, message: String) -> CampaignError {
+        CampaignError::Invalid {
+            path: path.into(),
+            key: key.into(),
+            message,
+        }
+    }
+
+    fn validate(&self, path: &Path) -> Result<()> {
+        self.validate_size(path)?;
+        for f in &self.design.factors {
+            Factor::new(&f.name, f.low, f.high, None)
+                .map_err(|e| Spec::invalid(path, "design.factors", e.to_string()))?;
+            if !is_name(&f.name) {
+                let message = format!("'{}': names are letters, digits and _", f.name);
+                return Err(Spec::invalid(path, "design.factors", message));
+            }
+        }
+        self.derived_order(path)?;
+        match self.solver.command.first() {
+            None => return Err(Spec::invalid(path, "solver.command", "is empty".into())),
+            // the solver runs in each point folder: a relative path would mean another file there
+            Some(p) if p.contains('/') && !p.starts_with('/') => {
+                let message = format!("'{p}': give an absolute path or a program name on PATH");
+                return Err(Spec::invalid(path, "solver.command", message));
+            }
+            Some(_) => {}
+        }
+        self.validate_responses(path)?;
+        self.validate_executor(path)
+    }
+
+    /// Refuses designs beyond [`MAX_POINTS`] before any is made: the runs
+    /// of a space-filling design, 2^k of a factorial (k ≤ 16), centre points.
+    fn validate_size(&self, path: &Path) -> Result<()> {
+        let kind = self.design_kind(path)?;
+        let d = &self.design;
+        let random = matches!(kind, DesignKind::LatinHypercube | DesignKind::Uniform);
+        let too_many = match random {
+            true => d.runs == 0 || d.runs > MAX_POINTS,
+            false => d.factors.len() > 16 || d.centre > MAX_POINTS,
+        };
+        if too_many || d.factors.is_empty() {
+            let message = format!(
+                "1 to {MAX_POINTS} points (runs of lhs/uniform; at most 16 factors in a factorial or composite design; at least one factor) (docs/limits.md)"
+            );
+            return Err(Spec::invalid(path, "design", message));
+        }
+        Ok(())
+    }
+
+    /// The design kind, checked.
+    pub fn design_kind(&self, path: &Path) -> Result<DesignKind> {
+        self.design
+            .kind
+            .parse()
+            .map_err(|e: bumpsim_doe::design::DesignKindError| {
+                Spec::invalid(path, "design.kind", e.to_string())
+            })
+    }
+
+    /// The options `bumpsim_doe::design::make` needs.
+    pub fn design_options(&self) -> DesignOptions {
+        DesignOptions {
+            generators: self.design.generators.clone(),
+            centre: self.design.centre,
+            runs: self.design.runs,
+            seed: self.design.seed,
+        }
+    }
+
+    /// The derived quantities in an order where each uses only factors and
+    /// earlier ones; an unknown name or a cycle is an error naming the key.
+    pub fn derived_order(&self, path: &Path) -> Result<Vec<(String, Expr)>> {
+        let mut known: Vec<String> = self.design.factors.iter().map(|f| f.name.clone()).collect();
+        let mut todo = Vec::new();
+        for (name, text) in &self.derived {
+            let key = format!("derived.{name}");
+            let (text, _) = split_unit(text);
+            let expr = Expr::parse(text).map_err(|e| Spec::invalid(path, &key, e.to_string()))?;
+            if known.contains(name) || !is_name(name) {
+                let message = format!("'{name}' is a factor already or not a plain name");
+                return Err(Spec::invalid(path, &key, message));
+            }
+            todo.push((name.clone(), expr));
+        }
+        let mut ordered = Vec::new();
+        while !todo.is_empty() {
+            let ready = todo
+                .iter()
+                .position(|(_, e)| e.names().iter().all(|n| known.iter().any(|k| k == n)));
+            let Some(i) = ready else {
+                return Err(self.unresolved(path, &todo, &known));
+            };
+            let (name, expr) = todo.remove(i);
+            known.push(name.clone());
+            ordered.push((name, expr));
+        }
+        Ok(ordered)
+    }
+
+    fn unresolved(&self, path: &Path, todo: &[(String, Expr)], known: &[String]) -> CampaignError {
+        let pending: Vec<&str> = todo.iter().map(|(n, _)| n.as_str()).collect();
+        let (name, expr) = &todo[0];
+        let missing = expr
+            .names()
+            .into_iter()
+            .find(|n| !known.iter().any(|k| k == n) && !pending.contains(n));
+        let message = match missing {
+            Some(unknown) => format!(
+                "unknown name '{unknown}' (factors: {})",
+                self.factor_names().join(", ")
+            ),
+            None => format!(
+                "the derived quantities {} depend on each other",
+                pending.join(", ")
+            ),
+        };
+        Spec::invalid(path, &format!("derived.{name}"), message)
+    }
+
+    /// The unit of a factor or derived quantity, if given.
+    pub fn unit_of(&self, name: &str) -> Option<String> {
+        match self.design.factors.iter().find(|f| f.name == name) {
+            Some(f) => f.unit.clone(),
+            None => self
+                .derived
+                .get(name)
+                .and_then(|t| split_unit(t).1)
+                .map(String::from),
+        }
+    }
+
+    /// The factor names, in design order.
+    pub fn factor_names(&self) -> Vec<String> {
+        self.design.factors.iter().map(|f| f.name.clone()).collect()
+    }
+
+    /// The rendered deck's file name in a point folder.
+    pub fn deck_name(&self) -> String {
+        self.template.deck.clone().unwrap_or_else(|| {
+            self.template
+                .file
+                .file_name()
+                .map_or("deck".into(), |n| n.to_string_lossy().into_owned())
+        })
+    }
+
+    /// The response columns of the collected table: the `[[response]]`s,
+    /// then the identified parameters.
+    pub fn response_columns(&self) -> Vec<(String, Option<String>)> {
+        let mut columns: Vec<(String, Option<String>)> = self
+            .responses
+            .iter()
+            .map(|r| (r.name.clone(), r.unit.clone()))
+            .collect();
+        if let Some(identify) = &self.identify {
+            columns.extend(
+                identify
+                    .columns()
+                    .into_iter()
+                    .map(|(n, u)| (n, Some(u.to_string()))),
+            );
+        }
+        columns
+    }
+
+    /// The responses to regress (default: every response column).
+    pub fn regressed(&self) -> Vec<String> {
+        match self.regress.responses.is_empty() {
+            true => self
+                .response_columns()
+                .into_iter()
+                .map(|(n, _)| n)
+                .collect(),
+            false => self.regress.responses.clone(),
+        }
+    }
+
+    fn validate_responses(&self, path: &Path) -> Result<()> {
+        for (i, r) in self.responses.iter().enumerate() {
+            let key = format!("response[{}] '{}'", i + 1, r.name);
+            crate::readers::check(r).map_err(|m| Spec::invalid(path, &key, m))?;
+            if self.responses[..i].iter().any(|o| o.name == r.name) {
+                return Err(Spec::invalid(
+                    path,
+                    &key,
+                    "a second response of this name".into(),
+                ));
+            }
+        }
+        let columns: Vec<String> = self
+            .response_columns()
+            .into_iter()
+            .map(|(n, _)| n)
+            .collect();
+        for name in &self.regress.responses {
+            if !columns.contains(name) {
+                let message = format!("'{name}' is not a response column ({})", columns.join(", "));
+                return Err(Spec::invalid(path, "regress.responses", message));
+            }
+        }
+        self.validate_identify(path, &columns)
+    }
+
+    fn validate_identify(&self, path: &Path, columns: &[String]) -> Result<()> {
+        let Some(identify) = &self.identify else {
+            return Ok(());
+        };
+        if identify.dof == 0 || identify.dof > 50 {
+            return Err(Spec::invalid(
+                path,
+                "identify.dof",
+                "expected 1 to 50".into(),
+            ));
+        }
+        let mut names = self.factor_names();
+        names.extend(self.derived.keys().cloned());
+        for (i, name) in columns.iter().enumerate() {
+            if names.contains(name) || columns[..i].contains(name) {
+                let message = format!(
+                    "column '{name}' twice: rename the factor, derived quantity or response (identified parameters are m1.., c1.., k1..)"
+                );
+                return Err(Spec::invalid(path, "identify", message));
+            }
+        }
+        Ok(())
+    }
+
+    fn validate_executor(&self, path: &Path) -> Result<()> {
+        let e = &self.executor;
+        if e.kind != "local" && e.kind != "slurm" {
+            let message = format!("'{}': expected local or slurm", e.kind);
+            return Err(Spec::invalid(path, "executor.kind", message));
+        }
+        if e.slots == 0 || e.slots > 1024 {
+            return Err(Spec::invalid(
+                path,
+                "executor.slots",
+                "expected 1 to 1024".into(),
+            ));
+        }
+        if !(e.poll_seconds.is_finite() && (0.01..=3600.0).contains(&e.poll_seconds)) {
+            let message = "expected 0.01 to 3600 s".into();
+            return Err(Spec::invalid(path, "executor.poll_seconds", message));
+        }
+        if e.slurm.max_concurrent == Some(0) {
+            let message = "expected at least 1".into();
+            return Err(Spec::invalid(
+                path,
+                "executor.slurm.max_concurrent",
+                message,
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// A derived quantity's text split into the expression and its optional
+/// trailing unit: `"5.0e5 * m3 / 1670 [N/m]"` → (`5.0e5 * m3 / 1670`, `N/m`).
+pub fn split_unit(text: &str) -> (&str, Option<&str>) {
+    let trimmed = text.trim_end();
+    match (trimmed.strip_suffix(']'), trimmed.rfind('[')) {
+        (Some(_), Some(open)) => (
+            &trimmed[..open],
+            Some(trimmed[open + 1..trimmed.len() - 1].trim()),
+        ),
+        _ => (text, None),
+    }
+}
+
+/// Whether `name` is a plain identifier (letters, digits, `_`; not starting with a digit).
+pub fn is_name(name: &str) -> bool {
+    let mut chars = name.chars();
+    chars.next().is_some_and(|c| c.is_alphabetic() || c == '_')
+        && chars.all(|c| c.is_alphanumeric() || c == '_')
+}
+
+/// Finds `program` as the solver or scheduler runs it: a path with a `/`
+/// as given (relative to `dir`), else the first executable on PATH.
+pub fn find_program(program: &str, dir: &Path) -> Option<PathBuf> {
+    use std::os::unix::fs::PermissionsExt;
+    let executable = |p: &Path| {
+        std::fs::metadata(p).is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o111 != 0)
+    };
+    if program.contains('/') {
+        let path = dir.join(program);
+        return executable(&path).then_some(path);
+    }
+    let paths = std::env::var_os("PATH")?;
+    std::env::split_paths(&paths)
+        .map(|d| d.join(program))
+        .find(|p| executable(p))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const BASE: &str = r#"
+name = "t"
+[design]
+kind = "full"
+factors = [{ name = "a", low = 1, high = 2 }, { name = "b", low = 3, high = 4 }]
+[template]
+file = "deck.inp"
+[solver]
+command = ["true"]
+"#;
+
+    fn parse(extra: &str) -> Result<Spec> {
+        Spec::parse(&format!("{BASE}{extra}"), Path::new("c.toml"))
+    }
+
+    #[test]
+    fn derived_are_ordered_and_unknown_names_refused() {
+        let spec = parse("[derived]\nz = \"y * 2 [kg]\"\ny = \"a + b\"\n").unwrap();
+        assert_eq!(
+            (spec.unit_of("z").as_deref(), spec.unit_of("y")),
+            (Some("kg"), None)
+        );
+        let order: Vec<String> = spec
+            .derived_order(Path::new("c"))
+            .unwrap()
+            .into_iter()
+            .map(|(n, _)| n)
+            .collect();
+        assert_eq!(order, ["y", "z"]);
+        let err = parse("[derived]\ny = \"a + t_rail\"\n")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("derived.y: unknown name 't_rail' (factors: a, b)"),
+            "{err}"
+        );
+        let err = parse("[derived]\ny = \"z\"\nz = \"y\"\n")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("depend on each other"), "{err}");
+    }
+
+    #[test]
+    fn bad_keys_and_values_are_named() {
+        let err = parse("colour = 1\n").unwrap_err().to_string();
+        assert!(err.contains("colour"), "{err}");
+        let relative = BASE.replace("[\"true\"]", "[\"./solver.sh\"]");
+        let err = Spec::parse(&relative, Path::new("c.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("solver.command: './solver.sh': give an absolute path"),
+            "{err}"
+        );
+        let err = parse("[executor]\nkind = \"pbs\"\n")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("executor.kind"), "{err}");
+        let err =
+            Spec::parse(&BASE.replace("\"full\"", "\"fuller\""), Path::new("c.toml")).unwrap_err();
+        assert!(err.to_string().contains("design.kind"), "{err}");
+    }
+}

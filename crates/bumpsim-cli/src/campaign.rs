@@ -1,0 +1,144 @@
+//! `bumpsim campaign`: argument conversion and output around bumpsim-campaign.
+
+use anyhow::Result;
+use bumpsim_campaign::run::RunOptions;
+use bumpsim_campaign::{collect, init, run};
+use clap::Subcommand;
+use std::io::IsTerminal;
+use std::path::PathBuf;
+
+/// The `campaign` subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Make the campaign folder: design, one folder per point with its deck, the state file.
+    Init(InitArgs),
+    /// Run what is not done (local process pool or Slurm job array); resumes after a restart.
+    Run(RunArgs),
+    /// Summarise the state: points per status, running jobs, failures with reasons.
+    Status(DirArgs),
+    /// Read the results into the design table, fit the regression, write the report.
+    Collect(DirArgs),
+    /// Stop the campaign's running tasks (scancel, SIGTERM) and mark them pending.
+    Abort(DirArgs),
+}
+
+/// Arguments of `campaign init`.
+#[derive(Debug, clap::Args)]
+pub struct InitArgs {
+    /// The campaign file (CAMPAIGN.toml).
+    campaign: PathBuf,
+    /// The campaign folder (default: the campaign file's name without .toml).
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Then run the campaign with its executor and collect it (init, run, collect in one).
+    #[arg(long)]
+    run: bool,
+}
+
+/// Arguments of `campaign run`.
+#[derive(Debug, clap::Args)]
+pub struct RunArgs {
+    /// The campaign folder.
+    dir: PathBuf,
+    /// local | slurm (default: the campaign file's executor.kind).
+    #[arg(long)]
+    executor: Option<String>,
+    /// Local process slots (default: the campaign file's executor.slots).
+    #[arg(long, value_parser = crate::count::<1024>)]
+    slots: Option<usize>,
+    /// Give failed points a new set of attempts.
+    #[arg(long)]
+    retry_failed: bool,
+}
+
+/// A campaign folder.
+#[derive(Debug, clap::Args)]
+pub struct DirArgs {
+    /// The campaign folder.
+    dir: PathBuf,
+}
+
+/// Runs a `campaign` subcommand.
+pub fn run(command: &Command) -> Result<()> {
+    match command {
+        Command::Init(args) => run_init(args),
+        Command::Run(args) => run_run(args),
+        Command::Status(args) => {
+            print!("{}", collect::status(&args.dir)?);
+            Ok(())
+        }
+        Command::Collect(args) => run_collect(args),
+        Command::Abort(args) => {
+            let n = run::abort(&args.dir)?;
+            println!("cancelled {n} tasks; they are pending again");
+            Ok(())
+        }
+    }
+}
+
+fn options(args: &RunArgs) -> RunOptions {
+    RunOptions {
+        executor: args.executor.clone(),
+        slots: args.slots,
+        retry_failed: args.retry_failed,
+        progress: std::io::stderr().is_terminal(),
+    }
+}
+
+fn run_init(args: &InitArgs) -> Result<()> {
+    let dir = args
+        .output
+        .clone()
+        .unwrap_or_else(|| args.campaign.with_extension(""));
+    let summary = init::init(&args.campaign, &dir)?;
+    if let Some(resolution) = summary.resolution {
+        println!("resolution {resolution}");
+    }
+    println!(
+        "campaign {}: {} points ({} kept from the earlier state: done or running, inputs unchanged)",
+        dir.display(),
+        summary.points,
+        summary.kept
+    );
+    if args.run {
+        let run_args = RunArgs {
+            dir: dir.clone(),
+            executor: None,
+            slots: None,
+            retry_failed: false,
+        };
+        run_run(&run_args)?;
+        run_collect(&DirArgs { dir })?;
+    }
+    Ok(())
+}
+
+fn run_run(args: &RunArgs) -> Result<()> {
+    let summary = run::run(&args.dir, &options(args))?;
+    println!(
+        "{} points done, {} failed ({} tasks submitted by this run)",
+        summary.done,
+        summary.failed.len(),
+        summary.submitted
+    );
+    for (run, reason) in &summary.failed {
+        crate::warn(&format!("run {run} failed: {reason}"));
+    }
+    Ok(())
+}
+
+fn run_collect(args: &DirArgs) -> Result<()> {
+    let collected = collect::collect(&args.dir)?;
+    print!("{}", collected.fit_text);
+    let results = args.dir.join("results");
+    println!(
+        "wrote {}/table.csv ({} points), model.json and report/index.html",
+        results.display(),
+        collected.rows
+    );
+    println!("the same regression: {}", collected.fit_command);
+    for (run, why) in &collected.missing {
+        crate::warn(&format!("run {run} left out of the table: {why}"));
+    }
+    Ok(())
+}
