@@ -403,90 +403,66 @@ fn parse_dat(text: &str, path: &Path, meta: &DeckMeta) -> Result<Results, Export
         line,
         reason,
     };
-    let mut results = Results {
-        time: Vec::new(),
-        displacement: vec![Vec::new(); meta.dof],
-    };
-    let mut counts = vec![0usize; meta.dof];
     // only the blocks of the car's own set: a main deck may print others
-    let ours = format!("for set {}nall and", meta.prefix.to_ascii_lowercase());
-    let mut inside = false;
-    for (index, line) in text.lines().enumerate() {
-        let words: Vec<&str> = line.split_whitespace().collect();
-        if line.contains("displacements") {
-            inside = line.to_ascii_lowercase().contains(&ours);
-            if !inside {
-                continue;
-            }
-            let time: f64 = words
-                .last()
-                .and_then(|w| w.parse().ok())
-                .filter(|t: &f64| t.is_finite())
-                .ok_or_else(|| error(index + 1, "block header without a finite time".into()))?;
-            let time = time / meta.units.time() + meta.start;
-            if counts.iter().any(|&c| c != results.time.len()) {
+    let blocks = crate::dat::parse(text, path)?;
+    let set = format!("{}NALL", meta.prefix);
+    let blocks = crate::dat::history(&blocks, "displacements", &set).unwrap_or(&[]);
+    let mut results = Results {
+        time: Vec::with_capacity(blocks.len()),
+        displacement: vec![Vec::with_capacity(blocks.len()); meta.dof],
+    };
+    for block in blocks {
+        let time = block.time / meta.units.time() + meta.start;
+        let first = block.rows.first().map_or(0, |r| r.line);
+        if results.time.last().is_some_and(|&last| time <= last) {
+            return Err(error(
+                first,
+                format!("block time {time} s does not increase (a duplicate block?)"),
+            ));
+        }
+        results.time.push(time);
+        for row in &block.rows {
+            let node = row
+                .id
+                .map_or(0, |id| id.saturating_sub(meta.offset) as usize);
+            if node == 0 || node > meta.dof || row.values.len() != 3 {
                 return Err(error(
-                    index + 1,
-                    "the previous displacement block does not list every mass node once (truncated?)".into(),
-                ));
-            }
-            if results.time.last().is_some_and(|&last| time <= last) {
-                return Err(error(
-                    index + 1,
-                    format!("block time {time} s does not increase (a duplicate block?)"),
-                ));
-            }
-            results.time.push(time);
-        } else if inside && words.len() == 4 {
-            let numbers: Option<Vec<f64>> = words.iter().map(|w| w.parse().ok()).collect();
-            let numbers = numbers.ok_or_else(|| {
-                error(
-                    index + 1,
+                    row.line,
                     format!(
-                        "expected a node and three displacements, found '{}'",
-                        line.trim()
-                    ),
-                )
-            })?;
-            if let Some(v) = numbers.iter().find(|v| !v.is_finite()) {
-                return Err(error(
-                    index + 1,
-                    format!("value {v}: expected finite numbers"),
-                ));
-            }
-            let node = (numbers[0] as u64).saturating_sub(meta.offset) as usize;
-            if node == 0 || node > meta.dof || results.time.is_empty() {
-                return Err(error(
-                    index + 1,
-                    format!(
-                        "node {} is not a mass node {}..{} of a displacement block",
-                        numbers[0],
+                        "row {:?}: not a mass node {}..{} with three displacements",
+                        row.id,
                         meta.offset + 1,
                         meta.offset + meta.dof as u64
                     ),
                 ));
             }
-            if counts[node - 1] == results.time.len() {
+            let history = &mut results.displacement[node - 1];
+            if history.len() == results.time.len() {
                 return Err(error(
-                    index + 1,
+                    row.line,
                     format!(
                         "node {} appears twice in one displacement block",
-                        numbers[0]
+                        meta.offset + node as u64
                     ),
                 ));
             }
-            let along = numbers[meta.axis.component + 1] * meta.axis.sign / meta.units.length();
-            results.displacement[node - 1].push(along);
-            counts[node - 1] += 1;
+            history.push(row.values[meta.axis.component] * meta.axis.sign / meta.units.length());
+        }
+        if results
+            .displacement
+            .iter()
+            .any(|h| h.len() != results.time.len())
+        {
+            return Err(error(
+                first,
+                "the displacement block does not list every mass node once (truncated?)".into(),
+            ));
         }
     }
-    if results.time.is_empty() || counts.iter().any(|&c| c != results.time.len()) {
+    if results.time.is_empty() {
         return Err(error(
             0,
-            format!(
-                "expected every node in each of the {} displacement blocks (a truncated run?)",
-                results.time.len()
-            ),
+            format!("no displacement blocks for set {set} (a truncated run?)"),
         ));
     }
     Ok(results)

@@ -4,6 +4,7 @@
 //! - [`lsdyna`]: an LS-DYNA keyword include file (fixed-format cards);
 //! - [`calculix`]: a CalculiX/Abaqus deck, optionally a complete transient
 //!   analysis under a force history, and reading its results back;
+//! - [`dat`]: the print blocks of any CalculiX `.dat` file;
 //! - [`layout`]: unit systems, axis and node placement shared by both;
 //! - [`spring`]: the bumper characteristic as a nonlinear discrete spring;
 //! - [`timestep`]: the car's explicit critical time step.
@@ -17,6 +18,7 @@
 //! ```
 
 pub mod calculix;
+pub mod dat;
 pub mod layout;
 pub mod lsdyna;
 pub mod spring;

@@ -25,7 +25,6 @@
 //! ```
 
 pub mod bumper;
-pub mod dat;
 pub mod deck;
 pub mod lsdyna;
 pub mod run;

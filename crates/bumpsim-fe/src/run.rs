@@ -21,9 +21,9 @@
 
 use crate::FeError;
 use crate::bumper::BumperMesh;
-use crate::dat::{Block, Blocks, parse, series};
 use crate::deck::{CONTACT_SPAN, Layout, Run, coupled_deck};
 use bumpsim_core::model::MsdModel;
+use bumpsim_export::dat::{Block, Blocks, history, parse};
 use bumpsim_impact::impact::{EnergyBalance, ImpactResult, Options, Scenario, simulate};
 use bumpsim_signal::filter::{Cfc, CfcStandard};
 use std::path::{Path, PathBuf};
@@ -252,6 +252,19 @@ struct Reader<'a> {
     settings: &'a FeRun,
 }
 
+/// The blocks of one (quantity, set), or an error naming what is missing.
+fn series<'a>(
+    blocks: &'a Blocks,
+    quantity: &str,
+    set: &str,
+    path: &Path,
+) -> Result<&'a [Block], FeError> {
+    history(blocks, quantity, set).ok_or_else(|| FeError::File {
+        path: path.display().to_string(),
+        message: format!("no '{quantity}' blocks for set {set} (did the run end early?)"),
+    })
+}
+
 /// Node values along x: per node (outer) and time (inner).
 fn along_x(blocks: &[Block], nodes: &[u64], path: &Path) -> Result<Vec<Vec<f64>>, FeError> {
     nodes
@@ -262,8 +275,8 @@ fn along_x(blocks: &[Block], nodes: &[u64], path: &Path) -> Result<Vec<Vec<f64>>
                 .map(|b| {
                     b.rows
                         .iter()
-                        .find(|r| r.len() == 4 && r[0] as u64 == n)
-                        .map(|r| r[1])
+                        .find(|r| r.id == Some(n))
+                        .and_then(|r| r.values.first().copied())
                         .ok_or_else(|| FeError::File {
                             path: path.display().to_string(),
                             message: format!("node {n} missing at time {} s", b.time),
@@ -313,7 +326,7 @@ impl Reader<'_> {
         let blocks = series(self.blocks, quantity, set, self.path)?;
         let values: Vec<f64> = blocks
             .iter()
-            .filter_map(|b| b.rows.first()?.first().copied())
+            .filter_map(|b| b.rows.first()?.values.first().copied())
             .collect();
         match values.len() == len {
             true => Ok(values),

@@ -13,61 +13,35 @@ fn read(path: &Path) -> Result<String, String> {
 
 /// `.dat`: blocks headed `NAME (columns) for set SET and time T`, then one
 /// row per node or element (`ID v1 v2 ...`) or, for totals, one row of
-/// values. The history of `column` (1-based, after the id) of the rows of
-/// `entity` (or the id-less row) in the blocks named `r.quantity`.
+/// values (read by [`bumpsim_export::dat`], the one `.dat` reader). The
+/// history of `column` (1-based, after the id) of the rows of `entity` (or
+/// the id-less row) in the blocks named `r.quantity`.
 pub fn dat(path: &Path, r: &ResponseSpec) -> Result<Vec<f64>, String> {
     let text = read(path)?;
+    let blocks = bumpsim_export::dat::parse(&text, path).map_err(|e| e.to_string())?;
     let wanted = r.quantity.trim().to_ascii_lowercase();
     let column = r.column.unwrap_or(1);
-    let entity = r.entity.map(|e| e.to_string());
-    let mut inside = false;
+    let sets = blocks.iter().filter(|((name, set), _)| {
+        *name == wanted && r.set.as_ref().is_none_or(|s| s.eq_ignore_ascii_case(set))
+    });
     let mut values = Vec::new();
-    for (i, line) in text.lines().enumerate() {
-        if let Some((name, set)) = dat_header(line) {
-            let set_ok = r.set.as_ref().is_none_or(|s| s.eq_ignore_ascii_case(&set));
-            inside = name == wanted && set_ok;
+    for row in sets.flat_map(|(_, b)| b.iter().flat_map(|b| b.rows.iter())) {
+        if row.id != r.entity {
             continue;
         }
-        let w = words(line);
-        let row = match (&entity, w.first()) {
-            (Some(id), Some(first)) if first == id => &w[1..],
-            (None, Some(first)) if first.contains(['.', 'E', 'e']) => &w[..],
-            _ => continue,
-        };
-        if !inside {
-            continue;
-        }
-        let word = row.get(column.saturating_sub(1)).ok_or_else(|| {
+        let value = row.values.get(column.saturating_sub(1)).ok_or_else(|| {
             format!(
                 "{}:{}: the row has no column {column} (truncated?)",
                 path.display(),
-                i + 1
+                row.line
             )
         })?;
-        let value = word.parse::<f64>().ok().filter(|v| v.is_finite());
-        values.push(value.ok_or_else(|| {
-            format!(
-                "{}:{}: '{word}' is not a finite number",
-                path.display(),
-                i + 1
-            )
-        })?);
+        values.push(*value);
     }
     match values.is_empty() {
         true => Err(format!("{}: no values of '{}'", path.display(), r.quantity)),
         false => Ok(values),
     }
-}
-
-/// A `.dat` block header: its name (before the parenthesis or `for set`,
-/// lower case) and set.
-fn dat_header(line: &str) -> Option<(String, String)> {
-    let lower = line.to_ascii_lowercase();
-    let at = lower.find(" for set ")?;
-    lower.get(at..)?.contains(" and time").then_some(())?;
-    let name = lower[..at].split('(').next()?.trim().to_string();
-    let set = line[at + 9..].split_whitespace().next()?.to_string();
-    Some((name, set))
 }
 
 /// CalculiX `.frd`: blocks `-4 DATASET`, `-5 COMPONENT` lines naming the

@@ -334,7 +334,7 @@ fn fuzz_fe_bumper_mesh_and_dat() {
         },
     );
     fuzz("fe-dat", seed("tests/fuzz/fe.dat"), |_, bytes| {
-        let _ = bumpsim_fe::dat::parse(&String::from_utf8_lossy(bytes), Path::new("fe.dat"));
+        let _ = bumpsim_export::dat::parse(&String::from_utf8_lossy(bytes), Path::new("fe.dat"));
     });
 }
 
