@@ -21,7 +21,8 @@
 //! Newton's method would not converge at the full step; small strains
 //! (no NLGEOM: the beams stay in the small-strain range where B32R's
 //! expansion matches beam theory), fixed increment. Outputs to the `.dat`
-//! file: U, V of the car (and pendulum), U of the beam nodes, total internal
+//! file: U, V of the car (and pendulum), U of the beam nodes, the barrier's
+//! total reaction force (RF of its nodes), total internal
 //! (ELSE) and kinetic (ELKE) energies of beam, boxes and contact springs.
 
 use crate::FeError;
@@ -344,6 +345,10 @@ fn step(deck: &mut String, run: &Run, pendulum: bool) {
         deck.push_str("*NODE PRINT, NSET=FE_PENDULUM\nU, V\n");
     }
     deck.push_str("*NODE PRINT, NSET=FE_BEAM\nU\n");
+    if !pendulum {
+        // the barrier's reaction: its force, for campaigns reading the .dat
+        deck.push_str("*NODE PRINT, NSET=FE_STRIKER, TOTALS=ONLY\nRF\n");
+    }
     for set in ["FE_EBEAM", "FE_EBOX", "FE_ECONTACT"] {
         let _ = writeln!(deck, "*EL PRINT, ELSET={set}, TOTALS=ONLY\nELSE");
     }

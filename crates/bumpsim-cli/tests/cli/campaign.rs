@@ -260,6 +260,59 @@ fn the_bundled_calculix_campaign_runs_locally_and_fits_like_doe_fit() {
     );
 }
 
+/// The campaign over the coupled bumper-car deck of `bumpsim fe`
+/// (examples/campaign/bumper.toml): 8 CalculiX runs, collected and fitted;
+/// thicker crash-box walls raise the barrier's peak force, a higher yield
+/// stress lessens the crush.
+#[test]
+fn the_fe_bumper_campaign_runs_the_coupled_deck() {
+    if !peer_available("CalculiX (ccx)", "sh", &["-c", "command -v ccx"]) {
+        return;
+    }
+    let dir = scratch("campaign-fe-bumper");
+    let c = dir.join("c");
+    let campaign = root().join("examples/campaign/bumper.toml");
+    let out = run(&["campaign", "init", path(&campaign), "-o", path(&c), "--run"]);
+    assert_contains(
+        &text(&out.stdout),
+        &[
+            "8 points done, 0 failed",
+            "force_peak [N]: R²",
+            "x1_min [m]: R²",
+        ],
+    );
+    let table = std::fs::read_to_string(c.join("results/table.csv")).unwrap();
+    let header: Vec<&str> = table.lines().next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|h| h.starts_with(name)).unwrap();
+    let (t, sy, force, x1) = (
+        column("t_box"),
+        column("sy"),
+        column("force_peak"),
+        column("x1_min"),
+    );
+    let rows: Vec<Vec<f64>> = table
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    let mean = |pick: &dyn Fn(&Vec<f64>) -> bool, of: usize| {
+        let chosen: Vec<f64> = rows.iter().filter(|r| pick(r)).map(|r| r[of]).collect();
+        chosen.iter().sum::<f64>() / chosen.len() as f64
+    };
+    let thick = mean(&|r| r[t] > 1.5e-3, force);
+    let thin = mean(&|r| r[t] < 1.5e-3, force);
+    assert!(
+        thick > thin && thin > 1e4,
+        "peak force {thin} N (thin) vs {thick} N (thick)"
+    );
+    let strong = mean(&|r| r[sy] > 4e7, x1).abs();
+    let weak = mean(&|r| r[sy] < 4e7, x1).abs();
+    assert!(
+        strong < weak && strong > 0.01,
+        "crush {strong} m (strong) vs {weak} m (weak)"
+    );
+}
+
 /// Unknown names, a placeholder with no factor, a solver not on PATH and
 /// sbatch missing under executor = "slurm": exit 2 before anything runs.
 #[test]
