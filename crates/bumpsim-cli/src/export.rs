@@ -236,7 +236,7 @@ fn title(car: &Car, path: &Path) -> String {
     )
 }
 
-fn time(option: &str, text: &str) -> Result<f64> {
+pub(crate) fn time(option: &str, text: &str) -> Result<f64> {
     parse_quantity(text, Dimension::Time).with_context(|| format!("--{option} '{text}'"))
 }
 

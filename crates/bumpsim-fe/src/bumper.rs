@@ -198,18 +198,23 @@ impl BoxSection {
     }
 }
 
+/// An element count from `least` to [`MAX_ELEMENTS`].
+fn elements(name: &str, count: usize, least: usize) -> Result<(), FeError> {
+    let ok = (least..=MAX_ELEMENTS).contains(&count);
+    check(
+        name,
+        count as f64,
+        ok,
+        &format!("{least} to {MAX_ELEMENTS}"),
+    )
+}
+
 impl BumperMesh {
     /// Checks every parameter, naming the one out of range.
     pub fn validate(&self) -> Result<(), FeError> {
         let b = &self.beam;
         bounded("beam.width (m)", b.width, 10.0)?;
-        let n = b.elements as f64;
-        check(
-            "beam.elements",
-            n,
-            (2..=MAX_ELEMENTS).contains(&b.elements),
-            "2 to 400",
-        )?;
+        elements("beam.elements", b.elements, 2)?;
         b.section.validate("beam")?;
         b.material.validate("beam")?;
         let c = &self.crash_boxes;
@@ -220,13 +225,7 @@ impl BumperMesh {
             "positive and within half the beam width",
         )?;
         bounded("crash_boxes.length (m)", c.length, 10.0)?;
-        let n = c.elements as f64;
-        check(
-            "crash_boxes.elements",
-            n,
-            (1..=MAX_ELEMENTS).contains(&c.elements),
-            "1 to 400",
-        )?;
+        elements("crash_boxes.elements", c.elements, 1)?;
         c.section.validate("crash_boxes")?;
         c.material.validate("crash_boxes")?;
         if let Some(k) = self.contact_stiffness {

@@ -88,6 +88,7 @@ pub const MAX_INCREMENTS: f64 = 1e6;
 
 /// Writes the deck, runs CalculiX and reads the results.
 pub fn run(settings: &FeRun) -> Result<FeResult, FeError> {
+    check_scenario(settings.scenario)?;
     // the estimate may fail (a car too stiff for impact's explicit steps):
     // then the user's --duration runs without it
     let equivalent = equivalent(&settings.mesh, &settings.car, settings.scenario);
@@ -105,12 +106,11 @@ pub fn run(settings: &FeRun) -> Result<FeResult, FeError> {
     };
     let (text, layout) = coupled_deck(&settings.mesh, &settings.car, settings.scenario, &run)?;
     let deck = settings.work.join("bumper.inp");
-    std::fs::create_dir_all(&settings.work)
-        .and_then(|()| std::fs::write(&deck, &text))
-        .map_err(|e| FeError::File {
-            path: deck.display().to_string(),
-            message: format!("cannot write: {e}"),
-        })?;
+    // whole or not at all (temp file + rename), never onto an input
+    bumpsim_io::output::write_file(&deck, text.as_bytes()).map_err(|e| FeError::File {
+        path: deck.display().to_string(),
+        message: format!("cannot write: {e}"),
+    })?;
     solve(&settings.solver, &settings.work)?;
     let dat = settings.work.join("bumper.dat");
     let text = std::fs::read_to_string(&dat).map_err(|e| FeError::File {
@@ -146,6 +146,25 @@ pub fn equivalent(
     let bumper = mesh.equivalent_bumper()?;
     simulate(car, &bumper, scenario, &Options::default())
         .map_err(|e| FeError::Estimate(e.to_string()))
+}
+
+/// A closing speed and a pendulum mass that are positive and finite (also
+/// when the estimate, which checks them too, is skipped).
+fn check_scenario(scenario: Scenario) -> Result<(), FeError> {
+    let (speed, mass) = match scenario {
+        Scenario::Barrier { speed } => (speed, 1.0),
+        Scenario::Impactor { mass, speed } => (speed, mass),
+    };
+    for (name, value) in [("speed (m/s)", speed), ("pendulum mass (kg)", mass)] {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(FeError::Parameter {
+                name: name.into(),
+                value,
+                expected: "positive and finite".into(),
+            });
+        }
+    }
+    Ok(())
 }
 
 fn check_run(duration: f64, increment: f64) -> Result<(), FeError> {

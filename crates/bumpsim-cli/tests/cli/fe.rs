@@ -192,7 +192,20 @@ fn bad_fe_input_is_a_user_error() {
                 "--speed",
                 "2",
             ],
-            "impactor mass".into(),
+            "pendulum mass (kg) = -5".into(),
+        ),
+        // without the estimate (a given duration) a zero speed gave NaN energies
+        (
+            vec![
+                "--bumper",
+                mesh.to_str().unwrap(),
+                "--barrier",
+                "--speed",
+                "0",
+                "--duration",
+                "0.1",
+            ],
+            "speed (m/s) = 0: expected positive and finite".into(),
         ),
     ];
     for (extra, needle) in cases {
