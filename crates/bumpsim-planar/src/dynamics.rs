@@ -203,6 +203,11 @@ impl Model {
         alpha * tip(0) + (1.0 - alpha) * tip(1)
     }
 
+    /// The point of the bumper line at lateral position η, body frame, m.
+    pub fn bumper_point(&self, q: &[f64], eta: f64) -> [f64; 2] {
+        [self.x_f + self.beam(q, eta), eta]
+    }
+
     /// Penetration, push direction and point of segment `j`, body frame.
     fn segment(
         &self,
@@ -526,8 +531,21 @@ impl Model {
     /// Stiffness and damping bounds for the critical step: the largest
     /// Gershgorin row sums of M⁻¹K and M⁻¹C over the coordinates, 1/s² and 1/s.
     pub fn rates(&self, car: &PlanarCar) -> (f64, f64) {
+        self.bounds(car, true)
+    }
+
+    /// [`Model::rates`] of the car alone, without the bumper segments (a
+    /// force-driven car: the loads are given, not made by a contact).
+    pub fn chain_rates(&self, car: &PlanarCar) -> (f64, f64) {
+        self.bounds(car, false)
+    }
+
+    fn bounds(&self, car: &PlanarCar, contact: bool) -> (f64, f64) {
         let segments = &car.beam().segments;
-        let seg = |j: usize| segments[j].stiffest() + 16.0 * self.bending;
+        let seg = |j: usize| match contact {
+            true => segments[j].stiffest() + 16.0 * self.bending,
+            false => 0.0,
+        };
         let total: f64 = (0..segments.len()).map(seg).sum();
         let mut stiff = vec![0.0; self.masses.len()];
         let mut damp = vec![0.0; self.masses.len()];

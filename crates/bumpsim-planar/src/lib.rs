@@ -8,6 +8,7 @@
 //! - [`car`]: the planar car — rigid body, left/right MSD chains, a segmented
 //!   bumper beam, tyres — validated at construction;
 //! - [`file`](mod@file): the planar car TOML file;
+//! - [`drive`](mod@drive): the car driven by given forces (test replay, FE reference);
 //! - [`striker`]: rigid planes at an angle with an overlap, poles, and pendulums
 //!   carrying either face;
 //! - [`simulate`](mod@simulate): the central-difference integrator and [`simulate()`];
@@ -31,6 +32,7 @@
 //! ```
 
 pub mod car;
+pub mod drive;
 mod dynamics;
 pub mod file;
 pub mod presets;

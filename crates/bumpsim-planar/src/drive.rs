@@ -1,0 +1,444 @@
+//! The planar car driven by given forces (spec §9): the model that planar
+//! identification fits, and the reference for the exported FE decks.
+//!
+//! The equations of motion are those of [`crate::simulate`] (same
+//! generalised coordinates, same Newton–Euler solve, same leapfrog), with
+//! the striker's contact replaced by given loads: load k acts on the bumper
+//! line at the lateral position η_k (body frame, left positive) with a fixed
+//! direction `d_k` in the world frame and magnitude `F_k(t)`, linearly
+//! interpolated between its samples. Its part along the body axis is shared
+//! onto the two front chain masses by the lever rule (left share
+//! `α = (η_k + b)/(2b)`); its lateral part and its moment about the CG act on
+//! the body — exactly how a segment's contact force acts in an impact. This
+//! is how a test is replayed: the barrier's load cells give the forces and
+//! their lateral positions, the car's accelerometers the motion.
+//!
+//! Outputs, at the input's samples: the CG displacement (x, y) in the world,
+//! the yaw ψ (counter-clockwise seen from above), the world-x displacement
+//! of each sensor point `X + ξ cos ψ − η sin ψ − ξ`, the side-member tip
+//! forces and the chain masses' displacements u_i.
+//!
+//! Step: `T = safety · min(2/ω, 2/ω_c)` from the chain and tyre bounds of
+//! [`crate::simulate`] (no segments), rounded down to divide the sample
+//! interval.
+//!
+//! ```
+//! use bumpsim_core::model::MsdModel;
+//! use bumpsim_impact::bumper::Bumper;
+//! use bumpsim_planar::car::{Layout, PlanarCar};
+//! use bumpsim_planar::drive::{Drive, Load, drive};
+//! // a rigid 1000-kg car (no chain), pushed at its axis by 1 kN for 0.1 s
+//! let chain = MsdModel::new(vec![1000.0], vec![], vec![]).unwrap();
+//! let bumper = Bumper::three_part(1e6, 1e5, 1e7).unwrap();
+//! let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
+//! let load = Load { lateral: 0.0, direction: [-1.0, 0.0], force: vec![1e3; 1001] };
+//! let input = Drive { step: 1e-4, loads: vec![load], speed: 0.0, sensors: vec![] };
+//! let r = drive(&car, &input, 0.05).unwrap();
+//! let expected = -0.5 * 1.0 * 0.1f64.powi(2);              // x = ½ (F/M) t²
+//! assert!((r.x.last().unwrap() - expected).abs() < 1e-9);
+//! assert!(r.yaw.iter().all(|y| y.abs() < 1e-15));         // on the axis: no turn
+//! ```
+
+use crate::car::{PlanarCar, PlanarError, parameter, require};
+use crate::dynamics::{Contact, Model};
+use crate::striker::Placed;
+
+/// A given force on the bumper line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Load {
+    /// Lateral position on the bumper line, body frame, m (left positive).
+    pub lateral: f64,
+    /// Direction of the force on the car, world frame (normalised on use).
+    pub direction: [f64; 2],
+    /// Magnitudes, N, at `k · step` (k = 0, 1, …).
+    pub force: Vec<f64>,
+}
+
+/// The loads, the start and the sensors of one replay.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Drive {
+    /// Sample interval of the forces and of the outputs, s.
+    pub step: f64,
+    /// The loads (all of the same length).
+    pub loads: Vec<Load>,
+    /// Initial forward speed of the whole car, m/s (x, towards the bumper).
+    pub speed: f64,
+    /// Sensor points, body frame: ξ ahead of the CG and η left, m.
+    pub sensors: Vec<[f64; 2]>,
+}
+
+/// Histories of a replay, at the input's samples.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Driven {
+    /// Time from the first sample, s.
+    pub time: Vec<f64>,
+    /// CG displacement along world x, m.
+    pub x: Vec<f64>,
+    /// CG displacement along world y, m.
+    pub y: Vec<f64>,
+    /// Yaw, rad (counter-clockwise seen from above).
+    pub yaw: Vec<f64>,
+    /// World-x displacement of each sensor, m (outer: sensors).
+    pub sensor_x: Vec<Vec<f64>>,
+    /// Compressive force at the left side-member tip, N.
+    pub side_force_left: Vec<f64>,
+    /// Compressive force at the right side-member tip, N.
+    pub side_force_right: Vec<f64>,
+    /// Displacement u_i of each chain mass along the body axis, m (left chain first).
+    pub chains: Vec<Vec<f64>>,
+}
+
+/// Most samples of one replay (as a simulation's output, docs/limits.md).
+pub const MAX_SAMPLES: usize = 10_000_000;
+
+fn check(input: &Drive) -> Result<usize, PlanarError> {
+    require(
+        "step",
+        input.step,
+        "s",
+        "must be positive",
+        input.step > 0.0,
+    )?;
+    require("speed", input.speed, "m/s", "must be finite", true)?;
+    let samples = input.loads.first().map_or(0, |l| l.force.len());
+    require(
+        "samples",
+        samples as f64,
+        "1",
+        &format!("between 2 and {MAX_SAMPLES} samples per load"),
+        (2..=MAX_SAMPLES).contains(&samples),
+    )?;
+    for (k, load) in input.loads.iter().enumerate() {
+        let name = |what: &str| format!("load[{k}].{what}");
+        require(&name("lateral"), load.lateral, "m", "must be finite", true)?;
+        let norm = load.direction[0].hypot(load.direction[1]);
+        require(
+            &name("direction"),
+            norm,
+            "1",
+            "must be a finite, non-zero vector",
+            norm > 0.0,
+        )?;
+        if load.force.len() != samples {
+            return Err(parameter(
+                &name("force"),
+                load.force.len() as f64,
+                "samples",
+                &format!("all loads need the same {samples} samples"),
+            ));
+        }
+        if let Some(i) = load.force.iter().position(|f| !f.is_finite()) {
+            return Err(parameter(
+                &format!("load[{k}].force[{i}]"),
+                load.force[i],
+                "N",
+                "must be finite",
+            ));
+        }
+    }
+    for (k, s) in input.sensors.iter().enumerate() {
+        require(
+            &format!("sensor[{k}]"),
+            s[0] + s[1],
+            "m",
+            "must be finite",
+            true,
+        )?;
+    }
+    Ok(samples)
+}
+
+/// Replays given forces on `car`, starting at `input.speed` with everything
+/// at rest relative to the body; `safety` is the fraction of the critical step.
+pub fn drive(car: &PlanarCar, input: &Drive, safety: f64) -> Result<Driven, PlanarError> {
+    let samples = check(input)?;
+    require(
+        "safety",
+        safety,
+        "1",
+        "must lie in (0, 1]",
+        safety > 0.0 && safety <= 1.0,
+    )?;
+    let nowhere = Placed::Plane {
+        normal: [-1.0, 0.0],
+        offset: f64::MAX,
+        edge: 0.0,
+        sign: 0.0,
+    };
+    let mut model = Model::new(car, nowhere, None);
+    let (omega2, omega_c) = model.chain_rates(car);
+    let critical = (2.0 / omega2.sqrt()).min(2.0 / omega_c);
+    let substeps = (input.step / (safety * critical)).ceil().max(1.0);
+    let limit = crate::simulate::MAX_STEPS;
+    require(
+        "integration step",
+        input.step / substeps,
+        "s",
+        &format!(
+            "needs more than {limit:e} steps: check the car for an implausibly stiff or light element"
+        ),
+        substeps * samples as f64 <= limit,
+    )?;
+    model.half_step = 0.5 * input.step / substeps;
+    Replay::new(model, input, substeps as usize).run(samples)
+}
+
+/// The state of one replay; every buffer is allocated once.
+struct Replay<'a> {
+    model: Model,
+    input: &'a Drive,
+    directions: Vec<[f64; 2]>,
+    substeps: usize,
+    contact: Contact,
+    chain: Vec<f64>,
+    a: Vec<f64>,
+    out: Driven,
+}
+
+impl<'a> Replay<'a> {
+    fn new(model: Model, input: &'a Drive, substeps: usize) -> Replay<'a> {
+        let directions = input
+            .loads
+            .iter()
+            .map(|l| {
+                let norm = l.direction[0].hypot(l.direction[1]);
+                [l.direction[0] / norm, l.direction[1] / norm]
+            })
+            .collect();
+        let samples = input.loads[0].force.len();
+        let chains = model.masses.len();
+        let out = Driven {
+            sensor_x: vec![Vec::with_capacity(samples); input.sensors.len()],
+            chains: vec![Vec::with_capacity(samples); chains],
+            ..Driven::default()
+        };
+        Replay {
+            contact: Contact::new(input.loads.len()),
+            chain: vec![0.0; chains],
+            a: vec![0.0; model.dof()],
+            model,
+            input,
+            directions,
+            substeps,
+            out,
+        }
+    }
+
+    /// Fills the loads at sample `i` plus fraction `f` into the contact.
+    fn place(&mut self, q: &[f64], i: usize, f: f64) {
+        let (sn, cs) = q[2].sin_cos();
+        for (k, load) in self.input.loads.iter().enumerate() {
+            let next = load.force.get(i + 1).copied().unwrap_or(load.force[i]);
+            self.contact.total[k] = load.force[i] + f * (next - load.force[i]);
+            let d = self.directions[k];
+            self.contact.direction[k] = [d[0] * cs + d[1] * sn, -d[0] * sn + d[1] * cs];
+            self.contact.point[k] = self.model.bumper_point(q, load.lateral);
+        }
+    }
+
+    fn accelerate(&mut self, q: &[f64], v: &[f64]) -> [f64; 2] {
+        let loads = self
+            .model
+            .accelerations(q, v, &self.contact, &mut self.chain, &mut self.a);
+        loads.side
+    }
+
+    fn run(mut self, samples: usize) -> Result<Driven, PlanarError> {
+        let t_step = 2.0 * self.model.half_step;
+        let mut q = vec![0.0; self.model.dof()];
+        let mut v = vec![0.0; self.model.dof()];
+        v[0] = self.input.speed;
+        self.place(&q, 0, 0.0);
+        let side = self.accelerate(&q, &v);
+        self.record(0, &q, side)?;
+        v.iter_mut()
+            .zip(&self.a)
+            .for_each(|(v, a)| *v += 0.5 * t_step * a);
+        for i in 0..samples - 1 {
+            let mut side = [0.0; 2];
+            for k in 1..=self.substeps {
+                q.iter_mut().zip(&v).for_each(|(x, v)| *x += t_step * v);
+                self.place(&q, i, k as f64 / self.substeps as f64);
+                side = self.accelerate(&q, &v);
+                v.iter_mut()
+                    .zip(&self.a)
+                    .for_each(|(v, a)| *v += t_step * a);
+            }
+            self.record(i + 1, &q, side)?;
+        }
+        Ok(self.out)
+    }
+
+    fn record(&mut self, i: usize, q: &[f64], side: [f64; 2]) -> Result<(), PlanarError> {
+        let time = i as f64 * self.input.step;
+        if !q.iter().all(|x| x.is_finite()) {
+            return Err(PlanarError::Diverged { time });
+        }
+        let out = &mut self.out;
+        out.time.push(time);
+        out.x.push(q[0]);
+        out.y.push(q[1]);
+        out.yaw.push(q[2]);
+        let (sn, cs) = q[2].sin_cos();
+        for (history, s) in out.sensor_x.iter_mut().zip(&self.input.sensors) {
+            history.push(q[0] + s[0] * cs - s[1] * sn - s[0]);
+        }
+        out.side_force_left.push(side[0]);
+        out.side_force_right.push(side[1]);
+        for (history, u) in out.chains.iter_mut().zip(&q[3..]) {
+            history.push(*u);
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::car::Layout;
+    use crate::simulate::{Settings, simulate};
+    use crate::striker::{Face, Side, Striker, place};
+    use bumpsim_core::model::MsdModel;
+    use bumpsim_impact::bumper::Bumper;
+
+    fn car(chain: &MsdModel) -> PlanarCar {
+        let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        PlanarCar::symmetric(chain, &bumper, &Layout::default()).unwrap()
+    }
+
+    /// A rigid body pushed along world −x at a lateral offset η by a
+    /// constant force: ẍ = −F/M, and as the body turns the force's arm
+    /// grows by x_f sin ψ (x_f: bumper ahead of the CG), so
+    /// `I_z ψ̈ = F (η cos ψ + x_f sin ψ) ≈ F η + F x_f ψ`, solved by
+    /// `ψ = (η/x_f)(cosh(√c t) − 1)` with `c = F x_f / I_z` (the linearisation
+    /// errs by O(ψ²) ≈ 1e-7 relative here).
+    #[test]
+    fn an_offset_push_turns_a_rigid_car_as_newton_euler_says() {
+        let rigid = car(&MsdModel::new(vec![1200.0], vec![], vec![]).unwrap());
+        let (force, eta, samples) = (1e3, 0.5, 501);
+        let load = Load {
+            lateral: eta,
+            direction: [-1.0, 0.0],
+            force: vec![force; samples],
+        };
+        let input = Drive {
+            step: 1e-4,
+            loads: vec![load],
+            speed: 2.0,
+            sensors: vec![[1.0, 0.7], [1.0, -0.7]],
+        };
+        let r = drive(&rigid, &input, 0.05).unwrap();
+        let t: f64 = 0.05;
+        let x = 2.0 * t - 0.5 * force / 1200.0 * t * t;
+        let c: f64 = force * 2.0 / 2000.0;
+        let yaw = eta / 2.0 * ((c.sqrt() * t).cosh() - 1.0);
+        assert!(
+            (r.x[samples - 1] - x).abs() < 1e-9 * x,
+            "{} {x}",
+            r.x[samples - 1]
+        );
+        assert!(
+            (r.yaw[samples - 1] - yaw).abs() < 1e-6 * yaw,
+            "{} {yaw}",
+            r.yaw[samples - 1]
+        );
+        // the sensors see x ∓ η ψ: their difference is the yaw
+        let (left, right) = (&r.sensor_x[0], &r.sensor_x[1]);
+        let seen = (right[samples - 1] - left[samples - 1]) / 1.4;
+        assert!((seen - yaw).abs() < 1e-6 * yaw, "{seen} {yaw}");
+    }
+
+    /// An RCAR impact replayed: the segment forces of `simulate`, given as
+    /// loads at the segment centres along the face normal, move the car as
+    /// the impact did (within the linear interpolation between 0.1-ms samples).
+    #[test]
+    fn replaying_an_impact_s_segment_forces_reproduces_its_motion() {
+        let chain = MsdModel::new(vec![12.0, 1250.0], vec![3e3], vec![2.5e6]).unwrap();
+        let car = car(&chain);
+        let striker = Striker::barrier(Face::plane_in_degrees(10.0, 40.0, Side::Left), 15.0 / 3.6);
+        let settings = Settings {
+            output_step: 1e-5,
+            ..Settings::default()
+        };
+        let r = simulate(&car, &striker, &settings).unwrap();
+        let Placed::Plane { normal, .. } = place(&car, &striker).unwrap() else {
+            unreachable!("a plane face")
+        };
+        let loads = r
+            .segment_force
+            .iter()
+            .zip(&r.segment_centres)
+            .map(|(force, &lateral)| Load {
+                lateral,
+                direction: [normal[0], normal[1]],
+                force: force.clone(),
+            })
+            .collect();
+        let input = Drive {
+            step: 1e-5,
+            loads,
+            speed: 15.0 / 3.6,
+            sensors: vec![],
+        };
+        let d = drive(&car, &input, 0.05).unwrap();
+        let gap = |a: &[f64], b: &[f64]| {
+            let peak = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            a.iter()
+                .zip(b)
+                .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+                / peak
+        };
+        let (dx, dyaw) = (gap(&r.x, &d.x), gap(&r.yaw, &d.yaw));
+        eprintln!("replay: x {dx:.1e}, yaw {dyaw:.1e} of peak");
+        assert!(dx < 1e-3 && dyaw < 1e-3, "x {dx:e}, yaw {dyaw:e}");
+        assert!(
+            r.yaw.iter().fold(0.0f64, |m, v| m.max(v.abs())) > 1e-3,
+            "it turns"
+        );
+    }
+
+    #[test]
+    fn bad_input_is_refused_by_name() {
+        let rigid = car(&MsdModel::new(vec![1200.0], vec![], vec![]).unwrap());
+        let load = |force: Vec<f64>, direction| Load {
+            lateral: 0.0,
+            direction,
+            force,
+        };
+        let input = |loads| Drive {
+            step: 1e-4,
+            loads,
+            speed: 0.0,
+            sensors: vec![],
+        };
+        let cases = [
+            (
+                input(vec![load(vec![1.0, f64::NAN], [-1.0, 0.0])]),
+                "load[0].force[1]",
+            ),
+            (
+                input(vec![load(vec![1.0; 3], [0.0, 0.0])]),
+                "load[0].direction",
+            ),
+            (
+                input(vec![
+                    load(vec![1.0; 3], [-1.0, 0.0]),
+                    load(vec![1.0; 4], [-1.0, 0.0]),
+                ]),
+                "load[1].force",
+            ),
+            (input(vec![load(vec![1.0], [-1.0, 0.0])]), "samples"),
+            (
+                Drive {
+                    step: f64::NAN,
+                    ..input(vec![load(vec![1.0; 3], [-1.0, 0.0])])
+                },
+                "step",
+            ),
+        ];
+        for (bad, name) in cases {
+            let err = drive(&rigid, &bad, 0.05).unwrap_err().to_string();
+            assert!(err.starts_with(name), "{err}");
+        }
+    }
+}
