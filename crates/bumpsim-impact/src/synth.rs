@@ -72,7 +72,7 @@ impl Default for Chain {
 }
 
 /// Gaussian noise by Box–Muller.
-fn gaussian(rng: &mut ChaCha8Rng) -> f64 {
+pub fn gaussian(rng: &mut ChaCha8Rng) -> f64 {
     let u = |rng: &mut ChaCha8Rng| ((rng.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64;
     let (a, b) = (u(rng), u(rng));
     (-2.0 * a.ln()).sqrt() * (2.0 * std::f64::consts::PI * b).cos()

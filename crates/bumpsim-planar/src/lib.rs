@@ -9,11 +9,14 @@
 //!   bumper beam, tyres — validated at construction;
 //! - [`file`](mod@file): the planar car TOML file;
 //! - [`drive`](mod@drive): the car driven by given forces (test replay, FE reference);
+//! - [`identify`](mod@identify): the planar car identified from several load cases;
+//! - [`cases`]: load cases from test channels (conditioning, integration, window);
 //! - [`striker`]: rigid planes at an angle with an overlap, poles, and pendulums
 //!   carrying either face;
 //! - [`simulate`](mod@simulate): the central-difference integrator and [`simulate()`];
 //! - [`result`]: histories, energy and momentum balances;
 //! - [`presets`]: RCAR and IIHS asymmetric load cases with their sources;
+//! - [`synth`]: synthetic asymmetric test series (load-cell wall, sills);
 //! - [`text`]: the summary with units and the CSV histories.
 //!
 //! ```
@@ -32,13 +35,16 @@
 //! ```
 
 pub mod car;
+pub mod cases;
 pub mod drive;
 mod dynamics;
 pub mod file;
+pub mod identify;
 pub mod presets;
 pub mod result;
 pub mod simulate;
 pub mod striker;
+pub mod synth;
 pub mod text;
 
 pub use car::{PlanarCar, PlanarError};
