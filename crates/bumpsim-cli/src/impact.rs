@@ -234,16 +234,49 @@ fn sweep(
 /// Arguments of `synth`.
 #[derive(Debug, clap::Args)]
 pub struct SynthArgs {
-    /// The series file (TOML: car, seed, `[chain]`, `[[head]]` with name, bumper, mass, speed).
+    /// The series file (TOML: car, seed, `[chain]`, `[[head]]` with name, bumper, mass, speed;
+    /// or a planar series: planar_car, seed, `[chain]`, `[[test]]`, see docs/planar.md).
     series: PathBuf,
-    /// Output folder: one ISO-MME test and one CSV per head, plus `generated-by.toml`.
+    /// Output folder: one ISO-MME test and one CSV per head, plus `generated-by.toml`
+    /// (planar: also `study.toml` and `start.toml`).
     #[arg(short, long)]
     output: PathBuf,
 }
 
+/// The tests of a series, its provenance and further files (name, text).
+type Made = (
+    Vec<bumpsim_impact::synth::SynthTest>,
+    String,
+    Vec<(&'static str, String)>,
+);
+
+fn make(path: &std::path::Path) -> Result<Made> {
+    let text = std::fs::read_to_string(path).with_context(|| format!("{}", path.display()))?;
+    if !bumpsim_planar::series::is_planar(&text) {
+        let (heads, provenance) = bumpsim_impact::synth::make_series(path)?;
+        return Ok((heads, provenance, Vec::new()));
+    }
+    let series = bumpsim_planar::series::make_series(path)?;
+    let tests = series
+        .tests
+        .into_iter()
+        .map(|t| {
+            let title = format!("{}: synthetic planar test (bumpsim synth)", t.name);
+            let header = bumpsim_io::test_data::iso_header::test_header(
+                &title,
+                Some(t.striker.0),
+                t.striker.1,
+            );
+            (t.name, header, t.channels)
+        })
+        .collect();
+    let extra = vec![("study.toml", series.study), ("start.toml", series.start)];
+    Ok((tests, series.provenance, extra))
+}
+
 /// Runs `synth`.
 pub fn run_synth(args: &SynthArgs) -> Result<()> {
-    let (heads, provenance) = bumpsim_impact::synth::make_series(&args.series)?;
+    let (heads, provenance, extra) = make(&args.series)?;
     let existing = std::fs::read_dir(&args.output).is_ok_and(|mut d| d.next().is_some());
     if existing {
         bail!(
@@ -274,6 +307,9 @@ pub fn run_synth(args: &SynthArgs) -> Result<()> {
             "wrote {}",
             args.output.join(format!("{name}.csv")).display()
         );
+    }
+    for (name, text) in &extra {
+        folder.write(name, text)?;
     }
     folder.write(
         "generated-by.toml",

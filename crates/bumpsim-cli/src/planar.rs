@@ -4,9 +4,13 @@
 use crate::{Folder, write};
 use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, parse_quantity};
+use bumpsim_planar::identify::{Prediction, identify, predict};
 use bumpsim_planar::presets::{PRESETS, StrikerSpec};
+use bumpsim_planar::study::PlanarStudy;
 use bumpsim_planar::{PlanarCar, Settings, Side, Striker, simulate};
-use std::path::PathBuf;
+use bumpsim_report::planar::CasePage;
+use indicatif::ProgressBar;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `planar`.
 #[derive(Debug, clap::Args)]
@@ -117,6 +121,76 @@ pub fn run(args: &Args) -> Result<()> {
     }
     if let Some(dir) = &args.files.report {
         let (html, figures) = bumpsim_report::planar::planar_report(&heading, &summary, &result)?;
+        Folder::report(dir, &html, &figures)?;
+    }
+    Ok(())
+}
+
+/// What `identify` does with a planar study (`[model] planar = ...`).
+pub struct IdentifyOptions<'a> {
+    /// The study file.
+    pub study: &'a Path,
+    /// Starts and seed instead of the study's.
+    pub starts: Option<usize>,
+    /// Seed of the random starts.
+    pub seed: Option<u64>,
+    /// JSON result.
+    pub json: Option<&'a Path>,
+    /// Report folder.
+    pub report: Option<&'a Path>,
+    /// The identified car as a planar car file.
+    pub car: Option<&'a Path>,
+    /// No progress bar.
+    pub quiet: bool,
+}
+
+/// `identify` on a planar study: identifies, prints the summary, predicts
+/// the validation cases and writes the outputs.
+pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
+    let mut study = PlanarStudy::read(options.study)?;
+    study.setup.starts = options.starts.unwrap_or(study.setup.starts);
+    study.setup.seed = options.seed.unwrap_or(study.setup.seed);
+    let bar = match options.quiet {
+        true => ProgressBar::hidden(),
+        false => ProgressBar::new(study.setup.starts as u64),
+    };
+    let result = identify(&study.cases, &study.setup, &|| bar.inc(1));
+    bar.finish_and_clear();
+    let result = result.context("planar identification")?;
+    let fitted: Vec<Prediction> = study
+        .cases
+        .iter()
+        .map(|c| predict(&result.car, c))
+        .collect::<Result<_, _>>()?;
+    let validation: Vec<Prediction> = study
+        .validation
+        .iter()
+        .map(|c| predict(&result.car, c))
+        .collect::<Result<_, _>>()?;
+    let validation_fits: Vec<_> = validation.iter().map(|p| p.fit.clone()).collect();
+    let summary = bumpsim_planar::text::identification_summary(&result, &validation_fits);
+    print!("{summary}");
+    result.warnings.iter().for_each(|w| crate::warn(w));
+    if let Some(path) = options.json {
+        let json = serde_json::json!({ "result": result, "validation": validation_fits });
+        write(path, &serde_json::to_string_pretty(&json)?)?;
+    }
+    if let Some(path) = options.car {
+        write(path, &result.car.to_toml())?;
+    }
+    if let Some(dir) = options.report {
+        let inputs = std::fs::read_to_string(options.study).unwrap_or_default();
+        let pages: Vec<CasePage> = fitted
+            .iter()
+            .map(|p| (p, false))
+            .chain(validation.iter().map(|p| (p, true)))
+            .map(|(prediction, validation)| CasePage {
+                prediction,
+                validation,
+            })
+            .collect();
+        let (html, figures) =
+            bumpsim_report::planar::identification_report(&summary, &inputs, &pages)?;
         Folder::report(dir, &html, &figures)?;
     }
     Ok(())

@@ -178,6 +178,12 @@ fn check(input: &Drive, masses: usize) -> Result<usize, PlanarError> {
     Ok(samples)
 }
 
+/// Checks `input` for `car` (finite forces of one length, non-zero
+/// directions, sensors on the car); returns the sample count.
+pub fn validate(car: &PlanarCar, input: &Drive) -> Result<usize, PlanarError> {
+    check(input, car.left().masses.len() + car.right().masses.len())
+}
+
 /// Replays given forces on `car`, starting at `input.speed` with everything
 /// at rest relative to the body; `safety` is the fraction of the critical step.
 pub fn drive(car: &PlanarCar, input: &Drive, safety: f64) -> Result<Driven, PlanarError> {
@@ -218,7 +224,7 @@ pub fn drive_substeps(
     input: &Drive,
     substeps: usize,
 ) -> Result<Driven, PlanarError> {
-    let samples = check(input, car.left().masses.len() + car.right().masses.len())?;
+    let samples = validate(car, input)?;
     let limit = crate::simulate::MAX_STEPS;
     require(
         "integration steps",

@@ -6,8 +6,9 @@
 //! line, the car starts at the test speed, and the model's left and right
 //! sensor points move. The unknowns θ are the body mass M and yaw inertia
 //! I_z, every mass, damper and spring of the left and right chains (their
-//! sizes from the template car, the start), and optionally one tyre
-//! friction coefficient μ for every wheel and direction. The geometry (CG,
+//! sizes from the template car, the start), and optionally the lateral
+//! tyre friction coefficient μ_y of both axles (the longitudinal ones, rolling
+//! resistance or brakes, stay the template's). The geometry (CG,
 //! side members, wheelbase, track) is the template's.
 //!
 //! **Objective.** `F(θ) = Σ_cases Σ_k (x̂_L − x_L)² + (x̂_R − x_R)²` over each
@@ -36,7 +37,7 @@
 //! **Fit** of a case, as for the 1-D identification: `100 (1 − √(SSE/SST))` %,
 //! for x (mean of the sensors) and for the yaw `ψ = asin((x_R − x_L)/(η_L − η_R))`.
 
-use crate::car::{Axle, Body, PlanarCar, PlanarError, SideChain, parameter};
+use crate::car::{Body, PlanarCar, PlanarError, SideChain, parameter};
 use crate::drive::{Drive, Driven, Sensor, drive, drive_substeps, substeps};
 use bumpsim_ident::lm::{self, LeastSquares, Outcome};
 use nalgebra::DMatrix;
@@ -74,7 +75,7 @@ pub struct Setup {
     pub seed: u64,
     /// Random starts lie within this factor of the template (> 1).
     pub spread: f64,
-    /// Estimate one friction coefficient μ for all tyres (else the template's).
+    /// Estimate the lateral friction coefficient μ_y of both axles (else the template's).
     pub friction: bool,
 }
 
@@ -94,7 +95,7 @@ impl Setup {
 /// One estimated parameter.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Estimate {
-    /// Name as in the car file (`body.yaw_inertia`, `left.springs[0]`, `tyres.mu`).
+    /// Name as in the car file (`body.yaw_inertia`, `left.springs[0]`, `tyres.mu_lateral`).
     pub name: String,
     /// Unit of value, standard error and interval.
     pub unit: &'static str,
@@ -130,10 +131,12 @@ pub struct Starts {
     pub reached_best: usize,
 }
 
-/// The result of [`identify`].
-#[derive(Debug, Clone, PartialEq)]
+/// The result of [`identify`]; serialised with the car's body, chains and
+/// tyres (not its bumper beam, which is the template's).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PlanarIdentification {
     /// The identified car (the template's geometry, beam and tyres).
+    #[serde(serialize_with = "car_parts")]
     pub car: PlanarCar,
     /// The estimates, in the order of [`names`].
     pub parameters: Vec<Estimate>,
@@ -147,6 +150,23 @@ pub struct PlanarIdentification {
     pub inflation: f64,
     /// Warnings (parameters at a bound, a rank-deficient Jacobian).
     pub warnings: Vec<String>,
+}
+
+fn car_parts<S: serde::Serializer>(car: &PlanarCar, serializer: S) -> Result<S::Ok, S::Error> {
+    #[derive(Serialize)]
+    struct Parts<'a> {
+        body: &'a Body,
+        left: &'a SideChain,
+        right: &'a SideChain,
+        tyres: &'a crate::car::Tyres,
+    }
+    Parts {
+        body: car.body(),
+        left: car.left(),
+        right: car.right(),
+        tyres: car.tyres(),
+    }
+    .serialize(serializer)
 }
 
 /// The parameters' names and units for `template` (friction last, if estimated).
@@ -163,7 +183,7 @@ pub fn names(template: &PlanarCar, friction: bool) -> Vec<(String, &'static str)
         }
     }
     if friction {
-        out.push(("tyres.mu".to_string(), "1"));
+        out.push(("tyres.mu_lateral".to_string(), "1"));
     }
     out
 }
@@ -207,11 +227,8 @@ pub fn car_with(
     let mut tyres = *template.tyres();
     if friction {
         let mu = take(1)[0];
-        let axle = Axle {
-            mu_longitudinal: mu,
-            mu_lateral: mu,
-        };
-        (tyres.front, tyres.rear) = (axle, axle);
+        tyres.front.mu_lateral = mu;
+        tyres.rear.mu_lateral = mu;
     }
     PlanarCar::new(body, left, right, template.beam().clone(), tyres)
         .map(|c| c.with_name(template.name().map(str::to_string)))
@@ -239,6 +256,10 @@ fn check(cases: &[PlanarCase], setup: &Setup) -> Result<Vec<f64>, PlanarError> {
     }
     for case in cases {
         check_case(case)?;
+        crate::drive::validate(&setup.template, &case.drive).map_err(|e| PlanarError::Case {
+            case: case.name.clone(),
+            message: e.to_string(),
+        })?;
     }
     let start = values(&setup.template, setup.friction);
     let names = names(&setup.template, setup.friction);
@@ -679,5 +700,130 @@ fn fit(model: &[f64], measured: &[f64]) -> f64 {
     match sst > 0.0 {
         true => 100.0 * (1.0 - (sse / sst).sqrt()),
         false => 0.0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::car::Layout;
+    use crate::drive::Load;
+    use bumpsim_core::model::MsdModel;
+    use bumpsim_impact::bumper::Bumper;
+
+    fn car() -> PlanarCar {
+        let chain = MsdModel::new(vec![8.0, 1200.0], vec![2e3], vec![1.5e6]).unwrap();
+        let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap()
+    }
+
+    /// A case made by the model itself: a half-sine push at `lateral`,
+    /// sills and both side members measured.
+    fn case(truth: &PlanarCar, lateral: f64) -> PlanarCase {
+        let force: Vec<f64> = (0..400)
+            .map(|k| 4e4 * (std::f64::consts::PI * (k as f64 / 300.0).min(1.0)).sin())
+            .collect();
+        let load = Load {
+            lateral,
+            anchor: None,
+            direction: [-1.0, 0.0],
+            force,
+        };
+        let sensors = vec![
+            Sensor::Body([0.6, 0.7]),
+            Sensor::Body([0.6, -0.7]),
+            Sensor::Chain(0),
+            Sensor::Chain(1),
+        ];
+        let drive = Drive {
+            step: 1e-4,
+            loads: vec![load],
+            speed: 2.0,
+            sensors,
+        };
+        let replay = crate::drive::drive(truth, &drive, 0.05).unwrap();
+        PlanarCase {
+            name: "offset".into(),
+            drive,
+            measured: replay.sensor_reading,
+            window: (0, 399),
+        }
+    }
+
+    #[test]
+    fn noise_free_data_of_the_model_are_fitted_exactly_and_the_truth_found() {
+        let truth = car();
+        let mut start = Setup::new(
+            car_with(
+                &truth,
+                &[1000.0, 2500.0, 6.0, 1500.0, 1.2e6, 6.0, 1500.0, 1.2e6],
+                false,
+            )
+            .unwrap(),
+        );
+        start.starts = 2;
+        let r = identify(&[case(&truth, 0.4), case(&truth, -0.2)], &start, &|| {}).unwrap();
+        let truth_values = values(&truth, false);
+        for (p, t) in r.parameters.iter().zip(&truth_values) {
+            assert!(
+                (p.value - t).abs() < 1e-3 * t,
+                "{} {} vs {t}",
+                p.name,
+                p.value
+            );
+        }
+        assert!(
+            r.fits[0].fit_x > 99.99 && r.fits[0].fit_yaw > 99.9,
+            "{:?}",
+            r.fits
+        );
+    }
+
+    #[test]
+    fn bad_settings_and_cases_are_refused_by_name() {
+        let truth = car();
+        let good = case(&truth, 0.4);
+        let setup = Setup::new(truth.clone());
+        let err = |cases: &[PlanarCase], setup: &Setup| {
+            identify(cases, setup, &|| {}).unwrap_err().to_string()
+        };
+        assert!(err(&[], &setup).starts_with("cases"));
+        assert!(
+            err(
+                &[good.clone()],
+                &Setup {
+                    starts: 0,
+                    ..setup.clone()
+                }
+            )
+            .starts_with("starts")
+        );
+        assert!(
+            err(
+                &[good.clone()],
+                &Setup {
+                    spread: f64::NAN,
+                    ..setup.clone()
+                }
+            )
+            .starts_with("spread")
+        );
+        let mut short = good.clone();
+        short.window = (10, 4000);
+        assert!(err(&[short], &setup).contains("window"));
+        let mut swapped = good.clone();
+        swapped.drive.sensors.swap(0, 1);
+        assert!(err(&[swapped], &setup).contains("sensors"));
+        let mut nan = good.clone();
+        nan.measured[1][7] = f64::NAN;
+        assert!(err(&[nan], &setup).contains("sensor[1] displacement[7]"));
+        let frictionless = Setup {
+            friction: true,
+            ..setup
+        };
+        assert!(
+            err(&[good], &frictionless).contains("tyres.mu_lateral"),
+            "a zero start cannot be estimated on a log scale"
+        );
     }
 }

@@ -17,6 +17,8 @@
 //! - [`result`]: histories, energy and momentum balances;
 //! - [`presets`]: RCAR and IIHS asymmetric load cases with their sources;
 //! - [`synth`]: synthetic asymmetric test series (load-cell wall, sills);
+//! - [`series`]: the planar series file of `bumpsim synth` and the study it writes;
+//! - [`study`]: the planar study file of `bumpsim identify`;
 //! - [`text`]: the summary with units and the CSV histories.
 //!
 //! ```
@@ -42,8 +44,10 @@ pub mod file;
 pub mod identify;
 pub mod presets;
 pub mod result;
+pub mod series;
 pub mod simulate;
 pub mod striker;
+pub mod study;
 pub mod synth;
 pub mod text;
 

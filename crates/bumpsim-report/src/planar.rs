@@ -115,6 +115,56 @@ fn segment_rows(r: &PlanarResult) -> Vec<Vec<String>> {
         .collect()
 }
 
+/// One case of a planar identification for the report: its prediction and
+/// whether it was fitted or only predicted (validation).
+pub struct CasePage<'a> {
+    /// The replay against the measurement.
+    pub prediction: &'a bumpsim_planar::identify::Prediction,
+    /// Predicted only, not fitted.
+    pub validation: bool,
+}
+
+/// The planar identification report: the summary, then x and yaw of every
+/// case, model against measurement (file name, SVG).
+pub fn identification_report(
+    summary: &str,
+    inputs: &str,
+    cases: &[CasePage],
+) -> Result<(String, Vec<(String, String)>), PlotError> {
+    let mut page = Html::new("bumpsim planar identification");
+    page.heading("Results");
+    page.preformatted(summary);
+    let mut figures = Vec::new();
+    for case in cases {
+        let p = case.prediction;
+        let kind = if case.validation {
+            "validation, not fitted"
+        } else {
+            "fitted"
+        };
+        page.heading(&format!("{} ({kind})", p.fit.name));
+        let mut x = LinePlot::new("x (mean of the sills)", Dimension::Time, Dimension::Length);
+        x.add(line("measured", &p.time, &p.x[1], Style::Solid));
+        x.add(line("model", &p.time, &p.x[0], Style::Dashed));
+        let mut yaw = LinePlot::new(
+            "Yaw (difference of the sills)",
+            Dimension::Time,
+            Dimension::Angle,
+        );
+        yaw.add(line("measured", &p.time, &p.yaw[1], Style::Solid));
+        yaw.add(line("model", &p.time, &p.yaw[0], Style::Dashed));
+        let stem = crate::file_name(&p.fit.name);
+        for (what, plot, fit) in [("x", x, p.fit.fit_x), ("yaw", yaw, p.fit.fit_yaw)] {
+            let svg = plot.svg()?;
+            page.figure(&svg, &format!("{what}: fit {fit:.2} %"));
+            figures.push((format!("{stem}-{what}.svg"), svg));
+        }
+    }
+    page.heading("Inputs");
+    page.preformatted(inputs);
+    Ok((page.finish(), figures))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
