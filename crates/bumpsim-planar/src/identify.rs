@@ -183,7 +183,7 @@ pub fn names(template: &PlanarCar, friction: bool) -> Vec<(String, &'static str)
         }
     }
     if friction {
-        out.push(("tyres.mu_lateral".to_string(), "1"));
+        out.push(("tyres.mu_lateral".to_string(), "-"));
     }
     out
 }
@@ -790,7 +790,7 @@ mod tests {
         assert!(err(&[], &setup).starts_with("cases"));
         assert!(
             err(
-                &[good.clone()],
+                std::slice::from_ref(&good),
                 &Setup {
                     starts: 0,
                     ..setup.clone()
@@ -800,7 +800,7 @@ mod tests {
         );
         assert!(
             err(
-                &[good.clone()],
+                std::slice::from_ref(&good),
                 &Setup {
                     spread: f64::NAN,
                     ..setup.clone()
