@@ -16,15 +16,19 @@ use std::path::PathBuf;
 /// Arguments of `impact`.
 #[derive(Debug, clap::Args)]
 pub struct ImpactArgs {
-    /// The car (TOML or identification JSON); one mass = a rigid vehicle.
+    /// The car (TOML or identification JSON); one mass = a rigid vehicle;
+    /// or a planar car (TOML with [body], docs/planar.md), which carries its bumper.
     #[arg(long)]
     car: PathBuf,
-    /// The bumper characteristic (TOML: ramp, plateau, unloading; or curve, unloading).
+    /// The bumper characteristic (TOML: ramp, plateau, unloading; or curve, unloading);
+    /// needed for a 1-D car.
     #[arg(long)]
-    bumper: PathBuf,
-    /// A load-case preset (`--case list` lists them).
-    #[arg(long, conflicts_with_all = ["pendulum", "barrier"])]
+    bumper: Option<PathBuf>,
+    /// A load-case preset (`--case list` lists them; a planar car's are `planar --case list`).
+    #[arg(long, conflicts_with_all = ["pendulum", "barrier", "angle", "overlap", "side", "pole", "pole_offset"])]
     case: Option<String>,
+    #[command(flatten)]
+    face: crate::planar::FaceArgs,
     /// An impactor (pendulum) of this mass, kg, hits the car at rest.
     #[arg(long, conflicts_with = "barrier", allow_negative_numbers = true)]
     pendulum: Option<f64>,
@@ -36,6 +40,23 @@ pub struct ImpactArgs {
     speed: Option<String>,
     #[command(flatten)]
     files: crate::output::ResultFiles,
+}
+
+/// `impact` with a planar car: the planar impact of `bumpsim planar`.
+fn planar_impact(args: &ImpactArgs) -> Result<()> {
+    if args.bumper.is_some() {
+        bail!(
+            "--bumper: a planar car carries its bumper segments ([bumper] of its file); leave --bumper out"
+        );
+    }
+    crate::planar::run_impact(&crate::planar::ImpactRequest {
+        car: &args.car,
+        case: args.case.as_deref(),
+        face: &args.face,
+        pendulum: args.pendulum,
+        speed: args.speed.as_deref(),
+        files: &args.files,
+    })
 }
 
 /// Arguments of `mass-reduction`.
@@ -119,8 +140,20 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
         }
         return Ok(());
     }
+    let text = std::fs::read_to_string(&args.car).unwrap_or_default();
+    if bumpsim_planar::file::is_planar_car(&text) {
+        return planar_impact(args);
+    }
+    if args.face.given() {
+        bail!(
+            "--angle, --overlap, --side, --pole: faces other than flat need a planar car (--car with [body], docs/planar.md)"
+        );
+    }
+    let Some(bumper_path) = &args.bumper else {
+        bail!("--bumper FILE is needed for a 1-D car (docs/impact.md)");
+    };
     let car = Car::read_model_file(&args.car)?;
-    let bumper = Bumper::read(&args.bumper)?;
+    let bumper = Bumper::read(bumper_path)?;
     let (scenario, label) = scenario(args, car.model.total_mass())?;
     let result = simulate(&car.model, &bumper, scenario, &Options::default())?;
     let warnings = result.warnings();
@@ -134,7 +167,7 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
         .name
         .clone()
         .unwrap_or_else(|| args.car.display().to_string());
-    println!("{name} with {}: {label}", args.bumper.display());
+    println!("{name} with {}: {label}", bumper_path.display());
     print!("{summary}");
     if let Some(path) = &args.files.json {
         let json = serde_json::json!({

@@ -186,6 +186,13 @@ fn segments(file: &BumperFile) -> Result<Vec<Bumper>, PlanarError> {
     }
 }
 
+/// Whether a car file's text is a planar car (it has a `[body]` table; the
+/// 1-D car file has none).
+pub fn is_planar_car(text: &str) -> bool {
+    toml::from_str::<toml::Table>(text)
+        .is_ok_and(|t| t.get("body").is_some_and(toml::Value::is_table))
+}
+
 impl PlanarCar {
     /// Parses a planar car file; `path` is used in messages.
     ///
