@@ -29,7 +29,6 @@ use crate::car::{PlanarCar, PlanarError};
 use crate::drive::Sensor;
 use crate::presets::StrikerSpec;
 use crate::synth::{Chain, Recorded, record};
-use bumpsim_core::units::{Dimension, STANDARD_GRAVITY, parse_quantity};
 use serde::Deserialize;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
@@ -41,26 +40,14 @@ struct SeriesFile {
     start: Option<PathBuf>,
     #[serde(default = "one")]
     seed: u64,
+    /// `[chain]`: the 1-D series' keys plus `sensor` and `safety` (read in [`chain`]).
     #[serde(default)]
-    chain: ChainFile,
+    chain: toml::Table,
     test: Vec<TestFile>,
 }
 
 fn one() -> u64 {
     1
-}
-
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ChainFile {
-    step: Option<f64>,
-    pretrigger: Option<f64>,
-    duration: Option<f64>,
-    force_noise: Option<f64>,
-    acceleration_noise: Option<f64>,
-    biases: Option<[f64; 2]>,
-    sensor: Option<[f64; 2]>,
-    safety: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -114,7 +101,7 @@ pub fn make_series(path: &Path) -> Result<Series, PlanarError> {
     let base = path.parent().unwrap_or(Path::new("."));
     let car_path = base.join(&file.planar_car);
     let car = PlanarCar::read(&car_path)?;
-    let chain = chain(&file.chain, file.seed);
+    let chain = chain(&file.chain, file.seed).map_err(|m| file_error(path, m))?;
     names(&file.test).map_err(|m| file_error(path, m))?;
     let mut provenance = format!("# series file {}\n{text}\n", path.display());
     let car_text = std::fs::read_to_string(&car_path).unwrap_or_default();
@@ -156,20 +143,31 @@ pub fn make_series(path: &Path) -> Result<Series, PlanarError> {
     })
 }
 
-fn chain(c: &ChainFile, seed: u64) -> Chain {
+/// Removes `key` from `table` and reads it as a `T`.
+fn take<T: serde::de::DeserializeOwned>(
+    table: &mut toml::Table,
+    key: &str,
+) -> Result<Option<T>, String> {
+    let value = table.remove(key);
+    value
+        .map(|v| v.try_into())
+        .transpose()
+        .map_err(|e: toml::de::Error| format!("[chain] {key}: {e}"))
+}
+
+/// `[chain]`: `sensor` and `safety` here, the rest as the 1-D series reads it.
+fn chain(table: &toml::Table, seed: u64) -> Result<Chain, String> {
     let d = Chain::default();
-    let g = STANDARD_GRAVITY;
-    Chain {
-        step: c.step.unwrap_or(d.step),
-        pretrigger: c.pretrigger.unwrap_or(d.pretrigger),
-        duration: c.duration.unwrap_or(d.duration),
-        force_noise: c.force_noise.unwrap_or(d.force_noise),
-        acceleration_noise: c.acceleration_noise.map_or(d.acceleration_noise, |a| a * g),
-        biases: c.biases.map_or(d.biases, |[l, r]| [l * g, r * g]),
-        sensor: c.sensor.unwrap_or(d.sensor),
-        safety: c.safety.unwrap_or(d.safety),
-        seed,
-    }
+    let mut rest = table.clone();
+    let sensor: Option<[f64; 2]> = take(&mut rest, "sensor")?;
+    let safety: Option<f64> = take(&mut rest, "safety")?;
+    let common: bumpsim_impact::synth::ChainFile =
+        rest.try_into().map_err(|e| format!("[chain]: {e}"))?;
+    Ok(Chain {
+        measurement: common.resolve(&d.measurement, seed),
+        sensor: sensor.unwrap_or(d.sensor),
+        safety: safety.unwrap_or(d.safety),
+    })
 }
 
 /// Test names become folder and file names: plain names, each once.
@@ -197,19 +195,11 @@ fn names(tests: &[TestFile]) -> Result<(), String> {
 }
 
 fn striker_spec(t: &TestFile) -> Result<StrikerSpec, String> {
-    let speed = match &t.speed {
-        None => None,
-        Some(toml::Value::Float(v)) => Some(*v),
-        Some(toml::Value::Integer(v)) => Some(*v as f64),
-        Some(toml::Value::String(s)) => {
-            Some(parse_quantity(s, Dimension::Velocity).map_err(|e| e.to_string())?)
-        }
-        Some(other) => {
-            return Err(format!(
-                "speed {other}: expected m/s or text such as \"8 km/h\""
-            ));
-        }
-    };
+    let speed = t
+        .speed
+        .as_ref()
+        .map(bumpsim_impact::synth::speed_value)
+        .transpose()?;
     let side = t.side.as_deref().map(str::parse).transpose()?;
     Ok(StrikerSpec {
         case: t.case.clone(),

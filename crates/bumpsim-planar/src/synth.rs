@@ -43,44 +43,36 @@ use bumpsim_signal::filter::Butterworth;
 use rand_chacha::ChaCha8Rng;
 use rand_core::SeedableRng;
 
-/// The measurement chain of a planar series.
+/// The measurement chain of a planar series: the 1-D series' chain
+/// (`bumpsim_impact::synth::Chain`: step, pre-trigger, duration, noise,
+/// biases, seed) plus where the sills are and the generator's step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Chain {
-    /// Sample interval, s.
-    pub step: f64,
-    /// Pre-trigger, s.
-    pub pretrigger: f64,
-    /// Recorded time after contact, s.
-    pub duration: f64,
-    /// Load-cell noise, N rms (each cell).
-    pub force_noise: f64,
-    /// Accelerometer noise, m/s² rms.
-    pub acceleration_noise: f64,
-    /// Accelerometer biases (left, right), m/s².
-    pub biases: [f64; 2],
-    /// Accelerometer position: ξ ahead of the CG and the half-spacing η, m.
+    /// Sampling, duration, noise, biases (left, right) and seed.
+    pub measurement: bumpsim_impact::synth::Chain,
+    /// Sill accelerometers: ξ ahead of the CG and the half-spacing η, m.
     pub sensor: [f64; 2],
     /// Safety factor of the simulation's step (the generator's own).
     pub safety: f64,
-    /// Seed of the noise.
-    pub seed: u64,
 }
 
 impl Default for Chain {
     /// 10 kHz, 50 ms pre-trigger, 150 ms after contact, 20 N per cell,
     /// 0.05 g noise and (0.03, −0.02) g biases, sills 0.6 m ahead of the CG
-    /// at ±0.7 m, simulated at a quarter of the critical step.
+    /// at ±0.7 m, simulated at a quarter of the critical step, seed 1.
     fn default() -> Self {
         Chain {
-            step: 1e-4,
-            pretrigger: 0.05,
-            duration: 0.15,
-            force_noise: 20.0,
-            acceleration_noise: 0.05 * STANDARD_GRAVITY,
-            biases: [0.03 * STANDARD_GRAVITY, -0.02 * STANDARD_GRAVITY],
+            measurement: bumpsim_impact::synth::Chain {
+                step: 1e-4,
+                pretrigger: 0.05,
+                duration: 0.15,
+                force_noise: 20.0,
+                acceleration_noise: 0.05 * STANDARD_GRAVITY,
+                biases: [0.03 * STANDARD_GRAVITY, -0.02 * STANDARD_GRAVITY],
+                seed: 1,
+            },
             sensor: [0.6, 0.7],
             safety: 0.25,
-            seed: 1,
         }
     }
 }
@@ -139,27 +131,28 @@ fn sensors(car: &PlanarCar, [xi, eta]: [f64; 2]) -> Vec<Sensor> {
 
 fn check(chain: &Chain) -> Result<(), PlanarError> {
     let times = [
-        ("chain.step", chain.step),
-        ("chain.duration", chain.duration),
+        ("chain.step", chain.measurement.step),
+        ("chain.duration", chain.measurement.duration),
     ];
     for (name, value) in times {
         if !(value.is_finite() && value > 0.0) {
             return Err(parameter(name, value, "s", "a finite positive time"));
         }
     }
-    if !(chain.pretrigger.is_finite() && chain.pretrigger >= 0.0) {
+    if !(chain.measurement.pretrigger.is_finite() && chain.measurement.pretrigger >= 0.0) {
         return Err(parameter(
             "chain.pretrigger",
-            chain.pretrigger,
+            chain.measurement.pretrigger,
             "s",
             "a finite time ≥ 0",
         ));
     }
-    let samples = 10.0 * (chain.pretrigger + chain.duration) / chain.step;
+    let samples =
+        10.0 * (chain.measurement.pretrigger + chain.measurement.duration) / chain.measurement.step;
     if samples > crate::drive::MAX_SAMPLES as f64 {
         return Err(parameter(
             "chain.duration",
-            chain.duration,
+            chain.measurement.duration,
             "s",
             &format!(
                 "at most {} simulated samples (10 per sample interval)",
@@ -168,18 +161,18 @@ fn check(chain: &Chain) -> Result<(), PlanarError> {
         ));
     }
     let noise = [
-        chain.force_noise,
-        chain.acceleration_noise,
-        chain.biases[0],
-        chain.biases[1],
+        chain.measurement.force_noise,
+        chain.measurement.acceleration_noise,
+        chain.measurement.biases[0],
+        chain.measurement.biases[1],
     ];
     if noise.iter().any(|v| !v.is_finite())
-        || chain.force_noise < 0.0
-        || chain.acceleration_noise < 0.0
+        || chain.measurement.force_noise < 0.0
+        || chain.measurement.acceleration_noise < 0.0
     {
         return Err(parameter(
             "chain noise",
-            chain.force_noise,
+            chain.measurement.force_noise,
             "N",
             "finite noise levels ≥ 0 and finite biases",
         ));
@@ -335,17 +328,17 @@ pub fn record(
     index: u64,
 ) -> Result<Recorded, PlanarError> {
     check(chain)?;
-    let fine = chain.step / 10.0;
+    let fine = chain.measurement.step / 10.0;
     let settings = Settings {
         safety: chain.safety,
         output_step: fine,
-        duration: chain.duration,
+        duration: chain.measurement.duration,
         step: None,
         stop_after_contact: false,
     };
     let r = simulate(car, striker, &settings)?;
     let sensors = sensors(car, chain.sensor);
-    let pre = (chain.pretrigger / fine).round() as usize;
+    let pre = (chain.measurement.pretrigger / fine).round() as usize;
     let length = pre + r.time.len();
     let padded = |h: &[f64]| -> Vec<f64> {
         std::iter::repeat_n(0.0, pre)
@@ -353,9 +346,15 @@ pub fn record(
             .take(length)
             .collect()
     };
-    let anti_alias = Butterworth::new(4, 0.25 / chain.step, fine)
-        .map_err(|e| parameter("chain.step", chain.step, "s", &e.to_string()))?;
-    let mut rng = ChaCha8Rng::seed_from_u64(chain.seed.wrapping_mul(1000).wrapping_add(index));
+    let anti_alias = Butterworth::new(4, 0.25 / chain.measurement.step, fine)
+        .map_err(|e| parameter("chain.step", chain.measurement.step, "s", &e.to_string()))?;
+    let mut rng = ChaCha8Rng::seed_from_u64(
+        chain
+            .measurement
+            .seed
+            .wrapping_mul(1000)
+            .wrapping_add(index),
+    );
     let mut sample = |signal: Vec<f64>, sigma: f64, bias: f64| -> Vec<f64> {
         anti_alias
             .causal(&signal)
@@ -365,24 +364,28 @@ pub fn record(
             .collect()
     };
     let channel = |code: &str, name: &str, dimension, values: Vec<f64>, unit: &str| {
-        UniformSeries::new(-(pre as f64) * fine, chain.step, values)
+        UniformSeries::new(-(pre as f64) * fine, chain.measurement.step, values)
             .map(|series| {
                 let mut c = Channel::new(code, name, dimension, series);
                 c.source_unit = unit.into();
                 c
             })
-            .map_err(|e| parameter("chain.step", chain.step, "s", &e.to_string()))
+            .map_err(|e| parameter("chain.step", chain.measurement.step, "s", &e.to_string()))
     };
     let mut channels = Vec::new();
     let mut loads = Vec::new();
     for (code, title, force, spec) in forces(car, striker, &r)? {
-        let values = sample(padded(&force), chain.force_noise, 0.0);
+        let values = sample(padded(&force), chain.measurement.force_noise, 0.0);
         channels.push(channel(&code, &title, Dimension::Force, values, "kN")?);
         loads.push(spec);
     }
     for (k, (sensor, (code, title))) in sensors.iter().zip(SENSOR_CODES).enumerate() {
         let acceleration = padded(&sensor_acceleration(car, &r, *sensor, fine));
-        let values = sample(acceleration, chain.acceleration_noise, chain.biases[k % 2]);
+        let values = sample(
+            acceleration,
+            chain.measurement.acceleration_noise,
+            chain.measurement.biases[k % 2],
+        );
         channels.push(channel(code, title, Dimension::Acceleration, values, "g")?);
     }
     let (car_speed, striker_motion) = match striker.motion {
