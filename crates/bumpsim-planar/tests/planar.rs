@@ -529,14 +529,7 @@ fn a_stiff_beam_that_chatters_off_the_face_still_completes_the_impact() {
 /// sides different, μ = 0 (the test's premise: the same car family as the
 /// identified model).
 fn identification_truth() -> PlanarCar {
-    let body = Body {
-        mass: 1250.0,
-        yaw_inertia: 1900.0,
-        cg_behind_bumper: 2.05,
-        wheelbase: 2.6,
-        cg_behind_front_axle: 1.15,
-        track: 1.52,
-    };
+    let body = *asymmetric_car(0.0).body();
     let left = SideChain {
         masses: vec![6.0],
         dampers: vec![1.5e3],
