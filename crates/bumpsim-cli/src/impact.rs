@@ -29,6 +29,11 @@ pub struct ImpactArgs {
     case: Option<String>,
     #[command(flatten)]
     face: crate::planar::FaceArgs,
+    /// Bumper width, m or with a unit ("1.6 m"): the 1-D car and its bumper become a
+    /// symmetric planar car of this width (other layout values: docs/planar.md), for
+    /// the planar faces.
+    #[arg(long)]
+    width: Option<String>,
     /// An impactor (pendulum) of this mass, kg, hits the car at rest.
     #[arg(long, conflicts_with = "barrier", allow_negative_numbers = true)]
     pendulum: Option<f64>,
@@ -49,8 +54,35 @@ fn planar_impact(args: &ImpactArgs) -> Result<()> {
             "--bumper: a planar car carries its bumper segments ([bumper] of its file); leave --bumper out"
         );
     }
+    if args.width.is_some() {
+        bail!("--width: a planar car has its bumper width ([bumper] width of its file)");
+    }
     crate::planar::run_impact(&crate::planar::ImpactRequest {
-        car: &args.car,
+        path: &args.car,
+        car: bumpsim_planar::PlanarCar::read(&args.car)?,
+        case: args.case.as_deref(),
+        face: &args.face,
+        pendulum: args.pendulum,
+        speed: args.speed.as_deref(),
+        files: &args.files,
+    })
+}
+
+/// `impact --width`: the 1-D car as a symmetric planar car of that bumper
+/// width (`PlanarCar::symmetric` with the default layout), in the planar impact.
+fn widened_impact(args: &ImpactArgs, car: &Car, bumper: &Bumper, width: &str) -> Result<()> {
+    let width =
+        parse_quantity(width, Dimension::Length).with_context(|| format!("--width '{width}'"))?;
+    let layout = bumpsim_planar::car::Layout {
+        bumper_width: width,
+        ..bumpsim_planar::car::Layout::default()
+    };
+    let planar = bumpsim_planar::PlanarCar::symmetric(&car.model, bumper, &layout)
+        .context("--width: the symmetric planar car")?
+        .with_name(car.name.clone());
+    crate::planar::run_impact(&crate::planar::ImpactRequest {
+        path: &args.car,
+        car: planar,
         case: args.case.as_deref(),
         face: &args.face,
         pendulum: args.pendulum,
@@ -144,16 +176,19 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
     if bumpsim_planar::file::is_planar_car(&text) {
         return planar_impact(args);
     }
-    if args.face.given() {
-        bail!(
-            "--angle, --overlap, --side, --pole: faces other than flat need a planar car (--car with [body], docs/planar.md)"
-        );
-    }
     let Some(bumper_path) = &args.bumper else {
         bail!("--bumper FILE is needed for a 1-D car (docs/impact.md)");
     };
     let car = Car::read_model_file(&args.car)?;
     let bumper = Bumper::read(bumper_path)?;
+    if let Some(width) = &args.width {
+        return widened_impact(args, &car, &bumper, width);
+    }
+    if args.face.given() {
+        bail!(
+            "--angle, --overlap, --side, --pole: faces other than flat need a planar car (--car with [body], docs/planar.md), or --width to make this 1-D car a symmetric one"
+        );
+    }
     let (scenario, label) = scenario(args, car.model.total_mass())?;
     let result = simulate(&car.model, &bumper, scenario, &Options::default())?;
     let warnings = result.warnings();

@@ -69,8 +69,10 @@ impl FaceArgs {
 
 /// A planar impact as `planar` and `impact` name it.
 pub struct ImpactRequest<'a> {
-    /// The planar car file.
-    pub car: &'a Path,
+    /// The car file (for its name in messages).
+    pub path: &'a Path,
+    /// The planar car.
+    pub car: PlanarCar,
     /// A planar preset.
     pub case: Option<&'a str>,
     /// The face.
@@ -134,7 +136,8 @@ pub fn run(args: &Args) -> Result<()> {
         bail!("--car FILE is needed (a planar car TOML, docs/planar.md)");
     };
     run_impact(&ImpactRequest {
-        car: path,
+        path,
+        car: PlanarCar::read(path)?,
         case: args.case.as_deref(),
         face: &args.face,
         pendulum: args.pendulum,
@@ -145,10 +148,9 @@ pub fn run(args: &Args) -> Result<()> {
 
 /// Simulates a planar impact and writes its outputs.
 pub fn run_impact(request: &ImpactRequest) -> Result<()> {
-    let path = request.car;
-    let car = PlanarCar::read(path)?;
+    let (path, car) = (request.path, &request.car);
     let (striker, label) = striker(request)?;
-    let result = simulate(&car, &striker, &Settings::default())?;
+    let result = simulate(car, &striker, &Settings::default())?;
     result.warnings.iter().for_each(|w| crate::warn(w));
     let name = car
         .name()

@@ -370,3 +370,71 @@ fn impact_accepts_the_planar_car_and_its_strikers() {
     ]);
     assert_user_error(&missing, "--bumper");
 }
+
+/// Issue 15: a 1-D car TOML plus a width becomes a symmetric planar car;
+/// in a full-width flat barrier it gives the 1-D impact's peak force and
+/// compression (to the two integrators' different steps, 1e-4).
+#[test]
+fn a_1d_car_with_a_width_is_a_symmetric_planar_car() {
+    let dir = scratch("impact-width");
+    let car = root().join("examples/identify/car-truth.toml");
+    let bumper = root().join("examples/impact/bumper-a.toml");
+    let (c, b) = (car.to_str().unwrap(), bumper.to_str().unwrap());
+    let (one, wide) = (dir.join("1d.json"), dir.join("planar.json"));
+    let base = [
+        "impact",
+        "--car",
+        c,
+        "--bumper",
+        b,
+        "--barrier",
+        "--speed",
+        "8 km/h",
+    ];
+    for (json, extra) in [(&one, vec![]), (&wide, vec!["--width", "1600 mm"])] {
+        let mut args = base.to_vec();
+        args.extend(extra);
+        args.extend(["--json", json.to_str().unwrap()]);
+        let run = bumpsim(&args);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+    }
+    let read =
+        |p: &Path| -> Value { serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap() };
+    let (one, wide) = (read(&one), read(&wide));
+    for key in ["peak_force", "max_compression"] {
+        let (a, b) = (number(&one, &[key]), number(&wide, &["result", key]));
+        assert!((a - b).abs() < 1e-4 * a, "{key}: 1-D {a}, planar {b}");
+    }
+    let angled = bumpsim(&[
+        "impact",
+        "--car",
+        c,
+        "--bumper",
+        b,
+        "--width",
+        "1.6",
+        "--angle",
+        "10",
+        "--overlap",
+        "40",
+        "--speed",
+        "15 km/h",
+    ]);
+    assert!(angled.status.success(), "{}", text(&angled.stderr));
+    assert_contains(&text(&angled.stdout), &["10°, 40 % overlap", "yaw"]);
+    assert_user_error(
+        &bumpsim(&[
+            "impact",
+            "--car",
+            c,
+            "--bumper",
+            b,
+            "--width",
+            "nan m",
+            "--barrier",
+            "--speed",
+            "2",
+        ]),
+        "--width",
+    );
+}
