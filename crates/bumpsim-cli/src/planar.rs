@@ -170,7 +170,10 @@ pub fn run_impact(request: &ImpactRequest) -> Result<()> {
         write(path, &bumpsim_planar::text::histories(&result))?;
     }
     if let Some(dir) = &request.files.report {
-        let (html, figures) = bumpsim_report::planar::planar_report(&heading, &summary, &result)?;
+        let peak = bumpsim_planar::picture::peak_sample(&result);
+        let view = bumpsim_planar::picture::top_view(car, &striker, &result, peak)?;
+        let (html, figures) =
+            bumpsim_report::planar::planar_report(&heading, &summary, &result, Some(&view))?;
         Folder::report(dir, &html, &figures)?;
     }
     Ok(())

@@ -15,6 +15,7 @@
 //!   carrying either face;
 //! - [`simulate`](mod@simulate): the central-difference integrator and [`simulate()`];
 //! - [`result`]: histories, energy and momentum balances;
+//! - [`picture`]: the top view of car and striker at one instant;
 //! - [`presets`]: RCAR and IIHS asymmetric load cases with their sources;
 //! - [`synth`]: synthetic asymmetric test series (load-cell wall, sills);
 //! - [`series`]: the planar series file of `bumpsim synth` and the study it writes;
@@ -42,6 +43,7 @@ pub mod drive;
 mod dynamics;
 pub mod file;
 pub mod identify;
+pub mod picture;
 pub mod presets;
 pub mod result;
 pub mod series;

@@ -7,18 +7,28 @@ use crate::html::Html;
 use crate::plot::{LinePlot, PlotError, Series, Style};
 use bumpsim_core::units::Dimension;
 use bumpsim_planar::PlanarResult;
+use bumpsim_planar::picture::TopView;
 
 /// The planar impact report: the HTML page and its figures (file name, SVG).
+///
+/// `view`: the top view at peak force (`bumpsim_planar::picture`), drawn first.
 pub fn planar_report(
     title: &str,
     summary: &str,
     r: &PlanarResult,
+    view: Option<&TopView>,
 ) -> Result<(String, Vec<(String, String)>), PlotError> {
     let mut page = Html::new(&format!("bumpsim planar impact: {title}"));
     page.heading("Results");
     page.preformatted(summary);
     page.warnings(&r.warnings);
     let mut figures = Vec::new();
+    if let Some(view) = view {
+        let caption = format!("top view at peak force, t = {:.2} ms", view.time * 1e3);
+        let svg = crate::topview::top_view_svg(view, &caption)?;
+        page.figure(&svg, &format!("{caption}: body outline (grey), side members (blue), crushed bumper line (red), striker (black)"));
+        figures.push(("top-view.svg".to_string(), svg));
+    }
     for (name, svg, caption) in [
         (
             "forces.svg",
@@ -185,8 +195,12 @@ mod tests {
             &Settings::default(),
         )
         .unwrap();
-        let (html, figures) = planar_report("RCAR", "summary", &r).unwrap();
-        assert_eq!(figures.len(), 4);
+        let striker = Striker::barrier(face, 15.0 / 3.6);
+        let k = bumpsim_planar::picture::peak_sample(&r);
+        let view = bumpsim_planar::picture::top_view(&car, &striker, &r, k).unwrap();
+        let (html, figures) = planar_report("RCAR", "summary", &r, Some(&view)).unwrap();
+        assert_eq!(figures.len(), 5);
+        assert!(figures[0].0 == "top-view.svg" && figures[0].1.contains("<polygon"));
         assert!(figures.iter().all(|(_, svg)| svg.starts_with("<svg")));
         assert!(html.contains("remaining crush [mm]") && html.contains("<svg"));
     }
