@@ -1,7 +1,7 @@
 //! The planar car driven by given forces (spec §9): the model that planar
 //! identification fits, and the reference for the exported FE decks.
 //!
-//! The equations of motion are those of [`crate::simulate`] (same
+//! The equations of motion are those of [`crate::simulate`](mod@crate::simulate) (same
 //! generalised coordinates, same Newton–Euler solve, same leapfrog), with
 //! the striker's contact replaced by given loads: load k acts on the bumper
 //! line at the lateral position η_k (body frame, left positive) with a fixed
@@ -19,7 +19,7 @@
 //! forces and the chain masses' displacements u_i.
 //!
 //! Step: `T = safety · min(2/ω, 2/ω_c)` from the chain and tyre bounds of
-//! [`crate::simulate`] (no segments), rounded down to divide the sample
+//! [`crate::simulate`](mod@crate::simulate) (no segments), rounded down to divide the sample
 //! interval.
 //!
 //! ```
