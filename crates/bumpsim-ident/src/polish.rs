@@ -1,0 +1,93 @@
+//! Screening loosely, polishing the few that matter (issue 19).
+//!
+//! Most starts of a multi-start identification end in a local minimum worse
+//! than the best, and LM spends most of a run creeping along a flat valley
+//! at an objective that no longer changes in the sixth digit. Only the best
+//! needs the thesis's tolerances, so the search runs in two levels:
+//!
+//! 1. **Screening:** every start runs with the relative-decrease tolerance
+//!    raised to [`SCREEN_FTOL`], in [`crate::search`]'s stages (abandonment,
+//!    merging).
+//! 2. **Polishing:** the screened optima are clustered (a run within
+//!    [`CLUSTER_DISTANCE`] in every log parameter of a better one is merged
+//!    into it); the distinct ones within [`POLISH_FACTOR`] of the best
+//!    screened objective, at most [`MAX_POLISHED`], continue with the full
+//!    tolerances.
+//!
+//! A start *reaches the best* when the polished run of its cluster ends
+//! within 1e-6 (relative) of the best objective; starts of a cluster not
+//! polished do not (they are counted as such). With one start (or a user's
+//! start alone) the one run is polished: it ends as an unscreened run would.
+
+use crate::lm::Outcome;
+use crate::search::{Fate, Run};
+use rayon::prelude::*;
+
+/// The relative decrease of F that ends a screening run (the thesis's
+/// 1e-12 ends a polishing run).
+pub const SCREEN_FTOL: f64 = 1e-6;
+
+/// Screened optima up to this factor above the best are polished.
+pub const POLISH_FACTOR: f64 = 1.2;
+
+/// At most this many distinct screened optima are polished.
+pub const MAX_POLISHED: usize = 6;
+
+/// Screened optima closer than this in every log parameter (≈ 5 %) are one.
+pub const CLUSTER_DISTANCE: f64 = 0.05;
+
+/// Clusters the finished screening runs (best first; a run within
+/// [`CLUSTER_DISTANCE`] of a better one is merged into it) and returns the
+/// clusters to polish, best first; the others become [`Fate::Unpolished`].
+pub(crate) fn candidates(runs: &mut [Run]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..runs.len())
+        .filter(|&i| runs[i].fate == Fate::Finished && runs[i].outcome.objective.is_finite())
+        .collect();
+    order.sort_by(|&a, &b| {
+        runs[a]
+            .outcome
+            .objective
+            .total_cmp(&runs[b].outcome.objective)
+    });
+    let Some(&first) = order.first() else {
+        return Vec::new();
+    };
+    let bar = POLISH_FACTOR * runs[first].outcome.objective;
+    let mut kept: Vec<usize> = Vec::new();
+    for i in order {
+        let p = &runs[i].outcome.parameters;
+        let near = kept.iter().copied().find(|&j| {
+            let q = &runs[j].outcome.parameters;
+            p.iter()
+                .zip(q)
+                .all(|(a, b)| (a - b).abs() < CLUSTER_DISTANCE)
+        });
+        runs[i].fate = match near {
+            Some(j) => Fate::Merged(j),
+            None if kept.len() < MAX_POLISHED && runs[i].outcome.objective <= bar => {
+                kept.push(i);
+                Fate::Finished
+            }
+            None => Fate::Unpolished,
+        };
+    }
+    kept
+}
+
+/// Polishes the `chosen` runs with `solve`, in parallel; iterations and
+/// evaluations add up over both levels.
+pub(crate) fn polish(
+    runs: &mut [Run],
+    chosen: &[usize],
+    solve: &(dyn Fn(&[f64]) -> Outcome + Sync),
+) {
+    let polished: Vec<Outcome> = chosen
+        .par_iter()
+        .map(|&i| solve(&runs[i].outcome.parameters))
+        .collect();
+    for (&i, mut outcome) in chosen.iter().zip(polished) {
+        outcome.iterations += runs[i].outcome.iterations;
+        outcome.evaluations += runs[i].outcome.evaluations;
+        runs[i].outcome = outcome;
+    }
+}
