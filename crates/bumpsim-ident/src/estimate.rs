@@ -473,6 +473,7 @@ fn summarise(
     let spread = total_spread(cases);
     let uncertainty = uncertainty(objective, &outcome.parameters, lower, upper, settings.dof);
     let mut warnings = uncertainty.warnings.clone();
+    warnings.extend(crate::stats::determination(&uncertainty));
     if starts.failed > 0 {
         warnings.push(format!(
             "{} of {} starts failed (model not simulable) and were discarded",
