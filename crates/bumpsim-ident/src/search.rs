@@ -2,9 +2,12 @@
 //!
 //! **Starts**, in this order: the user's start, the data-derived start
 //! ([`crate::estimate::data_start`]), the continuation starts (below), then
-//! log-uniform random points within a factor 30 of the data start, drawn
-//! from a ChaCha8 stream seeded by `seed + start index` (the same starts on
-//! any number of threads).
+//! log-uniform random points drawn from a ChaCha8 stream seeded by
+//! `seed + start index` (the same starts on any number of threads), around
+//! the data start and the continuation starts in turn: within a factor 30
+//! of the data start, within [`CONTINUATION_SPREAD`] of a continuation
+//! start (the neighbourhood of the smaller model's optimum is searched
+//! where it is, instead of hoping a wide draw lands there).
 //!
 //! **Continuation across the DOF table.** When the (n−1)-mass optimum is
 //! known, each of its masses is split in turn into two halves joined by a
@@ -87,11 +90,13 @@ pub(crate) fn starting_points(
     let mut points: Vec<Vec<f64>> = user.iter().map(|u| log(u)).collect();
     points.push(log(data));
     points.extend(seeds.iter().map(|s| log(s)));
-    let spread = 30f64.ln();
-    let centre = log(data);
+    let centres: Vec<(Vec<f64>, f64)> = std::iter::once((log(data), 30f64.ln()))
+        .chain(seeds.iter().map(|s| (log(s), CONTINUATION_SPREAD.ln())))
+        .collect();
     let mut index = points.len() as u64;
     while points.len() < count.max(1) {
         let mut rng = ChaCha8Rng::seed_from_u64(seed.wrapping_add(index));
+        let (centre, spread) = &centres[index as usize % centres.len()];
         points.push(
             centre
                 .iter()
@@ -103,6 +108,9 @@ pub(crate) fn starting_points(
     points.truncate(count.max(1));
     points
 }
+
+/// Random starts around a continuation start lie within this factor of it.
+pub const CONTINUATION_SPREAD: f64 = 3.0;
 
 /// A uniform number in [0, 1) from 53 random bits.
 fn unit(rng: &mut ChaCha8Rng) -> f64 {
