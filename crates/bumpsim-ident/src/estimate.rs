@@ -344,7 +344,7 @@ fn check(cases: &[LoadCase], settings: &Settings) -> Result<(), IdentError> {
 }
 
 /// The start statistics of staged runs; an error when every start failed.
-fn tally(runs: &[Run]) -> Result<Starts, IdentError> {
+pub(crate) fn tally(runs: &[Run]) -> Result<Starts, IdentError> {
     let failed = runs
         .iter()
         .filter(|r| !r.outcome.objective.is_finite())
