@@ -20,7 +20,7 @@
 //! start alone) the one run is polished: it ends as an unscreened run would.
 
 use crate::lm::Outcome;
-use crate::search::{Fate, Run};
+use crate::search::{Fate, Run, near};
 use rayon::prelude::*;
 
 /// The relative decrease of F that ends a screening run (the thesis's
@@ -55,14 +55,7 @@ pub(crate) fn candidates(runs: &mut [Run]) -> Vec<usize> {
     let bar = POLISH_FACTOR * runs[first].outcome.objective;
     let mut kept: Vec<usize> = Vec::new();
     for i in order {
-        let p = &runs[i].outcome.parameters;
-        let near = kept.iter().copied().find(|&j| {
-            let q = &runs[j].outcome.parameters;
-            p.iter()
-                .zip(q)
-                .all(|(a, b)| (a - b).abs() < CLUSTER_DISTANCE)
-        });
-        runs[i].fate = match near {
+        runs[i].fate = match near(runs, &kept, i, CLUSTER_DISTANCE) {
             Some(j) => Fate::Merged(j),
             None if kept.len() < MAX_POLISHED && runs[i].outcome.objective <= bar => {
                 kept.push(i);

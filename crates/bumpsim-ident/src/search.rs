@@ -229,18 +229,23 @@ fn screen(runs: &mut [Run], running: &mut Vec<usize>, factor: f64) {
             runs[i].fate = Fate::Abandoned;
             continue;
         }
-        let p = &runs[i].outcome.parameters;
-        let near = kept.iter().copied().find(|&j| {
-            let q = &runs[j].outcome.parameters;
-            p.iter().zip(q).all(|(a, b)| (a - b).abs() < MERGE_DISTANCE)
-        });
-        match near {
+        match near(runs, &kept, i, MERGE_DISTANCE) {
             Some(j) => runs[i].fate = Fate::Merged(j),
             None => kept.push(i),
         }
     }
     kept.sort_unstable();
     *running = kept;
+}
+
+/// The first of the `kept` runs within `distance` of run `i` in every
+/// (log) parameter.
+pub(crate) fn near(runs: &[Run], kept: &[usize], i: usize, distance: f64) -> Option<usize> {
+    let p = &runs[i].outcome.parameters;
+    kept.iter().copied().find(|&j| {
+        let q = &runs[j].outcome.parameters;
+        p.iter().zip(q).all(|(a, b)| (a - b).abs() < distance)
+    })
 }
 
 /// The start whose fate start `i` shares: itself, or the end of its chain
