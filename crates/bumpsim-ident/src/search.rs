@@ -225,7 +225,7 @@ fn screen(runs: &mut [Run], running: &mut Vec<usize>, factor: f64) {
     let mut kept: Vec<usize> = Vec::new();
     for &i in running.iter() {
         let objective = runs[i].outcome.objective;
-        if !(objective <= factor * incumbent) {
+        if objective.is_nan() || objective > factor * incumbent {
             runs[i].fate = Fate::Abandoned;
             continue;
         }
