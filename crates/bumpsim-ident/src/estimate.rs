@@ -170,7 +170,7 @@ pub struct Starts {
     /// ([`crate::search::STAGES`]).
     pub abandoned: usize,
     /// Starts merged into a better start next to them
-    /// ([`crate::search::MERGE_DISTANCE`], [`crate::levels::CLUSTER_DISTANCE`]).
+    /// ([`crate::search::MERGE_DISTANCE`], [`crate::polish::CLUSTER_DISTANCE`]).
     pub merged: usize,
     /// Starts whose screened optimum was too far above the best to be
     /// polished ([`crate::polish`]).
