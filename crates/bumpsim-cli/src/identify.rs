@@ -129,8 +129,11 @@ pub fn run(args: &Args) -> Result<()> {
     if results.len() > 1 {
         println!("\n{}", dof_table(&results));
     }
+    // the ±3 % sweep (91 simulations per case) only when it is written
+    let wanted = args.sensitivity.is_some() || args.report.is_some();
     let sweeps = done
         .last()
+        .filter(|_| wanted)
         .map(|(r, cases)| sensitivity(cases, &r.model, 0.03, 13))
         .transpose()?;
     let outputs = Outputs {

@@ -1,11 +1,14 @@
 //! Criterion benchmarks of identification: one Jacobian evaluation, a single
-//! start and the 32-start 3-DOF identification on three 500-sample load cases
-//! (the speed criterion: under 1 s on two cores). Figures: docs/benchmarks.md.
+//! start and the 32-start 3-DOF identification on three 500-sample load
+//! cases, and the issue-19 DOF table (1..5 DOF, 32 starts each, continuation
+//! from each model to the next) on those cases and on the bundled
+//! three-test example. Figures: docs/benchmarks.md.
 
 use bumpsim_core::model::MsdModel;
 use bumpsim_ident::case::{LoadCase, Objective};
 use bumpsim_ident::estimate::{Settings, identify};
 use bumpsim_ident::lm::LeastSquares;
+use bumpsim_ident::study::Study;
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::DMatrix;
 use std::hint::black_box;
@@ -78,6 +81,38 @@ fn benches(c: &mut Criterion) {
         });
     }
     group.finish();
+    let study = Study::read(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/identify/study.toml"
+    )))
+    .unwrap();
+    let bundled = study.load(5).unwrap().cases;
+    let mut group = c.benchmark_group("DOF table 1..5, 32 starts each");
+    group.sample_size(10);
+    group.bench_function("synthetic, 3 x 500 samples", |b| {
+        b.iter(|| table(&|_| black_box(&cases).clone()))
+    });
+    group.bench_function("bundled example, 3 tests", |b| {
+        b.iter(|| table(&|dof| study.retarget(black_box(&bundled), dof)))
+    });
+    group.finish();
+}
+
+/// The DOF table as `bumpsim identify --dof 1..5 --starts 32` runs it: each
+/// model continued from the one before.
+fn table(cases_for: &dyn Fn(usize) -> Vec<LoadCase>) -> f64 {
+    let mut previous: Option<MsdModel> = None;
+    let mut total = 0.0;
+    for dof in 1..=5 {
+        let mut settings = Settings::new(dof, 32);
+        if let Some(p) = &previous {
+            settings.continue_from(p);
+        }
+        let result = identify(&cases_for(dof), &settings, &|| {}).unwrap();
+        total += result.objective;
+        previous = Some(result.model);
+    }
+    total
 }
 
 criterion_group!(identification, benches);

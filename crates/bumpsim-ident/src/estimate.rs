@@ -10,10 +10,10 @@
 
 use crate::case::{CaseError, LoadCase, Objective};
 use crate::lm::{self, LeastSquares, Outcome, Stop};
-use crate::search::starting_points;
+use crate::polish::{SCREEN_FTOL, candidates, polish};
+use crate::search::{Fate, Run, representative, staged, starting_points};
 use crate::stats::{Uncertainty, uncertainty};
 use bumpsim_core::model::{MsdModel, ParameterKind, parameter_count, parameter_kind};
-use rayon::prelude::*;
 use serde::Serialize;
 use std::time::Instant;
 
@@ -160,8 +160,21 @@ pub struct Starts {
     pub converged: usize,
     /// Starts that could not be evaluated or ended non-finite.
     pub failed: usize,
-    /// Starts that reached the best objective (within 1e-6 relative).
+    /// Starts that reached the best objective (within 1e-6 relative): by
+    /// their own run, or merged into a start that did.
     pub reached_best: usize,
+    /// Starts that reached the best objective by their own (polished) run;
+    /// the others of `reached_best` merged into one of these.
+    pub reached_best_alone: usize,
+    /// Starts abandoned at a stage end, too far above the incumbent
+    /// ([`crate::search::STAGES`]).
+    pub abandoned: usize,
+    /// Starts merged into a better start next to them
+    /// ([`crate::search::MERGE_DISTANCE`], [`crate::polish::CLUSTER_DISTANCE`]).
+    pub merged: usize,
+    /// Starts whose screened optimum was too far above the best to be
+    /// polished ([`crate::polish`]).
+    pub unpolished: usize,
     /// Index of the best start (0 = the user's or the data start).
     pub best: usize,
 }
@@ -191,8 +204,12 @@ pub struct Identification {
     pub uncertainty: Uncertainty,
     /// Starts.
     pub starts: Starts,
-    /// Solver iterations of the best start.
+    /// Solver iterations of the best start (screening and polishing).
     pub iterations: usize,
+    /// Where the best start began, SI, thesis order (free and fixed
+    /// parameters): the user's, the data-derived, a continuation or a
+    /// random start.
+    pub start: Vec<f64>,
     /// Why the best start stopped.
     pub stop: Stop,
     /// Wall-clock time, s.
@@ -326,6 +343,41 @@ fn check(cases: &[LoadCase], settings: &Settings) -> Result<(), IdentError> {
     settings.bounds.check(settings.dof)
 }
 
+/// The start statistics of staged runs; an error when every start failed.
+pub(crate) fn tally(runs: &[Run]) -> Result<Starts, IdentError> {
+    let failed = runs
+        .iter()
+        .filter(|r| !r.outcome.objective.is_finite())
+        .count();
+    let (best, outcome) = runs
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r.fate == Fate::Finished && r.outcome.objective.is_finite())
+        .map(|(i, r)| (i, &r.outcome))
+        .min_by(|a, b| a.1.objective.total_cmp(&b.1.objective))
+        .ok_or(IdentError::AllFailed { starts: runs.len() })?;
+    let bar = outcome.objective * (1.0 + 1e-6) + 1e-300;
+    let own = |i: usize| runs[i].fate == Fate::Finished && runs[i].outcome.objective <= bar;
+    let reached: Vec<bool> = (0..runs.len())
+        .map(|i| own(representative(runs, i)))
+        .collect();
+    let fate = |f: fn(&Fate) -> bool| runs.iter().filter(|r| f(&r.fate)).count();
+    Ok(Starts {
+        total: runs.len(),
+        converged: runs
+            .iter()
+            .filter(|r| r.outcome.objective.is_finite() && r.outcome.stop.converged())
+            .count(),
+        failed,
+        reached_best: reached.iter().filter(|r| **r).count(),
+        reached_best_alone: (0..runs.len()).filter(|&i| own(i)).count(),
+        abandoned: fate(|f| *f == Fate::Abandoned),
+        merged: fate(|f| matches!(f, Fate::Merged(_))),
+        unpolished: fate(|f| *f == Fate::Unpolished),
+        best,
+    })
+}
+
 /// Identifies a `settings.dof`-mass model from `cases`, with the reduced
 /// model that fits as well when a spring is undetermined
 /// ([`crate::reduce`]). `progress` is called once per finished start (from
@@ -365,42 +417,27 @@ fn identify_only(
     let data = data_start(cases, settings.dof);
     let fixed = (&settings.start, data.as_slice(), settings.seeds.as_slice());
     let points = starting_points(settings.starts, settings.seed, fixed, &free);
-    let outcomes: Vec<Outcome> = points
-        .par_iter()
-        .map(|start| {
-            let objective = Objective::new(cases, settings.dof, &settings.bounds.fixed);
-            let outcome = lm::minimise(&objective, start, &lower, &upper, &settings.solver);
-            progress();
-            outcome
-        })
-        .collect();
-    let failed = outcomes.iter().filter(|o| !o.objective.is_finite()).count();
-    let (best, outcome) = outcomes
-        .iter()
-        .enumerate()
-        .filter(|(_, o)| o.objective.is_finite())
-        .min_by(|a, b| a.1.objective.total_cmp(&b.1.objective))
-        .ok_or(IdentError::AllFailed {
-            starts: outcomes.len(),
-        })?;
-    let reached_best = outcomes
-        .iter()
-        .filter(|o| o.objective <= outcome.objective * (1.0 + 1e-6) + 1e-300)
-        .count();
-    let converged = outcomes
-        .iter()
-        .filter(|o| o.objective.is_finite() && o.stop.converged())
-        .count();
-    let starts = Starts {
-        total: outcomes.len(),
-        converged,
-        failed,
-        reached_best,
-        best,
+    let solve = |start: &[f64], iterations: usize, ftol: f64| {
+        let objective = Objective::new(cases, settings.dof, &settings.bounds.fixed);
+        let solver = lm::Settings {
+            max_iterations: iterations,
+            ftol,
+            ..settings.solver
+        };
+        lm::minimise(&objective, start, &lower, &upper, &solver)
     };
-    summarise(
+    let (limit, ftol) = (settings.solver.max_iterations, settings.solver.ftol);
+    let screen = |p: &[f64], n| solve(p, n, ftol.max(SCREEN_FTOL));
+    let mut runs = staged(&points, limit, &screen, progress);
+    let chosen = candidates(&mut runs);
+    polish(&mut runs, &chosen, &|p| solve(p, limit, ftol));
+    let starts = tally(&runs)?;
+    let outcome = &runs[starts.best].outcome;
+    let mut result = summarise(
         cases, settings, &objective, outcome, starts, &lower, &upper, clock,
-    )
+    )?;
+    result.start = objective.theta(&points[starts.best]);
+    Ok(result)
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -436,6 +473,7 @@ fn summarise(
     let spread = total_spread(cases);
     let uncertainty = uncertainty(objective, &outcome.parameters, lower, upper, settings.dof);
     let mut warnings = uncertainty.warnings.clone();
+    warnings.extend(crate::stats::determination(&uncertainty));
     if starts.failed > 0 {
         warnings.push(format!(
             "{} of {} starts failed (model not simulable) and were discarded",
@@ -446,6 +484,11 @@ fn summarise(
         warnings.push(format!(
             "only one of {} starts reached the best objective: a better minimum may exist; raise the number of starts",
             starts.total
+        ));
+    } else if starts.reached_best_alone == 1 && starts.total > 1 {
+        warnings.push(format!(
+            "the best objective was reached by one polished run ({} more starts merged into it): a better minimum may exist; raise the number of starts",
+            starts.reached_best - 1
         ));
     }
     if !outcome.stop.converged() {
@@ -467,6 +510,7 @@ fn summarise(
         uncertainty,
         starts,
         iterations: outcome.iterations,
+        start: Vec::new(),
         stop: outcome.stop,
         run_time: clock.elapsed().as_secs_f64(),
         warnings,

@@ -5,6 +5,7 @@
 //! - [`lm`]: bounded Levenberg–Marquardt;
 //! - [`estimate`]: the data-derived start, multi-start, results;
 //! - [`search`]: the starts, continuation across the DOF table, screening;
+//! - [`polish`]: loose screening of every start, polishing of the best few;
 //! - [`explore`]: predictions and the ±3 % sensitivity of the objective;
 //! - [`reduce`]: the simpler model when a spring is undetermined;
 //! - [`stats`]: standard errors, intervals, correlations, identifiability;
@@ -36,6 +37,7 @@ pub mod dofs;
 pub mod estimate;
 pub mod explore;
 pub mod lm;
+pub mod polish;
 pub mod reduce;
 pub mod search;
 pub mod stats;

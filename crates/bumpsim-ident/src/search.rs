@@ -2,9 +2,12 @@
 //!
 //! **Starts**, in this order: the user's start, the data-derived start
 //! ([`crate::estimate::data_start`]), the continuation starts (below), then
-//! log-uniform random points within a factor 30 of the data start, drawn
-//! from a ChaCha8 stream seeded by `seed + start index` (the same starts on
-//! any number of threads).
+//! log-uniform random points drawn from a ChaCha8 stream seeded by
+//! `seed + start index` (the same starts on any number of threads), around
+//! the data start and the continuation starts in turn: within a factor 30
+//! of the data start, within [`CONTINUATION_SPREAD`] of a continuation
+//! start (the neighbourhood of the smaller model's optimum is searched
+//! where it is, instead of hoping a wide draw lands there).
 //!
 //! **Continuation across the DOF table.** When the (n−1)-mass optimum is
 //! known, each of its masses is split in turn into two halves joined by a
@@ -12,10 +15,21 @@
 //! mode bound (damper at 30 % of critical for the halves): n−1 starts whose
 //! objective is, within a percent, that of the (n−1)-mass optimum (tested),
 //! so the n-mass search begins where the smaller model ended.
+//!
+//! **Stages.** Every start runs [`STAGES`]' first length of iterations;
+//! then a start whose objective is still more than 10 times the incumbent
+//! (the best objective of any start so far) is abandoned, and a start
+//! within [`MERGE_DISTANCE`] of a better running start is merged into it
+//! (it would follow the same path). The rest run on to the iteration
+//! limit. Stages run in parallel; every decision is taken in start order
+//! from the stage's results, so the result is the same on any number of
+//! threads. [`crate::polish`] then clusters and polishes the screened optima.
 
+use crate::lm::{Outcome, Stop};
 use bumpsim_core::model::MsdModel;
 use rand_chacha::ChaCha8Rng;
 use rand_core::{Rng, SeedableRng};
+use rayon::prelude::*;
 
 /// Starts from the (n−1)-mass optimum `previous` for an n-mass model, SI,
 /// thesis order `[m.., c.., k..]`: one per mass of `previous`, that mass split
@@ -76,11 +90,13 @@ pub(crate) fn starting_points(
     let mut points: Vec<Vec<f64>> = user.iter().map(|u| log(u)).collect();
     points.push(log(data));
     points.extend(seeds.iter().map(|s| log(s)));
-    let spread = 30f64.ln();
-    let centre = log(data);
+    let centres: Vec<(Vec<f64>, f64)> = std::iter::once((log(data), 30f64.ln()))
+        .chain(seeds.iter().map(|s| (log(s), CONTINUATION_SPREAD.ln())))
+        .collect();
     let mut index = points.len() as u64;
     while points.len() < count.max(1) {
         let mut rng = ChaCha8Rng::seed_from_u64(seed.wrapping_add(index));
+        let (centre, spread) = &centres[index as usize % centres.len()];
         points.push(
             centre
                 .iter()
@@ -93,9 +109,152 @@ pub(crate) fn starting_points(
     points
 }
 
+/// Random starts around a continuation start lie within this factor of it.
+pub const CONTINUATION_SPREAD: f64 = 3.0;
+
 /// A uniform number in [0, 1) from 53 random bits.
 fn unit(rng: &mut ChaCha8Rng) -> f64 {
     (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// The stages of the search: iterations each surviving start runs in the
+/// stage, and how far above the incumbent (the best objective so far, ×)
+/// a start may still be at the stage's end. The last stage runs the rest of
+/// the iteration limit and abandons nothing.
+pub const STAGES: [(usize, f64); 1] = [(200, 10.0)];
+
+/// Two running starts closer than this in every log parameter (≈ 1 %)
+/// are one: the worse is merged into the better and shares its fate.
+pub const MERGE_DISTANCE: f64 = 0.01;
+
+/// What became of one start.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Fate {
+    /// Ran until the solver stopped (converged, iteration limit or failed).
+    Finished,
+    /// Stopped at a stage end, its objective too far above the incumbent.
+    Abandoned,
+    /// Stopped next to a better start (its index), sharing its fate.
+    Merged(usize),
+    /// A screened optimum not polished ([`crate::polish`]).
+    Unpolished,
+}
+
+/// One start's run through the stages.
+#[derive(Debug, Clone)]
+pub(crate) struct Run {
+    /// The last outcome, with iterations and evaluations summed over stages.
+    pub outcome: Outcome,
+    /// How it ended.
+    pub fate: Fate,
+}
+
+/// Runs every start in stages ([`STAGES`]): after each, starts still
+/// running are abandoned when their objective exceeds the stage's factor
+/// times the incumbent, and merged into a better running start within
+/// [`MERGE_DISTANCE`]. `solve(point, iterations)` runs the solver; stages
+/// run in parallel, decisions in start order (the same on any thread count).
+pub(crate) fn staged(
+    points: &[Vec<f64>],
+    max_iterations: usize,
+    solve: &(dyn Fn(&[f64], usize) -> Outcome + Sync),
+    progress: &(dyn Fn() + Sync),
+) -> Vec<Run> {
+    let mut runs: Vec<Run> = points
+        .iter()
+        .map(|p| Run {
+            outcome: Outcome {
+                parameters: p.clone(),
+                objective: f64::INFINITY,
+                iterations: 0,
+                evaluations: 0,
+                stop: Stop::Iterations,
+            },
+            fate: Fate::Finished,
+        })
+        .collect();
+    let mut running: Vec<usize> = (0..points.len()).collect();
+    let mut used = 0;
+    for &(length, factor) in &STAGES {
+        let (length, before) = (length.min(max_iterations - used), running.len());
+        advance(&mut runs, &running, length, solve);
+        used += length;
+        running.retain(|&i| runs[i].outcome.stop == Stop::Iterations && used < max_iterations);
+        screen(&mut runs, &mut running, factor);
+        (running.len()..before).for_each(|_| progress());
+        if running.is_empty() {
+            return runs;
+        }
+    }
+    advance(&mut runs, &running, max_iterations - used, solve);
+    running.iter().for_each(|_| progress());
+    runs
+}
+
+/// Runs the `running` starts `length` iterations further, in parallel.
+fn advance(
+    runs: &mut [Run],
+    running: &[usize],
+    length: usize,
+    solve: &(dyn Fn(&[f64], usize) -> Outcome + Sync),
+) {
+    let next: Vec<Outcome> = running
+        .par_iter()
+        .map(|&i| solve(&runs[i].outcome.parameters, length))
+        .collect();
+    for (&i, mut outcome) in running.iter().zip(next) {
+        let before = &runs[i].outcome;
+        outcome.iterations += before.iterations;
+        outcome.evaluations += before.evaluations;
+        runs[i].outcome = outcome;
+    }
+}
+
+/// Abandons and merges among the `running` starts (best first).
+fn screen(runs: &mut [Run], running: &mut Vec<usize>, factor: f64) {
+    let incumbent = runs
+        .iter()
+        .map(|r| r.outcome.objective)
+        .fold(f64::INFINITY, f64::min);
+    running.sort_by(|&a, &b| {
+        runs[a]
+            .outcome
+            .objective
+            .total_cmp(&runs[b].outcome.objective)
+    });
+    let mut kept: Vec<usize> = Vec::new();
+    for &i in running.iter() {
+        let objective = runs[i].outcome.objective;
+        if objective.is_nan() || objective > factor * incumbent {
+            runs[i].fate = Fate::Abandoned;
+            continue;
+        }
+        match near(runs, &kept, i, MERGE_DISTANCE) {
+            Some(j) => runs[i].fate = Fate::Merged(j),
+            None => kept.push(i),
+        }
+    }
+    kept.sort_unstable();
+    *running = kept;
+}
+
+/// The first of the `kept` runs within `distance` of run `i` in every
+/// (log) parameter.
+pub(crate) fn near(runs: &[Run], kept: &[usize], i: usize, distance: f64) -> Option<usize> {
+    let p = &runs[i].outcome.parameters;
+    kept.iter().copied().find(|&j| {
+        let q = &runs[j].outcome.parameters;
+        p.iter().zip(q).all(|(a, b)| (a - b).abs() < distance)
+    })
+}
+
+/// The start whose fate start `i` shares: itself, or the end of its chain
+/// of merges.
+pub(crate) fn representative(runs: &[Run], mut i: usize) -> usize {
+    while let Fate::Merged(j) = runs[i].fate {
+        i = j;
+    }
+    i
 }
 
 #[cfg(test)]

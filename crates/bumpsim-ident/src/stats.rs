@@ -8,10 +8,15 @@
 //! are `θ exp(± t₀.₉₇₅,ₙ₋q SE(ln θ))` (Student t; positive, as θ must be).
 //! A small ratio of the smallest to the largest singular value marks a
 //! poorly identifiable direction; its largest components are named.
+//! [`determination`] sorts the parameters into those the data determine (a
+//! 95 % interval within a factor [`crate::reduce::SPREAD`]) and those they
+//! do not (issue 19).
 
 use crate::case::Objective;
 use crate::lm::LeastSquares;
+use crate::reduce::SPREAD;
 use bumpsim_core::model::{parameter_count, parameter_name};
+use bumpsim_core::units::format_number;
 use nalgebra::DMatrix;
 use serde::Serialize;
 use statrs::distribution::{ContinuousCDF, StudentsT};
@@ -43,6 +48,58 @@ pub struct Uncertainty {
     pub condition: f64,
     /// Warnings (parameters at bounds, poorly identifiable directions).
     pub warnings: Vec<String>,
+}
+
+/// Which estimated parameters the data determine — a 95 % interval within
+/// a factor [`SPREAD`] — and which they do not (at a bound, no interval, or
+/// a wider interval), as one statement with the reason for each; `None`
+/// when all are determined.
+///
+/// ```
+/// use bumpsim_ident::stats::{Uncertainty, determination};
+/// let u = Uncertainty {
+///     names: vec!["m1".into(), "m2".into(), "k1".into()],
+///     standard_errors: vec![None; 3],
+///     ci95: vec![Some([9.0, 11.0]), Some([1e-3, 1e6]), None],
+///     at_bound: vec![false, false, true],
+///     fixed: vec![false; 3],
+///     correlation: vec![vec![None; 3]; 3],
+///     residual_std: 1e-5,
+///     degrees_of_freedom: 100,
+///     singular_values: vec![],
+///     condition: f64::INFINITY,
+///     warnings: vec![],
+/// };
+/// let text = determination(&u).unwrap();
+/// assert!(text.starts_with("the data determine m1 "), "{text}");
+/// assert!(text.contains("m2 (95 % interval spans a factor 1.000e9)"), "{text}");
+/// assert!(text.contains("k1 (at its bound)"), "{text}");
+/// ```
+pub fn determination(u: &Uncertainty) -> Option<String> {
+    let (mut determined, mut free) = (Vec::new(), Vec::new());
+    for (i, name) in u.names.iter().enumerate().filter(|(i, _)| !u.fixed[*i]) {
+        match (u.at_bound[i], u.ci95[i]) {
+            (false, Some([a, b])) if b / a <= SPREAD => determined.push(name.clone()),
+            (true, _) => free.push(format!("{name} (at its bound)")),
+            (false, Some([a, b])) => free.push(format!(
+                "{name} (95 % interval spans a factor {})",
+                format_number(b / a, 4)
+            )),
+            (false, None) => free.push(format!("{name} (no interval)")),
+        }
+    }
+    if free.is_empty() {
+        return None;
+    }
+    let determined = match determined.is_empty() {
+        true => "none of the parameters".to_string(),
+        false => determined.join(", "),
+    };
+    Some(format!(
+        "the data determine {determined} (95 % intervals within a factor {}); they do not determine {}",
+        format_number(SPREAD, 4),
+        free.join(", ")
+    ))
 }
 
 /// Uncertainty at free log parameters `p` of `objective`.

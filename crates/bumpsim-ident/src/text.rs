@@ -54,15 +54,20 @@ pub fn case_lines(result: &Identification) -> String {
         .collect()
 }
 
-/// The start statistics: run, converged, reached the best objective,
-/// failed; the best start's iterations; time.
+/// The start statistics: run, converged, reached the best objective (and by
+/// how many polished runs), abandoned, not polished, failed; the best
+/// start's iterations; time.
 pub fn starts_line(result: &Identification) -> String {
     let s = &result.starts;
     format!(
-        "starts: {} run, {} converged, {} reached the best objective, {} failed; {} iterations; {}",
+        "starts: {} run, {} converged, {} reached the best objective ({} by their own polished run, {} merged into one), {} abandoned, {} not polished, {} failed; {} iterations; {}",
         s.total,
         s.converged,
         s.reached_best,
+        s.reached_best_alone,
+        s.reached_best - s.reached_best_alone,
+        s.abandoned,
+        s.unpolished,
         s.failed,
         result.iterations,
         format_quantity(result.run_time, Dimension::Time)
