@@ -14,6 +14,7 @@
 //! - [`simulate`](mod@simulate): the central-difference integrator and [`simulate()`];
 //! - [`result`]: histories, energy and momentum balances;
 //! - [`presets`]: RCAR and IIHS asymmetric load cases with their sources;
+//! - [`export`]: the car as an LS-DYNA include and a CalculiX deck;
 //! - [`text`]: the summary with units and the CSV histories.
 //!
 //! ```
@@ -34,6 +35,7 @@
 pub mod car;
 pub mod drive;
 mod dynamics;
+pub mod export;
 pub mod file;
 pub mod presets;
 pub mod result;
