@@ -16,8 +16,19 @@
 //! assert!(deck.contains("       7       7            12.5"));
 //! ```
 
-use crate::layout::{int_field, real_field};
+use crate::layout::{UnitSystem, int_field, real_field};
 use std::fmt::Write;
+
+/// `*KEYWORD` and the comment lines every include opens with: the title
+/// (78 characters at most), bumpsim's version with `what` the include
+/// holds, and the units.
+pub fn header(deck: &mut String, title: &str, what: &str, units: UnitSystem) {
+    let [m, l, t, f] = units.symbols();
+    let title: String = title.chars().take(78).collect();
+    let _ = writeln!(deck, "*KEYWORD\n$ {title}");
+    let _ = writeln!(deck, "$ bumpsim {}: {what}", env!("CARGO_PKG_VERSION"));
+    let _ = writeln!(deck, "$ units: mass {m}, length {l}, time {t}, force {f}");
+}
 
 /// A row of 10-column integers, eight to a line.
 fn id_rows(deck: &mut String, ids: &[u64]) {

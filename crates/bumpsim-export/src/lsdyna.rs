@@ -206,17 +206,11 @@ fn history(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &I
 }
 
 fn header(deck: &mut String, model: &MsdModel, options: &LsDynaOptions) {
-    let [m, l, t, f] = options.layout.units.symbols();
-    let _ = writeln!(deck, "*KEYWORD");
-    let title: String = options.title.chars().take(78).collect();
-    let _ = writeln!(deck, "$ {title}");
-    let _ = writeln!(
-        deck,
-        "$ bumpsim {}: {}-DOF chain MSD car model (Isaksson 2006, ch. 3.3)",
-        env!("CARGO_PKG_VERSION"),
+    let what = format!(
+        "{}-DOF chain MSD car model (Isaksson 2006, ch. 3.3)",
         model.dof()
     );
-    let _ = writeln!(deck, "$ units: mass {m}, length {l}, time {t}, force {f}");
+    cards::header(deck, &options.title, &what, options.layout.units);
     let axis = options.layout.axis;
     let _ = writeln!(
         deck,

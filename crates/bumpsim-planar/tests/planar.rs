@@ -352,21 +352,25 @@ fn oblique_flat_hit_has_the_line_of_action_on_the_struck_side() {
     assert!(r.peak_yaw_rate > 0.0, "hit on the left, turns left");
 }
 
-/// Whether python3 with scipy is available; with `BUMPSIM_REQUIRE_PEERS` set
-/// its absence is a failure, otherwise a skip.
-fn scipy_available() -> bool {
-    let found = Command::new("python3")
-        .args(["-c", "import scipy"])
+/// Whether an independent tool answers `program args`; with
+/// `BUMPSIM_REQUIRE_PEERS` set its absence is a failure, otherwise a skip.
+fn peer_available(what: &str, program: &str, args: &[&str]) -> bool {
+    let found = Command::new(program)
+        .args(args)
         .output()
         .is_ok_and(|o| o.status.success());
     if !found {
         assert!(
             std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_none(),
-            "BUMPSIM_REQUIRE_PEERS is set but python3 cannot import scipy"
+            "BUMPSIM_REQUIRE_PEERS is set but {what} is not available"
         );
-        eprintln!("skipped: python3 with scipy not found (scripts/test installs it)");
+        eprintln!("skipped: {what} not found (scripts/test installs it)");
     }
     found
+}
+
+fn scipy_available() -> bool {
+    peer_available("python3 with scipy", "python3", &["-c", "import scipy"])
 }
 
 #[test]
@@ -530,21 +534,8 @@ fn a_stiff_beam_that_chatters_off_the_face_still_completes_the_impact() {
 use bumpsim_planar::drive::{Drive, Load, drive};
 use bumpsim_planar::export::{Forces, PlanarExport, calculix_deck, lsdyna_include, read_calculix};
 
-/// Whether CalculiX's `ccx` is on PATH; with `BUMPSIM_REQUIRE_PEERS` set
-/// its absence is a failure, otherwise a skip.
 fn ccx_available() -> bool {
-    let found = Command::new("sh")
-        .args(["-c", "command -v ccx"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !found {
-        assert!(
-            std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_none(),
-            "BUMPSIM_REQUIRE_PEERS is set but ccx is not on PATH"
-        );
-        eprintln!("skipped: ccx (calculix-ccx) not found");
-    }
-    found
+    peer_available("ccx (calculix-ccx)", "sh", &["-c", "command -v ccx"])
 }
 
 /// A half-sine of `peak` N over `duration` s, then zero, sampled every `step` s up to `end` s.
@@ -663,8 +654,22 @@ fn calculix_deck_in_ccx_matches_drive_within_one_percent_of_peak() {
         speed: 0.0,
         ..offset.clone()
     };
-    for (name, input) in [("offset", offset), ("angled", angled)] {
-        let errors = ccx_against_drive(&car, &input, name);
+    // a side without masses: the beam's right end sits on the body
+    let one_sided = PlanarCar::new(
+        *car.body(),
+        car.left().clone(),
+        SideChain::default(),
+        car.beam().clone(),
+        *car.tyres(),
+    )
+    .unwrap();
+    let cases = [
+        ("offset", &car, offset),
+        ("angled", &car, angled.clone()),
+        ("one-sided", &one_sided, angled),
+    ];
+    for (name, car, input) in cases {
+        let errors = ccx_against_drive(car, &input, name);
         eprintln!("{name}: {errors:?}");
         for (what, error) in errors {
             assert!(
@@ -841,16 +846,11 @@ fn planar_export_refuses_bad_options_naming_them() {
 
 #[test]
 fn lsdyna_include_parses_in_ansys_dyna_core_with_every_id_defined() {
-    let found = Command::new("python3")
-        .args(["-c", "import ansys.dyna.core"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !found {
-        assert!(
-            std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_none(),
-            "BUMPSIM_REQUIRE_PEERS is set but python3 cannot import ansys.dyna.core"
-        );
-        eprintln!("skipped: ansys-dyna-core not found (scripts/test installs it)");
+    if !peer_available(
+        "ansys-dyna-core",
+        "python3",
+        &["-c", "import ansys.dyna.core"],
+    ) {
         return;
     }
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("planar-export");

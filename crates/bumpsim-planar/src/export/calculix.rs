@@ -222,7 +222,7 @@ fn links(deck: &mut String, car: &PlanarCar, options: &PlanarExport, nodes: &Nod
 }
 
 /// `*EQUATION`: `dependent` = Σ terms (zero terms left out).
-fn equation(deck: &mut String, dependent: Dof, terms: &Terms) {
+fn equation(deck: &mut String, dependent: Dof, terms: &[(Dof, f64)]) {
     let terms: Vec<&(Dof, f64)> = terms.iter().filter(|(_, c)| *c != 0.0).collect();
     let mut line = format!("{}\n{}, {}, 1.0", terms.len() + 1, dependent.0, dependent.1);
     for ((node, dof), c) in terms {
@@ -242,7 +242,7 @@ fn constraints(
     let x_f = car.body().cg_behind_bumper;
     let [one, two] = nodes.body;
     let _ = writeln!(deck, "** the body: its two nodes move together in y");
-    equation(deck, (two, 2), &vec![((one, 2), 1.0)]);
+    equation(deck, (two, 2), &[((one, 2), 1.0)]);
     let _ = writeln!(
         deck,
         "** chain masses follow the body in y; chain ends in x"
@@ -317,7 +317,7 @@ fn analysis(
     let x_f = car.body().cg_behind_bumper;
     let histories = front_forces(car, forces);
     let mut loads: BTreeMap<Dof, Vec<f64>> = BTreeMap::new();
-    let mut add = |terms: &Terms, history: &[f64]| {
+    let mut add = |terms: &[(Dof, f64)], history: &[f64]| {
         for (dof, c) in terms.iter().filter(|(_, c)| *c != 0.0) {
             let sum = loads
                 .entry(*dof)

@@ -170,17 +170,12 @@ pub fn lsdyna_include(
 }
 
 fn header(deck: &mut String, car: &PlanarCar, options: &PlanarExport) {
-    let [m, l, t, f] = options.units.symbols();
-    let title: String = options.title.chars().take(78).collect();
-    let _ = writeln!(deck, "*KEYWORD\n$ {title}");
-    let _ = writeln!(
-        deck,
-        "$ bumpsim {}: planar car, {} + {} chain masses on a rigid body (spec 9)",
-        env!("CARGO_PKG_VERSION"),
+    let what = format!(
+        "planar car, {} + {} chain masses on a rigid body (spec 9)",
         car.left().masses.len(),
         car.right().masses.len()
     );
-    let _ = writeln!(deck, "$ units: mass {m}, length {l}, time {t}, force {f}");
+    cards::header(deck, &options.title, &what, options.units);
     let _ = writeln!(
         deck,
         "$ car forward = global +x, left = +y; frictionless tyres; ids from {}",
