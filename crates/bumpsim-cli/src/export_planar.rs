@@ -165,6 +165,7 @@ fn forces(args: &PlanarArgs) -> Result<Option<Forces>> {
     };
     let load = Load {
         lateral,
+        anchor: None,
         direction: [x, y],
         force: series.values().to_vec(),
     };

@@ -39,6 +39,9 @@ pub struct Args {
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
+    /// Planar studies: write the identified car as a planar car file (TOML).
+    #[arg(long = "car", id = "car_out")]
+    car: Option<PathBuf>,
 }
 
 /// Arguments of `predict`.
@@ -75,6 +78,12 @@ fn progress(quiet: bool, dof: usize, starts: usize) -> ProgressBar {
 
 /// Runs `identify`.
 pub fn run(args: &Args) -> Result<()> {
+    if bumpsim_planar::study::is_planar(&std::fs::read_to_string(&args.study).unwrap_or_default()) {
+        return run_planar(args);
+    }
+    if args.car.is_some() {
+        anyhow::bail!("--car: only a planar study identifies a planar car (docs/planar.md)");
+    }
     let mut study = Study::read(&args.study)?;
     if let Some(text) = &args.dof {
         study.model.dof = DofSpec::Many(parse_dofs(text)?);
@@ -279,4 +288,22 @@ pub fn run_predict(args: &PredictArgs) -> Result<()> {
         folder.commit()?;
     }
     Ok(())
+}
+
+/// A planar study (`[model] planar = ...`): the planar identification.
+fn run_planar(args: &Args) -> Result<()> {
+    if args.dof.is_some() || args.sensitivity.is_some() {
+        anyhow::bail!(
+            "--dof and --sensitivity: a planar study takes its chain sizes from its start car (docs/planar.md)"
+        );
+    }
+    crate::planar::run_identify(&crate::planar::IdentifyOptions {
+        study: &args.study,
+        starts: args.starts,
+        seed: args.seed,
+        json: args.json.as_deref(),
+        report: args.report.as_deref(),
+        car: args.car.as_deref(),
+        quiet: args.quiet,
+    })
 }

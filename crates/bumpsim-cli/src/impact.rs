@@ -16,15 +16,24 @@ use std::path::PathBuf;
 /// Arguments of `impact`.
 #[derive(Debug, clap::Args)]
 pub struct ImpactArgs {
-    /// The car (TOML or identification JSON); one mass = a rigid vehicle.
+    /// The car (TOML or identification JSON); one mass = a rigid vehicle;
+    /// or a planar car (TOML with [body], docs/planar.md), which carries its bumper.
     #[arg(long)]
     car: PathBuf,
-    /// The bumper characteristic (TOML: ramp, plateau, unloading; or curve, unloading).
+    /// The bumper characteristic (TOML: ramp, plateau, unloading; or curve, unloading);
+    /// needed for a 1-D car.
     #[arg(long)]
-    bumper: PathBuf,
-    /// A load-case preset (`--case list` lists them).
-    #[arg(long, conflicts_with_all = ["pendulum", "barrier"])]
+    bumper: Option<PathBuf>,
+    /// A load-case preset (`--case list` lists them; a planar car's are `planar --case list`).
+    #[arg(long, conflicts_with_all = ["pendulum", "barrier", "angle", "overlap", "side", "pole", "pole_offset"])]
     case: Option<String>,
+    #[command(flatten)]
+    face: crate::planar::FaceArgs,
+    /// Bumper width, m or with a unit ("1.6 m"): the 1-D car and its bumper become a
+    /// symmetric planar car of this width (other layout values: docs/planar.md), for
+    /// the planar faces.
+    #[arg(long)]
+    width: Option<String>,
     /// An impactor (pendulum) of this mass, kg, hits the car at rest.
     #[arg(long, conflicts_with = "barrier", allow_negative_numbers = true)]
     pendulum: Option<f64>,
@@ -36,6 +45,50 @@ pub struct ImpactArgs {
     speed: Option<String>,
     #[command(flatten)]
     files: crate::output::ResultFiles,
+}
+
+/// `impact` with a planar car: the planar impact of `bumpsim planar`.
+fn planar_impact(args: &ImpactArgs) -> Result<()> {
+    if args.bumper.is_some() {
+        bail!(
+            "--bumper: a planar car carries its bumper segments ([bumper] of its file); leave --bumper out"
+        );
+    }
+    if args.width.is_some() {
+        bail!("--width: a planar car has its bumper width ([bumper] width of its file)");
+    }
+    crate::planar::run_impact(&crate::planar::ImpactRequest {
+        path: &args.car,
+        car: bumpsim_planar::PlanarCar::read(&args.car)?,
+        case: args.case.as_deref(),
+        face: &args.face,
+        pendulum: args.pendulum,
+        speed: args.speed.as_deref(),
+        files: &args.files,
+    })
+}
+
+/// `impact --width`: the 1-D car as a symmetric planar car of that bumper
+/// width (`PlanarCar::symmetric` with the default layout), in the planar impact.
+fn widened_impact(args: &ImpactArgs, car: &Car, bumper: &Bumper, width: &str) -> Result<()> {
+    let width =
+        parse_quantity(width, Dimension::Length).with_context(|| format!("--width '{width}'"))?;
+    let layout = bumpsim_planar::car::Layout {
+        bumper_width: width,
+        ..bumpsim_planar::car::Layout::default()
+    };
+    let planar = bumpsim_planar::PlanarCar::symmetric(&car.model, bumper, &layout)
+        .context("--width: the symmetric planar car")?
+        .with_name(car.name.clone());
+    crate::planar::run_impact(&crate::planar::ImpactRequest {
+        path: &args.car,
+        car: planar,
+        case: args.case.as_deref(),
+        face: &args.face,
+        pendulum: args.pendulum,
+        speed: args.speed.as_deref(),
+        files: &args.files,
+    })
 }
 
 /// Arguments of `mass-reduction`.
@@ -119,8 +172,23 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
         }
         return Ok(());
     }
+    let text = std::fs::read_to_string(&args.car).unwrap_or_default();
+    if bumpsim_planar::file::is_planar_car(&text) {
+        return planar_impact(args);
+    }
+    let Some(bumper_path) = &args.bumper else {
+        bail!("--bumper FILE is needed for a 1-D car (docs/impact.md)");
+    };
     let car = Car::read_model_file(&args.car)?;
-    let bumper = Bumper::read(&args.bumper)?;
+    let bumper = Bumper::read(bumper_path)?;
+    if let Some(width) = &args.width {
+        return widened_impact(args, &car, &bumper, width);
+    }
+    if args.face.given() {
+        bail!(
+            "--angle, --overlap, --side, --pole: faces other than flat need a planar car (--car with [body], docs/planar.md), or --width to make this 1-D car a symmetric one"
+        );
+    }
     let (scenario, label) = scenario(args, car.model.total_mass())?;
     let result = simulate(&car.model, &bumper, scenario, &Options::default())?;
     let warnings = result.warnings();
@@ -134,7 +202,7 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
         .name
         .clone()
         .unwrap_or_else(|| args.car.display().to_string());
-    println!("{name} with {}: {label}", args.bumper.display());
+    println!("{name} with {}: {label}", bumper_path.display());
     print!("{summary}");
     if let Some(path) = &args.files.json {
         let json = serde_json::json!({
@@ -234,16 +302,49 @@ fn sweep(
 /// Arguments of `synth`.
 #[derive(Debug, clap::Args)]
 pub struct SynthArgs {
-    /// The series file (TOML: car, seed, `[chain]`, `[[head]]` with name, bumper, mass, speed).
+    /// The series file (TOML: car, seed, `[chain]`, `[[head]]` with name, bumper, mass, speed;
+    /// or a planar series: planar_car, seed, `[chain]`, `[[test]]`, see docs/planar.md).
     series: PathBuf,
-    /// Output folder: one ISO-MME test and one CSV per head, plus `generated-by.toml`.
+    /// Output folder: one ISO-MME test and one CSV per head, plus `generated-by.toml`
+    /// (planar: also `study.toml` and `start.toml`).
     #[arg(short, long)]
     output: PathBuf,
 }
 
+/// The tests of a series, its provenance and further files (name, text).
+type Made = (
+    Vec<bumpsim_impact::synth::SynthTest>,
+    String,
+    Vec<(&'static str, String)>,
+);
+
+fn make(path: &std::path::Path) -> Result<Made> {
+    let text = std::fs::read_to_string(path).with_context(|| format!("{}", path.display()))?;
+    if !bumpsim_planar::series::is_planar(&text) {
+        let (heads, provenance) = bumpsim_impact::synth::make_series(path)?;
+        return Ok((heads, provenance, Vec::new()));
+    }
+    let series = bumpsim_planar::series::make_series(path)?;
+    let tests = series
+        .tests
+        .into_iter()
+        .map(|t| {
+            let title = format!("{}: synthetic planar test (bumpsim synth)", t.name);
+            let header = bumpsim_io::test_data::iso_header::test_header(
+                &title,
+                Some(t.striker.0),
+                t.striker.1,
+            );
+            (t.name, header, t.channels)
+        })
+        .collect();
+    let extra = vec![("study.toml", series.study), ("start.toml", series.start)];
+    Ok((tests, series.provenance, extra))
+}
+
 /// Runs `synth`.
 pub fn run_synth(args: &SynthArgs) -> Result<()> {
-    let (heads, provenance) = bumpsim_impact::synth::make_series(&args.series)?;
+    let (heads, provenance, extra) = make(&args.series)?;
     let existing = std::fs::read_dir(&args.output).is_ok_and(|mut d| d.next().is_some());
     if existing {
         bail!(
@@ -274,6 +375,9 @@ pub fn run_synth(args: &SynthArgs) -> Result<()> {
             "wrote {}",
             args.output.join(format!("{name}.csv")).display()
         );
+    }
+    for (name, text) in &extra {
+        folder.write(name, text)?;
     }
     folder.write(
         "generated-by.toml",

@@ -96,6 +96,7 @@ pub(crate) fn warn(message: &str) {
 }
 
 fn main() -> ExitCode {
+    quiet_on_closed_pipe();
     let matches = Cli::command().get_matches();
     let cli = match Cli::from_arg_matches(&matches) {
         Ok(cli) => cli,
@@ -131,6 +132,27 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// A closed pipe (`bumpsim ... | head`) ends the process quietly with exit
+/// code 141 (128 + SIGPIPE, what a shell reports for other Unix tools)
+/// instead of a panic in `println!`: the Rust runtime ignores SIGPIPE, std
+/// has no stable switch to restore it, and the workspace forbids the
+/// `unsafe` call that would.
+fn quiet_on_closed_pipe() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let payload = info.payload();
+        let text = payload
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| payload.downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if text.starts_with("failed printing to std") && text.contains("Broken pipe") {
+            std::process::exit(141);
+        }
+        default(info)
+    }));
 }
 
 /// The error and its causes, each cause once: library errors often already

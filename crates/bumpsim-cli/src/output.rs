@@ -9,8 +9,9 @@ use anyhow::{Context, Result};
 use std::path::Path;
 
 /// Argument ids that name outputs; the rest that exist on disk are inputs.
-const OUTPUT_IDS: [&str; 8] = [
+const OUTPUT_IDS: [&str; 9] = [
     "output",
+    "car_out",
     "work",
     "json",
     "csv",

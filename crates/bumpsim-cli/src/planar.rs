@@ -4,9 +4,13 @@
 use crate::{Folder, write};
 use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, parse_quantity};
+use bumpsim_planar::identify::{Prediction, identify, predict};
 use bumpsim_planar::presets::{PRESETS, StrikerSpec};
+use bumpsim_planar::study::PlanarStudy;
 use bumpsim_planar::{PlanarCar, Settings, Side, Striker, simulate};
-use std::path::PathBuf;
+use bumpsim_report::planar::CasePage;
+use indicatif::ProgressBar;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `planar`.
 #[derive(Debug, clap::Args)]
@@ -17,21 +21,8 @@ pub struct Args {
     /// A load-case preset (`--case list` lists them): RCAR, IIHS angle, pole, corner.
     #[arg(long, conflicts_with_all = ["angle", "overlap", "side", "pole", "pole_offset", "pendulum", "barrier"])]
     case: Option<String>,
-    /// Face angle in degrees, counter-clockwise seen from above (plane faces).
-    #[arg(long, allow_negative_numbers = true, conflicts_with = "pole")]
-    angle: Option<f64>,
-    /// Overlap in percent of the bumper width (plane faces; default 100).
-    #[arg(long, allow_negative_numbers = true, conflicts_with = "pole")]
-    overlap: Option<f64>,
-    /// Side the overlap is measured from: left (+y) or right (−y).
-    #[arg(long, conflicts_with = "pole")]
-    side: Option<Side>,
-    /// A pole of this diameter instead of a plane: m, or with a unit ("178 mm").
-    #[arg(long)]
-    pole: Option<String>,
-    /// Lateral position of the pole's axis (y, left positive): m or with a unit.
-    #[arg(long, requires = "pole", allow_hyphen_values = true)]
-    pole_offset: Option<String>,
+    #[command(flatten)]
+    face: FaceArgs,
     /// A pendulum of this mass, kg, carries the face into the car at rest.
     #[arg(long, conflicts_with = "barrier", allow_negative_numbers = true)]
     pendulum: Option<f64>,
@@ -45,32 +36,81 @@ pub struct Args {
     files: crate::output::ResultFiles,
 }
 
+/// The striker's face options of `planar` (and of `impact` with a planar car).
+#[derive(Debug, Default, clap::Args)]
+pub struct FaceArgs {
+    /// Face angle in degrees, counter-clockwise seen from above (plane faces; planar cars).
+    #[arg(long, allow_negative_numbers = true, conflicts_with = "pole")]
+    angle: Option<f64>,
+    /// Overlap in percent of the bumper width (plane faces; default 100; planar cars).
+    #[arg(long, allow_negative_numbers = true, conflicts_with = "pole")]
+    overlap: Option<f64>,
+    /// Side the overlap is measured from: left (+y) or right (−y) (planar cars).
+    #[arg(long, conflicts_with = "pole")]
+    side: Option<Side>,
+    /// A pole of this diameter instead of a plane: m, or with a unit ("178 mm") (planar cars).
+    #[arg(long)]
+    pole: Option<String>,
+    /// Lateral position of the pole's axis (y, left positive): m or with a unit (planar cars).
+    #[arg(long, requires = "pole", allow_hyphen_values = true)]
+    pole_offset: Option<String>,
+}
+
+impl FaceArgs {
+    /// Whether any face option is given.
+    pub fn given(&self) -> bool {
+        self.angle.is_some()
+            || self.overlap.is_some()
+            || self.side.is_some()
+            || self.pole.is_some()
+            || self.pole_offset.is_some()
+    }
+}
+
+/// A planar impact as `planar` and `impact` name it.
+pub struct ImpactRequest<'a> {
+    /// The car file (for its name in messages).
+    pub path: &'a Path,
+    /// The planar car.
+    pub car: PlanarCar,
+    /// A planar preset.
+    pub case: Option<&'a str>,
+    /// The face.
+    pub face: &'a FaceArgs,
+    /// A pendulum mass, kg.
+    pub pendulum: Option<f64>,
+    /// The speed as given.
+    pub speed: Option<&'a str>,
+    /// Result files.
+    pub files: &'a crate::output::ResultFiles,
+}
+
 fn quantity(option: &str, text: &str, dimension: Dimension) -> Result<f64> {
     parse_quantity(text, dimension).with_context(|| format!("--{option} '{text}'"))
 }
 
-fn striker(args: &Args) -> Result<(Striker, String)> {
+fn striker(request: &ImpactRequest) -> Result<(Striker, String)> {
+    let face = request.face;
     let length = |option, text: &Option<String>| {
         text.as_deref()
             .map(|t| quantity(option, t, Dimension::Length))
             .transpose()
     };
     let spec = StrikerSpec {
-        case: args.case.clone(),
-        angle: args.angle,
-        overlap: args.overlap,
-        side: args.side,
-        pole: length("pole", &args.pole)?,
-        pole_offset: length("pole-offset", &args.pole_offset)?,
-        pendulum: args.pendulum,
-        speed: args
+        case: request.case.map(str::to_string),
+        angle: face.angle,
+        overlap: face.overlap,
+        side: face.side,
+        pole: length("pole", &face.pole)?,
+        pole_offset: length("pole-offset", &face.pole_offset)?,
+        pendulum: request.pendulum,
+        speed: request
             .speed
-            .as_deref()
             .map(|s| quantity("speed", s, Dimension::Velocity))
             .transpose()?,
     };
     let (striker, preset) = spec.striker().context("--case or --speed")?;
-    let label = match (preset, args.pendulum) {
+    let label = match (preset, request.pendulum) {
         (Some(p), _) => format!("{} [{}]", p.name, p.source),
         (None, Some(_)) => "pendulum".into(),
         (None, None) => "barrier".into(),
@@ -78,7 +118,8 @@ fn striker(args: &Args) -> Result<(Striker, String)> {
     Ok((striker, label))
 }
 
-fn list() {
+/// Lists the planar presets.
+pub fn list() {
     for p in PRESETS {
         println!("{:<22} {}  [{}]", p.name, p.description, p.source);
         println!("{:<22} uncertain: {}", "", p.uncertain);
@@ -94,9 +135,22 @@ pub fn run(args: &Args) -> Result<()> {
     let Some(path) = &args.car else {
         bail!("--car FILE is needed (a planar car TOML, docs/planar.md)");
     };
-    let car = PlanarCar::read(path)?;
-    let (striker, label) = striker(args)?;
-    let result = simulate(&car, &striker, &Settings::default())?;
+    run_impact(&ImpactRequest {
+        path,
+        car: PlanarCar::read(path)?,
+        case: args.case.as_deref(),
+        face: &args.face,
+        pendulum: args.pendulum,
+        speed: args.speed.as_deref(),
+        files: &args.files,
+    })
+}
+
+/// Simulates a planar impact and writes its outputs.
+pub fn run_impact(request: &ImpactRequest) -> Result<()> {
+    let (path, car) = (request.path, &request.car);
+    let (striker, label) = striker(request)?;
+    let result = simulate(car, &striker, &Settings::default())?;
     result.warnings.iter().for_each(|w| crate::warn(w));
     let name = car
         .name()
@@ -108,15 +162,88 @@ pub fn run(args: &Args) -> Result<()> {
     );
     println!("{heading}");
     print!("{summary}");
-    if let Some(path) = &args.files.json {
+    if let Some(path) = &request.files.json {
         let json = serde_json::json!({ "car": name, "striker": striker, "result": result });
         write(path, &serde_json::to_string_pretty(&json)?)?;
     }
-    if let Some(path) = &args.files.csv {
+    if let Some(path) = &request.files.csv {
         write(path, &bumpsim_planar::text::histories(&result))?;
     }
-    if let Some(dir) = &args.files.report {
-        let (html, figures) = bumpsim_report::planar::planar_report(&heading, &summary, &result)?;
+    if let Some(dir) = &request.files.report {
+        let peak = bumpsim_planar::picture::peak_sample(&result);
+        let view = bumpsim_planar::picture::top_view(car, &striker, &result, peak)?;
+        let (html, figures) =
+            bumpsim_report::planar::planar_report(&heading, &summary, &result, Some(&view))?;
+        Folder::report(dir, &html, &figures)?;
+    }
+    Ok(())
+}
+
+/// What `identify` does with a planar study (`[model] planar = ...`).
+pub struct IdentifyOptions<'a> {
+    /// The study file.
+    pub study: &'a Path,
+    /// Starts and seed instead of the study's.
+    pub starts: Option<usize>,
+    /// Seed of the random starts.
+    pub seed: Option<u64>,
+    /// JSON result.
+    pub json: Option<&'a Path>,
+    /// Report folder.
+    pub report: Option<&'a Path>,
+    /// The identified car as a planar car file.
+    pub car: Option<&'a Path>,
+    /// No progress bar.
+    pub quiet: bool,
+}
+
+/// `identify` on a planar study: identifies, prints the summary, predicts
+/// the validation cases and writes the outputs.
+pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
+    let mut study = PlanarStudy::read(options.study)?;
+    study.setup.starts = options.starts.unwrap_or(study.setup.starts);
+    study.setup.seed = options.seed.unwrap_or(study.setup.seed);
+    let bar = match options.quiet {
+        true => ProgressBar::hidden(),
+        false => ProgressBar::new(study.setup.starts as u64),
+    };
+    let result = identify(&study.cases, &study.setup, &|| bar.inc(1));
+    bar.finish_and_clear();
+    let result = result.context("planar identification")?;
+    let fitted: Vec<Prediction> = study
+        .cases
+        .iter()
+        .map(|c| predict(&result.car, c))
+        .collect::<Result<_, _>>()?;
+    let validation: Vec<Prediction> = study
+        .validation
+        .iter()
+        .map(|c| predict(&result.car, c))
+        .collect::<Result<_, _>>()?;
+    let validation_fits: Vec<_> = validation.iter().map(|p| p.fit.clone()).collect();
+    let summary = bumpsim_planar::text::identification_summary(&result, &validation_fits);
+    print!("{summary}");
+    result.warnings.iter().for_each(|w| crate::warn(w));
+    if let Some(path) = options.json {
+        let json = serde_json::json!({ "result": result, "validation": validation_fits });
+        write(path, &serde_json::to_string_pretty(&json)?)?;
+    }
+    if let Some(path) = options.car {
+        write(path, &result.car.to_toml())?;
+    }
+    if let Some(dir) = options.report {
+        let inputs = std::fs::read_to_string(options.study).unwrap_or_default();
+        let pages: Vec<CasePage> = fitted
+            .iter()
+            .map(|p| (p, false))
+            .chain(validation.iter().map(|p| (p, true)))
+            .map(|(prediction, validation)| CasePage {
+                prediction,
+                validation,
+            })
+            .collect();
+        let (html, figures) =
+            bumpsim_report::planar::identification_report(&summary, &inputs, &pages)?;
         Folder::report(dir, &html, &figures)?;
     }
     Ok(())

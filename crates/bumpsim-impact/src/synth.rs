@@ -72,7 +72,7 @@ impl Default for Chain {
 }
 
 /// Gaussian noise by Box–Muller.
-fn gaussian(rng: &mut ChaCha8Rng) -> f64 {
+pub fn gaussian(rng: &mut ChaCha8Rng) -> f64 {
     let u = |rng: &mut ChaCha8Rng| ((rng.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64;
     let (a, b) = (u(rng), u(rng));
     (-2.0 * a.ln()).sqrt() * (2.0 * std::f64::consts::PI * b).cos()
@@ -212,6 +212,39 @@ pub struct ChainFile {
     pub biases: Option<[f64; 2]>,
 }
 
+impl ChainFile {
+    /// The chain these settings give over `defaults`, with the noise `seed`
+    /// (accelerometer figures from g to m/s²).
+    pub fn resolve(&self, defaults: &Chain, seed: u64) -> Chain {
+        let (g, d) = (STANDARD_GRAVITY, defaults);
+        Chain {
+            step: self.step.unwrap_or(d.step),
+            pretrigger: self.pretrigger.unwrap_or(d.pretrigger),
+            duration: self.duration.unwrap_or(d.duration),
+            force_noise: self.force_noise.unwrap_or(d.force_noise),
+            acceleration_noise: self
+                .acceleration_noise
+                .map_or(d.acceleration_noise, |a| a * g),
+            biases: self.biases.map_or(d.biases, |[l, r]| [l * g, r * g]),
+            seed,
+        }
+    }
+}
+
+/// A speed in a series file: m/s, or text with a unit ("6 km/h").
+pub fn speed_value(value: &toml::Value) -> Result<f64, String> {
+    match value {
+        toml::Value::Float(v) => Ok(*v),
+        toml::Value::Integer(v) => Ok(*v as f64),
+        toml::Value::String(s) => {
+            bumpsim_core::units::parse_quantity(s, Dimension::Velocity).map_err(|e| e.to_string())
+        }
+        other => Err(format!(
+            "speed {other}: expected m/s or text such as \"6 km/h\""
+        )),
+    }
+}
+
 /// `[[head]]` of a series file.
 #[derive(Debug, Clone, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -311,18 +344,7 @@ pub fn make_series(path: &std::path::Path) -> Result<(Vec<SynthTest>, String), S
     let base = path.parent().unwrap_or(std::path::Path::new("."));
     let car_path = base.join(&file.car);
     let car = bumpsim_io::car::Car::read_model_file(&car_path)?;
-    let g = STANDARD_GRAVITY;
-    let d = Chain::default();
-    let c = &file.chain;
-    let chain = Chain {
-        step: c.step.unwrap_or(d.step),
-        pretrigger: c.pretrigger.unwrap_or(d.pretrigger),
-        duration: c.duration.unwrap_or(d.duration),
-        force_noise: c.force_noise.unwrap_or(d.force_noise),
-        acceleration_noise: c.acceleration_noise.map_or(d.acceleration_noise, |a| a * g),
-        biases: c.biases.map_or(d.biases, |[l, r]| [l * g, r * g]),
-        seed: file.seed,
-    };
+    let chain = file.chain.resolve(&Chain::default(), file.seed);
     check_chain(&chain).map_err(|m| error(path, m))?;
     check_names(&file.head).map_err(|m| error(path, m))?;
     let mut provenance = format!("# series file {}\n{text}\n", path.display());
@@ -340,16 +362,8 @@ pub fn make_series(path: &std::path::Path) -> Result<(Vec<SynthTest>, String), S
             bumper_path.display(),
             std::fs::read_to_string(&bumper_path).unwrap_or_default()
         );
-        let speed = match &h.speed {
-            toml::Value::Float(v) => Ok(*v),
-            toml::Value::Integer(v) => Ok(*v as f64),
-            toml::Value::String(s) => bumpsim_core::units::parse_quantity(s, Dimension::Velocity)
-                .map_err(|e| e.to_string()),
-            other => Err(format!(
-                "speed {other}: expected m/s or text such as \"6 km/h\""
-            )),
-        }
-        .map_err(|m| error(path, format!("head '{}': {m}", h.name)))?;
+        let speed =
+            speed_value(&h.speed).map_err(|m| error(path, format!("head '{}': {m}", h.name)))?;
         let head = Head {
             name: h.name.clone(),
             bumper,

@@ -2,11 +2,14 @@
 //! a 10-segment bumper (target: under 5 ms on one core): the IIHS 30° angle
 //! barrier, a 1312 kg two-mass car, free-rolling tyres, bending coupling, the
 //! default step (safety 0.05) and output interval (0.1 ms), run until a tenth
-//! of the contact time after separation. Figures: docs/benchmarks.md.
+//! of the contact time after separation; and the same impact replayed from
+//! its segment forces (the planar identification's unit of work). Figures:
+//! docs/benchmarks.md.
 
 use bumpsim_core::model::MsdModel;
 use bumpsim_impact::bumper::Bumper;
 use bumpsim_planar::car::{Layout, PlanarCar};
+use bumpsim_planar::drive::{Drive, Load, Sensor, drive};
 use bumpsim_planar::{Face, Settings, Side, Striker, simulate};
 use criterion::{Criterion, criterion_group, criterion_main};
 
@@ -32,6 +35,37 @@ fn benches(c: &mut Criterion) {
     let mut group = c.benchmark_group("planar");
     group.bench_function("8 km/h 30° angled barrier, 10 segments", |b| {
         b.iter(|| simulate(&car, &striker, &Settings::default()).unwrap())
+    });
+    // the identification's unit of work: that impact replayed from its 10
+    // segment forces (0.1-ms samples, sills and side members measured)
+    let r = simulate(&car, &striker, &Settings::default()).unwrap();
+    let normal = [-(30f64.to_radians().cos()), -(30f64.to_radians().sin())];
+    let loads = r
+        .segment_force
+        .iter()
+        .zip(&r.segment_centres)
+        .map(|(force, &lateral)| Load {
+            lateral,
+            anchor: None,
+            direction: normal,
+            force: force.clone(),
+        })
+        .collect();
+    let sensors = vec![
+        Sensor::Body([0.6, 0.7]),
+        Sensor::Body([0.6, -0.7]),
+        Sensor::Chain(0),
+        Sensor::Chain(1),
+    ];
+    let input = Drive {
+        step: 1e-4,
+        loads,
+        speed: 8.0 / 3.6,
+        sensors,
+    };
+    let samples = r.time.len();
+    group.bench_function(format!("replay of that impact, {samples} samples"), |b| {
+        b.iter(|| drive(&car, &input, 0.05).unwrap())
     });
     group.finish();
 }

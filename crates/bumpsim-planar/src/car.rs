@@ -87,6 +87,14 @@ pub enum PlanarError {
         /// Time of the first non-finite state, s.
         time: f64,
     },
+    /// A load case cannot be built from its channels.
+    #[error("case '{case}': {message}")]
+    Case {
+        /// The case.
+        case: String,
+        /// What is wrong (names the channel).
+        message: String,
+    },
     /// The striker cannot touch the car.
     #[error("the striker never touches the car: {reason}")]
     NoContact {

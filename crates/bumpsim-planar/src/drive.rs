@@ -1,7 +1,7 @@
 //! The planar car driven by given forces (spec §9): the model that planar
 //! identification fits, and the reference for the exported FE decks.
 //!
-//! The equations of motion are those of [`crate::simulate`] (same
+//! The equations of motion are those of [`crate::simulate`](mod@crate::simulate) (same
 //! generalised coordinates, same Newton–Euler solve, same leapfrog), with
 //! the striker's contact replaced by given loads: load k acts on the bumper
 //! line at the lateral position η_k (body frame, left positive) with a fixed
@@ -19,7 +19,7 @@
 //! forces and the chain masses' displacements u_i.
 //!
 //! Step: `T = safety · min(2/ω, 2/ω_c)` from the chain and tyre bounds of
-//! [`crate::simulate`] (no segments), rounded down to divide the sample
+//! [`crate::simulate`](mod@crate::simulate) (no segments), rounded down to divide the sample
 //! interval.
 //!
 //! ```
@@ -31,7 +31,7 @@
 //! let chain = MsdModel::new(vec![1000.0], vec![], vec![]).unwrap();
 //! let bumper = Bumper::three_part(1e6, 1e5, 1e7).unwrap();
 //! let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
-//! let load = Load { lateral: 0.0, direction: [-1.0, 0.0], force: vec![1e3; 1001] };
+//! let load = Load { lateral: 0.0, anchor: None, direction: [-1.0, 0.0], force: vec![1e3; 1001] };
 //! let input = Drive { step: 1e-4, loads: vec![load], speed: 0.0, sensors: vec![] };
 //! let r = drive(&car, &input, 0.05).unwrap();
 //! let expected = -0.5 * 1.0 * 0.1f64.powi(2);              // x = ½ (F/M) t²
@@ -48,6 +48,10 @@ use crate::striker::Placed;
 pub struct Load {
     /// Lateral position on the bumper line, body frame, m (left positive).
     pub lateral: f64,
+    /// A point fixed in the world that the line of action passes through
+    /// (a pole's axis), given in the body frame at t = 0 (ξ ahead of the
+    /// CG, η left), m; `None`: the load moves with the bumper line at `lateral`.
+    pub anchor: Option<[f64; 2]>,
     /// Direction of the force on the car, world frame (normalised on use).
     pub direction: [f64; 2],
     /// Magnitudes, N, at `k · step` (k = 0, 1, …).
@@ -63,8 +67,18 @@ pub struct Drive {
     pub loads: Vec<Load>,
     /// Initial forward speed of the whole car, m/s (x, towards the bumper).
     pub speed: f64,
-    /// Sensor points, body frame: ξ ahead of the CG and η left, m.
-    pub sensors: Vec<[f64; 2]>,
+    /// The accelerometers.
+    pub sensors: Vec<Sensor>,
+}
+
+/// Where an accelerometer sits.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub enum Sensor {
+    /// A body point (a sill, the B-pillar): ξ ahead of the CG and η left, m.
+    Body([f64; 2]),
+    /// Chain mass `i` (left chain first, each from the front; e.g. a side
+    /// member's front end, where the 1-D tests measure).
+    Chain(usize),
 }
 
 /// Histories of a replay, at the input's samples.
@@ -80,6 +94,10 @@ pub struct Driven {
     pub yaw: Vec<f64>,
     /// World-x displacement of each sensor, m (outer: sensors).
     pub sensor_x: Vec<Vec<f64>>,
+    /// What each sensor's accelerometer reads integrated twice: the double
+    /// integral of its body-x acceleration `A_x − ψ̈ η − ψ̇² ξ` from the
+    /// start speed, m (equal to `sensor_x` while the yaw stays small).
+    pub sensor_reading: Vec<Vec<f64>>,
     /// Compressive force at the left side-member tip, N.
     pub side_force_left: Vec<f64>,
     /// Compressive force at the right side-member tip, N.
@@ -91,7 +109,7 @@ pub struct Driven {
 /// Most samples of one replay (as a simulation's output, docs/limits.md).
 pub const MAX_SAMPLES: usize = 10_000_000;
 
-fn check(input: &Drive) -> Result<usize, PlanarError> {
+fn check(input: &Drive, masses: usize) -> Result<usize, PlanarError> {
     require(
         "step",
         input.step,
@@ -111,6 +129,9 @@ fn check(input: &Drive) -> Result<usize, PlanarError> {
     for (k, load) in input.loads.iter().enumerate() {
         let name = |what: &str| format!("load[{k}].{what}");
         require(&name("lateral"), load.lateral, "m", "must be finite", true)?;
+        if let Some(p) = load.anchor {
+            require(&name("anchor"), p[0] + p[1], "m", "must be finite", true)?;
+        }
         let norm = load.direction[0].hypot(load.direction[1]);
         require(
             &name("direction"),
@@ -137,21 +158,42 @@ fn check(input: &Drive) -> Result<usize, PlanarError> {
         }
     }
     for (k, s) in input.sensors.iter().enumerate() {
-        require(
-            &format!("sensor[{k}]"),
-            s[0] + s[1],
-            "m",
-            "must be finite",
-            true,
-        )?;
+        match *s {
+            Sensor::Body(p) => require(
+                &format!("sensor[{k}]"),
+                p[0] + p[1],
+                "m",
+                "must be finite",
+                true,
+            )?,
+            Sensor::Chain(i) => require(
+                &format!("sensor[{k}] chain mass"),
+                i as f64,
+                "1",
+                &format!("the car has {masses} chain masses (index from 0, left chain first)"),
+                i < masses,
+            )?,
+        }
     }
     Ok(samples)
+}
+
+/// Checks `input` for `car` (finite forces of one length, non-zero
+/// directions, sensors on the car); returns the sample count.
+pub fn validate(car: &PlanarCar, input: &Drive) -> Result<usize, PlanarError> {
+    check(input, car.left().masses.len() + car.right().masses.len())
 }
 
 /// Replays given forces on `car`, starting at `input.speed` with everything
 /// at rest relative to the body; `safety` is the fraction of the critical step.
 pub fn drive(car: &PlanarCar, input: &Drive, safety: f64) -> Result<Driven, PlanarError> {
-    let samples = check(input)?;
+    drive_substeps(car, input, substeps(car, input.step, safety)?)
+}
+
+/// Integration steps per sample interval `step` for `car` at `safety`
+/// (the fraction of its critical step), at least 1.
+pub fn substeps(car: &PlanarCar, step: f64, safety: f64) -> Result<usize, PlanarError> {
+    require("step", step, "s", "must be positive", step > 0.0)?;
     require(
         "safety",
         safety,
@@ -159,28 +201,52 @@ pub fn drive(car: &PlanarCar, input: &Drive, safety: f64) -> Result<Driven, Plan
         "must lie in (0, 1]",
         safety > 0.0 && safety <= 1.0,
     )?;
+    let (omega2, omega_c) = model(car).chain_rates(car);
+    let critical = (2.0 / omega2.sqrt()).min(2.0 / omega_c);
+    let substeps = (step / (safety * critical)).ceil().max(1.0);
+    let limit = crate::simulate::MAX_STEPS;
+    require(
+        "integration steps per sample",
+        substeps,
+        "1",
+        &format!("at most {limit:e}: check the car for an implausibly stiff or light element"),
+        substeps <= limit,
+    )?;
+    Ok(substeps as usize)
+}
+
+/// [`drive`] with a given number of integration steps per sample (the
+/// replay of an identification keeps one step for every trial car, so the
+/// objective does not jump where the step would change; a trial car too
+/// stiff for it diverges and is refused).
+pub fn drive_substeps(
+    car: &PlanarCar,
+    input: &Drive,
+    substeps: usize,
+) -> Result<Driven, PlanarError> {
+    let samples = validate(car, input)?;
+    let limit = crate::simulate::MAX_STEPS;
+    require(
+        "integration steps",
+        (substeps * samples) as f64,
+        "1",
+        &format!("at most {limit:e} in all"),
+        substeps >= 1 && (substeps * samples) as f64 <= limit,
+    )?;
+    let mut model = model(car);
+    model.half_step = 0.5 * input.step / substeps as f64;
+    Replay::new(model, input, substeps).run(samples)
+}
+
+/// The car's model with no striker face.
+fn model(car: &PlanarCar) -> Model {
     let nowhere = Placed::Plane {
         normal: [-1.0, 0.0],
         offset: f64::MAX,
         edge: 0.0,
         sign: 0.0,
     };
-    let mut model = Model::new(car, nowhere, None);
-    let (omega2, omega_c) = model.chain_rates(car);
-    let critical = (2.0 / omega2.sqrt()).min(2.0 / omega_c);
-    let substeps = (input.step / (safety * critical)).ceil().max(1.0);
-    let limit = crate::simulate::MAX_STEPS;
-    require(
-        "integration step",
-        input.step / substeps,
-        "s",
-        &format!(
-            "needs more than {limit:e} steps: check the car for an implausibly stiff or light element"
-        ),
-        substeps * samples as f64 <= limit,
-    )?;
-    model.half_step = 0.5 * input.step / substeps;
-    Replay::new(model, input, substeps as usize).run(samples)
+    Model::new(car, nowhere, None)
 }
 
 /// The state of one replay; every buffer is allocated once.
@@ -209,6 +275,7 @@ impl<'a> Replay<'a> {
         let chains = model.masses.len();
         let out = Driven {
             sensor_x: vec![Vec::with_capacity(samples); input.sensors.len()],
+            sensor_reading: vec![Vec::with_capacity(samples); input.sensors.len()],
             chains: vec![Vec::with_capacity(samples); chains],
             ..Driven::default()
         };
@@ -232,7 +299,13 @@ impl<'a> Replay<'a> {
             self.contact.total[k] = load.force[i] + f * (next - load.force[i]);
             let d = self.directions[k];
             self.contact.direction[k] = [d[0] * cs + d[1] * sn, -d[0] * sn + d[1] * cs];
-            self.contact.point[k] = self.model.bumper_point(q, load.lateral);
+            self.contact.point[k] = match load.anchor {
+                None => self.model.bumper_point(q, load.lateral),
+                Some(p) => {
+                    let r = [p[0] - q[0], p[1] - q[1]];
+                    [r[0] * cs + r[1] * sn, -r[0] * sn + r[1] * cs]
+                }
+            };
         }
     }
 
@@ -243,35 +316,76 @@ impl<'a> Replay<'a> {
         loads.side
     }
 
+    /// A sensor's body-frame point (ξ, η) at `q`, m, and its acceleration
+    /// along the body axis relative to the body, m/s².
+    fn point(&self, sensor: Sensor, q: &[f64]) -> ([f64; 2], f64) {
+        match sensor {
+            Sensor::Body(p) => (p, 0.0),
+            Sensor::Chain(i) => (
+                [self.model.x_f + q[3 + i], self.model.eta[i]],
+                self.a[3 + i],
+            ),
+        }
+    }
+
+    /// Body-x acceleration of each sensor `A_x − ψ̈ η − ψ̇² ξ (+ ü_i)` into
+    /// `readings[s][2]`, with ψ̇ at the full step estimated as in the solve.
+    fn sense(&self, q: &[f64], v: &[f64], readings: &mut [[f64; 3]]) {
+        let (sn, cs) = q[2].sin_cos();
+        let along = self.a[0] * cs + self.a[1] * sn;
+        let rate = v[2] + self.model.half_step * self.a[2];
+        for (reading, s) in readings.iter_mut().zip(&self.input.sensors) {
+            let ([xi, eta], relative) = self.point(*s, q);
+            reading[2] = along - self.a[2] * eta - rate * rate * xi + relative;
+        }
+    }
+
     fn run(mut self, samples: usize) -> Result<Driven, PlanarError> {
         let t_step = 2.0 * self.model.half_step;
         let mut q = vec![0.0; self.model.dof()];
         let mut v = vec![0.0; self.model.dof()];
         v[0] = self.input.speed;
+        // per sensor: integrated displacement, velocity (half steps), acceleration
+        let mut readings = vec![[0.0, self.input.speed, 0.0]; self.input.sensors.len()];
         self.place(&q, 0, 0.0);
         let side = self.accelerate(&q, &v);
-        self.record(0, &q, side)?;
+        self.sense(&q, &v, &mut readings);
+        self.record(0, &q, side, &readings)?;
         v.iter_mut()
             .zip(&self.a)
             .for_each(|(v, a)| *v += 0.5 * t_step * a);
+        readings
+            .iter_mut()
+            .for_each(|r| r[1] += 0.5 * t_step * r[2]);
         for i in 0..samples - 1 {
             let mut side = [0.0; 2];
             for k in 1..=self.substeps {
                 q.iter_mut().zip(&v).for_each(|(x, v)| *x += t_step * v);
+                readings.iter_mut().for_each(|r| r[0] += t_step * r[1]);
                 self.place(&q, i, k as f64 / self.substeps as f64);
                 side = self.accelerate(&q, &v);
+                self.sense(&q, &v, &mut readings);
                 v.iter_mut()
                     .zip(&self.a)
                     .for_each(|(v, a)| *v += t_step * a);
+                readings.iter_mut().for_each(|r| r[1] += t_step * r[2]);
             }
-            self.record(i + 1, &q, side)?;
+            self.record(i + 1, &q, side, &readings)?;
         }
         Ok(self.out)
     }
 
-    fn record(&mut self, i: usize, q: &[f64], side: [f64; 2]) -> Result<(), PlanarError> {
+    fn record(
+        &mut self,
+        i: usize,
+        q: &[f64],
+        side: [f64; 2],
+        readings: &[[f64; 3]],
+    ) -> Result<(), PlanarError> {
         let time = i as f64 * self.input.step;
-        if !q.iter().all(|x| x.is_finite()) {
+        // an explicit step too large for the car grows without bound:
+        // 1e3 m (or rad) is far beyond any impact, so it counts as diverged
+        if !q.iter().all(|x| x.abs() < 1e3) {
             return Err(PlanarError::Diverged { time });
         }
         let out = &mut self.out;
@@ -280,8 +394,17 @@ impl<'a> Replay<'a> {
         out.y.push(q[1]);
         out.yaw.push(q[2]);
         let (sn, cs) = q[2].sin_cos();
-        for (history, s) in out.sensor_x.iter_mut().zip(&self.input.sensors) {
-            history.push(q[0] + s[0] * cs - s[1] * sn - s[0]);
+        for (k, s) in self.input.sensors.iter().enumerate() {
+            let ([xi, eta], _) = self.point(*s, q);
+            let rest = match s {
+                Sensor::Body(p) => p[0],
+                Sensor::Chain(_) => self.model.x_f,
+            };
+            self.out.sensor_x[k].push(q[0] + xi * cs - eta * sn - rest);
+        }
+        let out = &mut self.out;
+        for (history, r) in out.sensor_reading.iter_mut().zip(readings) {
+            history.push(r[0]);
         }
         out.side_force_left.push(side[0]);
         out.side_force_right.push(side[1]);
@@ -318,6 +441,7 @@ mod tests {
         let (force, eta, samples) = (1e3, 0.5, 501);
         let load = Load {
             lateral: eta,
+            anchor: None,
             direction: [-1.0, 0.0],
             force: vec![force; samples],
         };
@@ -325,7 +449,7 @@ mod tests {
             step: 1e-4,
             loads: vec![load],
             speed: 2.0,
-            sensors: vec![[1.0, 0.7], [1.0, -0.7]],
+            sensors: vec![Sensor::Body([1.0, 0.7]), Sensor::Body([1.0, -0.7])],
         };
         let r = drive(&rigid, &input, 0.05).unwrap();
         let t: f64 = 0.05;
@@ -371,6 +495,7 @@ mod tests {
             .zip(&r.segment_centres)
             .map(|(force, &lateral)| Load {
                 lateral,
+                anchor: None,
                 direction: [normal[0], normal[1]],
                 force: force.clone(),
             })
@@ -403,6 +528,7 @@ mod tests {
         let rigid = car(&MsdModel::new(vec![1200.0], vec![], vec![]).unwrap());
         let load = |force: Vec<f64>, direction| Load {
             lateral: 0.0,
+            anchor: None,
             direction,
             force,
         };

@@ -46,7 +46,7 @@
 use crate::car::{
     Axle, Beam, Body, MAX_SEGMENTS, PlanarCar, PlanarError, SideChain, Tyres, scaled,
 };
-use bumpsim_impact::bumper::Bumper;
+use bumpsim_impact::bumper::{Bumper, Loading};
 use serde::Deserialize;
 use std::path::Path;
 
@@ -186,6 +186,13 @@ fn segments(file: &BumperFile) -> Result<Vec<Bumper>, PlanarError> {
     }
 }
 
+/// Whether a car file's text is a planar car (it has a `[body]` table; the
+/// 1-D car file has none).
+pub fn is_planar_car(text: &str) -> bool {
+    toml::from_str::<toml::Table>(text)
+        .is_ok_and(|t| t.get("body").is_some_and(toml::Value::is_table))
+}
+
 impl PlanarCar {
     /// Parses a planar car file; `path` is used in messages.
     ///
@@ -264,6 +271,79 @@ impl PlanarCar {
             message: format!("cannot read: {e}"),
         })?;
         Self::parse(&text, path)
+    }
+}
+
+impl PlanarCar {
+    /// The car as a planar car file (SI lengths; one characteristic per
+    /// segment), which [`PlanarCar::parse`] reads back to the same car.
+    ///
+    /// ```
+    /// use bumpsim_core::model::MsdModel;
+    /// use bumpsim_impact::bumper::Bumper;
+    /// use bumpsim_planar::car::{Layout, PlanarCar};
+    /// let chain = MsdModel::new(vec![10.0, 1200.0], vec![2e3], vec![2e6]).unwrap();
+    /// let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+    /// let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
+    /// let again = PlanarCar::parse(&car.to_toml(), "car.toml".as_ref()).unwrap();
+    /// assert_eq!(again, car);
+    /// ```
+    pub fn to_toml(&self) -> String {
+        let mut s = String::new();
+        if let Some(name) = self.name() {
+            s += &format!("name = {name:?}\n");
+        }
+        let b = self.body();
+        s += &format!(
+            "[body]\nmass = {:?}    # kg\nyaw_inertia = {:?}    # kg·m²\ncg_behind_bumper = {:?}    # m\nwheelbase = {:?}    # m\ncg_behind_front_axle = {:?}    # m\ntrack = {:?}    # m\n",
+            b.mass, b.yaw_inertia, b.cg_behind_bumper, b.wheelbase, b.cg_behind_front_axle, b.track
+        );
+        for (side, chain) in [("left", self.left()), ("right", self.right())] {
+            s += &format!(
+                "\n[{side}]\nmasses = {:?}    # kg\ndampers = {:?}    # N·s/m\nsprings = {:?}    # N/m\n",
+                chain.masses, chain.dampers, chain.springs
+            );
+        }
+        let beam = self.beam();
+        s += &format!(
+            "\n[bumper]\nwidth = {:?}    # m\nside_member_spacing = {:?}    # m\nbending = {:?}    # N/m\nsegment = [    # right to left, force per segment\n",
+            beam.width, beam.side_member_spacing, beam.bending
+        );
+        for segment in &beam.segments {
+            let unloading = segment.unloading_slope();
+            s += &match segment.loading() {
+                Loading::ThreePart { ramp, plateau } => {
+                    format!(
+                        "  {{ ramp = {ramp:?}, plateau = {plateau:?}, unloading = {unloading:?} }},\n"
+                    )
+                }
+                Loading::Table { compression, force } => {
+                    let points: Vec<String> = compression
+                        .iter()
+                        .zip(force)
+                        .map(|(d, f)| format!("[{d:?}, {f:?}]"))
+                        .collect();
+                    format!(
+                        "  {{ curve = [{}], unloading = {unloading:?} }},\n",
+                        points.join(", ")
+                    )
+                }
+            };
+        }
+        let t = self.tyres();
+        let axle = |a: &Axle| {
+            format!(
+                "{{ mu_longitudinal = {:?}, mu_lateral = {:?} }}",
+                a.mu_longitudinal, a.mu_lateral
+            )
+        };
+        s += &format!(
+            "]\n\n[tyres]\nslip_speed = {:?}    # m/s\nfront = {}\nrear = {}\n",
+            t.slip_speed,
+            axle(&t.front),
+            axle(&t.rear)
+        );
+        s
     }
 }
 

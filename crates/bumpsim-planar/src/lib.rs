@@ -9,12 +9,18 @@
 //!   bumper beam, tyres — validated at construction;
 //! - [`file`](mod@file): the planar car TOML file;
 //! - [`drive`](mod@drive): the car driven by given forces (test replay, FE reference);
+//! - [`identify`](mod@identify): the planar car identified from several load cases;
+//! - [`cases`]: load cases from test channels (conditioning, integration, window);
 //! - [`striker`]: rigid planes at an angle with an overlap, poles, and pendulums
 //!   carrying either face;
 //! - [`simulate`](mod@simulate): the central-difference integrator and [`simulate()`];
 //! - [`result`]: histories, energy and momentum balances;
+//! - [`picture`]: the top view of car and striker at one instant;
 //! - [`presets`]: RCAR and IIHS asymmetric load cases with their sources;
 //! - [`export`]: the car as an LS-DYNA include and a CalculiX deck;
+//! - [`synth`]: synthetic asymmetric test series (load-cell wall, sills);
+//! - [`series`]: the planar series file of `bumpsim synth` and the study it writes;
+//! - [`study`]: the planar study file of `bumpsim identify`;
 //! - [`text`]: the summary with units and the CSV histories.
 //!
 //! ```
@@ -33,14 +39,20 @@
 //! ```
 
 pub mod car;
+pub mod cases;
 pub mod drive;
 mod dynamics;
 pub mod export;
 pub mod file;
+pub mod identify;
+pub mod picture;
 pub mod presets;
 pub mod result;
+pub mod series;
 pub mod simulate;
 pub mod striker;
+pub mod study;
+pub mod synth;
 pub mod text;
 
 pub use car::{PlanarCar, PlanarError};

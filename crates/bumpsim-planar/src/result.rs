@@ -96,6 +96,9 @@ pub struct PlanarResult {
     pub velocity_y: Vec<f64>,
     /// Pendulum travel along −x, m (zeros for a fixed striker).
     pub pendulum_travel: Vec<f64>,
+    /// Displacement u_i of each chain mass along the body axis, m (outer:
+    /// masses, left chain first, each from the front).
+    pub chain_displacement: Vec<Vec<f64>>,
     /// First time a segment carries force, s.
     pub contact_start: Option<f64>,
     /// First time afterwards that no segment carries force, s.
@@ -122,7 +125,7 @@ pub struct PlanarResult {
 
 impl PlanarResult {
     /// An empty result with room for `samples` samples of `segments` segments.
-    pub(crate) fn with_capacity(segments: usize, samples: usize) -> PlanarResult {
+    pub(crate) fn with_capacity(segments: usize, masses: usize, samples: usize) -> PlanarResult {
         let v = || Vec::with_capacity(samples);
         PlanarResult {
             time: v(),
@@ -141,6 +144,7 @@ impl PlanarResult {
             velocity_x: v(),
             velocity_y: v(),
             pendulum_travel: v(),
+            chain_displacement: vec![v(); masses],
             ..PlanarResult::default()
         }
     }

@@ -259,6 +259,7 @@ impl<'a> Run<'a> {
     fn new(car: &'a PlanarCar, mut model: Model, step: f64, settings: &'a Settings) -> Run<'a> {
         model.half_step = 0.5 * step;
         let segments = car.beam().segments.len();
+        let masses = model.masses.len();
         let samples = ((settings.duration / settings.output_step).ceil() as usize + 2).min(200_000);
         let chain = vec![0.0; model.masses.len()];
         let a = vec![0.0; model.dof()];
@@ -272,7 +273,7 @@ impl<'a> Run<'a> {
             previous_force: vec![0.0; segments],
             chain,
             a,
-            out: PlanarResult::with_capacity(segments, samples),
+            out: PlanarResult::with_capacity(segments, masses, samples),
         }
     }
 
@@ -519,6 +520,9 @@ impl<'a> Run<'a> {
         out.velocity_x.push(v[0]);
         out.velocity_y.push(v[1]);
         out.pendulum_travel.push(q[model.travel()]);
+        for (history, u) in out.chain_displacement.iter_mut().zip(&q[3..]) {
+            history.push(*u);
+        }
     }
 
     fn finish(mut self, q: &[f64], v: &[f64], sums: &Sums) -> PlanarResult {

@@ -194,6 +194,51 @@ pub fn histories(r: &PlanarResult) -> String {
     csv
 }
 
+/// The summary of a planar identification, every number with its unit;
+/// `validation` holds the fits of cases predicted but not fitted.
+pub fn identification_summary(
+    result: &crate::identify::PlanarIdentification,
+    validation: &[crate::identify::CaseFit],
+) -> String {
+    let mut s = String::from(
+        "planar identification\n  parameter                 estimate        95 % interval\n",
+    );
+    for p in &result.parameters {
+        let interval = p.ci95.map_or("not determined".to_string(), |[lo, hi]| {
+            format!("{lo:.4e} .. {hi:.4e} {}", p.unit)
+        });
+        s += &format!(
+            "  {:<24}  {:.4e} {:<6}  {interval}\n",
+            p.name, p.value, p.unit
+        );
+    }
+    let st = result.starts;
+    s += &format!(
+        "  objective {:.4e} m²; starts: {} run, {} converged, {} reached the best; variance inflation {:.1} (residual correlation)\n",
+        result.objective, st.total, st.converged, st.reached_best, result.inflation
+    );
+    s += "  case fits (x: mean of the sills; yaw from their difference)\n";
+    let fits = result
+        .fits
+        .iter()
+        .map(|f| (f, "fitted"))
+        .chain(validation.iter().map(|f| (f, "validation")));
+    for (f, kind) in fits {
+        s += &format!(
+            "    {:<16} {:<10}  x {:6.2} %   yaw {:6.2} %   peak yaw {:.3} deg\n",
+            f.name,
+            kind,
+            f.fit_x,
+            f.fit_yaw,
+            f.peak_yaw.to_degrees()
+        );
+    }
+    for w in &result.warnings {
+        s += &format!("  warning: {w}\n");
+    }
+    s
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

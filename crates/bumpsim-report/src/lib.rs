@@ -6,8 +6,9 @@
 //! - [`html`]: self-contained HTML reports;
 //! - [`impact`]: impact pages and mass-reduction heat maps;
 //! - [`identification`]: the identification report;
-//! - [`planar`]: planar impact pages (forces, yaw, crush per segment);
+//! - [`planar`]: planar impact pages (forces, yaw, crush per segment, top view) and the planar identification;
 //! - [`signal`]: raw against processed crash-test signals;
+//! - [`topview`]: the top-view picture of a planar impact;
 //! - [`plot`]: line plots of time histories (measured solid, simulated
 //!   dashed, as in the thesis figures) with units on both axes, as SVG.
 //!
@@ -32,6 +33,7 @@ pub mod impact;
 pub mod planar;
 pub mod plot;
 pub mod signal;
+pub mod topview;
 
 pub use bar::BarPlot;
 pub use heatmap::HeatMap;

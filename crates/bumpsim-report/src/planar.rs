@@ -7,18 +7,28 @@ use crate::html::Html;
 use crate::plot::{LinePlot, PlotError, Series, Style};
 use bumpsim_core::units::Dimension;
 use bumpsim_planar::PlanarResult;
+use bumpsim_planar::picture::TopView;
 
 /// The planar impact report: the HTML page and its figures (file name, SVG).
+///
+/// `view`: the top view at peak force (`bumpsim_planar::picture`), drawn first.
 pub fn planar_report(
     title: &str,
     summary: &str,
     r: &PlanarResult,
+    view: Option<&TopView>,
 ) -> Result<(String, Vec<(String, String)>), PlotError> {
     let mut page = Html::new(&format!("bumpsim planar impact: {title}"));
     page.heading("Results");
     page.preformatted(summary);
     page.warnings(&r.warnings);
     let mut figures = Vec::new();
+    if let Some(view) = view {
+        let caption = format!("top view at peak force, t = {:.2} ms", view.time * 1e3);
+        let svg = crate::topview::top_view_svg(view, &caption)?;
+        page.figure(&svg, &format!("{caption}: body outline (grey), side members (blue), crushed bumper line (red), striker (black)"));
+        figures.push(("top-view.svg".to_string(), svg));
+    }
     for (name, svg, caption) in [
         (
             "forces.svg",
@@ -115,6 +125,56 @@ fn segment_rows(r: &PlanarResult) -> Vec<Vec<String>> {
         .collect()
 }
 
+/// One case of a planar identification for the report: its prediction and
+/// whether it was fitted or only predicted (validation).
+pub struct CasePage<'a> {
+    /// The replay against the measurement.
+    pub prediction: &'a bumpsim_planar::identify::Prediction,
+    /// Predicted only, not fitted.
+    pub validation: bool,
+}
+
+/// The planar identification report: the summary, then x and yaw of every
+/// case, model against measurement (file name, SVG).
+pub fn identification_report(
+    summary: &str,
+    inputs: &str,
+    cases: &[CasePage],
+) -> Result<(String, Vec<(String, String)>), PlotError> {
+    let mut page = Html::new("bumpsim planar identification");
+    page.heading("Results");
+    page.preformatted(summary);
+    let mut figures = Vec::new();
+    for case in cases {
+        let p = case.prediction;
+        let kind = if case.validation {
+            "validation, not fitted"
+        } else {
+            "fitted"
+        };
+        page.heading(&format!("{} ({kind})", p.fit.name));
+        let mut x = LinePlot::new("x (mean of the sills)", Dimension::Time, Dimension::Length);
+        x.add(line("measured", &p.time, &p.x[1], Style::Solid));
+        x.add(line("model", &p.time, &p.x[0], Style::Dashed));
+        let mut yaw = LinePlot::new(
+            "Yaw (difference of the sills)",
+            Dimension::Time,
+            Dimension::Angle,
+        );
+        yaw.add(line("measured", &p.time, &p.yaw[1], Style::Solid));
+        yaw.add(line("model", &p.time, &p.yaw[0], Style::Dashed));
+        let stem = crate::file_name(&p.fit.name);
+        for (what, plot, fit) in [("x", x, p.fit.fit_x), ("yaw", yaw, p.fit.fit_yaw)] {
+            let svg = plot.svg()?;
+            page.figure(&svg, &format!("{what}: fit {fit:.2} %"));
+            figures.push((format!("{stem}-{what}.svg"), svg));
+        }
+    }
+    page.heading("Inputs");
+    page.preformatted(inputs);
+    Ok((page.finish(), figures))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -135,8 +195,12 @@ mod tests {
             &Settings::default(),
         )
         .unwrap();
-        let (html, figures) = planar_report("RCAR", "summary", &r).unwrap();
-        assert_eq!(figures.len(), 4);
+        let striker = Striker::barrier(face, 15.0 / 3.6);
+        let k = bumpsim_planar::picture::peak_sample(&r);
+        let view = bumpsim_planar::picture::top_view(&car, &striker, &r, k).unwrap();
+        let (html, figures) = planar_report("RCAR", "summary", &r, Some(&view)).unwrap();
+        assert_eq!(figures.len(), 5);
+        assert!(figures[0].0 == "top-view.svg" && figures[0].1.contains("<polygon"));
         assert!(figures.iter().all(|(_, svg)| svg.starts_with("<svg")));
         assert!(html.contains("remaining crush [mm]") && html.contains("<svg"));
     }

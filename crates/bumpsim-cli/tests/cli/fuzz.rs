@@ -1,6 +1,7 @@
 //! Stable-Rust fuzzing of the readers (proptest; no cargo fuzz, no nightly).
 //!
 //! Each target (CSV, EV5, ISO-MME, car/bumper/planar car TOML, study,
+//! planar series and study,
 //! model JSON, CalculiX results, the FE bumper mesh and its .dat, campaign file and state) mutates seed files (tests/fuzz/ and examples/identify/) with a
 //! byte strategy (flips, inserts, deletes, truncation) and a structure
 //! strategy (a line or number replaced by hostile values: NaN, inf, 1e308,
@@ -358,4 +359,52 @@ fn fuzz_campaign_file_and_state() {
             }
         },
     );
+}
+
+#[test]
+fn fuzz_planar_series_and_study() {
+    use bumpsim_planar::series::make_series;
+    use bumpsim_planar::study::PlanarStudy;
+    let fuzz_dir = root().join("tests/fuzz");
+    let series_dir = scratch("planar-series-files");
+    std::fs::copy(fuzz_dir.join("planar.toml"), series_dir.join("planar.toml")).unwrap();
+    fuzz(
+        "planar-series",
+        seed("tests/fuzz/planar-series.toml"),
+        |_, bytes| {
+            let path = series_dir.join("series.toml");
+            std::fs::write(&path, bytes).unwrap();
+            if let Ok(series) = make_series(&path) {
+                for test in &series.tests {
+                    let finite = test
+                        .channels
+                        .iter()
+                        .all(|c| c.series.values().iter().all(|v| v.is_finite()));
+                    assert!(finite, "test {} has non-finite samples", test.name);
+                }
+            }
+        },
+    );
+    // the study of the seed series, over its own tests
+    let tests = scratch("planar-study-tests");
+    let series = make_series(&fuzz_dir.join("planar-series.toml")).unwrap();
+    for t in &series.tests {
+        let header =
+            bumpsim_io::test_data::iso_header::test_header(&t.name, Some(t.striker.0), None);
+        bumpsim_io::isomme::write(&tests.join(&t.name), &t.name, &header, &t.channels).unwrap();
+    }
+    std::fs::write(tests.join("start.toml"), &series.start).unwrap();
+    fuzz("planar-study", series.study.into_bytes(), |_, bytes| {
+        let path = tests.join("study.toml");
+        std::fs::write(&path, bytes).unwrap();
+        if let Ok(study) = PlanarStudy::read(&path) {
+            for case in study.cases.iter().chain(&study.validation) {
+                assert!(
+                    bumpsim_planar::drive::validate(&study.setup.template, &case.drive).is_ok(),
+                    "{}",
+                    case.name
+                );
+            }
+        }
+    });
 }

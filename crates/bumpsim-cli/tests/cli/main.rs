@@ -16,6 +16,7 @@ mod fuzz;
 mod identify;
 mod impact;
 mod planar;
+mod planar_identify;
 mod robustness;
 mod signal;
 mod simulate;

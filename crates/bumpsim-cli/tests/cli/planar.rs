@@ -293,3 +293,148 @@ fn two_outputs_on_one_path_are_refused() {
     assert_user_error(&run, "two outputs to one path");
     assert!(!same.exists());
 }
+
+/// Issue 15: `bumpsim impact` accepts the planar car and the new strikers,
+/// and runs the same planar impact as `bumpsim planar`.
+#[test]
+fn impact_accepts_the_planar_car_and_its_strikers() {
+    let dir = scratch("impact-planar");
+    let car = saloon();
+    let face = [
+        "--angle",
+        "-10",
+        "--overlap",
+        "40",
+        "--side",
+        "right",
+        "--speed",
+        "15 km/h",
+    ];
+    let mut outputs = Vec::new();
+    for command in ["impact", "planar"] {
+        let json = dir.join(format!("{command}.json"));
+        let mut args = vec![command, "--car", car.to_str().unwrap()];
+        args.extend_from_slice(&face);
+        args.extend_from_slice(&["--json", json.to_str().unwrap()]);
+        let run = bumpsim(&args);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        let v: Value = serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
+        outputs.push(v["result"].clone());
+    }
+    assert_eq!(outputs[0], outputs[1], "the same planar impact");
+    assert!(
+        number(&outputs[0], &["peak_yaw_rate"]) < 0.0,
+        "struck on the right: yaw to the right"
+    );
+    let rcar = bumpsim(&[
+        "impact",
+        "--car",
+        car.to_str().unwrap(),
+        "--case",
+        "rcar-structural-front",
+    ]);
+    assert!(rcar.status.success(), "{}", text(&rcar.stderr));
+    assert_contains(&text(&rcar.stdout), &["RCAR", "kN", "deg/s"]);
+    let bumper = root().join("examples/impact/bumper-a.toml");
+    let both = bumpsim(&[
+        "impact",
+        "--car",
+        car.to_str().unwrap(),
+        "--bumper",
+        bumper.to_str().unwrap(),
+        "--barrier",
+        "--speed",
+        "2",
+    ]);
+    assert_user_error(&both, "--bumper");
+    let chain = root().join("examples/identify/car-truth.toml");
+    let angled = bumpsim(&[
+        "impact",
+        "--car",
+        chain.to_str().unwrap(),
+        "--bumper",
+        bumper.to_str().unwrap(),
+        "--angle",
+        "10",
+        "--speed",
+        "2",
+    ]);
+    assert_user_error(&angled, "planar car");
+    let missing = bumpsim(&[
+        "impact",
+        "--car",
+        chain.to_str().unwrap(),
+        "--barrier",
+        "--speed",
+        "2",
+    ]);
+    assert_user_error(&missing, "--bumper");
+}
+
+/// Issue 15: a 1-D car TOML plus a width becomes a symmetric planar car;
+/// in a full-width flat barrier it gives the 1-D impact's peak force and
+/// compression (to the two integrators' different steps, 1e-4).
+#[test]
+fn a_1d_car_with_a_width_is_a_symmetric_planar_car() {
+    let dir = scratch("impact-width");
+    let car = root().join("examples/identify/car-truth.toml");
+    let bumper = root().join("examples/impact/bumper-a.toml");
+    let (c, b) = (car.to_str().unwrap(), bumper.to_str().unwrap());
+    let (one, wide) = (dir.join("1d.json"), dir.join("planar.json"));
+    let base = [
+        "impact",
+        "--car",
+        c,
+        "--bumper",
+        b,
+        "--barrier",
+        "--speed",
+        "8 km/h",
+    ];
+    for (json, extra) in [(&one, vec![]), (&wide, vec!["--width", "1600 mm"])] {
+        let mut args = base.to_vec();
+        args.extend(extra);
+        args.extend(["--json", json.to_str().unwrap()]);
+        let run = bumpsim(&args);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+    }
+    let read =
+        |p: &Path| -> Value { serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap() };
+    let (one, wide) = (read(&one), read(&wide));
+    for key in ["peak_force", "max_compression"] {
+        let (a, b) = (number(&one, &[key]), number(&wide, &["result", key]));
+        assert!((a - b).abs() < 1e-4 * a, "{key}: 1-D {a}, planar {b}");
+    }
+    let angled = bumpsim(&[
+        "impact",
+        "--car",
+        c,
+        "--bumper",
+        b,
+        "--width",
+        "1.6",
+        "--angle",
+        "10",
+        "--overlap",
+        "40",
+        "--speed",
+        "15 km/h",
+    ]);
+    assert!(angled.status.success(), "{}", text(&angled.stderr));
+    assert_contains(&text(&angled.stdout), &["10°, 40 % overlap", "yaw"]);
+    assert_user_error(
+        &bumpsim(&[
+            "impact",
+            "--car",
+            c,
+            "--bumper",
+            b,
+            "--width",
+            "nan m",
+            "--barrier",
+            "--speed",
+            "2",
+        ]),
+        "--width",
+    );
+}

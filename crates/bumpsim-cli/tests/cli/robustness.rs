@@ -766,3 +766,27 @@ fn ten_thousand_masses_are_refused() {
         "MAX_DOF",
     );
 }
+
+/// `bumpsim ... | head`: a closed pipe ends the command quietly (exit 141,
+/// as a shell reports other tools), not with a panic.
+#[test]
+fn a_closed_pipe_ends_the_command_without_a_panic() {
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let car = crate::util::root().join("examples/planar/saloon.toml");
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_bumpsim"))
+        .args([
+            "planar",
+            "--car",
+            car.to_str().unwrap(),
+            "--case",
+            "rcar-structural-front",
+        ])
+        .stdout(writer)
+        .stderr(std::process::Stdio::piped())
+        .output()
+        .unwrap();
+    let stderr = crate::util::text(&run.stderr);
+    assert_eq!(run.status.code(), Some(141), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}

@@ -19,7 +19,7 @@
 //!   `*ELEMENT_DISCRETE` between neighbouring mass nodes (the last to the
 //!   body's end node of the side).
 //! - Optional: `*INITIAL_VELOCITY_NODE` of the chain nodes, `*DEFINE_CURVE`
-//!   + `*LOAD_NODE_POINT` of the front forces per side and direction, and
+//!   and `*LOAD_NODE_POINT` of the front forces per side and direction, and
 //!   the history databases of the CG and mass nodes.
 //!
 //! The chain masses sit `spacing` apart behind the bumper line (discrete
@@ -200,9 +200,9 @@ fn nodes(deck: &mut String, car: &PlanarCar, options: &PlanarExport, ids: &Ids) 
         let side_ids = &ids.sides[side.index];
         for (i, m) in side_ids.masses.iter().enumerate() {
             let points = mass_points(&side, i, options.spacing, x_f);
-            for k in 0..3 {
-                list.push((m.chain[k], place(options, points[k])));
-                list.push((m.body[k], place(options, points[k])));
+            for ((chain, body), point) in m.chain.iter().zip(m.body).zip(points) {
+                list.push((*chain, place(options, point)));
+                list.push((body, place(options, point)));
             }
         }
         let n = side.chain.masses.len() as f64;

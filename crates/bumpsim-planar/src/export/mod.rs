@@ -13,7 +13,8 @@
 //! without masses: a body node on the bumper line does).
 //!
 //! **Loads** are those of [`crate::drive`]: load k acts on the bumper line at
-//! lateral position η_k with a fixed world direction d_k; the two front
+//! lateral position η_k with a fixed world direction d_k (a load anchored
+//! to a world point, a pole's line of action, is refused); the two front
 //! masses take the shares α_k = (η_k + b)/(2b) and 1 − α_k of the force
 //! (lever rule), its lateral part reaching the body through the chains'
 //! lateral guidance. Loads are summed per node and direction into one
@@ -214,6 +215,10 @@ fn check_forces(forces: &Forces) -> Result<(), PlanarExportError> {
     for (k, load) in forces.loads.iter().enumerate() {
         let name = |what: &str| format!("load[{k}].{what}");
         require(&name("lateral"), load.lateral, "m", "must be finite", true)?;
+        if let Some(p) = load.anchor {
+            let expected = "the decks apply a load at a fixed place on the bumper line: no anchor";
+            require(&name("anchor"), p[0] + p[1], "m", expected, false)?;
+        }
         let norm = load.direction[0].hypot(load.direction[1]);
         let expected = "must be a finite, non-zero vector";
         require(&name("direction"), norm, "1", expected, norm > 0.0)?;

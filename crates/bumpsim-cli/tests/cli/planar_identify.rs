@@ -1,0 +1,211 @@
+//! `bumpsim synth` on the bundled planar series and `bumpsim identify` on
+//! the study it writes (issue 15): the identified car predicts the held-out
+//! RCAR-type test, writes a car file `planar` reads, and hostile studies and
+//! series get clear errors.
+
+use crate::util::{assert_contains, assert_user_error, bumpsim, root, scratch, text};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+fn series() -> PathBuf {
+    root().join("examples/planar/identify/series.toml")
+}
+
+/// Makes the bundled series into `dir/tests`.
+fn synth(dir: &Path) -> PathBuf {
+    let out = dir.join("tests");
+    let run = bumpsim(&[
+        "synth",
+        series().to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    out
+}
+
+#[test]
+fn the_planar_series_identifies_a_car_that_predicts_the_held_out_test() {
+    let dir = scratch("planar-identify");
+    let tests = synth(&dir);
+    let (json, report, car) = (dir.join("r.json"), dir.join("report"), dir.join("car.toml"));
+    let study = tests.join("study.toml");
+    let run = bumpsim(&[
+        "identify",
+        study.to_str().unwrap(),
+        "--quiet",
+        "--json",
+        json.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+        "--car",
+        car.to_str().unwrap(),
+    ]);
+    let stdout = text(&run.stdout);
+    assert!(run.status.success(), "{stdout}{}", text(&run.stderr));
+    assert_contains(
+        &stdout,
+        &[
+            "body.yaw_inertia",
+            "kg·m²",
+            "N/m",
+            "validation",
+            "RCAR-RIGHT",
+            " deg",
+        ],
+    );
+    let r: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let inertia = &r["result"]["parameters"][1];
+    assert_eq!(inertia["name"], "body.yaw_inertia");
+    let (low, high) = (
+        inertia["ci95"][0].as_f64().unwrap(),
+        inertia["ci95"][1].as_f64().unwrap(),
+    );
+    assert!(
+        low <= 1900.0 && 1900.0 <= high,
+        "the truth's I_z in its interval: {inertia}"
+    );
+    let held = &r["validation"][0];
+    let (x, yaw) = (
+        held["fit_x"].as_f64().unwrap(),
+        held["fit_yaw"].as_f64().unwrap(),
+    );
+    assert!(x >= 99.0 && yaw >= 95.0, "held-out fits {x} %, {yaw} %");
+    let html = std::fs::read_to_string(report.join("index.html")).unwrap();
+    assert!(
+        html.contains("<svg") && html.contains("RCAR-RIGHT (validation"),
+        "report"
+    );
+    // the identified car is a planar car file the impact command reads
+    let run = bumpsim(&[
+        "planar",
+        "--car",
+        car.to_str().unwrap(),
+        "--case",
+        "rcar-structural-front",
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+}
+
+#[test]
+fn a_planar_series_is_reproducible_bit_for_bit() {
+    let (a, b) = (
+        synth(&scratch("planar-series-a")),
+        synth(&scratch("planar-series-b")),
+    );
+    for file in ["POLE/POLE.mme", "POLE.csv", "study.toml", "start.toml"] {
+        let (x, y) = (
+            std::fs::read(a.join(file)).unwrap(),
+            std::fs::read(b.join(file)).unwrap(),
+        );
+        assert!(x == y, "{file} differs");
+    }
+    let pole = std::fs::read_to_string(a.join("study.toml")).unwrap();
+    assert_contains(
+        &pole,
+        &[
+            "B0POLE000000FOYP",
+            "anchor = [",
+            "chain = 1",
+            "validate = true",
+        ],
+    );
+}
+
+/// The study the series wrote, changed by `edit`, in a copy of the tests.
+fn edited_study(name: &str, edit: impl Fn(String) -> String) -> PathBuf {
+    let dir = scratch(name);
+    let tests = synth(&dir);
+    let study = tests.join("study.toml");
+    let text = std::fs::read_to_string(&study).unwrap();
+    std::fs::write(&study, edit(text)).unwrap();
+    study
+}
+
+#[test]
+fn hostile_planar_studies_get_clear_errors() {
+    let study = edited_study("planar-hostile", |t| {
+        t.replacen("lateral = -0.72", "lateral = nan", 1)
+    });
+    let run = bumpsim(&["identify", study.to_str().unwrap(), "--quiet"]);
+    assert_user_error(&run, "load[0].lateral");
+    let study = edited_study("planar-hostile-channel", |t| {
+        t.replacen("B0LCWL010100FOXP", "B0LCWL019900FOXP", 1)
+    });
+    assert_user_error(
+        &bumpsim(&["identify", study.to_str().unwrap(), "--quiet"]),
+        "B0LCWL019900FOXP",
+    );
+    let study = edited_study("planar-hostile-sensor", |t| {
+        t.replacen("body = [0.6, 0.7]", "chain = 0", 1)
+    });
+    assert_user_error(
+        &bumpsim(&["identify", study.to_str().unwrap(), "--quiet"]),
+        "sensors",
+    );
+    let study = edited_study("planar-hostile-chain", |t| {
+        t.replacen("chain = 1", "chain = 7", 1)
+    });
+    assert_user_error(
+        &bumpsim(&["identify", study.to_str().unwrap(), "--quiet"]),
+        "chain mass",
+    );
+    let study = edited_study("planar-hostile-starts", |t| {
+        t.replacen("starts = 8", "starts = 100000000", 1)
+    });
+    assert_user_error(
+        &bumpsim(&["identify", study.to_str().unwrap(), "--quiet"]),
+        "starts",
+    );
+    let study = edited_study("planar-hostile-key", |t| {
+        t.replacen("cfc = 180", "cfc = 180\nwindow = 3", 1)
+    });
+    assert_user_error(
+        &bumpsim(&["identify", study.to_str().unwrap(), "--quiet"]),
+        "window",
+    );
+    let s = study.to_str().unwrap();
+    assert_user_error(&bumpsim(&["identify", s, "--dof", "3"]), "--dof");
+    // an output never lands on an input
+    assert_user_error(&bumpsim(&["identify", s, "--car", s]), "study.toml");
+}
+
+#[test]
+fn hostile_planar_series_get_clear_errors() {
+    let dir = scratch("planar-series-hostile");
+    let base = std::fs::read_to_string(series()).unwrap();
+    let folder = root().join("examples/planar/identify");
+    for car in ["car-truth.toml", "start.toml"] {
+        std::fs::copy(folder.join(car), dir.join(car)).unwrap();
+    }
+    for (edit, needle) in [
+        (
+            base.replacen("name = \"POLE\"", "name = \"FLAT\"", 1),
+            "used twice",
+        ),
+        (
+            base.replacen("name = \"POLE\"", "name = \"../escape\"", 1),
+            "test name",
+        ),
+        (
+            base.replacen("duration = 0.15", "duration = 1e9", 1),
+            "chain.duration",
+        ),
+        (
+            base.replacen("pole_offset = -0.3", "pole_offset = -30.0", 1),
+            "pole lateral position",
+        ),
+        (
+            base.replacen("overlap = 40.0", "overlap = 140.0", 1),
+            "overlap",
+        ),
+        (base.replacen("step = 1e-4", "step = nan", 1), "chain.step"),
+    ] {
+        let file = dir.join("series.toml");
+        std::fs::write(&file, &edit).unwrap();
+        let out = dir.join("out");
+        let run = bumpsim(&["synth", file.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        assert_user_error(&run, needle);
+        assert!(!out.exists(), "nothing written on an error");
+    }
+}

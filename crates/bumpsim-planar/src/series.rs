@@ -1,0 +1,298 @@
+//! The planar series file (TOML) of `bumpsim synth`: a planar car, a
+//! measurement chain and tests named as `bumpsim planar` names strikers;
+//! and the planar study file that identifies the series it made.
+//!
+//! ```toml
+//! planar_car = "car-truth.toml"    # the car that makes the series (planar car file)
+//! start = "start.toml"             # optional: the study's start (default: planar_car), copied as start.toml
+//! seed = 1                         # noise seed
+//! [chain]                          # optional (synth::Chain's defaults)
+//! step = 1e-4                      # s
+//! pretrigger = 0.05                # s
+//! duration = 0.15                  # s after contact
+//! force_noise = 20.0               # N rms per load cell
+//! acceleration_noise = 0.05        # g rms
+//! biases = [0.03, -0.02]           # g, left and right accelerometers
+//! sensor = [0.6, 0.7]              # m: sills at ξ ahead of the CG, ±η
+//! safety = 0.25                    # the generator's step, fraction of the critical step
+//! [[test]]
+//! name = "ANGLED"                  # folder and file name
+//! angle = 10.0                     # degrees; or case = "rcar-structural-front", or
+//! overlap = 100.0                  # percent   pole = 0.254 (m) with pole_offset = -0.3 (m)
+//! side = "left"
+//! speed = "8 km/h"                 # m/s or text with a unit
+//! pendulum = 1100.0                # optional: a pendulum of this mass, kg
+//! validate = true                  # optional: in the study, predicted but not fitted
+//! ```
+
+use crate::car::{PlanarCar, PlanarError};
+use crate::drive::Sensor;
+use crate::presets::StrikerSpec;
+use crate::synth::{Chain, Recorded, record};
+use serde::Deserialize;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SeriesFile {
+    planar_car: PathBuf,
+    start: Option<PathBuf>,
+    #[serde(default = "one")]
+    seed: u64,
+    /// `[chain]`: the 1-D series' keys plus `sensor` and `safety` (read in [`chain`]).
+    #[serde(default)]
+    chain: toml::Table,
+    test: Vec<TestFile>,
+}
+
+fn one() -> u64 {
+    1
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TestFile {
+    name: String,
+    case: Option<String>,
+    angle: Option<f64>,
+    overlap: Option<f64>,
+    side: Option<String>,
+    pole: Option<f64>,
+    pole_offset: Option<f64>,
+    pendulum: Option<f64>,
+    speed: Option<toml::Value>,
+    #[serde(default)]
+    validate: bool,
+}
+
+/// A made series: the tests, every input's text (provenance) and the study
+/// file that identifies the series (its paths relative to the output folder).
+#[derive(Debug, Clone)]
+pub struct Series {
+    /// The tests, in the file's order.
+    pub tests: Vec<Recorded>,
+    /// The inputs' texts, each after a `# <kind> file <path>` line.
+    pub provenance: String,
+    /// A planar study file for the tests (`study.toml` in the output
+    /// folder), which starts from `start.toml` there.
+    pub study: String,
+    /// The text of the start's car file (`start.toml` in the output folder).
+    pub start: String,
+}
+
+/// Whether a series file is planar (has `planar_car`) rather than 1-D.
+pub fn is_planar(text: &str) -> bool {
+    toml::from_str::<toml::Table>(text).is_ok_and(|t| t.contains_key("planar_car"))
+}
+
+fn file_error(path: &Path, message: String) -> PlanarError {
+    PlanarError::File {
+        path: path.display().to_string(),
+        message,
+    }
+}
+
+/// Reads a planar series file and makes every test.
+pub fn make_series(path: &Path) -> Result<Series, PlanarError> {
+    let text =
+        std::fs::read_to_string(path).map_err(|e| file_error(path, format!("cannot read: {e}")))?;
+    let file: SeriesFile = toml::from_str(&text).map_err(|e| file_error(path, e.to_string()))?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    let car_path = base.join(&file.planar_car);
+    let car = PlanarCar::read(&car_path)?;
+    let chain = chain(&file.chain, file.seed).map_err(|m| file_error(path, m))?;
+    names(&file.test).map_err(|m| file_error(path, m))?;
+    let mut provenance = format!("# series file {}\n{text}\n", path.display());
+    let car_text = std::fs::read_to_string(&car_path).unwrap_or_default();
+    let _ = write!(
+        provenance,
+        "# planar car file {}\n{car_text}\n",
+        car_path.display()
+    );
+    let mut tests = Vec::new();
+    for (index, test) in file.test.iter().enumerate() {
+        let spec = striker_spec(test)
+            .map_err(|m| file_error(path, format!("test '{}': {m}", test.name)))?;
+        let (striker, _) = spec.striker()?;
+        let recorded = record(&car, &test.name, &striker, &chain, index as u64)
+            .map_err(|e| file_error(path, format!("test '{}': {e}", test.name)))?;
+        tests.push(recorded);
+    }
+    let start = match &file.start {
+        Some(s) => {
+            let start_path = base.join(s);
+            PlanarCar::read(&start_path)?;
+            std::fs::read_to_string(&start_path)
+                .map_err(|e| file_error(&start_path, format!("cannot read: {e}")))?
+        }
+        None => car_text,
+    };
+    let validate: Vec<bool> = file.test.iter().map(|t| t.validate).collect();
+    let friction = PlanarCar::parse(&start, Path::new("start.toml"))?
+        .tyres()
+        .front
+        .mu_lateral
+        > 0.0;
+    let study = study_text(&tests, &validate, Path::new("start.toml"), friction);
+    Ok(Series {
+        tests,
+        provenance,
+        study,
+        start,
+    })
+}
+
+/// Removes `key` from `table` and reads it as a `T`.
+fn take<T: serde::de::DeserializeOwned>(
+    table: &mut toml::Table,
+    key: &str,
+) -> Result<Option<T>, String> {
+    let value = table.remove(key);
+    value
+        .map(|v| v.try_into())
+        .transpose()
+        .map_err(|e: toml::de::Error| format!("[chain] {key}: {e}"))
+}
+
+/// `[chain]`: `sensor` and `safety` here, the rest as the 1-D series reads it.
+fn chain(table: &toml::Table, seed: u64) -> Result<Chain, String> {
+    let d = Chain::default();
+    let mut rest = table.clone();
+    let sensor: Option<[f64; 2]> = take(&mut rest, "sensor")?;
+    let safety: Option<f64> = take(&mut rest, "safety")?;
+    let common: bumpsim_impact::synth::ChainFile =
+        rest.try_into().map_err(|e| format!("[chain]: {e}"))?;
+    Ok(Chain {
+        measurement: common.resolve(&d.measurement, seed),
+        sensor: sensor.unwrap_or(d.sensor),
+        safety: safety.unwrap_or(d.safety),
+    })
+}
+
+/// Test names become folder and file names: plain names, each once.
+fn names(tests: &[TestFile]) -> Result<(), String> {
+    let mut seen = std::collections::BTreeSet::new();
+    if tests.is_empty() {
+        return Err("no [[test]]: a series needs at least one test".into());
+    }
+    for t in tests {
+        let plain = !t.name.is_empty()
+            && t.name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || "-_ ".contains(c));
+        if !plain {
+            return Err(format!(
+                "test name '{}': letters, digits, '-', '_' and spaces only (it names a folder)",
+                t.name
+            ));
+        }
+        if !seen.insert(t.name.to_lowercase()) {
+            return Err(format!("test name '{}' is used twice", t.name));
+        }
+    }
+    Ok(())
+}
+
+fn striker_spec(t: &TestFile) -> Result<StrikerSpec, String> {
+    let speed = t
+        .speed
+        .as_ref()
+        .map(bumpsim_impact::synth::speed_value)
+        .transpose()?;
+    let side = t.side.as_deref().map(str::parse).transpose()?;
+    Ok(StrikerSpec {
+        case: t.case.clone(),
+        angle: t.angle,
+        overlap: t.overlap,
+        side,
+        pole: t.pole,
+        pole_offset: t.pole_offset,
+        pendulum: t.pendulum,
+        speed,
+    })
+}
+
+/// The planar study of the tests: one case each, every force channel with
+/// its place, the accelerometers with theirs (see [`crate::study`]).
+/// `friction`: estimate the lateral tyre friction (the start has some).
+pub fn study_text(tests: &[Recorded], validate: &[bool], start: &Path, friction: bool) -> String {
+    let mut s = String::from(
+        "# Identifies the planar car from the tests of this series (made by bumpsim synth).\n",
+    );
+    let _ = writeln!(
+        s,
+        "[model]\nplanar = {:?}    # the start: chain sizes, values, geometry\nstarts = 8\nseed = 1\nfriction = {friction}    # estimate the lateral tyre friction",
+        start.display().to_string()
+    );
+    for (test, &validate) in tests.iter().zip(validate) {
+        let file = format!("{0}/{0}.mme", test.name);
+        let _ = writeln!(
+            s,
+            "\n[[case]]\nname = {:?}\nspeed = {}    # m/s, the car at t = 0\ncfc = 180",
+            test.name,
+            number(test.car_speed)
+        );
+        if validate {
+            s += "validate = true    # predicted, not fitted\n";
+        }
+        s += "forces = [\n";
+        for load in &test.loads {
+            let anchor = load.anchor.map_or(String::new(), |a| {
+                format!(", anchor = [{}, {}]", number(a[0]), number(a[1]))
+            });
+            let (lateral, [dx, dy]) = (number(load.lateral), load.direction.map(number));
+            let _ = writeln!(
+                s,
+                "  {{ path = {file:?}, channel = {:?}, lateral = {lateral}, direction = [{dx}, {dy}]{anchor} }},",
+                load.channel
+            );
+        }
+        s += "]\nsensors = [\n";
+        let n = test.loads.len();
+        for (channel, sensor) in test.channels[n..].iter().zip(&test.sensors) {
+            let place = match sensor {
+                Sensor::Body(p) => format!("body = [{}, {}]", number(p[0]), number(p[1])),
+                Sensor::Chain(i) => format!("chain = {i}"),
+            };
+            let _ = writeln!(
+                s,
+                "  {{ path = {file:?}, channel = {:?}, {place} }},",
+                channel.code
+            );
+        }
+        s += "]\n";
+    }
+    s
+}
+
+/// A TOML float rounded to 12 significant digits (0.72, not
+/// 0.7200000000000001), without a negative zero.
+fn number(v: f64) -> String {
+    let rounded: f64 = format!("{v:.11e}").parse().unwrap_or(v);
+    format!("{:?}", rounded + 0.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_short_and_never_negative_zero() {
+        assert_eq!(number(-0.7200000000000001), "-0.72");
+        assert_eq!(number(-0.0), "0.0");
+        assert_eq!(number(2.177), "2.177");
+        assert_eq!(number(1e-7), "1e-7");
+    }
+
+    #[test]
+    fn planar_series_and_studies_are_told_from_1d_ones() {
+        assert!(is_planar(
+            "planar_car = \"car.toml\"\n[[test]]\nname = \"A\""
+        ));
+        assert!(!is_planar("car = \"car.toml\"\n[[head]]\nname = \"A\""));
+        assert!(crate::study::is_planar("[model]\nplanar = \"start.toml\""));
+        assert!(!crate::study::is_planar("[model]\ndof = 3"));
+        assert!(!crate::study::is_planar("not toml ["));
+    }
+}

@@ -1,0 +1,228 @@
+//! The planar study file: the 1-D study of `bumpsim identify` (one
+//! `[model]`, several `[[case]]`s of channels in test files) extended to the
+//! planar car. `[model] planar = "start.toml"` makes a study planar.
+//!
+//! ```toml
+//! [model]
+//! planar = "start.toml"     # planar car file: the start (chain sizes and values), geometry, tyres
+//! starts = 8                # optional (8): the start, then random points within `spread`
+//! seed = 1                  # optional (1)
+//! spread = 10.0             # optional (10): random starts within this factor of the start
+//! friction = false          # optional: estimate the lateral tyre friction μ_y of both axles
+//!
+//! [[case]]
+//! name = "angled"
+//! speed = "8 km/h"          # the car at t = 0: m/s or text with a unit (0: a pendulum test)
+//! cfc = 180                 # optional CFC class of every channel
+//! validate = false          # optional: predicted and reported, not fitted
+//! forces = [                # force channels, N after the file's units
+//!   # lateral: m on the bumper line (left +); direction: of the force on the car, world;
+//!   # anchor (optional): a world point on its line of action, body frame at t = 0, m
+//!   { path = "ANGLED/ANGLED.mme", channel = "B0LCWL010100FOXP", lateral = -0.72, direction = [-0.985, -0.174] },
+//! ]
+//! sensors = [               # accelerometers along the body x axis; the first two on the
+//!   { path = "ANGLED/ANGLED.mme", channel = "10SILLLE0000ACXP", body = [0.6, 0.7] },   # body, left
+//!   { path = "ANGLED/ANGLED.mme", channel = "10SILLRI0000ACXP", body = [0.6, -0.7] },  # then right
+//!   { path = "ANGLED/ANGLED.mme", channel = "10SIMELE0000ACXP", chain = 0 },  # chain mass 0 (left front)
+//! ]
+//! ```
+//!
+//! Channels are read and conditioned as in the 1-D study (pre-trigger bias,
+//! CFC; [`crate::cases`]).
+
+use crate::car::{PlanarCar, PlanarError};
+use crate::cases::{Placed, TestChannels};
+use crate::drive::Sensor;
+use crate::identify::{PlanarCase, Setup};
+use bumpsim_core::channel::Channel;
+use bumpsim_core::units::{Dimension, parse_quantity};
+use bumpsim_signal::loader::{ChannelSource, Loader};
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StudyFile {
+    model: ModelFile,
+    case: Vec<CaseFile>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ModelFile {
+    planar: PathBuf,
+    starts: Option<usize>,
+    seed: Option<u64>,
+    spread: Option<f64>,
+    #[serde(default)]
+    friction: bool,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CaseFile {
+    name: String,
+    speed: Option<toml::Value>,
+    cfc: Option<f64>,
+    #[serde(default)]
+    validate: bool,
+    forces: Vec<ForceRef>,
+    sensors: Vec<SensorRef>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ForceRef {
+    path: PathBuf,
+    channel: String,
+    lateral: f64,
+    direction: [f64; 2],
+    anchor: Option<[f64; 2]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SensorRef {
+    path: PathBuf,
+    channel: String,
+    body: Option<[f64; 2]>,
+    chain: Option<usize>,
+}
+
+/// A read planar study: the setup, the fitted cases and the validation cases.
+#[derive(Debug, Clone)]
+pub struct PlanarStudy {
+    /// The study file.
+    pub path: PathBuf,
+    /// Start and search settings.
+    pub setup: Setup,
+    /// Cases fitted.
+    pub cases: Vec<PlanarCase>,
+    /// Cases predicted, not fitted (`validate = true`).
+    pub validation: Vec<PlanarCase>,
+}
+
+/// Whether a study file is planar (`[model] planar = ...`).
+pub fn is_planar(text: &str) -> bool {
+    toml::from_str::<toml::Table>(text).is_ok_and(|t| {
+        t.get("model")
+            .and_then(|m| m.as_table())
+            .is_some_and(|m| m.contains_key("planar"))
+    })
+}
+
+impl PlanarStudy {
+    /// Reads the study, its start car and every case's channels.
+    pub fn read(path: &Path) -> Result<PlanarStudy, PlanarError> {
+        let error = |message: String| PlanarError::File {
+            path: path.display().to_string(),
+            message,
+        };
+        let text = std::fs::read_to_string(path).map_err(|e| error(format!("cannot read: {e}")))?;
+        let file: StudyFile = toml::from_str(&text).map_err(|e| error(e.to_string()))?;
+        if file.case.is_empty() {
+            return Err(error(
+                "no [[case]]: a study needs at least one load case".into(),
+            ));
+        }
+        let base = path.parent().unwrap_or(Path::new("."));
+        let template = PlanarCar::read(&base.join(&file.model.planar))?;
+        let defaults = Setup::new(template);
+        let setup = Setup {
+            starts: file.model.starts.unwrap_or(defaults.starts),
+            seed: file.model.seed.unwrap_or(defaults.seed),
+            spread: file.model.spread.unwrap_or(defaults.spread),
+            friction: file.model.friction,
+            ..defaults
+        };
+        let mut loader = Loader::new();
+        let (mut cases, mut validation) = (Vec::new(), Vec::new());
+        for spec in &file.case {
+            let case = load_case(spec, base, &mut loader)?;
+            match spec.validate {
+                true => validation.push(case),
+                false => cases.push(case),
+            }
+        }
+        if cases.is_empty() {
+            return Err(error(
+                "every case is `validate = true`: at least one must be fitted".into(),
+            ));
+        }
+        Ok(PlanarStudy {
+            path: path.to_path_buf(),
+            setup,
+            cases,
+            validation,
+        })
+    }
+}
+
+fn load_case(spec: &CaseFile, base: &Path, loader: &mut Loader) -> Result<PlanarCase, PlanarError> {
+    let error = |message: String| PlanarError::Case {
+        case: spec.name.clone(),
+        message,
+    };
+    let speed = match &spec.speed {
+        None => 0.0,
+        Some(toml::Value::Float(v)) => *v,
+        Some(toml::Value::Integer(v)) => *v as f64,
+        Some(toml::Value::String(s)) => {
+            parse_quantity(s, Dimension::Velocity).map_err(|e| error(format!("speed: {e}")))?
+        }
+        Some(other) => {
+            return Err(error(format!(
+                "speed {other}: expected m/s or text such as \"8 km/h\""
+            )));
+        }
+    };
+    let mut channel =
+        |path: &Path, code: &str, dimension: Dimension| -> Result<Channel, PlanarError> {
+            let source = ChannelSource::new(base.join(path), code, 1.0);
+            let loaded = loader
+                .signal(&[source], None, code)
+                .map_err(|e| error(format!("{}: {code}: {e}", path.display())))?;
+            match loaded.data.dimension == dimension {
+                true => Ok(loaded.data),
+                false => Err(error(format!(
+                    "{}: {code} is a {:?} channel, expected {:?}",
+                    path.display(),
+                    loaded.data.dimension,
+                    dimension
+                ))),
+            }
+        };
+    let mut forces = Vec::new();
+    for f in &spec.forces {
+        forces.push(Placed {
+            channel: channel(&f.path, &f.channel, Dimension::Force)?,
+            lateral: f.lateral,
+            direction: f.direction,
+            anchor: f.anchor,
+        });
+    }
+    let (mut sensors, mut positions) = (Vec::new(), Vec::new());
+    for s in &spec.sensors {
+        let place = match (s.body, s.chain) {
+            (Some(p), None) => Sensor::Body(p),
+            (None, Some(i)) => Sensor::Chain(i),
+            _ => {
+                return Err(error(format!(
+                    "sensor {}: give either body = [ξ, η] (m) or chain = index",
+                    s.channel
+                )));
+            }
+        };
+        sensors.push(channel(&s.path, &s.channel, Dimension::Acceleration)?);
+        positions.push(place);
+    }
+    TestChannels {
+        name: spec.name.clone(),
+        forces,
+        sensors,
+        positions,
+        speed,
+        cfc: spec.cfc,
+    }
+    .case()
+}
