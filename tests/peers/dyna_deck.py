@@ -48,6 +48,19 @@ def main():
             sid = getattr(item, "nsid", None)
             if sid is not None and int(sid) != 0:
                 need("node set", [int(sid)], sets)
+    for k, ks in kinds.items():
+        for body in ks if k.startswith("ConstrainedNodalRigidBody") else []:
+            # the plain keyword is a table of rigid bodies, the others one each
+            rows = body.constrained_nodal_rigid_bodies.to_dict("records") if not hasattr(body, "nsid") \
+                else [{f: getattr(body, f, None) for f in ("nsid", "pnode", "nodeid")}]
+            for row in rows:
+                need("node set", [int(row["nsid"])], sets)
+                for field in ("pnode", "nodeid"):
+                    value = row.get(field)
+                    if value is not None and value == value and int(value) != 0:
+                        need("node", [int(value)], nodes)
+    for joint in kinds.get("ConstrainedJointTranslational", []):
+        need("node", [int(getattr(joint, f"n{i}")) for i in range(1, 7)], nodes)
     for p in kinds.get("Part", []):
         need("section", [int(v) for v in p.parts["secid"].dropna()], sections)
         need("material", [int(v) for v in p.parts["mid"].dropna()], materials)

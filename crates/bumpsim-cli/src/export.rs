@@ -24,6 +24,9 @@ pub enum Command {
     /// Write the bumper characteristic (impact's bumper TOML) as a nonlinear
     /// discrete spring: LS-DYNA MAT_S06 or CalculiX SPRINGA.
     Bumper(BumperArgs),
+    /// Write the planar car (planar TOML): an LS-DYNA include, or a CalculiX
+    /// deck, with --force a complete transient analysis.
+    Planar(crate::export_planar::PlanarArgs),
 }
 
 /// Arguments of `bumpsim export bumper`.
@@ -54,7 +57,7 @@ pub struct BumperArgs {
 
 /// The solvers a bumper spring is written for.
 #[derive(Debug, Clone, Copy, clap::ValueEnum)]
-enum Solver {
+pub(crate) enum Solver {
     /// LS-DYNA keyword include.
     Lsdyna,
     /// CalculiX/Abaqus deck lines.
@@ -176,31 +179,38 @@ pub fn run(command: &Command) -> Result<()> {
         Command::Calculix(args) => calculix(args),
         Command::ReadCalculix(args) => read_calculix(args),
         Command::Bumper(args) => bumper(args),
+        Command::Planar(args) => crate::export_planar::run(args),
     }
 }
 
 fn layout(common: &Common) -> Result<Layout> {
-    let parts: Vec<&str> = common.origin.split(',').collect();
-    let [x, y, z] = parts.as_slice() else {
-        bail!(
-            "--origin '{}': expected three coordinates x,y,z in m",
-            common.origin
-        );
-    };
-    let coordinate = |text: &str| {
-        parse_quantity(text, Dimension::Length)
-            .with_context(|| format!("--origin '{}'", common.origin))
-    };
-    let spacing = parse_quantity(&common.spacing, Dimension::Length).context("--spacing")?;
-    if spacing <= 0.0 {
-        bail!("--spacing {spacing} m: the distance between mass nodes must be positive");
-    }
     Ok(Layout {
         units: common.units,
         axis: common.axis,
-        origin: [coordinate(x)?, coordinate(y)?, coordinate(z)?],
-        spacing,
+        origin: origin(&common.origin)?,
+        spacing: spacing(&common.spacing)?,
     })
+}
+
+/// `--origin x,y,z`, each in m or with a unit.
+pub(crate) fn origin(text: &str) -> Result<[f64; 3]> {
+    let parts: Vec<&str> = text.split(',').collect();
+    let [x, y, z] = parts.as_slice() else {
+        bail!("--origin '{text}': expected three coordinates x,y,z in m");
+    };
+    let coordinate = |part: &str| {
+        parse_quantity(part, Dimension::Length).with_context(|| format!("--origin '{text}'"))
+    };
+    Ok([coordinate(x)?, coordinate(y)?, coordinate(z)?])
+}
+
+/// `--spacing`, positive, in m or with a unit.
+pub(crate) fn spacing(text: &str) -> Result<f64> {
+    let spacing = parse_quantity(text, Dimension::Length).context("--spacing")?;
+    if spacing <= 0.0 {
+        bail!("--spacing {spacing} m: the distance between mass nodes must be positive");
+    }
+    Ok(spacing)
 }
 
 fn initial_velocity(common: &Common) -> Result<Option<f64>> {
@@ -212,19 +222,26 @@ fn initial_velocity(common: &Common) -> Result<Option<f64>> {
 }
 
 fn write_deck(common: &Common, inputs: &[&Path], text: &str, what: &str) -> Result<()> {
-    refuse_overwriting_inputs(&common.output, inputs)?;
-    let existed = common.output.exists();
-    bumpsim_io::output::write_file(&common.output, text.as_bytes())?;
+    write_output(&common.output, common.units, inputs, text, what)
+}
+
+/// Writes a deck atomically, never over an input, and says what it holds.
+pub(crate) fn write_output(
+    output: &Path,
+    units: UnitSystem,
+    inputs: &[&Path],
+    text: &str,
+    what: &str,
+) -> Result<()> {
+    refuse_overwriting_inputs(output, inputs)?;
+    let existed = output.exists();
+    bumpsim_io::output::write_file(output, text.as_bytes())?;
     let note = if existed {
         " (replaced the existing file)"
     } else {
         ""
     };
-    println!(
-        "wrote {}: {what}, units {}{note}",
-        common.output.display(),
-        common.units
-    );
+    println!("wrote {}: {what}, units {units}{note}", output.display());
     Ok(())
 }
 

@@ -14,6 +14,7 @@
 mod campaign;
 mod doe;
 mod export;
+mod export_planar;
 mod fe;
 mod identify;
 mod impact;

@@ -83,7 +83,7 @@ pub const DEFAULT_PREFIX: &str = "BUMPSIM_";
 pub const MAX_CALCULIX_ID: u64 = 2_147_483_647;
 
 /// Checks a set-name prefix: letters, digits and `_`, not first a digit, at most 40.
-pub(crate) fn check_prefix(prefix: &str) -> Result<(), ExportError> {
+pub fn check_prefix(prefix: &str) -> Result<(), ExportError> {
     if !prefix
         .chars()
         .all(|c| c.is_ascii_alphanumeric() || c == '_')
@@ -248,7 +248,7 @@ fn links(deck: &mut String, model: &MsdModel, options: &CalculixOptions) {
 }
 
 /// A real as CalculiX reads it: always with a decimal point (`5e5` is misread), 13 digits.
-pub(crate) fn real(value: f64) -> String {
+pub fn real(value: f64) -> String {
     format!("{:.12e}", value + 0.0)
 }
 
@@ -272,39 +272,15 @@ fn transient(
         });
     }
     let units = layout.units;
-    let _ = writeln!(deck, "*AMPLITUDE, NAME={set}FORCE");
-    let pairs: Vec<String> = (0..force.len())
-        .map(|k| {
-            format!(
-                "{}, {}",
-                real((force.time(k) - force.start()) * units.time()),
-                real(force.values()[k] * units.force())
-            )
-        })
-        .collect();
-    for chunk in pairs.chunks(2) {
-        let _ = writeln!(deck, "{}", chunk.join(", "));
-    }
-    let duration = (force.end() - force.start()) * units.time();
-    let dt = increment * units.time();
-    // `as u64` saturated and `+ 10` overflowed (a panic in debug, INC=9 in
-    // release) for --increment 1e-300; INC is a 32-bit integer in CalculiX
-    let count = (duration / dt).ceil() + 10.0;
-    if count.is_nan() || count > MAX_CALCULIX_ID as f64 {
-        return Err(ExportError::Increments {
-            increment,
-            count,
-            duration: force.end() - force.start(),
-            limit: MAX_CALCULIX_ID,
-        });
-    }
-    let increments = count as u64;
-    let _ = writeln!(
-        deck,
-        "*STEP, INC={increments}\n*DYNAMIC, DIRECT, ALPHA=0.0\n{}, {}",
-        real(dt),
-        real(duration)
-    );
+    let points = (0..force.len()).map(|k| {
+        (
+            (force.time(k) - force.start()) * units.time(),
+            force.values()[k] * units.force(),
+        )
+    });
+    amplitude(deck, &format!("{set}FORCE"), points);
+    let duration = force.end() - force.start();
+    dynamic_step(deck, increment, duration, units)?;
     let _ = writeln!(
         deck,
         "*CLOAD, AMPLITUDE={set}FORCE\n{}, {}, {:.1}",
@@ -316,6 +292,51 @@ fn transient(
         deck,
         "*NODE PRINT, NSET={set}NALL, FREQUENCY={}\nU\n*END STEP",
         analysis.output_every
+    );
+    Ok(())
+}
+
+/// `*AMPLITUDE, NAME=name` of (time, value) points in deck units, two to a line.
+pub fn amplitude(deck: &mut String, name: &str, points: impl Iterator<Item = (f64, f64)>) {
+    let _ = writeln!(deck, "*AMPLITUDE, NAME={name}");
+    let pairs: Vec<String> = points
+        .map(|(t, v)| format!("{}, {}", real(t), real(v)))
+        .collect();
+    for chunk in pairs.chunks(2) {
+        let _ = writeln!(deck, "{}", chunk.join(", "));
+    }
+}
+
+/// `*STEP` and `*DYNAMIC, DIRECT, ALPHA=0.0` (trapezoidal rule) with a fixed
+/// `increment` over `duration` (both s, SI; written in `units`); refuses
+/// more increments than CalculiX's 32-bit `INC` holds.
+pub fn dynamic_step(
+    deck: &mut String,
+    increment: f64,
+    duration: f64,
+    units: UnitSystem,
+) -> Result<(), ExportError> {
+    if !(increment.is_finite() && increment > 0.0) {
+        return Err(ExportError::Increment { increment });
+    }
+    let (dt, length) = (increment * units.time(), duration * units.time());
+    // `as u64` saturated and `+ 10` overflowed (a panic in debug, INC=9 in
+    // release) for --increment 1e-300; INC is a 32-bit integer in CalculiX
+    let count = (length / dt).ceil() + 10.0;
+    if count.is_nan() || count > MAX_CALCULIX_ID as f64 {
+        return Err(ExportError::Increments {
+            increment,
+            count,
+            duration,
+            limit: MAX_CALCULIX_ID,
+        });
+    }
+    let _ = writeln!(
+        deck,
+        "*STEP, INC={}\n*DYNAMIC, DIRECT, ALPHA=0.0\n{}, {}",
+        count as u64,
+        real(dt),
+        real(length)
     );
     Ok(())
 }

@@ -2,6 +2,7 @@
 //! can sit behind a bumper mesh (thesis ch. 3.3, paper B; spec §8).
 //!
 //! - [`lsdyna`]: an LS-DYNA keyword include file (fixed-format cards);
+//! - [`cards`]: the LS-DYNA card writers every include shares;
 //! - [`calculix`]: a CalculiX/Abaqus deck, optionally a complete transient
 //!   analysis under a force history, and reading its results back;
 //! - [`dat`]: the print blocks of any CalculiX `.dat` file;
@@ -18,6 +19,7 @@
 //! ```
 
 pub mod calculix;
+pub mod cards;
 pub mod dat;
 pub mod layout;
 pub mod lsdyna;
@@ -167,7 +169,7 @@ pub enum ExportError {
 
 /// Checks the user's attachment nodes: none of the include's own nodes
 /// `ours`, none twice, each in 1..=`limit`.
-pub(crate) fn check_attach(
+pub fn check_attach(
     attach: &[u64],
     ours: std::ops::RangeInclusive<u64>,
     limit: u64,

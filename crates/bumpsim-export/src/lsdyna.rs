@@ -28,7 +28,8 @@
 //! with the user's model when the offset is above the user's ids.
 
 use crate::ExportError;
-use crate::layout::{Layout, int_field, real_field};
+use crate::cards::{self, Link};
+use crate::layout::{Layout, real_field};
 use bumpsim_core::model::MsdModel;
 use bumpsim_core::series::UniformSeries;
 use std::fmt::Write;
@@ -187,58 +188,29 @@ fn run_cards(
 /// The force history as a curve and a nodal load on m1 along the axis.
 fn load(deck: &mut String, force: &UniformSeries, options: &LsDynaOptions, ids: &Ids) {
     let units = options.layout.units;
-    let _ = writeln!(
-        deck,
-        "*DEFINE_CURVE\n$   lcid      sidr       sfa       sfo\n{}{}{}{}",
-        int_field(ids.curve(), 10),
-        int_field(0, 10),
-        real_field(1.0, 10),
-        real_field(1.0, 10)
-    );
-    for k in 0..force.len() {
-        let t = (force.time(k) - force.start()) * units.time();
-        let f = force.values()[k] * units.force();
-        let _ = writeln!(deck, "{}{}", real_field(t, 20), real_field(f, 20));
-    }
-    let _ = writeln!(
-        deck,
-        "*LOAD_NODE_POINT\n$    nid       dof      lcid        sf\n{}{}{}{}",
-        int_field(ids.node(0), 10),
-        int_field(options.layout.axis.dof() as u64, 10),
-        int_field(ids.curve(), 10),
-        real_field(options.layout.axis.sign, 10)
-    );
+    let points = (0..force.len()).map(|k| {
+        (
+            (force.time(k) - force.start()) * units.time(),
+            force.values()[k] * units.force(),
+        )
+    });
+    cards::curve(deck, ids.curve(), points);
+    let axis = options.layout.axis;
+    cards::load_node_point(deck, ids.node(0), axis.dof(), ids.curve(), axis.sign);
 }
 
 /// History outputs of the mass nodes and the discrete elements every `dt` s.
 fn history(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids, dt: f64) {
-    let dt = real_field(dt * options.layout.units.time(), 10);
-    for keyword in ["*DATABASE_NODOUT", "*DATABASE_DEFORC", "*DATABASE_GLSTAT"] {
-        let _ = writeln!(deck, "{keyword}\n$     dt\n{dt}");
-    }
-    let _ = writeln!(deck, "*DATABASE_HISTORY_NODE\n$   id1       id2 ...");
     let nodes: Vec<u64> = (0..model.dof()).map(|i| ids.node(i)).collect();
-    for chunk in nodes.chunks(8) {
-        let _ = writeln!(
-            deck,
-            "{}",
-            chunk.iter().map(|n| int_field(*n, 10)).collect::<String>()
-        );
-    }
+    cards::history(deck, dt * options.layout.units.time(), &nodes);
 }
 
 fn header(deck: &mut String, model: &MsdModel, options: &LsDynaOptions) {
-    let [m, l, t, f] = options.layout.units.symbols();
-    let _ = writeln!(deck, "*KEYWORD");
-    let title: String = options.title.chars().take(78).collect();
-    let _ = writeln!(deck, "$ {title}");
-    let _ = writeln!(
-        deck,
-        "$ bumpsim {}: {}-DOF chain MSD car model (Isaksson 2006, ch. 3.3)",
-        env!("CARGO_PKG_VERSION"),
+    let what = format!(
+        "{}-DOF chain MSD car model (Isaksson 2006, ch. 3.3)",
         model.dof()
     );
-    let _ = writeln!(deck, "$ units: mass {m}, length {l}, time {t}, force {f}");
+    cards::header(deck, &options.title, &what, options.layout.units);
     let axis = options.layout.axis;
     let _ = writeln!(
         deck,
@@ -255,10 +227,7 @@ fn header(deck: &mut String, model: &MsdModel, options: &LsDynaOptions) {
 fn nodes(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids) {
     // TC: 5 = y and z fixed, 6 = z and x, 4 = x and y; RC 7 = all rotations
     let tc = [5, 6, 4][options.layout.axis.component];
-    let _ = writeln!(
-        deck,
-        "*NODE\n$    nid               x               y               z      tc      rc"
-    );
+    cards::node(deck, &[], 0, 0);
     for i in 0..model.dof() {
         // m1 under a nodal rigid body is constrained through the rigid body
         let (tc, rc) = if i == 0 && !options.attach.is_empty() {
@@ -266,31 +235,15 @@ fn nodes(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids
         } else {
             (tc, 7)
         };
-        let p = options.layout.node_position(i);
-        let _ = writeln!(
-            deck,
-            "{}{}{}{}{}{}",
-            int_field(ids.node(i), 8),
-            real_field(p[0], 16),
-            real_field(p[1], 16),
-            real_field(p[2], 16),
-            int_field(tc, 8),
-            int_field(rc, 8)
-        );
+        cards::node_line(deck, ids.node(i), options.layout.node_position(i), tc, rc);
     }
 }
 
 fn masses(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids) {
-    // one keyword per mass: LS-DYNA reads either, some pre-processors only one row
     let unit = options.layout.units.symbols()[0];
     for (i, m) in model.masses().iter().enumerate() {
-        let mass = real_field(m * options.layout.units.mass(), 16);
-        let _ = writeln!(
-            deck,
-            "*ELEMENT_MASS\n$    eid     nid            mass  ({unit})\n{}{}{mass}",
-            int_field(ids.node(i), 8),
-            int_field(ids.node(i), 8)
-        );
+        let mass = m * options.layout.units.mass();
+        cards::element_mass(deck, ids.node(i), ids.node(i), mass, unit);
     }
 }
 
@@ -301,58 +254,37 @@ fn links(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids
     let units = options.layout.units;
     let [_, l, t, f] = units.symbols();
     let section = ids.shared();
-    let _ = writeln!(
-        deck,
-        "*SECTION_DISCRETE\n$  secid       dro        kd        v0        cl        fd       cdl       tdl"
-    );
-    let _ = writeln!(deck, "{}{}", int_field(section, 10), int_field(0, 10));
+    cards::discrete_section(deck, section);
     let links = [
-        LinkCard {
-            keyword: "*MAT_SPRING_ELASTIC",
-            field: "k",
-            unit: format!("{f}/{l}"),
-            what: "spring k",
-            values: model.springs(),
-            factor: units.stiffness(),
-            first_id: ids.spring(0),
-        },
-        LinkCard {
-            keyword: "*MAT_DAMPER_VISCOUS",
-            field: "dc",
-            unit: format!("{f}*{t}/{l}"),
-            what: "damper c",
-            values: model.dampers(),
-            factor: units.damping(),
-            first_id: ids.damper(0),
-        },
+        (
+            Link::Spring,
+            format!("{f}/{l}"),
+            "spring k",
+            model.springs(),
+            units.stiffness(),
+            ids.spring(0),
+        ),
+        (
+            Link::Damper,
+            format!("{f}*{t}/{l}"),
+            "damper c",
+            model.dampers(),
+            units.damping(),
+            ids.damper(0),
+        ),
     ];
-    for link in links {
+    for (link, unit, what, values, factor, first_id) in links {
         // a zero damper gets no part and no element
-        for (j, value) in link.values.iter().enumerate().filter(|(_, v)| **v > 0.0) {
-            let id = link.first_id + j as u64;
-            let card = format!(
-                "{}\n$    mid{:>10}  ({})\n{}{}",
-                link.keyword,
-                link.field,
-                link.unit,
-                int_field(id, 10),
-                real_field(value * link.factor, 10)
-            );
-            part(
-                deck,
-                &card,
-                &format!("{}{} between m{} and m{}", link.what, j + 1, j + 1, j + 2),
-                id,
-                section,
-            );
+        for (j, value) in values.iter().enumerate().filter(|(_, v)| **v > 0.0) {
+            let title = format!("{what}{} between m{} and m{}", j + 1, j + 1, j + 2);
+            let id = first_id + j as u64;
+            cards::discrete_part(deck, link, value * factor, &unit, id, section, &title);
         }
     }
-    let _ = writeln!(
-        deck,
-        "*ELEMENT_DISCRETE\n$    eid     pid      n1      n2     vid               s      pf          offset"
-    );
+    cards::element_discrete_header(deck);
     for j in 0..model.springs().len() {
-        discrete_element(deck, ids, ids.spring(j), j);
+        let id = ids.spring(j);
+        cards::element_discrete_line(deck, id, id, ids.node(j), ids.node(j + 1));
     }
     for (j, _) in model
         .dampers()
@@ -360,78 +292,19 @@ fn links(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids
         .enumerate()
         .filter(|(_, c)| **c > 0.0)
     {
-        discrete_element(deck, ids, ids.damper(j), j);
+        let id = ids.damper(j);
+        cards::element_discrete_line(deck, id, id, ids.node(j), ids.node(j + 1));
     }
-}
-
-/// One `*ELEMENT_DISCRETE` card between the nodes of link `j`; the part id is the element id.
-fn discrete_element(deck: &mut String, ids: &Ids, id: u64, j: usize) {
-    let nodes = format!(
-        "{}{}",
-        int_field(ids.node(j), 8),
-        int_field(ids.node(j + 1), 8)
-    );
-    let _ = writeln!(
-        deck,
-        "{}{}{nodes}{}{}",
-        int_field(id, 8),
-        int_field(id, 8),
-        int_field(0, 8),
-        real_field(1.0, 16)
-    );
-}
-
-/// The material, part and id numbering of the springs or of the dampers.
-struct LinkCard<'a> {
-    keyword: &'static str,
-    field: &'static str,
-    unit: String,
-    what: &'static str,
-    values: &'a [f64],
-    factor: f64,
-    first_id: u64,
-}
-
-fn part(deck: &mut String, material: &str, title: &str, id: u64, section: u64) {
-    let _ = writeln!(deck, "{material}");
-    let _ = writeln!(deck, "*PART\n{title}\n$    pid     secid       mid");
-    let _ = writeln!(
-        deck,
-        "{}{}{}",
-        int_field(id, 10),
-        int_field(section, 10),
-        int_field(id, 10)
-    );
 }
 
 fn coupling(deck: &mut String, options: &LsDynaOptions, ids: &Ids) {
     let set = ids.shared();
-    let _ = writeln!(deck, "*SET_NODE_LIST\n$    sid\n{}", int_field(set, 10));
     let members: Vec<u64> = std::iter::once(ids.node(0))
         .chain(options.attach.iter().copied())
         .collect();
-    for chunk in members.chunks(8) {
-        let _ = writeln!(
-            deck,
-            "{}",
-            chunk.iter().map(|n| int_field(*n, 10)).collect::<String>()
-        );
-    }
+    cards::node_set(deck, set, &members);
     let tc = [5, 6, 4][options.layout.axis.component];
-    let _ = writeln!(
-        deck,
-        "*CONSTRAINED_NODAL_RIGID_BODY_SPC\n$    pid       cid      nsid\n{}{}{}",
-        int_field(set, 10),
-        int_field(0, 10),
-        int_field(set, 10)
-    );
-    let _ = writeln!(
-        deck,
-        "$    cmo      con1      con2\n{}{}{}",
-        real_field(1.0, 10),
-        real_field(f64::from(tc), 10),
-        real_field(7.0, 10)
-    );
+    cards::nodal_rigid_body_spc(deck, set, set, tc, 7);
 }
 
 fn initial_velocity(
@@ -442,18 +315,12 @@ fn initial_velocity(
     v: f64,
 ) {
     let units = options.layout.units;
-    let axis = options.layout.axis.vector();
-    let _ = writeln!(
-        deck,
-        "*INITIAL_VELOCITY_NODE\n$    nid        vx        vy        vz  ({}/{})",
-        units.symbols()[1],
-        units.symbols()[2]
-    );
-    for i in 0..model.dof() {
-        let components: String = axis
-            .iter()
-            .map(|a| real_field(a * v * units.velocity(), 10))
-            .collect();
-        let _ = writeln!(deck, "{}{components}", int_field(ids.node(i), 10));
-    }
+    let velocity = options
+        .layout
+        .axis
+        .vector()
+        .map(|a| a * v * units.velocity());
+    let nodes: Vec<u64> = (0..model.dof()).map(|i| ids.node(i)).collect();
+    let [_, l, t, _] = units.symbols();
+    cards::initial_velocity_nodes(deck, &nodes, velocity, [l, t]);
 }

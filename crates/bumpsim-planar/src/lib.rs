@@ -17,6 +17,7 @@
 //! - [`result`]: histories, energy and momentum balances;
 //! - [`picture`]: the top view of car and striker at one instant;
 //! - [`presets`]: RCAR and IIHS asymmetric load cases with their sources;
+//! - [`export`]: the car as an LS-DYNA include and a CalculiX deck;
 //! - [`synth`]: synthetic asymmetric test series (load-cell wall, sills);
 //! - [`series`]: the planar series file of `bumpsim synth` and the study it writes;
 //! - [`study`]: the planar study file of `bumpsim identify`;
@@ -41,6 +42,7 @@ pub mod car;
 pub mod cases;
 pub mod drive;
 mod dynamics;
+pub mod export;
 pub mod file;
 pub mod identify;
 pub mod picture;
