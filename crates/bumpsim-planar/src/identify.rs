@@ -373,7 +373,7 @@ impl<'a> Objective<'a> {
     }
 
     fn replays(&self, p: &[f64]) -> Option<Vec<Driven>> {
-        let theta: Vec<f64> = p.iter().map(|v| v.exp()).collect();
+        let theta: Vec<f64> = p.iter().copied().map(f64::exp).collect();
         let car = car_with(&self.setup.template, &theta, self.setup.friction).ok()?;
         self.cases
             .iter()
@@ -518,7 +518,7 @@ fn summarise(
     (lower, upper): (&[f64], &[f64]),
 ) -> Result<PlanarIdentification, PlanarError> {
     let p = &best.parameters;
-    let theta: Vec<f64> = p.iter().map(|v| v.exp()).collect();
+    let theta: Vec<f64> = p.iter().copied().map(f64::exp).collect();
     let car = car_with(&setup.template, &theta, setup.friction)?;
     let mut r = vec![0.0; objective.residual_count()];
     let mut jac = DMatrix::zeros(r.len(), p.len());
@@ -633,7 +633,7 @@ fn intervals(
             * variance;
         let se = var_log.sqrt();
         let value = parameters[j].value;
-        let ci = [value * (-t * se).exp(), value * (t * se).exp()];
+        let ci = [value * f64::exp(-t * se), value * f64::exp(t * se)];
         if se.is_finite() && ci.iter().all(|v| v.is_finite() && *v > 0.0) {
             parameters[j].standard_error = Some(value * se);
             parameters[j].ci95 = Some(ci);
