@@ -297,10 +297,16 @@ impl Identification {
     fn cases<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         from_json(py, &self.result.cases)
     }
-    /// Start statistics (total, converged, failed, reached_best, best).
+    /// Start statistics (total, converged, failed, reached_best,
+    /// reached_best_alone, abandoned, merged, unpolished, best).
     #[getter]
     fn starts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         from_json(py, &self.result.starts)
+    }
+    /// Where the best start began, SI, thesis order (the JSON's `start`).
+    #[getter]
+    fn start(&self) -> Vec<f64> {
+        self.result.start.clone()
     }
     /// Warnings for the user.
     #[getter]

@@ -221,6 +221,7 @@ class Identification:
     cases: list[dict[str, Any]]
     """Per-case fit: name, sse (m²), fit_percent, samples."""
     starts: dict[str, int]
+    start: list[float]
     residuals: int
     iterations: int
     stop: Any
