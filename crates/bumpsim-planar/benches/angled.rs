@@ -9,7 +9,7 @@
 use bumpsim_core::model::MsdModel;
 use bumpsim_impact::bumper::Bumper;
 use bumpsim_planar::car::{Layout, PlanarCar};
-use bumpsim_planar::drive::{Drive, Load, Sensor, drive};
+use bumpsim_planar::drive::{Drive, Sensor, drive, segment_loads};
 use bumpsim_planar::{Face, Settings, Side, Striker, simulate};
 use criterion::{Criterion, criterion_group, criterion_main};
 
@@ -40,17 +40,7 @@ fn benches(c: &mut Criterion) {
     // segment forces (0.1-ms samples, sills and side members measured)
     let r = simulate(&car, &striker, &Settings::default()).unwrap();
     let normal = [-(30f64.to_radians().cos()), -(30f64.to_radians().sin())];
-    let loads = r
-        .segment_force
-        .iter()
-        .zip(&r.segment_centres)
-        .map(|(force, &lateral)| Load {
-            lateral,
-            anchor: None,
-            direction: normal,
-            force: force.clone(),
-        })
-        .collect();
+    let loads = segment_loads(&r, normal);
     let sensors = vec![
         Sensor::Body([0.6, 0.7]),
         Sensor::Body([0.6, -0.7]),

@@ -178,6 +178,22 @@ fn check(input: &Drive, masses: usize) -> Result<usize, PlanarError> {
     Ok(samples)
 }
 
+/// The segment forces of an impact as loads at the segment centres, all
+/// along `direction` (world; a plane face's normal): an impact's replay.
+pub fn segment_loads(result: &crate::PlanarResult, direction: [f64; 2]) -> Vec<Load> {
+    result
+        .segment_force
+        .iter()
+        .zip(&result.segment_centres)
+        .map(|(force, &lateral)| Load {
+            lateral,
+            anchor: None,
+            direction,
+            force: force.clone(),
+        })
+        .collect()
+}
+
 /// Checks `input` for `car` (finite forces of one length, non-zero
 /// directions, sensors on the car); returns the sample count.
 pub fn validate(car: &PlanarCar, input: &Drive) -> Result<usize, PlanarError> {
@@ -489,17 +505,7 @@ mod tests {
         let Placed::Plane { normal, .. } = place(&car, &striker).unwrap() else {
             unreachable!("a plane face")
         };
-        let loads = r
-            .segment_force
-            .iter()
-            .zip(&r.segment_centres)
-            .map(|(force, &lateral)| Load {
-                lateral,
-                anchor: None,
-                direction: [normal[0], normal[1]],
-                force: force.clone(),
-            })
-            .collect();
+        let loads = segment_loads(&r, normal);
         let input = Drive {
             step: 1e-4,
             loads,
