@@ -193,6 +193,11 @@ struct Buffers {
     work: Vec<f64>,
 }
 
+/// The SI values a parameter may take in an identification, whatever its
+/// bounds: beyond them the matrix exponential of a sample step is
+/// meaningless (and nalgebra's Padé scaling would not end).
+pub const VALID_RANGE: std::ops::RangeInclusive<f64> = 1e-12..=1e15;
+
 /// The objective over several cases for a `dof`-mass model, as a function
 /// of the free log parameters (fixed parameters held at their values).
 pub struct Objective<'a> {
@@ -250,11 +255,10 @@ impl<'a> Objective<'a> {
     }
 
     /// The model of free log parameters `p`, if valid: every parameter
-    /// within `[1e-12, 1e15]` SI, beyond which the matrix exponential of a
-    /// sample step is meaningless (and nalgebra's Padé scaling would not end).
+    /// within [`VALID_RANGE`].
     pub fn model(&self, p: &[f64]) -> Option<MsdModel> {
         let theta = self.theta(p);
-        if theta.iter().any(|t| !(1e-12..=1e15).contains(t)) {
+        if theta.iter().any(|t| !VALID_RANGE.contains(t)) {
             return None;
         }
         MsdModel::from_parameters(self.dof, &theta).ok()

@@ -8,7 +8,7 @@
 //! parallel (rayon); a start whose model cannot be simulated is counted as
 //! failed, never propagated.
 
-use crate::case::{CaseError, LoadCase, Objective};
+use crate::case::{CaseError, LoadCase, Objective, VALID_RANGE};
 use crate::lm::{self, LeastSquares, Outcome, Stop};
 use crate::polish::{SCREEN_FTOL, candidates, polish};
 use crate::search::{Fate, Run, representative, staged, starting_points};
@@ -80,10 +80,11 @@ impl Bounds {
         }
         for i in 0..p {
             let (lo, hi) = (self.lower[i], self.upper[i]);
-            if !(lo > 0.0 && lo.is_finite() && hi > lo) {
+            let (floor, ceiling) = (*VALID_RANGE.start(), *VALID_RANGE.end());
+            if !(lo > 0.0 && lo < ceiling && hi > lo && hi > floor) {
                 let name = bumpsim_core::model::parameter_name(dof, i);
                 return Err(setting(format!(
-                    "{name}: need 0 < lower < upper, got [{lo}, {hi}]"
+                    "{name}: need 0 < lower < upper with lower below {ceiling:e} and upper above {floor:e} (SI), got [{lo}, {hi}]"
                 )));
             }
             if let Some(v) = self.fixed[i].filter(|v| !(v.is_finite() && *v > 0.0)) {
@@ -166,6 +167,16 @@ pub struct Starts {
     /// Starts that reached the best objective by their own (polished) run;
     /// the others of `reached_best` merged into one of these.
     pub reached_best_alone: usize,
+    /// Starts that reached the best *fit*: their run (polished or only
+    /// screened), or the run they merged into, ended within one noise
+    /// variance of the best objective, `F ≤ F_best (1 + 1/(n − q))`. The
+    /// data cannot tell such a fit from the best (its likelihood-ratio
+    /// statistic `n ln(F/F_best)` is about 1, where a 5 % test needs 3.84);
+    /// in a flat valley (a sloppy 5-DOF model) starts stop at objectives
+    /// that differ in the fourth digit, which the 1e-6 count calls misses.
+    pub reached_best_fit: usize,
+    /// Starts of `reached_best_fit` that got there by their own run.
+    pub reached_best_fit_alone: usize,
     /// Starts abandoned at a stage end, too far above the incumbent
     /// ([`crate::search::STAGES`]).
     pub abandoned: usize,
@@ -344,7 +355,9 @@ fn check(cases: &[LoadCase], settings: &Settings) -> Result<(), IdentError> {
 }
 
 /// The start statistics of staged runs; an error when every start failed.
-pub(crate) fn tally(runs: &[Run]) -> Result<Starts, IdentError> {
+/// `freedom` is n − q (residuals less free parameters): one noise variance
+/// of the best fit is `F_best / freedom`.
+pub(crate) fn tally(runs: &[Run], freedom: usize) -> Result<Starts, IdentError> {
     let failed = runs
         .iter()
         .filter(|r| !r.outcome.objective.is_finite())
@@ -356,11 +369,25 @@ pub(crate) fn tally(runs: &[Run]) -> Result<Starts, IdentError> {
         .map(|(i, r)| (i, &r.outcome))
         .min_by(|a, b| a.1.objective.total_cmp(&b.1.objective))
         .ok_or(IdentError::AllFailed { starts: runs.len() })?;
-    let bar = outcome.objective * (1.0 + 1e-6) + 1e-300;
-    let own = |i: usize| runs[i].fate == Fate::Finished && runs[i].outcome.objective <= bar;
-    let reached: Vec<bool> = (0..runs.len())
-        .map(|i| own(representative(runs, i)))
-        .collect();
+    let exact = outcome.objective * (1.0 + 1e-6) + 1e-300;
+    let noise = outcome.objective * (1.0 + 1.0 / freedom.max(1) as f64) + 1e-300;
+    // a run that ended below `bar` by itself: polished, or a screened
+    // optimum left unpolished (for the noise bar only: the exact bar asks
+    // for the thesis's tolerances)
+    let own = |i: usize, bar: f64, screened: bool| {
+        let ended =
+            runs[i].fate == Fate::Finished || (screened && runs[i].fate == Fate::Unpolished);
+        ended && runs[i].outcome.objective <= bar
+    };
+    let count = |bar: f64, screened: bool| {
+        let alone = (0..runs.len()).filter(|&i| own(i, bar, screened)).count();
+        let all = (0..runs.len())
+            .filter(|&i| own(representative(runs, i), bar, screened))
+            .count();
+        (all, alone)
+    };
+    let ((reached_best, reached_best_alone), (reached_best_fit, reached_best_fit_alone)) =
+        (count(exact, false), count(noise, true));
     let fate = |f: fn(&Fate) -> bool| runs.iter().filter(|r| f(&r.fate)).count();
     Ok(Starts {
         total: runs.len(),
@@ -369,8 +396,10 @@ pub(crate) fn tally(runs: &[Run]) -> Result<Starts, IdentError> {
             .filter(|r| r.outcome.objective.is_finite() && r.outcome.stop.converged())
             .count(),
         failed,
-        reached_best: reached.iter().filter(|r| **r).count(),
-        reached_best_alone: (0..runs.len()).filter(|&i| own(i)).count(),
+        reached_best,
+        reached_best_alone,
+        reached_best_fit,
+        reached_best_fit_alone,
         abandoned: fate(|f| *f == Fate::Abandoned),
         merged: fate(|f| matches!(f, Fate::Merged(_))),
         unpolished: fate(|f| *f == Fate::Unpolished),
@@ -431,7 +460,8 @@ fn identify_only(
     let mut runs = staged(&points, limit, &screen, progress);
     let chosen = candidates(&mut runs);
     polish(&mut runs, &chosen, &|p| solve(p, limit, ftol));
-    let starts = tally(&runs)?;
+    let freedom = objective.residual_count().saturating_sub(free.len());
+    let starts = tally(&runs, freedom)?;
     let outcome = &runs[starts.best].outcome;
     let mut result = summarise(
         cases, settings, &objective, outcome, starts, &lower, &upper, clock,
@@ -480,15 +510,15 @@ fn summarise(
             starts.failed, starts.total
         ));
     }
-    if starts.reached_best == 1 && starts.total > 1 {
+    if starts.reached_best_fit == 1 && starts.total > 1 {
         warnings.push(format!(
-            "only one of {} starts reached the best objective: a better minimum may exist; raise the number of starts",
+            "only one of {} starts came within the noise of the best objective: a better minimum may exist; raise the number of starts",
             starts.total
         ));
-    } else if starts.reached_best_alone == 1 && starts.total > 1 {
+    } else if starts.reached_best_fit_alone == 1 && starts.total > 1 {
         warnings.push(format!(
-            "the best objective was reached by one polished run ({} more starts merged into it): a better minimum may exist; raise the number of starts",
-            starts.reached_best - 1
+            "one run came within the noise of the best objective ({} more starts merged into it): a better minimum may exist; raise the number of starts",
+            starts.reached_best_fit - 1
         ));
     }
     if !outcome.stop.converged() {

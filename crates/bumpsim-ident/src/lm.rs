@@ -6,7 +6,8 @@
 //! gradient points outwards are held (active set), and the trial point is
 //! projected onto the box. λ follows Nielsen's update (gain ratio ρ).
 //! Stopping rules, any of:
-//! - the thesis's `|∇F · δ| < 1e-12` (fmincon's directional derivative);
+//! - the thesis's directional derivative `|∇F · δ|` (fmincon's) below
+//!   `directional · F`, relative (see [`Settings::directional`]);
 //! - a relative decrease of F below `ftol` after an accepted step;
 //! - a step below `xtol` (parameters are logarithmic: a relative change);
 //! - a projected gradient below `gtol · (1 + F)`;
@@ -47,7 +48,12 @@ pub struct Settings {
     pub xtol: f64,
     /// Projected gradient that ends the run, relative to 1 + F.
     pub gtol: f64,
-    /// The thesis's directional-derivative tolerance `|∇F · δ|`.
+    /// The thesis's directional-derivative test, relative to the objective:
+    /// stop when `|∇F · δ| < directional · F`. The thesis's 1e-12 was an
+    /// absolute number on its objectives of 0.3–1.3 mm² (paper B, table 1);
+    /// as an absolute number in SI (m²) it stopped runs whose objective was
+    /// still falling a part in 1e5 per step when F ≈ 1e-7 m², and would be
+    /// unreachable at F ≈ 1 m². Relative, it means the same on any scale.
     pub directional: f64,
 }
 
@@ -58,7 +64,7 @@ impl Default for Settings {
             ftol: 1e-12,
             xtol: 1e-10,
             gtol: 1e-12,
-            directional: 1e-12,
+            directional: 1e-9,
         }
     }
 }
@@ -191,7 +197,7 @@ pub fn minimise(
         if !ok {
             return finish(s, iteration + 1, evaluations, Stop::NoProgress);
         }
-        let stop = if directional < settings.directional {
+        let stop = if directional < settings.directional * s.cost {
             Some(Stop::Directional)
         } else if decrease < settings.ftol {
             Some(Stop::Objective)

@@ -135,11 +135,16 @@ mod tests {
             (Fate::Unpolished, Fate::Unpolished)
         );
         polish(&mut runs, &chosen, &|p| scripted(p, 1000));
-        let starts = crate::estimate::tally(&runs).unwrap();
+        let starts = crate::estimate::tally(&runs, 1_000_000).unwrap();
         assert_eq!((starts.best, starts.total, starts.failed), (0, 7, 0));
         // starts 0 and 1 reached F = 1: 0 by its own run, 1 merged into it;
         // 5 merged into 4, whose cluster was not polished, does not count
         assert_eq!((starts.reached_best, starts.reached_best_alone), (2, 1));
+        // within the noise (here 1e-6 too) the same starts
+        assert_eq!(
+            (starts.reached_best_fit, starts.reached_best_fit_alone),
+            (2, 1)
+        );
         assert_eq!(
             (starts.abandoned, starts.merged, starts.unpolished),
             (1, 2, 2)

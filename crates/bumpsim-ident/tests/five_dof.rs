@@ -1,10 +1,13 @@
 //! Issue 19 on ten synthetic 5-DOF problems with known truth and noise: the
 //! model identified by the DOF sweep (1..5, each continued from the one
-//! before) predicts a held-out case within 0.05 percentage points of the
-//! truth model's fit, and fits the data at least as well as the truth does.
-//! Fewer samples and starts than the issue's 32-start run, so that the test
-//! stays short in the debug profile; the start statistics are reported, not
-//! asserted (docs/identify.md: the 5-DOF best is reached by few starts).
+//! before, 32 starts each) predicts a held-out case within 0.05 percentage
+//! points of the truth model's fit, and fits the data at least as well as
+//! the truth does. How many of the 5-DOF starts reach the best fit (within
+//! one noise variance, `Starts::reached_best_fit`) is printed for every
+//! problem. The issue asks for a quarter on all ten; six of them get there
+//! today, and that is asserted so that the search does not slide back
+//! (docs/identify.md: the others have a best minimum a few noise variances
+//! below where most starts end, found by one to three starts).
 
 use bumpsim_core::model::MsdModel;
 use bumpsim_ident::case::LoadCase;
@@ -87,6 +90,7 @@ fn sweep(cases: &[LoadCase], starts: usize) -> Identification {
 
 #[test]
 fn ten_five_dof_problems_predict_a_held_out_case_as_the_truth_does() {
+    let mut reliable = 0;
     for problem in 0..10u64 {
         let mut rng = ChaCha8Rng::seed_from_u64(100 + problem);
         let truth = car(&mut rng);
@@ -95,20 +99,21 @@ fn ten_five_dof_problems_predict_a_held_out_case_as_the_truth_does() {
             case(&truth, 3.5e4, 0.07, 1.5, &mut rng),
         ];
         let held_out = case(&truth, 2.5e4, 0.065, 2.0, &mut rng);
-        let result = sweep(&cases, 8);
+        let result = sweep(&cases, 32);
         let truth_objective: f64 = cases
             .iter()
             .map(|c| c.fit(&c.simulate(&truth).unwrap()).0)
             .sum();
         let fit = |m: &MsdModel| held_out.fit(&held_out.simulate(m).unwrap()).1;
         let (identified, reference) = (fit(&result.model), fit(&truth));
+        let starts = &result.starts;
         eprintln!(
-            "problem {problem}: F {:.4e} m² (truth {truth_objective:.4e} m²), held-out fit {identified:.4} % (truth {reference:.4} %), best reached by {} of {} starts ({} alone)",
-            result.objective,
-            result.starts.reached_best,
-            result.starts.total,
-            result.starts.reached_best_alone
+            "problem {problem}: F {:.4e} m² (truth {truth_objective:.4e} m²), held-out fit {identified:.4} % (truth {reference:.4} %), best fit reached by {} of {} starts, best objective to 1e-6 by {}",
+            result.objective, starts.reached_best_fit, starts.total, starts.reached_best
         );
+        if 4 * starts.reached_best_fit >= starts.total {
+            reliable += 1;
+        }
         // the noise is fitted, not more: at most the truth's objective
         // (+0.1 % for the screening tolerance), at least 90 % of it (13
         // parameters fit ≈ 13/400 of the noise)
@@ -123,4 +128,9 @@ fn ten_five_dof_problems_predict_a_held_out_case_as_the_truth_does() {
             "problem {problem}: held-out fit {identified} % vs truth {reference} %"
         );
     }
+    // the issue asks for all ten (docs/identify.md: not met)
+    assert!(
+        reliable >= 6,
+        "only {reliable} of 10 problems had a quarter of their starts reach the best fit"
+    );
 }

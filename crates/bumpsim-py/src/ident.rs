@@ -297,8 +297,9 @@ impl Identification {
     fn cases<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         from_json(py, &self.result.cases)
     }
-    /// Start statistics (total, converged, failed, reached_best,
-    /// reached_best_alone, abandoned, merged, unpolished, best).
+    /// Start statistics (total, converged, failed, reached_best_fit,
+    /// reached_best_fit_alone, reached_best, reached_best_alone, abandoned,
+    /// merged, unpolished, best).
     #[getter]
     fn starts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         from_json(py, &self.result.starts)

@@ -206,12 +206,18 @@ fn nhtsa_two_dof_fit_and_the_dof_table() {
     assert_eq!(result["recommended_dof"], lowest["dof"]);
     let line = format!("recommended: {} DOF (lowest BIC)", lowest["dof"]);
     assert!(stdout.contains(&line), "{stdout}");
-    // 3 masses are one too many for this plastic crash: k1 is undetermined
-    // and the merged 2-mass model fits as well (docs/identify.md quotes it)
+    // 3 masses are one too many for this plastic crash: a spring is
+    // undetermined (k2 today; k1 at another 3-DOF optimum the same within
+    // the noise) and the merged 2-mass model fits as well (docs/identify.md
+    // quotes it)
     let reduction = &results[2]["reduction"];
-    assert_eq!(reduction["parameter"], "k1", "{stdout}");
+    let pair = match reduction["parameter"].as_str() {
+        Some("k1") => "m1 and m2",
+        Some("k2") => "m2 and m3",
+        other => panic!("reduction of {other:?}: {stdout}"),
+    };
     assert!(reduction["relative_objective"].as_f64().unwrap() <= 0.01);
-    assert!(stdout.contains("m1 and m2 move as one"), "{stdout}");
+    assert!(stdout.contains(&format!("{pair} move as one")), "{stdout}");
     // the DOF table never gets worse with a further mass: continuation
     let objective = |r: &serde_json::Value| r["objective"].as_f64().unwrap();
     for pair in results.windows(2) {
