@@ -3,8 +3,8 @@
 
 use crate::{Folder, write};
 use anyhow::{Context, Result};
-use bumpsim_ident::dofs::DofList;
-use bumpsim_ident::estimate::{Identification, identify};
+use bumpsim_ident::dofs::{DofList, Sweep};
+use bumpsim_ident::estimate::Identification;
 use bumpsim_ident::explore::{predict, sensitivity};
 use bumpsim_ident::study::{DofSpec, Study};
 use bumpsim_ident::text::{case_lines, dof_table, parameter_table};
@@ -94,16 +94,14 @@ pub fn run(args: &Args) -> Result<()> {
     print_notes(&notes);
     let mut outcomes = Vec::new();
     let mut done: Vec<(Identification, Vec<bumpsim_ident::LoadCase>)> = Vec::new();
+    let mut sweep = Sweep::new();
     for &dof in &dofs {
         let mut settings = study.settings(dof)?;
         settings.starts = args.starts.unwrap_or(settings.starts);
         settings.seed = args.seed.unwrap_or(settings.seed);
-        if let Some((previous, _)) = done.last() {
-            settings.continue_from(&previous.model);
-        }
         let cases = study.retarget(&loaded.cases, dof);
         let bar = progress(args.quiet, dof, settings.starts);
-        let result = identify(&cases, &settings, &|| bar.inc(1));
+        let result = sweep.identify(&cases, settings, &|| bar.inc(1));
         bar.finish_and_clear();
         match result {
             Ok(result) => {

@@ -101,18 +101,12 @@ fn benches(c: &mut Criterion) {
 /// The DOF table as `bumpsim identify --dof 1..5 --starts 32` runs it: each
 /// model continued from the one before.
 fn table(cases_for: &dyn Fn(usize) -> Vec<LoadCase>) -> f64 {
-    let mut previous: Option<MsdModel> = None;
-    let mut total = 0.0;
-    for dof in 1..=5 {
-        let mut settings = Settings::new(dof, 32);
-        if let Some(p) = &previous {
-            settings.continue_from(p);
-        }
-        let result = identify(&cases_for(dof), &settings, &|| {}).unwrap();
-        total += result.objective;
-        previous = Some(result.model);
-    }
-    total
+    bumpsim_ident::dofs::table(&[1, 2, 3, 4, 5], &|dof| {
+        (cases_for(dof), Settings::new(dof, 32))
+    })
+    .iter()
+    .map(|r| r.as_ref().unwrap().objective)
+    .sum()
 }
 
 criterion_group!(identification, benches);

@@ -1,7 +1,9 @@
 //! The model orders (numbers of masses) to identify, as written on a
 //! command line or in a study: one number (`3`), an inclusive range
 //! (`1..5`) or a list (`1,2,3`), each from 1 to
-//! [`MAX_DOF`](crate::estimate::MAX_DOF).
+//! [`MAX_DOF`](crate::estimate::MAX_DOF); and the DOF table (thesis table
+//! 1) identified over them, each model continued from the last one
+//! identified ([`Sweep`], [`table`]; issue 19).
 //!
 //! ```
 //! use bumpsim_ident::dofs::DofList;
@@ -12,6 +14,9 @@
 //! assert!("1..1000000000000".parse::<DofList>().is_err()); // above MAX_DOF
 //! ```
 
+use crate::case::LoadCase;
+use crate::estimate::{IdentError, Identification, Settings, identify};
+use bumpsim_core::model::MsdModel;
 use std::str::FromStr;
 
 /// Model orders to identify, in the order given.
@@ -43,4 +48,67 @@ impl FromStr for DofList {
         }
         Ok(DofList(list))
     }
+}
+
+/// A DOF table in the making: it remembers the last model identified, so
+/// that the next order starts from it ([`Settings::continue_from`]: each
+/// mass split in turn). A failed order leaves the memory as it was.
+#[derive(Debug, Clone, Default)]
+pub struct Sweep {
+    last: Option<MsdModel>,
+}
+
+impl Sweep {
+    /// A sweep that has identified nothing yet.
+    pub fn new() -> Sweep {
+        Sweep::default()
+    }
+
+    /// Identifies `settings.dof` masses from `cases` ([`identify`]),
+    /// continued from the last model this sweep identified.
+    pub fn identify(
+        &mut self,
+        cases: &[LoadCase],
+        mut settings: Settings,
+        progress: &(dyn Fn() + Sync),
+    ) -> Result<Identification, IdentError> {
+        if let Some(last) = &self.last {
+            settings.continue_from(last);
+        }
+        let result = identify(cases, &settings, progress)?;
+        self.last = Some(result.model.clone());
+        Ok(result)
+    }
+}
+
+/// The DOF table over `dofs` in order: `setup(dof)` gives an order's cases
+/// and settings; each order is continued from the last one identified.
+///
+/// ```
+/// use bumpsim_core::model::MsdModel;
+/// use bumpsim_ident::{LoadCase, Settings, dofs::table};
+/// let truth = MsdModel::new(vec![30.0, 900.0], vec![3e3], vec![6e5]).unwrap();
+/// let force: Vec<f64> = (0..300).map(|k| 2e4 * (k as f64 * 5e-4 * 50.0).sin().max(0.0)).collect();
+/// let mut case = LoadCase {
+///     name: "flat".into(), start: 0.0, step: 5e-4, force, measured: vec![], output_dof: 1,
+///     initial_velocity: 0.0, window: (0, 299),
+/// };
+/// case.measured = case.simulate(&truth).unwrap();
+/// let cases = vec![case];
+/// let rows = table(&[1, 2], &|dof| (cases.clone(), Settings::new(dof, 4)));
+/// let two = rows[1].as_ref().unwrap();
+/// assert!(two.objective < rows[0].as_ref().unwrap().objective);
+/// assert!(two.cases[0].fit_percent > 99.9);
+/// ```
+pub fn table(
+    dofs: &[usize],
+    setup: &dyn Fn(usize) -> (Vec<LoadCase>, Settings),
+) -> Vec<Result<Identification, IdentError>> {
+    let mut sweep = Sweep::new();
+    dofs.iter()
+        .map(|&dof| {
+            let (cases, settings) = setup(dof);
+            sweep.identify(&cases, settings, &|| {})
+        })
+        .collect()
 }

@@ -11,7 +11,8 @@
 
 use bumpsim_core::model::MsdModel;
 use bumpsim_ident::case::LoadCase;
-use bumpsim_ident::estimate::{Identification, Settings, identify};
+use bumpsim_ident::dofs::table;
+use bumpsim_ident::estimate::{Identification, Settings};
 use rand_chacha::ChaCha8Rng;
 use rand_core::{Rng, SeedableRng};
 
@@ -77,15 +78,10 @@ fn case(truth: &MsdModel, peak: f64, duration: f64, shape: f64, rng: &mut ChaCha
 
 /// The 1..5 DOF sweep, each model continued from the one before.
 fn sweep(cases: &[LoadCase], starts: usize) -> Identification {
-    let mut previous: Option<Identification> = None;
-    for dof in 1..=5 {
-        let mut settings = Settings::new(dof, starts);
-        if let Some(p) = &previous {
-            settings.continue_from(&p.model);
-        }
-        previous = Some(identify(cases, &settings, &|| {}).unwrap());
-    }
-    previous.unwrap()
+    let rows = table(&[1, 2, 3, 4, 5], &|dof| {
+        (cases.to_vec(), Settings::new(dof, starts))
+    });
+    rows.into_iter().map(Result::unwrap).last().unwrap()
 }
 
 #[test]
