@@ -1,9 +1,9 @@
 //! The model orders (numbers of masses) to identify, as written on a
 //! command line or in a study: one number (`3`), an inclusive range
 //! (`1..5`) or a list (`1,2,3`), each from 1 to
-//! [`MAX_DOF`](crate::estimate::MAX_DOF); and the DOF table (thesis table
-//! 1) identified over them, each model continued from the last one
-//! identified ([`Sweep`], [`table`]; issue 19).
+//! [`MAX_DOF`](crate::estimate::MAX_DOF); and the DOF table (the
+//! thesis's table 1) identified over them, each model continued from the
+//! last one identified ([`Sweep`], [`table`]; issue 19).
 //!
 //! ```
 //! use bumpsim_ident::dofs::DofList;

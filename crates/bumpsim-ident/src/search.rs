@@ -125,7 +125,7 @@ fn draw(centre: &[f64], spread: f64, seed: u64, index: u64) -> Vec<f64> {
 /// it: they explore the basin the smaller model's optimum leads into (±20 %); the wide draws around the data start
 /// explore elsewhere. A factor of 3 around continuation starts threw most
 /// of them into other basins: on ten synthetic 5-DOF problems
-/// (tests/five_dof.rs) many ended 1e5 × above the best.
+/// (tests/identification/five_dof.rs) many ended 1e5 × above the best.
 pub const NEIGHBOURHOOD: f64 = 1.2;
 
 /// A uniform number in [0, 1) from 53 random bits.

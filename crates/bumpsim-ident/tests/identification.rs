@@ -448,3 +448,7 @@ fn an_undetermined_stiff_spring_is_named_and_the_merged_model_suggested() {
     let determined = identify(&series(&truth()), &Settings::new(3, 8), &|| {}).unwrap();
     assert!(determined.reduction.is_none(), "{:?}", determined.reduction);
 }
+
+/// Issue 19: ten synthetic 5-DOF problems.
+#[path = "identification/five_dof.rs"]
+mod five_dof;

@@ -12,18 +12,19 @@
 
 use crate::case::{CaseError, LoadCase};
 use crate::estimate::{Bounds, Settings};
-use bumpsim_core::channel::Channel;
 use bumpsim_core::model::{parameter_count, parameter_name};
-use bumpsim_core::series::UniformSeries;
 use bumpsim_core::units::Dimension;
 use bumpsim_io::signal_error::SignalFileError;
-use bumpsim_signal::loader::{ChannelSource, LoadError, Loader, Note};
-use bumpsim_signal::process::{Combine, ProcessError, Step, align, run};
-use bumpsim_signal::window::{ContactThreshold, WindowError};
+use bumpsim_signal::loader::{LoadError, Loader, Note};
+use bumpsim_signal::process::ProcessError;
+use bumpsim_signal::window::WindowError;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::fmt;
 use std::path::{Path, PathBuf};
+
+mod context;
+use context::CaseContext;
 
 /// Why a study cannot be read.
 #[derive(Debug, thiserror::Error)]
@@ -509,206 +510,6 @@ impl Study {
             loaded.notes.append(&mut ctx.notes);
         }
         Ok(loaded)
-    }
-}
-
-struct CaseContext<'a> {
-    study: &'a Study,
-    spec: &'a CaseSpec,
-    loader: &'a mut Loader,
-    notes: Vec<CaseNote>,
-}
-
-impl CaseContext<'_> {
-    fn load_case(&mut self, dof: usize) -> Result<LoadCase, StudyError> {
-        let spec = self.spec;
-        let force = self.force()?;
-        let output = match (&spec.displacement, spec.acceleration.is_empty()) {
-            (Some(d), true) => self.channels(std::slice::from_ref(d), Combine::Mean)?,
-            (None, false) => self.displacement_from_acceleration()?,
-            _ => return Err(self.case(DefinitionError::Output)),
-        };
-        self.expect(
-            &output,
-            Dimension::Length,
-            "displacement channel",
-            "a length",
-        )?;
-        self.build(force, output, dof)
-    }
-
-    fn case(&self, source: impl Into<DefinitionError>) -> StudyError {
-        StudyError::Case {
-            case: self.spec.name.clone(),
-            source: source.into(),
-        }
-    }
-
-    fn process(&self, result: Result<Channel, ProcessError>) -> Result<Channel, StudyError> {
-        result.map_err(|source| StudyError::Process {
-            case: self.spec.name.clone(),
-            source,
-        })
-    }
-
-    fn expect(
-        &self,
-        channel: &Channel,
-        dimension: Dimension,
-        signal: &'static str,
-        expected: &'static str,
-    ) -> Result<(), StudyError> {
-        if channel.dimension == dimension {
-            return Ok(());
-        }
-        Err(self.case(DefinitionError::Dimension {
-            signal,
-            found: channel.dimension,
-            expected,
-        }))
-    }
-
-    /// Loads, scales and combines channel references; keeps their notes.
-    fn channels(&mut self, refs: &[ChannelRef], how: Combine) -> Result<Channel, StudyError> {
-        let sources: Vec<ChannelSource> = refs
-            .iter()
-            .map(|r| ChannelSource::new(self.study.base.join(&r.path), &r.channel, r.scale))
-            .collect();
-        let name = &self.spec.name;
-        let loaded = self
-            .loader
-            .signal(&sources, Some(how), name)
-            .map_err(|e| match e {
-                LoadError::Data(source) => StudyError::Data {
-                    case: name.clone(),
-                    source,
-                },
-                LoadError::Process(source) => StudyError::Process {
-                    case: name.clone(),
-                    source,
-                },
-                other => self.case(DefinitionError::Load(other)),
-            })?;
-        let notes = loaded.notes.into_iter().map(|note| CaseNote {
-            case: name.clone(),
-            note,
-        });
-        self.notes.extend(notes);
-        Ok(loaded.data)
-    }
-
-    /// Bias removal and the CFC filter.
-    fn conditioning(&self, channel: &Channel) -> Vec<Step> {
-        let mut steps = Vec::new();
-        match self.spec.bias {
-            Some(window) => steps.push(Step::Bias(window)),
-            None if channel.series.start() < 0.0 => steps.push(Step::PretriggerBias(true)),
-            None => {}
-        }
-        if let Some(class) = self.spec.cfc {
-            steps.push(Step::Cfc(class));
-        }
-        steps
-    }
-
-    fn force(&mut self) -> Result<Channel, StudyError> {
-        let raw = self.channels(std::slice::from_ref(&self.spec.force), Combine::Sum)?;
-        self.expect(&raw, Dimension::Force, "force channel", "a force")?;
-        self.process(run(&self.conditioning(&raw), &raw))
-    }
-
-    fn displacement_from_acceleration(&mut self) -> Result<Channel, StudyError> {
-        let raw = self.channels(&self.spec.acceleration, Combine::Mean)?;
-        let what = "acceleration channel";
-        self.expect(&raw, Dimension::Acceleration, what, "an acceleration")?;
-        let mut steps = self.conditioning(&raw);
-        steps.extend([
-            Step::Integrate(self.spec.initial_velocity),
-            Step::Integrate(0.0),
-        ]);
-        self.process(run(&steps, &raw))
-    }
-
-    /// Aligns force and displacement, starts at t = 0 and sets the window.
-    fn build(&self, force: Channel, output: Channel, dof: usize) -> Result<LoadCase, StudyError> {
-        let (time, columns) = align(&[force, output]).map_err(|source| StudyError::Process {
-            case: self.spec.name.clone(),
-            source,
-        })?;
-        let step = if time.len() > 1 {
-            time[1] - time[0]
-        } else {
-            1.0
-        };
-        let name = &self.spec.name;
-        let aligned = UniformSeries::new(time[0], step, columns[0].clone()).map_err(|source| {
-            let source = ProcessError::Series {
-                channel: name.clone(),
-                step: "align",
-                source,
-            };
-            StudyError::Process {
-                case: name.clone(),
-                source,
-            }
-        })?;
-        let first = *aligned
-            .window(0.0, f64::INFINITY)
-            .ok_or_else(|| self.case(DefinitionError::NoSamples))?
-            .start();
-        let (force, measured) = (columns[0][first..].to_vec(), columns[1][first..].to_vec());
-        let start = time[first];
-        let window = self.window(&aligned, first)?;
-        let output_dof = match &self.spec.output_dof {
-            None => 1,
-            Some(OutputDof::Number(n)) => *n,
-            Some(OutputDof::Named(s)) if s.eq_ignore_ascii_case("last") => dof,
-            Some(OutputDof::Named(s)) => {
-                return Err(self.case(DefinitionError::OutputDof(s.clone())));
-            }
-        };
-        if output_dof == 0 || output_dof > dof {
-            return Err(self.case(DefinitionError::OutputDofRange { output_dof, dof }));
-        }
-        let case = LoadCase {
-            name: self.spec.name.clone(),
-            start,
-            step: if time.len() > 1 { step } else { 0.0 },
-            force,
-            measured,
-            output_dof,
-            initial_velocity: self.spec.initial_velocity,
-            window,
-        };
-        case.validate().map_err(|e| self.case(e))?;
-        Ok(case)
-    }
-
-    /// The fit window as sample indices counted from `first` (the sample at
-    /// t = 0) in the aligned force.
-    fn window(&self, aligned: &UniformSeries, first: usize) -> Result<(usize, usize), StudyError> {
-        let force = &aligned.values()[first..];
-        match &self.spec.window {
-            None => self.contact(force),
-            Some(WindowSpec::Named(s)) if s.eq_ignore_ascii_case("contact") => self.contact(force),
-            Some(WindowSpec::Named(s)) => Err(self.case(DefinitionError::WindowName(s.clone()))),
-            Some(WindowSpec::Times([t0, t1])) => {
-                let empty = || self.case(DefinitionError::EmptyWindow { t0: *t0, t1: *t1 });
-                let inside = aligned.window(*t0, *t1).ok_or_else(empty)?;
-                let (a, b) = (*inside.start().max(&first), *inside.end());
-                if a >= b {
-                    return Err(empty());
-                }
-                Ok((a - first, b - first))
-            }
-        }
-    }
-
-    fn contact(&self, force: &[f64]) -> Result<(usize, usize), StudyError> {
-        let w = ContactThreshold::default()
-            .detect(force)
-            .map_err(|e| self.case(e))?;
-        Ok((w.first, w.last))
     }
 }
 
