@@ -83,8 +83,9 @@ impl Bounds {
             let (floor, ceiling) = (*VALID_RANGE.start(), *VALID_RANGE.end());
             if !(lo > 0.0 && lo < ceiling && hi > lo && hi > floor) {
                 let name = bumpsim_core::model::parameter_name(dof, i);
+                let unit = parameter_kind(dof, i).0.unit();
                 return Err(setting(format!(
-                    "{name}: need 0 < lower < upper with lower below {ceiling:e} and upper above {floor:e} (SI), got [{lo}, {hi}]"
+                    "{name}: need 0 < lower < upper with lower below {ceiling:e} {unit} and upper above {floor:e} {unit}, got [{lo}, {hi}] {unit}"
                 )));
             }
             if let Some(v) = self.fixed[i].filter(|v| !(v.is_finite() && *v > 0.0)) {

@@ -216,6 +216,14 @@ fn bad_settings_and_studies_are_clear_errors() {
         err.contains("start") && err.contains("7 positive values"),
         "{err}"
     );
+    // bounds a model cannot take, or NaN, are refused naming the parameter
+    for (lower, upper) in [(2e15, f64::INFINITY), (1e-20, 1e-13), (f64::NAN, 10.0)] {
+        let mut settings = Settings::new(3, 1);
+        settings.bounds.lower[5] = lower;
+        settings.bounds.upper[5] = upper;
+        let err = identify(&cases, &settings, &|| {}).unwrap_err().to_string();
+        assert!(err.contains("k1") && err.contains("N/m"), "{err}");
+    }
     let mut short = cases[0].clone();
     short.measured.pop();
     let err = identify(&[short], &Settings::new(3, 1), &|| {})
