@@ -195,11 +195,17 @@ pub struct DiscreteModel {
     pub(crate) phi: Vec<f64>,
     pub(crate) gamma0: Vec<f64>,
     pub(crate) gamma1: Vec<f64>,
-    /// dΦ/dp_i for the log parameters p = ln θ, stacked, column-major each
+    /// dΦ/dp_i for the propagated log parameters p = ln θ (m2..mn, then
+    /// k1..k(n−1); [`crate::sensitivity`]), stacked, column-major each
     /// (empty without sensitivities).
     pub(crate) dphi: Vec<f64>,
-    /// dΓ0/dp_i stacked, p × N.
+    /// dΓ0/dp_i of the same parameters stacked, 2(n−1) × N.
     pub(crate) dgamma: Vec<f64>,
+    /// `c_j / k_j` of each link, for the damper sensitivities (empty
+    /// without sensitivities).
+    pub(crate) ratios: Vec<f64>,
+    /// Whether it was built with sensitivities.
+    pub(crate) sensitive: bool,
 }
 
 impl DiscreteModel {
@@ -256,6 +262,15 @@ impl DiscreteModel {
             dphi,
             dgamma,
         } = hold_exponential(model, method.hold(), step, sensitivities);
+        let ratios = match sensitivities {
+            true => model
+                .dampers()
+                .iter()
+                .zip(model.springs())
+                .map(|(c, k)| c / k)
+                .collect(),
+            false => Vec::new(),
+        };
         DiscreteModel {
             method,
             step,
@@ -266,13 +281,18 @@ impl DiscreteModel {
             gamma1,
             dphi,
             dgamma,
+            ratios,
+            sensitive: sensitivities,
         }
     }
 
-    /// Number of log parameters with sensitivities (0 unless built by
-    /// [`DiscreteModel::with_sensitivities`]).
+    /// Number of log parameters with sensitivities, `3n − 2` for n masses
+    /// (0 unless built by [`DiscreteModel::with_sensitivities`]).
     pub fn parameter_count(&self) -> usize {
-        self.dgamma.len() / self.order
+        match self.sensitive {
+            true => 3 * self.order / 2 - 2,
+            false => 0,
+        }
     }
 
     /// The method used.
@@ -465,6 +485,8 @@ fn build(
         gamma1,
         dphi: Vec::new(),
         dgamma: Vec::new(),
+        ratios: Vec::new(),
+        sensitive: false,
     }
 }
 

@@ -20,6 +20,9 @@
 //! 1978), which gives `dΦ/dp` and `dΓ/dp` exactly. The direction is scaled
 //! to the size of `G` first (Higham 2008, sec. 10.6): the block exponential
 //! is linear in it and its accuracy is relative to the norm of the block.
+//! Only the *propagated* parameters get one (m2..mn, then k1..k(n−1)): the
+//! sensitivities of m1 and of the dampers follow from the others by exact
+//! identities ([`crate::sensitivity`]).
 
 use crate::model::MsdModel;
 use crate::state_space::StateSpace;
@@ -55,9 +58,10 @@ pub(crate) struct Exponential {
     pub gamma0: Vec<f64>,
     /// Γ1, the weight of f[k+1] (zero for zoh).
     pub gamma1: Vec<f64>,
-    /// dΦ/dp_i stacked, p × N × N, column-major each (empty unless asked).
+    /// dΦ/dp_i of the propagated parameters (m2..mn, k1..k(n−1)) stacked,
+    /// 2(n−1) × N × N, column-major each (empty unless asked).
     pub dphi: Vec<f64>,
-    /// dΓ0/dp_i stacked, p × N.
+    /// dΓ0/dp_i of the same parameters stacked, 2(n−1) × N.
     pub dgamma: Vec<f64>,
 }
 
@@ -77,26 +81,25 @@ fn balance(model: &MsdModel, generator: &DMatrix<f64>) -> Vec<f64> {
     d
 }
 
-/// `dG/dp` for every log parameter, thesis order `[m.., c.., k..]`.
+/// `dG/dp` for the propagated log parameters: m2..mn, then k1..k(n−1)
+/// (m1 and the dampers follow by identities, [`crate::sensitivity`]).
 fn derivatives(model: &MsdModel, generator: &DMatrix<f64>) -> Vec<DMatrix<f64>> {
     let (dof, size) = (model.dof(), generator.nrows());
-    let mut out = Vec::with_capacity(3 * dof - 2);
-    for i in 0..dof {
+    let mut out = Vec::with_capacity(2 * dof - 2);
+    for i in 1..dof {
         let mut d = DMatrix::zeros(size, size);
         let row = -generator.row(dof + i);
         d.row_mut(dof + i).copy_from(&row);
         out.push(d);
     }
-    for (values, offset) in [(model.dampers(), dof), (model.springs(), 0)] {
-        for (j, &theta) in values.iter().enumerate() {
-            let mut d = DMatrix::zeros(size, size);
-            for (a, sa) in [(j, 1.0), (j + 1, -1.0)] {
-                for (b, sb) in [(j, 1.0), (j + 1, -1.0)] {
-                    d[(dof + a, offset + b)] = -sa * sb * theta / model.masses()[a];
-                }
+    for (j, &theta) in model.springs().iter().enumerate() {
+        let mut d = DMatrix::zeros(size, size);
+        for (a, sa) in [(j, 1.0), (j + 1, -1.0)] {
+            for (b, sb) in [(j, 1.0), (j + 1, -1.0)] {
+                d[(dof + a, b)] = -sa * sb * theta / model.masses()[a];
             }
-            out.push(d);
         }
+        out.push(d);
     }
     out
 }

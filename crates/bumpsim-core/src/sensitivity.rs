@@ -5,11 +5,30 @@
 //! [`DiscreteModel::propagate`], so both give identical responses), and the
 //! output is the displacement of one mass, `y[k] = x_out[k]` (m). With the
 //! sensitivities of [`DiscreteModel::with_sensitivities`], the derivatives
-//! `S_i[k] = ∂X[k]/∂p_i` follow the forward recursion
-//! `S[k+1] = Φ S[k] + dΦ X[k] + dΓ f[k]`, `S[0] = 0` (the initial state does
-//! not depend on the parameters), and `∂y[k]/∂p_i` is the output entry of
-//! `S_i[k]`.
+//! `S_i[k] = ∂X[k]/∂p_i` of the log parameters `p = ln θ` follow the forward
+//! recursion `S[k+1] = Φ S[k] + dΦ X[k] + dΓ f[k]`, `S[0] = 0` (the initial
+//! state does not depend on the parameters), and `∂y[k]/∂p_i` is the output
+//! entry of `S_i[k]`.
 //!
+//! **Only 2(n−1) of the 3n−2 are propagated** (m2..mn and the springs); the
+//! other n are exact identities of a chain that starts in rigid motion
+//! (equal displacements x0, equal velocities v0; a car at rest or moving
+//! as one before the impact, spec §3), which the Jacobian requires:
+//!
+//! - **Dampers.** In `Ṡ = A S + ∂A/∂p X` the forcing of `ln k_j` is
+//!   `k_j a_j Δx_j(t)` and that of `ln c_j` is `c_j a_j Δv_j(t)`, with the
+//!   same direction `a_j = −M⁻¹(e_j − e_{j+1})` in the velocity rows and
+//!   `Δv_j = d/dt Δx_j`, `Δx_j(0) = 0`. So `S_c = (c_j/k_j) d/dt S_k`, and
+//!   the displacement rows of `d/dt S_k` are its velocity rows:
+//!   `∂y/∂ln c_j = (c_j/k_j) ∂v_out/∂ln k_j`. The zoh model is the exact
+//!   sampled continuous one, so this holds at the samples exactly.
+//! - **m1, by scaling.** Scaling every mass, damper and spring by α leaves
+//!   the rigid motion `x0 + v0 t` and divides the forced response by α, so
+//!   `Σ_i ∂y/∂ln θ_i = −(y − x0 − v0 t)`; the m1 column is that sum less
+//!   the other columns (m1, directly forced, has the largest column, so the
+//!   difference loses least).
+//!
+//! Both are checked against central differences of the full model below.
 //! Models of 1 to 5 masses run a fixed-size loop the compiler unrolls and
 //! vectorises; nothing is allocated in either loop.
 //!
@@ -27,52 +46,80 @@
 
 use crate::discrete::{DiscreteModel, advance, advance_dynamic};
 
-/// Buffers that do not fit [`DiscreteModel::output`].
+/// A buffer or initial state that does not fit [`DiscreteModel::output`].
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("output: the {buffer} has {found} values, expected {expected}")]
-pub struct OutputError {
-    /// Which buffer or index (`initial state`, `output`, ...).
-    pub buffer: &'static str,
-    /// Its length (or the index given).
-    pub found: usize,
-    /// The length needed (or one past the largest index).
-    pub expected: usize,
+#[non_exhaustive]
+pub enum OutputError {
+    /// A buffer of the wrong length, or an index out of range.
+    #[error("output: the {buffer} has {found} values, expected {expected}")]
+    Buffer {
+        /// Which buffer or index (`initial state`, `output`, ...).
+        buffer: &'static str,
+        /// Its length (or the index given).
+        found: usize,
+        /// The length needed (or one past the largest index).
+        expected: usize,
+    },
+    /// The Jacobian was asked for from an initial state that is not a rigid
+    /// motion of the chain.
+    #[error(
+        "output: initial state {state} differs from the first {kind}: the exact sensitivities \
+         need a chain in rigid motion (all displacements equal, all velocities equal)"
+    )]
+    NotRigid {
+        /// Index of the first differing state ([x; v], 0-based).
+        state: usize,
+        /// `displacement` or `velocity`.
+        kind: &'static str,
+    },
 }
 
 impl DiscreteModel {
-    /// Scratch length [`DiscreteModel::output`] needs: `(p + 2) N`.
+    /// Scratch length [`DiscreteModel::output`] needs: `(q + 2) N` for the
+    /// q propagated sensitivities.
     pub fn work_len(&self) -> usize {
-        (self.parameter_count() + 2) * self.order()
+        (self.propagated() + 2) * self.order()
+    }
+
+    /// Number of propagated sensitivities, 2(n−1) (0 without them).
+    fn propagated(&self) -> usize {
+        self.dgamma.len() / self.order()
     }
 
     /// Simulates the displacement of mass `output` (0-based) from `initial`
     /// ([x; v], m and m/s) under `force` (N, one value per sample), writing it
     /// (m) into `y` and, when `jacobian` is given, its derivatives with
     /// respect to the log parameters into `jacobian[k * p + i]` (row-major,
-    /// p columns; needs [`DiscreteModel::with_sensitivities`]). `work` holds
-    /// at least [`DiscreteModel::work_len`] values. Allocates nothing.
+    /// p = 3n − 2 columns, thesis order `[m.., c.., k..]`; needs
+    /// [`DiscreteModel::with_sensitivities`] and an initial state in rigid
+    /// motion). `work` holds at least [`DiscreteModel::work_len`] values.
+    /// Allocates nothing.
     pub fn output(
         &self,
         initial: &[f64],
         force: &[f64],
         output: usize,
         y: &mut [f64],
-        jacobian: Option<&mut [f64]>,
+        mut jacobian: Option<&mut [f64]>,
         work: &mut [f64],
     ) -> Result<(), OutputError> {
         self.check_output(initial, force, output, y, jacobian.as_deref(), work)?;
-        match (self.order(), jacobian) {
-            (2, Some(j)) => self.output_fixed::<2, 1>(initial, force, output, y, j),
-            (4, Some(j)) => self.output_fixed::<4, 4>(initial, force, output, y, j),
-            (6, Some(j)) => self.output_fixed::<6, 7>(initial, force, output, y, j),
-            (8, Some(j)) => self.output_fixed::<8, 10>(initial, force, output, y, j),
-            (10, Some(j)) => self.output_fixed::<10, 13>(initial, force, output, y, j),
-            (2, None) => self.output_fixed::<2, 0>(initial, force, output, y, &mut []),
-            (4, None) => self.output_fixed::<4, 0>(initial, force, output, y, &mut []),
-            (6, None) => self.output_fixed::<6, 0>(initial, force, output, y, &mut []),
-            (8, None) => self.output_fixed::<8, 0>(initial, force, output, y, &mut []),
-            (10, None) => self.output_fixed::<10, 0>(initial, force, output, y, &mut []),
-            (_, jacobian) => self.output_dynamic(initial, force, output, y, jacobian, work),
+        let jac = jacobian.as_deref_mut();
+        match (self.order(), jac) {
+            (2, Some(j)) => self.output_fixed::<2, 0>(initial, force, output, y, Some(j)),
+            (4, Some(j)) => self.output_fixed::<4, 2>(initial, force, output, y, Some(j)),
+            (6, Some(j)) => self.output_fixed::<6, 4>(initial, force, output, y, Some(j)),
+            (8, Some(j)) => self.output_fixed::<8, 6>(initial, force, output, y, Some(j)),
+            (10, Some(j)) => self.output_fixed::<10, 8>(initial, force, output, y, Some(j)),
+            (2, None) => self.output_fixed::<2, 0>(initial, force, output, y, None),
+            (4, None) => self.output_fixed::<4, 0>(initial, force, output, y, None),
+            (6, None) => self.output_fixed::<6, 0>(initial, force, output, y, None),
+            (8, None) => self.output_fixed::<8, 0>(initial, force, output, y, None),
+            (10, None) => self.output_fixed::<10, 0>(initial, force, output, y, None),
+            (_, jac) => self.output_dynamic(initial, force, output, y, jac, work),
+        }
+        if let Some(jac) = jacobian {
+            self.mass_by_scaling(initial, y, jac);
         }
         Ok(())
     }
@@ -90,7 +137,7 @@ impl DiscreteModel {
         let p = self.parameter_count();
         let fits = |buffer, found: usize, expected: usize, ok: bool| match ok {
             true => Ok(()),
-            false => Err(OutputError {
+            false => Err(OutputError::Buffer {
                 buffer,
                 found,
                 expected,
@@ -113,60 +160,53 @@ impl DiscreteModel {
         )?;
         match jacobian {
             Some(_) if p == 0 => fits("sensitivity set (not built with them)", 0, 1, false),
-            Some(j) => fits(
-                "jacobian",
-                j.len(),
-                force.len() * p,
-                j.len() == force.len() * p,
-            ),
+            Some(j) => {
+                fits(
+                    "jacobian",
+                    j.len(),
+                    force.len() * p,
+                    j.len() == force.len() * p,
+                )?;
+                rigid(initial)
+            }
             None => Ok(()),
         }
     }
 
     /// The output and sensitivity recursion on fixed-size arrays: N states,
-    /// P parameters.
-    #[allow(clippy::needless_range_loop)] // column-major index arithmetic reads clearer
-    fn output_fixed<const N: usize, const P: usize>(
+    /// Q propagated sensitivities (Q = N − 2 with a Jacobian, else 0).
+    fn output_fixed<const N: usize, const Q: usize>(
         &self,
         initial: &[f64],
         force: &[f64],
         output: usize,
         y: &mut [f64],
-        jac: &mut [f64],
+        mut jac: Option<&mut [f64]>,
     ) {
         let (phi, g0, g1) = self.fixed::<N>();
         let column = |m: &[f64], c: usize| -> [f64; N] { std::array::from_fn(|r| m[c * N + r]) };
-        let dphi: [[[f64; N]; N]; P] =
+        let dphi: [[[f64; N]; N]; Q] =
             std::array::from_fn(|i| std::array::from_fn(|c| column(&self.dphi[i * N * N..], c)));
-        let dgamma: [[f64; N]; P] =
+        let dgamma: [[f64; N]; Q] =
             std::array::from_fn(|i| std::array::from_fn(|r| self.dgamma[i * N + r]));
+        let p = self.parameter_count();
         let mut x: [f64; N] = std::array::from_fn(|r| initial[r]);
-        let mut s = [[0.0; N]; P];
+        let mut s = [[0.0; N]; Q];
         for (k, &f) in force.iter().enumerate() {
             y[k] = x[output];
-            if P > 0 {
-                let row = &mut jac[k * P..(k + 1) * P];
-                for i in 0..P {
-                    row[i] = s[i][output];
-                }
+            if let Some(jac) = jac.as_deref_mut() {
+                self.fill_row(s.as_flattened(), output, &mut jac[k * p..(k + 1) * p]);
             }
             let Some(&f1) = force.get(k + 1) else { break };
-            for i in 0..P {
-                let mut next = dgamma[i].map(|g| g * f);
-                for c in 0..N {
-                    let (sc, xc) = (s[i][c], x[c]);
-                    for r in 0..N {
-                        next[r] += phi[c][r] * sc + dphi[i][c][r] * xc;
-                    }
-                }
-                s[i] = next;
+            for i in 0..Q {
+                s[i] = step_fixed(&phi, &dphi[i], &dgamma[i], &s[i], &x, f);
             }
             x = advance(&phi, &g0, g1.as_ref(), &x, f, f1);
         }
     }
 
     /// The same recursion on slices, for any order; `work` holds x, the next
-    /// state and the p sensitivity vectors.
+    /// state and the q propagated sensitivity vectors.
     fn output_dynamic(
         &self,
         initial: &[f64],
@@ -176,18 +216,16 @@ impl DiscreteModel {
         mut jacobian: Option<&mut [f64]>,
         work: &mut [f64],
     ) {
-        let (n, p) = (self.order(), self.parameter_count());
+        let (n, p, q) = (self.order(), self.parameter_count(), self.propagated());
         let (x, rest) = work.split_at_mut(n);
         let (next, s) = rest.split_at_mut(n);
-        let s = &mut s[..n * p];
+        let s = &mut s[..n * q];
         x.copy_from_slice(initial);
         s.iter_mut().for_each(|v| *v = 0.0);
         for (k, &f) in force.iter().enumerate() {
             y[k] = x[output];
             if let Some(jac) = jacobian.as_deref_mut() {
-                for i in 0..p {
-                    jac[k * p + i] = s[i * n + output];
-                }
+                self.fill_row(s, output, &mut jac[k * p..(k + 1) * p]);
             }
             let Some(&f1) = force.get(k + 1) else { break };
             if jacobian.is_some() {
@@ -198,7 +236,7 @@ impl DiscreteModel {
         }
     }
 
-    /// `S_i ← Φ S_i + dΦ_i x + dΓ_i f` for every parameter i.
+    /// `S_i ← Φ S_i + dΦ_i x + dΓ_i f` for every propagated parameter i.
     fn step_sensitivities(&self, x: &[f64], f: f64, s: &mut [f64], next: &mut [f64]) {
         let n = self.order();
         for (i, si) in s.chunks_exact_mut(n).enumerate() {
@@ -214,6 +252,77 @@ impl DiscreteModel {
             }
             si.copy_from_slice(next);
         }
+    }
+
+    /// Writes one Jacobian row from the propagated sensitivities `s`
+    /// (N values each): their output entries, and each damper's
+    /// `(c_j/k_j) ∂v_out/∂ln k_j`. Column 0 (m1) is left for
+    /// [`DiscreteModel::mass_by_scaling`].
+    #[inline(always)]
+    fn fill_row(&self, s: &[f64], output: usize, row: &mut [f64]) {
+        let n = self.order();
+        let dof = n / 2;
+        for (q, state) in s.chunks_exact(n).enumerate() {
+            let column = if q + 1 < dof { q + 1 } else { q + dof };
+            row[column] = state[output];
+        }
+        for (j, ratio) in self.ratios.iter().enumerate() {
+            row[dof + j] = ratio * s[(dof - 1 + j) * n + dof + output];
+        }
+    }
+
+    /// The m1 column of every row by the scaling identity
+    /// `Σ_i ∂y/∂ln θ_i = −(y − x0 − v0 t)`.
+    fn mass_by_scaling(&self, initial: &[f64], y: &[f64], jac: &mut [f64]) {
+        let dof = self.order() / 2;
+        let (x0, v0) = (initial[0], initial[dof]);
+        let p = self.parameter_count();
+        for (k, row) in jac.chunks_exact_mut(p).enumerate() {
+            let forced = y[k] - x0 - v0 * (k as f64 * self.step());
+            row[0] = -forced - row[1..].iter().sum::<f64>();
+        }
+    }
+}
+
+/// One sensitivity update `Φ s + dΦ x + dΓ f` on fixed-size arrays, Φ and
+/// dΦ by columns (the N rows are independent lanes).
+#[inline(always)]
+fn step_fixed<const N: usize>(
+    phi: &[[f64; N]; N],
+    dphi: &[[f64; N]; N],
+    dgamma: &[f64; N],
+    s: &[f64; N],
+    x: &[f64; N],
+    f: f64,
+) -> [f64; N] {
+    let mut next = dgamma.map(|g| g * f);
+    for c in 0..N {
+        let (sc, xc) = (s[c], x[c]);
+        for r in 0..N {
+            next[r] += phi[c][r] * sc + dphi[c][r] * xc;
+        }
+    }
+    next
+}
+
+/// Whether `initial` ([x; v]) is a rigid motion: every displacement equal
+/// to the first, every velocity equal to the first.
+fn rigid(initial: &[f64]) -> Result<(), OutputError> {
+    let dof = initial.len() / 2;
+    let (x, v) = initial.split_at(dof);
+    let differs = |part: &[f64]| part.iter().position(|value| *value != part[0]);
+    if let Some(i) = differs(x) {
+        return Err(OutputError::NotRigid {
+            state: i,
+            kind: "displacement",
+        });
+    }
+    match differs(v) {
+        Some(i) => Err(OutputError::NotRigid {
+            state: dof + i,
+            kind: "velocity",
+        }),
+        None => Ok(()),
     }
 }
 
@@ -265,7 +374,7 @@ mod tests {
     /// exact sensitivities (fixed-size and dynamic loops).
     #[test]
     fn sensitivities_match_central_differences() {
-        for dof in [2, 6] {
+        for dof in [1, 2, 3, 5, 6] {
             let car = chain(dof);
             let d = DiscreteModel::with_sensitivities(&car, 1e-4).unwrap();
             let p = d.parameter_count();
@@ -297,6 +406,34 @@ mod tests {
         }
     }
 
+    /// The damper and m1 identities need a chain in rigid motion; any other
+    /// initial state is refused, naming the state.
+    #[test]
+    fn a_jacobian_from_a_strained_chain_is_refused() {
+        let d = DiscreteModel::with_sensitivities(&chain(2), 1e-4).unwrap();
+        let mut work = vec![0.0; d.work_len()];
+        let (mut y, mut jac) = (vec![0.0; 3], vec![0.0; 3 * 4]);
+        for (initial, state) in [([0.0, 1e-3, 2.0, 2.0], 1), ([0.0, 0.0, 2.0, 1.0], 3)] {
+            let err = d
+                .output(&initial, &[1.0; 3], 0, &mut y, Some(&mut jac), &mut work)
+                .unwrap_err();
+            assert!(
+                matches!(err, super::OutputError::NotRigid { state: s, .. } if s == state),
+                "{err}"
+            );
+        }
+        // without the Jacobian any initial state is simulated
+        d.output(
+            &[0.0, 1e-3, 2.0, 1.0],
+            &[1.0; 3],
+            0,
+            &mut y,
+            None,
+            &mut work,
+        )
+        .unwrap();
+    }
+
     #[test]
     fn mismatched_buffers_are_refused() {
         let d = DiscreteModel::new(&chain(2), Method::Zoh, 1e-4).unwrap();
@@ -305,7 +442,7 @@ mod tests {
         let err = d
             .output(&[0.0; 4], &[1.0; 4], 0, &mut y, None, &mut work)
             .unwrap_err();
-        assert_eq!(err.buffer, "output buffer");
+        assert!(err.to_string().contains("output buffer"), "{err}");
         let err = d
             .output(&[0.0; 4], &[1.0; 3], 2, &mut y, None, &mut work)
             .unwrap_err();
