@@ -1,26 +1,42 @@
 //! The simpler model the data cannot tell apart (issue 19).
 //!
-//! A spring k_j that the data do not determine — at a bound, without an
-//! interval, or with a 95 % interval wider than a factor [`SPREAD`] — may
-//! join two masses that move as one. The reduced model merges them
-//! (`m_j + m_{j+1}` on one node; link j removed, the other links kept; an
-//! output on either mass is the merged mass's) and is refitted by one LM
-//! run from the merged start. When it fits within [`TOLERANCE`] of the full
-//! model's objective, the result says so, naming the spring: the simpler
-//! model describes the data as well.
-//! Springs are tried widest interval first; the first that passes is reported.
-
+//! Two masses joined by link j may move as one. The reduced model merges
+//! them (`m_j + m_{j+1}` on one node; link j removed, the other links kept;
+//! an output on either mass is the merged mass's) and is refitted by one
+//! LM run from the merged start. Two kinds of link are tried:
+//!
+//! 1. **An undetermined spring** — at a bound, without an interval, or with
+//!    a 95 % interval wider than a factor [`SPREAD`] — widest interval
+//!    first. Its merge is suggested when it fits within [`TOLERANCE`] of the
+//!    full model's objective.
+//! 2. **A determined link the data do not need.** A sloppy model can fit
+//!    the noise with a small mass on a soft link instead: every interval is
+//!    finite, but the fit is no better than the simpler model's. Of the other
+//!    links, the one whose merged start fits best is refitted, and its merge
+//!    is suggested when it fits within [`TOLERANCE`] *and* the full model's
+//!    improvement is not significant by the extra-sum-of-squares F-test
+//!    (Seber & Wild 1989, sec. 5.3):
+//!    `F = ((F_r − F)/3) / (F/(n − q))` against `F(3, n − q)`, the three
+//!    parameters of the removed mass and link, `p ≥` [`SIGNIFICANCE`].
+//!
+//! The statement names the link's spring and the two masses, and gives
+//! both objectives and the test's p-value (reported for both kinds).
 use crate::case::LoadCase;
 use crate::estimate::{Bounds, IdentError, Identification, Settings};
-use bumpsim_core::model::{MsdModel, format_parameter, parameter_name};
+use bumpsim_core::model::{MsdModel, format_parameter, parameter_count, parameter_name};
 use bumpsim_core::units::{Dimension, format_number, format_quantity};
 use serde::Serialize;
+use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
 /// A spring whose 95 % interval spans more than this factor is undetermined.
 pub const SPREAD: f64 = 1e3;
 
 /// The reduced model must fit within this fraction of the full objective.
 pub const TOLERANCE: f64 = 0.01;
+
+/// A determined link is merged only when the full model's improvement has
+/// at least this p-value in the F-test (not significant at 5 %).
+pub const SIGNIFICANCE: f64 = 0.05;
 
 /// A reduced model that fits as well.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -35,6 +51,9 @@ pub struct Reduction {
     pub objective: f64,
     /// `F_reduced / F_full − 1`.
     pub relative_objective: f64,
+    /// p-value of the F-test of the full model against the reduced one
+    /// (large: the extra mass and link do not improve the fit significantly).
+    pub p_value: f64,
 }
 
 /// How undetermined spring `j` (0-based) of `result` is: the interval's
@@ -79,7 +98,7 @@ fn retargeted(cases: &[LoadCase], j: usize) -> Vec<LoadCase> {
 pub(crate) type Refit<'a> =
     dyn Fn(&[LoadCase], &Settings) -> Result<Identification, IdentError> + 'a;
 
-/// The first reduced model that fits within [`TOLERANCE`], if any.
+/// The first reduced model that fits as well, if any (see the module).
 pub(crate) fn suggest(
     cases: &[LoadCase],
     result: &Identification,
@@ -89,46 +108,96 @@ pub(crate) fn suggest(
     if result.dof < 2 || settings.bounds.fixed.iter().any(Option::is_some) {
         return None;
     }
-    let mut candidates: Vec<(usize, f64)> = (0..result.dof - 1)
+    let mut undetermined: Vec<(usize, f64)> = (0..result.dof - 1)
         .filter_map(|j| spread(result, j).map(|s| (j, s)))
         .collect();
-    candidates.sort_by(|a, b| b.1.total_cmp(&a.1));
+    undetermined.sort_by(|a, b| b.1.total_cmp(&a.1));
     let lower = settings
         .bounds
         .lower
         .iter()
         .copied()
         .fold(f64::INFINITY, f64::min);
-    candidates.into_iter().find_map(|(j, _)| {
+    let merge = |j: usize| -> Option<Reduction> {
         let mut reduced = Settings::new(result.dof - 1, 1);
         reduced.bounds = Bounds::uniform(result.dof - 1, lower);
         reduced.start = Some(merged(&result.model, j));
         reduced.solver = settings.solver;
         let fit = refit(&retargeted(cases, j), &reduced).ok()?;
-        let relative = fit.objective / result.objective - 1.0;
-        (relative <= TOLERANCE).then(|| reduction(result, j, fit, relative))
+        Some(reduction(result, j, fit))
+    };
+    let loose = undetermined
+        .iter()
+        .filter_map(|&(j, _)| merge(j))
+        .find(|r| r.relative_objective <= TOLERANCE);
+    loose.or_else(|| {
+        let tried: Vec<usize> = undetermined.iter().map(|u| u.0).collect();
+        let j = best_merge(cases, result, &tried)?;
+        merge(j).filter(|r| r.relative_objective <= TOLERANCE && r.p_value >= SIGNIFICANCE)
     })
 }
 
-fn reduction(result: &Identification, j: usize, fit: Identification, relative: f64) -> Reduction {
+/// The link, not among `tried`, whose merged start fits `cases` best.
+fn best_merge(cases: &[LoadCase], result: &Identification, tried: &[usize]) -> Option<usize> {
+    let objective_of = |j: usize| -> Option<f64> {
+        let model = MsdModel::from_parameters(result.dof - 1, &merged(&result.model, j)).ok()?;
+        retargeted(cases, j).iter().try_fold(0.0, |sum, case| {
+            let simulated = case.simulate(&model).ok()?;
+            Some(sum + case.fit(&simulated).0)
+        })
+    };
+    (0..result.dof - 1)
+        .filter(|j| !tried.contains(j))
+        .filter_map(|j| objective_of(j).map(|f| (j, f)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(j, _)| j)
+}
+
+/// p-value of the extra-sum-of-squares F-test of the full model
+/// (`full`, q parameters, n residuals) against a reduced one with three
+/// parameters fewer (`reduced`); 1 when the reduced one fits as well.
+pub fn f_test(full: f64, reduced: f64, residuals: usize, parameters: usize) -> f64 {
+    let freedom = residuals.saturating_sub(parameters) as f64;
+    let statistic = ((reduced - full) / 3.0) / (full / freedom);
+    match FisherSnedecor::new(3.0, freedom.max(1.0)) {
+        Ok(f) if statistic > 0.0 && statistic.is_finite() => f.sf(statistic),
+        _ => 1.0,
+    }
+}
+
+fn reduction(result: &Identification, j: usize, fit: Identification) -> Reduction {
     let dof = result.dof;
     let i = 2 * dof - 1 + j;
     let name = parameter_name(dof, i);
+    let relative = fit.objective / result.objective - 1.0;
+    let p_value = f_test(
+        result.objective,
+        fit.objective,
+        result.residuals,
+        parameter_count(dof),
+    );
     let u = &result.uncertainty;
     let how = match (u.at_bound[i], u.ci95[i]) {
         (true, _) => format!(
-            "it is at its bound, {}",
+            "is not determined by the data (it is at its bound, {})",
             format_parameter(dof, i, result.model.springs()[j])
         ),
-        (false, Some([a, b])) => format!(
-            "its 95 % interval is {} .. {}",
+        (false, Some([a, b])) if b / a > SPREAD => format!(
+            "is not determined by the data (its 95 % interval is {} .. {})",
             format_parameter(dof, i, a),
             format_parameter(dof, i, b)
         ),
-        (false, None) => "it has no interval: the Jacobian does not determine it".into(),
+        (false, Some(_)) => format!(
+            "is not needed by the data (the fit with it is not significantly better: F-test p = {})",
+            format_number(p_value, 2)
+        ),
+        (false, None) => {
+            "is not determined by the data (it has no interval: the Jacobian does not determine it)"
+                .into()
+        }
     };
     let statement = format!(
-        "{name} is not determined by the data ({how}): m{} and m{} move as one. The {}-DOF model with m{} + m{} = {} fits within {} % of the objective ({} m² against {} m²): prefer the simpler model.",
+        "{name} {how}: m{} and m{} move as one. The {}-DOF model with m{} + m{} = {} fits within {} % of the objective ({} m² against {} m²): prefer the simpler model.",
         j + 1,
         j + 2,
         dof - 1,
@@ -145,5 +214,27 @@ fn reduction(result: &Identification, j: usize, fit: Identification, relative: f
         model: fit.model,
         objective: fit.objective,
         relative_objective: relative,
+        p_value,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::f_test;
+    use approx::assert_relative_eq;
+
+    /// p-values against scipy 1.17 `stats.f.sf(statistic, 3, n − q)`.
+    #[test]
+    fn the_f_test_agrees_with_scipy() {
+        // statistic = ((reduced − full)/3) / (full/(n − q)); full = 1
+        let p = |statistic: f64, freedom: usize| {
+            let reduced = 1.0 + 3.0 * statistic / freedom as f64;
+            f_test(1.0, reduced, freedom + 7, 7)
+        };
+        assert_relative_eq!(p(2.6, 1493), 0.05073185354500432, max_relative = 1e-9);
+        assert_relative_eq!(p(10.0, 50), 2.8522492497201697e-05, max_relative = 1e-9);
+        assert_relative_eq!(p(0.5, 3000), 0.6822991765666935, max_relative = 1e-9);
+        // a reduced model that fits as well (or better) is not worse at all
+        assert_relative_eq!(f_test(1.0, 0.999, 100, 7), 1.0);
     }
 }

@@ -217,6 +217,8 @@ fn nhtsa_two_dof_fit_and_the_dof_table() {
         other => panic!("reduction of {other:?}: {stdout}"),
     };
     assert!(reduction["relative_objective"].as_f64().unwrap() <= 0.01);
+    let p_value = reduction["p_value"].as_f64().unwrap();
+    assert!((0.0..=1.0).contains(&p_value), "F-test p = {p_value}");
     assert!(stdout.contains(&format!("{pair} move as one")), "{stdout}");
     // the DOF table never gets worse with a further mass: continuation
     let objective = |r: &serde_json::Value| r["objective"].as_f64().unwrap();
