@@ -174,8 +174,30 @@ impl DiscreteModel {
     }
 
     /// The output and sensitivity recursion on fixed-size arrays: N states,
-    /// Q propagated sensitivities (Q = N − 2 with a Jacobian, else 0).
+    /// Q propagated sensitivities (Q = N − 2 with a Jacobian, else 0),
+    /// compiled for the widest vector unit the processor has (pulp's
+    /// runtime dispatch: AVX-512, AVX2 or the x86-64 baseline); the sums
+    /// run in the same order on each, so every machine gives the same bits.
     fn output_fixed<const N: usize, const Q: usize>(
+        &self,
+        initial: &[f64],
+        force: &[f64],
+        output: usize,
+        y: &mut [f64],
+        jac: Option<&mut [f64]>,
+    ) {
+        pulp::Arch::new().dispatch(Recursion::<N, Q> {
+            model: self,
+            initial,
+            force,
+            output,
+            y,
+            jac,
+        });
+    }
+
+    #[inline(always)]
+    fn recursion_fixed<const N: usize, const Q: usize>(
         &self,
         initial: &[f64],
         force: &[f64],
@@ -184,22 +206,30 @@ impl DiscreteModel {
         mut jac: Option<&mut [f64]>,
     ) {
         let (phi, g0, g1) = self.fixed::<N>();
-        let column = |m: &[f64], c: usize| -> [f64; N] { std::array::from_fn(|r| m[c * N + r]) };
-        let dphi: [[[f64; N]; N]; Q] =
-            std::array::from_fn(|i| std::array::from_fn(|c| column(&self.dphi[i * N * N..], c)));
-        let dgamma: [[f64; N]; Q] =
-            std::array::from_fn(|i| std::array::from_fn(|r| self.dgamma[i * N + r]));
+        // dΦ by column c and row r, the Q parameters innermost: the update
+        // of one state for all parameters is one vector operation
+        let dphi: [[[f64; Q]; N]; N] = std::array::from_fn(|c| {
+            std::array::from_fn(|r| std::array::from_fn(|i| self.dphi[(i * N + c) * N + r]))
+        });
+        let dgamma: [[f64; Q]; N] =
+            std::array::from_fn(|r| std::array::from_fn(|i| self.dgamma[i * N + r]));
         let p = self.parameter_count();
         let mut x: [f64; N] = std::array::from_fn(|r| initial[r]);
-        let mut s = [[0.0; N]; Q];
+        // two buffers, used in turn: s[r][i] = ∂X_r/∂p_i
+        let mut buffers = [[[0.0; Q]; N]; 2];
         for (k, &f) in force.iter().enumerate() {
+            let (first, second) = buffers.split_at_mut(1);
+            let (s, next) = match k % 2 {
+                0 => (&first[0], &mut second[0]),
+                _ => (&second[0], &mut first[0]),
+            };
             y[k] = x[output];
             if let Some(jac) = jac.as_deref_mut() {
-                self.fill_row(s.as_flattened(), output, &mut jac[k * p..(k + 1) * p]);
+                self.fill_row(|q, r| s[r][q], output, &mut jac[k * p..(k + 1) * p]);
             }
             let Some(&f1) = force.get(k + 1) else { break };
-            for i in 0..Q {
-                s[i] = step_fixed(&phi, &dphi[i], &dgamma[i], &s[i], &x, f);
+            if Q > 0 {
+                step_fixed(&phi, &dphi, &dgamma, s, &x, f, next);
             }
             x = advance(&phi, &g0, g1.as_ref(), &x, f, f1);
         }
@@ -225,7 +255,7 @@ impl DiscreteModel {
         for (k, &f) in force.iter().enumerate() {
             y[k] = x[output];
             if let Some(jac) = jacobian.as_deref_mut() {
-                self.fill_row(s, output, &mut jac[k * p..(k + 1) * p]);
+                self.fill_row(|q, r| s[q * n + r], output, &mut jac[k * p..(k + 1) * p]);
             }
             let Some(&f1) = force.get(k + 1) else { break };
             if jacobian.is_some() {
@@ -254,20 +284,19 @@ impl DiscreteModel {
         }
     }
 
-    /// Writes one Jacobian row from the propagated sensitivities `s`
-    /// (N values each): their output entries, and each damper's
+    /// Writes one Jacobian row from the propagated sensitivities,
+    /// `entry(q, r) = ∂X_r/∂p_q`: their output entries, and each damper's
     /// `(c_j/k_j) ∂v_out/∂ln k_j`. Column 0 (m1) is left for
     /// [`DiscreteModel::mass_by_scaling`].
     #[inline(always)]
-    fn fill_row(&self, s: &[f64], output: usize, row: &mut [f64]) {
-        let n = self.order();
-        let dof = n / 2;
-        for (q, state) in s.chunks_exact(n).enumerate() {
+    fn fill_row(&self, entry: impl Fn(usize, usize) -> f64, output: usize, row: &mut [f64]) {
+        let dof = self.order() / 2;
+        for q in 0..self.propagated() {
             let column = if q + 1 < dof { q + 1 } else { q + dof };
-            row[column] = state[output];
+            row[column] = entry(q, output);
         }
         for (j, ratio) in self.ratios.iter().enumerate() {
-            row[dof + j] = ratio * s[(dof - 1 + j) * n + dof + output];
+            row[dof + j] = ratio * entry(dof - 1 + j, dof + output);
         }
     }
 
@@ -284,25 +313,65 @@ impl DiscreteModel {
     }
 }
 
-/// One sensitivity update `Φ s + dΦ x + dΓ f` on fixed-size arrays, Φ and
-/// dΦ by columns (the N rows are independent lanes).
+/// The arguments of [`DiscreteModel::output_fixed`], for pulp's dispatch:
+/// `with_simd` is inlined into the function compiled for the vector unit
+/// (a closure is not always, and then runs on the baseline).
+struct Recursion<'a, const N: usize, const Q: usize> {
+    model: &'a DiscreteModel,
+    initial: &'a [f64],
+    force: &'a [f64],
+    output: usize,
+    y: &'a mut [f64],
+    jac: Option<&'a mut [f64]>,
+}
+
+impl<const N: usize, const Q: usize> pulp::WithSimd for Recursion<'_, N, Q> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        let Recursion {
+            model,
+            initial,
+            force,
+            output,
+            y,
+            jac,
+        } = self;
+        model.recursion_fixed::<N, Q>(initial, force, output, y, jac);
+    }
+}
+
+/// One sensitivity update `out = Φ S + dΦ x + dΓ f` of all Q parameters on
+/// fixed-size arrays, Φ and dΦ by columns; the Q parameters of a state are
+/// independent lanes. Each entry sums in the same order as
+/// [`DiscreteModel::step_sensitivities`].
 #[inline(always)]
-fn step_fixed<const N: usize>(
+fn step_fixed<const N: usize, const Q: usize>(
     phi: &[[f64; N]; N],
-    dphi: &[[f64; N]; N],
-    dgamma: &[f64; N],
-    s: &[f64; N],
+    dphi: &[[[f64; Q]; N]; N],
+    dgamma: &[[f64; Q]; N],
+    s: &[[f64; Q]; N],
     x: &[f64; N],
     f: f64,
-) -> [f64; N] {
-    let mut next = dgamma.map(|g| g * f);
-    for c in 0..N {
-        let (sc, xc) = (s[c], x[c]);
-        for r in 0..N {
-            next[r] += phi[c][r] * sc + dphi[c][r] * xc;
+    out: &mut [[f64; Q]; N],
+) {
+    // plain loops: `array::from_fn` and `map` closures are not always
+    // inlined, and then run outside the vector unit pulp chose
+    for r in 0..N {
+        // one row for all parameters: Q accumulators held in registers
+        let mut next = [0.0; Q];
+        for i in 0..Q {
+            next[i] = dgamma[r][i] * f;
         }
+        for c in 0..N {
+            let (p, d, sc, xc) = (phi[c][r], &dphi[c][r], &s[c], x[c]);
+            for i in 0..Q {
+                next[i] += p * sc[i] + d[i] * xc;
+            }
+        }
+        out[r] = next;
     }
-    next
 }
 
 /// Whether `initial` ([x; v]) is a rigid motion: every displacement equal
