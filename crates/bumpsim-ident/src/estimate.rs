@@ -418,8 +418,7 @@ pub fn identify(
     progress: &(dyn Fn() + Sync),
 ) -> Result<Identification, IdentError> {
     let mut result = identify_only(cases, settings, progress)?;
-    let refit = |cases: &[LoadCase], s: &Settings| identify_only(cases, s, &|| {});
-    result.reduction = crate::reduce::suggest(cases, &result, settings, &refit);
+    result.reduction = crate::reduce::suggest(cases, &result, settings);
     if let Some(r) = &result.reduction {
         result.warnings.push(r.statement.clone());
     }
@@ -460,7 +459,7 @@ fn identify_only(
     let screen = |p: &[f64], n| solve(p, n, ftol.max(SCREEN_FTOL));
     let mut runs = staged(&points, limit, &screen, progress);
     let chosen = candidates(&mut runs);
-    polish(&mut runs, &chosen, &|p| solve(p, limit, ftol));
+    polish(&mut runs, &chosen, limit, &|p, n| solve(p, n, ftol));
     let freedom = objective.residual_count().saturating_sub(free.len());
     let starts = tally(&runs, freedom)?;
     let outcome = &runs[starts.best].outcome;

@@ -20,8 +20,7 @@
 //! start alone) the one run is polished: it ends as an unscreened run would.
 
 use crate::lm::Outcome;
-use crate::search::{Fate, Run, near};
-use rayon::prelude::*;
+use crate::search::{Fate, Run, near, race};
 
 /// The relative decrease of F that ends a screening run (the thesis's
 /// 1e-12 ends a polishing run).
@@ -67,21 +66,25 @@ pub(crate) fn candidates(runs: &mut [Run]) -> Vec<usize> {
     kept
 }
 
-/// Polishes the `chosen` runs with `solve`, in parallel; iterations and
-/// evaluations add up over both levels.
+/// Polishes the `chosen` runs with `solve(start, iterations)`, in
+/// parallel, up to `limit` iterations each, in [`crate::search::race`]'s
+/// chunks: a candidate that cannot catch up with the best polished
+/// objective is abandoned. Iterations and evaluations add up over both
+/// levels.
 pub(crate) fn polish(
     runs: &mut [Run],
     chosen: &[usize],
-    solve: &(dyn Fn(&[f64]) -> Outcome + Sync),
+    limit: usize,
+    solve: &(dyn Fn(&[f64], usize) -> Outcome + Sync),
 ) {
-    let polished: Vec<Outcome> = chosen
-        .par_iter()
-        .map(|&i| solve(&runs[i].outcome.parameters))
-        .collect();
-    for (&i, mut outcome) in chosen.iter().zip(polished) {
-        outcome.iterations += runs[i].outcome.iterations;
-        outcome.evaluations += runs[i].outcome.evaluations;
-        runs[i].outcome = outcome;
+    let mut polished: Vec<Run> = chosen.iter().map(|&i| runs[i].clone()).collect();
+    for run in &mut polished {
+        run.outcome.stop = crate::lm::Stop::Iterations;
+    }
+    let mut running: Vec<usize> = (0..polished.len()).collect();
+    race(&mut polished, &mut running, (limit, f64::INFINITY), solve);
+    for (&i, run) in chosen.iter().zip(polished) {
+        runs[i] = run;
     }
 }
 
@@ -92,8 +95,8 @@ mod tests {
     use crate::search::staged;
 
     /// A scripted solver on one parameter: minima at 0 (F = 1), 1 (F = 1.1)
-    /// and 5 (F = 100) reached at once; a slow valley near 7 (F = 5) that
-    /// needs more than the first stage; a hopeless start at 9 (F = 1000).
+    /// and 5 (F = 100) reached at once; a flat valley near 7 (F = 5) that
+    /// makes no progress in a chunk; a hopeless start at 9 (F = 1000).
     fn scripted(p: &[f64], iterations: usize) -> Outcome {
         let (at, objective, stop) = match p[0] {
             x if x < 0.5 => (0.0, 1.0, Stop::Objective),
@@ -126,15 +129,15 @@ mod tests {
         assert_eq!(finished.into_inner(), 7, "one progress call per start");
         assert_eq!(runs[6].fate, Fate::Abandoned); // 1000 > 10 × 1 after 200 iterations
         assert_eq!(runs[5].fate, Fate::Merged(4)); // 0.001 from a running start
-        assert_eq!(runs[4].outcome.iterations, 14); // two stages of the slow valley
+        // the flat valley: F = 5 after the first stage and no progress in its
+        // first chunk, so it cannot reach F = 1 in the iterations left
+        assert_eq!(runs[4].fate, Fate::Abandoned);
+        assert_eq!(runs[4].outcome.iterations, 14);
         let chosen = candidates(&mut runs);
         assert_eq!(chosen, vec![0, 2]); // F = 1 and 1.1 ≤ 1.2 × 1; 5 and 100 are not
         assert_eq!(runs[1].fate, Fate::Merged(0)); // 0.01 from the best
-        assert_eq!(
-            (runs[3].fate, runs[4].fate),
-            (Fate::Unpolished, Fate::Unpolished)
-        );
-        polish(&mut runs, &chosen, &|p| scripted(p, 1000));
+        assert_eq!(runs[3].fate, Fate::Unpolished);
+        polish(&mut runs, &chosen, 1000, &scripted);
         let starts = crate::estimate::tally(&runs, 1_000_000).unwrap();
         assert_eq!((starts.best, starts.total, starts.failed), (0, 7, 0));
         // starts 0 and 1 reached F = 1: 0 by its own run, 1 merged into it;
@@ -147,8 +150,59 @@ mod tests {
         );
         assert_eq!(
             (starts.abandoned, starts.merged, starts.unpolished),
-            (1, 2, 2)
+            (2, 2, 1)
         );
-        assert_eq!(starts.converged, 5);
+        assert_eq!(starts.converged, 4);
+    }
+
+    /// A run behind the leader but gaining fast enough to overtake it in
+    /// the iterations left is kept; a run creeping too slowly is abandoned.
+    #[test]
+    fn a_race_keeps_the_runs_that_can_still_overtake() {
+        use crate::search::{CHUNK, cannot_catch_up, race};
+        // parameter 0: F = 1 + 10 e^(−x/30), x the iterations run (fast);
+        // parameter 1: F = 10.9 − 1e-3 x (a flat valley)
+        let solve = |p: &[f64], n: usize| {
+            let x = p[0] + n as f64;
+            let objective = match p[1] {
+                0.0 => 1.0 + 10.0 * (-x / 30.0).exp(),
+                _ => 10.9 - 1e-3 * x,
+            };
+            Outcome {
+                parameters: vec![x, p[1]],
+                objective,
+                iterations: n,
+                evaluations: n,
+                stop: Stop::Iterations,
+            }
+        };
+        let run = |kind: f64, objective: f64| Run {
+            outcome: Outcome {
+                parameters: vec![0.0, kind],
+                objective,
+                iterations: 0,
+                evaluations: 0,
+                stop: Stop::Iterations,
+            },
+            fate: Fate::Finished,
+        };
+        // the leader (not running) at F = 2; both runners start at F = 11
+        let mut runs = vec![run(0.0, 2.0), run(0.0, 11.0), run(1.0, 11.0)];
+        let mut running = vec![1, 2];
+        race(&mut runs, &mut running, (3 * CHUNK, f64::INFINITY), &solve);
+        assert_eq!(runs[1].fate, Fate::Finished, "overtook the leader");
+        assert!(runs[1].outcome.objective < 2.0);
+        assert_eq!(runs[1].outcome.iterations, 3 * CHUNK);
+        assert_eq!(
+            runs[2].fate,
+            Fate::Abandoned,
+            "0.1 a chunk cannot close 8.8"
+        );
+        assert_eq!(runs[2].outcome.iterations, CHUNK);
+        // the rule itself, at twice the pace: 5 → 4.9 with 3 chunks left
+        // cannot reach 1; 5 → 4 can
+        assert!(cannot_catch_up(5.0, 4.9, 3.0, 1.0));
+        assert!(!cannot_catch_up(5.0, 4.0, 3.0, 1.0));
+        assert!(cannot_catch_up(5.0, 5.0, 1e9, 1.0)); // no progress at all
     }
 }

@@ -21,8 +21,10 @@
 //!
 //! The statement names the link's spring and the two masses, and gives
 //! both objectives and the test's p-value (reported for both kinds).
-use crate::case::LoadCase;
-use crate::estimate::{Bounds, IdentError, Identification, Settings};
+use crate::case::{LoadCase, Objective};
+use crate::estimate::{Bounds, Identification, Settings};
+use crate::lm;
+use crate::search::{Fate, Run, race};
 use bumpsim_core::model::{MsdModel, format_parameter, parameter_count, parameter_name};
 use bumpsim_core::units::{Dimension, format_number, format_quantity};
 use serde::Serialize;
@@ -94,16 +96,11 @@ fn retargeted(cases: &[LoadCase], j: usize) -> Vec<LoadCase> {
     cases
 }
 
-/// An identification without the search for a reduced model.
-pub(crate) type Refit<'a> =
-    dyn Fn(&[LoadCase], &Settings) -> Result<Identification, IdentError> + 'a;
-
 /// The first reduced model that fits as well, if any (see the module).
 pub(crate) fn suggest(
     cases: &[LoadCase],
     result: &Identification,
     settings: &Settings,
-    refit: &Refit<'_>,
 ) -> Option<Reduction> {
     if result.dof < 2 || settings.bounds.fixed.iter().any(Option::is_some) {
         return None;
@@ -118,23 +115,70 @@ pub(crate) fn suggest(
         .iter()
         .copied()
         .fold(f64::INFINITY, f64::min);
-    let merge = |j: usize| -> Option<Reduction> {
-        let mut reduced = Settings::new(result.dof - 1, 1);
-        reduced.bounds = Bounds::uniform(result.dof - 1, lower);
-        reduced.start = Some(merged(&result.model, j));
-        reduced.solver = settings.solver;
-        let fit = refit(&retargeted(cases, j), &reduced).ok()?;
-        Some(reduction(result, j, fit))
+    let merge = |j: usize, target: f64| -> Option<Reduction> {
+        let reduced = Refit {
+            dof: result.dof - 1,
+            cases: &retargeted(cases, j),
+            start: &merged(&result.model, j),
+            bounds: &Bounds::uniform(result.dof - 1, lower),
+            solver: &settings.solver,
+        };
+        let (model, objective) = reduced.run(target)?;
+        Some(reduction(result, j, model, objective))
     };
-    let loose = undetermined
-        .iter()
-        .filter_map(|&(j, _)| merge(j))
-        .find(|r| r.relative_objective <= TOLERANCE);
-    loose.or_else(|| {
+    let loose = result.objective * (1.0 + TOLERANCE);
+    let found = undetermined.iter().find_map(|&(j, _)| merge(j, loose));
+    found.or_else(|| {
         let tried: Vec<usize> = undetermined.iter().map(|u| u.0).collect();
         let j = best_merge(cases, result, &tried)?;
-        merge(j).filter(|r| r.relative_objective <= TOLERANCE && r.p_value >= SIGNIFICANCE)
+        let freedom = result.residuals.saturating_sub(parameter_count(result.dof));
+        let insignificant = result.objective * (1.0 + 3.0 * f_critical(freedom) / freedom as f64);
+        merge(j, loose.min(insignificant)).filter(|r| r.p_value >= SIGNIFICANCE)
     })
+}
+
+/// One refit of a reduced model from a start, SI, all parameters free.
+struct Refit<'a> {
+    dof: usize,
+    cases: &'a [LoadCase],
+    start: &'a [f64],
+    bounds: &'a Bounds,
+    solver: &'a lm::Settings,
+}
+
+impl Refit<'_> {
+    /// The refitted model and its objective (m²) when it ends at or below
+    /// `target` (m²); given up, in [`crate::search::race`]'s chunks, as soon
+    /// as it cannot get there.
+    fn run(&self, target: f64) -> Option<(MsdModel, f64)> {
+        let objective = Objective::new(self.cases, self.dof, &[]);
+        let log = |v: &[f64]| -> Vec<f64> { v.iter().map(|x| x.ln()).collect() };
+        let (lower, upper) = (log(&self.bounds.lower), log(&self.bounds.upper));
+        let solve = |p: &[f64], iterations: usize| {
+            let settings = lm::Settings {
+                max_iterations: iterations,
+                ..*self.solver
+            };
+            lm::minimise(&objective, p, &lower, &upper, &settings)
+        };
+        let mut runs = vec![Run::start(log(self.start))];
+        race(
+            &mut runs,
+            &mut vec![0],
+            (self.solver.max_iterations, target),
+            &solve,
+        );
+        let outcome = &runs[0].outcome;
+        let reached = runs[0].fate == Fate::Finished && outcome.objective <= target;
+        reached.then(|| Some((objective.model(&outcome.parameters)?, outcome.objective)))?
+    }
+}
+
+/// The F(3, `freedom`) quantile a 5 % test compares with.
+fn f_critical(freedom: usize) -> f64 {
+    FisherSnedecor::new(3.0, freedom.max(1) as f64)
+        .map(|f| f.inverse_cdf(1.0 - SIGNIFICANCE))
+        .unwrap_or(f64::INFINITY)
 }
 
 /// The link, not among `tried`, whose merged start fits `cases` best.
@@ -165,14 +209,14 @@ pub fn f_test(full: f64, reduced: f64, residuals: usize, parameters: usize) -> f
     }
 }
 
-fn reduction(result: &Identification, j: usize, fit: Identification) -> Reduction {
+fn reduction(result: &Identification, j: usize, model: MsdModel, objective: f64) -> Reduction {
     let dof = result.dof;
     let i = 2 * dof - 1 + j;
     let name = parameter_name(dof, i);
-    let relative = fit.objective / result.objective - 1.0;
+    let relative = objective / result.objective - 1.0;
     let p_value = f_test(
         result.objective,
-        fit.objective,
+        objective,
         result.residuals,
         parameter_count(dof),
     );
@@ -203,16 +247,16 @@ fn reduction(result: &Identification, j: usize, fit: Identification) -> Reductio
         dof - 1,
         j + 1,
         j + 2,
-        format_quantity(fit.model.masses()[j], Dimension::Mass),
+        format_quantity(model.masses()[j], Dimension::Mass),
         format_number(100.0 * relative.max(0.0), 3),
-        format_number(fit.objective, 5),
+        format_number(objective, 5),
         format_number(result.objective, 5),
     );
     Reduction {
         parameter: name,
         statement,
-        model: fit.model,
-        objective: fit.objective,
+        model,
+        objective,
         relative_objective: relative,
         p_value,
     }

@@ -24,9 +24,13 @@
 //! (the best objective of any start so far) is abandoned, and a start
 //! within [`MERGE_DISTANCE`] of a better running start is merged into it
 //! (it would follow the same path). The rest run on to the iteration
-//! limit. Stages run in parallel; every decision is taken in start order
-//! from the stage's results, so the result is the same on any number of
-//! threads. [`crate::polish`] then clusters and polishes the screened optima.
+//! limit in chunks of [`CHUNK`] iterations; after each, a start that could
+//! not reach the incumbent in the iterations left even at the pace of its
+//! last chunk is abandoned too (a run creeping along a flat valley only
+//! slows down). Stages run in parallel; every decision is taken in start
+//! order from the stage's results, so the result is the same on any number
+//! of threads. [`crate::polish`] then clusters and polishes the screened
+//! optima, in the same chunks with the same rule.
 
 use crate::case::VALID_RANGE;
 use crate::lm::{Outcome, Stop};
@@ -139,6 +143,29 @@ fn unit(rng: &mut ChaCha8Rng) -> f64 {
 /// the iteration limit and abandons nothing.
 pub const STAGES: [(usize, f64); 1] = [(200, 10.0)];
 
+/// A run is given this many times the pace of its last chunk
+/// ([`cannot_catch_up`]).
+pub const PACE_MARGIN: f64 = 2.0;
+
+/// After the first stage, running starts advance in chunks of this many
+/// iterations, each followed by [`cannot_catch_up`]'s test.
+pub const CHUNK: usize = 100;
+
+/// Whether a run whose objective went from `before` to `after` in its last
+/// chunk stays above `incumbent` after `chunks_left` more chunks at
+/// [`PACE_MARGIN`] times that pace. LM's decrease along a valley mostly
+/// slows; the margin is for the runs that speed up again.
+///
+/// ```
+/// use bumpsim_ident::search::cannot_catch_up;
+/// assert!(cannot_catch_up(5.0, 4.9, 3.0, 1.0)); // 0.2 a chunk, 3 chunks: 4.3 > 1
+/// assert!(!cannot_catch_up(5.0, 4.0, 3.0, 1.0)); // 2 a chunk can get there
+/// ```
+pub fn cannot_catch_up(before: f64, after: f64, chunks_left: f64, incumbent: f64) -> bool {
+    let pace = (before - after).max(0.0);
+    after - PACE_MARGIN * pace * chunks_left > incumbent
+}
+
 /// Two running starts closer than this in every log parameter (≈ 1 %)
 /// are one: the worse is merged into the better and shares its fate.
 pub const MERGE_DISTANCE: f64 = 0.01;
@@ -165,6 +192,22 @@ pub(crate) struct Run {
     pub fate: Fate,
 }
 
+impl Run {
+    /// A run not yet started at `parameters` (log).
+    pub(crate) fn start(parameters: Vec<f64>) -> Run {
+        Run {
+            outcome: Outcome {
+                parameters,
+                objective: f64::INFINITY,
+                iterations: 0,
+                evaluations: 0,
+                stop: Stop::Iterations,
+            },
+            fate: Fate::Finished,
+        }
+    }
+}
+
 /// Runs every start in stages ([`STAGES`]): after each, starts still
 /// running are abandoned when their objective exceeds the stage's factor
 /// times the incumbent, and merged into a better running start within
@@ -176,19 +219,7 @@ pub(crate) fn staged(
     solve: &(dyn Fn(&[f64], usize) -> Outcome + Sync),
     progress: &(dyn Fn() + Sync),
 ) -> Vec<Run> {
-    let mut runs: Vec<Run> = points
-        .iter()
-        .map(|p| Run {
-            outcome: Outcome {
-                parameters: p.clone(),
-                objective: f64::INFINITY,
-                iterations: 0,
-                evaluations: 0,
-                stop: Stop::Iterations,
-            },
-            fate: Fate::Finished,
-        })
-        .collect();
+    let mut runs: Vec<Run> = points.iter().map(|p| Run::start(p.clone())).collect();
     let mut running: Vec<usize> = (0..points.len()).collect();
     let mut used = 0;
     for &(length, factor) in &STAGES {
@@ -202,9 +233,47 @@ pub(crate) fn staged(
             return runs;
         }
     }
-    advance(&mut runs, &running, max_iterations - used, solve);
-    running.iter().for_each(|_| progress());
+    let before = running.len();
+    let budget = (max_iterations - used, f64::INFINITY);
+    race(&mut runs, &mut running, budget, solve);
+    (0..before).for_each(|_| progress());
     runs
+}
+
+/// Advances the `running` runs in chunks of [`CHUNK`] up to `budget`
+/// iterations, abandoning after each chunk those that cannot catch up with
+/// the best objective of all `runs`, or with `target` when that is lower
+/// ([`cannot_catch_up`]); the rest run until their solver stops.
+pub(crate) fn race(
+    runs: &mut [Run],
+    running: &mut Vec<usize>,
+    (budget, target): (usize, f64),
+    solve: &(dyn Fn(&[f64], usize) -> Outcome + Sync),
+) {
+    let mut used = 0;
+    while !running.is_empty() && used < budget {
+        let length = CHUNK.min(budget - used);
+        let before: Vec<f64> = running.iter().map(|&i| runs[i].outcome.objective).collect();
+        advance(runs, running, length, solve);
+        used += length;
+        let incumbent = runs
+            .iter()
+            .map(|r| r.outcome.objective)
+            .fold(target, f64::min);
+        let chunks_left = (budget - used) as f64 / CHUNK as f64;
+        let mut kept = Vec::with_capacity(running.len());
+        for (&i, before) in running.iter().zip(before) {
+            let outcome = &runs[i].outcome;
+            if outcome.stop != Stop::Iterations || used >= budget {
+                continue;
+            }
+            match cannot_catch_up(before, outcome.objective, chunks_left, incumbent) {
+                true => runs[i].fate = Fate::Abandoned,
+                false => kept.push(i),
+            }
+        }
+        *running = kept;
+    }
 }
 
 /// Runs the `running` starts `length` iterations further, in parallel.
