@@ -15,7 +15,7 @@ use crate::lm::LeastSquares;
 use bumpsim_core::discrete::{DiscreteModel, DiscretiseError, Method};
 use bumpsim_core::model::{MsdModel, parameter_count};
 use bumpsim_core::sensitivity::OutputError;
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DMatrixView, DVector, DVectorView};
 use std::sync::Mutex;
 
 /// Why a load case or parameter set is not usable.
@@ -265,20 +265,18 @@ impl<'a> Objective<'a> {
     }
 }
 
-impl LeastSquares for Objective<'_> {
-    fn residual_count(&self) -> usize {
-        self.residuals
-    }
-
-    fn parameter_count(&self) -> usize {
-        self.free.len()
-    }
-
-    fn evaluate(
+impl Objective<'_> {
+    /// Simulates every case at the free log parameters `p`, writing the
+    /// residuals; with `sensitivities`, hands each case's window to
+    /// `window(first residual, Jacobian rows, residuals)`: the rows
+    /// row-major, one column per parameter of the full set (thesis order).
+    /// False when the model cannot be evaluated.
+    fn simulate(
         &self,
         p: &[f64],
         residuals: &mut [f64],
-        mut jacobian: Option<&mut DMatrix<f64>>,
+        sensitivities: bool,
+        window: &mut Window<'_>,
     ) -> bool {
         let Some(model) = self.model(p) else {
             return false;
@@ -290,7 +288,7 @@ impl LeastSquares for Objective<'_> {
         let mut cached: Option<(f64, DiscreteModel)> = None;
         for case in self.cases {
             if cached.as_ref().is_none_or(|(step, _)| *step != case.step) {
-                let d = match jacobian.is_some() {
+                let d = match sensitivities {
                     true => DiscreteModel::with_sensitivities(&model, case.step),
                     false => DiscreteModel::new(&model, Method::Zoh, case.step),
                 };
@@ -302,7 +300,7 @@ impl LeastSquares for Objective<'_> {
             };
             // nothing after the window enters the objective
             let n = case.window.1 + 1;
-            let jac = jacobian.is_some().then_some(&mut b.jac[..n * full]);
+            let jac = sensitivities.then_some(&mut b.jac[..n * full]);
             let (positions, velocities) = b.initial.split_at_mut(self.dof);
             positions.fill(0.0);
             velocities.fill(case.initial_velocity);
@@ -319,15 +317,93 @@ impl LeastSquares for Objective<'_> {
             }
             let (a, z) = case.window;
             for k in a..=z {
-                residuals[row] = b.y[k] - case.measured[k];
-                if let Some(j) = jacobian.as_deref_mut() {
-                    for (col, &i) in self.free.iter().enumerate() {
-                        j[(row, col)] = b.jac[k * full + i];
-                    }
-                }
-                row += 1;
+                residuals[row + k - a] = b.y[k] - case.measured[k];
             }
+            let next = row + z - a + 1;
+            if sensitivities {
+                window(row, &b.jac[a * full..(z + 1) * full], &residuals[row..next]);
+            }
+            row = next;
         }
         residuals.iter().all(|r| r.is_finite())
+    }
+}
+
+/// What [`Objective::simulate`] hands each case's window to: its first
+/// residual's index, its Jacobian rows (row-major, full parameter set) and
+/// its residuals.
+type Window<'a> = dyn FnMut(usize, &[f64], &[f64]) + 'a;
+
+/// Adds `Σ_k j_k j_kᵀ` and `Σ_k j_k r_k` over row-major Jacobian `rows`
+/// (`p` columns) to `jtj` (p × p) and `gradient`: the rows read in place as
+/// `Jᵀ` (column-major p × m) and as `J` (strided), one matrix product.
+fn accumulate(
+    rows: &[f64],
+    residuals: &[f64],
+    jtj: &mut DMatrix<f64>,
+    gradient: &mut DVector<f64>,
+) {
+    let (p, m) = (jtj.nrows(), residuals.len());
+    let transposed = DMatrixView::from_slice(rows, p, m);
+    let jacobian = DMatrixView::from_slice_with_strides(rows, m, p, p, 1);
+    jtj.gemm(1.0, &transposed, &jacobian, 1.0);
+    gradient.gemv(
+        1.0,
+        &transposed,
+        &DVectorView::from_slice(residuals, m),
+        1.0,
+    );
+}
+
+impl LeastSquares for Objective<'_> {
+    fn residual_count(&self) -> usize {
+        self.residuals
+    }
+
+    fn parameter_count(&self) -> usize {
+        self.free.len()
+    }
+
+    fn evaluate(
+        &self,
+        p: &[f64],
+        residuals: &mut [f64],
+        jacobian: Option<&mut DMatrix<f64>>,
+    ) -> bool {
+        let full = parameter_count(self.dof);
+        match jacobian {
+            None => self.simulate(p, residuals, false, &mut |_, _, _| {}),
+            Some(j) => self.simulate(p, residuals, true, &mut |first, rows, _| {
+                for (k, row) in rows.chunks_exact(full).enumerate() {
+                    for (col, &i) in self.free.iter().enumerate() {
+                        j[(first + k, col)] = row[i];
+                    }
+                }
+            }),
+        }
+    }
+
+    /// The normal equations accumulated case by case from the Jacobian rows
+    /// of the recursion, without an m × n Jacobian (issue 19: forming and
+    /// multiplying it was a fifth of an identification's time).
+    fn normal(
+        &self,
+        p: &[f64],
+        residuals: &mut [f64],
+        jtj: &mut DMatrix<f64>,
+        gradient: &mut DVector<f64>,
+    ) -> bool {
+        let full = parameter_count(self.dof);
+        let (mut sums, mut g) = (DMatrix::zeros(full, full), DVector::zeros(full));
+        let ok = self.simulate(p, residuals, true, &mut |_, rows, r| {
+            accumulate(rows, r, &mut sums, &mut g);
+        });
+        for (a, &i) in self.free.iter().enumerate() {
+            gradient[a] = g[i];
+            for (b, &j) in self.free.iter().enumerate() {
+                jtj[(a, b)] = sums[(i, j)];
+            }
+        }
+        ok
     }
 }

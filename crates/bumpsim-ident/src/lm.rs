@@ -35,6 +35,26 @@ pub trait LeastSquares {
         residuals: &mut [f64],
         jacobian: Option<&mut DMatrix<f64>>,
     ) -> bool;
+
+    /// Writes the residuals and the normal equations of a Gauss–Newton
+    /// step: `JᵀJ` (n × n) and `Jᵀr` (n), all LM needs of the Jacobian.
+    /// The default forms them from [`LeastSquares::evaluate`]'s Jacobian;
+    /// a problem with many residuals can accumulate them without storing J.
+    fn normal(
+        &self,
+        p: &[f64],
+        residuals: &mut [f64],
+        jtj: &mut DMatrix<f64>,
+        gradient: &mut DVector<f64>,
+    ) -> bool {
+        let mut jacobian = DMatrix::zeros(self.residual_count(), self.parameter_count());
+        if !self.evaluate(p, residuals, Some(&mut jacobian)) {
+            return false;
+        }
+        *jtj = jacobian.transpose() * &jacobian;
+        *gradient = jacobian.transpose() * DVector::from_column_slice(residuals);
+        true
+    }
 }
 
 /// Tolerances and limits.
@@ -116,7 +136,8 @@ pub struct Outcome {
 struct State {
     p: Vec<f64>,
     r: Vec<f64>,
-    jac: DMatrix<f64>,
+    jtj: DMatrix<f64>,
+    g: DVector<f64>,
     cost: f64,
 }
 
@@ -134,11 +155,12 @@ pub fn minimise(
     let mut s = State {
         p: clamp(start),
         r: vec![0.0; m],
-        jac: DMatrix::zeros(m, n),
+        jtj: DMatrix::zeros(n, n),
+        g: DVector::zeros(n),
         cost: f64::INFINITY,
     };
     let mut evaluations = 1;
-    let ok = problem.evaluate(&s.p, &mut s.r, Some(&mut s.jac));
+    let ok = problem.normal(&s.p, &mut s.r, &mut s.jtj, &mut s.g);
     s.cost = s.r.iter().map(|v| v * v).sum();
     if !ok || !s.cost.is_finite() {
         return Outcome {
@@ -152,8 +174,7 @@ pub fn minimise(
     let (mut lambda, mut nu) = (-1.0, 2.0);
     let mut trial_r = vec![0.0; m];
     for iteration in 0..settings.max_iterations {
-        let jtj = s.jac.transpose() * &s.jac;
-        let g = s.jac.transpose() * DVector::from_column_slice(&s.r);
+        let (jtj, g) = (&s.jtj, &s.g);
         let free: Vec<usize> = (0..n)
             .filter(|&i| !held(i, &s.p, g[i], lower, upper))
             .collect();
@@ -166,7 +187,7 @@ pub fn minimise(
         }
         let mut accepted = None;
         for _ in 0..60 {
-            let Some(delta) = solve(&jtj, &g, &free, lambda) else {
+            let Some(delta) = solve(jtj, g, &free, lambda) else {
                 (lambda, nu) = (lambda * nu, nu * 2.0);
                 continue;
             };
@@ -175,7 +196,7 @@ pub fn minimise(
             evaluations += 1;
             let ok = problem.evaluate(&trial, &mut trial_r, None);
             let cost: f64 = trial_r.iter().map(|v| v * v).sum();
-            let predicted = -(2.0 * g.dot(&step) + step.dot(&(&jtj * &step)));
+            let predicted = -(2.0 * g.dot(&step) + step.dot(&(jtj * &step)));
             let rho = (s.cost - cost) / predicted;
             if ok && cost.is_finite() && cost < s.cost && rho > 0.0 {
                 lambda *= (1.0_f64 / 3.0).max(1.0 - (2.0 * rho - 1.0).powi(3));
@@ -192,7 +213,7 @@ pub fn minimise(
         let directional = (2.0 * g.dot(&step)).abs();
         s.p = trial;
         evaluations += 1;
-        let ok = problem.evaluate(&s.p, &mut s.r, Some(&mut s.jac));
+        let ok = problem.normal(&s.p, &mut s.r, &mut s.jtj, &mut s.g);
         s.cost = cost;
         if !ok {
             return finish(s, iteration + 1, evaluations, Stop::NoProgress);
