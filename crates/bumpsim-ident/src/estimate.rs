@@ -11,7 +11,7 @@
 use crate::case::{CaseError, LoadCase, Objective, VALID_RANGE};
 use crate::lm::{self, LeastSquares, Outcome, Stop};
 use crate::polish::{SCREEN_FTOL, candidates, polish};
-use crate::search::{Fate, Run, representative, staged, starting_points};
+use crate::search::{Fate, Goal, Run, representative, staged, starting_points};
 use crate::stats::{Uncertainty, uncertainty};
 use bumpsim_core::model::{MsdModel, ParameterKind, parameter_count, parameter_kind};
 use serde::Serialize;
@@ -457,10 +457,16 @@ fn identify_only(
     };
     let (limit, ftol) = (settings.solver.max_iterations, settings.solver.ftol);
     let screen = |p: &[f64], n| solve(p, n, ftol.max(SCREEN_FTOL));
-    let mut runs = staged(&points, limit, &screen, progress);
-    let chosen = candidates(&mut runs);
-    polish(&mut runs, &chosen, limit, &|p, n| solve(p, n, ftol));
     let freedom = objective.residual_count().saturating_sub(free.len());
+    // a run is raced for the best fit: within one noise variance of the best
+    let goal = Goal {
+        iterations: limit,
+        target: f64::INFINITY,
+        within: 1.0 / freedom.max(1) as f64,
+    };
+    let mut runs = staged(&points, goal, &screen, progress);
+    let chosen = candidates(&mut runs);
+    polish(&mut runs, &chosen, goal, &|p, n| solve(p, n, ftol));
     let starts = tally(&runs, freedom)?;
     let outcome = &runs[starts.best].outcome;
     let mut result = summarise(

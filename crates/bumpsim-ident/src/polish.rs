@@ -20,7 +20,7 @@
 //! start alone) the one run is polished: it ends as an unscreened run would.
 
 use crate::lm::Outcome;
-use crate::search::{Fate, Run, near, race};
+use crate::search::{Fate, Goal, Run, near, race};
 
 /// The relative decrease of F that ends a screening run (the thesis's
 /// 1e-12 ends a polishing run).
@@ -67,14 +67,14 @@ pub(crate) fn candidates(runs: &mut [Run]) -> Vec<usize> {
 }
 
 /// Polishes the `chosen` runs with `solve(start, iterations)`, in
-/// parallel, up to `limit` iterations each, in [`crate::search::race`]'s
+/// parallel, up to the goal's iterations each, in [`crate::search::race`]'s
 /// chunks: a candidate that cannot catch up with the best polished
 /// objective is abandoned. Iterations and evaluations add up over both
 /// levels.
 pub(crate) fn polish(
     runs: &mut [Run],
     chosen: &[usize],
-    limit: usize,
+    goal: Goal,
     solve: &(dyn Fn(&[f64], usize) -> Outcome + Sync),
 ) {
     let mut polished: Vec<Run> = chosen.iter().map(|&i| runs[i].clone()).collect();
@@ -82,7 +82,7 @@ pub(crate) fn polish(
         run.outcome.stop = crate::lm::Stop::Iterations;
     }
     let mut running: Vec<usize> = (0..polished.len()).collect();
-    race(&mut polished, &mut running, (limit, f64::INFINITY), solve);
+    race(&mut polished, &mut running, goal, solve);
     for (&i, run) in chosen.iter().zip(polished) {
         runs[i] = run;
     }
@@ -125,7 +125,12 @@ mod tests {
         let progress = || {
             finished.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         };
-        let mut runs = staged(&points, 1000, &scripted, &progress);
+        let goal = Goal {
+            iterations: 1000,
+            target: f64::INFINITY,
+            within: 0.0,
+        };
+        let mut runs = staged(&points, goal, &scripted, &progress);
         assert_eq!(finished.into_inner(), 7, "one progress call per start");
         assert_eq!(runs[6].fate, Fate::Abandoned); // 1000 > 10 × 1 after 200 iterations
         assert_eq!(runs[5].fate, Fate::Merged(4)); // 0.001 from a running start
@@ -137,7 +142,7 @@ mod tests {
         assert_eq!(chosen, vec![0, 2]); // F = 1 and 1.1 ≤ 1.2 × 1; 5 and 100 are not
         assert_eq!(runs[1].fate, Fate::Merged(0)); // 0.01 from the best
         assert_eq!(runs[3].fate, Fate::Unpolished);
-        polish(&mut runs, &chosen, 1000, &scripted);
+        polish(&mut runs, &chosen, goal, &scripted);
         let starts = crate::estimate::tally(&runs, 1_000_000).unwrap();
         assert_eq!((starts.best, starts.total, starts.failed), (0, 7, 0));
         // starts 0 and 1 reached F = 1: 0 by its own run, 1 merged into it;
@@ -159,7 +164,7 @@ mod tests {
     /// the iterations left is kept; a run creeping too slowly is abandoned.
     #[test]
     fn a_race_keeps_the_runs_that_can_still_overtake() {
-        use crate::search::{CHUNK, cannot_catch_up, race};
+        use crate::search::{CHUNK, Goal, cannot_catch_up, race};
         // parameter 0: F = 1 + 10 e^(−x/30), x the iterations run (fast);
         // parameter 1: F = 10.9 − 1e-3 x (a flat valley)
         let solve = |p: &[f64], n: usize| {
@@ -189,7 +194,12 @@ mod tests {
         // the leader (not running) at F = 2; both runners start at F = 11
         let mut runs = vec![run(0.0, 2.0), run(0.0, 11.0), run(1.0, 11.0)];
         let mut running = vec![1, 2];
-        race(&mut runs, &mut running, (3 * CHUNK, f64::INFINITY), &solve);
+        let goal = Goal {
+            iterations: 3 * CHUNK,
+            target: f64::INFINITY,
+            within: 0.0,
+        };
+        race(&mut runs, &mut running, goal, &solve);
         assert_eq!(runs[1].fate, Fate::Finished, "overtook the leader");
         assert!(runs[1].outcome.objective < 2.0);
         assert_eq!(runs[1].outcome.iterations, 3 * CHUNK);

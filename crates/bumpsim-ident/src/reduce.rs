@@ -24,7 +24,7 @@
 use crate::case::{LoadCase, Objective};
 use crate::estimate::{Bounds, Identification, Settings};
 use crate::lm;
-use crate::search::{Fate, Run, race};
+use crate::search::{Fate, Goal, Run, race};
 use bumpsim_core::model::{MsdModel, format_parameter, parameter_count, parameter_name};
 use bumpsim_core::units::{Dimension, format_number, format_quantity};
 use serde::Serialize;
@@ -162,12 +162,12 @@ impl Refit<'_> {
             lm::minimise(&objective, p, &lower, &upper, &settings)
         };
         let mut runs = vec![Run::start(log(self.start))];
-        race(
-            &mut runs,
-            &mut vec![0],
-            (self.solver.max_iterations, target),
-            &solve,
-        );
+        let goal = Goal {
+            iterations: self.solver.max_iterations,
+            target,
+            within: 0.0,
+        };
+        race(&mut runs, &mut vec![0], goal, &solve);
         let outcome = &runs[0].outcome;
         let reached = runs[0].fate == Fate::Finished && outcome.objective <= target;
         reached.then(|| Some((objective.model(&outcome.parameters)?, outcome.objective)))?

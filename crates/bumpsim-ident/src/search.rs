@@ -215,10 +215,11 @@ impl Run {
 /// run in parallel, decisions in start order (the same on any thread count).
 pub(crate) fn staged(
     points: &[Vec<f64>],
-    max_iterations: usize,
+    goal: Goal,
     solve: &(dyn Fn(&[f64], usize) -> Outcome + Sync),
     progress: &(dyn Fn() + Sync),
 ) -> Vec<Run> {
+    let max_iterations = goal.iterations;
     let mut runs: Vec<Run> = points.iter().map(|p| Run::start(p.clone())).collect();
     let mut running: Vec<usize> = (0..points.len()).collect();
     let mut used = 0;
@@ -234,32 +235,50 @@ pub(crate) fn staged(
         }
     }
     let before = running.len();
-    let budget = (max_iterations - used, f64::INFINITY);
-    race(&mut runs, &mut running, budget, solve);
+    let rest = Goal {
+        iterations: max_iterations - used,
+        ..goal
+    };
+    race(&mut runs, &mut running, rest, solve);
     (0..before).for_each(|_| progress());
     runs
 }
 
-/// Advances the `running` runs in chunks of [`CHUNK`] up to `budget`
+/// What a race runs for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Goal {
+    /// Iterations each run may take.
+    pub iterations: usize,
+    /// An objective to reach whatever the runs do (∞: none).
+    pub target: f64,
+    /// A run is kept while it can reach `(1 + within)` times the best
+    /// objective: `1/(n − q)`, one noise variance, for a search (a run that
+    /// ends there reaches the best fit, [`crate::estimate::Starts`]).
+    pub within: f64,
+}
+
+/// Advances the `running` runs in chunks of [`CHUNK`] up to the goal's
 /// iterations, abandoning after each chunk those that cannot catch up with
-/// the best objective of all `runs`, or with `target` when that is lower
-/// ([`cannot_catch_up`]); the rest run until their solver stops.
+/// the best objective of all `runs` (within the goal's tolerance), or with
+/// its target when that is lower ([`cannot_catch_up`]); the rest run until
+/// their solver stops.
 pub(crate) fn race(
     runs: &mut [Run],
     running: &mut Vec<usize>,
-    (budget, target): (usize, f64),
+    goal: Goal,
     solve: &(dyn Fn(&[f64], usize) -> Outcome + Sync),
 ) {
-    let mut used = 0;
+    let (budget, mut used) = (goal.iterations, 0);
     while !running.is_empty() && used < budget {
         let length = CHUNK.min(budget - used);
         let before: Vec<f64> = running.iter().map(|&i| runs[i].outcome.objective).collect();
         advance(runs, running, length, solve);
         used += length;
-        let incumbent = runs
+        let best = runs
             .iter()
             .map(|r| r.outcome.objective)
-            .fold(target, f64::min);
+            .fold(f64::INFINITY, f64::min);
+        let incumbent = goal.target.min(best * (1.0 + goal.within));
         let chunks_left = (budget - used) as f64 / CHUNK as f64;
         let mut kept = Vec::with_capacity(running.len());
         for (&i, before) in running.iter().zip(before) {
