@@ -23,7 +23,7 @@
 //! both objectives and the test's p-value (reported for both kinds).
 use crate::case::{LoadCase, Objective};
 use crate::estimate::{Bounds, Identification, Settings};
-use crate::lm;
+use crate::lm::{self, LeastSquares};
 use crate::search::{Fate, Goal, Run, race};
 use bumpsim_core::model::{MsdModel, format_parameter, parameter_count, parameter_name};
 use bumpsim_core::units::{Dimension, format_number, format_quantity};
@@ -161,7 +161,13 @@ impl Refit<'_> {
             };
             lm::minimise(&objective, p, &lower, &upper, &settings)
         };
-        let mut runs = vec![Run::start(log(self.start))];
+        // the start's objective, so that the first chunk already has a pace
+        let mut start = Run::start(log(self.start));
+        let mut residuals = vec![0.0; objective.residual_count()];
+        if objective.evaluate(&start.outcome.parameters, &mut residuals, None) {
+            start.outcome.objective = residuals.iter().map(|r| r * r).sum();
+        }
+        let mut runs = vec![start];
         let goal = Goal {
             iterations: self.solver.max_iterations,
             target,
