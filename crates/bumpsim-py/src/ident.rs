@@ -314,8 +314,8 @@ impl Identification {
     fn warnings(&self) -> Vec<String> {
         self.result.warnings.clone()
     }
-    /// The simpler model that fits as well when a spring is undetermined
-    /// (the JSON's `reduction`), or None.
+    /// The simpler model that fits as well, when a spring is undetermined or
+    /// a link is not needed by the F-test (the JSON's `reduction`), or None.
     #[getter]
     fn reduction<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         from_json(py, &self.result.reduction)

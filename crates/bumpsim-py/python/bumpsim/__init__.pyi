@@ -230,9 +230,10 @@ class Identification:
     """Wall-clock time, s."""
     warnings: list[str]
     reduction: Optional[dict[str, Any]]
-    """The simpler model that fits as well when a spring is undetermined:
-    parameter, statement, model (masses, dampers, springs; SI), objective (m²),
-    relative_objective; None otherwise."""
+    """The simpler model that fits as well (an undetermined spring, or a link
+    the data do not need by the F-test): parameter, statement, model (masses,
+    dampers, springs; SI), objective (m²), relative_objective, p_value; None
+    otherwise."""
     notes: list[str]
     def to_json(self) -> str:
         """The result as ``bumpsim identify --json`` writes it."""
