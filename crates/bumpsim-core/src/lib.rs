@@ -12,6 +12,8 @@
 //! - [`discrete`]: zoh, foh and taylor1 discretisations and the update loop
 //!   (Φ and Γ of the exact holds from one balanced exponential);
 //! - [`sensitivity`]: one output and its exact parameter sensitivities;
+//! - [`modal`]: the same zoh output and sensitivities in modal coordinates
+//!   (identification's fast form);
 //! - [`energy`]: exact per-step energy integrals;
 //! - [`simulate`]: responses with forces and energies.
 //!
@@ -27,6 +29,7 @@ pub mod channel;
 pub mod discrete;
 pub mod energy;
 mod exponential;
+pub mod modal;
 pub mod model;
 pub mod sensitivity;
 pub mod series;

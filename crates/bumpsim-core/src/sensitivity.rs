@@ -47,7 +47,7 @@
 use crate::discrete::{DiscreteModel, advance, advance_dynamic};
 
 /// A buffer or initial state that does not fit [`DiscreteModel::output`].
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum OutputError {
     /// A buffer of the wrong length, or an index out of range.
@@ -59,6 +59,12 @@ pub enum OutputError {
         found: usize,
         /// The length needed (or one past the largest index).
         expected: usize,
+    },
+    /// A sample interval that is not positive and finite.
+    #[error("output: sample interval {step} s must be positive and finite")]
+    Step {
+        /// The interval given, s.
+        step: f64,
     },
     /// The Jacobian was asked for from an initial state that is not a rigid
     /// motion of the chain.

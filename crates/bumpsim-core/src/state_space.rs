@@ -122,6 +122,43 @@ pub struct ModeError {
     pub size: usize,
 }
 
+/// The system matrix of the relative coordinates `u_j = x_j − x_(j+1)`,
+/// state `[u; u']` (2(n−1) × 2(n−1)), which excludes the free chain's
+/// rigid-body pair exactly:
+///
+/// ```text
+/// u'' = −R (D_k u + D_c u') + (f/m1) e1,   R = L M⁻¹ Lᵀ
+/// ```
+///
+/// (L: the (n−1) × n difference matrix; R tridiagonal, symmetric positive
+/// definite: `R_jj = 1/m_j + 1/m_(j+1)`, `R_j,j+1 = −1/m_(j+1)`).
+pub(crate) fn relative_system(model: &MsdModel) -> DMatrix<f64> {
+    let links = model.dof() - 1;
+    let m = model.masses();
+    let mut reduced = DMatrix::zeros(2 * links, 2 * links);
+    reduced
+        .view_mut((0, links), (links, links))
+        .fill_with_identity();
+    for i in 0..links {
+        for j in i.saturating_sub(1)..(i + 2).min(links) {
+            let r = relative_inverse_mass(m, i, j);
+            reduced[(links + i, j)] = -r * model.springs()[j];
+            reduced[(links + i, links + j)] = -r * model.dampers()[j];
+        }
+    }
+    reduced
+}
+
+/// Entry (i, j) of `R = L M⁻¹ Lᵀ` of [`relative_system`]: tridiagonal,
+/// `R_ii = 1/m_i + 1/m_(i+1)`, `R_i,i±1 = −1/m_shared`.
+pub(crate) fn relative_inverse_mass(m: &[f64], i: usize, j: usize) -> f64 {
+    match i.abs_diff(j) {
+        0 => 1.0 / m[i] + 1.0 / m[i + 1],
+        1 => -1.0 / m[i.max(j)],
+        _ => 0.0,
+    }
+}
+
 /// The elastic modes of a model (rigid-body pair excluded), sorted by |λ|.
 ///
 /// The free chain's double eigenvalue 0 is a Jordan block that slows or
@@ -138,23 +175,7 @@ pub fn elastic_modes(model: &MsdModel) -> Result<Vec<Mode>, ModeError> {
     if links == 0 {
         return Ok(Vec::new());
     }
-    let m = model.masses();
-    let mut reduced = DMatrix::zeros(2 * links, 2 * links);
-    reduced
-        .view_mut((0, links), (links, links))
-        .fill_with_identity();
-    for i in 0..links {
-        for j in 0..links {
-            // R = L M⁻¹ Lᵀ is tridiagonal: R_ii = 1/m_i + 1/m_(i+1), R_i,i±1 = −1/m_shared
-            let r = match i.abs_diff(j) {
-                0 => 1.0 / m[i] + 1.0 / m[i + 1],
-                1 => -1.0 / m[i.max(j)],
-                _ => 0.0,
-            };
-            reduced[(links + i, j)] = -r * model.springs()[j];
-            reduced[(links + i, links + j)] = -r * model.dampers()[j];
-        }
-    }
+    let reduced = relative_system(model);
     let size = 2 * links;
     let schur = nalgebra::linalg::Schur::try_new(reduced, f64::EPSILON, 10_000)
         .ok_or(ModeError { size })?;

@@ -8,10 +8,14 @@
 //!
 //! [`Objective`] evaluates the residuals and their exact Jacobian with
 //! respect to the free log parameters. Simulation, prediction and the
-//! Jacobian all run core's one zoh discretisation
-//! ([`DiscreteModel`], [`bumpsim_core::sensitivity`]).
+//! Jacobian all run core's one zoh discretisation: the state-space
+//! recursion ([`DiscreteModel`], [`bumpsim_core::sensitivity`]), or inside
+//! the identification's iterations its modal form
+//! ([`bumpsim_core::modal`], [`modal`]) where that is precise enough.
 
 use crate::lm::LeastSquares;
+
+mod modal;
 use bumpsim_core::discrete::{DiscreteModel, DiscretiseError, Method};
 use bumpsim_core::model::{MsdModel, parameter_count};
 use bumpsim_core::sensitivity::OutputError;
@@ -209,6 +213,8 @@ pub struct Objective<'a> {
     free: Vec<usize>,
     residuals: usize,
     buffers: Mutex<Buffers>,
+    /// The modal forms of the last point ([`modal`]).
+    modal: Mutex<modal::Cache>,
 }
 
 impl<'a> Objective<'a> {
@@ -237,6 +243,7 @@ impl<'a> Objective<'a> {
             free,
             residuals,
             buffers: Mutex::new(buffers),
+            modal: Mutex::new(modal::Cache::default()),
         }
     }
 
@@ -371,6 +378,9 @@ impl LeastSquares for Objective<'_> {
         jacobian: Option<&mut DMatrix<f64>>,
     ) -> bool {
         let full = parameter_count(self.dof);
+        if jacobian.is_none() {
+            return self.residuals(p, residuals);
+        }
         match jacobian {
             None => self.simulate(p, residuals, false, &mut |_, _, _| {}),
             Some(j) => self.simulate(p, residuals, true, &mut |first, rows, _| {
@@ -383,9 +393,9 @@ impl LeastSquares for Objective<'_> {
         }
     }
 
-    /// The normal equations accumulated case by case from the Jacobian rows
-    /// of the recursion, without an m × n Jacobian (issue 19: forming and
-    /// multiplying it was a fifth of an identification's time).
+    /// The normal equations of all parameters ([`modal`]: by the modal form
+    /// where it is precise enough, else by the state-space recursion, case
+    /// by case from its Jacobian rows), then those of the free ones.
     fn normal(
         &self,
         p: &[f64],
@@ -395,9 +405,7 @@ impl LeastSquares for Objective<'_> {
     ) -> bool {
         let full = parameter_count(self.dof);
         let (mut sums, mut g) = (DMatrix::zeros(full, full), DVector::zeros(full));
-        let ok = self.simulate(p, residuals, true, &mut |_, rows, r| {
-            accumulate(rows, r, &mut sums, &mut g);
-        });
+        let ok = self.normal_equations(p, residuals, &mut sums, &mut g);
         for (a, &i) in self.free.iter().enumerate() {
             gradient[a] = g[i];
             for (b, &j) in self.free.iter().enumerate() {
