@@ -11,7 +11,9 @@
 use crate::case::{CaseError, LoadCase, Objective, VALID_RANGE};
 use crate::lm::{self, LeastSquares, Outcome, Stop};
 use crate::polish::{SCREEN_FTOL, candidates, polish};
-use crate::search::{Fate, Goal, Run, representative, staged, starting_points};
+use crate::search::{
+    Fate, Goal, ROUND, Run, around, exploring, representative, staged, starting_points,
+};
 use crate::stats::{Uncertainty, uncertainty};
 use bumpsim_core::model::{MsdModel, ParameterKind, parameter_count, parameter_kind};
 use serde::Serialize;
@@ -112,6 +114,11 @@ pub struct Settings {
     /// Further given starts (e.g. [`Settings::continue_from`]), SI, thesis
     /// order; they replace random starts, the total stays `starts`.
     pub seeds: Vec<Vec<f64>>,
+    /// For each seed (by index; missing: none), the link (0-based) that
+    /// joins the two halves of a mass split by [`Settings::continue_from`]:
+    /// random starts around that seed draw this link over its whole range
+    /// ([`crate::search`]).
+    pub split_links: Vec<Option<usize>>,
     /// Solver tolerances.
     pub solver: lm::Settings,
 }
@@ -126,6 +133,7 @@ impl Settings {
             seed: 1,
             start: None,
             seeds: Vec::new(),
+            split_links: Vec::new(),
             solver: lm::Settings::default(),
         }
     }
@@ -136,6 +144,8 @@ impl Settings {
     pub fn continue_from(&mut self, previous: &MsdModel) {
         if previous.dof() + 1 == self.dof {
             self.seeds = crate::search::continuation_starts(previous);
+            // seed j splits mass j: link j joins the halves
+            self.split_links = (0..self.seeds.len()).map(Some).collect();
         }
     }
 }
@@ -187,6 +197,10 @@ pub struct Starts {
     /// Starts whose screened optimum was too far above the best to be
     /// polished ([`crate::polish`]).
     pub unpolished: usize,
+    /// Starts drawn around the best screened optimum of the others (the
+    /// search's second level, [`crate::search::REFINED`]); they are among
+    /// `total`.
+    pub refined: usize,
     /// Index of the best start (0 = the user's or the data start).
     pub best: usize,
 }
@@ -355,6 +369,15 @@ fn check(cases: &[LoadCase], settings: &Settings) -> Result<(), IdentError> {
     settings.bounds.check(settings.dof)
 }
 
+/// The outcome of the best finished run with a finite objective.
+fn best_run(runs: &[Run]) -> Option<Outcome> {
+    runs.iter()
+        .filter(|r| r.fate == Fate::Finished && r.outcome.objective.is_finite())
+        .map(|r| &r.outcome)
+        .min_by(|a, b| a.objective.total_cmp(&b.objective))
+        .cloned()
+}
+
 /// The start statistics of staged runs; an error when every start failed.
 /// `freedom` is n − q (residuals less free parameters): one noise variance
 /// of the best fit is `F_best / freedom`.
@@ -404,6 +427,7 @@ pub(crate) fn tally(runs: &[Run], freedom: usize) -> Result<Starts, IdentError> 
         abandoned: fate(|f| *f == Fate::Abandoned),
         merged: fate(|f| matches!(f, Fate::Merged(_))),
         unpolished: fate(|f| *f == Fate::Unpolished),
+        refined: 0,
         best,
     })
 }
@@ -445,7 +469,9 @@ fn identify_only(
         .collect();
     let data = data_start(cases, settings.dof);
     let fixed = (&settings.start, data.as_slice(), settings.seeds.as_slice());
-    let points = starting_points(settings.starts, settings.seed, fixed, &free);
+    let given = usize::from(settings.start.is_some()) + 1 + settings.seeds.len();
+    let first = exploring(settings.starts, given);
+    let mut points = starting_points(first, settings.seed, fixed, &settings.split_links, &free);
     let solve = |start: &[f64], iterations: usize, ftol: f64| {
         let objective = Objective::new(cases, settings.dof, &settings.bounds.fixed);
         let solver = lm::Settings {
@@ -465,9 +491,35 @@ fn identify_only(
         within: 1.0 / freedom.max(1) as f64,
     };
     let mut runs = staged(&points, goal, &screen, progress);
+    let mut refined = settings.starts.max(1) - points.len();
+    // the second level, in rounds: around the best screened optimum so far,
+    // each start raced for its fit
+    while let Some(best) = best_run(&runs).filter(|_| refined > 0) {
+        let round = refined.min(ROUND);
+        let more = around(&best.parameters, round, settings.seed, points.len());
+        let within = Goal {
+            target: best.objective * (1.0 + goal.within),
+            ..goal
+        };
+        let offset = runs.len();
+        let full = |p: &[f64], n| solve(p, n, ftol);
+        runs.extend(
+            staged(&more, within, &full, progress)
+                .into_iter()
+                .map(|mut run| {
+                    if let Fate::Merged(j) = run.fate {
+                        run.fate = Fate::Merged(j + offset);
+                    }
+                    run
+                }),
+        );
+        points.extend(more);
+        refined -= round;
+    }
     let chosen = candidates(&mut runs);
     polish(&mut runs, &chosen, goal, &|p, n| solve(p, n, ftol));
-    let starts = tally(&runs, freedom)?;
+    let mut starts = tally(&runs, freedom)?;
+    starts.refined = points.len() - first;
     let outcome = &runs[starts.best].outcome;
     let mut result = summarise(
         cases, settings, &objective, outcome, starts, &lower, &upper, clock,

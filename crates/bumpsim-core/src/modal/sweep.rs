@@ -1,5 +1,5 @@
 //! The runs of [`super::ModalForm`] on fixed-size arrays (the per-sample
-//! kernels are [`super::kernels`]'), and the estimate of how precisely a
+//! kernels are in `modal::kernels`), and the estimate of how precisely a
 //! run's results come out of their modal terms.
 
 use super::kernels::{Lane, Projection, Recursion, Tiles};

@@ -11,7 +11,7 @@
 //! Jacobian all run core's one zoh discretisation: the state-space
 //! recursion ([`DiscreteModel`], [`bumpsim_core::sensitivity`]), or inside
 //! the identification's iterations its modal form
-//! ([`bumpsim_core::modal`], [`modal`]) where that is precise enough.
+//! ([`bumpsim_core::modal`], `case::modal`) where that is precise enough.
 
 use crate::lm::LeastSquares;
 
@@ -213,7 +213,7 @@ pub struct Objective<'a> {
     free: Vec<usize>,
     residuals: usize,
     buffers: Mutex<Buffers>,
-    /// The modal forms of the last point ([`modal`]).
+    /// The modal forms of the last point (`case::modal`).
     modal: Mutex<modal::Cache>,
 }
 
@@ -393,7 +393,7 @@ impl LeastSquares for Objective<'_> {
         }
     }
 
-    /// The normal equations of all parameters ([`modal`]: by the modal form
+    /// The normal equations of all parameters (`case::modal`: by the modal form
     /// where it is precise enough, else by the state-space recursion, case
     /// by case from its Jacobian rows), then those of the free ones.
     fn normal(
