@@ -10,7 +10,7 @@
 
 use crate::case::{CaseError, LoadCase, Objective, VALID_RANGE};
 use crate::lm::{self, LeastSquares, Outcome, Stop};
-use crate::polish::{SCREEN_FTOL, candidates, polish};
+use crate::polish::{REFINE_FTOL, SCREEN_FTOL, candidates, polish};
 use crate::search::{
     Fate, Goal, ROUND, Run, around, exploring, representative, staged, starting_points,
 };
@@ -502,9 +502,9 @@ fn identify_only(
             ..goal
         };
         let offset = runs.len();
-        let full = |p: &[f64], n| solve(p, n, ftol);
+        let refine = |p: &[f64], n| solve(p, n, ftol.max(REFINE_FTOL));
         runs.extend(
-            staged(&more, within, &full, progress)
+            staged(&more, within, &refine, progress)
                 .into_iter()
                 .map(|mut run| {
                     if let Fate::Merged(j) = run.fate {

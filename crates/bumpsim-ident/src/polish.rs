@@ -26,6 +26,13 @@ use crate::search::{Fate, Goal, Run, near, race};
 /// 1e-12 ends a polishing run).
 pub const SCREEN_FTOL: f64 = 1e-6;
 
+/// The relative decrease of F that ends a refining run of the search's
+/// second level ([`crate::search`]): a run drawn next to the best creeps
+/// along its valley, and at [`SCREEN_FTOL`] it would stop about 1 % above
+/// the minimum it is in, short of the best fit it reaches at this
+/// tolerance. Its optimum is polished afterwards like any other.
+pub const REFINE_FTOL: f64 = 1e-9;
+
 /// Screened optima up to this factor above the best are polished.
 pub const POLISH_FACTOR: f64 = 1.2;
 

@@ -24,6 +24,7 @@
 use crate::case::{LoadCase, Objective};
 use crate::estimate::{Bounds, Identification, Settings};
 use crate::lm::{self, LeastSquares};
+use crate::polish::SCREEN_FTOL;
 use crate::search::{Fate, Goal, Run, race};
 use bumpsim_core::model::{MsdModel, format_parameter, parameter_count, parameter_name};
 use bumpsim_core::units::{Dimension, format_number, format_quantity};
@@ -149,14 +150,18 @@ struct Refit<'a> {
 impl Refit<'_> {
     /// The refitted model and its objective (m²) when it ends at or below
     /// `target` (m²); given up, in [`crate::search::race`]'s chunks, as soon
-    /// as it cannot get there.
+    /// as it cannot get there. The race runs at the screening tolerance
+    /// ([`crate::polish::SCREEN_FTOL`]: whether a merge fits within a
+    /// percent does not need the thesis's 1e-12); a refit that gets there
+    /// is then polished at the solver's tolerances.
     fn run(&self, target: f64) -> Option<(MsdModel, f64)> {
         let objective = Objective::new(self.cases, self.dof, &[]);
         let log = |v: &[f64]| -> Vec<f64> { v.iter().map(|x| x.ln()).collect() };
         let (lower, upper) = (log(&self.bounds.lower), log(&self.bounds.upper));
-        let solve = |p: &[f64], iterations: usize| {
+        let solve = |p: &[f64], iterations: usize, ftol: f64| {
             let settings = lm::Settings {
                 max_iterations: iterations,
+                ftol,
                 ..*self.solver
             };
             lm::minimise(&objective, p, &lower, &upper, &settings)
@@ -173,10 +178,22 @@ impl Refit<'_> {
             target,
             within: 0.0,
         };
-        race(&mut runs, &mut vec![0], goal, &solve);
-        let outcome = &runs[0].outcome;
-        let reached = runs[0].fate == Fate::Finished && outcome.objective <= target;
-        reached.then(|| Some((objective.model(&outcome.parameters)?, outcome.objective)))?
+        let screen = self.solver.ftol.max(SCREEN_FTOL);
+        race(&mut runs, &mut vec![0], goal, &|p, n| solve(p, n, screen));
+        let screened = &runs[0].outcome;
+        if runs[0].fate != Fate::Finished || screened.objective > target {
+            return None;
+        }
+        let left = self
+            .solver
+            .max_iterations
+            .saturating_sub(screened.iterations);
+        let polished = solve(&screened.parameters, left.max(1), self.solver.ftol);
+        let outcome = match polished.objective <= screened.objective {
+            true => &polished,
+            false => screened,
+        };
+        Some((objective.model(&outcome.parameters)?, outcome.objective))
     }
 }
 

@@ -4,7 +4,7 @@
 //! random ones (below), at least [`MIN_EXPLORING`] and half of all. The
 //! second *refines*, in rounds of [`ROUND`]: each round's starts are drawn
 //! within [`REFINE_SPREAD`] of the best screened optimum found so far and
-//! run at the full tolerances, raced for its fit (abandoned when they
+//! run at [`crate::polish::REFINE_FTOL`], raced for its fit (abandoned when they
 //! cannot come within one noise variance of it). A deeper minimum found by
 //! a round becomes the next round's centre, so the best is either
 //! confirmed by many starts or improved upon; on ten synthetic 5-DOF

@@ -54,14 +54,16 @@ pub fn case_lines(result: &Identification) -> String {
         .collect()
 }
 
-/// The start statistics: run, converged, reached the best fit (within the
-/// noise) and the best objective (to 1e-6), and by how many runs of their
-/// own; abandoned, not polished, failed; the best start's iterations; time.
+/// The start statistics: run (and refined around the best), converged,
+/// reached the best fit (within the noise) and the best objective (to
+/// 1e-6), and by how many runs of their own; abandoned, not polished,
+/// failed; the best start's iterations; time.
 pub fn starts_line(result: &Identification) -> String {
     let s = &result.starts;
     format!(
-        "starts: {} run, {} converged, {} reached the best fit (F within one noise variance; {} by their own run), {} the best objective to 1e-6 ({} by their own polished run), {} abandoned, {} not polished, {} failed; {} iterations; {}",
+        "starts: {} run ({} of them around the best so far), {} converged, {} reached the best fit (F within one noise variance; {} by their own run), {} the best objective to 1e-6 ({} by their own polished run), {} abandoned, {} not polished, {} failed; {} iterations; {}",
         s.total,
+        s.refined,
         s.converged,
         s.reached_best_fit,
         s.reached_best_fit_alone,

@@ -299,7 +299,7 @@ impl Identification {
     }
     /// Start statistics (total, converged, failed, reached_best_fit,
     /// reached_best_fit_alone, reached_best, reached_best_alone, abandoned,
-    /// merged, unpolished, best).
+    /// merged, unpolished, refined, best).
     #[getter]
     fn starts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         from_json(py, &self.result.starts)
