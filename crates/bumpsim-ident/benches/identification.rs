@@ -1,4 +1,6 @@
-//! Criterion benchmarks of identification: one Jacobian evaluation, a single
+//! Criterion benchmarks of identification: one Jacobian evaluation (the
+//! state-space recursion, as the statistics take it), the normal equations
+//! and the residuals (the modal form, as LM takes them), a single
 //! start and the 32-start 3-DOF identification on three 500-sample load
 //! cases, and the issue-19 DOF table (1..5 DOF, 32 starts each, continuation
 //! from each model to the next) on those cases and on the bundled
@@ -71,6 +73,26 @@ fn benches(c: &mut Criterion) {
     let mut jac = DMatrix::zeros(objective.residual_count(), 7);
     c.bench_function("jacobian 3-DOF, 3 x 500 samples", |b| {
         b.iter(|| objective.evaluate(black_box(&p), &mut r, Some(&mut jac)))
+    });
+    // what LM takes per iteration: residuals and JᵀJ, Jᵀr (the modal form);
+    // two points in turn, so that each call makes its modal form (the
+    // objective keeps the last point's)
+    let (mut jtj, mut g) = (DMatrix::zeros(7, 7), nalgebra::DVector::zeros(7));
+    let q: Vec<f64> = p.iter().map(|v| v + 1e-3).collect();
+    let mut turn = false;
+    c.bench_function("normal equations 3-DOF, 3 x 500 samples", |b| {
+        b.iter(|| {
+            turn = !turn;
+            let point = if turn { &p } else { &q };
+            objective.normal(black_box(point), &mut r, &mut jtj, &mut g)
+        })
+    });
+    c.bench_function("residuals 3-DOF, 3 x 500 samples", |b| {
+        b.iter(|| {
+            turn = !turn;
+            let point = if turn { &p } else { &q };
+            objective.evaluate(black_box(point), &mut r, None)
+        })
     });
     let mut group = c.benchmark_group("identify 3-DOF, 3 x 500 samples");
     group.sample_size(10);
