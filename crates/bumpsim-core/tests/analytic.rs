@@ -318,22 +318,7 @@ fn collect_rust_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) 
     }
 }
 
-/// Whether python3 can import `module`; a skip with a message when not,
-/// a failure when `BUMPSIM_REQUIRE_PEERS` is set (scripts/test sets it).
-fn python_available(module: &str) -> bool {
-    let ok = std::process::Command::new("python3")
-        .args(["-c", &format!("import {module}")])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !ok {
-        assert!(
-            std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_none(),
-            "BUMPSIM_REQUIRE_PEERS is set but python3 cannot import {module}"
-        );
-        eprintln!("SKIPPED: python3 with {module} not found (scripts/test installs it)");
-    }
-    ok
-}
+use bumpsim_peers::python_available;
 
 /// Both evaluations of the zoh-sampled model, the modal form
 /// (`ModalForm::simulate`) and the state-space recursion

@@ -69,20 +69,7 @@ fn paper_c_table_4_from_the_published_coefficients() {
     assert!(outside.warnings[0].contains("Kax = 27000 is outside the design region 21210..25684"));
 }
 
-fn python_available(module: &str) -> bool {
-    let ok = Command::new("python3")
-        .args(["-c", &format!("import {module}")])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !ok {
-        assert!(
-            std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_none(),
-            "BUMPSIM_REQUIRE_PEERS is set but python3 cannot import {module}"
-        );
-        eprintln!("SKIPPED: python3 with {module} not found (scripts/test installs it)");
-    }
-    ok
-}
+use bumpsim_peers::python_available;
 
 fn close(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-8 * b.abs().max(1e-12)

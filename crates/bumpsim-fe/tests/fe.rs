@@ -13,18 +13,7 @@ fn root() -> PathBuf {
 }
 
 fn ccx() -> bool {
-    let found = std::process::Command::new("sh")
-        .args(["-c", "command -v ccx"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !found {
-        assert!(
-            std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_none(),
-            "ccx is required (BUMPSIM_REQUIRE_PEERS) but not on PATH"
-        );
-        eprintln!("skipped: ccx (calculix-ccx) is not on PATH");
-    }
-    found
+    bumpsim_peers::peer_available("ccx (calculix-ccx)", "sh", &["-c", "command -v ccx"])
 }
 
 /// The bundled example's synthetic 3-DOF car.

@@ -352,22 +352,7 @@ fn oblique_flat_hit_has_the_line_of_action_on_the_struck_side() {
     assert!(r.peak_yaw_rate > 0.0, "hit on the left, turns left");
 }
 
-/// Whether an independent tool answers `program args`; with
-/// `BUMPSIM_REQUIRE_PEERS` set its absence is a failure, otherwise a skip.
-fn peer_available(what: &str, program: &str, args: &[&str]) -> bool {
-    let found = Command::new(program)
-        .args(args)
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !found {
-        assert!(
-            std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_none(),
-            "BUMPSIM_REQUIRE_PEERS is set but {what} is not available"
-        );
-        eprintln!("skipped: {what} not found (scripts/test installs it)");
-    }
-    found
-}
+use bumpsim_peers::peer_available;
 
 fn scipy_available() -> bool {
     peer_available("python3 with scipy", "python3", &["-c", "import scipy"])

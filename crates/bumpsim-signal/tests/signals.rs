@@ -114,17 +114,7 @@ fn cfc_equals_the_standard_difference_equation_inside_the_signal() {
 }
 
 fn scipy_available() -> bool {
-    let ok = Command::new("python3")
-        .args(["-c", "import scipy"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !ok && std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_some() {
-        panic!("BUMPSIM_REQUIRE_PEERS is set but python3 with scipy is not available");
-    }
-    if !ok {
-        eprintln!("SKIPPED: python3 with scipy not found (run scripts/test to install it)");
-    }
-    ok
+    bumpsim_peers::python_available("scipy")
 }
 
 fn scipy_filtfilt(x: &[f64], order: usize, cutoff: f64, padlen: usize) -> Vec<f64> {

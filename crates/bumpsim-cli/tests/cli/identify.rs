@@ -80,13 +80,7 @@ fn chromium() -> Option<PathBuf> {
         .into_iter()
         .map(PathBuf::from)
         .find(|p| p.exists());
-    if found.is_none() {
-        assert!(
-            std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_none(),
-            "BUMPSIM_REQUIRE_PEERS is set but chromium is not installed"
-        );
-        eprintln!("skipped: chromium not found (scripts/test installs it)");
-    }
+    bumpsim_peers::present(found.is_some(), "chromium");
     found
 }
 

@@ -102,20 +102,4 @@ pub fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
     )
 }
 
-/// Whether an independent tool answers `program args` successfully; with
-/// `BUMPSIM_REQUIRE_PEERS` set (as scripts/test does) its absence fails the
-/// test, otherwise the test is skipped with a message naming `what`.
-pub fn peer_available(what: &str, program: &str, args: &[&str]) -> bool {
-    let found = Command::new(program)
-        .args(args)
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !found {
-        assert!(
-            std::env::var_os("BUMPSIM_REQUIRE_PEERS").is_none(),
-            "BUMPSIM_REQUIRE_PEERS is set but {what} is not available"
-        );
-        eprintln!("skipped: {what} not found (scripts/test installs it)");
-    }
-    found
-}
+pub use bumpsim_peers::peer_available;

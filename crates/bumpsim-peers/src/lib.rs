@@ -1,0 +1,93 @@
+//! Test support shared by every crate's integration tests: whether an
+//! independent peer tool is on this machine.
+//!
+//! bumpsim's tests check its numbers against tools written by others
+//! (scipy, statsmodels, mpmath, pyisomme, ansys-dyna-core, CalculiX `ccx`,
+//! chromium, Slurm). On a developer's machine without them such a test is
+//! skipped with a message naming the missing tool; `scripts/test` installs
+//! them all and sets `BUMPSIM_REQUIRE_PEERS`, under which a missing peer
+//! fails the test instead, so that CI can never pass by skipping.
+//!
+//! ```
+//! // `true` answers, so this is `true` whatever BUMPSIM_REQUIRE_PEERS says.
+//! assert!(bumpsim_peers::peer_available("true", "true", &[]));
+//! ```
+
+use std::process::Command;
+
+/// The environment variable under which a missing peer fails the test.
+pub const REQUIRE: &str = "BUMPSIM_REQUIRE_PEERS";
+
+/// Whether an independent tool answers `program args` successfully; when it
+/// does not, a skip message naming `what`, or a panic when
+/// [`REQUIRE`] is set.
+pub fn peer_available(what: &str, program: &str, args: &[&str]) -> bool {
+    let found = Command::new(program)
+        .args(args)
+        .output()
+        .is_ok_and(|o| o.status.success());
+    present(found, what)
+}
+
+/// Whether `python3` can import `module` (see [`peer_available`]).
+pub fn python_available(module: &str) -> bool {
+    let import = format!("import {module}");
+    peer_available(
+        &format!("python3 with {module}"),
+        "python3",
+        &["-c", &import],
+    )
+}
+
+/// Passes `found` through; when it is `false`, prints the skip message for
+/// `what`, or panics when [`REQUIRE`] is set.
+pub fn present(found: bool, what: &str) -> bool {
+    if !found {
+        assert!(
+            std::env::var_os(REQUIRE).is_none(),
+            "{REQUIRE} is set but {what} is not available"
+        );
+        eprintln!("skipped: {what} not found (scripts/test installs it)");
+    }
+    found
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_program_that_succeeds_is_available() {
+        assert!(peer_available("sh", "sh", &["-c", "exit 0"]));
+    }
+
+    #[test]
+    fn a_failing_or_missing_program_is_not_available_without_require() {
+        if std::env::var_os(REQUIRE).is_some() {
+            return; // under REQUIRE these would (rightly) panic
+        }
+        assert!(!peer_available("sh", "sh", &["-c", "exit 3"]));
+        assert!(!peer_available("nothing", "/nonexistent/program", &[]));
+    }
+
+    #[test]
+    fn a_missing_peer_fails_under_require() {
+        // A child process, so that this test's environment is untouched.
+        let me = std::env::current_exe().expect("test binary path");
+        let out = Command::new(me)
+            .args(["--exact", "tests::missing_peer_probe", "--ignored"])
+            .env(REQUIRE, "1")
+            .output()
+            .expect("run the test binary");
+        assert!(
+            !out.status.success(),
+            "the probe must panic under {REQUIRE}"
+        );
+    }
+
+    #[test]
+    #[ignore = "run by a_missing_peer_fails_under_require with the variable set"]
+    fn missing_peer_probe() {
+        peer_available("nothing", "/nonexistent/program", &[]);
+    }
+}
