@@ -80,6 +80,26 @@ pub enum OutputError {
     },
 }
 
+impl OutputError {
+    /// `Ok` when `ok`, else the [`OutputError::Buffer`] naming `buffer` with
+    /// the length `found` and the one `expected`.
+    pub(crate) fn fits(
+        buffer: &'static str,
+        found: usize,
+        expected: usize,
+        ok: bool,
+    ) -> Result<(), Self> {
+        match ok {
+            true => Ok(()),
+            false => Err(Self::Buffer {
+                buffer,
+                found,
+                expected,
+            }),
+        }
+    }
+}
+
 impl DiscreteModel {
     /// Scratch length [`DiscreteModel::output`] needs: `(q + 2) N` for the
     /// q propagated sensitivities.
@@ -141,14 +161,7 @@ impl DiscreteModel {
     ) -> Result<(), OutputError> {
         let n = self.order();
         let p = self.parameter_count();
-        let fits = |buffer, found: usize, expected: usize, ok: bool| match ok {
-            true => Ok(()),
-            false => Err(OutputError::Buffer {
-                buffer,
-                found,
-                expected,
-            }),
-        };
+        let fits = OutputError::fits;
         fits("initial state", initial.len(), n, initial.len() == n)?;
         fits("force", force.len(), 1, !force.is_empty())?;
         fits("output mass index", output, n / 2, output < n / 2)?;

@@ -337,15 +337,8 @@ impl ModalForm {
             initial_velocity,
             force,
         };
-        let fits = |ok: bool| match ok {
-            true => Ok(()),
-            false => Err(OutputError::Buffer {
-                buffer: "residuals",
-                found: residuals.len(),
-                expected: measured.len(),
-            }),
-        };
-        fits(residuals.len() == measured.len())?;
+        let (found, expected) = (residuals.len(), measured.len());
+        OutputError::fits("residuals", found, expected, found == expected)?;
         self.normal_equations(&run, (measured, false), residuals, jtj, gradient)
     }
 
@@ -381,14 +374,7 @@ impl ModalForm {
         gradient: &mut [f64],
     ) -> Result<(), ModalError> {
         check(run.step, run.force, run.force)?;
-        let fits = |buffer, found: usize, expected: usize, ok: bool| match ok {
-            true => Ok(()),
-            false => Err(OutputError::Buffer {
-                buffer,
-                found,
-                expected,
-            }),
-        };
+        let fits = OutputError::fits;
         let (measured, given) = window;
         let (n, p) = (measured.len(), self.parameter_count());
         fits("measured window", n, run.force.len(), n <= run.force.len())?;
