@@ -155,6 +155,16 @@ pub enum ModalError {
     Buffer(#[from] OutputError),
 }
 
+impl ModalError {
+    /// Whether the run's *output* was refused as imprecise (a far mass
+    /// that barely moves, a stiff chain): the Jacobian of the same run may
+    /// still be precise enough for [`ModalForm::jacobian`] on residuals
+    /// computed elsewhere.
+    pub fn output_imprecise(&self) -> bool {
+        matches!(self, ModalError::Imprecise { what: "output", .. })
+    }
+}
+
 /// The relative precision a run's output must have (estimated) for the
 /// modal form to be used. The estimate is an upper bound, about ten
 /// times the error found against 40-digit arithmetic; the state-space zoh

@@ -13,10 +13,10 @@
 //! 3. otherwise the state-space recursion with its sensitivities.
 //!
 //! The last point's modal forms (made with the sensitivities) are kept,
-//! and whether its modal residuals were refused: LM evaluates a trial
-//! point's residuals, then, when it accepts the step, the normal equations
-//! at the same point, which reuse them (and go to step 2 at once after a
-//! refusal). All three steps give the same function and derivatives to
+//! and, where the modal form refused its residuals, the state-space ones:
+//! LM evaluates a trial point's residuals, then, when it accepts the step,
+//! the normal equations at the same point, which reuse both (going to
+//! step 2 at once, without simulating again, after a refusal). All three steps give the same function and derivatives to
 //! the precision core states; which one ran depends on the point only, so
 //! a run is the same on any number of threads.
 
@@ -33,8 +33,9 @@ pub(super) struct Cache {
     /// Its forms, or why there are none (None: the model cannot be
     /// evaluated).
     forms: Option<Result<Arc<Forms>, Refusal>>,
-    /// Whether the modal form refused its residuals.
-    output_refused: bool,
+    /// The state-space residuals at the point where the modal form refused
+    /// its own (empty otherwise; the buffer is kept across points).
+    refused: Vec<f64>,
 }
 
 /// Why the modal form gave no result at a point.
@@ -48,9 +49,9 @@ enum Refusal {
 
 impl From<ModalError> for Refusal {
     fn from(error: ModalError) -> Refusal {
-        match error {
-            ModalError::Imprecise { what: "output", .. } => Refusal::Output,
-            _ => Refusal::Other,
+        match error.output_imprecise() {
+            true => Refusal::Output,
+            false => Refusal::Other,
         }
     }
 }
@@ -62,11 +63,13 @@ impl Objective<'_> {
         match self.modal_residuals(p, residuals) {
             Ok(ok) => ok,
             Err(refusal) => {
-                if let Refusal::Output = refusal {
-                    let mut cache = self.modal.lock().unwrap_or_else(|e| e.into_inner());
-                    cache.output_refused = cache.point == p;
+                let ok = self.simulate(p, residuals, false, &mut |_, _, _| {});
+                let mut cache = self.modal.lock().unwrap_or_else(|e| e.into_inner());
+                if matches!(refusal, Refusal::Output) && ok && cache.point == p {
+                    cache.refused.clear();
+                    cache.refused.extend_from_slice(residuals);
                 }
-                self.simulate(p, residuals, false, &mut |_, _, _| {})
+                ok
             }
         }
     }
@@ -81,11 +84,8 @@ impl Objective<'_> {
         sums: &mut DMatrix<f64>,
         g: &mut DVector<f64>,
     ) -> bool {
-        let refused = {
-            let cache = self.modal.lock().unwrap_or_else(|e| e.into_inner());
-            cache.output_refused && cache.point == p
-        };
-        let jacobian_only = refused
+        let known = self.refused_residuals(p, residuals);
+        let jacobian_only = known
             || match self.modal_normal(p, residuals, sums, g) {
                 Ok(ok) => return ok,
                 Err(Refusal::Output) => true,
@@ -94,7 +94,7 @@ impl Objective<'_> {
         if jacobian_only {
             sums.fill(0.0);
             g.fill(0.0);
-            if !self.simulate(p, residuals, false, &mut |_, _, _| {}) {
+            if !known && !self.simulate(p, residuals, false, &mut |_, _, _| {}) {
                 return false;
             }
             if self.modal_jacobian(p, residuals, sums, g) {
@@ -114,13 +114,23 @@ impl Objective<'_> {
     fn forms(&self, p: &[f64]) -> Option<Result<Arc<Forms>, Refusal>> {
         let mut cache = self.modal.lock().unwrap_or_else(|e| e.into_inner());
         if cache.point != p {
-            *cache = Cache {
-                point: p.to_vec(),
-                forms: self.make_forms(p),
-                output_refused: false,
-            };
+            cache.point.clear();
+            cache.point.extend_from_slice(p);
+            cache.forms = self.make_forms(p);
+            cache.refused.clear();
         }
         cache.forms.clone()
+    }
+
+    /// Copies the state-space residuals kept for `p` (where the modal form
+    /// refused its own) into `residuals`; false when there are none.
+    fn refused_residuals(&self, p: &[f64], residuals: &mut [f64]) -> bool {
+        let cache = self.modal.lock().unwrap_or_else(|e| e.into_inner());
+        let known = cache.point == p && cache.refused.len() == residuals.len();
+        if known {
+            residuals.copy_from_slice(&cache.refused);
+        }
+        known
     }
 
     /// [`Objective::forms`] made anew.
