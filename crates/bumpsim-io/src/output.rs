@@ -19,8 +19,14 @@
 //!   version (files of the folder that the run does not write are kept). A
 //!   failed run leaves the old outputs untouched.
 //! - a path that is an existing non-folder where a folder is needed (or an
-//!   existing folder where a file is needed) is an error before anything is
-//!   written ([`Outputs::check_file`], [`Outputs::check_folder`]).
+//!   existing folder where a file is needed), or an existing device, pipe
+//!   or socket (which the rename would replace) is an error before anything
+//!   is written ([`Outputs::check_file`], [`Outputs::check_folder`]);
+//! - an output given as a symbolic link updates the file it points to; the
+//!   link stays;
+//! - two files of one output folder with the same name, or a folder's file
+//!   that is another claimed output of the command, are errors: neither
+//!   silently replaces the other.
 //!
 //! A command line tool uses the process-wide guard through the free
 //! functions ([`register_input`], [`write_file`], [`stage_folder`], ...); the
@@ -92,6 +98,23 @@ pub enum OutputError {
     #[error("{path}: is a folder (a file is needed here)")]
     IsAFolder {
         /// The path.
+        path: PathBuf,
+    },
+    /// The path exists and is neither a regular file nor a folder (a
+    /// device, pipe or socket): an output replaces its target by renaming,
+    /// which would replace the special file itself.
+    #[error(
+        "{path}: exists and is not a regular file (a device, pipe or socket); give a file path"
+    )]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+    },
+    /// Two files of one output folder would get the same name (for example
+    /// two case names that differ only in characters a file name cannot hold).
+    #[error("{path}: two files of one output would have this name; make the names differ")]
+    SameName {
+        /// The file's final path.
         path: PathBuf,
     },
     /// A name given for a file inside an output folder is not a plain name.
@@ -193,10 +216,25 @@ impl Outputs {
     /// Checks that `path` may be written as a file: not an existing folder,
     /// not an input, not inside an input folder, not a link to an input.
     pub fn check_file(&self, path: &Path) -> Result<(), OutputError> {
-        if path.is_dir() {
-            return Err(OutputError::IsAFolder { path: path.into() });
+        match std::fs::metadata(path) {
+            Ok(m) if m.is_dir() => Err(OutputError::IsAFolder { path: path.into() }),
+            Ok(m) if !m.is_file() => Err(OutputError::NotAFile { path: path.into() }),
+            _ => self.check_against_inputs(path),
         }
-        self.check_against_inputs(path)
+    }
+
+    /// Refuses a file of an output folder that is also a claimed output of
+    /// its own (`--json report/index.html --report report`): one would
+    /// silently replace the other.
+    fn check_unclaimed(&self, path: &Path) -> Result<(), OutputError> {
+        let target = canonical(path);
+        match self.claimed.iter().find(|(_, c)| *c == target) {
+            Some((first, _)) => Err(OutputError::Twice {
+                output: path.into(),
+                first: first.clone(),
+            }),
+            None => Ok(()),
+        }
     }
 
     /// Checks that `path` may receive a multi-file output: not an existing
@@ -337,6 +375,7 @@ fn create_parent(path: &Path) -> Result<(), OutputError> {
 /// written, flushed to disk, then renamed over `path`. No input check; use
 /// [`Outputs::write_file`] for a user-given path.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
+    let path = &through_link(path);
     create_parent(path)?;
     let temp = sibling(path, "tmp");
     let result = (|| {
@@ -364,6 +403,7 @@ pub fn write_rendered(
     render: impl FnOnce(&Path) -> Result<(), String>,
 ) -> Result<(), OutputError> {
     check_file(path)?;
+    let path = &through_link(path);
     create_parent(path)?;
     let name = path
         .file_name()
@@ -381,6 +421,18 @@ pub fn write_rendered(
     })?;
     sync_parent(path);
     Ok(())
+}
+
+/// The file a symbolic link points to (so that an output given as a link
+/// updates its target, as writing through the link would, instead of
+/// replacing the link by a file); any other path as it is.
+fn through_link(path: &Path) -> PathBuf {
+    match std::fs::symlink_metadata(path) {
+        Ok(m) if m.file_type().is_symlink() => {
+            std::fs::canonicalize(path).unwrap_or_else(|_| path.into())
+        }
+        _ => path.into(),
+    }
 }
 
 /// Flushes the folder entry of a rename to disk (best effort).
@@ -460,6 +512,11 @@ impl StagedFolder {
             plain_name(part)?;
         }
         let path = self.staging.join(name);
+        if path.exists() {
+            return Err(OutputError::SameName {
+                path: self.target.join(name),
+            });
+        }
         create_parent(&path)?;
         std::fs::write(&path, bytes).map_err(|e| OutputError::io(&path, e))?;
         Ok(self.target.join(name))
@@ -471,6 +528,7 @@ impl StagedFolder {
         let files = staged_files(&self.staging)?;
         for relative in &files {
             guard.check_file(&self.target.join(relative))?;
+            guard.check_unclaimed(&self.target.join(relative))?;
         }
         sync_tree(&self.staging, &files);
         if !self.target.exists() {
@@ -478,7 +536,7 @@ impl StagedFolder {
                 .map_err(|e| OutputError::io(&self.target, e))?;
         } else {
             for relative in &files {
-                let to = self.target.join(relative);
+                let to = through_link(&self.target.join(relative));
                 create_parent(&to)?;
                 std::fs::rename(self.staging.join(relative), &to)
                     .map_err(|e| OutputError::io(&to, e))?;
@@ -578,6 +636,8 @@ pub fn commit(staged: StagedFolder) -> Result<(), OutputError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    #[cfg(unix)]
+    use std::os::unix::fs::FileTypeExt;
 
     /// `planar --json x --csv x` wrote both to x with exit 0: the CSV
     /// silently replaced the JSON.
@@ -678,6 +738,52 @@ mod tests {
             .filter(|e| e.file_name().to_string_lossy().starts_with('.'))
             .collect();
         assert!(leftovers.is_empty(), "{leftovers:?}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// `--json /dev/full` replaced the device node by a regular file; an
+    /// output link was replaced by a file; two case names that map to one
+    /// plot name lost a plot; `--json rep/index.html --report rep` lost the
+    /// JSON. Each is now refused or written through.
+    #[cfg(unix)]
+    #[test]
+    fn special_files_links_same_names_and_claimed_files() {
+        let dir = temp("special");
+        let mut g = Outputs::new();
+        let device = Path::new("/dev/null");
+        assert!(matches!(
+            g.write_file(device, b"x"),
+            Err(OutputError::NotAFile { .. })
+        ));
+        assert!(
+            std::fs::metadata(device)
+                .unwrap()
+                .file_type()
+                .is_char_device()
+        );
+        let target = dir.join("target.json");
+        std::fs::write(&target, "old").unwrap();
+        std::os::unix::fs::symlink(&target, dir.join("link.json")).unwrap();
+        g.write_file(&dir.join("link.json"), b"new").unwrap();
+        assert!(
+            std::fs::symlink_metadata(dir.join("link.json"))
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+        assert_eq!(std::fs::read(&target).unwrap(), b"new");
+        let report = dir.join("report");
+        g.claim(&report.join("index.html")).unwrap();
+        g.claim(&report).unwrap();
+        let staged = g.stage_folder(&report).unwrap();
+        staged.write("fit-a_b.svg", b"1").unwrap();
+        assert!(matches!(
+            staged.write("fit-a_b.svg", b"2"),
+            Err(OutputError::SameName { .. })
+        ));
+        staged.write("index.html", b"<html/>").unwrap();
+        assert!(matches!(staged.commit(&g), Err(OutputError::Twice { .. })));
+        assert!(!report.exists());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -185,7 +185,8 @@ fn notes_section(page: &mut Html, notes: &[String]) {
 
 fn add(page: &mut Html, figures: &mut Vec<Figure>, name: &str, svg: String, caption: &str) {
     page.figure(&svg, caption);
-    figures.push((name.to_string(), svg));
+    let name = crate::unique_name(name, |n| figures.iter().any(|(f, _)| f == n));
+    figures.push((name, svg));
 }
 
 fn section(

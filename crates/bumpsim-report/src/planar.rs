@@ -167,7 +167,9 @@ pub fn identification_report(
         for (what, plot, fit) in [("x", x, p.fit.fit_x), ("yaw", yaw, p.fit.fit_yaw)] {
             let svg = plot.svg()?;
             page.figure(&svg, &format!("{what}: fit {fit:.2} %"));
-            figures.push((format!("{stem}-{what}.svg"), svg));
+            let name = format!("{stem}-{what}.svg");
+            let name = crate::unique_name(&name, |n| figures.iter().any(|(f, _)| f == n));
+            figures.push((name, svg));
         }
     }
     page.heading("Inputs");
