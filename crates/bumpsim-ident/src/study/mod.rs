@@ -171,7 +171,10 @@ pub struct LoadedCases {
 
 /// `dof = 3` or `dof = [1, 2, 3]`.
 #[derive(Debug, Clone, Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "dof: expected a number of masses (dof = 3) or a list of them (dof = [1, 2, 3])"
+)]
 pub enum DofSpec {
     /// One model size.
     One(usize),
@@ -253,7 +256,10 @@ fn unit_scale() -> f64 {
 
 /// `output_dof = 1` or `output_dof = "last"`.
 #[derive(Debug, Clone, Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "output_dof: expected a mass number (output_dof = 1) or \"last\""
+)]
 pub enum OutputDof {
     /// A mass number, 1-based.
     Number(usize),
@@ -263,7 +269,10 @@ pub enum OutputDof {
 
 /// `window = "contact"` or `window = [t0, t1]`.
 #[derive(Debug, Clone, Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "window: expected \"contact\" or a start and end time in seconds (window = [0.0, 0.06])"
+)]
 pub enum WindowSpec {
     /// `"contact"`.
     Named(String),
@@ -336,6 +345,12 @@ impl Study {
                 "no [[case]]: a study needs at least one load case".into(),
             ));
         }
+        study.check_case_names().map_err(error)?;
+        if study.dofs().is_empty() {
+            return Err(error(
+                "[model] dof = []: expected at least one DOF (dof = 3 or dof = [1, 2, 3])".into(),
+            ));
+        }
         let max = crate::estimate::MAX_DOF;
         if let Some(bad) = study.dofs().into_iter().find(|&n| n == 0 || n > max) {
             return Err(error(format!(
@@ -343,6 +358,30 @@ impl Study {
             )));
         }
         Ok(study)
+    }
+
+    /// Case names name results, plots and `--case` selections: each must be
+    /// non-empty and differ from the others (ignoring case and surrounding
+    /// spaces, as file names may).
+    fn check_case_names(&self) -> Result<(), String> {
+        let key = |name: &str| name.trim().to_lowercase();
+        for (i, case) in self.case.iter().enumerate() {
+            if key(&case.name).is_empty() {
+                return Err(format!("[[case]] number {}: an empty name", i + 1));
+            }
+            if let Some(first) = self.case[..i]
+                .iter()
+                .find(|c| key(&c.name) == key(&case.name))
+            {
+                return Err(format!(
+                    "[[case]] number {}: name '{}' is already used by case '{}'; give each case its own name",
+                    i + 1,
+                    case.name,
+                    first.name
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The DOF values to identify.
@@ -629,6 +668,39 @@ mod tests {
             study(&format!("dof = 2\n{ragged}"), CASE, base).settings(2),
             Err(StudyError::Start { dampers: 2, .. })
         ));
+    }
+
+    /// `dof = []` ran nothing with exit 0; two cases named `flat` gave two
+    /// `flat` rows; `dof = -2` said "untagged enum DofSpec".
+    #[test]
+    fn empty_dof_lists_repeated_case_names_and_wrong_shapes_are_errors() {
+        let dir = std::env::temp_dir().join(format!("bumpsim-study-names-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let read = |text: &str| {
+            let path = dir.join("study.toml");
+            std::fs::write(&path, text).unwrap();
+            Study::read(&path).unwrap_err().to_string()
+        };
+        let case = |name: &str| format!("[[case]]\nname = \"{name}\"\n{CASE}\n");
+        let err = read(&format!("[model]\ndof = []\n{}", case("a")));
+        assert!(err.contains("dof = []: expected at least one DOF"), "{err}");
+        let err = read(&format!(
+            "[model]\ndof = 2\n{}{}",
+            case("flat"),
+            case(" Flat")
+        ));
+        assert!(
+            err.contains("[[case]] number 2: name ' Flat' is already used by case 'flat'"),
+            "{err}"
+        );
+        let err = read(&format!("[model]\ndof = 2\n{}", case(" ")));
+        assert!(err.contains("an empty name"), "{err}");
+        let err = read(&format!("[model]\ndof = -2\n{}", case("a")));
+        assert!(
+            err.contains("dof: expected a number of masses") && !err.contains("enum"),
+            "{err}"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
