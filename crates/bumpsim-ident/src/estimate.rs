@@ -201,6 +201,11 @@ pub struct Starts {
     /// search's second level, [`crate::search::REFINED`]); they are among
     /// `total`.
     pub refined: usize,
+    /// Exploring starts (those not drawn around the best, `total −
+    /// refined`) that reached the best fit by their own run or by the run
+    /// they merged into: how many independent draws found the best basin.
+    /// One means the best was found by a single start.
+    pub explored_best_fit: usize,
     /// Index of the best start (0 = the user's or the data start).
     pub best: usize,
 }
@@ -381,7 +386,29 @@ fn best_run(runs: &[Run]) -> Option<Outcome> {
 /// The start statistics of staged runs; an error when every start failed.
 /// `freedom` is n − q (residuals less free parameters): one noise variance
 /// of the best fit is `F_best / freedom`.
-pub(crate) fn tally(runs: &[Run], freedom: usize) -> Result<Starts, IdentError> {
+/// The warning when at most one exploring start found the best fit: the
+/// starts drawn around the best refine its basin and do not confirm that
+/// no better one exists.
+fn single_start_warning(starts: &Starts) -> Option<String> {
+    let exploring = starts.total - starts.refined;
+    if exploring < 2 || starts.explored_best_fit > 1 {
+        return None;
+    }
+    let around = match starts.refined {
+        0 => String::new(),
+        n => format!(
+            " ({n} more drawn around the best refine its basin but do not search elsewhere)"
+        ),
+    };
+    Some(format!(
+        "{} of the {exploring} exploring starts came within the noise of the best objective{around}: a better minimum may exist; raise the number of starts",
+        starts.explored_best_fit
+    ))
+}
+
+/// `exploring`: how many of `runs` (the first ones) explored; the rest were
+/// drawn around the best so far.
+pub(crate) fn tally(runs: &[Run], freedom: usize, exploring: usize) -> Result<Starts, IdentError> {
     let failed = runs
         .iter()
         .filter(|r| !r.outcome.objective.is_finite())
@@ -403,13 +430,15 @@ pub(crate) fn tally(runs: &[Run], freedom: usize) -> Result<Starts, IdentError> 
             runs[i].fate == Fate::Finished || (screened && runs[i].fate == Fate::Unpolished);
         ended && runs[i].outcome.objective <= bar
     };
+    let reached = |i: usize, bar: f64, screened: bool| own(representative(runs, i), bar, screened);
     let count = |bar: f64, screened: bool| {
         let alone = (0..runs.len()).filter(|&i| own(i, bar, screened)).count();
         let all = (0..runs.len())
-            .filter(|&i| own(representative(runs, i), bar, screened))
+            .filter(|&i| reached(i, bar, screened))
             .count();
         (all, alone)
     };
+    let exploring = exploring.min(runs.len());
     let ((reached_best, reached_best_alone), (reached_best_fit, reached_best_fit_alone)) =
         (count(exact, false), count(noise, true));
     let fate = |f: fn(&Fate) -> bool| runs.iter().filter(|r| f(&r.fate)).count();
@@ -427,7 +456,8 @@ pub(crate) fn tally(runs: &[Run], freedom: usize) -> Result<Starts, IdentError> 
         abandoned: fate(|f| *f == Fate::Abandoned),
         merged: fate(|f| matches!(f, Fate::Merged(_))),
         unpolished: fate(|f| *f == Fate::Unpolished),
-        refined: 0,
+        refined: runs.len() - exploring,
+        explored_best_fit: (0..exploring).filter(|&i| reached(i, noise, true)).count(),
         best,
     })
 }
@@ -518,8 +548,7 @@ fn identify_only(
     }
     let chosen = candidates(&mut runs);
     polish(&mut runs, &chosen, goal, &|p, n| solve(p, n, ftol));
-    let mut starts = tally(&runs, freedom)?;
-    starts.refined = points.len() - first;
+    let starts = tally(&runs, freedom, first)?;
     let outcome = &runs[starts.best].outcome;
     let mut result = summarise(
         cases, settings, &objective, outcome, starts, &lower, &upper, clock,
@@ -568,16 +597,8 @@ fn summarise(
             starts.failed, starts.total
         ));
     }
-    if starts.reached_best_fit == 1 && starts.total > 1 {
-        warnings.push(format!(
-            "only one of {} starts came within the noise of the best objective: a better minimum may exist; raise the number of starts",
-            starts.total
-        ));
-    } else if starts.reached_best_fit_alone == 1 && starts.total > 1 {
-        warnings.push(format!(
-            "one run came within the noise of the best objective ({} more starts merged into it): a better minimum may exist; raise the number of starts",
-            starts.reached_best_fit - 1
-        ));
+    if let Some(warning) = single_start_warning(&starts) {
+        warnings.push(warning);
     }
     if !outcome.stop.converged() {
         warnings.push(format!(
@@ -585,7 +606,13 @@ fn summarise(
             outcome.iterations
         ));
     }
-    let ln_term = n as f64 * (sse / n as f64).ln();
+    // An objective below the rounding of the data (an exact fit of exact
+    // synthetic data) counts as that rounding: AIC and BIC stay finite and
+    // the smallest exact model wins the comparison.
+    let resolved = sse
+        .max(spread * f64::EPSILON * f64::EPSILON)
+        .max(f64::MIN_POSITIVE);
+    let ln_term = n as f64 * (resolved / n as f64).ln();
     Ok(Identification {
         dof: settings.dof,
         model,
@@ -616,4 +643,45 @@ fn total_spread(cases: &[LoadCase]) -> f64 {
             w.iter().map(|y| (y - mean).powi(2)).sum::<f64>()
         })
         .sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn starts(total: usize, refined: usize, explored_best_fit: usize) -> Starts {
+        Starts {
+            total,
+            converged: total,
+            failed: 0,
+            reached_best: explored_best_fit,
+            reached_best_alone: 1,
+            reached_best_fit: total,
+            reached_best_fit_alone: 1,
+            abandoned: 0,
+            merged: total - 1,
+            unpolished: 0,
+            refined,
+            explored_best_fit,
+            best: 0,
+        }
+    }
+
+    /// The remark fired on a 1-DOF model whose 32 starts all reached the
+    /// best (31 merged into one run), and stayed silent when one exploring
+    /// start found the basin and the refining starts around it followed.
+    #[test]
+    fn the_single_start_remark_counts_exploring_starts() {
+        assert_eq!(single_start_warning(&starts(32, 16, 16)), None);
+        assert_eq!(single_start_warning(&starts(32, 16, 2)), None);
+        let one = single_start_warning(&starts(32, 16, 1)).unwrap();
+        assert!(one.starts_with("1 of the 16 exploring starts"), "{one}");
+        assert!(one.contains("16 more drawn around the best"), "{one}");
+        let none = single_start_warning(&starts(8, 0, 0)).unwrap();
+        assert!(
+            none.starts_with("0 of the 8 exploring starts") && !none.contains("around"),
+            "{none}"
+        );
+        assert_eq!(single_start_warning(&starts(1, 0, 1)), None);
+    }
 }

@@ -150,7 +150,7 @@ mod tests {
         assert_eq!(runs[1].fate, Fate::Merged(0)); // 0.01 from the best
         assert_eq!(runs[3].fate, Fate::Unpolished);
         polish(&mut runs, &chosen, goal, &scripted);
-        let starts = crate::estimate::tally(&runs, 1_000_000).unwrap();
+        let starts = crate::estimate::tally(&runs, 1_000_000, runs.len()).unwrap();
         assert_eq!((starts.best, starts.total, starts.failed), (0, 7, 0));
         // starts 0 and 1 reached F = 1: 0 by its own run, 1 merged into it;
         // 5 merged into 4, whose cluster was not polished, does not count

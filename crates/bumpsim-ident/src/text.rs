@@ -61,11 +61,12 @@ pub fn case_lines(result: &Identification) -> String {
 pub fn starts_line(result: &Identification) -> String {
     let s = &result.starts;
     format!(
-        "starts: {} run ({} of them around the best so far), {} converged, {} reached the best fit (F within one noise variance; {} by their own run), {} the best objective to 1e-6 ({} by their own polished run), {} abandoned, {} not polished, {} failed; {} iterations; {}",
+        "starts: {} run ({} of them around the best so far), {} converged, {} reached the best fit (F within one noise variance; {} of the exploring starts, {} by their own run), {} the best objective to 1e-6 ({} by their own polished run), {} abandoned, {} not polished, {} failed; {} iterations; {}",
         s.total,
         s.refined,
         s.converged,
         s.reached_best_fit,
+        s.explored_best_fit,
         s.reached_best_fit_alone,
         s.reached_best,
         s.reached_best_alone,

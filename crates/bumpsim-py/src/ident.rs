@@ -298,8 +298,8 @@ impl Identification {
         from_json(py, &self.result.cases)
     }
     /// Start statistics (total, converged, failed, reached_best_fit,
-    /// reached_best_fit_alone, reached_best, reached_best_alone, abandoned,
-    /// merged, unpolished, refined, best).
+    /// reached_best_fit_alone, reached_best, reached_best_alone,
+    /// explored_best_fit, abandoned, merged, unpolished, refined, best).
     #[getter]
     fn starts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         from_json(py, &self.result.starts)

@@ -6,7 +6,10 @@
 //! 5-DOF starts reach the best fit (within one noise variance,
 //! `Starts::reached_best_fit`; printed for each). The search's second level
 //! (refinement rounds around the best so far, `bumpsim_ident::search`)
-//! makes this hold by construction: 9 to 25 of 32 starts reach it.
+//! makes this hold by construction: 9 to 25 of 32 starts reach it. Most of
+//! them are refining starts: of the 16 exploring starts alone only a few
+//! (sometimes none) reach the best fit, which is printed too
+//! (`Starts::explored_best_fit`) and not asserted.
 
 use bumpsim_core::model::MsdModel;
 use bumpsim_ident::case::LoadCase;
@@ -105,8 +108,13 @@ fn ten_five_dof_problems_predict_a_held_out_case_as_the_truth_does() {
         let (identified, reference) = (fit(&result.model), fit(&truth));
         let starts = &result.starts;
         eprintln!(
-            "problem {problem}: F {:.4e} m² (truth {truth_objective:.4e} m²), held-out fit {identified:.4} % (truth {reference:.4} %), best fit reached by {} of {} starts, best objective to 1e-6 by {}",
-            result.objective, starts.reached_best_fit, starts.total, starts.reached_best
+            "problem {problem}: F {:.4e} m² (truth {truth_objective:.4e} m²), held-out fit {identified:.4} % (truth {reference:.4} %), best fit reached by {} of {} starts ({} of the {} exploring), best objective to 1e-6 by {}",
+            result.objective,
+            starts.reached_best_fit,
+            starts.total,
+            starts.explored_best_fit,
+            starts.total - starts.refined,
+            starts.reached_best
         );
         if 4 * starts.reached_best_fit >= starts.total {
             reliable += 1;
