@@ -263,8 +263,19 @@ fn reduction(result: &Identification, j: usize, model: MsdModel, objective: f64)
                 .into()
         }
     };
+    // within 1 % of the objective, but an F-test can still call the
+    // difference significant on many samples: then say so instead of
+    // recommending the simpler model outright
+    let advice = if p_value >= SIGNIFICANCE {
+        "prefer the simpler model".to_string()
+    } else {
+        format!(
+            "the simpler model is close, though the F-test calls the difference significant (p = {})",
+            format_number(p_value, 2)
+        )
+    };
     let statement = format!(
-        "{name} {how}: m{} and m{} move as one. The {}-DOF model with m{} + m{} = {} fits within {} % of the objective ({} m² against {} m²): prefer the simpler model.",
+        "{name} {how}: m{} and m{} move as one. The {}-DOF model with m{} + m{} = {} fits within {} % of the objective ({} m² against {} m²): {advice}.",
         j + 1,
         j + 2,
         dof - 1,

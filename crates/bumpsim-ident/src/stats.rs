@@ -8,6 +8,12 @@
 //! are `θ exp(± t₀.₉₇₅,ₙ₋q SE(ln θ))` (Student t; positive, as θ must be).
 //! A small ratio of the smallest to the largest singular value marks a
 //! poorly identifiable direction; its largest components are named.
+//! Directions whose singular value is below [`RANK_TOLERANCE`] of the
+//! largest carry no information at all (the Jacobian is numerically rank
+//! deficient): the covariance is the truncated pseudo-inverse over the
+//! others, and a parameter with a share of more than [`NULL_SHARE`] in a
+//! dropped direction gets no interval, while the parameters outside it keep
+//! theirs (before, one free spring left every parameter without one).
 //! [`determination`] sorts the parameters into those the data determine (a
 //! 95 % interval within a factor [`crate::reduce::SPREAD`]) and those they
 //! do not (issue 19).
@@ -20,6 +26,15 @@ use bumpsim_core::units::format_number;
 use nalgebra::DMatrix;
 use serde::Serialize;
 use statrs::distribution::{ContinuousCDF, StudentsT};
+
+/// Singular values below this fraction of the largest are dropped from the
+/// covariance (a direction the data do not inform, ≈ 1e6 × the rounding of
+/// the Jacobian's columns).
+pub const RANK_TOLERANCE: f64 = 1e-10;
+
+/// A parameter whose squared component in a dropped direction exceeds this
+/// has no interval (it moves along the direction the data leave free).
+pub const NULL_SHARE: f64 = 1e-6;
 
 /// Standard errors, intervals and correlations of the estimate.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -168,24 +183,43 @@ pub fn uncertainty(
     result.condition = largest / smallest;
     let variance = sse / result.degrees_of_freedom as f64;
     result.residual_std = variance.sqrt();
-    if smallest <= 0.0 || !result.condition.is_finite() {
+    let k = estimated.len();
+    let kept = |s: usize| svd.singular_values[s] > RANK_TOLERANCE * largest;
+    if !(largest > 0.0 && largest.is_finite()) {
         result
             .warnings
             .push("the Jacobian is rank deficient: no standard errors".into());
         return result;
     }
-    let k = estimated.len();
     let cov = DMatrix::from_fn(k, k, |a, b| {
         (0..k)
+            .filter(|&s| kept(s))
             .map(|s| v_t[(s, a)] * v_t[(s, b)] / svd.singular_values[s].powi(2))
             .sum::<f64>()
             * variance
     });
+    // a parameter with a share in a dropped direction is not determined
+    let free_share = |a: usize| -> f64 {
+        (0..k)
+            .filter(|&s| !kept(s))
+            .map(|s| v_t[(s, a)].powi(2))
+            .sum()
+    };
+    let dropped = (0..k).filter(|&s| !kept(s)).count();
+    if dropped > 0 {
+        result.warnings.push(format!(
+            "the Jacobian is rank deficient: {dropped} direction(s) below {RANK_TOLERANCE:.0e} of the largest singular value carry no information; the parameters in them have no interval"
+        ));
+    }
     let t = StudentsT::new(0.0, 1.0, result.degrees_of_freedom as f64)
         .map_or(1.96, |d| d.inverse_cdf(0.975));
     for (a, &ja) in estimated.iter().enumerate() {
         let i = free[ja];
-        let se_log = cov[(a, a)].sqrt();
+        let se_log = if free_share(a) > NULL_SHARE {
+            f64::INFINITY
+        } else {
+            cov[(a, a)].sqrt()
+        };
         let interval = [
             theta[i] * (-t * se_log).exp(),
             theta[i] * (t * se_log).exp(),
@@ -194,7 +228,9 @@ pub fn uncertainty(
         result.standard_errors[i] = usable.then_some(theta[i] * se_log);
         result.ci95[i] = usable.then_some(interval);
         for (b, &jb) in estimated.iter().enumerate() {
-            result.correlation[i][free[jb]] = Some(cov[(a, b)] / (se_log * cov[(b, b)].sqrt()));
+            let both = usable && free_share(b) <= NULL_SHARE;
+            result.correlation[i][free[jb]] =
+                both.then(|| cov[(a, b)] / (se_log * cov[(b, b)].sqrt()));
         }
     }
     if result.condition > 1e6 {
