@@ -114,7 +114,7 @@ pub fn run(args: &Args) -> Result<()> {
                 });
             }
             Err(e) if dofs.len() > 1 => {
-                eprintln!("error: {dof}-DOF model: {e}");
+                eprintln!("error: {dof}-DOF model: {e} (the other models go on)");
                 outcomes.push(DofOutcome::Failed {
                     dof,
                     reason: e.to_string(),
@@ -140,7 +140,23 @@ pub fn run(args: &Args) -> Result<()> {
         sweeps: sweeps.as_deref(),
         notes: &notes,
     };
-    write_outputs(args, &study, &outputs)
+    write_outputs(args, &study, &outputs)?;
+    let failed: Vec<String> = outcomes
+        .iter()
+        .filter_map(|o| match o {
+            DofOutcome::Failed { dof, .. } => Some(dof.to_string()),
+            DofOutcome::Done { .. } => None,
+        })
+        .collect();
+    if !failed.is_empty() {
+        anyhow::bail!(
+            "{} of the {} models failed (DOF {}, see above); the others are reported",
+            failed.len(),
+            outcomes.len(),
+            failed.join(", ")
+        );
+    }
+    Ok(())
 }
 
 /// The selection notes (channels left out or used despite a mark).
@@ -177,6 +193,7 @@ fn print_result(r: &Identification) {
     for w in &r.warnings {
         println!("  warning: {w}");
     }
+    crate::count_warnings(r.warnings.len());
 }
 
 fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
@@ -187,10 +204,20 @@ fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
         notes,
     } = *outputs;
     if let Some(path) = &args.json {
+        let failed: Vec<serde_json::Value> = outcomes
+            .iter()
+            .filter_map(|o| match o {
+                DofOutcome::Failed { dof, reason } => {
+                    Some(serde_json::json!({ "dof": dof, "reason": reason }))
+                }
+                DofOutcome::Done { .. } => None,
+            })
+            .collect();
         let mut json = match results {
-            [one] => serde_json::to_value(one)?,
+            [one] if outcomes.len() == 1 => serde_json::to_value(one)?,
             many => serde_json::json!({
                 "results": many,
+                "failed": failed,
                 "recommended_dof": bumpsim_ident::text::recommended_dof(many),
             }),
         };

@@ -89,6 +89,12 @@ pub(crate) fn count<const MAX: usize>(text: &str) -> std::result::Result<usize, 
 
 static WARNINGS: AtomicUsize = AtomicUsize::new(0);
 
+/// Counts `n` warnings printed with a result (they belong to its block on
+/// standard output) for `--strict`.
+pub(crate) fn count_warnings(n: usize) {
+    WARNINGS.fetch_add(n, Ordering::Relaxed);
+}
+
 /// Prints a warning about a result (stderr) and counts it for `--strict`.
 pub(crate) fn warn(message: &str) {
     WARNINGS.fetch_add(1, Ordering::Relaxed);

@@ -263,13 +263,12 @@ fn a_partial_identification_report_still_renders_and_says_what_failed() {
         report.to_str().unwrap(),
         "--quiet",
     ]);
+    // a failed DOF does not end the sweep: the others are reported and
+    // written, and the command then exits 2 saying which failed
+    assert_eq!(run.status.code(), Some(2), "{}", text(&run.stderr));
     assert!(
-        run.status.success(),
-        "a failed DOF does not end the sweep: {}",
-        text(&run.stderr)
-    );
-    assert!(
-        text(&run.stderr).contains("2-DOF model: all 2 starts failed"),
+        text(&run.stderr).contains("2-DOF model: all 2 starts failed")
+            && text(&run.stderr).contains("1 of the 2 models failed (DOF 2"),
         "{}",
         text(&run.stderr)
     );
@@ -528,5 +527,88 @@ fn identify_on_nhtsa_10146_names_the_invalid_barrier_cells_it_left_out() {
             "note: case 'ncap-57kph': '0-LC-*-XG': left out channel 500",
             "marked invalid",
         ],
+    );
+}
+
+/// The bundled example's DOF table reaches every output: the JSON's
+/// results, `failed` and `recommended_dof`, the report's table, starts lines
+/// and recommendation (before, only the NHTSA run checked them, and it is
+/// skipped without ../shared).
+#[test]
+fn a_dof_table_reaches_the_json_and_the_report() {
+    let dir = scratch("dof-table-outputs");
+    let (json, report) = (dir.join("table.json"), dir.join("report"));
+    let run = bumpsim(&[
+        "identify",
+        root()
+            .join("examples/identify/study.toml")
+            .to_str()
+            .unwrap(),
+        "--dof",
+        "1..3",
+        "--starts",
+        "4",
+        "--json",
+        json.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let value: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let results = value["results"].as_array().unwrap();
+    assert_eq!(results.len(), 3);
+    assert_eq!(value["failed"].as_array().map(Vec::len), Some(0));
+    let recommended = value["recommended_dof"].as_u64().unwrap();
+    let html = std::fs::read_to_string(report.join("index.html")).unwrap();
+    assert_contains(
+        &html,
+        &[
+            "AIC",
+            "BIC",
+            &format!("recommended: {recommended} DOF (lowest BIC)"),
+            "of the exploring starts",
+            "3-DOF model",
+        ],
+    );
+    let stdout = text(&run.stdout);
+    assert_contains(&stdout, &["recommended:", "starts: 4 run"]);
+}
+
+/// Outputs that would lose something are refused: a JSON path inside the
+/// report folder that the report's page would replace, a device (the
+/// rename replaced /dev/full by a regular file).
+#[test]
+fn outputs_that_would_replace_another_output_or_a_device_are_refused() {
+    let dir = scratch("output-clash");
+    let study = root().join("examples/identify/study.toml");
+    let report = dir.join("report");
+    let inside = report.join("index.html");
+    let run = bumpsim(&[
+        "identify",
+        study.to_str().unwrap(),
+        "--starts",
+        "2",
+        "--json",
+        inside.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_user_error(&run, "two outputs to one path");
+    let kept = std::fs::read_to_string(&inside).unwrap();
+    assert!(
+        serde_json::from_str::<serde_json::Value>(&kept).is_ok(),
+        "{kept}"
+    );
+    let device = bumpsim(&["identify", study.to_str().unwrap(), "--json", "/dev/null"]);
+    assert_user_error(&device, "not a regular file");
+    use std::os::unix::fs::FileTypeExt;
+    assert!(
+        std::fs::metadata("/dev/null")
+            .unwrap()
+            .file_type()
+            .is_char_device()
     );
 }
