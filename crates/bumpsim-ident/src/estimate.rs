@@ -91,7 +91,11 @@ impl Bounds {
                 )));
             }
             if let Some(v) = self.fixed[i].filter(|v| !(v.is_finite() && *v > 0.0)) {
-                return Err(setting(format!("fixed value {v} must be positive")));
+                let name = bumpsim_core::model::parameter_name(dof, i);
+                return Err(IdentError::Setting {
+                    name: "fixed",
+                    reason: format!("{name} = {v}: a fixed value must be finite and positive"),
+                });
             }
         }
         Ok(())
@@ -347,9 +351,20 @@ fn check(cases: &[LoadCase], settings: &Settings) -> Result<(), IdentError> {
         }
     }
     if let Some(start) = &settings.start {
-        if start.len() != parameter_count(settings.dof)
-            || start.iter().any(|v| !(v.is_finite() && *v > 0.0))
+        if let Some(i) = (start.len() == parameter_count(settings.dof))
+            .then(|| start.iter().position(|v| !(v.is_finite() && *v > 0.0)))
+            .flatten()
         {
+            let name = bumpsim_core::model::parameter_name(settings.dof, i);
+            return setting(
+                "start",
+                format!(
+                    "{name} = {}: start values must be finite and positive",
+                    start[i]
+                ),
+            );
+        }
+        if start.len() != parameter_count(settings.dof) {
             return setting(
                 "start",
                 format!(
@@ -665,6 +680,20 @@ mod tests {
             explored_best_fit,
             best: 0,
         }
+    }
+
+    /// `fixed = { k1 = nan }` said "bounds: fixed value NaN must be
+    /// positive", naming neither the table nor the parameter.
+    #[test]
+    fn a_bad_fixed_value_names_its_parameter() {
+        let mut bounds = Bounds::uniform(2, 1.0);
+        bounds.fixed[3] = Some(f64::NAN);
+        let err = bounds.check(2).unwrap_err().to_string();
+        assert!(
+            err.contains("fixed")
+                && err.contains("k1 = NaN: a fixed value must be finite and positive"),
+            "{err}"
+        );
     }
 
     /// The remark fired on a 1-DOF model whose 32 starts all reached the
