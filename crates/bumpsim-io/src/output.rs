@@ -17,7 +17,10 @@
 //!   place only by [`StagedFolder::commit`]: a new folder is renamed in one
 //!   step; into an existing folder each staged file is renamed over its old
 //!   version (files of the folder that the run does not write are kept). A
-//!   failed run leaves the old outputs untouched.
+//!   failed run leaves the old outputs untouched; a killed one (`kill -9`)
+//!   leaves its hidden temporary file or folder, which the next write of
+//!   the same output removes (on Linux, where `/proc` tells that the
+//!   process is gone).
 //! - a path that is an existing non-folder where a folder is needed (or an
 //!   existing folder where a file is needed), or an existing device, pipe
 //!   or socket (which the rename would replace) is an error before anything
@@ -359,7 +362,45 @@ fn sibling(path: &Path, kind: &str) -> PathBuf {
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_else(|| "output".into());
     let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+    remove_stale(path, &name, kind);
     path.with_file_name(format!(".{name}.{}-{n}.{kind}", std::process::id()))
+}
+
+/// Removes the temporary files or folders of `path` that a killed run left
+/// (`kill -9` leaves no chance to clean up): siblings named as [`sibling`]
+/// names them whose process no longer runs. Only where `/proc` tells which
+/// processes run (Linux); elsewhere they stay, hidden and harmless.
+fn remove_stale(path: &Path, name: &str, kind: &str) {
+    let (Some(parent), true) = (path.parent(), Path::new("/proc/self").exists()) else {
+        return;
+    };
+    let parent = if parent.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        parent
+    };
+    let Ok(entries) = std::fs::read_dir(parent) else {
+        return;
+    };
+    let (prefix, suffix) = (format!(".{name}."), format!(".{kind}"));
+    for entry in entries.flatten() {
+        let file = entry.file_name().to_string_lossy().into_owned();
+        let Some(middle) = file
+            .strip_prefix(&prefix)
+            .and_then(|m| m.strip_suffix(&suffix))
+        else {
+            continue;
+        };
+        let Some((pid, n)) = middle.split_once('-') else {
+            continue;
+        };
+        let ours = pid.parse::<u32>().ok() == Some(std::process::id());
+        let valid = pid.parse::<u32>().is_ok() && n.parse::<u64>().is_ok();
+        if valid && !ours && !Path::new("/proc").join(pid).exists() {
+            let _ = std::fs::remove_dir_all(entry.path())
+                .or_else(|_| std::fs::remove_file(entry.path()));
+        }
+    }
 }
 
 fn create_parent(path: &Path) -> Result<(), OutputError> {
@@ -784,6 +825,33 @@ mod tests {
         staged.write("index.html", b"<html/>").unwrap();
         assert!(matches!(staged.commit(&g), Err(OutputError::Twice { .. })));
         assert!(!report.exists());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// kill -9 during a write left `.out.csv.PID-N.tmp` and
+    /// `.report.PID-N.staging/` for good; the next write of the same output
+    /// removes those of processes that no longer run.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn a_killed_run_s_temporary_files_go_with_the_next_write() {
+        let dir = temp("stale");
+        let dead = u32::MAX - 7; // above any pid_max
+        let stale_file = dir.join(format!(".out.csv.{dead}-3.tmp"));
+        std::fs::write(&stale_file, "half").unwrap();
+        let stale_folder = dir.join(format!(".report.{dead}-0.staging"));
+        std::fs::create_dir_all(stale_folder.join("fig")).unwrap();
+        let alive = dir.join(format!(".out.csv.{}-9.tmp", std::process::id()));
+        std::fs::write(&alive, "mine").unwrap();
+        let unrelated = dir.join(".out.csv.notes.tmp");
+        std::fs::write(&unrelated, "user").unwrap();
+        let g = Outputs::new();
+        g.write_file(&dir.join("out.csv"), b"x").unwrap();
+        g.stage_folder(&dir.join("report"))
+            .unwrap()
+            .commit(&g)
+            .unwrap();
+        assert!(!stale_file.exists() && !stale_folder.exists());
+        assert!(alive.exists() && unrelated.exists());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
