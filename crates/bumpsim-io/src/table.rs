@@ -329,7 +329,7 @@ fn header_units(header: &Row, path: &Path) -> Result<Vec<(String, Unit)>, TableE
         path: path.into(),
         line: header.line,
         column,
-        text: text.to_string(),
+        text: excerpt(text),
         reason,
     };
     let mut units = Vec::with_capacity(header.cells.len());
@@ -381,9 +381,29 @@ fn number(cell: &str, name: &str, unit: &Unit, line: u64, path: &Path) -> Result
         _ => Err(TableError::Number {
             path: path.into(),
             line,
-            column: format!("{name} [{unit}]"),
-            text: cell.to_string(),
+            column: format!("{} [{unit}]", excerpt(name)),
+            text: excerpt(cell),
         }),
+    }
+}
+
+/// A cell as an error message quotes it: at most 60 characters, then how
+/// long it is (a 1 GB cell of NUL bytes was echoed whole to stderr).
+/// Control characters (NUL, ESC, ...) are shown escaped, not sent to the
+/// terminal.
+pub fn excerpt(text: &str) -> String {
+    const SHOWN: usize = 60;
+    let shown: String = text
+        .chars()
+        .take(SHOWN)
+        .map(|c| match c.is_control() {
+            true => c.escape_debug().to_string(),
+            false => c.to_string(),
+        })
+        .collect();
+    match text.chars().nth(SHOWN) {
+        None => shown,
+        Some(_) => format!("{shown}… ({} bytes)", text.len()),
     }
 }
 
@@ -516,6 +536,18 @@ mod tests {
 
     fn parse(text: &str) -> Result<Table, TableError> {
         Table::parse(text, Path::new("f.csv"))
+    }
+
+    #[test]
+    fn long_and_control_cells_are_quoted_short() {
+        assert_eq!(excerpt("1,5"), "1,5");
+        assert_eq!(excerpt("a\u{1b}[2J"), "a\\u{1b}[2J");
+        let huge = "\0".repeat(1_000_000);
+        let shown = excerpt(&huge);
+        assert!(
+            shown.len() < 400 && shown.ends_with("… (1000000 bytes)"),
+            "{shown}"
+        );
     }
 
     #[test]
