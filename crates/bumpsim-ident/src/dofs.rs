@@ -12,6 +12,7 @@
 //! assert_eq!("1,3".parse::<DofList>().unwrap().0, vec![1, 3]);
 //! assert!("0".parse::<DofList>().is_err() && "4..2".parse::<DofList>().is_err());
 //! assert!("1..1000000000000".parse::<DofList>().is_err()); // above MAX_DOF
+//! assert!("2,2".parse::<DofList>().is_err()); // each order once
 //! ```
 
 use crate::case::LoadCase;
@@ -26,7 +27,7 @@ pub struct DofList(pub Vec<usize>);
 /// A text that is not a DOF number, range or list.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error(
-    "'{0}': expected a number (3), a range (1..5) or a list (1,2,3) of numbers from 1 to {max}",
+    "'{0}': expected a number (3), a range (1..5) or a list (1,2,3) of different numbers from 1 to {max}",
     max = crate::estimate::MAX_DOF
 )]
 pub struct DofListError(pub String);
@@ -43,7 +44,8 @@ impl FromStr for DofList {
             Some((a, b)) => (number(a)?..=number(b)?).collect(),
             None => text.split(',').map(number).collect::<Result<_, _>>()?,
         };
-        if list.is_empty() {
+        let repeated = (1..list.len()).any(|i| list[..i].contains(&list[i]));
+        if list.is_empty() || repeated {
             return Err(DofListError(text.into()));
         }
         Ok(DofList(list))

@@ -205,9 +205,11 @@ pub struct ModelSpec {
     pub lower_bound: f64,
     /// Upper bound of every parameter, SI (default: none).
     pub upper_bound: Option<f64>,
-    /// Per-parameter bounds by name: `bounds = { m1 = [1, 50] }`.
+    /// Per-parameter bounds by name: `bounds = { m1 = [1, 50] }` (exactly
+    /// two values, checked with the names: a fixed-size array let a third
+    /// value pass unseen).
     #[serde(default)]
-    pub bounds: BTreeMap<String, [f64; 2]>,
+    pub bounds: BTreeMap<String, Vec<f64>>,
     /// Per-parameter fixed values by name: `fixed = { m1 = 2.0 }`.
     #[serde(default)]
     pub fixed: BTreeMap<String, f64>,
@@ -346,10 +348,18 @@ impl Study {
             ));
         }
         study.check_case_names().map_err(error)?;
+        study.check_tables().map_err(error)?;
         if study.dofs().is_empty() {
             return Err(error(
                 "[model] dof = []: expected at least one DOF (dof = 3 or dof = [1, 2, 3])".into(),
             ));
+        }
+        let dofs = study.dofs();
+        if let Some(twice) = (1..dofs.len()).find(|&i| dofs[..i].contains(&dofs[i])) {
+            return Err(error(format!(
+                "[model] dof: {} is given twice; each model order once",
+                dofs[twice]
+            )));
         }
         let max = crate::estimate::MAX_DOF;
         if let Some(bad) = study.dofs().into_iter().find(|&n| n == 0 || n > max) {
@@ -406,8 +416,8 @@ impl Study {
         }
         let names: Vec<String> = (0..p).map(|i| parameter_name(dof, i)).collect();
         let index = |name: &str| names.iter().position(|n| n == name);
-        for (name, [lo, hi]) in &self.model.bounds {
-            if let Some(i) = index(name) {
+        for (name, pair) in &self.model.bounds {
+            if let (Some(i), [lo, hi]) = (index(name), pair.as_slice()) {
                 (bounds.lower[i], bounds.upper[i]) = (*lo, *hi);
             }
         }
@@ -448,6 +458,27 @@ impl Study {
             }
         }
         Ok(())
+    }
+
+    /// A `bounds` entry is two values; a parameter is fixed or bounded, not
+    /// both (the fixed value silently won).
+    fn check_tables(&self) -> Result<(), String> {
+        if let Some((name, pair)) = self.model.bounds.iter().find(|(_, b)| b.len() != 2) {
+            return Err(format!(
+                "bounds: {name} = {pair:?}: expected [lower, upper], two values"
+            ));
+        }
+        match self
+            .model
+            .fixed
+            .keys()
+            .find(|n| self.model.bounds.contains_key(*n))
+        {
+            Some(name) => Err(format!(
+                "{name} is both fixed and bounded: give it in one of fixed and bounds"
+            )),
+            None => Ok(()),
+        }
     }
 
     /// The user's start for a `dof`-mass model: used when it has `dof`
@@ -682,6 +713,8 @@ mod tests {
             Study::read(&path).unwrap_err().to_string()
         };
         let case = |name: &str| format!("[[case]]\nname = \"{name}\"\n{CASE}\n");
+        let err = read(&format!("[model]\ndof = [2, 3, 2]\n{}", case("a")));
+        assert!(err.contains("dof: 2 is given twice"), "{err}");
         let err = read(&format!("[model]\ndof = []\n{}", case("a")));
         assert!(err.contains("dof = []: expected at least one DOF"), "{err}");
         let err = read(&format!(
@@ -695,6 +728,19 @@ mod tests {
         );
         let err = read(&format!("[model]\ndof = 2\n{}", case(" ")));
         assert!(err.contains("an empty name"), "{err}");
+        let err = read(&format!(
+            "[model]\ndof = 2\nbounds = {{ m1 = [1.0, 2.0, 3.0] }}\n{}",
+            case("a")
+        ));
+        assert!(
+            err.contains("bounds: m1 = [1.0, 2.0, 3.0]: expected [lower, upper]"),
+            "{err}"
+        );
+        let err = read(&format!(
+            "[model]\ndof = 2\nbounds = {{ m1 = [1.0, 20.0] }}\nfixed = {{ m1 = 30.0 }}\n{}",
+            case("a")
+        ));
+        assert!(err.contains("m1 is both fixed and bounded"), "{err}");
         let err = read(&format!("[model]\ndof = -2\n{}", case("a")));
         assert!(
             err.contains("dof: expected a number of masses") && !err.contains("enum"),
