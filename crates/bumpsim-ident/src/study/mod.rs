@@ -130,7 +130,9 @@ pub enum DefinitionError {
     #[error("window '{0}': expected \"contact\" or [t0, t1] in s")]
     WindowName(String),
     /// The window `[t0, t1]` s holds fewer than two samples.
-    #[error("window [{t0}, {t1}] s holds no samples of the data")]
+    #[error(
+        "window [{t0}, {t1}] s holds fewer than two samples of the data (a window needs t0 < t1 and at least two samples)"
+    )]
     EmptyWindow {
         /// Start, s.
         t0: f64,
