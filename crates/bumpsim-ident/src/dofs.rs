@@ -44,12 +44,19 @@ impl FromStr for DofList {
             Some((a, b)) => (number(a)?..=number(b)?).collect(),
             None => text.split(',').map(number).collect::<Result<_, _>>()?,
         };
-        let repeated = (1..list.len()).any(|i| list[..i].contains(&list[i]));
-        if list.is_empty() || repeated {
+        if list.is_empty() || repeated(&list).is_some() {
             return Err(DofListError(text.into()));
         }
         Ok(DofList(list))
     }
+}
+
+/// The first DOF that `list` gives a second time, if any (a study's list
+/// and `--dof` are checked alike).
+pub(crate) fn repeated(list: &[usize]) -> Option<usize> {
+    (1..list.len())
+        .find(|&i| list[..i].contains(&list[i]))
+        .map(|i| list[i])
 }
 
 /// A DOF table in the making: it remembers the last model identified, so

@@ -92,9 +92,12 @@ impl Bounds {
             }
             if let Some(v) = self.fixed[i].filter(|v| !(v.is_finite() && *v > 0.0)) {
                 let name = bumpsim_core::model::parameter_name(dof, i);
+                let unit = parameter_kind(dof, i).0.unit();
                 return Err(IdentError::Setting {
                     name: "fixed",
-                    reason: format!("{name} = {v}: a fixed value must be finite and positive"),
+                    reason: format!(
+                        "{name} = {v} {unit}: a fixed value must be finite and positive"
+                    ),
                 });
             }
         }
@@ -350,32 +353,22 @@ fn check(cases: &[LoadCase], settings: &Settings) -> Result<(), IdentError> {
             );
         }
     }
+    let p = parameter_count(settings.dof);
     if let Some(start) = &settings.start {
-        if let Some(i) = (start.len() == parameter_count(settings.dof))
-            .then(|| start.iter().position(|v| !(v.is_finite() && *v > 0.0)))
-            .flatten()
-        {
-            let name = bumpsim_core::model::parameter_name(settings.dof, i);
-            return setting(
-                "start",
-                format!(
-                    "{name} = {}: start values must be finite and positive",
-                    start[i]
-                ),
-            );
+        if start.len() != p {
+            let reason = format!("{p} positive values expected for {} DOF", settings.dof);
+            return setting("start", reason);
         }
-        if start.len() != parameter_count(settings.dof) {
-            return setting(
-                "start",
-                format!(
-                    "{} positive values expected for {} DOF",
-                    parameter_count(settings.dof),
-                    settings.dof
-                ),
+        if let Some(i) = start.iter().position(|v| !(v.is_finite() && *v > 0.0)) {
+            let name = bumpsim_core::model::parameter_name(settings.dof, i);
+            let unit = parameter_kind(settings.dof, i).0.unit();
+            let reason = format!(
+                "{name} = {} {unit}: start values must be finite and positive",
+                start[i]
             );
+            return setting("start", reason);
         }
     }
-    let p = parameter_count(settings.dof);
     if let Some(bad) = settings
         .seeds
         .iter()
@@ -691,7 +684,7 @@ mod tests {
         let err = bounds.check(2).unwrap_err().to_string();
         assert!(
             err.contains("fixed")
-                && err.contains("k1 = NaN: a fixed value must be finite and positive"),
+                && err.contains("k1 = NaN N/m: a fixed value must be finite and positive"),
             "{err}"
         );
     }

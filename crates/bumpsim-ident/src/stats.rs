@@ -199,12 +199,15 @@ pub fn uncertainty(
             * variance
     });
     // a parameter with a share in a dropped direction is not determined
-    let free_share = |a: usize| -> f64 {
-        (0..k)
-            .filter(|&s| !kept(s))
-            .map(|s| v_t[(s, a)].powi(2))
-            .sum()
-    };
+    let determined: Vec<bool> = (0..k)
+        .map(|a| {
+            let share: f64 = (0..k)
+                .filter(|&s| !kept(s))
+                .map(|s| v_t[(s, a)].powi(2))
+                .sum();
+            share <= NULL_SHARE
+        })
+        .collect();
     let dropped = (0..k).filter(|&s| !kept(s)).count();
     if dropped > 0 {
         result.warnings.push(format!(
@@ -215,10 +218,10 @@ pub fn uncertainty(
         .map_or(1.96, |d| d.inverse_cdf(0.975));
     for (a, &ja) in estimated.iter().enumerate() {
         let i = free[ja];
-        let se_log = if free_share(a) > NULL_SHARE {
-            f64::INFINITY
-        } else {
+        let se_log = if determined[a] {
             cov[(a, a)].sqrt()
+        } else {
+            f64::INFINITY
         };
         let interval = [
             theta[i] * (-t * se_log).exp(),
@@ -228,7 +231,7 @@ pub fn uncertainty(
         result.standard_errors[i] = usable.then_some(theta[i] * se_log);
         result.ci95[i] = usable.then_some(interval);
         for (b, &jb) in estimated.iter().enumerate() {
-            let both = usable && free_share(b) <= NULL_SHARE;
+            let both = usable && determined[b];
             result.correlation[i][free[jb]] =
                 both.then(|| cov[(a, b)] / (se_log * cov[(b, b)].sqrt()));
         }

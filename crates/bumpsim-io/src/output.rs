@@ -273,6 +273,7 @@ impl Outputs {
     /// the same folder, fsync, rename). Creates the folder if missing.
     pub fn write_file(&self, path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
         self.check_file(path)?;
+        remove_stale(&through_link(path), "tmp");
         write_atomic(path, bytes)
     }
 
@@ -362,18 +363,24 @@ fn sibling(path: &Path, kind: &str) -> PathBuf {
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_else(|| "output".into());
     let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-    remove_stale(path, &name, kind);
     path.with_file_name(format!(".{name}.{}-{n}.{kind}", std::process::id()))
 }
 
-/// Removes the temporary files or folders of `path` that a killed run left
-/// (`kill -9` leaves no chance to clean up): siblings named as [`sibling`]
-/// names them whose process no longer runs. Only where `/proc` tells which
+/// Removes the temporary files or folders of the user's output `path`
+/// that a killed run left (`kill -9` leaves no chance to clean up):
+/// siblings named as [`sibling`] names them whose process no longer runs.
+/// Once per user output (not in [`write_atomic`], which library writers
+/// call per file inside staging folders). Only where `/proc` tells which
 /// processes run (Linux); elsewhere they stay, hidden and harmless.
-fn remove_stale(path: &Path, name: &str, kind: &str) {
-    let (Some(parent), true) = (path.parent(), Path::new("/proc/self").exists()) else {
+fn remove_stale(path: &Path, kind: &str) {
+    let (Some(parent), Some(name), true) = (
+        path.parent(),
+        path.file_name(),
+        Path::new("/proc/self").exists(),
+    ) else {
         return;
     };
+    let name = name.to_string_lossy();
     let parent = if parent.as_os_str().is_empty() {
         Path::new(".")
     } else {
@@ -391,12 +398,14 @@ fn remove_stale(path: &Path, name: &str, kind: &str) {
         else {
             continue;
         };
-        let Some((pid, n)) = middle.split_once('-') else {
+        let Some((Ok(pid), Ok(_))) = middle
+            .split_once('-')
+            .map(|(pid, n)| (pid.parse::<u32>(), n.parse::<u64>()))
+        else {
             continue;
         };
-        let ours = pid.parse::<u32>().ok() == Some(std::process::id());
-        let valid = pid.parse::<u32>().is_ok() && n.parse::<u64>().is_ok();
-        if valid && !ours && !Path::new("/proc").join(pid).exists() {
+        let gone = !Path::new("/proc").join(pid.to_string()).exists();
+        if pid != std::process::id() && gone {
             let _ = std::fs::remove_dir_all(entry.path())
                 .or_else(|_| std::fs::remove_file(entry.path()));
         }
@@ -528,6 +537,7 @@ impl StagedFolder {
             });
         }
         create_parent(target)?;
+        remove_stale(target, "staging");
         let staging = sibling(target, "staging");
         std::fs::create_dir_all(&staging).map_err(|e| OutputError::io(&staging, e))?;
         Ok(Self {

@@ -351,24 +351,7 @@ impl Study {
         }
         study.check_case_names().map_err(error)?;
         study.check_tables().map_err(error)?;
-        if study.dofs().is_empty() {
-            return Err(error(
-                "[model] dof = []: expected at least one DOF (dof = 3 or dof = [1, 2, 3])".into(),
-            ));
-        }
-        let dofs = study.dofs();
-        if let Some(twice) = (1..dofs.len()).find(|&i| dofs[..i].contains(&dofs[i])) {
-            return Err(error(format!(
-                "[model] dof: {} is given twice; each model order once",
-                dofs[twice]
-            )));
-        }
-        let max = crate::estimate::MAX_DOF;
-        if let Some(bad) = study.dofs().into_iter().find(|&n| n == 0 || n > max) {
-            return Err(error(format!(
-                "[model] dof = {bad}: expected 1 to {max} masses (limit MAX_DOF)"
-            )));
-        }
+        study.check_dofs().map_err(error)?;
         Ok(study)
     }
 
@@ -460,6 +443,28 @@ impl Study {
             }
         }
         Ok(())
+    }
+
+    /// At least one DOF, each once, each from 1 to `MAX_DOF`.
+    fn check_dofs(&self) -> Result<(), String> {
+        let dofs = self.dofs();
+        let max = crate::estimate::MAX_DOF;
+        if dofs.is_empty() {
+            return Err(
+                "[model] dof = []: expected at least one DOF (dof = 3 or dof = [1, 2, 3])".into(),
+            );
+        }
+        if let Some(twice) = crate::dofs::repeated(&dofs) {
+            return Err(format!(
+                "[model] dof: {twice} is given twice; each model order once"
+            ));
+        }
+        match dofs.into_iter().find(|&n| n == 0 || n > max) {
+            Some(bad) => Err(format!(
+                "[model] dof = {bad}: expected 1 to {max} masses (limit MAX_DOF)"
+            )),
+            None => Ok(()),
+        }
     }
 
     /// A `bounds` entry is two values; a parameter is fixed or bounded, not
