@@ -356,13 +356,20 @@ impl Study {
     }
 
     /// Case names name results, plots and `--case` selections: each must be
-    /// non-empty and differ from the others (ignoring case and surrounding
-    /// spaces, as file names may).
+    /// non-empty, printable (no control characters) and differ from the
+    /// others (ignoring case and surrounding spaces, as file names may).
     fn check_case_names(&self) -> Result<(), String> {
         let key = |name: &str| name.trim().to_lowercase();
         for (i, case) in self.case.iter().enumerate() {
             if key(&case.name).is_empty() {
                 return Err(format!("[[case]] number {}: an empty name", i + 1));
+            }
+            if case.name.chars().any(char::is_control) {
+                return Err(format!(
+                    "[[case]] number {}: the name '{}' holds control characters (tab, escape, ...): they would reach the terminal and the file names; use printable text",
+                    i + 1,
+                    case.name.escape_debug()
+                ));
             }
             if let Some(first) = self.case[..i]
                 .iter()
@@ -735,6 +742,11 @@ mod tests {
         );
         let err = read(&format!("[model]\ndof = 2\n{}", case(" ")));
         assert!(err.contains("an empty name"), "{err}");
+        let err = read(&format!("[model]\ndof = 2\n{}", case("red\\u001b[31m")));
+        assert!(
+            err.contains("the name 'red\\u{1b}[31m' holds control characters"),
+            "{err}"
+        );
         let err = read(&format!(
             "[model]\ndof = 2\nbounds = {{ m1 = [1.0, 2.0, 3.0] }}\n{}",
             case("a")
