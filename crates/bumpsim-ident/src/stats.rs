@@ -16,7 +16,9 @@
 //! theirs (before, one free spring left every parameter without one).
 //! [`determination`] sorts the parameters into those the data determine (a
 //! 95 % interval within a factor [`crate::reduce::SPREAD`]) and those they
-//! do not (issue 19).
+//! do not (issue 19), naming the combination they leave freest (the
+//! largest shares of the weakest direction); [`Uncertainty::determined`] and
+//! [`Uncertainty::weakest_direction`] carry the same for the JSON.
 
 use crate::case::Objective;
 use crate::lm::LeastSquares;
@@ -61,8 +63,38 @@ pub struct Uncertainty {
     pub singular_values: Vec<f64>,
     /// Largest over smallest singular value.
     pub condition: f64,
+    /// Whether the data determine each parameter (thesis order):
+    /// `Some(true)` when its 95 % interval lies within a factor
+    /// [`SPREAD`], `Some(false)` when it is at a bound, has no interval or
+    /// a wider one, `None` when it is fixed ([`is_determined`]).
+    pub determined: Vec<Option<bool>>,
+    /// The combination of parameters the data inform least: the right
+    /// singular vector of the smallest singular value of the Jacobian in
+    /// the estimated log parameters, as each parameter's share (its
+    /// squared component; the shares sum to 1), largest first. Empty when
+    /// nothing is estimated.
+    pub weakest_direction: Vec<Share>,
     /// Warnings (parameters at bounds, poorly identifiable directions).
     pub warnings: Vec<String>,
+}
+
+/// A parameter's share of a direction in log-parameter space.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Share {
+    /// The parameter (`k1`).
+    pub parameter: String,
+    /// Its squared component, 0..1.
+    pub share: f64,
+}
+
+/// Whether the data determine parameter `i` of `u`: its 95 % interval
+/// within a factor [`SPREAD`] (`Some(true)`), or not: at its bound, without
+/// an interval or with a wider one (`Some(false)`); `None` when it is fixed.
+pub fn is_determined(u: &Uncertainty, i: usize) -> Option<bool> {
+    (!u.fixed[i]).then(|| match (u.at_bound[i], u.ci95[i]) {
+        (false, Some([a, b])) => b / a <= SPREAD,
+        _ => false,
+    })
 }
 
 /// Which estimated parameters the data determine — a 95 % interval within
@@ -83,6 +115,8 @@ pub struct Uncertainty {
 ///     degrees_of_freedom: 100,
 ///     singular_values: vec![],
 ///     condition: f64::INFINITY,
+///     determined: vec![Some(true), Some(false), Some(false)],
+///     weakest_direction: vec![],
 ///     warnings: vec![],
 /// };
 /// let text = determination(&u).unwrap();
@@ -92,15 +126,16 @@ pub struct Uncertainty {
 /// ```
 pub fn determination(u: &Uncertainty) -> Option<String> {
     let (mut determined, mut free) = (Vec::new(), Vec::new());
-    for (i, name) in u.names.iter().enumerate().filter(|(i, _)| !u.fixed[*i]) {
-        match (u.at_bound[i], u.ci95[i]) {
-            (false, Some([a, b])) if b / a <= SPREAD => determined.push(name.clone()),
-            (true, _) => free.push(format!("{name} (at its bound)")),
-            (false, Some([a, b])) => free.push(format!(
+    for (i, name) in u.names.iter().enumerate() {
+        match (is_determined(u, i), u.at_bound[i], u.ci95[i]) {
+            (None, _, _) => {}
+            (Some(true), _, _) => determined.push(name.clone()),
+            (Some(false), true, _) => free.push(format!("{name} (at its bound)")),
+            (Some(false), false, Some([a, b])) => free.push(format!(
                 "{name} (95 % interval spans a factor {})",
                 format_number(b / a, 4)
             )),
-            (false, None) => free.push(format!("{name} (no interval)")),
+            (Some(false), false, None) => free.push(format!("{name} (no interval)")),
         }
     }
     if free.is_empty() {
@@ -110,15 +145,44 @@ pub fn determination(u: &Uncertainty) -> Option<String> {
         true => "none of the parameters".to_string(),
         false => determined.join(", "),
     };
-    Some(format!(
+    let mut text = format!(
         "the data determine {determined} (95 % intervals within a factor {}); they do not determine {}",
         format_number(SPREAD, 4),
         free.join(", ")
-    ))
+    );
+    if let Some(combination) = combination(&u.weakest_direction) {
+        text += &format!("; the combination they leave freest is {combination}");
+    }
+    Some(text)
+}
+
+/// The largest shares of a direction (at most three, each at least 1 %):
+/// `k1 98 %, m2 2 %`; None when it is empty.
+fn combination(direction: &[Share]) -> Option<String> {
+    let named: Vec<String> = direction
+        .iter()
+        .take(3)
+        .filter(|s| s.share >= 0.01)
+        .map(|s| format!("{} {:.0} %", s.parameter, 100.0 * s.share))
+        .collect();
+    (!named.is_empty()).then(|| named.join(", "))
 }
 
 /// Uncertainty at free log parameters `p` of `objective`.
 pub fn uncertainty(
+    objective: &Objective,
+    p: &[f64],
+    lower: &[f64],
+    upper: &[f64],
+    dof: usize,
+) -> Uncertainty {
+    let mut u = intervals(objective, p, lower, upper, dof);
+    u.determined = (0..u.names.len()).map(|i| is_determined(&u, i)).collect();
+    u
+}
+
+/// [`uncertainty`] without the determination.
+fn intervals(
     objective: &Objective,
     p: &[f64],
     lower: &[f64],
@@ -149,6 +213,8 @@ pub fn uncertainty(
         degrees_of_freedom: m.saturating_sub(estimated.len()),
         singular_values: Vec::new(),
         condition: f64::INFINITY,
+        determined: Vec::new(),
+        weakest_direction: Vec::new(),
         warnings: Vec::new(),
         names,
     };
@@ -236,21 +302,20 @@ pub fn uncertainty(
                 both.then(|| cov[(a, b)] / (se_log * cov[(b, b)].sqrt()));
         }
     }
+    let weakest = order[k - 1];
+    let mut shares: Vec<Share> = (0..k)
+        .map(|c| Share {
+            parameter: result.names[free[estimated[c]]].clone(),
+            share: v_t[(weakest, c)].powi(2),
+        })
+        .collect();
+    shares.sort_by(|a, b| b.share.total_cmp(&a.share));
+    result.weakest_direction = shares;
     if result.condition > 1e6 {
-        let weakest = order[k - 1];
-        let mut parts: Vec<(f64, usize)> = (0..k)
-            .map(|c| (v_t[(weakest, c)].powi(2), free[estimated[c]]))
-            .collect();
-        parts.sort_by(|a, b| b.0.total_cmp(&a.0));
-        let named: Vec<String> = parts
-            .iter()
-            .take(3)
-            .map(|(w, i)| format!("{} {:.0} %", result.names[*i], 100.0 * w))
-            .collect();
         result.warnings.push(format!(
             "poorly identifiable direction (condition number {:.2e}): mostly {}",
             result.condition,
-            named.join(", ")
+            combination(&result.weakest_direction).unwrap_or_default()
         ));
     }
     result

@@ -5,7 +5,9 @@ use crate::estimate::Identification;
 use bumpsim_core::model::{format_parameter, parameter_count, parameter_name};
 use bumpsim_core::units::{Dimension, format_number, format_quantity};
 
-/// The parameter table: name, value, standard error, 95 % interval, flags.
+/// The parameter table: name, value, standard error, 95 % interval, and a
+/// note: fixed, at bound, or not determined by the data
+/// ([`crate::stats::is_determined`]).
 pub fn parameter_table(result: &Identification) -> String {
     let dof = result.dof;
     let theta = result.model.parameters();
@@ -23,9 +25,10 @@ pub fn parameter_table(result: &Identification) -> String {
                 format_parameter(dof, i, b)
             )
         });
-        let note = match (u.fixed[i], u.at_bound[i]) {
-            (true, _) => "fixed",
-            (_, true) => "at bound",
+        let note = match (u.fixed[i], u.at_bound[i], u.determined.get(i)) {
+            (true, _, _) => "fixed",
+            (_, true, _) => "at bound",
+            (_, _, Some(Some(false))) => "not determined",
             _ => "",
         };
         let value = format_parameter(dof, i, value);

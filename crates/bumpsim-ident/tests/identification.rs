@@ -452,9 +452,36 @@ fn an_undetermined_stiff_spring_is_named_and_the_merged_model_suggested() {
     let merged = reduction.model.masses()[1];
     assert!((merged / 1400.0 - 1.0).abs() < 0.1, "m2 + m3 = {merged} kg");
     assert!(result.warnings.contains(&reduction.statement));
-    // a well-determined model gets no suggestion
+    // the parameter is marked, for the JSON, the summary and the report
+    let u = &result.uncertainty;
+    assert_eq!(u.determined[6], Some(false), "{:?}", u.determined);
+    let table = bumpsim_ident::text::parameter_table(&result);
+    let k2 = table.lines().find(|l| l.starts_with("k2")).unwrap();
+    assert!(
+        k2.ends_with("at bound") || k2.ends_with("not determined"),
+        "{table}"
+    );
+    let statement = result
+        .warnings
+        .iter()
+        .find(|w| w.starts_with("the data determine"));
+    assert!(
+        statement.is_some_and(|s| s.contains("the combination they leave freest is")),
+        "{:?}",
+        result.warnings
+    );
+    // a well-determined model gets no suggestion, and every parameter is determined
     let determined = identify(&series(&truth()), &Settings::new(3, 8), &|| {}).unwrap();
     assert!(determined.reduction.is_none(), "{:?}", determined.reduction);
+    let u = &determined.uncertainty;
+    assert_eq!(u.determined, vec![Some(true); 7]);
+    let shares: f64 = u.weakest_direction.iter().map(|s| s.share).sum();
+    assert!((shares - 1.0).abs() < 1e-9, "{:?}", u.weakest_direction);
+    assert!(
+        u.weakest_direction
+            .windows(2)
+            .all(|w| w[0].share >= w[1].share)
+    );
 }
 
 /// Issue 19: ten synthetic 5-DOF problems.

@@ -267,7 +267,9 @@ impl Identification {
     fn standard_errors(&self) -> Vec<Option<f64>> {
         self.result.uncertainty.standard_errors.clone()
     }
-    /// Standard errors, intervals, correlations, singular values (the JSON's `uncertainty`).
+    /// Standard errors, intervals, correlations, singular values, which
+    /// parameters the data determine and the weakest direction (the JSON's
+    /// `uncertainty`).
     #[getter]
     fn uncertainty<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         from_json(py, &self.result.uncertainty)

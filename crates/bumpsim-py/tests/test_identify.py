@@ -37,6 +37,10 @@ def test_same_parameters_and_objective_as_the_cli(result, cli_json):
     assert result.objective == pytest.approx(cli_json["objective"], rel=1e-12)
     for name in ("masses", "dampers", "springs"):
         np.testing.assert_allclose(getattr(result, name), cli_json[name], rtol=1e-12)
+    # which parameters the data determine, the same in both
+    assert result.uncertainty["determined"] == cli_json["uncertainty"]["determined"]
+    assert [s["parameter"] for s in result.uncertainty["weakest_direction"]] == \
+        [s["parameter"] for s in cli_json["uncertainty"]["weakest_direction"]]
     cli_se = cli_json["uncertainty"]["standard_errors"]
     for ours, theirs in zip(result.standard_errors, cli_se):
         assert (ours is None) == (theirs is None)

@@ -214,6 +214,19 @@ fn nhtsa_two_dof_fit_and_the_dof_table() {
     let p_value = reduction["p_value"].as_f64().unwrap();
     assert!((0.0..=1.0).contains(&p_value), "F-test p = {p_value}");
     assert!(stdout.contains(&format!("{pair} move as one")), "{stdout}");
+    // that spring is marked not determined in the JSON, by index and name
+    let u = &results[2]["uncertainty"];
+    let names = u["names"].as_array().unwrap();
+    let spring = names
+        .iter()
+        .position(|n| n == &reduction["parameter"])
+        .unwrap();
+    assert_eq!(u["determined"][spring], false, "{u}");
+    let direction = u["weakest_direction"].as_array().unwrap();
+    assert!(
+        !direction.is_empty() && direction[0]["share"].as_f64().unwrap() > 0.0,
+        "{u}"
+    );
     // the DOF table never gets worse with a further mass: continuation
     let objective = |r: &serde_json::Value| r["objective"].as_f64().unwrap();
     for pair in results.windows(2) {
