@@ -102,15 +102,20 @@ impl LoadCase {
                 self.step, self.output_dof
             )));
         }
-        let finite = self
-            .force
-            .iter()
-            .chain(&self.measured)
-            .all(|v| v.is_finite());
-        if !(finite && self.initial_velocity.is_finite()) {
-            return Err(invalid(
-                "non-finite force, displacement or initial velocity".into(),
-            ));
+        let signals = [("force", &self.force), ("displacement", &self.measured)];
+        for (what, values) in signals {
+            if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+                return Err(invalid(format!(
+                    "{what} sample {k} is {}: expected finite values",
+                    values[k]
+                )));
+            }
+        }
+        if !self.initial_velocity.is_finite() {
+            return Err(invalid(format!(
+                "initial velocity {} m/s: expected a finite value",
+                self.initial_velocity
+            )));
         }
         // a constant measured displacement (all zero, say) determines no
         // model: the fit measure divides by its variation

@@ -13,7 +13,7 @@
 use crate::case::{CaseError, LoadCase};
 use crate::estimate::{Bounds, Settings};
 use bumpsim_core::model::{parameter_count, parameter_name};
-use bumpsim_core::units::Dimension;
+use bumpsim_core::units::{Dimension, format_number};
 use bumpsim_io::signal_error::SignalFileError;
 use bumpsim_signal::loader::{LoadError, Loader, Note};
 use bumpsim_signal::process::ProcessError;
@@ -25,6 +25,11 @@ use std::path::{Path, PathBuf};
 
 mod context;
 use context::CaseContext;
+
+/// The largest initial velocity a case may give, m/s (either sign): far
+/// above any crash test's few m/s, so that a mistyped value is refused
+/// instead of overflowing every simulation ("all starts failed").
+pub const MAX_INITIAL_VELOCITY: f64 = 1000.0;
 
 /// Why a study cannot be read.
 #[derive(Debug, thiserror::Error)]
@@ -355,7 +360,9 @@ impl Study {
         Ok(study)
     }
 
-    /// Case names name results, plots and `--case` selections: each must be
+    /// Each case's initial velocity is finite and at most
+    /// [`MAX_INITIAL_VELOCITY`]. Case names name results, plots and
+    /// `--case` selections: each must be
     /// non-empty, printable (no control characters) and differ from the
     /// others (ignoring case and surrounding spaces, as file names may).
     fn check_case_names(&self) -> Result<(), String> {
@@ -369,6 +376,14 @@ impl Study {
                     "[[case]] number {}: the name '{}' holds control characters (tab, escape, ...): they would reach the terminal and the file names; use printable text",
                     i + 1,
                     case.name.escape_debug()
+                ));
+            }
+            let v = case.initial_velocity;
+            if !(v.is_finite() && v.abs() <= MAX_INITIAL_VELOCITY) {
+                return Err(format!(
+                    "[[case]] '{}': initial_velocity = {} m/s: expected a finite speed of at most {MAX_INITIAL_VELOCITY} m/s (a crash test's is a few m/s)",
+                    case.name,
+                    format_number(v, 4)
                 ));
             }
             if let Some(first) = self.case[..i]
@@ -742,6 +757,17 @@ mod tests {
         );
         let err = read(&format!("[model]\ndof = 2\n{}", case(" ")));
         assert!(err.contains("an empty name"), "{err}");
+        let fast = format!("{}initial_velocity = 1e300\n", case("fast"));
+        let err = read(&format!("[model]\ndof = 2\n{fast}"));
+        assert!(
+            err.contains("[[case]] 'fast': initial_velocity = 1.000e300 m/s: expected a finite speed of at most 1000 m/s"),
+            "{err}"
+        );
+        let err = read(&format!(
+            "[model]\ndof = 2\n{}initial_velocity = nan\n",
+            case("n")
+        ));
+        assert!(err.contains("initial_velocity = NaN m/s"), "{err}");
         let err = read(&format!("[model]\ndof = 2\n{}", case("red\\u001b[31m")));
         assert!(
             err.contains("the name 'red\\u{1b}[31m' holds control characters"),
