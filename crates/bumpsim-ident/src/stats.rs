@@ -70,9 +70,10 @@ pub struct Uncertainty {
     pub determined: Vec<Option<bool>>,
     /// The combination of parameters the data inform least: the right
     /// singular vector of the smallest singular value of the Jacobian in
-    /// the estimated log parameters, as each parameter's share (its
-    /// squared component; the shares sum to 1), largest first. Empty when
-    /// nothing is estimated.
+    /// the estimated log parameters (neither fixed nor at a bound), one
+    /// entry per parameter, largest share first. Empty when no parameter
+    /// is estimated, no degrees of freedom remain, or the Jacobian is zero
+    /// or not finite.
     pub weakest_direction: Vec<Share>,
     /// Warnings (parameters at bounds, poorly identifiable directions).
     pub warnings: Vec<String>,
@@ -83,8 +84,13 @@ pub struct Uncertainty {
 pub struct Share {
     /// The parameter (`k1`).
     pub parameter: String,
-    /// Its squared component, 0..1.
+    /// Its squared component, 0..1 (the shares of a direction sum to 1).
     pub share: f64,
+    /// Its component, −1..1, signed so that the largest is positive:
+    /// moving along the direction raises the parameters with a positive
+    /// component and lowers those with a negative one in proportion (in
+    /// log parameters), e.g. m2 +0.77, m3 −0.64: their ratio.
+    pub component: f64,
 }
 
 /// Whether the data determine parameter `i` of `u`: its 95 % interval
@@ -150,22 +156,48 @@ pub fn determination(u: &Uncertainty) -> Option<String> {
         format_number(SPREAD, 4),
         free.join(", ")
     );
-    if let Some(combination) = combination(&u.weakest_direction) {
-        text += &format!("; the combination they leave freest is {combination}");
+    // the direction is of the estimated parameters, and above condition
+    // 1e6 the uncertainty's own warning names it already
+    let unresolved =
+        (0..u.names.len()).any(|i| is_determined(u, i) == Some(false) && !u.at_bound[i]);
+    if unresolved && u.condition <= 1e6 {
+        if let Some(combination) = combination(&u.weakest_direction) {
+            text += &format!("; the direction they leave freest {combination}");
+        }
     }
     Some(text)
 }
 
-/// The largest shares of a direction (at most three, each at least 1 %):
-/// `k1 98 %, m2 2 %`; None when it is empty.
+/// The largest shares of a direction (at most three, each at least 1 %),
+/// with the way each moves: `raises m2 (59 %) and lowers m3 (41 %)`, or
+/// `is m5 alone (100 %)`; None when it is empty.
 fn combination(direction: &[Share]) -> Option<String> {
-    let named: Vec<String> = direction
+    let named: Vec<&Share> = direction
         .iter()
         .take(3)
         .filter(|s| s.share >= 0.01)
-        .map(|s| format!("{} {:.0} %", s.parameter, 100.0 * s.share))
         .collect();
-    (!named.is_empty()).then(|| named.join(", "))
+    let part = |s: &Share| {
+        let way = if s.component >= 0.0 {
+            "raises"
+        } else {
+            "lowers"
+        };
+        format!("{way} {} ({:.0} %)", s.parameter, 100.0 * s.share)
+    };
+    match named.as_slice() {
+        [] => None,
+        [one] => Some(format!(
+            "is {} alone ({:.0} %)",
+            one.parameter,
+            100.0 * one.share
+        )),
+        [first @ .., last] => Some(format!(
+            "{} and {}",
+            first.iter().map(|s| part(s)).collect::<Vec<_>>().join(", "),
+            part(last)
+        )),
+    }
 }
 
 /// Uncertainty at free log parameters `p` of `objective`.
@@ -303,20 +335,83 @@ fn intervals(
         }
     }
     let weakest = order[k - 1];
+    let largest_component = (0..k)
+        .map(|c| v_t[(weakest, c)])
+        .fold(0.0, |a: f64, b| if b.abs() > a.abs() { b } else { a });
+    let sign = if largest_component < 0.0 { -1.0 } else { 1.0 };
     let mut shares: Vec<Share> = (0..k)
         .map(|c| Share {
             parameter: result.names[free[estimated[c]]].clone(),
             share: v_t[(weakest, c)].powi(2),
+            component: sign * v_t[(weakest, c)],
         })
         .collect();
     shares.sort_by(|a, b| b.share.total_cmp(&a.share));
     result.weakest_direction = shares;
     if result.condition > 1e6 {
         result.warnings.push(format!(
-            "poorly identifiable direction (condition number {:.2e}): mostly {}",
+            "poorly identifiable direction (condition number {:.2e}): it {}",
             result.condition,
             combination(&result.weakest_direction).unwrap_or_default()
         ));
     }
     result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// m1 determined, m2 with a wide interval, k1 at its bound; the weakest
+    /// direction trades m2 against m1.
+    fn uncertainty(wide: bool, condition: f64) -> Uncertainty {
+        let share = |parameter: &str, component: f64| Share {
+            parameter: parameter.into(),
+            share: component * component,
+            component,
+        };
+        Uncertainty {
+            names: vec!["m1".into(), "m2".into(), "k1".into()],
+            standard_errors: vec![None; 3],
+            ci95: vec![
+                Some([9.0, 11.0]),
+                Some([1.0, if wide { 1e6 } else { 2.0 }]),
+                None,
+            ],
+            at_bound: vec![false, false, true],
+            fixed: vec![false; 3],
+            correlation: vec![vec![None; 3]; 3],
+            residual_std: 1e-5,
+            degrees_of_freedom: 100,
+            singular_values: vec![],
+            condition,
+            determined: vec![],
+            weakest_direction: vec![share("m2", 0.8), share("m1", -0.6)],
+            warnings: vec![],
+        }
+    }
+
+    #[test]
+    fn the_freest_direction_is_named_only_for_an_estimated_undetermined_parameter() {
+        let text = determination(&uncertainty(true, 1e4)).unwrap();
+        assert!(
+            text.ends_with(
+                "; the direction they leave freest raises m2 (64 %) and lowers m1 (36 %)"
+            ),
+            "{text}"
+        );
+        // only the bound parameter undetermined: the direction (of m1, m2)
+        // is not what is free
+        let text = determination(&uncertainty(false, 1e4)).unwrap();
+        assert!(
+            text.ends_with("they do not determine k1 (at its bound)"),
+            "{text}"
+        );
+        // above condition 1e6 the uncertainty's warning names it instead
+        let text = determination(&uncertainty(true, 1e7)).unwrap();
+        assert!(!text.contains("freest"), "{text}");
+        let u = uncertainty(true, 1e4);
+        let flags: Vec<_> = (0..3).map(|i| is_determined(&u, i)).collect();
+        assert_eq!(flags, vec![Some(true), Some(false), Some(false)]);
+    }
 }

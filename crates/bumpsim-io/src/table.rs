@@ -589,6 +589,14 @@ mod tests {
             e.to_string().contains(":3: column 'force [kN]' holds 'x'"),
             "{e}"
         );
+        // a bad cell is named before the row count is judged
+        let e = parse("time [s],force [kN]\n0,x\n").unwrap_err();
+        assert!(
+            e.to_string().contains(":2: column 'force [kN]' holds 'x'"),
+            "{e}"
+        );
+        let e = parse("time [s],force [kN]\n0,1\n").unwrap_err();
+        assert!(e.to_string().contains("fewer than two data rows"), "{e}");
     }
 
     #[test]

@@ -31,6 +31,33 @@ use context::CaseContext;
 /// instead of overflowing every simulation ("all starts failed").
 pub const MAX_INITIAL_VELOCITY: f64 = 1000.0;
 
+/// A character that prints nothing a reader sees, or changes how the rest
+/// prints: controls (tab, escape, ...), direction overrides and isolates,
+/// zero-width spaces and joiners, word joiner, byte-order mark.
+fn invisible(c: char) -> bool {
+    c.is_control()
+        || matches!(
+            c,
+            '\u{200B}'..='\u{200F}'
+                | '\u{202A}'..='\u{202E}'
+                | '\u{2060}'..='\u{2064}'
+                | '\u{2066}'..='\u{2069}'
+                | '\u{FEFF}'
+        )
+}
+
+/// `text` as a TOML basic string would spell it: invisible characters as
+/// `\uXXXX`, quotes and backslashes escaped, the rest as it is.
+fn toml_escaped(text: &str) -> String {
+    text.chars()
+        .map(|c| match c {
+            '"' | '\\' => format!("\\{c}"),
+            c if invisible(c) => format!("\\u{:04X}", c as u32),
+            c => c.to_string(),
+        })
+        .collect()
+}
+
 /// Why a study cannot be read.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
@@ -363,7 +390,7 @@ impl Study {
     /// Each case's initial velocity is finite and at most
     /// [`MAX_INITIAL_VELOCITY`]. Case names name results, plots and
     /// `--case` selections: each must be
-    /// non-empty, printable (no control characters) and differ from the
+    /// non-empty, printable (no control or invisible characters) and differ from the
     /// others (ignoring case and surrounding spaces, as file names may).
     fn check_case_names(&self) -> Result<(), String> {
         let key = |name: &str| name.trim().to_lowercase();
@@ -371,11 +398,11 @@ impl Study {
             if key(&case.name).is_empty() {
                 return Err(format!("[[case]] number {}: an empty name", i + 1));
             }
-            if case.name.chars().any(char::is_control) {
+            if case.name.chars().any(invisible) {
                 return Err(format!(
-                    "[[case]] number {}: the name '{}' holds control characters (tab, escape, ...): they would reach the terminal and the file names; use printable text",
+                    "[[case]] number {}: the name \"{}\" holds control or invisible characters (tab, escape, direction overrides, zero-width spaces): they would reach the terminal and the file names; use printable text",
                     i + 1,
-                    case.name.escape_debug()
+                    toml_escaped(&case.name)
                 ));
             }
             let v = case.initial_velocity;
@@ -770,9 +797,19 @@ mod tests {
         assert!(err.contains("initial_velocity = NaN m/s"), "{err}");
         let err = read(&format!("[model]\ndof = 2\n{}", case("red\\u001b[31m")));
         assert!(
-            err.contains("the name 'red\\u{1b}[31m' holds control characters"),
+            err.contains(r#"the name "red\u001B[31m" holds control or invisible characters"#),
             "{err}"
         );
+        let err = read(&format!(
+            "[model]\ndof = 2\n{}",
+            case("O'Brien \\\"q\\\" bidi\\u202Eevil")
+        ));
+        assert!(
+            err.contains(r#"the name "O'Brien \"q\" bidi\u202Eevil""#),
+            "{err}"
+        );
+        let err = read(&format!("[model]\ndof = 2\n{}", case("zw\\u200Bsp")));
+        assert!(err.contains("zw\\u200Bsp"), "{err}");
         let err = read(&format!(
             "[model]\ndof = 2\nbounds = {{ m1 = [1.0, 2.0, 3.0] }}\n{}",
             case("a")
