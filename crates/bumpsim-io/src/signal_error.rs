@@ -46,6 +46,9 @@ pub enum SignalFileError {
         /// Why it failed.
         reason: String,
     },
+    /// A CSV test file's table error (it names the file and line itself).
+    #[error(transparent)]
+    Table(#[from] crate::table::TableError),
     /// The output is refused (it would land on an input) or cannot be written.
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),

@@ -173,4 +173,15 @@ fn signal_errors_exit_2_with_the_path_and_selector() {
     let missing = bumpsim(&["signal", "info", "no/such/test.mme"]);
     assert_eq!(missing.status.code(), Some(2));
     assert!(text(&missing.stderr).contains("no/such/test.mme"));
+    // a CSV test file's error names the file once, with the line
+    let bad = out.with_file_name("bad.csv");
+    std::fs::write(&bad, "time [s],f [N]\n0,1\n0.1,x\n").unwrap();
+    let run = bumpsim(&["signal", "info", bad.to_str().unwrap()]);
+    assert_eq!(run.status.code(), Some(2));
+    let stderr = text(&run.stderr);
+    assert_eq!(stderr.matches("bad.csv").count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("bad.csv:3: column 'f [N]' holds 'x'"),
+        "{stderr}"
+    );
 }

@@ -9,7 +9,7 @@ use bumpsim_core::channel::Channel;
 use std::path::Path;
 
 pub(crate) fn open(path: &Path) -> Result<TestData, SignalFileError> {
-    let table = Table::read(path).map_err(|e| SignalFileError::file(path, e.to_string()))?;
+    let table = Table::read(path)?;
     let entries = table
         .columns
         .iter()
