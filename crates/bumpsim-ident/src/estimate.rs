@@ -379,7 +379,17 @@ fn check(cases: &[LoadCase], settings: &Settings) -> Result<(), IdentError> {
             format!("seed start {}: {p} positive values expected", bad + 1),
         );
     }
-    settings.bounds.check(settings.dof)
+    settings.bounds.check(settings.dof)?;
+    if settings.bounds.fixed.iter().take(p).all(Option::is_some) {
+        return setting(
+            "fixed",
+            format!(
+                "every parameter of the {}-DOF model is fixed: nothing is left to identify (`bumpsim predict` evaluates a given model)",
+                settings.dof
+            ),
+        );
+    }
+    Ok(())
 }
 
 /// The outcome of the best finished run with a finite objective.

@@ -233,6 +233,16 @@ fn bad_settings_and_studies_are_clear_errors() {
         err.contains("'flat'") && err.contains("400 force samples and 399"),
         "{err}"
     );
+    // every parameter fixed: nothing to identify, said as such
+    let mut all_fixed = Settings::new(1, 4);
+    all_fixed.bounds.fixed = vec![Some(900.0)];
+    let err = identify(&cases, &all_fixed, &|| {})
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("every parameter of the 1-DOF model is fixed: nothing is left to identify"),
+        "{err}"
+    );
     let rigid = identify(&cases, &Settings::new(1, 1), &|| {}).unwrap();
     assert!(
         rigid.objective.is_finite() && rigid.model.masses()[0] > 1.0,
