@@ -31,10 +31,14 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import scipy_identify as peer  # noqa: E402
 
 
+# the sample interval simulate() works at (lm_coarse.py sets a coarser one)
+STEP = peer.STEP
+
+
 def simulate(theta, force):
     a, b = peer.system(theta[:3], theta[3:5], theta[5:7])
     aug = np.zeros((7, 7))
-    aug[:6, :6], aug[:6, 6:] = a * peer.STEP, b * peer.STEP
+    aug[:6, :6], aug[:6, 6:] = a * STEP, b * STEP
     e = linalg.expm(aug)
     ad, bd = e[:6, :6], e[:6, 6]
     state, y = np.zeros(6), np.zeros(len(force))
@@ -70,7 +74,9 @@ def acceleration(data, p, r, j, m, v, alpha, fallback):
 
 def minimise(data, p, geodesic=None, eager=False, limit=1000):
     """geodesic: None (plain LM) or (alpha, fallback); eager: the damping
-    divided by 3 at every step with gain ratio > 0.5 (Nielsen otherwise)."""
+    divided by 3 at every step with gain ratio > 0.5 (Nielsen otherwise).
+    Returns iterations, evaluations, the objective, the (gain ratio,
+    damping) of each step and the final point."""
     r = residuals(data, p)
     cost, lam, nu, evaluations, trace = r @ r, None, 2.0, 1, []
     j = jacobian(data, p, r)
@@ -102,8 +108,8 @@ def minimise(data, p, geodesic=None, eager=False, limit=1000):
         p, r, cost = trial, rt, rt @ rt
         j = jacobian(data, p, r)
         if directional < 1e-9 * cost or decrease < 1e-12 or np.abs(step).max() < 1e-10:
-            return iteration, evaluations, cost, trace
-    return limit, evaluations, cost, trace
+            return iteration, evaluations, cost, trace, p
+    return limit, evaluations, cost, trace, p
 
 
 def default_start(binary, data):
@@ -125,7 +131,7 @@ def main():
     runs += [(f"geodesic, alpha {alpha}, too large: {'plain step' if fb else 'rejected'}", (alpha, fb), False)
              for fb in (False, True) for alpha in (0.75, 1.5)]
     for name, geodesic, eager in runs:
-        its, evaluations, cost, trace = minimise(data, start.copy(), geodesic, eager)
+        its, evaluations, cost, trace, _ = minimise(data, start.copy(), geodesic, eager)
         print(f"{name}: {its} iterations, {evaluations} residual evaluations, objective {cost:.6e} m^2")
         if geodesic is None and not eager:
             rho, lam = np.median(np.asarray(trace[15:]), axis=0)
