@@ -60,7 +60,9 @@ impl Local {
 }
 
 /// Stops the task of `point` (SIGTERM by `kill`, when its pid is still a
-/// campaign task; the task's solver gets it through the task's shell).
+/// campaign task): the task's shell, its solver, and whatever the solver
+/// started (the task's process group: a solver script's own children,
+/// an MPI launcher's ranks).
 pub fn terminate(point: &Point) {
     let pid = point
         .job
@@ -68,7 +70,10 @@ pub fn terminate(point: &Point) {
         .and_then(|p| p.parse::<u32>().ok());
     if let Some(pid) = pid.filter(|&pid| task_alive(pid)) {
         // the task shell first (so it records no exit status), then the
-        // solver, its child, found before the shell goes
+        // solver, its child, found before the shell goes, then the rest of
+        // the task's group (its shell leads it: spawned with
+        // `process_group(0)`)
+        let group = own_group(pid);
         let children = Command::new("pgrep")
             .args(["-P", &pid.to_string()])
             .output()
@@ -80,7 +85,30 @@ pub fn terminate(point: &Point) {
         for child in children.split_whitespace() {
             let _ = Command::new("kill").args(["-TERM", child]).status();
         }
+        if group {
+            signal_group(pid, "-TERM");
+        }
     }
+}
+
+/// Whether `pid` leads its own process group (a task shell does; the
+/// controller's group is never signalled).
+fn own_group(pid: u32) -> bool {
+    // /proc/<pid>/stat: "pid (comm) state ppid pgrp ..."; comm may hold
+    // spaces and parentheses, so the fields are counted after the last ')'
+    std::fs::read_to_string(format!("/proc/{pid}/stat")).is_ok_and(|stat| {
+        stat.rsplit_once(')')
+            .and_then(|(_, rest)| rest.split_whitespace().nth(2)?.parse::<u32>().ok())
+            == Some(pid)
+    })
+}
+
+/// Sends `signal` (`-TERM`, `-KILL`) to every process of the group `pgid`.
+fn signal_group(pgid: u32, signal: &str) {
+    let _ = Command::new("kill")
+        .args([signal, "--", &format!("-{pgid}")])
+        .stderr(Stdio::null())
+        .status();
 }
 
 /// Whether `pid` is still a task of a campaign (`run-point.sh` in its command line).
@@ -162,7 +190,12 @@ impl Executor for Local {
     fn cancel(&mut self, points: &[&Point]) -> Result<()> {
         for p in points {
             if let Some(mut child) = self.children.remove(&p.run) {
+                // the task's whole group: the solver and its children too
+                let leads = own_group(child.id());
                 let _ = child.kill();
+                if leads {
+                    signal_group(child.id(), "-KILL");
+                }
                 let _ = child.wait();
             }
         }
