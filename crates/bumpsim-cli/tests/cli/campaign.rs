@@ -58,7 +58,9 @@ fn path(p: &Path) -> &str {
 /// A campaign over `a`, `b` (full factorial + `centre` centre points) whose
 /// solver is a logging shell script: it sleeps `sleep` s, fails for good in
 /// the folders listed in `fail_always`, once in `fail_once`, writes a
-/// corrupt output in `corrupt`, and sleeps 30 s more in `slow`.
+/// corrupt output in `corrupt`, and sleeps 300 s more in `slow` (longer
+/// than any test waits: only an abort ends such a run, even when a busy
+/// Slurm node starts the second slow run long after the first).
 struct Fake {
     dir: PathBuf,
     log: PathBuf,
@@ -88,7 +90,7 @@ impl Fake {
         let list = |l: &[&str]| l.join(" ");
         let script = format!(
             "#!/bin/sh\np=$(basename \"$PWD\")\necho \"$p\" >> '{log}'\nsleep {sleep}\n\
-             for s in {slow}; do [ \"$p\" = \"$s\" ] && sleep 30; done\n\
+             for s in {slow}; do [ \"$p\" = \"$s\" ] && sleep 300; done\n\
              for f in {always}; do [ \"$p\" = \"$f\" ] && exit 3; done\n\
              for f in {once}; do if [ \"$p\" = \"$f\" ] && [ ! -e '{dir}'/once-$p ]; then touch '{dir}'/once-$p; exit 1; fi; done\n\
              for f in {corrupt}; do [ \"$p\" = \"$f\" ] && {{ echo 'time [s],y [m]' > out.csv; echo '0,0' >> out.csv; echo '1,zero' >> out.csv; exit 0; }}; done\n\
@@ -820,10 +822,30 @@ fn abort_stops_the_running_tasks(executor: &str) {
         let output = fake.campaign().join(format!("points/{run:04}/out.csv"));
         assert!(!output.exists(), "run {run} finished after the abort");
     }
+    // and nothing the solver started lives on (its `sleep` is a child of
+    // the solver script, a grandchild of the task)
+    let left = processes_in(&fake.campaign());
+    assert!(left.is_empty(), "still running in the campaign: {left:?}");
     // and the next run starts them afresh
     std::fs::write(fake.dir.join("solver.sh"), "#!/bin/sh\ncp in.csv out.csv\n").unwrap();
     let out = run(&["campaign", "run", path(&fake.campaign())]);
     assert_contains(&text(&out.stdout), &["4 points done, 0 failed"]);
+}
+
+/// The processes (pid, command line) whose working folder lies in `dir`.
+fn processes_in(dir: &Path) -> Vec<(u32, String)> {
+    let dir = dir.canonicalize().unwrap();
+    std::fs::read_dir("/proc")
+        .unwrap()
+        .flatten()
+        .filter_map(|e| {
+            let pid: u32 = e.file_name().to_str()?.parse().ok()?;
+            let cwd = std::fs::read_link(e.path().join("cwd")).ok()?;
+            let command = std::fs::read(e.path().join("cmdline")).ok()?;
+            cwd.starts_with(&dir)
+                .then(|| (pid, String::from_utf8_lossy(&command).replace('\0', " ")))
+        })
+        .collect()
 }
 
 #[test]
