@@ -233,6 +233,16 @@ fn bad_settings_and_studies_are_clear_errors() {
         err.contains("'flat'") && err.contains("400 force samples and 399"),
         "{err}"
     );
+    // a case built in code (as the Python binding does) gets the study's limit
+    let mut fast = cases[0].clone();
+    fast.initial_velocity = 1e300;
+    let err = identify(&[fast], &Settings::new(2, 1), &|| {})
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("initial velocity 1.000e300 m/s: expected a finite speed of at most 1000 m/s"),
+        "{err}"
+    );
     // every parameter fixed: nothing to identify, said as such
     let mut all_fixed = Settings::new(1, 4);
     all_fixed.bounds.fixed = vec![Some(900.0)];

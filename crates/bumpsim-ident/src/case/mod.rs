@@ -19,6 +19,7 @@ mod modal;
 use bumpsim_core::discrete::{DiscreteModel, DiscretiseError, Method};
 use bumpsim_core::model::{MsdModel, parameter_count};
 use bumpsim_core::sensitivity::OutputError;
+use bumpsim_core::units::format_number;
 use nalgebra::{DMatrix, DMatrixView, DVector, DVectorView};
 use std::sync::Mutex;
 
@@ -75,6 +76,11 @@ pub struct LoadCase {
     pub window: (usize, usize),
 }
 
+/// The largest initial velocity a case may give, m/s (either sign): far
+/// above any crash test's few m/s, so that a mistyped value is refused
+/// instead of overflowing every simulation ("all starts failed").
+pub const MAX_INITIAL_VELOCITY: f64 = 1000.0;
+
 impl LoadCase {
     /// Checks lengths, window and values.
     pub fn validate(&self) -> Result<(), CaseError> {
@@ -111,10 +117,11 @@ impl LoadCase {
                 )));
             }
         }
-        if !self.initial_velocity.is_finite() {
+        let v = self.initial_velocity;
+        if !(v.is_finite() && v.abs() <= MAX_INITIAL_VELOCITY) {
             return Err(invalid(format!(
-                "initial velocity {} m/s: expected a finite value",
-                self.initial_velocity
+                "initial velocity {} m/s: expected a finite speed of at most {MAX_INITIAL_VELOCITY} m/s",
+                format_number(v, 4)
             )));
         }
         // a constant measured displacement (all zero, say) determines no

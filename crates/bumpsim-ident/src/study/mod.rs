@@ -26,10 +26,7 @@ use std::path::{Path, PathBuf};
 mod context;
 use context::CaseContext;
 
-/// The largest initial velocity a case may give, m/s (either sign): far
-/// above any crash test's few m/s, so that a mistyped value is refused
-/// instead of overflowing every simulation ("all starts failed").
-pub const MAX_INITIAL_VELOCITY: f64 = 1000.0;
+pub use crate::case::MAX_INITIAL_VELOCITY;
 
 /// A character that prints nothing a reader sees, or changes how the rest
 /// prints: controls (tab, escape, ...), direction overrides and isolates,
