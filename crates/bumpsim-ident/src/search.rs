@@ -424,10 +424,13 @@ fn advance(
     length: usize,
     solve: &(dyn Fn(&[f64], usize) -> Outcome + Sync),
 ) {
-    let next: Vec<Outcome> = running
-        .par_iter()
-        .map(|&i| solve(&runs[i].outcome.parameters, length))
-        .collect();
+    let step = |&i: &usize| solve(&runs[i].outcome.parameters, length);
+    // one run alone needs no thread pool: starting rayon's workers costs a
+    // single start more than it could gain (and they spin on its cores)
+    let next: Vec<Outcome> = match running.len() {
+        0 | 1 => running.iter().map(step).collect(),
+        _ => running.par_iter().map(step).collect(),
+    };
     for (&i, mut outcome) in running.iter().zip(next) {
         let before = &runs[i].outcome;
         outcome.iterations += before.iterations;
