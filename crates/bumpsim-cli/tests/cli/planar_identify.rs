@@ -164,6 +164,26 @@ fn hostile_planar_studies_get_clear_errors() {
         &bumpsim(&["identify", study.to_str().unwrap(), "--quiet"]),
         "window",
     );
+    // case names name the report's files and lines, as in a centre-line study
+    for (edit, expected) in [
+        (
+            r#"name = "POLE\u001B[31m""#,
+            r#"the name "POLE\u001B[31m" holds control"#,
+        ),
+        (r#"name = "  ""#, "[[case]] number 3: an empty name"),
+        (
+            r#"name = "flat ""#,
+            "name 'flat ' is already used by case 'FLAT'",
+        ),
+    ] {
+        let study = edited_study("planar-hostile-name", |t| {
+            t.replacen(r#"name = "POLE""#, edit, 1)
+        });
+        assert_user_error(
+            &bumpsim(&["identify", study.to_str().unwrap(), "--quiet"]),
+            expected,
+        );
+    }
     let s = study.to_str().unwrap();
     assert_user_error(&bumpsim(&["identify", s, "--dof", "3"]), "--dof");
     // an output never lands on an input

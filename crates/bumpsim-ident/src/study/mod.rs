@@ -24,36 +24,11 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 mod context;
+mod names;
 use context::CaseContext;
+pub use names::{CaseNameError, check_case_names};
 
 pub use crate::case::MAX_INITIAL_VELOCITY;
-
-/// A character that prints nothing a reader sees, or changes how the rest
-/// prints: controls (tab, escape, ...), direction overrides and isolates,
-/// zero-width spaces and joiners, word joiner, byte-order mark.
-fn invisible(c: char) -> bool {
-    c.is_control()
-        || matches!(
-            c,
-            '\u{200B}'..='\u{200F}'
-                | '\u{202A}'..='\u{202E}'
-                | '\u{2060}'..='\u{2064}'
-                | '\u{2066}'..='\u{2069}'
-                | '\u{FEFF}'
-        )
-}
-
-/// `text` as a TOML basic string would spell it: invisible characters as
-/// `\uXXXX`, quotes and backslashes escaped, the rest as it is.
-fn toml_escaped(text: &str) -> String {
-    text.chars()
-        .map(|c| match c {
-            '"' | '\\' => format!("\\{c}"),
-            c if invisible(c) => format!("\\u{:04X}", c as u32),
-            c => c.to_string(),
-        })
-        .collect()
-}
 
 /// Why a study cannot be read.
 #[derive(Debug, thiserror::Error)]
@@ -384,41 +359,17 @@ impl Study {
         Ok(study)
     }
 
-    /// Each case's initial velocity is finite and at most
-    /// [`MAX_INITIAL_VELOCITY`]. Case names name results, plots and
-    /// `--case` selections: each must be
-    /// non-empty, printable (no control or invisible characters) and differ from the
-    /// others (ignoring case and surrounding spaces, as file names may).
+    /// Case names follow [`check_case_names`]; each case's initial
+    /// velocity is finite and at most [`MAX_INITIAL_VELOCITY`].
     fn check_case_names(&self) -> Result<(), String> {
-        let key = |name: &str| name.trim().to_lowercase();
-        for (i, case) in self.case.iter().enumerate() {
-            if key(&case.name).is_empty() {
-                return Err(format!("[[case]] number {}: an empty name", i + 1));
-            }
-            if case.name.chars().any(invisible) {
-                return Err(format!(
-                    "[[case]] number {}: the name \"{}\" holds control or invisible characters (tab, escape, direction overrides, zero-width spaces): they would reach the terminal and the file names; use printable text",
-                    i + 1,
-                    toml_escaped(&case.name)
-                ));
-            }
+        check_case_names(self.case.iter().map(|c| c.name.as_str())).map_err(|e| e.to_string())?;
+        for case in &self.case {
             let v = case.initial_velocity;
             if !(v.is_finite() && v.abs() <= MAX_INITIAL_VELOCITY) {
                 return Err(format!(
                     "[[case]] '{}': initial_velocity = {} m/s: expected a finite speed of at most {MAX_INITIAL_VELOCITY} m/s (a crash test's is a few m/s)",
                     case.name,
                     format_number(v, 4)
-                ));
-            }
-            if let Some(first) = self.case[..i]
-                .iter()
-                .find(|c| key(&c.name) == key(&case.name))
-            {
-                return Err(format!(
-                    "[[case]] number {}: name '{}' is already used by case '{}'; give each case its own name",
-                    i + 1,
-                    case.name,
-                    first.name
                 ));
             }
         }
