@@ -26,7 +26,7 @@
 //! # Ok::<(), bumpsim_signal::loader::LoadError>(())
 //! ```
 
-use crate::process::{Combine, ProcessError, Step, combine};
+use crate::process::{Combine, ProcessError, Resampling, Step, combine, resampling};
 use bumpsim_core::channel::Channel;
 use bumpsim_io::signal_error::SignalFileError;
 use bumpsim_io::test_data::{Selection, TestData};
@@ -56,7 +56,7 @@ pub enum LoadError {
 }
 
 /// Something the selection did that the user should know.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum Note {
     /// A wildcard or name selection left out a channel marked invalid.
@@ -83,6 +83,9 @@ pub enum Note {
         /// The test file's words.
         message: String,
     },
+    /// Channels sampled at different intervals or times, or over different
+    /// spans, were put on one time base to be combined or compared.
+    Resampled(Resampling),
 }
 
 impl fmt::Display for Note {
@@ -96,12 +99,18 @@ impl fmt::Display for Note {
                 f,
                 "'{selector}': left out channel {number} ({code}): marked invalid"
             ),
-            Note::Absent { selector, numbers } => write!(
-                f,
-                "'{selector}': left out {} matching channels whose files are absent",
-                numbers.len()
-            ),
+            Note::Absent { selector, numbers } => match numbers.len() {
+                1 => write!(
+                    f,
+                    "'{selector}': left out 1 matching channel whose file is absent"
+                ),
+                n => write!(
+                    f,
+                    "'{selector}': left out {n} matching channels whose files are absent"
+                ),
+            },
             Note::Selection { message, .. } => f.write_str(message),
+            Note::Resampled(resampling) => resampling.fmt(f),
         }
     }
 }
@@ -192,12 +201,15 @@ impl Loader {
         how: Option<Combine>,
         name: &str,
     ) -> Result<Loaded<Channel>, LoadError> {
-        let Loaded { data, notes } = self.channels(sources)?;
+        let Loaded { data, mut notes } = self.channels(sources)?;
         let channel = match (data.len(), how) {
             (0, _) => return Err(LoadError::NoChannels),
             (1, _) => data.into_iter().next().ok_or(LoadError::NoChannels)?,
             (count, None) => return Err(LoadError::Combine { count }),
-            (_, Some(how)) => combine(&data, how, name)?,
+            (_, Some(how)) => {
+                notes.extend(resampling(&data).map(Note::Resampled));
+                combine(&data, how, name)?
+            }
         };
         Ok(Loaded {
             data: channel,
@@ -323,7 +335,7 @@ mod tests {
             texts,
             [
                 "'1-AC-SIME*': left out channel 3 (1-AC-SIMEXX-XG): marked invalid",
-                "'1-AC-SIME*': left out 1 matching channels whose files are absent"
+                "'1-AC-SIME*': left out 1 matching channel whose file is absent"
             ]
         );
         assert!(matches!(&mean.notes[1], Note::Absent { numbers, .. } if numbers == &[4]));

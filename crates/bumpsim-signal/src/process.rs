@@ -35,7 +35,7 @@ use crate::integrate::{cumulative_trapezoid, derivative};
 use crate::window::{ContactThreshold, WindowError};
 use bumpsim_core::channel::Channel;
 use bumpsim_core::series::{SeriesError, UniformSeries, WINDOW_TOLERANCE};
-use bumpsim_core::units::Dimension;
+use bumpsim_core::units::{Dimension, format_quantity};
 use serde::Deserialize;
 
 /// Why a processing step failed.
@@ -461,6 +461,105 @@ pub fn align(channels: &[Channel]) -> Result<(Vec<f64>, Vec<Vec<f64>>), ProcessE
     Ok((times, columns))
 }
 
+/// What sampling channels on their common time base ([`align`],
+/// [`combine`]) does to them: which are interpolated and which lose
+/// samples outside the overlap. Nothing of it is silent: the study and the
+/// loader turn it into a note.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Resampling {
+    /// The common sample interval, s (the finest of the channels').
+    pub step: f64,
+    /// The common span's first and last time, s (the channels' overlap).
+    pub span: [f64; 2],
+    /// Channels whose samples do not fall on the common base and are
+    /// interpolated linearly: code and own sample interval, s.
+    pub interpolated: Vec<(String, f64)>,
+    /// Channels with samples outside the overlap, left out: code and count.
+    pub trimmed: Vec<(String, usize)>,
+}
+
+impl std::fmt::Display for Resampling {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} sampled together every {} from {} to {}",
+            self.names(),
+            format_quantity(self.step, Dimension::Time),
+            format_quantity(self.span[0], Dimension::Time),
+            format_quantity(self.span[1], Dimension::Time)
+        )?;
+        for (code, step) in &self.interpolated {
+            let own = format_quantity(*step, Dimension::Time);
+            write!(f, "; {code} (every {own}) interpolated linearly")?;
+        }
+        for (code, count) in &self.trimmed {
+            let samples = if *count == 1 { "sample" } else { "samples" };
+            write!(f, "; {code}: {count} {samples} outside that span left out")?;
+        }
+        Ok(())
+    }
+}
+
+impl Resampling {
+    fn names(&self) -> String {
+        let mut codes: Vec<&str> = self.interpolated.iter().map(|(c, _)| c.as_str()).collect();
+        for (code, _) in &self.trimmed {
+            if !codes.contains(&code.as_str()) {
+                codes.push(code);
+            }
+        }
+        codes.join(" and ")
+    }
+}
+
+/// What [`align`] or [`combine`] would change in `channels`; `None` when
+/// every sample of every channel is used as it is.
+///
+/// ```
+/// use bumpsim_core::prelude::*;
+/// use bumpsim_signal::process::resampling;
+/// let at = |step: f64, n: usize| UniformSeries::new(0.0, step, vec![1.0; n]).unwrap();
+/// let force = Channel::new("F", "force", Dimension::Force, at(2e-4, 500));
+/// let x = Channel::new("X", "x", Dimension::Length, at(1e-4, 1000));
+/// let r = resampling(&[force, x]).unwrap();
+/// assert_eq!(r.interpolated.len(), 1);
+/// assert_eq!(r.interpolated[0].0, "F");
+/// assert_eq!(r.trimmed, vec![("X".to_string(), 1)]); // after the force's last sample
+/// ```
+pub fn resampling(channels: &[Channel]) -> Option<Resampling> {
+    let base = common_base(channels)?;
+    let (start, step) = (base.start(), base.step());
+    let end = start + step * (base.len() - 1) as f64;
+    let on_base = |s: &UniformSeries| {
+        let phase = (s.start() - start) / step;
+        (s.step() / step - 1.0).abs() < 1e-9 && (phase - phase.round()).abs() < 1e-6
+    };
+    let outside = |s: &UniformSeries| {
+        let slack = 1e-6 * step;
+        let times = (0..s.len()).map(|k| s.start() + k as f64 * s.step());
+        times
+            .filter(|&t| t < start - slack || t > end + slack)
+            .count()
+    };
+    let interpolated: Vec<(String, f64)> = channels
+        .iter()
+        .filter(|c| !on_base(&c.series))
+        .map(|c| (c.code.clone(), c.series.step()))
+        .collect();
+    let trimmed: Vec<(String, usize)> = channels
+        .iter()
+        .map(|c| (c.code.clone(), outside(&c.series)))
+        .filter(|(_, n)| *n > 0)
+        .collect();
+    let changed = !(interpolated.is_empty() && trimmed.is_empty());
+    changed.then_some(Resampling {
+        step,
+        span: [start, end],
+        interpolated,
+        trimmed,
+    })
+}
+
 /// The value at `t`, exact when `t` falls on a sample.
 fn sample_at(series: &UniformSeries, t: f64) -> f64 {
     let x = (t - series.start()) / series.step();
@@ -524,6 +623,30 @@ mod tests {
         assert!(Step::Bias([5.0, 6.0]).apply(&c).is_err());
         assert!(Step::Trim([5.0, 6.0]).apply(&c).is_err());
         assert!(Step::Integrate(0.0).apply(&f).is_err());
+    }
+
+    #[test]
+    fn resampling_names_interpolated_and_trimmed_channels() {
+        let a = channel(0.0, vec![1.0, 2.0, 3.0], Dimension::Force);
+        assert_eq!(resampling(&[a.clone(), a.clone()]), None);
+        // half a step later: the common base starts at 0.05 s, ends at 0.15 s
+        let b = channel(0.05, vec![1.0, 2.0, 3.0], Dimension::Force);
+        let r = resampling(&[a.clone(), b.clone()]).unwrap();
+        assert_eq!(r.interpolated.len(), 1);
+        assert_eq!(r.interpolated[0].0, "X");
+        approx::assert_relative_eq!(r.span[0], 0.05, max_relative = 1e-12);
+        approx::assert_relative_eq!(r.span[1], 0.15, max_relative = 1e-12);
+        assert_eq!(r.trimmed, [("X".to_string(), 2), ("X".to_string(), 1)]);
+        // the common base is what align and combine use
+        let (times, _) = align(&[a, b]).unwrap();
+        assert_eq!(times.len(), 2);
+        let text = r.to_string();
+        assert!(
+            text.contains("every 100.0 ms")
+                && text.contains("2 samples outside")
+                && text.contains("1 sample outside"),
+            "{text}"
+        );
     }
 
     #[test]

@@ -399,7 +399,7 @@ fn identify_to(study: &Path, dir: &Path) -> (Output, serde_json::Value) {
 const INVALID_NOTE: &str =
     "case 'flat': '1-AC-SIME*-XG': left out channel 4 (1-AC-SIMEXX-XG): marked invalid";
 const ABSENT_NOTE: &str =
-    "case 'flat': '1-AC-SIME*-XG': left out 1 matching channels whose files are absent";
+    "case 'flat': '1-AC-SIME*-XG': left out 1 matching channel whose file is absent";
 
 #[test]
 fn identify_reports_the_channels_a_wildcard_left_out() {
@@ -424,7 +424,7 @@ fn identify_reports_the_channels_a_wildcard_left_out() {
         &[
             "Channel selection",
             "left out channel 4 (1-AC-SIMEXX-XG): marked invalid",
-            "whose files are absent",
+            "whose file is absent",
         ],
     );
     // the same data as the bundled study: the same model, and no notes there

@@ -10,8 +10,8 @@ use crate::case::LoadCase;
 use bumpsim_core::channel::Channel;
 use bumpsim_core::series::UniformSeries;
 use bumpsim_core::units::Dimension;
-use bumpsim_signal::loader::{ChannelSource, LoadError, Loader};
-use bumpsim_signal::process::{Combine, ProcessError, Step, align, run};
+use bumpsim_signal::loader::{ChannelSource, LoadError, Loader, Note};
+use bumpsim_signal::process::{Combine, ProcessError, Step, align, resampling, run};
 use bumpsim_signal::window::ContactThreshold;
 
 /// One case being loaded: its study, definition, the channel loader and
@@ -134,11 +134,23 @@ impl CaseContext<'_> {
     }
 
     /// Aligns force and displacement, starts at t = 0 and sets the window.
-    fn build(&self, force: Channel, output: Channel, dof: usize) -> Result<LoadCase, StudyError> {
-        let (time, columns) = align(&[force, output]).map_err(|source| StudyError::Process {
+    fn build(
+        &mut self,
+        force: Channel,
+        output: Channel,
+        dof: usize,
+    ) -> Result<LoadCase, StudyError> {
+        let pair = [force, output];
+        let (time, columns) = align(&pair).map_err(|source| StudyError::Process {
             case: self.spec.name.clone(),
             source,
         })?;
+        if let Some(resampled) = resampling(&pair) {
+            self.notes.push(CaseNote {
+                case: self.spec.name.clone(),
+                note: Note::Resampled(resampled),
+            });
+        }
         let step = if time.len() > 1 {
             time[1] - time[0]
         } else {

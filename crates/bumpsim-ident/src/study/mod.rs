@@ -152,7 +152,7 @@ pub enum DefinitionError {
 }
 
 /// A note on the channels of one case (left out, or used despite a mark).
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct CaseNote {
     /// The case.
     pub case: String,
@@ -590,6 +590,7 @@ impl Study {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use bumpsim_signal::loader::Note;
     use std::fmt::Write;
 
     fn study(model: &str, case: &str, base: &Path) -> Study {
@@ -640,6 +641,48 @@ mod tests {
             std::fs::write(dir.join(format!("t.{:03}", curve + 1)), samples).unwrap();
         }
         dir
+    }
+
+    /// A displacement sampled at half the force's rate, over a shorter
+    /// span, was resampled and cut without a word.
+    #[test]
+    fn force_and_displacement_on_different_time_bases_get_a_note() {
+        let dir = ev5("resampled");
+        // 5 kHz from 0 to 0.009 s (the force: 10 kHz from -0.005 s to 0.0149 s)
+        let mut csv = String::from("time [s],x [m]\n");
+        for k in 0..46 {
+            let t = k as f64 * 2e-4;
+            writeln!(csv, "{t},{}", 1e-3 * t).unwrap();
+        }
+        std::fs::write(dir.join("x.csv"), csv).unwrap();
+        let case = "force = { path = \"t.EV5\", channel = \"1\" }\ndisplacement = { path = \"x.csv\", channel = \"x\" }\nwindow = [0.0, 0.009]";
+        let loaded = study("dof = 1", case, &dir).load(1).unwrap();
+        let notes: Vec<&CaseNote> = loaded
+            .notes
+            .iter()
+            .filter(|n| matches!(n.note, Note::Resampled(_)))
+            .collect();
+        assert_eq!(notes.len(), 1, "{:?}", loaded.notes);
+        let Note::Resampled(r) = &notes[0].note else {
+            unreachable!()
+        };
+        approx::assert_relative_eq!(r.step, 1e-4, max_relative = 1e-12);
+        approx::assert_relative_eq!(r.span[1], 0.009, max_relative = 1e-9);
+        assert_eq!(r.interpolated.len(), 1);
+        assert_eq!(r.interpolated[0].0, "x");
+        approx::assert_relative_eq!(r.interpolated[0].1, 2e-4, max_relative = 1e-9);
+        // the force's 50 samples before t = 0 and 59 after 0.009 s
+        assert_eq!(r.trimmed.len(), 1);
+        assert_eq!(r.trimmed[0].1, 50 + 59);
+        let text = notes[0].to_string();
+        assert!(
+            text.starts_with("case 'a': ")
+                && text.contains("x (every 0.2000 ms) interpolated linearly"),
+            "{text}"
+        );
+        // the displacement between its samples is the straight line
+        let case = &loaded.cases[0];
+        approx::assert_relative_eq!(case.measured[3], 1e-3 * 3e-4, max_relative = 1e-9);
     }
 
     #[test]
