@@ -10,7 +10,7 @@
 //! state applies; the fit window is the contact window of the force
 //! (5 % rise, 2 % fall) or `[t0, t1]` s. See docs/identify.md.
 
-use crate::case::{CaseError, LoadCase};
+use crate::case::{CaseError, LoadCase, VALID_RANGE};
 use crate::estimate::{Bounds, Settings};
 use bumpsim_core::model::{parameter_count, parameter_name};
 use bumpsim_core::units::{Dimension, format_number};
@@ -354,9 +354,32 @@ impl Study {
             ));
         }
         study.check_case_names().map_err(error)?;
+        study.check_global_bounds().map_err(error)?;
         study.check_tables().map_err(error)?;
         study.check_dofs().map_err(error)?;
         Ok(study)
+    }
+
+    /// `lower_bound` and `upper_bound` apply to every parameter: checked
+    /// here, where their keys can be named (the per-parameter check names
+    /// a parameter, m1 first, which the user did not write).
+    fn check_global_bounds(&self) -> Result<(), String> {
+        let (floor, ceiling) = (*VALID_RANGE.start(), *VALID_RANGE.end());
+        let lower = self.model.lower_bound;
+        if !(lower > 0.0 && lower < ceiling) {
+            return Err(format!(
+                "[model] lower_bound = {}: expected a positive number below {ceiling:e} (SI: kg, N·s/m and N/m alike; the thesis uses 1)",
+                format_number(lower, 4)
+            ));
+        }
+        match self.model.upper_bound {
+            Some(upper) if !(upper > lower && upper > floor) => Err(format!(
+                "[model] upper_bound = {}: expected a number above lower_bound = {} (SI)",
+                format_number(upper, 4),
+                format_number(lower, 4)
+            )),
+            _ => Ok(()),
+        }
     }
 
     /// Case names follow [`check_case_names`]; each case's initial
@@ -746,6 +769,39 @@ mod tests {
             study(&format!("dof = 2\n{ragged}"), CASE, base).settings(2),
             Err(StudyError::Start { dampers: 2, .. })
         ));
+    }
+
+    /// `lower_bound = -1` was blamed on m1, a name the study does not hold.
+    #[test]
+    fn global_bounds_are_refused_by_their_own_keys() {
+        let dir = std::env::temp_dir().join(format!("bumpsim-study-bounds-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let read = |model: &str| {
+            let path = dir.join("study.toml");
+            let text = format!("[model]\ndof = 2\n{model}\n[[case]]\nname = \"a\"\n{CASE}\n");
+            std::fs::write(&path, text).unwrap();
+            Study::read(&path).map(|_| ()).map_err(|e| e.to_string())
+        };
+        for (model, expected) in [
+            (
+                "lower_bound = -1.0",
+                "[model] lower_bound = -1.000: expected a positive number",
+            ),
+            ("lower_bound = nan", "[model] lower_bound = NaN"),
+            ("lower_bound = 1e300", "[model] lower_bound = 1.000e300"),
+            (
+                "upper_bound = 0.5",
+                "[model] upper_bound = 0.5000: expected a number above lower_bound = 1.000",
+            ),
+            ("upper_bound = nan", "[model] upper_bound = NaN"),
+        ] {
+            let err = read(model).unwrap_err();
+            assert!(
+                err.contains(expected) && !err.contains("m1"),
+                "{model}: {err}"
+            );
+        }
+        assert_eq!(read("lower_bound = 1e-3\nupper_bound = inf"), Ok(()));
     }
 
     /// `dof = []` ran nothing with exit 0; two cases named `flat` gave two
