@@ -53,6 +53,17 @@ fn noise(rng: &mut ChaCha8Rng, sigma: f64) -> f64 {
     sigma * (-2.0 * a.ln()).sqrt() * (2.0 * std::f64::consts::PI * b).cos()
 }
 
+/// Adds Gaussian noise of `sigma` (m) to every measured sample, drawn in
+/// case order from a ChaCha8 stream seeded with `seed`.
+fn add_noise(cases: &mut [LoadCase], seed: u64, sigma: f64) {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    for c in cases {
+        c.measured
+            .iter_mut()
+            .for_each(|m| *m += noise(&mut rng, sigma));
+    }
+}
+
 fn truth() -> MsdModel {
     MsdModel::new(vec![40.0, 300.0, 1100.0], vec![6e3, 2e4], vec![1.2e6, 5e5]).unwrap()
 }
@@ -122,12 +133,7 @@ proptest! {
 fn recovers_the_model_and_predicts_a_held_out_case() {
     let truth = truth();
     let mut cases = series(&truth);
-    let mut rng = ChaCha8Rng::seed_from_u64(7);
-    for c in &mut cases {
-        c.measured
-            .iter_mut()
-            .for_each(|m| *m += noise(&mut rng, 3e-5));
-    }
+    add_noise(&mut cases, 7, 3e-5);
     let held_out = cases.pop().unwrap();
     let result = identify(&cases, &Settings::new(3, 8), &|| {}).unwrap();
     let predicted = &predict(&[held_out], result.model()).unwrap()[0];
@@ -150,13 +156,8 @@ fn intervals_cover_the_truth_in_at_least_85_percent_of_50_realisations() {
     let mut covered = vec![0usize; theta.len()];
     let realisations = 50;
     for seed in 0..realisations {
-        let mut rng = ChaCha8Rng::seed_from_u64(1000 + seed);
         let mut cases = clean.clone();
-        for c in &mut cases {
-            c.measured
-                .iter_mut()
-                .for_each(|m| *m += noise(&mut rng, 5e-5));
-        }
+        add_noise(&mut cases, 1000 + seed, 5e-5);
         let mut settings = Settings::new(3, 4);
         settings.start = Some(theta.iter().map(|t| t * 1.2).collect());
         let result = identify(&cases, &settings, &|| {}).unwrap();
@@ -401,12 +402,7 @@ fn continuation_from_the_smaller_model_never_loses_its_fit() {
     // 2-mass one (1 % for the stiff link's own response)
     let two_mass = MsdModel::new(vec![60.0, 1200.0], vec![8e3], vec![9e5]).unwrap();
     let mut cases = series(&two_mass);
-    let mut rng = ChaCha8Rng::seed_from_u64(11);
-    for c in &mut cases {
-        c.measured
-            .iter_mut()
-            .for_each(|m| *m += noise(&mut rng, 2e-5));
-    }
+    add_noise(&mut cases, 11, 2e-5);
     let two = identify(&cases, &Settings::new(2, 8), &|| {}).unwrap();
     // each split start already fits as the 2-mass optimum does
     let objective = Objective::new(&cases, 3, &[None; 8]);
@@ -449,12 +445,7 @@ fn an_undetermined_stiff_spring_is_named_and_the_merged_model_suggested() {
     let stiff =
         MsdModel::new(vec![40.0, 300.0, 1100.0], vec![6e3, 2e4], vec![1.2e6, 5e10]).unwrap();
     let mut cases = series(&stiff);
-    let mut rng = ChaCha8Rng::seed_from_u64(5);
-    for c in &mut cases {
-        c.measured
-            .iter_mut()
-            .for_each(|m| *m += noise(&mut rng, 2e-5));
-    }
+    add_noise(&mut cases, 5, 2e-5);
     let result = identify(&cases, &Settings::new(3, 8), &|| {}).unwrap();
     let reduction = result.reduction.as_ref().expect("a reduced model");
     assert_eq!(reduction.parameter, "k2", "{}", reduction.statement);
@@ -533,12 +524,7 @@ fn the_stiff_spring_reduction_holds_on_eight_noise_draws() {
         MsdModel::new(vec![40.0, 300.0, 1100.0], vec![6e3, 2e4], vec![1.2e6, 5e10]).unwrap();
     for seed in 1..=8u64 {
         let mut cases = series(&stiff);
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        for c in &mut cases {
-            c.measured
-                .iter_mut()
-                .for_each(|m| *m += noise(&mut rng, 2e-5));
-        }
+        add_noise(&mut cases, seed, 2e-5);
         let result = identify(&cases, &Settings::new(3, 8), &|| {}).unwrap();
         let r = result.reduction.as_ref().expect("a reduced model");
         assert!(r.relative_objective <= 0.01, "seed {seed}: {}", r.statement);

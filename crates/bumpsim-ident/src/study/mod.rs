@@ -771,16 +771,26 @@ mod tests {
         ));
     }
 
+    /// A temporary folder of its own, and a reader of a study file written
+    /// there with the given text (its error as text).
+    fn reader(name: &str) -> (PathBuf, impl Fn(&str) -> Result<Study, String>) {
+        let dir = std::env::temp_dir().join(format!("bumpsim-study-{name}-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("study.toml");
+        let read = move |text: &str| {
+            std::fs::write(&path, text).unwrap();
+            Study::read(&path).map_err(|e| e.to_string())
+        };
+        (dir, read)
+    }
+
     /// `lower_bound = -1` was blamed on m1, a name the study does not hold.
     #[test]
     fn global_bounds_are_refused_by_their_own_keys() {
-        let dir = std::env::temp_dir().join(format!("bumpsim-study-bounds-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let (dir, file) = reader("bounds");
         let read = |model: &str| {
-            let path = dir.join("study.toml");
             let text = format!("[model]\ndof = 2\n{model}\n[[case]]\nname = \"a\"\n{CASE}\n");
-            std::fs::write(&path, text).unwrap();
-            Study::read(&path).map(|_| ()).map_err(|e| e.to_string())
+            file(&text).map(|_| ())
         };
         for (model, expected) in [
             (
@@ -802,19 +812,15 @@ mod tests {
             );
         }
         assert_eq!(read("lower_bound = 1e-3\nupper_bound = inf"), Ok(()));
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     /// `dof = []` ran nothing with exit 0; two cases named `flat` gave two
     /// `flat` rows; `dof = -2` said "untagged enum DofSpec".
     #[test]
     fn empty_dof_lists_repeated_case_names_and_wrong_shapes_are_errors() {
-        let dir = std::env::temp_dir().join(format!("bumpsim-study-names-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let read = |text: &str| {
-            let path = dir.join("study.toml");
-            std::fs::write(&path, text).unwrap();
-            Study::read(&path).unwrap_err().to_string()
-        };
+        let (dir, file) = reader("names");
+        let read = |text: &str| file(text).unwrap_err();
         let case = |name: &str| format!("[[case]]\nname = \"{name}\"\n{CASE}\n");
         let err = read(&format!("[model]\ndof = [2, 3, 2]\n{}", case("a")));
         assert!(err.contains("dof: 2 is given twice"), "{err}");
