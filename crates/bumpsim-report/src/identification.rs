@@ -173,13 +173,15 @@ pub fn report(
     Ok((page.finish(), figures))
 }
 
-/// The notes of the channel selections, when there are any.
+/// The notes of the channel selections and time bases, when there are any.
 fn notes_section(page: &mut Html, notes: &[String]) {
     if notes.is_empty() {
         return;
     }
-    page.heading("Channel selection");
-    page.paragraph("Channels the study's selectors left out, or used although marked invalid:");
+    page.heading("Channel selection and time base");
+    page.paragraph(
+        "Channels the study's selectors left out or used although marked invalid, and channels put on one time base:",
+    );
     page.warnings(notes);
 }
 
