@@ -31,6 +31,7 @@ pub mod energy;
 mod exponential;
 pub mod modal;
 pub mod model;
+pub mod names;
 pub mod sensitivity;
 pub mod series;
 pub mod simulate;

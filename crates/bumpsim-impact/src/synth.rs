@@ -308,13 +308,19 @@ fn check_chain(chain: &Chain) -> Result<(), String> {
     Ok(())
 }
 
-/// Head names become folder and file names: plain names, each once.
+/// Head names become folder and file names: printable, distinct names
+/// ([`bumpsim_core::names::check_names`]), plain (no path separator, not
+/// `.` or `..`) and without surrounding spaces.
 fn check_names(heads: &[HeadFile]) -> Result<(), String> {
-    let mut seen = std::collections::BTreeSet::new();
+    let names = heads.iter().map(|h| h.name.as_str());
+    bumpsim_core::names::check_names("[[head]]", names).map_err(|e| e.to_string())?;
     for h in heads {
         bumpsim_io::output::plain_name(&h.name).map_err(|e| format!("head name {e}"))?;
-        if !seen.insert(h.name.to_lowercase()) {
-            return Err(format!("head name '{}' is used twice", h.name));
+        if h.name.trim() != h.name {
+            return Err(format!(
+                "head name '{}': spaces before or after it (it names a folder)",
+                h.name
+            ));
         }
     }
     Ok(())

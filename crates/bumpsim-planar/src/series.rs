@@ -172,23 +172,21 @@ fn chain(table: &toml::Table, seed: u64) -> Result<Chain, String> {
 
 /// Test names become folder and file names: plain names, each once.
 fn names(tests: &[TestFile]) -> Result<(), String> {
-    let mut seen = std::collections::BTreeSet::new();
     if tests.is_empty() {
         return Err("no [[test]]: a series needs at least one test".into());
     }
+    let names = tests.iter().map(|t| t.name.as_str());
+    bumpsim_core::names::check_names("[[test]]", names).map_err(|e| e.to_string())?;
     for t in tests {
-        let plain = !t.name.is_empty()
+        let plain = t.name.trim() == t.name
             && t.name
                 .chars()
                 .all(|c| c.is_ascii_alphanumeric() || "-_ ".contains(c));
         if !plain {
             return Err(format!(
-                "test name '{}': letters, digits, '-', '_' and spaces only (it names a folder)",
-                t.name
+                "test name \"{}\": letters, digits, '-', '_' and inner spaces only (it names a folder)",
+                bumpsim_core::names::escaped(&t.name)
             ));
-        }
-        if !seen.insert(t.name.to_lowercase()) {
-            return Err(format!("test name '{}' is used twice", t.name));
         }
     }
     Ok(())

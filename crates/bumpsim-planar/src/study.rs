@@ -35,8 +35,8 @@ use crate::cases::{Placed, TestChannels};
 use crate::drive::Sensor;
 use crate::identify::{PlanarCase, Setup};
 use bumpsim_core::channel::Channel;
+use bumpsim_core::names::check_names;
 use bumpsim_core::units::{Dimension, parse_quantity};
-use bumpsim_ident::study::check_case_names;
 use bumpsim_signal::loader::{ChannelSource, Loader};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -126,7 +126,7 @@ impl PlanarStudy {
                 "no [[case]]: a study needs at least one load case".into(),
             ));
         }
-        check_case_names(file.case.iter().map(|c| c.name.as_str()))
+        check_names("[[case]]", file.case.iter().map(|c| c.name.as_str()))
             .map_err(|e| error(e.to_string()))?;
         let base = path.parent().unwrap_or(Path::new("."));
         let template = PlanarCar::read(&base.join(&file.model.planar))?;

@@ -173,7 +173,7 @@ fn hostile_planar_studies_get_clear_errors() {
         (r#"name = "  ""#, "[[case]] number 3: an empty name"),
         (
             r#"name = "flat ""#,
-            "name 'flat ' is already used by case 'FLAT'",
+            "name 'flat ' is already used by 'FLAT'",
         ),
     ] {
         let study = edited_study("planar-hostile-name", |t| {
@@ -201,11 +201,27 @@ fn hostile_planar_series_get_clear_errors() {
     for (edit, needle) in [
         (
             base.replacen("name = \"POLE\"", "name = \"FLAT\"", 1),
-            "used twice",
+            "[[test]] number 3: name 'FLAT' is already used by 'FLAT'",
+        ),
+        (
+            base.replacen("name = \"POLE\"", "name = \" flat\"", 1),
+            "is already used by 'FLAT' (they differ only in case",
         ),
         (
             base.replacen("name = \"POLE\"", "name = \"../escape\"", 1),
             "test name",
+        ),
+        (
+            base.replacen("name = \"POLE\"", "name = \"POLE \"", 1),
+            "inner spaces only",
+        ),
+        (
+            base.replacen("name = \"POLE\"", "name = \"PO\\u001BLE\"", 1),
+            r#"the name "PO\u001BLE" holds control"#,
+        ),
+        (
+            base.replacen("name = \"POLE\"", "name = \"   \"", 1),
+            "[[test]] number 3: an empty name",
         ),
         (
             base.replacen("duration = 0.15", "duration = 1e9", 1),

@@ -13,6 +13,7 @@
 use crate::case::{CaseError, LoadCase, VALID_RANGE};
 use crate::estimate::{Bounds, Settings};
 use bumpsim_core::model::{parameter_count, parameter_name};
+use bumpsim_core::names::check_names;
 use bumpsim_core::units::{Dimension, format_number};
 use bumpsim_io::signal_error::SignalFileError;
 use bumpsim_signal::loader::{LoadError, Loader, Note};
@@ -24,9 +25,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 mod context;
-mod names;
 use context::CaseContext;
-pub use names::{CaseNameError, check_case_names};
 
 pub use crate::case::MAX_INITIAL_VELOCITY;
 
@@ -382,10 +381,12 @@ impl Study {
         }
     }
 
-    /// Case names follow [`check_case_names`]; each case's initial
-    /// velocity is finite and at most [`MAX_INITIAL_VELOCITY`].
+    /// Case names follow [`bumpsim_core::names::check_names`]; each
+    /// case's initial velocity is finite and at most
+    /// [`MAX_INITIAL_VELOCITY`].
     fn check_case_names(&self) -> Result<(), String> {
-        check_case_names(self.case.iter().map(|c| c.name.as_str())).map_err(|e| e.to_string())?;
+        let names = self.case.iter().map(|c| c.name.as_str());
+        check_names("[[case]]", names).map_err(|e| e.to_string())?;
         for case in &self.case {
             let v = case.initial_velocity;
             if !(v.is_finite() && v.abs() <= MAX_INITIAL_VELOCITY) {
@@ -832,7 +833,7 @@ mod tests {
             case(" Flat")
         ));
         assert!(
-            err.contains("[[case]] number 2: name ' Flat' is already used by case 'flat'"),
+            err.contains("[[case]] number 2: name ' Flat' is already used by 'flat'"),
             "{err}"
         );
         let err = read(&format!("[model]\ndof = 2\n{}", case(" ")));

@@ -1,0 +1,229 @@
+//! Names a user gives to cases, heads and tests: the one rule for all.
+//!
+//! Such a name names results, table rows, plots, report files, folders and
+//! `--case` selections, so each must be non-empty, printable and differ
+//! from the others of its file, ignoring case and surrounding spaces as
+//! file names on some systems do. *Printable* excludes every character that
+//! shows nothing or changes how the rest shows ([`invisible`]): controls,
+//! line and paragraph separators, Unicode's format characters (category
+//! Cf: direction marks, overrides and isolates, zero-width spaces and
+//! joiners, soft hyphen, byte-order mark, tags), the other default-ignorable
+//! code points (variation selectors, Hangul fillers) and the blank braille
+//! pattern. The character lists follow Unicode 16 (`DerivedCoreProperties`
+//! `Default_Ignorable_Code_Point`, `UnicodeData` category Cf, Zl, Zp); they
+//! are written out here because the standard library has no category
+//! tables and this one rule does not need a Unicode-data crate.
+
+/// Why a list of names cannot be used (numbers count the file's tables,
+/// e.g. `[[case]]`, from 1).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum NameError {
+    /// The name is empty or only spaces.
+    #[error("{table} number {number}: an empty name")]
+    Empty {
+        /// The table the name is in (`[[case]]`).
+        table: &'static str,
+        /// The table's number.
+        number: usize,
+    },
+    /// The name holds control or invisible characters.
+    #[error(
+        "{table} number {number}: the name \"{escaped}\" holds control or invisible characters (tab, escape, line separators, direction marks, zero-width spaces): they would reach the terminal and the file names; use printable text"
+    )]
+    Invisible {
+        /// The table the name is in.
+        table: &'static str,
+        /// The table's number.
+        number: usize,
+        /// The name as a TOML basic string spells it (`\u001B` for escape).
+        escaped: String,
+    },
+    /// Two tables share a name.
+    #[error(
+        "{table} number {number}: name '{name}' is already used by '{first}'{how}; give each its own name"
+    )]
+    Repeated {
+        /// The table the name is in.
+        table: &'static str,
+        /// The later table's number.
+        number: usize,
+        /// Its name.
+        name: String,
+        /// The earlier table's name.
+        first: String,
+        /// Empty, or how two names that print alike differ.
+        how: &'static str,
+    },
+}
+
+/// Checks the names of one file's `table`s, in file order (see the module).
+///
+/// ```
+/// use bumpsim_core::names::{NameError, check_names};
+/// assert!(check_names("[[case]]", ["flat", "angled"]).is_ok());
+/// assert!(matches!(
+///     check_names("[[case]]", ["flat", " Flat"]),
+///     Err(NameError::Repeated { number: 2, .. })
+/// ));
+/// assert!(check_names("[[case]]", ["FL\u{2028}AT"]).is_err()); // a line separator
+/// ```
+pub fn check_names<'a>(
+    table: &'static str,
+    names: impl IntoIterator<Item = &'a str>,
+) -> Result<(), NameError> {
+    let key = |name: &str| name.trim().to_lowercase();
+    let mut seen: Vec<&str> = Vec::new();
+    for (i, name) in names.into_iter().enumerate() {
+        let number = i + 1;
+        if key(name).is_empty() {
+            return Err(NameError::Empty { table, number });
+        }
+        if name.chars().any(invisible) {
+            let escaped = escaped(name);
+            return Err(NameError::Invisible {
+                table,
+                number,
+                escaped,
+            });
+        }
+        if let Some(first) = seen.iter().find(|s| key(s) == key(name)) {
+            let how = match *first == name {
+                true => "",
+                false => " (they differ only in case, surrounding spaces or look-alike letters)",
+            };
+            return Err(NameError::Repeated {
+                table,
+                number,
+                name: name.to_string(),
+                first: first.to_string(),
+                how,
+            });
+        }
+        seen.push(name);
+    }
+    Ok(())
+}
+
+/// Whether `c` shows nothing a reader sees, or changes how the rest shows
+/// (see the module for the classes).
+///
+/// ```
+/// use bumpsim_core::names::invisible;
+/// assert!(invisible('\u{1b}') && invisible('\u{202E}') && invisible('\u{3164}'));
+/// assert!(!invisible('é') && !invisible(' ') && !invisible('Ω'));
+/// ```
+pub fn invisible(c: char) -> bool {
+    c.is_control()
+        || matches!(
+            c as u32,
+            0x00AD
+                | 0x034F
+                | 0x0600..=0x0605
+                | 0x061C
+                | 0x06DD
+                | 0x070F
+                | 0x0890..=0x0891
+                | 0x08E2
+                | 0x115F..=0x1160
+                | 0x17B4..=0x17B5
+                | 0x180B..=0x180F
+                | 0x200B..=0x200F
+                | 0x2028..=0x202E
+                | 0x2060..=0x206F
+                | 0x2800
+                | 0x3164
+                | 0xFE00..=0xFE0F
+                | 0xFEFF
+                | 0xFFA0
+                | 0xFFF0..=0xFFFB
+                | 0x110BD
+                | 0x110CD
+                | 0x13430..=0x1343F
+                | 0x1BCA0..=0x1BCA3
+                | 0x1D173..=0x1D17A
+                | 0xE0000..=0xE0FFF
+        )
+}
+
+/// `text` as a TOML basic string would spell it: [`invisible`] characters
+/// as `\uXXXX` (`\UXXXXXXXX` beyond the basic plane), quotes and
+/// backslashes escaped, the rest as it is. Also how text from a data file
+/// (a channel code) is shown.
+///
+/// ```
+/// use bumpsim_core::names::escaped;
+/// assert_eq!(escaped("red\u{1b}[31m \"x\""), r#"red\u001B[31m \"x\""#);
+/// ```
+pub fn escaped(text: &str) -> String {
+    text.chars()
+        .map(|c| match c {
+            '"' | '\\' => format!("\\{c}"),
+            c if invisible(c) && (c as u32) < 0x10000 => format!("\\u{:04X}", c as u32),
+            c if invisible(c) => format!("\\U{:08X}", c as u32),
+            c => c.to_string(),
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn empty_invisible_and_repeated_names_are_named() {
+        let case = |names: &[&str]| check_names("[[case]]", names.iter().copied());
+        assert_eq!(
+            case(&["a", "  "]),
+            Err(NameError::Empty {
+                table: "[[case]]",
+                number: 2
+            })
+        );
+        let err = case(&["red\u{1b}[31m"]).unwrap_err().to_string();
+        assert!(err.contains(r#"the name "red\u001B[31m" holds"#), "{err}");
+        for hidden in [
+            "x\u{202E}y",
+            "FL\u{061C}AT",
+            "FL\u{2028}AT",
+            "soft\u{00AD}",
+            "\u{3164}",
+            "\u{2800}",
+            "tag\u{E0041}",
+            "emoji\u{FE0F}",
+            "x\u{206A}",
+        ] {
+            assert!(
+                matches!(case(&[hidden]), Err(NameError::Invisible { .. })),
+                "{hidden:?}"
+            );
+        }
+        assert!(
+            case(&["tag\u{E0041}"])
+                .unwrap_err()
+                .to_string()
+                .contains(r"tag\U000E0041")
+        );
+        let err = case(&["Flat", "angled", "flat "]).unwrap_err();
+        assert_eq!(
+            err,
+            NameError::Repeated {
+                table: "[[case]]",
+                number: 3,
+                name: "flat ".into(),
+                first: "Flat".into(),
+                how: " (they differ only in case, surrounding spaces or look-alike letters)",
+            }
+        );
+        // the Kelvin sign lowercases to k: the message says why two names
+        // that print alike are one
+        let err = case(&["\u{212A}1", "K1"]).unwrap_err().to_string();
+        assert!(err.contains("look-alike"), "{err}");
+        let err = check_names("[[head]]", ["A", "A"]).unwrap_err().to_string();
+        assert_eq!(
+            err,
+            "[[head]] number 2: name 'A' is already used by 'A'; give each its own name"
+        );
+        assert!(case(&["a \"quoted\" name", "ünïcode", "Ω-2 π"]).is_ok());
+    }
+}
