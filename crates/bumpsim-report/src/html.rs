@@ -105,6 +105,18 @@ impl Html {
         }
     }
 
+    /// Notes: what the user should know that is not a warning.
+    pub fn notes(&mut self, notes: &[String]) {
+        if notes.is_empty() {
+            return;
+        }
+        self.body += "<ul>\n";
+        for n in notes {
+            self.body += &format!("<li>Note: {}</li>\n", escape(n));
+        }
+        self.body += "</ul>\n";
+    }
+
     /// A failure notice.
     pub fn failure(&mut self, text: &str) {
         self.body += &format!("<div class=\"failure\">Failed: {}</div>\n", escape(text));

@@ -182,7 +182,7 @@ fn notes_section(page: &mut Html, notes: &[String]) {
     page.paragraph(
         "Channels the study's selectors left out or used although marked invalid, and channels put on one time base:",
     );
-    page.warnings(notes);
+    page.notes(notes);
 }
 
 fn add(page: &mut Html, figures: &mut Vec<Figure>, name: &str, svg: String, caption: &str) {

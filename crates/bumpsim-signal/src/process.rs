@@ -34,8 +34,9 @@ use crate::filter::{Butterworth, Cfc, CfcStandard, FilterError, moving_average};
 use crate::integrate::{cumulative_trapezoid, derivative};
 use crate::window::{ContactThreshold, WindowError};
 use bumpsim_core::channel::Channel;
+use bumpsim_core::names;
 use bumpsim_core::series::{SeriesError, UniformSeries, WINDOW_TOLERANCE};
-use bumpsim_core::units::{Dimension, format_quantity};
+use bumpsim_core::units::{Dimension, format_number};
 use serde::Deserialize;
 
 /// Why a processing step failed.
@@ -471,45 +472,91 @@ pub struct Resampling {
     pub step: f64,
     /// The common span's first and last time, s (the channels' overlap).
     pub span: [f64; 2],
+    /// Each channel's code, in the order given.
+    pub codes: Vec<String>,
+    /// Each channel's role in the note (`force`); its code unless
+    /// [`Resampling::with_roles`] names them.
+    pub roles: Vec<String>,
     /// Channels whose samples do not fall on the common base and are
-    /// interpolated linearly: code and own sample interval, s.
-    pub interpolated: Vec<(String, f64)>,
-    /// Channels with samples outside the overlap, left out: code and count.
-    pub trimmed: Vec<(String, usize)>,
+    /// interpolated linearly: index into `codes` and own interval, s.
+    pub interpolated: Vec<(usize, f64)>,
+    /// Channels with samples outside the overlap, left out: index into
+    /// `codes` and count.
+    pub trimmed: Vec<(usize, usize)>,
 }
 
 impl std::fmt::Display for Resampling {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let own: Vec<f64> = self.interpolated.iter().map(|&(_, step)| step).collect();
+        let times = distinct_times(&[&[self.step, self.span[0], self.span[1]], &own[..]].concat());
+        let named: Vec<String> = (0..self.codes.len()).map(|i| self.named(i)).collect();
         write!(
             f,
-            "{} sampled together every {} from {} to {}",
-            self.names(),
-            format_quantity(self.step, Dimension::Time),
-            format_quantity(self.span[0], Dimension::Time),
-            format_quantity(self.span[1], Dimension::Time)
+            "{} put on one time base, every {} from {} to {}",
+            named.join(" and "),
+            times[0],
+            times[1],
+            times[2]
         )?;
-        for (code, step) in &self.interpolated {
-            let own = format_quantity(*step, Dimension::Time);
-            write!(f, "; {code} (every {own}) interpolated linearly")?;
+        for (k, &(i, _)) in self.interpolated.iter().enumerate() {
+            let role = names::escaped(&self.roles[i]);
+            write!(f, "; {role} (every {}) interpolated linearly", times[3 + k])?;
         }
-        for (code, count) in &self.trimmed {
-            let samples = if *count == 1 { "sample" } else { "samples" };
-            write!(f, "; {code}: {count} {samples} outside that span left out")?;
+        for &(i, count) in &self.trimmed {
+            let (role, samples) = (names::escaped(&self.roles[i]), plural(count, "sample"));
+            write!(f, "; {role}: {count} {samples} outside that span left out")?;
         }
         Ok(())
     }
 }
 
 impl Resampling {
-    fn names(&self) -> String {
-        let mut codes: Vec<&str> = self.interpolated.iter().map(|(c, _)| c.as_str()).collect();
-        for (code, _) in &self.trimmed {
-            if !codes.contains(&code.as_str()) {
-                codes.push(code);
-            }
-        }
-        codes.join(" and ")
+    /// The same, with the channels named by their roles (`force`,
+    /// `displacement`) in the order given; the note then shows both.
+    pub fn with_roles(self, roles: &[&str]) -> Resampling {
+        let roles = roles.iter().map(ToString::to_string).collect();
+        Resampling { roles, ..self }
     }
+
+    /// Channel `i` as first named: its code, or its role and code.
+    fn named(&self, i: usize) -> String {
+        let code = names::escaped(&self.codes[i]);
+        match self.roles[i] == self.codes[i] {
+            true => code,
+            false => format!("{} '{code}'", names::escaped(&self.roles[i])),
+        }
+    }
+}
+
+fn plural(count: usize, noun: &str) -> String {
+    match count {
+        1 => noun.to_string(),
+        _ => format!("{noun}s"),
+    }
+}
+
+/// `values` (s) in the display unit with the fewest significant digits,
+/// from 4 to 12, that keep different values apart (a 1 ns span at 10 ms
+/// must not read "from 10.00 ms to 10.00 ms").
+fn distinct_times(values: &[f64]) -> Vec<String> {
+    let unit = Dimension::Time.display_unit();
+    let texts = |digits: usize| -> Vec<String> {
+        let text = |v: &f64| {
+            format!(
+                "{} {}",
+                format_number(unit.from_si(*v), digits),
+                unit.symbol
+            )
+        };
+        values.iter().map(text).collect()
+    };
+    let apart = |t: &[String]| {
+        (0..values.len()).all(|i| (0..i).all(|j| values[i] == values[j] || t[i] != t[j]))
+    };
+    (4..=12)
+        .map(texts)
+        .find(|t| apart(t))
+        .unwrap_or_else(|| texts(17))
 }
 
 /// What [`align`] or [`combine`] would change in `channels`; `None` when
@@ -523,8 +570,10 @@ impl Resampling {
 /// let x = Channel::new("X", "x", Dimension::Length, at(1e-4, 1000));
 /// let r = resampling(&[force, x]).unwrap();
 /// assert_eq!(r.interpolated.len(), 1);
-/// assert_eq!(r.interpolated[0].0, "F");
-/// assert_eq!(r.trimmed, vec![("X".to_string(), 1)]); // after the force's last sample
+/// assert_eq!(r.interpolated[0].0, 0); // F
+/// assert_eq!(r.trimmed, vec![(1, 1)]); // X: one sample after the force's last
+/// let note = r.with_roles(&["force", "displacement"]).to_string();
+/// assert!(note.starts_with("force 'F' and displacement 'X' put on one time base"));
 /// ```
 pub fn resampling(channels: &[Channel]) -> Option<Resampling> {
     let base = common_base(channels)?;
@@ -541,20 +590,22 @@ pub fn resampling(channels: &[Channel]) -> Option<Resampling> {
             .filter(|&t| t < start - slack || t > end + slack)
             .count()
     };
-    let interpolated: Vec<(String, f64)> = channels
-        .iter()
-        .filter(|c| !on_base(&c.series))
-        .map(|c| (c.code.clone(), c.series.step()))
+    let series = || channels.iter().map(|c| &c.series).enumerate();
+    let interpolated: Vec<(usize, f64)> = series()
+        .filter(|(_, s)| !on_base(s))
+        .map(|(i, s)| (i, s.step()))
         .collect();
-    let trimmed: Vec<(String, usize)> = channels
-        .iter()
-        .map(|c| (c.code.clone(), outside(&c.series)))
-        .filter(|(_, n)| *n > 0)
+    let trimmed: Vec<(usize, usize)> = series()
+        .map(|(i, s)| (i, outside(s)))
+        .filter(|&(_, n)| n > 0)
         .collect();
+    let codes: Vec<String> = channels.iter().map(|c| c.code.clone()).collect();
     let changed = !(interpolated.is_empty() && trimmed.is_empty());
-    changed.then_some(Resampling {
+    changed.then(|| Resampling {
         step,
         span: [start, end],
+        roles: codes.clone(),
+        codes,
         interpolated,
         trimmed,
     })
@@ -630,23 +681,35 @@ mod tests {
         let a = channel(0.0, vec![1.0, 2.0, 3.0], Dimension::Force);
         assert_eq!(resampling(&[a.clone(), a.clone()]), None);
         // half a step later: the common base starts at 0.05 s, ends at 0.15 s
-        let b = channel(0.05, vec![1.0, 2.0, 3.0], Dimension::Force);
+        let mut b = channel(0.05, vec![1.0, 2.0, 3.0], Dimension::Force);
+        b.code = "Y\u{1b}[31m".into();
         let r = resampling(&[a.clone(), b.clone()]).unwrap();
         assert_eq!(r.interpolated.len(), 1);
-        assert_eq!(r.interpolated[0].0, "X");
+        assert_eq!(r.interpolated[0].0, 0);
         approx::assert_relative_eq!(r.span[0], 0.05, max_relative = 1e-12);
         approx::assert_relative_eq!(r.span[1], 0.15, max_relative = 1e-12);
-        assert_eq!(r.trimmed, [("X".to_string(), 2), ("X".to_string(), 1)]);
+        assert_eq!(r.trimmed, [(0, 2), (1, 1)]);
         // the common base is what align and combine use
         let (times, _) = align(&[a, b]).unwrap();
         assert_eq!(times.len(), 2);
         let text = r.to_string();
-        assert!(
-            text.contains("every 100.0 ms")
-                && text.contains("2 samples outside")
-                && text.contains("1 sample outside"),
-            "{text}"
+        assert_eq!(
+            text,
+            r"X and Y\u001B[31m put on one time base, every 100.0 ms from 50.00 ms to 150.0 ms; X (every 100.0 ms) interpolated linearly; X: 2 samples outside that span left out; Y\u001B[31m: 1 sample outside that span left out"
         );
+    }
+
+    #[test]
+    fn resampled_times_get_the_digits_that_tell_them_apart() {
+        assert_eq!(
+            distinct_times(&[1e-4, 0.01, 0.01 + 1e-9]),
+            ["0.10000000 ms", "10.000000 ms", "10.000001 ms"]
+        );
+        assert_eq!(
+            distinct_times(&[1e-4, 1.00000001e-4]),
+            ["0.100000000 ms", "0.100000001 ms"]
+        );
+        assert_eq!(distinct_times(&[0.0, 0.0998]), ["0 ms", "99.80 ms"]);
     }
 
     #[test]

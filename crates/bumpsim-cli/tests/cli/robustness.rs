@@ -167,7 +167,10 @@ fn synth_keeps_every_file_inside_its_folder() {
         ("P600", "name 'P600' is already used by 'P600'"),
         (" p600", "(they differ only in case, surrounding spaces"),
         ("   ", "[[head]] number 1: an empty name"),
-        ("FL\\u001B[31mAT", r#"the name "FL\u001B[31mAT" holds control"#),
+        (
+            "FL\\u001B[31mAT",
+            r#"the name "FL\u001B[31mAT" holds control"#,
+        ),
         ("FL\\u2028AT", r#"the name "FL\u2028AT" holds control"#),
         (" FLAT", "spaces before or after it"),
     ] {

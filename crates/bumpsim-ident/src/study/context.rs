@@ -146,9 +146,10 @@ impl CaseContext<'_> {
             source,
         })?;
         if let Some(resampled) = resampling(&pair) {
+            let roles = resampled.with_roles(&["force", "displacement"]);
             self.notes.push(CaseNote {
                 case: self.spec.name.clone(),
-                note: Note::Resampled(resampled),
+                note: Note::Resampled(roles),
             });
         }
         let step = if time.len() > 1 {
