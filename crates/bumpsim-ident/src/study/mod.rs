@@ -359,25 +359,49 @@ impl Study {
         Ok(study)
     }
 
-    /// `lower_bound` and `upper_bound` apply to every parameter: checked
-    /// here, where their keys can be named (the per-parameter check names
-    /// a parameter, m1 first, which the user did not write).
+    /// `lower_bound` and `upper_bound` apply to every parameter, `bounds`
+    /// and `fixed` to one: checked here, where their keys can be named
+    /// (the identification's own check names a parameter, m1 first, and
+    /// not the file).
     fn check_global_bounds(&self) -> Result<(), String> {
-        let (floor, ceiling) = (*VALID_RANGE.start(), *VALID_RANGE.end());
         let lower = self.model.lower_bound;
-        if !(lower > 0.0 && lower < ceiling) {
+        let upper = self.model.upper_bound.unwrap_or(f64::INFINITY);
+        let (floor, ceiling) = (*VALID_RANGE.start(), *VALID_RANGE.end());
+        if !(lower >= floor && lower < ceiling) {
             return Err(format!(
-                "[model] lower_bound = {}: expected a positive number below {ceiling:e} (SI: kg, N·s/m and N/m alike; the thesis uses 1)",
+                "[model] lower_bound = {}: expected a number from {floor:e} to below {ceiling:e} (SI: kg, N·s/m and N/m alike, the range the search works in; the thesis uses 1)",
                 format_number(lower, 4)
             ));
         }
-        match self.model.upper_bound {
-            Some(upper) if !(upper > lower && upper > floor) => Err(format!(
+        if upper.is_nan() || upper <= lower {
+            return Err(format!(
                 "[model] upper_bound = {}: expected a number above lower_bound = {} (SI)",
                 format_number(upper, 4),
                 format_number(lower, 4)
+            ));
+        }
+        for (name, pair) in &self.model.bounds {
+            if let [lo, hi] = pair[..]
+                && !(lo >= floor && lo < ceiling && hi > lo)
+            {
+                return Err(format!(
+                    "bounds: {name} = [{}, {}]: expected {floor:e} <= lower < upper with lower below {ceiling:e} (SI)",
+                    format_number(lo, 4),
+                    format_number(hi, 4)
+                ));
+            }
+        }
+        match self
+            .model
+            .fixed
+            .iter()
+            .find(|(_, v)| !VALID_RANGE.contains(*v))
+        {
+            Some((name, v)) => Err(format!(
+                "fixed: {name} = {}: expected a value from {floor:e} to {ceiling:e} (SI)",
+                format_number(*v, 4)
             )),
-            _ => Ok(()),
+            None => Ok(()),
         }
     }
 
@@ -791,26 +815,59 @@ mod tests {
             let text = format!("[model]\ndof = 2\n{model}\n[[case]]\nname = \"a\"\n{CASE}\n");
             file(&text).map(|_| ())
         };
+        let range = "expected a number from 1e-12 to below 1e15";
         for (model, expected) in [
             (
                 "lower_bound = -1.0",
-                "[model] lower_bound = -1.000: expected a positive number",
+                format!("[model] lower_bound = -1.000: {range}"),
             ),
-            ("lower_bound = nan", "[model] lower_bound = NaN"),
-            ("lower_bound = 1e300", "[model] lower_bound = 1.000e300"),
+            (
+                "lower_bound = nan",
+                format!("[model] lower_bound = NaN: {range}"),
+            ),
+            (
+                "lower_bound = 1e300",
+                format!("[model] lower_bound = 1.000e300: {range}"),
+            ),
+            (
+                "lower_bound = 1e-13",
+                format!("[model] lower_bound = 1.000e-13: {range}"),
+            ),
             (
                 "upper_bound = 0.5",
-                "[model] upper_bound = 0.5000: expected a number above lower_bound = 1.000",
+                "[model] upper_bound = 0.5000: expected a number above lower_bound = 1.000".into(),
             ),
-            ("upper_bound = nan", "[model] upper_bound = NaN"),
+            ("upper_bound = nan", "[model] upper_bound = NaN".into()),
+            (
+                "lower_bound = 1e-12\nupper_bound = 1e-12",
+                "[model] upper_bound = 1.000e-12: expected a number above lower_bound = 1.000e-12"
+                    .into(),
+            ),
+            (
+                "bounds = { k1 = [-1.0, 5.0] }",
+                "bounds: k1 = [-1.000, 5.000]: expected 1e-12 <= lower < upper".into(),
+            ),
+            (
+                "bounds = { c1 = [5.0, 5.0] }",
+                "bounds: c1 = [5.000, 5.000]: expected".into(),
+            ),
+            (
+                "fixed = { k1 = nan }",
+                "fixed: k1 = NaN: expected a value from 1e-12 to 1e15".into(),
+            ),
+            ("fixed = { c1 = 0.0 }", "fixed: c1 = 0: expected".into()),
         ] {
             let err = read(model).unwrap_err();
             assert!(
-                err.contains(expected) && !err.contains("m1"),
+                err.contains(&expected) && !err.contains("m1") && err.contains("study.toml"),
                 "{model}: {err}"
             );
         }
         assert_eq!(read("lower_bound = 1e-3\nupper_bound = inf"), Ok(()));
+        assert_eq!(
+            read("upper_bound = 1e20\nbounds = { m2 = [0.5, 2.0] }"),
+            Ok(())
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
