@@ -55,6 +55,18 @@ pub enum CaseError {
     },
 }
 
+impl CaseError {
+    /// What is wrong, without the case's name (for a message that names
+    /// the case already).
+    pub fn reason(&self) -> String {
+        match self {
+            CaseError::Invalid { reason, .. } => reason.clone(),
+            CaseError::Discretise { source, .. } => source.to_string(),
+            CaseError::Output { dof, source, .. } => format!("with a {dof}-DOF model: {source}"),
+        }
+    }
+}
+
 /// One load case, SI, on a uniform time base starting at `start`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LoadCase {
@@ -88,11 +100,15 @@ impl LoadCase {
             case: self.name.clone(),
             reason,
         };
-        if self.force.len() != self.measured.len() || self.force.len() < 2 {
+        let (forces, displacements) = (self.force.len(), self.measured.len());
+        if forces != displacements {
             return Err(invalid(format!(
-                "{} force samples and {} displacement samples: expected the same number, at least 2",
-                self.force.len(),
-                self.measured.len()
+                "{forces} force samples and {displacements} displacement samples: expected the same number"
+            )));
+        }
+        if forces < 2 {
+            return Err(invalid(format!(
+                "{forces} samples from t = 0 (where force and displacement overlap): at least 2 needed"
             )));
         }
         let (a, b) = self.window;

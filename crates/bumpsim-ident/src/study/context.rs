@@ -134,6 +134,8 @@ impl CaseContext<'_> {
     }
 
     /// Aligns force and displacement, starts at t = 0 and sets the window.
+    /// A case that fails after its channels were put on one time base
+    /// says how they were (the overlap may be what left too little).
     fn build(
         &mut self,
         force: Channel,
@@ -141,17 +143,33 @@ impl CaseContext<'_> {
         dof: usize,
     ) -> Result<LoadCase, StudyError> {
         let pair = [force, output];
-        let (time, columns) = align(&pair).map_err(|source| StudyError::Process {
+        let resampled = resampling(&pair).map(|r| r.with_roles(&["force", "displacement"]));
+        let case = self
+            .assemble(&pair, dof)
+            .map_err(|e| match (&resampled, e) {
+                (Some(r), StudyError::Case { case, source }) => StudyError::Case {
+                    case,
+                    source: DefinitionError::Resampled {
+                        note: r.to_string(),
+                        error: Box::new(source),
+                    },
+                },
+                (_, e) => e,
+            })?;
+        if let Some(resampled) = resampled {
+            self.notes.push(CaseNote {
+                case: self.spec.name.clone(),
+                note: Note::Resampled(resampled),
+            });
+        }
+        Ok(case)
+    }
+
+    fn assemble(&self, pair: &[Channel; 2], dof: usize) -> Result<LoadCase, StudyError> {
+        let (time, columns) = align(pair).map_err(|source| StudyError::Process {
             case: self.spec.name.clone(),
             source,
         })?;
-        if let Some(resampled) = resampling(&pair) {
-            let roles = resampled.with_roles(&["force", "displacement"]);
-            self.notes.push(CaseNote {
-                case: self.spec.name.clone(),
-                note: Note::Resampled(roles),
-            });
-        }
         let step = if time.len() > 1 {
             time[1] - time[0]
         } else {

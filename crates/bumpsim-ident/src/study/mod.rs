@@ -145,9 +145,25 @@ pub enum DefinitionError {
     /// No contact in the force.
     #[error(transparent)]
     Contact(#[from] WindowError),
-    /// The processed case is not usable.
-    #[error(transparent)]
-    Invalid(#[from] CaseError),
+    /// A case failed after its force and displacement were put on one
+    /// time base: the failure, and how they were.
+    #[error("{error} (after {note})")]
+    Resampled {
+        /// What [`bumpsim_signal::process::Resampling`] says.
+        note: String,
+        /// The failure.
+        error: Box<DefinitionError>,
+    },
+    /// The processed case is not usable (shown without the case's name,
+    /// which [`StudyError::Case`] gives already).
+    #[error("{}", .0.reason())]
+    Invalid(CaseError),
+}
+
+impl From<CaseError> for DefinitionError {
+    fn from(error: CaseError) -> DefinitionError {
+        DefinitionError::Invalid(error)
+    }
 }
 
 /// A note on the channels of one case (left out, or used despite a mark).
@@ -729,6 +745,36 @@ mod tests {
         // the displacement between its samples is the straight line
         let case = &loaded.cases[0];
         approx::assert_relative_eq!(case.measured[3], 1e-3 * 3e-4, max_relative = 1e-9);
+    }
+
+    /// Force and displacement that overlap in one sample were refused as
+    /// "the force is zero everywhere", although the force file has a pulse.
+    #[test]
+    fn a_case_failing_on_its_overlap_says_how_the_channels_were_aligned() {
+        let dir = ev5("overlap");
+        let mut csv = String::from("time [s],x [m]\n");
+        for k in 0..20 {
+            writeln!(csv, "{},0", 0.0148 + k as f64 * 1e-4).unwrap();
+        }
+        std::fs::write(dir.join("x.csv"), csv).unwrap();
+        let case = "force = { path = \"t.EV5\", channel = \"1\" }\ndisplacement = { path = \"x.csv\", channel = \"x\" }";
+        let err = study("dof = 1", case, &dir).load(1).unwrap_err();
+        assert!(
+            matches!(
+                &err,
+                StudyError::Case {
+                    source: DefinitionError::Resampled { .. },
+                    ..
+                }
+            ),
+            "{err:?}"
+        );
+        let text = err.to_string();
+        assert!(
+            text.contains("(after force '0-LC-WALL-XG' and displacement 'x' put on one time base")
+                && text.contains("displacement: 18 samples outside that span left out)"),
+            "{text}"
+        );
     }
 
     #[test]
