@@ -201,6 +201,7 @@ pub struct IdentifyOptions<'a> {
 /// the validation cases and writes the outputs.
 pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
     let mut study = PlanarStudy::read(options.study)?;
+    study.notes.iter().for_each(|n| println!("note: {n}"));
     study.setup.starts = options.starts.unwrap_or(study.setup.starts);
     study.setup.seed = options.seed.unwrap_or(study.setup.seed);
     let bar = match options.quiet {
@@ -225,7 +226,11 @@ pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
     print!("{summary}");
     result.warnings.iter().for_each(|w| crate::warn(w));
     if let Some(path) = options.json {
-        let json = serde_json::json!({ "result": result, "validation": validation_fits });
+        let json = serde_json::json!({
+            "result": result,
+            "validation": validation_fits,
+            "notes": study.notes,
+        });
         write(path, &serde_json::to_string_pretty(&json)?)?;
     }
     if let Some(path) = options.car {
@@ -243,7 +248,7 @@ pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
             })
             .collect();
         let (html, figures) =
-            bumpsim_report::planar::identification_report(&summary, &inputs, &pages)?;
+            bumpsim_report::planar::identification_report(&summary, &inputs, &study.notes, &pages)?;
         Folder::report(dir, &html, &figures)?;
     }
     Ok(())

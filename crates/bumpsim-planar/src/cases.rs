@@ -16,7 +16,7 @@ use crate::drive::{Drive, Load, Sensor};
 use crate::identify::PlanarCase;
 use crate::synth::Recorded;
 use bumpsim_core::channel::Channel;
-use bumpsim_signal::process::{Step, align, run};
+use bumpsim_signal::process::{Resampling, Step, align, resampling, run};
 use bumpsim_signal::window::ContactThreshold;
 
 /// A force channel and its place on the bumper line.
@@ -75,8 +75,10 @@ impl TestChannels {
         }
     }
 
-    /// Conditions the channels into a load case.
-    pub fn case(&self) -> Result<PlanarCase, PlanarError> {
+    /// Conditions the channels into a load case, with what putting them on
+    /// one time base did to them when it did anything
+    /// ([`bumpsim_signal::process::resampling`]).
+    pub fn case(&self) -> Result<(PlanarCase, Option<Resampling>), PlanarError> {
         let error = |message: String| PlanarError::Case {
             case: self.name.clone(),
             message,
@@ -103,6 +105,7 @@ impl TestChannels {
             channels.push(condition(s, &integrate)?);
         }
         let (time, columns) = align(&channels).map_err(|e| error(e.to_string()))?;
+        let resampled = resampling(&channels);
         let first = time
             .iter()
             .position(|&t| t >= -1e-9 * time.get(1).map_or(1.0, |t1| (t1 - time[0]).abs()))
@@ -129,7 +132,7 @@ impl TestChannels {
         let window = ContactThreshold::default()
             .detect(&total)
             .map_err(|e| error(format!("force: {e}")))?;
-        Ok(PlanarCase {
+        let case = PlanarCase {
             name: self.name.clone(),
             drive: Drive {
                 step,
@@ -139,6 +142,7 @@ impl TestChannels {
             },
             measured: columns[n..].iter().map(|c| c[first..].to_vec()).collect(),
             window: (window.first, window.last),
-        })
+        };
+        Ok((case, resampled))
     }
 }

@@ -38,6 +38,7 @@ use bumpsim_core::channel::Channel;
 use bumpsim_core::names::check_names;
 use bumpsim_core::units::{Dimension, parse_quantity};
 use bumpsim_signal::loader::{ChannelSource, Loader};
+use bumpsim_signal::process::Resampling;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -101,6 +102,9 @@ pub struct PlanarStudy {
     pub cases: Vec<PlanarCase>,
     /// Cases predicted, not fitted (`validate = true`).
     pub validation: Vec<PlanarCase>,
+    /// What the user should know of the loading, a line each (`case
+    /// 'POLE': ... put on one time base ...`).
+    pub notes: Vec<String>,
 }
 
 /// Whether a study file is planar (`[model] planar = ...`).
@@ -139,9 +143,10 @@ impl PlanarStudy {
             ..defaults
         };
         let mut loader = Loader::new();
-        let (mut cases, mut validation) = (Vec::new(), Vec::new());
+        let (mut cases, mut validation, mut notes) = (Vec::new(), Vec::new(), Vec::new());
         for spec in &file.case {
-            let case = load_case(spec, base, &mut loader)?;
+            let (case, resampled) = load_case(spec, base, &mut loader)?;
+            notes.extend(resampled.map(|r| format!("case '{}': {r}", spec.name)));
             match spec.validate {
                 true => validation.push(case),
                 false => cases.push(case),
@@ -157,11 +162,16 @@ impl PlanarStudy {
             setup,
             cases,
             validation,
+            notes,
         })
     }
 }
 
-fn load_case(spec: &CaseFile, base: &Path, loader: &mut Loader) -> Result<PlanarCase, PlanarError> {
+fn load_case(
+    spec: &CaseFile,
+    base: &Path,
+    loader: &mut Loader,
+) -> Result<(PlanarCase, Option<Resampling>), PlanarError> {
     let error = |message: String| PlanarError::Case {
         case: spec.name.clone(),
         message,

@@ -134,16 +134,22 @@ pub struct CasePage<'a> {
     pub validation: bool,
 }
 
-/// The planar identification report: the summary, then x and yaw of every
+/// The planar identification report: the summary, the notes on the
+/// channels' time base (if any), then x and yaw of every
 /// case, model against measurement (file name, SVG).
 pub fn identification_report(
     summary: &str,
     inputs: &str,
+    notes: &[String],
     cases: &[CasePage],
 ) -> Result<(String, Vec<(String, String)>), PlotError> {
     let mut page = Html::new("bumpsim planar identification");
     page.heading("Results");
     page.preformatted(summary);
+    if !notes.is_empty() {
+        page.heading("Channel time base");
+        page.notes(notes);
+    }
     let mut figures = Vec::new();
     for case in cases {
         let p = case.prediction;

@@ -489,25 +489,57 @@ impl std::fmt::Display for Resampling {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let own: Vec<f64> = self.interpolated.iter().map(|&(_, step)| step).collect();
         let times = distinct_times(&[&[self.step, self.span[0], self.span[1]], &own[..]].concat());
-        let named: Vec<String> = (0..self.codes.len()).map(|i| self.named(i)).collect();
+        let all = match self.codes.len() {
+            n if n > 3 => format!("{n} channels"),
+            n => (0..n)
+                .map(|i| self.named(i))
+                .collect::<Vec<_>>()
+                .join(" and "),
+        };
         write!(
             f,
-            "{} put on one time base, every {} from {} to {}",
-            named.join(" and "),
-            times[0],
-            times[1],
-            times[2]
+            "{all} put on one time base, every {} from {} to {}",
+            times[0], times[1], times[2]
         )?;
-        for (k, &(i, _)) in self.interpolated.iter().enumerate() {
-            let role = names::escaped(&self.roles[i]);
-            write!(f, "; {role} (every {}) interpolated linearly", times[3 + k])?;
+        // channels with the same own interval, or losing as many samples,
+        // are named together
+        let steps: Vec<(usize, &String)> = self
+            .interpolated
+            .iter()
+            .map(|e| e.0)
+            .zip(&times[3..])
+            .collect();
+        for (every, group) in grouped(&steps) {
+            write!(
+                f,
+                "; {} (every {every}) interpolated linearly",
+                self.roles_of(&group)
+            )?;
         }
-        for &(i, count) in &self.trimmed {
-            let (role, samples) = (names::escaped(&self.roles[i]), plural(count, "sample"));
-            write!(f, "; {role}: {count} {samples} outside that span left out")?;
+        for (&count, group) in grouped(&self.trimmed) {
+            let each = if group.len() > 1 { " each" } else { "" };
+            let samples = plural(count, "sample");
+            let roles = self.roles_of(&group);
+            write!(
+                f,
+                "; {roles}: {count} {samples}{each} outside that span left out"
+            )?;
         }
         Ok(())
     }
+}
+
+/// `(index, value)` pairs grouped by equal value, in order of first
+/// appearance.
+fn grouped<T: PartialEq>(pairs: &[(usize, T)]) -> Vec<(&T, Vec<usize>)> {
+    let mut groups: Vec<(&T, Vec<usize>)> = Vec::new();
+    for (i, value) in pairs {
+        match groups.iter_mut().find(|(v, _)| *v == value) {
+            Some((_, members)) => members.push(*i),
+            None => groups.push((value, vec![*i])),
+        }
+    }
+    groups
 }
 
 impl Resampling {
@@ -516,6 +548,15 @@ impl Resampling {
     pub fn with_roles(self, roles: &[&str]) -> Resampling {
         let roles = roles.iter().map(ToString::to_string).collect();
         Resampling { roles, ..self }
+    }
+
+    /// The roles of channels `group`, escaped, joined by commas.
+    fn roles_of(&self, group: &[usize]) -> String {
+        let roles: Vec<String> = group
+            .iter()
+            .map(|&i| names::escaped(&self.roles[i]))
+            .collect();
+        roles.join(", ")
     }
 
     /// Channel `i` as first named: its code, or its role and code.
@@ -696,6 +737,27 @@ mod tests {
         assert_eq!(
             text,
             r"X and Y\u001B[31m put on one time base, every 100.0 ms from 50.00 ms to 150.0 ms; X (every 100.0 ms) interpolated linearly; X: 2 samples outside that span left out; Y\u001B[31m: 1 sample outside that span left out"
+        );
+    }
+
+    #[test]
+    fn many_resampled_channels_are_named_in_groups() {
+        let at = |code: &str, start: f64| {
+            let mut c = channel(start, vec![1.0; 5], Dimension::Force);
+            c.code = code.into();
+            c
+        };
+        let five = [
+            at("A", 0.0),
+            at("B", 0.05),
+            at("C", 0.05),
+            at("D", 0.05),
+            at("E", 0.0),
+        ];
+        let text = resampling(&five).unwrap().to_string();
+        assert_eq!(
+            text,
+            "5 channels put on one time base, every 100.0 ms from 50.00 ms to 350.0 ms; A, E (every 100.0 ms) interpolated linearly; A, E: 2 samples each outside that span left out; B, C, D: 1 sample each outside that span left out"
         );
     }
 

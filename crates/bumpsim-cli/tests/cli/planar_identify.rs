@@ -55,6 +55,9 @@ fn the_planar_series_identifies_a_car_that_predicts_the_held_out_test() {
         ],
     );
     let r: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    // every channel of the series on one time base: nothing to note
+    assert!(!stdout.contains("note:"), "{stdout}");
+    assert_eq!(r["notes"], serde_json::json!([]));
     let inertia = &r["result"]["parameters"][1];
     assert_eq!(inertia["name"], "body.yaw_inertia");
     let (low, high) = (
@@ -120,6 +123,48 @@ fn edited_study(name: &str, edit: impl Fn(String) -> String) -> PathBuf {
     let text = std::fs::read_to_string(&study).unwrap();
     std::fs::write(&study, edit(text)).unwrap();
     study
+}
+
+/// A planar study put channels of different time bases on one without a
+/// word (the 1-D study notes it).
+#[test]
+fn a_planar_channel_on_another_time_base_is_noted() {
+    let dir = scratch("planar-resampled");
+    let tests = synth(&dir);
+    let channel = tests.join("FLAT/Channel/FLAT.001");
+    let text = std::fs::read_to_string(&channel).unwrap();
+    let shifted = text.replacen(":-5e-2", ":-4.995e-2", 1);
+    assert_ne!(text, shifted, "the channel's first-sample time");
+    std::fs::write(&channel, shifted).unwrap();
+    let json = dir.join("r.json");
+    let study = tests.join("study.toml");
+    let run = bumpsim(&[
+        "identify",
+        study.to_str().unwrap(),
+        "--quiet",
+        "--starts",
+        "1",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    let stdout = crate::util::text(&run.stdout);
+    assert!(
+        run.status.success(),
+        "{stdout}{}",
+        crate::util::text(&run.stderr)
+    );
+    assert_contains(
+        &stdout,
+        &[
+            "note: case 'FLAT': 14 channels put on one time base, every 0.1000 ms from -49.95 ms to 150.0 ms; B0LCWL010200FOXC, B0LCWL010300FOXC",
+            "10SIMERI0000DSXC (every 0.1000 ms) interpolated linearly; B0LCWL010100FOXC: 1 sample outside that span left out; B0LCWL010200FOXC, ",
+            ": 2 samples each outside",
+        ],
+    );
+    let r: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let notes = r["notes"].as_array().unwrap();
+    assert_eq!(notes.len(), 1, "{notes:?}");
+    assert!(notes[0].as_str().unwrap().starts_with("case 'FLAT': "));
 }
 
 #[test]

@@ -69,7 +69,7 @@ fn planar_identification_predicts_a_held_out_angled_test() {
         .enumerate()
         .map(|(k, (name, striker))| {
             let recorded = record(&truth, name, striker, &chain, k as u64).unwrap();
-            TestChannels::of(&recorded).case().unwrap()
+            TestChannels::of(&recorded).case().unwrap().0
         })
         .collect();
     for case in &cases {
