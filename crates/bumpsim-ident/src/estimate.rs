@@ -624,6 +624,13 @@ fn summarise(
             outcome.iterations
         ));
     }
+    warnings.extend(fits.iter().filter(|f| f.fit_percent < 0.0).map(|f| {
+        format!(
+            "case '{}': fit {} %: the model follows the displacement worse than its mean does; check its channels, their window and any note on their time base",
+            f.name,
+            bumpsim_core::units::format_number(f.fit_percent, 4)
+        )
+    }));
     // An objective below the rounding of the data (an exact fit of exact
     // synthetic data) counts as that rounding: AIC and BIC stay finite and
     // the smallest exact model wins the comparison.

@@ -540,3 +540,38 @@ fn the_stiff_spring_reduction_holds_on_eight_noise_draws() {
         );
     }
 }
+
+/// A ten-sample overlap of force and displacement gave a fit of −2477 %
+/// with exit 0 even under `--strict`: a case the model follows worse than
+/// the measurement's mean is a warning.
+#[test]
+fn a_case_fitted_worse_than_its_mean_is_a_warning() {
+    let mut cases = series(&truth());
+    // a displacement of the wrong sign: no positive model follows it
+    for m in &mut cases[0].measured {
+        *m = -*m;
+    }
+    let result = identify(&cases, &Settings::new(2, 2), &|| {}).unwrap();
+    let flat = result.cases.iter().find(|c| c.name == "flat").unwrap();
+    assert!(flat.fit_percent < 0.0, "{}", flat.fit_percent);
+    assert!(
+        result
+            .warnings
+            .iter()
+            .any(|w| w.starts_with("case 'flat': fit -") && w.contains("worse than its mean")),
+        "{:?}",
+        result.warnings
+    );
+    // the model, pushed to a huge mass by the wrong sign, follows none
+    assert!(result.cases.iter().all(|c| c.fit_percent < 0.0));
+    // a model that fits gets no such warning
+    let good = identify(&series(&truth()), &Settings::new(3, 2), &|| {}).unwrap();
+    assert!(
+        !good
+            .warnings
+            .iter()
+            .any(|w| w.contains("worse than its mean")),
+        "{:?}",
+        good.warnings
+    );
+}
