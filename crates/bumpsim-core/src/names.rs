@@ -39,6 +39,18 @@ pub enum NameError {
         /// The name as a TOML basic string spells it (`\u001B` for escape).
         escaped: String,
     },
+    /// The name is longer than [`MAX_NAME_BYTES`].
+    #[error(
+        "{table} number {number}: a name of {bytes} bytes: at most {MAX_NAME_BYTES} in UTF-8 (it names files and folders, whose names the file system limits to 255 bytes)"
+    )]
+    Long {
+        /// The table the name is in.
+        table: &'static str,
+        /// The table's number.
+        number: usize,
+        /// Its length in UTF-8 bytes.
+        bytes: usize,
+    },
     /// Two tables share a name.
     #[error(
         "{table} number {number}: name '{name}' is already used by '{first}'{how}; give each its own name"
@@ -56,6 +68,11 @@ pub enum NameError {
         how: &'static str,
     },
 }
+
+/// The longest name, in UTF-8 bytes (200 letters of the Latin alphabet,
+/// 66 of Chinese): with a suffix such as `.mme` or `-x.svg` it still fits
+/// the 255 bytes a file name may have on common file systems.
+pub const MAX_NAME_BYTES: usize = 200;
 
 /// Checks the names of one file's `table`s, in file order (see the module).
 ///
@@ -78,6 +95,14 @@ pub fn check_names<'a>(
         let number = i + 1;
         if key(name).is_empty() {
             return Err(NameError::Empty { table, number });
+        }
+        if name.len() > MAX_NAME_BYTES {
+            let bytes = name.len();
+            return Err(NameError::Long {
+                table,
+                number,
+                bytes,
+            });
         }
         if name.chars().any(invisible) {
             let escaped = escaped(name);
@@ -225,5 +250,12 @@ mod tests {
             "[[head]] number 2: name 'A' is already used by 'A'; give each its own name"
         );
         assert!(case(&["a \"quoted\" name", "ünïcode", "Ω-2 π"]).is_ok());
+        let long = "x".repeat(MAX_NAME_BYTES + 1);
+        assert!(matches!(
+            case(&[&long]),
+            Err(NameError::Long { bytes: 201, .. })
+        ));
+        assert!(case(&[&"é".repeat(MAX_NAME_BYTES / 2)]).is_ok());
+        assert!(case(&[&"車".repeat(67)]).is_err());
     }
 }
