@@ -11,7 +11,7 @@ use bumpsim_core::channel::Channel;
 use bumpsim_core::series::UniformSeries;
 use bumpsim_core::units::Dimension;
 use bumpsim_signal::loader::{ChannelSource, LoadError, Loader, Note};
-use bumpsim_signal::process::{Combine, ProcessError, Step, align, resampling, run};
+use bumpsim_signal::process::{Combine, ProcessError, Resampling, Step, align, resampling, run};
 use bumpsim_signal::window::ContactThreshold;
 
 /// One case being loaded: its study, definition, the channel loader and
@@ -143,7 +143,10 @@ impl CaseContext<'_> {
         dof: usize,
     ) -> Result<LoadCase, StudyError> {
         let pair = [force, output];
-        let resampled = resampling(&pair).map(|r| r.with_roles(&["force", "displacement"]));
+        let resampled = resampling(&pair).map(|r| Resampling {
+            codes: self.selectors(),
+            ..r.with_roles(&["force", "displacement"])
+        });
         let case = self
             .assemble(&pair, dof)
             .map_err(|e| match (&resampled, e) {
@@ -163,6 +166,22 @@ impl CaseContext<'_> {
             });
         }
         Ok(case)
+    }
+
+    /// The force's and the displacement's channels as the study names
+    /// them (a processed channel's code may differ: CFC sets its
+    /// filter-class letter).
+    fn selectors(&self) -> Vec<String> {
+        let spec = self.spec;
+        let output: Vec<&str> = match &spec.displacement {
+            Some(d) => vec![d.channel.as_str()],
+            None => spec
+                .acceleration
+                .iter()
+                .map(|a| a.channel.as_str())
+                .collect(),
+        };
+        vec![spec.force.channel.clone(), output.join(" + ")]
     }
 
     fn assemble(&self, pair: &[Channel; 2], dof: usize) -> Result<LoadCase, StudyError> {

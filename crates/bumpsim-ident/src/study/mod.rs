@@ -740,7 +740,7 @@ mod tests {
         let text = notes[0].to_string();
         assert_eq!(
             text,
-            "case 'a': force '0-LC-WALL-XG' and displacement 'x' put on one time base, every 0.1000 ms from 0 ms to 9.000 ms; displacement (every 0.2000 ms) interpolated linearly; force: 109 samples outside that span left out"
+            "case 'a': force '1' and displacement 'x' put on one time base, every 0.1000 ms from 0 ms to 9.000 ms; displacement (every 0.2000 ms) interpolated linearly; force: 109 samples outside that span left out"
         );
         // the displacement between its samples is the straight line
         let case = &loaded.cases[0];
@@ -771,7 +771,7 @@ mod tests {
         );
         let text = err.to_string();
         assert!(
-            text.contains("(after force '0-LC-WALL-XG' and displacement 'x' put on one time base")
+            text.contains("(after force '1' and displacement 'x' put on one time base")
                 && text.contains("displacement: 18 samples outside that span left out)"),
             "{text}"
         );
