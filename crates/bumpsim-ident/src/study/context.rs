@@ -181,7 +181,7 @@ impl CaseContext<'_> {
                 .map(|a| a.channel.as_str())
                 .collect(),
         };
-        vec![spec.force.channel.clone(), output.join(" + ")]
+        vec![spec.force.channel.clone(), output.join(", ")]
     }
 
     fn assemble(&self, pair: &[Channel; 2], dof: usize) -> Result<LoadCase, StudyError> {
