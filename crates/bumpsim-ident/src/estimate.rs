@@ -60,6 +60,20 @@ pub struct Bounds {
     pub fixed: Vec<Option<f64>>,
 }
 
+/// Whether `[lower, upper]` (SI) bounds a parameter the search can use:
+/// the lower bound within [`VALID_RANGE`] below its ceiling, the upper one
+/// above it (it may be infinite). The one rule for settings and studies.
+pub fn usable_bounds(lower: f64, upper: f64) -> bool {
+    let (floor, ceiling) = (*VALID_RANGE.start(), *VALID_RANGE.end());
+    lower >= floor && lower < ceiling && upper > lower
+}
+
+/// Whether `value` (SI) can be a fixed parameter: finite and positive (one
+/// beyond [`VALID_RANGE`] is not simulable, which every start then reports).
+pub fn usable_fixed(value: f64) -> bool {
+    value.is_finite() && value > 0.0
+}
+
 impl Bounds {
     /// Every parameter in `[lower, ∞)`, none fixed (the thesis: `lower` = 1).
     pub fn uniform(dof: usize, lower: f64) -> Bounds {
@@ -83,14 +97,14 @@ impl Bounds {
         for i in 0..p {
             let (lo, hi) = (self.lower[i], self.upper[i]);
             let (floor, ceiling) = (*VALID_RANGE.start(), *VALID_RANGE.end());
-            if !(lo > 0.0 && lo < ceiling && hi > lo && hi > floor) {
+            if !usable_bounds(lo, hi) {
                 let name = bumpsim_core::model::parameter_name(dof, i);
                 let unit = parameter_kind(dof, i).0.unit();
                 return Err(setting(format!(
-                    "{name}: need 0 < lower < upper with lower below {ceiling:e} {unit} and upper above {floor:e} {unit}, got [{lo}, {hi}] {unit}"
+                    "{name}: need {floor:e} {unit} <= lower < upper with lower below {ceiling:e} {unit}, got [{lo}, {hi}] {unit}"
                 )));
             }
-            if let Some(v) = self.fixed[i].filter(|v| !(v.is_finite() && *v > 0.0)) {
+            if let Some(v) = self.fixed[i].filter(|v| !usable_fixed(*v)) {
                 let name = bumpsim_core::model::parameter_name(dof, i);
                 let unit = parameter_kind(dof, i).0.unit();
                 return Err(IdentError::Setting {

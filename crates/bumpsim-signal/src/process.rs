@@ -624,12 +624,13 @@ pub fn resampling(channels: &[Channel]) -> Option<Resampling> {
         let phase = (s.start() - start) / step;
         (s.step() / step - 1.0).abs() < 1e-9 && (phase - phase.round()).abs() < 1e-6
     };
+    // samples before the span and after it, counted, not visited
     let outside = |s: &UniformSeries| {
         let slack = 1e-6 * step;
-        let times = (0..s.len()).map(|k| s.start() + k as f64 * s.step());
-        times
-            .filter(|&t| t < start - slack || t > end + slack)
-            .count()
+        let index = |t: f64| (t - s.start()) / s.step();
+        let before = index(start - slack).ceil().clamp(0.0, s.len() as f64) as usize;
+        let through = (index(end + slack).floor() + 1.0).clamp(0.0, s.len() as f64) as usize;
+        s.len() - through + before
     };
     let series = || channels.iter().map(|c| &c.series).enumerate();
     let interpolated: Vec<(usize, f64)> = series()

@@ -12,6 +12,7 @@
 
 use crate::case::{CaseError, LoadCase, VALID_RANGE};
 use crate::estimate::{Bounds, Settings};
+use crate::estimate::{usable_bounds, usable_fixed};
 use bumpsim_core::model::{parameter_count, parameter_name};
 use bumpsim_core::names::check_names;
 use bumpsim_core::units::{Dimension, format_number};
@@ -383,13 +384,13 @@ impl Study {
         let lower = self.model.lower_bound;
         let upper = self.model.upper_bound.unwrap_or(f64::INFINITY);
         let (floor, ceiling) = (*VALID_RANGE.start(), *VALID_RANGE.end());
-        if !(lower >= floor && lower < ceiling) {
+        if !usable_bounds(lower, f64::INFINITY) {
             return Err(format!(
                 "[model] lower_bound = {}: expected a number from {floor:e} to below {ceiling:e} (SI: kg, N·s/m and N/m alike, the range the search works in; the thesis uses 1)",
                 format_number(lower, 4)
             ));
         }
-        if upper.is_nan() || upper <= lower {
+        if !usable_bounds(lower, upper) {
             return Err(format!(
                 "[model] upper_bound = {}: expected a number above lower_bound = {} (SI)",
                 format_number(upper, 4),
@@ -398,7 +399,7 @@ impl Study {
         }
         for (name, pair) in &self.model.bounds {
             if let [lo, hi] = pair[..]
-                && !(lo >= floor && lo < ceiling && hi > lo)
+                && !usable_bounds(lo, hi)
             {
                 return Err(format!(
                     "bounds: {name} = [{}, {}]: expected {floor:e} <= lower < upper with lower below {ceiling:e} (SI)",
@@ -407,10 +408,7 @@ impl Study {
                 ));
             }
         }
-        // a fixed value beyond the range the search works in is left to
-        // the identification, which reports that no start can simulate it
-        let bad = |v: &f64| !(v.is_finite() && *v > 0.0);
-        match self.model.fixed.iter().find(|(_, v)| bad(v)) {
+        match self.model.fixed.iter().find(|(_, v)| !usable_fixed(**v)) {
             Some((name, v)) => Err(format!(
                 "fixed: {name} = {}: expected a finite positive value (SI)",
                 format_number(*v, 4)
