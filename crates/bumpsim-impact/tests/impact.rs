@@ -1,6 +1,9 @@
 //! Integration tests of impacts and the mass-reduction study against
 //! analytic solutions and paper A's trends.
 
+#[path = "impact/regression.rs"]
+mod regression;
+
 use approx::assert_relative_eq;
 use bumpsim_core::model::MsdModel;
 use bumpsim_impact::bumper::Bumper;

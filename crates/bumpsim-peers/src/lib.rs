@@ -15,6 +15,8 @@
 
 use std::process::Command;
 
+pub mod recorded;
+
 /// The environment variable under which a missing peer fails the test.
 pub const REQUIRE: &str = "BUMPSIM_REQUIRE_PEERS";
 
