@@ -4,7 +4,8 @@
 //!
 //! Everything is SI `f64`: kg, m, s, N, N/m, N·s/m, J. The modules:
 //!
-//! - [`units`]: unit parsing and formatting;
+//! - [`units`]: unit parsing and formatting, `name [unit]` labels;
+//! - [`fixed_width`]: the words of solver text whose numbers touch;
 //! - [`series`]: uniformly sampled signals;
 //! - [`channel`]: a measured channel (series, code, name, unit, metadata);
 //! - [`model`]: the validated chain model and its parameter vector;
@@ -29,6 +30,7 @@ pub mod channel;
 pub mod discrete;
 pub mod energy;
 mod exponential;
+pub mod fixed_width;
 pub mod modal;
 pub mod model;
 pub mod names;

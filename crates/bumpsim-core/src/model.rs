@@ -41,7 +41,11 @@ use nalgebra::DMatrix;
 
 /// A validated chain MSD model; parameters in SI.
 #[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize),
+    serde(into = "ModelFields")
+)]
 pub struct MsdModel {
     masses: Vec<f64>,
     dampers: Vec<f64>,
@@ -303,26 +307,60 @@ fn chain_matrix(dof: usize, links: &[f64]) -> DMatrix<f64> {
     matrix
 }
 
-/// The model's fields as a file holds them, before validation.
+/// The model's fields as a file holds them (SI), before validation: the
+/// one layout of a model in JSON and TOML (`masses`, `dampers`, `springs`,
+/// the last two absent for one mass), and of a car file, which adds the
+/// car's `name`. Unknown keys are refused, so a typo such as `spring` is
+/// never silently ignored.
 #[cfg(feature = "serde")]
-#[derive(serde::Deserialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
-struct ModelFields {
-    masses: Vec<f64>,
+pub struct ModelFields {
+    /// The car's name (car files; a model alone has none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Masses m1..mn, kg.
+    pub masses: Vec<f64>,
+    /// Dampers c1..c(n-1), N·s/m.
     #[serde(default)]
-    dampers: Vec<f64>,
+    pub dampers: Vec<f64>,
+    /// Springs k1..k(n-1), N/m.
     #[serde(default)]
-    springs: Vec<f64>,
+    pub springs: Vec<f64>,
+}
+
+#[cfg(feature = "serde")]
+impl ModelFields {
+    /// The model these fields give, validated by [`MsdModel::new`] (the
+    /// name is not part of it).
+    pub fn into_model(self) -> Result<MsdModel, ModelError> {
+        MsdModel::new(self.masses, self.dampers, self.springs)
+    }
+}
+
+#[cfg(feature = "serde")]
+impl From<MsdModel> for ModelFields {
+    fn from(model: MsdModel) -> ModelFields {
+        ModelFields {
+            name: None,
+            masses: model.masses,
+            dampers: model.dampers,
+            springs: model.springs,
+        }
+    }
 }
 
 #[cfg(feature = "serde")]
 impl<'de> serde::Deserialize<'de> for MsdModel {
     /// Deserialises and validates like [`MsdModel::new`]; the error names
-    /// the parameter.
+    /// the parameter. A `name` is refused: a model is not a car file.
     fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         let fields = ModelFields::deserialize(deserializer)?;
-        MsdModel::new(fields.masses, fields.dampers, fields.springs)
-            .map_err(serde::de::Error::custom)
+        if fields.name.is_some() {
+            const FIELDS: &[&str] = &["masses", "dampers", "springs"];
+            return Err(serde::de::Error::unknown_field("name", FIELDS));
+        }
+        fields.into_model().map_err(serde::de::Error::custom)
     }
 }
 
@@ -397,5 +435,8 @@ mod tests {
         assert!(err.to_string().contains("m2 = -2 kg"), "{err}");
         let err = serde_json::from_str::<MsdModel>(r#"{"masses": [1.0], "mass": 2}"#).unwrap_err();
         assert!(err.to_string().contains("unknown field `mass`"), "{err}");
+        let err =
+            serde_json::from_str::<MsdModel>(r#"{"masses": [1.0], "name": "a"}"#).unwrap_err();
+        assert!(err.to_string().contains("unknown field `name`"), "{err}");
     }
 }

@@ -368,6 +368,25 @@ pub fn format_in(value_si: f64, unit: Unit) -> String {
     )
 }
 
+/// Splits a label `name [unit]` (a table's column header, a campaign's
+/// derived quantity `expression [unit]`) into its name and unit, both
+/// trimmed; the unit is the text in the last brackets, which must end the
+/// label. `None` when there is no such unit or no name before it.
+///
+/// ```
+/// use bumpsim_core::units::split_unit;
+/// assert_eq!(split_unit(" force [kN] "), Some(("force", "kN")));
+/// assert_eq!(split_unit("2 * t_rail [m]"), Some(("2 * t_rail", "m")));
+/// assert_eq!(split_unit("force"), None);
+/// ```
+pub fn split_unit(label: &str) -> Option<(&str, &str)> {
+    let label = label.trim();
+    let open = label.rfind('[')?;
+    let unit = label[open + 1..].strip_suffix(']')?;
+    let name = label[..open].trim();
+    (!name.is_empty()).then_some((name, unit.trim()))
+}
+
 /// Parses a quantity written as a number with an optional unit, such as
 /// `"1.67"`, `"6 km/h"` or `"6km/h"`. A bare number is taken in SI. The unit
 /// must measure `expected`.
@@ -572,6 +591,26 @@ mod tests {
         );
         assert!(parse_quantity("fast", Dimension::Velocity).is_err());
         assert!(parse_quantity("nan", Dimension::Velocity).is_err());
+    }
+
+    /// The cases of the two splitters this one replaces: the table's
+    /// headers and the campaign's derived quantities.
+    #[test]
+    fn labels_split_into_name_and_unit() {
+        assert_eq!(split_unit(" force [kN] "), Some(("force", "kN")));
+        assert_eq!(split_unit("a [b] [N/mm]"), Some(("a [b]", "N/mm")));
+        assert_eq!(
+            split_unit("5.0e5 * m3 / 1670 [ N/m ]"),
+            Some(("5.0e5 * m3 / 1670", "N/m"))
+        );
+        assert_eq!(split_unit("y * 2 [kg]  "), Some(("y * 2", "kg")));
+        assert_eq!(split_unit("x []"), Some(("x", "")));
+        assert_eq!(split_unit("force"), None);
+        assert_eq!(split_unit("a + b"), None);
+        assert_eq!(split_unit("[kN]"), None);
+        assert_eq!(split_unit("  [kN]"), None);
+        assert_eq!(split_unit("force [kN] x"), None);
+        assert_eq!(split_unit("force kN]"), None);
     }
 
     #[test]

@@ -8,7 +8,7 @@
 //! computes the same numbers. The recursion is a chain of dependent steps;
 //! with FMA each step of a slot costs two fused operations of latency.
 
-use super::sweep::SlotConstants;
+use super::propagator::SlotConstants;
 
 /// The recursion of the module over `force` (N): with `BASIS`, the basis
 /// row `[ρ | s0 | s1 | w0 | w1]` (B = 4L + 1, slots innermost) of every

@@ -67,6 +67,7 @@
 
 mod eigen;
 mod kernels;
+mod propagator;
 mod residues;
 pub mod sweep;
 
