@@ -19,8 +19,7 @@
 //! assert!(Car::parse("masses = [1000.0]\nspring = [1.0]", "typo.toml".as_ref()).is_err());
 //! ```
 
-use bumpsim_core::model::{ModelError, MsdModel};
-use serde::{Deserialize, Serialize};
+use bumpsim_core::model::{ModelError, ModelFields, MsdModel};
 use std::path::{Path, PathBuf};
 
 /// A named car model.
@@ -73,31 +72,15 @@ pub enum CarError {
     Output(#[from] crate::output::OutputError),
 }
 
-#[derive(Debug, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct CarFile {
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    name: Option<String>,
-    masses: Vec<f64>,
-    #[serde(default)]
-    dampers: Vec<f64>,
-    #[serde(default)]
-    springs: Vec<f64>,
-}
-
-impl CarFile {
-    fn into_car(self, path: &Path) -> Result<Car, CarError> {
-        let model = MsdModel::new(self.masses, self.dampers, self.springs).map_err(|source| {
-            CarError::Model {
-                path: path.into(),
-                source,
-            }
-        })?;
-        Ok(Car {
-            name: self.name,
-            model,
-        })
-    }
+/// A car file's fields ([`ModelFields`]: the model's, and the car's name)
+/// as the car it gives, the model validated.
+fn into_car(fields: ModelFields, path: &Path) -> Result<Car, CarError> {
+    let name = fields.name.clone();
+    let model = fields.into_model().map_err(|source| CarError::Model {
+        path: path.into(),
+        source,
+    })?;
+    Ok(Car { name, model })
 }
 
 fn read_text(path: &Path) -> Result<String, CarError> {
@@ -137,29 +120,27 @@ impl Car {
             serde_json::from_str(text).map_err(syntax)?;
         // the model fields only: a result's other fields are not car-file keys
         object.retain(|key, _| ["name", "masses", "dampers", "springs"].contains(&key.as_str()));
-        let file: CarFile =
+        let fields: ModelFields =
             serde_json::from_value(serde_json::Value::Object(object)).map_err(syntax)?;
-        file.into_car(path)
+        into_car(fields, path)
     }
 
     /// Parses car TOML; `path` is used in messages.
     pub fn parse(text: &str, path: &Path) -> Result<Car, CarError> {
-        let file: CarFile = toml::from_str(text).map_err(|e| CarError::Syntax {
+        let fields: ModelFields = toml::from_str(text).map_err(|e| CarError::Syntax {
             path: path.into(),
             message: crate::toml_message(text, &e),
         })?;
-        file.into_car(path)
+        into_car(fields, path)
     }
 
     /// The car as TOML text, in the format [`Car::parse`] reads.
     pub fn to_toml(&self) -> String {
-        let file = CarFile {
+        let fields = ModelFields {
             name: self.name.clone(),
-            masses: self.model.masses().to_vec(),
-            dampers: self.model.dampers().to_vec(),
-            springs: self.model.springs().to_vec(),
+            ..ModelFields::from(self.model.clone())
         };
-        let body = toml::to_string(&file).unwrap_or_default();
+        let body = toml::to_string(&fields).unwrap_or_default();
         format!("# bumpsim car model: masses kg, dampers N*s/m, springs N/m\n{body}")
     }
 

@@ -7,7 +7,8 @@
 //! - [`isomme`] (`test_data::isomme`): ISO/TS 13499 ISO-MME folders, `.mme` and `.zip`, read and write;
 //! - [`ev5`] (`test_data::ev5`): NHTSA EV5 ASCII X-Y downloads;
 //! - [`output`]: the guard that keeps outputs off the inputs, atomic writes;
-//! - [`signal_error`]: the error type of the test readers.
+//! - [`signal_error`]: the error type of the test readers;
+//! - [`speed`]: a speed in an input file, m/s or text with a unit.
 //!
 //! Every error names the file and, where it applies, the line and column.
 //!
@@ -32,6 +33,7 @@ pub mod car;
 pub mod output;
 pub mod response;
 pub mod signal_error;
+pub mod speed;
 pub mod table;
 pub mod test_data;
 

@@ -46,12 +46,48 @@ pub enum SignalFileError {
         /// Why it failed.
         reason: String,
     },
+    /// Explicit sample times that do not make a uniform time base.
+    #[error("{path}: {source}")]
+    TimeBase {
+        /// The file of the times.
+        path: PathBuf,
+        /// What is wrong with them.
+        source: TimeBaseError,
+    },
     /// A CSV test file's table error (it names the file and line itself).
     #[error(transparent)]
     Table(#[from] crate::table::TableError),
     /// The output is refused (it would land on an input) or cannot be written.
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
+}
+
+/// Why explicit sample times (an ISO-MME time channel) are not a uniform
+/// time base for a channel.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum TimeBaseError {
+    /// Not one time per sample of the channel, or fewer than two.
+    #[error("the time channel has {times} samples, the channel {count}")]
+    Count {
+        /// Times given.
+        times: usize,
+        /// Samples of the channel.
+        count: usize,
+    },
+    /// The last time is not after the first.
+    #[error("time does not increase")]
+    NotIncreasing,
+    /// A time off the uniform interval by more than 1 % of it.
+    #[error("sample {sample} at {time} s breaks the uniform interval {step} s")]
+    Irregular {
+        /// 1-based sample.
+        sample: usize,
+        /// Its time, s.
+        time: f64,
+        /// The interval of the first and last times, s.
+        step: f64,
+    },
 }
 
 impl SignalFileError {

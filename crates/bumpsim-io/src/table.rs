@@ -153,14 +153,9 @@ pub enum TableError {
     Output(#[from] crate::output::OutputError),
 }
 
-/// Splits `name [unit]` into its parts.
-pub fn split_header(text: &str) -> Option<(&str, &str)> {
-    let text = text.trim();
-    let open = text.rfind('[')?;
-    let unit = text[open + 1..].strip_suffix(']')?;
-    let name = text[..open].trim();
-    (!name.is_empty()).then_some((name, unit.trim()))
-}
+/// Splits a `name [unit]` header into its parts (the one rule of such
+/// labels, [`bumpsim_core::units::split_unit`]).
+pub use bumpsim_core::units::split_unit as split_header;
 
 impl Table {
     /// Reads a CSV file.

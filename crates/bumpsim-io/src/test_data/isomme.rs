@@ -21,7 +21,7 @@
 //! over, and the test object's speed and mass in the `.mme` file.
 
 use super::{Entry, Format, Store, TestData, Validity, iso_header};
-use crate::signal_error::{SignalFileError, decode, parse_number};
+use crate::signal_error::{SignalFileError, TimeBaseError, decode, parse_number};
 use bumpsim_core::channel::Channel;
 use bumpsim_core::series::UniformSeries;
 use bumpsim_core::units::{Dimension, Unit};
@@ -175,8 +175,7 @@ impl RawChannel {
         let own_times = self.unit().is_ok_and(|u| u.dimension == Dimension::Time);
         if !explicit && own_times && self.value("Sampling interval").is_none() {
             let times = self.values()?;
-            return uniform_time_base(&times, count)
-                .map_err(|m| SignalFileError::file(&self.path, m));
+            return uniform_time_base(&times, count).map_err(time_base_error(&self.path));
         }
         if !explicit {
             return Ok((
@@ -199,29 +198,37 @@ impl RawChannel {
                 )
             })?;
         let times = reference.values()?;
-        uniform_time_base(&times, count).map_err(|m| SignalFileError::file(&reference.path, m))
+        uniform_time_base(&times, count).map_err(time_base_error(&reference.path))
     }
 }
 
 /// Start and interval of explicit sample times, checked to be uniform.
-fn uniform_time_base(times: &[f64], count: usize) -> Result<(f64, f64), String> {
+fn uniform_time_base(times: &[f64], count: usize) -> Result<(f64, f64), TimeBaseError> {
     if times.len() != count || count < 2 {
-        return Err(format!(
-            "the time channel has {} samples, the channel {count}",
-            times.len()
-        ));
+        return Err(TimeBaseError::Count {
+            times: times.len(),
+            count,
+        });
     }
     let step = (times[count - 1] - times[0]) / (count - 1) as f64;
     let bad =
         (0..count).find(|&k| (times[k] - times[0] - k as f64 * step).abs() > 0.01 * step.abs());
     match bad {
-        _ if step <= 0.0 => Err("time does not increase".into()),
-        Some(k) => Err(format!(
-            "sample {} at {} s breaks the uniform interval {step} s",
-            k + 1,
-            times[k]
-        )),
+        _ if step <= 0.0 => Err(TimeBaseError::NotIncreasing),
+        Some(k) => Err(TimeBaseError::Irregular {
+            sample: k + 1,
+            time: times[k],
+            step,
+        }),
         None => Ok((times[0], step)),
+    }
+}
+
+/// A time-base error of the times in `path`.
+fn time_base_error(path: &Path) -> impl FnOnce(TimeBaseError) -> SignalFileError + '_ {
+    |source| SignalFileError::TimeBase {
+        path: path.into(),
+        source,
     }
 }
 

@@ -1,0 +1,88 @@
+//! Why an output cannot be written: each error names the path.
+
+use std::path::{Path, PathBuf};
+
+/// An output that cannot be written.
+#[derive(Debug, thiserror::Error)]
+pub enum OutputError {
+    /// The output is one of the inputs (same path or same file).
+    #[error("{output}: refusing to write: it would overwrite the input {input}")]
+    OnInput {
+        /// The output path.
+        output: PathBuf,
+        /// The input it would replace.
+        input: PathBuf,
+    },
+    /// The output lies inside an input folder.
+    #[error("{output}: refusing to write inside the input folder {folder}")]
+    InsideInput {
+        /// The output path.
+        output: PathBuf,
+        /// The input folder.
+        folder: PathBuf,
+    },
+    /// Two outputs of one command at the same path: the second would
+    /// silently replace the first.
+    #[error("{output}: refusing to write two outputs to one path (also given as {first})")]
+    Twice {
+        /// The second output path.
+        output: PathBuf,
+        /// The first one, as given.
+        first: PathBuf,
+    },
+    /// A folder is needed but the path is an existing file.
+    #[error("{path}: exists and is not a folder (a folder is needed here)")]
+    NotAFolder {
+        /// The path.
+        path: PathBuf,
+    },
+    /// A file is needed but the path is an existing folder.
+    #[error("{path}: is a folder (a file is needed here)")]
+    IsAFolder {
+        /// The path.
+        path: PathBuf,
+    },
+    /// The path exists and is neither a regular file nor a folder (a
+    /// device, pipe or socket): an output replaces its target by renaming,
+    /// which would replace the special file itself.
+    #[error(
+        "{path}: exists and is not a regular file (a device, pipe or socket); give a file path"
+    )]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+    },
+    /// Two files of one output folder would get the same name (for example
+    /// two case names that differ only in characters a file name cannot hold).
+    #[error("{path}: two files of one output would have this name; make the names differ")]
+    SameName {
+        /// The file's final path.
+        path: PathBuf,
+    },
+    /// A name given for a file inside an output folder is not a plain name.
+    #[error("'{name}': {reason}")]
+    BadName {
+        /// The name.
+        name: String,
+        /// Why it is refused.
+        reason: String,
+    },
+    /// The file system refused.
+    #[error("{path}: cannot write: {source}")]
+    Io {
+        /// The path.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+}
+
+impl OutputError {
+    /// A refusal of the file system at `path`.
+    pub(super) fn io(path: &Path, source: std::io::Error) -> Self {
+        Self::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}

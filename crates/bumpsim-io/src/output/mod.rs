@@ -1,0 +1,78 @@
+//! Outputs that never land on an input and are written whole or not at all.
+//!
+//! Every command tells the [`Outputs`] guard each path it reads (files and
+//! test folders). An output is then refused when it is an input, lies inside
+//! an input folder, or is the same file as an input under another name: the
+//! comparison uses the canonical path (symbolic links resolved) **and** the
+//! device + inode pair, so hard links count; for an input folder the files in
+//! it are compared too (up to [`FOLDER_SCAN_LIMIT`] entries).
+//!
+//! Writing:
+//! - a file is written to a temporary file in the same folder, flushed to
+//!   disk (`fsync`) and renamed over the target only when complete, so a
+//!   reader (or a run killed half-way) sees the complete old or the complete
+//!   new file, never a truncated one;
+//! - a multi-file output (report folder, ISO-MME test, synthetic series) is
+//!   staged in a sibling temporary folder ([`StagedFolder`]) and moved into
+//!   place only by [`StagedFolder::commit`]: a new folder is renamed in one
+//!   step; into an existing folder each staged file is renamed over its old
+//!   version (files of the folder that the run does not write are kept). A
+//!   failed run leaves the old outputs untouched; a killed one (`kill -9`)
+//!   leaves its hidden temporary file or folder, which the next write of
+//!   the same output removes (on Linux, where `/proc` tells that the
+//!   process is gone).
+//! - a path that is an existing non-folder where a folder is needed (or an
+//!   existing folder where a file is needed), or an existing device, pipe
+//!   or socket (which the rename would replace) is an error before anything
+//!   is written ([`Outputs::check_file`], [`Outputs::check_folder`]);
+//! - an output given as a symbolic link updates the file it points to; the
+//!   link stays;
+//! - two files of one output folder with the same name, or a folder's file
+//!   that is another claimed output of the command, are errors: neither
+//!   silently replaces the other.
+//!
+//! A command line tool uses the process-wide guard through the free
+//! functions ([`register_input`], [`write_file`], [`stage_folder`], ...); the
+//! library writers ([`crate::table::write_table`], [`crate::car::Car::write`],
+//! [`crate::isomme::write`]) write through it as well.
+//!
+//! ```
+//! use bumpsim_io::output::Outputs;
+//! let dir = std::env::temp_dir().join(format!("bumpsim-doc-output-{}", std::process::id()));
+//! std::fs::create_dir_all(&dir).unwrap();
+//! let input = dir.join("in.csv");
+//! std::fs::write(&input, "x").unwrap();
+//! let mut guard = Outputs::new();
+//! guard.input(&input);
+//! assert!(guard.write_file(&input, b"y").is_err());
+//! guard.write_file(&dir.join("out.csv"), b"y").unwrap();
+//! assert_eq!(std::fs::read(&input).unwrap(), b"x");
+//! std::fs::remove_dir_all(&dir).unwrap();
+//! ```
+//!
+//! The parts: [`Outputs`] and its checks (`guard`), whole-or-nothing file
+//! writing (`write`), staged folders and plain names (`staged`), the
+//! process-wide guard (`global`) and [`OutputError`] (`error`).
+
+mod error;
+mod global;
+mod guard;
+mod staged;
+mod write;
+
+#[cfg(test)]
+mod tests;
+
+pub use error::OutputError;
+pub use global::{
+    check_file, check_folder, claim_output, commit, register_input, stage_folder, write_file,
+    write_rendered,
+};
+pub use guard::{FOLDER_SCAN_LIMIT, Outputs};
+pub use staged::{StagedFolder, plain_name};
+pub use write::write_atomic;
+
+/// Most samples a channel may have when a command makes or resamples one
+/// (about 160 MB of values): beyond it the command refuses instead of
+/// exhausting memory (docs/limits.md).
+pub const MAX_SAMPLES: usize = 20_000_000;

@@ -1,0 +1,157 @@
+//! Multi-file outputs (a report folder, an ISO-MME test, a synthetic
+//! series): staged in a hidden sibling folder, moved into place only on
+//! commit; and the plain names their files must have.
+
+use super::error::OutputError;
+use super::guard::Outputs;
+use super::write::{create_parent, remove_stale, sibling, sync_parent, through_link};
+use std::path::{Path, PathBuf};
+
+/// Checks that `name` is a plain file name: no folder separators, no `..`,
+/// not absolute, not empty, not hidden.
+pub fn plain_name(name: &str) -> Result<&str, OutputError> {
+    let bad = |reason: &str| OutputError::BadName {
+        name: name.into(),
+        reason: reason.into(),
+    };
+    if name.is_empty() {
+        return Err(bad("an empty name"));
+    }
+    if name.contains(['/', '\\', '\0']) || name == ".." || name == "." {
+        return Err(bad(
+            "not a plain name: it must not contain '/', '\\' or be '.' or '..'",
+        ));
+    }
+    if name.starts_with('.') {
+        return Err(bad("a name must not start with '.'"));
+    }
+    Ok(name)
+}
+
+/// A multi-file output being built in a sibling temporary folder; nothing
+/// reaches the target until [`StagedFolder::commit`]. Dropped without
+/// commit, the staging folder is removed.
+#[derive(Debug)]
+pub struct StagedFolder {
+    target: PathBuf,
+    staging: PathBuf,
+    committed: bool,
+}
+
+impl StagedFolder {
+    /// Opens a staging folder next to `target` (no input check; use
+    /// [`Outputs::stage_folder`] for a user-given path).
+    pub fn new(target: &Path) -> Result<Self, OutputError> {
+        if target.exists() && !target.is_dir() {
+            return Err(OutputError::NotAFolder {
+                path: target.into(),
+            });
+        }
+        create_parent(target)?;
+        remove_stale(target, "staging");
+        let staging = sibling(target, "staging");
+        std::fs::create_dir_all(&staging).map_err(|e| OutputError::io(&staging, e))?;
+        Ok(Self {
+            target: target.into(),
+            staging,
+            committed: false,
+        })
+    }
+
+    /// The staging folder: write the files of the output here.
+    pub fn path(&self) -> &Path {
+        &self.staging
+    }
+
+    /// The final folder.
+    pub fn target(&self) -> &Path {
+        &self.target
+    }
+
+    /// Writes one file of the output, `name` relative to the folder.
+    pub fn write(&self, name: &str, bytes: &[u8]) -> Result<PathBuf, OutputError> {
+        for part in name.split('/') {
+            plain_name(part)?;
+        }
+        let path = self.staging.join(name);
+        if path.exists() {
+            return Err(OutputError::SameName {
+                path: self.target.join(name),
+            });
+        }
+        create_parent(&path)?;
+        std::fs::write(&path, bytes).map_err(|e| OutputError::io(&path, e))?;
+        Ok(self.target.join(name))
+    }
+
+    /// Moves the staged files into the target folder, checking each final
+    /// file against `guard` first (all checks before any move).
+    pub fn commit(mut self, guard: &Outputs) -> Result<(), OutputError> {
+        let files = staged_files(&self.staging)?;
+        for relative in &files {
+            guard.check_file(&self.target.join(relative))?;
+            guard.check_unclaimed(&self.target.join(relative))?;
+        }
+        sync_tree(&self.staging, &files);
+        if !self.target.exists() {
+            std::fs::rename(&self.staging, &self.target)
+                .map_err(|e| OutputError::io(&self.target, e))?;
+        } else {
+            for relative in &files {
+                let to = through_link(&self.target.join(relative));
+                create_parent(&to)?;
+                std::fs::rename(self.staging.join(relative), &to)
+                    .map_err(|e| OutputError::io(&to, e))?;
+            }
+            let _ = std::fs::remove_dir_all(&self.staging);
+        }
+        sync_parent(&self.target);
+        self.committed = true;
+        Ok(())
+    }
+}
+
+impl Outputs {
+    /// Checks `path` as a folder output and opens a staging folder for it.
+    pub fn stage_folder(&self, path: &Path) -> Result<StagedFolder, OutputError> {
+        self.check_folder(path)?;
+        StagedFolder::new(path)
+    }
+}
+
+impl Drop for StagedFolder {
+    fn drop(&mut self) {
+        if !self.committed {
+            let _ = std::fs::remove_dir_all(&self.staging);
+        }
+    }
+}
+
+/// The files below `root`, relative to it.
+fn staged_files(root: &Path) -> Result<Vec<PathBuf>, OutputError> {
+    let mut files = Vec::new();
+    let mut pending = vec![PathBuf::new()];
+    while let Some(relative) = pending.pop() {
+        let dir = root.join(&relative);
+        let entries = std::fs::read_dir(&dir).map_err(|e| OutputError::io(&dir, e))?;
+        for entry in entries {
+            let entry = entry.map_err(|e| OutputError::io(&dir, e))?;
+            let name = relative.join(entry.file_name());
+            if entry.file_type().is_ok_and(|t| t.is_dir()) {
+                pending.push(name);
+            } else {
+                files.push(name);
+            }
+        }
+    }
+    files.sort();
+    Ok(files)
+}
+
+fn sync_tree(root: &Path, files: &[PathBuf]) {
+    for relative in files {
+        if let Ok(file) = std::fs::File::open(root.join(relative)) {
+            let _ = file.sync_all();
+        }
+    }
+}

@@ -1,0 +1,188 @@
+//! The guard's refusals, staging, links and the clean-up after a killed run.
+
+use super::*;
+#[cfg(unix)]
+use std::os::unix::fs::FileTypeExt;
+use std::path::{Path, PathBuf};
+
+/// `planar --json x --csv x` wrote both to x with exit 0: the CSV
+/// silently replaced the JSON.
+#[test]
+fn one_path_cannot_take_two_outputs() {
+    let dir = temp("twice");
+    let mut guard = Outputs::new();
+    let out = dir.join("same.json");
+    guard.claim(&out).unwrap();
+    guard.claim(&dir.join("other.csv")).unwrap();
+    let err = guard.claim(&dir.join(".").join("same.json")).unwrap_err();
+    assert!(matches!(err, OutputError::Twice { .. }), "{err}");
+    assert!(err.to_string().contains("two outputs"), "{err}");
+    // a hard link to an existing output is the same file
+    std::fs::write(&out, "x").unwrap();
+    std::fs::hard_link(&out, dir.join("link.json")).unwrap();
+    let mut guard = Outputs::new();
+    guard.claim(&out).unwrap();
+    assert!(guard.claim(&dir.join("link.json")).is_err());
+}
+
+fn temp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("bumpsim-output-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn inputs_links_and_folders_are_refused() {
+    let dir = temp("refuse");
+    let input = dir.join("in.toml");
+    std::fs::write(&input, "a").unwrap();
+    std::fs::hard_link(&input, dir.join("link.toml")).unwrap();
+    let test = dir.join("TEST");
+    std::fs::create_dir_all(test.join("Channel")).unwrap();
+    std::fs::write(test.join("Channel/T.001"), "1").unwrap();
+    std::fs::hard_link(test.join("Channel/T.001"), dir.join("t-link")).unwrap();
+    let mut g = Outputs::new();
+    g.input(&input);
+    g.input(&test);
+    for bad in [
+        input.clone(),
+        dir.join("link.toml"),
+        dir.join("./sub/../in.toml"),
+        test.join("Channel/T.001"),
+        test.join("Channel/new.csv"),
+        dir.join("t-link"),
+    ] {
+        assert!(g.write_file(&bad, b"x").is_err(), "{}", bad.display());
+    }
+    assert_eq!(std::fs::read(&input).unwrap(), b"a");
+    assert_eq!(std::fs::read(test.join("Channel/T.001")).unwrap(), b"1");
+    g.write_file(&dir.join("out/deep.csv"), b"ok").unwrap();
+    assert_eq!(std::fs::read(dir.join("out/deep.csv")).unwrap(), b"ok");
+    assert!(matches!(
+        g.check_folder(&input),
+        Err(OutputError::NotAFolder { .. }) | Err(OutputError::OnInput { .. })
+    ));
+    assert!(matches!(
+        g.check_file(&dir.join("out")),
+        Err(OutputError::IsAFolder { .. })
+    ));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn staged_folders_appear_only_on_commit() {
+    let dir = temp("stage");
+    let g = Outputs::new();
+    let target = dir.join("report");
+    std::fs::create_dir_all(&target).unwrap();
+    std::fs::write(target.join("index.html"), "old").unwrap();
+    std::fs::write(target.join("keep.txt"), "mine").unwrap();
+    {
+        let staged = g.stage_folder(&target).unwrap();
+        staged.write("index.html", b"new").unwrap();
+        // dropped: a failed run
+    }
+    assert_eq!(std::fs::read(target.join("index.html")).unwrap(), b"old");
+    let staged = g.stage_folder(&target).unwrap();
+    staged.write("index.html", b"new").unwrap();
+    staged.write("fig/a.svg", b"<svg/>").unwrap();
+    assert!(staged.write("../escape", b"x").is_err());
+    staged.commit(&g).unwrap();
+    assert_eq!(std::fs::read(target.join("index.html")).unwrap(), b"new");
+    assert_eq!(std::fs::read(target.join("keep.txt")).unwrap(), b"mine");
+    assert!(target.join("fig/a.svg").is_file());
+    let fresh = dir.join("fresh");
+    let staged = g.stage_folder(&fresh).unwrap();
+    staged.write("a", b"1").unwrap();
+    staged.commit(&g).unwrap();
+    assert!(fresh.join("a").is_file());
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .flatten()
+        .filter(|e| e.file_name().to_string_lossy().starts_with('.'))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `--json /dev/full` replaced the device node by a regular file; an
+/// output link was replaced by a file; two case names that map to one
+/// plot name lost a plot; `--json rep/index.html --report rep` lost the
+/// JSON. Each is now refused or written through.
+#[cfg(unix)]
+#[test]
+fn special_files_links_same_names_and_claimed_files() {
+    let dir = temp("special");
+    let mut g = Outputs::new();
+    let device = Path::new("/dev/null");
+    assert!(matches!(
+        g.write_file(device, b"x"),
+        Err(OutputError::NotAFile { .. })
+    ));
+    assert!(
+        std::fs::metadata(device)
+            .unwrap()
+            .file_type()
+            .is_char_device()
+    );
+    let target = dir.join("target.json");
+    std::fs::write(&target, "old").unwrap();
+    std::os::unix::fs::symlink(&target, dir.join("link.json")).unwrap();
+    g.write_file(&dir.join("link.json"), b"new").unwrap();
+    assert!(
+        std::fs::symlink_metadata(dir.join("link.json"))
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
+    assert_eq!(std::fs::read(&target).unwrap(), b"new");
+    let report = dir.join("report");
+    g.claim(&report.join("index.html")).unwrap();
+    g.claim(&report).unwrap();
+    let staged = g.stage_folder(&report).unwrap();
+    staged.write("fit-a_b.svg", b"1").unwrap();
+    assert!(matches!(
+        staged.write("fit-a_b.svg", b"2"),
+        Err(OutputError::SameName { .. })
+    ));
+    staged.write("index.html", b"<html/>").unwrap();
+    assert!(matches!(staged.commit(&g), Err(OutputError::Twice { .. })));
+    assert!(!report.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// kill -9 during a write left `.out.csv.PID-N.tmp` and
+/// `.report.PID-N.staging/` for good; the next write of the same output
+/// removes those of processes that no longer run.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_killed_run_s_temporary_files_go_with_the_next_write() {
+    let dir = temp("stale");
+    let dead = u32::MAX - 7; // above any pid_max
+    let stale_file = dir.join(format!(".out.csv.{dead}-3.tmp"));
+    std::fs::write(&stale_file, "half").unwrap();
+    let stale_folder = dir.join(format!(".report.{dead}-0.staging"));
+    std::fs::create_dir_all(stale_folder.join("fig")).unwrap();
+    let alive = dir.join(format!(".out.csv.{}-9.tmp", std::process::id()));
+    std::fs::write(&alive, "mine").unwrap();
+    let unrelated = dir.join(".out.csv.notes.tmp");
+    std::fs::write(&unrelated, "user").unwrap();
+    let g = Outputs::new();
+    g.write_file(&dir.join("out.csv"), b"x").unwrap();
+    g.stage_folder(&dir.join("report"))
+        .unwrap()
+        .commit(&g)
+        .unwrap();
+    assert!(!stale_file.exists() && !stale_folder.exists());
+    assert!(alive.exists() && unrelated.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn plain_names() {
+    for bad in ["", "..", "/abs", "../../x", "a/b", ".hidden"] {
+        assert!(plain_name(bad).is_err(), "{bad}");
+    }
+    assert!(plain_name("HEAD-1").is_ok());
+}
