@@ -26,6 +26,8 @@
 //! ([`read_results`]).
 
 use crate::ExportError;
+use crate::cards::Link;
+use crate::inp::{self, Print, real};
 use crate::layout::{Axis, Layout, UnitSystem};
 use bumpsim_core::model::MsdModel;
 use bumpsim_core::series::UniformSeries;
@@ -167,40 +169,22 @@ pub fn calculix_deck(model: &MsdModel, options: &CalculixOptions) -> Result<Stri
         "** bumpsim-deck: units={} axis={} start={start:e} dof={n} offset={offset} prefix={set}",
         layout.units, layout.axis
     );
-    let _ = writeln!(deck, "*NODE, NSET={set}NALL");
+    let all = format!("{set}NALL");
+    inp::node_keyword(&mut deck, &all);
     for i in 0..n {
-        let p = layout.node_position(i);
-        let _ = writeln!(
-            deck,
-            "{}, {}, {}, {}",
-            offset + i as u64 + 1,
-            real(p[0]),
-            real(p[1]),
-            real(p[2])
-        );
+        inp::node_line(&mut deck, offset + i as u64 + 1, layout.node_position(i));
     }
     for (i, mass) in model.masses().iter().enumerate() {
-        let _ = writeln!(
-            deck,
-            "*ELEMENT, TYPE=MASS, ELSET={set}EM{0}\n{1}, {1}\n*MASS, ELSET={set}EM{0}\n{2}",
-            i + 1,
-            offset + i as u64 + 1,
-            real(mass * layout.units.mass())
-        );
+        let (elset, id) = (format!("{set}EM{}", i + 1), offset + i as u64 + 1);
+        inp::mass_element(&mut deck, &elset, id, id, mass * layout.units.mass());
     }
     links(&mut deck, model, options);
-    let _ = writeln!(deck, "*BOUNDARY");
-    for dof in layout.axis.other_dofs() {
-        let _ = writeln!(deck, "{set}NALL, {dof}, {dof}");
-    }
+    let held = layout.axis.other_dofs().map(|dof| (all.clone(), dof, dof));
+    inp::boundary(&mut deck, &held);
     coupling(&mut deck, options);
     if let Some(v) = options.initial_velocity {
-        let _ = writeln!(
-            deck,
-            "*INITIAL CONDITIONS, TYPE=VELOCITY\n{set}NALL, {}, {}",
-            layout.axis.dof(),
-            real(v * layout.axis.sign * layout.units.velocity())
-        );
+        let v = v * layout.axis.sign * layout.units.velocity();
+        inp::initial_velocity(&mut deck, &[(&all, layout.axis.dof(), v)]);
     }
     if let Some(analysis) = &options.analysis {
         transient(&mut deck, analysis, options)?;
@@ -212,44 +196,18 @@ pub fn calculix_deck(model: &MsdModel, options: &CalculixOptions) -> Result<Stri
 fn links(deck: &mut String, model: &MsdModel, options: &CalculixOptions) {
     let (n, units, set) = (model.dof() as u64, options.layout.units, &options.prefix);
     let links = [
-        (
-            "SPRINGA",
-            "SPRING",
-            "EK",
-            n,
-            model.springs(),
-            units.stiffness(),
-        ),
-        (
-            "DASHPOTA",
-            "DASHPOT",
-            "EC",
-            2 * n,
-            model.dampers(),
-            units.damping(),
-        ),
+        (Link::Spring, "EK", n, model.springs(), units.stiffness()),
+        (Link::Damper, "EC", 2 * n, model.dampers(), units.damping()),
     ];
-    for (element, card, kind, base, values, factor) in links {
+    for (link, kind, base, values, factor) in links {
         for (j, value) in values.iter().enumerate().filter(|(_, v)| **v > 0.0) {
             let node = |k: usize| options.id_offset + k as u64;
-            let (id, value) = (
-                options.id_offset + base + j as u64 + 1,
-                real(value * factor),
-            );
-            let _ = writeln!(
-                deck,
-                "*ELEMENT, TYPE={element}, ELSET={set}{kind}{0}\n{id}, {1}, {2}\n*{card}, ELSET={set}{kind}{0}\n\n{value}",
-                j + 1,
-                node(j + 1),
-                node(j + 2)
-            );
+            let id = options.id_offset + base + j as u64 + 1;
+            let elset = format!("{set}{kind}{}", j + 1);
+            let nodes = [node(j + 1), node(j + 2)];
+            inp::link_element(deck, link, &elset, id, nodes, value * factor);
         }
     }
-}
-
-/// A real as CalculiX reads it: always with a decimal point (`5e5` is misread), 13 digits.
-pub fn real(value: f64) -> String {
-    format!("{:.12e}", value + 0.0)
 }
 
 fn transient(
@@ -288,11 +246,9 @@ fn transient(
         layout.axis.dof(),
         layout.axis.sign
     );
-    let _ = writeln!(
-        deck,
-        "*NODE PRINT, NSET={set}NALL, FREQUENCY={}\nU\n*END STEP",
-        analysis.output_every
-    );
+    let every = Print::Every(analysis.output_every);
+    inp::node_print(deck, &format!("{set}NALL"), every, "U");
+    deck.push_str("*END STEP\n");
     Ok(())
 }
 

@@ -10,7 +10,7 @@
 //! ```
 //! use bumpsim_export::cards;
 //! let mut deck = String::new();
-//! cards::node(&mut deck, &[(7, [0.0, 0.5, 0.0])], 0, 0);
+//! cards::node(&mut deck, &[(7, [0.0, 0.5, 0.0])], Some([0, 0]));
 //! cards::element_mass(&mut deck, 7, 7, 12.5, "kg");
 //! assert!(deck.starts_with("*NODE\n"));
 //! assert!(deck.contains("       7       7            12.5"));
@@ -23,11 +23,34 @@ use std::fmt::Write;
 /// (78 characters at most), bumpsim's version with `what` the include
 /// holds, and the units.
 pub fn header(deck: &mut String, title: &str, what: &str, units: UnitSystem) {
-    let [m, l, t, f] = units.symbols();
     let title: String = title.chars().take(78).collect();
     let _ = writeln!(deck, "*KEYWORD\n$ {title}");
     let _ = writeln!(deck, "$ bumpsim {}: {what}", env!("CARGO_PKG_VERSION"));
+    units_comment(deck, units);
+}
+
+/// `*KEYWORD` and `*TITLE` with its line, for a deck that names itself
+/// (a complete run, a bumper spring).
+pub fn titled(deck: &mut String, title: &str) {
+    let _ = writeln!(deck, "*KEYWORD\n*TITLE\n{title}");
+}
+
+/// The comment naming the deck's units: `$ units: mass .., length ..,
+/// time .., force ..`.
+pub fn units_comment(deck: &mut String, units: UnitSystem) {
+    let [m, l, t, f] = units.symbols();
     let _ = writeln!(deck, "$ units: mass {m}, length {l}, time {t}, force {f}");
+}
+
+/// How much of a card's fields its `$` comment names: every field of the
+/// manual's card, or only those the writer fills (the decks written so
+/// far use both, and a deck's text must not change).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FieldNames {
+    /// Every field of the card.
+    All,
+    /// The fields written.
+    Written,
 }
 
 /// A row of 10-column integers, eight to a line.
@@ -42,29 +65,39 @@ fn id_rows(deck: &mut String, ids: &[u64]) {
 }
 
 /// `*NODE`: one line per (id, position), all with the translational and
-/// rotational constraint codes `tc` and `rc`.
-pub fn node(deck: &mut String, nodes: &[(u64, [f64; 3])], tc: u64, rc: u64) {
-    let _ = writeln!(
-        deck,
-        "*NODE\n$    nid               x               y               z      tc      rc"
-    );
+/// rotational constraint codes `constraints` (`[tc, rc]`; `None`: the
+/// lines end after z).
+pub fn node(deck: &mut String, nodes: &[(u64, [f64; 3])], constraints: Option<[u64; 2]>) {
+    node_keyword(deck, constraints.is_some());
     for (id, p) in nodes {
-        node_line(deck, *id, *p, tc, rc);
+        node_line(deck, *id, *p, constraints);
     }
 }
 
-/// One `*NODE` data line.
-pub fn node_line(deck: &mut String, id: u64, p: [f64; 3], tc: u64, rc: u64) {
+/// The `*NODE` keyword line and its field comment, naming `tc` and `rc`
+/// when the lines carry them.
+pub fn node_keyword(deck: &mut String, constrained: bool) {
+    let codes = if constrained { "      tc      rc" } else { "" };
     let _ = writeln!(
         deck,
-        "{}{}{}{}{}{}",
+        "*NODE\n$    nid               x               y               z{codes}"
+    );
+}
+
+/// One `*NODE` data line (constraint codes `[tc, rc]`, if any).
+pub fn node_line(deck: &mut String, id: u64, p: [f64; 3], constraints: Option<[u64; 2]>) {
+    let _ = write!(
+        deck,
+        "{}{}{}{}",
         int_field(id, 8),
         real_field(p[0], 16),
         real_field(p[1], 16),
-        real_field(p[2], 16),
-        int_field(tc, 8),
-        int_field(rc, 8)
+        real_field(p[2], 16)
     );
+    if let Some([tc, rc]) = constraints {
+        let _ = write!(deck, "{}{}", int_field(tc, 8), int_field(rc, 8));
+    }
+    deck.push('\n');
 }
 
 /// `*ELEMENT_MASS`: element `id` of `mass` (deck units, `unit` for the
@@ -80,12 +113,27 @@ pub fn element_mass(deck: &mut String, id: u64, node: u64, mass: f64, unit: &str
 }
 
 /// `*SECTION_DISCRETE` `id`: a translational discrete section.
-pub fn discrete_section(deck: &mut String, id: u64) {
+pub fn discrete_section(deck: &mut String, id: u64, names: FieldNames) {
+    let rest = match names {
+        FieldNames::All => "        kd        v0        cl        fd       cdl       tdl",
+        FieldNames::Written => "",
+    };
     let _ = writeln!(
         deck,
-        "*SECTION_DISCRETE\n$  secid       dro        kd        v0        cl        fd       cdl       tdl\n{}{}",
+        "*SECTION_DISCRETE\n$  secid       dro{rest}\n{}{}",
         int_field(id, 10),
         int_field(0, 10)
+    );
+}
+
+/// `*PART` `id` titled `title`, of section `section` and material `material`.
+pub fn part(deck: &mut String, title: &str, id: u64, section: u64, material: u64) {
+    let _ = writeln!(
+        deck,
+        "*PART\n{title}\n$    pid     secid       mid\n{}{}{}",
+        int_field(id, 10),
+        int_field(section, 10),
+        int_field(material, 10)
     );
 }
 
@@ -111,12 +159,21 @@ pub fn discrete_part(
         int_field(id, 10),
         real_field(value, 10)
     );
+    part(deck, title, id, section, id);
+}
+
+/// `*MAT_SPRING_GENERAL_NONLINEAR` `id` (LS-DYNA MAT_S06): loading and
+/// unloading along the curves `[lcdl, lcdu]`, no hardening.
+pub fn nonlinear_spring(deck: &mut String, id: u64, [loading, unloading]: [u64; 2]) {
     let _ = writeln!(
         deck,
-        "*PART\n{title}\n$    pid     secid       mid\n{}{}{}",
+        "*MAT_SPRING_GENERAL_NONLINEAR\n$    mid      lcdl      lcdu      beta       tyi       cyi\n{}{}{}{}{}{}",
         int_field(id, 10),
-        int_field(section, 10),
-        int_field(id, 10)
+        int_field(loading, 10),
+        int_field(unloading, 10),
+        real_field(0.0, 10),
+        real_field(0.0, 10),
+        real_field(0.0, 10)
     );
 }
 
@@ -130,10 +187,14 @@ pub enum Link {
 }
 
 /// The `*ELEMENT_DISCRETE` keyword line and its field comment.
-pub fn element_discrete_header(deck: &mut String) {
+pub fn element_discrete_header(deck: &mut String, names: FieldNames) {
+    let rest = match names {
+        FieldNames::All => "      pf          offset",
+        FieldNames::Written => "",
+    };
     let _ = writeln!(
         deck,
-        "*ELEMENT_DISCRETE\n$    eid     pid      n1      n2     vid               s      pf          offset"
+        "*ELEMENT_DISCRETE\n$    eid     pid      n1      n2     vid               s{rest}"
     );
 }
 
@@ -286,11 +347,21 @@ pub fn initial_velocity_nodes(
     }
 }
 
-/// `*DEFINE_CURVE` `id` of (abscissa, ordinate) points (deck units).
-pub fn curve(deck: &mut String, id: u64, points: impl Iterator<Item = (f64, f64)>) {
+/// `*DEFINE_CURVE` `id` of (abscissa, ordinate) points (deck units), with
+/// a `$` comment line `note` after the keyword, if any.
+pub fn curve(
+    deck: &mut String,
+    id: u64,
+    note: Option<&str>,
+    points: impl Iterator<Item = (f64, f64)>,
+) {
+    deck.push_str("*DEFINE_CURVE\n");
+    if let Some(note) = note {
+        let _ = writeln!(deck, "$ {note}");
+    }
     let _ = writeln!(
         deck,
-        "*DEFINE_CURVE\n$   lcid      sidr       sfa       sfo\n{}{}{}{}",
+        "$   lcid      sidr       sfa       sfo\n{}{}{}{}",
         int_field(id, 10),
         int_field(0, 10),
         real_field(1.0, 10),
@@ -317,10 +388,23 @@ pub fn load_node_point(deck: &mut String, node: u64, dof: usize, curve: u64, sca
 /// History outputs every `dt` (deck time): `*DATABASE_NODOUT`,
 /// `*DATABASE_DEFORC`, `*DATABASE_GLSTAT` and `*DATABASE_HISTORY_NODE` of `nodes`.
 pub fn history(deck: &mut String, dt: f64, nodes: &[u64]) {
-    let dt = real_field(dt, 10);
     for keyword in ["*DATABASE_NODOUT", "*DATABASE_DEFORC", "*DATABASE_GLSTAT"] {
-        let _ = writeln!(deck, "{keyword}\n$     dt\n{dt}");
+        database(deck, keyword, dt);
     }
     let _ = writeln!(deck, "*DATABASE_HISTORY_NODE\n$   id1       id2 ...");
     id_rows(deck, nodes);
+}
+
+/// A `*DATABASE_` output card `keyword` written every `dt` (deck time).
+pub fn database(deck: &mut String, keyword: &str, dt: f64) {
+    let _ = writeln!(deck, "{keyword}\n$     dt\n{}", real_field(dt, 10));
+}
+
+/// `*CONTROL_TERMINATION` at `end` (deck time).
+pub fn termination(deck: &mut String, end: f64) {
+    let _ = writeln!(
+        deck,
+        "*CONTROL_TERMINATION\n$ endtim\n{}",
+        real_field(end, 10)
+    );
 }

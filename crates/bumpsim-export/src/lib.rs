@@ -3,6 +3,7 @@
 //!
 //! - [`lsdyna`]: an LS-DYNA keyword include file (fixed-format cards);
 //! - [`cards`]: the LS-DYNA card writers every include shares;
+//! - [`inp`]: the CalculiX/Abaqus card writers every deck shares;
 //! - [`calculix`]: a CalculiX/Abaqus deck, optionally a complete transient
 //!   analysis under a force history, and reading its results back;
 //! - [`dat`]: the print blocks of any CalculiX `.dat` file;
@@ -21,6 +22,7 @@
 pub mod calculix;
 pub mod cards;
 pub mod dat;
+pub mod inp;
 pub mod layout;
 pub mod lsdyna;
 pub mod spring;

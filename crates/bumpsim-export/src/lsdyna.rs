@@ -28,8 +28,8 @@
 //! with the user's model when the offset is above the user's ids.
 
 use crate::ExportError;
-use crate::cards::{self, Link};
-use crate::layout::{Layout, real_field};
+use crate::cards::{self, FieldNames, Link};
+use crate::layout::Layout;
 use bumpsim_core::model::MsdModel;
 use bumpsim_core::series::UniformSeries;
 use std::fmt::Write;
@@ -176,11 +176,11 @@ fn run_cards(
         let units = options.layout.units;
         let _ = writeln!(
             deck,
-            "$ critical explicit time step of the car alone: {:e} {}\n*CONTROL_TERMINATION\n$ endtim\n{}",
+            "$ critical explicit time step of the car alone: {:e} {}",
             crate::timestep::critical_time_step(model) * units.time(),
-            units.symbols()[2],
-            real_field((force.end() - force.start()) * units.time(), 10)
+            units.symbols()[2]
         );
+        cards::termination(deck, (force.end() - force.start()) * units.time());
     }
     Ok(())
 }
@@ -194,7 +194,7 @@ fn load(deck: &mut String, force: &UniformSeries, options: &LsDynaOptions, ids: 
             force.values()[k] * units.force(),
         )
     });
-    cards::curve(deck, ids.curve(), points);
+    cards::curve(deck, ids.curve(), None, points);
     let axis = options.layout.axis;
     cards::load_node_point(deck, ids.node(0), axis.dof(), ids.curve(), axis.sign);
 }
@@ -227,7 +227,7 @@ fn header(deck: &mut String, model: &MsdModel, options: &LsDynaOptions) {
 fn nodes(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids) {
     // TC: 5 = y and z fixed, 6 = z and x, 4 = x and y; RC 7 = all rotations
     let tc = [5, 6, 4][options.layout.axis.component];
-    cards::node(deck, &[], 0, 0);
+    cards::node_keyword(deck, true);
     for i in 0..model.dof() {
         // m1 under a nodal rigid body is constrained through the rigid body
         let (tc, rc) = if i == 0 && !options.attach.is_empty() {
@@ -235,7 +235,8 @@ fn nodes(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids
         } else {
             (tc, 7)
         };
-        cards::node_line(deck, ids.node(i), options.layout.node_position(i), tc, rc);
+        let position = options.layout.node_position(i);
+        cards::node_line(deck, ids.node(i), position, Some([tc, rc]));
     }
 }
 
@@ -254,7 +255,7 @@ fn links(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids
     let units = options.layout.units;
     let [_, l, t, f] = units.symbols();
     let section = ids.shared();
-    cards::discrete_section(deck, section);
+    cards::discrete_section(deck, section, FieldNames::All);
     let links = [
         (
             Link::Spring,
@@ -281,7 +282,7 @@ fn links(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids
             cards::discrete_part(deck, link, value * factor, &unit, id, section, &title);
         }
     }
-    cards::element_discrete_header(deck);
+    cards::element_discrete_header(deck, FieldNames::All);
     for j in 0..model.springs().len() {
         let id = ids.spring(j);
         cards::element_discrete_line(deck, id, id, ids.node(j), ids.node(j + 1));

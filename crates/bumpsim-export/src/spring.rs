@@ -22,7 +22,8 @@
 //! explicit codes integrate unstably and implicit ones may not converge on.
 
 use crate::ExportError;
-use crate::layout::{UnitSystem, int_field, real_field};
+use crate::cards::{self, FieldNames};
+use crate::layout::UnitSystem;
 use std::fmt::Write;
 
 /// A validated bumper characteristic: loading points and unloading slope.
@@ -157,36 +158,16 @@ pub fn lsdyna_spring(curve: &SpringCurve, options: &SpringOptions) -> Result<Str
     check_units(curve, options.units)?;
     let (id, u) = (options.id_offset + 1, options.units);
     let [_, l, _, f] = u.symbols();
-    let mut deck = format!(
-        "*KEYWORD\n*TITLE\n{}\n$ bumpsim {}: bumper characteristic as a nonlinear discrete spring\n$ units: length {l}, force {f}; compression is negative\n",
-        options.title,
+    let mut deck = String::new();
+    cards::titled(&mut deck, &options.title);
+    let _ = writeln!(
+        deck,
+        "$ bumpsim {}: bumper characteristic as a nonlinear discrete spring\n$ units: length {l}, force {f}; compression is negative",
         env!("CARGO_PKG_VERSION")
     );
-    let i = |v: u64| int_field(v, 10);
-    let r = |v: f64| real_field(v, 10);
-    let _ = writeln!(
-        deck,
-        "*SECTION_DISCRETE\n$  secid       dro\n{}{}",
-        i(id),
-        i(0)
-    );
-    let _ = writeln!(
-        deck,
-        "*MAT_SPRING_GENERAL_NONLINEAR\n$    mid      lcdl      lcdu      beta       tyi       cyi\n{}{}{}{}{}{}",
-        i(id),
-        i(id),
-        i(id + 1),
-        r(0.0),
-        r(0.0),
-        r(0.0)
-    );
-    let _ = writeln!(
-        deck,
-        "*PART\nbumpsim bumper characteristic\n$    pid     secid       mid\n{}{}{}",
-        i(id),
-        i(id),
-        i(id)
-    );
+    cards::discrete_section(&mut deck, id, FieldNames::Written);
+    cards::nonlinear_spring(&mut deck, id, [id, id + 1]);
+    cards::part(&mut deck, "bumpsim bumper characteristic", id, id, id);
     let loading: Vec<(f64, f64)> = curve.points.iter().map(|&(d, f)| (-d, -f)).collect();
     let peak = curve.peak();
     let unloading = [(-peak / curve.unloading, -peak), (0.0, 0.0)];
@@ -197,16 +178,8 @@ pub fn lsdyna_spring(curve: &SpringCurve, options: &SpringOptions) -> Result<Str
         lsdyna_curve(&mut deck, cid, what, pts, u);
     }
     if let Some((front, rear)) = options.nodes {
-        let _ = writeln!(
-            deck,
-            "*ELEMENT_DISCRETE\n$    eid     pid      n1      n2     vid               s\n{}{}{}{}{}{}",
-            int_field(id, 8),
-            int_field(id, 8),
-            int_field(front, 8),
-            int_field(rear, 8),
-            int_field(0, 8),
-            real_field(1.0, 16)
-        );
+        cards::element_discrete_header(&mut deck, FieldNames::Written);
+        cards::element_discrete_line(&mut deck, id, id, front, rear);
     }
     deck.push_str("*END\n");
     Ok(deck)
@@ -215,26 +188,14 @@ pub fn lsdyna_spring(curve: &SpringCurve, options: &SpringOptions) -> Result<Str
 /// One `*DEFINE_CURVE` of (displacement, force) in the deck's units, with
 /// zero force in tension after it.
 fn lsdyna_curve(deck: &mut String, id: u64, what: &str, points: &[(f64, f64)], u: UnitSystem) {
-    let _ = writeln!(
-        deck,
-        "*DEFINE_CURVE\n$ {what}\n$   lcid      sidr       sfa       sfo\n{}{}{}{}",
-        int_field(id, 10),
-        int_field(0, 10),
-        real_field(1.0, 10),
-        real_field(1.0, 10)
-    );
     let mut rows: Vec<(f64, f64)> = points.to_vec();
     rows.sort_by(|a, b| a.0.total_cmp(&b.0));
     let span = rows.first().map_or(1.0, |p| -p.0);
     rows.push((span, 0.0));
-    for (d, f) in rows {
-        let _ = writeln!(
-            deck,
-            "{}{}",
-            real_field(d * u.length(), 20),
-            real_field(f * u.force(), 20)
-        );
-    }
+    let rows = rows
+        .into_iter()
+        .map(|(d, f)| (d * u.length(), f * u.force()));
+    cards::curve(deck, id, Some(what), rows);
 }
 
 /// Writes the CalculiX/Abaqus deck lines of the bumper spring: `*SPRING,
@@ -263,11 +224,8 @@ pub fn calculix_spring(
         curve.unloading
     );
     if let Some((front, rear)) = options.nodes {
-        let _ = writeln!(
-            deck,
-            "*ELEMENT, TYPE=SPRINGA, ELSET={set}BUMPER\n{}, {front}, {rear}",
-            options.id_offset + 1
-        );
+        crate::inp::element_keyword(&mut deck, "SPRINGA", &format!("{set}BUMPER"));
+        let _ = writeln!(deck, "{}, {front}, {rear}", options.id_offset + 1);
     }
     let _ = writeln!(deck, "*SPRING, ELSET={set}BUMPER, NONLINEAR\n");
     let mut rows: Vec<(f64, f64)> = curve.points.iter().map(|&(d, f)| (-f, -d)).collect();
@@ -278,8 +236,8 @@ pub fn calculix_spring(
         let _ = writeln!(
             deck,
             "{}, {}",
-            crate::calculix::real(force * u.force()),
-            crate::calculix::real(elongation * u.length())
+            crate::inp::real(force * u.force()),
+            crate::inp::real(elongation * u.length())
         );
     }
     Ok(deck)

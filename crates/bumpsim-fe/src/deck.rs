@@ -29,6 +29,7 @@ use crate::FeError;
 use crate::bumper::BumperMesh;
 use bumpsim_core::model::MsdModel;
 use bumpsim_export::calculix::{CalculixOptions, calculix_deck};
+use bumpsim_export::inp::{self, Print, real};
 use bumpsim_impact::impact::Scenario;
 use std::fmt::Write;
 
@@ -141,23 +142,15 @@ impl Ids {
     }
 }
 
-fn real(v: f64) -> String {
-    format!("{:.12e}", v + 0.0)
-}
-
-fn node(deck: &mut String, id: u64, p: [f64; 3]) {
-    let _ = writeln!(deck, "{id}, {}, {}, {}", real(p[0]), real(p[1]), real(p[2]));
-}
-
 /// 2·n + 1 nodes (B32R) along y at x = −L_box.
 fn beam_nodes(deck: &mut String, mesh: &BumperMesh, ids: &mut Ids) -> Vec<(u64, f64)> {
     let x = -mesh.crash_boxes.length;
-    deck.push_str("*NODE, NSET=FE_BEAM\n");
+    inp::node_keyword(deck, "FE_BEAM");
     mesh.beam_node_y()
         .into_iter()
         .map(|y| {
             let id = ids.node();
-            node(deck, id, [x, y, 0.0]);
+            inp::node_line(deck, id, [x, y, 0.0]);
             (id, y)
         })
         .collect()
@@ -172,14 +165,14 @@ fn crash_boxes(
     ids: &mut Ids,
 ) -> ([Vec<u64>; 2], [f64; 2]) {
     let c = &mesh.crash_boxes;
-    deck.push_str("*NODE, NSET=FE_BOXN\n");
+    inp::node_keyword(deck, "FE_BOXN");
     let mut chain = |index: usize| {
         let (front, y) = beam[index];
         let mut nodes = vec![front];
         for j in 1..=2 * c.elements {
             let id = ids.node();
             let x = -c.length + c.length * j as f64 / (2 * c.elements) as f64;
-            node(deck, id, [x, y, 0.0]);
+            inp::node_line(deck, id, [x, y, 0.0]);
             nodes.push(id);
         }
         (nodes, y)
@@ -190,11 +183,11 @@ fn crash_boxes(
 }
 
 fn striker_nodes(deck: &mut String, beam: &[(u64, f64)], x: f64, ids: &mut Ids) -> Vec<u64> {
-    deck.push_str("*NODE, NSET=FE_STRIKER\n");
+    inp::node_keyword(deck, "FE_STRIKER");
     beam.iter()
         .map(|&(_, y)| {
             let id = ids.node();
-            node(deck, id, [x, y, 0.0]);
+            inp::node_line(deck, id, [x, y, 0.0]);
             id
         })
         .collect()
@@ -205,14 +198,10 @@ fn pendulum_node(deck: &mut String, scenario: Scenario, x: f64, ids: &mut Ids) -
         return None;
     };
     let id = ids.node();
-    let _ = writeln!(deck, "*NODE, NSET=FE_PENDULUM");
-    node(deck, id, [x, 0.0, 0.0]);
+    inp::node_keyword(deck, "FE_PENDULUM");
+    inp::node_line(deck, id, [x, 0.0, 0.0]);
     let e = ids.element();
-    let _ = writeln!(
-        deck,
-        "*ELEMENT, TYPE=MASS, ELSET=FE_EPENDULUM\n{e}, {id}\n*MASS, ELSET=FE_EPENDULUM\n{}",
-        real(mass)
-    );
+    inp::mass_element(deck, "FE_EPENDULUM", e, id, mass);
     Some(id)
 }
 
@@ -224,13 +213,13 @@ fn elements(
     chains: &[Vec<u64>; 2],
     ids: &mut Ids,
 ) {
-    deck.push_str("*ELEMENT, TYPE=B32R, ELSET=FE_EBEAM\n");
+    inp::element_keyword(deck, "B32R", "FE_EBEAM");
     for k in 0..mesh.beam.elements {
         let e = ids.element();
         let (a, b, c) = (beam[2 * k].0, beam[2 * k + 1].0, beam[2 * k + 2].0);
         let _ = writeln!(deck, "{e}, {a}, {b}, {c}");
     }
-    deck.push_str("*ELEMENT, TYPE=B32R, ELSET=FE_EBOX\n");
+    inp::element_keyword(deck, "B32R", "FE_EBOX");
     for chain in chains {
         for k in 0..mesh.crash_boxes.elements {
             let e = ids.element();
@@ -238,7 +227,7 @@ fn elements(
             let _ = writeln!(deck, "{e}, {}, {}, {}", nodes[0], nodes[1], nodes[2]);
         }
     }
-    deck.push_str("*ELEMENT, TYPE=SPRINGA, ELSET=FE_ECONTACT\n");
+    inp::element_keyword(deck, "SPRINGA", "FE_ECONTACT");
     for (&(b, _), &s) in beam.iter().zip(striker) {
         let e = ids.element();
         let _ = writeln!(deck, "{e}, {b}, {s}");
@@ -295,39 +284,30 @@ fn supports(
     striker: &[u64],
     rear: &[u64; 2],
 ) {
-    deck.push_str("*BOUNDARY\nFE_BEAM, 3, 3\n");
-    for r in rear {
-        let _ = writeln!(deck, "{r}, 2, 6");
-    }
+    let mut held = vec![("FE_BEAM".to_string(), 3, 3)];
+    held.extend(rear.iter().map(|r| (r.to_string(), 2, 6)));
     match (scenario, pendulum) {
         (Scenario::Impactor { .. }, Some(p)) => {
-            let _ = writeln!(deck, "FE_STRIKER, 2, 3\n{p}, 2, 3\n*EQUATION");
+            held.extend([("FE_STRIKER".into(), 2, 3), (p.to_string(), 2, 3)]);
+            inp::boundary(deck, &held);
+            deck.push_str("*EQUATION\n");
             for s in striker {
                 let _ = writeln!(deck, "2\n{s}, 1, 1.0, {p}, 1, -1.0");
             }
         }
-        _ => deck.push_str("FE_STRIKER, 1, 3\n"),
+        _ => {
+            held.push(("FE_STRIKER".into(), 1, 3));
+            inp::boundary(deck, &held);
+        }
     }
 }
 
 fn initial(deck: &mut String, scenario: Scenario) {
-    let (set, v) = match scenario {
-        Scenario::Barrier { speed } => ("FE_BEAM", -speed),
-        Scenario::Impactor { speed, .. } => ("FE_STRIKER", speed),
+    let ([first, second], v) = match scenario {
+        Scenario::Barrier { speed } => (["FE_BEAM", "FE_BOXN"], -speed),
+        Scenario::Impactor { speed, .. } => (["FE_STRIKER", "FE_PENDULUM"], speed),
     };
-    let _ = writeln!(
-        deck,
-        "*INITIAL CONDITIONS, TYPE=VELOCITY\n{set}, 1, {}",
-        real(v)
-    );
-    match scenario {
-        Scenario::Barrier { .. } => {
-            let _ = writeln!(deck, "FE_BOXN, 1, {}", real(v));
-        }
-        Scenario::Impactor { .. } => {
-            let _ = writeln!(deck, "FE_PENDULUM, 1, {}", real(v));
-        }
-    }
+    inp::initial_velocity(deck, &[(first, 1, v), (second, 1, v)]);
 }
 
 fn step(deck: &mut String, run: &Run, pendulum: bool) {
@@ -340,20 +320,20 @@ fn step(deck: &mut String, run: &Run, pendulum: bool) {
         real(run.increment / 256.0),
         real(run.increment)
     );
-    let _ = writeln!(deck, "*NODE PRINT, NSET=BUMPSIM_NALL, FREQUENCY=1\nU, V");
+    inp::node_print(deck, "BUMPSIM_NALL", Print::Every(1), "U, V");
     if pendulum {
-        deck.push_str("*NODE PRINT, NSET=FE_PENDULUM\nU, V\n");
+        inp::node_print(deck, "FE_PENDULUM", Print::Default, "U, V");
     }
-    deck.push_str("*NODE PRINT, NSET=FE_BEAM\nU\n");
+    inp::node_print(deck, "FE_BEAM", Print::Default, "U");
     if !pendulum {
         // the barrier's reaction: its force, for campaigns reading the .dat
-        deck.push_str("*NODE PRINT, NSET=FE_STRIKER, TOTALS=ONLY\nRF\n");
+        inp::node_print(deck, "FE_STRIKER", Print::Totals, "RF");
     }
     for set in ["FE_EBEAM", "FE_EBOX", "FE_ECONTACT"] {
-        let _ = writeln!(deck, "*EL PRINT, ELSET={set}, TOTALS=ONLY\nELSE");
+        inp::element_print(deck, set, Print::Totals, "ELSE");
     }
     for set in ["FE_EBEAM", "FE_EBOX"] {
-        let _ = writeln!(deck, "*EL PRINT, ELSET={set}, TOTALS=ONLY\nELKE");
+        inp::element_print(deck, set, Print::Totals, "ELKE");
     }
     deck.push_str("*END STEP\n");
 }

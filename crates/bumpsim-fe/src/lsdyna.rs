@@ -24,6 +24,7 @@
 use crate::FeError;
 use crate::bumper::{BoxSection, BumperMesh, Material};
 use bumpsim_core::model::MsdModel;
+use bumpsim_export::cards;
 use bumpsim_export::layout::{Layout, UnitSystem, int_field, real_field};
 use bumpsim_export::lsdyna::{LsDynaOptions, lsdyna_include};
 use bumpsim_impact::impact::Scenario;
@@ -67,14 +68,7 @@ impl Writer<'_> {
 
     fn node(&mut self, id: u64, p: [f64; 3]) {
         let l = self.u.length();
-        let row = format!(
-            "{}{}{}{}",
-            i8(id),
-            real_field(p[0] * l, 16),
-            real_field(p[1] * l, 16),
-            real_field(p[2] * l, 16)
-        );
-        self.line(&row);
+        cards::node_line(&mut self.deck, id, p.map(|c| c * l), None);
     }
 
     fn section(&mut self, id: u64, s: &BoxSection) {
@@ -125,17 +119,7 @@ impl Writer<'_> {
     }
 
     fn part(&mut self, id: u64, title: &str) {
-        self.line(&format!("*PART\n{title}\n$    pid     secid       mid"));
-        let card = format!("{}{}{}", i10(id), i10(id), i10(id));
-        self.line(&card);
-    }
-
-    fn set(&mut self, id: u64, nodes: &[u64]) {
-        self.line(&format!("*SET_NODE_LIST\n$    sid\n{}", i10(id)));
-        for chunk in nodes.chunks(8) {
-            let row: String = chunk.iter().map(|&n| i10(n)).collect();
-            self.line(&row);
-        }
+        cards::part(&mut self.deck, title, id, id, id);
     }
 }
 
@@ -148,7 +132,7 @@ struct Nodes {
 
 fn nodes(w: &mut Writer) -> Nodes {
     let (mesh, x) = (w.mesh, -w.mesh.crash_boxes.length);
-    w.line("*NODE\n$    nid               x               y               z");
+    cards::node_keyword(&mut w.deck, false);
     let ys = mesh.beam_node_y();
     let beam: Vec<u64> = (1..=ys.len() as u64).collect();
     for (&id, &y) in beam.iter().zip(&ys) {
@@ -227,13 +211,14 @@ pub fn lsdyna_deck(
         u: run.units,
         mesh,
     };
-    let [m, l, t, f] = run.units.symbols();
-    w.line(&format!(
-        "*KEYWORD\n*TITLE\nbumpsim {}: {} coupled to a {}-DOF MSD car\n$ units: mass {m}, length {l}, time {t}, force {f}",
+    let title = format!(
+        "bumpsim {}: {} coupled to a {}-DOF MSD car",
         env!("CARGO_PKG_VERSION"),
         mesh.name.as_deref().unwrap_or("parametric bumper"),
         car.dof()
-    ));
+    );
+    cards::titled(&mut w.deck, &title);
+    cards::units_comment(&mut w.deck, run.units);
     let n = nodes(&mut w);
     w.section(1, &mesh.beam.section);
     w.section(2, &mesh.crash_boxes.section);
@@ -248,8 +233,8 @@ pub fn lsdyna_deck(
         .chain(n.boxes.iter().flat_map(|c| c[1..].iter()))
         .copied()
         .collect();
-    w.set(1, &n.beam);
-    w.set(2, &everything);
+    cards::node_set(&mut w.deck, 1, &n.beam);
+    cards::node_set(&mut w.deck, 2, &everything);
     w.line("*BOUNDARY_SPC_SET\n$   nsid       cid      dofx      dofy      dofz     dofrx     dofry     dofrz");
     let spc = format!(
         "{}{}{}{}{}{}{}{}",
@@ -266,16 +251,17 @@ pub fn lsdyna_deck(
     striker(&mut w, scenario);
     let offset = n.orientation[1].max(everything.len() as u64) + 1000;
     car_include(&mut w, car, scenario, run, &n, offset)?;
-    w.line(&format!(
-        "*CONTROL_TERMINATION\n$ endtim\n{}",
-        r10(run.duration * run.units.time())
-    ));
-    let dt = r10(run.output_interval * run.units.time());
+    let time = run.units.time();
+    cards::termination(&mut w.deck, run.duration * time);
     for keyword in ["*DATABASE_RWFORC", "*DATABASE_MATSUM"] {
-        w.line(&format!("{keyword}\n$     dt\n{dt}"));
+        cards::database(&mut w.deck, keyword, run.output_interval * time);
     }
-    let plots = r10(run.duration * run.units.time() / 50.0);
-    w.line(&format!("*DATABASE_BINARY_D3PLOT\n$     dt\n{plots}\n*END"));
+    cards::database(
+        &mut w.deck,
+        "*DATABASE_BINARY_D3PLOT",
+        run.duration * time / 50.0,
+    );
+    w.line("*END");
     Ok(w.deck)
 }
 

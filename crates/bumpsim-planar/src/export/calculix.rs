@@ -33,7 +33,9 @@
 use super::{PlanarExport, PlanarExportError, Side, check, front_forces, half_spacing, sides};
 use crate::car::PlanarCar;
 use bumpsim_export::ExportError;
-use bumpsim_export::calculix::{MAX_CALCULIX_ID, amplitude, check_prefix, dynamic_step, real};
+use bumpsim_export::calculix::{MAX_CALCULIX_ID, amplitude, check_prefix, dynamic_step};
+use bumpsim_export::cards::Link;
+use bumpsim_export::inp::{self, Print, real};
 use std::collections::BTreeMap;
 use std::fmt::Write;
 use std::path::Path;
@@ -168,20 +170,15 @@ fn model(deck: &mut String, car: &PlanarCar, options: &PlanarExport, nodes: &Nod
             [x_f - n * options.spacing, side.eta],
         ));
     }
-    let _ = writeln!(deck, "*NODE, NSET={set}NALL");
+    inp::node_keyword(deck, &format!("{set}NALL"));
     for (id, [x, y]) in list {
-        let p = super::place(options, [x, y, 0.0]);
-        let _ = writeln!(deck, "{id}, {}, {}, {}", real(p[0]), real(p[1]), real(p[2]));
+        inp::node_line(deck, id, super::place(options, [x, y, 0.0]));
     }
     let mut element = nodes.last;
     let mut mass = |deck: &mut String, node: u64, value: f64| {
         element += 1;
         let name = format!("{set}M{node}");
-        let _ = writeln!(
-            deck,
-            "*ELEMENT, TYPE=MASS, ELSET={name}\n{element}, {node}\n*MASS, ELSET={name}\n{}",
-            real(value * u.mass())
-        );
+        inp::mass_element(deck, &name, element, node, value * u.mass());
     };
     for node in nodes.body {
         mass(deck, node, 0.5 * car.body().mass);
@@ -204,18 +201,13 @@ fn links(deck: &mut String, car: &PlanarCar, options: &PlanarExport, nodes: &Nod
         for j in 0..c.masses.len() {
             let back = ids.get(j + 1).copied().unwrap_or(nodes.ends[side.index]);
             let kinds = [
-                ("SPRINGA", "SPRING", "K", c.springs[j] * u.stiffness()),
-                ("DASHPOTA", "DASHPOT", "C", c.dampers[j] * u.damping()),
+                (Link::Spring, "K", c.springs[j] * u.stiffness()),
+                (Link::Damper, "C", c.dampers[j] * u.damping()),
             ];
-            for (kind, card, letter, value) in kinds.into_iter().filter(|k| k.3 > 0.0) {
+            for (link, letter, value) in kinds.into_iter().filter(|k| k.2 > 0.0) {
                 element += 1;
                 let name = format!("{set}{letter}{element}");
-                let _ = writeln!(
-                    deck,
-                    "*ELEMENT, TYPE={kind}, ELSET={name}\n{element}, {}, {back}\n*{card}, ELSET={name}\n\n{}",
-                    ids[j],
-                    real(value)
-                );
+                inp::link_element(deck, link, &name, element, [ids[j], back], value);
             }
         }
     }
@@ -259,7 +251,7 @@ fn constraints(
     for side in sides(car) {
         attachments(deck, options, nodes, body, &side, x_f);
     }
-    let _ = writeln!(deck, "*BOUNDARY\n{set}NALL, 3, 3");
+    inp::boundary(deck, &[(format!("{set}NALL"), 3, 3)]);
     let moving: Vec<String> = std::iter::once(nodes.body.to_vec())
         .chain(nodes.masses.iter().cloned())
         .flatten()
@@ -270,11 +262,8 @@ fn constraints(
         let _ = writeln!(deck, "{}", chunk.join(", "));
     }
     if let Some(v) = options.speed {
-        let _ = writeln!(
-            deck,
-            "*INITIAL CONDITIONS, TYPE=VELOCITY\n{set}NOUT, 1, {}",
-            real(v * options.units.velocity())
-        );
+        let v = v * options.units.velocity();
+        inp::initial_velocity(deck, &[(&format!("{set}NOUT"), 1, v)]);
     }
 }
 
@@ -346,11 +335,9 @@ fn analysis(
             "*CLOAD, AMPLITUDE={set}F{node}_{dof}\n{node}, {dof}, 1.0"
         );
     }
-    let _ = writeln!(
-        deck,
-        "*NODE PRINT, NSET={set}NOUT, FREQUENCY={}\nU\n*END STEP",
-        options.output_every
-    );
+    let every = Print::Every(options.output_every);
+    inp::node_print(deck, &format!("{set}NOUT"), every, "U");
+    deck.push_str("*END STEP\n");
     Ok(())
 }
 

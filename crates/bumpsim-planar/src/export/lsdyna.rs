@@ -30,7 +30,7 @@
 
 use super::{PlanarExport, PlanarExportError, Side, check, front_forces, place, sides};
 use crate::car::PlanarCar;
-use bumpsim_export::cards::{self, Inertia, Link};
+use bumpsim_export::cards::{self, FieldNames, Inertia, Link};
 use bumpsim_export::lsdyna::MAX_ID;
 use bumpsim_export::{ExportError, check_attach};
 use std::fmt::Write;
@@ -211,7 +211,7 @@ fn nodes(deck: &mut String, car: &PlanarCar, options: &PlanarExport, ids: &Ids) 
     }
     list.sort_by_key(|(id, _)| *id);
     // every node belongs to a rigid body, which carries the constraints
-    cards::node(deck, &list, 0, 0);
+    cards::node(deck, &list, Some([0, 0]));
 }
 
 fn body(deck: &mut String, car: &PlanarCar, options: &PlanarExport, ids: &Ids) {
@@ -266,7 +266,7 @@ fn chain(deck: &mut String, side: &Side, options: &PlanarExport, ids: &SideIds) 
 fn links(deck: &mut String, car: &PlanarCar, options: &PlanarExport, ids: &Ids) {
     let u = options.units;
     let [_, l, t, f] = u.symbols();
-    cards::discrete_section(deck, ids.section);
+    cards::discrete_section(deck, ids.section, FieldNames::All);
     let mut elements = vec![];
     for side in sides(car) {
         let s = &ids.sides[side.index];
@@ -311,7 +311,7 @@ fn links(deck: &mut String, car: &PlanarCar, options: &PlanarExport, ids: &Ids) 
     if elements.is_empty() {
         return;
     }
-    cards::element_discrete_header(deck);
+    cards::element_discrete_header(deck, FieldNames::All);
     for (id, n1, n2) in elements {
         cards::element_discrete_line(deck, id, id, n1, n2);
     }
@@ -336,7 +336,7 @@ fn loads(deck: &mut String, car: &PlanarCar, options: &PlanarExport, ids: &Ids) 
                 .iter()
                 .enumerate()
                 .map(|(k, f)| (k as f64 * forces.step * u.time(), f * u.force()));
-            cards::curve(deck, s.curves[c], points);
+            cards::curve(deck, s.curves[c], None, points);
             cards::load_node_point(deck, node, c + 1, s.curves[c], 1.0);
         }
     }
