@@ -80,15 +80,23 @@ impl CfcStandard {
     }
 }
 
+/// A CFC standard's name that names none.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown CFC standard '{text}': expected sae-j211 or iso-6487")]
+pub struct CfcStandardError {
+    /// The name as given.
+    pub text: String,
+}
+
 impl std::str::FromStr for CfcStandard {
-    type Err = String;
-    fn from_str(text: &str) -> Result<Self, String> {
+    type Err = CfcStandardError;
+    fn from_str(text: &str) -> Result<Self, CfcStandardError> {
         match text.to_ascii_lowercase().replace([' ', '_'], "-").as_str() {
             "sae-j211" | "j211" | "sae" => Ok(CfcStandard::SaeJ211),
             "iso-6487" | "iso6487" | "iso" => Ok(CfcStandard::Iso6487),
-            _ => Err(format!(
-                "unknown CFC standard '{text}': expected sae-j211 or iso-6487"
-            )),
+            _ => Err(CfcStandardError {
+                text: text.to_string(),
+            }),
         }
     }
 }
