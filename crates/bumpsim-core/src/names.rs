@@ -13,6 +13,13 @@
 //! `Default_Ignorable_Code_Point`, `UnicodeData` category Cf, Zl, Zp); they
 //! are written out here because the standard library has no category
 //! tables and this one rule does not need a Unicode-data crate.
+//!
+//! A name that becomes part of a file or folder name goes through
+//! [`file_name`]: ASCII letters, digits, `-` and `_` kept ([`file_safe`]),
+//! anything else `_`, at most [`FILE_NAME_CHARS`] characters, so that the
+//! same name gives the same file on every file system; [`is_file_name`]
+//! tells a name that is already one, and [`unique_name`] keeps two names
+//! that give the same file apart.
 
 /// Why a list of names cannot be used (numbers count the file's tables,
 /// e.g. `[[case]]`, from 1).
@@ -191,6 +198,56 @@ pub fn escaped(text: &str) -> String {
         .collect()
 }
 
+/// Longest part of a file name made from a user's name, in characters
+/// (file systems allow 255 bytes; prefixes and suffixes are added).
+pub const FILE_NAME_CHARS: usize = 64;
+
+/// Whether `c` is kept in a file name made from a user's name: an ASCII
+/// letter or digit, `-` or `_` (no spaces, no dots, nothing a shell, a file
+/// system or an FE solver's include line reads differently).
+pub fn file_safe(c: char) -> bool {
+    c.is_ascii_alphanumeric() || c == '-' || c == '_'
+}
+
+/// A file name from a signal, case, test or point name: [`file_safe`]
+/// characters kept, anything else `_`, at most [`FILE_NAME_CHARS`]
+/// characters. Different names can give the same file name; a writer of
+/// several makes them unique ([`unique_name`]).
+///
+/// ```
+/// use bumpsim_core::names::file_name;
+/// assert_eq!(file_name("a/b c"), "a_b_c");
+/// assert_eq!(file_name("FLAT-1_x"), "FLAT-1_x");
+/// ```
+pub fn file_name(name: &str) -> String {
+    name.chars()
+        .take(FILE_NAME_CHARS)
+        .map(|c| if file_safe(c) { c } else { '_' })
+        .collect()
+}
+
+/// Whether `name` is already a file name by [`file_name`]'s rule: not
+/// empty, [`file_safe`] characters only, at most [`FILE_NAME_CHARS`].
+pub fn is_file_name(name: &str) -> bool {
+    !name.is_empty() && name.chars().count() <= FILE_NAME_CHARS && name.chars().all(file_safe)
+}
+
+/// `name` itself when `taken` does not hold it, otherwise `name` with `-2`,
+/// `-3`, ... before its extension: two cases `a/b` and `a_b` get two files.
+pub fn unique_name(name: &str, taken: impl Fn(&str) -> bool) -> String {
+    if !taken(name) {
+        return name.to_string();
+    }
+    let (stem, extension) = match name.rsplit_once('.') {
+        Some((stem, extension)) => (stem, format!(".{extension}")),
+        None => (name, String::new()),
+    };
+    (2..)
+        .map(|n| format!("{stem}-{n}{extension}"))
+        .find(|candidate| !taken(candidate))
+        .unwrap_or_default()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -257,5 +314,29 @@ mod tests {
         ));
         assert!(case(&[&"é".repeat(MAX_NAME_BYTES / 2)]).is_ok());
         assert!(case(&[&"車".repeat(67)]).is_err());
+    }
+
+    #[test]
+    fn file_names_are_short_and_safe_and_unique_names_count_up() {
+        assert_eq!(file_name("a/b c"), "a_b_c");
+        assert_eq!(file_name("..\\x.y"), "___x_y");
+        assert_eq!(file_name("é 車"), "___");
+        assert_eq!(file_name(&"x".repeat(5000)).len(), FILE_NAME_CHARS);
+        assert!(is_file_name("FLAT-1_x") && is_file_name(&"x".repeat(FILE_NAME_CHARS)));
+        for not in [
+            "",
+            "a b",
+            "a.b",
+            "..",
+            "é",
+            &"x".repeat(FILE_NAME_CHARS + 1),
+        ] {
+            assert!(!is_file_name(not), "{not:?}");
+        }
+        let taken = ["fit-a_b.svg", "fit-a_b-2.svg"];
+        let is_taken = |n: &str| taken.contains(&n);
+        assert_eq!(unique_name("fit-c.svg", is_taken), "fit-c.svg");
+        assert_eq!(unique_name("fit-a_b.svg", is_taken), "fit-a_b-3.svg");
+        assert_eq!(unique_name("README", |n| n == "README"), "README-2");
     }
 }

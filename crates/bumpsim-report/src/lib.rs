@@ -55,55 +55,7 @@ pub(crate) fn register_font() {
     });
 }
 
-/// Longest part of a file name made from a user's name, in characters
-/// (file systems allow 255 bytes; prefixes and suffixes are added).
-pub const FILE_NAME_CHARS: usize = 64;
-
-/// A file name from a signal or case name: ASCII letters, digits, `-` and
-/// `_` kept, anything else `_`, at most [`FILE_NAME_CHARS`] characters.
-/// Different names can give the same file name; a report makes its own
-/// names unique ([`unique_name`]).
-pub fn file_name(name: &str) -> String {
-    name.chars()
-        .take(FILE_NAME_CHARS)
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
-}
-
-/// `name` itself when `taken` does not hold it, otherwise `name` with `-2`,
-/// `-3`, ... before its extension: two cases `a/b` and `a_b` get two plots.
-pub fn unique_name(name: &str, taken: impl Fn(&str) -> bool) -> String {
-    if !taken(name) {
-        return name.to_string();
-    }
-    let (stem, extension) = match name.rsplit_once('.') {
-        Some((stem, extension)) => (stem, format!(".{extension}")),
-        None => (name, String::new()),
-    };
-    (2..)
-        .map(|n| format!("{stem}-{n}{extension}"))
-        .find(|candidate| !taken(candidate))
-        .unwrap_or_default()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn file_names_are_short_and_unique_names_count_up() {
-        assert_eq!(file_name("a/b c"), "a_b_c");
-        assert_eq!(file_name(&"x".repeat(5000)).len(), FILE_NAME_CHARS);
-        let taken = ["fit-a_b.svg", "fit-a_b-2.svg"];
-        let is_taken = |n: &str| taken.contains(&n);
-        assert_eq!(unique_name("fit-c.svg", is_taken), "fit-c.svg");
-        assert_eq!(unique_name("fit-a_b.svg", is_taken), "fit-a_b-3.svg");
-        assert_eq!(unique_name("README", |n| n == "README"), "README-2");
-    }
-}
+/// File names from users' names: the one rule lives in
+/// [`bumpsim_core::names`] (kept here under their old paths for the pages
+/// and the CLI).
+pub use bumpsim_core::names::{FILE_NAME_CHARS, file_name, unique_name};
