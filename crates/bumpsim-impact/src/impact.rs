@@ -9,9 +9,10 @@
 //!
 //! `m_i x_i'' = Σ links − R` (barrier, on m1), `m_p x_p'' = −R`, `m_1 x_1'' = … + R` (impactor).
 //!
-//! Integration: the explicit central-difference scheme of paper A in its
-//! leapfrog form, `v_{n+½} = v_{n−½} + T a_n`, `x_{n+1} = x_n + T v_{n+½}`, with
-//! damper forces from `v_{n−½}`. The step is `T = safety · min(2/ω, 2/ω_c)`
+//! Integration: the one integrator of every impact,
+//! [`bumpsim_core::leapfrog`] (the explicit central-difference scheme of
+//! paper A in its leapfrog form), `v_{n+½} = v_{n−½} + T a_n`, `x_{n+1} = x_n + T v_{n+½}`, with
+//! damper forces from `v_{n−½}`. The step is its one rule, `T = safety · min(2/ω, 2/ω_c)`
 //! where ω² bounds the eigenvalues of `M⁻¹K` (Gershgorin, with the steepest
 //! bumper slope) and `ω_c` does the same for `M⁻¹C`; default safety 0.05,
 //! rounded down so that an output interval holds a whole number of steps.
@@ -34,6 +35,7 @@
 //! ```
 
 use crate::bumper::{Bumper, BumperState};
+use bumpsim_core::leapfrog::{Control, Leapfrog, Mechanism, Stepped, critical_step, stable_step};
 use bumpsim_core::model::MsdModel;
 use serde::Serialize;
 
@@ -214,17 +216,14 @@ impl Chain<'_> {
         if self.impactor {
             stiff[1] += 2.0 * s;
         }
-        let omega = (0..n)
-            .map(|i| (stiff[i] / self.masses[i]).sqrt())
+        let omega2 = (0..n)
+            .map(|i| stiff[i] / self.masses[i])
             .fold(0.0, f64::max);
         let omega_c = (0..n).map(|i| damp[i] / self.masses[i]).fold(0.0, f64::max);
-        let critical = (2.0 / omega).min(if omega_c > 0.0 {
-            2.0 / omega_c
-        } else {
-            f64::INFINITY
-        });
-        let raw = options.safety * critical;
-        options.output_step / (options.output_step / raw).ceil()
+        stable_step(
+            options.safety * critical_step(omega2, omega_c),
+            options.output_step,
+        )
     }
 }
 
@@ -373,6 +372,69 @@ impl Histories {
     }
 }
 
+/// The chain, bumper and impactor as a [`Mechanism`] of the one integrator:
+/// the bumper force at the new positions, its work by the trapezoidal rule
+/// in the compression, the dampers' work on the half-step velocities.
+struct Impact<'a> {
+    chain: &'a Chain<'a>,
+    bumper: &'a Bumper,
+    step: f64,
+    state: BumperState,
+    force: f64,
+    d: f64,
+    bumper_work: f64,
+    damper_work: f64,
+    peak_force: f64,
+    contact_end: Option<f64>,
+    histories: Histories,
+}
+
+impl Mechanism for Impact<'_> {
+    type Error = std::convert::Infallible;
+
+    fn accelerations(&mut self, q: &[f64], v: &[f64], a: &mut [f64]) {
+        self.chain.accelerations(q, v, self.force, a);
+    }
+
+    fn moved(&mut self, q: &[f64], k: usize) {
+        let t = k as f64 * self.step;
+        let (force, d) = (self.force, self.d);
+        let d_next = self.chain.compression(q);
+        let force_next = if d_next > 0.0 {
+            self.bumper.force(d_next, &mut self.state)
+        } else {
+            0.0
+        };
+        self.bumper_work += 0.5 * (force + force_next) * (d_next - d);
+        if self.contact_end.is_none() && force > 0.0 && force_next == 0.0 && d_next < d {
+            let zero_at = self.bumper.remaining(&self.state).max(0.0);
+            let fraction = ((d - zero_at) / (d - d_next)).clamp(0.0, 1.0);
+            self.contact_end = Some(t + fraction * self.step);
+        }
+        (self.force, self.d) = (force_next, d_next);
+        self.peak_force = self.peak_force.max(force_next);
+    }
+
+    fn stepped(&mut self, s: &Stepped<'_>) {
+        if !s.half {
+            self.damper_work += self.step * self.chain.damper_power(s.before);
+        }
+    }
+
+    fn record(&mut self, k: usize, state: &Leapfrog) -> Result<Control, Self::Error> {
+        let t = k as f64 * self.step;
+        let (force, d) = (self.force, self.d);
+        self.histories
+            .record(t, force, d, state.q(), state.velocities());
+        Ok(Control::Continue)
+    }
+
+    fn finished(&self, k: usize, _state: &Leapfrog) -> bool {
+        let t = k as f64 * self.step;
+        self.contact_end.is_some_and(|end| t > end * 1.1)
+    }
+}
+
 fn integrate(
     chain: &Chain,
     bumper: &Bumper,
@@ -381,8 +443,7 @@ fn integrate(
     options: &Options,
 ) -> Result<ImpactResult, ImpactError> {
     let n = chain.masses.len();
-    let mut x = vec![0.0; n];
-    let mut v_half = if chain.impactor {
+    let v0 = if chain.impactor {
         (0..n)
             .map(|i| if i == 0 { speed } else { 0.0 })
             .collect::<Vec<_>>()
@@ -392,79 +453,53 @@ fn integrate(
     let initial: f64 = chain
         .masses
         .iter()
-        .zip(&v_half)
+        .zip(&v0)
         .map(|(m, v)| 0.5 * m * v * v)
         .sum();
-    let mut state = BumperState::default();
-    let mut a = vec![0.0; n];
-    let every = (options.output_step / step).round().max(1.0) as usize;
-    let mut h = Histories {
-        time: vec![],
-        force: vec![],
-        compression: vec![],
-        x: vec![vec![]; n],
-        v: vec![vec![]; n],
+    let mut impact = Impact {
+        chain,
+        bumper,
+        step,
+        state: BumperState::default(),
+        force: 0.0,
+        d: 0.0,
+        bumper_work: 0.0,
+        damper_work: 0.0,
+        peak_force: 0.0,
+        contact_end: None,
+        histories: Histories {
+            time: vec![],
+            force: vec![],
+            compression: vec![],
+            x: vec![vec![]; n],
+            v: vec![vec![]; n],
+        },
     };
-    let (mut force, mut d) = (0.0, 0.0);
-    let (mut bumper_work, mut damper_work, mut peak_force) = (0.0, 0.0, 0.0_f64);
-    let mut contact_end = None;
-    // the first half step: v_{½} = v_0 + T/2 a_0
-    chain.accelerations(&x, &v_half, force, &mut a);
-    v_half
-        .iter_mut()
-        .zip(&a)
-        .for_each(|(v, a)| *v += 0.5 * step * a);
-    let mut v_now: Vec<f64> = v_half
-        .iter()
-        .zip(&a)
-        .map(|(v, a)| v - 0.5 * step * a)
-        .collect();
+    let every = (options.output_step / step).round().max(1.0) as usize;
     let limit = (options.duration / step).ceil() as usize;
-    for k in 0..=limit {
-        let t = k as f64 * step;
-        if k % every == 0 {
-            h.record(t, force, d, &x, &v_now);
-        }
-        if let Some(end) = contact_end
-            && t > end * 1.1
-        {
-            break;
-        }
-        x.iter_mut().zip(&v_half).for_each(|(x, v)| *x += step * v);
-        let d_next = chain.compression(&x);
-        let force_next = if d_next > 0.0 {
-            bumper.force(d_next, &mut state)
-        } else {
-            0.0
-        };
-        bumper_work += 0.5 * (force + force_next) * (d_next - d);
-        damper_work += step * chain.damper_power(&v_half);
-        if contact_end.is_none() && force > 0.0 && force_next == 0.0 && d_next < d {
-            let zero_at = bumper.remaining(&state).max(0.0);
-            let fraction = ((d - zero_at) / (d - d_next)).clamp(0.0, 1.0);
-            contact_end = Some(t + fraction * step);
-        }
-        (force, d) = (force_next, d_next);
-        peak_force = peak_force.max(force);
-        let previous = v_half.clone();
-        chain.accelerations(&x, &v_half, force, &mut a);
-        v_half.iter_mut().zip(&a).for_each(|(v, a)| *v += step * a);
-        v_now = previous
-            .iter()
-            .zip(&v_half)
-            .map(|(p, q)| 0.5 * (p + q))
-            .collect();
-    }
+    let mut leapfrog = Leapfrog::start(&mut impact, vec![0.0; n], v0, step);
+    let Ok(()) = leapfrog.run(&mut impact, every, limit);
+    let Impact {
+        state,
+        force,
+        bumper_work,
+        damper_work,
+        peak_force,
+        contact_end,
+        histories: h,
+        ..
+    } = impact;
+    let (x, v_now) = (leapfrog.q(), leapfrog.velocities());
     let contact_end = contact_end.ok_or(ImpactError::NoSeparation {
         duration: options.duration,
     })?;
     let kinetic: f64 = chain
         .masses
         .iter()
-        .zip(&v_now)
+        .zip(v_now)
         .map(|(m, v)| 0.5 * m * v * v)
         .sum();
-    let springs = chain.spring_energy(&x);
+    let springs = chain.spring_energy(x);
     let total = kinetic + springs + damper_work + bumper_work;
     let energy = EnergyBalance {
         initial,

@@ -18,7 +18,9 @@
 //! of each sensor point `X + ξ cos ψ − η sin ψ − ξ`, the side-member tip
 //! forces and the chain masses' displacements u_i.
 //!
-//! Step: `T = safety · min(2/ω, 2/ω_c)` from the chain and tyre bounds of
+//! Integration: the one integrator of [`bumpsim_core::leapfrog`], with the
+//! sensors' readings integrated alongside. Step: its one rule,
+//! `T = safety · min(2/ω, 2/ω_c)` from the chain and tyre bounds of
 //! [`crate::simulate`](mod@crate::simulate) (no segments), rounded down to divide the sample
 //! interval.
 //!
@@ -42,6 +44,9 @@
 use crate::car::{PlanarCar, PlanarError, parameter, require};
 use crate::dynamics::{Contact, Model};
 use crate::striker::Placed;
+use bumpsim_core::leapfrog::{
+    Control, Leapfrog, Mechanism, Stepped, critical_step, substeps as substeps_of,
+};
 
 /// A given force on the bumper line.
 #[derive(Debug, Clone, PartialEq)]
@@ -218,8 +223,7 @@ pub fn substeps(car: &PlanarCar, step: f64, safety: f64) -> Result<usize, Planar
         safety > 0.0 && safety <= 1.0,
     )?;
     let (omega2, omega_c) = model(car).chain_rates(car);
-    let critical = (2.0 / omega2.sqrt()).min(2.0 / omega_c);
-    let substeps = (step / (safety * critical)).ceil().max(1.0);
+    let substeps = substeps_of(safety * critical_step(omega2, omega_c), step);
     let limit = crate::simulate::MAX_STEPS;
     require(
         "integration steps per sample",
@@ -251,7 +255,7 @@ pub fn drive_substeps(
     )?;
     let mut model = model(car);
     model.half_step = 0.5 * input.step / substeps as f64;
-    Replay::new(model, input, substeps).run(samples)
+    Replay::new(model, input, substeps).run()
 }
 
 /// The car's model with no striker face.
@@ -265,16 +269,57 @@ fn model(car: &PlanarCar) -> Model {
     Model::new(car, nowhere, None)
 }
 
-/// The state of one replay; every buffer is allocated once.
+/// One replay as a [`Mechanism`] of the one integrator: the given loads
+/// placed after each move, the sensors' readings integrated alongside
+/// (their own leapfrog: displacement, half-step velocity, acceleration);
+/// every buffer is allocated once.
 struct Replay<'a> {
     model: Model,
     input: &'a Drive,
     directions: Vec<[f64; 2]>,
     substeps: usize,
+    samples: usize,
     contact: Contact,
     chain: Vec<f64>,
-    a: Vec<f64>,
+    /// Side-member tip forces of the last accelerations, N.
+    side: [f64; 2],
+    /// Per sensor: integrated displacement, velocity (half steps), acceleration.
+    readings: Vec<[f64; 3]>,
     out: Driven,
+}
+
+impl Mechanism for Replay<'_> {
+    type Error = PlanarError;
+
+    fn accelerations(&mut self, q: &[f64], v: &[f64], a: &mut [f64]) {
+        let loads = self
+            .model
+            .accelerations(q, v, &self.contact, &mut self.chain, a);
+        self.side = loads.side;
+    }
+
+    fn moved(&mut self, q: &[f64], k: usize) {
+        let t_step = 2.0 * self.model.half_step;
+        self.readings.iter_mut().for_each(|r| r[0] += t_step * r[1]);
+        let (i, within) = (k / self.substeps, k % self.substeps + 1);
+        self.place(q, i, within as f64 / self.substeps as f64);
+    }
+
+    fn stepped(&mut self, s: &Stepped<'_>) {
+        self.sense(s.q, s.before, s.a);
+        self.readings
+            .iter_mut()
+            .for_each(|r| r[1] += s.length * r[2]);
+    }
+
+    fn record(&mut self, k: usize, state: &Leapfrog) -> Result<Control, PlanarError> {
+        let i = k / self.substeps;
+        self.record_sample(i, state.q())?;
+        Ok(match i + 1 >= self.samples {
+            true => Control::Stop,
+            false => Control::Continue,
+        })
+    }
 }
 
 impl<'a> Replay<'a> {
@@ -298,11 +343,13 @@ impl<'a> Replay<'a> {
         Replay {
             contact: Contact::new(input.loads.len()),
             chain: vec![0.0; chains],
-            a: vec![0.0; model.dof()],
+            side: [0.0; 2],
+            readings: vec![[0.0, input.speed, 0.0]; input.sensors.len()],
             model,
             input,
             directions,
             substeps,
+            samples,
             out,
         }
     }
@@ -325,79 +372,42 @@ impl<'a> Replay<'a> {
         }
     }
 
-    fn accelerate(&mut self, q: &[f64], v: &[f64]) -> [f64; 2] {
-        let loads = self
-            .model
-            .accelerations(q, v, &self.contact, &mut self.chain, &mut self.a);
-        loads.side
-    }
-
     /// A sensor's body-frame point (ξ, η) at `q`, m, and its acceleration
-    /// along the body axis relative to the body, m/s².
-    fn point(&self, sensor: Sensor, q: &[f64]) -> ([f64; 2], f64) {
+    /// along the body axis relative to the body (from the generalised
+    /// accelerations `a`), m/s².
+    fn point(&self, sensor: Sensor, q: &[f64], a: &[f64]) -> ([f64; 2], f64) {
         match sensor {
             Sensor::Body(p) => (p, 0.0),
-            Sensor::Chain(i) => (
-                [self.model.x_f + q[3 + i], self.model.eta[i]],
-                self.a[3 + i],
-            ),
+            Sensor::Chain(i) => ([self.model.x_f + q[3 + i], self.model.eta[i]], a[3 + i]),
         }
     }
 
     /// Body-x acceleration of each sensor `A_x − ψ̈ η − ψ̇² ξ (+ ü_i)` into
-    /// `readings[s][2]`, with ψ̇ at the full step estimated as in the solve.
-    fn sense(&self, q: &[f64], v: &[f64], readings: &mut [[f64; 3]]) {
+    /// its reading, with ψ̇ at the full step estimated as in the solve from
+    /// the half-step velocities `v` and the accelerations `a`.
+    fn sense(&mut self, q: &[f64], v: &[f64], a: &[f64]) {
         let (sn, cs) = q[2].sin_cos();
-        let along = self.a[0] * cs + self.a[1] * sn;
-        let rate = v[2] + self.model.half_step * self.a[2];
-        for (reading, s) in readings.iter_mut().zip(&self.input.sensors) {
-            let ([xi, eta], relative) = self.point(*s, q);
-            reading[2] = along - self.a[2] * eta - rate * rate * xi + relative;
+        let along = a[0] * cs + a[1] * sn;
+        let rate = v[2] + self.model.half_step * a[2];
+        for k in 0..self.input.sensors.len() {
+            let ([xi, eta], relative) = self.point(self.input.sensors[k], q, a);
+            self.readings[k][2] = along - a[2] * eta - rate * rate * xi + relative;
         }
     }
 
-    fn run(mut self, samples: usize) -> Result<Driven, PlanarError> {
+    fn run(mut self) -> Result<Driven, PlanarError> {
         let t_step = 2.0 * self.model.half_step;
-        let mut q = vec![0.0; self.model.dof()];
+        let q = vec![0.0; self.model.dof()];
         let mut v = vec![0.0; self.model.dof()];
         v[0] = self.input.speed;
-        // per sensor: integrated displacement, velocity (half steps), acceleration
-        let mut readings = vec![[0.0, self.input.speed, 0.0]; self.input.sensors.len()];
         self.place(&q, 0, 0.0);
-        let side = self.accelerate(&q, &v);
-        self.sense(&q, &v, &mut readings);
-        self.record(0, &q, side, &readings)?;
-        v.iter_mut()
-            .zip(&self.a)
-            .for_each(|(v, a)| *v += 0.5 * t_step * a);
-        readings
-            .iter_mut()
-            .for_each(|r| r[1] += 0.5 * t_step * r[2]);
-        for i in 0..samples - 1 {
-            let mut side = [0.0; 2];
-            for k in 1..=self.substeps {
-                q.iter_mut().zip(&v).for_each(|(x, v)| *x += t_step * v);
-                readings.iter_mut().for_each(|r| r[0] += t_step * r[1]);
-                self.place(&q, i, k as f64 / self.substeps as f64);
-                side = self.accelerate(&q, &v);
-                self.sense(&q, &v, &mut readings);
-                v.iter_mut()
-                    .zip(&self.a)
-                    .for_each(|(v, a)| *v += t_step * a);
-                readings.iter_mut().for_each(|r| r[1] += t_step * r[2]);
-            }
-            self.record(i + 1, &q, side, &readings)?;
-        }
+        let mut state = Leapfrog::start(&mut self, q, v, t_step);
+        let (every, last) = (self.substeps, (self.samples - 1) * self.substeps);
+        state.run(&mut self, every, last)?;
         Ok(self.out)
     }
 
-    fn record(
-        &mut self,
-        i: usize,
-        q: &[f64],
-        side: [f64; 2],
-        readings: &[[f64; 3]],
-    ) -> Result<(), PlanarError> {
+    fn record_sample(&mut self, i: usize, q: &[f64]) -> Result<(), PlanarError> {
         let time = i as f64 * self.input.step;
         // an explicit step too large for the car grows without bound:
         // 1e3 m (or rad) is far beyond any impact, so it counts as diverged
@@ -411,7 +421,10 @@ impl<'a> Replay<'a> {
         out.yaw.push(q[2]);
         let (sn, cs) = q[2].sin_cos();
         for (k, s) in self.input.sensors.iter().enumerate() {
-            let ([xi, eta], _) = self.point(*s, q);
+            let [xi, eta] = match *s {
+                Sensor::Body(p) => p,
+                Sensor::Chain(i) => [self.model.x_f + q[3 + i], self.model.eta[i]],
+            };
             let rest = match s {
                 Sensor::Body(p) => p[0],
                 Sensor::Chain(_) => self.model.x_f,
@@ -419,11 +432,11 @@ impl<'a> Replay<'a> {
             self.out.sensor_x[k].push(q[0] + xi * cs - eta * sn - rest);
         }
         let out = &mut self.out;
-        for (history, r) in out.sensor_reading.iter_mut().zip(readings) {
+        for (history, r) in out.sensor_reading.iter_mut().zip(&self.readings) {
             history.push(r[0]);
         }
-        out.side_force_left.push(side[0]);
-        out.side_force_right.push(side[1]);
+        out.side_force_left.push(self.side[0]);
+        out.side_force_right.push(self.side[1]);
         for (history, u) in out.chains.iter_mut().zip(&q[3..]) {
             history.push(*u);
         }

@@ -20,8 +20,9 @@
 //! its Schur complement is explicit). The pendulum: `m_p s̈ = F_x` (the x
 //! part of the striker force on the car; its guide carries the rest).
 //!
-//! **Integrator.** The leapfrog form of central differences, exactly as the
-//! 1-D impact integrator of `bumpsim_impact::impact`: `v_{n+½} = v_{n−½} + T a_n`,
+//! **Integrator.** The one integrator of every impact,
+//! [`bumpsim_core::leapfrog`] (the 1-D impact and the replay of
+//! [`crate::drive`] run it too), central differences in leapfrog form: `v_{n+½} = v_{n−½} + T a_n`,
 //! `q_{n+1} = q_n + T v_{n+½}`, with the dissipative forces (dampers, tyre
 //! friction) from `v_{n−½}` as in the 1-D scheme, and the inertial Coriolis
 //! and centrifugal terms from the full-step estimate `v_{n−½} + (T/2) a_{n−1}`
@@ -35,10 +36,11 @@
 //! failures; the system is small, so a step from the stiffest element is
 //! cheap (a 10-segment 8 km/h impact takes about a millisecond); and with the
 //! same step and arithmetic a symmetric planar car reproduces the 1-D result
-//! to rounding. Step: `T = safety · min(2/ω, 2/ω_c)` where ω² and ω_c are
-//! Gershgorin bounds of M⁻¹K and M⁻¹C over the coordinates (steepest segment
-//! slope plus 4 k_b, chain links, tyre friction linearised as `μN/v_s`), then
-//! rounded down to divide the output interval. Default safety 0.05 as in the
+//! to rounding. Step: the one rule of [`bumpsim_core::leapfrog`],
+//! `T = safety · min(2/ω, 2/ω_c)`, with ω² and ω_c the Gershgorin bounds of
+//! M⁻¹K and M⁻¹C over the coordinates (steepest segment slope plus 4 k_b,
+//! chain links, tyre friction linearised as `μN/v_s`), rounded down to divide
+//! the output interval. Default safety 0.05 as in the
 //! 1-D integrator. The hot loop allocates nothing (histories are reserved).
 //!
 //! **Balances.** Energy: `E0 = T + springs + bending + dampers + crush + friction`,
@@ -68,6 +70,7 @@ use crate::car::{PlanarCar, PlanarError, require};
 use crate::dynamics::{Contact, Loads, Model};
 use crate::result::{EnergyBalance, MomentumBalance, PlanarResult};
 use crate::striker::{Motion, Striker, place};
+use bumpsim_core::leapfrog::{Control, Leapfrog, Mechanism, Stepped, critical_step, stable_step};
 
 /// Integration settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -177,9 +180,10 @@ pub fn simulate(
         Some(step) => step,
         None => {
             let (omega2, omega_c) = model.rates(car);
-            let critical = (2.0 / omega2.sqrt()).min(2.0 / omega_c);
-            let raw = settings.safety * critical;
-            settings.output_step / (settings.output_step / raw).ceil()
+            stable_step(
+                settings.safety * critical_step(omega2, omega_c),
+                settings.output_step,
+            )
         }
     };
     check_steps(step, settings)?;
@@ -213,7 +217,9 @@ pub fn simulate(
     Run::new(car, model, step, settings).integrate(v)
 }
 
-/// The integration state; every buffer is allocated once.
+/// The planar impact as a [`Mechanism`] of the one integrator: the
+/// segments' contact after each move, the balances' running sums after each
+/// step; the histories are reserved once.
 struct Run<'a> {
     car: &'a PlanarCar,
     model: Model,
@@ -223,20 +229,12 @@ struct Run<'a> {
     previous_crush: Vec<f64>,
     previous_force: Vec<f64>,
     chain: Vec<f64>,
-    a: Vec<f64>,
-    out: PlanarResult,
-}
-
-/// The integration state: positions, half-step, mean (full-step) and
-/// previous half-step velocities, the loads at the positions and their
-/// external resultant (world force, moment about the origin).
-struct State {
-    q: Vec<f64>,
-    v_half: Vec<f64>,
-    v_now: Vec<f64>,
-    previous: Vec<f64>,
+    /// The loads of the last accelerations and their external resultant
+    /// (world force, moment about the origin).
     loads: Loads,
     external: ([f64; 2], f64),
+    sums: Sums,
+    out: PlanarResult,
 }
 
 /// Running sums of the balances.
@@ -255,6 +253,77 @@ struct Sums {
     pending: (f64, f64),
 }
 
+impl Mechanism for Run<'_> {
+    type Error = PlanarError;
+
+    fn accelerations(&mut self, q: &[f64], v: &[f64], a: &mut [f64]) {
+        self.loads = self
+            .model
+            .accelerations(q, v, &self.contact, &mut self.chain, a);
+    }
+
+    fn moved(&mut self, q: &[f64], k: usize) {
+        let t = k as f64 * self.step;
+        self.previous_crush.copy_from_slice(&self.contact.crush);
+        self.previous_force.copy_from_slice(&self.contact.force);
+        self.model.contact(q, self.car, &mut self.contact);
+        self.sums.crush += self.crush_work();
+        self.track_contact(t + self.step);
+    }
+
+    /// The work of forces from `v_{n−½}` over a step is `T F·(v_{n−½} +
+    /// v_{n+½})/2`, the leapfrog's own kinetic-energy identity; half of it
+    /// belongs after the sample time t_n (`pending`).
+    fn stepped(&mut self, s: &Stepped<'_>) {
+        let t_step = self.step;
+        let (d, f) = self.dissipation(&self.loads, s.before, s.mean);
+        let next = self.external(s.q, &self.loads);
+        let sums = &mut self.sums;
+        if s.half {
+            (sums.dampers, sums.friction) = (0.5 * t_step * d, 0.5 * t_step * f);
+            sums.pending = (sums.dampers, sums.friction);
+            self.external = next;
+            return;
+        }
+        sums.dampers += t_step * d;
+        sums.friction += t_step * f;
+        sums.pending = (0.5 * t_step * d, 0.5 * t_step * f);
+        let contact = self.loads.contact;
+        sums.peak_force = sums.peak_force.max(contact[0].hypot(contact[1]));
+        let ext = self.external;
+        sums.impulse[0] += 0.5 * t_step * (ext.0[0] + next.0[0]);
+        sums.impulse[1] += 0.5 * t_step * (ext.0[1] + next.0[1]);
+        sums.angular_impulse += 0.5 * t_step * (ext.1 + next.1);
+        self.external = next;
+    }
+
+    fn record(&mut self, k: usize, state: &Leapfrog) -> Result<Control, PlanarError> {
+        let t = k as f64 * self.step;
+        let (q, v) = (state.q(), state.velocities());
+        if !q.iter().chain(v).all(|x| x.is_finite()) {
+            return Err(PlanarError::Diverged { time: t });
+        }
+        self.record_sample(t, q, v);
+        // a passive car cannot end with more than twice the energy it
+        // started with: an error beyond 100 % is an unstable integration,
+        // not a result (side members 1000 m apart gave 1.8e10 with exit 0
+        // and a warning)
+        if self.out.energy.relative_error > 1.0 {
+            return Err(PlanarError::Diverged { time: t });
+        }
+        Ok(Control::Continue)
+    }
+
+    fn finished(&self, k: usize, state: &Leapfrog) -> bool {
+        let t = k as f64 * self.step;
+        self.out.contact_end.is_some_and(|end| {
+            self.settings.stop_after_contact
+                && t > end + 0.1 * (end - self.out.contact_start.unwrap_or(0.0))
+                && self.closing(state.velocities()) <= 0.0
+        })
+    }
+}
+
 impl<'a> Run<'a> {
     fn new(car: &'a PlanarCar, mut model: Model, step: f64, settings: &'a Settings) -> Run<'a> {
         model.half_step = 0.5 * step;
@@ -262,7 +331,6 @@ impl<'a> Run<'a> {
         let masses = model.masses.len();
         let samples = ((settings.duration / settings.output_step).ceil() as usize + 2).min(200_000);
         let chain = vec![0.0; model.masses.len()];
-        let a = vec![0.0; model.dof()];
         Run {
             car,
             model,
@@ -272,14 +340,11 @@ impl<'a> Run<'a> {
             previous_crush: vec![0.0; segments],
             previous_force: vec![0.0; segments],
             chain,
-            a,
+            loads: Loads::default(),
+            external: ([0.0; 2], 0.0),
+            sums: Sums::default(),
             out: PlanarResult::with_capacity(segments, masses, samples),
         }
-    }
-
-    fn loads(&mut self, q: &[f64], v: &[f64]) -> Loads {
-        self.model
-            .accelerations(q, v, &self.contact, &mut self.chain, &mut self.a)
     }
 
     /// External force (world, N) and moment about the origin (N·m) on car and pendulum.
@@ -305,110 +370,18 @@ impl<'a> Run<'a> {
         (force, moment)
     }
 
-    /// Positions, initial velocities → the state after the first half step.
-    fn start(&mut self, mut v_half: Vec<f64>) -> (State, Sums) {
-        let t_step = self.step;
-        let q = vec![0.0; self.model.dof()];
-        let mut sums = Sums {
-            initial: self.model.kinetic(&q, &v_half),
-            ..Sums::default()
-        };
-        (sums.p0, sums.l0) = self.model.momentum(&q, &v_half);
-        self.model.contact(&q, self.car, &mut self.contact);
-        let loads = self.loads(&q, &v_half);
-        let v_now = v_half.clone();
-        // v_½ = v_0 + T/2 a_0, and that half step's dissipation on its mean velocity
-        v_half
-            .iter_mut()
-            .zip(&self.a)
-            .for_each(|(v, a)| *v += 0.5 * t_step * a);
-        let previous: Vec<f64> = v_now
-            .iter()
-            .zip(&v_half)
-            .map(|(a, b)| 0.5 * (a + b))
-            .collect();
-        let (d, f) = self.dissipation(&loads, &v_now, &previous);
-        (sums.dampers, sums.friction) = (0.5 * t_step * d, 0.5 * t_step * f);
-        sums.pending = (sums.dampers, sums.friction);
-        let external = self.external(&q, &loads);
-        let state = State {
-            q,
-            v_half,
-            v_now,
-            previous,
-            loads,
-            external,
-        };
-        (state, sums)
-    }
-
+    /// Integrates from rest positions with initial velocities `v0`.
     fn integrate(mut self, v0: Vec<f64>) -> Result<PlanarResult, PlanarError> {
-        let (mut s, mut sums) = self.start(v0);
+        let q = vec![0.0; self.model.dof()];
+        self.sums.initial = self.model.kinetic(&q, &v0);
+        (self.sums.p0, self.sums.l0) = self.model.momentum(&q, &v0);
+        self.model.contact(&q, self.car, &mut self.contact);
+        let step = self.step;
+        let mut state = Leapfrog::start(&mut self, q, v0, step);
         let every = (self.settings.output_step / self.step).round().max(1.0) as usize;
         let limit = (self.settings.duration / self.step).ceil() as usize;
-        for k in 0..=limit {
-            let t = k as f64 * self.step;
-            if k % every == 0 {
-                if !s.q.iter().chain(&s.v_now).all(|x| x.is_finite()) {
-                    return Err(PlanarError::Diverged { time: t });
-                }
-                self.record(t, &s.q, &s.v_now, &s.loads, &sums);
-                // a passive car cannot end with more than twice the energy
-                // it started with: an error beyond 100 % is an unstable
-                // integration, not a result (side members 1000 m apart gave
-                // 1.8e10 with exit 0 and a warning)
-                if self.out.energy.relative_error > 1.0 {
-                    return Err(PlanarError::Diverged { time: t });
-                }
-            }
-            if let Some(end) = self.out.contact_end
-                && self.settings.stop_after_contact
-                && t > end + 0.1 * (end - self.out.contact_start.unwrap_or(0.0))
-                && self.closing(&s.v_now) <= 0.0
-            {
-                break;
-            }
-            self.advance(&mut s, &mut sums, t);
-        }
-        Ok(self.finish(&s.q, &s.v_now, &sums))
-    }
-
-    /// One leapfrog step from t to t + T, with the balances' running sums.
-    fn advance(&mut self, s: &mut State, sums: &mut Sums, t: f64) {
-        let t_step = self.step;
-        s.q.iter_mut()
-            .zip(&s.v_half)
-            .for_each(|(x, v)| *x += t_step * v);
-        self.previous_crush.copy_from_slice(&self.contact.crush);
-        self.previous_force.copy_from_slice(&self.contact.force);
-        self.model.contact(&s.q, self.car, &mut self.contact);
-        sums.crush += self.crush_work();
-        self.track_contact(t + t_step);
-        s.previous.copy_from_slice(&s.v_half);
-        s.loads = self.loads(&s.q, &s.v_half);
-        s.v_half
-            .iter_mut()
-            .zip(&self.a)
-            .for_each(|(v, a)| *v += t_step * a);
-        s.v_now
-            .iter_mut()
-            .zip(s.previous.iter().zip(&s.v_half))
-            .for_each(|(w, (p, h))| *w = 0.5 * (p + h));
-        // the work of forces from v_{n−½} over a step is T F·(v_{n−½} + v_{n+½})/2,
-        // the leapfrog's own kinetic-energy identity; half of it belongs
-        // after the sample time t_n (`pending`)
-        let (d, f) = self.dissipation(&s.loads, &s.previous, &s.v_now);
-        sums.dampers += t_step * d;
-        sums.friction += t_step * f;
-        sums.pending = (0.5 * t_step * d, 0.5 * t_step * f);
-        let contact = s.loads.contact;
-        sums.peak_force = sums.peak_force.max(contact[0].hypot(contact[1]));
-        let next = self.external(&s.q, &s.loads);
-        let ext = s.external;
-        sums.impulse[0] += 0.5 * t_step * (ext.0[0] + next.0[0]);
-        sums.impulse[1] += 0.5 * t_step * (ext.0[1] + next.0[1]);
-        sums.angular_impulse += 0.5 * t_step * (ext.1 + next.1);
-        s.external = next;
+        state.run(&mut self, every, limit)?;
+        Ok(self.finish(state.q(), state.velocities()))
     }
 
     /// Powers dissipated by the dampers (forces from `v`) and the tyres
@@ -489,7 +462,8 @@ impl<'a> Run<'a> {
         }
     }
 
-    fn record(&mut self, t: f64, q: &[f64], v: &[f64], loads: &Loads, sums: &Sums) {
+    fn record_sample(&mut self, t: f64, q: &[f64], v: &[f64]) {
+        let (loads, sums) = (&self.loads, &self.sums);
         let energy = self.energy(q, v, sums);
         let momentum = self.momentum(q, v, sums);
         let model = &self.model;
@@ -525,7 +499,8 @@ impl<'a> Run<'a> {
         }
     }
 
-    fn finish(mut self, q: &[f64], v: &[f64], sums: &Sums) -> PlanarResult {
+    fn finish(mut self, q: &[f64], v: &[f64]) -> PlanarResult {
+        let sums = &self.sums;
         let segments = &self.car.beam().segments;
         let states = &self.contact.states;
         let energy = self.energy(q, v, sums);
@@ -627,7 +602,7 @@ mod tests {
             ..Settings::default()
         };
         let (omega2, omega_c) = model.rates(&car);
-        let step = 1e-4 / (1e-4 / (0.05 * (2.0 / omega2.sqrt()).min(2.0 / omega_c))).ceil();
+        let step = stable_step(0.05 * critical_step(omega2, omega_c), 1e-4);
         let v = vec![1.5, -0.4, 2.5, 0.3, -0.2, 0.4, 0.0];
         Run::new(&car, model, step, &settings).integrate(v).unwrap()
     }
