@@ -5,12 +5,13 @@
 //! A block starts with a header ` <quantity> (<columns>) for set <SET> and
 //! time <t>` and lists rows: `id v1 v2 ...` for nodes and elements, values
 //! only for `TOTALS=ONLY`. CalculiX may print numbers touching
-//! (`1.0E-03-2.0E-04`); they are split at every sign that is not an
-//! exponent's. A row that starts with a number but holds a non-number is an
+//! (`1.0E-03-2.0E-04`); they are split by [`bumpsim_core::fixed_width`]'s
+//! one rule. A row that starts with a number but holds a non-number is an
 //! error naming the line (a corrupt or truncated file is never read as
 //! zeros); a line that starts with a word ends the block.
 
 use crate::ExportError;
+use bumpsim_core::fixed_width::words;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -66,7 +67,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Blocks, ExportError> {
             current = Some(key);
             continue;
         }
-        let words = split(line);
+        let words = words(line);
         let Some(first) = words.first() else { continue };
         if first.parse::<f64>().is_err() {
             current = None;
@@ -111,21 +112,6 @@ fn header(line: &str) -> Option<((String, String), Option<f64>)> {
     let name = quantity.split('(').next()?.trim().to_string();
     let time = time.trim().parse().ok().filter(|t: &f64| t.is_finite());
     Some(((name, set.trim().to_ascii_uppercase()), time))
-}
-
-/// The words of a row, touching numbers split before every sign that is
-/// not an exponent's.
-fn split(line: &str) -> Vec<String> {
-    let mut spaced = String::with_capacity(line.len() + 8);
-    let mut previous = ' ';
-    for c in line.chars() {
-        if matches!(c, '-' | '+') && !matches!(previous, 'E' | 'e' | 'D' | 'd') {
-            spaced.push(' ');
-        }
-        spaced.push(c);
-        previous = c;
-    }
-    spaced.split_whitespace().map(str::to_string).collect()
 }
 
 /// The blocks of one (quantity, set), if any.
