@@ -278,14 +278,22 @@ pub enum PaperSweep {
     Bumper,
 }
 
-impl std::str::FromStr for PaperSweep {
-    type Err = String;
+/// A sweep's name that names neither of paper A's sweeps.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("'{text}': expected car or bumper")]
+pub struct PaperSweepError {
+    /// The name as given.
+    pub text: String,
+}
 
-    fn from_str(text: &str) -> Result<PaperSweep, String> {
+impl std::str::FromStr for PaperSweep {
+    type Err = PaperSweepError;
+
+    fn from_str(text: &str) -> Result<PaperSweep, PaperSweepError> {
         match text {
             "car" => Ok(PaperSweep::Car),
             "bumper" => Ok(PaperSweep::Bumper),
-            other => Err(format!("'{other}': expected car or bumper")),
+            other => Err(PaperSweepError { text: other.into() }),
         }
     }
 }

@@ -231,19 +231,9 @@ impl ChainFile {
     }
 }
 
-/// A speed in a series file: m/s, or text with a unit ("6 km/h").
-pub fn speed_value(value: &toml::Value) -> Result<f64, String> {
-    match value {
-        toml::Value::Float(v) => Ok(*v),
-        toml::Value::Integer(v) => Ok(*v as f64),
-        toml::Value::String(s) => {
-            bumpsim_core::units::parse_quantity(s, Dimension::Velocity).map_err(|e| e.to_string())
-        }
-        other => Err(format!(
-            "speed {other}: expected m/s or text such as \"6 km/h\""
-        )),
-    }
-}
+/// A speed in a series file: m/s, or text with a unit ("6 km/h"); the one
+/// rule of speeds in input files, [`bumpsim_io::speed::speed_value`].
+pub use bumpsim_io::speed::{SpeedError, speed_value};
 
 /// `[[head]]` of a series file.
 #[derive(Debug, Clone, serde::Deserialize)]
@@ -271,6 +261,14 @@ pub enum SynthError {
         /// What is wrong.
         message: String,
     },
+    /// A value of the series file.
+    #[error("{path}: {source}")]
+    Series {
+        /// The series file.
+        path: String,
+        /// What is wrong.
+        source: SeriesError,
+    },
     /// The car file (its message names the file).
     #[error(transparent)]
     Car(#[from] bumpsim_io::car::CarError),
@@ -284,43 +282,83 @@ pub enum SynthError {
     },
 }
 
+/// What is wrong with a value of a series file (the error adds the file).
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SeriesError {
+    /// A `[chain]` time that is not finite and positive (the pre-trigger
+    /// may be zero).
+    #[error("[chain] {name} = {value} s: expected a finite positive time")]
+    Time {
+        /// `step`, `pretrigger` or `duration`.
+        name: &'static str,
+        /// The time given, s.
+        value: f64,
+    },
+    /// More samples per channel than [`bumpsim_io::output::MAX_SAMPLES`]
+    /// allows for the fine grid.
+    #[error(
+        "[chain] {samples:.3e} samples per channel (pretrigger + duration over step): at most {max} (limit MAX_SAMPLES); shorten duration or lengthen step"
+    )]
+    Samples {
+        /// Samples per channel.
+        samples: f64,
+        /// The most allowed.
+        max: usize,
+    },
+    /// The head names as a list (empty, repeated, invisible characters).
+    #[error(transparent)]
+    Names(#[from] bumpsim_core::names::NameError),
+    /// A head name that is not a plain file name.
+    #[error("head name {0}")]
+    HeadName(bumpsim_io::output::OutputError),
+    /// A head name with spaces around it.
+    #[error("head name '{name}': spaces before or after it (it names a folder)")]
+    Spaces {
+        /// The name.
+        name: String,
+    },
+    /// A head's speed.
+    #[error("head '{head}': {source}")]
+    Speed {
+        /// The head.
+        head: String,
+        /// What is wrong with it.
+        source: bumpsim_io::speed::SpeedError,
+    },
+}
+
 /// The chain's times are finite and positive, and the fine simulation grid
 /// (10 points per sample) stays within [`bumpsim_io::output::MAX_SAMPLES`].
-fn check_chain(chain: &Chain) -> Result<(), String> {
+fn check_chain(chain: &Chain) -> Result<(), SeriesError> {
     for (name, value) in [
         ("step", chain.step),
         ("pretrigger", chain.pretrigger),
         ("duration", chain.duration),
     ] {
         if !(value.is_finite() && value >= 0.0) || (name != "pretrigger" && value == 0.0) {
-            return Err(format!(
-                "[chain] {name} = {value} s: expected a finite positive time"
-            ));
+            return Err(SeriesError::Time { name, value });
         }
     }
     let max = bumpsim_io::output::MAX_SAMPLES / 10;
     let samples = (chain.pretrigger + chain.duration.max(1.0)) / chain.step;
-    if samples > max as f64 {
-        return Err(format!(
-            "[chain] {samples:.3e} samples per channel (pretrigger + duration over step): at most {max} (limit MAX_SAMPLES); shorten duration or lengthen step"
-        ));
+    match samples > max as f64 {
+        true => Err(SeriesError::Samples { samples, max }),
+        false => Ok(()),
     }
-    Ok(())
 }
 
 /// Head names become folder and file names: printable, distinct names
 /// ([`bumpsim_core::names::check_names`]), plain (no path separator, not
 /// `.` or `..`) and without surrounding spaces.
-fn check_names(heads: &[HeadFile]) -> Result<(), String> {
+fn check_names(heads: &[HeadFile]) -> Result<(), SeriesError> {
     let names = heads.iter().map(|h| h.name.as_str());
-    bumpsim_core::names::check_names("[[head]]", names).map_err(|e| e.to_string())?;
+    bumpsim_core::names::check_names("[[head]]", names)?;
     for h in heads {
-        bumpsim_io::output::plain_name(&h.name).map_err(|e| format!("head name {e}"))?;
+        bumpsim_io::output::plain_name(&h.name).map_err(SeriesError::HeadName)?;
         if h.name.trim() != h.name {
-            return Err(format!(
-                "head name '{}': spaces before or after it (it names a folder)",
-                h.name
-            ));
+            let name = h.name.clone();
+            return Err(SeriesError::Spaces { name });
         }
     }
     Ok(())
@@ -350,9 +388,13 @@ pub fn make_series(path: &std::path::Path) -> Result<(Vec<SynthTest>, String), S
     let base = path.parent().unwrap_or(std::path::Path::new("."));
     let car_path = base.join(&file.car);
     let car = bumpsim_io::car::Car::read_model_file(&car_path)?;
+    let series = |source: SeriesError| SynthError::Series {
+        path: path.display().to_string(),
+        source,
+    };
     let chain = file.chain.resolve(&Chain::default(), file.seed);
-    check_chain(&chain).map_err(|m| error(path, m))?;
-    check_names(&file.head).map_err(|m| error(path, m))?;
+    check_chain(&chain).map_err(series)?;
+    check_names(&file.head).map_err(series)?;
     let mut provenance = format!("# series file {}\n{text}\n", path.display());
     provenance += &format!(
         "# car file {}\n{}\n",
@@ -368,8 +410,12 @@ pub fn make_series(path: &std::path::Path) -> Result<(Vec<SynthTest>, String), S
             bumper_path.display(),
             std::fs::read_to_string(&bumper_path).unwrap_or_default()
         );
-        let speed =
-            speed_value(&h.speed).map_err(|m| error(path, format!("head '{}': {m}", h.name)))?;
+        let speed = speed_value(&h.speed).map_err(|source| {
+            series(SeriesError::Speed {
+                head: h.name.clone(),
+                source,
+            })
+        })?;
         let head = Head {
             name: h.name.clone(),
             bumper,
