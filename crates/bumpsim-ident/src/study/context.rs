@@ -3,9 +3,8 @@
 //! twice), the alignment of their samples and the fit window (the force's
 //! contact window, 5 % rise and 2 % fall, or the study's `[t0, t1]`).
 
-use super::{
-    CaseNote, CaseSpec, ChannelRef, DefinitionError, OutputDof, Study, StudyError, WindowSpec,
-};
+use super::error::{DefinitionError, StudyError};
+use super::file::{CaseSpec, ChannelRef, OutputDof, Study, WindowSpec};
 use crate::case::LoadCase;
 use bumpsim_core::channel::Channel;
 use bumpsim_core::series::UniformSeries;
@@ -13,6 +12,31 @@ use bumpsim_core::units::Dimension;
 use bumpsim_signal::loader::{ChannelSource, LoadError, Loader, Note};
 use bumpsim_signal::process::{Combine, ProcessError, Resampling, Step, align, resampling, run};
 use bumpsim_signal::window::ContactThreshold;
+use std::fmt;
+
+/// A note on the channels of one case (left out, or used despite a mark).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CaseNote {
+    /// The case.
+    pub case: String,
+    /// The note of its channel selection.
+    pub note: Note,
+}
+
+impl fmt::Display for CaseNote {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "case '{}': {}", self.case, self.note)
+    }
+}
+
+/// The load cases of a study and the notes of their channel selections.
+#[derive(Debug, Clone)]
+pub struct LoadedCases {
+    /// The cases, processed.
+    pub cases: Vec<LoadCase>,
+    /// What the channel selections left out or used despite a mark.
+    pub notes: Vec<CaseNote>,
+}
 
 /// One case being loaded: its study, definition, the channel loader and
 /// the notes on what the selections left out.

@@ -9,342 +9,31 @@
 //! the optional CFC filter. The case starts at t = 0, where the initial
 //! state applies; the fit window is the contact window of the force
 //! (5 % rise, 2 % fall) or `[t0, t1]` s. See docs/identify.md.
+//!
+//! The parts: the file's layout (`file`), the checks of its values on
+//! reading (`checks`), the loading of one case (`context`) and the errors
+//! (`error`).
 
-use crate::case::{CaseError, LoadCase, VALID_RANGE};
-use crate::estimate::{Bounds, Settings};
-use crate::estimate::{usable_bounds, usable_fixed};
 use bumpsim_core::model::{parameter_count, parameter_name};
-use bumpsim_core::names::check_names;
-use bumpsim_core::units::{Dimension, format_number};
-use bumpsim_io::signal_error::SignalFileError;
-use bumpsim_signal::loader::{LoadError, Loader, Note};
-use bumpsim_signal::process::ProcessError;
-use bumpsim_signal::window::WindowError;
-use serde::Deserialize;
-use std::collections::BTreeMap;
-use std::fmt;
-use std::path::{Path, PathBuf};
+use bumpsim_signal::loader::Loader;
+use std::path::Path;
 
+mod checks;
 mod context;
+mod error;
+mod file;
+
 use context::CaseContext;
 
 pub use crate::case::MAX_INITIAL_VELOCITY;
+pub use context::{CaseNote, LoadedCases};
+pub use error::{DefinitionError, StudyError, StudyValueError};
+pub use file::{
+    CaseSpec, ChannelRef, DofSpec, ModelSpec, OutputDof, ParameterSet, Study, WindowSpec,
+};
 
-/// Why a study cannot be read.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum StudyError {
-    /// The study file itself.
-    #[error("{path}: {message}")]
-    File {
-        /// The study file.
-        path: PathBuf,
-        /// What is wrong.
-        message: String,
-    },
-    /// A `bounds` or `fixed` entry names no parameter of the models.
-    #[error("{path}: {table}: no parameter '{name}' in a {dof}-DOF model ({})", valid.join(", "))]
-    Parameter {
-        /// The study file.
-        path: PathBuf,
-        /// `bounds` or `fixed`.
-        table: &'static str,
-        /// The name given.
-        name: String,
-        /// Masses of the largest model identified.
-        dof: usize,
-        /// The parameter names of that model.
-        valid: Vec<String>,
-    },
-    /// The `start` does not fit the models identified.
-    #[error("{path}: start: {masses} masses, {dampers} dampers, {springs} springs; {expected}")]
-    Start {
-        /// The study file.
-        path: PathBuf,
-        /// Masses given.
-        masses: usize,
-        /// Dampers given.
-        dampers: usize,
-        /// Springs given.
-        springs: usize,
-        /// What fits.
-        expected: String,
-    },
-    /// A test file or channel.
-    #[error("case '{case}': {source}")]
-    Data {
-        /// The case.
-        case: String,
-        /// The cause.
-        source: SignalFileError,
-    },
-    /// Processing a signal.
-    #[error("case '{case}': {source}")]
-    Process {
-        /// The case.
-        case: String,
-        /// The cause.
-        source: ProcessError,
-    },
-    /// A case definition.
-    #[error("case '{case}': {source}")]
-    Case {
-        /// The case.
-        case: String,
-        /// What is wrong.
-        source: DefinitionError,
-    },
-}
-
-/// What is wrong with a `[[case]]` definition or its data.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum DefinitionError {
-    /// Neither or both of `displacement` and `acceleration`.
-    #[error("give either 'displacement' or 'acceleration' (a list of channels)")]
-    Output,
-    /// A signal of the wrong physical dimension.
-    #[error("the {signal} is {found}, expected {expected}")]
-    Dimension {
-        /// Which signal (`force channel`, ...).
-        signal: &'static str,
-        /// Its dimension.
-        found: Dimension,
-        /// What it must be.
-        expected: &'static str,
-    },
-    /// The channels could not be made into one signal.
-    #[error(transparent)]
-    Load(LoadError),
-    /// The data end before t = 0.
-    #[error("no samples at or after t = 0")]
-    NoSamples,
-    /// `output_dof` is neither a number nor `"last"`.
-    #[error("output_dof '{0}': expected a number or \"last\"")]
-    OutputDof(String),
-    /// `output_dof` names no mass of the model.
-    #[error("output_dof = {output_dof}: the model has masses 1 to {dof}")]
-    OutputDofRange {
-        /// The mass given (1-based).
-        output_dof: usize,
-        /// The model's number of masses.
-        dof: usize,
-    },
-    /// `window` is neither `"contact"` nor two times.
-    #[error("window '{0}': expected \"contact\" or [t0, t1] in s")]
-    WindowName(String),
-    /// The window `[t0, t1]` s holds fewer than two samples.
-    #[error(
-        "window [{t0}, {t1}] s holds fewer than two samples of the data (a window needs t0 < t1 and at least two samples)"
-    )]
-    EmptyWindow {
-        /// Start, s.
-        t0: f64,
-        /// End, s.
-        t1: f64,
-    },
-    /// No contact in the force.
-    #[error(transparent)]
-    Contact(#[from] WindowError),
-    /// A case failed after its force and displacement were put on one
-    /// time base: the failure, and how they were.
-    #[error("{error} (after {note})")]
-    Resampled {
-        /// What [`bumpsim_signal::process::Resampling`] says.
-        note: String,
-        /// The failure.
-        error: Box<DefinitionError>,
-    },
-    /// The processed case is not usable (shown without the case's name,
-    /// which [`StudyError::Case`] gives already).
-    #[error("{}", .0.reason())]
-    Invalid(CaseError),
-}
-
-impl From<CaseError> for DefinitionError {
-    fn from(error: CaseError) -> DefinitionError {
-        DefinitionError::Invalid(error)
-    }
-}
-
-/// A note on the channels of one case (left out, or used despite a mark).
-#[derive(Debug, Clone, PartialEq)]
-pub struct CaseNote {
-    /// The case.
-    pub case: String,
-    /// The note of its channel selection.
-    pub note: Note,
-}
-
-impl fmt::Display for CaseNote {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "case '{}': {}", self.case, self.note)
-    }
-}
-
-/// The load cases of a study and the notes of their channel selections.
-#[derive(Debug, Clone)]
-pub struct LoadedCases {
-    /// The cases, processed.
-    pub cases: Vec<LoadCase>,
-    /// What the channel selections left out or used despite a mark.
-    pub notes: Vec<CaseNote>,
-}
-
-/// `dof = 3` or `dof = [1, 2, 3]`.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(
-    untagged,
-    expecting = "dof: expected a number of masses (dof = 3) or a list of them (dof = [1, 2, 3])"
-)]
-pub enum DofSpec {
-    /// One model size.
-    One(usize),
-    /// A sweep.
-    Many(Vec<usize>),
-}
-
-/// A start or fixed set by kind.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ParameterSet {
-    /// Masses, kg.
-    pub masses: Vec<f64>,
-    /// Dampers, N·s/m.
-    pub dampers: Vec<f64>,
-    /// Springs, N/m.
-    pub springs: Vec<f64>,
-}
-
-/// The `[model]` table.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ModelSpec {
-    /// Number of masses, or a list to sweep.
-    pub dof: DofSpec,
-    /// Lower bound of every parameter, SI (thesis: 1).
-    #[serde(default = "one")]
-    pub lower_bound: f64,
-    /// Upper bound of every parameter, SI (default: none).
-    pub upper_bound: Option<f64>,
-    /// Per-parameter bounds by name: `bounds = { m1 = [1, 50] }` (exactly
-    /// two values, checked with the names: a fixed-size array let a third
-    /// value pass unseen).
-    #[serde(default)]
-    pub bounds: BTreeMap<String, Vec<f64>>,
-    /// Per-parameter fixed values by name: `fixed = { m1 = 2.0 }`.
-    #[serde(default)]
-    pub fixed: BTreeMap<String, f64>,
-    /// Number of starts.
-    #[serde(default = "default_starts")]
-    pub starts: usize,
-    /// Seed of the random starts.
-    #[serde(default = "default_seed")]
-    pub seed: u64,
-    /// Discretisation: only `zoh` (exact, with exact sensitivities).
-    #[serde(default = "zoh")]
-    pub method: String,
-    /// The user's start.
-    pub start: Option<ParameterSet>,
-}
-
-fn one() -> f64 {
-    1.0
-}
-fn default_starts() -> usize {
-    32
-}
-fn default_seed() -> u64 {
-    1
-}
-fn zoh() -> String {
-    "zoh".into()
-}
-
-/// A channel reference: file, selector, scale factor.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ChannelRef {
-    /// Test file (relative to the study).
-    pub path: PathBuf,
-    /// Channel selector (number, code with wildcards, name).
-    pub channel: String,
-    /// Factor applied after reading (e.g. −1 to change sign).
-    #[serde(default = "unit_scale")]
-    pub scale: f64,
-}
-
-fn unit_scale() -> f64 {
-    1.0
-}
-
-/// `output_dof = 1` or `output_dof = "last"`.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(
-    untagged,
-    expecting = "output_dof: expected a mass number (output_dof = 1) or \"last\""
-)]
-pub enum OutputDof {
-    /// A mass number, 1-based.
-    Number(usize),
-    /// `"last"`: the last mass of each model.
-    Named(String),
-}
-
-/// `window = "contact"` or `window = [t0, t1]`.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(
-    untagged,
-    expecting = "window: expected \"contact\" or a start and end time in seconds (window = [0.0, 0.06])"
-)]
-pub enum WindowSpec {
-    /// `"contact"`.
-    Named(String),
-    /// Seconds.
-    Times([f64; 2]),
-}
-
-/// One `[[case]]`.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct CaseSpec {
-    /// Case name.
-    pub name: String,
-    /// Force on m1 (several matches are summed).
-    pub force: ChannelRef,
-    /// Accelerometers of the output DOF (averaged, integrated twice).
-    #[serde(default)]
-    pub acceleration: Vec<ChannelRef>,
-    /// Or the displacement directly.
-    pub displacement: Option<ChannelRef>,
-    /// Bias window, s.
-    pub bias: Option<[f64; 2]>,
-    /// CFC class for force and acceleration.
-    pub cfc: Option<f64>,
-    /// Initial velocity of the car, m/s.
-    #[serde(default)]
-    pub initial_velocity: f64,
-    /// Output DOF.
-    pub output_dof: Option<OutputDof>,
-    /// Fit window.
-    pub window: Option<WindowSpec>,
-}
-
-/// A study file.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Study {
-    /// Model settings.
-    pub model: ModelSpec,
-    /// Load cases.
-    pub case: Vec<CaseSpec>,
-    /// Folder of the study file.
-    #[serde(skip)]
-    pub base: PathBuf,
-    /// The study file.
-    #[serde(skip)]
-    pub path: PathBuf,
-}
+use crate::case::LoadCase;
+use crate::estimate::{Settings, uniform_bounds};
 
 impl Study {
     /// Reads a study file.
@@ -369,79 +58,15 @@ impl Study {
                 "no [[case]]: a study needs at least one load case".into(),
             ));
         }
-        study.check_case_names().map_err(error)?;
-        study.check_global_bounds().map_err(error)?;
-        study.check_tables().map_err(error)?;
-        study.check_dofs().map_err(error)?;
+        let value = |source| StudyError::Value {
+            path: path.to_path_buf(),
+            source,
+        };
+        study.check_case_names().map_err(value)?;
+        study.check_global_bounds().map_err(value)?;
+        study.check_tables().map_err(value)?;
+        study.check_dofs().map_err(value)?;
         Ok(study)
-    }
-
-    /// `lower_bound` and `upper_bound` apply to every parameter, `bounds`
-    /// and `fixed` to one: checked here, where their keys can be named
-    /// (the identification's own check names a parameter, m1 first, and
-    /// not the file).
-    fn check_global_bounds(&self) -> Result<(), String> {
-        let lower = self.model.lower_bound;
-        let upper = self.model.upper_bound.unwrap_or(f64::INFINITY);
-        let (floor, ceiling) = (*VALID_RANGE.start(), *VALID_RANGE.end());
-        if !usable_bounds(lower, f64::INFINITY) {
-            return Err(format!(
-                "[model] lower_bound = {}: expected a number from {floor:e} to below {ceiling:e} (SI: kg, N·s/m and N/m alike, the range the search works in; the thesis uses 1)",
-                format_number(lower, 4)
-            ));
-        }
-        if !usable_bounds(lower, upper) {
-            return Err(format!(
-                "[model] upper_bound = {}: expected a number above lower_bound = {} (SI)",
-                format_number(upper, 4),
-                format_number(lower, 4)
-            ));
-        }
-        for (name, pair) in &self.model.bounds {
-            if let [lo, hi] = pair[..]
-                && !usable_bounds(lo, hi)
-            {
-                return Err(format!(
-                    "bounds: {name} = [{}, {}]: expected {floor:e} <= lower < upper with lower below {ceiling:e} (SI)",
-                    format_number(lo, 4),
-                    format_number(hi, 4)
-                ));
-            }
-        }
-        match self.model.fixed.iter().find(|(_, v)| !usable_fixed(**v)) {
-            Some((name, v)) => Err(format!(
-                "fixed: {name} = {}: expected a finite positive value (SI)",
-                format_number(*v, 4)
-            )),
-            None => Ok(()),
-        }
-    }
-
-    /// Case names follow [`bumpsim_core::names::check_names`]; each
-    /// case's initial velocity is finite and at most
-    /// [`MAX_INITIAL_VELOCITY`].
-    fn check_case_names(&self) -> Result<(), String> {
-        let names = self.case.iter().map(|c| c.name.as_str());
-        check_names("[[case]]", names).map_err(|e| e.to_string())?;
-        for case in &self.case {
-            let v = case.initial_velocity;
-            if !(v.is_finite() && v.abs() <= MAX_INITIAL_VELOCITY) {
-                return Err(format!(
-                    "[[case]] '{}': initial_velocity = {} m/s: expected a finite speed of at most {MAX_INITIAL_VELOCITY} m/s (a crash test's is a few m/s)",
-                    case.name,
-                    format_number(v, 4)
-                ));
-            }
-        }
-        Ok(())
-    }
-
-    /// The DOF values to identify.
-    pub fn dofs(&self) -> Vec<usize> {
-        match &self.model.dof {
-            DofSpec::One(n) => vec![*n],
-            DofSpec::Many(list) => list.clone(),
-        }
     }
 
     /// Settings for `dof` masses. `bounds` and `fixed` entries must name
@@ -452,7 +77,7 @@ impl Study {
         let largest = self.dofs().into_iter().chain([dof]).max().unwrap_or(dof);
         self.check_names(largest)?;
         let p = parameter_count(dof);
-        let mut bounds = Bounds::uniform(dof, self.model.lower_bound);
+        let mut bounds = uniform_bounds(dof, self.model.lower_bound);
         if let Some(upper) = self.model.upper_bound {
             bounds.upper = vec![upper; p];
         }
@@ -500,49 +125,6 @@ impl Study {
             }
         }
         Ok(())
-    }
-
-    /// At least one DOF, each once, each from 1 to `MAX_DOF`.
-    fn check_dofs(&self) -> Result<(), String> {
-        let dofs = self.dofs();
-        let max = crate::estimate::MAX_DOF;
-        if dofs.is_empty() {
-            return Err(
-                "[model] dof = []: expected at least one DOF (dof = 3 or dof = [1, 2, 3])".into(),
-            );
-        }
-        if let Some(twice) = crate::dofs::repeated(&dofs) {
-            return Err(format!(
-                "[model] dof: {twice} is given twice; each model order once"
-            ));
-        }
-        match dofs.into_iter().find(|&n| n == 0 || n > max) {
-            Some(bad) => Err(format!(
-                "[model] dof = {bad}: expected 1 to {max} masses (limit MAX_DOF)"
-            )),
-            None => Ok(()),
-        }
-    }
-
-    /// A `bounds` entry is two values; a parameter is fixed or bounded, not
-    /// both (the fixed value silently won).
-    fn check_tables(&self) -> Result<(), String> {
-        if let Some((name, pair)) = self.model.bounds.iter().find(|(_, b)| b.len() != 2) {
-            return Err(format!(
-                "bounds: {name} = {pair:?}: expected [lower, upper], two values"
-            ));
-        }
-        match self
-            .model
-            .fixed
-            .keys()
-            .find(|n| self.model.bounds.contains_key(*n))
-        {
-            Some(name) => Err(format!(
-                "{name} is both fixed and bounded: give it in one of fixed and bounds"
-            )),
-            None => Ok(()),
-        }
     }
 
     /// The user's start for a `dof`-mass model: used when it has `dof`
@@ -652,6 +234,7 @@ mod tests {
     use super::*;
     use bumpsim_signal::loader::Note;
     use std::fmt::Write;
+    use std::path::PathBuf;
 
     fn study(model: &str, case: &str, base: &Path) -> Study {
         let text = format!("[model]\n{model}\n[[case]]\nname = \"a\"\n{case}\n");
@@ -661,7 +244,7 @@ mod tests {
         study
     }
 
-    const CASE: &str = "force = { path = \"t.EV5\", channel = \"0-LC-*-XG\" }\ndisplacement = { path = \"t.EV5\", channel = \"3\", scale = 2.0 }";
+    pub(super) const CASE: &str = "force = { path = \"t.EV5\", channel = \"0-LC-*-XG\" }\ndisplacement = { path = \"t.EV5\", channel = \"3\", scale = 2.0 }";
 
     /// An EV5 test: a force pulse (curve 1), an invalid load cell (2), a
     /// displacement (3), 0.02 s from t = −0.005 s at 10 kHz.
@@ -834,152 +417,6 @@ mod tests {
             study(&format!("dof = 2\n{ragged}"), CASE, base).settings(2),
             Err(StudyError::Start { dampers: 2, .. })
         ));
-    }
-
-    /// A temporary folder of its own, and a reader of a study file written
-    /// there with the given text (its error as text).
-    fn reader(name: &str) -> (PathBuf, impl Fn(&str) -> Result<Study, String>) {
-        let dir = std::env::temp_dir().join(format!("bumpsim-study-{name}-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("study.toml");
-        let read = move |text: &str| {
-            std::fs::write(&path, text).unwrap();
-            Study::read(&path).map_err(|e| e.to_string())
-        };
-        (dir, read)
-    }
-
-    /// `lower_bound = -1` was blamed on m1, a name the study does not hold.
-    #[test]
-    fn global_bounds_are_refused_by_their_own_keys() {
-        let (dir, file) = reader("bounds");
-        let read = |model: &str| {
-            let text = format!("[model]\ndof = 2\n{model}\n[[case]]\nname = \"a\"\n{CASE}\n");
-            file(&text).map(|_| ())
-        };
-        let range = "expected a number from 1e-12 to below 1e15";
-        for (model, expected) in [
-            (
-                "lower_bound = -1.0",
-                format!("[model] lower_bound = -1.000: {range}"),
-            ),
-            (
-                "lower_bound = nan",
-                format!("[model] lower_bound = NaN: {range}"),
-            ),
-            (
-                "lower_bound = 1e300",
-                format!("[model] lower_bound = 1.000e300: {range}"),
-            ),
-            (
-                "lower_bound = 1e-13",
-                format!("[model] lower_bound = 1.000e-13: {range}"),
-            ),
-            (
-                "upper_bound = 0.5",
-                "[model] upper_bound = 0.5000: expected a number above lower_bound = 1.000".into(),
-            ),
-            ("upper_bound = nan", "[model] upper_bound = NaN".into()),
-            (
-                "lower_bound = 1e-12\nupper_bound = 1e-12",
-                "[model] upper_bound = 1.000e-12: expected a number above lower_bound = 1.000e-12"
-                    .into(),
-            ),
-            (
-                "bounds = { k1 = [-1.0, 5.0] }",
-                "bounds: k1 = [-1.000, 5.000]: expected 1e-12 <= lower < upper".into(),
-            ),
-            (
-                "bounds = { c1 = [5.0, 5.0] }",
-                "bounds: c1 = [5.000, 5.000]: expected".into(),
-            ),
-            (
-                "fixed = { k1 = nan }",
-                "fixed: k1 = NaN: expected a finite positive value".into(),
-            ),
-            ("fixed = { c1 = 0.0 }", "fixed: c1 = 0: expected".into()),
-        ] {
-            let err = read(model).unwrap_err();
-            assert!(
-                err.contains(&expected) && !err.contains("m1") && err.contains("study.toml"),
-                "{model}: {err}"
-            );
-        }
-        assert_eq!(read("lower_bound = 1e-3\nupper_bound = inf"), Ok(()));
-        assert_eq!(
-            read("upper_bound = 1e20\nbounds = { m2 = [0.5, 2.0] }"),
-            Ok(())
-        );
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
-
-    /// `dof = []` ran nothing with exit 0; two cases named `flat` gave two
-    /// `flat` rows; `dof = -2` said "untagged enum DofSpec".
-    #[test]
-    fn empty_dof_lists_repeated_case_names_and_wrong_shapes_are_errors() {
-        let (dir, file) = reader("names");
-        let read = |text: &str| file(text).unwrap_err();
-        let case = |name: &str| format!("[[case]]\nname = \"{name}\"\n{CASE}\n");
-        let err = read(&format!("[model]\ndof = [2, 3, 2]\n{}", case("a")));
-        assert!(err.contains("dof: 2 is given twice"), "{err}");
-        let err = read(&format!("[model]\ndof = []\n{}", case("a")));
-        assert!(err.contains("dof = []: expected at least one DOF"), "{err}");
-        let err = read(&format!(
-            "[model]\ndof = 2\n{}{}",
-            case("flat"),
-            case(" Flat")
-        ));
-        assert!(
-            err.contains("[[case]] number 2: name ' Flat' is already used by 'flat'"),
-            "{err}"
-        );
-        let err = read(&format!("[model]\ndof = 2\n{}", case(" ")));
-        assert!(err.contains("an empty name"), "{err}");
-        let fast = format!("{}initial_velocity = 1e300\n", case("fast"));
-        let err = read(&format!("[model]\ndof = 2\n{fast}"));
-        assert!(
-            err.contains("[[case]] 'fast': initial_velocity = 1.000e300 m/s: expected a finite speed of at most 1000 m/s"),
-            "{err}"
-        );
-        let err = read(&format!(
-            "[model]\ndof = 2\n{}initial_velocity = nan\n",
-            case("n")
-        ));
-        assert!(err.contains("initial_velocity = NaN m/s"), "{err}");
-        let err = read(&format!("[model]\ndof = 2\n{}", case("red\\u001b[31m")));
-        assert!(
-            err.contains(r#"the name "red\u001B[31m" holds control or invisible characters"#),
-            "{err}"
-        );
-        let err = read(&format!(
-            "[model]\ndof = 2\n{}",
-            case("O'Brien \\\"q\\\" bidi\\u202Eevil")
-        ));
-        assert!(
-            err.contains(r#"the name "O'Brien \"q\" bidi\u202Eevil""#),
-            "{err}"
-        );
-        let err = read(&format!("[model]\ndof = 2\n{}", case("zw\\u200Bsp")));
-        assert!(err.contains("zw\\u200Bsp"), "{err}");
-        let err = read(&format!(
-            "[model]\ndof = 2\nbounds = {{ m1 = [1.0, 2.0, 3.0] }}\n{}",
-            case("a")
-        ));
-        assert!(
-            err.contains("bounds: m1 = [1.0, 2.0, 3.0]: expected [lower, upper]"),
-            "{err}"
-        );
-        let err = read(&format!(
-            "[model]\ndof = 2\nbounds = {{ m1 = [1.0, 20.0] }}\nfixed = {{ m1 = 30.0 }}\n{}",
-            case("a")
-        ));
-        assert!(err.contains("m1 is both fixed and bounded"), "{err}");
-        let err = read(&format!("[model]\ndof = -2\n{}", case("a")));
-        assert!(
-            err.contains("dof: expected a number of masses") && !err.contains("enum"),
-            "{err}"
-        );
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

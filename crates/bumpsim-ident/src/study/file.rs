@@ -1,0 +1,173 @@
+//! The study file's layout (TOML, read by serde with unknown keys
+//! refused): `[model]` (the models, bounds, fixed values, starts, the
+//! user's start) and the `[[case]]`s (force, displacement or
+//! accelerations, bias, filter, initial velocity, output DOF, window).
+
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+/// `dof = 3` or `dof = [1, 2, 3]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(
+    untagged,
+    expecting = "dof: expected a number of masses (dof = 3) or a list of them (dof = [1, 2, 3])"
+)]
+pub enum DofSpec {
+    /// One model size.
+    One(usize),
+    /// A sweep.
+    Many(Vec<usize>),
+}
+
+/// A start or fixed set by kind.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParameterSet {
+    /// Masses, kg.
+    pub masses: Vec<f64>,
+    /// Dampers, N·s/m.
+    pub dampers: Vec<f64>,
+    /// Springs, N/m.
+    pub springs: Vec<f64>,
+}
+
+/// The `[model]` table.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelSpec {
+    /// Number of masses, or a list to sweep.
+    pub dof: DofSpec,
+    /// Lower bound of every parameter, SI (thesis: 1).
+    #[serde(default = "one")]
+    pub lower_bound: f64,
+    /// Upper bound of every parameter, SI (default: none).
+    pub upper_bound: Option<f64>,
+    /// Per-parameter bounds by name: `bounds = { m1 = [1, 50] }` (exactly
+    /// two values, checked with the names: a fixed-size array let a third
+    /// value pass unseen).
+    #[serde(default)]
+    pub bounds: BTreeMap<String, Vec<f64>>,
+    /// Per-parameter fixed values by name: `fixed = { m1 = 2.0 }`.
+    #[serde(default)]
+    pub fixed: BTreeMap<String, f64>,
+    /// Number of starts.
+    #[serde(default = "default_starts")]
+    pub starts: usize,
+    /// Seed of the random starts.
+    #[serde(default = "default_seed")]
+    pub seed: u64,
+    /// Discretisation: only `zoh` (exact, with exact sensitivities).
+    #[serde(default = "zoh")]
+    pub method: String,
+    /// The user's start.
+    pub start: Option<ParameterSet>,
+}
+
+fn one() -> f64 {
+    1.0
+}
+fn default_starts() -> usize {
+    32
+}
+fn default_seed() -> u64 {
+    1
+}
+fn zoh() -> String {
+    "zoh".into()
+}
+
+/// A channel reference: file, selector, scale factor.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChannelRef {
+    /// Test file (relative to the study).
+    pub path: PathBuf,
+    /// Channel selector (number, code with wildcards, name).
+    pub channel: String,
+    /// Factor applied after reading (e.g. −1 to change sign).
+    #[serde(default = "unit_scale")]
+    pub scale: f64,
+}
+
+fn unit_scale() -> f64 {
+    1.0
+}
+
+/// `output_dof = 1` or `output_dof = "last"`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(
+    untagged,
+    expecting = "output_dof: expected a mass number (output_dof = 1) or \"last\""
+)]
+pub enum OutputDof {
+    /// A mass number, 1-based.
+    Number(usize),
+    /// `"last"`: the last mass of each model.
+    Named(String),
+}
+
+/// `window = "contact"` or `window = [t0, t1]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(
+    untagged,
+    expecting = "window: expected \"contact\" or a start and end time in seconds (window = [0.0, 0.06])"
+)]
+pub enum WindowSpec {
+    /// `"contact"`.
+    Named(String),
+    /// Seconds.
+    Times([f64; 2]),
+}
+
+/// One `[[case]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CaseSpec {
+    /// Case name.
+    pub name: String,
+    /// Force on m1 (several matches are summed).
+    pub force: ChannelRef,
+    /// Accelerometers of the output DOF (averaged, integrated twice).
+    #[serde(default)]
+    pub acceleration: Vec<ChannelRef>,
+    /// Or the displacement directly.
+    pub displacement: Option<ChannelRef>,
+    /// Bias window, s.
+    pub bias: Option<[f64; 2]>,
+    /// CFC class for force and acceleration.
+    pub cfc: Option<f64>,
+    /// Initial velocity of the car, m/s.
+    #[serde(default)]
+    pub initial_velocity: f64,
+    /// Output DOF.
+    pub output_dof: Option<OutputDof>,
+    /// Fit window.
+    pub window: Option<WindowSpec>,
+}
+
+/// A study file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Study {
+    /// Model settings.
+    pub model: ModelSpec,
+    /// Load cases.
+    pub case: Vec<CaseSpec>,
+    /// Folder of the study file.
+    #[serde(skip)]
+    pub base: PathBuf,
+    /// The study file.
+    #[serde(skip)]
+    pub path: PathBuf,
+}
+
+impl Study {
+    /// The DOF values to identify.
+    pub fn dofs(&self) -> Vec<usize> {
+        match &self.model.dof {
+            DofSpec::One(n) => vec![*n],
+            DofSpec::Many(list) => list.clone(),
+        }
+    }
+}
