@@ -1,6 +1,9 @@
 //! `bumpsim export`: converts arguments into export options, writes decks and
 //! reads CalculiX results back.
 
+pub(crate) mod deck;
+mod planar;
+
 use crate::simulate::{force_series, refuse_overwriting_inputs};
 use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, parse_quantity};
@@ -10,6 +13,7 @@ use bumpsim_export::lsdyna::{LsDynaOptions, lsdyna_include};
 use bumpsim_export::spring::{SpringCurve, SpringOptions, calculix_spring, lsdyna_spring};
 use bumpsim_io::car::Car;
 use bumpsim_io::table::{OutputColumn, write_table};
+use deck::{Solver, origin, spacing, time, write_output};
 use std::path::{Path, PathBuf};
 
 /// The export subcommands.
@@ -26,7 +30,7 @@ pub enum Command {
     Bumper(BumperArgs),
     /// Write the planar car (planar TOML): an LS-DYNA include, or a CalculiX
     /// deck, with --force a complete transient analysis.
-    Planar(crate::export_planar::PlanarArgs),
+    Planar(planar::PlanarArgs),
 }
 
 /// Arguments of `bumpsim export bumper`.
@@ -53,15 +57,6 @@ pub struct BumperArgs {
     /// CalculiX set-name prefix.
     #[arg(long, default_value = bumpsim_export::calculix::DEFAULT_PREFIX)]
     prefix: String,
-}
-
-/// The solvers a bumper spring is written for.
-#[derive(Debug, Clone, Copy, clap::ValueEnum)]
-pub(crate) enum Solver {
-    /// LS-DYNA keyword include.
-    Lsdyna,
-    /// CalculiX/Abaqus deck lines.
-    Calculix,
 }
 
 /// Options both decks share.
@@ -179,7 +174,7 @@ pub fn run(command: &Command) -> Result<()> {
         Command::Calculix(args) => calculix(args),
         Command::ReadCalculix(args) => read_calculix(args),
         Command::Bumper(args) => bumper(args),
-        Command::Planar(args) => crate::export_planar::run(args),
+        Command::Planar(args) => planar::run(args),
     }
 }
 
@@ -190,27 +185,6 @@ fn layout(common: &Common) -> Result<Layout> {
         origin: origin(&common.origin)?,
         spacing: spacing(&common.spacing)?,
     })
-}
-
-/// `--origin x,y,z`, each in m or with a unit.
-pub(crate) fn origin(text: &str) -> Result<[f64; 3]> {
-    let parts: Vec<&str> = text.split(',').collect();
-    let [x, y, z] = parts.as_slice() else {
-        bail!("--origin '{text}': expected three coordinates x,y,z in m");
-    };
-    let coordinate = |part: &str| {
-        parse_quantity(part, Dimension::Length).with_context(|| format!("--origin '{text}'"))
-    };
-    Ok([coordinate(x)?, coordinate(y)?, coordinate(z)?])
-}
-
-/// `--spacing`, positive, in m or with a unit.
-pub(crate) fn spacing(text: &str) -> Result<f64> {
-    let spacing = parse_quantity(text, Dimension::Length).context("--spacing")?;
-    if spacing <= 0.0 {
-        bail!("--spacing {spacing} m: the distance between mass nodes must be positive");
-    }
-    Ok(spacing)
 }
 
 fn initial_velocity(common: &Common) -> Result<Option<f64>> {
@@ -225,36 +199,12 @@ fn write_deck(common: &Common, inputs: &[&Path], text: &str, what: &str) -> Resu
     write_output(&common.output, common.units, inputs, text, what)
 }
 
-/// Writes a deck atomically, never over an input, and says what it holds.
-pub(crate) fn write_output(
-    output: &Path,
-    units: UnitSystem,
-    inputs: &[&Path],
-    text: &str,
-    what: &str,
-) -> Result<()> {
-    refuse_overwriting_inputs(output, inputs)?;
-    let existed = output.exists();
-    bumpsim_io::output::write_file(output, text.as_bytes())?;
-    let note = if existed {
-        " (replaced the existing file)"
-    } else {
-        ""
-    };
-    println!("wrote {}: {what}, units {units}{note}", output.display());
-    Ok(())
-}
-
 fn title(car: &Car, path: &Path) -> String {
     format!(
         "{} (from {})",
         car.name.as_deref().unwrap_or("MSD car model"),
         path.display()
     )
-}
-
-pub(crate) fn time(option: &str, text: &str) -> Result<f64> {
-    parse_quantity(text, Dimension::Time).with_context(|| format!("--{option} '{text}'"))
 }
 
 fn lsdyna(args: &LsDynaArgs) -> Result<()> {

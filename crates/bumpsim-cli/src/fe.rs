@@ -104,7 +104,7 @@ pub fn run(command: &Command) -> Result<()> {
 
 fn time(option: &str, text: &Option<String>) -> Result<Option<f64>> {
     text.as_deref()
-        .map(|t| crate::export::time(option, t))
+        .map(|t| crate::export::deck::time(option, t))
         .transpose()
 }
 

@@ -1,0 +1,63 @@
+//! The pieces every `bumpsim export` deck command shares: the solver
+//! choice, the placement and time options, and writing the deck.
+
+use crate::simulate::refuse_overwriting_inputs;
+use anyhow::{Context, Result, bail};
+use bumpsim_core::units::{Dimension, parse_quantity};
+use bumpsim_export::layout::UnitSystem;
+use std::path::Path;
+
+/// The solvers a deck is written for.
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+pub(crate) enum Solver {
+    /// LS-DYNA keyword include.
+    Lsdyna,
+    /// CalculiX/Abaqus deck lines.
+    Calculix,
+}
+
+/// `--origin x,y,z`, each in m or with a unit.
+pub(crate) fn origin(text: &str) -> Result<[f64; 3]> {
+    let parts: Vec<&str> = text.split(',').collect();
+    let [x, y, z] = parts.as_slice() else {
+        bail!("--origin '{text}': expected three coordinates x,y,z in m");
+    };
+    let coordinate = |part: &str| {
+        parse_quantity(part, Dimension::Length).with_context(|| format!("--origin '{text}'"))
+    };
+    Ok([coordinate(x)?, coordinate(y)?, coordinate(z)?])
+}
+
+/// `--spacing`, positive, in m or with a unit.
+pub(crate) fn spacing(text: &str) -> Result<f64> {
+    let spacing = parse_quantity(text, Dimension::Length).context("--spacing")?;
+    if spacing <= 0.0 {
+        bail!("--spacing {spacing} m: the distance between mass nodes must be positive");
+    }
+    Ok(spacing)
+}
+
+/// Writes a deck atomically, never over an input, and says what it holds.
+pub(crate) fn write_output(
+    output: &Path,
+    units: UnitSystem,
+    inputs: &[&Path],
+    text: &str,
+    what: &str,
+) -> Result<()> {
+    refuse_overwriting_inputs(output, inputs)?;
+    let existed = output.exists();
+    bumpsim_io::output::write_file(output, text.as_bytes())?;
+    let note = if existed {
+        " (replaced the existing file)"
+    } else {
+        ""
+    };
+    println!("wrote {}: {what}, units {units}{note}", output.display());
+    Ok(())
+}
+
+/// A time option (`--{option}`): s or with a unit.
+pub(crate) fn time(option: &str, text: &str) -> Result<f64> {
+    parse_quantity(text, Dimension::Time).with_context(|| format!("--{option} '{text}'"))
+}

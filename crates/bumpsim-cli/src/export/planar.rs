@@ -1,0 +1,176 @@
+//! `bumpsim export planar`: converts arguments into planar export options
+//! and writes the deck (docs/export.md, "The planar car").
+
+use super::deck::{Solver, origin, spacing, time, write_output};
+use crate::simulate::force_series;
+use anyhow::{Context, Result, bail};
+use bumpsim_core::units::{Dimension, parse_quantity};
+use bumpsim_export::layout::UnitSystem;
+use bumpsim_planar::PlanarCar;
+use bumpsim_planar::drive::Load;
+use bumpsim_planar::export::{Forces, PlanarExport, calculix_deck, lsdyna_include};
+use std::path::{Path, PathBuf};
+
+/// Arguments of `bumpsim export planar`.
+#[derive(Debug, clap::Args)]
+pub struct PlanarArgs {
+    /// The planar car (TOML, docs/planar.md).
+    #[arg(value_name = "CAR.toml")]
+    car: PathBuf,
+    /// lsdyna (keyword include) or calculix (deck; with --force a complete analysis).
+    #[arg(long)]
+    solver: Solver,
+    /// The deck to write.
+    #[arg(short, long, value_name = "FILE")]
+    output: PathBuf,
+    /// Deck unit system: si (kg, m, s, N), mm-s-t (t, mm, s, N) or mm-ms-kg (kg, mm, ms, kN).
+    #[arg(long, default_value = "si")]
+    units: UnitSystem,
+    /// Position of the body's CG as x,y,z, each in m or with a unit ("1200 mm,0,450 mm"); the car points along +x.
+    #[arg(
+        long,
+        default_value = "0,0,0",
+        allow_hyphen_values = true,
+        value_name = "X,Y,Z"
+    )]
+    origin: String,
+    /// Distance between neighbouring chain nodes along x, m or with a unit ("50 mm").
+    #[arg(long, default_value = "0.1", allow_hyphen_values = true)]
+    spacing: String,
+    /// Added to every id, to stay clear of the bumper model's ids.
+    #[arg(long, default_value_t = 0)]
+    id_offset: u64,
+    /// The user's node ids coupled to the left (+y) front mass, comma-separated.
+    #[arg(long, value_delimiter = ',', value_name = "ID,ID,...")]
+    attach_left: Vec<u64>,
+    /// The user's node ids coupled to the right (−y) front mass, comma-separated.
+    #[arg(long, value_delimiter = ',', value_name = "ID,ID,...")]
+    attach_right: Vec<u64>,
+    /// Initial forward (+x) speed of the whole car, m/s or with a unit ("8 km/h").
+    #[arg(long, value_name = "V", allow_hyphen_values = true)]
+    initial_velocity: Option<String>,
+    /// Force on the bumper line (CSV): LS-DYNA curves and nodal loads, or the CalculiX analysis.
+    #[arg(long, value_name = "FORCE.csv")]
+    force: Option<PathBuf>,
+    /// Force column, when the file has several force columns.
+    #[arg(long, value_name = "NAME", requires = "force")]
+    column: Option<String>,
+    /// Lateral position of the force on the bumper line, left positive: m or with a unit.
+    #[arg(
+        long,
+        default_value = "0",
+        allow_hyphen_values = true,
+        requires = "force"
+    )]
+    lateral: String,
+    /// Direction of the force on the car (world x,y; normalised); -1,0 pushes rearwards.
+    #[arg(
+        long,
+        default_value = "-1,0",
+        allow_hyphen_values = true,
+        value_name = "X,Y",
+        requires = "force"
+    )]
+    direction: String,
+    /// LS-DYNA: history outputs every DT, s or with a unit ("0.1 ms").
+    #[arg(long, value_name = "DT", allow_hyphen_values = true)]
+    output_interval: Option<String>,
+    /// CalculiX: fixed time increment, s or with a unit; default the force's sample interval.
+    #[arg(
+        long,
+        value_name = "DT",
+        requires = "force",
+        allow_hyphen_values = true
+    )]
+    increment: Option<String>,
+    /// CalculiX: write results every N increments.
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    output_every: usize,
+    /// CalculiX: prefix of every set and amplitude name.
+    #[arg(long, default_value = bumpsim_export::calculix::DEFAULT_PREFIX)]
+    prefix: String,
+}
+
+/// Runs `bumpsim export planar`.
+pub fn run(args: &PlanarArgs) -> Result<()> {
+    let car = PlanarCar::read(&args.car)?;
+    let options = options(args, &car)?;
+    let (deck, what) = match args.solver {
+        Solver::Lsdyna => (lsdyna_include(&car, &options)?, "LS-DYNA include"),
+        Solver::Calculix if options.forces.is_some() => (
+            calculix_deck(&car, &options)?,
+            "CalculiX transient analysis (run: ccx JOB)",
+        ),
+        Solver::Calculix => (calculix_deck(&car, &options)?, "CalculiX model"),
+    };
+    let masses = car.left().masses.len() + car.right().masses.len();
+    let what = format!(
+        "{what} of the planar car, {masses} chain masses, ids from {}",
+        args.id_offset + 1
+    );
+    let inputs: Vec<&Path> = std::iter::once(args.car.as_path())
+        .chain(args.force.as_deref())
+        .collect();
+    write_output(&args.output, args.units, &inputs, &deck, &what)
+}
+
+fn options(args: &PlanarArgs, car: &PlanarCar) -> Result<PlanarExport> {
+    let speed = args
+        .initial_velocity
+        .as_deref()
+        .map(|t| parse_quantity(t, Dimension::Velocity).context("--initial-velocity"))
+        .transpose()?;
+    let title = format!(
+        "{} (from {})",
+        car.name().unwrap_or("planar car"),
+        args.car.display()
+    );
+    Ok(PlanarExport {
+        units: args.units,
+        origin: origin(&args.origin)?,
+        spacing: spacing(&args.spacing)?,
+        id_offset: args.id_offset,
+        attach: [args.attach_left.clone(), args.attach_right.clone()],
+        speed,
+        forces: forces(args)?,
+        output_interval: args
+            .output_interval
+            .as_deref()
+            .map(|t| time("output-interval", t))
+            .transpose()?,
+        increment: args
+            .increment
+            .as_deref()
+            .map(|t| time("increment", t))
+            .transpose()?,
+        output_every: args.output_every,
+        prefix: args.prefix.clone(),
+        title,
+    })
+}
+
+fn forces(args: &PlanarArgs) -> Result<Option<Forces>> {
+    let Some(path) = &args.force else {
+        return Ok(None);
+    };
+    let (series, _) = force_series(path, args.column.as_deref())?;
+    let lateral = parse_quantity(&args.lateral, Dimension::Length).context("--lateral")?;
+    let parts: Vec<&str> = args.direction.split(',').collect();
+    let direction = match parts.as_slice() {
+        [x, y] => [x.trim().parse::<f64>(), y.trim().parse::<f64>()],
+        _ => bail!("--direction '{}': expected x,y", args.direction),
+    };
+    let [Ok(x), Ok(y)] = direction else {
+        bail!("--direction '{}': expected two numbers x,y", args.direction);
+    };
+    let load = Load {
+        lateral,
+        anchor: None,
+        direction: [x, y],
+        force: series.values().to_vec(),
+    };
+    Ok(Some(Forces {
+        step: series.step(),
+        loads: vec![load],
+    }))
+}
