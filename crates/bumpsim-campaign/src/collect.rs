@@ -136,19 +136,18 @@ fn read_row(dir: &Path, spec: &Spec, run: usize, folder: &str) -> Result<Vec<f64
         .responses
         .iter()
         .map(|r| {
-            readers::read(&folder, r).map_err(|message| CampaignError::Output {
+            readers::read(&folder, r).map_err(|source| CampaignError::Output {
                 run,
                 response: r.name.clone(),
-                message,
+                source: Box::new(source),
             })
         })
         .collect::<Result<Vec<f64>>>()?;
     if let Some(identify) = &spec.identify {
-        let parameters = crate::identify::identify_point(&folder, identify).map_err(|message| {
-            CampaignError::Output {
+        let parameters = crate::identify::identify_point(&folder, identify).map_err(|source| {
+            CampaignError::Identification {
                 run,
-                response: "identification".into(),
-                message,
+                source: Box::new(source),
             }
         })?;
         row.extend(parameters);

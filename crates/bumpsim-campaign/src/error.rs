@@ -1,6 +1,7 @@
 //! The errors of a campaign: each names the file, key, point or program it
 //! is about, so the engineer can fix the campaign file or the cluster setup.
 
+use crate::response::ResponseError;
 use std::path::PathBuf;
 
 /// Why a campaign cannot be set up, run, or collected.
@@ -83,15 +84,33 @@ pub enum CampaignError {
         /// Its error output or status.
         message: String,
     },
+    /// A `[[response]]` of the campaign file is not usable.
+    #[error("{path}: {key}: {source}")]
+    Response {
+        /// The campaign file.
+        path: PathBuf,
+        /// The response (`response[2] 'peak'`).
+        key: String,
+        /// What is wrong.
+        source: ResponseError,
+    },
     /// A point's output cannot be read (missing, corrupt, not finite).
-    #[error("point {run}: response '{response}': {message}")]
+    #[error("point {run}: response '{response}': {source}")]
     Output {
         /// The point's run number.
         run: usize,
         /// The response.
         response: String,
-        /// What is wrong.
-        message: String,
+        /// What is wrong (boxed: it is large beside the other variants).
+        source: Box<ReadError>,
+    },
+    /// A point's model cannot be identified from its outputs.
+    #[error("point {run}: response 'identification': {source}")]
+    Identification {
+        /// The point's run number.
+        run: usize,
+        /// Why not (boxed: it is large beside the other variants).
+        source: Box<PointIdentifyError>,
     },
     /// Nothing to collect or fit.
     #[error("{0}")]
@@ -116,6 +135,152 @@ pub enum CampaignError {
         /// The cause.
         source: std::io::Error,
     },
+}
+
+/// Why a point's response cannot be read: the output file is missing,
+/// unreadable, of a layout the reader does not know, or holds no finite
+/// values of the quantity. Never read as a zero.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ReadError {
+    /// The file cannot be read.
+    #[error("{path}: cannot read: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// A word where a number should be.
+    #[error("{path}:{line}: '{word}' is not a finite number")]
+    NotANumber {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The word.
+        word: String,
+    },
+    /// The file holds no value of the quantity.
+    #[error("{path}: no values of '{quantity}'")]
+    NoValues {
+        /// The file.
+        path: PathBuf,
+        /// The quantity asked for.
+        quantity: String,
+    },
+    /// A quantity not of the reader's form.
+    #[error("quantity '{quantity}': expected {expected}")]
+    Quantity {
+        /// The quantity given.
+        quantity: String,
+        /// The reader's form of it, with an example.
+        expected: &'static str,
+    },
+    /// A row ends before the named column's value.
+    #[error("{path}:{line}: the row has no '{column}' value (truncated?)")]
+    NamedColumn {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The column's name.
+        column: String,
+    },
+    /// A row ends before the numbered column.
+    #[error("{path}:{line}: the row has no column {column} (truncated?)")]
+    Column {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The 1-based column after the id.
+        column: usize,
+    },
+    /// A dataset without the component asked for.
+    #[error("{path}:{line}: dataset {dataset} has no component {component} ({components})")]
+    Component {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The dataset.
+        dataset: String,
+        /// The component asked for.
+        component: String,
+        /// The dataset's components, comma-separated.
+        components: String,
+    },
+    /// A row ends before the component's value.
+    #[error("{path}:{line}: the row has no {component} value")]
+    ComponentValue {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The component.
+        component: String,
+    },
+    /// A line without the label asked for.
+    #[error("{path}:{line}: no '{label}' on the line")]
+    Label {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The label.
+        label: String,
+    },
+    /// A label at the end of its line.
+    #[error("{path}:{line}: no value after '{label}'")]
+    LabelValue {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The label.
+        label: String,
+    },
+    /// A mass the deck does not have.
+    #[error("{deck}: mass {mass}: the deck has {masses} masses")]
+    Mass {
+        /// The deck.
+        deck: PathBuf,
+        /// The 1-based mass asked for.
+        mass: usize,
+        /// The deck's masses.
+        masses: usize,
+    },
+    /// An empty history.
+    #[error("no values")]
+    Empty,
+    /// A non-finite value in the history.
+    #[error("a value of {value}")]
+    NonFinite {
+        /// The value.
+        value: f64,
+    },
+    /// The CalculiX results (the `.dat` file or the deck).
+    #[error(transparent)]
+    Calculix(#[from] bumpsim_export::ExportError),
+    /// The CSV table or its column.
+    #[error(transparent)]
+    Table(#[from] bumpsim_io::table::TableError),
+}
+
+/// Why a point's model cannot be identified.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum PointIdentifyError {
+    /// The point's study file or its cases.
+    #[error(transparent)]
+    Study(#[from] bumpsim_ident::StudyError),
+    /// The identification.
+    #[error(transparent)]
+    Identify(#[from] bumpsim_ident::IdentError),
+    /// The identified parameters are not finite.
+    #[error("the identified parameters are not finite")]
+    NotFinite,
 }
 
 /// Shorthand for results of this crate.

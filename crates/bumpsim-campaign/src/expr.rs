@@ -245,6 +245,15 @@ impl Parser<'_> {
     }
 }
 
+/// Whether `name` is a plain identifier as an expression reads one
+/// (letters, digits, `_`; not starting with a digit): the rule of factor,
+/// derived quantity and response names.
+pub fn is_name(name: &str) -> bool {
+    let mut chars = name.chars();
+    chars.next().is_some_and(|c| c.is_alphabetic() || c == '_')
+        && chars.all(|c| c.is_alphanumeric() || c == '_')
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

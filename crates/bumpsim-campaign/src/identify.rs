@@ -8,6 +8,7 @@
 //! `m1 [kg]`, ..., `c1 [Ns/m]`, ..., `k1 [N/m]` (the columns of `doe
 //! collect`), which `[regress]` may then name.
 
+use crate::error::PointIdentifyError;
 use bumpsim_ident::study::Study;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -42,16 +43,16 @@ impl IdentifySpec {
 
 /// Identifies the model of the point in `folder`: its parameters in the
 /// order of [`IdentifySpec::columns`], or why not.
-pub fn identify_point(folder: &Path, spec: &IdentifySpec) -> Result<Vec<f64>, String> {
-    let study = Study::read(&folder.join(STUDY_FILE)).map_err(|e| e.to_string())?;
-    let loaded = study.load(spec.dof).map_err(|e| e.to_string())?;
-    let mut settings = study.settings(spec.dof).map_err(|e| e.to_string())?;
+pub fn identify_point(folder: &Path, spec: &IdentifySpec) -> Result<Vec<f64>, PointIdentifyError> {
+    let study = Study::read(&folder.join(STUDY_FILE))?;
+    let loaded = study.load(spec.dof)?;
+    let mut settings = study.settings(spec.dof)?;
     settings.starts = spec.starts.unwrap_or(settings.starts);
     let cases = study.retarget(&loaded.cases, spec.dof);
-    let result = bumpsim_ident::identify(&cases, &settings, &|| {}).map_err(|e| e.to_string())?;
+    let result = bumpsim_ident::identify(&cases, &settings, &|| {})?;
     let parameters = result.model.parameters();
     match parameters.iter().all(|v| v.is_finite()) {
         true => Ok(parameters),
-        false => Err("the identified parameters are not finite".into()),
+        false => Err(PointIdentifyError::NotFinite),
     }
 }

@@ -12,6 +12,7 @@
 //! - [`state`]: the state file and the controller lock;
 //! - [`executor`]: local process pool and Slurm job arrays;
 //! - [`run`]: the controller loop with retries and resume;
+//! - [`response`]: a `[[response]]` (reader, file, quantity, statistic);
 //! - [`readers`]: responses from CalculiX `.dat`, CSV and LS-DYNA `glstat`;
 //! - [`identify`]: per-point identification from a study template;
 //! - [`collect`]: status, the collected table and its regression.
@@ -60,6 +61,7 @@ pub mod expr;
 pub mod identify;
 pub mod init;
 pub mod readers;
+pub mod response;
 pub mod run;
 pub mod spec;
 pub mod state;

@@ -260,10 +260,10 @@ impl Controller<'_> {
         let read = self.spec.responses.iter().try_for_each(|r| {
             readers::read(&folder, r)
                 .map(|_| ())
-                .map_err(|message| CampaignError::Output {
+                .map_err(|source| CampaignError::Output {
                     run,
                     response: r.name.clone(),
-                    message,
+                    source: Box::new(source),
                 })
         });
         let point = &mut self.state.points[i];

@@ -6,11 +6,17 @@
 
 use crate::error::{CampaignError, Result, read_error};
 use crate::expr::Expr;
+use crate::response::ResponseSpec;
 use bumpsim_doe::model::Factor;
 use bumpsim_doe::{DesignKind, DesignOptions};
+use bumpsim_io::table::split_header;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+
+/// The plain-name rule of factors, derived quantities and responses (the
+/// expressions' identifiers).
+pub use crate::expr::is_name;
 
 /// Most points a campaign may have (docs/limits.md).
 pub const MAX_POINTS: usize = 100_000;
@@ -105,52 +111,6 @@ pub struct SolverSpec {
     /// Program and arguments (`["ccx", "-i", "deck"]`): a program name
     /// on PATH or an absolute path (it runs in each point folder).
     pub command: Vec<String>,
-}
-
-/// One response read back per point.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ResponseSpec {
-    /// Column name in the collected table.
-    pub name: String,
-    /// `calculix` (the `.dat` of a bumpsim MSD deck), `calculix-dat` (any
-    /// `*NODE PRINT`/`*EL PRINT` block of any deck's `.dat`), `calculix-frd`,
-    /// `csv` (a `time,...` table
-    /// with unit headers), `lsdyna-glstat`, `lsdyna-nodout`, `lsdyna-rcforc`
-    /// or `lsdyna-deforc`.
-    pub reader: String,
-    /// The file in the point folder (`calculix`: the deck; the `.dat` beside it is read).
-    pub file: String,
-    /// `calculix`: `displacement` of `mass`, or `compression` x_mass − x_(mass+1);
-    /// `calculix-dat`: the block name (`displacements`, `forces`, `total force`,
-    /// `stresses`, ...); `calculix-frd`: `DATASET COMPONENT NODE`;
-    /// `csv`: the column; `lsdyna-glstat`: the quantity (`kinetic energy`, ...);
-    /// `lsdyna-nodout`: `NODE COLUMN` (`1001 x-disp`); `lsdyna-rcforc`:
-    /// `master|slave ID x|y|z|mass`; `lsdyna-deforc`: `ELEMENT LABEL` (`12 x-force`).
-    pub quantity: String,
-    /// `calculix`: the 1-based mass.
-    #[serde(default)]
-    pub mass: Option<usize>,
-    /// `calculix-dat`: the node or element id of the rows to read (absent:
-    /// the row without an id, as in `total force` blocks).
-    #[serde(default)]
-    pub entity: Option<u64>,
-    /// `calculix-dat`: the 1-based value column after the id (default 1).
-    #[serde(default)]
-    pub column: Option<usize>,
-    /// `calculix-dat`: only blocks of this set (default: any).
-    #[serde(default)]
-    pub set: Option<String>,
-    /// max | min | final | max-abs.
-    #[serde(default = "default_stat")]
-    pub stat: String,
-    /// Unit of the value (SI), for the table header.
-    #[serde(default)]
-    pub unit: Option<String>,
-}
-
-fn default_stat() -> String {
-    "max".into()
 }
 
 /// The regression of the collected table (`doe fit`).
@@ -365,7 +325,8 @@ impl Spec {
         let mut todo = Vec::new();
         for (name, text) in &self.derived {
             let key = format!("derived.{name}");
-            let (text, _) = split_unit(text);
+            // "expression [unit]": the unit is for the table header
+            let text = split_header(text).map_or(text.as_str(), |(expression, _)| expression);
             let expr = Expr::parse(text).map_err(|e| Spec::invalid(path, &key, e.to_string()))?;
             if known.contains(name) || !is_name(name) {
                 let message = format!("'{name}' is a factor already or not a plain name");
@@ -415,8 +376,8 @@ impl Spec {
             None => self
                 .derived
                 .get(name)
-                .and_then(|t| split_unit(t).1)
-                .map(String::from),
+                .and_then(|t| split_header(t))
+                .map(|(_, unit)| unit.to_string()),
         }
     }
 
@@ -469,7 +430,11 @@ impl Spec {
     fn validate_responses(&self, path: &Path) -> Result<()> {
         for (i, r) in self.responses.iter().enumerate() {
             let key = format!("response[{}] '{}'", i + 1, r.name);
-            crate::readers::check(r).map_err(|m| Spec::invalid(path, &key, m))?;
+            r.check().map_err(|source| CampaignError::Response {
+                path: path.into(),
+                key: key.clone(),
+                source,
+            })?;
             if self.responses[..i].iter().any(|o| o.name == r.name) {
                 return Err(Spec::invalid(
                     path,
@@ -543,26 +508,6 @@ impl Spec {
         }
         Ok(())
     }
-}
-
-/// A derived quantity's text split into the expression and its optional
-/// trailing unit: `"5.0e5 * m3 / 1670 [N/m]"` → (`5.0e5 * m3 / 1670`, `N/m`).
-pub fn split_unit(text: &str) -> (&str, Option<&str>) {
-    let trimmed = text.trim_end();
-    match (trimmed.strip_suffix(']'), trimmed.rfind('[')) {
-        (Some(_), Some(open)) => (
-            &trimmed[..open],
-            Some(trimmed[open + 1..trimmed.len() - 1].trim()),
-        ),
-        _ => (text, None),
-    }
-}
-
-/// Whether `name` is a plain identifier (letters, digits, `_`; not starting with a digit).
-pub fn is_name(name: &str) -> bool {
-    let mut chars = name.chars();
-    chars.next().is_some_and(|c| c.is_alphabetic() || c == '_')
-        && chars.all(|c| c.is_alphanumeric() || c == '_')
 }
 
 /// Finds `program` as the solver or scheduler runs it: a path with a `/`

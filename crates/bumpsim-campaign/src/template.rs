@@ -50,7 +50,7 @@ impl Template {
                 message: "'{{' without a closing '}}'".into(),
             })?;
             let name = after[2..end].trim();
-            if !crate::spec::is_name(name) {
+            if !crate::expr::is_name(name) {
                 return Err(CampaignError::Invalid {
                     path: path.into(),
                     key: format!("line {line}"),

@@ -3,22 +3,20 @@
 //! `.frd` file's nodal result blocks, in the deck's units. Layouts as
 //! CalculiX 2.20 writes them (the tests hold blocks of real output).
 
-use super::lsdyna::words;
-use crate::spec::ResponseSpec;
+use super::{found, number, read_text};
+use crate::error::ReadError;
+use crate::response::ResponseSpec;
+use bumpsim_core::fixed_width::words;
 use std::path::Path;
-
-fn read(path: &Path) -> Result<String, String> {
-    std::fs::read_to_string(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))
-}
 
 /// `.dat`: blocks headed `NAME (columns) for set SET and time T`, then one
 /// row per node or element (`ID v1 v2 ...`) or, for totals, one row of
 /// values (read by [`bumpsim_export::dat`], the one `.dat` reader). The
 /// history of `column` (1-based, after the id) of the rows of `entity` (or
 /// the id-less row) in the blocks named `r.quantity`.
-pub fn dat(path: &Path, r: &ResponseSpec) -> Result<Vec<f64>, String> {
-    let text = read(path)?;
-    let blocks = bumpsim_export::dat::parse(&text, path).map_err(|e| e.to_string())?;
+pub fn dat(path: &Path, r: &ResponseSpec) -> Result<Vec<f64>, ReadError> {
+    let text = read_text(path)?;
+    let blocks = bumpsim_export::dat::parse(&text, path)?;
     let wanted = r.quantity.trim().to_ascii_lowercase();
     let column = r.column.unwrap_or(1);
     let sets = blocks.iter().filter(|((name, set), _)| {
@@ -29,33 +27,31 @@ pub fn dat(path: &Path, r: &ResponseSpec) -> Result<Vec<f64>, String> {
         if row.id != r.entity {
             continue;
         }
-        let value = row.values.get(column.saturating_sub(1)).ok_or_else(|| {
-            format!(
-                "{}:{}: the row has no column {column} (truncated?)",
-                path.display(),
-                row.line
-            )
-        })?;
+        let value = row
+            .values
+            .get(column.saturating_sub(1))
+            .ok_or_else(|| ReadError::Column {
+                path: path.into(),
+                line: row.line,
+                column,
+            })?;
         values.push(*value);
     }
-    match values.is_empty() {
-        true => Err(format!("{}: no values of '{}'", path.display(), r.quantity)),
-        false => Ok(values),
-    }
+    found(values, path, &r.quantity)
 }
 
 /// CalculiX `.frd`: blocks `-4 DATASET`, `-5 COMPONENT` lines naming the
 /// columns, `-1 NODE values` rows, `-3` at the end; one value per block of
 /// the dataset for the node.
-pub fn frd(path: &Path, quantity: &str) -> Result<Vec<f64>, String> {
+pub fn frd(path: &Path, quantity: &str) -> Result<Vec<f64>, ReadError> {
     let parts: Vec<&str> = quantity.split_whitespace().collect();
     let [dataset, component, node] = parts.as_slice() else {
-        return Err(format!(
-            "quantity '{quantity}': expected 'DATASET COMPONENT NODE'"
-        ));
+        return Err(ReadError::Quantity {
+            quantity: quantity.into(),
+            expected: "'DATASET COMPONENT NODE'",
+        });
     };
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+    let text = read_text(path)?;
     let (mut inside, mut columns) = (false, Vec::<String>::new());
     let mut values = Vec::new();
     for (i, line) in text.lines().enumerate() {
@@ -68,40 +64,41 @@ pub fn frd(path: &Path, quantity: &str) -> Result<Vec<f64>, String> {
             Some("-5") if inside => columns.extend(w.get(1).cloned()),
             Some("-3") => inside = false,
             Some("-1") if inside && w.get(1).map(String::as_str) == Some(*node) => {
-                let at = columns
-                    .iter()
-                    .position(|c| c.eq_ignore_ascii_case(component))
-                    .ok_or_else(|| {
-                        format!(
-                            "{}:{}: dataset {dataset} has no component {component} ({})",
-                            path.display(),
-                            i + 1,
-                            columns.join(", ")
-                        )
-                    })?;
-                let word = w.get(2 + at).ok_or_else(|| {
-                    format!(
-                        "{}:{}: the row has no {component} value",
-                        path.display(),
-                        i + 1
-                    )
-                })?;
-                let value = word.parse::<f64>().ok().filter(|v| v.is_finite());
-                values.push(value.ok_or_else(|| {
-                    format!(
-                        "{}:{}: '{word}' is not a finite number",
-                        path.display(),
-                        i + 1
-                    )
-                })?);
+                let word = component_value(&w, &columns, path, i + 1, (dataset, component))?;
+                values.push(number(word, path, i + 1)?);
             }
             _ => {}
         }
     }
-    match values.is_empty() {
-        true => Err(format!("{}: no values of '{quantity}'", path.display())),
-        false => Ok(values),
-    }
+    found(values, path, quantity)
+}
+
+/// The word of `component` in a `-1 NODE values` row `w` of a dataset
+/// with `columns`.
+fn component_value<'a>(
+    w: &'a [String],
+    columns: &[String],
+    path: &Path,
+    line: usize,
+    (dataset, component): (&str, &str),
+) -> Result<&'a str, ReadError> {
+    let at = columns
+        .iter()
+        .position(|c| c.eq_ignore_ascii_case(component))
+        .ok_or_else(|| ReadError::Component {
+            path: path.into(),
+            line,
+            dataset: dataset.into(),
+            component: component.into(),
+            components: columns.join(", "),
+        })?;
+    w.get(2 + at)
+        .map(String::as_str)
+        .ok_or_else(|| ReadError::ComponentValue {
+            path: path.into(),
+            line,
+            component: component.into(),
+        })
 }
 
 #[cfg(test)]
@@ -181,10 +178,16 @@ mod tests {
             set: Some("OTHER".into()),
             ..response("forces", Some(1), None)
         };
-        assert!(dat(&path, &other_set).unwrap_err().contains("no values"));
+        assert!(
+            dat(&path, &other_set)
+                .unwrap_err()
+                .to_string()
+                .contains("no values")
+        );
         assert!(
             dat(&path, &response("displacements", Some(1), Some(4)))
                 .unwrap_err()
+                .to_string()
                 .contains("no column 4")
         );
         assert!(dat(&path, &response("stresses", Some(1), None)).is_err());
@@ -228,17 +231,20 @@ mod tests {
         assert!(
             frd(&path, "DISP D9 1")
                 .unwrap_err()
+                .to_string()
                 .contains("no component D9")
         );
         assert!(
             frd(&path, "STRESS SXX 1")
                 .unwrap_err()
+                .to_string()
                 .contains("no values")
         );
         std::fs::write(&path, FRD.replace("2.50000E-02", "nan")).unwrap();
         assert!(
             frd(&path, "DISP D2 1")
                 .unwrap_err()
+                .to_string()
                 .contains("not a finite number")
         );
     }

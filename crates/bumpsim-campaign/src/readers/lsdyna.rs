@@ -5,10 +5,10 @@
 //! Written from the files' layout (LS-DYNA Keyword User's Manual, database
 //! options): labels and fixed-width `E` numbers, which may touch
 //! (`x-1.2345E+01`, `0.0000E+00-1.2340E-03`). Every line is therefore split
-//! into words with a space put before a sign that does not follow an
-//! exponent's `E`. Not yet checked against files written by LS-DYNA itself
-//! (no solver here); a file whose layout they do not recognise gives an
-//! error naming the quantity, never a zero.
+//! into words with a space put before a sign that is not an exponent's
+//! ([`bumpsim_core::fixed_width`]). Not yet checked against files written
+//! by LS-DYNA itself (no solver here); a file whose layout they do not
+//! recognise gives an error naming the quantity, never a zero.
 //!
 //! - `glstat`: `name ..... value` lines, one block per output time:
 //!   quantity `kinetic energy`, `internal energy`, `total energy`, ...;
@@ -20,58 +20,29 @@
 //!   `y-force=`, `z-force=`, `resultant=` (and more) values: quantity
 //!   `ELEMENT x-force`.
 
+use super::{found, number, read_text};
+use crate::error::ReadError;
+use bumpsim_core::fixed_width;
 use std::path::Path;
 
-fn read(path: &Path) -> Result<String, String> {
-    std::fs::read_to_string(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))
-}
-
-/// The words of a line, with touching numbers and labels separated: a
-/// space goes before every sign that is not an exponent's (`E` after a
-/// digit) and after every `=`; hyphenated labels (`x-force=`) are then
-/// joined again.
+/// The words of a line: touching numbers separated by the one rule
+/// ([`bumpsim_core::fixed_width::words`]), a space after every `=`, and
+/// hyphenated labels that rule splits (`x-force=`) joined again.
 pub fn words(line: &str) -> Vec<String> {
-    let mut spaced = String::with_capacity(line.len() + 8);
-    let (mut before, mut previous) = (' ', ' ');
-    for c in line.chars() {
-        let exponent = matches!(previous, 'E' | 'e') && (before.is_ascii_digit() || before == '.');
-        if (c == '-' || c == '+') && !exponent {
-            spaced.push(' ');
-        }
-        spaced.push(c);
-        if c == '=' {
-            spaced.push(' ');
-        }
-        (before, previous) = (previous, c);
-    }
     let mut out: Vec<String> = Vec::new();
-    for w in spaced.split_whitespace() {
+    for w in fixed_width::words(&line.replace('=', "= ")) {
         let label_tail = w.starts_with('-') && w[1..].starts_with(char::is_alphabetic);
         match out.last_mut() {
-            Some(last) if label_tail && last.ends_with(char::is_alphabetic) => last.push_str(w),
-            _ => out.push(w.to_string()),
+            Some(last) if label_tail && last.ends_with(char::is_alphabetic) => last.push_str(&w),
+            _ => out.push(w),
         }
     }
     out
 }
 
-fn number(word: &str, path: &Path, line: usize) -> Result<f64, String> {
-    word.parse::<f64>()
-        .ok()
-        .filter(|v| v.is_finite())
-        .ok_or_else(|| format!("{}:{line}: '{word}' is not a finite number", path.display()))
-}
-
-fn found(values: Vec<f64>, path: &Path, quantity: &str) -> Result<Vec<f64>, String> {
-    match values.is_empty() {
-        true => Err(format!("{}: no values of '{quantity}'", path.display())),
-        false => Ok(values),
-    }
-}
-
 /// `glstat`: the history of a `name ..... value` quantity.
-pub fn glstat(path: &Path, quantity: &str) -> Result<Vec<f64>, String> {
-    let text = read(path)?;
+pub fn glstat(path: &Path, quantity: &str) -> Result<Vec<f64>, ReadError> {
+    let text = read_text(path)?;
     let wanted = quantity.trim().to_ascii_lowercase();
     let mut values = Vec::new();
     for (i, line) in text.lines().enumerate() {
@@ -86,20 +57,21 @@ pub fn glstat(path: &Path, quantity: &str) -> Result<Vec<f64>, String> {
 }
 
 /// Splits `ID NAME` (`1001 x-disp`, `master 1 x`: the id is the numeric word).
-fn id_and_name(quantity: &str) -> Result<(String, String), String> {
+fn id_and_name(quantity: &str) -> Result<(String, String), ReadError> {
     let parts: Vec<&str> = quantity.split_whitespace().collect();
     match parts.as_slice() {
         [id, name] => Ok((id.to_string(), name.to_ascii_lowercase())),
-        _ => Err(format!(
-            "quantity '{quantity}': expected 'ID NAME', e.g. '1001 x-disp'"
-        )),
+        _ => Err(ReadError::Quantity {
+            quantity: quantity.into(),
+            expected: "'ID NAME', e.g. '1001 x-disp'",
+        }),
     }
 }
 
 /// `nodout`: the history of one column of one node.
-pub fn nodout(path: &Path, quantity: &str) -> Result<Vec<f64>, String> {
+pub fn nodout(path: &Path, quantity: &str) -> Result<Vec<f64>, ReadError> {
     let (node, column) = id_and_name(quantity)?;
-    let text = read(path)?;
+    let text = read_text(path)?;
     let mut header: Vec<String> = Vec::new();
     let mut values = Vec::new();
     for (i, line) in text.lines().enumerate() {
@@ -113,12 +85,10 @@ pub fn nodout(path: &Path, quantity: &str) -> Result<Vec<f64>, String> {
             continue;
         }
         if let Some(j) = header.iter().position(|h| *h == column) {
-            let word = w.get(j + 1).ok_or_else(|| {
-                format!(
-                    "{}:{}: the row has no '{column}' value (truncated?)",
-                    path.display(),
-                    i + 1
-                )
+            let word = w.get(j + 1).ok_or_else(|| ReadError::NamedColumn {
+                path: path.into(),
+                line: i + 1,
+                column: column.clone(),
             })?;
             values.push(number(word, path, i + 1)?);
         }
@@ -127,14 +97,15 @@ pub fn nodout(path: &Path, quantity: &str) -> Result<Vec<f64>, String> {
 }
 
 /// `rcforc`: `master|slave ID component` of the contact force lines.
-pub fn rcforc(path: &Path, quantity: &str) -> Result<Vec<f64>, String> {
+pub fn rcforc(path: &Path, quantity: &str) -> Result<Vec<f64>, ReadError> {
     let parts: Vec<&str> = quantity.split_whitespace().collect();
     let [side, id, component] = parts.as_slice() else {
-        return Err(format!(
-            "quantity '{quantity}': expected 'master|slave ID x|y|z|mass'"
-        ));
+        return Err(ReadError::Quantity {
+            quantity: quantity.into(),
+            expected: "'master|slave ID x|y|z|mass'",
+        });
     };
-    let text = read(path)?;
+    let text = read_text(path)?;
     let mut values = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let w = words(line);
@@ -147,21 +118,26 @@ pub fn rcforc(path: &Path, quantity: &str) -> Result<Vec<f64>, String> {
 }
 
 /// The number after `label` (or `label=`) in the words of a line.
-fn labelled(w: &[String], label: &str, path: &Path, line: usize) -> Result<f64, String> {
+fn labelled(w: &[String], label: &str, path: &Path, line: usize) -> Result<f64, ReadError> {
+    let error = |at_end: bool| {
+        let (path, label) = (path.into(), label.into());
+        match at_end {
+            true => ReadError::LabelValue { path, line, label },
+            false => ReadError::Label { path, line, label },
+        }
+    };
     let at = w
         .iter()
         .position(|x| x.trim_end_matches('=').eq_ignore_ascii_case(label))
-        .ok_or_else(|| format!("{}:{line}: no '{label}' on the line", path.display()))?;
-    let word = w
-        .get(at + 1)
-        .ok_or_else(|| format!("{}:{line}: no value after '{label}'", path.display()))?;
+        .ok_or_else(|| error(false))?;
+    let word = w.get(at + 1).ok_or_else(|| error(true))?;
     number(word, path, line)
 }
 
 /// `deforc`: `ELEMENT LABEL` of the discrete element lines.
-pub fn deforc(path: &Path, quantity: &str) -> Result<Vec<f64>, String> {
+pub fn deforc(path: &Path, quantity: &str) -> Result<Vec<f64>, ReadError> {
     let (element, label) = id_and_name(quantity)?;
-    let text = read(path)?;
+    let text = read_text(path)?;
     let mut values = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let w = words(line);
@@ -219,6 +195,7 @@ mod tests {
         assert!(
             glstat(&path, "kinetic energy")
                 .unwrap_err()
+                .to_string()
                 .contains("not a finite number")
         );
     }

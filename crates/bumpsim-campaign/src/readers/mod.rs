@@ -22,56 +22,43 @@
 pub mod calculix;
 pub mod lsdyna;
 
-use crate::spec::ResponseSpec;
+use crate::error::ReadError;
+use crate::response::ResponseSpec;
 use std::path::Path;
 
-const READERS: [&str; 8] = [
-    "calculix",
-    "calculix-dat",
-    "calculix-frd",
-    "csv",
-    "lsdyna-glstat",
-    "lsdyna-nodout",
-    "lsdyna-rcforc",
-    "lsdyna-deforc",
-];
-const STATS: [&str; 4] = ["max", "min", "final", "max-abs"];
+/// The file's text.
+fn read_text(path: &Path) -> Result<String, ReadError> {
+    std::fs::read_to_string(path).map_err(|source| ReadError::Read {
+        path: path.into(),
+        source,
+    })
+}
 
-/// Checks a response specification (reader, statistic, quantity).
-pub fn check(r: &ResponseSpec) -> Result<(), String> {
-    if !crate::spec::is_name(&r.name) {
-        return Err("the name must be letters, digits and _".into());
-    }
-    if !READERS.contains(&r.reader.as_str()) {
-        return Err(format!(
-            "reader '{}': expected {}",
-            r.reader,
-            READERS.join(", ")
-        ));
-    }
-    if !STATS.contains(&r.stat.as_str()) {
-        return Err(format!("stat '{}': expected {}", r.stat, STATS.join(", ")));
-    }
-    if r.file.is_empty() || r.file.contains("..") || r.file.starts_with('/') {
-        return Err(format!("file '{}': a file inside the point folder", r.file));
-    }
-    match (r.reader.as_str(), r.quantity.as_str(), r.mass) {
-        ("calculix", "displacement" | "compression", Some(m)) if m >= 1 => Ok(()),
-        ("calculix", _, _) => Err(
-            "calculix: quantity = \"displacement\" or \"compression\" with mass = 1, 2, ...".into(),
-        ),
-        ("lsdyna-nodout" | "lsdyna-deforc", q, _) if q.split_whitespace().count() != 2 => Err(
-            format!("quantity '{q}': expected 'ID NAME' (\"1001 x-disp\", \"12 x-force\")"),
-        ),
-        ("lsdyna-rcforc", q, _) if q.split_whitespace().count() != 3 => Err(format!(
-            "quantity '{q}': expected 'master|slave ID x|y|z|mass'"
-        )),
-        _ => Ok(()),
+/// The values found of `quantity` in `path`; none is an error.
+fn found(values: Vec<f64>, path: &Path, quantity: &str) -> Result<Vec<f64>, ReadError> {
+    match values.is_empty() {
+        true => Err(ReadError::NoValues {
+            path: path.into(),
+            quantity: quantity.into(),
+        }),
+        false => Ok(values),
     }
 }
 
+/// `word` as a finite number, or an error naming the file and line.
+fn number(word: &str, path: &Path, line: usize) -> Result<f64, ReadError> {
+    word.parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite())
+        .ok_or_else(|| ReadError::NotANumber {
+            path: path.into(),
+            line,
+            word: word.into(),
+        })
+}
+
 /// Reads one response of the point in `folder`.
-pub fn read(folder: &Path, r: &ResponseSpec) -> Result<f64, String> {
+pub fn read(folder: &Path, r: &ResponseSpec) -> Result<f64, ReadError> {
     let path = folder.join(&r.file);
     let history = match r.reader.as_str() {
         "calculix" => msd_deck(&path, r)?,
@@ -87,12 +74,12 @@ pub fn read(folder: &Path, r: &ResponseSpec) -> Result<f64, String> {
 }
 
 /// The statistic of a history; an empty or non-finite history is an error.
-pub fn statistic(values: &[f64], stat: &str) -> Result<f64, String> {
+pub fn statistic(values: &[f64], stat: &str) -> Result<f64, ReadError> {
     if values.is_empty() {
-        return Err("no values".into());
+        return Err(ReadError::Empty);
     }
-    if let Some(v) = values.iter().find(|v| !v.is_finite()) {
-        return Err(format!("a value of {v}"));
+    if let Some(&value) = values.iter().find(|v| !v.is_finite()) {
+        return Err(ReadError::NonFinite { value });
     }
     let fold = |init: f64, f: fn(f64, f64) -> f64| values.iter().copied().fold(init, f);
     Ok(match stat {
@@ -103,17 +90,18 @@ pub fn statistic(values: &[f64], stat: &str) -> Result<f64, String> {
     })
 }
 
-fn msd_deck(deck: &Path, r: &ResponseSpec) -> Result<Vec<f64>, String> {
-    let results = bumpsim_export::calculix::read_results(deck).map_err(|e| e.to_string())?;
+fn msd_deck(deck: &Path, r: &ResponseSpec) -> Result<Vec<f64>, ReadError> {
+    let results = bumpsim_export::calculix::read_results(deck)?;
     let mass = r.mass.unwrap_or(1);
     let x = |i: usize| {
-        results.displacement.get(i - 1).ok_or_else(|| {
-            format!(
-                "{}: mass {i}: the deck has {} masses",
-                deck.display(),
-                results.displacement.len()
-            )
-        })
+        results
+            .displacement
+            .get(i - 1)
+            .ok_or_else(|| ReadError::Mass {
+                deck: deck.into(),
+                mass: i,
+                masses: results.displacement.len(),
+            })
     };
     match r.quantity.as_str() {
         "displacement" => Ok(x(mass)?.clone()),
@@ -125,13 +113,9 @@ fn msd_deck(deck: &Path, r: &ResponseSpec) -> Result<Vec<f64>, String> {
     }
 }
 
-fn csv_column(path: &Path, column: &str) -> Result<Vec<f64>, String> {
-    let table = bumpsim_io::table::Table::read(path).map_err(|e| e.to_string())?;
-    Ok(table
-        .column(column)
-        .map_err(|e| e.to_string())?
-        .values
-        .clone())
+fn csv_column(path: &Path, column: &str) -> Result<Vec<f64>, ReadError> {
+    let table = bumpsim_io::table::Table::read(path)?;
+    Ok(table.column(column)?.values.clone())
 }
 
 #[cfg(test)]
