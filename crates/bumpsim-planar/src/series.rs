@@ -93,6 +93,55 @@ fn file_error(path: &Path, message: String) -> PlanarError {
     }
 }
 
+/// What is wrong with a value of a planar series file (the file's error,
+/// [`PlanarError::File`], adds the file).
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SeriesError {
+    /// A `[chain]` key of the planar series (`sensor`, `safety`).
+    #[error("[chain] {key}: {source}")]
+    ChainKey {
+        /// The key.
+        key: &'static str,
+        /// The parser's message.
+        source: toml::de::Error,
+    },
+    /// The `[chain]` keys the 1-D series reads.
+    #[error("[chain]: {0}")]
+    Chain(toml::de::Error),
+    /// No `[[test]]`.
+    #[error("no [[test]]: a series needs at least one test")]
+    NoTest,
+    /// The test names as a list (empty, repeated, invisible characters).
+    #[error(transparent)]
+    Names(#[from] bumpsim_core::names::NameError),
+    /// A test name that is not a plain folder name.
+    #[error(
+        "test name \"{}\": letters, digits, '-', '_' and inner spaces only (it names a folder)",
+        bumpsim_core::names::escaped(.name)
+    )]
+    TestName {
+        /// The name.
+        name: String,
+    },
+    /// A test's speed.
+    #[error("test '{test}': {source}")]
+    Speed {
+        /// The test.
+        test: String,
+        /// What is wrong with it.
+        source: bumpsim_impact::synth::SpeedError,
+    },
+    /// A test's side.
+    #[error("test '{test}': {source}")]
+    Side {
+        /// The test.
+        test: String,
+        /// What is wrong with it.
+        source: crate::striker::SideError,
+    },
+}
+
 /// Reads a planar series file and makes every test.
 pub fn make_series(path: &Path) -> Result<Series, PlanarError> {
     let text =
@@ -101,8 +150,9 @@ pub fn make_series(path: &Path) -> Result<Series, PlanarError> {
     let base = path.parent().unwrap_or(Path::new("."));
     let car_path = base.join(&file.planar_car);
     let car = PlanarCar::read(&car_path)?;
-    let chain = chain(&file.chain, file.seed).map_err(|m| file_error(path, m))?;
-    names(&file.test).map_err(|m| file_error(path, m))?;
+    let series_error = |e: SeriesError| file_error(path, e.to_string());
+    let chain = chain(&file.chain, file.seed).map_err(series_error)?;
+    names(&file.test).map_err(series_error)?;
     let mut provenance = format!("# series file {}\n{text}\n", path.display());
     let car_text = std::fs::read_to_string(&car_path).unwrap_or_default();
     let _ = write!(
@@ -112,8 +162,7 @@ pub fn make_series(path: &Path) -> Result<Series, PlanarError> {
     );
     let mut tests = Vec::new();
     for (index, test) in file.test.iter().enumerate() {
-        let spec = striker_spec(test)
-            .map_err(|m| file_error(path, format!("test '{}': {m}", test.name)))?;
+        let spec = striker_spec(test).map_err(series_error)?;
         let (striker, _) = spec.striker()?;
         let recorded = record(&car, &test.name, &striker, &chain, index as u64)
             .map_err(|e| file_error(path, format!("test '{}': {e}", test.name)))?;
@@ -146,23 +195,22 @@ pub fn make_series(path: &Path) -> Result<Series, PlanarError> {
 /// Removes `key` from `table` and reads it as a `T`.
 fn take<T: serde::de::DeserializeOwned>(
     table: &mut toml::Table,
-    key: &str,
-) -> Result<Option<T>, String> {
+    key: &'static str,
+) -> Result<Option<T>, SeriesError> {
     let value = table.remove(key);
     value
         .map(|v| v.try_into())
         .transpose()
-        .map_err(|e: toml::de::Error| format!("[chain] {key}: {e}"))
+        .map_err(|source| SeriesError::ChainKey { key, source })
 }
 
 /// `[chain]`: `sensor` and `safety` here, the rest as the 1-D series reads it.
-fn chain(table: &toml::Table, seed: u64) -> Result<Chain, String> {
+fn chain(table: &toml::Table, seed: u64) -> Result<Chain, SeriesError> {
     let d = Chain::default();
     let mut rest = table.clone();
     let sensor: Option<[f64; 2]> = take(&mut rest, "sensor")?;
     let safety: Option<f64> = take(&mut rest, "safety")?;
-    let common: bumpsim_impact::synth::ChainFile =
-        rest.try_into().map_err(|e| format!("[chain]: {e}"))?;
+    let common: bumpsim_impact::synth::ChainFile = rest.try_into().map_err(SeriesError::Chain)?;
     Ok(Chain {
         measurement: common.resolve(&d.measurement, seed),
         sensor: sensor.unwrap_or(d.sensor),
@@ -171,34 +219,46 @@ fn chain(table: &toml::Table, seed: u64) -> Result<Chain, String> {
 }
 
 /// Test names become folder and file names: plain names, each once.
-fn names(tests: &[TestFile]) -> Result<(), String> {
+fn names(tests: &[TestFile]) -> Result<(), SeriesError> {
     if tests.is_empty() {
-        return Err("no [[test]]: a series needs at least one test".into());
+        return Err(SeriesError::NoTest);
     }
     let names = tests.iter().map(|t| t.name.as_str());
-    bumpsim_core::names::check_names("[[test]]", names).map_err(|e| e.to_string())?;
+    bumpsim_core::names::check_names("[[test]]", names)?;
     for t in tests {
         let plain = t.name.trim() == t.name
             && t.name
                 .chars()
                 .all(|c| c.is_ascii_alphanumeric() || "-_ ".contains(c));
         if !plain {
-            return Err(format!(
-                "test name \"{}\": letters, digits, '-', '_' and inner spaces only (it names a folder)",
-                bumpsim_core::names::escaped(&t.name)
-            ));
+            let name = t.name.clone();
+            return Err(SeriesError::TestName { name });
         }
     }
     Ok(())
 }
 
-fn striker_spec(t: &TestFile) -> Result<StrikerSpec, String> {
+/// The striker of a `[[test]]`: its case or geometry, side and speed.
+fn striker_spec(t: &TestFile) -> Result<StrikerSpec, SeriesError> {
+    let test = || t.name.clone();
     let speed = t
         .speed
         .as_ref()
         .map(bumpsim_impact::synth::speed_value)
-        .transpose()?;
-    let side = t.side.as_deref().map(str::parse).transpose()?;
+        .transpose()
+        .map_err(|source| SeriesError::Speed {
+            test: test(),
+            source,
+        })?;
+    let side = t
+        .side
+        .as_deref()
+        .map(str::parse)
+        .transpose()
+        .map_err(|source| SeriesError::Side {
+            test: test(),
+            source,
+        })?;
     Ok(StrikerSpec {
         case: t.case.clone(),
         angle: t.angle,

@@ -68,15 +68,23 @@ impl Side {
     }
 }
 
+/// A side's name that names neither side.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("'{text}': expected left or right")]
+pub struct SideError {
+    /// The name as given.
+    pub text: String,
+}
+
 impl std::str::FromStr for Side {
-    type Err = String;
+    type Err = SideError;
 
     /// `left` or `right` (any case).
-    fn from_str(text: &str) -> Result<Side, String> {
+    fn from_str(text: &str) -> Result<Side, SideError> {
         match text.trim().to_ascii_lowercase().as_str() {
             "left" => Ok(Side::Left),
             "right" => Ok(Side::Right),
-            _ => Err(format!("'{text}': expected left or right")),
+            _ => Err(SideError { text: text.into() }),
         }
     }
 }
