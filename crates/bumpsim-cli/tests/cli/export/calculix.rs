@@ -1,0 +1,140 @@
+//! CalculiX decks of the MSD car: a run against `simulate`, and the deck
+//! included in a model that has its own `Nall`.
+
+use super::{ccx_available, run_ccx};
+use crate::util::*;
+
+#[test]
+fn calculix_run_of_the_exported_deck_matches_simulate() {
+    if !ccx_available() {
+        return;
+    }
+    let dir = scratch("calculix");
+    let deck = dir.join("car.inp");
+    let force = example("pendulum-force.csv");
+    let export = bumpsim(&[
+        "export",
+        "calculix",
+        example("car-3dof.toml").to_str().unwrap(),
+        "--force",
+        force.to_str().unwrap(),
+        "-o",
+        deck.to_str().unwrap(),
+    ]);
+    assert!(export.status.success(), "{}", text(&export.stderr));
+    run_ccx(&dir, "car");
+    let ccx_csv = dir.join("ccx.csv");
+    let read = bumpsim(&[
+        "export",
+        "read-calculix",
+        deck.to_str().unwrap(),
+        "-o",
+        ccx_csv.to_str().unwrap(),
+    ]);
+    assert!(read.status.success(), "{}", text(&read.stderr));
+    let sim_csv = dir.join("sim.csv");
+    let sim = simulate(
+        &example("car-3dof.toml"),
+        &force,
+        &["-o", sim_csv.to_str().unwrap()],
+    );
+    assert!(sim.status.success());
+    let ((_, ours), (header, theirs)) = (read_csv(&sim_csv), read_csv(&ccx_csv));
+    assert_eq!(&header[..2], ["time [s]", "x1 [m]"]);
+    // ccx prints from the first increment on: its row k is our row k + 1
+    assert_eq!(theirs.len() + 1, ours.len());
+    let peak = ours.iter().fold(0.0_f64, |m, r| m.max(r[2].abs()));
+    let mut worst = 0.0_f64;
+    for (a, b) in theirs.iter().zip(&ours[1..]) {
+        assert!((a[0] - b[0]).abs() < 1e-9, "time {} vs {}", a[0], b[0]);
+        worst = worst.max((a[1] - b[2]).abs());
+    }
+    assert!(
+        worst <= 0.01 * peak,
+        "m1 differs by {worst} m, peak {peak} m"
+    );
+}
+
+/// ccx's equation count and the bumper's lateral displacements (nodes 2, 3)
+/// of `main.inp` in `dir` with `include` pasted before the step.
+fn bumper_under_lateral_load(
+    dir: &std::path::Path,
+    name: &str,
+    include: &str,
+) -> (usize, Vec<f64>) {
+    let deck = format!(
+        "*NODE, NSET=Nall\n1, 0.0, 0.0, 0.0\n2, 0.0, 1.0, 0.0\n3, 0.0, 2.0, 0.0\n\
+         *ELEMENT, TYPE=SPRINGA, ELSET=Ebumper\n1, 1, 2\n2, 2, 3\n*SPRING, ELSET=Ebumper\n\n1000.0\n\
+         *BOUNDARY\n1, 1, 3\nNall, 1, 1\nNall, 3, 3\n{include}\
+         *STEP\n*STATIC\n*CLOAD\n3, 2, 10.0\n*NODE PRINT, NSET=Nall\nU\n*END STEP\n"
+    );
+    std::fs::write(dir.join(format!("{name}.inp")), deck).unwrap();
+    let log = run_ccx(dir, name);
+    let equations = log
+        .split("number of equations")
+        .nth(1)
+        .and_then(|rest| rest.split_whitespace().next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{name}: no equation count in {log}"));
+    let dat = std::fs::read_to_string(dir.join(format!("{name}.dat"))).unwrap();
+    let lateral = dat
+        .lines()
+        .map(|l| l.split_whitespace().collect::<Vec<_>>())
+        .filter(|w| w.len() == 4 && (w[0] == "2" || w[0] == "3"))
+        .map(|w| w[2].parse().unwrap())
+        .collect();
+    (equations, lateral)
+}
+
+#[test]
+fn a_calculix_car_included_in_a_model_with_its_own_nall_leaves_that_model_alone() {
+    if !ccx_available() {
+        return;
+    }
+    let dir = scratch("calculix-include");
+    let car = example("car-3dof.toml");
+    let export = |prefix: &str| {
+        let run = bumpsim(&[
+            "export",
+            "calculix",
+            car.to_str().unwrap(),
+            "-o",
+            dir.join("car.inp").to_str().unwrap(),
+            "--id-offset",
+            "1000",
+            "--initial-velocity",
+            "1",
+            "--prefix",
+            prefix,
+        ]);
+        assert!(run.status.success(), "{}", text(&run.stderr));
+    };
+    // the bumper alone: two springs of 1000 N/m in y under 10 N
+    let (alone, response) = bumper_under_lateral_load(&dir, "alone", "");
+    assert_eq!(response.len(), 2);
+    assert!(
+        (response[0] - 0.01).abs() < 1e-9 && (response[1] - 0.02).abs() < 1e-9,
+        "{response:?}"
+    );
+    // with the car included (its last mass grounded by the user: a static step)
+    export("BUMPSIM_");
+    let include = "*INCLUDE, INPUT=car.inp\n*BOUNDARY\n1003, 1, 1\n";
+    let (with_car, response_with_car) = bumper_under_lateral_load(&dir, "with-car", include);
+    assert_eq!(
+        with_car,
+        alone + 2,
+        "the car adds its two free masses' x only"
+    );
+    assert_eq!(response_with_car.len(), 2);
+    for (a, b) in response.iter().zip(&response_with_car) {
+        assert!(
+            (a - b).abs() <= 1e-12 * a.abs(),
+            "{response:?} vs {response_with_car:?}"
+        );
+    }
+    // control: without a prefix the car's set is NALL, the user's Nall: the
+    // car's cross-axis constraints then hold the bumper, as before issue 16
+    export("");
+    let (clashed, clashed_response) = bumper_under_lateral_load(&dir, "clashed", include);
+    assert!(clashed < with_car && clashed_response.iter().all(|u| u.abs() < 1e-12));
+}
