@@ -15,12 +15,19 @@
 //! | [`doe`] | bumpsim-doe | designs, regression, prediction, stiffness, reachable regions |
 //! | [`export`] | bumpsim-export | LS-DYNA and CalculiX decks |
 //! | [`planar`] | bumpsim-planar | the planar car with yaw: angled, offset, corner and pole impacts |
-//! | [`report`] | bumpsim-report | SVG plots and self-contained HTML reports |
-//! | [`campaign`] | bumpsim-campaign | campaigns of FE runs: templates, local and Slurm executors, collection |
+//! | [`fe`] | bumpsim-fe | a parametric bumper coupled to the MSD car, run in CalculiX or written for LS-DYNA |
+//! | `report` | bumpsim-report | SVG plots and self-contained HTML reports (feature `report`) |
+//! | `campaign` | bumpsim-campaign | campaigns of FE runs: templates, local and Slurm executors, collection (feature `campaign`) |
 //!
 //! and [`prelude`] brings the main types of all of them into scope. Units
 //! are SI throughout (kg, m, s, N). `examples/identify.rs` runs the main job
 //! end to end: `cargo run --example identify`.
+//!
+//! **Features** (all on by default except `png`): `report` (plots and HTML
+//! reports: plotters and its fonts), `campaign` (FE campaigns; builds the
+//! report crate too) and `png` (`LinePlot::png`: plotters' bitmap backend
+//! and PNG encoder). `default-features = false` keeps the models, solvers
+//! and decks only.
 //!
 //! ```
 //! use bumpsim::prelude::*;
@@ -28,30 +35,53 @@
 //! let car = MsdModel::new(vec![300.0, 900.0], vec![4e3], vec![8e5]).unwrap();
 //! assert_eq!(car.dof(), 2);
 //! ```
+//!
+//! The prelude reaches across the crates: the thesis's 3-DOF car as an
+//! LS-DYNA include in mm-s-t units, and the parametric FE bumper's settings.
+//!
+//! ```
+//! use bumpsim::prelude::*;
+//! let car = MsdModel::new(vec![1.8, 74.8, 1670.0], vec![6.46e6, 1.97e5], vec![4.75e5, 5.0e5])?;
+//! let options = LsDynaOptions { id_offset: 900_000, ..Default::default() };
+//! let deck = lsdyna_include(&car, &options)?;
+//! assert!(deck.contains("*ELEMENT_DISCRETE"));
+//! let run = LsDynaRun { units: UnitSystem::MmSTonne, duration: 0.08, output_interval: 1e-4 };
+//! assert_eq!(run.units.symbols()[1], "mm");
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 #![forbid(unsafe_code)]
 
+#[cfg(feature = "campaign")]
 pub use bumpsim_campaign as campaign;
 pub use bumpsim_core as core;
 pub use bumpsim_doe as doe;
 pub use bumpsim_export as export;
+pub use bumpsim_fe as fe;
 pub use bumpsim_ident as ident;
 pub use bumpsim_impact as impact;
 pub use bumpsim_io as io;
 pub use bumpsim_planar as planar;
+#[cfg(feature = "report")]
 pub use bumpsim_report as report;
 pub use bumpsim_signal as signal;
 
-/// The main types of every bumpsim crate.
+/// The main types of every bumpsim crate: each crate's own prelude, globbed
+/// (polars' layout), and by name the main types of the crates that have no
+/// prelude yet.
 pub mod prelude {
-    pub use bumpsim_campaign::spec::Spec as CampaignSpec;
     pub use bumpsim_core::prelude::*;
+    pub use bumpsim_export::prelude::*;
+    pub use bumpsim_fe::prelude::*;
+    #[cfg(feature = "report")]
+    pub use bumpsim_report::prelude::*;
+
+    #[cfg(feature = "campaign")]
+    pub use bumpsim_campaign::spec::Spec as CampaignSpec;
     pub use bumpsim_doe::{Design, DesignKind, DesignOptions, Factor, Fit, ModelFile};
-    pub use bumpsim_export::{CalculixOptions, LsDynaOptions, UnitSystem};
     pub use bumpsim_ident::{Identification, LoadCase, Settings, Study, identify};
     pub use bumpsim_impact::{Bumper, ImpactResult, Preset, Scenario};
     pub use bumpsim_io::{Car, TestData};
     pub use bumpsim_planar::{PlanarCar, PlanarResult, Striker};
-    pub use bumpsim_report::{Html, LinePlot};
     pub use bumpsim_signal::{Cfc, Pipeline};
 }

@@ -32,6 +32,16 @@ pub use calculix::{CalculixOptions, calculix_deck};
 pub use layout::{Axis, Layout, UnitSystem};
 pub use lsdyna::{LsDynaOptions, lsdyna_include};
 
+/// The main types and writers, for `use bumpsim_export::prelude::*` (the
+/// facade's prelude globs it; `Layout` stays out, several crates have one).
+pub mod prelude {
+    pub use crate::ExportError;
+    pub use crate::calculix::{Analysis, CalculixOptions, calculix_deck};
+    pub use crate::layout::{Axis, UnitSystem};
+    pub use crate::lsdyna::{LsDynaOptions, lsdyna_include};
+    pub use crate::spring::{SpringCurve, SpringOptions};
+}
+
 use std::path::PathBuf;
 
 /// What bounds the ids of a deck: LS-DYNA's 8-column fields or CalculiX's

@@ -30,6 +30,15 @@ pub mod lsdyna;
 pub mod run;
 pub mod text;
 
+/// The main types, for `use bumpsim_fe::prelude::*` (the facade's prelude
+/// globs it).
+pub mod prelude {
+    pub use crate::FeError;
+    pub use crate::bumper::BumperMesh;
+    pub use crate::lsdyna::{LsDynaRun, lsdyna_deck};
+    pub use crate::run::{FeResult, FeRun};
+}
+
 /// Why an FE run cannot be set up, run or read.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]

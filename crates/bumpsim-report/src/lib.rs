@@ -40,6 +40,15 @@ pub use heatmap::HeatMap;
 pub use html::Html;
 pub use plot::{LinePlot, PlotError, Series, Style};
 
+/// The main types, for `use bumpsim_report::prelude::*` (the facade's
+/// prelude globs it).
+pub mod prelude {
+    pub use crate::bar::BarPlot;
+    pub use crate::heatmap::HeatMap;
+    pub use crate::html::Html;
+    pub use crate::plot::{LinePlot, PlotError, Series, Style};
+}
+
 use std::sync::Once;
 
 static FONT: Once = Once::new();
