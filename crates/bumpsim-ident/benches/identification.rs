@@ -7,9 +7,9 @@
 //! three-test example. Figures: docs/benchmarks.md.
 
 use bumpsim_core::model::MsdModel;
+use bumpsim_estimate::lm::LeastSquares;
 use bumpsim_ident::case::{LoadCase, Objective};
 use bumpsim_ident::estimate::{Settings, identify};
-use bumpsim_ident::lm::LeastSquares;
 use bumpsim_ident::study::Study;
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::DMatrix;

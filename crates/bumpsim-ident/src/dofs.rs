@@ -79,12 +79,12 @@ impl Sweep {
         &mut self,
         cases: &[LoadCase],
         mut settings: Settings,
-        progress: &(dyn Fn() + Sync),
+        observer: &dyn bumpsim_estimate::observer::Observer,
     ) -> Result<Identification, IdentError> {
         if let Some(last) = &self.last {
             settings.continue_from(last);
         }
-        let result = identify(cases, &settings, progress)?;
+        let result = identify(cases, &settings, observer)?;
         self.last = Some(result.model.clone());
         Ok(result)
     }

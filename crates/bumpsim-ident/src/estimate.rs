@@ -1,23 +1,30 @@
-//! Multi-start bounded identification of one model from several load cases.
+//! Multi-start bounded identification of one chain model from several
+//! load cases, on the estimation layer of `bumpsim-estimate`.
 //!
 //! Parameters are estimated as `p = ln θ` (kg, N·s/m and N/m spanning seven
-//! decades become comparable) with [`lm`] within the bounds
+//! decades become comparable) with the layer's bounded LM within the bounds
 //! (thesis: every parameter ≥ 1 SI). Starts (the user's, the data-derived
 //! [`data_start`], continuation starts from a smaller model, random ones)
-//! are [`crate::search`]'s. Starts run in
-//! parallel (rayon); a start whose model cannot be simulated is counted as
-//! failed, never propagated.
+//! are [`crate::search`]'s; the layer runs them in stages, refines around
+//! the best, polishes the best few and tallies them
+//! ([`bumpsim_estimate::multistart`]); a start whose model cannot be
+//! simulated is counted as failed, never propagated. Uncertainty, fit % and
+//! the reduced-model advice are the layer's too ([`crate::stats`],
+//! [`crate::reduce`]).
 
 use crate::case::{CaseError, LoadCase, Objective, VALID_RANGE};
-use crate::lm::{self, LeastSquares, Outcome, Stop};
-use crate::polish::{REFINE_FTOL, SCREEN_FTOL, candidates, polish};
-use crate::search::{
-    Fate, Goal, ROUND, Run, around, exploring, representative, staged, starting_points,
-};
+use crate::search::starting_points;
 use crate::stats::{Uncertainty, uncertainty};
 use bumpsim_core::model::{MsdModel, ParameterKind, parameter_count, parameter_kind};
+use bumpsim_estimate::lm::{self, LeastSquares, Stop};
+use bumpsim_estimate::multistart::{self, Search, Searched};
+use bumpsim_estimate::observer::Observer;
+use bumpsim_estimate::search::exploring;
 use serde::Serialize;
 use std::time::Instant;
+
+pub use bumpsim_estimate::bounds::Bounds;
+pub use bumpsim_estimate::multistart::Starts;
 
 /// Why identification cannot run.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -42,22 +49,8 @@ pub enum IdentError {
         theta: Vec<f64>,
     },
     /// Every start failed.
-    #[error("all {starts} starts failed: the model could not be simulated from any of them")]
-    AllFailed {
-        /// Number of starts.
-        starts: usize,
-    },
-}
-
-/// Bounds and fixed values per parameter, SI, thesis order `[m.., c.., k..]`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Bounds {
-    /// Lower bounds (> 0).
-    pub lower: Vec<f64>,
-    /// Upper bounds (may be infinite).
-    pub upper: Vec<f64>,
-    /// Fixed values (not estimated).
-    pub fixed: Vec<Option<f64>>,
+    #[error(transparent)]
+    AllFailed(#[from] multistart::AllFailed),
 }
 
 /// Whether `[lower, upper]` (SI) bounds a parameter the search can use:
@@ -74,28 +67,26 @@ pub fn usable_fixed(value: f64) -> bool {
     value.is_finite() && value > 0.0
 }
 
-impl Bounds {
-    /// Every parameter in `[lower, ∞)`, none fixed (the thesis: `lower` = 1).
-    pub fn uniform(dof: usize, lower: f64) -> Bounds {
-        let p = parameter_count(dof);
-        Bounds {
-            lower: vec![lower; p],
-            upper: vec![f64::INFINITY; p],
-            fixed: vec![None; p],
-        }
-    }
+/// The bounds of a `dof`-mass chain: every parameter in `[lower, ∞)`, none
+/// fixed (the thesis: `lower` = 1).
+pub fn uniform_bounds(dof: usize, lower: f64) -> Bounds {
+    Bounds::uniform(parameter_count(dof), lower)
+}
 
-    fn check(&self, dof: usize) -> Result<(), IdentError> {
+/// Checks `bounds` for a `dof`-mass chain: one entry per parameter, each
+/// usable ([`usable_bounds`], [`usable_fixed`]).
+fn check_bounds(bounds: &Bounds, dof: usize) -> Result<(), IdentError> {
+    {
         let p = parameter_count(dof);
         let setting = |reason: String| IdentError::Setting {
             name: "bounds",
             reason,
         };
-        if self.lower.len() != p || self.upper.len() != p || self.fixed.len() != p {
+        if bounds.lower.len() != p || bounds.upper.len() != p || bounds.fixed.len() != p {
             return Err(setting(format!("{p} parameters for {dof} DOF")));
         }
         for i in 0..p {
-            let (lo, hi) = (self.lower[i], self.upper[i]);
+            let (lo, hi) = (bounds.lower[i], bounds.upper[i]);
             let (floor, ceiling) = (*VALID_RANGE.start(), *VALID_RANGE.end());
             if !usable_bounds(lo, hi) {
                 let name = bumpsim_core::model::parameter_name(dof, i);
@@ -104,7 +95,7 @@ impl Bounds {
                     "{name}: need {floor:e} {unit} <= lower < upper with lower below {ceiling:e} {unit}, got [{lo}, {hi}] {unit}"
                 )));
             }
-            if let Some(v) = self.fixed[i].filter(|v| !usable_fixed(*v)) {
+            if let Some(v) = bounds.fixed[i].filter(|v| !usable_fixed(*v)) {
                 let name = bumpsim_core::model::parameter_name(dof, i);
                 let unit = parameter_kind(dof, i).0.unit();
                 return Err(IdentError::Setting {
@@ -149,7 +140,7 @@ impl Settings {
     pub fn new(dof: usize, starts: usize) -> Settings {
         Settings {
             dof,
-            bounds: Bounds::uniform(dof, 1.0),
+            bounds: uniform_bounds(dof, 1.0),
             starts,
             seed: 1,
             start: None,
@@ -182,53 +173,6 @@ pub struct CaseFit {
     pub fit_percent: f64,
     /// Samples in the window.
     pub samples: usize,
-}
-
-/// Start statistics.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Starts {
-    /// Starts run.
-    pub total: usize,
-    /// Starts whose run converged.
-    pub converged: usize,
-    /// Starts that could not be evaluated or ended non-finite.
-    pub failed: usize,
-    /// Starts that reached the best objective (within 1e-6 relative): by
-    /// their own run, or merged into a start that did.
-    pub reached_best: usize,
-    /// Starts that reached the best objective by their own (polished) run;
-    /// the others of `reached_best` merged into one of these.
-    pub reached_best_alone: usize,
-    /// Starts that reached the best *fit*: their run (polished or only
-    /// screened), or the run they merged into, ended within one noise
-    /// variance of the best objective, `F ≤ F_best (1 + 1/(n − q))`. The
-    /// data cannot tell such a fit from the best (its likelihood-ratio
-    /// statistic `n ln(F/F_best)` is about 1, where a 5 % test needs 3.84);
-    /// in a flat valley (a sloppy 5-DOF model) starts stop at objectives
-    /// that differ in the fourth digit, which the 1e-6 count calls misses.
-    pub reached_best_fit: usize,
-    /// Starts of `reached_best_fit` that got there by their own run.
-    pub reached_best_fit_alone: usize,
-    /// Starts abandoned at a stage end, too far above the incumbent
-    /// ([`crate::search::STAGES`]).
-    pub abandoned: usize,
-    /// Starts merged into a better start next to them
-    /// ([`crate::search::MERGE_DISTANCE`], [`crate::polish::CLUSTER_DISTANCE`]).
-    pub merged: usize,
-    /// Starts whose screened optimum was too far above the best to be
-    /// polished ([`crate::polish`]).
-    pub unpolished: usize,
-    /// Starts drawn around the best screened optimum of the others (the
-    /// search's second level, [`crate::search::REFINED`]); they are among
-    /// `total`.
-    pub refined: usize,
-    /// Exploring starts (those not drawn around the best, `total −
-    /// refined`) that reached the best fit by their own run or by the run
-    /// they merged into: how many independent draws found the best basin.
-    /// One means the best was found by a single start.
-    pub explored_best_fit: usize,
-    /// Index of the best start (0 = the user's or the data start).
-    pub best: usize,
 }
 
 /// The identified model and everything said about it.
@@ -393,7 +337,7 @@ fn check(cases: &[LoadCase], settings: &Settings) -> Result<(), IdentError> {
             format!("seed start {}: {p} positive values expected", bad + 1),
         );
     }
-    settings.bounds.check(settings.dof)?;
+    check_bounds(&settings.bounds, settings.dof)?;
     if settings.bounds.fixed.iter().take(p).all(Option::is_some) {
         return setting(
             "fixed",
@@ -406,104 +350,16 @@ fn check(cases: &[LoadCase], settings: &Settings) -> Result<(), IdentError> {
     Ok(())
 }
 
-/// The outcome of the best finished run with a finite objective.
-fn best_run(runs: &[Run]) -> Option<Outcome> {
-    runs.iter()
-        .filter(|r| r.fate == Fate::Finished && r.outcome.objective.is_finite())
-        .map(|r| &r.outcome)
-        .min_by(|a, b| a.objective.total_cmp(&b.objective))
-        .cloned()
-}
-
-/// The start statistics of staged runs; an error when every start failed.
-/// `freedom` is n − q (residuals less free parameters): one noise variance
-/// of the best fit is `F_best / freedom`.
-/// The warning when at most one exploring start found the best fit: the
-/// starts drawn around the best refine its basin and do not confirm that
-/// no better one exists.
-fn single_start_warning(starts: &Starts) -> Option<String> {
-    let exploring = starts.total - starts.refined;
-    if exploring < 2 || starts.explored_best_fit > 1 {
-        return None;
-    }
-    let around = match starts.refined {
-        0 => String::new(),
-        n => format!(
-            " ({n} more drawn around the best refine its basin but do not search elsewhere)"
-        ),
-    };
-    Some(format!(
-        "{} of the {exploring} exploring starts came within the noise of the best objective{around}: a better minimum may exist; raise the number of starts",
-        starts.explored_best_fit
-    ))
-}
-
-/// `exploring`: how many of `runs` (the first ones) explored; the rest were
-/// drawn around the best so far.
-pub(crate) fn tally(runs: &[Run], freedom: usize, exploring: usize) -> Result<Starts, IdentError> {
-    let failed = runs
-        .iter()
-        .filter(|r| !r.outcome.objective.is_finite())
-        .count();
-    let (best, outcome) = runs
-        .iter()
-        .enumerate()
-        .filter(|(_, r)| r.fate == Fate::Finished && r.outcome.objective.is_finite())
-        .map(|(i, r)| (i, &r.outcome))
-        .min_by(|a, b| a.1.objective.total_cmp(&b.1.objective))
-        .ok_or(IdentError::AllFailed { starts: runs.len() })?;
-    let exact = outcome.objective * (1.0 + 1e-6) + 1e-300;
-    let noise = outcome.objective * (1.0 + 1.0 / freedom.max(1) as f64) + 1e-300;
-    // a run that ended below `bar` by itself: polished, or a screened
-    // optimum left unpolished (for the noise bar only: the exact bar asks
-    // for the thesis's tolerances)
-    let own = |i: usize, bar: f64, screened: bool| {
-        let ended =
-            runs[i].fate == Fate::Finished || (screened && runs[i].fate == Fate::Unpolished);
-        ended && runs[i].outcome.objective <= bar
-    };
-    let reached = |i: usize, bar: f64, screened: bool| own(representative(runs, i), bar, screened);
-    let count = |bar: f64, screened: bool| {
-        let alone = (0..runs.len()).filter(|&i| own(i, bar, screened)).count();
-        let all = (0..runs.len())
-            .filter(|&i| reached(i, bar, screened))
-            .count();
-        (all, alone)
-    };
-    let exploring = exploring.min(runs.len());
-    let ((reached_best, reached_best_alone), (reached_best_fit, reached_best_fit_alone)) =
-        (count(exact, false), count(noise, true));
-    let fate = |f: fn(&Fate) -> bool| runs.iter().filter(|r| f(&r.fate)).count();
-    Ok(Starts {
-        total: runs.len(),
-        converged: runs
-            .iter()
-            .filter(|r| r.outcome.objective.is_finite() && r.outcome.stop.converged())
-            .count(),
-        failed,
-        reached_best,
-        reached_best_alone,
-        reached_best_fit,
-        reached_best_fit_alone,
-        abandoned: fate(|f| *f == Fate::Abandoned),
-        merged: fate(|f| matches!(f, Fate::Merged(_))),
-        unpolished: fate(|f| *f == Fate::Unpolished),
-        refined: runs.len() - exploring,
-        explored_best_fit: (0..exploring).filter(|&i| reached(i, noise, true)).count(),
-        best,
-    })
-}
-
 /// Identifies a `settings.dof`-mass model from `cases`, with the reduced
 /// model that fits as well when a spring is undetermined
-/// ([`crate::reduce`]). `progress` is called once per finished start (from
-/// any thread).
+/// ([`crate::reduce`]). `observer` hears of every finished start (from any
+/// thread; a closure `|| bar.inc(1)` is one).
 pub fn identify(
     cases: &[LoadCase],
     settings: &Settings,
-    progress: &(dyn Fn() + Sync),
+    observer: &dyn Observer,
 ) -> Result<Identification, IdentError> {
-    let mut result = identify_only(cases, settings, progress)?;
+    let mut result = identify_only(cases, settings, observer)?;
     result.reduction = crate::reduce::suggest(cases, &result, settings);
     if let Some(r) = &result.reduction {
         result.warnings.push(r.statement.clone());
@@ -515,91 +371,47 @@ pub fn identify(
 fn identify_only(
     cases: &[LoadCase],
     settings: &Settings,
-    progress: &(dyn Fn() + Sync),
+    observer: &dyn Observer,
 ) -> Result<Identification, IdentError> {
     check(cases, settings)?;
     let clock = Instant::now();
     let objective = Objective::new(cases, settings.dof, &settings.bounds.fixed);
     let free = objective.free().to_vec();
-    let lower: Vec<f64> = free
-        .iter()
-        .map(|&i| settings.bounds.lower[i].ln())
-        .collect();
-    let upper: Vec<f64> = free
-        .iter()
-        .map(|&i| settings.bounds.upper[i].ln())
-        .collect();
+    let log = |v: &[f64]| -> Vec<f64> { free.iter().map(|&i| v[i].ln()).collect() };
+    let (lower, upper) = (log(&settings.bounds.lower), log(&settings.bounds.upper));
     let data = data_start(cases, settings.dof);
     let fixed = (&settings.start, data.as_slice(), settings.seeds.as_slice());
     let given = usize::from(settings.start.is_some()) + 1 + settings.seeds.len();
     let first = exploring(settings.starts, given);
-    let mut points = starting_points(first, settings.seed, fixed, &settings.split_links, &free);
-    let solve = |start: &[f64], iterations: usize, ftol: f64| {
-        let objective = Objective::new(cases, settings.dof, &settings.bounds.fixed);
-        let solver = lm::Settings {
-            max_iterations: iterations,
-            ftol,
-            ..settings.solver
-        };
-        lm::minimise(&objective, start, &lower, &upper, &solver)
+    let points = starting_points(first, settings.seed, fixed, &settings.split_links, &free);
+    let (floor, ceiling) = (
+        vec![VALID_RANGE.start().ln(); free.len()],
+        vec![VALID_RANGE.end().ln(); free.len()],
+    );
+    let search = Search {
+        starts: settings.starts,
+        seed: settings.seed,
+        solver: settings.solver,
+        lower: &lower,
+        upper: &upper,
+        range: (&floor, &ceiling),
     };
-    let (limit, ftol) = (settings.solver.max_iterations, settings.solver.ftol);
-    let screen = |p: &[f64], n| solve(p, n, ftol.max(SCREEN_FTOL));
-    let freedom = objective.residual_count().saturating_sub(free.len());
-    // a run is raced for the best fit: within one noise variance of the best
-    let goal = Goal {
-        iterations: limit,
-        target: f64::INFINITY,
-        within: 1.0 / freedom.max(1) as f64,
-    };
-    let mut runs = staged(&points, goal, &screen, progress);
-    let mut refined = settings.starts.max(1) - points.len();
-    // the second level, in rounds: around the best screened optimum so far,
-    // each start raced for its fit
-    while let Some(best) = best_run(&runs).filter(|_| refined > 0) {
-        let round = refined.min(ROUND);
-        let more = around(&best.parameters, round, settings.seed, points.len());
-        let within = Goal {
-            target: best.objective * (1.0 + goal.within),
-            ..goal
-        };
-        let offset = runs.len();
-        let refine = |p: &[f64], n| solve(p, n, ftol.max(REFINE_FTOL));
-        runs.extend(
-            staged(&more, within, &refine, progress)
-                .into_iter()
-                .map(|mut run| {
-                    if let Fate::Merged(j) = run.fate {
-                        run.fate = Fate::Merged(j + offset);
-                    }
-                    run
-                }),
-        );
-        points.extend(more);
-        refined -= round;
-    }
-    let chosen = candidates(&mut runs);
-    polish(&mut runs, &chosen, goal, &|p, n| solve(p, n, ftol));
-    let starts = tally(&runs, freedom, first)?;
-    let outcome = &runs[starts.best].outcome;
-    let mut result = summarise(
-        cases, settings, &objective, outcome, starts, &lower, &upper, clock,
-    )?;
-    result.start = objective.theta(&points[starts.best]);
+    let make = || Objective::new(cases, settings.dof, &settings.bounds.fixed);
+    let found = multistart::search(&make, points, &search, observer)?;
+    let mut result = summarise(cases, settings, &objective, &found, (&lower, &upper), clock)?;
+    result.start = objective.theta(found.best_start());
     Ok(result)
 }
 
-#[allow(clippy::too_many_arguments)]
 fn summarise(
     cases: &[LoadCase],
     settings: &Settings,
     objective: &Objective,
-    outcome: &Outcome,
-    starts: Starts,
-    lower: &[f64],
-    upper: &[f64],
+    found: &Searched,
+    (lower, upper): (&[f64], &[f64]),
     clock: Instant,
 ) -> Result<Identification, IdentError> {
+    let outcome = found.best();
     let theta = objective.theta(&outcome.parameters);
     let model = objective
         .model(&outcome.parameters)
@@ -621,29 +433,10 @@ fn summarise(
     let sse = outcome.objective;
     let spread = total_spread(cases);
     let uncertainty = uncertainty(objective, &outcome.parameters, lower, upper, settings.dof);
-    let mut warnings = uncertainty.warnings.clone();
-    warnings.extend(crate::stats::determination(&uncertainty));
-    if starts.failed > 0 {
-        warnings.push(format!(
-            "{} of {} starts failed (model not simulable) and were discarded",
-            starts.failed, starts.total
-        ));
-    }
-    if let Some(warning) = single_start_warning(&starts) {
-        warnings.push(warning);
-    }
-    if !outcome.stop.converged() {
-        warnings.push(format!(
-            "the best start stopped at the iteration limit ({} iterations)",
-            outcome.iterations
-        ));
-    }
-    warnings.extend(fits.iter().filter(|f| f.fit_percent < 0.0).map(|f| {
-        format!(
-            "case '{}': fit {} %: the model follows the displacement worse than its mean does; check its channels, their window and any note on their time base",
-            f.name,
-            bumpsim_core::units::format_number(f.fit_percent, 4)
-        )
+    let mut warnings = bumpsim_estimate::uncertainty::warnings(&uncertainty);
+    warnings.extend(multistart::warnings(&found.starts, outcome));
+    warnings.extend(fits.iter().filter_map(|f| {
+        bumpsim_estimate::fit::negative_fit(&f.name, "displacement", f.fit_percent)
     }));
     // An objective below the rounding of the data (an exact fit of exact
     // synthetic data) counts as that rounding: AIC and BIC stay finite and
@@ -656,13 +449,13 @@ fn summarise(
         dof: settings.dof,
         model,
         objective: sse,
-        fit_percent: 100.0 * (1.0 - (sse / spread).sqrt()),
+        fit_percent: bumpsim_estimate::fit::from_sums(sse, spread),
         cases: fits,
         aic: ln_term + 2.0 * q as f64,
         bic: ln_term + q as f64 * (n as f64).ln(),
         residuals: n,
         uncertainty,
-        starts,
+        starts: found.starts,
         iterations: outcome.iterations,
         start: Vec::new(),
         stop: outcome.stop,
@@ -676,11 +469,7 @@ fn summarise(
 fn total_spread(cases: &[LoadCase]) -> f64 {
     cases
         .iter()
-        .map(|c| {
-            let w = &c.measured[c.window.0..=c.window.1];
-            let mean = w.iter().sum::<f64>() / w.len() as f64;
-            w.iter().map(|y| (y - mean).powi(2)).sum::<f64>()
-        })
+        .map(|c| bumpsim_estimate::fit::spread(&c.measured[c.window.0..=c.window.1]))
         .sum()
 }
 
@@ -688,53 +477,17 @@ fn total_spread(cases: &[LoadCase]) -> f64 {
 mod tests {
     use super::*;
 
-    fn starts(total: usize, refined: usize, explored_best_fit: usize) -> Starts {
-        Starts {
-            total,
-            converged: total,
-            failed: 0,
-            reached_best: explored_best_fit,
-            reached_best_alone: 1,
-            reached_best_fit: total,
-            reached_best_fit_alone: 1,
-            abandoned: 0,
-            merged: total - 1,
-            unpolished: 0,
-            refined,
-            explored_best_fit,
-            best: 0,
-        }
-    }
-
     /// `fixed = { k1 = nan }` said "bounds: fixed value NaN must be
     /// positive", naming neither the table nor the parameter.
     #[test]
     fn a_bad_fixed_value_names_its_parameter() {
-        let mut bounds = Bounds::uniform(2, 1.0);
+        let mut bounds = uniform_bounds(2, 1.0);
         bounds.fixed[3] = Some(f64::NAN);
-        let err = bounds.check(2).unwrap_err().to_string();
+        let err = check_bounds(&bounds, 2).unwrap_err().to_string();
         assert!(
             err.contains("fixed")
                 && err.contains("k1 = NaN N/m: a fixed value must be finite and positive"),
             "{err}"
         );
-    }
-
-    /// The remark fired on a 1-DOF model whose 32 starts all reached the
-    /// best (31 merged into one run), and stayed silent when one exploring
-    /// start found the basin and the refining starts around it followed.
-    #[test]
-    fn the_single_start_remark_counts_exploring_starts() {
-        assert_eq!(single_start_warning(&starts(32, 16, 16)), None);
-        assert_eq!(single_start_warning(&starts(32, 16, 2)), None);
-        let one = single_start_warning(&starts(32, 16, 1)).unwrap();
-        assert!(one.starts_with("1 of the 16 exploring starts"), "{one}");
-        assert!(one.contains("16 more drawn around the best"), "{one}");
-        let none = single_start_warning(&starts(8, 0, 0)).unwrap();
-        assert!(
-            none.starts_with("0 of the 8 exploring starts") && !none.contains("around"),
-            "{none}"
-        );
-        assert_eq!(single_start_warning(&starts(1, 0, 1)), None);
     }
 }

@@ -1,16 +1,19 @@
 //! bumpsim-ident: one MSD car model from several load cases at once
 //! (thesis ch. 3.4, paper B, spec §3).
 //!
-//! - [`case`]: load cases and the objective `F = Σ (x − x̂)²`;
-//! - [`lm`]: bounded Levenberg–Marquardt;
-//! - [`estimate`]: the data-derived start, multi-start, results;
-//! - [`search`]: the starts, continuation across the DOF table, screening;
-//! - [`polish`]: loose screening of every start, polishing of the best few;
+//! - [`case`]: load cases and the objective `F = Σ (x − x̂)²` (the model's
+//!   residuals and exact Jacobian, handed to the estimation layer);
+//! - [`estimate`]: the data-derived start, the identification, results;
+//! - [`search`]: the starts: continuation across the DOF table;
 //! - [`explore`]: predictions and the ±3 % sensitivity of the objective;
-//! - [`reduce`]: the simpler model when a spring is undetermined;
+//! - [`reduce`]: the simpler chain when a spring is undetermined;
 //! - [`stats`]: standard errors, intervals, correlations, identifiability;
 //! - [`text`]: text tables of results (as `doe::text` and `impact::text`);
 //! - [`study`]: study files (TOML) and the processing of their load cases.
+//!
+//! The search (bounded LM, the staged multi-start, polishing), the
+//! uncertainty, fit % and reduced-model advice are the estimation layer's,
+//! [`bumpsim_estimate`], shared with the planar car.
 //!
 //! Simulation, prediction and the identification Jacobian all run core's one
 //! zoh discretisation ([`bumpsim_core::discrete::DiscreteModel`], with the
@@ -36,8 +39,6 @@ pub mod case;
 pub mod dofs;
 pub mod estimate;
 pub mod explore;
-pub mod lm;
-pub mod polish;
 pub mod reduce;
 pub mod search;
 pub mod stats;

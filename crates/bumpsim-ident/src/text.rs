@@ -2,42 +2,15 @@
 //! the DOF table, per-case fits. The CLI prints these strings; reports reuse them.
 
 use crate::estimate::Identification;
-use bumpsim_core::model::{format_parameter, parameter_count, parameter_name};
 use bumpsim_core::units::{Dimension, format_number, format_quantity};
 
 /// The parameter table: name, value, standard error, 95 % interval, and a
-/// note: fixed, at bound, or not determined by the data
-/// ([`crate::stats::is_determined`]).
+/// note: fixed, at bound, or not determined by the data (the estimation
+/// layer's table, [`bumpsim_estimate::text::parameter_table`]).
 pub fn parameter_table(result: &Identification) -> String {
-    let dof = result.dof;
+    let parameters = crate::stats::parameters(result.dof);
     let theta = result.model.parameters();
-    let u = &result.uncertainty;
-    let mut out = format!(
-        "{:<5} {:>14} {:>14} {:>32}  note\n",
-        "", "value", "std. error", "95 % interval"
-    );
-    for (i, &value) in theta.iter().enumerate().take(parameter_count(dof)) {
-        let se = u.standard_errors[i].map_or("-".to_string(), |s| format_parameter(dof, i, s));
-        let ci = u.ci95[i].map_or("-".to_string(), |[a, b]| {
-            format!(
-                "{} .. {}",
-                format_parameter(dof, i, a),
-                format_parameter(dof, i, b)
-            )
-        });
-        let note = match (u.fixed[i], u.at_bound[i], u.determined.get(i)) {
-            (true, _, _) => "fixed",
-            (_, true, _) => "at bound",
-            (_, _, Some(Some(false))) => "not determined",
-            _ => "",
-        };
-        let value = format_parameter(dof, i, value);
-        out += &format!(
-            "{:<5} {value:>14} {se:>14} {ci:>32}  {note}\n",
-            parameter_name(dof, i)
-        );
-    }
-    out
+    bumpsim_estimate::text::parameter_table(&parameters, &theta, &result.uncertainty)
 }
 
 /// Per-case fit lines.
@@ -57,28 +30,10 @@ pub fn case_lines(result: &Identification) -> String {
         .collect()
 }
 
-/// The start statistics: run (and refined around the best), converged,
-/// reached the best fit (within the noise) and the best objective (to
-/// 1e-6), and by how many runs of their own; abandoned, not polished,
-/// failed; the best start's iterations; time.
+/// The start statistics (the estimation layer's line,
+/// [`bumpsim_estimate::text::starts_line`]).
 pub fn starts_line(result: &Identification) -> String {
-    let s = &result.starts;
-    format!(
-        "starts: {} run ({} of them around the best so far), {} converged, {} reached the best fit (F within one noise variance; {} of the exploring starts, {} by their own run), {} the best objective to 1e-6 ({} by their own polished run), {} abandoned, {} not polished, {} failed; {} iterations; {}",
-        s.total,
-        s.refined,
-        s.converged,
-        s.reached_best_fit,
-        s.explored_best_fit,
-        s.reached_best_fit_alone,
-        s.reached_best,
-        s.reached_best_alone,
-        s.abandoned,
-        s.unpolished,
-        s.failed,
-        result.iterations,
-        format_quantity(result.run_time, Dimension::Time)
-    )
+    bumpsim_estimate::text::starts_line(&result.starts, result.iterations, result.run_time)
 }
 
 /// The DOF with the lowest BIC among `results` (the recommended model

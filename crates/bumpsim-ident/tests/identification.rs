@@ -4,10 +4,10 @@
 //! realisations, the thesis's own start on the bundled example, and bad input.
 
 use bumpsim_core::model::{MsdModel, parameter_count};
+use bumpsim_estimate::lm::LeastSquares;
 use bumpsim_ident::case::{LoadCase, Objective};
 use bumpsim_ident::estimate::{Settings, identify};
 use bumpsim_ident::explore::predict;
-use bumpsim_ident::lm::LeastSquares;
 use bumpsim_ident::study::Study;
 use nalgebra::DMatrix;
 use proptest::prelude::*;
@@ -386,7 +386,7 @@ fn the_result_serialises_as_before() {
         json["stop"],
         serde_json::json!(format!("{:?}", result.stop))
     );
-    let stop: bumpsim_ident::lm::Stop = serde_json::from_value(json["stop"].clone()).unwrap();
+    let stop: bumpsim_estimate::lm::Stop = serde_json::from_value(json["stop"].clone()).unwrap();
     assert_eq!(stop, result.stop);
     // the one reader of results gives the same model back
     let car = bumpsim_io::car::Car::parse_json(&json.to_string(), Path::new("r.json")).unwrap();

@@ -195,27 +195,31 @@ pub fn histories(r: &PlanarResult) -> String {
 }
 
 /// The summary of a planar identification, every number with its unit;
-/// `validation` holds the fits of cases predicted but not fitted.
+/// `validation` holds the fits of cases predicted but not fitted. The
+/// parameter table and the start statistics are the estimation layer's, as
+/// the 1-D identification prints them.
 pub fn identification_summary(
     result: &crate::identify::PlanarIdentification,
     validation: &[crate::identify::CaseFit],
 ) -> String {
-    let mut s = String::from(
-        "planar identification\n  parameter                 estimate        95 % interval\n",
-    );
-    for p in &result.parameters {
-        let interval = p.ci95.map_or("not determined".to_string(), |[lo, hi]| {
-            format!("{lo:.4e} .. {hi:.4e} {}", p.unit)
-        });
-        s += &format!(
-            "  {:<24}  {:.4e} {:<6}  {interval}\n",
-            p.name, p.value, p.unit
-        );
+    let parameters = crate::identify::parameters_of(result);
+    let theta: Vec<f64> = result.parameters.iter().map(|p| p.value).collect();
+    let mut s = String::from("planar identification\n");
+    for line in
+        bumpsim_estimate::text::parameter_table(&parameters, &theta, &result.uncertainty).lines()
+    {
+        s += &format!("  {line}\n");
     }
-    let st = result.starts;
+    let u = &result.uncertainty;
     s += &format!(
-        "  objective {:.4e} m²; starts: {} run, {} converged, {} reached the best; variance inflation {:.1} (residual correlation)\n",
-        result.objective, st.total, st.converged, st.reached_best, result.inflation
+        "  objective {} m²; variance inflation {} for the residuals' correlation ρ = {}\n",
+        bumpsim_core::units::format_number(result.objective, 5),
+        bumpsim_core::units::format_number(result.inflation, 3),
+        bumpsim_core::units::format_number(u.residual_correlation, 4),
+    );
+    s += &format!(
+        "  {}\n",
+        bumpsim_estimate::text::starts_line(&result.starts, result.iterations, result.run_time)
     );
     s += "  case fits (x: mean of the sills; yaw from their difference)\n";
     let fits = result

@@ -13,7 +13,7 @@
 //! the identification's iterations its modal form
 //! ([`bumpsim_core::modal`], `case::modal`) where that is precise enough.
 
-use crate::lm::LeastSquares;
+use bumpsim_estimate::lm::LeastSquares;
 
 mod modal;
 use bumpsim_core::discrete::{DiscreteModel, DiscretiseError, Method};
@@ -206,14 +206,9 @@ impl LoadCase {
     pub fn fit(&self, simulated: &[f64]) -> (f64, f64) {
         let (a, b) = self.window;
         let measured = &self.measured[a..=b];
-        let mean = measured.iter().sum::<f64>() / measured.len() as f64;
-        let sse: f64 = measured
-            .iter()
-            .zip(&simulated[a..=b])
-            .map(|(y, s)| (y - s).powi(2))
-            .sum();
-        let spread: f64 = measured.iter().map(|y| (y - mean).powi(2)).sum();
-        (sse, 100.0 * (1.0 - (sse / spread).sqrt()))
+        let sse = bumpsim_estimate::fit::sse(&simulated[a..=b], measured);
+        let spread = bumpsim_estimate::fit::spread(measured);
+        (sse, bumpsim_estimate::fit::from_sums(sse, spread))
     }
 }
 
@@ -278,6 +273,11 @@ impl<'a> Objective<'a> {
     /// Indices of the free parameters.
     pub fn free(&self) -> &[usize] {
         &self.free
+    }
+
+    /// The residual series: one per case, its window, in case order.
+    pub fn series(&self) -> Vec<bumpsim_estimate::uncertainty::Series> {
+        crate::stats::windows(self.cases.iter().map(LoadCase::window_len))
     }
 
     /// The full SI parameter vector of free log parameters `p`.

@@ -57,6 +57,33 @@ pub trait LeastSquares {
     }
 }
 
+/// A shared problem is a problem (the multi-start builds one per run).
+impl<T: LeastSquares + ?Sized> LeastSquares for &T {
+    fn residual_count(&self) -> usize {
+        (**self).residual_count()
+    }
+    fn parameter_count(&self) -> usize {
+        (**self).parameter_count()
+    }
+    fn evaluate(
+        &self,
+        p: &[f64],
+        residuals: &mut [f64],
+        jacobian: Option<&mut DMatrix<f64>>,
+    ) -> bool {
+        (**self).evaluate(p, residuals, jacobian)
+    }
+    fn normal(
+        &self,
+        p: &[f64],
+        residuals: &mut [f64],
+        jtj: &mut DMatrix<f64>,
+        gradient: &mut DVector<f64>,
+    ) -> bool {
+        (**self).normal(p, residuals, jtj, gradient)
+    }
+}
+
 /// Tolerances and limits.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Settings {

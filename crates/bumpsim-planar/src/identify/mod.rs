@@ -18,34 +18,53 @@
 //! sensor half-spacing) do too: yaw is observed through the left/right
 //! difference, as in a test.
 //!
-//! **Search.** Bounded Levenberg–Marquardt ([`bumpsim_ident::lm`]) on
-//! `p = ln θ`, each parameter within a factor 1000 of its start; the
-//! Jacobian by forward differences (step 1e-6 in ln θ, columns in parallel):
-//! the planar replay has no sensitivity recursion, and its steps are fixed
-//! per car. Multi-start: the template, then log-uniform points within a
-//! factor `spread` of it (ChaCha8 seeded by `seed + start index`), in parallel.
+//! **Search.** The estimation layer's ([`bumpsim_estimate`], shared with
+//! the 1-D chain): bounded Levenberg–Marquardt on `p = ln θ`, each
+//! parameter within a factor [`REACH`] of its start, the Jacobian by
+//! forward differences ([`objective`]); the staged multi-start from the
+//! template and log-uniform points within a factor `spread` of it (seeded
+//! by `seed + start index`), refining rounds around the best when there are
+//! more than eight starts, the best few polished, every start tallied.
 //!
-//! **Uncertainty.** As [`bumpsim_ident::stats`]: `Cov(ln θ) = σ² (JᵀJ)⁻¹` at
-//! the optimum with `σ² = F/(n − q)`, intervals `θ exp(± t SE)`, but with σ²
-//! inflated by `(1 + ρ)/(1 − ρ)`, ρ the pooled lag-1 autocorrelation of the
-//! residuals: displacements integrated from accelerations have strongly
-//! correlated errors, and n samples of an AR(1) series carry only
-//! `n (1 − ρ)/(1 + ρ)` independent observations (Bayley & Hammersley 1946).
-//! Without it the intervals of a synthetic series were too narrow to cover
-//! the truth.
+//! **Uncertainty**, as the layer gives it: `Cov(ln θ) = σ² (JᵀJ)⁻¹` at the
+//! optimum, intervals `θ exp(± t SE)`, rank and determination flags, the
+//! weakest direction, with σ² inflated by `(1 + ρ)/(1 − ρ)` for AR(1)
+//! residuals ([`bumpsim_estimate::uncertainty::Correlation::Ar1`]):
+//! displacements integrated from accelerations have strongly correlated
+//! errors, and without it the intervals of a synthetic series were too
+//! narrow to cover the truth.
 //!
-//! **Fit** of a case, as for the 1-D identification: `100 (1 − √(SSE/SST))` %,
-//! for x (mean of the sensors) and for the yaw `ψ = asin((x_R − x_L)/(η_L − η_R))`.
+//! **Fit** of a case ([`predict`]), as for the 1-D identification:
+//! `100 (1 − √(SSE/SST))` %, for x (mean of the sensors) and for the yaw
+//! `ψ = asin((x_R − x_L)/(η_L − η_R))`; a negative fit is a warning.
+//!
+//! **Advice**: the reduced car when a chain link is undetermined or not
+//! needed ([`reduce`](mod@reduce)), in the same words as the 1-D chain's.
+
+mod objective;
+mod predict;
+mod reduce;
 
 use crate::car::{Body, PlanarCar, PlanarError, SideChain, parameter};
-use crate::drive::{Drive, Driven, Sensor, drive, drive_substeps, substeps};
-use bumpsim_ident::lm::{self, LeastSquares, Outcome};
+use crate::drive::{Drive, Sensor};
+use bumpsim_core::units::Dimension;
+use bumpsim_estimate::bounds::Bounds;
+use bumpsim_estimate::lm::{self, LeastSquares};
+use bumpsim_estimate::multistart::{self, Search, Searched, Starts};
+use bumpsim_estimate::observer::Observer;
+use bumpsim_estimate::search::{Draws, exploring};
+use bumpsim_estimate::uncertainty::{Correlation, Estimated, Parameter, Uncertainty};
 use nalgebra::DMatrix;
-use rand_chacha::ChaCha8Rng;
-use rand_core::{Rng, SeedableRng};
-use rayon::prelude::*;
+use objective::Objective;
 use serde::Serialize;
-use statrs::distribution::{ContinuousCDF, StudentsT};
+
+pub use predict::{CaseFit, Prediction, predict};
+
+/// The reduced car, when a chain link is undetermined or not needed.
+pub type Reduction = bumpsim_estimate::reduce::Reduction<PlanarCar>;
+
+/// Each parameter is searched within this factor of its start.
+pub const REACH: f64 = 1000.0;
 
 /// One load case: the replay and the measured sensor displacements.
 #[derive(Debug, Clone, PartialEq)]
@@ -105,30 +124,9 @@ pub struct Estimate {
     pub standard_error: Option<f64>,
     /// 95 % interval.
     pub ci95: Option<[f64; 2]>,
-}
-
-/// How well the model replays one case.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct CaseFit {
-    /// The case.
-    pub name: String,
-    /// Fit of x (mean of the two sensors), %.
-    pub fit_x: f64,
-    /// Fit of the yaw angle, %.
-    pub fit_yaw: f64,
-    /// Peak measured yaw, rad.
-    pub peak_yaw: f64,
-}
-
-/// The starts' outcome.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Starts {
-    /// Starts run.
-    pub total: usize,
-    /// Starts that converged.
-    pub converged: usize,
-    /// Starts within 1e-5 of the best objective.
-    pub reached_best: usize,
+    /// Whether the data determine it (its 95 % interval within a factor
+    /// 1000; false at a bound or without an interval).
+    pub determined: Option<bool>,
 }
 
 /// The result of [`identify`]; serialised with the car's body, chains and
@@ -142,17 +140,60 @@ pub struct PlanarIdentification {
     pub parameters: Vec<Estimate>,
     /// Objective F at the optimum, m².
     pub objective: f64,
-    /// The starts.
+    /// The starts (the layer's tally).
     pub starts: Starts,
+    /// Solver iterations of the best start (screening and polishing).
+    pub iterations: usize,
+    /// Wall-clock time, s.
+    pub run_time: f64,
     /// Fits per case, %.
     pub fits: Vec<CaseFit>,
     /// The variance inflation `(1 + ρ)/(1 − ρ)` from the residuals' correlation, 1.
     pub inflation: f64,
-    /// Warnings (parameters at a bound, a rank-deficient Jacobian).
+    /// The layer's uncertainty: intervals, correlations, determination,
+    /// the weakest direction.
+    pub uncertainty: Uncertainty,
+    /// Warnings: parameters at a bound or not determined, starts, negative
+    /// fits, the reduced car.
     pub warnings: Vec<String>,
+    /// The reduced car that fits as well, if any; its `model` serialised as
+    /// the car's parts.
+    #[serde(serialize_with = "reduction_parts")]
+    pub reduction: Option<Reduction>,
 }
 
-fn car_parts<S: serde::Serializer>(car: &PlanarCar, serializer: S) -> Result<S::Ok, S::Error> {
+fn reduction_parts<S: serde::Serializer>(
+    reduction: &Option<Reduction>,
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    #[derive(Serialize)]
+    struct Reduced<'a> {
+        parameter: &'a str,
+        statement: &'a str,
+        #[serde(serialize_with = "car_parts")]
+        model: &'a PlanarCar,
+        objective: f64,
+        relative_objective: f64,
+        p_value: f64,
+    }
+    reduction
+        .as_ref()
+        .map(|r| Reduced {
+            parameter: &r.parameter,
+            statement: &r.statement,
+            model: &r.model,
+            objective: r.objective,
+            relative_objective: r.relative_objective,
+            p_value: r.p_value,
+        })
+        .serialize(serializer)
+}
+
+fn car_parts<S: serde::Serializer, C: std::borrow::Borrow<PlanarCar>>(
+    car: &C,
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    let car = car.borrow();
     #[derive(Serialize)]
     struct Parts<'a> {
         body: &'a Body,
@@ -186,6 +227,28 @@ pub fn names(template: &PlanarCar, friction: bool) -> Vec<(String, &'static str)
         out.push(("tyres.mu_lateral".to_string(), "-"));
     }
     out
+}
+
+/// The parameters of `result` as the estimation layer names and prints them.
+pub fn parameters_of(result: &PlanarIdentification) -> Vec<Parameter> {
+    let friction = result
+        .parameters
+        .iter()
+        .any(|p| p.name == "tyres.mu_lateral");
+    parameters(&result.car, friction)
+}
+
+/// The parameters of the estimation layer, in the order of [`names`].
+fn parameters(template: &PlanarCar, friction: bool) -> Vec<Parameter> {
+    names(template, friction)
+        .into_iter()
+        .map(|(name, unit)| match unit {
+            "kg" => Parameter::new(name, Dimension::Mass),
+            "N·s/m" => Parameter::new(name, Dimension::Damping),
+            "N/m" => Parameter::new(name, Dimension::Stiffness),
+            symbol => Parameter::with_symbol(name, symbol),
+        })
+        .collect()
 }
 
 /// The template's parameter values, in the order of [`names`].
@@ -336,371 +399,175 @@ fn check_case(case: &PlanarCase) -> Result<(), PlanarError> {
     Ok(())
 }
 
-/// The least-squares problem over all cases, in `p = ln θ`.
-struct Objective<'a> {
-    cases: &'a [PlanarCase],
-    setup: &'a Setup,
-    count: usize,
-    parameters: usize,
-    /// Integration steps per sample of each case.
-    substeps: Vec<usize>,
-}
-
-impl<'a> Objective<'a> {
-    /// The problem, each case replayed with the step of the template at a
-    /// safety factor of 0.05: a 40-fold margin to the stability limit for
-    /// trial cars stiffer or lighter than the start.
-    fn new(
-        cases: &'a [PlanarCase],
-        setup: &'a Setup,
-        parameters: usize,
-    ) -> Result<Objective<'a>, PlanarError> {
-        let count = cases
-            .iter()
-            .map(|c| c.measured.len() * (c.window.1 - c.window.0 + 1))
-            .sum();
-        let substeps = cases
-            .iter()
-            .map(|c| substeps(&setup.template, c.drive.step, 0.05))
-            .collect::<Result<_, _>>()?;
-        Ok(Objective {
-            cases,
-            setup,
-            count,
-            parameters,
-            substeps,
-        })
-    }
-
-    fn replays(&self, p: &[f64]) -> Option<Vec<Driven>> {
-        let theta: Vec<f64> = p.iter().copied().map(f64::exp).collect();
-        let car = car_with(&self.setup.template, &theta, self.setup.friction).ok()?;
-        self.cases
-            .iter()
-            .zip(&self.substeps)
-            .map(|(c, &n)| drive_substeps(&car, &c.drive, n).ok())
-            .collect()
-    }
-
-    fn residuals(&self, p: &[f64], r: &mut [f64]) -> bool {
-        let Some(replays) = self.replays(p) else {
-            return false;
-        };
-        let mut at = 0;
-        for (case, replay) in self.cases.iter().zip(&replays) {
-            for k in case.window.0..=case.window.1 {
-                for (model, measured) in replay.sensor_reading.iter().zip(&case.measured) {
-                    r[at] = model[k] - measured[k];
-                    at += 1;
-                }
-            }
-        }
-        r.iter().all(|v| v.is_finite())
-    }
-}
-
-impl LeastSquares for Objective<'_> {
-    fn residual_count(&self) -> usize {
-        self.count
-    }
-
-    fn parameter_count(&self) -> usize {
-        self.parameters
-    }
-
-    fn evaluate(&self, p: &[f64], r: &mut [f64], jacobian: Option<&mut DMatrix<f64>>) -> bool {
-        if !self.residuals(p, r) {
-            return false;
-        }
-        let Some(jac) = jacobian else {
-            return true;
-        };
-        const H: f64 = 1e-6;
-        let columns: Vec<Option<Vec<f64>>> = (0..p.len())
-            .into_par_iter()
-            .map(|j| {
-                let mut shifted = p.to_vec();
-                shifted[j] += H;
-                let mut column = vec![0.0; r.len()];
-                self.residuals(&shifted, &mut column).then(|| {
-                    column
-                        .iter()
-                        .zip(r.iter())
-                        .map(|(a, b)| (a - b) / H)
-                        .collect()
-                })
-            })
-            .collect();
-        for (j, column) in columns.into_iter().enumerate() {
-            let Some(column) = column else {
-                return false;
-            };
-            jac.column_mut(j).copy_from_slice(&column);
-        }
-        true
-    }
-}
-
-/// Identifies the planar car from `cases`; `progress` is called once per
-/// finished start (from any thread).
+/// Identifies the planar car from `cases`; `observer` hears of every
+/// finished start (from any thread; a closure `|| bar.inc(1)` is one).
 pub fn identify(
     cases: &[PlanarCase],
     setup: &Setup,
-    progress: &(dyn Fn() + Sync),
+    observer: &dyn Observer,
 ) -> Result<PlanarIdentification, PlanarError> {
-    let start: Vec<f64> = check(cases, setup)?.iter().map(|v| v.ln()).collect();
-    let reach = 1000f64.ln();
-    let lower: Vec<f64> = start.iter().map(|p| p - reach).collect();
-    let upper: Vec<f64> = start.iter().map(|p| p + reach).collect();
-    let objective = Objective::new(cases, setup, start.len())?;
-    let solver = lm::Settings {
+    let clock = std::time::Instant::now();
+    let theta = check(cases, setup)?;
+    let start: Vec<f64> = theta.iter().map(|v| v.ln()).collect();
+    let (lower, upper) = Bounds::around(&theta, REACH).log_free();
+    let objective = Objective::of(cases, setup, start.len())?;
+    let solver = solver();
+    let first = exploring(setup.starts, 1);
+    let points = (0..first)
+        .map(|k| match k {
+            0 => start.clone(),
+            k => Draws::new(setup.seed, k as u64).around(&start, setup.spread),
+        })
+        .collect();
+    let search = Search {
+        starts: setup.starts,
+        seed: setup.seed,
+        solver,
+        lower: &lower,
+        upper: &upper,
+        range: (&lower, &upper),
+    };
+    let found = multistart::search(&|| &objective, points, &search, observer).map_err(|e| {
+        PlanarError::Missing {
+            name: "identification".into(),
+            expected: format!(
+                "no start of {} could be evaluated: check the forces and the template",
+                e.starts
+            ),
+        }
+    })?;
+    summarise(cases, setup, &objective, &found, (&lower, &upper), clock)
+}
+
+/// The solver's tolerances: 300 iterations, relative decrease 1e-10, step 1e-8.
+fn solver() -> lm::Settings {
+    lm::Settings {
         max_iterations: 300,
         ftol: 1e-10,
         xtol: 1e-8,
         ..lm::Settings::default()
-    };
-    let outcomes: Vec<Outcome> = (0..setup.starts)
-        .into_par_iter()
-        .map(|k| {
-            let point = starting_point(&start, k, setup);
-            let outcome = lm::minimise(&objective, &point, &lower, &upper, &solver);
-            progress();
-            outcome
-        })
-        .collect();
-    let best = outcomes
-        .iter()
-        .filter(|o| o.objective.is_finite())
-        .min_by(|a, b| a.objective.total_cmp(&b.objective))
-        .ok_or_else(|| PlanarError::Missing {
-            name: "identification".into(),
-            expected: format!(
-                "no start of {} could be evaluated: check the forces and the template",
-                setup.starts
-            ),
-        })?;
-    let starts = Starts {
-        total: outcomes.len(),
-        converged: outcomes
-            .iter()
-            .filter(|o| o.objective.is_finite() && o.stop.converged())
-            .count(),
-        reached_best: outcomes
-            .iter()
-            .filter(|o| o.objective <= best.objective * (1.0 + 1e-5))
-            .count(),
-    };
-    summarise(cases, setup, &objective, best, starts, (&lower, &upper))
-}
-
-/// Start `k`: the template for k = 0, else log-uniform within `spread`.
-fn starting_point(start: &[f64], k: usize, setup: &Setup) -> Vec<f64> {
-    if k == 0 {
-        return start.to_vec();
     }
-    let mut rng = ChaCha8Rng::seed_from_u64(setup.seed.wrapping_add(k as u64));
-    let reach = setup.spread.ln();
-    start
-        .iter()
-        .map(|p| {
-            let u = (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-            p + reach * (2.0 * u - 1.0)
-        })
-        .collect()
 }
 
 fn summarise(
     cases: &[PlanarCase],
     setup: &Setup,
     objective: &Objective,
-    best: &Outcome,
-    starts: Starts,
-    (lower, upper): (&[f64], &[f64]),
+    found: &Searched,
+    bounds: (&[f64], &[f64]),
+    clock: std::time::Instant,
 ) -> Result<PlanarIdentification, PlanarError> {
+    let best = found.best();
     let p = &best.parameters;
     let theta: Vec<f64> = p.iter().copied().map(f64::exp).collect();
     let car = car_with(&setup.template, &theta, setup.friction)?;
     let mut r = vec![0.0; objective.residual_count()];
-    let mut jac = DMatrix::zeros(r.len(), p.len());
-    let mut warnings = Vec::new();
-    let names = names(&setup.template, setup.friction);
-    let mut parameters: Vec<Estimate> = names
-        .iter()
-        .zip(&theta)
-        .map(|((name, unit), value)| Estimate {
-            name: name.clone(),
-            unit,
-            value: *value,
-            standard_error: None,
-            ci95: None,
-        })
-        .collect();
-    let mut inflation_used = 1.0;
-    if objective.evaluate(p, &mut r, Some(&mut jac)) {
-        inflation_used = inflation(cases, &r);
-        intervals(
-            &mut parameters,
-            &jac,
-            &r,
-            inflation_used,
-            (p, lower, upper),
-            &mut warnings,
-        );
-    }
+    let mut jacobian = DMatrix::zeros(r.len(), p.len());
+    let parameters = parameters(&setup.template, setup.friction);
+    let free: Vec<usize> = (0..p.len()).collect();
+    // a Jacobian that cannot be evaluated leaves every parameter undetermined
+    let evaluated = objective.evaluate(p, &mut r, Some(&mut jacobian));
+    let series = objective.series();
+    let uncertainty = bumpsim_estimate::uncertainty::uncertainty(&Estimated {
+        parameters: &parameters,
+        theta: &theta,
+        free: &free,
+        p,
+        bounds,
+        residuals: &r,
+        jacobian: &jacobian,
+        series: &series,
+        correlation: Correlation::Ar1,
+    });
+    let uncertainty = match evaluated {
+        true => uncertainty,
+        false => Uncertainty {
+            warnings: vec![
+                "the Jacobian could not be evaluated at the optimum: no intervals".into(),
+            ],
+            ..unassessed(uncertainty)
+        },
+    };
     let fits = cases
         .iter()
         .map(|case| predict(&car, case).map(|p| p.fit))
         .collect::<Result<Vec<_>, _>>()?;
-    if starts.reached_best == 1 && starts.total > 1 {
-        warnings.push(format!(
-            "only 1 of {} starts reached the best objective: run more starts",
-            starts.total
-        ));
-    }
-    Ok(PlanarIdentification {
+    let mut warnings = bumpsim_estimate::uncertainty::warnings(&uncertainty);
+    warnings.extend(multistart::warnings(&found.starts, best));
+    warnings.extend(fits.iter().flat_map(CaseFit::warnings));
+    let estimates = estimates(setup, &theta, &uncertainty);
+    let mut result = PlanarIdentification {
         car,
-        parameters,
+        parameters: estimates,
         objective: best.objective,
-        starts,
+        starts: found.starts,
+        iterations: best.iterations,
+        run_time: clock.elapsed().as_secs_f64(),
         fits,
-        inflation: inflation_used,
+        inflation: uncertainty.inflation,
+        uncertainty,
         warnings,
-    })
+        reduction: None,
+    };
+    result.reduction = advice(cases, setup, &result);
+    if let Some(r) = &result.reduction {
+        result.warnings.push(r.statement.clone());
+    }
+    Ok(result)
 }
 
-/// `(1 + ρ)/(1 − ρ)` of the pooled lag-1 autocorrelation ρ of the residual
-/// series (one per case and sensor; residuals interleave the sensors).
-fn inflation(cases: &[PlanarCase], r: &[f64]) -> f64 {
-    let (mut lag, mut power, mut at) = (0.0, 0.0, 0);
-    for case in cases {
-        let (n, sensors) = (case.window.1 - case.window.0 + 1, case.measured.len());
-        for side in 0..sensors {
-            let series = |k: usize| r[at + sensors * k + side];
-            for k in 0..n {
-                power += series(k) * series(k);
-                if k + 1 < n {
-                    lag += series(k) * series(k + 1);
-                }
-            }
-        }
-        at += sensors * n;
-    }
-    let rho = match power > 0.0 {
-        true => (lag / power).clamp(0.0, 0.999_999),
-        false => 0.0,
-    };
-    (1.0 + rho) / (1.0 - rho)
-}
-
-/// Standard errors and 95 % intervals from the Jacobian in ln θ.
-fn intervals(
-    parameters: &mut [Estimate],
-    jac: &DMatrix<f64>,
-    r: &[f64],
-    inflation: f64,
-    (p, lower, upper): (&[f64], &[f64], &[f64]),
-    warnings: &mut Vec<String>,
-) {
-    let tolerance = 1e-6;
-    let free: Vec<usize> = (0..p.len())
-        .filter(|&j| p[j] - lower[j] > tolerance && upper[j] - p[j] > tolerance)
-        .collect();
-    for j in (0..p.len()).filter(|j| !free.contains(j)) {
-        warnings.push(format!(
-            "{} = {:.4e} {} is at a bound (a factor 1000 from its start): not identifiable from these data",
-            parameters[j].name, parameters[j].value, parameters[j].unit
-        ));
-    }
-    let (m, q) = (r.len(), free.len());
-    if q == 0 || m <= q {
-        return;
-    }
-    let je = DMatrix::from_fn(m, q, |i, c| jac[(i, free[c])]);
-    let svd = je.svd(false, true);
-    let (Some(v_t), largest) = (svd.v_t.as_ref(), svd.singular_values.max()) else {
-        return;
-    };
-    if svd.singular_values.min() <= largest * 1e-12 {
-        warnings.push("the Jacobian is rank deficient: no intervals".into());
-        return;
-    }
-    let variance = r.iter().map(|v| v * v).sum::<f64>() / (m - q) as f64 * inflation;
-    let t = StudentsT::new(0.0, 1.0, (m - q) as f64).map_or(1.96, |d| d.inverse_cdf(0.975));
-    for (c, &j) in free.iter().enumerate() {
-        let var_log: f64 = (0..q)
-            .map(|s| (v_t[(s, c)] / svd.singular_values[s]).powi(2))
-            .sum::<f64>()
-            * variance;
-        let se = var_log.sqrt();
-        let value = parameters[j].value;
-        let ci = [value * f64::exp(-t * se), value * f64::exp(t * se)];
-        if se.is_finite() && ci.iter().all(|v| v.is_finite() && *v > 0.0) {
-            parameters[j].standard_error = Some(value * se);
-            parameters[j].ci95 = Some(ci);
-        }
+/// `u` with no interval, standard error or correlation (every estimated
+/// parameter not determined).
+fn unassessed(u: Uncertainty) -> Uncertainty {
+    let n = u.names.len();
+    Uncertainty {
+        standard_errors: vec![None; n],
+        ci95: vec![None; n],
+        correlation: vec![vec![None; n]; n],
+        determined: u.fixed.iter().map(|f| (!f).then_some(false)).collect(),
+        weakest_direction: Vec::new(),
+        ..u
     }
 }
 
-/// A case replayed with a car: x and yaw, model and measured, and the fit.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Prediction {
-    /// Time from the first sample, s.
-    pub time: Vec<f64>,
-    /// Model and measured x (mean of the sensors), m.
-    pub x: [Vec<f64>; 2],
-    /// Model and measured yaw, rad.
-    pub yaw: [Vec<f64>; 2],
-    /// The fit over the case's window.
-    pub fit: CaseFit,
+/// The estimates of the result, in the order of [`names`].
+fn estimates(setup: &Setup, theta: &[f64], u: &Uncertainty) -> Vec<Estimate> {
+    names(&setup.template, setup.friction)
+        .into_iter()
+        .enumerate()
+        .map(|(i, (name, unit))| Estimate {
+            name,
+            unit,
+            value: theta[i],
+            standard_error: u.standard_errors[i],
+            ci95: u.ci95[i],
+            determined: u.determined.get(i).copied().flatten(),
+        })
+        .collect()
 }
 
-/// Replays `case` with `car` and compares it with the measurement.
-pub fn predict(car: &PlanarCar, case: &PlanarCase) -> Result<Prediction, PlanarError> {
-    check_case(case)?;
-    let replay = drive(car, &case.drive, 0.05)?;
-    let spacing = spacing(case);
-    let mean = |s: &[Vec<f64>]| {
-        s[0].iter()
-            .zip(&s[1])
-            .map(|(l, r)| 0.5 * (l + r))
-            .collect::<Vec<_>>()
-    };
-    let yaw = |s: &[Vec<f64>]| {
-        s[0].iter()
-            .zip(&s[1])
-            .map(|(l, r)| ((r - l) / spacing).clamp(-1.0, 1.0).asin())
-            .collect::<Vec<_>>()
-    };
-    let x = [mean(&replay.sensor_reading), mean(&case.measured)];
-    let yaw = [yaw(&replay.sensor_reading), yaw(&case.measured)];
-    let (a, b) = case.window;
-    let fit = CaseFit {
-        name: case.name.clone(),
-        fit_x: fit(&x[0][a..=b], &x[1][a..=b]),
-        fit_yaw: fit(&yaw[0][a..=b], &yaw[1][a..=b]),
-        peak_yaw: yaw[1][a..=b].iter().fold(0.0, |m: f64, v| m.max(v.abs())),
-    };
-    Ok(Prediction {
-        time: replay.time,
-        x,
-        yaw,
-        fit,
-    })
-}
-
-/// `100 (1 − √(SSE/SST))` of `model` against `measured`, %.
-fn fit(model: &[f64], measured: &[f64]) -> f64 {
-    let mean = measured.iter().sum::<f64>() / measured.len() as f64;
-    let sse: f64 = model
+/// The reduced car that fits as well (the layer's advice), if any.
+fn advice(cases: &[PlanarCase], setup: &Setup, result: &PlanarIdentification) -> Option<Reduction> {
+    let parameters = parameters(&setup.template, setup.friction);
+    let theta: Vec<f64> = result.parameters.iter().map(|e| e.value).collect();
+    let residuals = cases
         .iter()
-        .zip(measured)
-        .map(|(s, y)| (y - s).powi(2))
+        .map(|c| c.measured.len() * (c.window.1 - c.window.0 + 1))
         .sum();
-    let sst: f64 = measured.iter().map(|y| (y - mean).powi(2)).sum();
-    match sst > 0.0 {
-        true => 100.0 * (1.0 - (sse / sst).sqrt()),
-        false => 0.0,
-    }
+    let full = bumpsim_estimate::reduce::Full {
+        parameters: &parameters,
+        theta: &theta,
+        uncertainty: &result.uncertainty,
+        objective: result.objective,
+        residuals,
+    };
+    let car = reduce::Car {
+        cases,
+        car: &result.car,
+        setup,
+        solver: solver(),
+    };
+    bumpsim_estimate::reduce::suggest(&car, &full)
 }
 
 #[cfg(test)]

@@ -45,7 +45,7 @@ pub const CLUSTER_DISTANCE: f64 = 0.05;
 /// Clusters the finished screening runs (best first; a run within
 /// [`CLUSTER_DISTANCE`] of a better one is merged into it) and returns the
 /// clusters to polish, best first; the others become [`Fate::Unpolished`].
-pub(crate) fn candidates(runs: &mut [Run]) -> Vec<usize> {
+pub fn candidates(runs: &mut [Run]) -> Vec<usize> {
     let mut order: Vec<usize> = (0..runs.len())
         .filter(|&i| runs[i].fate == Fate::Finished && runs[i].outcome.objective.is_finite())
         .collect();
@@ -78,7 +78,7 @@ pub(crate) fn candidates(runs: &mut [Run]) -> Vec<usize> {
 /// chunks: a candidate that cannot catch up with the best polished
 /// objective is abandoned. Iterations and evaluations add up over both
 /// levels.
-pub(crate) fn polish(
+pub fn polish(
     runs: &mut [Run],
     chosen: &[usize],
     goal: Goal,
@@ -150,7 +150,7 @@ mod tests {
         assert_eq!(runs[1].fate, Fate::Merged(0)); // 0.01 from the best
         assert_eq!(runs[3].fate, Fate::Unpolished);
         polish(&mut runs, &chosen, goal, &scripted);
-        let starts = crate::estimate::tally(&runs, 1_000_000, runs.len()).unwrap();
+        let starts = crate::multistart::tally(&runs, 1_000_000, runs.len()).unwrap();
         assert_eq!((starts.best, starts.total, starts.failed), (0, 7, 0));
         // starts 0 and 1 reached F = 1: 0 by its own run, 1 merged into it;
         // 5 merged into 4, whose cluster was not polished, does not count

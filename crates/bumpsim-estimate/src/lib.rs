@@ -1,0 +1,84 @@
+//! bumpsim-estimate: the one estimation layer under every bumpsim model
+//! (the 1-D chain of `bumpsim-ident`, the planar car of `bumpsim-planar`).
+//!
+//! A model hands the layer its residuals and their Jacobian in log
+//! parameters through [`lm::LeastSquares`], its parameters' names and
+//! units ([`uncertainty::Parameter`]), and, for the reduced-model advice,
+//! its links ([`reduce::Reducible`]). It gets back:
+//!
+//! - [`lm`]: bounded Levenberg–Marquardt (Madsen, Nielsen & Tingleff 2004);
+//! - [`bounds`]: bounds and fixed values of the parameters;
+//! - [`search`], [`polish`], [`multistart`]: the staged multi-start search
+//!   (explore, refine around the best, polish the best few) and the tally
+//!   of what became of every start, with its warnings;
+//! - [`uncertainty`]: standard errors, 95 % intervals, correlations, rank
+//!   and determination flags, the weakest direction, and the variance
+//!   inflation of AR(1) residuals;
+//! - [`fit`]: the fit % of paper B and the negative-fit warning;
+//! - [`reduce`]: the simpler model the data cannot tell apart, with the
+//!   F-test;
+//! - [`observer`]: progress without a required closure;
+//! - [`text`]: the parameter table and the start statistics every model prints.
+//!
+//! Parameters are estimated as `p = ln θ`: masses, dampers and springs
+//! spanning seven decades become comparable and stay positive.
+//!
+//! ```
+//! use bumpsim_estimate::prelude::*;
+//! use nalgebra::DMatrix;
+//! /// y = a e^{−b t}: residuals in p = (ln a, ln b)
+//! struct Decay { t: Vec<f64>, y: Vec<f64> }
+//! impl LeastSquares for Decay {
+//!     fn residual_count(&self) -> usize { self.t.len() }
+//!     fn parameter_count(&self) -> usize { 2 }
+//!     fn evaluate(&self, p: &[f64], r: &mut [f64], jac: Option<&mut DMatrix<f64>>) -> bool {
+//!         let (a, b) = (p[0].exp(), p[1].exp());
+//!         for (k, &t) in self.t.iter().enumerate() {
+//!             r[k] = a * (-b * t).exp() - self.y[k];
+//!         }
+//!         if let Some(j) = jac {
+//!             for (k, &t) in self.t.iter().enumerate() {
+//!                 j[(k, 0)] = a * (-b * t).exp();
+//!                 j[(k, 1)] = -a * b * t * (-b * t).exp();
+//!             }
+//!         }
+//!         true
+//!     }
+//! }
+//! let t: Vec<f64> = (0..50).map(|k| k as f64 * 0.1).collect();
+//! let y = t.iter().map(|t| 3.0 * (-0.7 * t).exp()).collect();
+//! let problem = Decay { t, y };
+//! let (lower, upper) = (vec![-10.0; 2], vec![10.0; 2]);
+//! let search = Search {
+//!     starts: 8, seed: 1, solver: LmSettings::default(),
+//!     lower: &lower, upper: &upper, range: (&lower, &upper),
+//! };
+//! let explored = (0..8).map(|k| Draws::new(1, k).around(&[0.0, 0.0], 10.0)).collect();
+//! let found = multistart::search(&|| &problem, explored, &search, &Silent).unwrap();
+//! let best = found.best();
+//! assert!((best.parameters[0].exp() - 3.0).abs() < 1e-6);
+//! assert!((best.parameters[1].exp() - 0.7).abs() < 1e-6);
+//! assert!(found.starts.reached_best >= 2);
+//! ```
+
+pub mod bounds;
+pub mod fit;
+pub mod lm;
+pub mod multistart;
+pub mod observer;
+pub mod polish;
+pub mod reduce;
+pub mod search;
+pub mod text;
+pub mod uncertainty;
+
+/// The types most estimations need.
+pub mod prelude {
+    pub use crate::bounds::Bounds;
+    pub use crate::lm::{LeastSquares, Outcome, Settings as LmSettings, Stop};
+    pub use crate::multistart::{self, Search, Searched, Starts};
+    pub use crate::observer::{Observer, Silent};
+    pub use crate::reduce::{Reducible, Reduction};
+    pub use crate::search::Draws;
+    pub use crate::uncertainty::{Correlation, Parameter, Series, Uncertainty};
+}

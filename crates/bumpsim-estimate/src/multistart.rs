@@ -1,0 +1,335 @@
+//! One multi-start estimation, for any least-squares problem: the explored
+//! starts the model gives, the refining rounds around the best
+//! ([`crate::search`]), the polishing of the best few ([`crate::polish`]),
+//! and the tally of what became of every start ([`Starts`]).
+//!
+//! A start *reaches the best fit* when its run (or the run it merged into)
+//! ends within one noise variance of the best objective,
+//! `F ≤ F_best (1 + 1/(n − q))` with n residuals and q free parameters: the
+//! data cannot tell such a fit from the best (its likelihood-ratio
+//! statistic `n ln(F/F_best)` is about 1, where a 5 % test needs 3.84).
+
+use crate::lm::{self, LeastSquares, Outcome};
+use crate::observer::Observer;
+use crate::polish::{REFINE_FTOL, SCREEN_FTOL, candidates, polish};
+use crate::search::{Fate, Goal, ROUND, Run, around, representative, staged};
+use serde::Serialize;
+
+/// Every start failed.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("all {starts} starts failed: the model could not be simulated from any of them")]
+pub struct AllFailed {
+    /// Number of starts.
+    pub starts: usize,
+}
+
+/// Start statistics.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Starts {
+    /// Starts run.
+    pub total: usize,
+    /// Starts whose run converged.
+    pub converged: usize,
+    /// Starts that could not be evaluated or ended non-finite.
+    pub failed: usize,
+    /// Starts that reached the best objective (within 1e-6 relative): by
+    /// their own run, or merged into a start that did.
+    pub reached_best: usize,
+    /// Starts that reached the best objective by their own (polished) run;
+    /// the others of `reached_best` merged into one of these.
+    pub reached_best_alone: usize,
+    /// Starts that reached the best *fit*: their run (polished or only
+    /// screened), or the run they merged into, ended within one noise
+    /// variance of the best objective, `F ≤ F_best (1 + 1/(n − q))`. In a
+    /// flat valley (a sloppy 5-DOF model) starts stop at objectives that
+    /// differ in the fourth digit, which the 1e-6 count calls misses.
+    pub reached_best_fit: usize,
+    /// Starts of `reached_best_fit` that got there by their own run.
+    pub reached_best_fit_alone: usize,
+    /// Starts abandoned at a stage end, too far above the incumbent
+    /// ([`crate::search::STAGES`]).
+    pub abandoned: usize,
+    /// Starts merged into a better start next to them
+    /// ([`crate::search::MERGE_DISTANCE`], [`crate::polish::CLUSTER_DISTANCE`]).
+    pub merged: usize,
+    /// Starts whose screened optimum was too far above the best to be
+    /// polished ([`crate::polish`]).
+    pub unpolished: usize,
+    /// Starts drawn around the best screened optimum of the others (the
+    /// search's second level, [`crate::search::REFINED`]); they are among
+    /// `total`.
+    pub refined: usize,
+    /// Exploring starts (those not drawn around the best, `total −
+    /// refined`) that reached the best fit by their own run or by the run
+    /// they merged into: how many independent draws found the best basin.
+    /// One means the best was found by a single start.
+    pub explored_best_fit: usize,
+    /// Index of the best start (0 = the first given start).
+    pub best: usize,
+}
+
+/// How to search: the starts, the solver, the bounds.
+#[derive(Debug, Clone, Copy)]
+pub struct Search<'a> {
+    /// Starts in all (≥ 1): the explored ones given to [`search`], the rest
+    /// refine around the best.
+    pub starts: usize,
+    /// Seed of the refining draws.
+    pub seed: u64,
+    /// Solver tolerances and iteration limit.
+    pub solver: lm::Settings,
+    /// Bounds of the free log parameters.
+    pub lower: &'a [f64],
+    /// Upper bounds (may be infinite).
+    pub upper: &'a [f64],
+    /// Where refining draws are clamped, per free log parameter (where the
+    /// model can be evaluated).
+    pub range: (&'a [f64], &'a [f64]),
+}
+
+/// What a search found.
+#[derive(Debug, Clone)]
+pub struct Searched {
+    /// Every start's run, in start order.
+    pub runs: Vec<Run>,
+    /// Every start's starting point (log parameters).
+    pub points: Vec<Vec<f64>>,
+    /// The tally.
+    pub starts: Starts,
+}
+
+impl Searched {
+    /// The best run's outcome.
+    pub fn best(&self) -> &Outcome {
+        &self.runs[self.starts.best].outcome
+    }
+
+    /// Where the best run started (log parameters).
+    pub fn best_start(&self) -> &[f64] {
+        &self.points[self.starts.best]
+    }
+}
+
+/// Runs a staged multi-start search of the problem `make()` builds (one per
+/// solver run, so that runs in parallel share nothing): the `explored`
+/// starting points (log parameters), then `search.starts − explored.len()`
+/// refining starts in rounds around the best so far, then the polishing of
+/// the best screened optima. `observer` hears of every finished start.
+pub fn search<P: LeastSquares>(
+    make: &(dyn Fn() -> P + Sync),
+    explored: Vec<Vec<f64>>,
+    search: &Search,
+    observer: &dyn Observer,
+) -> Result<Searched, AllFailed> {
+    let problem = make();
+    let freedom = problem
+        .residual_count()
+        .saturating_sub(problem.parameter_count());
+    let (lower, upper) = (search.lower, search.upper);
+    let solve = |start: &[f64], iterations: usize, ftol: f64| {
+        let solver = lm::Settings {
+            max_iterations: iterations,
+            ftol,
+            ..search.solver
+        };
+        lm::minimise(&make(), start, lower, upper, &solver)
+    };
+    let (limit, ftol) = (search.solver.max_iterations, search.solver.ftol);
+    let screen = |p: &[f64], n| solve(p, n, ftol.max(SCREEN_FTOL));
+    // a run is raced for the best fit: within one noise variance of the best
+    let goal = Goal {
+        iterations: limit,
+        target: f64::INFINITY,
+        within: 1.0 / freedom.max(1) as f64,
+    };
+    let mut points = explored;
+    let first = points.len();
+    let mut runs = staged(&points, goal, &screen, observer);
+    let mut refined = search.starts.max(1).saturating_sub(first);
+    // the second level, in rounds: around the best screened optimum so far,
+    // each start raced for its fit
+    while let Some(best) = best_run(&runs).filter(|_| refined > 0) {
+        let round = refined.min(ROUND);
+        let more = around(
+            &best.parameters,
+            round,
+            search.seed,
+            points.len(),
+            search.range,
+        );
+        let within = Goal {
+            target: best.objective * (1.0 + goal.within),
+            ..goal
+        };
+        let offset = runs.len();
+        let refine = |p: &[f64], n| solve(p, n, ftol.max(REFINE_FTOL));
+        runs.extend(
+            staged(&more, within, &refine, observer)
+                .into_iter()
+                .map(|mut run| {
+                    if let Fate::Merged(j) = run.fate {
+                        run.fate = Fate::Merged(j + offset);
+                    }
+                    run
+                }),
+        );
+        points.extend(more);
+        refined -= round;
+    }
+    let chosen = candidates(&mut runs);
+    polish(&mut runs, &chosen, goal, &|p, n| solve(p, n, ftol));
+    let starts = tally(&runs, freedom, first)?;
+    Ok(Searched {
+        runs,
+        points,
+        starts,
+    })
+}
+
+/// The outcome of the best finished run with a finite objective.
+fn best_run(runs: &[Run]) -> Option<Outcome> {
+    runs.iter()
+        .filter(|r| r.fate == Fate::Finished && r.outcome.objective.is_finite())
+        .map(|r| &r.outcome)
+        .min_by(|a, b| a.objective.total_cmp(&b.objective))
+        .cloned()
+}
+
+/// The start statistics of staged runs; an error when every start failed.
+/// `freedom` is n − q (residuals less free parameters): one noise variance
+/// of the best fit is `F_best / freedom`. `exploring`: how many of `runs`
+/// (the first ones) explored; the rest were drawn around the best so far.
+pub fn tally(runs: &[Run], freedom: usize, exploring: usize) -> Result<Starts, AllFailed> {
+    let failed = runs
+        .iter()
+        .filter(|r| !r.outcome.objective.is_finite())
+        .count();
+    let (best, outcome) = runs
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r.fate == Fate::Finished && r.outcome.objective.is_finite())
+        .map(|(i, r)| (i, &r.outcome))
+        .min_by(|a, b| a.1.objective.total_cmp(&b.1.objective))
+        .ok_or(AllFailed { starts: runs.len() })?;
+    let exact = outcome.objective * (1.0 + 1e-6) + 1e-300;
+    let noise = outcome.objective * (1.0 + 1.0 / freedom.max(1) as f64) + 1e-300;
+    // a run that ended below `bar` by itself: polished, or a screened
+    // optimum left unpolished (for the noise bar only: the exact bar asks
+    // for the thesis's tolerances)
+    let own = |i: usize, bar: f64, screened: bool| {
+        let ended =
+            runs[i].fate == Fate::Finished || (screened && runs[i].fate == Fate::Unpolished);
+        ended && runs[i].outcome.objective <= bar
+    };
+    let reached = |i: usize, bar: f64, screened: bool| own(representative(runs, i), bar, screened);
+    let count = |bar: f64, screened: bool| {
+        let alone = (0..runs.len()).filter(|&i| own(i, bar, screened)).count();
+        let all = (0..runs.len())
+            .filter(|&i| reached(i, bar, screened))
+            .count();
+        (all, alone)
+    };
+    let exploring = exploring.min(runs.len());
+    let ((reached_best, reached_best_alone), (reached_best_fit, reached_best_fit_alone)) =
+        (count(exact, false), count(noise, true));
+    let fate = |f: fn(&Fate) -> bool| runs.iter().filter(|r| f(&r.fate)).count();
+    Ok(Starts {
+        total: runs.len(),
+        converged: runs
+            .iter()
+            .filter(|r| r.outcome.objective.is_finite() && r.outcome.stop.converged())
+            .count(),
+        failed,
+        reached_best,
+        reached_best_alone,
+        reached_best_fit,
+        reached_best_fit_alone,
+        abandoned: fate(|f| *f == Fate::Abandoned),
+        merged: fate(|f| matches!(f, Fate::Merged(_))),
+        unpolished: fate(|f| *f == Fate::Unpolished),
+        refined: runs.len() - exploring,
+        explored_best_fit: (0..exploring).filter(|&i| reached(i, noise, true)).count(),
+        best,
+    })
+}
+
+/// The warnings a search's tally carries: failed starts, a best found by
+/// one exploring start only, a best run that stopped at the iteration limit.
+pub fn warnings(starts: &Starts, best: &Outcome) -> Vec<String> {
+    let mut out = Vec::new();
+    if starts.failed > 0 {
+        out.push(format!(
+            "{} of {} starts failed (model not simulable) and were discarded",
+            starts.failed, starts.total
+        ));
+    }
+    out.extend(single_start_warning(starts));
+    if !best.stop.converged() {
+        out.push(format!(
+            "the best start stopped at the iteration limit ({} iterations)",
+            best.iterations
+        ));
+    }
+    out
+}
+
+/// The warning when at most one exploring start found the best fit: the
+/// starts drawn around the best refine its basin and do not confirm that
+/// no better one exists.
+pub fn single_start_warning(starts: &Starts) -> Option<String> {
+    let exploring = starts.total - starts.refined;
+    if exploring < 2 || starts.explored_best_fit > 1 {
+        return None;
+    }
+    let around = match starts.refined {
+        0 => String::new(),
+        n => format!(
+            " ({n} more drawn around the best refine its basin but do not search elsewhere)"
+        ),
+    };
+    Some(format!(
+        "{} of the {exploring} exploring starts came within the noise of the best objective{around}: a better minimum may exist; raise the number of starts",
+        starts.explored_best_fit
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn starts(total: usize, refined: usize, explored_best_fit: usize) -> Starts {
+        Starts {
+            total,
+            converged: total,
+            failed: 0,
+            reached_best: explored_best_fit,
+            reached_best_alone: 1,
+            reached_best_fit: total,
+            reached_best_fit_alone: 1,
+            abandoned: 0,
+            merged: total - 1,
+            unpolished: 0,
+            refined,
+            explored_best_fit,
+            best: 0,
+        }
+    }
+
+    /// The remark fired on a 1-DOF model whose 32 starts all reached the
+    /// best (31 merged into one run), and stayed silent when one exploring
+    /// start found the basin and the refining starts around it followed.
+    #[test]
+    fn the_single_start_remark_counts_exploring_starts() {
+        assert_eq!(single_start_warning(&starts(32, 16, 16)), None);
+        assert_eq!(single_start_warning(&starts(32, 16, 2)), None);
+        let one = single_start_warning(&starts(32, 16, 1)).unwrap();
+        assert!(one.starts_with("1 of the 16 exploring starts"), "{one}");
+        assert!(one.contains("16 more drawn around the best"), "{one}");
+        let none = single_start_warning(&starts(8, 0, 0)).unwrap();
+        assert!(
+            none.starts_with("0 of the 8 exploring starts") && !none.contains("around"),
+            "{none}"
+        );
+        assert_eq!(single_start_warning(&starts(1, 0, 1)), None);
+    }
+}

@@ -1,0 +1,62 @@
+//! The text every model prints of an estimate (the 1-D chain and the planar
+//! car alike): the parameter table with units, standard errors, intervals
+//! and a note (fixed, at bound, not determined), and the line of start
+//! statistics.
+
+use crate::multistart::Starts;
+use crate::uncertainty::{Parameter, Uncertainty};
+use bumpsim_core::units::{Dimension, format_quantity};
+
+/// The parameter table: name, value, standard error, 95 % interval, and a
+/// note: fixed, at bound, or not determined by the data
+/// ([`crate::uncertainty::is_determined`]).
+pub fn parameter_table(parameters: &[Parameter], theta: &[f64], u: &Uncertainty) -> String {
+    let width = parameters
+        .iter()
+        .map(|p| p.name.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(5);
+    let mut out = format!(
+        "{:<width$} {:>14} {:>14} {:>32}  note\n",
+        "", "value", "std. error", "95 % interval"
+    );
+    for (i, (p, &value)) in parameters.iter().zip(theta).enumerate() {
+        let se = u.standard_errors[i].map_or("-".to_string(), |s| p.format(s));
+        let ci = u.ci95[i].map_or("-".to_string(), |[a, b]| {
+            format!("{} .. {}", p.format(a), p.format(b))
+        });
+        let note = match (u.fixed[i], u.at_bound[i], u.determined.get(i)) {
+            (true, _, _) => "fixed",
+            (_, true, _) => "at bound",
+            (_, _, Some(Some(false))) => "not determined",
+            _ => "",
+        };
+        let value = p.format(value);
+        out += &format!("{:<width$} {value:>14} {se:>14} {ci:>32}  {note}\n", p.name);
+    }
+    out
+}
+
+/// The start statistics: run (and refined around the best), converged,
+/// reached the best fit (within the noise) and the best objective (to
+/// 1e-6), and by how many runs of their own; abandoned, not polished,
+/// failed; the best start's iterations; time (s).
+pub fn starts_line(s: &Starts, iterations: usize, run_time: f64) -> String {
+    format!(
+        "starts: {} run ({} of them around the best so far), {} converged, {} reached the best fit (F within one noise variance; {} of the exploring starts, {} by their own run), {} the best objective to 1e-6 ({} by their own polished run), {} abandoned, {} not polished, {} failed; {} iterations; {}",
+        s.total,
+        s.refined,
+        s.converged,
+        s.reached_best_fit,
+        s.explored_best_fit,
+        s.reached_best_fit_alone,
+        s.reached_best,
+        s.reached_best_alone,
+        s.abandoned,
+        s.unpolished,
+        s.failed,
+        iterations,
+        format_quantity(run_time, Dimension::Time)
+    )
+}

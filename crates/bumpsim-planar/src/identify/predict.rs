@@ -1,0 +1,81 @@
+//! A planar case replayed with a car and compared with its measurement:
+//! x (the mean of the two sensors) and the yaw `ψ = asin((x_R − x_L)/(η_L −
+//! η_R))`, each scored by the fit % of the estimation layer
+//! ([`bumpsim_estimate::fit`]: `100 (1 − √(SSE/SST))`).
+
+use super::{PlanarCase, check_case, spacing};
+use crate::car::{PlanarCar, PlanarError};
+use crate::drive::drive;
+use bumpsim_estimate::fit::{negative_fit, percent};
+use serde::Serialize;
+
+/// How well the model replays one case.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CaseFit {
+    /// The case.
+    pub name: String,
+    /// Fit of x (mean of the two sensors), %.
+    pub fit_x: f64,
+    /// Fit of the yaw angle, %.
+    pub fit_yaw: f64,
+    /// Peak measured yaw, rad.
+    pub peak_yaw: f64,
+}
+
+impl CaseFit {
+    /// The warnings of a negative fit of x or yaw (the model follows it
+    /// worse than its mean does).
+    pub fn warnings(&self) -> Vec<String> {
+        [("x displacement", self.fit_x), ("yaw", self.fit_yaw)]
+            .into_iter()
+            .filter_map(|(signal, fit)| negative_fit(&self.name, signal, fit))
+            .collect()
+    }
+}
+
+/// A case replayed with a car: x and yaw, model and measured, and the fit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Prediction {
+    /// Time from the first sample, s.
+    pub time: Vec<f64>,
+    /// Model and measured x (mean of the sensors), m.
+    pub x: [Vec<f64>; 2],
+    /// Model and measured yaw, rad.
+    pub yaw: [Vec<f64>; 2],
+    /// The fit over the case's window.
+    pub fit: CaseFit,
+}
+
+/// Replays `case` with `car` and compares it with the measurement.
+pub fn predict(car: &PlanarCar, case: &PlanarCase) -> Result<Prediction, PlanarError> {
+    check_case(case)?;
+    let replay = drive(car, &case.drive, 0.05)?;
+    let spacing = spacing(case);
+    let mean = |s: &[Vec<f64>]| {
+        s[0].iter()
+            .zip(&s[1])
+            .map(|(l, r)| 0.5 * (l + r))
+            .collect::<Vec<_>>()
+    };
+    let yaw = |s: &[Vec<f64>]| {
+        s[0].iter()
+            .zip(&s[1])
+            .map(|(l, r)| ((r - l) / spacing).clamp(-1.0, 1.0).asin())
+            .collect::<Vec<_>>()
+    };
+    let x = [mean(&replay.sensor_reading), mean(&case.measured)];
+    let yaw = [yaw(&replay.sensor_reading), yaw(&case.measured)];
+    let (a, b) = case.window;
+    let fit = CaseFit {
+        name: case.name.clone(),
+        fit_x: percent(&x[0][a..=b], &x[1][a..=b]),
+        fit_yaw: percent(&yaw[0][a..=b], &yaw[1][a..=b]),
+        peak_yaw: yaw[1][a..=b].iter().fold(0.0, |m: f64, v| m.max(v.abs())),
+    };
+    Ok(Prediction {
+        time: replay.time,
+        x,
+        yaw,
+        fit,
+    })
+}
