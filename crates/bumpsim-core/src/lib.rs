@@ -16,6 +16,7 @@
 //! - [`modal`]: the same zoh output and sensitivities in modal coordinates
 //!   (identification's fast form);
 //! - [`energy`]: exact per-step energy integrals;
+//! - [`leapfrog`]: the one explicit integrator of every impact (1-D and planar);
 //! - [`simulate`]: responses with forces and energies.
 //!
 //! ```
@@ -31,6 +32,7 @@ pub mod discrete;
 pub mod energy;
 mod exponential;
 pub mod fixed_width;
+pub mod leapfrog;
 pub mod modal;
 pub mod model;
 pub mod names;
