@@ -61,7 +61,7 @@ fn planar_impact(
 ) -> PyResult<PlanarImpact> {
     let side: Side = side
         .parse()
-        .map_err(|e: String| InputError::new_err(format!("side: {e}")))?;
+        .map_err(|e: bumpsim_planar::striker::SideError| InputError::new_err(format!("side: {e}")))?;
     let spec = StrikerSpec {
         case: case.map(str::to_string),
         angle,
