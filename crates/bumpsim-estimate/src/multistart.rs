@@ -296,6 +296,75 @@ pub fn single_start_warning(starts: &Starts) -> Option<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lm::Stop;
+    use crate::polish::{candidates, polish};
+    use crate::search::staged;
+
+    /// A scripted solver on one parameter: minima at 0 (F = 1), 1 (F = 1.1)
+    /// and 5 (F = 100) reached at once; a flat valley near 7 (F = 5) that
+    /// makes no progress in a chunk; a hopeless start at 9 (F = 1000).
+    fn scripted(p: &[f64], iterations: usize) -> Outcome {
+        let (at, objective, stop) = match p[0] {
+            x if x < 0.5 => (0.0, 1.0, Stop::Objective),
+            x if x < 3.0 => (1.0, 1.1, Stop::Objective),
+            x if x < 6.0 => (5.0, 100.0, Stop::Objective),
+            x if x < 8.0 && iterations <= 200 => (x, 5.0, Stop::Iterations),
+            x if x < 8.0 => (7.0, 5.0, Stop::Objective),
+            x => (x, 1000.0, Stop::Iterations),
+        };
+        Outcome {
+            parameters: vec![at],
+            objective,
+            iterations: iterations.min(7),
+            evaluations: 1,
+            stop,
+        }
+    }
+
+    #[test]
+    fn stages_abandon_merge_and_polish_and_the_tally_says_so() {
+        let points: Vec<Vec<f64>> = [0.0, 0.01, 1.0, 5.0, 7.0, 7.001, 9.0]
+            .iter()
+            .map(|p| vec![*p])
+            .collect();
+        let finished = std::sync::atomic::AtomicUsize::new(0);
+        let progress = || {
+            finished.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        };
+        let goal = Goal {
+            iterations: 1000,
+            target: f64::INFINITY,
+            within: 0.0,
+        };
+        let mut runs = staged(&points, goal, &scripted, &progress);
+        assert_eq!(finished.into_inner(), 7, "one progress call per start");
+        assert_eq!(runs[6].fate, Fate::Abandoned); // 1000 > 10 × 1 after 200 iterations
+        assert_eq!(runs[5].fate, Fate::Merged(4)); // 0.001 from a running start
+        // the flat valley: F = 5 after the first stage and no progress in its
+        // first chunk, so it cannot reach F = 1 in the iterations left
+        assert_eq!(runs[4].fate, Fate::Abandoned);
+        assert_eq!(runs[4].outcome.iterations, 14);
+        let chosen = candidates(&mut runs);
+        assert_eq!(chosen, vec![0, 2]); // F = 1 and 1.1 ≤ 1.2 × 1; 5 and 100 are not
+        assert_eq!(runs[1].fate, Fate::Merged(0)); // 0.01 from the best
+        assert_eq!(runs[3].fate, Fate::Unpolished);
+        polish(&mut runs, &chosen, goal, &scripted);
+        let starts = tally(&runs, 1_000_000, runs.len()).unwrap();
+        assert_eq!((starts.best, starts.total, starts.failed), (0, 7, 0));
+        // starts 0 and 1 reached F = 1: 0 by its own run, 1 merged into it;
+        // 5 merged into 4, whose cluster was not polished, does not count
+        assert_eq!((starts.reached_best, starts.reached_best_alone), (2, 1));
+        // within the noise (here 1e-6 too) the same starts
+        assert_eq!(
+            (starts.reached_best_fit, starts.reached_best_fit_alone),
+            (2, 1)
+        );
+        assert_eq!(
+            (starts.abandoned, starts.merged, starts.unpolished),
+            (2, 2, 1)
+        );
+        assert_eq!(starts.converged, 4);
+    }
 
     fn starts(total: usize, refined: usize, explored_best_fit: usize) -> Starts {
         Starts {

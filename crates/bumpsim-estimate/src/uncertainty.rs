@@ -117,6 +117,30 @@ pub struct Series {
     pub stride: usize,
 }
 
+impl Series {
+    /// Contiguous series of the given lengths, one after the other (stride 1).
+    ///
+    /// ```
+    /// use bumpsim_estimate::uncertainty::Series;
+    /// let s = Series::contiguous([3, 2].into_iter());
+    /// assert_eq!((s[1].start, s[1].len, s[1].stride), (3, 2, 1));
+    /// ```
+    pub fn contiguous(lengths: impl Iterator<Item = usize>) -> Vec<Series> {
+        let mut start = 0;
+        lengths
+            .map(|len| {
+                let s = Series {
+                    start,
+                    len,
+                    stride: 1,
+                };
+                start += len;
+                s
+            })
+            .collect()
+    }
+}
+
 /// Standard errors, intervals and correlations of the estimate.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Uncertainty {

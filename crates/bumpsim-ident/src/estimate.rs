@@ -14,215 +14,22 @@
 
 use crate::case::{CaseError, LoadCase, Objective, VALID_RANGE};
 use crate::search::starting_points;
-use crate::stats::{Uncertainty, uncertainty};
-use bumpsim_core::model::{MsdModel, ParameterKind, parameter_count, parameter_kind};
-use bumpsim_estimate::lm::{self, LeastSquares, Stop};
+use crate::settings::check;
+use crate::stats::uncertainty;
+use bumpsim_core::model::{ParameterKind, parameter_count, parameter_kind};
+use bumpsim_estimate::lm::LeastSquares;
 use bumpsim_estimate::multistart::{self, Search, Searched};
 use bumpsim_estimate::observer::Observer;
 use bumpsim_estimate::search::exploring;
-use serde::Serialize;
 use std::time::Instant;
 
+pub use crate::error::IdentError;
+pub use crate::result::{CaseFit, Identification};
+pub use crate::settings::{
+    MAX_DOF, MAX_STARTS, Settings, uniform_bounds, usable_bounds, usable_fixed,
+};
 pub use bumpsim_estimate::bounds::Bounds;
 pub use bumpsim_estimate::multistart::Starts;
-
-/// Why identification cannot run.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum IdentError {
-    /// A load case is unusable.
-    #[error(transparent)]
-    Case(#[from] CaseError),
-    /// A setting is out of range.
-    #[error("identification setting {name}: {reason}")]
-    Setting {
-        /// The setting.
-        name: &'static str,
-        /// What is wrong.
-        reason: String,
-    },
-    /// The best start's parameters do not make a model (cannot happen within
-    /// the bounds; checked so that no invalid model is returned).
-    #[error("the best parameters {theta:?} (SI) do not make a valid model")]
-    Parameters {
-        /// The parameters, SI, thesis order.
-        theta: Vec<f64>,
-    },
-    /// Every start failed.
-    #[error(transparent)]
-    AllFailed(#[from] multistart::AllFailed),
-}
-
-/// Whether `[lower, upper]` (SI) bounds a parameter the search can use:
-/// the lower bound within [`VALID_RANGE`] below its ceiling, the upper one
-/// above it (it may be infinite). The one rule for settings and studies.
-pub fn usable_bounds(lower: f64, upper: f64) -> bool {
-    let (floor, ceiling) = (*VALID_RANGE.start(), *VALID_RANGE.end());
-    lower >= floor && lower < ceiling && upper > lower
-}
-
-/// Whether `value` (SI) can be a fixed parameter: finite and positive (one
-/// beyond [`VALID_RANGE`] is not simulable, which every start then reports).
-pub fn usable_fixed(value: f64) -> bool {
-    value.is_finite() && value > 0.0
-}
-
-/// The bounds of a `dof`-mass chain: every parameter in `[lower, ∞)`, none
-/// fixed (the thesis: `lower` = 1).
-pub fn uniform_bounds(dof: usize, lower: f64) -> Bounds {
-    Bounds::uniform(parameter_count(dof), lower)
-}
-
-/// Checks `bounds` for a `dof`-mass chain: one entry per parameter, each
-/// usable ([`usable_bounds`], [`usable_fixed`]).
-fn check_bounds(bounds: &Bounds, dof: usize) -> Result<(), IdentError> {
-    {
-        let p = parameter_count(dof);
-        let setting = |reason: String| IdentError::Setting {
-            name: "bounds",
-            reason,
-        };
-        if bounds.lower.len() != p || bounds.upper.len() != p || bounds.fixed.len() != p {
-            return Err(setting(format!("{p} parameters for {dof} DOF")));
-        }
-        for i in 0..p {
-            let (lo, hi) = (bounds.lower[i], bounds.upper[i]);
-            let (floor, ceiling) = (*VALID_RANGE.start(), *VALID_RANGE.end());
-            if !usable_bounds(lo, hi) {
-                let name = bumpsim_core::model::parameter_name(dof, i);
-                let unit = parameter_kind(dof, i).0.unit();
-                return Err(setting(format!(
-                    "{name}: need {floor:e} {unit} <= lower < upper with lower below {ceiling:e} {unit}, got [{lo}, {hi}] {unit}"
-                )));
-            }
-            if let Some(v) = bounds.fixed[i].filter(|v| !usable_fixed(*v)) {
-                let name = bumpsim_core::model::parameter_name(dof, i);
-                let unit = parameter_kind(dof, i).0.unit();
-                return Err(IdentError::Setting {
-                    name: "fixed",
-                    reason: format!(
-                        "{name} = {v} {unit}: a fixed value must be finite and positive"
-                    ),
-                });
-            }
-        }
-        Ok(())
-    }
-}
-
-/// What to estimate and how.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Settings {
-    /// Number of masses.
-    pub dof: usize,
-    /// Bounds and fixed values.
-    pub bounds: Bounds,
-    /// Number of starts (≥ 1).
-    pub starts: usize,
-    /// Seed of the random starts.
-    pub seed: u64,
-    /// The user's start, SI, thesis order.
-    pub start: Option<Vec<f64>>,
-    /// Further given starts (e.g. [`Settings::continue_from`]), SI, thesis
-    /// order; they replace random starts, the total stays `starts`.
-    pub seeds: Vec<Vec<f64>>,
-    /// For each seed (by index; missing: none), the link (0-based) that
-    /// joins the two halves of a mass split by [`Settings::continue_from`]:
-    /// random starts around that seed draw this link over its whole range
-    /// ([`crate::search`]).
-    pub split_links: Vec<Option<usize>>,
-    /// Solver tolerances.
-    pub solver: lm::Settings,
-}
-
-impl Settings {
-    /// Thesis defaults: every parameter ≥ 1, `starts` starts, seed 1.
-    pub fn new(dof: usize, starts: usize) -> Settings {
-        Settings {
-            dof,
-            bounds: uniform_bounds(dof, 1.0),
-            starts,
-            seed: 1,
-            start: None,
-            seeds: Vec::new(),
-            split_links: Vec::new(),
-            solver: lm::Settings::default(),
-        }
-    }
-
-    /// Adds the continuation starts from the optimum of the model with one
-    /// mass fewer ([`crate::search::continuation_starts`]); any other
-    /// `previous` adds nothing.
-    pub fn continue_from(&mut self, previous: &MsdModel) {
-        if previous.dof() + 1 == self.dof {
-            self.seeds = crate::search::continuation_starts(previous);
-            // seed j splits mass j: link j joins the halves
-            self.split_links = (0..self.seeds.len()).map(Some).collect();
-        }
-    }
-}
-
-/// Fit of one load case.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct CaseFit {
-    /// Case name.
-    pub name: String,
-    /// Sum of squared errors in the window, m².
-    pub sse: f64,
-    /// `100 (1 − ‖y − ŷ‖ / ‖y − ȳ‖)`, %.
-    pub fit_percent: f64,
-    /// Samples in the window.
-    pub samples: usize,
-}
-
-/// The identified model and everything said about it.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Identification {
-    /// Number of masses.
-    pub dof: usize,
-    /// The identified model; serialised as its `masses` (kg), `dampers`
-    /// (N·s/m) and `springs` (N/m) at the top level of the result.
-    #[serde(flatten)]
-    pub model: MsdModel,
-    /// `F = Σ (x − x̂)²` over all cases, m².
-    pub objective: f64,
-    /// Per-case fit.
-    pub cases: Vec<CaseFit>,
-    /// Overall fit %, from all windows together.
-    pub fit_percent: f64,
-    /// Akaike information criterion `n ln(F/n) + 2q`.
-    pub aic: f64,
-    /// Bayesian information criterion `n ln(F/n) + q ln n`.
-    pub bic: f64,
-    /// Residuals n.
-    pub residuals: usize,
-    /// Uncertainty of the estimate.
-    pub uncertainty: Uncertainty,
-    /// Starts.
-    pub starts: Starts,
-    /// Solver iterations of the best start (screening and polishing).
-    pub iterations: usize,
-    /// Where the best start began, SI, thesis order (free and fixed
-    /// parameters): the user's, the data-derived, a continuation or a
-    /// random start.
-    pub start: Vec<f64>,
-    /// Why the best start stopped.
-    pub stop: Stop,
-    /// Wall-clock time, s.
-    pub run_time: f64,
-    /// Warnings for the user.
-    pub warnings: Vec<String>,
-    /// A simpler model that fits as well, when a spring is undetermined
-    /// ([`crate::reduce`]).
-    pub reduction: Option<crate::reduce::Reduction>,
-}
-
-impl Identification {
-    /// The identified model.
-    pub fn model(&self) -> &MsdModel {
-        &self.model
-    }
-}
 
 /// A start derived from the data: the total mass from impulse and velocity
 /// change of the output, `M = |∫F dt / Δv|`, split equally; one spring
@@ -269,85 +76,6 @@ fn case_estimate(case: &LoadCase) -> Option<(f64, f64)> {
     let mass = (impulse / (end_velocity - start_velocity)).abs();
     let duration = (b - a) as f64 * case.step;
     (mass.is_finite() && mass > 0.0 && duration > 0.0).then_some((mass, duration))
-}
-
-/// Largest model identified (memory and time grow with the cube of the DOF).
-pub const MAX_DOF: usize = 50;
-/// Most starts of one identification.
-pub const MAX_STARTS: usize = 100_000;
-
-fn check(cases: &[LoadCase], settings: &Settings) -> Result<(), IdentError> {
-    let setting = |name, reason: String| Err(IdentError::Setting { name, reason });
-    if settings.dof > MAX_DOF {
-        return setting(
-            "dof",
-            format!("{} masses: at most {MAX_DOF} (limit MAX_DOF)", settings.dof),
-        );
-    }
-    if settings.starts > MAX_STARTS {
-        return setting(
-            "starts",
-            format!(
-                "{} starts: at most {MAX_STARTS} (limit MAX_STARTS)",
-                settings.starts
-            ),
-        );
-    }
-    if settings.dof == 0 || settings.starts == 0 || cases.is_empty() {
-        return setting(
-            "dof/starts/cases",
-            "need at least one DOF, one start and one load case".into(),
-        );
-    }
-    for case in cases {
-        case.validate()?;
-        if case.output_dof > settings.dof {
-            return setting(
-                "output_dof",
-                format!(
-                    "case '{}' measures DOF {} of a {}-DOF model",
-                    case.name, case.output_dof, settings.dof
-                ),
-            );
-        }
-    }
-    let p = parameter_count(settings.dof);
-    if let Some(start) = &settings.start {
-        if start.len() != p {
-            let reason = format!("{p} positive values expected for {} DOF", settings.dof);
-            return setting("start", reason);
-        }
-        if let Some(i) = start.iter().position(|v| !(v.is_finite() && *v > 0.0)) {
-            let name = bumpsim_core::model::parameter_name(settings.dof, i);
-            let unit = parameter_kind(settings.dof, i).0.unit();
-            let reason = format!(
-                "{name} = {} {unit}: start values must be finite and positive",
-                start[i]
-            );
-            return setting("start", reason);
-        }
-    }
-    if let Some(bad) = settings
-        .seeds
-        .iter()
-        .position(|s| s.len() != p || s.iter().any(|v| !(v.is_finite() && *v > 0.0)))
-    {
-        return setting(
-            "seeds",
-            format!("seed start {}: {p} positive values expected", bad + 1),
-        );
-    }
-    check_bounds(&settings.bounds, settings.dof)?;
-    if settings.bounds.fixed.iter().take(p).all(Option::is_some) {
-        return setting(
-            "fixed",
-            format!(
-                "every parameter of the {}-DOF model is fixed: nothing is left to identify (`bumpsim predict` evaluates a given model)",
-                settings.dof
-            ),
-        );
-    }
-    Ok(())
 }
 
 /// Identifies a `settings.dof`-mass model from `cases`, with the reduced
@@ -471,23 +199,4 @@ fn total_spread(cases: &[LoadCase]) -> f64 {
         .iter()
         .map(|c| bumpsim_estimate::fit::spread(&c.measured[c.window.0..=c.window.1]))
         .sum()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// `fixed = { k1 = nan }` said "bounds: fixed value NaN must be
-    /// positive", naming neither the table nor the parameter.
-    #[test]
-    fn a_bad_fixed_value_names_its_parameter() {
-        let mut bounds = uniform_bounds(2, 1.0);
-        bounds.fixed[3] = Some(f64::NAN);
-        let err = check_bounds(&bounds, 2).unwrap_err().to_string();
-        assert!(
-            err.contains("fixed")
-                && err.contains("k1 = NaN N/m: a fixed value must be finite and positive"),
-            "{err}"
-        );
-    }
 }

@@ -3,7 +3,10 @@
 //!
 //! - [`case`]: load cases and the objective `F = Σ (x − x̂)²` (the model's
 //!   residuals and exact Jacobian, handed to the estimation layer);
-//! - [`estimate`]: the data-derived start, the identification, results;
+//! - [`settings`]: bounds, starts and solver, and their checks;
+//! - [`estimate`]: the data-derived start and the identification;
+//! - [`result`]: what an identification finds;
+//! - [`error`]: why it cannot run;
 //! - [`search`]: the starts: continuation across the DOF table;
 //! - [`explore`]: predictions and the ±3 % sensitivity of the objective;
 //! - [`reduce`]: the simpler chain when a spring is undetermined;
@@ -37,10 +40,13 @@
 
 pub mod case;
 pub mod dofs;
+pub mod error;
 pub mod estimate;
 pub mod explore;
 pub mod reduce;
+pub mod result;
 pub mod search;
+pub mod settings;
 pub mod stats;
 pub mod study;
 pub mod text;

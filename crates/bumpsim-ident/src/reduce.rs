@@ -10,7 +10,8 @@
 //! link by the F-test).
 
 use crate::case::{LoadCase, Objective};
-use crate::estimate::{Identification, Settings, uniform_bounds};
+use crate::result::Identification;
+use crate::settings::{Settings, uniform_bounds};
 use bumpsim_core::model::{MsdModel, parameter_count, parameter_name};
 use bumpsim_estimate::reduce::{self, Full, Link, Merged, Reducible};
 

@@ -14,7 +14,7 @@
 use crate::case::Objective;
 use bumpsim_core::model::{parameter_count, parameter_kind, parameter_name};
 use bumpsim_estimate::lm::LeastSquares;
-use bumpsim_estimate::uncertainty::{Correlation, Estimated, Parameter, Series};
+use bumpsim_estimate::uncertainty::{Correlation, Estimated, Parameter};
 use nalgebra::DMatrix;
 
 pub use bumpsim_estimate::uncertainty::{
@@ -55,20 +55,4 @@ pub fn uncertainty(
         series: &series,
         correlation: Correlation::Independent,
     })
-}
-
-/// The residual series of `objective`: one per case window, contiguous.
-pub(crate) fn windows(lengths: impl Iterator<Item = usize>) -> Vec<Series> {
-    let mut start = 0;
-    lengths
-        .map(|len| {
-            let s = Series {
-                start,
-                len,
-                stride: 1,
-            };
-            start += len;
-            s
-        })
-        .collect()
 }

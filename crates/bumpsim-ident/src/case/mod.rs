@@ -277,7 +277,9 @@ impl<'a> Objective<'a> {
 
     /// The residual series: one per case, its window, in case order.
     pub fn series(&self) -> Vec<bumpsim_estimate::uncertainty::Series> {
-        crate::stats::windows(self.cases.iter().map(LoadCase::window_len))
+        bumpsim_estimate::uncertainty::Series::contiguous(
+            self.cases.iter().map(LoadCase::window_len),
+        )
     }
 
     /// The full SI parameter vector of free log parameters `p`.
