@@ -10,6 +10,7 @@
 //! | [`core`] | bumpsim-core | units, sampled series, the MSD model, discretisation, simulation |
 //! | [`io`] | bumpsim-io | CSV with unit headers, car TOML, ISO-MME, NHTSA EV5 |
 //! | [`signal`] | bumpsim-signal | CFC and Butterworth filters, integration, windows, pipelines |
+//! | [`estimate`] | bumpsim-estimate | the estimation layer under both cars: bounded LM, staged multi-start, uncertainty, fit %, reduced-model advice |
 //! | [`ident`] | bumpsim-ident | identification of an MSD model from load cases |
 //! | [`impact`] | bumpsim-impact | bumpers, impacts, presets, synthetic tests, mass reduction |
 //! | [`doe`] | bumpsim-doe | designs, regression, prediction, stiffness, reachable regions |
@@ -47,6 +48,8 @@
 //! assert!(deck.contains("*ELEMENT_DISCRETE"));
 //! let run = LsDynaRun { units: UnitSystem::MmSTonne, duration: 0.08, output_interval: 1e-4 };
 //! assert_eq!(run.units.symbols()[1], "mm");
+//! # #[cfg(feature = "report")] // `Series` is the plot's, not ambiguous
+//! # let _: Series = Series::new("F", vec![0.0, 1e-3], vec![0.0, 1e3], Style::Solid);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -56,6 +59,7 @@
 pub use bumpsim_campaign as campaign;
 pub use bumpsim_core as core;
 pub use bumpsim_doe as doe;
+pub use bumpsim_estimate as estimate;
 pub use bumpsim_export as export;
 pub use bumpsim_fe as fe;
 pub use bumpsim_ident as ident;
@@ -68,13 +72,19 @@ pub use bumpsim_signal as signal;
 
 /// The main types of every bumpsim crate: each crate's own prelude, globbed
 /// (polars' layout), and by name the main types of the crates that have no
-/// prelude yet.
+/// prelude yet. `Series` is the report's plot series (the estimation
+/// layer's residual series is `estimate::uncertainty::Series`; without the
+/// `report` feature the glob gives that one).
 pub mod prelude {
     pub use bumpsim_core::prelude::*;
+    pub use bumpsim_estimate::prelude::*;
     pub use bumpsim_export::prelude::*;
     pub use bumpsim_fe::prelude::*;
     #[cfg(feature = "report")]
     pub use bumpsim_report::prelude::*;
+    // two globs hold a `Series`: the plot's is named here
+    #[cfg(feature = "report")]
+    pub use bumpsim_report::prelude::Series;
 
     #[cfg(feature = "campaign")]
     pub use bumpsim_campaign::spec::Spec as CampaignSpec;
