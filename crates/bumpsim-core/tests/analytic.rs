@@ -297,9 +297,9 @@ fn exactly_one_function_computes_the_hold_discretisation() {
     let allowed = [
         "energy::step_integral",
         "exponential::hold_exponential",
-        "stats::intervals",
-        "sweep::phi1",
-        "sweep::slot_constants",
+        "propagator::phi1",
+        "propagator::slot_constants",
+        "uncertainty::intervals",
     ];
     assert_eq!(found, allowed, "matrix exponentials found in {found:?}");
 }
