@@ -3,6 +3,7 @@
 
 use crate::{Folder, write};
 use anyhow::{Context, Result};
+use bumpsim_ident::document::{Failed, IdentifyDocument, PredictionDocument};
 use bumpsim_ident::dofs::{DofList, Sweep};
 use bumpsim_ident::estimate::Identification;
 use bumpsim_ident::explore::{predict, sensitivity};
@@ -57,6 +58,9 @@ pub struct PredictArgs {
     /// Write SVG plots of measured vs simulated into this folder.
     #[arg(long)]
     plot: Option<PathBuf>,
+    /// Write the fits as JSON.
+    #[arg(long)]
+    json: Option<PathBuf>,
 }
 
 fn parse_dofs(text: &str) -> Result<Vec<usize>> {
@@ -204,25 +208,18 @@ fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
         notes,
     } = *outputs;
     if let Some(path) = &args.json {
-        let failed: Vec<serde_json::Value> = outcomes
+        let failed: Vec<Failed> = outcomes
             .iter()
             .filter_map(|o| match o {
-                DofOutcome::Failed { dof, reason } => {
-                    Some(serde_json::json!({ "dof": dof, "reason": reason }))
-                }
+                DofOutcome::Failed { dof, reason } => Some(Failed {
+                    dof: *dof,
+                    reason: reason.clone(),
+                }),
                 DofOutcome::Done { .. } => None,
             })
             .collect();
-        let mut json = match results {
-            [one] if outcomes.len() == 1 => serde_json::to_value(one)?,
-            many => serde_json::json!({
-                "results": many,
-                "failed": failed,
-                "recommended_dof": bumpsim_ident::text::recommended_dof(many),
-            }),
-        };
-        json["notes"] = serde_json::json!(notes);
-        write(path, &serde_json::to_string_pretty(&json)?)?;
+        let document = IdentifyDocument::new(results, &failed, notes);
+        write(path, &serde_json::to_string_pretty(&document)?)?;
     }
     if let (Some(path), Some(sweeps)) = (&args.sensitivity, sweeps) {
         let mut csv = String::from("relative change [-]");
@@ -268,8 +265,38 @@ fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
     Ok(())
 }
 
-/// Runs `predict`.
+/// Runs `predict`: a chain model on a chain study, or a planar car on a
+/// planar study.
 pub fn run_predict(args: &PredictArgs) -> Result<()> {
+    let model = std::fs::read_to_string(&args.model).unwrap_or_default();
+    let study = std::fs::read_to_string(&args.study).unwrap_or_default();
+    match (
+        bumpsim_planar::file::is_planar_car(&model),
+        bumpsim_planar::study::is_planar(&study),
+    ) {
+        (true, true) => crate::planar::run_predict(&crate::planar::PredictOptions {
+            car: &args.model,
+            study: &args.study,
+            cases: &args.cases,
+            plot: args.plot.as_deref(),
+            json: args.json.as_deref(),
+        }),
+        (true, false) => anyhow::bail!(
+            "{}: a planar car predicts a planar study (`[model] planar = ...`, docs/planar.md); {} is a chain study",
+            args.model.display(),
+            args.study.display()
+        ),
+        (false, true) => anyhow::bail!(
+            "{}: a planar study needs a planar car (a car file with [body], docs/planar.md); {} is not one",
+            args.study.display(),
+            args.model.display()
+        ),
+        (false, false) => run_predict_chain(args),
+    }
+}
+
+/// `predict` of a chain model.
+fn run_predict_chain(args: &PredictArgs) -> Result<()> {
     let car = Car::read_model_file(&args.model).with_context(|| {
         format!(
             "{}: a result of `bumpsim identify --json` for one DOF, or a car file",
@@ -278,13 +305,8 @@ pub fn run_predict(args: &PredictArgs) -> Result<()> {
     })?;
     let study = Study::read(&args.study)?;
     let loaded = study.load_named(car.model.dof(), &args.cases)?;
-    print_notes(
-        &loaded
-            .notes
-            .iter()
-            .map(ToString::to_string)
-            .collect::<Vec<_>>(),
-    );
+    let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
+    print_notes(&notes);
     let predictions = predict(&loaded.cases, &car.model)?;
     if let Some(p) = predictions
         .iter()
@@ -305,6 +327,15 @@ pub fn run_predict(args: &PredictArgs) -> Result<()> {
             bumpsim_core::units::format_number(p.fit.sse, 4),
             p.fit.samples
         );
+    }
+    let name = car
+        .name
+        .clone()
+        .unwrap_or_else(|| args.model.display().to_string());
+    let document = PredictionDocument::new(&name, &predictions, &notes);
+    document.warnings.iter().for_each(|w| crate::warn(w));
+    if let Some(path) = &args.json {
+        write(path, &serde_json::to_string_pretty(&document)?)?;
     }
     if let Some(dir) = &args.plot {
         let folder = Folder::stage(dir)?;

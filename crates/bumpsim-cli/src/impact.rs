@@ -205,12 +205,7 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
     println!("{name} with {}: {label}", bumper_path.display());
     print!("{summary}");
     if let Some(path) = &args.files.json {
-        let json = serde_json::json!({
-            "scenario": scenario, "peak_force": result.peak_force, "max_compression": result.max_compression,
-            "remaining_compression": result.remaining_compression, "contact_time": result.contact_time,
-            "absorbed_energy": result.absorbed_energy, "energy": result.energy, "step": result.step,
-            "warnings": warnings,
-        });
+        let json = bumpsim_impact::document::ImpactSummary::of(scenario, &result);
         write(path, &serde_json::to_string_pretty(&json)?)?;
     }
     if let Some(path) = &args.files.csv {

@@ -14,7 +14,6 @@
 mod campaign;
 mod doe;
 mod export;
-mod export_planar;
 mod fe;
 mod identify;
 mod impact;

@@ -4,6 +4,7 @@
 use crate::{Folder, write};
 use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, parse_quantity};
+use bumpsim_planar::document::{IdentificationDocument, ImpactDocument, PredictionDocument};
 use bumpsim_planar::identify::{Prediction, identify, predict};
 use bumpsim_planar::presets::{PRESETS, StrikerSpec};
 use bumpsim_planar::study::PlanarStudy;
@@ -163,8 +164,12 @@ pub fn run_impact(request: &ImpactRequest) -> Result<()> {
     println!("{heading}");
     print!("{summary}");
     if let Some(path) = &request.files.json {
-        let json = serde_json::json!({ "car": name, "striker": striker, "result": result });
-        write(path, &serde_json::to_string_pretty(&json)?)?;
+        let document = ImpactDocument {
+            car: &name,
+            striker: &striker,
+            result: &result,
+        };
+        write(path, &serde_json::to_string_pretty(&document)?)?;
     }
     if let Some(path) = &request.files.csv {
         write(path, &bumpsim_planar::text::histories(&result))?;
@@ -226,12 +231,12 @@ pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
     print!("{summary}");
     result.warnings.iter().for_each(|w| crate::warn(w));
     if let Some(path) = options.json {
-        let json = serde_json::json!({
-            "result": result,
-            "validation": validation_fits,
-            "notes": study.notes,
-        });
-        write(path, &serde_json::to_string_pretty(&json)?)?;
+        let document = IdentificationDocument {
+            result: &result,
+            validation: &validation_fits,
+            notes: &study.notes,
+        };
+        write(path, &serde_json::to_string_pretty(&document)?)?;
     }
     if let Some(path) = options.car {
         write(path, &result.car.to_toml())?;
@@ -250,6 +255,63 @@ pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
         let (html, figures) =
             bumpsim_report::planar::identification_report(&summary, &inputs, &study.notes, &pages)?;
         Folder::report(dir, &html, &figures)?;
+    }
+    Ok(())
+}
+
+/// What `predict` does with a planar car and a planar study.
+pub struct PredictOptions<'a> {
+    /// The planar car file.
+    pub car: &'a Path,
+    /// The planar study.
+    pub study: &'a Path,
+    /// The cases to predict (all when empty).
+    pub cases: &'a [String],
+    /// SVG plots of x and yaw per case.
+    pub plot: Option<&'a Path>,
+    /// The fits as JSON.
+    pub json: Option<&'a Path>,
+}
+
+/// `predict` with a planar car: replays the study's cases (fitted and
+/// validation alike) with the car's measured forces and prints each fit of
+/// x and yaw, as the chain's `predict` prints its fits.
+pub fn run_predict(options: &PredictOptions) -> Result<()> {
+    let car = PlanarCar::read(options.car)?;
+    let study = PlanarStudy::read(options.study)?;
+    study.notes.iter().for_each(|n| println!("note: {n}"));
+    let predictions: Vec<Prediction> = study
+        .named(options.cases)?
+        .into_iter()
+        .map(|c| predict(&car, c))
+        .collect::<Result<_, _>>()?;
+    for p in &predictions {
+        let f = &p.fit;
+        println!(
+            "{}: fit x {} %  yaw {} %  (peak yaw {} deg)",
+            f.name,
+            bumpsim_core::units::format_number(f.fit_x, 4),
+            bumpsim_core::units::format_number(f.fit_yaw, 4),
+            bumpsim_core::units::format_number(f.peak_yaw.to_degrees(), 4)
+        );
+    }
+    let name = car
+        .name()
+        .map_or_else(|| options.car.display().to_string(), str::to_string);
+    let fits: Vec<_> = predictions.iter().map(|p| p.fit.clone()).collect();
+    let document = PredictionDocument::new(&name, &fits, &study.notes);
+    document.warnings.iter().for_each(|w| crate::warn(w));
+    if let Some(path) = options.json {
+        write(path, &serde_json::to_string_pretty(&document)?)?;
+    }
+    if let Some(dir) = options.plot {
+        let folder = Folder::stage(dir)?;
+        for p in &predictions {
+            for (name, svg, _) in bumpsim_report::planar::case_figures(p)? {
+                folder.write(&format!("predict-{name}"), &svg)?;
+            }
+        }
+        folder.commit()?;
     }
     Ok(())
 }

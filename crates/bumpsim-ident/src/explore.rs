@@ -4,7 +4,7 @@
 //! δ ∈ [−3 %, +3 %]).
 
 use crate::case::{CaseError, LoadCase};
-use crate::estimate::CaseFit;
+use crate::result::CaseFit;
 use bumpsim_core::model::{MsdModel, parameter_count, parameter_name};
 use serde::Serialize;
 
@@ -21,6 +21,14 @@ pub struct Prediction {
     pub simulated: Vec<f64>,
     /// Window start and end, s.
     pub window: [f64; 2],
+}
+
+impl Prediction {
+    /// The warning of a negative fit (the model follows the displacement
+    /// worse than its mean does), if any.
+    pub fn warning(&self) -> Option<String> {
+        bumpsim_estimate::fit::negative_fit(&self.fit.name, "displacement", self.fit.fit_percent)
+    }
 }
 
 /// Simulates each case with `model` (core's zoh, as `simulate` and

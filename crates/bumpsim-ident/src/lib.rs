@@ -11,6 +11,7 @@
 //! - [`explore`]: predictions and the ±3 % sensitivity of the objective;
 //! - [`reduce`]: the simpler chain when a spring is undetermined;
 //! - [`stats`]: standard errors, intervals, correlations, identifiability;
+//! - [`document`]: the JSON every front end writes (identification, prediction);
 //! - [`text`]: text tables of results (as `doe::text` and `impact::text`);
 //! - [`study`]: study files (TOML) and the processing of their load cases.
 //!
@@ -39,6 +40,7 @@
 //! ```
 
 pub mod case;
+pub mod document;
 pub mod dofs;
 pub mod error;
 pub mod estimate;

@@ -2,6 +2,7 @@
 //!
 //! - [`bumper`]: three-part and tabulated bumper characteristics with elastic unloading;
 //! - [`impact`]: impactor or barrier impacts on MSD cars by central differences;
+//! - [`document`]: the JSON every front end writes of an impact;
 //! - [`presets`]: named load cases with their sources;
 //! - [`reduction`]: the reduced point mass of paper A and its sweeps;
 //! - [`synth`]: synthetic pendulum test series with a measurement chain;
@@ -24,6 +25,7 @@
 //! ```
 
 pub mod bumper;
+pub mod document;
 pub mod impact;
 pub mod presets;
 pub mod reduction;

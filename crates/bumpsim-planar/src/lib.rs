@@ -8,6 +8,7 @@
 //! - [`car`]: the planar car — rigid body, left/right MSD chains, a segmented
 //!   bumper beam, tyres — validated at construction;
 //! - [`file`](mod@file): the planar car TOML file;
+//! - [`document`]: the JSON every front end writes (impact, identification, prediction);
 //! - [`drive`](mod@drive): the car driven by given forces (test replay, FE reference);
 //! - [`identify`](mod@identify): the planar car identified from several load cases;
 //! - [`cases`]: load cases from test channels (conditioning, integration, window);
@@ -40,6 +41,7 @@
 
 pub mod car;
 pub mod cases;
+pub mod document;
 pub mod drive;
 mod dynamics;
 pub mod export;

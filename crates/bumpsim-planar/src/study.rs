@@ -36,7 +36,8 @@ use crate::drive::Sensor;
 use crate::identify::{PlanarCase, Setup};
 use bumpsim_core::channel::Channel;
 use bumpsim_core::names::check_names;
-use bumpsim_core::units::{Dimension, parse_quantity};
+use bumpsim_core::units::Dimension;
+use bumpsim_io::speed::{SpeedError, speed_value};
 use bumpsim_signal::loader::{ChannelSource, Loader};
 use bumpsim_signal::process::Resampling;
 use serde::Deserialize;
@@ -167,6 +168,25 @@ impl PlanarStudy {
     }
 }
 
+impl PlanarStudy {
+    /// Every case, fitted then validation, or those named in `names`; an
+    /// error names a case the study does not hold (`bumpsim predict --case`).
+    pub fn named(&self, names: &[String]) -> Result<Vec<&PlanarCase>, PlanarError> {
+        let all: Vec<&PlanarCase> = self.cases.iter().chain(&self.validation).collect();
+        if let Some(name) = names.iter().find(|n| !all.iter().any(|c| &&c.name == n)) {
+            let known: Vec<&str> = all.iter().map(|c| c.name.as_str()).collect();
+            return Err(PlanarError::File {
+                path: self.path.display().to_string(),
+                message: format!("no case '{name}'; cases: {}", known.join(", ")),
+            });
+        }
+        Ok(all
+            .into_iter()
+            .filter(|c| names.is_empty() || names.contains(&c.name))
+            .collect())
+    }
+}
+
 fn load_case(
     spec: &CaseFile,
     base: &Path,
@@ -178,16 +198,10 @@ fn load_case(
     };
     let speed = match &spec.speed {
         None => 0.0,
-        Some(toml::Value::Float(v)) => *v,
-        Some(toml::Value::Integer(v)) => *v as f64,
-        Some(toml::Value::String(s)) => {
-            parse_quantity(s, Dimension::Velocity).map_err(|e| error(format!("speed: {e}")))?
-        }
-        Some(other) => {
-            return Err(error(format!(
-                "speed {other}: expected m/s or text such as \"8 km/h\""
-            )));
-        }
+        Some(value) => speed_value(value).map_err(|e| match e {
+            SpeedError::Quantity(q) => error(format!("speed: {q}")),
+            other => error(other.to_string()),
+        })?,
     };
     let mut channel =
         |path: &Path, code: &str, dimension: Dimension| -> Result<Channel, PlanarError> {

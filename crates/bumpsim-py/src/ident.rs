@@ -349,9 +349,11 @@ impl Identification {
     }
     /// The result as `bumpsim identify --json` writes it.
     fn to_json(&self) -> PyResult<String> {
-        let mut json = serde_json::to_value(&self.result).map_err(input)?;
-        json["notes"] = serde_json::json!(self.notes);
-        serde_json::to_string_pretty(&json).map_err(input)
+        let document = bumpsim_ident::document::IdentifyDocument::One {
+            result: &self.result,
+            notes: &self.notes,
+        };
+        serde_json::to_string_pretty(&document).map_err(input)
     }
     /// Simulates the study's load cases with the identified model.
     fn predict(&self, py: Python<'_>) -> PyResult<Vec<Prediction>> {

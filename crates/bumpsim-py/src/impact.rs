@@ -175,13 +175,7 @@ impl Impact {
     }
     /// The result as `bumpsim impact --json` writes it.
     fn to_json(&self) -> PyResult<String> {
-        let r = &self.result;
-        let json = serde_json::json!({
-            "scenario": self.scenario, "peak_force": r.peak_force, "max_compression": r.max_compression,
-            "remaining_compression": r.remaining_compression, "contact_time": r.contact_time,
-            "absorbed_energy": r.absorbed_energy, "energy": r.energy, "step": r.step,
-            "warnings": r.warnings(),
-        });
+        let json = bumpsim_impact::document::ImpactSummary::of(self.scenario, &self.result);
         serde_json::to_string_pretty(&json).map_err(input)
     }
     fn __repr__(&self) -> String {

@@ -61,7 +61,9 @@ fn planar_impact(
 ) -> PyResult<PlanarImpact> {
     let side: Side = side
         .parse()
-        .map_err(|e: bumpsim_planar::striker::SideError| InputError::new_err(format!("side: {e}")))?;
+        .map_err(|e: bumpsim_planar::striker::SideError| {
+            InputError::new_err(format!("side: {e}"))
+        })?;
     let spec = StrikerSpec {
         case: case.map(str::to_string),
         angle,
@@ -114,8 +116,11 @@ impl PlanarImpact {
     }
     /// The result as `bumpsim planar --json` writes it.
     fn to_json(&self) -> PyResult<String> {
-        let json =
-            serde_json::json!({ "car": self.name, "striker": self.striker, "result": self.result });
-        serde_json::to_string_pretty(&json).map_err(input)
+        let document = bumpsim_planar::document::ImpactDocument {
+            car: &self.name,
+            striker: &self.striker,
+            result: &self.result,
+        };
+        serde_json::to_string_pretty(&document).map_err(input)
     }
 }

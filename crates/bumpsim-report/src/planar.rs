@@ -125,6 +125,35 @@ fn segment_rows(r: &PlanarResult) -> Vec<Vec<String>> {
         .collect()
 }
 
+/// The x and yaw plots of a planar case, model against measurement: file
+/// name (`<case>-x.svg`, `<case>-yaw.svg`), SVG and caption with the fit.
+pub fn case_figures(
+    p: &bumpsim_planar::identify::Prediction,
+) -> Result<Vec<(String, String, String)>, PlotError> {
+    let mut x = LinePlot::new("x (mean of the sills)", Dimension::Time, Dimension::Length);
+    x.add(line("measured", &p.time, &p.x[1], Style::Solid));
+    x.add(line("model", &p.time, &p.x[0], Style::Dashed));
+    let mut yaw = LinePlot::new(
+        "Yaw (difference of the sills)",
+        Dimension::Time,
+        Dimension::Angle,
+    );
+    yaw.add(line("measured", &p.time, &p.yaw[1], Style::Solid));
+    yaw.add(line("model", &p.time, &p.yaw[0], Style::Dashed));
+    let stem = crate::file_name(&p.fit.name);
+    [("x", x, p.fit.fit_x), ("yaw", yaw, p.fit.fit_yaw)]
+        .into_iter()
+        .map(|(what, plot, fit)| {
+            let svg = plot.svg()?;
+            Ok((
+                format!("{stem}-{what}.svg"),
+                svg,
+                format!("{what}: fit {fit:.2} %"),
+            ))
+        })
+        .collect()
+}
+
 /// One case of a planar identification for the report: its prediction and
 /// whether it was fitted or only predicted (validation).
 pub struct CasePage<'a> {
@@ -150,7 +179,7 @@ pub fn identification_report(
         page.heading("Channel time base");
         page.notes(notes);
     }
-    let mut figures = Vec::new();
+    let mut figures: Vec<(String, String)> = Vec::new();
     for case in cases {
         let p = case.prediction;
         let kind = if case.validation {
@@ -159,21 +188,8 @@ pub fn identification_report(
             "fitted"
         };
         page.heading(&format!("{} ({kind})", p.fit.name));
-        let mut x = LinePlot::new("x (mean of the sills)", Dimension::Time, Dimension::Length);
-        x.add(line("measured", &p.time, &p.x[1], Style::Solid));
-        x.add(line("model", &p.time, &p.x[0], Style::Dashed));
-        let mut yaw = LinePlot::new(
-            "Yaw (difference of the sills)",
-            Dimension::Time,
-            Dimension::Angle,
-        );
-        yaw.add(line("measured", &p.time, &p.yaw[1], Style::Solid));
-        yaw.add(line("model", &p.time, &p.yaw[0], Style::Dashed));
-        let stem = crate::file_name(&p.fit.name);
-        for (what, plot, fit) in [("x", x, p.fit.fit_x), ("yaw", yaw, p.fit.fit_yaw)] {
-            let svg = plot.svg()?;
-            page.figure(&svg, &format!("{what}: fit {fit:.2} %"));
-            let name = format!("{stem}-{what}.svg");
+        for (name, svg, caption) in case_figures(p)? {
+            page.figure(&svg, &caption);
             let name = crate::unique_name(&name, |n| figures.iter().any(|(f, _)| f == n));
             figures.push((name, svg));
         }

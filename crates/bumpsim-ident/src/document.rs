@@ -1,0 +1,122 @@
+//! The documents of a chain identification that every front end writes
+//! (`bumpsim identify --json`, `bumpsim predict --json`, Python's
+//! `to_json`): serialisable types, so each JSON is assembled once, here.
+//!
+//! One DOF writes its [`Identification`] with the notes beside its fields;
+//! a DOF table writes every result, the orders that failed and the
+//! recommended order (lowest BIC).
+
+use crate::explore::Prediction;
+use crate::result::{CaseFit, Identification};
+use serde::{Serialize, Serializer};
+
+/// An order of the DOF table that failed, and why.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct Failed {
+    /// The number of masses.
+    pub dof: usize,
+    /// The error.
+    pub reason: String,
+}
+
+/// `bumpsim identify --json` of a chain study.
+#[derive(Debug, Clone, Copy)]
+pub enum IdentifyDocument<'a> {
+    /// One order identified: the result's fields and `notes`.
+    One {
+        /// The result.
+        result: &'a Identification,
+        /// Notes on the channels.
+        notes: &'a [String],
+    },
+    /// A DOF table.
+    Table {
+        /// The orders identified.
+        results: &'a [Identification],
+        /// The orders that failed.
+        failed: &'a [Failed],
+        /// Notes on the channels.
+        notes: &'a [String],
+    },
+}
+
+impl<'a> IdentifyDocument<'a> {
+    /// One result when exactly one order was asked and it was identified,
+    /// else the table.
+    pub fn new(
+        results: &'a [Identification],
+        failed: &'a [Failed],
+        notes: &'a [String],
+    ) -> IdentifyDocument<'a> {
+        match results {
+            [one] if failed.is_empty() => IdentifyDocument::One { result: one, notes },
+            _ => IdentifyDocument::Table {
+                results,
+                failed,
+                notes,
+            },
+        }
+    }
+}
+
+impl Serialize for IdentifyDocument<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        #[derive(Serialize)]
+        struct One<'a> {
+            #[serde(flatten)]
+            result: &'a Identification,
+            notes: &'a [String],
+        }
+        #[derive(Serialize)]
+        struct Table<'a> {
+            results: &'a [Identification],
+            failed: &'a [Failed],
+            recommended_dof: Option<usize>,
+            notes: &'a [String],
+        }
+        match *self {
+            IdentifyDocument::One { result, notes } => One { result, notes }.serialize(serializer),
+            IdentifyDocument::Table {
+                results,
+                failed,
+                notes,
+            } => Table {
+                results,
+                failed,
+                recommended_dof: crate::text::recommended_dof(results),
+                notes,
+            }
+            .serialize(serializer),
+        }
+    }
+}
+
+/// `bumpsim predict --json` with a chain model: each case's fit, the
+/// warnings of negative fits, and the notes on the channels.
+#[derive(Debug, Clone, Serialize)]
+pub struct PredictionDocument<'a> {
+    /// The model's name (or its file).
+    pub model: &'a str,
+    /// Fits per case.
+    pub cases: Vec<&'a CaseFit>,
+    /// Negative fits.
+    pub warnings: Vec<String>,
+    /// Notes on the channels.
+    pub notes: &'a [String],
+}
+
+impl<'a> PredictionDocument<'a> {
+    /// The document of `predictions` of `model`.
+    pub fn new(
+        model: &'a str,
+        predictions: &'a [Prediction],
+        notes: &'a [String],
+    ) -> PredictionDocument<'a> {
+        PredictionDocument {
+            model,
+            cases: predictions.iter().map(|p| &p.fit).collect(),
+            warnings: predictions.iter().filter_map(Prediction::warning).collect(),
+            notes,
+        }
+    }
+}
