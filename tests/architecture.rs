@@ -1,0 +1,283 @@
+//! The workspace's structure as docs/architecture.md states it, checked on
+//! every test run so it cannot drift (issue 31):
+//!
+//! - every crate sits on a floor and depends only on crates of lower floors
+//!   (nothing depends upward; `bumpsim-planar` does not use `bumpsim-ident`);
+//! - no module circle within a crate (module A uses B and B uses A);
+//! - no `Result<_, String>` in a library crate (typed errors);
+//! - no source file over 800 lines;
+//! - the facade re-exports every library crate;
+//! - the CLI's normal build holds no bitmap stack (`image`, `png`, `jpeg-decoder`).
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// The floors of docs/architecture.md: a crate may depend on crates of
+/// lower floors only.
+const FLOORS: &[(&str, usize)] = &[
+    ("bumpsim-core", 0),
+    ("bumpsim-peers", 0),
+    ("bumpsim-io", 1),
+    ("bumpsim-export", 1),
+    ("bumpsim-doe", 2),
+    ("bumpsim-signal", 2),
+    ("bumpsim-estimate", 3),
+    ("bumpsim-ident", 4),
+    ("bumpsim-impact", 4),
+    ("bumpsim-planar", 5),
+    ("bumpsim-fe", 5),
+    ("bumpsim-report", 6),
+    ("bumpsim-campaign", 7),
+    ("bumpsim-cli", 8),
+    ("bumpsim-py", 8),
+    ("bumpsim", 8),
+];
+
+/// Crates that are not libraries for users: the binaries and test support.
+const NOT_LIBRARIES: &[&str] = &["bumpsim-cli", "bumpsim-py", "bumpsim-peers"];
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn crates() -> Vec<(String, PathBuf)> {
+    let mut out: Vec<(String, PathBuf)> = std::fs::read_dir(root().join("crates"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.join("Cargo.toml").is_file())
+        .map(|p| (p.file_name().unwrap().to_string_lossy().into_owned(), p))
+        .collect();
+    out.sort();
+    out
+}
+
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            rust_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// The source without `//` comments (line and doc comments).
+fn code(path: &Path) -> String {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The `bumpsim-*` names in a manifest's `[dependencies]` (not dev or build).
+fn dependencies(manifest: &Path) -> BTreeSet<String> {
+    let text = std::fs::read_to_string(manifest).unwrap();
+    let table: toml::Table = toml::from_str(&text).unwrap();
+    table
+        .get("dependencies")
+        .and_then(|d| d.as_table())
+        .map(|d| {
+            d.keys()
+                .filter(|k| k.starts_with("bumpsim"))
+                .cloned()
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+#[test]
+fn every_crate_depends_only_on_lower_floors() {
+    let floor: BTreeMap<&str, usize> = FLOORS.iter().copied().collect();
+    let mut manifests: Vec<(String, PathBuf)> = crates()
+        .into_iter()
+        .map(|(name, dir)| (name, dir.join("Cargo.toml")))
+        .collect();
+    manifests.push(("bumpsim".into(), root().join("Cargo.toml")));
+    let mut wrong = Vec::new();
+    for (name, manifest) in &manifests {
+        let Some(&mine) = floor.get(name.as_str()) else {
+            wrong.push(format!("{name} has no floor in docs/architecture.md"));
+            continue;
+        };
+        for dep in dependencies(manifest) {
+            match floor.get(dep.as_str()) {
+                Some(&theirs) if theirs < mine => {}
+                _ => wrong.push(format!("{name} (floor {mine}) depends on {dep}")),
+            }
+        }
+    }
+    assert!(wrong.is_empty(), "{wrong:#?}");
+    assert!(
+        !dependencies(&root().join("crates/bumpsim-planar/Cargo.toml")).contains("bumpsim-ident")
+    );
+}
+
+/// The top-level modules of a crate's `src` (files and folders) and, per
+/// module, the sibling modules its code names through `crate::`.
+fn module_uses(src: &Path) -> BTreeMap<String, BTreeSet<String>> {
+    let mut files = Vec::new();
+    rust_files(src, &mut files);
+    let module = |p: &Path| {
+        let rel = p.strip_prefix(src).unwrap();
+        let first = rel
+            .components()
+            .next()
+            .unwrap()
+            .as_os_str()
+            .to_string_lossy();
+        first.trim_end_matches(".rs").to_string()
+    };
+    let names: BTreeSet<String> = files
+        .iter()
+        .map(|p| module(p))
+        .filter(|m| m != "lib" && m != "main")
+        .collect();
+    let mut uses: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for file in &files {
+        let me = module(file);
+        if !names.contains(&me) {
+            continue;
+        }
+        let text = code(file);
+        for (at, _) in text.match_indices("crate::") {
+            let rest = &text[at + 7..];
+            let used: String = rest
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
+            if used != me && names.contains(&used) {
+                uses.entry(me.clone()).or_default().insert(used);
+            }
+        }
+    }
+    uses
+}
+
+/// A circle through `from` in `uses`, if any.
+fn circle(uses: &BTreeMap<String, BTreeSet<String>>, from: &str) -> Option<Vec<String>> {
+    let mut stack = vec![(from.to_string(), vec![from.to_string()])];
+    let mut seen = BTreeSet::new();
+    while let Some((at, path)) = stack.pop() {
+        for next in uses.get(&at).into_iter().flatten() {
+            if next == from {
+                return Some([path.clone(), vec![from.to_string()]].concat());
+            }
+            if seen.insert(next.clone()) {
+                stack.push((next.clone(), [path.clone(), vec![next.clone()]].concat()));
+            }
+        }
+    }
+    None
+}
+
+#[test]
+fn no_crate_has_a_module_circle() {
+    let mut circles = Vec::new();
+    for (name, dir) in crates() {
+        let uses = module_uses(&dir.join("src"));
+        for module in uses.keys() {
+            if let Some(c) = circle(&uses, module) {
+                circles.push(format!("{name}: {}", c.join(" -> ")));
+                break;
+            }
+        }
+    }
+    assert!(circles.is_empty(), "{circles:#?}");
+}
+
+#[test]
+fn library_crates_return_typed_errors() {
+    let mut found = Vec::new();
+    for (name, dir) in crates() {
+        if NOT_LIBRARIES.contains(&name.as_str()) {
+            continue;
+        }
+        let mut files = Vec::new();
+        rust_files(&dir.join("src"), &mut files);
+        for file in files {
+            let flat: String = code(&file).split_whitespace().collect::<Vec<_>>().join(" ");
+            for (at, _) in flat.match_indices("Result<") {
+                let head: String = flat[at..].chars().take(160).collect();
+                let end = head.find('>').map_or(head.len(), |e| e + 1);
+                if head[..end].replace(' ', "").ends_with(",String>") {
+                    found.push(format!("{}: {}", file.display(), &head[..end]));
+                }
+            }
+            if flat.contains("type Err = String") {
+                found.push(format!("{}: type Err = String", file.display()));
+            }
+        }
+    }
+    assert!(found.is_empty(), "{found:#?}");
+}
+
+#[test]
+fn no_source_file_exceeds_800_lines() {
+    let mut files = Vec::new();
+    rust_files(&root().join("crates"), &mut files);
+    rust_files(&root().join("src"), &mut files);
+    rust_files(&root().join("tests"), &mut files);
+    rust_files(&root().join("examples"), &mut files);
+    let long: Vec<String> = files
+        .iter()
+        .filter(|f| !f.components().any(|c| c.as_os_str() == "target"))
+        .map(|f| (f, std::fs::read_to_string(f).unwrap().lines().count()))
+        .filter(|(_, n)| *n > 800)
+        .map(|(f, n)| format!("{}: {n} lines", f.display()))
+        .collect();
+    assert!(long.is_empty(), "{long:#?}");
+}
+
+#[test]
+fn the_facade_re_exports_every_library_crate() {
+    let facade = code(&root().join("src/lib.rs"));
+    let missing: Vec<String> = crates()
+        .into_iter()
+        .map(|(name, _)| name)
+        .filter(|name| !NOT_LIBRARIES.contains(&name.as_str()))
+        .filter(|name| !facade.contains(&format!("pub use {} as ", name.replace('-', "_"))))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "not re-exported by src/lib.rs: {missing:?}"
+    );
+}
+
+#[test]
+fn the_cli_builds_no_bitmap_stack() {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let out = std::process::Command::new(cargo)
+        .args([
+            "tree",
+            "-p",
+            "bumpsim-cli",
+            "-e",
+            "normal",
+            "--prefix",
+            "none",
+            "--offline",
+        ])
+        .current_dir(root())
+        .output()
+        .expect("cargo tree runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let tree = String::from_utf8_lossy(&out.stdout);
+    let heavy: Vec<&str> = tree
+        .lines()
+        .filter(|l| {
+            let name = l.split_whitespace().next().unwrap_or("");
+            ["image", "png", "jpeg-decoder"].contains(&name)
+        })
+        .collect();
+    assert!(heavy.is_empty(), "{heavy:?}");
+}
