@@ -60,3 +60,11 @@ pub use test_data::TestData;
 /// The readers of each format live in [`test_data`]; these re-exports keep
 /// the short paths (`bumpsim_io::isomme`, `bumpsim_io::ev5`) working.
 pub use test_data::{ev5, isomme};
+
+/// The types most readers need (the facade globs it).
+pub mod prelude {
+    pub use crate::car::{Car, CarError};
+    pub use crate::signal_error::SignalFileError;
+    pub use crate::table::{Table, TableError};
+    pub use crate::test_data::TestData;
+}

@@ -4,6 +4,7 @@
 
 use approx::assert_relative_eq;
 use bumpsim_core::units::{Dimension, STANDARD_GRAVITY};
+#[cfg(feature = "zip")]
 use bumpsim_io::isomme;
 use bumpsim_io::test_data::{Format, TestData, Validity};
 use std::path::{Path, PathBuf};
@@ -72,6 +73,7 @@ fn the_mme_file_and_selection_by_code_number_and_name() {
     );
 }
 
+#[cfg(feature = "zip")]
 #[test]
 fn round_trip_folder_and_zip() {
     let a = TestData::open(&sample()).unwrap();
@@ -127,6 +129,7 @@ fn round_trip_folder_and_zip() {
     );
 }
 
+#[cfg(feature = "zip")]
 fn is_own_key(key: &str) -> bool {
     [
         "Unit",
@@ -138,6 +141,7 @@ fn is_own_key(key: &str) -> bool {
     .contains(&key)
 }
 
+#[cfg(feature = "zip")]
 fn zip_folder(folder: &Path, zip_path: &Path) {
     let file = std::fs::File::create(zip_path).unwrap();
     let mut zip = zip::ZipWriter::new(file);

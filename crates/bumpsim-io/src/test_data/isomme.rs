@@ -25,6 +25,7 @@ use crate::signal_error::{SignalFileError, TimeBaseError, decode, parse_number};
 use bumpsim_core::channel::Channel;
 use bumpsim_core::series::UniformSeries;
 use bumpsim_core::units::{Dimension, Unit};
+#[cfg(feature = "zip")]
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
@@ -235,6 +236,7 @@ fn time_base_error(path: &Path) -> impl FnOnce(TimeBaseError) -> SignalFileError
 /// Where the files of a test are: a folder or a zip archive in memory.
 enum Source {
     Folder(PathBuf),
+    #[cfg_attr(not(feature = "zip"), allow(dead_code))]
     Zip {
         archive: PathBuf,
         base: String,
@@ -323,8 +325,19 @@ pub const MAX_ZIP_BYTES: u64 = 1 << 30;
 /// Most inflated bytes per byte of the archive (real tests compress ~5-20 ×).
 pub const MAX_ZIP_RATIO: u64 = 200;
 
+/// Opens a `.zip` holding an ISO-MME test folder: without this crate's
+/// `zip` feature (on by default) a clear error instead.
+#[cfg(not(feature = "zip"))]
+pub fn open_zip(path: &Path) -> Result<TestData, SignalFileError> {
+    Err(SignalFileError::file(
+        path,
+        "reading a .zip test needs bumpsim-io's `zip` feature (on by default; the CLI has it)",
+    ))
+}
+
 /// Opens a `.zip` holding an ISO-MME test folder (at any depth); inflating
 /// stops at [`MAX_ZIP_BYTES`] or [`MAX_ZIP_RATIO`] times the archive size.
+#[cfg(feature = "zip")]
 pub fn open_zip(path: &Path) -> Result<TestData, SignalFileError> {
     let file = std::fs::File::open(path).map_err(|e| SignalFileError::read(path, e))?;
     let zip_error = |e: zip::result::ZipError| {
