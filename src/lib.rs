@@ -71,27 +71,22 @@ pub use bumpsim_report as report;
 pub use bumpsim_signal as signal;
 
 /// The main types of every bumpsim crate: each crate's own prelude, globbed
-/// (polars' layout), and by name the main types of the crates that have no
-/// prelude yet. `Series` is the report's plot series (the estimation
-/// layer's residual series is `estimate::uncertainty::Series`; without the
-/// `report` feature the glob gives that one).
+/// (polars' layout). Names two crates would share are aliased in their
+/// preludes (`PlanarSettings`, `ImpactOptions`, `MassReduction`,
+/// `ResidualSeries`, `DoeModelError`, `CampaignSpec`).
 pub mod prelude {
+    #[cfg(feature = "campaign")]
+    pub use bumpsim_campaign::prelude::*;
     pub use bumpsim_core::prelude::*;
+    pub use bumpsim_doe::prelude::*;
     pub use bumpsim_estimate::prelude::*;
     pub use bumpsim_export::prelude::*;
     pub use bumpsim_fe::prelude::*;
+    pub use bumpsim_ident::prelude::*;
+    pub use bumpsim_impact::prelude::*;
+    pub use bumpsim_io::prelude::*;
+    pub use bumpsim_planar::prelude::*;
     #[cfg(feature = "report")]
     pub use bumpsim_report::prelude::*;
-    // two globs hold a `Series`: the plot's is named here
-    #[cfg(feature = "report")]
-    pub use bumpsim_report::prelude::Series;
-
-    #[cfg(feature = "campaign")]
-    pub use bumpsim_campaign::spec::Spec as CampaignSpec;
-    pub use bumpsim_doe::{Design, DesignKind, DesignOptions, Factor, Fit, ModelFile};
-    pub use bumpsim_ident::{Identification, LoadCase, Settings, Study, identify};
-    pub use bumpsim_impact::{Bumper, ImpactResult, Preset, Scenario};
-    pub use bumpsim_io::{Car, TestData};
-    pub use bumpsim_planar::{PlanarCar, PlanarResult, Striker};
-    pub use bumpsim_signal::{Cfc, Pipeline};
+    pub use bumpsim_signal::prelude::*;
 }

@@ -68,3 +68,9 @@ pub mod state;
 pub mod template;
 
 pub use error::{CampaignError, Result};
+
+/// The types most campaigns need (the facade globs it).
+pub mod prelude {
+    pub use crate::error::CampaignError;
+    pub use crate::spec::Spec as CampaignSpec;
+}

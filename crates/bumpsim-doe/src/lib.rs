@@ -47,3 +47,13 @@ pub use model::{Factor, ModelError, ModelFile};
 pub use reachable::LinearMap;
 pub use regression::{Fit, RegressionError};
 pub use stiffness::{Curve, Stiffness};
+
+/// The types most DOE studies need (the facade globs it; the model file's
+/// error is `DoeModelError`).
+pub mod prelude {
+    pub use crate::data::{Data, DataError};
+    pub use crate::design::{Design, DesignError, DesignKind, DesignOptions};
+    pub use crate::model::{Factor, ModelError as DoeModelError, ModelFile};
+    pub use crate::regression::{Fit, RegressionError};
+    pub use crate::stiffness::{Curve, Stiffness};
+}

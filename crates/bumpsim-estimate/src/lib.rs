@@ -80,5 +80,5 @@ pub mod prelude {
     pub use crate::observer::{Observer, Silent};
     pub use crate::reduce::{Reducible, Reduction};
     pub use crate::search::Draws;
-    pub use crate::uncertainty::{Correlation, Parameter, Series, Uncertainty};
+    pub use crate::uncertainty::{Correlation, Parameter, Series as ResidualSeries, Uncertainty};
 }

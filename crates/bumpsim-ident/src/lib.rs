@@ -57,3 +57,12 @@ pub use case::LoadCase;
 pub use dofs::DofList;
 pub use estimate::{IdentError, Identification, Settings, identify};
 pub use study::{Study, StudyError};
+
+/// The types most chain identifications need (the facade globs it).
+pub mod prelude {
+    pub use crate::case::LoadCase;
+    pub use crate::document::IdentifyDocument;
+    pub use crate::dofs::DofList;
+    pub use crate::estimate::{IdentError, Identification, Settings, identify};
+    pub use crate::study::{Study, StudyError};
+}

@@ -36,3 +36,14 @@ pub use bumper::{Bumper, BumperError};
 pub use impact::{ImpactError, ImpactResult, Scenario};
 pub use presets::Preset;
 pub use reduction::{Criterion, Reduction, ReductionError};
+
+/// The types most impact studies need (the facade globs it; the mass
+/// reduction's result is `MassReduction`, the impact's options
+/// `ImpactOptions`).
+pub mod prelude {
+    pub use crate::bumper::{Bumper, BumperError};
+    pub use crate::document::ImpactSummary;
+    pub use crate::impact::{ImpactError, ImpactResult, Options as ImpactOptions, Scenario};
+    pub use crate::presets::Preset;
+    pub use crate::reduction::{Criterion, Reduction as MassReduction, ReductionError};
+}

@@ -61,3 +61,15 @@ pub use car::{PlanarCar, PlanarError};
 pub use result::PlanarResult;
 pub use simulate::{Settings, simulate};
 pub use striker::{Face, Motion, Side, Striker};
+
+/// The types most planar studies need (the facade globs it; the
+/// integration settings are `PlanarSettings`, the identification's setup
+/// `PlanarSetup`).
+pub mod prelude {
+    pub use crate::car::{Layout, PlanarCar, PlanarError};
+    pub use crate::identify::{PlanarIdentification, Setup as PlanarSetup};
+    pub use crate::result::PlanarResult;
+    pub use crate::simulate::Settings as PlanarSettings;
+    pub use crate::striker::{Face, Motion, Side, Striker};
+    pub use crate::study::PlanarStudy;
+}

@@ -25,3 +25,11 @@ pub use filter::{Butterworth, Cfc, FilterError};
 pub use pipeline::{Pipeline, PipelineError, PipelineResult};
 pub use process::{ProcessError, Step};
 pub use window::ContactWindow;
+
+/// The types most signal processing needs (the facade globs it).
+pub mod prelude {
+    pub use crate::filter::{Butterworth, Cfc, FilterError};
+    pub use crate::pipeline::{Pipeline, PipelineError, PipelineResult};
+    pub use crate::process::ProcessError;
+    pub use crate::window::ContactWindow;
+}
