@@ -198,6 +198,50 @@ pub fn escaped(text: &str) -> String {
         .collect()
 }
 
+/// Why a user's name cannot name a folder ([`check_folder_name`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("\"{}\": {reason} (it names a folder)", escaped(.name))]
+pub struct FolderNameError {
+    /// The name.
+    pub name: String,
+    /// What is wrong.
+    pub reason: &'static str,
+}
+
+/// The one rule for a user's name that becomes a folder (the heads of a
+/// synthetic pendulum series, the tests of a planar series): not empty, no
+/// spaces around it, and only ASCII letters, digits, `-`, `_` and inner
+/// spaces, so that it is the same folder on every file system, stays inside
+/// its parent and reads back from the study file written beside it.
+///
+/// ```
+/// use bumpsim_core::names::check_folder_name;
+/// assert!(check_folder_name("FLAT 8").is_ok());
+/// assert!(check_folder_name("../x").unwrap_err().to_string().contains("not a plain name"));
+/// assert!(check_folder_name(" FLAT").unwrap_err().to_string().contains("spaces before or after it"));
+/// assert!(check_folder_name("Flät").is_err());
+/// ```
+pub fn check_folder_name(name: &str) -> Result<(), FolderNameError> {
+    let reason = if name.is_empty() {
+        Some("an empty name")
+    } else if name.contains(['/', '\\', '.']) {
+        Some("not a plain name: a folder's name holds no '/', '\\' or '.'")
+    } else if name.trim() != name {
+        Some("spaces before or after it")
+    } else if !name.chars().all(|c| file_safe(c) || c == ' ') {
+        Some("letters, digits, '-', '_' and inner spaces only")
+    } else {
+        None
+    };
+    match reason {
+        None => Ok(()),
+        Some(reason) => Err(FolderNameError {
+            name: name.to_string(),
+            reason,
+        }),
+    }
+}
+
 /// Longest part of a file name made from a user's name, in characters
 /// (file systems allow 255 bytes; prefixes and suffixes are added).
 pub const FILE_NAME_CHARS: usize = 64;

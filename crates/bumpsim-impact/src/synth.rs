@@ -309,15 +309,9 @@ pub enum SeriesError {
     /// The head names as a list (empty, repeated, invisible characters).
     #[error(transparent)]
     Names(#[from] bumpsim_core::names::NameError),
-    /// A head name that is not a plain file name.
+    /// A head name that cannot name a folder.
     #[error("head name {0}")]
-    HeadName(bumpsim_io::output::OutputError),
-    /// A head name with spaces around it.
-    #[error("head name '{name}': spaces before or after it (it names a folder)")]
-    Spaces {
-        /// The name.
-        name: String,
-    },
+    HeadName(bumpsim_core::names::FolderNameError),
     /// A head's speed.
     #[error("head '{head}': {source}")]
     Speed {
@@ -355,11 +349,7 @@ fn check_names(heads: &[HeadFile]) -> Result<(), SeriesError> {
     let names = heads.iter().map(|h| h.name.as_str());
     bumpsim_core::names::check_names("[[head]]", names)?;
     for h in heads {
-        bumpsim_io::output::plain_name(&h.name).map_err(SeriesError::HeadName)?;
-        if h.name.trim() != h.name {
-            let name = h.name.clone();
-            return Err(SeriesError::Spaces { name });
-        }
+        bumpsim_core::names::check_folder_name(&h.name).map_err(SeriesError::HeadName)?;
     }
     Ok(())
 }

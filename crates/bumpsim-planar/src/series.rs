@@ -115,15 +115,9 @@ pub enum SeriesError {
     /// The test names as a list (empty, repeated, invisible characters).
     #[error(transparent)]
     Names(#[from] bumpsim_core::names::NameError),
-    /// A test name that is not a plain folder name.
-    #[error(
-        "test name \"{}\": letters, digits, '-', '_' and inner spaces only (it names a folder)",
-        bumpsim_core::names::escaped(.name)
-    )]
-    TestName {
-        /// The name.
-        name: String,
-    },
+    /// A test name that cannot name a folder.
+    #[error("test name {0}")]
+    TestName(bumpsim_core::names::FolderNameError),
     /// A test's speed.
     #[error("test '{test}': {source}")]
     Speed {
@@ -226,14 +220,7 @@ fn names(tests: &[TestFile]) -> Result<(), SeriesError> {
     let names = tests.iter().map(|t| t.name.as_str());
     bumpsim_core::names::check_names("[[test]]", names)?;
     for t in tests {
-        let plain = t.name.trim() == t.name
-            && t.name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || "-_ ".contains(c));
-        if !plain {
-            let name = t.name.clone();
-            return Err(SeriesError::TestName { name });
-        }
+        bumpsim_core::names::check_folder_name(&t.name).map_err(SeriesError::TestName)?;
     }
     Ok(())
 }

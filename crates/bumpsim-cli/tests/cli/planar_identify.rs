@@ -258,7 +258,7 @@ fn hostile_planar_series_get_clear_errors() {
         ),
         (
             base.replacen("name = \"POLE\"", "name = \"POLE \"", 1),
-            "inner spaces only",
+            "test name \"POLE \": spaces before or after it",
         ),
         (
             base.replacen("name = \"POLE\"", "name = \"PO\\u001BLE\"", 1),
