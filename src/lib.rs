@@ -26,9 +26,9 @@
 //!
 //! **Features** (all on by default except `png`): `report` (plots and HTML
 //! reports: plotters and its fonts), `campaign` (FE campaigns; builds the
-//! report crate too) and `png` (`LinePlot::png`: plotters' bitmap backend
-//! and PNG encoder). `default-features = false` keeps the models, solvers
-//! and decks only.
+//! report crate too), `zip` (ISO-MME tests packed as `.zip`) and `png`
+//! (`LinePlot::png`: plotters' bitmap backend and PNG encoder).
+//! `default-features = false` keeps the models, solvers and decks only.
 //!
 //! ```
 //! use bumpsim::prelude::*;

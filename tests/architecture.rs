@@ -176,15 +176,81 @@ fn circle(uses: &BTreeMap<String, BTreeSet<String>>, from: &str) -> Option<Vec<S
     None
 }
 
+/// Within a folder module (`src/a/b/`): for each child, the sibling
+/// children its code names through `super::x` or `crate::a::b::x`.
+fn sibling_uses(src: &Path, folder: &Path) -> BTreeMap<String, BTreeSet<String>> {
+    let rel = folder.strip_prefix(src).unwrap();
+    let path: Vec<String> = rel
+        .components()
+        .map(|c| c.as_os_str().to_string_lossy().into_owned())
+        .collect();
+    let prefix = format!("crate::{}::", path.join("::"));
+    let children: BTreeMap<String, PathBuf> = std::fs::read_dir(folder)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.is_dir() || p.extension().is_some_and(|e| e == "rs"))
+        .map(|p| (p.file_stem().unwrap().to_string_lossy().into_owned(), p))
+        .filter(|(name, _)| name != "mod")
+        .collect();
+    let mut uses: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for (child, path) in &children {
+        let mut files = Vec::new();
+        match path.is_dir() {
+            true => rust_files(path, &mut files),
+            false => files.push(path.clone()),
+        }
+        // a grandchild's `super::` is its own parent, so only the child's
+        // own file (or its folder's mod.rs) counts for `super::`
+        let own = |f: &PathBuf| f == path || f == &path.join("mod.rs");
+        for file in &files {
+            let text = code(file);
+            let mut named = |at: usize| {
+                let used: String = text[at..]
+                    .chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_')
+                    .collect();
+                if &used != child && children.contains_key(&used) {
+                    uses.entry(child.clone()).or_default().insert(used);
+                }
+            };
+            for (at, m) in text.match_indices(prefix.as_str()) {
+                named(at + m.len());
+            }
+            if own(file) {
+                for (at, m) in text.match_indices("super::") {
+                    named(at + m.len());
+                }
+            }
+        }
+    }
+    uses
+}
+
+fn folders(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            out.push(path.clone());
+            folders(&path, out);
+        }
+    }
+}
+
 #[test]
 fn no_crate_has_a_module_circle() {
     let mut circles = Vec::new();
     for (name, dir) in crates() {
-        let uses = module_uses(&dir.join("src"));
-        for module in uses.keys() {
-            if let Some(c) = circle(&uses, module) {
-                circles.push(format!("{name}: {}", c.join(" -> ")));
-                break;
+        let src = dir.join("src");
+        let mut graphs = vec![("".to_string(), module_uses(&src))];
+        let mut nested = Vec::new();
+        folders(&src, &mut nested);
+        for folder in nested {
+            let label = folder.strip_prefix(&src).unwrap().display().to_string();
+            graphs.push((label, sibling_uses(&src, &folder)));
+        }
+        for (label, uses) in graphs {
+            if let Some(c) = uses.keys().find_map(|m| circle(&uses, m)) {
+                circles.push(format!("{name} {label}: {}", c.join(" -> ")));
             }
         }
     }

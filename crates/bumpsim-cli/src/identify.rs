@@ -3,7 +3,7 @@
 
 use crate::{Folder, write};
 use anyhow::{Context, Result};
-use bumpsim_ident::document::{Failed, IdentifyDocument, PredictionDocument};
+use bumpsim_ident::document::{Failed, IdentifyDocument};
 use bumpsim_ident::dofs::{DofList, Sweep};
 use bumpsim_ident::estimate::Identification;
 use bumpsim_ident::explore::{predict, sensitivity};
@@ -286,11 +286,21 @@ pub fn run_predict(args: &PredictArgs) -> Result<()> {
             args.model.display(),
             args.study.display()
         ),
-        (false, true) => anyhow::bail!(
-            "{}: a planar study needs a planar car (a car file with [body], docs/planar.md); {} is not one",
-            args.study.display(),
-            args.model.display()
-        ),
+        (false, true) => {
+            // a planar car file with a mistake is not recognised as one:
+            // its own error says more than "not a planar car"
+            bumpsim_planar::PlanarCar::read(&args.model).with_context(|| {
+                format!(
+                    "{}: a planar study needs a planar car (a car file with [body], docs/planar.md)",
+                    args.study.display()
+                )
+            })?;
+            anyhow::bail!(
+                "{}: a planar study needs a planar car (a car file with [body], docs/planar.md); {} is not one",
+                args.study.display(),
+                args.model.display()
+            )
+        }
         (false, false) => run_predict_chain(args),
     }
 }
@@ -332,7 +342,7 @@ fn run_predict_chain(args: &PredictArgs) -> Result<()> {
         .name
         .clone()
         .unwrap_or_else(|| args.model.display().to_string());
-    let document = PredictionDocument::new(&name, &predictions, &notes);
+    let document = bumpsim_ident::document::predictions(&name, &predictions, &notes);
     document.warnings.iter().for_each(|w| crate::warn(w));
     if let Some(path) = &args.json {
         write(path, &serde_json::to_string_pretty(&document)?)?;

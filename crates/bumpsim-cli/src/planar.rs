@@ -4,7 +4,7 @@
 use crate::{Folder, write};
 use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, parse_quantity};
-use bumpsim_planar::document::{IdentificationDocument, ImpactDocument, PredictionDocument};
+use bumpsim_planar::document::{IdentificationDocument, ImpactDocument};
 use bumpsim_planar::identify::{Prediction, identify, predict};
 use bumpsim_planar::presets::{PRESETS, StrikerSpec};
 use bumpsim_planar::study::PlanarStudy;
@@ -229,7 +229,10 @@ pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
     let validation_fits: Vec<_> = validation.iter().map(|p| p.fit.clone()).collect();
     let summary = bumpsim_planar::text::identification_summary(&result, &validation_fits);
     print!("{summary}");
-    result.warnings.iter().for_each(|w| crate::warn(w));
+    // printed in the summary, as the 1-D identification prints its own
+    crate::count_warnings(
+        bumpsim_planar::text::identification_warnings(&result, &validation_fits).len(),
+    );
     if let Some(path) = options.json {
         let document = IdentificationDocument {
             result: &result,
@@ -285,6 +288,19 @@ pub fn run_predict(options: &PredictOptions) -> Result<()> {
         .into_iter()
         .map(|c| predict(&car, c))
         .collect::<Result<_, _>>()?;
+    if let Some(f) = predictions
+        .iter()
+        .map(|p| &p.fit)
+        .find(|f| !(f.fit_x.is_finite() && f.fit_yaw.is_finite()))
+    {
+        bail!(
+            "case '{}': the replay with {} is not finite (fit x {} %, yaw {} %): the car cannot be integrated at the study's sample interval",
+            f.name,
+            options.car.display(),
+            f.fit_x,
+            f.fit_yaw
+        );
+    }
     for p in &predictions {
         let f = &p.fit;
         println!(
@@ -299,7 +315,7 @@ pub fn run_predict(options: &PredictOptions) -> Result<()> {
         .name()
         .map_or_else(|| options.car.display().to_string(), str::to_string);
     let fits: Vec<_> = predictions.iter().map(|p| p.fit.clone()).collect();
-    let document = PredictionDocument::new(&name, &fits, &study.notes);
+    let document = bumpsim_planar::document::predictions(&name, &fits, &study.notes);
     document.warnings.iter().for_each(|w| crate::warn(w));
     if let Some(path) = options.json {
         write(path, &serde_json::to_string_pretty(&document)?)?;

@@ -15,6 +15,7 @@
 //!   and determination flags, the weakest direction, and the variance
 //!   inflation of AR(1) residuals;
 //! - [`fit`]: the fit % of paper B and the negative-fit warning;
+//! - [`document`]: the prediction document every model's front end writes;
 //! - [`reduce`]: the simpler model the data cannot tell apart, with the
 //!   F-test;
 //! - [`observer`]: progress without a required closure;
@@ -62,6 +63,7 @@
 //! ```
 
 pub mod bounds;
+pub mod document;
 pub mod fit;
 pub mod lm;
 pub mod multistart;
@@ -71,6 +73,23 @@ pub mod reduce;
 pub mod search;
 pub mod text;
 pub mod uncertainty;
+
+/// Every warning of an estimate, in the one order every model prints:
+/// the uncertainty's (bounds, rank, weak directions) and the determination
+/// statement, the starts' (failed starts, a best found by one exploring
+/// start, a best run at the iteration limit), then `fits` (negative fits,
+/// [`fit::negative_fit`]).
+pub fn warnings(
+    uncertainty: &uncertainty::Uncertainty,
+    starts: &multistart::Starts,
+    best: &lm::Outcome,
+    fits: impl IntoIterator<Item = String>,
+) -> Vec<String> {
+    let mut out = uncertainty::warnings(uncertainty);
+    out.extend(multistart::warnings(starts, best));
+    out.extend(fits);
+    out
+}
 
 /// The types most estimations need.
 pub mod prelude {

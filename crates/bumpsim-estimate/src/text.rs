@@ -10,6 +10,22 @@ use bumpsim_core::units::{Dimension, format_quantity};
 /// The parameter table: name, value, standard error, 95 % interval, and a
 /// note: fixed, at bound, or not determined by the data
 /// ([`crate::uncertainty::is_determined`]).
+///
+/// ```
+/// use bumpsim_core::units::Dimension;
+/// use bumpsim_estimate::text::parameter_table;
+/// use bumpsim_estimate::uncertainty::{Correlation, Parameter, Uncertainty};
+/// let u = Uncertainty {
+///     names: vec!["m1".into()], standard_errors: vec![Some(2.0)],
+///     ci95: vec![Some([96.0, 104.0])], at_bound: vec![false], fixed: vec![false],
+///     correlation: vec![vec![Some(1.0)]], residual_std: 1e-4, degrees_of_freedom: 99,
+///     singular_values: vec![1.0], condition: 1.0, determined: vec![Some(true)],
+///     weakest_direction: vec![], error_model: Correlation::Independent,
+///     residual_correlation: 0.0, inflation: 1.0, warnings: vec![],
+/// };
+/// let table = parameter_table(&[Parameter::new("m1", Dimension::Mass)], &[100.0], &u);
+/// assert!(table.lines().nth(1).unwrap().contains("100.0 kg"), "{table}");
+/// ```
 pub fn parameter_table(parameters: &[Parameter], theta: &[f64], u: &Uncertainty) -> String {
     let width = parameters
         .iter()

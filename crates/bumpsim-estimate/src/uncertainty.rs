@@ -237,6 +237,31 @@ pub fn is_determined(u: &Uncertainty, i: usize) -> Option<bool> {
 }
 
 /// The uncertainty of an estimate (see the module).
+///
+/// ```
+/// use bumpsim_estimate::uncertainty::{Correlation, Estimated, Parameter, Series, uncertainty};
+/// use nalgebra::DMatrix;
+/// // y = a t fitted at a = 2 on t = 0.1 .. 1: residuals ±0.01, J = ∂r/∂ln a = a t
+/// let t: Vec<f64> = (1..=10).map(|k| 0.1 * k as f64).collect();
+/// let r: Vec<f64> = (0..10).map(|k| if k % 2 == 0 { 0.01 } else { -0.01 }).collect();
+/// let jacobian = DMatrix::from_fn(10, 1, |i, _| 2.0 * t[i]);
+/// let u = uncertainty(&Estimated {
+///     parameters: &[Parameter::with_symbol("a", "-")],
+///     theta: &[2.0],
+///     free: &[0],
+///     p: &[2f64.ln()],
+///     bounds: (&[-10.0], &[10.0]),
+///     residuals: &r,
+///     jacobian: &jacobian,
+///     series: &Series::contiguous([10].into_iter()),
+///     correlation: Correlation::Independent,
+/// });
+/// // SE(a) = σ / √Σt², σ² = Σr²/(n − 1)
+/// let sigma = (10.0 * 1e-4 / 9.0f64).sqrt();
+/// let se = sigma / t.iter().map(|t| t * t).sum::<f64>().sqrt();
+/// assert!((u.standard_errors[0].unwrap() - se).abs() < 1e-12);
+/// assert_eq!(u.determined, vec![Some(true)]);
+/// ```
 pub fn uncertainty(e: &Estimated) -> Uncertainty {
     let mut u = intervals(e);
     u.determined = (0..u.names.len()).map(|i| is_determined(&u, i)).collect();
@@ -520,6 +545,22 @@ pub fn warnings(u: &Uncertainty) -> Vec<String> {
     let mut out = u.warnings.clone();
     out.extend(determination(u));
     out
+}
+
+/// `u` when the Jacobian could not be evaluated at the optimum: no
+/// interval, standard error or correlation, every estimated parameter not
+/// determined, and a warning that says why.
+pub fn unassessed(u: Uncertainty) -> Uncertainty {
+    let n = u.names.len();
+    Uncertainty {
+        standard_errors: vec![None; n],
+        ci95: vec![None; n],
+        correlation: vec![vec![None; n]; n],
+        determined: u.fixed.iter().map(|f| (!f).then_some(false)).collect(),
+        weakest_direction: Vec::new(),
+        warnings: vec!["the Jacobian could not be evaluated at the optimum: no intervals".into()],
+        ..u
+    }
 }
 
 #[cfg(test)]

@@ -8,6 +8,7 @@
 
 use crate::explore::Prediction;
 use crate::result::{CaseFit, Identification};
+use bumpsim_estimate::document::Predictions;
 use serde::{Serialize, Serializer};
 
 /// An order of the DOF table that failed, and why.
@@ -91,32 +92,16 @@ impl Serialize for IdentifyDocument<'_> {
     }
 }
 
-/// `bumpsim predict --json` with a chain model: each case's fit, the
-/// warnings of negative fits, and the notes on the channels.
-#[derive(Debug, Clone, Serialize)]
-pub struct PredictionDocument<'a> {
-    /// The model's name (or its file).
-    pub model: &'a str,
-    /// Fits per case.
-    pub cases: Vec<&'a CaseFit>,
-    /// Negative fits.
-    pub warnings: Vec<String>,
-    /// Notes on the channels.
-    pub notes: &'a [String],
-}
+/// `bumpsim predict --json` with a chain model: the layer's document of
+/// each case's fit, the warnings of negative fits, and the notes.
+pub type PredictionDocument<'a> = Predictions<'a, CaseFit>;
 
-impl<'a> PredictionDocument<'a> {
-    /// The document of `predictions` of `model`.
-    pub fn new(
-        model: &'a str,
-        predictions: &'a [Prediction],
-        notes: &'a [String],
-    ) -> PredictionDocument<'a> {
-        PredictionDocument {
-            model,
-            cases: predictions.iter().map(|p| &p.fit).collect(),
-            warnings: predictions.iter().filter_map(Prediction::warning).collect(),
-            notes,
-        }
-    }
+/// The prediction document of `predictions` of `model`.
+pub fn predictions<'a>(
+    model: &'a str,
+    predictions: &'a [Prediction],
+    notes: &'a [String],
+) -> PredictionDocument<'a> {
+    let warnings = predictions.iter().filter_map(Prediction::warning).collect();
+    Predictions::new(model, predictions.iter().map(|p| &p.fit), warnings, notes)
 }

@@ -161,11 +161,10 @@ fn summarise(
     let sse = outcome.objective;
     let spread = total_spread(cases);
     let uncertainty = uncertainty(objective, &outcome.parameters, lower, upper, settings.dof);
-    let mut warnings = bumpsim_estimate::uncertainty::warnings(&uncertainty);
-    warnings.extend(multistart::warnings(&found.starts, outcome));
-    warnings.extend(fits.iter().filter_map(|f| {
+    let negative = fits.iter().filter_map(|f| {
         bumpsim_estimate::fit::negative_fit(&f.name, "displacement", f.fit_percent)
-    }));
+    });
+    let warnings = bumpsim_estimate::warnings(&uncertainty, &found.starts, outcome, negative);
     // An objective below the rounding of the data (an exact fit of exact
     // synthetic data) counts as that rounding: AIC and BIC stay finite and
     // the smallest exact model wins the comparison.

@@ -40,11 +40,11 @@ pub fn uncertainty(
     let (m, q) = (objective.residual_count(), objective.free().len());
     let mut r = vec![0.0; m];
     let mut jacobian = DMatrix::zeros(m, q);
-    objective.evaluate(p, &mut r, Some(&mut jacobian));
+    let evaluated = objective.evaluate(p, &mut r, Some(&mut jacobian));
     let theta = objective.theta(p);
     let parameters = parameters(dof);
     let series = objective.series();
-    bumpsim_estimate::uncertainty::uncertainty(&Estimated {
+    let u = bumpsim_estimate::uncertainty::uncertainty(&Estimated {
         parameters: &parameters,
         theta: &theta,
         free: objective.free(),
@@ -54,5 +54,9 @@ pub fn uncertainty(
         jacobian: &jacobian,
         series: &series,
         correlation: Correlation::Independent,
-    })
+    });
+    match evaluated {
+        true => u,
+        false => bumpsim_estimate::uncertainty::unassessed(u),
+    }
 }

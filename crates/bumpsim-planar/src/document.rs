@@ -6,6 +6,7 @@
 use crate::identify::{CaseFit, PlanarIdentification};
 use crate::result::PlanarResult;
 use crate::striker::Striker;
+use bumpsim_estimate::document::Predictions;
 use serde::Serialize;
 
 /// `bumpsim planar --json`: the car's name, the striker and the result.
@@ -31,28 +32,16 @@ pub struct IdentificationDocument<'a> {
     pub notes: &'a [String],
 }
 
-/// `bumpsim predict --json` with a planar car: each case's fit and the
-/// warnings of negative fits, and the notes on the channels.
-#[derive(Debug, Clone, Serialize)]
-pub struct PredictionDocument<'a> {
-    /// The car's name (or its file).
-    pub car: &'a str,
-    /// Fits per case.
-    pub cases: Vec<&'a CaseFit>,
-    /// Negative fits.
-    pub warnings: Vec<String>,
-    /// Notes on the channels' time base.
-    pub notes: &'a [String],
-}
+/// `bumpsim predict --json` with a planar car: the layer's document of each
+/// case's fit of x and yaw, the warnings of negative fits, and the notes.
+pub type PredictionDocument<'a> = Predictions<'a, CaseFit>;
 
-impl<'a> PredictionDocument<'a> {
-    /// The document of `fits` of `car`.
-    pub fn new(car: &'a str, fits: &'a [CaseFit], notes: &'a [String]) -> PredictionDocument<'a> {
-        PredictionDocument {
-            car,
-            cases: fits.iter().collect(),
-            warnings: fits.iter().flat_map(CaseFit::warnings).collect(),
-            notes,
-        }
-    }
+/// The prediction document of `fits` of the car `car`.
+pub fn predictions<'a>(
+    car: &'a str,
+    fits: &'a [CaseFit],
+    notes: &'a [String],
+) -> PredictionDocument<'a> {
+    let warnings = fits.iter().flat_map(CaseFit::warnings).collect();
+    Predictions::new(car, fits, warnings, notes)
 }

@@ -237,10 +237,25 @@ pub fn identification_summary(
             f.peak_yaw.to_degrees()
         );
     }
-    for w in &result.warnings {
+    for w in identification_warnings(result, validation) {
         s += &format!("  warning: {w}\n");
     }
     s
+}
+
+/// Every warning of a planar identification: the result's, then the
+/// negative fits of the validation cases.
+pub fn identification_warnings(
+    result: &crate::identify::PlanarIdentification,
+    validation: &[crate::identify::CaseFit],
+) -> Vec<String> {
+    let mut out = result.warnings.clone();
+    out.extend(
+        validation
+            .iter()
+            .flat_map(crate::identify::CaseFit::warnings),
+    );
+    out
 }
 
 #[cfg(test)]

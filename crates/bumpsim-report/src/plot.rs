@@ -198,9 +198,9 @@ impl LinePlot {
         };
         bumpsim_io::output::write_rendered(path, |temp| {
             let root = BitMapBackend::new(temp, self.size).into_drawing_area();
-            root.fill(&WHITE).map_err(|e| e.to_string())?;
-            self.draw(&root, range).map_err(|e| e.to_string())?;
-            root.present().map_err(|e| e.to_string())
+            root.fill(&WHITE).map_err(|e| draw_error(&e))?;
+            self.draw(&root, range).map_err(|e| draw_error(&e))?;
+            root.present().map_err(|e| draw_error(&e))
         })
         .map_err(|e| draw_error(&e))
     }

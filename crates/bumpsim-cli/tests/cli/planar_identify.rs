@@ -52,6 +52,10 @@ fn the_planar_series_identifies_a_car_that_predicts_the_held_out_test() {
             "validation",
             "RCAR-RIGHT",
             " deg",
+            // the estimation layer's table and start line, as the 1-D prints them
+            "std. error",
+            "95 % interval",
+            "starts: 8 run",
         ],
     );
     let r: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
@@ -88,6 +92,54 @@ fn the_planar_series_identifies_a_car_that_predicts_the_held_out_test() {
         "rcar-structural-front",
     ]);
     assert!(run.status.success(), "{}", text(&run.stderr));
+    predicts_the_held_out_test(&dir, &car, &study, held);
+}
+
+/// `predict` with the identified planar car on the planar study: the
+/// held-out test's fits as the identification reported them, the JSON and
+/// the plots; a planar car with a chain study (and the other way round) is
+/// refused by name.
+fn predicts_the_held_out_test(dir: &Path, car: &Path, study: &Path, held: &Value) {
+    let (json, plots) = (dir.join("predict.json"), dir.join("predict-plots"));
+    let run = bumpsim(&[
+        "predict",
+        car.to_str().unwrap(),
+        study.to_str().unwrap(),
+        "--case",
+        "RCAR-RIGHT",
+        "--json",
+        json.to_str().unwrap(),
+        "--plot",
+        plots.to_str().unwrap(),
+    ]);
+    let stdout = text(&run.stdout);
+    assert!(run.status.success(), "{stdout}{}", text(&run.stderr));
+    assert_contains(&stdout, &["RCAR-RIGHT: fit x ", " %  yaw ", " deg)"]);
+    let p: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let case = &p["cases"][0];
+    assert_eq!(p["cases"].as_array().unwrap().len(), 1);
+    for key in ["fit_x", "fit_yaw"] {
+        let (a, b) = (case[key].as_f64().unwrap(), held[key].as_f64().unwrap());
+        assert!((a - b).abs() < 1e-6, "{key}: predict {a} %, identify {b} %");
+    }
+    assert!(plots.join("predict-RCAR-RIGHT-yaw.svg").is_file());
+    let chain_study = root().join("examples/identify/study.toml");
+    let chain_model = root().join("examples/identify/car-truth.toml");
+    for (model, study, needle) in [
+        (
+            car,
+            chain_study.as_path(),
+            "a planar car predicts a planar study",
+        ),
+        (
+            chain_model.as_path(),
+            study,
+            "a planar study needs a planar car",
+        ),
+    ] {
+        let run = bumpsim(&["predict", model.to_str().unwrap(), study.to_str().unwrap()]);
+        assert_user_error(&run, needle);
+    }
 }
 
 #[test]

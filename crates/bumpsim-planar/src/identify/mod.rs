@@ -21,7 +21,7 @@
 //! **Search.** The estimation layer's ([`bumpsim_estimate`], shared with
 //! the 1-D chain): bounded Levenberg–Marquardt on `p = ln θ`, each
 //! parameter within a factor [`REACH`] of its start, the Jacobian by
-//! forward differences ([`objective`]); the staged multi-start from the
+//! forward differences (module `objective`); the staged multi-start from the
 //! template and log-uniform points within a factor `spread` of it (seeded
 //! by `seed + start index`), refining rounds around the best when there are
 //! more than eight starts, the best few polished, every start tallied.
@@ -39,7 +39,7 @@
 //! `ψ = asin((x_R − x_L)/(η_L − η_R))`; a negative fit is a warning.
 //!
 //! **Advice**: the reduced car when a chain link is undetermined or not
-//! needed ([`reduce`](mod@reduce)), in the same words as the 1-D chain's.
+//! needed (module `reduce`), in the same words as the 1-D chain's.
 
 mod objective;
 mod predict;
@@ -481,20 +481,14 @@ fn summarise(
     });
     let uncertainty = match evaluated {
         true => uncertainty,
-        false => Uncertainty {
-            warnings: vec![
-                "the Jacobian could not be evaluated at the optimum: no intervals".into(),
-            ],
-            ..unassessed(uncertainty)
-        },
+        false => bumpsim_estimate::uncertainty::unassessed(uncertainty),
     };
     let fits = cases
         .iter()
         .map(|case| predict(&car, case).map(|p| p.fit))
         .collect::<Result<Vec<_>, _>>()?;
-    let mut warnings = bumpsim_estimate::uncertainty::warnings(&uncertainty);
-    warnings.extend(multistart::warnings(&found.starts, best));
-    warnings.extend(fits.iter().flat_map(CaseFit::warnings));
+    let negative = fits.iter().flat_map(CaseFit::warnings);
+    let warnings = bumpsim_estimate::warnings(&uncertainty, &found.starts, best, negative);
     let estimates = estimates(setup, &theta, &uncertainty);
     let mut result = PlanarIdentification {
         car,
@@ -514,20 +508,6 @@ fn summarise(
         result.warnings.push(r.statement.clone());
     }
     Ok(result)
-}
-
-/// `u` with no interval, standard error or correlation (every estimated
-/// parameter not determined).
-fn unassessed(u: Uncertainty) -> Uncertainty {
-    let n = u.names.len();
-    Uncertainty {
-        standard_errors: vec![None; n],
-        ci95: vec![None; n],
-        correlation: vec![vec![None; n]; n],
-        determined: u.fixed.iter().map(|f| (!f).then_some(false)).collect(),
-        weakest_direction: Vec::new(),
-        ..u
-    }
 }
 
 /// The estimates of the result, in the order of [`names`].
@@ -587,6 +567,13 @@ mod tests {
     /// A case made by the model itself: a half-sine push at `lateral`,
     /// sills and both side members measured.
     fn case(truth: &PlanarCar, lateral: f64) -> PlanarCase {
+        pushed(truth, "offset", lateral, Sensor::Chain(1))
+    }
+
+    /// A case made by `truth` itself: a 40 kN half-sine push of 30 ms at
+    /// `lateral` from 2 m/s, the sills, the left front chain mass and
+    /// `right` measured (the identification's and the reduction's tests).
+    pub(super) fn pushed(truth: &PlanarCar, name: &str, lateral: f64, right: Sensor) -> PlanarCase {
         let force: Vec<f64> = (0..400)
             .map(|k| 4e4 * (std::f64::consts::PI * (k as f64 / 300.0).min(1.0)).sin())
             .collect();
@@ -600,7 +587,7 @@ mod tests {
             Sensor::Body([0.6, 0.7]),
             Sensor::Body([0.6, -0.7]),
             Sensor::Chain(0),
-            Sensor::Chain(1),
+            right,
         ];
         let drive = Drive {
             step: 1e-4,
@@ -610,7 +597,7 @@ mod tests {
         };
         let replay = crate::drive::drive(truth, &drive, 0.05).unwrap();
         PlanarCase {
-            name: "offset".into(),
+            name: name.into(),
             drive,
             measured: replay.sensor_reading,
             window: (0, 399),
