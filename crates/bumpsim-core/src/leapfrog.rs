@@ -99,9 +99,11 @@ pub trait Mechanism {
     /// which holds the previous accelerations on entry (zeros at the start).
     fn accelerations(&mut self, q: &[f64], v: &[f64], a: &mut [f64]);
 
-    /// The positions moved to `q` in step `k` (from `k` to `k + 1`), before
-    /// the accelerations there: contacts and history-dependent forces.
-    fn moved(&mut self, _q: &[f64], _k: usize) {}
+    /// The positions moved to `q` in step `k` (from `k` to `k + 1`) at the
+    /// half-step velocities `v` (`v_{k+½}`), before the accelerations there:
+    /// contacts, history-dependent forces and any state that follows the
+    /// motion (a tyre's patch).
+    fn moved(&mut self, _q: &[f64], _v: &[f64], _k: usize) {}
 
     /// A step (or the first half step) is complete: running sums of work
     /// and impulse.
@@ -183,7 +185,7 @@ impl Leapfrog {
             .iter_mut()
             .zip(&self.v_half)
             .for_each(|(x, v)| *x += t * v);
-        mechanism.moved(&self.q, k);
+        mechanism.moved(&self.q, &self.v_half, k);
         self.previous.copy_from_slice(&self.v_half);
         mechanism.accelerations(&self.q, &self.v_half, &mut self.a);
         self.v_half

@@ -396,7 +396,7 @@ impl Mechanism for Impact<'_> {
         self.chain.accelerations(q, v, self.force, a);
     }
 
-    fn moved(&mut self, q: &[f64], k: usize) {
+    fn moved(&mut self, q: &[f64], _v: &[f64], k: usize) {
         let t = k as f64 * self.step;
         let (force, d) = (self.force, self.d);
         let d_next = self.chain.compression(q);

@@ -181,14 +181,113 @@ pub struct Beam {
     pub bending: f64,
 }
 
-/// Friction coefficients of one axle.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, serde::Deserialize)]
+/// How the tyres of an axle meet the ground (see [`Axle`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TyreLaw {
+    /// Free-rolling wheels (a car in neutral, brakes released: every
+    /// RCAR/IIHS low-speed test): the lateral force builds up with the
+    /// slip angle through the cornering stiffness and saturates at μ_y N;
+    /// along the wheel, rolling resistance μ_x N.
+    #[default]
+    Rolling,
+    /// Locked or braked wheels sliding: Coulomb friction of the contact
+    /// point, μ N against its sliding velocity (regularised by the slip
+    /// speed), both directions coupled.
+    Sliding,
+}
+
+/// The tyres of one axle: their law, friction coefficients and, rolling,
+/// their cornering stiffness and relaxation length.
+///
+/// **Rolling** (the stretched-string tyre, Pacejka 2012 ch. 1.2 and 7): the
+/// contact patch of each wheel deflects laterally by y with
+/// `ẏ = v_y − (|v_x| / σ) y` (v_x, v_y the wheel centre's velocity along and
+/// across the wheel, body frame), and the ground pushes back with
+/// `F_y = −(C_α / σ) y`, clamped to `|F_y| ≤ μ_y N` (the patch slides). In
+/// steady rolling `y = σ v_y/|v_x|`, so `F_y = −C_α v_y/|v_x| ≈ −C_α α`, the
+/// slip-angle law; at standstill the tyre is a lateral spring `C_α/σ`,
+/// which keeps the law finite where `α = atan(v_y/v_x)` is not. With
+/// `relaxation_length = 0` the law is instantaneous,
+/// `F_y = −μ_y N tanh(C_α α / (μ_y N))` with `α = atan(v_y / √(v_x² + v_s²))`
+/// (the step then follows its damping `C_α/v_s`). Along the wheel, rolling
+/// resistance `F_x = −μ_x N v_x/√(v_x² + v_s²)`.
+///
+/// **Sliding**: `F = −μ N v/√(v_x² + v_y² + v_s²)` per direction with μ_x and μ_y.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Axle {
-    /// Longitudinal friction coefficient μ_x (0: free rolling), 1.
+    /// Longitudinal friction coefficient μ_x (rolling: rolling resistance,
+    /// about 0.015; sliding: the braked tyre's μ), 1.
+    #[serde(default)]
     pub mu_longitudinal: f64,
-    /// Lateral friction coefficient μ_y, 1.
+    /// Lateral friction coefficient μ_y (the saturation of a rolling tyre), 1.
+    #[serde(default)]
     pub mu_lateral: f64,
+    /// The law: rolling (default) or sliding.
+    #[serde(default)]
+    pub law: TyreLaw,
+    /// Cornering stiffness C_α of each tyre, N/rad (rolling; passenger-car
+    /// tyres at their nominal load: 30–120 kN/rad, [`CORNERING_STIFFNESS`]).
+    #[serde(default = "default_cornering_stiffness")]
+    pub cornering_stiffness: f64,
+    /// Relaxation length σ, m (rolling; about the tyre's radius, 0.2–0.6 m;
+    /// 0: the instantaneous slip-angle law).
+    #[serde(default = "default_relaxation_length")]
+    pub relaxation_length: f64,
+}
+
+/// The default cornering stiffness of a passenger-car tyre, N/rad, and the
+/// plausible range the identification checks against (per tyre at its
+/// nominal load; Pacejka 2012, table 1.1 and fig. 1.9; Gillespie 1992
+/// ch. 6: 500–1500 N/deg).
+pub const CORNERING_STIFFNESS: (f64, std::ops::RangeInclusive<f64>) = (60e3, 20e3..=150e3);
+
+/// The default relaxation length, m (about a passenger tyre's radius).
+pub const RELAXATION_LENGTH: f64 = 0.4;
+
+fn default_cornering_stiffness() -> f64 {
+    CORNERING_STIFFNESS.0
+}
+
+fn default_relaxation_length() -> f64 {
+    RELAXATION_LENGTH
+}
+
+impl Default for Axle {
+    /// Frictionless rolling tyres with the default cornering stiffness and
+    /// relaxation length.
+    fn default() -> Self {
+        Axle {
+            mu_longitudinal: 0.0,
+            mu_lateral: 0.0,
+            law: TyreLaw::Rolling,
+            cornering_stiffness: CORNERING_STIFFNESS.0,
+            relaxation_length: RELAXATION_LENGTH,
+        }
+    }
+}
+
+impl Axle {
+    /// Sliding tyres with these coefficients (locked or braked).
+    pub fn sliding(mu_longitudinal: f64, mu_lateral: f64) -> Axle {
+        Axle {
+            mu_longitudinal,
+            mu_lateral,
+            law: TyreLaw::Sliding,
+            ..Axle::default()
+        }
+    }
+
+    /// Rolling tyres with rolling resistance `mu_longitudinal`, grip
+    /// `mu_lateral` and the default cornering stiffness and relaxation.
+    pub fn rolling(mu_longitudinal: f64, mu_lateral: f64) -> Axle {
+        Axle {
+            mu_longitudinal,
+            mu_lateral,
+            ..Axle::default()
+        }
+    }
 }
 
 /// The tyres.
@@ -512,6 +611,18 @@ fn check_tyres(tyres: &Tyres) -> Result<(), PlanarError> {
                 mu >= 0.0,
             )?;
         }
+        positive(
+            &format!("tyres.{axle}.cornering_stiffness"),
+            a.cornering_stiffness,
+            "N/rad",
+        )?;
+        require(
+            &format!("tyres.{axle}.relaxation_length"),
+            a.relaxation_length,
+            "m",
+            "must be finite and not negative (0: the instantaneous slip-angle law)",
+            a.relaxation_length >= 0.0 && a.relaxation_length <= 10.0,
+        )?;
     }
     positive("tyres.slip_speed", tyres.slip_speed, "m/s")
 }

@@ -298,8 +298,9 @@ impl Mechanism for Replay<'_> {
         self.side = loads.side;
     }
 
-    fn moved(&mut self, q: &[f64], k: usize) {
+    fn moved(&mut self, q: &[f64], v: &[f64], k: usize) {
         let t_step = 2.0 * self.model.half_step;
+        self.model.relax(q, v, &mut self.contact, t_step);
         self.readings.iter_mut().for_each(|r| r[0] += t_step * r[1]);
         let (i, within) = (k / self.substeps, k % self.substeps + 1);
         self.place(q, i, within as f64 / self.substeps as f64);

@@ -7,6 +7,7 @@
 
 use crate::car::{GRAVITY, PlanarCar};
 use crate::striker::{Placed, pole_profile};
+use crate::tyre::Wheel;
 use bumpsim_impact::bumper::BumperState;
 
 /// A chain link: `front` mass, `back` mass or the body, spring N/m, damper N·s/m.
@@ -15,15 +16,6 @@ struct Link {
     back: Option<usize>,
     spring: f64,
     damper: f64,
-}
-
-/// A wheel: body-frame position (m), normal load (N) and friction coefficients.
-struct Wheel {
-    xi: f64,
-    eta: f64,
-    load: f64,
-    mu_x: f64,
-    mu_y: f64,
 }
 
 /// The prepared model.
@@ -76,6 +68,9 @@ pub(crate) struct Contact {
     rest: Vec<f64>,
     /// Pushed by the striker beyond its rest deflection.
     engaged: Vec<bool>,
+    /// Lateral deflection of each wheel's contact patch (rolling tyres
+    /// with relaxation), m: front left, front right, rear left, rear right.
+    pub patches: [f64; 4],
 }
 
 /// Loads of one evaluation (world frame unless said otherwise).
@@ -148,8 +143,7 @@ impl Model {
                     xi,
                     eta,
                     load: 0.5 * load,
-                    mu_x: axle.mu_longitudinal,
-                    mu_y: axle.mu_lateral,
+                    axle,
                 });
             }
         }
@@ -462,7 +456,7 @@ impl Model {
         loads.contact_moment = mz;
         fe += ce;
         fn_ += cn;
-        let tyre = self.tyres(v, e, n, &mut loads);
+        let tyre = self.tyres(v, (e, n), &c.patches, &mut loads);
         fe += tyre[0];
         fn_ += tyre[1];
         mz += loads.tyre_moment;
@@ -475,20 +469,37 @@ impl Model {
         loads
     }
 
-    /// Tyre forces (body frame e, n), filling their world resultant, moment and power.
-    fn tyres(&self, v: &[f64], e: [f64; 2], n: [f64; 2], loads: &mut Loads) -> [f64; 2] {
+    /// Tyre forces (body frame e, n) at the patch deflections `patches`,
+    /// filling their world resultant and moment.
+    fn tyres(
+        &self,
+        v: &[f64],
+        axes: ([f64; 2], [f64; 2]),
+        patches: &[f64; 4],
+        loads: &mut Loads,
+    ) -> [f64; 2] {
+        let (e, n) = axes;
         let (ve, vn, w) = (v[0] * e[0] + v[1] * e[1], v[0] * n[0] + v[1] * n[1], v[2]);
         let (mut fe, mut fn_) = (0.0, 0.0);
-        for wheel in &self.wheels {
+        for (wheel, &y) in self.wheels.iter().zip(patches) {
             let (we, wn) = (ve - w * wheel.eta, vn + w * wheel.xi);
-            let scale = wheel.load / (we * we + wn * wn + self.slip * self.slip).sqrt();
-            let (pe, pn) = (-wheel.mu_x * scale * we, -wheel.mu_y * scale * wn);
+            let (pe, pn) = wheel.force(we, wn, y, self.slip);
             fe += pe;
             fn_ += pn;
             loads.tyre_moment += wheel.xi * pn - wheel.eta * pe;
         }
         loads.tyre = [fe * e[0] + fn_ * n[0], fe * e[1] + fn_ * n[1]];
         [fe, fn_]
+    }
+
+    /// Advances the rolling tyres' patch deflections over `step` (s) at
+    /// positions `q` and the velocities `v` of the step ([`Wheel::relax`]).
+    pub fn relax(&self, q: &[f64], v: &[f64], c: &mut Contact, step: f64) {
+        let Axes { e, n } = Axes::of(q[2]);
+        let (ve, vn, w) = (v[0] * e[0] + v[1] * e[1], v[0] * n[0] + v[1] * n[1], v[2]);
+        for (wheel, y) in self.wheels.iter().zip(&mut c.patches) {
+            wheel.relax(ve - w * wheel.eta, vn + w * wheel.xi, y, step);
+        }
     }
 
     /// Solves the Newton–Euler equations for the body and chain accelerations.
@@ -577,16 +588,19 @@ impl Model {
                 }
             }
         }
-        let friction: f64 = self
-            .wheels
-            .iter()
-            .map(|w| w.load * w.mu_x.max(w.mu_y) / self.slip)
-            .sum();
+        let rates: Vec<(f64, f64)> = self.wheels.iter().map(|w| w.rates(self.slip)).collect();
+        let friction: f64 = rates.iter().map(|r| r.0).sum();
         let rot_c: f64 = self
             .wheels
             .iter()
-            .map(|w| 2.0 * w.load * w.mu_x.max(w.mu_y) / self.slip * (w.xi * w.xi + w.eta * w.eta))
+            .zip(&rates)
+            .map(|(w, r)| 2.0 * r.0 * (w.xi * w.xi + w.eta * w.eta))
             .sum();
+        // the relaxed tyres' lateral springs to the ground
+        for (w, r) in self.wheels.iter().zip(&rates) {
+            body_k += 2.0 * r.1;
+            rot_k += 2.0 * r.1 * (w.xi * w.xi + w.eta * w.eta);
+        }
         let mut omega2 = (body_k / self.body_mass).max(rot_k / self.yaw_inertia);
         let mut omega_c =
             ((body_c + 2.0 * friction) / self.body_mass).max(rot_c / self.yaw_inertia);
@@ -617,6 +631,7 @@ impl Contact {
             deflection: vec![0.0; segments],
             rest: vec![0.0; segments],
             engaged: vec![false; segments],
+            patches: [0.0; 4],
         }
     }
 }

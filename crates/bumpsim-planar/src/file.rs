@@ -35,16 +35,19 @@
 //! # force per segment):  segment = [{ ramp = 1.5e5, plateau = 6e3, unloading = 6e5 }, ...]
 //!
 //! [tyres]                                 # optional; absent = frictionless
-//! slip_speed = 0.05                       # m/s, regularisation of the Coulomb law
-//! front = { mu_longitudinal = 0.0, mu_lateral = 0.8 }
-//! rear = { mu_longitudinal = 0.8, mu_lateral = 0.8 }   # e.g. parking brake on
+//! slip_speed = 0.05                       # m/s, regularisation of the laws at standstill
+//! # law = "rolling" (default: free-rolling wheels, car in neutral) or "sliding"
+//! # (locked or braked); rolling: cornering_stiffness (N/rad per tyre, default
+//! # 60000) and relaxation_length (m, default 0.4; 0: instantaneous slip-angle law)
+//! front = { mu_longitudinal = 0.015, mu_lateral = 0.8 }
+//! rear = { mu_longitudinal = 0.8, mu_lateral = 0.8, law = "sliding" }   # e.g. parking brake on
 //! ```
 //!
 //! Slopes are always N/m and curve compressions always m: `length_unit` is
 //! only a convenience for the layout dimensions, which drawings give in mm.
 
 use crate::car::{
-    Axle, Beam, Body, MAX_SEGMENTS, PlanarCar, PlanarError, SideChain, Tyres, scaled,
+    Axle, Beam, Body, MAX_SEGMENTS, PlanarCar, PlanarError, SideChain, TyreLaw, Tyres, scaled,
 };
 use bumpsim_impact::bumper::{Bumper, Loading};
 use serde::Deserialize;
@@ -332,9 +335,13 @@ impl PlanarCar {
         }
         let t = self.tyres();
         let axle = |a: &Axle| {
+            let law = match a.law {
+                TyreLaw::Rolling => "rolling",
+                TyreLaw::Sliding => "sliding",
+            };
             format!(
-                "{{ mu_longitudinal = {:?}, mu_lateral = {:?} }}",
-                a.mu_longitudinal, a.mu_lateral
+                "{{ mu_longitudinal = {:?}, mu_lateral = {:?}, law = \"{law}\", cornering_stiffness = {:?}, relaxation_length = {:?} }}",
+                a.mu_longitudinal, a.mu_lateral, a.cornering_stiffness, a.relaxation_length
             )
         };
         s += &format!(

@@ -22,7 +22,8 @@
 //! - [`synth`]: synthetic asymmetric test series (load-cell wall, sills);
 //! - [`series`]: the planar series file of `bumpsim synth` and the study it writes;
 //! - [`study`]: the planar study file of `bumpsim identify`;
-//! - [`text`]: the summary with units and the CSV histories.
+//! - [`text`]: the summary with units and the CSV histories;
+//! - [`tyre`]: the tyre laws' forces (rolling with relaxation, sliding).
 //!
 //! ```
 //! use bumpsim_core::model::MsdModel;
@@ -56,6 +57,7 @@ pub mod striker;
 pub mod study;
 pub mod synth;
 pub mod text;
+pub mod tyre;
 
 pub use car::{PlanarCar, PlanarError};
 pub use result::PlanarResult;

@@ -262,11 +262,12 @@ impl Mechanism for Run<'_> {
             .accelerations(q, v, &self.contact, &mut self.chain, a);
     }
 
-    fn moved(&mut self, q: &[f64], k: usize) {
+    fn moved(&mut self, q: &[f64], v: &[f64], k: usize) {
         let t = k as f64 * self.step;
         self.previous_crush.copy_from_slice(&self.contact.crush);
         self.previous_force.copy_from_slice(&self.contact.force);
         self.model.contact(q, self.car, &mut self.contact);
+        self.model.relax(q, v, &mut self.contact, self.step);
         self.sums.crush += self.crush_work();
         self.track_contact(t + self.step);
     }
@@ -574,10 +575,7 @@ mod tests {
             segments: vec![Bumper::three_part(1e5, 5e3, 4e5).unwrap(); 4],
             bending: 0.0,
         };
-        let axle = Axle {
-            mu_longitudinal: mu,
-            mu_lateral: mu,
-        };
+        let axle = Axle::sliding(mu, mu);
         let tyres = Tyres {
             front: axle,
             rear: axle,

@@ -60,14 +60,8 @@ fn asymmetric_car(mu: f64) -> PlanarCar {
         bending: 8e4,
     };
     let tyres = Tyres {
-        front: Axle {
-            mu_longitudinal: 0.1 * mu,
-            mu_lateral: mu,
-        },
-        rear: Axle {
-            mu_longitudinal: 0.8 * mu,
-            mu_lateral: mu,
-        },
+        front: Axle::sliding(0.1 * mu, mu),
+        rear: Axle::sliding(0.8 * mu, mu),
         slip_speed: 0.05,
     };
     PlanarCar::new(body, left, right, beam, tyres).unwrap()

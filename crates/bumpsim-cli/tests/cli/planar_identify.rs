@@ -1,6 +1,6 @@
 //! `bumpsim synth` on the bundled planar series and `bumpsim identify` on
 //! the study it writes (issue 15): the identified car predicts the held-out
-//! RCAR-type test, writes a car file `planar` reads, and hostile studies and
+//! offset test, writes a car file `planar` reads, and hostile studies and
 //! series get clear errors.
 
 use crate::util::{assert_contains, assert_user_error, bumpsim, root, scratch, text};
@@ -50,7 +50,7 @@ fn the_planar_series_identifies_a_car_that_predicts_the_held_out_test() {
             "kg·m²",
             "N/m",
             "validation",
-            "RCAR-RIGHT",
+            "OFFSET-RIGHT",
             " deg",
             // the estimation layer's table and start line, as the 1-D prints them
             "std. error",
@@ -80,7 +80,7 @@ fn the_planar_series_identifies_a_car_that_predicts_the_held_out_test() {
     assert!(x >= 99.0 && yaw >= 95.0, "held-out fits {x} %, {yaw} %");
     let html = std::fs::read_to_string(report.join("index.html")).unwrap();
     assert!(
-        html.contains("<svg") && html.contains("RCAR-RIGHT (validation"),
+        html.contains("<svg") && html.contains("OFFSET-RIGHT (validation"),
         "report"
     );
     // the identified car is a planar car file the impact command reads
@@ -106,7 +106,7 @@ fn predicts_the_held_out_test(dir: &Path, car: &Path, study: &Path, held: &Value
         car.to_str().unwrap(),
         study.to_str().unwrap(),
         "--case",
-        "RCAR-RIGHT",
+        "OFFSET-RIGHT",
         "--json",
         json.to_str().unwrap(),
         "--plot",
@@ -114,7 +114,7 @@ fn predicts_the_held_out_test(dir: &Path, car: &Path, study: &Path, held: &Value
     ]);
     let stdout = text(&run.stdout);
     assert!(run.status.success(), "{stdout}{}", text(&run.stderr));
-    assert_contains(&stdout, &["RCAR-RIGHT: fit x ", " %  yaw ", " deg)"]);
+    assert_contains(&stdout, &["OFFSET-RIGHT: fit x ", " %  yaw ", " deg)"]);
     let p: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let case = &p["cases"][0];
     assert_eq!(p["cases"].as_array().unwrap().len(), 1);
@@ -122,7 +122,7 @@ fn predicts_the_held_out_test(dir: &Path, car: &Path, study: &Path, held: &Value
         let (a, b) = (case[key].as_f64().unwrap(), held[key].as_f64().unwrap());
         assert!((a - b).abs() < 1e-6, "{key}: predict {a} %, identify {b} %");
     }
-    assert!(plots.join("predict-RCAR-RIGHT-yaw.svg").is_file());
+    assert!(plots.join("predict-OFFSET-RIGHT-yaw.svg").is_file());
     let chain_study = root().join("examples/identify/study.toml");
     let chain_model = root().join("examples/identify/car-truth.toml");
     for (model, study, needle) in [

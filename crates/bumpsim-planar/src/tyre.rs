@@ -1,0 +1,167 @@
+//! The tyre forces of the planar car: each wheel's law ([`Axle`]: rolling
+//! with its cornering stiffness, relaxation and saturation, or sliding),
+//! the patch deflection of a rolling tyre advanced over a step, and the
+//! linearised rates the critical step needs.
+//!
+//! Velocities are the wheel centre's in the body frame: `v_e` along the
+//! car, `v_n` across it (left positive). Forces are the ground's on the
+//! car, body frame. Equations and sources: [`Axle`].
+//!
+//! ```
+//! use bumpsim_planar::car::Axle;
+//! use bumpsim_planar::tyre::Wheel;
+//! // a rolling tyre at 4 m/s with 2 cm/s of side slip, no relaxation:
+//! // F_y ≈ −C_α α while far from saturation
+//! let axle = Axle { relaxation_length: 0.0, ..Axle::rolling(0.0, 0.9) };
+//! let wheel = Wheel { xi: 1.0, eta: 0.75, load: 3000.0, axle };
+//! let (_, across) = wheel.force(4.0, 0.02, 0.0, 0.05);
+//! let alpha = (0.02f64).atan2((16.0f64 + 0.0025).sqrt());
+//! assert!((across + 60e3 * alpha).abs() < 0.02 * 60e3 * alpha);
+//! ```
+
+use crate::car::{Axle, TyreLaw};
+
+/// A wheel: where it is on the body, what it carries, its axle's tyres.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Wheel {
+    /// Ahead of the CG, m.
+    pub xi: f64,
+    /// Left of the CG, m.
+    pub eta: f64,
+    /// Normal load, N.
+    pub load: f64,
+    /// Its axle's law and coefficients.
+    pub axle: Axle,
+}
+
+impl Wheel {
+    /// The ground's force on the car at this wheel (along, across; body
+    /// frame, N) from the wheel centre's velocity `(v_e, v_n)` (m/s), the
+    /// patch deflection `y` (m, rolling with relaxation) and the slip
+    /// speed `slip` (m/s) that regularises the laws at standstill.
+    pub fn force(&self, v_e: f64, v_n: f64, y: f64, slip: f64) -> (f64, f64) {
+        let a = &self.axle;
+        match a.law {
+            TyreLaw::Sliding => {
+                let scale = self.load / (v_e * v_e + v_n * v_n + slip * slip).sqrt();
+                (
+                    -a.mu_longitudinal * scale * v_e,
+                    -a.mu_lateral * scale * v_n,
+                )
+            }
+            TyreLaw::Rolling => {
+                let rolling = (v_e * v_e + slip * slip).sqrt();
+                let along = -a.mu_longitudinal * self.load * v_e / rolling;
+                let grip = a.mu_lateral * self.load;
+                let across = if grip <= 0.0 {
+                    0.0
+                } else if a.relaxation_length > 0.0 {
+                    (-(a.cornering_stiffness / a.relaxation_length) * y).clamp(-grip, grip)
+                } else {
+                    let alpha = v_n.atan2(rolling);
+                    -grip * (a.cornering_stiffness * alpha / grip).tanh()
+                };
+                (along, across)
+            }
+        }
+    }
+
+    /// Advances the patch deflection `y` of a rolling tyre with relaxation
+    /// over `step` (s) at the wheel centre's velocity `(v_e, v_n)`:
+    /// `y += T (v_n − |v_e| y / σ)`, then clamped where the patch slides
+    /// (`|C_α y / σ| ≤ μ_y N`). Any other tyre has no deflection.
+    pub fn relax(&self, v_e: f64, v_n: f64, y: &mut f64, step: f64) {
+        let a = &self.axle;
+        let grip = a.mu_lateral * self.load;
+        if a.law != TyreLaw::Rolling || a.relaxation_length <= 0.0 || grip <= 0.0 {
+            *y = 0.0;
+            return;
+        }
+        let sigma = a.relaxation_length;
+        *y += step * (v_n - v_e.abs() / sigma * *y);
+        let limit = grip * sigma / a.cornering_stiffness;
+        *y = y.clamp(-limit, limit);
+    }
+
+    /// The linearised damping (N·s/m) and stiffness (N/m) of this tyre
+    /// against the car's motion, largest over its directions, for the
+    /// critical step: Coulomb laws `μN/v_s`, the instantaneous slip-angle
+    /// law `C_α/v_s`, the relaxed tyre's lateral spring `C_α/σ`.
+    pub fn rates(&self, slip: f64) -> (f64, f64) {
+        let a = &self.axle;
+        if a.law == TyreLaw::Sliding {
+            return (self.load * a.mu_longitudinal.max(a.mu_lateral) / slip, 0.0);
+        }
+        let along = self.load * a.mu_longitudinal / slip;
+        match (a.mu_lateral * self.load > 0.0, a.relaxation_length > 0.0) {
+            (false, _) => (along, 0.0),
+            (true, true) => (along, a.cornering_stiffness / a.relaxation_length),
+            (true, false) => (along.max(a.cornering_stiffness / slip), 0.0),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn wheel(axle: Axle) -> Wheel {
+        Wheel {
+            xi: 1.1,
+            eta: 0.75,
+            load: 3500.0,
+            axle,
+        }
+    }
+
+    /// A relaxed tyre rolling steadily at a constant slip settles at the
+    /// slip-angle law's force, `−C_α v_n/|v_e|`, and saturates at μN.
+    #[test]
+    fn a_relaxed_tyre_settles_at_the_slip_angle_law() {
+        let w = wheel(Axle::rolling(0.0, 0.9));
+        let (v_e, v_n, mut y) = (4.0, 0.05, 0.0);
+        for _ in 0..20_000 {
+            w.relax(v_e, v_n, &mut y, 1e-4);
+        }
+        let (_, across) = w.force(v_e, v_n, y, 0.05);
+        let law = -60e3 * v_n / v_e;
+        assert!((across - law).abs() < 1e-3 * law.abs(), "{across} {law}");
+        // ten times the slip: saturated at μ_y N
+        let mut y = 0.0;
+        for _ in 0..20_000 {
+            w.relax(v_e, 0.5, &mut y, 1e-4);
+        }
+        let (_, across) = w.force(v_e, 0.5, y, 0.05);
+        assert!((across + 0.9 * 3500.0).abs() < 1e-9, "{across}");
+    }
+
+    /// At standstill the relaxed tyre is a spring C_α/σ, not a damper:
+    /// pushed sideways by 1 mm it pulls back with C_α/σ × 1 mm.
+    #[test]
+    fn at_standstill_the_relaxed_tyre_is_a_lateral_spring() {
+        let w = wheel(Axle::rolling(0.0, 0.9));
+        let mut y = 0.0;
+        for _ in 0..1000 {
+            w.relax(0.0, 1e-3 / 0.1, &mut y, 1e-4); // 1 mm in 0.1 s
+        }
+        let (_, across) = w.force(0.0, 0.0, y, 0.05);
+        assert!((y - 1e-3).abs() < 1e-12, "{y}");
+        assert!((across + 60e3 / 0.4 * 1e-3).abs() < 1e-6, "{across}");
+    }
+
+    /// The sliding law is the Coulomb law of a locked wheel: at 4 m/s with
+    /// 5 cm/s of side slip it yields about 1 % of μN sideways, where a
+    /// rolling tyre yields about half (the issue's figures).
+    #[test]
+    fn a_locked_wheel_gives_little_side_force_where_a_rolling_one_gives_much() {
+        let locked = wheel(Axle::sliding(0.9, 0.9)).force(4.0, 0.05, 0.0, 0.05);
+        let grip = 0.9 * 3500.0;
+        assert!(locked.1.abs() < 0.02 * grip, "{locked:?}");
+        let rolling = wheel(Axle {
+            relaxation_length: 0.0,
+            ..Axle::rolling(0.015, 0.9)
+        })
+        .force(4.0, 0.05, 0.0, 0.05);
+        assert!(rolling.1.abs() > 0.2 * grip, "{rolling:?}");
+    }
+}
