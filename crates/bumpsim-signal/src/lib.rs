@@ -6,7 +6,8 @@
 //! - [`window`]: contact windows from a force signal;
 //! - [`process`]: processing steps on channels, and their mean or sum;
 //! - [`loader`]: channels from test files: open, select, scale, combine, with notes;
-//! - [`pipeline`]: repeatable processing of test files (TOML), momentum balance.
+//! - [`pipeline`]: repeatable processing of test files (TOML), momentum balance;
+//! - [`rating`]: ISO/TS 18571 objective rating of a model's signal against a test's.
 //!
 //! ```
 //! use bumpsim_signal::filter::{Cfc, CfcStandard};
@@ -19,11 +20,13 @@ pub mod integrate;
 pub mod loader;
 pub mod pipeline;
 pub mod process;
+pub mod rating;
 pub mod window;
 
 pub use filter::{Butterworth, Cfc, FilterError};
 pub use pipeline::{Pipeline, PipelineError, PipelineResult};
 pub use process::{ProcessError, Step};
+pub use rating::{Rating, RatingError, rate};
 pub use window::ContactWindow;
 
 /// The types most signal processing needs (the facade globs it).
@@ -31,5 +34,6 @@ pub mod prelude {
     pub use crate::filter::{Butterworth, Cfc, FilterError};
     pub use crate::pipeline::{Pipeline, PipelineError, PipelineResult};
     pub use crate::process::ProcessError;
+    pub use crate::rating::{Rating, RatingError};
     pub use crate::window::ContactWindow;
 }
