@@ -164,6 +164,8 @@ pub fn record(
         })?;
         let mut c = Channel::new(code, name, dimension, series);
         c.source_unit = if dimension == Dimension::Force {
+            // the pendulum is test object 2 (see `test_header`)
+            c.set_meta("Test object number", "2");
             "kN".into()
         } else {
             "g".into()
@@ -354,11 +356,26 @@ fn check_names(heads: &[HeadFile]) -> Result<(), SeriesError> {
     Ok(())
 }
 
-/// The ISO-MME test header of a head: title, pendulum speed
-/// (`Velocity test object 1`, m/s) and mass (`Mass test object 1`, kg).
-pub fn test_header(head: &Head) -> Vec<(String, String)> {
+/// The ISO-MME test header of a head: the title and two test objects, as
+/// the channel codes number them: the car at rest (test object 1, the `1…`
+/// side-member accelerometers; its total mass, kg) and the pendulum (test
+/// object 2, the `P…` load cell; its speed, m/s, and mass, kg).
+pub fn test_header(head: &Head, car_mass: f64) -> Vec<(String, String)> {
+    use bumpsim_io::test_data::iso_header::{TestObject, test_objects_header};
     let title = format!("{}: synthetic pendulum test (bumpsim synth)", head.name);
-    bumpsim_io::test_data::iso_header::test_header(&title, Some(head.speed), Some(head.mass))
+    let objects = [
+        TestObject {
+            name: "car".into(),
+            speed: Some(0.0),
+            mass: Some(car_mass),
+        },
+        TestObject {
+            name: "pendulum".into(),
+            speed: Some(head.speed),
+            mass: Some(head.mass),
+        },
+    ];
+    test_objects_header(&title, &objects)
 }
 
 /// One synthetic test: name, ISO-MME test header ([`test_header`]), channels.
@@ -418,7 +435,11 @@ pub fn make_series(path: &std::path::Path) -> Result<(Vec<SynthTest>, String), S
                 source,
             }
         })?;
-        out.push((h.name.clone(), test_header(&head), channels));
+        out.push((
+            h.name.clone(),
+            test_header(&head, car.model.total_mass()),
+            channels,
+        ));
     }
     Ok((out, provenance))
 }

@@ -37,7 +37,9 @@
 
 pub use crate::loader::select_all;
 use crate::loader::{ChannelSource, LoadError, Loader, Note};
-use crate::process::{Combine, ProcessError, Step, combine, interpolate, run};
+use crate::process::{
+    Combine, ProcessError, Step, combine, interpolate, notes as process_notes, run,
+};
 use crate::window::ContactThreshold;
 use bumpsim_core::channel::Channel;
 use bumpsim_core::units::Dimension;
@@ -185,6 +187,10 @@ impl Pipeline {
                 .into_iter()
                 .map(|note| format!("signal '{}': {note}", spec.name));
             result.warnings.extend(named);
+            let refiltered = process_notes(&spec.steps, &raw).into_iter();
+            result
+                .warnings
+                .extend(refiltered.map(|note| format!("signal '{}': {note}", spec.name)));
             let mut processed =
                 run(&spec.steps, &raw).map_err(|source| PipelineError::Process {
                     signal: spec.name.clone(),
@@ -358,6 +364,7 @@ pub fn export(
         warnings: Vec::new(),
         balance: None,
     };
+    let mut numbers = Vec::new();
     for selector in selectors {
         let (channels, notes) = select_all(test, std::slice::from_ref(selector))?;
         result
@@ -365,6 +372,7 @@ pub fn export(
             .extend(notes.iter().map(ToString::to_string));
         let raws = match how {
             Some(how) if channels.len() > 1 => {
+                numbers.push(None);
                 vec![combine(&channels, how, selector).map_err(|source| {
                     PipelineError::Process {
                         signal: selector.clone(),
@@ -372,9 +380,14 @@ pub fn export(
                     }
                 })?]
             }
-            _ => channels,
+            _ => {
+                let picked = test.select(selector)?.indices;
+                numbers.extend(picked.iter().map(|&i| Some(test.entries[i].number)));
+                channels
+            }
         };
         for raw in raws {
+            result.warnings.extend(process_notes(steps, &raw));
             let processed = run(steps, &raw).map_err(|source| PipelineError::Process {
                 signal: raw.code.clone(),
                 source,
@@ -383,5 +396,20 @@ pub fn export(
             result.signals.push(processed);
         }
     }
+    distinct_codes(&mut result.signals, &numbers);
     Ok(result)
+}
+
+/// Gives channels that share a code (NHTSA's top and bottom engine
+/// accelerometers are both `1-AC-ENGN-XG`) distinct ones: the code and
+/// `#` and the channel's number in the test (the selector that picks it),
+/// so that no two CSV columns have one name.
+fn distinct_codes(signals: &mut [Channel], numbers: &[Option<usize>]) {
+    let codes: Vec<String> = signals.iter().map(|s| s.code.clone()).collect();
+    for (k, signal) in signals.iter_mut().enumerate() {
+        if codes.iter().filter(|c| **c == codes[k]).count() > 1 {
+            let number = numbers.get(k).copied().flatten().unwrap_or(k + 1);
+            signal.code = format!("{}#{number}", codes[k]);
+        }
+    }
 }

@@ -17,7 +17,8 @@
 use bumpsim_core::channel::{Channel, ChannelCode};
 
 /// The ISO/TS 13499 channel-file fields, in order.
-pub const CHANNEL_FIELDS: [&str; 34] = [
+pub const CHANNEL_FIELDS: [&str; 37] = [
+    "Test object number",
     "Name of the channel",
     "Laboratory channel code",
     "Customer channel code",
@@ -51,8 +52,23 @@ pub const CHANNEL_FIELDS: [&str; 34] = [
     "Time of maximum value",
     "First global minimum value",
     "Time of minimum value",
+    "Start offset interval",
+    "End offset interval",
     "Comments",
 ];
+
+/// `Data status` values (ISO/TS 13499 RED A) that mark a channel unusable;
+/// read back, such a channel is invalid. An invalid channel is written as
+/// [`FAILED`].
+pub const FAILED_STATUSES: [&str; 4] = [
+    "channel failed",
+    "meaningless data",
+    "no data",
+    "system failed",
+];
+
+/// The `Data status` bumpsim writes for a channel its source marks invalid.
+pub const FAILED: &str = "channel failed";
 
 /// NHTSA EV5 instrumentation fields carried over under their ISO name.
 const NHTSA_RENAMED: [(&str, &str); 4] = [
@@ -100,23 +116,39 @@ fn filter_letter(channel: &Channel) -> char {
         .map_or('P', ChannelCode::filter_letter)
 }
 
-/// The ISO/TS 13499 code of a channel: its own code when it is one, the
-/// mapped code of an NHTSA channel, else an undefined-location code with
-/// the channel's dimension and filter class.
+/// The ISO/TS 13499 code of a channel: its own code when it is one, else
+/// the code its `Channel code` field records (a combined channel's), the
+/// mapped code of an NHTSA channel, or an undefined-location code; the last
+/// three with the channel's dimension and filter class.
 pub fn iso_code(channel: &Channel) -> String {
     if ChannelCode::parse(&channel.code).is_some() {
         return channel.code.clone();
     }
     let letters = ChannelCode::dimension_letters(channel.dimension).unwrap_or("00");
-    let code = match meta(channel, "Sensor location") {
-        Some(location) => nhtsa_code(channel, location),
-        None => ChannelCode::parse(&format!("000000000000{letters}00")),
+    let recorded = meta(channel, "Channel code").and_then(ChannelCode::parse);
+    let code = match (recorded, meta(channel, "Sensor location")) {
+        (Some(code), _) => Some(code),
+        (None, Some(location)) => nhtsa_code(channel, location),
+        (None, None) => ChannelCode::parse(&format!("000000000000{letters}00")),
     };
     let mut code = code
         .unwrap_or_else(|| ChannelCode::parse("000000000000000P").expect("a valid constant code"));
     code.dimension = letters.to_string();
-    code.filter_class = filter_letter(channel);
+    code.filter_class = match (
+        recorded_letter(channel),
+        meta(channel, "Channel frequency class"),
+    ) {
+        (Some(letter), None) => letter,
+        _ => filter_letter(channel),
+    };
     code.to_string()
+}
+
+/// The filter letter of the code a channel's `Channel code` field records.
+fn recorded_letter(channel: &Channel) -> Option<char> {
+    meta(channel, "Channel code")
+        .and_then(ChannelCode::parse)
+        .map(|c| c.filter_class)
 }
 
 /// Maps an NHTSA curve (vehicle, occupant, location, axis, primary or
@@ -177,6 +209,12 @@ pub fn channel_header(channel: &Channel) -> Vec<(String, String)> {
         Some(match key {
             "Name of the channel" => channel.name.clone(),
             "Channel code" => code.clone(),
+            "Test object number" => meta(channel, key)
+                .map(str::to_string)
+                .or_else(|| test_object_number(&code))?,
+            "Test object" if meta(channel, key).is_none() => code[..1].to_string(),
+            "Position" if meta(channel, key).is_none() => code[1..2].to_string(),
+            "Location" if meta(channel, key).is_none() => code[2..12].to_string(),
             "Laboratory channel code" if code != channel.code => channel.code.clone(),
             "Dimension" => code[12..14].to_string(),
             "Unit" => unit.clone(),
@@ -225,6 +263,63 @@ pub fn channel_header(channel: &Channel) -> Vec<(String, String)> {
     header
 }
 
+/// The test object number a code's first character gives: `1` … `9` for
+/// vehicles 1 … 9; none for a barrier, pendulum, dummy...
+fn test_object_number(code: &str) -> Option<String> {
+    code.chars()
+        .next()
+        .filter(|c| ('1'..='9').contains(c))
+        .map(String::from)
+}
+
+/// The value of `key` in a header.
+pub fn field(header: &[(String, String)], key: &str) -> Option<String> {
+    header
+        .iter()
+        .find(|(k, _)| k == key)
+        .map(|(_, v)| v.clone())
+}
+
+/// Channel headers of one test with distinct `Channel code`s: channels that
+/// would share a code (two sensors at one location, as NHTSA's top and
+/// bottom of the engine) are numbered `01`, `02`, ... in fine location 3,
+/// which `Comments` records.
+pub fn distinct_codes(
+    headers: impl Iterator<Item = Vec<(String, String)>>,
+) -> Vec<Vec<(String, String)>> {
+    let mut headers: Vec<Vec<(String, String)>> = headers.collect();
+    let codes: Vec<String> = headers
+        .iter()
+        .map(|h| field(h, "Channel code").unwrap_or_default())
+        .collect();
+    for (i, header) in headers.iter_mut().enumerate() {
+        let same: Vec<usize> = (0..codes.len()).filter(|&j| codes[j] == codes[i]).collect();
+        if same.len() > 1 {
+            let rank = same.iter().position(|&j| j == i).unwrap_or(0) + 1;
+            renumber(header, &codes[i], rank, same.len());
+        }
+    }
+    headers
+}
+
+/// Puts `rank` (of `count` channels sharing `code`) into fine location 3.
+fn renumber(header: &mut [(String, String)], code: &str, rank: usize, count: usize) {
+    let Some(mut parsed) = ChannelCode::parse(code) else {
+        return;
+    };
+    parsed.fine_locations[2] = format!("{:02}", rank.min(99));
+    let note = format!("fine location 3 numbers {count} channels that share the code {code}");
+    for (key, value) in header.iter_mut() {
+        match key.as_str() {
+            "Channel code" => *value = parsed.to_string(),
+            "Location" if *value == code[2..12] => *value = parsed.to_string()[2..12].to_string(),
+            "Comments" if value == "NOVALUE" => *value = note.clone(),
+            "Comments" => *value = format!("{value}; {note}"),
+            _ => {}
+        }
+    }
+}
+
 /// Indices of the first global maximum and minimum.
 fn extrema(values: &[f64]) -> (usize, usize) {
     let mut at = (0, 0);
@@ -267,9 +362,46 @@ fn comments(channel: &Channel, unit: &str) -> Option<String> {
     }
 }
 
+/// A test object of an ISO-MME test header: its name, speed (m/s) and mass
+/// (kg) where known. Objects are numbered from 1 in the order given, the
+/// number a vehicle's channel codes carry first (`1…` for test object 1).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TestObject {
+    /// `Name of test object N`.
+    pub name: String,
+    /// `Velocity test object N`, m/s.
+    pub speed: Option<f64>,
+    /// `Mass test object N`, kg.
+    pub mass: Option<f64>,
+}
+
+/// The test header lines for a test's title and its test objects:
+/// `Title`, `Number of test objects`, then per object N `Name of test
+/// object N`, `Velocity test object N` (m/s) and `Mass test object N` (kg).
+pub fn test_objects_header(title: &str, objects: &[TestObject]) -> Vec<(String, String)> {
+    let mut header = vec![
+        ("Title".to_string(), title.to_string()),
+        (
+            "Number of test objects".to_string(),
+            objects.len().to_string(),
+        ),
+    ];
+    for (i, object) in objects.iter().enumerate() {
+        let n = i + 1;
+        header.push((format!("Name of test object {n}"), object.name.clone()));
+        if let Some(v) = object.speed {
+            header.push((format!("Velocity test object {n}"), number(v)));
+        }
+        if let Some(m) = object.mass {
+            header.push((format!("Mass test object {n}"), number(m)));
+        }
+    }
+    header
+}
+
 /// The test header lines for a test's title, impact speed (m/s) and mass
-/// (kg): `Title`, `Number of test objects`, `Velocity test object 1`,
-/// `Mass test object 1`.
+/// (kg) of its one test object: `Title`, `Number of test objects`,
+/// `Velocity test object 1`, `Mass test object 1`.
 pub fn test_header(title: &str, speed: Option<f64>, mass: Option<f64>) -> Vec<(String, String)> {
     let mut header = vec![
         ("Title".to_string(), title.to_string()),
@@ -355,5 +487,91 @@ mod tests {
         );
         assert_eq!(get("First global minimum value"), Some("-2e0"));
         assert_eq!(get("Time of maximum value"), Some("1e-4"));
+    }
+
+    #[test]
+    fn the_code_fills_test_object_position_and_location() {
+        let c = nhtsa(
+            &[("Sensor location", "FLLR"), ("Axis", "XG")],
+            Dimension::Acceleration,
+        );
+        let header = channel_header(&c);
+        let keys: Vec<&str> = header.iter().map(|(k, _)| k.as_str()).collect();
+        assert_eq!(keys[..CHANNEL_FIELDS.len()], CHANNEL_FIELDS);
+        let get = |k: &str| field(&header, k);
+        assert_eq!(get("Channel code").as_deref(), Some("10SECMLE0000ACXP"));
+        assert_eq!(get("Test object number").as_deref(), Some("1"));
+        assert_eq!(get("Test object").as_deref(), Some("1"));
+        assert_eq!(get("Position").as_deref(), Some("0"));
+        assert_eq!(get("Location").as_deref(), Some("SECMLE0000"));
+        assert_eq!(get("Start offset interval").as_deref(), Some("NOVALUE"));
+        let barrier = nhtsa(
+            &[("Vehicle number", "0"), ("Sensor location", "LC0101")],
+            Dimension::Force,
+        );
+        assert_eq!(
+            field(&channel_header(&barrier), "Test object number").as_deref(),
+            Some("NOVALUE")
+        );
+    }
+
+    #[test]
+    fn channels_that_would_share_a_code_are_numbered_in_fine_location_3() {
+        let top = nhtsa(
+            &[("Sensor location", "ENGN"), ("Axis", "XG")],
+            Dimension::Acceleration,
+        );
+        let headers = distinct_codes(
+            [&top, &top, &top.clone().filtered(60.0)]
+                .into_iter()
+                .map(channel_header),
+        );
+        let codes: Vec<String> = headers
+            .iter()
+            .map(|h| field(h, "Channel code").unwrap())
+            .collect();
+        assert_eq!(
+            codes,
+            ["10ENGN000001ACXP", "10ENGN000002ACXP", "10ENGN000000ACXD"]
+        );
+        assert!(
+            field(&headers[1], "Comments")
+                .unwrap()
+                .contains("numbers 2 channels")
+        );
+        assert_eq!(
+            field(&headers[1], "Location").as_deref(),
+            Some("ENGN000002")
+        );
+    }
+
+    #[test]
+    fn test_objects_are_numbered_in_order() {
+        let objects = [
+            TestObject {
+                name: "car".into(),
+                speed: Some(0.0),
+                mass: Some(1200.0),
+            },
+            TestObject {
+                name: "pendulum".into(),
+                speed: Some(2.5),
+                mass: None,
+            },
+        ];
+        let header = test_objects_header("T", &objects);
+        assert_eq!(
+            field(&header, "Number of test objects").as_deref(),
+            Some("2")
+        );
+        assert_eq!(
+            field(&header, "Name of test object 2").as_deref(),
+            Some("pendulum")
+        );
+        assert_eq!(
+            field(&header, "Mass test object 1").as_deref(),
+            Some("1.2e3")
+        );
+        assert_eq!(field(&header, "Mass test object 2"), None);
     }
 }

@@ -410,22 +410,39 @@ fn build(source: Source, mme_name: &str, opened: &Path) -> Result<TestData, Sign
     let (chn_header, _) = parse_header(&chn_text);
     let count = channel_count(&chn_header, &chn_path)?;
     let read = (1..=count).map(|i| source.read(&format!("Channel/{stem}.{i:03}")));
-    let (entries, raws): (Vec<Entry>, Vec<RawChannel>) = read
+    let (mut entries, raws): (Vec<Entry>, Vec<RawChannel>) = read
         .enumerate()
         .map(|(i, file)| channel_file(i + 1, file, &chn_header))
         .unzip();
-    let number = |key: &str| lookup(&mme_header, key).and_then(|(_, v, _)| parse_number(v));
+    mark_unreadable(&mut entries, &raws);
     let title = lookup(&mme_header, "Title").map_or(stem.clone(), |(_, v, _)| v.clone());
+    let (speed, mass) = moving_object(&mme_header);
     Ok(TestData {
         path: opened.to_path_buf(),
         format: Format::IsoMme,
         title,
-        speed: number("Velocity test object 1"),
-        mass: number("Mass test object 1"),
+        speed,
+        mass,
         metadata: mme_header.into_iter().map(|(k, v, _)| (k, v)).collect(),
         entries,
         store: Store::IsoMme(raws),
     })
+}
+
+/// The impact speed (m/s) and mass (kg): test object 1's, unless it stands
+/// still and another test object moves (a pendulum striking a parked car
+/// that is test object 1), then the first moving object's.
+fn moving_object(header: &[HeaderLine]) -> (Option<f64>, Option<f64>) {
+    let number = |key: String| lookup(header, &key).and_then(|(_, v, _)| parse_number(v));
+    let objects =
+        number("Number of test objects".into()).map_or(1, |n| n.clamp(1.0, 99.0) as usize);
+    let moving = (1..=objects)
+        .find(|n| number(format!("Velocity test object {n}")).is_some_and(|v| v != 0.0))
+        .unwrap_or(1);
+    (
+        number(format!("Velocity test object {moving}")),
+        number(format!("Mass test object {moving}")),
+    )
 }
 
 fn channel_count(header: &[HeaderLine], path: &Path) -> Result<usize, SignalFileError> {
@@ -470,6 +487,23 @@ fn channel_file(
     (entry, raw)
 }
 
+/// Marks absent, with the reason, every present channel whose unit or time
+/// base cannot be read (no `Sampling interval`, a missing reference
+/// channel...), so that it is reported and left out like a missing file
+/// instead of failing the whole test when loaded.
+fn mark_unreadable(entries: &mut [Entry], raws: &[RawChannel]) {
+    for (entry, raw) in entries.iter_mut().zip(raws).filter(|(e, _)| e.present) {
+        let readable = raw
+            .unit()
+            .and_then(|_| raw.values())
+            .and_then(|values| raw.time_base(raws, values.len()));
+        if let Err(why) = readable {
+            entry.present = false;
+            entry.absence = Some(why.to_string());
+        }
+    }
+}
+
 fn entry(number: usize, raw: &RawChannel, chn: &[HeaderLine]) -> Entry {
     let listed = lookup(chn, &format!("Name of channel {number:03}")).map(|(_, v, _)| v.as_str());
     let (listed_code, listed_name) = listed
@@ -487,7 +521,7 @@ fn entry(number: usize, raw: &RawChannel, chn: &[HeaderLine]) -> Entry {
         code,
         name,
         unit: value("Unit").unwrap_or("?").to_string(),
-        validity: Validity::Valid,
+        validity: validity(raw),
         present: true,
         absence: None,
         metadata: raw
@@ -495,6 +529,20 @@ fn entry(number: usize, raw: &RawChannel, chn: &[HeaderLine]) -> Entry {
             .iter()
             .map(|(k, v, _)| (k.clone(), v.clone()))
             .collect(),
+    }
+}
+
+/// Invalid when `Data status` says the channel failed
+/// ([`iso_header::FAILED_STATUSES`]), with the status and the comments.
+fn validity(raw: &RawChannel) -> Validity {
+    let status = raw.value("Data status").unwrap_or("");
+    let failed = iso_header::FAILED_STATUSES
+        .iter()
+        .any(|f| f.eq_ignore_ascii_case(status.trim()));
+    match (failed, raw.value("Comments")) {
+        (false, _) => Validity::Valid,
+        (true, Some(comments)) => Validity::Invalid(format!("Data status {status}: {comments}")),
+        (true, None) => Validity::Invalid(format!("Data status {status}")),
     }
 }
 
@@ -524,16 +572,17 @@ pub fn files(
     }
     let mut out = vec![(format!("{name}.mme"), mme)];
     let mut chn = header_line("Number of channels", &channels.len().to_string());
-    for (i, c) in channels.iter().enumerate() {
-        let header = iso_header::channel_header(c);
+    let headers = iso_header::distinct_codes(channels.iter().map(iso_header::channel_header));
+    for (i, (c, header)) in channels.iter().zip(headers).enumerate() {
         let mut text: String = header.iter().map(|(k, v)| header_line(k, v)).collect();
         for v in c.series.values() {
             text += &iso_header::number(*v);
             text += "\r\n";
         }
+        let code = iso_header::field(&header, "Channel code").unwrap_or_default();
         chn += &header_line(
             &format!("Name of channel {:03}", i + 1),
-            &format!("{} / {}", header[3].1, c.name),
+            &format!("{code} / {}", c.name),
         );
         out.push((format!("Channel/{name}.{:03}", i + 1), text));
     }
@@ -571,6 +620,7 @@ pub fn test_header(test: &TestData) -> Vec<(String, String)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use bumpsim_core::series::UniformSeries;
 
     #[test]
     fn channel_code_fields() {
@@ -615,5 +665,96 @@ mod tests {
         assert_eq!(uniform_time_base(&[0.0, 0.1, 0.2], 3), Ok((0.0, 0.1)));
         assert!(uniform_time_base(&[0.0, 0.1, 0.5], 3).is_err());
         assert!(uniform_time_base(&[0.0, 0.1], 3).is_err());
+    }
+
+    fn written(name: &str, channels: &[Channel], header: &[(String, String)]) -> TestData {
+        let dir =
+            std::env::temp_dir().join(format!("bumpsim-isomme-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        write(&dir, "T", header, channels).unwrap();
+        TestData::open(&dir).unwrap()
+    }
+
+    fn channel(code: &str, meta: &[(&str, &str)]) -> Channel {
+        let series = UniformSeries::new(-1e-4, 1e-4, vec![0.0, 1.0, 3.0]).unwrap();
+        let mut c = Channel::new(code, "x", Dimension::Acceleration, series);
+        meta.iter().for_each(|(k, v)| c.set_meta(k, v));
+        c
+    }
+
+    #[test]
+    fn a_failed_channel_reads_back_invalid() {
+        let test = written(
+            "status",
+            &[
+                channel("10SIMELE0000ACXP", &[("Data status", "channel failed")]),
+                channel("10SIMERI0000ACXP", &[("Data status", "ok")]),
+            ],
+            &[],
+        );
+        assert!(
+            matches!(test.entries[0].validity, Validity::Invalid(ref why) if why.contains("channel failed"))
+        );
+        assert_eq!(test.entries[1].validity, Validity::Valid);
+        assert_eq!(test.select("10SIME*").unwrap().excluded, vec![0]);
+    }
+
+    #[test]
+    fn the_moving_test_object_gives_speed_and_mass() {
+        use iso_header::{TestObject, test_objects_header};
+        let object = |name: &str, speed: f64, mass: f64| TestObject {
+            name: name.into(),
+            speed: Some(speed),
+            mass: Some(mass),
+        };
+        let header = test_objects_header(
+            "T",
+            &[object("car", 0.0, 1200.0), object("pendulum", 2.5, 900.0)],
+        );
+        let test = written(
+            "objects",
+            &[
+                channel("10SIMELE0000ACXP", &[]),
+                channel("P0IMPA000000ACXP", &[]),
+            ],
+            &header,
+        );
+        assert_eq!((test.speed, test.mass), (Some(2.5), Some(900.0)));
+    }
+
+    #[test]
+    fn a_channel_without_a_time_base_is_absent_not_fatal() {
+        let dir =
+            std::env::temp_dir().join(format!("bumpsim-isomme-{}-timeless", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        write(
+            &dir,
+            "T",
+            &[],
+            &[
+                channel("10SIMELE0000ACXP", &[]),
+                channel("10SIMERI0000ACXP", &[]),
+            ],
+        )
+        .unwrap();
+        let file = dir.join("Channel/T.002");
+        let text = std::fs::read_to_string(&file).unwrap();
+        let spoiled: String = text
+            .lines()
+            .filter(|l| !l.starts_with("Sampling interval"))
+            .map(|l| format!("{l}\r\n"))
+            .collect();
+        std::fs::write(&file, spoiled).unwrap();
+        let test = TestData::open(&dir).unwrap();
+        assert!(test.entries[0].present);
+        assert!(!test.entries[1].present);
+        assert!(
+            test.entries[1]
+                .absence
+                .as_deref()
+                .unwrap()
+                .contains("Sampling interval")
+        );
+        assert_eq!(test.select("*").unwrap().absent, vec![1]);
     }
 }

@@ -161,12 +161,19 @@ impl TestData {
         let entry = self.entries.get(index).ok_or_else(|| {
             SignalFileError::file(&self.path, format!("no channel at index {index}"))
         })?;
-        match &self.store {
+        let mut channel = match &self.store {
             _ if !entry.present && entry.absence.is_some() => Err(absent_error(&self.path, entry)),
             Store::IsoMme(raw) => raw[index].to_channel(entry, raw),
             Store::Ev5(files) => ev5::load(entry, files[index].as_deref(), &self.path),
             Store::Csv(table) => Ok(csv::channel(table, index)),
+        }?;
+        let stated = channel
+            .meta("Data status")
+            .is_some_and(|s| !s.trim().is_empty() && !s.eq_ignore_ascii_case("NOVALUE"));
+        if matches!(entry.validity, Validity::Invalid(_)) && !stated {
+            channel.set_meta("Data status", iso_header::FAILED);
         }
+        Ok(channel)
     }
 
     /// Loads every channel of a selection.

@@ -44,5 +44,5 @@ mod time_base;
 mod tests;
 
 pub use error::ProcessError;
-pub use steps::{ButterworthStep, Step, run};
+pub use steps::{ButterworthStep, Step, frequency_class, notes, run};
 pub use time_base::{Combine, Resampling, align, combine, interpolate, resampling};

@@ -7,7 +7,7 @@ use super::time_base::interpolate;
 use crate::filter::{Butterworth, Cfc, CfcStandard, FilterError, moving_average};
 use crate::integrate::{cumulative_trapezoid, derivative};
 use crate::window::ContactThreshold;
-use bumpsim_core::channel::Channel;
+use bumpsim_core::channel::{Channel, ChannelCode};
 use bumpsim_core::series::{SeriesError, UniformSeries, WINDOW_TOLERANCE};
 use bumpsim_core::units::Dimension;
 use serde::Deserialize;
@@ -92,18 +92,13 @@ impl Step {
             step: self.name(),
         };
         match self {
-            Step::Cfc(class) => Ok(c.cfc(*class, CfcStandard::SaeJ211)?.filtered(*class)),
-            Step::CfcIso(class) => Ok(c.cfc(*class, CfcStandard::Iso6487)?.filtered(*class)),
+            Step::Cfc(class) => c.cfc_labelled(*class, CfcStandard::SaeJ211),
+            Step::CfcIso(class) => c.cfc_labelled(*class, CfcStandard::Iso6487),
             Step::Butterworth(b) => c.butterworth(b),
             Step::MovingAverage(n) => c.filtered(moving_average(channel.series.values(), *n)),
-            Step::Bias([t0, t1]) => c.bias(
-                |t| (*t0..=*t1).contains(&t),
-                format!("in the bias window [{t0}, {t1}] s"),
-            ),
             Step::PretriggerBias(false) | Step::Derivative(false) => Ok(channel.clone()),
-            Step::PretriggerBias(true) => {
-                c.bias(|t| t < 0.0, "before t = 0 (no pre-trigger)".into())
-            }
+            Step::Bias([t0, t1]) => c.bias([*t0, *t1]),
+            Step::PretriggerBias(true) => c.bias([channel.series.start(), 0.0]),
             Step::Scale(factor) => Ok(c.map(|v| v * factor)?.scaled(*factor)),
             Step::Integrate(initial) => c.integrate(*initial),
             Step::Derivative(true) => c.derivative(),
@@ -124,6 +119,37 @@ pub fn run(steps: &[Step], channel: &Channel) -> Result<Channel, ProcessError> {
     steps
         .iter()
         .try_fold(channel.clone(), |c, step| step.apply(&c))
+}
+
+/// The channel frequency class a channel's content is limited to: its
+/// `Channel frequency class` field, else its ISO code's filter letter.
+pub fn frequency_class(channel: &Channel) -> Option<f64> {
+    let field = channel
+        .meta("Channel frequency class")
+        .and_then(|v| v.trim().parse().ok());
+    field.or_else(|| ChannelCode::parse(&channel.code).and_then(|c| c.cfc()))
+}
+
+/// What the steps cannot do to `channel` as asked: a CFC filter above the
+/// class the channel already has leaves its content limited to that class,
+/// so it keeps that class's label (code letter and `Channel frequency class`).
+pub fn notes(steps: &[Step], channel: &Channel) -> Vec<String> {
+    let mut class = frequency_class(channel);
+    let mut notes = Vec::new();
+    for step in steps {
+        let asked = match step {
+            Step::Cfc(asked) | Step::CfcIso(asked) => *asked,
+            _ => continue,
+        };
+        match class {
+            Some(held) if held < asked => notes.push(format!(
+                "channel {}: CFC {asked} after CFC {held} leaves it limited to CFC {held}; it stays labelled CFC {held}",
+                channel.code
+            )),
+            _ => class = Some(asked),
+        }
+    }
+    notes
 }
 
 struct Context<'a> {
@@ -167,6 +193,16 @@ impl Context<'_> {
         self.rebase(self.channel.series.start(), values)
     }
 
+    /// A CFC filter, labelled with its class unless the channel already has
+    /// a lower one (see [`notes`]).
+    fn cfc_labelled(&self, class: f64, standard: CfcStandard) -> Result<Channel, ProcessError> {
+        let filtered = self.cfc(class, standard)?;
+        match frequency_class(self.channel) {
+            Some(held) if held < class => Ok(filtered),
+            _ => Ok(filtered.filtered(class)),
+        }
+    }
+
     fn cfc(&self, class: f64, standard: CfcStandard) -> Result<Channel, ProcessError> {
         let s = &self.channel.series;
         self.filtered(Cfc::new(class, standard).and_then(|f| f.filter(s.values(), s.step())))
@@ -182,17 +218,28 @@ impl Context<'_> {
         self.filtered(values)
     }
 
-    fn bias(&self, inside: impl Fn(f64) -> bool, what: String) -> Result<Channel, ProcessError> {
+    /// Subtracts the mean over `[t0, t1]` s (`t1` excluded when it is 0, the
+    /// pre-trigger) and records the interval as ISO/TS 13499's `Start offset
+    /// interval` and `End offset interval`.
+    fn bias(&self, [t0, t1]: [f64; 2]) -> Result<Channel, ProcessError> {
         let s = &self.channel.series;
+        let pretrigger = matches!(self.step, "pretrigger_bias");
+        let inside = |t: f64| t >= t0 && (t < t1 || (!pretrigger && t <= t1));
         let picked: Vec<f64> = (0..s.len())
             .filter(|&i| inside(s.time(i)))
             .map(|i| s.values()[i])
             .collect();
         if picked.is_empty() {
-            return Err(self.range(format!("no samples {what}")));
+            return Err(self.range(match pretrigger {
+                true => "no samples before t = 0 (no pre-trigger)".into(),
+                false => format!("no samples in the bias window [{t0}, {t1}] s"),
+            }));
         }
         let mean = picked.iter().sum::<f64>() / picked.len() as f64;
-        self.map(|v| v - mean)
+        let mut out = self.map(|v| v - mean)?;
+        out.set_meta("Start offset interval", &format!("{t0:e}"));
+        out.set_meta("End offset interval", &format!("{t1:e}"));
+        Ok(out)
     }
 
     fn with_dimension(

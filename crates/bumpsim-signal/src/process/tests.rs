@@ -112,3 +112,68 @@ fn steps_parse_from_toml_like_json() {
         })
     ));
 }
+
+fn coded(code: &str, fine: &str) -> Channel {
+    let series = UniformSeries::new(0.0, 1e-4, vec![0.0, 1.0, 2.0, 1.0]).unwrap();
+    let mut c = Channel::new(code, "cell", Dimension::Force, series);
+    c.set_meta("Comments", fine);
+    c
+}
+
+#[test]
+fn a_sum_says_it_is_one_and_codes_the_common_fields_with_su() {
+    let cells = [
+        coded("B0LOMA010100FOXP", "cell 1"),
+        coded("B0LOMA010200FOXP", "cell 2"),
+        coded("B0LOMA020100FOXP", "cell 3"),
+    ];
+    let sum = combine(&cells, Combine::Sum, "B0LOMA*").unwrap();
+    assert_eq!(sum.name, "sum of 3 channels B0LOMA*");
+    assert_eq!(sum.meta("Channel code"), Some("B0LOMASU0000FOXP"));
+    assert_eq!(
+        bumpsim_io::test_data::iso_header::iso_code(&sum),
+        "B0LOMASU0000FOXP"
+    );
+    assert!(
+        sum.meta("Comments")
+            .unwrap()
+            .starts_with("sum of 3 channels: B0LOMA010100FOXP")
+    );
+    let sides = [
+        coded("10SIMELE0000ACXP", "left"),
+        coded("10SIMERI0000ACXP", "right"),
+    ];
+    let mean = combine(&sides, Combine::Mean, "sides").unwrap();
+    assert_eq!(mean.meta("Channel code"), Some("10SIMEAV0000ACXP"));
+}
+
+#[test]
+fn a_finer_cfc_after_a_coarser_one_keeps_the_coarser_label_and_says_so() {
+    let values: Vec<f64> = (0..400).map(|k| (k as f64 * 0.05).sin()).collect();
+    let raw = Channel::new(
+        "10SIMELE0000ACXP",
+        "x",
+        Dimension::Acceleration,
+        UniformSeries::new(0.0, 1e-4, values).unwrap(),
+    );
+    let cfc60 = Step::Cfc(60.0).apply(&raw).unwrap();
+    assert_eq!(cfc60.code, "10SIMELE0000ACXD");
+    let again = Step::Cfc(1000.0).apply(&cfc60).unwrap();
+    assert_eq!(again.code, "10SIMELE0000ACXD");
+    assert_eq!(again.meta("Channel frequency class"), Some("60"));
+    let said = notes(&[Step::Cfc(1000.0)], &cfc60);
+    assert_eq!(said.len(), 1);
+    assert!(said[0].contains("CFC 1000 after CFC 60"), "{said:?}");
+    assert!(notes(&[Step::Cfc(60.0), Step::Cfc(180.0)], &raw)[0].contains("CFC 180 after CFC 60"));
+    assert!(notes(&[Step::Cfc(180.0), Step::Cfc(60.0)], &raw).is_empty());
+}
+
+#[test]
+fn a_bias_records_its_offset_interval() {
+    let c = channel(-0.2, vec![1.0, 1.0, 3.0, 5.0], Dimension::Acceleration);
+    let b = Step::PretriggerBias(true).apply(&c).unwrap();
+    assert_eq!(b.meta("Start offset interval"), Some("-2e-1"));
+    assert_eq!(b.meta("End offset interval"), Some("0e0"));
+    let w = Step::Bias([-0.2, -0.1]).apply(&c).unwrap();
+    assert_eq!(w.meta("End offset interval"), Some("-1e-1"));
+}

@@ -3,10 +3,11 @@
 //! [`combine`]), and the note of what that did to them ([`resampling`]).
 
 use super::error::ProcessError;
-use bumpsim_core::channel::Channel;
+use bumpsim_core::channel::{Channel, ChannelCode};
 use bumpsim_core::names;
 use bumpsim_core::series::UniformSeries;
 use bumpsim_core::units::{Dimension, format_number};
+use bumpsim_io::test_data::iso_header;
 use serde::Deserialize;
 
 /// Linear interpolation of a series at time `t` (clamped to its ends).
@@ -26,8 +27,8 @@ pub enum Combine {
 
 /// Combines channels of one dimension on their common time base (the
 /// overlap of their spans, at the finest interval; linear interpolation
-/// where bases differ). The result takes the first channel's identity with
-/// a code listing all inputs.
+/// where bases differ). The result is named `code`, and its name, comments
+/// and ISO code say what it combines (see `combined`).
 pub fn combine(channels: &[Channel], how: Combine, code: &str) -> Result<Channel, ProcessError> {
     let first = channels.first().ok_or_else(|| ProcessError::Range {
         channel: code.to_string(),
@@ -71,9 +72,98 @@ pub fn combine(channels: &[Channel], how: Combine, code: &str) -> Result<Channel
             source,
         }
     })?;
+    Ok(combined(channels, how, code, series))
+}
+
+/// The identity of a mean or sum: `code`, a name and comment that say what
+/// it combines, the source fields every input shares, and the ISO/TS 13499
+/// code of the inputs' common fields with `SU` (sum) or `AV` (average) in
+/// the first free fine location (RED B: fine location 1 when it is `00`,
+/// else 2), e.g. `B0LOMASU0000FOXP` for the cells of a load-cell wall.
+fn combined(channels: &[Channel], how: Combine, code: &str, series: UniformSeries) -> Channel {
+    let first = &channels[0];
+    if channels.len() == 1 {
+        let mut out = first.with_series(series);
+        out.code = code.to_string();
+        return out;
+    }
+    let (word, letters) = match how {
+        Combine::Mean => ("mean", "AV"),
+        Combine::Sum => ("sum", "SU"),
+    };
     let mut out = first.with_series(series);
     out.code = code.to_string();
-    Ok(out)
+    out.name = format!(
+        "{word} of {} channels {}",
+        channels.len(),
+        names::escaped(code)
+    );
+    out.metadata = shared_fields(channels);
+    let codes: Vec<String> = channels.iter().map(iso_header::iso_code).collect();
+    if let Some(merged) = merged_code(&codes, letters) {
+        out.set_meta("Channel code", &merged);
+    }
+    let listed = match codes.as_slice() {
+        [one] => one.clone(),
+        [a, b] => format!("{a} and {b}"),
+        [a, .., z] => format!("{a} … {z}"),
+        [] => String::new(),
+    };
+    out.set_meta(
+        "Comments",
+        &format!("{} of {} channels: {listed}", word, codes.len()),
+    );
+    out
+}
+
+/// The source fields whose value every channel shares.
+fn shared_fields(channels: &[Channel]) -> Vec<(String, String)> {
+    let first = &channels[0];
+    first
+        .metadata
+        .iter()
+        .filter(|(k, v)| channels[1..].iter().all(|c| c.meta(k) == Some(v.as_str())))
+        .cloned()
+        .collect()
+}
+
+/// The ISO code of what `codes` share (differing fields zero), with
+/// `letters` in the first fine location that is `00` (fine location 3 when
+/// none is).
+fn merged_code(codes: &[String], letters: &str) -> Option<String> {
+    let parsed: Vec<ChannelCode> = codes.iter().filter_map(|c| ChannelCode::parse(c)).collect();
+    let mut merged = parsed.first()?.clone();
+    for other in &parsed[1..] {
+        merge(&mut merged, other);
+    }
+    let free = merged
+        .fine_locations
+        .iter()
+        .position(|f| f == "00")
+        .unwrap_or(2);
+    merged.fine_locations[free] = letters.to_string();
+    Some(merged.to_string())
+}
+
+/// Zeroes the fields of `code` that `other` does not share.
+fn merge(code: &mut ChannelCode, other: &ChannelCode) {
+    if code.test_object != other.test_object {
+        code.test_object = '0';
+    }
+    if code.position != other.position {
+        code.position = '0';
+    }
+    if code.main_location != other.main_location {
+        code.main_location = "0000".into();
+    }
+    for (mine, theirs) in code.fine_locations.iter_mut().zip(&other.fine_locations) {
+        if mine != theirs {
+            *mine = "00".into();
+        }
+    }
+    if code.direction != other.direction {
+        code.direction = '0';
+    }
 }
 
 /// Samples every channel on their common time base (see [`combine`]):
