@@ -146,15 +146,7 @@ fn summarise(
         .ok_or(IdentError::Parameters { theta })?;
     let fits = cases
         .iter()
-        .map(|c| {
-            let (sse, fit_percent) = c.fit(&c.simulate(&model)?);
-            Ok(CaseFit {
-                name: c.name.clone(),
-                sse,
-                fit_percent,
-                samples: c.window_len(),
-            })
-        })
+        .map(|c| Ok(CaseFit::of(c, &c.simulate(&model)?)))
         .collect::<Result<Vec<_>, CaseError>>()?;
     let n = objective.residual_count();
     let q = objective.parameter_count();

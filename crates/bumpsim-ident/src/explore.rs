@@ -38,17 +38,11 @@ pub fn predict(cases: &[LoadCase], model: &MsdModel) -> Result<Vec<Prediction>, 
         .iter()
         .map(|c| {
             let simulated = c.simulate(model)?;
-            let (sse, fit_percent) = c.fit(&simulated);
+            let fit = CaseFit::of(c, &simulated);
             let time = (0..c.force.len())
                 .map(|k| c.start + k as f64 * c.step)
                 .collect::<Vec<_>>();
             let window = [time[c.window.0], time[c.window.1]];
-            let fit = CaseFit {
-                name: c.name.clone(),
-                sse,
-                fit_percent,
-                samples: c.window_len(),
-            };
             Ok(Prediction {
                 fit,
                 time,

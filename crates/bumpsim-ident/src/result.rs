@@ -1,11 +1,14 @@
 //! What a chain identification finds: the model, the fits per case, the
 //! information criteria, the uncertainty, the starts and the warnings
-//! (serialised as `bumpsim identify --json` writes it).
+//! (serialised as `bumpsim identify --json` writes it). Each case's fit
+//! carries its ISO/TS 18571 rating ([`bumpsim_signal::rating`]).
 
+use crate::case::LoadCase;
 use crate::stats::Uncertainty;
 use bumpsim_core::model::MsdModel;
 use bumpsim_estimate::lm::Stop;
 use bumpsim_estimate::multistart::Starts;
+use bumpsim_signal::rating::{Rating, rate};
 use serde::Serialize;
 
 /// Fit of one load case.
@@ -19,6 +22,29 @@ pub struct CaseFit {
     pub fit_percent: f64,
     /// Samples in the window.
     pub samples: usize,
+    /// ISO/TS 18571 rating of the simulated displacement against the
+    /// measured one in the window ([`bumpsim_signal::rating`]); `None`
+    /// (JSON `null`) when the window cannot be rated (under 1 ms, over 2 s
+    /// at 10 kHz, or a measurement zero throughout).
+    pub rating: Option<Rating>,
+}
+
+impl CaseFit {
+    /// The fit of `simulated` (the case's output, m) to the case's
+    /// measurement: SSE and fit % ([`LoadCase::fit`]) and the ISO/TS 18571
+    /// rating, all over the case's window.
+    pub fn of(case: &LoadCase, simulated: &[f64]) -> CaseFit {
+        let (sse, fit_percent) = case.fit(simulated);
+        let (a, b) = case.window;
+        let rating = rate(&case.measured[a..=b], &simulated[a..=b], case.step).ok();
+        CaseFit {
+            name: case.name.clone(),
+            sse,
+            fit_percent,
+            samples: case.window_len(),
+            rating,
+        }
+    }
 }
 
 /// The identified model and everything said about it.
@@ -67,5 +93,43 @@ impl Identification {
     /// The identified model.
     pub fn model(&self) -> &MsdModel {
         &self.model
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn case(measured: Vec<f64>, window: (usize, usize)) -> LoadCase {
+        LoadCase {
+            name: "flat".into(),
+            start: 0.0,
+            step: 1e-4,
+            force: vec![0.0; measured.len()],
+            measured,
+            output_dof: 1,
+            initial_velocity: 0.0,
+            window,
+        }
+    }
+
+    #[test]
+    fn a_case_fit_carries_the_iso_18571_rating_of_its_window() {
+        let x: Vec<f64> = (0..600).map(|k| 0.1 * (k as f64 * 0.005).sin()).collect();
+        let flat = case(x.clone(), (100, 499));
+        assert_eq!(CaseFit::of(&flat, &x).rating.unwrap().overall, 1.0);
+        let low: Vec<f64> = x.iter().map(|v| 0.9 * v).collect();
+        let fit = CaseFit::of(&flat, &low);
+        let expected = rate(&x[100..=499], &low[100..=499], 1e-4).unwrap();
+        assert_eq!(fit.rating, Some(expected));
+        assert!(expected.magnitude < 1.0 && expected.slope < 1.0);
+        let short = case(x.clone(), (100, 104));
+        assert_eq!(
+            CaseFit::of(&short, &x).rating,
+            None,
+            "5 samples are under 1 ms"
+        );
+        let json = serde_json::to_value(&fit).unwrap();
+        assert!(json["rating"]["corridor"].is_number() && json["fit_percent"].is_number());
     }
 }

@@ -13,21 +13,31 @@ pub fn parameter_table(result: &Identification) -> String {
     bumpsim_estimate::text::parameter_table(&parameters, &theta, &result.uncertainty)
 }
 
-/// Per-case fit lines.
+/// Per-case fit lines, each followed by its ISO/TS 18571 rating.
 pub fn case_lines(result: &Identification) -> String {
     result
         .cases
         .iter()
         .map(|c| {
             format!(
-                "  {:<16} fit {:>7}  SSE {} m²  ({} samples)\n",
+                "  {:<16} fit {:>7}  SSE {} m²  ({} samples)\n    {}\n",
                 c.name,
                 format!("{} %", format_number(c.fit_percent, 4)),
                 format_number(c.sse, 4),
-                c.samples
+                c.samples,
+                rating_line(c.rating.as_ref())
             )
         })
         .collect()
+}
+
+/// `ISO/TS 18571 rating 0.962 (excellent; corridor …, phase …, magnitude
+/// …, slope …)`, or why there is none.
+pub fn rating_line(rating: Option<&bumpsim_signal::rating::Rating>) -> String {
+    match rating {
+        Some(r) => format!("ISO/TS 18571 rating {r}"),
+        None => "ISO/TS 18571 rating: none (the window is under 1 ms or over 2 s, or the measurement is zero)".into(),
+    }
 }
 
 /// The start statistics (the estimation layer's line,

@@ -26,7 +26,7 @@ pub mod window;
 pub use filter::{Butterworth, Cfc, FilterError};
 pub use pipeline::{Pipeline, PipelineError, PipelineResult};
 pub use process::{ProcessError, Step};
-pub use rating::{Rating, RatingError, rate};
+pub use rating::{Rating, RatingError, rate, rate_histories};
 pub use window::ContactWindow;
 
 /// The types most signal processing needs (the facade globs it).

@@ -127,6 +127,9 @@ pub enum RatingError {
         /// Samples at 10 kHz.
         samples: usize,
     },
+    /// A history's times are not increasing, or not one per value.
+    #[error("a history's times are not finite and increasing, one per value")]
+    Times,
     /// The reference is zero throughout, so its corridors have no width.
     #[error("the reference is zero throughout: its corridors have no width")]
     FlatReference,
@@ -178,6 +181,46 @@ pub fn rate(reference: &[f64], candidate: &[f64], step: f64) -> Result<Rating, R
     check(reference, candidate, step)?;
     let (reference, candidate) = at_iso_step(reference, candidate, step)?;
     Ok(rate_at_iso_step(&reference, &candidate))
+}
+
+/// Rates a candidate history against a reference history sampled at other
+/// instants (an FE run's increments against a 1-D model's steps): both are
+/// interpolated linearly at 10 kHz over the span they share, `t_k = t_0 +
+/// k·10⁻⁴ s ≤ min(end)`, `t_0 = max(start)`; each history is `(times, s,
+/// increasing; values)`.
+pub fn rate_histories(
+    reference: (&[f64], &[f64]),
+    candidate: (&[f64], &[f64]),
+) -> Result<Rating, RatingError> {
+    let span = |(t, v): (&[f64], &[f64])| -> Result<(f64, f64), RatingError> {
+        let increasing = t.windows(2).all(|w| w[1] > w[0]) && t.len() == v.len();
+        match (t.first(), t.last()) {
+            (Some(&a), Some(&b)) if increasing && a.is_finite() && b.is_finite() => Ok((a, b)),
+            _ => Err(RatingError::Times),
+        }
+    };
+    let (a, b) = (span(reference)?, span(candidate)?);
+    let (start, end) = (a.0.max(b.0), a.1.min(b.1));
+    let count = ((end - start) / ISO_STEP + 1e-9).floor() + 1.0;
+    if !(count >= MIN_SAMPLES as f64 && count <= MAX_SAMPLES as f64) {
+        return Err(RatingError::Span {
+            samples: count.max(0.0) as usize,
+        });
+    }
+    let at = |(t, v): (&[f64], &[f64])| -> Vec<f64> {
+        (0..count as usize)
+            .map(|k| at_time(t, v, start + k as f64 * ISO_STEP))
+            .collect()
+    };
+    rate(&at(reference), &at(candidate), ISO_STEP)
+}
+
+/// The value of a history at `t` (within its times), linearly interpolated.
+fn at_time(times: &[f64], values: &[f64], t: f64) -> f64 {
+    let upper = times.partition_point(|&x| x < t).clamp(1, times.len() - 1);
+    let (t0, t1) = (times[upper - 1], times[upper]);
+    let fraction = ((t - t0) / (t1 - t0)).clamp(0.0, 1.0);
+    values[upper - 1] + fraction * (values[upper] - values[upper - 1])
 }
 
 fn check(reference: &[f64], candidate: &[f64], step: f64) -> Result<(), RatingError> {
@@ -564,6 +607,21 @@ mod tests {
         let (iso, _) = at_iso_step(&r, &r, 1e-3).unwrap();
         assert_eq!(iso.len(), 1000);
         assert!((iso[505] - 0.0505).abs() < 1e-15);
+    }
+
+    #[test]
+    fn histories_on_other_instants_are_rated_on_their_common_span() {
+        let fine: Vec<f64> = (0..=1000).map(|k| k as f64 * 1e-4).collect();
+        let coarse: Vec<f64> = (0..=40).map(|k| 0.002 + k as f64 * 2.5e-3).collect();
+        let f = |t: &f64| (t * 30.0).sin();
+        let (a, b): (Vec<f64>, Vec<f64>) =
+            (fine.iter().map(f).collect(), coarse.iter().map(f).collect());
+        let rating = rate_histories((&fine, &a), (&coarse, &b)).unwrap();
+        assert!(rating.overall > 0.99, "{rating}");
+        assert_eq!(
+            rate_histories((&fine, &a), (&[0.5, 0.2], &[1.0, 2.0])),
+            Err(RatingError::Times)
+        );
     }
 
     #[test]
