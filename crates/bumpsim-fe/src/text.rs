@@ -1,8 +1,45 @@
 //! The coupled run in words and JSON: the figures of `bumpsim impact`, the
-//! unfiltered peak, and the comparison with the equivalent characteristic.
+//! unfiltered peak, and the comparison with the equivalent characteristic:
+//! its figures and the ISO/TS 18571 ratings ([`bumpsim_signal::rating`]) of
+//! the 1-D model's contact force and compression histories against the FE
+//! run's (the FE run is the reference), on the span both cover, at 10 kHz.
 
 use crate::run::FeResult;
 use bumpsim_core::units::{Dimension, format_quantity};
+use bumpsim_signal::rating::{Rating, RatingError, rate_histories};
+
+/// The ISO/TS 18571 ratings of the equivalent 1-D impact against the FE
+/// run: `("force", …)` and `("compression", …)`; empty without the
+/// equivalent run.
+pub fn ratings(fe: &FeResult) -> Vec<(&'static str, Result<Rating, RatingError>)> {
+    let Some(msd) = &fe.equivalent else {
+        return Vec::new();
+    };
+    let r = &fe.impact;
+    vec![
+        (
+            "force",
+            rate_histories((&r.time, &r.force), (&msd.time, &msd.force)),
+        ),
+        (
+            "compression",
+            rate_histories((&r.time, &r.compression), (&msd.time, &msd.compression)),
+        ),
+    ]
+}
+
+/// The rating lines of the summary.
+fn rating_lines(fe: &FeResult) -> String {
+    ratings(fe)
+        .into_iter()
+        .map(|(what, rating)| match rating {
+            Ok(r) => format!("  ISO/TS 18571 rating of the 1-D model's {what} against FE: {r}\n"),
+            Err(e) => {
+                format!("  ISO/TS 18571 rating of the 1-D model's {what} against FE: none ({e})\n")
+            }
+        })
+        .collect()
+}
 
 /// Tolerance of the energy-balance warning (relative to the initial energy).
 pub const ENERGY_TOLERANCE: f64 = 0.02;
@@ -27,6 +64,7 @@ pub fn summary(fe: &FeResult) -> String {
             format_quantity(fe.increment, Dimension::Time),
             fe.deck.display()
         )
+        + &rating_lines(fe)
 }
 
 /// The result's own checks: the energy balance within [`ENERGY_TOLERANCE`],
@@ -70,6 +108,10 @@ pub fn json(fe: &FeResult, warnings: &[String]) -> serde_json::Value {
             "max_compression": e.max_compression,
             "contact_time": e.contact_time,
         })),
+        "ratings": ratings(fe)
+            .into_iter()
+            .map(|(what, rating)| (what.to_string(), serde_json::json!(rating.ok())))
+            .collect::<serde_json::Map<_, _>>(),
         "warnings": warnings,
     })
 }

@@ -360,18 +360,22 @@ impl Identification {
         let predictions = py
             .detach(|| predict(&self.cases, &self.result.model))
             .map_err(input)?;
-        Ok(predictions
+        predictions
             .into_iter()
-            .map(|p| Prediction {
-                name: p.fit.name,
-                sse: p.fit.sse,
-                fit_percent: p.fit.fit_percent,
-                window: (p.window[0], p.window[1]),
-                time: array1(py, p.time),
-                measured: array1(py, p.measured),
-                simulated: array1(py, p.simulated),
+            .map(|p| {
+                let rating = p.fit.rating.as_ref().map(|r| from_json(py, r));
+                Ok(Prediction {
+                    rating: rating.transpose()?.map(Bound::unbind),
+                    name: p.fit.name,
+                    sse: p.fit.sse,
+                    fit_percent: p.fit.fit_percent,
+                    window: (p.window[0], p.window[1]),
+                    time: array1(py, p.time),
+                    measured: array1(py, p.measured),
+                    simulated: array1(py, p.simulated),
+                })
             })
-            .collect())
+            .collect()
     }
     /// The HTML report `bumpsim identify --report` writes, as the page and
     /// its SVG figures (file name → SVG text), with the ±3 % sensitivity.
@@ -442,4 +446,8 @@ pub struct Prediction {
     /// Simulated displacement, m.
     #[pyo3(get)]
     simulated: Py<PyArray1<f64>>,
+    /// ISO/TS 18571 rating in the window (overall, corridor, phase,
+    /// magnitude, slope), or None when the window cannot be rated.
+    #[pyo3(get)]
+    rating: Option<Py<PyAny>>,
 }

@@ -24,6 +24,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(cfc, m)?)?;
     m.add_function(wrap_pyfunction!(run_pipeline, m)?)?;
     m.add_function(wrap_pyfunction!(contact_window, m)?)?;
+    m.add_function(wrap_pyfunction!(iso18571, m)?)?;
     m.add_class::<PipelineRun>()?;
     Ok(())
 }
@@ -106,6 +107,26 @@ fn cfc(
         .detach(|| Cfc::new(cls, standard).and_then(|f| f.filter(&values, 1.0 / fs)))
         .map_err(input)?;
     Ok(array1(py, filtered))
+}
+
+/// The ISO/TS 18571 rating of `candidate` against `reference`, both
+/// sampled every `step` s at the same instants: a dict of the overall,
+/// corridor, phase, magnitude and slope ratings (bumpsim-signal's `rating`).
+#[pyfunction]
+fn iso18571<'py>(
+    py: Python<'py>,
+    reference: &Bound<'py, PyAny>,
+    candidate: &Bound<'py, PyAny>,
+    step: f64,
+) -> PyResult<Bound<'py, PyAny>> {
+    let (reference, candidate) = (
+        vector(reference, "reference")?,
+        vector(candidate, "candidate")?,
+    );
+    let rating = py
+        .detach(|| bumpsim_signal::rating::rate(&reference, &candidate, step))
+        .map_err(input)?;
+    crate::ident::from_json(py, &rating)
 }
 
 /// The contact window of a force (any sign): first and last sample index

@@ -74,6 +74,9 @@ def test_parameters_carry_units_and_predict_reproduces_the_fit(result):
     assert [p.name for p in predictions] == [c["name"] for c in result.cases]
     for p, case in zip(predictions, result.cases):
         assert p.fit_percent == pytest.approx(case["fit_percent"], rel=1e-9)
+        # the ISO/TS 18571 rating of the window, as the CLI's JSON gives it
+        assert p.rating["overall"] == pytest.approx(case["rating"]["overall"], rel=1e-9)
+        assert 0.0 <= p.rating["slope"] <= 1.0
         assert p.simulated.shape == p.measured.shape == p.time.shape
     # the objective is the sum of the cases' squared errors
     assert sum(p.sse for p in predictions) == pytest.approx(result.objective, rel=1e-9)

@@ -144,3 +144,24 @@ def test_contact_window():
         bumpsim.contact_window(np.zeros(5))
     with pytest.raises(bumpsim.InputError, match="fall <= rise"):
         bumpsim.contact_window(np.ones(5), rise=0.01, fall=0.5)
+
+
+def test_iso18571_rating_of_a_late_low_pulse():
+    """The ISO/TS 18571 rating: identical signals rate 1; a late, low copy of
+    a half-sine pulse rates below 1 in phase, magnitude and slope, and equals
+    pyisomme's reference (objective_rating_metrics) within 1e-6 when present."""
+    t = np.arange(1500) * 1e-4
+    pulse = lambda delay, peak: np.where(  # noqa: E731
+        (t >= delay) & (t < delay + 0.08), peak * np.sin(np.pi * (t - delay) / 0.08), 0.0
+    )
+    test, model = pulse(0.01, -300.0), pulse(0.013, -255.0)
+    assert bumpsim.iso18571(test, test, 1e-4)["overall"] == 1.0
+    rating = bumpsim.iso18571(test, model, 1e-4)
+    assert set(rating) == {"overall", "corridor", "phase", "magnitude", "slope"}
+    assert rating["phase"] < 1 and rating["magnitude"] < 1 and rating["slope"] < 1
+    reference = pytest.importorskip("objective_rating_metrics.rating")
+    iso = reference.ISO18571(np.vstack((t, test)).T, np.vstack((t, model)).T)
+    assert rating["overall"] == pytest.approx(iso.overall_rating(ndigits=-1), abs=1e-6)
+    assert rating["slope"] == pytest.approx(iso.slope_rating(ndigits=-1), abs=1e-6)
+    with pytest.raises(bumpsim.InputError, match="finite"):
+        bumpsim.iso18571(test, np.full_like(test, np.nan), 1e-4)

@@ -188,6 +188,10 @@ def contact_window(force: ArrayLike1D, rise: float = 0.05, fall: float = 0.02) -
 def cfc(x: ArrayLike1D, fs: float, cls: float, standard: str = "sae-j211") -> FloatArray:
     """Filters ``x`` sampled at ``fs`` Hz with a CFC filter of class ``cls``, zero phase."""
 
+def iso18571(reference: ArrayLike1D, candidate: ArrayLike1D, step: float) -> dict[str, float]:
+    """ISO/TS 18571 rating of ``candidate`` against ``reference`` (same
+    instants, every ``step`` s): overall, corridor, phase, magnitude, slope."""
+
 # ---------------------------------------------------------------- identification
 
 class Prediction:
@@ -200,6 +204,9 @@ class Prediction:
     time: FloatArray
     measured: FloatArray
     simulated: FloatArray
+    rating: Optional[dict[str, float]]
+    """ISO/TS 18571 rating in the window: overall, corridor, phase,
+    magnitude, slope (None when the window cannot be rated)."""
 
 class Identification:
     """An identified model with the fields of ``bumpsim identify --json``."""
