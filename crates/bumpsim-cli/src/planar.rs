@@ -227,16 +227,25 @@ pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
         .map(|c| predict(&result.car, c))
         .collect::<Result<_, _>>()?;
     let validation_fits: Vec<_> = validation.iter().map(|p| p.fit.clone()).collect();
-    let summary = bumpsim_planar::text::identification_summary(&result, &validation_fits);
+    let forward = forward_predictions(&result.car, study.cases.iter().chain(&study.validation))?;
+    let summary = bumpsim_planar::text::identification_summary(&result, &validation_fits)
+        + &bumpsim_planar::text::forward_lines(&forward);
     print!("{summary}");
     // printed in the summary, as the 1-D identification prints its own
     crate::count_warnings(
         bumpsim_planar::text::identification_warnings(&result, &validation_fits).len(),
     );
+    for w in forward
+        .iter()
+        .flat_map(bumpsim_planar::document::forward_warnings)
+    {
+        crate::warn(&w);
+    }
     if let Some(path) = options.json {
         let document = IdentificationDocument {
             result: &result,
             validation: &validation_fits,
+            forward: &forward,
             notes: &study.notes,
         };
         write(path, &serde_json::to_string_pretty(&document)?)?;
@@ -315,8 +324,14 @@ pub fn run_predict(options: &PredictOptions) -> Result<()> {
         .name()
         .map_or_else(|| options.car.display().to_string(), str::to_string);
     let fits: Vec<_> = predictions.iter().map(|p| p.fit.clone()).collect();
-    let document = bumpsim_planar::document::predictions(&name, &fits, &study.notes);
-    document.warnings.iter().for_each(|w| crate::warn(w));
+    let forward = forward_predictions(&car, study.named(options.cases)?.into_iter())?;
+    print!("{}", bumpsim_planar::text::forward_lines(&forward));
+    let document = bumpsim_planar::document::predictions(&name, &fits, &forward, &study.notes);
+    document
+        .predictions
+        .warnings
+        .iter()
+        .for_each(|w| crate::warn(w));
     if let Some(path) = options.json {
         write(path, &serde_json::to_string_pretty(&document)?)?;
     }
@@ -330,4 +345,15 @@ pub fn run_predict(options: &PredictOptions) -> Result<()> {
         folder.commit()?;
     }
     Ok(())
+}
+
+/// The forward predictions of the cases that give their striker.
+fn forward_predictions<'a>(
+    car: &PlanarCar,
+    cases: impl Iterator<Item = &'a bumpsim_planar::identify::PlanarCase>,
+) -> Result<Vec<bumpsim_planar::forward::Forward>> {
+    cases
+        .filter(|c| c.striker.is_some())
+        .map(|c| Ok(bumpsim_planar::forward::forward(car, c)?))
+        .collect()
 }

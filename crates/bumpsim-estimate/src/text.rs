@@ -19,7 +19,7 @@ use bumpsim_core::units::{Dimension, format_quantity};
 ///     names: vec!["m1".into()], standard_errors: vec![Some(2.0)],
 ///     ci95: vec![Some([96.0, 104.0])], at_bound: vec![false], fixed: vec![false],
 ///     correlation: vec![vec![Some(1.0)]], residual_std: 1e-4, degrees_of_freedom: 99,
-///     singular_values: vec![1.0], condition: 1.0, determined: vec![Some(true)],
+///     singular_values: vec![1.0], condition: 1.0, scales: vec![], determined: vec![Some(true)],
 ///     weakest_direction: vec![], error_model: Correlation::Independent,
 ///     residual_correlation: 0.0, inflation: 1.0, warnings: vec![],
 /// };

@@ -58,6 +58,20 @@ pub struct Parameter {
     pub name: String,
     /// Its unit.
     pub unit: ParameterUnit,
+    /// How it is searched: in `ln θ` (positive quantities) or as is.
+    pub scale: Scale,
+}
+
+/// How a parameter is searched and judged.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Scale {
+    /// `p = ln θ` (masses, springs, dampers: positive, spanning decades);
+    /// determined when its 95 % interval lies within a factor [`SPREAD`].
+    Log,
+    /// `p = θ` (a position, which may be negative); determined when its 95 %
+    /// interval is at most this wide (in θ's unit).
+    Linear(f64),
 }
 
 /// How a parameter's value prints.
@@ -70,19 +84,46 @@ pub enum ParameterUnit {
 }
 
 impl Parameter {
-    /// A parameter of a dimension.
+    /// A parameter of a dimension, searched in `ln θ`.
     pub fn new(name: impl Into<String>, dimension: Dimension) -> Parameter {
         Parameter {
             name: name.into(),
             unit: ParameterUnit::Dimension(dimension),
+            scale: Scale::Log,
         }
     }
 
-    /// A parameter printed with an SI symbol.
+    /// A parameter printed with an SI symbol, searched in `ln θ`.
     pub fn with_symbol(name: impl Into<String>, symbol: &'static str) -> Parameter {
         Parameter {
             name: name.into(),
             unit: ParameterUnit::Symbol(symbol),
+            scale: Scale::Log,
+        }
+    }
+
+    /// The same parameter searched as is (`p = θ`), determined when its
+    /// 95 % interval is at most `width` wide.
+    pub fn linear(self, width: f64) -> Parameter {
+        Parameter {
+            scale: Scale::Linear(width),
+            ..self
+        }
+    }
+
+    /// θ of the search variable `p`.
+    pub fn theta(&self, p: f64) -> f64 {
+        match self.scale {
+            Scale::Log => p.exp(),
+            Scale::Linear(_) => p,
+        }
+    }
+
+    /// The search variable `p` of θ.
+    pub fn search(&self, theta: f64) -> f64 {
+        match self.scale {
+            Scale::Log => theta.ln(),
+            Scale::Linear(_) => theta,
         }
     }
 
@@ -166,6 +207,8 @@ pub struct Uncertainty {
     pub singular_values: Vec<f64>,
     /// Largest over smallest singular value.
     pub condition: f64,
+    /// How each parameter was searched and is judged.
+    pub scales: Vec<Scale>,
     /// Whether the data determine each parameter: `Some(true)` when its 95 %
     /// interval lies within a factor [`SPREAD`], `Some(false)` when it is at
     /// a bound, has no interval or a wider one, `None` when it is fixed
@@ -230,8 +273,10 @@ pub struct Estimated<'a> {
 /// within a factor [`SPREAD`] (`Some(true)`), or not: at its bound, without
 /// an interval or with a wider one (`Some(false)`); `None` when it is fixed.
 pub fn is_determined(u: &Uncertainty, i: usize) -> Option<bool> {
-    (!u.fixed[i]).then(|| match (u.at_bound[i], u.ci95[i]) {
-        (false, Some([a, b])) => b / a <= SPREAD,
+    let scale = u.scales.get(i).copied().unwrap_or(Scale::Log);
+    (!u.fixed[i]).then(|| match (u.at_bound[i], u.ci95[i], scale) {
+        (false, Some([a, b]), Scale::Log) => b / a <= SPREAD,
+        (false, Some([a, b]), Scale::Linear(width)) => b - a <= width,
         _ => false,
     })
 }
@@ -325,6 +370,7 @@ fn intervals(e: &Estimated) -> Uncertainty {
         condition: f64::INFINITY,
         determined: Vec::new(),
         weakest_direction: Vec::new(),
+        scales: e.parameters.iter().map(|p| p.scale).collect(),
         error_model: e.correlation,
         residual_correlation: rho,
         inflation,
@@ -402,12 +448,19 @@ fn intervals(e: &Estimated) -> Uncertainty {
         } else {
             f64::INFINITY
         };
-        let interval = [
-            theta[i] * (-t * se_log).exp(),
-            theta[i] * (t * se_log).exp(),
-        ];
-        let usable = se_log.is_finite() && interval.iter().all(|v| v.is_finite() && *v > 0.0);
-        result.standard_errors[i] = usable.then_some(theta[i] * se_log);
+        let (interval, se) = match e.parameters[i].scale {
+            Scale::Log => (
+                [
+                    theta[i] * (-t * se_log).exp(),
+                    theta[i] * (t * se_log).exp(),
+                ],
+                theta[i] * se_log,
+            ),
+            Scale::Linear(_) => ([theta[i] - t * se_log, theta[i] + t * se_log], se_log),
+        };
+        let positive = matches!(e.parameters[i].scale, Scale::Linear(_)) || interval[0] > 0.0;
+        let usable = se_log.is_finite() && positive && interval.iter().all(|v| v.is_finite());
+        result.standard_errors[i] = usable.then_some(se);
         result.ci95[i] = usable.then_some(interval);
         for (b, &jb) in estimated.iter().enumerate() {
             let both = usable && determined[b];
@@ -457,6 +510,7 @@ fn intervals(e: &Estimated) -> Uncertainty {
 ///     degrees_of_freedom: 100,
 ///     singular_values: vec![],
 ///     condition: f64::INFINITY,
+///     scales: vec![],
 ///     determined: vec![Some(true), Some(false), Some(false)],
 ///     weakest_direction: vec![],
 ///     error_model: Correlation::Independent,
@@ -476,10 +530,15 @@ pub fn determination(u: &Uncertainty) -> Option<String> {
             (None, _, _) => {}
             (Some(true), _, _) => determined.push(name.clone()),
             (Some(false), true, _) => free.push(format!("{name} (at its bound)")),
-            (Some(false), false, Some([a, b])) => free.push(format!(
-                "{name} (95 % interval spans a factor {})",
-                format_number(b / a, 4)
-            )),
+            (Some(false), false, Some([a, b])) => free.push(match u.scales.get(i) {
+                Some(Scale::Linear(_)) => {
+                    format!("{name} (95 % interval {} wide)", format_number(b - a, 4))
+                }
+                _ => format!(
+                    "{name} (95 % interval spans a factor {})",
+                    format_number(b / a, 4)
+                ),
+            }),
             (Some(false), false, None) => free.push(format!("{name} (no interval)")),
         }
     }
@@ -590,6 +649,7 @@ mod tests {
             degrees_of_freedom: 100,
             singular_values: vec![],
             condition,
+            scales: vec![],
             determined: vec![],
             weakest_direction: vec![share("m2", 0.8), share("m1", -0.6)],
             error_model: Correlation::Independent,

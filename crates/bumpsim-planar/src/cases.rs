@@ -31,6 +31,11 @@ pub struct Placed {
     /// A world-fixed point on its line of action (a pole's axis), body
     /// frame at t = 0, m ([`Load::anchor`]).
     pub anchor: Option<[f64; 2]>,
+    /// Whether its lateral position is estimated (`lateral` is the start):
+    /// a single total force whose line of action no cell measured.
+    pub estimated: bool,
+    /// A wall's load cell of this width, m ([`Load::cell`]).
+    pub cell: Option<f64>,
 }
 
 /// The channels of one test and what is known of it.
@@ -63,6 +68,8 @@ impl TestChannels {
                 lateral: spec.lateral,
                 direction: spec.direction,
                 anchor: spec.anchor,
+                estimated: false,
+                cell: None,
             })
             .collect();
         TestChannels {
@@ -122,6 +129,7 @@ impl TestChannels {
             .map(|(f, values)| Load {
                 lateral: f.lateral,
                 anchor: f.anchor,
+                cell: f.cell,
                 direction: f.direction,
                 force: values[first..].to_vec(),
             })
@@ -142,6 +150,8 @@ impl TestChannels {
             },
             measured: columns[n..].iter().map(|c| c[first..].to_vec()).collect(),
             window: (window.first, window.last),
+            estimated: (0..n).filter(|&k| self.forces[k].estimated).collect(),
+            striker: None,
         };
         Ok((case, resampled))
     }

@@ -3,6 +3,7 @@
 //! predict --json` with a planar car; Python's `to_json`): serialisable
 //! types, so each JSON is assembled once, here.
 
+use crate::forward::Forward;
 use crate::identify::{CaseFit, PlanarIdentification};
 use crate::result::PlanarResult;
 use crate::striker::Striker;
@@ -21,27 +22,64 @@ pub struct ImpactDocument<'a> {
 }
 
 /// `bumpsim identify --json` on a planar study: the identification, the
-/// fits of the validation cases and the notes on the channels.
+/// fits of the validation cases, the forward predictions of the tests with
+/// a striker and the notes on the channels.
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct IdentificationDocument<'a> {
     /// The identification.
     pub result: &'a PlanarIdentification,
     /// Fits of the cases predicted, not fitted.
     pub validation: &'a [CaseFit],
+    /// Forward predictions (car, bumper and striker; no measured force).
+    pub forward: &'a [Forward],
     /// Notes on the channels' time base.
     pub notes: &'a [String],
 }
 
 /// `bumpsim predict --json` with a planar car: the layer's document of each
-/// case's fit of x and yaw, the warnings of negative fits, and the notes.
-pub type PredictionDocument<'a> = Predictions<'a, CaseFit>;
+/// case's fit of x and yaw, the warnings of negative fits, and the notes;
+/// with the forward predictions of the cases that give their striker.
+#[derive(Debug, Clone, Serialize)]
+pub struct PredictionDocument<'a> {
+    /// The replays' fits.
+    #[serde(flatten)]
+    pub predictions: Predictions<'a, CaseFit>,
+    /// Forward predictions (car, bumper and striker; no measured force).
+    pub forward: &'a [Forward],
+}
 
-/// The prediction document of `fits` of the car `car`.
+/// The prediction document of `fits` and `forward` of the car `car`.
 pub fn predictions<'a>(
     car: &'a str,
     fits: &'a [CaseFit],
+    forward: &'a [Forward],
     notes: &'a [String],
 ) -> PredictionDocument<'a> {
-    let warnings = fits.iter().flat_map(CaseFit::warnings).collect();
-    Predictions::new(car, fits, warnings, notes)
+    let mut warnings: Vec<String> = fits.iter().flat_map(CaseFit::warnings).collect();
+    warnings.extend(forward.iter().flat_map(forward_warnings));
+    PredictionDocument {
+        predictions: Predictions::new(car, fits, warnings, notes),
+        forward,
+    }
+}
+
+/// The warnings of a forward prediction: negative fits and the simulation's own.
+pub fn forward_warnings(f: &Forward) -> Vec<String> {
+    let mut out: Vec<String> = f
+        .channels
+        .iter()
+        .filter_map(|c| {
+            bumpsim_estimate::fit::negative_fit(
+                &f.case,
+                &format!("forward {}", c.name),
+                c.fit_percent,
+            )
+        })
+        .collect();
+    out.extend(
+        f.warnings
+            .iter()
+            .map(|w| format!("case '{}': forward prediction: {w}", f.case)),
+    );
+    out
 }

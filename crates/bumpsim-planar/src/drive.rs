@@ -33,7 +33,7 @@
 //! let chain = MsdModel::new(vec![1000.0], vec![], vec![]).unwrap();
 //! let bumper = Bumper::three_part(1e6, 1e5, 1e7).unwrap();
 //! let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
-//! let load = Load { lateral: 0.0, anchor: None, direction: [-1.0, 0.0], force: vec![1e3; 1001] };
+//! let load = Load { lateral: 0.0, anchor: None, cell: None, direction: [-1.0, 0.0], force: vec![1e3; 1001] };
 //! let input = Drive { step: 1e-4, loads: vec![load], speed: 0.0, sensors: vec![] };
 //! let r = drive(&car, &input, 0.05).unwrap();
 //! let expected = -0.5 * 1.0 * 0.1f64.powi(2);              // x = ½ (F/M) t²
@@ -57,6 +57,12 @@ pub struct Load {
     /// (a pole's axis), given in the body frame at t = 0 (ξ ahead of the
     /// CG, η left), m; `None`: the load moves with the bumper line at `lateral`.
     pub anchor: Option<[f64; 2]>,
+    /// A load cell of a wall: the cell's width along the wall face, m; its
+    /// `anchor` is the cell's centre on the face and its `direction` the
+    /// wall's normal. Its line of action is found per step where the car's
+    /// bumper crushes into the cell (each segment's loading force at its
+    /// penetration), not fixed at the cell's centre.
+    pub cell: Option<f64>,
     /// Direction of the force on the car, world frame (normalised on use).
     pub direction: [f64; 2],
     /// Magnitudes, N, at `k · step` (k = 0, 1, …).
@@ -137,6 +143,15 @@ fn check(input: &Drive, masses: usize) -> Result<usize, PlanarError> {
         if let Some(p) = load.anchor {
             require(&name("anchor"), p[0] + p[1], "m", "must be finite", true)?;
         }
+        if let Some(width) = load.cell {
+            require(
+                &name("cell"),
+                width,
+                "m",
+                "a wall cell's width must be positive, with its centre on the face as the anchor",
+                width > 0.0 && load.anchor.is_some(),
+            )?;
+        }
         let norm = load.direction[0].hypot(load.direction[1]);
         require(
             &name("direction"),
@@ -193,6 +208,7 @@ pub fn segment_loads(result: &crate::PlanarResult, direction: [f64; 2]) -> Vec<L
         .map(|(force, &lateral)| Load {
             lateral,
             anchor: None,
+            cell: None,
             direction,
             force: force.clone(),
         })
@@ -255,7 +271,7 @@ pub fn drive_substeps(
     )?;
     let mut model = model(car);
     model.half_step = 0.5 * input.step / substeps as f64;
-    Replay::new(model, input, substeps).run()
+    Replay::new(model, input, &car.beam().segments, substeps).run()
 }
 
 /// The car's model with no striker face.
@@ -276,6 +292,8 @@ fn model(car: &PlanarCar) -> Model {
 struct Replay<'a> {
     model: Model,
     input: &'a Drive,
+    /// The bumper's segments (their loading curves weigh a wall cell's contact).
+    segments: &'a [bumpsim_impact::bumper::Bumper],
     directions: Vec<[f64; 2]>,
     substeps: usize,
     samples: usize,
@@ -324,7 +342,12 @@ impl Mechanism for Replay<'_> {
 }
 
 impl<'a> Replay<'a> {
-    fn new(model: Model, input: &'a Drive, substeps: usize) -> Replay<'a> {
+    fn new(
+        model: Model,
+        input: &'a Drive,
+        segments: &'a [bumpsim_impact::bumper::Bumper],
+        substeps: usize,
+    ) -> Replay<'a> {
         let directions = input
             .loads
             .iter()
@@ -348,6 +371,7 @@ impl<'a> Replay<'a> {
             readings: vec![[0.0, input.speed, 0.0]; input.sensors.len()],
             model,
             input,
+            segments,
             directions,
             substeps,
             samples,
@@ -363,13 +387,54 @@ impl<'a> Replay<'a> {
             self.contact.total[k] = load.force[i] + f * (next - load.force[i]);
             let d = self.directions[k];
             self.contact.direction[k] = [d[0] * cs + d[1] * sn, -d[0] * sn + d[1] * cs];
-            self.contact.point[k] = match load.anchor {
-                None => self.model.bumper_point(q, load.lateral),
-                Some(p) => {
+            let cell = load.cell.and_then(|w| self.cell_contact(q, k, w, (sn, cs)));
+            self.contact.point[k] = match (cell, load.anchor) {
+                (Some(eta), _) => self.model.bumper_point(q, eta),
+                (None, None) => self.model.bumper_point(q, load.lateral),
+                (None, Some(p)) => {
                     let r = [p[0] - q[0], p[1] - q[1]];
                     [r[0] * cs + r[1] * sn, -r[0] * sn + r[1] * cs]
                 }
             };
+        }
+    }
+
+    /// Where load `k`, a wall cell `width` wide, meets the bumper at `q`
+    /// (yaw's sine and cosine `axes`): the lateral position (body frame, m)
+    /// of the segments crushed into the cell's band, weighted by their
+    /// loading force at their penetration; the band's segment nearest the
+    /// face when none is crushed; `None` without a segment in the band.
+    fn cell_contact(&self, q: &[f64], k: usize, width: f64, (sn, cs): (f64, f64)) -> Option<f64> {
+        let load = &self.input.loads[k];
+        let anchor = load.anchor?;
+        let normal = self.directions[k];
+        let tangent = [-normal[1], normal[0]];
+        let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
+        let (face, centre) = (dot(normal, anchor), dot(tangent, anchor));
+        let (e, n) = ([cs, sn], [-sn, cs]);
+        let (mut sum, mut weighted, mut nearest) = (0.0, 0.0, None::<(f64, f64)>);
+        for (segment, &eta) in self.segments.iter().zip(&self.model.segment_y) {
+            let b = self.model.bumper_point(q, eta);
+            let p = [
+                q[0] + b[0] * e[0] + b[1] * n[0],
+                q[1] + b[0] * e[1] + b[1] * n[1],
+            ];
+            if (dot(tangent, p) - centre).abs() > 0.5 * width {
+                continue;
+            }
+            let depth = face - dot(normal, p);
+            if nearest.is_none_or(|(d, _)| depth > d) {
+                nearest = Some((depth, eta));
+            }
+            if depth > 0.0 {
+                let w = segment.loading_force(depth);
+                sum += w;
+                weighted += w * eta;
+            }
+        }
+        match sum > 0.0 {
+            true => Some(weighted / sum),
+            false => nearest.map(|(_, eta)| eta),
         }
     }
 
@@ -472,6 +537,7 @@ mod tests {
         let load = Load {
             lateral: eta,
             anchor: None,
+            cell: None,
             direction: [-1.0, 0.0],
             force: vec![force; samples],
         };
@@ -549,6 +615,7 @@ mod tests {
         let load = |force: Vec<f64>, direction| Load {
             lateral: 0.0,
             anchor: None,
+            cell: None,
             direction,
             force,
         };

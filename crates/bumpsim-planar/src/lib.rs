@@ -8,6 +8,7 @@
 //! - [`car`]: the planar car — rigid body, left/right MSD chains, a segmented
 //!   bumper beam, tyres — validated at construction;
 //! - [`file`](mod@file): the planar car TOML file;
+//! - [`forward`]: the forward prediction of a whole test (car, bumper, striker) against its measurement;
 //! - [`document`]: the JSON every front end writes (impact, identification, prediction);
 //! - [`drive`](mod@drive): the car driven by given forces (test replay, FE reference);
 //! - [`identify`](mod@identify): the planar car identified from several load cases;
@@ -47,6 +48,7 @@ pub mod drive;
 mod dynamics;
 pub mod export;
 pub mod file;
+pub mod forward;
 pub mod identify;
 pub mod picture;
 pub mod presets;

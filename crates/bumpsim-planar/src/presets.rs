@@ -130,6 +130,71 @@ pub fn find(name: &str) -> Option<&'static PlanarPreset> {
     PRESETS.iter().find(|p| p.name == name)
 }
 
+/// A striker's fields as an input file writes them (a series' `[[test]]`,
+/// a study case's `striker = { ... }`): a preset or a face, a pendulum, a
+/// speed in m/s or as text with a unit, a side as `left` or `right`.
+#[derive(Debug, Clone, Default, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StrikerFields {
+    /// A preset name.
+    pub case: Option<String>,
+    /// Plane angle, degrees.
+    pub angle: Option<f64>,
+    /// Overlap, percent.
+    pub overlap: Option<f64>,
+    /// `left` or `right`.
+    pub side: Option<String>,
+    /// Pole diameter, m.
+    pub pole: Option<f64>,
+    /// Pole axis's lateral position, m.
+    pub pole_offset: Option<f64>,
+    /// Pendulum mass, kg.
+    pub pendulum: Option<f64>,
+    /// Speed: m/s, or text with a unit.
+    pub speed: Option<toml::Value>,
+}
+
+/// Why a striker's fields are not a striker.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum StrikerFieldError {
+    /// The speed.
+    #[error(transparent)]
+    Speed(#[from] bumpsim_io::speed::SpeedError),
+    /// The side.
+    #[error(transparent)]
+    Side(#[from] crate::striker::SideError),
+}
+
+impl StrikerFields {
+    /// The striker specification of these fields.
+    ///
+    /// ```
+    /// use bumpsim_planar::presets::StrikerFields;
+    /// let fields: StrikerFields = toml::from_str("overlap = 40.0\nside = \"left\"\nspeed = \"15 km/h\"").unwrap();
+    /// let (striker, _) = fields.spec().unwrap().striker().unwrap();
+    /// assert!((striker.motion.speed() - 15.0 / 3.6).abs() < 1e-12);
+    /// ```
+    pub fn spec(&self) -> Result<StrikerSpec, StrikerFieldError> {
+        let speed = self
+            .speed
+            .as_ref()
+            .map(bumpsim_io::speed::speed_value)
+            .transpose()?;
+        let side = self.side.as_deref().map(str::parse).transpose()?;
+        Ok(StrikerSpec {
+            case: self.case.clone(),
+            angle: self.angle,
+            overlap: self.overlap,
+            side,
+            pole: self.pole,
+            pole_offset: self.pole_offset,
+            pendulum: self.pendulum,
+            speed,
+        })
+    }
+}
+
 /// A striker as a test protocol, a command line or a script names it: a
 /// preset, or a plane (degrees, percent, side) or a pole (diameter and
 /// lateral position, m), carried by a pendulum (kg) or fixed, at a speed

@@ -27,7 +27,7 @@
 
 use crate::car::{PlanarCar, PlanarError};
 use crate::drive::Sensor;
-use crate::presets::StrikerSpec;
+use crate::presets::{StrikerFieldError, StrikerFields, StrikerSpec};
 use crate::synth::{Chain, Recorded, record};
 use serde::Deserialize;
 use std::fmt::Write;
@@ -124,7 +124,7 @@ pub enum SeriesError {
         /// The test.
         test: String,
         /// What is wrong with it.
-        source: bumpsim_impact::synth::SpeedError,
+        source: bumpsim_io::speed::SpeedError,
     },
     /// A test's side.
     #[error("test '{test}': {source}")]
@@ -225,36 +225,23 @@ fn names(tests: &[TestFile]) -> Result<(), SeriesError> {
     Ok(())
 }
 
-/// The striker of a `[[test]]`: its case or geometry, side and speed.
+/// The striker of a `[[test]]`: its case or geometry, side and speed
+/// (the fields every input file shares, [`StrikerFields`]).
 fn striker_spec(t: &TestFile) -> Result<StrikerSpec, SeriesError> {
-    let test = || t.name.clone();
-    let speed = t
-        .speed
-        .as_ref()
-        .map(bumpsim_impact::synth::speed_value)
-        .transpose()
-        .map_err(|source| SeriesError::Speed {
-            test: test(),
-            source,
-        })?;
-    let side = t
-        .side
-        .as_deref()
-        .map(str::parse)
-        .transpose()
-        .map_err(|source| SeriesError::Side {
-            test: test(),
-            source,
-        })?;
-    Ok(StrikerSpec {
+    let fields = StrikerFields {
         case: t.case.clone(),
         angle: t.angle,
         overlap: t.overlap,
-        side,
+        side: t.side.clone(),
         pole: t.pole,
         pole_offset: t.pole_offset,
         pendulum: t.pendulum,
-        speed,
+        speed: t.speed.clone(),
+    };
+    let test = t.name.clone();
+    fields.spec().map_err(|e| match e {
+        StrikerFieldError::Speed(source) => SeriesError::Speed { test, source },
+        StrikerFieldError::Side(source) => SeriesError::Side { test, source },
     })
 }
 

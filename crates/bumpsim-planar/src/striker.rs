@@ -177,6 +177,15 @@ pub enum Motion {
     },
 }
 
+impl Motion {
+    /// The closing speed, m/s (the car's or the pendulum's).
+    pub fn speed(&self) -> f64 {
+        match *self {
+            Motion::Fixed { speed } | Motion::Pendulum { speed, .. } => speed,
+        }
+    }
+}
+
 /// A face and its motion.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Striker {

@@ -34,9 +34,10 @@ use crate::car::{PlanarCar, PlanarError};
 use crate::cases::{Placed, TestChannels};
 use crate::drive::Sensor;
 use crate::identify::{PlanarCase, Setup};
+use crate::presets::StrikerFields;
 use bumpsim_core::channel::Channel;
 use bumpsim_core::names::check_names;
-use bumpsim_core::units::Dimension;
+use bumpsim_core::units::{Dimension, parse_quantity};
 use bumpsim_io::speed::{SpeedError, speed_value};
 use bumpsim_signal::loader::{ChannelSource, Loader};
 use bumpsim_signal::process::Resampling;
@@ -59,6 +60,9 @@ struct ModelFile {
     spread: Option<f64>,
     #[serde(default)]
     friction: bool,
+    #[serde(default)]
+    cornering: bool,
+    mass: Option<toml::Value>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -69,6 +73,7 @@ struct CaseFile {
     cfc: Option<f64>,
     #[serde(default)]
     validate: bool,
+    striker: Option<StrikerFields>,
     forces: Vec<ForceRef>,
     sensors: Vec<SensorRef>,
 }
@@ -78,9 +83,19 @@ struct CaseFile {
 struct ForceRef {
     path: PathBuf,
     channel: String,
-    lateral: f64,
+    lateral: Lateral,
     direction: [f64; 2],
     anchor: Option<[f64; 2]>,
+    cell: Option<f64>,
+}
+
+/// A force's lateral position: m, or `"estimate"` (a parameter of the
+/// identification: a single total force whose line of action no cell measured).
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+enum Lateral {
+    At(f64),
+    Word(String),
 }
 
 #[derive(Debug, Deserialize)]
@@ -136,11 +151,19 @@ impl PlanarStudy {
         let base = path.parent().unwrap_or(Path::new("."));
         let template = PlanarCar::read(&base.join(&file.model.planar))?;
         let defaults = Setup::new(template);
+        let mass = file
+            .model
+            .mass
+            .as_ref()
+            .map(|m| test_sheet_mass(m).ok_or_else(|| error(format!("[model] mass = {m}: expected a positive mass in kg or text such as \"1350 kg\""))))
+            .transpose()?;
         let setup = Setup {
             starts: file.model.starts.unwrap_or(defaults.starts),
             seed: file.model.seed.unwrap_or(defaults.seed),
             spread: file.model.spread.unwrap_or(defaults.spread),
             friction: file.model.friction,
+            cornering: file.model.cornering,
+            mass,
             ..defaults
         };
         let mut loader = Loader::new();
@@ -187,6 +210,17 @@ impl PlanarStudy {
     }
 }
 
+/// The test sheet's mass: kg, or text with a unit (`"1350 kg"`), positive.
+fn test_sheet_mass(value: &toml::Value) -> Option<f64> {
+    let mass = match value {
+        toml::Value::Float(v) => *v,
+        toml::Value::Integer(v) => *v as f64,
+        toml::Value::String(s) => parse_quantity(s, Dimension::Mass).ok()?,
+        _ => return None,
+    };
+    (mass.is_finite() && mass > 0.0).then_some(mass)
+}
+
 fn load_case(
     spec: &CaseFile,
     base: &Path,
@@ -221,11 +255,23 @@ fn load_case(
         };
     let mut forces = Vec::new();
     for f in &spec.forces {
+        let (lateral, estimated) = match &f.lateral {
+            Lateral::At(y) => (*y, false),
+            Lateral::Word(w) if w == "estimate" => (0.0, true),
+            Lateral::Word(w) => {
+                return Err(error(format!(
+                    "force {}: lateral = {w:?}: expected a position in m or \"estimate\"",
+                    f.channel
+                )));
+            }
+        };
         forces.push(Placed {
             channel: channel(&f.path, &f.channel, Dimension::Force)?,
-            lateral: f.lateral,
+            lateral,
             direction: f.direction,
             anchor: f.anchor,
+            estimated,
+            cell: f.cell,
         });
     }
     let (mut sensors, mut positions) = (Vec::new(), Vec::new());
@@ -243,7 +289,19 @@ fn load_case(
         sensors.push(channel(&s.path, &s.channel, Dimension::Acceleration)?);
         positions.push(place);
     }
-    TestChannels {
+    let striker = spec
+        .striker
+        .as_ref()
+        .map(|f| {
+            let (striker, _) = f
+                .spec()
+                .map_err(|e| error(format!("striker: {e}")))?
+                .striker()
+                .map_err(|e| error(format!("striker: {e}")))?;
+            Ok::<_, PlanarError>(striker)
+        })
+        .transpose()?;
+    let (mut case, resampled) = TestChannels {
         name: spec.name.clone(),
         forces,
         sensors,
@@ -251,5 +309,7 @@ fn load_case(
         speed,
         cfc: spec.cfc,
     }
-    .case()
+    .case()?;
+    case.striker = striker;
+    Ok((case, resampled))
 }

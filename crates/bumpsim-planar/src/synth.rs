@@ -7,7 +7,7 @@
 //! histories every `T/10` (T the sample interval). The measurement chain,
 //! as the 1-D pendulum series of `bumpsim_impact::synth`:
 //! - a fixed plane (rigid barrier) carries one load cell per bumper segment
-//!   (`B0LCWL01jj00FOXP`, j = 1 at the right): a load-cell wall whose cells
+//!   (`B0LOMA01jj00FOXP`, j = 1 at the right): a load-cell wall whose cells
 //!   are as wide as the segments and face them at first contact (the car's
 //!   lateral drift, millimetres, is neglected); it measures the force normal
 //!   to the wall;
@@ -16,8 +16,8 @@
 //!   action passes through the pole's axis (normal forces on a circle do);
 //! - a flat pendulum's load cell (`P0IMPA000000FOXP`) measures the whole
 //!   contact force, placed at the centre of the overlap;
-//! - accelerometers on the sills at (ξ, ±η) (`10SILLLE0000ACXP`,
-//!   `10SILLRI0000ACXP`) and, when the car has chains, on the side members'
+//! - accelerometers on the sills at (ξ, ±η) (`10SILBLE0000ACXP`,
+//!   `10SILBRI0000ACXP`) and, when the car has chains, on the side members'
 //!   front ends (`10SIMELE0000ACXP`, `10SIMERI0000ACXP`, as in the 1-D
 //!   series) measure the acceleration along the body x axis (second
 //!   differences of the sensor's world position, projected on the body
@@ -108,13 +108,38 @@ pub struct Recorded {
     pub car_speed: f64,
     /// The striker's speed, m/s, and mass, kg (pendulum tests).
     pub striker: (f64, Option<f64>),
+    /// The car's mass, kg.
+    pub car_mass: f64,
+}
+
+impl Recorded {
+    /// The ISO-MME test header: the title, the car as test object 1 (its
+    /// speed before contact, m/s, and mass, kg, as the `1…` codes number
+    /// it) and a pendulum as test object 2 (its speed and mass).
+    pub fn test_header(&self) -> Vec<(String, String)> {
+        use bumpsim_io::test_data::iso_header::{TestObject, test_objects_header};
+        let title = format!("{}: synthetic planar test (bumpsim synth)", self.name);
+        let mut objects = vec![TestObject {
+            name: "car".into(),
+            speed: Some(self.car_speed),
+            mass: Some(self.car_mass),
+        }];
+        if let (speed, Some(mass)) = self.striker {
+            objects.push(TestObject {
+                name: "pendulum".into(),
+                speed: Some(speed),
+                mass: Some(mass),
+            });
+        }
+        test_objects_header(&title, &objects)
+    }
 }
 
 /// Codes and names of the accelerometers: sills left and right, side
 /// members left and right.
 pub const SENSOR_CODES: [(&str, &str); 4] = [
-    ("10SILLLE0000ACXP", "Sill left X"),
-    ("10SILLRI0000ACXP", "Sill right X"),
+    ("10SILBLE0000ACXP", "Sill left X"),
+    ("10SILBRI0000ACXP", "Sill right X"),
     ("10SIMELE0000ACXP", "Side member left X"),
     ("10SIMERI0000ACXP", "Side member right X"),
 ];
@@ -247,7 +272,7 @@ fn forces(
             .zip(&r.segment_centres)
             .enumerate()
             .map(|(j, (force, &lateral))| {
-                let code = format!("B0LCWL01{:02}00FOXP", j + 1);
+                let code = format!("B0LOMA01{:02}00FOXP", j + 1);
                 let name = format!("Load-cell wall row 1 column {} X", j + 1);
                 (
                     code.clone(),
@@ -376,7 +401,11 @@ pub fn record(
     let mut loads = Vec::new();
     for (code, title, force, spec) in forces(car, striker, &r)? {
         let values = sample(padded(&force), chain.measurement.force_noise, 0.0);
-        channels.push(channel(&code, &title, Dimension::Force, values, "kN")?);
+        let mut load = channel(&code, &title, Dimension::Force, values, "kN")?;
+        if code.starts_with('P') {
+            load.set_meta("Test object number", "2"); // the pendulum (see `test_header`)
+        }
+        channels.push(load);
         loads.push(spec);
     }
     for (k, (sensor, (code, title))) in sensors.iter().zip(SENSOR_CODES).enumerate() {
@@ -399,5 +428,6 @@ pub fn record(
         sensors,
         car_speed,
         striker: striker_motion,
+        car_mass: car.total_mass(),
     })
 }

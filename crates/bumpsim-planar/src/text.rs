@@ -243,6 +243,29 @@ pub fn identification_summary(
     s
 }
 
+/// The forward predictions' lines: each test's fit per channel and the
+/// simulation's time zero in the test's time; empty without any.
+pub fn forward_lines(forward: &[crate::forward::Forward]) -> String {
+    if forward.is_empty() {
+        return String::new();
+    }
+    let mut s = String::from("  forward prediction (car, bumper and striker; no measured force)\n");
+    for f in forward {
+        let fits: Vec<String> = f
+            .channels
+            .iter()
+            .map(|c| format!("{} {:6.2} %", c.name, c.fit_percent))
+            .collect();
+        s += &format!(
+            "    {:<16} {}   (time zero {} ms)\n",
+            f.case,
+            fits.join("   "),
+            bumpsim_core::units::format_number(1e3 * f.shift, 3)
+        );
+    }
+    s
+}
+
 /// Every warning of a planar identification: the result's, then the
 /// negative fits of the validation cases.
 pub fn identification_warnings(

@@ -512,5 +512,7 @@ fn a_stiff_beam_that_chatters_off_the_face_still_completes_the_impact() {
 mod export;
 #[path = "planar/identification.rs"]
 mod identification;
+#[path = "planar/independent.rs"]
+mod independent;
 #[path = "planar/regression.rs"]
 mod regression;

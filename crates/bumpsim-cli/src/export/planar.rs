@@ -166,6 +166,7 @@ fn forces(args: &PlanarArgs) -> Result<Option<Forces>> {
     let load = Load {
         lateral,
         anchor: None,
+        cell: None,
         direction: [x, y],
         force: series.values().to_vec(),
     };

@@ -42,29 +42,29 @@
 //! needed (module `reduce`), in the same words as the 1-D chain's.
 
 mod objective;
+mod plausible;
 mod predict;
 mod reduce;
+mod unknowns;
 
 use crate::car::{Body, PlanarCar, PlanarError, SideChain, parameter};
 use crate::drive::{Drive, Sensor};
 use bumpsim_core::units::Dimension;
-use bumpsim_estimate::bounds::Bounds;
 use bumpsim_estimate::lm::{self, LeastSquares};
 use bumpsim_estimate::multistart::{self, Search, Searched, Starts};
 use bumpsim_estimate::observer::Observer;
-use bumpsim_estimate::search::{Draws, exploring};
+use bumpsim_estimate::search::exploring;
 use bumpsim_estimate::uncertainty::{Correlation, Estimated, Parameter, Uncertainty};
 use nalgebra::DMatrix;
 use objective::Objective;
 use serde::Serialize;
 
+pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
+pub use unknowns::{LINE_MARGIN, REACH, Unknowns};
 
 /// The reduced car, when a chain link is undetermined or not needed.
 pub type Reduction = bumpsim_estimate::reduce::Reduction<PlanarCar>;
-
-/// Each parameter is searched within this factor of its start.
-pub const REACH: f64 = 1000.0;
 
 /// One load case: the replay and the measured sensor displacements.
 #[derive(Debug, Clone, PartialEq)]
@@ -81,6 +81,13 @@ pub struct PlanarCase {
     pub measured: Vec<Vec<f64>>,
     /// Samples fitted, first and last (inclusive).
     pub window: (usize, usize),
+    /// The loads (indices into `drive.loads`) whose lateral position is
+    /// estimated (their `lateral` is the start): a single total force whose
+    /// line of action no cell measured.
+    pub estimated: Vec<usize>,
+    /// The test's striker as the lab reports it (face, motion, speed), for
+    /// the forward prediction of the whole test ([`crate::forward`]).
+    pub striker: Option<crate::striker::Striker>,
 }
 
 /// How to identify.
@@ -96,6 +103,11 @@ pub struct Setup {
     pub spread: f64,
     /// Estimate the lateral friction coefficient μ_y of both axles (else the template's).
     pub friction: bool,
+    /// Estimate the cornering stiffness C_α of every tyre (else the template's).
+    pub cornering: bool,
+    /// The test sheet's total mass of the car, kg: the identified car's is
+    /// checked against it ([`crate::identify`]'s plausibility).
+    pub mass: Option<f64>,
 }
 
 impl Setup {
@@ -107,6 +119,8 @@ impl Setup {
             seed: 1,
             spread: 10.0,
             friction: false,
+            cornering: false,
+            mass: None,
         }
     }
 }
@@ -136,7 +150,7 @@ pub struct PlanarIdentification {
     /// The identified car (the template's geometry, beam and tyres).
     #[serde(serialize_with = "car_parts")]
     pub car: PlanarCar,
-    /// The estimates, in the order of [`names`].
+    /// The estimates, in the order of [`Unknowns::names`].
     pub parameters: Vec<Estimate>,
     /// Objective F at the optimum, m².
     pub objective: f64,
@@ -210,97 +224,25 @@ fn car_parts<S: serde::Serializer, C: std::borrow::Borrow<PlanarCar>>(
     .serialize(serializer)
 }
 
-/// The parameters' names and units for `template` (friction last, if estimated).
-pub fn names(template: &PlanarCar, friction: bool) -> Vec<(String, &'static str)> {
-    let mut out = vec![
-        ("body.mass".to_string(), "kg"),
-        ("body.yaw_inertia".to_string(), "kg·m²"),
-    ];
-    for (side, chain) in [("left", template.left()), ("right", template.right())] {
-        for (what, unit) in [("masses", "kg"), ("dampers", "N·s/m"), ("springs", "N/m")] {
-            for i in 0..chain.masses.len() {
-                out.push((format!("{side}.{what}[{i}]"), unit));
-            }
-        }
-    }
-    if friction {
-        out.push(("tyres.mu_lateral".to_string(), "-"));
-    }
-    out
-}
-
 /// The parameters of `result` as the estimation layer names and prints them.
 pub fn parameters_of(result: &PlanarIdentification) -> Vec<Parameter> {
-    let friction = result
+    result
         .parameters
         .iter()
-        .any(|p| p.name == "tyres.mu_lateral");
-    parameters(&result.car, friction)
-}
-
-/// The parameters of the estimation layer, in the order of [`names`].
-fn parameters(template: &PlanarCar, friction: bool) -> Vec<Parameter> {
-    names(template, friction)
-        .into_iter()
-        .map(|(name, unit)| match unit {
-            "kg" => Parameter::new(name, Dimension::Mass),
-            "N·s/m" => Parameter::new(name, Dimension::Damping),
-            "N/m" => Parameter::new(name, Dimension::Stiffness),
-            symbol => Parameter::with_symbol(name, symbol),
+        .map(|e| match e.unit {
+            "kg" => Parameter::new(e.name.clone(), Dimension::Mass),
+            "N·s/m" => Parameter::new(e.name.clone(), Dimension::Damping),
+            "N/m" => Parameter::new(e.name.clone(), Dimension::Stiffness),
+            "m" => Parameter::new(e.name.clone(), Dimension::Length).linear(f64::INFINITY),
+            symbol => Parameter::with_symbol(e.name.clone(), symbol),
         })
         .collect()
-}
-
-/// The template's parameter values, in the order of [`names`].
-fn values(car: &PlanarCar, friction: bool) -> Vec<f64> {
-    let mut out = vec![car.body().mass, car.body().yaw_inertia];
-    for chain in [car.left(), car.right()] {
-        out.extend(
-            [&chain.masses, &chain.dampers, &chain.springs]
-                .into_iter()
-                .flatten(),
-        );
-    }
-    if friction {
-        out.push(car.tyres().front.mu_lateral);
-    }
-    out
-}
-
-/// The car with parameters `theta` (SI, order of [`names`]).
-pub fn car_with(
-    template: &PlanarCar,
-    theta: &[f64],
-    friction: bool,
-) -> Result<PlanarCar, PlanarError> {
-    let mut next = theta.iter().copied();
-    let mut take = |n: usize| next.by_ref().take(n).collect::<Vec<f64>>();
-    let body = Body {
-        mass: take(1)[0],
-        yaw_inertia: take(1)[0],
-        ..*template.body()
-    };
-    let mut chain = |n: usize| SideChain {
-        masses: take(n),
-        dampers: take(n),
-        springs: take(n),
-    };
-    let left = chain(template.left().masses.len());
-    let right = chain(template.right().masses.len());
-    let mut tyres = *template.tyres();
-    if friction {
-        let mu = take(1)[0];
-        tyres.front.mu_lateral = mu;
-        tyres.rear.mu_lateral = mu;
-    }
-    PlanarCar::new(body, left, right, template.beam().clone(), tyres)
-        .map(|c| c.with_name(template.name().map(str::to_string)))
 }
 
 /// Most starts of one planar identification.
 pub const MAX_STARTS: usize = 10_000;
 
-fn check(cases: &[PlanarCase], setup: &Setup) -> Result<Vec<f64>, PlanarError> {
+fn check(cases: &[PlanarCase], setup: &Setup) -> Result<Unknowns, PlanarError> {
     let setting =
         |name: &str, value: f64, unit, expected: &str| Err(parameter(name, value, unit, expected));
     if cases.is_empty() {
@@ -317,6 +259,9 @@ fn check(cases: &[PlanarCase], setup: &Setup) -> Result<Vec<f64>, PlanarError> {
     if !(setup.spread.is_finite() && setup.spread > 1.0) {
         return setting("spread", setup.spread, "1", "a finite factor above 1");
     }
+    if let Some(m) = setup.mass.filter(|m| !(m.is_finite() && *m > 0.0)) {
+        return setting("mass", m, "kg", "the test sheet's mass must be positive");
+    }
     for case in cases {
         check_case(case)?;
         crate::drive::validate(&setup.template, &case.drive).map_err(|e| PlanarError::Case {
@@ -324,9 +269,11 @@ fn check(cases: &[PlanarCase], setup: &Setup) -> Result<Vec<f64>, PlanarError> {
             message: e.to_string(),
         })?;
     }
-    let start = values(&setup.template, setup.friction);
-    let names = names(&setup.template, setup.friction);
-    for ((name, unit), value) in names.iter().zip(&start) {
+    let unknowns = Unknowns::new(&setup.template, setup.friction, setup.cornering, cases);
+    let car_parameters =
+        unknowns.names().len() - cases.iter().map(|c| c.estimated.len()).sum::<usize>();
+    let start = unknowns.start();
+    for ((name, unit), value) in unknowns.names().iter().zip(&start).take(car_parameters) {
         if !(value.is_finite() && *value > 0.0) {
             return setting(
                 name,
@@ -336,7 +283,7 @@ fn check(cases: &[PlanarCase], setup: &Setup) -> Result<Vec<f64>, PlanarError> {
             );
         }
     }
-    Ok(start)
+    Ok(unknowns)
 }
 
 /// Lateral spacing η_L − η_R of the first two sensors when both are body
@@ -407,16 +354,16 @@ pub fn identify(
     observer: &dyn Observer,
 ) -> Result<PlanarIdentification, PlanarError> {
     let clock = std::time::Instant::now();
-    let theta = check(cases, setup)?;
-    let start: Vec<f64> = theta.iter().map(|v| v.ln()).collect();
-    let (lower, upper) = Bounds::around(&theta, REACH).log_free();
-    let objective = Objective::of(cases, setup, start.len())?;
+    let unknowns = check(cases, setup)?;
+    let start = unknowns.search(&unknowns.start());
+    let (lower, upper) = unknowns.bounds(&unknowns.start());
+    let objective = Objective::new(cases, &unknowns)?;
     let solver = solver();
     let first = exploring(setup.starts, 1);
     let points = (0..first)
         .map(|k| match k {
             0 => start.clone(),
-            k => Draws::new(setup.seed, k as u64).around(&start, setup.spread),
+            k => unknowns.draw(&start, setup.spread, setup.seed, k as u64),
         })
         .collect();
     let search = Search {
@@ -459,11 +406,12 @@ fn summarise(
 ) -> Result<PlanarIdentification, PlanarError> {
     let best = found.best();
     let p = &best.parameters;
-    let theta: Vec<f64> = p.iter().copied().map(f64::exp).collect();
-    let car = car_with(&setup.template, &theta, setup.friction)?;
+    let unknowns = objective.unknowns();
+    let theta = unknowns.theta(p);
+    let car = unknowns.car(&theta)?;
     let mut r = vec![0.0; objective.residual_count()];
     let mut jacobian = DMatrix::zeros(r.len(), p.len());
-    let parameters = parameters(&setup.template, setup.friction);
+    let parameters = unknowns.parameters();
     let free: Vec<usize> = (0..p.len()).collect();
     // a Jacobian that cannot be evaluated leaves every parameter undetermined
     let evaluated = objective.evaluate(p, &mut r, Some(&mut jacobian));
@@ -485,11 +433,15 @@ fn summarise(
     };
     let fits = cases
         .iter()
-        .map(|case| predict(&car, case).map(|p| p.fit))
+        .enumerate()
+        .map(|(i, case)| {
+            let located = unknowns.case(&theta, i, case);
+            predict(&car, located.as_ref().unwrap_or(case)).map(|p| p.fit)
+        })
         .collect::<Result<Vec<_>, _>>()?;
     let negative = fits.iter().flat_map(CaseFit::warnings);
     let warnings = bumpsim_estimate::warnings(&uncertainty, &found.starts, best, negative);
-    let estimates = estimates(setup, &theta, &uncertainty);
+    let estimates = estimates(unknowns, &theta, &uncertainty);
     let mut result = PlanarIdentification {
         car,
         parameters: estimates,
@@ -503,16 +455,19 @@ fn summarise(
         warnings,
         reduction: None,
     };
-    result.reduction = advice(cases, setup, &result);
+    let checks = plausible::checks(&result, setup);
+    result.warnings.extend(checks);
+    result.reduction = advice(cases, unknowns, &result);
     if let Some(r) = &result.reduction {
         result.warnings.push(r.statement.clone());
     }
     Ok(result)
 }
 
-/// The estimates of the result, in the order of [`names`].
-fn estimates(setup: &Setup, theta: &[f64], u: &Uncertainty) -> Vec<Estimate> {
-    names(&setup.template, setup.friction)
+/// The estimates of the result, in the order of [`Unknowns::names`].
+fn estimates(unknowns: &Unknowns, theta: &[f64], u: &Uncertainty) -> Vec<Estimate> {
+    unknowns
+        .names()
         .into_iter()
         .enumerate()
         .map(|(i, (name, unit))| Estimate {
@@ -527,8 +482,12 @@ fn estimates(setup: &Setup, theta: &[f64], u: &Uncertainty) -> Vec<Estimate> {
 }
 
 /// The reduced car that fits as well (the layer's advice), if any.
-fn advice(cases: &[PlanarCase], setup: &Setup, result: &PlanarIdentification) -> Option<Reduction> {
-    let parameters = parameters(&setup.template, setup.friction);
+fn advice(
+    cases: &[PlanarCase],
+    unknowns: &Unknowns,
+    result: &PlanarIdentification,
+) -> Option<Reduction> {
+    let parameters = unknowns.parameters();
     let theta: Vec<f64> = result.parameters.iter().map(|e| e.value).collect();
     let residuals = cases
         .iter()
@@ -541,10 +500,11 @@ fn advice(cases: &[PlanarCase], setup: &Setup, result: &PlanarIdentification) ->
         objective: result.objective,
         residuals,
     };
+    let located = unknowns.located(&theta);
     let car = reduce::Car {
         cases,
         car: &result.car,
-        setup,
+        unknowns: &located,
         solver: solver(),
     };
     bumpsim_estimate::reduce::suggest(&car, &full)
@@ -580,6 +540,7 @@ mod tests {
         let load = Load {
             lateral,
             anchor: None,
+            cell: None,
             direction: [-1.0, 0.0],
             force,
         };
@@ -601,23 +562,21 @@ mod tests {
             drive,
             measured: replay.sensor_reading,
             window: (0, 399),
+            estimated: Vec::new(),
+            striker: None,
         }
     }
 
     #[test]
     fn noise_free_data_of_the_model_are_fitted_exactly_and_the_truth_found() {
         let truth = car();
-        let mut start = Setup::new(
-            car_with(
-                &truth,
-                &[1000.0, 2500.0, 6.0, 1500.0, 1.2e6, 6.0, 1500.0, 1.2e6],
-                false,
-            )
-            .unwrap(),
-        );
+        let cases = [case(&truth, 0.4), case(&truth, -0.2)];
+        let unknowns = Unknowns::new(&truth, false, false, &cases);
+        let guess = [1000.0, 2500.0, 6.0, 1500.0, 1.2e6, 6.0, 1500.0, 1.2e6];
+        let mut start = Setup::new(unknowns.car(&guess).unwrap());
         start.starts = 2;
-        let r = identify(&[case(&truth, 0.4), case(&truth, -0.2)], &start, &|| {}).unwrap();
-        let truth_values = values(&truth, false);
+        let r = identify(&cases, &start, &|| {}).unwrap();
+        let truth_values = unknowns.start();
         for (p, t) in r.parameters.iter().zip(&truth_values) {
             assert!(
                 (p.value - t).abs() < 1e-3 * t,

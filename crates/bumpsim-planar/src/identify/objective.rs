@@ -6,8 +6,8 @@
 //! recursion, and its steps are fixed per template car, so the objective
 //! does not jump where a trial car's own step would change.
 
-use super::{PlanarCase, Setup, car_with};
-use crate::car::{PlanarCar, PlanarError};
+use super::{PlanarCase, Unknowns};
+use crate::car::PlanarError;
 use crate::drive::{Driven, drive_substeps, substeps};
 use bumpsim_estimate::lm::LeastSquares;
 use bumpsim_estimate::uncertainty::Series;
@@ -18,10 +18,8 @@ use rayon::prelude::*;
 #[derive(Debug, Clone)]
 pub(crate) struct Objective<'a> {
     cases: &'a [PlanarCase],
-    template: &'a PlanarCar,
-    friction: bool,
+    unknowns: &'a Unknowns,
     count: usize,
-    parameters: usize,
     /// Integration steps per sample of each case.
     substeps: Vec<usize>,
 }
@@ -32,9 +30,7 @@ impl<'a> Objective<'a> {
     /// trial cars stiffer or lighter than the start.
     pub fn new(
         cases: &'a [PlanarCase],
-        template: &'a PlanarCar,
-        friction: bool,
-        parameters: usize,
+        unknowns: &'a Unknowns,
     ) -> Result<Objective<'a>, PlanarError> {
         let count = cases
             .iter()
@@ -42,25 +38,19 @@ impl<'a> Objective<'a> {
             .sum();
         let substeps = cases
             .iter()
-            .map(|c| substeps(template, c.drive.step, 0.05))
+            .map(|c| substeps(unknowns.template(), c.drive.step, 0.05))
             .collect::<Result<_, _>>()?;
         Ok(Objective {
             cases,
-            template,
-            friction,
+            unknowns,
             count,
-            parameters,
             substeps,
         })
     }
 
-    /// The problem of `setup`.
-    pub fn of(
-        cases: &'a [PlanarCase],
-        setup: &'a Setup,
-        parameters: usize,
-    ) -> Result<Objective<'a>, PlanarError> {
-        Objective::new(cases, &setup.template, setup.friction, parameters)
+    /// What it estimates.
+    pub fn unknowns(&self) -> &'a Unknowns {
+        self.unknowns
     }
 
     /// The residual series: per case and sensor, interleaved by sensor.
@@ -80,12 +70,17 @@ impl<'a> Objective<'a> {
     }
 
     fn replays(&self, p: &[f64]) -> Option<Vec<Driven>> {
-        let theta: Vec<f64> = p.iter().copied().map(f64::exp).collect();
-        let car = car_with(self.template, &theta, self.friction).ok()?;
+        let theta = self.unknowns.theta(p);
+        let car = self.unknowns.car(&theta).ok()?;
         self.cases
             .iter()
             .zip(&self.substeps)
-            .map(|(c, &n)| drive_substeps(&car, &c.drive, n).ok())
+            .enumerate()
+            .map(|(i, (c, &n))| {
+                let located = self.unknowns.case(&theta, i, c);
+                let drive = &located.as_ref().unwrap_or(c).drive;
+                drive_substeps(&car, drive, n).ok()
+            })
             .collect()
     }
 
@@ -112,7 +107,7 @@ impl LeastSquares for Objective<'_> {
     }
 
     fn parameter_count(&self) -> usize {
-        self.parameters
+        self.unknowns.names().len()
     }
 
     fn evaluate(&self, p: &[f64], r: &mut [f64], jacobian: Option<&mut DMatrix<f64>>) -> bool {

@@ -8,11 +8,10 @@
 //! is refitted from its merged start within a factor 1000 of it, like the
 //! full car.
 
+use super::Unknowns;
 use super::objective::Objective;
-use super::{Setup, car_with, names, values};
 use crate::car::{Body, PlanarCar, SideChain};
 use crate::drive::Sensor;
-use bumpsim_estimate::bounds::Bounds;
 use bumpsim_estimate::lm::{self, LeastSquares};
 use bumpsim_estimate::reduce::{Link, Merged, Reducible, refit};
 
@@ -23,11 +22,12 @@ struct ChainLink {
     index: usize,
 }
 
-/// The identified car, its cases and setup, as the layer reduces them.
+/// The identified car, its cases and unknowns, as the layer reduces them.
 pub(super) struct Car<'a> {
     pub cases: &'a [super::PlanarCase],
     pub car: &'a PlanarCar,
-    pub setup: &'a Setup,
+    /// What the identification estimated, its lines of action at their estimates.
+    pub unknowns: &'a Unknowns,
     pub solver: lm::Settings,
 }
 
@@ -107,21 +107,16 @@ impl Car<'_> {
     }
 }
 
-/// The problem of `cases` with the car `template`.
-fn problem<'b>(
-    cases: &'b [super::PlanarCase],
-    template: &'b PlanarCar,
-    friction: bool,
-) -> Option<Objective<'b>> {
-    let count = names(template, friction).len();
-    Objective::new(cases, template, friction, count).ok()
+/// The problem of `cases` with `unknowns`.
+fn problem<'b>(cases: &'b [super::PlanarCase], unknowns: &'b Unknowns) -> Option<Objective<'b>> {
+    Objective::new(cases, unknowns).ok()
 }
 
 impl Reducible for Car<'_> {
     type Model = PlanarCar;
 
     fn links(&self) -> Vec<Link> {
-        let names = names(self.car, self.setup.friction);
+        let names = self.unknowns.with_template(self.car).names();
         let spring = |l: ChainLink| {
             let (left, right) = (self.car.left().masses.len(), self.car.right().masses.len());
             match l.side {
@@ -151,11 +146,9 @@ impl Reducible for Car<'_> {
         let link = self.links_of()[j];
         let (car, _) = self.merged(link)?;
         let cases = self.retargeted(link);
-        let problem = problem(&cases, &car, self.setup.friction)?;
-        let p: Vec<f64> = values(&car, self.setup.friction)
-            .iter()
-            .map(|v| v.ln())
-            .collect();
+        let unknowns = self.unknowns.with_template(&car);
+        let problem = problem(&cases, &unknowns)?;
+        let p = unknowns.search(&unknowns.start());
         let mut r = vec![0.0; problem.residual_count()];
         problem
             .evaluate(&p, &mut r, None)
@@ -165,14 +158,14 @@ impl Reducible for Car<'_> {
     fn refit(&self, j: usize, target: f64) -> Option<Merged<PlanarCar>> {
         let link = self.links_of()[j];
         let (car, _) = self.merged(link)?;
-        let theta = values(&car, self.setup.friction);
-        let (lower, upper) = Bounds::around(&theta, super::REACH).log_free();
+        let unknowns = self.unknowns.with_template(&car);
+        let theta = unknowns.start();
+        let (lower, upper) = unknowns.bounds(&theta);
         let cases = self.retargeted(link);
-        let problem = problem(&cases, &car, self.setup.friction)?;
-        let start = theta.iter().map(|v| v.ln()).collect();
+        let problem = problem(&cases, &unknowns)?;
+        let start = unknowns.search(&theta);
         let outcome = refit(&|| &problem, start, (&lower, &upper), &self.solver, target)?;
-        let theta: Vec<f64> = outcome.parameters.iter().map(|p| p.exp()).collect();
-        let refitted = car_with(&car, &theta, self.setup.friction).ok()?;
+        let refitted = unknowns.car(&unknowns.theta(&outcome.parameters)).ok()?;
         let chain = [refitted.left(), refitted.right()][link.side];
         let mass = chain
             .masses

@@ -107,6 +107,7 @@ fn calculix_deck_in_ccx_matches_drive_within_one_percent_of_peak() {
         loads: vec![Load {
             lateral: 0.4,
             anchor: None,
+            cell: None,
             direction: [-1.0, 0.0],
             force: half_sine(1e3, 0.06, step, end),
         }],
@@ -119,12 +120,14 @@ fn calculix_deck_in_ccx_matches_drive_within_one_percent_of_peak() {
             Load {
                 lateral: -0.3,
                 anchor: None,
+                cell: None,
                 direction: [-angle.cos(), angle.sin()],
                 force: half_sine(1.5e3, 0.05, step, end),
             },
             Load {
                 lateral: 0.6,
                 anchor: None,
+                cell: None,
                 direction: [-1.0, 0.0],
                 force: half_sine(5e2, 0.08, step, end),
             },
@@ -172,6 +175,7 @@ fn planar_include(units: bumpsim_export::UnitSystem) -> String {
             loads: vec![Load {
                 lateral: 0.4,
                 anchor: None,
+                cell: None,
                 direction: [-0.9, 0.3],
                 force: half_sine(2e4, 0.02, 1e-3, 0.03),
             }],
@@ -280,6 +284,7 @@ fn planar_export_refuses_bad_options_naming_them() {
     let load = |force: Vec<f64>, direction| Load {
         lateral: 0.1,
         anchor: None,
+        cell: None,
         direction,
         force,
     };

@@ -164,6 +164,7 @@ fn planar_impacts_and_replays_are_as_recorded() {
     let pole = Load {
         lateral: 0.2,
         anchor: Some([2.1, 0.2]),
+        cell: None,
         direction: [-1.0, 0.05],
         force,
     };

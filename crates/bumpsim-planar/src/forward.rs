@@ -1,0 +1,205 @@
+//! The forward prediction of a whole test (issue 32): the car, its bumper
+//! and the test's striker simulated with no measured force
+//! ([`crate::simulate()`]), against what the lab measured.
+//!
+//! Compared channels, each over the test's contact window:
+//!
+//! - **force**: the magnitude of the striker's force on the car, simulated,
+//!   against `|Σ_k F_k d_k|` of the measured load cells (their directions);
+//! - **x-acceleration**: the mean of the two sills' body-x accelerations,
+//!   `A_x − ψ̇² ξ` (the yaw accelerations cancel), simulated from the CG's
+//!   velocity history, measured as the second difference of the sills'
+//!   integrated readings;
+//! - **yaw rate**: simulated, against the first difference of the yaw the
+//!   sills' readings give, `ψ = asin((x_R − x_L)/(η_L − η_R))`.
+//!
+//! Time zero: the lab's trigger rarely is first contact, and the simulation
+//! starts at first contact; both force histories' onsets (the first sample
+//! above [`ONSET`] of the peak) are aligned, unless the study gives the
+//! test's time zero. Each channel is scored by the fit % of the estimation
+//! layer ([`bumpsim_estimate::fit`]).
+
+use crate::car::{PlanarCar, PlanarError};
+use crate::drive::Sensor;
+use crate::identify::PlanarCase;
+use crate::simulate::{Settings, simulate};
+use serde::Serialize;
+
+/// A force history's onset: its first sample above this fraction of its peak.
+pub const ONSET: f64 = 0.02;
+
+/// One compared channel.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Channel {
+    /// `force`, `x-acceleration` or `yaw rate`.
+    pub name: &'static str,
+    /// Its SI unit.
+    pub unit: &'static str,
+    /// Fit % of the simulation against the measurement over the window.
+    pub fit_percent: f64,
+    /// Time of the test's samples, s.
+    #[serde(skip)]
+    pub time: Vec<f64>,
+    /// Simulated, at the test's samples (aligned).
+    #[serde(skip)]
+    pub simulated: Vec<f64>,
+    /// Measured.
+    #[serde(skip)]
+    pub measured: Vec<f64>,
+}
+
+/// The forward prediction of one test.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Forward {
+    /// The case.
+    pub case: String,
+    /// The simulation's time zero in the test's time, s (onsets aligned).
+    pub shift: f64,
+    /// The compared channels.
+    pub channels: Vec<Channel>,
+    /// The window compared, first and last sample.
+    pub window: (usize, usize),
+    /// The simulation's own warnings.
+    pub warnings: Vec<String>,
+}
+
+/// Simulates `case`'s striker against `car` and compares it with the case's
+/// measurement (see the module); an error when the case has no striker or
+/// no left and right sills.
+pub fn forward(car: &PlanarCar, case: &PlanarCase) -> Result<Forward, PlanarError> {
+    let missing = |expected: &str| PlanarError::Case {
+        case: case.name.clone(),
+        message: expected.into(),
+    };
+    let striker = case.striker.ok_or_else(|| {
+        missing("no striker: a forward prediction needs the test's `striker = { ... }` (docs/planar.md)")
+    })?;
+    let ([xi, eta_left], [_, eta_right]) = match case.drive.sensors.as_slice() {
+        [Sensor::Body(l), Sensor::Body(r), ..] => (*l, *r),
+        _ => {
+            return Err(missing(
+                "the first two sensors must be the left and right sills",
+            ));
+        }
+    };
+    let step = case.drive.step;
+    let samples = case.measured[0].len();
+    let settings = Settings {
+        output_step: step,
+        duration: step * samples as f64,
+        stop_after_contact: false,
+        ..Settings::default()
+    };
+    let r = simulate(car, &striker, &settings)?;
+    let measured = measured(case, eta_left - eta_right);
+    let onset = |f: &[f64]| {
+        let peak = f.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        f.iter().position(|v| v.abs() > ONSET * peak).unwrap_or(0)
+    };
+    let shift = (onset(&measured[0]) as f64 - onset(&r.force) as f64) * step;
+    let simulated = simulated(&r, xi);
+    let time: Vec<f64> = (0..samples).map(|k| k as f64 * step).collect();
+    let (a, b) = case.window;
+    let channels = [
+        ("force", "N"),
+        ("x-acceleration", "m/s²"),
+        ("yaw rate", "rad/s"),
+    ]
+    .into_iter()
+    .zip(measured)
+    .zip(simulated)
+    .map(|(((name, unit), measured), simulated)| {
+        let simulated: Vec<f64> = time
+            .iter()
+            .map(|&t| sample(&simulated, (t - shift) / step))
+            .collect();
+        Channel {
+            name,
+            unit,
+            fit_percent: bumpsim_estimate::fit::percent(&simulated[a..=b], &measured[a..=b]),
+            time: time.clone(),
+            simulated,
+            measured,
+        }
+    })
+    .collect();
+    Ok(Forward {
+        case: case.name.clone(),
+        shift,
+        channels,
+        window: (a, b),
+        warnings: r.warnings,
+    })
+}
+
+/// The measured force magnitude, sills' mean x-acceleration and yaw rate.
+fn measured(case: &PlanarCase, spacing: f64) -> [Vec<f64>; 3] {
+    let n = case.measured[0].len();
+    let step = case.drive.step;
+    let force: Vec<f64> = (0..n)
+        .map(|k| {
+            let (mut fx, mut fy) = (0.0, 0.0);
+            for load in &case.drive.loads {
+                let norm = load.direction[0].hypot(load.direction[1]);
+                fx += load.force[k] * load.direction[0] / norm;
+                fy += load.force[k] * load.direction[1] / norm;
+            }
+            fx.hypot(fy)
+        })
+        .collect();
+    let (left, right) = (&case.measured[0], &case.measured[1]);
+    let mean: Vec<f64> = left.iter().zip(right).map(|(l, r)| 0.5 * (l + r)).collect();
+    let yaw: Vec<f64> = left
+        .iter()
+        .zip(right)
+        .map(|(l, r)| ((r - l) / spacing).clamp(-1.0, 1.0).asin())
+        .collect();
+    let rate = difference(&yaw, step);
+    // the sills' mean reading is A_x − ψ̇² ξ integrated twice
+    [force, difference(&difference(&mean, step), step), rate]
+}
+
+/// The simulated force, x-acceleration and yaw rate at the result's samples.
+fn simulated(r: &crate::PlanarResult, xi: f64) -> [Vec<f64>; 3] {
+    let step = r.time.get(1).map_or(1.0, |t| t - r.time[0]);
+    let (ax, ay) = (
+        difference(&r.velocity_x, step),
+        difference(&r.velocity_y, step),
+    );
+    let along: Vec<f64> = (0..r.time.len())
+        .map(|k| {
+            let (sn, cs) = r.yaw[k].sin_cos();
+            ax[k] * cs + ay[k] * sn - r.yaw_rate[k] * r.yaw_rate[k] * xi
+        })
+        .collect();
+    [r.force.clone(), along, r.yaw_rate.clone()]
+}
+
+/// Central differences (one-sided at the ends).
+fn difference(v: &[f64], step: f64) -> Vec<f64> {
+    let n = v.len();
+    (0..n)
+        .map(|k| match (k, n) {
+            (_, 0 | 1) => 0.0,
+            (0, _) => (v[1] - v[0]) / step,
+            (k, n) if k + 1 == n => (v[k] - v[k - 1]) / step,
+            (k, _) => (v[k + 1] - v[k - 1]) / (2.0 * step),
+        })
+        .collect()
+}
+
+/// `v` at fractional sample `k` (linear; 0 before the first, the last after).
+fn sample(v: &[f64], k: f64) -> f64 {
+    if k <= 0.0 || v.is_empty() {
+        return if k < 0.0 {
+            0.0
+        } else {
+            v.first().copied().unwrap_or(0.0)
+        };
+    }
+    let i = k.floor() as usize;
+    match v.get(i + 1) {
+        Some(next) => v[i] + (k - i as f64) * (next - v[i]),
+        None => v.last().copied().unwrap_or(0.0),
+    }
+}

@@ -1,0 +1,255 @@
+//! What a planar identification estimates, in the estimation layer's terms:
+//! the body's mass and yaw inertia, every mass, damper and spring of the two
+//! side chains, optionally the tyres' lateral grip μ_y and cornering
+//! stiffness C_α (both axles alike), and the lateral position of every
+//! force whose line of action the study leaves to the data (a pendulum's
+//! single load cell: `lateral = "estimate"`).
+//!
+//! The car's parameters are positive and span decades: they are searched
+//! in `ln θ`, each within a factor [`REACH`] of its start. A line of
+//! action is a position (m, left positive) and may be negative: it is
+//! searched as is, within [`LINE_MARGIN`] beyond the bumper's ends, and
+//! counts as determined when its 95 % interval is at most a quarter of the
+//! bumper wide.
+
+use super::PlanarCase;
+use crate::car::{Body, PlanarCar, PlanarError, SideChain};
+use bumpsim_core::units::Dimension;
+use bumpsim_estimate::uncertainty::Parameter;
+
+/// Each car parameter is searched within this factor of its start.
+pub const REACH: f64 = 1000.0;
+
+/// A line of action is searched this far beyond the bumper's ends, m.
+pub const LINE_MARGIN: f64 = 0.25;
+
+/// A force whose lateral position is estimated.
+#[derive(Debug, Clone, PartialEq)]
+struct Line {
+    case: usize,
+    load: usize,
+    name: String,
+    start: f64,
+}
+
+/// The unknowns of one identification (see the module).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Unknowns {
+    template: PlanarCar,
+    friction: bool,
+    cornering: bool,
+    lines: Vec<Line>,
+}
+
+impl Unknowns {
+    /// The unknowns of `template` (its chains' sizes), with the grip and
+    /// the cornering stiffness when asked, and the estimated lines of
+    /// action of `cases`.
+    pub fn new(
+        template: &PlanarCar,
+        friction: bool,
+        cornering: bool,
+        cases: &[PlanarCase],
+    ) -> Unknowns {
+        let lines = cases
+            .iter()
+            .enumerate()
+            .flat_map(|(c, case)| {
+                case.estimated.iter().map(move |&k| Line {
+                    case: c,
+                    load: k,
+                    name: format!("case '{}' force[{k}].lateral", case.name),
+                    start: case.drive.loads[k].lateral,
+                })
+            })
+            .collect();
+        Unknowns {
+            template: template.clone(),
+            friction,
+            cornering,
+            lines,
+        }
+    }
+
+    /// The same unknowns of another template (a reduced car).
+    pub fn with_template(&self, template: &PlanarCar) -> Unknowns {
+        Unknowns {
+            template: template.clone(),
+            ..self.clone()
+        }
+    }
+
+    /// The same unknowns starting from `theta`'s lines of action (a refit
+    /// from an identified car).
+    pub fn located(&self, theta: &[f64]) -> Unknowns {
+        let cars = theta.len() - self.lines.len();
+        let mut out = self.clone();
+        for (line, &value) in out.lines.iter_mut().zip(&theta[cars..]) {
+            line.start = value;
+        }
+        out
+    }
+
+    /// The template car.
+    pub fn template(&self) -> &PlanarCar {
+        &self.template
+    }
+
+    /// Names and SI units, in order: body, left chain, right chain
+    /// (masses, dampers, springs), grip, cornering stiffness, lines.
+    pub fn names(&self) -> Vec<(String, &'static str)> {
+        let mut out = vec![
+            ("body.mass".to_string(), "kg"),
+            ("body.yaw_inertia".to_string(), "kg·m²"),
+        ];
+        let t = &self.template;
+        for (side, chain) in [("left", t.left()), ("right", t.right())] {
+            for (what, unit) in [("masses", "kg"), ("dampers", "N·s/m"), ("springs", "N/m")] {
+                for i in 0..chain.masses.len() {
+                    out.push((format!("{side}.{what}[{i}]"), unit));
+                }
+            }
+        }
+        if self.friction {
+            out.push(("tyres.mu_lateral".to_string(), "-"));
+        }
+        if self.cornering {
+            out.push(("tyres.cornering_stiffness".to_string(), "N/rad"));
+        }
+        out.extend(self.lines.iter().map(|l| (l.name.clone(), "m")));
+        out
+    }
+
+    /// The estimation layer's parameters (names, display units, scales).
+    pub fn parameters(&self) -> Vec<Parameter> {
+        let width = 0.25 * self.template.beam().width;
+        self.names()
+            .into_iter()
+            .map(|(name, unit)| match unit {
+                "kg" => Parameter::new(name, Dimension::Mass),
+                "N·s/m" => Parameter::new(name, Dimension::Damping),
+                "N/m" => Parameter::new(name, Dimension::Stiffness),
+                "m" => Parameter::new(name, Dimension::Length).linear(width),
+                symbol => Parameter::with_symbol(name, symbol),
+            })
+            .collect()
+    }
+
+    /// The start θ (SI): the template's values and the lines' given positions.
+    pub fn start(&self) -> Vec<f64> {
+        let car = &self.template;
+        let mut out = vec![car.body().mass, car.body().yaw_inertia];
+        for chain in [car.left(), car.right()] {
+            out.extend(
+                [&chain.masses, &chain.dampers, &chain.springs]
+                    .into_iter()
+                    .flatten(),
+            );
+        }
+        if self.friction {
+            out.push(car.tyres().front.mu_lateral);
+        }
+        if self.cornering {
+            out.push(car.tyres().front.cornering_stiffness);
+        }
+        out.extend(self.lines.iter().map(|l| l.start));
+        out
+    }
+
+    /// The search variables `p` of `theta`.
+    pub fn search(&self, theta: &[f64]) -> Vec<f64> {
+        self.parameters()
+            .iter()
+            .zip(theta)
+            .map(|(p, t)| p.search(*t))
+            .collect()
+    }
+
+    /// θ of the search variables `p`.
+    pub fn theta(&self, p: &[f64]) -> Vec<f64> {
+        let lines = self.lines.len();
+        let cars = p.len() - lines;
+        let mut out: Vec<f64> = p[..cars].iter().map(|v| v.exp()).collect();
+        out.extend_from_slice(&p[cars..]);
+        out
+    }
+
+    /// The search's bounds in `p`: a factor [`REACH`] around each car
+    /// parameter's start, the bumper's width and [`LINE_MARGIN`] for a line.
+    pub fn bounds(&self, start: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let reach = REACH.ln();
+        let edge = 0.5 * self.template.beam().width + LINE_MARGIN;
+        let cars = start.len() - self.lines.len();
+        let (mut lower, mut upper): (Vec<f64>, Vec<f64>) = start[..cars]
+            .iter()
+            .map(|t| (t.ln() - reach, t.ln() + reach))
+            .unzip();
+        lower.extend(std::iter::repeat_n(-edge, self.lines.len()));
+        upper.extend(std::iter::repeat_n(edge, self.lines.len()));
+        (lower, upper)
+    }
+
+    /// A random start within a factor `spread` of `start` (`p`) for the car,
+    /// anywhere on the bumper for a line ([`bumpsim_estimate::search::Draws`]).
+    pub fn draw(&self, start: &[f64], spread: f64, seed: u64, index: u64) -> Vec<f64> {
+        let mut draws = bumpsim_estimate::search::Draws::new(seed, index);
+        let cars = start.len() - self.lines.len();
+        let mut point = draws.around(&start[..cars], spread);
+        let half = 0.5 * self.template.beam().width;
+        point.extend(self.lines.iter().map(|_| half * (2.0 * draws.unit() - 1.0)));
+        point
+    }
+
+    /// The car of `theta` (the template's geometry, beam and the tyres'
+    /// other coefficients).
+    pub fn car(&self, theta: &[f64]) -> Result<PlanarCar, PlanarError> {
+        let t = &self.template;
+        let mut next = theta.iter().copied();
+        let mut take = |n: usize| next.by_ref().take(n).collect::<Vec<f64>>();
+        let body = Body {
+            mass: take(1)[0],
+            yaw_inertia: take(1)[0],
+            ..*t.body()
+        };
+        let mut chain = |n: usize| SideChain {
+            masses: take(n),
+            dampers: take(n),
+            springs: take(n),
+        };
+        let left = chain(t.left().masses.len());
+        let right = chain(t.right().masses.len());
+        let mut tyres = *t.tyres();
+        if self.friction {
+            let mu = take(1)[0];
+            tyres.front.mu_lateral = mu;
+            tyres.rear.mu_lateral = mu;
+        }
+        if self.cornering {
+            let c = take(1)[0];
+            tyres.front.cornering_stiffness = c;
+            tyres.rear.cornering_stiffness = c;
+        }
+        PlanarCar::new(body, left, right, t.beam().clone(), tyres)
+            .map(|c| c.with_name(t.name().map(str::to_string)))
+    }
+
+    /// `case` (index `index`) with the lines of action of `theta`, when it
+    /// has estimated ones.
+    pub fn case(&self, theta: &[f64], index: usize, case: &PlanarCase) -> Option<PlanarCase> {
+        let cars = theta.len() - self.lines.len();
+        let mine: Vec<(usize, f64)> = self
+            .lines
+            .iter()
+            .enumerate()
+            .filter(|(_, l)| l.case == index)
+            .map(|(j, l)| (l.load, theta[cars + j]))
+            .collect();
+        (!mine.is_empty()).then(|| {
+            let mut case = case.clone();
+            for (load, lateral) in mine {
+                case.drive.loads[load].lateral = lateral;
+            }
+            case
+        })
+    }
+}

@@ -1,0 +1,126 @@
+//! Issue 32's acceptance: the planar car identified from an independent
+//! asymmetric series predicts the tests it has not seen.
+//!
+//! The series is written by tests/peers/planar_independent.py, a model of
+//! another family (progressive side-member springs on guides whose
+//! reactions are solved for, a rigid beam on 16 foam strips with
+//! bottoming, Magic-Formula tyres with transient slip, RK4): a flat
+//! pendulum, a centred pole and a 10° wall with four load cells to train
+//! on; a 40 % offset at 15 km/h and an offset pole held out.
+
+use bumpsim_planar::forward::forward;
+use bumpsim_planar::identify::{identify, predict};
+use bumpsim_planar::study::PlanarStudy;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn series() -> Option<PathBuf> {
+    if !bumpsim_peers::python_available("numpy") {
+        return None;
+    }
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("planar-independent");
+    let script =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/planar_independent.py");
+    if !out.join("study.toml").is_file() {
+        let run = Command::new("python3")
+            .arg(&script)
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+    }
+    Some(out)
+}
+
+#[test]
+fn an_independent_asymmetric_series_predicts_its_held_out_tests() {
+    let Some(dir) = series() else { return };
+    let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
+    let sheet: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
+    let result = identify(&study.cases, &study.setup, &|| {}).unwrap();
+    for p in &result.parameters {
+        eprintln!(
+            "{:<40} {:>12.5e} {:<6} {:?} {:?}",
+            p.name, p.value, p.unit, p.ci95, p.determined
+        );
+    }
+    eprintln!("starts {:?}", result.starts);
+    for w in &result.warnings {
+        eprintln!("warning: {w}");
+    }
+    for f in &result.fits {
+        eprintln!(
+            "fitted {}: x {:.2} %, yaw {:.2} %",
+            f.name, f.fit_x, f.fit_yaw
+        );
+    }
+    let held: Vec<_> = study
+        .validation
+        .iter()
+        .map(|c| predict(&result.car, c).unwrap().fit)
+        .collect();
+    for f in &held {
+        eprintln!(
+            "held out {}: x {:.2} %, yaw {:.2} % (peak yaw {:.3}°)",
+            f.name,
+            f.fit_x,
+            f.fit_yaw,
+            f.peak_yaw.to_degrees()
+        );
+    }
+    let offset = study
+        .validation
+        .iter()
+        .find(|c| c.name == "OFFSET40")
+        .unwrap();
+    let ahead = forward(&result.car, offset).unwrap();
+    for c in &ahead.channels {
+        eprintln!("forward {}: {:.2} %", c.name, c.fit_percent);
+    }
+    let mass = result.car.total_mass();
+    let sheet_mass = sheet["total_mass"].as_f64().unwrap();
+    let inertia = result
+        .parameters
+        .iter()
+        .find(|p| p.name == "body.yaw_inertia")
+        .unwrap();
+    let truth_inertia = sheet["yaw_inertia"].as_f64().unwrap();
+    eprintln!(
+        "mass {mass:.1} kg (sheet {sheet_mass}), I_z {:.0} (truth {truth_inertia})",
+        inertia.value
+    );
+    let fit = |name: &str| held.iter().find(|f| f.name == name).unwrap();
+    assert!(
+        fit("OFFSET40").fit_x >= 99.5 && fit("OFFSET40").fit_yaw >= 95.0,
+        "{held:?}"
+    );
+    assert!(
+        fit("POLE-OFFSET").fit_x >= 99.3 && fit("POLE-OFFSET").fit_yaw > 0.0,
+        "{held:?}"
+    );
+    let channel = |name: &str| {
+        ahead
+            .channels
+            .iter()
+            .find(|c| c.name == name)
+            .unwrap()
+            .fit_percent
+    };
+    assert!(
+        channel("force") >= 85.0 && channel("x-acceleration") >= 85.0,
+        "{ahead:?}"
+    );
+    assert!(channel("yaw rate") >= 70.0, "{ahead:?}");
+    assert!(
+        (mass - sheet_mass).abs() <= 0.01 * sheet_mass,
+        "mass {mass} kg"
+    );
+    let close = (inertia.value - truth_inertia).abs() <= 0.25 * truth_inertia;
+    assert!(close || inertia.determined == Some(false), "{inertia:?}");
+    assert!(result.starts.reached_best_fit >= 4, "{:?}", result.starts);
+}
