@@ -86,6 +86,19 @@ def main():
     for c in curves.values():
         every[int(c.lcid)] = [[float(a), float(o)] for a, o in zip(c.curves["a1"], c.curves["o1"])]
         curve = [[float(a), float(o)] for a, o in zip(c.curves["a1"], c.curves["o1"])]
+    # every id the deck defines, per LS-DYNA id space (includes packed by
+    # their --id-offset must not share one)
+    elements = [int(m.eid) for m in kinds.get("ElementMass", [])]
+    elements += [i for e in kinds.get("ElementDiscrete", []) for i in column(e, "elements", "eid")]
+    ids = {
+        "node": sorted(nodes),
+        "element": sorted(elements),
+        "part": sorted(parts),
+        "section": sorted(sections),
+        "material": sorted(materials),
+        "node set": sorted(sets),
+        "curve": sorted(curves),
+    }
     result = deck.validate()
     print(json.dumps({
         "keywords": [type(k).__name__ for k in deck.all_keywords],
@@ -97,6 +110,7 @@ def main():
         "history_nodes": history,
         "curve": curve,
         "curves": every,
+        "ids": ids,
     }))
 
 

@@ -4,7 +4,8 @@
         Reads an ISO-MME test (folder, .mme or .zip) with pyisomme; prints the
         test header items and, per channel, its code, filter class, unit, the
         items of its channel header (key and value as pyisomme writes it back,
-        in file order) and its values.
+        in file order), its values, and whether pyisomme finds every part of
+        the code in the standard's table (channel_codes.xml).
 
     python3 pyisomme_headers.py copy PATH OUT
         Reads PATH with pyisomme and writes it unchanged with pyisomme's writer
@@ -34,6 +35,7 @@ def items(info):
 def describe(channel):
     return {
         "code": str(channel.code),
+        "valid": channel.code.is_valid(),
         "filter_class": channel.code.filter_class,
         "unit": channel.unit.to_isomme(),
         "header": items(channel.info),

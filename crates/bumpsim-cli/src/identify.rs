@@ -337,6 +337,10 @@ fn run_predict_chain(args: &PredictArgs) -> Result<()> {
             bumpsim_core::units::format_number(p.fit.sse, 4),
             p.fit.samples
         );
+        println!(
+            "  {}",
+            bumpsim_ident::text::rating_line(p.fit.rating.as_ref())
+        );
     }
     let name = car
         .name

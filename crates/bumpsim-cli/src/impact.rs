@@ -323,15 +323,7 @@ fn make(path: &std::path::Path) -> Result<Made> {
     let tests = series
         .tests
         .into_iter()
-        .map(|t| {
-            let title = format!("{}: synthetic planar test (bumpsim synth)", t.name);
-            let header = bumpsim_io::test_data::iso_header::test_header(
-                &title,
-                Some(t.striker.0),
-                t.striker.1,
-            );
-            (t.name, header, t.channels)
-        })
+        .map(|t| (t.name.clone(), t.test_header(), t.channels))
         .collect();
     let extra = vec![("study.toml", series.study), ("start.toml", series.start)];
     Ok((tests, series.provenance, extra))

@@ -9,7 +9,7 @@ use bumpsim_io::isomme;
 use bumpsim_io::table::{OutputColumn, write_table_in};
 use bumpsim_io::test_data::{TestData, Validity};
 use bumpsim_signal::pipeline::{Pipeline, PipelineResult, export, extremes};
-use bumpsim_signal::process::{Combine, Step, align};
+use bumpsim_signal::process::{Combine, Step, align, resampling};
 use clap::{Subcommand, ValueEnum};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -62,6 +62,9 @@ pub struct ProcessArgs {
     /// Write the plots and an HTML report into this folder.
     #[arg(long)]
     report: Option<PathBuf>,
+    /// Also write the processed signals as an ISO-MME test folder.
+    #[arg(long)]
+    iso_mme: Option<PathBuf>,
 }
 
 /// How several channels of one selector are combined.
@@ -125,12 +128,7 @@ pub fn run(command: &Command) -> Result<()> {
     match command {
         Command::Info(args) => info(&args.path),
         Command::Export(args) => run_export(args),
-        Command::Process(args) => process(
-            &args.pipeline,
-            args.output.as_deref(),
-            args.plot.as_deref(),
-            args.report.as_deref(),
-        ),
+        Command::Process(args) => process(args),
     }
 }
 
@@ -266,13 +264,19 @@ fn run_export(args: &ExportArgs) -> Result<()> {
     report(&result);
     write_csv(&args.output, &result.signals, &output_units(&args.unit)?)?;
     if let Some(folder) = &args.iso_mme {
-        let name = folder
-            .file_name()
-            .map_or("bumpsim".into(), |n| n.to_string_lossy().into_owned());
-        let mme = isomme::write(folder, &name, &isomme::test_header(&test), &result.signals)?;
-        println!("wrote {}", mme.display());
+        write_iso_mme(folder, &isomme::test_header(&test), &result.signals)?;
     }
     plot(args.plot.as_deref(), &result).map(|_| ())
+}
+
+/// Writes signals as the ISO-MME test `folder`, named after the folder.
+fn write_iso_mme(folder: &Path, header: &[(String, String)], signals: &[Channel]) -> Result<()> {
+    let name = folder
+        .file_name()
+        .map_or("bumpsim".into(), |n| n.to_string_lossy().into_owned());
+    let mme = isomme::write(folder, &name, header, signals)?;
+    println!("wrote {}", mme.display());
+    Ok(())
 }
 
 fn output_units(texts: &[String]) -> Result<Vec<Unit>> {
@@ -293,12 +297,10 @@ fn refuse_existing(folder: &Path) -> Result<()> {
     Ok(())
 }
 
-fn process(
-    path: &Path,
-    output: Option<&Path>,
-    plot_dir: Option<&Path>,
-    report_dir: Option<&Path>,
-) -> Result<()> {
+fn process(args: &ProcessArgs) -> Result<()> {
+    let (path, plot_dir, report_dir) =
+        (&args.pipeline, args.plot.as_deref(), args.report.as_deref());
+    args.iso_mme.as_deref().map(refuse_existing).transpose()?;
     let pipeline = Pipeline::read(path)?;
     let result = pipeline.run()?;
     report(&result);
@@ -315,12 +317,18 @@ fn process(
         );
         println!("{balance}");
     }
-    let output = output
-        .map(Path::to_path_buf)
+    let output = args
+        .output
+        .clone()
         .or_else(|| pipeline.output.as_ref().map(|o| pipeline.base.join(o)));
     match output {
         Some(output) => write_csv(&output, &result.signals, &[])?,
         None => println!("no CSV written: give -o OUT.csv or 'output' in the pipeline"),
+    }
+    if let Some(folder) = &args.iso_mme {
+        let title = format!("signals of the pipeline {}", path.display());
+        let header = bumpsim_io::test_data::iso_header::test_header(&title, None, None);
+        write_iso_mme(folder, &header, &result.signals)?;
     }
     plot(plot_dir, &result)?;
     let Some(dir) = report_dir else { return Ok(()) };
@@ -368,6 +376,12 @@ fn summary(result: &PipelineResult) -> String {
 
 fn write_csv(path: &Path, signals: &[Channel], units: &[Unit]) -> Result<()> {
     let (time, columns) = align(signals)?;
+    if let Some(note) = resampling(signals).filter(|r| !r.trimmed.is_empty()) {
+        crate::warn(&format!(
+            "{}: {note} (one row per common time; an ISO-MME test keeps every channel's samples)",
+            path.display()
+        ));
+    }
     let dimensions: Vec<Dimension> = std::iter::once(Dimension::Time)
         .chain(signals.iter().map(|s| s.dimension))
         .collect();

@@ -86,9 +86,12 @@ impl Ids {
         self.offset + 3 * self.dof + 1
     }
 
-    /// The force curve and the history node set.
+    /// The force curve: the shared id, as curves (`*DEFINE_CURVE` LCID)
+    /// have their own id space, so every id of the include stays within
+    /// `offset + 3n + 1` (docs/export.md) and an include placed after it
+    /// (a bumper spring at `offset + 3n + 1`) cannot share a curve id.
     pub fn curve(&self) -> u64 {
-        self.shared() + 1
+        self.shared()
     }
 }
 

@@ -83,14 +83,24 @@ fn a_pendulum_run_in_calculix_writes_the_impact_results() {
         "{v}"
     );
     assert!(get("peak_force_unfiltered") >= get("peak_force"));
+    // issue 33: the 1-D model rated against the FE run (ISO/TS 18571)
+    for what in ["force", "compression"] {
+        let rating = &v["ratings"][what];
+        let overall = rating["overall"].as_f64().unwrap_or(0.0);
+        assert!(overall > 0.8 && overall <= 1.0, "{what}: {v}");
+        assert!(rating["corridor"].is_number() && rating["slope"].is_number());
+        assert_contains(
+            &out,
+            &[&format!(
+                "ISO/TS 18571 rating of the 1-D model's {what} against FE: 0."
+            )],
+        );
+    }
     let (header, rows) = read_csv(&csv);
     assert_eq!(header[..3], ["time [s]", "force [N]", "compression [m]"]);
     assert!(header.iter().any(|h| h == "x impactor [m]") && rows.len() > 100);
-    assert!(
-        std::fs::read_to_string(report.join("index.html"))
-            .unwrap()
-            .contains("<svg")
-    );
+    let html = std::fs::read_to_string(report.join("index.html")).unwrap();
+    assert!(html.contains("<svg") && html.contains("ISO/TS 18571 rating"));
     assert!(work.join("bumper.inp").exists() && work.join("bumper.dat").exists());
 }
 

@@ -12,6 +12,7 @@ mod doe;
 mod export;
 mod fe;
 mod formats;
+mod formats_letter;
 mod fuzz;
 mod identify;
 mod impact;

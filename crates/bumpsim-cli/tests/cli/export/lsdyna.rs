@@ -238,3 +238,76 @@ fn lsdyna_force_and_time_step_overflows_are_user_errors() {
         assert!(!out.exists(), "{extra:?} left a deck behind");
     }
 }
+
+/// Issue 33: with `--force` the car include's curve took id offset + 3n + 2,
+/// beyond the documented k ≤ 3n + 1, so a bumper spring packed right after
+/// it (offset 1010 + 3·3 + 1 = 1020) shared curve 1021. ansys-dyna-core
+/// lists every id of both decks: within the documented range, none shared.
+#[test]
+fn includes_packed_by_the_documented_id_range_share_no_id() {
+    if !dyna_core_available() {
+        return;
+    }
+    let dir = scratch("lsdyna-id-range");
+    let (car, force) = (example("car-3dof.toml"), example("pendulum-force.csv"));
+    let deck = dir.join("car.k");
+    let run = bumpsim(&[
+        "export",
+        "lsdyna",
+        car.to_str().unwrap(),
+        "-o",
+        deck.to_str().unwrap(),
+        "--force",
+        force.to_str().unwrap(),
+        "--output-interval",
+        "0.1 ms",
+        "--attach",
+        "91,92",
+        "--id-offset",
+        "1010",
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let spring = dir.join("spring.k");
+    let bumper = root().join("examples/impact/bumper-a.toml");
+    let run = bumpsim(&[
+        "export",
+        "bumper",
+        bumper.to_str().unwrap(),
+        "--solver",
+        "lsdyna",
+        "-o",
+        spring.to_str().unwrap(),
+        "--id-offset",
+        "1020",
+        "--nodes",
+        "91,1011",
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let (car_ids, spring_ids) = (
+        dyna_core(&deck, &["91", "92"])["ids"].clone(),
+        dyna_core(&spring, &["91", "1011"])["ids"].clone(),
+    );
+    let ids = |v: &serde_json::Value, kind: &str| -> Vec<u64> {
+        v[kind]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|i| i.as_u64().unwrap())
+            .collect()
+    };
+    assert_eq!(ids(&car_ids, "curve"), [1020], "{car_ids}");
+    for kind in [
+        "node", "element", "part", "section", "material", "node set", "curve",
+    ] {
+        let mine = ids(&car_ids, kind);
+        assert!(
+            mine.iter().all(|&i| (1011..=1020).contains(&i)),
+            "{kind}: {mine:?}"
+        );
+        let shared: Vec<u64> = ids(&spring_ids, kind)
+            .into_iter()
+            .filter(|i| mine.contains(i))
+            .collect();
+        assert!(shared.is_empty(), "{kind} ids in both includes: {shared:?}");
+    }
+}
