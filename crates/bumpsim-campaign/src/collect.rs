@@ -1,6 +1,4 @@
-//! `campaign status` and `campaign collect`.
-//!
-//! Collecting reads every done point's responses again (reading twice is
+//! `campaign collect`: collecting reads every done point's responses again (reading twice is
 //! harmless: the same files give the same numbers), appends them to the
 //! design table (`results/table.csv`, the format `bumpsim doe fit` reads:
 //! `name [unit]` headers, one row per point, run order) and fits the
@@ -20,44 +18,7 @@ use crate::state::{State, Status};
 use bumpsim_doe::data::Data;
 use bumpsim_doe::table_fit::{ResponseFit, TableFitSpec, fit_table};
 use bumpsim_io::output::Outputs;
-use std::fmt::Write as _;
 use std::path::Path;
-
-/// The status of a campaign as text: counts, in-flight jobs, failures.
-pub fn status(dir: &Path) -> Result<String> {
-    let state = State::read(dir)?;
-    let [pending, submitted, running, done, failed] = state.counts();
-    let mut text = format!(
-        "campaign '{}': {} points: {done} done, {failed} failed, {running} running, {submitted} submitted, {pending} pending (state of {})\n",
-        state.campaign,
-        state.points.len(),
-        state.updated
-    );
-    let _ = match crate::state::lock_holder(dir) {
-        Some((holder, false)) => writeln!(text, "  controller: {holder}"),
-        Some((holder, true)) => {
-            writeln!(text, "  controller: none running (stale lock of {holder})")
-        }
-        None => writeln!(text, "  controller: none running"),
-    };
-    for p in state.points.iter().filter(|p| p.status.in_flight()) {
-        let _ = writeln!(
-            text,
-            "  run {}: {} as {} since {} (attempt {})",
-            p.run,
-            p.status.name(),
-            p.job,
-            p.submitted,
-            p.attempts
-        );
-    }
-    for p in state.points.iter().filter(|p| {
-        p.status == Status::Failed || (p.status == Status::Pending && !p.reason.is_empty())
-    }) {
-        let _ = writeln!(text, "  run {}: {}: {}", p.run, p.status.name(), p.reason);
-    }
-    Ok(text)
-}
 
 /// What `collect` did.
 #[derive(Debug, Clone)]

@@ -76,6 +76,27 @@ pub enum CampaignError {
         /// What is wrong.
         message: String,
     },
+    /// The state journal is damaged, truncated, or of an earlier bumpsim.
+    #[error(
+        "{path}: the campaign's state is damaged: {problem}; `bumpsim campaign repair {dir}` rebuilds it from the point folders (nothing done runs again)",
+        dir = dir.display()
+    )]
+    Damaged {
+        /// The state journal.
+        path: PathBuf,
+        /// The campaign folder.
+        dir: PathBuf,
+        /// What is wrong (line, checksum, missing points).
+        problem: String,
+    },
+    /// The state journal cannot be appended to.
+    #[error("{path}: cannot append to the state journal: {source}")]
+    Journal {
+        /// The state journal.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
     /// A scheduler command failed.
     #[error("{command}: {message}")]
     Scheduler {

@@ -9,13 +9,18 @@
 //! - [`expr`]: the derived quantities' arithmetic;
 //! - [`template`]: `{{name}}` deck templates and LS-DYNA `*PARAMETER` includes;
 //! - [`init`]: the campaign folder (point folders, task script, state);
-//! - [`state`]: the state file and the controller lock;
+//! - [`task`]: the task script and the exit marker it leaves;
+//! - [`state`]: the state of every point, kept in an append-only journal
+//!   ([`journal`]: its framing) compacted into snapshots;
+//! - [`lock`]: the controller lock;
 //! - [`executor`]: local process pool and Slurm job arrays;
-//! - [`run`]: the controller loop with retries and resume;
+//! - [`run`], [`controller`]: the controller loop with retries, requeues and resume;
+//! - [`repair`]: a state rebuilt from the point folders;
+//! - [`status`]: points per status, as text or JSON;
 //! - [`response`]: a `[[response]]` (reader, file, quantity, statistic);
 //! - [`readers`]: responses from CalculiX `.dat`, CSV and LS-DYNA `glstat`;
 //! - [`identify`]: per-point identification from a study template;
-//! - [`collect`]: status, the collected table and its regression.
+//! - [`collect`]: the collected table and its regression.
 //!
 //! A two-factor campaign whose "solver" is `true` and whose response is a
 //! CSV the template itself writes (run locally, collected and fitted):
@@ -55,16 +60,22 @@
 //! ```
 
 pub mod collect;
+pub mod controller;
 pub mod error;
 pub mod executor;
 pub mod expr;
 pub mod identify;
 pub mod init;
+pub mod journal;
+pub mod lock;
 pub mod readers;
+pub mod repair;
 pub mod response;
 pub mod run;
 pub mod spec;
 pub mod state;
+pub mod status;
+pub mod task;
 pub mod template;
 
 pub use error::{CampaignError, Result};

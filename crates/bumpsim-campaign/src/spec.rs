@@ -144,6 +144,11 @@ pub struct ExecutorSpec {
     /// Seconds between status polls of Slurm.
     #[serde(default = "default_poll")]
     pub poll_seconds: f64,
+    /// Time limit per task, in Slurm's form (`HH:MM:SS`, ...), for both
+    /// executors: the local one kills a task's process group at it, Slurm
+    /// gets it as `--time` unless `[executor.slurm] time` says otherwise.
+    #[serde(default)]
+    pub time: Option<String>,
     /// Slurm settings.
     #[serde(default)]
     pub slurm: SlurmSpec,
@@ -172,6 +177,7 @@ impl Default for ExecutorSpec {
             slots: default_slots(),
             retries: default_retries(),
             poll_seconds: default_poll(),
+            time: None,
             slurm: SlurmSpec::default(),
         }
     }
@@ -199,6 +205,11 @@ pub struct SlurmSpec {
     /// The array's `%` limit: tasks running at once (default: no limit).
     #[serde(default)]
     pub max_concurrent: Option<usize>,
+    /// Tasks of the campaign queued or running at once; the controller
+    /// submits more as they end (default 10 000, at most half the
+    /// cluster's `MaxJobCount`).
+    #[serde(default)]
+    pub max_queued: Option<usize>,
     /// `module load` lines of the job script.
     #[serde(default)]
     pub modules: Vec<String>,
@@ -498,16 +509,79 @@ impl Spec {
             let message = "expected 0.01 to 3600 s".into();
             return Err(Spec::invalid(path, "executor.poll_seconds", message));
         }
-        if e.slurm.max_concurrent == Some(0) {
-            let message = "expected at least 1".into();
-            return Err(Spec::invalid(
-                path,
-                "executor.slurm.max_concurrent",
-                message,
-            ));
+        for (key, value) in [
+            ("executor.slurm.max_concurrent", e.slurm.max_concurrent),
+            ("executor.slurm.max_queued", e.slurm.max_queued),
+        ] {
+            if value == Some(0) {
+                return Err(Spec::invalid(path, key, "expected at least 1".into()));
+            }
+        }
+        for (key, value) in [
+            ("executor.time", &e.time),
+            ("executor.slurm.time", &e.slurm.time),
+        ] {
+            if let Some(text) = value.as_ref().filter(|t| time_limit(t).is_none()) {
+                let message = format!(
+                    "'{text}': expected a Slurm time above zero: MINUTES, MM:SS, HH:MM:SS, D-HH, D-HH:MM or D-HH:MM:SS"
+                );
+                return Err(Spec::invalid(path, key, message));
+            }
         }
         Ok(())
     }
+}
+
+impl ExecutorSpec {
+    /// The local executor's time limit per task: `time`, else Slurm's
+    /// `time` (the same campaign file limits a task alike on both).
+    pub fn local_time(&self) -> Option<(String, std::time::Duration)> {
+        let text = self.time.as_ref().or(self.slurm.time.as_ref())?;
+        time_limit(text).map(|limit| (text.clone(), limit))
+    }
+
+    /// Slurm's `--time`: `[executor.slurm] time`, else `time`.
+    pub fn slurm_time(&self) -> Option<&String> {
+        self.slurm.time.as_ref().or(self.time.as_ref())
+    }
+}
+
+/// A time limit in Slurm's forms (`sbatch --time`): MINUTES, MM:SS,
+/// HH:MM:SS, D-HH, D-HH:MM, D-HH:MM:SS; `None` if it is none of them or zero.
+///
+/// ```
+/// use bumpsim_campaign::spec::time_limit;
+/// use std::time::Duration;
+/// assert_eq!(time_limit("02:00:00"), Some(Duration::from_secs(7200)));
+/// assert_eq!(time_limit("1-12"), Some(Duration::from_secs(129_600)));
+/// assert_eq!(time_limit("0:02"), Some(Duration::from_secs(2)));
+/// assert_eq!(time_limit("2h"), None);
+/// ```
+pub fn time_limit(text: &str) -> Option<std::time::Duration> {
+    let (days, rest) = match text.split_once('-') {
+        Some((d, rest)) => (Some(d.parse::<u64>().ok()?), rest),
+        None => (None, text),
+    };
+    let parts: Vec<u64> = rest
+        .split(':')
+        .map(|p| p.parse().ok())
+        .collect::<Option<_>>()?;
+    let seconds = match (days, parts.as_slice()) {
+        (None, [m]) => m.checked_mul(60)?,
+        (None, [m, s]) => m.checked_mul(60)?.checked_add(*s)?,
+        (None, [h, m, s]) => hms(*h, *m, *s)?,
+        (Some(d), [h]) => hms(d.checked_mul(24)?.checked_add(*h)?, 0, 0)?,
+        (Some(d), [h, m]) => hms(d.checked_mul(24)?.checked_add(*h)?, *m, 0)?,
+        (Some(d), [h, m, s]) => hms(d.checked_mul(24)?.checked_add(*h)?, *m, *s)?,
+        _ => return None,
+    };
+    (seconds > 0).then(|| std::time::Duration::from_secs(seconds))
+}
+
+fn hms(h: u64, m: u64, s: u64) -> Option<u64> {
+    h.checked_mul(3600)?
+        .checked_add(m.checked_mul(60)?)?
+        .checked_add(s)
 }
 
 /// Finds `program` as the solver or scheduler runs it: a path with a `/`
@@ -584,6 +658,20 @@ command = ["true"]
         assert!(
             err.contains("solver.command: './solver.sh': give an absolute path"),
             "{err}"
+        );
+        let err = parse("[executor]\ntime = \"2h\"\n")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("executor.time: '2h': expected a Slurm time"),
+            "{err}"
+        );
+        let spec =
+            parse("[executor]\ntime = \"0:02\"\n[executor.slurm]\ntime = \"1:00:00\"\n").unwrap();
+        assert_eq!(spec.executor.local_time().map(|t| t.1.as_secs()), Some(2));
+        assert_eq!(
+            spec.executor.slurm_time().map(String::as_str),
+            Some("1:00:00")
         );
         let err = parse("[executor]\nkind = \"pbs\"\n")
             .unwrap_err()

@@ -1,23 +1,37 @@
-//! The state file (`state.toml` in the campaign folder): one `[[point]]`
-//! per design run with its status (pending, submitted, running, done,
-//! failed), job id, attempts, timestamps (UTC), the SHA-256 of its inputs
-//! and the reason of its last failure. Human-readable TOML, written whole
-//! or not at all (temporary file + rename). The format is in
-//! docs/campaign.md.
+//! The state of a campaign: one [`Point`] per design run with its status
+//! (pending, submitted, running, done, failed), job id, attempts, Slurm
+//! requeues, timestamps (UTC), the SHA-256 of its inputs and the reason of
+//! its last failure.
 //!
-//! The lock (`.lock` beside it) keeps a second controller off a campaign:
-//! created with `O_EXCL`, holding the pid and host; a lock whose process is
-//! gone on this host is stale and taken over.
+//! It is kept in `state.journal` (framing in [`crate::journal`]): a header
+//! record (format, campaign, number of points), a snapshot of every point,
+//! then one record per change of a point, appended and flushed to disk
+//! (`fdatasync`) before the controller acts on it, the last record of a
+//! point being its state. When the changes outnumber the points the
+//! controller compacts the journal into a new snapshot (temporary file,
+//! `fsync`, rename), so the cost of a change stays constant and the file
+//! at most about twice its snapshot, whatever the campaign's size. A
+//! damaged record (checksum) or a missing point (a truncated file) makes
+//! the state unreadable, never smaller: `bumpsim campaign repair`
+//! rebuilds it from the point folders ([`crate::repair`]). Why a journal
+//! and not SQLite: docs/campaign.md.
 
 use crate::error::{CampaignError, Result, read_error};
+use crate::journal::{Appender, frame, records};
+use crate::spec::MAX_POINTS;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
-use std::path::{Path, PathBuf};
+use std::collections::BTreeMap;
+use std::path::Path;
 
-/// The state file's name in the campaign folder.
-pub const STATE_FILE: &str = "state.toml";
-/// The lock file's name in the campaign folder.
-pub const LOCK_FILE: &str = ".lock";
+/// The state journal's name in the campaign folder.
+pub const STATE_FILE: &str = "state.journal";
+/// The state file of campaigns made before the journal (TOML, format 1).
+pub const LEGACY_STATE_FILE: &str = "state.toml";
+/// The journal's format.
+pub const FORMAT: u32 = 2;
+/// The journal is compacted when it holds more changes than this or than points.
+pub const COMPACT_AFTER: usize = 1000;
 
 /// Where a point is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -25,7 +39,7 @@ pub const LOCK_FILE: &str = ".lock";
 pub enum Status {
     /// Not submitted yet (or to be retried).
     Pending,
-    /// Handed to the executor.
+    /// Handed to the executor (queued).
     Submitted,
     /// Running.
     Running,
@@ -36,6 +50,15 @@ pub enum Status {
 }
 
 impl Status {
+    /// Every status, in the order of [`State::counts`].
+    pub const ALL: [Status; 5] = [
+        Status::Pending,
+        Status::Submitted,
+        Status::Running,
+        Status::Done,
+        Status::Failed,
+    ];
+
     /// Whether the point is with the executor.
     pub fn in_flight(self) -> bool {
         matches!(self, Status::Submitted | Status::Running)
@@ -59,12 +82,17 @@ impl Status {
 pub struct Point {
     /// Run number (1-based, the design table's `run`).
     pub run: usize,
-    /// Its folder, relative to the campaign folder.
+    /// Its folder, relative to the campaign folder (`points/0007`; not
+    /// stored: it follows from the run).
+    #[serde(skip)]
     pub folder: String,
     /// Status.
     pub status: Status,
-    /// Submissions so far.
+    /// Attempts so far: submissions, and requeues by Slurm.
     pub attempts: u32,
+    /// How often Slurm requeued its task (node failure, pre-emption).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub requeues: u32,
     /// The executor's id of the last submission (`local:PID`, `slurm:JOB_TASK`).
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub job: String,
@@ -76,55 +104,93 @@ pub struct Point {
     /// Last end (done or failed), UTC.
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub finished: String,
-    /// Why the last attempt failed.
+    /// Why the last attempt failed or was requeued.
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub reason: String,
 }
 
-/// The whole state.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+fn is_zero(n: &u32) -> bool {
+    *n == 0
+}
+
+impl Point {
+    /// A pending point that has never run.
+    pub fn new(run: usize, input_hash: String) -> Point {
+        Point {
+            run,
+            folder: point_folder(run),
+            status: Status::Pending,
+            attempts: 0,
+            requeues: 0,
+            job: String::new(),
+            input_hash,
+            submitted: String::new(),
+            finished: String::new(),
+            reason: String::new(),
+        }
+    }
+}
+
+/// The folder of run `run` (`points/0007`), relative to the campaign folder.
+pub fn point_folder(run: usize) -> String {
+    format!("points/{run:04}")
+}
+
+/// The journal's first record.
+#[derive(Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
+struct Header {
+    format: u32,
+    campaign: String,
+    points: usize,
+}
+
+/// The whole state.
+#[derive(Debug, Clone, PartialEq)]
 pub struct State {
-    /// Format version.
-    pub format: u32,
     /// Campaign name.
     pub campaign: String,
     /// Last write, UTC.
     pub updated: String,
     /// The points in run order.
-    #[serde(rename = "point")]
     pub points: Vec<Point>,
 }
 
 impl State {
-    /// Reads the state file of campaign folder `dir`.
-    pub fn read(dir: &Path) -> Result<State> {
-        let path = dir.join(STATE_FILE);
-        let text = std::fs::read_to_string(&path).map_err(|e| read_error(&path, e))?;
-        let state: State = toml::from_str(&text).map_err(|e| CampaignError::State {
-            path: path.clone(),
-            message: e.to_string(),
-        })?;
-        let numbered = state.points.iter().enumerate().all(|(i, p)| p.run == i + 1);
-        if state.format != 1 || !numbered {
-            let message = "format 1 with points numbered 1, 2, ... expected".into();
-            return Err(CampaignError::State { path, message });
+    /// A state of `points`.
+    pub fn new(campaign: &str, points: Vec<Point>) -> State {
+        State {
+            campaign: campaign.into(),
+            updated: now(),
+            points,
         }
-        Ok(state)
     }
 
-    /// Writes the state file atomically (temporary file + rename).
+    /// Reads the state of campaign folder `dir`; a damaged or truncated
+    /// journal is an error ([`CampaignError::Damaged`]).
+    pub fn read(dir: &Path) -> Result<State> {
+        load(dir).map(|(state, _, _)| state)
+    }
+
+    /// The state of `dir` if it has one (`None`: a new campaign folder).
+    pub fn existing(dir: &Path) -> Result<Option<State>> {
+        let some = dir.join(STATE_FILE).exists() || dir.join(LEGACY_STATE_FILE).exists();
+        some.then(|| State::read(dir)).transpose()
+    }
+
+    /// Writes the state as a new snapshot (temporary file, `fsync`, rename).
     pub fn write(&mut self, dir: &Path) -> Result<()> {
         self.updated = now();
-        let text = toml::to_string(self).map_err(|e| CampaignError::State {
-            path: dir.join(STATE_FILE),
-            message: e.to_string(),
-        })?;
-        let header = "# bumpsim campaign state (docs/campaign.md): one [[point]] per design run\n";
-        bumpsim_io::output::write_atomic(
-            &dir.join(STATE_FILE),
-            (header.to_string() + &text).as_bytes(),
-        )?;
+        let header = Header {
+            format: FORMAT,
+            campaign: self.campaign.clone(),
+            points: self.points.len(),
+        };
+        let mut text = frame(&json(&header, dir)?);
+        for p in &self.points {
+            text += &frame(&json(p, dir)?);
+        }
+        bumpsim_io::output::write_atomic(&dir.join(STATE_FILE), text.as_bytes())?;
         Ok(())
     }
 
@@ -135,6 +201,168 @@ impl State {
             counts[p.status as usize] += 1;
         }
         counts
+    }
+}
+
+fn json<T: Serialize>(value: &T, dir: &Path) -> Result<String> {
+    serde_json::to_string(value).map_err(|e| damaged(dir, e.to_string()))
+}
+
+fn damaged(dir: &Path, problem: String) -> CampaignError {
+    CampaignError::Damaged {
+        path: dir.join(STATE_FILE),
+        dir: dir.into(),
+        problem,
+    }
+}
+
+/// The state of `dir`, the length of its whole lines and its record count.
+fn load(dir: &Path) -> Result<(State, usize, usize)> {
+    let path = dir.join(STATE_FILE);
+    if !path.exists() && dir.join(LEGACY_STATE_FILE).exists() {
+        let problem = "only a state.toml of an earlier bumpsim (format 1)".into();
+        return Err(damaged(dir, problem));
+    }
+    let text = std::fs::read_to_string(&path).map_err(|e| read_error(&path, e))?;
+    let journal = records(&text);
+    if let Some((line, what)) = journal.damage.first() {
+        return Err(damaged(dir, format!("line {line}: {what}")));
+    }
+    let header = header(dir, journal.lines.first())?;
+    let mut points: Vec<Option<Point>> = vec![None; header.points];
+    for &(line, text) in &journal.lines[1..] {
+        let point = parse_point(text, header.points)
+            .map_err(|e| damaged(dir, format!("line {line}: {e}")))?;
+        let i = point.run - 1;
+        points[i] = Some(point);
+    }
+    let found = points.iter().flatten().count();
+    if found < header.points {
+        let first = points.iter().position(Option::is_none).map_or(0, |i| i + 1);
+        let problem = format!(
+            "records of {found} of its {} points (truncated?): none of run {first}",
+            header.points
+        );
+        return Err(damaged(dir, problem));
+    }
+    let mut state = State::new(&header.campaign, points.into_iter().flatten().collect());
+    state.updated = modified(&path);
+    Ok((state, journal.whole, journal.lines.len() - 1))
+}
+
+fn header(dir: &Path, first: Option<&(usize, &str)>) -> Result<Header> {
+    let header = match first {
+        Some((1, text)) => serde_json::from_str::<Header>(text).ok(),
+        _ => None,
+    };
+    match header {
+        Some(h) if h.format == FORMAT && (1..=MAX_POINTS).contains(&h.points) => Ok(h),
+        _ => Err(damaged(
+            dir,
+            format!("line 1: not a format-{FORMAT} header of 1 to {MAX_POINTS} points"),
+        )),
+    }
+}
+
+/// A point record of a campaign of `points` points.
+fn parse_point(text: &str, points: usize) -> std::result::Result<Point, String> {
+    let mut point: Point = serde_json::from_str(text).map_err(|e| e.to_string())?;
+    if !(1..=points).contains(&point.run) {
+        return Err(format!(
+            "run {} of a campaign of {points} points",
+            point.run
+        ));
+    }
+    point.folder = point_folder(point.run);
+    Ok(point)
+}
+
+/// The last change of `path`, UTC.
+fn modified(path: &Path) -> String {
+    let seconds = std::fs::metadata(path)
+        .and_then(|m| m.modified())
+        .ok()
+        .and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok());
+    seconds.map_or_else(now, |d| utc(d.as_secs()))
+}
+
+/// What can be read of a damaged journal: every record whose checksum
+/// holds, the last one of each run (for `repair`).
+pub fn salvage(dir: &Path) -> BTreeMap<usize, Point> {
+    let text = std::fs::read(dir.join(STATE_FILE)).unwrap_or_default();
+    let text = String::from_utf8_lossy(&text);
+    records(&text)
+        .lines
+        .iter()
+        .filter_map(|(_, json)| parse_point(json, MAX_POINTS).ok())
+        .map(|p| (p.run, p))
+        .collect()
+}
+
+/// The state journal of a running controller: changes appended and synced,
+/// compacted into a new snapshot when they outnumber the points.
+#[derive(Debug)]
+pub struct Journal {
+    appender: Appender,
+    appended: usize,
+}
+
+impl Journal {
+    /// Reads the state of `dir` and opens its journal for appending (an
+    /// unfinished last line, never acted upon, is cut off).
+    pub fn open(dir: &Path) -> Result<(State, Journal)> {
+        let (state, whole, records) = load(dir)?;
+        let appended = records - state.points.len();
+        let path = dir.join(STATE_FILE);
+        let appender = Appender::open(&path, whole).map_err(|e| journal_error(&path, e))?;
+        Ok((state, Journal { appender, appended }))
+    }
+
+    /// Appends the points `changed` of `state` (one record each) and
+    /// flushes them to disk; compacts when the changes outnumber the points.
+    pub fn record(&mut self, state: &mut State, changed: &[usize]) -> Result<()> {
+        let dir = self.dir();
+        let mut text = String::new();
+        for &i in changed {
+            text += &frame(&json(&state.points[i], &dir)?);
+        }
+        if text.is_empty() {
+            return Ok(());
+        }
+        let path = self.appender.path().to_path_buf();
+        self.appender
+            .append(&text)
+            .map_err(|e| journal_error(&path, e))?;
+        self.appended += changed.len();
+        if self.appended > COMPACT_AFTER.max(state.points.len()) {
+            self.compact(state)?;
+        }
+        Ok(())
+    }
+
+    /// Writes a new snapshot of `state` and appends after it.
+    pub fn compact(&mut self, state: &mut State) -> Result<()> {
+        let dir = self.dir();
+        state.write(&dir)?;
+        let path = dir.join(STATE_FILE);
+        let whole = std::fs::metadata(&path)
+            .map_err(|e| read_error(&path, e))?
+            .len() as usize;
+        self.appender = Appender::open(&path, whole).map_err(|e| journal_error(&path, e))?;
+        self.appended = 0;
+        Ok(())
+    }
+
+    fn dir(&self) -> std::path::PathBuf {
+        let path = self.appender.path();
+        path.parent().unwrap_or(Path::new(".")).to_path_buf()
+    }
+}
+
+fn journal_error(path: &Path, source: std::io::Error) -> CampaignError {
+    CampaignError::Journal {
+        path: path.into(),
+        source,
     }
 }
 
@@ -165,10 +393,7 @@ pub fn input_hash(folder: &Path, files: &[String], command: &[String]) -> Result
 
 /// The first 8 hex digits of the SHA-256 of `bytes` (a short stable id).
 pub fn short_hash(bytes: &[u8]) -> String {
-    Sha256::digest(bytes)[..4]
-        .iter()
-        .map(|b| format!("{b:02x}"))
-        .collect()
+    crate::journal::checksum(bytes)
 }
 
 /// The current time, UTC, as `YYYY-MM-DDThh:mm:ssZ`.
@@ -200,125 +425,119 @@ pub fn utc(seconds: u64) -> String {
     format!("{year:04}-{month:02}-{day:02}T{h:02}:{m:02}:{s:02}Z")
 }
 
-/// The campaign's lock: held while a controller runs; removed on drop.
-#[derive(Debug)]
-pub struct Lock {
-    path: PathBuf,
-}
-
-impl Lock {
-    /// Takes the lock of campaign folder `dir`, or says who holds it. A
-    /// lock left by a process that no longer exists on this host is taken over.
-    pub fn acquire(dir: &Path) -> Result<Lock> {
-        let path = dir.join(LOCK_FILE);
-        let host = hostname();
-        let me = format!("pid {} on {host} since {}\n", std::process::id(), now());
-        for _ in 0..2 {
-            let created = std::fs::OpenOptions::new()
-                .write(true)
-                .create_new(true)
-                .open(&path);
-            match created {
-                Ok(mut file) => {
-                    use std::io::Write;
-                    file.write_all(me.as_bytes())
-                        .map_err(|e| read_error(&path, e))?;
-                    return Ok(Lock { path });
-                }
-                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
-                    let holder = std::fs::read_to_string(&path).unwrap_or_default();
-                    if !stale(&holder, &host) {
-                        let holder = holder.trim().to_string();
-                        return Err(CampaignError::Locked { path, holder });
-                    }
-                    let _ = std::fs::remove_file(&path);
-                }
-                Err(e) => return Err(read_error(&path, e)),
-            }
-        }
-        Err(CampaignError::Locked {
-            path,
-            holder: "a controller that keeps taking it".into(),
-        })
+/// A UTC timestamp of [`utc`] as seconds since 1970 (Hinnant's
+/// days-from-civil), `None` if it is not of that form.
+///
+/// ```
+/// use bumpsim_campaign::state::{seconds, utc};
+/// assert_eq!(seconds("2000-02-29T00:00:00Z"), Some(951_782_400));
+/// assert_eq!(seconds(&utc(1_795_000_000)), Some(1_795_000_000));
+/// ```
+pub fn seconds(utc: &str) -> Option<u64> {
+    let number = |range: std::ops::Range<usize>| utc.get(range)?.parse::<i64>().ok();
+    let shape = utc.len() == 20 && utc.ends_with('Z');
+    let (y, m, d) = (number(0..4)?, number(5..7)?, number(8..10)?);
+    let (h, min, s) = (number(11..13)?, number(14..16)?, number(17..19)?);
+    if !shape || !(1..=12).contains(&m) {
+        return None;
     }
-}
-
-/// Who holds the lock of campaign folder `dir` (`pid N on HOST since T`),
-/// and whether that controller is gone (a stale lock on this host).
-pub fn lock_holder(dir: &Path) -> Option<(String, bool)> {
-    let holder = std::fs::read_to_string(dir.join(LOCK_FILE)).ok()?;
-    let gone = stale(&holder, &hostname());
-    Some((holder.trim().to_string(), gone))
-}
-
-impl Drop for Lock {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.path);
-    }
-}
-
-/// Whether a lock's holder (`pid N on HOST since T`) is gone: same host and
-/// no such process. A lock of another host is never stale.
-fn stale(holder: &str, host: &str) -> bool {
-    let words: Vec<&str> = holder.split_whitespace().collect();
-    match words.as_slice() {
-        ["pid", pid, "on", h, ..] if *h == host => {
-            pid.parse::<u32>().is_ok_and(|pid| !process_alive(pid))
-        }
-        _ => holder.trim().is_empty(),
-    }
-}
-
-/// Whether process `pid` exists (Linux: `/proc/PID`).
-/// A zombie (ended, not yet reaped by its parent) counts as gone.
-pub fn process_alive(pid: u32) -> bool {
-    match std::fs::read_to_string(format!("/proc/{pid}/stat")) {
-        // the state follows the command name in parentheses: "PID (NAME) S ..."
-        Ok(stat) => stat
-            .rsplit_once(')')
-            .is_some_and(|(_, rest)| !rest.trim_start().starts_with(['Z', 'X'])),
-        Err(_) => false,
-    }
-}
-
-/// This machine's host name.
-pub fn hostname() -> String {
-    std::fs::read_to_string("/proc/sys/kernel/hostname")
-        .map(|h| h.trim().to_string())
-        .unwrap_or_else(|_| "localhost".into())
+    let y = if m <= 2 { y - 1 } else { y };
+    let era = y.div_euclid(400);
+    let yoe = y - era * 400;
+    let doy = (153 * ((m + 9) % 12) + 2) / 5 + d - 1;
+    let doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+    let days = era * 146_097 + doe - 719_468;
+    u64::try_from(days * 86_400 + h * 3600 + min * 60 + s).ok()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    fn folder(name: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("bumpsim-state-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    fn nine(dir: &Path) -> State {
+        let points = (1..=9)
+            .map(|r| Point::new(r, format!("sha256:{r}")))
+            .collect();
+        let mut state = State::new("c", points);
+        state.write(dir).unwrap();
+        state
+    }
+
+    #[test]
+    fn changes_are_appended_and_compacted_into_a_snapshot() {
+        let dir = folder("journal");
+        nine(&dir);
+        let (mut state, mut journal) = Journal::open(&dir).unwrap();
+        for round in 0..=COMPACT_AFTER {
+            let i = round % 9;
+            state.points[i].attempts += 1;
+            state.points[i].status = Status::Running;
+            journal.record(&mut state, &[i]).unwrap();
+            assert_eq!(State::read(&dir).unwrap().points, state.points);
+        }
+        // the last record of a point is its state; compacted past the limit
+        let lines = std::fs::read_to_string(dir.join(STATE_FILE))
+            .unwrap()
+            .lines()
+            .count();
+        assert_eq!(lines, 1 + 9, "compacted after {COMPACT_AFTER} changes");
+        assert_eq!(State::read(&dir).unwrap().counts(), [0, 0, 9, 0, 0]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_damaged_or_truncated_journal_is_refused_never_read_as_fewer_points() {
+        let dir = folder("damaged");
+        nine(&dir);
+        let path = dir.join(STATE_FILE);
+        let text = std::fs::read_to_string(&path).unwrap();
+        // cut after the fifth point's record
+        let cut: usize = text.lines().take(6).map(|l| l.len() + 1).sum();
+        std::fs::write(&path, &text[..cut]).unwrap();
+        let err = State::read(&dir).unwrap_err().to_string();
+        assert!(
+            err.contains("records of 5 of its 9 points (truncated?): none of run 6"),
+            "{err}"
+        );
+        assert!(err.contains("campaign repair"), "{err}");
+        // one digit changed in a record
+        std::fs::write(&path, text.replacen("\"attempts\":0", "\"attempts\":1", 1)).unwrap();
+        let err = State::read(&dir).unwrap_err().to_string();
+        assert!(err.contains("line 2: checksum mismatch"), "{err}");
+        // an append cut mid-line (a writer at work, or killed) is left out
+        std::fs::write(&path, text.clone() + "12ab {\"run\":1,").unwrap();
+        assert_eq!(State::read(&dir).unwrap().points.len(), 9);
+        // and cut off before the next append
+        let (mut state, mut journal) = Journal::open(&dir).unwrap();
+        journal.record(&mut state, &[0]).unwrap();
+        let r = records(&std::fs::read_to_string(&path).unwrap()).damage;
+        assert!(r.is_empty(), "{r:?}");
+        // salvage keeps what is readable
+        std::fs::write(&path, text.replacen("\"attempts\":0", "\"attempts\":1", 1)).unwrap();
+        assert_eq!(salvage(&dir).len(), 8);
+        // a state of an earlier bumpsim is named as such
+        std::fs::remove_file(&path).unwrap();
+        std::fs::write(dir.join(LEGACY_STATE_FILE), "format = 1\n").unwrap();
+        let err = State::existing(&dir).unwrap_err().to_string();
+        assert!(err.contains("state.toml of an earlier bumpsim"), "{err}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
     #[test]
     fn timestamps_are_utc_calendar_dates() {
         assert_eq!(utc(0), "1970-01-01T00:00:00Z");
         assert_eq!(utc(951_782_400), "2000-02-29T00:00:00Z");
         assert_eq!(utc(1_795_000_000), "2026-11-18T11:06:40Z");
-    }
-
-    #[test]
-    fn a_second_controller_is_refused_and_a_stale_lock_taken_over() {
-        let dir = std::env::temp_dir().join(format!("bumpsim-lock-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let lock = Lock::acquire(&dir).unwrap();
-        let err = Lock::acquire(&dir).unwrap_err().to_string();
-        assert!(
-            err.contains("another controller")
-                && err.contains(&format!("pid {}", std::process::id())),
-            "{err}"
-        );
-        drop(lock);
-        // a lock of a process that is gone (pid beyond pid_max)
-        std::fs::write(
-            dir.join(LOCK_FILE),
-            format!("pid 4999999 on {} since x\n", hostname()),
-        )
-        .unwrap();
-        let lock = Lock::acquire(&dir).unwrap();
-        drop(lock);
-        std::fs::remove_dir_all(&dir).unwrap();
+        for t in [0, 86_399, 951_782_400, 1_795_000_000, 4_102_444_800] {
+            assert_eq!(seconds(&utc(t)), Some(t));
+        }
+        assert_eq!(seconds("2026-13-01T00:00:00Z"), None);
     }
 }

@@ -2,7 +2,7 @@
 
 use anyhow::Result;
 use bumpsim_campaign::run::RunOptions;
-use bumpsim_campaign::{collect, init, run};
+use bumpsim_campaign::{collect, init, repair, run, status};
 use clap::Subcommand;
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -15,11 +15,13 @@ pub enum Command {
     /// Run what is not done (local process pool or Slurm job array); resumes after a restart.
     Run(RunArgs),
     /// Summarise the state: points per status, running jobs, failures with reasons.
-    Status(DirArgs),
+    Status(StatusArgs),
     /// Read the results into the design table, fit the regression, write the report.
     Collect(DirArgs),
     /// Stop the campaign's running tasks (scancel, SIGTERM) and mark them pending.
     Abort(DirArgs),
+    /// Rebuild a damaged or truncated state from the point folders' exit markers and outputs.
+    Repair(DirArgs),
 }
 
 /// Arguments of `campaign init`.
@@ -33,6 +35,12 @@ pub struct InitArgs {
     /// Then run the campaign with its executor and collect it (init, run, collect in one).
     #[arg(long)]
     run: bool,
+    /// With --run: local | slurm (default: the campaign file's executor.kind).
+    #[arg(long, requires = "run")]
+    executor: Option<String>,
+    /// With --run: local process slots (default: the campaign file's executor.slots).
+    #[arg(long, requires = "run", value_parser = crate::count::<1024>)]
+    slots: Option<usize>,
 }
 
 /// Arguments of `campaign run`.
@@ -51,6 +59,16 @@ pub struct RunArgs {
     retry_failed: bool,
 }
 
+/// Arguments of `campaign status`.
+#[derive(Debug, clap::Args)]
+pub struct StatusArgs {
+    /// The campaign folder.
+    dir: PathBuf,
+    /// Print a JSON document instead: counts, controller, every point's record.
+    #[arg(long)]
+    json: bool,
+}
+
 /// A campaign folder.
 #[derive(Debug, clap::Args)]
 pub struct DirArgs {
@@ -64,7 +82,11 @@ pub fn run(command: &Command) -> Result<()> {
         Command::Init(args) => run_init(args),
         Command::Run(args) => run_run(args),
         Command::Status(args) => {
-            print!("{}", collect::status(&args.dir)?);
+            let status = status::status(&args.dir)?;
+            match args.json {
+                true => println!("{}", serde_json::to_string_pretty(&status)?),
+                false => print!("{}", status.text()),
+            }
             Ok(())
         }
         Command::Collect(args) => run_collect(args),
@@ -73,7 +95,35 @@ pub fn run(command: &Command) -> Result<()> {
             println!("cancelled {n} tasks; they are pending again");
             Ok(())
         }
+        Command::Repair(args) => run_repair(args),
     }
+}
+
+fn run_repair(args: &DirArgs) -> Result<()> {
+    let r = repair::repair(&args.dir)?;
+    println!(
+        "repaired {}: {} done kept, {} in flight adopted, {} re-queued, {} failed, {} undecided, {} never run ({} records read from the old state)",
+        args.dir.display(),
+        r.kept.len(),
+        r.adopted.len(),
+        r.requeued.len(),
+        r.failed.len(),
+        r.undecided.len(),
+        r.pending,
+        r.salvaged
+    );
+    let lists = [
+        ("adopted", &r.adopted),
+        ("re-queued", &r.requeued),
+        ("failed", &r.failed),
+        ("undecided", &r.undecided),
+    ];
+    for (what, list) in lists {
+        for (run, why) in list {
+            println!("  run {run}: {what}: {why}");
+        }
+    }
+    Ok(())
 }
 
 fn options(args: &RunArgs) -> RunOptions {
@@ -103,8 +153,8 @@ fn run_init(args: &InitArgs) -> Result<()> {
     if args.run {
         let run_args = RunArgs {
             dir: dir.clone(),
-            executor: None,
-            slots: None,
+            executor: args.executor.clone(),
+            slots: args.slots,
             retry_failed: false,
         };
         run_run(&run_args)?;

@@ -1,32 +1,50 @@
-//! The Slurm executor: each submission round is one job array,
-//! `sbatch --parsable --array=RUNS%K slurm/array-N.sh`, whose task
-//! `SLURM_ARRAY_TASK_ID` is the point's run number; job ids are
-//! `slurm:JOB_RUN`. Per-task resources, partition, account, modules and
-//! setup lines come from `[executor.slurm]`.
+//! The Slurm executor: the pending points of a submission round go out as
+//! job arrays, `sbatch --parsable --array=INDICES%K slurm/array.sh OFFSET`,
+//! whose task `OFFSET + SLURM_ARRAY_TASK_ID` is the point's run number.
+//! An array index must stay below the cluster's `MaxArraySize` (read from
+//! `scontrol show config`), so runs are cut into blocks of
+//! `MaxArraySize − 1`: block b holds runs `b·(M−1) + 1 ..= (b+1)·(M−1)`
+//! at indices 1 ..= M−1, one array per block and round (index = run in the
+//! first block). Job ids are `slurm:JOB_INDEX`, the job name
+//! `bumpsim-NAME-ID` (`+OFFSET` after it beyond the first block), so that
+//! a restarted controller finds its tasks. At most `max_queued` tasks of a
+//! campaign are queued or running at once; more go out as they end.
 //!
-//! Status: `squeue -r -t all` lists queued, running and recently ended
-//! tasks (Slurm keeps ended jobs for `MinJobAge`, 300 s by default) with
-//! their state and reason; a task that is gone from it without having
-//! recorded an exit status is lost (cancelled, timed out, pre-empted, node
-//! failure) and retried. A task purged from `squeue` is looked up with
-//! `sacct` for its final state and reason where the cluster keeps
-//! accounting; without accounting it is simply lost (and retried).
+//! Status: one `squeue -r -t all` per poll for all the campaign's arrays
+//! lists queued, running and recently ended tasks (Slurm keeps ended jobs
+//! for `MinJobAge`) with state, reason and restart count. A task whose
+//! restart count grew was requeued (node failure, pre-emption,
+//! `scontrol requeue`): the requeue is counted and its cause looked up in
+//! the accounting (`sacct -D`, one call per poll, only then and for tasks
+//! purged from `squeue`). A task gone from both without an exit status is
+//! lost (cancelled, timed out, pre-empted, node failure) and retried.
 
-use super::{Executor, TaskState, command_output};
+mod query;
+
+use super::{Executor, Submitted, Task, command_output};
 use crate::error::{CampaignError, Result};
-use crate::init::{TASK_SCRIPT, quote};
-use crate::spec::{SlurmSpec, find_program};
+use crate::spec::{ExecutorSpec, SlurmSpec, find_program};
 use crate::state::Point;
-use std::collections::HashMap;
+use crate::task::{TASK_SCRIPT, quote};
 use std::path::Path;
 use std::time::Duration;
+
+/// Slurm's default `MaxArraySize`.
+pub const DEFAULT_MAX_ARRAY_SIZE: usize = 1001;
+/// Tasks of a campaign queued or running at once unless `max_queued` says.
+pub const DEFAULT_MAX_QUEUED: usize = 10_000;
 
 /// Job arrays on a Slurm cluster.
 #[derive(Debug)]
 pub struct Slurm {
     spec: SlurmSpec,
+    time: Option<String>,
     name: String,
     poll: Duration,
+    /// The cluster's `MaxArraySize`.
+    max_array: usize,
+    /// Tasks queued or running at once.
+    max_queued: usize,
 }
 
 impl Slurm {
@@ -34,20 +52,30 @@ impl Slurm {
     /// `sbatch`, `squeue` or `scancel` is not on PATH. The job name is
     /// `bumpsim-NAME-ID`, ID from the folder's path, so that a restarted
     /// controller finds its campaign's tasks by name.
-    pub fn new(spec: &SlurmSpec, name: &str, dir: &Path, poll_seconds: f64) -> Result<Slurm> {
+    pub fn new(executor: &ExecutorSpec, name: &str, dir: &Path) -> Result<Slurm> {
         check_programs()?;
         let id = crate::state::short_hash(dir.to_string_lossy().as_bytes());
+        let config = query::config();
+        let job_limit = config.max_job_count.map_or(usize::MAX, |n| (n / 2).max(1));
         Ok(Slurm {
-            spec: spec.clone(),
+            spec: executor.slurm.clone(),
+            time: executor.slurm_time().cloned(),
             name: format!("bumpsim-{name}-{id}"),
-            poll: Duration::from_secs_f64(poll_seconds),
+            poll: Duration::from_secs_f64(executor.poll_seconds),
+            max_array: config.max_array_size.unwrap_or(DEFAULT_MAX_ARRAY_SIZE),
+            max_queued: executor
+                .slurm
+                .max_queued
+                .unwrap_or(DEFAULT_MAX_QUEUED)
+                .min(job_limit),
         })
     }
 
-    /// The job script of one array.
+    /// The job script of the arrays: `$1` is the run of array index 0.
     pub fn script(&self, dir: &Path) -> String {
         let mut text = String::from(
-            "#!/bin/sh\n# written by bumpsim campaign run: one array task per design point\n",
+            "#!/bin/sh\n# written by bumpsim campaign run: one array task per design point; \
+             the point's run is $1 + SLURM_ARRAY_TASK_ID\n",
         );
         for module in &self.spec.modules {
             text += &format!("module load {module}\n");
@@ -57,19 +85,42 @@ impl Slurm {
         }
         let task = quote(&dir.join(TASK_SCRIPT).to_string_lossy());
         let points = quote(&dir.join("points").to_string_lossy());
-        text += &format!("exec sh {task} {points}/$(printf %04d \"$SLURM_ARRAY_TASK_ID\")\n");
+        text += &format!(
+            "run=$(( $1 + SLURM_ARRAY_TASK_ID ))\nexec sh {task} {points}/$(printf %04d \"$run\")\n"
+        );
         text
     }
 
-    fn sbatch_args(&self, dir: &Path, script: &Path, runs: &[usize]) -> Vec<String> {
-        let mut array = format!("--array={}", ranges(runs));
+    /// The job name of the array whose index 0 is run `offset`.
+    fn job_name(&self, offset: usize) -> String {
+        match offset {
+            0 => self.name.clone(),
+            _ => format!("{}+{offset}", self.name),
+        }
+    }
+
+    /// The block of run `run`: its array's offset and its index there.
+    pub fn place(&self, run: usize) -> (usize, usize) {
+        let width = self.max_array.saturating_sub(1).max(1);
+        let offset = (run - 1) / width * width;
+        (offset, run - offset)
+    }
+
+    fn sbatch_args(
+        &self,
+        dir: &Path,
+        script: &Path,
+        offset: usize,
+        indices: &[usize],
+    ) -> Vec<String> {
+        let mut array = format!("--array={}", ranges(indices));
         if let Some(k) = self.spec.max_concurrent {
             array += &format!("%{k}");
         }
         let log = dir.join("slurm").join("%A_%a.out");
         let mut args = vec![
             "--parsable".to_string(),
-            format!("--job-name={}", self.name),
+            format!("--job-name={}", self.job_name(offset)),
             array,
             format!("--output={}", log.display()),
             format!("--chdir={}", dir.display()),
@@ -78,18 +129,34 @@ impl Slurm {
         let optional = [
             s.partition.as_ref().map(|v| format!("--partition={v}")),
             s.account.as_ref().map(|v| format!("--account={v}")),
-            s.time.as_ref().map(|v| format!("--time={v}")),
+            self.time.as_ref().map(|v| format!("--time={v}")),
             s.cpus_per_task.map(|v| format!("--cpus-per-task={v}")),
             s.mem.as_ref().map(|v| format!("--mem={v}")),
         ];
         args.extend(optional.into_iter().flatten());
         args.extend(s.options.iter().cloned());
         args.push(script.display().to_string());
+        args.push(offset.to_string());
         args
+    }
+
+    /// Submits one array: runs `runs` (one block) → their job ids.
+    fn array(&self, dir: &Path, script: &Path, runs: &[usize]) -> Result<Vec<String>> {
+        let offset = self.place(runs[0]).0;
+        let indices: Vec<usize> = runs.iter().map(|r| r - offset).collect();
+        let out = command_output("sbatch", &self.sbatch_args(dir, script, offset, &indices))?;
+        let job = out.trim().split(';').next().unwrap_or("").trim();
+        if job.is_empty() || !job.chars().all(|c| c.is_ascii_digit()) {
+            return Err(CampaignError::Scheduler {
+                command: "sbatch --parsable".into(),
+                message: format!("unexpected answer '{}'", out.trim()),
+            });
+        }
+        Ok(indices.iter().map(|i| format!("slurm:{job}_{i}")).collect())
     }
 }
 
-/// Sorted run numbers as Slurm's array list with ranges (`1-8,10,12-13`).
+/// Sorted numbers as Slurm's array list with ranges (`1-8,10,12-13`).
 ///
 /// ```
 /// assert_eq!(bumpsim_campaign::executor::slurm::ranges(&[1, 2, 3, 5]), "1-3,5");
@@ -126,9 +193,14 @@ pub fn check_programs() -> Result<()> {
     Ok(())
 }
 
-/// The job id of `slurm:JOB_RUN`.
+/// The array job id of `slurm:JOB_INDEX`.
 fn job_of(point: &Point) -> Option<&str> {
     point.job.strip_prefix("slurm:")?.split('_').next()
+}
+
+/// The task id (`JOB_INDEX`) of a point's job.
+fn task_of(point: &Point) -> &str {
+    point.job.trim_start_matches("slurm:")
 }
 
 impl Executor for Slurm {
@@ -136,167 +208,129 @@ impl Executor for Slurm {
         "slurm"
     }
 
-    fn free(&self, _in_flight: usize) -> usize {
-        usize::MAX
+    fn free(&self, in_flight: usize) -> usize {
+        self.max_queued.saturating_sub(in_flight)
     }
 
-    fn submit(&mut self, dir: &Path, points: &[&Point]) -> Result<Vec<String>> {
+    fn submit(&mut self, dir: &Path, points: &[&Point]) -> Submitted {
+        let mut jobs = Vec::new();
         if points.is_empty() {
-            return Ok(Vec::new());
+            return Submitted { jobs, error: None };
         }
-        let folder = dir.join("slurm");
-        let round = std::fs::read_dir(&folder).map_or(0, |d| d.count()) + 1;
-        let script = folder.join(format!("array-{round}.sh"));
-        bumpsim_io::output::write_atomic(&script, self.script(dir).as_bytes())?;
-        let runs: Vec<usize> = points.iter().map(|p| p.run).collect();
-        let out = command_output("sbatch", &self.sbatch_args(dir, &script, &runs))?;
-        let job = out
-            .trim()
-            .split(';')
-            .next()
-            .unwrap_or("")
-            .trim()
-            .to_string();
-        if job.is_empty() || !job.chars().all(|c| c.is_ascii_digit()) {
-            return Err(CampaignError::Scheduler {
-                command: "sbatch --parsable".into(),
-                message: format!("unexpected answer '{}'", out.trim()),
+        if self.max_array < 2 {
+            let error = Some(CampaignError::Scheduler {
+                command: "scontrol show config".into(),
+                message: format!(
+                    "MaxArraySize = {}: the cluster allows no job arrays of 2 tasks",
+                    self.max_array
+                ),
             });
+            return Submitted { jobs, error };
         }
-        Ok(runs.iter().map(|r| format!("slurm:{job}_{r}")).collect())
+        let script = dir.join("slurm").join("array.sh");
+        if let Err(e) = bumpsim_io::output::write_atomic(&script, self.script(dir).as_bytes()) {
+            return Submitted {
+                jobs,
+                error: Some(e.into()),
+            };
+        }
+        let runs: Vec<usize> = points.iter().map(|p| p.run).collect();
+        for block in runs.chunk_by(|a, b| self.place(*a).0 == self.place(*b).0) {
+            match self.array(dir, &script, block) {
+                Ok(ids) => jobs.extend(ids),
+                Err(e) => {
+                    return Submitted {
+                        jobs,
+                        error: Some(e),
+                    };
+                }
+            }
+        }
+        Submitted { jobs, error: None }
     }
 
-    fn poll(&mut self, _dir: &Path, points: &[&Point]) -> Result<Vec<TaskState>> {
+    fn poll(&mut self, _dir: &Path, points: &[&Point]) -> Result<Vec<Task>> {
         let mut jobs: Vec<&str> = points.iter().filter_map(|p| job_of(p)).collect();
         jobs.sort_unstable();
         jobs.dedup();
-        let mut known = squeue(&jobs)?;
-        let id = |p: &Point| p.job.trim_start_matches("slurm:").to_string();
-        let unknown: Vec<String> = points
+        let queue = query::squeue(&jobs)?;
+        // purged from squeue (MinJobAge), or requeued: ask the accounting
+        let history: Vec<&str> = points
             .iter()
-            .map(|p| id(p))
-            .filter(|i| !known.contains_key(i))
+            .filter(|p| {
+                queue
+                    .get(task_of(p))
+                    .is_none_or(|row| row.restarts > p.requeues)
+            })
+            .filter_map(|p| job_of(p))
             .collect();
-        if !unknown.is_empty() {
-            // purged from squeue (MinJobAge): ask accounting, where there is one
-            known.extend(sacct(&unknown));
-        }
+        let accounting = query::sacct(&history);
         Ok(points
             .iter()
-            .map(|p| match known.get(&id(p)) {
-                Some((state, reason)) => task_state(state, reason),
-                None => TaskState::Gone(
-                    "no longer known to Slurm (squeue, sacct) and no exit status recorded".into(),
-                ),
-            })
+            .map(|p| query::task(task_of(p), &queue, accounting.as_ref()))
             .collect())
     }
 
     fn adopt(&mut self, _dir: &Path, points: &[&Point]) -> Result<Vec<Option<String>>> {
-        let args = ["-h", "-r", "-t", "all", "-o", "%i", "--name"].map(String::from);
-        let mut args = args.to_vec();
-        args.push(self.name.clone());
-        let out = command_output("squeue", &args)?;
-        let tasks: Vec<&str> = out.lines().map(str::trim).collect();
+        let mut offsets: Vec<usize> = points.iter().map(|p| self.place(p.run).0).collect();
+        offsets.sort_unstable();
+        offsets.dedup();
+        let names: Vec<String> = offsets.iter().map(|&o| self.job_name(o)).collect();
+        let tasks = query::named(&names)?;
         Ok(points
             .iter()
             .map(|p| {
-                let suffix = format!("_{}", p.run);
+                let (offset, index) = self.place(p.run);
+                let name = self.job_name(offset);
                 // the newest task of this point (job ids increase)
                 tasks
                     .iter()
-                    .filter(|t| t.ends_with(&suffix))
-                    .max_by_key(|t| t.split('_').next().and_then(|j| j.parse::<u64>().ok()))
-                    .map(|t| format!("slurm:{t}"))
+                    .filter(|t| t.name == name && t.index == index)
+                    .max_by_key(|t| t.job)
+                    .map(|t| format!("slurm:{}_{index}", t.job))
             })
             .collect())
     }
 
     fn cancel(&mut self, points: &[&Point]) -> Result<()> {
-        let ids: Vec<String> = points
-            .iter()
-            .map(|p| p.job.trim_start_matches("slurm:").to_string())
-            .collect();
+        let ids: Vec<String> = points.iter().map(|p| task_of(p).to_string()).collect();
         if !ids.is_empty() {
             command_output("scancel", &ids)?;
         }
         Ok(())
     }
 
-    fn interval(&self) -> Duration {
+    fn interval(&self, _idle: u32) -> Duration {
         self.poll
-    }
-}
-
-/// Task id (`JOB_RUN`) → (state, reason) of the given jobs, ended ones included.
-fn squeue(jobs: &[&str]) -> Result<HashMap<String, (String, String)>> {
-    let mut known = HashMap::new();
-    if jobs.is_empty() {
-        return Ok(known);
-    }
-    let args = ["-h", "-r", "-t", "all", "-o", "%i|%T|%r", "-j"].map(String::from);
-    let mut args = args.to_vec();
-    args.push(jobs.join(","));
-    let out = match command_output("squeue", &args) {
-        Ok(out) => out,
-        // every job purged already: squeue refuses the ids
-        Err(CampaignError::Scheduler { message, .. }) if message.contains("Invalid job id") => {
-            String::new()
-        }
-        Err(e) => return Err(e),
-    };
-    for line in out.lines() {
-        let mut parts = line.trim().splitn(3, '|');
-        if let (Some(id), Some(state), reason) = (parts.next(), parts.next(), parts.next()) {
-            known.insert(
-                id.to_string(),
-                (state.to_string(), reason.unwrap_or("").to_string()),
-            );
-        }
-    }
-    Ok(known)
-}
-
-/// Task id → (state, reason) from `sacct` for tasks squeue no longer
-/// lists; empty where accounting is disabled or fails.
-fn sacct(tasks: &[String]) -> HashMap<String, (String, String)> {
-    let args = ["-n", "-P", "-X", "-o", "JobID,State,Reason", "-j"].map(String::from);
-    let mut args = args.to_vec();
-    args.push(tasks.join(","));
-    let Ok(out) = command_output("sacct", &args) else {
-        return HashMap::new();
-    };
-    out.lines()
-        .filter_map(|line| {
-            let mut parts = line.trim().splitn(3, '|');
-            let (id, state) = (parts.next()?, parts.next()?);
-            // "CANCELLED by 0" → CANCELLED
-            let state = state.split_whitespace().next()?.to_string();
-            Some((
-                id.to_string(),
-                (state, parts.next().unwrap_or("").to_string()),
-            ))
-        })
-        .collect()
-}
-
-/// A Slurm job state as a task state.
-fn task_state(state: &str, reason: &str) -> TaskState {
-    match state {
-        "PENDING" | "CONFIGURING" | "REQUEUED" | "REQUEUE_HOLD" | "REQUEUE_FED" | "RESIZING"
-        | "SUSPENDED" => TaskState::Queued,
-        "RUNNING" | "COMPLETING" | "STAGE_OUT" | "SIGNALING" => TaskState::Running,
-        // the marker is written before the task ends: COMPLETED without it
-        // is a task whose folder was not writable or a lost write
-        _ => TaskState::Gone(format!(
-            "Slurm state {state} (reason: {reason}) without an exit status"
-        )),
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn slurm(max_array: usize) -> Slurm {
+        let spec = SlurmSpec {
+            partition: Some("short".into()),
+            account: Some("bumper".into()),
+            time: Some("02:00:00".into()),
+            cpus_per_task: Some(8),
+            mem: Some("16G".into()),
+            max_concurrent: Some(4),
+            max_queued: None,
+            modules: vec!["calculix/2.21".into()],
+            setup: vec!["export OMP_NUM_THREADS=8".into()],
+            options: vec!["--qos=normal".into()],
+        };
+        Slurm {
+            time: spec.time.clone(),
+            spec,
+            name: "c".into(),
+            poll: Duration::from_secs(1),
+            max_array,
+            max_queued: DEFAULT_MAX_QUEUED,
+        }
+    }
 
     #[test]
     fn array_lists_use_ranges() {
@@ -306,37 +340,26 @@ mod tests {
     }
 
     #[test]
-    fn states_map_to_retryable_losses() {
-        assert_eq!(task_state("PENDING", "Priority"), TaskState::Queued);
-        assert_eq!(task_state("RUNNING", "None"), TaskState::Running);
-        let TaskState::Gone(reason) = task_state("TIMEOUT", "TimeLimit") else {
-            panic!()
-        };
-        assert!(reason.contains("TIMEOUT") && reason.contains("TimeLimit"));
+    fn runs_are_cut_into_blocks_below_max_array_size() {
+        let s = slurm(10);
+        assert_eq!(s.place(1), (0, 1));
+        assert_eq!(s.place(9), (0, 9));
+        assert_eq!(s.place(10), (9, 1));
+        assert_eq!(s.place(21), (18, 3));
+        assert_eq!((s.job_name(0), s.job_name(18)), ("c".into(), "c+18".into()));
+        // the default leaves runs 1..=1000 their own index, as before
+        assert_eq!(slurm(DEFAULT_MAX_ARRAY_SIZE).place(1000), (0, 1000));
+        assert_eq!(slurm(DEFAULT_MAX_ARRAY_SIZE).place(1001), (1000, 1));
     }
 
     #[test]
-    fn the_array_carries_resources_and_limit() {
-        let spec = SlurmSpec {
-            partition: Some("short".into()),
-            account: Some("bumper".into()),
-            time: Some("02:00:00".into()),
-            cpus_per_task: Some(8),
-            mem: Some("16G".into()),
-            max_concurrent: Some(4),
-            modules: vec!["calculix/2.21".into()],
-            setup: vec!["export OMP_NUM_THREADS=8".into()],
-            options: vec!["--qos=normal".into()],
-        };
-        let s = Slurm {
-            spec,
-            name: "c".into(),
-            poll: Duration::from_secs(1),
-        };
+    fn the_array_carries_resources_limit_and_offset() {
+        let s = slurm(DEFAULT_MAX_ARRAY_SIZE);
         let args = s
             .sbatch_args(
                 Path::new("/c"),
-                Path::new("/c/slurm/array-1.sh"),
+                Path::new("/c/slurm/array.sh"),
+                0,
                 &[1, 3, 4],
             )
             .join(" ");
@@ -348,6 +371,7 @@ mod tests {
             "--cpus-per-task=8",
             "--mem=16G",
             "--qos=normal",
+            "/c/slurm/array.sh 0",
         ] {
             assert!(args.contains(piece), "{piece} in {args}");
         }
@@ -357,7 +381,7 @@ mod tests {
             "{script}"
         );
         assert!(
-            script.contains("'/c/points'/$(printf %04d \"$SLURM_ARRAY_TASK_ID\")"),
+            script.contains("run=$(( $1 + SLURM_ARRAY_TASK_ID ))\nexec sh '/c/run-point.sh' '/c/points'/$(printf %04d \"$run\")"),
             "{script}"
         );
     }

@@ -1,23 +1,44 @@
 //! `bumpsim campaign`: the bundled CalculiX campaign run locally and on a
 //! real Slurm cluster (scripts/slurm-up), bad input refused before anything
-//! runs, retries, failures with reasons, corrupt output, the lock, a
-//! controller killed with SIGKILL and restarted, `scancel` of a running
-//! task, and 1000-point campaigns.
+//! runs, retries, failures with reasons, corrupt output, local time limits,
+//! the lock, a controller killed with SIGKILL and restarted, a damaged or
+//! truncated state repaired, `scancel` of a running task, a node failure,
+//! arrays cut to the cluster's MaxArraySize, and 1000-point campaigns.
 //!
 //! Most tests use a fake solver (a shell script) that logs every
 //! invocation, so re-runs are counted; faults are injected per point.
 //! One module per concern: the bundled campaigns and real solvers, the
-//! controller's faults, a real Slurm cluster, and `campaign abort`.
+//! controller's faults, the state's repair, a real Slurm cluster, and
+//! `campaign abort`.
 
 mod abort;
 mod bundled;
 mod controller;
+mod repair;
 mod slurm;
 
 use crate::util::{bumpsim, scratch, text};
+use bumpsim_campaign::state::State;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output};
+use std::sync::{RwLock, RwLockReadGuard, RwLockWriteGuard};
 use std::time::{Duration, Instant};
+
+/// The test cluster: shared by the Slurm tests, held alone by the one that
+/// fails its node (which would requeue the others' tasks).
+static CLUSTER: RwLock<()> = RwLock::new(());
+
+/// The test cluster, shared with the other Slurm tests (`None`: no cluster).
+fn slurm_cluster() -> Option<RwLockReadGuard<'static, ()>> {
+    let guard = CLUSTER.read().unwrap_or_else(|e| e.into_inner());
+    slurm_available().then_some(guard)
+}
+
+/// The test cluster alone (`None`: no cluster).
+fn slurm_cluster_alone() -> Option<RwLockWriteGuard<'static, ()>> {
+    let guard = CLUSTER.write().unwrap_or_else(|e| e.into_inner());
+    slurm_available().then_some(guard)
+}
 
 /// Whether a Slurm cluster answers; with `BUMPSIM_REQUIRE_SLURM` set (as
 /// scripts/test does after scripts/slurm-up) its absence fails the test.
@@ -169,7 +190,7 @@ poll_seconds = 0.3
     }
 
     fn state(&self) -> String {
-        std::fs::read_to_string(self.campaign().join("state.toml")).unwrap()
+        state_text(&self.campaign())
     }
 
     fn spawn_run(&self, extra: &[&str]) -> Child {
@@ -203,7 +224,45 @@ poll_seconds = 0.3
     }
 }
 
-/// The `[[point]]` block of run `run` in a state file.
+/// The state of campaign folder `dir` (its journal, read by the library)
+/// as text: a `[[point]]` block per point with its run, status, attempts,
+/// requeues, job and reason (`status = "done"`, `attempts = 2`, ...).
+fn state_text(dir: &Path) -> String {
+    let state = State::read(dir).unwrap_or_else(|e| panic!("{e}"));
+    state
+        .points
+        .iter()
+        .map(|p| {
+            format!(
+                "[[point]]\nrun = {}\nstatus = \"{}\"\nattempts = {}\nrequeues = {}\njob = {:?}\nreason = {:?}\n",
+                p.run,
+                p.status.name(),
+                p.attempts,
+                p.requeues,
+                p.job,
+                p.reason
+            )
+        })
+        .collect()
+}
+
+/// The processes (pid, command line) whose working folder lies in `dir`.
+fn processes_in(dir: &Path) -> Vec<(u32, String)> {
+    let dir = dir.canonicalize().unwrap();
+    std::fs::read_dir("/proc")
+        .unwrap()
+        .flatten()
+        .filter_map(|e| {
+            let pid: u32 = e.file_name().to_str()?.parse().ok()?;
+            let cwd = std::fs::read_link(e.path().join("cwd")).ok()?;
+            let command = std::fs::read(e.path().join("cmdline")).ok()?;
+            cwd.starts_with(&dir)
+                .then(|| (pid, String::from_utf8_lossy(&command).replace('\0', " ")))
+        })
+        .collect()
+}
+
+/// The `[[point]]` block of run `run` in a state's text.
 fn point(state: &str, run: usize) -> String {
     let start = state.find(&format!("[[point]]\nrun = {run}\n")).unwrap();
     let rest = &state[start + 9..];

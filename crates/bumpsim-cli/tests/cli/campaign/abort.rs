@@ -1,9 +1,8 @@
 //! `campaign abort`: running tasks stopped (SIGTERM locally, `scancel` on
 //! Slurm) and their points pending.
 
-use super::{Fake, Faults, NO_FAULTS, path, run, slurm_available};
+use super::{Fake, Faults, NO_FAULTS, path, processes_in, run, slurm_cluster};
 use crate::util::{assert_contains, text};
-use std::path::Path;
 use std::time::{Duration, Instant};
 
 /// `campaign abort` after the controller is stopped: the running tasks are
@@ -51,22 +50,6 @@ fn abort_stops_the_running_tasks(executor: &str) {
     assert_contains(&text(&out.stdout), &["4 points done, 0 failed"]);
 }
 
-/// The processes (pid, command line) whose working folder lies in `dir`.
-fn processes_in(dir: &Path) -> Vec<(u32, String)> {
-    let dir = dir.canonicalize().unwrap();
-    std::fs::read_dir("/proc")
-        .unwrap()
-        .flatten()
-        .filter_map(|e| {
-            let pid: u32 = e.file_name().to_str()?.parse().ok()?;
-            let cwd = std::fs::read_link(e.path().join("cwd")).ok()?;
-            let command = std::fs::read(e.path().join("cmdline")).ok()?;
-            cwd.starts_with(&dir)
-                .then(|| (pid, String::from_utf8_lossy(&command).replace('\0', " ")))
-        })
-        .collect()
-}
-
 #[test]
 fn abort_stops_local_tasks() {
     abort_stops_the_running_tasks("local");
@@ -74,7 +57,7 @@ fn abort_stops_local_tasks() {
 
 #[test]
 fn abort_cancels_slurm_tasks() {
-    if slurm_available() {
+    if let Some(_cluster) = slurm_cluster() {
         abort_stops_the_running_tasks("slurm");
     }
 }

@@ -269,12 +269,11 @@ fn a_task_started_but_not_recorded_is_adopted_not_rerun() {
         .arg(c.join("points/0001"))
         .spawn()
         .unwrap();
-    let state = fake.state().replacen(
-        "status = \"pending\"\nattempts = 0\n",
-        "status = \"submitted\"\nattempts = 1\n",
-        1,
-    );
-    std::fs::write(c.join("state.toml"), state).unwrap();
+    // the state as that controller left it: run 1 submitted, no job id
+    let mut state = bumpsim_campaign::state::State::read(&c).unwrap();
+    state.points[0].status = bumpsim_campaign::state::Status::Submitted;
+    state.points[0].attempts = 1;
+    state.write(&c).unwrap();
     let out = run(&["campaign", "run", path(&c)]);
     assert_contains(
         &text(&out.stdout),
@@ -347,4 +346,53 @@ fn input_hashes_decide_what_runs_again() {
         &["3 points done, 1 failed (3 tasks submitted by this run)"],
     );
     assert_eq!(fake.invocations("0004"), 9);
+}
+
+/// A hanging solver on the local executor: its task's process group is
+/// ended at the campaign's time limit (`[executor] time`, Slurm's form),
+/// retried, then failed with the reason; the other points run once, and
+/// nothing of the hung task lives on. `status --json` shows it all.
+#[test]
+fn a_hanging_local_task_is_timed_out_retried_and_failed_with_its_reason() {
+    let slow = Faults {
+        slow: &["0002"],
+        ..NO_FAULTS
+    };
+    let fake = Fake::new("campaign-timeout", 0, &slow, "local");
+    let c = fake.campaign();
+    let spec = c.join("campaign.toml");
+    let text_now = std::fs::read_to_string(&spec).unwrap();
+    // [executor] is the campaign file's last table
+    let limited = text_now.replace("retries = 2", "retries = 1") + "time = \"0:02\"\n";
+    std::fs::write(&spec, limited).unwrap();
+    let start = Instant::now();
+    let out = run(&["campaign", "run", path(&c)]);
+    let took = start.elapsed();
+    assert_contains(&text(&out.stdout), &["3 points done, 1 failed"]);
+    assert!(
+        took >= Duration::from_secs(4) && took < Duration::from_secs(30),
+        "two attempts of 2 s took {took:?}"
+    );
+    let counts: Vec<usize> = (1..=4)
+        .map(|r| fake.invocations(&format!("{r:04}")))
+        .collect();
+    assert_eq!(counts, [1, 2, 1, 1], "{}", fake.state());
+    let reason = "attempt 2 of 2: time limit 0:02 reached: the task's process group was terminated";
+    assert_contains(
+        &point(&fake.state(), 2),
+        &["status = \"failed\"", "attempts = 2", reason],
+    );
+    let left = super::processes_in(&c);
+    assert!(left.is_empty(), "still running in the campaign: {left:?}");
+    let out = run(&["campaign", "status", path(&c), "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["counts"]["done"], 3, "{json}");
+    assert_eq!(json["counts"]["failed"], 1, "{json}");
+    assert_eq!(json["runs"][1]["attempts"], 2, "{json}");
+    assert_eq!(json["runs"][1]["status"], "failed", "{json}");
+    assert!(
+        json["runs"][1]["reason"].as_str().unwrap().contains(reason),
+        "{json}"
+    );
+    assert_eq!(json["controller"], serde_json::Value::Null, "{json}");
 }
