@@ -274,6 +274,24 @@ pub fn drive_substeps(
     Replay::new(model, input, &car.beam().segments, substeps).run()
 }
 
+/// The sensors' readings of a replay of the first `samples` samples only
+/// (the identification's objective: the cases were validated once with
+/// [`validate`], every trial car replays them with `substeps` steps a
+/// sample, and nothing else is recorded).
+pub(crate) fn sensor_readings(
+    car: &PlanarCar,
+    input: &Drive,
+    substeps: usize,
+    samples: usize,
+) -> Result<Vec<Vec<f64>>, PlanarError> {
+    let mut model = model(car);
+    model.half_step = 0.5 * input.step / substeps as f64;
+    let mut replay = Replay::new(model, input, &car.beam().segments, substeps);
+    replay.samples = samples.clamp(2, replay.samples);
+    replay.lean = true;
+    Ok(replay.run()?.sensor_reading)
+}
+
 /// The car's model with no striker face.
 fn model(car: &PlanarCar) -> Model {
     let nowhere = Placed::Plane {
@@ -303,6 +321,10 @@ struct Replay<'a> {
     side: [f64; 2],
     /// Per sensor: integrated displacement, velocity (half steps), acceleration.
     readings: Vec<[f64; 3]>,
+    /// Record only the sensors' readings (the identification's objective).
+    lean: bool,
+    /// The yaw's sine and cosine at the current positions.
+    axes: (f64, f64),
     out: Driven,
 }
 
@@ -312,13 +334,14 @@ impl Mechanism for Replay<'_> {
     fn accelerations(&mut self, q: &[f64], v: &[f64], a: &mut [f64]) {
         let loads = self
             .model
-            .accelerations(q, v, &self.contact, &mut self.chain, a);
+            .accelerations_at(q, v, &self.contact, &mut self.chain, a, self.axes);
         self.side = loads.side;
     }
 
     fn moved(&mut self, q: &[f64], v: &[f64], k: usize) {
         let t_step = 2.0 * self.model.half_step;
-        self.model.relax(q, v, &mut self.contact, t_step);
+        self.axes = q[2].sin_cos();
+        self.model.relax_at(self.axes, v, &mut self.contact, t_step);
         self.readings.iter_mut().for_each(|r| r[0] += t_step * r[1]);
         let (i, within) = (k / self.substeps, k % self.substeps + 1);
         self.place(q, i, within as f64 / self.substeps as f64);
@@ -369,6 +392,8 @@ impl<'a> Replay<'a> {
             chain: vec![0.0; chains],
             side: [0.0; 2],
             readings: vec![[0.0, input.speed, 0.0]; input.sensors.len()],
+            lean: false,
+            axes: (0.0, 1.0),
             model,
             input,
             segments,
@@ -381,7 +406,7 @@ impl<'a> Replay<'a> {
 
     /// Fills the loads at sample `i` plus fraction `f` into the contact.
     fn place(&mut self, q: &[f64], i: usize, f: f64) {
-        let (sn, cs) = q[2].sin_cos();
+        let (sn, cs) = self.axes;
         for (k, load) in self.input.loads.iter().enumerate() {
             let next = load.force.get(i + 1).copied().unwrap_or(load.force[i]);
             self.contact.total[k] = load.force[i] + f * (next - load.force[i]);
@@ -452,7 +477,7 @@ impl<'a> Replay<'a> {
     /// its reading, with ψ̇ at the full step estimated as in the solve from
     /// the half-step velocities `v` and the accelerations `a`.
     fn sense(&mut self, q: &[f64], v: &[f64], a: &[f64]) {
-        let (sn, cs) = q[2].sin_cos();
+        let (sn, cs) = self.axes;
         let along = a[0] * cs + a[1] * sn;
         let rate = v[2] + self.model.half_step * a[2];
         for k in 0..self.input.sensors.len() {
@@ -480,12 +505,18 @@ impl<'a> Replay<'a> {
         if !q.iter().all(|x| x.abs() < 1e3) {
             return Err(PlanarError::Diverged { time });
         }
+        if self.lean {
+            for (history, r) in self.out.sensor_reading.iter_mut().zip(&self.readings) {
+                history.push(r[0]);
+            }
+            return Ok(());
+        }
         let out = &mut self.out;
         out.time.push(time);
         out.x.push(q[0]);
         out.y.push(q[1]);
         out.yaw.push(q[2]);
-        let (sn, cs) = q[2].sin_cos();
+        let (sn, cs) = self.axes;
         for (k, s) in self.input.sensors.iter().enumerate() {
             let [xi, eta] = match *s {
                 Sensor::Body(p) => p,

@@ -419,7 +419,19 @@ impl Model {
         chain: &mut [f64],
         a: &mut [f64],
     ) -> Loads {
-        let (sn, cs) = q[2].sin_cos();
+        self.accelerations_at(q, v, c, chain, a, q[2].sin_cos())
+    }
+
+    /// [`Model::accelerations`] with the yaw's sine and cosine given.
+    pub fn accelerations_at(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        c: &Contact,
+        chain: &mut [f64],
+        a: &mut [f64],
+        (sn, cs): (f64, f64),
+    ) -> Loads {
         let (e, n) = ([cs, sn], [-sn, cs]);
         let mut loads = Loads::default();
         // external forces in the body frame: e, n and moment about the CG
@@ -460,7 +472,7 @@ impl Model {
         fe += tyre[0];
         fn_ += tyre[1];
         mz += loads.tyre_moment;
-        self.solve(q, v, [fe, fn_, mz], chain, a);
+        self.solve(q, v, [fe, fn_, mz], chain, a, (sn, cs));
         if let Some(mp) = self.pendulum {
             a[self.travel()] = loads.contact[0] / mp;
         } else {
@@ -495,7 +507,12 @@ impl Model {
     /// Advances the rolling tyres' patch deflections over `step` (s) at
     /// positions `q` and the velocities `v` of the step ([`Wheel::relax`]).
     pub fn relax(&self, q: &[f64], v: &[f64], c: &mut Contact, step: f64) {
-        let Axes { e, n } = Axes::of(q[2]);
+        self.relax_at(q[2].sin_cos(), v, c, step)
+    }
+
+    /// [`Model::relax`] with the yaw's sine and cosine given.
+    pub fn relax_at(&self, (sn, cs): (f64, f64), v: &[f64], c: &mut Contact, step: f64) {
+        let (e, n) = ([cs, sn], [-sn, cs]);
         let (ve, vn, w) = (v[0] * e[0] + v[1] * e[1], v[0] * n[0] + v[1] * n[1], v[2]);
         for (wheel, y) in self.wheels.iter().zip(&mut c.patches) {
             wheel.relax(ve - w * wheel.eta, vn + w * wheel.xi, y, step);
@@ -503,7 +520,15 @@ impl Model {
     }
 
     /// Solves the Newton–Euler equations for the body and chain accelerations.
-    fn solve(&self, q: &[f64], v: &[f64], external: [f64; 3], chain: &[f64], a: &mut [f64]) {
+    fn solve(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        external: [f64; 3],
+        chain: &[f64],
+        a: &mut [f64],
+        (sn, cs): (f64, f64),
+    ) {
         // the inertial (Coriolis, centrifugal) terms take the velocities at
         // the full step, extrapolated from v_{n−½} with the last accelerations
         // still in `a`: second order, so momentum stays balanced when spinning
@@ -529,7 +554,6 @@ impl Model {
         let det = a11 * a22 - a12 * a12;
         let ay = (r1 * a22 - a12 * r2) / det;
         let yaw = (a11 * r2 - a12 * r1) / det;
-        let (sn, cs) = q[2].sin_cos();
         a[0] = ax * cs - ay * sn;
         a[1] = ax * sn + ay * cs;
         a[2] = yaw;

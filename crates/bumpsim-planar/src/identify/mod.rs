@@ -374,15 +374,16 @@ pub fn identify(
         upper: &upper,
         range: (&lower, &upper),
     };
-    let found = multistart::search(&|| &objective, points, &search, observer).map_err(|e| {
-        PlanarError::Missing {
-            name: "identification".into(),
-            expected: format!(
-                "no start of {} could be evaluated: check the forces and the template",
-                e.starts
-            ),
-        }
-    })?;
+    let found =
+        multistart::search(&|| objective.clone(), points, &search, observer).map_err(|e| {
+            PlanarError::Missing {
+                name: "identification".into(),
+                expected: format!(
+                    "no start of {} could be evaluated: check the forces and the template",
+                    e.starts
+                ),
+            }
+        })?;
     summarise(cases, setup, &objective, &found, (&lower, &upper), clock)
 }
 

@@ -8,20 +8,37 @@
 
 use super::{PlanarCase, Unknowns};
 use crate::car::PlanarError;
-use crate::drive::{Driven, drive_substeps, substeps};
+use crate::drive::{sensor_readings, substeps};
 use bumpsim_estimate::lm::LeastSquares;
 use bumpsim_estimate::uncertainty::Series;
 use nalgebra::DMatrix;
 use rayon::prelude::*;
+use std::sync::Mutex;
 
 /// The least-squares problem over all cases.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub(crate) struct Objective<'a> {
     cases: &'a [PlanarCase],
     unknowns: &'a Unknowns,
     count: usize,
     /// Integration steps per sample of each case.
     substeps: Vec<usize>,
+    /// The last point evaluated without its Jacobian and its residuals: LM
+    /// asks for the Jacobian at a trial point it has just evaluated.
+    last: Mutex<Option<(Vec<f64>, Vec<f64>)>>,
+}
+
+/// A clone starts with no remembered point (one per solver run).
+impl Clone for Objective<'_> {
+    fn clone(&self) -> Self {
+        Objective {
+            cases: self.cases,
+            unknowns: self.unknowns,
+            count: self.count,
+            substeps: self.substeps.clone(),
+            last: Mutex::new(None),
+        }
+    }
 }
 
 impl<'a> Objective<'a> {
@@ -45,6 +62,7 @@ impl<'a> Objective<'a> {
             unknowns,
             count,
             substeps,
+            last: Mutex::new(None),
         })
     }
 
@@ -69,7 +87,8 @@ impl<'a> Objective<'a> {
         out
     }
 
-    fn replays(&self, p: &[f64]) -> Option<Vec<Driven>> {
+    /// Each case's sensor readings up to its window's end with the car of `p`.
+    fn replays(&self, p: &[f64]) -> Option<Vec<Vec<Vec<f64>>>> {
         let theta = self.unknowns.theta(p);
         let car = self.unknowns.car(&theta).ok()?;
         self.cases
@@ -79,7 +98,7 @@ impl<'a> Objective<'a> {
             .map(|(i, (c, &n))| {
                 let located = self.unknowns.case(&theta, i, c);
                 let drive = &located.as_ref().unwrap_or(c).drive;
-                drive_substeps(&car, drive, n).ok()
+                sensor_readings(&car, drive, n, c.window.1 + 1).ok()
             })
             .collect()
     }
@@ -91,7 +110,7 @@ impl<'a> Objective<'a> {
         let mut at = 0;
         for (case, replay) in self.cases.iter().zip(&replays) {
             for k in case.window.0..=case.window.1 {
-                for (model, measured) in replay.sensor_reading.iter().zip(&case.measured) {
+                for (model, measured) in replay.iter().zip(&case.measured) {
                     r[at] = model[k] - measured[k];
                     at += 1;
                 }
@@ -111,12 +130,22 @@ impl LeastSquares for Objective<'_> {
     }
 
     fn evaluate(&self, p: &[f64], r: &mut [f64], jacobian: Option<&mut DMatrix<f64>>) -> bool {
-        if !self.residuals(p, r) {
+        let mut last = self.last.lock().unwrap_or_else(|e| e.into_inner());
+        let remembered = match (&*last, jacobian.is_some()) {
+            (Some((q, residuals)), true) if q.as_slice() == p => {
+                r.copy_from_slice(residuals);
+                true
+            }
+            _ => false,
+        };
+        if !remembered && !self.residuals(p, r) {
             return false;
         }
         let Some(jac) = jacobian else {
+            *last = Some((p.to_vec(), r.to_vec()));
             return true;
         };
+        drop(last);
         const H: f64 = 1e-6;
         let columns: Vec<Option<Vec<f64>>> = (0..p.len())
             .into_par_iter()
