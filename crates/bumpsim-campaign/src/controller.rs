@@ -134,6 +134,10 @@ impl<'a> Controller<'a> {
         self.state.points[i].status = status;
         match old {
             Status::Pending => self.pending.remove(&i),
+            s if s.in_flight() && !status.in_flight() => {
+                self.executor.release(&self.state.points[i]);
+                self.flying.remove(&i)
+            }
             s if s.in_flight() => self.flying.remove(&i),
             _ => false,
         };

@@ -148,3 +148,47 @@ pub fn abort(dir: &Path) -> Result<usize> {
     state.write(dir)?;
     Ok(n)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The zombies among this process's children (ended, not reaped).
+    fn zombies() -> usize {
+        let me = std::process::id().to_string();
+        let Ok(entries) = std::fs::read_dir("/proc") else {
+            return 0;
+        };
+        entries
+            .flatten()
+            .filter_map(|e| std::fs::read_to_string(e.path().join("stat")).ok())
+            .filter(|stat| {
+                let rest: Vec<&str> = stat
+                    .rsplit_once(')')
+                    .map_or(vec![], |(_, r)| r.split_whitespace().collect());
+                rest.first() == Some(&"Z") && rest.get(1) == Some(&me.as_str())
+            })
+            .count()
+    }
+
+    /// Every task process is reaped (a campaign of 100 000 points would
+    /// otherwise run out of processes), and a run ends with a snapshot.
+    #[test]
+    fn a_run_leaves_no_zombie_and_a_compact_journal() {
+        let dir = std::env::temp_dir().join(format!("bumpsim-run-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("deck.tmpl"), "k = {{k}}\n").unwrap();
+        let spec = "name = \"z\"\n[design]\nkind = \"lhs\"\nruns = 60\nfactors = [{ name = \"k\", low = 1, high = 2 }]\n\
+                    [template]\nfile = \"deck.tmpl\"\n[solver]\ncommand = [\"true\"]\n[executor]\nslots = 2\n";
+        std::fs::write(dir.join("c.toml"), spec).unwrap();
+        let c = dir.join("c");
+        crate::init::init(&dir.join("c.toml"), &c).unwrap();
+        let summary = run(&c, &RunOptions::default()).unwrap();
+        assert_eq!((summary.done, summary.submitted), (60, 60));
+        assert!(zombies() <= 2, "{} zombies", zombies());
+        let journal = std::fs::read_to_string(c.join(crate::state::STATE_FILE)).unwrap();
+        assert_eq!(journal.lines().count(), 1 + 60);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

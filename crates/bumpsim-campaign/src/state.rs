@@ -231,8 +231,7 @@ fn load(dir: &Path) -> Result<(State, usize, usize)> {
     let header = header(dir, journal.lines.first())?;
     let mut points: Vec<Option<Point>> = vec![None; header.points];
     for &(line, text) in &journal.lines[1..] {
-        let point = parse_point(text, header.points)
-            .map_err(|e| damaged(dir, format!("line {line}: {e}")))?;
+        let point = parse_point(dir, line, text, header.points)?;
         let i = point.run - 1;
         points[i] = Some(point);
     }
@@ -264,14 +263,13 @@ fn header(dir: &Path, first: Option<&(usize, &str)>) -> Result<Header> {
     }
 }
 
-/// A point record of a campaign of `points` points.
-fn parse_point(text: &str, points: usize) -> std::result::Result<Point, String> {
-    let mut point: Point = serde_json::from_str(text).map_err(|e| e.to_string())?;
+/// The point record on line `line` of a campaign of `points` points.
+fn parse_point(dir: &Path, line: usize, text: &str, points: usize) -> Result<Point> {
+    let problem = |what: String| damaged(dir, format!("line {line}: {what}"));
+    let mut point: Point = serde_json::from_str(text).map_err(|e| problem(e.to_string()))?;
     if !(1..=points).contains(&point.run) {
-        return Err(format!(
-            "run {} of a campaign of {points} points",
-            point.run
-        ));
+        let what = format!("run {} of a campaign of {points} points", point.run);
+        return Err(problem(what));
     }
     point.folder = point_folder(point.run);
     Ok(point)
@@ -294,7 +292,7 @@ pub fn salvage(dir: &Path) -> BTreeMap<usize, Point> {
     records(&text)
         .lines
         .iter()
-        .filter_map(|(_, json)| parse_point(json, MAX_POINTS).ok())
+        .filter_map(|&(line, json)| parse_point(dir, line, json, MAX_POINTS).ok())
         .map(|p| (p.run, p))
         .collect()
 }

@@ -47,6 +47,9 @@ pub struct InitArgs {
 #[derive(Debug, clap::Args)]
 pub struct RunArgs {
     /// The campaign folder.
+    // read and written: the output guard takes it as a working folder, not
+    // as an input whose every file (500 000 at 100 000 points) it would scan
+    #[arg(id = "work", value_name = "DIR")]
     dir: PathBuf,
     /// local | slurm (default: the campaign file's executor.kind).
     #[arg(long)]
@@ -63,6 +66,9 @@ pub struct RunArgs {
 #[derive(Debug, clap::Args)]
 pub struct StatusArgs {
     /// The campaign folder.
+    // read and written: the output guard takes it as a working folder, not
+    // as an input whose every file (500 000 at 100 000 points) it would scan
+    #[arg(id = "work", value_name = "DIR")]
     dir: PathBuf,
     /// Print a JSON document instead: counts, controller, every point's record.
     #[arg(long)]
@@ -73,6 +79,9 @@ pub struct StatusArgs {
 #[derive(Debug, clap::Args)]
 pub struct DirArgs {
     /// The campaign folder.
+    // read and written: the output guard takes it as a working folder, not
+    // as an input whose every file (500 000 at 100 000 points) it would scan
+    #[arg(id = "work", value_name = "DIR")]
     dir: PathBuf,
 }
 

@@ -32,6 +32,9 @@ pub struct Local {
     slots: usize,
     limit: Option<(String, Duration)>,
     tasks: HashMap<usize, Running>,
+    /// Released tasks whose process has not been reaped yet (it was
+    /// exiting as its outcome was read): reaped at the next submission.
+    exiting: Vec<Child>,
 }
 
 /// A task this controller started or adopted.
@@ -54,6 +57,7 @@ impl Local {
             slots: slots.max(1),
             limit,
             tasks: HashMap::new(),
+            exiting: Vec::new(),
         }
     }
 
@@ -241,6 +245,8 @@ impl Executor for Local {
     }
 
     fn submit(&mut self, dir: &Path, points: &[&Point]) -> Submitted {
+        self.exiting
+            .retain_mut(|child| !matches!(child.try_wait(), Ok(Some(_)) | Err(_)));
         let mut jobs = Vec::new();
         for p in points {
             let spawned = Command::new("sh")
@@ -302,6 +308,15 @@ impl Executor for Local {
             }
         }
         Ok(())
+    }
+
+    fn release(&mut self, point: &Point) {
+        let child = self.tasks.remove(&point.run).and_then(|t| t.child);
+        if let Some(mut child) = child {
+            if !matches!(child.try_wait(), Ok(Some(_)) | Err(_)) {
+                self.exiting.push(child);
+            }
+        }
     }
 
     /// Half a millisecond while tasks end often (a no-op solver ends in

@@ -87,6 +87,12 @@ pub trait Executor {
     /// Stops the tasks of these points (abort).
     fn cancel(&mut self, points: &[&Point]) -> Result<()>;
 
+    /// Forgets the task of `point`, which is no longer in flight (its
+    /// outcome is recorded): a local executor reaps its process.
+    fn release(&mut self, point: &Point) {
+        let _ = point;
+    }
+
     /// Time to wait before the next poll, after `idle` polls that changed nothing.
     fn interval(&self, idle: u32) -> Duration;
 }

@@ -237,15 +237,21 @@ fn a_campaign_larger_than_max_array_size_runs_like_the_local_executor() {
     assert_eq!(tables[0], tables[1]);
 }
 
-/// Puts the node back in service (it may be back already: ReturnToService=2).
+/// `scontrol ARGS`, its refusals ignored (a node already up, a job already running).
+fn scontrol(args: &[&str]) {
+    let _ = Command::new("scontrol")
+        .args(args)
+        .stderr(std::process::Stdio::null())
+        .status();
+}
+
+/// Puts the node back in service, whatever the test did (it may be back
+/// already: ReturnToService=2).
 struct Resume(String);
 
 impl Drop for Resume {
     fn drop(&mut self) {
-        let _ = Command::new("scontrol")
-            .args(["update", &format!("nodename={}", self.0), "state=resume"])
-            .stderr(std::process::Stdio::null())
-            .status();
+        scontrol(&["update", &format!("nodename={}", self.0), "state=resume"]);
     }
 }
 
@@ -279,55 +285,31 @@ fn a_node_failure_requeue_is_recorded_with_its_reason_and_counted() {
     let host = text(&Command::new("hostname").arg("-s").output().unwrap().stdout)
         .trim()
         .to_string();
-    let resume = Resume(host.clone());
-    let down = Command::new("scontrol")
-        .args([
-            "update",
-            &format!("nodename={host}"),
-            "state=down",
-            "reason=bumpsim test: node failure",
-        ])
-        .status()
-        .unwrap();
-    assert!(down.success());
-    // Slurm holds a requeued task back for 120 s: released at once
-    let release = Instant::now();
-    while release.elapsed() < Duration::from_secs(15) {
-        drop(
-            Command::new("scontrol")
-                .args(["update", &format!("nodename={host}"), "state=resume"])
-                .stderr(std::process::Stdio::null())
-                .status(),
-        );
-        for job in array_jobs(&fake.state()) {
-            let _ = Command::new("scontrol")
-                .args(["update", &format!("jobid={job}"), "starttime=now"])
-                .stderr(std::process::Stdio::null())
-                .status();
-        }
-        if fake.state().contains("requeued by Slurm") {
-            break;
-        }
-        std::thread::sleep(Duration::from_millis(300));
-    }
-    drop(resume);
-    let deadline = Instant::now();
+    let _resume = Resume(host.clone());
+    let node = format!("nodename={host}");
+    scontrol(&[
+        "update",
+        &node,
+        "state=down",
+        "reason=bumpsim test: node failure",
+    ]);
+    let start = Instant::now();
     let status = loop {
         if let Some(status) = controller.try_wait().unwrap() {
             break status;
         }
         assert!(
-            deadline.elapsed() < Duration::from_secs(120),
+            start.elapsed() < Duration::from_secs(120),
             "{}",
             fake.state()
         );
+        // the node back (ReturnToService may have done it), and the requeued
+        // tasks released: Slurm holds them back for 120 s
+        scontrol(&["update", &node, "state=resume"]);
         for job in array_jobs(&fake.state()) {
-            let _ = Command::new("scontrol")
-                .args(["update", &format!("jobid={job}"), "starttime=now"])
-                .stderr(std::process::Stdio::null())
-                .status();
+            scontrol(&["update", &format!("jobid={job}"), "starttime=now"]);
         }
-        std::thread::sleep(Duration::from_millis(500));
+        std::thread::sleep(Duration::from_millis(300));
     };
     assert!(status.success(), "{}", fake.state());
     let state = fake.state();
