@@ -64,6 +64,7 @@ fn planar_impact(args: &ImpactArgs) -> Result<()> {
         face: &args.face,
         pendulum: args.pendulum,
         speed: args.speed.as_deref(),
+        setup: &crate::planar::SetupArgs::default(),
         files: &args.files,
     })
 }
@@ -87,6 +88,7 @@ fn widened_impact(args: &ImpactArgs, car: &Car, bumper: &Bumper, width: &str) ->
         face: &args.face,
         pendulum: args.pendulum,
         speed: args.speed.as_deref(),
+        setup: &crate::planar::SetupArgs::default(),
         files: &args.files,
     })
 }

@@ -34,7 +34,38 @@ pub struct Args {
     #[arg(long)]
     speed: Option<String>,
     #[command(flatten)]
+    setup: SetupArgs,
+    #[command(flatten)]
     files: crate::output::ResultFiles,
+}
+
+/// The test set-up options of `planar`: where the striker starts and how
+/// long the run lasts.
+#[derive(Debug, Default, clap::Args)]
+pub struct SetupArgs {
+    /// Initial gap between the striker and its first touch, along x: m, or
+    /// with a unit ("50 mm"); the record's time zero stays the first touch,
+    /// so it starts at −gap/speed. Default 0.
+    #[arg(long)]
+    gap: Option<String>,
+    /// Longest simulated time from the start: s, or with a unit ("300 ms");
+    /// default 1 s (the run stops once the impact is over).
+    #[arg(long)]
+    duration: Option<String>,
+}
+
+impl SetupArgs {
+    /// The simulation settings these options give.
+    fn settings(&self) -> Result<Settings> {
+        let mut settings = Settings::default();
+        if let Some(gap) = &self.gap {
+            settings.gap = quantity("gap", gap, Dimension::Length)?;
+        }
+        if let Some(duration) = &self.duration {
+            settings.duration = quantity("duration", duration, Dimension::Time)?;
+        }
+        Ok(settings)
+    }
 }
 
 /// The striker's face options of `planar` (and of `impact` with a planar car).
@@ -82,6 +113,8 @@ pub struct ImpactRequest<'a> {
     pub pendulum: Option<f64>,
     /// The speed as given.
     pub speed: Option<&'a str>,
+    /// The set-up (gap, duration).
+    pub setup: &'a SetupArgs,
     /// Result files.
     pub files: &'a crate::output::ResultFiles,
 }
@@ -143,6 +176,7 @@ pub fn run(args: &Args) -> Result<()> {
         face: &args.face,
         pendulum: args.pendulum,
         speed: args.speed.as_deref(),
+        setup: &args.setup,
         files: &args.files,
     })
 }
@@ -151,7 +185,7 @@ pub fn run(args: &Args) -> Result<()> {
 pub fn run_impact(request: &ImpactRequest) -> Result<()> {
     let (path, car) = (request.path, &request.car);
     let (striker, label) = striker(request)?;
-    let result = simulate(car, &striker, &Settings::default())?;
+    let result = simulate(car, &striker, &request.setup.settings()?)?;
     result.warnings.iter().for_each(|w| crate::warn(w));
     let name = car
         .name()

@@ -8,6 +8,22 @@
 //! - Sensors: the body-x accelerations integrated twice, from the car's
 //!   speed at t = 0 and zero displacement, to the world-x displacements
 //!   the replay predicts.
+//! - Time zero, where the replay starts: by default just before the force
+//!   onset (ISO 6487 and SAE J211 put time zero at the first contact). The
+//!   onset is the last sample before the summed force's 5 % rise at which
+//!   it is within its noise ([`onset`], on the conditioned forces); a soft
+//!   toe (a pole's curve, an angled wall's corner) stays in the noise for a
+//!   while after the true first touch, so time zero lies the longer of
+//!   [`ONSET_LEAD`] and the onset's rise time (onset to 5 %) before it: a
+//!   replay that starts before contact is exact (free travel at the
+//!   speed), one that starts late has lost crush. Or a time the study gives
+//!   (`time_zero`, s of the file's time base: 0 keeps the file's). Every
+//!   channel is shifted so that this instant is t = 0 before the sensors
+//!   are integrated from the car's speed there. Anchors (a pole's axis, a
+//!   wall cell's centre) are given in the body frame at the files' t = 0,
+//!   as the lab measured the set-up; they move into the body frame at time
+//!   zero by the car's travel between the two instants (the mean of the two
+//!   body sensors' displacement there; the car does not turn before contact).
 //! - Samples from t = 0 on; the fit window is the contact window of the
 //!   summed force (rise 5 %, fall 2 % of its peak, as the 1-D study).
 
@@ -38,6 +54,99 @@ pub struct Placed {
     pub cell: Option<f64>,
 }
 
+/// The decimation of samples every `step` (s) filtered at CFC `cfc`: the
+/// largest whole factor that keeps the rate at least [`RATE_PER_CFC`] times
+/// the filter's −3 dB frequency (`5 cfc / 3` Hz), at least 1.
+///
+/// ```
+/// use bumpsim_planar::cases::decimation;
+/// assert_eq!(decimation(1e-4, 180.0), 3);   // 10 kHz to 3.3 kHz: ≥ 3 kHz
+/// assert_eq!(decimation(1e-4, 1000.0), 1);
+/// ```
+pub fn decimation(step: f64, cfc: f64) -> usize {
+    let rate = RATE_PER_CFC * 5.0 * cfc / 3.0;
+    let factor = (1.0 / (step * rate)).floor();
+    match factor.is_finite() && factor >= 1.0 {
+        true => factor as usize,
+        false => 1,
+    }
+}
+
+/// A CFC-filtered case is sampled at least this many times its filter's
+/// −3 dB frequency (SAE J211-1 asks for at least 8 to 10 times).
+pub const RATE_PER_CFC: f64 = 10.0;
+
+/// The summed force's onset is the last sample before its rise at which it
+/// is within [`ONSET_NOISE`] times its noise (the median absolute deviation
+/// of the samples before the rise, as a standard deviation), and at most
+/// this fraction of its peak.
+pub const ONSET_FLOOR: f64 = 1e-3;
+
+/// How many standard deviations of noise a force may show before contact.
+pub const ONSET_NOISE: f64 = 4.0;
+
+/// The shortest lead of time zero before the detected onset, s.
+pub const ONSET_LEAD: f64 = 2e-3;
+
+/// Where a case's time zero lies.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TimeZero {
+    /// At the summed force's onset (the first contact).
+    Onset,
+    /// At this time of the file's time base, s (0: the file's own).
+    At(f64),
+}
+
+/// The index of the onset of `force` (any sign) whose contact starts at
+/// sample `first`: walking back from `first`, the last sample within the
+/// noise before it (at most [`ONSET_NOISE`] standard deviations, estimated
+/// by the median absolute deviation of the samples before `first`, or
+/// [`ONSET_FLOOR`] of the peak when that is larger); 0 when none is.
+///
+/// ```
+/// use bumpsim_planar::cases::onset;
+/// let f = [0.0, 0.0, 0.0, 0.0, 0.0004, 0.02, 0.2, 1.0, 0.3, 0.0];
+/// assert_eq!(onset(&f, 6), 4);
+/// ```
+pub fn onset(force: &[f64], first: usize) -> usize {
+    let first = first.min(force.len().saturating_sub(1));
+    let peak = force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+    let floor = (ONSET_NOISE * noise(&force[..first])).max(ONSET_FLOOR * peak);
+    force[..=first]
+        .iter()
+        .rposition(|f| f.abs() <= floor)
+        .unwrap_or(0)
+}
+
+/// The standard deviation of a signal's noise from its median absolute
+/// deviation (1.4826 MAD for Gaussian noise; robust to the few samples of a
+/// contact's toe among many of the pre-trigger).
+fn noise(values: &[f64]) -> f64 {
+    let median = |v: &mut Vec<f64>| -> f64 {
+        v.sort_by(f64::total_cmp);
+        v.get(v.len() / 2).copied().unwrap_or(0.0)
+    };
+    let centre = median(&mut values.to_vec());
+    1.4826 * median(&mut values.iter().map(|v| (v - centre).abs()).collect())
+}
+
+/// The car's travel along x from time zero to `at` (s, time zero's time
+/// base): the mean of the two body sensors' displacements `sensors` there,
+/// linearly interpolated (0 without two sensors or at time zero itself).
+fn travel(time: &[f64], sensors: &[Vec<f64>], at: f64) -> f64 {
+    if sensors.len() < 2 || at == 0.0 || time.len() < 2 {
+        return 0.0;
+    }
+    let step = time[1] - time[0];
+    let k = ((at - time[0]) / step).clamp(0.0, (time.len() - 2) as f64);
+    let (i, w) = (k.floor() as usize, k.fract());
+    let mean = |j: usize| 0.5 * (sensors[0][j] + sensors[1][j]);
+    mean(i) + w * (mean(i + 1) - mean(i))
+}
+
+/// A channel's conditioning with extra steps after the common ones.
+type Conditioning<'a> = dyn Fn(&Channel, &[Step]) -> Result<Channel, PlanarError> + 'a;
+
 /// The channels of one test and what is known of it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TestChannels {
@@ -54,6 +163,8 @@ pub struct TestChannels {
     pub speed: f64,
     /// CFC class of the filter, if any.
     pub cfc: Option<f64>,
+    /// Where time zero lies.
+    pub time_zero: TimeZero,
 }
 
 impl TestChannels {
@@ -79,6 +190,7 @@ impl TestChannels {
             positions: recorded.sensors.clone(),
             speed: recorded.car_speed,
             cfc: Some(180.0),
+            time_zero: TimeZero::Onset,
         }
     }
 
@@ -103,16 +215,34 @@ impl TestChannels {
             all.extend_from_slice(extra);
             run(&all, c).map_err(|e| error(e.to_string()))
         };
-        let integrate = [Step::Integrate(self.speed), Step::Integrate(0.0)];
+        let zero = match self.time_zero {
+            TimeZero::At(t) if t.is_finite() => t,
+            TimeZero::At(t) => {
+                return Err(error(format!(
+                    "time_zero = {t} s: expected a finite time of the file's time base"
+                )));
+            }
+            TimeZero::Onset => self.onset(&condition)?,
+        };
+        let shift = [Step::Shift(-zero)];
+        let integrate = [
+            Step::Shift(-zero),
+            Step::Integrate(self.speed),
+            Step::Integrate(0.0),
+        ];
         let mut channels = Vec::new();
         for f in &self.forces {
-            channels.push(condition(&f.channel, &[])?);
+            channels.push(condition(&f.channel, &shift)?);
         }
         for s in &self.sensors {
             channels.push(condition(s, &integrate)?);
         }
         let (time, columns) = align(&channels).map_err(|e| error(e.to_string()))?;
-        let resampled = resampling(&channels);
+        // the note speaks of the files' times
+        let resampled = resampling(&channels).map(|mut r| {
+            r.span = r.span.map(|t| t + zero);
+            r
+        });
         let first = time
             .iter()
             .position(|&t| t >= -1e-9 * time.get(1).map_or(1.0, |t1| (t1 - time[0]).abs()))
@@ -121,25 +251,35 @@ impl TestChannels {
             true => time[1] - time[0],
             false => 0.0,
         };
+        // channels filtered at CFC c carry nothing above its −3 dB
+        // frequency 5c/3 Hz: keep every d-th sample, as long as the rate
+        // stays at least 10 times that frequency (SAE J211-1's sampling)
+        let every = self.cfc.map_or(1, |c| decimation(step, c));
+        let kept = |values: &[f64]| -> Vec<f64> {
+            values[first..].iter().step_by(every).copied().collect()
+        };
         let n = self.forces.len();
+        let travel = travel(&time, &columns[n..], -zero);
         let loads: Vec<Load> = self
             .forces
             .iter()
             .zip(&columns)
             .map(|(f, values)| Load {
                 lateral: f.lateral,
-                anchor: f.anchor,
+                anchor: f.anchor.map(|[xi, eta]| [xi + travel, eta]),
                 cell: f.cell,
                 direction: f.direction,
-                force: values[first..].to_vec(),
+                force: kept(values),
             })
             .collect();
         let total: Vec<f64> = (first..time.len())
+            .step_by(every)
             .map(|k| columns[..n].iter().map(|c| c[k]).sum::<f64>().abs())
             .collect();
         let window = ContactThreshold::default()
             .detect(&total)
             .map_err(|e| error(format!("force: {e}")))?;
+        let step = step * every as f64;
         let case = PlanarCase {
             name: self.name.clone(),
             drive: Drive {
@@ -148,11 +288,38 @@ impl TestChannels {
                 speed: self.speed,
                 sensors: self.positions.clone(),
             },
-            measured: columns[n..].iter().map(|c| c[first..].to_vec()).collect(),
+            measured: columns[n..].iter().map(|c| kept(c)).collect(),
             window: (window.first, window.last),
             estimated: (0..n).filter(|&k| self.forces[k].estimated).collect(),
             striker: None,
+            time_zero: zero,
         };
         Ok((case, resampled))
+    }
+
+    /// Time zero before the summed conditioned forces' onset ([`onset`],
+    /// [`ONSET_LEAD`]), s of the file's time base.
+    fn onset(&self, condition: &Conditioning) -> Result<f64, PlanarError> {
+        let forces = self
+            .forces
+            .iter()
+            .map(|f| condition(&f.channel, &[]))
+            .collect::<Result<Vec<_>, _>>()?;
+        let (time, columns) = align(&forces).map_err(|e| PlanarError::Case {
+            case: self.name.clone(),
+            message: e.to_string(),
+        })?;
+        let total: Vec<f64> = (0..time.len())
+            .map(|k| columns.iter().map(|c| c[k]).sum::<f64>())
+            .collect();
+        let window = ContactThreshold::default()
+            .detect(&total)
+            .map_err(|e| PlanarError::Case {
+                case: self.name.clone(),
+                message: format!("force: {e}"),
+            })?;
+        let at = onset(&total, window.first);
+        let lead = ONSET_LEAD.max(time[window.first] - time[at]);
+        Ok((time[at] - lead).max(time[0]))
     }
 }

@@ -13,11 +13,12 @@
 //! - **yaw rate**: simulated, against the first difference of the yaw the
 //!   sills' readings give, `ψ = asin((x_R − x_L)/(η_L − η_R))`.
 //!
-//! Time zero: the lab's trigger rarely is first contact, and the simulation
-//! starts at first contact; both force histories' onsets (the first sample
-//! above [`ONSET`] of the peak) are aligned, unless the study gives the
-//! test's time zero. Each channel is scored by the fit % of the estimation
-//! layer ([`bumpsim_estimate::fit`]).
+//! Timing: the simulation starts at first touch, the case's record a little
+//! before its force onset ([`crate::cases::TimeZero`]); both force
+//! histories' onsets (the first sample above [`ONSET`] of the peak) are
+//! aligned, and the shift is reported. Each channel is scored by the fit % of the estimation
+//! layer ([`bumpsim_estimate::fit`]) and by the ISO/TS 18571 rating
+//! ([`bumpsim_signal::rating`]).
 
 use crate::car::{PlanarCar, PlanarError};
 use crate::drive::Sensor;
@@ -37,6 +38,8 @@ pub struct Channel {
     pub unit: &'static str,
     /// Fit % of the simulation against the measurement over the window.
     pub fit_percent: f64,
+    /// ISO/TS 18571 rating of the simulation against the measurement.
+    pub rating: Option<bumpsim_signal::rating::Rating>,
     /// Time of the test's samples, s.
     #[serde(skip)]
     pub time: Vec<f64>,
@@ -117,6 +120,7 @@ pub fn forward(car: &PlanarCar, case: &PlanarCase) -> Result<Forward, PlanarErro
             name,
             unit,
             fit_percent: bumpsim_estimate::fit::percent(&simulated[a..=b], &measured[a..=b]),
+            rating: bumpsim_signal::rating::rate(&measured[a..=b], &simulated[a..=b], step).ok(),
             time: time.clone(),
             simulated,
             measured,
@@ -128,7 +132,13 @@ pub fn forward(car: &PlanarCar, case: &PlanarCase) -> Result<Forward, PlanarErro
         shift,
         channels,
         window: (a, b),
-        warnings: r.warnings,
+        // the run lasts as long as the test's record: a contact that
+        // outlasts it is the record's length, not a duration to raise
+        warnings: r
+            .warnings
+            .into_iter()
+            .filter(|w| !w.contains("raise the duration"))
+            .collect(),
     })
 }
 

@@ -133,25 +133,40 @@ pub fn find(name: &str) -> Option<&'static PlanarPreset> {
 /// A striker's fields as an input file writes them (a series' `[[test]]`,
 /// a study case's `striker = { ... }`): a preset or a face, a pendulum, a
 /// speed in m/s or as text with a unit, a side as `left` or `right`.
-#[derive(Debug, Clone, Default, PartialEq, serde::Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct StrikerFields {
     /// A preset name.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub case: Option<String>,
     /// Plane angle, degrees.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub angle: Option<f64>,
     /// Overlap, percent.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub overlap: Option<f64>,
     /// `left` or `right`.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub side: Option<String>,
     /// Pole diameter, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub pole: Option<f64>,
     /// Pole axis's lateral position, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub pole_offset: Option<f64>,
     /// Pendulum mass, kg.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub pendulum: Option<f64>,
     /// Speed: m/s, or text with a unit.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub speed: Option<toml::Value>,
+}
+
+impl StrikerFields {
+    /// The fields as a TOML inline table (`{ angle = 10.0, speed = "8 km/h" }`).
+    pub fn inline(&self) -> String {
+        toml::Value::try_from(self).map_or_else(|_| "{}".into(), |v| v.to_string())
+    }
 }
 
 /// Why a striker's fields are not a striker.

@@ -171,13 +171,20 @@ pub fn make_series(path: &Path) -> Result<Series, PlanarError> {
         }
         None => car_text,
     };
-    let validate: Vec<bool> = file.test.iter().map(|t| t.validate).collect();
+    let setups = file
+        .test
+        .iter()
+        .map(|t| TestSetup {
+            validate: t.validate,
+            striker: striker_fields(t),
+        })
+        .collect::<Vec<_>>();
     let friction = PlanarCar::parse(&start, Path::new("start.toml"))?
         .tyres()
         .front
         .mu_lateral
         > 0.0;
-    let study = study_text(&tests, &validate, Path::new("start.toml"), friction);
+    let study = study_text(&tests, &setups, Path::new("start.toml"), friction);
     Ok(Series {
         tests,
         provenance,
@@ -225,10 +232,18 @@ fn names(tests: &[TestFile]) -> Result<(), SeriesError> {
     Ok(())
 }
 
-/// The striker of a `[[test]]`: its case or geometry, side and speed
-/// (the fields every input file shares, [`StrikerFields`]).
-fn striker_spec(t: &TestFile) -> Result<StrikerSpec, SeriesError> {
-    let fields = StrikerFields {
+/// What the study says of a test besides its channels.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TestSetup {
+    /// Predicted, not fitted.
+    pub validate: bool,
+    /// The striker as the series gave it (for the forward prediction).
+    pub striker: StrikerFields,
+}
+
+/// A `[[test]]`'s striker fields (every input file shares them, [`StrikerFields`]).
+fn striker_fields(t: &TestFile) -> StrikerFields {
+    StrikerFields {
         case: t.case.clone(),
         angle: t.angle,
         overlap: t.overlap,
@@ -237,9 +252,13 @@ fn striker_spec(t: &TestFile) -> Result<StrikerSpec, SeriesError> {
         pole_offset: t.pole_offset,
         pendulum: t.pendulum,
         speed: t.speed.clone(),
-    };
+    }
+}
+
+/// The striker of a `[[test]]`: its case or geometry, side and speed.
+fn striker_spec(t: &TestFile) -> Result<StrikerSpec, SeriesError> {
     let test = t.name.clone();
-    fields.spec().map_err(|e| match e {
+    striker_fields(t).spec().map_err(|e| match e {
         StrikerFieldError::Speed(source) => SeriesError::Speed { test, source },
         StrikerFieldError::Side(source) => SeriesError::Side { test, source },
     })
@@ -248,7 +267,14 @@ fn striker_spec(t: &TestFile) -> Result<StrikerSpec, SeriesError> {
 /// The planar study of the tests: one case each, every force channel with
 /// its place, the accelerometers with theirs (see [`crate::study`]).
 /// `friction`: estimate the lateral tyre friction (the start has some).
-pub fn study_text(tests: &[Recorded], validate: &[bool], start: &Path, friction: bool) -> String {
+/// The cases carry their strikers (for the forward prediction) and the
+/// model the test sheet's mass (the first test's car).
+pub fn study_text(
+    tests: &[Recorded],
+    setups: &[TestSetup],
+    start: &Path,
+    friction: bool,
+) -> String {
     let mut s = String::from(
         "# Identifies the planar car from the tests of this series (made by bumpsim synth).\n",
     );
@@ -257,7 +283,14 @@ pub fn study_text(tests: &[Recorded], validate: &[bool], start: &Path, friction:
         "[model]\nplanar = {:?}    # the start: chain sizes, values, geometry\nstarts = 8\nseed = 1\nfriction = {friction}    # estimate the lateral tyre friction",
         start.display().to_string()
     );
-    for (test, &validate) in tests.iter().zip(validate) {
+    if let Some(test) = tests.first() {
+        let _ = writeln!(
+            s,
+            "mass = {}    # kg, the test sheet's",
+            number(test.car_mass)
+        );
+    }
+    for (test, setup) in tests.iter().zip(setups) {
         let file = format!("{0}/{0}.mme", test.name);
         let _ = writeln!(
             s,
@@ -265,9 +298,14 @@ pub fn study_text(tests: &[Recorded], validate: &[bool], start: &Path, friction:
             test.name,
             number(test.car_speed)
         );
-        if validate {
+        if setup.validate {
             s += "validate = true    # predicted, not fitted\n";
         }
+        let _ = writeln!(
+            s,
+            "striker = {}    # for the forward prediction",
+            setup.striker.inline()
+        );
         s += "forces = [\n";
         for load in &test.loads {
             let anchor = load.anchor.map_or(String::new(), |a| {

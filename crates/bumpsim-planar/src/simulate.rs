@@ -87,6 +87,12 @@ pub struct Settings {
     /// and striker no longer close along x (a beam that chatters off the
     /// face and back has not ended its impact).
     pub stop_after_contact: bool,
+    /// Initial gap, m (≥ 0): the striker starts this far ahead of its first
+    /// touch along x, as a lab sets a car or pendulum up before the impact.
+    /// The recorded times count from the nominal first touch (time zero of
+    /// ISO 6487 and SAE J211: first contact), so the record starts at
+    /// `−gap / speed`; `duration` counts from the start.
+    pub gap: f64,
 }
 
 impl Default for Settings {
@@ -97,6 +103,7 @@ impl Default for Settings {
             duration: 1.0,
             step: None,
             stop_after_contact: true,
+            gap: 0.0,
         }
     }
 }
@@ -133,6 +140,13 @@ fn check(settings: &Settings) -> Result<(), PlanarError> {
             step > 0.0 && step <= s.output_step,
         )?;
     }
+    require(
+        "gap",
+        s.gap,
+        "m",
+        "must be zero or positive and at most 10 m (the striker's start ahead of its first touch)",
+        (0.0..=MAX_GAP).contains(&s.gap),
+    )?;
     let samples = s.duration / s.output_step;
     require(
         "duration / output step",
@@ -142,6 +156,10 @@ fn check(settings: &Settings) -> Result<(), PlanarError> {
         samples <= 1e7,
     )
 }
+
+/// The largest initial gap, m: ten metres of free travel before a
+/// low-speed impact is a set-up error, not a test.
+pub const MAX_GAP: f64 = 10.0;
 
 /// Most integration steps one simulation may take (docs/limits.md): about
 /// ten seconds of work; an ordinary car needs 10⁴–10⁶.
@@ -175,7 +193,18 @@ pub fn simulate(
         Motion::Fixed { speed } => (None, speed),
         Motion::Pendulum { mass, speed } => (Some(mass), speed),
     };
-    let model = Model::new(car, placed, pendulum);
+    let origin = -settings.gap / speed;
+    require(
+        "gap",
+        settings.gap,
+        "m",
+        &format!(
+            "leaves the striker {} s of free travel at {speed} m/s, not within the {} s duration",
+            -origin, settings.duration
+        ),
+        -origin < settings.duration,
+    )?;
+    let model = Model::new(car, placed.moved(-settings.gap), pendulum);
     let step = match settings.step {
         Some(step) => step,
         None => {
@@ -214,7 +243,7 @@ pub fn simulate(
         ),
         initial > 0.0,
     )?;
-    Run::new(car, model, step, settings).integrate(v)
+    Run::new(car, model, (step, origin), settings).integrate(v)
 }
 
 /// The planar impact as a [`Mechanism`] of the one integrator: the
@@ -224,6 +253,8 @@ struct Run<'a> {
     car: &'a PlanarCar,
     model: Model,
     step: f64,
+    /// The time of the first sample, s (−gap/speed: time zero is the first touch).
+    origin: f64,
     settings: &'a Settings,
     contact: Contact,
     previous_crush: Vec<f64>,
@@ -263,7 +294,7 @@ impl Mechanism for Run<'_> {
     }
 
     fn moved(&mut self, q: &[f64], v: &[f64], k: usize) {
-        let t = k as f64 * self.step;
+        let t = self.time(k);
         self.previous_crush.copy_from_slice(&self.contact.crush);
         self.previous_force.copy_from_slice(&self.contact.force);
         self.model.contact(q, self.car, &mut self.contact);
@@ -299,7 +330,7 @@ impl Mechanism for Run<'_> {
     }
 
     fn record(&mut self, k: usize, state: &Leapfrog) -> Result<Control, PlanarError> {
-        let t = k as f64 * self.step;
+        let t = self.time(k);
         let (q, v) = (state.q(), state.velocities());
         if !q.iter().chain(v).all(|x| x.is_finite()) {
             return Err(PlanarError::Diverged { time: t });
@@ -316,7 +347,7 @@ impl Mechanism for Run<'_> {
     }
 
     fn finished(&self, k: usize, state: &Leapfrog) -> bool {
-        let t = k as f64 * self.step;
+        let t = self.time(k);
         self.out.contact_end.is_some_and(|end| {
             self.settings.stop_after_contact
                 && t > end + 0.1 * (end - self.out.contact_start.unwrap_or(0.0))
@@ -326,7 +357,14 @@ impl Mechanism for Run<'_> {
 }
 
 impl<'a> Run<'a> {
-    fn new(car: &'a PlanarCar, mut model: Model, step: f64, settings: &'a Settings) -> Run<'a> {
+    /// `clock`: the integration step and the time of the first sample, s.
+    fn new(
+        car: &'a PlanarCar,
+        mut model: Model,
+        clock: (f64, f64),
+        settings: &'a Settings,
+    ) -> Run<'a> {
+        let (step, origin) = clock;
         model.half_step = 0.5 * step;
         let segments = car.beam().segments.len();
         let masses = model.masses.len();
@@ -336,6 +374,7 @@ impl<'a> Run<'a> {
             car,
             model,
             step,
+            origin,
             settings,
             contact: Contact::new(segments),
             previous_crush: vec![0.0; segments],
@@ -346,6 +385,11 @@ impl<'a> Run<'a> {
             sums: Sums::default(),
             out: PlanarResult::with_capacity(segments, masses, samples),
         }
+    }
+
+    /// The time of step `k`, s.
+    fn time(&self, k: usize) -> f64 {
+        self.origin + k as f64 * self.step
     }
 
     /// External force (world, N) and moment about the origin (N·m) on car and pendulum.
@@ -535,8 +579,11 @@ impl<'a> Run<'a> {
             ));
         } else if out.contact_end.is_none() {
             out.warnings.push(format!(
-                "the contact had not ended at {} s: raise the duration",
-                out.time.last().copied().unwrap_or(0.0)
+                "the contact had not ended at {}: raise the duration",
+                bumpsim_core::units::format_quantity(
+                    out.time.last().copied().unwrap_or(0.0),
+                    bumpsim_core::units::Dimension::Time
+                )
             ));
         }
         out
@@ -602,7 +649,9 @@ mod tests {
         let (omega2, omega_c) = model.rates(&car);
         let step = stable_step(0.05 * critical_step(omega2, omega_c), 1e-4);
         let v = vec![1.5, -0.4, 2.5, 0.3, -0.2, 0.4, 0.0];
-        Run::new(&car, model, step, &settings).integrate(v).unwrap()
+        Run::new(&car, model, (step, 0.0), &settings)
+            .integrate(v)
+            .unwrap()
     }
 
     #[test]
@@ -674,6 +723,46 @@ mod hostile {
         let slow = Striker::barrier(Face::flat(), 1e-3);
         let r = simulate(&car, &slow, &Settings::default()).unwrap();
         assert!(r.energy.relative_error.is_finite());
+    }
+
+    /// A gap is free travel before the same impact: the record starts at
+    /// −gap/v and the impact is the gap-less one to within its step.
+    #[test]
+    fn a_gap_delays_the_same_impact_and_bad_gaps_are_refused() {
+        let car = tests_car();
+        let rcar = Striker::barrier(Face::plane_in_degrees(10.0, 40.0, Side::Left), 10.0 / 3.6);
+        let at = |gap| {
+            simulate(
+                &car,
+                &rcar,
+                &Settings {
+                    gap,
+                    ..Settings::default()
+                },
+            )
+        };
+        let (touching, apart) = (at(0.0).unwrap(), at(0.05).unwrap());
+        assert!(
+            (apart.time[0] + 0.05 / (10.0 / 3.6)).abs() < 1e-12,
+            "{}",
+            apart.time[0]
+        );
+        assert!(
+            apart.contact_start.unwrap().abs() <= apart.step,
+            "{:?}",
+            apart.contact_start
+        );
+        for (a, b) in [
+            (touching.peak_force, apart.peak_force),
+            (touching.max_compression, apart.max_compression),
+            (touching.peak_yaw_rate, apart.peak_yaw_rate),
+        ] {
+            assert!((a - b).abs() <= 1e-3 * a.abs(), "{a} against {b}");
+        }
+        for gap in [f64::NAN, -0.01, 11.0, f64::INFINITY, 2.9] {
+            let err = at(gap).unwrap_err().to_string();
+            assert!(err.contains("gap"), "{gap}: {err}");
+        }
     }
 
     fn wide_car(spacing: f64) -> PlanarCar {

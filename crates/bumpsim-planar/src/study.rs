@@ -18,11 +18,11 @@
 //! forces = [                # force channels, N after the file's units
 //!   # lateral: m on the bumper line (left +); direction: of the force on the car, world;
 //!   # anchor (optional): a world point on its line of action, body frame at t = 0, m
-//!   { path = "ANGLED/ANGLED.mme", channel = "B0LCWL010100FOXP", lateral = -0.72, direction = [-0.985, -0.174] },
+//!   { path = "ANGLED/ANGLED.mme", channel = "B0LOMA010100FOXP", lateral = -0.72, direction = [-0.985, -0.174] },
 //! ]
 //! sensors = [               # accelerometers along the body x axis; the first two on the
-//!   { path = "ANGLED/ANGLED.mme", channel = "10SILLLE0000ACXP", body = [0.6, 0.7] },   # body, left
-//!   { path = "ANGLED/ANGLED.mme", channel = "10SILLRI0000ACXP", body = [0.6, -0.7] },  # then right
+//!   { path = "ANGLED/ANGLED.mme", channel = "10SILBLE0000ACXP", body = [0.6, 0.7] },   # body, left
+//!   { path = "ANGLED/ANGLED.mme", channel = "10SILBRI0000ACXP", body = [0.6, -0.7] },  # then right
 //!   { path = "ANGLED/ANGLED.mme", channel = "10SIMELE0000ACXP", chain = 0 },  # chain mass 0 (left front)
 //! ]
 //! ```
@@ -31,7 +31,7 @@
 //! CFC; [`crate::cases`]).
 
 use crate::car::{PlanarCar, PlanarError};
-use crate::cases::{Placed, TestChannels};
+use crate::cases::{Placed, TestChannels, TimeZero};
 use crate::drive::Sensor;
 use crate::identify::{PlanarCase, Setup};
 use crate::presets::StrikerFields;
@@ -74,6 +74,7 @@ struct CaseFile {
     #[serde(default)]
     validate: bool,
     striker: Option<StrikerFields>,
+    time_zero: Option<toml::Value>,
     forces: Vec<ForceRef>,
     sensors: Vec<SensorRef>,
 }
@@ -210,6 +211,20 @@ impl PlanarStudy {
     }
 }
 
+/// A case's `time_zero`: `"onset"` (the default), or a time of the file's
+/// time base: s, or text with a unit (`"-2 ms"`).
+fn time_zero(value: Option<&toml::Value>) -> Option<TimeZero> {
+    let at = match value {
+        None => return Some(TimeZero::Onset),
+        Some(toml::Value::String(s)) if s == "onset" => return Some(TimeZero::Onset),
+        Some(toml::Value::Float(v)) => *v,
+        Some(toml::Value::Integer(v)) => *v as f64,
+        Some(toml::Value::String(s)) => parse_quantity(s, Dimension::Time).ok()?,
+        _ => return None,
+    };
+    at.is_finite().then_some(TimeZero::At(at))
+}
+
 /// The test sheet's mass: kg, or text with a unit (`"1350 kg"`), positive.
 fn test_sheet_mass(value: &toml::Value) -> Option<f64> {
     let mass = match value {
@@ -301,6 +316,12 @@ fn load_case(
             Ok::<_, PlanarError>(striker)
         })
         .transpose()?;
+    let time_zero = time_zero(spec.time_zero.as_ref()).ok_or_else(|| {
+        error(format!(
+            "time_zero = {}: expected \"onset\" or a finite time of the files' time base, s or text such as \"-2 ms\"",
+            spec.time_zero.as_ref().map_or(String::new(), |v| v.to_string())
+        ))
+    })?;
     let (mut case, resampled) = TestChannels {
         name: spec.name.clone(),
         forces,
@@ -308,6 +329,7 @@ fn load_case(
         positions,
         speed,
         cfc: spec.cfc,
+        time_zero,
     }
     .case()?;
     case.striker = striker;

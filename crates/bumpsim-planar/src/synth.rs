@@ -360,6 +360,7 @@ pub fn record(
         duration: chain.measurement.duration,
         step: None,
         stop_after_contact: false,
+        gap: 0.0,
     };
     let r = simulate(car, striker, &settings)?;
     let sensors = sensors(car, chain.sensor);

@@ -113,7 +113,15 @@ pub fn summary(r: &PlanarResult) -> String {
 }
 
 fn contact(r: &PlanarResult) -> String {
-    match (r.contact_start, r.contact_end) {
+    let start = r.time.first().copied().unwrap_or(0.0);
+    let free = match start < 0.0 {
+        true => format!(
+            "  time zero at the first touch; the striker started {} before it (the gap)\n",
+            format_quantity(-start, Dimension::Time)
+        ),
+        false => String::new(),
+    };
+    free + &match (r.contact_start, r.contact_end) {
         (Some(a), Some(b)) => format!(
             "  contact from {} to {} ({})\n",
             format_quantity(a, Dimension::Time),
@@ -221,7 +229,7 @@ pub fn identification_summary(
         "  {}\n",
         bumpsim_estimate::text::starts_line(&result.starts, result.iterations, result.run_time)
     );
-    s += "  case fits (x: mean of the sills; yaw from their difference)\n";
+    s += "  case fits (x: mean of the sills; yaw from their difference; each replayed from its time zero, in its files' time)\n";
     let fits = result
         .fits
         .iter()
@@ -229,12 +237,15 @@ pub fn identification_summary(
         .chain(validation.iter().map(|f| (f, "validation")));
     for (f, kind) in fits {
         s += &format!(
-            "    {:<16} {:<10}  x {:6.2} %   yaw {:6.2} %   peak yaw {:.3} deg\n",
+            "    {:<16} {:<10}  x {:6.2} %   yaw {:6.2} %   peak yaw {:.3} deg   ISO/TS 18571 x {}, yaw {}   from {}\n",
             f.name,
             kind,
             f.fit_x,
             f.fit_yaw,
-            f.peak_yaw.to_degrees()
+            f.peak_yaw.to_degrees(),
+            rating(&f.rating_x),
+            rating(&f.rating_yaw),
+            format_quantity(f.time_zero, Dimension::Time)
         );
     }
     for w in identification_warnings(result, validation) {
@@ -254,16 +265,29 @@ pub fn forward_lines(forward: &[crate::forward::Forward]) -> String {
         let fits: Vec<String> = f
             .channels
             .iter()
-            .map(|c| format!("{} {:6.2} %", c.name, c.fit_percent))
+            .map(|c| {
+                format!(
+                    "{} {:6.2} % (ISO {})",
+                    c.name,
+                    c.fit_percent,
+                    rating(&c.rating)
+                )
+            })
             .collect();
         s += &format!(
-            "    {:<16} {}   (time zero {} ms)\n",
+            "    {:<16} {}   (onsets aligned: simulation shifted {} ms)\n",
             f.case,
             fits.join("   "),
             bumpsim_core::units::format_number(1e3 * f.shift, 3)
         );
     }
     s
+}
+
+/// An ISO/TS 18571 overall rating with three decimals, `-` without one.
+fn rating(r: &Option<bumpsim_signal::rating::Rating>) -> String {
+    r.as_ref()
+        .map_or("-".into(), |r| format!("{:.3}", r.overall))
 }
 
 /// Every warning of a planar identification: the result's, then the

@@ -208,8 +208,8 @@ fn a_planar_channel_on_another_time_base_is_noted() {
     assert_contains(
         &stdout,
         &[
-            "note: case 'FLAT': 14 channels put on one time base, every 0.1000 ms from -49.95 ms to 150.0 ms; B0LCWL010200FOXC, B0LCWL010300FOXC",
-            "10SIMERI0000DSXC (every 0.1000 ms) interpolated linearly; B0LCWL010100FOXC: 1 sample outside that span left out; B0LCWL010200FOXC, ",
+            "note: case 'FLAT': 14 channels put on one time base, every 0.1000 ms from -49.95 ms to 150.0 ms; B0LOMA010200FOXC, B0LOMA010300FOXC",
+            "10SIMERI0000DSXC (every 0.1000 ms) interpolated linearly; B0LOMA010100FOXC: 1 sample outside that span left out; B0LOMA010200FOXC, ",
             ": 2 samples each outside",
         ],
     );
@@ -227,11 +227,11 @@ fn hostile_planar_studies_get_clear_errors() {
     let run = bumpsim(&["identify", study.to_str().unwrap(), "--quiet"]);
     assert_user_error(&run, "load[0].lateral");
     let study = edited_study("planar-hostile-channel", |t| {
-        t.replacen("B0LCWL010100FOXP", "B0LCWL019900FOXP", 1)
+        t.replacen("B0LOMA010100FOXP", "B0LOMA019900FOXP", 1)
     });
     assert_user_error(
         &bumpsim(&["identify", study.to_str().unwrap(), "--quiet"]),
-        "B0LCWL019900FOXP",
+        "B0LOMA019900FOXP",
     );
     let study = edited_study("planar-hostile-sensor", |t| {
         t.replacen("body = [0.6, 0.7]", "chain = 0", 1)

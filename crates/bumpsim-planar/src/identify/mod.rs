@@ -88,6 +88,9 @@ pub struct PlanarCase {
     /// The test's striker as the lab reports it (face, motion, speed), for
     /// the forward prediction of the whole test ([`crate::forward`]).
     pub striker: Option<crate::striker::Striker>,
+    /// The instant of the test's record taken as t = 0, s of its files'
+    /// time base (the force onset unless the study gives it, [`crate::cases::TimeZero`]).
+    pub time_zero: f64,
 }
 
 /// How to identify.
@@ -565,6 +568,7 @@ mod tests {
             window: (0, 399),
             estimated: Vec::new(),
             striker: None,
+            time_zero: 0.0,
         }
     }
 

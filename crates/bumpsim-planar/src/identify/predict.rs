@@ -1,12 +1,14 @@
 //! A planar case replayed with a car and compared with its measurement:
 //! x (the mean of the two sensors) and the yaw `ψ = asin((x_R − x_L)/(η_L −
 //! η_R))`, each scored by the fit % of the estimation layer
-//! ([`bumpsim_estimate::fit`]: `100 (1 − √(SSE/SST))`).
+//! ([`bumpsim_estimate::fit`]: `100 (1 − √(SSE/SST))`) and by the ISO/TS
+//! 18571 rating ([`bumpsim_signal::rating`]) over the case's window.
 
 use super::{PlanarCase, check_case, spacing};
 use crate::car::{PlanarCar, PlanarError};
 use crate::drive::drive;
 use bumpsim_estimate::fit::{negative_fit, percent};
+use bumpsim_signal::rating::{Rating, rate};
 use serde::Serialize;
 
 /// How well the model replays one case.
@@ -20,6 +22,13 @@ pub struct CaseFit {
     pub fit_yaw: f64,
     /// Peak measured yaw, rad.
     pub peak_yaw: f64,
+    /// ISO/TS 18571 rating of the model's x against the measured one.
+    pub rating_x: Option<Rating>,
+    /// ISO/TS 18571 rating of the model's yaw against the measured one.
+    pub rating_yaw: Option<Rating>,
+    /// Where the replay started, s of the test files' time
+    /// ([`PlanarCase::time_zero`]).
+    pub time_zero: f64,
 }
 
 impl CaseFit {
@@ -66,11 +75,15 @@ pub fn predict(car: &PlanarCar, case: &PlanarCase) -> Result<Prediction, PlanarE
     let x = [mean(&replay.sensor_reading), mean(&case.measured)];
     let yaw = [yaw(&replay.sensor_reading), yaw(&case.measured)];
     let (a, b) = case.window;
+    let step = case.drive.step;
     let fit = CaseFit {
         name: case.name.clone(),
         fit_x: percent(&x[0][a..=b], &x[1][a..=b]),
         fit_yaw: percent(&yaw[0][a..=b], &yaw[1][a..=b]),
         peak_yaw: yaw[1][a..=b].iter().fold(0.0, |m: f64, v| m.max(v.abs())),
+        rating_x: rate(&x[1][a..=b], &x[0][a..=b], step).ok(),
+        rating_yaw: rate(&yaw[1][a..=b], &yaw[0][a..=b], step).ok(),
+        time_zero: case.time_zero,
     };
     Ok(Prediction {
         time: replay.time,
