@@ -4,9 +4,10 @@
 use crate::{Folder, write};
 use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, parse_quantity};
+use bumpsim_planar::car::TyreLaw;
 use bumpsim_planar::document::{IdentificationDocument, ImpactDocument};
 use bumpsim_planar::identify::{Prediction, identify, predict};
-use bumpsim_planar::presets::{PRESETS, StrikerSpec};
+use bumpsim_planar::presets::{PRESETS, PlanarPreset, StrikerSpec};
 use bumpsim_planar::study::PlanarStudy;
 use bumpsim_planar::{PlanarCar, Settings, Side, Striker, simulate};
 use bumpsim_report::planar::CasePage;
@@ -46,12 +47,17 @@ pub struct SetupArgs {
     /// Initial gap between the striker and its first touch, along x: m, or
     /// with a unit ("50 mm"); the record's time zero stays the first touch,
     /// so it starts at −gap/speed. Default 0.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     gap: Option<String>,
     /// Longest simulated time from the start: s, or with a unit ("300 ms");
     /// default 1 s (the run stops once the impact is over).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     duration: Option<String>,
+    /// The tyres of both axles: rolling (free-rolling wheels, gear in
+    /// neutral) or sliding (locked wheels); default: the preset's condition,
+    /// else the car file's.
+    #[arg(long, value_parser = ["rolling", "sliding"])]
+    tyres: Option<String>,
 }
 
 impl SetupArgs {
@@ -123,7 +129,17 @@ fn quantity(option: &str, text: &str, dimension: Dimension) -> Result<f64> {
     parse_quantity(text, dimension).with_context(|| format!("--{option} '{text}'"))
 }
 
-fn striker(request: &ImpactRequest) -> Result<(Striker, String)> {
+/// The tyre law the run uses: `--tyres`, else the preset's, else none (the car's).
+fn tyre_law(request: &ImpactRequest, preset: Option<&PlanarPreset>) -> Option<(TyreLaw, String)> {
+    match (request.setup.tyres.as_deref(), preset) {
+        (Some("sliding"), _) => Some((TyreLaw::Sliding, "sliding (locked wheels, --tyres)".into())),
+        (Some(_), _) => Some((TyreLaw::Rolling, "free rolling (--tyres)".into())),
+        (None, Some(p)) => Some((p.tyres, p.tyres_why.to_string())),
+        (None, None) => None,
+    }
+}
+
+fn striker(request: &ImpactRequest) -> Result<(Striker, String, Option<&'static PlanarPreset>)> {
     let face = request.face;
     let length = |option, text: &Option<String>| {
         text.as_deref()
@@ -149,7 +165,7 @@ fn striker(request: &ImpactRequest) -> Result<(Striker, String)> {
         (None, Some(_)) => "pendulum".into(),
         (None, None) => "barrier".into(),
     };
-    Ok((striker, label))
+    Ok((striker, label, preset))
 }
 
 /// Lists the planar presets.
@@ -157,6 +173,7 @@ pub fn list() {
     for p in PRESETS {
         println!("{:<22} {}  [{}]", p.name, p.description, p.source);
         println!("{:<22} uncertain: {}", "", p.uncertain);
+        println!("{:<22} tyres: {}", "", p.tyres_why);
     }
 }
 
@@ -183,8 +200,13 @@ pub fn run(args: &Args) -> Result<()> {
 
 /// Simulates a planar impact and writes its outputs.
 pub fn run_impact(request: &ImpactRequest) -> Result<()> {
-    let (path, car) = (request.path, &request.car);
-    let (striker, label) = striker(request)?;
+    let path = request.path;
+    let (striker, label, preset) = striker(request)?;
+    let law = tyre_law(request, preset);
+    let car = &match law {
+        Some((law, _)) => request.car.clone().with_tyre_law(law),
+        None => request.car.clone(),
+    };
     let result = simulate(car, &striker, &request.setup.settings()?)?;
     result.warnings.iter().for_each(|w| crate::warn(w));
     let name = car
@@ -196,6 +218,9 @@ pub fn run_impact(request: &ImpactRequest) -> Result<()> {
         bumpsim_planar::text::striker(&striker)
     );
     println!("{heading}");
+    if let Some((_, why)) = &law {
+        println!("  tyres: {why}");
+    }
     print!("{summary}");
     if let Some(path) = &request.files.json {
         let document = ImpactDocument {

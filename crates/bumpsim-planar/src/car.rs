@@ -458,6 +458,14 @@ impl PlanarCar {
         self
     }
 
+    /// The same car with both axles' tyres under `law` (a protocol's
+    /// condition: brakes released and in neutral, or locked).
+    pub fn with_tyre_law(mut self, law: TyreLaw) -> PlanarCar {
+        self.tyres.front.law = law;
+        self.tyres.rear.law = law;
+        self
+    }
+
     /// The name, if any.
     pub fn name(&self) -> Option<&str> {
         self.name.as_deref()

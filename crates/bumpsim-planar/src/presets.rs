@@ -29,8 +29,13 @@
 //!   rigid plane (curvature and absorber neglected: put the absorber's
 //!   characteristic in series with the bumper's if it matters). The 10° angle
 //!   is from memory of the protocol figure, not checked against the document.
+//!
+//! Each preset states the tyres' condition (`tyres`, `tyres_why`): all of
+//! these run free-rolling cars (gear in neutral, brakes released), so their
+//! wheels build lateral force through the slip angle ([`TyreLaw::Rolling`]);
+//! a locked-wheel variant is the user's choice (`bumpsim planar --tyres sliding`).
 
-use crate::car::PlanarError;
+use crate::car::{PlanarError, TyreLaw};
 use crate::striker::{Face, Motion, Side, Striker};
 
 /// A named planar load case.
@@ -46,6 +51,11 @@ pub struct PlanarPreset {
     pub source: &'static str,
     /// What could not be confirmed.
     pub uncertain: &'static str,
+    /// The tyres' condition the test prescribes (applied to the car's axles
+    /// unless the user says otherwise, [`crate::car::TyreLaw`]).
+    pub tyres: TyreLaw,
+    /// Why: the protocol's words on brakes and gear.
+    pub tyres_why: &'static str,
 }
 
 const KMH: f64 = 1.0 / 3.6;
@@ -75,6 +85,8 @@ pub const PRESETS: &[PlanarPreset] = &[
         striker: fixed(plane(DEG10, 0.4, Side::Left), 15.0),
         source: "RCAR Low-speed structural crash test protocol, Issue 2.2 (2011)",
         uncertain: "speed: the thesis and the older Allianz AZT test give 16 km/h",
+        tyres: TyreLaw::Rolling,
+        tyres_why: "free rolling: the car runs into the barrier under its own momentum, gear in neutral and brakes released, as the protocol's set-up is read here",
     },
     PlanarPreset {
         name: "rcar-structural-rear",
@@ -88,6 +100,8 @@ pub const PRESETS: &[PlanarPreset] = &[
         },
         source: "RCAR Low-speed structural crash test protocol, Issue 2.2 (2011)",
         uncertain: "the side struck depends on the market (driver's side); the mobile barrier is guided here",
+        tyres: TyreLaw::Rolling,
+        tyres_why: "free rolling: the struck car stands in neutral with its brakes released, as the protocol's set-up is read here",
     },
     PlanarPreset {
         name: "iihs-angle-front",
@@ -95,6 +109,8 @@ pub const PRESETS: &[PlanarPreset] = &[
         striker: fixed(plane(DEG30, 1.0, Side::Left), 8.0),
         source: "IIHS low-speed crash test protocol (1990s to 2006), front-into-angle-barrier test",
         uncertain: "angle (30°) and the side taken from IIHS status reports, not the protocol",
+        tyres: TyreLaw::Rolling,
+        tyres_why: "free rolling: the car runs into the barrier under its own momentum, gear in neutral and brakes released, as the protocol's set-up is read here",
     },
     PlanarPreset {
         name: "iihs-pole-rear",
@@ -108,6 +124,8 @@ pub const PRESETS: &[PlanarPreset] = &[
         ),
         source: "IIHS low-speed crash test protocol (1990s to 2006), rear-into-pole test",
         uncertain: "pole diameter (7 in) from IIHS status reports, not the protocol",
+        tyres: TyreLaw::Rolling,
+        tyres_why: "free rolling: the car runs into the barrier under its own momentum, gear in neutral and brakes released, as the protocol's set-up is read here",
     },
     PlanarPreset {
         name: "iihs-corner-front",
@@ -115,6 +133,8 @@ pub const PRESETS: &[PlanarPreset] = &[
         striker: fixed(plane(DEG10, 0.15, Side::Left), 4.8),
         source: "IIHS/RCAR Bumper test protocol (IIHS Version I 2006; RCAR Issue 2.0 2010)",
         uncertain: "the 10° face angle; RCAR runs the corner tests at 5 km/h; the barrier's 3.4 m face radius and energy absorber are neglected",
+        tyres: TyreLaw::Rolling,
+        tyres_why: "free rolling: the car runs into the barrier under its own momentum, gear in neutral and brakes released, as the protocol's set-up is read here",
     },
     PlanarPreset {
         name: "iihs-corner-rear",
@@ -122,6 +142,8 @@ pub const PRESETS: &[PlanarPreset] = &[
         striker: fixed(plane(-DEG10, 0.15, Side::Right), 4.8),
         source: "IIHS/RCAR Bumper test protocol (IIHS Version I 2006; RCAR Issue 2.0 2010)",
         uncertain: "the 10° face angle; RCAR runs the corner tests at 5 km/h; the barrier's 3.4 m face radius and energy absorber are neglected",
+        tyres: TyreLaw::Rolling,
+        tyres_why: "free rolling: the car runs into the barrier under its own momentum, gear in neutral and brakes released, as the protocol's set-up is read here",
     },
 ];
 

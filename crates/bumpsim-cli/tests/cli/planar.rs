@@ -438,3 +438,69 @@ fn a_1d_car_with_a_width_is_a_symmetric_planar_car() {
         "--width",
     );
 }
+
+/// Issue 32's set-up: a gap delays the same impact (the record starts at
+/// −gap/v, time zero stays the first touch); the preset states its tyres and
+/// `--tyres sliding` locks them (more yaw against the wall's side force);
+/// bad gaps, durations and tyre words are refused by name.
+#[test]
+fn a_gap_a_duration_and_the_tyres_are_the_users_set_up() {
+    let dir = scratch("planar-setup");
+    let rcar = ["--case", "rcar-structural-front"];
+    let touching = run_json(&dir, "touching", &rcar);
+    let gap = run_json(&dir, "gap", &[&rcar[..], &["--gap", "50 mm"]].concat());
+    let time = |v: &Value| v["result"]["time"][0].as_f64().unwrap();
+    assert!(
+        (time(&gap) + 0.05 / (15.0 / 3.6)).abs() < 1e-9,
+        "{}",
+        time(&gap)
+    );
+    let peak = |v: &Value| number(v, &["result", "peak_force"]);
+    assert!((peak(&gap) - peak(&touching)).abs() < 1e-3 * peak(&touching));
+    let sliding = run_json(
+        &dir,
+        "sliding",
+        &[&rcar[..], &["--tyres", "sliding"]].concat(),
+    );
+    let yaw = |v: &Value| number(v, &["result", "peak_yaw_rate"]);
+    assert!(
+        yaw(&sliding) > 1.05 * yaw(&touching),
+        "{} {}",
+        yaw(&sliding),
+        yaw(&touching)
+    );
+    let car = saloon();
+    let listed = bumpsim(&["planar", "--case", "list"]);
+    assert_contains(&text(&listed.stdout), &["tyres: free rolling"]);
+    let run = bumpsim(&[
+        "planar",
+        "--car",
+        car.to_str().unwrap(),
+        "--case",
+        "rcar-structural-front",
+    ]);
+    assert_contains(
+        &text(&run.stdout),
+        &["tyres: free rolling", "brakes released"],
+    );
+    for (option, value, named) in [
+        ("--gap", "nan", "--gap"),
+        ("--gap", "-1 mm", "gap"),
+        ("--gap", "1e300", "gap"),
+        ("--gap", "5 m", "duration"),
+        ("--duration", "0", "duration"),
+        ("--duration", "1e9 s", "duration"),
+        ("--tyres", "skid", "--tyres"),
+    ] {
+        let run = bumpsim(&[
+            "planar",
+            "--car",
+            car.to_str().unwrap(),
+            "--case",
+            "rcar-structural-front",
+            option,
+            value,
+        ]);
+        assert_user_error(&run, named);
+    }
+}
