@@ -44,7 +44,7 @@ pub const GRAVITY: f64 = 9.80665;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum PlanarError {
     /// A parameter is out of range.
-    #[error("{name} = {value} {unit}: {expected}")]
+    #[error("{name} = {value:?} {unit}: {expected}")]
     Parameter {
         /// The parameter, as named in the car file.
         name: String,

@@ -32,6 +32,7 @@ use crate::drive::{Drive, Load, Sensor};
 use crate::identify::PlanarCase;
 use crate::synth::Recorded;
 use bumpsim_core::channel::Channel;
+use bumpsim_core::units::{Dimension, format_quantity};
 use bumpsim_signal::process::{Resampling, Step, align, resampling, run};
 use bumpsim_signal::window::ContactThreshold;
 
@@ -215,8 +216,16 @@ impl TestChannels {
             all.extend_from_slice(extra);
             run(&all, c).map_err(|e| error(e.to_string()))
         };
+        let span = self.forces[0].channel.series.start()..=self.forces[0].channel.series.end();
         let zero = match self.time_zero {
-            TimeZero::At(t) if t.is_finite() => t,
+            TimeZero::At(t) if span.contains(&t) => t,
+            TimeZero::At(t) if t.is_finite() => {
+                return Err(error(format!(
+                    "time_zero = {t:?} s lies outside the record ({} to {})",
+                    format_quantity(*span.start(), Dimension::Time),
+                    format_quantity(*span.end(), Dimension::Time)
+                )));
+            }
             TimeZero::At(t) => {
                 return Err(error(format!(
                     "time_zero = {t} s: expected a finite time of the file's time base"

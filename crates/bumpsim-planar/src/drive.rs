@@ -48,6 +48,9 @@ use bumpsim_core::leapfrog::{
     Control, Leapfrog, Mechanism, Stepped, critical_step, substeps as substeps_of,
 };
 
+/// The widest wall cell, m: wider than any barrier's load-cell wall.
+pub const MAX_CELL: f64 = 10.0;
+
 /// A given force on the bumper line.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Load {
@@ -148,8 +151,8 @@ fn check(input: &Drive, masses: usize) -> Result<usize, PlanarError> {
                 &name("cell"),
                 width,
                 "m",
-                "a wall cell's width must be positive, with its centre on the face as the anchor",
-                width > 0.0 && load.anchor.is_some(),
+                "a wall cell's width must be positive and at most 10 m, with its centre on the face as the anchor",
+                width > 0.0 && width <= MAX_CELL && load.anchor.is_some(),
             )?;
         }
         let norm = load.direction[0].hypot(load.direction[1]);

@@ -255,7 +255,7 @@ impl PlanarCar {
         let beam = Beam {
             width: file.bumper.width * unit,
             side_member_spacing: file.bumper.side_member_spacing * unit,
-            segments: segments(&file.bumper)?,
+            segments: segments(&file.bumper).map_err(|e| error(e.to_string()))?,
             bending: file.bumper.bending,
         };
         let tyres = file.tyres.map_or(Tyres::default(), |t| Tyres {
@@ -263,7 +263,9 @@ impl PlanarCar {
             rear: t.rear,
             slip_speed: t.slip_speed.unwrap_or(Tyres::default().slip_speed),
         });
-        let car = PlanarCar::new(body, chain(file.left), chain(file.right), beam, tyres)?;
+        // a value out of range is named with the file it came from
+        let car = PlanarCar::new(body, chain(file.left), chain(file.right), beam, tyres)
+            .map_err(|e| error(e.to_string()))?;
         Ok(car.with_name(file.name))
     }
 

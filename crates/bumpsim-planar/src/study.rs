@@ -85,7 +85,7 @@ struct ForceRef {
     path: PathBuf,
     channel: String,
     lateral: Lateral,
-    direction: [f64; 2],
+    direction: Vec<f64>,
     anchor: Option<[f64; 2]>,
     cell: Option<f64>,
 }
@@ -171,6 +171,7 @@ impl PlanarStudy {
         let (mut cases, mut validation, mut notes) = (Vec::new(), Vec::new(), Vec::new());
         for spec in &file.case {
             let (case, resampled) = load_case(spec, base, &mut loader)?;
+            check_striker(&setup.template, &case)?;
             notes.extend(resampled.map(|r| format!("case '{}': {r}", spec.name)));
             match spec.validate {
                 true => validation.push(case),
@@ -209,6 +210,20 @@ impl PlanarStudy {
             .filter(|c| names.is_empty() || names.contains(&c.name))
             .collect())
     }
+}
+
+/// A case's striker must meet the start car (angle, overlap, pole beside
+/// the bumper): refused here, by the case's name, not after the search.
+fn check_striker(car: &PlanarCar, case: &PlanarCase) -> Result<(), PlanarError> {
+    let Some(striker) = &case.striker else {
+        return Ok(());
+    };
+    crate::striker::place(car, striker)
+        .map(|_| ())
+        .map_err(|e| PlanarError::Case {
+            case: case.name.clone(),
+            message: format!("striker: {e}"),
+        })
 }
 
 /// A case's `time_zero`: `"onset"` (the default), or a time of the file's
@@ -280,10 +295,16 @@ fn load_case(
                 )));
             }
         };
+        let &[dx, dy] = f.direction.as_slice() else {
+            return Err(error(format!(
+                "force {}: direction = {:?}: expected two components [x, y] (world frame)",
+                f.channel, f.direction
+            )));
+        };
         forces.push(Placed {
             channel: channel(&f.path, &f.channel, Dimension::Force)?,
             lateral,
-            direction: f.direction,
+            direction: [dx, dy],
             anchor: f.anchor,
             estimated,
             cell: f.cell,

@@ -342,3 +342,107 @@ fn hostile_planar_series_get_clear_errors() {
         assert!(!out.exists(), "nothing written on an error");
     }
 }
+
+/// Issue 32's new inputs (wall cells, estimated lines of action, strikers,
+/// time zero, the test sheet's mass, the tyre laws of the start car) are
+/// refused by name with exit 2, before any search runs.
+#[test]
+fn hostile_planar_test_set_ups_get_clear_errors() {
+    let dir = scratch("planar-hostile-setup");
+    let tests = synth(&dir);
+    let text = std::fs::read_to_string(tests.join("study.toml")).unwrap();
+    let start = std::fs::read_to_string(tests.join("start.toml")).unwrap();
+    let flat = r#"striker = { speed = "8 km/h" }"#;
+    let cell = "lateral = -0.72,";
+    let tyre = "front = { mu_longitudinal = 0.02, mu_lateral = 0.5 }";
+    let cases: &[(&str, &str, &str)] = &[
+        (
+            "direction = [-1.0, 0.0] }",
+            "direction = [-1.0, 0.0, 5.0] }",
+            "expected two components",
+        ),
+        (
+            "direction = [-1.0, 0.0] }",
+            "direction = [nan, 0.0] }",
+            "direction",
+        ),
+        (cell, r#"lateral = "guess","#, r#"lateral = "guess""#),
+        (cell, "lateral = -0.72, cell = 0.4,", "cell"),
+        (
+            cell,
+            "lateral = -0.72, cell = nan, anchor = [2.0, 0.0],",
+            "cell",
+        ),
+        (
+            cell,
+            "lateral = -0.72, cell = 1e300, anchor = [2.0, 0.0],",
+            "at most 10 m",
+        ),
+        ("mass = 1265.0", "mass = -5.0", "[model] mass"),
+        ("mass = 1265.0", r#"mass = "1265 m""#, "[model] mass"),
+        (
+            flat,
+            r#"striker = { speed = "8 km/h", angle = 95.0 }"#,
+            "case 'FLAT': striker: barrier angle",
+        ),
+        (
+            flat,
+            r#"striker = { speed = "8 km/h", side = "up" }"#,
+            "'up'",
+        ),
+        (
+            flat,
+            r#"striker = { speed = "8 km/h", pole = 0.254, pole_offset = 9.0 }"#,
+            "case 'FLAT': striker",
+        ),
+        (flat, r#"striker = { sped = "8 km/h" }"#, "sped"),
+        (flat, "time_zero = \"never\"", "time_zero"),
+        (flat, "time_zero = 1e300", "lies outside the record"),
+        (flat, "time_zero = nan", "time_zero"),
+    ];
+    for (k, (old, new, needle)) in cases.iter().enumerate() {
+        assert!(text.contains(old), "{old}");
+        let study = tests.join(format!("hostile-{k}.toml"));
+        let edited = match new.starts_with("time_zero") {
+            true => text.replacen(old, &format!("{old}\n{new}"), 1),
+            false => text.replacen(old, new, 1),
+        };
+        std::fs::write(&study, edited).unwrap();
+        assert_user_error(
+            &bumpsim(&["identify", study.to_str().unwrap(), "--quiet"]),
+            needle,
+        );
+    }
+    for (k, (new, needle)) in [
+        (r#"front = { law = "skid", mu_lateral = 0.5 }"#, "skid"),
+        (
+            "front = { cornering_stiffness = 0.0, mu_lateral = 0.5 }",
+            "cornering",
+        ),
+        (
+            "front = { cornering_stiffness = nan, mu_lateral = 0.5 }",
+            "cornering",
+        ),
+        (
+            "front = { relaxation_length = -0.1, mu_lateral = 0.5 }",
+            "relaxation",
+        ),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        assert!(start.contains(tyre));
+        std::fs::write(
+            tests.join(format!("start-{k}.toml")),
+            start.replacen(tyre, new, 1),
+        )
+        .unwrap();
+        let study = tests.join(format!("tyres-{k}.toml"));
+        let planar = format!("planar = \"start-{k}.toml\"");
+        std::fs::write(&study, text.replacen("planar = \"start.toml\"", &planar, 1)).unwrap();
+        assert_user_error(
+            &bumpsim(&["identify", study.to_str().unwrap(), "--quiet"]),
+            needle,
+        );
+    }
+}
