@@ -446,3 +446,36 @@ fn hostile_planar_test_set_ups_get_clear_errors() {
         );
     }
 }
+
+/// `--strict` turns an identification's warnings into exit 2: a flat test
+/// alone leaves the tyres' grip undetermined, which the summary names.
+#[test]
+fn strict_refuses_an_undetermined_planar_identification() {
+    let dir = scratch("planar-strict");
+    let tests = synth(&dir);
+    let whole = std::fs::read_to_string(tests.join("study.toml")).unwrap();
+    let mut parts = whole.split("\n[[case]]\n");
+    let head = parts.next().unwrap().to_string();
+    let kept: Vec<&str> = parts
+        .filter(|p| p.starts_with("name = \"FLAT\"") || p.starts_with("name = \"OFFSET-RIGHT\""))
+        .collect();
+    let study = tests.join("flat.toml");
+    std::fs::write(
+        &study,
+        [vec![head.as_str()], kept].concat().join("\n[[case]]\n"),
+    )
+    .unwrap();
+    let s = study.to_str().unwrap();
+    let lenient = bumpsim(&["identify", s, "--quiet"]);
+    assert!(lenient.status.success(), "{}", text_of(&lenient));
+    assert_contains(
+        &text(&lenient.stdout),
+        &["tyres.mu_lateral", "not determined"],
+    );
+    let strict = bumpsim(&["identify", s, "--quiet", "--strict"]);
+    assert_user_error(&strict, "--strict: the results carry");
+}
+
+fn text_of(run: &std::process::Output) -> String {
+    format!("{}{}", text(&run.stdout), text(&run.stderr))
+}
