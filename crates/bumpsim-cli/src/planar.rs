@@ -321,6 +321,7 @@ pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
             .map(|(prediction, validation)| CasePage {
                 prediction,
                 validation,
+                forward: forward.iter().find(|f| f.case == prediction.fit.name),
             })
             .collect();
         let (html, figures) =

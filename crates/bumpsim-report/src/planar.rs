@@ -7,6 +7,7 @@ use crate::html::Html;
 use crate::plot::{LinePlot, PlotError, Series, Style};
 use bumpsim_core::units::Dimension;
 use bumpsim_planar::PlanarResult;
+use bumpsim_planar::forward::Forward;
 use bumpsim_planar::picture::TopView;
 
 /// The planar impact report: the HTML page and its figures (file name, SVG).
@@ -154,18 +155,53 @@ pub fn case_figures(
         .collect()
 }
 
-/// One case of a planar identification for the report: its prediction and
-/// whether it was fitted or only predicted (validation).
+/// The forward prediction's plots of a case (force, x-acceleration, yaw
+/// rate; simulated from car, bumper and striker against the measurement):
+/// file name (`<case>-forward-force.svg`, ...), SVG and caption with the fit
+/// and the ISO/TS 18571 rating.
+pub fn forward_figures(f: &Forward) -> Result<Vec<(String, String, String)>, PlotError> {
+    let stem = crate::file_name(&f.case);
+    f.channels
+        .iter()
+        .map(|c| {
+            let dimension = match c.name {
+                "force" => Dimension::Force,
+                "yaw rate" => Dimension::AngularVelocity,
+                _ => Dimension::Acceleration,
+            };
+            let mut plot =
+                LinePlot::new(&format!("Forward {}", c.name), Dimension::Time, dimension);
+            plot.add(line("measured", &c.time, &c.measured, Style::Solid));
+            plot.add(line("forward model", &c.time, &c.simulated, Style::Dashed));
+            let rating = c.rating.map_or("-".into(), |r| format!("{:.3}", r.overall));
+            Ok((
+                format!("{stem}-forward-{}.svg", c.name.replace(' ', "-")),
+                plot.svg()?,
+                format!(
+                    "forward {}: fit {:.2} %, ISO/TS 18571 {rating}",
+                    c.name, c.fit_percent
+                ),
+            ))
+        })
+        .collect()
+}
+
+/// One case of a planar identification for the report: its prediction,
+/// whether it was fitted or only predicted (validation), and its forward
+/// prediction when the case names its striker.
 pub struct CasePage<'a> {
     /// The replay against the measurement.
     pub prediction: &'a bumpsim_planar::identify::Prediction,
     /// Predicted only, not fitted.
     pub validation: bool,
+    /// The whole test simulated from car, bumper and striker.
+    pub forward: Option<&'a Forward>,
 }
 
 /// The planar identification report: the summary, the notes on the
-/// channels' time base (if any), then x and yaw of every
-/// case, model against measurement (file name, SVG).
+/// channels' time base (if any), then x and yaw of every case, model
+/// against measurement, and its forward prediction's force, x-acceleration
+/// and yaw rate (file name, SVG).
 pub fn identification_report(
     summary: &str,
     inputs: &str,
@@ -188,7 +224,11 @@ pub fn identification_report(
             "fitted"
         };
         page.heading(&format!("{} ({kind})", p.fit.name));
-        for (name, svg, caption) in case_figures(p)? {
+        let forward = case.forward.map(forward_figures).transpose()?;
+        for (name, svg, caption) in case_figures(p)?
+            .into_iter()
+            .chain(forward.into_iter().flatten())
+        {
             page.figure(&svg, &caption);
             let name = crate::unique_name(&name, |n| figures.iter().any(|(f, _)| f == n));
             figures.push((name, svg));

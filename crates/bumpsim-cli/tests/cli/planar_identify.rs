@@ -83,6 +83,21 @@ fn the_planar_series_identifies_a_car_that_predicts_the_held_out_test() {
         html.contains("<svg") && html.contains("OFFSET-RIGHT (validation"),
         "report"
     );
+    // the forward prediction of the held-out test (car, bumper, striker; no
+    // measured force) in the summary, the JSON and the report
+    assert_contains(&stdout, &["forward prediction", "yaw rate", "ISO"]);
+    let forward = r["forward"].as_array().unwrap();
+    let offset = forward
+        .iter()
+        .find(|f| f["case"] == "OFFSET-RIGHT")
+        .unwrap();
+    for channel in offset["channels"].as_array().unwrap() {
+        let fit = channel["fit_percent"].as_f64().unwrap();
+        assert!(fit >= 85.0, "forward {}: {fit} %", channel["name"]);
+        assert!(channel["rating"]["overall"].as_f64().unwrap() > 0.9);
+    }
+    assert!(report.join("OFFSET-RIGHT-forward-yaw-rate.svg").is_file());
+    assert!(html.contains("forward yaw rate: fit"));
     // the identified car is a planar car file the impact command reads
     let run = bumpsim(&[
         "planar",
