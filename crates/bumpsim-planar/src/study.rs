@@ -9,15 +9,21 @@
 //! seed = 1                  # optional (1)
 //! spread = 10.0             # optional (10): random starts within this factor of the start
 //! friction = false          # optional: estimate the lateral tyre friction μ_y of both axles
+//! cornering = false         # optional: estimate the tyres' cornering stiffness C_α
+//! mass = "1265 kg"          # optional: the test sheet's mass, checked against the identified car
 //!
 //! [[case]]
 //! name = "angled"
-//! speed = "8 km/h"          # the car at t = 0: m/s or text with a unit (0: a pendulum test)
+//! speed = "8 km/h"          # the car at time zero: m/s or text with a unit (0: a pendulum test)
 //! cfc = 180                 # optional CFC class of every channel
 //! validate = false          # optional: predicted and reported, not fitted
+//! time_zero = "onset"       # optional: where the replay starts ("onset", or s of the files' time)
+//! striker = { angle = 10.0, speed = "8 km/h" }  # optional: the test's striker, for the forward prediction
 //! forces = [                # force channels, N after the file's units
-//!   # lateral: m on the bumper line (left +); direction: of the force on the car, world;
-//!   # anchor (optional): a world point on its line of action, body frame at t = 0, m
+//!   # lateral: m on the bumper line (left +), or "estimate" (one total force whose line of
+//!   # action is a parameter); direction: of the force on the car, world; anchor (optional):
+//!   # a world point on its line of action, body frame at the files' t = 0, m; cell
+//!   # (optional): a wall load cell this wide (m) centred on the anchor
 //!   { path = "ANGLED/ANGLED.mme", channel = "B0LOMA010100FOXP", lateral = -0.72, direction = [-0.985, -0.174] },
 //! ]
 //! sensors = [               # accelerometers along the body x axis; the first two on the
@@ -28,7 +34,7 @@
 //! ```
 //!
 //! Channels are read and conditioned as in the 1-D study (pre-trigger bias,
-//! CFC; [`crate::cases`]).
+//! CFC), shifted to the case's time zero and decimated ([`crate::cases`]).
 
 use crate::car::{PlanarCar, PlanarError};
 use crate::cases::{Placed, TestChannels, TimeZero};

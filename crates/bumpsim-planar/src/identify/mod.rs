@@ -6,10 +6,14 @@
 //! line, the car starts at the test speed, and the model's left and right
 //! sensor points move. The unknowns θ are the body mass M and yaw inertia
 //! I_z, every mass, damper and spring of the left and right chains (their
-//! sizes from the template car, the start), and optionally the lateral
-//! tyre friction coefficient μ_y of both axles (the longitudinal ones, rolling
-//! resistance or brakes, stay the template's). The geometry (CG,
-//! side members, wheelbase, track) is the template's.
+//! sizes from the template car, the start), optionally the lateral tyre
+//! friction coefficient μ_y and the cornering stiffness C_α of both axles
+//! (the longitudinal ones, rolling resistance or brakes, stay the
+//! template's), and the lateral position of every force whose line of
+//! action the study asks to estimate (module `unknowns`; a linear-scale
+//! parameter). The geometry (CG, side members, wheelbase, track) is the
+//! template's. The result is checked for plausibility with the reasons
+//! (module `plausible`).
 //!
 //! **Objective.** `F(θ) = Σ_cases Σ_k (x̂_L − x_L)² + (x̂_R − x_R)²` over each
 //! case's window, with `x_L`, `x_R` the world-x displacements of the left
