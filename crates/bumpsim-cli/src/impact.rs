@@ -364,6 +364,11 @@ pub fn run_synth(args: &SynthArgs) -> Result<()> {
             "wrote {}",
             args.output.join(format!("{name}.csv")).display()
         );
+        for c in channels {
+            if let Some(comment) = c.meta("Comments") {
+                println!("{name} {}: {comment}", c.code);
+            }
+        }
     }
     for (name, text) in &extra {
         folder.write(name, text)?;

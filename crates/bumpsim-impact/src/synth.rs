@@ -137,7 +137,10 @@ pub fn record(
     let load = noisy(sample(&force), chain.force_noise, 0.0);
     let left = noisy(sample(&accel), chain.acceleration_noise, chain.biases[0]);
     let right = noisy(sample(&accel), chain.acceleration_noise, chain.biases[1]);
-    for (code, name, dimension, values) in [
+    let truth = |signal: &[f64]| -> Vec<f64> { signal.iter().step_by(10).copied().collect() };
+    let (true_force, true_accel) = (truth(&force), truth(&accel));
+    let truths = [&true_force, &true_accel, &true_accel];
+    for ((code, name, dimension, values), truth) in [
         (
             "P0IMPA000000FOXP",
             "Pendulum load cell X",
@@ -156,13 +159,18 @@ pub fn record(
             Dimension::Acceleration,
             right,
         ),
-    ] {
+    ]
+    .into_iter()
+    .zip(truths)
+    {
+        let comment = truth_comment(truth, &values, chain.step);
         let series = UniformSeries::new(-chain.pretrigger, chain.step, values).map_err(|_| {
             ImpactError::NoSeparation {
                 duration: chain.duration,
             }
         })?;
         let mut c = Channel::new(code, name, dimension, series);
+        c.set_meta("Comments", &comment);
         c.source_unit = if dimension == Dimension::Force {
             // the pendulum is test object 2 (see `test_header`)
             c.set_meta("Test object number", "2");
@@ -173,6 +181,19 @@ pub fn record(
         channels.push(c);
     }
     Ok(channels)
+}
+
+/// The `Comments` of a synthetic channel: its ISO/TS 18571 rating against
+/// the noise-free signal it records (`truth`, at the same samples), i.e. how
+/// much the measurement chain (anti-alias filter, noise, bias) costs.
+pub fn truth_comment(truth: &[f64], recorded: &[f64], step: f64) -> String {
+    match bumpsim_signal::rating::rate(truth, recorded, step) {
+        Ok(r) => format!(
+            "synthetic (bumpsim synth): ISO/TS 18571 rating against the noise-free signal {:.3} (corridor {:.3}, phase {:.3}, magnitude {:.3}, slope {:.3})",
+            r.overall, r.corridor, r.phase, r.magnitude, r.slope
+        ),
+        Err(e) => format!("synthetic (bumpsim synth): no ISO/TS 18571 rating against the noise-free signal ({e})"),
+    }
 }
 
 /// A series file (TOML): the car, the noise seed, optional chain settings

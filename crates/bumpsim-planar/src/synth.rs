@@ -389,11 +389,16 @@ pub fn record(
             .map(|v| v + bias + sigma * gaussian(&mut rng))
             .collect()
     };
-    let channel = |code: &str, name: &str, dimension, values: Vec<f64>, unit: &str| {
-        UniformSeries::new(-(pre as f64) * fine, chain.measurement.step, values)
+    let step = chain.measurement.step;
+    // each channel says how faithful it is: its ISO/TS 18571 rating against
+    // the noise-free signal at its samples
+    let channel = |code: &str, name: &str, dimension, (truth, values): (Vec<f64>, Vec<f64>), unit: &str| {
+        let comment = bumpsim_impact::synth::truth_comment(&truth, &values, step);
+        UniformSeries::new(-(pre as f64) * fine, step, values)
             .map(|series| {
                 let mut c = Channel::new(code, name, dimension, series);
                 c.source_unit = unit.into();
+                c.set_meta("Comments", &comment);
                 c
             })
             .map_err(|e| parameter("chain.step", chain.measurement.step, "s", &e.to_string()))
@@ -401,8 +406,9 @@ pub fn record(
     let mut channels = Vec::new();
     let mut loads = Vec::new();
     for (code, title, force, spec) in forces(car, striker, &r)? {
+        let truth = padded(&force).into_iter().step_by(10).collect();
         let values = sample(padded(&force), chain.measurement.force_noise, 0.0);
-        let mut load = channel(&code, &title, Dimension::Force, values, "kN")?;
+        let mut load = channel(&code, &title, Dimension::Force, (truth, values), "kN")?;
         if code.starts_with('P') {
             load.set_meta("Test object number", "2"); // the pendulum (see `test_header`)
         }
@@ -411,12 +417,13 @@ pub fn record(
     }
     for (k, (sensor, (code, title))) in sensors.iter().zip(SENSOR_CODES).enumerate() {
         let acceleration = padded(&sensor_acceleration(car, &r, *sensor, fine));
+        let truth = acceleration.iter().step_by(10).copied().collect();
         let values = sample(
             acceleration,
             chain.measurement.acceleration_noise,
             chain.measurement.biases[k % 2],
         );
-        channels.push(channel(code, title, Dimension::Acceleration, values, "g")?);
+        channels.push(channel(code, title, Dimension::Acceleration, (truth, values), "g")?);
     }
     let (car_speed, striker_motion) = match striker.motion {
         Motion::Fixed { speed } => (speed, (speed, None)),

@@ -15,6 +15,12 @@ fn synth_remakes_the_bundled_series_bit_for_bit() {
         dir.to_str().unwrap(),
     ]);
     assert!(run.status.success(), "{}", text(&run.stderr));
+    // each channel's ISO/TS 18571 rating against the noise-free signal
+    // (issue 33), printed and in its header's Comments
+    assert_contains(
+        &text(&run.stdout),
+        &["FLAT P0IMPA000000FOXP: synthetic (bumpsim synth): ISO/TS 18571 rating against the noise-free signal 0."],
+    );
     for head in ["FLAT", "P600", "POLE"] {
         for file in [
             format!("{head}.mme"),
