@@ -96,9 +96,10 @@ pub fn run(args: &Args) -> Result<()> {
     let loaded = study.load(dofs.iter().copied().max().unwrap_or(1))?;
     let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
     print_notes(&notes);
+    loaded.warnings.iter().for_each(|w| crate::warn(w));
     let mut outcomes = Vec::new();
     let mut done: Vec<(Identification, Vec<bumpsim_ident::LoadCase>)> = Vec::new();
-    let mut sweep = Sweep::new();
+    let mut sweep = Sweep::new().cross_validated(dofs.len() > 1);
     for &dof in &dofs {
         let mut settings = study.settings(dof)?;
         settings.starts = args.starts.unwrap_or(settings.starts);
@@ -317,6 +318,7 @@ fn run_predict_chain(args: &PredictArgs) -> Result<()> {
     let loaded = study.load_named(car.model.dof(), &args.cases)?;
     let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
     print_notes(&notes);
+    loaded.warnings.iter().for_each(|w| crate::warn(w));
     let predictions = predict(&loaded.cases, &car.model)?;
     if let Some(p) = predictions
         .iter()

@@ -15,6 +15,7 @@
 
 use bumpsim_estimate::lm::LeastSquares;
 
+mod direction;
 mod modal;
 use bumpsim_core::discrete::{DiscreteModel, DiscretiseError, Method};
 use bumpsim_core::model::{MsdModel, parameter_count};

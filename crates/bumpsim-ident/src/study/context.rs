@@ -36,6 +36,9 @@ pub struct LoadedCases {
     pub cases: Vec<LoadCase>,
     /// What the channel selections left out or used despite a mark.
     pub notes: Vec<CaseNote>,
+    /// Cases whose measured motion goes against their force (a sign
+    /// convention mixed up: [`LoadCase::direction_warning`]).
+    pub warnings: Vec<String>,
 }
 
 /// One case being loaded: its study, definition, the channel loader and

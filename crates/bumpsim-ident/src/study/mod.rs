@@ -210,6 +210,7 @@ impl Study {
         let mut loaded = LoadedCases {
             cases: Vec::new(),
             notes: Vec::new(),
+            warnings: Vec::new(),
         };
         for spec in self
             .case
@@ -222,7 +223,9 @@ impl Study {
                 loader: &mut loader,
                 notes: Vec::new(),
             };
-            loaded.cases.push(ctx.load_case(dof)?);
+            let case = ctx.load_case(dof)?;
+            loaded.warnings.extend(case.direction_warning());
+            loaded.cases.push(case);
             loaded.notes.append(&mut ctx.notes);
         }
         Ok(loaded)
