@@ -42,9 +42,17 @@ impl Study {
             path: path.to_path_buf(),
             message,
         };
+        if let Some(kind) = test_data_kind(path) {
+            return Err(error(not_a_study(kind)));
+        }
         let text = std::fs::read_to_string(path).map_err(|e| error(format!("cannot read: {e}")))?;
-        let mut study: Study =
-            toml::from_str(&text).map_err(|e| error(bumpsim_io::toml_message(&text, &e)))?;
+        let mut study: Study = toml::from_str(&text).map_err(|e| {
+            let parse = bumpsim_io::toml_message(&text, &e);
+            error(match test_data_text(&text) {
+                Some(kind) => not_a_study(kind),
+                None => parse,
+            })
+        })?;
         study.base = path.parent().map(Path::to_path_buf).unwrap_or_default();
         study.path = path.to_path_buf();
         if !study.model.method.eq_ignore_ascii_case("zoh") {
@@ -232,6 +240,50 @@ impl Study {
     }
 }
 
+/// What a path given as a study is, when it is crash-test data instead
+/// (by its extension, or a folder): an ISO-MME test, an NHTSA EV5 test or a
+/// CSV table.
+fn test_data_kind(path: &Path) -> Option<&'static str> {
+    if path.is_dir() {
+        return Some("a folder (an ISO-MME test folder?)");
+    }
+    if !path.is_file() {
+        return None;
+    }
+    let extension = path.extension()?.to_string_lossy().to_ascii_lowercase();
+    match extension.as_str() {
+        "mme" | "zip" => Some("an ISO-MME test"),
+        "ev5" => Some("an NHTSA EV5 test"),
+        "csv" => Some("a CSV table of signals"),
+        e if e.len() == 3 && e.bytes().all(|b| b.is_ascii_digit()) => {
+            Some("a channel file of a crash test")
+        }
+        _ => None,
+    }
+}
+
+/// The same, by the first line of a file that is not TOML.
+fn test_data_text(text: &str) -> Option<&'static str> {
+    let first = text.lines().next().unwrap_or("").trim_start();
+    let starts = |p: &str| first.to_ascii_lowercase().starts_with(p);
+    if starts("data format edition number") {
+        Some("an ISO-MME test")
+    } else if first.starts_with('{') {
+        Some("JSON (a result of `bumpsim identify --json`?)")
+    } else if first.contains(',') && !first.contains('=') {
+        Some("a CSV table of signals")
+    } else {
+        None
+    }
+}
+
+/// The error for crash-test data given where a study is expected.
+fn not_a_study(kind: &str) -> String {
+    format!(
+        "this is {kind}, not a study. bumpsim identify reads a study file: TOML with a [model] table and one [[case]] per test naming its force and acceleration channels (docs/identify.md). List the test's channels with `bumpsim signal info FILE`, then write a study that names them: docs/your-own-tests.md walks through it"
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -287,6 +339,40 @@ mod tests {
             std::fs::write(dir.join(format!("t.{:03}", curve + 1)), samples).unwrap();
         }
         dir
+    }
+
+    /// Crash-test data given as a study: what it is and what to run, not
+    /// "TOML parse error at line 1".
+    #[test]
+    fn test_data_given_as_a_study_is_named_with_the_way_on() {
+        let dir = std::env::temp_dir().join(format!("bumpsim-not-study-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let cases = [
+            (
+                "FLAT.mme",
+                "Data format edition number   :1.6\n",
+                "an ISO-MME test",
+            ),
+            (
+                "study.toml",
+                "Data format edition number   :1.6\n",
+                "an ISO-MME test",
+            ),
+            ("r.json", "{\"model\": 1}\n", "JSON"),
+            ("s.csv", "time [s],F [N]\n0,1\n", "a CSV table"),
+        ];
+        for (name, text, kind) in cases {
+            let path = dir.join(name);
+            std::fs::write(&path, text).unwrap();
+            let e = Study::read(&path).unwrap_err().to_string();
+            assert!(e.contains(kind) && e.contains("signal info"), "{name}: {e}");
+        }
+        let e = Study::read(&dir).unwrap_err().to_string();
+        assert!(e.contains("a folder"), "{e}");
+        // a missing file is missing, whatever its extension
+        let e = Study::read(&dir.join("none.mme")).unwrap_err().to_string();
+        assert!(e.contains("cannot read"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     /// A displacement sampled at half the force's rate, over a shorter
