@@ -64,12 +64,15 @@
 
 pub mod bounds;
 pub mod document;
+pub mod effective;
 pub mod fit;
 pub mod lm;
 pub mod multistart;
 pub mod observer;
 pub mod polish;
+pub mod posterior;
 pub mod reduce;
+pub mod sampler;
 pub mod search;
 pub mod text;
 pub mod uncertainty;

@@ -3,8 +3,9 @@
 //! `to_json`): serialisable types, so each JSON is assembled once, here.
 //!
 //! One DOF writes its [`Identification`] with the notes beside its fields;
-//! a DOF table writes every result, the orders that failed and the
-//! recommended order (lowest BIC).
+//! a DOF table writes every result, the orders that failed, the
+//! recommended order and the model choice that decided it
+//! ([`crate::choice`]).
 
 use crate::explore::Prediction;
 use crate::result::{CaseFit, Identification};
@@ -73,6 +74,7 @@ impl Serialize for IdentifyDocument<'_> {
             results: &'a [Identification],
             failed: &'a [Failed],
             recommended_dof: Option<usize>,
+            model_choice: Option<crate::choice::Choice>,
             notes: &'a [String],
         }
         match *self {
@@ -81,13 +83,17 @@ impl Serialize for IdentifyDocument<'_> {
                 results,
                 failed,
                 notes,
-            } => Table {
-                results,
-                failed,
-                recommended_dof: crate::text::recommended_dof(results),
-                notes,
+            } => {
+                let model_choice = crate::choice::choose(results);
+                Table {
+                    results,
+                    failed,
+                    recommended_dof: model_choice.as_ref().map(|c| c.dof),
+                    model_choice,
+                    notes,
+                }
+                .serialize(serializer)
             }
-            .serialize(serializer),
         }
     }
 }

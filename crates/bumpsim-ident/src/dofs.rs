@@ -62,15 +62,27 @@ pub(crate) fn repeated(list: &[usize]) -> Option<usize> {
 /// A DOF table in the making: it remembers the last model identified, so
 /// that the next order starts from it ([`Settings::continue_from`]: each
 /// mass split in turn). A failed order leaves the memory as it was.
+/// Cross-validated, it also predicts each load case left out
+/// ([`crate::crossval`]) for the table's recommendation
+/// ([`crate::choice`]).
 #[derive(Debug, Clone, Default)]
 pub struct Sweep {
     last: Option<MsdModel>,
+    cross_validated: bool,
 }
 
 impl Sweep {
     /// A sweep that has identified nothing yet.
     pub fn new() -> Sweep {
         Sweep::default()
+    }
+
+    /// The same sweep, cross-validating each order when `yes`.
+    pub fn cross_validated(self, yes: bool) -> Sweep {
+        Sweep {
+            cross_validated: yes,
+            ..self
+        }
     }
 
     /// Identifies `settings.dof` masses from `cases` ([`identify`]),
@@ -84,14 +96,18 @@ impl Sweep {
         if let Some(last) = &self.last {
             settings.continue_from(last);
         }
-        let result = identify(cases, &settings, observer)?;
+        let mut result = identify(cases, &settings, observer)?;
         self.last = Some(result.model.clone());
+        if self.cross_validated {
+            result.cross_validation = crate::crossval::cross_validate(cases, &settings, &result);
+        }
         Ok(result)
     }
 }
 
 /// The DOF table over `dofs` in order: `setup(dof)` gives an order's cases
-/// and settings; each order is continued from the last one identified.
+/// and settings; each order is continued from the last one identified and
+/// cross-validated (with two or more cases).
 ///
 /// ```
 /// use bumpsim_core::model::MsdModel;
@@ -113,7 +129,7 @@ pub fn table(
     dofs: &[usize],
     setup: &dyn Fn(usize) -> (Vec<LoadCase>, Settings),
 ) -> Vec<Result<Identification, IdentError>> {
-    let mut sweep = Sweep::new();
+    let mut sweep = Sweep::new().cross_validated(true);
     dofs.iter()
         .map(|&dof| {
             let (cases, settings) = setup(dof);

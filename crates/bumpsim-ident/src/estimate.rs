@@ -153,6 +153,7 @@ fn summarise(
     let sse = outcome.objective;
     let spread = total_spread(cases);
     let uncertainty = uncertainty(objective, &outcome.parameters, lower, upper, settings.dof);
+    let effective_samples = crate::stats::effective(objective, &outcome.parameters);
     let negative = fits.iter().filter_map(|f| {
         bumpsim_estimate::fit::negative_fit(&f.name, "displacement", f.fit_percent)
     });
@@ -181,6 +182,8 @@ fn summarise(
         run_time: clock.elapsed().as_secs_f64(),
         warnings,
         reduction: None,
+        effective_samples,
+        cross_validation: None,
     })
 }
 

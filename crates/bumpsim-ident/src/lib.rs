@@ -5,6 +5,8 @@
 //!   residuals and exact Jacobian, handed to the estimation layer);
 //! - [`settings`]: bounds, starts and solver, and their checks;
 //! - [`estimate`]: the data-derived start and the identification;
+//! - [`crossval`], [`choice`]: leave-one-load-case-out cross-validation and
+//!   the DOF table's recommendation with correlated residuals;
 //! - [`result`]: what an identification finds;
 //! - [`error`]: why it cannot run;
 //! - [`search`]: the starts: continuation across the DOF table;
@@ -40,6 +42,8 @@
 //! ```
 
 pub mod case;
+pub mod choice;
+pub mod crossval;
 pub mod document;
 pub mod dofs;
 pub mod error;

@@ -6,6 +6,7 @@
 use crate::case::LoadCase;
 use crate::stats::Uncertainty;
 use bumpsim_core::model::MsdModel;
+use bumpsim_estimate::effective::Effective;
 use bumpsim_estimate::lm::Stop;
 use bumpsim_estimate::multistart::Starts;
 use bumpsim_signal::rating::{Rating, rate};
@@ -87,6 +88,35 @@ pub struct Identification {
     /// A simpler model that fits as well, when a spring is undetermined
     /// ([`crate::reduce`]).
     pub reduction: Option<bumpsim_estimate::reduce::Reduction<MsdModel>>,
+    /// The effective sample size of the residuals at the optimum
+    /// (spectral, [`bumpsim_estimate::effective`]): the DOF table's
+    /// criteria and the posterior's noise model count it.
+    pub effective_samples: Effective,
+    /// Leave-one-load-case-out cross-validation, when a DOF table ran it
+    /// ([`crate::crossval`]).
+    pub cross_validation: Option<CrossValidation>,
+}
+
+/// The leave-one-load-case-out cross-validation of one model order
+/// ([`crate::crossval`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CrossValidation {
+    /// `Σ` of the left-out cases' squared errors, m².
+    pub error: f64,
+    /// One fold per load case, in case order.
+    pub folds: Vec<Fold>,
+}
+
+/// One load case left out and predicted.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Fold {
+    /// The case left out.
+    pub case: String,
+    /// Its squared error over its window, predicted by the model fitted
+    /// to the other cases, m².
+    pub sse: f64,
+    /// Its fit %.
+    pub fit_percent: f64,
 }
 
 impl Identification {

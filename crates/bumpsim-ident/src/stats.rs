@@ -13,6 +13,7 @@
 
 use crate::case::Objective;
 use bumpsim_core::model::{parameter_count, parameter_kind, parameter_name};
+use bumpsim_estimate::effective::{Effective, Method, of_residuals};
 use bumpsim_estimate::lm::LeastSquares;
 use bumpsim_estimate::uncertainty::{Correlation, Estimated, Parameter};
 use nalgebra::DMatrix;
@@ -26,6 +27,18 @@ pub fn parameters(dof: usize) -> Vec<Parameter> {
     (0..parameter_count(dof))
         .map(|i| Parameter::new(parameter_name(dof, i), parameter_kind(dof, i).0.dimension()))
         .collect()
+}
+
+/// The effective sample size (spectral) of the residual series of
+/// `objective` at free log parameters `p` (every sample when they cannot
+/// be evaluated).
+pub fn effective(objective: &Objective, p: &[f64]) -> Effective {
+    let mut r = vec![0.0; objective.residual_count()];
+    let method = match objective.evaluate(p, &mut r, None) {
+        true => Method::Spectral,
+        false => Method::Independent,
+    };
+    of_residuals(&r, &objective.series(), method)
 }
 
 /// Uncertainty at free log parameters `p` of `objective`, within the log

@@ -46,17 +46,17 @@ pub fn starts_line(result: &Identification) -> String {
     bumpsim_estimate::text::starts_line(&result.starts, result.iterations, result.run_time)
 }
 
-/// The DOF with the lowest BIC among `results` (the recommended model
-/// order: the fit gained by a further mass must pay for its parameters).
+/// The recommended model order among `results`: the fit gained by a
+/// further mass must pay for its parameters, counted with the effective
+/// sample size of correlated residuals ([`crate::choice`], which also says
+/// which rule decided).
 pub fn recommended_dof(results: &[Identification]) -> Option<usize> {
-    results
-        .iter()
-        .filter(|r| r.bic.is_finite())
-        .min_by(|a, b| a.bic.total_cmp(&b.bic))
-        .map(|r| r.dof)
+    crate::choice::choose(results).map(|c| c.dof)
 }
 
-/// The thesis's table 1: DOF, objective, fit %, AIC, BIC, time.
+/// The thesis's table 1: DOF, objective, fit %, AIC, BIC (every sample
+/// counted), time; then the criteria with the effective sample size and
+/// the recommendation with the rule that decided ([`crate::choice::lines`]).
 pub fn dof_table(results: &[Identification]) -> String {
     let mut out = format!(
         "{:>4} {:>14} {:>9} {:>12} {:>12} {:>10}\n",
@@ -73,8 +73,8 @@ pub fn dof_table(results: &[Identification]) -> String {
             format_quantity(r.run_time, Dimension::Time)
         );
     }
-    if let Some(dof) = recommended_dof(results) {
-        out += &format!("recommended: {dof} DOF (lowest BIC)\n");
+    if let Some(choice) = crate::choice::choose(results) {
+        out += &crate::choice::lines(&choice);
     }
     out
 }
