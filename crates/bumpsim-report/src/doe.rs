@@ -4,28 +4,58 @@
 
 use crate::bar::BarPlot;
 use crate::plot::{LinePlot, PlotError, Series, Style};
-use bumpsim_core::units::Dimension;
+use bumpsim_core::units::{Dimension, Unit};
 use bumpsim_doe::regression::{Fit, normal_scores};
 
 /// A plot: file name, SVG, caption.
 pub type Figure = (String, String, String);
 
-/// The plots of one fitted response with observations `y`.
+/// A response's unit for its plots: a known unit (`N`, `m`, `J`, ...) is
+/// drawn in its dimension's display unit (kN, mm, J: docs/reports.md), with
+/// the factor from the response's values to it; another unit as given.
+fn display(unit: &str) -> (Dimension, String, f64) {
+    match Unit::parse(unit) {
+        Ok(u) if u.dimension != Dimension::Dimensionless => {
+            let shown = u.dimension.display_unit();
+            (
+                u.dimension,
+                shown.symbol.to_string(),
+                u.factor / shown.factor,
+            )
+        }
+        _ => (Dimension::Dimensionless, unit.to_string(), 1.0),
+    }
+}
+
+/// The plots of one fitted response with observations `y` (in `unit`).
 pub fn fit_plots(response: &str, unit: &str, f: &Fit, y: &[f64]) -> Result<Vec<Figure>, PlotError> {
     let file = crate::file_name(response);
     let skip_intercept = 1.min(f.terms.len());
+    let (dimension, shown, factor) = display(unit);
+    let scaled = |v: &[f64]| -> Vec<f64> { v.iter().map(|x| x * factor).collect() };
     let bars = BarPlot {
         title: format!("{response}: coded coefficients with 95 % intervals"),
-        y_label: format!("coefficient [{unit}]"),
+        y_label: format!("coefficient [{shown}]"),
         labels: f.terms[skip_intercept..].to_vec(),
-        values: f.coefficients[skip_intercept..].to_vec(),
-        errors: f.ci95[skip_intercept..].to_vec(),
+        values: scaled(&f.coefficients[skip_intercept..]),
+        errors: f.ci95[skip_intercept..]
+            .iter()
+            .map(|e| e.map(|[lo, hi]| [lo * factor, hi * factor]))
+            .collect(),
     };
-    let label = format!("{response} [{unit}]");
+    // the line plots take SI values and draw them in the display unit
+    let si = Unit::parse(unit).map_or(1.0, |u| u.factor);
+    let si = if dimension == Dimension::Dimensionless {
+        1.0
+    } else {
+        si
+    };
+    let to_si = |v: &[f64]| -> Vec<f64> { v.iter().map(|x| x * si).collect() };
+    let label = format!("{response} [{shown}]");
     let mut observed = LinePlot::new(
         &format!("{response}: observed against predicted"),
-        Dimension::Dimensionless,
-        Dimension::Dimensionless,
+        dimension,
+        dimension,
     )
     .with_labels(
         Some(&format!("predicted {label}")),
@@ -43,30 +73,30 @@ pub fn fit_plots(response: &str, unit: &str, f: &Fit, y: &[f64]) -> Result<Vec<F
         .fold(f64::NEG_INFINITY, f64::max);
     observed.add(Series::new(
         "runs",
-        f.fitted.clone(),
-        y.to_vec(),
+        to_si(&f.fitted),
+        to_si(y),
         Style::Points,
     ));
     observed.add(Series::new(
         "y = x",
-        vec![lo, hi],
-        vec![lo, hi],
+        to_si(&[lo, hi]),
+        to_si(&[lo, hi]),
         Style::Dashed,
     ));
     let scores = normal_scores(&f.residuals);
     let mut normal = LinePlot::new(
         &format!("{response}: residuals, normal probability"),
         Dimension::Dimensionless,
-        Dimension::Dimensionless,
+        dimension,
     )
     .with_labels(
         Some("normal quantile [-]"),
-        Some(&format!("residual [{unit}]")),
+        Some(&format!("residual [{shown}]")),
     );
     normal.add(Series::new(
         "residuals",
         scores.iter().map(|s| s.0).collect(),
-        scores.iter().map(|s| s.1).collect(),
+        to_si(&scores.iter().map(|s| s.1).collect::<Vec<_>>()),
         Style::Points,
     ));
     let mut out = Vec::new();
@@ -127,4 +157,44 @@ pub fn reach_plot(
         ));
     }
     p.svg()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bumpsim_doe::regression::{fit, terms};
+
+    /// A campaign's peak force in N: the plots draw it in kN (as
+    /// docs/reports.md promises), not with ticks like "70000.0".
+    #[test]
+    fn a_force_in_newton_is_drawn_in_kilonewton() {
+        let z: Vec<Vec<f64>> = [-1.0, 1.0, -1.0, 1.0, 0.0]
+            .iter()
+            .zip([-1.0, -1.0, 1.0, 1.0, 0.0])
+            .map(|(a, b)| vec![*a, b])
+            .collect();
+        let y = [60e3, 70e3, 65e3, 76e3, 68.5e3];
+        let f = fit(&z, &y, &terms(2, false, false), &["a".into(), "b".into()]).unwrap();
+        let plots = fit_plots("peak_force", "N", &f, &y).unwrap();
+        let observed = &plots
+            .iter()
+            .find(|p| p.0.ends_with("-observed.svg"))
+            .unwrap()
+            .1;
+        assert!(observed.contains("observed peak_force [kN]"), "label in kN");
+        let ticks: Vec<f64> = observed
+            .split("<text")
+            .skip(1)
+            .filter_map(|t| t.split('>').nth(1)?.split('<').next()?.trim().parse().ok())
+            .collect();
+        assert!(
+            !ticks.is_empty() && ticks.iter().all(|t| t.abs() < 1000.0),
+            "{ticks:?}"
+        );
+        let bars = &plots[0].1;
+        assert!(bars.contains("coefficient [kN]"), "coefficients in kN");
+        // a unit bumpsim does not know is drawn as given
+        let plots = fit_plots("score", "points", &f, &y).unwrap();
+        assert!(plots[1].1.contains("observed score [points]"));
+    }
 }

@@ -39,7 +39,8 @@ pub fn fit_plot(prediction: &Prediction, dof: usize) -> Result<String, PlotError
         prediction.fit.name,
         format_number(prediction.fit.fit_percent, 4)
     );
-    let mut plot = LinePlot::new(&title, Dimension::Time, Dimension::Length);
+    let mut plot = LinePlot::new(&title, Dimension::Time, Dimension::Length)
+        .quantities(None, Some("displacement"));
     plot.add(Series::new(
         "measured",
         prediction.time.clone(),
@@ -61,7 +62,8 @@ pub fn residual_plot(predictions: &[Prediction], dof: usize) -> Result<String, P
         &format!("Residuals of the {dof}-DOF model"),
         Dimension::Time,
         Dimension::Length,
-    );
+    )
+    .quantities(None, Some("residual (model − measured)"));
     for p in predictions {
         let inside: Vec<usize> = (0..p.time.len())
             .filter(|&k| p.time[k] >= p.window[0] && p.time[k] <= p.window[1])

@@ -28,14 +28,16 @@ pub fn impact_report(
         "Force against compression",
         Dimension::Length,
         Dimension::Force,
-    );
+    )
+    .quantities(Some("compression"), None);
     curve.add(Series::new(
         "bumper",
         r.compression.clone(),
         r.force.clone(),
         Style::Solid,
     ));
-    let mut motion = LinePlot::new("Displacements", Dimension::Time, Dimension::Length);
+    let mut motion = LinePlot::new("Displacements", Dimension::Time, Dimension::Length)
+        .quantities(None, Some("displacement"));
     for (b, x) in r.bodies.iter().zip(&r.displacements) {
         motion.add(Series::new(b, r.time.clone(), x.clone(), Style::Solid));
     }

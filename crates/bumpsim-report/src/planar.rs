@@ -89,7 +89,8 @@ fn yaw(r: &PlanarResult) -> LinePlot {
 }
 
 fn path(r: &PlanarResult) -> LinePlot {
-    let mut plot = LinePlot::new("Body CG", Dimension::Time, Dimension::Length);
+    let mut plot = LinePlot::new("Body CG", Dimension::Time, Dimension::Length)
+        .quantities(None, Some("position"));
     plot.add(line("x", &r.time, &r.x, Style::Solid));
     plot.add(line("y", &r.time, &r.y, Style::Solid));
     plot
@@ -131,7 +132,8 @@ fn segment_rows(r: &PlanarResult) -> Vec<Vec<String>> {
 pub fn case_figures(
     p: &bumpsim_planar::identify::Prediction,
 ) -> Result<Vec<(String, String, String)>, PlotError> {
-    let mut x = LinePlot::new("x (mean of the sills)", Dimension::Time, Dimension::Length);
+    let mut x = LinePlot::new("x (mean of the sills)", Dimension::Time, Dimension::Length)
+        .quantities(None, Some("displacement"));
     x.add(line("measured", &p.time, &p.x[1], Style::Solid));
     x.add(line("model", &p.time, &p.x[0], Style::Dashed));
     let mut yaw = LinePlot::new(

@@ -93,13 +93,20 @@ pub struct LinePlot {
     pub labels: (Option<String>, Option<String>),
 }
 
-const COLOURS: [RGBColor; 6] = [
+/// Ten distinguishable colours (matplotlib's tab10 order): a plot of up to
+/// ten series (the sensitivity plot draws one per parameter, seven for a
+/// 3-DOF chain) never gives two of them the same colour.
+const COLOURS: [RGBColor; 10] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
     RGBColor(148, 103, 189),
     RGBColor(255, 127, 14),
     RGBColor(23, 190, 207),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+    RGBColor(188, 189, 34),
 ];
 
 /// The axis label of a dimension: `force [kN]`.
@@ -118,6 +125,17 @@ impl LinePlot {
             size: (800, 480),
             labels: (None, None),
         }
+    }
+
+    /// Names the quantities on the axes (`displacement`, `compression`, ...)
+    /// where the dimension's name (`length`) would not say which one: the
+    /// labels read `displacement [mm]`, in the dimension's display unit.
+    pub fn quantities(self, x: Option<&str>, y: Option<&str>) -> Self {
+        let label = |name: &str, d: Dimension| format!("{name} [{}]", d.display_unit().symbol);
+        let (dx, dy) = (self.x, self.y);
+        let x = x.map(|n| label(n, dx));
+        let y = y.map(|n| label(n, dy));
+        self.with_labels(x.as_deref(), y.as_deref())
     }
 
     /// Replaces the axis labels, for quantities without a [`Dimension`]
@@ -174,12 +192,15 @@ impl LinePlot {
             }
         };
         let (px, py) = (pad(r.0, r.1), pad(r.2, r.3));
-        let range = (
-            r.0 - px * 0.0,
-            r.1 + px * f64::from(r.1 <= r.0),
-            r.2 - py,
-            r.3 + py,
-        );
+        // a time axis starts at its first sample; markers get room on
+        // every side, so none at the limits is cut in half
+        let scatter = self.series.iter().any(|s| s.style == Style::Points);
+        let (left, right) = if scatter {
+            (px, px)
+        } else {
+            (0.0, px * f64::from(r.1 <= r.0))
+        };
+        let range = (r.0 - left, r.1 + right, r.2 - py, r.3 + py);
         drawable(&self.title, range.0, range.1)?;
         drawable(&self.title, range.2, range.3)?;
         Ok(range)
@@ -267,15 +288,23 @@ impl LinePlot {
                     .map(|(&x, &y)| (ux.from_si(x), uy.from_si(y)))
                     .collect();
             let style = colour.stroke_width(2);
-            let legend =
-                move |(x, y): (i32, i32)| PathElement::new(vec![(x, y), (x + 20, y)], style);
-            let drawn = match s.style {
+            // each legend sample is the series' own mark: a marker for a
+            // scatter, a line (dashed in the SVG, see `dash`) otherwise
+            match s.style {
                 Style::Points => {
-                    chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, colour.filled())))?
+                    let marker = colour.filled();
+                    chart
+                        .draw_series(points.iter().map(|&p| Circle::new(p, 3, marker)))?
+                        .label(s.name.clone())
+                        .legend(move |(x, y)| Circle::new((x + 10, y), 3, marker));
                 }
-                _ => chart.draw_series(LineSeries::new(points, style))?,
-            };
-            drawn.label(s.name.clone()).legend(legend);
+                _ => {
+                    chart
+                        .draw_series(LineSeries::new(points, style))?
+                        .label(s.name.clone())
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+                }
+            }
         }
         chart
             .configure_series_labels()
@@ -374,9 +403,54 @@ mod tests {
         assert!(svg.contains("predicted m2 [kg]") && svg.contains("observed m2 [kg]"));
         assert_eq!(
             svg.matches("<circle").count(),
-            4,
-            "one marker per point (the legend sample is a line)"
+            5,
+            "one marker per point and the legend's marker"
         );
+        // the legend shows the scatter's mark, not a line
+        let legend_lines = svg
+            .split("<polyline")
+            .skip(1)
+            .filter(|p| p.split("/>").next().unwrap_or("").contains("#1F77B4"))
+            .count();
+        assert_eq!(legend_lines, 0, "no line sample for a scatter");
+        // markers at the limits are inside the plotting area, which
+        // starts at margin + y label area = 82 px: none is cut in half
+        let left = svg
+            .split("<circle cx=\"")
+            .skip(1)
+            .filter_map(|c| c.split('"').next()?.parse::<f64>().ok())
+            .fold(f64::INFINITY, f64::min);
+        assert!(left > 82.0 + 3.0, "a marker at x = {left} px");
+    }
+
+    #[test]
+    fn seven_series_get_seven_colours_and_named_quantities() {
+        let mut p = LinePlot::new("objective", Dimension::Time, Dimension::Length)
+            .quantities(None, Some("displacement"));
+        for i in 0..7 {
+            let y = vec![i as f64, i as f64 + 1.0];
+            p.add(Series::new(
+                &format!("s{i}"),
+                vec![0.0, 1.0],
+                y,
+                Style::Solid,
+            ));
+        }
+        let svg = p.svg().unwrap();
+        assert!(svg.contains("displacement [mm]") && !svg.contains("length [mm]"));
+        let colours: std::collections::BTreeSet<&str> = svg
+            .split("<polyline")
+            .skip(1)
+            .filter_map(|p| {
+                p.split("/>")
+                    .next()?
+                    .split("stroke=\"")
+                    .nth(1)?
+                    .split('"')
+                    .next()
+            })
+            .collect();
+        assert!(colours.len() >= 7, "{colours:?}");
     }
 
     #[test]
