@@ -1,32 +1,37 @@
-//! Identification of one MSD model from the load cases of a study file
-//! (bumpsim-ident), the calls `bumpsim identify` makes: read the study,
-//! load its cases for the DOF, take its settings with the caller's starts
-//! and seed, identify, and predict the cases with the result.
+//! Identification of MSD models (bumpsim-ident), the calls `bumpsim
+//! identify` makes: read the study, load its cases for the DOF, take its
+//! settings with the caller's starts and seed, identify (one order, or the
+//! DOF table over several, each continued from the last); and load cases
+//! built from numpy arrays. The results are in [`crate::identification`].
 
-use crate::arrays::{array1, vector};
-use crate::errors::InputError;
-use crate::errors::{file_or_input, input};
-use crate::model::Car;
+use crate::arrays::{cached1, vector};
+use crate::convert::{count_or, dofs, path, seed};
+use crate::errors::{input, invalid, message, reading};
+use crate::frames;
+use crate::identification::{DofTable, Identification};
+use crate::state::ident::LoadCaseState;
 use bumpsim_core::series::UniformSeries;
 use bumpsim_ident::case::LoadCase;
-use bumpsim_ident::estimate::Settings;
-use bumpsim_ident::estimate::{Identification as CoreIdentification, identify as core_identify};
-use bumpsim_ident::explore::{predict, sensitivity};
+use bumpsim_ident::document::Failed;
+use bumpsim_ident::dofs::Sweep;
+use bumpsim_ident::estimate::{Settings, identify as core_identify};
 use bumpsim_ident::study::{DofSpec, Study};
-use bumpsim_io::car::Car as IoCar;
-use bumpsim_report::identification::{DofOutcome, report};
 use numpy::PyArray1;
 use pyo3::prelude::*;
-use std::path::PathBuf;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyBytes, PyDict, PyType};
+use std::path::{Path, PathBuf};
+
+/// Starts at most, as the CLI's `--starts`.
+const MAX_STARTS: usize = 100_000;
 
 /// Registers the classes and functions of this module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_class::<Identification>()?;
-    m.add_class::<Prediction>()?;
     m.add_function(wrap_pyfunction!(identify, m)?)?;
+    m.add_function(wrap_pyfunction!(dof_table, m)?)?;
     m.add_class::<Case>()?;
     m.add_function(wrap_pyfunction!(identify_cases, m)?)?;
-    Ok(())
+    crate::identification::register(m)
 }
 
 /// A load case from numpy arrays: force on m1 (N) and the measured
@@ -35,21 +40,40 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 #[pyclass(frozen, module = "bumpsim", name = "LoadCase")]
 pub struct Case {
     inner: LoadCase,
+    time: PyOnceLock<Py<PyArray1<f64>>>,
+    force: PyOnceLock<Py<PyArray1<f64>>>,
+    displacement: PyOnceLock<Py<PyArray1<f64>>>,
+}
+
+impl Case {
+    fn of(inner: LoadCase) -> Case {
+        Case {
+            inner,
+            time: PyOnceLock::new(),
+            force: PyOnceLock::new(),
+            displacement: PyOnceLock::new(),
+        }
+    }
+
+    fn series(&self) -> Option<UniformSeries> {
+        UniformSeries::new(self.inner.start, self.inner.step, self.inner.force.clone()).ok()
+    }
 }
 
 #[pymethods]
 impl Case {
     #[new]
-    #[pyo3(signature = (name, time, force, displacement, output_dof = 1, initial_velocity = 0.0, window = None))]
+    #[pyo3(signature = (name, time, force, displacement, output_dof = None, initial_velocity = 0.0, window = None))]
     fn new(
         name: String,
         time: &Bound<'_, PyAny>,
         force: &Bound<'_, PyAny>,
         displacement: &Bound<'_, PyAny>,
-        output_dof: usize,
+        output_dof: Option<&Bound<'_, PyAny>>,
         initial_velocity: f64,
         window: Option<(f64, f64)>,
     ) -> PyResult<Self> {
+        let output_dof = count_or(output_dof, "output_dof", 1, usize::MAX)?.unwrap_or(1);
         let force = UniformSeries::from_times(&vector(time, "time")?, vector(force, "force")?)
             .map_err(input)?;
         let last = force.len() - 1;
@@ -59,7 +83,7 @@ impl Case {
                 .window(t0, t1)
                 .map(|w| (*w.start(), *w.end()))
                 .ok_or_else(|| {
-                    InputError::new_err(format!(
+                    invalid(format!(
                         "case '{name}': no sample inside the window [{t0}, {t1}] s"
                     ))
                 })?,
@@ -75,7 +99,7 @@ impl Case {
             window,
         };
         case.validate().map_err(input)?;
-        Ok(Case { inner: case })
+        Ok(Case::of(case))
     }
 
     /// Case name.
@@ -83,40 +107,128 @@ impl Case {
     fn name(&self) -> String {
         self.inner.name.clone()
     }
+    /// The mass whose displacement is measured (1 = m1).
+    #[getter]
+    fn output_dof(&self) -> usize {
+        self.inner.output_dof
+    }
+    /// Initial velocity of every mass, m/s.
+    #[getter]
+    fn initial_velocity(&self) -> f64 {
+        self.inner.initial_velocity
+    }
+    /// Sample times, s.
+    #[getter]
+    fn time(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
+        cached1(py, &self.time, || {
+            self.series().map(|s| s.times()).unwrap_or_default()
+        })
+    }
+    /// Force on m1, N.
+    #[getter]
+    fn force(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
+        cached1(py, &self.force, || self.inner.force.clone())
+    }
+    /// Measured displacement, m.
+    #[getter]
+    fn displacement(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
+        cached1(py, &self.displacement, || self.inner.measured.clone())
+    }
+    /// The fit window's first and last sample time, s.
+    #[getter]
+    fn window(&self) -> (f64, f64) {
+        let (a, b) = self.inner.window;
+        self.series()
+            .map_or((f64::NAN, f64::NAN), |s| (s.time(a), s.time(b)))
+    }
+    /// The case as a DataFrame: index `time [s]`, columns `force [N]` and
+    /// `displacement [m]`; attrs: name, output_dof, initial_velocity, window.
+    fn to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let columns = vec![
+            ("force [N]".into(), self.force(py).into_bound(py).into_any()),
+            (
+                "displacement [m]".into(),
+                self.displacement(py).into_bound(py).into_any(),
+            ),
+        ];
+        let attrs = PyDict::new(py);
+        attrs.set_item("name", &self.inner.name)?;
+        attrs.set_item("output_dof", self.inner.output_dof)?;
+        attrs.set_item("initial_velocity", self.inner.initial_velocity)?;
+        attrs.set_item("window", self.window())?;
+        let index = ("time [s]".into(), self.time(py).into_bound(py).into_any());
+        frames::frame(py, columns, Some(index), &attrs)
+    }
+    fn __eq__(&self, other: &Self) -> bool {
+        self.inner == other.inner
+    }
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyBytes>,))> {
+        let state = crate::state::encode(&LoadCaseState(slf.get().inner.clone()))?;
+        crate::state::reduce(slf.as_any(), &state)
+    }
+    #[classmethod]
+    fn _from_state(_cls: &Bound<'_, PyType>, state: &[u8]) -> PyResult<Self> {
+        let LoadCaseState(case) = crate::state::decode(state, "LoadCase")?;
+        Ok(Case::of(case))
+    }
+    fn __repr__(&self) -> String {
+        let (t0, t1) = self.window();
+        format!(
+            "LoadCase({:?}, {} samples at {} s, output_dof={}, window=({t0}, {t1}) s)",
+            self.inner.name,
+            self.inner.force.len(),
+            self.inner.step,
+            self.inner.output_dof
+        )
+    }
 }
 
 /// Identifies one `dof`-mass model from load cases built in Python, with
 /// the library's default settings (every parameter ≥ 1 in SI) and `starts`
 /// seeded starts.
 #[pyfunction]
-#[pyo3(signature = (cases, dof, starts = 32, seed = 1, progress = None))]
+#[pyo3(signature = (cases, dof, starts = None, seed = None, progress = None))]
 fn identify_cases(
     py: Python<'_>,
     cases: Vec<PyRef<'_, Case>>,
-    dof: usize,
-    starts: usize,
-    seed: u64,
+    dof: &Bound<'_, PyAny>,
+    starts: Option<&Bound<'_, PyAny>>,
+    seed: Option<&Bound<'_, PyAny>>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Identification> {
+    let dof = one_dof(dof)?;
+    let starts = count_or(starts, "starts", 1, MAX_STARTS)?.unwrap_or(32);
     let cases: Vec<LoadCase> = cases.iter().map(|c| c.inner.clone()).collect();
     let mut settings = Settings::new(dof, starts);
-    settings.seed = seed;
+    settings.seed = self::seed(seed)?.unwrap_or(1);
     let tick = progress_callback(&progress);
     let result = py
         .detach(|| core_identify(&cases, &settings, &tick))
-        .map_err(|e| {
-            crate::errors::InputError::new_err(format!(
-                "{dof}-DOF identification: {}",
-                crate::errors::message(&e)
-            ))
-        })?;
-    Ok(Identification {
+        .map_err(|e| failed(dof, &e))?;
+    Ok(Identification::new(
         result,
         cases,
-        notes: Vec::new(),
-        study: None,
-        seed,
-    })
+        Vec::new(),
+        None,
+        settings.seed,
+    ))
+}
+
+/// `dof` as one number of masses (`3` or `"3"`), as the CLI's `--dof`.
+fn one_dof(value: &Bound<'_, PyAny>) -> PyResult<usize> {
+    match dofs(value)?[..] {
+        [dof] => Ok(dof),
+        _ => Err(invalid(format!(
+            "dof {}: one number of masses here; bumpsim.dof_table identifies several",
+            value.repr().map_or_else(|_| "?".into(), |r| r.to_string())
+        ))),
+    }
+}
+
+fn failed(dof: usize, error: &dyn std::error::Error) -> PyErr {
+    invalid(format!("{dof}-DOF identification: {}", message(error)))
 }
 
 /// The library's per-start progress hook calling a Python callable (if any)
@@ -142,6 +254,44 @@ pub fn from_json<'py>(
     py.import("json")?.call_method1("loads", (text,))
 }
 
+/// The study file with the DOF asked for, read as `bumpsim identify` does.
+fn study_of(
+    py: Python<'_>,
+    study: &Bound<'_, PyAny>,
+    dof: Option<Vec<usize>>,
+) -> PyResult<(PathBuf, Study)> {
+    let path = path(study, "study", "a study")?;
+    let mut file = py
+        .detach(|| Study::read(&path))
+        .map_err(|e| reading(&path, e))?;
+    if let Some(dofs) = dof {
+        file.model.dof = DofSpec::Many(dofs);
+    }
+    Ok((path, file))
+}
+
+/// Starts and seed: the caller's, else the study's.
+struct Overrides {
+    starts: Option<usize>,
+    seed: Option<u64>,
+}
+
+impl Overrides {
+    fn of(starts: Option<&Bound<'_, PyAny>>, seed: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
+        Ok(Overrides {
+            starts: count_or(starts, "starts", 1, MAX_STARTS)?,
+            seed: self::seed(seed)?,
+        })
+    }
+
+    fn settings(&self, study: &Study, dof: usize) -> PyResult<Settings> {
+        let mut settings = study.settings(dof).map_err(input)?;
+        settings.starts = self.starts.unwrap_or(settings.starts);
+        settings.seed = self.seed.unwrap_or(settings.seed);
+        Ok(settings)
+    }
+}
+
 /// Identifies one MSD model from all load cases of the study file at
 /// `study`, as `bumpsim identify STUDY --dof N --starts S --seed X`;
 /// `progress` (optional) is called once per finished start.
@@ -149,305 +299,91 @@ pub fn from_json<'py>(
 #[pyo3(signature = (study, dof = None, starts = None, seed = None, progress = None))]
 fn identify(
     py: Python<'_>,
-    study: PathBuf,
-    dof: Option<usize>,
-    starts: Option<usize>,
-    seed: Option<u64>,
+    study: &Bound<'_, PyAny>,
+    dof: Option<&Bound<'_, PyAny>>,
+    starts: Option<&Bound<'_, PyAny>>,
+    seed: Option<&Bound<'_, PyAny>>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Identification> {
-    let mut file = py.detach(|| Study::read(&study)).map_err(file_or_input)?;
-    if let Some(dof) = dof {
-        file.model.dof = DofSpec::One(dof);
-    }
-    let dofs = file.dofs();
-    let [dof] = dofs[..] else {
-        return Err(crate::errors::InputError::new_err(format!(
-            "{}: the study asks for the DOF sweep {dofs:?}; pass dof= for one model",
-            study.display()
+    let dof = dof.map(one_dof).transpose()?;
+    let overrides = Overrides::of(starts, seed)?;
+    let (path, file) = study_of(py, study, dof.map(|d| vec![d]))?;
+    let [dof] = file.dofs()[..] else {
+        return Err(invalid(format!(
+            "{}: the study asks for the DOF sweep {:?}; pass dof= for one model, or call bumpsim.dof_table",
+            path.display(),
+            file.dofs()
         )));
     };
     let tick = progress_callback(&progress);
-    let (result, cases, notes, seed) = py.detach(|| {
+    py.detach(|| {
         let loaded = file.load(dof).map_err(input)?;
-        let mut settings = file.settings(dof).map_err(input)?;
-        settings.starts = starts.unwrap_or(settings.starts);
-        settings.seed = seed.unwrap_or(settings.seed);
+        let settings = overrides.settings(&file, dof)?;
         let cases = file.retarget(&loaded.cases, dof);
-        let result = core_identify(&cases, &settings, &tick).map_err(|e| {
-            crate::errors::InputError::new_err(format!(
-                "{dof}-DOF identification: {}",
-                crate::errors::message(&e)
-            ))
-        })?;
+        let result = core_identify(&cases, &settings, &tick).map_err(|e| failed(dof, &e))?;
         let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
-        Ok::<_, PyErr>((result, cases, notes, settings.seed))
-    })?;
-    Ok(Identification {
-        result,
-        cases,
-        notes,
-        study: Some(study),
-        seed,
+        Ok(Identification::new(
+            result,
+            cases,
+            notes,
+            Some(path),
+            settings.seed,
+        ))
     })
 }
 
-/// An identified model with everything the library says about it (the
-/// fields of `bumpsim identify --json`).
-#[pyclass(frozen, module = "bumpsim")]
-pub struct Identification {
-    result: CoreIdentification,
-    cases: Vec<LoadCase>,
-    notes: Vec<String>,
-    /// The study file, when identified from one.
-    study: Option<PathBuf>,
-    /// Seed of the starts.
-    seed: u64,
+/// The DOF table (the thesis's table 1) of the study file at `study` over
+/// `dofs` (a number, a range `"1..5"` or a list; default the study's), each
+/// model continued from the last one identified, as `bumpsim identify
+/// STUDY --dof 1..5`; an order that fails is listed with its reason and the
+/// others go on.
+#[pyfunction]
+#[pyo3(signature = (study, dofs = None, starts = None, seed = None, progress = None))]
+fn dof_table(
+    py: Python<'_>,
+    study: &Bound<'_, PyAny>,
+    dofs: Option<&Bound<'_, PyAny>>,
+    starts: Option<&Bound<'_, PyAny>>,
+    seed: Option<&Bound<'_, PyAny>>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<DofTable> {
+    let orders = dofs.map(self::dofs).transpose()?;
+    let overrides = Overrides::of(starts, seed)?;
+    let (path, file) = study_of(py, study, orders)?;
+    let tick = progress_callback(&progress);
+    py.detach(|| sweep(&path, &file, &overrides, &tick))
 }
 
-#[pymethods]
-impl Identification {
-    /// Number of masses.
-    #[getter]
-    fn dof(&self) -> usize {
-        self.result.dof
-    }
-    /// The identified model as a Car.
-    #[getter]
-    fn car(&self) -> Car {
-        Car {
-            inner: IoCar {
-                name: None,
-                model: self.result.model.clone(),
-            },
+/// The CLI's loop over the orders (`bumpsim identify --dof 1..5`).
+fn sweep(
+    path: &Path,
+    file: &Study,
+    overrides: &Overrides,
+    tick: &(impl Fn() + Sync),
+) -> PyResult<DofTable> {
+    let orders = file.dofs();
+    let loaded = file
+        .load(orders.iter().copied().max().unwrap_or(1))
+        .map_err(input)?;
+    let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
+    let mut sweep = Sweep::new();
+    let (mut results, mut failures) = (Vec::new(), Vec::new());
+    for &dof in &orders {
+        let settings = overrides.settings(file, dof)?;
+        let cases = file.retarget(&loaded.cases, dof);
+        match sweep.identify(&cases, settings.clone(), tick) {
+            Ok(result) => results.push(Identification::new(
+                result,
+                cases,
+                notes.clone(),
+                Some(path.to_path_buf()),
+                settings.seed,
+            )),
+            Err(e) => failures.push(Failed {
+                dof,
+                reason: e.to_string(),
+            }),
         }
     }
-    /// Masses, kg.
-    #[getter]
-    fn masses(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
-        array1(py, self.result.model.masses().to_vec())
-    }
-    /// Dampers, N·s/m.
-    #[getter]
-    fn dampers(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
-        array1(py, self.result.model.dampers().to_vec())
-    }
-    /// Springs, N/m.
-    #[getter]
-    fn springs(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
-        array1(py, self.result.model.springs().to_vec())
-    }
-    /// Parameters in the thesis's order: dicts with name, value, unit,
-    /// standard_error and ci95 (None when not estimated).
-    #[getter]
-    fn parameters<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyAny>>> {
-        let dof = self.result.dof;
-        let u = &self.result.uncertainty;
-        self.result
-            .model
-            .parameters()
-            .iter()
-            .enumerate()
-            .map(|(i, value)| {
-                let (kind, _) = bumpsim_core::model::parameter_kind(dof, i);
-                let d = pyo3::types::PyDict::new(py);
-                d.set_item("name", bumpsim_core::model::parameter_name(dof, i))?;
-                d.set_item("value", value)?;
-                d.set_item("unit", kind.unit())?;
-                d.set_item(
-                    "standard_error",
-                    u.standard_errors.get(i).copied().flatten(),
-                )?;
-                d.set_item("ci95", u.ci95.get(i).copied().flatten())?;
-                Ok(d.into_any())
-            })
-            .collect()
-    }
-    /// Standard errors, SI, thesis order (None when not estimated).
-    #[getter]
-    fn standard_errors(&self) -> Vec<Option<f64>> {
-        self.result.uncertainty.standard_errors.clone()
-    }
-    /// Standard errors, intervals, correlations, singular values, which
-    /// parameters the data determine and the weakest direction (the JSON's
-    /// `uncertainty`).
-    #[getter]
-    fn uncertainty<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        from_json(py, &self.result.uncertainty)
-    }
-    /// Σ (x − x̂)² over all cases, m².
-    #[getter]
-    fn objective(&self) -> f64 {
-        self.result.objective
-    }
-    /// Overall fit, %.
-    #[getter]
-    fn fit_percent(&self) -> f64 {
-        self.result.fit_percent
-    }
-    /// Akaike information criterion.
-    #[getter]
-    fn aic(&self) -> f64 {
-        self.result.aic
-    }
-    /// Bayesian information criterion.
-    #[getter]
-    fn bic(&self) -> f64 {
-        self.result.bic
-    }
-    /// Per-case fit: dicts with name, sse (m²), fit_percent, samples.
-    #[getter]
-    fn cases<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        from_json(py, &self.result.cases)
-    }
-    /// Start statistics (total, converged, failed, reached_best_fit,
-    /// reached_best_fit_alone, reached_best, reached_best_alone,
-    /// explored_best_fit, abandoned, merged, unpolished, refined, best).
-    #[getter]
-    fn starts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        from_json(py, &self.result.starts)
-    }
-    /// Where the best start began, SI, thesis order (the JSON's `start`).
-    #[getter]
-    fn start(&self) -> Vec<f64> {
-        self.result.start.clone()
-    }
-    /// Warnings for the user.
-    #[getter]
-    fn warnings(&self) -> Vec<String> {
-        self.result.warnings.clone()
-    }
-    /// The simpler model that fits as well, when a spring is undetermined or
-    /// a link is not needed by the F-test (the JSON's `reduction`), or None.
-    #[getter]
-    fn reduction<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        from_json(py, &self.result.reduction)
-    }
-    /// Number of residuals (samples in all windows).
-    #[getter]
-    fn residuals(&self) -> usize {
-        self.result.residuals
-    }
-    /// Solver iterations of the best start.
-    #[getter]
-    fn iterations(&self) -> usize {
-        self.result.iterations
-    }
-    /// Why the best start stopped (the JSON's `stop`).
-    #[getter]
-    fn stop<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        from_json(py, &self.result.stop)
-    }
-    /// Wall-clock time of the identification, s.
-    #[getter]
-    fn run_time(&self) -> f64 {
-        self.result.run_time
-    }
-    /// What the channel selections left out or used despite a mark.
-    #[getter]
-    fn notes(&self) -> Vec<String> {
-        self.notes.clone()
-    }
-    /// The result as `bumpsim identify --json` writes it.
-    fn to_json(&self) -> PyResult<String> {
-        let document = bumpsim_ident::document::IdentifyDocument::One {
-            result: &self.result,
-            notes: &self.notes,
-        };
-        serde_json::to_string_pretty(&document).map_err(input)
-    }
-    /// Simulates the study's load cases with the identified model.
-    fn predict(&self, py: Python<'_>) -> PyResult<Vec<Prediction>> {
-        let predictions = py
-            .detach(|| predict(&self.cases, &self.result.model))
-            .map_err(input)?;
-        predictions
-            .into_iter()
-            .map(|p| {
-                let rating = p.fit.rating.as_ref().map(|r| from_json(py, r));
-                Ok(Prediction {
-                    rating: rating.transpose()?.map(Bound::unbind),
-                    name: p.fit.name,
-                    sse: p.fit.sse,
-                    fit_percent: p.fit.fit_percent,
-                    window: (p.window[0], p.window[1]),
-                    time: array1(py, p.time),
-                    measured: array1(py, p.measured),
-                    simulated: array1(py, p.simulated),
-                })
-            })
-            .collect()
-    }
-    /// The HTML report `bumpsim identify --report` writes, as the page and
-    /// its SVG figures (file name → SVG text), with the ±3 % sensitivity.
-    fn report(
-        &self,
-        py: Python<'_>,
-    ) -> PyResult<(String, std::collections::BTreeMap<String, String>)> {
-        let (inputs, source) = match &self.study {
-            Some(path) => (
-                std::fs::read_to_string(path).unwrap_or_default(),
-                format!("Study {}", path.display()),
-            ),
-            None => (String::new(), "Load cases from Python".to_string()),
-        };
-        let settings = format!(
-            "{source}; DOF {}; {} starts, seed {}; exact zoh discretisation.",
-            self.result.dof, self.result.starts.total, self.seed
-        );
-        let (html, figures) = py.detach(|| {
-            let model = &self.result.model;
-            let predictions = predict(&self.cases, model).map_err(input)?;
-            let sweeps = sensitivity(&self.cases, model, 0.03, 13).map_err(input)?;
-            let outcomes = [DofOutcome::Done {
-                result: Box::new(self.result.clone()),
-                predictions,
-            }];
-            report(
-                "bumpsim identification",
-                &inputs,
-                &settings,
-                &self.notes,
-                &outcomes,
-                Some(&sweeps),
-            )
-            .map_err(input)
-        })?;
-        Ok((html, figures.into_iter().collect()))
-    }
-    fn __repr__(&self) -> String {
-        format!(
-            "Identification(dof={}, objective={:e} m², fit={:.2} %)",
-            self.result.dof, self.result.objective, self.result.fit_percent
-        )
-    }
-}
-
-/// A load case simulated with an identified model next to its measurement.
-#[pyclass(frozen, module = "bumpsim")]
-pub struct Prediction {
-    /// Case name.
-    #[pyo3(get)]
-    name: String,
-    /// Sum of squared errors in the window, m².
-    #[pyo3(get)]
-    sse: f64,
-    /// Fit in the window, %.
-    #[pyo3(get)]
-    fit_percent: f64,
-    /// Window start and end, s.
-    #[pyo3(get)]
-    window: (f64, f64),
-    /// Sample times, s.
-    #[pyo3(get)]
-    time: Py<PyArray1<f64>>,
-    /// Measured displacement, m.
-    #[pyo3(get)]
-    measured: Py<PyArray1<f64>>,
-    /// Simulated displacement, m.
-    #[pyo3(get)]
-    simulated: Py<PyArray1<f64>>,
-    /// ISO/TS 18571 rating in the window (overall, corridor, phase,
-    /// magnitude, slope), or None when the window cannot be rated.
-    #[pyo3(get)]
-    rating: Option<Py<PyAny>>,
+    Ok(DofTable::new(results, failures, notes))
 }

@@ -1,18 +1,26 @@
 //! Impacts and mass reduction (bumpsim-impact), the calls `bumpsim impact`
 //! and `bumpsim mass-reduction` make: a preset or a pendulum or barrier
 //! scenario, the library's impact simulation, results with the JSON's fields.
+//! A function that takes a bumper takes a `Bumper` or the path of its file.
 
-use crate::arrays::{array1, array2};
-use crate::errors::{InputError, file_or_input, input, message};
+use crate::arrays::{cached1, cached2};
+use crate::errors::{input, invalid, message, reading};
+use crate::frames;
 use crate::ident::from_json;
-use crate::model::Car;
-use bumpsim_impact::bumper::Bumper as CoreBumper;
-use bumpsim_impact::impact::{ImpactResult, Options, Scenario, simulate};
+use crate::model::car_of;
+use crate::state::impact::{BumperState, ImpactState};
+use crate::state::{decode, encode, reduce};
+use bumpsim_impact::bumper::{Bumper as CoreBumper, Loading};
+use bumpsim_impact::impact::{ImpactResult, Options, simulate};
 use bumpsim_impact::presets::{PRESETS, ScenarioSpec};
 use bumpsim_impact::reduction::{Criterion, TwoDof, equivalent_mass};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
-use std::path::PathBuf;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyBytes, PyDict, PyType};
+
+/// What `__reduce__` returns.
+type Reduced<'py> = (Bound<'py, PyAny>, (Bound<'py, PyBytes>,));
 
 /// Registers the classes and functions of this module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -30,13 +38,78 @@ pub struct Bumper {
     inner: CoreBumper,
 }
 
+/// The bumper of an argument: a `Bumper`, or the path of a bumper file.
+fn bumper_of(value: &Bound<'_, PyAny>) -> PyResult<CoreBumper> {
+    if let Ok(bumper) = value.cast::<Bumper>() {
+        return Ok(bumper.get().inner.clone());
+    }
+    let path = crate::convert::path(value, "bumper", "a bumpsim.Bumper")?;
+    CoreBumper::read(&path).map_err(|e| reading(&path, e))
+}
+
 #[pymethods]
 impl Bumper {
     /// Reads a bumper file (TOML: ramp, plateau, unloading; or curve, unloading).
     #[staticmethod]
-    fn from_file(path: PathBuf) -> PyResult<Self> {
-        let inner = CoreBumper::read(&path).map_err(file_or_input)?;
-        Ok(Bumper { inner })
+    fn from_file(path: &Bound<'_, PyAny>) -> PyResult<Self> {
+        Ok(Bumper {
+            inner: bumper_of(path)?,
+        })
+    }
+    /// The unloading slope, N/m.
+    #[getter]
+    fn unloading(&self) -> f64 {
+        self.inner.unloading_slope()
+    }
+    /// The loading curve: index `compression [m]`, column `force [N]` (a
+    /// three-part curve as its knee and a plateau point, as the FE decks
+    /// write it); attrs: unloading [N/m].
+    fn to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let (d, f): (Vec<f64>, Vec<f64>) = self.inner.loading_points().into_iter().unzip();
+        let columns = vec![("force [N]".into(), f.into_pyobject(py)?.into_any())];
+        let attrs = PyDict::new(py);
+        attrs.set_item("unloading [N/m]", self.inner.unloading_slope())?;
+        let index = ("compression [m]".into(), d.into_pyobject(py)?.into_any());
+        frames::frame(py, columns, Some(index), &attrs)
+    }
+    fn __eq__(&self, other: &Self) -> bool {
+        self.inner == other.inner
+    }
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Reduced<'py>> {
+        let b = &slf.get().inner;
+        let state = BumperState {
+            loading: b.loading().clone(),
+            unloading: b.unloading_slope(),
+        };
+        reduce(slf.as_any(), &encode(&state)?)
+    }
+    #[classmethod]
+    fn _from_state(_cls: &Bound<'_, PyType>, state: &[u8]) -> PyResult<Self> {
+        let BumperState { loading, unloading } = decode(state, "Bumper")?;
+        let inner = match loading {
+            Loading::ThreePart { ramp, plateau } => {
+                CoreBumper::three_part(ramp, plateau, unloading)
+            }
+            Loading::Table { compression, force } => {
+                CoreBumper::table(compression, force, unloading)
+            }
+        };
+        Ok(Bumper {
+            inner: inner.map_err(input)?,
+        })
+    }
+    fn __repr__(&self) -> String {
+        let unloading = self.inner.unloading_slope();
+        match self.inner.loading() {
+            Loading::ThreePart { ramp, plateau } => {
+                format!("Bumper(ramp={ramp} N/m, plateau={plateau} N, unloading={unloading} N/m)")
+            }
+            Loading::Table { compression, .. } => format!(
+                "Bumper(curve of {} points to {} m, unloading={unloading} N/m)",
+                compression.len(),
+                compression.last().copied().unwrap_or(0.0)
+            ),
+        }
     }
 }
 
@@ -63,14 +136,15 @@ fn presets(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyAny>>> {
 #[pyo3(signature = (car, bumper, case = None, pendulum = None, barrier = false, speed = None))]
 fn impact(
     py: Python<'_>,
-    car: &Car,
-    bumper: &Bumper,
+    car: &Bound<'_, PyAny>,
+    bumper: &Bound<'_, PyAny>,
     case: Option<&str>,
     pendulum: Option<f64>,
     barrier: bool,
     speed: Option<f64>,
 ) -> PyResult<Impact> {
-    let model = &car.inner.model;
+    let (car, bumper) = (car_of(py, car)?, bumper_of(bumper)?);
+    let model = &car.model;
     let spec = ScenarioSpec {
         case: case.map(str::to_string),
         pendulum,
@@ -79,17 +153,38 @@ fn impact(
     };
     let (scenario, _) = spec.scenario(model.total_mass()).map_err(input)?;
     let result = py
-        .detach(|| simulate(model, &bumper.inner, scenario, &Options::default()))
+        .detach(|| simulate(model, &bumper, scenario, &Options::default()))
         .map_err(input)?;
-    Ok(Impact { scenario, result })
+    Ok(Impact::of(ImpactState { scenario, result }))
 }
 
 /// The result of an impact: peak force, compressions, contact time,
 /// absorbed energy, energy balance and the time histories, SI.
 #[pyclass(frozen, module = "bumpsim")]
 pub struct Impact {
-    scenario: Scenario,
-    result: ImpactResult,
+    data: ImpactState,
+    time: PyOnceLock<Py<PyArray1<f64>>>,
+    force: PyOnceLock<Py<PyArray1<f64>>>,
+    compression: PyOnceLock<Py<PyArray1<f64>>>,
+    displacements: PyOnceLock<Py<PyArray2<f64>>>,
+    velocities: PyOnceLock<Py<PyArray2<f64>>>,
+}
+
+impl Impact {
+    fn of(data: ImpactState) -> Impact {
+        Impact {
+            data,
+            time: PyOnceLock::new(),
+            force: PyOnceLock::new(),
+            compression: PyOnceLock::new(),
+            displacements: PyOnceLock::new(),
+            velocities: PyOnceLock::new(),
+        }
+    }
+
+    fn result(&self) -> &ImpactResult {
+        &self.data.result
+    }
 }
 
 #[pymethods]
@@ -97,91 +192,117 @@ impl Impact {
     /// What hit what at which speed (the JSON's `scenario`).
     #[getter]
     fn scenario<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        from_json(py, &self.scenario)
+        from_json(py, &self.data.scenario)
     }
     /// Peak contact force, N.
     #[getter]
     fn peak_force(&self) -> f64 {
-        self.result.peak_force
+        self.result().peak_force
     }
     /// Maximum bumper compression, m.
     #[getter]
     fn max_compression(&self) -> f64 {
-        self.result.max_compression
+        self.result().max_compression
     }
     /// Remaining (permanent) compression, m.
     #[getter]
     fn remaining_compression(&self) -> f64 {
-        self.result.remaining_compression
+        self.result().remaining_compression
     }
     /// Contact time, s.
     #[getter]
     fn contact_time(&self) -> f64 {
-        self.result.contact_time
+        self.result().contact_time
     }
     /// Energy absorbed by the bumper, J.
     #[getter]
     fn absorbed_energy(&self) -> f64 {
-        self.result.absorbed_energy
+        self.result().absorbed_energy
     }
     /// Energy balance terms, J, and its relative error.
     #[getter]
     fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        from_json(py, &self.result.energy)
+        from_json(py, &self.result().energy)
     }
     /// Integration step, s.
     #[getter]
     fn step(&self) -> f64 {
-        self.result.step
+        self.result().step
     }
     /// Names of the bodies (rows of displacements and velocities).
     #[getter]
     fn bodies(&self) -> Vec<String> {
-        self.result.bodies.clone()
+        self.result().bodies.clone()
     }
     /// Output times, s.
     #[getter]
     fn time(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
-        array1(py, self.result.time.clone())
+        cached1(py, &self.time, || self.result().time.clone())
     }
     /// Contact force, N.
     #[getter]
     fn force(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
-        array1(py, self.result.force.clone())
+        cached1(py, &self.force, || self.result().force.clone())
     }
     /// Bumper compression, m.
     #[getter]
     fn compression(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
-        array1(py, self.result.compression.clone())
+        cached1(py, &self.compression, || self.result().compression.clone())
     }
     /// Displacements, m, one row per body.
     #[getter]
     fn displacements(&self, py: Python<'_>) -> Py<PyArray2<f64>> {
-        array2(py, &self.result.displacements, self.result.time.len())
+        let r = self.result();
+        cached2(py, &self.displacements, &r.displacements, r.time.len())
     }
     /// Velocities, m/s, one row per body.
     #[getter]
     fn velocities(&self, py: Python<'_>) -> Py<PyArray2<f64>> {
-        array2(py, &self.result.velocities, self.result.time.len())
+        let r = self.result();
+        cached2(py, &self.velocities, &r.velocities, r.time.len())
     }
     /// Warnings about the result (energy balance, ...).
     #[getter]
     fn warnings(&self) -> Vec<String> {
-        self.result.warnings()
+        self.result().warnings()
     }
     /// The summary `bumpsim impact` prints.
     fn summary(&self) -> String {
-        bumpsim_impact::text::summary(&self.result)
+        bumpsim_impact::text::summary(self.result())
     }
     /// The result as `bumpsim impact --json` writes it.
     fn to_json(&self) -> PyResult<String> {
-        let json = bumpsim_impact::document::ImpactSummary::of(self.scenario, &self.result);
+        let json = bumpsim_impact::document::ImpactSummary::of(self.data.scenario, self.result());
         serde_json::to_string_pretty(&json).map_err(input)
     }
+    /// The histories as `bumpsim impact --csv` writes them: index `time
+    /// [s]`, columns `force [N]`, `compression [m]`, `x BODY [m]`, `v BODY
+    /// [m/s]`; attrs: the scenario and the peaks.
+    fn to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let r = self.result();
+        let attrs = PyDict::new(py);
+        attrs.set_item("scenario", self.scenario(py)?)?;
+        attrs.set_item("peak_force [N]", r.peak_force)?;
+        attrs.set_item("max_compression [m]", r.max_compression)?;
+        attrs.set_item("contact_time [s]", r.contact_time)?;
+        attrs.set_item("warnings", r.warnings())?;
+        frames::csv(py, &bumpsim_impact::text::histories(r), &attrs)
+    }
+    fn __eq__(&self, other: &Self) -> bool {
+        self.data.scenario == other.data.scenario && self.data.result == other.data.result
+    }
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Reduced<'py>> {
+        reduce(slf.as_any(), &encode(&slf.get().data)?)
+    }
+    #[classmethod]
+    fn _from_state(_cls: &Bound<'_, PyType>, state: &[u8]) -> PyResult<Self> {
+        Ok(Impact::of(decode(state, "Impact")?))
+    }
     fn __repr__(&self) -> String {
+        let r = self.result();
         format!(
             "Impact(peak_force={} N, max_compression={} m, contact_time={} s)",
-            self.result.peak_force, self.result.max_compression, self.result.contact_time
+            r.peak_force, r.max_compression, r.contact_time
         )
     }
 }
@@ -197,16 +318,17 @@ fn mass_reduction<'py>(
     m1: f64,
     m2: f64,
     k: f64,
-    bumper: &Bumper,
+    bumper: &Bound<'py, PyAny>,
     speed: f64,
     criterion: &str,
 ) -> PyResult<Bound<'py, PyAny>> {
     let criterion: Criterion = criterion
         .parse()
-        .map_err(|e| InputError::new_err(format!("criterion: {}", message(&e))))?;
+        .map_err(|e| invalid(format!("criterion: {}", message(&e))))?;
     let car = TwoDof { m1, m2, k };
+    let bumper = bumper_of(bumper)?;
     let r = py
-        .detach(|| equivalent_mass(&car, &bumper.inner, speed, criterion))
+        .detach(|| equivalent_mass(&car, &bumper, speed, criterion))
         .map_err(input)?;
     from_json(py, &r)
 }

@@ -3,32 +3,36 @@
 //! Bindings hold no logic (house rules, spec §11): every function converts
 //! its Python arguments (numpy arrays, paths, numbers), calls the library
 //! crates exactly as the CLI does, and converts the results back (numpy
-//! arrays, objects with the JSON's fields). Library errors become
-//! `bumpsim.InputError` (bad values) or `bumpsim.FileError` (a file that
-//! cannot be read), both `bumpsim.Error`, carrying the library's message.
-//! Long calls release the GIL. `python/bumpsim/__init__.pyi` documents the
-//! Python API; docs/python.md is the tour.
+//! arrays, objects with the JSON's fields, pandas frames on request).
+//! Library errors become Python exceptions on Python's own bases
+//! (`ValueError`, `OSError`, `FileNotFoundError`; [`errors`]) carrying the
+//! library's message; every object pickles ([`state`]), compares equal to
+//! its copy and has read-only arrays ([`arrays`]). Long calls release the
+//! GIL. `python/bumpsim/__init__.pyi` documents the Python API;
+//! docs/python.md is the tour.
 
 mod arrays;
+mod campaign;
+mod convert;
 mod doe;
 mod errors;
 mod export;
+mod frames;
 mod ident;
+mod identification;
 mod impact;
 mod model;
 mod planar;
 mod signal;
+mod state;
 
 use pyo3::prelude::*;
 
 /// The extension module; `python/bumpsim/__init__.py` re-exports it.
 #[pymodule]
 fn _bumpsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    let py = m.py();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
-    m.add("Error", py.get_type::<errors::Error>())?;
-    m.add("InputError", py.get_type::<errors::InputError>())?;
-    m.add("FileError", py.get_type::<errors::FileError>())?;
+    errors::register(m)?;
     model::register(m)?;
     signal::register(m)?;
     ident::register(m)?;
@@ -36,5 +40,6 @@ fn _bumpsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     doe::register(m)?;
     export::register(m)?;
     planar::register(m)?;
+    campaign::register(m)?;
     Ok(())
 }

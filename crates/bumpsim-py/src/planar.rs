@@ -1,13 +1,21 @@
 //! The planar car (bumpsim-planar), the calls `bumpsim planar` makes:
 //! a preset or an angled/offset barrier, pendulum or pole striker, the
-//! library's simulation, the result with the JSON's fields.
+//! library's simulation, the result with the JSON's fields. A function that
+//! takes a planar car takes a `PlanarCar` or the path of its file.
 
-use crate::errors::{InputError, file_or_input, input};
+use crate::errors::{input, invalid, reading};
+use crate::frames;
 use crate::ident::from_json;
+use crate::state::planar::{PlanarImpactState, StrikerArgs};
+use crate::state::{decode, encode, reduce};
 use bumpsim_planar::presets::StrikerSpec;
-use bumpsim_planar::{PlanarCar as CorePlanarCar, PlanarResult, Settings, Side, Striker, simulate};
+use bumpsim_planar::{PlanarCar as CorePlanarCar, Settings, Side, Striker, simulate};
 use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict, PyTuple, PyType};
 use std::path::PathBuf;
+
+/// What `__reduce__` returns.
+type Reduced<'py> = (Bound<'py, PyAny>, (Bound<'py, PyBytes>,));
 
 /// Registers the classes and functions of this module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -24,18 +32,84 @@ pub struct PlanarCar {
     path: PathBuf,
 }
 
+/// The planar car of an argument: a `PlanarCar`, or the path of its file.
+fn planar_car_of(value: &Bound<'_, PyAny>) -> PyResult<(CorePlanarCar, PathBuf)> {
+    if let Ok(car) = value.cast::<PlanarCar>() {
+        let car = car.get();
+        return Ok((car.inner.clone(), car.path.clone()));
+    }
+    let path = crate::convert::path(value, "car", "a bumpsim.PlanarCar")?;
+    let car = CorePlanarCar::read(&path).map_err(|e| reading(&path, e))?;
+    Ok((car, path))
+}
+
 #[pymethods]
 impl PlanarCar {
     /// Reads a planar car file (TOML, docs/planar.md).
     #[staticmethod]
-    fn from_file(path: PathBuf) -> PyResult<Self> {
-        let inner = CorePlanarCar::read(&path).map_err(file_or_input)?;
+    fn from_file(path: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let (inner, path) = planar_car_of(path)?;
         Ok(PlanarCar { inner, path })
     }
     /// The name from the file, or None.
     #[getter]
     fn name(&self) -> Option<String> {
         self.inner.name().map(str::to_string)
+    }
+    /// The file it was read from.
+    #[getter]
+    fn path(&self) -> PathBuf {
+        self.path.clone()
+    }
+    /// The car as a planar car file (SI lengths), which reads back to the same car.
+    fn to_toml(&self) -> String {
+        self.inner.to_toml()
+    }
+    fn __eq__(&self, other: &Self) -> bool {
+        self.inner == other.inner && self.path == other.path
+    }
+    /// Pickles as its file text and path.
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let car = slf.get();
+        let restore = slf.get_type().getattr("_from_toml")?;
+        let args = (car.inner.to_toml(), car.path.clone()).into_pyobject(slf.py())?;
+        Ok((restore, args))
+    }
+    /// The car from its file text (`to_toml`) and the path it names.
+    #[classmethod]
+    fn _from_toml(_cls: &Bound<'_, PyType>, text: &str, path: PathBuf) -> PyResult<Self> {
+        let inner = CorePlanarCar::parse(text, &path).map_err(input)?;
+        Ok(PlanarCar { inner, path })
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "PlanarCar({:?} from {:?})",
+            self.inner.name().unwrap_or("unnamed"),
+            self.path
+        )
+    }
+}
+
+impl StrikerArgs {
+    /// The striker these arguments ask for (bumpsim-planar's presets).
+    fn striker(&self) -> PyResult<Striker> {
+        let side: Side = self
+            .side
+            .parse()
+            .map_err(|e: bumpsim_planar::striker::SideError| invalid(format!("side: {e}")))?;
+        let spec = StrikerSpec {
+            case: self.case.clone(),
+            angle: self.angle,
+            overlap: self.overlap,
+            side: Some(side),
+            pole: self.pole,
+            pole_offset: Some(self.pole_offset),
+            pendulum: self.pendulum,
+            speed: self.speed,
+        };
+        Ok(spec.striker().map_err(input)?.0)
     }
 }
 
@@ -49,8 +123,8 @@ impl PlanarCar {
 #[allow(clippy::too_many_arguments)]
 fn planar_impact(
     py: Python<'_>,
-    car: &PlanarCar,
-    case: Option<&str>,
+    car: &Bound<'_, PyAny>,
+    case: Option<String>,
     angle: Option<f64>,
     overlap: Option<f64>,
     side: &str,
@@ -59,42 +133,35 @@ fn planar_impact(
     pendulum: Option<f64>,
     speed: Option<f64>,
 ) -> PyResult<PlanarImpact> {
-    let side: Side = side
-        .parse()
-        .map_err(|e: bumpsim_planar::striker::SideError| {
-            InputError::new_err(format!("side: {e}"))
-        })?;
-    let spec = StrikerSpec {
-        case: case.map(str::to_string),
+    let (car, path) = planar_car_of(car)?;
+    let spec = StrikerArgs {
+        case,
         angle,
         overlap,
-        side: Some(side),
+        side: side.to_string(),
         pole,
-        pole_offset: Some(pole_offset),
+        pole_offset,
         pendulum,
         speed,
     };
-    let (striker, _) = spec.striker().map_err(input)?;
+    let striker = spec.striker()?;
     let result = py
-        .detach(|| simulate(&car.inner, &striker, &Settings::default()))
+        .detach(|| simulate(&car, &striker, &Settings::default()))
         .map_err(input)?;
     let name = car
-        .inner
         .name()
-        .map_or_else(|| car.path.display().to_string(), str::to_string);
+        .map_or_else(|| path.display().to_string(), str::to_string);
     Ok(PlanarImpact {
-        name,
         striker,
-        result,
+        data: PlanarImpactState { name, spec, result },
     })
 }
 
 /// The result of a planar impact, with the fields of `bumpsim planar --json`.
 #[pyclass(frozen, module = "bumpsim")]
 pub struct PlanarImpact {
-    name: String,
+    data: PlanarImpactState,
     striker: Striker,
-    result: PlanarResult,
 }
 
 #[pymethods]
@@ -103,24 +170,57 @@ impl PlanarImpact {
     /// balances, histories) as the JSON's `result`.
     #[getter]
     fn result<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        from_json(py, &self.result)
+        from_json(py, &self.data.result)
     }
     /// Warnings about the result.
     #[getter]
     fn warnings(&self) -> Vec<String> {
-        self.result.warnings.clone()
+        self.data.result.warnings.clone()
     }
     /// The summary `bumpsim planar` prints.
     fn summary(&self) -> String {
-        bumpsim_planar::text::summary(&self.result)
+        bumpsim_planar::text::summary(&self.data.result)
     }
     /// The result as `bumpsim planar --json` writes it.
     fn to_json(&self) -> PyResult<String> {
         let document = bumpsim_planar::document::ImpactDocument {
-            car: &self.name,
+            car: &self.data.name,
             striker: &self.striker,
-            result: &self.result,
+            result: &self.data.result,
         };
         serde_json::to_string_pretty(&document).map_err(input)
+    }
+    /// The histories as `bumpsim planar --csv` writes them: index `time
+    /// [s]`, columns `force x [N]`, ..., `crush segment N [m]`; attrs: car,
+    /// peak force, warnings.
+    fn to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let r = &self.data.result;
+        let attrs = PyDict::new(py);
+        attrs.set_item("car", &self.data.name)?;
+        attrs.set_item("peak_force [N]", r.peak_force)?;
+        attrs.set_item("max_compression [m]", r.max_compression)?;
+        attrs.set_item("warnings", &r.warnings)?;
+        frames::csv(py, &bumpsim_planar::text::histories(r), &attrs)
+    }
+    fn __eq__(&self, other: &Self) -> bool {
+        self.data == other.data
+    }
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Reduced<'py>> {
+        reduce(slf.as_any(), &encode(&slf.get().data)?)
+    }
+    #[classmethod]
+    fn _from_state(_cls: &Bound<'_, PyType>, state: &[u8]) -> PyResult<Self> {
+        let data: PlanarImpactState = decode(state, "PlanarImpact")?;
+        Ok(PlanarImpact {
+            striker: data.spec.striker()?,
+            data,
+        })
+    }
+    fn __repr__(&self) -> String {
+        let r = &self.data.result;
+        format!(
+            "PlanarImpact({:?}, peak_force={} N, max_compression={} m, peak_yaw_rate={} rad/s)",
+            self.data.name, r.peak_force, r.max_compression, r.peak_yaw_rate
+        )
     }
 }

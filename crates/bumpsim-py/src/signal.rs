@@ -1,19 +1,28 @@
 //! Crash-test signals: `read_test` (ISO-MME, NHTSA EV5, CSV through
 //! bumpsim-io's `TestData`), `Channel` with the processing steps of
 //! bumpsim-signal (the ones `bumpsim signal export` applies), and `cfc`.
+//! A `Test` is a handle on its files: it pickles as its path and is opened
+//! again; channels and entries pickle as their values.
 
-use crate::arrays::{array1, vector};
-use crate::errors::{file_or_input, input};
+use crate::arrays::{array1, cached1, vector};
+use crate::errors::{file_or_input, input, reading};
+use crate::frames;
 use bumpsim_core::channel::Channel as CoreChannel;
+use bumpsim_core::series::UniformSeries;
+use bumpsim_core::units::Unit;
 use bumpsim_io::test_data::{Entry as CoreEntry, TestData, Validity};
 use bumpsim_signal::filter::{Cfc, CfcStandard};
 use bumpsim_signal::pipeline::{Pipeline, PipelineResult};
-use bumpsim_signal::process::Step;
+use bumpsim_signal::process::{Step, align};
 use bumpsim_signal::window::ContactThreshold;
 use numpy::PyArray1;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyDict, PyList, PyTuple, PyType};
 use std::path::PathBuf;
+
+/// What `__reduce__` returns: a callable and its arguments.
+type Reduced<'py> = (Bound<'py, PyAny>, Bound<'py, PyTuple>);
 
 /// Registers the classes and functions of this module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -31,10 +40,10 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 
 /// Runs a processing pipeline file (TOML), as `bumpsim signal process`.
 #[pyfunction]
-fn run_pipeline(py: Python<'_>, path: PathBuf) -> PyResult<PipelineRun> {
-    let result = py
-        .detach(|| Pipeline::read(&path).and_then(|p| p.run()))
-        .map_err(file_or_input)?;
+fn run_pipeline(py: Python<'_>, path: &Bound<'_, PyAny>) -> PyResult<PipelineRun> {
+    let path = crate::convert::path(path, "path", "a pipeline")?;
+    let pipeline = Pipeline::read(&path).map_err(|e| reading(&path, e))?;
+    let result = py.detach(|| pipeline.run()).map_err(file_or_input)?;
     Ok(PipelineRun { inner: result })
 }
 
@@ -49,14 +58,17 @@ impl PipelineRun {
     /// The processed signals, in file order.
     #[getter]
     fn signals(&self) -> Vec<Channel> {
-        let wrap = |c: &CoreChannel| Channel { inner: c.clone() };
-        self.inner.signals.iter().map(wrap).collect()
+        self.inner
+            .signals
+            .iter()
+            .cloned()
+            .map(Channel::of)
+            .collect()
     }
     /// The signals as read, before processing.
     #[getter]
     fn raw(&self) -> Vec<Channel> {
-        let wrap = |c: &CoreChannel| Channel { inner: c.clone() };
-        self.inner.raw.iter().map(wrap).collect()
+        self.inner.raw.iter().cloned().map(Channel::of).collect()
     }
     /// Warnings of the run.
     #[getter]
@@ -78,13 +90,108 @@ impl PipelineRun {
         d.set_item("relative_difference", b.relative_difference)?;
         Ok(Some(d))
     }
+    /// The processed signals on their common times, as `bumpsim signal
+    /// process -o` writes them (SI): index `time [s]`, a column `CODE
+    /// [unit]` per signal; attrs: warnings, balance.
+    fn to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let signals = &self.inner.signals;
+        let (time, columns) = align(signals).map_err(input)?;
+        let columns = signals
+            .iter()
+            .zip(columns)
+            .map(|(s, values)| (header(s), array1(py, values).into_bound(py).into_any()))
+            .collect();
+        let attrs = PyDict::new(py);
+        attrs.set_item("warnings", &self.inner.warnings)?;
+        attrs.set_item("balance", self.balance(py)?)?;
+        let index = (
+            "time [s]".to_string(),
+            array1(py, time).into_bound(py).into_any(),
+        );
+        frames::frame(py, columns, Some(index), &attrs)
+    }
+    fn __eq__(&self, other: &Self) -> bool {
+        let (a, b) = (&self.inner, &other.inner);
+        (&a.signals, &a.raw, &a.warnings, &a.balance)
+            == (&b.signals, &b.raw, &b.warnings, &b.balance)
+    }
+    /// Pickles as its signals, raw signals, warnings and balance.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Reduced<'py>> {
+        let py = slf.py();
+        let r = &slf.get().inner;
+        let balance = r.balance.map(|b| {
+            (
+                b.window,
+                b.mass,
+                b.impulse,
+                b.momentum_change,
+                b.relative_difference,
+            )
+        });
+        let args = (
+            slf.getattr("signals")?,
+            slf.getattr("raw")?,
+            r.warnings.clone(),
+            balance,
+        );
+        Ok((
+            slf.get_type().getattr("_from_state")?,
+            (args,).into_pyobject(py)?,
+        ))
+    }
+    #[classmethod]
+    fn _from_state(_cls: &Bound<'_, PyType>, state: RunState<'_>) -> PipelineRun {
+        let (signals, raw, warnings, balance) = state;
+        let channels =
+            |list: Vec<PyRef<'_, Channel>>| list.iter().map(|c| c.inner.clone()).collect();
+        let balance = balance.map(
+            |(window, mass, impulse, momentum_change, relative_difference)| {
+                bumpsim_signal::pipeline::Balance {
+                    window,
+                    mass,
+                    impulse,
+                    momentum_change,
+                    relative_difference,
+                }
+            },
+        );
+        PipelineRun {
+            inner: PipelineResult {
+                signals: channels(signals),
+                raw: channels(raw),
+                warnings,
+                balance,
+            },
+        }
+    }
+    fn __repr__(&self) -> String {
+        let codes: Vec<&str> = self.inner.signals.iter().map(|s| s.code.as_str()).collect();
+        format!(
+            "PipelineRun(signals={codes:?}, warnings={}, balance={})",
+            self.inner.warnings.len(),
+            self.inner.balance.is_some()
+        )
+    }
+}
+
+/// A pipeline run's pickled state: signals, raw signals, warnings, balance.
+type RunState<'py> = (
+    Vec<PyRef<'py, Channel>>,
+    Vec<PyRef<'py, Channel>>,
+    Vec<String>,
+    Option<([f64; 2], f64, f64, f64, f64)>,
+);
+
+/// The column header `CODE [unit]` of a channel in SI (as the CLI's CSV).
+fn header(channel: &CoreChannel) -> String {
+    format!("{} [{}]", channel.code, channel.dimension.si_symbol())
 }
 
 fn standard(name: &str) -> PyResult<CfcStandard> {
     match name {
         "sae-j211" => Ok(CfcStandard::SaeJ211),
         "iso-6487" => Ok(CfcStandard::Iso6487),
-        other => Err(crate::errors::InputError::new_err(format!(
+        other => Err(crate::errors::invalid(format!(
             "standard '{other}': expected 'sae-j211' or 'iso-6487'"
         ))),
     }
@@ -144,8 +251,11 @@ fn contact_window(force: &Bound<'_, PyAny>, rise: f64, fall: f64) -> PyResult<(u
 /// Opens a crash test: an ISO-MME folder, `.mme` or `.zip`, an NHTSA `.EV5`
 /// file or a CSV file with `name [unit]` headers.
 #[pyfunction]
-fn read_test(py: Python<'_>, path: PathBuf) -> PyResult<Test> {
-    let test = py.detach(|| TestData::open(&path)).map_err(file_or_input)?;
+fn read_test(py: Python<'_>, path: &Bound<'_, PyAny>) -> PyResult<Test> {
+    let path = crate::convert::path(path, "path", "a test")?;
+    let test = py
+        .detach(|| TestData::open(&path))
+        .map_err(|e| reading(&path, e))?;
     Ok(Test { inner: test })
 }
 
@@ -220,7 +330,7 @@ impl Test {
                 self.inner.load_all(&selection)
             })
             .map_err(file_or_input)?;
-        Ok(channels.into_iter().map(|c| Channel { inner: c }).collect())
+        Ok(channels.into_iter().map(Channel::of).collect())
     }
 
     /// Every usable channel (valid, samples present), loaded in SI units.
@@ -230,18 +340,62 @@ impl Test {
     }
 
     /// One channel by its number (as listed in `entries`), even if marked invalid.
-    fn channel(&self, py: Python<'_>, number: usize) -> PyResult<Channel> {
+    fn channel(&self, py: Python<'_>, number: &Bound<'_, PyAny>) -> PyResult<Channel> {
+        let number = crate::convert::count(number, "number", 1, usize::MAX)?;
         self.select(py, &format!("#{number}"))?
             .into_iter()
             .next()
             .ok_or_else(|| {
-                crate::errors::InputError::new_err(format!(
+                crate::errors::invalid(format!(
                     "{}: no usable channel number {number}",
                     self.inner.path.display()
                 ))
             })
     }
 
+    /// The channel list: index `number`, columns code, name, unit (as
+    /// written), invalid (the lab's reason, or None), present, absence;
+    /// attrs: path, format, title, speed [m/s], mass [kg], metadata.
+    fn to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let rows = PyList::empty(py);
+        for e in &self.inner.entries {
+            rows.append(Entry { inner: e.clone() }.row(py)?)?;
+        }
+        let attrs = PyDict::new(py);
+        attrs.set_item("path", &self.inner.path)?;
+        attrs.set_item("format", self.format())?;
+        attrs.set_item("title", &self.inner.title)?;
+        attrs.set_item("speed [m/s]", self.inner.speed)?;
+        attrs.set_item("mass [kg]", self.inner.mass)?;
+        attrs.set_item("metadata", dict(py, &self.inner.metadata)?)?;
+        frames::records(py, rows, &["number"], &attrs)
+    }
+    fn __eq__(&self, other: &Self) -> bool {
+        let key = |t: &TestData| {
+            (
+                t.path.clone(),
+                t.format.to_string(),
+                t.title.clone(),
+                t.metadata.clone(),
+                t.speed,
+                t.mass,
+            )
+        };
+        key(&self.inner) == key(&other.inner) && self.inner.entries == other.inner.entries
+    }
+    /// Pickles as its path: a test is a handle on its files, opened again.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Reduced<'py>> {
+        let args = (slf.get().inner.path.clone(),).into_pyobject(slf.py())?;
+        Ok((slf.get_type().getattr("_from_state")?, args))
+    }
+    #[classmethod]
+    fn _from_state(
+        _cls: &Bound<'_, PyType>,
+        py: Python<'_>,
+        path: &Bound<'_, PyAny>,
+    ) -> PyResult<Self> {
+        read_test(py, path)
+    }
     fn __repr__(&self) -> String {
         format!(
             "Test({} {:?}, {} channels: {:?})",
@@ -304,6 +458,45 @@ impl Entry {
     fn metadata<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         dict(py, &self.inner.metadata)
     }
+    fn __eq__(&self, other: &Self) -> bool {
+        self.inner == other.inner
+    }
+    /// Pickles as its values.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Reduced<'py>> {
+        let py = slf.py();
+        let e = &slf.get().inner;
+        let state = (
+            e.number,
+            e.code.clone(),
+            e.name.clone(),
+            e.unit.clone(),
+            slf.get().invalid(),
+            e.present,
+            e.absence.clone(),
+            e.metadata.clone(),
+        );
+        Ok((
+            slf.get_type().getattr("_from_state")?,
+            (state,).into_pyobject(py)?,
+        ))
+    }
+    #[classmethod]
+    fn _from_state(_cls: &Bound<'_, PyType>, state: EntryState) -> Self {
+        let (number, code, name, unit, invalid, present, absence, metadata) = state;
+        let validity = invalid.map_or(Validity::Valid, Validity::Invalid);
+        Entry {
+            inner: CoreEntry {
+                number,
+                code,
+                name,
+                unit,
+                validity,
+                present,
+                absence,
+                metadata,
+            },
+        }
+    }
     fn __repr__(&self) -> String {
         format!(
             "Entry({} {:?} [{}] {:?})",
@@ -312,16 +505,68 @@ impl Entry {
     }
 }
 
+/// An entry's pickled values: number, code, name, unit, invalid, present,
+/// absence, metadata.
+type EntryState = (
+    usize,
+    String,
+    String,
+    String,
+    Option<String>,
+    bool,
+    Option<String>,
+    Vec<(String, String)>,
+);
+
+impl Entry {
+    /// The entry as a row of `Test.to_pandas`.
+    fn row<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let e = &self.inner;
+        let row = PyDict::new(py);
+        row.set_item("number", e.number)?;
+        row.set_item("code", &e.code)?;
+        row.set_item("name", &e.name)?;
+        row.set_item("unit", &e.unit)?;
+        row.set_item("invalid", self.invalid())?;
+        row.set_item("present", e.present)?;
+        row.set_item("absence", &e.absence)?;
+        Ok(row)
+    }
+}
+
 /// A loaded channel: code, name, SI unit, uniform time base and samples.
 #[pyclass(frozen, module = "bumpsim")]
 pub struct Channel {
     inner: CoreChannel,
+    time: PyOnceLock<Py<PyArray1<f64>>>,
+    data: PyOnceLock<Py<PyArray1<f64>>>,
 }
 
+/// A channel's pickled values: code, name, SI unit, start (s), step (s),
+/// samples, unit as written, metadata.
+type ChannelState = (
+    String,
+    String,
+    String,
+    f64,
+    f64,
+    Vec<f64>,
+    String,
+    Vec<(String, String)>,
+);
+
 impl Channel {
+    fn of(inner: CoreChannel) -> Channel {
+        Channel {
+            inner,
+            time: PyOnceLock::new(),
+            data: PyOnceLock::new(),
+        }
+    }
+
     fn apply(&self, py: Python<'_>, step: Step) -> PyResult<Channel> {
         let channel = py.detach(|| step.apply(&self.inner)).map_err(input)?;
-        Ok(Channel { inner: channel })
+        Ok(Channel::of(channel))
     }
 }
 
@@ -365,12 +610,12 @@ impl Channel {
     /// Sample times, s.
     #[getter]
     fn time(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
-        array1(py, self.inner.series.times())
+        cached1(py, &self.time, || self.inner.series.times())
     }
     /// Samples, SI.
     #[getter]
     fn data(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
-        array1(py, self.inner.series.values().to_vec())
+        cached1(py, &self.data, || self.inner.series.values().to_vec())
     }
     /// CFC filter of class `cls` (SAE J211-1 or ISO 6487 constant), as `signal export --cfc`.
     #[pyo3(signature = (cls, standard = "sae-j211"))]
@@ -403,19 +648,61 @@ impl Channel {
         self.apply(py, Step::Resample(step))
     }
     /// Centred moving average over `points` samples.
-    fn moving_average(&self, py: Python<'_>, points: usize) -> PyResult<Channel> {
+    fn moving_average(&self, py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Channel> {
+        let points = crate::convert::count(points, "points", 1, usize::MAX)?;
         self.apply(py, Step::MovingAverage(points))
     }
-    /// The samples as a `pandas.Series` indexed by time (s), named by the code.
+    /// The samples as a `pandas.Series` named `CODE [unit]` (as the CLI's
+    /// CSV header), indexed by `time [s]`; attrs: code, name, unit,
+    /// source_unit, metadata.
     fn to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let pandas = py.import("pandas")?;
-        let index = pandas.call_method1("Index", (self.time(py),))?;
-        let kwargs = PyDict::new(py);
-        kwargs.set_item("index", index)?;
-        kwargs.set_item("name", self.code())?;
-        pandas
-            .getattr("Series")?
-            .call((self.data(py),), Some(&kwargs))
+        let attrs = PyDict::new(py);
+        attrs.set_item("code", &self.inner.code)?;
+        attrs.set_item("name", &self.inner.name)?;
+        attrs.set_item("unit", self.unit())?;
+        attrs.set_item("source_unit", &self.inner.source_unit)?;
+        attrs.set_item("metadata", dict(py, &self.inner.metadata)?)?;
+        let index = (
+            "time [s]".to_string(),
+            self.time(py).into_bound(py).into_any(),
+        );
+        let data = self.data(py).into_bound(py).into_any();
+        frames::series(py, &header(&self.inner), data, index, &attrs)
+    }
+    fn __eq__(&self, other: &Self) -> bool {
+        self.inner == other.inner
+    }
+    /// Pickles as its values.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Reduced<'py>> {
+        let c = &slf.get().inner;
+        let state: ChannelState = (
+            c.code.clone(),
+            c.name.clone(),
+            c.dimension.si_symbol().to_string(),
+            c.series.start(),
+            c.series.step(),
+            c.series.values().to_vec(),
+            c.source_unit.clone(),
+            c.metadata.clone(),
+        );
+        Ok((
+            slf.get_type().getattr("_from_state")?,
+            (state,).into_pyobject(slf.py())?,
+        ))
+    }
+    #[classmethod]
+    fn _from_state(_cls: &Bound<'_, PyType>, state: ChannelState) -> PyResult<Self> {
+        let (code, name, unit, start, step, values, source_unit, metadata) = state;
+        let dimension = Unit::parse(&unit).map_err(input)?.dimension;
+        let series = UniformSeries::new(start, step, values).map_err(input)?;
+        Ok(Channel::of(CoreChannel {
+            code,
+            name,
+            dimension,
+            series,
+            source_unit,
+            metadata,
+        }))
     }
     fn __len__(&self) -> usize {
         self.inner.series.len()

@@ -92,8 +92,8 @@ def test_progress_is_called_once_per_start(root):
 
 
 def test_bad_study_raises_documented_errors(tmp_path, root):
-    # the study reader reports an unreadable file in its own words: InputError
-    with pytest.raises(bumpsim.InputError, match=r"missing\.toml: cannot read"):
+    # a missing study is a FileNotFoundError (bumpsim.MissingFileError), in the reader's words
+    with pytest.raises(FileNotFoundError, match=r"missing\.toml"):
         bumpsim.identify(tmp_path / "missing.toml")
     bad = tmp_path / "study.toml"
     bad.write_text("[model]\ndof = 3\nstarts = 0\n")

@@ -77,7 +77,7 @@ def test_processing_steps_equal_the_cli(run, tmp_path, root):
 
 
 def test_bad_test_files_raise_documented_errors(tmp_path):
-    with pytest.raises(bumpsim.InputError, match=r"missing\.EV5"):
+    with pytest.raises(bumpsim.MissingFileError, match=r"missing\.EV5"):
         bumpsim.read_test(tmp_path / "missing.EV5")
     bad = tmp_path / "bad.csv"
     bad.write_text("time [s],force [kN]\n0,1\n0.001,x\n")

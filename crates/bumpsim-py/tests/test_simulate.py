@@ -115,7 +115,7 @@ def test_bad_time_base_and_method_raise_input_error():
 
 
 def test_bad_files_raise_file_and_input_errors(tmp_path):
-    with pytest.raises(bumpsim.FileError, match=r"missing\.toml: cannot read"):
+    with pytest.raises(bumpsim.MissingFileError, match=r"missing\.toml: cannot read"):
         bumpsim.Car.from_file(tmp_path / "missing.toml")
     typo = tmp_path / "typo.toml"
     typo.write_text("masses = [1000.0]\nspring = [1.0]\n")

@@ -2,8 +2,11 @@
 
 Units are SI throughout (kg, m, s, N). Arrays in are 1-D ``numpy.float64``
 arrays (or sequences of numbers); any other dtype or shape raises
-:class:`InputError` naming the argument. Arrays out are ``numpy.float64``.
-Every number comes from the Rust library; long calls release the GIL.
+:class:`InputError` naming the argument. Arrays out are ``numpy.float64``,
+read-only and made once per object (``.copy()`` for a writable one). Every
+object pickles, compares equal to its copy and has a readable repr;
+``to_pandas()`` gives tables as pandas objects (pandas is imported only
+then). Every number comes from the Rust library; long calls release the GIL.
 """
 
 import pathlib
@@ -20,17 +23,39 @@ FloatArray = npt.NDArray[np.float64]
 # float64 at run time (other dtypes raise InputError); typed wide enough for
 # numpy expressions, which type as floating[Any]
 ArrayLike1D = Union[npt.NDArray[np.floating[Any]], Sequence[float]]
+# a car: a Car, or the path of a car file (TOML) or identification result (JSON)
+CarLike = Union["Car", str, "PathLike[str]"]
+# pandas.DataFrame and pandas.Series: pandas is optional (and ships no
+# stubs), so the stubs do not import it
+DataFrame = Any
+Series = Any
+# model orders: a number, a range "1..5" or a list
+Dofs = Union[int, str, Sequence[int]]
+
+# The exceptions: one hierarchy on Python's own bases, messages as the CLI's.
+#   Error (Exception)
+#   ├── InputError (Error, ValueError)           a bad value, array, option or file content
+#   ├── FileError (Error, OSError)               a file or folder that cannot be read
+#   │   └── MissingFileError (FileError, FileNotFoundError)   it does not exist
+#   └── RunError (Error, RuntimeError)           a campaign's controller or scheduler
 
 class Error(Exception):
-    """Base class of every bumpsim error."""
+    """Base class of every bumpsim error; the message is the library's."""
 
-class InputError(Error):
-    """A value, array or file the library refuses; the message (the library's,
-    as the CLI prints it) names the parameter, file or line."""
+class InputError(Error, ValueError):
+    """A value, array or file content the library refuses (a ValueError); the
+    message names the parameter, file, line or channel."""
 
-class FileError(InputError):
-    """A file that cannot be read (missing, unreadable) where the library
-    reports the operating system's error as the cause."""
+class FileError(Error, OSError):
+    """A file or folder that cannot be read (an OSError; errno and filename
+    set when known)."""
+
+class MissingFileError(FileError, FileNotFoundError):
+    """A file, folder or program that does not exist (a FileNotFoundError)."""
+
+class RunError(Error, RuntimeError):
+    """A campaign that cannot go on: another controller holds its lock, or the
+    scheduler failed."""
 
 # ---------------------------------------------------------------- models
 
@@ -71,6 +96,8 @@ class Car:
         """Total mass, kg."""
     def to_toml(self) -> str:
         """The car file text."""
+    def to_pandas(self) -> DataFrame:
+        """Index ``parameter`` (m1.., c1.., k1..), columns ``value`` (SI) and ``unit``."""
 
 class Response:
     """A simulation's response, SI: rows are masses (displacement, velocity,
@@ -96,9 +123,13 @@ class Response:
     momentum_error: float
     """Momentum error relative to the impulse."""
     warnings: list[str]
+    def to_pandas(self) -> DataFrame:
+        """As ``bumpsim simulate -o`` writes it: index ``time [s]``, columns
+        ``force [N]``, ``x1 [m]``, ..., ``work [J]``; attrs: method,
+        energy_error, momentum_error, warnings."""
 
 def simulate(
-    car: Car,
+    car: CarLike,
     time: ArrayLike1D,
     force: ArrayLike1D,
     method: str = "zoh",
@@ -154,8 +185,8 @@ class Channel:
     def moving_average(self, points: int) -> "Channel": ...
     def integrate(self, initial: float = 0.0) -> "Channel":
         """Integrates; the result equals ``initial`` (SI) at t = 0."""
-    def to_pandas(self) -> Any:
-        """A ``pandas.Series`` indexed by time (s); needs pandas."""
+    def to_pandas(self) -> Series:
+        """The samples named ``CODE [unit]``, indexed by ``time [s]``."""
     def __len__(self) -> int: ...
 
 class Test:
@@ -177,6 +208,9 @@ class Test:
         """Channels by number, code (``?``/``*`` wildcards) or name substring."""
     def channel(self, number: int) -> Channel:
         """One channel by number, even if marked invalid."""
+    def to_pandas(self) -> DataFrame:
+        """The channel list: index ``number``, columns code, name, unit,
+        invalid, present, absence; attrs: path, format, title, speed, mass."""
 
 def read_test(path: StrPath) -> Test:
     """Opens an ISO-MME folder, ``.mme`` or ``.zip``, an NHTSA ``.EV5`` file or a CSV file."""
@@ -207,6 +241,8 @@ class Prediction:
     rating: Optional[dict[str, float]]
     """ISO/TS 18571 rating in the window: overall, corridor, phase,
     magnitude, slope (None when the window cannot be rated)."""
+    def to_pandas(self) -> DataFrame:
+        """Index ``time [s]``, columns ``measured [m]``, ``simulated [m]``."""
 
 class Identification:
     """An identified model with the fields of ``bumpsim identify --json``."""
@@ -242,8 +278,20 @@ class Identification:
     dampers, springs; SI), objective (m²), relative_objective, p_value; None
     otherwise."""
     notes: list[str]
+    effective_samples: dict[str, Any]
+    """The effective sample size of the residuals at the optimum."""
+    cross_validation: Optional[dict[str, Any]]
+    """Leave-one-load-case-out cross-validation (error m², folds) when a DOF
+    table ran it."""
     def to_json(self) -> str:
         """The result as ``bumpsim identify --json`` writes it."""
+    def to_pandas(self) -> DataFrame:
+        """The parameters: index ``parameter``, columns value, standard_error,
+        ci95_low, ci95_high (SI, in the row's ``unit``), unit, determined,
+        at_bound, fixed."""
+    def cases_to_pandas(self) -> DataFrame:
+        """The per-case fits: index ``case``, columns ``sse [m^2]``, ``fit [%]``,
+        samples and the ISO/TS 18571 ratings."""
     def predict(self) -> list[Prediction]:
         """Simulates the study's load cases with the identified model."""
     def report(self) -> tuple[str, dict[str, str]]:
@@ -252,7 +300,7 @@ class Identification:
 
 def identify(
     study: StrPath,
-    dof: Optional[int] = None,
+    dof: Optional[Union[int, str]] = None,
     starts: Optional[int] = None,
     seed: Optional[int] = None,
     progress: Optional[Callable[[], Any]] = None,
@@ -261,12 +309,49 @@ def identify(
     ``bumpsim identify STUDY --dof N --starts S --seed X``; ``progress`` is
     called once per finished start."""
 
+class DofTable:
+    """Models of several orders from one study (the thesis's table 1), each
+    continued from the last, as ``bumpsim identify STUDY --dof 1..5``."""
+
+    results: list[Identification]
+    failed: dict[int, str]
+    """The orders that failed: DOF → reason."""
+    notes: list[str]
+    recommended: Optional[int]
+    def to_text(self) -> str:
+        """The table as ``bumpsim identify --dof 1..5`` prints it."""
+    def to_json(self) -> str:
+        """The table as ``bumpsim identify --dof 1..5 --json`` writes it."""
+    def to_pandas(self) -> DataFrame:
+        """Index ``dof``, columns ``objective [m^2]``, ``fit [%]``, ``aic [-]``,
+        ``bic [-]``, parameters, ``run_time [s]``; attrs: recommended, failed."""
+    def __len__(self) -> int: ...
+
+def dof_table(
+    study: StrPath,
+    dofs: Optional[Dofs] = None,
+    starts: Optional[int] = None,
+    seed: Optional[int] = None,
+    progress: Optional[Callable[[], Any]] = None,
+) -> DofTable:
+    """The DOF table of the study file over ``dofs`` (a number, a range
+    ``"1..5"`` or a list; default the study's); an order that fails is listed
+    with its reason and the others go on."""
+
 class LoadCase:
     """A load case from numpy arrays: force on m1 (N) and the measured
     displacement (m) of mass ``output_dof`` (1 = m1) at uniform ``time`` (s);
     ``window`` (t0, t1) s is the fit window (default: every sample)."""
 
     name: str
+    output_dof: int
+    initial_velocity: float
+    time: FloatArray
+    force: FloatArray
+    displacement: FloatArray
+    window: tuple[float, float]
+    def to_pandas(self) -> DataFrame:
+        """Index ``time [s]``, columns ``force [N]`` and ``displacement [m]``."""
     def __init__(
         self,
         name: str,
@@ -281,8 +366,8 @@ class LoadCase:
 def identify_cases(
     cases: Sequence[LoadCase],
     dof: int,
-    starts: int = 32,
-    seed: int = 1,
+    starts: Optional[int] = None,
+    seed: Optional[int] = None,
     progress: Optional[Callable[[], Any]] = None,
 ) -> Identification:
     """Identifies one ``dof``-mass model from load cases built in Python
@@ -295,6 +380,11 @@ class Bumper:
 
     @staticmethod
     def from_file(path: StrPath) -> "Bumper": ...
+    @property
+    def unloading(self) -> float:
+        """The unloading slope, N/m."""
+    def to_pandas(self) -> DataFrame:
+        """The loading curve: index ``compression [m]``, column ``force [N]``."""
 
 class Impact:
     """An impact's result, SI, with the fields of ``bumpsim impact --json``."""
@@ -316,13 +406,16 @@ class Impact:
     warnings: list[str]
     def summary(self) -> str: ...
     def to_json(self) -> str: ...
+    def to_pandas(self) -> DataFrame:
+        """As ``bumpsim impact --csv`` writes it: index ``time [s]``, columns
+        ``force [N]``, ``compression [m]``, ``x BODY [m]``, ``v BODY [m/s]``."""
 
 def presets() -> list[dict[str, Any]]:
     """The load-case presets (name, speed_kmh, description, source)."""
 
 def impact(
-    car: Car,
-    bumper: Bumper,
+    car: CarLike,
+    bumper: Union[Bumper, StrPath],
     case: Optional[str] = None,
     pendulum: Optional[float] = None,
     barrier: bool = False,
@@ -341,8 +434,12 @@ class PlanarCar:
     """A planar car (yaw, left/right chains, segmented bumper, tyres; docs/planar.md)."""
 
     name: Optional[str]
+    path: pathlib.Path
+    """The file it was read from."""
     @staticmethod
     def from_file(path: StrPath) -> "PlanarCar": ...
+    def to_toml(self) -> str:
+        """The car as a planar car file (SI lengths)."""
 
 class PlanarImpact:
     """A planar impact's result with the fields of ``bumpsim planar --json``."""
@@ -351,6 +448,8 @@ class PlanarImpact:
     warnings: list[str]
     def summary(self) -> str: ...
     def to_json(self) -> str: ...
+    def to_pandas(self) -> DataFrame:
+        """As ``bumpsim planar --csv`` writes it: index ``time [s]``."""
 
 def planar_impact(
     car: PlanarCar,
@@ -378,6 +477,9 @@ class Design:
     resolution: Optional[int]
     def to_csv(self) -> str:
         """The table ``bumpsim doe design -o`` writes."""
+    def to_pandas(self) -> DataFrame:
+        """That table: index ``run``, columns ``standard order``, the factors'
+        levels and ``NAME (coded)``."""
 
 def doe_design(
     kind: str,
@@ -403,6 +505,9 @@ class DoeModel:
     def as_dict(self) -> dict[str, Any]: ...
     def predict(self, at: Sequence[tuple[str, float]]) -> dict[str, Any]:
         """Values with 95 % confidence and prediction intervals at physical factor values."""
+    def to_pandas(self) -> DataFrame:
+        """Coefficients in coded units: index (``response``, ``term``), columns
+        coefficient, std_error, ci95_low, ci95_high, unit."""
 
 def doe_fit(
     data: StrPath,
@@ -418,7 +523,7 @@ def doe_fit(
 # ---------------------------------------------------------------- export
 
 def lsdyna_deck(
-    car: Car,
+    car: CarLike,
     units: str = "si",
     axis: str = "+x",
     origin: Sequence[float] = (0.0, 0.0, 0.0),
@@ -436,11 +541,11 @@ def lsdyna_deck(
     ``time`` and ``force`` a load curve on m1, with ``output_interval`` (s)
     history outputs, with ``standalone`` a complete run."""
 
-def critical_time_step(car: Car) -> float:
+def critical_time_step(car: CarLike) -> float:
     """The critical explicit time step of the car alone, s."""
 
 def calculix(
-    car: Car,
+    car: CarLike,
     time: Optional[ArrayLike1D] = None,
     force: Optional[ArrayLike1D] = None,
     units: str = "si",
@@ -469,6 +574,59 @@ class PipelineRun:
     warnings: list[str]
     balance: Optional[dict[str, Any]]
     """window (s), mass (kg), impulse and momentum_change (N·s), relative_difference."""
+    def to_pandas(self) -> DataFrame:
+        """As ``bumpsim signal process -o`` writes it: index ``time [s]``, a
+        column ``CODE [unit]`` per signal."""
 
 def run_pipeline(path: StrPath) -> PipelineRun:
     """Runs a processing pipeline file (TOML; docs/signals.md)."""
+
+# ---------------------------------------------------------------- campaigns
+
+class CampaignStatus:
+    """A campaign's state, as ``bumpsim campaign status --json``."""
+
+    campaign: str
+    points: int
+    counts: dict[str, int]
+    updated: str
+    controller: Optional[dict[str, Any]]
+    runs: list[dict[str, Any]]
+    def text(self) -> str:
+        """As ``bumpsim campaign status`` prints it."""
+    def to_json(self) -> str: ...
+    def to_pandas(self) -> DataFrame:
+        """Every point's record, index ``run``."""
+
+class Collected:
+    """What ``Campaign.collect`` wrote: the table (``results/table.csv``, the
+    CLI's byte for byte), the points left out and the regression."""
+
+    rows: int
+    missing: list[tuple[int, str]]
+    fit_text: str
+    fit_command: str
+    table: str
+    def to_pandas(self) -> DataFrame:
+        """The table: index ``run``, columns ``NAME [unit]`` and ``NAME (coded)``."""
+
+class Campaign:
+    """A campaign folder (docs/campaign.md), driven as ``bumpsim campaign``."""
+
+    def __init__(self, folder: StrPath) -> None: ...
+    @staticmethod
+    def init(spec: StrPath, folder: Optional[StrPath] = None) -> "Campaign":
+        """``bumpsim campaign init SPEC -o FOLDER``."""
+    @property
+    def folder(self) -> pathlib.Path: ...
+    def run(
+        self, executor: Optional[str] = None, slots: Optional[int] = None, retry_failed: bool = False
+    ) -> dict[str, Any]:
+        """``bumpsim campaign run``: done, failed [(run, reason)], submitted."""
+    def status(self) -> CampaignStatus: ...
+    def collect(self) -> Collected:
+        """``bumpsim campaign collect``."""
+    def abort(self) -> int:
+        """``bumpsim campaign abort``: the number of tasks cancelled."""
+    def repair(self) -> dict[str, Any]:
+        """``bumpsim campaign repair``."""
