@@ -40,3 +40,42 @@ def test_classes_have_their_members_in_the_stubs():
         }
         actual = {n for n in dir(getattr(bumpsim, node.name)) if not n.startswith("_")}
         assert actual <= stubbed, f"{node.name}: missing from the stubs: {sorted(actual - stubbed)}"
+
+
+def test_mypy_strict_accepts_a_script_using_the_stubs(tmp_path):
+    # the typed API of issue 38: paths for cars, DOF ranges, pandas frames,
+    # campaigns, exceptions on Python's bases
+    import subprocess
+    import sys
+
+    import pytest
+
+    pytest.importorskip("mypy", reason="mypy is in requirements-test.txt")
+    script = tmp_path / "use.py"
+    script.write_text(
+        "import pickle\n"
+        "import numpy as np\n"
+        "import bumpsim\n"
+        "car = bumpsim.Car([1.0, 2.0], [3.0], [4.0])\n"
+        "r = bumpsim.simulate('car.toml', np.arange(3) * 1.0, [0.0, 1.0, 0.0])\n"
+        "frame = r.to_pandas()\n"
+        "table = bumpsim.dof_table('study.toml', dofs='1..3')\n"
+        "n: int = len(table)\n"
+        "status: bumpsim.CampaignStatus = bumpsim.Campaign.init('c.toml').status()\n"
+        "text: str = bumpsim.Campaign('c').collect().table\n"
+        "try:\n"
+        "    bumpsim.identify('s.toml', dof=0)\n"
+        "except ValueError as e:\n"
+        "    print(e)\n"
+        "except FileNotFoundError as e:\n"
+        "    print(e.filename)\n"
+        "assert pickle.loads(pickle.dumps(car)) == car\n"
+        "bad: str = car.dof\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-m", "mypy", "--strict", "--cache-dir", str(tmp_path / "cache"), str(script)],
+        capture_output=True, text=True,
+    )
+    # exactly the one planted error: the stubs type everything else
+    assert "Found 1 error" in done.stdout, done.stdout + done.stderr
+    assert 'use.py:18: error: Incompatible types in assignment (expression has type "int"' in done.stdout
