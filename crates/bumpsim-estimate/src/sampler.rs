@@ -1,8 +1,8 @@
 //! The affine-invariant ensemble sampler of Goodman & Weare (2010), as
 //! emcee runs it (Foreman-Mackey et al. 2013), for any log density.
 //!
-//! W walkers move together. Each step updates the two halves of the
-//! ensemble in turn; walker k of one half proposes the *stretch move*
+//! W walkers move together. Each step splits the ensemble into two random
+//! halves (emcee's `randomize_split`) and updates them in turn; walker k of one half proposes the *stretch move*
 //! `Y = X_j + z (X_k − X_j)` towards a walker j drawn from the other half,
 //! with `z` drawn from `g(z) ∝ 1/√z` on `[1/a, a]` (`a` = [`STRETCH`]), and
 //! accepts it with probability `min(1, z^{d−1} p(Y)/p(X_k))` (d the
@@ -187,9 +187,10 @@ pub fn sample<D: LogDensity>(
     };
     let mut accepted = 0usize;
     for step in 0..steps {
-        for half in 0..2 {
-            accepted += move_half(make, &mut x, &mut lp, half, &mut rng);
-        }
+        let order = shuffled(walkers, &mut rng);
+        let (first, second) = order.split_at(walkers / 2);
+        accepted += move_half(make, (&mut x, &mut lp), (first, second), &mut rng);
+        accepted += move_half(make, (&mut x, &mut lp), (second, first), &mut rng);
         if step >= burn {
             x.iter().for_each(|p| chain.values.extend_from_slice(p));
             chain.log_density.extend_from_slice(&lp);
@@ -204,45 +205,53 @@ fn unit(rng: &mut ChaCha8Rng) -> f64 {
     (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
 }
 
-/// One stretch move of every walker of `half` (0: the first W/2, 1: the
-/// rest) against the other half; the number accepted.
+/// The numbers `0..n` in a random order (Fisher–Yates).
+fn shuffled(n: usize, rng: &mut ChaCha8Rng) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..n).collect();
+    for k in (1..n).rev() {
+        let j = ((unit(rng) * (k + 1) as f64) as usize).min(k);
+        order.swap(k, j);
+    }
+    order
+}
+
+/// One stretch move of every walker of `mine` against the walkers of
+/// `other`; the number accepted.
 fn move_half<D: LogDensity>(
     make: &(dyn Fn() -> D + Sync),
-    x: &mut [Vec<f64>],
-    lp: &mut [f64],
-    half: usize,
+    (x, lp): (&mut [Vec<f64>], &mut [f64]),
+    (mine, other): (&[usize], &[usize]),
     rng: &mut ChaCha8Rng,
 ) -> usize {
-    let size = x.len() / 2;
-    let (mine, other) = (half * size, (1 - half) * size);
     let d = x[0].len();
     // every random number first, in walker order (the same on any threads)
-    let draws: Vec<(usize, f64, f64)> = (0..size)
+    let draws: Vec<(usize, f64, f64)> = mine
+        .iter()
         .map(|_| {
-            let j = other + ((unit(rng) * size as f64) as usize).min(size - 1);
+            let j = other[((unit(rng) * other.len() as f64) as usize).min(other.len() - 1)];
             let z = ((STRETCH - 1.0) * unit(rng) + 1.0).powi(2) / STRETCH;
             (j, z, unit(rng))
         })
         .collect();
-    let proposals: Vec<Vec<f64>> = (0..size)
-        .map(|k| {
-            let (j, z, _) = draws[k];
-            (0..d)
-                .map(|i| x[j][i] + z * (x[mine + k][i] - x[j][i]))
-                .collect()
-        })
+    let proposals: Vec<Vec<f64>> = mine
+        .iter()
+        .zip(&draws)
+        .map(|(&k, &(j, z, _))| (0..d).map(|i| x[j][i] + z * (x[k][i] - x[j][i])).collect())
         .collect();
     let densities: Vec<f64> = proposals
         .par_iter()
         .map_init(make, |density, p| density.log_density(p))
         .collect();
     let mut accepted = 0;
-    for (k, (proposal, density)) in proposals.into_iter().zip(densities).enumerate() {
-        let (_, z, u) = draws[k];
-        let ratio = (d as f64 - 1.0) * z.ln() + density - lp[mine + k];
+    for ((&k, &(_, z, u)), (proposal, density)) in mine
+        .iter()
+        .zip(&draws)
+        .zip(proposals.into_iter().zip(densities))
+    {
+        let ratio = (d as f64 - 1.0) * z.ln() + density - lp[k];
         if density.is_finite() && u.ln() < ratio {
-            x[mine + k] = proposal;
-            lp[mine + k] = density;
+            x[k] = proposal;
+            lp[k] = density;
             accepted += 1;
         }
     }

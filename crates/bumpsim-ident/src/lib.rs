@@ -7,6 +7,7 @@
 //! - [`estimate`]: the data-derived start and the identification;
 //! - [`crossval`], [`choice`]: leave-one-load-case-out cross-validation and
 //!   the DOF table's recommendation with correlated residuals;
+//! - [`posterior`]: the parameters' posterior (ensemble sampler);
 //! - [`result`]: what an identification finds;
 //! - [`error`]: why it cannot run;
 //! - [`search`]: the starts: continuation across the DOF table;
@@ -49,6 +50,7 @@ pub mod dofs;
 pub mod error;
 pub mod estimate;
 pub mod explore;
+pub mod posterior;
 pub mod reduce;
 pub mod result;
 pub mod search;
