@@ -261,9 +261,10 @@ fn study_of(
     dof: Option<Vec<usize>>,
 ) -> PyResult<(PathBuf, Study)> {
     let path = path(study, "study", "a study")?;
+    // boxed: the study's error is large (clippy::result_large_err)
     let mut file = py
-        .detach(|| Study::read(&path))
-        .map_err(|e| reading(&path, e))?;
+        .detach(|| Study::read(&path).map_err(Box::new))
+        .map_err(|e| reading(&path, *e))?;
     if let Some(dofs) = dof {
         file.model.dof = DofSpec::Many(dofs);
     }
@@ -366,7 +367,7 @@ fn sweep(
         .load(orders.iter().copied().max().unwrap_or(1))
         .map_err(input)?;
     let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
-    let mut sweep = Sweep::new();
+    let mut sweep = Sweep::new().cross_validated(orders.len() > 1);
     let (mut results, mut failures) = (Vec::new(), Vec::new());
     for &dof in &orders {
         let settings = overrides.settings(file, dof)?;

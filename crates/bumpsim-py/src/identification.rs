@@ -535,7 +535,8 @@ impl DofTable {
     fn notes(&self) -> Vec<String> {
         self.data.notes.clone()
     }
-    /// The order of lowest BIC, or None.
+    /// The recommended order (the model choice of `bumpsim_ident::choice`,
+    /// as the CLI's), or None.
     #[getter]
     fn recommended(&self) -> Option<usize> {
         recommended_dof(&self.results())
@@ -561,7 +562,7 @@ impl DofTable {
     }
     /// The table: index `dof`, columns `objective [m^2]`, `fit [%]`,
     /// `aic [-]`, `bic [-]`, `parameters`, `run_time [s]`; attrs:
-    /// recommended (lowest BIC), failed (DOF → reason).
+    /// recommended (as the CLI's), failed (DOF → reason).
     fn to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let rows = pyo3::types::PyList::empty(py);
         for r in self.results() {

@@ -143,3 +143,25 @@ def test_report_equals_the_cli_report(run, tmp_path, root, result):
     # the wall-clock run time is the one thing that differs between two runs
     run_time = re.compile(r"\d+(\.\d+)? (s|ms)\.</p>")
     assert run_time.sub("T.</p>", html) == run_time.sub("T.</p>", (folder / "index.html").read_text())
+
+
+def test_dof_table_equals_the_cli_table(run, tmp_path, root):
+    # `identify --dof 1..3`: same orders, objectives, cross-validation and
+    # recommendation (the model choice) as the CLI's JSON and text
+    study = root / "examples" / "identify" / "study.toml"
+    out = tmp_path / "table.json"
+    text = run("identify", study, "--dof", "1..3", "--starts", "4", "--seed", "1", "--quiet", "--json", out)
+    theirs = json.loads(out.read_text())
+    table = bumpsim.dof_table(study, dofs="1..3", starts=4, seed=1)
+    ours = json.loads(table.to_json())
+    assert set(ours) == set(theirs)
+    assert table.recommended == theirs["recommended_dof"]
+    assert [r.dof for r in table.results] == [r["dof"] for r in theirs["results"]] == [1, 2, 3]
+    for mine, cli in zip(ours["results"], theirs["results"]):
+        assert mine["objective"] == pytest.approx(cli["objective"], rel=1e-12)
+        assert (mine["cross_validation"] is None) == (cli["cross_validation"] is None)
+        if cli["cross_validation"] is not None:
+            assert mine["cross_validation"]["error"] == pytest.approx(cli["cross_validation"]["error"], rel=1e-9)
+    # the table's rows as the CLI prints them, but for the run times
+    first = table.to_text().splitlines()[0]
+    assert first in text.splitlines()
