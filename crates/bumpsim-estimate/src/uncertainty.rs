@@ -558,10 +558,11 @@ pub fn determination(u: &Uncertainty) -> Option<String> {
     // 1e6 the uncertainty's own warning names it already
     let unresolved =
         (0..u.names.len()).any(|i| is_determined(u, i) == Some(false) && !u.at_bound[i]);
-    if unresolved && u.condition <= 1e6 {
-        if let Some(combination) = combination(&u.weakest_direction) {
-            text += &format!("; the direction they leave freest {combination}");
-        }
+    if unresolved
+        && u.condition <= 1e6
+        && let Some(combination) = combination(&u.weakest_direction)
+    {
+        text += &format!("; the direction they leave freest {combination}");
     }
     Some(text)
 }

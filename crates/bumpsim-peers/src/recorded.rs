@@ -68,7 +68,7 @@ impl Recording {
     /// Adds a history (decimated).
     pub fn history(&mut self, name: &str, values: &[f64]) {
         let mut kept: Vec<f64> = values.iter().step_by(self.every).copied().collect();
-        if values.len() > 1 && (values.len() - 1) % self.every != 0 {
+        if values.len() > 1 && !(values.len() - 1).is_multiple_of(self.every) {
             kept.extend(values.last());
         }
         self.channels.push((name.into(), values.len(), kept));

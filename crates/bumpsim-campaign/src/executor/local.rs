@@ -312,10 +312,10 @@ impl Executor for Local {
 
     fn release(&mut self, point: &Point) {
         let child = self.tasks.remove(&point.run).and_then(|t| t.child);
-        if let Some(mut child) = child {
-            if !matches!(child.try_wait(), Ok(Some(_)) | Err(_)) {
-                self.exiting.push(child);
-            }
+        if let Some(mut child) = child
+            && !matches!(child.try_wait(), Ok(Some(_)) | Err(_))
+        {
+            self.exiting.push(child);
         }
     }
 

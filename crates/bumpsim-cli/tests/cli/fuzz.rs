@@ -201,10 +201,10 @@ fn fuzz_planar_car_toml() {
     let face = Face::plane_in_degrees(10.0, 40.0, Side::Left);
     fuzz("planar", seed("tests/fuzz/planar.toml"), |_, bytes| {
         let text = String::from_utf8_lossy(bytes);
-        if let Ok(car) = PlanarCar::parse(&text, Path::new("planar.toml")) {
-            if let Ok(r) = simulate(&car, &Striker::barrier(face, 4.0), &settings) {
-                assert!(r.peak_force.is_finite() && r.energy.initial.is_finite());
-            }
+        if let Ok(car) = PlanarCar::parse(&text, Path::new("planar.toml"))
+            && let Ok(r) = simulate(&car, &Striker::barrier(face, 4.0), &settings)
+        {
+            assert!(r.peak_force.is_finite() && r.energy.initial.is_finite());
         }
     });
 }
