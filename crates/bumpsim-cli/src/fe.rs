@@ -143,7 +143,10 @@ fn impact(args: &ImpactArgs) -> Result<()> {
     }
     if let Some(dir) = &args.files.report {
         let title = format!("FE: {} — {label}", args.case.bumper.display());
-        let (html, figures) = bumpsim_report::impact::impact_report(&title, &summary, r)?;
+        let inputs = bumpsim_fe::text::inputs(&settings, &args.case.car, &args.case.bumper);
+        let notes = [bumpsim_fe::text::FORCE_AT_START];
+        let (html, figures) =
+            bumpsim_report::impact::impact_page(&title, &inputs, &notes, &summary, r)?;
         Folder::report(dir, &html, &figures)?;
     }
     Ok(())

@@ -4,9 +4,11 @@
 //! the 1-D model's contact force and compression histories against the FE
 //! run's (the FE run is the reference), on the span both cover, at 10 kHz.
 
-use crate::run::FeResult;
+use crate::run::{FeResult, FeRun};
 use bumpsim_core::units::{Dimension, format_quantity};
+use bumpsim_impact::impact::Scenario;
 use bumpsim_signal::rating::{Rating, RatingError, rate_histories};
+use std::path::Path;
 
 /// The ISO/TS 18571 ratings of the equivalent 1-D impact against the FE
 /// run: `("force", …)` and `("compression", …)`; empty without the
@@ -40,6 +42,68 @@ fn rating_lines(fe: &FeResult) -> String {
         })
         .collect()
 }
+
+/// The inputs of a run as the report lists them (name, value with unit):
+/// the car and bumper files, the impact, the time stepping and the solver.
+pub fn inputs(run: &FeRun, car: &Path, bumper: &Path) -> Vec<(String, String)> {
+    let q = format_quantity;
+    let impact = match run.scenario {
+        Scenario::Impactor { mass, speed } => format!(
+            "{} pendulum at {}, the car at rest",
+            q(mass, Dimension::Mass),
+            q(speed, Dimension::Velocity)
+        ),
+        Scenario::Barrier { speed } => {
+            format!(
+                "the car into a rigid barrier at {}",
+                q(speed, Dimension::Velocity)
+            )
+        }
+    };
+    let or_default =
+        |v: Option<f64>, default: &str| v.map_or(default.to_string(), |v| q(v, Dimension::Time));
+    vec![
+        (
+            "car".into(),
+            format!(
+                "{} ({} masses, {} in all)",
+                car.display(),
+                run.car.dof(),
+                q(run.car.total_mass(), Dimension::Mass)
+            ),
+        ),
+        (
+            "bumper mesh".into(),
+            format!(
+                "{}{}",
+                bumper.display(),
+                run.mesh
+                    .name
+                    .as_deref()
+                    .map_or(String::new(), |n| format!(" ({n})"))
+            ),
+        ),
+        ("impact".into(), impact),
+        (
+            "duration".into(),
+            or_default(
+                run.duration,
+                "1.3 × the contact time the equivalent characteristic estimates",
+            ),
+        ),
+        (
+            "increment".into(),
+            or_default(run.increment, "the duration / 1500"),
+        ),
+        (
+            "solver".into(),
+            format!("{} in {}", run.solver, run.work.display()),
+        ),
+    ]
+}
+
+/// Why the force history does not start at zero: said on the report.
+pub const FORCE_AT_START: &str = "The force does not start at zero: at t = 0 the striker meets the beam at the full impact speed v, and in the first increment Δt it moves v·Δt into the contact springs before the beam's nodes, held back by their inertia, follow; the first printed force is the contact stiffness times that travel (k_contact · v · Δt), and it falls off as the beam takes up the speed. A stiffer contact or a longer increment raises it; a barrier load cell records the same transient when a stiff face meets it.";
 
 /// Tolerance of the energy-balance warning (relative to the initial energy).
 pub const ENERGY_TOLERANCE: f64 = 0.02;

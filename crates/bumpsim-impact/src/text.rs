@@ -11,11 +11,25 @@ pub fn summary(r: &ImpactResult) -> String {
         "  peak force {}\n  maximum compression {}, remaining {}\n  contact time {}\n  absorbed by the bumper {}; energy balance error {:.2e}\n",
         format_quantity(r.peak_force, Dimension::Force),
         format_quantity(r.max_compression, Dimension::Length),
-        format_quantity(r.remaining_compression, Dimension::Length),
+        remaining(r.remaining_compression),
         format_quantity(r.contact_time, Dimension::Time),
         format_quantity(r.absorbed_energy, Dimension::Energy),
         r.energy.relative_error
     )
+}
+
+/// The remaining compression in words: a negative one is no permanent
+/// crush but the bumper's front springing past its unloaded position (an
+/// FE mesh still vibrating at the end), said so instead of "-0.07 mm".
+fn remaining(compression: f64) -> String {
+    if compression < 0.0 {
+        format!(
+            "0 mm (the bumper springs back fully; at the end its front is {} beyond its unloaded position)",
+            format_quantity(-compression, Dimension::Length)
+        )
+    } else {
+        format_quantity(compression, Dimension::Length)
+    }
 }
 
 /// The time histories as CSV (SI).
@@ -45,4 +59,20 @@ pub fn grid_csv(grid: &Grid) -> String {
         }
     }
     csv
+}
+
+#[cfg(test)]
+mod tests {
+    use super::remaining;
+
+    #[test]
+    fn a_negative_remaining_compression_is_a_spring_back_not_a_crush() {
+        assert_eq!(remaining(2.5e-3), "2.500 mm");
+        let text = remaining(-7.127e-5);
+        assert!(
+            text.starts_with("0 mm (the bumper springs back fully")
+                && text.contains("0.07127 mm beyond"),
+            "{text}"
+        );
+    }
 }

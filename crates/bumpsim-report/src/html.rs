@@ -30,7 +30,7 @@ const STYLE: &str = "body{font-family:'DejaVu Sans',Arial,sans-serif;max-width:6
 h1{border-bottom:2px solid #1f77b4}h2{margin-top:1.6em;color:#1f4f7b}\
 table{border-collapse:collapse;margin:.6em 0}td,th{border:1px solid #bbb;padding:.25em .6em;text-align:right}\
 th{background:#eef3f8}td:first-child,th:first-child{text-align:left}\
-pre{background:#f6f6f6;padding:.6em;overflow-x:auto}\
+pre{background:#f6f6f6;padding:.6em;white-space:pre-wrap;overflow-wrap:anywhere}\
 figure{margin:1em 0}figcaption{font-size:.9em;color:#555}\
 .warning{background:#fff4d6;border-left:4px solid #e0a800;padding:.4em .8em;margin:.4em 0}\
 .failure{background:#fde2e1;border-left:4px solid #c0392b;padding:.4em .8em;margin:.4em 0}\

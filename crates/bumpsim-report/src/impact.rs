@@ -14,9 +14,30 @@ pub fn impact_report(
     summary: &str,
     r: &ImpactResult,
 ) -> Result<(String, Vec<(String, String)>), PlotError> {
+    impact_page(title, &[], &[], summary, r)
+}
+
+/// The impact report with its inputs (name, value) listed first and notes
+/// on reading the results (e.g. the FE run's force at t = 0) after them.
+pub fn impact_page(
+    title: &str,
+    inputs: &[(String, String)],
+    notes: &[&str],
+    summary: &str,
+    r: &ImpactResult,
+) -> Result<(String, Vec<(String, String)>), PlotError> {
     let mut page = Html::new(&format!("bumpsim impact: {title}"));
+    if !inputs.is_empty() {
+        page.heading("Inputs");
+        let rows: Vec<Vec<String>> = inputs
+            .iter()
+            .map(|(k, v)| vec![k.clone(), v.clone()])
+            .collect();
+        page.table(&["input", "value"], &rows);
+    }
     page.heading("Results");
     page.preformatted(summary);
+    notes.iter().for_each(|n| page.paragraph(n));
     let mut force = LinePlot::new("Bumper force", Dimension::Time, Dimension::Force);
     force.add(Series::new(
         "force",

@@ -101,6 +101,13 @@ fn a_pendulum_run_in_calculix_writes_the_impact_results() {
     assert!(header.iter().any(|h| h == "x impactor [m]") && rows.len() > 100);
     let html = std::fs::read_to_string(report.join("index.html")).unwrap();
     assert!(html.contains("<svg") && html.contains("ISO/TS 18571 rating"));
+    // the page lists its inputs and says why the force starts above zero
+    assert!(
+        html.contains("<h2>Inputs</h2>")
+            && html.contains("bumper-elastic.toml")
+            && html.contains("k_contact · v · Δt"),
+        "inputs section and the note on the force at t = 0"
+    );
     assert!(work.join("bumper.inp").exists() && work.join("bumper.dat").exists());
 }
 

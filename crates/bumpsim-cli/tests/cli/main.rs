@@ -3,11 +3,14 @@
 //!
 //! One test binary (ripgrep's layout): one module per command (`campaign`:
 //! local and real-Slurm campaigns), plus
+//! `docs` (the runnable blocks of README.md and docs/*.md), `reports` (four
+//! HTML reports read in Chromium),
 //! `planar` (the planar car), `formats` (ISO-MME and EV5 through the commands, pyisomme), `robustness`
 //! (hostile inputs, kills mid-write) and `fuzz` (the readers under mutated
 //! inputs; `BUMPSIM_FUZZ_SECONDS` per target).
 
 mod campaign;
+mod docs;
 mod doe;
 mod export;
 mod fe;
@@ -18,6 +21,7 @@ mod identify;
 mod impact;
 mod planar;
 mod planar_identify;
+mod reports;
 mod robustness;
 mod signal;
 mod simulate;

@@ -1,0 +1,188 @@
+//! The reports as an engineer reads them (issue 35): four workflows write
+//! their HTML reports (identify, impact, planar, doe fit); each page is
+//! rendered in headless Chromium with a probe that lists every text box
+//! whose content is wider than the box (it would scroll or be cut), and
+//! every SVG's axis labels must name the quantity with its unit and its
+//! scatter legends must show markers.
+
+use crate::util::{bumpsim, root, scratch, text};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn chromium() -> Option<PathBuf> {
+    let found = ["/usr/bin/chromium", "/usr/bin/chromium-browser"]
+        .into_iter()
+        .map(PathBuf::from)
+        .find(|p| p.exists());
+    bumpsim_peers::present(found.is_some(), "chromium");
+    found
+}
+
+fn ok(args: &[&str]) {
+    let run = bumpsim(args);
+    assert!(run.status.success(), "{args:?}: {}", text(&run.stderr));
+}
+
+/// Writes the four reports into `dir`; their folders.
+fn reports(dir: &Path) -> Vec<PathBuf> {
+    let path = |p: &Path| p.to_str().unwrap().to_string();
+    let example = |p: &str| path(&root().join("examples").join(p));
+    let out = |name: &str| dir.join(name);
+    ok(&[
+        "identify",
+        &example("identify/study.toml"),
+        "--starts",
+        "4",
+        "--quiet",
+        "--report",
+        &path(&out("identify")),
+    ]);
+    ok(&[
+        "impact",
+        "--car",
+        &example("identify/car-truth.toml"),
+        "--bumper",
+        &example("impact/bumper-a.toml"),
+        "--barrier",
+        "--speed",
+        "8 km/h",
+        "--report",
+        &path(&out("impact")),
+    ]);
+    ok(&[
+        "planar",
+        "--car",
+        &example("planar/saloon.toml"),
+        "--case",
+        "rcar-structural-front",
+        "--report",
+        &path(&out("planar")),
+    ]);
+    let mut csv = String::from("a,b,peak_force [N]\n");
+    for (a, b, f) in [
+        (-1, -1, 60e3),
+        (1, -1, 70e3),
+        (-1, 1, 65e3),
+        (1, 1, 76e3),
+        (0, 0, 68.2e3),
+    ] {
+        csv += &format!("{a},{b},{f}\n");
+    }
+    std::fs::write(dir.join("runs.csv"), csv).unwrap();
+    ok(&[
+        "doe",
+        "fit",
+        &path(&dir.join("runs.csv")),
+        "--factors",
+        "a,b",
+        "--responses",
+        "peak_force",
+        "--report",
+        &path(&out("doe")),
+    ]);
+    ["identify", "impact", "planar", "doe"].map(out).to_vec()
+}
+
+/// A probe that writes, into the page, the text boxes whose content is
+/// wider than the box.
+const PROBE: &str = "<script>addEventListener('load',()=>{const wide=[...document.querySelectorAll('pre,p,td,th,figcaption,li,div')].filter(e=>e.scrollWidth>e.clientWidth+1).map(e=>e.tagName+': '+e.textContent.slice(0,60));const o=document.createElement('output');o.id='overflow';o.textContent=JSON.stringify(wide);document.body.appendChild(o)});</script>";
+
+fn overflowing(browser: &Path, folder: &Path) -> String {
+    let page = folder.join("index.html");
+    let html = std::fs::read_to_string(&page).unwrap();
+    let probed = folder.join("probed.html");
+    std::fs::write(&probed, html.replace("</body>", &format!("{PROBE}</body>"))).unwrap();
+    let dom = Command::new(browser)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--window-size=1280,900",
+        ])
+        .arg(format!(
+            "--user-data-dir={}",
+            folder.join("profile").display()
+        ))
+        .arg("--dump-dom")
+        .arg(format!(
+            "file://{}",
+            probed.canonicalize().unwrap().display()
+        ))
+        .output()
+        .unwrap();
+    let dom = text(&dom.stdout);
+    let found = dom
+        .split("<output id=\"overflow\">")
+        .nth(1)
+        .and_then(|rest| rest.split("</output>").next())
+        .unwrap_or_else(|| panic!("{}: the probe did not run:\n{dom}", page.display()));
+    found.to_string()
+}
+
+/// The texts of an SVG's `<text>` elements.
+fn texts(svg: &str) -> Vec<String> {
+    svg.split("<text")
+        .skip(1)
+        .filter_map(|t| Some(t.split('>').nth(1)?.split('<').next()?.trim().to_string()))
+        .collect()
+}
+
+fn check_svg(name: &str, svg: &str) {
+    for label in texts(svg).iter().filter(|t| t.ends_with(']')) {
+        // a bare dimension says which unit, not which quantity
+        assert!(
+            !label.starts_with("length [") && !label.starts_with("dimensionless ["),
+            "{name}: axis '{label}' does not name its quantity"
+        );
+    }
+    let elements = |tag: &str| -> Vec<String> {
+        svg.split(&format!("<{tag}"))
+            .skip(1)
+            .map(|e| e.split("/>").next().unwrap_or("").to_string())
+            .collect()
+    };
+    let colour = |e: &str, key: &str| {
+        e.split(&format!("{key}=\""))
+            .nth(1)
+            .map(|r| r.split('"').next().unwrap_or("").to_string())
+    };
+    // a colour drawn only as markers has no line in the legend
+    let marker_colours: Vec<String> = elements("circle")
+        .iter()
+        .filter_map(|c| colour(c, "fill"))
+        .collect();
+    let line_colours: Vec<String> = elements("polyline")
+        .iter()
+        .filter_map(|l| colour(l, "stroke"))
+        .collect();
+    for c in marker_colours.iter().filter(|c| c.starts_with('#')) {
+        assert!(
+            !line_colours.contains(c),
+            "{name}: markers of {c} also have a line sample"
+        );
+    }
+}
+
+#[test]
+fn reports_name_their_axes_show_their_marks_and_nothing_overflows() {
+    let dir = scratch("reports-read");
+    let folders = reports(&dir);
+    for folder in &folders {
+        for entry in std::fs::read_dir(folder).unwrap().filter_map(|e| e.ok()) {
+            let name = entry.file_name().to_string_lossy().into_owned();
+            if name.ends_with(".svg") {
+                check_svg(&name, &std::fs::read_to_string(entry.path()).unwrap());
+            }
+        }
+    }
+    let Some(browser) = chromium() else { return };
+    for folder in &folders {
+        let wide = overflowing(&browser, folder);
+        assert_eq!(
+            wide,
+            "[]",
+            "{}: text boxes wider than their box",
+            folder.display()
+        );
+    }
+}
