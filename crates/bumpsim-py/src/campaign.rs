@@ -211,7 +211,7 @@ impl CampaignStatus {
     /// Points per status: pending, submitted, running, done, failed.
     #[getter]
     fn counts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        crate::ident::from_json(py, &self.data.0.counts)
+        crate::convert::from_json(py, &self.data.0.counts)
     }
     /// The state's last change, UTC.
     #[getter]
@@ -221,12 +221,12 @@ impl CampaignStatus {
     /// The controller holding the lock (holder, running), or None.
     #[getter]
     fn controller<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        crate::ident::from_json(py, &self.data.0.controller)
+        crate::convert::from_json(py, &self.data.0.controller)
     }
     /// Every point's record (run, status, attempts, job, input_hash, ...).
     #[getter]
     fn runs<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        crate::ident::from_json(py, &self.data.0.runs)
+        crate::convert::from_json(py, &self.data.0.runs)
     }
     /// The status as `bumpsim campaign status` prints it.
     fn text(&self) -> String {

@@ -1,9 +1,10 @@
 //! Python arguments that are not arrays: whole numbers (a negative count is
 //! an `InputError` naming the argument and its range, as the CLI's
 //! `--starts` says it, never an `OverflowError`), DOF numbers, ranges and
-//! lists (the CLI's `--dof` forms, parsed by bumpsim-ident), and paths.
+//! lists (the CLI's `--dof` forms, parsed by bumpsim-ident), and paths;
+//! and library values as Python objects through their JSON.
 
-use crate::errors::{invalid, message};
+use crate::errors::{input, invalid, message};
 use bumpsim_ident::dofs::DofList;
 use pyo3::prelude::*;
 use std::path::PathBuf;
@@ -92,4 +93,13 @@ pub fn path(value: &Bound<'_, PyAny>, name: &str, what: &str) -> PyResult<PathBu
             "{name}: expected {what} or the path of its file (str or os.PathLike), got {kind}"
         ))
     })
+}
+
+/// Parses JSON the library serialised into Python objects.
+pub fn from_json<'py>(
+    py: Python<'py>,
+    value: &impl serde::Serialize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(value).map_err(input)?;
+    py.import("json")?.call_method1("loads", (text,))
 }

@@ -3,10 +3,10 @@
 //! responses on factors in coded units, model files and predictions.
 
 use crate::arrays::{cached2, vector};
+use crate::convert::from_json;
 use crate::convert::{count, path, seed};
 use crate::errors::{input, invalid, message, reading};
 use crate::frames;
-use crate::ident::from_json;
 use crate::state::doe::{DesignState, DoeModelState};
 use crate::state::{decode, encode, reduce};
 use bumpsim_doe::data::Data;

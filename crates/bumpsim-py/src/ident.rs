@@ -245,15 +245,6 @@ fn progress_callback(progress: &Option<Py<PyAny>>) -> impl Fn() + Sync + '_ {
     }
 }
 
-/// Parses JSON the library serialised into Python objects.
-pub fn from_json<'py>(
-    py: Python<'py>,
-    value: &impl serde::Serialize,
-) -> PyResult<Bound<'py, PyAny>> {
-    let text = serde_json::to_string(value).map_err(input)?;
-    py.import("json")?.call_method1("loads", (text,))
-}
-
 /// The study file with the DOF asked for, read as `bumpsim identify` does.
 fn study_of(
     py: Python<'_>,

@@ -4,9 +4,9 @@
 //! (the thesis's table 1 over several orders); each with pandas tables.
 
 use crate::arrays::{array1, cached1, values};
+use crate::convert::from_json;
 use crate::errors::input;
 use crate::frames;
-use crate::ident::from_json;
 use crate::model::Car;
 use crate::state::ident::{DofTableState, IdentificationState, PredictionState};
 use crate::state::{decode, encode, reduce};

@@ -4,9 +4,9 @@
 //! A function that takes a bumper takes a `Bumper` or the path of its file.
 
 use crate::arrays::{cached1, cached2};
+use crate::convert::from_json;
 use crate::errors::{input, invalid, message, reading};
 use crate::frames;
-use crate::ident::from_json;
 use crate::model::car_of;
 use crate::state::impact::{BumperState, ImpactState};
 use crate::state::{decode, encode, reduce};

@@ -3,9 +3,9 @@
 //! library's simulation, the result with the JSON's fields. A function that
 //! takes a planar car takes a `PlanarCar` or the path of its file.
 
+use crate::convert::from_json;
 use crate::errors::{input, invalid, reading};
 use crate::frames;
-use crate::ident::from_json;
 use crate::state::planar::{PlanarImpactState, StrikerArgs};
 use crate::state::{decode, encode, reduce};
 use bumpsim_planar::presets::StrikerSpec;

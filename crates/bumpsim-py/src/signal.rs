@@ -233,7 +233,7 @@ fn iso18571<'py>(
     let rating = py
         .detach(|| bumpsim_signal::rating::rate(&reference, &candidate, step))
         .map_err(input)?;
-    crate::ident::from_json(py, &rating)
+    crate::convert::from_json(py, &rating)
 }
 
 /// The contact window of a force (any sign): first and last sample index
