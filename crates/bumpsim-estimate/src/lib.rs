@@ -19,7 +19,11 @@
 //! - [`reduce`]: the simpler model the data cannot tell apart, with the
 //!   F-test;
 //! - [`observer`]: progress without a required closure;
-//! - [`text`]: the parameter table and the start statistics every model prints.
+//! - [`text`]: the parameter table and the start statistics every model prints;
+//! - [`effective`]: the effective sample size of correlated series;
+//! - [`sampler`], [`posterior`]: the affine-invariant ensemble sampler and
+//!   the posterior of any least-squares model (issue 39);
+//! - [`sobol`]: Sobol' indices with bootstrap intervals (issue 39).
 //!
 //! Parameters are estimated as `p = ln θ`: masses, dampers and springs
 //! spanning seven decades become comparable and stay positive.
@@ -74,6 +78,7 @@ pub mod posterior;
 pub mod reduce;
 pub mod sampler;
 pub mod search;
+pub mod sobol;
 pub mod text;
 pub mod uncertainty;
 
