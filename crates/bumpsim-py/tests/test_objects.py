@@ -136,6 +136,12 @@ def test_exceptions_sit_on_pythons_bases():
     assert issubclass(bumpsim.MissingFileError, bumpsim.FileError)
     assert issubclass(bumpsim.RunError, RuntimeError)
     assert not issubclass(bumpsim.FileError, ValueError)
+    # errors raised in a worker process come back whole: class and message
+    try:
+        bumpsim.Car.from_file("/nonexistent/car.toml")
+    except bumpsim.Error as error:
+        back = pickle.loads(pickle.dumps(error))
+        assert type(back) is bumpsim.MissingFileError and str(back) == str(error)
 
 
 def test_every_missing_file_is_a_file_not_found_error(tmp_path):
