@@ -17,6 +17,7 @@
 //! | [`export`] | bumpsim-export | LS-DYNA and CalculiX decks |
 //! | [`planar`] | bumpsim-planar | the planar car with yaw: angled, offset, corner and pole impacts |
 //! | [`fe`] | bumpsim-fe | a parametric bumper coupled to the MSD car, run in CalculiX or written for LS-DYNA |
+//! | [`verdict`] | bumpsim-verdict | low-speed protocols (49 CFR 581, CMVSS 215, UN R42, RCAR, IIHS), damageability verdicts with margins, pulse metrics, bumper targets |
 //! | `report` | bumpsim-report | SVG plots and self-contained HTML reports (feature `report`) |
 //! | `campaign` | bumpsim-campaign | campaigns of FE runs: templates, local and Slurm executors, collection (feature `campaign`) |
 //!
@@ -69,6 +70,7 @@ pub use bumpsim_planar as planar;
 #[cfg(feature = "report")]
 pub use bumpsim_report as report;
 pub use bumpsim_signal as signal;
+pub use bumpsim_verdict as verdict;
 
 /// The main types of every bumpsim crate: each crate's own prelude, globbed
 /// (polars' layout). Names two crates would share are aliased in their

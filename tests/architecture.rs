@@ -26,6 +26,7 @@ const FLOORS: &[(&str, usize)] = &[
     ("bumpsim-impact", 4),
     ("bumpsim-planar", 5),
     ("bumpsim-fe", 5),
+    ("bumpsim-verdict", 6),
     ("bumpsim-report", 6),
     ("bumpsim-campaign", 7),
     ("bumpsim-cli", 8),

@@ -8,7 +8,7 @@
 use crate::car::{GRAVITY, PlanarCar};
 use crate::striker::{Placed, pole_profile};
 use crate::tyre::Wheel;
-use bumpsim_impact::bumper::BumperState;
+use bumpsim_impact::bumper::{Bumper, BumperState};
 
 /// A chain link: `front` mass, `back` mass or the body, spring N/m, damper N·s/m.
 struct Link {
@@ -37,6 +37,9 @@ pub(crate) struct Model {
     slip: f64,
     pub face: Placed,
     pub pendulum: Option<f64>,
+    /// The barrier's absorber strip in front of each segment, in series
+    /// with it (empty: the face has none; `crate::barrier`).
+    absorbers: Vec<Bumper>,
     /// Half the integration step, s (for the full-step velocity estimate).
     pub half_step: f64,
 }
@@ -71,6 +74,11 @@ pub(crate) struct Contact {
     /// Lateral deflection of each wheel's contact patch (rolling tyres
     /// with relaxation), m: front left, front right, rear left, rear right.
     pub patches: [f64; 4],
+    /// Crush of the barrier's absorber in front of each segment, m (0
+    /// without one): the segment's own crush is `crush − absorber`.
+    pub absorber: Vec<f64>,
+    /// The absorbers' histories.
+    absorbed: Vec<BumperState>,
 }
 
 /// Loads of one evaluation (world frame unless said otherwise).
@@ -163,6 +171,7 @@ impl Model {
             bending: car.beam().bending,
             wheels,
             slip: tyres.slip_speed,
+            absorbers: absorbers(car, &face),
             face,
             pendulum,
             half_step: 0.0,
@@ -229,6 +238,13 @@ impl Model {
                 let depth = offset - (normal[0] * p[0] + normal[1] * p[1]);
                 (depth, covered, direction, [xi, y])
             }
+            Placed::Barrier { arc, .. } => {
+                let xi = self.x_f + self.beam(q, y);
+                let p = [q[0] + xi * e[0] + y * n[0], q[1] + xi * e[1] + y * n[1]];
+                let (depth, covered, u) = arc.depth(p);
+                let direction = [u[0] * e[0] + u[1] * e[1], u[0] * n[0] + u[1] * n[1]];
+                (depth, covered, direction, [xi, y])
+            }
             Placed::Pole { centre, radius } => {
                 let r = [centre[0] - q[0], centre[1] - q[1]];
                 let (xc, yc) = (r[0] * e[0] + r[1] * e[1], r[0] * n[0] + r[1] * n[1]);
@@ -266,9 +282,17 @@ impl Model {
             c.crush[j] = depth.max(0.0);
             c.direction[j] = direction;
             c.point[j] = point;
-            c.force[j] = match depth > 0.0 {
-                true => segment.force(depth, &mut c.states[j]),
-                false => 0.0,
+            (c.force[j], c.absorber[j]) = match (depth > 0.0, self.absorbers.get(j)) {
+                (true, None) => (segment.force(depth, &mut c.states[j]), 0.0),
+                (true, Some(strip)) => crate::barrier::series(
+                    depth,
+                    c.absorber[j],
+                    strip,
+                    &mut c.absorbed[j],
+                    segment,
+                    &mut c.states[j],
+                ),
+                (false, _) => (0.0, 0.0),
             };
             self.deflect(c, j, depth, covered);
         }
@@ -656,6 +680,24 @@ impl Contact {
             rest: vec![0.0; segments],
             engaged: vec![false; segments],
             patches: [0.0; 4],
+            absorber: vec![0.0; segments],
+            absorbed: vec![BumperState::default(); segments],
         }
+    }
+}
+
+/// The absorber strips of a barrier face, one per segment (none for other
+/// faces). `striker::place` has checked the absorber, so its
+/// characteristic exists.
+fn absorbers(car: &PlanarCar, face: &Placed) -> Vec<Bumper> {
+    match face {
+        Placed::Barrier {
+            absorber: Some(absorber),
+            ..
+        } => absorber
+            .characteristic(car.segment_width())
+            .map(|strip| vec![strip; car.beam().segments.len()])
+            .unwrap_or_default(),
+        _ => Vec::new(),
     }
 }

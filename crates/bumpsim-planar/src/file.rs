@@ -41,6 +41,9 @@
 //! # 60000) and relaxation_length (m, default 0.4; 0: instantaneous slip-angle law)
 //! front = { mu_longitudinal = 0.015, mu_lateral = 0.8 }
 //! rear = { mu_longitudinal = 0.8, mu_lateral = 0.8, law = "sliding" }   # e.g. parking brake on
+//!
+//! [damageability]                         # optional: clearances and limits of the
+//!                                         # damageability verdicts (docs/verdict.md)
 //! ```
 //!
 //! Slopes are always N/m and curve compressions always m: `length_unit` is
@@ -66,6 +69,11 @@ struct PlanarFile {
     bumper: BumperFile,
     #[serde(default)]
     tyres: Option<TyresFile>,
+    /// Clearances and limits for damageability verdicts: read and checked
+    /// by bumpsim-verdict (docs/verdict.md); the planar car ignores it.
+    #[serde(default)]
+    #[allow(dead_code)]
+    damageability: Option<toml::Table>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -19,6 +19,7 @@
 //! - [`result`]: histories, energy and momentum balances;
 //! - [`picture`]: the top view of car and striker at one instant;
 //! - [`presets`]: RCAR and IIHS asymmetric load cases with their sources;
+//! - [`barrier`]: the RCAR bumper barrier's curved face and energy absorber;
 //! - [`export`]: the car as an LS-DYNA include and a CalculiX deck;
 //! - [`synth`]: synthetic asymmetric test series (load-cell wall, sills);
 //! - [`series`]: the planar series file of `bumpsim synth` and the study it writes;
@@ -41,6 +42,7 @@
 //! assert!(r.energy.relative_error < 1e-3);
 //! ```
 
+pub mod barrier;
 pub mod car;
 pub mod cases;
 pub mod document;

@@ -150,6 +150,11 @@ fn face(car: &PlanarCar, striker: &Striker, travel: f64) -> Result<FaceShape, Pl
     let reach = 0.5 * car.beam().width + 0.4;
     Ok(match place(car, striker)?.moved(travel) {
         Placed::Pole { centre, radius } => FaceShape::Circle { centre, radius },
+        // the curved barrier drawn as its chord (84 mm short of the RCAR apex)
+        Placed::Barrier { arc, .. } => {
+            let [a, b] = arc.ends();
+            FaceShape::Segment(a, b)
+        }
         Placed::Plane {
             normal,
             offset,

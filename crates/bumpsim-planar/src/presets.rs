@@ -36,7 +36,7 @@
 //! a locked-wheel variant is the user's choice (`bumpsim planar --tyres sliding`).
 
 use crate::car::{PlanarError, TyreLaw};
-use crate::striker::{Face, Motion, Side, Striker};
+use crate::striker::{Barrier, Face, Motion, Side, Striker};
 
 /// A named planar load case.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,6 +59,8 @@ pub struct PlanarPreset {
 }
 
 const KMH: f64 = 1.0 / 3.6;
+/// One mile per hour in km/h (exact: 1 mi = 1609.344 m).
+pub const MPH: f64 = 1.609344;
 const DEG10: f64 = 10.0 * std::f64::consts::PI / 180.0;
 const DEG30: f64 = 30.0 * std::f64::consts::PI / 180.0;
 
@@ -147,9 +149,140 @@ pub const PRESETS: &[PlanarPreset] = &[
     },
 ];
 
+const FREE_ROLLING: &str = "free rolling: the car runs into the barrier under its own momentum, gear in neutral and brakes released, as the protocol's set-up is read here";
+
+const fn bumper_barrier(angle: f64, overlap: f64, side: Side, kmh: f64) -> Striker {
+    fixed(Face::Barrier(Barrier::rcar(angle, overlap, side)), kmh)
+}
+
+/// What the RCAR bumper barrier presets could not confirm.
+const BARRIER_UNCERTAIN: &str = "the absorber's crush strength (0.35 MPa over the 100 mm face, solid at 40 mm) is assumed: the specification's corridor was not available here; the absorber's 0.25-0.5 friction is not modelled (frictionless face)";
+
+/// The presets of issue 36: the RCAR bumper barrier with its curved face
+/// and absorber (RCAR Bumper Test Issue 2.0, 2010; barrier specification
+/// Issue 1, 2007), the IIHS bumper tests that use it, and the flat-barrier
+/// tests of 49 CFR 581 and the older IIHS series. The pendulums of the
+/// vehicle's own mass (49 CFR 581, UN R42) depend on the car and live in
+/// bumpsim-verdict's protocol library.
+pub const BARRIER_PRESETS: &[PlanarPreset] = &[
+    PlanarPreset {
+        name: "rcar-bumper-front",
+        description: "front, 10 km/h full width into the RCAR bumper barrier (R 3400 mm, 1500 mm wide, 50 mm absorber), centred",
+        striker: bumper_barrier(0.0, 1.0, Side::Left, 10.0),
+        source: "RCAR Bumper Test, Issue 2.0 (September 2010) §6; RCAR bumper barrier specification, Issue 1 (September 2007) §2-3",
+        uncertain: BARRIER_UNCERTAIN,
+        tyres: TyreLaw::Rolling,
+        tyres_why: FREE_ROLLING,
+    },
+    PlanarPreset {
+        name: "rcar-bumper-rear",
+        description: "rear, 10 km/h full width into the RCAR bumper barrier, centred",
+        striker: bumper_barrier(0.0, 1.0, Side::Left, 10.0),
+        source: "RCAR Bumper Test, Issue 2.0 (September 2010) §6; RCAR bumper barrier specification, Issue 1 (September 2007) §2-3",
+        uncertain: BARRIER_UNCERTAIN,
+        tyres: TyreLaw::Rolling,
+        tyres_why: FREE_ROLLING,
+    },
+    PlanarPreset {
+        name: "rcar-bumper-corner-front",
+        description: "front corner, 5 km/h into the RCAR bumper barrier at 15 % overlap, 10°, left",
+        striker: bumper_barrier(DEG10, 0.15, Side::Left, 5.0),
+        source: "RCAR Bumper Test, Issue 2.0 (September 2010) §6",
+        uncertain: "the 10° angle and the side struck are from memory of the protocol's figure; the absorber as for the full-width test",
+        tyres: TyreLaw::Rolling,
+        tyres_why: FREE_ROLLING,
+    },
+    PlanarPreset {
+        name: "rcar-bumper-corner-rear",
+        description: "rear corner, 5 km/h into the RCAR bumper barrier at 15 % overlap, 10°, right",
+        striker: bumper_barrier(-DEG10, 0.15, Side::Right, 5.0),
+        source: "RCAR Bumper Test, Issue 2.0 (September 2010) §6",
+        uncertain: "the 10° angle and the side struck are from memory of the protocol's figure; the absorber as for the full-width test",
+        tyres: TyreLaw::Rolling,
+        tyres_why: FREE_ROLLING,
+    },
+    PlanarPreset {
+        name: "iihs-bumper-front",
+        description: "front, 6 mph (9.66 km/h) full width into the bumper barrier, centred",
+        striker: bumper_barrier(0.0, 1.0, Side::Left, 6.0 * MPH),
+        source: "IIHS Bumper test protocol, Version I (2006), full-width test (the RCAR barrier)",
+        uncertain: BARRIER_UNCERTAIN,
+        tyres: TyreLaw::Rolling,
+        tyres_why: FREE_ROLLING,
+    },
+    PlanarPreset {
+        name: "iihs-bumper-rear",
+        description: "rear, 6 mph (9.66 km/h) full width into the bumper barrier, centred",
+        striker: bumper_barrier(0.0, 1.0, Side::Left, 6.0 * MPH),
+        source: "IIHS Bumper test protocol, Version I (2006), full-width test (the RCAR barrier)",
+        uncertain: BARRIER_UNCERTAIN,
+        tyres: TyreLaw::Rolling,
+        tyres_why: FREE_ROLLING,
+    },
+    PlanarPreset {
+        name: "iihs-bumper-corner-front",
+        description: "front corner, 3 mph (4.83 km/h) into the bumper barrier at 15 % overlap, 10°, left",
+        striker: bumper_barrier(DEG10, 0.15, Side::Left, 3.0 * MPH),
+        source: "IIHS Bumper test protocol, Version I (2006), corner test (the RCAR barrier)",
+        uncertain: "the 10° angle and the side struck are from memory of the protocol's figure; the absorber as for the full-width test",
+        tyres: TyreLaw::Rolling,
+        tyres_why: FREE_ROLLING,
+    },
+    PlanarPreset {
+        name: "iihs-bumper-corner-rear",
+        description: "rear corner, 3 mph (4.83 km/h) into the bumper barrier at 15 % overlap, 10°, right",
+        striker: bumper_barrier(-DEG10, 0.15, Side::Right, 3.0 * MPH),
+        source: "IIHS Bumper test protocol, Version I (2006), corner test (the RCAR barrier)",
+        uncertain: "the 10° angle and the side struck are from memory of the protocol's figure; the absorber as for the full-width test",
+        tyres: TyreLaw::Rolling,
+        tyres_why: FREE_ROLLING,
+    },
+    PlanarPreset {
+        name: "part581-barrier-front",
+        description: "front, 2.5 mph (4.02 km/h) forward into a fixed flat barrier perpendicular to the line of travel",
+        striker: fixed(plane(0.0, 1.0, Side::Left), 2.5 * MPH),
+        source: "49 CFR 581.5(a) (barrier impacts after the pendulum impacts, 2.5 mph); 581.6(a) conditions",
+        uncertain: "581.5(a) runs the barrier impacts after the pendulum impacts on the same car: the accumulated damage is not carried over here",
+        tyres: TyreLaw::Rolling,
+        tyres_why: "581.6(a)(4): brakes disengaged and the transmission in neutral: free rolling",
+    },
+    PlanarPreset {
+        name: "part581-barrier-rear",
+        description: "rear, 2.5 mph (4.02 km/h) rearward into a fixed flat barrier perpendicular to the line of travel",
+        striker: fixed(plane(0.0, 1.0, Side::Left), 2.5 * MPH),
+        source: "49 CFR 581.5(a) (barrier impacts after the pendulum impacts, 2.5 mph); 581.6(a) conditions",
+        uncertain: "581.5(a) runs the barrier impacts after the pendulum impacts on the same car: the accumulated damage is not carried over here",
+        tyres: TyreLaw::Rolling,
+        tyres_why: "581.6(a)(4): brakes disengaged and the transmission in neutral: free rolling",
+    },
+    PlanarPreset {
+        name: "iihs-flat-front",
+        description: "front, 5 mph (8.05 km/h) full width into a flat rigid barrier",
+        striker: fixed(plane(0.0, 1.0, Side::Left), 5.0 * MPH),
+        source: "IIHS low-speed crash test protocol (1990s to 2006), front-into-flat-barrier test",
+        uncertain: "the protocol document was not available here: speed and set-up from IIHS status reports",
+        tyres: TyreLaw::Rolling,
+        tyres_why: FREE_ROLLING,
+    },
+    PlanarPreset {
+        name: "iihs-flat-rear",
+        description: "rear, 5 mph (8.05 km/h) full width into a flat rigid barrier",
+        striker: fixed(plane(0.0, 1.0, Side::Left), 5.0 * MPH),
+        source: "IIHS low-speed crash test protocol (1990s to 2006), rear-into-flat-barrier test",
+        uncertain: "the protocol document was not available here: speed and set-up from IIHS status reports",
+        tyres: TyreLaw::Rolling,
+        tyres_why: FREE_ROLLING,
+    },
+];
+
 /// The preset of this name.
 pub fn find(name: &str) -> Option<&'static PlanarPreset> {
-    PRESETS.iter().find(|p| p.name == name)
+    all().find(|p| p.name == name)
+}
+
+/// Every planar preset: [`PRESETS`], then [`BARRIER_PRESETS`].
+pub fn all() -> impl Iterator<Item = &'static PlanarPreset> {
+    PRESETS.iter().chain(BARRIER_PRESETS)
 }
 
 /// A striker's fields as an input file writes them (a series' `[[test]]`,
@@ -274,11 +407,7 @@ impl StrikerSpec {
                 name: format!("case '{name}'"),
                 expected: format!(
                     "known presets: {}",
-                    PRESETS
-                        .iter()
-                        .map(|p| p.name)
-                        .collect::<Vec<_>>()
-                        .join(", ")
+                    all().map(|p| p.name).collect::<Vec<_>>().join(", ")
                 ),
             })?;
             let striker = self
@@ -331,5 +460,43 @@ mod tests {
             assert!(!preset.source.is_empty() && !preset.uncertain.is_empty());
         }
         assert!(find("iihs-pole-rear").is_some() && find("nope").is_none());
+    }
+
+    /// The bumper barrier's absorber takes part of the crush and of the
+    /// work; the energy still balances; a centred full-width test of a
+    /// symmetric car does not turn it.
+    #[test]
+    fn barrier_presets_run_balance_and_share_the_crush_with_the_absorber() {
+        let chain = MsdModel::new(vec![10.0, 1300.0], vec![2e3], vec![1.5e6]).unwrap();
+        let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
+        for preset in BARRIER_PRESETS {
+            let r = simulate(&car, &preset.striker, &Settings::default()).unwrap();
+            let name = preset.name;
+            assert!(r.energy.max_relative_error < 1e-3, "{name}: {:?}", r.energy);
+            assert!(r.peak_force > 1e3 && r.contact_end.is_some(), "{name}");
+            assert!(find(name).is_some(), "{name}");
+            // the recorded crush is the bumper's own: its largest equals the state's
+            let recorded = r.crush.iter().flatten().copied().fold(0.0, f64::max);
+            assert!(
+                (recorded - r.max_compression).abs() < 1e-6,
+                "{name}: {recorded} {}",
+                r.max_compression
+            );
+            if name.ends_with("bumper-front") {
+                assert!(r.yaw.iter().all(|y| y.abs() < 1e-9), "{name}");
+                // the 60 kN bumper meets the 35 kN/m absorber: the absorber crushes too
+                assert!(r.energy.crush > 1.05 * bumper_work(&bumper, &r), "{name}");
+            }
+        }
+    }
+
+    /// The work the bumper segments took at their largest crush, J.
+    fn bumper_work(bumper: &Bumper, r: &crate::PlanarResult) -> f64 {
+        let n = r.max_crush.len() as f64;
+        r.max_crush
+            .iter()
+            .map(|&d| bumper.loading_energy(d) / n)
+            .sum()
     }
 }

@@ -529,7 +529,8 @@ impl<'a> Run<'a> {
         out.side_force_left.push(loads.side[0]);
         out.side_force_right.push(loads.side[1]);
         for (j, (crush, force)) in out.crush.iter_mut().zip(&mut out.segment_force).enumerate() {
-            crush.push(self.contact.crush[j]);
+            // the segment's own crush: a barrier's absorber takes the rest
+            crush.push(self.contact.crush[j] - self.contact.absorber[j]);
             force.push(self.contact.total[j]);
         }
         out.x.push(q[0]);

@@ -22,6 +22,7 @@
 //! The pendulum is guided: it neither turns nor moves sideways; its guide's
 //! reactions are reported in the momentum balance.
 
+use crate::barrier::{Absorber, Arc, Shape};
 use crate::car::{PlanarCar, PlanarError, require};
 use serde::Serialize;
 
@@ -108,6 +109,42 @@ pub enum Face {
         /// Lateral position of its axis, world y, m.
         lateral: f64,
     },
+    /// A barrier of finite width whose face is curved in plan, with an
+    /// energy absorber on it (the RCAR bumper barrier, [`crate::barrier`]).
+    Barrier(Barrier),
+}
+
+/// A barrier face curved in plan (convex towards the car) with an optional
+/// energy absorber: the RCAR bumper barrier ([`crate::barrier`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Barrier {
+    /// Angle θ of the barrier's chord, rad (counter-clockwise, as a plane's).
+    pub angle: f64,
+    /// Overlap, fraction of the car's bumper width (1: the barrier centred on the car).
+    pub overlap: f64,
+    /// Side the overlap is measured from.
+    pub side: Side,
+    /// Radius of the face in plan, m.
+    pub radius: f64,
+    /// Width of the face (its chord), m.
+    pub width: f64,
+    /// The energy absorber on the face (None: the bare steel face).
+    pub absorber: Option<Absorber>,
+}
+
+impl Barrier {
+    /// The RCAR bumper barrier (radius 3.4 m, 1.5 m wide, its absorber) at
+    /// `angle` (rad) covering `overlap` of the bumper from `side`.
+    pub const fn rcar(angle: f64, overlap: f64, side: Side) -> Barrier {
+        Barrier {
+            angle,
+            overlap,
+            side,
+            radius: 3.4,
+            width: 1.5,
+            absorber: Some(Absorber::RCAR),
+        }
+    }
 }
 
 impl Face {
@@ -155,6 +192,11 @@ impl Face {
                 radius,
                 lateral: -lateral,
             },
+            Face::Barrier(b) => Face::Barrier(Barrier {
+                angle: -b.angle,
+                side: b.side.other(),
+                ..b
+            }),
         }
     }
 }
@@ -243,6 +285,11 @@ pub(crate) enum Placed {
     },
     /// Axis at `centre`.
     Pole { centre: [f64; 2], radius: f64 },
+    /// A curved face and its absorber.
+    Barrier {
+        arc: Arc,
+        absorber: Option<Absorber>,
+    },
 }
 
 impl Placed {
@@ -264,6 +311,10 @@ impl Placed {
                 centre: [centre[0] - s, centre[1]],
                 radius,
             },
+            Placed::Barrier { mut arc, absorber } => {
+                arc.centre[0] -= s;
+                Placed::Barrier { arc, absorber }
+            }
         }
     }
 
@@ -272,6 +323,7 @@ impl Placed {
         match *self {
             Placed::Plane { normal, offset, .. } => [offset * normal[0], offset * normal[1]],
             Placed::Pole { centre, .. } => centre,
+            Placed::Barrier { arc, .. } => arc.apex(),
         }
     }
 }
@@ -325,7 +377,26 @@ pub(crate) fn place(car: &PlanarCar, striker: &Striker) -> Result<Placed, Planar
             )?;
             place_pole(car, radius, lateral, x_f)
         }
+        Face::Barrier(b) => place_barrier(car, &b, x_f),
     }
+}
+
+fn place_barrier(car: &PlanarCar, b: &Barrier, x_f: f64) -> Result<Placed, PlanarError> {
+    if let Some(absorber) = &b.absorber {
+        absorber.check()?;
+    }
+    let shape = Shape {
+        angle: b.angle,
+        overlap: b.overlap,
+        side: if b.side == Side::Left { 1.0 } else { -1.0 },
+        radius: b.radius,
+        width: b.width,
+    };
+    let arc = crate::barrier::place(car, &shape, x_f)?;
+    Ok(Placed::Barrier {
+        arc,
+        absorber: b.absorber,
+    })
 }
 
 fn place_plane(

@@ -231,7 +231,7 @@ fn forces(
 ) -> Result<Forces, PlanarError> {
     let normal = match place(car, striker)? {
         Placed::Plane { normal, .. } => normal,
-        Placed::Pole { .. } => [-1.0, 0.0],
+        Placed::Pole { .. } | Placed::Barrier { .. } => [-1.0, 0.0],
     };
     let spec = |channel: &str, lateral, direction, anchor| LoadSpec {
         channel: channel.into(),
@@ -266,6 +266,12 @@ fn forces(
         .collect()
     };
     Ok(match (striker.motion, striker.face) {
+        (_, Face::Barrier(_)) => {
+            return Err(PlanarError::Missing {
+                name: "striker".into(),
+                expected: "a plane or a pole: synthetic tests of the bumper barrier are not made (it carries no load cells)".into(),
+            });
+        }
         (Motion::Fixed { .. }, Face::Plane { .. }) => r
             .segment_force
             .iter()

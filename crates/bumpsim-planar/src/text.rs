@@ -38,6 +38,18 @@ pub fn striker(s: &Striker) -> String {
             short(2e3 * radius),
             short(1e3 * lateral)
         ),
+        Face::Barrier(b) => format!(
+            "a {} mm wide barrier curved to {} mm{} at {}°, {} % overlap from the {}",
+            short(1e3 * b.width),
+            short(1e3 * b.radius),
+            b.absorber.map_or(String::new(), |a| format!(
+                " with a {} mm absorber",
+                short(1e3 * a.depth)
+            )),
+            short(b.angle.to_degrees()),
+            short(b.overlap * 100.0),
+            side_name(b.side)
+        ),
     };
     let kmh = |v: f64| format!("{} km/h", short(v * 3.6));
     match s.motion {

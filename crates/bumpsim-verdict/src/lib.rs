@@ -1,0 +1,56 @@
+//! bumpsim-verdict: will it pass? A car's bumper in the low-speed
+//! protocols, judged against its damageability limits with margins, and
+//! the bumper that would pass (issue 36).
+//!
+//! - [`protocol`]: 49 CFR 581, CMVSS 215, UN R42, the RCAR bumper and
+//!   structural tests and the IIHS tests, each with its figures, source and
+//!   what could not be checked;
+//! - [`limits`]: the car's clearances and limits (`[damageability]` of the
+//!   planar car file);
+//! - [`criteria`]: each criterion's value, limit and margin;
+//! - [`pulse`]: peak and 3 ms clip deceleration, delta-V, OLC, ASI;
+//! - [`verdict`](mod@verdict): every test run and judged;
+//! - [`target`]: the region of bumper characteristics that passes every
+//!   criterion with a margin, its binding criteria and corridor;
+//! - [`text`]: the tables with units.
+//!
+//! ```
+//! use bumpsim_core::model::MsdModel;
+//! use bumpsim_impact::bumper::Bumper;
+//! use bumpsim_planar::car::{Layout, PlanarCar};
+//! use bumpsim_verdict::prelude::*;
+//! let chain = MsdModel::new(vec![16.0, 1300.0], vec![4e3], vec![6e6]).unwrap();
+//! let bumper = Bumper::three_part(3e6, 200e3, 2e7).unwrap();
+//! let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
+//! let limits = Damageability::parse(
+//!     "[damageability]\nrail_yield = 300e3\ncrash_box_stroke = 0.05\n\
+//!      [[damageability.clearance]]\nname = \"radiator\"\ngap = 0.08\nfrom = \"beam\"\n",
+//!     "car.toml".as_ref(),
+//! )?;
+//! let tests = bumpsim_verdict::protocol::select(&["part581-barrier-front"])?;
+//! let v = verdict(&Setup::new(vec![CarEnd::new(car, limits)?], tests, 0.0)?)?;
+//! assert!(v.passed());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+pub mod criteria;
+pub mod error;
+pub mod limits;
+pub mod protocol;
+pub mod pulse;
+pub mod target;
+pub mod text;
+pub mod verdict;
+
+pub use error::VerdictError;
+pub use verdict::{Setup, Verdict, verdict};
+
+/// The types most verdicts need (the facade globs it).
+pub mod prelude {
+    pub use crate::criteria::{Criterion, Outcome};
+    pub use crate::error::VerdictError;
+    pub use crate::limits::{Damageability, End};
+    pub use crate::protocol::{Protocol, Test};
+    pub use crate::target::{Region, TargetOptions};
+    pub use crate::verdict::{CarEnd, Setup, TestVerdict, Verdict, verdict};
+}

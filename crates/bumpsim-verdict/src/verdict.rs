@@ -1,0 +1,326 @@
+//! The verdict of a car and its bumper in a set of tests: each test run on
+//! the planar car of the end it strikes (`bumpsim_planar::simulate`, the
+//! protocol's tyre condition), its criteria judged with their margins
+//! ([`crate::criteria`]), its pulse metrics and energies. A test of an end
+//! without a car file is listed as not assessed, with the reason. The tests
+//! run in parallel.
+
+use crate::criteria::{Criterion, Energies, Evidence, Outcome, criteria, energies};
+use crate::error::{VerdictError, require};
+use crate::limits::{Damageability, End};
+use crate::protocol::Test;
+use crate::pulse::{Metrics, Pulse};
+use bumpsim_impact::bumper::Bumper;
+use bumpsim_planar::car::{Beam, scaled};
+use bumpsim_planar::{PlanarCar, PlanarResult, Settings, Striker, simulate};
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// One end of a car: its planar car and its damageability data.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CarEnd {
+    /// The planar car of that end.
+    pub car: PlanarCar,
+    /// Its clearances and limits.
+    pub limits: Damageability,
+}
+
+impl CarEnd {
+    /// Checks the limits against the car.
+    pub fn new(car: PlanarCar, limits: Damageability) -> Result<CarEnd, VerdictError> {
+        limits.check_car(&car)?;
+        Ok(CarEnd { car, limits })
+    }
+
+    /// The same end with every bumper segment replaced by an equal share
+    /// of the whole-bumper characteristic `bumper`.
+    pub fn with_bumper(&self, bumper: &Bumper) -> Result<CarEnd, VerdictError> {
+        let n = self.car.beam().segments.len();
+        let segment = scaled(bumper, 1.0 / n as f64).map_err(|source| {
+            let name = "bumper".into();
+            planar(
+                "bumper",
+                bumpsim_planar::PlanarError::Bumper { name, source },
+            )
+        })?;
+        self.with_segments(vec![segment; n])
+    }
+
+    /// The same end with these segment characteristics.
+    pub fn with_segments(&self, segments: Vec<Bumper>) -> Result<CarEnd, VerdictError> {
+        let c = &self.car;
+        let beam = Beam {
+            segments,
+            ..c.beam().clone()
+        };
+        let car = PlanarCar::new(
+            *c.body(),
+            c.left().clone(),
+            c.right().clone(),
+            beam,
+            *c.tyres(),
+        )
+        .map_err(|e| planar("bumper", e))?
+        .with_name(c.name().map(str::to_string));
+        Ok(CarEnd {
+            car,
+            limits: self.limits.clone(),
+        })
+    }
+}
+
+fn planar(test: &str, source: bumpsim_planar::PlanarError) -> VerdictError {
+    VerdictError::Planar {
+        test: test.into(),
+        source,
+    }
+}
+
+/// What a verdict runs: the car's ends, the tests and the margin asked for.
+#[derive(Debug, Clone)]
+pub struct Setup {
+    /// The front end (front tests).
+    pub front: Option<CarEnd>,
+    /// The rear end (rear tests).
+    pub rear: Option<CarEnd>,
+    /// The tests.
+    pub tests: Vec<&'static Test>,
+    /// Least margin ratio a criterion must keep to pass (0: at the limit).
+    pub margin: f64,
+    /// Integration settings.
+    pub settings: Settings,
+}
+
+impl Setup {
+    /// A set-up from the car files' ends (each end once), the tests and
+    /// the margin ratio (0 ≤ margin < 1).
+    pub fn new(
+        ends: Vec<CarEnd>,
+        tests: Vec<&'static Test>,
+        margin: f64,
+    ) -> Result<Setup, VerdictError> {
+        let expected = "a margin is a share of each limit, 0 ≤ margin < 1 (0.1: keep 10 % inside every limit); a negative margin would pass what fails";
+        require(
+            "margin",
+            margin,
+            "1",
+            expected,
+            (0.0..1.0).contains(&margin),
+        )?;
+        let (mut front, mut rear) = (None, None);
+        for end in ends {
+            let slot = match end.limits.end {
+                End::Front => &mut front,
+                End::Rear => &mut rear,
+            };
+            if slot.is_some() {
+                return Err(VerdictError::Contradiction {
+                    first: "damageability.end".into(),
+                    second: "damageability.end".into(),
+                    reason: format!(
+                        "two car files describe the {} end: give one car per end",
+                        end.limits.end.name()
+                    ),
+                });
+            }
+            *slot = Some(end);
+        }
+        Ok(Setup {
+            front,
+            rear,
+            tests,
+            margin,
+            settings: Settings::default(),
+        })
+    }
+
+    /// The end a test strikes, if given.
+    pub fn end(&self, end: End) -> Option<&CarEnd> {
+        match end {
+            End::Front => self.front.as_ref(),
+            End::Rear => self.rear.as_ref(),
+        }
+    }
+
+    /// The car's name (the front's, else the rear's).
+    pub fn name(&self) -> String {
+        [&self.front, &self.rear]
+            .into_iter()
+            .flatten()
+            .find_map(|e| e.car.name().map(str::to_string))
+            .unwrap_or_else(|| "car".into())
+    }
+}
+
+/// The verdict of one test.
+#[derive(Debug, Clone, Serialize)]
+pub struct TestVerdict {
+    /// The test.
+    pub test: &'static Test,
+    /// Why it was not assessed (None: it was).
+    pub skipped: Option<String>,
+    /// The striker as run, in the protocol's words.
+    pub striker: String,
+    /// Its criteria.
+    pub criteria: Vec<Criterion>,
+    /// Its pulse metrics.
+    pub metrics: Option<Metrics>,
+    /// Its energies.
+    pub energies: Option<Energies>,
+    /// What the verdict assumes.
+    pub assumptions: Vec<String>,
+    /// Metrics that could not be computed, and why.
+    pub notes: Vec<String>,
+    /// The simulation's warnings.
+    pub warnings: Vec<String>,
+    /// The impact (histories), for plots.
+    #[serde(skip)]
+    pub result: Option<PlanarResult>,
+    /// The car and striker as run, for the top view.
+    #[serde(skip)]
+    pub run: Option<(PlanarCar, Striker)>,
+}
+
+impl TestVerdict {
+    /// Whether every judged criterion passes (None: not assessed).
+    pub fn passed(&self) -> Option<bool> {
+        self.skipped
+            .is_none()
+            .then(|| self.criteria.iter().all(|c| c.outcome != Outcome::Fail))
+    }
+
+    /// The judged criterion with the smallest margin ratio.
+    pub fn binding(&self) -> Option<&Criterion> {
+        self.criteria
+            .iter()
+            .filter(|c| c.outcome != Outcome::Info)
+            .min_by(|a, b| a.ratio.total_cmp(&b.ratio))
+    }
+}
+
+/// The verdict of a car in a set of tests.
+#[derive(Debug, Clone, Serialize)]
+pub struct Verdict {
+    /// The car.
+    pub car: String,
+    /// The margin ratio asked for.
+    pub margin: f64,
+    /// Every test, in the order asked.
+    pub tests: Vec<TestVerdict>,
+}
+
+impl Verdict {
+    /// Whether every assessed test passes.
+    pub fn passed(&self) -> bool {
+        self.tests.iter().all(|t| t.passed() != Some(false))
+    }
+
+    /// The failing criteria: (test, criterion).
+    pub fn failures(&self) -> Vec<(&'static str, &Criterion)> {
+        self.tests
+            .iter()
+            .flat_map(|t| {
+                t.criteria
+                    .iter()
+                    .filter(|c| c.outcome == Outcome::Fail)
+                    .map(move |c| (t.test.name, c))
+            })
+            .collect()
+    }
+}
+
+/// Runs every test of the set-up and judges it.
+///
+/// ```no_run
+/// use bumpsim_verdict::prelude::*;
+/// let path = std::path::Path::new("examples/verdict/car.toml");
+/// let end = CarEnd::new(bumpsim_planar::PlanarCar::read(path)?, Damageability::read(path)?)?;
+/// let tests = bumpsim_verdict::protocol::select(&["part581"])?;
+/// let verdict = verdict(&Setup::new(vec![end], tests, 0.0)?)?;
+/// println!("{}", bumpsim_verdict::text::table(&verdict));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn verdict(setup: &Setup) -> Result<Verdict, VerdictError> {
+    let tests = setup
+        .tests
+        .par_iter()
+        .map(|t| judge(setup, t))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(Verdict {
+        car: setup.name(),
+        margin: setup.margin,
+        tests,
+    })
+}
+
+/// The impact of one test on its end of the car: the car as run (with the
+/// protocol's tyres), the striker and the result.
+pub fn run(
+    end: &CarEnd,
+    test: &Test,
+    settings: &Settings,
+) -> Result<(PlanarCar, Striker, PlanarResult), VerdictError> {
+    let car = end.car.clone().with_tyre_law(test.tyres);
+    let striker = test.striker(car.total_mass())?;
+    let result = simulate(&car, &striker, settings).map_err(|e| planar(test.name, e))?;
+    Ok((car, striker, result))
+}
+
+/// Judges one test (not assessed without a car of its end).
+pub fn judge(setup: &Setup, test: &'static Test) -> Result<TestVerdict, VerdictError> {
+    assess(setup, test, true)
+}
+
+/// [`judge`]; without `pulse`, the OLC and ASI are computed only when a
+/// limit needs them (the target search's candidates).
+pub(crate) fn assess(
+    setup: &Setup,
+    test: &'static Test,
+    pulse: bool,
+) -> Result<TestVerdict, VerdictError> {
+    let mut verdict = TestVerdict {
+        test,
+        skipped: None,
+        striker: String::new(),
+        criteria: vec![],
+        metrics: None,
+        energies: None,
+        assumptions: vec![],
+        notes: vec![],
+        warnings: vec![],
+        result: None,
+        run: None,
+    };
+    let Some(end) = setup.end(test.end) else {
+        verdict.skipped = Some(format!(
+            "no car file of the {} end was given",
+            test.end.name()
+        ));
+        return Ok(verdict);
+    };
+    let (car, striker, result) = run(end, test, &setup.settings)?;
+    let limits = &end.limits;
+    let full = pulse || limits.olc.is_some() || limits.asi.is_some();
+    let (metrics, notes) = Pulse::of(&result).metrics(full);
+    let energies = energies(&car, &result);
+    let evidence = Evidence {
+        car: &car,
+        limits,
+        test,
+        result: &result,
+        metrics: &metrics,
+        energies: &energies,
+    };
+    let (criteria, assumptions) = criteria(&evidence, setup.margin);
+    let nominal = test.nominal(car.total_mass())?;
+    verdict.striker = bumpsim_planar::text::striker(&nominal);
+    verdict.criteria = criteria;
+    verdict.metrics = Some(metrics);
+    verdict.energies = Some(energies);
+    verdict.assumptions = assumptions;
+    verdict.notes = notes;
+    verdict.warnings = result.warnings.clone();
+    verdict.result = Some(result);
+    verdict.run = Some((car, striker));
+    Ok(verdict)
+}
