@@ -44,12 +44,12 @@ pub struct DesignArgs {
     /// Centre points.
     #[arg(long, default_value_t = 0)]
     centre: usize,
-    /// Runs of an lhs or uniform design.
-    #[arg(long, default_value_t = 20, value_parser = crate::count::<1_000_000>)]
-    runs: usize,
-    /// Seed (lhs, uniform, randomised run order).
-    #[arg(long, default_value_t = 1)]
-    seed: u64,
+    /// Runs of an lhs or uniform design (default 20).
+    #[arg(long, value_parser = crate::count::<1_000_000>)]
+    runs: Option<usize>,
+    /// Seed (lhs, uniform, randomised run order; default 1).
+    #[arg(long)]
+    seed: Option<u64>,
     /// Randomise the run order.
     #[arg(long)]
     randomise: bool,
@@ -166,18 +166,26 @@ fn make_design(args: &DesignArgs) -> Result<()> {
         .map(|s| s.parse::<Factor>().map_err(|e| anyhow!("--factors {e}")))
         .collect::<Result<Vec<_>>>()?;
     let kind: DesignKind = args.kind.parse()?;
+    let random = matches!(kind, DesignKind::LatinHypercube | DesignKind::Uniform);
+    if args.runs.is_some() && !random {
+        bail!("--runs: only an lhs or uniform design takes a number of runs");
+    }
+    if args.seed.is_some() && !random && !args.randomise {
+        bail!("--seed: only an lhs or uniform design or a --randomise'd run order uses a seed");
+    }
+    let seed = args.seed.unwrap_or(1);
     let names: Vec<&str> = factors.iter().map(|f| f.name.as_str()).collect();
     let options = DesignOptions {
         generators: args.generators.clone(),
         centre: args.centre,
-        runs: args.runs,
-        seed: args.seed,
+        runs: args.runs.unwrap_or(20),
+        seed,
     };
     let (design, resolution) = design::make(kind, &names, &options)?;
     if let Some(resolution) = resolution {
         println!("resolution {resolution}");
     }
-    let order = design.order(args.randomise, args.seed);
+    let order = design.order(args.randomise, seed);
     write(&args.output, &design.to_csv(&factors, &order))?;
     println!(
         "{} runs of {} factors",
@@ -276,7 +284,10 @@ fn reach(args: &ReachArgs) -> Result<()> {
     let map = LinearMap::from_model(&model, x, y)?;
     let polygon = map.boundary();
     let points = map.samples(args.samples, args.seed);
-    let corners = cell_spec.map_or(Vec::new(), |c| cell(&map, [c[0], c[1]], [c[2], c[3]]));
+    let corners = match cell_spec {
+        Some(c) => cell(&map, [c[0], c[1]], [c[2], c[3]]).context("--cell")?,
+        None => Vec::new(),
+    };
     let text = reach_text([x, y], &polygon, args.samples, &corners, &model.factors);
     print!("{text}");
     if let Some(dir) = &args.plot {

@@ -324,16 +324,18 @@ fn bumper(args: &BumperArgs) -> Result<()> {
     };
     refuse_overwriting_inputs(&args.output, &[args.bumper.as_path()])?;
     bumpsim_io::output::write_file(&args.output, deck.as_bytes())?;
-    println!(
+    crate::output::wrote(format!(
         "wrote {}: {what}, {} curve points, units {}",
         args.output.display(),
         curve.points().len(),
         args.units
-    );
+    ));
     Ok(())
 }
 
 fn read_calculix(args: &ReadArgs) -> Result<()> {
+    // the results are the .dat beside the deck: an input as much as the deck
+    refuse_overwriting_inputs(&args.output, &[&args.deck.with_extension("dat")])?;
     let results = read_results(&args.deck)?;
     let names: Vec<String> = (1..=results.displacement.len())
         .map(|i| format!("x{i}"))
@@ -348,11 +350,11 @@ fn read_calculix(args: &ReadArgs) -> Result<()> {
         })
         .collect();
     write_table(&args.output, &results.time, &columns)?;
-    println!(
+    crate::output::wrote(format!(
         "wrote {}: {} times × {} masses, displacement along the model axis, SI",
         args.output.display(),
         results.time.len(),
         names.len()
-    );
+    ));
     Ok(())
 }

@@ -154,6 +154,8 @@ pub fn run(args: &Args) -> Result<()> {
         })
         .collect();
     if !failed.is_empty() {
+        // the others' results are complete: they are delivered, then the exit is 2
+        crate::output::commit()?;
         anyhow::bail!(
             "{} of the {} models failed (DOF {}, see above); the others are reported",
             failed.len(),

@@ -124,8 +124,8 @@ pub struct ReductionArgs {
     /// Write the result as JSON.
     #[arg(long)]
     json: Option<PathBuf>,
-    /// Write the sweep grid as CSV.
-    #[arg(short, long)]
+    /// Write the sweep grid as CSV (with --sweep).
+    #[arg(short, long, requires = "sweep")]
     output: Option<PathBuf>,
     /// Write SVG plots and an HTML report into this folder.
     #[arg(long)]
@@ -343,11 +343,10 @@ pub fn run_synth(args: &SynthArgs) -> Result<()> {
     }
     let folder = Folder::stage(&args.output)?;
     for (name, metadata, channels) in &heads {
-        bumpsim_io::isomme::write(&folder.path().join(name), name, metadata, channels)?;
-        println!(
-            "wrote {}",
-            args.output.join(name).join(format!("{name}.mme")).display()
-        );
+        bumpsim_io::output::plain_name(name)?;
+        for (relative, text) in bumpsim_io::isomme::files(name, metadata, channels) {
+            folder.write(&format!("{name}/{relative}"), &text)?;
+        }
         let (time, columns) = bumpsim_signal::process::align(channels)?;
         let output: Vec<bumpsim_io::table::OutputColumn> = channels
             .iter()
@@ -360,10 +359,10 @@ pub fn run_synth(args: &SynthArgs) -> Result<()> {
             .collect();
         let csv = folder.path().join(format!("{name}.csv"));
         bumpsim_io::table::write_table(&csv, &time, &output)?;
-        println!(
+        crate::output::wrote(format!(
             "wrote {}",
             args.output.join(format!("{name}.csv")).display()
-        );
+        ));
         for c in channels {
             if let Some(comment) = c.meta("Comments") {
                 println!("{name} {}: {comment}", c.code);

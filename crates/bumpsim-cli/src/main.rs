@@ -9,7 +9,9 @@
 //! Outputs: every path on the command line that exists and is not an output
 //! option is registered as an input with [`bumpsim_io::output`]; every output
 //! is checked against them (and for file/folder kind) before the command
-//! runs, and written atomically.
+//! runs, and written atomically. The outputs of one command are one
+//! transaction: they move into place together when it succeeds; a command
+//! that fails (or cannot print its results) leaves every output as it was.
 
 mod campaign;
 mod doe;
@@ -101,7 +103,7 @@ pub(crate) fn warn(message: &str) {
 }
 
 fn main() -> ExitCode {
-    quiet_on_closed_pipe();
+    abandon_on_panic();
     let matches = Cli::command().get_matches();
     let cli = match Cli::from_arg_matches(&matches) {
         Ok(cli) => cli,
@@ -111,7 +113,34 @@ fn main() -> ExitCode {
         eprintln!("error: {}", message(&error));
         return ExitCode::from(2);
     }
-    let result = match cli.command {
+    // `fe run` writes its deck through the guard and runs CalculiX on it
+    // in the same command: its outputs are written one by one as before
+    if !matches!(cli.command, Command::Fe(_)) {
+        bumpsim_io::output::begin();
+    }
+    let result = run(cli.command).and_then(|()| output::commit());
+    let warnings = WARNINGS.load(Ordering::Relaxed);
+    match result {
+        Ok(()) if cli.strict && warnings > 0 => {
+            eprintln!("error: --strict: the results carry {warnings} warning(s) (see above)");
+            ExitCode::from(2)
+        }
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            let abandoned = output::abandon();
+            eprintln!("error: {}", message(&error));
+            if abandoned > 0 {
+                eprintln!(
+                    "note: none of the command's outputs was written (they are written together or not at all)"
+                );
+            }
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn run(command: Command) -> anyhow::Result<()> {
+    match command {
         Command::Simulate(args) => simulate::run(&args),
         Command::Export(command) => export::run(&command),
         Command::Fe(command) => fe::run(&command),
@@ -124,18 +153,6 @@ fn main() -> ExitCode {
         Command::Doe(command) => doe::run(&command),
         Command::Predict(args) => identify::run_predict(&args),
         Command::Campaign(command) => campaign::run(&command),
-    };
-    let warnings = WARNINGS.load(Ordering::Relaxed);
-    match result {
-        Ok(()) if cli.strict && warnings > 0 => {
-            eprintln!("error: --strict: the results carry {warnings} warning(s) (see above)");
-            ExitCode::from(2)
-        }
-        Ok(()) => ExitCode::SUCCESS,
-        Err(error) => {
-            eprintln!("error: {}", message(&error));
-            ExitCode::from(2)
-        }
     }
 }
 
@@ -143,8 +160,11 @@ fn main() -> ExitCode {
 /// code 141 (128 + SIGPIPE, what a shell reports for other Unix tools)
 /// instead of a panic in `println!`: the Rust runtime ignores SIGPIPE, std
 /// has no stable switch to restore it, and the workspace forbids the
-/// `unsafe` call that would.
-fn quiet_on_closed_pipe() {
+/// `unsafe` call that would. Any other failure to print (`> /dev/full`, a
+/// full disk) is an error with exit code 2. Either way, and on any panic,
+/// the command's outputs are abandoned: results that could not be printed
+/// are not half delivered.
+fn abandon_on_panic() {
     let default = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
         let payload = info.payload();
@@ -153,8 +173,17 @@ fn quiet_on_closed_pipe() {
             .map(String::as_str)
             .or_else(|| payload.downcast_ref::<&str>().copied())
             .unwrap_or("");
+        output::abandon();
         if text.starts_with("failed printing to std") && text.contains("Broken pipe") {
             std::process::exit(141);
+        }
+        if text.starts_with("failed printing to std") {
+            use std::io::Write;
+            let _ = writeln!(
+                std::io::stderr(),
+                "error: cannot print the results: {text}; no output was written"
+            );
+            std::process::exit(2);
         }
         default(info)
     }));

@@ -1,12 +1,42 @@
 //! Every file and folder the commands write, in one place: the inputs are
 //! registered and each output checked against them before a command runs
 //! ([`guard_paths`]); single files are written atomically ([`write()`]),
-//! multi-file folders are staged and appear together ([`Folder`]). The
+//! multi-file folders are staged and appear together ([`Folder`]); and all
+//! outputs of one command are one transaction ([`commit`], [`abandon`]):
+//! they appear together when the command has succeeded, or none does. The
 //! guard itself lives in [`bumpsim_io::output`]; this module maps clap's
 //! arguments onto it.
 
 use anyhow::{Context, Result};
 use std::path::Path;
+use std::sync::Mutex;
+
+/// The `wrote ...` lines of the command's outputs, printed once they are
+/// in place.
+static WROTE: Mutex<Vec<String>> = Mutex::new(Vec::new());
+
+/// Says that an output was written (printed by [`commit`], when it is).
+pub(crate) fn wrote(line: String) {
+    WROTE.lock().unwrap_or_else(|p| p.into_inner()).push(line);
+}
+
+/// Ends the command's transaction: checks every output once more, prints
+/// what was written and moves it all into place.
+pub(crate) fn commit() -> Result<()> {
+    bumpsim_io::output::check_pending().context("no output was written")?;
+    let lines = std::mem::take(&mut *WROTE.lock().unwrap_or_else(|p| p.into_inner()));
+    lines.iter().for_each(|line| println!("{line}"));
+    bumpsim_io::output::finish().context("the outputs could not all be moved into place")?;
+    Ok(())
+}
+
+/// Drops the command's outputs (it failed); returns how many there were.
+pub(crate) fn abandon() -> usize {
+    if let Ok(mut lines) = WROTE.try_lock() {
+        lines.clear();
+    }
+    bumpsim_io::output::abandon()
+}
 
 /// Argument ids that name outputs; the rest that exist on disk are inputs.
 const OUTPUT_IDS: [&str; 9] = [
@@ -41,10 +71,23 @@ pub(crate) struct ResultFiles {
     pub report: Option<std::path::PathBuf>,
 }
 
+/// Refuses an input that is a device, pipe or socket (`/dev/zero` never
+/// ends, a pipe without a writer blocks forever): no command reads a stream.
+fn refuse_stream(path: &Path) -> Result<()> {
+    match bumpsim_core::files::not_a_file(path) {
+        Ok(Some(kind)) if kind != "a folder" => {
+            let path = path.into();
+            Err(bumpsim_core::files::ReadError::NotAFile { path, kind }.into())
+        }
+        _ => Ok(()),
+    }
+}
+
 /// Registers the inputs and checks every output before anything runs.
 pub(crate) fn guard_paths(matches: &clap::ArgMatches) -> Result<()> {
     let mut matches = matches;
     let mut command = String::new();
+    let campaign = matches.subcommand_name() == Some("campaign");
     while let Some((name, sub)) = matches.subcommand() {
         command = name.to_string();
         matches = sub;
@@ -60,7 +103,12 @@ pub(crate) fn guard_paths(matches: &clap::ArgMatches) -> Result<()> {
     let ids: Vec<String> = matches.ids().map(|id| id.to_string()).collect();
     for id in ids.iter().filter(|id| !OUTPUT_IDS.contains(&id.as_str())) {
         for path in values(id).iter().filter(|p| p.exists()) {
-            bumpsim_io::output::register_input(path);
+            refuse_stream(path)?;
+            // a study, series or pipeline names further inputs (tests, cars)
+            match campaign {
+                true => bumpsim_io::output::register_input(path),
+                false => bumpsim_io::output::register_input_with_references(path),
+            }
         }
     }
     for id in ids.iter().filter(|id| OUTPUT_IDS.contains(&id.as_str())) {
@@ -80,7 +128,7 @@ pub(crate) fn guard_paths(matches: &clap::ArgMatches) -> Result<()> {
 /// an input) and says so.
 pub(crate) fn write(path: &Path, text: &str) -> Result<()> {
     bumpsim_io::output::write_file(path, text.as_bytes())?;
-    println!("wrote {}", path.display());
+    wrote(format!("wrote {}", path.display()));
     Ok(())
 }
 
@@ -102,7 +150,7 @@ impl Folder {
     /// Stages one file.
     pub(crate) fn write(&self, name: &str, text: &str) -> Result<()> {
         let path = self.0.write(name, text.as_bytes())?;
-        println!("wrote {}", path.display());
+        wrote(format!("wrote {}", path.display()));
         Ok(())
     }
 
@@ -117,7 +165,8 @@ impl Folder {
         folder.commit()
     }
 
-    /// Moves the staged files into place.
+    /// Hands the complete folder to the command's transaction (it moves
+    /// into place with the command's other outputs).
     pub(crate) fn commit(self) -> Result<()> {
         bumpsim_io::output::commit(self.0)
             .with_context(|| "the output folder was left as it was".to_string())

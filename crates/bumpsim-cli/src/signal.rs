@@ -275,7 +275,7 @@ fn write_iso_mme(folder: &Path, header: &[(String, String)], signals: &[Channel]
         .file_name()
         .map_or("bumpsim".into(), |n| n.to_string_lossy().into_owned());
     let mme = isomme::write(folder, &name, header, signals)?;
-    println!("wrote {}", mme.display());
+    crate::output::wrote(format!("wrote {}", mme.display()));
     Ok(())
 }
 
@@ -403,12 +403,12 @@ fn write_csv(path: &Path, signals: &[Channel], units: &[Unit]) -> Result<()> {
     } else {
         "units as asked"
     };
-    println!(
+    crate::output::wrote(format!(
         "wrote {}: {} rows × {} signals, {note}",
         path.display(),
         time.len(),
         signals.len()
-    );
+    ));
     Ok(())
 }
 

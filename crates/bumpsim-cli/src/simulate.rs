@@ -78,7 +78,7 @@ pub fn force_series(path: &Path, column: Option<&str>) -> Result<(UniformSeries,
             column.unit
         );
     }
-    Ok((table.series(column), column.name.clone()))
+    Ok((table.series(column)?, column.name.clone()))
 }
 
 /// Runs the command.
@@ -107,7 +107,14 @@ pub fn run(args: &Args) -> Result<()> {
             args.method
         )
     })?;
-    let response = simulator.run(&force, &initial)?;
+    let response = simulator.run(&force, &initial).with_context(|| {
+        format!(
+            "cannot simulate {} with the force of {} ({}; check the car's parameters)",
+            args.car.display(),
+            args.force.display(),
+            args.method
+        )
+    })?;
     if !response.is_finite() {
         bail!(
             "the simulation of {} produced non-finite values (inf or NaN): the model, force or initial velocity is beyond what the {} discretisation can represent",
@@ -125,11 +132,11 @@ pub fn run(args: &Args) -> Result<()> {
         } else {
             ""
         };
-        println!(
+        crate::output::wrote(format!(
             "wrote {}: {} rows × {columns} columns, SI units{note}",
             output.display(),
             response.time.len()
-        );
+        ));
     }
     Ok(())
 }

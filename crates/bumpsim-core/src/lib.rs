@@ -5,6 +5,7 @@
 //! Everything is SI `f64`: kg, m, s, N, N/m, N·s/m, J. The modules:
 //!
 //! - [`units`]: unit parsing and formatting, `name [unit]` labels;
+//! - [`files`]: input files read whole within bounds (regular files only);
 //! - [`fixed_width`]: the words of solver text whose numbers touch;
 //! - [`series`]: uniformly sampled signals;
 //! - [`channel`]: a measured channel (series, code, name, unit, metadata);
@@ -31,6 +32,7 @@ pub mod channel;
 pub mod discrete;
 pub mod energy;
 mod exponential;
+pub mod files;
 pub mod fixed_width;
 pub mod leapfrog;
 pub mod modal;

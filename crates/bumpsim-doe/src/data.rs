@@ -30,6 +30,9 @@ pub enum DataError {
         /// What is wrong.
         message: String,
     },
+    /// Not a regular file, too large or not text.
+    #[error(transparent)]
+    Read(#[from] bumpsim_core::files::ReadError),
     /// An identification result or car file cannot be used.
     #[error(transparent)]
     Result(#[from] CarError),
@@ -46,6 +49,14 @@ pub enum ResultsError {
         results: usize,
         /// Design runs.
         runs: usize,
+    },
+    /// A column of the results is already a column of the design.
+    #[error(
+        "the design already has a column '{name}': the results' columns m1.., c1.., k1.. must be new"
+    )]
+    Column {
+        /// The column name.
+        name: String,
     },
     /// A result with another number of masses than the first.
     #[error("result {result} is not a {dof}-DOF model like the first")]
@@ -73,10 +84,7 @@ impl Data {
     /// Headers are split by [`bumpsim_io::table::split_header`], as for
     /// channel tables.
     pub fn read(path: &Path) -> Result<Data, DataError> {
-        let text = std::fs::read_to_string(path).map_err(|source| DataError::Io {
-            path: path.into(),
-            source,
-        })?;
+        let text = bumpsim_core::files::read_text(path)?;
         Self::parse(&text, path)
     }
 
@@ -105,6 +113,12 @@ impl Data {
                 None => (cell.to_string(), None),
             })
             .unzip();
+        if let Some(i) = (0..names.len()).find(|&i| names[..i].contains(&names[i])) {
+            return Err(line_error(
+                header.position().map_or(1, csv::Position::line),
+                format!("column '{}' is named twice", names[i]),
+            ));
+        }
         let mut rows = Vec::new();
         for record in records {
             let record = record.map_err(|e| line_error(csv_line(&e), e.to_string()))?;
@@ -253,7 +267,11 @@ impl Data {
         ];
         for (letter, count, unit) in columns {
             for j in 1..=count {
-                out.names.push(format!("{letter}{j}"));
+                let name = format!("{letter}{j}");
+                if out.names.contains(&name) {
+                    return Err(ResultsError::Column { name });
+                }
+                out.names.push(name);
                 out.units.push(Some(unit.into()));
             }
         }
@@ -270,6 +288,7 @@ impl Data {
             .iter()
             .zip(&self.units)
             .map(|(n, u)| u.as_ref().map_or(n.clone(), |u| format!("{n} [{u}]")))
+            .map(|cell| quoted(&cell))
             .collect();
         let mut csv = header.join(",") + "\n";
         for row in &self.rows {
@@ -277,6 +296,17 @@ impl Data {
             csv.push('\n');
         }
         csv
+    }
+}
+
+/// A CSV cell as written: quoted (inner quotes doubled) when it holds a
+/// separator, a quote, a line break or surrounding spaces, so that
+/// [`Data::parse`] reads it back as it was.
+fn quoted(cell: &str) -> String {
+    let plain = !cell.contains([',', '"', '\n', '\r', '#']) && cell.trim() == cell;
+    match plain {
+        true => cell.to_string(),
+        false => format!("\"{}\"", cell.replace('"', "\"\"")),
     }
 }
 

@@ -49,6 +49,9 @@ pub struct Design {
     pub runs: Vec<Vec<f64>>,
 }
 
+/// Most centre points of a design (each is a run): docs/limits.md.
+pub const MAX_CENTRE: usize = 1_000_000;
+
 /// Full factorial 2^k in standard order (first factor alternates fastest),
 /// then `centre` centre points.
 pub fn full_factorial(factors: &[&str], centre: usize) -> Result<Design, DesignError> {
@@ -56,6 +59,12 @@ pub fn full_factorial(factors: &[&str], centre: usize) -> Result<Design, DesignE
     if k == 0 || k > 20 {
         return Err(DesignError::Size(format!("{k} factors: expected 1 to 20")));
     }
+    if centre > MAX_CENTRE {
+        return Err(DesignError::Size(format!(
+            "{centre} centre points: at most {MAX_CENTRE} (limit MAX_CENTRE)"
+        )));
+    }
+    distinct_names(factors)?;
     let mut runs: Vec<Vec<f64>> = (0..1usize << k)
         .map(|r| {
             (0..k)
@@ -79,6 +88,14 @@ fn parse_generator(text: &str, base: &[String]) -> Result<(String, f64, Vec<usiz
     let (name, word) = text
         .split_once('=')
         .ok_or_else(|| error("expected NEW=WORD, e.g. D=AB"))?;
+    if name.trim().is_empty() {
+        return Err(error("no name before '=': expected NEW=WORD, e.g. D=AB"));
+    }
+    if base.iter().any(|b| b == name.trim()) {
+        return Err(error(
+            "it generates a base factor: name a factor of its own",
+        ));
+    }
     let word = word.trim();
     let (sign, word) = match word.strip_prefix('-') {
         Some(rest) => (-1.0, rest),
@@ -116,6 +133,7 @@ pub fn fractional_factorial(columns: &[&str]) -> Result<Design, DesignError> {
         .collect::<Result<Vec<_>, _>>()?;
     let mut factors = base.clone();
     factors.extend(generators.iter().map(|g| g.0.clone()));
+    distinct_names(&factors.iter().map(String::as_str).collect::<Vec<_>>())?;
     let runs =
         full.runs
             .iter()
@@ -333,6 +351,7 @@ pub fn make(
     options: &DesignOptions,
 ) -> Result<(Design, Option<usize>), DesignError> {
     let (centre, runs, seed) = (options.centre, options.runs, options.seed);
+    check_options(kind, names, options)?;
     Ok(match kind {
         DesignKind::Full => (full_factorial(names, centre)?, None),
         DesignKind::Fractional => {
@@ -346,10 +365,70 @@ pub fn make(
     })
 }
 
+/// Refuses options the kind would ignore (generators outside a fraction,
+/// no generators for one, centre points of a random design, no runs for
+/// one), and factor names given twice.
+fn check_options(
+    kind: DesignKind,
+    names: &[&str],
+    options: &DesignOptions,
+) -> Result<(), DesignError> {
+    let random = matches!(kind, DesignKind::LatinHypercube | DesignKind::Uniform);
+    let size = |why: &str| Err(DesignError::Size(why.into()));
+    match kind {
+        DesignKind::Fractional if options.generators.is_empty() => {
+            size("a fraction needs generators (e.g. D=AB)")
+        }
+        DesignKind::Fractional => Ok(()),
+        _ if !options.generators.is_empty() => {
+            size("generators make a fractional design only: leave them out or make it 'fractional'")
+        }
+        _ if random && options.centre > 0 => {
+            size("centre points belong to factorial and composite designs, not to lhs or uniform")
+        }
+        _ if random && options.runs == 0 => size("an lhs or uniform design needs at least one run"),
+        _ => Ok(()),
+    }?;
+    distinct_names(names)
+}
+
+/// Refuses a factor name that is empty or given twice.
+fn distinct_names(names: &[&str]) -> Result<(), DesignError> {
+    for (i, name) in names.iter().enumerate() {
+        if name.trim().is_empty() {
+            return Err(DesignError::Size(format!(
+                "factor {}: an empty name",
+                i + 1
+            )));
+        }
+        if names[..i].iter().any(|n| n.trim() == name.trim()) {
+            return Err(DesignError::Size(format!("factor '{name}' is given twice")));
+        }
+    }
+    Ok(())
+}
+
 /// The fraction whose generated factors are given by `generators`, and its
 /// resolution.
 fn fraction(names: &[&str], generators: &[String]) -> Result<(Design, usize), DesignError> {
-    let generated = |n: &&str| generators.iter().any(|g| g.starts_with(&format!("{n}=")));
+    if let Some(g) = generators.iter().find(|g| {
+        let name = g.split_once('=').map_or("", |(n, _)| n.trim());
+        !names.iter().any(|n| n.trim() == name)
+    }) {
+        return Err(DesignError::Generator {
+            generator: g.clone(),
+            reason: format!(
+                "it generates no factor of the design ({})",
+                names.join(", ")
+            ),
+        });
+    }
+    let generated = |n: &&str| {
+        generators.iter().any(|g| {
+            g.split_once('=')
+                .is_some_and(|(name, _)| name.trim() == n.trim())
+        })
+    };
     let mut columns: Vec<&str> = names.iter().copied().filter(|n| !generated(n)).collect();
     columns.extend(generators.iter().map(String::as_str));
     let words: Vec<&str> = generators.iter().map(String::as_str).collect();

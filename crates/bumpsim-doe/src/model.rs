@@ -62,6 +62,14 @@ pub enum FactorError {
         /// The text as given.
         spec: String,
     },
+    /// A name the files and terms cannot hold.
+    #[error("factor '{name}': {reason}")]
+    Name {
+        /// The name as given.
+        name: String,
+        /// What is wrong.
+        reason: &'static str,
+    },
     /// A range whose low level is not below its high level.
     #[error(
         "factor '{name}': low {low} must be finite and below high {high} (a factor that does not vary cannot be fitted)"
@@ -95,8 +103,43 @@ impl FromStr for Factor {
         };
         let low: f64 = low.trim().parse().map_err(|_| bad())?;
         let high: f64 = high.trim().parse().map_err(|_| bad())?;
-        Factor::new(name.trim(), low, high, None).map_err(|_| bad())
+        Factor::new(name.trim(), low, high, None).map_err(|e| match e {
+            FactorError::Name { .. } => e,
+            _ => bad(),
+        })
     }
+}
+
+/// Characters a factor name cannot hold: they separate the fields of the
+/// command line (`,` `:` `=`), of model terms (`*` `^`) and of CSV headers
+/// (`[` `]` `"`).
+pub const RESERVED: [char; 8] = [',', ':', '=', '*', '^', '[', ']', '"'];
+
+/// Checks a factor name: not empty, no surrounding spaces, no control or
+/// [`RESERVED`] character, and not `intercept` (a model term of its own).
+pub fn check_name(name: &str) -> Result<(), FactorError> {
+    let bad = |reason| {
+        Err(FactorError::Name {
+            name: name.escape_debug().to_string(),
+            reason,
+        })
+    };
+    if name.trim().is_empty() {
+        return bad("an empty name");
+    }
+    if name.trim() != name {
+        return bad("spaces around the name");
+    }
+    if name
+        .chars()
+        .any(|c| c.is_control() || RESERVED.contains(&c))
+    {
+        return bad("a control character or one of , : = * ^ [ ] \" in the name");
+    }
+    if name.eq_ignore_ascii_case("intercept") {
+        return bad("'intercept' is the model's constant term; name the factor otherwise");
+    }
+    Ok(())
 }
 
 impl Factor {
@@ -107,6 +150,7 @@ impl Factor {
         high: f64,
         unit: Option<String>,
     ) -> Result<Factor, FactorError> {
+        check_name(name)?;
         if !(low.is_finite() && high.is_finite() && low < high) {
             return Err(FactorError::Range {
                 name: name.into(),
@@ -241,6 +285,9 @@ pub enum ModelFileError {
         /// The reason.
         source: std::io::Error,
     },
+    /// Not a regular file, too large or not text.
+    #[error(transparent)]
+    Read(#[from] bumpsim_core::files::ReadError),
     /// The file is not a model file's JSON.
     #[error("{}: not a DOE model file", path.display())]
     Json {
@@ -254,10 +301,7 @@ pub enum ModelFileError {
 impl ModelFile {
     /// Reads a model file (JSON, as `doe fit` writes it or by hand).
     pub fn read(path: &Path) -> Result<ModelFile, ModelFileError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ModelFileError::Io {
-            path: path.into(),
-            source,
-        })?;
+        let text = bumpsim_core::files::read_text(path)?;
         serde_json::from_str(&text).map_err(|source| ModelFileError::Json {
             path: path.into(),
             source,
@@ -269,7 +313,13 @@ impl ModelFile {
     /// `xtx_inverse` that is square with one row per term.
     pub fn validate(&self) -> Result<(), ModelError> {
         let bad = |what: String| Err(ModelError::Input(format!("model file: {what}")));
-        for f in &self.factors {
+        for (i, f) in self.factors.iter().enumerate() {
+            if let Err(e) = check_name(&f.name) {
+                return bad(e.to_string());
+            }
+            if self.factors[..i].iter().any(|g| g.name == f.name) {
+                return bad(format!("factor '{}' is listed twice", f.name));
+            }
             if !(f.low.is_finite() && f.high.is_finite() && f.low < f.high) {
                 return bad(format!(
                     "factor '{}': need finite low < high, got {}..{}",
@@ -277,7 +327,13 @@ impl ModelFile {
                 ));
             }
         }
-        for r in &self.responses {
+        for (i, r) in self.responses.iter().enumerate() {
+            if r.name.trim().is_empty() || self.responses[..i].iter().any(|s| s.name == r.name) {
+                return bad(format!(
+                    "response '{}': a response needs a name of its own (empty or listed twice)",
+                    r.name
+                ));
+            }
             if let Some((term, c)) = r.coefficients.iter().find(|(_, c)| !c.is_finite()) {
                 return bad(format!(
                     "response '{}': coefficient of '{term}' is {c}",
@@ -316,7 +372,12 @@ impl ModelFile {
                 "{name} = {value}: a factor value must be a finite number"
             )));
         }
-        for (name, _) in at {
+        for (i, (name, _)) in at.iter().enumerate() {
+            if at[..i].iter().any(|(n, _)| n == name) {
+                return Err(ModelError::Input(format!(
+                    "factor '{name}' is given twice: give each factor once"
+                )));
+            }
             if !self.factors.iter().any(|f| &f.name == name) {
                 let known: Vec<&str> = self.factors.iter().map(|f| f.name.as_str()).collect();
                 return Err(ModelError::Input(format!(
@@ -372,6 +433,13 @@ impl Response {
             value += c * term.value(z);
         }
         let (ci95, pi95) = self.intervals(z, factors, value).unzip();
+        let finite = |i: Option<[f64; 2]>| i.is_none_or(|[a, b]| a.is_finite() && b.is_finite());
+        if !(value.is_finite() && finite(ci95) && finite(pi95)) {
+            return Err(ModelError::Input(format!(
+                "response '{}': the prediction is {value} (beyond the largest number): the factor values lie too far outside the design region",
+                self.name
+            )));
+        }
         Ok(Predicted {
             name: self.name.clone(),
             unit: self.unit.clone(),

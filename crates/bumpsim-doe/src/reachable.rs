@@ -67,6 +67,14 @@ impl LinearMap {
         };
         let (cx, gx) = main_effects(find(x)?, &factors)?;
         let (cy, gy) = main_effects(find(y)?, &factors)?;
+        for (name, c, g) in [(x, cx, &gx), (y, cy, &gy)] {
+            let reach = g.iter().fold(c.abs(), |sum, g| sum + g.abs());
+            if !reach.is_finite() {
+                return Err(ReachError(format!(
+                    "response '{name}': its coefficients reach beyond the largest number: rescale it (other units)"
+                )));
+            }
+        }
         Ok(LinearMap {
             names: [x.into(), y.into()],
             centre: [cx, cy],
@@ -192,10 +200,18 @@ pub struct Corner {
     pub residual: f64,
 }
 
-/// The four corners of the cell `[x0, x1] × [y0, y1]`.
-pub fn cell(map: &LinearMap, x: [f64; 2], y: [f64; 2]) -> Vec<Corner> {
+/// The four corners of the cell `[x0, x1] × [y0, y1]` (finite, x0 ≤ x1,
+/// y0 ≤ y1).
+pub fn cell(map: &LinearMap, x: [f64; 2], y: [f64; 2]) -> Result<Vec<Corner>, ReachError> {
+    let finite = x.iter().chain(&y).all(|v| v.is_finite());
+    if !(finite && x[0] <= x[1] && y[0] <= y[1]) {
+        return Err(ReachError(format!(
+            "cell {}..{} × {}..{}: expected finite bounds X0 ≤ X1, Y0 ≤ Y1",
+            x[0], x[1], y[0], y[1]
+        )));
+    }
     let polygon = map.boundary();
-    [[x[0], y[0]], [x[1], y[0]], [x[1], y[1]], [x[0], y[1]]]
+    let corners = [[x[0], y[0]], [x[1], y[0]], [x[1], y[1]], [x[0], y[1]]]
         .into_iter()
         .map(|target| {
             let (factors, residual) = map.solve(target);
@@ -207,5 +223,6 @@ pub fn cell(map: &LinearMap, x: [f64; 2], y: [f64; 2]) -> Vec<Corner> {
                 residual,
             }
         })
-        .collect()
+        .collect();
+    Ok(corners)
 }

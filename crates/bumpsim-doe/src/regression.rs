@@ -221,6 +221,12 @@ pub fn fit(
     let mean = y.iter().sum::<f64>() / n as f64;
     let ss_tot: f64 = y.iter().map(|v| (v - mean).powi(2)).sum();
     let ss_res: f64 = residuals.iter().map(|e| e * e).sum();
+    if !(ss_tot.is_finite() && ss_res.is_finite()) {
+        return Err(RegressionError::Design(format!(
+            "the response varies too much for its sum of squares to be a number (values up to {:e}): rescale it (other units)",
+            y.iter().map(|v| v.abs()).fold(0.0, f64::max)
+        )));
+    }
     let df = n - p;
     let sigma = (df > 0).then(|| (ss_res / df as f64).sqrt());
     let t_dist = (df > 0)
@@ -255,7 +261,7 @@ pub fn fit(
             let t = out.coefficients[j] / se;
             out.std_errors[j] = Some(se);
             out.t[j] = Some(t);
-            out.p[j] = Some(2.0 * (1.0 - dist.cdf(t.abs())));
+            out.p[j] = Some(2.0 * upper_tail(|x| dist.cdf(x), t.abs())).filter(|p| !p.is_nan());
             out.ci95[j] = Some([out.coefficients[j] - q * se, out.coefficients[j] + q * se]);
         }
     }
@@ -323,8 +329,8 @@ fn anova(
         let df_lof = df - df_pe;
         let ss_lof = ss_res - ss_pe;
         let f = (ss_lof / df_lof as f64) / (ss_pe / df_pe as f64);
-        let p =
-            FisherSnedecor::new(df_lof as f64, df_pe as f64).map_or(f64::NAN, |d| 1.0 - d.cdf(f));
+        let p = FisherSnedecor::new(df_lof as f64, df_pe as f64)
+            .map_or(f64::NAN, |d| upper_tail(|x| d.cdf(x), f));
         LackOfFit {
             ss_lack_of_fit: ss_lof,
             df_lack_of_fit: df_lof,
@@ -340,9 +346,15 @@ fn anova(
         ss_residual: ss_res,
         df_residual: df,
         f,
-        p: fdist.zip(f).map(|(d, f)| 1.0 - d.cdf(f)),
+        p: fdist.zip(f).map(|(d, f)| upper_tail(|x| d.cdf(x), f)),
         lack_of_fit,
     }
+}
+
+/// 1 − cdf(x), or NaN for a NaN statistic (0/0 of a perfect fit or of
+/// identical replicates): statrs panics on NaN.
+fn upper_tail(cdf: impl Fn(f64) -> f64, x: f64) -> f64 {
+    if x.is_nan() { f64::NAN } else { 1.0 - cdf(x) }
 }
 
 /// Points of a normal probability plot: (normal quantile, sorted residual),

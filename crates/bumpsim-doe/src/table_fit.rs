@@ -40,6 +40,10 @@ pub struct ResponseFit {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum TableFitError {
+    /// Factors or responses named twice or both, or levels that do not
+    /// match the factors.
+    #[error("{0}")]
+    Spec(String),
     /// A column is missing or a factor range is invalid.
     #[error(transparent)]
     Column(#[from] ColumnError),
@@ -68,6 +72,7 @@ pub fn fit_table(
     data: &Data,
     spec: &TableFitSpec,
 ) -> Result<(ModelFile, Vec<ResponseFit>), TableFitError> {
+    check(spec)?;
     let (factors, coded) = data.coded(&spec.factors, &spec.low, &spec.high)?;
     let names: Vec<String> = factors.iter().map(|f| f.name.clone()).collect();
     let model_terms = terms(factors.len(), spec.interactions, spec.squares);
@@ -96,4 +101,29 @@ pub fn fit_table(
         });
     }
     Ok((model, fits))
+}
+
+/// Refuses a spec whose values would be ignored or mixed up: a factor or
+/// response named twice, a column both factor and response, and low or
+/// high levels that are not one per factor.
+fn check(spec: &TableFitSpec) -> Result<(), TableFitError> {
+    let bad = |why: String| Err(TableFitError::Spec(why));
+    for (what, names) in [("factor", &spec.factors), ("response", &spec.responses)] {
+        if let Some(i) = (0..names.len()).find(|&i| names[..i].contains(&names[i])) {
+            return bad(format!("{what} '{}' is given twice", names[i]));
+        }
+    }
+    if let Some(both) = spec.factors.iter().find(|f| spec.responses.contains(f)) {
+        return bad(format!("'{both}' is given as a factor and as a response"));
+    }
+    for (what, levels) in [("low", &spec.low), ("high", &spec.high)] {
+        if !levels.is_empty() && levels.len() != spec.factors.len() {
+            return bad(format!(
+                "{} {what} levels for {} factors: give one per factor, or none (the data's extremes)",
+                levels.len(),
+                spec.factors.len()
+            ));
+        }
+    }
+    Ok(())
 }

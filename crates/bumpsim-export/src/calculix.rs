@@ -328,7 +328,68 @@ pub fn read_results(deck_path: &Path) -> Result<Results, ExportError> {
     }
     let dat_path = deck_path.with_extension("dat");
     let dat = read(&dat_path)?;
-    parse_dat(&dat, &dat_path, &meta)
+    let results = parse_dat(&dat, &dat_path, &meta)?;
+    check_complete(&dat, &dat_path, analysis_end(&deck), &results, &meta)?;
+    Ok(results)
+}
+
+/// The end of the deck's analysis and its increment, both in deck time
+/// units, for a deck that runs one with fixed increments, as
+/// [`calculix_deck`] writes (`*DYNAMIC, DIRECT` and the line after it:
+/// increment, period).
+fn analysis_end(deck: &str) -> Option<(f64, f64)> {
+    let mut lines = deck.lines();
+    lines.find(|l| {
+        let l = l.trim_start().to_ascii_uppercase();
+        l.starts_with("*DYNAMIC") && l.contains("DIRECT")
+    })?;
+    let mut numbers = lines
+        .next()?
+        .split(',')
+        .map(|w| w.trim().parse::<f64>().ok());
+    let (increment, period) = (numbers.next()??, numbers.next()??);
+    Some((period, increment))
+}
+
+/// Refuses a `.dat` that a run cut short or a copy cut off: one that ends
+/// mid-line, or whose last print is not the end of the deck's analysis
+/// (CalculiX prints the last increment of a step whatever the print
+/// frequency; the `.dat` gives times to 7 digits).
+fn check_complete(
+    dat: &str,
+    path: &Path,
+    end: Option<(f64, f64)>,
+    results: &Results,
+    meta: &DeckMeta,
+) -> Result<(), ExportError> {
+    let error = |line: usize, reason: String| ExportError::Dat {
+        path: path.into(),
+        line,
+        reason,
+    };
+    if !dat.ends_with('\n') {
+        return Err(error(
+            dat.lines().count(),
+            "the file ends mid-line: the run was cut short or the file cut off".into(),
+        ));
+    }
+    let last = results
+        .time
+        .last()
+        .map_or(0.0, |t| (t - meta.start) * meta.units.time());
+    match end {
+        Some((period, increment)) if last < period - (0.5 * increment).max(1e-6 * period) => {
+            Err(error(
+                0,
+                format!(
+                    "the results end at t = {} s but the deck's analysis runs to {} s: the run stopped early or the file was cut off",
+                    last / meta.units.time() + meta.start,
+                    period / meta.units.time() + meta.start
+                ),
+            ))
+        }
+        _ => Ok(()),
+    }
 }
 
 /// Most masses a deck read back may declare (a guard against a corrupt
@@ -474,6 +535,34 @@ mod tests {
         let foreign = block("BUMPSIM_NALL", "1e-3", [(1, 0.5), (2, 0.25)]);
         let e = parse_dat(&foreign, Path::new("x.dat"), &meta).unwrap_err();
         assert!(e.to_string().contains("not a mass node 1001..1002"), "{e}");
+    }
+
+    /// A `.dat` cut anywhere (mid-line, or after a whole block) returned
+    /// the times before the cut with exit 0; now it is the whole run or an
+    /// error.
+    #[test]
+    fn a_cut_dat_is_refused_wherever_it_is_cut() {
+        let dir = std::env::temp_dir().join(format!("bumpsim-cut-dat-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let deck = "** bumpsim-deck: units=si axis=+x start=0e0 dof=2 offset=0 prefix=BUMPSIM_\n*STEP, INC=14\n*DYNAMIC, DIRECT, ALPHA=0.0\n1.0e-4, 4.0e-4\n*NODE PRINT, NSET=BUMPSIM_NALL, FREQUENCY=1\nU\n*END STEP\n";
+        std::fs::write(dir.join("car.inp"), deck).unwrap();
+        let dat: String = (1..=4)
+            .map(|k| {
+                format!(
+                    "\n displacements (vx,vy,vz) for set BUMPSIM_NALL and time  {k}.000000E-04\n\n         1  {k}.250000E-03  0.000000E+00  0.000000E+00\n         2  {k}.125000E-04  0.000000E+00  0.000000E+00\n"
+                )
+            })
+            .collect();
+        std::fs::write(dir.join("car.dat"), &dat).unwrap();
+        let whole = read_results(&dir.join("car.inp")).unwrap();
+        assert_eq!(whole.time.len(), 4);
+        for cut in 1..dat.len() {
+            std::fs::write(dir.join("car.dat"), &dat[..cut]).unwrap();
+            if let Ok(r) = read_results(&dir.join("car.inp")) {
+                assert_eq!(r, whole, "cut after {cut} bytes read as a whole run");
+            }
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

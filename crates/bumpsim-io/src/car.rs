@@ -70,6 +70,31 @@ pub enum CarError {
     /// The output is refused (it would land on an input) or cannot be written.
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
+    /// The file is not a regular file, too large or not text.
+    #[error(transparent)]
+    Read(#[from] bumpsim_core::files::ReadError),
+}
+
+/// Refuses a JSON model whose `dof` (as an identification result states
+/// it) is not its number of masses: the model would run with another DOF
+/// than the file says.
+fn check_dof(
+    object: &serde_json::Map<String, serde_json::Value>,
+    path: &Path,
+) -> Result<(), CarError> {
+    let masses = object
+        .get("masses")
+        .and_then(|m| m.as_array())
+        .map(Vec::len);
+    match (object.get("dof"), masses) {
+        (Some(dof), Some(n)) if dof.is_number() && dof.as_u64() != Some(n as u64) => {
+            Err(CarError::Syntax {
+                path: path.into(),
+                message: format!("\"dof\": {dof}, but {n} masses are given: one of them is wrong"),
+            })
+        }
+        _ => Ok(()),
+    }
 }
 
 /// A car file's fields ([`ModelFields`]: the model's, and the car's name)
@@ -84,10 +109,7 @@ fn into_car(fields: ModelFields, path: &Path) -> Result<Car, CarError> {
 }
 
 fn read_text(path: &Path) -> Result<String, CarError> {
-    std::fs::read_to_string(path).map_err(|source| CarError::Io {
-        path: path.into(),
-        source,
-    })
+    Ok(bumpsim_core::files::read_text(path)?)
 }
 
 impl Car {
@@ -118,6 +140,7 @@ impl Car {
         };
         let mut object: serde_json::Map<String, serde_json::Value> =
             serde_json::from_str(text).map_err(syntax)?;
+        check_dof(&object, path)?;
         // the model fields only: a result's other fields are not car-file keys
         object.retain(|key, _| ["name", "masses", "dampers", "springs"].contains(&key.as_str()));
         let fields: ModelFields =
@@ -168,6 +191,10 @@ mod tests {
     #[test]
     fn json_results_provide_the_model_fields() {
         let json = r#"{"dof": 2, "masses": [1.0, 2.0], "dampers": [3.0], "springs": [4.0], "objective": 0.5}"#;
+        // issue 34: "dof": 3 with two masses ran as 2-DOF
+        let three = json.replacen("\"dof\": 2", "\"dof\": 3", 1);
+        let e = Car::parse_json(&three, Path::new("r.json")).unwrap_err();
+        assert!(e.to_string().contains("\"dof\": 3, but 2 masses"), "{e}");
         let car = Car::parse_json(json, Path::new("r.json")).unwrap();
         assert_eq!(car.model.parameters(), vec![1.0, 2.0, 3.0, 4.0]);
         let err = Car::parse_json(r#"{"masses": [0.0]}"#, Path::new("r.json")).unwrap_err();

@@ -60,6 +60,9 @@ pub enum SignalFileError {
     /// The output is refused (it would land on an input) or cannot be written.
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
+    /// The file is not a regular file or too large.
+    #[error(transparent)]
+    Read(#[from] bumpsim_core::files::ReadError),
 }
 
 /// Why explicit sample times (an ISO-MME time channel) are not a uniform
@@ -139,9 +142,18 @@ pub fn decode(bytes: &[u8]) -> String {
 
 /// Reads and decodes a text file.
 pub fn read_text(path: &std::path::Path) -> Result<String, SignalFileError> {
-    std::fs::read(path)
-        .map(|b| decode(&b))
-        .map_err(|e| SignalFileError::read(path, e))
+    Ok(decode(&read_bytes(path)?))
+}
+
+/// Reads a file whole within bounds ([`bumpsim_core::files::read_bytes`]):
+/// a missing or unreadable file is [`SignalFileError::Io`], one that is no
+/// regular file or too large [`SignalFileError::Read`].
+pub fn read_bytes(path: &std::path::Path) -> Result<Vec<u8>, SignalFileError> {
+    use bumpsim_core::files::ReadError;
+    bumpsim_core::files::read_bytes(path).map_err(|e| match e {
+        ReadError::Io { path, source } => SignalFileError::read(path, source),
+        other => SignalFileError::Read(other),
+    })
 }
 
 /// Parses a number as labs write it (`1.0E-4`, `9.999999999999999e-05`,

@@ -28,6 +28,9 @@ use bumpsim_core::series::UniformSeries;
 use bumpsim_core::units::{Dimension, Unit, UnitError};
 use std::path::{Path, PathBuf};
 
+mod checks;
+use checks::{check_column_names, check_values};
+
 /// A data column, values in SI.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Column {
@@ -120,6 +123,20 @@ pub enum TableError {
         /// The cell.
         text: String,
     },
+    /// A finite number that is infinite once converted to SI (`1e308` kN).
+    #[error(
+        "{path}:{line}: column '{column}' holds '{text}', beyond the largest number once converted to SI"
+    )]
+    Overflow {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: u64,
+        /// Column header.
+        column: String,
+        /// The cell.
+        text: String,
+    },
     /// The time base is not usable.
     #[error("{path}:{line}: {reason}")]
     Time {
@@ -140,6 +157,17 @@ pub enum TableError {
         /// The data columns there are.
         available: String,
     },
+    /// A column the table reader would not read back as written (its name,
+    /// or its length).
+    #[error("{path}: column '{name}': {reason}: the file would not read back as written")]
+    ColumnName {
+        /// The file to write.
+        path: PathBuf,
+        /// The name (control characters escaped).
+        name: String,
+        /// What is wrong.
+        reason: &'static str,
+    },
     /// A file cannot be written.
     #[error("{path}: cannot write: {source}")]
     Write {
@@ -151,6 +179,9 @@ pub enum TableError {
     /// The output is refused (it would land on an input) or cannot be written.
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
+    /// The file is not a regular file or too large.
+    #[error(transparent)]
+    Read(#[from] bumpsim_core::files::ReadError),
 }
 
 /// Splits a `name [unit]` header into its parts (the one rule of such
@@ -160,10 +191,7 @@ pub use bumpsim_core::units::split_unit as split_header;
 impl Table {
     /// Reads a CSV file.
     pub fn read(path: &Path) -> Result<Table, TableError> {
-        let bytes = std::fs::read(path).map_err(|source| TableError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let bytes = bumpsim_core::files::read_bytes(path)?;
         let text = String::from_utf8(bytes).map_err(|e| TableError::Syntax {
             path: path.to_path_buf(),
             line: line_of_offset(e.as_bytes(), e.utf8_error().valid_up_to()),
@@ -193,7 +221,7 @@ impl Table {
                 });
             }
             for ((cell, (name, unit)), column) in rows.record.iter().zip(&units).zip(&mut values) {
-                column.push(unit.to_si(number(cell.trim(), name, unit, line, path)?));
+                column.push(number(cell.trim(), name, unit, line, path)?);
             }
             lines.push(line);
         }
@@ -204,7 +232,7 @@ impl Table {
             });
         }
         let time = values.remove(0);
-        let (start, step) = uniform_time_base(&time, &lines, path)?;
+        let (start, step) = time_base(&time, &lines, path)?;
         let columns = units
             .into_iter()
             .skip(1)
@@ -253,13 +281,17 @@ impl Table {
         }
     }
 
-    /// A column as a uniform series (SI).
-    pub fn series(&self, column: &Column) -> UniformSeries {
-        // start, step and values were all checked while reading
-        match UniformSeries::new(self.start, self.step, column.values.clone()) {
-            Ok(series) => series,
-            Err(e) => unreachable!("checked while reading: {e}"),
-        }
+    /// A column as a uniform series (SI). A table read from a file always
+    /// gives one (start, step and values were checked while reading); one
+    /// built by hand may not.
+    pub fn series(&self, column: &Column) -> Result<UniformSeries, TableError> {
+        UniformSeries::new(self.start, self.step, column.values.clone()).map_err(|e| {
+            TableError::Time {
+                path: self.path.clone(),
+                line: 0,
+                reason: format!("column '{}': {e}", column.name),
+            }
+        })
     }
 
     fn column_error(&self, reason: String) -> TableError {
@@ -391,13 +423,21 @@ fn header_units(
     }
 }
 
+/// A cell as a finite number in SI.
 fn number(cell: &str, name: &str, unit: &Unit, line: u64, path: &Path) -> Result<f64, TableError> {
+    let column = || format!("{} [{unit}]", excerpt(name));
     match cell.parse::<f64>() {
-        Ok(v) if v.is_finite() => Ok(v),
+        Ok(v) if v.is_finite() && unit.to_si(v).is_finite() => Ok(unit.to_si(v)),
+        Ok(v) if v.is_finite() => Err(TableError::Overflow {
+            path: path.into(),
+            line,
+            column: column(),
+            text: excerpt(cell),
+        }),
         _ => Err(TableError::Number {
             path: path.into(),
             line,
-            column: format!("{} [{unit}]", excerpt(name)),
+            column: column(),
             text: excerpt(cell),
         }),
     }
@@ -421,6 +461,18 @@ pub fn excerpt(text: &str) -> String {
         None => shown,
         Some(_) => format!("{shown}… ({} bytes)", text.len()),
     }
+}
+
+/// Start and mean interval of a time column, after the uniformity checks
+/// and the series' own rule (a first time within 1e15 intervals of zero).
+fn time_base(time: &[f64], lines: &[u64], path: &Path) -> Result<(f64, f64), TableError> {
+    let (start, step) = uniform_time_base(time, lines, path)?;
+    UniformSeries::new(start, step, vec![0.0]).map_err(|e| TableError::Time {
+        path: path.into(),
+        line: lines[0],
+        reason: e.to_string(),
+    })?;
+    Ok((start, step))
 }
 
 /// Start and mean interval of a time column, after the uniformity checks.
@@ -516,6 +568,33 @@ pub fn write_table_in(
     time: &[f64],
     columns: &[OutputColumn<'_>],
 ) -> Result<(), TableError> {
+    let text = table_text(path, time_unit, time, columns)?;
+    crate::output::write_file(path, text.as_bytes())?;
+    Ok(())
+}
+
+/// The CSV text [`write_table_in`] writes (`path` names the file in
+/// errors), refused where [`Table::read`] would not read it back as
+/// written: a column name that is empty, has surrounding spaces, holds `,`
+/// `"` `[` `]` or a control character, or is another column's or `time`; a
+/// column of another length than the times; a value that is not finite in
+/// the unit written; times that are no uniform time base of two or more.
+pub fn table_text(
+    path: &Path,
+    time_unit: Unit,
+    time: &[f64],
+    columns: &[OutputColumn<'_>],
+) -> Result<String, TableError> {
+    check_column_names(path, columns)?;
+    let rows: Vec<u64> = (2..time.len() as u64 + 2).collect();
+    if time.len() < 2 {
+        return Err(TableError::Empty {
+            path: path.into(),
+            what: "fewer than two rows to write: no sample interval",
+        });
+    }
+    check_values(path, time_unit, time, columns, &rows)?;
+    time_base(time, &rows, path)?;
     let mut text = String::with_capacity(time.len() * (columns.len() + 1) * 16);
     text.push_str(&format!("time [{}]", time_unit.symbol));
     for c in columns {
@@ -530,8 +609,7 @@ pub fn write_table_in(
         }
         text.push('\n');
     }
-    crate::output::write_file(path, text.as_bytes())?;
-    Ok(())
+    Ok(text)
 }
 
 /// A number in its shortest round-trip form: plain decimal for ordinary

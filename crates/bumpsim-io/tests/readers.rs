@@ -293,3 +293,25 @@ fn nhtsa_header_channels_and_invalid_cells() {
     let absent = test.select("1").unwrap_err().to_string();
     assert!(absent.contains("absent"), "{absent}");
 }
+
+/// Issue 34: two instrumentation rows numbered 93 put the left
+/// crossmember's samples (`.093`) in the right one's column too.
+#[test]
+fn ev5_curve_numbers_given_twice_are_refused() {
+    let Some(path) = nhtsa() else { return };
+    let dir = scratch("ev5-twice");
+    let bytes = std::fs::read(&path).unwrap();
+    let (from, to) = (b"\n1|94|AC|NA|FLRR|", b"\n1|93|AC|NA|FLRR|");
+    let at = bytes.windows(from.len()).position(|w| w == from).unwrap();
+    let mut edited = bytes.clone();
+    edited[at..at + to.len()].copy_from_slice(to);
+    let copy = dir.join("v10146.EV5");
+    std::fs::write(&copy, edited).unwrap();
+    std::fs::copy(path.with_extension("093"), dir.join("v10146.093")).unwrap();
+    let e = TestData::open(&copy).unwrap_err().to_string();
+    assert!(
+        e.contains("v10146.EV5:114: curve number 93 is also the number of line 113"),
+        "{e}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

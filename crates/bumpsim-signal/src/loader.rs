@@ -47,6 +47,20 @@ pub enum LoadError {
     /// No channel references at all.
     #[error("'channels' is empty")]
     NoChannels,
+    /// One channel picked by two references: it would count twice in a
+    /// sum or a mean.
+    #[error("{path}: channel {number} ({code}) is picked by '{}' and again by '{}': it would count twice; name each channel once", selectors[0], selectors[1])]
+    Twice {
+        /// The test file.
+        path: PathBuf,
+        /// Channel number.
+        number: usize,
+        /// Channel code.
+        code: String,
+        /// The first selector that picks it and the later one (boxed: the
+        /// error stays small).
+        selectors: Box<[String; 2]>,
+    },
     /// Several channels and no way to combine them.
     #[error("{count} channels selected: say combine = \"sum\" or \"mean\"")]
     Combine {
@@ -179,8 +193,22 @@ impl Loader {
     ) -> Result<Loaded<Vec<Channel>>, LoadError> {
         let mut channels = Vec::new();
         let mut notes = Vec::new();
+        let mut picked: Vec<(PathBuf, usize, &str)> = Vec::new();
         for source in sources {
             let test = self.open(&source.path)?;
+            for i in test.select(&source.selector)?.indices {
+                let key = (source.path.clone(), i);
+                if let Some((_, _, first)) = picked.iter().find(|(p, j, _)| (p, *j) == (&key.0, i))
+                {
+                    return Err(LoadError::Twice {
+                        path: key.0,
+                        number: test.entries[i].number,
+                        code: test.entries[i].code.clone(),
+                        selectors: Box::new([first.to_string(), source.selector.clone()]),
+                    });
+                }
+                picked.push((key.0, i, &source.selector));
+            }
             let loaded = select(test, &source.selector)?;
             notes.extend(loaded.notes);
             for channel in loaded.data {

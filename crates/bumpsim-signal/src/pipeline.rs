@@ -60,6 +60,9 @@ pub enum PipelineError {
         /// What is wrong.
         message: String,
     },
+    /// The pipeline file is not a regular file or too large.
+    #[error(transparent)]
+    Read(bumpsim_core::files::ReadError),
     /// A test file or channel problem.
     #[error(transparent)]
     Data(#[from] SignalFileError),
@@ -165,9 +168,12 @@ impl Pipeline {
             path: path.to_path_buf(),
             message,
         };
-        let text = std::fs::read_to_string(path).map_err(|e| error(format!("cannot read: {e}")))?;
+        let text = bumpsim_core::files::read_text(path).map_err(PipelineError::Read)?;
         let mut pipeline: Pipeline =
             toml::from_str(&text).map_err(|e| error(bumpsim_io::toml_message(&text, &e)))?;
+        // names head CSV columns, plot files and `from`: one each, printable
+        let names = pipeline.signal.iter().map(|s| s.name.as_str());
+        bumpsim_core::names::check_names("[[signal]]", names).map_err(|e| error(e.to_string()))?;
         pipeline.base = path.parent().map(Path::to_path_buf).unwrap_or_default();
         Ok(pipeline)
     }
@@ -365,6 +371,7 @@ pub fn export(
         balance: None,
     };
     let mut numbers = Vec::new();
+    let mut picked: Vec<(usize, &str)> = Vec::new();
     for selector in selectors {
         let (channels, notes) = select_all(test, std::slice::from_ref(selector))?;
         result
@@ -381,8 +388,9 @@ pub fn export(
                 })?]
             }
             _ => {
-                let picked = test.select(selector)?.indices;
-                numbers.extend(picked.iter().map(|&i| Some(test.entries[i].number)));
+                let indices = test.select(selector)?.indices;
+                once(test, &indices, selector, &mut picked)?;
+                numbers.extend(indices.iter().map(|&i| Some(test.entries[i].number)));
                 channels
             }
         };
@@ -398,6 +406,29 @@ pub fn export(
     }
     distinct_codes(&mut result.signals, &numbers);
     Ok(result)
+}
+
+/// Refuses a channel exported as it is a second time (`-c 1 -c 1`): two
+/// columns of one channel, which a table cannot tell apart.
+fn once<'a>(
+    test: &TestData,
+    indices: &[usize],
+    selector: &'a str,
+    picked: &mut Vec<(usize, &'a str)>,
+) -> Result<(), PipelineError> {
+    for &i in indices {
+        if let Some((_, first)) = picked.iter().find(|(j, _)| *j == i) {
+            return Err(PipelineError::Definition {
+                signal: selector.to_string(),
+                message: format!(
+                    "channel {} ({}) is picked by '{first}' and again by '{selector}': name each channel once",
+                    test.entries[i].number, test.entries[i].code
+                ),
+            });
+        }
+        picked.push((i, selector));
+    }
+    Ok(())
 }
 
 /// Gives channels that share a code (NHTSA's top and bottom engine

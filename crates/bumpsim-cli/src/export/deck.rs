@@ -53,7 +53,10 @@ pub(crate) fn write_output(
     } else {
         ""
     };
-    println!("wrote {}: {what}, units {units}{note}", output.display());
+    crate::output::wrote(format!(
+        "wrote {}: {what}, units {units}{note}",
+        output.display()
+    ));
     Ok(())
 }
 

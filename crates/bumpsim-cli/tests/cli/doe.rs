@@ -257,3 +257,156 @@ fn doe_collect_appends_identified_parameters_to_the_design() {
     ]);
     assert_user_error(&short, "1 results for 2 design runs");
 }
+
+/// Writes a 2² design's data with replicates (`y` from A and B) as
+/// `name` in `dir`; with `extreme`, the responses are ±`extreme` instead.
+fn replicated_data(dir: &std::path::Path, name: &str, extreme: Option<f64>) -> PathBuf {
+    let mut data = String::from("A [mm],B [mm],y [N]\n");
+    for (i, (a, b)) in [(0, 0), (1, 0), (0, 1), (1, 1)].into_iter().enumerate() {
+        for r in 0..2 {
+            let sign = if (i + r) % 2 == 0 { 1.0 } else { -1.0 };
+            let y = extreme.map_or(
+                1.0 + 2.0 * f64::from(a) - f64::from(b) + 0.1 * r as f64,
+                |e| sign * e,
+            );
+            data += &format!("{a},{b},{y:e}\n");
+        }
+    }
+    let path = dir.join(name);
+    std::fs::write(&path, data).unwrap();
+    path
+}
+
+/// Issue 34: DOE values that were ignored or mixed up (duplicate or empty
+/// names, infinite levels, generators and runs a design does not use), and
+/// numbers beyond the largest float (a statrs panic, an allocation abort,
+/// an `inf` prediction) are refused with exit 2, and nothing is written.
+#[test]
+fn doe_refuses_what_it_would_ignore_mix_up_or_overflow() {
+    let dir = scratch("doe-hostile");
+    let out = dir.join("d.csv");
+    let o = out.to_str().unwrap();
+    let two = "A:0:1,B:0:1";
+    for (args, needle) in [
+        (
+            &["full", "--factors", "A:0:1,A:0:1"][..],
+            "'A' is given twice",
+        ),
+        (&["full", "--factors", ":0:1,B:0:1"], "an empty name"),
+        (&["full", "--factors", "A:0:inf,B:0:1"], "finite LOW < HIGH"),
+        (
+            &["full", "--factors", "A:-inf:1,B:0:1"],
+            "finite LOW < HIGH",
+        ),
+        (
+            &[
+                "fractional",
+                "--factors",
+                "A:0:1,B:0:1,C:0:1",
+                "--generators",
+                "=AB",
+            ],
+            "generator '=AB'",
+        ),
+        (
+            &["fractional", "--factors", "A:0:1,B:0:1,C:0:1"],
+            "needs generators",
+        ),
+        (
+            &["full", "--factors", two, "--generators", "C=AB"],
+            "fractional design only",
+        ),
+        (&["full", "--factors", two, "--runs", "5"], "--runs"),
+        (&["lhs", "--factors", two, "--centre", "2"], "centre points"),
+        (
+            &["full", "--factors", two, "--centre", "1000000000"],
+            "MAX_CENTRE",
+        ),
+    ] {
+        let mut all = vec!["doe", "design"];
+        all.extend_from_slice(args);
+        all.extend(["-o", o]);
+        assert_user_error(&bumpsim(&all), needle);
+        assert!(!out.exists(), "{args:?}");
+    }
+    let data = replicated_data(&dir, "data.csv", None);
+    let huge = replicated_data(&dir, "huge.csv", Some(1e308));
+    let twice = dir.join("twice.csv");
+    std::fs::write(&twice, "A [mm],A [mm],y [N]\n0,0,1\n1,1,2\n2,2,3\n").unwrap();
+    let json = dir.join("model.json");
+    let (d, j) = (data.to_str().unwrap(), json.to_str().unwrap());
+    for (file, factors, extra, needle) in [
+        (
+            d,
+            "A,B",
+            &["--responses", "y,y"][..],
+            "response 'y' is given twice",
+        ),
+        (d, "A,A", &["--responses", "y"], "factor 'A' is given twice"),
+        (
+            d,
+            "A,B",
+            &["--responses", "A"],
+            "as a factor and as a response",
+        ),
+        (
+            d,
+            "A,B",
+            &["--responses", "y", "--low", "0"],
+            "1 low levels for 2 factors",
+        ),
+        (
+            huge.to_str().unwrap(),
+            "A,B",
+            &["--responses", "y"],
+            "rescale it",
+        ),
+        (
+            twice.to_str().unwrap(),
+            "A",
+            &["--responses", "y"],
+            "named twice",
+        ),
+    ] {
+        let mut all = vec!["doe", "fit", file, "--factors", factors, "--json", j];
+        all.extend_from_slice(extra);
+        assert_user_error(&bumpsim(&all), needle);
+        assert!(!json.exists(), "{extra:?}");
+    }
+    // one command's outputs are all or nothing: the JSON is not left behind
+    let report = dir.join("rep");
+    let inside = report.join("index.html");
+    let fit = ["doe", "fit", d, "--factors", "A,B", "--responses", "y"];
+    let both = [&fit[..], &["--json", inside.to_str().unwrap()]].concat();
+    let both = [&both[..], &["--report", report.to_str().unwrap()]].concat();
+    assert_user_error(&bumpsim(&both), "two outputs to one path");
+    assert!(
+        !report.exists(),
+        "the refused command left {}",
+        report.display()
+    );
+    let run = bumpsim(&[&fit[..], &["--json", j]].concat());
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    for (at, needle) in [
+        ("A=1e308,B=0", "beyond the largest number"),
+        ("A=0.5,A=0.5,B=0", "'A' is given twice"),
+    ] {
+        assert_user_error(&bumpsim(&["doe", "predict", j, "--at", at]), needle);
+    }
+    let stage1 = doe_data("paper-c-stage1.json");
+    let cell = ["--cell", "nan,1,0,1", "--samples", "10"];
+    let reach = [
+        &[
+            "doe",
+            "reach",
+            stage1.to_str().unwrap(),
+            "--x",
+            "Kax",
+            "--y",
+            "Kbnd",
+        ][..],
+        &cell,
+    ]
+    .concat();
+    assert_user_error(&bumpsim(&reach), "expected finite bounds");
+}

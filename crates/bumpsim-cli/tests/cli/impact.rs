@@ -19,7 +19,9 @@ fn synth_remakes_the_bundled_series_bit_for_bit() {
     // (issue 33), printed and in its header's Comments
     assert_contains(
         &text(&run.stdout),
-        &["FLAT P0IMPA000000FOXP: synthetic (bumpsim synth): ISO/TS 18571 rating against the noise-free signal 0."],
+        &[
+            "FLAT P0IMPA000000FOXP: synthetic (bumpsim synth): ISO/TS 18571 rating against the noise-free signal 0.",
+        ],
     );
     for head in ["FLAT", "P600", "POLE"] {
         for file in [
@@ -198,4 +200,54 @@ fn impact_errors_exit_2() {
         "0",
     ]);
     assert_user_error(&zero, "speed");
+}
+
+/// Issue 34: `--report rep --json rep/index.html` wrote the JSON, then
+/// refused the report; one command's outputs are now all or nothing.
+#[test]
+fn a_refused_report_leaves_no_json_behind() {
+    let dir = scratch("impact-transaction");
+    let car = dir.join("utv.toml");
+    std::fs::write(
+        &car,
+        "name = \"UTV\"\nmasses = [1050.0]\ndampers = []\nsprings = []\n",
+    )
+    .unwrap();
+    let (report, csv) = (dir.join("rep"), dir.join("o.csv"));
+    let run = bumpsim(&[
+        "impact",
+        "--car",
+        car.to_str().unwrap(),
+        "--bumper",
+        impact_example("bumper-a.toml").to_str().unwrap(),
+        "--barrier",
+        "--speed",
+        "8 km/h",
+        "--csv",
+        csv.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+        "--json",
+        report.join("index.html").to_str().unwrap(),
+    ]);
+    assert_user_error(&run, "two outputs to one path");
+    assert!(
+        !report.exists() && !csv.exists(),
+        "the refused command left outputs"
+    );
+    let run = bumpsim(&[
+        "impact",
+        "--car",
+        car.to_str().unwrap(),
+        "--bumper",
+        "/dev/zero",
+        "--barrier",
+    ]);
+    assert_user_error(&run, "not a regular file");
+    // -o without --sweep wrote nothing and said nothing
+    let grid = dir.join("g.csv");
+    let bumper = impact_example("bumper-a.toml");
+    let (b, g) = (bumper.to_str().unwrap(), grid.to_str().unwrap());
+    let run = bumpsim(&["mass-reduction", "--bumper", b, "-o", g]);
+    assert_user_error(&run, "--sweep");
 }

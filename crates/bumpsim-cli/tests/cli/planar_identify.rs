@@ -494,3 +494,24 @@ fn strict_refuses_an_undetermined_planar_identification() {
 fn text_of(run: &std::process::Output) -> String {
     format!("{}{}", text(&run.stdout), text(&run.stderr))
 }
+
+/// Issue 34: `identify study.toml --car start.toml` (or `--json`) wrote
+/// over the start car the study names; the files a study names are inputs.
+#[test]
+fn identify_never_writes_over_the_start_car_its_study_names() {
+    let dir = scratch("planar-identify-own-start");
+    let tests = synth(&dir);
+    let (study, start) = (tests.join("study.toml"), tests.join("start.toml"));
+    let before = std::fs::read(&start).unwrap();
+    for option in ["--car", "--json"] {
+        let run = bumpsim(&[
+            "identify",
+            study.to_str().unwrap(),
+            "--quiet",
+            option,
+            start.to_str().unwrap(),
+        ]);
+        assert_user_error(&run, "would overwrite the input");
+        assert_eq!(std::fs::read(&start).unwrap(), before, "{option}");
+    }
+}

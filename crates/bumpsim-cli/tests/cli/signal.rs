@@ -185,3 +185,134 @@ fn signal_errors_exit_2_with_the_path_and_selector() {
         "{stderr}"
     );
 }
+
+/// A CSV crash test of two channels (force, acceleration) in `dir`.
+fn csv_test(dir: &std::path::Path) -> std::path::PathBuf {
+    let mut csv = String::from("time [s],F [kN],a [g]\n");
+    for i in 0..200 {
+        let s = (std::f64::consts::PI * f64::from(i) / 199.0).sin();
+        csv += &format!(
+            "{:.6},{:.6},{:.6}\n",
+            f64::from(i) * 1e-4,
+            10.0 * s,
+            -2.0 * s
+        );
+    }
+    let path = dir.join("test.csv");
+    std::fs::write(&path, csv).unwrap();
+    path
+}
+
+/// Issue 34: a refused second output leaves no first one behind (one
+/// transaction per command), and selectors and signal names that would
+/// give a wrong or unreadable table are refused.
+#[test]
+fn signal_outputs_are_all_or_nothing_and_every_name_is_used_once() {
+    let dir = scratch("signal-hostile");
+    let test = csv_test(&dir);
+    let before = std::fs::read(&test).unwrap();
+    let (t, out) = (test.to_str().unwrap(), dir.join("o.csv"));
+    let o = out.to_str().unwrap();
+    // a plot folder holding a hard link to the input: the CSV was written first
+    let plots = dir.join("pl");
+    std::fs::create_dir_all(&plots).unwrap();
+    std::fs::hard_link(&test, plots.join("F.svg")).unwrap();
+    let run = bumpsim(&[
+        "signal",
+        "export",
+        t,
+        "-c",
+        "F",
+        "-o",
+        o,
+        "--plot",
+        plots.to_str().unwrap(),
+    ]);
+    assert_user_error(&run, "would overwrite the input");
+    assert!(!out.exists(), "the refused export left its CSV");
+    assert_eq!(std::fs::read(&test).unwrap(), before);
+    for (channels, needle) in [
+        (&["-c", ""][..], "an empty selector"),
+        (&["-c", "1", "-c", "1"], "picked by '1' and again by '1'"),
+    ] {
+        let run = bumpsim(&[&["signal", "export", t, "-o", o][..], channels].concat());
+        assert_user_error(&run, needle);
+        assert!(!out.exists(), "{channels:?}");
+    }
+    let pipeline = dir.join("p.toml");
+    let p = pipeline.to_str().unwrap();
+    let signal = |name: &str, channels: &str| {
+        format!(
+            "[[signal]]\nname = {name}\npath = \"test.csv\"\nchannels = [{channels}]\ncombine = \"sum\"\n"
+        )
+    };
+    for (signals, needle) in [
+        (
+            signal("\"a\"", "\"F\"") + &signal("\"a\"", "\"a\""),
+            "already used by 'a'",
+        ),
+        (
+            signal("\"a\"", "\"F\"") + &signal("\"\"", "\"a\""),
+            "an empty name",
+        ),
+        (
+            signal("\"a\"", "\"F\"") + &signal("\"a,b\"", "\"a\""),
+            "'a,b'",
+        ),
+        (signal("\"force\"", "\"F\", \"1\""), "it would count twice"),
+    ] {
+        std::fs::write(&pipeline, signals).unwrap();
+        assert_user_error(&bumpsim(&["signal", "process", p, "-o", o]), needle);
+        assert!(!out.exists(), "{needle}");
+    }
+    std::fs::write(&pipeline, signal("\"force\"", "\"F\"")).unwrap();
+    let plots = dir.join("plots");
+    let inside = plots.join("force.svg");
+    let run = bumpsim(&[
+        "signal",
+        "process",
+        p,
+        "-o",
+        inside.to_str().unwrap(),
+        "--plot",
+        plots.to_str().unwrap(),
+    ]);
+    assert_user_error(&run, "two outputs to one path");
+    assert!(
+        !plots.exists(),
+        "the refused command left {}",
+        plots.display()
+    );
+}
+
+/// Issue 34: `signal info` on a FIFO blocked forever, a device was read
+/// until memory ran out; both are refused at once.
+#[cfg(unix)]
+#[test]
+fn streams_are_refused_without_blocking() {
+    let dir = scratch("signal-fifo");
+    let fifo = dir.join("test.csv");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+    for args in [
+        vec!["signal", "info", fifo.to_str().unwrap()],
+        vec!["signal", "info", "/dev/zero"],
+    ] {
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_bumpsim"))
+            .args(&args)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        let start = std::time::Instant::now();
+        while child.try_wait().unwrap().is_none() && start.elapsed().as_secs() < 20 {
+            std::thread::sleep(std::time::Duration::from_millis(50));
+        }
+        if child.try_wait().unwrap().is_none() {
+            child.kill().unwrap();
+            panic!("{args:?} still runs after 20 s");
+        }
+        let run = child.wait_with_output().unwrap();
+        assert_user_error(&run, "not a regular file");
+    }
+}

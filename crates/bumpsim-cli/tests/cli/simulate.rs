@@ -118,6 +118,17 @@ const BAD_FORCES: &[(&str, &str, &str)] = &[
         "time [s],x [mm]\n0,1\n0.1,2\n",
         "no force column",
     ),
+    // issue 34: both reached `unreachable!` in the table reader
+    (
+        "huge",
+        "time [s],force [kN]\n0,0\n0.001,1e308\n0.002,0\n",
+        ":3: column 'force [kN]' holds '1e308', beyond the largest number once converted to SI",
+    ),
+    (
+        "late",
+        "time [s],force [N]\n1e15,0\n1.000000000000000125e15,1\n1.00000000000000025e15,0\n",
+        "small enough that the sample interval is resolved",
+    ),
 ];
 
 #[test]
@@ -154,6 +165,12 @@ fn malformed_car_files_exit_2_naming_the_parameter() {
             "count",
             "masses = [1.0, 2.0]\ndampers = [1.0]\n",
             "0 springs given for 2 masses",
+        ),
+        // issue 34: "the simulation diverged", naming no file
+        (
+            "huge",
+            "masses = [1.8, 74.8, 1670]\ndampers = [1e308, 1.97e5]\nsprings = [4.75e5, 5e5]\n",
+            "huge.toml with the force of",
         ),
     ];
     for (name, body, expected) in cases {
@@ -258,4 +275,38 @@ fn zoh_and_foh_match_scipy_cont2discrete() {
             );
         }
     }
+}
+
+/// Issue 34: stdout on a full device panicked (the hook knew only a broken
+/// pipe) and a car file on a device was read until memory ran out.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_stdout_and_a_device_for_a_car_are_errors_not_panics() {
+    let dir = scratch("dev-full");
+    let csv = dir.join("r.csv");
+    let run = Command::new(env!("CARGO_BIN_EXE_bumpsim"))
+        .args(["simulate", "--car"])
+        .arg(example("car-3dof.toml"))
+        .arg("--force")
+        .arg(example("pendulum-force.csv"))
+        .arg("-o")
+        .arg(&csv)
+        .stdout(std::fs::File::create("/dev/full").unwrap())
+        .output()
+        .unwrap();
+    assert_user_error(&run, "cannot print the results");
+    assert!(
+        !text(&run.stderr).contains("panicked"),
+        "{}",
+        text(&run.stderr)
+    );
+    assert!(
+        !csv.exists(),
+        "results that could not be printed were half delivered"
+    );
+    let run = simulate(Path::new("/dev/zero"), &example("pendulum-force.csv"), &[]);
+    assert_user_error(
+        &run,
+        "/dev/zero: is a device, pipe or socket, not a regular file",
+    );
 }

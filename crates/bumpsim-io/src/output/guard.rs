@@ -136,7 +136,7 @@ impl Outputs {
 
 /// The absolute path with every existing part resolved (links followed) and
 /// the missing rest appended lexically (`..` and `.` removed).
-fn canonical(path: &Path) -> PathBuf {
+pub(super) fn canonical(path: &Path) -> PathBuf {
     let absolute = if path.is_absolute() {
         path.to_path_buf()
     } else {

@@ -1,7 +1,8 @@
 //! Outputs that never land on an input and are written whole or not at all.
 //!
 //! Every command tells the [`Outputs`] guard each path it reads (files and
-//! test folders). An output is then refused when it is an input, lies inside
+//! test folders, and the files a study, series or pipeline names:
+//! [`Outputs::input_with_references`]). An output is then refused when it is an input, lies inside
 //! an input folder, or is the same file as an input under another name: the
 //! comparison uses the canonical path (symbolic links resolved) **and** the
 //! device + inode pair, so hard links count; for an input folder the files in
@@ -27,6 +28,11 @@
 //!   is written ([`Outputs::check_file`], [`Outputs::check_folder`]);
 //! - an output given as a symbolic link updates the file it points to; the
 //!   link stays;
+//! - the outputs of one command are one transaction ([`begin`], [`finish`],
+//!   [`abandon`]): each waits complete in its temporary file or folder until
+//!   the command has succeeded, is checked again then (inputs registered
+//!   meanwhile count), and only then moved into place; a command that fails
+//!   half-way leaves every output as it was;
 //! - two files of one output folder with the same name, or a folder's file
 //!   that is another claimed output of the command, are errors: neither
 //!   silently replaces the other.
@@ -52,12 +58,15 @@
 //!
 //! The parts: [`Outputs`] and its checks (`guard`), whole-or-nothing file
 //! writing (`write`), staged folders and plain names (`staged`), the
-//! process-wide guard (`global`) and [`OutputError`] (`error`).
+//! process-wide guard (`global`), the transaction of one command
+//! (`transaction`) and [`OutputError`] (`error`).
 
 mod error;
 mod global;
 mod guard;
+mod references;
 mod staged;
+mod transaction;
 mod write;
 
 #[cfg(test)]
@@ -65,10 +74,11 @@ mod tests;
 
 pub use error::OutputError;
 pub use global::{
-    check_file, check_folder, claim_output, commit, register_input, stage_folder, write_file,
-    write_rendered,
+    abandon, begin, check_file, check_folder, check_pending, claim_output, commit, finish,
+    register_input, register_input_with_references, stage_folder, write_file, write_rendered,
 };
 pub use guard::{FOLDER_SCAN_LIMIT, Outputs};
+pub use references::INPUT_KEYS;
 pub use staged::{StagedFolder, plain_name};
 pub use write::write_atomic;
 

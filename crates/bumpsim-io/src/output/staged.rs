@@ -86,12 +86,31 @@ impl StagedFolder {
 
     /// Moves the staged files into the target folder, checking each final
     /// file against `guard` first (all checks before any move).
-    pub fn commit(mut self, guard: &Outputs) -> Result<(), OutputError> {
+    pub fn commit(self, guard: &Outputs) -> Result<(), OutputError> {
+        self.check(guard)?;
+        self.move_in()
+    }
+
+    /// The final paths of the staged files.
+    pub(super) fn targets(&self) -> Result<Vec<PathBuf>, OutputError> {
         let files = staged_files(&self.staging)?;
-        for relative in &files {
-            guard.check_file(&self.target.join(relative))?;
-            guard.check_unclaimed(&self.target.join(relative))?;
+        Ok(files.iter().map(|f| self.target.join(f)).collect())
+    }
+
+    /// Checks each final file against `guard`: not an input, not a folder,
+    /// not another claimed output of the command.
+    pub(super) fn check(&self, guard: &Outputs) -> Result<(), OutputError> {
+        for target in self.targets()? {
+            guard.check_file(&target)?;
+            guard.check_unclaimed(&target)?;
         }
+        Ok(())
+    }
+
+    /// Moves the staged files into place: a new folder in one rename, an
+    /// existing one file by file.
+    pub(super) fn move_in(mut self) -> Result<(), OutputError> {
+        let files = staged_files(&self.staging)?;
         sync_tree(&self.staging, &files);
         if !self.target.exists() {
             std::fs::rename(&self.staging, &self.target)

@@ -186,3 +186,56 @@ fn plain_names() {
     }
     assert!(plain_name("HEAD-1").is_ok());
 }
+
+/// `doe fit --json rep/index.html --report rep` wrote the JSON, then
+/// refused the report: one command's outputs are now one transaction.
+#[test]
+fn a_transaction_moves_all_outputs_or_none() {
+    use super::transaction::{Pending, Transaction};
+    use super::write::write_temp;
+    let dir = temp("transaction");
+    let mut g = Outputs::new();
+    let json = dir.join("rep/index.html");
+    std::fs::write(dir.join("kept.csv"), "old").unwrap();
+    g.claim(&json).unwrap();
+    let mut t = Transaction::default();
+    t.push(Pending::File(write_temp(&json, b"{}").unwrap()));
+    t.push(Pending::File(
+        write_temp(&dir.join("kept.csv"), b"new").unwrap(),
+    ));
+    let staged = g.stage_folder(&dir.join("rep")).unwrap();
+    staged.write("index.html", b"<html/>").unwrap();
+    t.push(Pending::Folder(staged));
+    let err = t.commit(&g).unwrap_err();
+    assert!(matches!(err, OutputError::Twice { .. }), "{err}");
+    assert!(!json.exists());
+    assert!(
+        !dir.join("rep").exists(),
+        "the folder made for the JSON stays"
+    );
+    assert_eq!(std::fs::read(dir.join("kept.csv")).unwrap(), b"old");
+    // an input registered after the output was written is still refused
+    let late = dir.join("late.toml");
+    std::fs::write(&late, "input").unwrap();
+    let mut t = Transaction::default();
+    t.push(Pending::File(write_temp(&late, b"output").unwrap()));
+    t.push(Pending::File(write_temp(&dir.join("a.csv"), b"a").unwrap()));
+    g.input(&late);
+    assert!(matches!(t.commit(&g), Err(OutputError::OnInput { .. })));
+    assert_eq!(std::fs::read(&late).unwrap(), b"input");
+    assert!(!dir.join("a.csv").exists());
+    let mut t = Transaction::default();
+    t.push(Pending::File(write_temp(&dir.join("a.csv"), b"a").unwrap()));
+    t.push(Pending::File(
+        write_temp(&dir.join("kept.csv"), b"new").unwrap(),
+    ));
+    assert_eq!(t.commit(&g).unwrap(), 2);
+    assert_eq!(std::fs::read(dir.join("kept.csv")).unwrap(), b"new");
+    let hidden: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .flatten()
+        .filter(|e| e.file_name().to_string_lossy().starts_with('.'))
+        .collect();
+    assert!(hidden.is_empty(), "{hidden:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

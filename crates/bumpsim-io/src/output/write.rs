@@ -66,12 +66,29 @@ pub(super) fn remove_stale(path: &Path, kind: &str) {
     }
 }
 
-pub(super) fn create_parent(path: &Path) -> Result<(), OutputError> {
-    match path.parent() {
-        Some(parent) if !parent.as_os_str().is_empty() => {
-            std::fs::create_dir_all(parent).map_err(|e| OutputError::io(parent, e))
+/// Creates the missing folders above `path`; returns the topmost one it
+/// created (to remove again when the output is abandoned).
+pub(super) fn create_parent(path: &Path) -> Result<Option<PathBuf>, OutputError> {
+    let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) else {
+        return Ok(None);
+    };
+    let created = parent
+        .ancestors()
+        .take_while(|a| !a.as_os_str().is_empty() && !a.exists())
+        .last()
+        .map(Path::to_path_buf);
+    std::fs::create_dir_all(parent).map_err(|e| OutputError::io(parent, e))?;
+    Ok(created)
+}
+
+/// Removes the empty folders from `path`'s parent up to `created` (the
+/// topmost one [`create_parent`] made for an output that was abandoned).
+pub(super) fn remove_created(path: &Path, created: Option<&Path>) {
+    let Some(created) = created else { return };
+    for folder in path.ancestors().skip(1) {
+        if std::fs::remove_dir(folder).is_err() || folder == created {
+            return;
         }
-        _ => Ok(()),
     }
 }
 
@@ -79,24 +96,75 @@ pub(super) fn create_parent(path: &Path) -> Result<(), OutputError> {
 /// written, flushed to disk, then renamed over `path`. No input check; use
 /// [`Outputs::write_file`] for a user-given path.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
-    let path = &through_link(path);
-    create_parent(path)?;
-    let temp = sibling(path, "tmp");
+    let staged = write_temp(path, bytes)?;
+    staged.move_in()
+}
+
+/// A complete temporary file that waits to be renamed over its target.
+#[derive(Debug)]
+pub(super) struct TempFile {
+    /// The hidden sibling holding the new content.
+    pub temp: PathBuf,
+    /// The file it replaces (a link resolved to the file it points to).
+    pub target: PathBuf,
+    /// The topmost folder made for it, removed again if it is abandoned.
+    pub created: Option<PathBuf>,
+}
+
+impl TempFile {
+    /// Renames the temporary file over its target and flushes the folder.
+    pub fn move_in(self) -> Result<(), OutputError> {
+        std::fs::rename(&self.temp, &self.target).map_err(|e| {
+            let _ = std::fs::remove_file(&self.temp);
+            OutputError::io(&self.target, e)
+        })?;
+        sync_parent(&self.target);
+        Ok(())
+    }
+
+    /// Removes the temporary file and the folders made for it (the output
+    /// is abandoned).
+    pub fn discard(self) {
+        let _ = std::fs::remove_file(&self.temp);
+        remove_created(&self.target, self.created.as_deref());
+    }
+}
+
+/// Writes `bytes` to a hidden temporary sibling of `path` and flushes it to
+/// disk; the target is not touched yet.
+pub(super) fn write_temp(path: &Path, bytes: &[u8]) -> Result<TempFile, OutputError> {
+    let target = through_link(path);
+    let created = create_parent(&target)?;
+    let temp = sibling(&target, "tmp");
     let result = (|| {
         let mut file = std::fs::File::create(&temp)?;
         file.write_all(bytes)?;
-        if let Ok(old) = std::fs::metadata(path) {
+        if let Ok(old) = std::fs::metadata(&target) {
             file.set_permissions(old.permissions())?;
         }
-        file.sync_all()?;
-        std::fs::rename(&temp, path)?;
-        sync_parent(path);
-        Ok(())
+        file.sync_all()
     })();
-    result.map_err(|e| {
-        let _ = std::fs::remove_file(&temp);
-        OutputError::io(path, e)
-    })
+    settle(
+        result,
+        TempFile {
+            temp,
+            target,
+            created,
+        },
+    )
+}
+
+/// The complete temporary file, or the error with the file and the folders
+/// made for it removed.
+fn settle(result: std::io::Result<()>, file: TempFile) -> Result<TempFile, OutputError> {
+    match result {
+        Ok(()) => Ok(file),
+        Err(e) => {
+            let error = OutputError::io(&file.target, e);
+            file.discard();
+            Err(error)
+        }
+    }
 }
 
 impl Outputs {
@@ -110,33 +178,34 @@ impl Outputs {
 }
 
 /// Lets `render` write a hidden temporary file next to `path` (same
-/// extension, for writers that pick the format by it), flushes it and
-/// renames it over `path`; the renderer's error is the file system's.
-pub(super) fn render_atomic<E>(
+/// extension, for writers that pick the format by it) and flushes it; the
+/// renderer's error is the file system's. The target is not touched yet.
+pub(super) fn render_temp<E>(
     path: &Path,
     render: impl FnOnce(&Path) -> Result<(), E>,
-) -> Result<(), OutputError>
+) -> Result<TempFile, OutputError>
 where
     E: Into<Box<dyn std::error::Error + Send + Sync>>,
 {
-    let path = &through_link(path);
-    create_parent(path)?;
-    let name = path
+    let target = through_link(path);
+    let created = create_parent(&target)?;
+    let name = target
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-    let temp = path.with_file_name(format!(".bumpsim-{}-{n}-{name}", std::process::id()));
+    let temp = target.with_file_name(format!(".bumpsim-{}-{n}-{name}", std::process::id()));
     let result = render(&temp)
         .map_err(std::io::Error::other)
-        .and_then(|()| std::fs::File::open(&temp)?.sync_all())
-        .and_then(|()| std::fs::rename(&temp, path));
-    result.map_err(|e| {
-        let _ = std::fs::remove_file(&temp);
-        OutputError::io(path, e)
-    })?;
-    sync_parent(path);
-    Ok(())
+        .and_then(|()| std::fs::File::open(&temp)?.sync_all());
+    settle(
+        result,
+        TempFile {
+            temp,
+            target,
+            created,
+        },
+    )
 }
 
 /// The file a symbolic link points to (so that an output given as a link

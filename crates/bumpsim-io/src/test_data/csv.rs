@@ -41,14 +41,14 @@ pub(crate) fn open(path: &Path) -> Result<TestData, SignalFileError> {
     })
 }
 
-pub(crate) fn channel(table: &Table, index: usize) -> Channel {
+pub(crate) fn channel(table: &Table, index: usize) -> Result<Channel, SignalFileError> {
     let column = &table.columns[index];
     let mut channel = Channel::new(
         &column.name,
         &column.name,
         column.unit.dimension,
-        table.series(column),
+        table.series(column)?,
     );
     channel.source_unit = column.unit.symbol.to_string();
-    channel
+    Ok(channel)
 }

@@ -63,8 +63,18 @@ pub fn open(path: &Path) -> Result<TestData, SignalFileError> {
         .filter(|(name, ..)| name == "INSTRUMENTATION");
     let mut entries = Vec::new();
     let mut files = Vec::new();
+    let mut lines: Vec<(usize, usize)> = Vec::new();
     for (_, line, row) in rows {
         let entry = instrument(row, path, *line)?;
+        // two rows of one number would share one channel file
+        if let Some((_, first)) = lines.iter().find(|(n, _)| *n == entry.number) {
+            let message = format!(
+                "curve number {} is also the number of line {first}: each curve needs its own (its samples are the file .{:03})",
+                entry.number, entry.number
+            );
+            return Err(SignalFileError::line(path, *line, message));
+        }
+        lines.push((entry.number, *line));
         let file = channel_file(path, entry.number);
         let empty = file
             .as_deref()

@@ -250,7 +250,7 @@ impl Source {
         match self {
             Source::Folder(root) => {
                 let path = find_case_insensitive(root, relative);
-                let bytes = std::fs::read(&path).map_err(|e| SignalFileError::read(&path, e))?;
+                let bytes = crate::signal_error::read_bytes(&path)?;
                 Ok((path, decode(&bytes)))
             }
             Source::Zip {
@@ -339,6 +339,10 @@ pub fn open_zip(path: &Path) -> Result<TestData, SignalFileError> {
 /// stops at [`MAX_ZIP_BYTES`] or [`MAX_ZIP_RATIO`] times the archive size.
 #[cfg(feature = "zip")]
 pub fn open_zip(path: &Path) -> Result<TestData, SignalFileError> {
+    if let Some(kind) = bumpsim_core::files::not_a_file(path)? {
+        let path = path.into();
+        return Err(bumpsim_core::files::ReadError::NotAFile { path, kind }.into());
+    }
     let file = std::fs::File::open(path).map_err(|e| SignalFileError::read(path, e))?;
     let zip_error = |e: zip::result::ZipError| {
         SignalFileError::file(path, format!("not a readable zip archive: {e}"))

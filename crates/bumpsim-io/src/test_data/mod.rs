@@ -165,7 +165,7 @@ impl TestData {
             _ if !entry.present && entry.absence.is_some() => Err(absent_error(&self.path, entry)),
             Store::IsoMme(raw) => raw[index].to_channel(entry, raw),
             Store::Ev5(files) => ev5::load(entry, files[index].as_deref(), &self.path),
-            Store::Csv(table) => Ok(csv::channel(table, index)),
+            Store::Csv(table) => csv::channel(table, index),
         }?;
         let stated = channel
             .meta("Data status")
@@ -184,6 +184,14 @@ impl TestData {
     /// Picks channels by number, code (with wildcards) or name substring.
     pub fn select(&self, selector: &str) -> Result<Selection, SignalFileError> {
         let text = selector.trim();
+        if text.is_empty() {
+            // as a name substring it would pick every channel, time included
+            return Err(SignalFileError::Select {
+                path: self.path.clone(),
+                selector: selector.to_string(),
+                reason: "an empty selector: give a channel number, code or name".into(),
+            });
+        }
         let number = text.strip_prefix('#').unwrap_or(text);
         let matched: Vec<usize> = if let Ok(n) = number.parse::<usize>() {
             self.matching(|e| e.number == n)

@@ -138,3 +138,37 @@ fn a_calculix_car_included_in_a_model_with_its_own_nall_leaves_that_model_alone(
     let (clashed, clashed_response) = bumper_under_lateral_load(&dir, "clashed", include);
     assert!(clashed < with_car && clashed_response.iter().all(|u| u.abs() < 1e-12));
 }
+
+/// Issue 34: `read-calculix car.inp -o car.dat` replaced the results it
+/// reads (the `.dat` beside the deck is an input as much as the deck).
+#[test]
+fn read_calculix_never_writes_over_the_results_it_reads() {
+    let dir = scratch("calculix-own-dat");
+    let deck = dir.join("car.inp");
+    let export = bumpsim(&[
+        "export",
+        "calculix",
+        example("car-3dof.toml").to_str().unwrap(),
+        "-o",
+        deck.to_str().unwrap(),
+    ]);
+    assert!(export.status.success(), "{}", text(&export.stderr));
+    let dat = dir.join("car.dat");
+    std::fs::write(&dat, "the results of a long run\n").unwrap();
+    std::fs::hard_link(&dat, dir.join("linked.csv")).unwrap();
+    for output in ["car.dat", "./car.dat", "linked.csv"] {
+        let path = dir.join(output);
+        let read = bumpsim(&[
+            "export",
+            "read-calculix",
+            deck.to_str().unwrap(),
+            "-o",
+            path.to_str().unwrap(),
+        ]);
+        assert_user_error(&read, "would overwrite the input");
+        assert_eq!(
+            std::fs::read_to_string(&dat).unwrap(),
+            "the results of a long run\n"
+        );
+    }
+}
