@@ -92,12 +92,18 @@ impl<'a> Controller<'a> {
             self.reconcile_tolerant()?;
             // a failed submission is not retried here: sbatch errors are
             // mostly settings (partition, account, limits) to fix first
+            let started = self.submitted;
             self.submit()?;
             idle = match self.changed.is_empty() {
                 true => idle + 1,
                 false => 0,
             };
-            self.flush()?;
+            // one sync per round: a submission has synced this round's
+            // outcomes before its tasks started; the job ids it got follow
+            // with the next round's (lost, they are found again by adopt)
+            if self.submitted == started {
+                self.flush()?;
+            }
             let [_, submitted, running, done, failed] = self.counts;
             bar.set_position((done + failed) as u64);
             bar.set_message(format!(

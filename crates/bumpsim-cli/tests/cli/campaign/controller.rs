@@ -396,3 +396,44 @@ fn a_hanging_local_task_is_timed_out_retried_and_failed_with_its_reason() {
     );
     assert_eq!(json["controller"], serde_json::Value::Null, "{json}");
 }
+
+/// `init --run` takes the executor and slots of `run`: a campaign file
+/// asking for Slurm runs on the local executor, one task at a time (four
+/// points of 0.5 s take at least 2 s), every point once, then collects.
+#[test]
+fn init_run_takes_the_executor_and_slots() {
+    let half_second = Faults {
+        sleep: 0.5,
+        ..NO_FAULTS
+    };
+    let fake = Fake::new("campaign-init-run-executor", 0, &half_second, "slurm");
+    let campaign = fake.dir.join("campaign.toml");
+    let c = fake.campaign();
+    let start = Instant::now();
+    let out = run(&[
+        "campaign",
+        "init",
+        path(&campaign),
+        "-o",
+        path(&c),
+        "--run",
+        "--executor",
+        "local",
+        "--slots",
+        "1",
+    ]);
+    let took = start.elapsed();
+    assert_contains(
+        &text(&out.stdout),
+        &[
+            "4 points done, 0 failed (4 tasks submitted",
+            "table.csv (4 points)",
+        ],
+    );
+    assert!(took >= Duration::from_secs(2), "one slot: {took:?}");
+    let state = fake.state();
+    assert_eq!(state.matches("job = \"local:").count(), 4, "{state}");
+    for r in 1..=4 {
+        assert_eq!(fake.invocations(&format!("{r:04}")), 1, "{state}");
+    }
+}
