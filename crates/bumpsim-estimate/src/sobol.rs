@@ -9,7 +9,8 @@
 //!   `N (d + 2)` rows, in parallel (rayon).
 //! - **Estimators** (as SALib's `sobol.analyze`): with `V` the variance of
 //!   the outputs of A and B together,
-//!   first order `S_i = mean(f(B) (f(A_B^(i)) − f(A))) / V` (Saltelli et al.
+//!   first order `S_i = mean(f(B) (f(A_B^(i)) − f(A))) / V` (outputs
+//!   centred on their mean first, as SALib standardises; Saltelli et al.
 //!   2010, table 2 (b)), total `S_Ti = mean((f(A) − f(A_B^(i)))²) / (2V)`
 //!   (Jansen 1999).
 //! - **Intervals**: the N rows resampled with replacement
@@ -315,12 +316,18 @@ fn summarise(
     settings: &Settings,
 ) -> Result<Indices, SobolError> {
     let d = inputs.len();
+    // centred on the mean of A and B (as SALib standardises): the same
+    // indices, with far less resampling noise on an output far from zero
+    let centre = values[..2 * n].iter().sum::<f64>() / (2 * n) as f64;
+    let values: Vec<f64> = values.iter().map(|v| v - centre).collect();
     let (fa, fb) = (&values[..n], &values[n..2 * n]);
     let fab = |i: usize| &values[(2 + i) * n..(3 + i) * n];
     let all: Vec<usize> = (0..n).collect();
     let (mean, variance) = moments(fa, fb, &all);
     if variance.is_nan() || variance <= 0.0 {
-        return Err(SobolError::Constant { value: mean });
+        return Err(SobolError::Constant {
+            value: mean + centre,
+        });
     }
     let estimate = |rows: &[usize]| -> Vec<[f64; 2]> {
         let v = moments(fa, fb, rows).1;
@@ -343,7 +350,7 @@ fn summarise(
         first_conf: (0..d).map(|i| conf(i, 0)).collect(),
         total: point.iter().map(|p| p[1]).collect(),
         total_conf: (0..d).map(|i| conf(i, 1)).collect(),
-        mean,
+        mean: mean + centre,
         variance,
         evaluations: values.len(),
     })
