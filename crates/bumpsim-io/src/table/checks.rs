@@ -66,3 +66,93 @@ pub(super) fn check_column_names(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Table, table_text};
+    use super::*;
+
+    /// A small deterministic generator (SplitMix64), so that every run
+    /// tries the same tables.
+    struct Draw(u64);
+
+    impl Draw {
+        fn next(&mut self) -> u64 {
+            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            z ^ (z >> 31)
+        }
+
+        fn pick<T: Copy>(&mut self, from: &[T]) -> T {
+            from[(self.next() % from.len() as u64) as usize]
+        }
+
+        fn value(&mut self) -> f64 {
+            let mantissa = (self.next() % 2_000_001) as f64 / 1e6 - 1.0;
+            mantissa * 10f64.powi((self.next() % 601) as i32 - 300)
+        }
+    }
+
+    /// Issue 34, the writer's property: whatever `table_text` writes (names
+    /// with any of the characters a CSV treats specially, every unit, values
+    /// from 1e-300 to 1e300), `Table::parse` reads back with the same names
+    /// and units and the same values in the unit written; what it would
+    /// not read back is refused before anything is written.
+    #[test]
+    fn whatever_the_table_writer_writes_the_reader_reads_back_equal() {
+        let mut draw = Draw(34);
+        let names = [
+            "F", "a b", "x,y", "q\"", "[m]", "", " s", "time", "Ω", "t\u{7}", "F",
+        ];
+        let units = ["N", "kN", "g", "m/s", "mm", "s", "kg", "J", "deg"];
+        let (mut written, mut refused) = (0, 0);
+        for _ in 0..400 {
+            let count = 1 + (draw.next() % 3) as usize;
+            let rows = 2 + (draw.next() % 5) as usize;
+            let time_unit = Unit::parse(draw.pick(&["s", "ms"])).unwrap();
+            let start = (draw.next() % 2001) as f64 / 1000.0 - 1.0;
+            let step = 10f64.powi(-((draw.next() % 6) as i32));
+            let time: Vec<f64> = (0..rows).map(|k| start + k as f64 * step).collect();
+            let data: Vec<(&str, Unit, Vec<f64>)> = (0..count)
+                .map(|_| {
+                    let unit = Unit::parse(draw.pick(&units)).unwrap();
+                    let values = (0..rows).map(|_| draw.value()).collect();
+                    (draw.pick(&names), unit, values)
+                })
+                .collect();
+            let columns: Vec<OutputColumn> = data
+                .iter()
+                .map(|(name, unit, values)| OutputColumn {
+                    name,
+                    unit: *unit,
+                    values,
+                })
+                .collect();
+            let path = Path::new("p.csv");
+            let Ok(text) = table_text(path, time_unit, &time, &columns) else {
+                refused += 1;
+                continue;
+            };
+            written += 1;
+            let table = Table::parse(&text, path).unwrap_or_else(|e| panic!("{e}\n{text}"));
+            assert_eq!(table.columns.len(), columns.len(), "{text}");
+            for (read, given) in table.columns.iter().zip(&columns) {
+                assert_eq!((read.name.as_str(), read.unit), (given.name, given.unit));
+                let expected: Vec<f64> = given
+                    .values
+                    .iter()
+                    .map(|v| given.unit.to_si(given.unit.from_si(*v)))
+                    .collect();
+                assert_eq!(read.values, expected, "{text}");
+            }
+            let first = time_unit.to_si(time_unit.from_si(time[0]));
+            assert_eq!(table.start, first, "{text}");
+        }
+        assert!(
+            written > 50 && refused > 50,
+            "{written} written, {refused} refused"
+        );
+    }
+}
