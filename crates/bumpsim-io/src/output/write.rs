@@ -133,30 +133,34 @@ impl TempFile {
 /// Writes `bytes` to a hidden temporary sibling of `path` and flushes it to
 /// disk; the target is not touched yet.
 pub(super) fn write_temp(path: &Path, bytes: &[u8]) -> Result<TempFile, OutputError> {
-    let target = through_link(path);
-    let created = create_parent(&target)?;
-    let temp = sibling(&target, "tmp");
-    let result = (|| {
-        let mut file = std::fs::File::create(&temp)?;
+    let name = |target: &Path| sibling(target, "tmp");
+    fill_temp(path, name, |temp, target| {
+        let mut file = std::fs::File::create(temp)?;
         file.write_all(bytes)?;
-        if let Ok(old) = std::fs::metadata(&target) {
+        if let Ok(old) = std::fs::metadata(target) {
             file.set_permissions(old.permissions())?;
         }
         file.sync_all()
-    })();
-    settle(
-        result,
-        TempFile {
-            temp,
-            target,
-            created,
-        },
-    )
+    })
 }
 
-/// The complete temporary file, or the error with the file and the folders
-/// made for it removed.
-fn settle(result: std::io::Result<()>, file: TempFile) -> Result<TempFile, OutputError> {
+/// The temporary file of `path` (its link resolved, its folder made), named
+/// by `name` from the target, filled by `fill` (temporary file, target);
+/// on an error it and the folders made for it are removed.
+fn fill_temp(
+    path: &Path,
+    name: impl FnOnce(&Path) -> PathBuf,
+    fill: impl FnOnce(&Path, &Path) -> std::io::Result<()>,
+) -> Result<TempFile, OutputError> {
+    let target = through_link(path);
+    let created = create_parent(&target)?;
+    let temp = name(&target);
+    let result = fill(&temp, &target);
+    let file = TempFile {
+        temp,
+        target,
+        created,
+    };
     match result {
         Ok(()) => Ok(file),
         Err(e) => {
@@ -187,25 +191,19 @@ pub(super) fn render_temp<E>(
 where
     E: Into<Box<dyn std::error::Error + Send + Sync>>,
 {
-    let target = through_link(path);
-    let created = create_parent(&target)?;
-    let name = target
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-    let temp = target.with_file_name(format!(".bumpsim-{}-{n}-{name}", std::process::id()));
-    let result = render(&temp)
-        .map_err(std::io::Error::other)
-        .and_then(|()| std::fs::File::open(&temp)?.sync_all());
-    settle(
-        result,
-        TempFile {
-            temp,
-            target,
-            created,
-        },
-    )
+    let name = |target: &Path| {
+        let name = target
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+        target.with_file_name(format!(".bumpsim-{}-{n}-{name}", std::process::id()))
+    };
+    fill_temp(path, name, |temp, _| {
+        render(temp)
+            .map_err(std::io::Error::other)
+            .and_then(|()| std::fs::File::open(temp)?.sync_all())
+    })
 }
 
 /// The file a symbolic link points to (so that an output given as a link
