@@ -23,6 +23,7 @@ mod output;
 mod planar;
 mod signal;
 mod simulate;
+mod verdict;
 
 pub(crate) use output::{Folder, write};
 
@@ -54,6 +55,8 @@ enum Command {
     Impact(impact::ImpactArgs),
     /// Simulate an angled, offset, corner or pole impact of the planar car (yaw).
     Planar(planar::Args),
+    /// Will it pass? A car in the low-speed protocols: verdicts with margins, bumper targets.
+    Verdict(verdict::Args),
     /// Make a synthetic pendulum test series (ISO-MME and CSV) with a measurement chain.
     Synth(impact::SynthArgs),
     /// The reduced point mass of paper A: scale factor of a rigid test vehicle.
@@ -148,6 +151,7 @@ fn run(command: Command) -> anyhow::Result<()> {
         Command::Identify(args) => identify::run(&args),
         Command::Impact(args) => impact::run_impact(&args),
         Command::Planar(args) => planar::run(&args),
+        Command::Verdict(args) => verdict::run(&args),
         Command::MassReduction(args) => impact::run_reduction(&args),
         Command::Synth(args) => impact::run_synth(&args),
         Command::Doe(command) => doe::run(&command),

@@ -616,7 +616,7 @@ fn unknown(name: &str) -> VerdictError {
     VerdictError::Protocol {
         name: name.into(),
         known: format!(
-            "{} (or all, or a test name: `bumpsim verdict --protocol list`)",
+            "{} (or all, or a test name: `bumpsim verdict --list`)",
             known.join(", ")
         ),
     }

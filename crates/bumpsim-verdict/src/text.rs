@@ -2,6 +2,7 @@
 //! tests × criteria the terminal, the report and the bindings print.
 
 use crate::criteria::{Criterion, Outcome};
+use crate::target::{Bound, Region};
 use crate::verdict::Verdict;
 
 /// A criterion's outcome as a word.
@@ -133,6 +134,61 @@ pub fn summary(v: &Verdict) -> String {
         for a in t.assumptions.iter().chain(&t.notes).chain(&t.warnings) {
             out += &format!("  {}: {a}\n", t.test.name);
         }
+    }
+    out
+}
+
+/// The protocols and their tests, each test with its source and what is
+/// uncertain (`bumpsim verdict --protocol list`).
+pub fn protocols() -> String {
+    let mut out = String::new();
+    for p in crate::protocol::PROTOCOLS {
+        out += &format!("{}: {}\n", p.name, p.description);
+        for t in p
+            .tests
+            .iter()
+            .filter_map(|name| crate::protocol::test(name))
+        {
+            out += &format!(
+                "  {}: {}\n    source: {}\n    uncertain: {}\n",
+                t.name, t.description, t.source, t.uncertain
+            );
+        }
+    }
+    out
+}
+
+/// The target region as a table: per whole-bumper stiffness (kN/mm), the
+/// passing force levels (kN) and the criterion binding at each boundary.
+pub fn region(r: &Region) -> String {
+    let bound = |b: &Bound| {
+        let binding = b.binding.as_deref().unwrap_or("the search range");
+        format!("{:.1} kN ({binding})", b.force / 1e3)
+    };
+    let mut out = format!(
+        "bumper target with a margin of {} % ({} impacts in {:.2} s, {:.0} impacts/s); the car's bumper: {:.2} kN/mm, {:.1} kN\n",
+        100.0 * r.margin,
+        r.impacts,
+        r.seconds,
+        r.rate(),
+        r.origin[0] / 1e6,
+        r.origin[1] / 1e3
+    );
+    for row in &r.rows {
+        out += &format!("  stiffness {:.2} kN/mm: ", row.stiffness / 1e6);
+        out += &match (&row.interval, &row.failing) {
+            (Some([low, high]), _) => format!(
+                "force from {} to {}, stroke needed {}\n",
+                bound(low),
+                bound(high),
+                row.stroke
+                    .map_or("-".into(), |s| format!("{:.1} mm", 1e3 * s))
+            ),
+            (None, failing) => format!(
+                "nothing passes ({})\n",
+                failing.as_deref().unwrap_or("every level fails")
+            ),
+        };
     }
     out
 }

@@ -103,7 +103,7 @@ impl Setup {
         require(
             "margin",
             margin,
-            "1",
+            "(a share of each limit)",
             expected,
             (0.0..1.0).contains(&margin),
         )?;

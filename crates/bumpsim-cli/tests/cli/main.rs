@@ -26,3 +26,4 @@ mod robustness;
 mod signal;
 mod simulate;
 mod util;
+mod verdict;

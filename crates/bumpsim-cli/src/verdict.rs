@@ -1,0 +1,71 @@
+//! `bumpsim verdict`: argument conversion and output around
+//! bumpsim-verdict (issue 36): one car (a planar car file per end with its
+//! `[damageability]`), a protocol set → per test and criterion the verdict
+//! and margin, the assumptions, and on request the bumper target region.
+//! Exit 0 whether the car passes or not (the verdict is the result); 2 on
+//! bad input.
+
+use crate::write;
+use anyhow::{Context, Result};
+use bumpsim_planar::PlanarCar;
+use bumpsim_verdict::prelude::*;
+use bumpsim_verdict::{protocol, target, text};
+use std::path::PathBuf;
+
+/// Arguments of `bumpsim verdict`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// A planar car file with a [damageability] table; give one per end (front, rear).
+    #[arg(long, value_name = "CAR.toml", required_unless_present = "list")]
+    car: Vec<PathBuf>,
+    /// Protocols or tests, comma-separated: part581, cmvss215, r42, rcar-bumper,
+    /// rcar-structural, iihs-1990s, iihs-bumper, a test name, or all.
+    #[arg(long, value_delimiter = ',', default_value = "all")]
+    protocol: Vec<String>,
+    /// List the protocols, their tests, sources and uncertainties, and stop.
+    #[arg(long)]
+    list: bool,
+    /// Least margin each criterion must keep, a share of its limit (0.1: 10 %).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    margin: f64,
+    /// Also search the region of bumper characteristics that passes every test.
+    #[arg(long)]
+    target: bool,
+    /// Write the verdict (and the target region) as JSON.
+    #[arg(long, value_name = "OUT.json")]
+    json: Option<PathBuf>,
+}
+
+/// Runs `bumpsim verdict`.
+pub fn run(args: &Args) -> Result<()> {
+    if args.list {
+        print!("{}", text::protocols());
+        return Ok(());
+    }
+    let names: Vec<&str> = args.protocol.iter().map(String::as_str).collect();
+    let tests = protocol::select(&names).context("--protocol")?;
+    let ends = args
+        .car
+        .iter()
+        .map(|path| {
+            let car = PlanarCar::read(path)?;
+            let limits = Damageability::read(path)?;
+            CarEnd::new(car, limits).with_context(|| path.display().to_string())
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let setup = Setup::new(ends, tests, args.margin)?;
+    let v = verdict(&setup)?;
+    let region = match args.target {
+        true => Some(target::search(&setup, &TargetOptions::default())?),
+        false => None,
+    };
+    if let Some(path) = &args.json {
+        let document = serde_json::json!({ "verdict": v, "target": region });
+        write(path, &serde_json::to_string_pretty(&document)?)?;
+    }
+    print!("{}", text::table(&v));
+    if let Some(r) = &region {
+        print!("{}", text::region(r));
+    }
+    Ok(())
+}
