@@ -192,7 +192,9 @@ pub fn truth_comment(truth: &[f64], recorded: &[f64], step: f64) -> String {
             "synthetic (bumpsim synth): ISO/TS 18571 rating against the noise-free signal {:.3} (corridor {:.3}, phase {:.3}, magnitude {:.3}, slope {:.3})",
             r.overall, r.corridor, r.phase, r.magnitude, r.slope
         ),
-        Err(e) => format!("synthetic (bumpsim synth): no ISO/TS 18571 rating against the noise-free signal ({e})"),
+        Err(e) => format!(
+            "synthetic (bumpsim synth): no ISO/TS 18571 rating against the noise-free signal ({e})"
+        ),
     }
 }
 

@@ -398,17 +398,18 @@ pub fn record(
     let step = chain.measurement.step;
     // each channel says how faithful it is: its ISO/TS 18571 rating against
     // the noise-free signal at its samples
-    let channel = |code: &str, name: &str, dimension, (truth, values): (Vec<f64>, Vec<f64>), unit: &str| {
-        let comment = bumpsim_impact::synth::truth_comment(&truth, &values, step);
-        UniformSeries::new(-(pre as f64) * fine, step, values)
-            .map(|series| {
-                let mut c = Channel::new(code, name, dimension, series);
-                c.source_unit = unit.into();
-                c.set_meta("Comments", &comment);
-                c
-            })
-            .map_err(|e| parameter("chain.step", chain.measurement.step, "s", &e.to_string()))
-    };
+    let channel =
+        |code: &str, name: &str, dimension, (truth, values): (Vec<f64>, Vec<f64>), unit: &str| {
+            let comment = bumpsim_impact::synth::truth_comment(&truth, &values, step);
+            UniformSeries::new(-(pre as f64) * fine, step, values)
+                .map(|series| {
+                    let mut c = Channel::new(code, name, dimension, series);
+                    c.source_unit = unit.into();
+                    c.set_meta("Comments", &comment);
+                    c
+                })
+                .map_err(|e| parameter("chain.step", chain.measurement.step, "s", &e.to_string()))
+        };
     let mut channels = Vec::new();
     let mut loads = Vec::new();
     for (code, title, force, spec) in forces(car, striker, &r)? {
@@ -429,7 +430,13 @@ pub fn record(
             chain.measurement.acceleration_noise,
             chain.measurement.biases[k % 2],
         );
-        channels.push(channel(code, title, Dimension::Acceleration, (truth, values), "g")?);
+        channels.push(channel(
+            code,
+            title,
+            Dimension::Acceleration,
+            (truth, values),
+            "g",
+        )?);
     }
     let (car_speed, striker_motion) = match striker.motion {
         Motion::Fixed { speed } => (speed, (speed, None)),
