@@ -23,7 +23,9 @@
 //! - [`effective`]: the effective sample size of correlated series;
 //! - [`sampler`], [`posterior`]: the affine-invariant ensemble sampler and
 //!   the posterior of any least-squares model (issue 39);
-//! - [`sobol`]: Sobol' indices with bootstrap intervals (issue 39).
+//! - [`sobol`]: Sobol' indices with bootstrap intervals (issue 39);
+//! - [`propagate`]: draws through a model: distributions, prediction bands
+//!   and probabilities of passing (issue 39).
 //!
 //! Parameters are estimated as `p = ln θ`: masses, dampers and springs
 //! spanning seven decades become comparable and stay positive.
@@ -75,6 +77,7 @@ pub mod multistart;
 pub mod observer;
 pub mod polish;
 pub mod posterior;
+pub mod propagate;
 pub mod reduce;
 pub mod sampler;
 pub mod search;
