@@ -57,7 +57,7 @@ pub struct Factor {
 #[non_exhaustive]
 pub enum FactorError {
     /// A `NAME:LOW:HIGH` specification that does not parse.
-    #[error("'{spec}': expected NAME:LOW:HIGH with finite LOW < HIGH")]
+    #[error("'{spec}': expected NAME:LOW:HIGH with finite LOW < HIGH (and HIGH - LOW finite)")]
     Spec {
         /// The text as given.
         spec: String,
@@ -72,7 +72,7 @@ pub enum FactorError {
     },
     /// A range whose low level is not below its high level.
     #[error(
-        "factor '{name}': low {low} must be finite and below high {high} (a factor that does not vary cannot be fitted)"
+        "factor '{name}': low {low} must be finite and below high {high}, their span a finite number (a factor that does not vary cannot be fitted)"
     )]
     Range {
         /// Factor name.
@@ -151,7 +151,7 @@ impl Factor {
         unit: Option<String>,
     ) -> Result<Factor, FactorError> {
         check_name(name)?;
-        if !(low.is_finite() && high.is_finite() && low < high) {
+        if !(low < high && (high - low).is_finite()) {
             return Err(FactorError::Range {
                 name: name.into(),
                 low,
@@ -320,9 +320,9 @@ impl ModelFile {
             if self.factors[..i].iter().any(|g| g.name == f.name) {
                 return bad(format!("factor '{}' is listed twice", f.name));
             }
-            if !(f.low.is_finite() && f.high.is_finite() && f.low < f.high) {
+            if !(f.low < f.high && (f.high - f.low).is_finite()) {
                 return bad(format!(
-                    "factor '{}': need finite low < high, got {}..{}",
+                    "factor '{}': need finite low < high with a finite span, got {}..{}",
                     f.name, f.low, f.high
                 ));
             }

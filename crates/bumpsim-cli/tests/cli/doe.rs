@@ -299,6 +299,10 @@ fn doe_refuses_what_it_would_ignore_mix_up_or_overflow() {
             "finite LOW < HIGH",
         ),
         (
+            &["full", "--factors", "A:-1.7e308:1.7e308"],
+            "HIGH - LOW finite",
+        ),
+        (
             &[
                 "fractional",
                 "--factors",
