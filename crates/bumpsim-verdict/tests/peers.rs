@@ -1,13 +1,15 @@
 //! OLC against pyisomme's `calculate_olc` (tests/peers/pyisomme_olc.py) on
 //! three simulated pulses of the worked example (examples/verdict/: the
 //! RCAR full-width and corner tests, the 49 CFR 581 barrier) and a
-//! constant deceleration: equal within 0.1 %. Skips without pyisomme
-//! (fails under BUMPSIM_REQUIRE_PEERS).
+//! constant deceleration: equal within 0.1 %; ASI against an independent
+//! numpy/scipy implementation (tests/peers/numpy_asi.py) on the same
+//! pulses, within 0.1 %. Skip without the Python modules (fail under
+//! BUMPSIM_REQUIRE_PEERS).
 
 use bumpsim_peers::python_available;
 use bumpsim_verdict::prelude::*;
 use bumpsim_verdict::protocol::{select, test};
-use bumpsim_verdict::pulse::{Pulse, olc};
+use bumpsim_verdict::pulse::{ASI_WINDOW, Pulse, asi, olc};
 use std::path::Path;
 use std::process::Command;
 
@@ -75,6 +77,76 @@ fn olc_equals_pyisommes_within_a_tenth_of_a_percent() {
         assert!(
             (ours / reference - 1.0).abs() < 1e-3,
             "{name}: OLC {ours} m/s² here, {reference} m/s² by pyisomme"
+        );
+    }
+}
+
+/// The three pulses' deceleration and lateral acceleration, continued by
+/// the ASI window as the verdict does.
+fn accelerations() -> Vec<(String, Pulse)> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/verdict/car.toml");
+    let car = bumpsim_planar::PlanarCar::read(&path).unwrap();
+    let end = CarEnd::new(car, Damageability::read(&path).unwrap()).unwrap();
+    let settings = bumpsim_planar::Settings::default();
+    [
+        "rcar-bumper-front",
+        "rcar-bumper-corner-front",
+        "part581-barrier-front",
+    ]
+    .iter()
+    .map(|name| {
+        let (_, _, r) =
+            bumpsim_verdict::verdict::run(&end, test(name).unwrap(), &settings).unwrap();
+        let p = Pulse::of(&r);
+        (
+            name.to_string(),
+            p.extended(p.time.last().unwrap() + ASI_WINDOW),
+        )
+    })
+    .collect()
+}
+
+#[test]
+fn asi_equals_an_independent_implementation_within_a_tenth_of_a_percent() {
+    if !python_available("scipy") {
+        return;
+    }
+    let pulses = accelerations();
+    let mut command = Command::new("python3");
+    command.arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/peers/numpy_asi.py"));
+    let mut files = Vec::new();
+    for (k, (_, p)) in pulses.iter().enumerate() {
+        let file = std::env::temp_dir().join(format!("bumpsim-asi-{}-{k}.txt", std::process::id()));
+        let lines: String = (0..p.time.len())
+            .map(|i| {
+                format!(
+                    "{:.17e} {:.17e} {:.17e}\n",
+                    p.time[i], p.deceleration[i], p.lateral[i]
+                )
+            })
+            .collect();
+        std::fs::write(&file, lines).unwrap();
+        command.arg(&file);
+        files.push(file);
+    }
+    let out = command.output().unwrap();
+    files.iter().for_each(|f| drop(std::fs::remove_file(f)));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let theirs: Vec<f64> = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(|l| l.trim().parse().unwrap())
+        .collect();
+    assert_eq!(theirs.len(), pulses.len());
+    for ((name, p), reference) in pulses.iter().zip(theirs) {
+        let zeros = vec![0.0; p.time.len()];
+        let ours = asi(&p.time, [&p.deceleration, &p.lateral, &zeros]).unwrap();
+        assert!(
+            (ours / reference - 1.0).abs() < 1e-3,
+            "{name}: ASI {ours} here, {reference} by numpy"
         );
     }
 }
