@@ -17,50 +17,28 @@ use bumpsim_ident::choice::{Choice, choose};
 use bumpsim_ident::dofs::table;
 use bumpsim_ident::{Identification, LoadCase, Settings, Study};
 use rand_chacha::ChaCha8Rng;
-use rand_core::{Rng, SeedableRng};
+use rand_core::SeedableRng;
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use synthetic::gauss;
+
+mod synthetic;
 
 const STEP: f64 = 1e-4;
 const DOFS: [usize; 5] = [1, 2, 3, 4, 5];
 const DRAWS: u64 = 10;
 
-fn gauss(rng: &mut ChaCha8Rng) -> f64 {
-    let mut unit = || ((rng.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64;
-    let (a, b) = (unit(), unit());
-    (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
-}
-
 /// Three pulses on a 3-mass car, measured with stationary AR(1) noise of
 /// deviation `sigma` and lag-1 correlation `rho`.
-fn synthetic(truth: &MsdModel, seed: u64, sigma: f64, rho: f64) -> Vec<LoadCase> {
+fn ar1_cases(truth: &MsdModel, seed: u64, sigma: f64, rho: f64) -> Vec<LoadCase> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let pulses = [(6e4, 0.06, 1.0), (4e4, 0.09, 0.7), (8e4, 0.04, 1.5)];
     let n = 1200;
     pulses
         .iter()
         .enumerate()
-        .map(|(i, &(peak, duration, shape))| {
-            let force = (0..n)
-                .map(|k| {
-                    let t = k as f64 * STEP;
-                    match t < duration {
-                        true => peak * (std::f64::consts::PI * t / duration).sin().powf(shape),
-                        false => 0.0,
-                    }
-                })
-                .collect();
-            let mut case = LoadCase {
-                name: format!("pulse {i}"),
-                start: 0.0,
-                step: STEP,
-                force,
-                measured: vec![],
-                output_dof: 1,
-                initial_velocity: 0.0,
-                window: (0, n - 1),
-            };
-            case.measured = case.simulate(truth).unwrap();
+        .map(|(i, &shape)| {
+            let mut case = synthetic::pulse(truth, i, shape, (n, STEP));
             let mut error = sigma * gauss(&mut rng);
             let innovation = sigma * (1.0 - rho * rho).sqrt();
             for m in &mut case.measured {
@@ -114,7 +92,7 @@ fn ar1_noise_of_rho_095_recommends_the_truths_three_masses() {
     .unwrap();
     let results: Vec<(Choice, usize)> = (0..DRAWS)
         .map(|seed| {
-            let cases = synthetic(&truth, seed, 1e-3, 0.95);
+            let cases = ar1_cases(&truth, seed, 1e-3, 0.95);
             picks(&table(&DOFS, &|dof| (cases.clone(), Settings::new(dof, 8))))
         })
         .collect();

@@ -9,16 +9,13 @@ use bumpsim_estimate::sampler::LogDensity;
 use bumpsim_ident::posterior::{density, posterior, sampling};
 use bumpsim_ident::{LoadCase, Settings, identify};
 use rand_chacha::ChaCha8Rng;
-use rand_core::{Rng, SeedableRng};
+use rand_core::SeedableRng;
 use rayon::prelude::*;
 use std::io::{BufRead, BufReader, Write};
 use std::process::{Command, Stdio};
+use synthetic::gauss;
 
-fn gauss(rng: &mut ChaCha8Rng) -> f64 {
-    let mut unit = || ((rng.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64;
-    let (a, b) = (unit(), unit());
-    (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
-}
+mod synthetic;
 
 /// Two pulses on `truth` with white noise of deviation `sigma`, `n`
 /// samples `step` apart.
@@ -28,24 +25,7 @@ fn cases(truth: &MsdModel, seed: u64, sigma: f64, (n, step): (usize, f64)) -> Ve
         .iter()
         .enumerate()
         .map(|(i, &(peak, duration))| {
-            let force = (0..n)
-                .map(|k| {
-                    let t = k as f64 * step;
-                    peak * (std::f64::consts::PI * t / duration).sin().max(0.0)
-                        * f64::from(t < duration)
-                })
-                .collect();
-            let mut case = LoadCase {
-                name: format!("pulse {i}"),
-                start: 0.0,
-                step,
-                force,
-                measured: vec![],
-                output_dof: 1,
-                initial_velocity: 0.0,
-                window: (0, n - 1),
-            };
-            case.measured = case.simulate(truth).unwrap();
+            let mut case = synthetic::pulse(truth, i, (peak, duration, 1.0), (n, step));
             case.measured
                 .iter_mut()
                 .for_each(|m| *m += sigma * gauss(&mut rng));
