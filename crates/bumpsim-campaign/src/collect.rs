@@ -176,6 +176,22 @@ pub fn fit_spec(spec: &Spec) -> TableFitSpec {
     }
 }
 
+impl Collected {
+    /// The `doe fit` command of [`Collected::fit_command`] to run from the
+    /// current folder, the campaign's folder being `dir` (the command in
+    /// `results/fit-command.txt` runs from the campaign's folder).
+    pub fn fit_command_from(&self, dir: &Path) -> String {
+        let table = dir.join("results").join("table.csv");
+        let table = table.display().to_string();
+        let quoted = if table.contains(|c: char| c.is_whitespace() || c == '\'') {
+            format!("'{}'", table.replace('\'', r"'\''"))
+        } else {
+            table
+        };
+        self.fit_command.replacen("results/table.csv", &quoted, 1)
+    }
+}
+
 /// The `bumpsim doe fit` command line equal to the campaign's regression.
 pub fn fit_command(spec: &TableFitSpec) -> String {
     let join = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");

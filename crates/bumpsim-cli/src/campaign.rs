@@ -195,7 +195,10 @@ fn run_collect(args: &DirArgs) -> Result<()> {
         results.display(),
         collected.rows
     );
-    println!("the same regression: {}", collected.fit_command);
+    println!(
+        "the same regression: {}",
+        collected.fit_command_from(&args.dir)
+    );
     for (run, why) in &collected.missing {
         crate::warn(&format!("run {run} left out of the table: {why}"));
     }

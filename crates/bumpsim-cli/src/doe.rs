@@ -288,7 +288,19 @@ fn reach(args: &ReachArgs) -> Result<()> {
         Some(c) => cell(&map, [c[0], c[1]], [c[2], c[3]]).context("--cell")?,
         None => Vec::new(),
     };
-    let text = reach_text([x, y], &polygon, args.samples, &corners, &model.factors);
+    let unit = |name: &str| {
+        let response = model.responses.iter().find(|r| r.name == name);
+        response.and_then(|r| r.unit.as_deref())
+    };
+    let units = [unit(x), unit(y)];
+    let text = reach_text(
+        [x, y],
+        units,
+        &polygon,
+        args.samples,
+        &corners,
+        &model.factors,
+    );
     print!("{text}");
     if let Some(dir) = &args.plot {
         let svg = bumpsim_report::doe::reach_plot([x, y], &points, &polygon, cell_spec)?;

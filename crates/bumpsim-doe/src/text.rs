@@ -110,6 +110,7 @@ pub fn stiffness_text(s: &Stiffness) -> String {
 /// cell corner with the coded factor set that reaches it (or comes closest).
 pub fn reach_text(
     axes: [&str; 2],
+    units: [Option<&str>; 2],
     polygon: &[[f64; 2]],
     samples: usize,
     corners: &[Corner],
@@ -120,9 +121,12 @@ pub fn reach_text(
         "reachable region of ({x}, {y}): {} vertices; {samples} random factor sets\n",
         polygon.len()
     );
+    // each vertex names its responses and their units (the model file's)
+    let unit = |u: Option<&str>| u.map_or(String::new(), |u| format!(" {u}"));
+    let (ux, uy) = (unit(units[0]), unit(units[1]));
     for v in polygon {
         text += &format!(
-            "  vertex {} {}\n",
+            "  vertex {x} = {}{ux}, {y} = {}{uy}\n",
             format_number(v[0], 6),
             format_number(v[1], 6)
         );

@@ -180,6 +180,18 @@ fn doe_reach_stiffness_and_fraction_resolution() {
         4,
         "{stdout}"
     );
+    // every vertex names its responses with their units (issue 35)
+    let vertices: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.trim_start().starts_with("vertex"))
+        .collect();
+    assert!(
+        !vertices.is_empty()
+            && vertices
+                .iter()
+                .all(|l| l.contains("Kax = ") && l.matches(" N/mm").count() == 2),
+        "{stdout}"
+    );
     assert!(dir.join("reachable.svg").exists());
     let curve = dir.join("curve.csv");
     let mut csv = String::from("displacement [mm],force [kN]\n");

@@ -23,6 +23,12 @@ fn the_bundled_calculix_campaign_runs_locally_and_fits_like_doe_fit() {
         &text(&out.stdout),
         &["x1_max [m]: R²", "d12_max [m]: R²", "table.csv (9 points)"],
     );
+    // the hint runs from here: the table's path through the campaign folder
+    let hint = format!(
+        "the same regression: bumpsim doe fit {} --factors",
+        c.join("results").join("table.csv").display()
+    );
+    assert_contains(&text(&out.stdout), &[hint.as_str()]);
     assert!(c.join("results/report/index.html").exists());
     // the .dat (7 significant digits) and .frd (6) readers agree on x1's
     // maximum; the bumpsim-deck and the generic .dat readers exactly
