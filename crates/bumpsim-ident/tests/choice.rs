@@ -19,7 +19,6 @@ use bumpsim_ident::{Identification, LoadCase, Settings, Study};
 use rand_chacha::ChaCha8Rng;
 use rand_core::SeedableRng;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use synthetic::gauss;
 
 mod synthetic;
@@ -112,19 +111,7 @@ fn pendulum_series() -> Option<PathBuf> {
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("pendulum-independent");
     let script =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/pendulum_independent.py");
-    if !out.join("truth.json").is_file() {
-        let run = Command::new("python3")
-            .arg(&script)
-            .arg(&out)
-            .arg(DRAWS.to_string())
-            .output()
-            .unwrap();
-        assert!(
-            run.status.success(),
-            "{}",
-            String::from_utf8_lossy(&run.stderr)
-        );
-    }
+    bumpsim_peers::generated(&script, &out, &[&DRAWS.to_string()], "truth.json");
     Some(out)
 }
 

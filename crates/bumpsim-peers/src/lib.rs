@@ -41,6 +41,28 @@ pub fn python_available(module: &str) -> bool {
     )
 }
 
+/// The folder `out` a generator script of `tests/peers/` writes (`python3
+/// SCRIPT OUT ARGS...`), run once: again only while `out/marker` is
+/// missing, so the tests of one target folder share one series. Panics with
+/// the script's stderr when it fails.
+pub fn generated(script: &std::path::Path, out: &std::path::Path, args: &[&str], marker: &str) {
+    if out.join(marker).is_file() {
+        return;
+    }
+    let run = Command::new("python3")
+        .arg(script)
+        .arg(out)
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| panic!("python3 {}: {e}", script.display()));
+    assert!(
+        run.status.success(),
+        "{}: {}",
+        script.display(),
+        String::from_utf8_lossy(&run.stderr)
+    );
+}
+
 /// Passes `found` through; when it is `false`, prints the skip message for
 /// `what`, or panics when [`REQUIRE`] is set.
 pub fn present(found: bool, what: &str) -> bool {

@@ -12,7 +12,6 @@ use bumpsim_planar::forward::forward;
 use bumpsim_planar::identify::{identify, predict};
 use bumpsim_planar::study::PlanarStudy;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 fn series() -> Option<PathBuf> {
     if !bumpsim_peers::python_available("numpy") {
@@ -21,18 +20,7 @@ fn series() -> Option<PathBuf> {
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("planar-independent");
     let script =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/planar_independent.py");
-    if !out.join("study.toml").is_file() {
-        let run = Command::new("python3")
-            .arg(&script)
-            .arg(&out)
-            .output()
-            .unwrap();
-        assert!(
-            run.status.success(),
-            "{}",
-            String::from_utf8_lossy(&run.stderr)
-        );
-    }
+    bumpsim_peers::generated(&script, &out, &[], "study.toml");
     Some(out)
 }
 
