@@ -75,15 +75,6 @@ fn identify_the_bundled_example_writes_json_and_a_report() {
     );
 }
 
-fn chromium() -> Option<PathBuf> {
-    let found = ["/usr/bin/chromium", "/usr/bin/chromium-browser"]
-        .into_iter()
-        .map(PathBuf::from)
-        .find(|p| p.exists());
-    bumpsim_peers::present(found.is_some(), "chromium");
-    found
-}
-
 #[test]
 fn the_identification_report_renders_in_headless_chromium() {
     let Some(browser) = chromium() else { return };

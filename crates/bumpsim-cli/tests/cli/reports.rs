@@ -5,18 +5,9 @@
 //! every SVG's axis labels must name the quantity with its unit and its
 //! scatter legends must show markers.
 
-use crate::util::{bumpsim, root, scratch, text};
+use crate::util::{bumpsim, chromium, root, scratch, text};
 use std::path::{Path, PathBuf};
 use std::process::Command;
-
-fn chromium() -> Option<PathBuf> {
-    let found = ["/usr/bin/chromium", "/usr/bin/chromium-browser"]
-        .into_iter()
-        .map(PathBuf::from)
-        .find(|p| p.exists());
-    bumpsim_peers::present(found.is_some(), "chromium");
-    found
-}
 
 fn ok(args: &[&str]) {
     let run = bumpsim(args);

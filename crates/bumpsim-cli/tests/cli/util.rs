@@ -103,3 +103,14 @@ pub fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
 }
 
 pub use bumpsim_peers::peer_available;
+
+/// Headless Chromium, where the report tests render pages (skipped
+/// without it, a failure under `BUMPSIM_REQUIRE_PEERS`).
+pub fn chromium() -> Option<PathBuf> {
+    let found = ["/usr/bin/chromium", "/usr/bin/chromium-browser"]
+        .into_iter()
+        .map(PathBuf::from)
+        .find(|p| p.exists());
+    bumpsim_peers::present(found.is_some(), "chromium");
+    found
+}
