@@ -11,19 +11,17 @@ use bumpsim_doe::regression::{Fit, normal_scores};
 pub type Figure = (String, String, String);
 
 /// A response's unit for its plots: a known unit (`N`, `m`, `J`, ...) is
-/// drawn in its dimension's display unit (kN, mm, J: docs/reports.md), with
-/// the factor from the response's values to it; another unit as given.
-fn display(unit: &str) -> (Dimension, String, f64) {
+/// drawn in its dimension's display unit (kN, mm, J: docs/reports.md);
+/// another unit as given. Returns the dimension, the unit shown, and the
+/// factors from the response's values to SI and to the unit shown.
+fn display(unit: &str) -> (Dimension, String, f64, f64) {
     match Unit::parse(unit) {
         Ok(u) if u.dimension != Dimension::Dimensionless => {
             let shown = u.dimension.display_unit();
-            (
-                u.dimension,
-                shown.symbol.to_string(),
-                u.factor / shown.factor,
-            )
+            let symbol = shown.symbol.to_string();
+            (u.dimension, symbol, u.factor, u.factor / shown.factor)
         }
-        _ => (Dimension::Dimensionless, unit.to_string(), 1.0),
+        _ => (Dimension::Dimensionless, unit.to_string(), 1.0, 1.0),
     }
 }
 
@@ -31,7 +29,7 @@ fn display(unit: &str) -> (Dimension, String, f64) {
 pub fn fit_plots(response: &str, unit: &str, f: &Fit, y: &[f64]) -> Result<Vec<Figure>, PlotError> {
     let file = crate::file_name(response);
     let skip_intercept = 1.min(f.terms.len());
-    let (dimension, shown, factor) = display(unit);
+    let (dimension, shown, si, factor) = display(unit);
     let scaled = |v: &[f64]| -> Vec<f64> { v.iter().map(|x| x * factor).collect() };
     let bars = BarPlot {
         title: format!("{response}: coded coefficients with 95 % intervals"),
@@ -44,12 +42,6 @@ pub fn fit_plots(response: &str, unit: &str, f: &Fit, y: &[f64]) -> Result<Vec<F
             .collect(),
     };
     // the line plots take SI values and draw them in the display unit
-    let si = Unit::parse(unit).map_or(1.0, |u| u.factor);
-    let si = if dimension == Dimension::Dimensionless {
-        1.0
-    } else {
-        si
-    };
     let to_si = |v: &[f64]| -> Vec<f64> { v.iter().map(|x| x * si).collect() };
     let label = format!("{response} [{shown}]");
     let mut observed = LinePlot::new(
