@@ -27,11 +27,11 @@ const FLOORS: &[(&str, usize)] = &[
     ("bumpsim-planar", 5),
     ("bumpsim-fe", 5),
     ("bumpsim-verdict", 6),
-    ("bumpsim-report", 6),
-    ("bumpsim-campaign", 7),
-    ("bumpsim-cli", 8),
-    ("bumpsim-py", 8),
-    ("bumpsim", 8),
+    ("bumpsim-report", 7),
+    ("bumpsim-campaign", 8),
+    ("bumpsim-cli", 9),
+    ("bumpsim-py", 9),
+    ("bumpsim", 9),
 ];
 
 /// Crates that are not libraries for users: the binaries and test support.
