@@ -8,7 +8,7 @@
 //! huge integers, empty), writes the result to a scratch file and runs the
 //! reader: it must return Ok or an error, never panic. Each target runs for
 //! `BUMPSIM_FUZZ_SECONDS` seconds (default 2, so `cargo test` stays quick;
-//! scripts/test sets 60). The generator is seeded (`BUMPSIM_FUZZ_SEED`,
+//! scripts/test sets 30). The generator is seeded (`BUMPSIM_FUZZ_SEED`,
 //! default below), so a run is reproducible: a longer run with the same seed
 //! covers every case a shorter one tries; set another seed to explore.
 
