@@ -27,7 +27,8 @@ pub fn planar_report(
     if let Some(view) = view {
         let caption = format!("top view at peak force, t = {:.2} ms", view.time * 1e3);
         let svg = crate::topview::top_view_svg(view, &caption)?;
-        page.figure(&svg, &format!("{caption}: body outline (grey), side members (blue), crushed bumper line (red), striker (grey)"));
+        let legend = crate::topview::legend(view);
+        page.figure(&svg, &format!("{caption}: {legend}"));
         figures.push(("top-view.svg".to_string(), svg));
     }
     for (name, svg, caption) in [
