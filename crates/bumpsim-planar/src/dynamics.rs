@@ -3,12 +3,15 @@
 //! body's CG in the world, its yaw, the chain masses' displacements along the
 //! body x axis relative to their rest position on the bumper line (left chain
 //! first), and the pendulum's travel along −x (unused for a fixed striker).
-//! Everything here works on preallocated buffers: nothing allocates per step.
+//! Everything here works on preallocated buffers: nothing allocates per step,
+//! and the yaw's sine and cosine are computed once per position (a step's
+//! contact, tyre relaxation, accelerations and record share them).
 
 use crate::car::{GRAVITY, PlanarCar};
 use crate::striker::{Placed, pole_profile};
 use crate::tyre::Wheel;
 use bumpsim_impact::bumper::{Bumper, BumperState};
+use std::cell::Cell;
 
 /// A chain link: `front` mass, `back` mass or the body, spring N/m, damper N·s/m.
 struct Link {
@@ -42,6 +45,8 @@ pub(crate) struct Model {
     absorbers: Vec<Bumper>,
     /// Half the integration step, s (for the full-step velocity estimate).
     pub half_step: f64,
+    /// The last yaw's bits, its sine and cosine ([`Model::trig`]).
+    trig: Cell<(u64, f64, f64)>,
 }
 
 /// The contact state of the bumper segments.
@@ -100,16 +105,6 @@ pub(crate) struct Loads {
 struct Axes {
     e: [f64; 2],
     n: [f64; 2],
-}
-
-impl Axes {
-    fn of(yaw: f64) -> Axes {
-        let (sn, cs) = yaw.sin_cos();
-        Axes {
-            e: [cs, sn],
-            n: [-sn, cs],
-        }
-    }
 }
 
 fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -175,6 +170,28 @@ impl Model {
             face,
             pendulum,
             half_step: 0.0,
+            trig: Cell::new((0f64.to_bits(), 0.0, 1.0)),
+        }
+    }
+
+    /// The sine and cosine of the yaw ψ (rad), computed once per value: a
+    /// step evaluates them at the same position three to six times.
+    pub fn trig(&self, yaw: f64) -> (f64, f64) {
+        let (bits, sn, cs) = self.trig.get();
+        if bits == yaw.to_bits() {
+            return (sn, cs);
+        }
+        let (sn, cs) = yaw.sin_cos();
+        self.trig.set((yaw.to_bits(), sn, cs));
+        (sn, cs)
+    }
+
+    /// The body axes at the yaw ψ (rad).
+    fn axes(&self, yaw: f64) -> Axes {
+        let (sn, cs) = self.trig(yaw);
+        Axes {
+            e: [cs, sn],
+            n: [-sn, cs],
         }
     }
 
@@ -274,7 +291,7 @@ impl Model {
             Some(_) => self.face.moved(q[self.travel()]),
             None => self.face,
         };
-        let axes = Axes::of(q[2]);
+        let axes = self.axes(q[2]);
         for (j, segment) in car.beam().segments.iter().enumerate() {
             let (depth, covered, direction, point) = self.segment(q, axes, &face, j);
             let depth = self.admit(c, j, depth, covered);
@@ -401,7 +418,7 @@ impl Model {
 
     /// Kinetic energy of car and pendulum, J.
     pub fn kinetic(&self, q: &[f64], v: &[f64]) -> f64 {
-        let axes = Axes::of(q[2]);
+        let axes = self.axes(q[2]);
         let mut t = 0.5 * self.body_mass * (v[0] * v[0] + v[1] * v[1]);
         t += 0.5 * self.yaw_inertia * v[2] * v[2];
         for (i, m) in self.masses.iter().enumerate() {
@@ -415,7 +432,7 @@ impl Model {
     /// Linear momentum (N·s) and angular momentum about the world origin
     /// (N·m·s) of car and pendulum.
     pub fn momentum(&self, q: &[f64], v: &[f64]) -> ([f64; 2], f64) {
-        let (m, axes) = (self.body_mass, Axes::of(q[2]));
+        let (m, axes) = (self.body_mass, self.axes(q[2]));
         let mut p = [m * v[0], m * v[1]];
         let mut l = m * cross([q[0], q[1]], [v[0], v[1]]) + self.yaw_inertia * v[2];
         for (i, mi) in self.masses.iter().enumerate() {
@@ -443,7 +460,7 @@ impl Model {
         chain: &mut [f64],
         a: &mut [f64],
     ) -> Loads {
-        self.accelerations_at(q, v, c, chain, a, q[2].sin_cos())
+        self.accelerations_at(q, v, c, chain, a, self.trig(q[2]))
     }
 
     /// [`Model::accelerations`] with the yaw's sine and cosine given.
@@ -531,7 +548,7 @@ impl Model {
     /// Advances the rolling tyres' patch deflections over `step` (s) at
     /// positions `q` and the velocities `v` of the step ([`Wheel::relax`]).
     pub fn relax(&self, q: &[f64], v: &[f64], c: &mut Contact, step: f64) {
-        self.relax_at(q[2].sin_cos(), v, c, step)
+        self.relax_at(self.trig(q[2]), v, c, step)
     }
 
     /// [`Model::relax`] with the yaw's sine and cosine given.

@@ -320,8 +320,11 @@ impl Mechanism for Run<'_> {
         sums.dampers += t_step * d;
         sums.friction += t_step * f;
         sums.pending = (0.5 * t_step * d, 0.5 * t_step * f);
-        let contact = self.loads.contact;
-        sums.peak_force = sums.peak_force.max(contact[0].hypot(contact[1]));
+        let [fx, fy] = self.loads.contact;
+        // |F| ≤ |F_x| + |F_y|: the magnitude only when it may be a new peak
+        if fx.abs() + fy.abs() > sums.peak_force {
+            sums.peak_force = sums.peak_force.max(fx.hypot(fy));
+        }
         let ext = self.external;
         sums.impulse[0] += 0.5 * t_step * (ext.0[0] + next.0[0]);
         sums.impulse[1] += 0.5 * t_step * (ext.0[1] + next.0[1]);
@@ -520,7 +523,7 @@ impl<'a> Run<'a> {
         out.force_x.push(fx);
         out.force_y.push(fy);
         out.force.push(fx.hypot(fy));
-        let (sn, cs) = q[2].sin_cos();
+        let (sn, cs) = model.trig(q[2]);
         let (fe, fn_) = (fx * cs + fy * sn, -fx * sn + fy * cs);
         out.line_of_action.push(
             (fe.abs() > 1e-9 * fn_.abs().max(1.0))

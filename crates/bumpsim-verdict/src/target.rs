@@ -16,17 +16,47 @@
 //! of log-spaced force levels, then bisection of each pass/fail transition
 //! of the longest passing run to a relative tolerance, naming the failing
 //! criterion (and its test) just outside each boundary. Rows run in
-//! parallel (rayon); every candidate runs every test of the set. A passing
+//! parallel (rayon); every candidate runs every test of the set, and no
+//! candidate runs twice (the scan's outcomes start the bisections, the
+//! stroke is the passing end's). A passing
 //! interval narrower than the scan's spacing can be missed; the corridor
 //! is the envelope of the passing characteristics, and a curve inside it
 //! is not guaranteed to pass: check it with the verdict.
+//!
+//! **Step.** The candidates integrate with the one step rule of
+//! `bumpsim_core::leapfrog` at a safety factor of [`SEARCH_SAFETY`] of the
+//! critical step (the verdict's 0.05 is set for histories accurate to
+//! 1e-9) and record every [`SEARCH_OUTPUT_STEP`]: over the example's
+//! search range (¼ to 4 times its stiffness and force level, every test
+//! of 49 CFR 581 and the RCAR bumper test) every margin ratio is within
+//! 4e-4 of the verdict's, far inside the boundaries' 1 % (test
+//! `the_search_step_keeps_every_margin_ratio_within_1e_3`).
 
 use crate::error::{VerdictError, require};
 use crate::verdict::{CarEnd, Setup, assess};
 use bumpsim_impact::bumper::{Bumper, Loading};
+use bumpsim_planar::Settings;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// The candidates' fraction of the critical step (the verdict's is 0.05).
+pub const SEARCH_SAFETY: f64 = 0.3;
+
+/// The candidates' recording interval, s (the verdict's is 0.1 ms).
+pub const SEARCH_OUTPUT_STEP: f64 = 2e-4;
+
+/// The integration settings of the search's candidates: the set-up's,
+/// with a safety factor of at least [`SEARCH_SAFETY`] and a recording
+/// interval of at least [`SEARCH_OUTPUT_STEP`] (the step from the rule).
+pub fn search_settings(settings: &Settings) -> Settings {
+    Settings {
+        safety: settings.safety.max(SEARCH_SAFETY),
+        output_step: settings.output_step.max(SEARCH_OUTPUT_STEP),
+        step: None,
+        ..*settings
+    }
+}
 
 /// The search's ranges and resolution.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -221,17 +251,27 @@ struct Candidate {
 }
 
 struct Search<'a> {
-    setup: &'a Setup,
+    /// The set-up with the search's settings ([`search_settings`]).
+    setup: Setup,
     family: Family,
-    impacts: AtomicUsize,
+    impacts: &'a AtomicUsize,
 }
 
 impl Search<'_> {
     fn evaluate(&self, stiffness: f64, force: f64) -> Result<Candidate, VerdictError> {
         let segments = self.family.segments(stiffness, force)?;
-        let mut setup = self.setup.clone();
-        for end in [&mut setup.front, &mut setup.rear].into_iter().flatten() {
-            *end = end.with_segments(segments.clone())?;
+        let mut setup = Setup {
+            front: None,
+            rear: None,
+            ..self.setup.clone()
+        };
+        for (slot, end) in [
+            (&mut setup.front, &self.setup.front),
+            (&mut setup.rear, &self.setup.rear),
+        ] {
+            if let Some(end) = end {
+                *slot = Some(end.with_segments(segments.clone())?);
+            }
         }
         let (mut pass, mut worst, mut crush) = (true, (f64::INFINITY, String::new()), 0.0f64);
         for test in &setup.tests {
@@ -253,25 +293,31 @@ impl Search<'_> {
         })
     }
 
-    /// Bisects between a failing and a passing level (log scale); returns
-    /// the passing end and the failing end's worst criterion.
+    /// Bisects between a failing and a passing level (log scale), both
+    /// evaluated already: the passing end with the failing end's worst
+    /// criterion, and the passing end's crush (m).
     fn boundary(
         &self,
         stiffness: f64,
-        mut fail: f64,
-        mut pass: f64,
+        fail: (f64, &Candidate),
+        pass: (f64, &Candidate),
         tolerance: f64,
-    ) -> Result<(f64, String), VerdictError> {
-        let mut worst = self.evaluate(stiffness, fail)?.worst;
+    ) -> Result<(Bound, f64), VerdictError> {
+        let (mut fail, mut worst) = (fail.0, fail.1.worst.clone());
+        let (mut pass, mut crush) = (pass.0, pass.1.crush);
         while (pass / fail).ln().abs() > tolerance {
             let mid = (fail * pass).sqrt();
             let o = self.evaluate(stiffness, mid)?;
             match o.pass {
-                true => pass = mid,
+                true => (pass, crush) = (mid, o.crush),
                 false => (fail, worst) = (mid, o.worst),
             }
         }
-        Ok((pass, worst))
+        let bound = Bound {
+            force: pass,
+            binding: Some(worst),
+        };
+        Ok((bound, crush))
     }
 
     fn row(&self, stiffness: f64, levels: &[f64], tolerance: f64) -> Result<Row, VerdictError> {
@@ -288,39 +334,26 @@ impl Search<'_> {
                 failing: Some(middle.worst.clone()),
             });
         };
-        let low = match first {
-            0 => Bound {
-                force: levels[0],
+        let at = |i: usize| (levels[i], &outcomes[i]);
+        let edge = |i: usize| {
+            let bound = Bound {
+                force: levels[i],
                 binding: None,
-            },
-            i => {
-                let (force, binding) =
-                    self.boundary(stiffness, levels[i - 1], levels[i], tolerance)?;
-                Bound {
-                    force,
-                    binding: Some(binding),
-                }
-            }
+            };
+            (bound, outcomes[i].crush)
+        };
+        let low = match first {
+            0 => edge(0),
+            i => self.boundary(stiffness, at(i - 1), at(i), tolerance)?,
         };
         let high = match last + 1 == levels.len() {
-            true => Bound {
-                force: levels[last],
-                binding: None,
-            },
-            false => {
-                let (force, binding) =
-                    self.boundary(stiffness, levels[last + 1], levels[last], tolerance)?;
-                Bound {
-                    force,
-                    binding: Some(binding),
-                }
-            }
+            true => edge(last),
+            false => self.boundary(stiffness, at(last + 1), at(last), tolerance)?,
         };
-        let stroke = self.evaluate(stiffness, low.force)?.crush;
         Ok(Row {
             stiffness,
-            interval: Some([low, high]),
-            stroke: Some(stroke),
+            interval: Some([low.0, high.0]),
+            stroke: Some(low.1),
             failing: None,
         })
     }
@@ -412,10 +445,14 @@ pub fn search(setup: &Setup, options: &TargetOptions) -> Result<Region, VerdictE
     let family = Family::of(end);
     let (stiffness, force) = check(options, family.origin)?;
     let levels = spaced(force, options.levels);
+    let impacts = AtomicUsize::new(0);
     let search = Search {
-        setup,
+        setup: Setup {
+            settings: search_settings(&setup.settings),
+            ..setup.clone()
+        },
         family: family.clone(),
-        impacts: AtomicUsize::new(0),
+        impacts: &impacts,
     };
     let rows = spaced(stiffness, options.rows)
         .par_iter()
@@ -428,7 +465,7 @@ pub fn search(setup: &Setup, options: &TargetOptions) -> Result<Region, VerdictE
         margin: setup.margin,
         rows,
         corridor,
-        impacts: search.impacts.load(Ordering::Relaxed),
+        impacts: impacts.load(Ordering::Relaxed),
         seconds: start.elapsed().as_secs_f64(),
     })
 }
@@ -476,5 +513,65 @@ fn corridor(family: &Family, rows: &[Row]) -> Corridor {
         deflection,
         lower,
         upper,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::limits::Damageability;
+    use crate::protocol::select;
+    use crate::verdict::judge;
+    use std::path::Path;
+
+    /// The worked example's front in 49 CFR 581 and the RCAR bumper test.
+    fn example() -> Setup {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/verdict/car.toml");
+        let car = bumpsim_planar::PlanarCar::read(&path).unwrap();
+        let end = CarEnd::new(car, Damageability::read(&path).unwrap()).unwrap();
+        Setup::new(vec![end], select(&["part581", "rcar-bumper"]).unwrap(), 0.0).unwrap()
+    }
+
+    /// Every criterion's margin ratio at the search's step and recording
+    /// against the verdict's, at the corners and the centre of the
+    /// default search range: within 1e-3 (4e-4 measured), far inside the
+    /// boundaries' 1 % tolerance.
+    #[test]
+    fn the_search_step_keeps_every_margin_ratio_within_1e_3() {
+        let setup = example();
+        let family = Family::of(setup.front.as_ref().unwrap());
+        let [x0, y0] = family.origin;
+        for (x, y) in [
+            (0.25, 0.25),
+            (0.25, 4.0),
+            (1.0, 1.0),
+            (4.0, 0.25),
+            (4.0, 4.0),
+        ] {
+            let segments = family.segments(x * x0, y * y0).unwrap();
+            let front = setup.front.as_ref().unwrap().with_segments(segments);
+            let fine = Setup {
+                front: Some(front.unwrap()),
+                ..setup.clone()
+            };
+            let coarse = Setup {
+                settings: search_settings(&fine.settings),
+                ..fine.clone()
+            };
+            for test in &setup.tests {
+                let (a, b) = (judge(&fine, test).unwrap(), judge(&coarse, test).unwrap());
+                for (p, q) in a.criteria.iter().zip(&b.criteria) {
+                    assert_eq!(p.name, q.name);
+                    assert!(
+                        (p.ratio - q.ratio).abs() <= 1e-3,
+                        "{x} x {y}, {}: {} margin ratio {} at the verdict's step, {} at the search's",
+                        test.name,
+                        p.name,
+                        p.ratio,
+                        q.ratio
+                    );
+                }
+            }
+        }
     }
 }
