@@ -11,7 +11,12 @@
 //!   figure equal to the printed one within 1 % (relative, or 1e-9
 //!   absolute), every other character exactly;
 //! - ```` ```toml file=PATH ```` (any language) — written to PATH before the
-//!   blocks that follow run.
+//!   blocks that follow run;
+//! - ```` ```text contents=PATH ```` — what the file PATH holds after the
+//!   blocks before it ran, compared like an output (`...` for elision);
+//! - ```` ```sh runnable needs=ccx ```` — the block needs CalculiX: skipped
+//!   with a message when `ccx` is absent, a failure under
+//!   `BUMPSIM_REQUIRE_PEERS`.
 //!
 //! Each docs page runs in its own scratch folder (with `examples`, `docs`,
 //! `tests` and `crates` linked to the repository's), blocks in page order,
@@ -30,6 +35,7 @@ enum Block {
         code: String,
         exit: i32,
         line: usize,
+        needs_ccx: bool,
     },
     Output {
         text: String,
@@ -37,6 +43,11 @@ enum Block {
     File {
         path: String,
         text: String,
+    },
+    Contents {
+        path: String,
+        text: String,
+        line: usize,
     },
 }
 
@@ -56,7 +67,13 @@ fn blocks(markdown: &str) -> Vec<Block> {
         let body = body.join("\n");
         let words: Vec<&str> = info.split_whitespace().collect();
         let word = |key: &str| words.iter().find_map(|w| w.strip_prefix(key));
-        if let Some(path) = word("file=") {
+        if let Some(path) = word("contents=") {
+            out.push(Block::Contents {
+                path: path.to_string(),
+                text: body,
+                line: number + 1,
+            });
+        } else if let Some(path) = word("file=") {
             out.push(Block::File {
                 path: path.to_string(),
                 text: body + "\n",
@@ -67,6 +84,7 @@ fn blocks(markdown: &str) -> Vec<Block> {
                 code: body,
                 exit,
                 line: number + 1,
+                needs_ccx: word("needs=") == Some("ccx"),
             });
         } else if words == ["text", "output"] {
             out.push(Block::Output { text: body });
@@ -178,7 +196,15 @@ fn check_page(page: &str) -> Vec<String> {
                 std::fs::create_dir_all(file.parent().unwrap()).unwrap();
                 std::fs::write(file, text).unwrap();
             }
-            Block::Run { code, exit, line } => {
+            Block::Run {
+                needs_ccx: true, ..
+            } if !crate::export::ccx_available() => {
+                eprintln!("{page}: skipped from here on: it runs CalculiX (ccx), not installed");
+                break;
+            }
+            Block::Run {
+                code, exit, line, ..
+            } => {
                 let (status, printed) = run(&dir, &code);
                 if status != exit {
                     failures.push(format!(
@@ -197,6 +223,15 @@ fn check_page(page: &str) -> Vec<String> {
                 if !matches(&expected, &actual) {
                     failures.push(format!(
                         "{page}:{line}: the docs show\n{text}\n--- the command printed\n{printed}"
+                    ));
+                }
+            }
+            Block::Contents { path, text, line } => {
+                let held = std::fs::read_to_string(dir.join(&path)).unwrap_or_default();
+                let expected: Vec<&str> = text.lines().collect();
+                if !matches(&expected, &held.lines().collect::<Vec<_>>()) {
+                    failures.push(format!(
+                        "{page}:{line}: the docs show {path} as\n{text}\n--- it holds\n{held}"
                     ));
                 }
             }
