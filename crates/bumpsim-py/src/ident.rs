@@ -212,7 +212,7 @@ fn identify_cases(
         cases,
         Vec::new(),
         None,
-        settings.seed,
+        &settings,
     ))
 }
 
@@ -319,7 +319,7 @@ fn identify(
             cases,
             notes,
             Some(path),
-            settings.seed,
+            &settings,
         ))
     })
 }
@@ -369,7 +369,7 @@ fn sweep(
                 cases,
                 notes.clone(),
                 Some(path.to_path_buf()),
-                settings.seed,
+                &settings,
             )),
             Err(e) => failures.push(Failed {
                 dof,

@@ -8,6 +8,7 @@ use crate::convert::from_json;
 use crate::errors::input;
 use crate::frames;
 use crate::model::Car;
+use crate::posterior::{Posterior, Run, sample};
 use crate::state::ident::{DofTableState, IdentificationState, PredictionState};
 use crate::state::{decode, encode, reduce};
 use bumpsim_core::model::{parameter_kind, parameter_name};
@@ -15,6 +16,7 @@ use bumpsim_ident::case::LoadCase;
 use bumpsim_ident::document::{Failed, IdentifyDocument};
 use bumpsim_ident::estimate::Identification as CoreIdentification;
 use bumpsim_ident::explore::{predict, sensitivity};
+use bumpsim_ident::settings::Settings;
 use bumpsim_ident::text::{dof_table, recommended_dof};
 use bumpsim_io::car::Car as IoCar;
 use bumpsim_report::identification::{DofOutcome, report};
@@ -46,20 +48,22 @@ pub struct Identification {
 }
 
 impl Identification {
-    /// The Python object of a result, its cases, notes, study and seed.
+    /// The Python object of a result, its cases, notes, study and the
+    /// settings it was identified with (their seed and bounds are kept).
     pub fn new(
         result: CoreIdentification,
         cases: Vec<LoadCase>,
         notes: Vec<String>,
         study: Option<PathBuf>,
-        seed: u64,
+        settings: &Settings,
     ) -> Identification {
         Identification::of(IdentificationState {
             result,
             cases,
             notes,
             study,
-            seed,
+            seed: settings.seed,
+            bounds: settings.bounds.clone(),
         })
     }
 
@@ -303,6 +307,26 @@ impl Identification {
         }
         frames::records(py, rows, &["case"], &PyDict::new(py))
     }
+    /// Samples the posterior of the parameters (bumpsim-ident's ensemble
+    /// sampler with this identification's noise model, log-uniform prior
+    /// within its bounds), seeded (default: the identification's seed);
+    /// `steps` (a quarter of them burnt) and `walkers` override the
+    /// library's run (4000 steps, 32 walkers at least; 4000 draws kept).
+    #[pyo3(signature = (seed = None, steps = None, walkers = None))]
+    fn posterior(
+        &self,
+        py: Python<'_>,
+        seed: Option<&Bound<'_, PyAny>>,
+        steps: Option<&Bound<'_, PyAny>>,
+        walkers: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Posterior> {
+        let run = Run {
+            seed,
+            steps,
+            walkers,
+        };
+        sample(py, &self.data, run)
+    }
     /// Simulates the study's load cases with the identified model.
     fn predict(&self, py: Python<'_>) -> PyResult<Vec<Prediction>> {
         let predictions = py
@@ -515,13 +539,14 @@ impl DofTable {
     #[getter(results)]
     fn identifications(&self) -> Vec<Identification> {
         let copy = |r: &IdentificationState| {
-            Identification::new(
-                r.result.clone(),
-                r.cases.clone(),
-                r.notes.clone(),
-                r.study.clone(),
-                r.seed,
-            )
+            Identification::of(IdentificationState {
+                result: r.result.clone(),
+                cases: r.cases.clone(),
+                notes: r.notes.clone(),
+                study: r.study.clone(),
+                seed: r.seed,
+                bounds: r.bounds.clone(),
+            })
         };
         self.data.results.iter().map(copy).collect()
     }

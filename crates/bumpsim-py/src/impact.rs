@@ -39,7 +39,7 @@ pub struct Bumper {
 }
 
 /// The bumper of an argument: a `Bumper`, or the path of a bumper file.
-fn bumper_of(value: &Bound<'_, PyAny>) -> PyResult<CoreBumper> {
+pub(crate) fn bumper_of(value: &Bound<'_, PyAny>) -> PyResult<CoreBumper> {
     if let Ok(bumper) = value.cast::<Bumper>() {
         return Ok(bumper.get().inner.clone());
     }

@@ -23,8 +23,10 @@ mod identification;
 mod impact;
 mod model;
 mod planar;
+mod posterior;
 mod signal;
 mod state;
+mod verdict;
 
 use pyo3::prelude::*;
 
@@ -40,6 +42,8 @@ fn _bumpsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     doe::register(m)?;
     export::register(m)?;
     planar::register(m)?;
+    posterior::register(m)?;
     campaign::register(m)?;
+    verdict::register(m)?;
     Ok(())
 }

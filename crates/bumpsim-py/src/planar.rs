@@ -33,7 +33,7 @@ pub struct PlanarCar {
 }
 
 /// The planar car of an argument: a `PlanarCar`, or the path of its file.
-fn planar_car_of(value: &Bound<'_, PyAny>) -> PyResult<(CorePlanarCar, PathBuf)> {
+pub(crate) fn planar_car_of(value: &Bound<'_, PyAny>) -> PyResult<(CorePlanarCar, PathBuf)> {
     if let Ok(car) = value.cast::<PlanarCar>() {
         let car = car.get();
         return Ok((car.inner.clone(), car.path.clone()));

@@ -37,6 +37,7 @@ def objects(root, tmp_path_factory):
         'steps = [{ pretrigger_bias = true }, { cfc = 180 }]\n'
     )
     study = ex / "identify" / "study.toml"
+    verdict = bumpsim.verdict(ex / "verdict" / "car.toml", protocol="rcar-bumper-corner-front", target=True)
     return {
         "Car": car,
         "Response": response,
@@ -54,13 +55,16 @@ def objects(root, tmp_path_factory):
         "DoeModel": bumpsim.doe_fit(data, ["a", "b"], ["y"]),
         "PipelineRun": bumpsim.run_pipeline(pipeline),
         "DofTable": bumpsim.dof_table(study, dofs="1..2", starts=2, seed=1),
+        "Posterior": identification.posterior(steps=40),
+        "Verdict": verdict,
+        "BumperTarget": verdict.target,
     }
 
 
 CLASSES = [
     "Car", "Response", "Test", "Entry", "Channel", "LoadCase", "Identification",
     "Prediction", "Bumper", "Impact", "PlanarCar", "PlanarImpact", "Design",
-    "DoeModel", "PipelineRun", "DofTable",
+    "DoeModel", "PipelineRun", "DofTable", "Posterior", "Verdict", "BumperTarget",
 ]
 # pickled, compared and printed in test_campaign.py
 CAMPAIGN_CLASSES = ["Campaign", "CampaignStatus", "Collected"]
@@ -113,7 +117,7 @@ def _impact(job):
         ("Car", "masses"), ("Response", "displacement"), ("Response", "time"),
         ("Channel", "data"), ("Channel", "time"), ("LoadCase", "force"),
         ("Identification", "masses"), ("Prediction", "simulated"), ("Impact", "force"),
-        ("Design", "coded"),
+        ("Design", "coded"), ("Posterior", "samples"), ("Posterior", "mean"),
     ],
 )
 def test_arrays_are_read_only_and_made_once(objects, name, attribute):

@@ -297,6 +297,48 @@ class Identification:
     def report(self) -> tuple[str, dict[str, str]]:
         """The HTML report of ``bumpsim identify --report`` (with the ±3 %
         sensitivity): the page and its SVG figures, file name → text."""
+    def posterior(
+        self, seed: Optional[int] = None, steps: Optional[int] = None, walkers: Optional[int] = None
+    ) -> "Posterior":
+        """Samples the posterior of the parameters (the ensemble sampler with
+        this identification's noise model, log-uniform prior within its
+        bounds), seeded (default: the identification's seed); ``steps`` (a
+        quarter burnt, default 4000) and ``walkers`` (default 32 at least)."""
+
+class Posterior:
+    """The posterior of an identified model's parameters (thesis order, SI):
+    means, medians, deviations, equal-tailed 90 % and 95 % intervals, the
+    sampler's diagnostics and the kept draws."""
+
+    names: list[str]
+    units: list[str]
+    mean: FloatArray
+    median: FloatArray
+    sd: FloatArray
+    ci90: list[Optional[tuple[float, float]]]
+    """5 % and 95 % quantiles; None for a fixed parameter."""
+    ci95: list[Optional[tuple[float, float]]]
+    fixed: list[bool]
+    noise: dict[str, float]
+    ensemble: dict[str, int]
+    """walkers, steps, burn, seed."""
+    diagnostics: dict[str, Any]
+    """autocorrelation_time, time_reliable, effective_draws, r_hat (free
+    parameters), acceptance, converged, warnings."""
+    converged: bool
+    warnings: list[str]
+    samples: FloatArray
+    """The kept draws: one row per draw, one column per parameter (read-only)."""
+    def to_text(self) -> str:
+        """Each parameter's mean and 90 % interval beside its local 95 %, the
+        diagnostics and warnings."""
+    def to_pandas(self) -> DataFrame:
+        """The draws: columns ``m1 [kg]``, ..., ``k1 [N/m]``; attrs: ensemble,
+        noise, converged, warnings."""
+    def summary_to_pandas(self) -> DataFrame:
+        """Index ``parameter``; mean, median, sd, ci90_low, ci90_high,
+        ci95_low, ci95_high, local_ci95_low, local_ci95_high (SI, in the row's
+        ``unit``), unit, fixed."""
 
 def identify(
     study: StrPath,
@@ -465,6 +507,71 @@ def planar_impact(
     """A preset ``case``; or a barrier (or ``pendulum``, kg) at ``angle`` degrees
     with ``overlap`` % from ``side``; or a pole of diameter ``pole`` m at
     ``pole_offset`` m; ``speed`` in m/s."""
+
+# ---------------------------------------------------------------- verdicts
+
+# a planar car with its [damageability]: a PlanarCar or the path of its file
+PlanarCarLike = Union["PlanarCar", str, "PathLike[str]"]
+
+class BumperTarget:
+    """The region of bumper characteristics that passes every criterion
+    (``bumpsim verdict --target``): per whole-bumper initial stiffness the
+    passing force levels and the criterion binding at each boundary."""
+
+    origin: tuple[float, float]
+    """The car's own bumper: initial stiffness (N/m), force level (N)."""
+    tabulated: bool
+    margin: float
+    impacts: int
+    seconds: float
+    rows: list[dict[str, Any]]
+    def contains(self, stiffness: float, force: float) -> bool:
+        """Whether a whole-bumper stiffness (N/m) and force level (N) lie in the region."""
+    def to_text(self) -> str: ...
+    def to_json(self) -> str:
+        """The JSON's ``target``."""
+    def to_pandas(self) -> DataFrame:
+        """Index ``stiffness [N/m]``; ``force low [N]``, ``binding low``,
+        ``force high [N]``, ``binding high``, ``stroke [m]``, ``failing``."""
+    def corridor_to_pandas(self) -> DataFrame:
+        """Index ``deflection [m]``; ``lower [N]``, ``upper [N]``."""
+
+class Verdict:
+    """The verdict of a car in a set of tests (``bumpsim verdict``)."""
+
+    car: str
+    margin: float
+    passed: bool
+    failures: list[tuple[str, str]]
+    """The failing criteria: (test, criterion)."""
+    tests: list[dict[str, Any]]
+    """The JSON's ``verdict.tests``."""
+    target: Optional[BumperTarget]
+    def to_text(self) -> str:
+        """The tables ``bumpsim verdict`` prints."""
+    def to_json(self) -> str:
+        """As ``bumpsim verdict --json`` writes it."""
+    def to_pandas(self) -> DataFrame:
+        """Index (``test``, ``criterion``); value, limit, margin (SI, in the
+        row's ``unit``), ``ratio [1]``, upper, outcome, pass, detail."""
+    def tests_to_pandas(self) -> DataFrame:
+        """Index ``test``: end, striker, passed, binding, pulse metrics and
+        energies with units, skipped."""
+
+def verdict(
+    car: Union[PlanarCarLike, Sequence[PlanarCarLike]],
+    protocol: Optional[Union[str, Sequence[str]]] = None,
+    margin: float = 0.0,
+    bumper: Optional[Union["Bumper", StrPath]] = None,
+    target: bool = False,
+) -> Verdict:
+    """As ``bumpsim verdict --car CAR --protocol P --margin M [--target]``:
+    one planar car file with a ``[damageability]`` table per end; protocols
+    or tests by name (comma-separated, a list, default ``"all"``); ``bumper``
+    replaces the car's, shared equally by its segments."""
+
+def protocols() -> str:
+    """The protocols and their tests with sources and uncertainties (``bumpsim verdict --list``)."""
 
 # ---------------------------------------------------------------- DOE
 

@@ -5,10 +5,13 @@
 
 use super::{remote_option, remote_seq};
 use bumpsim_core::model::MsdModel;
+use bumpsim_estimate::bounds::Bounds;
 use bumpsim_estimate::effective::{Effective, Method};
 use bumpsim_estimate::lm::Stop;
 use bumpsim_estimate::multistart::Starts;
+use bumpsim_estimate::posterior::{Noise, Posterior};
 use bumpsim_estimate::reduce::Reduction;
+use bumpsim_estimate::sampler::{Diagnostics, Ensemble};
 use bumpsim_estimate::uncertainty::{Correlation, Scale, Share, Uncertainty};
 use bumpsim_ident::case::LoadCase;
 use bumpsim_ident::crossval::{CrossValidation, Fold};
@@ -33,6 +36,22 @@ pub struct IdentificationState {
     pub study: Option<PathBuf>,
     /// The seed of the starts.
     pub seed: u64,
+    /// The bounds and fixed values it was identified within (the
+    /// posterior's prior).
+    #[serde(with = "BoundsDef")]
+    pub bounds: Bounds,
+}
+
+/// What a `Posterior` holds: the sampled posterior and the identification
+/// it was sampled around (its local intervals are printed beside it).
+#[derive(Serialize, Deserialize)]
+pub struct PosteriorState {
+    /// The posterior.
+    #[serde(with = "PosteriorDef")]
+    pub posterior: Posterior,
+    /// The identification.
+    #[serde(with = "IdentificationDef")]
+    pub result: Identification,
 }
 
 /// What a `Prediction` holds.
@@ -331,4 +350,59 @@ struct IdentificationDef {
     effective_samples: Effective,
     #[serde(with = "cross_validation")]
     cross_validation: Option<CrossValidation>,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(remote = "Bounds")]
+struct BoundsDef {
+    lower: Vec<f64>,
+    upper: Vec<f64>,
+    fixed: Vec<Option<f64>>,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(remote = "Noise")]
+enum NoiseDef {
+    Effective(f64),
+    Known(f64),
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(remote = "Ensemble")]
+struct EnsembleDef {
+    walkers: usize,
+    steps: usize,
+    burn: usize,
+    seed: u64,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(remote = "Diagnostics")]
+struct DiagnosticsDef {
+    autocorrelation_time: Vec<f64>,
+    time_reliable: Vec<bool>,
+    effective_draws: Vec<f64>,
+    r_hat: Vec<f64>,
+    acceptance: f64,
+    converged: bool,
+    warnings: Vec<String>,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(remote = "Posterior")]
+struct PosteriorDef {
+    names: Vec<String>,
+    mean: Vec<f64>,
+    median: Vec<f64>,
+    sd: Vec<f64>,
+    ci90: Vec<Option<[f64; 2]>>,
+    ci95: Vec<Option<[f64; 2]>>,
+    fixed: Vec<bool>,
+    #[serde(with = "NoiseDef")]
+    noise: Noise,
+    #[serde(with = "EnsembleDef")]
+    ensemble: Ensemble,
+    #[serde(with = "DiagnosticsDef")]
+    diagnostics: Diagnostics,
+    draws: Vec<Vec<f64>>,
 }

@@ -15,6 +15,7 @@ pub mod doe;
 pub mod ident;
 pub mod impact;
 pub mod planar;
+pub mod verdict;
 
 use crate::errors::invalid;
 use pyo3::prelude::*;
@@ -27,6 +28,12 @@ pub fn encode<T: Serialize>(value: &T) -> PyResult<Vec<u8>> {
     let mut bytes = Vec::new();
     ciborium::into_writer(value, &mut bytes).map_err(|e| invalid(format!("cannot pickle: {e}")))?;
     Ok(bytes)
+}
+
+/// Whether two states are the same, bit for bit (NaN equal to NaN): the
+/// equality of classes whose state holds floats that may be NaN.
+pub fn same<T: Serialize>(a: &T, b: &T) -> PyResult<bool> {
+    Ok(encode(a)? == encode(b)?)
 }
 
 /// A value from CBOR bytes made by [`encode`]; `what` names the class.
