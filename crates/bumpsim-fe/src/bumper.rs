@@ -31,7 +31,7 @@ pub struct Material {
     pub density: f64,
     /// (true stress Pa, plastic strain) pairs, strain from 0 increasing;
     /// none: elastic.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "bumpsim_io::numbers::list")]
     pub yield_curve: Vec<[f64; 2]>,
 }
 

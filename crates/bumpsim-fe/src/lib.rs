@@ -72,6 +72,10 @@ pub enum FeError {
         /// What happened (with the log file to read).
         message: String,
     },
+    /// A speed or pendulum mass outside the ranges every impact keeps
+    /// (`bumpsim_impact::impact::SPEED_RANGE`, `MASS_RANGE`).
+    #[error("{0}")]
+    Scenario(bumpsim_impact::impact::ImpactError),
     /// The duration estimate from the equivalent characteristic failed.
     #[error("estimating the contact time with the equivalent characteristic: {0}")]
     Estimate(String),

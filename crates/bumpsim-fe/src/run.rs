@@ -164,7 +164,7 @@ fn check_scenario(scenario: Scenario) -> Result<(), FeError> {
             });
         }
     }
-    Ok(())
+    scenario.check().map_err(FeError::Scenario)
 }
 
 fn check_run(duration: f64, increment: f64) -> Result<(), FeError> {

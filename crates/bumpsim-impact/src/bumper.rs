@@ -311,6 +311,7 @@ struct BumperFile {
     ramp: Option<f64>,
     plateau: Option<f64>,
     unloading: f64,
+    #[serde(default, deserialize_with = "bumpsim_io::numbers::optional_list")]
     curve: Option<Vec<[f64; 2]>>,
     #[allow(dead_code)]
     name: Option<String>,

@@ -44,7 +44,7 @@ use serde::Serialize;
 #[non_exhaustive]
 pub enum ImpactError {
     /// A scenario or option value is out of range.
-    #[error("impact {name} = {value}: {expected}")]
+    #[error("impact {name} = {value:?}: {expected}")]
     Parameter {
         /// The parameter.
         name: &'static str,
@@ -81,6 +81,50 @@ pub enum Scenario {
         /// Impact speed, m/s.
         speed: f64,
     },
+}
+
+/// Impact speeds a scenario may have, m/s (1 mm/s to 3600 km/h): a slower
+/// impact's energy and compression fall below what the integration resolves
+/// (1e-300 m/s gave a NaN energy balance), a faster one is no bumper impact.
+pub const SPEED_RANGE: std::ops::RangeInclusive<f64> = 1e-3..=1e3;
+
+/// Impactor masses a scenario may have, kg (1 g to 10 000 t): beyond them the
+/// kinetic energy overflows (1e308 kg gave an infinite initial energy) or
+/// underflows, and no test rig swings such a pendulum.
+pub const MASS_RANGE: std::ops::RangeInclusive<f64> = 1e-3..=1e7;
+
+impl Scenario {
+    /// Refuses a speed outside [`SPEED_RANGE`] or an impactor mass outside
+    /// [`MASS_RANGE`], naming the parameter and the range.
+    ///
+    /// ```
+    /// use bumpsim_impact::impact::Scenario;
+    /// assert!(Scenario::Impactor { mass: 1450.0, speed: 1.67 }.check().is_ok());
+    /// let slow = Scenario::Barrier { speed: 1e-300 }.check().unwrap_err();
+    /// assert!(slow.to_string().contains("speed (m/s) = 1e-300"), "{slow}");
+    /// assert!(Scenario::Impactor { mass: 1e308, speed: 2.0 }.check().is_err());
+    /// ```
+    pub fn check(&self) -> Result<(), ImpactError> {
+        let speed = match *self {
+            Scenario::Impactor { mass, speed } => {
+                let expected = "from 0.001 to 1e7 kg (limit MASS_RANGE: 1 g to 10 000 t)";
+                check(
+                    "impactor mass (kg)",
+                    mass,
+                    expected,
+                    MASS_RANGE.contains(&mass),
+                )?;
+                speed
+            }
+            Scenario::Barrier { speed } => speed,
+        };
+        check(
+            "speed (m/s)",
+            speed,
+            "from 0.001 to 1000 m/s (limit SPEED_RANGE: 1 mm/s to 3600 km/h; an impact needs a closing speed)",
+            SPEED_RANGE.contains(&speed),
+        )
+    }
 }
 
 /// Integration options.
@@ -269,24 +313,11 @@ pub fn simulate(
         "positive",
         options.duration > 0.0,
     )?;
+    scenario.check()?;
     let (impactor, speed) = match scenario {
-        Scenario::Impactor { mass, speed } => {
-            check(
-                "impactor mass (kg)",
-                mass,
-                "positive and finite",
-                mass > 0.0 && mass.is_finite(),
-            )?;
-            (Some(mass), speed)
-        }
+        Scenario::Impactor { mass, speed } => (Some(mass), speed),
         Scenario::Barrier { speed } => (None, speed),
     };
-    check(
-        "speed (m/s)",
-        speed,
-        "positive and finite (an impact needs a closing speed)",
-        speed > 0.0 && speed.is_finite(),
-    )?;
     let masses: Vec<f64> = impactor
         .into_iter()
         .chain(car.masses().iter().copied())
@@ -456,6 +487,12 @@ fn integrate(
         .zip(&v0)
         .map(|(m, v)| 0.5 * m * v * v)
         .sum();
+    check(
+        "initial kinetic energy (J)",
+        initial,
+        "finite and positive: the car's masses at this speed carry more energy than a number holds",
+        initial > 0.0,
+    )?;
     let mut impact = Impact {
         chain,
         bumper,

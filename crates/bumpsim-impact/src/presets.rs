@@ -153,18 +153,24 @@ impl ScenarioSpec {
                     names.join(", ")
                 ))
             })?;
-            return Ok((preset.scenario(car_mass, self.speed), Some(preset)));
+            let scenario = preset.scenario(car_mass, self.speed);
+            scenario.check()?;
+            return Ok((scenario, Some(preset)));
         }
         let speed = self.speed.ok_or_else(|| {
             ImpactError::LoadCase("the speed is needed without a preset case".into())
         })?;
-        match (self.pendulum, self.barrier) {
-            (Some(mass), false) => Ok((Scenario::Impactor { mass, speed }, None)),
-            (None, true) => Ok((Scenario::Barrier { speed }, None)),
-            _ => Err(ImpactError::LoadCase(
-                "say what hits: a preset case, a pendulum mass (kg) or the barrier".into(),
-            )),
-        }
+        let scenario = match (self.pendulum, self.barrier) {
+            (Some(mass), false) => Scenario::Impactor { mass, speed },
+            (None, true) => Scenario::Barrier { speed },
+            _ => {
+                return Err(ImpactError::LoadCase(
+                    "say what hits: a preset case, a pendulum mass (kg) or the barrier".into(),
+                ));
+            }
+        };
+        scenario.check()?;
+        Ok((scenario, None))
     }
 }
 

@@ -233,7 +233,8 @@ pub struct ChainFile {
     pub force_noise: Option<f64>,
     /// Accelerometer noise, g rms.
     pub acceleration_noise: Option<f64>,
-    /// Accelerometer biases (left, right), g.
+    /// Accelerometer biases (left, right), g: exactly two numbers.
+    #[serde(default, deserialize_with = "bumpsim_io::numbers::optional")]
     pub biases: Option<[f64; 2]>,
 }
 
@@ -331,6 +332,19 @@ pub enum SeriesError {
         /// The most allowed.
         max: usize,
     },
+    /// A noise level that is negative or not finite, or a noise or bias
+    /// beyond [`MAX_NOISE`].
+    #[error("[chain] {name} = {value:?} {unit}: expected {expected}")]
+    Noise {
+        /// `force_noise`, `acceleration_noise` or `biases`.
+        name: &'static str,
+        /// The value given, in the file's unit.
+        value: f64,
+        /// The file's unit.
+        unit: &'static str,
+        /// What is allowed.
+        expected: &'static str,
+    },
     /// The head names as a list (empty, repeated, invisible characters).
     #[error(transparent)]
     Names(#[from] bumpsim_core::names::NameError),
@@ -347,9 +361,49 @@ pub enum SeriesError {
     },
 }
 
+/// The largest noise level or bias of a chain, in SI (N or m/s²): larger
+/// ones are no measurement and their samples overflow.
+pub const MAX_NOISE: f64 = 1e12;
+
+/// The chain's noise levels are finite, non-negative and at most
+/// [`MAX_NOISE`]; its biases finite and at most [`MAX_NOISE`] in size.
+pub fn check_noise(chain: &Chain) -> Result<(), SeriesError> {
+    let g = STANDARD_GRAVITY;
+    let levels = [
+        ("force_noise", chain.force_noise, 1.0, "N"),
+        ("acceleration_noise", chain.acceleration_noise, g, "g"),
+    ];
+    for (name, value, scale, unit) in levels {
+        if !(value.is_finite() && (0.0..=MAX_NOISE).contains(&value)) {
+            let expected = "a noise level (rms) from 0 to 1e12 in SI (limit MAX_NOISE)";
+            let value = value / scale;
+            return Err(SeriesError::Noise {
+                name,
+                value,
+                unit,
+                expected,
+            });
+        }
+    }
+    match chain
+        .biases
+        .iter()
+        .find(|b| !b.is_finite() || b.abs() > MAX_NOISE)
+    {
+        Some(&bias) => Err(SeriesError::Noise {
+            name: "biases",
+            value: bias / g,
+            unit: "g",
+            expected: "two finite biases (left, right) of at most 1e12 m/s² in size (limit MAX_NOISE)",
+        }),
+        None => Ok(()),
+    }
+}
+
 /// The chain's times are finite and positive, and the fine simulation grid
 /// (10 points per sample) stays within [`bumpsim_io::output::MAX_SAMPLES`].
 fn check_chain(chain: &Chain) -> Result<(), SeriesError> {
+    check_noise(chain)?;
     for (name, value) in [
         ("step", chain.step),
         ("pretrigger", chain.pretrigger),

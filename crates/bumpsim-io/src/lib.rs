@@ -8,7 +8,8 @@
 //! - [`ev5`] (`test_data::ev5`): NHTSA EV5 ASCII X-Y downloads;
 //! - [`output`]: the guard that keeps outputs off the inputs, atomic writes;
 //! - [`signal_error`]: the error type of the test readers;
-//! - [`speed`]: a speed in an input file, m/s or text with a unit.
+//! - [`speed`]: a speed in an input file, m/s or text with a unit;
+//! - [`numbers`]: a fixed count of numbers (a curve point), no more, no fewer.
 //!
 //! Every error names the file and, where it applies, the line and column.
 //!
@@ -30,6 +31,7 @@
 //! ```
 
 pub mod car;
+pub mod numbers;
 pub mod output;
 pub mod response;
 pub mod signal_error;

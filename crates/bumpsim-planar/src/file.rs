@@ -104,6 +104,7 @@ struct Characteristic {
     ramp: Option<f64>,
     plateau: Option<f64>,
     unloading: Option<f64>,
+    #[serde(default, deserialize_with = "bumpsim_io::numbers::optional_list")]
     curve: Option<Vec<[f64; 2]>>,
 }
 
@@ -118,6 +119,7 @@ struct BumperFile {
     ramp: Option<f64>,
     plateau: Option<f64>,
     unloading: Option<f64>,
+    #[serde(default, deserialize_with = "bumpsim_io::numbers::optional_list")]
     curve: Option<Vec<[f64; 2]>>,
     #[serde(default)]
     segment: Vec<Characteristic>,

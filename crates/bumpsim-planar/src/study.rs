@@ -92,6 +92,7 @@ struct ForceRef {
     channel: String,
     lateral: Lateral,
     direction: Vec<f64>,
+    #[serde(default, deserialize_with = "bumpsim_io::numbers::optional")]
     anchor: Option<[f64; 2]>,
     cell: Option<f64>,
 }
@@ -110,8 +111,17 @@ enum Lateral {
 struct SensorRef {
     path: PathBuf,
     channel: String,
+    #[serde(default, deserialize_with = "bumpsim_io::numbers::optional")]
     body: Option<[f64; 2]>,
     chain: Option<usize>,
+}
+
+/// A force's direction as a study gives it: exactly two finite components,
+/// not both zero (normalised where the force is applied).
+fn direction(components: &[f64]) -> Option<[f64; 2]> {
+    let &[dx, dy] = components else { return None };
+    let norm = dx.hypot(dy);
+    (norm.is_finite() && norm > 0.0).then_some([dx, dy])
 }
 
 /// A read planar study: the setup, the fitted cases and the validation cases.
@@ -301,12 +311,12 @@ fn load_case(
                 )));
             }
         };
-        let &[dx, dy] = f.direction.as_slice() else {
-            return Err(error(format!(
-                "force {}: direction = {:?}: expected two components [x, y] (world frame)",
+        let [dx, dy] = direction(&f.direction).ok_or_else(|| {
+            error(format!(
+                "force {}: direction = {:?}: expected two components [x, y] (world frame), finite and not both zero (a planar force has no z component; the vector is normalised, so any length will do)",
                 f.channel, f.direction
-            )));
-        };
+            ))
+        })?;
         forces.push(Placed {
             channel: channel(&f.path, &f.channel, Dimension::Force)?,
             lateral,

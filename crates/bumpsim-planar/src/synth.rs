@@ -185,22 +185,15 @@ fn check(chain: &Chain) -> Result<(), PlanarError> {
             ),
         ));
     }
-    let noise = [
-        chain.measurement.force_noise,
-        chain.measurement.acceleration_noise,
-        chain.measurement.biases[0],
-        chain.measurement.biases[1],
-    ];
-    if noise.iter().any(|v| !v.is_finite())
-        || chain.measurement.force_noise < 0.0
-        || chain.measurement.acceleration_noise < 0.0
+    use bumpsim_impact::synth::{SeriesError, check_noise};
+    if let Err(SeriesError::Noise {
+        name,
+        value,
+        unit,
+        expected,
+    }) = check_noise(&chain.measurement)
     {
-        return Err(parameter(
-            "chain noise",
-            chain.measurement.force_noise,
-            "N",
-            "finite noise levels ≥ 0 and finite biases",
-        ));
+        return Err(parameter(&format!("chain.{name}"), value, unit, expected));
     }
     if !(chain.sensor.iter().all(|v| v.is_finite()) && chain.sensor[1] > 0.0) {
         return Err(parameter(

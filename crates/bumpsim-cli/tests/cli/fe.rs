@@ -132,9 +132,15 @@ fn bad_fe_input_is_a_user_error() {
         "huge.toml",
         &good.replace("elements = 6", "elements = 100000000000"),
     );
+    let plastic = std::fs::read_to_string(root().join("examples/fe/bumper-plastic.toml")).unwrap();
+    let three = write(
+        "three.toml",
+        &plastic.replace("[40e6, 0.0]", "[40e6, 0.0, 1.0]"),
+    );
     let mesh = root().join("examples/fe/bumper-elastic.toml");
     let work = dir.join("work");
     let (c, w) = (car.to_str().unwrap(), work.to_str().unwrap());
+    let m3 = three.to_str().unwrap();
     let cases: Vec<(Vec<&str>, String)> = vec![
         (
             vec![
@@ -223,6 +229,23 @@ fn bad_fe_input_is_a_user_error() {
                 "0.1",
             ],
             "speed (m/s) = 0: expected positive and finite".into(),
+        ),
+        // issue 34: the ranges every impact keeps, and a point of three values
+        (
+            vec![
+                "--bumper",
+                mesh.to_str().unwrap(),
+                "--barrier",
+                "--speed",
+                "1e-300",
+                "--duration",
+                "0.1",
+            ],
+            "speed (m/s) = 1e-300: from 0.001 to 1000 m/s".into(),
+        ),
+        (
+            vec!["--bumper", m3, "--barrier", "--speed", "2"],
+            "three.toml: TOML parse error at line 16".into(),
         ),
     ];
     for (extra, needle) in cases {

@@ -251,3 +251,162 @@ fn a_refused_report_leaves_no_json_behind() {
     let run = bumpsim(&["mass-reduction", "--bumper", b, "-o", g]);
     assert_user_error(&run, "--sweep");
 }
+
+/// Issue 34: `--speed 1e-300` and `--pendulum 1e308` ran with exit 0 and a
+/// NaN or infinite energy; they are refused before the run, naming the
+/// parameter and its range.
+#[test]
+fn impacts_outside_the_physical_ranges_are_refused() {
+    let dir = scratch("impact-ranges");
+    let car = dir.join("utv.toml");
+    std::fs::write(&car, "masses = [1050.0]\ndampers = []\nsprings = []\n").unwrap();
+    let heavy = dir.join("heavy.toml");
+    std::fs::write(
+        &heavy,
+        "masses = [1e308, 1e308]\ndampers = [1]\nsprings = [1e6]\n",
+    )
+    .unwrap();
+    let bumper = impact_example("bumper-a.toml");
+    let cases: [(&std::path::Path, &[&str], &str); 7] = [
+        (
+            &car,
+            &["--pendulum", "1000", "--speed", "1e-300"],
+            "speed (m/s) = 1e-300: from 0.001 to 1000 m/s",
+        ),
+        (
+            &car,
+            &["--pendulum", "1e308", "--speed", "2"],
+            "impactor mass (kg) = 1e308: from 0.001 to 1e7 kg",
+        ),
+        (
+            &car,
+            &["--pendulum", "1e-300", "--speed", "2"],
+            "impactor mass (kg) = 1e-300",
+        ),
+        (
+            &car,
+            &["--barrier", "--speed", "1e200"],
+            "speed (m/s) = 1e200",
+        ),
+        (
+            &car,
+            &["--case", "thesis-flat", "--speed", "1e-9"],
+            "speed (m/s) = 1e-9",
+        ),
+        (
+            &heavy,
+            &["--barrier", "--speed", "2"],
+            "initial kinetic energy (J) = inf",
+        ),
+        (&car, &["--barrier", "--speed=-2"], "speed (m/s) = -2.0"),
+    ];
+    for (car, extra, needle) in cases {
+        let mut args = vec!["impact", "--car", car.to_str().unwrap()];
+        args.extend(["--bumper", bumper.to_str().unwrap()]);
+        args.extend_from_slice(extra);
+        assert_user_error(&bumpsim(&args), needle);
+    }
+}
+
+/// Issue 34: a bumper curve point with three values lost its third without
+/// a word; it is refused with the file, line and what a point holds.
+#[test]
+fn a_curve_point_with_three_values_is_refused() {
+    let dir = scratch("impact-curve-points");
+    let car = dir.join("utv.toml");
+    std::fs::write(&car, "masses = [1050.0]\ndampers = []\nsprings = []\n").unwrap();
+    let bumper = dir.join("three.toml");
+    let curve = "unloading = 1e7\ncurve = [\n  [0, 0],\n  [0.01, 1e4, 5],\n  [0.05, 5e4],\n]\n";
+    std::fs::write(&bumper, curve).unwrap();
+    let (c, b) = (car.to_str().unwrap(), bumper.to_str().unwrap());
+    let run = bumpsim(&[
+        "impact",
+        "--car",
+        c,
+        "--bumper",
+        b,
+        "--barrier",
+        "--speed",
+        "2",
+    ]);
+    assert_user_error(&run, "three.toml: TOML parse error at line 4");
+    assert_user_error(
+        &run,
+        "invalid length 3, expected an array of exactly 2 numbers",
+    );
+    std::fs::write(&bumper, curve.replace(", 5]", "]").replace("[0, 0]", "[0]")).unwrap();
+    let run = bumpsim(&[
+        "impact",
+        "--car",
+        c,
+        "--bumper",
+        b,
+        "--barrier",
+        "--speed",
+        "2",
+    ]);
+    assert_user_error(&run, "line 3");
+}
+
+/// Issue 34: `synth` accepted `force_noise = -1` and three biases for two
+/// accelerometers (the third dropped); a pendulum of 1e308 kg made a series.
+#[test]
+fn synth_refuses_negative_noise_extra_biases_and_absurd_heads() {
+    let dir = scratch("synth-hostile");
+    for file in [
+        "series.toml",
+        "car-truth.toml",
+        "bumper-flat.toml",
+        "bumper-p600.toml",
+        "bumper-pole.toml",
+    ] {
+        std::fs::copy(root().join("examples/identify").join(file), dir.join(file)).unwrap();
+    }
+    let series = std::fs::read_to_string(dir.join("series.toml")).unwrap();
+    let cases = [
+        (
+            "force_noise = 150.0",
+            "force_noise = -1.0",
+            "[chain] force_noise = -1.0 N",
+        ),
+        (
+            "force_noise = 150.0",
+            "force_noise = nan",
+            "force_noise = NaN",
+        ),
+        (
+            "acceleration_noise = 0.2",
+            "acceleration_noise = 1e300",
+            "acceleration_noise = 1e300 g",
+        ),
+        (
+            "biases = [0.15, -0.10]",
+            "biases = [0.15, -0.10, 7]",
+            "exactly 2 numbers",
+        ),
+        (
+            "biases = [0.15, -0.10]",
+            "biases = [0.15, inf]",
+            "biases = inf g",
+        ),
+        (
+            "mass = 1450.0",
+            "mass = 1e308",
+            "impactor mass (kg) = 1e308",
+        ),
+        (
+            "speed = \"6 km/h\"",
+            "speed = 1e-300",
+            "speed (m/s) = 1e-300",
+        ),
+    ];
+    for (k, (old, new, needle)) in cases.into_iter().enumerate() {
+        assert!(series.contains(old), "{old}");
+        let file = dir.join(format!("hostile-{k}.toml"));
+        std::fs::write(&file, series.replacen(old, new, 1)).unwrap();
+        let out = dir.join(format!("out-{k}"));
+        let run = bumpsim(&["synth", file.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        assert_user_error(&run, needle);
+        assert!(!out.exists(), "{new}: a refused series left its folder");
+    }
+}

@@ -167,7 +167,7 @@ fn hostile_inputs_are_refused_with_exit_2_and_a_named_parameter() {
     let good = std::fs::read_to_string(saloon()).unwrap();
     let speed = ["--speed", "4"];
     let with = |from: &str, to: &str| good.replacen(from, to, 1);
-    let cases: [(String, Vec<&str>, &str); 10] = [
+    let cases: [(String, Vec<&str>, &str); 11] = [
         (good.clone(), vec!["--overlap", "150"], "overlap"),
         (good.clone(), vec!["--angle", "NaN"], "barrier angle"),
         (
@@ -190,6 +190,16 @@ fn hostile_inputs_are_refused_with_exit_2_and_a_named_parameter() {
         (with("mass = 1300.0", "mass = nan"), vec![], "body.mass"),
         (with("springs = [3e6]", "springs = [3e30]"), vec![], "limit"),
         (with("[tyres]", "[tyres]\ngrip = 1.0"), vec![], "grip"),
+        // issue 34: a curve point of three values lost its third
+        (
+            with("ramp = 3e6", "curve = [[0, 0], [0.02, 6e4, 1]]").replacen(
+                "plateau = 200e3",
+                "",
+                1,
+            ),
+            vec![],
+            "exactly 2 numbers",
+        ),
     ];
     for (car, extra, needle) in cases {
         let mut args = extra.clone();

@@ -381,6 +381,21 @@ fn hostile_planar_test_set_ups_get_clear_errors() {
             "direction = [nan, 0.0] }",
             "direction",
         ),
+        (
+            "direction = [-1.0, 0.0] }",
+            "direction = [0.0, 0.0] }",
+            "not both zero",
+        ),
+        (
+            "direction = [-1.0, 0.0] }",
+            "direction = [-1.0, 0.0], anchor = [2.0, 0.0, 1.0] }",
+            "exactly 2 numbers",
+        ),
+        (
+            "body = [0.6, 0.7]",
+            "body = [0.6, 0.7, 0.2]",
+            "exactly 2 numbers",
+        ),
         (cell, r#"lateral = "guess","#, r#"lateral = "guess""#),
         (cell, "lateral = -0.72, cell = 0.4,", "cell"),
         (
@@ -513,5 +528,44 @@ fn identify_never_writes_over_the_start_car_its_study_names() {
         ]);
         assert_user_error(&run, "would overwrite the input");
         assert_eq!(std::fs::read(&start).unwrap(), before, "{option}");
+    }
+}
+
+/// Issue 34: the planar series' chain refuses a negative or absurd noise
+/// level and a third bias (two accelerometers), naming the key.
+#[test]
+fn a_planar_series_refuses_bad_noise_and_extra_biases() {
+    let dir = scratch("planar-synth-chain");
+    for file in ["series.toml", "car-truth.toml", "start.toml"] {
+        let from = root().join("examples/planar/identify").join(file);
+        std::fs::copy(from, dir.join(file)).unwrap();
+    }
+    let series = std::fs::read_to_string(dir.join("series.toml")).unwrap();
+    let cases = [
+        (
+            "force_noise = 20.0",
+            "force_noise = -1.0",
+            "chain.force_noise = -1.0 N",
+        ),
+        (
+            "acceleration_noise = 0.05",
+            "acceleration_noise = 1e300",
+            "chain.acceleration_noise = 1e300 g",
+        ),
+        (
+            "biases = [0.03, -0.02]",
+            "biases = [0.03, -0.02, 0.5]",
+            "biases",
+        ),
+        ("sensor = [0.6, 0.7]", "sensor = [0.6, 0.7, 9.0]", "sensor"),
+    ];
+    for (k, (old, new, needle)) in cases.into_iter().enumerate() {
+        assert!(series.contains(old), "{old}");
+        let file = dir.join(format!("hostile-{k}.toml"));
+        std::fs::write(&file, series.replacen(old, new, 1)).unwrap();
+        let out = dir.join(format!("out-{k}"));
+        let run = bumpsim(&["synth", file.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        assert_user_error(&run, needle);
+        assert!(!out.exists(), "{new}: a refused series left its folder");
     }
 }
