@@ -6,7 +6,7 @@ use anyhow::{Context, Result};
 use bumpsim_core::units::{Dimension, format_quantity, parse_quantity};
 use bumpsim_export::layout::UnitSystem;
 use bumpsim_fe::bumper::BumperMesh;
-use bumpsim_fe::run::{FeRun, run as run_fe};
+use bumpsim_fe::run::{FeRun, run_in};
 use bumpsim_impact::impact::Scenario;
 use bumpsim_io::car::Car;
 use std::path::PathBuf;
@@ -78,7 +78,9 @@ impl Case {
 pub struct ImpactArgs {
     #[command(flatten)]
     case: Case,
-    /// Folder for the deck and CalculiX's files (kept for inspection).
+    /// Folder for the deck and CalculiX's files (kept for inspection). The run
+    /// works in a hidden sibling folder that replaces this folder's files
+    /// with the command's other outputs once it has succeeded.
     #[arg(long, value_name = "DIR")]
     work: PathBuf,
     /// Fixed time increment: s or with a unit; default duration / 1500.
@@ -115,7 +117,10 @@ fn impact(args: &ImpactArgs) -> Result<()> {
     settings.duration = time("duration", &args.duration)?;
     settings.solver = args.solver.clone();
     println!("running CalculiX in {} ...", args.work.display());
-    let fe = run_fe(&settings)?;
+    // the deck must be on disk while CalculiX runs: it runs in the staging
+    // folder, which joins the command's transaction with the other outputs
+    let work = Folder::stage(&args.work)?;
+    let fe = run_in(&settings, work.path())?;
     let r = &fe.impact;
     let warnings = bumpsim_fe::text::warnings(&fe);
     warnings.iter().for_each(|w| crate::warn(w));
@@ -149,7 +154,11 @@ fn impact(args: &ImpactArgs) -> Result<()> {
             bumpsim_report::impact::impact_page(&title, &inputs, &notes, &summary, r)?;
         Folder::report(dir, &html, &figures)?;
     }
-    Ok(())
+    crate::output::wrote(format!(
+        "wrote {} (the deck and CalculiX's files)",
+        args.work.display()
+    ));
+    work.commit()
 }
 
 fn lsdyna(args: &LsDynaArgs) -> Result<()> {

@@ -86,8 +86,16 @@ pub struct FeResult {
 /// Most increments of one run.
 pub const MAX_INCREMENTS: f64 = 1e6;
 
-/// Writes the deck, runs CalculiX and reads the results.
+/// Writes the deck, runs CalculiX and reads the results, in `settings.work`.
 pub fn run(settings: &FeRun) -> Result<FeResult, FeError> {
+    run_in(settings, &settings.work)
+}
+
+/// [`run`] with the deck and CalculiX's files written in `folder`, a
+/// staging folder the caller moves to `settings.work` once the whole command
+/// has succeeded (so a failed or interrupted run leaves the work folder as
+/// it was); the result names the files as they will be in `settings.work`.
+pub fn run_in(settings: &FeRun, folder: &Path) -> Result<FeResult, FeError> {
     check_scenario(settings.scenario)?;
     // the estimate may fail (a car too stiff for impact's explicit steps):
     // then the user's --duration runs without it
@@ -100,23 +108,26 @@ pub fn run(settings: &FeRun) -> Result<FeResult, FeError> {
     let increment = settings.increment.unwrap_or(duration / 1500.0);
     check_run(duration, increment)?;
     check_work(&settings.work)?;
+    check_work(folder)?;
     let run = Run {
         increment,
         duration,
     };
     let (text, layout) = coupled_deck(&settings.mesh, &settings.car, settings.scenario, &run)?;
-    let deck = settings.work.join("bumper.inp");
+    let deck = folder.join("bumper.inp");
     // whole or not at all (temp file + rename), never onto an input
     bumpsim_io::output::write_file(&deck, text.as_bytes()).map_err(|e| FeError::File {
         path: deck.display().to_string(),
         message: format!("cannot write: {e}"),
     })?;
-    solve(&settings.solver, &settings.work)?;
+    solve(&settings.solver, folder, folder == settings.work)?;
+    // errors name the results as the work folder would hold them
     let dat = settings.work.join("bumper.dat");
-    let text = std::fs::read_to_string(&dat).map_err(|e| FeError::File {
-        path: dat.display().to_string(),
-        message: format!("cannot read: {e}"),
-    })?;
+    let text =
+        bumpsim_core::files::read_text(&folder.join("bumper.dat")).map_err(|e| FeError::File {
+            path: dat.display().to_string(),
+            message: format!("cannot read: {e}"),
+        })?;
     let blocks = parse(&text, &dat)?;
     let read = Reader {
         blocks: &blocks,
@@ -130,7 +141,7 @@ pub fn run(settings: &FeRun) -> Result<FeResult, FeError> {
         raw_peak_force,
         bumper_internal_energy,
         equivalent: equivalent.ok(),
-        deck,
+        deck: settings.work.join("bumper.inp"),
         increment,
         crash_box_y: layout.crash_box_y,
     })
@@ -190,6 +201,9 @@ fn check_run(duration: f64, increment: f64) -> Result<(), FeError> {
     Ok(())
 }
 
+/// How many of the solver's last output lines a failure quotes.
+const LOG_TAIL: usize = 12;
+
 /// Whether a file is one the run writes into its work folder (the deck,
 /// CalculiX's `bumper.*` files, its log and `spooles.out`).
 fn ours(name: &str) -> bool {
@@ -226,8 +240,9 @@ fn check_work(work: &Path) -> Result<(), FeError> {
 }
 
 /// Runs `solver -i bumper` in `work` (one thread unless OMP_NUM_THREADS is
-/// set), its output in `ccx.log`.
-fn solve(solver: &str, work: &Path) -> Result<(), FeError> {
+/// set), its output in `ccx.log`. A failure quotes the log's last lines,
+/// and names the log where it is `kept` (a staging folder is removed).
+fn solve(solver: &str, work: &Path, kept: bool) -> Result<(), FeError> {
     let log = work.join("ccx.log");
     let fail = |message: String| FeError::Solver {
         solver: solver.into(),
@@ -254,12 +269,17 @@ fn solve(solver: &str, work: &Path) -> Result<(), FeError> {
         })?;
     let text = std::fs::read_to_string(&log).unwrap_or_default();
     let error = text.lines().find(|l| l.contains("*ERROR")).map(str::trim);
+    let lines: Vec<&str> = text.lines().collect();
+    let tail = lines[lines.len().saturating_sub(LOG_TAIL)..].join("\n    ");
+    let see = match kept {
+        true => format!("see {}", log.display()),
+        false => "the work folder is left as it was".into(),
+    };
     match (status.success(), error) {
         (true, None) => Ok(()),
         (_, e) => Err(fail(format!(
-            "the run failed ({}); see {}",
+            "the run failed ({}); {see}; the end of its output:\n    {tail}",
             e.unwrap_or("non-zero exit"),
-            log.display()
         ))),
     }
 }

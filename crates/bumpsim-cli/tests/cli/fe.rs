@@ -341,3 +341,113 @@ fn the_coupled_lsdyna_decks_parse_in_ansys_dyna_core() {
         }
     }
 }
+
+/// A stand-in for CalculiX: writes part of its results, waits `seconds`,
+/// then exits with `status` (no ccx needed).
+fn fake_solver(dir: &std::path::Path, seconds: f64, status: i32) -> std::path::PathBuf {
+    use std::os::unix::fs::PermissionsExt;
+    let path = dir.join(format!("fake-ccx-{status}.sh"));
+    let script = format!(
+        "#!/bin/sh\necho ' displacements (vx,vy,vz) for set BUMPSIM_NALL and time  0.1' > bumper.dat\necho 'half a run' > bumper.frd\nsleep {seconds}\n[ {status} = 0 ] || echo '*ERROR in the fake solver'\nexit {status}\n"
+    );
+    std::fs::write(&path, script).unwrap();
+    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+    path
+}
+
+/// Every entry of `dir` with its content (files) or `/` (folders), hidden
+/// ones included.
+fn listing(dir: &std::path::Path) -> Vec<(String, Vec<u8>)> {
+    let mut all: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .map(|e| {
+            let name = e.file_name().to_string_lossy().into_owned();
+            (
+                name,
+                std::fs::read(e.path()).unwrap_or_else(|_| b"/".to_vec()),
+            )
+        })
+        .collect();
+    all.sort();
+    all
+}
+
+/// Issue 34: `fe impact` wrote its deck and CalculiX's files straight into
+/// --work, outside the command's transaction. A failing solver, results it
+/// cannot read, or a kill mid-run now leave the work folder (and every
+/// other output) as it was; the run works in a hidden staging folder.
+#[test]
+fn a_failed_or_killed_run_leaves_the_work_folder_as_it_was() {
+    let dir = scratch("fe-transaction");
+    let car = root().join("examples/identify/car-truth.toml");
+    let mesh = root().join("examples/fe/bumper-elastic.toml");
+    let (work, json) = (dir.join("work"), dir.join("fe.json"));
+    std::fs::create_dir_all(&work).unwrap();
+    std::fs::write(work.join("bumper.dat"), "the previous run's results\n").unwrap();
+    let before = (listing(&dir), listing(&work));
+    let args = |solver: &std::path::Path| -> Vec<String> {
+        let mut all = vec!["fe", "impact", "--car", car.to_str().unwrap()];
+        all.extend(["--bumper", mesh.to_str().unwrap(), "--barrier"]);
+        all.extend(["--speed", "2", "--duration", "0.05", "--work"]);
+        all.extend([work.to_str().unwrap(), "--json", json.to_str().unwrap()]);
+        all.extend(["--solver", solver.to_str().unwrap()]);
+        all.into_iter().map(String::from).collect()
+    };
+    // the solver fails: its output is quoted, nothing is left
+    let failing = fake_solver(&dir, 0.0, 3);
+    let run = bumpsim(
+        &args(&failing)
+            .iter()
+            .map(String::as_str)
+            .collect::<Vec<_>>(),
+    );
+    assert_user_error(&run, "*ERROR in the fake solver");
+    assert_user_error(&run, "the work folder is left as it was");
+    // the solver ends well, its results do not read: nothing is left
+    let garbled = fake_solver(&dir, 0.0, 0);
+    let run = bumpsim(
+        &args(&garbled)
+            .iter()
+            .map(String::as_str)
+            .collect::<Vec<_>>(),
+    );
+    assert_user_error(&run, "bumper.dat");
+    let mut after = (listing(&dir), listing(&work));
+    after.0.retain(|(name, _)| !name.starts_with("fake-ccx"));
+    assert_eq!(after, before, "a failed run changed the outputs");
+    // killed mid-run: the old work folder, no output, no staging left visible
+    let slow = fake_solver(&dir, 3.0, 0);
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_bumpsim"))
+        .args(args(&slow))
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    // kill once the solver has written part of its results (in staging)
+    let solving = || {
+        std::fs::read_dir(&dir).unwrap().flatten().any(|e| {
+            let name = e.file_name().to_string_lossy().into_owned();
+            name.starts_with(".work.") && e.path().join("bumper.frd").exists()
+        })
+    };
+    let start = std::time::Instant::now();
+    while !solving() && start.elapsed().as_secs() < 20 {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    assert!(solving(), "the solver never started");
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert_eq!(
+        listing(&work),
+        before.1,
+        "a killed run changed the work folder"
+    );
+    assert!(!json.exists());
+    let visible: Vec<String> = listing(&dir)
+        .into_iter()
+        .map(|(name, _)| name)
+        .filter(|name| !name.starts_with('.') && !name.starts_with("fake-ccx"))
+        .collect();
+    assert_eq!(visible, ["work"]);
+}
