@@ -125,7 +125,9 @@ impl Arc {
     /// (world) of a point `p` (world).
     pub fn depth(&self, p: [f64; 2]) -> (f64, bool, [f64; 2]) {
         let r = [p[0] - self.centre[0], p[1] - self.centre[1]];
-        let length = r[0].hypot(r[1]);
+        // √(x² + y²), not hypot: no overflow at these lengths, and this
+        // runs for every segment at every step
+        let length = (r[0] * r[0] + r[1] * r[1]).sqrt();
         if length == 0.0 {
             return (-1.0, false, [-1.0, 0.0]);
         }

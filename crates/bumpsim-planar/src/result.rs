@@ -127,6 +127,8 @@ impl PlanarResult {
     /// An empty result with room for `samples` samples of `segments` segments.
     pub(crate) fn with_capacity(segments: usize, masses: usize, samples: usize) -> PlanarResult {
         let v = || Vec::with_capacity(samples);
+        // one each (`vec![v(); n]` clones, and a clone keeps no capacity)
+        let each = |n: usize| (0..n).map(|_| v()).collect();
         PlanarResult {
             time: v(),
             force_x: v(),
@@ -135,8 +137,8 @@ impl PlanarResult {
             line_of_action: Vec::with_capacity(samples),
             side_force_left: v(),
             side_force_right: v(),
-            crush: vec![v(); segments],
-            segment_force: vec![v(); segments],
+            crush: each(segments),
+            segment_force: each(segments),
             x: v(),
             y: v(),
             yaw: v(),
@@ -144,7 +146,7 @@ impl PlanarResult {
             velocity_x: v(),
             velocity_y: v(),
             pendulum_travel: v(),
-            chain_displacement: vec![v(); masses],
+            chain_displacement: each(masses),
             ..PlanarResult::default()
         }
     }

@@ -278,6 +278,8 @@ struct Sums {
     angular_impulse: f64,
     initial: f64,
     p0: [f64; 2],
+    /// |p0|, N·s.
+    p0_norm: f64,
     l0: f64,
     peak_force: f64,
     /// The part of the last step's damper and friction work after its sample time, J.
@@ -423,6 +425,7 @@ impl<'a> Run<'a> {
         let q = vec![0.0; self.model.dof()];
         self.sums.initial = self.model.kinetic(&q, &v0);
         (self.sums.p0, self.sums.l0) = self.model.momentum(&q, &v0);
+        self.sums.p0_norm = self.sums.p0[0].hypot(self.sums.p0[1]);
         self.model.contact(&q, self.car, &mut self.contact);
         let step = self.step;
         let mut state = Leapfrog::start(&mut self, q, v0, step);
@@ -492,7 +495,7 @@ impl<'a> Run<'a> {
     fn momentum(&self, q: &[f64], v: &[f64], sums: &Sums) -> MomentumBalance {
         let (p, l) = self.model.momentum(q, v);
         let p0 = sums.p0;
-        let scale = p0[0].hypot(p0[1]);
+        let scale = sums.p0_norm;
         let length = self.model.x_f + 0.5 * self.car.beam().width;
         let linear = (p[0] - p0[0] - sums.impulse[0]).hypot(p[1] - p0[1] - sums.impulse[1]) / scale;
         let angular = (l - sums.l0 - sums.angular_impulse).abs() / (scale * length);

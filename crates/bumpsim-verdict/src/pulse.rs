@@ -192,8 +192,8 @@ pub fn clip(time: &[f64], values: &[f64], duration: f64) -> f64 {
     let step = (time[n - 1] - time[0]) / (n - 1) as f64;
     let count = ((duration / step).round() as usize).clamp(1, n);
     let mut sorted = values.to_vec();
-    sorted.sort_by(|a, b| b.total_cmp(a));
-    sorted[count - 1]
+    let (_, nth, _) = sorted.select_nth_unstable_by(count - 1, |a, b| b.total_cmp(a));
+    *nth
 }
 
 /// The OLC of a pulse: its value (m/s²) and the times t₁ and t₂ (s).

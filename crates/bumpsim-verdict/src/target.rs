@@ -15,8 +15,8 @@
 //! **Search.** Rows of log-spaced stiffnesses; in each row, a coarse scan
 //! of log-spaced force levels, then bisection of each pass/fail transition
 //! of the longest passing run to a relative tolerance, naming the failing
-//! criterion (and its test) just outside each boundary. Rows run in
-//! parallel (rayon); every candidate runs every test of the set, and no
+//! criterion (and its test) just outside each boundary. Rows and their
+//! scans run in parallel (rayon); every candidate runs every test of the set, and no
 //! candidate runs twice (the scan's outcomes start the bisections, the
 //! stroke is the passing end's). A passing
 //! interval narrower than the scan's spacing can be missed; the corridor
@@ -321,8 +321,9 @@ impl Search<'_> {
     }
 
     fn row(&self, stiffness: f64, levels: &[f64], tolerance: f64) -> Result<Row, VerdictError> {
+        // the scan's levels in parallel too: rows end unevenly
         let outcomes = levels
-            .iter()
+            .par_iter()
             .map(|&f| self.evaluate(stiffness, f))
             .collect::<Result<Vec<_>, _>>()?;
         let Some((first, last)) = longest_run(&outcomes) else {
