@@ -16,7 +16,11 @@
 # baseline), in wall time and in CPU time (user + system, the tasks'
 # included on both sides, so the difference is the controller's own; it
 # moves less with the machine's load than wall time). Times from
-# /usr/bin/time (10 ms resolution).
+# /usr/bin/time (10 ms resolution). The controller's own cost, robust to
+# the load: `perf stat -i` (counters not inherited by the tasks it starts)
+# counts the controller process alone, its CPU time (task-clock, ns) and
+# its system calls (raw_syscalls:sys_enter), per point; without perf those
+# columns are "-".
 #
 # Usage: bench/campaign_scale.sh [COUNT ...]   (BUMPSIM=path/to/bumpsim; default
 # target/release/bumpsim: build it first with `cargo build --release -p bumpsim-cli`)
@@ -42,8 +46,12 @@ per_point() { # seconds, points: ms per point
 }
 
 echo "bumpsim campaign, local executor, 2 slots, solver 'true' ($(nproc) CPUs; load $(cut -d' ' -f1-3 /proc/loadavg))"
-echo "| points | init | init CPU | init peak | run per point | run peak | xargs -P2 per point | controller overhead per point | controller CPU per point |"
-echo "|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+echo "| points | init | init CPU | init peak | run per point | run peak | xargs -P2 per point | controller overhead per point | controller CPU per point | controller's own CPU per point (perf) | its system calls per point |"
+echo "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+perf=() # the controller alone, counters not inherited by its tasks
+if command -v perf >/dev/null && perf stat -i -e task-clock true >/dev/null 2>&1; then
+    perf=(perf stat -i -x, -e task-clock,raw_syscalls:sys_enter -o "$work/run.perf")
+fi
 for n in "${counts[@]}"; do
     cat > "$work/c.toml" <<EOF
 name = "scale"
@@ -64,7 +72,8 @@ EOF
     "$bin" campaign init "$work/c.toml" -o "$base" >/dev/null
     # the baseline: the same tasks, two at a time, without a controller
     timed "$work/xargs.time" sh -c "find '$base/points' -mindepth 1 -maxdepth 1 -type d | sort | xargs -P2 -n1 sh '$base/run-point.sh'"
-    timed "$work/run.time" "$bin" campaign run "$c"
+    : > "$work/run.perf"
+    timed "$work/run.time" "${perf[@]}" "$bin" campaign run "$c"
     "$bin" campaign status "$c" | grep -q "$n points: $n done" || { echo "run of $n points incomplete" >&2; exit 1; }
     read -r init_s init_kb init_u init_k < "$work/init.time"
     read -r run_s run_kb run_u run_k < "$work/run.time"
@@ -75,6 +84,8 @@ EOF
     run_ms="$(per_point "$run_s" "$n")"
     base_ms="$(per_point "$base_s" "$n")"
     overhead="$(awk -v a="$run_ms" -v b="$base_ms" 'BEGIN { printf "%.2f", a - b }')"
-    echo "| $n | ${init_s} s | ${init_cpu} s | $((init_kb / 1024)) MB | ${run_ms} ms | $((run_kb / 1024)) MB | ${base_ms} ms | ${overhead} ms | ${cpu_ms} ms |"
+    own_ms="$(awk -F, -v n="$n" '$3 == "task-clock" { printf "%.3f ms", $1 / n }' "$work/run.perf")"
+    calls="$(awk -F, -v n="$n" '$3 == "raw_syscalls:sys_enter" { printf "%.1f", $1 / n }' "$work/run.perf")"
+    echo "| $n | ${init_s} s | ${init_cpu} s | $((init_kb / 1024)) MB | ${run_ms} ms | $((run_kb / 1024)) MB | ${base_ms} ms | ${overhead} ms | ${cpu_ms} ms | ${own_ms:--} | ${calls:--} |"
 done
 echo "(load afterwards $(cut -d' ' -f1-3 /proc/loadavg))"

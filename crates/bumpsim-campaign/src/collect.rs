@@ -20,6 +20,9 @@ use bumpsim_doe::table_fit::{ResponseFit, TableFitSpec, fit_table};
 use bumpsim_io::output::Outputs;
 use std::path::Path;
 
+/// The collected table in the campaign folder.
+pub const TABLE: &str = "results/table.csv";
+
 /// What `collect` did.
 #[derive(Debug, Clone)]
 pub struct Collected {
@@ -176,27 +179,22 @@ pub fn fit_spec(spec: &Spec) -> TableFitSpec {
     }
 }
 
-impl Collected {
-    /// The `doe fit` command of [`Collected::fit_command`] to run from the
-    /// current folder, the campaign's folder being `dir` (the command in
-    /// `results/fit-command.txt` runs from the campaign's folder).
-    pub fn fit_command_from(&self, dir: &Path) -> String {
-        let table = dir.join("results").join("table.csv");
-        let table = table.display().to_string();
-        let quoted = if table.contains(|c: char| c.is_whitespace() || c == '\'') {
-            format!("'{}'", table.replace('\'', r"'\''"))
-        } else {
-            table
-        };
-        self.fit_command.replacen("results/table.csv", &quoted, 1)
-    }
+/// The `bumpsim doe fit` command equal to the regression of the campaign
+/// in folder `dir`, naming its table through `dir` (to run from the
+/// current folder; `results/fit-command.txt` holds the one to run from
+/// the campaign's folder).
+pub fn fit_command_for(dir: &Path) -> Result<String> {
+    let spec = spec_of(dir)?;
+    Ok(fit_command(&fit_spec(&spec), &dir.join(TABLE)))
 }
 
-/// The `bumpsim doe fit` command line equal to the campaign's regression.
-pub fn fit_command(spec: &TableFitSpec) -> String {
+/// The `bumpsim doe fit` command line equal to a regression of the table
+/// `table` (quoted for a POSIX shell where it needs to be).
+pub fn fit_command(spec: &TableFitSpec, table: &Path) -> String {
     let join = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
     let mut command = format!(
-        "bumpsim doe fit results/table.csv --factors {} --responses {} --low {} --high {}",
+        "bumpsim doe fit {} --factors {} --responses {} --low {} --high {}",
+        shell_word(&table.display().to_string()),
         spec.factors.join(","),
         spec.responses.join(","),
         join(&spec.low),
@@ -211,19 +209,29 @@ pub fn fit_command(spec: &TableFitSpec) -> String {
     command
 }
 
+/// `word` as one word of a POSIX shell command: as it is, or in single
+/// quotes when it holds white space, quotes or other special characters.
+fn shell_word(word: &str) -> String {
+    let plain = |c: char| c.is_ascii_alphanumeric() || "/._-+,:=@%".contains(c);
+    match !word.is_empty() && word.chars().all(plain) {
+        true => word.into(),
+        false => format!("'{}'", word.replace('\'', r"'\''")),
+    }
+}
+
 type Files = Vec<(String, String)>;
 
 /// Fits the table: summary text, the equal `doe fit` command, and the
 /// model JSON and report files.
 fn regression(spec: &Spec, csv: &str) -> Result<(String, String, Files)> {
     let fit = fit_spec(spec);
-    let command = fit_command(&fit);
+    let command = fit_command(&fit, Path::new(TABLE));
     let mut files = vec![("fit-command.txt".to_string(), command.clone() + "\n")];
     if fit.responses.is_empty() {
         return Ok((String::new(), command, files));
     }
-    let data = Data::parse(csv, Path::new("results/table.csv"))
-        .map_err(|e| CampaignError::Collect(e.to_string()))?;
+    let data =
+        Data::parse(csv, Path::new(TABLE)).map_err(|e| CampaignError::Collect(e.to_string()))?;
     let (model, fits) = fit_table(&data, &fit)?;
     let json =
         serde_json::to_string_pretty(&model).map_err(|e| CampaignError::Collect(e.to_string()))?;

@@ -235,7 +235,8 @@ impl<'a> Controller<'a> {
     fn requeued(&mut self, i: usize, restarts: u32, cause: &str) {
         let limit = 1 + self.spec.executor.retries;
         let point = &mut self.state.points[i];
-        point.attempts += restarts - point.requeues;
+        let new = restarts.saturating_sub(point.requeues);
+        point.attempts = point.attempts.saturating_add(new);
         point.requeues = restarts;
         let cause = match cause.is_empty() {
             true => format!("restart {restarts} in the task's exit marker"),
@@ -307,7 +308,7 @@ impl<'a> Controller<'a> {
         for &i in &chosen {
             let p = &mut self.state.points[i];
             let _ = std::fs::remove_file(self.dir.join(&p.folder).join(EXIT_MARKER));
-            p.attempts += 1;
+            p.attempts = p.attempts.saturating_add(1);
             p.job.clear();
             p.submitted = time.clone();
             self.set(i, Status::Submitted);

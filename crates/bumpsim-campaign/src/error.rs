@@ -89,6 +89,34 @@ pub enum CampaignError {
         /// What is wrong (line, checksum, missing points).
         problem: String,
     },
+    /// A file of the campaign folder cannot be written.
+    #[error("{path}: cannot write: {source}")]
+    WriteFile {
+        /// The file or folder.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// A point folder has lost or cannot give the inputs its state records.
+    #[error(
+        "{journal}:{line}: run {run}: its point folder {folder} is damaged ({problem}); `bumpsim campaign init CAMPAIGN.toml -o {dir}` renders its inputs again (points done with unchanged inputs are kept)",
+        folder = folder.display(),
+        dir = dir.display()
+    )]
+    PointFolder {
+        /// The state journal.
+        journal: PathBuf,
+        /// The line of the point's record in it.
+        line: usize,
+        /// The point's run.
+        run: usize,
+        /// The point folder.
+        folder: PathBuf,
+        /// The campaign folder.
+        dir: PathBuf,
+        /// What is wrong with it.
+        problem: String,
+    },
     /// The state journal cannot be appended to.
     #[error("{path}: cannot append to the state journal: {source}")]
     Journal {

@@ -11,9 +11,10 @@
 //!
 //! Everything is checked first (campaign file, template placeholders,
 //! solver on PATH); the folder is staged and appears whole
-//! ([`bumpsim_io::output::StagedFolder`]; its files flushed to disk with one
-//! `sync -f` of the file system rather than one `fsync` each, which at
-//! 100 000 points is the difference between seconds and minutes).
+//! ([`crate::staging`]: its files flushed to disk with one `sync -f` of
+//! the file system rather than one `fsync` each, which at 100 000 points
+//! is the difference between seconds and minutes; each point's input hash
+//! taken from the bytes written, not read back).
 //! Re-initialising over an existing campaign keeps the state of every
 //! point whose inputs are unchanged (same hash), so a finished point is
 //! never run again; a damaged state is refused (`campaign repair` first).
@@ -21,11 +22,14 @@
 use crate::error::{CampaignError, Result};
 use crate::lock::Lock;
 use crate::spec::{MAX_POINTS, Spec, find_program};
-use crate::state::{LEGACY_STATE_FILE, Point, STATE_FILE, State, Status, input_hash, point_folder};
+use crate::staging::Staging;
+use crate::state::{
+    LEGACY_STATE_FILE, Point, STATE_FILE, State, Status, hash_inputs, point_folder,
+};
 use crate::task::{TASK_SCRIPT, task_script};
 use crate::template::{Template, lsdyna_parameters};
 use bumpsim_doe::design;
-use bumpsim_io::output::{Outputs, StagedFolder};
+use bumpsim_io::output::Outputs;
 use std::path::{Path, PathBuf};
 
 /// The copy of the campaign file in the campaign folder.
@@ -146,36 +150,24 @@ pub fn init(path: &Path, dir: &Path) -> Result<InitSummary> {
     if let Some(identify) = &spec.identify {
         guard.input(&base.join(&identify.study));
     }
-    let staged = guard.stage_folder(dir)?;
+    let mut staged = Staging::new(&guard, dir)?;
     let campaign_text = std::fs::read(path).map_err(|e| crate::error::read_error(path, e))?;
     staged.write(SPEC_FILE, &campaign_text)?;
     staged.write("design.csv", design_csv(&spec, &points).as_bytes())?;
     staged.write(TASK_SCRIPT, task_script(&spec.solver.command).as_bytes())?;
     let templates = (&templates.0, templates.1.as_ref());
-    let state = stage_points(&staged, &spec, base, templates, &points, old.as_ref())?;
+    let state = stage_points(&mut staged, &spec, base, templates, &points, old.as_ref())?;
     let kept = state
         .points
         .iter()
         .filter(|p| p.status != Status::Pending)
         .count();
-    flush(staged.path());
     staged.commit(&guard)?;
     Ok(InitSummary {
         points: points.len(),
         kept,
         resolution,
     })
-}
-
-/// Flushes the file system holding `folder` to disk (`sync -f`, syncfs(2));
-/// best effort: the commit that follows still syncs each file, quickly
-/// once they are clean.
-fn flush(folder: &Path) {
-    let _ = std::process::Command::new("sync")
-        .arg("-f")
-        .arg(folder)
-        .stderr(std::process::Stdio::null())
-        .status();
 }
 
 /// The deck template and the optional study template, their placeholders checked.
@@ -195,9 +187,10 @@ fn read_templates(spec: &Spec, base: &Path) -> Result<(Template, Option<Template
     Ok((template, study))
 }
 
-/// Writes every point folder into the staging and the state beside them.
+/// Writes every point folder into the staging and the state beside them
+/// (last: over an existing campaign it is moved into place last).
 fn stage_points(
-    staged: &StagedFolder,
+    staged: &mut Staging,
     spec: &Spec,
     base: &Path,
     templates: (&Template, Option<&Template>),
@@ -205,15 +198,36 @@ fn stage_points(
     old: Option<&State>,
 ) -> Result<State> {
     let mut state = State::new(&spec.name, Vec::with_capacity(points.len()));
-    let files = input_files(spec);
+    let copied = copied_files(spec, base)?;
+    staged.folder("points")?;
     for (i, p) in points.iter().enumerate() {
         let folder = point_folder(i + 1);
-        write_point(staged, spec, base, templates, p, &folder, i + 1)?;
-        let hash = input_hash(&staged.path().join(&folder), &files, &spec.solver.command)?;
+        let files = point_files(spec, templates, &copied, p, i + 1);
+        staged.folder(&folder)?;
+        for (name, bytes) in &files {
+            staged.write(&format!("{folder}/{name}"), bytes)?;
+        }
+        let named = files.iter().map(|(n, b)| (n.as_str(), b.as_slice()));
+        let hash = hash_inputs(named, &spec.solver.command);
         state.points.push(carry_over(old, i + 1, hash));
     }
-    state.write(staged.path())?;
+    let snapshot = state.snapshot(staged.target())?;
+    staged.write(STATE_FILE, snapshot.as_bytes())?;
     Ok(state)
+}
+
+/// The files copied unchanged into each point folder: (name, contents).
+fn copied_files(spec: &Spec, base: &Path) -> Result<Vec<(String, Vec<u8>)>> {
+    let mut copied = Vec::with_capacity(spec.template.files.len());
+    for file in &spec.template.files {
+        let source = base.join(file);
+        let bytes = std::fs::read(&source).map_err(|e| crate::error::read_error(&source, e))?;
+        let name = file
+            .file_name()
+            .map_or("file".into(), |n| n.to_string_lossy().into_owned());
+        copied.push((name, bytes));
+    }
+    Ok(copied)
 }
 
 /// The point's state: an earlier done or in-flight point with the same
@@ -228,42 +242,30 @@ fn carry_over(old: Option<&State>, run: usize, hash: String) -> Point {
     }
 }
 
-fn write_point(
-    staged: &StagedFolder,
+/// A point's input files (name, contents) in the order of [`input_files`]:
+/// the rendered deck, the copied files, the LS-DYNA parameter include,
+/// the rendered study.
+fn point_files(
     spec: &Spec,
-    base: &Path,
     (template, study): (&Template, Option<&Template>),
+    copied: &[(String, Vec<u8>)],
     p: &PointValues,
-    folder: &str,
     run: usize,
-) -> Result<()> {
+) -> Vec<(String, Vec<u8>)> {
     let value = |n: &str| match n {
         "run" => Some(run as f64),
         _ => p.values.iter().find(|(k, _)| k == n).map(|(_, v)| *v),
     };
-    staged.write(
-        &format!("{folder}/{}", spec.deck_name()),
-        template.render(&value).as_bytes(),
-    )?;
-    for file in &spec.template.files {
-        let source = base.join(file);
-        let bytes = std::fs::read(&source).map_err(|e| crate::error::read_error(&source, e))?;
-        let name = file
-            .file_name()
-            .map_or("file".into(), |n| n.to_string_lossy().into_owned());
-        staged.write(&format!("{folder}/{name}"), &bytes)?;
+    let mut files = vec![(spec.deck_name(), template.render(&value).into_bytes())];
+    files.extend(copied.iter().cloned());
+    if let Some(name) = &spec.template.lsdyna_parameters {
+        files.push((name.clone(), lsdyna_parameters(&p.values).into_bytes()));
     }
     if let Some(study) = study {
-        let path = format!("{folder}/{}", crate::identify::STUDY_FILE);
-        staged.write(&path, study.render(&value).as_bytes())?;
+        let name = crate::identify::STUDY_FILE.to_string();
+        files.push((name, study.render(&value).into_bytes()));
     }
-    if let Some(name) = &spec.template.lsdyna_parameters {
-        staged.write(
-            &format!("{folder}/{name}"),
-            lsdyna_parameters(&p.values).as_bytes(),
-        )?;
-    }
-    Ok(())
+    files
 }
 
 /// The design table: `run`, `standard order`, factors (physical, with

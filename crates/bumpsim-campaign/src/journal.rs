@@ -80,6 +80,9 @@ pub fn records(text: &str) -> Records<'_> {
 #[derive(Debug)]
 pub struct Appender {
     file: std::fs::File,
+    /// The same file opened for writing in place (the append handle
+    /// writes only at the end, whatever the offset).
+    head: std::fs::File,
     path: PathBuf,
 }
 
@@ -92,10 +95,20 @@ impl Appender {
             file.set_len(whole as u64)?;
             file.sync_data()?;
         }
+        let head = std::fs::OpenOptions::new().write(true).open(path)?;
         Ok(Appender {
             file,
+            head,
             path: path.into(),
         })
+    }
+
+    /// Overwrites the journal's first bytes in place with `bytes` (a line
+    /// of the same length: the header); flushed to disk with the next
+    /// [`Appender::append`].
+    pub fn overwrite_head(&mut self, bytes: &[u8]) -> std::io::Result<()> {
+        use std::os::unix::fs::FileExt;
+        self.head.write_all_at(bytes, 0)
     }
 
     /// Appends framed lines and flushes them to disk.

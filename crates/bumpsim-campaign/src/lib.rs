@@ -73,6 +73,7 @@ pub mod repair;
 pub mod response;
 pub mod run;
 pub mod spec;
+pub mod staging;
 pub mod state;
 pub mod status;
 pub mod task;

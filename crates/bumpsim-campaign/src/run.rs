@@ -75,7 +75,8 @@ fn prepare(dir: &Path, spec: &Spec, state: &mut State, retry_failed: bool) -> Re
     let files = input_files(spec);
     let mut changed = Vec::new();
     for (i, p) in state.points.iter_mut().enumerate() {
-        let hash = input_hash(&dir.join(&p.folder), &files, &spec.solver.command)?;
+        let hash = input_hash(&dir.join(&p.folder), &files, &spec.solver.command)
+            .map_err(|e| damaged_folder(dir, p, &e))?;
         if hash != p.input_hash && !p.status.in_flight() {
             p.status = Status::Pending;
             p.attempts = 0;
@@ -89,6 +90,27 @@ fn prepare(dir: &Path, spec: &Spec, state: &mut State, retry_failed: bool) -> Re
         }
     }
     Ok(changed)
+}
+
+/// A point folder whose inputs cannot be read, named by the state record
+/// that points to it.
+fn damaged_folder(dir: &Path, p: &Point, e: &CampaignError) -> CampaignError {
+    let folder = dir.join(&p.folder);
+    let problem = match e {
+        CampaignError::Read { path, source } => {
+            let name = path.strip_prefix(&folder).unwrap_or(path);
+            format!("{}: {source}", name.display())
+        }
+        other => other.to_string(),
+    };
+    CampaignError::PointFolder {
+        journal: dir.join(crate::state::STATE_FILE),
+        line: p.line,
+        run: p.run,
+        folder,
+        dir: dir.into(),
+        problem,
+    }
 }
 
 /// Finds the tasks of points that a killed controller submitted without

@@ -20,6 +20,8 @@ pub use crate::expr::is_name;
 
 /// Most points a campaign may have (docs/limits.md).
 pub const MAX_POINTS: usize = 100_000;
+/// Retries of a task at most (`[executor] retries`).
+pub const MAX_RETRIES: u32 = 100;
 
 /// A parsed, validated campaign file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -453,6 +455,7 @@ impl Spec {
                     "a second response of this name".into(),
                 ));
             }
+            self.validate_response_name(path, &key, &r.name)?;
         }
         let columns: Vec<String> = self
             .response_columns()
@@ -466,6 +469,24 @@ impl Spec {
             }
         }
         self.validate_identify(path, &columns)
+    }
+
+    /// A response's column must not take the name of a factor or derived
+    /// quantity: the table would hold two columns of one name.
+    fn validate_response_name(&self, path: &Path, key: &str, name: &str) -> Result<()> {
+        let other = match self.design.factors.iter().any(|f| f.name == name) {
+            true => Some(("factor", "design.factors")),
+            false => (self.derived.contains_key(name)).then_some(("derived quantity", "derived")),
+        };
+        match other {
+            Some((what, table)) => {
+                let message = format!(
+                    "named like the {what} '{name}' ({table}): the table would have two columns '{name}'; rename the response or the {what}"
+                );
+                Err(Spec::invalid(path, key, message))
+            }
+            None => Ok(()),
+        }
     }
 
     fn validate_identify(&self, path: &Path, columns: &[String]) -> Result<()> {
@@ -504,6 +525,10 @@ impl Spec {
                 "executor.slots",
                 "expected 1 to 1024".into(),
             ));
+        }
+        if e.retries > MAX_RETRIES {
+            let message = format!("{}: at most {MAX_RETRIES} (docs/limits.md)", e.retries);
+            return Err(Spec::invalid(path, "executor.retries", message));
         }
         if !(e.poll_seconds.is_finite() && (0.01..=3600.0).contains(&e.poll_seconds)) {
             let message = "expected 0.01 to 3600 s".into();

@@ -30,6 +30,8 @@ pub const STATE_FILE: &str = "state.journal";
 pub const LEGACY_STATE_FILE: &str = "state.toml";
 /// The journal's format.
 pub const FORMAT: u32 = 2;
+/// Attempts and requeues of a point at most (a record beyond is damage).
+pub const MAX_ATTEMPTS: u32 = 1_000_000;
 /// The journal is compacted when it holds more changes than this or than points.
 pub const COMPACT_AFTER: usize = 1000;
 
@@ -86,6 +88,10 @@ pub struct Point {
     /// stored: it follows from the run).
     #[serde(skip)]
     pub folder: String,
+    /// The journal line of its state (`state.journal:LINE`; 0: not in a
+    /// journal yet; not stored).
+    #[serde(skip)]
+    pub line: usize,
     /// Status.
     pub status: Status,
     /// Attempts so far: submissions, and requeues by Slurm.
@@ -119,6 +125,7 @@ impl Point {
         Point {
             run,
             folder: point_folder(run),
+            line: 0,
             status: Status::Pending,
             attempts: 0,
             requeues: 0,
@@ -143,6 +150,27 @@ struct Header {
     format: u32,
     campaign: String,
     points: usize,
+    /// Point records after the header at least (rewritten in place, see
+    /// [`Journal::record`]); absent in journals of earlier bumpsims.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    records: Option<usize>,
+}
+
+impl Header {
+    /// The header's framed line, always of one length for one campaign
+    /// (the count padded with spaces), so that it can be rewritten in place.
+    fn line(campaign: &str, points: usize, records: usize, dir: &Path) -> Result<String> {
+        let header = Header {
+            format: FORMAT,
+            campaign: campaign.into(),
+            points,
+            records: Some(records),
+        };
+        let text = json(&header, dir)?;
+        let digits = records.to_string().len();
+        let padded = format!("{}{}}}", &text[..text.len() - 1], " ".repeat(20 - digits));
+        Ok(frame(&padded))
+    }
 }
 
 /// The whole state.
@@ -169,7 +197,7 @@ impl State {
     /// Reads the state of campaign folder `dir`; a damaged or truncated
     /// journal is an error ([`CampaignError::Damaged`]).
     pub fn read(dir: &Path) -> Result<State> {
-        load(dir).map(|(state, _, _)| state)
+        load(dir).map(|(state, _)| state)
     }
 
     /// The state of `dir` if it has one (`None`: a new campaign folder).
@@ -180,18 +208,22 @@ impl State {
 
     /// Writes the state as a new snapshot (temporary file, `fsync`, rename).
     pub fn write(&mut self, dir: &Path) -> Result<()> {
-        self.updated = now();
-        let header = Header {
-            format: FORMAT,
-            campaign: self.campaign.clone(),
-            points: self.points.len(),
-        };
-        let mut text = frame(&json(&header, dir)?);
-        for p in &self.points {
-            text += &frame(&json(p, dir)?);
-        }
+        let text = self.snapshot(dir)?;
         bumpsim_io::output::write_atomic(&dir.join(STATE_FILE), text.as_bytes())?;
         Ok(())
+    }
+
+    /// The journal's text of a snapshot of this state (for campaign
+    /// folder `dir`): the header and one record per point.
+    pub fn snapshot(&mut self, dir: &Path) -> Result<String> {
+        self.updated = now();
+        let n = self.points.len();
+        let mut text = Header::line(&self.campaign, n, n, dir)?;
+        for (i, p) in self.points.iter_mut().enumerate() {
+            text += &frame(&json(p, dir)?);
+            p.line = i + 2;
+        }
+        Ok(text)
     }
 
     /// Points per status: pending, submitted, running, done, failed.
@@ -216,8 +248,18 @@ fn damaged(dir: &Path, problem: String) -> CampaignError {
     }
 }
 
-/// The state of `dir`, the length of its whole lines and its record count.
-fn load(dir: &Path) -> Result<(State, usize, usize)> {
+/// What [`load`] found besides the state.
+struct Loaded {
+    /// Bytes of whole lines.
+    whole: usize,
+    /// Point records after the header.
+    records: usize,
+    /// Whether the header counts its records (is rewritten in place).
+    counted: bool,
+}
+
+/// The state of `dir` and what its journal holds.
+fn load(dir: &Path) -> Result<(State, Loaded)> {
     let path = dir.join(STATE_FILE);
     if !path.exists() && dir.join(LEGACY_STATE_FILE).exists() {
         let problem = "only a state.toml of an earlier bumpsim (format 1)".into();
@@ -244,9 +286,21 @@ fn load(dir: &Path) -> Result<(State, usize, usize)> {
         );
         return Err(damaged(dir, problem));
     }
+    let records = journal.lines.len() - 1;
+    if let Some(counted) = header.records.filter(|&n| n > records) {
+        let problem = format!(
+            "{records} point records where its header (line 1) counts {counted} at least (cut at a record's end?)"
+        );
+        return Err(damaged(dir, problem));
+    }
     let mut state = State::new(&header.campaign, points.into_iter().flatten().collect());
     state.updated = modified(&path);
-    Ok((state, journal.whole, journal.lines.len() - 1))
+    let loaded = Loaded {
+        whole: journal.whole,
+        records,
+        counted: header.records.is_some(),
+    };
+    Ok((state, loaded))
 }
 
 fn header(dir: &Path, first: Option<&(usize, &str)>) -> Result<Header> {
@@ -271,7 +325,16 @@ fn parse_point(dir: &Path, line: usize, text: &str, points: usize) -> Result<Poi
         let what = format!("run {} of a campaign of {points} points", point.run);
         return Err(problem(what));
     }
+    for (key, value) in [("attempts", point.attempts), ("requeues", point.requeues)] {
+        if value > MAX_ATTEMPTS {
+            return Err(problem(format!(
+                "run {}: {key} {value}: at most {MAX_ATTEMPTS}",
+                point.run
+            )));
+        }
+    }
     point.folder = point_folder(point.run);
+    point.line = line;
     Ok(point)
 }
 
@@ -299,21 +362,44 @@ pub fn salvage(dir: &Path) -> BTreeMap<usize, Point> {
 
 /// The state journal of a running controller: changes appended and synced,
 /// compacted into a new snapshot when they outnumber the points.
+///
+/// The header counts the point records after it, rewritten in place with
+/// each append: the records of the rounds before (synced already), so
+/// that the count never exceeds what is on disk, even when the append is
+/// cut off by a crash. A journal cut at a record's end, which its framing
+/// cannot tell from a whole one, then falls short of its count and is
+/// refused, unless the cut takes exactly the last round's records.
 #[derive(Debug)]
 pub struct Journal {
     appender: Appender,
     appended: usize,
+    /// Point records in the file (snapshot and changes).
+    records: usize,
+    /// The header's campaign and points.
+    campaign: String,
+    points: usize,
 }
 
 impl Journal {
     /// Reads the state of `dir` and opens its journal for appending (an
-    /// unfinished last line, never acted upon, is cut off).
+    /// unfinished last line, never acted upon, is cut off); a journal
+    /// whose header does not count its records (an earlier bumpsim's) is
+    /// compacted into one that does.
     pub fn open(dir: &Path) -> Result<(State, Journal)> {
-        let (state, whole, records) = load(dir)?;
-        let appended = records - state.points.len();
+        let (mut state, loaded) = load(dir)?;
         let path = dir.join(STATE_FILE);
-        let appender = Appender::open(&path, whole).map_err(|e| journal_error(&path, e))?;
-        Ok((state, Journal { appender, appended }))
+        let appender = Appender::open(&path, loaded.whole).map_err(|e| journal_error(&path, e))?;
+        let mut journal = Journal {
+            appender,
+            appended: loaded.records - state.points.len(),
+            records: loaded.records,
+            campaign: state.campaign.clone(),
+            points: state.points.len(),
+        };
+        if !loaded.counted {
+            journal.compact(&mut state)?;
+        }
+        Ok((state, journal))
     }
 
     /// Appends the points `changed` of `state` (one record each) and
@@ -321,17 +407,21 @@ impl Journal {
     pub fn record(&mut self, state: &mut State, changed: &[usize]) -> Result<()> {
         let dir = self.dir();
         let mut text = String::new();
-        for &i in changed {
+        for (k, &i) in changed.iter().enumerate() {
             text += &frame(&json(&state.points[i], &dir)?);
+            state.points[i].line = self.records + 2 + k;
         }
         if text.is_empty() {
             return Ok(());
         }
         let path = self.appender.path().to_path_buf();
+        let head = Header::line(&self.campaign, self.points, self.records, &dir)?;
         self.appender
-            .append(&text)
+            .overwrite_head(head.as_bytes())
+            .and_then(|()| self.appender.append(&text))
             .map_err(|e| journal_error(&path, e))?;
         self.appended += changed.len();
+        self.records += changed.len();
         if self.appended > COMPACT_AFTER.max(state.points.len()) {
             self.compact(state)?;
         }
@@ -348,6 +438,7 @@ impl Journal {
             .len() as usize;
         self.appender = Appender::open(&path, whole).map_err(|e| journal_error(&path, e))?;
         self.appended = 0;
+        self.records = state.points.len();
         Ok(())
     }
 
@@ -366,27 +457,35 @@ fn journal_error(path: &Path, source: std::io::Error) -> CampaignError {
 
 /// The SHA-256 (hex, `sha256:` prefixed) of a point's input files and command.
 pub fn input_hash(folder: &Path, files: &[String], command: &[String]) -> Result<String> {
-    let mut hasher = Sha256::new();
+    let mut contents = Vec::with_capacity(files.len());
     for name in files {
         let path = folder.join(name);
         let bytes = std::fs::read(&path).map_err(|e| read_error(&path, e))?;
+        contents.push((name.as_str(), bytes));
+    }
+    let named = contents.iter().map(|(n, b)| (*n, b.as_slice()));
+    Ok(hash_inputs(named, command))
+}
+
+/// [`input_hash`] of files given by name and contents, in that order.
+pub fn hash_inputs<'a>(
+    files: impl IntoIterator<Item = (&'a str, &'a [u8])>,
+    command: &[String],
+) -> String {
+    let mut hasher = Sha256::new();
+    for (name, bytes) in files {
         hasher.update((name.len() as u64).to_le_bytes());
         hasher.update(name.as_bytes());
         hasher.update((bytes.len() as u64).to_le_bytes());
-        hasher.update(&bytes);
+        hasher.update(bytes);
     }
     for word in command {
         hasher.update((word.len() as u64).to_le_bytes());
         hasher.update(word.as_bytes());
     }
     let digest = hasher.finalize();
-    Ok(format!(
-        "sha256:{}",
-        digest
-            .iter()
-            .map(|b| format!("{b:02x}"))
-            .collect::<String>()
-    ))
+    let hex: String = digest.iter().map(|b| format!("{b:02x}")).collect();
+    format!("sha256:{hex}")
 }
 
 /// The first 8 hex digits of the SHA-256 of `bytes` (a short stable id).
@@ -487,6 +586,41 @@ mod tests {
             .count();
         assert_eq!(lines, 1 + 9, "compacted after {COMPACT_AFTER} changes");
         assert_eq!(State::read(&dir).unwrap().counts(), [0, 0, 9, 0, 0]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A cut at a record's end among the changes (every line whole, every
+    /// checksum right) falls short of the header's count: refused (issue
+    /// 34), unless it takes exactly the last round's records, which the
+    /// count does not cover yet.
+    #[test]
+    fn a_journal_cut_at_a_record_end_falls_short_of_its_count() {
+        let dir = folder("cut");
+        nine(&dir);
+        let (mut state, mut journal) = Journal::open(&dir).unwrap();
+        for i in 0..3 {
+            state.points[i].status = Status::Done;
+            journal.record(&mut state, &[i]).unwrap();
+        }
+        let path = dir.join(STATE_FILE);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 1 + 9 + 3);
+        let cut = |n: usize| {
+            lines[..n]
+                .iter()
+                .map(|l| format!("{l}\n"))
+                .collect::<String>()
+        };
+        std::fs::write(&path, cut(1 + 9 + 1)).unwrap();
+        let err = State::read(&dir).unwrap_err().to_string();
+        assert!(
+            err.contains("line 1) counts 11 at least (cut at a record's end?)"),
+            "{err}"
+        );
+        assert!(err.contains("10 point records"), "{err}");
+        std::fs::write(&path, cut(1 + 9 + 2)).unwrap();
+        assert_eq!(State::read(&dir).unwrap().counts(), [7, 0, 0, 2, 0]);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -197,7 +197,7 @@ fn run_collect(args: &DirArgs) -> Result<()> {
     );
     println!(
         "the same regression: {}",
-        collected.fit_command_from(&args.dir)
+        collect::fit_command_for(&args.dir)?
     );
     for (run, why) in &collected.missing {
         crate::warn(&format!("run {run} left out of the table: {why}"));

@@ -13,6 +13,7 @@
 
 mod abort;
 mod bundled;
+mod cases;
 mod controller;
 mod repair;
 mod slurm;

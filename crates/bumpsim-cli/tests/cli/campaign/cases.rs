@@ -1,0 +1,92 @@
+//! The campaign cases of issue 34: a response named like a factor, an
+//! attempt count at the end of its type, and a damaged point folder; each
+//! refused with an error naming the key or the state record it is about.
+//! (A journal cut at a record's end: `state::tests` in the campaign crate.)
+
+use super::{Fake, NO_FAULTS, path};
+use crate::util::{assert_user_error, bumpsim};
+use bumpsim_campaign::journal::frame;
+
+/// A response named like a factor or derived quantity would give the
+/// table two columns of one name (`doe fit` refused it only at collect).
+#[test]
+fn a_response_named_like_a_factor_is_refused_naming_both() {
+    let fake = Fake::new("campaign-case-names", 0, &NO_FAULTS, "local");
+    let campaign = std::fs::read_to_string(fake.dir.join("campaign.toml")).unwrap();
+    for (name, other) in [("a", "factor"), ("y", "derived quantity")] {
+        let file = fake.dir.join(format!("{name}.toml"));
+        let named = format!("name = \"{name}\"");
+        std::fs::write(&file, campaign.replace("name = \"y_max\"", &named)).unwrap();
+        let folder = fake.dir.join(name);
+        let out = bumpsim(&["campaign", "init", path(&file), "-o", path(&folder)]);
+        assert_user_error(
+            &out,
+            &format!(
+                "response[1] '{name}': named like the {other} '{name}' ({}): the table would have two columns '{name}'",
+                if name == "a" {
+                    "design.factors"
+                } else {
+                    "derived"
+                }
+            ),
+        );
+        assert!(!folder.exists(), "{name}: nothing written");
+    }
+}
+
+/// `attempts = 4294967295` in a state record (the end of its type: one
+/// more wrapped to 0, or panicked) is refused naming the line, the key and
+/// the limit; so is `retries = 4294967295` in the campaign file.
+#[test]
+fn an_attempt_count_beyond_its_limit_is_refused_naming_key_and_limit() {
+    let fake = Fake::new("campaign-case-attempts", 0, &NO_FAULTS, "local");
+    let c = fake.campaign();
+    let journal = c.join("state.journal");
+    let text = std::fs::read_to_string(&journal).unwrap();
+    let edited: String = text
+        .lines()
+        .map(|line| match line.split_once(' ') {
+            Some((_, json)) if json.contains("\"run\":2,") => {
+                frame(&json.replace("\"attempts\":0", "\"attempts\":4294967295"))
+            }
+            _ => format!("{line}\n"),
+        })
+        .collect();
+    std::fs::write(&journal, edited).unwrap();
+    for command in ["status", "run"] {
+        assert_user_error(
+            &bumpsim(&["campaign", command, path(&c)]),
+            "state.journal: the campaign's state is damaged: line 3: run 2: attempts 4294967295: at most 1000000",
+        );
+    }
+    assert_eq!(fake.invocations("0001"), 0, "nothing ran");
+    let campaign = std::fs::read_to_string(fake.dir.join("campaign.toml")).unwrap();
+    let file = fake.dir.join("retries.toml");
+    std::fs::write(
+        &file,
+        campaign.replace("retries = 2", "retries = 4294967295"),
+    )
+    .unwrap();
+    let out = bumpsim(&[
+        "campaign",
+        "init",
+        path(&file),
+        "-o",
+        path(&fake.dir.join("r")),
+    ]);
+    assert_user_error(&out, "executor.retries: 4294967295: at most 100");
+}
+
+/// A point folder that lost its deck is named by the state record that
+/// points to it (the journal's line), not only by the deck's path.
+#[test]
+fn a_damaged_point_folder_is_named_by_its_state_record() {
+    let fake = Fake::new("campaign-case-folder", 0, &NO_FAULTS, "local");
+    let c = fake.campaign();
+    std::fs::remove_file(c.join("points/0002/in.csv")).unwrap();
+    let out = bumpsim(&["campaign", "run", path(&c)]);
+    assert_user_error(&out, "state.journal:3: run 2: its point folder");
+    assert_user_error(&out, "points/0002 is damaged (in.csv: No such file");
+    assert_user_error(&out, "`bumpsim campaign init CAMPAIGN.toml -o");
+    assert_eq!(fake.invocations("0001"), 0, "nothing ran");
+}
