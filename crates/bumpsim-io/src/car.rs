@@ -203,6 +203,43 @@ mod tests {
         assert!(err.to_string().contains("line 1"), "{err}");
     }
 
+    use proptest::prelude::*;
+
+    /// A positive finite value from 1e-300 to 1e300.
+    fn positive() -> impl Strategy<Value = f64> {
+        (1.0..10.0f64, -300..300i32).prop_map(|(m, e)| m * 10f64.powi(e))
+    }
+
+    /// A drawn car: 1 to 6 masses, dampers 0 or positive, any name TOML
+    /// must escape (quotes, backslashes, controls, non-ASCII) or none.
+    fn car() -> impl Strategy<Value = Car> {
+        let name = proptest::option::of("[a-zA-Z0-9 \"\\\\\t\u{1}\u{e9}\u{3a9}#=\\[\\]]{0,20}");
+        (1..7usize, name).prop_flat_map(|(dof, name)| {
+            let damper = prop_oneof![Just(0.0), positive()];
+            (
+                prop::collection::vec(positive(), dof),
+                prop::collection::vec(damper, dof - 1),
+                prop::collection::vec(positive(), dof - 1),
+                Just(name),
+            )
+                .prop_map(|(m, c, k, name)| Car {
+                    name,
+                    model: MsdModel::new(m, c, k).unwrap(),
+                })
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        /// Issue 34: a car bumpsim writes reads back equal, bit for bit.
+        #[test]
+        fn whatever_car_is_written_reads_back_equal(car in car()) {
+            let text = car.to_toml();
+            prop_assert_eq!(parse(&text).unwrap(), car);
+        }
+    }
+
     #[test]
     fn errors_name_file_and_problem() {
         let cases = [

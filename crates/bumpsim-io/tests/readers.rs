@@ -9,6 +9,9 @@ use bumpsim_io::isomme;
 use bumpsim_io::test_data::{Format, TestData, Validity};
 use std::path::{Path, PathBuf};
 
+#[path = "readers/roundtrip.rs"]
+mod roundtrip;
+
 fn repo() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }

@@ -306,7 +306,8 @@ impl PlanarCar {
     pub fn to_toml(&self) -> String {
         let mut s = String::new();
         if let Some(name) = self.name() {
-            s += &format!("name = {name:?}\n");
+            // TOML's own escapes (Rust's `{:?}` writes `\u{7f}`, which TOML refuses)
+            s += &format!("name = {}\n", toml::Value::String(name.into()));
         }
         let b = self.body();
         s += &format!(
@@ -417,6 +418,63 @@ mod tests {
         assert!(err.contains("bumper.segment[1]"), "{err}");
         let both = text.replace("[bumper]\n", "[bumper]\nsegments = 3\n");
         assert!(PlanarCar::parse(&both, "seg.toml".as_ref()).is_err());
+    }
+
+    use crate::car::Layout;
+    use bumpsim_core::model::MsdModel;
+    use proptest::prelude::*;
+
+    /// A drawn bumper: three-part or a table of 2 to 5 points.
+    fn bumper() -> impl Strategy<Value = Bumper> {
+        let three = (1e5..1e7f64, 1e3..1e6f64, 1.0..10.0f64)
+            .prop_map(|(ramp, plateau, u)| Bumper::three_part(ramp, plateau, ramp * u).unwrap());
+        let table = prop::collection::vec((1e-3..0.05f64, 1e2..1e5f64), 1..5).prop_map(|steps| {
+            let (mut d, mut f) = (vec![0.0], vec![0.0]);
+            for (dd, df) in steps {
+                d.push(d[d.len() - 1] + dd);
+                f.push(f[f.len() - 1] + df);
+            }
+            Bumper::table(d, f, 1e9).unwrap()
+        });
+        prop_oneof![three, table]
+    }
+
+    /// A drawn symmetric car with a name TOML must escape (quotes,
+    /// backslashes, controls, non-ASCII) or none.
+    fn car() -> impl Strategy<Value = PlanarCar> {
+        let name = proptest::option::of("[a-zA-Z0-9 \"\\\\\t\u{1}\u{7f}\u{e9}\u{3a9}#=]{0,20}");
+        let chain = (1..4usize).prop_flat_map(|dof| {
+            (
+                prop::collection::vec(1.0..2000.0f64, dof),
+                prop::collection::vec(0.0..1e4f64, dof - 1),
+                prop::collection::vec(1e4..1e8f64, dof - 1),
+            )
+        });
+        let layout =
+            (1e2..5e3f64, 1..20usize, 0.0..1e5f64).prop_map(|(iz, segments, bending)| Layout {
+                yaw_inertia: iz,
+                segments,
+                bending,
+                ..Layout::default()
+            });
+        (chain, bumper(), layout, name).prop_map(|((m, c, k), bumper, layout, name)| {
+            let chain = MsdModel::new(m, c, k).unwrap();
+            PlanarCar::symmetric(&chain, &bumper, &layout)
+                .unwrap()
+                .with_name(name)
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+
+        /// Issue 34: a planar car bumpsim writes reads back equal.
+        #[test]
+        fn whatever_planar_car_is_written_reads_back_equal(car in car()) {
+            let text = car.to_toml();
+            let read = PlanarCar::parse(&text, "car.toml".as_ref());
+            prop_assert_eq!(read.map_err(|e| format!("{e}\n{text}")), Ok(car));
+        }
     }
 
     #[test]
