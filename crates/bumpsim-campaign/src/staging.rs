@@ -92,7 +92,7 @@ impl Staging {
                 }
                 std::fs::rename(self.path().join(name), &to).map_err(|e| write_error(&to, e))?;
             }
-            sync(&target, &[]);
+            sync(&target, &self.files);
         }
         sync_folder(target.parent().filter(|p| !p.as_os_str().is_empty()));
         Ok(())
@@ -138,5 +138,41 @@ fn write_error(path: &Path, source: std::io::Error) -> CampaignError {
     CampaignError::WriteFile {
         path: PathBuf::from(path),
         source,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Nothing of an unfinished folder reaches the target; a committed
+    /// one appears whole, and over an existing folder replaces its files.
+    #[test]
+    fn a_campaign_folder_appears_whole_or_not_at_all() {
+        let root = std::env::temp_dir().join(format!("bumpsim-staging-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&root);
+        std::fs::create_dir_all(&root).unwrap();
+        let target = root.join("c");
+        let guard = Outputs::new();
+        let write = |text: &str| {
+            let mut staging = Staging::new(&guard, &target).unwrap();
+            staging.folder("points").unwrap();
+            staging.folder("points/0001").unwrap();
+            staging.write("points/0001/deck.inp", text.as_bytes()).unwrap();
+            staging.write("state.journal", b"s\n").unwrap();
+            staging
+        };
+        drop(write("interrupted"));
+        let left: Vec<_> = std::fs::read_dir(&root).unwrap().collect();
+        assert!(left.is_empty(), "{left:?}");
+        write("one").commit(&guard).unwrap();
+        write("two").commit(&guard).unwrap();
+        let deck = std::fs::read_to_string(target.join("points/0001/deck.inp")).unwrap();
+        assert_eq!(deck, "two");
+        assert_eq!(std::fs::read_dir(&root).unwrap().count(), 1, "no staging left");
+        let mut staging = write("three");
+        let err = staging.write("../x", b"").unwrap_err().to_string();
+        assert!(err.contains("not a plain name"), "{err}");
+        std::fs::remove_dir_all(&root).unwrap();
     }
 }
