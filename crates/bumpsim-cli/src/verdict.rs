@@ -5,11 +5,11 @@
 //! Exit 0 whether the car passes or not (the verdict is the result); 2 on
 //! bad input.
 
-use crate::write;
+use crate::{Folder, write};
 use anyhow::{Context, Result};
 use bumpsim_planar::PlanarCar;
 use bumpsim_verdict::prelude::*;
-use bumpsim_verdict::{protocol, target, text};
+use bumpsim_verdict::{probability, protocol, target, text};
 use std::path::PathBuf;
 
 /// Arguments of `bumpsim verdict`.
@@ -34,6 +34,26 @@ pub struct Args {
     /// Write the verdict (and the target region) as JSON.
     #[arg(long, value_name = "OUT.json")]
     json: Option<PathBuf>,
+    /// Write an HTML report (the table with colours, top views, forces,
+    /// crush, the target corridor) and its SVG figures into this folder.
+    #[arg(long, value_name = "DIR")]
+    report: Option<PathBuf>,
+    /// The car's uncertainty: a planar identification's JSON (identify --json)
+    /// or a TOML [uncertainty] table of relative standard deviations; gives
+    /// each criterion its probability of passing.
+    #[arg(long, value_name = "FILE")]
+    uncertainty: Option<PathBuf>,
+    /// Draws of the car's parameters for the probability of passing.
+    #[arg(
+        long,
+        default_value_t = 200,
+        requires = "uncertainty",
+        allow_negative_numbers = true
+    )]
+    samples: usize,
+    /// Seed of the draws.
+    #[arg(long, default_value_t = 1, requires = "uncertainty")]
+    seed: u64,
 }
 
 /// Runs `bumpsim verdict`.
@@ -54,7 +74,15 @@ pub fn run(args: &Args) -> Result<()> {
         })
         .collect::<Result<Vec<_>>>()?;
     let setup = Setup::new(ends, tests, args.margin)?;
-    let v = verdict(&setup)?;
+    let mut v = verdict(&setup)?;
+    if let Some(path) = &args.uncertainty {
+        let u = Uncertainty::read(path)?;
+        let sampling = Sampling {
+            samples: args.samples,
+            seed: args.seed,
+        };
+        probability::propagate(&setup, &mut v, &u, sampling)?;
+    }
     let region = match args.target {
         true => Some(target::search(&setup, &TargetOptions::default())?),
         false => None,
@@ -62,6 +90,10 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(path) = &args.json {
         let document = serde_json::json!({ "verdict": v, "target": region });
         write(path, &serde_json::to_string_pretty(&document)?)?;
+    }
+    if let Some(dir) = &args.report {
+        let (html, figures) = bumpsim_report::verdict::verdict_report(&v, region.as_ref())?;
+        Folder::report(dir, &html, &figures)?;
     }
     print!("{}", text::table(&v));
     if let Some(r) = &region {

@@ -9,6 +9,7 @@
 //! - [`planar`]: planar impact pages (forces, yaw, crush per segment, top view) and the planar identification;
 //! - [`signal`]: raw against processed crash-test signals;
 //! - [`topview`]: the top-view picture of a planar impact;
+//! - [`verdict`](mod@verdict): the verdict report (tests × criteria, top views, forces, crush, the target corridor);
 //! - [`plot`]: line plots of time histories (measured solid, simulated
 //!   dashed, as in the thesis figures) with units on both axes, as SVG.
 //!
@@ -34,6 +35,7 @@ pub mod planar;
 pub mod plot;
 pub mod signal;
 pub mod topview;
+pub mod verdict;
 
 pub use bar::BarPlot;
 pub use heatmap::HeatMap;

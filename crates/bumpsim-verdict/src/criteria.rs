@@ -30,6 +30,7 @@
 use crate::limits::{Closer, Damageability};
 use crate::protocol::{Height, Test};
 use crate::pulse::Metrics;
+use bumpsim_estimate::propagate::Probability;
 use bumpsim_planar::{PlanarCar, PlanarResult};
 use serde::Serialize;
 
@@ -114,6 +115,9 @@ pub struct Criterion {
     pub ratio: f64,
     /// The outcome.
     pub outcome: Outcome,
+    /// Its probability of passing over the car's uncertainty (None: not
+    /// propagated, or reported only; the probability module).
+    pub probability: Option<Probability>,
 }
 
 impl Criterion {
@@ -136,6 +140,7 @@ impl Criterion {
             margin,
             ratio: margin / limit.abs(),
             outcome: Outcome::Info,
+            probability: None,
         }
     }
 

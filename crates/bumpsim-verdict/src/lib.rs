@@ -10,6 +10,10 @@
 //! - [`criteria`]: each criterion's value, limit and margin;
 //! - [`pulse`]: peak and 3 ms clip deceleration, delta-V, OLC, ASI;
 //! - [`verdict`](mod@verdict): every test run and judged;
+//! - [`probability`]: the verdict propagated over the car's uncertainty:
+//!   each criterion's probability of passing (issue 39);
+//! - [`uncertainty`]: the car's uncertainty, from an identification's
+//!   JSON or relative spreads;
 //! - [`target`]: the region of bumper characteristics that passes every
 //!   criterion with a margin, its binding criteria and corridor;
 //! - [`text`]: the tables with units.
@@ -36,10 +40,12 @@
 pub mod criteria;
 pub mod error;
 pub mod limits;
+pub mod probability;
 pub mod protocol;
 pub mod pulse;
 pub mod target;
 pub mod text;
+pub mod uncertainty;
 pub mod verdict;
 
 pub use error::VerdictError;
@@ -50,7 +56,9 @@ pub mod prelude {
     pub use crate::criteria::{Criterion, Outcome};
     pub use crate::error::VerdictError;
     pub use crate::limits::{Damageability, End};
+    pub use crate::probability::Sampling;
     pub use crate::protocol::{Protocol, Test};
     pub use crate::target::{Region, TargetOptions};
+    pub use crate::uncertainty::{Propagation, Uncertainty};
     pub use crate::verdict::{CarEnd, Setup, TestVerdict, Verdict, verdict};
 }

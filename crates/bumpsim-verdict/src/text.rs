@@ -4,6 +4,7 @@
 use crate::criteria::{Criterion, Outcome};
 use crate::target::{Bound, Region};
 use crate::verdict::Verdict;
+use bumpsim_estimate::propagate::Probability;
 
 /// A criterion's outcome as a word.
 pub fn outcome(c: &Criterion) -> &'static str {
@@ -59,23 +60,65 @@ pub const HEADERS: [&str; 7] = [
     "detail",
 ];
 
+/// A criterion's probability of passing, `93.8 ± 2.4 %` (empty when not
+/// propagated or not judged).
+pub fn chance(c: &Criterion) -> String {
+    c.probability.map_or(String::new(), |p| percent(&p))
+}
+
+fn percent(p: &Probability) -> String {
+    format!(
+        "{:.1} ± {:.1} %",
+        100.0 * p.probability,
+        100.0 * p.standard_error
+    )
+}
+
+/// The headers and rows of the verdict table: [`rows`], with each
+/// criterion's probability of passing (`P(pass)`) before the detail when
+/// the verdict was propagated ([`crate::probability`]).
+pub fn columns(v: &Verdict) -> (Vec<&'static str>, Vec<Vec<String>>) {
+    let mut headers = HEADERS.to_vec();
+    let chances = v.tests.iter().flat_map(|t| match &t.skipped {
+        Some(_) => vec![String::new()],
+        None => t.criteria.iter().map(chance).collect(),
+    });
+    let propagated = v.propagation.is_some();
+    let rows = rows(v)
+        .into_iter()
+        .zip(chances)
+        .map(|(row, p)| {
+            let mut row = row.to_vec();
+            if propagated {
+                row.insert(6, p);
+            }
+            row
+        })
+        .collect();
+    if propagated {
+        headers.insert(6, "P(pass)");
+    }
+    (headers, rows)
+}
+
 /// The verdict as a text table, then each test's verdict, pulse and assumptions.
 pub fn table(v: &Verdict) -> String {
-    let rows = rows(v);
-    let widths: Vec<usize> = (0..6)
+    let (headers, rows) = columns(v);
+    let last = headers.len() - 1;
+    let widths: Vec<usize> = (0..last)
         .map(|i| {
             rows.iter()
                 .map(|r| r[i].chars().count())
-                .chain([HEADERS[i].len()])
+                .chain([headers[i].chars().count()])
                 .max()
                 .unwrap_or(0)
         })
         .collect();
-    let line = |cells: [&str; 7]| {
-        let mut s: String = (0..6)
+    let line = |cells: &[&str]| {
+        let mut s: String = (0..last)
             .map(|i| format!("{:<w$}  ", cells[i], w = widths[i]))
             .collect();
-        s += cells[6];
+        s += cells[last];
         s.trim_end().to_string() + "\n"
     };
     let mut out = format!(
@@ -83,11 +126,45 @@ pub fn table(v: &Verdict) -> String {
         v.car,
         100.0 * v.margin
     );
-    out += &line(HEADERS);
+    out += &line(&headers);
     for r in &rows {
-        out += &line([&r[0], &r[1], &r[2], &r[3], &r[4], &r[5], &r[6]]);
+        out += &line(&r.iter().map(String::as_str).collect::<Vec<_>>());
     }
     out += &summary(v);
+    out += &propagation(v);
+    out
+}
+
+/// The probability of passing of each test and of the verdict, with what
+/// was propagated (empty when not propagated).
+pub fn propagation(v: &Verdict) -> String {
+    let Some(p) = &v.propagation else {
+        return String::new();
+    };
+    let u = &p.uncertainty;
+    let spreads: Vec<String> = u
+        .names
+        .iter()
+        .zip(&u.log_sd)
+        .map(|(n, s)| format!("{n} {:.1} %", 100.0 * s))
+        .collect();
+    let mut out = format!(
+        "probability of passing over {} ({} draws, seed {}, {} failed; log-normal spreads {}): every test {}\n",
+        u.source,
+        p.samples,
+        p.seed,
+        p.failed,
+        spreads.join(", "),
+        percent(&p.passing)
+    );
+    for t in &v.tests {
+        if let Some(chance) = &t.probability {
+            out += &format!("  {}: {}\n", t.test.name, percent(chance));
+        }
+    }
+    for left in &u.left_out {
+        out += &format!("  not propagated: {left}\n");
+    }
     out
 }
 

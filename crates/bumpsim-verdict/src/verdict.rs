@@ -10,6 +10,8 @@ use crate::error::{VerdictError, require};
 use crate::limits::{Damageability, End};
 use crate::protocol::Test;
 use crate::pulse::{Metrics, Pulse};
+use crate::uncertainty::Propagation;
+use bumpsim_estimate::propagate::Probability;
 use bumpsim_impact::bumper::Bumper;
 use bumpsim_planar::car::{Beam, scaled};
 use bumpsim_planar::{PlanarCar, PlanarResult, Settings, Striker, simulate};
@@ -173,6 +175,9 @@ pub struct TestVerdict {
     pub notes: Vec<String>,
     /// The simulation's warnings.
     pub warnings: Vec<String>,
+    /// The probability that every criterion passes over the car's
+    /// uncertainty (None: not propagated; the probability module).
+    pub probability: Option<Probability>,
     /// The impact (histories), for plots.
     #[serde(skip)]
     pub result: Option<PlanarResult>,
@@ -207,6 +212,9 @@ pub struct Verdict {
     pub margin: f64,
     /// Every test, in the order asked.
     pub tests: Vec<TestVerdict>,
+    /// The propagation over the car's uncertainty, when asked
+    /// (the probability module).
+    pub propagation: Option<Propagation>,
 }
 
 impl Verdict {
@@ -250,6 +258,7 @@ pub fn verdict(setup: &Setup) -> Result<Verdict, VerdictError> {
         car: setup.name(),
         margin: setup.margin,
         tests,
+        propagation: None,
     })
 }
 
@@ -288,6 +297,7 @@ pub(crate) fn assess(
         assumptions: vec![],
         notes: vec![],
         warnings: vec![],
+        probability: None,
         result: None,
         run: None,
     };

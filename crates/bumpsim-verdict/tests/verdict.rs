@@ -271,3 +271,73 @@ fn asi_of_a_half_sine_is_the_closed_form() {
     let exact = mean / (12.0 * 9.81);
     assert!((asi / exact - 1.0).abs() < 1e-3, "{asi} {exact}");
 }
+
+/// The probability of passing against an independent route: the bumper's
+/// crush in the 49 CFR 581 barrier test falls as its force scale `m`
+/// rises, so with `ln m ~ N(0, σ²)` the criterion "crush ≤ 20 mm" passes
+/// with probability `Φ(−ln m*/σ)`, `m*` the scale whose crush is 20 mm
+/// (found here by bisection of deterministic verdicts). The Monte Carlo
+/// probability of 300 draws lies within 3 of its standard errors.
+#[test]
+fn the_probability_of_passing_is_the_normal_cdf_at_the_threshold() {
+    let text = std::fs::read_to_string(example())
+        .unwrap()
+        .replace("bumper_stroke = 80.0", "bumper_stroke = 20.0");
+    let car = bumpsim_planar::PlanarCar::read(&example()).unwrap();
+    let limits = Damageability::parse(&text, &example()).unwrap();
+    let end = CarEnd::new(car, limits).unwrap();
+    let tests = select(&["part581-barrier-front"]).unwrap();
+    let setup = Setup::new(vec![end.clone()], tests.clone(), 0.0).unwrap();
+    let crush = |m: f64| {
+        let segments = end.car.beam().segments.iter();
+        let scaled = segments.map(|s| bumpsim_planar::car::scaled(s, m).unwrap());
+        let scaled_end = end.with_segments(scaled.collect()).unwrap();
+        let v =
+            bumpsim_verdict::verdict(&Setup::new(vec![scaled_end], tests.clone(), 0.0).unwrap());
+        let v = v.unwrap();
+        let c = v.tests[0]
+            .criteria
+            .iter()
+            .find(|c| c.name == "bumper stroke");
+        c.unwrap().value
+    };
+    let (mut low, mut high) = (-0.5f64, 0.5f64);
+    assert!(crush(low.exp()) > 0.02 && crush(high.exp()) < 0.02);
+    while high - low > 1e-5 {
+        let mid = 0.5 * (low + high);
+        match crush(mid.exp()) > 0.02 {
+            true => low = mid,
+            false => high = mid,
+        }
+    }
+    let sigma = 0.1;
+    let normal = statrs::distribution::Normal::standard();
+    let exact = statrs::distribution::ContinuousCDF::cdf(&normal, -0.5 * (low + high) / sigma);
+    let mut v = bumpsim_verdict::verdict(&setup).unwrap();
+    let u = bumpsim_verdict::probability::Uncertainty::independent(
+        "spread",
+        vec![("bumper.force".into(), sigma)],
+    )
+    .unwrap();
+    let sampling = bumpsim_verdict::probability::Sampling {
+        samples: 300,
+        seed: 5,
+    };
+    bumpsim_verdict::probability::propagate(&setup, &mut v, &u, sampling).unwrap();
+    let c = v.tests[0]
+        .criteria
+        .iter()
+        .find(|c| c.name == "bumper stroke");
+    let p = c.unwrap().probability.unwrap();
+    let se = (exact * (1.0 - exact) / 300.0).sqrt();
+    assert!(
+        exact > 0.2 && exact < 0.8,
+        "a threshold inside the spread: {exact}"
+    );
+    assert!(
+        (p.probability - exact).abs() < 3.0 * se,
+        "Monte Carlo {p:?} against Φ = {exact}"
+    );
+    assert_eq!(v.propagation.as_ref().unwrap().failed, 0);
+    assert_eq!(v.tests[0].probability.unwrap().count, 300);
+}

@@ -14,19 +14,19 @@ fn verdict(args: &[&str]) -> std::process::Output {
     bumpsim(&all)
 }
 
+/// `bumpsim verdict` of the worked example's car in `protocol`, with `extra`.
+fn example(protocol: &str, extra: &[&str]) -> std::process::Output {
+    let car = car();
+    let mut args = vec!["--car", car.to_str().unwrap(), "--protocol", protocol];
+    args.extend_from_slice(extra);
+    verdict(&args)
+}
+
 #[test]
 fn the_worked_example_fails_one_criterion_with_its_margin_and_exits_0() {
     let dir = scratch("verdict-example");
     let json = dir.join("verdict.json");
-    let car = car();
-    let run = verdict(&[
-        "--car",
-        car.to_str().unwrap(),
-        "--protocol",
-        "part581,rcar-bumper",
-        "--json",
-        json.to_str().unwrap(),
-    ]);
+    let run = example("part581,rcar-bumper", &["--json", json.to_str().unwrap()]);
     let out = text(&run.stdout);
     assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
     assert_contains(
@@ -97,4 +97,282 @@ fn hostile_inputs_exit_2_naming_the_key() {
     std::fs::write(&contradiction, long).unwrap();
     let run = verdict(&["--car", contradiction.to_str().unwrap()]);
     assert_user_error(&run, "contradict");
+}
+
+/// A probe that writes, into the page, the text boxes whose content is
+/// wider than the box (as the reports test does for the other reports).
+const PROBE: &str = "<script>addEventListener('load',()=>{const wide=[...document.querySelectorAll('pre,p,td,th,figcaption,li,div,h2')].filter(e=>e.scrollWidth>e.clientWidth+1).map(e=>e.tagName+': '+e.textContent.slice(0,60));const o=document.createElement('output');o.id='overflow';o.textContent=JSON.stringify(wide);document.body.appendChild(o)});</script>";
+
+/// The text boxes of `page` wider than their box, as Chromium lays it out.
+fn overflowing(browser: &std::path::Path, page: &std::path::Path) -> String {
+    let probed = page.with_file_name("probed.html");
+    let html = std::fs::read_to_string(page).unwrap();
+    std::fs::write(&probed, html.replace("</body>", &format!("{PROBE}</body>"))).unwrap();
+    let profile = page.with_file_name("profile");
+    let dom = std::process::Command::new(browser)
+        .args(["--headless", "--no-sandbox", "--disable-gpu"])
+        .arg("--window-size=1280,900")
+        .arg(format!("--user-data-dir={}", profile.display()))
+        .arg("--dump-dom")
+        .arg(format!(
+            "file://{}",
+            probed.canonicalize().unwrap().display()
+        ))
+        .output()
+        .unwrap();
+    let dom = text(&dom.stdout);
+    let found = dom.split("<output id=\"overflow\">").nth(1);
+    let found = found.and_then(|rest| rest.split("</output>").next());
+    found
+        .unwrap_or_else(|| panic!("the probe did not run:\n{dom}"))
+        .to_string()
+}
+
+/// The verdict report of the worked example's failing test with its target
+/// region: the coloured table, the test's top view, forces and crush, the
+/// corridor and the table of limits with the binding criterion; every axis
+/// names its quantity with its unit; in Chromium no text box overflows.
+#[test]
+fn the_report_shows_the_verdict_the_test_and_the_corridor() {
+    let dir = scratch("verdict-report");
+    let report = dir.join("report");
+    let run = example(
+        "rcar-bumper-corner-front",
+        &[
+            "--target",
+            "--uncertainty",
+            root()
+                .join("examples/verdict/uncertainty.toml")
+                .to_str()
+                .unwrap(),
+            "--samples",
+            "20",
+            "--report",
+            report.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    let html = std::fs::read_to_string(report.join("index.html")).unwrap();
+    assert_contains(
+        &html,
+        &[
+            "font-weight:bold\">FAIL</td>",
+            "<td>bumper stroke</td>",
+            "-2.572 mm",
+            "Assumptions",
+            "Bumper target",
+            "binding below",
+            "bumper stroke (rcar-bumper-corner-front)",
+            "corridor of the passing bumpers",
+            "<th>P(pass)</th>",
+            "probability of passing over",
+        ],
+    );
+    assert_eq!(html.matches("<svg").count(), 4, "every figure inline");
+    let stem = "rcar-bumper-corner-front";
+    for name in ["top-view", "forces", "crush"]
+        .map(|n| format!("{stem}-{n}.svg"))
+        .into_iter()
+        .chain(["corridor.svg".to_string()])
+    {
+        let svg = std::fs::read_to_string(report.join(&name)).unwrap();
+        let labels: Vec<&str> = svg
+            .split("<text")
+            .skip(1)
+            .filter_map(|t| t.split('>').nth(1)?.split('<').next())
+            .map(str::trim)
+            .filter(|t| t.ends_with(']'))
+            .collect();
+        assert_eq!(labels.len(), 2, "{name}: two axis labels, {labels:?}");
+        for label in labels {
+            assert!(
+                !label.starts_with("length [") && !label.starts_with("dimensionless ["),
+                "{name}: axis '{label}' does not name its quantity"
+            );
+        }
+    }
+    let corridor = std::fs::read_to_string(report.join("corridor.svg")).unwrap();
+    assert_contains(&corridor, &["deflection [mm]", "bumper force [kN]"]);
+    let Some(browser) = chromium() else { return };
+    let wide = overflowing(&browser, &report.join("index.html"));
+    assert_eq!(wide, "[]", "text boxes wider than their box");
+}
+
+/// A report folder that is the car file is refused before anything runs,
+/// and nothing is written.
+#[test]
+fn a_report_over_an_input_is_refused() {
+    let dir = scratch("verdict-report-input");
+    let car = dir.join("car.toml");
+    std::fs::copy(crate::verdict::car(), &car).unwrap();
+    let before = std::fs::read(&car).unwrap();
+    let run = example(
+        "part581-barrier-front",
+        &["--report", car.to_str().unwrap()],
+    );
+    assert_user_error(&run, "car.toml");
+    assert_eq!(std::fs::read(&car).unwrap(), before);
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        1,
+        "nothing left behind"
+    );
+}
+
+/// An identification's JSON as `bumpsim identify --json` writes it on a
+/// planar study: two car parameters with standard errors and their
+/// correlation, a fixed one and a line of action (left out, and said).
+const IDENTIFIED: &str = r#"{"result": {"parameters": [
+  {"name": "body.mass", "unit": "kg", "value": 1300.0, "standard_error": 26.0},
+  {"name": "left.springs[0]", "unit": "N/m", "value": 3e6, "standard_error": 3e5},
+  {"name": "right.springs[0]", "unit": "N/m", "value": 3e6, "standard_error": null},
+  {"name": "case 'p' force[0].lateral", "unit": "m", "value": 0.1, "standard_error": 0.01}],
+ "uncertainty": {"correlation": [[1.0, -0.4, null, 0.0], [-0.4, 1.0, null, 0.0],
+   [null, null, null, null], [0.0, 0.0, null, 1.0]]}}}"#;
+
+/// The probability of passing from an identification's JSON: every judged
+/// criterion has one in the JSON, the reported one none; the table has
+/// the column; the parameters left out are named.
+#[test]
+fn an_identification_gives_each_criterion_its_probability_of_passing() {
+    let dir = scratch("verdict-probability");
+    let (json, identified) = (dir.join("verdict.json"), dir.join("identified.json"));
+    std::fs::write(&identified, IDENTIFIED).unwrap();
+    let run = example(
+        "part581-barrier-front",
+        &[
+            "--uncertainty",
+            identified.to_str().unwrap(),
+            "--samples",
+            "40",
+            "--seed",
+            "3",
+            "--json",
+            json.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    assert_contains(
+        &text(&run.stdout),
+        &[
+            "P(pass)",
+            "(40 draws, seed 3, 0 failed; log-normal spreads body.mass 2.0 %, left.springs[0] 10.0 %)",
+            "not propagated: right.springs[0]: no standard error",
+            "not propagated: case 'p' force[0].lateral: not a car parameter",
+        ],
+    );
+    let document: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let v = &document["verdict"];
+    assert_eq!(v["propagation"]["samples"], 40);
+    assert_eq!(v["propagation"]["uncertainty"]["correlation"][0][1], -0.4);
+    for c in v["tests"][0]["criteria"].as_array().unwrap() {
+        let p = &c["probability"]["probability"];
+        match c["outcome"].as_str().unwrap() {
+            "info" => assert!(c["probability"].is_null(), "{c}"),
+            _ => assert!((0.0..=1.0).contains(&p.as_f64().unwrap()), "{c}"),
+        }
+    }
+    assert!(v["tests"][0]["probability"]["count"] == 40);
+}
+
+/// Hostile values of the new flags: exit 2 with a message naming the flag,
+/// the file or the key, and no output left behind.
+#[test]
+fn hostile_uncertainty_and_samples_exit_2_and_write_nothing() {
+    let dir = scratch("verdict-probability-hostile");
+    let (json, report) = (dir.join("out.json"), dir.join("report"));
+    let car = car();
+    let good = root().join("examples/verdict/uncertainty.toml");
+    let file = |name: &str, text: &str| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        path.to_str().unwrap().to_string()
+    };
+    let cases = [
+        (good.to_str().unwrap().to_string(), "0", "samples = 0 draws"),
+        (
+            good.to_str().unwrap().to_string(),
+            "1000000",
+            "samples = 1000000 draws",
+        ),
+        (
+            good.to_str().unwrap().to_string(),
+            "NaN",
+            "invalid value 'NaN' for '--samples",
+        ),
+        (good.to_str().unwrap().to_string(), "-5", "--samples"),
+        (
+            dir.join("absent.toml").to_str().unwrap().to_string(),
+            "20",
+            "absent.toml",
+        ),
+        (
+            file("garbled.json", "{\"result\": [1, 2"),
+            "20",
+            "not valid JSON",
+        ),
+        (
+            file("garbled.toml", "[uncertainty\n"),
+            "20",
+            "not valid TOML",
+        ),
+        (
+            file("other.json", "{\"result\": {}}"),
+            "20",
+            "no result.parameters",
+        ),
+        (
+            file("empty.toml", "[uncertainty]\n"),
+            "20",
+            "no parameter to propagate",
+        ),
+        (
+            file("nan.toml", "[uncertainty]\n\"body.mass\" = nan\n"),
+            "20",
+            "body.mass = NaN",
+        ),
+        (
+            file("negative.toml", "[uncertainty]\n\"bumper.force\" = -0.1\n"),
+            "20",
+            "bumper.force = -0.1",
+        ),
+        (
+            file("text.toml", "[uncertainty]\n\"bumper.force\" = \"ten\"\n"),
+            "20",
+            "expected a number",
+        ),
+        (
+            file("unknown.toml", "[uncertainty]\n\"wheel.size\" = 0.1\n"),
+            "20",
+            "'wheel.size' is not a parameter of the car",
+        ),
+        (
+            file("chain.toml", "[uncertainty]\n\"left.springs[4]\" = 0.1\n"),
+            "20",
+            "left.springs[4] is missing",
+        ),
+    ];
+    for (uncertainty, samples, message) in cases {
+        let run = example(
+            "part581-barrier-front",
+            &[
+                "--uncertainty",
+                &uncertainty,
+                "--samples",
+                samples,
+                "--json",
+                json.to_str().unwrap(),
+                "--report",
+                report.to_str().unwrap(),
+            ],
+        );
+        assert_user_error(&run, message);
+        assert!(
+            !json.exists() && !report.exists(),
+            "{message}: an output was left"
+        );
+    }
+    let alone = verdict(&["--car", car.to_str().unwrap(), "--samples", "20"]);
+    assert_user_error(&alone, "--uncertainty");
 }

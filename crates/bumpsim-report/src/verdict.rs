@@ -1,0 +1,338 @@
+//! The verdict report (issue 36): the table of tests × criteria with each
+//! criterion's value, limit, margin (with its unit) and verdict coloured
+//! pass/fail, its probability of passing when the verdict was propagated
+//! (issue 39, [`bumpsim_verdict::probability`]), the assumptions, then per test the top view of the car at
+//! peak force, the forces (striker, side members, the rails' yield force)
+//! and the bumper's crush against its stroke; with a target search, the
+//! force–deflection corridor of the passing bumpers and the table of the
+//! passing force levels with the criterion binding at each boundary
+//! ([`bumpsim_verdict::target`]).
+
+use crate::html::Html;
+use crate::plot::{LinePlot, PlotError, Series, Style};
+use bumpsim_core::units::Dimension;
+use bumpsim_planar::PlanarResult;
+use bumpsim_verdict::target::{Bound, Region};
+use bumpsim_verdict::verdict::{TestVerdict, Verdict};
+
+/// Background colours of the verdict cells: pass, fail, reported only.
+const COLOURS: [(&str, &str); 3] = [
+    (
+        "<td>pass</td>",
+        "<td style=\"background:#d8f0d8\">pass</td>",
+    ),
+    (
+        "<td>FAIL</td>",
+        "<td style=\"background:#f8cfcc;font-weight:bold\">FAIL</td>",
+    ),
+    (
+        "<td>info</td>",
+        "<td style=\"background:#eeeeee\">info</td>",
+    ),
+];
+
+/// The verdict report: the HTML page and its figures (file name, SVG).
+///
+/// ```
+/// use bumpsim_verdict::prelude::*;
+/// let v = Verdict { car: "car".into(), margin: 0.0, tests: vec![], propagation: None };
+/// let (html, figures) = bumpsim_report::verdict::verdict_report(&v, None).unwrap();
+/// assert!(html.contains("every assessed test passes") && figures.is_empty());
+/// ```
+pub fn verdict_report(
+    v: &Verdict,
+    region: Option<&Region>,
+) -> Result<(String, Vec<(String, String)>), PlotError> {
+    let mut page = Html::new(&format!("bumpsim verdict: {}", v.car));
+    page.heading("Verdict");
+    page.paragraph(&format!(
+        "Each criterion passes when its margin is at least {} % of its limit.",
+        100.0 * v.margin
+    ));
+    let (headers, rows) = bumpsim_verdict::text::columns(v);
+    page.table(&headers, &rows);
+    let text = bumpsim_verdict::text::summary(v) + &bumpsim_verdict::text::propagation(v);
+    page.preformatted(&text);
+    assumptions(&mut page, v);
+    let mut figures = Vec::new();
+    for t in &v.tests {
+        test_figures(&mut page, &mut figures, t)?;
+    }
+    if let Some(r) = region {
+        target(&mut page, &mut figures, r, v)?;
+    }
+    let mut html = page.finish();
+    for (plain, coloured) in COLOURS {
+        html = html.replace(plain, coloured);
+    }
+    Ok((html, figures))
+}
+
+/// Each test's assumptions, notes and warnings.
+fn assumptions(page: &mut Html, v: &Verdict) {
+    page.heading("Assumptions");
+    let mut stated: Vec<String> = Vec::new();
+    for t in v.tests.iter().filter(|t| t.skipped.is_none()) {
+        for a in t.assumptions.iter().chain(&t.notes) {
+            stated.push(format!("{}: {a}", t.test.name));
+        }
+    }
+    page.notes(&stated);
+    let warnings: Vec<String> = v
+        .tests
+        .iter()
+        .flat_map(|t| t.warnings.iter().map(|w| format!("{}: {w}", t.test.name)))
+        .collect();
+    page.warnings(&warnings);
+}
+
+/// A test's top view at peak force, its forces and its crush.
+fn test_figures(
+    page: &mut Html,
+    figures: &mut Vec<(String, String)>,
+    t: &TestVerdict,
+) -> Result<(), PlotError> {
+    let (Some(r), Some((car, striker))) = (&t.result, &t.run) else {
+        return Ok(());
+    };
+    let name = t.test.name;
+    page.heading(&format!("{name}: {}", t.test.description));
+    page.paragraph(&format!("Striker: {}", t.striker));
+    let stem = crate::file_name(name);
+    let k = bumpsim_planar::picture::peak_sample(r);
+    let caption = format!(
+        "{name}: top view at peak force, t = {:.2} ms",
+        r.time[k] * 1e3
+    );
+    let view =
+        bumpsim_planar::picture::top_view(car, striker, r, k).map_err(|e| PlotError::Draw {
+            title: caption.clone(),
+            message: e.to_string(),
+        })?;
+    let drawn = [
+        (
+            "top-view",
+            crate::topview::top_view_svg(&view, &caption)?,
+            format!(
+                "{caption}: body outline (grey), side members (blue), crushed bumper line (red), striker (grey)"
+            ),
+        ),
+        (
+            "forces",
+            forces(name, r, limit(t, "rail force")).svg()?,
+            format!("{name}: striker force and side-member forces against the rails' yield force"),
+        ),
+        (
+            "crush",
+            crush(name, r, limit(t, "bumper stroke")).svg()?,
+            format!("{name}: the largest crush of a bumper segment against the bumper's stroke"),
+        ),
+    ];
+    for (what, svg, caption) in drawn {
+        page.figure(&svg, &caption);
+        figures.push((format!("{stem}-{what}.svg"), svg));
+    }
+    Ok(())
+}
+
+/// The limit of a test's criterion, SI.
+fn limit(t: &TestVerdict, criterion: &str) -> Option<f64> {
+    t.criteria
+        .iter()
+        .find(|c| c.name == criterion)
+        .map(|c| c.limit)
+}
+
+/// A constant line at `value` over the impact's time.
+fn level(name: &str, time: &[f64], value: f64) -> Series {
+    let ends = vec![time[0], time[time.len() - 1]];
+    Series::new(name, ends, vec![value; 2], Style::Dashed)
+}
+
+fn forces(test: &str, r: &PlanarResult, yield_force: Option<f64>) -> LinePlot {
+    let mut plot = LinePlot::new(
+        &format!("Forces, {test}"),
+        Dimension::Time,
+        Dimension::Force,
+    );
+    for (name, history) in [
+        ("striker force", &r.force),
+        ("left side member", &r.side_force_left),
+        ("right side member", &r.side_force_right),
+    ] {
+        plot.add(Series::new(
+            name,
+            r.time.clone(),
+            history.clone(),
+            Style::Solid,
+        ));
+    }
+    if let Some(f) = yield_force {
+        plot.add(level("rail yield force (limit)", &r.time, f));
+    }
+    plot
+}
+
+fn crush(test: &str, r: &PlanarResult, stroke: Option<f64>) -> LinePlot {
+    let mut plot = LinePlot::new(
+        &format!("Crush, {test}"),
+        Dimension::Time,
+        Dimension::Length,
+    )
+    .quantities(None, Some("crush"));
+    let largest = (0..r.time.len())
+        .map(|k| r.crush.iter().map(|c| c[k]).fold(0.0, f64::max))
+        .collect();
+    plot.add(Series::new(
+        "largest segment crush",
+        r.time.clone(),
+        largest,
+        Style::Solid,
+    ));
+    if let Some(s) = stroke {
+        plot.add(level("bumper stroke (limit)", &r.time, s));
+    }
+    plot
+}
+
+/// The target region: its corridor plot and its table of limits.
+fn target(
+    page: &mut Html,
+    figures: &mut Vec<(String, String)>,
+    r: &Region,
+    v: &Verdict,
+) -> Result<(), PlotError> {
+    page.heading("Bumper target");
+    page.paragraph(&format!(
+        "The whole bumper's characteristic scaled in force and deflection around the car's own ({:.2} kN/mm, {:.1} kN); every candidate runs every test and must keep a margin of {} % on every criterion. {} impacts in {:.2} s.",
+        r.origin[0] / 1e6,
+        r.origin[1] / 1e3,
+        100.0 * r.margin,
+        r.impacts,
+        r.seconds
+    ));
+    if !r.corridor.deflection.is_empty() {
+        let svg = corridor(r, v).svg()?;
+        page.figure(&svg, "force–deflection corridor of the passing bumpers (whole bumper): the least and the largest force of a passing characteristic at each deflection, and the car's own bumper; a curve inside the corridor is not guaranteed to pass, check it with the verdict");
+        figures.push(("corridor.svg".into(), svg));
+    }
+    let headers = [
+        "stiffness [kN/mm]",
+        "least force [kN]",
+        "binding below",
+        "largest force [kN]",
+        "binding above",
+        "stroke needed [mm]",
+    ];
+    page.table(&headers, &limits(r));
+    Ok(())
+}
+
+fn corridor(r: &Region, v: &Verdict) -> LinePlot {
+    let c = &r.corridor;
+    let mut plot = LinePlot::new(
+        "Bumper target corridor",
+        Dimension::Length,
+        Dimension::Force,
+    )
+    .quantities(Some("deflection"), Some("bumper force"));
+    plot.add(Series::new(
+        "largest passing force",
+        c.deflection.clone(),
+        c.upper.clone(),
+        Style::Solid,
+    ));
+    plot.add(Series::new(
+        "least passing force",
+        c.deflection.clone(),
+        c.lower.clone(),
+        Style::Solid,
+    ));
+    let own = v.tests.iter().find_map(|t| t.run.as_ref()).map(|(car, _)| {
+        let segments = &car.beam().segments;
+        let force = |d: f64| segments.iter().map(|s| s.loading_force(d)).sum::<f64>();
+        c.deflection.iter().map(|&d| force(d)).collect::<Vec<f64>>()
+    });
+    if let Some(own) = own {
+        plot.add(Series::new(
+            "the car's bumper",
+            c.deflection.clone(),
+            own,
+            Style::Dashed,
+        ));
+    }
+    plot
+}
+
+/// The rows of the table of limits: per stiffness the passing force
+/// levels, the criterion binding at each, the stroke needed.
+fn limits(r: &Region) -> Vec<Vec<String>> {
+    let force = |b: &Bound| format!("{:.1}", b.force / 1e3);
+    let binding = |b: &Bound| {
+        b.binding
+            .clone()
+            .unwrap_or_else(|| "the search range".into())
+    };
+    r.rows
+        .iter()
+        .map(|row| {
+            let stiffness = format!("{:.2}", row.stiffness / 1e6);
+            match &row.interval {
+                Some([low, high]) => vec![
+                    stiffness,
+                    force(low),
+                    binding(low),
+                    force(high),
+                    binding(high),
+                    row.stroke.map_or("-".into(), |s| format!("{:.1}", s * 1e3)),
+                ],
+                None => vec![
+                    stiffness,
+                    "-".into(),
+                    format!(
+                        "nothing passes: {}",
+                        row.failing.as_deref().unwrap_or("every level fails")
+                    ),
+                    "-".into(),
+                    "-".into(),
+                    "-".into(),
+                ],
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bumpsim_verdict::prelude::*;
+
+    /// The bundled worked example in the RCAR corner test: one figure per
+    /// kind, the failing criterion's cell coloured, units on every axis.
+    #[test]
+    fn the_worked_example_draws_its_test_and_colours_its_failure() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../examples/verdict/car.toml");
+        let car = bumpsim_planar::PlanarCar::read(&path).unwrap();
+        let end = CarEnd::new(car, Damageability::read(&path).unwrap()).unwrap();
+        let tests = bumpsim_verdict::protocol::select(&["rcar-bumper-corner-front"]).unwrap();
+        let v = verdict(&Setup::new(vec![end], tests, 0.0).unwrap()).unwrap();
+        let (html, figures) = verdict_report(&v, None).unwrap();
+        let names: Vec<&str> = figures.iter().map(|(n, _)| n.as_str()).collect();
+        assert_eq!(
+            names,
+            [
+                "rcar-bumper-corner-front-top-view.svg",
+                "rcar-bumper-corner-front-forces.svg",
+                "rcar-bumper-corner-front-crush.svg"
+            ]
+        );
+        assert!(
+            html.contains("font-weight:bold\">FAIL</td>"),
+            "coloured failure"
+        );
+        assert!(html.contains("background:#d8f0d8\">pass</td>"));
+        assert!(figures[1].1.contains("force [kN]") && figures[2].1.contains("crush [mm]"));
+        assert!(html.contains("Assumptions") && html.contains("absorber"));
+    }
+}
