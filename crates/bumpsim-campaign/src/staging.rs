@@ -158,7 +158,9 @@ mod tests {
             let mut staging = Staging::new(&guard, &target).unwrap();
             staging.folder("points").unwrap();
             staging.folder("points/0001").unwrap();
-            staging.write("points/0001/deck.inp", text.as_bytes()).unwrap();
+            staging
+                .write("points/0001/deck.inp", text.as_bytes())
+                .unwrap();
             staging.write("state.journal", b"s\n").unwrap();
             staging
         };
@@ -169,7 +171,11 @@ mod tests {
         write("two").commit(&guard).unwrap();
         let deck = std::fs::read_to_string(target.join("points/0001/deck.inp")).unwrap();
         assert_eq!(deck, "two");
-        assert_eq!(std::fs::read_dir(&root).unwrap().count(), 1, "no staging left");
+        assert_eq!(
+            std::fs::read_dir(&root).unwrap().count(),
+            1,
+            "no staging left"
+        );
         let mut staging = write("three");
         let err = staging.write("../x", b"").unwrap_err().to_string();
         assert!(err.contains("not a plain name"), "{err}");
