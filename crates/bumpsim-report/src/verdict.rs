@@ -113,9 +113,7 @@ fn test_figures(
         (
             "top-view",
             crate::topview::top_view_svg(&view, &caption)?,
-            format!(
-                "{caption}: body outline (grey), side members (blue), crushed bumper line (red), striker (grey)"
-            ),
+            format!("{caption}: {}", crate::topview::legend(&view)),
         ),
         (
             "forces",
