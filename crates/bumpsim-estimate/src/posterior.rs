@@ -64,7 +64,7 @@
 //! ```
 
 use crate::lm::LeastSquares;
-use crate::sampler::{Chain, Diagnostics, Ensemble, LogDensity, SamplerError, sample};
+use crate::sampler::{Chain, Diagnostics, Ensemble, LogDensity, SamplerError, sample_observed};
 use crate::search::Draws;
 use crate::uncertainty::{Parameter, RANK_TOLERANCE};
 use nalgebra::DMatrix;
@@ -221,6 +221,20 @@ pub fn posterior<P: LeastSquares>(
     (lower, upper): (&[f64], &[f64]),
     settings: &Settings,
 ) -> Result<Posterior, PosteriorError> {
+    let bounds = (lower, upper);
+    posterior_observed(make, parameters, (free, optimum), bounds, settings, &|| {})
+}
+
+/// [`posterior`], calling `step` after every step of the ensemble (a
+/// progress bar's `inc`); `free` and `optimum` as one pair.
+pub fn posterior_observed<P: LeastSquares>(
+    make: &(dyn Fn() -> P + Sync),
+    parameters: &[Parameter],
+    (free, optimum): (&[usize], &[f64]),
+    (lower, upper): (&[f64], &[f64]),
+    settings: &Settings,
+    step: &(dyn Fn() + Sync),
+) -> Result<Posterior, PosteriorError> {
     let d = free.len();
     if d == 0 {
         return Err(PosteriorError::Nothing);
@@ -231,7 +245,7 @@ pub fn posterior<P: LeastSquares>(
     }
     let density = || Density::new(make(), settings.noise, (lower, upper));
     let starts = laplace_starts(&mut density(), optimum, settings.noise, &ensemble);
-    let chain = sample(&density, starts, &ensemble)?;
+    let chain = sample_observed(&density, starts, &ensemble, step)?;
     let names: Vec<String> = free.iter().map(|&i| parameters[i].name.clone()).collect();
     let diagnostics = chain.diagnose_named(&names);
     Ok(summarise(

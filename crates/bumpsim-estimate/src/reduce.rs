@@ -266,13 +266,11 @@ fn reduction<R: Reducible>(
     };
     let [a, b] = &link.masses;
     let statement = format!(
-        "{} {how}: {a} and {b} move as one. The {} with {a} + {b} = {} fits within {} % of the objective ({} m² against {} m²): {advice}.",
+        "{} {how}: {a} and {b} move as one. The {} with {a} + {b} = {} {}: {advice}.",
         name.name,
         model.reduced_name(),
         format_quantity(merged.mass, Dimension::Mass),
-        format_number(100.0 * relative.max(0.0), 3),
-        format_number(merged.objective, 5),
-        format_number(full.objective, 5),
+        comparison(merged.objective, full.objective),
     );
     Reduction {
         parameter: name.name.clone(),
@@ -284,9 +282,50 @@ fn reduction<R: Reducible>(
     }
 }
 
+/// How the reduced model's objective compares with the full one's, in
+/// words: within a percentage when it is higher, and how much lower when
+/// the full model's search stopped short of it (issue 34: "fits within
+/// 0 %" of an objective 19× lower).
+pub fn comparison(reduced: f64, full: f64) -> String {
+    let both = format!(
+        "{} m² against {} m²",
+        format_number(reduced, 5),
+        format_number(full, 5)
+    );
+    match reduced < full {
+        false => format!(
+            "fits within {} % of the objective ({both})",
+            format_number(100.0 * (reduced / full - 1.0), 3)
+        ),
+        true if full >= 1.1 * reduced => format!(
+            "fits better than the full model: its objective is {}× lower ({both}; the full model's search stopped short of this fit)",
+            format_number(full / reduced, 3)
+        ),
+        true => format!(
+            "fits better than the full model: its objective is {} % lower ({both})",
+            format_number(100.0 * (1.0 - reduced / full), 3)
+        ),
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::f_test;
+    use super::{comparison, f_test};
+
+    #[test]
+    fn a_reduced_model_that_fits_better_says_so_not_within_0_percent() {
+        let worse = comparison(1.005e-4, 1e-4);
+        assert!(worse.starts_with("fits within 0.500 %"), "{worse}");
+        let much_better = comparison(1e-5, 1.9e-4);
+        assert!(
+            much_better.contains("fits better than the full model")
+                && much_better.contains("19.0× lower")
+                && !much_better.contains("within"),
+            "{much_better}"
+        );
+        let better = comparison(6.9658e-5, 7.0251e-5);
+        assert!(better.contains("0.844 % lower"), "{better}");
+    }
     use approx::assert_relative_eq;
 
     /// p-values against scipy 1.17 `stats.f.sf(statistic, 3, n − q)`.

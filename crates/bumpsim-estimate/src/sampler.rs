@@ -149,6 +149,17 @@ pub fn sample<D: LogDensity>(
     starts: Vec<Vec<f64>>,
     ensemble: &Ensemble,
 ) -> Result<Chain, SamplerError> {
+    sample_observed(make, starts, ensemble, &|| {})
+}
+
+/// [`sample`], calling `step` after every step of the ensemble (a
+/// progress bar's `inc`).
+pub fn sample_observed<D: LogDensity>(
+    make: &(dyn Fn() -> D + Sync),
+    starts: Vec<Vec<f64>>,
+    ensemble: &Ensemble,
+    step: &(dyn Fn() + Sync),
+) -> Result<Chain, SamplerError> {
     let Ensemble {
         walkers,
         steps,
@@ -186,15 +197,16 @@ pub fn sample<D: LogDensity>(
         acceptance: 0.0,
     };
     let mut accepted = 0usize;
-    for step in 0..steps {
+    for k in 0..steps {
         let order = shuffled(walkers, &mut rng);
         let (first, second) = order.split_at(walkers / 2);
         accepted += move_half(make, (&mut x, &mut lp), (first, second), &mut rng);
         accepted += move_half(make, (&mut x, &mut lp), (second, first), &mut rng);
-        if step >= burn {
+        if k >= burn {
             x.iter().for_each(|p| chain.values.extend_from_slice(p));
             chain.log_density.extend_from_slice(&lp);
         }
+        step();
     }
     chain.acceptance = accepted as f64 / (steps * walkers) as f64;
     Ok(chain)

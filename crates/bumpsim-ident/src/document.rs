@@ -5,7 +5,7 @@
 //! One DOF writes its [`Identification`] with the notes beside its fields;
 //! a DOF table writes every result, the orders that failed, the
 //! recommended order and the model choice that decided it
-//! ([`crate::choice`]).
+//! ([`crate::choice`]). With a posterior, [`WithPosterior`] adds it.
 
 use crate::explore::Prediction;
 use crate::result::{CaseFit, Identification};
@@ -96,6 +96,20 @@ impl Serialize for IdentifyDocument<'_> {
             }
         }
     }
+}
+
+/// `bumpsim identify --posterior --json`: the identification's document
+/// with the posterior of one of its orders (the one identified, or the
+/// DOF table's recommendation) as `posterior`
+/// ([`crate::posterior::Summary`]); without one, the document alone.
+#[derive(Debug, Clone, Serialize)]
+pub struct WithPosterior<'a> {
+    /// The identification's document.
+    #[serde(flatten)]
+    pub document: IdentifyDocument<'a>,
+    /// The posterior, when sampled.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub posterior: Option<crate::posterior::Summary<'a>>,
 }
 
 /// `bumpsim predict --json` with a chain model: the layer's document of

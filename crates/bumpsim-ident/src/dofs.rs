@@ -27,8 +27,9 @@ pub struct DofList(pub Vec<usize>);
 /// A text that is not a DOF number, range or list.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error(
-    "'{0}': expected a number (3), a range (1..5) or a list (1,2,3) of different numbers from 1 to {max}",
-    max = crate::estimate::MAX_DOF
+    "'{0}': expected a number (3), a range (1..5) or a list (1,2,3) of different numbers from 1 to {max} ({reason})",
+    max = crate::estimate::MAX_DOF,
+    reason = crate::settings::MAX_DOF_REASON
 )]
 pub struct DofListError(pub String);
 

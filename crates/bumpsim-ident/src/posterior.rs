@@ -1,7 +1,8 @@
 //! The posterior of an identified chain's parameters (issue 39): the
 //! estimation layer's ensemble sampler ([`bumpsim_estimate::posterior`],
 //! Goodman & Weare 2010 as emcee runs it) on the chain's objective, in log
-//! parameters within the study's bounds (a log-uniform prior), with the
+//! parameters within the study's bounds, each side closed at a factor
+//! [`PRIOR_SPAN`] from the optimum (a proper log-uniform prior), with the
 //! noise model of the model choice: σ integrated out and the residuals
 //! counted with their effective sample size,
 //! `ln p(θ | data) = −(n_eff/2) ln F(θ)` ([`noise`]). With correlated
@@ -39,7 +40,191 @@ use crate::result::Identification;
 use crate::settings::Settings;
 use bumpsim_core::model::parameter_kind;
 use bumpsim_core::units::format_quantity;
-use bumpsim_estimate::posterior::{self as layer, Density, Noise, Posterior, PosteriorError};
+use bumpsim_estimate::posterior::{self as layer, Density};
+pub use bumpsim_estimate::posterior::{Noise, Posterior, PosteriorError, quantile};
+pub use bumpsim_estimate::sampler::{Diagnostics, Ensemble};
+use serde::Serialize;
+
+/// The prior is closed at this factor from the optimum on each side,
+/// within the study's bounds: an open bound (the default upper bound is
+/// infinite) leaves a log-uniform prior improper, and with few effective
+/// samples the walkers then drift off to 1e12 kg.
+pub const PRIOR_SPAN: f64 = 1e3;
+
+/// Steps of a run when none are asked (a quarter of them burnt).
+pub const STEPS: usize = 4000;
+/// The most walkers of a run (resource limit, docs/limits.md).
+pub const MAX_WALKERS: usize = 10_000;
+/// The most steps of a run (resource limit, docs/limits.md).
+pub const MAX_STEPS: usize = 1_000_000;
+/// The most draws (walkers × steps) of a run: its chain is held in memory,
+/// 8 bytes a parameter a draw (resource limit, docs/limits.md).
+pub const MAX_DRAWS: usize = 4_000_000;
+/// The fewest steps of a run: a shorter chain says nothing of convergence.
+pub const MIN_STEPS: usize = 10;
+
+/// What a front end asks of a posterior run (`None`: the default).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Request {
+    /// Walkers (default: the larger of 32 and 2 q + 2, q free parameters).
+    pub walkers: Option<usize>,
+    /// Steps, a quarter of them burnt (default [`STEPS`]).
+    pub steps: Option<usize>,
+    /// Seed of the random stream.
+    pub seed: u64,
+}
+
+/// Why a posterior run cannot be made as asked, or could not run.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SamplingError {
+    /// A setting of the run (`walkers`, `steps`) out of its range.
+    #[error("{setting}: {reason}")]
+    Setting {
+        /// The setting.
+        setting: &'static str,
+        /// Why, with the range.
+        reason: String,
+    },
+    /// The sampler could not run.
+    #[error(transparent)]
+    Posterior(#[from] PosteriorError),
+}
+
+impl Request {
+    /// The run this request makes for a chain identified with `settings`,
+    /// or which setting is out of its range.
+    pub fn ensemble(&self, settings: &Settings) -> Result<Ensemble, SamplingError> {
+        let free = settings.bounds.fixed.iter().filter(|f| f.is_none()).count();
+        let needed = 2 * free + 2;
+        let walkers = self.walkers.unwrap_or(needed.max(32));
+        let steps = self.steps.unwrap_or(STEPS);
+        let setting = |setting, reason| Err(SamplingError::Setting { setting, reason });
+        if !walkers.is_multiple_of(2) || walkers < needed || walkers > MAX_WALKERS {
+            return setting(
+                "walkers",
+                format!(
+                    "{walkers}: the ensemble sampler needs an even number of walkers from 2 q + 2 = {needed} ({free} free parameters of {} masses) to {MAX_WALKERS}",
+                    settings.dof
+                ),
+            );
+        }
+        if !(MIN_STEPS..=MAX_STEPS).contains(&steps) {
+            return setting(
+                "steps",
+                format!("{steps}: expected {MIN_STEPS} to {MAX_STEPS} steps"),
+            );
+        }
+        if walkers * steps > MAX_DRAWS {
+            return setting(
+                "steps",
+                format!(
+                    "{steps} steps of {walkers} walkers are {} draws: at most {MAX_DRAWS} (the chain is held in memory)",
+                    walkers * steps
+                ),
+            );
+        }
+        Ok(Ensemble {
+            walkers,
+            steps,
+            burn: steps / 4,
+            seed: self.seed,
+        })
+    }
+}
+
+/// Samples the posterior of `result` as `request` asks (its noise model
+/// from `result`, [`noise`]), calling `step` after every step (a progress
+/// bar's `inc`).
+pub fn run(
+    cases: &[LoadCase],
+    settings: &Settings,
+    result: &Identification,
+    request: &Request,
+    step: &(dyn Fn() + Sync),
+) -> Result<Posterior, SamplingError> {
+    let ensemble = request.ensemble(settings)?;
+    let sampling = layer::Settings {
+        ensemble,
+        ..sampling(result, request.seed)
+    };
+    let make = || Objective::new(cases, settings.dof, &settings.bounds.fixed);
+    let (optimum, (lower, upper), free) = problem(&make(), settings, result);
+    let parameters = crate::stats::parameters(settings.dof);
+    let bounds = (lower.as_slice(), upper.as_slice());
+    let free = (free.as_slice(), optimum.as_slice());
+    Ok(layer::posterior_observed(
+        &make,
+        &parameters,
+        free,
+        bounds,
+        &sampling,
+        step,
+    )?)
+}
+
+/// The posterior as a front end's JSON carries it: what [`Posterior`]
+/// holds but its draws, with each parameter's unit (SI), the optimum and
+/// its local 95 % interval beside it. Vectors are in the model's
+/// parameter order.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Summary<'a> {
+    /// Number of masses.
+    pub dof: usize,
+    /// Parameter names.
+    pub names: &'a [String],
+    /// SI unit of each parameter (`kg`, `N·s/m`, `N/m`).
+    pub units: Vec<&'static str>,
+    /// Posterior means, SI.
+    pub mean: &'a [f64],
+    /// Posterior medians, SI.
+    pub median: &'a [f64],
+    /// Posterior standard deviations, SI.
+    pub sd: &'a [f64],
+    /// Equal-tailed 90 % intervals, SI (`null` for a fixed parameter).
+    pub ci90: &'a [Option<[f64; 2]>],
+    /// Equal-tailed 95 % intervals, SI.
+    pub ci95: &'a [Option<[f64; 2]>],
+    /// Parameters held fixed.
+    pub fixed: &'a [bool],
+    /// The optimum (the identified model), SI.
+    pub optimum: Vec<f64>,
+    /// Its local 95 % intervals (the parameter table's), SI.
+    pub local_ci95: &'a [Option<[f64; 2]>],
+    /// The likelihood's error model.
+    pub noise: Noise,
+    /// The run: walkers, steps, burnt steps, seed.
+    pub ensemble: Ensemble,
+    /// Its diagnostics (free parameters, in order).
+    pub diagnostics: &'a Diagnostics,
+    /// Whether the run has converged (the diagnostics' verdict).
+    pub converged: bool,
+}
+
+impl<'a> Summary<'a> {
+    /// The summary of `post`, sampled around `result`.
+    pub fn new(post: &'a Posterior, result: &'a Identification) -> Summary<'a> {
+        Summary {
+            dof: result.dof,
+            names: &post.names,
+            units: (0..post.names.len())
+                .map(|i| parameter_kind(result.dof, i).0.dimension().si_symbol())
+                .collect(),
+            mean: &post.mean,
+            median: &post.median,
+            sd: &post.sd,
+            ci90: &post.ci90,
+            ci95: &post.ci95,
+            fixed: &post.fixed,
+            optimum: result.model.parameters(),
+            local_ci95: &result.uncertainty.ci95,
+            noise: post.noise,
+            ensemble: post.ensemble,
+            diagnostics: &post.diagnostics,
+            converged: post.diagnostics.converged,
+        }
+    }
+}
 
 /// The noise model of `result`: σ integrated out, its residuals counted
 /// with their effective sample size.
@@ -60,8 +245,18 @@ type Problem = (Vec<f64>, (Vec<f64>, Vec<f64>), Vec<usize>);
 fn problem(objective: &Objective, settings: &Settings, result: &Identification) -> Problem {
     let free = objective.free().to_vec();
     let log = |v: &[f64]| -> Vec<f64> { free.iter().map(|&i| v[i].ln()).collect() };
-    let bounds = (log(&settings.bounds.lower), log(&settings.bounds.upper));
-    (log(&result.model.parameters()), bounds, free)
+    let optimum = log(&result.model.parameters());
+    let span = PRIOR_SPAN.ln();
+    let close = |bound: Vec<f64>, side: f64| -> Vec<f64> {
+        let edge = |(b, p): (f64, &f64)| match side > 0.0 {
+            true => b.min(p + span),
+            false => b.max(p - span),
+        };
+        bound.into_iter().zip(&optimum).map(edge).collect()
+    };
+    let lower = close(log(&settings.bounds.lower), -1.0);
+    let upper = close(log(&settings.bounds.upper), 1.0);
+    (optimum, (lower, upper), free)
 }
 
 /// Samples the posterior of `result`, identified from `cases` with

@@ -1,6 +1,7 @@
 //! The identification report: measured vs fitted displacement per case
 //! (solid vs dashed, as in the thesis figures), residuals, the DOF table and
-//! the ±3 % sensitivity of the objective, gathered in one HTML page.
+//! the ±3 % sensitivity of the objective and, when sampled, the posterior
+//! ([`crate::posterior`]), gathered in one HTML page.
 
 use crate::file_name;
 use crate::html::Html;
@@ -8,6 +9,7 @@ use crate::plot::{LinePlot, PlotError, Series, Style};
 use bumpsim_core::units::{Dimension, format_number};
 use bumpsim_ident::estimate::Identification;
 use bumpsim_ident::explore::{Prediction, Sweep};
+use bumpsim_ident::posterior::Posterior;
 use bumpsim_ident::text::{case_lines, dof_table, parameter_table};
 
 /// One DOF's outcome: identified (with its predictions) or failed.
@@ -125,6 +127,20 @@ pub fn report(
     outcomes: &[DofOutcome],
     sweeps: Option<&[Sweep]>,
 ) -> Result<(String, Vec<Figure>), PlotError> {
+    let texts = (title, inputs, settings);
+    report_with_posterior(texts, notes, outcomes, sweeps, None)
+}
+
+/// [`report`] with the posterior of one identified order (its lines and
+/// corner plot, [`crate::posterior::section`]) after the models;
+/// `texts` the title, the study file text and the settings line.
+pub fn report_with_posterior(
+    (title, inputs, settings): (&str, &str, &str),
+    notes: &[String],
+    outcomes: &[DofOutcome],
+    sweeps: Option<&[Sweep]>,
+    posterior: Option<(&Posterior, &Identification)>,
+) -> Result<(String, Vec<Figure>), PlotError> {
     let mut page = Html::new(title);
     let mut figures = Vec::new();
     page.heading("Inputs");
@@ -161,6 +177,11 @@ pub fn report(
                 predictions,
             } => section(&mut page, &mut figures, result, predictions)?,
         }
+    }
+    if let Some((post, result)) = posterior {
+        let (name, svg) = crate::posterior::section(&mut page, post, result)?;
+        let name = crate::unique_name(&name, |n| figures.iter().any(|(f, _)| f == n));
+        figures.push((name, svg));
     }
     if let Some(sweeps) = sweeps {
         page.heading("Sensitivity of the objective");

@@ -7,6 +7,7 @@
 //! - [`impact`]: impact pages and mass-reduction heat maps;
 //! - [`identification`]: the identification report;
 //! - [`planar`]: planar impact pages (forces, yaw, crush per segment, top view) and the planar identification;
+//! - [`posterior`]: the corner plot of an identified chain's posterior;
 //! - [`signal`]: raw against processed crash-test signals;
 //! - [`topview`]: the top-view picture of a planar impact;
 //! - [`verdict`](mod@verdict): the verdict report (tests × criteria, top views, forces, crush, the target corridor);
@@ -33,6 +34,7 @@ pub mod identification;
 pub mod impact;
 pub mod planar;
 pub mod plot;
+pub mod posterior;
 pub mod signal;
 pub mod topview;
 pub mod verdict;

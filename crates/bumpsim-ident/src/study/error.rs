@@ -164,7 +164,10 @@ pub enum StudyValueError {
         dof: usize,
     },
     /// A DOF of no model.
-    #[error("[model] dof = {dof}: expected 1 to {max} masses (limit MAX_DOF)")]
+    #[error(
+        "[model] dof = {dof}: expected 1 to {max} masses ({reason})",
+        reason = crate::settings::MAX_DOF_REASON
+    )]
     DofRange {
         /// The DOF given.
         dof: usize,
