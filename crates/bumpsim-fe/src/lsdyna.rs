@@ -194,18 +194,8 @@ pub fn lsdyna_deck(
     run: &LsDynaRun,
 ) -> Result<String, FeError> {
     mesh.validate()?;
-    for (name, value) in [
-        ("duration (s)", run.duration),
-        ("output interval (s)", run.output_interval),
-    ] {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(FeError::Parameter {
-                name: name.into(),
-                value,
-                expected: "positive and finite".into(),
-            });
-        }
-    }
+    crate::run::check_scenario(scenario)?;
+    crate::run::check_run(run.duration, run.output_interval, "output interval")?;
     let mut w = Writer {
         deck: String::new(),
         u: run.units,

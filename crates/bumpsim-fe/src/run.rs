@@ -106,7 +106,7 @@ pub fn run_in(settings: &FeRun, folder: &Path) -> Result<FeResult, FeError> {
         (None, Err(e)) => return Err(e.clone()),
     };
     let increment = settings.increment.unwrap_or(duration / 1500.0);
-    check_run(duration, increment)?;
+    check_run(duration, increment, "increment")?;
     check_work(&settings.work)?;
     check_work(folder)?;
     let run = Run {
@@ -161,7 +161,7 @@ pub fn equivalent(
 
 /// A closing speed and a pendulum mass that are positive and finite (also
 /// when the estimate, which checks them too, is skipped).
-fn check_scenario(scenario: Scenario) -> Result<(), FeError> {
+pub(crate) fn check_scenario(scenario: Scenario) -> Result<(), FeError> {
     let (speed, mass) = match scenario {
         Scenario::Barrier { speed } => (speed, 1.0),
         Scenario::Impactor { mass, speed } => (speed, mass),
@@ -178,7 +178,14 @@ fn check_scenario(scenario: Scenario) -> Result<(), FeError> {
     scenario.check().map_err(FeError::Scenario)
 }
 
-fn check_run(duration: f64, increment: f64) -> Result<(), FeError> {
+/// The longest simulated time of a coupled run or deck, s: a low-speed
+/// impact is over within a second (and 1e308 s overflowed the deck's units).
+pub const MAX_DURATION: f64 = 100.0;
+
+/// A duration within [`MAX_DURATION`], and an `increment` (the run's, or a
+/// deck's output interval) of at most the duration and at most
+/// [`MAX_INCREMENTS`] of them.
+pub(crate) fn check_run(duration: f64, increment: f64, what: &str) -> Result<(), FeError> {
     let bad = |name: &str, value: f64, expected: &str| FeError::Parameter {
         name: name.into(),
         value,
@@ -187,13 +194,31 @@ fn check_run(duration: f64, increment: f64) -> Result<(), FeError> {
     if !(duration.is_finite() && duration > 0.0) {
         return Err(bad("duration (s)", duration, "positive and finite"));
     }
+    if duration > MAX_DURATION {
+        return Err(bad(
+            "duration (s)",
+            duration,
+            "at most 100 s (MAX_DURATION)",
+        ));
+    }
     if !(increment.is_finite() && increment > 0.0) {
-        return Err(bad("increment (s)", increment, "positive and finite"));
+        return Err(bad(
+            &format!("{what} (s)"),
+            increment,
+            "positive and finite",
+        ));
+    }
+    if increment > duration {
+        return Err(bad(
+            &format!("{what} (s)"),
+            increment,
+            "at most the duration",
+        ));
     }
     let count = duration / increment;
     if count > MAX_INCREMENTS {
         return Err(bad(
-            "increments (duration / increment)",
+            &format!("{what}s (duration / {what})"),
             count,
             "at most 1e6",
         ));

@@ -29,7 +29,7 @@ use std::path::Path;
 #[non_exhaustive]
 pub enum BumperError {
     /// A parameter is out of range.
-    #[error("bumper {name} = {value}: {expected}")]
+    #[error("bumper {name} = {value:?}: {expected}")]
     Parameter {
         /// The parameter.
         name: &'static str,

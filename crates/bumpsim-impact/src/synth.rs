@@ -314,7 +314,7 @@ pub enum SynthError {
 pub enum SeriesError {
     /// A `[chain]` time that is not finite and positive (the pre-trigger
     /// may be zero).
-    #[error("[chain] {name} = {value} s: expected a finite positive time")]
+    #[error("[chain] {name} = {value:?} s: expected a finite positive time")]
     Time {
         /// `step`, `pretrigger` or `duration`.
         name: &'static str,

@@ -40,7 +40,7 @@ use std::f64::consts::{PI, SQRT_2};
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FilterError {
     /// A filter parameter is out of range.
-    #[error("filter parameter {name} = {value}: expected {expected}")]
+    #[error("filter parameter {name} = {value:?}: expected {expected}")]
     Parameter {
         /// Parameter name.
         name: &'static str,

@@ -451,3 +451,57 @@ fn a_failed_or_killed_run_leaves_the_work_folder_as_it_was() {
         .collect();
     assert_eq!(visible, ["work"]);
 }
+
+/// Issue 34, a hostile pass: `fe lsdyna --duration 1e308` wrote a deck
+/// terminating at "inf ms", and an output interval of 1e-300 s or 1e308 s
+/// or a 1e308 kg pendulum (the estimate skipped) made a deck with exit 0.
+#[test]
+fn lsdyna_decks_refuse_absurd_times_and_strikers() {
+    let dir = scratch("fe-lsdyna-hostile");
+    let car = root().join("examples/identify/car-truth.toml");
+    let mesh = root().join("examples/fe/bumper-elastic.toml");
+    let deck = dir.join("x.k");
+    let cases: [(&[&str], &str); 5] = [
+        (
+            &["--barrier", "--duration", "1e308"],
+            "duration (s) = 1e308",
+        ),
+        (
+            &[
+                "--barrier",
+                "--duration",
+                "1",
+                "--output-interval",
+                "1e-300",
+            ],
+            "output intervals (duration / output interval)",
+        ),
+        (
+            &["--barrier", "--duration", "1", "--output-interval", "1e308"],
+            "at most the duration",
+        ),
+        (
+            &["--pendulum", "1e308", "--duration", "1"],
+            "impactor mass (kg) = 1e308",
+        ),
+        (
+            &["--barrier", "--speed", "1e-300", "--duration", "1"],
+            "speed (m/s) = 1e-300",
+        ),
+    ];
+    for (extra, needle) in cases {
+        let mut args = vec!["fe", "lsdyna", "--car", car.to_str().unwrap()];
+        args.extend([
+            "--bumper",
+            mesh.to_str().unwrap(),
+            "-o",
+            deck.to_str().unwrap(),
+        ]);
+        if !extra.contains(&"--speed") {
+            args.extend(["--speed", "2"]);
+        }
+        args.extend_from_slice(extra);
+        assert_user_error(&bumpsim(&args), needle);
+        assert!(!deck.exists(), "{needle}: a deck was written");
+    }
+}

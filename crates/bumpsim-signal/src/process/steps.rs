@@ -290,7 +290,7 @@ impl Context<'_> {
 
     fn mass(&self, mass: f64) -> Result<Channel, ProcessError> {
         if !(mass.is_finite() && mass > 0.0) {
-            return Err(self.range(format!("mass {mass} kg must be positive")));
+            return Err(self.range(format!("mass {mass:?} kg must be positive")));
         }
         self.with_dimension(match self.channel.dimension {
             Dimension::Acceleration => Ok(Dimension::Force),
@@ -324,14 +324,14 @@ impl Context<'_> {
 
     fn resample(&self, step: f64) -> Result<Channel, ProcessError> {
         if !(step.is_finite() && step > 0.0) {
-            return Err(self.range(format!("interval {step} s must be positive")));
+            return Err(self.range(format!("interval {step:?} s must be positive")));
         }
         let s = &self.channel.series;
         let count = ((s.end() - s.start()) / step + WINDOW_TOLERANCE).floor() + 1.0;
         let max = bumpsim_io::output::MAX_SAMPLES;
         if !count.is_finite() || count > max as f64 {
             return Err(self.range(format!(
-                "interval {step} s gives {count:.3e} samples, at most {max} per channel (limit MAX_SAMPLES)"
+                "interval {step:?} s gives {count:.3e} samples, at most {max} per channel (limit MAX_SAMPLES)"
             )));
         }
         let count = count as usize;
