@@ -30,7 +30,6 @@
 //! ```
 
 use crate::html::Html;
-use crate::identification::Figure;
 use crate::plot::{PlotError, drawable};
 use bumpsim_core::model::parameter_kind;
 use bumpsim_core::units::Unit;
@@ -265,13 +264,13 @@ fn pair<DB: DrawingBackend>(
 }
 
 /// The report's posterior section of `result`: a heading, the lines, the
-/// warnings and the corner plot (returned as the figure
-/// `posterior-<dof>dof.svg`).
+/// warnings and the corner plot (returned as the figure's file name,
+/// `posterior-<dof>dof.svg`, and its SVG).
 pub fn section(
     page: &mut Html,
     post: &Posterior,
     result: &Identification,
-) -> Result<Figure, PlotError> {
+) -> Result<(String, String), PlotError> {
     page.heading(&format!("Posterior of the {}-DOF model", result.dof));
     page.preformatted(&bumpsim_ident::posterior::lines(post, result));
     page.warnings(&post.diagnostics.warnings);
