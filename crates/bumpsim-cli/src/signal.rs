@@ -302,6 +302,15 @@ fn process(args: &ProcessArgs) -> Result<()> {
         (&args.pipeline, args.plot.as_deref(), args.report.as_deref());
     args.iso_mme.as_deref().map(refuse_existing).transpose()?;
     let pipeline = Pipeline::read(path)?;
+    let output = args
+        .output
+        .clone()
+        .or_else(|| pipeline.output.as_ref().map(|o| pipeline.base.join(o)));
+    // the pipeline's own `output` is checked against the inputs before it runs
+    if let (None, Some(output)) = (&args.output, &output) {
+        bumpsim_io::output::claim_output(output)?;
+        bumpsim_io::output::check_file(output)?;
+    }
     let result = pipeline.run()?;
     report(&result);
     let mut balance = String::new();
@@ -317,10 +326,6 @@ fn process(args: &ProcessArgs) -> Result<()> {
         );
         println!("{balance}");
     }
-    let output = args
-        .output
-        .clone()
-        .or_else(|| pipeline.output.as_ref().map(|o| pipeline.base.join(o)));
     match output {
         Some(output) => write_csv(&output, &result.signals, &[])?,
         None => println!("no CSV written: give -o OUT.csv or 'output' in the pipeline"),

@@ -316,3 +316,25 @@ fn streams_are_refused_without_blocking() {
         assert_user_error(&run, "not a regular file");
     }
 }
+
+/// Issue 34, a hostile pass: a pipeline whose own `output` is an input (the
+/// pipeline itself, a file of the test it reads) ran and printed its
+/// signals before the refusal; it is refused before it runs now.
+#[test]
+fn a_pipeline_output_on_an_input_is_refused_before_it_runs() {
+    let dir = scratch("signal-pipeline-output");
+    copy_tree(&root().join("examples/identify/FLAT"), &dir.join("FLAT"));
+    for output in ["p.toml", "FLAT/FLAT.mme"] {
+        let pipeline = format!(
+            "output = \"{output}\"\n[[signal]]\nname = \"f\"\npath = \"FLAT\"\nchannels = [\"1\"]\n"
+        );
+        std::fs::write(dir.join("p.toml"), &pipeline).unwrap();
+        let run = bumpsim(&["signal", "process", dir.join("p.toml").to_str().unwrap()]);
+        assert_user_error(&run, "refusing to write");
+        assert_eq!(text(&run.stdout), "", "{output}: it ran before the refusal");
+        assert_eq!(
+            std::fs::read_to_string(dir.join("p.toml")).unwrap(),
+            pipeline
+        );
+    }
+}
