@@ -116,6 +116,15 @@ fn impact(args: &ImpactArgs) -> Result<()> {
     settings.increment = time("increment", &args.increment)?;
     settings.duration = time("duration", &args.duration)?;
     settings.solver = args.solver.clone();
+    for path in [&args.files.json, &args.files.csv].into_iter().flatten() {
+        if bumpsim_fe::run::in_work(&args.work, path) {
+            anyhow::bail!(
+                "{}: the run writes a file of this name in --work {}: give the output another path",
+                path.display(),
+                args.work.display()
+            );
+        }
+    }
     println!("running CalculiX in {} ...", args.work.display());
     // the deck must be on disk while CalculiX runs: it runs in the staging
     // folder, which joins the command's transaction with the other outputs

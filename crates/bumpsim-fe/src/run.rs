@@ -235,6 +235,28 @@ fn ours(name: &str) -> bool {
     name.starts_with("bumper.") || name == "ccx.log" || name == "spooles.out"
 }
 
+/// Whether `path` names one of the files a run writes into `work` (an
+/// output given there would meet the run's own file only after the run).
+///
+/// ```
+/// use bumpsim_fe::run::in_work;
+/// use std::path::Path;
+/// assert!(in_work(Path::new("w"), Path::new("w/bumper.dat")));
+/// assert!(!in_work(Path::new("w"), Path::new("w/fe.json")));
+/// assert!(!in_work(Path::new("w"), Path::new("bumper.dat")));
+/// ```
+pub fn in_work(work: &Path, path: &Path) -> bool {
+    let folder = |p: &Path| match p.as_os_str().is_empty() {
+        true => std::path::absolute("."),
+        false => std::path::absolute(p),
+    };
+    let same = match (path.parent().map(folder), folder(work)) {
+        (Some(Ok(a)), Ok(b)) => a == b,
+        _ => false,
+    };
+    same && path.file_name().is_some_and(|n| ours(&n.to_string_lossy()))
+}
+
 /// Refuses a work folder holding anything but a previous run's files: the
 /// run overwrites those, and must never overwrite the user's (an input
 /// bumper or car file among them).

@@ -450,6 +450,16 @@ fn a_failed_or_killed_run_leaves_the_work_folder_as_it_was() {
         .filter(|name| !name.starts_with('.') && !name.starts_with("fake-ccx"))
         .collect();
     assert_eq!(visible, ["work"]);
+    // an output named like one of the run's files in --work is refused
+    // before the run, not after it
+    let mut clash = args(&slow);
+    let at = clash.iter().position(|a| a == "--json").unwrap() + 1;
+    clash[at] = work.join("bumper.inp").to_str().unwrap().to_string();
+    let start = std::time::Instant::now();
+    let run = bumpsim(&clash.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_user_error(&run, "the run writes a file of this name in --work");
+    assert!(start.elapsed().as_secs_f64() < 2.5, "refused after the run");
+    assert_eq!(listing(&work), before.1);
 }
 
 /// Issue 34, a hostile pass: `fe lsdyna --duration 1e308` wrote a deck
