@@ -9,14 +9,22 @@
 //!   A of the test device at 60° to a vertical longitudinal plane, i.e. its
 //!   face turned 30° from square to the car), then barrier impacts at
 //!   2.5 mph forwards and rearwards into a fixed flat barrier; §581.6(a):
-//!   brakes disengaged, transmission in neutral; §581.6: the test device's
-//!   mass is the vehicle's unloaded mass. Damage criteria §581.5(c)(1)–(9).
-//! - **CMVSS 215** (Canada): the bumper of 49 CFR 581 or of UN R42; run
-//!   here as 49 CFR 581 (`r42` is the other route).
-//! - **UN R42**: an impactor of the vehicle's mass at 4 km/h longitudinally
-//!   and 2.5 km/h on the corners at 60° — the issue's figures, **not**
-//!   checked against the regulation's text (not available here); its
-//!   impactor height (annex 3) is not checked either.
+//!   brakes disengaged, transmission in neutral; the vehicle at unloaded
+//!   weight (NHTSA interpretation AIAM 2873); the test device's mass taken
+//!   as the vehicle's, as UN R42 annex 3 §2.3.3 has it (§581.6 itself was
+//!   not read). Damage criteria §581.5(c)(1)–(9).
+//! - **CMVSS 215** (Canada, C.R.C. c. 1038 Schedule IV s. 215, since
+//!   1 September 2009): a passenger car's bumpers meet UN R42 (paragraph 6
+//!   and annex 3 without its §4) or 49 CFR 581 (as revised on 1 October
+//!   2006); run here as 49 CFR 581 (`r42` is the other route).
+//! - **UN R42** (E/ECE/324/Rev.1/Add.41, 1980, as amended to 2021), annex 3:
+//!   the car at rest, brakes disengaged, in neutral (§2.2.4); an impactor
+//!   of the vehicle's unladen mass (§2.3.3) whose reference line is 445 mm
+//!   above the ground (§2.3.6); 4 km/h longitudinally (§2.7.5) and 2.5 km/h
+//!   on the corners with Plane A at 60 ± 5° to the longitudinal median
+//!   plane (§2.8.3–2.8.4). Each end and corner pair is run once unladen and
+//!   once laden (2–5 passengers of 75 kg, §2.7.1, §3.1.4): one, unladen,
+//!   here.
 //! - **RCAR Bumper Test**, Issue 2.0 (2010): 10 km/h full width and 5 km/h
 //!   corner (15 % overlap, 10°) impacts into the RCAR bumper barrier
 //!   (`bumpsim_planar::barrier`), its face's lower edge 455 mm (front) or
@@ -160,8 +168,14 @@ const P581_CORNER: &str = "49 CFR 581.5(a), 581.6, 581.7(b) (as amended)";
 const P581_LONG: &str = "the pendulum's face width (Figures 1 and 2) is not modelled: a flat face across the car; its two impacts per end 2 in apart are one run here (the model has no height); 581.5(c)(7), contact off the impact ridge, is not assessed";
 const P581_CORNER_WHY: &str = "Plane A at 60° to a vertical longitudinal plane (581.7(b)) is read from the regulation as recalled: the copy available here was cut before 581.7(b)(4); which corner takes the 20 in impact is the test's choice (here the left)";
 const R42: &str =
-    "UN Regulation No. 42 (front and rear protective devices), annex 3, as the issue states it";
-const R42_WHY: &str = "not checked against the regulation's text (not available here): speed, the impactor's mass (the vehicle's), the 60° corner angle and the impactor height of annex 3; R42 tests laden and unladen, one attitude here";
+    "UN Regulation No. 42 (E/ECE/324/Rev.1/Add.41, 1980; Amend. 2, 2021), annex 3 §2.2-2.8";
+const R42_WHY: &str = "R42 runs each end unladen and laden (2-5 passengers of 75 kg): the unladen run only here; the impact contour's geometry (a 114 mm ridge on the 445 mm reference line) is read from a scanned figure and not modelled (a flat face); the ±25 mm first-contact tolerance and the two impacts 300 mm apart are one run; Supplement 1 to the 1980 text was not read";
+const R42_HEIGHT: Height = Height::Ridge {
+    low: 0.445,
+    high: 0.445,
+};
+const R42_TYRES: &str =
+    "UN R42 annex 3 §2.2.4: brakes disengaged and the transmission in neutral: free-rolling wheels";
 const RCAR: &str =
     "RCAR Bumper Test, Issue 2.0 (September 2010) §6; barrier specification Issue 1 (2007)";
 const RCAR_WHY: &str = "the barrier's lower edge at 455 mm (front) and 405 mm (rear): the RCAR barrier documentation gives 405 or 455 mm by the vehicle's market, the assignment to front and rear is from memory; the absorber's crush strength is assumed (see the preset)";
@@ -268,72 +282,72 @@ pub const TESTS: &[Test] = &[
     Test {
         name: "r42-longitudinal-front",
         end: End::Front,
-        description: "impactor of the vehicle's mass, 4 km/h on the front",
+        description: "impactor of the vehicle's unladen mass, 4 km/h on the front, reference line at 445 mm",
         strike: pendulum(0.0, Side::Left, 4.0 / 3.6),
-        height: Height::Unknown,
+        height: R42_HEIGHT,
         crash_box: false,
         tyres: TyreLaw::Rolling,
-        tyres_why: "not checked (R42's text not available here): free rolling assumed",
+        tyres_why: R42_TYRES,
         source: R42,
         uncertain: R42_WHY,
     },
     Test {
         name: "r42-longitudinal-rear",
         end: End::Rear,
-        description: "impactor of the vehicle's mass, 4 km/h on the rear",
+        description: "impactor of the vehicle's unladen mass, 4 km/h on the rear, reference line at 445 mm",
         strike: pendulum(0.0, Side::Left, 4.0 / 3.6),
-        height: Height::Unknown,
+        height: R42_HEIGHT,
         crash_box: false,
         tyres: TyreLaw::Rolling,
-        tyres_why: "not checked (R42's text not available here): free rolling assumed",
+        tyres_why: R42_TYRES,
         source: R42,
         uncertain: R42_WHY,
     },
     Test {
         name: "r42-corner-front-left",
         end: End::Front,
-        description: "impactor of the vehicle's mass, 2.5 km/h on the front left corner at 60° to the longitudinal plane",
+        description: "impactor of the vehicle's unladen mass, 2.5 km/h on the front left corner at 60° to the longitudinal plane",
         strike: pendulum(30.0, Side::Left, 2.5 / 3.6),
-        height: Height::Unknown,
+        height: R42_HEIGHT,
         crash_box: false,
         tyres: TyreLaw::Rolling,
-        tyres_why: "not checked (R42's text not available here): free rolling assumed",
+        tyres_why: R42_TYRES,
         source: R42,
         uncertain: R42_WHY,
     },
     Test {
         name: "r42-corner-front-right",
         end: End::Front,
-        description: "impactor of the vehicle's mass, 2.5 km/h on the front right corner at 60° to the longitudinal plane",
+        description: "impactor of the vehicle's unladen mass, 2.5 km/h on the front right corner at 60° to the longitudinal plane",
         strike: pendulum(-30.0, Side::Right, 2.5 / 3.6),
-        height: Height::Unknown,
+        height: R42_HEIGHT,
         crash_box: false,
         tyres: TyreLaw::Rolling,
-        tyres_why: "not checked (R42's text not available here): free rolling assumed",
+        tyres_why: R42_TYRES,
         source: R42,
         uncertain: R42_WHY,
     },
     Test {
         name: "r42-corner-rear-left",
         end: End::Rear,
-        description: "impactor of the vehicle's mass, 2.5 km/h on a rear corner (left as seen from behind) at 60°",
+        description: "impactor of the vehicle's unladen mass, 2.5 km/h on a rear corner (left as seen from behind) at 60°",
         strike: pendulum(30.0, Side::Left, 2.5 / 3.6),
-        height: Height::Unknown,
+        height: R42_HEIGHT,
         crash_box: false,
         tyres: TyreLaw::Rolling,
-        tyres_why: "not checked (R42's text not available here): free rolling assumed",
+        tyres_why: R42_TYRES,
         source: R42,
         uncertain: R42_WHY,
     },
     Test {
         name: "r42-corner-rear-right",
         end: End::Rear,
-        description: "impactor of the vehicle's mass, 2.5 km/h on the other rear corner at 60°",
+        description: "impactor of the vehicle's unladen mass, 2.5 km/h on the other rear corner at 60°",
         strike: pendulum(-30.0, Side::Right, 2.5 / 3.6),
-        height: Height::Unknown,
+        height: R42_HEIGHT,
         crash_box: false,
         tyres: TyreLaw::Rolling,
-        tyres_why: "not checked (R42's text not available here): free rolling assumed",
+        tyres_why: R42_TYRES,
         source: R42,
         uncertain: R42_WHY,
     },
@@ -527,12 +541,12 @@ pub const PROTOCOLS: &[Protocol] = &[
     },
     Protocol {
         name: "cmvss215",
-        description: "CMVSS 215 (Canada): the bumper of 49 CFR 581 or UN R42, run here as 49 CFR 581 (use r42 for the other route); the Canadian text was not checked here",
+        description: "CMVSS 215 (Canada, since September 2009): the bumpers of 49 CFR 581 (as of October 2006) or of UN R42, run here as 49 CFR 581 (use r42 for the other route)",
         tests: PART581,
     },
     Protocol {
         name: "r42",
-        description: "UN R42: impactor of the vehicle's mass, 4 km/h longitudinal and 2.5 km/h on the corners (figures not checked against the text)",
+        description: "UN R42 annex 3: impactor of the vehicle's unladen mass at 445 mm, 4 km/h longitudinal and 2.5 km/h on the corners at 60°",
         tests: &[
             "r42-longitudinal-front",
             "r42-longitudinal-rear",

@@ -14,7 +14,8 @@ const MPH: f64 = 1.609344;
 /// car moves into a fixed face), face angle °, overlap, impact height
 /// (bottom, top) m (None: a full-height face or not checked). Written from
 /// 49 CFR 581.5-581.7 (GPO text), RCAR Bumper Test Issue 2.0 and IIHS
-/// Bumper test protocol Version I; UN R42 as the issue states it.
+/// Bumper test protocol Version I; UN R42 (1980) annex 3 §2.3.3, 2.3.6,
+/// 2.7.5, 2.8.3, 2.8.4.
 #[allow(clippy::type_complexity)]
 const SOURCES: &[(&str, f64, Option<f64>, f64, f64, Option<(f64, f64)>)] = &[
     (
@@ -51,8 +52,22 @@ const SOURCES: &[(&str, f64, Option<f64>, f64, f64, Option<(f64, f64)>)] = &[
     ),
     ("part581-barrier-front", 2.5 * MPH, None, 0.0, 1.0, None),
     ("part581-barrier-rear", 2.5 * MPH, None, 0.0, 1.0, None),
-    ("r42-longitudinal-front", 4.0, Some(1.0), 0.0, 1.0, None),
-    ("r42-corner-front-left", 2.5, Some(1.0), 30.0, 1.0, None),
+    (
+        "r42-longitudinal-front",
+        4.0,
+        Some(1.0),
+        0.0,
+        1.0,
+        Some((0.445, 0.445)),
+    ),
+    (
+        "r42-corner-front-left",
+        2.5,
+        Some(1.0),
+        30.0,
+        1.0,
+        Some((0.445, 0.445)),
+    ),
     (
         "rcar-bumper-front",
         10.0,
