@@ -117,6 +117,7 @@ struct Table {
     rail_yield: Option<f64>,
     crash_box_stroke: Option<f64>,
     bumper_stroke: Option<f64>,
+    #[serde(default, deserialize_with = "bumpsim_io::numbers::optional")]
     beam_height: Option<[f64; 2]>,
     bumper_energy_share: Option<f64>,
     deceleration: Option<f64>,
@@ -132,6 +133,7 @@ struct ClearanceFile {
     name: Option<String>,
     gap: Option<f64>,
     from: Option<Closer>,
+    #[serde(default, deserialize_with = "bumpsim_io::numbers::optional")]
     lateral: Option<[f64; 2]>,
 }
 

@@ -238,6 +238,17 @@ fn hostile_limits_and_names_get_errors_naming_the_key() {
     assert!(message(gone.unwrap_err()).contains("damageability.rail_yield"));
     let negative = limits(&clearance.replace("gap = 0.08", "gap = -0.08"));
     assert!(message(negative.unwrap_err()).contains("gap"));
+    // a third value of a pair is refused, not dropped (issue 34)
+    let three = limits("beam_height = [0.40, 0.50, 0.60]\n").unwrap_err();
+    assert!(message(three).contains("exactly 2 numbers"));
+    let lateral = limits(&format!("{clearance}lateral = [-0.3, 0.3, 0.9]\n")).unwrap_err();
+    assert!(message(lateral).contains("exactly 2 numbers"));
+    assert!(
+        limits(&format!(
+            "beam_height = [0.40, 0.50]\n{clearance}lateral = [-0.3, 0.3]\n"
+        ))
+        .is_ok()
+    );
     let unknown = message(select(&["part581", "fmvss-999"]).unwrap_err());
     assert!(
         unknown.contains("fmvss-999") && unknown.contains("part581"),

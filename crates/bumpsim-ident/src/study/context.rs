@@ -273,7 +273,7 @@ impl CaseContext<'_> {
             None => self.contact(force),
             Some(WindowSpec::Named(s)) if s.eq_ignore_ascii_case("contact") => self.contact(force),
             Some(WindowSpec::Named(s)) => Err(self.case(DefinitionError::WindowName(s.clone()))),
-            Some(WindowSpec::Times([t0, t1])) => {
+            Some(WindowSpec::Times(bumpsim_io::numbers::Numbers([t0, t1]))) => {
                 let empty = || self.case(DefinitionError::EmptyWindow { t0: *t0, t1: *t1 });
                 let inside = aligned.window(*t0, *t1).ok_or_else(empty)?;
                 let (a, b) = (*inside.start().max(&first), *inside.end());

@@ -116,8 +116,8 @@ pub enum OutputDof {
 pub enum WindowSpec {
     /// `"contact"`.
     Named(String),
-    /// Seconds.
-    Times([f64; 2]),
+    /// Seconds (exactly two: a third value is refused, not dropped).
+    Times(bumpsim_io::numbers::Numbers<2>),
 }
 
 /// One `[[case]]`.
@@ -134,6 +134,7 @@ pub struct CaseSpec {
     /// Or the displacement directly.
     pub displacement: Option<ChannelRef>,
     /// Bias window, s.
+    #[serde(default, deserialize_with = "bumpsim_io::numbers::optional")]
     pub bias: Option<[f64; 2]>,
     /// CFC class for force and acceleration.
     pub cfc: Option<f64>,

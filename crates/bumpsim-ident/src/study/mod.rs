@@ -445,6 +445,21 @@ mod tests {
         );
     }
 
+    /// A window or bias window of three times lost its third without a
+    /// word (serde reads `[f64; 2]` from the first two values; issue 34).
+    #[test]
+    fn a_window_or_bias_of_three_times_is_refused() {
+        for line in ["window = [0.0, 0.01, 0.02]", "bias = [-0.005, 0.0, 1.0]"] {
+            let text = format!("[model]\ndof = 2\n[[case]]\nname = \"a\"\n{CASE}\n{line}\n");
+            let err = toml::from_str::<Study>(&text).unwrap_err().to_string();
+            assert!(err.contains("line 7"), "{line}: {err}");
+        }
+        let text = format!(
+            "[model]\ndof = 2\n[[case]]\nname = \"a\"\n{CASE}\nwindow = [0.0, 0.01]\nbias = [-0.005, 0.0]\n"
+        );
+        assert!(toml::from_str::<Study>(&text).is_ok());
+    }
+
     #[test]
     fn unknown_bounds_and_fixed_names_are_errors_naming_them() {
         let base = Path::new("/study");
