@@ -493,11 +493,12 @@ impl Spec {
         let Some(identify) = &self.identify else {
             return Ok(());
         };
-        if identify.dof == 0 || identify.dof > 50 {
+        let most = bumpsim_ident::settings::MAX_DOF;
+        if identify.dof == 0 || identify.dof > most {
             return Err(Spec::invalid(
                 path,
                 "identify.dof",
-                "expected 1 to 50".into(),
+                format!("expected 1 to {most} (the identification's limit, docs/limits.md)"),
             ));
         }
         let mut names = self.factor_names();
@@ -676,6 +677,15 @@ command = ["true"]
     fn bad_keys_and_values_are_named() {
         let err = parse("colour = 1\n").unwrap_err().to_string();
         assert!(err.contains("colour"), "{err}");
+        // the identification's own limit, not a looser one of the campaign's
+        let err = parse("[identify]\nstudy = \"s.toml\"\ndof = 9\n")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("identify.dof") && err.contains("1 to 8"),
+            "{err}"
+        );
+        assert!(parse("[identify]\nstudy = \"s.toml\"\ndof = 8\n").is_ok());
         let relative = BASE.replace("[\"true\"]", "[\"./solver.sh\"]");
         let err = Spec::parse(&relative, Path::new("c.toml"))
             .unwrap_err()
