@@ -5,9 +5,8 @@
 //! every SVG's axis labels must name the quantity with its unit and its
 //! scatter legends must show markers.
 
-use crate::util::{bumpsim, chromium, root, scratch, text};
+use crate::util::{bumpsim, chromium, overflowing, root, scratch, text};
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 fn ok(args: &[&str]) {
     let run = bumpsim(args);
@@ -74,42 +73,6 @@ fn reports(dir: &Path) -> Vec<PathBuf> {
     ["identify", "impact", "planar", "doe"].map(out).to_vec()
 }
 
-/// A probe that writes, into the page, the text boxes whose content is
-/// wider than the box.
-const PROBE: &str = "<script>addEventListener('load',()=>{const wide=[...document.querySelectorAll('pre,p,td,th,figcaption,li,div')].filter(e=>e.scrollWidth>e.clientWidth+1).map(e=>e.tagName+': '+e.textContent.slice(0,60));const o=document.createElement('output');o.id='overflow';o.textContent=JSON.stringify(wide);document.body.appendChild(o)});</script>";
-
-fn overflowing(browser: &Path, folder: &Path) -> String {
-    let page = folder.join("index.html");
-    let html = std::fs::read_to_string(&page).unwrap();
-    let probed = folder.join("probed.html");
-    std::fs::write(&probed, html.replace("</body>", &format!("{PROBE}</body>"))).unwrap();
-    let dom = Command::new(browser)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--window-size=1280,900",
-        ])
-        .arg(format!(
-            "--user-data-dir={}",
-            folder.join("profile").display()
-        ))
-        .arg("--dump-dom")
-        .arg(format!(
-            "file://{}",
-            probed.canonicalize().unwrap().display()
-        ))
-        .output()
-        .unwrap();
-    let dom = text(&dom.stdout);
-    let found = dom
-        .split("<output id=\"overflow\">")
-        .nth(1)
-        .and_then(|rest| rest.split("</output>").next())
-        .unwrap_or_else(|| panic!("{}: the probe did not run:\n{dom}", page.display()));
-    found.to_string()
-}
-
 /// The texts of an SVG's `<text>` elements.
 fn texts(svg: &str) -> Vec<String> {
     svg.split("<text")
@@ -168,7 +131,7 @@ fn reports_name_their_axes_show_their_marks_and_nothing_overflows() {
     }
     let Some(browser) = chromium() else { return };
     for folder in &folders {
-        let wide = overflowing(&browser, folder);
+        let wide = overflowing(&browser, &folder.join("index.html"));
         assert_eq!(
             wide,
             "[]",

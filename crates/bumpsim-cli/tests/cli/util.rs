@@ -114,3 +114,36 @@ pub fn chromium() -> Option<PathBuf> {
     bumpsim_peers::present(found.is_some(), "chromium");
     found
 }
+
+/// A probe that writes, into the page, the text boxes whose content is
+/// wider than the box.
+const OVERFLOW_PROBE: &str = "<script>addEventListener('load',()=>{const wide=[...document.querySelectorAll('pre,p,td,th,figcaption,li,div,h2')].filter(e=>e.scrollWidth>e.clientWidth+1).map(e=>e.tagName+': '+e.textContent.slice(0,60));const o=document.createElement('output');o.id='overflow';o.textContent=JSON.stringify(wide);document.body.appendChild(o)});</script>";
+
+/// The text boxes of the HTML `page` wider than their box, as Chromium
+/// lays it out at 1280 × 900 (a JSON list; `[]` when none).
+pub fn overflowing(browser: &Path, page: &Path) -> String {
+    let probed = page.with_file_name("probed.html");
+    let html = std::fs::read_to_string(page).unwrap();
+    let html = html.replace("</body>", &format!("{OVERFLOW_PROBE}</body>"));
+    std::fs::write(&probed, html).unwrap();
+    let dom = Command::new(browser)
+        .args(["--headless", "--no-sandbox", "--disable-gpu"])
+        .arg("--window-size=1280,900")
+        .arg(format!(
+            "--user-data-dir={}",
+            page.with_file_name("profile").display()
+        ))
+        .arg("--dump-dom")
+        .arg(format!(
+            "file://{}",
+            probed.canonicalize().unwrap().display()
+        ))
+        .output()
+        .unwrap();
+    let dom = text(&dom.stdout);
+    let found = dom.split("<output id=\"overflow\">").nth(1);
+    let found = found.and_then(|rest| rest.split("</output>").next());
+    found
+        .unwrap_or_else(|| panic!("{}: the probe did not run:\n{dom}", page.display()))
+        .to_string()
+}

@@ -99,35 +99,6 @@ fn hostile_inputs_exit_2_naming_the_key() {
     assert_user_error(&run, "contradict");
 }
 
-/// A probe that writes, into the page, the text boxes whose content is
-/// wider than the box (as the reports test does for the other reports).
-const PROBE: &str = "<script>addEventListener('load',()=>{const wide=[...document.querySelectorAll('pre,p,td,th,figcaption,li,div,h2')].filter(e=>e.scrollWidth>e.clientWidth+1).map(e=>e.tagName+': '+e.textContent.slice(0,60));const o=document.createElement('output');o.id='overflow';o.textContent=JSON.stringify(wide);document.body.appendChild(o)});</script>";
-
-/// The text boxes of `page` wider than their box, as Chromium lays it out.
-fn overflowing(browser: &std::path::Path, page: &std::path::Path) -> String {
-    let probed = page.with_file_name("probed.html");
-    let html = std::fs::read_to_string(page).unwrap();
-    std::fs::write(&probed, html.replace("</body>", &format!("{PROBE}</body>"))).unwrap();
-    let profile = page.with_file_name("profile");
-    let dom = std::process::Command::new(browser)
-        .args(["--headless", "--no-sandbox", "--disable-gpu"])
-        .arg("--window-size=1280,900")
-        .arg(format!("--user-data-dir={}", profile.display()))
-        .arg("--dump-dom")
-        .arg(format!(
-            "file://{}",
-            probed.canonicalize().unwrap().display()
-        ))
-        .output()
-        .unwrap();
-    let dom = text(&dom.stdout);
-    let found = dom.split("<output id=\"overflow\">").nth(1);
-    let found = found.and_then(|rest| rest.split("</output>").next());
-    found
-        .unwrap_or_else(|| panic!("the probe did not run:\n{dom}"))
-        .to_string()
-}
-
 /// The verdict report of the worked example's failing test with its target
 /// region: the coloured table, the test's top view, forces and crush, the
 /// corridor and the table of limits with the binding criterion; every axis
