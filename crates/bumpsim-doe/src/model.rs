@@ -512,3 +512,83 @@ impl Response {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// A finite value of either sign from 1e-300 to 1e300, or zero.
+    fn value() -> impl Strategy<Value = f64> {
+        let magnitude = (1.0..10.0f64, -300..300i32).prop_map(|(m, e)| m * 10f64.powi(e));
+        prop_oneof![Just(0.0), magnitude.clone(), magnitude.prop_map(|v| -v)]
+    }
+
+    fn response() -> impl Strategy<Value = Response> {
+        let coefficients = prop::collection::btree_map("[a-z]{1,3}(\\*[a-z]{1,3})?", value(), 1..6);
+        let unit = proptest::option::of("[a-zA-Z/\"\\\\ \u{e9}\u{b2}]{0,6}");
+        (
+            ("[a-zA-Z_][a-zA-Z0-9_]{0,8}"),
+            unit,
+            coefficients,
+            proptest::option::of(value()),
+        )
+            .prop_map(|(name, unit, coefficients, q2)| Response {
+                name,
+                unit,
+                std_errors: Some(
+                    coefficients
+                        .keys()
+                        .map(|k| (k.clone(), Some(1.5)))
+                        .collect(),
+                ),
+                coefficients,
+                ci95: None,
+                r2: Some(0.97),
+                r2_adjusted: None,
+                q2,
+                q2_note: None,
+                press: q2,
+                residual_sd: Some(2.5e-3),
+                dof_residual: Some(4),
+                terms: Some(vec!["intercept".into()]),
+                xtx_inverse: Some(vec![vec![0.125]]),
+            })
+    }
+
+    fn model() -> impl Strategy<Value = ModelFile> {
+        let factor = (
+            "[a-zA-Z_][a-zA-Z0-9_]{0,8}",
+            value(),
+            value(),
+            proptest::option::of("[a-z]{0,3}"),
+        )
+            .prop_map(|(name, low, high, unit)| Factor {
+                name,
+                low,
+                high,
+                unit,
+            });
+        (
+            prop::collection::vec(factor, 1..5),
+            prop::collection::vec(response(), 1..4),
+        )
+            .prop_map(|(factors, responses)| ModelFile { factors, responses })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        /// Issue 34: whatever model file `doe fit --json` writes
+        /// (`serde_json::to_string_pretty`), [`ModelFile::read`] reads back
+        /// equal, every float bit for bit.
+        #[test]
+        fn whatever_model_file_is_written_reads_back_equal(model in model()) {
+            let dir = std::env::temp_dir().join(format!("bumpsim-doe-model-{}", std::process::id()));
+            std::fs::create_dir_all(&dir).unwrap();
+            let path = dir.join("model.json");
+            std::fs::write(&path, serde_json::to_string_pretty(&model).unwrap()).unwrap();
+            prop_assert_eq!(ModelFile::read(&path).unwrap(), model);
+        }
+    }
+}
