@@ -311,7 +311,8 @@ impl Identification {
     /// sampler with this identification's noise model, log-uniform prior
     /// within its bounds), seeded (default: the identification's seed);
     /// `steps` (a quarter of them burnt) and `walkers` override the
-    /// library's run (4000 steps, 32 walkers at least; 4000 draws kept).
+    /// library's run (4000 steps, 32 walkers at least; 4000 draws kept), as
+    /// `bumpsim identify --posterior --steps --walkers --seed`.
     #[pyo3(signature = (seed = None, steps = None, walkers = None))]
     fn posterior(
         &self,

@@ -13,7 +13,7 @@ use crate::state::ident::{IdentificationState, PosteriorState};
 use crate::state::{decode, encode, reduce, same};
 use bumpsim_core::model::parameter_kind;
 use bumpsim_estimate::posterior::Posterior as CorePosterior;
-use bumpsim_ident::posterior::{lines, posterior, sampling};
+use bumpsim_ident::posterior::{self, Request, Summary, lines};
 use bumpsim_ident::settings::Settings;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -22,9 +22,6 @@ use pyo3::types::{PyBytes, PyDict, PyList, PyType};
 
 /// What `__reduce__` returns.
 type Reduced<'py> = (Bound<'py, PyAny>, (Bound<'py, PyBytes>,));
-
-/// Steps of a run at most (its chain is held in memory).
-const MAX_STEPS: usize = 1_000_000;
 
 /// Registers the class of this module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -41,22 +38,21 @@ pub struct Run<'a, 'py> {
     pub walkers: Option<&'a Bound<'py, PyAny>>,
 }
 
-/// Samples the posterior of the identification `data` (see the module).
+/// Samples the posterior of the identification `data` as `bumpsim
+/// identify --posterior --steps --walkers --seed` does (see the module).
 pub fn sample(py: Python<'_>, data: &IdentificationState, run: Run) -> PyResult<Posterior> {
     let result = &data.result;
-    let seed = crate::convert::seed(run.seed)?.unwrap_or(data.seed);
-    let mut run_settings = sampling(result, seed);
-    let e = &mut run_settings.ensemble;
-    if let Some(steps) = count_or(run.steps, "steps", 10, MAX_STEPS)? {
-        (e.steps, e.burn) = (steps, steps / 4);
-    }
-    e.walkers = count_or(run.walkers, "walkers", 2, 10_000)?.unwrap_or(e.walkers);
+    let request = Request {
+        walkers: count_or(run.walkers, "walkers", 0, usize::MAX)?,
+        steps: count_or(run.steps, "steps", 0, usize::MAX)?,
+        seed: crate::convert::seed(run.seed)?.unwrap_or(data.seed),
+    };
     let settings = Settings {
         bounds: data.bounds.clone(),
         ..Settings::new(result.dof, 1)
     };
     let post = py
-        .detach(|| posterior(&data.cases, &settings, result, &run_settings))
+        .detach(|| posterior::run(&data.cases, &settings, result, &request, &|| {}))
         .map_err(input)?;
     Ok(Posterior::of(PosteriorState {
         posterior: post,
@@ -193,6 +189,13 @@ impl Posterior {
     /// interval next to its local 95 % interval, the diagnostics, warnings.
     fn to_text(&self) -> String {
         lines(self.core(), &self.data.result)
+    }
+    /// The posterior as `bumpsim identify --posterior --json` writes it
+    /// (its `posterior`: everything but the draws, with the units, the
+    /// optimum and its local 95 % intervals).
+    fn to_json(&self) -> PyResult<String> {
+        let summary = Summary::new(self.core(), &self.data.result);
+        serde_json::to_string_pretty(&summary).map_err(input)
     }
     /// The kept draws: one row per draw, columns `m1 [kg]`, ..., `k1
     /// [N/m]`; attrs: ensemble, noise, converged.

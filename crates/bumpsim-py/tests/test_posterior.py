@@ -1,9 +1,11 @@
 """Issue 39 item 2 in Python: the posterior of an identified chain
 (bumpsim-ident's ensemble sampler), seeded, with its means, 90 % intervals,
 diagnostics and draws as a read-only array and a pandas frame named with the
-parameters' units. The library's properties: the intervals contain the
-optimum, the same seed gives the same numbers, a posterior pickles whole."""
+parameters' units. It is the CLI's (`identify --posterior --json`, same
+seed and steps), and holds the library's properties: the intervals contain
+the optimum, the same seed gives the same numbers, a posterior pickles whole."""
 
+import json
 import pickle
 
 import numpy as np
@@ -96,3 +98,20 @@ def test_bad_runs_raise_value_errors(identification):
         with pytest.raises(ValueError, match=words) as caught:
             identification.posterior(**kwargs)
         assert isinstance(caught.value, bumpsim.InputError)
+
+
+def test_the_clis_posterior_is_the_same_for_the_same_seed(root, run, tmp_path):
+    """`bumpsim identify --posterior --steps N --seed S --json` and
+    `identify(..., seed=S).posterior(steps=N)` sample the same chain."""
+    study = root / "examples" / "identify" / "study.toml"
+    out = tmp_path / "posterior.json"
+    run("identify", study, "--dof", "2", "--starts", "4", "--seed", "1", "--posterior", "--steps", "200",
+        "--quiet", "--json", out)
+    cli = json.loads(out.read_text())["posterior"]
+    post = bumpsim.identify(study, dof=2, starts=4, seed=1).posterior(steps=200)
+    assert cli["ensemble"] == post.ensemble
+    assert cli["mean"] == list(post.mean) and cli["median"] == list(post.median) and cli["sd"] == list(post.sd)
+    assert cli["ci90"] == [list(c) for c in post.ci90] and cli["ci95"] == [list(c) for c in post.ci95]
+    assert cli["diagnostics"] == post.diagnostics and cli["converged"] == post.converged
+    assert cli["units"] == post.units and cli["names"] == post.names
+    assert json.loads(post.to_json()) == cli

@@ -332,6 +332,8 @@ class Posterior:
     def to_text(self) -> str:
         """Each parameter's mean and 90 % interval beside its local 95 %, the
         diagnostics and warnings."""
+    def to_json(self) -> str:
+        """As ``bumpsim identify --posterior --json`` writes its ``posterior``."""
     def to_pandas(self) -> DataFrame:
         """The draws: columns ``m1 [kg]``, ..., ``k1 [N/m]``; attrs: ensemble,
         noise, converged, warnings."""

@@ -42,16 +42,21 @@ struct ControllerDef {
 
 super::remote_option!(controller, Controller, "ControllerDef");
 
-/// Points through their own serde; the folder (not stored) follows from the run.
+/// Points through their own serde, each with its journal line (which
+/// their serde does not store); the folder (not stored) follows from the run.
 mod runs {
     use super::*;
     pub fn serialize<S: serde::Serializer>(runs: &[Point], s: S) -> Result<S::Ok, S::Error> {
-        runs.serialize(s)
+        s.collect_seq(runs.iter().map(|p| (p, p.line)))
     }
     pub fn deserialize<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<Point>, D::Error> {
-        let mut runs = Vec::<Point>::deserialize(d)?;
-        runs.iter_mut().for_each(|p| p.folder = point_folder(p.run));
-        Ok(runs)
+        let runs = Vec::<(Point, usize)>::deserialize(d)?;
+        let restore = |(mut p, line): (Point, usize)| {
+            p.folder = point_folder(p.run);
+            p.line = line;
+            p
+        };
+        Ok(runs.into_iter().map(restore).collect())
     }
 }
 
