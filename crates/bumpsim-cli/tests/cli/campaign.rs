@@ -87,7 +87,9 @@ fn path(p: &Path) -> &str {
 /// the folders listed in `fail_always`, once in `fail_once`, writes a
 /// corrupt output in `corrupt`, and sleeps 300 s more in `slow` (longer
 /// than any test waits: only an abort ends such a run, even when a busy
-/// Slurm node starts the second slow run long after the first).
+/// Slurm node starts the second slow run long after the first; a stopped
+/// `sleep` ends the script too, so a signal that reaches the sleep before
+/// the shell cannot let the run go on to write its output).
 struct Fake {
     dir: PathBuf,
     log: PathBuf,
@@ -117,7 +119,7 @@ impl Fake {
         let list = |l: &[&str]| l.join(" ");
         let script = format!(
             "#!/bin/sh\np=$(basename \"$PWD\")\necho \"$p\" >> '{log}'\nsleep {sleep}\n\
-             for s in {slow}; do [ \"$p\" = \"$s\" ] && sleep 300; done\n\
+             for s in {slow}; do [ \"$p\" = \"$s\" ] && {{ sleep 300 || exit 143; }}; done\n\
              for f in {always}; do [ \"$p\" = \"$f\" ] && exit 3; done\n\
              for f in {once}; do if [ \"$p\" = \"$f\" ] && [ ! -e '{dir}'/once-$p ]; then touch '{dir}'/once-$p; exit 1; fi; done\n\
              for f in {corrupt}; do [ \"$p\" = \"$f\" ] && {{ echo 'time [s],y [m]' > out.csv; echo '0,0' >> out.csv; echo '1,zero' >> out.csv; exit 0; }}; done\n\
