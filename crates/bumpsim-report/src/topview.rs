@@ -2,7 +2,7 @@
 //! members, crushed bumper line and the striker's face) as SVG, drawn to
 //! scale (equal x and y scales) in mm.
 //!
-//! Every part is drawn with one [`Ink`] and the figure's legend
+//! Every part is drawn with one `Ink` and the figure's legend
 //! ([`legend`]) names each ink's colour as it looks on the white page, so
 //! the caption cannot say one colour while the picture shows another.
 
