@@ -1,6 +1,6 @@
 //! `bumpsim synth`, `bumpsim impact` and `bumpsim mass-reduction`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use crate::util::*;
 
@@ -54,6 +54,22 @@ fn synth_remakes_the_bundled_series_bit_for_bit() {
     );
 }
 
+/// A rigid 1050 kg vehicle (a UTV) in `dir`.
+fn rigid_car(dir: &Path) -> PathBuf {
+    let car = dir.join("utv.toml");
+    let text = "name = \"UTV\"\nmasses = [1050.0]\ndampers = []\nsprings = []\n";
+    std::fs::write(&car, text).unwrap();
+    car
+}
+
+/// `bumpsim impact --car CAR --bumper BUMPER` followed by `rest`.
+fn impact(car: &Path, bumper: &Path, rest: &[&str]) -> std::process::Output {
+    let mut args = vec!["impact", "--car", car.to_str().unwrap()];
+    args.extend(["--bumper", bumper.to_str().unwrap()]);
+    args.extend_from_slice(rest);
+    bumpsim(&args)
+}
+
 fn impact_example(name: &str) -> PathBuf {
     root().join("examples/impact").join(name)
 }
@@ -61,28 +77,22 @@ fn impact_example(name: &str) -> PathBuf {
 #[test]
 fn impact_json_and_report_for_a_rigid_vehicle_into_a_barrier() {
     let dir = scratch("impact");
-    let car = dir.join("utv.toml");
-    std::fs::write(
-        &car,
-        "name = \"UTV\"\nmasses = [1050.0]\ndampers = []\nsprings = []\n",
-    )
-    .unwrap();
+    let car = rigid_car(&dir);
     let json = dir.join("impact.json");
     let report = dir.join("report");
-    let run = bumpsim(&[
-        "impact",
-        "--car",
-        car.to_str().unwrap(),
-        "--bumper",
-        impact_example("bumper-a.toml").to_str().unwrap(),
-        "--barrier",
-        "--speed",
-        "8 km/h",
-        "--json",
-        json.to_str().unwrap(),
-        "--report",
-        report.to_str().unwrap(),
-    ]);
+    let run = impact(
+        &car,
+        &impact_example("bumper-a.toml"),
+        &[
+            "--barrier",
+            "--speed",
+            "8 km/h",
+            "--json",
+            json.to_str().unwrap(),
+            "--report",
+            report.to_str().unwrap(),
+        ],
+    );
     let stdout = text(&run.stdout);
     assert!(run.status.success(), "{stdout}{}", text(&run.stderr));
     assert_contains(
@@ -173,32 +183,15 @@ fn impact_errors_exit_2() {
     let bad = dir.join("bad.toml");
     std::fs::write(&bad, "ramp = -1.0e6\nplateau = 5.0e4\nunloading = 5.0e6\n").unwrap();
     let car = root().join("examples/simulate/car-3dof.toml");
-    let run = bumpsim(&[
-        "impact",
-        "--car",
-        car.to_str().unwrap(),
-        "--bumper",
-        bad.to_str().unwrap(),
-        "--barrier",
-        "--speed",
-        "2",
-    ]);
+    let run = impact(&car, &bad, &["--barrier", "--speed", "2"]);
     assert_eq!(run.status.code(), Some(2));
     assert!(
         text(&run.stderr).contains("bad.toml") && text(&run.stderr).contains("ramp"),
         "{}",
         text(&run.stderr)
     );
-    let zero = bumpsim(&[
-        "impact",
-        "--car",
-        car.to_str().unwrap(),
-        "--bumper",
-        impact_example("bumper-a.toml").to_str().unwrap(),
-        "--barrier",
-        "--speed",
-        "0",
-    ]);
+    let bumper = impact_example("bumper-a.toml");
+    let zero = impact(&car, &bumper, &["--barrier", "--speed", "0"]);
     assert_user_error(&zero, "speed");
 }
 
@@ -207,42 +200,29 @@ fn impact_errors_exit_2() {
 #[test]
 fn a_refused_report_leaves_no_json_behind() {
     let dir = scratch("impact-transaction");
-    let car = dir.join("utv.toml");
-    std::fs::write(
-        &car,
-        "name = \"UTV\"\nmasses = [1050.0]\ndampers = []\nsprings = []\n",
-    )
-    .unwrap();
+    let car = rigid_car(&dir);
     let (report, csv) = (dir.join("rep"), dir.join("o.csv"));
-    let run = bumpsim(&[
-        "impact",
-        "--car",
-        car.to_str().unwrap(),
-        "--bumper",
-        impact_example("bumper-a.toml").to_str().unwrap(),
-        "--barrier",
-        "--speed",
-        "8 km/h",
-        "--csv",
-        csv.to_str().unwrap(),
-        "--report",
-        report.to_str().unwrap(),
-        "--json",
-        report.join("index.html").to_str().unwrap(),
-    ]);
+    let run = impact(
+        &car,
+        &impact_example("bumper-a.toml"),
+        &[
+            "--barrier",
+            "--speed",
+            "8 km/h",
+            "--csv",
+            csv.to_str().unwrap(),
+            "--report",
+            report.to_str().unwrap(),
+            "--json",
+            report.join("index.html").to_str().unwrap(),
+        ],
+    );
     assert_user_error(&run, "two outputs to one path");
     assert!(
         !report.exists() && !csv.exists(),
         "the refused command left outputs"
     );
-    let run = bumpsim(&[
-        "impact",
-        "--car",
-        car.to_str().unwrap(),
-        "--bumper",
-        "/dev/zero",
-        "--barrier",
-    ]);
+    let run = impact(&car, Path::new("/dev/zero"), &["--barrier"]);
     assert_user_error(&run, "not a regular file");
     // -o without --sweep wrote nothing and said nothing
     let grid = dir.join("g.csv");
@@ -258,8 +238,7 @@ fn a_refused_report_leaves_no_json_behind() {
 #[test]
 fn impacts_outside_the_physical_ranges_are_refused() {
     let dir = scratch("impact-ranges");
-    let car = dir.join("utv.toml");
-    std::fs::write(&car, "masses = [1050.0]\ndampers = []\nsprings = []\n").unwrap();
+    let car = rigid_car(&dir);
     let heavy = dir.join("heavy.toml");
     std::fs::write(
         &heavy,
@@ -267,7 +246,7 @@ fn impacts_outside_the_physical_ranges_are_refused() {
     )
     .unwrap();
     let bumper = impact_example("bumper-a.toml");
-    let cases: [(&std::path::Path, &[&str], &str); 7] = [
+    let cases: [(&Path, &[&str], &str); 7] = [
         (
             &car,
             &["--pendulum", "1000", "--speed", "1e-300"],
@@ -301,10 +280,7 @@ fn impacts_outside_the_physical_ranges_are_refused() {
         (&car, &["--barrier", "--speed=-2"], "speed (m/s) = -2.0"),
     ];
     for (car, extra, needle) in cases {
-        let mut args = vec!["impact", "--car", car.to_str().unwrap()];
-        args.extend(["--bumper", bumper.to_str().unwrap()]);
-        args.extend_from_slice(extra);
-        assert_user_error(&bumpsim(&args), needle);
+        assert_user_error(&impact(car, &bumper, extra), needle);
     }
 }
 
@@ -313,38 +289,19 @@ fn impacts_outside_the_physical_ranges_are_refused() {
 #[test]
 fn a_curve_point_with_three_values_is_refused() {
     let dir = scratch("impact-curve-points");
-    let car = dir.join("utv.toml");
-    std::fs::write(&car, "masses = [1050.0]\ndampers = []\nsprings = []\n").unwrap();
+    let car = rigid_car(&dir);
     let bumper = dir.join("three.toml");
     let curve = "unloading = 1e7\ncurve = [\n  [0, 0],\n  [0.01, 1e4, 5],\n  [0.05, 5e4],\n]\n";
     std::fs::write(&bumper, curve).unwrap();
-    let (c, b) = (car.to_str().unwrap(), bumper.to_str().unwrap());
-    let run = bumpsim(&[
-        "impact",
-        "--car",
-        c,
-        "--bumper",
-        b,
-        "--barrier",
-        "--speed",
-        "2",
-    ]);
+    let barrier = ["--barrier", "--speed", "2"];
+    let run = impact(&car, &bumper, &barrier);
     assert_user_error(&run, "three.toml: TOML parse error at line 4");
     assert_user_error(
         &run,
         "invalid length 3, expected an array of exactly 2 numbers",
     );
     std::fs::write(&bumper, curve.replace(", 5]", "]").replace("[0, 0]", "[0]")).unwrap();
-    let run = bumpsim(&[
-        "impact",
-        "--car",
-        c,
-        "--bumper",
-        b,
-        "--barrier",
-        "--speed",
-        "2",
-    ]);
+    let run = impact(&car, &bumper, &barrier);
     assert_user_error(&run, "line 3");
 }
 
@@ -400,13 +357,5 @@ fn synth_refuses_negative_noise_extra_biases_and_absurd_heads() {
             "speed (m/s) = 1e-300",
         ),
     ];
-    for (k, (old, new, needle)) in cases.into_iter().enumerate() {
-        assert!(series.contains(old), "{old}");
-        let file = dir.join(format!("hostile-{k}.toml"));
-        std::fs::write(&file, series.replacen(old, new, 1)).unwrap();
-        let out = dir.join(format!("out-{k}"));
-        let run = bumpsim(&["synth", file.to_str().unwrap(), "-o", out.to_str().unwrap()]);
-        assert_user_error(&run, needle);
-        assert!(!out.exists(), "{new}: a refused series left its folder");
-    }
+    synth_refuses_each(&dir, &series, &cases);
 }

@@ -3,7 +3,9 @@
 //! offset test, writes a car file `planar` reads, and hostile studies and
 //! series get clear errors.
 
-use crate::util::{assert_contains, assert_user_error, bumpsim, root, scratch, text};
+use crate::util::{
+    assert_contains, assert_user_error, bumpsim, root, scratch, synth_refuses_each, text,
+};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -559,13 +561,5 @@ fn a_planar_series_refuses_bad_noise_and_extra_biases() {
         ),
         ("sensor = [0.6, 0.7]", "sensor = [0.6, 0.7, 9.0]", "sensor"),
     ];
-    for (k, (old, new, needle)) in cases.into_iter().enumerate() {
-        assert!(series.contains(old), "{old}");
-        let file = dir.join(format!("hostile-{k}.toml"));
-        std::fs::write(&file, series.replacen(old, new, 1)).unwrap();
-        let out = dir.join(format!("out-{k}"));
-        let run = bumpsim(&["synth", file.to_str().unwrap(), "-o", out.to_str().unwrap()]);
-        assert_user_error(&run, needle);
-        assert!(!out.exists(), "{new}: a refused series left its folder");
-    }
+    synth_refuses_each(&dir, &series, &cases);
 }

@@ -40,6 +40,20 @@ pub fn assert_user_error(run: &Output, needle: &str) {
     assert!(stderr.contains(needle), "missing '{needle}' in:\n{stderr}");
 }
 
+/// `synth` of `series` with each `(old, new, needle)` edit made in turn
+/// (written in `dir`): refused with `needle` and no output folder left.
+pub fn synth_refuses_each(dir: &Path, series: &str, cases: &[(&str, &str, &str)]) {
+    for (k, &(old, new, needle)) in cases.iter().enumerate() {
+        assert!(series.contains(old), "{old}");
+        let file = dir.join(format!("hostile-{k}.toml"));
+        std::fs::write(&file, series.replacen(old, new, 1)).unwrap();
+        let out = dir.join(format!("out-{k}"));
+        let run = bumpsim(&["synth", file.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        assert_user_error(&run, needle);
+        assert!(!out.exists(), "{new}: a refused series left its folder");
+    }
+}
+
 /// Fails unless every expected piece is in `output`.
 pub fn assert_contains(output: &str, expected: &[&str]) {
     for piece in expected {
