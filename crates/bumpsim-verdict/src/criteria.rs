@@ -188,21 +188,23 @@ fn clearance(car: &PlanarCar, r: &PlanarResult, c: &crate::limits::Clearance) ->
         .filter(|&j| r.segment_centres[j] + h > low && r.segment_centres[j] - h < high)
         .collect();
     let (mut worst, mut at) = (f64::NEG_INFINITY, (0.0, 0.0));
+    // the points that may close the gap, as (y, travel at sample k):
+    // the span's ends for the beam, each segment in it for the front
+    let travel = |k: usize, y: f64, j: Option<usize>| {
+        j.map_or(0.0, |j| r.crush[j][k]) + beam_travel(car, r, k, y)
+    };
     for k in 0..r.time.len() {
-        let candidates: Vec<(f64, f64)> = match c.from {
-            Closer::Beam => [low, high].map(|y| (y, beam_travel(car, r, k, y))).to_vec(),
+        let mut consider = |y: f64, j: Option<usize>| {
+            let t = travel(k, y, j);
+            if t > worst {
+                (worst, at) = (t, (y, r.time[k]));
+            }
+        };
+        match c.from {
+            Closer::Beam => [low, high].into_iter().for_each(|y| consider(y, None)),
             Closer::Front => segments
                 .iter()
-                .map(|&j| {
-                    let y = r.segment_centres[j];
-                    (y, r.crush[j][k] + beam_travel(car, r, k, y))
-                })
-                .collect(),
-        };
-        for (y, travel) in candidates {
-            if travel > worst {
-                (worst, at) = (travel, (y, r.time[k]));
-            }
+                .for_each(|&j| consider(r.segment_centres[j], Some(j))),
         }
     }
     let what = match c.from {
