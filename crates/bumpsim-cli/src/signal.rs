@@ -260,13 +260,36 @@ fn run_export(args: &ExportArgs) -> Result<()> {
         CombineArg::Mean => Combine::Mean,
         CombineArg::Sum => Combine::Sum,
     });
-    let result = export(&test, &args.channels, &export_steps(args)?, how)?;
+    let result = export(&test, &args.channels, &export_steps(args)?, how)
+        .map_err(|e| name_cfc(e.into(), args.cfc))?;
     report(&result);
     write_csv(&args.output, &result.signals, &output_units(&args.unit)?)?;
     if let Some(folder) = &args.iso_mme {
         write_iso_mme(folder, &isomme::test_header(&test), &result.signals)?;
     }
     plot(args.plot.as_deref(), &result).map(|_| ())
+}
+
+/// Names `--cfc` in an error about the CFC class (the library names the
+/// class and its range for the channel's sample rate, not the flag).
+fn name_cfc(error: anyhow::Error, class: Option<f64>) -> anyhow::Error {
+    use bumpsim_signal::FilterError;
+    let about_class = error.chain().any(|cause| {
+        matches!(
+            cause.downcast_ref::<FilterError>(),
+            Some(FilterError::Parameter {
+                name: "CFC class",
+                ..
+            })
+        )
+    });
+    match class {
+        Some(class) if about_class && (class == 0.0 || (1e-3..1e7).contains(&class.abs())) => {
+            error.context(format!("--cfc {class}"))
+        }
+        Some(class) if about_class => error.context(format!("--cfc {class:e}")),
+        _ => error,
+    }
 }
 
 /// Writes signals as the ISO-MME test `folder`, named after the folder.

@@ -80,6 +80,36 @@ impl CfcStandard {
     }
 }
 
+/// The lowest design frequency of a CFC filter relative to the sample rate:
+/// below it the section's squared prewarped frequency (about 1e-11) nears
+/// the rounding of its unit gain and the filter no longer filters (a class
+/// of 1e-300 returned the first sample for every sample).
+pub const MIN_RELATIVE_CUTOFF: f64 = 1e-6;
+
+impl CfcStandard {
+    /// The classes a CFC filter of this standard may have at sample
+    /// interval `step` s: from `MIN_RELATIVE_CUTOFF / (k step)` up to
+    /// (excluding) the class whose design frequency is the Nyquist
+    /// frequency, `1 / (2 k step)`.
+    pub fn classes(self, step: f64) -> (f64, f64) {
+        let rate = 1.0 / step;
+        (
+            MIN_RELATIVE_CUTOFF * rate / self.factor(),
+            0.5 * rate / self.factor(),
+        )
+    }
+}
+
+/// `x` with 5 significant digits at most, no trailing zeros (for messages).
+fn short(x: f64) -> String {
+    let text = format!("{x:.4e}");
+    match text.parse::<f64>() {
+        Ok(v) if (1e-3..1e7).contains(&v.abs()) => format!("{v}"),
+        Ok(v) => format!("{v:e}"),
+        Err(_) => text,
+    }
+}
+
 /// A CFC standard's name that names none.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("unknown CFC standard '{text}': expected sae-j211 or iso-6487")]
@@ -277,8 +307,27 @@ impl Cfc {
         Ok(Cfc { class, standard })
     }
 
-    /// The 2-pole Butterworth that one pass of the CFC filter uses.
+    /// The 2-pole Butterworth that one pass of the CFC filter uses; the
+    /// class must lie in [`Cfc::classes`] for the sample interval `step` s.
     pub fn design(&self, step: f64) -> Result<Butterworth, FilterError> {
+        check_positive("sample interval (s)", step)?;
+        let (low, high) = self.standard.classes(step);
+        if !(self.class >= low && self.class < high) {
+            return Err(FilterError::Parameter {
+                name: "CFC class",
+                value: self.class,
+                expected: format!(
+                    "a class from {} to below {} for a channel sampled at {} Hz (the design \
+                     frequency {} × CFC must lie from {MIN_RELATIVE_CUTOFF:e} × the sample \
+                     rate to below the Nyquist frequency {} Hz)",
+                    short(low),
+                    short(high),
+                    short(1.0 / step),
+                    self.standard.factor(),
+                    short(0.5 / step)
+                ),
+            });
+        }
         Butterworth::new(2, self.standard.factor() * self.class, step)
     }
 

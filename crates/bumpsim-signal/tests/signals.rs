@@ -208,3 +208,35 @@ fn half_sine_pulse_integrates_within_the_trapezoidal_bound() {
     }
     assert_relative_eq!(v[n - 1], v0 - 2.0 * amplitude / w, max_relative = 1e-5);
 }
+
+/// A CFC class whose design frequency reaches the Nyquist frequency (1e308
+/// gave "cutoff (Hz) = inf") or lies below 1e-6 of the sample rate (1e-300
+/// returned the first sample everywhere) is refused naming the class and
+/// the classes the sample interval allows; the classes just inside work.
+#[test]
+fn cfc_classes_outside_the_sample_rate_s_range_are_refused_by_name() {
+    let (low, high) = CfcStandard::SaeJ211.classes(STEP);
+    assert_relative_eq!(high, 5000.0 / 2.0775, max_relative = 1e-12);
+    assert_relative_eq!(low, 1e-6 * 10_000.0 / 2.0775, max_relative = 1e-12);
+    let x = test_signal(400);
+    for class in [1e308, 1e6, high, low * 0.99, 1e-300] {
+        let err = Cfc::new(class, CfcStandard::SaeJ211)
+            .unwrap()
+            .filter(&x, STEP)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("CFC class") && err.contains("from 0.0048135 to below 2406.7"),
+            "{class}: {err}"
+        );
+    }
+    for class in [high * 0.999, low * 1.01] {
+        let y = Cfc::new(class, CfcStandard::SaeJ211)
+            .unwrap()
+            .filter(&x, STEP)
+            .unwrap();
+        assert!(y.iter().all(|v| v.is_finite()));
+    }
+    let (_, iso) = CfcStandard::Iso6487.classes(STEP);
+    assert_relative_eq!(iso, 5000.0 / (1.25 * 5.0 / 3.0), max_relative = 1e-12);
+}

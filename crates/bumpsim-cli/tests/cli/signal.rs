@@ -338,3 +338,54 @@ fn a_pipeline_output_on_an_input_is_refused_before_it_runs() {
         );
     }
 }
+
+/// `signal export --cfc 1e308` was refused naming the derived cut-off
+/// ("cutoff (Hz) = inf"), not the flag; `--cfc 1e-300` exited 0 with the
+/// first sample repeated (a filter that no longer filters). Each names
+/// `--cfc` and the classes the channel's sample rate allows (10 kHz:
+/// 0.0048135 to below 2406.7 in SAE J211-1), and writes nothing.
+#[test]
+fn a_cfc_class_out_of_range_names_the_flag_and_its_range() {
+    let dir = scratch("signal-cfc");
+    let test = root().join("examples/identify/FLAT");
+    let out = dir.join("o.csv");
+    for class in ["1e308", "1e6", "2406.8", "1e-300", "0"] {
+        let run = bumpsim(&[
+            "signal",
+            "export",
+            test.to_str().unwrap(),
+            "-c",
+            "1",
+            "--cfc",
+            class,
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert_user_error(&run, "--cfc ");
+        let stderr = text(&run.stderr);
+        assert!(
+            !stderr.contains("inf Hz") && !stderr.contains("cutoff"),
+            "{stderr}"
+        );
+        if class != "0" {
+            assert!(
+                stderr.contains("from 0.0048135 to below 2406.7")
+                    && stderr.contains("sampled at 10000 Hz"),
+                "{class}: {stderr}"
+            );
+        }
+        assert!(!out.exists(), "{class}: an output was written");
+    }
+    let edge = bumpsim(&[
+        "signal",
+        "export",
+        test.to_str().unwrap(),
+        "-c",
+        "1",
+        "--cfc",
+        "2406.6",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(edge.status.code(), Some(0), "{}", text(&edge.stderr));
+}
