@@ -9,7 +9,9 @@
 //! - [`stiffness`]: the slope of a force–displacement curve;
 //! - [`reachable`]: the reachable region of two linear responses;
 //! - [`table_fit`]: the regression of a whole table (`doe fit`, campaigns);
-//! - [`text`]: human-readable summaries of fits.
+//! - [`text`]: human-readable summaries of fits;
+//! - [`weighted`]: regression on identified parameters with their standard
+//!   errors (τ² by REML, weighted least squares).
 //!
 //! A 2² factorial, its runs in physical units, a fitted main-effect model
 //! and a prediction at the centre:
@@ -40,6 +42,7 @@ pub mod regression;
 pub mod stiffness;
 pub mod table_fit;
 pub mod text;
+pub mod weighted;
 
 pub use data::{Data, DataError};
 pub use design::{Design, DesignError, DesignKind, DesignOptions};

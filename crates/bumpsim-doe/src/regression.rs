@@ -23,6 +23,34 @@ pub enum RegressionError {
     /// Fewer runs than terms, or rank deficiency.
     #[error("regression: {0}")]
     Design(String),
+    /// A standard error that is not a finite number ≥ 0 whose square is finite.
+    #[error(
+        "standard error {value} in row {row}: expected a finite number ≥ 0 whose square (a variance) is a finite number"
+    )]
+    StandardError {
+        /// 1-based data row.
+        row: usize,
+        /// The value.
+        value: f64,
+    },
+    /// A zero standard error beside positive ones.
+    #[error(
+        "standard error 0 in row {row} beside {value} in row {positive}: a zero would be an exact identification with infinite weight; give every run a positive standard error, or every run 0 (unweighted)"
+    )]
+    ZeroStandardError {
+        /// 1-based row of the zero.
+        row: usize,
+        /// 1-based row of a positive one.
+        positive: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// REML's Fisher scoring did not settle.
+    #[error("τ² (REML) did not converge in {iterations} iterations")]
+    NotConverged {
+        /// Iterations taken.
+        iterations: usize,
+    },
 }
 
 /// A model term over coded factors.
