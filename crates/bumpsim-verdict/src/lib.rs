@@ -12,6 +12,9 @@
 //! - [`verdict`](mod@verdict): every test run and judged;
 //! - [`probability`]: the verdict propagated over the car's uncertainty:
 //!   each criterion's probability of passing (issue 39);
+//! - [`sensitivity`]: which uncertain parameters drive each criterion:
+//!   Sobol' first-order and total indices with bootstrap intervals
+//!   (issue 39);
 //! - [`uncertainty`]: the car's uncertainty, from an identification's
 //!   JSON or relative spreads;
 //! - [`target`]: the region of bumper characteristics that passes every
@@ -43,6 +46,7 @@ pub mod limits;
 pub mod probability;
 pub mod protocol;
 pub mod pulse;
+pub mod sensitivity;
 pub mod target;
 pub mod text;
 pub mod uncertainty;

@@ -1,0 +1,523 @@
+//! Which of the car's uncertain parameters drive each criterion (issue 39,
+//! item 3): Sobol' first-order and total indices, with bootstrap
+//! intervals, of every judged criterion's value over the car's
+//! uncertainty ([`crate::uncertainty`]).
+//!
+//! - **Output**: each judged criterion's value (SI: a travel or crush in m,
+//!   a force in N, a deceleration in m/s², a share in 1). Its limit is the
+//!   requirement, not varied, so its margin (`limit − value` or
+//!   `value − limit`) and margin ratio are affine in it and have the same
+//!   indices.
+//! - **Inputs**: the uncertainty's parameters as **independent** log-normal
+//!   marginals, `θᵢ = θ̂ᵢ exp(σᵢ Φ⁻¹(uᵢ))` with `uᵢ` uniform on (0, 1)
+//!   (Φ⁻¹ by Wichura's AS 241, 1988, to about 1e-16). Sobol' indices
+//!   decompose the variance of an output of independent inputs (Sobol'
+//!   2001): a correlation of the source (an identification's) is **not
+//!   used**, and its largest |r| is stated with the indices.
+//! - **Sampling and estimators**: [`bumpsim_estimate::sobol`]: Saltelli's
+//!   design on a Sobol' sequence, N base samples give `N (d + 2)` cars, each
+//!   run through every selected test by [`crate::verdict::verdict`] (the
+//!   nominal verdict's code), in parallel; first order as Saltelli et al.
+//!   (2010), total as Jansen (1999), 95 % bootstrap half-widths from
+//!   resampling the N rows (seeded). The sequence is not random and each
+//!   car's run is deterministic, so any thread count gives the same indices.
+//!
+//! A criterion whose value is the same in every car (a beam engagement, a
+//! test no parameter reaches) has no indices, and says so. A car that
+//! cannot be run ends the analysis with its factors named: Saltelli's
+//! estimators need every row.
+//!
+//! ```no_run
+//! use bumpsim_estimate::sobol::Settings;
+//! use bumpsim_verdict::prelude::*;
+//! use bumpsim_verdict::sensitivity::{sensitivity, table};
+//! let path = std::path::Path::new("examples/verdict/car.toml");
+//! let end = CarEnd::new(bumpsim_planar::PlanarCar::read(path)?, Damageability::read(path)?)?;
+//! let setup = Setup::new(vec![end], bumpsim_verdict::protocol::select(&["part581-barrier-front"])?, 0.0)?;
+//! let v = verdict(&setup)?;
+//! let u = Uncertainty::independent("spreads", vec![("bumper.force".into(), 0.1), ("body.mass".into(), 0.02)])?;
+//! let s = sensitivity(&setup, &v, &u, &Settings::new(64, 1), &|| {})?;
+//! print!("{}", table(&s));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use crate::criteria::{Outcome, Quantity};
+use crate::error::{VerdictError, require};
+use crate::uncertainty::Uncertainty;
+use crate::verdict::{CarEnd, Setup, Verdict, verdict};
+use bumpsim_estimate::sobol::{DIMENSIONS, Indices, Input, Settings, SobolError, indices};
+use serde::Serialize;
+use std::collections::HashMap;
+use std::sync::Mutex;
+
+/// Fewest and most base samples N (the verdict runs `N (d + 2)` times).
+pub const BASE: [usize; 2] = [16, 8192];
+
+/// The base samples when none is asked for.
+pub const DEFAULT_BASE: usize = 64;
+
+/// The indices of one criterion of one test.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CriterionIndices {
+    /// The test.
+    pub test: &'static str,
+    /// The criterion (`rail force`, `clearance: radiator`, ...).
+    pub criterion: String,
+    /// What its value measures (its display unit).
+    pub quantity: Quantity,
+    /// The value's indices, its mean and variance (SI) over the cars;
+    /// None when it does not vary.
+    pub indices: Option<Indices>,
+    /// Why there are no indices.
+    pub note: Option<String>,
+}
+
+/// The Sobol' indices of every judged criterion.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Sensitivity {
+    /// Where the parameters' spreads come from.
+    pub source: String,
+    /// The parameters, by their car-file names.
+    pub names: Vec<String>,
+    /// The standard deviation of each one's logarithm, 1.
+    pub log_sd: Vec<f64>,
+    /// The largest |r| of the source's correlation, not used (0: none).
+    pub unused_correlation: f64,
+    /// Base samples, resamples and the bootstrap's seed.
+    pub settings: Settings,
+    /// Verdicts run, `N (d + 2)`.
+    pub evaluations: usize,
+    /// Each judged criterion of each assessed test, in the verdict's order.
+    pub criteria: Vec<CriterionIndices>,
+}
+
+/// The verdicts a sensitivity of `uncertainty` with `base` samples runs.
+pub fn evaluations(uncertainty: &Uncertainty, base: usize) -> usize {
+    base.saturating_mul(uncertainty.names.len() + 2)
+}
+
+/// The Sobol' indices of every judged criterion of the nominal verdict
+/// `nominal` over `uncertainty` (see the module); `progress` is called
+/// after each of the [`evaluations`] verdicts.
+pub fn sensitivity(
+    setup: &Setup,
+    nominal: &Verdict,
+    uncertainty: &Uncertainty,
+    settings: &Settings,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Sensitivity, VerdictError> {
+    check(setup, uncertainty, settings)?;
+    let judged = judged(nominal);
+    let inputs: Vec<Input> = (uncertainty.names.iter())
+        .map(|n| Input::uniform(n.as_str(), 0.0, 1.0))
+        .collect();
+    let runs = Runs {
+        setup,
+        uncertainty,
+        judged: &judged,
+        cache: Mutex::new(HashMap::new()),
+        failure: Mutex::new(None),
+        progress,
+    };
+    let mut criteria = Vec::with_capacity(judged.len());
+    for (k, (test, name, quantity)) in judged.iter().enumerate() {
+        let output = |u: &[f64]| runs.value(u, k);
+        let (indices, note) = match indices(&inputs, &output, settings) {
+            Ok(i) => (Some(i), None),
+            Err(SobolError::Constant { value }) => (None, Some(constant(*quantity, value))),
+            Err(e) => return Err(runs.error(e)),
+        };
+        criteria.push(CriterionIndices {
+            test,
+            criterion: name.clone(),
+            quantity: *quantity,
+            indices,
+            note,
+        });
+    }
+    Ok(Sensitivity {
+        source: uncertainty.source.clone(),
+        names: uncertainty.names.clone(),
+        log_sd: uncertainty.log_sd.clone(),
+        unused_correlation: largest_correlation(uncertainty),
+        settings: *settings,
+        evaluations: evaluations(uncertainty, settings.base),
+        criteria,
+    })
+}
+
+/// The base samples, the number of parameters and that each is the car's.
+fn check(
+    setup: &Setup,
+    uncertainty: &Uncertainty,
+    settings: &Settings,
+) -> Result<(), VerdictError> {
+    let base = settings.base;
+    let expected = format!(
+        "between {} and {} base samples (the verdict runs N (d + 2) times; a power of two keeps the Sobol sequence balanced)",
+        BASE[0], BASE[1]
+    );
+    let within = (BASE[0]..=BASE[1]).contains(&base);
+    require("sobol-base", base as f64, "samples", &expected, within)?;
+    let d = uncertainty.names.len();
+    if 2 * d > DIMENSIONS {
+        return Err(VerdictError::File {
+            path: uncertainty.source.clone(),
+            message: format!(
+                "{d} parameters: Sobol indices take at most {} (the sequence's dimensions)",
+                DIMENSIONS / 2
+            ),
+        });
+    }
+    for end in [&setup.front, &setup.rear].into_iter().flatten() {
+        uncertainty.check(&end.car)?;
+    }
+    Ok(())
+}
+
+/// A judged criterion: its test, name and quantity.
+type Judged = (&'static str, String, Quantity);
+
+/// The judged criteria of the assessed tests, in order.
+fn judged(v: &Verdict) -> Vec<Judged> {
+    let assessed = v.tests.iter().filter(|t| t.skipped.is_none());
+    assessed
+        .flat_map(|t| {
+            let judged = t.criteria.iter().filter(|c| c.outcome != Outcome::Info);
+            judged.map(move |c| (t.test.name, c.name.clone(), c.quantity))
+        })
+        .collect()
+}
+
+/// The verdicts of the drawn cars, each run once and kept for every
+/// criterion.
+struct Runs<'a> {
+    setup: &'a Setup,
+    uncertainty: &'a Uncertainty,
+    judged: &'a [Judged],
+    /// The judged values of each point's car, by the point's bits.
+    cache: Mutex<HashMap<Vec<u64>, Vec<f64>>>,
+    /// The first car that could not be run.
+    failure: Mutex<Option<String>>,
+    progress: &'a (dyn Fn() + Sync),
+}
+
+impl Runs<'_> {
+    /// Criterion `k`'s value at the point `u` (NaN when its car fails).
+    fn value(&self, u: &[f64], k: usize) -> f64 {
+        let key: Vec<u64> = u.iter().map(|x| x.to_bits()).collect();
+        if let Some(values) = self.lock_cache().get(&key) {
+            return values[k];
+        }
+        let values = self.run(u).unwrap_or_else(|why| {
+            let mut failure = self.failure.lock().unwrap_or_else(|e| e.into_inner());
+            failure.get_or_insert(why);
+            vec![f64::NAN; self.judged.len()]
+        });
+        (self.progress)();
+        let value = values[k];
+        self.lock_cache().insert(key, values);
+        value
+    }
+
+    fn lock_cache(&self) -> std::sync::MutexGuard<'_, HashMap<Vec<u64>, Vec<f64>>> {
+        self.cache.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// The judged values of the car at `u`, or why it cannot be judged.
+    fn run(&self, u: &[f64]) -> Result<Vec<f64>, String> {
+        let factors = factors(self.uncertainty, u);
+        let said = |why: String| format!("the car with {}: {why}", self.named(&factors));
+        let drawn = drawn(self.setup, self.uncertainty, &factors)
+            .ok_or_else(|| said("not a valid car".into()))?;
+        let v = verdict(&drawn).map_err(|e| said(e.to_string()))?;
+        let values = judged_values(&v, self.judged);
+        match values.iter().all(|x| x.is_finite()) && values.len() == self.judged.len() {
+            true => Ok(values),
+            false => Err(said("a criterion has no finite value".into())),
+        }
+    }
+
+    fn named(&self, factors: &[f64]) -> String {
+        let names = self.uncertainty.names.iter().zip(factors);
+        let named: Vec<String> = names.map(|(n, f)| format!("{n} ×{f:.4}")).collect();
+        named.join(", ")
+    }
+
+    /// The error of a failed analysis: the first car that failed, else
+    /// the estimator's.
+    fn error(&self, e: SobolError) -> VerdictError {
+        let failure = self.failure.lock().unwrap_or_else(|e| e.into_inner());
+        VerdictError::File {
+            path: self.uncertainty.source.clone(),
+            message: match failure.as_ref() {
+                Some(why) => format!("Sobol indices: {why}"),
+                None => e.to_string(),
+            },
+        }
+    }
+}
+
+/// The values of the judged criteria in `v`, in the order of `judged`
+/// (shorter when a criterion is missing).
+fn judged_values(v: &Verdict, judged: &[Judged]) -> Vec<f64> {
+    judged
+        .iter()
+        .filter_map(|(test, name, _)| {
+            let t = v.tests.iter().find(|t| t.test.name == *test)?;
+            t.criteria.iter().find(|c| c.name == *name).map(|c| c.value)
+        })
+        .collect()
+}
+
+/// The factors `exp(σᵢ Φ⁻¹(uᵢ))` of a point of the unit cube.
+fn factors(uncertainty: &Uncertainty, u: &[f64]) -> Vec<f64> {
+    let tiny = f64::EPSILON;
+    let at = |(s, u): (&f64, &f64)| (s * normal_quantile(u.clamp(tiny, 1.0 - tiny))).exp();
+    uncertainty.log_sd.iter().zip(u).map(at).collect()
+}
+
+/// The set-up with every end's car scaled by `factors`; None when a car
+/// is not valid.
+fn drawn(setup: &Setup, uncertainty: &Uncertainty, factors: &[f64]) -> Option<Setup> {
+    let parts: Vec<_> = (uncertainty.names.iter())
+        .filter_map(|n| crate::uncertainty::part(n))
+        .collect();
+    let mut drawn = setup.clone();
+    for end in [&mut drawn.front, &mut drawn.rear].into_iter().flatten() {
+        // into_iter().next(): the car whether `scaled` gives an Option or a Result
+        let car = crate::uncertainty::scaled(&end.car, &parts, factors)
+            .into_iter()
+            .next()?;
+        *end = CarEnd::new(car, end.limits.clone()).ok()?;
+    }
+    Some(drawn)
+}
+
+/// The largest off-diagonal |r| of the uncertainty's correlation.
+fn largest_correlation(uncertainty: &Uncertainty) -> f64 {
+    let rows = uncertainty.correlation.iter().enumerate();
+    let off = rows.flat_map(|(i, row)| {
+        let cells = row.iter().enumerate().filter(move |(j, _)| *j != i);
+        cells.map(|(_, r)| r.abs())
+    });
+    off.fold(0.0, f64::max)
+}
+
+/// The note of a criterion that does not vary.
+fn constant(quantity: Quantity, value: f64) -> String {
+    format!(
+        "the same value ({}) in every car: no variance to apportion",
+        quantity.format(value)
+    )
+}
+
+/// The standard normal quantile Φ⁻¹(p), p in (0, 1) (Wichura 1988,
+/// algorithm AS 241 `PPND16`, relative error about 1e-16; its
+/// coefficients as published).
+#[allow(clippy::excessive_precision)]
+fn normal_quantile(p: f64) -> f64 {
+    const A: [f64; 8] = [
+        3.387_132_872_796_366_608,
+        133.141_667_891_784_377_45,
+        1_971.590_950_306_551_442_7,
+        13_731.693_765_509_461_125,
+        45_921.953_931_549_871_457,
+        67_265.770_927_008_700_853,
+        33_430.575_583_588_128_105,
+        2_509.080_928_730_122_672_7,
+    ];
+    const B: [f64; 8] = [
+        1.0,
+        42.313_330_701_600_911_252,
+        687.187_007_492_057_908_3,
+        5_394.196_021_424_751_107_7,
+        21_213.794_301_586_595_867,
+        39_307.895_800_092_710_61,
+        28_729.085_735_721_942_674,
+        5_226.495_278_852_854_561,
+    ];
+    const C: [f64; 8] = [
+        1.423_437_110_749_683_577_34,
+        4.630_337_846_156_545_295_9,
+        5.769_497_221_460_691_405_5,
+        3.647_848_324_763_204_605_04,
+        1.270_458_252_452_368_382_58,
+        0.241_780_725_177_450_611_77,
+        0.022_723_844_989_269_184_583_3,
+        7.745_450_142_783_414_076_4e-4,
+    ];
+    const D: [f64; 8] = [
+        1.0,
+        2.053_191_626_637_758_821_87,
+        1.676_384_830_183_803_849_4,
+        0.689_767_334_985_100_004_55,
+        0.148_103_976_427_480_074_59,
+        0.015_198_666_563_616_457_196_6,
+        5.475_938_084_995_344_946e-4,
+        1.050_750_071_644_416_843_24e-9,
+    ];
+    const E: [f64; 8] = [
+        6.657_904_643_501_103_777_2,
+        5.463_784_911_164_114_369_9,
+        1.784_826_539_917_291_335_8,
+        0.296_560_571_828_504_891_23,
+        0.026_532_189_526_576_123_093,
+        0.001_242_660_947_388_078_438_6,
+        2.711_555_568_743_487_578_15e-5,
+        2.010_334_399_292_288_132_65e-7,
+    ];
+    const F: [f64; 8] = [
+        1.0,
+        0.599_832_206_555_887_937_69,
+        0.136_929_880_922_735_805_31,
+        0.014_875_361_290_850_614_852_5,
+        7.868_691_311_456_132_591e-4,
+        1.846_318_317_510_054_681_8e-5,
+        1.421_511_758_316_445_888_7e-7,
+        2.044_263_103_389_939_785_64e-15,
+    ];
+    let ratio = |num: &[f64; 8], den: &[f64; 8], r: f64| {
+        let poly = |c: &[f64; 8]| c.iter().rev().fold(0.0, |acc, &a| acc * r + a);
+        poly(num) / poly(den)
+    };
+    let q = p - 0.5;
+    if q.abs() <= 0.425 {
+        return q * ratio(&A, &B, 0.180_625 - q * q);
+    }
+    let r = (-(p.min(1.0 - p)).ln()).sqrt();
+    let z = match r <= 5.0 {
+        true => ratio(&C, &D, r - 1.6),
+        false => ratio(&E, &F, r - 5.0),
+    };
+    z.copysign(q)
+}
+
+/// The rows of the indices table: test, criterion, the value's mean ± sd
+/// (its unit), parameter, S1 ± its 95 % half-width, ST ± its half-width;
+/// a criterion without indices is one row with its note.
+pub fn rows(s: &Sensitivity) -> Vec<[String; 6]> {
+    let mut rows = Vec::new();
+    for c in &s.criteria {
+        let Some(i) = &c.indices else {
+            let note = c.note.clone().unwrap_or_default();
+            let dash = || "-".to_string();
+            rows.push([
+                c.test.into(),
+                c.criterion.clone(),
+                note,
+                dash(),
+                dash(),
+                dash(),
+            ]);
+            continue;
+        };
+        let q = c.quantity;
+        let value = format!("{} ± {}", q.format(i.mean), q.format(i.variance.sqrt()));
+        for (p, name) in i.names.iter().enumerate() {
+            let first = p == 0;
+            rows.push([
+                if first { c.test.into() } else { String::new() },
+                if first {
+                    c.criterion.clone()
+                } else {
+                    String::new()
+                },
+                if first { value.clone() } else { String::new() },
+                name.clone(),
+                format!("{:.3} ± {:.3}", i.first[p], i.first_conf[p]),
+                format!("{:.3} ± {:.3}", i.total[p], i.total_conf[p]),
+            ]);
+        }
+    }
+    rows
+}
+
+/// The column headers of [`rows`].
+pub const HEADERS: [&str; 6] = [
+    "test",
+    "criterion",
+    "value (mean ± sd)",
+    "parameter",
+    "S1 (1)",
+    "ST (1)",
+];
+
+/// What the indices are, over what, with which samples.
+pub fn caption(s: &Sensitivity) -> String {
+    let spreads: Vec<String> = (s.names.iter().zip(&s.log_sd))
+        .map(|(n, sd)| format!("{n} {:.1} %", 100.0 * sd))
+        .collect();
+    let correlation = match s.unused_correlation > 0.0 {
+        true => format!(
+            "; the source's correlation (largest |r| {:.2}) is not used: Sobol indices assume independent inputs",
+            s.unused_correlation
+        ),
+        false => String::new(),
+    };
+    format!(
+        "Sobol indices of each judged criterion's value over {} (independent log-normal spreads {}{correlation}): N = {} base samples, {} verdicts, bootstrap of {} resamples with seed {}; S1 first order, ST total, dimensionless shares of the value's variance, ± their 95 % half-widths; a value's indices are its margin's too (the limit is fixed)",
+        s.source,
+        spreads.join(", "),
+        s.settings.base,
+        s.evaluations,
+        s.settings.resamples,
+        s.settings.seed
+    )
+}
+
+/// The indices as a text table under their caption.
+pub fn table(s: &Sensitivity) -> String {
+    let rows = rows(s);
+    let widths: Vec<usize> = (0..HEADERS.len() - 1)
+        .map(|i| {
+            let cells = rows.iter().map(|r| r[i].chars().count());
+            cells.chain([HEADERS[i].chars().count()]).max().unwrap_or(0)
+        })
+        .collect();
+    let line = |cells: [&str; 6]| {
+        let padded = widths.iter().zip(cells).map(|(w, c)| format!("{c:<w$}  "));
+        (padded.collect::<String>() + cells[5])
+            .trim_end()
+            .to_string()
+            + "\n"
+    };
+    let mut out = caption(s) + "\n" + &line(HEADERS);
+    for r in &rows {
+        out += &line([&r[0], &r[1], &r[2], &r[3], &r[4], &r[5]].map(|c| c.as_str()));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// AS 241 against statrs's inverse CDF, in the body and both tails.
+    #[test]
+    fn the_normal_quantile_is_statrs_s() {
+        use statrs::distribution::{ContinuousCDF, Normal};
+        let normal = Normal::standard();
+        for p in [
+            1e-300,
+            1e-20,
+            1e-8,
+            0.001,
+            0.02,
+            0.075,
+            0.3,
+            0.5,
+            0.7,
+            0.925,
+            0.99,
+            1.0 - 1e-12,
+        ] {
+            let (ours, theirs) = (normal_quantile(p), normal.inverse_cdf(p));
+            assert!(
+                (ours - theirs).abs() < 1e-9 * theirs.abs().max(1.0),
+                "{p}: {ours} against {theirs}"
+            );
+        }
+        assert_eq!(normal_quantile(0.5), 0.0);
+    }
+}
