@@ -235,6 +235,37 @@ pub struct Response {
     /// (XᵀX)⁻¹ in the order of `terms`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub xtx_inverse: Option<Vec<Vec<f64>>>,
+    /// A fit weighted by the response's standard errors (`doe fit --se`):
+    /// its intervals come from τ² and the covariance, not `residual_sd`
+    /// and `xtx_inverse`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub weighted: Option<Weighted>,
+}
+
+/// How a response was weighted by its standard errors
+/// ([`crate::weighted`]): what prediction needs and what a reader checks.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Weighted {
+    /// The column of standard errors.
+    pub column: String,
+    /// `REML`, or `OLS` when every standard error is zero.
+    pub method: String,
+    /// τ² (unit²); `null` when not estimable (saturated).
+    pub tau2: Option<f64>,
+    /// The coefficients' covariance (XᵀWX)⁻¹ (unit²) in the order of
+    /// `terms`; `null` without τ².
+    pub covariance: Option<Vec<Vec<f64>>>,
+    /// Each run's weight 1/(τ² + s²) (1/unit²).
+    pub weights: Vec<f64>,
+    /// Residual heterogeneity (Cochran's Q_E), when every SE is positive.
+    #[serde(default)]
+    pub heterogeneity: Option<crate::weighted::Heterogeneity>,
+    /// The OLS standard errors by term, for comparison.
+    pub ols_std_errors: BTreeMap<String, Option<f64>>,
+    /// Notes (τ² at 0, not estimable).
+    #[serde(default)]
+    pub notes: Vec<String>,
 }
 
 /// A model file.
@@ -347,18 +378,35 @@ impl ModelFile {
                 ));
             }
             let n = r.terms.as_ref().map_or(0, Vec::len);
-            if let Some(inverse) = &r.xtx_inverse {
-                let square = r.terms.is_some()
-                    && inverse.len() == n
-                    && inverse
-                        .iter()
-                        .all(|row| row.len() == n && row.iter().all(|v| v.is_finite()));
-                if !square {
+            let square = |m: &Vec<Vec<f64>>| {
+                r.terms.is_some()
+                    && m.len() == n
+                    && m.iter()
+                        .all(|row| row.len() == n && row.iter().all(|v| v.is_finite()))
+            };
+            let weighted = r.weighted.as_ref();
+            for (what, matrix) in [
+                ("xtx_inverse", r.xtx_inverse.as_ref()),
+                (
+                    "weighted.covariance",
+                    weighted.and_then(|w| w.covariance.as_ref()),
+                ),
+            ] {
+                if matrix.is_some_and(|m| !square(m)) {
                     return bad(format!(
-                        "response '{}': xtx_inverse must be {n} × {n} finite values (one row and column per term)",
+                        "response '{}': {what} must be {n} × {n} finite values (one row and column per term)",
                         r.name
                     ));
                 }
+            }
+            if let Some(t) = weighted
+                .and_then(|w| w.tau2)
+                .filter(|t| !(t.is_finite() && *t >= 0.0))
+            {
+                return bad(format!(
+                    "response '{}': weighted.tau2 = {t}, expected a finite value ≥ 0",
+                    r.name
+                ));
             }
         }
         Ok(())
@@ -450,30 +498,98 @@ impl Response {
     }
 
     fn intervals(&self, z: &[f64], factors: &[String], value: f64) -> Option<([f64; 2], [f64; 2])> {
+        if let Some(w) = &self.weighted {
+            return self.weighted_intervals(w, z, factors, value);
+        }
         let (terms, inverse, sd, df) = (
             self.terms.as_ref()?,
             self.xtx_inverse.as_ref()?,
             self.residual_sd?,
             self.dof_residual?,
         );
-        let x: Vec<f64> = terms
-            .iter()
-            .map(|t| Term::parse(t, factors).map(|t| t.value(z)))
-            .collect::<Option<_>>()?;
-        let quadratic: f64 = (0..x.len())
-            .map(|a| {
-                (0..x.len())
-                    .map(|b| x[a] * inverse[a][b] * x[b])
-                    .sum::<f64>()
-            })
-            .sum();
+        let quadratic = quadratic_form(terms, inverse, z, factors)?;
         let t = StudentsT::new(0.0, 1.0, df as f64).ok()?.inverse_cdf(0.975);
         let (c, p) = (t * sd * quadratic.sqrt(), t * sd * (1.0 + quadratic).sqrt());
         Some(([value - c, value + c], [value - p, value + p]))
     }
+
+    /// A weighted fit's intervals: the mean's `ŷ ± t sqrt(x₀ᵀ C x₀)` with C
+    /// the covariance (XᵀWX)⁻¹, and a new run's true value's
+    /// `ŷ ± t sqrt(τ² + x₀ᵀ C x₀)` (without a new identification's own
+    /// error), t on n − p degrees of freedom.
+    fn weighted_intervals(
+        &self,
+        w: &Weighted,
+        z: &[f64],
+        factors: &[String],
+        value: f64,
+    ) -> Option<([f64; 2], [f64; 2])> {
+        let (terms, covariance, tau2, df) = (
+            self.terms.as_ref()?,
+            w.covariance.as_ref()?,
+            w.tau2?,
+            self.dof_residual?,
+        );
+        let quadratic = quadratic_form(terms, covariance, z, factors)?;
+        let t = StudentsT::new(0.0, 1.0, df as f64).ok()?.inverse_cdf(0.975);
+        let (c, p) = (t * quadratic.sqrt(), t * (tau2 + quadratic).sqrt());
+        Some(([value - c, value + c], [value - p, value + p]))
+    }
+}
+
+/// `x₀ᵀ M x₀` with x₀ the model terms at coded `z`.
+fn quadratic_form(terms: &[String], m: &[Vec<f64>], z: &[f64], factors: &[String]) -> Option<f64> {
+    let x: Vec<f64> = terms
+        .iter()
+        .map(|t| Term::parse(t, factors).map(|t| t.value(z)))
+        .collect::<Option<_>>()?;
+    Some(
+        (0..x.len())
+            .map(|a| (0..x.len()).map(|b| x[a] * m[a][b] * x[b]).sum::<f64>())
+            .sum(),
+    )
 }
 
 impl Response {
+    /// The model file entry of a response fitted with its standard errors
+    /// in `column`.
+    pub fn from_weighted(
+        name: &str,
+        unit: Option<String>,
+        fitted: &crate::weighted::WeightedFit,
+        column: &str,
+    ) -> Response {
+        let (fit, w) = (&fitted.fit, &fitted.weighting);
+        let mut response = Response::from_fit(name, unit, fit);
+        let reml = w.method != "OLS";
+        if reml {
+            response.xtx_inverse = None;
+        }
+        let covariance = match reml {
+            true => Some(fit.xtx_inverse.clone()),
+            false => w.tau2.map(|t| {
+                let scaled = |row: &Vec<f64>| row.iter().map(|v| v * t).collect();
+                fit.xtx_inverse.iter().map(scaled).collect()
+            }),
+        };
+        response.weighted = Some(Weighted {
+            column: column.into(),
+            method: w.method.clone(),
+            tau2: w.tau2,
+            covariance: w.tau2.and(covariance),
+            weights: w.weights.clone(),
+            heterogeneity: w.heterogeneity,
+            ols_std_errors: fit
+                .terms
+                .iter()
+                .cloned()
+                .zip(w.ols_std_errors.iter().copied())
+                .collect(),
+            notes: w.notes.clone(),
+        });
+        response
+    }
+
     /// The model file entry of a fitted response.
     pub fn from_fit(name: &str, unit: Option<String>, fit: &crate::regression::Fit) -> Response {
         let by_term = |values: &[Option<f64>]| {
@@ -509,6 +625,7 @@ impl Response {
             dof_residual: Some(fit.dof_residual),
             terms: Some(fit.terms.clone()),
             xtx_inverse: Some(fit.xtx_inverse.clone()),
+            weighted: None,
         }
     }
 }
@@ -553,6 +670,7 @@ mod tests {
                 dof_residual: Some(4),
                 terms: Some(vec!["intercept".into()]),
                 xtx_inverse: Some(vec![vec![0.125]]),
+                weighted: None,
             })
     }
 

@@ -25,7 +25,7 @@ pub enum RegressionError {
     Design(String),
     /// A standard error that is not a finite number ≥ 0 whose square is finite.
     #[error(
-        "standard error {value} in row {row}: expected a finite number ≥ 0 whose square (a variance) is a finite number"
+        "standard error {value} in data row {row}: expected a finite number ≥ 0 whose square (a variance) is a finite number"
     )]
     StandardError {
         /// 1-based data row.
@@ -35,7 +35,7 @@ pub enum RegressionError {
     },
     /// A zero standard error beside positive ones.
     #[error(
-        "standard error 0 in row {row} beside {value} in row {positive}: a zero would be an exact identification with infinite weight; give every run a positive standard error, or every run 0 (unweighted)"
+        "standard error 0 in data row {row} beside {value} in data row {positive}: a zero would be an exact identification with infinite weight; give every run a positive standard error, or every run 0 (unweighted)"
     )]
     ZeroStandardError {
         /// 1-based row of the zero.

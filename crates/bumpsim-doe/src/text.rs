@@ -25,25 +25,7 @@ pub fn fit_text(response: &str, unit: Option<&str>, f: &crate::regression::Fit) 
         (None, Some(note)) => format!("{note}\n"),
         _ => "Q² undefined\n".into(),
     };
-    text += &format!(
-        "  {:<12} {:>12} {:>12} {:>9} {:>9} {:>28}\n",
-        "term (coded)", "coefficient", "std. error", "t", "p", "95 % interval"
-    );
-    for j in 0..f.terms.len() {
-        let opt = |v: Option<f64>| v.map_or("-".to_string(), |v| format_number(v, 4));
-        let ci = f.ci95[j].map_or("-".to_string(), |[a, b]| {
-            format!("{} .. {}", format_number(a, 4), format_number(b, 4))
-        });
-        text += &format!(
-            "  {:<12} {:>12} {:>12} {:>9} {:>9} {:>28}\n",
-            f.terms[j],
-            format_number(f.coefficients[j], 5),
-            opt(f.std_errors[j]),
-            opt(f.t[j]),
-            opt(f.p[j]),
-            ci
-        );
-    }
+    text += &coefficient_table(f, None);
     if let Some(sd) = f.residual_sd {
         text += &format!(
             "  residual SD {} {u} ({} degrees of freedom)\n",
@@ -60,6 +42,96 @@ pub fn fit_text(response: &str, unit: Option<&str>, f: &crate::regression::Fit) 
             format_number(l.p, 3)
         );
     }
+    text
+}
+
+/// The coefficient table: term, coefficient, standard error, t, p and 95 %
+/// interval, and an `extra` column of standard errors (title, values).
+fn coefficient_table(f: &crate::regression::Fit, extra: Option<(&str, &[Option<f64>])>) -> String {
+    let opt = |v: Option<f64>| v.map_or("-".to_string(), |v| format_number(v, 4));
+    let column = |v: String| extra.map_or(String::new(), |_| format!(" {v:>14}"));
+    let mut text = format!(
+        "  {:<12} {:>12} {:>12} {:>9} {:>9} {:>28}{}\n",
+        "term (coded)",
+        "coefficient",
+        "std. error",
+        "t",
+        "p",
+        "95 % interval",
+        column(extra.map_or(String::new(), |e| e.0.to_string()))
+    );
+    for j in 0..f.terms.len() {
+        let ci = f.ci95[j].map_or("-".to_string(), |[a, b]| {
+            format!("{} .. {}", format_number(a, 4), format_number(b, 4))
+        });
+        text += &format!(
+            "  {:<12} {:>12} {:>12} {:>9} {:>9} {:>28}{}\n",
+            f.terms[j],
+            format_number(f.coefficients[j], 5),
+            opt(f.std_errors[j]),
+            opt(f.t[j]),
+            opt(f.p[j]),
+            ci,
+            column(extra.map_or(String::new(), |e| opt(e.1[j])))
+        );
+    }
+    text
+}
+
+/// The summary of a response fitted with its standard errors (column
+/// `column`): τ from REML with the standard errors' range and the weights'
+/// shares, the residual heterogeneity, weighted R² and Q², the coefficient
+/// table with the OLS standard errors beside, and the notes.
+pub fn weighted_text(
+    response: &str,
+    unit: Option<&str>,
+    f: &crate::regression::Fit,
+    w: &crate::weighted::Weighting,
+    column: &str,
+) -> String {
+    if w.method == "OLS" {
+        return fit_text(response, unit, f)
+            + &format!("  standard errors ({column}) all 0: unweighted (τ = residual SD)\n");
+    }
+    let u = unit.unwrap_or("-");
+    let se = &w.standard_errors;
+    let (lo, hi) = se
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), s| (a.min(*s), b.max(*s)));
+    let [share_lo, share_hi] = w.share_range();
+    let tau = w.tau2.map_or("not estimable".into(), |t| {
+        format!("{} {u}", format_number(t.sqrt(), 4))
+    });
+    let mut text = format!(
+        "{response} [{u}]: weighted by its standard errors ({column}, {} .. {} {u}): τ (REML) {tau}; weights 1/(τ² + s²) {} .. {} % of their sum\n",
+        format_number(lo, 4),
+        format_number(hi, 4),
+        format_number(100.0 * share_lo, 3),
+        format_number(100.0 * share_hi, 3),
+    );
+    if let Some(h) = &w.heterogeneity {
+        text += &format!(
+            "  residual heterogeneity Q_E {} on {} df, p {} (small p: the runs scatter beyond their standard errors)\n",
+            format_number(h.q, 4),
+            h.df,
+            format_number(h.p, 3)
+        );
+    }
+    let opt = |v: Option<f64>| v.map_or("-".to_string(), |v| format_number(v, 4));
+    text += &format!(
+        "  R² (weighted) {}, adjusted R² {}, Q² (weighted) {}\n",
+        format_number(f.r2, 4),
+        opt(f.r2_adjusted),
+        opt(f.q2)
+    );
+    text += &coefficient_table(f, Some(("OLS std. error", &w.ols_std_errors)));
+    text += &format!(
+        "  intervals: Student t on {} degrees of freedom, covariance (XᵀWX)⁻¹\n",
+        f.dof_residual
+    );
+    w.notes
+        .iter()
+        .for_each(|n| text += &format!("  note: {n}\n"));
     text
 }
 

@@ -52,14 +52,15 @@
 
 use crate::regression::{Anova, Fit, RegressionError, Term, fit};
 use nalgebra::{DMatrix, DVector};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use statrs::distribution::{ChiSquared, ContinuousCDF, StudentsT};
 
 /// Iterations of the Fisher scoring before it gives up.
 pub const MAX_ITERATIONS: usize = 500;
 
 /// Residual heterogeneity: Cochran's Q of the fit weighted by 1/s_i².
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Heterogeneity {
     /// `Q_E = Σ e_i²/s_i²`.
     pub q: f64,

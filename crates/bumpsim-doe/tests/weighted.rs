@@ -127,7 +127,7 @@ fn bad_standard_errors_are_refused_naming_the_row() {
     se[6] = 0.0;
     let err = fit_weighted(&z, &y, &se, &model, &names()).unwrap_err();
     assert!(
-        err.to_string().contains("standard error 0 in row 7"),
+        err.to_string().contains("standard error 0 in data row 7"),
         "{err}"
     );
     let err = fit_weighted(&z, &y, &[0.2; 3], &model, &names()).unwrap_err();
@@ -359,4 +359,56 @@ fn statrs_quantile(df: usize) -> f64 {
     StudentsT::new(0.0, 1.0, df as f64)
         .unwrap()
         .inverse_cdf(0.95)
+}
+
+/// A table with standard error columns: the model file of its weighted fit
+/// reads back and predicts with τ² and the covariance.
+#[test]
+fn model_file_of_a_weighted_fit_predicts_with_its_covariance() {
+    use bumpsim_doe::data::Data;
+    use bumpsim_doe::model::ModelFile;
+    use bumpsim_doe::table_fit::{TableFitSpec, fit_table_weighted};
+    let z = design();
+    let y = response(&z);
+    let mut text = String::from("A [mm],B [mm],y [N],y.se [N]\n");
+    for (i, (r, v)) in z.iter().zip(&y).enumerate() {
+        text += &format!("{},{},{v},{}\n", r[0], r[1], 0.1 + 0.05 * i as f64);
+    }
+    let data = Data::parse(&text, std::path::Path::new("t.csv")).unwrap();
+    let spec = TableFitSpec {
+        factors: names(),
+        responses: vec!["y".into()],
+        interactions: true,
+        ..Default::default()
+    };
+    let (model, fits) = fit_table_weighted(&data, &spec, &["y".parse().unwrap()]).unwrap();
+    let json = serde_json::to_string_pretty(&model).unwrap();
+    let read: ModelFile = serde_json::from_str(&json).unwrap();
+    assert_eq!(read, model);
+    let p = read
+        .predict(&[("A".into(), 0.0), ("B".into(), 0.0)])
+        .unwrap();
+    let (f, w) = (&fits[0].fit, fits[0].weighting.as_ref().unwrap());
+    let [lo, hi] = p.values[0].ci95.unwrap();
+    let [clo, chi] = f.ci95[0].unwrap();
+    assert!((lo - clo).abs() < 1e-12 * clo.abs() && (hi - chi).abs() < 1e-12 * chi.abs());
+    let [plo, phi] = p.values[0].pi95.unwrap();
+    let se = f.std_errors[0].unwrap();
+    let ratio = (phi - plo) / (hi - lo);
+    let expected = (w.tau2.unwrap() + se * se).sqrt() / se;
+    assert!(
+        (ratio - expected).abs() < 1e-9,
+        "{ratio} against {expected}"
+    );
+    // unknown standard error columns and responses are refused by name
+    let missing = fit_table_weighted(&data, &spec, &["y=y_se".parse().unwrap()]).unwrap_err();
+    assert!(
+        missing.to_string().contains("no column 'y_se'"),
+        "{missing}"
+    );
+    let stray = fit_table_weighted(&data, &spec, &["k1".parse().unwrap()]).unwrap_err();
+    assert!(
+        stray.to_string().contains("'k1' is not a fitted response"),
+        "{stray}"
+    );
 }
