@@ -265,6 +265,27 @@ impl Bumper {
         (state.max_compression - state.peak_force / self.unloading).max(0.0)
     }
 
+    /// The bumper with its force scaled by `factor` at every compression
+    /// (and its unloading slope with it).
+    ///
+    /// ```
+    /// let b = bumpsim_impact::Bumper::three_part(1e6, 5e4, 2e6)?.scaled(1.1)?;
+    /// assert!((b.loading_force(1.0) - 5.5e4).abs() < 1e-6);
+    /// # Ok::<(), bumpsim_impact::BumperError>(())
+    /// ```
+    pub fn scaled(&self, factor: f64) -> Result<Bumper, BumperError> {
+        let unloading = self.unloading * factor;
+        match &self.loading {
+            Loading::ThreePart { ramp, plateau } => {
+                Bumper::three_part(ramp * factor, plateau * factor, unloading)
+            }
+            Loading::Table { compression, force } => {
+                let force = force.iter().map(|f| f * factor).collect();
+                Bumper::table(compression.clone(), force, unloading)
+            }
+        }
+    }
+
     /// The steepest slope of the characteristic, N/m (for the time step).
     pub fn stiffest(&self) -> f64 {
         let loading = match &self.loading {

@@ -27,10 +27,12 @@
 pub mod bumper;
 pub mod document;
 pub mod impact;
+pub mod prediction;
 pub mod presets;
 pub mod reduction;
 pub mod synth;
 pub mod text;
+pub mod uncertainty;
 
 pub use bumper::{Bumper, BumperError};
 pub use impact::{ImpactError, ImpactResult, Scenario};

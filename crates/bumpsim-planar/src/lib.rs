@@ -62,6 +62,7 @@ pub mod study;
 pub mod synth;
 pub mod text;
 pub mod tyre;
+pub mod uncertainty;
 
 pub use car::{PlanarCar, PlanarError};
 pub use result::PlanarResult;

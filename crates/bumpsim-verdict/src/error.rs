@@ -73,6 +73,39 @@ pub enum VerdictError {
     },
 }
 
+impl From<bumpsim_planar::uncertainty::UncertaintyError> for VerdictError {
+    fn from(e: bumpsim_planar::uncertainty::UncertaintyError) -> VerdictError {
+        use bumpsim_planar::uncertainty::UncertaintyError as U;
+        match e {
+            U::File { path, message } => VerdictError::File { path, message },
+            U::Value {
+                key,
+                value,
+                unit,
+                expected,
+            } => VerdictError::Value {
+                key,
+                value,
+                unit,
+                expected,
+            },
+            U::Missing {
+                path,
+                key,
+                expected,
+            } => VerdictError::Missing {
+                path,
+                key,
+                expected,
+            },
+            other => VerdictError::File {
+                path: String::new(),
+                message: other.to_string(),
+            },
+        }
+    }
+}
+
 /// `Ok` when `value` is finite and `ok` holds, else a value error naming `key`.
 pub(crate) fn require(
     key: &str,

@@ -1,0 +1,403 @@
+//! Impact predictions as distributions (issue 39, items 3 and 4): a car's
+//! uncertain parameters ([`crate::uncertainty`]) propagated through its
+//! impact, and the Sobol' indices of each scalar output over them.
+//!
+//! - **Spreads and bands**: `N` seeded draws of the car
+//!   ([`Uncertainty::factors`]), each run in parallel
+//!   (`bumpsim_estimate::propagate::through`); each scalar output's median
+//!   and equal-tailed interval (`propagate::spread`) and each history's
+//!   pointwise band (`propagate::band`) on the nominal run's instants
+//!   (at most [`BAND_POINTS`], each draw's history interpolated linearly
+//!   onto them and held at its last value past its end: the step of a
+//!   draw depends on its stiffness). A draw whose car is not valid or
+//!   whose run fails is counted, not used.
+//! - **Sobol' indices** (`bumpsim_estimate::sobol`, Saltelli sampling):
+//!   the inputs are the parameters' **independent** log-normal marginals
+//!   (`ln θᵢ − ln θ̂ᵢ ~ N(0, σᵢ²)`, as [`MARGINAL`] seeded draws); Sobol'
+//!   indices assume independent inputs, so a correlation of the source is
+//!   not used (and said: [`Sensitivity::correlation_ignored`]). Each
+//!   impact runs once for all outputs.
+
+use crate::uncertainty::{Model, Uncertainty, UncertaintyError};
+use bumpsim_core::units::Dimension;
+use bumpsim_estimate::propagate::{Band, Spread, band, spread, through};
+use bumpsim_estimate::sobol::{Indices, Input, Settings, SobolError, indices};
+use serde::Serialize;
+use std::collections::HashMap;
+use std::sync::Mutex;
+
+/// Fewest and most draws of a propagation.
+pub const SAMPLES: [usize; 2] = [10, 100_000];
+/// Most instants of a band.
+pub const BAND_POINTS: usize = 400;
+/// Draws of each log-normal marginal of the Sobol' inputs.
+pub const MARGINAL: usize = 4096;
+
+/// A scalar output of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scalar {
+    /// Its name (`peak force`).
+    pub name: &'static str,
+    /// Its dimension.
+    pub dimension: Dimension,
+    /// Its value, SI.
+    pub value: f64,
+}
+
+/// A history of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct History {
+    /// Its name (`force`).
+    pub name: &'static str,
+    /// Its dimension.
+    pub dimension: Dimension,
+    /// The instants, s.
+    pub time: Vec<f64>,
+    /// The values, SI.
+    pub values: Vec<f64>,
+}
+
+/// What a run gives to a prediction: its scalar outputs and histories.
+pub trait Outputs {
+    /// The scalar outputs (as the summary prints them).
+    fn scalars(&self) -> Vec<Scalar>;
+    /// The histories a band is drawn of.
+    fn histories(&self) -> Vec<History>;
+}
+
+/// How many draws, which seed, which interval.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Sampling {
+    /// Draws, within [`SAMPLES`].
+    pub samples: usize,
+    /// The seed of the draws' streams.
+    pub seed: u64,
+    /// The intervals' level, in (0, 1) (0.9: 5 % to 95 %).
+    pub level: f64,
+}
+
+impl Sampling {
+    /// Checks the draws and the level.
+    pub fn check(&self) -> Result<(), UncertaintyError> {
+        let bad = |key: &str, value, unit, expected: &str| UncertaintyError::Value {
+            key: key.into(),
+            value,
+            unit,
+            expected: expected.into(),
+        };
+        let n = self.samples;
+        if !(SAMPLES[0]..=SAMPLES[1]).contains(&n) {
+            let expected = format!("between {} and {}", SAMPLES[0], SAMPLES[1]);
+            return Err(bad("samples", n as f64, "draws", &expected));
+        }
+        if !(self.level > 0.0 && self.level < 1.0) {
+            return Err(bad("level", self.level, "1", "a probability in (0, 1)"));
+        }
+        Ok(())
+    }
+}
+
+/// A scalar output's distribution.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct OutputSpread {
+    /// The output.
+    pub name: String,
+    /// Its SI unit.
+    pub unit: &'static str,
+    /// Its dimension (for printing).
+    #[serde(skip)]
+    pub dimension: Dimension,
+    /// The nominal car's value.
+    pub nominal: f64,
+    /// Over the draws (`None`: no draw ran).
+    pub spread: Option<Spread>,
+}
+
+/// A history's pointwise band.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct HistoryBand {
+    /// The history.
+    pub name: String,
+    /// Its SI unit.
+    pub unit: &'static str,
+    /// Its dimension (for plotting).
+    #[serde(skip)]
+    pub dimension: Dimension,
+    /// The instants, s.
+    pub time: Vec<f64>,
+    /// The nominal car's values there.
+    pub nominal: Vec<f64>,
+    /// The band over the draws.
+    pub band: Band,
+}
+
+/// An impact predicted over the car's uncertainty.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(bound = "")]
+pub struct Prediction<M> {
+    /// What was propagated.
+    pub uncertainty: Uncertainty<M>,
+    /// Draws, seed and level.
+    pub sampling: Sampling,
+    /// Draws whose car or run failed.
+    pub failed: usize,
+    /// Each scalar output's spread.
+    pub outputs: Vec<OutputSpread>,
+    /// Each history's band.
+    pub bands: Vec<HistoryBand>,
+}
+
+/// One draw's outputs: scalars and histories on the band's instants.
+type Drawn = (Vec<f64>, Vec<Vec<f64>>);
+
+/// Predicts the impact `run` of `car` over `uncertainty` (see the module);
+/// `nominal` is `run`'s result for `car`.
+///
+/// ```
+/// use bumpsim_impact::impact::{Options, Scenario, simulate};
+/// use bumpsim_impact::prediction::{Sampling, predict};
+/// use bumpsim_impact::uncertainty::{ChainCar, ChainUncertainty};
+/// let car = ChainCar {
+///     model: bumpsim_core::model::MsdModel::new(vec![1000.0], vec![], vec![])?,
+///     bumper: bumpsim_impact::Bumper::three_part(1e6, 1e9, 1e6)?,
+/// };
+/// let scenario = Scenario::Barrier { speed: 2.0 };
+/// let run = |c: &ChainCar| simulate(&c.model, &c.bumper, scenario, &Options::default()).ok();
+/// let u = ChainUncertainty::independent("spreads", vec![("bumper.force".into(), 0.1)])?;
+/// let nominal = run(&car).unwrap();
+/// let p = predict(&car, &nominal, &u, &Sampling { samples: 50, seed: 1, level: 0.9 }, &run)?;
+/// let peak = p.outputs[0].spread.unwrap();
+/// assert!(peak.low < nominal.peak_force && nominal.peak_force < peak.high);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn predict<M: Model, R: Outputs>(
+    car: &M::Car,
+    nominal: &R,
+    uncertainty: &Uncertainty<M>,
+    sampling: &Sampling,
+    run: &(dyn Fn(&M::Car) -> Option<R> + Sync),
+) -> Result<Prediction<M>, UncertaintyError> {
+    sampling.check()?;
+    uncertainty.check(car)?;
+    let parts = uncertainty.parts();
+    let lower = uncertainty.cholesky()?;
+    let factors: Vec<Vec<f64>> = (0..sampling.samples as u64)
+        .map(|i| uncertainty.factors(&lower, sampling.seed, i))
+        .collect();
+    let histories = nominal.histories();
+    let at = instants(histories.first().map_or(&[][..], |h| &h.time));
+    let drawn = through(&factors, &|f: &[f64]| {
+        let r = run(&M::scaled(car, &parts, f)?)?;
+        Some(outcome(&r, &at))
+    });
+    let level = sampling.level;
+    let values = |k: usize| drawn.outputs.iter().map(|(s, _)| s[k]).collect::<Vec<_>>();
+    let outputs = nominal.scalars().into_iter().enumerate();
+    let outputs = outputs.map(|(k, s)| OutputSpread {
+        name: s.name.into(),
+        unit: s.dimension.si_symbol(),
+        dimension: s.dimension,
+        nominal: s.value,
+        spread: spread(&values(k), level),
+    });
+    let bands = histories.iter().enumerate().filter_map(|(k, h)| {
+        let drawn: Vec<Vec<f64>> = drawn.outputs.iter().map(|(_, hs)| hs[k].clone()).collect();
+        Some(HistoryBand {
+            name: h.name.into(),
+            unit: h.dimension.si_symbol(),
+            dimension: h.dimension,
+            nominal: resample(&h.time, &h.values, &at),
+            time: at.clone(),
+            band: band(&drawn, level)?,
+        })
+    });
+    Ok(Prediction {
+        uncertainty: uncertainty.clone(),
+        sampling: *sampling,
+        failed: drawn.failed,
+        outputs: outputs.collect(),
+        bands: bands.collect(),
+    })
+}
+
+/// A draw's scalars and its histories on `at`.
+fn outcome<R: Outputs>(r: &R, at: &[f64]) -> Drawn {
+    let scalars = r.scalars().iter().map(|s| s.value).collect();
+    let histories = r.histories();
+    let on = |h: &History| resample(&h.time, &h.values, at);
+    (scalars, histories.iter().map(on).collect())
+}
+
+/// At most [`BAND_POINTS`] of `time`, evenly picked.
+fn instants(time: &[f64]) -> Vec<f64> {
+    let stride = time.len().div_ceil(BAND_POINTS).max(1);
+    time.iter().step_by(stride).copied().collect()
+}
+
+/// `values` at `time` interpolated linearly at `at`; before the first
+/// instant its first value, after the last its last.
+pub fn resample(time: &[f64], values: &[f64], at: &[f64]) -> Vec<f64> {
+    let value = |t: f64| {
+        let k = time.partition_point(|&s| s <= t);
+        match (k, values.get(k)) {
+            (0, _) => values.first().copied().unwrap_or(f64::NAN),
+            (_, None) => values.last().copied().unwrap_or(f64::NAN),
+            (k, Some(&b)) => {
+                let (t0, t1, a) = (time[k - 1], time[k], values[k - 1]);
+                a + (b - a) * (t - t0) / (t1 - t0)
+            }
+        }
+    };
+    at.iter().map(|&t| value(t)).collect()
+}
+
+/// The Sobol' indices of each scalar output over the car's uncertain
+/// parameters (independent marginals; see the module).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Sensitivity {
+    /// The inputs: the parameters' names.
+    pub inputs: Vec<String>,
+    /// The standard deviations of their logarithms.
+    pub log_sd: Vec<f64>,
+    /// Whether the source's correlation was not used (it had one).
+    pub correlation_ignored: bool,
+    /// Base samples N, resamples and seed.
+    pub settings: Settings,
+    /// Per scalar output: its name, unit and indices.
+    pub outputs: Vec<OutputIndices>,
+}
+
+/// One scalar output's indices.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct OutputIndices {
+    /// The output.
+    pub name: String,
+    /// Its SI unit.
+    pub unit: &'static str,
+    /// First-order and total indices with their 95 % bootstrap half-widths.
+    pub indices: Indices,
+}
+
+/// Why indices cannot be computed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SensitivityError {
+    /// The uncertainty does not fit the car.
+    #[error(transparent)]
+    Uncertainty(#[from] UncertaintyError),
+    /// The estimator refused (a failed impact gives a NaN output).
+    #[error("{output}: {source}")]
+    Sobol {
+        /// The output.
+        output: String,
+        /// Why.
+        source: SobolError,
+    },
+}
+
+/// The Sobol' indices of every scalar output of `run` over the car's
+/// uncertain parameters (see the module); `nominal` is `run`'s result for
+/// `car`.
+pub fn sensitivity<M: Model, R: Outputs>(
+    car: &M::Car,
+    nominal: &R,
+    uncertainty: &Uncertainty<M>,
+    settings: &Settings,
+    run: &(dyn Fn(&M::Car) -> Option<R> + Sync),
+) -> Result<Sensitivity, SensitivityError> {
+    uncertainty.check(car)?;
+    let parts = uncertainty.parts();
+    let inputs = marginals(uncertainty, settings.seed);
+    let scalars = nominal.scalars();
+    let cache: Mutex<HashMap<Vec<u64>, Vec<f64>>> = Mutex::new(HashMap::new());
+    let evaluate = |x: &[f64]| -> Vec<f64> {
+        let key: Vec<u64> = x.iter().map(|v| v.to_bits()).collect();
+        let cached = cache.lock().ok().and_then(|c| c.get(&key).cloned());
+        cached.unwrap_or_else(|| {
+            let factors: Vec<f64> = x.iter().map(|v| v.exp()).collect();
+            let r = M::scaled(car, &parts, &factors).and_then(|c| run(&c));
+            let values = r.map_or(vec![f64::NAN; scalars.len()], |r| {
+                r.scalars().iter().map(|s| s.value).collect()
+            });
+            if let Ok(mut c) = cache.lock() {
+                c.insert(key, values.clone());
+            }
+            values
+        })
+    };
+    let outputs = scalars.iter().enumerate().map(|(k, s)| {
+        let output = |x: &[f64]| evaluate(x).get(k).copied().unwrap_or(f64::NAN);
+        let found = indices(&inputs, &output, settings);
+        let source = |source| SensitivityError::Sobol {
+            output: s.name.into(),
+            source,
+        };
+        Ok(OutputIndices {
+            name: s.name.into(),
+            unit: s.dimension.si_symbol(),
+            indices: found.map_err(source)?,
+        })
+    });
+    let r = &uncertainty.correlation;
+    Ok(Sensitivity {
+        inputs: uncertainty.names.clone(),
+        log_sd: uncertainty.log_sd.clone(),
+        correlation_ignored: r.iter().flatten().filter(|&&c| c != 0.0).count() > r.len(),
+        settings: *settings,
+        outputs: outputs.collect::<Result<_, SensitivityError>>()?,
+    })
+}
+
+/// Each parameter's log-normal marginal as [`MARGINAL`] seeded draws of
+/// `ln θᵢ − ln θ̂ᵢ`.
+fn marginals<M: Model>(u: &Uncertainty<M>, seed: u64) -> Vec<Input> {
+    let mut draws = bumpsim_estimate::search::Draws::new(seed, u64::MAX / 2);
+    let normal: Vec<f64> = (0..MARGINAL)
+        .map(|_| bumpsim_estimate::posterior::gaussian(&mut draws))
+        .collect();
+    let input = |(name, s): (&String, &f64)| {
+        Input::draws(name.clone(), normal.iter().map(|z| s * z).collect())
+    };
+    u.names.iter().zip(&u.log_sd).map(input).collect()
+}
+
+impl Outputs for crate::impact::ImpactResult {
+    fn scalars(&self) -> Vec<Scalar> {
+        let scalar = |name, dimension, value| Scalar {
+            name,
+            dimension,
+            value,
+        };
+        vec![
+            scalar("peak force", Dimension::Force, self.peak_force),
+            scalar(
+                "maximum compression",
+                Dimension::Length,
+                self.max_compression,
+            ),
+            scalar(
+                "remaining compression",
+                Dimension::Length,
+                self.remaining_compression,
+            ),
+            scalar("contact time", Dimension::Time, self.contact_time),
+            scalar("absorbed energy", Dimension::Energy, self.absorbed_energy),
+        ]
+    }
+
+    fn histories(&self) -> Vec<History> {
+        let history = |name, dimension, values: &Vec<f64>| History {
+            name,
+            dimension,
+            time: self.time.clone(),
+            values: values.clone(),
+        };
+        vec![
+            history("force", Dimension::Force, &self.force),
+            history("compression", Dimension::Length, &self.compression),
+        ]
+    }
+}
+
+#[cfg(test)]
+mod tests;
