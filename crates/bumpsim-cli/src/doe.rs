@@ -7,7 +7,7 @@ use bumpsim_doe::design::{self, DesignKind, DesignOptions};
 use bumpsim_doe::model::{Factor, ModelFile};
 use bumpsim_doe::reachable::{LinearMap, cell};
 use bumpsim_doe::stiffness::Curve;
-use bumpsim_doe::table_fit::{TableFitSpec, fit_table};
+use bumpsim_doe::table_fit::{StandardErrors, TableFitSpec, fit_table_weighted};
 use bumpsim_doe::text::{prediction_text, reach_text, stiffness_text};
 use bumpsim_report::html::Html;
 use clap::Subcommand;
@@ -81,6 +81,11 @@ pub struct FitArgs {
     /// Add squares.
     #[arg(long)]
     squares: bool,
+    /// Standard errors of responses (identified parameters), comma-separated:
+    /// RESPONSE=COLUMN, or RESPONSE for the column RESPONSE.se; those
+    /// responses are fitted with τ² (REML) and weights 1/(τ² + s²).
+    #[arg(long, value_delimiter = ',')]
+    se: Vec<String>,
     /// Write the model JSON.
     #[arg(long)]
     json: Option<PathBuf>,
@@ -206,12 +211,24 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         interactions: args.interactions,
         squares: args.squares,
     };
-    let (model, fits) = fit_table(&data, &spec).with_context(|| path.display().to_string())?;
+    let se = args
+        .se
+        .iter()
+        .map(|s| s.parse::<StandardErrors>().context("--se"))
+        .collect::<Result<Vec<_>>>()?;
+    let (model, fits) =
+        fit_table_weighted(&data, &spec, &se).with_context(|| path.display().to_string())?;
     let mut page = Html::new(&format!("bumpsim DOE fit: {}", path.display()));
     let mut figures = Vec::new();
     for f in &fits {
         let (response, unit) = (f.name.as_str(), f.unit.as_deref());
-        let text = bumpsim_doe::text::fit_text(response, unit, &f.fit);
+        let column = se.iter().find(|s| s.response == f.name);
+        let text = match (&f.weighting, column) {
+            (Some(w), Some(c)) => {
+                bumpsim_doe::text::weighted_text(response, unit, &f.fit, w, &c.column)
+            }
+            _ => bumpsim_doe::text::fit_text(response, unit, &f.fit),
+        };
         print!("{text}");
         page.heading(&format!(
             "{response}{}",
@@ -322,6 +339,19 @@ fn collect(args: &CollectArgs) -> Result<()> {
     let joined = table
         .with_results(&identified)
         .map_err(|e| anyhow::anyhow!("{}: {e}", design.display()))?;
+    let errors = args
+        .results
+        .iter()
+        .map(|r| bumpsim_doe::data::read_standard_errors(r))
+        .collect::<Result<Vec<_>, _>>()?;
+    let (joined, named) = joined.with_standard_errors(&errors);
+    if !named.is_empty() {
+        println!(
+            "standard errors of {} (columns NAME.se; doe fit --se {})",
+            named.join(", "),
+            named.join(",")
+        );
+    }
     write(&args.output, &joined.to_csv())?;
     println!(
         "{} runs × {} columns",

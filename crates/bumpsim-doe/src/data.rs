@@ -239,6 +239,38 @@ pub fn read_result(path: &Path) -> Result<MsdModel, DataError> {
     Ok(Car::read_model_file(path)?.model)
 }
 
+/// The standard errors an identification result carries
+/// (`uncertainty.names` and `uncertainty.standard_errors` of `bumpsim
+/// identify --json`, SI): `(name, SE)` for each parameter whose SE is a
+/// finite number; empty for a car file or a result without them.
+pub fn read_standard_errors(path: &Path) -> Result<Vec<(String, f64)>, DataError> {
+    let is_json = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"));
+    if !is_json {
+        return Ok(Vec::new());
+    }
+    let text = bumpsim_core::files::read_text(path)?;
+    let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| DataError::Line {
+        path: path.into(),
+        line: e.line(),
+        message: e.to_string(),
+    })?;
+    let uncertainty = &value["uncertainty"];
+    let (Some(names), Some(errors)) = (
+        uncertainty["names"].as_array(),
+        uncertainty["standard_errors"].as_array(),
+    ) else {
+        return Ok(Vec::new());
+    };
+    Ok(names
+        .iter()
+        .zip(errors)
+        .filter_map(|(n, e)| Some((n.as_str()?.to_string(), e.as_f64()?)))
+        .filter(|(_, e)| e.is_finite() && *e >= 0.0)
+        .collect())
+}
+
 /// The line of a CSV error, when known.
 fn csv_line(error: &csv::Error) -> u64 {
     error.position().map_or(0, csv::Position::line)
@@ -279,6 +311,34 @@ impl Data {
             row.extend(r.parameters());
         }
         Ok(out)
+    }
+
+    /// The table with a column `NAME.se [unit]` for each column `NAME`
+    /// whose standard error every run's result carries (`errors[run]`, from
+    /// [`read_standard_errors`]), in the table's column order: what `doe
+    /// fit --se NAME` reads. Returns the table and the names given SEs.
+    pub fn with_standard_errors(&self, errors: &[Vec<(String, f64)>]) -> (Data, Vec<String>) {
+        let mut out = self.clone();
+        let mut named = Vec::new();
+        for (column, name) in self.names.iter().enumerate() {
+            let of_run =
+                |run: &Vec<(String, f64)>| run.iter().find(|(n, _)| n == name).map(|e| e.1);
+            let Some(values) = errors.iter().map(of_run).collect::<Option<Vec<f64>>>() else {
+                continue;
+            };
+            let se = format!("{name}.se");
+            if errors.len() != self.rows.len() || self.names.contains(&se) {
+                continue;
+            }
+            out.names.push(se);
+            out.units.push(self.units[column].clone());
+            out.rows
+                .iter_mut()
+                .zip(&values)
+                .for_each(|(row, v)| row.push(*v));
+            named.push(name.clone());
+        }
+        (out, named)
     }
 
     /// The table as CSV with `name [unit]` headers.

@@ -426,3 +426,225 @@ fn doe_refuses_what_it_would_ignore_mix_up_or_overflow() {
     .concat();
     assert_user_error(&bumpsim(&reach), "expected finite bounds");
 }
+
+/// Issue 39 item 4: `doe fit --se` fits identified parameters with the
+/// identification's standard errors (τ² by REML, weights 1/(τ² + s²)); the
+/// model file carries the weighting and `doe predict` reads it.
+#[test]
+fn doe_fit_with_standard_errors_includes_the_identification() {
+    let dir = scratch("doe-se");
+    let data = root().join("examples/doe/identified.csv");
+    let (weighted, plain) = (dir.join("weighted.json"), dir.join("plain.json"));
+    let fit = |extra: &[&str], json: &std::path::Path| {
+        let mut all = vec!["doe", "fit", data.to_str().unwrap(), "--factors", "Kax,M"];
+        all.extend(["--responses", "k1,c1", "--json", json.to_str().unwrap()]);
+        all.extend_from_slice(extra);
+        bumpsim(&all)
+    };
+    let run = fit(&["--se", "k1,c1=c1.se"], &weighted);
+    let stdout = text(&run.stdout);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert_contains(
+        &stdout,
+        &[
+            "k1 [N/m]: weighted by its standard errors (k1.se, 24992 .. 78447 N/m): τ (REML)",
+            "c1 [Ns/m]: weighted by its standard errors (c1.se",
+            "OLS std. error",
+            "residual heterogeneity Q_E",
+            "note: τ² = 0",
+        ],
+    );
+    assert!(fit(&[], &plain).status.success());
+    let read = |p: &std::path::Path| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
+    };
+    let (w, o) = (read(&weighted), read(&plain));
+    let c1 = &w["responses"][1];
+    assert_eq!(c1["weighted"]["method"], "REML");
+    assert_eq!(c1["weighted"]["tau2"], 0.0);
+    // c1's runs scatter within their SEs: its intervals widen beyond OLS's
+    let span = |r: &serde_json::Value, t: &str| {
+        r["ci95"][t][1].as_f64().unwrap() - r["ci95"][t][0].as_f64().unwrap()
+    };
+    for term in ["intercept", "Kax", "M"] {
+        assert!(span(c1, term) > span(&o["responses"][1], term), "{term}");
+    }
+    let run = bumpsim(&[
+        "doe",
+        "predict",
+        weighted.to_str().unwrap(),
+        "--at",
+        "Kax=23447,M=1528",
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert_contains(
+        &text(&run.stdout),
+        &["c1 = 206684 Ns/m; 95 % CI 202732 .. 210636"],
+    );
+}
+
+/// Hostile standard errors: NaN, negative, beyond a finite square, zero
+/// beside positive ones, a missing column, a column for a response that is
+/// not fitted or does not exist, a factor as SE column, and the model file
+/// over the data: exit 2 naming what is wrong, nothing written.
+#[test]
+fn doe_fit_refuses_bad_standard_errors() {
+    let dir = scratch("doe-se-hostile");
+    let table = |name: &str, cell: &str| {
+        let mut text = String::from("A [mm],y [N],y.se [N]\n");
+        for (i, a) in [0, 1, 2, 0, 1, 2].iter().enumerate() {
+            let se = if i == 1 {
+                cell.to_string()
+            } else {
+                "0.5".into()
+            };
+            text += &format!("{a},{},{se}\n", 1.0 + f64::from(*a) + 0.1 * i as f64);
+        }
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let json = dir.join("model.json");
+    let j = json.to_str().unwrap();
+    let cases: [(std::path::PathBuf, &[&str], &str); 9] = [
+        (
+            table("nan.csv", "nan"),
+            &["--se", "y"],
+            "nan.csv:3: column 'y.se' holds 'nan'",
+        ),
+        (
+            table("negative.csv", "-0.5"),
+            &["--se", "y"],
+            "response 'y' with standard errors 'y.se': standard error -0.5 in data row 2",
+        ),
+        (
+            table("huge.csv", "1e200"),
+            &["--se", "y"],
+            "whose square (a variance)",
+        ),
+        (
+            table("zero.csv", "0"),
+            &["--se", "y"],
+            "standard error 0 in data row 2",
+        ),
+        (
+            table("ok.csv", "0.5"),
+            &["--se", "y=y_se"],
+            "no column 'y_se'",
+        ),
+        (
+            table("ok.csv", "0.5"),
+            &["--se", "k1"],
+            "'k1' is not a fitted response (y)",
+        ),
+        (
+            table("ok.csv", "0.5"),
+            &["--responses", "y.se", "--se", "y"],
+            "'y' is not a fitted response (y.se)",
+        ),
+        (
+            table("ok.csv", "0.5"),
+            &["--se", "y=A"],
+            "'A' is a factor or a response",
+        ),
+        (
+            table("ok.csv", "0.5"),
+            &["--se", "=y.se"],
+            "expected RESPONSE=COLUMN",
+        ),
+    ];
+    for (file, extra, needle) in cases {
+        let mut all = vec!["doe", "fit", file.to_str().unwrap(), "--factors", "A"];
+        if !extra.contains(&"--responses") {
+            all.extend(["--responses", "y"]);
+        }
+        all.extend(["--json", j]);
+        all.extend_from_slice(extra);
+        assert_user_error(&bumpsim(&all), needle);
+        assert!(!json.exists(), "{extra:?}");
+    }
+    // the model file over the data it reads
+    let data = table("ok.csv", "0.5");
+    let d = data.to_str().unwrap();
+    let run = bumpsim(&[
+        "doe",
+        "fit",
+        d,
+        "--factors",
+        "A",
+        "--responses",
+        "y",
+        "--se",
+        "y",
+        "--json",
+        d,
+    ]);
+    assert_user_error(&run, "would overwrite the input");
+    assert!(
+        std::fs::read_to_string(&data)
+            .unwrap()
+            .starts_with("A [mm],y [N],y.se [N]")
+    );
+}
+
+/// `doe collect` appends `NAME.se` for each parameter whose standard error
+/// every result carries (a fixed m1 has none), and `doe fit --se` reads it.
+#[test]
+fn doe_collect_appends_standard_errors_that_doe_fit_reads() {
+    let dir = scratch("doe-collect-se");
+    let design = dir.join("design.csv");
+    let runs = [(21210, 1375), (25684, 1375), (21210, 1681), (25684, 1681)];
+    let mut table = String::from("Kax [N/mm],M [kg]\n");
+    let mut results = Vec::new();
+    for (i, (kax, m)) in runs.iter().enumerate() {
+        table += &format!("{kax},{m}\n");
+        let k1 = 3.9e6 + 20.0 * f64::from(*kax - 23447) - 300.0 * f64::from(*m - 1528);
+        let k1 = k1 + [1.0e4, -2.0e4, -1.5e4, 2.5e4][i];
+        let path = dir.join(format!("r{i}.json"));
+        let json = format!(
+            r#"{{"dof": 2, "masses": [1.0, {m}], "dampers": [2.0e5], "springs": [{k1}],
+            "uncertainty": {{"names": ["m1", "m2", "c1", "k1"],
+            "standard_errors": [null, 15.0, 900.0, {}]}}}}"#,
+            2.0e4 + 5.0e3 * i as f64
+        );
+        std::fs::write(&path, json).unwrap();
+        results.push(path.to_str().unwrap().to_string());
+    }
+    std::fs::write(&design, table).unwrap();
+    let out = dir.join("data.csv");
+    let (d, o) = (design.to_str().unwrap(), out.to_str().unwrap());
+    let run = bumpsim(&[
+        "doe",
+        "collect",
+        d,
+        "--results",
+        &results.join(","),
+        "-o",
+        o,
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(text(&run.stdout).contains("standard errors of m2, c1, k1 (columns NAME.se"));
+    let csv = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(
+        csv.lines().next().unwrap(),
+        "Kax [N/mm],M [kg],m1 [kg],m2 [kg],c1 [Ns/m],k1 [N/m],m2.se [kg],c1.se [Ns/m],k1.se [N/m]"
+    );
+    assert!(csv.lines().nth(4).unwrap().ends_with(",15,900,35000"));
+    let fit = [
+        "doe",
+        "fit",
+        o,
+        "--factors",
+        "Kax,M",
+        "--responses",
+        "k1",
+        "--se",
+        "k1",
+    ];
+    let run = bumpsim(&fit);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(
+        text(&run.stdout)
+            .contains("k1 [N/m]: weighted by its standard errors (k1.se, 20000 .. 35000 N/m)")
+    );
+}
