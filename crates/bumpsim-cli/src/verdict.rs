@@ -1,7 +1,9 @@
 //! `bumpsim verdict`: argument conversion and output around
 //! bumpsim-verdict (issue 36): one car (a planar car file per end with its
 //! `[damageability]`), a protocol set → per test and criterion the verdict
-//! and margin, the assumptions, and on request the bumper target region.
+//! and margin, the assumptions, and on request the bumper target region,
+//! the probability of passing and the Sobol indices over the car's
+//! uncertainty (issue 39).
 //! Exit 0 whether the car passes or not (the verdict is the result); 2 on
 //! bad input.
 
@@ -9,7 +11,8 @@ use crate::{Folder, write};
 use anyhow::{Context, Result};
 use bumpsim_planar::PlanarCar;
 use bumpsim_verdict::prelude::*;
-use bumpsim_verdict::{probability, protocol, target, text};
+use bumpsim_verdict::{probability, protocol, sensitivity, target, text};
+use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 
 /// Arguments of `bumpsim verdict`.
@@ -51,9 +54,24 @@ pub struct Args {
         allow_negative_numbers = true
     )]
     samples: usize,
-    /// Seed of the draws.
+    /// Seed of the draws (and of the Sobol indices' bootstrap).
     #[arg(long, default_value_t = 1, requires = "uncertainty")]
     seed: u64,
+    /// Also the Sobol first-order and total indices of each judged
+    /// criterion's value over the uncertainty's parameters (taken
+    /// independent), with 95 % bootstrap intervals.
+    #[arg(long, requires = "uncertainty")]
+    sobol: bool,
+    /// Base samples N of the Sobol indices: the verdict runs N (d + 2)
+    /// times for d parameters (16 to 8192; a power of two).
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = sensitivity::DEFAULT_BASE,
+        requires = "sobol",
+        allow_negative_numbers = true
+    )]
+    sobol_base: usize,
 }
 
 /// Runs `bumpsim verdict`.
@@ -75,29 +93,59 @@ pub fn run(args: &Args) -> Result<()> {
         .collect::<Result<Vec<_>>>()?;
     let setup = Setup::new(ends, tests, args.margin)?;
     let mut v = verdict(&setup)?;
+    let mut indices = None;
     if let Some(path) = &args.uncertainty {
         let u = Uncertainty::read(path)?;
+        let settings = sensitivity::Settings::new(args.sobol_base, args.seed);
+        if args.sobol {
+            sensitivity::check(&setup, &u, &settings)?;
+        }
         let sampling = Sampling {
             samples: args.samples,
             seed: args.seed,
         };
         probability::propagate(&setup, &mut v, &u, sampling)?;
+        if args.sobol {
+            indices = Some(sobol_indices(&setup, &v, &u, &settings)?);
+        }
     }
     let region = match args.target {
         true => Some(target::search(&setup, &TargetOptions::default())?),
         false => None,
     };
     if let Some(path) = &args.json {
-        let document = serde_json::json!({ "verdict": v, "target": region });
+        let document =
+            serde_json::json!({ "verdict": v, "target": region, "sensitivity": indices });
         write(path, &serde_json::to_string_pretty(&document)?)?;
     }
     if let Some(dir) = &args.report {
-        let (html, figures) = bumpsim_report::verdict::verdict_report(&v, region.as_ref())?;
+        let (html, figures) =
+            bumpsim_report::verdict::verdict_report(&v, region.as_ref(), indices.as_ref())?;
         Folder::report(dir, &html, &figures)?;
     }
     print!("{}", text::table(&v));
     if let Some(r) = &region {
         print!("{}", text::region(r));
     }
+    if let Some(s) = &indices {
+        print!("{}", sensitivity::table(s));
+    }
     Ok(())
+}
+
+/// The Sobol indices with a progress bar over the verdicts they run.
+fn sobol_indices(
+    setup: &Setup,
+    v: &Verdict,
+    u: &Uncertainty,
+    settings: &sensitivity::Settings,
+) -> Result<sensitivity::Sensitivity> {
+    let bar = ProgressBar::new(sensitivity::evaluations(u, settings.base) as u64);
+    let style = ProgressStyle::with_template("{msg} [{bar:30}] {pos}/{len} verdicts ({elapsed})")
+        .unwrap_or(ProgressStyle::default_bar());
+    bar.set_style(style.progress_chars("=> "));
+    bar.set_message("Sobol indices");
+    let s = sensitivity::sensitivity(setup, v, u, settings, &|| bar.inc(1));
+    bar.finish_and_clear();
+    s.context("--sobol")
 }

@@ -6,12 +6,16 @@
 //! and the bumper's crush against its stroke; with a target search, the
 //! force–deflection corridor of the passing bumpers and the table of the
 //! passing force levels with the criterion binding at each boundary
-//! ([`bumpsim_verdict::target`]).
+//! ([`bumpsim_verdict::target`]); with Sobol indices, their table and
+//! per test the total indices of its binding criterion as bars with their
+//! 95 % bootstrap intervals ([`bumpsim_verdict::sensitivity`], issue 39).
 
+use crate::bar::BarPlot;
 use crate::html::Html;
 use crate::plot::{LinePlot, PlotError, Series, Style};
 use bumpsim_core::units::Dimension;
 use bumpsim_planar::PlanarResult;
+use bumpsim_verdict::sensitivity::{self, Sensitivity};
 use bumpsim_verdict::target::{Bound, Region};
 use bumpsim_verdict::verdict::{TestVerdict, Verdict};
 
@@ -36,12 +40,13 @@ const COLOURS: [(&str, &str); 3] = [
 /// ```
 /// use bumpsim_verdict::prelude::*;
 /// let v = Verdict { car: "car".into(), margin: 0.0, tests: vec![], propagation: None };
-/// let (html, figures) = bumpsim_report::verdict::verdict_report(&v, None).unwrap();
+/// let (html, figures) = bumpsim_report::verdict::verdict_report(&v, None, None).unwrap();
 /// assert!(html.contains("every assessed test passes") && figures.is_empty());
 /// ```
 pub fn verdict_report(
     v: &Verdict,
     region: Option<&Region>,
+    indices: Option<&Sensitivity>,
 ) -> Result<(String, Vec<(String, String)>), PlotError> {
     let mut page = Html::new(&format!("bumpsim verdict: {}", v.car));
     page.heading("Verdict");
@@ -57,6 +62,9 @@ pub fn verdict_report(
     let mut figures = Vec::new();
     for t in &v.tests {
         test_figures(&mut page, &mut figures, t)?;
+    }
+    if let Some(s) = indices {
+        sobol(&mut page, &mut figures, s, v)?;
     }
     if let Some(r) = region {
         target(&mut page, &mut figures, r, v)?;
@@ -193,6 +201,48 @@ fn crush(test: &str, r: &PlanarResult, stroke: Option<f64>) -> LinePlot {
     plot
 }
 
+/// The Sobol indices: their table, and per test the total indices of its
+/// binding criterion with their intervals.
+fn sobol(
+    page: &mut Html,
+    figures: &mut Vec<(String, String)>,
+    s: &Sensitivity,
+    v: &Verdict,
+) -> Result<(), PlotError> {
+    page.heading("Sensitivity: Sobol indices");
+    page.paragraph(&sensitivity::caption(s));
+    let rows: Vec<Vec<String>> = sensitivity::rows(s).into_iter().map(Vec::from).collect();
+    page.table(&sensitivity::HEADERS, &rows);
+    for t in &v.tests {
+        let Some(binding) = t.binding() else { continue };
+        let found = s
+            .criteria
+            .iter()
+            .find(|c| c.test == t.test.name && c.criterion == binding.name && c.indices.is_some());
+        let Some(i) = found.and_then(|c| c.indices.as_ref()) else {
+            continue;
+        };
+        let name = format!("{}: {}", t.test.name, binding.name);
+        let plot = BarPlot {
+            title: format!("{name}: total Sobol indices"),
+            y_label: format!(
+                "share of the {} variance, total index S_T [1]",
+                binding.name
+            ),
+            labels: i.names.clone(),
+            values: i.total.clone(),
+            errors: (i.total.iter().zip(&i.total_conf))
+                .map(|(t, c)| Some([t - c, t + c]))
+                .collect(),
+        };
+        let svg = plot.svg()?;
+        page.figure(&svg, &format!("{name} (the test's binding criterion): the total Sobol index of each parameter, the share of the value's variance it takes part in, with its 95 % bootstrap interval"));
+        let stem = crate::file_name(t.test.name);
+        figures.push((format!("{stem}-sobol.svg"), svg));
+    }
+    Ok(())
+}
+
 /// The target region: its corridor plot and its table of limits.
 fn target(
     page: &mut Html,
@@ -315,7 +365,7 @@ mod tests {
         let end = CarEnd::new(car, Damageability::read(&path).unwrap()).unwrap();
         let tests = bumpsim_verdict::protocol::select(&["rcar-bumper-corner-front"]).unwrap();
         let v = verdict(&Setup::new(vec![end], tests, 0.0).unwrap()).unwrap();
-        let (html, figures) = verdict_report(&v, None).unwrap();
+        let (html, figures) = verdict_report(&v, None, None).unwrap();
         let names: Vec<&str> = figures.iter().map(|(n, _)| n.as_str()).collect();
         assert_eq!(
             names,

@@ -28,9 +28,8 @@
 //! estimators need every row.
 //!
 //! ```no_run
-//! use bumpsim_estimate::sobol::Settings;
 //! use bumpsim_verdict::prelude::*;
-//! use bumpsim_verdict::sensitivity::{sensitivity, table};
+//! use bumpsim_verdict::sensitivity::{Settings, sensitivity, table};
 //! let path = std::path::Path::new("examples/verdict/car.toml");
 //! let end = CarEnd::new(bumpsim_planar::PlanarCar::read(path)?, Damageability::read(path)?)?;
 //! let setup = Setup::new(vec![end], bumpsim_verdict::protocol::select(&["part581-barrier-front"])?, 0.0)?;
@@ -45,7 +44,8 @@ use crate::criteria::{Outcome, Quantity};
 use crate::error::{VerdictError, require};
 use crate::uncertainty::Uncertainty;
 use crate::verdict::{CarEnd, Setup, Verdict, verdict};
-use bumpsim_estimate::sobol::{DIMENSIONS, Indices, Input, Settings, SobolError, indices};
+use bumpsim_estimate::sobol::{DIMENSIONS, Input, SobolError, indices};
+pub use bumpsim_estimate::sobol::{Indices, Settings};
 use serde::Serialize;
 use std::collections::HashMap;
 use std::sync::Mutex;
@@ -68,8 +68,9 @@ pub struct CriterionIndices {
     /// The value's indices, its mean and variance (SI) over the cars;
     /// None when it does not vary.
     pub indices: Option<Indices>,
-    /// Why there are no indices.
-    pub note: Option<String>,
+    /// The value, SI, when it is the same in every car (no variance to
+    /// apportion, no indices).
+    pub constant: Option<f64>,
 }
 
 /// The Sobol' indices of every judged criterion.
@@ -122,9 +123,9 @@ pub fn sensitivity(
     let mut criteria = Vec::with_capacity(judged.len());
     for (k, (test, name, quantity)) in judged.iter().enumerate() {
         let output = |u: &[f64]| runs.value(u, k);
-        let (indices, note) = match indices(&inputs, &output, settings) {
+        let (indices, constant) = match indices(&inputs, &output, settings) {
             Ok(i) => (Some(i), None),
-            Err(SobolError::Constant { value }) => (None, Some(constant(*quantity, value))),
+            Err(SobolError::Constant { value }) => (None, Some(value)),
             Err(e) => return Err(runs.error(e)),
         };
         criteria.push(CriterionIndices {
@@ -132,7 +133,7 @@ pub fn sensitivity(
             criterion: name.clone(),
             quantity: *quantity,
             indices,
-            note,
+            constant,
         });
     }
     Ok(Sensitivity {
@@ -146,8 +147,9 @@ pub fn sensitivity(
     })
 }
 
-/// The base samples, the number of parameters and that each is the car's.
-fn check(
+/// Checks the base samples, the number of parameters and that each is
+/// the car's, before anything runs ([`sensitivity`] does too).
+pub fn check(
     setup: &Setup,
     uncertainty: &Uncertainty,
     settings: &Settings,
@@ -304,14 +306,6 @@ fn largest_correlation(uncertainty: &Uncertainty) -> f64 {
     off.fold(0.0, f64::max)
 }
 
-/// The note of a criterion that does not vary.
-fn constant(quantity: Quantity, value: f64) -> String {
-    format!(
-        "the same value ({}) in every car: no variance to apportion",
-        quantity.format(value)
-    )
-}
-
 /// The standard normal quantile Φ⁻¹(p), p in (0, 1) (Wichura 1988,
 /// algorithm AS 241 `PPND16`, relative error about 1e-16; its
 /// coefficients as published).
@@ -395,35 +389,38 @@ fn normal_quantile(p: f64) -> f64 {
 
 /// The rows of the indices table: test, criterion, the value's mean ± sd
 /// (its unit), parameter, S1 ± its 95 % half-width, ST ± its half-width;
-/// a criterion without indices is one row with its note.
+/// a criterion whose value is the same in every car is one row saying so.
 pub fn rows(s: &Sensitivity) -> Vec<[String; 6]> {
     let mut rows = Vec::new();
     for c in &s.criteria {
+        let q = c.quantity;
         let Some(i) = &c.indices else {
-            let note = c.note.clone().unwrap_or_default();
-            let dash = || "-".to_string();
+            let value = c.constant.map_or("-".into(), |v| q.format(v));
+            let none = "no variance to apportion".to_string();
+            let same = format!("{value} in every car");
             rows.push([
                 c.test.into(),
                 c.criterion.clone(),
-                note,
-                dash(),
-                dash(),
-                dash(),
+                same,
+                none,
+                "-".into(),
+                "-".into(),
             ]);
             continue;
         };
-        let q = c.quantity;
         let value = format!("{} ± {}", q.format(i.mean), q.format(i.variance.sqrt()));
         for (p, name) in i.names.iter().enumerate() {
-            let first = p == 0;
-            rows.push([
-                if first { c.test.into() } else { String::new() },
-                if first {
-                    c.criterion.clone()
+            let first = |text: &str| {
+                if p == 0 {
+                    text.to_string()
                 } else {
                     String::new()
-                },
-                if first { value.clone() } else { String::new() },
+                }
+            };
+            rows.push([
+                first(c.test),
+                first(&c.criterion),
+                first(&value),
                 name.clone(),
                 format!("{:.3} ± {:.3}", i.first[p], i.first_conf[p]),
                 format!("{:.3} ± {:.3}", i.total[p], i.total_conf[p]),

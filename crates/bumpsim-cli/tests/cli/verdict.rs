@@ -347,3 +347,162 @@ fn hostile_uncertainty_and_samples_exit_2_and_write_nothing() {
     let alone = verdict(&["--car", car.to_str().unwrap(), "--samples", "20"]);
     assert_user_error(&alone, "--uncertainty");
 }
+
+/// Spreads for the Sobol tests: the bumper's force and the body's mass
+/// drive the barrier test; the tyres' lateral friction cannot (a square
+/// full-width impact).
+const SPREADS: &str =
+    "[uncertainty]\n\"bumper.force\" = 0.15\n\"body.mass\" = 0.1\n\"tyres.mu_lateral\" = 0.3\n";
+
+/// `verdict --sobol` of the barrier test over [`SPREADS`] with `extra`.
+fn sobol(dir: &std::path::Path, extra: &[&str]) -> std::process::Output {
+    let spreads = dir.join("spreads.toml");
+    std::fs::write(&spreads, SPREADS).unwrap();
+    let mut args = vec![
+        "--uncertainty",
+        spreads.to_str().unwrap(),
+        "--samples",
+        "10",
+        "--sobol",
+    ];
+    args.extend_from_slice(extra);
+    example("part581-barrier-front", &args)
+}
+
+/// `--sobol`: the table of S1 and ST per criterion and parameter with its
+/// caption, the JSON's `sensitivity` (the crush driven by the bumper's
+/// force, the lateral friction's total index 0, N (d + 2) verdicts, the
+/// seed u64::MAX kept) and the report's section with the binding
+/// criterion's bars, axes with their unit, no text box overflowing.
+#[test]
+fn sobol_indices_show_what_drives_each_criterion() {
+    let dir = scratch("verdict-sobol");
+    let (json, report) = (dir.join("verdict.json"), dir.join("report"));
+    let run = sobol(
+        &dir,
+        &[
+            "--sobol-base",
+            "32",
+            "--seed",
+            "18446744073709551615",
+            "--json",
+            json.to_str().unwrap(),
+            "--report",
+            report.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    assert_contains(
+        &text(&run.stdout),
+        &[
+            "Sobol indices of each judged criterion's value over",
+            "N = 32 base samples, 160 verdicts",
+            "dimensionless shares of the value's variance",
+            "value (mean ± sd)",
+            "S1 (1)",
+            "ST (1)",
+            "tyres.mu_lateral",
+            " mm ± ",
+        ],
+    );
+    let document: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let s = &document["sensitivity"];
+    assert_eq!(s["evaluations"], 160);
+    assert_eq!(s["settings"]["seed"], u64::MAX);
+    let criteria = s["criteria"].as_array().unwrap();
+    let crush = criteria.iter().find(|c| c["criterion"] == "bumper stroke");
+    let i = &crush.unwrap()["indices"];
+    let total = |name: &str| {
+        let names = i["names"].as_array().unwrap();
+        let k = names.iter().position(|n| n == name).unwrap();
+        i["total"][k].as_f64().unwrap()
+    };
+    assert!(total("bumper.force") > 0.5, "{i}");
+    assert!(total("tyres.mu_lateral").abs() < 1e-9, "{i}");
+    let html = std::fs::read_to_string(report.join("index.html")).unwrap();
+    assert_contains(
+        &html,
+        &[
+            "Sensitivity: Sobol indices",
+            "<th>S1 (1)</th>",
+            "independent log-normal spreads",
+            "the test's binding criterion",
+        ],
+    );
+    let bars = std::fs::read_to_string(report.join("part581-barrier-front-sobol.svg")).unwrap();
+    assert_contains(&bars, &["total index S_T [1]", "tyres.mu_lateral"]);
+    let Some(browser) = chromium() else { return };
+    let wide = overflowing(&browser, &report.join("index.html"));
+    assert_eq!(wide, "[]", "text boxes wider than their box");
+}
+
+/// Hostile `--sobol` flags: exit 2 naming the flag, the file or the key,
+/// and no output left behind; an output named like the uncertainty file
+/// is refused and the file kept.
+#[test]
+fn hostile_sobol_flags_exit_2_and_write_nothing() {
+    let dir = scratch("verdict-sobol-hostile");
+    let (json, report) = (dir.join("out.json"), dir.join("report"));
+    let outputs = [
+        "--json",
+        json.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+    ];
+    for (base, message) in [
+        ("0", "sobol-base = 0 samples: between 16 and 8192"),
+        ("15", "sobol-base = 15 samples"),
+        ("8193", "sobol-base = 8193 samples"),
+        ("NaN", "invalid value 'NaN' for '--sobol-base"),
+        ("-64", "invalid value '-64' for '--sobol-base"),
+        ("1e9", "invalid value '1e9' for '--sobol-base"),
+        ("99999999999999999999999", "--sobol-base"),
+    ] {
+        let mut args = vec!["--sobol-base", base];
+        args.extend_from_slice(&outputs);
+        assert_user_error(&sobol(&dir, &args), message);
+        assert!(
+            !json.exists() && !report.exists(),
+            "{base}: an output was left"
+        );
+    }
+    let car = car();
+    let alone = verdict(&["--car", car.to_str().unwrap(), "--sobol"]);
+    assert_user_error(&alone, "--uncertainty");
+    let spreads = dir.join("spreads.toml");
+    let uncertainty = ["--uncertainty", spreads.to_str().unwrap()];
+    let base_alone = example(
+        "part581-barrier-front",
+        &[&uncertainty[..], &["--sobol-base", "32"]].concat(),
+    );
+    assert_user_error(&base_alone, "--sobol");
+    // 13 parameters: more than the Sobol sequence's 24 dimensions hold
+    let many = dir.join("many.toml");
+    let names = ["masses", "dampers", "springs"].iter().flat_map(|w| {
+        ["left", "right"].map(|side| (0..2).map(move |i| format!("\"{side}.{w}[{i}]\" = 0.1\n")))
+    });
+    let text13: String = names.flatten().collect::<String>() + "\"body.mass\" = 0.1\n";
+    std::fs::write(&many, format!("[uncertainty]\n{text13}")).unwrap();
+    let run = example(
+        "part581-barrier-front",
+        &[
+            "--uncertainty",
+            many.to_str().unwrap(),
+            "--sobol",
+            "--json",
+            json.to_str().unwrap(),
+        ],
+    );
+    assert_user_error(&run, "13 parameters: Sobol indices take at most 12");
+    assert!(!json.exists());
+    for flag in ["--json", "--report"] {
+        let run = sobol(&dir, &[flag, spreads.to_str().unwrap()]);
+        assert_user_error(&run, "spreads.toml");
+        assert_eq!(
+            std::fs::read_to_string(&spreads).unwrap(),
+            SPREADS,
+            "{flag}"
+        );
+    }
+}
