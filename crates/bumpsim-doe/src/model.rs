@@ -497,42 +497,20 @@ impl Response {
         })
     }
 
+    /// The 95 % intervals at coded `z`: of the mean, `ŷ ± t f sqrt(x₀ᵀMx₀)`,
+    /// and of a new observation, `ŷ ± t f sqrt(a + x₀ᵀMx₀)`, t on n − p
+    /// degrees of freedom. OLS: M = (XᵀX)⁻¹, f = σ, a = 1. A weighted fit:
+    /// M = its covariance (XᵀWX)⁻¹, f = 1, a = τ² (the interval of a new
+    /// car's true value, without a new identification's own error).
     fn intervals(&self, z: &[f64], factors: &[String], value: f64) -> Option<([f64; 2], [f64; 2])> {
-        if let Some(w) = &self.weighted {
-            return self.weighted_intervals(w, z, factors, value);
-        }
-        let (terms, inverse, sd, df) = (
-            self.terms.as_ref()?,
-            self.xtx_inverse.as_ref()?,
-            self.residual_sd?,
-            self.dof_residual?,
-        );
-        let quadratic = quadratic_form(terms, inverse, z, factors)?;
+        let (terms, df) = (self.terms.as_ref()?, self.dof_residual?);
+        let (matrix, f, a) = match &self.weighted {
+            Some(w) => (w.covariance.as_ref()?, 1.0, w.tau2?),
+            None => (self.xtx_inverse.as_ref()?, self.residual_sd?, 1.0),
+        };
+        let quadratic = quadratic_form(terms, matrix, z, factors)?;
         let t = StudentsT::new(0.0, 1.0, df as f64).ok()?.inverse_cdf(0.975);
-        let (c, p) = (t * sd * quadratic.sqrt(), t * sd * (1.0 + quadratic).sqrt());
-        Some(([value - c, value + c], [value - p, value + p]))
-    }
-
-    /// A weighted fit's intervals: the mean's `ŷ ± t sqrt(x₀ᵀ C x₀)` with C
-    /// the covariance (XᵀWX)⁻¹, and a new run's true value's
-    /// `ŷ ± t sqrt(τ² + x₀ᵀ C x₀)` (without a new identification's own
-    /// error), t on n − p degrees of freedom.
-    fn weighted_intervals(
-        &self,
-        w: &Weighted,
-        z: &[f64],
-        factors: &[String],
-        value: f64,
-    ) -> Option<([f64; 2], [f64; 2])> {
-        let (terms, covariance, tau2, df) = (
-            self.terms.as_ref()?,
-            w.covariance.as_ref()?,
-            w.tau2?,
-            self.dof_residual?,
-        );
-        let quadratic = quadratic_form(terms, covariance, z, factors)?;
-        let t = StudentsT::new(0.0, 1.0, df as f64).ok()?.inverse_cdf(0.975);
-        let (c, p) = (t * quadratic.sqrt(), t * (tau2 + quadratic).sqrt());
+        let (c, p) = (t * f * quadratic.sqrt(), t * f * (a + quadratic).sqrt());
         Some(([value - c, value + c], [value - p, value + p]))
     }
 }
@@ -649,8 +627,9 @@ mod tests {
             unit,
             coefficients,
             proptest::option::of(value()),
+            proptest::option::of(weighted()),
         )
-            .prop_map(|(name, unit, coefficients, q2)| Response {
+            .prop_map(|(name, unit, coefficients, q2, weighted)| Response {
                 name,
                 unit,
                 std_errors: Some(
@@ -670,8 +649,36 @@ mod tests {
                 dof_residual: Some(4),
                 terms: Some(vec!["intercept".into()]),
                 xtx_inverse: Some(vec![vec![0.125]]),
-                weighted: None,
+                weighted,
             })
+    }
+
+    /// A weighting as `doe fit --se` writes it, τ² and the covariance
+    /// possibly left out (a saturated model).
+    fn weighted() -> impl Strategy<Value = Weighted> {
+        let heterogeneity = (value(), 1..50usize, value())
+            .prop_map(|(q, df, p)| crate::weighted::Heterogeneity { q, df, p });
+        (
+            "[a-zA-Z_.][a-zA-Z0-9_. \u{e9}]{0,8}",
+            proptest::option::of(value()),
+            proptest::option::of(value()),
+            prop::collection::vec(value(), 1..6),
+            proptest::option::of(heterogeneity),
+            proptest::option::of(value()),
+            prop::collection::vec("[ -~\u{3c4}\u{b2}]{0,20}", 0..3),
+        )
+            .prop_map(
+                |(column, tau2, c, weights, heterogeneity, ols, notes)| Weighted {
+                    column,
+                    method: "REML".into(),
+                    tau2,
+                    covariance: c.map(|c| vec![vec![c]]),
+                    weights,
+                    heterogeneity,
+                    ols_std_errors: [("intercept".to_string(), ols)].into(),
+                    notes,
+                },
+            )
     }
 
     fn model() -> impl Strategy<Value = ModelFile> {
