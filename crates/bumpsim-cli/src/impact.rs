@@ -1,6 +1,7 @@
 //! `bumpsim impact` and `bumpsim mass-reduction`: argument conversion and
 //! output around bumpsim-impact.
 
+use crate::planar::uncertain::{self, Uncertain};
 use crate::{Folder, write};
 use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, format_number, format_quantity, parse_quantity};
@@ -8,6 +9,7 @@ use bumpsim_impact::bumper::Bumper;
 use bumpsim_impact::impact::{Options, Scenario, simulate};
 use bumpsim_impact::presets::{PRESETS, ScenarioSpec};
 use bumpsim_impact::reduction::{Criterion, Grid, PaperSweep, TwoDof, equivalent_mass};
+use bumpsim_impact::uncertainty::{Chain, ChainCar};
 use bumpsim_io::car::Car;
 use bumpsim_report::html::Html;
 use indicatif::ProgressBar;
@@ -44,6 +46,8 @@ pub struct ImpactArgs {
     #[arg(long)]
     speed: Option<String>,
     #[command(flatten)]
+    uncertain: crate::planar::UncertaintyArgs,
+    #[command(flatten)]
     files: crate::output::ResultFiles,
 }
 
@@ -65,6 +69,7 @@ fn planar_impact(args: &ImpactArgs) -> Result<()> {
         pendulum: args.pendulum,
         speed: args.speed.as_deref(),
         setup: &crate::planar::SetupArgs::default(),
+        uncertain: &args.uncertain,
         files: &args.files,
     })
 }
@@ -89,6 +94,7 @@ fn widened_impact(args: &ImpactArgs, car: &Car, bumper: &Bumper, width: &str) ->
         pendulum: args.pendulum,
         speed: args.speed.as_deref(),
         setup: &crate::planar::SetupArgs::default(),
+        uncertain: &args.uncertain,
         files: &args.files,
     })
 }
@@ -192,14 +198,24 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
         );
     }
     let (scenario, label) = scenario(args, car.model.total_mass())?;
+    let chain = ChainCar {
+        model: car.model.clone(),
+        bumper: bumper.clone(),
+    };
+    let uncertain = Uncertain::<Chain>::read(&args.uncertain, &chain)?;
     let result = simulate(&car.model, &bumper, scenario, &Options::default())?;
     let warnings = result.warnings();
     warnings.iter().for_each(|w| crate::warn(w));
+    let run = |c: &ChainCar| simulate(&c.model, &c.bumper, scenario, &Options::default()).ok();
+    let predicted = uncertain
+        .map(|u| u.run(&chain, &result, &run))
+        .transpose()?;
     let summary = bumpsim_impact::text::summary(&result)
         + &warnings
             .iter()
             .map(|w| format!("warning: {w}\n"))
-            .collect::<String>();
+            .collect::<String>()
+        + &predicted.as_ref().map_or(String::new(), |p| p.text.clone());
     let name = car
         .name
         .clone()
@@ -208,14 +224,16 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
     print!("{summary}");
     if let Some(path) = &args.files.json {
         let json = bumpsim_impact::document::ImpactSummary::of(scenario, &result);
+        let json = uncertain::with(serde_json::to_value(json)?, &predicted);
         write(path, &serde_json::to_string_pretty(&json)?)?;
     }
     if let Some(path) = &args.files.csv {
         write(path, &bumpsim_impact::text::histories(&result))?;
     }
     if let Some(dir) = &args.files.report {
-        let (html, figures) =
-            bumpsim_report::impact::impact_report(&format!("{name} — {label}"), &summary, &result)?;
+        let title = format!("{name} — {label}");
+        let (html, mut figures) = bumpsim_report::impact::impact_report(&title, &summary, &result)?;
+        uncertain::pages(&predicted, &title, &mut figures)?;
         Folder::report(dir, &html, &figures)?;
     }
     Ok(())

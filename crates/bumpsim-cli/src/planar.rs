@@ -9,6 +9,7 @@ use bumpsim_planar::document::{IdentificationDocument, ImpactDocument};
 use bumpsim_planar::identify::{Prediction, identify, predict};
 use bumpsim_planar::presets::{PRESETS, PlanarPreset, StrikerSpec};
 use bumpsim_planar::study::PlanarStudy;
+use bumpsim_planar::uncertainty::Planar;
 use bumpsim_planar::{PlanarCar, Settings, Side, Striker, simulate};
 use bumpsim_report::planar::CasePage;
 use indicatif::ProgressBar;
@@ -37,7 +38,54 @@ pub struct Args {
     #[command(flatten)]
     setup: SetupArgs,
     #[command(flatten)]
+    uncertain: UncertaintyArgs,
+    #[command(flatten)]
     files: crate::output::ResultFiles,
+}
+
+/// The car's uncertainty options of `impact` and `planar` (issue 39): the
+/// results as distributions, and their Sobol indices.
+#[derive(Debug, clap::Args)]
+pub struct UncertaintyArgs {
+    /// The car's uncertainty: an identification's JSON (identify --json; a 1-D
+    /// car's of a chain study, a planar car's of a planar study) or a TOML
+    /// [uncertainty] table of relative standard deviations (docs/uncertainty.md);
+    /// prints each result's median and interval, the JSON gets the force's band.
+    #[arg(long, value_name = "FILE")]
+    pub uncertainty: Option<PathBuf>,
+    /// Draws of the car's parameters (10 to 100000).
+    #[arg(
+        long,
+        default_value_t = 1000,
+        requires = "uncertainty",
+        allow_negative_numbers = true
+    )]
+    pub samples: usize,
+    /// Seed of the draws (and of the Sobol indices' bootstrap).
+    #[arg(long, default_value_t = 1, requires = "uncertainty")]
+    pub seed: u64,
+    /// Level of the equal-tailed intervals and bands, in (0, 1).
+    #[arg(
+        long,
+        default_value_t = 0.9,
+        requires = "uncertainty",
+        allow_negative_numbers = true
+    )]
+    pub level: f64,
+    /// Also the Sobol first-order and total indices of each result over the
+    /// uncertain parameters (taken independent), with 95 % bootstrap intervals.
+    #[arg(long, requires = "uncertainty")]
+    pub sobol: bool,
+    /// Base samples N of the Sobol indices: N (d + 2) impacts for d
+    /// parameters (16 to 65536).
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 256,
+        requires = "sobol",
+        allow_negative_numbers = true
+    )]
+    pub sobol_base: usize,
 }
 
 /// The test set-up options of `planar`: where the striker starts and how
@@ -121,6 +169,8 @@ pub struct ImpactRequest<'a> {
     pub speed: Option<&'a str>,
     /// The set-up (gap, duration).
     pub setup: &'a SetupArgs,
+    /// The car's uncertainty.
+    pub uncertain: &'a UncertaintyArgs,
     /// Result files.
     pub files: &'a crate::output::ResultFiles,
 }
@@ -194,6 +244,7 @@ pub fn run(args: &Args) -> Result<()> {
         pendulum: args.pendulum,
         speed: args.speed.as_deref(),
         setup: &args.setup,
+        uncertain: &args.uncertain,
         files: &args.files,
     })
 }
@@ -207,12 +258,17 @@ pub fn run_impact(request: &ImpactRequest) -> Result<()> {
         Some((law, _)) => request.car.clone().with_tyre_law(law),
         None => request.car.clone(),
     };
-    let result = simulate(car, &striker, &request.setup.settings()?)?;
+    let settings = request.setup.settings()?;
+    let uncertain = crate::planar::uncertain::Uncertain::<Planar>::read(request.uncertain, car)?;
+    let result = simulate(car, &striker, &settings)?;
     result.warnings.iter().for_each(|w| crate::warn(w));
     let name = car
         .name()
         .map_or_else(|| path.display().to_string(), str::to_string);
-    let summary = bumpsim_planar::text::summary(&result);
+    let run = |c: &PlanarCar| simulate(c, &striker, &settings).ok();
+    let predicted = uncertain.map(|u| u.run(car, &result, &run)).transpose()?;
+    let summary = bumpsim_planar::text::summary(&result)
+        + &predicted.as_ref().map_or(String::new(), |p| p.text.clone());
     let heading = format!(
         "{name}: {} ({label})",
         bumpsim_planar::text::striker(&striker)
@@ -228,6 +284,7 @@ pub fn run_impact(request: &ImpactRequest) -> Result<()> {
             striker: &striker,
             result: &result,
         };
+        let document = crate::planar::uncertain::with(serde_json::to_value(document)?, &predicted);
         write(path, &serde_json::to_string_pretty(&document)?)?;
     }
     if let Some(path) = &request.files.csv {
@@ -236,8 +293,9 @@ pub fn run_impact(request: &ImpactRequest) -> Result<()> {
     if let Some(dir) = &request.files.report {
         let peak = bumpsim_planar::picture::peak_sample(&result);
         let view = bumpsim_planar::picture::top_view(car, &striker, &result, peak)?;
-        let (html, figures) =
+        let (html, mut figures) =
             bumpsim_report::planar::planar_report(&heading, &summary, &result, Some(&view))?;
+        crate::planar::uncertain::pages(&predicted, &heading, &mut figures)?;
         Folder::report(dir, &html, &figures)?;
     }
     Ok(())
@@ -416,4 +474,145 @@ fn forward_predictions<'a>(
         .filter(|c| c.striker.is_some())
         .map(|c| Ok(bumpsim_planar::forward::forward(car, c)?))
         .collect()
+}
+
+/// The car's uncertainty carried through an impact (issue 39), for
+/// `planar` and `impact`: the options read and checked before anything
+/// runs, the prediction and Sobol indices called, their text, JSON and
+/// report page.
+pub(crate) mod uncertain {
+    use super::UncertaintyArgs;
+    use anyhow::{Context, Result};
+    use bumpsim_impact::prediction::{self, HistoryBand, Outputs, Sampling, SobolSettings};
+    use bumpsim_impact::uncertainty::{Model, Uncertainty, UncertaintyError};
+    use bumpsim_report::plot::{LinePlot, Series, Style};
+    use serde_json::Value;
+
+    /// The checked options and the uncertainty they read.
+    pub(crate) struct Uncertain<'a, M: Model> {
+        args: &'a UncertaintyArgs,
+        uncertainty: Uncertainty<M>,
+        sampling: Sampling,
+    }
+
+    /// What a prediction gave: its lines, its JSON and its bands.
+    pub(crate) struct Predicted {
+        /// The lines printed after the summary.
+        pub text: String,
+        prediction: Value,
+        sensitivity: Option<Value>,
+        bands: Vec<HistoryBand>,
+    }
+
+    impl<'a, M: Model> Uncertain<'a, M> {
+        /// The options of `args` checked against `car` (`None`: no --uncertainty).
+        pub(crate) fn read(args: &'a UncertaintyArgs, car: &M::Car) -> Result<Option<Self>> {
+            let Some(path) = &args.uncertainty else {
+                return Ok(None);
+            };
+            let sampling = Sampling {
+                samples: args.samples,
+                seed: args.seed,
+                level: args.level,
+            };
+            sampling.check().map_err(|e| {
+                let flag = match &e {
+                    UncertaintyError::Value { key, .. } => format!("--{key}"),
+                    _ => "--samples".into(),
+                };
+                anyhow::Error::new(e).context(flag)
+            })?;
+            if args.sobol {
+                prediction::check_base(args.sobol_base).context("--sobol-base")?;
+            }
+            let uncertainty = Uncertainty::<M>::read(path).context("--uncertainty")?;
+            uncertainty.check(car).context("--uncertainty")?;
+            Ok(Some(Uncertain {
+                args,
+                uncertainty,
+                sampling,
+            }))
+        }
+
+        /// The prediction of `run` over the uncertainty (and the Sobol
+        /// indices when asked); `nominal` is `run`'s result for `car`.
+        pub(crate) fn run<R: Outputs>(
+            &self,
+            car: &M::Car,
+            nominal: &R,
+            run: &(dyn Fn(&M::Car) -> Option<R> + Sync),
+        ) -> Result<Predicted> {
+            let u = &self.uncertainty;
+            let p = prediction::predict(car, nominal, u, &self.sampling, run)?;
+            let mut text = prediction::lines(&p);
+            let mut sensitivity = None;
+            if self.args.sobol {
+                let settings = SobolSettings::new(self.args.sobol_base, self.args.seed);
+                let s = prediction::sensitivity(car, nominal, u, &settings, run)?;
+                text += &prediction::sensitivity_lines(&s);
+                sensitivity = Some(serde_json::to_value(&s)?);
+            }
+            Ok(Predicted {
+                text,
+                prediction: serde_json::to_value(&p)?,
+                sensitivity,
+                bands: p.bands,
+            })
+        }
+    }
+
+    /// `document` with the prediction and the Sobol indices beside its results.
+    pub(crate) fn with(mut document: Value, predicted: &Option<Predicted>) -> Value {
+        if let (Some(p), Some(fields)) = (predicted, document.as_object_mut()) {
+            fields.insert("prediction".into(), p.prediction.clone());
+            if let Some(s) = &p.sensitivity {
+                fields.insert("sensitivity".into(), s.clone());
+            }
+        }
+        document
+    }
+
+    /// Adds the report's uncertainty page (`uncertainty.html`: the lines and
+    /// each history's band around the nominal curve) and its figures.
+    pub(crate) fn pages(
+        predicted: &Option<Predicted>,
+        title: &str,
+        figures: &mut Vec<(String, String)>,
+    ) -> Result<()> {
+        let Some(p) = predicted else {
+            return Ok(());
+        };
+        let mut page =
+            bumpsim_report::html::Html::new(&format!("{title}: over the car's uncertainty"));
+        page.heading("Results as distributions");
+        page.preformatted(&p.text);
+        for b in &p.bands {
+            let svg = band_plot(b).svg()?;
+            let caption = format!(
+                "{}: nominal (solid) and the {} band over the draws (dashed, pointwise)",
+                b.name,
+                prediction::percent(b.band.level)
+            );
+            page.figure(&svg, &caption);
+            figures.push((format!("{}-band.svg", b.name.replace(' ', "-")), svg));
+        }
+        figures.push(("uncertainty.html".into(), page.finish()));
+        Ok(())
+    }
+
+    /// A history's nominal curve and its band's ends.
+    fn band_plot(b: &HistoryBand) -> LinePlot {
+        let time = bumpsim_core::units::Dimension::Time;
+        let mut plot = LinePlot::new(&format!("{} band", b.name), time, b.dimension);
+        let tail = prediction::percent((1.0 - b.band.level) / 2.0);
+        let head = prediction::percent((1.0 + b.band.level) / 2.0);
+        for (name, values, style) in [
+            ("nominal".to_string(), &b.nominal, Style::Solid),
+            (tail, &b.band.low, Style::Dashed),
+            (head, &b.band.high, Style::Dashed),
+        ] {
+            plot.add(Series::new(&name, b.time.clone(), values.clone(), style));
+        }
+        plot
+    }
 }

@@ -19,8 +19,10 @@
 //!   impact runs once for all outputs.
 
 use crate::uncertainty::{Model, Uncertainty, UncertaintyError};
-use bumpsim_core::units::Dimension;
+use bumpsim_core::units::{Dimension, format_quantity};
 use bumpsim_estimate::propagate::{Band, Spread, band, spread, through};
+/// The Sobol' indices' settings (base samples N, resamples, seed).
+pub use bumpsim_estimate::sobol::Settings as SobolSettings;
 use bumpsim_estimate::sobol::{Indices, Input, Settings, SobolError, indices};
 use serde::Serialize;
 use std::collections::HashMap;
@@ -338,11 +340,10 @@ pub fn sensitivity<M: Model, R: Outputs>(
             indices: found.map_err(source)?,
         })
     });
-    let r = &uncertainty.correlation;
     Ok(Sensitivity {
         inputs: uncertainty.names.clone(),
         log_sd: uncertainty.log_sd.clone(),
-        correlation_ignored: r.iter().flatten().filter(|&&c| c != 0.0).count() > r.len(),
+        correlation_ignored: uncertainty.correlated(),
         settings: *settings,
         outputs: outputs.collect::<Result<_, SensitivityError>>()?,
     })
@@ -397,6 +398,94 @@ impl Outputs for crate::impact::ImpactResult {
             history("compression", Dimension::Length, &self.compression),
         ]
     }
+}
+
+/// Fewest and most base samples of the Sobol' indices.
+pub const SOBOL_BASE: [usize; 2] = [16, 65_536];
+
+/// Checks the Sobol' indices' base samples N.
+pub fn check_base(base: usize) -> Result<(), UncertaintyError> {
+    match (SOBOL_BASE[0]..=SOBOL_BASE[1]).contains(&base) {
+        true => Ok(()),
+        false => Err(UncertaintyError::Value {
+            key: "base".into(),
+            value: base as f64,
+            unit: "samples",
+            expected: format!("between {} and {}", SOBOL_BASE[0], SOBOL_BASE[1]),
+        }),
+    }
+}
+
+/// A level as a percentage: `90 %`, `97.5 %`.
+pub fn percent(level: f64) -> String {
+    format!("{} %", (1e6 * 100.0 * level).round() / 1e6)
+}
+
+/// The lines a prediction prints: what was propagated, then each scalar
+/// output's nominal value, median and interval with units.
+pub fn lines<M: Model>(p: &Prediction<M>) -> String {
+    let u = &p.uncertainty;
+    let spreads = u.names.iter().zip(&u.log_sd);
+    let spreads: Vec<String> = spreads
+        .map(|(n, s)| format!("{n} {:.1} %", 100.0 * s))
+        .collect();
+    let correlated = if u.correlated() { ", correlated" } else { "" };
+    let level = percent(p.sampling.level);
+    let mut out = format!(
+        "over {} ({} draws, seed {}, {} failed; log-normal spreads {}{correlated}): median and {level} interval\n",
+        u.source,
+        p.sampling.samples,
+        p.sampling.seed,
+        p.failed,
+        spreads.join(", ")
+    );
+    for o in &p.outputs {
+        let q = |v| format_quantity(v, o.dimension);
+        let spread = o.spread.map_or("no draw ran".into(), |s| {
+            format!(
+                "median {}, {level} {} .. {}",
+                q(s.median),
+                q(s.low),
+                q(s.high)
+            )
+        });
+        out += &format!("  {:<30} {:>12}   {spread}\n", o.name, q(o.nominal));
+    }
+    u.left_out
+        .iter()
+        .for_each(|l| out += &format!("  not propagated: {l}\n"));
+    out
+}
+
+/// The Sobol' indices as a table: per output and parameter the
+/// first-order and total index with their 95 % bootstrap half-widths.
+pub fn sensitivity_lines(s: &Sensitivity) -> String {
+    let evaluations = s.outputs.first().map_or(0, |o| o.indices.evaluations);
+    let mut out = format!(
+        "Sobol indices over independent log-normal parameters (N = {}, {evaluations} impacts, {} bootstrap resamples, seed {}): first order S, total S_T, ± 95 %\n",
+        s.settings.base, s.settings.resamples, s.settings.seed
+    );
+    if s.correlation_ignored {
+        out += "  the source's correlation is not used: Sobol indices assume independent inputs\n";
+    }
+    out += &format!(
+        "  {:<30} {:<24} {:>16} {:>16}\n",
+        "output", "parameter", "S", "S_T"
+    );
+    for o in &s.outputs {
+        let i = &o.indices;
+        for (k, name) in i.names.iter().enumerate() {
+            let pm = |v: f64, c: f64| format!("{v:.3} ± {c:.3}");
+            out += &format!(
+                "  {:<30} {:<24} {:>16} {:>16}\n",
+                o.name,
+                name,
+                pm(i.first[k], i.first_conf[k]),
+                pm(i.total[k], i.total_conf[k])
+            );
+        }
+    }
+    out
 }
 
 #[cfg(test)]

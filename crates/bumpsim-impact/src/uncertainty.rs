@@ -164,7 +164,7 @@ impl<M: Model> Uncertainty<M> {
             message,
         };
         for (name, &s) in found.names.iter().zip(&found.log_sd) {
-            spread(name, s)?;
+            spread(&format!("{source}: {name}"), s)?;
             if M::part(name).is_none() {
                 let names = M::NAMES;
                 return Err(file(format!(
@@ -267,6 +267,13 @@ impl<M: Model> Uncertainty<M> {
             .zip(sd)
             .map(|(row, s)| (s * z(row)).exp())
             .collect()
+    }
+
+    /// Whether any two parameters are correlated.
+    pub fn correlated(&self) -> bool {
+        let r = self.correlation.iter().enumerate();
+        r.flat_map(|(i, row)| row.iter().enumerate().filter(move |(j, _)| *j != i))
+            .any(|(_, &c)| c != 0.0)
     }
 
     /// The parts the names denote, in order.

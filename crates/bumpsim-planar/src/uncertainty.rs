@@ -172,15 +172,12 @@ impl Model for Planar {
 
 /// The spreads of a planar identification's JSON document.
 fn identified(doc: &serde_json::Value, source: &str) -> Result<Identified, UncertaintyError> {
-    let wrong = || {
-        unreadable(
-            source,
-            "expected a planar identification's JSON (bumpsim identify --json on a planar study) with result.parameters and result.uncertainty.correlation",
-        )
-    };
+    let no_parameters = "expected a planar identification's JSON (bumpsim identify --json on a planar study): no result.parameters";
+    let no_correlation =
+        "no result.uncertainty.correlation: expected a planar identification's JSON";
     let result = doc.get("result").unwrap_or(doc);
     let parameters = result.get("parameters").and_then(|p| p.as_array());
-    let parameters = parameters.ok_or_else(wrong)?;
+    let parameters = parameters.ok_or_else(|| unreadable(source, no_parameters))?;
     let mut found = Identified::default();
     let mut kept = Vec::new();
     for (i, p) in parameters.iter().enumerate() {
@@ -203,7 +200,7 @@ fn identified(doc: &serde_json::Value, source: &str) -> Result<Identified, Uncer
         .get("uncertainty")
         .and_then(|u| u.get("correlation"))
         .and_then(|c| c.as_array())
-        .ok_or_else(wrong)?;
+        .ok_or_else(|| unreadable(source, no_correlation))?;
     let pointer = "result.uncertainty.correlation";
     found.correlation =
         bumpsim_impact::uncertainty::kept_correlation(matrix, &kept, pointer, source)?;

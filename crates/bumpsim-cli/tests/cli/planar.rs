@@ -514,3 +514,146 @@ fn a_gap_a_duration_and_the_tyres_are_the_users_set_up() {
         assert_user_error(&run, named);
     }
 }
+
+/// `planar` and `impact` with a planar car over the car's uncertainty: the
+/// spreads printed with units, the JSON's spreads (each 90 % interval holds
+/// its median), the force's and crush's bands, Sobol indices (the bumper's
+/// force drives the peak force: the largest total index), the report's
+/// page; the same seed gives the same JSON bytes.
+#[test]
+fn planar_impacts_predict_spreads_bands_and_sobol_indices() {
+    let dir = scratch("planar-uncertainty");
+    let spreads = root().join("examples/verdict/uncertainty.toml");
+    let report = dir.join("report");
+    let extra = |report: &Option<String>| {
+        let mut a = vec!["--case", "rcar-structural-front", "--uncertainty"];
+        a.push(spreads.to_str().unwrap());
+        a.extend([
+            "--samples",
+            "20",
+            "--seed",
+            "3",
+            "--sobol",
+            "--sobol-base",
+            "16",
+        ]);
+        if let Some(r) = report {
+            a.extend(["--report", r.as_str()]);
+        }
+        a.into_iter().map(String::from).collect::<Vec<String>>()
+    };
+    let first = extra(&Some(report.to_str().unwrap().to_string()));
+    let v = run_json(
+        &dir,
+        "first",
+        &first.iter().map(String::as_str).collect::<Vec<_>>(),
+    );
+    let outputs = v["prediction"]["outputs"].as_array().unwrap();
+    assert_eq!(outputs.len(), 6);
+    for o in outputs {
+        let s = &o["spread"];
+        assert!(number(s, &["low"]) <= number(s, &["median"]), "{o}");
+        assert!(number(s, &["median"]) <= number(s, &["high"]), "{o}");
+    }
+    assert_eq!(v["prediction"]["bands"][0]["name"], "force");
+    assert_eq!(v["prediction"]["bands"][1]["name"], "deepest crush");
+    let peak = &v["sensitivity"]["outputs"][0]["indices"];
+    let names: Vec<&str> = peak["names"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n.as_str().unwrap())
+        .collect();
+    let total: Vec<f64> = peak["total"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t.as_f64().unwrap())
+        .collect();
+    let largest = (0..total.len())
+        .max_by(|&a, &b| total[a].total_cmp(&total[b]))
+        .unwrap();
+    assert_eq!(names[largest], "bumper.force", "{total:?}");
+    assert!(
+        report.join("uncertainty.html").exists() && report.join("deepest-crush-band.svg").exists()
+    );
+    let second = extra(&None);
+    let again = run_json(
+        &dir,
+        "again",
+        &second.iter().map(String::as_str).collect::<Vec<_>>(),
+    );
+    assert_eq!(v, again);
+    assert_eq!(
+        std::fs::read(dir.join("first.json")).unwrap(),
+        std::fs::read(dir.join("again.json")).unwrap()
+    );
+    let car = saloon();
+    let run = bumpsim(&[
+        "impact",
+        "--car",
+        car.to_str().unwrap(),
+        "--case",
+        "rcar-structural-front",
+        "--uncertainty",
+        spreads.to_str().unwrap(),
+        "--samples",
+        "10",
+    ]);
+    let stdout = text(&run.stdout);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert_contains(
+        &stdout,
+        &[
+            "(10 draws, seed 1, 0 failed; log-normal spreads",
+            "peak yaw rate",
+            "deg/s   median",
+        ],
+    );
+}
+
+/// A chain identification's JSON, a chain's parameter name, a NaN spread
+/// or a bad level for a planar car: exit 2 naming the file or parameter.
+#[test]
+fn planar_refuses_hostile_uncertainty_files() {
+    let dir = scratch("planar-uncertainty-hostile");
+    let file = |name: &str, text: &str| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        path.to_str().unwrap().to_string()
+    };
+    let chain = r#"{"dof": 1, "masses": [1000.0], "uncertainty": {"names": ["m1"], "standard_errors": [10.0], "correlation": [[1.0]]}}"#;
+    let spreads = file("ok.toml", "[uncertainty]\n\"body.mass\" = 0.05\n");
+    let cases = [
+        (file("chain.json", chain), vec![], "no result.parameters"),
+        (
+            file("chain.toml", "[uncertainty]\n\"masses[0]\" = 0.1\n"),
+            vec![],
+            "'masses[0]' is not a parameter of the car",
+        ),
+        (
+            file("nan.toml", "[uncertainty]\n\"body.mass\" = nan\n"),
+            vec![],
+            "body.mass = NaN",
+        ),
+        (spreads.clone(), vec!["--level", "-0.5"], "--level"),
+        (spreads, vec!["--samples", "0"], "--samples"),
+    ];
+    let car = saloon();
+    let json = dir.join("out.json");
+    for (uncertainty, extra, needle) in cases {
+        let mut args = vec![
+            "planar",
+            "--car",
+            car.to_str().unwrap(),
+            "--speed",
+            "2",
+            "--uncertainty",
+            &uncertainty,
+        ];
+        args.extend(extra);
+        args.extend(["--json", json.to_str().unwrap()]);
+        assert_user_error(&bumpsim(&args), needle);
+        assert!(!json.exists(), "{needle}: nothing written");
+    }
+}
