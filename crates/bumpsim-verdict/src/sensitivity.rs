@@ -422,12 +422,22 @@ pub fn rows(s: &Sensitivity) -> Vec<[String; 6]> {
                 first(&c.criterion),
                 first(&value),
                 name.clone(),
-                format!("{:.3} ± {:.3}", i.first[p], i.first_conf[p]),
-                format!("{:.3} ± {:.3}", i.total[p], i.total_conf[p]),
+                share(i.first[p], i.first_conf[p]),
+                share(i.total[p], i.total_conf[p]),
             ]);
         }
     }
     rows
+}
+
+/// An index with its half-width, `0.885 ± 0.365` (a rounded −0 as 0).
+fn share(index: f64, half_width: f64) -> String {
+    let index = format!("{index:.3}");
+    let index = index
+        .strip_prefix('-')
+        .filter(|i| *i == "0.000")
+        .unwrap_or(&index);
+    format!("{index} ± {half_width:.3}")
 }
 
 /// The column headers of [`rows`].
