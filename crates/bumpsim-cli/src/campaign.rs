@@ -149,6 +149,13 @@ fn run_init(args: &InitArgs) -> Result<()> {
         .output
         .clone()
         .unwrap_or_else(|| args.campaign.with_extension(""));
+    // the library moves the folder into place itself: a standard output that
+    // cannot be printed to (`> /dev/full`) stops the command before it does
+    println!(
+        "initialising campaign {} from {}",
+        dir.display(),
+        args.campaign.display()
+    );
     let summary = init::init(&args.campaign, &dir)?;
     if let Some(resolution) = summary.resolution {
         println!("resolution {resolution}");

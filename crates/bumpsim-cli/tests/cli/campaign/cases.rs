@@ -90,3 +90,23 @@ fn a_damaged_point_folder_is_named_by_its_state_record() {
     assert_user_error(&out, "`bumpsim campaign init CAMPAIGN.toml -o");
     assert_eq!(fake.invocations("0001"), 0, "nothing ran");
 }
+
+/// `campaign init` with a standard output that cannot be printed to (`>
+/// /dev/full`) is refused before the campaign folder is created: it said
+/// "no output was written" with the whole folder in place (hostile pass of
+/// issue 34).
+#[test]
+fn an_unprintable_standard_output_leaves_no_campaign_folder() {
+    let fake = Fake::new("campaign-case-dev-full", 0, &NO_FAULTS, "local");
+    let folder = fake.dir.join("full");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_bumpsim"))
+        .args(["campaign", "init"])
+        .arg(fake.dir.join("campaign.toml"))
+        .arg("-o")
+        .arg(&folder)
+        .stdout(std::fs::File::create("/dev/full").unwrap())
+        .output()
+        .unwrap();
+    assert_user_error(&out, "cannot print the results");
+    assert!(!folder.exists(), "a refused init left its folder");
+}
