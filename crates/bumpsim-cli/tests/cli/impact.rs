@@ -467,6 +467,25 @@ fn impact_predicts_the_analytic_band_and_sobol_indices() {
         std::fs::read(&json).unwrap(),
         std::fs::read(&again).unwrap()
     );
+    // one thread gives the same bytes as the default pool
+    let single = dir.join("single.json");
+    let mut one = vec![
+        "impact".to_string(),
+        "--car".into(),
+        car.to_str().unwrap().into(),
+    ];
+    one.extend(["--bumper".into(), bumper.to_str().unwrap().into()]);
+    one.extend(args(&single));
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_bumpsim"))
+        .args(&one)
+        .env("RAYON_NUM_THREADS", "1")
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert_eq!(
+        std::fs::read(&json).unwrap(),
+        std::fs::read(&single).unwrap()
+    );
 }
 
 /// Hostile --uncertainty, --samples, --level and --sobol-base: exit 2
