@@ -8,6 +8,7 @@
 //! arguments onto it.
 
 use anyhow::{Context, Result};
+use bumpsim_io::output::Shape;
 use std::path::Path;
 use std::sync::Mutex;
 
@@ -51,10 +52,26 @@ const OUTPUT_IDS: [&str; 9] = [
     "iso_mme",
 ];
 
-/// Output ids that name folders (`output` only for `synth` and `campaign init`).
-fn is_folder_output(command: &str, id: &str) -> bool {
-    matches!(id, "report" | "plot" | "iso_mme" | "work")
-        || (matches!(command, "synth" | "init") && id == "output")
+/// What the output of argument `id` is: folders (`output` only for
+/// `synth` and `campaign init`) with the kinds of file they write.
+fn output_shape(command: &str, id: &str) -> Shape {
+    match id {
+        "report" | "plot" => Shape::Folder(&["html", "svg", "png"]),
+        "iso_mme" => Shape::Folder(&[]),
+        // fe impact checks its own solver files' names (bumpsim_fe::run::in_work)
+        "work" => Shape::Checked,
+        "output" if matches!(command, "synth" | "init") => Shape::Folder(&[]),
+        _ => Shape::File,
+    }
+}
+
+/// The command-line option of an output argument id (`iso_mme`:
+/// `--iso-mme`), as a refusal names it.
+fn option_name(id: &str) -> String {
+    match id {
+        "car_out" => "--car".into(),
+        other => format!("--{}", other.replace('_', "-")),
+    }
 }
 
 /// The result files of a simulation command (`impact`, `planar`).
@@ -113,11 +130,11 @@ pub(crate) fn guard_paths(matches: &clap::ArgMatches) -> Result<()> {
     }
     for id in ids.iter().filter(|id| OUTPUT_IDS.contains(&id.as_str())) {
         for path in values(id) {
-            bumpsim_io::output::claim_output(&path)?;
-            if is_folder_output(&command, id) {
-                bumpsim_io::output::check_folder(&path)?;
-            } else {
-                bumpsim_io::output::check_file(&path)?;
+            let shape = output_shape(&command, id);
+            bumpsim_io::output::claim_output_as(&path, &option_name(id), shape)?;
+            match shape {
+                Shape::Folder(_) | Shape::Checked => bumpsim_io::output::check_folder(&path)?,
+                Shape::File => bumpsim_io::output::check_file(&path)?,
             }
         }
     }

@@ -11,6 +11,8 @@ use std::time::{Duration, Instant};
 
 use crate::util::{copy_tree, root};
 
+mod commit;
+
 fn scratch(test: &str) -> PathBuf {
     crate::util::scratch(&format!("robustness-{test}"))
 }
@@ -371,72 +373,6 @@ fn simulate_warns_on_a_stiff_model_and_strict_exits_2() {
     huge[2] = "ex/simulate/car-3dof.toml";
     huge.extend(["--initial-velocity", "1e308"]);
     user_error(&dir, &huge, "non-finite");
-}
-
-/// A force CSV with `rows` samples (10 kHz, a half-sine pulse).
-fn long_force(path: &Path, rows: usize) {
-    let mut text = String::from("time [s],force [N]\n");
-    for k in 0..rows {
-        let f = 4.0e4 * (std::f64::consts::PI * k as f64 / rows as f64).sin();
-        text.push_str(&format!("{},{f}\n", k as f64 * 1e-4));
-    }
-    std::fs::write(path, text).unwrap();
-}
-
-/// Kills `args` after increasing delays; each time the output must be the
-/// complete old file or a complete new one (`complete` decides).
-fn kill_during_write(dir: &Path, args: &[&str], output: &str, complete: &dyn Fn(&[u8]) -> bool) {
-    let old = b"old complete output\n".to_vec();
-    for delay_ms in [50u64, 200, 500, 1000, 2000, 4000] {
-        std::fs::write(dir.join(output), &old).unwrap();
-        let mut child = Command::new(env!("CARGO_BIN_EXE_bumpsim"))
-            .args(args)
-            .current_dir(dir)
-            .stdout(std::process::Stdio::null())
-            .stderr(std::process::Stdio::null())
-            .spawn()
-            .unwrap();
-        std::thread::sleep(Duration::from_millis(delay_ms));
-        let _ = child.kill(); // SIGKILL on Unix
-        let _ = child.wait();
-        let now = snapshot(&dir.join(output));
-        assert!(
-            now == old || complete(&now),
-            "{args:?} killed after {delay_ms} ms left a partial {output} ({} bytes)",
-            now.len()
-        );
-    }
-}
-
-#[test]
-fn sigkill_during_a_write_leaves_old_or_new_file() {
-    let dir = examples("sigkill");
-    let rows = 400_000;
-    long_force(&dir.join("long.csv"), rows);
-    let simulate = [
-        "simulate",
-        "--car",
-        "ex/simulate/car-3dof.toml",
-        "--force",
-        "long.csv",
-        "-o",
-        "keep.csv",
-    ];
-    kill_during_write(&dir, &simulate, "keep.csv", &|bytes| {
-        bytes.ends_with(b"\n") && bytes.iter().filter(|&&b| b == b'\n').count() == rows + 1
-    });
-    let identify = [
-        "identify",
-        "ex/identify/study.toml",
-        "--starts",
-        "2",
-        "--quiet",
-        "--json",
-        "keep.json",
-    ];
-    kill_during_write(&dir, &identify, "keep.json", &|bytes| {
-        serde_json::from_slice::<serde_json::Value>(bytes).is_ok()
-    });
 }
 
 #[test]

@@ -30,6 +30,11 @@ pub enum OutputError {
         /// The first one, as given.
         first: PathBuf,
     },
+    /// An output lies inside another output of the command (a file in a
+    /// report folder, a plot folder in a work folder): the outer one, moved
+    /// into place whole, would mix with or drop the inner one.
+    #[error("{0}")]
+    InsideOutput(Box<Nesting>),
     /// A folder is needed but the path is an existing file.
     #[error("{path}: exists and is not a folder (a folder is needed here)")]
     NotAFolder {
@@ -75,6 +80,40 @@ pub enum OutputError {
         /// The cause.
         source: std::io::Error,
     },
+}
+
+/// An output inside another output of one command ([`OutputError::InsideOutput`]).
+#[derive(Debug)]
+pub struct Nesting {
+    /// The inner output's path.
+    pub output: PathBuf,
+    /// The option that names it (`--json`), or empty.
+    pub option: String,
+    /// The output it lies in.
+    pub outer: PathBuf,
+    /// The option that names that one (`--report`), or empty.
+    pub outer_option: String,
+    /// Why one would replace or drop the other.
+    pub reason: String,
+}
+
+impl std::fmt::Display for Nesting {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (inner, outer) = (named(&self.option, "the output"), self.outer.display());
+        write!(
+            f,
+            "{inner} {}: refusing to write two outputs to one path: it lies inside {} {outer}, \
+             another output of this command ({}); give {inner} a path outside {outer}",
+            self.output.display(),
+            named(&self.outer_option, "the output"),
+            self.reason
+        )
+    }
+}
+
+/// An option's name, or `otherwise` when none was given.
+fn named<'a>(option: &'a str, otherwise: &'a str) -> &'a str {
+    if option.is_empty() { otherwise } else { option }
 }
 
 impl OutputError {

@@ -2,7 +2,7 @@
 //! through which the command and the library writers use it.
 
 use super::error::OutputError;
-use super::guard::Outputs;
+use super::guard::{Outputs, Shape};
 use super::staged::StagedFolder;
 use super::transaction::{Pending, Transaction};
 use super::write::{remove_stale, render_temp, through_link, write_temp};
@@ -88,6 +88,11 @@ pub fn register_input_with_references(path: &Path) {
 /// [`Outputs::claim`] with the process-wide guard.
 pub fn claim_output(path: &Path) -> Result<(), OutputError> {
     guard().claim(path)
+}
+
+/// [`Outputs::claim_as`] with the process-wide guard.
+pub fn claim_output_as(path: &Path, option: &str, shape: Shape) -> Result<(), OutputError> {
+    guard().claim_as(path, option, shape)
 }
 
 /// [`Outputs::check_file`] with the process-wide guard.

@@ -2,7 +2,7 @@
 //! device + inode) and the outputs claimed so far, and the checks that keep
 //! an output off them.
 
-use super::error::OutputError;
+use super::error::{Nesting, OutputError};
 use std::path::{Component, Path, PathBuf};
 
 /// At most this many entries of an input folder are compared by inode.
@@ -18,12 +18,39 @@ struct Input {
     ids: Vec<(u64, u64)>,
 }
 
+/// One claimed output.
+#[derive(Debug, Clone)]
+struct Claim {
+    given: PathBuf,
+    canonical: PathBuf,
+    /// What names it on the command line (`--json`), or empty.
+    option: String,
+    /// `None`: claimed without a shape ([`Outputs::claim`]), not nested-checked.
+    shape: Option<Shape>,
+}
+
+/// What a claimed output is, for the check that no output lies inside
+/// another ([`Outputs::claim_as`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Shape {
+    /// One file.
+    File,
+    /// A folder written whole, whose own files have these extensions (a
+    /// report: `html`, `svg`, `png`); empty: a folder whose every name is
+    /// the tool's (an ISO-MME test, a work or series folder).
+    Folder(&'static [&'static str]),
+    /// A folder written whole whose file names the command checks against
+    /// its other outputs itself, before it runs (`fe impact --work`: the
+    /// solver's files): a file output may lie in it, a folder output not.
+    Checked,
+}
+
 /// The guard: knows the inputs, checks and writes the outputs.
 #[derive(Debug, Default, Clone)]
 pub struct Outputs {
     inputs: Vec<Input>,
-    /// Outputs claimed so far: (as given, canonical).
-    claimed: Vec<(PathBuf, PathBuf)>,
+    /// Outputs claimed so far.
+    claimed: Vec<Claim>,
 }
 
 impl Outputs {
@@ -65,18 +92,50 @@ impl Outputs {
     /// link to a file) claimed before, so that `--json x --csv x` does not
     /// leave only the CSV with exit 0.
     pub fn claim(&mut self, path: &Path) -> Result<(), OutputError> {
+        self.claim_shaped(path, "", None)
+    }
+
+    /// [`Outputs::claim`] of an output of `shape` named by `option` on the
+    /// command line (`--json`), which also refuses, before the command
+    /// runs and naming both options, an output inside another claimed
+    /// output where one would replace or drop the other: anything inside a
+    /// file, a folder inside a folder (`--report r --plot r/p`), and a file
+    /// inside a folder of a kind that folder writes itself (`--json
+    /// rep/index.html --report rep`). A file of another kind inside a
+    /// report folder (`--json rep/result.json`) is allowed.
+    pub fn claim_as(&mut self, path: &Path, option: &str, shape: Shape) -> Result<(), OutputError> {
+        self.claim_shaped(path, option, Some(shape))
+    }
+
+    fn claim_shaped(
+        &mut self,
+        path: &Path,
+        option: &str,
+        shape: Option<Shape>,
+    ) -> Result<(), OutputError> {
         let target = canonical(path);
         let id = file_id(&target);
-        let same = |(_, c): &&(PathBuf, PathBuf)| {
-            *c == target || id.is_some_and(|id| file_id(c) == Some(id))
+        let same = |c: &&Claim| {
+            c.canonical == target || id.is_some_and(|id| file_id(&c.canonical) == Some(id))
         };
-        if let Some((first, _)) = self.claimed.iter().find(same) {
+        if let Some(first) = self.claimed.iter().find(same) {
             return Err(OutputError::Twice {
                 output: path.into(),
-                first: first.clone(),
+                first: first.given.clone(),
             });
         }
-        self.claimed.push((path.into(), target));
+        let claim = Claim {
+            given: path.into(),
+            canonical: target,
+            option: option.into(),
+            shape,
+        };
+        for other in &self.claimed {
+            nested(&claim, other)
+                .or_else(|| nested(other, &claim))
+                .map_or(Ok(()), Err)?;
+        }
+        self.claimed.push(claim);
         Ok(())
     }
 
@@ -95,10 +154,10 @@ impl Outputs {
     /// silently replace the other.
     pub(super) fn check_unclaimed(&self, path: &Path) -> Result<(), OutputError> {
         let target = canonical(path);
-        match self.claimed.iter().find(|(_, c)| *c == target) {
-            Some((first, _)) => Err(OutputError::Twice {
+        match self.claimed.iter().find(|c| c.canonical == target) {
+            Some(first) => Err(OutputError::Twice {
                 output: path.into(),
-                first: first.clone(),
+                first: first.given.clone(),
             }),
             None => Ok(()),
         }
@@ -132,6 +191,38 @@ impl Outputs {
         }
         Ok(())
     }
+}
+
+/// The refusal of `inner` when it lies inside `outer` where one would
+/// replace or drop the other (see [`Outputs::claim_as`]).
+fn nested(inner: &Claim, outer: &Claim) -> Option<OutputError> {
+    let inside =
+        inner.canonical != outer.canonical && inner.canonical.starts_with(&outer.canonical);
+    let (Some(inner_shape), Some(outer_shape)) = (inner.shape, outer.shape) else {
+        return None;
+    };
+    let reason = match (inner_shape, outer_shape) {
+        _ if !inside => return None,
+        (_, Shape::File) => "a file, which cannot hold another output".to_string(),
+        (Shape::Folder(_) | Shape::Checked, _) => "a folder moved into place whole".to_string(),
+        (Shape::File, Shape::Checked) => return None,
+        (Shape::File, Shape::Folder([])) => "a folder bumpsim fills whole".to_string(),
+        (Shape::File, Shape::Folder(kinds)) => {
+            let kind = inner.canonical.extension().map(|e| e.to_string_lossy());
+            if !kind.is_some_and(|k| kinds.iter().any(|w| k.eq_ignore_ascii_case(w))) {
+                return None;
+            }
+            let kinds: Vec<String> = kinds.iter().map(|k| format!("*.{k}")).collect();
+            format!("whose own files are {}", kinds.join(", "))
+        }
+    };
+    Some(OutputError::InsideOutput(Box::new(Nesting {
+        output: inner.given.clone(),
+        option: inner.option.clone(),
+        outer: outer.given.clone(),
+        outer_option: outer.option.clone(),
+        reason,
+    })))
 }
 
 /// The absolute path with every existing part resolved (links followed) and

@@ -16,8 +16,11 @@
 //! - a multi-file output (report folder, ISO-MME test, synthetic series) is
 //!   staged in a sibling temporary folder ([`StagedFolder`]) and moved into
 //!   place only by [`StagedFolder::commit`]: a new folder is renamed in one
-//!   step; into an existing folder each staged file is renamed over its old
-//!   version (files of the folder that the run does not write are kept). A
+//!   step; an existing folder is swapped whole with the staged one (one
+//!   `renameat2(RENAME_EXCHANGE)` on Linux) after the entries of the old
+//!   folder that the run does not write are carried over as hard links, so
+//!   the folder is at every moment entirely old or entirely new and files
+//!   bumpsim did not write stay (`swap`). A
 //!   failed run leaves the old outputs untouched; a killed one (`kill -9`)
 //!   leaves its hidden temporary file or folder, which the next write of
 //!   the same output removes (on Linux, where `/proc` tells that the
@@ -35,7 +38,9 @@
 //!   half-way leaves every output as it was;
 //! - two files of one output folder with the same name, or a folder's file
 //!   that is another claimed output of the command, are errors: neither
-//!   silently replaces the other.
+//!   silently replaces the other; an output inside another output where one
+//!   would replace or drop the other is refused when it is claimed, before
+//!   the command runs ([`Outputs::claim_as`], [`Shape`]).
 //!
 //! A command line tool uses the process-wide guard through the free
 //! functions ([`register_input`], [`write_file`], [`stage_folder`], ...); the
@@ -57,7 +62,8 @@
 //! ```
 //!
 //! The parts: [`Outputs`] and its checks (`guard`), whole-or-nothing file
-//! writing (`write`), staged folders and plain names (`staged`), the
+//! writing (`write`), staged folders and plain names (`staged`), the swap
+//! of an existing folder (`swap`), the
 //! process-wide guard (`global`), the transaction of one command
 //! (`transaction`) and [`OutputError`] (`error`).
 
@@ -66,18 +72,20 @@ mod global;
 mod guard;
 mod references;
 mod staged;
+mod swap;
 mod transaction;
 mod write;
 
 #[cfg(test)]
 mod tests;
 
-pub use error::OutputError;
+pub use error::{Nesting, OutputError};
 pub use global::{
-    abandon, begin, check_file, check_folder, check_pending, claim_output, commit, finish,
-    register_input, register_input_with_references, stage_folder, write_file, write_rendered,
+    abandon, begin, check_file, check_folder, check_pending, claim_output, claim_output_as, commit,
+    finish, register_input, register_input_with_references, stage_folder, write_file,
+    write_rendered,
 };
-pub use guard::{FOLDER_SCAN_LIMIT, Outputs};
+pub use guard::{FOLDER_SCAN_LIMIT, Outputs, Shape};
 pub use references::INPUT_KEYS;
 pub use staged::{StagedFolder, plain_name};
 pub use write::write_atomic;

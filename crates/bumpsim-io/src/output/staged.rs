@@ -4,6 +4,7 @@
 
 use super::error::OutputError;
 use super::guard::Outputs;
+use super::swap::{carry_over, restore_aside, same_permissions, swap};
 use super::write::{create_parent, remove_stale, sibling, sync_parent, through_link};
 use std::path::{Path, PathBuf};
 
@@ -33,7 +34,11 @@ pub fn plain_name(name: &str) -> Result<&str, OutputError> {
 /// commit, the staging folder is removed.
 #[derive(Debug)]
 pub struct StagedFolder {
+    /// The folder as given (named in messages).
     target: PathBuf,
+    /// The folder itself (a symbolic link to a folder resolved: the link
+    /// stays, the folder it points to is replaced).
+    real: PathBuf,
     staging: PathBuf,
     committed: bool,
 }
@@ -47,12 +52,15 @@ impl StagedFolder {
                 path: target.into(),
             });
         }
-        create_parent(target)?;
-        remove_stale(target, "staging");
-        let staging = sibling(target, "staging");
+        let real = through_link(target);
+        create_parent(&real)?;
+        restore_aside(&real);
+        remove_stale(&real, "staging");
+        let staging = sibling(&real, "staging");
         std::fs::create_dir_all(&staging).map_err(|e| OutputError::io(&staging, e))?;
         Ok(Self {
             target: target.into(),
+            real,
             staging,
             committed: false,
         })
@@ -107,25 +115,28 @@ impl StagedFolder {
         Ok(())
     }
 
-    /// Moves the staged files into place: a new folder in one rename, an
-    /// existing one file by file.
+    /// Moves the staged folder into place: a new folder in one rename; an
+    /// existing one is swapped whole with the staged folder once the old
+    /// folder's other entries are carried over (the `swap` module), then
+    /// removed.
     pub(super) fn move_in(mut self) -> Result<(), OutputError> {
-        let files = staged_files(&self.staging)?;
-        sync_tree(&self.staging, &files);
-        if !self.target.exists() {
-            std::fs::rename(&self.staging, &self.target)
-                .map_err(|e| OutputError::io(&self.target, e))?;
-        } else {
-            for relative in &files {
-                let to = through_link(&self.target.join(relative));
-                create_parent(&to)?;
-                std::fs::rename(self.staging.join(relative), &to)
-                    .map_err(|e| OutputError::io(&to, e))?;
-            }
-            let _ = std::fs::remove_dir_all(&self.staging);
+        let old = self.real.is_dir();
+        if old {
+            carry_over(&self.real, &self.staging)?;
+            same_permissions(&self.real, &self.staging)?;
         }
-        sync_parent(&self.target);
+        sync_tree(&self.staging)?;
+        let replaced = match old {
+            true => Some(swap(&self.staging, &self.real)?),
+            false => std::fs::rename(&self.staging, &self.real)
+                .map(|()| None)
+                .map_err(|e| OutputError::io(&self.target, e))?,
+        };
         self.committed = true;
+        sync_parent(&self.real);
+        if let Some(replaced) = replaced {
+            let _ = std::fs::remove_dir_all(replaced); // the old folder
+        }
         Ok(())
     }
 }
@@ -167,10 +178,22 @@ fn staged_files(root: &Path) -> Result<Vec<PathBuf>, OutputError> {
     Ok(files)
 }
 
-fn sync_tree(root: &Path, files: &[PathBuf]) {
-    for relative in files {
-        if let Ok(file) = std::fs::File::open(root.join(relative)) {
+/// Flushes every file and folder below `root` (and `root`) to disk, so
+/// that the rename that publishes them cannot outlive their contents.
+fn sync_tree(root: &Path) -> Result<(), OutputError> {
+    let mut paths: Vec<PathBuf> = staged_files(root)?.iter().map(|f| root.join(f)).collect();
+    let folders: Vec<PathBuf> = paths
+        .iter()
+        .filter_map(|p| p.parent())
+        .map(Path::to_path_buf)
+        .collect();
+    paths.extend(folders);
+    paths.push(root.into());
+    paths.dedup();
+    for path in paths {
+        if let Ok(file) = std::fs::File::open(path) {
             let _ = file.sync_all();
         }
     }
+    Ok(())
 }

@@ -239,3 +239,62 @@ fn a_transaction_moves_all_outputs_or_none() {
     assert!(hidden.is_empty(), "{hidden:?}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `--json rep/index.html --report rep` was refused only when the command
+/// committed, after its computation: an output inside another is now
+/// refused when it is claimed, naming both options; a file of another
+/// kind inside a report folder (`--json rep/result.json`) stays allowed.
+#[test]
+fn an_output_inside_another_is_refused_when_claimed() {
+    let dir = temp("nested");
+    let report = Shape::Folder(&["html", "svg"]);
+    let refused = |first: (&str, &str, Shape), second: (&str, &str, Shape)| {
+        let mut g = Outputs::new();
+        g.claim_as(&dir.join(first.1), first.0, first.2).unwrap();
+        g.claim_as(&dir.join(second.1), second.0, second.2).err()
+    };
+    for (a, b) in [
+        (
+            ("--report", "rep", report),
+            ("--json", "rep/index.html", Shape::File),
+        ),
+        (
+            ("--json", "rep/INDEX.HTML", Shape::File),
+            ("--report", "rep", report),
+        ),
+        (("--plot", "rep/p", report), ("--report", "rep", report)),
+        (
+            ("--iso-mme", "t", Shape::Folder(&[])),
+            ("--json", "t/r.json", Shape::File),
+        ),
+        (("--work", "w", Shape::Checked), ("--report", "w/r", report)),
+        (
+            ("--json", "a.json", Shape::File),
+            ("--csv", "a.json/b.csv", Shape::File),
+        ),
+    ] {
+        let err = refused(a, b).expect("refused").to_string();
+        assert!(
+            err.contains(a.0) && err.contains(b.0) && err.contains("two outputs to one path"),
+            "{err}"
+        );
+    }
+    let allowed = refused(
+        ("--report", "rep", report),
+        ("--json", "rep/result.json", Shape::File),
+    );
+    assert!(allowed.is_none(), "{allowed:?}");
+    let work = refused(
+        ("--work", "w", Shape::Checked),
+        ("--json", "w/r.json", Shape::File),
+    );
+    assert!(work.is_none(), "{work:?}");
+    assert!(
+        refused(
+            ("--report", "rep", report),
+            ("--json", "rep2/a.html", Shape::File)
+        )
+        .is_none()
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

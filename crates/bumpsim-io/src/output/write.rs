@@ -27,12 +27,21 @@ pub(super) fn sibling(path: &Path, kind: &str) -> PathBuf {
 /// call per file inside staging folders). Only where `/proc` tells which
 /// processes run (Linux); elsewhere they stay, hidden and harmless.
 pub(super) fn remove_stale(path: &Path, kind: &str) {
+    for stale in stale_siblings(path, kind) {
+        let _ = std::fs::remove_dir_all(&stale).or_else(|_| std::fs::remove_file(&stale));
+    }
+}
+
+/// The siblings of `path` named as [`sibling`] names them for `kind` whose
+/// process no longer runs (Linux; elsewhere none).
+pub(super) fn stale_siblings(path: &Path, kind: &str) -> Vec<PathBuf> {
+    let mut stale = Vec::new();
     let (Some(parent), Some(name), true) = (
         path.parent(),
         path.file_name(),
         Path::new("/proc/self").exists(),
     ) else {
-        return;
+        return stale;
     };
     let name = name.to_string_lossy();
     let parent = if parent.as_os_str().is_empty() {
@@ -41,7 +50,7 @@ pub(super) fn remove_stale(path: &Path, kind: &str) {
         parent
     };
     let Ok(entries) = std::fs::read_dir(parent) else {
-        return;
+        return stale;
     };
     let (prefix, suffix) = (format!(".{name}."), format!(".{kind}"));
     for entry in entries.flatten() {
@@ -60,10 +69,10 @@ pub(super) fn remove_stale(path: &Path, kind: &str) {
         };
         let gone = !Path::new("/proc").join(pid.to_string()).exists();
         if pid != std::process::id() && gone {
-            let _ = std::fs::remove_dir_all(entry.path())
-                .or_else(|_| std::fs::remove_file(entry.path()));
+            stale.push(entry.path());
         }
     }
+    stale
 }
 
 /// Creates the missing folders above `path`; returns the topmost one it

@@ -1,0 +1,151 @@
+//! Kills mid-write and mid-commit, and outputs inside outputs: a SIGKILL
+//! while a file or a folder output is written or moved into place leaves
+//! the complete old or the complete new output; an output inside another
+//! output of the command is refused before the command runs.
+
+use super::{examples, run_in, snapshot};
+use std::path::Path;
+use std::process::Command;
+use std::time::Duration;
+
+/// A force CSV with `rows` samples (10 kHz, a half-sine pulse).
+fn long_force(path: &Path, rows: usize) {
+    let mut text = String::from("time [s],force [N]\n");
+    for k in 0..rows {
+        let f = 4.0e4 * (std::f64::consts::PI * k as f64 / rows as f64).sin();
+        text.push_str(&format!("{},{f}\n", k as f64 * 1e-4));
+    }
+    std::fs::write(path, text).unwrap();
+}
+
+/// Kills `args` after increasing delays; each time the output must be the
+/// complete old file or a complete new one (`complete` decides).
+fn kill_during_write(dir: &Path, args: &[&str], output: &str, complete: &dyn Fn(&[u8]) -> bool) {
+    let old = b"old complete output\n".to_vec();
+    for delay_ms in [50u64, 200, 500, 1000, 2000, 4000] {
+        std::fs::write(dir.join(output), &old).unwrap();
+        let mut child = Command::new(env!("CARGO_BIN_EXE_bumpsim"))
+            .args(args)
+            .current_dir(dir)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(delay_ms));
+        let _ = child.kill(); // SIGKILL on Unix
+        let _ = child.wait();
+        let now = snapshot(&dir.join(output));
+        assert!(
+            now == old || complete(&now),
+            "{args:?} killed after {delay_ms} ms left a partial {output} ({} bytes)",
+            now.len()
+        );
+    }
+}
+
+#[test]
+fn sigkill_during_a_write_leaves_old_or_new_file() {
+    let dir = examples("sigkill");
+    let rows = 400_000;
+    long_force(&dir.join("long.csv"), rows);
+    let simulate = [
+        "simulate",
+        "--car",
+        "ex/simulate/car-3dof.toml",
+        "--force",
+        "long.csv",
+        "-o",
+        "keep.csv",
+    ];
+    kill_during_write(&dir, &simulate, "keep.csv", &|bytes| {
+        bytes.ends_with(b"\n") && bytes.iter().filter(|&&b| b == b'\n').count() == rows + 1
+    });
+    let identify = [
+        "identify",
+        "ex/identify/study.toml",
+        "--starts",
+        "2",
+        "--quiet",
+        "--json",
+        "keep.json",
+    ];
+    kill_during_write(&dir, &identify, "keep.json", &|bytes| {
+        serde_json::from_slice::<serde_json::Value>(bytes).is_ok()
+    });
+}
+
+/// Issue 34: `identify --json rep/index.html --report rep` (and `impact`,
+/// `doe fit`, `signal process` alike) ran the whole computation and was
+/// refused only when its outputs were committed. The guard now refuses an
+/// output inside another output before anything runs, naming both flags:
+/// the refused identification ends in a fraction of the allowed one's
+/// time and prints no result. A JSON of another kind inside the report
+/// folder (README's `--json out/identify/result.json --report
+/// out/identify`) is still written, beside the report.
+#[test]
+fn an_output_inside_another_is_refused_before_the_command_runs() {
+    let dir = examples("nested");
+    let study = "ex/identify/study.toml";
+    let identify = |json: &str, report: &str| {
+        let args = [
+            "identify", study, "--starts", "40", "--json", json, "--report", report,
+        ];
+        run_in(&dir, &args)
+    };
+    let (allowed, took) = identify("rep/result.json", "rep");
+    assert_eq!(
+        allowed.status.code(),
+        Some(0),
+        "{}",
+        super::stderr(&allowed)
+    );
+    assert!(dir.join("rep/index.html").is_file() && dir.join("rep/result.json").is_file());
+    let (refused, fast) = identify("clash/index.html", "clash");
+    let err = super::stderr(&refused);
+    assert_eq!(refused.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--json clash/index.html") && err.contains("--report clash"),
+        "{err}"
+    );
+    assert!(refused.stdout.is_empty(), "a result was printed");
+    assert!(
+        fast * 4 < took,
+        "refused after {fast:?}; the run takes {took:?}"
+    );
+    assert!(!dir.join("clash").exists());
+    let flat = "ex/identify/FLAT";
+    for args in [
+        &[
+            "signal",
+            "export",
+            flat,
+            "-c",
+            "1",
+            "-o",
+            "iso/x.csv",
+            "--iso-mme",
+            "iso",
+        ][..],
+        &[
+            "signal",
+            "export",
+            flat,
+            "-c",
+            "1",
+            "-o",
+            "x.csv",
+            "--plot",
+            "p",
+            "--iso-mme",
+            "p/t",
+        ],
+    ] {
+        let (out, _) = run_in(&dir, args);
+        let err = super::stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.contains("lies inside --"), "{err}");
+        assert!(
+            !dir.join("iso").exists() && !dir.join("p").exists() && !dir.join("x.csv").exists()
+        );
+    }
+}
