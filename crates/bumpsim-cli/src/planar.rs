@@ -522,11 +522,13 @@ pub(crate) mod uncertain {
                 };
                 anyhow::Error::new(e).context(flag)
             })?;
-            if args.sobol {
-                prediction::check_base(args.sobol_base).context("--sobol-base")?;
-            }
             let uncertainty = Uncertainty::<M>::read(path).context("--uncertainty")?;
             uncertainty.check(car).context("--uncertainty")?;
+            if args.sobol {
+                let parameters = uncertainty.names.len();
+                let checked = prediction::check_base(args.sobol_base, parameters);
+                checked.context("--sobol, --sobol-base")?;
+            }
             Ok(Some(Uncertain {
                 args,
                 uncertainty,

@@ -403,16 +403,28 @@ impl Outputs for crate::impact::ImpactResult {
 /// Fewest and most base samples of the Sobol' indices.
 pub const SOBOL_BASE: [usize; 2] = [16, 65_536];
 
-/// Checks the Sobol' indices' base samples N.
-pub fn check_base(base: usize) -> Result<(), UncertaintyError> {
-    match (SOBOL_BASE[0]..=SOBOL_BASE[1]).contains(&base) {
+/// Checks the Sobol' indices' base samples N and the number of
+/// uncertain parameters (at most half the Sobol sequence's dimensions).
+pub fn check_base(base: usize, parameters: usize) -> Result<(), UncertaintyError> {
+    let most = bumpsim_estimate::sobol::DIMENSIONS / 2;
+    let bad = |key: &str, value: usize, unit, expected: String| UncertaintyError::Value {
+        key: key.into(),
+        value: value as f64,
+        unit,
+        expected,
+    };
+    if !(SOBOL_BASE[0]..=SOBOL_BASE[1]).contains(&base) {
+        let expected = format!("between {} and {}", SOBOL_BASE[0], SOBOL_BASE[1]);
+        return Err(bad("base", base, "samples", expected));
+    }
+    match parameters <= most {
         true => Ok(()),
-        false => Err(UncertaintyError::Value {
-            key: "base".into(),
-            value: base as f64,
-            unit: "samples",
-            expected: format!("between {} and {}", SOBOL_BASE[0], SOBOL_BASE[1]),
-        }),
+        false => Err(bad(
+            "parameters",
+            parameters,
+            "parameters",
+            format!("Sobol indices of at most {most} parameters"),
+        )),
     }
 }
 

@@ -209,7 +209,12 @@ fn identified(doc: &serde_json::Value, source: &str) -> Result<Identified, Uncer
 
 /// The deepest crush of any segment at each instant, m.
 fn deepest(r: &PlanarResult) -> Vec<f64> {
-    let at = |k: usize| r.crush.iter().map(|c| c[k]).fold(0.0, f64::max);
+    let at = |k: usize| {
+        r.crush
+            .iter()
+            .filter_map(|c| c.get(k))
+            .fold(0.0, |m, &c| c.max(m))
+    };
     (0..r.time.len()).map(at).collect()
 }
 
