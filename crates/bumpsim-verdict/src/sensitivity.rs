@@ -86,7 +86,9 @@ pub struct Sensitivity {
     pub unused_correlation: f64,
     /// Base samples, resamples and the bootstrap's seed.
     pub settings: Settings,
-    /// Verdicts run, `N (d + 2)`.
+    /// The design's cars, `N (d + 2)` (0 without a judged criterion); a
+    /// car equal to another (a row of `A_B` that is its row of A) runs
+    /// once.
     pub evaluations: usize,
     /// Each judged criterion of each assessed test, in the verdict's order.
     pub criteria: Vec<CriterionIndices>,
@@ -142,7 +144,10 @@ pub fn sensitivity(
         log_sd: uncertainty.log_sd.clone(),
         unused_correlation: largest_correlation(uncertainty),
         settings: *settings,
-        evaluations: evaluations(uncertainty, settings.base),
+        evaluations: match judged.is_empty() {
+            true => 0,
+            false => evaluations(uncertainty, settings.base),
+        },
         criteria,
     })
 }

@@ -212,3 +212,19 @@ fn hostile_settings_are_refused_naming_the_option() {
         "{e}"
     );
 }
+
+/// A test of an end without a car judges nothing: no indices, no verdict run.
+#[test]
+fn a_test_not_assessed_has_no_indices_and_runs_nothing() {
+    let tests = select(&["part581-barrier-rear"]).unwrap();
+    let setup = Setup::new(vec![end()], tests, 0.0).unwrap();
+    let v = bumpsim_verdict::verdict(&setup).unwrap();
+    let u = uncertainty(&[("bumper.force", 0.1)]);
+    let runs = std::sync::atomic::AtomicUsize::new(0);
+    let progress = || {
+        runs.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    };
+    let s = sensitivity(&setup, &v, &u, &Settings::new(16, 1), &progress).unwrap();
+    assert!(s.criteria.is_empty() && s.evaluations == 0);
+    assert_eq!(runs.into_inner(), 0);
+}
