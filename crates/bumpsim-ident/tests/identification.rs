@@ -575,3 +575,51 @@ fn a_case_fitted_worse_than_its_mean_is_a_warning() {
         good.warnings
     );
 }
+
+/// One quick identification (one start) whose document the property test
+/// below fills with drawn models.
+fn identified() -> &'static bumpsim_ident::result::Identification {
+    static ONE: std::sync::OnceLock<bumpsim_ident::result::Identification> =
+        std::sync::OnceLock::new();
+    ONE.get_or_init(|| identify(&series(&truth()), &Settings::new(3, 1), &|| {}).unwrap())
+}
+
+/// A positive finite value from 1e-300 to 1e300.
+fn positive() -> impl Strategy<Value = f64> {
+    (1.0..10.0f64, -300..300i32).prop_map(|(m, e)| m * 10f64.powi(e))
+}
+
+/// A drawn chain: 1 to 8 masses, dampers 0 or positive.
+fn drawn_model() -> impl Strategy<Value = MsdModel> {
+    (1..=8usize).prop_flat_map(|dof| {
+        let damper = prop_oneof![Just(0.0), positive()];
+        (
+            prop::collection::vec(positive(), dof),
+            prop::collection::vec(damper, dof - 1),
+            prop::collection::vec(positive(), dof - 1),
+        )
+            .prop_map(|(m, c, k)| MsdModel::new(m, c, k).unwrap())
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Issue 34: the JSON `identify --json` writes, read back as a car file
+    /// (`--car result.json`), is the identified car, every value bit for bit.
+    #[test]
+    fn an_identification_json_reads_back_as_the_same_car(model in drawn_model()) {
+        use bumpsim_ident::document::{IdentifyDocument, WithPosterior};
+        let mut result = identified().clone();
+        result.dof = model.dof();
+        result.model = model.clone();
+        let document = WithPosterior {
+            document: IdentifyDocument::One { result: &result, notes: &[] },
+            posterior: None,
+        };
+        let json = serde_json::to_string_pretty(&document).unwrap();
+        let car = bumpsim_io::car::Car::parse_json(&json, Path::new("result.json")).unwrap();
+        prop_assert_eq!(car.name, None);
+        prop_assert_eq!(car.model, model);
+    }
+}
