@@ -51,8 +51,7 @@ pub fn collect(dir: &Path) -> Result<Collected> {
             ),
         });
     }
-    let mut csv = table_header(&spec);
-    let mut rows = 0;
+    let mut collected = Vec::new();
     let mut missing = Vec::new();
     for (p, values) in state.points.iter().zip(&points) {
         if p.status != Status::Done {
@@ -63,13 +62,12 @@ pub fn collect(dir: &Path) -> Result<Collected> {
             continue;
         }
         match read_row(dir, &spec, p.run, &p.folder) {
-            Ok(responses) => {
-                csv += &table_row(p.run, values, &responses);
-                rows += 1;
-            }
+            Ok((responses, errors)) => collected.push((p.run, values, responses, errors)),
             Err(e) => missing.push((p.run, e.to_string())),
         }
     }
+    let rows = collected.len();
+    let csv = table(&spec, &collected);
     if rows == 0 {
         return Err(CampaignError::Collect(format!(
             "{}: no point is done yet: nothing to collect (bumpsim campaign status {0})",
@@ -93,8 +91,38 @@ fn reason_suffix(reason: &str) -> String {
     }
 }
 
-/// The point's responses, then its identified parameters.
-fn read_row(dir: &Path, spec: &Spec, run: usize, folder: &str) -> Result<Vec<f64>> {
+/// A collected point: run, design values, responses and identified
+/// parameters, their standard errors.
+type Row<'a> = (usize, &'a init::PointValues, Vec<f64>, Vec<Option<f64>>);
+
+/// The table: header and rows, then a column `NAME.se [unit]` for each
+/// identified parameter whose standard error every row has.
+fn table(spec: &Spec, rows: &[Row]) -> String {
+    let columns = spec.identify.as_ref().map_or(Vec::new(), |i| i.columns());
+    let kept: Vec<usize> = (0..columns.len())
+        .filter(|&j| rows.iter().all(|r| r.3[j].is_some()))
+        .collect();
+    let mut csv = table_header(spec);
+    csv.pop(); // its line break
+    kept.iter()
+        .for_each(|&j| csv += &format!(",{}.se [{}]", columns[j].0, columns[j].1));
+    csv.push('\n');
+    for (run, values, responses, errors) in rows {
+        let mut all = responses.clone();
+        all.extend(kept.iter().filter_map(|&j| errors[j]));
+        csv += &table_row(*run, values, &all);
+    }
+    csv
+}
+
+/// The point's responses, then its identified parameters; their standard
+/// errors.
+fn read_row(
+    dir: &Path,
+    spec: &Spec,
+    run: usize,
+    folder: &str,
+) -> Result<(Vec<f64>, Vec<Option<f64>>)> {
     let folder = dir.join(folder);
     let mut row = spec
         .responses
@@ -114,9 +142,10 @@ fn read_row(dir: &Path, spec: &Spec, run: usize, folder: &str) -> Result<Vec<f64
                 source: Box::new(source),
             }
         })?;
-        row.extend(parameters);
+        row.extend(parameters.0);
+        return Ok((row, parameters.1));
     }
-    Ok(row)
+    Ok((row, Vec::new()))
 }
 
 /// `run,standard order,<factors and derived> [unit],<coded>,<responses> [unit]`.

@@ -6,7 +6,9 @@
 //! identifies one `dof`-mass model per done point with
 //! [`bumpsim_ident::identify`] and appends its parameters to the table as
 //! `m1 [kg]`, ..., `c1 [Ns/m]`, ..., `k1 [N/m]` (the columns of `doe
-//! collect`), which `[regress]` may then name.
+//! collect`), which `[regress]` may then name; then `k1.se [N/m]`, ...: the
+//! identification's standard error of each parameter that has one at every
+//! collected point (`bumpsim doe fit --se k1` reads them).
 
 use crate::error::PointIdentifyError;
 use bumpsim_ident::study::Study;
@@ -41,9 +43,16 @@ impl IdentifySpec {
     }
 }
 
-/// Identifies the model of the point in `folder`: its parameters in the
-/// order of [`IdentifySpec::columns`], or why not.
-pub fn identify_point(folder: &Path, spec: &IdentifySpec) -> Result<Vec<f64>, PointIdentifyError> {
+/// A point's identified parameters and their standard errors (`None`
+/// where the identification has none: fixed, at a bound, undetermined),
+/// both in the order of [`IdentifySpec::columns`].
+pub type Identified = (Vec<f64>, Vec<Option<f64>>);
+
+/// Identifies the model of the point in `folder`, or says why not.
+pub fn identify_point(
+    folder: &Path,
+    spec: &IdentifySpec,
+) -> Result<Identified, PointIdentifyError> {
     let study = Study::read(&folder.join(STUDY_FILE))?;
     let loaded = study.load(spec.dof)?;
     let mut settings = study.settings(spec.dof)?;
@@ -51,8 +60,17 @@ pub fn identify_point(folder: &Path, spec: &IdentifySpec) -> Result<Vec<f64>, Po
     let cases = study.retarget(&loaded.cases, spec.dof);
     let result = bumpsim_ident::identify(&cases, &settings, &|| {})?;
     let parameters = result.model.parameters();
+    let u = &result.uncertainty;
+    let errors = spec
+        .columns()
+        .iter()
+        .map(|(name, _)| {
+            let i = u.names.iter().position(|n| n == name)?;
+            u.standard_errors[i].filter(|s| s.is_finite() && *s >= 0.0)
+        })
+        .collect();
     match parameters.iter().all(|v| v.is_finite()) {
-        true => Ok(parameters),
+        true => Ok((parameters, errors)),
         false => Err(PointIdentifyError::NotFinite),
     }
 }

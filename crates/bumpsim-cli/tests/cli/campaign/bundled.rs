@@ -230,6 +230,22 @@ responses = ["m2", "k1", "x1_max"]
             v[kf]
         );
     }
+    // the identification's standard errors follow as NAME.se (issue 39),
+    // and `doe fit --se` of the table carries them into the coefficients
+    assert!(header.contains(&"k1.se [N/m]"), "{header:?}");
+    let fit = crate::util::bumpsim(&[
+        "doe",
+        "fit",
+        path(&c.join("results/table.csv")),
+        "--factors",
+        "mb,kf",
+        "--responses",
+        "k1",
+        "--se",
+        "k1",
+    ]);
+    assert!(fit.status.success(), "{}", text(&fit.stderr));
+    assert!(text(&fit.stdout).contains("k1 [N/m]: weighted by its standard errors (k1.se"));
 }
 
 /// LS-DYNA `*PARAMETER` users: each point folder gets an include with one
