@@ -35,6 +35,16 @@ pub enum OutputError {
     /// into place whole, would mix with or drop the inner one.
     #[error("{0}")]
     InsideOutput(Box<Nesting>),
+    /// A folder output that is the working folder or a folder above it:
+    /// replacing it whole would move the working folder away.
+    #[error(
+        "{path}: is the working folder or holds it; an output folder is replaced whole, \
+         so give a folder beside or below the working folder"
+    )]
+    HoldsWorkingFolder {
+        /// The path.
+        path: PathBuf,
+    },
     /// A folder is needed but the path is an existing file.
     #[error("{path}: exists and is not a folder (a folder is needed here)")]
     NotAFolder {

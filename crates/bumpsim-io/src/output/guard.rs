@@ -169,6 +169,7 @@ impl Outputs {
         if path.exists() && !path.is_dir() {
             return Err(OutputError::NotAFolder { path: path.into() });
         }
+        holds_working_folder(path)?;
         self.check_against_inputs(path)
     }
 
@@ -190,6 +191,18 @@ impl Outputs {
             }
         }
         Ok(())
+    }
+}
+
+/// Refuses a folder output that is the working folder or above it (its
+/// swap would move the working folder away: `--report .`).
+pub(super) fn holds_working_folder(path: &Path) -> Result<(), OutputError> {
+    let here = std::env::current_dir().map(|d| canonical(&d));
+    match here {
+        Ok(here) if here.starts_with(canonical(path)) => {
+            Err(OutputError::HoldsWorkingFolder { path: path.into() })
+        }
+        _ => Ok(()),
     }
 }
 

@@ -3,7 +3,7 @@
 //! commit; and the plain names their files must have.
 
 use super::error::OutputError;
-use super::guard::Outputs;
+use super::guard::{Outputs, holds_working_folder};
 use super::swap::{carry_over, restore_aside, same_permissions, swap};
 use super::write::{create_parent, remove_stale, sibling, sync_parent, through_link};
 use std::path::{Path, PathBuf};
@@ -52,6 +52,7 @@ impl StagedFolder {
                 path: target.into(),
             });
         }
+        holds_working_folder(target)?;
         let real = through_link(target);
         create_parent(&real)?;
         restore_aside(&real);

@@ -298,3 +298,20 @@ fn an_output_inside_another_is_refused_when_claimed() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `--report .` would swap the working folder itself away (and carry the
+/// staging folder into itself): refused, as is a folder above it.
+#[test]
+fn the_working_folder_is_not_an_output_folder() {
+    let g = Outputs::new();
+    let here = std::env::current_dir().unwrap();
+    for path in [Path::new("."), here.as_path(), here.parent().unwrap()] {
+        let err = g.check_folder(path).unwrap_err();
+        assert!(
+            matches!(err, OutputError::HoldsWorkingFolder { .. }),
+            "{err}"
+        );
+        assert!(StagedFolder::new(path).is_err());
+    }
+    assert!(g.check_folder(&here.join("below")).is_ok());
+}
