@@ -20,7 +20,7 @@
 
 use crate::uncertainty::{Model, Uncertainty, UncertaintyError};
 use bumpsim_core::units::{Dimension, format_quantity};
-use bumpsim_estimate::propagate::{Band, Spread, band, spread, through};
+use bumpsim_estimate::propagate::{Band, Run, Spread, band, spread, through};
 /// The Sobol' indices' settings (base samples N, resamples, seed).
 pub use bumpsim_estimate::sobol::Settings as SobolSettings;
 use bumpsim_estimate::sobol::{Indices, Input, Settings, SobolError, indices};
@@ -181,45 +181,65 @@ pub fn predict<M: Model, R: Outputs>(
 ) -> Result<Prediction<M>, UncertaintyError> {
     sampling.check()?;
     uncertainty.check(car)?;
+    let histories = nominal.histories();
+    let at = instants(histories.first().map_or(&[][..], |h| &h.time));
+    let drawn = drawn(car, uncertainty, sampling, &at, run)?;
+    let level = sampling.level;
+    Ok(Prediction {
+        uncertainty: uncertainty.clone(),
+        sampling: *sampling,
+        failed: drawn.failed,
+        outputs: spreads(&nominal.scalars(), &drawn.outputs, level),
+        bands: bands(&histories, &drawn.outputs, &at, level),
+    })
+}
+
+/// Each draw's outputs (histories on `at`), in parallel.
+fn drawn<M: Model, R: Outputs>(
+    car: &M::Car,
+    uncertainty: &Uncertainty<M>,
+    sampling: &Sampling,
+    at: &[f64],
+    run: &(dyn Fn(&M::Car) -> Option<R> + Sync),
+) -> Result<Run<Drawn>, UncertaintyError> {
     let parts = uncertainty.parts();
     let lower = uncertainty.cholesky()?;
     let factors: Vec<Vec<f64>> = (0..sampling.samples as u64)
         .map(|i| uncertainty.factors(&lower, sampling.seed, i))
         .collect();
-    let histories = nominal.histories();
-    let at = instants(histories.first().map_or(&[][..], |h| &h.time));
-    let drawn = through(&factors, &|f: &[f64]| {
+    Ok(through(&factors, &|f: &[f64]| {
         let r = run(&M::scaled(car, &parts, f)?)?;
-        Some(outcome(&r, &at))
-    });
-    let level = sampling.level;
-    let values = |k: usize| drawn.outputs.iter().map(|(s, _)| s[k]).collect::<Vec<_>>();
-    let outputs = nominal.scalars().into_iter().enumerate();
-    let outputs = outputs.map(|(k, s)| OutputSpread {
+        Some(outcome(&r, at))
+    }))
+}
+
+/// Each scalar output's spread over the draws.
+fn spreads(scalars: &[Scalar], drawn: &[Drawn], level: f64) -> Vec<OutputSpread> {
+    let values = |k: usize| drawn.iter().map(|(s, _)| s[k]).collect::<Vec<_>>();
+    let output = |(k, s): (usize, &Scalar)| OutputSpread {
         name: s.name.into(),
         unit: s.dimension.si_symbol(),
         dimension: s.dimension,
         nominal: s.value,
         spread: spread(&values(k), level),
-    });
-    let bands = histories.iter().enumerate().filter_map(|(k, h)| {
-        let drawn: Vec<Vec<f64>> = drawn.outputs.iter().map(|(_, hs)| hs[k].clone()).collect();
+    };
+    scalars.iter().enumerate().map(output).collect()
+}
+
+/// Each history's band over the draws, on `at`.
+fn bands(histories: &[History], drawn: &[Drawn], at: &[f64], level: f64) -> Vec<HistoryBand> {
+    let history = |(k, h): (usize, &History)| {
+        let drawn: Vec<Vec<f64>> = drawn.iter().map(|(_, hs)| hs[k].clone()).collect();
         Some(HistoryBand {
             name: h.name.into(),
             unit: h.dimension.si_symbol(),
             dimension: h.dimension,
-            nominal: resample(&h.time, &h.values, &at),
-            time: at.clone(),
+            nominal: resample(&h.time, &h.values, at),
+            time: at.to_vec(),
             band: band(&drawn, level)?,
         })
-    });
-    Ok(Prediction {
-        uncertainty: uncertainty.clone(),
-        sampling: *sampling,
-        failed: drawn.failed,
-        outputs: outputs.collect(),
-        bands: bands.collect(),
-    })
+    };
+    histories.iter().enumerate().filter_map(history).collect()
 }
 
 /// A draw's scalars and its histories on `at`.
@@ -308,28 +328,17 @@ pub fn sensitivity<M: Model, R: Outputs>(
     run: &(dyn Fn(&M::Car) -> Option<R> + Sync),
 ) -> Result<Sensitivity, SensitivityError> {
     uncertainty.check(car)?;
-    let parts = uncertainty.parts();
     let inputs = marginals(uncertainty, settings.seed);
     let scalars = nominal.scalars();
-    let cache: Mutex<HashMap<Vec<u64>, Vec<f64>>> = Mutex::new(HashMap::new());
-    let evaluate = |x: &[f64]| -> Vec<f64> {
-        let key: Vec<u64> = x.iter().map(|v| v.to_bits()).collect();
-        let cached = cache.lock().ok().and_then(|c| c.get(&key).cloned());
-        cached.unwrap_or_else(|| {
-            let factors: Vec<f64> = x.iter().map(|v| v.exp()).collect();
-            let r = M::scaled(car, &parts, &factors).and_then(|c| run(&c));
-            let values = r.map_or(vec![f64::NAN; scalars.len()], |r| {
-                r.scalars().iter().map(|s| s.value).collect()
-            });
-            if let Ok(mut c) = cache.lock() {
-                c.insert(key, values.clone());
-            }
-            values
-        })
+    let impacts: Impacts<M, R> = Impacts {
+        car,
+        parts: uncertainty.parts(),
+        run,
+        count: scalars.len(),
+        cache: Mutex::new(HashMap::new()),
     };
     let outputs = scalars.iter().enumerate().map(|(k, s)| {
-        let output = |x: &[f64]| evaluate(x).get(k).copied().unwrap_or(f64::NAN);
-        let found = indices(&inputs, &output, settings);
+        let output = |x: &[f64]| impacts.values(x).get(k).copied().unwrap_or(f64::NAN);
         let source = |source| SensitivityError::Sobol {
             output: s.name.into(),
             source,
@@ -337,7 +346,7 @@ pub fn sensitivity<M: Model, R: Outputs>(
         Ok(OutputIndices {
             name: s.name.into(),
             unit: s.dimension.si_symbol(),
-            indices: found.map_err(source)?,
+            indices: indices(&inputs, &output, settings).map_err(source)?,
         })
     });
     Ok(Sensitivity {
@@ -347,6 +356,35 @@ pub fn sensitivity<M: Model, R: Outputs>(
         settings: *settings,
         outputs: outputs.collect::<Result<_, SensitivityError>>()?,
     })
+}
+
+/// The impacts of the Sobol' points, each run once for all outputs (the
+/// points repeat from one output's indices to the next).
+struct Impacts<'a, M: Model, R> {
+    car: &'a M::Car,
+    parts: Vec<M::Part>,
+    run: &'a (dyn Fn(&M::Car) -> Option<R> + Sync),
+    count: usize,
+    cache: Mutex<HashMap<Vec<u64>, Vec<f64>>>,
+}
+
+impl<M: Model, R: Outputs> Impacts<'_, M, R> {
+    /// The scalar outputs at the log factors `x` (NaN where the car or its
+    /// run fails).
+    fn values(&self, x: &[f64]) -> Vec<f64> {
+        let key: Vec<u64> = x.iter().map(|v| v.to_bits()).collect();
+        if let Some(v) = self.cache.lock().ok().and_then(|c| c.get(&key).cloned()) {
+            return v;
+        }
+        let factors: Vec<f64> = x.iter().map(|v| v.exp()).collect();
+        let r = M::scaled(self.car, &self.parts, &factors).and_then(|c| (self.run)(&c));
+        let scalars = |r: R| r.scalars().iter().map(|s| s.value).collect();
+        let values: Vec<f64> = r.map_or(vec![f64::NAN; self.count], scalars);
+        if let Ok(mut c) = self.cache.lock() {
+            c.insert(key, values.clone());
+        }
+        values
+    }
 }
 
 /// Each parameter's log-normal marginal as [`MARGINAL`] seeded draws of
