@@ -327,6 +327,23 @@ pub fn choose_units(asked: &[Unit], dimensions: &[Dimension]) -> Result<Vec<Unit
         .collect())
 }
 
+/// A value as an error shows it: plain (`0`, `-5`, `2.2`), or in exponent
+/// form where plain would print hundreds of digits (`1e308`, `1e-300`).
+///
+/// ```
+/// use bumpsim_core::units::short;
+/// assert_eq!(short(2.5), "2.5");
+/// assert_eq!(short(1e-300), "1e-300");
+/// assert_eq!(short(-1e308), "-1e308");
+/// ```
+pub fn short(value: f64) -> String {
+    let plain = value == 0.0 || (1e-4..1e15).contains(&value.abs()) || !value.is_finite();
+    match plain {
+        true => format!("{value}"),
+        false => format!("{value:?}"),
+    }
+}
+
 /// Formats a number with `digits` significant digits: plain notation between
 /// 1e-3 and 1e6, scientific outside; trailing zeros are kept so that columns
 /// of numbers read alike.

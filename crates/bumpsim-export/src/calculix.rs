@@ -218,9 +218,6 @@ fn transient(
     let (layout, set) = (&options.layout, &options.prefix);
     let force = &analysis.force;
     let increment = analysis.increment.unwrap_or(force.step());
-    if !(increment.is_finite() && increment > 0.0) {
-        return Err(ExportError::Increment { increment });
-    }
     if analysis.output_every == 0 {
         return Err(ExportError::OutputInterval);
     }
@@ -265,6 +262,7 @@ pub fn amplitude(deck: &mut String, name: &str, points: impl Iterator<Item = (f6
 
 /// `*STEP` and `*DYNAMIC, DIRECT, ALPHA=0.0` (trapezoidal rule) with a fixed
 /// `increment` over `duration` (both s, SI; written in `units`); refuses
+/// an increment beyond the duration or below [`crate::MIN_INTERVAL`], and
 /// more increments than CalculiX's 32-bit `INC` holds.
 pub fn dynamic_step(
     deck: &mut String,
@@ -272,9 +270,7 @@ pub fn dynamic_step(
     duration: f64,
     units: UnitSystem,
 ) -> Result<(), ExportError> {
-    if !(increment.is_finite() && increment > 0.0) {
-        return Err(ExportError::Increment { increment });
-    }
+    crate::check_interval("increment", increment, Some(duration), f64::INFINITY)?;
     let (dt, length) = (increment * units.time(), duration * units.time());
     // `as u64` saturated and `+ 10` overflowed (a panic in debug, INC=9 in
     // release) for --increment 1e-300; INC is a 32-bit integer in CalculiX
@@ -578,9 +574,11 @@ mod tests {
                 Err(ExportError::Prefix { .. })
             ));
         }
-        // an increment of 1e-300 s panicked on `u64::MAX + 10`
-        let force = UniformSeries::new(0.0, 1e-3, vec![0.0, 1.0, 0.0]).unwrap();
-        for increment in [1e-300, 1e-13] {
+        // an increment of 1e-300 s panicked on `u64::MAX + 10`; now it is
+        // below the shortest, and over a 100 s force 1e-8 s overflows INC
+        let short = UniformSeries::new(0.0, 1e-3, vec![0.0, 1.0, 0.0]).unwrap();
+        let long = UniformSeries::new(0.0, 50.0, vec![0.0, 1.0, 0.0]).unwrap();
+        for (force, increment) in [(&short, 1e-300), (&short, 1e-13), (&long, 1e-8)] {
             let options = CalculixOptions {
                 analysis: Some(Analysis {
                     force: force.clone(),
@@ -590,7 +588,12 @@ mod tests {
                 ..Default::default()
             };
             let err = calculix_deck(&model, &options).unwrap_err();
-            assert!(matches!(err, ExportError::Increments { .. }), "{err}");
+            let count = matches!(err, ExportError::Increments { .. });
+            assert_eq!(count, increment > 1e-9, "{err}");
+            assert!(
+                count || matches!(err, ExportError::Increment { .. }),
+                "{err}"
+            );
         }
         for id_offset in [u64::MAX, MAX_CALCULIX_ID - 1] {
             let options = CalculixOptions {

@@ -103,11 +103,15 @@ pub enum ExportError {
         /// The largest valid id.
         limit: u64,
     },
-    /// A time increment that is not positive and finite.
-    #[error("time increment {increment} s must be positive")]
+    /// A time increment or output interval out of its range.
+    #[error("{what} = {} s: expected {expected}", bumpsim_core::units::short(*increment))]
     Increment {
+        /// Which: the option's name.
+        what: &'static str,
         /// The increment, s.
         increment: f64,
+        /// What it must be.
+        expected: String,
     },
     /// An output interval of zero increments.
     #[error("the output interval must be at least 1 increment")]
@@ -256,4 +260,44 @@ pub(crate) fn check_finite(
         }
     }
     Ok(())
+}
+
+/// The shortest output interval or increment a deck may ask for, s: a
+/// low-speed car model's explicit time step is microseconds, and 1e-308 s
+/// asked for 1e307 outputs.
+pub const MIN_INTERVAL: f64 = 1e-9;
+
+/// The most outputs an LS-DYNA deck's output interval may ask for over its
+/// force (as `fe lsdyna`'s runs).
+pub const MAX_OUTPUTS: f64 = 1e6;
+
+/// An increment or output interval `dt` (s) named `what`: finite, at least
+/// [`MIN_INTERVAL`], and with a force of `duration` (s) at most that
+/// duration and at most `most` of them over it.
+pub fn check_interval(
+    what: &'static str,
+    dt: f64,
+    duration: Option<f64>,
+    most: f64,
+) -> Result<(), ExportError> {
+    let refuse = |expected: String| ExportError::Increment {
+        what,
+        increment: dt,
+        expected,
+    };
+    if !(dt.is_finite() && dt >= MIN_INTERVAL) {
+        return Err(refuse("finite and at least 1e-9 s".into()));
+    }
+    match duration {
+        Some(d) if dt > d => Err(refuse(format!(
+            "at most the force's duration, {} s",
+            bumpsim_core::units::short(d)
+        ))),
+        Some(d) if d / dt > most => Err(refuse(format!(
+            "at least the force's duration / {} = {} s",
+            bumpsim_core::units::short(most),
+            bumpsim_core::units::short(d / most)
+        ))),
+        _ => Ok(()),
+    }
 }

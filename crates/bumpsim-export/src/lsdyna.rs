@@ -169,9 +169,8 @@ fn run_cards(
         load(deck, force, options, ids);
     }
     if let Some(dt) = options.output_interval {
-        if !(dt.is_finite() && dt > 0.0) {
-            return Err(ExportError::Increment { increment: dt });
-        }
+        let duration = options.force.as_ref().map(|f| f.end() - f.start());
+        crate::check_interval("output interval", dt, duration, crate::MAX_OUTPUTS)?;
         history(deck, model, options, ids, dt);
     }
     if options.standalone {

@@ -39,15 +39,7 @@ pub mod prelude {
     pub use crate::run::{FeResult, FeRun};
 }
 
-/// A value as an error shows it: plain (`0`, `-5`, `2.2`), or in exponent
-/// form where plain would print hundreds of digits (`1e308`, `1e-300`).
-fn short(value: f64) -> String {
-    let plain = value == 0.0 || (1e-4..1e15).contains(&value.abs()) || !value.is_finite();
-    match plain {
-        true => format!("{value}"),
-        false => format!("{value:?}"),
-    }
-}
+use bumpsim_core::units::short;
 
 /// Why an FE run cannot be set up, run or read.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

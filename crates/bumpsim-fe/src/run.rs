@@ -182,7 +182,12 @@ pub(crate) fn check_scenario(scenario: Scenario) -> Result<(), FeError> {
 /// impact is over within a second (and 1e308 s overflowed the deck's units).
 pub const MAX_DURATION: f64 = 100.0;
 
-/// A duration within [`MAX_DURATION`], and an `increment` (the run's, or a
+/// The shortest simulated time of a coupled run or deck, s: a low-speed
+/// impact lasts tens of milliseconds, and 1e-308 s gave a deck ending at
+/// a subnormal time.
+pub const MIN_DURATION: f64 = 1e-6;
+
+/// A duration from [`MIN_DURATION`] to [`MAX_DURATION`], and an `increment` (the run's, or a
 /// deck's output interval) of at most the duration and at most
 /// [`MAX_INCREMENTS`] of them.
 pub(crate) fn check_run(duration: f64, increment: f64, what: &str) -> Result<(), FeError> {
@@ -194,11 +199,11 @@ pub(crate) fn check_run(duration: f64, increment: f64, what: &str) -> Result<(),
     if !(duration.is_finite() && duration > 0.0) {
         return Err(bad("duration (s)", duration, "positive and finite"));
     }
-    if duration > MAX_DURATION {
+    if !(MIN_DURATION..=MAX_DURATION).contains(&duration) {
         return Err(bad(
             "duration (s)",
             duration,
-            "at most 100 s (MAX_DURATION)",
+            "from 1e-6 s (MIN_DURATION) to 100 s (MAX_DURATION)",
         ));
     }
     if !(increment.is_finite() && increment > 0.0) {

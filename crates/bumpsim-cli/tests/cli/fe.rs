@@ -471,10 +471,14 @@ fn lsdyna_decks_refuse_absurd_times_and_strikers() {
     let car = root().join("examples/identify/car-truth.toml");
     let mesh = root().join("examples/fe/bumper-elastic.toml");
     let deck = dir.join("x.k");
-    let cases: [(&[&str], &str); 5] = [
+    let cases: [(&[&str], &str); 6] = [
         (
             &["--barrier", "--duration", "1e308"],
             "duration (s) = 1e308",
+        ),
+        (
+            &["--barrier", "--duration", "1e-308"],
+            "duration (s) = 1e-308: expected from 1e-6 s (MIN_DURATION) to 100 s",
         ),
         (
             &[

@@ -326,8 +326,7 @@ fn analysis(
             .map(|(k, f)| (k as f64 * forces.step * u.time(), f * u.force()));
         amplitude(deck, &format!("{set}F{node}_{dof}"), points);
     }
-    let samples = forces.loads[0].force.len();
-    let duration = (samples - 1) as f64 * forces.step;
+    let duration = forces.duration();
     dynamic_step(deck, options.increment.unwrap_or(forces.step), duration, u)?;
     for (node, dof) in loads.keys() {
         let _ = writeln!(

@@ -73,6 +73,14 @@ pub struct Forces {
     pub loads: Vec<Load>,
 }
 
+impl Forces {
+    /// The loads' length, s: (samples − 1) · step.
+    pub fn duration(&self) -> f64 {
+        let samples = self.loads.first().map_or(0, |l| l.force.len());
+        samples.saturating_sub(1) as f64 * self.step
+    }
+}
+
 /// Options of the planar export.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PlanarExport {
@@ -196,11 +204,17 @@ pub(crate) fn check(car: &PlanarCar, options: &PlanarExport) -> Result<(), Plana
     if let Some(v) = options.speed {
         require("initial velocity", v, "m/s", "must be finite", true)?;
     }
-    if let Some(dt) = options.output_interval {
-        require("output interval", dt, "s", positive, dt > 0.0)?;
-    }
     if let Some(forces) = &options.forces {
         check_forces(forces)?;
+    }
+    if let Some(dt) = options.output_interval {
+        let duration = options.forces.as_ref().map(Forces::duration);
+        bumpsim_export::check_interval(
+            "output interval",
+            dt,
+            duration,
+            bumpsim_export::MAX_OUTPUTS,
+        )?;
     }
     check_units(car, options)
 }

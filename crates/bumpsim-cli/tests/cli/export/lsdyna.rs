@@ -32,7 +32,9 @@ fn lsdyna_export_writes_the_include_and_refuses_bad_options() {
         "{deck}"
     );
     assert!(deck.contains("-4444.4"), "16 km/h in mm/s: {deck}");
-    let cases: [(&[&str], &str); 6] = [
+    let force = example("pendulum-force.csv");
+    let force = force.to_str().unwrap();
+    let cases: [(&[&str], &str); 9] = [
         (&["--units", "imperial"], "expected si, mm-s-t or mm-ms-kg"),
         (
             &["--attach", "1001,1001", "--id-offset", "5000"],
@@ -40,7 +42,20 @@ fn lsdyna_export_writes_the_include_and_refuses_bad_options() {
         ),
         (
             &["--output-interval", "-1"],
-            "time increment -1 s must be positive",
+            "output interval = -1 s: expected finite and at least 1e-9 s",
+        ),
+        // 1e-308 s asked for 1e307 outputs; 1 s is beyond the 0.16 s force
+        (
+            &["--output-interval", "1e-308"],
+            "output interval = 1e-308 s: expected finite and at least 1e-9 s",
+        ),
+        (
+            &["--force", force, "--output-interval", "1"],
+            "output interval = 1 s: expected at most the force's duration",
+        ),
+        (
+            &["--force", force, "--output-interval", "1e-8"],
+            "expected at least the force's duration / 1000000 = 1.6e-7 s",
         ),
         (&["--id-offset", "0", "--attach", "2"], "clashes"),
         (&["--axis", "w"], "unknown axis"),

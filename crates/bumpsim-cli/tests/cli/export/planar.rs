@@ -193,11 +193,32 @@ fn export_planar_refuses_hostile_input_naming_the_parameter() {
         (["--direction", "0,0"], "load[0].direction"),
         (["--direction", "a,b"], "--direction 'a,b'"),
         (["--lateral", "nan"], "--lateral"),
-        (["--increment", "1e-300"], "choose a larger --increment"),
+        (
+            ["--increment", "1e-300"],
+            "increment = 1e-300 s: expected finite and at least 1e-9 s",
+        ),
+        // beyond the force: a deck whose one increment overshoots its loads
+        (
+            ["--increment", "1"],
+            "expected at most the force's duration",
+        ),
     ] {
         let mut args = vec!["--solver", "calculix", "-o", out, "--force", force];
         args.extend_from_slice(&extra);
         assert_user_error(&export_planar(&args), needle);
+    }
+    for interval in ["1e-308", "1e308"] {
+        let args = [
+            "--solver",
+            "lsdyna",
+            "-o",
+            out,
+            "--force",
+            force,
+            "--output-interval",
+            interval,
+        ];
+        assert_user_error(&export_planar(&args), "output interval = ");
     }
     assert!(
         !std::path::Path::new(out).exists(),
