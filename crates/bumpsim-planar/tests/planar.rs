@@ -510,6 +510,8 @@ fn a_stiff_beam_that_chatters_off_the_face_still_completes_the_impact() {
 
 #[path = "planar/export.rs"]
 mod export;
+#[path = "planar/files.rs"]
+mod files;
 #[path = "planar/identification.rs"]
 mod identification;
 #[path = "planar/independent.rs"]
