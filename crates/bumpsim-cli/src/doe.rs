@@ -298,7 +298,8 @@ fn reach(args: &ReachArgs) -> Result<()> {
         Some(_) => bail!("--cell: expected X0,X1,Y0,Y1 (four numbers)"),
     };
     let (x, y) = (args.x.as_str(), args.y.as_str());
-    let map = LinearMap::from_model(&model, x, y)?;
+    let map = LinearMap::from_model(&model, x, y)
+        .with_context(|| format!("model file {}", args.model.display()))?;
     let polygon = map.boundary();
     let points = map.samples(args.samples, args.seed);
     let corners = match cell_spec {

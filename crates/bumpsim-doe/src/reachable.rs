@@ -53,10 +53,46 @@ fn main_effects(r: &Response, factors: &[String]) -> Result<(f64, Vec<f64>), Rea
     Ok((centre, g))
 }
 
+/// The largest `|intercept| + Σ|main effect|` of a response the region
+/// takes: its square stays a number (the region's corner tests and
+/// distances multiply two responses), as in `doe fit`, whose sums of
+/// squares must be numbers.
+pub const MAX_REACH: f64 = 1e150;
+
+/// Refuses a response whose coefficients reach beyond [`MAX_REACH`],
+/// naming its largest coefficient.
+fn check_reach(r: &Response) -> Result<(), ReachError> {
+    let reach: f64 = r.coefficients.values().map(|c| c.abs()).sum();
+    if reach <= MAX_REACH {
+        return Ok(());
+    }
+    let (term, c) = r
+        .coefficients
+        .iter()
+        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+        .map_or(("", 0.0), |(t, c)| (t.as_str(), *c));
+    Err(ReachError(format!(
+        "response '{}': coefficient of '{term}' = {}: expected |intercept| + Σ|main effects| ≤ {} (the region multiplies two responses): rescale it (other units)",
+        r.name,
+        bumpsim_core::units::short(c),
+        bumpsim_core::units::short(MAX_REACH)
+    )))
+}
+
 impl LinearMap {
     /// The map of responses `x` and `y` of a model file.
+    ///
+    /// Refused: `x` equal to `y` (a response against itself is a line, not
+    /// a region), and a response whose intercept and main effects reach
+    /// beyond [`MAX_REACH`] (the region's areas and corner distances square
+    /// them).
     pub fn from_model(model: &ModelFile, x: &str, y: &str) -> Result<LinearMap, ReachError> {
         model.validate().map_err(|e| ReachError(e.to_string()))?;
+        if x == y {
+            return Err(ReachError(format!(
+                "--x and --y both name '{x}': expected two different responses"
+            )));
+        }
         let factors: Vec<String> = model.factors.iter().map(|f| f.name.clone()).collect();
         let find = |n: &str| {
             model
@@ -67,14 +103,8 @@ impl LinearMap {
         };
         let (cx, gx) = main_effects(find(x)?, &factors)?;
         let (cy, gy) = main_effects(find(y)?, &factors)?;
-        for (name, c, g) in [(x, cx, &gx), (y, cy, &gy)] {
-            let reach = g.iter().fold(c.abs(), |sum, g| sum + g.abs());
-            if !reach.is_finite() {
-                return Err(ReachError(format!(
-                    "response '{name}': its coefficients reach beyond the largest number: rescale it (other units)"
-                )));
-            }
-        }
+        check_reach(find(x)?)?;
+        check_reach(find(y)?)?;
         Ok(LinearMap {
             names: [x.into(), y.into()],
             centre: [cx, cy],

@@ -648,3 +648,33 @@ fn doe_collect_appends_standard_errors_that_doe_fit_reads() {
             .contains("k1 [N/m]: weighted by its standard errors (k1.se, 20000 .. 35000 N/m)")
     );
 }
+
+/// Issue 34 (hostile pass 2026-11-26, findings 6 and 16): `doe reach` with
+/// a coefficient of 1e308 printed `vertex Y = inf N` / `NaN N` with exit 0,
+/// and `--x Y --y Y` (a response against itself) was accepted; both are
+/// refused with exit 2, naming the model file and the coefficient or flags.
+#[test]
+fn doe_reach_refuses_overflowing_coefficients_and_one_response_twice() {
+    let dir = scratch("doe-reach-hostile");
+    let stage1 = doe_data("paper-c-stage1.json");
+    let source = std::fs::read_to_string(&stage1).unwrap();
+    let huge = dir.join("huge.json");
+    let edited = source.replacen("\"t1\": 3290.69", "\"t1\": 1e308", 1);
+    assert_ne!(edited, source);
+    std::fs::write(&huge, edited).unwrap();
+    let s = stage1.to_str().unwrap();
+    for (model, x, y, needle) in [
+        (
+            huge.to_str().unwrap(),
+            "Kax",
+            "Kbnd",
+            "coefficient of 't1' = 1e308",
+        ),
+        (huge.to_str().unwrap(), "Kbnd", "Kax", "huge.json"),
+        (s, "Kax", "Kax", "--x and --y both name 'Kax'"),
+    ] {
+        let run = bumpsim(&["doe", "reach", model, "--x", x, "--y", y, "--samples", "10"]);
+        assert_user_error(&run, needle);
+        assert!(!text(&run.stdout).contains("inf"), "{}", text(&run.stdout));
+    }
+}
