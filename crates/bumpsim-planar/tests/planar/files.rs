@@ -21,7 +21,8 @@ fn series() -> &'static (Series, PathBuf, Vec<StrikerFields>) {
     MADE.get_or_init(|| {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
         let series = make_series(&root.join("examples/planar/identify/series.toml")).unwrap();
-        let dir = std::env::temp_dir().join(format!("bumpsim-planar-files-{}", std::process::id()));
+        // under target/tmp: emptied at the start of every run
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("planar-files");
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         for test in &series.tests {
@@ -121,5 +122,50 @@ proptest! {
             }).collect();
             prop_assert_eq!(&case.drive.sensors, &places);
         }
+    }
+}
+
+/// A speed (m/s, either sign, or 0) or mass (kg) over many decades.
+fn magnitude() -> impl Strategy<Value = f64> {
+    (1.0..10.0f64, -6..7i32).prop_map(|(m, e)| m * 10f64.powi(e))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// The test header of a planar series' test (the car as test object 1
+    /// with its speed and mass, a pendulum as test object 2) reads back
+    /// from the ISO-MME test synth writes: every line as written, and the
+    /// impact's speed and mass (the moving object's) bit for bit.
+    #[test]
+    fn a_planar_test_header_reads_back_equal(
+        car_speed in prop_oneof![Just(0.0), magnitude(), magnitude().prop_map(|v| -v)],
+        car_mass in magnitude(),
+        pendulum in proptest::option::of((magnitude(), magnitude())),
+    ) {
+        let (series, dir, _) = series();
+        let mut test = series.tests[0].clone();
+        test.car_speed = car_speed;
+        test.car_mass = car_mass;
+        test.striker = match pendulum {
+            Some((speed, mass)) => (speed, Some(mass)),
+            None => (0.0, None),
+        };
+        let header = test.test_header();
+        // a fresh folder per case: a test read is an input of the process
+        static CASE: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+        let case = CASE.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let folder = dir.join(format!("HEADER-{case}"));
+        let mme = bumpsim_io::isomme::write(&folder, "HEADER", &header, &test.channels[..1]).unwrap();
+        let read = bumpsim_io::test_data::TestData::open(&mme).unwrap();
+        for line in &header {
+            prop_assert!(read.metadata.contains(line), "{line:?} not in {:?}", read.metadata);
+        }
+        let (speed, mass) = match (car_speed, pendulum) {
+            (0.0, Some((speed, mass))) => (speed, mass),
+            _ => (car_speed, car_mass),
+        };
+        prop_assert_eq!(read.speed, Some(speed));
+        prop_assert_eq!(read.mass, Some(mass));
     }
 }
