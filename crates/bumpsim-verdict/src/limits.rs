@@ -139,6 +139,70 @@ struct ClearanceFile {
 
 const KEY: &str = "damageability";
 
+/// The plausible range of each limit, SI: `(key, low, high, unit, what)`.
+/// A limit outside it is a slip (a unit or an exponent), and one near zero
+/// would make a margin ratio (margin / limit) infinite. A side member
+/// yields at tens to hundreds of kN: 1 kN to 10 MN holds any car's rail.
+/// Strokes and gaps behind a bumper are millimetres to decimetres: 1 mm to
+/// 1 m. A body's 3 ms deceleration and OLC limits are a few g to a few
+/// hundred g: 1 to 10,000 m/s² (0.1 g to 1,000 g). ASI limits are about
+/// 1 to 1.4: 0.01 to 100. The bumper's least energy share: 0.1 % to 100 %
+/// (exclusive).
+pub const RANGES: [(&str, f64, f64, &str, &str); 8] = [
+    (
+        "rail_yield",
+        1e3,
+        1e7,
+        "N",
+        "a yield force from 1 kN to 10 MN",
+    ),
+    (
+        "crash_box_stroke",
+        1e-3,
+        1.0,
+        "m",
+        "a stroke from 1 mm to 1 m",
+    ),
+    ("bumper_stroke", 1e-3, 1.0, "m", "a stroke from 1 mm to 1 m"),
+    ("gap", 1e-3, 1.0, "m", "a gap from 1 mm to 1 m"),
+    (
+        "deceleration",
+        1.0,
+        1e4,
+        "m/s²",
+        "a deceleration from 1 to 10000 m/s² (0.1 g to 1000 g)",
+    ),
+    (
+        "olc",
+        1.0,
+        1e4,
+        "m/s²",
+        "an OLC from 1 to 10000 m/s² (0.1 g to 1000 g)",
+    ),
+    ("asi", 0.01, 100.0, "1", "an ASI from 0.01 to 100"),
+    (
+        "bumper_energy_share",
+        1e-3,
+        1.0 - f64::EPSILON,
+        "1",
+        "a share from 0.001 to below 1",
+    ),
+];
+
+/// Refuses `value` (SI) of limit `name` outside its range in [`RANGES`].
+fn plausible(key: &str, name: &str, value: f64) -> Result<(), VerdictError> {
+    let Some(&(_, low, high, unit, what)) = RANGES.iter().find(|r| r.0 == name) else {
+        return Ok(());
+    };
+    require(
+        key,
+        value,
+        unit,
+        &format!("expected {what}"),
+        (low..=high).contains(&value),
+    )
+}
+
 impl Damageability {
     /// Reads the `[damageability]` table of a planar car file's text;
     /// `path` names the file in messages.
@@ -227,43 +291,22 @@ impl Damageability {
         Damageability::parse(&text, path)
     }
 
-    /// Checks every limit on its own: finite, positive, ordered, names unique.
+    /// Checks every limit on its own: within its plausible range (see
+    /// [`RANGES`]), ordered, names unique.
     fn check(&self) -> Result<(), VerdictError> {
-        let positive = "must be a positive finite number";
-        require(
-            "damageability.rail_yield",
-            self.rail_yield,
-            "N",
-            positive,
-            self.rail_yield > 0.0,
-        )?;
-        require(
-            "damageability.crash_box_stroke",
-            self.crash_box_stroke,
-            "m",
-            positive,
-            self.crash_box_stroke > 0.0,
-        )?;
-        let optional = [
-            ("damageability.bumper_stroke", self.bumper_stroke, "m"),
-            ("damageability.deceleration", self.deceleration, "m/s²"),
-            ("damageability.olc", self.olc, "m/s²"),
-            ("damageability.asi", self.asi, "1"),
+        let limits = [
+            ("rail_yield", Some(self.rail_yield)),
+            ("crash_box_stroke", Some(self.crash_box_stroke)),
+            ("bumper_stroke", self.bumper_stroke),
+            ("bumper_energy_share", self.bumper_energy_share),
+            ("deceleration", self.deceleration),
+            ("olc", self.olc),
+            ("asi", self.asi),
         ];
-        for (key, value, unit) in optional {
+        for (name, value) in limits {
             if let Some(v) = value {
-                require(key, v, unit, positive, v > 0.0)?;
+                plausible(&format!("{KEY}.{name}"), name, v)?;
             }
-        }
-        if let Some(share) = self.bumper_energy_share {
-            let expected = "a share must lie in (0, 1)";
-            require(
-                "damageability.bumper_energy_share",
-                share,
-                "1",
-                expected,
-                share > 0.0 && share < 1.0,
-            )?;
         }
         if let Some([bottom, top]) = self.beam_height {
             let expected = format!(
@@ -351,13 +394,7 @@ fn clearance(
     let from = c.from.ok_or_else(|| {
         missing(&format!("{key}.from"), "\"beam\" (closed by the beam's travel) or \"front\" (by the front surface: bumper crush + beam travel)")
     })?;
-    require(
-        &format!("{key}.gap"),
-        gap,
-        "length_unit",
-        "must be a positive finite number",
-        gap > 0.0,
-    )?;
+    plausible(&format!("{key}.gap"), "gap", gap * unit)?;
     if let Some([low, high]) = c.lateral {
         let expected = format!("from right to left: the first must be below the second ({high})");
         require(

@@ -506,3 +506,47 @@ fn hostile_sobol_flags_exit_2_and_write_nothing() {
         );
     }
 }
+
+/// Issue 34 (hostile pass 2026-11-26, finding 8): damageability limits of
+/// 1e-308 gave `(-inf %) FAIL` with exit 0; each limit now has a plausible
+/// physical range, stated in the error with the key (exit 2), so no margin
+/// percentage can be infinite.
+#[test]
+fn implausible_limits_exit_2_naming_the_key_and_range() {
+    let dir = scratch("verdict-implausible");
+    let source = std::fs::read_to_string(car()).unwrap();
+    for (old, new, needle) in [
+        (
+            "rail_yield = 150e3",
+            "rail_yield = 1e-308",
+            "from 1 kN to 10 MN",
+        ),
+        (
+            "rail_yield = 150e3",
+            "rail_yield = 1e9",
+            "damageability.rail_yield",
+        ),
+        (
+            "crash_box_stroke = 40.0",
+            "crash_box_stroke = 1e-308",
+            "from 1 mm to 1 m",
+        ),
+        (
+            "bumper_stroke = 80.0",
+            "bumper_stroke = 1e-308",
+            "damageability.bumper_stroke",
+        ),
+        ("gap = 60.0", "gap = 2000.0", "gap from 1 mm to 1 m"),
+    ] {
+        assert!(source.contains(old), "{old}");
+        let file = dir.join("car.toml");
+        std::fs::write(&file, source.replacen(old, new, 1)).unwrap();
+        let run = verdict(&["--car", file.to_str().unwrap(), "--protocol", "part581"]);
+        assert_user_error(&run, needle);
+        assert!(
+            !text(&run.stdout).contains("inf %"),
+            "{}",
+            text(&run.stdout)
+        );
+    }
+}
