@@ -17,7 +17,8 @@
 //!   [`Settings::resamples`] times (seeded); the 95 % half-width is
 //!   `1.96` times the resampled indices' standard deviation (SALib's
 //!   `S1_conf`, `ST_conf`).
-//! - **Inputs**: uniform over a range, or distributed as given draws (a
+//! - **Inputs**: uniform over a range, normal (a log-normal parameter's
+//!   logarithm; its quantile function from statrs), or distributed as given draws (a
 //!   posterior's marginal: the quantile function of the draws, so the
 //!   inputs stay independent and their correlation is not carried).
 //!
@@ -139,6 +140,13 @@ pub enum Law {
         /// Upper end.
         high: f64,
     },
+    /// Normal (e.g. the logarithm of a log-normal parameter).
+    Normal {
+        /// Mean.
+        mean: f64,
+        /// Standard deviation.
+        sd: f64,
+    },
     /// As these draws (sorted), e.g. a posterior's marginal.
     Draws(Vec<f64>),
 }
@@ -149,6 +157,14 @@ impl Input {
         Input {
             name: name.into(),
             law: Law::Uniform { low, high },
+        }
+    }
+
+    /// Normal with `mean` and standard deviation `sd`.
+    pub fn normal(name: impl Into<String>, mean: f64, sd: f64) -> Input {
+        Input {
+            name: name.into(),
+            law: Law::Normal { mean, sd },
         }
     }
 
@@ -165,6 +181,12 @@ impl Input {
     fn at(&self, u: f64) -> f64 {
         match &self.law {
             Law::Uniform { low, high } => low + u * (high - low),
+            Law::Normal { mean, sd } => {
+                // the sequence's points reach 0: the quantile's ends are ±inf
+                let u = u.clamp(f64::EPSILON, 1.0 - f64::EPSILON);
+                let unit = statrs::distribution::Normal::standard();
+                mean + sd * statrs::distribution::ContinuousCDF::inverse_cdf(&unit, u)
+            }
             Law::Draws(sorted) => crate::posterior::quantile(sorted, u),
         }
     }
@@ -173,6 +195,7 @@ impl Input {
     fn usable(&self) -> bool {
         match &self.law {
             Law::Uniform { low, high } => low.is_finite() && high.is_finite() && low < high,
+            Law::Normal { mean, sd } => mean.is_finite() && sd.is_finite() && *sd >= 0.0,
             Law::Draws(d) => !d.is_empty() && d.iter().all(|v| v.is_finite()),
         }
     }
@@ -385,4 +408,20 @@ fn deviation(values: impl Iterator<Item = f64>) -> f64 {
     }
     let mean = v.iter().sum::<f64>() / v.len() as f64;
     (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (v.len() - 1) as f64).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A normal input's quantile function: the mean at the median, one
+    /// standard deviation at Φ(1), finite at the sequence's 0 and 1.
+    #[test]
+    fn a_normal_input_has_the_normal_quantiles() {
+        let x = Input::normal("x", 2.0, 0.5);
+        assert!((x.at(0.5) - 2.0).abs() < 1e-12);
+        assert!((x.at(0.841_344_746_068_542_9) - 2.5).abs() < 1e-9);
+        assert!(x.at(0.0).is_finite() && x.at(1.0).is_finite() && x.at(0.0) < 0.0);
+        assert!(x.usable() && !Input::normal("y", 0.0, f64::NAN).usable());
+    }
 }

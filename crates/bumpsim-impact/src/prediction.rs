@@ -13,7 +13,7 @@
 //!   whose run fails is counted, not used.
 //! - **Sobol' indices** (`bumpsim_estimate::sobol`, Saltelli sampling):
 //!   the inputs are the parameters' **independent** log-normal marginals
-//!   (`ln θᵢ − ln θ̂ᵢ ~ N(0, σᵢ²)`, as [`MARGINAL`] seeded draws); Sobol'
+//!   (`ln θᵢ − ln θ̂ᵢ ~ N(0, σᵢ²)`, the normal's quantile function); Sobol'
 //!   indices assume independent inputs, so a correlation of the source is
 //!   not used (and said: [`Sensitivity::correlation_ignored`]). Each
 //!   impact runs once for all outputs.
@@ -32,8 +32,6 @@ use std::sync::Mutex;
 pub const SAMPLES: [usize; 2] = [10, 100_000];
 /// Most instants of a band.
 pub const BAND_POINTS: usize = 400;
-/// Draws of each log-normal marginal of the Sobol' inputs.
-pub const MARGINAL: usize = 4096;
 
 /// A scalar output of a run.
 #[derive(Debug, Clone, PartialEq)]
@@ -328,7 +326,7 @@ pub fn sensitivity<M: Model, R: Outputs>(
     run: &(dyn Fn(&M::Car) -> Option<R> + Sync),
 ) -> Result<Sensitivity, SensitivityError> {
     uncertainty.check(car)?;
-    let inputs = marginals(uncertainty, settings.seed);
+    let inputs = marginals(uncertainty);
     let scalars = nominal.scalars();
     let impacts: Impacts<M, R> = Impacts {
         car,
@@ -387,16 +385,9 @@ impl<M: Model, R: Outputs> Impacts<'_, M, R> {
     }
 }
 
-/// Each parameter's log-normal marginal as [`MARGINAL`] seeded draws of
-/// `ln θᵢ − ln θ̂ᵢ`.
-fn marginals<M: Model>(u: &Uncertainty<M>, seed: u64) -> Vec<Input> {
-    let mut draws = bumpsim_estimate::search::Draws::new(seed, u64::MAX / 2);
-    let normal: Vec<f64> = (0..MARGINAL)
-        .map(|_| bumpsim_estimate::posterior::gaussian(&mut draws))
-        .collect();
-    let input = |(name, s): (&String, &f64)| {
-        Input::draws(name.clone(), normal.iter().map(|z| s * z).collect())
-    };
+/// Each parameter's log-normal marginal: `ln θᵢ − ln θ̂ᵢ ~ N(0, σᵢ²)`.
+fn marginals<M: Model>(u: &Uncertainty<M>) -> Vec<Input> {
+    let input = |(name, s): (&String, &f64)| Input::normal(name.clone(), 0.0, *s);
     u.names.iter().zip(&u.log_sd).map(input).collect()
 }
 

@@ -9,8 +9,8 @@
 //!   `value − limit`) and margin ratio are affine in it and have the same
 //!   indices.
 //! - **Inputs**: the uncertainty's parameters as **independent** log-normal
-//!   marginals, `θᵢ = θ̂ᵢ exp(σᵢ Φ⁻¹(uᵢ))` with `uᵢ` uniform on (0, 1)
-//!   (Φ⁻¹ by Wichura's AS 241, 1988, to about 1e-16). Sobol' indices
+//!   marginals, `θᵢ = θ̂ᵢ exp(xᵢ)` with `xᵢ ~ N(0, σᵢ²)`
+//!   ([`bumpsim_estimate::sobol::Input::normal`]). Sobol' indices
 //!   decompose the variance of an output of independent inputs (Sobol'
 //!   2001): a correlation of the source (an identification's) is **not
 //!   used**, and its largest |r| is stated with the indices.
@@ -111,8 +111,8 @@ pub fn sensitivity(
 ) -> Result<Sensitivity, VerdictError> {
     check(setup, uncertainty, settings)?;
     let judged = judged(nominal);
-    let inputs: Vec<Input> = (uncertainty.names.iter())
-        .map(|n| Input::uniform(n.as_str(), 0.0, 1.0))
+    let inputs: Vec<Input> = (uncertainty.names.iter().zip(&uncertainty.log_sd))
+        .map(|(n, s)| Input::normal(n.as_str(), 0.0, *s))
         .collect();
     let runs = Runs {
         setup,
@@ -233,7 +233,7 @@ impl Runs<'_> {
 
     /// The judged values of the car at `u`, or why it cannot be judged.
     fn run(&self, u: &[f64]) -> Result<Vec<f64>, String> {
-        let factors = factors(self.uncertainty, u);
+        let factors = factors(u);
         let said = |why: String| format!("the car with {}: {why}", self.named(&factors));
         let drawn = drawn(self.setup, self.uncertainty, &factors)
             .ok_or_else(|| said("not a valid car".into()))?;
@@ -277,11 +277,9 @@ fn judged_values(v: &Verdict, judged: &[Judged]) -> Vec<f64> {
         .collect()
 }
 
-/// The factors `exp(σᵢ Φ⁻¹(uᵢ))` of a point of the unit cube.
-fn factors(uncertainty: &Uncertainty, u: &[f64]) -> Vec<f64> {
-    let tiny = f64::EPSILON;
-    let at = |(s, u): (&f64, &f64)| (s * normal_quantile(u.clamp(tiny, 1.0 - tiny))).exp();
-    uncertainty.log_sd.iter().zip(u).map(at).collect()
+/// The factors `exp(xᵢ)` of a point of log factors `xᵢ ~ N(0, σᵢ²)`.
+fn factors(x: &[f64]) -> Vec<f64> {
+    x.iter().map(|v| v.exp()).collect()
 }
 
 /// The set-up with every end's car scaled by `factors`; None when a car
@@ -309,87 +307,6 @@ fn largest_correlation(uncertainty: &Uncertainty) -> f64 {
         cells.map(|(_, r)| r.abs())
     });
     off.fold(0.0, f64::max)
-}
-
-/// The standard normal quantile Φ⁻¹(p), p in (0, 1) (Wichura 1988,
-/// algorithm AS 241 `PPND16`, relative error about 1e-16; its
-/// coefficients as published).
-#[allow(clippy::excessive_precision)]
-fn normal_quantile(p: f64) -> f64 {
-    const A: [f64; 8] = [
-        3.387_132_872_796_366_608,
-        133.141_667_891_784_377_45,
-        1_971.590_950_306_551_442_7,
-        13_731.693_765_509_461_125,
-        45_921.953_931_549_871_457,
-        67_265.770_927_008_700_853,
-        33_430.575_583_588_128_105,
-        2_509.080_928_730_122_672_7,
-    ];
-    const B: [f64; 8] = [
-        1.0,
-        42.313_330_701_600_911_252,
-        687.187_007_492_057_908_3,
-        5_394.196_021_424_751_107_7,
-        21_213.794_301_586_595_867,
-        39_307.895_800_092_710_61,
-        28_729.085_735_721_942_674,
-        5_226.495_278_852_854_561,
-    ];
-    const C: [f64; 8] = [
-        1.423_437_110_749_683_577_34,
-        4.630_337_846_156_545_295_9,
-        5.769_497_221_460_691_405_5,
-        3.647_848_324_763_204_605_04,
-        1.270_458_252_452_368_382_58,
-        0.241_780_725_177_450_611_77,
-        0.022_723_844_989_269_184_583_3,
-        7.745_450_142_783_414_076_4e-4,
-    ];
-    const D: [f64; 8] = [
-        1.0,
-        2.053_191_626_637_758_821_87,
-        1.676_384_830_183_803_849_4,
-        0.689_767_334_985_100_004_55,
-        0.148_103_976_427_480_074_59,
-        0.015_198_666_563_616_457_196_6,
-        5.475_938_084_995_344_946e-4,
-        1.050_750_071_644_416_843_24e-9,
-    ];
-    const E: [f64; 8] = [
-        6.657_904_643_501_103_777_2,
-        5.463_784_911_164_114_369_9,
-        1.784_826_539_917_291_335_8,
-        0.296_560_571_828_504_891_23,
-        0.026_532_189_526_576_123_093,
-        0.001_242_660_947_388_078_438_6,
-        2.711_555_568_743_487_578_15e-5,
-        2.010_334_399_292_288_132_65e-7,
-    ];
-    const F: [f64; 8] = [
-        1.0,
-        0.599_832_206_555_887_937_69,
-        0.136_929_880_922_735_805_31,
-        0.014_875_361_290_850_614_852_5,
-        7.868_691_311_456_132_591e-4,
-        1.846_318_317_510_054_681_8e-5,
-        1.421_511_758_316_445_888_7e-7,
-        2.044_263_103_389_939_785_64e-15,
-    ];
-    let ratio = |num: &[f64; 8], den: &[f64; 8], r: f64| {
-        let poly = |c: &[f64; 8]| c.iter().rev().fold(0.0, |acc, &a| acc * r + a);
-        poly(num) / poly(den)
-    };
-    let q = p - 0.5;
-    if q.abs() <= 0.425 {
-        return q * ratio(&A, &B, 0.180_625 - q * q);
-    }
-    let r = (-(p.min(1.0 - p)).ln()).sqrt();
-    let z = match r <= 5.0 {
-        true => ratio(&C, &D, r - 1.6),
-        false => ratio(&E, &F, r - 5.0),
-    };
-    z.copysign(q)
 }
 
 /// The rows of the indices table: test, criterion, the value's mean ± sd
@@ -499,37 +416,4 @@ pub fn table(s: &Sensitivity) -> String {
         out += &line([&r[0], &r[1], &r[2], &r[3], &r[4], &r[5]].map(|c| c.as_str()));
     }
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// AS 241 against statrs's inverse CDF, in the body and both tails.
-    #[test]
-    fn the_normal_quantile_is_statrs_s() {
-        use statrs::distribution::{ContinuousCDF, Normal};
-        let normal = Normal::standard();
-        for p in [
-            1e-300,
-            1e-20,
-            1e-8,
-            0.001,
-            0.02,
-            0.075,
-            0.3,
-            0.5,
-            0.7,
-            0.925,
-            0.99,
-            1.0 - 1e-12,
-        ] {
-            let (ours, theirs) = (normal_quantile(p), normal.inverse_cdf(p));
-            assert!(
-                (ours - theirs).abs() < 1e-9 * theirs.abs().max(1.0),
-                "{p}: {ours} against {theirs}"
-            );
-        }
-        assert_eq!(normal_quantile(0.5), 0.0);
-    }
 }
