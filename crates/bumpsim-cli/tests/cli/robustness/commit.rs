@@ -149,3 +149,82 @@ fn an_output_inside_another_is_refused_before_the_command_runs() {
         );
     }
 }
+
+/// The folder's files and their bytes (hidden temporary names left out).
+fn folder(path: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(path)
+        .unwrap()
+        .flatten()
+        .map(|e| (e.file_name().to_string_lossy().into_owned(), e.path()))
+        .filter(|(name, _)| !name.starts_with('.'))
+        .map(|(name, p)| (name, std::fs::read(p).unwrap()))
+        .collect();
+    files.sort();
+    files
+}
+
+/// Issue 34: an existing folder output (`--plot`) was updated file by file
+/// when the command committed, so a kill -9 there left old and new plots
+/// mixed. Killed at delays across the whole run (start-up, computation,
+/// commit), the folder is each time the old plots or the new ones, whole,
+/// and the user's own file in it stays.
+#[test]
+fn sigkill_during_a_folder_commit_leaves_the_old_or_the_new_folder() {
+    let dir = examples("sigkill-folder");
+    let export = |scale: &str, plot: &str| {
+        let args = [
+            "signal",
+            "export",
+            "ex/identify/FLAT",
+            "-c",
+            "*",
+            "--scale",
+            scale,
+            "-o",
+            "x.csv",
+            "--plot",
+            plot,
+        ];
+        args.map(String::from)
+    };
+    for (scale, plot) in [("1", "old"), ("2", "new")] {
+        let (out, _) = run_in(&dir, &export(scale, plot).each_ref().map(String::as_str));
+        assert_eq!(out.status.code(), Some(0), "{}", super::stderr(&out));
+    }
+    let notes = ("notes.txt".to_string(), b"mine".to_vec());
+    let with_notes = |mut files: Vec<(String, Vec<u8>)>| {
+        files.push(notes.clone());
+        files.sort();
+        files
+    };
+    let (old, new) = (
+        with_notes(folder(&dir.join("old"))),
+        with_notes(folder(&dir.join("new"))),
+    );
+    assert_ne!(old, new);
+    let (mut olds, mut news) = (0, 0);
+    for delay_ms in (0..120u64).step_by(6) {
+        let plots = dir.join("plots");
+        let _ = std::fs::remove_dir_all(&plots);
+        crate::util::copy_tree(&dir.join("old"), &plots);
+        std::fs::write(plots.join("notes.txt"), "mine").unwrap();
+        let mut child = Command::new(env!("CARGO_BIN_EXE_bumpsim"))
+            .args(export("2", "plots"))
+            .current_dir(&dir)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(delay_ms));
+        let _ = child.kill(); // SIGKILL
+        let _ = child.wait();
+        let now = folder(&plots);
+        assert!(
+            now == old || now == new,
+            "killed after {delay_ms} ms: a mixed folder {:?}",
+            now.iter().map(|(n, b)| (n, b.len())).collect::<Vec<_>>()
+        );
+        if now == old { olds += 1 } else { news += 1 }
+    }
+    assert!(news > 0, "no run finished: {olds} old, {news} new");
+}
