@@ -462,7 +462,11 @@ impl Spec {
             .into_iter()
             .map(|(n, _)| n)
             .collect();
-        for name in &self.regress.responses {
+        for (i, name) in self.regress.responses.iter().enumerate() {
+            if self.regress.responses[..i].contains(name) {
+                let message = format!("'{name}' is listed twice: list each response once");
+                return Err(Spec::invalid(path, "regress.responses", message));
+            }
             if !columns.contains(name) {
                 let message = format!("'{name}' is not a response column ({})", columns.join(", "));
                 return Err(Spec::invalid(path, "regress.responses", message));

@@ -110,3 +110,20 @@ fn an_unprintable_standard_output_leaves_no_campaign_folder() {
     assert_user_error(&out, "cannot print the results");
     assert!(!folder.exists(), "a refused init left its folder");
 }
+
+/// `[regress] responses = ["y_max", "y_max"]` was accepted (hostile pass of
+/// 2026-11-26, finding 16): the regression would fit one response twice;
+/// refused naming the key and the response, with no campaign folder.
+#[test]
+fn a_response_listed_twice_for_the_regression_is_refused_naming_the_key() {
+    let fake = Fake::new("campaign-case-regress-twice", 0, &NO_FAULTS, "local");
+    let campaign = std::fs::read_to_string(fake.dir.join("campaign.toml")).unwrap();
+    let file = fake.dir.join("twice.toml");
+    let regress = "\n[regress]\nresponses = [\"y_max\", \"y_max\"]\n";
+    std::fs::write(&file, format!("{campaign}{regress}")).unwrap();
+    let folder = fake.dir.join("twice");
+    let out = bumpsim(&["campaign", "init", path(&file), "-o", path(&folder)]);
+    assert_user_error(&out, "regress.responses");
+    assert_user_error(&out, "'y_max' is listed twice");
+    assert!(!folder.exists(), "nothing written");
+}
