@@ -22,6 +22,16 @@ use std::path::{Path, PathBuf};
 /// samples a channel may have takes about 400 MB). docs/limits.md.
 pub const MAX_FILE_BYTES: u64 = 1 << 30;
 
+/// Most samples (rows) a channel of an input file may hold: 2 000 000,
+/// 200 s at 10 kHz or 20 s at 100 kHz, far beyond a low-speed crash test
+/// (0.1 to 0.3 s; ISO 6487 and NHTSA record at 10 to 20 kHz). Checked while
+/// the samples are read, before they are all held: a 1 GiB file may hold
+/// 75 million rows, and `simulate` holds about 520 bytes per row (its
+/// response), so 2 000 000 rows take about 1 GB, 75 million 37 GB (an
+/// out-of-memory kill instead of an error). Readers: CSV tables, ISO-MME and
+/// EV5 channel files. docs/limits.md.
+pub const MAX_INPUT_SAMPLES: usize = 2_000_000;
+
 /// An input file that cannot be read.
 #[derive(Debug, thiserror::Error)]
 pub enum ReadError {

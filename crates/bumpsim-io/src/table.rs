@@ -10,7 +10,9 @@
 //! unit or with an unknown one; a time column whose unit is not a time; a
 //! row with another number of cells than the header (ragged); a cell that is
 //! not a number, or is NaN or infinite; fewer than two samples; time not
-//! increasing; time not uniformly sampled. Uniform means every interval lies
+//! increasing; time not uniformly sampled; more than
+//! [`MAX_INPUT_SAMPLES`] data rows (refused at the first row beyond, before
+//! the rows are all held). Uniform means every interval lies
 //! within 1 % of the median interval and every sample within 1 % of an
 //! interval of its place on the uniform grid of the mean interval (what printing times with a few digits
 //! leaves; a dropped or repeated sample is far outside).
@@ -24,12 +26,15 @@
 //! assert!((table.step - 1e-4).abs() < 1e-15);
 //! ```
 
+use bumpsim_core::files::MAX_INPUT_SAMPLES;
 use bumpsim_core::series::UniformSeries;
 use bumpsim_core::units::{Dimension, Unit, UnitError};
 use std::path::{Path, PathBuf};
 
 mod checks;
+mod error;
 use checks::{check_column_names, check_values};
+pub use error::TableError;
 
 /// A data column, values in SI.
 #[derive(Debug, Clone, PartialEq)]
@@ -55,135 +60,6 @@ pub struct Table {
     pub columns: Vec<Column>,
 }
 
-/// A problem with a CSV file; every variant names the file.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum TableError {
-    /// The file cannot be read.
-    #[error("{path}: cannot read: {source}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The cause.
-        source: std::io::Error,
-    },
-    /// The CSV layer failed (e.g. invalid UTF-8).
-    #[error("{path}:{line}: {message}")]
-    Syntax {
-        /// The file.
-        path: PathBuf,
-        /// 1-based line.
-        line: u64,
-        /// What the parser said.
-        message: String,
-    },
-    /// No header or no rows.
-    #[error("{path}: {what}")]
-    Empty {
-        /// The file.
-        path: PathBuf,
-        /// What is missing.
-        what: &'static str,
-    },
-    /// A header cell is not `name [unit]` with a known unit.
-    #[error("{path}:{line}: column {column} '{text}': {reason}")]
-    Header {
-        /// The file.
-        path: PathBuf,
-        /// Line of the header.
-        line: u64,
-        /// 1-based column.
-        column: usize,
-        /// The cell.
-        text: String,
-        /// What is wrong.
-        reason: String,
-    },
-    /// A row with a different number of cells than the header.
-    #[error("{path}:{line}: {found} cells, but the header has {expected} (ragged row)")]
-    Ragged {
-        /// The file.
-        path: PathBuf,
-        /// 1-based line.
-        line: u64,
-        /// Header cells.
-        expected: usize,
-        /// Cells in this row.
-        found: usize,
-    },
-    /// A cell that is not a finite number.
-    #[error("{path}:{line}: column '{column}' holds '{text}', expected a finite number")]
-    Number {
-        /// The file.
-        path: PathBuf,
-        /// 1-based line.
-        line: u64,
-        /// Column header.
-        column: String,
-        /// The cell.
-        text: String,
-    },
-    /// A finite number that is infinite once converted to SI (`1e308` kN).
-    #[error(
-        "{path}:{line}: column '{column}' holds '{text}', beyond the largest number once converted to SI"
-    )]
-    Overflow {
-        /// The file.
-        path: PathBuf,
-        /// 1-based line.
-        line: u64,
-        /// Column header.
-        column: String,
-        /// The cell.
-        text: String,
-    },
-    /// The time base is not usable.
-    #[error("{path}:{line}: {reason}")]
-    Time {
-        /// The file.
-        path: PathBuf,
-        /// 1-based line.
-        line: u64,
-        /// What is wrong.
-        reason: String,
-    },
-    /// A selected column does not exist or is ambiguous.
-    #[error("{path}: {reason}; columns: {available}")]
-    Column {
-        /// The file.
-        path: PathBuf,
-        /// What went wrong.
-        reason: String,
-        /// The data columns there are.
-        available: String,
-    },
-    /// A column the table reader would not read back as written (its name,
-    /// or its length).
-    #[error("{path}: column '{name}': {reason}: the file would not read back as written")]
-    ColumnName {
-        /// The file to write.
-        path: PathBuf,
-        /// The name (control characters escaped).
-        name: String,
-        /// What is wrong.
-        reason: &'static str,
-    },
-    /// A file cannot be written.
-    #[error("{path}: cannot write: {source}")]
-    Write {
-        /// The file.
-        path: PathBuf,
-        /// The cause.
-        source: std::io::Error,
-    },
-    /// The output is refused (it would land on an input) or cannot be written.
-    #[error(transparent)]
-    Output(#[from] crate::output::OutputError),
-    /// The file is not a regular file or too large.
-    #[error(transparent)]
-    Read(#[from] bumpsim_core::files::ReadError),
-}
-
 /// Splits a `name [unit]` header into its parts (the one rule of such
 /// labels, [`bumpsim_core::units::split_unit`]).
 pub use bumpsim_core::units::split_unit as split_header;
@@ -201,8 +77,14 @@ impl Table {
     }
 
     /// Parses CSV text; `path` is used in messages. Rows are read one at
-    /// a time into the columns (no copy of the text's cells is kept).
+    /// a time into the columns (no copy of the text's cells is kept), at
+    /// most [`MAX_INPUT_SAMPLES`] of them.
     pub fn parse(text: &str, path: &Path) -> Result<Table, TableError> {
+        Self::parse_within(text, path, MAX_INPUT_SAMPLES)
+    }
+
+    /// [`Table::parse`] with at most `max_rows` data rows.
+    fn parse_within(text: &str, path: &Path, max_rows: usize) -> Result<Table, TableError> {
         let mut rows = Rows::new(text, path);
         let header = rows.next()?.ok_or_else(|| TableError::Empty {
             path: path.into(),
@@ -212,6 +94,13 @@ impl Table {
         let mut values: Vec<Vec<f64>> = vec![Vec::new(); units.len()];
         let mut lines = Vec::new();
         while let Some(line) = rows.next()? {
+            if lines.len() == max_rows {
+                return Err(TableError::TooManyRows {
+                    path: path.into(),
+                    line,
+                    limit: max_rows,
+                });
+            }
             if rows.record.len() != units.len() {
                 return Err(TableError::Ragged {
                     path: path.into(),
@@ -670,6 +559,34 @@ mod tests {
         );
         let e = parse("time [s],force [kN]\n0,1\n").unwrap_err();
         assert!(e.to_string().contains("fewer than two data rows"), "{e}");
+    }
+
+    #[test]
+    fn rows_beyond_the_limit_are_refused_naming_the_line() {
+        let text = "# note\ntime [s],f [N]\n0,1\n1,2\n2,3\n3,4\n";
+        let path = Path::new("f.csv");
+        assert_eq!(
+            Table::parse_within(text, path, 4).unwrap().columns[0]
+                .values
+                .len(),
+            4
+        );
+        let e = Table::parse_within(text, path, 3).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                TableError::TooManyRows {
+                    line: 6,
+                    limit: 3,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert!(
+            e.to_string().starts_with("f.csv:6: more than 3 data rows"),
+            "{e}"
+        );
     }
 
     #[test]

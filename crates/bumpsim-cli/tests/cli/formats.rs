@@ -360,3 +360,66 @@ fn the_figures_docs_signals_quotes_are_what_the_command_prints() {
         ],
     );
 }
+
+/// A copy of the bundled FLAT test whose channel 3 header line
+/// `Sampling interval` says `value` (the files are written, not copied:
+/// a copy would keep a read-only source's permissions).
+fn flat_with_interval(dir: &Path, value: &str) -> PathBuf {
+    let test = dir.join("FLAT");
+    copy_tree(&root().join("examples/identify/FLAT"), &test);
+    let file = test.join("Channel/FLAT.003");
+    let spoiled: String = std::fs::read_to_string(&file)
+        .unwrap()
+        .lines()
+        .map(|l| match l.starts_with("Sampling interval") {
+            true => format!("Sampling interval           :{value}\r\n"),
+            false => format!("{l}\r\n"),
+        })
+        .collect();
+    std::fs::write(&file, spoiled).unwrap();
+    test
+}
+
+#[test]
+fn an_iso_mme_sampling_interval_outside_1ns_to_1s_is_refused_naming_the_line() {
+    let dir = scratch("formats-interval");
+    for value in ["1e308", "1e-12", "2"] {
+        let test = flat_with_interval(&dir.join(value), value);
+        let out = dir.join(value).join("o.csv");
+        let args = ["signal", "export", test.to_str().unwrap(), "-c", "3"];
+        let run = bumpsim(&[&args[..], &["-o", out.to_str().unwrap()]].concat());
+        assert_user_error(&run, "FLAT.003:23: 'Sampling interval' ");
+        assert_user_error(&run, "expected 1e-9 to 1 s");
+        assert!(!out.exists(), "{value}");
+    }
+    let test = flat_with_interval(&dir.join("ok"), "1e-5");
+    let out = dir.join("ok/o.csv");
+    let args = ["signal", "export", test.to_str().unwrap(), "-c", "3"];
+    let run = bumpsim(&[&args[..], &["-o", out.to_str().unwrap()]].concat());
+    assert!(run.status.success(), "{}", text(&run.stderr));
+}
+
+#[test]
+fn an_ev5_channel_line_with_a_third_value_is_refused_naming_the_line() {
+    let Some(ev5) = nhtsa_ev5() else { return };
+    let dir = scratch("formats-ev5-third");
+    std::fs::create_dir_all(&dir).unwrap();
+    let copy = |name: &str, edit: &dyn Fn(String) -> String| {
+        let text = std::fs::read_to_string(ev5.with_file_name(name)).unwrap();
+        std::fs::write(dir.join(name), edit(text)).unwrap();
+    };
+    copy("v10146.EV5", &|t| t);
+    let third = |t: String| {
+        let mut lines: Vec<String> = t.lines().map(str::to_string).collect();
+        lines[49].push_str("\t7.5");
+        lines.join("\n") + "\n"
+    };
+    copy("v10146.093", &third);
+    let out = dir.join("o.csv");
+    let test = dir.join("v10146.EV5");
+    let args = ["signal", "export", test.to_str().unwrap(), "-c", "93"];
+    let run = bumpsim(&[&args[..], &["-o", out.to_str().unwrap()]].concat());
+    assert_user_error(&run, "v10146.093:50: ");
+    assert_user_error(&run, "two finite numbers and nothing more");
+    assert!(!out.exists());
+}

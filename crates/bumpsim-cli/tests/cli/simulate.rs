@@ -310,3 +310,26 @@ fn a_full_stdout_and_a_device_for_a_car_are_errors_not_panics() {
         "/dev/zero: is a device, pipe or socket, not a regular file",
     );
 }
+
+#[test]
+fn a_force_table_beyond_the_row_limit_is_refused_naming_file_and_line() {
+    let dir = scratch("simulate-rows");
+    std::fs::create_dir_all(&dir).unwrap();
+    let limit = bumpsim_core::files::MAX_INPUT_SAMPLES;
+    // the rows are refused while read, before the (equal) times are checked
+    let mut text = String::with_capacity(10 * limit);
+    text.push_str("time [s],force [N]\n");
+    for _ in 0..=limit {
+        text.push_str("0,0\n");
+    }
+    let force = dir.join("long.csv");
+    std::fs::write(&force, text).unwrap();
+    let out = dir.join("r.csv");
+    let car = root().join("examples/simulate/car-3dof.toml");
+    let run = simulate(&car, &force, &["-o", out.to_str().unwrap()]);
+    assert_user_error(
+        &run,
+        &format!("long.csv:{}: more than {limit} data rows", limit + 2),
+    );
+    assert!(!out.exists());
+}

@@ -236,9 +236,13 @@ pub(crate) fn load(
             .and_then(|(_, v)| parse_number(v))
     };
     check_count(entry, &meta, values.len(), file)?;
-    let step = meta("Sample interval (us)").map(|us| us * 1e-6);
+    let what = format!("curve {}: 'Sample interval (us)' gives", entry.number);
+    let step = meta("Sample interval (us)")
+        .map(|us| super::check_interval(us * 1e-6, ev5, unit_line, &what))
+        .transpose()?;
     let (start, step) =
         time_base(&times, step).map_err(|(line, m)| SignalFileError::line(file, line, m))?;
+    super::check_interval(step, file, 2, "the times give a sampling interval of")?;
     let values = values.into_iter().map(|v| unit.to_si(v)).collect();
     let series = UniformSeries::new(start, step, values)
         .map_err(|e| SignalFileError::file(file, e.to_string()))?;
@@ -278,18 +282,20 @@ fn read_xy(file: &Path) -> Result<(Vec<f64>, Vec<f64>), SignalFileError> {
         .enumerate()
         .filter(|(_, l)| !l.trim().is_empty())
     {
+        super::check_sample_count(times.len(), file, i + 1)?;
         let mut cells = line.split(['\t', ' ', ',']).filter(|c| !c.is_empty());
         match (
             cells.next().and_then(parse_number),
             cells.next().and_then(parse_number),
+            cells.next(),
         ) {
-            (Some(t), Some(v)) => {
+            (Some(t), Some(v), None) => {
                 times.push(t);
                 values.push(v);
             }
             _ => {
                 let message = format!(
-                    "'{}': expected time<TAB>value, two finite numbers",
+                    "'{}': expected time<TAB>value, two finite numbers and nothing more",
                     line.trim()
                 );
                 return Err(SignalFileError::line(file, i + 1, message));
@@ -326,6 +332,26 @@ mod tests {
         assert_eq!(Unit::parse("NWT").unwrap().symbol, "N");
         assert_eq!(Unit::parse("NWM").unwrap().symbol, "Nm");
         assert!(Unit::parse("XYZ").is_err());
+    }
+
+    #[test]
+    fn channel_lines_hold_two_numbers_and_at_most_the_sample_limit() {
+        let dir = std::env::temp_dir().join(format!("bumpsim-ev5-xy-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("v1.093");
+        std::fs::write(&file, "0.0398\t1.1\n0.0399\t1.2\t7.5\n").unwrap();
+        let e = read_xy(&file).unwrap_err().to_string();
+        assert!(e.ends_with("v1.093:2: '0.0399\t1.2\t7.5': expected time<TAB>value, two finite numbers and nothing more"), "{e}");
+        let limit = bumpsim_core::files::MAX_INPUT_SAMPLES;
+        std::fs::write(&file, "0 1\n".repeat(limit)).unwrap();
+        assert_eq!(read_xy(&file).unwrap().0.len(), limit);
+        std::fs::write(&file, "0 1\n".repeat(limit + 1)).unwrap();
+        let e = read_xy(&file).unwrap_err().to_string();
+        assert!(
+            e.contains(&format!("v1.093:{}: more than {limit} samples", limit + 1)),
+            "{e}"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

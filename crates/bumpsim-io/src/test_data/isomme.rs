@@ -105,18 +105,14 @@ impl RawChannel {
     fn values(&self) -> Result<Vec<f64>, SignalFileError> {
         let (_, first) = parse_header(&self.text);
         let lines = self.text.lines().enumerate().skip(first);
-        let values = lines
-            .filter(|(_, l)| !l.trim().is_empty())
-            .map(|(i, l)| {
-                parse_number(l).ok_or_else(|| {
-                    SignalFileError::line(
-                        &self.path,
-                        i + 1,
-                        format!("'{}' is not a finite number", l.trim()),
-                    )
-                })
-            })
-            .collect::<Result<Vec<f64>, _>>()?;
+        let mut values = Vec::new();
+        for (i, l) in lines.filter(|(_, l)| !l.trim().is_empty()) {
+            super::check_sample_count(values.len(), &self.path, i + 1)?;
+            values.push(parse_number(l).ok_or_else(|| {
+                let message = format!("'{}' is not a finite number", l.trim());
+                SignalFileError::line(&self.path, i + 1, message)
+            })?);
+        }
         let (_, declared, line) = self.required("Number of samples")?;
         let declared_count = declared.parse::<usize>().map_err(|_| {
             SignalFileError::line(
@@ -179,10 +175,11 @@ impl RawChannel {
             return uniform_time_base(&times, count).map_err(time_base_error(&self.path));
         }
         if !explicit {
-            return Ok((
-                self.number("Time of first sample")?,
-                self.number("Sampling interval")?,
-            ));
+            let start = self.number("Time of first sample")?;
+            let (_, _, line) = self.required("Sampling interval")?;
+            let step = self.number("Sampling interval")?;
+            let step = super::check_interval(step, &self.path, *line, "'Sampling interval'")?;
+            return Ok((start, step));
         }
         let (_, name, line) = self.required("Reference channel name")?;
         let reference = all

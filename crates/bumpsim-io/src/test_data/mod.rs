@@ -35,7 +35,53 @@ pub mod isomme;
 use crate::signal_error::SignalFileError;
 use crate::table::Table;
 use bumpsim_core::channel::Channel;
+use bumpsim_core::files::MAX_INPUT_SAMPLES;
+use bumpsim_core::units::short;
+use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
+
+/// Sampling intervals a test channel may have, s: 1 ns (1 GHz, far beyond
+/// crash-test data acquisition, 10 kHz to 1 MHz) to 1 s (a channel sampled
+/// less than once a second holds nothing of an impact, which lasts about
+/// 0.1 s). A 1e308 s interval put the peak at `inf ms`. docs/limits.md.
+pub const SAMPLING_INTERVAL: RangeInclusive<f64> = 1e-9..=1.0;
+
+/// `path:line` refused when `step` (s) is outside [`SAMPLING_INTERVAL`];
+/// `what` says where the interval came from.
+pub(crate) fn check_interval(
+    step: f64,
+    path: &Path,
+    line: usize,
+    what: &str,
+) -> Result<f64, SignalFileError> {
+    if SAMPLING_INTERVAL.contains(&step) {
+        return Ok(step);
+    }
+    let (low, high) = SAMPLING_INTERVAL.into_inner();
+    let message = format!(
+        "{what} {} s: expected {} to {} s (SAMPLING_INTERVAL)",
+        short(step),
+        short(low),
+        short(high)
+    );
+    Err(SignalFileError::line(path, line, message))
+}
+
+/// `path:line` refused when a channel already holds [`MAX_INPUT_SAMPLES`]
+/// samples and `line` would add one more (checked before it is kept).
+pub(crate) fn check_sample_count(
+    count: usize,
+    path: &Path,
+    line: usize,
+) -> Result<(), SignalFileError> {
+    if count < MAX_INPUT_SAMPLES {
+        return Ok(());
+    }
+    let message = format!(
+        "more than {MAX_INPUT_SAMPLES} samples, the most a channel may have (MAX_INPUT_SAMPLES): shorten the record or resample it"
+    );
+    Err(SignalFileError::line(path, line, message))
+}
 
 /// The file format a test came in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
