@@ -63,7 +63,9 @@ pub struct Args {
 /// Arguments of `predict`.
 #[derive(Debug, clap::Args)]
 pub struct PredictArgs {
-    /// An identification result (JSON) or car file (TOML).
+    /// A chain study: an identification result (JSON) or car file (TOML).
+    /// A planar study: a planar car file (TOML; `identify --car` writes the
+    /// identified one).
     model: PathBuf,
     /// The study file that defines the load cases.
     study: PathBuf,
@@ -362,6 +364,11 @@ pub fn run_predict(args: &PredictArgs) -> Result<()> {
             args.model.display(),
             args.study.display()
         ),
+        (false, true) if is_planar_identification(&model) => anyhow::bail!(
+            "{}: a planar identification's JSON (`identify --json`) holds the identified body, side chains and tyres but not the bumper beam (the start car's), so it is not a whole car: predict with the planar car file `bumpsim identify {} --car CAR.toml` writes",
+            args.model.display(),
+            args.study.display()
+        ),
         (false, true) => {
             // a planar car file with a mistake is not recognised as one:
             // its own error says more than "not a planar car"
@@ -379,6 +386,13 @@ pub fn run_predict(args: &PredictArgs) -> Result<()> {
         }
         (false, false) => run_predict_chain(args),
     }
+}
+
+/// Whether a model file's text is the JSON `identify --json` writes on a
+/// planar study (its `result.car` has a `body`).
+fn is_planar_identification(text: &str) -> bool {
+    serde_json::from_str::<serde_json::Value>(text)
+        .is_ok_and(|v| v["result"]["car"]["body"].is_object())
 }
 
 /// `predict` of a chain model.

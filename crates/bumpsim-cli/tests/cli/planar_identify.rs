@@ -563,3 +563,24 @@ fn a_planar_series_refuses_bad_noise_and_extra_biases() {
     ];
     synth_refuses_each(&dir, &series, &cases);
 }
+
+/// Issue 34 (hostile pass 2026-11-26, finding 20): `predict PLANAR-ID.json
+/// planar-study.toml` was refused with "TOML parse error at line 1"; the
+/// JSON holds the identified body, chains and tyres but not the beam, so it
+/// is refused saying so and naming the planar car file to use instead.
+#[test]
+fn predict_with_a_planar_identification_json_says_to_use_the_car_file() {
+    let dir = scratch("planar-predict-id-json");
+    let (json, study) = (dir.join("r.json"), dir.join("study.toml"));
+    let body = r#"{"mass": 1300.0, "yaw_inertia": 2200.0}"#;
+    let chain = r#"{"masses": [8.0], "dampers": [1e3], "springs": [1e6]}"#;
+    let document = format!(
+        r#"{{"result": {{"car": {{"body": {body}, "left": {chain}, "right": {chain}, "tyres": {{}}}}, "parameters": []}}}}"#
+    );
+    std::fs::write(&json, document).unwrap();
+    std::fs::write(&study, "[model]\nplanar = \"start.toml\"\n").unwrap();
+    let run = bumpsim(&["predict", json.to_str().unwrap(), study.to_str().unwrap()]);
+    assert_user_error(&run, "r.json: a planar identification's JSON");
+    assert_user_error(&run, "--car CAR.toml");
+    assert!(!text(&run.stderr).contains("TOML parse error"));
+}
