@@ -124,8 +124,8 @@ pub struct ReductionArgs {
     /// or `bumper` (ramp 1000..8000 kN/m × F_max 40..200 kN).
     #[arg(long)]
     sweep: Option<String>,
-    /// Grid points per axis of the sweep.
-    #[arg(long, default_value_t = 50, value_parser = crate::count::<2_000>)]
+    /// Grid points per axis of the sweep (with --sweep).
+    #[arg(long, default_value_t = 50, value_parser = crate::count::<2_000>, requires = "sweep")]
     points: usize,
     /// Write the result as JSON.
     #[arg(long)]

@@ -131,8 +131,8 @@ pub struct FaceArgs {
     /// Overlap in percent of the bumper width (plane faces; default 100; planar cars).
     #[arg(long, allow_negative_numbers = true, conflicts_with = "pole")]
     overlap: Option<f64>,
-    /// Side the overlap is measured from: left (+y) or right (−y) (planar cars).
-    #[arg(long, conflicts_with = "pole")]
+    /// Side the overlap is measured from: left (+y) or right (−y) (planar cars; with --overlap).
+    #[arg(long, conflicts_with = "pole", requires = "overlap")]
     side: Option<Side>,
     /// A pole of this diameter instead of a plane: m, or with a unit ("178 mm") (planar cars).
     #[arg(long)]

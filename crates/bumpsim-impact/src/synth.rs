@@ -313,8 +313,10 @@ pub enum SynthError {
 #[non_exhaustive]
 pub enum SeriesError {
     /// A `[chain]` time that is not finite and positive (the pre-trigger
-    /// may be zero).
-    #[error("[chain] {name} = {value:?} s: expected a finite positive time")]
+    /// may be zero; the duration is at least one step).
+    #[error(
+        "[chain] {name} = {value:?} s: expected a finite positive time (a duration of at least one step)"
+    )]
     Time {
         /// `step`, `pretrigger` or `duration`.
         name: &'static str,
@@ -412,6 +414,13 @@ fn check_chain(chain: &Chain) -> Result<(), SeriesError> {
         if !(value.is_finite() && value >= 0.0) || (name != "pretrigger" && value == 0.0) {
             return Err(SeriesError::Time { name, value });
         }
+    }
+    // a duration shorter than a sample (1e-308 s) made a test of one sample
+    if chain.duration < chain.step {
+        return Err(SeriesError::Time {
+            name: "duration",
+            value: chain.duration,
+        });
     }
     let max = bumpsim_io::output::MAX_SAMPLES / 10;
     let samples = (chain.pretrigger + chain.duration.max(1.0)) / chain.step;

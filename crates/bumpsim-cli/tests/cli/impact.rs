@@ -230,6 +230,9 @@ fn a_refused_report_leaves_no_json_behind() {
     let (b, g) = (bumper.to_str().unwrap(), grid.to_str().unwrap());
     let run = bumpsim(&["mass-reduction", "--bumper", b, "-o", g]);
     assert_user_error(&run, "--sweep");
+    // --points without --sweep did nothing and said nothing (hostile pass)
+    let run = bumpsim(&["mass-reduction", "--bumper", b, "--points", "7"]);
+    assert_user_error(&run, "--sweep");
 }
 
 /// Issue 34: `--speed 1e-300` and `--pendulum 1e308` ran with exit 0 and a
@@ -355,6 +358,12 @@ fn synth_refuses_negative_noise_extra_biases_and_absurd_heads() {
             "speed = \"6 km/h\"",
             "speed = 1e-300",
             "speed (m/s) = 1e-300",
+        ),
+        // a duration below one step made tests of one sample (hostile pass)
+        (
+            "duration = 0.16",
+            "duration = 1e-308",
+            "[chain] duration = 1e-308 s",
         ),
     ];
     synth_refuses_each(&dir, &series, &cases);

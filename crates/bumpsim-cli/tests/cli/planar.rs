@@ -167,8 +167,12 @@ fn hostile_inputs_are_refused_with_exit_2_and_a_named_parameter() {
     let good = std::fs::read_to_string(saloon()).unwrap();
     let speed = ["--speed", "4"];
     let with = |from: &str, to: &str| good.replacen(from, to, 1);
-    let cases: [(String, Vec<&str>, &str); 11] = [
+    let cases: [(String, Vec<&str>, &str); 13] = [
         (good.clone(), vec!["--overlap", "150"], "overlap"),
+        // hostile pass: --side alone did nothing; a 1e-308 s duration ran
+        // one sample with a warning
+        (good.clone(), vec!["--side", "left"], "--overlap"),
+        (good.clone(), vec!["--duration", "1e-308"], "duration"),
         (good.clone(), vec!["--angle", "NaN"], "barrier angle"),
         (
             good.clone(),
