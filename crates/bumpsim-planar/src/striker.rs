@@ -24,6 +24,7 @@
 
 use crate::barrier::{Absorber, Arc, Shape};
 use crate::car::{PlanarCar, PlanarError, require};
+use bumpsim_impact::impact::{MASS_RANGE, SPEED_RANGE};
 use serde::Serialize;
 
 /// Largest lateral-to-longitudinal ratio of a pole's push on a segment strip
@@ -330,17 +331,24 @@ impl Placed {
 
 /// Checks the striker and places it against the car at rest in its initial pose.
 pub(crate) fn place(car: &PlanarCar, striker: &Striker) -> Result<Placed, PlanarError> {
+    // the 1-D impact's ranges (1e5 m/s gave a 1e8 mm crush, exit 0)
     let (mass, speed) = match striker.motion {
         Motion::Fixed { speed } => (1.0, speed),
         Motion::Pendulum { mass, speed } => (mass, speed),
     };
-    require("striker mass", mass, "kg", "must be positive", mass > 0.0)?;
+    require(
+        "striker mass",
+        mass,
+        "kg",
+        "must be from 0.001 to 1e7 kg (limit bumpsim_impact::impact::MASS_RANGE: 1 g to 10 000 t)",
+        MASS_RANGE.contains(&mass),
+    )?;
     require(
         "speed",
         speed,
         "m/s",
-        "must be positive (an impact needs a closing speed)",
-        speed > 0.0,
+        "must be from 0.001 to 1000 m/s (limit bumpsim_impact::impact::SPEED_RANGE: 1 mm/s to 3600 km/h; an impact needs a closing speed)",
+        SPEED_RANGE.contains(&speed),
     )?;
     let x_f = car.body().cg_behind_bumper;
     let half = 0.5 * car.beam().width;
@@ -523,6 +531,21 @@ mod tests {
         }
         let big = Striker::barrier(Face::pole_of_diameter(2e3 * 1.6, 0.0), 2.0);
         assert!(place(&car(), &big).is_ok(), "the limit itself is allowed");
+    }
+
+    #[test]
+    fn speeds_and_masses_outside_the_impact_ranges_are_refused() {
+        for speed in [1e5, 1e-308, 1e-4, -1.0] {
+            let err = place(&car(), &Striker::barrier(Face::flat(), speed)).unwrap_err();
+            assert!(err.to_string().contains("from 0.001 to 1000 m/s"), "{err}");
+        }
+        for mass in [1e12, 1e-308, 1e-4] {
+            let err = place(&car(), &Striker::pendulum(Face::flat(), mass, 2.0)).unwrap_err();
+            assert!(err.to_string().contains("from 0.001 to 1e7 kg"), "{err}");
+        }
+        for (mass, speed) in [(1e-3, 1e-3), (1e7, 1e3)] {
+            assert!(place(&car(), &Striker::pendulum(Face::flat(), mass, speed)).is_ok());
+        }
     }
 
     #[test]
