@@ -340,14 +340,14 @@ pub(crate) fn place(car: &PlanarCar, striker: &Striker) -> Result<Placed, Planar
         "striker mass",
         mass,
         "kg",
-        "must be from 0.001 to 1e7 kg (limit bumpsim_impact::impact::MASS_RANGE: 1 g to 10 000 t)",
+        "must be from 0.001 to 1e7 kg (limit bumpsim_impact::impact::MASS_RANGE: 1 g to 10 000 t; beyond it the striker kinetic energy overflows or underflows)",
         MASS_RANGE.contains(&mass),
     )?;
     require(
         "speed",
         speed,
         "m/s",
-        "must be from 0.001 to 1000 m/s (limit bumpsim_impact::impact::SPEED_RANGE: 1 mm/s to 3600 km/h; an impact needs a closing speed)",
+        "must be from 0.001 to 1000 m/s (limit bumpsim_impact::impact::SPEED_RANGE: 1 mm/s to 3600 km/h; an impact needs a closing speed, and below it the striker kinetic energy is too small to resolve)",
         SPEED_RANGE.contains(&speed),
     )?;
     let x_f = car.body().cg_behind_bumper;
