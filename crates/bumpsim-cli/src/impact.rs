@@ -232,7 +232,8 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
     }
     if let Some(dir) = &args.files.report {
         let title = format!("{name} — {label}");
-        let (html, mut figures) = bumpsim_report::impact::impact_report(&title, &summary, &result)?;
+        let shown = uncertain::summary(&summary, &predicted);
+        let (html, mut figures) = bumpsim_report::impact::impact_report(&title, &shown, &result)?;
         uncertain::pages(&predicted, &title, &mut figures)?;
         Folder::report(dir, &html, &figures)?;
     }

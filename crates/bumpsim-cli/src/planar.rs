@@ -293,8 +293,12 @@ pub fn run_impact(request: &ImpactRequest) -> Result<()> {
     if let Some(dir) = &request.files.report {
         let peak = bumpsim_planar::picture::peak_sample(&result);
         let view = bumpsim_planar::picture::top_view(car, &striker, &result, peak)?;
-        let (html, mut figures) =
-            bumpsim_report::planar::planar_report(&heading, &summary, &result, Some(&view))?;
+        let (html, mut figures) = bumpsim_report::planar::planar_report(
+            &heading,
+            &crate::planar::uncertain::summary(&summary, &predicted),
+            &result,
+            Some(&view),
+        )?;
         crate::planar::uncertain::pages(&predicted, &heading, &mut figures)?;
         Folder::report(dir, &html, &figures)?;
     }
@@ -572,6 +576,19 @@ pub(crate) mod uncertain {
             }
         }
         document
+    }
+
+    /// The report's summary: the results, then their distributions and
+    /// where the bands are (the uncertainty page was not reachable from the
+    /// report's index).
+    pub(crate) fn summary(summary: &str, predicted: &Option<Predicted>) -> String {
+        match predicted {
+            Some(p) => format!(
+                "{summary}\n{}\nBands of the histories over the draws: uncertainty.html in this folder.\n",
+                p.text
+            ),
+            None => summary.to_string(),
+        }
     }
 
     /// Adds the report's uncertainty page (`uncertainty.html`: the lines and

@@ -467,6 +467,9 @@ fn impact_predicts_the_analytic_band_and_sobol_indices() {
     let page = std::fs::read_to_string(report.join("uncertainty.html")).unwrap();
     assert!(page.contains("force: nominal (solid) and the 90 % band"));
     assert!(report.join("force-band.svg").exists());
+    // the index shows the distributions and says where the bands are
+    let index = std::fs::read_to_string(report.join("index.html")).unwrap();
+    assert!(index.contains("uncertainty.html in this folder"), "{index}");
     let again = dir.join("again.json");
     let second = args(&again);
     let second: Vec<&str> = second.iter().map(String::as_str).collect();
