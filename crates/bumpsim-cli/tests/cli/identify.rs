@@ -694,3 +694,45 @@ fn a_reduced_model_that_fits_better_says_so() {
         "{stdout}"
     );
 }
+
+/// Issue 34 (hostile pass 2026-11-26, finding 16): a study `window = [0.0,
+/// inf]` and `cfc = 1e-308` (a 1.7e-308 Hz filter) were accepted by
+/// `predict` and `identify`; both exit 2 naming the study file, the case
+/// and the key.
+#[test]
+fn a_study_with_an_infinite_window_or_an_impossible_cfc_is_refused_by_key() {
+    let dir = scratch("identify-study-window-cfc");
+    let example = root().join("examples/identify");
+    let absolute = format!("path = \"{}/", example.display());
+    let text = std::fs::read_to_string(identify_example())
+        .unwrap()
+        .replace("path = \"", &absolute);
+    let car = example.join("car-truth.toml");
+    for (k, (old, new, needle)) in [
+        (
+            "window = \"contact\"",
+            "window = [0.0, inf]",
+            "[[case]] 'flat': window = [0, inf]: expected two finite times",
+        ),
+        (
+            "cfc = 180",
+            "cfc = 1e-308",
+            "[[case]] 'flat': cfc = 1e-308: expected a class from",
+        ),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        assert!(text.contains(old), "{old}");
+        let study = dir.join(format!("study-{k}.toml"));
+        std::fs::write(&study, text.replacen(old, new, 1)).unwrap();
+        let s = study.to_str().unwrap();
+        for run in [
+            bumpsim(&["predict", car.to_str().unwrap(), s, "--case", "flat"]),
+            bumpsim(&["identify", s, "--quiet", "--starts", "1"]),
+        ] {
+            assert_user_error(&run, &format!("study-{k}.toml: "));
+            assert_user_error(&run, needle);
+        }
+    }
+}

@@ -3,10 +3,12 @@
 //! and initial velocities, the DOF list and the shape of `bounds`.
 
 use super::error::StudyValueError;
-use super::file::Study;
+use super::file::{Study, WindowSpec};
 use crate::case::MAX_INITIAL_VELOCITY;
 use crate::estimate::{usable_bounds, usable_fixed};
 use bumpsim_core::names::check_names;
+use bumpsim_core::units::short;
+use bumpsim_io::numbers::Numbers;
 
 impl Study {
     /// `lower_bound` and `upper_bound` apply to every parameter, `bounds`
@@ -53,6 +55,39 @@ impl Study {
             }),
             None => Ok(()),
         }
+    }
+
+    /// Each case's fit window and bias window are two finite times in
+    /// order, and its CFC class is a positive finite number (the class the
+    /// channel's sample rate allows is checked when it is loaded).
+    pub(super) fn check_case_values(&self) -> Result<(), StudyValueError> {
+        for case in &self.case {
+            let error = |key, value: String, expected: &str| StudyValueError::CaseValue {
+                case: case.name.clone(),
+                key,
+                value,
+                expected: expected.into(),
+            };
+            let times = |[t0, t1]: [f64; 2]| t0.is_finite() && t1.is_finite() && t0 < t1;
+            let pair = |[t0, t1]: [f64; 2]| format!("[{}, {}]", short(t0), short(t1));
+            let expected = "two finite times in s, the first below the second";
+            if let Some(WindowSpec::Times(Numbers(w))) = &case.window
+                && !times(*w)
+            {
+                return Err(error("window", pair(*w), expected));
+            }
+            if let Some(b) = case.bias.filter(|b| !times(*b)) {
+                return Err(error("bias", pair(b), expected));
+            }
+            if let Some(c) = case.cfc.filter(|c| !(c.is_finite() && *c > 0.0)) {
+                return Err(error(
+                    "cfc",
+                    short(c),
+                    "a positive CFC class (60, 180, 600, 1000)",
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// At least one DOF, each once, each from 1 to `MAX_DOF`.
@@ -239,6 +274,44 @@ mod tests {
             err.contains("dof: expected a number of masses") && !err.contains("enum"),
             "{err}"
         );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// Hostile pass 2026-11-26 (finding 16): `window = [0.0, inf]` and
+    /// `cfc = 1e-308` were accepted (the class against the channel's
+    /// sample rate: `study::tests`); a window or bias window that is not
+    /// two finite times in order, and a CFC class that is not a positive
+    /// finite number, are refused naming the file, the case and the key.
+    #[test]
+    fn case_windows_and_cfc_classes_are_refused_by_their_keys() {
+        let (dir, file) = reader("case-values");
+        for (line, expected) in [
+            (
+                "window = [0.0, inf]",
+                "'a': window = [0, inf]: expected two finite times",
+            ),
+            (
+                "window = [0.01, 0.0]",
+                "'a': window = [0.01, 0]: expected two finite",
+            ),
+            (
+                "bias = [nan, 0.0]",
+                "'a': bias = [NaN, 0]: expected two finite",
+            ),
+            ("cfc = 0.0", "'a': cfc = 0: expected a positive CFC class"),
+            (
+                "cfc = -180.0",
+                "'a': cfc = -180: expected a positive CFC class",
+            ),
+            ("cfc = inf", "'a': cfc = inf: expected a positive CFC class"),
+        ] {
+            let text = format!("[model]\ndof = 2\n[[case]]\nname = \"a\"\n{CASE}\n{line}\n");
+            let err = file(&text).unwrap_err().to_string();
+            assert!(
+                err.contains("study.toml: [[case]]") && err.contains(expected),
+                "{line}: {err}"
+            );
+        }
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

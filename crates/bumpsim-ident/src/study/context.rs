@@ -3,12 +3,13 @@
 //! twice), the alignment of their samples and the fit window (the force's
 //! contact window, 5 % rise and 2 % fall, or the study's `[t0, t1]`).
 
-use super::error::{DefinitionError, StudyError};
+use super::error::{DefinitionError, StudyError, StudyValueError};
 use super::file::{CaseSpec, ChannelRef, OutputDof, Study, WindowSpec};
 use crate::case::LoadCase;
 use bumpsim_core::channel::Channel;
 use bumpsim_core::series::UniformSeries;
-use bumpsim_core::units::Dimension;
+use bumpsim_core::units::{Dimension, format_number, short};
+use bumpsim_signal::filter::CfcStandard;
 use bumpsim_signal::loader::{ChannelSource, LoadError, Loader, Note};
 use bumpsim_signal::process::{Combine, ProcessError, Resampling, Step, align, resampling, run};
 use bumpsim_signal::window::ContactThreshold;
@@ -129,7 +130,7 @@ impl CaseContext<'_> {
     }
 
     /// Bias removal and the CFC filter.
-    fn conditioning(&self, channel: &Channel) -> Vec<Step> {
+    fn conditioning(&self, channel: &Channel) -> Result<Vec<Step>, StudyError> {
         let mut steps = Vec::new();
         match self.spec.bias {
             Some(window) => steps.push(Step::Bias(window)),
@@ -137,22 +138,47 @@ impl CaseContext<'_> {
             None => {}
         }
         if let Some(class) = self.spec.cfc {
+            self.check_cfc(class, channel.series.step())?;
             steps.push(Step::Cfc(class));
         }
-        steps
+        Ok(steps)
+    }
+
+    /// The case's CFC class within what the channel's sample interval
+    /// `step` allows ([`CfcStandard::classes`]), named by the study file
+    /// and key.
+    fn check_cfc(&self, class: f64, step: f64) -> Result<(), StudyError> {
+        let (low, high) = CfcStandard::SaeJ211.classes(step);
+        if class >= low && class < high {
+            return Ok(());
+        }
+        Err(StudyError::Value {
+            path: self.study.path.clone(),
+            source: StudyValueError::CaseValue {
+                case: self.spec.name.clone(),
+                key: "cfc",
+                value: short(class),
+                expected: format!(
+                    "a class from {} to below {} for channels sampled at {} Hz (its design frequency must lie from 1e-6 of the sample rate to below the Nyquist frequency)",
+                    format_number(low, 4),
+                    format_number(high, 4),
+                    format_number(1.0 / step, 4)
+                ),
+            },
+        })
     }
 
     fn force(&mut self) -> Result<Channel, StudyError> {
         let raw = self.channels(std::slice::from_ref(&self.spec.force), Combine::Sum)?;
         self.expect(&raw, Dimension::Force, "force channel", "a force")?;
-        self.process(run(&self.conditioning(&raw), &raw))
+        self.process(run(&self.conditioning(&raw)?, &raw))
     }
 
     fn displacement_from_acceleration(&mut self) -> Result<Channel, StudyError> {
         let raw = self.channels(&self.spec.acceleration, Combine::Mean)?;
         let what = "acceleration channel";
         self.expect(&raw, Dimension::Acceleration, what, "an acceleration")?;
-        let mut steps = self.conditioning(&raw);
+        let mut steps = self.conditioning(&raw)?;
         steps.extend([
             Step::Integrate(self.spec.initial_velocity),
             Step::Integrate(0.0),

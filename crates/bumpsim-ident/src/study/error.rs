@@ -154,6 +154,20 @@ pub enum StudyValueError {
         /// The velocity given, m/s.
         value: f64,
     },
+    /// A case's `window`, `bias` or `cfc` that no channel can have
+    /// (not finite, not ordered, not positive, or a CFC class outside what
+    /// the channel's sample rate allows).
+    #[error("[[case]] '{case}': {key} = {value}: expected {expected}")]
+    CaseValue {
+        /// The case.
+        case: String,
+        /// The key (`window`, `bias`, `cfc`).
+        key: &'static str,
+        /// The value as written.
+        value: String,
+        /// What is allowed.
+        expected: String,
+    },
     /// `dof = []`.
     #[error("[model] dof = []: expected at least one DOF (dof = 3 or dof = [1, 2, 3])")]
     NoDof,

@@ -74,6 +74,7 @@ impl Study {
         study.check_global_bounds().map_err(value)?;
         study.check_tables().map_err(value)?;
         study.check_dofs().map_err(value)?;
+        study.check_case_values().map_err(value)?;
         Ok(study)
     }
 
@@ -573,5 +574,23 @@ mod tests {
         }
         let err = windowed("\"somewhere\"").unwrap_err().to_string();
         assert!(err.contains("case 'a': window 'somewhere'"), "{err}");
+    }
+
+    /// A CFC class positive and finite but outside what the channel's
+    /// 10 kHz sample rate allows (from 0.0048 to below 2407) is refused on
+    /// loading, naming the study file, the case and `cfc`; one inside loads.
+    #[test]
+    fn a_cfc_class_beyond_the_sample_rate_is_refused_naming_the_file() {
+        let dir = ev5("cfc-rate");
+        let with = |class: &str| study("dof = 1", &format!("{CASE}\ncfc = {class}"), &dir).load(1);
+        for class in ["1e-308", "1e-5", "1e6"] {
+            let err = with(class).unwrap_err().to_string();
+            assert!(
+                err.contains("study.toml: [[case]] 'a': cfc = ")
+                    && err.contains("expected a class from 0.004813 to below 2407"),
+                "{class}: {err}"
+            );
+        }
+        assert!(with("180").is_ok());
     }
 }
