@@ -389,3 +389,30 @@ fn a_cfc_class_out_of_range_names_the_flag_and_its_range() {
     ]);
     assert_eq!(edge.status.code(), Some(0), "{}", text(&edge.stderr));
 }
+
+/// Hostile pass of issue 34: `signal export v10146.EV5 -c 93 -o
+/// v10146.093` exited 0 and replaced the channel file it had just read
+/// with its CSV. A channel of the EV5 test is an input: refused, unchanged.
+#[test]
+fn an_ev5_channel_file_is_never_an_output() {
+    let Some(ev5) = nhtsa_ev5() else { return };
+    let dir = scratch("ev5-channel-output");
+    for name in ["v10146.EV5", "v10146.093", "v10146.094"] {
+        std::fs::copy(ev5.with_file_name(name), dir.join(name)).unwrap();
+    }
+    let (test, channel) = (dir.join("v10146.EV5"), dir.join("v10146.093"));
+    let before = std::fs::read(&channel).unwrap();
+    for out in ["v10146.093", "v10146.094"] {
+        let run = bumpsim(&[
+            "signal",
+            "export",
+            test.to_str().unwrap(),
+            "-c",
+            "93",
+            "-o",
+            dir.join(out).to_str().unwrap(),
+        ]);
+        assert_user_error(&run, "input");
+    }
+    assert_eq!(std::fs::read(&channel).unwrap(), before);
+}

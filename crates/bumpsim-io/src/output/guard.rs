@@ -86,6 +86,12 @@ impl Outputs {
         if let (true, Some(parent)) = (mme, path.parent()) {
             self.input(&parent.join("Channel"));
         }
+        // an EV5 test (NHTSA) given by its `.EV5` file: its channel files
+        // `<stem>.NNN` beside it are inputs too (`-o v10146.093` replaced
+        // the channel it had just read)
+        for channel in ev5_channels(path) {
+            self.input(&channel);
+        }
     }
 
     /// Claims `path` as one of the command's outputs: refuses a path (or a
@@ -306,4 +312,42 @@ fn scan_ids(folder: &Path, ids: &mut Vec<(u64, u64)>) {
             }
         }
     }
+}
+
+/// The channel files `<stem>.NNN` (digits, any case of the stem) beside an
+/// EV5 test file `path`; none for another file.
+fn ev5_channels(path: &Path) -> Vec<PathBuf> {
+    let ev5 = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("ev5"));
+    let (Some(stem), Some(parent)) = (path.file_stem().and_then(|s| s.to_str()), path.parent())
+    else {
+        return Vec::new();
+    };
+    let folder = match parent.as_os_str().is_empty() {
+        true => Path::new("."),
+        false => parent,
+    };
+    let entries = match ev5 {
+        true => std::fs::read_dir(folder),
+        false => return Vec::new(),
+    };
+    let Ok(entries) = entries else {
+        return Vec::new();
+    };
+    let channel = |p: &Path| {
+        let same = p
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .is_some_and(|s| s.eq_ignore_ascii_case(stem));
+        let digits = p
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| !e.is_empty() && e.bytes().all(|b| b.is_ascii_digit()));
+        same && digits
+    };
+    entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| channel(p))
+        .collect()
 }

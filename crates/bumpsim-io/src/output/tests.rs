@@ -315,3 +315,24 @@ fn the_working_folder_is_not_an_output_folder() {
     }
     assert!(g.check_folder(&here.join("below")).is_ok());
 }
+
+/// An EV5 test's channel files `<stem>.NNN` are inputs with the `.EV5`
+/// (`signal export v10146.EV5 -c 93 -o v10146.093` replaced the channel it
+/// had read: hostile pass of issue 34); other files beside it are not.
+#[test]
+fn an_ev5_test_s_channel_files_are_inputs() {
+    let dir = temp("ev5");
+    std::fs::write(dir.join("v10146.EV5"), "header").unwrap();
+    for name in ["v10146.001", "V10146.093", "other.001", "v10146.csv"] {
+        std::fs::write(dir.join(name), "1").unwrap();
+    }
+    let mut g = Outputs::new();
+    g.input(&dir.join("v10146.EV5"));
+    for bad in ["v10146.001", "V10146.093", "v10146.EV5"] {
+        assert!(g.write_file(&dir.join(bad), b"x").is_err(), "{bad}");
+    }
+    g.write_file(&dir.join("other.001"), b"ok").unwrap();
+    g.write_file(&dir.join("v10146.csv"), b"ok").unwrap();
+    assert_eq!(std::fs::read(dir.join("V10146.093")).unwrap(), b"1");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
