@@ -54,9 +54,9 @@ pub struct BumperArgs {
     /// The spring element's nodes: barrier side, then the car's m1 node.
     #[arg(long, value_delimiter = ',', value_name = "FRONT,REAR", num_args = 1)]
     nodes: Vec<u64>,
-    /// CalculiX set-name prefix.
-    #[arg(long, default_value = bumpsim_export::calculix::DEFAULT_PREFIX)]
-    prefix: String,
+    /// CalculiX set-name prefix (default BUMPSIM_); --solver calculix only.
+    #[arg(long)]
+    prefix: Option<String>,
 }
 
 /// Options both decks share.
@@ -294,6 +294,8 @@ fn calculix(args: &CalculixArgs) -> Result<()> {
 }
 
 fn bumper(args: &BumperArgs) -> Result<()> {
+    let prefix = [("prefix", args.prefix.is_some())];
+    deck::only_for(args.solver, Solver::Calculix, &prefix)?;
     let bumper = bumpsim_impact::bumper::Bumper::read(&args.bumper)?;
     let curve = SpringCurve::new(bumper.loading_points(), bumper.unloading_slope())
         .with_context(|| format!("{}", args.bumper.display()))?;
@@ -310,7 +312,9 @@ fn bumper(args: &BumperArgs) -> Result<()> {
         id_offset: args.id_offset,
         nodes,
         title: format!("bumper characteristic from {}", args.bumper.display()),
-        prefix: args.prefix.clone(),
+        prefix: (args.prefix.as_deref())
+            .unwrap_or(bumpsim_export::calculix::DEFAULT_PREFIX)
+            .into(),
     };
     let (deck, what) = match args.solver {
         Solver::Lsdyna => (

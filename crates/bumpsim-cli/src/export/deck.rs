@@ -8,12 +8,35 @@ use bumpsim_export::layout::UnitSystem;
 use std::path::Path;
 
 /// The solvers a deck is written for.
-#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub(crate) enum Solver {
     /// LS-DYNA keyword include.
     Lsdyna,
     /// CalculiX/Abaqus deck lines.
     Calculix,
+}
+
+impl Solver {
+    /// The `--solver` value.
+    fn name(self) -> &'static str {
+        match self {
+            Solver::Lsdyna => "lsdyna",
+            Solver::Calculix => "calculix",
+        }
+    }
+}
+
+/// Refuses a flag given (`true`) that only `meant`'s deck uses when the
+/// deck is for `solver` (the flag would do nothing).
+pub(crate) fn only_for(solver: Solver, meant: Solver, flags: &[(&str, bool)]) -> Result<()> {
+    match flags.iter().find(|(_, given)| *given) {
+        Some((flag, _)) if solver != meant => bail!(
+            "--{flag} applies to --solver {} only: the {} deck has no use for it; leave it out",
+            meant.name(),
+            solver.name()
+        ),
+        _ => Ok(()),
+    }
 }
 
 /// `--origin x,y,z`, each in m or with a unit.

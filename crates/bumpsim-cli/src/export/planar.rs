@@ -1,7 +1,7 @@
 //! `bumpsim export planar`: converts arguments into planar export options
 //! and writes the deck (docs/export.md, "The planar car").
 
-use super::deck::{Solver, origin, spacing, time, write_output};
+use super::deck::{Solver, only_for, origin, spacing, time, write_output};
 use crate::simulate::force_series;
 use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, parse_quantity};
@@ -83,16 +83,24 @@ pub struct PlanarArgs {
         allow_hyphen_values = true
     )]
     increment: Option<String>,
-    /// CalculiX: write results every N increments.
-    #[arg(long, default_value_t = 1, value_name = "N")]
-    output_every: usize,
-    /// CalculiX: prefix of every set and amplitude name.
-    #[arg(long, default_value = bumpsim_export::calculix::DEFAULT_PREFIX)]
-    prefix: String,
+    /// CalculiX: write results every N increments (default 1).
+    #[arg(long, value_name = "N")]
+    output_every: Option<usize>,
+    /// CalculiX: prefix of every set and amplitude name (default BUMPSIM_).
+    #[arg(long)]
+    prefix: Option<String>,
 }
 
 /// Runs `bumpsim export planar`.
 pub fn run(args: &PlanarArgs) -> Result<()> {
+    let lsdyna = [("output-interval", args.output_interval.is_some())];
+    only_for(args.solver, Solver::Lsdyna, &lsdyna)?;
+    let calculix = [
+        ("increment", args.increment.is_some()),
+        ("output-every", args.output_every.is_some()),
+        ("prefix", args.prefix.is_some()),
+    ];
+    only_for(args.solver, Solver::Calculix, &calculix)?;
     let car = PlanarCar::read(&args.car)?;
     let options = options(args, &car)?;
     let (deck, what) = match args.solver {
@@ -143,8 +151,10 @@ fn options(args: &PlanarArgs, car: &PlanarCar) -> Result<PlanarExport> {
             .as_deref()
             .map(|t| time("increment", t))
             .transpose()?,
-        output_every: args.output_every,
-        prefix: args.prefix.clone(),
+        output_every: args.output_every.unwrap_or(1),
+        prefix: (args.prefix.as_deref())
+            .unwrap_or(bumpsim_export::calculix::DEFAULT_PREFIX)
+            .into(),
         title,
     })
 }

@@ -3,6 +3,7 @@
 
 use super::{ccx_available, dyna_core, dyna_core_available, run_ccx};
 use crate::util::*;
+use std::path::Path;
 
 /// The bundled planar car.
 fn saloon() -> std::path::PathBuf {
@@ -224,4 +225,56 @@ fn export_planar_refuses_hostile_input_naming_the_parameter() {
         !std::path::Path::new(out).exists(),
         "no deck after a refusal"
     );
+}
+
+/// A flag the chosen solver's deck has no use for did nothing with exit 0.
+#[test]
+fn export_planar_and_bumper_refuse_flags_of_the_other_solver() {
+    let dir = scratch("export-other-solver");
+    let out = dir.join("out.k");
+    let out = out.to_str().unwrap();
+    let force = root().join("examples/simulate/pendulum-force.csv");
+    let force = force.to_str().unwrap();
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["--solver", "lsdyna", "--increment", "1e-4"],
+            "--increment applies to --solver calculix only",
+        ),
+        (
+            &["--solver", "lsdyna", "--prefix", "X_"],
+            "--prefix applies to --solver calculix only",
+        ),
+        (
+            &["--solver", "lsdyna", "--output-every", "2"],
+            "--output-every applies to --solver calculix only",
+        ),
+        (
+            &["--solver", "calculix", "--output-interval", "1e-4"],
+            "--output-interval applies to --solver lsdyna only",
+        ),
+    ];
+    for (flags, needle) in cases {
+        let run = export_planar(&[&["-o", out, "--force", force], *flags].concat());
+        assert_user_error(&run, needle);
+        assert!(!Path::new(out).exists(), "{flags:?}");
+    }
+    let bumper = root().join("examples/impact/bumper-a.toml");
+    let spring = |solver: &str| {
+        let args = [
+            "export",
+            "bumper",
+            bumper.to_str().unwrap(),
+            "--solver",
+            solver,
+        ];
+        bumpsim(&[&args[..], &["--prefix", "X_", "-o", out]].concat())
+    };
+    assert_user_error(
+        &spring("lsdyna"),
+        "--prefix applies to --solver calculix only",
+    );
+    assert!(!Path::new(out).exists());
+    let run = spring("calculix");
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(std::fs::read_to_string(out).unwrap().contains("X_BUMPER"));
 }
