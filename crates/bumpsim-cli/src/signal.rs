@@ -88,8 +88,8 @@ pub struct ExportArgs {
     /// CFC filter class (60, 180, 600, 1000 or any positive number).
     #[arg(long)]
     cfc: Option<f64>,
-    /// Use the ISO 6487 constant for --cfc instead of SAE J211-1's.
-    #[arg(long)]
+    /// Use the ISO 6487 constant for --cfc instead of SAE J211-1's (with --cfc).
+    #[arg(long, requires = "cfc")]
     iso_6487: bool,
     /// Remove the mean of the samples before t = 0.
     #[arg(long)]
@@ -413,8 +413,7 @@ fn write_csv(path: &Path, signals: &[Channel], units: &[Unit]) -> Result<()> {
     let dimensions: Vec<Dimension> = std::iter::once(Dimension::Time)
         .chain(signals.iter().map(|s| s.dimension))
         .collect();
-    let chosen = choose_units(units, &dimensions)
-        .map_err(|u| anyhow::anyhow!("--unit {u}: no column measures {}", u.dimension))?;
+    let chosen = choose_units(units, &dimensions).map_err(|e| anyhow::anyhow!("--unit {e}"))?;
     let output: Vec<OutputColumn> = signals
         .iter()
         .zip(&columns)

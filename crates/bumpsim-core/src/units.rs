@@ -300,20 +300,45 @@ impl fmt::Display for Unit {
     }
 }
 
-/// The unit of each column of a table: the first of `asked` that measures
+/// Why asked units cannot be used for a table's columns.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+pub enum UnitChoice {
+    /// A unit whose dimension no column has.
+    #[error("{0}: no column measures {dimension}", dimension = .0.dimension)]
+    NoColumn(Unit),
+    /// Two units of one dimension (the second was ignored).
+    #[error("{second}: {first} was asked for {dimension} already", dimension = .first.dimension)]
+    Twice {
+        /// The first asked.
+        first: Unit,
+        /// The second, of the same dimension.
+        second: Unit,
+    },
+}
+
+/// The unit of each column of a table: the one of `asked` that measures
 /// the column's dimension, else its SI unit. Every asked unit must apply to
-/// some column (time included); the first that applies to none is the error.
+/// some column (time included), and at most one to each dimension.
 ///
 /// ```
 /// use bumpsim_core::units::{choose_units, Dimension, Unit};
-/// let ms = Unit::parse("ms").unwrap();
+/// let (ms, kn, n) = (Unit::parse("ms").unwrap(), Unit::parse("kN").unwrap(), Unit::parse("N").unwrap());
 /// let chosen = choose_units(&[ms], &[Dimension::Time, Dimension::Force]).unwrap();
 /// assert_eq!((chosen[0].symbol, chosen[1].symbol), ("ms", "N"));
 /// assert!(choose_units(&[ms], &[Dimension::Force]).is_err());
+/// assert!(choose_units(&[kn, n], &[Dimension::Force]).is_err());
 /// ```
-pub fn choose_units(asked: &[Unit], dimensions: &[Dimension]) -> Result<Vec<Unit>, Unit> {
+pub fn choose_units(asked: &[Unit], dimensions: &[Dimension]) -> Result<Vec<Unit>, UnitChoice> {
     if let Some(unused) = asked.iter().find(|u| !dimensions.contains(&u.dimension)) {
-        return Err(*unused);
+        return Err(UnitChoice::NoColumn(*unused));
+    }
+    for (k, second) in asked.iter().enumerate() {
+        if let Some(first) = asked[..k].iter().find(|u| u.dimension == second.dimension) {
+            return Err(UnitChoice::Twice {
+                first: *first,
+                second: *second,
+            });
+        }
     }
     Ok(dimensions
         .iter()

@@ -76,6 +76,14 @@ pub fn optional_list<'de, D: Deserializer<'de>, const N: usize>(
     list(deserializer).map(Some)
 }
 
+/// A `[f64; N]` field or newtype variant: exactly `N` numbers (serde's own
+/// array reader leaves extra values of a TOML array unread).
+pub fn exact<'de, D: Deserializer<'de>, const N: usize>(
+    deserializer: D,
+) -> Result<[f64; N], D::Error> {
+    Numbers::<N>::deserialize(deserializer).map(|n| n.0)
+}
+
 /// An `Option<[f64; N]>` field (with `#[serde(default)]`): exactly `N` numbers.
 pub fn optional<'de, D: Deserializer<'de>, const N: usize>(
     deserializer: D,

@@ -416,3 +416,21 @@ fn an_ev5_channel_file_is_never_an_output() {
     }
     assert_eq!(std::fs::read(&channel).unwrap(), before);
 }
+
+/// Hostile pass of issue 34: `--unit kN --unit N` wrote kN and ignored the
+/// second; `--iso-6487` without `--cfc` changed nothing. Both are refused.
+#[test]
+fn flags_that_would_do_nothing_are_refused() {
+    let flat = root().join("examples/identify/FLAT/FLAT.mme");
+    let out = scratch("signal-ignored-flags").join("o.csv");
+    let export = |extra: &[&str]| {
+        let mut args = vec!["signal", "export", flat.to_str().unwrap(), "-c", "1"];
+        args.extend_from_slice(&["-o", out.to_str().unwrap()]);
+        args.extend_from_slice(extra);
+        bumpsim(&args)
+    };
+    let twice = export(&["--unit", "kN", "--unit", "N"]);
+    assert_user_error(&twice, "--unit N: kN was asked for force already");
+    assert_user_error(&export(&["--iso-6487"]), "--cfc");
+    assert!(!out.exists(), "a refused export wrote its output");
+}

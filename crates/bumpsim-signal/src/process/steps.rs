@@ -42,7 +42,7 @@ pub enum Step {
     /// Centred N-point moving average (`moving_average = 10`).
     MovingAverage(usize),
     /// Subtract the mean over `[t0, t1]` s (`bias = [-0.05, 0.0]`).
-    Bias([f64; 2]),
+    Bias(#[serde(deserialize_with = "bumpsim_io::numbers::exact")] [f64; 2]),
     /// Subtract the mean of every sample before t = 0 (`pretrigger_bias = true`).
     PretriggerBias(bool),
     /// Multiply by a factor, e.g. −1 to change sign (`scale = -1`).
@@ -53,7 +53,7 @@ pub enum Step {
     /// Differentiate (`derivative = true`).
     Derivative(bool),
     /// Keep `[t0, t1]` s (`trim = [0.0, 0.12]`).
-    Trim([f64; 2]),
+    Trim(#[serde(deserialize_with = "bumpsim_io::numbers::exact")] [f64; 2]),
     /// Add this many seconds to the time base (`shift = -0.002`).
     Shift(f64),
     /// Linear resampling to this interval, s (`resample = 1e-4`).

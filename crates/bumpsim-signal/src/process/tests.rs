@@ -113,6 +113,26 @@ fn steps_parse_from_toml_like_json() {
     ));
 }
 
+/// A window of three values ran as its first two (hostile pass of issue
+/// 34): a trim or bias window is exactly two times.
+#[test]
+fn a_window_of_another_count_is_refused() {
+    #[derive(Debug, serde::Deserialize)]
+    struct Pipeline {
+        #[allow(dead_code)]
+        steps: Vec<Step>,
+    }
+    for text in [
+        "steps = [{ trim = [0.0, 0.3, 0.5] }]",
+        "steps = [{ bias = [0.0] }]",
+    ] {
+        let error = toml::from_str::<Pipeline>(text).unwrap_err().to_string();
+        assert!(error.contains("exactly 2 numbers"), "{text}: {error}");
+    }
+    let fine: Pipeline = toml::from_str("steps = [{ trim = [0.0, 0.3] }]").unwrap();
+    assert_eq!(fine.steps, [Step::Trim([0.0, 0.3])]);
+}
+
 fn coded(code: &str, fine: &str) -> Channel {
     let series = UniformSeries::new(0.0, 1e-4, vec![0.0, 1.0, 2.0, 1.0]).unwrap();
     let mut c = Channel::new(code, "cell", Dimension::Force, series);
