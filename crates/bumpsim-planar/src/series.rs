@@ -126,6 +126,17 @@ pub enum SeriesError {
         /// What is wrong with it.
         source: bumpsim_io::speed::SpeedError,
     },
+    /// A pole test with a plane's key (`overlap`, `angle`): the pole was
+    /// made and the key silently did nothing.
+    #[error(
+        "test '{test}': `pole` and `{key}` together: a pole has no {key} (a plane's); give one of them (a pole's place is `pole_offset`)"
+    )]
+    PoleAndPlane {
+        /// The test.
+        test: String,
+        /// The plane's key.
+        key: &'static str,
+    },
     /// A test's side.
     #[error("test '{test}': {source}")]
     Side {
@@ -258,6 +269,10 @@ fn striker_fields(t: &TestFile) -> StrikerFields {
 /// The striker of a `[[test]]`: its case or geometry, side and speed.
 fn striker_spec(t: &TestFile) -> Result<StrikerSpec, SeriesError> {
     let test = t.name.clone();
+    let plane = [("overlap", t.overlap), ("angle", t.angle)];
+    if let (Some(_), Some((key, _))) = (t.pole, plane.iter().find(|(_, v)| v.is_some())) {
+        return Err(SeriesError::PoleAndPlane { test, key });
+    }
     striker_fields(t).spec().map_err(|e| match e {
         StrikerFieldError::Speed(source) => SeriesError::Speed { test, source },
         StrikerFieldError::Side(source) => SeriesError::Side { test, source },
@@ -353,6 +368,23 @@ mod tests {
         assert_eq!(number(-0.0), "0.0");
         assert_eq!(number(2.177), "2.177");
         assert_eq!(number(1e-7), "1e-7");
+    }
+
+    #[test]
+    fn a_pole_test_with_a_planes_key_is_refused_naming_the_test() {
+        let test = |extra: &str| -> TestFile {
+            toml::from_str(&format!("name = \"P\"\npole = 0.254\nspeed = 2.0\n{extra}")).unwrap()
+        };
+        for key in ["overlap", "angle"] {
+            let e = striker_spec(&test(&format!("{key} = 40.0")))
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.starts_with(&format!("test 'P': `pole` and `{key}` together")),
+                "{e}"
+            );
+        }
+        assert!(striker_spec(&test("pole_offset = -0.3")).is_ok());
     }
 
     #[test]
