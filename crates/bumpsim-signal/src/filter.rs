@@ -180,17 +180,25 @@ fn check_positive(name: &'static str, value: f64) -> Result<(), FilterError> {
 
 impl Butterworth {
     /// Designs an order-`order` low-pass with cut-off `cutoff` Hz for sample
-    /// interval `step` s. The cut-off must lie below the Nyquist frequency.
+    /// interval `step` s. The cut-off must lie from [`MIN_RELATIVE_CUTOFF`]
+    /// of the sample rate (as a CFC class's design frequency: 1e-300 Hz no
+    /// longer filtered) to below the Nyquist frequency.
     pub fn new(order: usize, cutoff: f64, step: f64) -> Result<Butterworth, FilterError> {
         check_positive("cutoff (Hz)", cutoff)?;
         check_positive("sample interval (s)", step)?;
         let nyquist = 0.5 / step;
-        if !(1..=16).contains(&order) || cutoff >= nyquist {
-            let (name, value, expected) = if cutoff >= nyquist {
+        let lowest = MIN_RELATIVE_CUTOFF / step;
+        let usable = (lowest..nyquist).contains(&cutoff);
+        if !(1..=16).contains(&order) || !usable {
+            let (name, value, expected) = if !usable {
                 (
                     "cutoff (Hz)",
                     cutoff,
-                    format!("below the Nyquist frequency {nyquist} Hz"),
+                    format!(
+                        "from {} Hz to below the Nyquist frequency {} Hz",
+                        short(lowest),
+                        short(nyquist)
+                    ),
                 )
             } else {
                 ("order", order as f64, "an integer from 1 to 16".to_string())
@@ -415,6 +423,9 @@ mod tests {
         assert_relative_eq!(y[49], 2.5, max_relative = 1e-12);
         assert!(Butterworth::new(2, 6000.0, 1e-4).is_err());
         assert!(Butterworth::new(0, 60.0, 1e-4).is_err());
+        // 1e-300 Hz no longer filtered (hostile pass of issue 34)
+        let low = Butterworth::new(4, 1e-300, 1e-4).unwrap_err().to_string();
+        assert!(low.contains("from 0.01 Hz to below the Nyquist"), "{low}");
         assert!(Cfc::new(-60.0, CfcStandard::SaeJ211).is_err());
         assert!(f.zero_phase(&[1.0], 3).is_err());
     }
