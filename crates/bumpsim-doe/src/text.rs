@@ -25,7 +25,7 @@ pub fn fit_text(response: &str, unit: Option<&str>, f: &crate::regression::Fit) 
         (None, Some(note)) => format!("{note}\n"),
         _ => "Q² undefined\n".into(),
     };
-    text += &coefficient_table(f, None);
+    text += &coefficient_table(f, u, None);
     if let Some(sd) = f.residual_sd {
         text += &format!(
             "  residual SD {} {u} ({} degrees of freedom)\n",
@@ -46,34 +46,69 @@ pub fn fit_text(response: &str, unit: Option<&str>, f: &crate::regression::Fit) 
 }
 
 /// The coefficient table: term, coefficient, standard error, t, p and 95 %
-/// interval, and an `extra` column of standard errors (title, values).
-fn coefficient_table(f: &crate::regression::Fit, extra: Option<(&str, &[Option<f64>])>) -> String {
+/// interval, and an `extra` column of standard errors (title, values);
+/// coefficients, standard errors and intervals in the response's `unit`
+/// (the factors are coded, so a coefficient is the response's change per
+/// coded unit), t and p without unit.
+fn coefficient_table(
+    f: &crate::regression::Fit,
+    unit: &str,
+    extra: Option<(&str, &[Option<f64>])>,
+) -> String {
     let opt = |v: Option<f64>| v.map_or("-".to_string(), |v| format_number(v, 4));
-    let column = |v: String| extra.map_or(String::new(), |_| format!(" {v:>14}"));
-    let mut text = format!(
-        "  {:<12} {:>12} {:>12} {:>9} {:>9} {:>28}{}\n",
-        "term (coded)",
-        "coefficient",
-        "std. error",
-        "t",
-        "p",
-        "95 % interval",
-        column(extra.map_or(String::new(), |e| e.0.to_string()))
-    );
+    let mut head = vec![
+        "term (coded)".to_string(),
+        format!("coefficient [{unit}]"),
+        format!("std. error [{unit}]"),
+        "t".into(),
+        "p".into(),
+        format!("95 % interval [{unit}]"),
+    ];
+    head.extend(extra.map(|e| e.0.to_string()));
+    let mut rows = vec![head];
     for j in 0..f.terms.len() {
         let ci = f.ci95[j].map_or("-".to_string(), |[a, b]| {
             format!("{} .. {}", format_number(a, 4), format_number(b, 4))
         });
-        text += &format!(
-            "  {:<12} {:>12} {:>12} {:>9} {:>9} {:>28}{}\n",
-            f.terms[j],
+        let mut row = vec![
+            f.terms[j].clone(),
             format_number(f.coefficients[j], 5),
             opt(f.std_errors[j]),
             opt(f.t[j]),
             opt(f.p[j]),
             ci,
-            column(extra.map_or(String::new(), |e| opt(e.1[j])))
-        );
+        ];
+        row.extend(extra.map(|e| opt(e.1[j])));
+        rows.push(row);
+    }
+    aligned(&rows, &[12, 12, 12, 9, 9, 28, 14])
+}
+
+/// `rows` as lines of columns at least `least` wide (and as wide as their
+/// widest cell): the first left-aligned, the others right-aligned.
+fn aligned(rows: &[Vec<String>], least: &[usize]) -> String {
+    let width = |c: usize| {
+        let widest = rows
+            .iter()
+            .map(|r| r.get(c).map_or(0, |s| s.chars().count()));
+        widest
+            .max()
+            .unwrap_or(0)
+            .max(least.get(c).copied().unwrap_or(0))
+    };
+    let widths: Vec<usize> = (0..rows[0].len()).map(width).collect();
+    let mut text = String::new();
+    for row in rows {
+        let cells: Vec<String> = row
+            .iter()
+            .zip(&widths)
+            .enumerate()
+            .map(|(c, (s, &w))| match c {
+                0 => format!("{s:<w$}"),
+                _ => format!("{s:>w$}"),
+            })
+            .collect();
+        text += &format!("  {}\n", cells.join(" "));
     }
     text
 }
@@ -124,7 +159,8 @@ pub fn weighted_text(
         opt(f.r2_adjusted),
         opt(f.q2)
     );
-    text += &coefficient_table(f, Some(("OLS std. error", &w.ols_std_errors)));
+    let extra = format!("OLS std. error [{u}]");
+    text += &coefficient_table(f, u, Some((&extra, &w.ols_std_errors)));
     text += &format!(
         "  intervals: Student t on {} degrees of freedom, covariance (XᵀWX)⁻¹\n",
         f.dof_residual
@@ -142,17 +178,17 @@ pub fn prediction_text(p: &Prediction) -> String {
     for w in &p.warnings {
         text += &format!("warning: {w}\n");
     }
-    let interval = |i: Option<[f64; 2]>, what: &str| {
-        i.map_or(String::new(), |[a, b]| {
-            format!(
-                "; {what} {} .. {}",
-                format_number(a, 4),
-                format_number(b, 4)
-            )
-        })
-    };
     for v in &p.values {
         let u = v.unit.clone().unwrap_or_default();
+        let interval = |i: Option<[f64; 2]>, what: &str| {
+            i.map_or(String::new(), |[a, b]| {
+                format!(
+                    "; {what} {} .. {} {u}",
+                    format_number(a, 4),
+                    format_number(b, 4)
+                )
+            })
+        };
         text += &format!(
             "{} = {} {u}{}{}\n",
             v.name,
@@ -205,11 +241,14 @@ pub fn reach_text(
     }
     corners
         .iter()
-        .for_each(|c| text += &corner_line(c, factors));
+        .for_each(|c| text += &corner_line(c, factors, [&ux, &uy]));
     text
 }
 
-fn corner_line(c: &Corner, factors: &[Factor]) -> String {
+/// A cell corner `(x ux, y uy)` and how far its closest factor set misses
+/// it: a distance in the plane of both responses, in their unit when they
+/// share one.
+fn corner_line(c: &Corner, factors: &[Factor], units: [&str; 2]) -> String {
     let set: Vec<String> = c
         .factors
         .iter()
@@ -217,13 +256,19 @@ fn corner_line(c: &Corner, factors: &[Factor]) -> String {
         .map(|(t, f)| format!("{}={}", f.name, format_number(*t, 4)))
         .collect();
     let (x, y, set) = (c.target[0], c.target[1], set.join(", "));
+    let [ux, uy] = units;
+    let distance = match (ux == uy, ux.is_empty() || uy.is_empty()) {
+        (true, _) => ux.to_string(),
+        (false, false) => format!(" (in {}, {})", ux.trim(), uy.trim()),
+        (false, true) => String::new(),
+    };
     match c.reachable {
         true => format!(
-            "corner ({x}, {y}): reachable with coded {set} (residual {})\n",
+            "corner ({x}{ux}, {y}{uy}): reachable with coded {set} (residual {}{distance})\n",
             format_number(c.residual, 3)
         ),
         false => format!(
-            "corner ({x}, {y}): UNREACHABLE; closest coded {set} misses by {}\n",
+            "corner ({x}{ux}, {y}{uy}): UNREACHABLE; closest coded {set} misses by {}{distance}\n",
             format_number(c.residual, 4)
         ),
     }

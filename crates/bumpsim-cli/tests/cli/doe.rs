@@ -678,3 +678,74 @@ fn doe_reach_refuses_overflowing_coefficients_and_one_response_twice() {
         assert!(!text(&run.stdout).contains("inf"), "{}", text(&run.stdout));
     }
 }
+
+/// Issue 34 (hostile pass 2026-11-26, finding 26): `doe fit`'s coefficient
+/// columns, `doe predict`'s intervals and `doe reach --cell`'s corners and
+/// distances printed numbers without units; each now carries the
+/// response's unit.
+#[test]
+fn doe_tables_intervals_and_corners_carry_their_units() {
+    let dir = scratch("doe-units");
+    let json = dir.join("identified.json");
+    let data = root().join("examples/doe/identified.csv");
+    let fit = bumpsim(&[
+        "doe",
+        "fit",
+        data.to_str().unwrap(),
+        "--factors",
+        "Kax,M",
+        "--responses",
+        "k1",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(fit.status.success(), "{}", text(&fit.stderr));
+    assert_contains(
+        &text(&fit.stdout),
+        &[
+            "coefficient [N/m]",
+            "std. error [N/m]",
+            "95 % interval [N/m]",
+        ],
+    );
+    let at = [
+        "doe",
+        "predict",
+        json.to_str().unwrap(),
+        "--at",
+        "Kax=25000,M=1400",
+    ];
+    let predict = text(&bumpsim(&at).stdout);
+    let ci = predict
+        .lines()
+        .find(|l| l.contains("95 % CI"))
+        .unwrap_or("");
+    assert!(
+        ci.contains(" N/m; 95 % PI") && ci.ends_with(" N/m"),
+        "{predict}"
+    );
+    let stage1 = doe_data("paper-c-stage1.json");
+    let reach = bumpsim(&[
+        "doe",
+        "reach",
+        stage1.to_str().unwrap(),
+        "--x",
+        "Kax",
+        "--y",
+        "Kbnd",
+        "--cell",
+        "20000,25684,20217,23643",
+        "--samples",
+        "10",
+    ]);
+    let out = text(&reach.stdout);
+    assert!(reach.status.success(), "{}", text(&reach.stderr));
+    let missed = out
+        .lines()
+        .find(|l| l.contains("UNREACHABLE"))
+        .unwrap_or("");
+    assert!(
+        missed.starts_with("corner (20000 N/mm, 23643 N/mm)") && missed.ends_with(" N/mm"),
+        "{out}"
+    );
+}
