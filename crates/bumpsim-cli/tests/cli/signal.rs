@@ -434,3 +434,16 @@ fn flags_that_would_do_nothing_are_refused() {
     assert_user_error(&export(&["--iso-6487"]), "--cfc");
     assert!(!out.exists(), "a refused export wrote its output");
 }
+
+/// `signal info > /dev/full` said "No space left on device" without saying
+/// where (hostile pass of issue 34).
+#[test]
+fn an_unprintable_standard_output_is_named() {
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_bumpsim"))
+        .args(["signal", "info"])
+        .arg(root().join("examples/identify/FLAT/FLAT.mme"))
+        .stdout(std::fs::File::create("/dev/full").unwrap())
+        .output()
+        .unwrap();
+    assert_user_error(&run, "cannot print the results to standard output");
+}
