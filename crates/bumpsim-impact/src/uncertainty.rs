@@ -50,7 +50,7 @@ pub enum UncertaintyError {
         message: String,
     },
     /// A spread or correlation out of range.
-    #[error("{key} = {value} {unit}: {expected}")]
+    #[error("{key} = {} {unit}: {expected}", bumpsim_core::units::short(*value))]
     Value {
         /// The parameter.
         key: String,

@@ -124,8 +124,7 @@ fn check(settings: &Settings) -> Result<(), PlanarError> {
         "must be positive",
         s.output_step > 0.0,
     )?;
-    // a duration below one output step (1e-308 s) ran to a single sample
-    // with only a warning that the contact had not ended
+    // below one output step (1e-308 s) it ran one sample, with a warning
     require(
         "duration",
         s.duration,
@@ -719,8 +718,7 @@ mod hostile {
             let err = simulate(&car, &striker, &Settings::default())
                 .unwrap_err()
                 .to_string();
-            // the impact's speed and mass ranges now refuse them first
-            let named = ["striker kinetic energy", "speed = ", "striker mass = "];
+            let named = ["striker kinetic energy", "speed = ", "striker mass = "]; // or the ranges
             assert!(named.iter().any(|n| err.contains(n)), "{err}");
         }
         // rails 1000 m apart: the balance error reached 1.8e10 before this

@@ -18,7 +18,7 @@ pub enum VerdictError {
         expected: String,
     },
     /// A value is out of range.
-    #[error("{key} = {value} {unit}: {expected}")]
+    #[error("{key} = {} {unit}: {expected}", bumpsim_core::units::short(*value))]
     Value {
         /// The key or option.
         key: String,
