@@ -56,6 +56,31 @@ use bumpsim_impact::bumper::{Bumper, Loading};
 use serde::Deserialize;
 use std::path::Path;
 
+/// Bumper widths a planar car file may give, m: 0.1 m (a narrower beam is
+/// no car's; `width = 1e-308` was accepted) to 10 m (beyond any road
+/// vehicle's 2.6 m). docs/limits.md.
+pub const WIDTH_RANGE: std::ops::RangeInclusive<f64> = 0.1..=10.0;
+
+/// The beam of a car file lies across the car and carries the side members
+/// (at ±spacing/2, under the beam): refused naming the key otherwise.
+fn check_beam_fits(beam: &Beam) -> Result<(), String> {
+    let (low, high) = WIDTH_RANGE.into_inner();
+    if !WIDTH_RANGE.contains(&beam.width) {
+        let width = bumpsim_core::units::short(beam.width);
+        return Err(format!(
+            "bumper.width = {width} m: expected {low} to {high} m (WIDTH_RANGE)"
+        ));
+    }
+    if beam.side_member_spacing > beam.width {
+        return Err(format!(
+            "bumper.side_member_spacing = {} m is wider than bumper.width = {} m: the side members must lie under the bumper beam",
+            bumpsim_core::units::short(beam.side_member_spacing),
+            bumpsim_core::units::short(beam.width)
+        ));
+    }
+    Ok(())
+}
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct PlanarFile {
@@ -268,6 +293,9 @@ impl PlanarCar {
             segments: segments(&file.bumper).map_err(|e| error(e.to_string()))?,
             bending: file.bumper.bending,
         };
+        if beam.width.is_finite() && beam.side_member_spacing.is_finite() {
+            check_beam_fits(&beam).map_err(error)?;
+        }
         let tyres = file.tyres.map_or(Tyres::default(), |t| Tyres {
             front: t.front,
             rear: t.rear,
@@ -392,6 +420,35 @@ mod tests {
         assert_eq!(car.beam().segments.len(), 10);
         assert!((car.beam().segments[3].loading_force(1.0) - 6e3).abs() < 1e-9);
         assert!((car.tyres().rear.mu_longitudinal - 0.8).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_beam_that_does_not_fit_the_car_is_refused_naming_the_key() {
+        let saloon = include_str!("../../../examples/planar/saloon.toml");
+        let car = |from: &str, to: &str| {
+            PlanarCar::parse(&saloon.replacen(from, to, 1), "c.toml".as_ref())
+        };
+        assert!(car("", "").is_ok());
+        for (from, to, needle) in [
+            (
+                "width = 1500.0",
+                "width = 500.0",
+                "c.toml: bumper.side_member_spacing = 1 m is wider than bumper.width = 0.5 m",
+            ),
+            (
+                "width = 1500.0",
+                "width = 1e-308",
+                "bumper.width = 1e-311 m: expected 0.1 to 10 m",
+            ),
+            (
+                "width = 1500.0",
+                "width = 2e4",
+                "bumper.width = 20 m: expected 0.1 to 10 m",
+            ),
+        ] {
+            let e = car(from, to).unwrap_err().to_string();
+            assert!(e.contains(needle), "{e}");
+        }
     }
 
     #[test]

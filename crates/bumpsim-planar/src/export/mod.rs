@@ -205,7 +205,7 @@ pub(crate) fn check(car: &PlanarCar, options: &PlanarExport) -> Result<(), Plana
         require("initial velocity", v, "m/s", "must be finite", true)?;
     }
     if let Some(forces) = &options.forces {
-        check_forces(forces)?;
+        check_forces(car, forces)?;
     }
     if let Some(dt) = options.output_interval {
         let duration = options.forces.as_ref().map(Forces::duration);
@@ -219,7 +219,13 @@ pub(crate) fn check(car: &PlanarCar, options: &PlanarExport) -> Result<(), Plana
     check_units(car, options)
 }
 
-fn check_forces(forces: &Forces) -> Result<(), PlanarExportError> {
+fn check_forces(car: &PlanarCar, forces: &Forces) -> Result<(), PlanarExportError> {
+    // a load is applied on the bumper line: beyond its ends the lever rule
+    // gave the front masses shares above 1 and below 0 (--lateral 5 on a
+    // 0.75 m half-width exited 0)
+    let half = 0.5 * car.beam().width;
+    let on_bumper =
+        format!("must lie on the bumper line, |y| at most half the bumper width, {half} m");
     let step = forces.step;
     require("step", step, "s", "must be positive and finite", step > 0.0)?;
     let samples = forces.loads.first().map_or(0, |l| l.force.len());
@@ -228,7 +234,8 @@ fn check_forces(forces: &Forces) -> Result<(), PlanarExportError> {
     }
     for (k, load) in forces.loads.iter().enumerate() {
         let name = |what: &str| format!("load[{k}].{what}");
-        require(&name("lateral"), load.lateral, "m", "must be finite", true)?;
+        let y = load.lateral;
+        require(&name("lateral"), y, "m", &on_bumper, y.abs() <= half)?;
         if let Some(p) = load.anchor {
             let expected = "the decks apply a load at a fixed place on the bumper line: no anchor";
             require(&name("anchor"), p[0] + p[1], "m", expected, false)?;
@@ -314,4 +321,50 @@ fn check_units(car: &PlanarCar, options: &PlanarExport) -> Result<(), PlanarExpo
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::car::Layout;
+    use bumpsim_core::model::MsdModel;
+    use bumpsim_impact::bumper::Bumper;
+
+    #[test]
+    fn a_load_beyond_the_bumper_ends_is_refused() {
+        let chain = MsdModel::new(vec![8.0, 1300.0], vec![2e3], vec![3e6]).unwrap();
+        let bumper = Bumper::three_part(3e6, 2e5, 2e7).unwrap();
+        let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
+        let at = |lateral| {
+            let load = Load {
+                lateral,
+                anchor: None,
+                cell: None,
+                direction: [-1.0, 0.0],
+                force: vec![0.0, 1e3, 0.0],
+            };
+            let forces = Forces {
+                step: 1e-3,
+                loads: vec![load],
+            };
+            check(
+                &car,
+                &PlanarExport {
+                    forces: Some(forces),
+                    ..Default::default()
+                },
+            )
+        };
+        assert!(
+            at(0.8).is_ok() && at(-0.8).is_ok(),
+            "the ends of a 1.6 m bumper"
+        );
+        for lateral in [5.0, -0.81, f64::NAN] {
+            let e = at(lateral).unwrap_err().to_string();
+            assert!(
+                e.contains("load[0].lateral") && e.contains("half the bumper width, 0.8 m"),
+                "{e}"
+            );
+        }
+    }
 }
