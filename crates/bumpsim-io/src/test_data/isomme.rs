@@ -645,6 +645,19 @@ mod tests {
     }
 
     #[test]
+    fn samples_beyond_the_limit_are_refused_while_read() {
+        let limit = bumpsim_core::files::MAX_INPUT_SAMPLES;
+        let text = |n: usize| format!("Number of samples :{n}\r\n{}", "1\r\n".repeat(n));
+        let raw = |n| RawChannel::new(PathBuf::from("T.001"), text(n));
+        assert_eq!(raw(limit).values().unwrap().len(), limit);
+        let e = raw(limit + 1).values().unwrap_err().to_string();
+        assert!(
+            e.contains(&format!("T.001:{}: more than {limit} samples", limit + 2)),
+            "{e}"
+        );
+    }
+
+    #[test]
     fn a_huge_channel_count_is_refused_before_reading() {
         let (header, _) = parse_header("Number of channels :18446744073709551615\r\n");
         let e = channel_count(&header, Path::new("T.chn")).unwrap_err();
