@@ -63,20 +63,20 @@ pub const WIDTH_RANGE: std::ops::RangeInclusive<f64> = 0.1..=10.0;
 
 /// The beam of a car file lies across the car and carries the side members
 /// (at ±spacing/2, under the beam): refused naming the key otherwise.
-fn check_beam_fits(beam: &Beam) -> Result<(), String> {
+fn check_beam_fits(beam: &Beam, error: &dyn Fn(String) -> PlanarError) -> Result<(), PlanarError> {
     let (low, high) = WIDTH_RANGE.into_inner();
     if !WIDTH_RANGE.contains(&beam.width) {
         let width = bumpsim_core::units::short(beam.width);
-        return Err(format!(
+        return Err(error(format!(
             "bumper.width = {width} m: expected {low} to {high} m (WIDTH_RANGE)"
-        ));
+        )));
     }
     if beam.side_member_spacing > beam.width {
-        return Err(format!(
+        return Err(error(format!(
             "bumper.side_member_spacing = {} m is wider than bumper.width = {} m: the side members must lie under the bumper beam",
             bumpsim_core::units::short(beam.side_member_spacing),
             bumpsim_core::units::short(beam.width)
-        ));
+        )));
     }
     Ok(())
 }
@@ -294,7 +294,7 @@ impl PlanarCar {
             bending: file.bumper.bending,
         };
         if beam.width.is_finite() && beam.side_member_spacing.is_finite() {
-            check_beam_fits(&beam).map_err(error)?;
+            check_beam_fits(&beam, &error)?;
         }
         let tyres = file.tyres.map_or(Tyres::default(), |t| Tyres {
             front: t.front,

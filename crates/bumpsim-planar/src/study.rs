@@ -188,6 +188,7 @@ impl PlanarStudy {
         for spec in &file.case {
             let (case, resampled) = load_case(spec, base, &mut loader)?;
             check_striker(&setup.template, &case)?;
+            check_loads(&setup.template, &case)?;
             notes.extend(resampled.map(|r| format!("case '{}': {r}", spec.name)));
             match spec.validate {
                 true => validation.push(case),
@@ -240,6 +241,39 @@ fn check_striker(car: &PlanarCar, case: &PlanarCase) -> Result<(), PlanarError> 
             case: case.name.clone(),
             message: format!("striker: {e}"),
         })
+}
+
+/// A case's forces placed on the bumper line (no anchor, position not
+/// estimated) lie on it: a load cell at `lateral = -1.0` on a 1.6 m bumper
+/// was accepted. Refused by the case's name and the force's number.
+fn check_loads(car: &PlanarCar, case: &PlanarCase) -> Result<(), PlanarError> {
+    let half = 0.5 * car.beam().width;
+    match off_bumper(half, &case.drive.loads, &case.estimated) {
+        None => Ok(()),
+        Some((k, y)) => Err(PlanarError::Case {
+            case: case.name.clone(),
+            message: format!(
+                "force {}: lateral = {} m: must lie on the bumper line, |lateral| at most half the start car's bumper width, {half} m",
+                k + 1,
+                bumpsim_core::units::short(y)
+            ),
+        }),
+    }
+}
+
+/// The first load on the bumper line beyond `half` (m): its index and place
+/// (a value that is not finite is the drive's own check, `load[k].lateral`).
+fn off_bumper(
+    half: f64,
+    loads: &[crate::drive::Load],
+    estimated: &[usize],
+) -> Option<(usize, f64)> {
+    let fixed =
+        |(k, l): &(usize, &crate::drive::Load)| l.anchor.is_none() && !estimated.contains(k);
+    let mut placed = loads.iter().enumerate().filter(fixed);
+    placed
+        .find(|(_, l)| l.lateral.abs() > half)
+        .map(|(k, l)| (k, l.lateral))
 }
 
 /// A case's `time_zero`: `"onset"` (the default), or a time of the file's
@@ -371,4 +405,38 @@ fn load_case(
     .case()?;
     case.striker = striker;
     Ok((case, resampled))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::drive::Load;
+
+    #[test]
+    fn a_force_off_the_bumper_line_is_found_unless_anchored_or_estimated() {
+        let load = |lateral, anchor| Load {
+            lateral,
+            anchor,
+            cell: None,
+            direction: [-1.0, 0.0],
+            force: vec![0.0, 1.0],
+        };
+        let loads = [
+            load(0.8, None),
+            load(-1.0, None),
+            load(3.0, Some([0.0, 3.0])),
+        ];
+        assert_eq!(off_bumper(0.8, &loads, &[]), Some((1, -1.0)));
+        assert_eq!(
+            off_bumper(0.8, &loads, &[1]),
+            None,
+            "an estimated place is a start"
+        );
+        assert_eq!(
+            off_bumper(0.8, &loads[..1], &[]),
+            None,
+            "the end of the bumper"
+        );
+        assert_eq!(off_bumper(0.8, &[load(1e300, None)], &[]), Some((0, 1e300)));
+    }
 }

@@ -53,7 +53,8 @@ type Drawn = (bool, f64, Vec<(f64, f64, Option<[f64; 2]>)>, Vec<[f64; 2]>);
 
 fn drawn_test() -> impl Strategy<Value = Drawn> {
     let load = (
-        -0.9..0.9f64,
+        // on the 1.6 m start car's bumper line (a study refuses a load off it)
+        -0.8..0.8f64,
         -3.1..3.1f64,
         proptest::option::of((-2.0..2.0f64, -2.0..2.0f64).prop_map(|(x, y)| [x, y])),
     );

@@ -328,10 +328,11 @@ impl Context<'_> {
         }
         let s = &self.channel.series;
         let count = ((s.end() - s.start()) / step + WINDOW_TOLERANCE).floor() + 1.0;
-        let max = bumpsim_io::output::MAX_SAMPLES;
+        // what the readers take back (a resampled export is read again)
+        let max = bumpsim_core::files::MAX_INPUT_SAMPLES;
         if !count.is_finite() || count > max as f64 {
             return Err(self.range(format!(
-                "interval {step:?} s gives {count:.3e} samples, at most {max} per channel (limit MAX_SAMPLES)"
+                "interval {step:?} s gives {count:.3e} samples, at most {max} per channel (limit MAX_INPUT_SAMPLES)"
             )));
         }
         let count = count as usize;
