@@ -321,15 +321,22 @@ pub enum ReadError {
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum PointIdentifyError {
-    /// The point's study file or its cases.
+    /// The point's study file or its cases (boxed: a study error names its
+    /// file, case, key and value, and would make every result large).
     #[error(transparent)]
-    Study(#[from] bumpsim_ident::StudyError),
+    Study(Box<bumpsim_ident::StudyError>),
     /// The identification.
     #[error(transparent)]
     Identify(#[from] bumpsim_ident::IdentError),
     /// The identified parameters are not finite.
     #[error("the identified parameters are not finite")]
     NotFinite,
+}
+
+impl From<bumpsim_ident::StudyError> for PointIdentifyError {
+    fn from(error: bumpsim_ident::StudyError) -> Self {
+        PointIdentifyError::Study(Box::new(error))
+    }
 }
 
 /// Shorthand for results of this crate.
