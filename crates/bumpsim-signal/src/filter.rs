@@ -316,7 +316,7 @@ impl Cfc {
     }
 
     /// The 2-pole Butterworth that one pass of the CFC filter uses; the
-    /// class must lie in [`Cfc::classes`] for the sample interval `step` s.
+    /// class must lie in [`CfcStandard::classes`] for the sample interval `step` s.
     pub fn design(&self, step: f64) -> Result<Butterworth, FilterError> {
         check_positive("sample interval (s)", step)?;
         let (low, high) = self.standard.classes(step);
