@@ -75,7 +75,7 @@ fn planar_impact(args: &ImpactArgs) -> Result<()> {
 }
 
 /// `impact --width`: the 1-D car as a symmetric planar car of that bumper
-/// width (`PlanarCar::symmetric` with the default layout), in the planar impact.
+/// width (`PlanarCar::symmetric_fitted` with the default layout), in the planar impact.
 fn widened_impact(args: &ImpactArgs, car: &Car, bumper: &Bumper, width: &str) -> Result<()> {
     let width =
         parse_quantity(width, Dimension::Length).with_context(|| format!("--width '{width}'"))?;
@@ -83,7 +83,7 @@ fn widened_impact(args: &ImpactArgs, car: &Car, bumper: &Bumper, width: &str) ->
         bumper_width: width,
         ..bumpsim_planar::car::Layout::default()
     };
-    let planar = bumpsim_planar::PlanarCar::symmetric(&car.model, bumper, &layout)
+    let planar = bumpsim_planar::PlanarCar::symmetric_fitted(&car.model, bumper, &layout)
         .context("--width: the symmetric planar car")?
         .with_name(car.name.clone());
     crate::planar::run_impact(&crate::planar::ImpactRequest {

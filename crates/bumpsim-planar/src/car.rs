@@ -452,6 +452,34 @@ impl PlanarCar {
         PlanarCar::new(body, side.clone(), side, beam, layout.tyres)
     }
 
+    /// [`PlanarCar::symmetric`] of a layout a user gave (`impact --width`):
+    /// its beam, as a car file's, from 0.1 to 10 m wide
+    /// ([`crate::file::WIDTH_RANGE`]) and at least as wide as its side-member
+    /// spacing (`--width 1e-308` ran an angled impact on a beam narrower than
+    /// its rails). `symmetric` itself also builds test cars outside them.
+    ///
+    /// ```
+    /// use bumpsim_planar::car::{Layout, PlanarCar};
+    /// let chain = bumpsim_core::model::MsdModel::new(vec![16.0, 1300.0], vec![4e3], vec![6e6]).unwrap();
+    /// let bumper = bumpsim_impact::bumper::Bumper::three_part(3e6, 200e3, 2e7).unwrap();
+    /// let narrow = Layout { bumper_width: 0.5, ..Layout::default() };
+    /// assert!(PlanarCar::symmetric_fitted(&chain, &bumper, &narrow).is_err());
+    /// ```
+    pub fn symmetric_fitted(
+        chain: &MsdModel,
+        bumper: &Bumper,
+        layout: &Layout,
+    ) -> Result<PlanarCar, PlanarError> {
+        let (w, spacing) = (layout.bumper_width, layout.side_member_spacing);
+        let (low, high) = crate::file::WIDTH_RANGE.into_inner();
+        let expected = format!(
+            "from {low} to {high} m (WIDTH_RANGE) and at least the side-member spacing, {spacing} m"
+        );
+        let fits = crate::file::WIDTH_RANGE.contains(&w) && spacing <= w;
+        require("bumper width", w, "m", &expected, fits)?;
+        PlanarCar::symmetric(chain, bumper, layout)
+    }
+
     /// The same car with a name.
     pub fn with_name(mut self, name: Option<String>) -> PlanarCar {
         self.name = name;

@@ -451,6 +451,22 @@ fn a_1d_car_with_a_width_is_a_symmetric_planar_car() {
         ]),
         "--width",
     );
+    // a 1e-308 m beam ran an angled impact (hostile pass of issue 34)
+    assert_user_error(
+        &bumpsim(&[
+            "impact",
+            "--car",
+            c,
+            "--bumper",
+            b,
+            "--width",
+            "1e-308",
+            "--angle",
+            "10",
+            "--barrier",
+        ]),
+        "--width: the symmetric planar car: bumper width = 1e-308 m: from 0.1 to 10 m",
+    );
 }
 
 /// Issue 32's set-up: a gap delays the same impact (the record starts at

@@ -435,7 +435,7 @@ fn more_limits_and_hostile_values() {
             "-o",
             "r.csv",
         ],
-        "MAX_SAMPLES",
+        "MAX_INPUT_SAMPLES",
     );
     user_error(
         &dir,
