@@ -106,6 +106,11 @@ pub enum PlanarError {
 /// Most segments a bumper beam may have (docs/limits.md).
 pub const MAX_SEGMENTS: usize = 1000;
 
+/// Bumper widths a planar car file (and `impact --width`) may give, m:
+/// 0.1 m (a narrower beam is no car's; `width = 1e-308` was accepted) to
+/// 10 m (beyond any road vehicle's 2.6 m). docs/limits.md.
+pub const WIDTH_RANGE: std::ops::RangeInclusive<f64> = 0.1..=10.0;
+
 pub(crate) fn parameter(name: &str, value: f64, unit: &'static str, expected: &str) -> PlanarError {
     PlanarError::Parameter {
         name: name.into(),
@@ -454,7 +459,7 @@ impl PlanarCar {
 
     /// [`PlanarCar::symmetric`] of a layout a user gave (`impact --width`):
     /// its beam, as a car file's, from 0.1 to 10 m wide
-    /// ([`crate::file::WIDTH_RANGE`]) and at least as wide as its side-member
+    /// ([`WIDTH_RANGE`]) and at least as wide as its side-member
     /// spacing (`--width 1e-308` ran an angled impact on a beam narrower than
     /// its rails). `symmetric` itself also builds test cars outside them.
     ///
@@ -471,11 +476,11 @@ impl PlanarCar {
         layout: &Layout,
     ) -> Result<PlanarCar, PlanarError> {
         let (w, spacing) = (layout.bumper_width, layout.side_member_spacing);
-        let (low, high) = crate::file::WIDTH_RANGE.into_inner();
+        let (low, high) = WIDTH_RANGE.into_inner();
         let expected = format!(
             "from {low} to {high} m (WIDTH_RANGE) and at least the side-member spacing, {spacing} m"
         );
-        let fits = crate::file::WIDTH_RANGE.contains(&w) && spacing <= w;
+        let fits = WIDTH_RANGE.contains(&w) && spacing <= w;
         require("bumper width", w, "m", &expected, fits)?;
         PlanarCar::symmetric(chain, bumper, layout)
     }

@@ -56,10 +56,7 @@ use bumpsim_impact::bumper::{Bumper, Loading};
 use serde::Deserialize;
 use std::path::Path;
 
-/// Bumper widths a planar car file may give, m: 0.1 m (a narrower beam is
-/// no car's; `width = 1e-308` was accepted) to 10 m (beyond any road
-/// vehicle's 2.6 m). docs/limits.md.
-pub const WIDTH_RANGE: std::ops::RangeInclusive<f64> = 0.1..=10.0;
+pub use crate::car::WIDTH_RANGE;
 
 /// The beam of a car file lies across the car and carries the side members
 /// (at ±spacing/2, under the beam): refused naming the key otherwise.
