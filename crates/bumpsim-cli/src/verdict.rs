@@ -114,8 +114,11 @@ pub fn run(args: &Args) -> Result<()> {
         false => None,
     };
     if let Some(path) = &args.json {
-        let document =
-            serde_json::json!({ "verdict": v, "target": region, "sensitivity": indices });
+        let mut document = serde_json::json!({ "verdict": v, "target": region });
+        // only with --sobol: the document of a plain verdict stays as Python's
+        if let (Some(s), Some(fields)) = (&indices, document.as_object_mut()) {
+            fields.insert("sensitivity".into(), serde_json::to_value(s)?);
+        }
         write(path, &serde_json::to_string_pretty(&document)?)?;
     }
     if let Some(dir) = &args.report {
