@@ -41,14 +41,22 @@ fn passes(v: &Verdict) -> Passes {
         .collect()
 }
 
-/// The verdict of the set-up with every end's car scaled by `factors`.
-fn draw(setup: &Setup, parts: &[Part], factors: &[f64]) -> Option<Passes> {
+/// The set-up with every end's car scaled by `factors` (one per part);
+/// None when a car is not valid. Shared with the Sobol indices.
+pub(crate) fn drawn(setup: &Setup, parts: &[Part], factors: &[f64]) -> Option<Setup> {
     let mut drawn = setup.clone();
     for end in [&mut drawn.front, &mut drawn.rear].into_iter().flatten() {
         let car = crate::uncertainty::scaled(&end.car, parts, factors)?;
         *end = CarEnd::new(car, end.limits.clone()).ok()?;
     }
-    verdict(&drawn).ok().map(|v| passes(&v))
+    Some(drawn)
+}
+
+/// The verdict of the set-up with every end's car scaled by `factors`.
+fn draw(setup: &Setup, parts: &[Part], factors: &[f64]) -> Option<Passes> {
+    verdict(&drawn(setup, parts, factors)?)
+        .ok()
+        .map(|v| passes(&v))
 }
 
 /// Gives each judged criterion, each test and the verdict its probability
@@ -84,11 +92,7 @@ pub fn propagate(
     for end in [&setup.front, &setup.rear].into_iter().flatten() {
         uncertainty.check(&end.car)?;
     }
-    let parts: Vec<Part> = uncertainty
-        .names
-        .iter()
-        .filter_map(|n| crate::uncertainty::part(n))
-        .collect();
+    let parts: Vec<Part> = uncertainty.parts();
     let lower = uncertainty.cholesky()?;
     let factors: Vec<Vec<f64>> = (0..n as u64)
         .map(|i| uncertainty.factors(&lower, sampling.seed, i))

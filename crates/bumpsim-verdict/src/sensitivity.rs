@@ -43,7 +43,7 @@
 use crate::criteria::{Outcome, Quantity};
 use crate::error::{VerdictError, require};
 use crate::uncertainty::Uncertainty;
-use crate::verdict::{CarEnd, Setup, Verdict, verdict};
+use crate::verdict::{Setup, Verdict, verdict};
 use bumpsim_estimate::sobol::{DIMENSIONS, Input, SobolError, indices};
 pub use bumpsim_estimate::sobol::{Indices, Settings};
 use serde::Serialize;
@@ -117,6 +117,7 @@ pub fn sensitivity(
     let runs = Runs {
         setup,
         uncertainty,
+        parts: uncertainty.parts(),
         judged: &judged,
         cache: Mutex::new(HashMap::new()),
         failure: Mutex::new(None),
@@ -201,6 +202,8 @@ fn judged(v: &Verdict) -> Vec<Judged> {
 struct Runs<'a> {
     setup: &'a Setup,
     uncertainty: &'a Uncertainty,
+    /// The uncertainty's parts, found once.
+    parts: Vec<crate::uncertainty::Part>,
     judged: &'a [Judged],
     /// The judged values of each point's car, by the point's bits.
     cache: Mutex<HashMap<Vec<u64>, Vec<f64>>>,
@@ -235,7 +238,7 @@ impl Runs<'_> {
     fn run(&self, u: &[f64]) -> Result<Vec<f64>, String> {
         let factors = factors(u);
         let said = |why: String| format!("the car with {}: {why}", self.named(&factors));
-        let drawn = drawn(self.setup, self.uncertainty, &factors)
+        let drawn = crate::probability::drawn(self.setup, &self.parts, &factors)
             .ok_or_else(|| said("not a valid car".into()))?;
         let v = verdict(&drawn).map_err(|e| said(e.to_string()))?;
         let values = judged_values(&v, self.judged);
@@ -280,23 +283,6 @@ fn judged_values(v: &Verdict, judged: &[Judged]) -> Vec<f64> {
 /// The factors `exp(xᵢ)` of a point of log factors `xᵢ ~ N(0, σᵢ²)`.
 fn factors(x: &[f64]) -> Vec<f64> {
     x.iter().map(|v| v.exp()).collect()
-}
-
-/// The set-up with every end's car scaled by `factors`; None when a car
-/// is not valid.
-fn drawn(setup: &Setup, uncertainty: &Uncertainty, factors: &[f64]) -> Option<Setup> {
-    let parts: Vec<_> = (uncertainty.names.iter())
-        .filter_map(|n| crate::uncertainty::part(n))
-        .collect();
-    let mut drawn = setup.clone();
-    for end in [&mut drawn.front, &mut drawn.rear].into_iter().flatten() {
-        // into_iter().next(): the car whether `scaled` gives an Option or a Result
-        let car = crate::uncertainty::scaled(&end.car, &parts, factors)
-            .into_iter()
-            .next()?;
-        *end = CarEnd::new(car, end.limits.clone()).ok()?;
-    }
-    Some(drawn)
 }
 
 /// The largest off-diagonal |r| of the uncertainty's correlation.
