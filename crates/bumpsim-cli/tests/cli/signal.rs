@@ -349,18 +349,14 @@ fn a_cfc_class_out_of_range_names_the_flag_and_its_range() {
     let dir = scratch("signal-cfc");
     let test = root().join("examples/identify/FLAT");
     let out = dir.join("o.csv");
+    let export = |class: &str| {
+        let (test, out) = (test.to_str().unwrap(), out.to_str().unwrap());
+        bumpsim(&[
+            "signal", "export", test, "-c", "1", "--cfc", class, "-o", out,
+        ])
+    };
     for class in ["1e308", "1e6", "2406.8", "1e-300", "0"] {
-        let run = bumpsim(&[
-            "signal",
-            "export",
-            test.to_str().unwrap(),
-            "-c",
-            "1",
-            "--cfc",
-            class,
-            "-o",
-            out.to_str().unwrap(),
-        ]);
+        let run = export(class);
         assert_user_error(&run, "--cfc ");
         let stderr = text(&run.stderr);
         assert!(
@@ -376,17 +372,7 @@ fn a_cfc_class_out_of_range_names_the_flag_and_its_range() {
         }
         assert!(!out.exists(), "{class}: an output was written");
     }
-    let edge = bumpsim(&[
-        "signal",
-        "export",
-        test.to_str().unwrap(),
-        "-c",
-        "1",
-        "--cfc",
-        "2406.6",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
+    let edge = export("2406.6");
     assert_eq!(edge.status.code(), Some(0), "{}", text(&edge.stderr));
 }
 
