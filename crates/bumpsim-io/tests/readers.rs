@@ -295,6 +295,10 @@ fn nhtsa_header_channels_and_invalid_cells() {
     assert_eq!(explicit.warnings.len(), 1);
     let absent = test.select("1").unwrap_err().to_string();
     assert!(absent.contains("absent"), "{absent}");
+    // a wildcard matching only channels without a file counts them (it
+    // counted only the invalid ones: "0 of them")
+    let none = test.select("1-AC-HDCG-*").unwrap_err().to_string();
+    assert!(none.contains("missing or unusable (12 of them)"), "{none}");
 }
 
 /// Issue 34: two instrumentation rows numbered 93 put the left

@@ -116,11 +116,11 @@ impl fmt::Display for Note {
             Note::Absent { selector, numbers } => match numbers.len() {
                 1 => write!(
                     f,
-                    "'{selector}': left out 1 matching channel whose file is absent"
+                    "'{selector}': left out 1 matching channel whose file is missing or unusable"
                 ),
                 n => write!(
                     f,
-                    "'{selector}': left out {n} matching channels whose files are absent"
+                    "'{selector}': left out {n} matching channels whose files are missing or unusable"
                 ),
             },
             Note::Selection { message, .. } => f.write_str(message),
@@ -312,7 +312,7 @@ mod tests {
     use std::fmt::Write;
 
     /// An EV5 test with three accelerometers: two valid, one marked
-    /// invalid, and one more listed whose file is absent.
+    /// invalid, and one more listed whose file is missing or unusable.
     fn ev5(dir: &Path) -> PathBuf {
         std::fs::create_dir_all(dir).unwrap();
         let row = |curve: usize, location: &str, comment: &str| {
@@ -363,7 +363,7 @@ mod tests {
             texts,
             [
                 "'1-AC-SIME*': left out channel 3 (1-AC-SIMEXX-XG): marked invalid",
-                "'1-AC-SIME*': left out 1 matching channel whose file is absent"
+                "'1-AC-SIME*': left out 1 matching channel whose file is missing or unusable"
             ]
         );
         assert!(matches!(&mean.notes[1], Note::Absent { numbers, .. } if numbers == &[4]));

@@ -319,7 +319,7 @@ fn iso_mme_values(path: &Path) -> Vec<String> {
 /// The bundled example copied into `dir`, with the flat test also written
 /// as an NHTSA EV5 test holding, besides its force and its two side-member
 /// accelerometers, a third side-member accelerometer marked `No valid data`
-/// and a fourth whose file is absent. The flat case reads its
+/// and a fourth whose file is missing or unusable. The flat case reads its
 /// accelerometers with the wildcard `1-AC-SIME*-XG`, which must leave both
 /// out (same data as the bundled study, so the same result). The sample
 /// interval is written `100.00000000000001` µs so that the EV5 time base is
@@ -392,7 +392,7 @@ fn identify_to(study: &Path, dir: &Path) -> (Output, serde_json::Value) {
 const INVALID_NOTE: &str =
     "case 'flat': '1-AC-SIME*-XG': left out channel 4 (1-AC-SIMEXX-XG): marked invalid";
 const ABSENT_NOTE: &str =
-    "case 'flat': '1-AC-SIME*-XG': left out 1 matching channel whose file is absent";
+    "case 'flat': '1-AC-SIME*-XG': left out 1 matching channel whose file is missing or unusable";
 
 #[test]
 fn identify_reports_the_channels_a_wildcard_left_out() {
@@ -417,7 +417,7 @@ fn identify_reports_the_channels_a_wildcard_left_out() {
         &[
             "Channel selection",
             "left out channel 4 (1-AC-SIMEXX-XG): marked invalid",
-            "whose file is absent",
+            "whose file is missing or unusable",
         ],
     );
     // the same data as the bundled study: the same model, and no notes there

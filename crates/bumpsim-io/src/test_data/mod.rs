@@ -11,7 +11,7 @@
 //! - name substring, case-insensitive: `crossmember`.
 //!
 //! Channels marked invalid by the lab (NHTSA comment `No valid data`, status
-//! `NO`) or whose file is absent are left out of wildcard and name
+//! `NO`) or whose file is missing or unusable are left out of wildcard and name
 //! selections and reported in [`Selection::excluded`]; asked for by number or
 //! exact code an invalid channel is returned with a warning, and an absent
 //! one is an error naming it and why ([`Entry::absence`]: missing, empty or
@@ -314,8 +314,7 @@ impl TestData {
             )
         } else {
             format!(
-                "matches only channels that are marked invalid or whose file is absent ({} of them)",
-                selection.excluded.len()
+                "matches only channels that are marked invalid or whose file is missing or unusable ({left_out} of them)"
             )
         };
         SignalFileError::Select {
