@@ -105,9 +105,21 @@ pub(crate) fn warn(message: &str) {
     eprintln!("warning: {message}");
 }
 
+/// Every option that takes a value takes a negative number too: `--speed -1`
+/// reaches the command's own check, which refuses it by name and range, where
+/// clap answered "unexpected argument '-1'".
+fn negative_values(command: clap::Command) -> clap::Command {
+    command
+        .mut_args(|arg| {
+            let takes = arg.get_action().takes_values();
+            arg.allow_negative_numbers(takes)
+        })
+        .mut_subcommands(negative_values)
+}
+
 fn main() -> ExitCode {
     abandon_on_panic();
-    let matches = Cli::command().get_matches();
+    let matches = negative_values(Cli::command()).get_matches();
     let cli = match Cli::from_arg_matches(&matches) {
         Ok(cli) => cli,
         Err(e) => e.exit(),

@@ -249,7 +249,7 @@ fn impacts_outside_the_physical_ranges_are_refused() {
     )
     .unwrap();
     let bumper = impact_example("bumper-a.toml");
-    let cases: [(&Path, &[&str], &str); 7] = [
+    let cases: [(&Path, &[&str], &str); 8] = [
         (
             &car,
             &["--pendulum", "1000", "--speed", "1e-300"],
@@ -281,6 +281,8 @@ fn impacts_outside_the_physical_ranges_are_refused() {
             "initial kinetic energy (J) = inf",
         ),
         (&car, &["--barrier", "--speed=-2"], "speed (m/s) = -2.0"),
+        // clap said "unexpected argument '-2'" without naming the flag
+        (&car, &["--barrier", "--speed", "-2"], "speed (m/s) = -2.0"),
     ];
     for (car, extra, needle) in cases {
         assert_user_error(&impact(car, &bumper, extra), needle);
