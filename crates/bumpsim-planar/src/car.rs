@@ -34,7 +34,7 @@
 //! segments, so that a full-width flat impact reduces exactly to the 1-D model.
 
 use bumpsim_core::model::MsdModel;
-use bumpsim_impact::bumper::{Bumper, BumperError, Loading};
+use bumpsim_impact::bumper::{Bumper, BumperError};
 use serde::Serialize;
 
 /// Standard gravity, m/s².
@@ -373,19 +373,9 @@ impl Default for Layout {
     }
 }
 
-/// The bumper with its forces scaled by `factor` (> 0).
+/// The bumper with its forces scaled by `factor` (> 0): [`Bumper::scaled`].
 pub fn scaled(bumper: &Bumper, factor: f64) -> Result<Bumper, BumperError> {
-    let unloading = bumper.unloading_slope() * factor;
-    match bumper.loading() {
-        Loading::ThreePart { ramp, plateau } => {
-            Bumper::three_part(ramp * factor, plateau * factor, unloading)
-        }
-        Loading::Table { compression, force } => Bumper::table(
-            compression.clone(),
-            force.iter().map(|f| f * factor).collect(),
-            unloading,
-        ),
-    }
+    bumper.scaled(factor)
 }
 
 impl PlanarCar {
@@ -435,8 +425,9 @@ impl PlanarCar {
                 "at least one segment",
             ));
         }
-        let segment =
-            scaled(bumper, 1.0 / layout.segments as f64).map_err(|source| PlanarError::Bumper {
+        let segment = bumper
+            .scaled(1.0 / layout.segments as f64)
+            .map_err(|source| PlanarError::Bumper {
                 name: "bumper".into(),
                 source,
             })?;

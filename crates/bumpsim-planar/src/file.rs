@@ -50,7 +50,7 @@
 //! only a convenience for the layout dimensions, which drawings give in mm.
 
 use crate::car::{
-    Axle, Beam, Body, MAX_SEGMENTS, PlanarCar, PlanarError, SideChain, TyreLaw, Tyres, scaled,
+    Axle, Beam, Body, MAX_SEGMENTS, PlanarCar, PlanarError, SideChain, TyreLaw, Tyres,
 };
 use bumpsim_impact::bumper::{Bumper, Loading};
 use serde::Deserialize;
@@ -191,10 +191,12 @@ fn segments(file: &BumperFile) -> Result<Vec<Bumper>, PlanarError> {
     let whole = characteristic(&whole, "bumper")?;
     match (whole, file.segment.is_empty(), file.segments) {
         (Some(b), true, Some(n)) if (1..=MAX_SEGMENTS).contains(&n) => {
-            let one = scaled(&b, 1.0 / n as f64).map_err(|source| PlanarError::Bumper {
-                name: "bumper".into(),
-                source,
-            })?;
+            let one = b
+                .scaled(1.0 / n as f64)
+                .map_err(|source| PlanarError::Bumper {
+                    name: "bumper".into(),
+                    source,
+                })?;
             Ok(vec![one; n])
         }
         (None, false, count) if count.is_none_or(|n| n == file.segment.len()) => file

@@ -13,7 +13,7 @@ use crate::pulse::{Metrics, Pulse};
 use crate::uncertainty::Propagation;
 use bumpsim_estimate::propagate::Probability;
 use bumpsim_impact::bumper::Bumper;
-use bumpsim_planar::car::{Beam, scaled};
+use bumpsim_planar::car::Beam;
 use bumpsim_planar::{PlanarCar, PlanarResult, Settings, Striker, simulate};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -38,7 +38,7 @@ impl CarEnd {
     /// of the whole-bumper characteristic `bumper`.
     pub fn with_bumper(&self, bumper: &Bumper) -> Result<CarEnd, VerdictError> {
         let n = self.car.beam().segments.len();
-        let segment = scaled(bumper, 1.0 / n as f64).map_err(|source| {
+        let segment = bumper.scaled(1.0 / n as f64).map_err(|source| {
             let name = "bumper".into();
             planar(
                 "bumper",
