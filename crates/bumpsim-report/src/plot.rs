@@ -3,9 +3,12 @@
 //! Values come in SI and are drawn in the display unit of their dimension
 //! (ms, mm, kN, g, ...; `bumpsim_core::units::Dimension::display_unit`), and
 //! each axis label states that unit. Measured data are drawn solid,
-//! simulated or processed data dashed, as in the thesis figures.
+//! simulated or processed data dashed, as in the thesis figures; a band
+//! (a prediction's pointwise interval) is a shaded area between its ends,
+//! drawn under the lines.
 
 use bumpsim_core::units::Dimension;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 /// Why a plot cannot be drawn.
@@ -76,6 +79,20 @@ impl Series {
     }
 }
 
+/// A shaded area between two curves over the same x: a prediction's
+/// pointwise interval (SI values, as [`Series`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Band {
+    /// Legend entry.
+    pub name: String,
+    /// x values, SI.
+    pub x: Vec<f64>,
+    /// Lower end at each x, SI.
+    pub low: Vec<f64>,
+    /// Upper end at each x, SI.
+    pub high: Vec<f64>,
+}
+
 /// A line plot with a title, two axes of given dimensions and its series.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LinePlot {
@@ -87,6 +104,8 @@ pub struct LinePlot {
     pub y: Dimension,
     /// The curves.
     pub series: Vec<Series>,
+    /// Shaded areas, drawn under the curves.
+    pub bands: Vec<Band>,
     /// Size in pixels.
     pub size: (u32, u32),
     /// Axis labels replacing the dimension's `name [unit]` (x, y).
@@ -122,6 +141,7 @@ impl LinePlot {
             x,
             y,
             series: Vec::new(),
+            bands: Vec::new(),
             size: (800, 480),
             labels: (None, None),
         }
@@ -151,6 +171,31 @@ impl LinePlot {
         self
     }
 
+    /// Adds a shaded band between `low` and `high` over `x`.
+    ///
+    /// ```
+    /// use bumpsim_core::units::Dimension;
+    /// use bumpsim_report::plot::{Band, LinePlot};
+    /// let mut plot = LinePlot::new("force", Dimension::Time, Dimension::Force);
+    /// let (x, low, high) = (vec![0.0, 0.01], vec![0.0, 900.0], vec![0.0, 1100.0]);
+    /// plot.band(Band { name: "5 % to 95 %".into(), x, low, high });
+    /// assert!(plot.svg()?.contains("<polygon opacity=\"0.3\""));
+    /// # Ok::<(), bumpsim_report::plot::PlotError>(())
+    /// ```
+    pub fn band(&mut self, band: Band) -> &mut Self {
+        self.bands.push(band);
+        self
+    }
+
+    /// Every curve as a series: the lines and both ends of each band.
+    fn curves(&self) -> Vec<Series> {
+        let ends = self.bands.iter().flat_map(|b| {
+            let end = |y: &Vec<f64>| Series::new(&b.name, b.x.clone(), y.clone(), Style::Solid);
+            [end(&b.low), end(&b.high)]
+        });
+        self.series.iter().cloned().chain(ends).collect()
+    }
+
     /// The data range in display units: (x0, x1, y0, y1), padded.
     fn range(&self) -> Result<(f64, f64, f64, f64), PlotError> {
         let (ux, uy) = (self.x.display_unit(), self.y.display_unit());
@@ -160,7 +205,7 @@ impl LinePlot {
             f64::INFINITY,
             f64::NEG_INFINITY,
         );
-        for s in &self.series {
+        for s in &self.curves() {
             if s.x.len() != s.y.len() {
                 let (title, series) = (self.title.clone(), s.name.clone());
                 return Err(PlotError::Length {
@@ -279,6 +324,9 @@ impl LinePlot {
             .label_style(("sans-serif", 13))
             .draw()?;
         let (ux, uy) = (self.x.display_unit(), self.y.display_unit());
+        for band in &self.bands {
+            self.shade(&mut chart, band)?;
+        }
         for (i, s) in self.series.iter().enumerate() {
             let colour = COLOURS[i % COLOURS.len()];
             let points: Vec<(f64, f64)> =
@@ -315,6 +363,39 @@ impl LinePlot {
     }
 }
 
+impl LinePlot {
+    /// Draws `band` as a translucent polygon (its lower end forward, its
+    /// upper end back) with a filled legend mark; points where an end is
+    /// not finite are left out.
+    fn shade<DB: DrawingBackend>(
+        &self,
+        chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+        band: &Band,
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+        let (ux, uy) = (self.x.display_unit(), self.y.display_unit());
+        let finite = |(&x, (&l, &h)): (&f64, (&f64, &f64))| {
+            (x.is_finite() && l.is_finite() && h.is_finite()).then_some((x, l, h))
+        };
+        let points: Vec<(f64, f64, f64)> = (band.x.iter().zip(band.low.iter().zip(&band.high)))
+            .filter_map(finite)
+            .map(|(x, l, h)| (ux.from_si(x), uy.from_si(l), uy.from_si(h)))
+            .collect();
+        let outline = (points.iter().map(|&(x, l, _)| (x, l)))
+            .chain(points.iter().rev().map(|&(x, _, h)| (x, h)))
+            .collect::<Vec<_>>();
+        let fill = BAND.mix(0.3).filled();
+        chart
+            .draw_series(std::iter::once(Polygon::new(outline, fill)))?
+            .label(band.name.clone())
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 20, y + 5)], fill));
+        Ok(())
+    }
+}
+
+/// The colour of a band's shading: the first series' (a band is drawn
+/// around the nominal curve, which comes first).
+const BAND: RGBColor = COLOURS[0];
+
 /// Refuses an axis range plotters cannot draw (it asserts on non-finite or
 /// empty ranges): values near f64::MAX make the span overflow, and a span
 /// below the resolution of its ends is empty.
@@ -340,6 +421,48 @@ mod tests {
         p.add(Series::new("measured", t.clone(), f.clone(), Style::Solid));
         p.add(Series::new("filtered", t, f, Style::Dashed));
         p
+    }
+
+    /// The nominal curve of `demo` with a band from 0.8 of it to 5 kN above
+    /// it, a NaN at the third point.
+    fn banded() -> LinePlot {
+        let mut p = demo();
+        let nominal = p.series[0].clone();
+        let mut low: Vec<f64> = nominal.y.iter().map(|f| 0.8 * f).collect();
+        let high = nominal.y.iter().map(|f| f + 5e3).collect();
+        low[2] = f64::NAN;
+        let name = "5 % to 95 %".into();
+        p.band(Band {
+            name,
+            x: nominal.x,
+            low,
+            high,
+        });
+        p
+    }
+
+    #[test]
+    fn a_band_is_one_shaded_polygon_under_the_lines_within_the_axes() {
+        let plot = banded();
+        let svg = plot.svg().unwrap();
+        let polygon = svg
+            .find("<polygon opacity=\"0.3\"")
+            .expect("the band's polygon");
+        let nominal = svg.find("stroke=\"#1F77B4\" stroke-width=\"2\"").unwrap();
+        assert!(polygon < nominal, "the band is drawn under the lines");
+        assert!(svg.contains("5 % to 95 %"));
+        // 49 finite points forward and back: 98 vertices
+        let vertices = svg[polygon..].split("points=\"").nth(1).unwrap();
+        let vertices = vertices
+            .split('"')
+            .next()
+            .unwrap()
+            .split_whitespace()
+            .count();
+        assert_eq!(vertices, 98);
+        // the y axis reaches the band's top (25 kN), above the nominal's 20 kN
+        let (_, _, _, top) = plot.range().unwrap();
+        assert!(top >= 25.0 && demo().range().unwrap().3 < 25.0, "{top} kN");
     }
 
     /// Numbers inside `points="..."` or `d="..."` attributes of path-like elements.
