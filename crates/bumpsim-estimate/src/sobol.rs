@@ -18,9 +18,15 @@
 //!   `1.96` times the resampled indices' standard deviation (SALib's
 //!   `S1_conf`, `ST_conf`).
 //! - **Inputs**: uniform over a range, normal (a log-normal parameter's
-//!   logarithm; its quantile function from statrs), or distributed as given draws (a
+//!   logarithm; its quantile function from statrs), the logarithm of a
+//!   factor uniform over a range (`ln(low + (high − low) u)`: a parameter
+//!   uniform on its range, where the inputs are log factors), or
+//!   distributed as given draws (a
 //!   posterior's marginal: the quantile function of the draws, so the
 //!   inputs stay independent and their correlation is not carried).
+//!   [`Law::of_normal`] gives a law's value at a standard normal draw `z`
+//!   (its quantile at `Φ(z)`), so Monte Carlo draws of the same inputs
+//!   come from the same law.
 //!
 //! ```
 //! use bumpsim_estimate::sobol::{Input, Settings, indices};
@@ -149,6 +155,51 @@ pub enum Law {
     },
     /// As these draws (sorted), e.g. a posterior's marginal.
     Draws(Vec<f64>),
+    /// `ln f` with the factor `f` uniform on `[low, high]`, `0 < low`
+    /// (a parameter uniform on a range, where the inputs are log factors).
+    LogOfUniform {
+        /// Lower end of the factor.
+        low: f64,
+        /// Upper end of the factor.
+        high: f64,
+    },
+}
+
+impl Law {
+    /// The value at probability `u` in [0, 1] (its quantile function).
+    fn at(&self, u: f64) -> f64 {
+        match self {
+            Law::Uniform { low, high } => low + u * (high - low),
+            Law::Normal { mean, sd } => {
+                // the sequence's points reach 0: the quantile's ends are ±inf
+                let u = u.clamp(f64::EPSILON, 1.0 - f64::EPSILON);
+                let unit = statrs::distribution::Normal::standard();
+                mean + sd * statrs::distribution::ContinuousCDF::inverse_cdf(&unit, u)
+            }
+            Law::Draws(sorted) => crate::posterior::quantile(sorted, u),
+            Law::LogOfUniform { low, high } => (low + u * (high - low)).ln(),
+        }
+    }
+
+    /// The value at a standard normal draw `z`: its quantile at `Φ(z)`
+    /// (a normal's exactly `mean + sd z`), so a Monte Carlo draw of an
+    /// input comes from its law.
+    ///
+    /// ```
+    /// use bumpsim_estimate::sobol::Law;
+    /// let factor = Law::LogOfUniform { low: 0.8, high: 1.2 };
+    /// assert!((factor.of_normal(0.0).exp() - 1.0).abs() < 1e-12);
+    /// assert_eq!(Law::Normal { mean: 0.0, sd: 0.1 }.of_normal(2.0), 0.2);
+    /// ```
+    pub fn of_normal(&self, z: f64) -> f64 {
+        match self {
+            Law::Normal { mean, sd } => mean + sd * z,
+            _ => {
+                let unit = statrs::distribution::Normal::standard();
+                self.at(statrs::distribution::ContinuousCDF::cdf(&unit, z))
+            }
+        }
+    }
 }
 
 impl Input {
@@ -177,18 +228,17 @@ impl Input {
         }
     }
 
+    /// The logarithm of a factor uniform on `[low, high]`, `0 < low < high`.
+    pub fn log_of_uniform(name: impl Into<String>, low: f64, high: f64) -> Input {
+        Input {
+            name: name.into(),
+            law: Law::LogOfUniform { low, high },
+        }
+    }
+
     /// The value at probability `u` in [0, 1).
     fn at(&self, u: f64) -> f64 {
-        match &self.law {
-            Law::Uniform { low, high } => low + u * (high - low),
-            Law::Normal { mean, sd } => {
-                // the sequence's points reach 0: the quantile's ends are ±inf
-                let u = u.clamp(f64::EPSILON, 1.0 - f64::EPSILON);
-                let unit = statrs::distribution::Normal::standard();
-                mean + sd * statrs::distribution::ContinuousCDF::inverse_cdf(&unit, u)
-            }
-            Law::Draws(sorted) => crate::posterior::quantile(sorted, u),
-        }
+        self.law.at(u)
     }
 
     /// Whether its law is usable: a finite, non-empty range or finite draws.
@@ -197,6 +247,9 @@ impl Input {
             Law::Uniform { low, high } => low.is_finite() && high.is_finite() && low < high,
             Law::Normal { mean, sd } => mean.is_finite() && sd.is_finite() && *sd >= 0.0,
             Law::Draws(d) => !d.is_empty() && d.iter().all(|v| v.is_finite()),
+            Law::LogOfUniform { low, high } => {
+                low.is_finite() && high.is_finite() && 0.0 < *low && low < high
+            }
         }
     }
 }
@@ -255,7 +308,9 @@ pub enum SobolError {
         inputs: usize,
     },
     /// An input without a usable law.
-    #[error("Sobol indices: input '{name}' needs a finite range low < high or finite draws")]
+    #[error(
+        "Sobol indices: input '{name}' needs a finite range low < high (0 < low for a factor), a finite normal or finite draws"
+    )]
     Law {
         /// The input.
         name: String,
@@ -423,5 +478,32 @@ mod tests {
         assert!((x.at(0.841_344_746_068_542_9) - 2.5).abs() < 1e-9);
         assert!(x.at(0.0).is_finite() && x.at(1.0).is_finite() && x.at(0.0) < 0.0);
         assert!(x.usable() && !Input::normal("y", 0.0, f64::NAN).usable());
+    }
+
+    /// The logarithm of a uniform factor: `f = e^x1 + 2 e^x2` with factors
+    /// uniform on [1, 2] is `u1 + 2 u2` of uniform inputs, whose indices
+    /// are (1/5, 4/5) with no interaction; a standard normal draw maps to
+    /// the factor's quantile at Φ(z); a range reaching 0 is refused.
+    #[test]
+    fn the_log_of_a_uniform_factor_has_the_uniform_factor_indices() {
+        let inputs = [
+            Input::log_of_uniform("x1", 1.0, 2.0),
+            Input::log_of_uniform("x2", 1.0, 2.0),
+        ];
+        let f = |x: &[f64]| x[0].exp() + 2.0 * x[1].exp();
+        let s = indices(&inputs, &f, &Settings::new(4096, 1)).unwrap();
+        for (got, want) in [
+            (s.first[0], 0.2),
+            (s.first[1], 0.8),
+            (s.total[0], 0.2),
+            (s.total[1], 0.8),
+        ] {
+            assert!((got - want).abs() < 0.01, "{s:?}");
+        }
+        let law = &inputs[0].law;
+        assert!((law.of_normal(1.0).exp() - 1.841_344_746_068_542_9).abs() < 1e-9);
+        assert!((law.of_normal(-40.0).exp() - 1.0).abs() < 1e-12);
+        assert!(!Input::log_of_uniform("y", 0.0, 1.0).usable());
+        assert!(!Input::log_of_uniform("y", 1.2, 0.8).usable());
     }
 }

@@ -12,18 +12,20 @@
 //!   draw depends on its stiffness). A draw whose car is not valid or
 //!   whose run fails is counted, not used.
 //! - **Sobol' indices** (`bumpsim_estimate::sobol`, Saltelli sampling):
-//!   the inputs are the parameters' **independent** log-normal marginals
-//!   (`ln θᵢ − ln θ̂ᵢ ~ N(0, σᵢ²)`, the normal's quantile function); Sobol'
+//!   the inputs are the parameters' **independent** log factors
+//!   `ln θᵢ − ln θ̂ᵢ` of their laws ([`Uncertainty::inputs`]: `N(0, σᵢ²)`
+//!   of a log-normal parameter, the logarithm of a factor uniform on its
+//!   range of a ranged one); Sobol'
 //!   indices assume independent inputs, so a correlation of the source is
 //!   not used (and said: [`Sensitivity::correlation_ignored`]). Each
 //!   impact runs once for all outputs.
 
-use crate::uncertainty::{Model, Uncertainty, UncertaintyError};
+use crate::uncertainty::{Marginal, Model, Uncertainty, UncertaintyError, kinds};
 use bumpsim_core::units::{Dimension, format_quantity};
 use bumpsim_estimate::propagate::{Band, Run, Spread, band, spread, through};
 /// The Sobol' indices' settings (base samples N, resamples, seed).
 pub use bumpsim_estimate::sobol::Settings as SobolSettings;
-use bumpsim_estimate::sobol::{Indices, Input, Settings, SobolError, indices};
+use bumpsim_estimate::sobol::{Indices, Settings, SobolError, indices};
 use serde::Serialize;
 use std::collections::HashMap;
 use std::sync::Mutex;
@@ -279,6 +281,8 @@ pub struct Sensitivity {
     pub inputs: Vec<String>,
     /// The standard deviations of their logarithms.
     pub log_sd: Vec<f64>,
+    /// Their laws.
+    pub laws: Vec<Marginal>,
     /// Whether the source's correlation was not used (it had one).
     pub correlation_ignored: bool,
     /// Base samples N, resamples and seed.
@@ -326,7 +330,7 @@ pub fn sensitivity<M: Model, R: Outputs>(
     run: &(dyn Fn(&M::Car) -> Option<R> + Sync),
 ) -> Result<Sensitivity, SensitivityError> {
     uncertainty.check(car)?;
-    let inputs = marginals(uncertainty);
+    let inputs = uncertainty.inputs();
     let scalars = nominal.scalars();
     let impacts: Impacts<M, R> = Impacts {
         car,
@@ -350,6 +354,7 @@ pub fn sensitivity<M: Model, R: Outputs>(
     Ok(Sensitivity {
         inputs: uncertainty.names.clone(),
         log_sd: uncertainty.log_sd.clone(),
+        laws: uncertainty.laws.clone(),
         correlation_ignored: uncertainty.correlated(),
         settings: *settings,
         outputs: outputs.collect::<Result<_, SensitivityError>>()?,
@@ -383,12 +388,6 @@ impl<M: Model, R: Outputs> Impacts<'_, M, R> {
         }
         values
     }
-}
-
-/// Each parameter's log-normal marginal: `ln θᵢ − ln θ̂ᵢ ~ N(0, σᵢ²)`.
-fn marginals<M: Model>(u: &Uncertainty<M>) -> Vec<Input> {
-    let input = |(name, s): (&String, &f64)| Input::normal(name.clone(), 0.0, *s);
-    u.names.iter().zip(&u.log_sd).map(input).collect()
 }
 
 impl Outputs for crate::impact::ImpactResult {
@@ -466,19 +465,15 @@ pub fn percent(level: f64) -> String {
 /// output's nominal value, median and interval with units.
 pub fn lines<M: Model>(p: &Prediction<M>) -> String {
     let u = &p.uncertainty;
-    let spreads = u.names.iter().zip(&u.log_sd);
-    let spreads: Vec<String> = spreads
-        .map(|(n, s)| format!("{n} {:.1} %", 100.0 * s))
-        .collect();
     let correlated = if u.correlated() { ", correlated" } else { "" };
     let level = percent(p.sampling.level);
     let mut out = format!(
-        "over {} ({} draws, seed {}, {} failed; log-normal spreads {}{correlated}): median and {level} interval\n",
+        "over {} ({} draws, seed {}, {} failed; {}{correlated}): median and {level} interval\n",
         u.source,
         p.sampling.samples,
         p.sampling.seed,
         p.failed,
-        spreads.join(", ")
+        u.described()
     );
     for o in &p.outputs {
         let q = |v| format_quantity(v, o.dimension);
@@ -503,8 +498,11 @@ pub fn lines<M: Model>(p: &Prediction<M>) -> String {
 pub fn sensitivity_lines(s: &Sensitivity) -> String {
     let evaluations = s.outputs.first().map_or(0, |o| o.indices.evaluations);
     let mut out = format!(
-        "Sobol indices over independent log-normal parameters (N = {}, {evaluations} impacts, {} bootstrap resamples, seed {}): first order S, total S_T, ± 95 %\n",
-        s.settings.base, s.settings.resamples, s.settings.seed
+        "Sobol indices over independent {} parameters (N = {}, {evaluations} impacts, {} bootstrap resamples, seed {}): first order S, total S_T, ± 95 %\n",
+        kinds(&s.laws),
+        s.settings.base,
+        s.settings.resamples,
+        s.settings.seed
     );
     if s.correlation_ignored {
         out += "  the source's correlation is not used: Sobol indices assume independent inputs\n";

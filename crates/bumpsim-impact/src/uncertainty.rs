@@ -1,6 +1,7 @@
-//! A car's uncertain parameters (issue 39, item 4): log-normal and
-//! correlated, read from an identification's JSON or a TOML table of
-//! relative spreads, drawn with a seed; for the 1-D chain car here
+//! A car's uncertain parameters (issue 39, items 3 and 4): log-normal and
+//! correlated, or uniform over a range, read from an identification's
+//! JSON or a TOML table of relative spreads and ranges, drawn with a
+//! seed; for the 1-D chain car here
 //! ([`Chain`]) and for any car model that names its parameters
 //! ([`Model`]; the planar car's is `bumpsim_planar::uncertainty`).
 //!
@@ -16,12 +17,21 @@
 //!   identified car's, usually). Parameters without a standard error
 //!   (fixed, at a bound, not determined) are left out, and said;
 //! - a TOML file of relative standard deviations, independent:
-//!   `[uncertainty]` then `"masses[0]" = 0.02`, one key per parameter.
+//!   `[uncertainty]` then `"masses[0]" = 0.02`, one key per parameter;
+//!   and/or of **ranges**: `[ranges]` then `"springs[0]" = [0.8, 1.2]`,
+//!   the parameter uniform on `[0.8 θ̂, 1.2 θ̂]`, independent of all
+//!   others (factors within [`RANGE_FACTORS`]; a parameter in both tables
+//!   is refused). An identification's JSON has no ranges.
 //!
-//! A draw is `z = L u`, `L` the Cholesky factor of `R` and `u` standard
-//! normal from the stream of the seed and the draw's index
-//! (`bumpsim_estimate::search::Draws`), so any thread count gives the
-//! same draws.
+//! Each parameter's law is one [`Marginal`]; [`Marginal::law`] is the law
+//! of its log factor `ln(θᵢ/θ̂ᵢ)` (normal, or the logarithm of a uniform
+//! factor), which both the Monte Carlo draws and the Sobol' inputs
+//! ([`Uncertainty::inputs`]) use. A draw is `z = L u`, `L` the Cholesky
+//! factor of `R` and `u` standard normal from the stream of the seed and
+//! the draw's index (`bumpsim_estimate::search::Draws`), so any thread
+//! count gives the same draws; the factor is `exp(σᵢ zᵢ)` for a
+//! log-normal parameter and `low + (high − low) Φ(zᵢ)` for a ranged one
+//! (its `zᵢ = uᵢ`: independent).
 //!
 //! The chain car's names: `masses[i]`, `dampers[i]`, `springs[i]` (from 0,
 //! as in the car file; an identification's `m1`, `c1`, `k1` are
@@ -32,6 +42,7 @@ use crate::bumper::Bumper;
 use bumpsim_core::model::MsdModel;
 use bumpsim_estimate::posterior::gaussian;
 use bumpsim_estimate::search::Draws;
+use bumpsim_estimate::sobol::{Input, Law};
 use serde::Serialize;
 use std::marker::PhantomData;
 use std::path::Path;
@@ -107,7 +118,98 @@ pub trait Model: Clone + std::fmt::Debug + PartialEq + Send + Sync {
     fn identified(doc: &serde_json::Value, source: &str) -> Result<Identified, UncertaintyError>;
 }
 
-/// A car's uncertain parameters: log-normal, correlated.
+/// Fewest and most factors of a range: a ranged parameter lies within
+/// `[1e-3 θ̂, 1e3 θ̂]` of the car file's value `θ̂`.
+pub const RANGE_FACTORS: [f64; 2] = [1e-3, 1e3];
+
+/// How a parameter is distributed around the car file's value `θ̂`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "law", rename_all = "snake_case")]
+pub enum Marginal {
+    /// Log-normal: `ln θ = ln θ̂ + σ z`.
+    LogNormal {
+        /// `σ`, the standard deviation of `ln θ`.
+        log_sd: f64,
+    },
+    /// Uniform on `[low θ̂, high θ̂]`, independent of the others.
+    Uniform {
+        /// The lower factor.
+        low: f64,
+        /// The upper factor.
+        high: f64,
+    },
+}
+
+impl Marginal {
+    /// The law of the log factor `ln(θ/θ̂)`: the Sobol' input's and, at a
+    /// standard normal draw ([`Law::of_normal`]), the Monte Carlo draw's.
+    pub fn law(&self) -> Law {
+        match *self {
+            Marginal::LogNormal { log_sd } => Law::Normal {
+                mean: 0.0,
+                sd: log_sd,
+            },
+            Marginal::Uniform { low, high } => Law::LogOfUniform { low, high },
+        }
+    }
+
+    /// The standard deviation of `ln(θ/θ̂)` (a uniform factor's by the
+    /// midpoint rule on 4096 points).
+    pub fn log_sd(&self) -> f64 {
+        match *self {
+            Marginal::LogNormal { log_sd } => log_sd,
+            Marginal::Uniform { low, high } => {
+                let n = 4096;
+                let at = |k: usize| (low + (high - low) * (k as f64 + 0.5) / n as f64).ln();
+                let logs: Vec<f64> = (0..n).map(at).collect();
+                let mean = logs.iter().sum::<f64>() / n as f64;
+                let square = |l: &f64| (l - mean).powi(2);
+                (logs.iter().map(square).sum::<f64>() / n as f64).sqrt()
+            }
+        }
+    }
+
+    /// As printed: `bumper.force 20.0 %` (log-normal), `springs[0] ×0.8 ..
+    /// ×1.2` (uniform).
+    fn named(&self, name: &str) -> String {
+        let short = bumpsim_core::units::short;
+        match *self {
+            Marginal::LogNormal { log_sd } => format!("{name} {:.1} %", 100.0 * log_sd),
+            Marginal::Uniform { low, high } => {
+                format!("{name} ×{} .. ×{}", short(low), short(high))
+            }
+        }
+    }
+}
+
+/// What the laws are, for headers: `log-normal`, `uniform` or
+/// `log-normal and uniform`.
+pub fn kinds(laws: &[Marginal]) -> &'static str {
+    let uniform = laws
+        .iter()
+        .filter(|m| matches!(m, Marginal::Uniform { .. }));
+    match (uniform.count(), laws.len()) {
+        (0, _) => "log-normal",
+        (u, n) if u == n => "uniform",
+        _ => "log-normal and uniform",
+    }
+}
+
+/// The parameters' laws as printed: `log-normal spreads bumper.force
+/// 20.0 %, masses[0] 10.0 %`; with ranges `uniform ranges springs[0] ×0.8
+/// .. ×1.2` or `log-normal spreads and uniform ranges ...`.
+pub fn described(names: &[String], laws: &[Marginal]) -> String {
+    let what = match kinds(laws) {
+        "log-normal" => "log-normal spreads",
+        "uniform" => "uniform ranges",
+        _ => "log-normal spreads and uniform ranges",
+    };
+    let named: Vec<String> = names.iter().zip(laws).map(|(n, m)| m.named(n)).collect();
+    format!("{what} {}", named.join(", "))
+}
+
+/// A car's uncertain parameters: log-normal and correlated, or uniform
+/// over a range and independent.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(bound = "")]
 pub struct Uncertainty<M> {
@@ -115,12 +217,14 @@ pub struct Uncertainty<M> {
     pub source: String,
     /// The parameters, by their car-file names.
     pub names: Vec<String>,
-    /// Standard deviation of each parameter's logarithm, 1.
+    /// Standard deviation of each parameter's logarithm, 1 (of its law).
     pub log_sd: Vec<f64>,
     /// Their correlation (identity when independent).
     pub correlation: Vec<Vec<f64>>,
     /// Parameters of the source not propagated, and why.
     pub left_out: Vec<String>,
+    /// Each parameter's law.
+    pub laws: Vec<Marginal>,
     #[serde(skip)]
     model: PhantomData<M>,
 }
@@ -147,24 +251,62 @@ impl<M: Model> Uncertainty<M> {
         source: &str,
         spreads: Vec<(String, f64)>,
     ) -> Result<Uncertainty<M>, UncertaintyError> {
-        let correlation = identity(spreads.len());
-        let (names, log_sd) = spreads.into_iter().unzip();
-        let found = Identified {
-            names,
-            log_sd,
-            correlation,
-            left_out: vec![],
-        };
-        Uncertainty::new(source, found)
+        Uncertainty::ranged(source, spreads, vec![])
     }
 
-    fn new(source: &str, found: Identified) -> Result<Uncertainty<M>, UncertaintyError> {
+    /// Independent log-normal parameters (as [`Uncertainty::independent`])
+    /// and uniform ones: (car-file name, [low, high] factors of its value,
+    /// within [`RANGE_FACTORS`], low < high); a name in both is refused.
+    ///
+    /// ```
+    /// use bumpsim_impact::uncertainty::{ChainUncertainty, Marginal};
+    /// let u = ChainUncertainty::ranged("u.toml", vec![], vec![("springs[0]".into(), [0.8, 1.2])]).unwrap();
+    /// assert_eq!(u.laws, [Marginal::Uniform { low: 0.8, high: 1.2 }]);
+    /// assert!(ChainUncertainty::ranged("u.toml", vec![], vec![("springs[0]".into(), [1.2, 0.8])]).is_err());
+    /// ```
+    pub fn ranged(
+        source: &str,
+        spreads: Vec<(String, f64)>,
+        ranges: Vec<(String, [f64; 2])>,
+    ) -> Result<Uncertainty<M>, UncertaintyError> {
+        let mut laws: Vec<Marginal> = spreads
+            .iter()
+            .map(|&(_, log_sd)| Marginal::LogNormal { log_sd })
+            .collect();
+        let (mut names, _): (Vec<String>, Vec<f64>) = spreads.into_iter().unzip();
+        for (name, [low, high]) in ranges {
+            range(source, &name, [low, high])?;
+            if names.contains(&name) {
+                let message = format!(
+                    "'{name}' is in both [uncertainty] and [ranges]: give each parameter one law, a relative standard deviation or a range"
+                );
+                return Err(unreadable(source, message));
+            }
+            names.push(name);
+            laws.push(Marginal::Uniform { low, high });
+        }
+        let found = Identified {
+            log_sd: laws.iter().map(Marginal::log_sd).collect(),
+            correlation: identity(names.len()),
+            names,
+            left_out: vec![],
+        };
+        Uncertainty::new(source, found, laws)
+    }
+
+    fn new(
+        source: &str,
+        found: Identified,
+        laws: Vec<Marginal>,
+    ) -> Result<Uncertainty<M>, UncertaintyError> {
         let file = |message| UncertaintyError::File {
             path: source.into(),
             message,
         };
-        for (name, &s) in found.names.iter().zip(&found.log_sd) {
-            spread(&format!("{source}: {name}"), s)?;
+        for (name, law) in found.names.iter().zip(&laws) {
+            if let Marginal::LogNormal { log_sd } = law {
+                spread(&format!("{source}: {name}"), *log_sd)?;
+            }
             if M::part(name).is_none() {
                 let names = M::NAMES;
                 return Err(file(format!(
@@ -182,6 +324,7 @@ impl<M: Model> Uncertainty<M> {
             log_sd: found.log_sd,
             correlation: found.correlation,
             left_out: found.left_out,
+            laws,
             model: PhantomData,
         };
         u.cholesky()?;
@@ -189,7 +332,8 @@ impl<M: Model> Uncertainty<M> {
     }
 
     /// Reads an uncertainty file: an identification's JSON (`{` first) or
-    /// a TOML `[uncertainty]` table of relative standard deviations.
+    /// a TOML `[uncertainty]` table of relative standard deviations and/or
+    /// a `[ranges]` table of uniform ranges.
     pub fn read(path: &Path) -> Result<Uncertainty<M>, UncertaintyError> {
         let source = path.display().to_string();
         let text = bumpsim_core::files::read_text(path).map_err(|e| {
@@ -220,11 +364,33 @@ impl<M: Model> Uncertainty<M> {
         if text.trim_start().starts_with('{') {
             let doc: serde_json::Value =
                 serde_json::from_str(text).map_err(|e| error(format!("not valid JSON: {e}")))?;
-            return Uncertainty::new(&source, M::identified(&doc, &source)?);
+            let found = M::identified(&doc, &source)?;
+            let laws = found
+                .log_sd
+                .iter()
+                .map(|&log_sd| Marginal::LogNormal { log_sd });
+            let laws = laws.collect();
+            return Uncertainty::new(&source, found, laws);
         }
         let table: toml::Table =
             toml::from_str(text).map_err(|e| error(format!("not valid TOML: {}", e.message())))?;
-        Uncertainty::independent(&source, spreads::<M>(&table, &source)?)
+        let (spreads, ranges) = tables::<M>(&table, &source)?;
+        Uncertainty::ranged(&source, spreads, ranges)
+    }
+
+    /// Each parameter as a Sobol' input: its log factor `ln(θᵢ/θ̂ᵢ)` of
+    /// its law ([`Marginal::law`]), independent.
+    pub fn inputs(&self) -> Vec<Input> {
+        let input = |(name, m): (&String, &Marginal)| Input {
+            name: name.clone(),
+            law: m.law(),
+        };
+        self.names.iter().zip(&self.laws).map(input).collect()
+    }
+
+    /// [`described`] of these parameters.
+    pub fn described(&self) -> String {
+        described(&self.names, &self.laws)
     }
 
     /// The lower Cholesky factor of the correlation.
@@ -254,18 +420,19 @@ impl<M: Model> Uncertainty<M> {
         }
     }
 
-    /// The factors `exp(σ z)` of draw `index` (`lower`: [`Uncertainty::cholesky`]).
+    /// The factors of draw `index` (`lower`: [`Uncertainty::cholesky`]):
+    /// `exp(σ z)` of a log-normal parameter, `low + (high − low) Φ(z)` of a
+    /// ranged one (the exponential of its law at `z`, [`Marginal::law`]).
     pub fn factors(&self, lower: &[Vec<f64>], seed: u64, index: u64) -> Vec<f64> {
         let mut draws = Draws::new(seed, index);
         let u: Vec<f64> = (0..self.names.len())
             .map(|_| gaussian(&mut draws))
             .collect();
         let z = |row: &Vec<f64>| row.iter().zip(&u).map(|(l, u)| l * u).sum::<f64>();
-        let sd = self.log_sd.iter();
         lower
             .iter()
-            .zip(sd)
-            .map(|(row, s)| (s * z(row)).exp())
+            .zip(&self.laws)
+            .map(|(row, m)| m.law().of_normal(z(row)).exp())
             .collect()
     }
 
@@ -309,22 +476,70 @@ fn spread(name: &str, s: f64) -> Result<(), UncertaintyError> {
     }
 }
 
-/// The relative spreads of a TOML `[uncertainty]` table.
-fn spreads<M: Model>(
-    table: &toml::Table,
-    source: &str,
-) -> Result<Vec<(String, f64)>, UncertaintyError> {
+/// `Ok` when a range's factors are finite, within [`RANGE_FACTORS`] and
+/// `low < high`.
+fn range(source: &str, name: &str, [low, high]: [f64; 2]) -> Result<(), UncertaintyError> {
+    let [least, most] = RANGE_FACTORS;
+    match least <= low && low < high && high <= most {
+        true => Ok(()),
+        false => {
+            let short = bumpsim_core::units::short;
+            let message = format!(
+                "ranges.\"{name}\" = [{}, {}]: expected two factors of the car file's value, {} <= low < high <= {} (the parameter is uniform on [low, high] times its value)",
+                short(low),
+                short(high),
+                short(least),
+                short(most)
+            );
+            Err(unreadable(source, message))
+        }
+    }
+}
+
+/// A number of a TOML value (an integer as a float).
+fn number(v: &toml::Value) -> Option<f64> {
+    v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
+}
+
+/// The relative spreads of a TOML `[uncertainty]` table and the ranges of
+/// a `[ranges]` table (at least one of them).
+type Tables = (Vec<(String, f64)>, Vec<(String, [f64; 2])>);
+
+/// The `[uncertainty]` and `[ranges]` tables of an uncertainty file.
+fn tables<M: Model>(table: &toml::Table, source: &str) -> Result<Tables, UncertaintyError> {
     let example = M::NAMES.split(',').next().unwrap_or("");
-    let entries = table
-        .get("uncertainty")
-        .and_then(toml::Value::as_table)
-        .ok_or_else(|| unreadable(source, format!("expected an [uncertainty] table: \"{example}\" = 0.02, one relative standard deviation per parameter (docs/uncertainty.md)")))?;
-    let number = |v: &toml::Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
-    let entry = |(k, v): (&String, &toml::Value)| {
+    let expected = || {
+        unreadable(
+            source,
+            format!(
+                "expected an [uncertainty] table (\"{example}\" = 0.02, one relative standard deviation per parameter) and/or a [ranges] table (\"{example}\" = [0.8, 1.2], factors of the car file's value; docs/uncertainty.md)"
+            ),
+        )
+    };
+    let sub = |key: &str| match table.get(key) {
+        None => Ok(None),
+        Some(v) => v.as_table().map(Some).ok_or_else(expected),
+    };
+    let (spreads, ranges) = (sub("uncertainty")?, sub("ranges")?);
+    if spreads.is_none() && ranges.is_none() {
+        return Err(expected());
+    }
+    let spread = |(k, v): (&String, &toml::Value)| {
         let s = number(v).ok_or_else(|| unreadable(source, format!("uncertainty.\"{k}\" = {v}: expected a number, the parameter's relative standard deviation")))?;
         Ok((k.clone(), s))
     };
-    entries.iter().map(entry).collect()
+    let range = |(k, v): (&String, &toml::Value)| {
+        let pair = v.as_array().filter(|a| a.len() == 2);
+        let pair = pair.and_then(|a| Some([number(&a[0])?, number(&a[1])?]));
+        let pair = pair.ok_or_else(|| unreadable(source, format!("ranges.\"{k}\" = {v}: expected [low, high], two numbers: factors of the car file's value")))?;
+        Ok((k.clone(), pair))
+    };
+    let spreads = spreads.into_iter().flatten().map(spread);
+    let ranges = ranges.into_iter().flatten().map(range);
+    Ok((
+        spreads.collect::<Result<_, _>>()?,
+        ranges.collect::<Result<_, _>>()?,
+    ))
 }
 
 /// A file error of `source`.

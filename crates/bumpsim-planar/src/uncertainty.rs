@@ -1,7 +1,8 @@
-//! The planar car's uncertain parameters (issue 39, item 4): log-normal
-//! and correlated around the car file's values, read from a planar
-//! identification's JSON or a TOML `[uncertainty]` table of relative
-//! standard deviations, drawn with a seed. The machinery (reading, the
+//! The planar car's uncertain parameters (issue 39, items 3 and 4):
+//! log-normal and correlated around the car file's values, or uniform
+//! over a range, read from a planar identification's JSON or a TOML
+//! `[uncertainty]` table of relative standard deviations and/or a
+//! `[ranges]` table of factors, drawn with a seed. The machinery (reading, the
 //! Cholesky factor, seeded draws) is the chain car's
 //! ([`bumpsim_impact::uncertainty`]); this module names the planar car's
 //! parameters and scales a [`PlanarCar`] by their factors ([`Planar`]).
@@ -12,7 +13,9 @@
 //!   error (fixed, at a bound, not determined) and the lines of action
 //!   are left out, and said;
 //! - a TOML file: `[uncertainty]` then `"body.mass" = 0.02`, one relative
-//!   standard deviation per parameter, independent.
+//!   standard deviation per parameter, independent; and/or `[ranges]` then
+//!   `"bumper.force" = [0.8, 1.2]`, the parameter uniform on 0.8 to 1.2
+//!   times its value, independent ([`Marginal`]).
 //!
 //! Names as in the car file and the identification: `body.mass`,
 //! `body.yaw_inertia`, `left.masses[0]` (`dampers`, `springs`; `right`
@@ -31,7 +34,9 @@ use crate::PlanarCar;
 use crate::result::PlanarResult;
 use bumpsim_core::units::Dimension;
 pub use bumpsim_impact::prediction::{History, Outputs, Scalar};
-pub use bumpsim_impact::uncertainty::{Identified, Model, UncertaintyError, unreadable};
+pub use bumpsim_impact::uncertainty::{
+    Identified, Marginal, Model, RANGE_FACTORS, UncertaintyError, described, unreadable,
+};
 
 /// The planar car's parameters ([`Model`]).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -8,9 +8,10 @@
 //!   requirement, not varied, so its margin (`limit − value` or
 //!   `value − limit`) and margin ratio are affine in it and have the same
 //!   indices.
-//! - **Inputs**: the uncertainty's parameters as **independent** log-normal
-//!   marginals, `θᵢ = θ̂ᵢ exp(xᵢ)` with `xᵢ ~ N(0, σᵢ²)`
-//!   ([`bumpsim_estimate::sobol::Input::normal`]). Sobol' indices
+//! - **Inputs**: the uncertainty's parameters as **independent** log
+//!   factors, `θᵢ = θ̂ᵢ exp(xᵢ)` with `xᵢ ~ N(0, σᵢ²)` for a log-normal
+//!   parameter and `exp(xᵢ)` uniform on its range for a ranged one
+//!   ([`Uncertainty::inputs`]). Sobol' indices
 //!   decompose the variance of an output of independent inputs (Sobol'
 //!   2001): a correlation of the source (an identification's) is **not
 //!   used**, and its largest |r| is stated with the indices.
@@ -43,8 +44,9 @@
 use crate::criteria::{Outcome, Quantity};
 use crate::error::{VerdictError, require};
 use crate::uncertainty::Uncertainty;
+use crate::uncertainty::{Marginal, described};
 use crate::verdict::{Setup, Verdict, verdict};
-use bumpsim_estimate::sobol::{DIMENSIONS, Input, SobolError, indices};
+use bumpsim_estimate::sobol::{DIMENSIONS, SobolError, indices};
 pub use bumpsim_estimate::sobol::{Indices, Settings};
 use serde::Serialize;
 use std::collections::HashMap;
@@ -82,6 +84,8 @@ pub struct Sensitivity {
     pub names: Vec<String>,
     /// The standard deviation of each one's logarithm, 1.
     pub log_sd: Vec<f64>,
+    /// Each one's law.
+    pub laws: Vec<Marginal>,
     /// The largest |r| of the source's correlation, not used (0: none).
     pub unused_correlation: f64,
     /// Base samples, resamples and the bootstrap's seed.
@@ -111,9 +115,7 @@ pub fn sensitivity(
 ) -> Result<Sensitivity, VerdictError> {
     check(setup, uncertainty, settings)?;
     let judged = judged(nominal);
-    let inputs: Vec<Input> = (uncertainty.names.iter().zip(&uncertainty.log_sd))
-        .map(|(n, s)| Input::normal(n.as_str(), 0.0, *s))
-        .collect();
+    let inputs = uncertainty.inputs();
     let runs = Runs {
         setup,
         uncertainty,
@@ -143,6 +145,7 @@ pub fn sensitivity(
         source: uncertainty.source.clone(),
         names: uncertainty.names.clone(),
         log_sd: uncertainty.log_sd.clone(),
+        laws: uncertainty.laws.clone(),
         unused_correlation: largest_correlation(uncertainty),
         settings: *settings,
         evaluations: match judged.is_empty() {
@@ -280,7 +283,7 @@ fn judged_values(v: &Verdict, judged: &[Judged]) -> Vec<f64> {
         .collect()
 }
 
-/// The factors `exp(xᵢ)` of a point of log factors `xᵢ ~ N(0, σᵢ²)`.
+/// The factors `exp(xᵢ)` of a point of log factors `xᵢ`.
 fn factors(x: &[f64]) -> Vec<f64> {
     x.iter().map(|v| v.exp()).collect()
 }
@@ -360,9 +363,6 @@ pub const HEADERS: [&str; 6] = [
 
 /// What the indices are, over what, with which samples.
 pub fn caption(s: &Sensitivity) -> String {
-    let spreads: Vec<String> = (s.names.iter().zip(&s.log_sd))
-        .map(|(n, sd)| format!("{n} {:.1} %", 100.0 * sd))
-        .collect();
     let correlation = match s.unused_correlation > 0.0 {
         true => format!(
             "; the source's correlation (largest |r| {:.2}) is not used: Sobol indices assume independent inputs",
@@ -371,9 +371,9 @@ pub fn caption(s: &Sensitivity) -> String {
         false => String::new(),
     };
     format!(
-        "Sobol indices of each judged criterion's value over {} (independent log-normal spreads {}{correlation}): N = {} base samples, {} verdicts, bootstrap of {} resamples with seed {}; S1 first order, ST total, dimensionless shares of the value's variance, ± their 95 % half-widths; a value's indices are its margin's too (the limit is fixed)",
+        "Sobol indices of each judged criterion's value over {} (independent {}{correlation}): N = {} base samples, {} verdicts, bootstrap of {} resamples with seed {}; S1 first order, ST total, dimensionless shares of the value's variance, ± their 95 % half-widths; a value's indices are its margin's too (the limit is fixed)",
         s.source,
-        spreads.join(", "),
+        described(&s.names, &s.laws),
         s.settings.base,
         s.evaluations,
         s.settings.resamples,

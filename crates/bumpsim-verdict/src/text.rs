@@ -142,19 +142,13 @@ pub fn propagation(v: &Verdict) -> String {
         return String::new();
     };
     let u = &p.uncertainty;
-    let spreads: Vec<String> = u
-        .names
-        .iter()
-        .zip(&u.log_sd)
-        .map(|(n, s)| format!("{n} {:.1} %", 100.0 * s))
-        .collect();
     let mut out = format!(
-        "probability of passing over {} ({} draws, seed {}, {} failed; log-normal spreads {}): every test {}\n",
+        "probability of passing over {} ({} draws, seed {}, {} failed; {}): every test {}\n",
         u.source,
         p.samples,
         p.seed,
         p.failed,
-        spreads.join(", "),
+        u.described(),
         percent(&p.passing)
     );
     for t in &v.tests {

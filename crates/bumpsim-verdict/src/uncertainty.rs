@@ -5,13 +5,16 @@
 //! `ln θᵢ = ln θ̂ᵢ + σᵢ zᵢ`, `z ~ N(0, R)`, read from a planar
 //! identification's JSON (`σᵢ = SEᵢ/θ̂ᵢ` and the correlation of the log
 //! parameters) or a TOML `[uncertainty]` table of relative standard
-//! deviations, and drawn with a seed. It lives with the planar car
+//! deviations, or uniform over a range of a TOML `[ranges]` table
+//! (`"bumper.force" = [0.8, 1.2]`, independent), and drawn with a seed. It lives with the planar car
 //! ([`bumpsim_planar::uncertainty`], where the planar impact's prediction
 //! bands use it too) and is re-exported here; this module adds what a
 //! propagation of the verdict ran and gave ([`Propagation`]).
 
 use bumpsim_estimate::propagate::Probability;
-pub use bumpsim_planar::uncertainty::{Part, Planar, Uncertainty, UncertaintyError, part, scaled};
+pub use bumpsim_planar::uncertainty::{
+    Marginal, Part, Planar, Uncertainty, UncertaintyError, described, part, scaled,
+};
 use serde::Serialize;
 
 /// What a propagation ran and gave.
