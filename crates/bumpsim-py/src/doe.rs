@@ -11,8 +11,8 @@ use crate::state::doe::{DesignState, DoeModelState};
 use crate::state::{decode, encode, reduce};
 use bumpsim_doe::data::Data;
 use bumpsim_doe::design::{self, DesignKind, DesignOptions};
-use bumpsim_doe::model::{Factor, ModelFile, Response};
-use bumpsim_doe::regression::{fit as core_fit, terms};
+use bumpsim_doe::model::{Factor, ModelFile};
+use bumpsim_doe::table_fit::{StandardErrors, TableFitError, TableFitSpec, fit_table_weighted};
 use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
@@ -288,11 +288,13 @@ impl DoeModel {
 
 /// Fits `responses` on `factors` (columns of the data CSV at `data`, `name
 /// [unit]` headers) in coded units, as `bumpsim doe fit`; `low`/`high`
-/// default to the data's extremes.
+/// default to the data's extremes; `se` as `doe fit --se`: "RESPONSE=COLUMN"
+/// or "RESPONSE" (the column RESPONSE.se), those responses fitted with their
+/// identification's standard errors (REML, weighted least squares).
 #[pyfunction]
 // one Rust argument per Python keyword argument
 #[allow(clippy::too_many_arguments)]
-#[pyo3(signature = (data, factors, responses, low = Vec::new(), high = Vec::new(), interactions = false, squares = false))]
+#[pyo3(signature = (data, factors, responses, low = Vec::new(), high = Vec::new(), interactions = false, squares = false, se = Vec::new()))]
 fn doe_fit(
     py: Python<'_>,
     data: &Bound<'_, PyAny>,
@@ -302,26 +304,24 @@ fn doe_fit(
     high: Vec<f64>,
     interactions: bool,
     squares: bool,
+    se: Vec<String>,
 ) -> PyResult<DoeModel> {
     let path = &self::path(data, "data", "a data table")?;
     let data = Data::read(path).map_err(|e| reading(path, e))?;
-    let in_file =
-        |e: bumpsim_doe::data::ColumnError| invalid(format!("{}: {}", path.display(), message(&e)));
-    let (factors, coded) = data.coded(&factors, &low, &high).map_err(in_file)?;
-    let names: Vec<String> = factors.iter().map(|f| f.name.clone()).collect();
-    let model_terms = terms(factors.len(), interactions, squares);
-    let mut model = ModelFile {
-        factors: factors.clone(),
-        responses: Vec::new(),
+    let in_file = |e: TableFitError| invalid(format!("{}: {}", path.display(), message(&e)));
+    let se = (se.iter().map(|s| s.parse::<StandardErrors>()))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| invalid(format!("se: {}", message(&e))))?;
+    let spec = TableFitSpec {
+        factors,
+        responses,
+        low,
+        high,
+        interactions,
+        squares,
     };
-    for response in &responses {
-        let y = data.values(response).map_err(in_file)?;
-        let f = py
-            .detach(|| core_fit(&coded, &y, &model_terms, &names))
-            .map_err(|e| invalid(format!("response '{response}': {}", message(&e))))?;
-        model
-            .responses
-            .push(Response::from_fit(response, data.unit(response), &f));
-    }
-    Ok(DoeModel { inner: model })
+    let (inner, _) = py
+        .detach(|| fit_table_weighted(&data, &spec, &se))
+        .map_err(in_file)?;
+    Ok(DoeModel { inner })
 }

@@ -125,6 +125,27 @@ def test_doe_fit_and_predict_equal_the_cli(run, tmp_path):
     numbers_equal(prediction, again)
 
 
+def test_weighted_doe_fit_equals_the_cli(run, tmp_path, root):
+    """``se=`` is ``doe fit --se``: the identified car variants of the bundled
+    example, k1 and c1 weighted by their identification's standard errors."""
+    data = root / "examples" / "doe" / "identified.csv"
+    out = tmp_path / "weighted.json"
+    run("doe", "fit", data, "--factors", "Kax,M", "--responses", "k1,c1",
+        "--se", "k1", "--se", "c1=c1.se", "--json", out)
+    model = bumpsim.doe_fit(data, ["Kax", "M"], ["k1", "c1"], se=["k1", "c1=c1.se"])
+    cli = json.loads(out.read_text())
+    numbers_equal(json.loads(model.to_json()), cli, rel=1e-12)
+    assert [r["weighted"]["column"] for r in cli["responses"]] == ["k1.se", "c1.se"]
+    # the identification's uncertainty widens M's interval on c1 (OLS p 0.005)
+    plain = bumpsim.doe_fit(data, ["Kax", "M"], ["c1"]).to_pandas()
+    weighted = model.to_pandas()
+    assert weighted.loc[("c1", "M"), "std_error"] > plain.loc[("c1", "M"), "std_error"]
+    with pytest.raises(bumpsim.InputError, match="se: standard errors '=x'"):
+        bumpsim.doe_fit(data, ["Kax", "M"], ["c1"], se=["=x"])
+    with pytest.raises(bumpsim.InputError, match="nope.se"):
+        bumpsim.doe_fit(data, ["Kax", "M"], ["c1"], se=["c1=nope.se"])
+
+
 def test_doe_errors(tmp_path):
     with pytest.raises(bumpsim.InputError, match="factors"):
         bumpsim.doe_design("full", ["Kax:1"])

@@ -626,8 +626,11 @@ def doe_fit(
     high: Sequence[float] = (),
     interactions: bool = False,
     squares: bool = False,
+    se: Sequence[str] = (),
 ) -> DoeModel:
-    """Regression of data-file responses on factors in coded units, as ``bumpsim doe fit``."""
+    """Regression of data-file responses on factors in coded units, as ``bumpsim doe fit``;
+    ``se`` as ``--se``: ``"RESPONSE=COLUMN"`` or ``"RESPONSE"`` (column ``RESPONSE.se``),
+    those responses weighted by their identification's standard errors (REML)."""
 
 # ---------------------------------------------------------------- export
 
