@@ -49,7 +49,8 @@ pub struct Args {
 pub struct UncertaintyArgs {
     /// The car's uncertainty: an identification's JSON (identify --json; a 1-D
     /// car's of a chain study, a planar car's of a planar study) or a TOML
-    /// [uncertainty] table of relative standard deviations (docs/uncertainty.md);
+    /// [uncertainty] table of relative standard deviations and/or a [ranges]
+    /// table of uniform factors, "springs[0]" = [0.8, 1.2] (docs/uncertainty.md);
     /// prints each result's median and interval, the JSON gets the force's band.
     #[arg(long, value_name = "FILE")]
     pub uncertainty: Option<PathBuf>,

@@ -42,7 +42,8 @@ pub struct Args {
     #[arg(long, value_name = "DIR")]
     report: Option<PathBuf>,
     /// The car's uncertainty: a planar identification's JSON (identify --json)
-    /// or a TOML [uncertainty] table of relative standard deviations; gives
+    /// or a TOML [uncertainty] table of relative standard deviations and/or a
+    /// [ranges] table of uniform factors ("bumper.force" = [0.8, 1.2]); gives
     /// each criterion its probability of passing.
     #[arg(long, value_name = "FILE")]
     uncertainty: Option<PathBuf>,

@@ -620,3 +620,105 @@ fn impact_refuses_hostile_uncertainty_options() {
         "--samples needs --uncertainty"
     );
 }
+
+/// `[ranges]`: the bumper's force uniform on ×0.5 .. ×1.5 and the mass on
+/// ×0.8 .. ×1.2 of the linear-spring car. The lines and the Sobol header
+/// name the uniform law, the JSON each parameter's law; the peak force
+/// lies within `v √(k_lo m_lo)` .. `v √(k_hi m_hi)`; the force's first
+/// order index is the analytic 0.866 (`Var(√a) E[√b]² / V`, see the
+/// library's test) within its bootstrap interval plus 0.05.
+#[test]
+fn impact_over_uniform_ranges_names_the_law() {
+    let dir = scratch("impact-ranges-sobol");
+    let [car, bumper, _] = linear_spring(&dir);
+    let ranges = dir.join("ranges.toml");
+    let contents = "[ranges]\n\"bumper.force\" = [0.5, 1.5]\n\"masses[0]\" = [0.8, 1.2]\n";
+    std::fs::write(&ranges, contents).unwrap();
+    let json = dir.join("prediction.json");
+    let mut args = vec!["--barrier", "--speed", "2", "--uncertainty"];
+    args.extend([ranges.to_str().unwrap(), "--samples", "200", "--sobol"]);
+    args.extend(["--sobol-base", "128", "--json", json.to_str().unwrap()]);
+    let run = impact(&car, &bumper, &args);
+    let stdout = text(&run.stdout);
+    assert!(run.status.success(), "{stdout}{}", text(&run.stderr));
+    assert_contains(
+        &stdout,
+        &[
+            "(200 draws, seed 1, 0 failed; uniform ranges bumper.force ×0.5 .. ×1.5, masses[0] ×0.8 .. ×1.2): median and 90 % interval",
+            "Sobol indices over independent uniform parameters (N = 128, 512 impacts",
+        ],
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let law = &v["prediction"]["uncertainty"]["laws"][0];
+    assert_eq!(
+        (&law["law"], &law["low"], &law["high"]),
+        (&"uniform".into(), &0.5.into(), &1.5.into())
+    );
+    assert_eq!(v["sensitivity"]["laws"][1]["law"], "uniform");
+    let nominal = 2.0 * (1e6f64 * 1000.0).sqrt();
+    let peak = &v["prediction"]["outputs"][0]["spread"];
+    let (low, high) = (
+        peak["low"].as_f64().unwrap(),
+        peak["high"].as_f64().unwrap(),
+    );
+    assert!(nominal * 0.4f64.sqrt() * 0.999 < low && high < nominal * 1.8f64.sqrt() * 1.001);
+    let i = &v["sensitivity"]["outputs"][0]["indices"];
+    let (got, half) = (
+        i["first"][0].as_f64().unwrap(),
+        i["first_conf"][0].as_f64().unwrap(),
+    );
+    assert!(
+        (got - 0.866).abs() < half + 0.05,
+        "S of the force {got} ± {half}"
+    );
+}
+
+/// Bad `[ranges]`: a reversed, NaN, non-positive or too wide range, one
+/// that is not two numbers, a parameter in both tables and an unknown
+/// name exit 2 naming the file and the key, nothing written.
+#[test]
+fn impact_refuses_bad_ranges_naming_the_key() {
+    let dir = scratch("impact-ranges-hostile");
+    let [car, bumper, _] = linear_spring(&dir);
+    let json = dir.join("out.json");
+    let cases = [
+        (
+            "[1.2, 0.8]",
+            "ranges.\"masses[0]\" = [1.2, 0.8]: expected two factors",
+        ),
+        ("[nan, 1.2]", "ranges.\"masses[0]\" = [NaN, 1.2]"),
+        ("[0, 1.2]", "ranges.\"masses[0]\" = [0, 1.2]"),
+        (
+            "[0.5, 1e4]",
+            "ranges.\"masses[0]\" = [0.5, 10000]: expected two factors of the car file's value, 0.001 <= low < high <= 1000",
+        ),
+        (
+            "[0.8]",
+            "ranges.\"masses[0]\" = [0.8]: expected [low, high], two numbers",
+        ),
+        ("0.1", "ranges.\"masses[0]\" = 0.1: expected [low, high]"),
+    ];
+    let mut files: Vec<(String, &str)> = cases
+        .iter()
+        .map(|(range, says)| (format!("[ranges]\n\"masses[0]\" = {range}\n"), *says))
+        .collect();
+    files.push((
+        "[uncertainty]\n\"masses[0]\" = 0.1\n[ranges]\n\"masses[0]\" = [0.8, 1.2]\n".into(),
+        "'masses[0]' is in both [uncertainty] and [ranges]",
+    ));
+    files.push((
+        "[ranges]\n\"wheel.size\" = [0.8, 1.2]\n".into(),
+        "'wheel.size' is not a parameter of the car",
+    ));
+    for (k, (contents, says)) in files.iter().enumerate() {
+        let file = dir.join(format!("bad-{k}.toml"));
+        std::fs::write(&file, contents).unwrap();
+        let mut args = vec!["--barrier", "--speed", "2", "--uncertainty"];
+        args.push(file.to_str().unwrap());
+        args.extend(["--sobol", "--json", json.to_str().unwrap()]);
+        let run = impact(&car, &bumper, &args);
+        assert_user_error(&run, &format!("bad-{k}.toml: {says}"));
+        assert!(!json.exists(), "{says}: nothing written");
+    }
+}

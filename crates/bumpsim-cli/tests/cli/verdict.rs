@@ -437,6 +437,52 @@ fn sobol_indices_show_what_drives_each_criterion() {
     assert_eq!(wide, "[]", "text boxes wider than their box");
 }
 
+/// `--sobol` over a `[ranges]` file (the bumper's force uniform on ×0.8 ..
+/// ×1.2 beside a log-normal body mass): the caption and the probability of
+/// passing name both laws, the JSON each parameter's law, and the crush
+/// is driven by the bumper's force.
+#[test]
+fn sobol_indices_over_ranges_name_the_uniform_law() {
+    let dir = scratch("verdict-sobol-ranges");
+    let ranges = dir.join("ranges.toml");
+    let text_of = "[uncertainty]\n\"body.mass\" = 0.05\n[ranges]\n\"bumper.force\" = [0.8, 1.2]\n";
+    std::fs::write(&ranges, text_of).unwrap();
+    let json = dir.join("verdict.json");
+    let args = [
+        "--uncertainty",
+        ranges.to_str().unwrap(),
+        "--samples",
+        "10",
+        "--sobol",
+        "--sobol-base",
+        "16",
+        "--json",
+        json.to_str().unwrap(),
+    ];
+    let run = example("part581-barrier-front", &args);
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    assert_contains(
+        &text(&run.stdout),
+        &[
+            "(independent log-normal spreads and uniform ranges body.mass 5.0 %, bumper.force ×0.8 .. ×1.2)",
+            "N = 16 base samples, 64 verdicts",
+            "10 draws, seed 1, 0 failed; log-normal spreads and uniform ranges",
+        ],
+    );
+    let document: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let laws = &document["sensitivity"]["laws"];
+    assert_eq!(
+        (&laws[0]["law"], &laws[1]["law"]),
+        (&"log_normal".into(), &"uniform".into())
+    );
+    let criteria = document["sensitivity"]["criteria"].as_array().unwrap();
+    let crush = criteria.iter().find(|c| c["criterion"] == "bumper stroke");
+    let i = &crush.unwrap()["indices"];
+    assert_eq!(i["names"][1], "bumper.force");
+    assert!(i["total"][1].as_f64().unwrap() > 0.5, "{i}");
+}
+
 /// Hostile `--sobol` flags: exit 2 naming the flag, the file or the key,
 /// and no output left behind; an output named like the uncertainty file
 /// is refused and the file kept.
