@@ -3,9 +3,13 @@
 //! design table (`results/table.csv`, the format `bumpsim doe fit` reads:
 //! `name [unit]` headers, one row per point, run order) and fits the
 //! regression with the very code of `doe fit`
-//! ([`bumpsim_doe::table_fit::fit_table`]): `results/model.json`, the HTML
+//! ([`bumpsim_doe::table_fit::fit_table_weighted`]): `results/model.json`, the HTML
 //! report `results/report/index.html` and `results/fit-command.txt`, the
 //! `bumpsim doe fit` command that gives the same model from the table.
+//! An identified parameter regressed with its standard errors in the table
+//! (`NAME.se`, issue 39) is fitted as `doe fit --se NAME` does: weights
+//! `1/(τ² + SEᵢ²)`, τ² by REML (`bumpsim_doe::weighted`), so its
+//! coefficients' intervals include the identification's uncertainty.
 //! Points that failed, are not done, or whose output is now unreadable are
 //! left out of the table and listed; never filled with zeros.
 
@@ -16,7 +20,7 @@ use crate::run::spec_of;
 use crate::spec::Spec;
 use crate::state::{State, Status};
 use bumpsim_doe::data::Data;
-use bumpsim_doe::table_fit::{ResponseFit, TableFitSpec, fit_table};
+use bumpsim_doe::table_fit::{ResponseFit, StandardErrors, TableFitSpec, fit_table_weighted};
 use bumpsim_io::output::Outputs;
 use std::path::Path;
 
@@ -214,12 +218,31 @@ pub fn fit_spec(spec: &Spec) -> TableFitSpec {
 /// the campaign's folder).
 pub fn fit_command_for(dir: &Path) -> Result<String> {
     let spec = spec_of(dir)?;
-    Ok(fit_command(&fit_spec(&spec), &dir.join(TABLE)))
+    let table = dir.join(TABLE);
+    let data = Data::read(&table).map_err(|e| CampaignError::Collect(e.to_string()))?;
+    let se = standard_errors(&spec, &data);
+    Ok(fit_command(&fit_spec(&spec), &table, &se))
+}
+
+/// The regressed identified parameters whose standard errors the table
+/// holds (`NAME.se`): they are fitted with them.
+pub fn standard_errors(spec: &Spec, data: &Data) -> Vec<StandardErrors> {
+    let identified = spec.identify.as_ref().map_or(Vec::new(), |i| i.columns());
+    let weighted = |r: &String| {
+        let column = format!("{r}.se");
+        let known = identified.iter().any(|(n, _)| n == r);
+        (known && data.column(&column).is_some()).then(|| StandardErrors {
+            response: r.clone(),
+            column,
+        })
+    };
+    spec.regressed().iter().filter_map(weighted).collect()
 }
 
 /// The `bumpsim doe fit` command line equal to a regression of the table
-/// `table` (quoted for a POSIX shell where it needs to be).
-pub fn fit_command(spec: &TableFitSpec, table: &Path) -> String {
+/// `table` with standard errors `se` (quoted for a POSIX shell where it
+/// needs to be).
+pub fn fit_command(spec: &TableFitSpec, table: &Path, se: &[StandardErrors]) -> String {
     let join = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
     let mut command = format!(
         "bumpsim doe fit {} --factors {} --responses {} --low {} --high {}",
@@ -234,6 +257,12 @@ pub fn fit_command(spec: &TableFitSpec, table: &Path) -> String {
     }
     if spec.squares {
         command += " --squares";
+    }
+    for s in se {
+        command += &format!(
+            " --se {}",
+            shell_word(&format!("{}={}", s.response, s.column))
+        );
     }
     command
 }
@@ -254,31 +283,38 @@ type Files = Vec<(String, String)>;
 /// model JSON and report files.
 fn regression(spec: &Spec, csv: &str) -> Result<(String, String, Files)> {
     let fit = fit_spec(spec);
-    let command = fit_command(&fit, Path::new(TABLE));
-    let mut files = vec![("fit-command.txt".to_string(), command.clone() + "\n")];
     if fit.responses.is_empty() {
-        return Ok((String::new(), command, files));
+        let command = fit_command(&fit, Path::new(TABLE), &[]);
+        return Ok((String::new(), command.clone(), vec![command_file(&command)]));
     }
     let data =
         Data::parse(csv, Path::new(TABLE)).map_err(|e| CampaignError::Collect(e.to_string()))?;
-    let (model, fits) = fit_table(&data, &fit)?;
+    let se = standard_errors(spec, &data);
+    let command = fit_command(&fit, Path::new(TABLE), &se);
+    let mut files = vec![command_file(&command)];
+    let (model, fits) = fit_table_weighted(&data, &fit, &se)?;
     let json =
         serde_json::to_string_pretty(&model).map_err(|e| CampaignError::Collect(e.to_string()))?;
     files.push(("model.json".into(), json));
-    let (text, report) = report(spec, &fits)?;
+    let (text, report) = report(spec, &fits, &se)?;
     files.extend(report);
     Ok((text, command, files))
 }
 
+/// `results/fit-command.txt`.
+fn command_file(command: &str) -> (String, String) {
+    ("fit-command.txt".to_string(), format!("{command}\n"))
+}
+
 /// The HTML report of the regression (the `doe fit --report` page).
-fn report(spec: &Spec, fits: &[ResponseFit]) -> Result<(String, Files)> {
+fn report(spec: &Spec, fits: &[ResponseFit], se: &[StandardErrors]) -> Result<(String, Files)> {
     let mut page =
         bumpsim_report::html::Html::new(&format!("bumpsim campaign '{}': regression", spec.name));
     let mut all = String::new();
     let mut files = Vec::new();
     for f in fits {
         let unit = f.unit.as_deref();
-        let text = bumpsim_doe::text::fit_text(&f.name, unit, &f.fit);
+        let text = f.summary(se);
         all += &text;
         page.heading(&format!(
             "{}{}",

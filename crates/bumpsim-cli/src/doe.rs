@@ -222,13 +222,7 @@ fn run_fit(args: &FitArgs) -> Result<()> {
     let mut figures = Vec::new();
     for f in &fits {
         let (response, unit) = (f.name.as_str(), f.unit.as_deref());
-        let column = se.iter().find(|s| s.response == f.name);
-        let text = match (&f.weighting, column) {
-            (Some(w), Some(c)) => {
-                bumpsim_doe::text::weighted_text(response, unit, &f.fit, w, &c.column)
-            }
-            _ => bumpsim_doe::text::fit_text(response, unit, &f.fit),
-        };
+        let text = f.summary(&se);
         print!("{text}");
         page.heading(&format!(
             "{response}{}",

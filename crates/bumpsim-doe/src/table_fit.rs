@@ -42,6 +42,19 @@ pub struct ResponseFit {
     pub weighting: Option<Weighting>,
 }
 
+impl ResponseFit {
+    /// The fit's summary as `doe fit` prints it: weighted (naming the
+    /// column of `se` that holds this response's standard errors) or plain.
+    pub fn summary(&self, se: &[StandardErrors]) -> String {
+        let (name, unit) = (self.name.as_str(), self.unit.as_deref());
+        let column = se.iter().find(|s| s.response == self.name);
+        match (&self.weighting, column) {
+            (Some(w), Some(c)) => crate::text::weighted_text(name, unit, &self.fit, w, &c.column),
+            _ => crate::text::fit_text(name, unit, &self.fit),
+        }
+    }
+}
+
 /// A response's standard errors: the table column that holds them.
 /// Written `RESPONSE=COLUMN`, or `RESPONSE` alone for the column
 /// `RESPONSE.se` (the convention of `doe collect`'s columns).

@@ -204,7 +204,7 @@ responses = ["m2", "k1", "x1_max"]
     ]);
     assert_contains(
         &text(&out.stdout),
-        &["5 points done, 0 failed", "m2 [kg]: R²", "k1 [N/m]: R²"],
+        &["5 points done, 0 failed", "m2 [kg]: weighted", "k1 [N/m]: weighted"],
     );
     let table = std::fs::read_to_string(c.join("results/table.csv")).unwrap();
     let header: Vec<&str> = table.lines().next().unwrap().split(',').collect();
@@ -231,21 +231,27 @@ responses = ["m2", "k1", "x1_max"]
         );
     }
     // the identification's standard errors follow as NAME.se (issue 39),
-    // and `doe fit --se` of the table carries them into the coefficients
+    // and the campaign's regression carries them into the coefficients
+    // as `doe fit --se` does: the same command gives the same model
     assert!(header.contains(&"k1.se [N/m]"), "{header:?}");
-    let fit = crate::util::bumpsim(&[
-        "doe",
-        "fit",
-        path(&c.join("results/table.csv")),
-        "--factors",
-        "mb,kf",
-        "--responses",
-        "k1",
-        "--se",
-        "k1",
-    ]);
+    assert_contains(
+        &text(&out.stdout),
+        &["k1 [N/m]: weighted by its standard errors (k1.se", "x1_max [m]: R²"],
+    );
+    let command = std::fs::read_to_string(c.join("results/fit-command.txt")).unwrap();
+    assert!(command.contains(" --se m2=m2.se --se k1=k1.se"), "{command}");
+    let json = dir.join("doe-fit.json");
+    let mut args: Vec<&str> = command.split_whitespace().skip(1).collect();
+    let table = c.join("results/table.csv");
+    args[2] = path(&table);
+    args.extend(["--json", path(&json)]);
+    let fit = crate::util::bumpsim(&args);
     assert!(fit.status.success(), "{}", text(&fit.stderr));
-    assert!(text(&fit.stdout).contains("k1 [N/m]: weighted by its standard errors (k1.se"));
+    assert_eq!(
+        std::fs::read_to_string(c.join("results/model.json")).unwrap(),
+        std::fs::read_to_string(&json).unwrap(),
+        "the campaign's weighted model equals doe fit --se's"
+    );
 }
 
 /// LS-DYNA `*PARAMETER` users: each point folder gets an include with one
