@@ -490,7 +490,7 @@ pub(crate) mod uncertain {
     use anyhow::{Context, Result};
     use bumpsim_impact::prediction::{self, HistoryBand, Outputs, Sampling, SobolSettings};
     use bumpsim_impact::uncertainty::{Model, Uncertainty, UncertaintyError};
-    use bumpsim_report::plot::{LinePlot, Series, Style};
+    use bumpsim_report::plot::{Band, LinePlot, Series, Style};
     use serde_json::Value;
 
     /// The checked options and the uncertainty they read.
@@ -609,7 +609,7 @@ pub(crate) mod uncertain {
         for b in &p.bands {
             let svg = band_plot(b).svg()?;
             let caption = format!(
-                "{}: nominal (solid) and the {} band over the draws (dashed, pointwise)",
+                "{}: nominal (solid) and the {} band over the draws (shaded, pointwise)",
                 b.name,
                 prediction::percent(b.band.level)
             );
@@ -620,19 +620,19 @@ pub(crate) mod uncertain {
         Ok(())
     }
 
-    /// A history's nominal curve and its band's ends.
+    /// A history's nominal curve over its shaded band.
     fn band_plot(b: &HistoryBand) -> LinePlot {
         let time = bumpsim_core::units::Dimension::Time;
         let mut plot = LinePlot::new(&format!("{} band", b.name), time, b.dimension);
         let tail = prediction::percent((1.0 - b.band.level) / 2.0);
         let head = prediction::percent((1.0 + b.band.level) / 2.0);
-        for (name, values, style) in [
-            ("nominal".to_string(), &b.nominal, Style::Solid),
-            (tail, &b.band.low, Style::Dashed),
-            (head, &b.band.high, Style::Dashed),
-        ] {
-            plot.add(Series::new(&name, b.time.clone(), values.clone(), style));
-        }
+        let nominal = Series::new("nominal", b.time.clone(), b.nominal.clone(), Style::Solid);
+        plot.add(nominal).band(Band {
+            name: format!("{tail} to {head}"),
+            x: b.time.clone(),
+            low: b.band.low.clone(),
+            high: b.band.high.clone(),
+        });
         plot
     }
 }

@@ -468,7 +468,10 @@ fn impact_predicts_the_analytic_band_and_sobol_indices() {
     }
     let page = std::fs::read_to_string(report.join("uncertainty.html")).unwrap();
     assert!(page.contains("force: nominal (solid) and the 90 % band"));
-    assert!(report.join("force-band.svg").exists());
+    // the band is one shaded area under the nominal curve
+    let band = std::fs::read_to_string(report.join("force-band.svg")).unwrap();
+    assert_eq!(band.matches("<polygon opacity=\"0.3\"").count(), 1);
+    assert!(page.contains("band over the draws (shaded, pointwise)"));
     // the index shows the distributions and says where the bands are
     let index = std::fs::read_to_string(report.join("index.html")).unwrap();
     assert!(index.contains("uncertainty.html in this folder"), "{index}");
