@@ -204,7 +204,11 @@ responses = ["m2", "k1", "x1_max"]
     ]);
     assert_contains(
         &text(&out.stdout),
-        &["5 points done, 0 failed", "m2 [kg]: weighted", "k1 [N/m]: weighted"],
+        &[
+            "5 points done, 0 failed",
+            "m2 [kg]: weighted",
+            "k1 [N/m]: weighted",
+        ],
     );
     let table = std::fs::read_to_string(c.join("results/table.csv")).unwrap();
     let header: Vec<&str> = table.lines().next().unwrap().split(',').collect();
@@ -236,10 +240,16 @@ responses = ["m2", "k1", "x1_max"]
     assert!(header.contains(&"k1.se [N/m]"), "{header:?}");
     assert_contains(
         &text(&out.stdout),
-        &["k1 [N/m]: weighted by its standard errors (k1.se", "x1_max [m]: R²"],
+        &[
+            "k1 [N/m]: weighted by its standard errors (k1.se",
+            "x1_max [m]: R²",
+        ],
     );
     let command = std::fs::read_to_string(c.join("results/fit-command.txt")).unwrap();
-    assert!(command.contains(" --se m2=m2.se --se k1=k1.se"), "{command}");
+    assert!(
+        command.contains(" --se m2=m2.se --se k1=k1.se"),
+        "{command}"
+    );
     let json = dir.join("doe-fit.json");
     let mut args: Vec<&str> = command.split_whitespace().skip(1).collect();
     let table = c.join("results/table.csv");
