@@ -10,17 +10,24 @@ use crate::frames;
 use crate::model::car_of;
 use crate::state::impact::{BumperState, ImpactState};
 use crate::state::{decode, encode, reduce};
+use crate::uncertain::{Arguments, Predicted, Uncertain};
 use bumpsim_impact::bumper::{Bumper as CoreBumper, Loading};
 use bumpsim_impact::impact::{ImpactResult, Options, simulate};
 use bumpsim_impact::presets::{PRESETS, ScenarioSpec};
 use bumpsim_impact::reduction::{Criterion, TwoDof, equivalent_mass};
+use bumpsim_impact::uncertainty::{Chain, ChainCar};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBytes, PyDict, PyType};
+use std::path::PathBuf;
 
 /// What `__reduce__` returns.
 type Reduced<'py> = (Bound<'py, PyAny>, (Bound<'py, PyBytes>,));
+
+/// What `__reduce__` of a result with a prediction returns: the state and
+/// the prediction's JSON.
+pub(crate) type Predictable<'py> = (Bound<'py, PyAny>, (Bound<'py, PyBytes>, Option<String>));
 
 /// Registers the classes and functions of this module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -131,9 +138,14 @@ fn presets(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyAny>>> {
 
 /// Simulates an impact on `car` through `bumper`, as `bumpsim impact`:
 /// a preset `case`, or a `pendulum` of that mass (kg) or a rigid `barrier`,
-/// at `speed` (m/s; default the preset's).
+/// at `speed` (m/s; default the preset's). With `uncertainty` (a file), also
+/// the prediction over `samples` draws of the car (`seed`, `level`) and,
+/// with `sobol`, the Sobol indices (`sobol_base` base samples), as
+/// `--uncertainty`.
 #[pyfunction]
-#[pyo3(signature = (car, bumper, case = None, pendulum = None, barrier = false, speed = None))]
+#[pyo3(signature = (car, bumper, case = None, pendulum = None, barrier = false, speed = None, *, uncertainty = None, samples = None, seed = None, level = 0.9, sobol = false, sobol_base = None))]
+// one Rust argument per Python keyword argument
+#[allow(clippy::too_many_arguments)]
 fn impact(
     py: Python<'_>,
     car: &Bound<'_, PyAny>,
@@ -142,6 +154,12 @@ fn impact(
     pendulum: Option<f64>,
     barrier: bool,
     speed: Option<f64>,
+    uncertainty: Option<PathBuf>,
+    samples: Option<&Bound<'_, PyAny>>,
+    seed: Option<&Bound<'_, PyAny>>,
+    level: f64,
+    sobol: bool,
+    sobol_base: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Impact> {
     let (car, bumper) = (car_of(py, car)?, bumper_of(bumper)?);
     let model = &car.model;
@@ -152,10 +170,27 @@ fn impact(
         speed,
     };
     let (scenario, _) = spec.scenario(model.total_mass()).map_err(input)?;
+    let chain = ChainCar {
+        model: model.clone(),
+        bumper: bumper.clone(),
+    };
+    let arguments = Arguments {
+        path: uncertainty,
+        samples,
+        seed,
+        level,
+        sobol,
+        sobol_base,
+    };
+    let uncertain = Uncertain::<Chain>::read(&arguments, &chain)?;
     let result = py
         .detach(|| simulate(model, &bumper, scenario, &Options::default()))
         .map_err(input)?;
-    Ok(Impact::of(ImpactState { scenario, result }))
+    let run = |c: &ChainCar| simulate(&c.model, &c.bumper, scenario, &Options::default()).ok();
+    let predicted = uncertain
+        .map(|u| u.run(py, &chain, &result, &run))
+        .transpose()?;
+    Ok(Impact::of(ImpactState { scenario, result }, predicted))
 }
 
 /// The result of an impact: peak force, compressions, contact time,
@@ -163,6 +198,7 @@ fn impact(
 #[pyclass(frozen, module = "bumpsim")]
 pub struct Impact {
     data: ImpactState,
+    predicted: Option<Predicted>,
     time: PyOnceLock<Py<PyArray1<f64>>>,
     force: PyOnceLock<Py<PyArray1<f64>>>,
     compression: PyOnceLock<Py<PyArray1<f64>>>,
@@ -171,9 +207,10 @@ pub struct Impact {
 }
 
 impl Impact {
-    fn of(data: ImpactState) -> Impact {
+    fn of(data: ImpactState, predicted: Option<Predicted>) -> Impact {
         Impact {
             data,
+            predicted,
             time: PyOnceLock::new(),
             force: PyOnceLock::new(),
             compression: PyOnceLock::new(),
@@ -270,10 +307,28 @@ impl Impact {
     fn summary(&self) -> String {
         bumpsim_impact::text::summary(self.result())
     }
-    /// The result as `bumpsim impact --json` writes it.
+    /// The result as `bumpsim impact --json` writes it (with `prediction`
+    /// and `sensitivity` when asked).
     fn to_json(&self) -> PyResult<String> {
         let json = bumpsim_impact::document::ImpactSummary::of(self.data.scenario, self.result());
-        serde_json::to_string_pretty(&json).map_err(input)
+        Predicted::with(&self.predicted, json)
+    }
+    /// The prediction over the car's uncertainty, the JSON's `prediction`
+    /// (None without `uncertainty`).
+    #[getter]
+    fn prediction<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        Predicted::prediction(py, &self.predicted)
+    }
+    /// The Sobol indices, the JSON's `sensitivity` (None without `sobol`).
+    #[getter]
+    fn sensitivity<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        Predicted::sensitivity(py, &self.predicted)
+    }
+    /// The histories' bands over the draws: name → dict of arrays `time`
+    /// [s], `nominal`, `low`, `median`, `high` (None without `uncertainty`).
+    #[getter]
+    fn bands<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        Predicted::bands(py, &self.predicted)
     }
     /// The histories as `bumpsim impact --csv` writes them: index `time
     /// [s]`, columns `force [N]`, `compression [m]`, `x BODY [m]`, `v BODY
@@ -289,14 +344,23 @@ impl Impact {
         frames::csv(py, &bumpsim_impact::text::histories(r), &attrs)
     }
     fn __eq__(&self, other: &Self) -> bool {
-        self.data.scenario == other.data.scenario && self.data.result == other.data.result
+        self.data.scenario == other.data.scenario
+            && self.data.result == other.data.result
+            && self.predicted == other.predicted
     }
-    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Reduced<'py>> {
-        reduce(slf.as_any(), &encode(&slf.get().data)?)
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Predictable<'py>> {
+        let (restore, (state,)) = reduce(slf.as_any(), &encode(&slf.get().data)?)?;
+        Ok((restore, (state, Predicted::state(&slf.get().predicted)?)))
     }
     #[classmethod]
-    fn _from_state(_cls: &Bound<'_, PyType>, state: &[u8]) -> PyResult<Self> {
-        Ok(Impact::of(decode(state, "Impact")?))
+    #[pyo3(signature = (state, predicted = None))]
+    fn _from_state(
+        _cls: &Bound<'_, PyType>,
+        state: &[u8],
+        predicted: Option<&str>,
+    ) -> PyResult<Self> {
+        let predicted = Predicted::of_state(predicted)?;
+        Ok(Impact::of(decode(state, "Impact")?, predicted))
     }
     fn __repr__(&self) -> String {
         let r = self.result();

@@ -26,6 +26,7 @@ mod planar;
 mod posterior;
 mod signal;
 mod state;
+mod uncertain;
 mod verdict;
 
 use pyo3::prelude::*;

@@ -6,16 +6,16 @@
 use crate::convert::from_json;
 use crate::errors::{input, invalid, reading};
 use crate::frames;
+use crate::impact::Predictable;
 use crate::state::planar::{PlanarImpactState, StrikerArgs};
 use crate::state::{decode, encode, reduce};
+use crate::uncertain::{Arguments, Predicted, Uncertain};
 use bumpsim_planar::presets::StrikerSpec;
+use bumpsim_planar::uncertainty::Planar;
 use bumpsim_planar::{PlanarCar as CorePlanarCar, Settings, Side, Striker, simulate};
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict, PyTuple, PyType};
+use pyo3::types::{PyDict, PyTuple, PyType};
 use std::path::PathBuf;
-
-/// What `__reduce__` returns.
-type Reduced<'py> = (Bound<'py, PyAny>, (Bound<'py, PyBytes>,));
 
 /// Registers the classes and functions of this module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -116,9 +116,12 @@ impl StrikerArgs {
 /// An angled, offset, corner or pole impact of the planar car, as
 /// `bumpsim planar`: a preset `case`, or a barrier (or a `pendulum` of that
 /// mass, kg) at `angle` degrees with `overlap` % from `side`, or a pole of
-/// diameter `pole` m at `pole_offset` m; `speed` m/s.
+/// diameter `pole` m at `pole_offset` m; `speed` m/s. With `uncertainty`
+/// (a file), also the prediction over `samples` draws of the car (`seed`,
+/// `level`) and, with `sobol`, the Sobol indices (`sobol_base` base
+/// samples), as `--uncertainty`.
 #[pyfunction]
-#[pyo3(signature = (car, case = None, angle = None, overlap = None, side = "left", pole = None, pole_offset = 0.0, pendulum = None, speed = None))]
+#[pyo3(signature = (car, case = None, angle = None, overlap = None, side = "left", pole = None, pole_offset = 0.0, pendulum = None, speed = None, *, uncertainty = None, samples = None, seed = None, level = 0.9, sobol = false, sobol_base = None))]
 // one Rust argument per Python keyword argument
 #[allow(clippy::too_many_arguments)]
 fn planar_impact(
@@ -132,6 +135,12 @@ fn planar_impact(
     pole_offset: f64,
     pendulum: Option<f64>,
     speed: Option<f64>,
+    uncertainty: Option<PathBuf>,
+    samples: Option<&Bound<'_, PyAny>>,
+    seed: Option<&Bound<'_, PyAny>>,
+    level: f64,
+    sobol: bool,
+    sobol_base: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PlanarImpact> {
     let (car, path) = planar_car_of(car)?;
     let spec = StrikerArgs {
@@ -145,15 +154,30 @@ fn planar_impact(
         speed,
     };
     let striker = spec.striker()?;
+    let arguments = Arguments {
+        path: uncertainty,
+        samples,
+        seed,
+        level,
+        sobol,
+        sobol_base,
+    };
+    let uncertain = Uncertain::<Planar>::read(&arguments, &car)?;
+    let settings = Settings::default();
     let result = py
-        .detach(|| simulate(&car, &striker, &Settings::default()))
+        .detach(|| simulate(&car, &striker, &settings))
         .map_err(input)?;
+    let run = |c: &CorePlanarCar| simulate(c, &striker, &settings).ok();
+    let predicted = uncertain
+        .map(|u| u.run(py, &car, &result, &run))
+        .transpose()?;
     let name = car
         .name()
         .map_or_else(|| path.display().to_string(), str::to_string);
     Ok(PlanarImpact {
         striker,
         data: PlanarImpactState { name, spec, result },
+        predicted,
     })
 }
 
@@ -162,6 +186,7 @@ fn planar_impact(
 pub struct PlanarImpact {
     data: PlanarImpactState,
     striker: Striker,
+    predicted: Option<Predicted>,
 }
 
 #[pymethods]
@@ -181,14 +206,32 @@ impl PlanarImpact {
     fn summary(&self) -> String {
         bumpsim_planar::text::summary(&self.data.result)
     }
-    /// The result as `bumpsim planar --json` writes it.
+    /// The result as `bumpsim planar --json` writes it (with `prediction`
+    /// and `sensitivity` when asked).
     fn to_json(&self) -> PyResult<String> {
         let document = bumpsim_planar::document::ImpactDocument {
             car: &self.data.name,
             striker: &self.striker,
             result: &self.data.result,
         };
-        serde_json::to_string_pretty(&document).map_err(input)
+        Predicted::with(&self.predicted, document)
+    }
+    /// The prediction over the car's uncertainty, the JSON's `prediction`
+    /// (None without `uncertainty`).
+    #[getter]
+    fn prediction<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        Predicted::prediction(py, &self.predicted)
+    }
+    /// The Sobol indices, the JSON's `sensitivity` (None without `sobol`).
+    #[getter]
+    fn sensitivity<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        Predicted::sensitivity(py, &self.predicted)
+    }
+    /// The histories' bands over the draws: name → dict of arrays `time`
+    /// [s], `nominal`, `low`, `median`, `high` (None without `uncertainty`).
+    #[getter]
+    fn bands<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        Predicted::bands(py, &self.predicted)
     }
     /// The histories as `bumpsim planar --csv` writes them: index `time
     /// [s]`, columns `force x [N]`, ..., `crush segment N [m]`; attrs: car,
@@ -203,17 +246,24 @@ impl PlanarImpact {
         frames::csv(py, &bumpsim_planar::text::histories(r), &attrs)
     }
     fn __eq__(&self, other: &Self) -> bool {
-        self.data == other.data
+        self.data == other.data && self.predicted == other.predicted
     }
-    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Reduced<'py>> {
-        reduce(slf.as_any(), &encode(&slf.get().data)?)
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Predictable<'py>> {
+        let (restore, (state,)) = reduce(slf.as_any(), &encode(&slf.get().data)?)?;
+        Ok((restore, (state, Predicted::state(&slf.get().predicted)?)))
     }
     #[classmethod]
-    fn _from_state(_cls: &Bound<'_, PyType>, state: &[u8]) -> PyResult<Self> {
+    #[pyo3(signature = (state, predicted = None))]
+    fn _from_state(
+        _cls: &Bound<'_, PyType>,
+        state: &[u8],
+        predicted: Option<&str>,
+    ) -> PyResult<Self> {
         let data: PlanarImpactState = decode(state, "PlanarImpact")?;
         Ok(PlanarImpact {
             striker: data.spec.striker()?,
             data,
+            predicted: Predicted::of_state(predicted)?,
         })
     }
     fn __repr__(&self) -> String {

@@ -448,6 +448,13 @@ class Impact:
     displacements: FloatArray
     velocities: FloatArray
     warnings: list[str]
+    prediction: Optional[dict[str, Any]]
+    """The JSON's ``prediction`` (each output's nominal value and spread, each
+    history's band); None without ``uncertainty``."""
+    sensitivity: Optional[dict[str, Any]]
+    """The JSON's ``sensitivity`` (Sobol first-order and total indices); None without ``sobol``."""
+    bands: Optional[dict[str, dict[str, FloatArray]]]
+    """History name → arrays ``time`` [s], ``nominal``, ``low``, ``median``, ``high``."""
     def summary(self) -> str: ...
     def to_json(self) -> str: ...
     def to_pandas(self) -> DataFrame:
@@ -464,8 +471,22 @@ def impact(
     pendulum: Optional[float] = None,
     barrier: bool = False,
     speed: Optional[float] = None,
+    *,
+    uncertainty: Optional[StrPath] = None,
+    samples: int = 1000,
+    seed: int = 1,
+    level: float = 0.9,
+    sobol: bool = False,
+    sobol_base: int = 256,
 ) -> Impact:
-    """A preset ``case``, or a ``pendulum`` (kg) or rigid ``barrier`` at ``speed`` (m/s)."""
+    """A preset ``case``, or a ``pendulum`` (kg) or rigid ``barrier`` at ``speed`` (m/s).
+
+    With ``uncertainty`` (an identification's JSON or a TOML of
+    ``[uncertainty]`` spreads and/or ``[ranges]``, docs/uncertainty.md), also
+    the prediction over ``samples`` (10..100000) seeded draws of the car at
+    ``level``, and with ``sobol`` the Sobol indices (``sobol_base`` 16..65536
+    base samples), as ``bumpsim impact --uncertainty``: ``Impact.prediction``,
+    ``.sensitivity``, ``.bands``."""
 
 def mass_reduction(
     m1: float, m2: float, k: float, bumper: Bumper, speed: float, criterion: str = "remaining"
@@ -490,6 +511,13 @@ class PlanarImpact:
 
     result: dict[str, Any]
     warnings: list[str]
+    prediction: Optional[dict[str, Any]]
+    """The JSON's ``prediction`` (each output's nominal value and spread, each
+    history's band); None without ``uncertainty``."""
+    sensitivity: Optional[dict[str, Any]]
+    """The JSON's ``sensitivity`` (Sobol first-order and total indices); None without ``sobol``."""
+    bands: Optional[dict[str, dict[str, FloatArray]]]
+    """History name → arrays ``time`` [s], ``nominal``, ``low``, ``median``, ``high``."""
     def summary(self) -> str: ...
     def to_json(self) -> str: ...
     def to_pandas(self) -> DataFrame:
@@ -505,10 +533,18 @@ def planar_impact(
     pole_offset: float = 0.0,
     pendulum: Optional[float] = None,
     speed: Optional[float] = None,
+    *,
+    uncertainty: Optional[StrPath] = None,
+    samples: int = 1000,
+    seed: int = 1,
+    level: float = 0.9,
+    sobol: bool = False,
+    sobol_base: int = 256,
 ) -> PlanarImpact:
     """A preset ``case``; or a barrier (or ``pendulum``, kg) at ``angle`` degrees
     with ``overlap`` % from ``side``; or a pole of diameter ``pole`` m at
-    ``pole_offset`` m; ``speed`` in m/s."""
+    ``pole_offset`` m; ``speed`` in m/s. ``uncertainty`` and the rest: as
+    :func:`impact` (``bumpsim planar --uncertainty``)."""
 
 # ---------------------------------------------------------------- verdicts
 

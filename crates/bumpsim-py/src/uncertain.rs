@@ -1,0 +1,229 @@
+//! The car's uncertainty carried through `impact` and `planar_impact`
+//! (issue 39, item 4), the calls `bumpsim impact|planar --uncertainty`
+//! makes: the keyword arguments checked by the library before anything
+//! runs (`Sampling::check`, `Uncertainty::check`, `prediction::check_base`),
+//! then `bumpsim_impact::prediction::predict` (each scalar output's median
+//! and interval, each history's pointwise band over seeded draws of the
+//! car) and, with `sobol=True`, `prediction::sensitivity` (Saltelli's
+//! first-order and total Sobol' indices with bootstrap intervals), with the
+//! GIL released. The results are the JSON objects `--json` writes under
+//! `prediction` and `sensitivity`.
+
+use crate::arrays::array1;
+use crate::convert::{count_or, from_json, seed};
+use crate::errors::{invalid, message};
+use bumpsim_impact::prediction::{self, Outputs, Sampling, SobolSettings};
+use bumpsim_impact::uncertainty::{Model, Uncertainty, UncertaintyError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+use std::path::PathBuf;
+
+/// The uncertainty keyword arguments of `impact` and `planar_impact`, as
+/// Python gave them.
+pub struct Arguments<'a, 'py> {
+    /// `uncertainty`: the file, or None.
+    pub path: Option<PathBuf>,
+    /// `samples`: draws (None: [`SAMPLES`]).
+    pub samples: Option<&'a Bound<'py, PyAny>>,
+    /// `seed` (None: [`SEED`]).
+    pub seed: Option<&'a Bound<'py, PyAny>>,
+    /// `level` of the intervals and bands.
+    pub level: f64,
+    /// `sobol`: also the indices.
+    pub sobol: bool,
+    /// `sobol_base`: base samples N (None: [`SOBOL_BASE`]).
+    pub sobol_base: Option<&'a Bound<'py, PyAny>>,
+}
+
+/// The CLI's defaults of `--samples`, `--seed` and `--sobol-base`.
+pub const SAMPLES: usize = 1000;
+/// See [`SAMPLES`].
+pub const SEED: u64 = 1;
+/// See [`SAMPLES`].
+pub const SOBOL_BASE: usize = 256;
+
+/// The checked arguments and the uncertainty they read.
+pub struct Uncertain<M: Model> {
+    uncertainty: Uncertainty<M>,
+    sampling: Sampling,
+    sobol: Option<SobolSettings>,
+}
+
+/// What a prediction gave: the JSON objects of `--json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Predicted {
+    /// The `prediction` object.
+    pub prediction: Value,
+    /// The `sensitivity` object (with `sobol=True`).
+    pub sensitivity: Option<Value>,
+}
+
+/// An error of the uncertainty's checks as an `InputError` naming the
+/// keyword argument (`samples`, `level`, `sobol_base`; `other` otherwise).
+fn named(error: &UncertaintyError, other: &str) -> PyErr {
+    let text = message(error);
+    match error {
+        UncertaintyError::Value { key, .. } if key == "samples" || key == "level" => invalid(text),
+        UncertaintyError::Value { key, .. } if key == "base" => {
+            invalid(format!("sobol_base: {text}"))
+        }
+        _ => invalid(format!("{other}: {text}")),
+    }
+}
+
+impl<M: Model> Uncertain<M> {
+    /// The arguments checked against `car` (`None`: no `uncertainty`).
+    pub fn read(arguments: &Arguments, car: &M::Car) -> PyResult<Option<Self>> {
+        let Some(path) = &arguments.path else {
+            if arguments.sobol {
+                return Err(invalid("sobol: needs uncertainty (a file)"));
+            }
+            return Ok(None);
+        };
+        let limits = prediction::SAMPLES;
+        let sampling = Sampling {
+            samples: count_or(arguments.samples, "samples", limits[0], limits[1])?
+                .unwrap_or(SAMPLES),
+            seed: seed(arguments.seed)?.unwrap_or(SEED),
+            level: arguments.level,
+        };
+        sampling.check().map_err(|e| named(&e, "samples"))?;
+        let uncertainty = Uncertainty::<M>::read(path).map_err(|e| named(&e, "uncertainty"))?;
+        uncertainty
+            .check(car)
+            .map_err(|e| named(&e, "uncertainty"))?;
+        let sobol = match arguments.sobol {
+            true => {
+                let [low, high] = prediction::SOBOL_BASE;
+                let base = count_or(arguments.sobol_base, "sobol_base", low, high)?;
+                let base = base.unwrap_or(SOBOL_BASE);
+                prediction::check_base(base, uncertainty.names.len())
+                    .map_err(|e| named(&e, "sobol"))?;
+                Some(SobolSettings::new(base, sampling.seed))
+            }
+            false => None,
+        };
+        Ok(Some(Uncertain {
+            uncertainty,
+            sampling,
+            sobol,
+        }))
+    }
+
+    /// The prediction of `run` over the uncertainty (and the Sobol indices
+    /// when asked), the GIL released; `nominal` is `run`'s result for `car`.
+    pub fn run<R: Outputs + Sync>(
+        &self,
+        py: Python<'_>,
+        car: &M::Car,
+        nominal: &R,
+        run: &(dyn Fn(&M::Car) -> Option<R> + Sync),
+    ) -> PyResult<Predicted> {
+        py.detach(|| self.predicted(car, nominal, run))
+            .map_err(|e| invalid(format!("uncertainty: {}", message(&*e))))
+    }
+
+    fn predicted<R: Outputs>(
+        &self,
+        car: &M::Car,
+        nominal: &R,
+        run: &(dyn Fn(&M::Car) -> Option<R> + Sync),
+    ) -> Result<Predicted, Box<dyn std::error::Error + Send + Sync>> {
+        let u = &self.uncertainty;
+        let p = prediction::predict(car, nominal, u, &self.sampling, run)?;
+        let sensitivity = match &self.sobol {
+            Some(settings) => {
+                let s = prediction::sensitivity(car, nominal, u, settings, run)?;
+                Some(serde_json::to_value(&s)?)
+            }
+            None => None,
+        };
+        Ok(Predicted {
+            prediction: serde_json::to_value(&p)?,
+            sensitivity,
+        })
+    }
+}
+
+impl Predicted {
+    /// `document` (a result's JSON) with the prediction and the indices
+    /// beside its results, as `--json` writes it.
+    pub fn with(predicted: &Option<Predicted>, document: impl Serialize) -> PyResult<String> {
+        let mut document = serde_json::to_value(document).map_err(crate::errors::input)?;
+        if let (Some(p), Some(fields)) = (predicted, document.as_object_mut()) {
+            fields.insert("prediction".into(), p.prediction.clone());
+            if let Some(s) = &p.sensitivity {
+                fields.insert("sensitivity".into(), s.clone());
+            }
+        }
+        serde_json::to_string_pretty(&document).map_err(crate::errors::input)
+    }
+
+    /// The pickled form: the JSON text (None without a prediction).
+    pub fn state(predicted: &Option<Predicted>) -> PyResult<Option<String>> {
+        predicted
+            .as_ref()
+            .map(|p| serde_json::to_string(p).map_err(crate::errors::input))
+            .transpose()
+    }
+
+    /// The prediction of a pickled form.
+    pub fn of_state(state: Option<&str>) -> PyResult<Option<Predicted>> {
+        state
+            .map(|s| serde_json::from_str(s).map_err(crate::errors::input))
+            .transpose()
+    }
+
+    /// The `prediction` object as a dict (None without one).
+    pub fn prediction<'py>(
+        py: Python<'py>,
+        predicted: &Option<Predicted>,
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        predicted
+            .as_ref()
+            .map(|p| from_json(py, &p.prediction))
+            .transpose()
+    }
+
+    /// The `sensitivity` object as a dict (None without one).
+    pub fn sensitivity<'py>(
+        py: Python<'py>,
+        predicted: &Option<Predicted>,
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let value = predicted.as_ref().and_then(|p| p.sensitivity.as_ref());
+        value.map(|s| from_json(py, s)).transpose()
+    }
+
+    /// The bands of the histories: name → dict of numpy arrays `time`,
+    /// `nominal`, `low`, `median`, `high` (the prediction's `bands`).
+    pub fn bands<'py>(
+        py: Python<'py>,
+        predicted: &Option<Predicted>,
+    ) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Some(p) = predicted else {
+            return Ok(None);
+        };
+        let bands = PyDict::new(py);
+        let empty = Vec::new();
+        let list = p.prediction["bands"].as_array().unwrap_or(&empty);
+        for b in list {
+            let arrays = PyDict::new(py);
+            let numbers = |v: &Value| -> Vec<f64> {
+                let values = v.as_array().map_or(&[][..], Vec::as_slice);
+                values
+                    .iter()
+                    .map(|x| x.as_f64().unwrap_or(f64::NAN))
+                    .collect()
+            };
+            arrays.set_item("time", array1(py, numbers(&b["time"])))?;
+            arrays.set_item("nominal", array1(py, numbers(&b["nominal"])))?;
+            for end in ["low", "median", "high"] {
+                arrays.set_item(end, array1(py, numbers(&b["band"][end])))?;
+            }
+            bands.set_item(b["name"].as_str().unwrap_or("?"), arrays)?;
+        }
+        Ok(Some(bands))
+    }
+}
