@@ -330,6 +330,12 @@ impl Impact {
     fn bands<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
         Predicted::bands(py, &self.predicted)
     }
+    /// The prediction's spreads as a table: index `output`; columns `unit`,
+    /// `nominal`, `median`, `low`, `high`, `mean`, `sd`; attrs: sampling,
+    /// failed draws (None without `uncertainty`).
+    fn prediction_to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        Predicted::frame(py, &self.predicted)
+    }
     /// The histories as `bumpsim impact --csv` writes them: index `time
     /// [s]`, columns `force [N]`, `compression [m]`, `x BODY [m]`, `v BODY
     /// [m/s]`; attrs: the scenario and the peaks.

@@ -233,6 +233,12 @@ impl PlanarImpact {
     fn bands<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
         Predicted::bands(py, &self.predicted)
     }
+    /// The prediction's spreads as a table: index `output`; columns `unit`,
+    /// `nominal`, `median`, `low`, `high`, `mean`, `sd`; attrs: sampling,
+    /// failed draws (None without `uncertainty`).
+    fn prediction_to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        Predicted::frame(py, &self.predicted)
+    }
     /// The histories as `bumpsim planar --csv` writes them: index `time
     /// [s]`, columns `force x [N]`, ..., `crush segment N [m]`; attrs: car,
     /// peak force, warnings.

@@ -12,10 +12,11 @@
 use crate::arrays::array1;
 use crate::convert::{count_or, from_json, seed};
 use crate::errors::{invalid, message};
+use crate::frames;
 use bumpsim_impact::prediction::{self, Outputs, Sampling, SobolSettings};
 use bumpsim_impact::uncertainty::{Model, Uncertainty, UncertaintyError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::path::PathBuf;
@@ -225,5 +226,33 @@ impl Predicted {
             bands.set_item(b["name"].as_str().unwrap_or("?"), arrays)?;
         }
         Ok(Some(bands))
+    }
+
+    /// The spreads as a table: index `output`, columns `unit`, `nominal`,
+    /// `median`, `low`, `high`, `mean`, `sd` (SI, in `unit`); attrs: the
+    /// sampling (samples, seed, level) and the failed draws.
+    pub fn frame<'py>(
+        py: Python<'py>,
+        predicted: &Option<Predicted>,
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let Some(p) = predicted else {
+            return Ok(None);
+        };
+        let rows = PyList::empty(py);
+        let empty = Vec::new();
+        for o in p.prediction["outputs"].as_array().unwrap_or(&empty) {
+            let row = PyDict::new(py);
+            row.set_item("output", from_json(py, &o["name"])?)?;
+            row.set_item("unit", from_json(py, &o["unit"])?)?;
+            row.set_item("nominal", from_json(py, &o["nominal"])?)?;
+            for key in ["median", "low", "high", "mean", "sd"] {
+                row.set_item(key, from_json(py, &o["spread"][key])?)?;
+            }
+            rows.append(row)?;
+        }
+        let attrs = PyDict::new(py);
+        attrs.set_item("sampling", from_json(py, &p.prediction["sampling"])?)?;
+        attrs.set_item("failed", from_json(py, &p.prediction["failed"])?)?;
+        frames::records(py, rows, &["output"], &attrs).map(Some)
     }
 }

@@ -53,12 +53,20 @@ def test_impact_prediction_and_sobol_equal_the_cli(run, tmp_path, chain):
     peak = result.prediction["outputs"][0]
     assert peak["spread"]["low"] <= peak["nominal"] <= peak["spread"]["high"]
     assert pickle.loads(pickle.dumps(result)) == result
+    # the spreads as a table: the JSON's numbers
+    pytest.importorskip("pandas")
+    table = result.prediction_to_pandas()
+    assert list(table.index) == [o["name"] for o in theirs["prediction"]["outputs"]]
+    assert table.loc["peak force", "high"] == peak["spread"]["high"]
+    assert table.loc["peak force", "unit"] == "N"
+    assert table.attrs["sampling"]["samples"] == SAMPLES
 
 
 def test_impact_without_uncertainty_is_unchanged(root, chain):
     car, bumper, _ = chain
     result = bumpsim.impact(bumpsim.Car.from_file(car), bumper, case="thesis-600")
     assert result.prediction is None and result.sensitivity is None and result.bands is None
+    assert result.prediction_to_pandas() is None
     assert "prediction" not in json.loads(result.to_json())
 
 

@@ -455,6 +455,9 @@ class Impact:
     """The JSON's ``sensitivity`` (Sobol first-order and total indices); None without ``sobol``."""
     bands: Optional[dict[str, dict[str, FloatArray]]]
     """History name → arrays ``time`` [s], ``nominal``, ``low``, ``median``, ``high``."""
+    def prediction_to_pandas(self) -> Optional[DataFrame]:
+        """The spreads: index ``output``; ``unit``, ``nominal``, ``median``, ``low``,
+        ``high``, ``mean``, ``sd``; attrs: sampling, failed. None without ``uncertainty``."""
     def summary(self) -> str: ...
     def to_json(self) -> str: ...
     def to_pandas(self) -> DataFrame:
@@ -518,6 +521,9 @@ class PlanarImpact:
     """The JSON's ``sensitivity`` (Sobol first-order and total indices); None without ``sobol``."""
     bands: Optional[dict[str, dict[str, FloatArray]]]
     """History name → arrays ``time`` [s], ``nominal``, ``low``, ``median``, ``high``."""
+    def prediction_to_pandas(self) -> Optional[DataFrame]:
+        """The spreads: index ``output``; ``unit``, ``nominal``, ``median``, ``low``,
+        ``high``, ``mean``, ``sd``; attrs: sampling, failed. None without ``uncertainty``."""
     def summary(self) -> str: ...
     def to_json(self) -> str: ...
     def to_pandas(self) -> DataFrame:
