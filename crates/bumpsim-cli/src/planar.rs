@@ -255,9 +255,9 @@ pub fn run_impact(request: &ImpactRequest) -> Result<()> {
     let path = request.path;
     let (striker, label, preset) = striker(request)?;
     let law = tyre_law(request, preset);
-    let car = &match law {
-        Some((law, _)) => request.car.clone().with_tyre_law(law),
-        None => request.car.clone(),
+    let car = &match (&law, request.setup.tyres.is_some()) {
+        (Some((law, _)), true) => request.car.clone().with_tyre_law(*law),
+        _ => bumpsim_planar::presets::prepared(&request.car, preset),
     };
     let settings = request.setup.settings()?;
     let uncertain = crate::planar::uncertain::Uncertain::<Planar>::read(request.uncertain, car)?;

@@ -389,6 +389,34 @@ pub struct StrikerSpec {
     pub speed: Option<f64>,
 }
 
+/// The car a run uses: with a preset, both axles' tyres under the law the
+/// test prescribes ([`PlanarPreset::tyres`]); otherwise the car as its
+/// file says. Every front end runs presets on this car.
+///
+/// ```
+/// use bumpsim_core::model::MsdModel;
+/// use bumpsim_impact::Bumper;
+/// use bumpsim_planar::car::{Layout, PlanarCar, TyreLaw};
+/// use bumpsim_planar::presets::{StrikerSpec, prepared};
+/// let chain = MsdModel::new(vec![20.0, 1300.0], vec![2e3], vec![3e6]).unwrap();
+/// let bumper = Bumper::three_part(1e6, 5e4, 2e6).unwrap();
+/// let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
+/// let sliding = car.clone().with_tyre_law(TyreLaw::Sliding);
+/// let rcar = StrikerSpec { case: Some("rcar-structural-front".into()), ..Default::default() };
+/// let (_, preset) = rcar.striker().unwrap();
+/// assert_eq!(prepared(&sliding, preset), car.clone().with_tyre_law(TyreLaw::Rolling));
+/// assert_eq!(prepared(&sliding, None), sliding);
+/// ```
+pub fn prepared(
+    car: &crate::car::PlanarCar,
+    preset: Option<&PlanarPreset>,
+) -> crate::car::PlanarCar {
+    match preset {
+        Some(p) => car.clone().with_tyre_law(p.tyres),
+        None => car.clone(),
+    }
+}
+
 impl StrikerSpec {
     /// The striker, and the preset it came from.
     ///

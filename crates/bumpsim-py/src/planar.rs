@@ -10,7 +10,7 @@ use crate::impact::Predictable;
 use crate::state::planar::{PlanarImpactState, StrikerArgs};
 use crate::state::{decode, encode, reduce};
 use crate::uncertain::{Arguments, Predicted, Uncertain};
-use bumpsim_planar::presets::StrikerSpec;
+use bumpsim_planar::presets::{PlanarPreset, StrikerSpec, prepared};
 use bumpsim_planar::uncertainty::Planar;
 use bumpsim_planar::{PlanarCar as CorePlanarCar, Settings, Side, Striker, simulate};
 use pyo3::prelude::*;
@@ -93,8 +93,8 @@ impl PlanarCar {
 }
 
 impl StrikerArgs {
-    /// The striker these arguments ask for (bumpsim-planar's presets).
-    fn striker(&self) -> PyResult<Striker> {
+    /// The striker these arguments ask for and its preset (bumpsim-planar's presets).
+    fn striker(&self) -> PyResult<(Striker, Option<&'static PlanarPreset>)> {
         let side: Side = self
             .side
             .parse()
@@ -109,7 +109,7 @@ impl StrikerArgs {
             pendulum: self.pendulum,
             speed: self.speed,
         };
-        Ok(spec.striker().map_err(input)?.0)
+        spec.striker().map_err(input)
     }
 }
 
@@ -153,7 +153,9 @@ fn planar_impact(
         pendulum,
         speed,
     };
-    let striker = spec.striker()?;
+    let (striker, preset) = spec.striker()?;
+    // a preset runs with the tyres its protocol prescribes, as in the CLI
+    let car = prepared(&car, preset);
     let arguments = Arguments {
         path: uncertainty,
         samples,
@@ -267,7 +269,7 @@ impl PlanarImpact {
     ) -> PyResult<Self> {
         let data: PlanarImpactState = decode(state, "PlanarImpact")?;
         Ok(PlanarImpact {
-            striker: data.spec.striker()?,
+            striker: data.spec.striker()?.0,
             data,
             predicted: Predicted::of_state(predicted)?,
         })

@@ -217,6 +217,27 @@ def test_planar_impact_equals_the_cli_json(run, tmp_path, root, cli_args, kwargs
     assert result.result["peak_force"] == json.loads(out.read_text())["result"]["peak_force"]
 
 
+def test_a_preset_runs_with_its_tyre_law_as_in_the_cli(run, tmp_path, root):
+    """A car whose file says locked wheels, struck by a preset whose protocol
+    prescribes free-rolling ones: Python ran the file's sliding tyres, the
+    CLI the preset's rolling ones."""
+    text = (root / "examples" / "planar" / "saloon.toml").read_text()
+    sliding = text.replace("front = { mu_longitudinal", 'front = { law = "sliding", mu_longitudinal')
+    sliding = sliding.replace("rear = { mu_longitudinal", 'rear = { law = "sliding", mu_longitudinal')
+    assert sliding.count('law = "sliding"') == 2
+    car_path = tmp_path / "sliding.toml"
+    car_path.write_text(sliding)
+    out = tmp_path / "preset.json"
+    run("planar", "--car", car_path, "--case", "rcar-structural-front", "--json", out)
+    car = bumpsim.PlanarCar.from_file(car_path)
+    result = bumpsim.planar_impact(car, case="rcar-structural-front")
+    numbers_equal(json.loads(result.to_json()), json.loads(out.read_text()))
+    # the preset's rolling tyres replaced the file's: the bundled rolling car's run
+    rolling = bumpsim.PlanarCar.from_file(root / "examples" / "planar" / "saloon.toml")
+    same = bumpsim.planar_impact(rolling, case="rcar-structural-front")
+    numbers_equal(same.result, result.result)
+
+
 def test_planar_errors(root):
     car = bumpsim.PlanarCar.from_file(root / "examples" / "planar" / "saloon.toml")
     with pytest.raises(bumpsim.InputError, match="known presets"):
