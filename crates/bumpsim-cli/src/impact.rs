@@ -224,7 +224,7 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
     print!("{summary}");
     if let Some(path) = &args.files.json {
         let json = bumpsim_impact::document::ImpactSummary::of(scenario, &result);
-        let json = uncertain::with(serde_json::to_value(json)?, &predicted);
+        let json = uncertain::with(serde_json::to_value(json)?, &predicted)?;
         write(path, &serde_json::to_string_pretty(&json)?)?;
     }
     if let Some(path) = &args.files.csv {

@@ -57,13 +57,13 @@ pub struct UncertaintyArgs {
     /// Draws of the car's parameters (10 to 100000).
     #[arg(
         long,
-        default_value_t = 1000,
+        default_value_t = bumpsim_impact::propagation::DEFAULT_SAMPLES,
         requires = "uncertainty",
         allow_negative_numbers = true
     )]
     pub samples: usize,
     /// Seed of the draws (and of the Sobol indices' bootstrap).
-    #[arg(long, default_value_t = 1, requires = "uncertainty")]
+    #[arg(long, default_value_t = bumpsim_impact::propagation::DEFAULT_SEED, requires = "uncertainty")]
     pub seed: u64,
     /// Level of the equal-tailed intervals and bands, in (0, 1).
     #[arg(
@@ -82,7 +82,7 @@ pub struct UncertaintyArgs {
     #[arg(
         long,
         value_name = "N",
-        default_value_t = 256,
+        default_value_t = bumpsim_impact::propagation::DEFAULT_SOBOL_BASE,
         requires = "sobol",
         allow_negative_numbers = true
     )]
@@ -285,7 +285,7 @@ pub fn run_impact(request: &ImpactRequest) -> Result<()> {
             striker: &striker,
             result: &result,
         };
-        let document = crate::planar::uncertain::with(serde_json::to_value(document)?, &predicted);
+        let document = crate::planar::uncertain::with(serde_json::to_value(document)?, &predicted)?;
         write(path, &serde_json::to_string_pretty(&document)?)?;
     }
     if let Some(path) = &request.files.csv {
@@ -487,31 +487,38 @@ fn forward_predictions<'a>(
 /// report page.
 pub(crate) mod uncertain {
     use super::UncertaintyArgs;
-    use anyhow::{Context, Result};
-    use bumpsim_impact::prediction::{self, HistoryBand, Outputs, Sampling, SobolSettings};
-    use bumpsim_impact::uncertainty::{Model, Uncertainty, UncertaintyError};
+    use anyhow::Result;
+    use bumpsim_impact::prediction::{self, HistoryBand, Outputs, Sampling};
+    use bumpsim_impact::propagation::{Propagated, Propagation, PropagationError};
+    use bumpsim_impact::uncertainty::{Model, UncertaintyError};
     use bumpsim_report::plot::{Band, LinePlot, Series, Style};
     use serde_json::Value;
 
     /// The checked options and the uncertainty they read.
-    pub(crate) struct Uncertain<'a, M: Model> {
-        args: &'a UncertaintyArgs,
-        uncertainty: Uncertainty<M>,
-        sampling: Sampling,
+    pub(crate) struct Uncertain<M: Model> {
+        propagation: Propagation<M>,
     }
 
-    /// What a prediction gave: its lines, its JSON and its bands.
-    pub(crate) struct Predicted {
+    /// What a prediction gave: its lines and the library's results.
+    pub(crate) struct Predicted<M> {
         /// The lines printed after the summary.
         pub text: String,
-        prediction: Value,
-        sensitivity: Option<Value>,
-        bands: Vec<HistoryBand>,
+        out: Propagated<M>,
     }
 
-    impl<'a, M: Model> Uncertain<'a, M> {
+    /// The flag a refusal of the propagation names.
+    fn flag(error: &PropagationError) -> String {
+        match error {
+            PropagationError::Sampling(UncertaintyError::Value { key, .. }) => format!("--{key}"),
+            PropagationError::Sampling(_) => "--samples".into(),
+            PropagationError::Sobol(_) => "--sobol, --sobol-base".into(),
+            _ => "--uncertainty".into(),
+        }
+    }
+
+    impl<M: Model> Uncertain<M> {
         /// The options of `args` checked against `car` (`None`: no --uncertainty).
-        pub(crate) fn read(args: &'a UncertaintyArgs, car: &M::Car) -> Result<Option<Self>> {
+        pub(crate) fn read(args: &UncertaintyArgs, car: &M::Car) -> Result<Option<Self>> {
             let Some(path) = &args.uncertainty else {
                 return Ok(None);
             };
@@ -520,25 +527,12 @@ pub(crate) mod uncertain {
                 seed: args.seed,
                 level: args.level,
             };
-            sampling.check().map_err(|e| {
-                let flag = match &e {
-                    UncertaintyError::Value { key, .. } => format!("--{key}"),
-                    _ => "--samples".into(),
-                };
+            let base = args.sobol.then_some(args.sobol_base);
+            let propagation = Propagation::read(path, sampling, base, car).map_err(|e| {
+                let flag = flag(&e);
                 anyhow::Error::new(e).context(flag)
             })?;
-            let uncertainty = Uncertainty::<M>::read(path).context("--uncertainty")?;
-            uncertainty.check(car).context("--uncertainty")?;
-            if args.sobol {
-                let parameters = uncertainty.names.len();
-                let checked = prediction::check_base(args.sobol_base, parameters);
-                checked.context("--sobol, --sobol-base")?;
-            }
-            Ok(Some(Uncertain {
-                args,
-                uncertainty,
-                sampling,
-            }))
+            Ok(Some(Uncertain { propagation }))
         }
 
         /// The prediction of `run` over the uncertainty (and the Sobol
@@ -548,41 +542,28 @@ pub(crate) mod uncertain {
             car: &M::Car,
             nominal: &R,
             run: &(dyn Fn(&M::Car) -> Option<R> + Sync),
-        ) -> Result<Predicted> {
-            let u = &self.uncertainty;
-            let p = prediction::predict(car, nominal, u, &self.sampling, run)?;
-            let mut text = prediction::lines(&p);
-            let mut sensitivity = None;
-            if self.args.sobol {
-                let settings = SobolSettings::new(self.args.sobol_base, self.args.seed);
-                let s = prediction::sensitivity(car, nominal, u, &settings, run)?;
-                text += &prediction::sensitivity_lines(&s);
-                sensitivity = Some(serde_json::to_value(&s)?);
-            }
-            Ok(Predicted {
-                text,
-                prediction: serde_json::to_value(&p)?,
-                sensitivity,
-                bands: p.bands,
-            })
+        ) -> Result<Predicted<M>> {
+            let out = self.propagation.run(car, nominal, run)?;
+            let text = out.lines();
+            Ok(Predicted { text, out })
         }
     }
 
     /// `document` with the prediction and the Sobol indices beside its results.
-    pub(crate) fn with(mut document: Value, predicted: &Option<Predicted>) -> Value {
-        if let (Some(p), Some(fields)) = (predicted, document.as_object_mut()) {
-            fields.insert("prediction".into(), p.prediction.clone());
-            if let Some(s) = &p.sensitivity {
-                fields.insert("sensitivity".into(), s.clone());
-            }
+    pub(crate) fn with<M: Model>(
+        mut document: Value,
+        predicted: &Option<Predicted<M>>,
+    ) -> Result<Value> {
+        if let Some(p) = predicted {
+            p.out.insert_into(&mut document)?;
         }
-        document
+        Ok(document)
     }
 
     /// The report's summary: the results, then their distributions and
     /// where the bands are (the uncertainty page was not reachable from the
     /// report's index).
-    pub(crate) fn summary(summary: &str, predicted: &Option<Predicted>) -> String {
+    pub(crate) fn summary<M>(summary: &str, predicted: &Option<Predicted<M>>) -> String {
         match predicted {
             Some(p) => format!(
                 "{summary}\n{}\nBands of the histories over the draws: uncertainty.html in this folder.\n",
@@ -594,8 +575,8 @@ pub(crate) mod uncertain {
 
     /// Adds the report's uncertainty page (`uncertainty.html`: the lines and
     /// each history's band around the nominal curve) and its figures.
-    pub(crate) fn pages(
-        predicted: &Option<Predicted>,
+    pub(crate) fn pages<M>(
+        predicted: &Option<Predicted<M>>,
         title: &str,
         figures: &mut Vec<(String, String)>,
     ) -> Result<()> {
@@ -606,7 +587,7 @@ pub(crate) mod uncertain {
             bumpsim_report::html::Html::new(&format!("{title}: over the car's uncertainty"));
         page.heading("Results as distributions");
         page.preformatted(&p.text);
-        for b in &p.bands {
+        for b in &p.out.prediction.bands {
             let svg = band_plot(b).svg()?;
             let caption = format!(
                 "{}: nominal (solid) and the {} band over the draws (shaded, pointwise)",

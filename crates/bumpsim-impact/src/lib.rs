@@ -4,6 +4,8 @@
 //! - [`impact`]: impactor or barrier impacts on MSD cars by central differences;
 //! - [`document`]: the JSON every front end writes of an impact;
 //! - [`presets`]: named load cases with their sources;
+//! - [`uncertainty`], [`prediction`], [`propagation`]: a car's uncertainty carried
+//!   through its run (spreads, bands, Sobol' indices);
 //! - [`reduction`]: the reduced point mass of paper A and its sweeps;
 //! - [`synth`]: synthetic pendulum test series with a measurement chain;
 //! - [`text`]: summaries and CSV of results.
@@ -29,6 +31,7 @@ pub mod document;
 pub mod impact;
 pub mod prediction;
 pub mod presets;
+pub mod propagation;
 pub mod reduction;
 pub mod synth;
 pub mod text;

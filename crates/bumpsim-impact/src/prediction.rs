@@ -289,6 +289,20 @@ pub struct Sensitivity {
     pub settings: Settings,
     /// Per scalar output: its name, unit and indices.
     pub outputs: Vec<OutputIndices>,
+    /// The outputs that take one value over every Sobol' point (an elastic
+    /// bumper's remaining compression): they have no indices.
+    pub constant: Vec<ConstantOutput>,
+}
+
+/// A scalar output that does not vary over the parameters.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ConstantOutput {
+    /// The output.
+    pub name: String,
+    /// Its SI unit.
+    pub unit: &'static str,
+    /// Its value, in that unit.
+    pub value: f64,
 }
 
 /// One scalar output's indices.
@@ -339,25 +353,35 @@ pub fn sensitivity<M: Model, R: Outputs>(
         count: scalars.len(),
         cache: Mutex::new(HashMap::new()),
     };
-    let outputs = scalars.iter().enumerate().map(|(k, s)| {
+    let (mut outputs, mut constant) = (Vec::new(), Vec::new());
+    for (k, s) in scalars.iter().enumerate() {
         let output = |x: &[f64]| impacts.values(x).get(k).copied().unwrap_or(f64::NAN);
-        let source = |source| SensitivityError::Sobol {
-            output: s.name.into(),
-            source,
-        };
-        Ok(OutputIndices {
-            name: s.name.into(),
-            unit: s.dimension.si_symbol(),
-            indices: indices(&inputs, &output, settings).map_err(source)?,
-        })
-    });
+        let (name, unit) = (s.name.to_string(), s.dimension.si_symbol());
+        match indices(&inputs, &output, settings) {
+            Ok(indices) => outputs.push(OutputIndices {
+                name,
+                unit,
+                indices,
+            }),
+            Err(SobolError::Constant { value }) => {
+                constant.push(ConstantOutput { name, unit, value })
+            }
+            Err(source) => {
+                return Err(SensitivityError::Sobol {
+                    output: name,
+                    source,
+                });
+            }
+        }
+    }
     Ok(Sensitivity {
         inputs: uncertainty.names.clone(),
         log_sd: uncertainty.log_sd.clone(),
         laws: uncertainty.laws.clone(),
         correlation_ignored: uncertainty.correlated(),
         settings: *settings,
-        outputs: outputs.collect::<Result<_, SensitivityError>>()?,
+        outputs,
+        constant,
     })
 }
 
@@ -523,6 +547,13 @@ pub fn sensitivity_lines(s: &Sensitivity) -> String {
                 pm(i.total[k], i.total_conf[k])
             );
         }
+    }
+    for c in &s.constant {
+        let value = bumpsim_core::units::short(c.value);
+        out += &format!(
+            "  {:<30} the same at every point: {value} {} (no index)\n",
+            c.name, c.unit
+        );
     }
     out
 }

@@ -1,20 +1,21 @@
 //! The car's uncertainty carried through `impact` and `planar_impact`
-//! (issue 39, item 4), the calls `bumpsim impact|planar --uncertainty`
-//! makes: the keyword arguments checked by the library before anything
-//! runs (`Sampling::check`, `Uncertainty::check`, `prediction::check_base`),
-//! then `bumpsim_impact::prediction::predict` (each scalar output's median
-//! and interval, each history's pointwise band over seeded draws of the
-//! car) and, with `sobol=True`, `prediction::sensitivity` (Saltelli's
-//! first-order and total Sobol' indices with bootstrap intervals), with the
-//! GIL released. The results are the JSON objects `--json` writes under
-//! `prediction` and `sensitivity`.
+//! (issue 39, item 4), the call `bumpsim impact|planar --uncertainty`
+//! makes: `bumpsim_impact::propagation::Propagation` checks the keyword
+//! arguments before anything runs, then predicts (each scalar output's
+//! median and interval, each history's pointwise band over seeded draws of
+//! the car) and, with `sobol=True`, gives Saltelli's first-order and total
+//! Sobol' indices, with the GIL released. The results are the JSON objects
+//! `--json` writes under `prediction` and `sensitivity`.
 
 use crate::arrays::array1;
 use crate::convert::{count_or, from_json, seed};
 use crate::errors::{invalid, message};
 use crate::frames;
-use bumpsim_impact::prediction::{self, Outputs, Sampling, SobolSettings};
-use bumpsim_impact::uncertainty::{Model, Uncertainty, UncertaintyError};
+use bumpsim_impact::prediction::{self, Outputs, Sampling};
+use bumpsim_impact::propagation::{
+    DEFAULT_SAMPLES, DEFAULT_SEED, DEFAULT_SOBOL_BASE, Propagation, PropagationError,
+};
+use bumpsim_impact::uncertainty::{Model, UncertaintyError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use serde::{Deserialize, Serialize};
@@ -26,30 +27,21 @@ use std::path::PathBuf;
 pub struct Arguments<'a, 'py> {
     /// `uncertainty`: the file, or None.
     pub path: Option<PathBuf>,
-    /// `samples`: draws (None: [`SAMPLES`]).
+    /// `samples`: draws (None: `DEFAULT_SAMPLES`).
     pub samples: Option<&'a Bound<'py, PyAny>>,
-    /// `seed` (None: [`SEED`]).
+    /// `seed` (None: `DEFAULT_SEED`).
     pub seed: Option<&'a Bound<'py, PyAny>>,
     /// `level` of the intervals and bands.
     pub level: f64,
     /// `sobol`: also the indices.
     pub sobol: bool,
-    /// `sobol_base`: base samples N (None: [`SOBOL_BASE`]).
+    /// `sobol_base`: base samples N (None: `DEFAULT_SOBOL_BASE`).
     pub sobol_base: Option<&'a Bound<'py, PyAny>>,
 }
 
-/// The CLI's defaults of `--samples`, `--seed` and `--sobol-base`.
-pub const SAMPLES: usize = 1000;
-/// See [`SAMPLES`].
-pub const SEED: u64 = 1;
-/// See [`SAMPLES`].
-pub const SOBOL_BASE: usize = 256;
-
 /// The checked arguments and the uncertainty they read.
 pub struct Uncertain<M: Model> {
-    uncertainty: Uncertainty<M>,
-    sampling: Sampling,
-    sobol: Option<SobolSettings>,
+    propagation: Propagation<M>,
 }
 
 /// What a prediction gave: the JSON objects of `--json`.
@@ -61,56 +53,49 @@ pub struct Predicted {
     pub sensitivity: Option<Value>,
 }
 
-/// An error of the uncertainty's checks as an `InputError` naming the
-/// keyword argument (`samples`, `level`, `sobol_base`; `other` otherwise).
-fn named(error: &UncertaintyError, other: &str) -> PyErr {
+/// A refusal of the propagation as an `InputError` naming the keyword
+/// argument (`samples`, `level`, `sobol_base` or `uncertainty`).
+fn named(error: &PropagationError) -> PyErr {
     let text = message(error);
     match error {
-        UncertaintyError::Value { key, .. } if key == "samples" || key == "level" => invalid(text),
-        UncertaintyError::Value { key, .. } if key == "base" => {
-            invalid(format!("sobol_base: {text}"))
-        }
-        _ => invalid(format!("{other}: {text}")),
+        PropagationError::Sampling(UncertaintyError::Value { .. }) => invalid(text),
+        PropagationError::Sampling(_) => invalid(format!("samples: {text}")),
+        PropagationError::Sobol(_) => invalid(format!("sobol_base: {text}")),
+        _ => invalid(format!("uncertainty: {text}")),
     }
 }
 
 impl<M: Model> Uncertain<M> {
     /// The arguments checked against `car` (`None`: no `uncertainty`).
     pub fn read(arguments: &Arguments, car: &M::Car) -> PyResult<Option<Self>> {
+        // a value given is used or refused, as the CLI's `requires`
+        let given = [
+            ("samples", arguments.samples.is_some()),
+            ("seed", arguments.seed.is_some()),
+            ("sobol", arguments.sobol),
+            ("sobol_base", arguments.sobol_base.is_some()),
+        ];
         let Some(path) = &arguments.path else {
-            if arguments.sobol {
-                return Err(invalid("sobol: needs uncertainty (a file)"));
-            }
-            return Ok(None);
+            return match given.iter().find(|(_, set)| *set) {
+                Some((name, _)) => Err(invalid(format!("{name}: needs uncertainty (a file)"))),
+                None => Ok(None),
+            };
         };
+        if arguments.sobol_base.is_some() && !arguments.sobol {
+            return Err(invalid("sobol_base: needs sobol=True"));
+        }
         let limits = prediction::SAMPLES;
         let sampling = Sampling {
             samples: count_or(arguments.samples, "samples", limits[0], limits[1])?
-                .unwrap_or(SAMPLES),
-            seed: seed(arguments.seed)?.unwrap_or(SEED),
+                .unwrap_or(DEFAULT_SAMPLES),
+            seed: seed(arguments.seed)?.unwrap_or(DEFAULT_SEED),
             level: arguments.level,
         };
-        sampling.check().map_err(|e| named(&e, "samples"))?;
-        let uncertainty = Uncertainty::<M>::read(path).map_err(|e| named(&e, "uncertainty"))?;
-        uncertainty
-            .check(car)
-            .map_err(|e| named(&e, "uncertainty"))?;
-        let sobol = match arguments.sobol {
-            true => {
-                let [low, high] = prediction::SOBOL_BASE;
-                let base = count_or(arguments.sobol_base, "sobol_base", low, high)?;
-                let base = base.unwrap_or(SOBOL_BASE);
-                prediction::check_base(base, uncertainty.names.len())
-                    .map_err(|e| named(&e, "sobol"))?;
-                Some(SobolSettings::new(base, sampling.seed))
-            }
-            false => None,
-        };
-        Ok(Some(Uncertain {
-            uncertainty,
-            sampling,
-            sobol,
-        }))
+        let [low, high] = prediction::SOBOL_BASE;
+        let base = count_or(arguments.sobol_base, "sobol_base", low, high)?;
+        let base = arguments.sobol.then(|| base.unwrap_or(DEFAULT_SOBOL_BASE));
+        let propagation = Propagation::read(path, sampling, base, car).map_err(|e| named(&e))?;
+        Ok(Some(Uncertain { propagation }))
     }
 
     /// The prediction of `run` over the uncertainty (and the Sobol indices
@@ -122,28 +107,14 @@ impl<M: Model> Uncertain<M> {
         nominal: &R,
         run: &(dyn Fn(&M::Car) -> Option<R> + Sync),
     ) -> PyResult<Predicted> {
-        py.detach(|| self.predicted(car, nominal, run))
-            .map_err(|e| invalid(format!("uncertainty: {}", message(&*e))))
-    }
-
-    fn predicted<R: Outputs>(
-        &self,
-        car: &M::Car,
-        nominal: &R,
-        run: &(dyn Fn(&M::Car) -> Option<R> + Sync),
-    ) -> Result<Predicted, Box<dyn std::error::Error + Send + Sync>> {
-        let u = &self.uncertainty;
-        let p = prediction::predict(car, nominal, u, &self.sampling, run)?;
-        let sensitivity = match &self.sobol {
-            Some(settings) => {
-                let s = prediction::sensitivity(car, nominal, u, settings, run)?;
-                Some(serde_json::to_value(&s)?)
-            }
-            None => None,
-        };
+        let out = py
+            .detach(|| self.propagation.run(car, nominal, run))
+            .map_err(|e| invalid(format!("uncertainty: {}", message(&e))))?;
+        let json = |e: serde_json::Error| invalid(e.to_string());
+        let sensitivity = out.sensitivity.as_ref().map(serde_json::to_value);
         Ok(Predicted {
-            prediction: serde_json::to_value(&p)?,
-            sensitivity,
+            prediction: serde_json::to_value(&out.prediction).map_err(json)?,
+            sensitivity: sensitivity.transpose().map_err(json)?,
         })
     }
 }

@@ -108,13 +108,20 @@ def test_bad_options_name_the_argument(chain, kwargs, name):
 
 
 def test_unknown_parameter_and_sobol_alone_are_refused(chain, tmp_path, root):
-    car, bumper, _ = chain
+    car, bumper, spreads = chain
     wrong = tmp_path / "wrong.toml"
     wrong.write_text('[uncertainty]\n"springs[9]" = 0.1\n')
     with pytest.raises(bumpsim.InputError, match=r"^uncertainty: .*springs\[9\]"):
         bumpsim.impact(car, bumper, case="thesis-600", uncertainty=wrong)
     with pytest.raises(bumpsim.InputError, match="^sobol: needs uncertainty"):
         bumpsim.impact(car, bumper, case="thesis-600", sobol=True)
+    # a value given is used or refused (it was ignored without uncertainty)
+    for extra in ({"samples": 200}, {"seed": 3}, {"sobol_base": 64}):
+        name = next(iter(extra))
+        with pytest.raises(bumpsim.InputError, match=f"^{name}: needs uncertainty"):
+            bumpsim.impact(car, bumper, case="thesis-600", **extra)
+    with pytest.raises(bumpsim.InputError, match="^sobol_base: needs sobol=True"):
+        bumpsim.impact(car, bumper, case="thesis-600", uncertainty=spreads, sobol_base=64)
     saloon = root / "examples" / "planar" / "saloon.toml"
     with pytest.raises(bumpsim.InputError, match=r"^uncertainty: .*springs\[9\]"):
         bumpsim.planar_impact(saloon, angle=30.0, speed=2.5, uncertainty=wrong)
