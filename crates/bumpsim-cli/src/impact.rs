@@ -203,7 +203,11 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
         bumper: bumper.clone(),
     };
     let uncertain = Uncertain::<Chain>::read(&args.uncertain, &chain)?;
-    let result = simulate(&car.model, &bumper, scenario, &Options::default())?;
+    let result =
+        simulate(&car.model, &bumper, scenario, &Options::default()).with_context(|| {
+            let (car, bumper) = (args.car.display(), bumper_path.display());
+            format!("--car {car} with --bumper {bumper}")
+        })?;
     let warnings = result.warnings();
     warnings.iter().for_each(|w| crate::warn(w));
     let run = |c: &ChainCar| simulate(&c.model, &c.bumper, scenario, &Options::default()).ok();

@@ -56,6 +56,20 @@ pub enum ImpactError {
     /// The load case is not said, or names no preset.
     #[error("{0}")]
     LoadCase(String),
+    /// The run would need more than [`MAX_STEPS`] integration steps.
+    #[error(
+        "the car and bumper need a stable step of {} for the {} run: {steps:.3e} steps, at most 5e7 (limit MAX_STEPS); its lightest mass on its stiffest spring, damper or bumper slope governs",
+        bumpsim_core::units::format_quantity(*step, bumpsim_core::units::Dimension::Time),
+        bumpsim_core::units::format_quantity(*duration, bumpsim_core::units::Dimension::Time)
+    )]
+    TooManySteps {
+        /// The stable step, s.
+        step: f64,
+        /// The simulated duration, s.
+        duration: f64,
+        /// Steps the run would take.
+        steps: f64,
+    },
     /// The bodies never touched or never separated within the duration.
     #[error(
         "no contact ended within {duration} s (the simulated duration): the impact does not separate; check the bumper's unloading curve and the speed"
@@ -329,12 +343,14 @@ pub fn simulate(
     };
     let step = chain.step(bumper, options);
     let steps = options.duration / step;
-    check(
-        "integration steps (duration / stable step)",
-        steps,
-        "at most 5e7 (limit MAX_STEPS): a mass too light or a bumper or spring too stiff for the duration",
-        steps.is_finite() && steps <= MAX_STEPS as f64,
-    )?;
+    if !(steps.is_finite() && steps <= MAX_STEPS as f64) {
+        let duration = options.duration;
+        return Err(ImpactError::TooManySteps {
+            step,
+            duration,
+            steps,
+        });
+    }
     integrate(&chain, bumper, speed, step, options)
 }
 

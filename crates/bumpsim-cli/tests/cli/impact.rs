@@ -289,6 +289,19 @@ fn impacts_outside_the_physical_ranges_are_refused() {
     }
 }
 
+/// A car too stiff for its light front mass: the refusal names the car and
+/// bumper files and the stable step (it said "integration steps (duration /
+/// stable step) = 71780000.0" and neither file).
+#[test]
+fn a_car_too_stiff_to_integrate_is_named_with_its_step() {
+    let car = root().join("examples/simulate/car-3dof.toml");
+    let bumper = root().join("examples/impact/bumper-a.toml");
+    let run = impact(&car, &bumper, &["--barrier", "--speed", "2"]);
+    assert_user_error(&run, "car-3dof.toml with --bumper");
+    assert_user_error(&run, "need a stable step of");
+    assert_user_error(&run, "at most 5e7 (limit MAX_STEPS)");
+}
+
 /// Issue 34: a bumper curve point with three values lost its third without
 /// a word; it is refused with the file, line and what a point holds.
 #[test]
