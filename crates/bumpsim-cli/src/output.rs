@@ -88,6 +88,33 @@ pub(crate) struct ResultFiles {
     pub report: Option<std::path::PathBuf>,
 }
 
+/// Argument ids that name one input file, never a folder, with what the
+/// file is: a folder given there is refused as such before the outputs are
+/// checked (`identify . --json r.json` said "refusing to write inside the
+/// input folder ." instead of naming the study).
+const FILE_IDS: [(&str, &str); 10] = [
+    ("study", "the study (a TOML file)"),
+    ("pipeline", "the pipeline (a TOML file)"),
+    ("series", "the series (a TOML file)"),
+    ("car", "the car (a TOML or JSON file)"),
+    ("bumper", "the bumper (a TOML file)"),
+    ("model", "the model (a TOML or JSON file)"),
+    ("uncertainty", "the uncertainty (a TOML or JSON file)"),
+    ("force", "the force (a CSV file)"),
+    ("data", "the data (a CSV file)"),
+    ("campaign", "the campaign (a TOML file)"),
+];
+
+/// Refuses a folder given where one input file is read (see [`FILE_IDS`]).
+fn refuse_folder(id: &str, path: &Path) -> Result<()> {
+    match FILE_IDS.iter().find(|(known, _)| *known == id) {
+        Some((_, what)) if path.is_dir() => {
+            anyhow::bail!("{}: is a folder; {what} must be a file", path.display())
+        }
+        _ => Ok(()),
+    }
+}
+
 /// Refuses an input that is a device, pipe or socket (`/dev/zero` never
 /// ends, a pipe without a writer blocks forever): no command reads a stream.
 fn refuse_stream(path: &Path) -> Result<()> {
@@ -121,6 +148,7 @@ pub(crate) fn guard_paths(matches: &clap::ArgMatches) -> Result<()> {
     for id in ids.iter().filter(|id| !OUTPUT_IDS.contains(&id.as_str())) {
         for path in values(id).iter().filter(|p| p.exists()) {
             refuse_stream(path)?;
+            refuse_folder(id, path)?;
             // a study, series or pipeline names further inputs (tests, cars)
             match campaign {
                 true => bumpsim_io::output::register_input(path),
@@ -133,7 +161,10 @@ pub(crate) fn guard_paths(matches: &clap::ArgMatches) -> Result<()> {
             let shape = output_shape(&command, id);
             bumpsim_io::output::claim_output_as(&path, &option_name(id), shape)?;
             match shape {
-                Shape::Folder(_) | Shape::Checked => bumpsim_io::output::check_folder(&path)?,
+                Shape::Folder(kinds) => {
+                    bumpsim_io::output::check_folder_of(&path, &option_name(id), kinds)?
+                }
+                Shape::Checked => bumpsim_io::output::check_folder(&path)?,
                 Shape::File => bumpsim_io::output::check_file(&path)?,
             }
         }

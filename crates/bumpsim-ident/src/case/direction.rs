@@ -43,6 +43,30 @@ impl LoadCase {
     /// assert!(case.direction_warning().unwrap().contains("scale = -1.0"));
     /// ```
     pub fn direction_warning(&self) -> Option<String> {
+        self.direction_warning_given(&[])
+    }
+
+    /// [`LoadCase::direction_warning`] for a case whose study already gives
+    /// the channels `flipped` (their selectors) a negative scale: the fix it
+    /// names is then to remove that scale, not to add one.
+    ///
+    /// ```
+    /// use bumpsim_ident::LoadCase;
+    /// let n = 101;
+    /// let case = LoadCase {
+    ///     name: "flat".into(),
+    ///     start: 0.0,
+    ///     step: 1e-4,
+    ///     force: vec![1e3; n],
+    ///     measured: (0..n).map(|i| -0.5 * (i as f64 * 1e-4).powi(2) * 10.0).collect(),
+    ///     output_dof: 1,
+    ///     initial_velocity: 0.0,
+    ///     window: (0, n - 1),
+    /// };
+    /// let warning = case.direction_warning_given(&["10SIME*ACXP".into()]).unwrap();
+    /// assert!(warning.contains("remove"), "{warning}");
+    /// ```
+    pub fn direction_warning_given(&self, flipped: &[String]) -> Option<String> {
         let (first, last) = self.window;
         if last < first + 4 || last >= self.measured.len() || self.step <= 0.0 {
             return None;
@@ -62,17 +86,31 @@ impl LoadCase {
         }
         let agreement = weighted / (force * largest.abs());
         let impulse: f64 = self.force[first..=last].iter().sum::<f64>() * self.step;
-        (agreement < -CLEAR).then(|| self.against(largest, impulse))
+        (agreement < -CLEAR).then(|| self.against(largest, impulse, flipped))
     }
 
-    fn against(&self, change: f64, impulse: f64) -> String {
+    fn against(&self, change: f64, impulse: f64, flipped: &[String]) -> String {
         format!(
-            "case '{}': the measured motion goes against the force: its largest velocity change in the fit window is {} m/s while the force's impulse is {} N·s. bumpsim takes force, accelerations and displacements positive in the direction the force pushes the car; an accelerometer in the vehicle frame (X forward) reads negative in a front impact: give its channel scale = -1.0 (docs/your-own-tests.md, signs)",
+            "case '{}': the measured motion goes against the force: its largest velocity change in the fit window is {} m/s while the force's impulse is {} N·s. bumpsim takes force, accelerations and displacements positive in the direction the force pushes the car; {} (docs/your-own-tests.md, signs)",
             self.name,
             format_number(change, 4),
-            format_number(impulse, 4)
+            format_number(impulse, 4),
+            sign_fix(flipped)
         )
     }
+}
+
+/// The fix a sign warning names: add a negative scale, or remove the one
+/// the study already gives (a channel turned that needed no turning).
+fn sign_fix(flipped: &[String]) -> String {
+    if flipped.is_empty() {
+        return "an accelerometer in the vehicle frame (X forward) reads negative in a front impact: give its channel scale = -1.0".into();
+    }
+    let names: Vec<String> = flipped.iter().map(|c| format!("'{c}'")).collect();
+    format!(
+        "the study already gives {} a negative scale: remove it (the channel may already read along the force)",
+        names.join(" and ")
+    )
 }
 
 #[cfg(test)]
@@ -122,5 +160,17 @@ mod tests {
             // Δv = ∫F dt / m = (2/π · 1e4 N · 20 ms) / 100 kg ≈ 1.27 m/s
             assert!(w.contains("is -1.27"), "{w}");
         }
+    }
+
+    #[test]
+    fn a_channel_already_turned_is_named_with_the_fix_to_remove_its_scale() {
+        let w = case(-1.0, 0.0)
+            .direction_warning_given(&["10SIME*ACXP".into()])
+            .expect("a warning");
+        assert!(
+            w.contains("already gives '10SIME*ACXP' a negative scale: remove it"),
+            "{w}"
+        );
+        assert!(!w.contains("give its channel scale = -1.0"), "{w}");
     }
 }

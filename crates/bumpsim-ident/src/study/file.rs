@@ -147,6 +147,19 @@ pub struct CaseSpec {
     pub window: Option<WindowSpec>,
 }
 
+impl CaseSpec {
+    /// The selectors of the case's channels given a negative scale (turned
+    /// in sign by the study), for the fix a sign warning names.
+    pub fn turned_channels(&self) -> Vec<String> {
+        std::iter::once(&self.force)
+            .chain(&self.acceleration)
+            .chain(&self.displacement)
+            .filter(|r| r.scale < 0.0)
+            .map(|r| r.channel.clone())
+            .collect()
+    }
+}
+
 /// A study file.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]

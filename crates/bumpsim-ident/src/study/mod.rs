@@ -233,7 +233,9 @@ impl Study {
                 notes: Vec::new(),
             };
             let case = ctx.load_case(dof)?;
-            loaded.warnings.extend(case.direction_warning());
+            loaded
+                .warnings
+                .extend(case.direction_warning_given(&spec.turned_channels()));
             loaded.cases.push(case);
             loaded.notes.append(&mut ctx.notes);
         }

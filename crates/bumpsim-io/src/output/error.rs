@@ -21,6 +21,11 @@ pub enum OutputError {
         /// The input folder.
         folder: PathBuf,
     },
+    /// A folder output that holds an input of the kinds of file it writes
+    /// itself (an `index.html` in a report folder): the output could
+    /// replace the input.
+    #[error("{0}")]
+    InputOfItsKind(Box<Clash>),
     /// Two outputs of one command at the same path: the second would
     /// silently replace the first.
     #[error("{output}: refusing to write two outputs to one path (also given as {first})")]
@@ -117,6 +122,35 @@ impl std::fmt::Display for Nesting {
             self.output.display(),
             named(&self.outer_option, "the output"),
             self.reason
+        )
+    }
+}
+
+/// A folder output holding an input of its own kinds of file
+/// ([`OutputError::InputOfItsKind`]).
+#[derive(Debug)]
+pub struct Clash {
+    /// The folder output.
+    pub output: PathBuf,
+    /// The option that names it (`--report`).
+    pub option: String,
+    /// The input inside it.
+    pub input: PathBuf,
+    /// The kinds of file the output writes (`html, svg, png`).
+    pub kinds: String,
+}
+
+impl std::fmt::Display for Clash {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let option = named(&self.option, "the output");
+        write!(
+            f,
+            "{option} {}: refusing to write: the folder holds the input {}, and this output \
+             writes {} files of its own there (it could replace the input); give {option} \
+             another folder or move the input",
+            self.output.display(),
+            self.input.display(),
+            self.kinds
         )
     }
 }

@@ -105,6 +105,11 @@ pub fn check_folder(path: &Path) -> Result<(), OutputError> {
     guard().check_folder(path)
 }
 
+/// [`Outputs::check_folder_of`] with the process-wide guard.
+pub fn check_folder_of(path: &Path, option: &str, kinds: &[&str]) -> Result<(), OutputError> {
+    guard().check_folder_of(path, option, kinds)
+}
+
 /// [`Outputs::write_file`] with the process-wide guard; inside a
 /// transaction ([`begin`]) the file waits complete for [`finish`].
 pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {

@@ -2,7 +2,7 @@
 //! device + inode) and the outputs claimed so far, and the checks that keep
 //! an output off them.
 
-use super::error::{Nesting, OutputError};
+use super::error::{Clash, Nesting, OutputError};
 use std::path::{Component, Path, PathBuf};
 
 /// At most this many entries of an input folder are compared by inode.
@@ -177,6 +177,38 @@ impl Outputs {
         }
         holds_working_folder(path)?;
         self.check_against_inputs(path)
+    }
+
+    /// [`Outputs::check_folder`] of a folder output named by `option` whose
+    /// own files are of the kinds `kinds` (a report: `html`, `svg`, `png`):
+    /// an input of one of those kinds inside it is refused first, naming the
+    /// clash (`--report .` beside an input `index.html`: the report writes
+    /// its own `index.html` there; the refusal named only the folder).
+    pub fn check_folder_of(
+        &self,
+        path: &Path,
+        option: &str,
+        kinds: &[&str],
+    ) -> Result<(), OutputError> {
+        let target = canonical(path);
+        let of_kind = |p: &Path| {
+            p.extension()
+                .and_then(|e| e.to_str())
+                .is_some_and(|e| kinds.iter().any(|k| k.eq_ignore_ascii_case(e)))
+        };
+        let clash = self
+            .inputs
+            .iter()
+            .find(|i| !i.folder && i.canonical.starts_with(&target) && of_kind(&i.canonical));
+        match clash {
+            Some(input) => Err(OutputError::InputOfItsKind(Box::new(Clash {
+                output: path.into(),
+                option: option.into(),
+                input: input.given.clone(),
+                kinds: kinds.join(", "),
+            }))),
+            None => self.check_folder(path),
+        }
     }
 
     fn check_against_inputs(&self, path: &Path) -> Result<(), OutputError> {

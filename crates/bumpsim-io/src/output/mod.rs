@@ -79,11 +79,11 @@ mod write;
 #[cfg(test)]
 mod tests;
 
-pub use error::{Nesting, OutputError};
+pub use error::{Clash, Nesting, OutputError};
 pub use global::{
-    abandon, begin, check_file, check_folder, check_pending, claim_output, claim_output_as, commit,
-    finish, register_input, register_input_with_references, stage_folder, write_file,
-    write_rendered,
+    abandon, begin, check_file, check_folder, check_folder_of, check_pending, claim_output,
+    claim_output_as, commit, finish, register_input, register_input_with_references, stage_folder,
+    write_file, write_rendered,
 };
 pub use guard::{FOLDER_SCAN_LIMIT, Outputs, Shape};
 pub use references::INPUT_KEYS;
