@@ -17,6 +17,7 @@ use crate::search::starting_points;
 use crate::settings::check;
 use crate::stats::uncertainty;
 use bumpsim_core::model::{ParameterKind, parameter_count, parameter_kind};
+use bumpsim_core::units::format_number;
 use bumpsim_estimate::lm::LeastSquares;
 use bumpsim_estimate::multistart::{self, Search, Searched};
 use bumpsim_estimate::observer::Observer;
@@ -26,7 +27,8 @@ use std::time::Instant;
 pub use crate::error::IdentError;
 pub use crate::result::{CaseFit, Identification};
 pub use crate::settings::{
-    MAX_DOF, MAX_STARTS, Settings, uniform_bounds, usable_bounds, usable_fixed,
+    MAX_DOF, MAX_STARTS, SHEET_MASS_TOLERANCE, Settings, uniform_bounds, usable_bounds,
+    usable_fixed,
 };
 pub use bumpsim_estimate::bounds::Bounds;
 pub use bumpsim_estimate::multistart::Starts;
@@ -92,7 +94,29 @@ pub fn identify(
     if let Some(r) = &result.reduction {
         result.warnings.push(r.statement.clone());
     }
+    result
+        .warnings
+        .extend(sheet_mass_warning(&result, settings));
     Ok(result)
+}
+
+/// A warning when the identified masses sum to more than
+/// [`SHEET_MASS_TOLERANCE`] off the test sheet's mass.
+fn sheet_mass_warning(result: &Identification, settings: &Settings) -> Option<String> {
+    let sheet = settings.sheet_mass?;
+    let total: f64 = result.model.masses().iter().sum();
+    let off = (total - sheet) / sheet;
+    (off.abs() > SHEET_MASS_TOLERANCE).then(|| {
+        format!(
+            "the identified masses sum to {} kg, {} % off the test sheet's {} kg (more than {} %): \
+             the tests do not determine the car's whole mass; bound or fix the heaviest mass, \
+             or compare another DOF",
+            format_number(total, 5),
+            format_number(100.0 * off, 3),
+            format_number(sheet, 5),
+            100.0 * SHEET_MASS_TOLERANCE
+        )
+    })
 }
 
 /// [`identify`] without looking for a reduced model.

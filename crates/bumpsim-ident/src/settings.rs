@@ -89,7 +89,14 @@ pub struct Settings {
     pub split_links: Vec<Option<usize>>,
     /// Solver tolerances.
     pub solver: lm::Settings,
+    /// The test sheet's mass of the car, kg: an identified model whose
+    /// masses sum to more than [`SHEET_MASS_TOLERANCE`] off it is warned of.
+    pub sheet_mass: Option<f64>,
 }
+
+/// The identified masses' sum may differ from the test sheet's mass by this
+/// share before a warning (the planar identification's tolerance).
+pub const SHEET_MASS_TOLERANCE: f64 = 0.02;
 
 impl Settings {
     /// Thesis defaults: every parameter ≥ 1, `starts` starts, seed 1.
@@ -103,6 +110,7 @@ impl Settings {
             seeds: Vec::new(),
             split_links: Vec::new(),
             solver: lm::Settings::default(),
+            sheet_mass: None,
         }
     }
 

@@ -31,6 +31,7 @@
 //! ```
 
 pub mod car;
+pub mod mass;
 pub mod numbers;
 pub mod output;
 pub mod response;

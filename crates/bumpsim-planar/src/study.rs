@@ -44,6 +44,7 @@ use crate::presets::StrikerFields;
 use bumpsim_core::channel::Channel;
 use bumpsim_core::names::check_names;
 use bumpsim_core::units::{Dimension, parse_quantity};
+use bumpsim_io::mass::{EXPECTED, sheet_mass};
 use bumpsim_io::speed::{SpeedError, speed_value};
 use bumpsim_signal::loader::{ChannelSource, Loader};
 use bumpsim_signal::process::Resampling;
@@ -172,7 +173,7 @@ impl PlanarStudy {
             .model
             .mass
             .as_ref()
-            .map(|m| test_sheet_mass(m).ok_or_else(|| error(format!("[model] mass = {m}: expected a positive mass in kg or text such as \"1350 kg\""))))
+            .map(|m| sheet_mass(m).ok_or_else(|| error(format!("[model] mass = {m}: {EXPECTED}"))))
             .transpose()?;
         let setup = Setup {
             starts: file.model.starts.unwrap_or(defaults.starts),
@@ -288,17 +289,6 @@ fn time_zero(value: Option<&toml::Value>) -> Option<TimeZero> {
         _ => return None,
     };
     at.is_finite().then_some(TimeZero::At(at))
-}
-
-/// The test sheet's mass: kg, or text with a unit (`"1350 kg"`), positive.
-fn test_sheet_mass(value: &toml::Value) -> Option<f64> {
-    let mass = match value {
-        toml::Value::Float(v) => *v,
-        toml::Value::Integer(v) => *v as f64,
-        toml::Value::String(s) => parse_quantity(s, Dimension::Mass).ok()?,
-        _ => return None,
-    };
-    (mass.is_finite() && mass > 0.0).then_some(mass)
 }
 
 fn load_case(

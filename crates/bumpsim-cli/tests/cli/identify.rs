@@ -7,6 +7,7 @@ use std::process::{Command, Output};
 use crate::util::*;
 
 mod posterior;
+mod sheet;
 
 fn identify_example() -> PathBuf {
     root().join("examples/identify/study.toml")

@@ -60,6 +60,10 @@ pub struct ModelSpec {
     /// Discretisation: only `zoh` (exact, with exact sensitivities).
     #[serde(default = "zoh")]
     pub method: String,
+    /// The test sheet's mass of the car (kg, or text such as `"1719 kg"`):
+    /// the identified masses' sum is checked against it
+    /// ([`crate::Settings::sheet_mass`]).
+    pub mass: Option<toml::Value>,
     /// The user's start.
     pub start: Option<ParameterSet>,
 }

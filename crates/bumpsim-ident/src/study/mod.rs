@@ -75,6 +75,7 @@ impl Study {
         study.check_tables().map_err(value)?;
         study.check_dofs().map_err(value)?;
         study.check_case_values().map_err(value)?;
+        study.sheet_mass()?;
         Ok(study)
     }
 
@@ -108,8 +109,23 @@ impl Study {
             starts: self.model.starts,
             seed: self.model.seed,
             start: self.start(dof)?,
+            sheet_mass: self.sheet_mass()?,
             ..Settings::new(dof, 1)
         })
+    }
+
+    /// The test sheet's mass, kg (`[model] mass`), if given.
+    pub fn sheet_mass(&self) -> Result<Option<f64>, StudyError> {
+        let Some(value) = &self.model.mass else {
+            return Ok(None);
+        };
+        match bumpsim_io::mass::sheet_mass(value) {
+            Some(mass) => Ok(Some(mass)),
+            None => Err(StudyError::File {
+                path: self.path.clone(),
+                message: format!("[model] mass = {value}: {}", bumpsim_io::mass::EXPECTED),
+            }),
+        }
     }
 
     /// Refuses `bounds` and `fixed` entries that name no parameter of a
