@@ -1,7 +1,10 @@
-//! The campaign cases of issue 34: a response named like a factor, an
-//! attempt count at the end of its type, and a damaged point folder; each
-//! refused with an error naming the key or the state record it is about.
-//! (A journal cut at a record's end: `state::tests` in the campaign crate.)
+//! The campaign cases of issues 34 and 48: a response named like a
+//! factor, an attempt count at the end of its type, a damaged point
+//! folder, two point files of one name; each refused with an error naming
+//! the key or the state record it is about. A journal of a smaller design
+//! refused by `run`, and a header written without its padding that
+//! survives a killed controller. (A journal cut at a record's end:
+//! `state::tests` in the campaign crate.)
 
 use super::{Fake, NO_FAULTS, path};
 use crate::util::{assert_user_error, bumpsim};
@@ -126,4 +129,39 @@ fn a_response_listed_twice_for_the_regression_is_refused_naming_the_key() {
     assert_user_error(&out, "regress.responses");
     assert_user_error(&out, "'y_max' is listed twice");
     assert!(!folder.exists(), "nothing written");
+}
+
+/// A file listed twice in `template.files`, or a copied file named like
+/// the deck, was written twice into each point folder: init failed with
+/// "cannot write: File exists (os error 17)" from its hidden staging
+/// folder (issue 48, item 13); refused naming the campaign file, both
+/// keys and the name, with no campaign folder.
+#[test]
+fn two_point_files_of_one_name_are_refused_naming_the_campaign_file_and_both_keys() {
+    let fake = Fake::new("campaign-case-files-twice", 0, &NO_FAULTS, "local");
+    let campaign = std::fs::read_to_string(fake.dir.join("campaign.toml")).unwrap();
+    std::fs::write(fake.dir.join("extra.csv"), "x\n").unwrap();
+    std::fs::write(fake.dir.join("in.csv"), "x\n").unwrap();
+    let cases = [
+        (
+            "twice",
+            "files = [\"extra.csv\", \"./extra.csv\"]",
+            "twice.toml: template.files[2]: 'extra.csv' is also the file of template.files[1]",
+        ),
+        (
+            "deck",
+            "files = [\"in.csv\"]",
+            "deck.toml: template.files[1]: 'in.csv' is also the file of template.deck",
+        ),
+    ];
+    for (name, files, needle) in cases {
+        let file = fake.dir.join(format!("{name}.toml"));
+        let deck = format!("deck = \"in.csv\"\n{files}");
+        std::fs::write(&file, campaign.replace("deck = \"in.csv\"", &deck)).unwrap();
+        let folder = fake.dir.join(name);
+        let out = bumpsim(&["campaign", "init", path(&file), "-o", path(&folder)]);
+        assert_user_error(&out, needle);
+        assert_user_error(&out, "each file of a point folder needs a name of its own");
+        assert!(!folder.exists(), "{name}: nothing written");
+    }
 }
