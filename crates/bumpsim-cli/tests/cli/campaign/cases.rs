@@ -6,8 +6,8 @@
 //! survives a killed controller. (A journal cut at a record's end:
 //! `state::tests` in the campaign crate.)
 
-use super::{Fake, NO_FAULTS, path};
-use crate::util::{assert_user_error, bumpsim};
+use super::{Fake, NO_FAULTS, path, run};
+use crate::util::{assert_contains, assert_user_error, bumpsim, text};
 use bumpsim_campaign::journal::frame;
 
 /// A response named like a factor or derived quantity would give the
@@ -164,4 +164,34 @@ fn two_point_files_of_one_name_are_refused_naming_the_campaign_file_and_both_key
         assert_user_error(&out, "each file of a point folder needs a name of its own");
         assert!(!folder.exists(), "{name}: nothing written");
     }
+}
+
+/// A journal holding the 4 points of a smaller design (its header and
+/// records valid) in a campaign of 5: `run` ended "4 points done, 0
+/// failed" and never ran point 5 (issue 48, item 7). Refused, naming both
+/// counts and `repair`, which rebuilds the state of the 5 points.
+#[test]
+fn a_journal_of_a_smaller_design_is_refused_by_run() {
+    let fake = Fake::new("campaign-case-smaller", 1, &NO_FAULTS, "local");
+    let c = fake.campaign();
+    let journal = c.join("state.journal");
+    let text_now = std::fs::read_to_string(&journal).unwrap();
+    let lines: Vec<&str> = text_now.lines().collect();
+    assert_eq!(lines.len(), 1 + 5);
+    let head = lines[0].split_once(' ').unwrap().1;
+    let smaller = head.replace("\"points\":5,\"records\":5", "\"points\":4,\"records\":4");
+    assert_ne!(smaller, head);
+    let kept: String = lines[1..5].iter().map(|l| format!("{l}\n")).collect();
+    std::fs::write(&journal, frame(&smaller) + &kept).unwrap();
+    let out = bumpsim(&["campaign", "run", path(&c)]);
+    assert_user_error(
+        &out,
+        "state.journal: the campaign's state is damaged: it holds 4 points (header, line 1) where the design of campaign.toml has 5",
+    );
+    assert_user_error(&out, "`bumpsim campaign repair");
+    assert_eq!(fake.invocations("0001"), 0, "nothing ran");
+    run(&["campaign", "repair", path(&c)]);
+    let out = run(&["campaign", "run", path(&c)]);
+    assert_contains(&text(&out.stdout), &["5 points done, 0 failed"]);
+    assert_eq!(fake.invocations("0005"), 1);
 }
