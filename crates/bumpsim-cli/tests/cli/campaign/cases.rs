@@ -6,7 +6,7 @@
 //! survives a killed controller. (A journal cut at a record's end:
 //! `state::tests` in the campaign crate.)
 
-use super::{Fake, NO_FAULTS, path, run};
+use super::{Fake, Faults, NO_FAULTS, path, run};
 use crate::util::{assert_contains, assert_user_error, bumpsim, text};
 use bumpsim_campaign::journal::frame;
 
@@ -194,4 +194,36 @@ fn a_journal_of_a_smaller_design_is_refused_by_run() {
     let out = run(&["campaign", "run", path(&c)]);
     assert_contains(&text(&out.stdout), &["5 points done, 0 failed"]);
     assert_eq!(fake.invocations("0005"), 1);
+}
+
+/// A valid header written without its space padding (checksum right) was
+/// rewritten in place at its padded length over the first point's
+/// record: after a kill -9 of the controller, `status` said "line 2: not
+/// a journal record" until a `repair` (issue 48, item 6). The journal is
+/// compacted into a padded one instead; the killed campaign resumes.
+#[test]
+fn a_header_without_its_padding_survives_a_killed_controller() {
+    let faults = Faults {
+        sleep: 0.4,
+        ..NO_FAULTS
+    };
+    let fake = Fake::new("campaign-case-unpadded", 4, &faults, "local");
+    let c = fake.campaign();
+    let journal = c.join("state.journal");
+    let text_now = std::fs::read_to_string(&journal).unwrap();
+    let (head, rest) = text_now.split_once('\n').unwrap();
+    let json = head.split_once(' ').unwrap().1.replace(' ', "");
+    std::fs::write(&journal, frame(&json) + rest).unwrap();
+    run(&["campaign", "status", path(&c)]);
+    let mut controller = fake.spawn_run(&[]);
+    fake.wait_done(2);
+    controller.kill().unwrap(); // SIGKILL
+    controller.wait().unwrap();
+    let out = run(&["campaign", "status", path(&c)]);
+    assert_contains(&text(&out.stdout), &["done"]);
+    let out = run(&["campaign", "run", path(&c)]);
+    assert_contains(&text(&out.stdout), &["8 points done, 0 failed"]);
+    for r in 1..=8 {
+        assert_eq!(fake.invocations(&format!("{r:04}")), 1, "run {r}");
+    }
 }
