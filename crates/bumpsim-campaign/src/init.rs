@@ -104,19 +104,10 @@ pub fn points(spec: &Spec, path: &Path) -> Result<(Vec<PointValues>, Option<usiz
 
 /// The input files of a point (hashed): the deck, copied files, the parameter include.
 pub fn input_files(spec: &Spec) -> Vec<String> {
-    let mut files = vec![spec.deck_name()];
-    files.extend(
-        spec.template
-            .files
-            .iter()
-            .filter_map(|f| f.file_name())
-            .map(|n| n.to_string_lossy().into_owned()),
-    );
-    files.extend(spec.template.lsdyna_parameters.clone());
-    if spec.identify.is_some() {
-        files.push(crate::identify::STUDY_FILE.into());
-    }
-    files
+    spec.point_files()
+        .into_iter()
+        .map(|(name, _)| name)
+        .collect()
 }
 
 /// Checks that the solver's program can be found (relative paths from `dir`).

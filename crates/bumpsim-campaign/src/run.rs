@@ -63,10 +63,30 @@ pub fn run(dir: &Path, options: &RunOptions) -> Result<RunSummary> {
     let mut executor = executor(&spec, dir, options)?;
     let _lock = Lock::acquire(dir)?;
     let (mut state, mut journal) = Journal::open(dir)?;
+    check_design(dir, &spec, &state)?;
     let mut changed = prepare(dir, &spec, &mut state, options.retry_failed)?;
     changed.extend(adopt(dir, &mut state, executor.as_mut())?);
     journal.record(&mut state, &changed)?;
     Controller::new(dir, &spec, state, journal, executor.as_mut()).drive(options.progress)
+}
+
+/// Refuses a state of another number of points than the design of the
+/// campaign file (a journal of a smaller design would leave the points
+/// beyond it never run, and the run end as if complete).
+fn check_design(dir: &Path, spec: &Spec, state: &State) -> Result<()> {
+    let (design, _) = crate::init::points(spec, &dir.join(SPEC_FILE))?;
+    if design.len() == state.points.len() {
+        return Ok(());
+    }
+    Err(CampaignError::Damaged {
+        path: dir.join(crate::state::STATE_FILE),
+        dir: dir.into(),
+        problem: format!(
+            "it holds {} points (header, line 1) where the design of {SPEC_FILE} has {} (the state of another design?)",
+            state.points.len(),
+            design.len()
+        ),
+    })
 }
 
 /// Resets points whose inputs changed since they ran (hash mismatch) and,

@@ -288,8 +288,49 @@ impl Spec {
             }
             Some(_) => {}
         }
+        self.validate_point_files(path)?;
         self.validate_responses(path)?;
         self.validate_executor(path)
+    }
+
+    /// The files of each point folder (name, the key that names it), in
+    /// the order of [`crate::init::input_files`]: the rendered deck, the
+    /// copied files, the LS-DYNA parameter include, the rendered study.
+    pub fn point_files(&self) -> Vec<(String, String)> {
+        let deck_key = match self.template.deck {
+            Some(_) => "template.deck",
+            None => "template.file",
+        };
+        let mut files = vec![(self.deck_name(), deck_key.to_string())];
+        for (i, f) in self.template.files.iter().enumerate() {
+            if let Some(name) = f.file_name() {
+                let key = format!("template.files[{}]", i + 1);
+                files.push((name.to_string_lossy().into_owned(), key));
+            }
+        }
+        if let Some(name) = &self.template.lsdyna_parameters {
+            files.push((name.clone(), "template.lsdyna_parameters".into()));
+        }
+        if self.identify.is_some() {
+            let name = crate::identify::STUDY_FILE.to_string();
+            files.push((name, "identify (its rendered study)".into()));
+        }
+        files
+    }
+
+    /// Two files of one name in a point folder (a file listed twice, a
+    /// deck named like a copied file) would be written twice: refused.
+    fn validate_point_files(&self, path: &Path) -> Result<()> {
+        let files = self.point_files();
+        for (i, (name, key)) in files.iter().enumerate() {
+            if let Some((_, first)) = files[..i].iter().find(|(n, _)| n == name) {
+                let message = format!(
+                    "'{name}' is also the file of {first}: each file of a point folder needs a name of its own"
+                );
+                return Err(Spec::invalid(path, key, message));
+            }
+        }
+        Ok(())
     }
 
     /// Refuses designs beyond [`MAX_POINTS`] before any is made: the runs
@@ -719,5 +760,38 @@ command = ["true"]
         let err =
             Spec::parse(&BASE.replace("\"full\"", "\"fuller\""), Path::new("c.toml")).unwrap_err();
         assert!(err.to_string().contains("design.kind"), "{err}");
+    }
+
+    /// A file listed twice, or a deck named like a copied file, was
+    /// written twice into each point folder: "cannot write: File exists"
+    /// from the staging folder (issue 48, item 13).
+    #[test]
+    fn two_point_files_of_one_name_are_refused_naming_both_keys() {
+        let spec = parse("").unwrap();
+        assert_eq!(spec.point_files()[0].0, "deck.inp");
+        let twice = BASE.replace(
+            "file = \"deck.inp\"",
+            "file = \"deck.inp\"\nfiles = [\"a/force.inc\", \"b/force.inc\"]",
+        );
+        let err = Spec::parse(&twice, Path::new("c.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains(
+                "c.toml: template.files[2]: 'force.inc' is also the file of template.files[1]"
+            ),
+            "{err}"
+        );
+        let deck = BASE.replace(
+            "file = \"deck.inp\"",
+            "file = \"deck.tmpl\"\ndeck = \"force.inc\"\nfiles = [\"force.inc\"]",
+        );
+        let err = Spec::parse(&deck, Path::new("c.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("template.files[1]: 'force.inc' is also the file of template.deck"),
+            "{err}"
+        );
     }
 }

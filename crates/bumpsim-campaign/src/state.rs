@@ -256,6 +256,8 @@ struct Loaded {
     records: usize,
     /// Whether the header counts its records (is rewritten in place).
     counted: bool,
+    /// Bytes of the header's line (its newline included).
+    head: usize,
 }
 
 /// The state of `dir` and what its journal holds.
@@ -299,6 +301,7 @@ fn load(dir: &Path) -> Result<(State, Loaded)> {
         whole: journal.whole,
         records,
         counted: header.records.is_some(),
+        head: text.find('\n').map_or(0, |n| n + 1),
     };
     Ok((state, loaded))
 }
@@ -369,6 +372,13 @@ pub fn salvage(dir: &Path) -> BTreeMap<usize, Point> {
 /// cut off by a crash. A journal cut at a record's end, which its framing
 /// cannot tell from a whole one, then falls short of its count and is
 /// refused, unless the cut takes exactly the last round's records.
+///
+/// The header is rewritten in place only at the length it has in the
+/// file, which a kill -9 or a power loss cannot tear across lines (one
+/// write of about 100 bytes at offset 0, in one disk sector); a header of
+/// any other length (a valid one written without its padding, by hand or
+/// by another tool) would spill over the records after it, so the
+/// journal is compacted instead (temporary file, `fsync`, rename).
 #[derive(Debug)]
 pub struct Journal {
     appender: Appender,
@@ -378,13 +388,15 @@ pub struct Journal {
     /// The header's campaign and points.
     campaign: String,
     points: usize,
+    /// Bytes of the header's line in the file.
+    head: usize,
 }
 
 impl Journal {
     /// Reads the state of `dir` and opens its journal for appending (an
     /// unfinished last line, never acted upon, is cut off); a journal
-    /// whose header does not count its records (an earlier bumpsim's) is
-    /// compacted into one that does.
+    /// whose header does not count its records (an earlier bumpsim's), or
+    /// is not of its padded length, is compacted into one that does.
     pub fn open(dir: &Path) -> Result<(State, Journal)> {
         let (mut state, loaded) = load(dir)?;
         let path = dir.join(STATE_FILE);
@@ -395,8 +407,10 @@ impl Journal {
             records: loaded.records,
             campaign: state.campaign.clone(),
             points: state.points.len(),
+            head: loaded.head,
         };
-        if !loaded.counted {
+        let padded = Header::line(&state.campaign, state.points.len(), 0, dir)?.len();
+        if !loaded.counted || loaded.head != padded {
             journal.compact(&mut state)?;
         }
         Ok((state, journal))
@@ -416,6 +430,10 @@ impl Journal {
         }
         let path = self.appender.path().to_path_buf();
         let head = Header::line(&self.campaign, self.points, self.records, &dir)?;
+        if head.len() != self.head {
+            // never shift the records after the header: a new snapshot
+            return self.compact(state);
+        }
         self.appender
             .overwrite_head(head.as_bytes())
             .and_then(|()| self.appender.append(&text))
@@ -439,6 +457,7 @@ impl Journal {
         self.appender = Appender::open(&path, whole).map_err(|e| journal_error(&path, e))?;
         self.appended = 0;
         self.records = state.points.len();
+        self.head = Header::line(&self.campaign, self.points, 0, &dir)?.len();
         Ok(())
     }
 
@@ -621,6 +640,42 @@ mod tests {
         assert!(err.contains("10 point records"), "{err}");
         std::fs::write(&path, cut(1 + 9 + 2)).unwrap();
         assert_eq!(State::read(&dir).unwrap().counts(), [7, 0, 0, 2, 0]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A valid header written without its padding (its checksum right)
+    /// was rewritten in place at its padded length, over the start of the
+    /// first point's record: "line 2: not a journal record" (issue 48,
+    /// item 6). It is compacted into a padded one before any append.
+    #[test]
+    fn a_header_without_its_padding_is_never_rewritten_over_a_record() {
+        let dir = folder("unpadded");
+        nine(&dir);
+        let path = dir.join(STATE_FILE);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let (head, rest) = text.split_once('\n').unwrap();
+        let json = head.split_once(' ').unwrap().1.replace(' ', "");
+        std::fs::write(&path, frame(&json) + rest).unwrap();
+        assert_eq!(
+            State::read(&dir).unwrap().points.len(),
+            9,
+            "a valid journal"
+        );
+        let (mut state, mut journal) = Journal::open(&dir).unwrap();
+        state.points[0].status = Status::Running;
+        journal.record(&mut state, &[0]).unwrap();
+        let now = std::fs::read_to_string(&path).unwrap();
+        let r = records(&now);
+        assert!(r.damage.is_empty(), "{:?}\n{now}", r.damage);
+        assert_eq!(now.split_once('\n').unwrap().0, head, "padded again");
+        assert_eq!(State::read(&dir).unwrap().counts(), [8, 0, 1, 0, 0]);
+        // and a header of any other length is never written over a record
+        journal.head += 1;
+        state.points[1].status = Status::Running;
+        journal.record(&mut state, &[1]).unwrap();
+        let now = std::fs::read_to_string(&path).unwrap();
+        assert!(records(&now).damage.is_empty(), "{now}");
+        assert_eq!(State::read(&dir).unwrap().counts(), [7, 0, 2, 0, 0]);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
