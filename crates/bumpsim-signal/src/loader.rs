@@ -430,7 +430,7 @@ mod tests {
             texts,
             [
                 "'1-AC-SIME*': left out channel 3 (1-AC-SIMEXX-XG): marked invalid",
-                "'1-AC-SIME*': left out 1 matching channel whose file is missing or unusable"
+                "'1-AC-SIME*': left out channel 4 (1-AC-SIMEYY-XG) whose file is missing or unusable"
             ]
         );
         assert!(matches!(&mean.notes[1], Note::Absent { numbers, .. } if numbers == &[4]));
