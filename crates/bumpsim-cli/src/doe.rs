@@ -191,6 +191,7 @@ fn make_design(args: &DesignArgs) -> Result<()> {
         println!("resolution {resolution}");
     }
     let order = design.order(args.randomise, seed);
+    design.check_levels(&factors)?;
     write(&args.output, &design.to_csv(&factors, &order))?;
     println!(
         "{} runs of {} factors",

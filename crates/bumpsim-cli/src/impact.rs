@@ -4,6 +4,7 @@
 use crate::planar::uncertain::{self, Uncertain};
 use crate::{Folder, write};
 use anyhow::{Context, Result, bail};
+use bumpsim_core::names::printable;
 use bumpsim_core::units::{Dimension, format_number, format_quantity, parse_quantity};
 use bumpsim_impact::bumper::Bumper;
 use bumpsim_impact::impact::{Options, Scenario, simulate};
@@ -224,7 +225,11 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
         .name
         .clone()
         .unwrap_or_else(|| args.car.display().to_string());
-    println!("{name} with {}: {label}", bumper_path.display());
+    println!(
+        "{} with {}: {label}",
+        printable(&name),
+        bumper_path.display()
+    );
     print!("{summary}");
     if let Some(path) = &args.files.json {
         let json = bumpsim_impact::document::ImpactSummary::of(scenario, &result);

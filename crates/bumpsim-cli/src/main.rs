@@ -27,6 +27,7 @@ mod verdict;
 
 pub(crate) use output::{Folder, write};
 
+use bumpsim_core::names::printable_lines;
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -102,7 +103,7 @@ pub(crate) fn count_warnings(n: usize) {
 /// Prints a warning about a result (stderr) and counts it for `--strict`.
 pub(crate) fn warn(message: &str) {
     WARNINGS.fetch_add(1, Ordering::Relaxed);
-    eprintln!("warning: {message}");
+    eprintln!("warning: {}", printable_lines(message));
 }
 
 /// Every option that takes a value takes a negative number too: `--speed -1`
@@ -207,6 +208,8 @@ fn abandon_on_panic() {
 
 /// The error and its causes, each cause once: library errors often already
 /// quote their source in their own message.
+/// The error and its causes in one text, each file's words printable
+/// ([`printable_lines`]: no escape sequence from a file reaches the terminal).
 fn message(error: &anyhow::Error) -> String {
     let mut text = error.to_string();
     for cause in error.chain().skip(1) {
@@ -215,5 +218,5 @@ fn message(error: &anyhow::Error) -> String {
             text = format!("{text}: {cause}");
         }
     }
-    text
+    printable_lines(&text)
 }

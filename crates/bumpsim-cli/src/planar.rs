@@ -3,6 +3,7 @@
 
 use crate::{Folder, write};
 use anyhow::{Context, Result, bail};
+use bumpsim_core::names::printable;
 use bumpsim_core::units::{Dimension, parse_quantity};
 use bumpsim_planar::car::TyreLaw;
 use bumpsim_planar::document::{IdentificationDocument, ImpactDocument};
@@ -274,7 +275,7 @@ pub fn run_impact(request: &ImpactRequest) -> Result<()> {
         "{name}: {} ({label})",
         bumpsim_planar::text::striker(&striker)
     );
-    println!("{heading}");
+    println!("{}", printable(&heading));
     if let Some((_, why)) = &law {
         println!("  tyres: {why}");
     }

@@ -4,7 +4,9 @@
 use crate::simulate::refuse_overwriting_inputs;
 use anyhow::{Context, Result, bail};
 use bumpsim_core::channel::Channel;
-use bumpsim_core::units::{Dimension, Unit, choose_units, format_in, format_quantity};
+use bumpsim_core::units::{
+    Dimension, Unit, choose_units, format_in, format_quantity, format_time_at,
+};
 use bumpsim_io::isomme;
 use bumpsim_io::table::{OutputColumn, write_table_in};
 use bumpsim_io::test_data::{TestData, Validity};
@@ -24,6 +26,7 @@ macro_rules! outln {
 /// Prints long output; a closed pipe (`| head`) ends it quietly.
 fn emit(text: &str) -> Result<()> {
     use std::io::Write;
+    let text = bumpsim_core::names::printable_lines(text);
     match std::io::stdout().lock().write_all(text.as_bytes()) {
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
         other => other.context("cannot print the results to standard output"),
@@ -261,7 +264,8 @@ fn run_export(args: &ExportArgs) -> Result<()> {
         CombineArg::Sum => Combine::Sum,
     });
     let result = export(&test, &args.channels, &export_steps(args)?, how)
-        .map_err(|e| name_cfc(e.into(), args.cfc))?;
+        .map_err(|e| name_cfc(e.into(), args.cfc))
+        .map_err(|e| name_resample(e, args.resample))?;
     report(&result);
     write_csv(&args.output, &result.signals, &output_units(&args.unit)?)?;
     if let Some(folder) = &args.iso_mme {
@@ -288,6 +292,25 @@ fn name_cfc(error: anyhow::Error, class: Option<f64>) -> anyhow::Error {
             error.context(format!("--cfc {class}"))
         }
         Some(class) if about_class => error.context(format!("--cfc {class:e}")),
+        _ => error,
+    }
+}
+
+/// Names `--resample` in an error of the resampling step (the library
+/// names the step, `resample`, as a pipeline file spells it).
+fn name_resample(error: anyhow::Error, step: Option<f64>) -> anyhow::Error {
+    use bumpsim_signal::process::ProcessError;
+    let about_step = error.chain().any(|cause| {
+        matches!(
+            cause.downcast_ref::<ProcessError>(),
+            Some(ProcessError::Range {
+                step: "resample",
+                ..
+            })
+        )
+    });
+    match step {
+        Some(step) if about_step => error.context(format!("--resample {step}")),
         _ => error,
     }
 }
@@ -338,10 +361,16 @@ fn process(args: &ProcessArgs) -> Result<()> {
     report(&result);
     let mut balance = String::new();
     if let Some(b) = &result.balance {
+        let force = pipeline.balance.as_ref().map(|spec| spec.force.as_str());
+        let force = result
+            .signals
+            .iter()
+            .find(|s| Some(s.code.as_str()) == force);
+        let step = force.map_or(f64::NAN, |s| s.series.step());
         balance = format!(
-            "momentum balance over {} .. {}: impulse {} vs momentum change {} of {} ({:+.2} %)",
-            format_quantity(b.window[0], Dimension::Time),
-            format_quantity(b.window[1], Dimension::Time),
+            "momentum balance over {} .. {}: impulse {} vs momentum change {} of {} (relative difference {:+.2} %)",
+            format_time_at(b.window[0], step),
+            format_time_at(b.window[1], step),
             newton_seconds(b.impulse),
             newton_seconds(b.momentum_change),
             format_in(b.mass, unit("kg")),
@@ -394,7 +423,7 @@ fn summary(result: &PipelineResult) -> String {
             "{}: peak {} at {}; min {}, max {}",
             s.code,
             format_quantity(e.peak, s.dimension),
-            format_quantity(e.peak_time, Dimension::Time),
+            format_time_at(e.peak_time, s.series.step()),
             format_quantity(e.min, s.dimension),
             format_quantity(e.max, s.dimension)
         );
@@ -432,7 +461,7 @@ fn write_csv(path: &Path, signals: &[Channel], units: &[Unit]) -> Result<()> {
     };
     crate::output::wrote(format!(
         "wrote {}: {} rows × {} signals, {note}",
-        path.display(),
+        bumpsim_core::files::shown_path(path).display(),
         time.len(),
         signals.len()
     ));

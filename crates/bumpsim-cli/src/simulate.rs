@@ -3,6 +3,7 @@
 
 use anyhow::{Context, Result, bail};
 use bumpsim_core::discrete::{Method, Substeps};
+use bumpsim_core::names::printable;
 use bumpsim_core::series::UniformSeries;
 use bumpsim_core::simulate::{InitialState, Simulator};
 use bumpsim_core::units::{Dimension, format_number, format_quantity, parse_quantity};
@@ -152,7 +153,7 @@ fn print_summary(
 ) {
     let q = format_quantity;
     let model = &car.model;
-    let name = car.name.as_deref().unwrap_or("(unnamed)");
+    let name = printable(car.name.as_deref().unwrap_or("(unnamed)"));
     println!(
         "car       {name}: {} DOF, total mass {}",
         model.dof(),

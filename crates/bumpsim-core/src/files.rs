@@ -126,6 +126,36 @@ pub fn read_text(path: &Path) -> Result<String, ReadError> {
     })
 }
 
+/// `path` as it is shown to the user: `.` parts dropped and each
+/// `folder/..` pair folded (`examples/x/../../out/a.csv` is `out/a.csv`), a
+/// leading `..` kept. Only for printing: through a symbolic link `..` may
+/// lead elsewhere, so files are opened by the path as given.
+///
+/// ```
+/// use bumpsim_core::files::shown_path;
+/// use std::path::Path;
+/// assert_eq!(shown_path(Path::new("examples/x/../../out/a.csv")), Path::new("out/a.csv"));
+/// assert_eq!(shown_path(Path::new("./a/../../b")), Path::new("../b"));
+/// ```
+pub fn shown_path(path: &Path) -> PathBuf {
+    use std::path::Component;
+    let mut parts: Vec<Component> = Vec::new();
+    for part in path.components() {
+        match part {
+            Component::CurDir => {}
+            Component::ParentDir if matches!(parts.last(), Some(Component::Normal(_))) => {
+                parts.pop();
+            }
+            Component::ParentDir if matches!(parts.last(), Some(Component::RootDir)) => {}
+            other => parts.push(other),
+        }
+    }
+    match parts.is_empty() {
+        true => PathBuf::from("."),
+        false => parts.iter().collect(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

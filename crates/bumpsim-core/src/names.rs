@@ -198,6 +198,44 @@ pub fn escaped(text: &str) -> String {
         .collect()
 }
 
+/// `text` as it may be printed to a terminal: each [`invisible`]
+/// character (escape, bell, direction marks...) spelled as [`escaped`]
+/// spells it (`\u001B`), the rest as it is, so that a name read from a
+/// file cannot send escape sequences to the user's terminal. Line breaks
+/// are kept by [`printable_lines`].
+///
+/// ```
+/// use bumpsim_core::names::printable;
+/// assert_eq!(printable("a\u{7}b\u{1b}[31m \"x\""), r#"a\u0007b\u001B[31m "x""#);
+/// ```
+pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.chars().any(invisible) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let shown = text
+        .chars()
+        .map(|c| match c {
+            c if invisible(c) => escaped(&c.to_string()),
+            c => c.to_string(),
+        })
+        .collect();
+    std::borrow::Cow::Owned(shown)
+}
+
+/// A whole message or table for the terminal: each line through
+/// [`printable`], the line breaks kept.
+///
+/// ```
+/// use bumpsim_core::names::printable_lines;
+/// assert_eq!(printable_lines("car a\u{1b}[2J\nnext\n"), "car a\\u001B[2J\nnext\n");
+/// ```
+pub fn printable_lines(text: &str) -> String {
+    text.split('\n')
+        .map(printable)
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 /// Why a user's name cannot name a folder ([`check_folder_name`]).
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("\"{}\": {reason} (it names a folder)", escaped(.name))]

@@ -410,6 +410,31 @@ pub fn format_in(value_si: f64, unit: Unit) -> String {
     )
 }
 
+/// A time `t` (s) of a record sampled every `step` (s), in ms rounded to
+/// the sample: as many decimals as the step needs (a 1/30 ms step gives
+/// two), so that a contact starting one sample in reads `0.03 ms`, not
+/// `0.03333 ms`, and the rounding error of a sum of steps (`-6.939e-15 ms`)
+/// reads `0 ms`. Without a usable step, [`format_quantity`].
+///
+/// ```
+/// use bumpsim_core::units::format_time_at;
+/// assert_eq!(format_time_at(1.0 / 30_000.0, 1.0 / 30_000.0), "0.03 ms");
+/// assert_eq!(format_time_at(-6.939e-18, 1e-4), "0.0 ms");
+/// assert_eq!(format_time_at(0.2424, 1e-5), "242.40 ms");
+/// ```
+pub fn format_time_at(t: f64, step: f64) -> String {
+    let step_ms = step * 1e3;
+    if !(step_ms.is_finite() && step_ms > 0.0 && t.is_finite()) {
+        return format_quantity(t, Dimension::Time);
+    }
+    let decimals = (-step_ms.log10()).ceil().clamp(0.0, 9.0) as usize;
+    let ms = match (t * 1e3).abs() < 0.5 * step_ms {
+        true => 0.0,
+        false => t * 1e3,
+    };
+    format!("{ms:.decimals$} ms")
+}
+
 /// Splits a label `name [unit]` (a table's column header, a campaign's
 /// derived quantity `expression [unit]`) into its name and unit, both
 /// trimmed; the unit is the text in the last brackets, which must end the

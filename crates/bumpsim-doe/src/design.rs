@@ -131,6 +131,18 @@ pub fn fractional_factorial(columns: &[&str]) -> Result<Design, DesignError> {
         .filter(|c| c.contains('='))
         .map(|g| parse_generator(g, &base))
         .collect::<Result<Vec<_>, _>>()?;
+    for (k, (name, _, _)) in generators.iter().enumerate() {
+        if let Some(j) = generators[..k].iter().position(|g| &g.0 == name) {
+            let texts: Vec<&&str> = columns.iter().filter(|c| c.contains('=')).collect();
+            return Err(DesignError::Generator {
+                generator: texts[k].to_string(),
+                reason: format!(
+                    "factor '{name}' is generated again (first by '{}'): give each generated factor one generator",
+                    texts[j]
+                ),
+            });
+        }
+    }
     let mut factors = base.clone();
     factors.extend(generators.iter().map(|g| g.0.clone()));
     distinct_names(&factors.iter().map(String::as_str).collect::<Vec<_>>())?;
@@ -457,6 +469,26 @@ impl Design {
             csv.push('\n');
         }
         csv
+    }
+
+    /// Refuses a run whose physical level of a factor (from `factors` by
+    /// name) is not a finite number: a composite design's axial points lie
+    /// beyond the factor's range, and `A:1e308:1.7e308` wrote `inf`.
+    pub fn check_levels(&self, factors: &[Factor]) -> Result<(), DesignError> {
+        for row in &self.runs {
+            for (name, z) in self.factors.iter().zip(row) {
+                let Some(factor) = factors.iter().find(|f| &f.name == name) else {
+                    continue;
+                };
+                let level = factor.physical(*z);
+                if !level.is_finite() {
+                    return Err(DesignError::Size(format!(
+                        "factor '{name}': the level at coded {z:.4} is {level}, not a finite number: give a range of smaller numbers"
+                    )));
+                }
+            }
+        }
+        Ok(())
     }
 
     /// The run order: random from `seed` when `randomise`, else standard.

@@ -57,7 +57,9 @@ pub struct Factor {
 #[non_exhaustive]
 pub enum FactorError {
     /// A `NAME:LOW:HIGH` specification that does not parse.
-    #[error("'{spec}': expected NAME:LOW:HIGH with finite LOW < HIGH (and HIGH - LOW finite)")]
+    #[error(
+        "'{spec}': expected NAME:LOW:HIGH with finite LOW < HIGH (HIGH - LOW finite, and LOW + HIGH: the levels are the centre ± half the span)"
+    )]
     Spec {
         /// The text as given.
         spec: String,
@@ -72,7 +74,7 @@ pub enum FactorError {
     },
     /// A range whose low level is not below its high level.
     #[error(
-        "factor '{name}': low {low} must be finite and below high {high}, their span a finite number (a factor that does not vary cannot be fitted)"
+        "factor '{name}': low {low} must be finite and below high {high}, their span and their sum finite numbers (a factor that does not vary cannot be fitted; the design's levels are centre ± half the span)"
     )]
     Range {
         /// Factor name.
@@ -151,7 +153,7 @@ impl Factor {
         unit: Option<String>,
     ) -> Result<Factor, FactorError> {
         check_name(name)?;
-        if !(low < high && (high - low).is_finite()) {
+        if !(low < high && (high - low).is_finite() && (low + high).is_finite()) {
             return Err(FactorError::Range {
                 name: name.into(),
                 low,

@@ -55,24 +55,71 @@ pub fn parameter_table(parameters: &[Parameter], theta: &[f64], u: &Uncertainty)
 }
 
 /// The start statistics: run (and refined around the best), converged,
+/// abandoned, not polished, failed; the best start's iterations; time (s);
 /// reached the best fit (within the noise) and the best objective (to
-/// 1e-6), and by how many runs of their own; abandoned, not polished,
-/// failed; the best start's iterations; time (s).
+/// 1e-6), and by how many runs of their own. Four lines of at most about
+/// 100 characters (one line ran to 300), the later ones indented by four
+/// spaces under the caller's own two.
 pub fn starts_line(s: &Starts, iterations: usize, run_time: f64) -> String {
-    format!(
-        "starts: {} run ({} of them around the best so far), {} converged, {} reached the best fit (F within one noise variance; {} of the exploring starts, {} by their own run), {} the best objective to 1e-6 ({} by their own polished run), {} abandoned, {} not polished, {} failed; {} iterations; {}",
-        s.total,
-        s.refined,
-        s.converged,
-        s.reached_best_fit,
-        s.explored_best_fit,
-        s.reached_best_fit_alone,
-        s.reached_best,
-        s.reached_best_alone,
-        s.abandoned,
-        s.unpolished,
-        s.failed,
-        iterations,
-        format_quantity(run_time, Dimension::Time)
-    )
+    [
+        format!(
+            "starts: {} run ({} of them around the best so far); {iterations} iterations; {}",
+            s.total,
+            s.refined,
+            format_quantity(run_time, Dimension::Time)
+        ),
+        format!(
+            "  {} converged, {} abandoned, {} not polished, {} failed",
+            s.converged, s.abandoned, s.unpolished, s.failed
+        ),
+        format!(
+            "  {} reached the best fit (F within the noise): {} exploring, {} by their own run",
+            s.reached_best_fit, s.explored_best_fit, s.reached_best_fit_alone
+        ),
+        format!(
+            "  {} reached the best objective to 1e-6, {} by their own polished run",
+            s.reached_best, s.reached_best_alone
+        ),
+    ]
+    .join("\n  ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_starts_lines_are_at_most_100_characters() {
+        let many = 10_000;
+        let s = Starts {
+            total: many,
+            converged: many,
+            failed: many,
+            reached_best: many,
+            reached_best_alone: many,
+            reached_best_fit: many,
+            reached_best_fit_alone: many,
+            abandoned: many,
+            merged: many,
+            unpolished: many,
+            refined: many,
+            explored_best_fit: many,
+            best: 0,
+        };
+        let text = starts_line(&s, 123_456, 1234.5);
+        assert_eq!(text.lines().count(), 4, "{text}");
+        for line in text.lines() {
+            // printed after the caller's two-space indent
+            assert!(
+                line.chars().count() + 2 <= 100,
+                "{} characters: {line}",
+                line.len()
+            );
+        }
+        assert!(text.starts_with("starts: 10000 run (10000 of them around the best so far)"));
+        assert!(
+            text.contains("\n    10000 converged, 10000 abandoned"),
+            "{text}"
+        );
+    }
 }

@@ -170,7 +170,12 @@ fn run_cards(
     }
     if let Some(dt) = options.output_interval {
         let duration = options.force.as_ref().map(|f| f.end() - f.start());
-        crate::check_interval("output interval", dt, duration, crate::MAX_OUTPUTS)?;
+        crate::check_interval(
+            "output interval (--output-interval)",
+            dt,
+            duration,
+            crate::MAX_OUTPUTS,
+        )?;
         history(deck, model, options, ids, dt);
     }
     if options.standalone {

@@ -8,7 +8,7 @@ use bumpsim_core::units::{Dimension, format_quantity};
 /// The summary: peak force, compressions, contact time, energies.
 pub fn summary(r: &ImpactResult) -> String {
     format!(
-        "  peak force {}\n  maximum compression {}, remaining {}\n  contact time {}\n  absorbed by the bumper {}; energy balance error {:.2e}\n",
+        "  peak force {}\n  maximum compression {}, remaining {}\n  contact time {}\n  absorbed by the bumper {}; relative energy balance error {:.2e} of the initial energy\n",
         format_quantity(r.peak_force, Dimension::Force),
         format_quantity(r.max_compression, Dimension::Length),
         remaining(r.remaining_compression),

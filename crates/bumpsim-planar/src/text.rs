@@ -8,7 +8,7 @@
 
 use crate::result::PlanarResult;
 use crate::striker::{Face, Motion, Side, Striker};
-use bumpsim_core::units::{Dimension, format_quantity};
+use bumpsim_core::units::{Dimension, format_quantity, format_time_at};
 
 /// The striker in the words of a test protocol.
 ///
@@ -133,16 +133,17 @@ fn contact(r: &PlanarResult) -> String {
         ),
         false => String::new(),
     };
+    // times of samples, printed to the sample (0.03333 ms read as noise)
+    let step = match r.time.as_slice() {
+        [first, second, ..] => second - first,
+        _ => f64::NAN,
+    };
+    let at = |t| format_time_at(t, step);
     free + &match (r.contact_start, r.contact_end) {
-        (Some(a), Some(b)) => format!(
-            "  contact from {} to {} ({})\n",
-            format_quantity(a, Dimension::Time),
-            format_quantity(b, Dimension::Time),
-            format_quantity(b - a, Dimension::Time)
-        ),
+        (Some(a), Some(b)) => format!("  contact from {} to {} ({})\n", at(a), at(b), at(b - a)),
         (Some(a), None) => format!(
             "  contact from {}, not ended within the simulated time\n",
-            format_quantity(a, Dimension::Time)
+            at(a)
         ),
         _ => "  no contact\n".to_string(),
     }
@@ -163,7 +164,7 @@ fn energy(r: &PlanarResult) -> String {
     let e = &r.energy;
     let q = |v| format_quantity(v, Dimension::Energy);
     format!(
-        "  energy {} at the start: bumper {}, dampers {}, tyres {}, springs and beam {}, kinetic at the end {}\n  energy balance error {:.2e} (largest {:.2e}); momentum residuals {:.2e} linear, {:.2e} angular\n",
+        "  energy {} at the start: bumper {}, dampers {}, tyres {}, springs and beam {}, kinetic at the end {}\n  relative energy balance error {:.2e} of the initial energy (largest {:.2e})\n  relative momentum residuals {:.2e} linear, {:.2e} angular (of the initial momentum)\n",
         q(e.initial),
         q(e.crush),
         q(e.dampers),

@@ -61,6 +61,22 @@ pub enum LoadError {
         /// error stays small).
         selectors: Box<[String; 2]>,
     },
+    /// An exact code (no wildcard) that several channels of the test
+    /// carry: summing or averaging them was not asked for by the selector.
+    #[error(
+        "{path}: channel '{selector}' is an exact code that {} channels carry ({}): it is ambiguous; pick one by its number ('#{}'), or match them with a wildcard to combine them",
+        channels.len(),
+        channels.iter().map(|(n, c)| format!("channel {n} ({c})")).collect::<Vec<_>>().join(", "),
+        channels.first().map_or(0, |(n, _)| *n)
+    )]
+    Ambiguous {
+        /// The test file.
+        path: PathBuf,
+        /// The selector as given.
+        selector: String,
+        /// The number and code of each channel it matches.
+        channels: Vec<(usize, String)>,
+    },
     /// Several channels and no way to combine them.
     #[error("{count} channels selected: say combine = \"sum\" or \"mean\"")]
     Combine {
@@ -88,6 +104,8 @@ pub enum Note {
         selector: String,
         /// Channel numbers.
         numbers: Vec<usize>,
+        /// Their codes, in the same order.
+        codes: Vec<String>,
     },
     /// What the test file said about the selection (an invalid channel
     /// asked for by number or exact code, used anyway).
@@ -113,16 +131,29 @@ impl fmt::Display for Note {
                 f,
                 "'{selector}': left out channel {number} ({code}): marked invalid"
             ),
-            Note::Absent { selector, numbers } => match numbers.len() {
-                1 => write!(
-                    f,
-                    "'{selector}': left out 1 matching channel whose file is missing or unusable"
-                ),
-                n => write!(
-                    f,
-                    "'{selector}': left out {n} matching channels whose files are missing or unusable"
-                ),
-            },
+            Note::Absent {
+                selector,
+                numbers,
+                codes,
+            } => {
+                let named: Vec<String> = numbers
+                    .iter()
+                    .zip(codes)
+                    .map(|(n, c)| format!("{n} ({c})"))
+                    .collect();
+                match numbers.len() {
+                    1 => write!(
+                        f,
+                        "'{selector}': left out channel {} whose file is missing or unusable",
+                        named.join("")
+                    ),
+                    n => write!(
+                        f,
+                        "'{selector}': left out {n} matching channels whose files are missing or unusable: {}",
+                        named.join(", ")
+                    ),
+                }
+            }
             Note::Selection { message, .. } => f.write_str(message),
             Note::Resampled(resampling) => resampling.fmt(f),
         }
@@ -196,7 +227,9 @@ impl Loader {
         let mut picked: Vec<(PathBuf, usize, &str)> = Vec::new();
         for source in sources {
             let test = self.open(&source.path)?;
-            for i in test.select(&source.selector)?.indices {
+            let indices = test.select(&source.selector)?.indices;
+            unambiguous(test, &source.selector, &indices)?;
+            for i in indices {
                 let key = (source.path.clone(), i);
                 if let Some((_, _, first)) = picked.iter().find(|(p, j, _)| (p, *j) == (&key.0, i))
                 {
@@ -246,6 +279,35 @@ impl Loader {
     }
 }
 
+/// Refuses an exact code (neither a number nor a wildcard) that picks
+/// several channels: a channel file given twice in an ISO-MME test was
+/// summed without a word (issue 48). A wildcard or a name matching several
+/// channels combines them by design.
+pub(crate) fn unambiguous(
+    test: &TestData,
+    selector: &str,
+    indices: &[usize],
+) -> Result<(), LoadError> {
+    let text = selector.trim();
+    let number = text.strip_prefix('#').unwrap_or(text).parse::<usize>();
+    let by_code = |&i: &usize| test.entries[i].code.eq_ignore_ascii_case(text);
+    if indices.len() < 2 || number.is_ok() || text.contains(['*', '?']) {
+        return Ok(());
+    }
+    if !indices.iter().all(by_code) {
+        return Ok(());
+    }
+    let channels = indices
+        .iter()
+        .map(|&i| (test.entries[i].number, test.entries[i].code.clone()))
+        .collect();
+    Err(LoadError::Ambiguous {
+        path: test.path.clone(),
+        selector: selector.to_string(),
+        channels,
+    })
+}
+
 fn scale(channel: Channel, factor: f64) -> Result<Channel, ProcessError> {
     if factor == 1.0 {
         return Ok(channel);
@@ -283,6 +345,11 @@ pub fn notes(test: &TestData, selector: &str, selection: &Selection) -> Vec<Note
                 .absent
                 .iter()
                 .map(|&i| test.entries[i].number)
+                .collect(),
+            codes: selection
+                .absent
+                .iter()
+                .map(|&i| test.entries[i].code.clone())
                 .collect(),
         });
     }
@@ -363,7 +430,7 @@ mod tests {
             texts,
             [
                 "'1-AC-SIME*': left out channel 3 (1-AC-SIMEXX-XG): marked invalid",
-                "'1-AC-SIME*': left out 1 matching channel whose file is missing or unusable"
+                "'1-AC-SIME*': left out channel 4 (1-AC-SIMEYY-XG) whose file is missing or unusable"
             ]
         );
         assert!(matches!(&mean.notes[1], Note::Absent { numbers, .. } if numbers == &[4]));

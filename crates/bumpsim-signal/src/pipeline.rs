@@ -36,7 +36,7 @@
 //! negative, so the magnitudes are compared: `(|J| − |Δp|) / |Δp|`.
 
 pub use crate::loader::select_all;
-use crate::loader::{ChannelSource, LoadError, Loader, Note};
+use crate::loader::{ChannelSource, LoadError, Loader, Note, unambiguous};
 use crate::process::{
     Combine, ProcessError, Step, combine, interpolate, notes as process_notes, run,
 };
@@ -304,6 +304,15 @@ fn balance(
             })?;
     let s = &force.series;
     let window = match spec.window {
+        Some(w) if !(w[0].is_finite() && w[1].is_finite() && w[0] < w[1]) => {
+            return Err(PipelineError::Definition {
+                signal: spec.force.clone(),
+                message: format!(
+                    "[balance] window = [{}, {}]: expected two finite times in s, the start before the end",
+                    w[0], w[1]
+                ),
+            });
+        }
         Some(w) => w,
         None => {
             let w = ContactThreshold::default()
@@ -379,6 +388,8 @@ pub fn export(
             .extend(notes.iter().map(ToString::to_string));
         let raws = match how {
             Some(how) if channels.len() > 1 => {
+                let indices = test.select(selector)?.indices;
+                unambiguous(test, selector, &indices).map_err(|e| load_error(selector, e))?;
                 numbers.push(None);
                 vec![combine(&channels, how, selector).map_err(|source| {
                     PipelineError::Process {

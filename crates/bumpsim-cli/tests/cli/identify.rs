@@ -392,8 +392,7 @@ fn identify_to(study: &Path, dir: &Path) -> (Output, serde_json::Value) {
 
 const INVALID_NOTE: &str =
     "case 'flat': '1-AC-SIME*-XG': left out channel 4 (1-AC-SIMEXX-XG): marked invalid";
-const ABSENT_NOTE: &str =
-    "case 'flat': '1-AC-SIME*-XG': left out 1 matching channel whose file is missing or unusable";
+const ABSENT_NOTE: &str = "case 'flat': '1-AC-SIME*-XG': left out channel 5 (1-AC-SIMEYY-XG) whose file is missing or unusable";
 
 #[test]
 fn identify_reports_the_channels_a_wildcard_left_out() {

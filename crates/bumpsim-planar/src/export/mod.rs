@@ -210,7 +210,7 @@ pub(crate) fn check(car: &PlanarCar, options: &PlanarExport) -> Result<(), Plana
     if let Some(dt) = options.output_interval {
         let duration = options.forces.as_ref().map(Forces::duration);
         bumpsim_export::check_interval(
-            "output interval",
+            "output interval (--output-interval)",
             dt,
             duration,
             bumpsim_export::MAX_OUTPUTS,

@@ -9,7 +9,7 @@ use crate::integrate::{cumulative_trapezoid, derivative};
 use crate::window::ContactThreshold;
 use bumpsim_core::channel::{Channel, ChannelCode};
 use bumpsim_core::series::{SeriesError, UniformSeries, WINDOW_TOLERANCE};
-use bumpsim_core::units::Dimension;
+use bumpsim_core::units::{Dimension, format_quantity};
 use serde::Deserialize;
 
 /// A Butterworth low-pass step.
@@ -95,7 +95,7 @@ impl Step {
             Step::Cfc(class) => c.cfc_labelled(*class, CfcStandard::SaeJ211),
             Step::CfcIso(class) => c.cfc_labelled(*class, CfcStandard::Iso6487),
             Step::Butterworth(b) => c.butterworth(b),
-            Step::MovingAverage(n) => c.filtered(moving_average(channel.series.values(), *n)),
+            Step::MovingAverage(n) => c.moving_average(*n),
             Step::PretriggerBias(false) | Step::Derivative(false) => Ok(channel.clone()),
             Step::Bias([t0, t1]) => c.bias([*t0, *t1]),
             Step::PretriggerBias(true) => c.bias([channel.series.start(), 0.0]),
@@ -178,6 +178,19 @@ impl Context<'_> {
             source,
         })?;
         Ok(self.channel.with_series(series))
+    }
+
+    /// The centred average of `points` samples, at most the record's own
+    /// length (a window of 1e9 samples was accepted and averaged nothing
+    /// but the whole record).
+    fn moving_average(&self, points: usize) -> Result<Channel, ProcessError> {
+        let samples = self.channel.series.len();
+        if points > samples {
+            return Err(self.range(format!(
+                "{points} points: at most the record's {samples} samples"
+            )));
+        }
+        self.filtered(moving_average(self.channel.series.values(), points))
     }
 
     fn filtered(&self, values: Result<Vec<f64>, FilterError>) -> Result<Channel, ProcessError> {
@@ -333,6 +346,14 @@ impl Context<'_> {
         if !count.is_finite() || count > max as f64 {
             return Err(self.range(format!(
                 "interval {step:?} s gives {count:.3e} samples, at most {max} per channel (limit MAX_INPUT_SAMPLES)"
+            )));
+        }
+        let duration = s.end() - s.start();
+        if count < 2.0 {
+            return Err(self.range(format!(
+                "interval {step:?} s leaves {count} sample of the record's {}: at most {}, two samples (a table needs a sample interval)",
+                format_quantity(duration, Dimension::Time),
+                format_quantity(duration, Dimension::Time)
             )));
         }
         let count = count as usize;

@@ -42,16 +42,16 @@ fn lsdyna_export_writes_the_include_and_refuses_bad_options() {
         ),
         (
             &["--output-interval", "-1"],
-            "output interval = -1 s: expected finite and at least 1e-9 s",
+            "output interval (--output-interval) = -1 s: expected finite and at least 1e-9 s",
         ),
         // 1e-308 s asked for 1e307 outputs; 1 s is beyond the 0.16 s force
         (
             &["--output-interval", "1e-308"],
-            "output interval = 1e-308 s: expected finite and at least 1e-9 s",
+            "output interval (--output-interval) = 1e-308 s: expected finite and at least 1e-9 s",
         ),
         (
             &["--force", force, "--output-interval", "1"],
-            "output interval = 1 s: expected at most the force's duration",
+            "output interval (--output-interval) = 1 s: expected at most the force's duration",
         ),
         (
             &["--force", force, "--output-interval", "1e-8"],

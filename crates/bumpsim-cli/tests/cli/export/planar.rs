@@ -219,7 +219,10 @@ fn export_planar_refuses_hostile_input_naming_the_parameter() {
             "--output-interval",
             interval,
         ];
-        assert_user_error(&export_planar(&args), "output interval = ");
+        assert_user_error(
+            &export_planar(&args),
+            "output interval (--output-interval) = ",
+        );
     }
     assert!(
         !std::path::Path::new(out).exists(),
