@@ -13,6 +13,27 @@
 //! transaction: they move into place together when it succeeds; a command
 //! that fails (or cannot print its results) leaves every output as it was.
 
+/// `println!` for the terminal: the text goes through
+/// [`bumpsim_core::names::printable_lines`], so a name from a file (a car,
+/// case, channel or test name holding `\x1b[31m`) reaches the terminal
+/// escaped, whichever command prints it (issue 48 item 2). Defined before
+/// the modules, it shadows the standard macro in all of them.
+macro_rules! println {
+    () => {
+        std::println!()
+    };
+    ($($arg:tt)*) => {
+        std::println!("{}", bumpsim_core::names::printable_lines(&format!($($arg)*)))
+    };
+}
+
+/// `print!` for the terminal, as [`println!`].
+macro_rules! print {
+    ($($arg:tt)*) => {
+        std::print!("{}", bumpsim_core::names::printable_lines(&format!($($arg)*)))
+    };
+}
+
 mod campaign;
 mod doe;
 mod export;

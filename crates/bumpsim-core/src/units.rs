@@ -396,10 +396,18 @@ pub fn format_number(value: f64, digits: usize) -> String {
 /// use bumpsim_core::units::{format_quantity, Dimension};
 /// assert_eq!(format_quantity(0.1234, Dimension::Length), "123.4 mm");
 /// assert_eq!(format_quantity(5.0e5, Dimension::Stiffness), "500.0 N/mm");
+/// // a time below a picosecond is the rounding of a sum of steps
+/// assert_eq!(format_quantity(-6.939e-18, Dimension::Time), "0 ms");
 /// ```
 pub fn format_quantity(value_si: f64, dimension: Dimension) -> String {
-    format_in(value_si, dimension.display_unit())
+    let noise = dimension == Dimension::Time && value_si.abs() < TIME_NOISE;
+    format_in(if noise { 0.0 } else { value_si }, dimension.display_unit())
 }
+
+/// Times below this (s) print as 0: records are sampled every nanosecond
+/// or slower (the readers' limit), so a smaller time is the rounding error
+/// of a sum of steps (`-6.939e-15 ms` was printed for a time zero).
+pub const TIME_NOISE: f64 = 1e-12;
 
 /// Formats an SI value in a chosen unit with four significant digits.
 pub fn format_in(value_si: f64, unit: Unit) -> String {

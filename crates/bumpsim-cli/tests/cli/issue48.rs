@@ -118,6 +118,24 @@ fn names_from_files_are_printed_with_control_characters_escaped() {
     assert_contains(&stdout, &[r"Pendel\u001B[2Jkraft"]);
 }
 
+/// Item 2 in every command: a verdict's car and item names from the car
+/// file reach standard output escaped (the CLI's `println!` goes through
+/// `printable_lines`; the verdict table printed them raw).
+#[test]
+fn a_verdict_prints_the_car_file_names_escaped() {
+    let dir = scratch("issue48-escape-verdict");
+    let car = std::fs::read_to_string(root().join("examples/verdict/car.toml")).unwrap();
+    let car = car.replace("name = \"radiator\"", "name = \"radiator\\u001b[31m\"");
+    assert!(car.contains("radiator\\u001b"));
+    let path = dir.join("car.toml");
+    std::fs::write(&path, car).unwrap();
+    let run = bumpsim(&["verdict", "--car", path.to_str().unwrap()]);
+    let stdout = text(&run.stdout);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(!stdout.contains('\u{1b}'), "{stdout:?}");
+    assert_contains(&stdout, &[r"clearance: radiator\u001B[31m"]);
+}
+
 /// Items 3 and 4: a moving average longer than the record and a reversed
 /// balance window were accepted (exit 0).
 #[test]
