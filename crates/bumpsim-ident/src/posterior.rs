@@ -294,13 +294,16 @@ pub fn density<'a>(
     (density, optimum)
 }
 
-/// The posterior's lines of the summary: each parameter's mean and 90 %
-/// interval next to its local 95 % interval, then the diagnostics and any
-/// warning.
+/// The posterior's lines of the summary: each parameter's median with its
+/// 90 % and 95 % intervals next to its local 95 % interval, then the
+/// diagnostics and any warning. The median, not the mean, is the estimate:
+/// it always lies inside the intervals (a skewed posterior printed a mean of
+/// 110 Ns/mm beside its 90 % interval 0.026 .. 86.8 Ns/mm); the mean stays
+/// in the JSON.
 pub fn lines(post: &Posterior, result: &Identification) -> String {
     let runs = post.ensemble;
     let mut out = format!(
-        "posterior ({} walkers × {} steps, {} burnt, seed {}; σ integrated out, {}): mean, 90 % interval; local 95 %\n",
+        "posterior ({} walkers × {} steps, {} burnt, seed {}; σ integrated out, {}): median, 90 % and 95 % intervals; local 95 %\n",
         runs.walkers,
         runs.steps,
         runs.burn,
@@ -314,9 +317,10 @@ pub fn lines(post: &Posterior, result: &Identification) -> String {
         let interval =
             |c: Option<[f64; 2]>| c.map_or("-".into(), |[a, b]| format!("{} .. {}", q(a), q(b)));
         out += &format!(
-            "  {name:<4} {:>14}  90 % {:<30} local 95 % {}\n",
-            q(post.mean[i]),
+            "  {name:<4} {:>14}  90 % {:<30} 95 % {:<30} local 95 % {}\n",
+            q(post.median[i]),
             interval(post.ci90[i]),
+            interval(post.ci95[i]),
             interval(local.get(i).copied().flatten())
         );
     }

@@ -3,7 +3,7 @@
 //! diagonal each free parameter's marginal histogram with its 90 %
 //! interval (grey) and the optimum (red), below it each pair's 2-D
 //! histogram with the optimum marked — and the posterior's lines
-//! ([`bumpsim_ident::posterior::lines`]: means and 90 % intervals next to
+//! ([`bumpsim_ident::posterior::lines`]: medians and 90 % and 95 % intervals next to
 //! the local 95 % ones, the diagnostics and any warning).
 //!
 //! Values are drawn in each parameter's display unit (kg, Ns/mm, N/mm),

@@ -64,7 +64,7 @@ fn the_posterior_reaches_the_summary_the_json_and_the_report() {
         &stdout,
         &[
             "3-DOF posterior (16 walkers × 200 steps, 50 burnt, seed 3",
-            "effective samples): mean, 90 % interval; local 95 %",
+            "effective samples): median, 90 % and 95 % intervals; local 95 %",
             "local 95 % 26.",
             "autocorrelation time",
             "split-R̂",
@@ -77,6 +77,20 @@ fn the_posterior_reaches_the_summary_the_json_and_the_report() {
         .lines()
         .find(|l| l.trim_start().starts_with("m1 ") && l.contains("90 %"));
     assert!(m1.is_some_and(|l| l.contains("kg")), "{stdout}");
+    // the printed estimate (the median) lies inside its own 90 % interval,
+    // and the 90 % interval inside the 95 % one (issue 44: a mean was
+    // printed outside its interval)
+    for line in posterior_block(&stdout).lines().skip(1) {
+        let numbers: Vec<f64> = line
+            .split_whitespace()
+            .filter_map(|w| w.parse::<f64>().ok())
+            .collect();
+        if let [median, ninety, lo90, hi90, ninety_five, lo95, hi95, ..] = numbers[..] {
+            assert_eq!((ninety, ninety_five), (90.0, 95.0), "{line}");
+            assert!(lo90 <= median && median <= hi90, "{line}");
+            assert!(lo95 <= lo90 && hi90 <= hi95, "{line}");
+        }
+    }
     let result = read_json(&json);
     let post = &result["posterior"];
     assert_eq!(post["dof"], 3);
