@@ -330,7 +330,7 @@ class Posterior:
     samples: FloatArray
     """The kept draws: one row per draw, one column per parameter (read-only)."""
     def to_text(self) -> str:
-        """Each parameter's mean and 90 % interval beside its local 95 %, the
+        """Each parameter's median, 90 % and 95 % intervals beside its local 95 %, the
         diagnostics and warnings."""
     def to_json(self) -> str:
         """As ``bumpsim identify --posterior --json`` writes its ``posterior``."""
