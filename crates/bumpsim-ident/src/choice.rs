@@ -113,6 +113,10 @@ pub struct Choice {
     pub rows: Vec<Row>,
     /// Why the rule decided, in words.
     pub reason: String,
+    /// The recommended model's parameters the data do not determine (at a
+    /// bound, no interval, or one wider than a factor 1000): a
+    /// recommendation never hides them.
+    pub undetermined: Vec<String>,
 }
 
 /// The recommendation over `results` (see the module); `None` when no
@@ -136,6 +140,11 @@ pub fn choose(results: &[Identification]) -> Option<Choice> {
     let (dof, rule) = decide(&tied, effective.time);
     let indistinct: Vec<usize> = tied.iter().map(|r| r.dof).collect();
     let reason = detail(rule, &indistinct, &effective);
+    let undetermined = usable
+        .iter()
+        .find(|r| r.dof == dof)
+        .map(|r| undetermined(&r.uncertainty))
+        .unwrap_or_default();
     Some(Choice {
         dof,
         rule,
@@ -143,7 +152,18 @@ pub fn choose(results: &[Identification]) -> Option<Choice> {
         effective,
         rows,
         reason,
+        undetermined,
     })
+}
+
+/// The names of the parameters the data do not determine.
+fn undetermined(u: &bumpsim_estimate::uncertainty::Uncertainty) -> Vec<String> {
+    u.names
+        .iter()
+        .zip(&u.determined)
+        .filter(|(_, d)| **d == Some(false))
+        .map(|(n, _)| n.clone())
+        .collect()
 }
 
 /// The criteria of one result with variance inflation `time` (τ).
@@ -271,10 +291,18 @@ pub fn lines(choice: &Choice) -> String {
             format_number(r.bic, 6)
         );
     }
-    out + &format!(
+    out += &format!(
         "recommended: {} DOF ({}): {}\n",
         choice.dof,
         choice.rule.label(),
         choice.reason
-    )
+    );
+    if !choice.undetermined.is_empty() {
+        out += &format!(
+            "  but the data do not determine its {} (see that model's warnings): its values are \
+             not to be quoted; add load cases that excite them, or fix them from other knowledge\n",
+            choice.undetermined.join(", ")
+        );
+    }
+    out
 }

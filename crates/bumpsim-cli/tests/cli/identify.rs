@@ -194,6 +194,26 @@ fn nhtsa_two_dof_fit_and_the_dof_table() {
     assert_eq!(result["recommended_dof"], lowest["dof"]);
     let line = format!("recommended: {} DOF (lowest BIC)", lowest["dof"]);
     assert!(stdout.contains(&line), "{stdout}");
+    // the recommended model's undetermined parameters are named under the
+    // recommendation, not only among that model's warnings (issue 44)
+    let recommended = results
+        .iter()
+        .find(|r| r["dof"] == result["recommended_dof"])
+        .unwrap();
+    let undetermined: Vec<&str> = recommended["uncertainty"]["names"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(recommended["uncertainty"]["determined"].as_array().unwrap())
+        .filter(|(_, d)| d.as_bool() == Some(false))
+        .map(|(n, _)| n.as_str().unwrap())
+        .collect();
+    assert!(!undetermined.is_empty(), "{stdout}");
+    let named = format!(
+        "but the data do not determine its {}",
+        undetermined.join(", ")
+    );
+    assert!(stdout.contains(&named), "{stdout}");
     // 3 masses are one too many for this plastic crash: a spring is
     // undetermined (k2 today; k1 at another 3-DOF optimum the same within
     // the noise) and the merged 2-mass model fits as well (docs/identify.md
