@@ -135,3 +135,38 @@ fn bad_runs_are_refused_with_the_parameter_named() {
     assert!(e.contains("no-such-ccx-here: cannot start"), "{e}");
     let _ = std::fs::remove_dir_all(&s.work);
 }
+
+/// Issue 48 item 20: the examples' crash-box material is an equivalent one,
+/// and what docs/fe.md says it stands for follows from the files: E = k L / A
+/// gives 1.0 MN/m a box, σy = F / A the 18.84 kN crush force, which is
+/// Abramowicz and Jones's mean folding force `13.06 σ0 t^(5/3) C^(1/3)` of the
+/// 80 × 80 × 1.5 mm steel box at σ0 = 170 MPa; the density gives its mass.
+#[test]
+fn the_crash_boxes_equivalent_material_is_what_the_docs_say() {
+    let docs = std::fs::read_to_string(root().join("docs/fe.md")).unwrap();
+    assert!(docs.contains("### The crash boxes' material"), "docs/fe.md");
+    for file in ["bumper-elastic.toml", "bumper-plastic.toml"] {
+        let mesh = BumperMesh::read(&root().join("examples/fe").join(file)).unwrap();
+        let boxes = &mesh.crash_boxes;
+        let area = boxes.section.area();
+        let stiffness = boxes.material.youngs_modulus * area / boxes.length;
+        assert!(
+            (stiffness / 1.0e6 - 1.0).abs() < 0.01,
+            "{file}: k = {stiffness} N/m"
+        );
+        let mass = area * boxes.length * boxes.material.density;
+        assert!((mass - 0.555).abs() < 0.005, "{file}: box mass {mass} kg");
+        assert!(docs.contains("320 MPa") && docs.contains("0.555 kg"));
+        if let Some([yield_stress, _]) = boxes.material.yield_curve.first() {
+            let crush = yield_stress * area;
+            let (t, c) = (boxes.section.wall, boxes.section.depth);
+            let folding = 13.06 * 170e6 * t.powf(5.0 / 3.0) * c.powf(1.0 / 3.0);
+            assert!(
+                (crush / 18.84e3 - 1.0).abs() < 0.01,
+                "{file}: F = {crush} N"
+            );
+            assert!((folding / crush - 1.0).abs() < 0.01, "{file}: {folding} N");
+            assert!(docs.contains("18.84 kN") && docs.contains("40 MPa"));
+        }
+    }
+}
