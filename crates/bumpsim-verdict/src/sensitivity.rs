@@ -211,7 +211,7 @@ struct Runs<'a> {
     /// The judged values of each point's car, by the point's bits.
     cache: Mutex<HashMap<Vec<u64>, Vec<f64>>>,
     /// The first car that could not be run.
-    failure: Mutex<Option<String>>,
+    failure: Mutex<Option<CarFailure>>,
     progress: &'a (dyn Fn() + Sync),
 }
 
@@ -238,16 +238,19 @@ impl Runs<'_> {
     }
 
     /// The judged values of the car at `u`, or why it cannot be judged.
-    fn run(&self, u: &[f64]) -> Result<Vec<f64>, String> {
+    fn run(&self, u: &[f64]) -> Result<Vec<f64>, CarFailure> {
         let factors = factors(u);
-        let said = |why: String| format!("the car with {}: {why}", self.named(&factors));
+        let car = || self.named(&factors);
         let drawn = crate::probability::drawn(self.setup, &self.parts, &factors)
-            .ok_or_else(|| said("not a valid car".into()))?;
-        let v = verdict(&drawn).map_err(|e| said(e.to_string()))?;
+            .ok_or_else(|| CarFailure::Invalid { car: car() })?;
+        let v = verdict(&drawn).map_err(|e| CarFailure::Verdict {
+            car: car(),
+            source: Box::new(e),
+        })?;
         let values = judged_values(&v, self.judged);
         match values.iter().all(|x| x.is_finite()) && values.len() == self.judged.len() {
             true => Ok(values),
-            false => Err(said("a criterion has no finite value".into())),
+            false => Err(CarFailure::NotFinite { car: car() }),
         }
     }
 
@@ -269,6 +272,24 @@ impl Runs<'_> {
             },
         }
     }
+}
+
+/// Why a car of the design cannot be judged; `car` names its factors
+/// (`bumper.force ×1.0312, body.mass ×0.9876`).
+#[derive(Debug, thiserror::Error)]
+enum CarFailure {
+    /// The scaled parameters make no valid car.
+    #[error("the car with {car}: not a valid car")]
+    Invalid { car: String },
+    /// The verdict refused the car.
+    #[error("the car with {car}: {source}")]
+    Verdict {
+        car: String,
+        source: Box<VerdictError>,
+    },
+    /// A judged criterion has no finite value or is missing.
+    #[error("the car with {car}: a criterion has no finite value")]
+    NotFinite { car: String },
 }
 
 /// The values of the judged criteria in `v`, in the order of `judged`
