@@ -136,7 +136,7 @@ fn the_report_shows_the_verdict_the_test_and_the_corridor() {
             "bumper stroke (rcar-bumper-corner-front)",
             "corridor of the passing bumpers",
             "<th>P(pass)</th>",
-            "probability of passing over",
+            "probability of passing with exact 95 % bounds over",
         ],
     );
     assert_eq!(html.matches("<svg").count(), 4, "every figure inline");
@@ -245,6 +245,50 @@ fn an_identification_gives_each_criterion_its_probability_of_passing() {
         }
     }
     assert!(v["tests"][0]["probability"]["count"] == 40);
+}
+
+/// A criterion that passes in all of 200 draws reports its one-sided 95 %
+/// lower bound (0.05^(1/200) = 98.51 %) and the draws that would show 99 %,
+/// in the table, the summary and the JSON; it printed `100.0 ± 0.0 %`
+/// (issue 45 item 7). A share between keeps its two-sided interval.
+#[test]
+fn no_failure_in_200_draws_reports_a_lower_bound_not_a_certainty() {
+    let dir = scratch("verdict-probability-bound");
+    let json = dir.join("verdict.json");
+    let uncertainty = root().join("examples/verdict/uncertainty.toml");
+    let run = example(
+        "part581-barrier-front,rcar-bumper-corner-front",
+        &[
+            "--uncertainty",
+            uncertainty.to_str().unwrap(),
+            "--samples",
+            "200",
+            "--json",
+            json.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    let out = text(&run.stdout);
+    assert!(
+        !out.contains("100.0 ± 0.0 %") && !out.contains("0.0 ± 0.0 %"),
+        "{out}"
+    );
+    assert_contains(
+        &out,
+        &[
+            "pass     ≥ 98.5 %",
+            "part581-barrier-front: no failure in 200 draws: P(pass) ≥ 98.5 % (95 % one-sided); 299 draws would show ≥ 99 %",
+            "rcar-bumper-corner-front: 63 of 200 draws pass: 31.5 % (95 %: 25.1–38.5 %)",
+        ],
+    );
+    let document: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let p = &document["verdict"]["tests"][0]["probability"];
+    assert_eq!(p["passed"], 200, "{p}");
+    assert_eq!(p["one_sided"], true, "{p}");
+    let low = p["low"].as_f64().unwrap();
+    assert!((0.985..0.9852).contains(&low), "{p}");
+    assert!((low - 0.05f64.powf(1.0 / 200.0)).abs() < 1e-12, "{p}");
 }
 
 /// Hostile values of the new flags: exit 2 with a message naming the flag,
