@@ -46,8 +46,8 @@ use crate::error::{VerdictError, require};
 use crate::uncertainty::Uncertainty;
 use crate::uncertainty::{Marginal, described};
 use crate::verdict::{Setup, Verdict, verdict};
-use bumpsim_estimate::sobol::{DIMENSIONS, SobolError, indices};
-pub use bumpsim_estimate::sobol::{Indices, Settings};
+pub use bumpsim_estimate::sobol::{CLIPPED, Indices, Settings};
+use bumpsim_estimate::sobol::{DIMENSIONS, SobolError, indices, outside, share};
 use serde::Serialize;
 use std::collections::HashMap;
 use std::sync::Mutex;
@@ -362,16 +362,6 @@ pub fn rows(s: &Sensitivity) -> Vec<[String; 6]> {
     rows
 }
 
-/// An index with its half-width, `0.885 ± 0.365` (a rounded −0 as 0).
-fn share(index: f64, half_width: f64) -> String {
-    let index = format!("{index:.3}");
-    let index = index
-        .strip_prefix('-')
-        .filter(|i| *i == "0.000")
-        .unwrap_or(&index);
-    format!("{index} ± {half_width:.3}")
-}
-
 /// The column headers of [`rows`].
 pub const HEADERS: [&str; 6] = [
     "test",
@@ -422,5 +412,17 @@ pub fn table(s: &Sensitivity) -> String {
     for r in &rows {
         out += &line([&r[0], &r[1], &r[2], &r[3], &r[4], &r[5]].map(|c| c.as_str()));
     }
+    if clipped(s) {
+        out += &format!("{CLIPPED}\n");
+    }
     out
+}
+
+/// Whether an index of `s` prints clipped at 0 or 1
+/// ([`bumpsim_estimate::sobol::share`]).
+pub fn clipped(s: &Sensitivity) -> bool {
+    let indices = s.criteria.iter().filter_map(|c| c.indices.as_ref());
+    indices
+        .flat_map(|i| i.first.iter().chain(&i.total))
+        .any(|v| outside(*v))
 }

@@ -481,6 +481,65 @@ fn sobol_indices_show_what_drives_each_criterion() {
     assert_eq!(wide, "[]", "text boxes wider than their box");
 }
 
+/// A Sobol index estimated above 1 (the right spring's in the right
+/// corner test, 1.002) prints at the bound with its estimate and
+/// half-width, and the table says why; every share printed lies in [0, 1]
+/// (issue 48 item 14: a rail force's S1 printed as 1.037). The JSON keeps
+/// the estimates.
+#[test]
+fn sobol_shares_above_one_print_at_the_bound_with_their_estimate() {
+    let dir = scratch("verdict-sobol-clipped");
+    let json = dir.join("verdict.json");
+    let uncertainty = root().join("examples/verdict/uncertainty.toml");
+    let run = example(
+        "part581-corner-front-right",
+        &[
+            "--uncertainty",
+            uncertainty.to_str().unwrap(),
+            "--samples",
+            "10",
+            "--sobol",
+            "--json",
+            json.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    let out = text(&run.stdout);
+    assert_contains(
+        &out,
+        &[
+            "1.000 (est. 1.00",
+            "an index estimated outside [0, 1] is shown at the bound",
+        ],
+    );
+    let table = out.split("S1 (1)").nth(1).unwrap();
+    let rows = table
+        .lines()
+        .filter(|l| l.contains(" ± ") && !l.starts_with("an index"));
+    for line in rows {
+        let cells: Vec<&str> = line
+            .split("  ")
+            .map(str::trim)
+            .filter(|c| !c.is_empty())
+            .collect();
+        for cell in &cells[cells.len() - 2..] {
+            let share: f64 = cell.split_whitespace().next().unwrap().parse().unwrap();
+            assert!((0.0..=1.0).contains(&share), "{line}");
+        }
+    }
+    let document: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let estimates = document["sensitivity"]["criteria"]
+        .as_array()
+        .unwrap()
+        .iter();
+    let above = estimates
+        .filter_map(|c| c["indices"]["first"].as_array())
+        .flatten()
+        .any(|v| v.as_f64().unwrap() > 1.0);
+    assert!(above, "the JSON keeps the estimate above 1");
+}
+
 /// `--sobol` over a `[ranges]` file (the bumper's force uniform on ×0.8 ..
 /// ×1.2 beside a log-normal body mass): the caption and the probability of
 /// passing name both laws, the JSON each parameter's law, and the crush
