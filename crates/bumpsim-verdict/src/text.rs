@@ -173,11 +173,13 @@ pub fn summary(v: &Verdict) -> String {
         let olc = m.olc.map_or("-".into(), |o| format!("{:.2} g", o / g));
         let asi = m.asi.map_or("-".into(), |a| format!("{a:.3}"));
         out += &format!(
-            "{} {word}{binding}; peak {:.2} g, 3 ms clip {:.2} g, delta-V {:.2} km/h, OLC {olc}, ASI {asi}\n",
+            "{} {word}{binding}; peak {:.2} g, 3 ms clip {:.2} g, delta-V {:.2} km/h to the contact end at {:.1} ms, OLC {olc}, ASI {asi} ({})\n",
             t.test.name,
             m.peak / g,
             m.clip / g,
-            m.delta_v * 3.6
+            m.delta_v * 3.6,
+            m.contact_end * 1e3,
+            m.asi_method.name()
         );
     }
     let failures = v.failures();

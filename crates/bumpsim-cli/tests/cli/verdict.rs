@@ -291,6 +291,42 @@ fn no_failure_in_200_draws_reports_a_lower_bound_not_a_certainty() {
     assert!((low - 0.05f64.powf(1.0 / 200.0)).abs() < 1e-12, "{p}");
 }
 
+/// `--asi-method`: EN 1317-1:2010's filtered ASI by default, the 1998
+/// moving averages on request (another value for the same pulse), each
+/// named in the summary with the contact end; another year exits 2 naming
+/// the flag (issue 45 item 4).
+#[test]
+fn the_asi_method_is_chosen_and_named() {
+    let asi = |extra: &[&str]| {
+        let run = example("part581-barrier-front", extra);
+        assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+        let out = text(&run.stdout);
+        let line = out
+            .lines()
+            .find(|l| l.contains(" passes"))
+            .unwrap()
+            .to_string();
+        assert!(line.contains("to the contact end at 65.9 ms"), "{line}");
+        line
+    };
+    let (default, filtered, averaged) = (
+        asi(&[]),
+        asi(&["--asi-method", "2010"]),
+        asi(&["--asi-method", "1998"]),
+    );
+    assert_eq!(default, filtered);
+    assert!(
+        filtered.ends_with("ASI 0.309 (EN 1317-1:2010)"),
+        "{filtered}"
+    );
+    assert!(
+        averaged.ends_with("ASI 0.288 (EN 1317-1:1998)"),
+        "{averaged}"
+    );
+    let run = example("part581-barrier-front", &["--asi-method", "2000"]);
+    assert_user_error(&run, "--asi-method");
+}
+
 /// Hostile values of the new flags: exit 2 with a message naming the flag,
 /// the file or the key, and no output left behind.
 #[test]
