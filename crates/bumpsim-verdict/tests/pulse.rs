@@ -56,3 +56,30 @@ fn a_rounding_of_the_speed_moves_no_pulse_metric() {
         }
     }
 }
+
+/// EN 1317-1:1998's windows start at first contact (t = 0): 12 g before
+/// it (a pre-trigger record) counts for nothing, 12 g after it for 1.
+#[test]
+fn the_1998_windows_start_at_first_contact() {
+    let time: Vec<f64> = (0..=1500).map(|k| -0.05 + k as f64 * 1e-4).collect();
+    let zeros = vec![0.0; time.len()];
+    let before: Vec<f64> = time
+        .iter()
+        .map(|&t| if t < 0.0 { 12.0 * 9.81 } else { 0.0 })
+        .collect();
+    let after: Vec<f64> = time
+        .iter()
+        .map(|&t| {
+            if (0.0..0.05).contains(&t) {
+                12.0 * 9.81
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let asi = |a: &[f64]| {
+        bumpsim_verdict::pulse::asi(&time, [a, &zeros, &zeros], AsiMethod::En1998).unwrap()
+    };
+    assert!(asi(&before) < 1e-3, "{}", asi(&before));
+    assert!((asi(&after) - 1.0).abs() < 1e-3, "{}", asi(&after));
+}
