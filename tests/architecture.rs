@@ -258,6 +258,62 @@ fn no_crate_has_a_module_circle() {
     assert!(circles.is_empty(), "{circles:#?}");
 }
 
+/// Each `Result<T, String>` in `code`, whatever generics `T` nests
+/// (`Result<Vec<f64>, String>`, `Result<Option<(u8, f64)>, String>`): the
+/// type up to its matching `>`, with `String` as its last top-level argument.
+fn string_results(code: &str) -> Vec<String> {
+    let mut found = Vec::new();
+    for (at, m) in code.match_indices("Result<") {
+        let body = &code[at + m.len()..];
+        let (mut depth, mut last_comma, mut end) = (0usize, None, None);
+        let mut previous = ' ';
+        for (i, c) in body.char_indices() {
+            match c {
+                '<' | '(' | '[' => depth += 1,
+                // `->` in a `Fn() -> T` argument closes nothing
+                '>' if previous == '-' => {}
+                '>' | ')' | ']' if depth == 0 => {
+                    end = Some(i);
+                    break;
+                }
+                '>' | ')' | ']' => depth -= 1,
+                ',' if depth == 0 => last_comma = Some(i),
+                ';' | '{' => break,
+                _ => {}
+            }
+            previous = c;
+        }
+        let (Some(end), Some(comma)) = (end, last_comma) else {
+            continue;
+        };
+        if body[comma + 1..end].trim() == "String" {
+            found.push(format!("Result<{}", &body[..=end]));
+        }
+    }
+    found
+}
+
+/// The pattern finds a `String` error behind nested generics, where
+/// stopping at the first `>` saw `Result<Vec<f64>` and passed it.
+#[test]
+fn the_typed_error_check_sees_through_nested_generics() {
+    let found = |code: &str| string_results(code).len();
+    assert_eq!(found("fn a() -> Result<Vec<f64>, String> {"), 1);
+    assert_eq!(found("fn a() -> Result<Option<Criterion>, String> {"), 1);
+    assert_eq!(
+        found("fn a() -> Result<HashMap<u8, Vec<(f64, u8)>>, String>;"),
+        1
+    );
+    assert_eq!(
+        found("fn a() -> Result<Box<dyn Fn(u8) -> u8>, String> {"),
+        1
+    );
+    assert_eq!(found("fn a() -> Result<(), String> {"), 1);
+    assert_eq!(found("fn a() -> Result<Vec<String>, MyError> {"), 0);
+    assert_eq!(found("fn a() -> io::Result<String> {"), 0);
+    assert_eq!(found("fn a() -> Result<Vec<f64>, Error<String>> {"), 0);
+}
+
 #[test]
 fn library_crates_return_typed_errors() {
     let mut found = Vec::new();
@@ -269,12 +325,8 @@ fn library_crates_return_typed_errors() {
         rust_files(&dir.join("src"), &mut files);
         for file in files {
             let flat: String = code(&file).split_whitespace().collect::<Vec<_>>().join(" ");
-            for (at, _) in flat.match_indices("Result<") {
-                let head: String = flat[at..].chars().take(160).collect();
-                let end = head.find('>').map_or(head.len(), |e| e + 1);
-                if head[..end].replace(' ', "").ends_with(",String>") {
-                    found.push(format!("{}: {}", file.display(), &head[..end]));
-                }
+            for result in string_results(&flat) {
+                found.push(format!("{}: {result}", file.display()));
             }
             if flat.contains("type Err = String") {
                 found.push(format!("{}: type Err = String", file.display()));

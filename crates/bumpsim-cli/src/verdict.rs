@@ -11,6 +11,7 @@ use crate::{Folder, write};
 use anyhow::{Context, Result};
 use bumpsim_planar::PlanarCar;
 use bumpsim_verdict::prelude::*;
+use bumpsim_verdict::pulse::AsiMethod;
 use bumpsim_verdict::{probability, protocol, sensitivity, target, text};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -63,6 +64,11 @@ pub struct Args {
     /// independent), with 95 % bootstrap intervals.
     #[arg(long, requires = "uncertainty")]
     sobol: bool,
+    /// How the ASI averages the accelerations: 2010 (EN 1317-1:2010, a
+    /// 4-pole phaseless 13 Hz Butterworth low-pass) or 1998 (EN 1317-1:1998,
+    /// 50 ms moving averages from first contact).
+    #[arg(long, value_name = "YEAR", default_value = "2010", value_parser = ["2010", "1998"])]
+    asi_method: String,
     /// Base samples N of the Sobol indices: the verdict runs N (d + 2)
     /// times for d parameters (16 to 8192; a power of two).
     #[arg(
@@ -92,7 +98,13 @@ pub fn run(args: &Args) -> Result<()> {
             CarEnd::new(car, limits).with_context(|| path.display().to_string())
         })
         .collect::<Result<Vec<_>>>()?;
-    let setup = Setup::new(ends, tests, args.margin)?;
+    let mut setup = Setup::new(ends, tests, args.margin)?;
+    setup.asi_method = args
+        .asi_method
+        .parse()
+        .ok()
+        .and_then(AsiMethod::of_year)
+        .context("--asi-method: 2010 or 1998")?;
     let mut v = verdict(&setup)?;
     let mut indices = None;
     if let Some(path) = &args.uncertainty {

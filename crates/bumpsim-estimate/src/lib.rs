@@ -25,7 +25,9 @@
 //!   the posterior of any least-squares model (issue 39);
 //! - [`sobol`]: Sobol' indices with bootstrap intervals (issue 39);
 //! - [`propagate`]: draws through a model: distributions, prediction bands
-//!   and probabilities of passing (issue 39).
+//!   and probabilities of passing (issue 39);
+//! - [`binomial`]: exact bounds of a probability from its draws, one-sided
+//!   when none fails (issue 45).
 //!
 //! Parameters are estimated as `p = ln θ`: masses, dampers and springs
 //! spanning seven decades become comparable and stay positive.
@@ -68,6 +70,7 @@
 //! assert!(found.starts.reached_best >= 2);
 //! ```
 
+pub mod binomial;
 pub mod bounds;
 pub mod document;
 pub mod effective;

@@ -2,8 +2,9 @@
 //! through any model (issue 39): the model runs once per draw, in
 //! parallel; a scalar output becomes its distribution (mean, deviation,
 //! equal-tailed interval), a history its pointwise prediction band, a
-//! criterion its probability of passing with the binomial standard error
-//! `√(p (1 − p)/n)`.
+//! criterion its probability of passing with its exact 95 % bounds
+//! ([`crate::binomial`]; the binomial standard error `√(p (1 − p)/n)` too,
+//! which is 0 when every draw passes).
 //!
 //! Monte Carlo over the draws: the intervals are those of the draws' law
 //! (the posterior predictive of the model's output without measurement
@@ -22,6 +23,7 @@
 //! assert!((pass.probability - 0.5).abs() < 0.01);
 //! ```
 
+use crate::binomial::Bounds;
 use crate::posterior::quantile;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -126,10 +128,30 @@ pub fn band(histories: &[Vec<f64>], level: f64) -> Option<Band> {
 pub struct Probability {
     /// The share of outputs that pass.
     pub probability: f64,
-    /// Its binomial standard error `√(p (1 − p)/n)`.
+    /// Its binomial standard error `√(p (1 − p)/n)` (0 when every or no
+    /// output passes: read the bounds).
     pub standard_error: f64,
     /// Outputs judged.
     pub count: usize,
+    /// Outputs that pass.
+    pub passed: usize,
+    /// Its exact 95 % bounds (Clopper–Pearson; one-sided when every or no
+    /// output passes, [`crate::binomial`]).
+    #[serde(flatten)]
+    pub bounds: Bounds,
+}
+
+impl Probability {
+    /// Short, for a table cell: `93.8 % (90.0–96.4 %)`, `≥ 98.5 %`.
+    pub fn cell(&self) -> String {
+        crate::binomial::cell(self.probability, &self.bounds)
+    }
+
+    /// As a sentence: `no failure in 200 draws: P(pass) ≥ 98.5 % (95 %
+    /// one-sided); 299 draws would show ≥ 99 %`.
+    pub fn sentence(&self) -> String {
+        crate::binomial::sentence(self.passed, self.count, &self.bounds)
+    }
 }
 
 /// The share of `outputs` for which `passes` holds.
@@ -144,6 +166,8 @@ pub fn probability<T>(outputs: &[T], passes: impl Fn(&T) -> bool) -> Probability
         probability: p,
         standard_error: (p * (1.0 - p) / count as f64).sqrt(),
         count,
+        passed,
+        bounds: Bounds::of(passed, count),
     }
 }
 

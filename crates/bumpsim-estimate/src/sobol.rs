@@ -297,6 +297,45 @@ pub struct Indices {
     pub evaluations: usize,
 }
 
+/// An index as printed, a share of variance within [0, 1]: `0.885 ±
+/// 0.365`. An estimate outside is the estimator's sampling error (a share
+/// cannot exceed 1 nor fall below 0), so it is printed at the bound with
+/// the estimate and its 95 % half-width beside it: `1.000 (est. 1.037 ±
+/// 0.040)`; a rounded −0 prints as 0.
+///
+/// ```
+/// use bumpsim_estimate::sobol::share;
+/// assert_eq!(share(0.8849, 0.3651), "0.885 ± 0.365");
+/// assert_eq!(share(1.037, 0.040), "1.000 (est. 1.037 ± 0.040)");
+/// assert_eq!(share(-0.0001, 0.002), "0.000 ± 0.002");
+/// ```
+pub fn share(index: f64, half_width: f64) -> String {
+    let shown = |v: f64| {
+        let text = format!("{v:.3}");
+        match text.as_str() {
+            "-0.000" => "0.000".to_string(),
+            _ => text,
+        }
+    };
+    match outside(index) {
+        true => format!(
+            "{} (est. {} ± {half_width:.3})",
+            shown(index.clamp(0.0, 1.0)),
+            shown(index)
+        ),
+        false => format!("{} ± {half_width:.3}", shown(index)),
+    }
+}
+
+/// Whether an index estimate prints outside [0, 1] (above 1.0005 or below
+/// −0.0005): [`share`] clips it, and a table says so ([`CLIPPED`]).
+pub fn outside(index: f64) -> bool {
+    !(-0.0005..1.0005).contains(&index)
+}
+
+/// The note under a table with a clipped index ([`share`]).
+pub const CLIPPED: &str = "an index estimated outside [0, 1] is shown at the bound with its estimate ± 95 % half-width (est.): a share of variance lies within [0, 1], the excess is the estimator's sampling error; more base samples narrow it";
+
 /// Why indices cannot be computed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]

@@ -25,7 +25,7 @@ use bumpsim_core::units::{Dimension, format_quantity};
 use bumpsim_estimate::propagate::{Band, Run, Spread, band, spread, through};
 /// The Sobol' indices' settings (base samples N, resamples, seed).
 pub use bumpsim_estimate::sobol::Settings as SobolSettings;
-use bumpsim_estimate::sobol::{Indices, Settings, SobolError, indices};
+use bumpsim_estimate::sobol::{CLIPPED, Indices, Settings, SobolError, indices, outside, share};
 use serde::Serialize;
 use std::collections::HashMap;
 use std::sync::Mutex;
@@ -538,15 +538,21 @@ pub fn sensitivity_lines(s: &Sensitivity) -> String {
     for o in &s.outputs {
         let i = &o.indices;
         for (k, name) in i.names.iter().enumerate() {
-            let pm = |v: f64, c: f64| format!("{v:.3} ± {c:.3}");
             out += &format!(
                 "  {:<30} {:<24} {:>16} {:>16}\n",
                 o.name,
                 name,
-                pm(i.first[k], i.first_conf[k]),
-                pm(i.total[k], i.total_conf[k])
+                share(i.first[k], i.first_conf[k]),
+                share(i.total[k], i.total_conf[k])
             );
         }
+    }
+    let all = s
+        .outputs
+        .iter()
+        .flat_map(|o| o.indices.first.iter().chain(&o.indices.total));
+    if all.copied().any(outside) {
+        out += &format!("  {CLIPPED}\n");
     }
     for c in &s.constant {
         let value = bumpsim_core::units::short(c.value);

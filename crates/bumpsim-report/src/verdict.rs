@@ -213,6 +213,9 @@ fn sobol(
     page.paragraph(&sensitivity::caption(s));
     let rows: Vec<Vec<String>> = sensitivity::rows(s).into_iter().map(Vec::from).collect();
     page.table(&sensitivity::HEADERS, &rows);
+    if sensitivity::clipped(s) {
+        page.paragraph(sensitivity::CLIPPED);
+    }
     for t in &v.tests {
         let Some(binding) = t.binding() else { continue };
         let found = s

@@ -346,9 +346,9 @@ pub fn criteria(e: &Evidence, margin: f64) -> (Vec<Criterion>, Vec<String>) {
     }
     let mut assumptions = vec![e.test.uncertain.to_string()];
     match engagement(d, e.test) {
-        Ok(Some(c)) => out.push(c.judged(margin)),
-        Ok(None) => {}
-        Err(assumption) => assumptions.push(assumption),
+        Engagement::Judged(c) => out.push(c.judged(margin)),
+        Engagement::Whole => {}
+        Engagement::Assumed(assumption) => assumptions.push(assumption),
     }
     out.extend(pulse(d, e.metrics, margin));
     if let Some(least) = d.bumper_energy_share {
@@ -393,30 +393,40 @@ fn crash_box(e: &Evidence, margin: f64) -> Option<Criterion> {
     })
 }
 
-/// The beam's engagement with the striker; `Err`: the assumption made
-/// without the beam's heights.
-fn engagement(d: &Damageability, test: &Test) -> Result<Option<Criterion>, String> {
+/// What can be said of the beam's engagement with the striker.
+enum Engagement {
+    /// A criterion, judged from the beam's and the striker's heights.
+    Judged(Criterion),
+    /// Nothing to judge: the striker covers the whole front or its
+    /// height is not known with the beam's heights given.
+    Whole,
+    /// The assumption made without the beam's heights.
+    Assumed(String),
+}
+
+/// The beam's engagement with the striker.
+fn engagement(d: &Damageability, test: &Test) -> Engagement {
     let mm = |v: f64| format!("{:.0} mm", v * 1e3);
     let Some([bottom, top]) = d.beam_height else {
         return match test.height {
-            Height::Full => Ok(None),
-            Height::Unknown => Err(
+            Height::Full => Engagement::Whole,
+            Height::Unknown => Engagement::Assumed(
                 "the striker's height is not known here: the beam is assumed to engage it".into(),
             ),
-            Height::Ridge { low, high } => Err(format!(
+            Height::Ridge { low, high } => Engagement::Assumed(format!(
                 "the beam is assumed to engage the impact ridge at {}-{} (no damageability.beam_height: override and underride not assessed)",
                 mm(low),
                 mm(high)
             )),
-            Height::Face { bottom, top } => Err(format!(
+            Height::Face { bottom, top } => Engagement::Assumed(format!(
                 "the beam is assumed to engage the barrier face at {}-{} (no damageability.beam_height: override and underride not assessed)",
                 mm(bottom),
                 mm(top)
             )),
         };
     };
-    Ok(match test.height {
-        Height::Full | Height::Unknown => None,
+    match test.height {
+        Height::Full | Height::Unknown => Engagement::Whole,
         Height::Ridge { low, high } => {
             let cover = (low - bottom).min(top - high);
             let span = (high - low).max(0.05);
@@ -436,7 +446,7 @@ fn engagement(d: &Damageability, test: &Test) -> Result<Option<Criterion>, Strin
                 false,
             );
             c.ratio = c.margin / span;
-            Some(c)
+            Engagement::Judged(c)
         }
         Height::Face {
             bottom: low,
@@ -452,7 +462,7 @@ fn engagement(d: &Damageability, test: &Test) -> Result<Option<Criterion>, Strin
                 mm(top),
                 mm(need)
             );
-            Some(Criterion::new(
+            Engagement::Judged(Criterion::new(
                 "beam engagement".into(),
                 detail,
                 Quantity::Length,
@@ -461,7 +471,7 @@ fn engagement(d: &Damageability, test: &Test) -> Result<Option<Criterion>, Strin
                 false,
             ))
         }
-    })
+    }
 }
 
 fn pulse(d: &Damageability, m: &Metrics, margin: f64) -> Vec<Criterion> {

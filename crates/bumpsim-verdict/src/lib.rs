@@ -8,7 +8,8 @@
 //! - [`limits`]: the car's clearances and limits (`[damageability]` of the
 //!   planar car file);
 //! - [`criteria`]: each criterion's value, limit and margin;
-//! - [`pulse`]: peak and 3 ms clip deceleration, delta-V, OLC, ASI;
+//! - [`pulse`]: peak and 3 ms clip deceleration, delta-V, OLC, ASI
+//!   (EN 1317-1:2010 or 1998), to a defined contact end;
 //! - [`verdict`](mod@verdict): every test run and judged;
 //! - [`probability`]: the verdict propagated over the car's uncertainty:
 //!   each criterion's probability of passing (issue 39);

@@ -5,7 +5,8 @@
 //! test ([`crate::verdict`](mod@crate::verdict)) in parallel
 //! ([`bumpsim_estimate::propagate::through`]). A criterion's probability
 //! of passing is the share of draws in which it keeps the margin asked
-//! for, with its binomial standard error `√(p (1 − p)/N)`; a test's, the
+//! for, with its exact 95 % bounds (Clopper–Pearson, one-sided when no
+//! draw fails: [`bumpsim_estimate::binomial`]); a test's, the
 //! share in which all its criteria do; the verdict's, the share in which
 //! every test does. A draw whose car is not valid or whose run fails is
 //! counted, not used.

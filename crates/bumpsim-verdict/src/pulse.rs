@@ -2,6 +2,27 @@
 //! 3 ms clip of the deceleration, the velocity change, the occupant load
 //! criterion and the acceleration severity index.
 //!
+//! - **Contact end** ([`contact_end`]): the first time after the force's
+//!   peak at which the striker's force falls below
+//!   [`CONTACT_END_SHARE`] (1 %) of its peak and stays below for
+//!   [`CONTACT_END_QUIET`] (2 ms), the crossing interpolated between
+//!   samples. The simulation's own contact end is the first sample with no
+//!   force at all, so a force that hovers at a few newtons while the beam
+//!   leaves the face ends the contact at 46.9 ms or 54.0 ms by rounding
+//!   (a pendulum speed of 1.1176 or 1.1176000000000001 m/s), and the
+//!   velocity change to the record's end moved with it (0.9009 against
+//!   0.8986 m/s). 1 % of the peak: a force that small changes the car's
+//!   velocity at a hundredth of the peak's rate, about what a load cell
+//!   sized for the peak resolves, so the end does not hinge on whether a
+//!   residual force is exactly zero; 2 ms (20 samples at 0.1 ms, a
+//!   twentieth of a 40 ms contact): a beam that leaves the face for a
+//!   moment and strikes again is not taken for the end. The pulse is the
+//!   car's motion from first contact (t = 0) to that end; after it the car
+//!   rolls on at its velocity then, with no acceleration (the tyres'
+//!   braking after the impact is not part of the pulse).
+//! - **Velocity change** ΔV: the body CG's velocity at the contact end
+//!   minus its velocity at first contact (a vector difference, its
+//!   magnitude).
 //! - **3 ms clip**: the level the deceleration exceeds for a cumulative
 //!   3 ms (the 3 ms criterion of FMVSS 208 and ECE R94's chest
 //!   acceleration): the 3 ms ÷ T-th largest sample.
@@ -15,13 +36,30 @@
 //!   trapezoidal integral of `v₀ − v` from t = 0, t₁ the first sample at or
 //!   beyond 65 mm and t₂ the first sample after t₁ at which
 //!   `s(t₂) − OLC (t₂ − t₁)²/2 ≥ 300 mm`.
-//! - **ASI** (acceleration severity index, EN 1317-1:2010 §6.1):
-//!   `ASI(t) = √((ā_x/12g)² + (ā_y/9g)² + (ā_z/10g)²)` with `ā` the averages
-//!   of the vehicle's accelerations over a moving 50 ms window and
-//!   g = 9.81 m/s² (the standard's value); ASI is its largest value. The
-//!   averages are the trapezoidal integral over the window (linear between
-//!   samples). EN 1317-1 filters measured accelerations first (its 13 Hz
-//!   low-pass); a simulated pulse carries no noise and is used as it is.
+//! - **ASI** (acceleration severity index, EN 1317-1):
+//!   `ASI(t) = √((ā_x/12g)² + (ā_y/9g)² + (ā_z/10g)²)`, g = 9.81 m/s² (the
+//!   standard's value); ASI is its largest value. [`AsiMethod`] says how
+//!   the accelerations `ā` are averaged:
+//!   - EN 1317-1:2010 (the default): each acceleration through a
+//!     "4-pole phaseless Butterworth" low-pass filter of 13 Hz cut-off.
+//!     That is read as SAE J211-1 and ISO 6487 use the same words for the
+//!     CFC filters (bumpsim_signal::filter): a **2-pole** Butterworth run
+//!     forward and then backward, so the cascade has four poles and no
+//!     phase (`scipy.signal.butter(2, 13, fs=1/T)` with `filtfilt`), not a
+//!     4-pole design run both ways (eight poles). Codes that implement the
+//!     2010 ASI name it the same way (Oasys T/HIS: "four-pole phaseless
+//!     Butterworth filter with a 13 Hz cut-off", after a CFC 180 filter,
+//!     the record padded with 0.5 s). The record is padded with 0.5 s of
+//!     zero acceleration on each side (the car at constant speed before
+//!     the contact, rolling on after it) so that the filter's start-up
+//!     does not touch the pulse; the maximum is taken over every sample.
+//!   - EN 1317-1:1998: averages over a moving 50 ms window (the
+//!     trapezoidal integral over the window, linear between samples),
+//!     windows starting at first contact (t = 0) or later, up to the last
+//!     that fits in the record.
+//!
+//!   A simulated pulse carries no measurement noise, so no CFC filter runs
+//!   first.
 //!
 //! Signs: the pulse is taken along the body's x axis towards the struck
 //! end (the planar car's frame), so the deceleration is positive in a
@@ -40,8 +78,53 @@ pub const G_EN1317: f64 = 9.81;
 pub const OLC_FREE_FLIGHT: f64 = 0.065;
 /// Its restraint displacement after the free flight, m.
 pub const OLC_RESTRAINT: f64 = 0.235;
-/// The ASI's averaging window, s.
+/// The 1998 ASI's averaging window, s.
 pub const ASI_WINDOW: f64 = 0.05;
+/// The 2010 ASI's low-pass cut-off, Hz.
+pub const ASI_CUTOFF: f64 = 13.0;
+/// The 2010 ASI's Butterworth order per pass (run forward and backward:
+/// four poles, no phase).
+pub const ASI_ORDER: usize = 2;
+/// The zero acceleration the 2010 ASI's record is padded with on each
+/// side, s.
+pub const ASI_PADDING: f64 = 0.5;
+/// The share of its peak below which the striker's force must stay for
+/// the contact to end, 1 (see the module).
+pub const CONTACT_END_SHARE: f64 = 0.01;
+/// How long the force must stay below that share, s.
+pub const CONTACT_END_QUIET: f64 = 0.002;
+
+/// How the ASI averages the vehicle's accelerations (see the module).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub enum AsiMethod {
+    /// EN 1317-1:2010: a 2-pole Butterworth low-pass of 13 Hz run forward
+    /// and backward (4 poles, phaseless).
+    #[default]
+    #[serde(rename = "EN 1317-1:2010")]
+    En2010,
+    /// EN 1317-1:1998: 50 ms moving averages from first contact.
+    #[serde(rename = "EN 1317-1:1998")]
+    En1998,
+}
+
+impl AsiMethod {
+    /// The method of an edition's year, `2010` or `1998`.
+    pub fn of_year(year: u16) -> Option<AsiMethod> {
+        match year {
+            2010 => Some(AsiMethod::En2010),
+            1998 => Some(AsiMethod::En1998),
+            _ => None,
+        }
+    }
+
+    /// The edition, `EN 1317-1:2010`.
+    pub fn name(self) -> &'static str {
+        match self {
+            AsiMethod::En2010 => "EN 1317-1:2010",
+            AsiMethod::En1998 => "EN 1317-1:1998",
+        }
+    }
+}
 /// The cumulative duration of the clip, s.
 pub const CLIP: f64 = 0.003;
 
@@ -56,8 +139,12 @@ pub struct Pulse {
     pub deceleration: Vec<f64>,
     /// Lateral acceleration along the body's y axis, m/s².
     pub lateral: Vec<f64>,
-    /// Velocity change of the body's CG from the first to the last sample, m/s.
+    /// Velocity change of the body's CG from first contact to the contact
+    /// end, m/s.
     pub delta_v: f64,
+    /// The contact end, s ([`contact_end`]; the last sample's time when
+    /// the force never falls away).
+    pub contact_end: f64,
 }
 
 /// The metrics of a pulse.
@@ -67,25 +154,34 @@ pub struct Metrics {
     pub peak: f64,
     /// 3 ms clip of the deceleration, m/s².
     pub clip: f64,
-    /// Velocity change, m/s.
+    /// Velocity change from first contact to the contact end, m/s.
     pub delta_v: f64,
+    /// The contact end, s.
+    pub contact_end: f64,
     /// Occupant load criterion, m/s² (None: not computable, see `notes`).
     pub olc: Option<f64>,
     /// Acceleration severity index, 1.
     pub asi: Option<f64>,
+    /// How the ASI averaged the accelerations.
+    pub asi_method: AsiMethod,
 }
 
 impl Pulse {
     /// The body's pulse in a planar result: the CG velocity turned into
-    /// the body's axes, its accelerations by central differences.
+    /// the body's axes, its accelerations by central differences, up to
+    /// the contact end ([`contact_end`]); the samples after it carry the
+    /// velocity at the contact end and no acceleration, and the record
+    /// stops at the first sample past it.
     pub fn of(r: &PlanarResult) -> Pulse {
         let n = r.time.len();
+        let last = r.time.last().copied().unwrap_or(0.0);
+        let end = contact_end(&r.time, &r.force).unwrap_or(last);
         let body = |k: usize| {
             let (sn, cs) = r.yaw[k].sin_cos();
             let (vx, vy) = (r.velocity_x[k], r.velocity_y[k]);
             (vx * cs + vy * sn, -vx * sn + vy * cs)
         };
-        let velocity: Vec<f64> = (0..n).map(|k| body(k).0).collect();
+        let mut velocity: Vec<f64> = (0..n).map(|k| body(k).0).collect();
         let (mut deceleration, mut lateral) = (vec![0.0; n], vec![0.0; n]);
         for k in 0..n {
             let (a, b) = (k.saturating_sub(1), (k + 1).min(n - 1));
@@ -102,15 +198,28 @@ impl Pulse {
         let delta_v = match n {
             0 => 0.0,
             _ => {
-                (r.velocity_x[n - 1] - r.velocity_x[0]).hypot(r.velocity_y[n - 1] - r.velocity_y[0])
+                let change = |v: &[f64]| at(&r.time, v, end) - at(&r.time, v, 0.0);
+                change(&r.velocity_x).hypot(change(&r.velocity_y))
             }
         };
+        let after = r.time.partition_point(|&t| t <= end);
+        let keep = (after + 1).min(n);
+        if after < n {
+            let rolling = at(&r.time, &velocity, end);
+            velocity[after..].iter_mut().for_each(|v| *v = rolling);
+            deceleration[after..].iter_mut().for_each(|a| *a = 0.0);
+            lateral[after..].iter_mut().for_each(|a| *a = 0.0);
+        }
+        for series in [&mut velocity, &mut deceleration, &mut lateral] {
+            series.truncate(keep);
+        }
         Pulse {
-            time: r.time.clone(),
+            time: r.time[..keep].to_vec(),
             velocity,
             deceleration,
             lateral,
             delta_v,
+            contact_end: end,
         }
     }
 
@@ -135,10 +244,10 @@ impl Pulse {
         p
     }
 
-    /// Peak, 3 ms clip, velocity change and, with `full`, OLC and ASI
-    /// (the record continued as far as they need, up to 8 s); the reasons
-    /// a metric could not be computed are returned with them.
-    pub fn metrics(&self, full: bool) -> (Metrics, Vec<String>) {
+    /// Peak, 3 ms clip, velocity change and, with `full`, OLC and the ASI
+    /// by `method` (the record continued as far as they need, up to 8 s);
+    /// the reasons a metric could not be computed are returned with them.
+    pub fn metrics(&self, full: bool, method: AsiMethod) -> (Metrics, Vec<String>) {
         let end = self.time.last().copied().unwrap_or(0.0);
         let mut notes = Vec::new();
         let (mut olc_value, mut asi_value) = (None, None);
@@ -158,9 +267,13 @@ impl Pulse {
                 .map(|o| o.value)
                 .map_err(|e| notes.push(e.to_string()))
                 .ok();
-            let long = self.extended(end + ASI_WINDOW);
+            let long = match method {
+                AsiMethod::En1998 => self.extended(end + ASI_WINDOW),
+                AsiMethod::En2010 => self.clone(),
+            };
             let zeros = vec![0.0; long.time.len()];
-            asi_value = asi(&long.time, [&long.deceleration, &long.lateral, &zeros])
+            let a = [&long.deceleration[..], &long.lateral, &zeros];
+            asi_value = asi(&long.time, a, method)
                 .map_err(|e| notes.push(e.to_string()))
                 .ok();
         }
@@ -169,8 +282,10 @@ impl Pulse {
             peak: self.deceleration.iter().copied().fold(0.0, f64::max),
             clip: clip(&self.time, &self.deceleration, CLIP),
             delta_v: self.delta_v,
+            contact_end: self.contact_end,
             olc,
             asi,
+            asi_method: method,
         };
         (metrics, notes)
     }
@@ -293,36 +408,150 @@ pub fn olc(time: &[f64], velocity: &[f64]) -> Result<Olc, VerdictError> {
     )))
 }
 
-/// The acceleration severity index of the accelerations `[a_x, a_y, a_z]`
-/// (m/s², any sign) sampled at `time` (s): the largest value over the
-/// 50 ms windows that fit in the record.
+/// The contact end of a striker force `force` (N, any sign) sampled at
+/// `time` (s): the first time after its peak at which its magnitude falls
+/// below [`CONTACT_END_SHARE`] of the peak and stays below for
+/// [`CONTACT_END_QUIET`] (or to the record's end), interpolated linearly
+/// between the samples around the crossing. None without any force.
 ///
 /// ```
-/// // a constant 12 g longitudinal for 60 ms: ASI 1
+/// // a half sine of 40 ms, then a residual 0.1 % of the peak
+/// let time: Vec<f64> = (0..800).map(|k| k as f64 * 1e-4).collect();
+/// let pi = std::f64::consts::PI;
+/// let f: Vec<f64> = time.iter().map(|&t| if t < 0.04 { 1e4 * (pi * t / 0.04).sin() } else { 10.0 }).collect();
+/// let end = bumpsim_verdict::pulse::contact_end(&time, &f).unwrap();
+/// // sin(π t / 40 ms) = 0.01 at t = 40 ms × (1 − asin(0.01)/π)
+/// assert!((end - 0.04 * (1.0 - 0.01f64.asin() / pi)).abs() < 1e-6);
+/// ```
+pub fn contact_end(time: &[f64], force: &[f64]) -> Option<f64> {
+    let n = time.len().min(force.len());
+    let magnitude: Vec<f64> = force[..n].iter().map(|f| f.abs()).collect();
+    let (top, peak) = magnitude
+        .iter()
+        .copied()
+        .enumerate()
+        .fold(
+            (0, 0.0),
+            |best, (k, f)| if f > best.1 { (k, f) } else { best },
+        );
+    if peak <= 0.0 {
+        return None;
+    }
+    let threshold = CONTACT_END_SHARE * peak;
+    let mut k = top + 1;
+    while k < n {
+        if magnitude[k] >= threshold {
+            k += 1;
+            continue;
+        }
+        let quiet_until = time[k] + CONTACT_END_QUIET;
+        let again = (k + 1..n)
+            .take_while(|&j| time[j] <= quiet_until)
+            .find(|&j| magnitude[j] >= threshold);
+        match again {
+            Some(j) => k = j + 1,
+            None => {
+                let (f0, f1) = (magnitude[k - 1], magnitude[k]);
+                let share = (f0 - threshold) / (f0 - f1);
+                return Some(time[k - 1] + share * (time[k] - time[k - 1]));
+            }
+        }
+    }
+    time.get(n.wrapping_sub(1)).copied()
+}
+
+/// The acceleration severity index of the accelerations `[a_x, a_y, a_z]`
+/// (m/s², any sign) sampled at `time` (s; t = 0 at first contact) by
+/// `method` (see the module).
+///
+/// ```
+/// use bumpsim_verdict::pulse::{AsiMethod, asi};
+/// // a constant 12 g longitudinal for 60 ms: 1998 ASI 1
 /// let time: Vec<f64> = (0..=600).map(|k| k as f64 * 1e-4).collect();
 /// let ax = vec![12.0 * 9.81; time.len()];
 /// let zeros = vec![0.0; time.len()];
-/// let asi = bumpsim_verdict::pulse::asi(&time, [&ax, &zeros, &zeros]).unwrap();
-/// assert!((asi - 1.0).abs() < 1e-12);
+/// let a = asi(&time, [&ax, &zeros, &zeros], AsiMethod::En1998).unwrap();
+/// assert!((a - 1.0).abs() < 1e-12);
+/// // the 2010 filter rings over the 60 ms step by 2.9 % (as scipy's
+/// // filtfilt of butter(2, 13 Hz) on the same padded record)
+/// let filtered = asi(&time, [&ax, &zeros, &zeros], AsiMethod::En2010).unwrap();
+/// assert!((filtered - 1.028926300604871).abs() < 1e-9);
 /// ```
-pub fn asi(time: &[f64], a: [&[f64]; 3]) -> Result<f64, VerdictError> {
+pub fn asi(time: &[f64], a: [&[f64]; 3], method: AsiMethod) -> Result<f64, VerdictError> {
     check_series("ASI", time, &a)?;
+    match method {
+        AsiMethod::En1998 => asi_1998(time, a),
+        AsiMethod::En2010 => asi_2010(time, a),
+    }
+}
+
+/// The acceleration limits 12 g, 9 g, 10 g, m/s².
+fn limits() -> [f64; 3] {
+    [12.0, 9.0, 10.0].map(|g| g * G_EN1317)
+}
+
+/// EN 1317-1:2010: filtered, padded, the largest value over the samples.
+fn asi_2010(time: &[f64], a: [&[f64]; 3]) -> Result<f64, VerdictError> {
+    let bad = |reason: String| VerdictError::Pulse {
+        metric: "ASI",
+        reason,
+    };
+    let n = time.len();
+    let step = (time[n - 1] - time[0]) / (n - 1) as f64;
+    let uneven = time
+        .windows(2)
+        .any(|w| ((w[1] - w[0]) / step - 1.0).abs() > 1e-6);
+    if uneven {
+        return Err(bad(
+            "the EN 1317-1:2010 filter needs a constant sample interval".into(),
+        ));
+    }
+    let filter = bumpsim_signal::filter::Butterworth::new(ASI_ORDER, ASI_CUTOFF, step)
+        .map_err(|e| bad(format!("its {ASI_CUTOFF} Hz low-pass: {e}")))?;
+    let pad = (ASI_PADDING / step).round() as usize;
+    let limits = limits();
+    let mut squares = vec![0.0; n + 2 * pad];
+    for (values, limit) in a.iter().zip(limits) {
+        let padded: Vec<f64> = std::iter::repeat_n(0.0, pad)
+            .chain(values.iter().copied())
+            .chain(std::iter::repeat_n(0.0, pad))
+            .collect();
+        let filtered = filter
+            .zero_phase(&padded, ASI_FILTER_PADDING)
+            .map_err(|e| bad(format!("its {ASI_CUTOFF} Hz low-pass: {e}")))?;
+        for (s, f) in squares.iter_mut().zip(filtered) {
+            *s += (f / limit).powi(2);
+        }
+    }
+    Ok(squares.into_iter().fold(0.0, f64::max).sqrt())
+}
+
+/// The filter's own odd padding at each end, samples (scipy's `filtfilt`
+/// default for a 2-pole design, `3 max(len(a), len(b))`; the record's zero
+/// padding already keeps the start-up off the pulse).
+const ASI_FILTER_PADDING: usize = 9;
+
+/// EN 1317-1:1998: the largest value over the 50 ms windows from first
+/// contact that fit in the record.
+fn asi_1998(time: &[f64], a: [&[f64]; 3]) -> Result<f64, VerdictError> {
     let end = time[time.len() - 1];
-    if end - time[0] < ASI_WINDOW {
+    let first = time.partition_point(|&t| t < 0.0);
+    if first >= time.len() || end - time[first] < ASI_WINDOW {
         return Err(VerdictError::Pulse {
             metric: "ASI",
             reason: format!(
-                "the record ({} s) is shorter than the 50 ms window",
-                end - time[0]
+                "the record from first contact ({} s) is shorter than the 50 ms window",
+                end - time[first.min(time.len() - 1)].max(0.0)
             ),
         });
     }
     let sums = a.map(|values| integral(time, values));
-    let limits = [12.0, 9.0, 10.0].map(|g| g * G_EN1317);
+    let limits = limits();
     let mut largest = 0.0f64;
     for (k, &t) in time
         .iter()
         .enumerate()
+        .skip(first)
         .take_while(|(_, t)| **t + ASI_WINDOW <= end + 1e-12)
     {
         let squares: f64 = (0..3)

@@ -46,8 +46,8 @@ use crate::error::{VerdictError, require};
 use crate::uncertainty::Uncertainty;
 use crate::uncertainty::{Marginal, described};
 use crate::verdict::{Setup, Verdict, verdict};
-use bumpsim_estimate::sobol::{DIMENSIONS, SobolError, indices};
-pub use bumpsim_estimate::sobol::{Indices, Settings};
+pub use bumpsim_estimate::sobol::{CLIPPED, Indices, Settings};
+use bumpsim_estimate::sobol::{DIMENSIONS, SobolError, indices, outside, share};
 use serde::Serialize;
 use std::collections::HashMap;
 use std::sync::Mutex;
@@ -211,7 +211,7 @@ struct Runs<'a> {
     /// The judged values of each point's car, by the point's bits.
     cache: Mutex<HashMap<Vec<u64>, Vec<f64>>>,
     /// The first car that could not be run.
-    failure: Mutex<Option<String>>,
+    failure: Mutex<Option<CarFailure>>,
     progress: &'a (dyn Fn() + Sync),
 }
 
@@ -238,16 +238,19 @@ impl Runs<'_> {
     }
 
     /// The judged values of the car at `u`, or why it cannot be judged.
-    fn run(&self, u: &[f64]) -> Result<Vec<f64>, String> {
+    fn run(&self, u: &[f64]) -> Result<Vec<f64>, CarFailure> {
         let factors = factors(u);
-        let said = |why: String| format!("the car with {}: {why}", self.named(&factors));
+        let car = || self.named(&factors);
         let drawn = crate::probability::drawn(self.setup, &self.parts, &factors)
-            .ok_or_else(|| said("not a valid car".into()))?;
-        let v = verdict(&drawn).map_err(|e| said(e.to_string()))?;
+            .ok_or_else(|| CarFailure::Invalid { car: car() })?;
+        let v = verdict(&drawn).map_err(|e| CarFailure::Verdict {
+            car: car(),
+            source: Box::new(e),
+        })?;
         let values = judged_values(&v, self.judged);
         match values.iter().all(|x| x.is_finite()) && values.len() == self.judged.len() {
             true => Ok(values),
-            false => Err(said("a criterion has no finite value".into())),
+            false => Err(CarFailure::NotFinite { car: car() }),
         }
     }
 
@@ -269,6 +272,24 @@ impl Runs<'_> {
             },
         }
     }
+}
+
+/// Why a car of the design cannot be judged; `car` names its factors
+/// (`bumper.force ×1.0312, body.mass ×0.9876`).
+#[derive(Debug, thiserror::Error)]
+enum CarFailure {
+    /// The scaled parameters make no valid car.
+    #[error("the car with {car}: not a valid car")]
+    Invalid { car: String },
+    /// The verdict refused the car.
+    #[error("the car with {car}: {source}")]
+    Verdict {
+        car: String,
+        source: Box<VerdictError>,
+    },
+    /// A judged criterion has no finite value or is missing.
+    #[error("the car with {car}: a criterion has no finite value")]
+    NotFinite { car: String },
 }
 
 /// The values of the judged criteria in `v`, in the order of `judged`
@@ -341,16 +362,6 @@ pub fn rows(s: &Sensitivity) -> Vec<[String; 6]> {
     rows
 }
 
-/// An index with its half-width, `0.885 ± 0.365` (a rounded −0 as 0).
-fn share(index: f64, half_width: f64) -> String {
-    let index = format!("{index:.3}");
-    let index = index
-        .strip_prefix('-')
-        .filter(|i| *i == "0.000")
-        .unwrap_or(&index);
-    format!("{index} ± {half_width:.3}")
-}
-
 /// The column headers of [`rows`].
 pub const HEADERS: [&str; 6] = [
     "test",
@@ -401,5 +412,17 @@ pub fn table(s: &Sensitivity) -> String {
     for r in &rows {
         out += &line([&r[0], &r[1], &r[2], &r[3], &r[4], &r[5]].map(|c| c.as_str()));
     }
+    if clipped(s) {
+        out += &format!("{CLIPPED}\n");
+    }
     out
+}
+
+/// Whether an index of `s` prints clipped at 0 or 1
+/// ([`bumpsim_estimate::sobol::share`]).
+pub fn clipped(s: &Sensitivity) -> bool {
+    let indices = s.criteria.iter().filter_map(|c| c.indices.as_ref());
+    indices
+        .flat_map(|i| i.first.iter().chain(&i.total))
+        .any(|v| outside(*v))
 }

@@ -4,7 +4,6 @@
 use crate::criteria::{Criterion, Outcome};
 use crate::target::{Bound, Region};
 use crate::verdict::Verdict;
-use bumpsim_estimate::propagate::Probability;
 
 /// A criterion's outcome as a word.
 pub fn outcome(c: &Criterion) -> &'static str {
@@ -60,18 +59,11 @@ pub const HEADERS: [&str; 7] = [
     "detail",
 ];
 
-/// A criterion's probability of passing, `93.8 ± 2.4 %` (empty when not
-/// propagated or not judged).
+/// A criterion's probability of passing with its exact 95 % bounds,
+/// `93.8 % (90.0–96.4 %)`, or `≥ 98.5 %` when no draw failed (empty when
+/// not propagated or not judged; [`bumpsim_estimate::binomial`]).
 pub fn chance(c: &Criterion) -> String {
-    c.probability.map_or(String::new(), |p| percent(&p))
-}
-
-fn percent(p: &Probability) -> String {
-    format!(
-        "{:.1} ± {:.1} %",
-        100.0 * p.probability,
-        100.0 * p.standard_error
-    )
+    c.probability.map_or(String::new(), |p| p.cell())
 }
 
 /// The headers and rows of the verdict table: [`rows`], with each
@@ -143,17 +135,17 @@ pub fn propagation(v: &Verdict) -> String {
     };
     let u = &p.uncertainty;
     let mut out = format!(
-        "probability of passing over {} ({} draws, seed {}, {} failed; {}): every test {}\n",
+        "probability of passing with exact 95 % bounds over {} ({} draws, seed {}, {} failed; {}): every test: {}\n",
         u.source,
         p.samples,
         p.seed,
         p.failed,
         u.described(),
-        percent(&p.passing)
+        p.passing.sentence()
     );
     for t in &v.tests {
         if let Some(chance) = &t.probability {
-            out += &format!("  {}: {}\n", t.test.name, percent(chance));
+            out += &format!("  {}: {}\n", t.test.name, chance.sentence());
         }
     }
     for left in &u.left_out {
@@ -181,11 +173,13 @@ pub fn summary(v: &Verdict) -> String {
         let olc = m.olc.map_or("-".into(), |o| format!("{:.2} g", o / g));
         let asi = m.asi.map_or("-".into(), |a| format!("{a:.3}"));
         out += &format!(
-            "{} {word}{binding}; peak {:.2} g, 3 ms clip {:.2} g, delta-V {:.2} km/h, OLC {olc}, ASI {asi}\n",
+            "{} {word}{binding}; peak {:.2} g, 3 ms clip {:.2} g, delta-V {:.2} km/h to the contact end at {:.1} ms, OLC {olc}, ASI {asi} ({})\n",
             t.test.name,
             m.peak / g,
             m.clip / g,
-            m.delta_v * 3.6
+            m.delta_v * 3.6,
+            m.contact_end * 1e3,
+            m.asi_method.name()
         );
     }
     let failures = v.failures();

@@ -9,7 +9,7 @@ use crate::criteria::{Criterion, Energies, Evidence, Outcome, criteria, energies
 use crate::error::{VerdictError, require};
 use crate::limits::{Damageability, End};
 use crate::protocol::Test;
-use crate::pulse::{Metrics, Pulse};
+use crate::pulse::{AsiMethod, Metrics, Pulse};
 use crate::uncertainty::Propagation;
 use bumpsim_estimate::propagate::Probability;
 use bumpsim_impact::bumper::Bumper;
@@ -91,6 +91,8 @@ pub struct Setup {
     pub margin: f64,
     /// Integration settings.
     pub settings: Settings,
+    /// How the ASI averages the accelerations (EN 1317-1:2010 unless set).
+    pub asi_method: AsiMethod,
 }
 
 impl Setup {
@@ -133,6 +135,7 @@ impl Setup {
             tests,
             margin,
             settings: Settings::default(),
+            asi_method: AsiMethod::default(),
         })
     }
 
@@ -311,7 +314,7 @@ pub(crate) fn assess(
     let (car, striker, result) = run(end, test, &setup.settings)?;
     let limits = &end.limits;
     let full = pulse || limits.olc.is_some() || limits.asi.is_some();
-    let (metrics, notes) = Pulse::of(&result).metrics(full);
+    let (metrics, notes) = Pulse::of(&result).metrics(full, setup.asi_method);
     let energies = energies(&car, &result);
     let evidence = Evidence {
         car: &car,

@@ -1,6 +1,8 @@
 //! OLC against pyisomme's `calculate_olc` (tests/peers/pyisomme_olc.py)
-//! and ASI against an independent numpy/scipy implementation
-//! (tests/peers/numpy_asi.py), each within 0.1 %, on
+//! and the EN 1317-1:1998 ASI against an independent numpy/scipy
+//! implementation (tests/peers/numpy_asi.py), each within 0.1 %, and the
+//! EN 1317-1:2010 ASI against scipy's `butter` + `filtfilt`
+//! (tests/peers/scipy_asi_2010.py) within 1e-6, on
 //!
 //! - three simulated pulses of the worked example (examples/verdict/: the
 //!   RCAR full-width and corner tests, the 49 CFR 581 barrier) and a
@@ -20,7 +22,7 @@ use bumpsim_peers::python_available;
 use bumpsim_signal::Pipeline;
 use bumpsim_verdict::prelude::*;
 use bumpsim_verdict::protocol::{select, test};
-use bumpsim_verdict::pulse::{ASI_WINDOW, Pulse, asi, olc};
+use bumpsim_verdict::pulse::{ASI_WINDOW, AsiMethod, Pulse, asi, olc};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -81,8 +83,10 @@ fn measured(name: &str, test: &Path, channels: [&str; 2], speed: f64, sign: f64)
     let (a, v) = (&signals[0].series, &signals[1].series);
     let acceleration: Vec<f64> = a.values().iter().map(|x| sign * x).collect();
     let velocity: Vec<f64> = v.values().iter().map(|x| sign * x).collect();
+    let time = v.times();
     let pulse = Pulse {
-        time: v.times(),
+        contact_end: time[time.len() - 1],
+        time,
         deceleration: acceleration.iter().map(|x| -x).collect(),
         lateral: vec![0.0; velocity.len()],
         delta_v: (velocity[velocity.len() - 1] - velocity[0]).abs(),
@@ -202,7 +206,7 @@ fn olc_equals_pyisommes_within_a_tenth_of_a_percent() {
     ours.push(("constant 100 m/s²".into(), olc(&time, &v).unwrap().value));
     for m in measured_pulses() {
         // the verdict's metric: the record continued at its last velocity
-        let (metrics, notes) = m.pulse.metrics(true);
+        let (metrics, notes) = m.pulse.metrics(true, AsiMethod::En1998);
         let value = metrics
             .olc
             .unwrap_or_else(|| panic!("{}: {notes:?}", m.name));
@@ -226,10 +230,41 @@ fn asi_equals_an_independent_implementation_within_a_tenth_of_a_percent() {
         // the verdict's record: continued by the ASI window
         let p = p.extended(p.time.last().unwrap() + ASI_WINDOW);
         let zeros = vec![0.0; p.time.len()];
-        let value = asi(&p.time, [&p.deceleration, &p.lateral, &zeros]).unwrap();
+        let a = [&p.deceleration[..], &p.lateral, &zeros];
+        let value = asi(&p.time, a, AsiMethod::En1998).unwrap();
         args.push((None, columns(&p.time, &[&p.deceleration, &p.lateral])));
         ours.push((name, value));
     }
     let theirs = peer("numpy_asi.py", args);
     assert_within_a_tenth_of_a_percent("ASI", &ours, &theirs);
+}
+
+/// The EN 1317-1:2010 ASI of the simulated pulses (as the verdict runs
+/// them: to the contact end) and the measured ones equals scipy's
+/// 2-pole 13 Hz Butterworth run forward and backward within 1e-6.
+#[test]
+fn asi_2010_equals_scipys_filtfilt_within_1e_6() {
+    if !python_available("scipy") {
+        return;
+    }
+    let mut pulses = simulated();
+    pulses.extend(measured_pulses().into_iter().map(|m| (m.name, m.pulse)));
+    let (mut args, mut ours) = (Vec::new(), Vec::new());
+    for (name, p) in pulses {
+        let zeros = vec![0.0; p.time.len()];
+        let a = [&p.deceleration[..], &p.lateral, &zeros];
+        let value = asi(&p.time, a, AsiMethod::En2010).unwrap();
+        args.push((None, columns(&p.time, &[&p.deceleration, &p.lateral])));
+        ours.push((name, value));
+    }
+    assert!(ours.len() >= 2);
+    let theirs = peer("scipy_asi_2010.py", args);
+    for ((name, ours), reference) in ours.iter().zip(&theirs) {
+        let off = ours / reference - 1.0;
+        eprintln!("{name}: ASI 2010 {ours:.9} here, {reference:.9} by scipy ({off:.1e})");
+        assert!(
+            off.abs() < 1e-6,
+            "{name}: {ours} here, {reference} by scipy"
+        );
+    }
 }

@@ -136,7 +136,7 @@ fn the_report_shows_the_verdict_the_test_and_the_corridor() {
             "bumper stroke (rcar-bumper-corner-front)",
             "corridor of the passing bumpers",
             "<th>P(pass)</th>",
-            "probability of passing over",
+            "probability of passing with exact 95 % bounds over",
         ],
     );
     assert_eq!(html.matches("<svg").count(), 4, "every figure inline");
@@ -245,6 +245,86 @@ fn an_identification_gives_each_criterion_its_probability_of_passing() {
         }
     }
     assert!(v["tests"][0]["probability"]["count"] == 40);
+}
+
+/// A criterion that passes in all of 200 draws reports its one-sided 95 %
+/// lower bound (0.05^(1/200) = 98.51 %) and the draws that would show 99 %,
+/// in the table, the summary and the JSON; it printed `100.0 ± 0.0 %`
+/// (issue 45 item 7). A share between keeps its two-sided interval.
+#[test]
+fn no_failure_in_200_draws_reports_a_lower_bound_not_a_certainty() {
+    let dir = scratch("verdict-probability-bound");
+    let json = dir.join("verdict.json");
+    let uncertainty = root().join("examples/verdict/uncertainty.toml");
+    let run = example(
+        "part581-barrier-front,rcar-bumper-corner-front",
+        &[
+            "--uncertainty",
+            uncertainty.to_str().unwrap(),
+            "--samples",
+            "200",
+            "--json",
+            json.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    let out = text(&run.stdout);
+    assert!(
+        !out.contains("100.0 ± 0.0 %") && !out.contains("0.0 ± 0.0 %"),
+        "{out}"
+    );
+    assert_contains(
+        &out,
+        &[
+            "pass     ≥ 98.5 %",
+            "part581-barrier-front: no failure in 200 draws: P(pass) ≥ 98.5 % (95 % one-sided); 299 draws would show ≥ 99 %",
+            "rcar-bumper-corner-front: 63 of 200 draws pass: 31.5 % (95 %: 25.1–38.5 %)",
+        ],
+    );
+    let document: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let p = &document["verdict"]["tests"][0]["probability"];
+    assert_eq!(p["passed"], 200, "{p}");
+    assert_eq!(p["one_sided"], true, "{p}");
+    let low = p["low"].as_f64().unwrap();
+    assert!((0.985..0.9852).contains(&low), "{p}");
+    assert!((low - 0.05f64.powf(1.0 / 200.0)).abs() < 1e-12, "{p}");
+}
+
+/// `--asi-method`: EN 1317-1:2010's filtered ASI by default, the 1998
+/// moving averages on request (another value for the same pulse), each
+/// named in the summary with the contact end; another year exits 2 naming
+/// the flag (issue 45 item 4).
+#[test]
+fn the_asi_method_is_chosen_and_named() {
+    let asi = |extra: &[&str]| {
+        let run = example("part581-barrier-front", extra);
+        assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+        let out = text(&run.stdout);
+        let line = out
+            .lines()
+            .find(|l| l.contains(" passes"))
+            .unwrap()
+            .to_string();
+        assert!(line.contains("to the contact end at 65.9 ms"), "{line}");
+        line
+    };
+    let (default, filtered, averaged) = (
+        asi(&[]),
+        asi(&["--asi-method", "2010"]),
+        asi(&["--asi-method", "1998"]),
+    );
+    assert_eq!(default, filtered);
+    assert!(
+        filtered.ends_with("ASI 0.309 (EN 1317-1:2010)"),
+        "{filtered}"
+    );
+    assert!(
+        averaged.ends_with("ASI 0.288 (EN 1317-1:1998)"),
+        "{averaged}"
+    );
+    let run = example("part581-barrier-front", &["--asi-method", "2000"]);
+    assert_user_error(&run, "--asi-method");
 }
 
 /// Hostile values of the new flags: exit 2 with a message naming the flag,
@@ -435,6 +515,65 @@ fn sobol_indices_show_what_drives_each_criterion() {
     let Some(browser) = chromium() else { return };
     let wide = overflowing(&browser, &report.join("index.html"));
     assert_eq!(wide, "[]", "text boxes wider than their box");
+}
+
+/// A Sobol index estimated above 1 (the right spring's in the right
+/// corner test, 1.002) prints at the bound with its estimate and
+/// half-width, and the table says why; every share printed lies in [0, 1]
+/// (issue 48 item 14: a rail force's S1 printed as 1.037). The JSON keeps
+/// the estimates.
+#[test]
+fn sobol_shares_above_one_print_at_the_bound_with_their_estimate() {
+    let dir = scratch("verdict-sobol-clipped");
+    let json = dir.join("verdict.json");
+    let uncertainty = root().join("examples/verdict/uncertainty.toml");
+    let run = example(
+        "part581-corner-front-right",
+        &[
+            "--uncertainty",
+            uncertainty.to_str().unwrap(),
+            "--samples",
+            "10",
+            "--sobol",
+            "--json",
+            json.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    let out = text(&run.stdout);
+    assert_contains(
+        &out,
+        &[
+            "1.000 (est. 1.00",
+            "an index estimated outside [0, 1] is shown at the bound",
+        ],
+    );
+    let table = out.split("S1 (1)").nth(1).unwrap();
+    let rows = table
+        .lines()
+        .filter(|l| l.contains(" ± ") && !l.starts_with("an index"));
+    for line in rows {
+        let cells: Vec<&str> = line
+            .split("  ")
+            .map(str::trim)
+            .filter(|c| !c.is_empty())
+            .collect();
+        for cell in &cells[cells.len() - 2..] {
+            let share: f64 = cell.split_whitespace().next().unwrap().parse().unwrap();
+            assert!((0.0..=1.0).contains(&share), "{line}");
+        }
+    }
+    let document: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let estimates = document["sensitivity"]["criteria"]
+        .as_array()
+        .unwrap()
+        .iter();
+    let above = estimates
+        .filter_map(|c| c["indices"]["first"].as_array())
+        .flatten()
+        .any(|v| v.as_f64().unwrap() > 1.0);
+    assert!(above, "the JSON keeps the estimate above 1");
 }
 
 /// `--sobol` over a `[ranges]` file (the bumper's force uniform on ×0.8 ..

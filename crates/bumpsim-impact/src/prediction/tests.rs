@@ -328,3 +328,35 @@ fn ranges_are_read_and_bad_ones_refused() {
     let neither = ChainUncertainty::parse("[range]\n", "n.toml".as_ref()).unwrap_err();
     assert!(neither.to_string().contains("[ranges] table"), "{neither}");
 }
+
+/// An index estimated above 1 prints at the bound with its estimate and
+/// half-width, and the table says why (issue 48 item 14: a peak force's
+/// first-order index printed as a share of 1.020).
+#[test]
+fn an_index_above_one_prints_at_the_bound_with_its_estimate() {
+    let (car, (u, _, _)) = (rigid(), ranged());
+    let nominal = run(&car).unwrap();
+    let settings = bumpsim_estimate::sobol::Settings::new(16, 1);
+    let mut s = sensitivity(&car, &nominal, &u, &settings, &run).unwrap();
+    for o in &mut s.outputs {
+        o.indices.first.iter_mut().for_each(|v| *v = 0.5);
+        o.indices.total.iter_mut().for_each(|v| *v = 0.5);
+    }
+    let within = sensitivity_lines(&s);
+    assert!(
+        !within.contains("est.") && !within.contains(CLIPPED),
+        "{within}"
+    );
+    let i = &mut s.outputs[0].indices;
+    (i.first[0], i.first_conf[0]) = (1.0204, 0.0512);
+    let lines = sensitivity_lines(&s);
+    assert!(lines.contains("1.000 (est. 1.020 ± 0.051)"), "{lines}");
+    // the estimate only in its parentheses, never as a share
+    let bare = lines.matches("1.020 ± 0.051").count();
+    assert_eq!(
+        bare,
+        lines.matches("(est. 1.020 ± 0.051)").count(),
+        "{lines}"
+    );
+    assert!(lines.contains(CLIPPED), "{lines}");
+}
