@@ -187,6 +187,15 @@ pub fn summary(v: &Verdict) -> String {
             m.clip / g,
             m.delta_v * 3.6
         );
+        if let Some(b) = t.bottomed {
+            out += &format!(
+                "  {}: the bumper bottomed at segment {} (y = {:.0} mm) at t = {:.1} ms: what is reached after it is on the blocked load path\n",
+                t.test.name,
+                b.segment + 1,
+                b.centre * 1e3,
+                b.time * 1e3
+            );
+        }
     }
     let failures = v.failures();
     out += &match failures.is_empty() {
