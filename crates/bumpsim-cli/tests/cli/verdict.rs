@@ -129,7 +129,7 @@ fn the_report_shows_the_verdict_the_test_and_the_corridor() {
         &[
             "font-weight:bold\">FAIL</td>",
             "<td>bumper stroke</td>",
-            "-2.572 mm",
+            "-0.7175 mm",
             "Assumptions",
             "Bumper target",
             "binding below",
