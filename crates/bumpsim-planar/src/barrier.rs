@@ -239,17 +239,19 @@ pub(crate) fn place(car: &PlanarCar, shape: &Shape, x_f: f64) -> Result<Arc, Pla
 /// states are updated. Regula falsi (Illinois) on `F_a(a) − F_b(d − a)`,
 /// bracketed by `a = 0` and `a = d`, first tried at `guess` (the last
 /// step's split: within one linear piece the next secant is the root).
+/// `bumper` is the segment's force at its own crush (its characteristic and
+/// its block, `car::Block`).
 pub(crate) fn series(
     d: f64,
     guess: f64,
     absorber: &Bumper,
     absorbed: &mut BumperState,
-    bumper: &Bumper,
+    bumper: &dyn Fn(f64, &mut BumperState) -> f64,
     state: &mut BumperState,
 ) -> (f64, f64) {
     let gap = |a: f64| {
         let (mut sa, mut sb) = (*absorbed, *state);
-        absorber.force(a, &mut sa) - bumper.force(d - a, &mut sb)
+        absorber.force(a, &mut sa) - bumper(d - a, &mut sb)
     };
     let (mut lo, mut hi) = (0.0, d);
     let (mut g_lo, mut g_hi) = (gap(lo), gap(hi));
@@ -290,7 +292,7 @@ pub(crate) fn series(
     }
     let a = if a.is_nan() { 0.5 * (lo + hi) } else { a };
     let f_absorber = absorber.force(a, absorbed);
-    let f_bumper = bumper.force(d - a, state);
+    let f_bumper = bumper(d - a, state);
     (0.5 * (f_absorber + f_bumper), a)
 }
 
@@ -306,7 +308,14 @@ mod tests {
         // elastic both: F = d / (1/k_a + 1/k_b)
         let k_a = Absorber::RCAR.stiffness * 0.15;
         let d = 0.004;
-        let (f, a) = series(d, 0.0, &absorber, &mut sa, &bumper, &mut sb);
+        let (f, a) = series(
+            d,
+            0.0,
+            &absorber,
+            &mut sa,
+            &|d, s| bumper.force(d, s),
+            &mut sb,
+        );
         let expected = d / (1.0 / k_a + 1.0 / 3e5);
         assert!(
             (f - expected).abs() < 1e-9 * expected,
@@ -314,7 +323,14 @@ mod tests {
         );
         assert!((a - f / k_a).abs() < 1e-12, "{a}");
         // the absorber's plateau (5.25 kN) is below the bumper's: it crushes, the bumper holds
-        let (f, a) = series(0.03, 0.0, &absorber, &mut sa, &bumper, &mut sb);
+        let (f, a) = series(
+            0.03,
+            0.0,
+            &absorber,
+            &mut sa,
+            &|d, s| bumper.force(d, s),
+            &mut sb,
+        );
         assert!((f - 35e3 * 0.15).abs() < 1e-6, "{f}");
         assert!((0.03 - a - f / 3e5).abs() < 1e-12, "{a}");
     }

@@ -184,6 +184,35 @@ pub struct Beam {
     pub segments: Vec<Bumper>,
     /// Bending coupling k_b of the crush curvature, N/m (≥ 0).
     pub bending: f64,
+    /// The end of the segments' stroke (None: a segment crushes without end).
+    pub block: Option<Block>,
+}
+
+/// Default whole-bumper block stiffness, N/m (50 kN/mm): an assumption
+/// chosen here, the low end of a crash box's elastic axial stiffness before
+/// it folds (E·A/L of a steel box of 1.5 mm walls, 60 mm square and 200 mm
+/// long is about 380 kN/mm; an aluminium one of 2 mm walls, 80 mm square
+/// and 150 mm long about 300 kN/mm), kept soft enough that the explicit
+/// step stays of the order of the bumper's own (docs/planar.md).
+pub const DEFAULT_BLOCK_STIFFNESS: f64 = 5e7;
+
+/// The end of a bumper segment's stroke (issue 45): beyond its `depth` the
+/// crushed beam blocks on the crash boxes and rails, and the segment's force
+/// grows by `stiffness · (crush − depth)` on top of its characteristic.
+/// Elastic: the energy it stores is returned on unloading.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Block {
+    /// The segment's crushable depth, m (> 0).
+    pub depth: f64,
+    /// The block's stiffness per segment, N/m (> 0).
+    pub stiffness: f64,
+}
+
+impl Block {
+    /// The block's force at a segment crush `crush` (m), N.
+    pub fn force(&self, crush: f64) -> f64 {
+        self.stiffness * (crush - self.depth).max(0.0)
+    }
 }
 
 /// How the tyres of an axle meet the ground (see [`Axle`]).
@@ -444,6 +473,7 @@ impl PlanarCar {
             side_member_spacing: layout.side_member_spacing,
             segments: vec![segment; layout.segments],
             bending: layout.bending,
+            block: None,
         };
         PlanarCar::new(body, side.clone(), side, beam, layout.tyres)
     }
@@ -474,6 +504,13 @@ impl PlanarCar {
         let fits = WIDTH_RANGE.contains(&w) && spacing <= w;
         require("bumper width", w, "m", &expected, fits)?;
         PlanarCar::symmetric(chain, bumper, layout)
+    }
+
+    /// The same car with its segments blocking at `block` (checked).
+    pub fn with_block(mut self, block: Option<Block>) -> Result<PlanarCar, PlanarError> {
+        self.beam.block = block;
+        check_beam(&self.beam)?;
+        Ok(self)
     }
 
     /// The same car with a name.
@@ -619,6 +656,10 @@ fn check_beam(beam: &Beam) -> Result<(), PlanarError> {
         "must be finite and not negative",
         beam.bending >= 0.0,
     )?;
+    if let Some(block) = beam.block {
+        positive("bumper.depth", block.depth, "m")?;
+        positive("bumper.block_stiffness", block.stiffness, "N/m per segment")?;
+    }
     require(
         "bumper.segments",
         beam.segments.len() as f64,

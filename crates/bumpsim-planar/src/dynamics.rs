@@ -8,6 +8,7 @@
 //! contact, tyre relaxation, accelerations and record share them).
 
 use crate::car::{GRAVITY, PlanarCar};
+use crate::result::Bottomed;
 use crate::striker::{Placed, pole_profile};
 use crate::tyre::Wheel;
 use bumpsim_impact::bumper::{Bumper, BumperState};
@@ -292,6 +293,7 @@ impl Model {
             None => self.face,
         };
         let axes = self.axes(q[2]);
+        let block = car.beam().block;
         for (j, segment) in car.beam().segments.iter().enumerate() {
             let (depth, covered, direction, point) = self.segment(q, axes, &face, j);
             let depth = self.admit(c, j, depth, covered);
@@ -299,14 +301,18 @@ impl Model {
             c.crush[j] = depth.max(0.0);
             c.direction[j] = direction;
             c.point[j] = point;
+            // the characteristic, and beyond the depth the block (elastic)
+            let own = |d: f64, state: &mut BumperState| {
+                segment.force(d, state) + block.map_or(0.0, |b| b.force(d))
+            };
             (c.force[j], c.absorber[j]) = match (depth > 0.0, self.absorbers.get(j)) {
-                (true, None) => (segment.force(depth, &mut c.states[j]), 0.0),
+                (true, None) => (own(depth, &mut c.states[j]), 0.0),
                 (true, Some(strip)) => crate::barrier::series(
                     depth,
                     c.absorber[j],
                     strip,
                     &mut c.absorbed[j],
-                    segment,
+                    &own,
                     &mut c.states[j],
                 ),
                 (false, _) => (0.0, 0.0),
@@ -618,8 +624,9 @@ impl Model {
 
     fn bounds(&self, car: &PlanarCar, contact: bool) -> (f64, f64) {
         let segments = &car.beam().segments;
+        let block = car.beam().block.map_or(0.0, |b| b.stiffness);
         let seg = |j: usize| match contact {
-            true => segments[j].stiffest() + 16.0 * self.bending,
+            true => segments[j].stiffest() + block + 16.0 * self.bending,
             false => 0.0,
         };
         let total: f64 = (0..segments.len()).map(seg).sum();
@@ -681,6 +688,20 @@ impl Model {
 }
 
 impl Contact {
+    /// The first segment whose own crush (without the absorber's) has
+    /// passed the depth of `car`'s block, if any, as bottomed at `time` (s).
+    pub fn bottomed(&self, car: &PlanarCar, time: f64) -> Option<Bottomed> {
+        let block = car.beam().block?;
+        let segment =
+            (0..self.crush.len()).find(|&j| self.crush[j] - self.absorber[j] > block.depth)?;
+        let centre = car.segment_centre(segment);
+        Some(Bottomed {
+            time,
+            segment,
+            centre,
+        })
+    }
+
     pub fn new(segments: usize) -> Contact {
         Contact {
             states: vec![BumperState::default(); segments],

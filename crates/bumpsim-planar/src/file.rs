@@ -33,6 +33,10 @@
 //! unloading = 6e6                         # N/m  } with d in m and F in N
 //! # or, instead of the whole-bumper keys, one table per segment (right to left,
 //! # force per segment):  segment = [{ ramp = 1.5e5, plateau = 6e3, unloading = 6e5 }, ...]
+//! depth = 80.0                            # optional (length): each segment's crushable depth;
+//!                                         # beyond it the beam blocks (docs/planar.md)
+//! block_stiffness = 5e7                   # N/m, whole bumper, split equally (default 5e7,
+//!                                         # car::DEFAULT_BLOCK_STIFFNESS; needs `depth`)
 //!
 //! [tyres]                                 # optional; absent = frictionless
 //! slip_speed = 0.05                       # m/s, regularisation of the laws at standstill
@@ -50,7 +54,8 @@
 //! only a convenience for the layout dimensions, which drawings give in mm.
 
 use crate::car::{
-    Axle, Beam, Body, MAX_SEGMENTS, PlanarCar, PlanarError, SideChain, TyreLaw, Tyres,
+    Axle, Beam, Block, Body, DEFAULT_BLOCK_STIFFNESS, MAX_SEGMENTS, PlanarCar, PlanarError,
+    SideChain, TyreLaw, Tyres,
 };
 use bumpsim_impact::bumper::{Bumper, Loading};
 use serde::Deserialize;
@@ -145,6 +150,23 @@ struct BumperFile {
     curve: Option<Vec<[f64; 2]>>,
     #[serde(default)]
     segment: Vec<Characteristic>,
+    depth: Option<f64>,
+    block_stiffness: Option<f64>,
+}
+
+/// The block of a `[bumper]` table: its depth (scaled by `unit`) and its
+/// whole-bumper stiffness split over `n` segments.
+fn block(file: &BumperFile, unit: f64, n: usize) -> Result<Option<Block>, String> {
+    match (file.depth, file.block_stiffness) {
+        (None, None) => Ok(None),
+        (None, Some(k)) => Err(format!(
+            "bumper.block_stiffness = {k:?}: needs `bumper.depth`, the depth at which the segments block"
+        )),
+        (Some(depth), k) => Ok(Some(Block {
+            depth: depth * unit,
+            stiffness: k.unwrap_or(DEFAULT_BLOCK_STIFFNESS) / n.max(1) as f64,
+        })),
+    }
 }
 
 #[derive(Debug, Deserialize)]
@@ -286,10 +308,12 @@ impl PlanarCar {
             dampers: c.dampers,
             springs: c.springs,
         };
+        let segments = segments(&file.bumper).map_err(|e| error(e.to_string()))?;
         let beam = Beam {
             width: file.bumper.width * unit,
             side_member_spacing: file.bumper.side_member_spacing * unit,
-            segments: segments(&file.bumper).map_err(|e| error(e.to_string()))?,
+            block: block(&file.bumper, unit, segments.len()).map_err(error)?,
+            segments,
             bending: file.bumper.bending,
         };
         if beam.width.is_finite() && beam.side_member_spacing.is_finite() {
@@ -349,9 +373,17 @@ impl PlanarCar {
         }
         let beam = self.beam();
         s += &format!(
-            "\n[bumper]\nwidth = {:?}    # m\nside_member_spacing = {:?}    # m\nbending = {:?}    # N/m\nsegment = [    # right to left, force per segment\n",
+            "\n[bumper]\nwidth = {:?}    # m\nside_member_spacing = {:?}    # m\nbending = {:?}    # N/m\n",
             beam.width, beam.side_member_spacing, beam.bending
         );
+        if let Some(block) = beam.block {
+            let whole = block.stiffness * beam.segments.len() as f64;
+            s += &format!(
+                "depth = {:?}    # m\nblock_stiffness = {whole:?}    # N/m, whole bumper\n",
+                block.depth
+            );
+        }
+        s += "segment = [    # right to left, force per segment\n";
         for segment in &beam.segments {
             let unloading = segment.unloading_slope();
             s += &match segment.loading() {

@@ -59,6 +59,17 @@ pub struct MomentumBalance {
     pub reference_length: f64,
 }
 
+/// The instant a bumper bottomed: a segment's crush passed its depth.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Bottomed {
+    /// Time, s.
+    pub time: f64,
+    /// The segment (0 = rightmost).
+    pub segment: usize,
+    /// Its lateral centre, body frame, m.
+    pub centre: f64,
+}
+
 /// Histories and results of a planar impact.
 #[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct PlanarResult {
@@ -107,6 +118,9 @@ pub struct PlanarResult {
     pub peak_force: f64,
     /// Largest crush of any segment, m.
     pub max_compression: f64,
+    /// When and where a segment first crushed past its depth and the beam
+    /// blocked (`car::Block`; None: it never did, or the car has no depth).
+    pub bottomed: Option<Bottomed>,
     /// Largest crush of each segment, m.
     pub max_crush: Vec<f64>,
     /// Permanent crush of each segment after unloading, m.

@@ -304,6 +304,8 @@ impl Mechanism for Run<'_> {
         self.model.relax(q, v, &mut self.contact, self.step);
         self.sums.crush += self.crush_work();
         self.track_contact(t + self.step);
+        let bottomed = self.out.bottomed;
+        self.out.bottomed = bottomed.or_else(|| self.contact.bottomed(self.car, t + self.step));
     }
 
     /// The work of forces from `v_{n−½}` over a step is `T F·(v_{n−½} +
@@ -629,6 +631,7 @@ mod tests {
             side_member_spacing: 1.0,
             segments: vec![Bumper::three_part(1e5, 5e3, 4e5).unwrap(); 4],
             bending: 0.0,
+            block: None,
         };
         let axle = Axle::sliding(mu, mu);
         let tyres = Tyres {

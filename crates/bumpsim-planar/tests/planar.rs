@@ -58,6 +58,7 @@ fn asymmetric_car(mu: f64) -> PlanarCar {
         side_member_spacing: 1.0,
         segments,
         bending: 8e4,
+        block: None,
     };
     let tyres = Tyres {
         front: Axle::sliding(0.1 * mu, mu),
@@ -373,6 +374,7 @@ fn point_spring_into_an_angled_wall_matches_scipy_newton_euler() {
         side_member_spacing: 0.9,
         segments: vec![spring.clone(), spring],
         bending: 0.0,
+        block: None,
     };
     let none = SideChain::default();
     let car = PlanarCar::new(body, none.clone(), none, beam, Tyres::default()).unwrap();
@@ -508,6 +510,8 @@ fn a_stiff_beam_that_chatters_off_the_face_still_completes_the_impact() {
     }
 }
 
+#[path = "planar/block.rs"]
+mod block;
 #[path = "planar/export.rs"]
 mod export;
 #[path = "planar/files.rs"]

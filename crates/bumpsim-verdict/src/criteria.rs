@@ -212,9 +212,10 @@ fn clearance(car: &PlanarCar, r: &PlanarResult, c: &crate::limits::Clearance) ->
         Closer::Front => "front travel",
     };
     let detail = format!(
-        "{what} at y = {:.0} mm, t = {:.1} ms",
+        "{what} at y = {:.0} mm, t = {:.1} ms{}",
         at.0 * 1e3,
-        at.1 * 1e3
+        at.1 * 1e3,
+        blocked(r, at.1)
     );
     Criterion::new(
         format!("clearance: {}", c.name),
@@ -226,17 +227,36 @@ fn clearance(car: &PlanarCar, r: &PlanarResult, c: &crate::limits::Clearance) ->
     )
 }
 
-/// The largest compression of each side's first chain link, m (None: a
-/// side without a chain).
-fn crash_boxes(car: &PlanarCar, r: &PlanarResult) -> [Option<f64>; 2] {
+/// The label of a criterion reached at `t` (s) once the bumper had
+/// bottomed: from then on the load goes through the block (issue 45).
+fn blocked(r: &PlanarResult, t: f64) -> &'static str {
+    match r.bottomed {
+        Some(b) if t >= b.time => ", after the bumper bottomed: on the blocked load path",
+        _ => "",
+    }
+}
+
+/// The largest value of a history and its time, s (0 and the first
+/// sample's time when it never exceeds 0).
+fn peak(r: &PlanarResult, value: impl Fn(usize) -> f64) -> (f64, f64) {
+    let mut best = (0.0, r.time.first().copied().unwrap_or(0.0));
+    for k in 0..r.time.len() {
+        if value(k) > best.0 {
+            best = (value(k), r.time[k]);
+        }
+    }
+    best
+}
+
+/// The largest compression of each side's first chain link, m, and its
+/// time, s (None: a side without a chain).
+fn crash_boxes(car: &PlanarCar, r: &PlanarResult) -> [Option<(f64, f64)>; 2] {
     let left = car.left().masses.len();
     let sides = [(0, left), (left, car.right().masses.len())];
     sides.map(|(first, count)| {
         (count > 0).then(|| {
             let u = |i: usize, k: usize| r.chain_displacement[first + i][k];
-            (0..r.time.len())
-                .map(|k| -(u(0, k) - if count > 1 { u(1, k) } else { 0.0 }))
-                .fold(0.0, f64::max)
+            peak(r, |k| -(u(0, k) - if count > 1 { u(1, k) } else { 0.0 }))
         })
     })
 }
@@ -312,8 +332,8 @@ pub fn criteria(e: &Evidence, margin: f64) -> (Vec<Criterion>, Vec<String>) {
         .map(|c| clearance(e.car, r, c).judged(margin))
         .collect();
     let rails = [(&r.side_force_left, "left"), (&r.side_force_right, "right")]
-        .map(|(h, side)| (h.iter().copied().fold(0.0, f64::max), side));
-    let (force, side) = if rails[0].0 >= rails[1].0 {
+        .map(|(h, side)| (peak(r, |k| h[k]), side));
+    let ((force, at), side) = if rails[0].0.0 >= rails[1].0.0 {
         rails[0]
     } else {
         rails[1]
@@ -321,7 +341,7 @@ pub fn criteria(e: &Evidence, margin: f64) -> (Vec<Criterion>, Vec<String>) {
     out.push(
         Criterion::new(
             "rail force".into(),
-            format!("{side} side member"),
+            format!("{side} side member{}", blocked(r, at)),
             Quantity::Force,
             force,
             d.rail_yield,
@@ -332,10 +352,19 @@ pub fn criteria(e: &Evidence, margin: f64) -> (Vec<Criterion>, Vec<String>) {
     out.extend(crash_box(e, margin));
     if let Some(stroke) = d.bumper_stroke {
         let crush = r.max_crush.iter().copied().fold(0.0, f64::max);
+        let detail = match r.bottomed {
+            Some(b) => format!(
+                "largest segment crush; bottomed at segment {} (y = {:.0} mm), t = {:.1} ms",
+                b.segment + 1,
+                b.centre * 1e3,
+                b.time * 1e3
+            ),
+            None => "largest segment crush".into(),
+        };
         out.push(
             Criterion::new(
                 "bumper stroke".into(),
-                "largest segment crush".into(),
+                detail,
                 Quantity::Length,
                 crush,
                 stroke,
@@ -371,14 +400,18 @@ pub fn criteria(e: &Evidence, margin: f64) -> (Vec<Criterion>, Vec<String>) {
 
 fn crash_box(e: &Evidence, margin: f64) -> Option<Criterion> {
     let boxes = crash_boxes(e.car, e.result);
-    let (used, side) = match boxes {
-        [Some(l), Some(r)] if l >= r => (l, "left"),
+    let ((used, at), side) = match boxes {
+        [Some(l), Some(r)] if l.0 >= r.0 => (l, "left"),
         [_, Some(r)] => (r, "right"),
         [Some(l), None] => (l, "left"),
         [None, None] => return None,
     };
     let stroke = e.limits.crash_box_stroke;
-    let detail = format!("{side}: {:.0} % of the stroke", 100.0 * used / stroke);
+    let detail = format!(
+        "{side}: {:.0} % of the stroke{}",
+        100.0 * used / stroke,
+        blocked(e.result, at)
+    );
     let c = Criterion::new(
         "crash-box stroke".into(),
         detail,

@@ -181,6 +181,15 @@ pub fn summary(v: &Verdict) -> String {
             m.contact_end * 1e3,
             m.asi_method.name()
         );
+        if let Some(b) = t.bottomed {
+            out += &format!(
+                "  {}: the bumper bottomed at segment {} (y = {:.0} mm) at t = {:.1} ms: what is reached after it is on the blocked load path\n",
+                t.test.name,
+                b.segment + 1,
+                b.centre * 1e3,
+                b.time * 1e3
+            );
+        }
     }
     let failures = v.failures();
     out += &match failures.is_empty() {

@@ -13,7 +13,8 @@ use crate::pulse::{AsiMethod, Metrics, Pulse};
 use crate::uncertainty::Propagation;
 use bumpsim_estimate::propagate::Probability;
 use bumpsim_impact::bumper::Bumper;
-use bumpsim_planar::car::Beam;
+use bumpsim_planar::car::{Beam, Block};
+use bumpsim_planar::result::Bottomed;
 use bumpsim_planar::{PlanarCar, PlanarResult, Settings, Striker, simulate};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -28,9 +29,34 @@ pub struct CarEnd {
 }
 
 impl CarEnd {
-    /// Checks the limits against the car.
+    /// Checks the limits against the car. A car without a `bumper.depth`
+    /// takes `damageability.bumper_stroke` (the same crushable depth) as
+    /// its segments' depth, with the default block stiffness
+    /// ([`bumpsim_planar::car::DEFAULT_BLOCK_STIFFNESS`]); one with both
+    /// must give the same depth.
     pub fn new(car: PlanarCar, limits: Damageability) -> Result<CarEnd, VerdictError> {
         limits.check_car(&car)?;
+        let car = match (car.beam().block, limits.bumper_stroke) {
+            (None, Some(depth)) => {
+                let n = car.beam().segments.len() as f64;
+                let stiffness = bumpsim_planar::car::DEFAULT_BLOCK_STIFFNESS / n;
+                let block = Block { depth, stiffness };
+                car.with_block(Some(block))
+                    .map_err(|e| planar("bumper", e))?
+            }
+            (Some(block), Some(stroke)) if (block.depth - stroke).abs() > 1e-9 => {
+                return Err(VerdictError::Contradiction {
+                    first: "bumper.depth".into(),
+                    second: "damageability.bumper_stroke".into(),
+                    reason: format!(
+                        "the segments block at {} mm but the bumper's stroke is {} mm: both are the bumper's crushable depth; give one, or the same",
+                        block.depth * 1e3,
+                        stroke * 1e3
+                    ),
+                });
+            }
+            _ => car,
+        };
         Ok(CarEnd { car, limits })
     }
 
@@ -172,6 +198,9 @@ pub struct TestVerdict {
     pub metrics: Option<Metrics>,
     /// Its energies.
     pub energies: Option<Energies>,
+    /// When and where the bumper bottomed (a segment crushed past its
+    /// depth): criteria reached afterwards are on the blocked load path.
+    pub bottomed: Option<Bottomed>,
     /// What the verdict assumes.
     pub assumptions: Vec<String>,
     /// Metrics that could not be computed, and why.
@@ -297,6 +326,7 @@ pub(crate) fn assess(
         criteria: vec![],
         metrics: None,
         energies: None,
+        bottomed: None,
         assumptions: vec![],
         notes: vec![],
         warnings: vec![],
@@ -330,6 +360,7 @@ pub(crate) fn assess(
     verdict.criteria = criteria;
     verdict.metrics = Some(metrics);
     verdict.energies = Some(energies);
+    verdict.bottomed = result.bottomed;
     verdict.assumptions = assumptions;
     verdict.notes = notes;
     verdict.warnings = result.warnings.clone();

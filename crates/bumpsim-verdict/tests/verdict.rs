@@ -187,9 +187,10 @@ fn the_worked_example_fails_one_criterion_and_its_target_region_says_why() {
         (name, criterion.name.as_str()),
         ("rcar-bumper-corner-front", "bumper stroke")
     );
-    // 82.6 mm of the 80 mm the bumper can crush
+    // 80.7 mm of the 80 mm the bumper can crush: it bottoms and blocks
+    // (issue 45; 82.6 mm before the block)
     assert!(
-        criterion.value > 0.081 && criterion.value < 0.084,
+        criterion.value > 0.0805 && criterion.value < 0.0815,
         "{criterion:?}"
     );
     assert!(!failing.passed());

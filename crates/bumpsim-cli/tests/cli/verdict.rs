@@ -129,7 +129,7 @@ fn the_report_shows_the_verdict_the_test_and_the_corridor() {
         &[
             "font-weight:bold\">FAIL</td>",
             "<td>bumper stroke</td>",
-            "-2.572 mm",
+            "-0.7175 mm",
             "Assumptions",
             "Bumper target",
             "binding below",
@@ -734,4 +734,61 @@ fn implausible_limits_exit_2_naming_the_key_and_range() {
             text(&run.stdout)
         );
     }
+}
+
+/// Issue 45 item 1: the bundled car's bumper is crushed through its 80 mm
+/// in the RCAR structural test. It used to crush 261.8 mm with the rails
+/// at 49.7 kN judged a pass; now its segments block at their depth
+/// (`damageability.bumper_stroke`, with the default block stiffness of
+/// 5e7 N/m over the 10 segments), the force goes on into the rails and the
+/// verdict names the instant.
+#[test]
+fn a_bumper_crushed_through_its_depth_blocks_and_the_verdict_names_the_instant() {
+    let dir = scratch("verdict-bottomed");
+    let json = dir.join("verdict.json");
+    let run = example("rcar-structural-front", &["--json", json.to_str().unwrap()]);
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    assert_contains(
+        &text(&run.stdout),
+        &[
+            "rcar-structural-front: the bumper bottomed at segment 10 (y = 675 mm) at t = ",
+            "on the blocked load path",
+        ],
+    );
+    let document: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let test = &document["verdict"]["tests"][0];
+    let bottomed = &test["bottomed"];
+    assert_eq!(bottomed["segment"], 9, "{bottomed}");
+    let at = bottomed["time"].as_f64().unwrap();
+    assert!(at > 0.0 && at < 0.1, "{at}");
+    let criterion = |name: &str| {
+        test["criteria"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|c| c["name"] == name)
+            .unwrap()
+            .clone()
+    };
+    let (stroke, rail) = (criterion("bumper stroke"), criterion("rail force"));
+    let crush = stroke["value"].as_f64().unwrap();
+    let rail_force = rail["value"].as_f64().unwrap();
+    // the block's compliance: what it carries past the depth goes into the
+    // rails, so its force stays below the largest rail force
+    let (depth, k_block) = (0.080, 5e7 / 10.0);
+    assert!(crush > depth, "{crush}");
+    assert!(
+        (crush - depth) * k_block <= rail_force,
+        "{crush} {rail_force}"
+    );
+    // above the whole bumper's 120 kN plateau, all it could pass unblocked
+    assert!(rail_force > 120e3, "{rail_force}");
+    assert!(
+        rail["detail"]
+            .as_str()
+            .unwrap()
+            .contains("after the bumper bottomed: on the blocked load path"),
+        "{rail}"
+    );
 }

@@ -26,6 +26,7 @@ fn identification_truth() -> PlanarCar {
         side_member_spacing: 1.0,
         segments,
         bending: 5e4,
+        block: None,
     };
     PlanarCar::new(body, left, right, beam, Tyres::default()).unwrap()
 }
