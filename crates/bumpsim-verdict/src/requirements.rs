@@ -395,7 +395,7 @@ const RCAR_BUMPER: &[Requirement] = &[
     ),
     checked(
         "RCAR barrier spec. §2.2",
-        "the rigid backstop (200 mm tall, 25 mm behind the barrier face) shows what reaches past the absorber above the beam",
+        "the barrier carries a rigid backstop, 200 mm tall, 25 mm behind its face, above the absorber",
         not(
             "the backstop is not modelled: contact of the bonnet, grille or lamps with it is not computed",
         ),
