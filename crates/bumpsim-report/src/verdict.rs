@@ -39,7 +39,7 @@ const COLOURS: [(&str, &str); 3] = [
 ///
 /// ```
 /// use bumpsim_verdict::prelude::*;
-/// let v = Verdict { car: "car".into(), margin: 0.0, tests: vec![], propagation: None };
+/// let v = Verdict { car: "car".into(), margin: 0.0, tests: vec![], propagation: None, requirements: vec![] };
 /// let (html, figures) = bumpsim_report::verdict::verdict_report(&v, None, None).unwrap();
 /// assert!(html.contains("every assessed test passes") && figures.is_empty());
 /// ```
@@ -59,6 +59,7 @@ pub fn verdict_report(
     let text = bumpsim_verdict::text::summary(v) + &bumpsim_verdict::text::propagation(v);
     page.preformatted(&text);
     assumptions(&mut page, v);
+    requirements(&mut page, v);
     let mut figures = Vec::new();
     for t in &v.tests {
         test_figures(&mut page, &mut figures, t)?;
@@ -92,6 +93,42 @@ fn assumptions(page: &mut Html, v: &Verdict) {
         .flat_map(|t| t.warnings.iter().map(|w| format!("{}: {w}", t.test.name)))
         .collect();
     page.warnings(&warnings);
+}
+
+/// What the protocols run require, each judged by the model, by a proxy
+/// or not judged ([`bumpsim_verdict::requirements`]).
+fn requirements(page: &mut Html, v: &Verdict) {
+    if v.requirements.is_empty() {
+        return;
+    }
+    page.heading("What is judged and what is not");
+    let headers = [
+        "protocol",
+        "clause",
+        "requirement",
+        "judged",
+        "by",
+        "why",
+        "wording checked",
+    ];
+    let rows: Vec<Vec<String>> = v
+        .requirements
+        .iter()
+        .flat_map(|r| r.list.iter().map(move |q| (r.protocol, q)))
+        .map(|(protocol, q)| {
+            let j = &q.judgement;
+            vec![
+                protocol.to_string(),
+                q.clause.to_string(),
+                q.requirement.to_string(),
+                j.word().to_string(),
+                j.by().unwrap_or("the engineer must check it").to_string(),
+                j.why().unwrap_or("").to_string(),
+                if q.verified { "yes" } else { "no" }.to_string(),
+            ]
+        })
+        .collect();
+    page.table(&headers, &rows);
 }
 
 /// A test's top view at peak force, its forces and its crush.

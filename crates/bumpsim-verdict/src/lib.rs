@@ -11,6 +11,8 @@
 //! - [`pulse`]: peak and 3 ms clip deceleration, delta-V, OLC, ASI
 //!   (EN 1317-1:2010 or 1998), to a defined contact end;
 //! - [`verdict`](mod@verdict): every test run and judged;
+//! - [`requirements`]: what each protocol requires, and whether the
+//!   model judges it, a proxy stands in, or the engineer must check it;
 //! - [`probability`]: the verdict propagated over the car's uncertainty:
 //!   each criterion's probability of passing (issue 39);
 //! - [`sensitivity`]: which uncertain parameters drive each criterion:
@@ -47,6 +49,7 @@ pub mod limits;
 pub mod probability;
 pub mod protocol;
 pub mod pulse;
+pub mod requirements;
 pub mod sensitivity;
 pub mod target;
 pub mod text;

@@ -124,6 +124,7 @@ pub fn table(v: &Verdict) -> String {
     }
     out += &summary(v);
     out += &propagation(v);
+    out += &crate::requirements::lines(&v.requirements);
     out
 }
 
@@ -218,6 +219,9 @@ pub fn protocols() -> String {
     let mut out = String::new();
     for p in crate::protocol::PROTOCOLS {
         out += &format!("{}: {}\n", p.name, p.description);
+        if let Some(r) = crate::requirements::of(p.name) {
+            out += &crate::requirements::described(r, "  ");
+        }
         for t in p
             .tests
             .iter()

@@ -10,6 +10,7 @@ use crate::error::{VerdictError, require};
 use crate::limits::{Damageability, End};
 use crate::protocol::Test;
 use crate::pulse::{AsiMethod, Metrics, Pulse};
+use crate::requirements::Requirements;
 use crate::uncertainty::Propagation;
 use bumpsim_estimate::propagate::Probability;
 use bumpsim_impact::bumper::Bumper;
@@ -247,6 +248,10 @@ pub struct Verdict {
     /// The propagation over the car's uncertainty, when asked
     /// (the probability module).
     pub propagation: Option<Propagation>,
+    /// What the protocols run require and how each requirement is judged
+    /// (JSON: protocol → list; [`crate::requirements`]).
+    #[serde(serialize_with = "crate::requirements::as_map")]
+    pub requirements: Vec<&'static Requirements>,
 }
 
 impl Verdict {
@@ -291,6 +296,7 @@ pub fn verdict(setup: &Setup) -> Result<Verdict, VerdictError> {
         margin: setup.margin,
         tests,
         propagation: None,
+        requirements: crate::requirements::run(&setup.tests),
     })
 }
 
