@@ -156,12 +156,13 @@ struct BumperFile {
 
 /// The block of a `[bumper]` table: its depth (scaled by `unit`) and its
 /// whole-bumper stiffness split over `n` segments.
-fn block(file: &BumperFile, unit: f64, n: usize) -> Result<Option<Block>, String> {
+fn block(file: &BumperFile, unit: f64, n: usize) -> Result<Option<Block>, PlanarError> {
     match (file.depth, file.block_stiffness) {
         (None, None) => Ok(None),
-        (None, Some(k)) => Err(format!(
-            "bumper.block_stiffness = {k:?}: needs `bumper.depth`, the depth at which the segments block"
-        )),
+        (None, Some(k)) => Err(PlanarError::Missing {
+            name: format!("bumper.block_stiffness = {k:?}"),
+            expected: "needs `bumper.depth`, the depth at which the segments block".into(),
+        }),
         (Some(depth), k) => Ok(Some(Block {
             depth: depth * unit,
             stiffness: k.unwrap_or(DEFAULT_BLOCK_STIFFNESS) / n.max(1) as f64,
@@ -312,7 +313,7 @@ impl PlanarCar {
         let beam = Beam {
             width: file.bumper.width * unit,
             side_member_spacing: file.bumper.side_member_spacing * unit,
-            block: block(&file.bumper, unit, segments.len()).map_err(error)?,
+            block: block(&file.bumper, unit, segments.len()).map_err(|e| error(e.to_string()))?,
             segments,
             bending: file.bumper.bending,
         };

@@ -245,7 +245,7 @@ fn bad_fe_input_is_a_user_error() {
         ),
         (
             vec!["--bumper", m3, "--barrier", "--speed", "2"],
-            "three.toml: TOML parse error at line 16".into(),
+            "three.toml: TOML parse error at line 28".into(),
         ),
     ];
     for (extra, needle) in cases {

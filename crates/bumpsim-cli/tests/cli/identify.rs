@@ -606,7 +606,7 @@ fn a_dof_table_reaches_the_json_and_the_report() {
             "BIC",
             &format!("recommended: {recommended} DOF ("),
             "with correlated residuals: n_eff",
-            "of the exploring starts",
+            "reached the best fit (F within the noise)",
             "3-DOF model",
         ],
     );
