@@ -60,7 +60,7 @@ pub struct MomentumBalance {
 }
 
 /// The instant a bumper bottomed: a segment's crush passed its depth.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct Bottomed {
     /// Time, s.
     pub time: f64,

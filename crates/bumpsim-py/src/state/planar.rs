@@ -93,6 +93,8 @@ struct PlanarResultDef {
     contact_end: Option<f64>,
     peak_force: f64,
     max_compression: f64,
+    #[serde(default)]
+    bottomed: Option<bumpsim_planar::result::Bottomed>,
     max_crush: Vec<f64>,
     remaining_crush: Vec<f64>,
     peak_yaw_rate: f64,
