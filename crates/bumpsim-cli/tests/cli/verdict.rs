@@ -4,6 +4,8 @@
 
 use crate::util::*;
 
+mod regulation;
+
 fn car() -> std::path::PathBuf {
     root().join("examples/verdict/car.toml")
 }
@@ -734,130 +736,4 @@ fn implausible_limits_exit_2_naming_the_key_and_range() {
             text(&run.stdout)
         );
     }
-}
-
-/// Issue 45 item 1: the bundled car's bumper is crushed through its 80 mm
-/// in the RCAR structural test. It used to crush 261.8 mm with the rails
-/// at 49.7 kN judged a pass; now its segments block at their depth
-/// (`damageability.bumper_stroke`, with the default block stiffness of
-/// 5e7 N/m over the 10 segments), the force goes on into the rails and the
-/// verdict names the instant.
-#[test]
-fn a_bumper_crushed_through_its_depth_blocks_and_the_verdict_names_the_instant() {
-    let dir = scratch("verdict-bottomed");
-    let json = dir.join("verdict.json");
-    let run = example("rcar-structural-front", &["--json", json.to_str().unwrap()]);
-    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
-    assert_contains(
-        &text(&run.stdout),
-        &[
-            "rcar-structural-front: the bumper bottomed at segment 10 (y = 675 mm) at t = ",
-            "on the blocked load path",
-        ],
-    );
-    let document: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    let test = &document["verdict"]["tests"][0];
-    let bottomed = &test["bottomed"];
-    assert_eq!(bottomed["segment"], 9, "{bottomed}");
-    let at = bottomed["time"].as_f64().unwrap();
-    assert!(at > 0.0 && at < 0.1, "{at}");
-    let criterion = |name: &str| {
-        test["criteria"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .find(|c| c["name"] == name)
-            .unwrap()
-            .clone()
-    };
-    let (stroke, rail) = (criterion("bumper stroke"), criterion("rail force"));
-    let crush = stroke["value"].as_f64().unwrap();
-    let rail_force = rail["value"].as_f64().unwrap();
-    // the block's compliance: what it carries past the depth goes into the
-    // rails, so its force stays below the largest rail force
-    let (depth, k_block) = (0.080, 5e7 / 10.0);
-    assert!(crush > depth, "{crush}");
-    assert!(
-        (crush - depth) * k_block <= rail_force,
-        "{crush} {rail_force}"
-    );
-    // above the whole bumper's 120 kN plateau, all it could pass unblocked
-    assert!(rail_force > 120e3, "{rail_force}");
-    assert!(
-        rail["detail"]
-            .as_str()
-            .unwrap()
-            .contains("after the bumper bottomed: on the blocked load path"),
-        "{rail}"
-    );
-}
-
-/// Issue 45 item 5: what the regulation requires and what of it is judged
-/// reaches the table, the JSON, the report and `--list`.
-#[test]
-fn the_verdict_lists_what_the_regulations_require_and_what_is_judged() {
-    let dir = scratch("verdict-requirements");
-    let json = dir.join("verdict.json");
-    let report = dir.join("report");
-    let run = example(
-        "part581-barrier-front,rcar-bumper-front",
-        &[
-            "--json",
-            json.to_str().unwrap(),
-            "--report",
-            report.to_str().unwrap(),
-        ],
-    );
-    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
-    let out = text(&run.stdout);
-    assert_contains(
-        &out,
-        &[
-            "what the regulations require: judged by the model / by a proxy / NOT JUDGED",
-            "581.5(c)(1) each lamp",
-            "proxy (the clearances to the lamps the car file lists)",
-            "581.5(c)(4) exhaust system free of leaks and constriction: NOT JUDGED: the engineer must check it",
-            "581.5(c)(9)",
-            "cmvss215",
-            "RCAR barrier spec. §2.2",
-            "model (rail force below the rails' yield)",
-            "[wording not checked against the text]",
-        ],
-    );
-    assert!(!out.contains("  r42 ("), "r42 was not run:\n{out}");
-    let document: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    let part581 = document["verdict"]["requirements"]["part581"]
-        .as_array()
-        .unwrap();
-    let clauses: Vec<&str> = part581
-        .iter()
-        .map(|r| r["clause"].as_str().unwrap())
-        .collect();
-    let expected: Vec<String> = (1..=9).map(|i| format!("581.5(c)({i})")).collect();
-    assert_eq!(clauses, expected);
-    assert_eq!(part581[0]["judgement"], "proxy");
-    assert_eq!(part581[0]["criterion"], "clearance");
-    assert_eq!(part581[0]["verified"], true);
-    assert_eq!(part581[3]["judgement"], "not judged");
-    assert!(part581[3]["why"].as_str().unwrap().contains("exhaust"));
-    let rcar = document["verdict"]["requirements"]["rcar-bumper"]
-        .as_array()
-        .unwrap();
-    assert!(rcar.iter().any(|r| r["judgement"] == "model"
-        && r["criterion"] == "crash-box-stroke"
-        && r["by"].as_str().unwrap().contains("usable stroke")));
-    let html = std::fs::read_to_string(report.join("index.html")).unwrap();
-    assert_contains(&html, &["What is judged and what is not", "581.5(c)(7)"]);
-    let list = text(&verdict(&["--list"]).stdout);
-    assert_contains(
-        &list,
-        &[
-            "requires (UN R42 paragraph 6",
-            "judged by a proxy: the clearances to the lamps the car file lists; a lamp nothing reaches",
-            "not judged: the exhaust is not modelled",
-            "the engineer must check it",
-        ],
-    );
 }
