@@ -186,7 +186,12 @@ fn make_design(args: &DesignArgs) -> Result<()> {
         runs: args.runs.unwrap_or(20),
         seed,
     };
-    let (design, resolution) = design::make(kind, &names, &options)?;
+    let (design, resolution) = design::make(kind, &names, &options).map_err(|e| match e {
+        design::DesignError::Centre { .. } => {
+            anyhow!(e).context(format!("--centre {}", args.centre))
+        }
+        e => anyhow!(e),
+    })?;
     if let Some(resolution) = resolution {
         println!("resolution {resolution}");
     }
