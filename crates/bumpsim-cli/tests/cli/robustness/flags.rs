@@ -25,3 +25,61 @@ fn centre_points_beyond_the_limit_name_centre() {
     }
     assert!(!dir.join("d.csv").exists());
 }
+
+/// `planar` and `impact` (a planar car) with one face or set-up option.
+fn planar_refused(dir: &std::path::Path, option: &[&str], needle: &str) {
+    let car = "ex/verdict/car.toml";
+    for command in ["planar", "impact"] {
+        let mut args = vec![command, "--car", car, "--speed", "2"];
+        if command == "impact"
+            && !option
+                .iter()
+                .any(|o| o.starts_with("--gap") || o.starts_with("--duration"))
+        {
+            args.push("--barrier");
+        } else if command == "impact" {
+            continue; // the set-up options are planar's
+        }
+        args.extend_from_slice(option);
+        user_error(dir, &args, needle);
+    }
+}
+
+#[test]
+fn face_options_are_named_in_their_own_units() {
+    let dir = examples("flags-face");
+    let percent = "in percent of the bumper width, must lie in 0 < overlap ≤ 100";
+    for overlap in ["250", "101", "-10"] {
+        planar_refused(
+            &dir,
+            &["--overlap", overlap],
+            &format!("--overlap {overlap}: the overlap, {percent}"),
+        );
+    }
+    for angle in ["nan", "1e308", "95"] {
+        let shown = if angle == "nan" { "NaN" } else { angle };
+        planar_refused(
+            &dir,
+            &["--angle", angle],
+            &format!("--angle {shown}: the face angle, in degrees, must lie within ±80"),
+        );
+    }
+    planar_refused(
+        &dir,
+        &["--pole", "-0.1"],
+        "--pole '-0.1' (the pole's diameter",
+    );
+    planar_refused(
+        &dir,
+        &["--pole", "0.2", "--pole-offset", "1e9"],
+        "--pole-offset '1e9'",
+    );
+}
+
+#[test]
+fn set_up_options_are_named() {
+    let dir = examples("flags-set-up");
+    planar_refused(&dir, &["--gap", "-50 mm"], "--gap '-50 mm'");
+    planar_refused(&dir, &["--gap", "1e9"], "--gap '1e9'");
+    planar_refused(&dir, &["--duration", "1e9"], "--duration '1e9'");
+}
