@@ -83,3 +83,27 @@ fn set_up_options_are_named() {
     planar_refused(&dir, &["--gap", "1e9"], "--gap '1e9'");
     planar_refused(&dir, &["--duration", "1e9"], "--duration '1e9'");
 }
+
+#[test]
+fn mass_reduction_names_the_input_that_overflows() {
+    let dir = examples("flags-reduction");
+    let bumper = "ex/impact/bumper-a.toml";
+    let base = ["mass-reduction", "--bumper", bumper];
+    let with = |extra: &[&'static str]| {
+        let mut args = base.to_vec();
+        args.extend_from_slice(extra);
+        args
+    };
+    user_error(&dir, &with(&["--m2", "1e308"]), "--m2 1e308 ");
+    user_error(&dir, &with(&["--k", "1e308"]), "--k 1e308 ");
+    std::fs::write(
+        dir.join("b-huge.toml"),
+        "ramp = 1e308\nplateau = 1e308\nunloading = 1e308\n",
+    )
+    .unwrap();
+    user_error(
+        &dir,
+        &["mass-reduction", "--bumper", "b-huge.toml"],
+        "with --bumper b-huge.toml",
+    );
+}
