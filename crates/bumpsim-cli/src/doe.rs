@@ -2,6 +2,7 @@
 
 use crate::{Folder, write};
 use anyhow::{Context, Result, anyhow, bail};
+use bumpsim_core::units::short;
 use bumpsim_doe::data::Data;
 use bumpsim_doe::design::{self, DesignKind, DesignOptions};
 use bumpsim_doe::model::{Factor, ModelFile};
@@ -286,7 +287,15 @@ fn run_stiffness(args: &StiffnessArgs) -> Result<()> {
     let path = &args.curve;
     let data = Data::read(path)?;
     let curve = Curve::from_table(&data).with_context(|| path.display().to_string())?;
-    print!("{}", stiffness_text(&curve.stiffness(range)?));
+    let fit = curve.stiffness(range).with_context(|| match &args.range {
+        Some(r) => format!(
+            "{} --range {}",
+            path.display(),
+            r.iter().map(|d| short(*d)).collect::<Vec<_>>().join(",")
+        ),
+        None => format!("{} (fit range: 10–90 % of the peak force)", path.display()),
+    })?;
+    print!("{}", stiffness_text(&fit));
     Ok(())
 }
 

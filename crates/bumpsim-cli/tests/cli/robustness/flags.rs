@@ -107,3 +107,30 @@ fn mass_reduction_names_the_input_that_overflows() {
         "with --bumper b-huge.toml",
     );
 }
+
+#[test]
+fn stiffness_names_the_range_and_the_file() {
+    let dir = examples("flags-stiffness");
+    let rows: String = (0..20).map(|i| format!("{i},{}\n", 3 * i)).collect();
+    std::fs::write(dir.join("curve.csv"), format!("d [mm],f [kN]\n{rows}")).unwrap();
+    std::fs::write(dir.join("one.csv"), "d [mm],f [kN]\n1,3\n").unwrap();
+    let fit = |extra: &[&'static str]| {
+        let mut args = vec!["doe", "stiffness", "curve.csv"];
+        args.extend_from_slice(extra);
+        args
+    };
+    for range in ["5,1", "nan,1", "1,1"] {
+        user_error(&dir, &fit(&["--range", range]), "curve.csv --range ");
+        user_error(&dir, &fit(&["--range", range]), "expected finite D0 < D1");
+    }
+    user_error(
+        &dir,
+        &fit(&["--range", "100,200"]),
+        "curve.csv --range 100,200: stiffness: 0 points in the fit range",
+    );
+    user_error(
+        &dir,
+        &["doe", "stiffness", "one.csv"],
+        "one.csv (fit range: 10–90 % of the peak force): stiffness: 0 points",
+    );
+}
