@@ -134,3 +134,25 @@ fn stiffness_names_the_range_and_the_file() {
         "one.csv (fit range: 10–90 % of the peak force): stiffness: 0 points",
     );
 }
+
+#[test]
+fn a_trim_that_keeps_one_sample_names_trim() {
+    let dir = examples("flags-trim");
+    let export = |trim: &'static str| {
+        [
+            "signal",
+            "export",
+            "ex/identify/FLAT",
+            "-c",
+            "P0IMPA000000FOXP",
+            "-o",
+            "o.csv",
+            "--trim",
+            trim,
+        ]
+    };
+    user_error(&dir, &export("0.01,0.01"), "--trim 0.01,0.01: ");
+    user_error(&dir, &export("0.01,0.01"), "keeps one sample");
+    user_error(&dir, &export("0.02,0.01"), "--trim 0.02,0.01: ");
+    assert!(!dir.join("o.csv").exists());
+}
