@@ -156,3 +156,26 @@ fn a_trim_that_keeps_one_sample_names_trim() {
     user_error(&dir, &export("0.02,0.01"), "--trim 0.02,0.01: ");
     assert!(!dir.join("o.csv").exists());
 }
+
+#[test]
+fn a_zero_output_interval_names_output_every() {
+    let dir = examples("flags-output-every");
+    let force = "ex/simulate/pendulum-force.csv";
+    let car = "ex/simulate/car-3dof.toml";
+    let needle = "--output-every 0: the output interval must be at least 1 increment";
+    let calculix = ["export", "calculix", car, "-o", "d.inp", "--force", force];
+    user_error(
+        &dir,
+        &[&calculix[..], &["--output-every", "0"]].concat(),
+        needle,
+    );
+    let planar = ["export", "planar", "ex/planar/saloon.toml", "-o", "p.inp"];
+    let zero = ["--solver", "calculix", "--output-every", "0"];
+    user_error(&dir, &[&planar[..], &zero].concat(), needle);
+    user_error(
+        &dir,
+        &[&planar[..], &zero, &["--force", force]].concat(),
+        needle,
+    );
+    assert!(!dir.join("d.inp").exists() && !dir.join("p.inp").exists());
+}
