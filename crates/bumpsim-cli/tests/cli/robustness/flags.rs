@@ -179,3 +179,27 @@ fn a_zero_output_interval_names_output_every() {
     );
     assert!(!dir.join("d.inp").exists() && !dir.join("p.inp").exists());
 }
+
+#[test]
+fn a_force_beyond_the_model_names_the_force_file() {
+    let dir = examples("flags-force");
+    let rows: String = (0..6)
+        .map(|i| format!("{},1e300\n", i as f64 * 1e-4))
+        .collect();
+    std::fs::write(
+        dir.join("f-huge.csv"),
+        format!("time [s],force [kN]\n{rows}"),
+    )
+    .unwrap();
+    user_error(
+        &dir,
+        &[
+            "simulate",
+            "--car",
+            "ex/simulate/car-3dof.toml",
+            "--force",
+            "f-huge.csv",
+        ],
+        "with the force of f-huge.csv (peak 1e303 N)",
+    );
+}
