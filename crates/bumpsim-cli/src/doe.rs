@@ -274,7 +274,10 @@ fn predict(args: &PredictArgs) -> Result<()> {
             Ok((name.trim().to_string(), value))
         })
         .collect::<Result<Vec<_>>>()?;
-    print!("{}", prediction_text(&model.predict(&values)?));
+    let prediction = model
+        .predict(&values)
+        .with_context(|| format!("--at {}", args.at.join(",")))?;
+    print!("{}", prediction_text(&prediction));
     Ok(())
 }
 

@@ -203,3 +203,25 @@ fn a_force_beyond_the_model_names_the_force_file() {
         "with the force of f-huge.csv (peak 1e303 N)",
     );
 }
+
+#[test]
+fn an_overflowing_prediction_names_the_factor_and_its_value() {
+    let dir = examples("flags-predict");
+    let factors = r#"{ "name": "Kax", "low": 20000, "high": 26000 }, { "name": "M", "low": 1300, "high": 1700 }"#;
+    let response =
+        r#"{ "name": "y", "coefficients": { "intercept": 1.0, "Kax^2": 2.0, "Kax*M": 1.0 } }"#;
+    let json = format!(r#"{{ "factors": [{factors}], "responses": [{response}] }}"#);
+    std::fs::write(dir.join("m.json"), json).unwrap();
+    let model = "m.json";
+    let at = "Kax=1e308,M=1400";
+    user_error(
+        &dir,
+        &["doe", "predict", model, "--at", at],
+        &format!("--at {at}: "),
+    );
+    user_error(
+        &dir,
+        &["doe", "predict", model, "--at", at],
+        "Kax = 1e308 lies too far outside the design region",
+    );
+}
