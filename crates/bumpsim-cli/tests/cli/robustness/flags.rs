@@ -225,3 +225,23 @@ fn an_overflowing_prediction_names_the_factor_and_its_value() {
         "Kax = 1e308 lies too far outside the design region",
     );
 }
+
+#[test]
+fn a_deck_name_that_is_a_path_names_the_campaign_file_and_key() {
+    let dir = examples("flags-campaign");
+    let spec = dir.join("ex/campaign/campaign.toml");
+    let text = std::fs::read_to_string(&spec).unwrap();
+    let text = text.replacen("deck = \"deck.inp\"", "deck = \"../../../evil.txt\"", 1);
+    assert!(text.contains("evil.txt"));
+    std::fs::write(
+        &spec,
+        text.replacen("\"ccx\", \"-i\", \"deck\"", "\"true\"", 1),
+    )
+    .unwrap();
+    user_error(
+        &dir,
+        &["campaign", "init", "ex/campaign/campaign.toml", "-o", "c"],
+        "ex/campaign/campaign.toml: template.deck: ",
+    );
+    assert!(!dir.join("c").exists() && !dir.join("evil.txt").exists());
+}
