@@ -150,9 +150,13 @@ fn scenario(args: &ImpactArgs, car_mass: f64) -> Result<(Scenario, String)> {
         barrier: args.barrier,
         speed: args.speed.as_deref().map(speed).transpose()?,
     };
-    let (scenario, preset) = spec
-        .scenario(car_mass)
-        .context("--case, --pendulum, --barrier, --speed")?;
+    let (scenario, preset) = spec.scenario(car_mass).with_context(|| {
+        let given = args.speed.as_deref().map(|s| format!(" '{s}'"));
+        format!(
+            "--case, --pendulum, --barrier, --speed{}",
+            given.unwrap_or_default()
+        )
+    })?;
     let label = match (preset, scenario) {
         (Some(p), _) => format!(
             "{} ({}, {}; {})",

@@ -245,3 +245,22 @@ fn a_deck_name_that_is_a_path_names_the_campaign_file_and_key() {
     );
     assert!(!dir.join("c").exists() && !dir.join("evil.txt").exists());
 }
+
+#[test]
+fn a_hyphen_quantity_reaches_the_check_of_its_option() {
+    let dir = examples("flags-hyphen");
+    let car = "ex/simulate/car-3dof.toml";
+    let bumper = "ex/impact/bumper-a.toml";
+    let args = ["impact", "--car", car, "--bumper", bumper, "--barrier"];
+    user_error(
+        &dir,
+        &[&args[..], &["--speed", "-3 m/s"]].concat(),
+        "--speed '-3 m/s'",
+    );
+    let planar = ["planar", "--car", "ex/verdict/car.toml", "--speed", "2"];
+    user_error(
+        &dir,
+        &[&planar[..], &["--pole", "-10 cm"]].concat(),
+        "--pole '-10 cm'",
+    );
+}
