@@ -318,11 +318,15 @@ impl Spec {
         files
     }
 
-    /// Two files of one name in a point folder (a file listed twice, a
-    /// deck named like a copied file) would be written twice: refused.
+    /// A file name that is not plain (a path, `..`) is refused; two files of
+    /// one name in a point folder (a file listed twice, a deck named like a
+    /// copied file) would be written twice: refused.
     fn validate_point_files(&self, path: &Path) -> Result<()> {
         let files = self.point_files();
         for (i, (name, key)) in files.iter().enumerate() {
+            // the staging refuses it too, but without the file and key
+            bumpsim_io::output::plain_name(name)
+                .map_err(|e| Spec::invalid(path, key, e.to_string()))?;
             if let Some((_, first)) = files[..i].iter().find(|(n, _)| n == name) {
                 let message = format!(
                     "'{name}' is also the file of {first}: each file of a point folder needs a name of its own"
@@ -760,6 +764,21 @@ command = ["true"]
         let err =
             Spec::parse(&BASE.replace("\"full\"", "\"fuller\""), Path::new("c.toml")).unwrap_err();
         assert!(err.to_string().contains("design.kind"), "{err}");
+    }
+
+    /// A deck named `../../../evil.txt` reached the staging, which named
+    /// neither the campaign file nor the key.
+    #[test]
+    fn a_deck_name_that_is_a_path_is_refused_naming_the_key() {
+        let deck = BASE.replace(
+            "file = \"deck.inp\"",
+            "file = \"deck.inp\"\ndeck = \"../../../evil.txt\"",
+        );
+        let err = Spec::parse(&deck, Path::new("c.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("c.toml: template.deck: "), "{err}");
+        assert!(err.contains("not a plain name"), "{err}");
     }
 
     /// A file listed twice, or a deck named like a copied file, was

@@ -2,6 +2,7 @@
 
 use crate::{Folder, write};
 use anyhow::{Context, Result, anyhow, bail};
+use bumpsim_core::units::short;
 use bumpsim_doe::data::Data;
 use bumpsim_doe::design::{self, DesignKind, DesignOptions};
 use bumpsim_doe::model::{Factor, ModelFile};
@@ -186,7 +187,12 @@ fn make_design(args: &DesignArgs) -> Result<()> {
         runs: args.runs.unwrap_or(20),
         seed,
     };
-    let (design, resolution) = design::make(kind, &names, &options)?;
+    let (design, resolution) = design::make(kind, &names, &options).map_err(|e| match e {
+        design::DesignError::Centre { .. } => {
+            anyhow!(e).context(format!("--centre {}", args.centre))
+        }
+        e => anyhow!(e),
+    })?;
     if let Some(resolution) = resolution {
         println!("resolution {resolution}");
     }
@@ -268,7 +274,10 @@ fn predict(args: &PredictArgs) -> Result<()> {
             Ok((name.trim().to_string(), value))
         })
         .collect::<Result<Vec<_>>>()?;
-    print!("{}", prediction_text(&model.predict(&values)?));
+    let prediction = model
+        .predict(&values)
+        .with_context(|| format!("--at {}", args.at.join(",")))?;
+    print!("{}", prediction_text(&prediction));
     Ok(())
 }
 
@@ -281,7 +290,15 @@ fn run_stiffness(args: &StiffnessArgs) -> Result<()> {
     let path = &args.curve;
     let data = Data::read(path)?;
     let curve = Curve::from_table(&data).with_context(|| path.display().to_string())?;
-    print!("{}", stiffness_text(&curve.stiffness(range)?));
+    let fit = curve.stiffness(range).with_context(|| match &args.range {
+        Some(r) => format!(
+            "{} --range {}",
+            path.display(),
+            r.iter().map(|d| short(*d)).collect::<Vec<_>>().join(",")
+        ),
+        None => format!("{} (fit range: 10–90 % of the peak force)", path.display()),
+    })?;
+    print!("{}", stiffness_text(&fit));
     Ok(())
 }
 

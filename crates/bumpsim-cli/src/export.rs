@@ -286,11 +286,32 @@ fn calculix(args: &CalculixArgs) -> Result<()> {
         prefix: args.prefix.clone(),
         attach: args.attach.clone(),
     };
-    let deck = calculix_deck(&car.model, &options)?;
+    let deck = calculix_deck(&car.model, &options)
+        .map_err(|e| name_output_every(e.into(), args.output_every))?;
     let inputs: Vec<&Path> = std::iter::once(common.model.as_path())
         .chain(args.force.as_deref())
         .collect();
     write_deck(common, &inputs, &deck, what)
+}
+
+/// Names `--output-every` in the refusal of a zero output interval (the
+/// library names the interval, not the flag).
+pub(crate) fn name_output_every(error: anyhow::Error, every: usize) -> anyhow::Error {
+    use bumpsim_export::ExportError::OutputInterval;
+    use bumpsim_planar::export::PlanarExportError;
+    let zero = error.chain().any(|cause| {
+        matches!(
+            cause.downcast_ref::<bumpsim_export::ExportError>(),
+            Some(OutputInterval)
+        ) || matches!(
+            cause.downcast_ref::<PlanarExportError>(),
+            Some(PlanarExportError::Export(OutputInterval))
+        )
+    });
+    match zero {
+        true => error.context(format!("--output-every {every}")),
+        false => error,
+    }
 }
 
 fn bumper(args: &BumperArgs) -> Result<()> {

@@ -5,7 +5,7 @@ use crate::planar::uncertain::{self, Uncertain};
 use crate::{Folder, write};
 use anyhow::{Context, Result, bail};
 use bumpsim_core::names::printable;
-use bumpsim_core::units::{Dimension, format_number, format_quantity, parse_quantity};
+use bumpsim_core::units::{Dimension, format_number, format_quantity, parse_quantity, short};
 use bumpsim_impact::bumper::Bumper;
 use bumpsim_impact::impact::{Options, Scenario, simulate};
 use bumpsim_impact::presets::{PRESETS, ScenarioSpec};
@@ -150,9 +150,13 @@ fn scenario(args: &ImpactArgs, car_mass: f64) -> Result<(Scenario, String)> {
         barrier: args.barrier,
         speed: args.speed.as_deref().map(speed).transpose()?,
     };
-    let (scenario, preset) = spec
-        .scenario(car_mass)
-        .context("--case, --pendulum, --barrier, --speed")?;
+    let (scenario, preset) = spec.scenario(car_mass).with_context(|| {
+        let given = args.speed.as_deref().map(|s| format!(" '{s}'"));
+        format!(
+            "--case, --pendulum, --barrier, --speed{}",
+            given.unwrap_or_default()
+        )
+    })?;
     let label = match (preset, scenario) {
         (Some(p), _) => format!(
             "{} ({}, {}; {})",
@@ -258,7 +262,16 @@ pub fn run_reduction(args: &ReductionArgs) -> Result<()> {
         m2: args.m2,
         k: args.k,
     };
-    let r = equivalent_mass(&car, &bumper, v0, args.criterion)?;
+    let r = equivalent_mass(&car, &bumper, v0, args.criterion).with_context(|| {
+        format!(
+            "--m1 {} --m2 {} --k {} with --bumper {} at --speed '{}'",
+            short(args.m1),
+            short(args.m2),
+            short(args.k),
+            args.bumper.display(),
+            args.speed
+        )
+    })?;
     let text = format!(
         "2-DOF car M1 {}, M2 {}, k {} at {} into a rigid barrier ({} criterion):\n  2-DOF deformation: maximum {}, remaining {}\n  equivalent single mass M* = {}, scale factor M*/(M1+M2) = {}\n",
         format_quantity(car.m1, Dimension::Mass),

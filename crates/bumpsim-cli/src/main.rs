@@ -129,12 +129,20 @@ pub(crate) fn warn(message: &str) {
 
 /// Every option that takes a value takes a negative number too: `--speed -1`
 /// reaches the command's own check, which refuses it by name and range, where
-/// clap answered "unexpected argument '-1'".
+/// clap answered "unexpected argument '-1'". An option of one value takes
+/// any value starting with '-' (`--speed "-3 m/s"`, a quantity with a unit)
+/// for the same reason; options of several values keep clap's reading, or a
+/// hyphen value would swallow the flags after it.
 fn negative_values(command: clap::Command) -> clap::Command {
     command
         .mut_args(|arg| {
             let takes = arg.get_action().takes_values();
+            let one = arg
+                .get_num_args()
+                .is_none_or(|n| n.min_values() == 1 && n.max_values() == 1);
+            let option = arg.get_long().is_some() || arg.get_short().is_some();
             arg.allow_negative_numbers(takes)
+                .allow_hyphen_values(takes && one && option)
         })
         .mut_subcommands(negative_values)
 }

@@ -4,8 +4,8 @@
 use crate::{Folder, write};
 use anyhow::{Context, Result, bail};
 use bumpsim_core::names::printable;
-use bumpsim_core::units::{Dimension, parse_quantity};
-use bumpsim_planar::car::TyreLaw;
+use bumpsim_core::units::{Dimension, parse_quantity, short};
+use bumpsim_planar::car::{PlanarError, TyreLaw};
 use bumpsim_planar::document::{IdentificationDocument, ImpactDocument};
 use bumpsim_planar::identify::{Prediction, identify, predict};
 use bumpsim_planar::presets::{PRESETS, PlanarPreset, StrikerSpec};
@@ -251,6 +251,44 @@ pub fn run(args: &Args) -> Result<()> {
     })
 }
 
+/// Names the option behind a refused face or set-up value, with the value
+/// as given (the library names the parameter in its own unit: the overlap
+/// as a fraction, the angle in radians, the pole by its radius).
+fn name_option(error: PlanarError, request: &ImpactRequest) -> anyhow::Error {
+    let PlanarError::Parameter { name, .. } = &error else {
+        return error.into();
+    };
+    let (face, setup) = (request.face, request.setup);
+    let option = match name.as_str() {
+        "overlap" => face.overlap.map(|v| {
+            format!(
+                "--overlap {}: the overlap, in percent of the bumper width, must lie in 0 < overlap ≤ 100",
+                short(v)
+            )
+        }),
+        "barrier angle" => face.angle.map(|v| {
+            format!(
+                "--angle {}: the face angle, in degrees, must lie within ±80",
+                short(v)
+            )
+        }),
+        "pole radius" => face
+            .pole
+            .as_ref()
+            .map(|v| format!("--pole '{v}' (the pole's diameter; its radius is half of it)")),
+        "pole lateral position" => face.pole_offset.as_ref().map(|v| format!("--pole-offset '{v}'")),
+        "gap" => setup.gap.as_ref().map(|v| format!("--gap '{v}'")),
+        "duration" | "duration / output step" => {
+            setup.duration.as_ref().map(|v| format!("--duration '{v}'"))
+        }
+        _ => None,
+    };
+    match option {
+        Some(option) => anyhow::Error::new(error).context(option),
+        None => error.into(),
+    }
+}
+
 /// Simulates a planar impact and writes its outputs.
 pub fn run_impact(request: &ImpactRequest) -> Result<()> {
     let path = request.path;
@@ -262,7 +300,7 @@ pub fn run_impact(request: &ImpactRequest) -> Result<()> {
     };
     let settings = request.setup.settings()?;
     let uncertain = crate::planar::uncertain::Uncertain::<Planar>::read(request.uncertain, car)?;
-    let result = simulate(car, &striker, &settings)?;
+    let result = simulate(car, &striker, &settings).map_err(|e| name_option(e, request))?;
     result.warnings.iter().for_each(|w| crate::warn(w));
     let name = car
         .name()

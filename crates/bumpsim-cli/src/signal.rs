@@ -5,7 +5,7 @@ use crate::simulate::refuse_overwriting_inputs;
 use anyhow::{Context, Result, bail};
 use bumpsim_core::channel::Channel;
 use bumpsim_core::units::{
-    Dimension, Unit, choose_units, format_in, format_quantity, format_time_at,
+    Dimension, Unit, choose_units, format_in, format_quantity, format_time_at, short,
 };
 use bumpsim_io::isomme;
 use bumpsim_io::table::{OutputColumn, write_table_in};
@@ -265,7 +265,8 @@ fn run_export(args: &ExportArgs) -> Result<()> {
     });
     let result = export(&test, &args.channels, &export_steps(args)?, how)
         .map_err(|e| name_cfc(e.into(), args.cfc))
-        .map_err(|e| name_resample(e, args.resample))?;
+        .map_err(|e| name_resample(e, args.resample))
+        .map_err(|e| name_trim(e, args.trim.as_deref()))?;
     report(&result);
     write_csv(&args.output, &result.signals, &output_units(&args.unit)?)?;
     if let Some(folder) = &args.iso_mme {
@@ -311,6 +312,24 @@ fn name_resample(error: anyhow::Error, step: Option<f64>) -> anyhow::Error {
     });
     match step {
         Some(step) if about_step => error.context(format!("--resample {step}")),
+        _ => error,
+    }
+}
+
+/// Names `--trim` in an error of the trim step (the library names the
+/// step, `trim`, as a pipeline file spells it).
+fn name_trim(error: anyhow::Error, window: Option<&[f64]>) -> anyhow::Error {
+    use bumpsim_signal::process::ProcessError;
+    let about_step = error.chain().any(|cause| {
+        matches!(
+            cause.downcast_ref::<ProcessError>(),
+            Some(ProcessError::Range { step: "trim", .. })
+        )
+    });
+    match window {
+        Some(&[t0, t1]) if about_step => {
+            error.context(format!("--trim {},{}", short(t0), short(t1)))
+        }
         _ => error,
     }
 }

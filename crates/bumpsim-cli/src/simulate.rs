@@ -117,9 +117,12 @@ pub fn run(args: &Args) -> Result<()> {
         )
     })?;
     if !response.is_finite() {
+        let peak = force.peak().1;
         bail!(
-            "the simulation of {} produced non-finite values (inf or NaN): the model, force or initial velocity is beyond what the {} discretisation can represent",
+            "the simulation of {} with the force of {} (peak {} N) produced non-finite values (inf or NaN): the model, force or initial velocity is beyond what the {} discretisation can represent",
             args.car.display(),
+            args.force.display(),
+            bumpsim_core::units::short(peak),
             args.method
         );
     }

@@ -38,6 +38,12 @@ pub enum DesignError {
     /// A size is out of range.
     #[error("design: {0}")]
     Size(String),
+    /// More centre points than [`MAX_CENTRE`].
+    #[error("{centre} centre points: at most {MAX_CENTRE} (limit MAX_CENTRE)")]
+    Centre {
+        /// The centre points asked for.
+        centre: usize,
+    },
 }
 
 /// A design: factor names and runs in coded units.
@@ -52,6 +58,15 @@ pub struct Design {
 /// Most centre points of a design (each is a run): docs/limits.md.
 pub const MAX_CENTRE: usize = 1_000_000;
 
+/// Refuses more centre points than [`MAX_CENTRE`] (each is a row held in
+/// memory).
+fn check_centre(centre: usize) -> Result<(), DesignError> {
+    if centre > MAX_CENTRE {
+        return Err(DesignError::Centre { centre });
+    }
+    Ok(())
+}
+
 /// Full factorial 2^k in standard order (first factor alternates fastest),
 /// then `centre` centre points.
 pub fn full_factorial(factors: &[&str], centre: usize) -> Result<Design, DesignError> {
@@ -59,11 +74,7 @@ pub fn full_factorial(factors: &[&str], centre: usize) -> Result<Design, DesignE
     if k == 0 || k > 20 {
         return Err(DesignError::Size(format!("{k} factors: expected 1 to 20")));
     }
-    if centre > MAX_CENTRE {
-        return Err(DesignError::Size(format!(
-            "{centre} centre points: at most {MAX_CENTRE} (limit MAX_CENTRE)"
-        )));
-    }
+    check_centre(centre)?;
     distinct_names(factors)?;
     let mut runs: Vec<Vec<f64>> = (0..1usize << k)
         .map(|r| {
@@ -225,6 +236,7 @@ pub fn central_composite(
     centre: usize,
     face_centred: bool,
 ) -> Result<Design, DesignError> {
+    check_centre(centre)?;
     let mut design = full_factorial(factors, 0)?;
     let k = factors.len();
     let alpha = if face_centred {
@@ -511,6 +523,20 @@ mod tests {
         assert_eq!(resolution(&["D=AB", "E=AC"]).unwrap(), 3);
         assert_eq!(resolution(&["E=ABC", "F=BCD"]).unwrap(), 4);
         assert!(resolution(&[]).is_err());
+    }
+
+    #[test]
+    fn composite_designs_refuse_too_many_centre_points() {
+        for face_centred in [true, false] {
+            let err = central_composite(&["A"], MAX_CENTRE + 1, face_centred).unwrap_err();
+            assert_eq!(
+                err,
+                DesignError::Centre {
+                    centre: MAX_CENTRE + 1
+                }
+            );
+        }
+        assert!(central_composite(&["A"], 2, true).is_ok());
     }
 
     #[test]

@@ -22,6 +22,7 @@
 //! ```
 
 use crate::regression::Term;
+use bumpsim_core::units::short;
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ContinuousCDF, StudentsT};
 use std::collections::BTreeMap;
@@ -437,7 +438,7 @@ impl ModelFile {
             }
         }
         let mut coded = Vec::new();
-        let mut warnings = Vec::new();
+        let (mut warnings, mut outside) = (Vec::new(), Vec::new());
         for f in &self.factors {
             let value = at
                 .iter()
@@ -452,6 +453,7 @@ impl ModelFile {
             let z = f.coded(value);
             if z.abs() > 1.0 + 1e-9 {
                 warnings.push(format!("{} = {value} is outside the design region {}..{} (coded {z:.3}): extrapolation", f.name, f.low, f.high));
+                outside.push(format!("{} = {}", f.name, short(value)));
             }
             coded.push(z);
         }
@@ -459,7 +461,7 @@ impl ModelFile {
         let values = self
             .responses
             .iter()
-            .map(|r| r.predict(&coded, &names))
+            .map(|r| r.predict(&coded, &names, &outside))
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Prediction {
             coded,
@@ -470,7 +472,14 @@ impl ModelFile {
 }
 
 impl Response {
-    fn predict(&self, z: &[f64], factors: &[String]) -> Result<Predicted, ModelError> {
+    /// The prediction at coded `z`; `outside` names the factor values
+    /// beyond the design region, for the refusal of an overflow.
+    fn predict(
+        &self,
+        z: &[f64],
+        factors: &[String],
+        outside: &[String],
+    ) -> Result<Predicted, ModelError> {
         let mut value = 0.0;
         for (name, c) in &self.coefficients {
             let term = Term::parse(name, factors).ok_or_else(|| {
@@ -485,8 +494,12 @@ impl Response {
         let (ci95, pi95) = self.intervals(z, factors, value).unzip();
         let finite = |i: Option<[f64; 2]>| i.is_none_or(|[a, b]| a.is_finite() && b.is_finite());
         if !(value.is_finite() && finite(ci95) && finite(pi95)) {
+            let far = match outside.is_empty() {
+                true => "the factor values lie".to_string(),
+                false => outside.join(", ") + if outside.len() > 1 { " lie" } else { " lies" },
+            };
             return Err(ModelError::Input(format!(
-                "response '{}': the prediction is {value} (beyond the largest number): the factor values lie too far outside the design region",
+                "response '{}': the prediction is {value} (beyond the largest number): {far} too far outside the design region",
                 self.name
             )));
         }

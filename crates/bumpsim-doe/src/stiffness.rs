@@ -112,7 +112,16 @@ impl Curve {
 
     /// The stiffness over `range` given in the file's displacement unit
     /// (default: 10–90 % of the peak force).
+    /// A range that is not two finite numbers D0 < D1 is refused as such.
     pub fn stiffness(&self, range: Option<[f64; 2]>) -> Result<Stiffness, StiffnessError> {
+        if let Some([d0, d1]) = range
+            && !(d0.is_finite() && d1.is_finite() && d0 < d1)
+        {
+            return Err(StiffnessError(format!(
+                "fit range {d0} to {d1} {}: expected finite D0 < D1",
+                self.displacement_unit.symbol
+            )));
+        }
         let si = range.map(|r| r.map(|d| self.displacement_unit.to_si(d)));
         stiffness(&self.displacement, &self.force, si)
     }
@@ -191,4 +200,29 @@ pub fn stiffness(
             1.0
         },
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bumpsim_core::units::Unit;
+
+    fn curve() -> Curve {
+        let mm = Unit::parse("mm").unwrap();
+        Curve {
+            displacement: (0..20).map(|i| mm.to_si(i as f64)).collect(),
+            force: (0..20).map(|i| 3e3 * i as f64).collect(),
+            displacement_unit: mm,
+        }
+    }
+
+    #[test]
+    fn a_reversed_or_non_finite_range_is_refused_as_such() {
+        for range in [[5.0, 1.0], [f64::NAN, 1.0], [1.0, 1.0]] {
+            let err = curve().stiffness(Some(range)).unwrap_err();
+            assert!(err.0.contains("expected finite D0 < D1"), "{err}");
+        }
+        let fit = curve().stiffness(Some([2.0, 10.0])).unwrap();
+        assert!((fit.slope - 3e6).abs() < 1e-3, "{fit:?}");
+    }
 }

@@ -103,13 +103,16 @@ pub fn run(args: &PlanarArgs) -> Result<()> {
     only_for(args.solver, Solver::Calculix, &calculix)?;
     let car = PlanarCar::read(&args.car)?;
     let options = options(args, &car)?;
+    let calculix = || {
+        calculix_deck(&car, &options)
+            .map_err(|e| super::name_output_every(e.into(), options.output_every))
+    };
     let (deck, what) = match args.solver {
         Solver::Lsdyna => (lsdyna_include(&car, &options)?, "LS-DYNA include"),
-        Solver::Calculix if options.forces.is_some() => (
-            calculix_deck(&car, &options)?,
-            "CalculiX transient analysis (run: ccx JOB)",
-        ),
-        Solver::Calculix => (calculix_deck(&car, &options)?, "CalculiX model"),
+        Solver::Calculix if options.forces.is_some() => {
+            (calculix()?, "CalculiX transient analysis (run: ccx JOB)")
+        }
+        Solver::Calculix => (calculix()?, "CalculiX model"),
     };
     let masses = car.left().masses.len() + car.right().masses.len();
     let what = format!(

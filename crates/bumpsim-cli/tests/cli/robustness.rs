@@ -12,6 +12,7 @@ use std::time::{Duration, Instant};
 use crate::util::{copy_tree, root};
 
 mod commit;
+mod flags;
 mod refusals;
 
 fn scratch(test: &str) -> PathBuf {

@@ -315,7 +315,12 @@ impl Context<'_> {
     fn trim(&self, t0: f64, t1: f64) -> Result<Channel, ProcessError> {
         let s = &self.channel.series;
         match s.window(t0, t1).map(|w| w.into_inner()) {
-            Some((a, b)) => self.rebase(s.time(a), s.values()[a..=b].to_vec()),
+            Some((a, b)) if b > a => self.rebase(s.time(a), s.values()[a..=b].to_vec()),
+            // one sample has no interval: nothing downstream can use it
+            Some(_) => Err(self.range(format!(
+                "[{t0}, {t1}] s keeps one sample; a channel needs at least two (the interval is {} s)",
+                s.step()
+            ))),
             None => Err(self.range(format!(
                 "no samples in [{t0}, {t1}] s; the channel spans [{}, {}] s",
                 s.start(),

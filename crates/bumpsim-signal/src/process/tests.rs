@@ -29,6 +29,8 @@ fn bias_trim_shift_and_mass() {
     assert!(Step::Mass(2.0).apply(&f).is_err());
     assert!(Step::Bias([5.0, 6.0]).apply(&c).is_err());
     assert!(Step::Trim([5.0, 6.0]).apply(&c).is_err());
+    let one = Step::Trim([0.1, 0.1]).apply(&c).unwrap_err().to_string();
+    assert!(one.contains("keeps one sample"), "{one}");
     assert!(Step::Integrate(0.0).apply(&f).is_err());
 }
 
