@@ -132,7 +132,8 @@ pub(crate) fn warn(message: &str) {
 /// clap answered "unexpected argument '-1'". An option of one value takes
 /// any value starting with '-' (`--speed "-3 m/s"`, a quantity with a unit)
 /// for the same reason; options of several values keep clap's reading, or a
-/// hyphen value would swallow the flags after it.
+/// hyphen value would swallow the flags after it, and so do paths, or
+/// `--json --report r` would write a file named `--report`.
 fn negative_values(command: clap::Command) -> clap::Command {
     command
         .mut_args(|arg| {
@@ -141,8 +142,11 @@ fn negative_values(command: clap::Command) -> clap::Command {
                 .get_num_args()
                 .is_none_or(|n| n.min_values() == 1 && n.max_values() == 1);
             let option = arg.get_long().is_some() || arg.get_short().is_some();
+            // a path never: `--json --quiet` wrote a file named "--quiet"
+            let path =
+                arg.get_value_parser().type_id() == std::any::TypeId::of::<std::path::PathBuf>();
             arg.allow_negative_numbers(takes)
-                .allow_hyphen_values(takes && one && option)
+                .allow_hyphen_values(takes && one && option && !path)
         })
         .mut_subcommands(negative_values)
 }

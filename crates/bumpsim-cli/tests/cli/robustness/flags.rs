@@ -1,7 +1,7 @@
 //! Refusals that name the flag and the value as the user gave it (the
 //! hostile pass's panic and unclear items): exit 2, the flag, its value.
 
-use super::{examples, user_error};
+use super::{examples, run_in, stderr, user_error};
 
 #[test]
 fn centre_points_beyond_the_limit_name_centre() {
@@ -263,4 +263,28 @@ fn a_hyphen_quantity_reaches_the_check_of_its_option() {
         &[&planar[..], &["--pole", "-10 cm"]].concat(),
         "--pole '-10 cm'",
     );
+}
+
+/// A path option does not take the next flag as its value: with hyphen
+/// values allowed everywhere, `--json --quiet` wrote a file named `--quiet`.
+#[test]
+fn a_path_option_never_takes_a_flag_as_its_file() {
+    let dir = examples("path-hyphen");
+    let (out, _) = run_in(
+        &dir,
+        &[
+            "impact",
+            "--car",
+            "ex/identify/car-truth.toml",
+            "--bumper",
+            "ex/impact/bumper-a.toml",
+            "--barrier",
+            "--speed",
+            "2",
+            "--json",
+            "--report",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(!dir.join("--report").exists(), "a file named --report");
 }
