@@ -13,6 +13,7 @@ use crate::util::{copy_tree, root};
 
 mod commit;
 mod refusals;
+mod silent;
 
 fn scratch(test: &str) -> PathBuf {
     crate::util::scratch(&format!("robustness-{test}"))
