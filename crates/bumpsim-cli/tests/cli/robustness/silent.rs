@@ -17,3 +17,48 @@ fn a_junk_or_empty_ev5_file_is_no_test() {
         user_error(&dir, &["signal", "info", file], &needle);
     }
 }
+
+/// `--sobol-base 100` and `17` ran while the help says "a power of two":
+/// the Sobol sequence is balanced only over 2^m points.
+#[test]
+fn a_sobol_base_between_powers_of_two_is_refused() {
+    let dir = examples("silent-sobol-base");
+    std::fs::write(
+        dir.join("u.toml"),
+        "[uncertainty]\n\"bumper.force\" = 0.1\n",
+    )
+    .unwrap();
+    let verdict = [
+        "verdict",
+        "--car",
+        "ex/verdict/car.toml",
+        "--protocol",
+        "rcar-bumper-corner-front",
+        "--uncertainty",
+        "ex/verdict/uncertainty.toml",
+        "--samples",
+        "10",
+        "--sobol",
+        "--sobol-base",
+    ];
+    let impact = [
+        "impact",
+        "--car",
+        "ex/simulate/car-3dof.toml",
+        "--bumper",
+        "ex/impact/bumper-a.toml",
+        "--barrier",
+        "--speed",
+        "2",
+        "--uncertainty",
+        "u.toml",
+        "--sobol",
+        "--sobol-base",
+    ];
+    for (base, powers) in [("100", "64 or 128"), ("17", "16 or 32")] {
+        let needle = format!("sobol-base = {base} samples: a power of two ({powers})");
+        user_error(&dir, &[&verdict[..], &[base]].concat(), &needle);
+        let needle = format!("--sobol-base: base = {base} samples: a power of two ({powers})");
+        user_error(&dir, &[&impact[..], &[base]].concat(), &needle);
+    }
+}
