@@ -3,7 +3,7 @@
 //! refused with exit 2 naming the file, line, key or flag and the value,
 //! or the output says what it cannot compute.
 
-use super::{examples, user_error};
+use super::{examples, run_in, stderr, user_error};
 
 /// Random bytes or an empty file named `.EV5` listed "0 channels".
 #[test]
@@ -61,4 +61,20 @@ fn a_sobol_base_between_powers_of_two_is_refused() {
         let needle = format!("--sobol-base: base = {base} samples: a power of two ({powers})");
         user_error(&dir, &[&impact[..], &[base]].concat(), &needle);
     }
+}
+
+/// Forces all 0 printed "R² 1.0000": R² is 0/0 for data that do not vary.
+#[test]
+fn the_r2_of_a_constant_force_is_undefined() {
+    let dir = examples("silent-stiffness-r2");
+    let rows: String = (0..20).map(|i| format!("{i},0\n")).collect();
+    std::fs::write(dir.join("curve-0.csv"), format!("d [mm],f [kN]\n{rows}")).unwrap();
+    let (out, _) = run_in(&dir, &["doe", "stiffness", "curve-0.csv"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(
+        text.contains("R² undefined: the force does not vary"),
+        "{text}"
+    );
+    assert!(!text.contains("R² 1"), "{text}");
 }
