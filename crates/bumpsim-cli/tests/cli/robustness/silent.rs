@@ -78,3 +78,21 @@ fn the_r2_of_a_constant_force_is_undefined() {
     );
     assert!(!text.contains("R² 1"), "{text}");
 }
+
+/// A force CSV with times in steps of 1e-300 s ran, while the ISO-MME and
+/// EV5 readers refuse a sampling interval outside 1 ns..1 s.
+#[test]
+fn a_csv_sampling_interval_outside_the_readers_range_is_refused() {
+    let dir = examples("silent-csv-interval");
+    let rows: String = (0..5).map(|k| format!("{}e-300,{k}\n", k)).collect();
+    std::fs::write(dir.join("tiny.csv"), format!("time [s],force [N]\n{rows}")).unwrap();
+    let args = [
+        "simulate",
+        "--car",
+        "ex/simulate/car-3dof.toml",
+        "--force",
+        "tiny.csv",
+    ];
+    let needle = "tiny.csv:3: the times give a sampling interval of 1e-300 s: expected 1e-9 to 1 s";
+    user_error(&dir, &args, needle);
+}
