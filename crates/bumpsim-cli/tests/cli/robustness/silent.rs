@@ -96,3 +96,15 @@ fn a_csv_sampling_interval_outside_the_readers_range_is_refused() {
     let needle = "tiny.csv:3: the times give a sampling interval of 1e-300 s: expected 1e-9 to 1 s";
     user_error(&dir, &args, needle);
 }
+
+/// `mass-reduction --m1 0.0001 --m2 0.0001` ran with 0.1 g masses while
+/// `impact` refuses an impactor below 1 g: one range, naming the flag.
+#[test]
+fn mass_reduction_masses_share_the_impactor_range() {
+    let dir = examples("silent-reduction-mass");
+    let base = ["mass-reduction", "--bumper", "ex/impact/bumper-a.toml"];
+    let m1 = [&base[..], &["--m1", "0.0001", "--m2", "0.0001"]].concat();
+    user_error(&dir, &m1, "--m1: m1 = 0.0001 kg");
+    let m2 = [&base[..], &["--m2", "0.0001"]].concat();
+    user_error(&dir, &m2, "--m2: m2 = 0.0001 kg");
+}
