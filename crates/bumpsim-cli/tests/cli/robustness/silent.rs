@@ -108,3 +108,31 @@ fn mass_reduction_masses_share_the_impactor_range() {
     let m2 = [&base[..], &["--m2", "0.0001"]].concat();
     user_error(&dir, &m2, "--m2: m2 = 0.0001 kg");
 }
+
+/// A car name with control characters went raw into the decks' comments
+/// (a line break there ends the comment: the rest reads as a keyword).
+#[test]
+fn a_car_name_s_control_characters_are_escaped_in_decks() {
+    let dir = examples("silent-deck-name");
+    let car = std::fs::read_to_string(dir.join("ex/simulate/car-3dof.toml")).unwrap();
+    let named: String = car
+        .lines()
+        .map(|l| match l.starts_with("name") {
+            true => "name = \"evil\\n*END\\u001B[2J\"".to_string(),
+            false => l.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert_ne!(named, car.trim_end());
+    std::fs::write(dir.join("car.toml"), named).unwrap();
+    for (kind, deck) in [("lsdyna", "d.k"), ("calculix", "d.inp")] {
+        let (out, _) = run_in(&dir, &["export", kind, "car.toml", "-o", deck]);
+        assert_eq!(out.status.code(), Some(0), "{kind}: {}", stderr(&out));
+        let text = std::fs::read_to_string(dir.join(deck)).unwrap();
+        assert!(
+            !text.contains('\u{1b}') && !text.contains("evil\n"),
+            "{text}"
+        );
+        assert!(text.contains("evil\\u000A*END\\u001B[2J"), "{text}");
+    }
+}
