@@ -9,7 +9,9 @@ use bumpsim_core::units::{Dimension, format_number, format_quantity, parse_quant
 use bumpsim_impact::bumper::Bumper;
 use bumpsim_impact::impact::{Options, Scenario, simulate};
 use bumpsim_impact::presets::{PRESETS, ScenarioSpec};
-use bumpsim_impact::reduction::{Criterion, Grid, PaperSweep, TwoDof, equivalent_mass};
+use bumpsim_impact::reduction::{
+    Criterion, Grid, PaperSweep, ReductionError, TwoDof, equivalent_mass,
+};
 use bumpsim_impact::uncertainty::{Chain, ChainCar};
 use bumpsim_io::car::Car;
 use bumpsim_report::html::Html;
@@ -262,15 +264,16 @@ pub fn run_reduction(args: &ReductionArgs) -> Result<()> {
         m2: args.m2,
         k: args.k,
     };
-    let r = equivalent_mass(&car, &bumper, v0, args.criterion).with_context(|| {
-        format!(
+    let r = equivalent_mass(&car, &bumper, v0, args.criterion).map_err(|e| match e {
+        ReductionError::Mass { key, .. } => anyhow::Error::new(e).context(format!("--{key}")),
+        e => anyhow::Error::new(e).context(format!(
             "--m1 {} --m2 {} --k {} with --bumper {} at --speed '{}'",
             short(args.m1),
             short(args.m2),
             short(args.k),
             args.bumper.display(),
             args.speed
-        )
+        )),
     })?;
     let text = format!(
         "2-DOF car M1 {}, M2 {}, k {} at {} into a rigid barrier ({} criterion):\n  2-DOF deformation: maximum {}, remaining {}\n  equivalent single mass M* = {}, scale factor M*/(M1+M2) = {}\n",

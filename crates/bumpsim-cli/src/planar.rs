@@ -79,7 +79,7 @@ pub struct UncertaintyArgs {
     #[arg(long, requires = "uncertainty")]
     pub sobol: bool,
     /// Base samples N of the Sobol indices: N (d + 2) impacts for d
-    /// parameters (16 to 65536).
+    /// parameters (16 to 65536; a power of two).
     #[arg(
         long,
         value_name = "N",

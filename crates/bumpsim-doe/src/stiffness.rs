@@ -20,8 +20,9 @@ pub struct Stiffness {
     pub points: usize,
     /// Root-mean-square residual of the line, N.
     pub residual_rms: f64,
-    /// R² of the line.
-    pub r2: f64,
+    /// R² of the line; `None` when the force does not vary over the fit
+    /// range (R² = 1 − SS_res/SS_tot is 0/0: undefined, not a perfect fit).
+    pub r2: Option<f64>,
 }
 
 /// Why no stiffness can be given.
@@ -194,12 +195,21 @@ pub fn stiffness(
         range: [lo, hi],
         points: inside.len(),
         residual_rms: (ss_res / n).sqrt(),
-        r2: if ss_tot > 0.0 {
-            1.0 - ss_res / ss_tot
-        } else {
-            1.0
-        },
+        r2: r_squared(
+            ss_res,
+            ss_tot,
+            &inside.iter().map(|&i| force[i]).collect::<Vec<_>>(),
+        ),
     })
+}
+
+/// `1 − SS_res/SS_tot`, or `None` when the forces do not vary (SS_tot
+/// within rounding of 0 relative to the largest force: the mean of equal
+/// values need not be exact).
+fn r_squared(ss_res: f64, ss_tot: f64, force: &[f64]) -> Option<f64> {
+    let scale = force.iter().fold(0.0_f64, |m, f| m.max(f.abs()));
+    let rounding = force.len() as f64 * (1e-12 * scale).powi(2);
+    (ss_tot > rounding).then(|| 1.0 - ss_res / ss_tot)
 }
 
 #[cfg(test)]
@@ -224,5 +234,24 @@ mod tests {
         }
         let fit = curve().stiffness(Some([2.0, 10.0])).unwrap();
         assert!((fit.slope - 3e6).abs() < 1e-3, "{fit:?}");
+    }
+
+    /// Forces all 0 (or all 5 kN) printed "R² 1.0000": a line through
+    /// data that do not vary explains nothing; R² is undefined.
+    #[test]
+    fn the_r2_of_a_force_that_does_not_vary_is_undefined() {
+        let d: Vec<f64> = (0..20).map(|i| f64::from(i) * 1e-3).collect();
+        for (level, range) in [
+            (0.0, None),
+            (5e3, Some([0.0, 1.0])),
+            (0.1, Some([0.0, 1.0])),
+        ] {
+            let f = vec![level; d.len()];
+            let s = stiffness(&d, &f, range).unwrap();
+            assert!(s.r2.is_none() && s.slope.abs() < 1e-9, "{level}: {s:?}");
+        }
+        let f: Vec<f64> = d.iter().map(|x| 3e6 * x).collect();
+        let r2 = stiffness(&d, &f, None).unwrap().r2.unwrap();
+        assert!((r2 - 1.0).abs() < 1e-12, "{r2}");
     }
 }

@@ -203,14 +203,17 @@ pub fn prediction_text(p: &Prediction) -> String {
 /// A curve's stiffness with its fit range, intercept, residual and R².
 pub fn stiffness_text(s: &Stiffness) -> String {
     format!(
-        "stiffness {} (line through {} points, {} .. {}; intercept {}; residual RMS {}; R² {})\n",
+        "stiffness {} (line through {} points, {} .. {}; intercept {}; residual RMS {}; {})\n",
         format_quantity(s.slope, Dimension::Stiffness),
         s.points,
         format_quantity(s.range[0], Dimension::Length),
         format_quantity(s.range[1], Dimension::Length),
         format_quantity(s.intercept, Dimension::Force),
         format_quantity(s.residual_rms, Dimension::Force),
-        format_number(s.r2, 5)
+        match s.r2 {
+            Some(r2) => format!("R² {}", format_number(r2, 5)),
+            None => "R² undefined: the force does not vary".into(),
+        }
     )
 }
 

@@ -126,6 +126,25 @@ pub fn sequence(dimension: usize, count: usize) -> Option<Vec<Vec<f64>>> {
     Some(points)
 }
 
+/// `None` when `base` is a power of two, else the powers of two either
+/// side of it: the Sobol' sequence is balanced (each elementary interval
+/// holds its share of points) only over `2^m` points, so a base sample count
+/// between two powers weights part of the unit cube twice.
+///
+/// ```
+/// use bumpsim_estimate::sobol::unbalanced;
+/// assert_eq!(unbalanced(64), None);
+/// assert_eq!(unbalanced(100), Some((64, 128)));
+/// assert_eq!(unbalanced(17), Some((16, 32)));
+/// ```
+pub fn unbalanced(base: usize) -> Option<(usize, usize)> {
+    if base == 0 || base.is_power_of_two() {
+        return None;
+    }
+    let below = 1usize << (usize::BITS - 1 - base.leading_zeros());
+    Some((below, below.saturating_mul(2)))
+}
+
 /// One input of the output.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Input {

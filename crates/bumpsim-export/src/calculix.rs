@@ -156,7 +156,7 @@ pub fn calculix_deck(model: &MsdModel, options: &CalculixOptions) -> Result<Stri
     let _ = writeln!(
         deck,
         "** {}\n** bumpsim {}: {n}-DOF chain MSD car model (Isaksson 2006, ch. 3.3)",
-        options.title,
+        bumpsim_core::names::printable(&options.title),
         env!("CARGO_PKG_VERSION")
     );
     let _ = writeln!(
@@ -505,6 +505,19 @@ fn parse_dat(text: &str, path: &Path, meta: &DeckMeta) -> Result<Results, Export
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A car name's line break went raw into the `**` title comment.
+    #[test]
+    fn the_title_comment_escapes_control_characters() {
+        let model = MsdModel::new(vec![1.8, 74.8], vec![1.0e5], vec![4.75e5]).unwrap();
+        let options = CalculixOptions {
+            title: "car\n*STEP\u{7}".into(),
+            ..Default::default()
+        };
+        let deck = calculix_deck(&model, &options).unwrap();
+        assert!(deck.starts_with("** car\\u000A*STEP\\u0007\n"), "{deck}");
+        assert!(!deck.contains('\u{7}'));
+    }
 
     #[test]
     fn results_come_from_the_cars_own_set_with_the_offset_undone() {

@@ -20,18 +20,23 @@ use crate::layout::{UnitSystem, int_field, real_field};
 use std::fmt::Write;
 
 /// `*KEYWORD` and the comment lines every include opens with: the title
-/// (78 characters at most), bumpsim's version with `what` the include
-/// holds, and the units.
+/// (78 characters at most, control characters escaped: a car name's line
+/// break or escape must not break the deck), bumpsim's version with `what`
+/// the include holds, and the units.
 pub fn header(deck: &mut String, title: &str, what: &str, units: UnitSystem) {
-    let title: String = title.chars().take(78).collect();
+    let title: String = bumpsim_core::names::printable(title)
+        .chars()
+        .take(78)
+        .collect();
     let _ = writeln!(deck, "*KEYWORD\n$ {title}");
     let _ = writeln!(deck, "$ bumpsim {}: {what}", env!("CARGO_PKG_VERSION"));
     units_comment(deck, units);
 }
 
 /// `*KEYWORD` and `*TITLE` with its line, for a deck that names itself
-/// (a complete run, a bumper spring).
+/// (a complete run, a bumper spring); control characters escaped.
 pub fn titled(deck: &mut String, title: &str) {
+    let title = bumpsim_core::names::printable(title);
     let _ = writeln!(deck, "*KEYWORD\n*TITLE\n{title}");
 }
 
@@ -407,4 +412,31 @@ pub fn termination(deck: &mut String, end: f64) {
         "*CONTROL_TERMINATION\n$ endtim\n{}",
         real_field(end, 10)
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A car name holding a line break or an escape went raw into the deck:
+    /// the break ended the comment, leaving the rest as a keyword line.
+    #[test]
+    fn control_characters_of_a_title_are_escaped() {
+        let name = "car\n*END\u{1b}[2J";
+        let mut deck = String::new();
+        header(&mut deck, name, "test", UnitSystem::Si);
+        titled(&mut deck, name);
+        assert!(
+            !deck.contains('\u{1b}') && !deck.contains("\n*END"),
+            "{deck}"
+        );
+        assert!(
+            deck.starts_with("*KEYWORD\n$ car\\u000A*END\\u001B[2J\n"),
+            "{deck}"
+        );
+        assert!(
+            deck.ends_with("*TITLE\ncar\\u000A*END\\u001B[2J\n"),
+            "{deck}"
+        );
+    }
 }

@@ -219,7 +219,7 @@ pub fn calculix_spring(
     let [_, l, _, f] = u.symbols();
     let mut deck = format!(
         "** {}\n** bumpsim {}: bumper characteristic as a nonlinear SPRINGA (units: length {l}, force {f})\n** CalculiX springs are elastic: this one unloads along its loading curve, not at the slope {} N/m\n",
-        options.title,
+        bumpsim_core::names::printable(&options.title),
         env!("CARGO_PKG_VERSION"),
         curve.unloading
     );

@@ -469,6 +469,12 @@ pub fn check_base(base: usize, parameters: usize) -> Result<(), UncertaintyError
         let expected = format!("between {} and {}", SOBOL_BASE[0], SOBOL_BASE[1]);
         return Err(bad("base", base, "samples", expected));
     }
+    if let Some((below, above)) = bumpsim_estimate::sobol::unbalanced(base) {
+        let expected = format!(
+            "a power of two ({below} or {above}): the Sobol sequence is balanced only over 2^m points"
+        );
+        return Err(bad("base", base, "samples", expected));
+    }
     match parameters <= most {
         true => Ok(()),
         false => Err(bad(

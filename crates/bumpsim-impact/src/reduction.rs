@@ -68,6 +68,19 @@ pub enum ReductionError {
     /// The impact failed.
     #[error(transparent)]
     Impact(#[from] ImpactError),
+    /// A mass of the 2-DOF car outside [`MASS_RANGE`](crate::impact::MASS_RANGE),
+    /// the impactor masses' range (0.1 g masses ran while `impact` refuses
+    /// an impactor below 1 g).
+    #[error(
+        "{key} = {} kg: the 2-DOF car's masses must be from 0.001 to 1e7 kg (limit MASS_RANGE: 1 g to 10 000 t, as an impactor's)",
+        bumpsim_core::units::short(*value)
+    )]
+    Mass {
+        /// `m1` or `m2`.
+        key: &'static str,
+        /// The mass given, kg.
+        value: f64,
+    },
     /// The bumper stays elastic: no remaining deformation to match.
     #[error(
         "the bumper stays elastic (no remaining deformation): the remaining criterion has no answer; use the maximum criterion or a stronger impact"
@@ -88,6 +101,11 @@ pub struct TwoDof {
 
 impl TwoDof {
     fn model(&self) -> Result<MsdModel, ReductionError> {
+        for (key, value) in [("m1", self.m1), ("m2", self.m2)] {
+            if !crate::impact::MASS_RANGE.contains(&value) {
+                return Err(ReductionError::Mass { key, value });
+            }
+        }
         MsdModel::new(vec![self.m1, self.m2], vec![0.0], vec![self.k]).map_err(ReductionError::Car)
     }
 }
@@ -330,5 +348,28 @@ impl PaperSweep {
                 progress,
             ),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 0.1 g masses ran while `impact` refuses an impactor below 1 g: one
+    /// range (`MASS_RANGE`) for both, named with the mass and its value.
+    #[test]
+    fn masses_outside_the_impactor_range_are_refused() {
+        let bumper = Bumper::three_part(1e6, 1e9, 1e6).unwrap();
+        let car = |m1, m2| TwoDof { m1, m2, k: 4e6 };
+        for (m1, m2, head) in [
+            (1e-4, 400.0, "m1 = 0.0001 kg"),
+            (650.0, 1e-4, "m2 = 0.0001 kg"),
+            (650.0, 1e308, "m2 = 1e308 kg"),
+        ] {
+            let e = equivalent_mass(&car(m1, m2), &bumper, 2.0, Criterion::Maximum).unwrap_err();
+            let e = e.to_string();
+            assert!(e.starts_with(head) && e.contains("MASS_RANGE"), "{e}");
+        }
+        assert!(equivalent_mass(&car(1e-3, 1e-3), &bumper, 2.0, Criterion::Maximum).is_ok());
     }
 }

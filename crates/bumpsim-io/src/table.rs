@@ -10,7 +10,8 @@
 //! unit or with an unknown one; a time column whose unit is not a time; a
 //! row with another number of cells than the header (ragged); a cell that is
 //! not a number, or is NaN or infinite; fewer than two samples; time not
-//! increasing; time not uniformly sampled; more than
+//! increasing; time not uniformly sampled; a sampling interval outside
+//! [`SAMPLING_INTERVAL`](crate::test_data::SAMPLING_INTERVAL); more than
 //! [`MAX_INPUT_SAMPLES`] data rows (refused at the first row beyond, before
 //! the rows are all held). Uniform means every interval lies
 //! within 1 % of the median interval and every sample within 1 % of an
@@ -356,6 +357,20 @@ pub fn excerpt(text: &str) -> String {
 /// and the series' own rule (a first time within 1e15 intervals of zero).
 fn time_base(time: &[f64], lines: &[u64], path: &Path) -> Result<(f64, f64), TableError> {
     let (start, step) = uniform_time_base(time, lines, path)?;
+    let interval = crate::test_data::SAMPLING_INTERVAL;
+    if !interval.contains(&step) {
+        let (low, high) = interval.into_inner();
+        return Err(TableError::Time {
+            path: path.into(),
+            line: lines[1],
+            reason: format!(
+                "the times give a sampling interval of {} s: expected {} to {} s (SAMPLING_INTERVAL, as the ISO-MME and EV5 readers)",
+                format_number(step),
+                format_number(low),
+                format_number(high)
+            ),
+        });
+    }
     UniformSeries::new(start, step, vec![0.0]).map_err(|e| TableError::Time {
         path: path.into(),
         line: lines[0],
@@ -630,6 +645,15 @@ mod tests {
             (
                 "time [s],f [N]\n0,1\n1,1\n3,1\n4,1\n",
                 "not uniformly sampled",
+            ),
+            // a sampling interval outside 1 ns..1 s, as ISO-MME and EV5
+            (
+                "time [s],f [N]\n0,1\n1e-300,1\n2e-300,1\n",
+                "f.csv:3: the times give a sampling interval of 1e-300 s: expected 1e-9 to 1 s",
+            ),
+            (
+                "time [s],f [N]\n0,1\n2,1\n",
+                "f.csv:3: the times give a sampling interval of 2 s",
             ),
         ];
         for (text, expected) in cases {

@@ -165,11 +165,17 @@ pub fn check(
 ) -> Result<(), VerdictError> {
     let base = settings.base;
     let expected = format!(
-        "between {} and {} base samples (the verdict runs N (d + 2) times; a power of two keeps the Sobol sequence balanced)",
+        "a power of two between {} and {} base samples (the verdict runs N (d + 2) times; a power of two keeps the Sobol sequence balanced)",
         BASE[0], BASE[1]
     );
     let within = (BASE[0]..=BASE[1]).contains(&base);
     require("sobol-base", base as f64, "samples", &expected, within)?;
+    if let Some((below, above)) = bumpsim_estimate::sobol::unbalanced(base) {
+        let expected = format!(
+            "a power of two ({below} or {above}): the Sobol sequence is balanced only over 2^m points"
+        );
+        require("sobol-base", base as f64, "samples", &expected, false)?;
+    }
     let d = uncertainty.names.len();
     if 2 * d > DIMENSIONS {
         return Err(VerdictError::File {

@@ -196,6 +196,13 @@ fn hostile_settings_are_refused_naming_the_option() {
         let e = sensitivity(&setup, &v, &u, &Settings::new(base, 1), &|| {}).unwrap_err();
         assert!(e.to_string().starts_with("sobol-base = "), "{base}: {e}");
     }
+    // the Sobol sequence is balanced only over a power of two
+    for (base, powers) in [(17, "16 or 32"), (100, "64 or 128"), (8191, "4096 or 8192")] {
+        let e = sensitivity(&setup, &v, &u, &Settings::new(base, 1), &|| {}).unwrap_err();
+        let e = e.to_string();
+        let head = format!("sobol-base = {base} samples: a power of two ({powers})");
+        assert!(e.starts_with(&head), "{e}");
+    }
     let names = ["masses", "dampers", "springs"].iter().flat_map(|w| {
         ["left", "right"].map(|side| (0..2).map(move |i| format!("{side}.{w}[{i}]")))
     });

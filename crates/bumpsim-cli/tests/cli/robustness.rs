@@ -14,6 +14,7 @@ use crate::util::{copy_tree, root};
 mod commit;
 mod flags;
 mod refusals;
+mod silent;
 
 fn scratch(test: &str) -> PathBuf {
     crate::util::scratch(&format!("robustness-{test}"))

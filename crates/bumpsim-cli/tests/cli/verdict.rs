@@ -638,7 +638,10 @@ fn hostile_sobol_flags_exit_2_and_write_nothing() {
         report.to_str().unwrap(),
     ];
     for (base, message) in [
-        ("0", "sobol-base = 0 samples: between 16 and 8192"),
+        (
+            "0",
+            "sobol-base = 0 samples: a power of two between 16 and 8192",
+        ),
         ("15", "sobol-base = 15 samples"),
         ("8193", "sobol-base = 8193 samples"),
         ("NaN", "invalid value 'NaN' for '--sobol-base"),

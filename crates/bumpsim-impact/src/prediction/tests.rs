@@ -360,3 +360,21 @@ fn an_index_above_one_prints_at_the_bound_with_its_estimate() {
     );
     assert!(lines.contains(CLIPPED), "{lines}");
 }
+
+/// The Sobol sequence is balanced only over 2^m points: a base of 100 or
+/// 17 is refused naming the powers either side; the range ends pass.
+#[test]
+fn the_sobol_base_is_a_power_of_two() {
+    for (base, powers) in [
+        (17, "16 or 32"),
+        (100, "64 or 128"),
+        (65_535, "32768 or 65536"),
+    ] {
+        let e = check_base(base, 1).unwrap_err().to_string();
+        let head = format!("base = {base} samples: a power of two ({powers})");
+        assert!(e.starts_with(&head), "{e}");
+    }
+    for base in SOBOL_BASE {
+        assert!(check_base(base, 1).is_ok());
+    }
+}

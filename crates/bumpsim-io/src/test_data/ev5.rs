@@ -58,9 +58,13 @@ pub fn open(path: &Path) -> Result<TestData, SignalFileError> {
             .map(|s| s.trim().to_string())
             .unwrap_or_default()
     };
-    let rows = sections
+    let rows: Vec<_> = sections
         .iter()
-        .filter(|(name, ..)| name == "INSTRUMENTATION");
+        .filter(|(name, ..)| name == "INSTRUMENTATION")
+        .collect();
+    if rows.is_empty() {
+        return Err(SignalFileError::file(path, not_a_test(&text)));
+    }
     let mut entries = Vec::new();
     let mut files = Vec::new();
     let mut lines: Vec<(usize, usize)> = Vec::new();
@@ -104,6 +108,22 @@ pub fn open(path: &Path) -> Result<TestData, SignalFileError> {
         entries,
         store: Store::Ev5(files),
     })
+}
+
+/// Why a file without instrumentation rows is refused: junk or an empty
+/// file is no EV5 test; a test without channels has nothing to read.
+fn not_a_test(text: &str) -> String {
+    let section = text.lines().any(|l| {
+        let l = l.trim();
+        l.starts_with("-----") && l.ends_with("-----") && l.contains("INSTRUMENTATION")
+    });
+    match section {
+        true => "the INSTRUMENTATION section lists no channel (curve): nothing to read".into(),
+        false => {
+            "not an NHTSA EV5 test: no '----- INSTRUMENTATION -----' section listing its channels"
+                .into()
+        }
+    }
 }
 
 /// The 1-based line of curve `number`'s instrumentation row (0 if not found).
@@ -351,6 +371,31 @@ mod tests {
             e.contains(&format!("v1.093:{}: more than {limit} samples", limit + 1)),
             "{e}"
         );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_file_without_channels_is_no_test() {
+        let dir = std::env::temp_dir().join(format!("bumpsim-ev5-junk-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("j.EV5");
+        let junk: Vec<u8> = (0..1000u32).map(|i| (i * 7919 % 251) as u8).collect();
+        for (bytes, needle) in [
+            (junk, "not an NHTSA EV5 test"),
+            (Vec::new(), "not an NHTSA EV5 test"),
+            (
+                b"----- TEST -----\nV5|t\n".to_vec(),
+                "not an NHTSA EV5 test",
+            ),
+            (
+                b"----- INSTRUMENTATION -----\n".to_vec(),
+                "INSTRUMENTATION section lists no channel",
+            ),
+        ] {
+            std::fs::write(&file, bytes).unwrap();
+            let e = open(&file).unwrap_err().to_string();
+            assert!(e.contains("j.EV5: ") && e.contains(needle), "{e}");
+        }
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

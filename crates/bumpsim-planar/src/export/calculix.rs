@@ -155,7 +155,7 @@ fn model(deck: &mut String, car: &PlanarCar, options: &PlanarExport, nodes: &Nod
     let _ = writeln!(
         deck,
         "** {}\n** bumpsim {}: planar car (spec 9), linear, car forward = +x, left = +y\n** units: mass {m}, length {l}, time {t}, force {f}; frictionless tyres",
-        options.title,
+        bumpsim_core::names::printable(&options.title),
         env!("CARGO_PKG_VERSION")
     );
     let (r, x_f) = (radius(car), car.body().cg_behind_bumper);

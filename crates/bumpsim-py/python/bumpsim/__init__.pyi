@@ -647,7 +647,8 @@ def doe_stiffness(
     displacement: ArrayLike1D, force: ArrayLike1D, range: Optional[tuple[float, float]] = None
 ) -> dict[str, Any]:
     """Slope (N/m), intercept, range, points, residual_rms, r2 of the line through
-    the curve over ``range`` (m; default 10–90 % of the peak force)."""
+    the curve over ``range`` (m; default 10–90 % of the peak force); ``r2`` is
+    None when the force does not vary (R² undefined)."""
 
 class DoeModel:
     @staticmethod

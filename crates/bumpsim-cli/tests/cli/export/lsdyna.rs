@@ -205,7 +205,9 @@ fn every_lsdyna_deck_parses_in_ansys_dyna_core_with_its_ids_defined() {
 
 /// Wave-2 hostile findings for `export lsdyna`: a force CSV whose time span
 /// overflows panicked (exit 101); a force reaching 1e307 s was written as
-/// `inf` ms with exit 0; `--min-time-step -1` silently disabled the warning.
+/// `inf` ms with exit 0 (now refused as a CSV whose sampling interval lies
+/// outside 1 ns..1 s, before the deck is built); `--min-time-step -1`
+/// silently disabled the warning.
 #[test]
 fn lsdyna_force_and_time_step_overflows_are_user_errors() {
     let dir = scratch("export-overflow");
@@ -232,7 +234,7 @@ fn lsdyna_force_and_time_step_overflows_are_user_errors() {
                 "--units",
                 "mm-ms-kg",
             ],
-            "force sample 2",
+            "long.csv:3: the times give a sampling interval of 1e307 s",
         ),
         (
             vec!["--force", ok.to_str().unwrap(), "--min-time-step", "-1"],
