@@ -37,14 +37,9 @@ use crate::table::Table;
 use bumpsim_core::channel::Channel;
 use bumpsim_core::files::MAX_INPUT_SAMPLES;
 use bumpsim_core::units::short;
-use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 
-/// Sampling intervals a test channel may have, s: 1 ns (1 GHz, far beyond
-/// crash-test data acquisition, 10 kHz to 1 MHz) to 1 s (a channel sampled
-/// less than once a second holds nothing of an impact, which lasts about
-/// 0.1 s). A 1e308 s interval put the peak at `inf ms`. docs/limits.md.
-pub const SAMPLING_INTERVAL: RangeInclusive<f64> = 1e-9..=1.0;
+pub use crate::table::SAMPLING_INTERVAL;
 
 /// `path:line` refused when `step` (s) is outside [`SAMPLING_INTERVAL`];
 /// `what` says where the interval came from.
