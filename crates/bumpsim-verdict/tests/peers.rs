@@ -72,8 +72,12 @@ fn measured(name: &str, test: &Path, channels: [&str; 2], speed: f64, sign: f64)
         test.display().to_string(),
         channels,
     );
+    // one file per call: tests that read the same test in parallel wrote,
+    // read and removed one shared file (a test read it empty)
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let file = std::env::temp_dir().join(format!(
-        "bumpsim-verdict-pipeline-{}-{name}.toml",
+        "bumpsim-verdict-pipeline-{}-{call}-{name}.toml",
         std::process::id()
     ));
     std::fs::write(&file, text).unwrap();
