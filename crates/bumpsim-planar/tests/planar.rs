@@ -402,19 +402,7 @@ fn point_spring_into_an_angled_wall_matches_scipy_newton_euler() {
         r.time
     );
     std::fs::write(&params, json).unwrap();
-    let script =
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/scipy_planar_wall.py");
-    let out = Command::new("python3")
-        .arg(&script)
-        .arg(&params)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).unwrap();
+    let text = scipy_peer("scipy_planar_wall.py", &params);
     let rows: Vec<Vec<f64>> = text
         .lines()
         .skip(1)
@@ -522,3 +510,22 @@ mod identification;
 mod independent;
 #[path = "planar/regression.rs"]
 mod regression;
+
+/// Runs the peer script `tests/peers/SCRIPT` on the parameter file `params`
+/// and returns what it prints (the planar tests' scipy oracles).
+fn scipy_peer(script: &str, params: &std::path::Path) -> String {
+    let script = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/peers")
+        .join(script);
+    let out = Command::new("python3")
+        .arg(&script)
+        .arg(params)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}

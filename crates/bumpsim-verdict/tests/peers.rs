@@ -222,15 +222,20 @@ fn olc_equals_pyisommes_within_a_tenth_of_a_percent() {
     assert_within_a_tenth_of_a_percent("OLC (m/s²)", &ours, &theirs);
 }
 
+/// The simulated pulses and the measured ones, by name.
+fn every_pulse() -> Vec<(String, Pulse)> {
+    let mut pulses = simulated();
+    pulses.extend(measured_pulses().into_iter().map(|m| (m.name, m.pulse)));
+    pulses
+}
+
 #[test]
 fn asi_equals_an_independent_implementation_within_a_tenth_of_a_percent() {
     if !python_available("scipy") {
         return;
     }
-    let mut pulses = simulated();
-    pulses.extend(measured_pulses().into_iter().map(|m| (m.name, m.pulse)));
     let (mut args, mut ours) = (Vec::new(), Vec::new());
-    for (name, p) in pulses {
+    for (name, p) in every_pulse() {
         // the verdict's record: continued by the ASI window
         let p = p.extended(p.time.last().unwrap() + ASI_WINDOW);
         let zeros = vec![0.0; p.time.len()];
@@ -251,10 +256,8 @@ fn asi_2010_equals_scipys_filtfilt_within_1e_6() {
     if !python_available("scipy") {
         return;
     }
-    let mut pulses = simulated();
-    pulses.extend(measured_pulses().into_iter().map(|m| (m.name, m.pulse)));
     let (mut args, mut ours) = (Vec::new(), Vec::new());
-    for (name, p) in pulses {
+    for (name, p) in every_pulse() {
         let zeros = vec![0.0; p.time.len()];
         let a = [&p.deceleration[..], &p.lateral, &zeros];
         let value = asi(&p.time, a, AsiMethod::En2010).unwrap();

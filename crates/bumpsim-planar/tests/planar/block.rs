@@ -6,7 +6,6 @@ use bumpsim_impact::bumper::Bumper;
 use bumpsim_planar::car::{Beam, Block, Body, SideChain, Tyres};
 use bumpsim_planar::{Face, PlanarCar, Settings, Side, Striker, simulate};
 use std::path::Path;
-use std::process::Command;
 
 const MASS: f64 = 1200.0;
 const SPRING: f64 = 4e5;
@@ -69,18 +68,7 @@ fn a_segment_past_its_depth_blocks_as_scipy_s_mass_on_a_spring_with_a_block() {
         r.time.iter().map(|t| t - r.time[0]).collect::<Vec<_>>()
     );
     std::fs::write(&params, json).unwrap();
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/scipy_block.py");
-    let out = Command::new("python3")
-        .arg(&script)
-        .arg(&params)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).unwrap();
+    let text = crate::scipy_peer("scipy_block.py", &params);
     let mut theirs = Vec::new();
     let mut bottomed = f64::NAN;
     for line in text.lines().skip(1) {
