@@ -10,7 +10,7 @@ use bumpsim_doe::reachable::{LinearMap, cell};
 use bumpsim_doe::stiffness::Curve;
 use bumpsim_doe::table_fit::{StandardErrors, TableFitSpec, fit_table_weighted};
 use bumpsim_doe::text::{prediction_text, reach_text, stiffness_text};
-use bumpsim_report::html::Html;
+use bumpsim_report::doe::{ResponsePage, fit_report};
 use clap::Subcommand;
 use std::path::PathBuf;
 
@@ -225,34 +225,43 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         .collect::<Result<Vec<_>>>()?;
     let (model, fits) =
         fit_table_weighted(&data, &spec, &se).with_context(|| path.display().to_string())?;
-    let mut page = Html::new(&format!("bumpsim DOE fit: {}", path.display()));
-    let mut figures = Vec::new();
+    let mut responses = Vec::new();
     for f in &fits {
         let (response, unit) = (f.name.as_str(), f.unit.as_deref());
         let text = f.summary(&se);
         print!("{text}");
-        page.heading(&format!(
-            "{response}{}",
-            unit.map_or(String::new(), |u| format!(" [{u}]"))
-        ));
-        page.preformatted(&text);
-        figures.extend(bumpsim_report::doe::fit_plots(
-            response,
-            unit.unwrap_or("-"),
-            &f.fit,
-            &f.observed,
-        )?);
+        responses.push(ResponsePage {
+            heading: format!(
+                "{response}{}",
+                unit.map_or(String::new(), |u| format!(" [{u}]"))
+            ),
+            figures: bumpsim_report::doe::fit_plots(
+                response,
+                unit.unwrap_or("-"),
+                &f.fit,
+                &f.observed,
+            )?,
+            text,
+        });
     }
     if let Some(path) = &args.json {
         write(path, &serde_json::to_string_pretty(&model)?)?;
     }
     if let Some(dir) = &args.report {
+        let terms = [
+            ("factors", args.factors.join(", ")),
+            ("responses", args.responses.join(", ")),
+            ("interactions", args.interactions.to_string()),
+            ("squares", args.squares.to_string()),
+        ];
+        let inputs: Vec<(String, String)> =
+            terms.into_iter().map(|(k, v)| (k.to_string(), v)).collect();
+        let html = fit_report(&path.display().to_string(), &inputs, &responses);
         let folder = Folder::stage(dir)?;
-        for (name, svg, caption) in &figures {
-            page.figure(svg, caption);
+        for (name, svg, _) in responses.iter().flat_map(|r| &r.figures) {
             folder.write(name, svg)?;
         }
-        folder.write("index.html", &page.finish())?;
+        folder.write("index.html", &html)?;
         folder.commit()?;
     }
     Ok(())

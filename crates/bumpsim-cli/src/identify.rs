@@ -280,6 +280,24 @@ fn print_result(r: &Identification) {
     crate::count_warnings(r.warnings.len());
 }
 
+/// The report's page with the viewer's command under each figure: the
+/// result (kept in the report folder as `result.json`) and the study.
+fn viewer(
+    html: &str,
+    dir: &std::path::Path,
+    study: &std::path::Path,
+    json: Option<String>,
+    figures: &mut Vec<(String, String)>,
+) -> String {
+    let Some(json) = json else {
+        return html.to_string();
+    };
+    figures.push(("result.json".into(), json));
+    let files = [dir.join("result.json"), study.to_path_buf()];
+    let files: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+    bumpsim_report::html::with_viewer(html, &files)
+}
+
 fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
     let Outputs {
         results,
@@ -288,7 +306,8 @@ fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
         notes,
         posterior,
     } = *outputs;
-    if let Some(path) = &args.json {
+    // the document --json writes; a report keeps a copy for the viewer
+    let json = if args.json.is_some() || args.report.is_some() {
         let failed: Vec<Failed> = outcomes
             .iter()
             .filter_map(|o| match o {
@@ -303,7 +322,12 @@ fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
             document: IdentifyDocument::new(results, &failed, notes),
             posterior: posterior.map(|(p, r)| Summary::new(p, r)),
         };
-        write(path, &serde_json::to_string_pretty(&document)?)?;
+        Some(serde_json::to_string_pretty(&document)?)
+    } else {
+        None
+    };
+    if let (Some(path), Some(json)) = (&args.json, &json) {
+        write(path, json)?;
     }
     if let (Some(path), Some(sweeps)) = (&args.sensitivity, sweeps) {
         let mut csv = String::from("relative change [-]");
@@ -337,7 +361,8 @@ fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
             dofs.join(", ")
         );
         let texts = ("bumpsim identification", inputs.as_str(), settings.as_str());
-        let (html, figures) = report_with_posterior(texts, notes, outcomes, sweeps, posterior)?;
+        let (html, mut figures) = report_with_posterior(texts, notes, outcomes, sweeps, posterior)?;
+        let html = viewer(&html, dir, &args.study, json, &mut figures);
         Folder::report(dir, &html, &figures)?;
     }
     Ok(())

@@ -402,14 +402,15 @@ pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
     {
         crate::warn(&w);
     }
+    let document = IdentificationDocument {
+        result: &result,
+        validation: &validation_fits,
+        forward: &forward,
+        notes: &study.notes,
+    };
+    let json = serde_json::to_string_pretty(&document)?;
     if let Some(path) = options.json {
-        let document = IdentificationDocument {
-            result: &result,
-            validation: &validation_fits,
-            forward: &forward,
-            notes: &study.notes,
-        };
-        write(path, &serde_json::to_string_pretty(&document)?)?;
+        write(path, &json)?;
     }
     if let Some(path) = options.car {
         write(path, &result.car.to_toml())?;
@@ -426,8 +427,13 @@ pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
                 forward: forward.iter().find(|f| f.case == prediction.fit.name),
             })
             .collect();
-        let (html, figures) =
+        let (html, mut figures) =
             bumpsim_report::planar::identification_report(&summary, &inputs, &study.notes, &pages)?;
+        // the report keeps the result for the viewer, named with the study
+        figures.push(("result.json".into(), json));
+        let files = [dir.join("result.json"), options.study.to_path_buf()];
+        let files: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+        let html = bumpsim_report::html::with_viewer(&html, &files);
         Folder::report(dir, &html, &figures)?;
     }
     Ok(())
@@ -500,7 +506,7 @@ pub fn run_predict(options: &PredictOptions) -> Result<()> {
     if let Some(dir) = options.plot {
         let folder = Folder::stage(dir)?;
         for p in &predictions {
-            for (name, svg, _) in bumpsim_report::planar::case_figures(p)? {
+            for (name, svg, _) in bumpsim_report::planar::case_figures(p, false)? {
                 folder.write(&format!("predict-{name}"), &svg)?;
             }
         }

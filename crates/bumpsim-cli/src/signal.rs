@@ -397,8 +397,8 @@ fn process(args: &ProcessArgs) -> Result<()> {
         );
         println!("{balance}");
     }
-    match output {
-        Some(output) => write_csv(&output, &result.signals, &[])?,
+    match &output {
+        Some(output) => write_csv(output, &result.signals, &[])?,
         None => println!("no CSV written: give -o OUT.csv or 'output' in the pipeline"),
     }
     if let Some(folder) = &args.iso_mme {
@@ -408,17 +408,27 @@ fn process(args: &ProcessArgs) -> Result<()> {
     }
     plot(plot_dir, &result)?;
     let Some(dir) = report_dir else { return Ok(()) };
-    let mut page =
-        bumpsim_report::html::Html::new(&format!("bumpsim signal processing: {}", path.display()));
-    page.heading("Pipeline");
-    page.preformatted(&std::fs::read_to_string(path).unwrap_or_default());
-    page.heading("Signals");
-    page.preformatted(&format!("{}{balance}", summary(&result)));
-    page.warnings(&result.warnings);
-    for (name, svg) in plot(Some(dir), &result)? {
-        page.figure(&svg, &name);
+    let inputs = std::fs::read_to_string(path).unwrap_or_default();
+    let summary = format!("{}{balance}", summary(&result));
+    let plots = plot(Some(dir), &result)?;
+    let html = bumpsim_report::signal::report(&bumpsim_report::signal::SignalPage {
+        pipeline: &path.display().to_string(),
+        inputs: &inputs,
+        summary: &summary,
+        warnings: &result.warnings,
+        plots: &plots,
+    });
+    // the viewer opens what the run wrote and the tests it read
+    let written = [output.as_deref(), args.iso_mme.as_deref()];
+    let read = pipeline.signal.iter().filter_map(|s| s.path.as_ref());
+    let mut files: Vec<String> = Vec::new();
+    for f in written.into_iter().flatten().map(Path::to_path_buf).chain(read.map(|p| pipeline.base.join(p))) {
+        let f = f.display().to_string();
+        if !files.contains(&f) {
+            files.push(f);
+        }
     }
-    crate::write(&dir.join("index.html"), &page.finish())
+    crate::write(&dir.join("index.html"), &bumpsim_report::html::with_viewer(&html, &files))
 }
 
 fn newton_seconds(value: f64) -> String {

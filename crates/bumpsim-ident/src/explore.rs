@@ -42,7 +42,7 @@ pub fn predict(cases: &[LoadCase], model: &MsdModel) -> Result<Vec<Prediction>, 
             let time = (0..c.force.len())
                 .map(|k| c.start + k as f64 * c.step)
                 .collect::<Vec<_>>();
-            let window = [time[c.window.0], time[c.window.1]];
+            let window = fit.window;
             Ok(Prediction {
                 fit,
                 time,

@@ -28,6 +28,9 @@ pub struct CaseFit {
     /// (JSON `null`) when the window cannot be rated (under 1 ms, over 2 s
     /// at 10 kHz, or a measurement zero throughout).
     pub rating: Option<Rating>,
+    /// Times of the window's first and last sample, s of the test's time
+    /// (`start + k·step`): the span the fit, SSE and rating are taken over.
+    pub window: [f64; 2],
 }
 
 impl CaseFit {
@@ -44,6 +47,7 @@ impl CaseFit {
             fit_percent,
             samples: case.window_len(),
             rating,
+            window: [a, b].map(|k| case.start + k as f64 * case.step),
         }
     }
 }
@@ -148,6 +152,8 @@ mod tests {
         let x: Vec<f64> = (0..600).map(|k| 0.1 * (k as f64 * 0.005).sin()).collect();
         let flat = case(x.clone(), (100, 499));
         assert_eq!(CaseFit::of(&flat, &x).rating.unwrap().overall, 1.0);
+        // the window's times: samples 100 and 499 at 0.1 ms from t = 0
+        assert_eq!(CaseFit::of(&flat, &x).window, [100.0 * 1e-4, 499.0 * 1e-4]);
         let low: Vec<f64> = x.iter().map(|v| 0.9 * v).collect();
         let fit = CaseFit::of(&flat, &low);
         let expected = rate(&x[100..=499], &low[100..=499], 1e-4).unwrap();

@@ -1,8 +1,11 @@
 //! DOE plots: coefficients with 95 % error bars (MODDE style), observed
 //! against predicted, the normal probability plot of the residuals, and the
-//! reachable region of two responses (random factor sets, exact boundary, cell).
+//! reachable region of two responses (random factor sets, exact boundary, cell),
+//! and the DOE fit report ([`fit_report`]): each response's fit with its
+//! plots first, the inputs last.
 
 use crate::bar::BarPlot;
+use crate::html::Html;
 use crate::plot::{LinePlot, PlotError, Series, Style};
 use bumpsim_core::units::{Dimension, Unit};
 use bumpsim_doe::regression::{Fit, normal_scores};
@@ -113,6 +116,45 @@ pub fn fit_plots(response: &str, unit: &str, f: &Fit, y: &[f64]) -> Result<Vec<F
         ));
     }
     Ok(out)
+}
+
+/// One fitted response in the report: its heading (name and unit), the
+/// fit's text and its plots.
+#[derive(Debug, Clone)]
+pub struct ResponsePage {
+    /// `peak_force [N]`.
+    pub heading: String,
+    /// The fit as the CLI prints it (coefficients, R², Q², ...).
+    pub text: String,
+    /// Its plots ([`fit_plots`]).
+    pub figures: Vec<Figure>,
+}
+
+/// The DOE fit report: each response's fit and its plots, then the inputs
+/// (the data file and the model's terms, as name and value).
+///
+/// ```
+/// use bumpsim_report::doe::{ResponsePage, fit_report};
+/// let r = ResponsePage { heading: "F [N]".into(), text: "R² 0.99".into(), figures: vec![] };
+/// let page = fit_report("runs.csv", &[("factors".into(), "a, b".into())], &[r]);
+/// assert!(page.find("R² 0.99") < page.find("runs.csv</td>"));
+/// ```
+pub fn fit_report(data: &str, inputs: &[(String, String)], responses: &[ResponsePage]) -> String {
+    let mut page = Html::new(&format!("bumpsim DOE fit: {data}"));
+    for r in responses {
+        page.heading(&r.heading);
+        page.preformatted(&r.text);
+        for (_, svg, caption) in &r.figures {
+            page.figure(svg, caption);
+        }
+    }
+    page.heading("Inputs");
+    let rows: Vec<Vec<String>> = std::iter::once(("data".to_string(), data.to_string()))
+        .chain(inputs.iter().cloned())
+        .map(|(k, v)| vec![k, v])
+        .collect();
+    page.table(&["input", "value"], &rows);
+    page.finish()
 }
 
 /// The reachable region of responses `axes` (x, y): up to ~2000 of the

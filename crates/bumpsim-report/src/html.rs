@@ -1,6 +1,11 @@
 //! Self-contained HTML reports: one file, inline SVG and CSS, no network
 //! and no JavaScript needed to read it.
 //!
+//! Each figure can name the command that opens its data in the
+//! interactive viewer ([`with_viewer`]): a report is a file and cannot
+//! start the viewer's local server, so it shows the command line
+//! (`bumpsim view FILE...`) under the figure, ready to copy.
+//!
 //! ```
 //! use bumpsim_report::html::Html;
 //! let mut page = Html::new("Identification");
@@ -34,7 +39,56 @@ pre{background:#f6f6f6;padding:.6em;white-space:pre-wrap;overflow-wrap:anywhere}
 figure{margin:1em 0}figcaption{font-size:.9em;color:#555}\
 .warning{background:#fff4d6;border-left:4px solid #e0a800;padding:.4em .8em;margin:.4em 0}\
 .failure{background:#fde2e1;border-left:4px solid #c0392b;padding:.4em .8em;margin:.4em 0}\
-footer{margin-top:3em;font-size:.85em;color:#666}";
+footer{margin-top:3em;font-size:.85em;color:#666}\
+.view{font-size:.85em;color:#555;margin:.2em 0 0}.view code{background:#f6f6f6;padding:.1em .3em;overflow-wrap:anywhere}";
+
+/// The end of every figure [`Html::figure`] writes, where [`with_viewer`]
+/// puts its command.
+const FIGURE_END: &str = "</figcaption>\n</figure>\n";
+
+/// A file name as one shell word: as it is when it holds only letters,
+/// digits and `/._-+:,=@%`, else in single quotes (a `'` inside written `'\''`).
+fn shell_word(word: &str) -> String {
+    let plain = |c: char| c.is_ascii_alphanumeric() || "/._-+:,=@%".contains(c);
+    match !word.is_empty() && word.chars().all(plain) {
+        true => word.to_string(),
+        false => format!("'{}'", word.replace('\'', "'\\''")),
+    }
+}
+
+/// The viewer's command line for `files`: `bumpsim view FILE...`.
+///
+/// ```
+/// use bumpsim_report::html::view_command;
+/// let files = ["out/result.json".to_string(), "my study.toml".to_string()];
+/// assert_eq!(view_command(&files), "bumpsim view out/result.json 'my study.toml'");
+/// ```
+pub fn view_command(files: &[String]) -> String {
+    let words: Vec<String> = files.iter().map(|f| shell_word(f)).collect();
+    format!("bumpsim view {}", words.join(" "))
+}
+
+/// `page` with, under each figure, the command that opens the figure's
+/// data in the interactive viewer (`bumpsim view FILE...`, run from the
+/// folder the paths are relative to); `page` as it is when `files` is empty.
+///
+/// ```
+/// use bumpsim_report::html::{Html, with_viewer};
+/// let mut page = Html::new("Identification");
+/// page.figure("<svg></svg>", "flat");
+/// let page = with_viewer(&page.finish(), &["result.json".into(), "study.toml".into()]);
+/// assert!(page.contains("<code>bumpsim view result.json study.toml</code>"));
+/// ```
+pub fn with_viewer(page: &str, files: &[String]) -> String {
+    if files.is_empty() {
+        return page.to_string();
+    }
+    let line = format!(
+        "<p class=\"view\">Open in the viewer: <code>{}</code></p>\n",
+        escape(&view_command(files))
+    );
+    page.replace(FIGURE_END, &format!("</figcaption>\n{line}</figure>\n"))
+}
 
 impl Html {
     /// A page with a title.

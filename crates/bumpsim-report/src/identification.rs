@@ -1,11 +1,14 @@
-//! The identification report: measured vs fitted displacement per case
-//! (solid vs dashed, as in the thesis figures), residuals, the DOF table and
-//! the ±3 % sensitivity of the objective and, when sampled, the posterior
-//! ([`crate::posterior`]), gathered in one HTML page.
+//! The identification report: what was found first (the model, its fit
+//! per case with the fitted window, the warnings), then measured vs fitted
+//! displacement per case (solid vs dashed, as in the thesis figures, the
+//! fitted window shaded), residuals, the DOF table and the ±3 %
+//! sensitivity of the objective and, when sampled, the posterior
+//! ([`crate::posterior`]); the inputs (settings, channel notes, the study
+//! file's text) last, gathered in one HTML page.
 
 use crate::file_name;
 use crate::html::Html;
-use crate::plot::{LinePlot, PlotError, Series, Style};
+use crate::plot::{LinePlot, PlotError, Series, Span, Style};
 use bumpsim_core::units::{Dimension, format_number};
 use bumpsim_ident::estimate::Identification;
 use bumpsim_ident::explore::{Prediction, Sweep};
@@ -34,7 +37,8 @@ pub enum DofOutcome {
 /// An SVG file of the report: name and content.
 pub type Figure = (String, String);
 
-/// Measured (solid) vs fitted (dashed) displacement of one case.
+/// Measured (solid) vs fitted (dashed) displacement of one case over the
+/// whole record, the fitted window shaded ([`Span::window`]).
 pub fn fit_plot(prediction: &Prediction, dof: usize) -> Result<String, PlotError> {
     let title = format!(
         "{}: measured vs {dof}-DOF model (fit {} %)",
@@ -55,6 +59,7 @@ pub fn fit_plot(prediction: &Prediction, dof: usize) -> Result<String, PlotError
         prediction.simulated.clone(),
         Style::Dashed,
     ));
+    plot.span(Span::window("fitted", prediction.window));
     plot.svg()
 }
 
@@ -143,10 +148,6 @@ pub fn report_with_posterior(
 ) -> Result<(String, Vec<Figure>), PlotError> {
     let mut page = Html::new(title);
     let mut figures = Vec::new();
-    page.heading("Inputs");
-    page.paragraph(settings);
-    page.preformatted(inputs);
-    notes_section(&mut page, notes);
     let done: Vec<&Identification> = outcomes
         .iter()
         .filter_map(|o| match o {
@@ -154,6 +155,7 @@ pub fn report_with_posterior(
             DofOutcome::Failed { .. } => None,
         })
         .collect();
+    let answer = answer(&mut page, outcomes, &done);
     if done.len() > 1 {
         page.heading("Model size (thesis table 1)");
         let owned: Vec<Identification> = done.iter().map(|r| (*r).clone()).collect();
@@ -167,15 +169,13 @@ pub fn report_with_posterior(
         );
     }
     for outcome in outcomes {
-        match outcome {
-            DofOutcome::Failed { dof, reason } => {
-                page.heading(&format!("{dof}-DOF model"));
-                page.failure(reason);
-            }
-            DofOutcome::Done {
-                result,
-                predictions,
-            } => section(&mut page, &mut figures, result, predictions)?,
+        if let DofOutcome::Done {
+            result,
+            predictions,
+        } = outcome
+        {
+            let tables = Some(result.dof) != answer;
+            section(&mut page, &mut figures, result, predictions, tables)?;
         }
     }
     if let Some((post, result)) = posterior {
@@ -193,7 +193,89 @@ pub fn report_with_posterior(
             "each parameter alone changed by up to ±3 %",
         );
     }
+    page.heading("Inputs");
+    page.paragraph(settings);
+    notes_section(&mut page, notes);
+    page.preformatted(inputs);
     Ok((page.finish(), figures))
+}
+
+/// The first section, what was found: the model (the recommended order
+/// when several were identified), its fit per case with the fitted window,
+/// the failed orders and every warning. Returns the order shown.
+fn answer(page: &mut Html, outcomes: &[DofOutcome], done: &[&Identification]) -> Option<usize> {
+    page.heading("Result");
+    let owned: Vec<Identification> = done.iter().map(|r| (*r).clone()).collect();
+    let chosen = bumpsim_ident::text::recommended_dof(&owned)
+        .and_then(|dof| done.iter().find(|r| r.dof == dof))
+        .or(done.first());
+    let failures: Vec<(usize, &str)> = outcomes
+        .iter()
+        .filter_map(|o| match o {
+            DofOutcome::Failed { dof, reason } => Some((*dof, reason.as_str())),
+            DofOutcome::Done { .. } => None,
+        })
+        .collect();
+    for (dof, reason) in &failures {
+        page.failure(&format!("the {dof}-DOF model: {reason}"));
+    }
+    let Some(r) = chosen else {
+        page.paragraph("No model was identified.");
+        return None;
+    };
+    let which = match done.len() {
+        1 => String::new(),
+        n => format!(" (recommended among the {n} identified orders, see Model size)"),
+    };
+    page.paragraph(&format!(
+        "The {}-DOF model{which}: objective {} m², overall fit {} %.",
+        r.dof,
+        format_number(r.objective, 5),
+        format_number(r.fit_percent, 4)
+    ));
+    page.preformatted(&parameter_table(r));
+    page.table(&FIT_HEADERS, &fit_rows(r));
+    let warnings: Vec<String> = done
+        .iter()
+        .flat_map(|d| d.warnings.iter().map(move |w| (d.dof, w)))
+        .map(|(dof, w)| match done.len() {
+            1 => w.clone(),
+            _ => format!("{dof}-DOF model: {w}"),
+        })
+        .collect();
+    match warnings.is_empty() {
+        true => page.paragraph("No warnings."),
+        false => page.warnings(&warnings),
+    }
+    Some(r.dof)
+}
+
+/// The columns of the table of fits.
+pub const FIT_HEADERS: [&str; 5] = [
+    "case",
+    "fitted window [ms]",
+    "fit [%]",
+    "SSE [m²]",
+    "ISO/TS 18571 rating",
+];
+
+/// One row per case: name, window, fit, SSE and rating (with its grade).
+fn fit_rows(r: &Identification) -> Vec<Vec<String>> {
+    let ms = |t: f64| format!("{:.2}", t * 1e3);
+    r.cases
+        .iter()
+        .map(|c| {
+            vec![
+                c.name.clone(),
+                format!("{}–{}", ms(c.window[0]), ms(c.window[1])),
+                format_number(c.fit_percent, 4),
+                format_number(c.sse, 4),
+                c.rating.as_ref().map_or("none".into(), |g| {
+                    format!("{:.3} ({})", g.overall, g.grade())
+                }),
+            ]
+        })
+        .collect()
 }
 
 /// The notes of the channel selections and time bases, when there are any.
@@ -214,11 +296,14 @@ fn add(page: &mut Html, figures: &mut Vec<Figure>, name: &str, svg: String, capt
     figures.push((name, svg));
 }
 
+/// One order's section: its objective and starts, its tables unless the
+/// first section shows them (`tables`), its fit plots and residuals.
 fn section(
     page: &mut Html,
     figures: &mut Vec<Figure>,
     result: &Identification,
     predictions: &[Prediction],
+    tables: bool,
 ) -> Result<(), PlotError> {
     let dof = result.dof;
     page.heading(&format!("{dof}-DOF model"));
@@ -228,9 +313,11 @@ fn section(
         format_number(result.fit_percent, 4),
         bumpsim_ident::text::starts_line(result)
     ));
-    page.preformatted(&parameter_table(result));
-    page.preformatted(&case_lines(result));
-    page.warnings(&result.warnings);
+    if tables {
+        page.preformatted(&parameter_table(result));
+        page.preformatted(&case_lines(result));
+        page.warnings(&result.warnings);
+    }
     for p in predictions {
         let name = format!("fit-{dof}dof-{}.svg", file_name(&p.fit.name));
         add(
@@ -239,8 +326,10 @@ fn section(
             &name,
             fit_plot(p, dof)?,
             &format!(
-                "{}: measured (solid) and simulated (dashed) displacement",
-                p.fit.name
+                "{}: measured (solid) and simulated (dashed) displacement; the shaded span is the fitted window ({}–{} ms), outside it the model is not fitted",
+                p.fit.name,
+                format!("{:.2}", p.window[0] * 1e3),
+                format!("{:.2}", p.window[1] * 1e3)
             ),
         );
     }

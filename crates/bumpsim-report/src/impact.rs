@@ -17,8 +17,9 @@ pub fn impact_report(
     impact_page(title, &[], &[], summary, r)
 }
 
-/// The impact report with its inputs (name, value) listed first and notes
-/// on reading the results (e.g. the FE run's force at t = 0) after them.
+/// The impact report: the results and notes on reading them (e.g. the FE
+/// run's force at t = 0) first, the plots, and its inputs (name, value)
+/// last.
 pub fn impact_page(
     title: &str,
     inputs: &[(String, String)],
@@ -27,14 +28,6 @@ pub fn impact_page(
     r: &ImpactResult,
 ) -> Result<(String, Vec<(String, String)>), PlotError> {
     let mut page = Html::new(&format!("bumpsim impact: {title}"));
-    if !inputs.is_empty() {
-        page.heading("Inputs");
-        let rows: Vec<Vec<String>> = inputs
-            .iter()
-            .map(|(k, v)| vec![k.clone(), v.clone()])
-            .collect();
-        page.table(&["input", "value"], &rows);
-    }
     page.heading("Results");
     page.preformatted(summary);
     notes.iter().for_each(|n| page.paragraph(n));
@@ -71,6 +64,14 @@ pub fn impact_page(
         let svg = plot.svg()?;
         page.figure(&svg, caption);
         figures.push((name.to_string(), svg));
+    }
+    if !inputs.is_empty() {
+        page.heading("Inputs");
+        let rows: Vec<Vec<String>> = inputs
+            .iter()
+            .map(|(k, v)| vec![k.clone(), v.clone()])
+            .collect();
+        page.table(&["input", "value"], &rows);
     }
     Ok((page.finish(), figures))
 }

@@ -42,7 +42,7 @@ pub mod verdict;
 pub use bar::BarPlot;
 pub use heatmap::HeatMap;
 pub use html::Html;
-pub use plot::{LinePlot, PlotError, Series, Style};
+pub use plot::{LinePlot, PlotError, Series, Span, Style};
 
 /// The main types, for `use bumpsim_report::prelude::*` (the facade's
 /// prelude globs it).
@@ -50,7 +50,7 @@ pub mod prelude {
     pub use crate::bar::BarPlot;
     pub use crate::heatmap::HeatMap;
     pub use crate::html::Html;
-    pub use crate::plot::{LinePlot, PlotError, Series, Style};
+    pub use crate::plot::{LinePlot, PlotError, Series, Span, Style};
 }
 
 use std::sync::Once;

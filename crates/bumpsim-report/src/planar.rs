@@ -4,7 +4,7 @@
 
 use crate::bar::BarPlot;
 use crate::html::Html;
-use crate::plot::{LinePlot, PlotError, Series, Style};
+use crate::plot::{LinePlot, PlotError, Series, Span, Style};
 use bumpsim_core::units::Dimension;
 use bumpsim_planar::PlanarResult;
 use bumpsim_planar::forward::Forward;
@@ -128,15 +128,20 @@ fn segment_rows(r: &PlanarResult) -> Vec<Vec<String>> {
         .collect()
 }
 
-/// The x and yaw plots of a planar case, model against measurement: file
-/// name (`<case>-x.svg`, `<case>-yaw.svg`), SVG and caption with the fit.
+/// The x and yaw plots of a planar case, model against measurement, the
+/// case's window shaded (named `fitted window` when `fitted`, else
+/// `scored window`: the fit is only measured there): file name
+/// (`<case>-x.svg`, `<case>-yaw.svg`), SVG and caption with the fit.
 pub fn case_figures(
     p: &bumpsim_planar::identify::Prediction,
+    fitted: bool,
 ) -> Result<Vec<(String, String, String)>, PlotError> {
+    let window = Span::window(if fitted { "fitted" } else { "scored" }, p.fit.window);
     let mut x = LinePlot::new("x (mean of the sills)", Dimension::Time, Dimension::Length)
         .quantities(None, Some("displacement"));
     x.add(line("measured", &p.time, &p.x[1], Style::Solid));
     x.add(line("model", &p.time, &p.x[0], Style::Dashed));
+    x.span(window.clone());
     let mut yaw = LinePlot::new(
         "Yaw (difference of the sills)",
         Dimension::Time,
@@ -144,6 +149,7 @@ pub fn case_figures(
     );
     yaw.add(line("measured", &p.time, &p.yaw[1], Style::Solid));
     yaw.add(line("model", &p.time, &p.yaw[0], Style::Dashed));
+    yaw.span(window.clone());
     let stem = crate::file_name(&p.fit.name);
     [("x", x, p.fit.fit_x), ("yaw", yaw, p.fit.fit_yaw)]
         .into_iter()
@@ -152,7 +158,10 @@ pub fn case_figures(
             Ok((
                 format!("{stem}-{what}.svg"),
                 svg,
-                format!("{what}: fit {fit:.2} %"),
+                format!(
+                    "{what}: fit {fit:.2} % over the shaded {}",
+                    window.name
+                ),
             ))
         })
         .collect()
@@ -201,10 +210,12 @@ pub struct CasePage<'a> {
     pub forward: Option<&'a Forward>,
 }
 
-/// The planar identification report: the summary, the notes on the
-/// channels' time base (if any), then x and yaw of every case, model
-/// against measurement, and its forward prediction's force, x-acceleration
-/// and yaw rate (file name, SVG).
+/// The planar identification report: the summary (the identified car,
+/// the fits, the warnings) first, then x and yaw of every case, model
+/// against measurement with its window shaded, and its forward
+/// prediction's force, x-acceleration and yaw rate; the inputs (the notes
+/// on the channels' time base, if any, and the study file's text) last
+/// (file name, SVG).
 pub fn identification_report(
     summary: &str,
     inputs: &str,
@@ -214,10 +225,6 @@ pub fn identification_report(
     let mut page = Html::new("bumpsim planar identification");
     page.heading("Results");
     page.preformatted(summary);
-    if !notes.is_empty() {
-        page.heading("Channel time base");
-        page.notes(notes);
-    }
     let mut figures: Vec<(String, String)> = Vec::new();
     for case in cases {
         let p = case.prediction;
@@ -228,7 +235,7 @@ pub fn identification_report(
         };
         page.heading(&format!("{} ({kind})", p.fit.name));
         let forward = case.forward.map(forward_figures).transpose()?;
-        for (name, svg, caption) in case_figures(p)?
+        for (name, svg, caption) in case_figures(p, !case.validation)?
             .into_iter()
             .chain(forward.into_iter().flatten())
         {
@@ -238,6 +245,10 @@ pub fn identification_report(
         }
     }
     page.heading("Inputs");
+    if !notes.is_empty() {
+        page.paragraph("Channel time base:");
+        page.notes(notes);
+    }
     page.preformatted(inputs);
     Ok((page.finish(), figures))
 }

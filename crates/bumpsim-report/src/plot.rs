@@ -5,7 +5,10 @@
 //! each axis label states that unit. Measured data are drawn solid,
 //! simulated or processed data dashed, as in the thesis figures; a band
 //! (a prediction's pointwise interval) is a shaded area between its ends,
-//! drawn under the lines.
+//! drawn under the lines. A marked span of x (the window a model was
+//! fitted over, [`Span`]) is shaded from the bottom to the top of the
+//! axes with a line at each end and its own legend entry, so a reader
+//! sees where the fit was taken and where the curves only continue.
 
 use bumpsim_core::units::Dimension;
 use plotters::coord::types::RangedCoordf64;
@@ -93,6 +96,39 @@ pub struct Band {
     pub high: Vec<f64>,
 }
 
+/// A span of x marked on the plot (the fitted window): shaded over the
+/// whole height of the axes, a vertical line at each end, named in the
+/// legend. Ends in SI, as the x values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Span {
+    /// Legend entry.
+    pub name: String,
+    /// First and last x, SI.
+    pub ends: [f64; 2],
+}
+
+impl Span {
+    /// The fitted window `[start, end]` (s) of a time plot: named
+    /// `fitted window 12.3–101.5 ms` in the legend (`what` replaces
+    /// `fitted` for a window that was only scored).
+    ///
+    /// ```
+    /// use bumpsim_report::plot::Span;
+    /// let span = Span::window("fitted", [0.0123, 0.1015]);
+    /// assert_eq!(span.name, "fitted window 12.30–101.50 ms");
+    /// ```
+    pub fn window(what: &str, [start, end]: [f64; 2]) -> Span {
+        let ms = |t: f64| format!("{:.2}", t * 1e3);
+        Span {
+            name: format!("{what} window {}–{} ms", ms(start), ms(end)),
+            ends: [start, end],
+        }
+    }
+}
+
+/// The colour of a marked span: amber, light when shaded, dark at its ends.
+const SPAN: RGBColor = RGBColor(230, 160, 0);
+
 /// A line plot with a title, two axes of given dimensions and its series.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LinePlot {
@@ -106,6 +142,8 @@ pub struct LinePlot {
     pub series: Vec<Series>,
     /// Shaded areas, drawn under the curves.
     pub bands: Vec<Band>,
+    /// Marked spans of x (fitted windows), drawn under everything.
+    pub spans: Vec<Span>,
     /// Size in pixels.
     pub size: (u32, u32),
     /// Axis labels replacing the dimension's `name [unit]` (x, y).
@@ -142,6 +180,7 @@ impl LinePlot {
             y,
             series: Vec::new(),
             bands: Vec::new(),
+            spans: Vec::new(),
             size: (800, 480),
             labels: (None, None),
         }
@@ -184,6 +223,12 @@ impl LinePlot {
     /// ```
     pub fn band(&mut self, band: Band) -> &mut Self {
         self.bands.push(band);
+        self
+    }
+
+    /// Marks a span of x (a fitted window, [`Span::window`]).
+    pub fn span(&mut self, span: Span) -> &mut Self {
+        self.spans.push(span);
         self
     }
 
@@ -324,6 +369,9 @@ impl LinePlot {
             .label_style(("sans-serif", 13))
             .draw()?;
         let (ux, uy) = (self.x.display_unit(), self.y.display_unit());
+        for span in &self.spans {
+            Self::mark(&mut chart, span, ux, (x0, x1, y0, y1))?;
+        }
         for band in &self.bands {
             self.shade(&mut chart, band)?;
         }
@@ -388,6 +436,33 @@ impl LinePlot {
             .draw_series(std::iter::once(Polygon::new(outline, fill)))?
             .label(band.name.clone())
             .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 20, y + 5)], fill));
+        Ok(())
+    }
+}
+
+impl LinePlot {
+    /// Draws `span` (clipped to the axes) as a light rectangle over the
+    /// axes' height with a line at each end inside them, and its legend
+    /// entry; a span wholly outside the axes or not finite is left out.
+    fn mark<DB: DrawingBackend>(
+        chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+        span: &Span,
+        ux: bumpsim_core::units::Unit,
+        (x0, x1, y0, y1): (f64, f64, f64, f64),
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+        let [a, b] = span.ends.map(|e| ux.from_si(e));
+        if !(a.is_finite() && b.is_finite()) || a.max(b) < x0 || a.min(b) > x1 {
+            return Ok(());
+        }
+        let (a, b) = (a.min(b).max(x0), a.max(b).min(x1));
+        let fill = SPAN.mix(0.15).filled();
+        chart
+            .draw_series(std::iter::once(Rectangle::new([(a, y0), (b, y1)], fill)))?
+            .label(span.name.clone())
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 20, y + 5)], fill));
+        let edge = SPAN.stroke_width(1);
+        let edges = [a, b].map(|x| PathElement::new(vec![(x, y0), (x, y1)], edge));
+        chart.draw_series(edges)?;
         Ok(())
     }
 }

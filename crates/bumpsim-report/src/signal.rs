@@ -1,7 +1,10 @@
 //! Signal plots: each processed channel over its raw input against time,
 //! raw solid and processed dashed; when processing changed the dimension
-//! (an integration), the raw signal gets a plot of its own.
+//! (an integration), the raw signal gets a plot of its own. The signal
+//! report ([`report`]) opens with the signals found (peaks, the momentum
+//! balance) and the warnings, then the plots, and ends with the pipeline.
 
+use crate::html::Html;
 use crate::plot::{LinePlot, PlotError, Series, Style};
 use bumpsim_core::channel::Channel;
 use bumpsim_core::units::Dimension;
@@ -47,4 +50,47 @@ fn plots(raw: &Channel, processed: &Channel) -> Vec<LinePlot> {
     }
     plots[0].add(curve(processed, "processed", Style::Dashed));
     plots
+}
+
+/// What a signal report shows: the pipeline's path and text (the inputs),
+/// the summary of the signals (peaks and the momentum balance), the
+/// warnings and the plots (file name, SVG).
+#[derive(Debug, Clone, Copy)]
+pub struct SignalPage<'a> {
+    /// The pipeline file, as given.
+    pub pipeline: &'a str,
+    /// The pipeline file's text.
+    pub inputs: &'a str,
+    /// One line per signal and the momentum balance, with units.
+    pub summary: &'a str,
+    /// What the run warned about.
+    pub warnings: &'a [String],
+    /// The plots (file name, SVG).
+    pub plots: &'a [(String, String)],
+}
+
+/// The signal report: the signals and warnings first, the plots, the
+/// pipeline last.
+///
+/// ```
+/// use bumpsim_report::signal::{SignalPage, report};
+/// let page = report(&SignalPage { pipeline: "p.toml", inputs: "[[signal]]", summary: "F: peak 5 kN",
+///     warnings: &[], plots: &[("F.svg".into(), "<svg></svg>".into())] });
+/// assert!(page.find("peak 5 kN") < page.find("[[signal]]"));
+/// ```
+pub fn report(p: &SignalPage) -> String {
+    let mut page = Html::new(&format!("bumpsim signal processing: {}", p.pipeline));
+    page.heading("Signals");
+    page.preformatted(p.summary);
+    match p.warnings.is_empty() {
+        true => page.paragraph("No warnings."),
+        false => page.warnings(p.warnings),
+    }
+    for (name, svg) in p.plots {
+        page.figure(svg, name);
+    }
+    page.heading("Inputs");
+    page.paragraph(&format!("Pipeline {}:", p.pipeline));
+    page.preformatted(p.inputs);
+    page.finish()
 }

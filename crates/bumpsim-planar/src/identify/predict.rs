@@ -29,6 +29,9 @@ pub struct CaseFit {
     /// Where the replay started, s of the test files' time
     /// ([`PlanarCase::time_zero`]).
     pub time_zero: f64,
+    /// Times of the window's first and last sample, s from the replay's
+    /// first sample (the plots' time): the span of the fits and ratings.
+    pub window: [f64; 2],
 }
 
 impl CaseFit {
@@ -84,6 +87,7 @@ pub fn predict(car: &PlanarCar, case: &PlanarCase) -> Result<Prediction, PlanarE
         rating_x: rate(&x[1][a..=b], &x[0][a..=b], step).ok(),
         rating_yaw: rate(&yaw[1][a..=b], &yaw[0][a..=b], step).ok(),
         time_zero: case.time_zero,
+        window: [a, b].map(|k| k as f64 * step),
     };
     Ok(Prediction {
         time: replay.time,

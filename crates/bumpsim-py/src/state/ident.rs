@@ -149,6 +149,7 @@ struct CaseFitDef {
     samples: usize,
     #[serde(with = "rating")]
     rating: Option<Rating>,
+    window: [f64; 2],
 }
 
 remote_seq!(case_fits, CaseFit, "CaseFitDef");
