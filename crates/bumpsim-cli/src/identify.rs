@@ -280,24 +280,6 @@ fn print_result(r: &Identification) {
     crate::count_warnings(r.warnings.len());
 }
 
-/// The report's page with the viewer's command under each figure: the
-/// result (kept in the report folder as `result.json`) and the study.
-fn viewer(
-    html: &str,
-    dir: &std::path::Path,
-    study: &std::path::Path,
-    json: Option<String>,
-    figures: &mut Vec<(String, String)>,
-) -> String {
-    let Some(json) = json else {
-        return html.to_string();
-    };
-    figures.push(("result.json".into(), json));
-    let files = [dir.join("result.json"), study.to_path_buf()];
-    let files: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
-    bumpsim_report::html::with_viewer(html, &files)
-}
-
 fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
     let Outputs {
         results,
@@ -361,9 +343,11 @@ fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
             dofs.join(", ")
         );
         let texts = ("bumpsim identification", inputs.as_str(), settings.as_str());
-        let (html, mut figures) = report_with_posterior(texts, notes, outcomes, sweeps, posterior)?;
-        let html = viewer(&html, dir, &args.study, json, &mut figures);
-        Folder::report(dir, &html, &figures)?;
+        let (html, figures) = report_with_posterior(texts, notes, outcomes, sweeps, posterior)?;
+        match json {
+            Some(json) => Folder::viewed_report(dir, &html, figures, (json, args.json.as_deref()), &[&args.study])?,
+            None => Folder::report(dir, &html, &figures)?,
+        }
     }
     Ok(())
 }

@@ -237,10 +237,11 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
         bumper_path.display()
     );
     print!("{summary}");
+    let json = bumpsim_impact::document::ImpactSummary::of(scenario, &result);
+    let json = uncertain::with(serde_json::to_value(json)?, &predicted)?;
+    let json = serde_json::to_string_pretty(&json)?;
     if let Some(path) = &args.files.json {
-        let json = bumpsim_impact::document::ImpactSummary::of(scenario, &result);
-        let json = uncertain::with(serde_json::to_value(json)?, &predicted)?;
-        write(path, &serde_json::to_string_pretty(&json)?)?;
+        write(path, &json)?;
     }
     if let Some(path) = &args.files.csv {
         write(path, &bumpsim_impact::text::histories(&result))?;
@@ -250,7 +251,7 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
         let shown = uncertain::summary(&summary, &predicted);
         let (html, mut figures) = bumpsim_report::impact::impact_report(&title, &shown, &result)?;
         uncertain::pages(&predicted, &title, &mut figures)?;
-        Folder::report(dir, &html, &figures)?;
+        Folder::viewed_report(dir, &html, figures, (json, args.files.json.as_deref()), &[])?;
     }
     Ok(())
 }

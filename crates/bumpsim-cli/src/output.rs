@@ -213,6 +213,32 @@ impl Folder {
         folder.commit()
     }
 
+    /// [`Folder::report`] whose figures name the viewer's command: the
+    /// run's result, the `--json` file when one was written (`written`),
+    /// else a copy kept beside the page as `result.json`, and the `inputs`
+    /// the viewer also needs (a study's tests).
+    pub(crate) fn viewed_report(
+        dir: &Path,
+        html: &str,
+        mut figures: Vec<(String, String)>,
+        (json, written): (String, Option<&Path>),
+        inputs: &[&Path],
+    ) -> Result<()> {
+        let result = match written {
+            Some(path) => path.to_path_buf(),
+            None => {
+                figures.push(("result.json".into(), json));
+                dir.join("result.json")
+            }
+        };
+        let files: Vec<String> = std::iter::once(result.as_path())
+            .chain(inputs.iter().copied())
+            .map(|f| f.display().to_string())
+            .collect();
+        let html = bumpsim_report::html::with_viewer(html, &files);
+        Folder::report(dir, &html, &figures)
+    }
+
     /// Hands the complete folder to the command's transaction (it moves
     /// into place with the command's other outputs).
     pub(crate) fn commit(self) -> Result<()> {

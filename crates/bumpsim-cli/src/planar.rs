@@ -318,14 +318,15 @@ pub fn run_impact(request: &ImpactRequest) -> Result<()> {
         println!("  tyres: {why}");
     }
     print!("{summary}");
+    let document = ImpactDocument {
+        car: &name,
+        striker: &striker,
+        result: &result,
+    };
+    let document = crate::planar::uncertain::with(serde_json::to_value(document)?, &predicted)?;
+    let json = serde_json::to_string_pretty(&document)?;
     if let Some(path) = &request.files.json {
-        let document = ImpactDocument {
-            car: &name,
-            striker: &striker,
-            result: &result,
-        };
-        let document = crate::planar::uncertain::with(serde_json::to_value(document)?, &predicted)?;
-        write(path, &serde_json::to_string_pretty(&document)?)?;
+        write(path, &json)?;
     }
     if let Some(path) = &request.files.csv {
         write(path, &bumpsim_planar::text::histories(&result))?;
@@ -340,7 +341,7 @@ pub fn run_impact(request: &ImpactRequest) -> Result<()> {
             Some(&view),
         )?;
         crate::planar::uncertain::pages(&predicted, &heading, &mut figures)?;
-        Folder::report(dir, &html, &figures)?;
+        Folder::viewed_report(dir, &html, figures, (json, request.files.json.as_deref()), &[])?;
     }
     Ok(())
 }
@@ -427,14 +428,17 @@ pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
                 forward: forward.iter().find(|f| f.case == prediction.fit.name),
             })
             .collect();
-        let (html, mut figures) =
-            bumpsim_report::planar::identification_report(&summary, &inputs, &study.notes, &pages)?;
-        // the report keeps the result for the viewer, named with the study
-        figures.push(("result.json".into(), json));
-        let files = [dir.join("result.json"), options.study.to_path_buf()];
-        let files: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
-        let html = bumpsim_report::html::with_viewer(&html, &files);
-        Folder::report(dir, &html, &figures)?;
+        let warnings: Vec<String> = forward
+            .iter()
+            .flat_map(bumpsim_planar::document::forward_warnings)
+            .collect();
+        let (html, figures) = bumpsim_report::planar::identification_report(
+            (&summary, &warnings),
+            &inputs,
+            &study.notes,
+            &pages,
+        )?;
+        Folder::viewed_report(dir, &html, figures, (json, options.json), &[options.study])?;
     }
     Ok(())
 }

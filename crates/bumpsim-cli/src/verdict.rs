@@ -126,18 +126,19 @@ pub fn run(args: &Args) -> Result<()> {
         true => Some(target::search(&setup, &TargetOptions::default())?),
         false => None,
     };
+    let mut document = serde_json::json!({ "verdict": v, "target": region });
+    // only with --sobol: the document of a plain verdict stays as Python's
+    if let (Some(s), Some(fields)) = (&indices, document.as_object_mut()) {
+        fields.insert("sensitivity".into(), serde_json::to_value(s)?);
+    }
+    let json = serde_json::to_string_pretty(&document)?;
     if let Some(path) = &args.json {
-        let mut document = serde_json::json!({ "verdict": v, "target": region });
-        // only with --sobol: the document of a plain verdict stays as Python's
-        if let (Some(s), Some(fields)) = (&indices, document.as_object_mut()) {
-            fields.insert("sensitivity".into(), serde_json::to_value(s)?);
-        }
-        write(path, &serde_json::to_string_pretty(&document)?)?;
+        write(path, &json)?;
     }
     if let Some(dir) = &args.report {
         let (html, figures) =
             bumpsim_report::verdict::verdict_report(&v, region.as_ref(), indices.as_ref())?;
-        Folder::report(dir, &html, &figures)?;
+        Folder::viewed_report(dir, &html, figures, (json, args.json.as_deref()), &[])?;
     }
     print!("{}", text::table(&v));
     if let Some(r) = &region {

@@ -168,9 +168,10 @@ pub fn case_figures(
 }
 
 /// The forward prediction's plots of a case (force, x-acceleration, yaw
-/// rate; simulated from car, bumper and striker against the measurement):
-/// file name (`<case>-forward-force.svg`, ...), SVG and caption with the fit
-/// and the ISO/TS 18571 rating.
+/// rate; simulated from car, bumper and striker against the measurement,
+/// not fitted: the window its fit is scored over shaded): file name
+/// (`<case>-forward-force.svg`, ...), SVG and caption with the fit and the
+/// ISO/TS 18571 rating.
 pub fn forward_figures(f: &Forward) -> Result<Vec<(String, String, String)>, PlotError> {
     let stem = crate::file_name(&f.case);
     f.channels
@@ -185,6 +186,10 @@ pub fn forward_figures(f: &Forward) -> Result<Vec<(String, String, String)>, Plo
                 LinePlot::new(&format!("Forward {}", c.name), Dimension::Time, dimension);
             plot.add(line("measured", &c.time, &c.measured, Style::Solid));
             plot.add(line("forward model", &c.time, &c.simulated, Style::Dashed));
+            let (a, b) = f.window;
+            if let (Some(&start), Some(&end)) = (c.time.get(a), c.time.get(b)) {
+                plot.span(Span::window("scored", [start, end]));
+            }
             let rating = c.rating.map_or("-".into(), |r| format!("{:.3}", r.overall));
             Ok((
                 format!("{stem}-forward-{}.svg", c.name.replace(' ', "-")),
@@ -216,8 +221,11 @@ pub struct CasePage<'a> {
 /// prediction's force, x-acceleration and yaw rate; the inputs (the notes
 /// on the channels' time base, if any, and the study file's text) last
 /// (file name, SVG).
+///
+/// `warnings`: those the summary does not print (the forward
+/// predictions'), each in a box under it.
 pub fn identification_report(
-    summary: &str,
+    (summary, warnings): (&str, &[String]),
     inputs: &str,
     notes: &[String],
     cases: &[CasePage],
@@ -225,6 +233,7 @@ pub fn identification_report(
     let mut page = Html::new("bumpsim planar identification");
     page.heading("Results");
     page.preformatted(summary);
+    page.warnings(warnings);
     let mut figures: Vec<(String, String)> = Vec::new();
     for case in cases {
         let p = case.prediction;

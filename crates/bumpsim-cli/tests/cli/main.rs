@@ -23,6 +23,7 @@ mod issue48;
 mod planar;
 mod planar_identify;
 mod reports;
+mod reports_answer;
 mod robustness;
 mod signal;
 mod simulate;
