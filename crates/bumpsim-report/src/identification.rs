@@ -217,7 +217,7 @@ fn answer(page: &mut Html, outcomes: &[DofOutcome], done: &[&Identification]) ->
         })
         .collect();
     for (dof, reason) in &failures {
-        page.failure(&format!("the {dof}-DOF model: {reason}"));
+        page.failure(&format!("{dof}-DOF model: {reason}"));
     }
     let Some(r) = chosen else {
         page.paragraph("No model was identified.");

@@ -651,6 +651,62 @@ mod tests {
         assert!(colours.len() >= 7, "{colours:?}");
     }
 
+    /// The x pixels of the amber rectangles (shaded spans and their legend
+    /// marks), largest first: (x, width).
+    fn shaded(svg: &str) -> Vec<(f64, f64)> {
+        let mut found: Vec<(f64, f64, f64)> = svg
+            .split("<rect ")
+            .skip(1)
+            .map(|r| format!(" {}", r.split("/>").next().unwrap_or("")))
+            .filter(|r| r.contains("fill=\"#E6A000\""))
+            .map(|r| {
+                let get = |k: &str| -> f64 {
+                    let v = r.split(&format!(" {k}=\"")).nth(1).unwrap_or("");
+                    v.split('"').next().unwrap_or("").parse().unwrap_or(f64::NAN)
+                };
+                (get("x"), get("width"), get("height"))
+            })
+            .collect();
+        found.sort_by(|a, b| b.2.total_cmp(&a.2));
+        found.into_iter().map(|(x, w, _)| (x, w)).collect()
+    }
+
+    #[test]
+    fn a_fitted_window_is_shaded_over_its_times_with_a_legend_entry() {
+        let mut plot = demo();
+        let plain = plot.svg().unwrap();
+        // the nominal curve runs from 0 to 49 ms: the ends of the axes
+        let curve: Vec<f64> = plain
+            .split("<polyline")
+            .map(|p| p.split("/>").next().unwrap_or(""))
+            .find(|p| p.contains("#1F77B4") && p.matches(',').count() > 40)
+            .map(coordinates)
+            .unwrap()
+            .iter()
+            .step_by(2)
+            .copied()
+            .collect();
+        let (left, right) = (curve[0], curve[curve.len() - 1]);
+        plot.span(Span::window("fitted", [0.010, 0.030]));
+        let svg = plot.svg().unwrap();
+        assert!(svg.contains("fitted window 10.00–30.00 ms"), "legend entry");
+        let (x, width) = shaded(&svg)[0];
+        let px = |ms: f64| left + (right - left) * ms / 49.0;
+        assert!((x - px(10.0)).abs() <= 1.0, "{x} px for 10 ms at {}", px(10.0));
+        assert!((x + width - px(30.0)).abs() <= 1.0, "end at {} px", x + width);
+        assert_eq!(shaded(&svg).len(), 2, "the span and its legend mark");
+        // clipped to the axes; not drawn when outside them or not finite
+        let mut wide = demo();
+        wide.span(Span::window("fitted", [-1.0, 1.0]));
+        let (x, width) = shaded(&wide.svg().unwrap())[0];
+        assert!((x - left).abs() <= 1.0 && (x + width - right).abs() <= 1.0);
+        for ends in [[0.5, 0.6], [f64::NAN, 0.01]] {
+            let mut outside = demo();
+            outside.span(Span::window("fitted", ends));
+            assert!(shaded(&outside.svg().unwrap()).is_empty(), "{ends:?}");
+        }
+    }
+
     #[test]
     fn png_renders() {
         let path = std::env::temp_dir().join(format!("bumpsim-plot-{}.png", std::process::id()));

@@ -325,9 +325,16 @@ fn a_partial_identification_report_still_renders_and_says_what_failed() {
         .unwrap();
     let rendered = text(&dom.stdout);
     assert!(
-        rendered.contains("Failed: all 2 starts failed")
+        rendered.contains("Failed: 2-DOF model: all 2 starts failed")
             && rendered.trim_end().ends_with("</html>"),
         "the failure is shown in the rendered page"
+    );
+    // the failure is part of the answer, before any plot
+    let result = rendered.split("<h2>Result</h2>").nth(1).unwrap_or("");
+    let answer = result.split("<figure").next().unwrap_or("");
+    assert!(
+        answer.contains("Failed: 2-DOF model") && answer.contains("The 1-DOF model"),
+        "the answer names the model and the failed order"
     );
 }
 
