@@ -345,7 +345,13 @@ fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
         let texts = ("bumpsim identification", inputs.as_str(), settings.as_str());
         let (html, figures) = report_with_posterior(texts, notes, outcomes, sweeps, posterior)?;
         match json {
-            Some(json) => Folder::viewed_report(dir, &html, figures, (json, args.json.as_deref()), &[&args.study])?,
+            Some(json) => Folder::viewed_report(
+                dir,
+                &html,
+                figures,
+                (json, args.json.as_deref()),
+                &[&args.study],
+            )?,
             None => Folder::report(dir, &html, &figures)?,
         }
     }

@@ -341,7 +341,13 @@ pub fn run_impact(request: &ImpactRequest) -> Result<()> {
             Some(&view),
         )?;
         crate::planar::uncertain::pages(&predicted, &heading, &mut figures)?;
-        Folder::viewed_report(dir, &html, figures, (json, request.files.json.as_deref()), &[])?;
+        Folder::viewed_report(
+            dir,
+            &html,
+            figures,
+            (json, request.files.json.as_deref()),
+            &[],
+        )?;
     }
     Ok(())
 }

@@ -422,13 +422,21 @@ fn process(args: &ProcessArgs) -> Result<()> {
     let written = [output.as_deref(), args.iso_mme.as_deref()];
     let read = pipeline.signal.iter().filter_map(|s| s.path.as_ref());
     let mut files: Vec<String> = Vec::new();
-    for f in written.into_iter().flatten().map(Path::to_path_buf).chain(read.map(|p| pipeline.base.join(p))) {
+    for f in written
+        .into_iter()
+        .flatten()
+        .map(Path::to_path_buf)
+        .chain(read.map(|p| pipeline.base.join(p)))
+    {
         let f = f.display().to_string();
         if !files.contains(&f) {
             files.push(f);
         }
     }
-    crate::write(&dir.join("index.html"), &bumpsim_report::html::with_viewer(&html, &files))
+    crate::write(
+        &dir.join("index.html"),
+        &bumpsim_report::html::with_viewer(&html, &files),
+    )
 }
 
 fn newton_seconds(value: f64) -> String {

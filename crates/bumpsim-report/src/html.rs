@@ -47,8 +47,12 @@ footer{margin-top:3em;font-size:.85em;color:#666}\
 const FIGURE_END: &str = "</figcaption>\n</figure>\n";
 
 /// A file name as one shell word: as it is when it holds only letters,
-/// digits and `/._-+:,=@%`, else in single quotes (a `'` inside written `'\''`).
+/// digits and `/._-+:,=@%`, else in single quotes (a `'` inside written
+/// `'\''`); one starting with `-` led by `./`, so it is not read as an option.
 fn shell_word(word: &str) -> String {
+    if word.starts_with('-') {
+        return shell_word(&format!("./{word}"));
+    }
     let plain = |c: char| c.is_ascii_alphanumeric() || "/._-+:,=@%".contains(c);
     match !word.is_empty() && word.chars().all(plain) {
         true => word.to_string(),
@@ -60,8 +64,11 @@ fn shell_word(word: &str) -> String {
 ///
 /// ```
 /// use bumpsim_report::html::view_command;
-/// let files = ["out/result.json".to_string(), "my study.toml".to_string()];
-/// assert_eq!(view_command(&files), "bumpsim view out/result.json 'my study.toml'");
+/// let files = ["out/result.json", "my study.toml", "-x.csv", "it's.mme"].map(String::from);
+/// assert_eq!(
+///     view_command(&files),
+///     r"bumpsim view out/result.json 'my study.toml' ./-x.csv 'it'\''s.mme'"
+/// );
 /// ```
 pub fn view_command(files: &[String]) -> String {
     let words: Vec<String> = files.iter().map(|f| shell_word(f)).collect();

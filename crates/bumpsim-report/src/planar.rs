@@ -158,10 +158,7 @@ pub fn case_figures(
             Ok((
                 format!("{stem}-{what}.svg"),
                 svg,
-                format!(
-                    "{what}: fit {fit:.2} % over the shaded {}",
-                    window.name
-                ),
+                format!("{what}: fit {fit:.2} % over the shaded {}", window.name),
             ))
         })
         .collect()

@@ -662,7 +662,11 @@ mod tests {
             .map(|r| {
                 let get = |k: &str| -> f64 {
                     let v = r.split(&format!(" {k}=\"")).nth(1).unwrap_or("");
-                    v.split('"').next().unwrap_or("").parse().unwrap_or(f64::NAN)
+                    v.split('"')
+                        .next()
+                        .unwrap_or("")
+                        .parse()
+                        .unwrap_or(f64::NAN)
                 };
                 (get("x"), get("width"), get("height"))
             })
@@ -692,8 +696,16 @@ mod tests {
         assert!(svg.contains("fitted window 10.00–30.00 ms"), "legend entry");
         let (x, width) = shaded(&svg)[0];
         let px = |ms: f64| left + (right - left) * ms / 49.0;
-        assert!((x - px(10.0)).abs() <= 1.0, "{x} px for 10 ms at {}", px(10.0));
-        assert!((x + width - px(30.0)).abs() <= 1.0, "end at {} px", x + width);
+        assert!(
+            (x - px(10.0)).abs() <= 1.0,
+            "{x} px for 10 ms at {}",
+            px(10.0)
+        );
+        assert!(
+            (x + width - px(30.0)).abs() <= 1.0,
+            "end at {} px",
+            x + width
+        );
         assert_eq!(shaded(&svg).len(), 2, "the span and its legend mark");
         // clipped to the axes; not drawn when outside them or not finite
         let mut wide = demo();

@@ -3,7 +3,7 @@
 //! rendered in headless Chromium with a probe that lists every text box
 //! whose content is wider than the box (it would scroll or be cut), and
 //! every SVG's axis labels must name the quantity with its unit and its
-//! scatter legends must show markers.
+//! scatter legends must show markers; each page leads with its answer.
 
 use crate::util::{bumpsim, chromium, overflowing, root, scratch, text};
 use std::path::{Path, PathBuf};
@@ -129,6 +129,7 @@ fn reports_name_their_axes_show_their_marks_and_nothing_overflows() {
             }
         }
     }
+    answers_first(&folders);
     let Some(browser) = chromium() else { return };
     for folder in &folders {
         let wide = overflowing(&browser, &folder.join("index.html"));
@@ -138,5 +139,34 @@ fn reports_name_their_axes_show_their_marks_and_nothing_overflows() {
             "{}: text boxes wider than their box",
             folder.display()
         );
+    }
+}
+
+/// Each page opens with what was found and ends with its inputs (issue
+/// 47): the first and last section titles of the identify, impact,
+/// planar and doe pages; the pages whose data the viewer opens name it
+/// under every figure (their result kept beside the page).
+fn answers_first(folders: &[PathBuf]) {
+    let expected = [
+        ("Result", "Inputs", true),
+        ("Results", "Results", true),
+        ("Results", "Bumper segments", true),
+        ("peak_force [N]", "Inputs", false),
+    ];
+    for (folder, (first, last, viewed)) in folders.iter().zip(expected) {
+        let html = std::fs::read_to_string(folder.join("index.html")).unwrap();
+        let titles: Vec<&str> = html
+            .split("<h2>")
+            .skip(1)
+            .filter_map(|s| s.split("</h2>").next())
+            .collect();
+        let name = folder.display();
+        assert_eq!(titles.first(), Some(&first), "{name}: {titles:?}");
+        assert_eq!(titles.last(), Some(&last), "{name}: {titles:?}");
+        let figures = html.matches("<figure").count();
+        let command = format!("bumpsim view {}", folder.join("result.json").display());
+        let named = html.matches(&command).count();
+        assert_eq!(named, if viewed { figures } else { 0 }, "{name}");
+        assert_eq!(folder.join("result.json").is_file(), viewed, "{name}");
     }
 }

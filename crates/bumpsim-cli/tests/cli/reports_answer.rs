@@ -92,8 +92,14 @@ fn the_identification_report_opens_with_the_model_and_its_fits_and_ends_with_its
     for (row, case) in table.iter().zip(cases) {
         assert_eq!(row[0], case["name"].as_str().unwrap());
         let (start, end) = row[1].split_once('–').unwrap();
-        for (shown, t) in [start, end].into_iter().zip(case["window"].as_array().unwrap()) {
-            assert!((number(shown) - 1e3 * t.as_f64().unwrap()).abs() <= 0.005, "{row:?}");
+        for (shown, t) in [start, end]
+            .into_iter()
+            .zip(case["window"].as_array().unwrap())
+        {
+            assert!(
+                (number(shown) - 1e3 * t.as_f64().unwrap()).abs() <= 0.005,
+                "{row:?}"
+            );
         }
         let fit = case["fit_percent"].as_f64().unwrap();
         assert!((number(&row[2]) - fit).abs() <= 0.01, "{row:?}");
@@ -107,7 +113,10 @@ fn the_identification_report_opens_with_the_model_and_its_fits_and_ends_with_its
     // the inputs last: the settings and the study's own text
     let (_, inputs) = sections.last().unwrap();
     assert!(inputs.contains("4 starts, seed 1"), "{inputs}");
-    assert!(inputs.contains("window = &quot;contact&quot;"), "the study's text");
+    assert!(
+        inputs.contains("window = &quot;contact&quot;"),
+        "the study's text"
+    );
     assert!(!inputs.contains("<figure"));
     // under every plot, the viewer's command: the JSON and the study
     let figures = html.matches("<figure class=\"plot\"").count();
@@ -213,13 +222,20 @@ fn in_chromium_the_answer_is_on_top_every_fit_plot_shows_its_window_and_the_inpu
     let page = report.join("index.html");
     let probed = report.join("probed.html");
     let html = std::fs::read_to_string(&page).unwrap();
-    std::fs::write(&probed, html.replace("</body>", &format!("{LAYOUT_PROBE}</body>"))).unwrap();
+    std::fs::write(
+        &probed,
+        html.replace("</body>", &format!("{LAYOUT_PROBE}</body>")),
+    )
+    .unwrap();
     let dom = Command::new(browser)
         .args(["--headless", "--no-sandbox", "--disable-gpu"])
         .arg("--window-size=1280,900")
         .arg(format!("--user-data-dir={}", dir.join("profile").display()))
         .arg("--dump-dom")
-        .arg(format!("file://{}", probed.canonicalize().unwrap().display()))
+        .arg(format!(
+            "file://{}",
+            probed.canonicalize().unwrap().display()
+        ))
         .output()
         .unwrap();
     let dom = text(&dom.stdout);
@@ -237,7 +253,10 @@ fn in_chromium_the_answer_is_on_top_every_fit_plot_shows_its_window_and_the_inpu
     let (first, inputs) = (top(1), top(headings.len() - 1));
     for f in figures {
         let y = f[0].as_f64().unwrap();
-        assert!(first <= y && y < inputs, "a figure at {y} px outside {first}..{inputs} px");
+        assert!(
+            first <= y && y < inputs,
+            "a figure at {y} px outside {first}..{inputs} px"
+        );
     }
     // the fit plots (one per case, first in the model's section) show a
     // shaded window some tens of pixels wide
