@@ -167,7 +167,8 @@ impl Identification {
     fn bic(&self) -> f64 {
         self.result().bic
     }
-    /// Per-case fit: dicts with name, sse (m²), fit_percent, samples, rating.
+    /// Per-case fit: dicts with name, sse (m²), fit_percent, samples, rating,
+    /// window (first and last sample time, s).
     #[getter]
     fn cases<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         from_json(py, &self.result().cases)

@@ -326,10 +326,10 @@ fn section(
             &name,
             fit_plot(p, dof)?,
             &format!(
-                "{}: measured (solid) and simulated (dashed) displacement; the shaded span is the fitted window ({}–{} ms), outside it the model is not fitted",
+                "{}: measured (solid) and simulated (dashed) displacement; the shaded span is the fitted window ({:.2}–{:.2} ms), outside it the model is not fitted",
                 p.fit.name,
-                format!("{:.2}", p.window[0] * 1e3),
-                format!("{:.2}", p.window[1] * 1e3)
+                p.window[0] * 1e3,
+                p.window[1] * 1e3
             ),
         );
     }

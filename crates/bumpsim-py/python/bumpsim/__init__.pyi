@@ -262,7 +262,7 @@ class Identification:
     aic: float
     bic: float
     cases: list[dict[str, Any]]
-    """Per-case fit: name, sse (m²), fit_percent, samples."""
+    """Per-case fit: name, sse (m²), fit_percent, samples, rating, window (s)."""
     starts: dict[str, int]
     start: list[float]
     residuals: int
