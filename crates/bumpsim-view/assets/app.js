@@ -8,7 +8,7 @@
   const STATIC = !!embedded;
   const DATA = STATIC ? JSON.parse(embedded.textContent) : null;
   const COLORS = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2', '#17becf', '#7f7f7f', '#bcbd22'];
-  const state = { inputs: null, selected: [], window: null, ta: null, tb: null, plots: [], signals: [], busy: 0 };
+  const state = { inputs: null, selected: [], window: null, ta: null, tb: null, plots: [], signals: [], busy: 0, seq: 0 };
   const hook = { ready: false, readyAt: null, state, errors: [] };
   window.bumpsim = hook;
 
@@ -143,8 +143,8 @@
       title, width: plotWidth(), height: 260, series,
       scales: { x: { time: false } },
       axes: [{ label: 'time [ms]', values: (u, splits) => splits.map(fmtTime) }, { label: title, size: 70 }],
-      cursor: { sync: { key: 'bumpsim', setSeries: false }, drag: { x: true, y: false } },
-      hooks: { setScale: [onScale], draw: [drawCursors] },
+      cursor: { sync: { key: 'bumpsim', setSeries: false }, drag: { x: true, y: false, setScale: false } },
+      hooks: { setSelect: [onSelect], draw: [drawCursors] },
     };
     const holder = el('div', { class: 'plot' });
     $('plots').append(holder);
@@ -163,17 +163,14 @@
       ctx.beginPath(); ctx.moveTo(x, u.bbox.top); ctx.lineTo(x, u.bbox.top + u.bbox.height); ctx.stroke(); ctx.restore();
     }
   }
-  let applying = false;
-  let refetchTimer = null;
-  function onScale(u, key) {
-    if (key !== 'x' || applying) return;
-    const { min, max } = u.scales.x;
-    if (min == null || max == null) return;
-    state.window = [min, max];
-    applying = true;
-    for (const other of state.plots) if (other !== u) other.setScale('x', { min, max });
-    applying = false;
-    if (!STATIC) { clearTimeout(refetchTimer); refetchTimer = setTimeout(() => refresh(false), 120); }
+  // a drag selects a window: the server sends its samples (raw when few)
+  function onSelect(u) {
+    const sel = u.select;
+    if (sel.width < 3) return;
+    const t0 = u.posToVal(sel.left, 'x');
+    const t1 = u.posToVal(sel.left + sel.width, 'x');
+    u.setSelect({ left: 0, top: 0, width: 0, height: 0 }, false);
+    zoom(t0, t1);
   }
   function attachMouse(u) {
     let down = null;
@@ -203,29 +200,27 @@
       $('readout').replaceChildren(); $('command').textContent = '';
       return;
     }
+    const seq = ++state.seq;
     state.busy++;
     try {
       const extra = state.window ? { t0: state.window[0], t1: state.window[1], px: plotWidth() } : { px: plotWidth() };
       const answer = await api('series', extra);
+      if (seq !== state.seq) return; // a later request overtook this one
       state.signals = answer.signals;
       const grouped = groups(answer.signals);
       const same = !rebuild && state.plots.length === grouped.size && [...grouped.values()].every((m, k) => state.plots[k].bumpsimSignals.length === m.length);
       if (same) {
-        applying = true;
         [...grouped.values()].forEach((members, k) => {
           const u = state.plots[k];
           u.setData(uPlot.join(members.map(({ s }) => [s.drawn.time, s.drawn.value])), !state.window);
           if (state.window) u.setScale('x', { min: state.window[0], max: state.window[1] });
           u.bumpsimSignals = members.map(({ s }) => s);
         });
-        applying = false;
       } else {
         state.plots.forEach((u) => u.destroy());
         $('plots').replaceChildren();
-        applying = true;
         state.plots = [...grouped.entries()].map(([title, members]) => makePlot(title, members));
         if (state.window) state.plots.forEach((u) => u.setScale('x', { min: state.window[0], max: state.window[1] }));
-        applying = false;
       }
       const raw = answer.signals.every((s) => s.drawn.raw);
       status(raw ? 'raw samples' : 'min/max per pixel');

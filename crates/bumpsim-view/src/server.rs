@@ -159,8 +159,19 @@ impl Viewer {
     }
 
     fn api(&mut self, name: &str, query: &str) -> Result<Option<Answer>, ViewError> {
+        const NAMES: [&str; 6] = [
+            "series",
+            "cursor",
+            "metrics",
+            "command",
+            "export.csv",
+            "export-iso",
+        ];
         if name == "inputs" {
             return Ok(Some(json(&api::inputs(&self.session))));
+        }
+        if !NAMES.contains(&name) {
+            return Ok(None);
         }
         let q = Query::parse(query)?;
         let s = &mut self.session;

@@ -28,3 +28,4 @@ mod signal;
 mod simulate;
 mod util;
 mod verdict;
+mod view;
