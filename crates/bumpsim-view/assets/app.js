@@ -118,6 +118,7 @@
       const rows = r.cases.map((c) => el('tr', {}, el('td', {}, c.name), el('td', { class: 'fit' }, c.fit), el('td', { class: 'rating' }, c.rating)));
       const fields = r.fields.map(([k, v]) => el('tr', {}, el('td', {}, k), el('td', {}, v)));
       holder.append(el('h2', {}, `${r.kind}: ${r.path}`), ...r.model.map((m) => el('div', { class: 'model' }, m)));
+      if (r.criteria.length) holder.append(el('table', { class: 'criteria' }, el('tr', {}, ...['test', 'criterion', 'value (SI)', 'limit (SI)', 'margin', 'outcome'].map((h) => el('th', {}, h))), ...r.criteria.map((row) => el('tr', {}, ...row.map((v) => el('td', {}, v))))));
       if (rows.length) holder.append(el('table', { class: 'cases' }, el('tr', {}, el('th', {}, 'case'), el('th', {}, 'fit'), el('th', {}, 'ISO/TS 18571')), ...rows));
       else holder.append(el('table', { class: 'fields' }, ...fields));
     }

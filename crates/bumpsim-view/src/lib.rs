@@ -17,7 +17,7 @@
 //! - [`results`]: result JSONs (fit %, ISO/TS 18571 ratings);
 //! - [`api`]: the JSON answers; [`page`]: the page and its assets;
 //! - [`server`]: the token-guarded server on 127.0.0.1;
-//! - [`error`]: [`ViewError`].
+//! - [`error`]: the error type, [`ViewError`].
 //!
 //! ```
 //! use bumpsim_view::query::Query;

@@ -2,8 +2,9 @@
 //! (`identify --json`, `predict --json`) shows its model and each case's
 //! fit and ISO/TS 18571 rating in the words `identify` prints them
 //! (`fit 99.69 %`, `ISO/TS 18571 rating 0.998 (excellent; corridor …)`,
-//! through [`Rating`]'s own text); any other result shows its top-level
-//! numbers and texts as a table.
+//! through [`Rating`]'s own text); a verdict (`verdict --json`) its
+//! criteria per test (value, limit, margin, outcome); any other result its
+//! top-level numbers and texts as a table.
 
 use crate::error::ViewError;
 use bumpsim_core::units::format_number;
@@ -39,6 +40,44 @@ pub struct ResultFile {
     pub cases: Vec<CaseLine>,
     /// Top-level scalars (key, value as text).
     pub fields: Vec<(String, String)>,
+    /// A verdict's criteria: one row per test and criterion (test, name,
+    /// value, limit, margin, outcome), numbers as the JSON holds them (SI).
+    pub criteria: Vec<[String; 6]>,
+}
+
+fn text_of(value: &Value) -> String {
+    match value {
+        Value::String(s) => s.clone(),
+        Value::Null => String::new(),
+        other => other.to_string(),
+    }
+}
+
+/// A verdict's rows: each test's criteria.
+fn criteria_rows(value: &Value) -> Vec<[String; 6]> {
+    // `verdict --json` nests the verdict beside the bumper target
+    let verdict = value.get("verdict").unwrap_or(value);
+    let Some(tests) = verdict["tests"].as_array() else {
+        return Vec::new();
+    };
+    let mut rows = Vec::new();
+    for test in tests {
+        let name = test["test"]["name"]
+            .as_str()
+            .or(test["test"].as_str())
+            .unwrap_or("test");
+        for c in test["criteria"].as_array().into_iter().flatten() {
+            rows.push([
+                name.to_string(),
+                text_of(&c["name"]),
+                text_of(&c["value"]),
+                text_of(&c["limit"]),
+                text_of(&c["margin"]),
+                text_of(&c["outcome"]),
+            ]);
+        }
+    }
+    rows
 }
 
 fn numbers(value: &Value, key: &str) -> Vec<f64> {
@@ -117,9 +156,11 @@ impl ResultFile {
             .as_array()
             .map(|a| a.iter().filter_map(case_line).collect())
             .unwrap_or_default();
+        let criteria = criteria_rows(&value);
         let kind = match (value.get("objective"), cases.is_empty()) {
             (Some(_), false) => "identification",
             (None, false) => "prediction",
+            _ if !criteria.is_empty() => "verdict",
             _ => "result",
         };
         let fields = value
@@ -141,6 +182,7 @@ impl ResultFile {
             model: model_lines(&value),
             cases,
             fields,
+            criteria,
         })
     }
 }

@@ -17,6 +17,14 @@ use std::net::TcpStream;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 
+/// One Chromium test at a time: the 2 s to interactive is the page's
+/// time, not that of three browsers sharing the machine.
+static BROWSERS: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+fn one_browser() -> std::sync::MutexGuard<'static, ()> {
+    BROWSERS.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 /// A `bumpsim view --no-open` running; ended when dropped.
 struct Server {
     child: Child,
@@ -80,7 +88,7 @@ fn get(s: &Server, path: &str) -> (u16, String) {
     request(
         s.port,
         &format!(
-            "GET {path} HTTP/1.1\r\nHost: 127.0.0.1:{}\r\nConnection: close\r\n\r\n",
+            "GET {path} HTTP/1.0\r\nHost: 127.0.0.1:{}\r\nConnection: close\r\n\r\n",
             s.port
         ),
     )
@@ -117,12 +125,12 @@ fn the_server_answers_nothing_without_its_token_and_nothing_outside_its_files() 
     }
     // another Host (DNS rebinding) and another method: nothing either
     let other_host = format!(
-        "GET /{t}/api/inputs HTTP/1.1\r\nHost: evil.example:{}\r\nConnection: close\r\n\r\n",
+        "GET /{t}/api/inputs HTTP/1.0\r\nHost: evil.example:{}\r\nConnection: close\r\n\r\n",
         s.port
     );
     assert_eq!(request(s.port, &other_host).0, 404);
     let post = format!(
-        "POST /{t}/api/series?sel=0:0 HTTP/1.1\r\nHost: 127.0.0.1:{}\r\nContent-Length: 0\r\nConnection: close\r\n\r\n",
+        "POST /{t}/api/series?sel=0:0 HTTP/1.0\r\nHost: 127.0.0.1:{}\r\nContent-Length: 0\r\nConnection: close\r\n\r\n",
         s.port
     );
     assert_eq!(request(s.port, &post).0, 404);
@@ -153,7 +161,7 @@ fn the_server_answers_nothing_without_its_token_and_nothing_outside_its_files() 
     // the ISO-MME export refuses names that are paths
     for name in ["..%2Fescaped", "%2Ftmp%2Fx", "a%2Fb", ".."] {
         let post = format!(
-            "POST /{t}/api/export-iso?sel=0:1&name={name} HTTP/1.1\r\nHost: 127.0.0.1:{}\r\nContent-Length: 0\r\nConnection: close\r\n\r\n",
+            "POST /{t}/api/export-iso?sel=0:1&name={name} HTTP/1.0\r\nHost: 127.0.0.1:{}\r\nContent-Length: 0\r\nConnection: close\r\n\r\n",
             s.port
         );
         let (status, body) = request(s.port, &post);
@@ -261,6 +269,7 @@ fn screenshot(browser: &mut Browser, name: &str) {
 
 #[test]
 fn nhtsa_10146_in_chromium() {
+    let _one = one_browser();
     let (Some(ev5), Some(chromium)) = (nhtsa_ev5(), chromium()) else {
         return;
     };
@@ -351,6 +360,7 @@ fn nhtsa_10146_in_chromium() {
 
 #[test]
 fn the_standalone_page_opens_offline_and_shows_the_same_plots() {
+    let _one = one_browser();
     let Some(chromium) = chromium() else { return };
     let dir = scratch("view-offline");
     let page = dir.join("flat.html");
@@ -404,6 +414,7 @@ fn the_standalone_page_opens_offline_and_shows_the_same_plots() {
 
 #[test]
 fn an_identification_shows_the_fit_and_rating_identify_prints() {
+    let _one = one_browser();
     let Some(chromium) = chromium() else { return };
     let dir = scratch("view-identify");
     let json = dir.join("id.json");
@@ -452,4 +463,82 @@ fn an_identification_shows_the_fit_and_rating_identify_prints() {
         assert_eq!(rating, lines[line + 1].trim(), "{name}");
     }
     screenshot(&mut b, "identification.png");
+    // a verdict: its criteria per test, as the JSON holds them
+    let verdict = dir.join("verdict.json");
+    let car = root().join("examples/verdict/car.toml");
+    let run = bumpsim(&[
+        "verdict",
+        "--car",
+        car.to_str().unwrap(),
+        "--json",
+        verdict.to_str().unwrap(),
+    ]);
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    let page = dir.join("verdict.html");
+    let view = bumpsim(&[
+        "view",
+        verdict.to_str().unwrap(),
+        "--html",
+        page.to_str().unwrap(),
+    ]);
+    assert_eq!(view.status.code(), Some(0), "{}", text(&view.stderr));
+    b.open(&format!("file://{}", page.display()));
+    let rows = b.eval("[...document.querySelectorAll('#results table.criteria tr')].slice(1).map(r => r.children[0].textContent + ' ' + r.children[1].textContent + ' ' + r.children[5].textContent)");
+    let rows = rows.to_string();
+    assert!(
+        rows.contains("part581-pendulum-front clearance: radiator pass"),
+        "{rows}"
+    );
+}
+
+#[test]
+fn the_exports_and_the_command_line_reproduce_the_view() {
+    let dir = scratch("view-exports");
+    let s = serve(&[&flat()], &["--export-dir", dir.to_str().unwrap()]);
+    let t = &s.token;
+    let selection = "sel=0:1&sel=0:2&cfc=60&bias=1&unit=m/s%5E2";
+    let (status, command) = get(&s, &format!("/{t}/api/command?{selection}"));
+    assert_eq!(status, 200, "{command}");
+    let command: Value = serde_json::from_str(&command).unwrap();
+    let line = command["lines"][0].as_str().unwrap();
+    assert!(line.contains("-c '#2' -c '#3' --bias --cfc 60"), "{line}");
+    // the page's line, run: the same numbers as the page's CSV
+    let run = Command::new("bash")
+        .arg("-c")
+        .arg(line.replacen("bumpsim", env!("CARGO_BIN_EXE_bumpsim"), 1))
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(0), "{line}: {}", text(&run.stderr));
+    let (status, csv) = get(&s, &format!("/{t}/api/export.csv?{selection}"));
+    assert_eq!(status, 200, "{csv}");
+    std::fs::write(dir.join("page.csv"), &csv).unwrap();
+    let (page_header, page_rows) = read_csv(&dir.join("page.csv"));
+    let (header, rows) = read_csv(&dir.join("test1.csv"));
+    assert_eq!(page_header, header);
+    assert_eq!(page_rows.len(), rows.len());
+    for (p, r) in page_rows.iter().zip(&rows) {
+        for (a, b) in p.iter().zip(r) {
+            assert!((a - b).abs() <= 1e-9 * b.abs().max(1.0), "{a} vs {b}");
+        }
+    }
+    // ISO-MME through the staged writer, read back by signal info
+    let post = format!(
+        "POST /{t}/api/export-iso?{selection}&name=filtered HTTP/1.0\r\nHost: 127.0.0.1:{}\r\nContent-Length: 0\r\nConnection: close\r\n\r\n",
+        s.port
+    );
+    let (status, body) = request(s.port, &post);
+    assert_eq!(status, 200, "{body}");
+    let info = bumpsim(&["signal", "info", dir.join("filtered").to_str().unwrap()]);
+    assert_eq!(info.status.code(), Some(0), "{}", text(&info.stderr));
+    assert!(
+        text(&info.stdout).contains("2 channels listed"),
+        "{}",
+        text(&info.stdout)
+    );
+    let (status, again) = request(s.port, &post);
+    assert_eq!(
+        status, 400,
+        "an existing folder is not written over: {again}"
+    );
 }
