@@ -121,7 +121,26 @@
       if (r.criteria.length) holder.append(el('table', { class: 'criteria' }, el('tr', {}, ...['test', 'criterion', 'value (SI)', 'limit (SI)', 'margin', 'outcome'].map((h) => el('th', {}, h))), ...r.criteria.map((row) => el('tr', {}, ...row.map((v) => el('td', {}, v))))));
       if (rows.length) holder.append(el('table', { class: 'cases' }, el('tr', {}, el('th', {}, 'case'), el('th', {}, 'fit'), el('th', {}, 'ISO/TS 18571')), ...rows));
       else holder.append(el('table', { class: 'fields' }, ...fields));
+      for (const c of r.curves) holder.append(curvePlot(c));
     }
+  }
+  // an identification's case: measured and model displacement, the fitted window marked
+  function curvePlot(c) {
+    const holder = el('div', { class: 'plot case', 'data-case': c.name });
+    const marks = (u) => {
+      const ctx = u.ctx;
+      ctx.save(); ctx.fillStyle = 'rgba(69,123,157,0.10)';
+      const x0 = u.valToPos(c.window[0], 'x', true); const x1 = u.valToPos(c.window[1], 'x', true);
+      ctx.fillRect(x0, u.bbox.top, x1 - x0, u.bbox.height); ctx.restore();
+    };
+    const opts = {
+      title: `${c.name}: ${c.fit} · ${c.rating} · shaded: the fitted window`, width: Math.max(300, document.body.clientWidth - 40), height: 240,
+      series: [{ label: 'time [ms]', value: (u, v) => (v == null ? '' : fmtTime(v)) }, { label: 'test [mm]', stroke: '#1f77b4', width: 1.25 }, { label: 'model [mm]', stroke: '#d62728', width: 1.25, dash: [6, 3] }],
+      scales: { x: { time: false } }, axes: [{ label: 'time [ms]', values: (u, splits) => splits.map(fmtTime) }, { label: 'displacement [mm]', size: 70 }],
+      hooks: { drawClear: [marks] },
+    };
+    new uPlot(opts, [c.time, c.measured, c.model], holder);
+    return holder;
   }
 
   // ---- plots: one per dimension and unit ----

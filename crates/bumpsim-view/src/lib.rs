@@ -15,6 +15,7 @@
 //! - [`plot`]: decimation, readouts, pulse metrics;
 //! - [`decode`]: ISO/TS 13499 and NHTSA channel codes in words;
 //! - [`results`]: result JSONs (fit %, ISO/TS 18571 ratings);
+//! - [`curves`]: an identification's model against its study's tests;
 //! - [`api`]: the JSON answers; [`page`]: the page and its assets;
 //! - [`server`]: the token-guarded server on 127.0.0.1;
 //! - [`error`]: the error type, [`ViewError`].
@@ -27,6 +28,7 @@
 //! ```
 
 pub mod api;
+pub mod curves;
 pub mod decode;
 pub mod error;
 pub mod page;

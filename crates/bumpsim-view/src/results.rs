@@ -43,6 +43,8 @@ pub struct ResultFile {
     /// A verdict's criteria: one row per test and criterion (test, name,
     /// value, limit, margin, outcome), numbers as the JSON holds them (SI).
     pub criteria: Vec<[String; 6]>,
+    /// Measured against model per case, when the study was given too.
+    pub curves: Vec<crate::curves::CaseCurves>,
 }
 
 fn text_of(value: &Value) -> String {
@@ -183,6 +185,7 @@ impl ResultFile {
             cases,
             fields,
             criteria,
+            curves: Vec::new(),
         })
     }
 }

@@ -91,6 +91,7 @@ impl Session {
     /// Opens every path: a `.json` as a bumpsim result, anything else as a test.
     pub fn open(paths: &[PathBuf]) -> Result<Session, ViewError> {
         let mut session = Session::default();
+        let mut studies = Vec::new();
         for path in paths {
             let canonical = path.canonicalize().map_err(|e| ViewError::Input {
                 path: path.clone(),
@@ -102,8 +103,13 @@ impl Session {
             let json = canonical
                 .extension()
                 .is_some_and(|e| e.eq_ignore_ascii_case("json"));
+            let toml = canonical
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("toml"));
             if json {
                 session.results.push(ResultFile::read(path)?);
+            } else if toml {
+                studies.push(path.clone());
             } else {
                 let data = TestData::open(path)?;
                 session.tests.push(OpenTest {
@@ -112,7 +118,40 @@ impl Session {
                 });
             }
         }
+        session.model_against_test(&studies)?;
         Ok(session)
+    }
+
+    /// Simulates each identification on the study given with it (one study).
+    fn model_against_test(&mut self, studies: &[PathBuf]) -> Result<(), ViewError> {
+        let study = match studies {
+            [] => return Ok(()),
+            [one] => one,
+            [_, second, ..] => {
+                return Err(ViewError::Input {
+                    path: second.clone(),
+                    reason:
+                        "one study at a time: its identification results are simulated on its cases"
+                            .into(),
+                });
+            }
+        };
+        let identifications = self
+            .results
+            .iter_mut()
+            .filter(|r| r.kind == "identification");
+        let mut any = false;
+        for result in identifications {
+            result.curves = crate::curves::model_against_test(study, &result.path)?;
+            any = true;
+        }
+        if !any {
+            return Err(ViewError::Input {
+                path: study.clone(),
+                reason: "a study needs an identification result beside it (bumpsim view study.toml result.json)".into(),
+            });
+        }
+        Ok(())
     }
 
     /// The processed signals of a request's selection (cached).

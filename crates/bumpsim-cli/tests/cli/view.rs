@@ -430,6 +430,7 @@ fn an_identification_shows_the_fit_and_rating_identify_prints() {
     let page = dir.join("id.html");
     let view = bumpsim(&[
         "view",
+        study.to_str().unwrap(),
         json.to_str().unwrap(),
         "--html",
         page.to_str().unwrap(),
@@ -462,6 +463,23 @@ fn an_identification_shows_the_fit_and_rating_identify_prints() {
         assert_eq!(fit.trim_start_matches("fit ").trim(), fit_printed, "{name}");
         assert_eq!(rating, lines[line + 1].trim(), "{name}");
     }
+    // the model simulated on the study's cases: the same fit and rating again
+    let titles =
+        b.eval("[...document.querySelectorAll('#results .case .u-title')].map(t => t.textContent)");
+    let titles = titles.as_array().unwrap();
+    assert_eq!(titles.len(), 3, "{titles:?}");
+    for (case, title) in cases.iter().zip(titles) {
+        let title = title.as_str().unwrap();
+        assert!(
+            title.contains(case[1].as_str().unwrap()),
+            "{title} vs {case:?}"
+        );
+        assert!(
+            title.contains(case[2].as_str().unwrap()),
+            "{title} vs {case:?}"
+        );
+    }
+    b.eval("window.scrollTo(0, document.body.scrollHeight)");
     screenshot(&mut b, "identification.png");
     // a verdict: its criteria per test, as the JSON holds them
     let verdict = dir.join("verdict.json");
