@@ -148,6 +148,12 @@ impl ResultFile {
                 "{size} bytes: larger than a bumpsim result ({MAX_RESULT_BYTES} bytes at most)"
             )));
         }
+        // regular files only: a pipe would block the viewer, not end
+        if let Some(what) =
+            bumpsim_core::files::not_a_file(path).map_err(|e| input(e.to_string()))?
+        {
+            return Err(input(format!("{what}, not a result file")));
+        }
         let text = std::fs::read_to_string(path).map_err(|e| input(e.to_string()))?;
         let value: Value =
             serde_json::from_str(&text).map_err(|e| input(format!("not a JSON result: {e}")))?;

@@ -183,6 +183,21 @@ fn a_test_folder_with_a_link_out_of_it_is_refused() {
         "--no-open",
     ]);
     assert_user_error(&run, "absent.mme");
+    // hostile result files: a pipe (not waited on), not JSON, not an object
+    let fifo = dir.join("pipe.json");
+    let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
+    assert!(made.success());
+    let run = bumpsim(&["view", fifo.to_str().unwrap(), "--no-open"]);
+    assert_eq!(run.status.code(), Some(2), "{}", text(&run.stderr));
+    for (name, content, needle) in [
+        ("broken.json", "{\"dof\": 3,", "not a JSON result"),
+        ("list.json", "[1, 2]", "expected a JSON object"),
+    ] {
+        let file = dir.join(name);
+        std::fs::write(&file, content).unwrap();
+        let run = bumpsim(&["view", file.to_str().unwrap(), "--no-open"]);
+        assert_user_error(&run, needle);
+    }
 }
 
 #[test]
