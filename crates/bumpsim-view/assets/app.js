@@ -122,7 +122,54 @@
       if (rows.length) holder.append(el('table', { class: 'cases' }, el('tr', {}, el('th', {}, 'case'), el('th', {}, 'fit'), el('th', {}, 'ISO/TS 18571')), ...rows));
       else holder.append(el('table', { class: 'fields' }, ...fields));
       for (const c of r.curves) holder.append(curvePlot(c));
+      if (r.planar) holder.append(topView(r.planar));
     }
+  }
+  // a planar result: the top view at the time of the slider (or the cursor), its curves beside
+  function topView(p) {
+    const n = p.time.length;
+    const canvas = el('canvas', { width: 520, height: 360, class: 'topview' });
+    const slider = el('input', { type: 'range', min: 0, max: n - 1, value: 0, class: 'topview-time' });
+    const label = el('span', {});
+    const L = 2.6 * p.width;
+    const reach = Math.max(...p.x.map(Math.abs));
+    const side = Math.max(...p.y.map(Math.abs));
+    const scale = Math.min(canvas.width * 0.7 / (L + reach), canvas.height * 0.8 / (p.width + 2 * side));
+    const draw = (k) => {
+      const ctx = canvas.getContext('2d');
+      ctx.clearRect(0, 0, canvas.width, canvas.height);
+      ctx.save();
+      // x forward to the right (the striker's line at the first contact), y to the left = up
+      ctx.translate(canvas.width * 0.75, canvas.height / 2);
+      ctx.strokeStyle = '#888'; ctx.beginPath(); ctx.moveTo(0, -canvas.height / 2); ctx.lineTo(0, canvas.height / 2); ctx.stroke();
+      ctx.translate(p.x[k] * scale, -p.y[k] * scale); ctx.rotate(-p.yaw[k] * Math.PI / 180);
+      ctx.fillStyle = 'rgba(29,53,87,0.15)'; ctx.strokeStyle = '#1d3557';
+      ctx.fillRect(-L * scale, -p.width / 2 * scale, L * scale, p.width * scale); ctx.strokeRect(-L * scale, -p.width / 2 * scale, L * scale, p.width * scale);
+      ctx.strokeStyle = '#d62728'; ctx.lineWidth = 3; ctx.beginPath(); ctx.moveTo(0, -p.width / 2 * scale); ctx.lineTo(0, p.width / 2 * scale); ctx.stroke();
+      ctx.restore();
+      label.textContent = `t = ${fmtTime(p.time[k])} ms · x = ${p.x[k].toFixed(1)} mm · y = ${p.y[k].toFixed(1)} mm · yaw = ${p.yaw[k].toFixed(2)}° · force = ${p.force[k].toFixed(2)} kN (outline schematic: the result holds the bumper's width, not the body's length)`;
+      slider.value = k;
+    };
+    slider.addEventListener('input', () => draw(+slider.value));
+    let timer = null;
+    const play = el('button', { type: 'button' }, 'play');
+    play.addEventListener('click', () => {
+      if (timer) { clearInterval(timer); timer = null; return; }
+      let k = 0; const stride = Math.max(1, Math.round(n / 200));
+      timer = setInterval(() => { draw(k); k += stride; if (k >= n) { clearInterval(timer); timer = null; draw(n - 1); } }, 30);
+    });
+    const plots = el('div', { class: 'topview-curves' });
+    const opts = (label, data, color) => ({
+      title: label, width: 560, height: 170, scales: { x: { time: false } },
+      series: [{ label: 'time [ms]', value: (u, v) => (v == null ? '' : fmtTime(v)) }, { label, stroke: color, width: 1.25 }],
+      axes: [{ values: (u, splits) => splits.map(fmtTime) }, { size: 60 }],
+      cursor: { sync: { key: 'planar' } },
+      hooks: { setCursor: [(u) => { if (u.cursor.idx != null) draw(u.cursor.idx); }] },
+    });
+    new uPlot(opts('striker force [kN]', p.force, '#d62728'), [p.time, p.force], plots);
+    new uPlot(opts('yaw [deg]', p.yaw, '#1f77b4'), [p.time, p.yaw], plots);
+    draw(0);
+    return el('div', { class: 'planar' }, el('div', {}, canvas, el('div', {}, play, slider), label), plots);
   }
   // an identification's case: measured and model displacement, the fitted window marked
   function curvePlot(c) {
@@ -373,6 +420,7 @@
       state.selected = first.slice(0, 1);
       renderInputs();
       renderResults();
+      if (!state.inputs.tests.length) document.querySelector('main').style.display = 'none';
       await refresh(true);
     } catch (e) { status(e.message, true); }
     hook.ready = true;

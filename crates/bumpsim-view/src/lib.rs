@@ -16,6 +16,7 @@
 //! - [`decode`]: ISO/TS 13499 and NHTSA channel codes in words;
 //! - [`results`]: result JSONs (fit %, ISO/TS 18571 ratings);
 //! - [`curves`]: an identification's model against its study's tests;
+//! - [`planar_view`]: a planar result's top view over time;
 //! - [`api`]: the JSON answers; [`page`]: the page and its assets;
 //! - [`server`]: the token-guarded server on 127.0.0.1;
 //! - [`error`]: the error type, [`ViewError`].
@@ -32,6 +33,7 @@ pub mod curves;
 pub mod decode;
 pub mod error;
 pub mod page;
+pub mod planar_view;
 pub mod plot;
 pub mod query;
 pub mod results;

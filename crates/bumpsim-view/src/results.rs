@@ -45,6 +45,8 @@ pub struct ResultFile {
     pub criteria: Vec<[String; 6]>,
     /// Measured against model per case, when the study was given too.
     pub curves: Vec<crate::curves::CaseCurves>,
+    /// A planar result's top view over time.
+    pub planar: Option<crate::planar_view::PlanarView>,
 }
 
 fn text_of(value: &Value) -> String {
@@ -165,10 +167,12 @@ impl ResultFile {
             .map(|a| a.iter().filter_map(case_line).collect())
             .unwrap_or_default();
         let criteria = criteria_rows(&value);
+        let planar = crate::planar_view::planar_view(&value);
         let kind = match (value.get("objective"), cases.is_empty()) {
             (Some(_), false) => "identification",
             (None, false) => "prediction",
             _ if !criteria.is_empty() => "verdict",
+            _ if planar.is_some() => "planar impact",
             _ => "result",
         };
         let fields = value
@@ -192,6 +196,7 @@ impl ResultFile {
             fields,
             criteria,
             curves: Vec::new(),
+            planar,
         })
     }
 }

@@ -522,6 +522,38 @@ fn an_identification_shows_the_fit_and_rating_identify_prints() {
         rows.contains("part581-pendulum-front clearance: radiator pass"),
         "{rows}"
     );
+    // a planar impact: the top view moves with its slider
+    let planar = dir.join("planar.json");
+    let car = root().join("examples/planar/saloon.toml");
+    let run = bumpsim(&[
+        "planar",
+        "--car",
+        car.to_str().unwrap(),
+        "--case",
+        "rcar-structural-front",
+        "--json",
+        planar.to_str().unwrap(),
+    ]);
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    let page = dir.join("planar.html");
+    let view = bumpsim(&[
+        "view",
+        planar.to_str().unwrap(),
+        "--html",
+        page.to_str().unwrap(),
+    ]);
+    assert_eq!(view.status.code(), Some(0), "{}", text(&view.stderr));
+    b.open(&format!("file://{}", page.display()));
+    let at_start = b.eval("document.querySelector('.planar span').textContent");
+    let later = b.eval("(() => { const s = document.querySelector('.topview-time'); s.value = Math.round(s.max / 2); s.dispatchEvent(new Event('input')); return document.querySelector('.planar span').textContent; })()");
+    assert!(
+        at_start.as_str().unwrap().starts_with("t = 0 ms"),
+        "{at_start}"
+    );
+    assert_ne!(at_start, later, "the slider moves the car");
+    let plots = b.eval("document.querySelectorAll('.topview-curves .uplot').length");
+    assert_eq!(plots, 2);
+    screenshot(&mut b, "planar.png");
 }
 
 #[test]
