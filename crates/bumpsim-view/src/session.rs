@@ -278,14 +278,20 @@ fn resultant(raws: &[Channel], codes: &[&str]) -> Result<Channel, ViewError> {
         ));
     }
     let (times, columns) = align(raws)?;
+    if times.is_empty() {
+        return Err(ViewError::parameter(
+            "combine",
+            "the channels share no samples in time",
+        ));
+    }
     let values: Vec<f64> = (0..times.len())
         .map(|k| columns.iter().map(|c| c[k] * c[k]).sum::<f64>().sqrt())
         .collect();
-    let step = if times.len() > 1 {
-        times[1] - times[0]
-    } else {
-        first.series.step()
-    };
+    // align's common base: the finest interval of the channels
+    let step = raws
+        .iter()
+        .map(|c| c.series.step())
+        .fold(f64::INFINITY, f64::min);
     let series = UniformSeries::new(times[0], step, values)
         .map_err(|e| ViewError::parameter("combine", e.to_string()))?;
     let code = format!("RESULTANT({})", codes.join(","));

@@ -606,4 +606,27 @@ fn the_exports_and_the_command_line_reproduce_the_view() {
         status, 400,
         "an existing folder is not written over: {again}"
     );
+    // sum and resultant of the two side members, sample by sample
+    let window = "sel=0:1&sel=0:2&t0=0&t1=0.01&px=1000&unit=m/s%5E2";
+    let series = |extra: &str| -> Vec<Vec<f64>> {
+        let (status, body) = get(&s, &format!("/{t}/api/series?{window}{extra}"));
+        assert_eq!(status, 200, "{body}");
+        let v: Value = serde_json::from_str(&body).unwrap();
+        let signals = v["signals"].as_array().unwrap();
+        signals
+            .iter()
+            .map(|s| floats(&s["drawn"]["value"]))
+            .collect()
+    };
+    let (both, sum, resultant) = (
+        series(""),
+        series("&combine=sum"),
+        series("&combine=resultant"),
+    );
+    assert_eq!((both.len(), sum.len(), resultant.len()), (2, 1, 1));
+    for k in 0..both[0].len() {
+        let (a, b) = (both[0][k], both[1][k]);
+        assert!((sum[0][k] - (a + b)).abs() <= 1e-12 * (a.abs() + b.abs()).max(1.0));
+        assert!((resultant[0][k] - a.hypot(b)).abs() <= 1e-12 * a.hypot(b).max(1.0));
+    }
 }
