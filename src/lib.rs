@@ -20,6 +20,7 @@
 //! | [`verdict`] | bumpsim-verdict | low-speed protocols (49 CFR 581, CMVSS 215, UN R42, RCAR, IIHS), damageability verdicts with margins, pulse metrics, bumper targets |
 //! | `report` | bumpsim-report | SVG plots and self-contained HTML reports (feature `report`) |
 //! | `campaign` | bumpsim-campaign | campaigns of FE runs: templates, local and Slurm executors, collection (feature `campaign`) |
+//! | `view` | bumpsim-view | tests and results in the browser: a local read-only server or one self-contained page (feature `view`) |
 //!
 //! and [`prelude`] brings the main types of all of them into scope. Units
 //! are SI throughout (kg, m, s, N). `examples/identify.rs` runs the main job
@@ -27,7 +28,8 @@
 //!
 //! **Features** (all on by default except `png`): `report` (plots and HTML
 //! reports: plotters and its fonts), `campaign` (FE campaigns; builds the
-//! report crate too), `zip` (ISO-MME tests packed as `.zip`) and `png`
+//! report crate too), `view` (the browser viewer: a small HTTP server),
+//! `zip` (ISO-MME tests packed as `.zip`) and `png`
 //! (`LinePlot::png`: plotters' bitmap backend and PNG encoder).
 //! `default-features = false` keeps the models, solvers and decks only.
 //!
@@ -71,6 +73,8 @@ pub use bumpsim_planar as planar;
 pub use bumpsim_report as report;
 pub use bumpsim_signal as signal;
 pub use bumpsim_verdict as verdict;
+#[cfg(feature = "view")]
+pub use bumpsim_view as view;
 
 /// The main types of every bumpsim crate: each crate's own prelude, globbed
 /// (polars' layout). Names two crates would share are aliased in their

@@ -29,6 +29,7 @@ const FLOORS: &[(&str, usize)] = &[
     ("bumpsim-verdict", 6),
     ("bumpsim-report", 7),
     ("bumpsim-campaign", 8),
+    ("bumpsim-view", 8),
     ("bumpsim-cli", 9),
     ("bumpsim-py", 9),
     ("bumpsim", 9),

@@ -45,6 +45,7 @@ mod planar;
 mod signal;
 mod simulate;
 mod verdict;
+mod view;
 
 pub(crate) use output::{Folder, write};
 
@@ -98,6 +99,8 @@ enum Command {
     /// Campaigns: a DOE whose points are FE runs, run locally or on Slurm, collected and regressed.
     #[command(subcommand)]
     Campaign(campaign::Command),
+    /// Look at tests and results in the browser: a local read-only server, or one page with --html.
+    View(view::Args),
 }
 
 /// Parses a count of at least 1 and at most `MAX` (a documented resource
@@ -164,7 +167,8 @@ fn main() -> ExitCode {
     }
     // `fe run` writes its deck through the guard and runs CalculiX on it
     // in the same command: its outputs are written one by one as before
-    if !matches!(cli.command, Command::Fe(_)) {
+    // `view` serves until it is ended; its exports are written one by one
+    if !matches!(cli.command, Command::Fe(_) | Command::View(_)) {
         bumpsim_io::output::begin();
     }
     let result = run(cli.command).and_then(|()| output::commit());
@@ -203,6 +207,7 @@ fn run(command: Command) -> anyhow::Result<()> {
         Command::Doe(command) => doe::run(&command),
         Command::Predict(args) => identify::run_predict(&args),
         Command::Campaign(command) => campaign::run(&command),
+        Command::View(args) => view::run(&args),
     }
 }
 

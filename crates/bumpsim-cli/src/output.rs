@@ -40,7 +40,7 @@ pub(crate) fn abandon() -> usize {
 }
 
 /// Argument ids that name outputs; the rest that exist on disk are inputs.
-const OUTPUT_IDS: [&str; 9] = [
+const OUTPUT_IDS: [&str; 11] = [
     "output",
     "car_out",
     "work",
@@ -50,6 +50,8 @@ const OUTPUT_IDS: [&str; 9] = [
     "report",
     "plot",
     "iso_mme",
+    "html",
+    "export_dir",
 ];
 
 /// What the output of argument `id` is: folders (`output` only for
@@ -59,7 +61,7 @@ fn output_shape(command: &str, id: &str) -> Shape {
         "report" | "plot" => Shape::Folder(&["html", "svg", "png"]),
         "iso_mme" => Shape::Folder(&[]),
         // fe impact checks its own solver files' names (bumpsim_fe::run::in_work)
-        "work" => Shape::Checked,
+        "work" | "export_dir" => Shape::Checked,
         "output" if matches!(command, "synth" | "init") => Shape::Folder(&[]),
         _ => Shape::File,
     }

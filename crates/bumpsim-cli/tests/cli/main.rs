@@ -29,3 +29,4 @@ mod signal;
 mod simulate;
 mod util;
 mod verdict;
+mod view;

@@ -73,8 +73,11 @@ pub fn simulate(car: &Path, force: &Path, extra: &[&str]) -> Output {
     bumpsim(&args)
 }
 
+/// NHTSA test 10146 from `../shared` beside the repository, or from
+/// `$BUMPSIM_SHARED` (a work tree elsewhere).
 pub fn nhtsa_ev5() -> Option<PathBuf> {
-    let path = root().join("../shared/data/nhtsa-10146/v10146.EV5");
+    let shared = std::env::var_os("BUMPSIM_SHARED").map_or(root().join("../shared"), PathBuf::from);
+    let path = shared.join("data/nhtsa-10146/v10146.EV5");
     if !path.exists() {
         eprintln!(
             "SKIPPED: {} is absent (NHTSA test 10146 is read from ../shared)",
