@@ -10,8 +10,10 @@
 //!   `A_x − ψ̇² ξ` (the yaw accelerations cancel), simulated from the CG's
 //!   velocity history, measured as the second difference of the sills'
 //!   integrated readings;
-//! - **yaw rate**: simulated, against the first difference of the yaw the
-//!   sills' readings give, `ψ = asin((x_R − x_L)/(η_L − η_R))`.
+//! - **yaw rate**: simulated, against the case's yaw-rate sensor where it
+//!   has one (the first difference of its integral, the yaw), else the
+//!   first difference of the yaw the sills' readings give,
+//!   `ψ = asin((x_R − x_L)/(η_L − η_R))`.
 //!
 //! Timing: the simulation starts at first touch, the case's record a little
 //! before its force onset ([`crate::cases::TimeZero`]); both force
@@ -159,11 +161,14 @@ fn measured(case: &PlanarCase, spacing: f64) -> [Vec<f64>; 3] {
         .collect();
     let (left, right) = (&case.measured[0], &case.measured[1]);
     let mean: Vec<f64> = left.iter().zip(right).map(|(l, r)| 0.5 * (l + r)).collect();
-    let yaw: Vec<f64> = left
-        .iter()
-        .zip(right)
-        .map(|(l, r)| ((r - l) / spacing).clamp(-1.0, 1.0).asin())
-        .collect();
+    let yaw: Vec<f64> = match case.yaw_rate() {
+        Some(k) => case.measured[k].clone(),
+        None => left
+            .iter()
+            .zip(right)
+            .map(|(l, r)| ((r - l) / spacing).clamp(-1.0, 1.0).asin())
+            .collect(),
+    };
     let rate = difference(&yaw, step);
     // the sills' mean reading is A_x − ψ̇² ξ integrated twice
     [force, difference(&difference(&mean, step), step), rate]

@@ -1,6 +1,8 @@
 //! A planar case replayed with a car and compared with its measurement:
-//! x (the mean of the two sensors) and the yaw `ψ = asin((x_R − x_L)/(η_L −
-//! η_R))`, each scored by the fit % of the estimation layer
+//! x (the mean of the two sensors) and the yaw: the model's ψ against the
+//! yaw-rate sensor's integral where the case has one, else
+//! `ψ = asin((x_R − x_L)/(η_L − η_R))` of the model and the measured
+//! sills, each scored by the fit % of the estimation layer
 //! ([`bumpsim_estimate::fit`]: `100 (1 − √(SSE/SST))`) and by the ISO/TS
 //! 18571 rating ([`bumpsim_signal::rating`]) over the case's window.
 
@@ -73,7 +75,10 @@ pub fn predict(car: &PlanarCar, case: &PlanarCase) -> Result<Prediction, PlanarE
             .collect::<Vec<_>>()
     };
     let x = [mean(&replay.sensor_reading), mean(&case.measured)];
-    let yaw = [yaw(&replay.sensor_reading), yaw(&case.measured)];
+    let yaw = match case.yaw_rate() {
+        Some(k) => [replay.yaw.clone(), case.measured[k].clone()],
+        None => [yaw(&replay.sensor_reading), yaw(&case.measured)],
+    };
     let (a, b) = case.window;
     let step = case.drive.step;
     let fit = CaseFit {
