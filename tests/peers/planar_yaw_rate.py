@@ -46,7 +46,7 @@ CAR = {
     "wheelbase": 2.65, "cg_behind_front_axle": 1.15, "track": 1.55,
     "beam": {"mass": 9.0, "width": 1.6, "points": 31, "contact": 3.9e5, "hc_damping": 0.25},
     "crash_boxes": {"spacing": 1.0, "length": 0.25, "elastic": [2.6e6, 2.1e6],
-                    "yield": [42e3, 35e3], "hardening": [1.6e5, 1.2e5],
+                    "yield": [75e3, 62e3], "hardening": [1.6e5, 1.2e5],
                     "damping": [2.4e3, 2.0e3], "shear": 1.2e6},
     "tyres": {"cornering_stiffness": 70e3, "mu": 0.8, "rolling_resistance": 0.015},
     "sills": {"xi": 0.5, "eta": 0.72},
@@ -270,7 +270,9 @@ def cells(striker, forces, points):
     if forces is None:
         return [0.0] * 4
     tangent = np.array([-striker.normal[1], striker.normal[0]])
-    coord = points @ tangent
+    # a point touching the wall is on one of its cells: the wall ends where
+    # its cells do (the car's travel moves a point's tangent coordinate)
+    coord = np.clip(points @ tangent, edges[0][0], edges[-1][1] - 1e-9)
     mag = forces @ striker.normal
     return [float(np.sum(mag[(coord >= lo) & (coord < hi)])) for lo, hi in edges]
 

@@ -9,15 +9,15 @@
 //!   ([`Sensor::integrations`]): body-x accelerations integrated twice, from
 //!   the car's speed at t = 0 and zero displacement, to the world-x
 //!   displacements the replay predicts; lateral accelerations twice from
-//!   rest; the yaw rate once, from zero yaw; displacements (film, string
-//!   pots) as measured, less their value at t = 0 and without the
-//!   pre-trigger bias (a film target moves before contact).
+//!   rest; the yaw rate as measured; displacements (film, string pots) as
+//!   measured, less their value at t = 0 and without the pre-trigger bias
+//!   (a film target moves before contact).
 //! - Each sensor's weight ([`weights`]): its noise in the compared domain,
 //!   from the white noise level σ of its pre-trigger (the residual about a
 //!   straight line, unfiltered) or as the study gives it, over the fit
-//!   window's duration T: σ as measured, `σ √(h T/2)` integrated once,
-//!   `σ √h T^{3/2}/√12` twice (the rms over the window of integrated white
-//!   noise sampled every h). The x accelerometers keep weight 1 (their
+//!   window's duration T: σ as measured, `σ √h T^{3/2}/√12` integrated
+//!   twice (the rms over the window of integrated white noise sampled
+//!   every h). The x accelerometers keep weight 1 (their
 //!   residuals in m, as before); every other sensor is weighted by the x
 //!   accelerometers' pooled noise over its own, so the objective stays in
 //!   m² and a study of x accelerometers alone is the same least-squares
@@ -263,14 +263,14 @@ impl TestChannels {
                 _ => Step::Integrate(0.0),
             });
             let extra: Vec<Step> = shift.iter().cloned().chain(integrals).collect();
-            channels.push(match place.integrations() {
+            channels.push(match place.displacement() {
                 // a displacement keeps its pre-trigger: a film target moves before contact
-                0 => run(
+                true => run(
                     &[self.cfc.map(Step::Cfc).into_iter().collect(), extra].concat(),
                     s,
                 )
                 .map_err(|e| error(e.to_string()))?,
-                _ => condition(s, &extra)?,
+                false => condition(s, &extra)?,
             });
         }
         let (time, columns) = align(&channels).map_err(|e| error(e.to_string()))?;
@@ -297,7 +297,7 @@ impl TestChannels {
         let n = self.forces.len();
         let mut columns = columns;
         for (column, place) in columns[n..].iter_mut().zip(&self.positions) {
-            if place.integrations() == 0 {
+            if place.displacement() {
                 let at_zero = column[first];
                 column.iter_mut().for_each(|v| *v -= at_zero);
             }

@@ -112,13 +112,19 @@ pub enum Sensor {
 impl Sensor {
     /// How many times its measurement is integrated into the compared
     /// reading: 2 for accelerometers (to displacement, as the thesis
-    /// does), 1 for the yaw rate (to yaw), 0 for displacements.
+    /// does), 0 for the yaw rate (compared as measured: its noise is white
+    /// there) and for displacements.
     pub fn integrations(&self) -> usize {
         match self {
             Sensor::Body(_) | Sensor::Chain(_) | Sensor::Lateral(_) => 2,
-            Sensor::YawRate => 1,
-            Sensor::Film(_) | Sensor::Crush(_) => 0,
+            Sensor::YawRate | Sensor::Film(_) | Sensor::Crush(_) => 0,
         }
+    }
+
+    /// Whether it measures a displacement (film, string pot): compared
+    /// less its value at time zero, and its pre-trigger is not a bias.
+    pub fn displacement(&self) -> bool {
+        matches!(self, Sensor::Film(_) | Sensor::Crush(_))
     }
 
     /// Whether it is an accelerometer along the body x axis (the kind
@@ -162,8 +168,8 @@ pub struct Driven {
     /// ([`Sensor::integrations`]): an x accelerometer's body-x acceleration
     /// `A_x − ψ̈ η − ψ̇² ξ` integrated twice from the start speed, m (equal
     /// to `sensor_x` while the yaw stays small); a lateral one's
-    /// `A_y + ψ̈ ξ − ψ̇² η` twice from rest, m; the yaw rate once, the yaw
-    /// ψ, rad; a displacement as it is, m.
+    /// `A_y + ψ̈ ξ − ψ̇² η` twice from rest, m; the yaw rate ψ̇, rad/s; a
+    /// displacement as it is, m.
     pub sensor_reading: Vec<Vec<f64>>,
     /// Compressive force at the left side-member tip, N.
     pub side_force_left: Vec<f64>,
@@ -540,7 +546,7 @@ impl<'a> Replay<'a> {
     fn reading(&self, k: usize, q: &[f64]) -> f64 {
         let (sn, cs) = self.axes;
         match self.input.sensors[k] {
-            Sensor::YawRate => q[2],
+            Sensor::YawRate => self.readings[k][0],
             Sensor::Film([xi, eta]) => q[0] + xi * cs - eta * sn - xi,
             Sensor::Crush(i) => q[3 + i],
             _ => self.readings[k][0],
@@ -561,6 +567,11 @@ impl<'a> Replay<'a> {
             let ([xi, eta], relative) = self.point(sensor, q, a);
             self.readings[k][2] = match sensor {
                 Sensor::Lateral(_) => across + a[2] * xi - rate * rate * eta,
+                // the rate itself, not integrated: no velocity moves it on
+                Sensor::YawRate => {
+                    self.readings[k][0] = rate;
+                    0.0
+                }
                 _ => along - a[2] * eta - rate * rate * xi + relative,
             };
         }

@@ -11,7 +11,7 @@
 //!   velocity history, measured as the second difference of the sills'
 //!   integrated readings;
 //! - **yaw rate**: simulated, against the case's yaw-rate sensor where it
-//!   has one (the first difference of its integral, the yaw), else the
+//!   has one, else the
 //!   first difference of the yaw the sills' readings give,
 //!   `ψ = asin((x_R − x_L)/(η_L − η_R))`.
 //!
@@ -161,15 +161,15 @@ fn measured(case: &PlanarCase, spacing: f64) -> [Vec<f64>; 3] {
         .collect();
     let (left, right) = (&case.measured[0], &case.measured[1]);
     let mean: Vec<f64> = left.iter().zip(right).map(|(l, r)| 0.5 * (l + r)).collect();
-    let yaw: Vec<f64> = match case.yaw_rate() {
+    let yaw: Vec<f64> = left
+        .iter()
+        .zip(right)
+        .map(|(l, r)| ((r - l) / spacing).clamp(-1.0, 1.0).asin())
+        .collect();
+    let rate = match case.yaw_rate() {
         Some(k) => case.measured[k].clone(),
-        None => left
-            .iter()
-            .zip(right)
-            .map(|(l, r)| ((r - l) / spacing).clamp(-1.0, 1.0).asin())
-            .collect(),
+        None => difference(&yaw, step),
     };
-    let rate = difference(&yaw, step);
     // the sills' mean reading is A_x − ψ̇² ξ integrated twice
     [force, difference(&difference(&mean, step), step), rate]
 }

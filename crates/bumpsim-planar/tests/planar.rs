@@ -510,6 +510,8 @@ mod identification;
 mod independent;
 #[path = "planar/regression.rs"]
 mod regression;
+#[path = "planar/sensors.rs"]
+mod sensors;
 #[path = "planar/yaw_rate.rs"]
 mod yaw_rate;
 

@@ -19,7 +19,7 @@
 //! case's window and sensors, each sensor compared in its domain
 //! ([`crate::drive::Sensor::integrations`]): x accelerometers as world-x
 //! displacements (integrated twice, `w = 1`, m), a yaw-rate sensor as the
-//! yaw (integrated once), a displacement channel as measured, each weighted
+//! yaw rate as measured, a displacement channel as measured, each weighted
 //! by the x accelerometers' noise over its own ([`crate::cases`]), so F
 //! stays in m². The two sills carry equal weight, so their mean (x) and
 //! half difference (yaw times the sensor half-spacing) do too; a yaw-rate
