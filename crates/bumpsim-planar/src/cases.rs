@@ -324,7 +324,7 @@ impl TestChannels {
             .map_err(|e| error(format!("force: {e}")))?;
         let step = step * every as f64;
         let duration = step * (window.last - window.first) as f64;
-        let weights = weights(self, duration).map_err(error)?;
+        let weights = weights(self, duration)?;
         let case = PlanarCase {
             name: self.name.clone(),
             drive: Drive {
@@ -416,7 +416,7 @@ pub fn domain_noise(sigma: f64, step: f64, duration: f64, integrations: usize) -
 /// Each sensor's residual weight (see the module): 1 for the x
 /// accelerometers, their pooled noise over its own for every other; an
 /// error names a sensor whose noise is neither given nor estimable.
-fn weights(channels: &TestChannels, duration: f64) -> Result<Vec<f64>, String> {
+fn weights(channels: &TestChannels, duration: f64) -> Result<Vec<f64>, PlanarError> {
     let noise: Vec<Option<f64>> = channels
         .sensors
         .iter()
@@ -439,11 +439,12 @@ fn weights(channels: &TestChannels, duration: f64) -> Result<Vec<f64>, String> {
         .map(|(n, _)| n.unwrap_or(f64::NAN))
         .collect();
     let pooled = (x.iter().map(|v| v * v).sum::<f64>() / x.len().max(1) as f64).sqrt();
-    let unknown = |k: usize| {
-        format!(
+    let unknown = |k: usize| PlanarError::Case {
+        case: channels.name.clone(),
+        message: format!(
             "sensor {}: no noise to weigh it by: its record has no pre-trigger of {PRETRIGGER_SAMPLES} samples (or it is exactly flat); give `noise` (its rms noise, with a unit) in the study",
             channels.sensors[k].code
-        )
+        ),
     };
     if !(pooled.is_finite() && pooled > 0.0) {
         let k = (0..noise.len())
