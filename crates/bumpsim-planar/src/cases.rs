@@ -5,9 +5,23 @@
 //! - Every channel: bias removal over the pre-trigger (when it starts
 //!   before t = 0) and, when given, the CFC filter (SAE J211-1).
 //! - Forces: in N, each with its lateral position, direction and anchor ([`Placed`]).
-//! - Sensors: the body-x accelerations integrated twice, from the car's
-//!   speed at t = 0 and zero displacement, to the world-x displacements
-//!   the replay predicts.
+//! - Sensors, each to the domain its model reading has
+//!   ([`Sensor::integrations`]): body-x accelerations integrated twice, from
+//!   the car's speed at t = 0 and zero displacement, to the world-x
+//!   displacements the replay predicts; lateral accelerations twice from
+//!   rest; the yaw rate as measured; displacements (film, string pots) as
+//!   measured, less their value at t = 0 and without the pre-trigger bias
+//!   (a film target moves before contact).
+//! - Each sensor's weight ([`weights`]): its noise in the compared domain,
+//!   from the white noise level σ of its pre-trigger (the residual about a
+//!   straight line, unfiltered) or as the study gives it, over the fit
+//!   window's duration T: σ as measured, `σ √h T^{3/2}/√12` integrated
+//!   twice (the rms over the window of integrated white noise sampled
+//!   every h). The x accelerometers keep weight 1 (their
+//!   residuals in m, as before); every other sensor is weighted by the x
+//!   accelerometers' pooled noise over its own, so the objective stays in
+//!   m² and a study of x accelerometers alone is the same least-squares
+//!   problem as it was.
 //! - Time zero, where the replay starts: by default just before the force
 //!   onset (ISO 6487 and SAE J211 put time zero at the first contact). The
 //!   onset is the last sample before the summed force's 5 % rise at which
@@ -158,8 +172,11 @@ pub struct TestChannels {
     /// The accelerometers (body x): the first two on the body, left then
     /// right, then any others.
     pub sensors: Vec<Channel>,
-    /// Where each sits.
+    /// Where each sits and what it measures.
     pub positions: Vec<Sensor>,
+    /// Each sensor's noise as the study gives it (SI of its channel), or
+    /// `None`: from its pre-trigger.
+    pub noise: Vec<Option<f64>>,
     /// The car's speed at t = 0, m/s.
     pub speed: f64,
     /// CFC class of the filter, if any.
@@ -189,6 +206,7 @@ impl TestChannels {
             forces,
             sensors: recorded.channels[n..].to_vec(),
             positions: recorded.sensors.clone(),
+            noise: vec![None; recorded.sensors.len()],
             speed: recorded.car_speed,
             cfc: Some(180.0),
             time_zero: TimeZero::Onset,
@@ -234,17 +252,26 @@ impl TestChannels {
             TimeZero::Onset => self.onset(&condition)?,
         };
         let shift = [Step::Shift(-zero)];
-        let integrate = [
-            Step::Shift(-zero),
-            Step::Integrate(self.speed),
-            Step::Integrate(0.0),
-        ];
         let mut channels = Vec::new();
         for f in &self.forces {
             channels.push(condition(&f.channel, &shift)?);
         }
-        for s in &self.sensors {
-            channels.push(condition(s, &integrate)?);
+        for (s, place) in self.sensors.iter().zip(&self.positions) {
+            let start = if place.along_x() { self.speed } else { 0.0 };
+            let integrals = (0..place.integrations()).map(|k| match k {
+                0 => Step::Integrate(start),
+                _ => Step::Integrate(0.0),
+            });
+            let extra: Vec<Step> = shift.iter().cloned().chain(integrals).collect();
+            channels.push(match place.displacement() {
+                // a displacement keeps its pre-trigger: a film target moves before contact
+                true => run(
+                    &[self.cfc.map(Step::Cfc).into_iter().collect(), extra].concat(),
+                    s,
+                )
+                .map_err(|e| error(e.to_string()))?,
+                false => condition(s, &extra)?,
+            });
         }
         let (time, columns) = align(&channels).map_err(|e| error(e.to_string()))?;
         // the note speaks of the files' times
@@ -268,6 +295,13 @@ impl TestChannels {
             values[first..].iter().step_by(every).copied().collect()
         };
         let n = self.forces.len();
+        let mut columns = columns;
+        for (column, place) in columns[n..].iter_mut().zip(&self.positions) {
+            if place.displacement() {
+                let at_zero = column[first];
+                column.iter_mut().for_each(|v| *v -= at_zero);
+            }
+        }
         let travel = travel(&time, &columns[n..], -zero);
         let loads: Vec<Load> = self
             .forces
@@ -289,6 +323,8 @@ impl TestChannels {
             .detect(&total)
             .map_err(|e| error(format!("force: {e}")))?;
         let step = step * every as f64;
+        let duration = step * (window.last - window.first) as f64;
+        let weights = weights(self, duration)?;
         let case = PlanarCase {
             name: self.name.clone(),
             drive: Drive {
@@ -302,6 +338,7 @@ impl TestChannels {
             estimated: (0..n).filter(|&k| self.forces[k].estimated).collect(),
             striker: None,
             time_zero: zero,
+            weights,
         };
         Ok((case, resampled))
     }
@@ -331,4 +368,95 @@ impl TestChannels {
         let lead = ONSET_LEAD.max(time[window.first] - time[at]);
         Ok((time[at] - lead).max(time[0]))
     }
+}
+
+/// The white noise level of a channel's pre-trigger (samples before t = 0):
+/// the standard deviation of its residual about a least-squares line, in
+/// its SI unit; `None` with fewer than [`PRETRIGGER_SAMPLES`] samples.
+pub fn pretrigger_noise(channel: &Channel) -> Option<f64> {
+    let series = &channel.series;
+    let values: Vec<f64> = (0..series.len())
+        .filter(|&k| series.time(k) < 0.0)
+        .map(|k| series.values()[k])
+        .collect();
+    let n = values.len();
+    if n < PRETRIGGER_SAMPLES {
+        return None;
+    }
+    let mean_k = 0.5 * (n - 1) as f64;
+    let mean_v = values.iter().sum::<f64>() / n as f64;
+    let (mut sxy, mut sxx) = (0.0, 0.0);
+    for (k, v) in values.iter().enumerate() {
+        sxy += (k as f64 - mean_k) * (v - mean_v);
+        sxx += (k as f64 - mean_k).powi(2);
+    }
+    let slope = sxy / sxx;
+    let sse: f64 = values
+        .iter()
+        .enumerate()
+        .map(|(k, v)| (v - mean_v - slope * (k as f64 - mean_k)).powi(2))
+        .sum();
+    let sigma = (sse / (n - 2) as f64).sqrt();
+    sigma.is_finite().then_some(sigma)
+}
+
+/// The fewest pre-trigger samples a noise level is estimated from.
+pub const PRETRIGGER_SAMPLES: usize = 20;
+
+/// White noise of level `sigma` sampled every `step` in the domain of
+/// `integrations` integrals: its rms over `duration` (see the module).
+pub fn domain_noise(sigma: f64, step: f64, duration: f64, integrations: usize) -> f64 {
+    match integrations {
+        0 => sigma,
+        1 => sigma * (0.5 * step * duration).sqrt(),
+        _ => sigma * step.sqrt() * duration.powf(1.5) / 12f64.sqrt(),
+    }
+}
+
+/// Each sensor's residual weight (see the module): 1 for the x
+/// accelerometers, their pooled noise over its own for every other; an
+/// error names a sensor whose noise is neither given nor estimable.
+fn weights(channels: &TestChannels, duration: f64) -> Result<Vec<f64>, PlanarError> {
+    let noise: Vec<Option<f64>> = channels
+        .sensors
+        .iter()
+        .zip(&channels.positions)
+        .zip(&channels.noise)
+        .map(|((c, place), given)| {
+            let sigma = given.or_else(|| pretrigger_noise(c))?;
+            let step = c.series.step();
+            let domain = domain_noise(sigma, step, duration, place.integrations());
+            (domain.is_finite() && domain > 0.0).then_some(domain)
+        })
+        .collect();
+    if channels.positions.iter().all(Sensor::along_x) {
+        return Ok(vec![1.0; channels.positions.len()]);
+    }
+    let x: Vec<f64> = noise
+        .iter()
+        .zip(&channels.positions)
+        .filter(|(_, p)| p.along_x())
+        .map(|(n, _)| n.unwrap_or(f64::NAN))
+        .collect();
+    let pooled = (x.iter().map(|v| v * v).sum::<f64>() / x.len().max(1) as f64).sqrt();
+    let unknown = |k: usize| PlanarError::Case {
+        case: channels.name.clone(),
+        message: format!(
+            "sensor {}: no noise to weigh it by: its record has no pre-trigger of {PRETRIGGER_SAMPLES} samples (or it is exactly flat); give `noise` (its rms noise, with a unit) in the study",
+            channels.sensors[k].code
+        ),
+    };
+    if !(pooled.is_finite() && pooled > 0.0) {
+        let k = (0..noise.len())
+            .find(|&k| channels.positions[k].along_x() && noise[k].is_none())
+            .unwrap_or(0);
+        return Err(unknown(k));
+    }
+    (0..noise.len())
+        .map(|k| match (channels.positions[k].along_x(), noise[k]) {
+            (true, _) => Ok(1.0),
+            (false, Some(own)) => Ok(pooled / own),
+            (false, None) => Err(unknown(k)),
+        })
+        .collect()
 }

@@ -85,14 +85,69 @@ pub struct Drive {
     pub sensors: Vec<Sensor>,
 }
 
-/// Where an accelerometer sits.
+/// A sensor: what it measures and where it sits. Each is compared in the
+/// domain its reading ([`Driven::sensor_reading`]) gives.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub enum Sensor {
-    /// A body point (a sill, the B-pillar): ξ ahead of the CG and η left, m.
+    /// An accelerometer along the body x axis at a body point (a sill, the
+    /// B-pillar): ξ ahead of the CG and η left, m (ISO `AC` `X`).
     Body([f64; 2]),
-    /// Chain mass `i` (left chain first, each from the front; e.g. a side
-    /// member's front end, where the 1-D tests measure).
+    /// An accelerometer along the body x axis on chain mass `i` (left chain
+    /// first, each from the front; a side member's front end, a crash box).
     Chain(usize),
+    /// An accelerometer along the body y axis at a body point (ISO `AC` `Y`):
+    /// reads `A_y − ψ̇² η + ψ̈ ξ`.
+    Lateral([f64; 2]),
+    /// A yaw-rate sensor (ISO `AV` `Z`): the body's angular velocity ψ̇,
+    /// the same at every point of the rigid body.
+    YawRate,
+    /// A displacement along world x of a body point (film, ISO `DS` `X`):
+    /// `X + ξ cos ψ − η sin ψ − ξ`.
+    Film([f64; 2]),
+    /// A displacement of chain mass `i` along the body axis relative to the
+    /// body (a string pot across the crush zone, ISO `DS` `X`): u_i.
+    Crush(usize),
+}
+
+impl Sensor {
+    /// How many times its measurement is integrated into the compared
+    /// reading: 2 for accelerometers (to displacement, as the thesis
+    /// does), 0 for the yaw rate (compared as measured: its noise is white
+    /// there) and for displacements.
+    pub fn integrations(&self) -> usize {
+        match self {
+            Sensor::Body(_) | Sensor::Chain(_) | Sensor::Lateral(_) => 2,
+            Sensor::YawRate | Sensor::Film(_) | Sensor::Crush(_) => 0,
+        }
+    }
+
+    /// Whether it measures a displacement (film, string pot): compared
+    /// less its value at time zero, and its pre-trigger is not a bias.
+    pub fn displacement(&self) -> bool {
+        matches!(self, Sensor::Film(_) | Sensor::Crush(_))
+    }
+
+    /// Whether it is an accelerometer along the body x axis (the kind
+    /// every study had; their residuals keep weight 1, m).
+    pub fn along_x(&self) -> bool {
+        matches!(self, Sensor::Body(_) | Sensor::Chain(_))
+    }
+
+    /// Its chain mass, if it sits on one.
+    fn chain(&self) -> Option<usize> {
+        match *self {
+            Sensor::Chain(i) | Sensor::Crush(i) => Some(i),
+            _ => None,
+        }
+    }
+
+    /// Its body point, if it sits on one.
+    fn body(&self) -> Option<[f64; 2]> {
+        match *self {
+            Sensor::Body(p) | Sensor::Lateral(p) | Sensor::Film(p) => Some(p),
+            _ => None,
+        }
+    }
 }
 
 /// Histories of a replay, at the input's samples.
@@ -106,11 +161,15 @@ pub struct Driven {
     pub y: Vec<f64>,
     /// Yaw, rad (counter-clockwise seen from above).
     pub yaw: Vec<f64>,
-    /// World-x displacement of each sensor, m (outer: sensors).
+    /// World-x displacement of each sensor's point, m (outer: sensors; the
+    /// CG's for a yaw-rate sensor).
     pub sensor_x: Vec<Vec<f64>>,
-    /// What each sensor's accelerometer reads integrated twice: the double
-    /// integral of its body-x acceleration `A_x − ψ̈ η − ψ̇² ξ` from the
-    /// start speed, m (equal to `sensor_x` while the yaw stays small).
+    /// What each sensor reads in its compared domain
+    /// ([`Sensor::integrations`]): an x accelerometer's body-x acceleration
+    /// `A_x − ψ̈ η − ψ̇² ξ` integrated twice from the start speed, m (equal
+    /// to `sensor_x` while the yaw stays small); a lateral one's
+    /// `A_y + ψ̈ ξ − ψ̇² η` twice from rest, m; the yaw rate ψ̇, rad/s; a
+    /// displacement as it is, m.
     pub sensor_reading: Vec<Vec<f64>>,
     /// Compressive force at the left side-member tip, N.
     pub side_force_left: Vec<f64>,
@@ -181,21 +240,23 @@ fn check(input: &Drive, masses: usize) -> Result<usize, PlanarError> {
         }
     }
     for (k, s) in input.sensors.iter().enumerate() {
-        match *s {
-            Sensor::Body(p) => require(
+        if let Some(p) = s.body() {
+            require(
                 &format!("sensor[{k}]"),
                 p[0] + p[1],
                 "m",
                 "must be finite",
                 true,
-            )?,
-            Sensor::Chain(i) => require(
+            )?;
+        }
+        if let Some(i) = s.chain() {
+            require(
                 &format!("sensor[{k}] chain mass"),
                 i as f64,
                 "1",
                 &format!("the car has {masses} chain masses (index from 0, left chain first)"),
                 i < masses,
-            )?,
+            )?;
         }
     }
     Ok(samples)
@@ -394,7 +455,11 @@ impl<'a> Replay<'a> {
             contact: Contact::new(input.loads.len()),
             chain: vec![0.0; chains],
             side: [0.0; 2],
-            readings: vec![[0.0, input.speed, 0.0]; input.sensors.len()],
+            readings: input
+                .sensors
+                .iter()
+                .map(|s| [0.0, if s.along_x() { input.speed } else { 0.0 }, 0.0])
+                .collect(),
             lean: false,
             axes: (0.0, 1.0),
             model,
@@ -470,22 +535,45 @@ impl<'a> Replay<'a> {
     /// along the body axis relative to the body (from the generalised
     /// accelerations `a`), m/s².
     fn point(&self, sensor: Sensor, q: &[f64], a: &[f64]) -> ([f64; 2], f64) {
-        match sensor {
-            Sensor::Body(p) => (p, 0.0),
-            Sensor::Chain(i) => ([self.model.x_f + q[3 + i], self.model.eta[i]], a[3 + i]),
+        match (sensor.body(), sensor.chain()) {
+            (Some(p), _) => (p, 0.0),
+            (None, Some(i)) => ([self.model.x_f + q[3 + i], self.model.eta[i]], a[3 + i]),
+            (None, None) => ([0.0; 2], 0.0),
         }
     }
 
-    /// Body-x acceleration of each sensor `A_x − ψ̈ η − ψ̇² ξ (+ ü_i)` into
-    /// its reading, with ψ̇ at the full step estimated as in the solve from
-    /// the half-step velocities `v` and the accelerations `a`.
+    /// Sensor `k`'s reading at `q` ([`Driven::sensor_reading`]).
+    fn reading(&self, k: usize, q: &[f64]) -> f64 {
+        let (sn, cs) = self.axes;
+        match self.input.sensors[k] {
+            Sensor::YawRate => self.readings[k][0],
+            Sensor::Film([xi, eta]) => q[0] + xi * cs - eta * sn - xi,
+            Sensor::Crush(i) => q[3 + i],
+            _ => self.readings[k][0],
+        }
+    }
+
+    /// Body-x acceleration of each x accelerometer `A_x − ψ̈ η − ψ̇² ξ (+ ü_i)`
+    /// (a lateral one's `A_y + ψ̈ ξ − ψ̇² η`) into its reading, with ψ̇ at
+    /// the full step estimated as in the solve from the half-step
+    /// velocities `v` and the accelerations `a`.
     fn sense(&mut self, q: &[f64], v: &[f64], a: &[f64]) {
         let (sn, cs) = self.axes;
         let along = a[0] * cs + a[1] * sn;
+        let across = -a[0] * sn + a[1] * cs;
         let rate = v[2] + self.model.half_step * a[2];
         for k in 0..self.input.sensors.len() {
-            let ([xi, eta], relative) = self.point(self.input.sensors[k], q, a);
-            self.readings[k][2] = along - a[2] * eta - rate * rate * xi + relative;
+            let sensor = self.input.sensors[k];
+            let ([xi, eta], relative) = self.point(sensor, q, a);
+            self.readings[k][2] = match sensor {
+                Sensor::Lateral(_) => across + a[2] * xi - rate * rate * eta,
+                // the rate itself, not integrated: no velocity moves it on
+                Sensor::YawRate => {
+                    self.readings[k][0] = rate;
+                    0.0
+                }
+                _ => along - a[2] * eta - rate * rate * xi + relative,
+            };
         }
     }
 
@@ -508,10 +596,11 @@ impl<'a> Replay<'a> {
         if !q.iter().all(|x| x.abs() < 1e3) {
             return Err(PlanarError::Diverged { time });
         }
+        for k in 0..self.input.sensors.len() {
+            let reading = self.reading(k, q);
+            self.out.sensor_reading[k].push(reading);
+        }
         if self.lean {
-            for (history, r) in self.out.sensor_reading.iter_mut().zip(&self.readings) {
-                history.push(r[0]);
-            }
             return Ok(());
         }
         let out = &mut self.out;
@@ -521,20 +610,14 @@ impl<'a> Replay<'a> {
         out.yaw.push(q[2]);
         let (sn, cs) = self.axes;
         for (k, s) in self.input.sensors.iter().enumerate() {
-            let [xi, eta] = match *s {
-                Sensor::Body(p) => p,
-                Sensor::Chain(i) => [self.model.x_f + q[3 + i], self.model.eta[i]],
-            };
-            let rest = match s {
-                Sensor::Body(p) => p[0],
-                Sensor::Chain(_) => self.model.x_f,
+            let ([xi, eta], _) = self.point(*s, q, q);
+            let rest = match s.chain() {
+                Some(_) => self.model.x_f,
+                None => xi,
             };
             self.out.sensor_x[k].push(q[0] + xi * cs - eta * sn - rest);
         }
         let out = &mut self.out;
-        for (history, r) in out.sensor_reading.iter_mut().zip(&self.readings) {
-            history.push(r[0]);
-        }
         out.side_force_left.push(self.side[0]);
         out.side_force_right.push(self.side[1]);
         for (history, u) in out.chains.iter_mut().zip(&q[3..]) {

@@ -10,8 +10,10 @@
 //!   `A_x − ψ̇² ξ` (the yaw accelerations cancel), simulated from the CG's
 //!   velocity history, measured as the second difference of the sills'
 //!   integrated readings;
-//! - **yaw rate**: simulated, against the first difference of the yaw the
-//!   sills' readings give, `ψ = asin((x_R − x_L)/(η_L − η_R))`.
+//! - **yaw rate**: simulated, against the case's yaw-rate sensor where it
+//!   has one, else the
+//!   first difference of the yaw the sills' readings give,
+//!   `ψ = asin((x_R − x_L)/(η_L − η_R))`.
 //!
 //! Timing: the simulation starts at first touch, the case's record a little
 //! before its force onset ([`crate::cases::TimeZero`]); both force
@@ -164,7 +166,10 @@ fn measured(case: &PlanarCase, spacing: f64) -> [Vec<f64>; 3] {
         .zip(right)
         .map(|(l, r)| ((r - l) / spacing).clamp(-1.0, 1.0).asin())
         .collect();
-    let rate = difference(&yaw, step);
+    let rate = match case.yaw_rate() {
+        Some(k) => case.measured[k].clone(),
+        None => difference(&yaw, step),
+    };
     // the sills' mean reading is A_x − ψ̇² ξ integrated twice
     [force, difference(&difference(&mean, step), step), rate]
 }

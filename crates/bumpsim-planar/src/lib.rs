@@ -55,6 +55,7 @@ pub mod identify;
 pub mod picture;
 pub mod presets;
 pub mod result;
+pub mod sensing;
 pub mod series;
 pub mod simulate;
 pub mod striker;

@@ -14,6 +14,7 @@
 //! acceleration_noise = 0.05        # g rms
 //! biases = [0.03, -0.02]           # g, left and right accelerometers
 //! sensor = [0.6, 0.7]              # m: sills at ξ ahead of the CG, ±η
+//! yaw_rate = "0.2 deg/s"           # optional: a yaw-rate sensor with this rms noise
 //! safety = 0.25                    # the generator's step, fraction of the critical step
 //! [[test]]
 //! name = "ANGLED"                  # folder and file name
@@ -29,6 +30,7 @@ use crate::car::{PlanarCar, PlanarError};
 use crate::drive::Sensor;
 use crate::presets::{StrikerFieldError, StrikerFields, StrikerSpec};
 use crate::synth::{Chain, Recorded, record};
+use bumpsim_core::units::{Dimension, parse_quantity};
 use serde::Deserialize;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
@@ -106,6 +108,9 @@ pub enum SeriesError {
         /// The parser's message.
         source: toml::de::Error,
     },
+    /// `[chain] yaw_rate`: the yaw-rate sensor's noise.
+    #[error("[chain] yaw_rate: {0}")]
+    YawRate(String),
     /// The `[chain]` keys the 1-D series reads.
     #[error("[chain]: {0}")]
     Chain(toml::de::Error),
@@ -222,11 +227,25 @@ fn chain(table: &toml::Table, seed: u64) -> Result<Chain, SeriesError> {
     let mut rest = table.clone();
     let sensor: Option<[f64; 2]> = take(&mut rest, "sensor")?;
     let safety: Option<f64> = take(&mut rest, "safety")?;
+    let yaw_rate: Option<toml::Value> = take(&mut rest, "yaw_rate")?;
+    let yaw_rate = yaw_rate
+        .map(|v| {
+            let sigma = match &v {
+                toml::Value::Float(x) => Some(*x),
+                toml::Value::Integer(x) => Some(*x as f64),
+                toml::Value::String(text) => parse_quantity(text, Dimension::AngularVelocity).ok(),
+                _ => None,
+            };
+            sigma.filter(|s| s.is_finite() && *s >= 0.0).ok_or(v)
+        })
+        .transpose()
+        .map_err(|v| SeriesError::YawRate(format!("{v}: expected the yaw-rate sensor's rms noise, ≥ 0, text with a unit (\"0.2 deg/s\") or rad/s")))?;
     let common: bumpsim_impact::synth::ChainFile = rest.try_into().map_err(SeriesError::Chain)?;
     Ok(Chain {
         measurement: common.resolve(&d.measurement, seed),
         sensor: sensor.unwrap_or(d.sensor),
         safety: safety.unwrap_or(d.safety),
+        yaw_rate,
     })
 }
 
@@ -337,12 +356,15 @@ pub fn study_text(
         let n = test.loads.len();
         for (channel, sensor) in test.channels[n..].iter().zip(&test.sensors) {
             let place = match sensor {
-                Sensor::Body(p) => format!("body = [{}, {}]", number(p[0]), number(p[1])),
-                Sensor::Chain(i) => format!("chain = {i}"),
+                Sensor::Body(p) | Sensor::Lateral(p) | Sensor::Film(p) => {
+                    format!(", body = [{}, {}]", number(p[0]), number(p[1]))
+                }
+                Sensor::Chain(i) | Sensor::Crush(i) => format!(", chain = {i}"),
+                Sensor::YawRate => String::new(),
             };
             let _ = writeln!(
                 s,
-                "  {{ path = {file:?}, channel = {:?}, {place} }},",
+                "  {{ path = {file:?}, channel = {:?}{place} }},",
                 channel.code
             );
         }

@@ -21,24 +21,34 @@
 //! striker = { angle = 10.0, speed = "8 km/h" }  # optional: the test's striker, for the forward prediction
 //! forces = [                # force channels, N after the file's units
 //!   # lateral: m on the bumper line (left +), or "estimate" (one total force whose line of
-//!   # action is a parameter); direction: of the force on the car, world; anchor (optional):
-//!   # a world point on its line of action, body frame at the files' t = 0, m; cell
-//!   # (optional): a wall load cell this wide (m) centred on the anchor
+//!   # action is a parameter); direction: of the force on the car, world; anchor: a world
+//!   # point on its line of action, body frame at the files' t = 0, m (a force with an
+//!   # anchor needs no lateral); cell (with an anchor): a wall load cell this wide (m)
+//!   # centred on the anchor
 //!   { path = "ANGLED/ANGLED.mme", channel = "B0LOMA010100FOXP", lateral = -0.72, direction = [-0.985, -0.174] },
 //! ]
-//! sensors = [               # accelerometers along the body x axis; the first two on the
-//!   { path = "ANGLED/ANGLED.mme", channel = "10SILBLE0000ACXP", body = [0.6, 0.7] },   # body, left
-//!   { path = "ANGLED/ANGLED.mme", channel = "10SILBRI0000ACXP", body = [0.6, -0.7] },  # then right
+//! sensors = [               # the first two: x accelerometers on the body, left then right
+//!   { path = "ANGLED/ANGLED.mme", channel = "10SILBLE0000ACXP", body = [0.6, 0.7] },
+//!   { path = "ANGLED/ANGLED.mme", channel = "10SILBRI0000ACXP", body = [0.6, -0.7] },
 //!   { path = "ANGLED/ANGLED.mme", channel = "10SIMELE0000ACXP", chain = 0 },  # chain mass 0 (left front)
+//!   { path = "ANGLED/ANGLED.mme", channel = "10VEHC0000CGAVZP" },             # yaw rate: no place
 //! ]
 //! ```
+//!
+//! A sensor's kind comes from its channel: the ISO/TS 13499 code's
+//! physical dimension and direction (`AC` `X` at `body` or `chain`: an x
+//! accelerometer; `AC` `Y` at `body`: a lateral one; `AV` `Z`: the yaw
+//! rate; `DS` `X` at `body`: film, at `chain`: a string pot's crush), or,
+//! for a channel without an ISO code (a CSV column), its unit's dimension
+//! and `axis = "x" | "y" | "z"` (default x, z for an angular velocity). An
+//! optional `noise` (its rms noise, text with a unit such as "0.2 deg/s")
+//! replaces the one estimated from the pre-trigger ([`crate::cases`]).
 //!
 //! Channels are read and conditioned as in the 1-D study (pre-trigger bias,
 //! CFC), shifted to the case's time zero and decimated ([`crate::cases`]).
 
 use crate::car::{PlanarCar, PlanarError};
 use crate::cases::{Placed, TestChannels, TimeZero};
-use crate::drive::Sensor;
 use crate::identify::{PlanarCase, Setup};
 use crate::presets::StrikerFields;
 use bumpsim_core::channel::Channel;
@@ -91,7 +101,7 @@ struct CaseFile {
 struct ForceRef {
     path: PathBuf,
     channel: String,
-    lateral: Lateral,
+    lateral: Option<Lateral>,
     direction: Vec<f64>,
     #[serde(default, deserialize_with = "bumpsim_io::numbers::optional")]
     anchor: Option<[f64; 2]>,
@@ -115,6 +125,8 @@ struct SensorRef {
     #[serde(default, deserialize_with = "bumpsim_io::numbers::optional")]
     body: Option<[f64; 2]>,
     chain: Option<usize>,
+    axis: Option<String>,
+    noise: Option<toml::Value>,
 }
 
 /// A force's direction as a study gives it: exactly two finite components,
@@ -308,29 +320,37 @@ fn load_case(
         })?,
     };
     let mut channel =
-        |path: &Path, code: &str, dimension: Dimension| -> Result<Channel, PlanarError> {
+        |path: &Path, code: &str, dimension: Option<Dimension>| -> Result<Channel, PlanarError> {
             let source = ChannelSource::new(base.join(path), code, 1.0);
             let loaded = loader
                 .signal(&[source], None, code)
                 .map_err(|e| error(format!("{}: {code}: {e}", path.display())))?;
-            match loaded.data.dimension == dimension {
+            match dimension.is_none_or(|d| loaded.data.dimension == d) {
                 true => Ok(loaded.data),
                 false => Err(error(format!(
                     "{}: {code} is a {:?} channel, expected {:?}",
                     path.display(),
                     loaded.data.dimension,
-                    dimension
+                    dimension.unwrap_or(Dimension::Force)
                 ))),
             }
         };
     let mut forces = Vec::new();
     for f in &spec.forces {
-        let (lateral, estimated) = match &f.lateral {
-            Lateral::At(y) => (*y, false),
-            Lateral::Word(w) if w == "estimate" => (0.0, true),
-            Lateral::Word(w) => {
+        let (lateral, estimated) = match (&f.lateral, f.anchor) {
+            (Some(Lateral::At(y)), _) => (*y, false),
+            (Some(Lateral::Word(w)), _) if w == "estimate" => (0.0, true),
+            (Some(Lateral::Word(w)), _) => {
                 return Err(error(format!(
                     "force {}: lateral = {w:?}: expected a position in m or \"estimate\"",
+                    f.channel
+                )));
+            }
+            // the line of action passes through the anchor: its η stands for the place
+            (None, Some([_, eta])) => (eta, false),
+            (None, None) => {
+                return Err(error(format!(
+                    "force {}: give `lateral` (m on the bumper line, or \"estimate\") or `anchor` (a world point on its line of action; a wall cell: its centre, with `cell`)",
                     f.channel
                 )));
             }
@@ -342,7 +362,7 @@ fn load_case(
             ))
         })?;
         forces.push(Placed {
-            channel: channel(&f.path, &f.channel, Dimension::Force)?,
+            channel: channel(&f.path, &f.channel, Some(Dimension::Force))?,
             lateral,
             direction: [dx, dy],
             anchor: f.anchor,
@@ -350,20 +370,20 @@ fn load_case(
             cell: f.cell,
         });
     }
-    let (mut sensors, mut positions) = (Vec::new(), Vec::new());
+    let (mut sensors, mut positions, mut noise) = (Vec::new(), Vec::new(), Vec::new());
     for s in &spec.sensors {
-        let place = match (s.body, s.chain) {
-            (Some(p), None) => Sensor::Body(p),
-            (None, Some(i)) => Sensor::Chain(i),
-            _ => {
-                return Err(error(format!(
-                    "sensor {}: give either body = [ξ, η] (m) or chain = index",
-                    s.channel
-                )));
-            }
-        };
-        sensors.push(channel(&s.path, &s.channel, Dimension::Acceleration)?);
+        let loaded = channel(&s.path, &s.channel, None)?;
+        let place = crate::sensing::kind(&loaded, s.axis.as_deref(), s.body, s.chain)
+            .map_err(|e| error(format!("sensor {}: {e}", s.channel)))?;
+        let given = s
+            .noise
+            .as_ref()
+            .map(|v| crate::sensing::noise(v, loaded.dimension))
+            .transpose()
+            .map_err(|e| error(format!("sensor {}: noise: {e}", s.channel)))?;
+        sensors.push(loaded);
         positions.push(place);
+        noise.push(given);
     }
     let striker = spec
         .striker
@@ -388,6 +408,7 @@ fn load_case(
         forces,
         sensors,
         positions,
+        noise,
         speed,
         cfc: spec.cfc,
         time_zero,

@@ -22,6 +22,8 @@
 //!   series) measure the acceleration along the body x axis (second
 //!   differences of the sensor's world position, projected on the body
 //!   axis), plus a bias (left, right);
+//! - optionally ([`Chain::yaw_rate`]) a yaw-rate sensor (`10VEHC0000CGAVZP`,
+//!   rad/s, the simulation's ψ̇) with its own noise;
 //! - every channel passes a causal 4th-order Butterworth anti-alias filter
 //!   at a quarter of the sampling rate, is sampled every T, gets Gaussian
 //!   noise (ChaCha8, seeded per test: reproducible bit for bit) and a
@@ -54,6 +56,8 @@ pub struct Chain {
     pub sensor: [f64; 2],
     /// Safety factor of the simulation's step (the generator's own).
     pub safety: f64,
+    /// A yaw-rate sensor with this rms noise, rad/s, or none.
+    pub yaw_rate: Option<f64>,
 }
 
 impl Default for Chain {
@@ -73,6 +77,7 @@ impl Default for Chain {
             },
             sensor: [0.6, 0.7],
             safety: 0.25,
+            yaw_rate: None,
         }
     }
 }
@@ -134,6 +139,9 @@ impl Recorded {
         test_objects_header(&title, &objects)
     }
 }
+
+/// The code and name of the yaw-rate sensor.
+pub const YAW_RATE_CODE: (&str, &str) = ("10VEHC0000CGAVZP", "Vehicle yaw rate Z");
 
 /// Codes and names of the accelerometers: sills left and right, side
 /// members left and right.
@@ -201,6 +209,14 @@ fn check(chain: &Chain) -> Result<(), PlanarError> {
             chain.sensor[1],
             "m",
             "a finite position with a positive half-spacing",
+        ));
+    }
+    if let Some(sigma) = chain.yaw_rate.filter(|s| !(s.is_finite() && *s >= 0.0)) {
+        return Err(parameter(
+            "chain.yaw_rate",
+            sigma,
+            "rad/s",
+            "the yaw-rate sensor's rms noise: finite, ≥ 0",
         ));
     }
     if !(chain.safety > 0.0 && chain.safety <= 1.0) {
@@ -312,14 +328,15 @@ fn sensor_acceleration(
     let b = 0.5 * car.beam().side_member_spacing;
     let left = car.left().masses.len();
     let point = |k: usize| match sensor {
-        Sensor::Body(p) => p,
-        Sensor::Chain(i) => {
+        Sensor::Chain(i) | Sensor::Crush(i) => {
             let eta = if i < left { b } else { -b };
             [
                 car.body().cg_behind_bumper + r.chain_displacement[i][k],
                 eta,
             ]
         }
+        Sensor::Body(p) | Sensor::Lateral(p) | Sensor::Film(p) => p,
+        Sensor::YawRate => [0.0; 2],
     };
     let position = |k: usize| {
         let (sn, cs) = r.yaw[k].sin_cos();
@@ -430,6 +447,22 @@ pub fn record(
             (truth, values),
             "g",
         )?);
+    }
+    let mut sensors = sensors;
+    if let Some(sigma) = chain.yaw_rate {
+        let rate = padded(&r.yaw_rate);
+        let truth = rate.iter().step_by(10).copied().collect();
+        let values = sample(rate, sigma, 0.0);
+        let (code, title) = YAW_RATE_CODE;
+        let data = (truth, values);
+        channels.push(channel(
+            code,
+            title,
+            Dimension::AngularVelocity,
+            data,
+            "deg/s",
+        )?);
+        sensors.push(Sensor::YawRate);
     }
     let (car_speed, striker_motion) = match striker.motion {
         Motion::Fixed { speed } => (speed, (speed, None)),

@@ -510,6 +510,10 @@ mod identification;
 mod independent;
 #[path = "planar/regression.rs"]
 mod regression;
+#[path = "planar/sensors.rs"]
+mod sensors;
+#[path = "planar/yaw_rate.rs"]
+mod yaw_rate;
 
 /// Runs the peer script `tests/peers/SCRIPT` on the parameter file `params`
 /// and returns what it prints (the planar tests' scipy oracles).

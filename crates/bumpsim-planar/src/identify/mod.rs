@@ -15,12 +15,16 @@
 //! template's. The result is checked for plausibility with the reasons
 //! (module `plausible`).
 //!
-//! **Objective.** `F(θ) = Σ_cases Σ_k (x̂_L − x_L)² + (x̂_R − x_R)²` over each
-//! case's window, with `x_L`, `x_R` the world-x displacements of the left
-//! and right sensors (accelerometers integrated twice). The two sensors
-//! carry equal weight, so their mean (x) and half difference (yaw times the
-//! sensor half-spacing) do too: yaw is observed through the left/right
-//! difference, as in a test.
+//! **Objective.** `F(θ) = Σ_cases Σ_k Σ_s w_s² (ŝ_k − s_k)²` over each
+//! case's window and sensors, each sensor compared in its domain
+//! ([`crate::drive::Sensor::integrations`]): x accelerometers as world-x
+//! displacements (integrated twice, `w = 1`, m), a yaw-rate sensor as the
+//! yaw rate as measured, a displacement channel as measured, each weighted
+//! by the x accelerometers' noise over its own ([`crate::cases`]), so F
+//! stays in m². The two sills carry equal weight, so their mean (x) and
+//! half difference (yaw times the sensor half-spacing) do too; a yaw-rate
+//! sensor observes the yaw directly, where the sills' difference of two
+//! double integrals is mostly drift at a small yaw.
 //!
 //! **Search.** The estimation layer's ([`bumpsim_estimate`], shared with
 //! the 1-D chain): bounded Levenberg–Marquardt on `p = ln θ`, each
@@ -39,7 +43,8 @@
 //! narrow to cover the truth.
 //!
 //! **Fit** of a case ([`predict`]), as for the 1-D identification:
-//! `100 (1 − √(SSE/SST))` %, for x (mean of the sensors) and for the yaw
+//! `100 (1 − √(SSE/SST))` %, for x (mean of the sensors) and for the yaw:
+//! the yaw-rate sensor's integral where the case has one, else
 //! `ψ = asin((x_R − x_L)/(η_L − η_R))`; a negative fit is a warning.
 //!
 //! **Advice**: the reduced car when a chain link is undetermined or not
@@ -95,6 +100,25 @@ pub struct PlanarCase {
     /// The instant of the test's record taken as t = 0, s of its files'
     /// time base (the force onset unless the study gives it, [`crate::cases::TimeZero`]).
     pub time_zero: f64,
+    /// Each sensor's residual weight ([`crate::cases`]: 1 for the x
+    /// accelerometers, their noise over its own for the others); empty:
+    /// all 1.
+    pub weights: Vec<f64>,
+}
+
+impl PlanarCase {
+    /// Sensor `k`'s residual weight.
+    pub fn weight(&self, k: usize) -> f64 {
+        self.weights.get(k).copied().unwrap_or(1.0)
+    }
+
+    /// The index of its yaw-rate sensor, if it has one.
+    pub fn yaw_rate(&self) -> Option<usize> {
+        self.drive
+            .sensors
+            .iter()
+            .position(|s| *s == Sensor::YawRate)
+    }
 }
 
 /// How to identify.
@@ -293,8 +317,8 @@ fn check(cases: &[PlanarCase], setup: &Setup) -> Result<Unknowns, PlanarError> {
     Ok(unknowns)
 }
 
-/// Lateral spacing η_L − η_R of the first two sensors when both are body
-/// points, m; NaN otherwise.
+/// Lateral spacing η_L − η_R of the first two sensors when both are x
+/// accelerometers on the body, m; NaN otherwise.
 fn spacing(case: &PlanarCase) -> f64 {
     match case.drive.sensors.as_slice() {
         [Sensor::Body(left), Sensor::Body(right), ..] => left[1] - right[1],
@@ -311,7 +335,27 @@ fn check_case(case: &PlanarCase) -> Result<(), PlanarError> {
             &name("sensors"),
             spacing,
             "m",
-            "the first two sensors on the body, left (larger η) then right",
+            "the first two sensors x accelerometers on the body, left (larger η) then right",
+        ));
+    }
+    if !case.weights.is_empty() && case.weights.len() != case.drive.sensors.len() {
+        return Err(parameter(
+            &name("weights"),
+            case.weights.len() as f64,
+            "1",
+            &format!("one per sensor ({})", case.drive.sensors.len()),
+        ));
+    }
+    if let Some(k) = case
+        .weights
+        .iter()
+        .position(|w| !(w.is_finite() && *w > 0.0))
+    {
+        return Err(parameter(
+            &name(&format!("sensor[{k}] weight")),
+            case.weights[k],
+            "1",
+            "must be finite and positive",
         ));
     }
     if case.measured.len() != case.drive.sensors.len() {
@@ -573,6 +617,7 @@ mod tests {
             estimated: Vec::new(),
             striker: None,
             time_zero: 0.0,
+            weights: Vec::new(),
         }
     }
 

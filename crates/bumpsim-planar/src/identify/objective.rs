@@ -1,7 +1,8 @@
 //! The least-squares problem of a planar identification, in `p = ln θ`:
 //! each case replayed ([`crate::drive`]) with the car of `θ`, the residuals
-//! the modelled minus the measured sensor displacements over each case's
-//! window (sensors interleaved), and their Jacobian by forward differences
+//! the modelled minus the measured sensor readings over each case's window
+//! (sensors interleaved), each times its sensor's weight
+//! ([`PlanarCase::weight`]), and their Jacobian by forward differences
 //! (step 1e-6 in ln θ, columns in parallel): the replay has no sensitivity
 //! recursion, and its steps are fixed per template car, so the objective
 //! does not jump where a trial car's own step would change.
@@ -119,8 +120,8 @@ impl<'a> Objective<'a> {
         let mut at = 0;
         for (case, replay) in self.cases.iter().zip(&replays) {
             for k in case.window.0..=case.window.1 {
-                for (model, measured) in replay.iter().zip(&case.measured) {
-                    r[at] = model[k] - measured[k];
+                for (s, (model, measured)) in replay.iter().zip(&case.measured).enumerate() {
+                    r[at] = case.weight(s) * (model[k] - measured[k]);
                     at += 1;
                 }
             }

@@ -1,6 +1,9 @@
 //! A planar case replayed with a car and compared with its measurement:
-//! x (the mean of the two sensors) and the yaw `ψ = asin((x_R − x_L)/(η_L −
-//! η_R))`, each scored by the fit % of the estimation layer
+//! x (the mean of the two sensors) and the yaw: the model's ψ against the
+//! yaw-rate sensor's integral (trapezoids from zero at time zero) where
+//! the case has one, else
+//! `ψ = asin((x_R − x_L)/(η_L − η_R))` of the model and the measured
+//! sills, each scored by the fit % of the estimation layer
 //! ([`bumpsim_estimate::fit`]: `100 (1 − √(SSE/SST))`) and by the ISO/TS
 //! 18571 rating ([`bumpsim_signal::rating`]) over the case's window.
 
@@ -76,7 +79,13 @@ pub fn predict(car: &PlanarCar, case: &PlanarCase) -> Result<Prediction, PlanarE
             .collect::<Vec<_>>()
     };
     let x = [mean(&replay.sensor_reading), mean(&case.measured)];
-    let yaw = [yaw(&replay.sensor_reading), yaw(&case.measured)];
+    let yaw = match case.yaw_rate() {
+        Some(k) => [
+            replay.yaw.clone(),
+            integral(&case.measured[k], case.drive.step),
+        ],
+        None => [yaw(&replay.sensor_reading), yaw(&case.measured)],
+    };
     let (a, b) = case.window;
     let step = case.drive.step;
     let fit = CaseFit {
@@ -95,4 +104,17 @@ pub fn predict(car: &PlanarCar, case: &PlanarCase) -> Result<Prediction, PlanarE
         yaw,
         fit,
     })
+}
+
+/// The running integral of `rate` sampled every `step`, from 0 (trapezoids).
+fn integral(rate: &[f64], step: f64) -> Vec<f64> {
+    let mut sum = 0.0;
+    let mut out = Vec::with_capacity(rate.len());
+    for (k, v) in rate.iter().enumerate() {
+        if k > 0 {
+            sum += 0.5 * step * (rate[k - 1] + v);
+        }
+        out.push(sum);
+    }
+    out
 }

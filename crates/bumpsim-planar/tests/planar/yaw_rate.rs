@@ -1,0 +1,123 @@
+//! Issue 44, items 1 and 7: a study takes every sensor a test carries. The
+//! series is written by tests/peers/planar_yaw_rate.py, a third model family
+//! (a rigid bumper beam of its own on two elastic-plastic crash boxes,
+//! Hunt–Crossley contact, tyres without transient slip, symplectic Euler),
+//! with two sill accelerometers and a yaw-rate sensor only; trained on a
+//! flat pendulum, a narrow centred face and a 10° wall with four load cells,
+//! held out a 40 % offset 10° wall at 15 km/h and the narrow face 0.4 m off
+//! centre. The same series is identified twice: from the sills alone (the
+//! yaw the difference of two double integrals) and with the yaw-rate sensor.
+
+use bumpsim_planar::forward::forward;
+use bumpsim_planar::identify::{CaseFit, PlanarIdentification, identify, predict};
+use bumpsim_planar::study::PlanarStudy;
+use std::path::{Path, PathBuf};
+
+fn series() -> Option<PathBuf> {
+    if !bumpsim_peers::python_available("numpy") {
+        return None;
+    }
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("planar-yaw-rate");
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/planar_yaw_rate.py");
+    bumpsim_peers::generated(&script, &out, &[], "study.toml");
+    Some(out)
+}
+
+/// Identifies `file`'s study and returns it, the result and its held-out fits.
+fn held_out(dir: &Path, file: &str) -> (PlanarStudy, PlanarIdentification, Vec<CaseFit>) {
+    let study = PlanarStudy::read(&dir.join(file)).unwrap();
+    let result = identify(&study.cases, &study.setup, &|| {}).unwrap();
+    let held: Vec<CaseFit> = study
+        .validation
+        .iter()
+        .map(|c| predict(&result.car, c).unwrap().fit)
+        .collect();
+    for p in &result.parameters {
+        eprintln!(
+            "{file}: {:<28} {:>12.5e} {:<6} {:?}",
+            p.name, p.value, p.unit, p.determined
+        );
+    }
+    for f in result.fits.iter().chain(&held) {
+        eprintln!(
+            "{file}: {} x {:.2} %, yaw {:.2} %",
+            f.name, f.fit_x, f.fit_yaw
+        );
+    }
+    eprintln!("{file}: starts {:?}", result.starts);
+    (study, result, held)
+}
+
+#[test]
+fn the_yaw_rate_sensor_is_read_weighted_and_improves_the_held_out_yaw() {
+    let Some(dir) = series() else { return };
+    let sheet: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
+    let (study, with, held) = held_out(&dir, "study.toml");
+    let (_, sills, sills_held) = held_out(&dir, "study-sills.toml");
+    let fit = |held: &[CaseFit], name: &str| held.iter().find(|f| f.name == name).unwrap().clone();
+    // every case carries the yaw-rate sensor, weighted by its noise
+    for case in study.cases.iter().chain(&study.validation) {
+        let k = case.yaw_rate().expect("a yaw-rate sensor");
+        assert!(
+            case.weights[0] == 1.0 && case.weights[k] > 0.0,
+            "{:?}",
+            case.weights
+        );
+    }
+    let offset = study
+        .validation
+        .iter()
+        .find(|c| c.name == "OFFSET40")
+        .unwrap();
+    let ahead = forward(&with.car, offset).unwrap();
+    for c in &ahead.channels {
+        eprintln!("forward OFFSET40 {}: {:.2} %", c.name, c.fit_percent);
+    }
+    let inertia = |r: &PlanarIdentification| {
+        r.parameters
+            .iter()
+            .find(|p| p.name == "body.yaw_inertia")
+            .unwrap()
+            .value
+    };
+    eprintln!(
+        "I_z: sills {:.0}, with yaw rate {:.0}, truth {} kg·m²",
+        inertia(&sills),
+        inertia(&with),
+        sheet["yaw_inertia"]
+    );
+    // the held-out offset's yaw is compared with the yaw-rate channel in both
+    // (`predict` takes the case's own sensors; the sills-only study has none,
+    // so its case is scored by the sills' yaw): score the sills' car on the
+    // yaw-rate study's case to compare like with like
+    let sills_on_rate = predict(&sills.car, offset).unwrap().fit;
+    eprintln!(
+        "held-out OFFSET40 yaw (yaw-rate channel): sills-only car {:.2} %, with yaw rate {:.2} %; sills' own view {:.2} %",
+        sills_on_rate.fit_yaw,
+        fit(&held, "OFFSET40").fit_yaw,
+        fit(&sills_held, "OFFSET40").fit_yaw
+    );
+    let narrow = study
+        .validation
+        .iter()
+        .find(|c| c.name == "NARROW-OFFSET")
+        .unwrap();
+    let sills_narrow = predict(&sills.car, narrow).unwrap().fit;
+    eprintln!(
+        "held-out NARROW-OFFSET yaw (yaw-rate channel): sills-only car {:.2} %, with yaw rate {:.2} %",
+        sills_narrow.fit_yaw,
+        fit(&held, "NARROW-OFFSET").fit_yaw
+    );
+    let (a, b) = (fit(&held, "OFFSET40"), fit(&held, "NARROW-OFFSET"));
+    assert!(a.fit_x >= 99.5 && b.fit_x >= 99.0, "{held:?}");
+    // measured on this series: offset yaw 86.7 % -> 92.6 %, off-centre
+    // face 56.9 % (the sills' view) -> 62.8 %; the issue's 93 % and 80 %
+    // need the priors of item 3 (I_z and μ_y trade against each other)
+    assert!(
+        a.fit_yaw >= sills_on_rate.fit_yaw + 3.0,
+        "the yaw-rate sensor improves the held-out offset yaw: {} against {}",
+        a.fit_yaw,
+        sills_on_rate.fit_yaw
+    );
+}
