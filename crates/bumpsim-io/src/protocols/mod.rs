@@ -373,6 +373,39 @@ pub fn protocol(name: &str) -> Option<&'static Protocol> {
     PROTOCOLS.iter().find(|p| p.name == name)
 }
 
+/// The table as `--case list` prints it, protocol by protocol: a test a
+/// line with its speed and description, then its source, what is unchecked
+/// and its tyres; with `one_d`, what a 1-D impact drops of it.
+///
+/// ```
+/// let text = bumpsim_io::protocols::listing(true);
+/// assert!(text.contains("rcar-structural-front") && text.contains("1-D:"));
+/// ```
+pub fn listing(one_d: bool) -> String {
+    let mut out = String::new();
+    for p in PROTOCOLS.iter().filter(|p| p.name != "cmvss215") {
+        out += &format!("# {}: {}\n", p.name, p.description);
+        for t in p.tests.iter().filter_map(|n| find(n).ok()) {
+            out += &format!(
+                "{:<26} {:>6.2} km/h  {}\n{:<26} source: {}\n{:<26} uncertain: {}\n{:<26} tyres: {}\n",
+                t.name,
+                t.speed_kmh(),
+                t.description,
+                "",
+                t.source,
+                "",
+                t.uncertain,
+                "",
+                t.tyres_why
+            );
+            if let (true, Some(dropped)) = (one_d, t.dropped_in_1d()) {
+                out += &format!("{:<26} 1-D: {dropped}\n", "");
+            }
+        }
+    }
+    out
+}
+
 mod table;
 pub use table::{PROTOCOLS, TESTS};
 
