@@ -252,7 +252,7 @@ pub fn protocols_for(market: bumpsim_io::protocols::Market) -> String {
                 };
                 let (b, h) = other.rcar_face();
                 out += &format!(
-                    "    barrier: face {}; rigid backstop {:.0} mm tall above it, {:.0} mm behind the face (specification Issue 1, 2007, §2.2); {}: {:.0}-{:.0} mm; {}\n",
+                    "    barrier: {}; rigid backstop {:.0} mm tall above it, {:.0} mm behind the face (specification Issue 1, 2007, §2.2); {}: {:.0}-{:.0} mm; {}\n",
                     height(&t.height),
                     1e3 * RCAR_BACKSTOP.0,
                     1e3 * RCAR_BACKSTOP.1,
