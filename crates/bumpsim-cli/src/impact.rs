@@ -8,7 +8,7 @@ use bumpsim_core::names::printable;
 use bumpsim_core::units::{Dimension, format_number, format_quantity, parse_quantity, short};
 use bumpsim_impact::bumper::Bumper;
 use bumpsim_impact::impact::{Options, Scenario, simulate};
-use bumpsim_impact::presets::{PRESETS, ScenarioSpec};
+use bumpsim_impact::presets::ScenarioSpec;
 use bumpsim_impact::reduction::{
     Criterion, Grid, PaperSweep, ReductionError, TwoDof, equivalent_mass,
 };
@@ -161,11 +161,14 @@ fn scenario(args: &ImpactArgs, car_mass: f64) -> Result<(Scenario, String)> {
     })?;
     let label = match (preset, scenario) {
         (Some(p), _) => format!(
-            "{} ({}, {}; {})",
+            "{} ({}, {}; {}){}",
             p.name,
             p.description,
-            format_number(p.speed_kmh, 3) + " km/h",
-            p.source
+            format_number(p.speed_kmh(), 3) + " km/h",
+            p.source,
+            p.dropped_in_1d()
+                .map(|d| format!("; 1-D: {d}"))
+                .unwrap_or_default()
         ),
         (None, Scenario::Impactor { mass, .. }) => format!("{mass} kg pendulum"),
         (None, Scenario::Barrier { .. }) => "rigid barrier".into(),
@@ -176,15 +179,7 @@ fn scenario(args: &ImpactArgs, car_mass: f64) -> Result<(Scenario, String)> {
 /// Runs `impact`.
 pub fn run_impact(args: &ImpactArgs) -> Result<()> {
     if args.case.as_deref() == Some("list") {
-        for p in PRESETS {
-            println!(
-                "{:<18} {:>6} km/h  {}  [{}]",
-                p.name,
-                format_number(p.speed_kmh, 3),
-                p.description,
-                p.source
-            );
-        }
+        print!("{}", bumpsim_io::protocols::listing(true));
         return Ok(());
     }
     let text = std::fs::read_to_string(&args.car).unwrap_or_default();

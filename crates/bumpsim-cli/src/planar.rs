@@ -8,7 +8,7 @@ use bumpsim_core::units::{Dimension, parse_quantity, short};
 use bumpsim_planar::car::{PlanarError, TyreLaw};
 use bumpsim_planar::document::{IdentificationDocument, ImpactDocument};
 use bumpsim_planar::identify::{Prediction, identify, predict};
-use bumpsim_planar::presets::{PRESETS, PlanarPreset, StrikerSpec};
+use bumpsim_planar::presets::{PlanarPreset, StrikerSpec};
 use bumpsim_planar::study::PlanarStudy;
 use bumpsim_planar::uncertainty::Planar;
 use bumpsim_planar::{PlanarCar, Settings, Side, Striker, simulate};
@@ -186,7 +186,7 @@ fn tyre_law(request: &ImpactRequest, preset: Option<&PlanarPreset>) -> Option<(T
     match (request.setup.tyres.as_deref(), preset) {
         (Some("sliding"), _) => Some((TyreLaw::Sliding, "sliding (locked wheels, --tyres)".into())),
         (Some(_), _) => Some((TyreLaw::Rolling, "free rolling (--tyres)".into())),
-        (None, Some(p)) => Some((p.tyres, p.tyres_why.to_string())),
+        (None, Some(p)) => Some((bumpsim_planar::presets::tyres(p), p.tyres_why.to_string())),
         (None, None) => None,
     }
 }
@@ -210,6 +210,7 @@ fn striker(request: &ImpactRequest) -> Result<(Striker, String, Option<&'static 
             .speed
             .map(|s| quantity("speed", s, Dimension::Velocity))
             .transpose()?,
+        car_mass: Some(request.car.total_mass()),
     };
     let (striker, preset) = spec.striker().context("--case or --speed")?;
     let label = match (preset, request.pendulum) {
@@ -220,13 +221,9 @@ fn striker(request: &ImpactRequest) -> Result<(Striker, String, Option<&'static 
     Ok((striker, label, preset))
 }
 
-/// Lists the planar presets.
+/// Lists the planar presets: the table's tests.
 pub fn list() {
-    for p in PRESETS {
-        println!("{:<22} {}  [{}]", p.name, p.description, p.source);
-        println!("{:<22} uncertain: {}", "", p.uncertain);
-        println!("{:<22} tyres: {}", "", p.tyres_why);
-    }
+    print!("{}", bumpsim_io::protocols::listing(false));
 }
 
 /// Runs `planar`.

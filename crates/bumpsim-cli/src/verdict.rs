@@ -9,6 +9,7 @@
 
 use crate::{Folder, write};
 use anyhow::{Context, Result};
+use bumpsim_io::protocols::Market;
 use bumpsim_planar::PlanarCar;
 use bumpsim_verdict::prelude::*;
 use bumpsim_verdict::pulse::AsiMethod;
@@ -22,13 +23,17 @@ pub struct Args {
     /// A planar car file with a [damageability] table; give one per end (front, rear).
     #[arg(long, value_name = "CAR.toml", required_unless_present = "list")]
     car: Vec<PathBuf>,
-    /// Protocols or tests, comma-separated: part581, cmvss215, r42, rcar-bumper,
+    /// Protocols or tests, comma-separated: lab, part581, cmvss215, r42, rcar-bumper,
     /// rcar-structural, iihs-1990s, iihs-bumper, a test name, or all.
     #[arg(long, value_delimiter = ',', default_value = "all")]
     protocol: Vec<String>,
     /// List the protocols, their tests, sources and uncertainties, and stop.
     #[arg(long)]
     list: bool,
+    /// The vehicle's target market: it sets the RCAR barrier's lower edge
+    /// (north-america 455 mm, europe 405 mm; `--list` says what is checked).
+    #[arg(long, default_value = "north-america", value_parser = ["north-america", "europe"])]
+    market: String,
     /// Least margin each criterion must keep, a share of its limit (0.1: 10 %).
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     margin: f64,
@@ -83,12 +88,13 @@ pub struct Args {
 
 /// Runs `bumpsim verdict`.
 pub fn run(args: &Args) -> Result<()> {
+    let market = Market::parse(&args.market).unwrap_or_default();
     if args.list {
-        print!("{}", text::protocols());
+        print!("{}", text::protocols_for(market));
         return Ok(());
     }
     let names: Vec<&str> = args.protocol.iter().map(String::as_str).collect();
-    let tests = protocol::select(&names).context("--protocol")?;
+    let tests = protocol::select_in(&names, market).context("--protocol")?;
     let ends = args
         .car
         .iter()

@@ -34,6 +34,7 @@ pub mod car;
 pub mod mass;
 pub mod numbers;
 pub mod output;
+pub mod protocols;
 pub mod response;
 pub mod signal_error;
 pub mod speed;

@@ -120,7 +120,9 @@ impl Bumper {
     }
 }
 
-/// The load-case presets: dicts with name, speed_kmh, description and source.
+/// The load-case presets, the one table of tests (as `bumpsim impact --case
+/// list`): dicts with name, protocol, speed_kmh, description, source,
+/// uncertain and what a 1-D impact drops of it (`dropped_in_1d`, or None).
 #[pyfunction]
 fn presets(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyAny>>> {
     PRESETS
@@ -128,9 +130,12 @@ fn presets(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyAny>>> {
         .map(|p| {
             let d = pyo3::types::PyDict::new(py);
             d.set_item("name", p.name)?;
-            d.set_item("speed_kmh", p.speed_kmh)?;
+            d.set_item("protocol", p.protocol)?;
+            d.set_item("speed_kmh", p.speed_kmh())?;
             d.set_item("description", p.description)?;
             d.set_item("source", p.source)?;
+            d.set_item("uncertain", p.uncertain)?;
+            d.set_item("dropped_in_1d", p.dropped_in_1d())?;
             Ok(d.into_any())
         })
         .collect()

@@ -108,6 +108,7 @@ impl StrikerArgs {
             pole_offset: Some(self.pole_offset),
             pendulum: self.pendulum,
             speed: self.speed,
+            car_mass: self.car_mass,
         };
         spec.striker().map_err(input)
     }
@@ -152,6 +153,7 @@ fn planar_impact(
         pole_offset,
         pendulum,
         speed,
+        car_mass: Some(car.total_mass()),
     };
     let (striker, preset) = spec.striker()?;
     // a preset runs with the tyres its protocol prescribes, as in the CLI

@@ -64,8 +64,11 @@ def test_mass_reduction_equals_the_cli_json(run, tmp_path, root):
 def test_impact_errors(root):
     car = bumpsim.Car.from_file(root / "examples" / "identify" / "car-truth.toml")
     bumper = bumpsim.Bumper.from_file(root / "examples" / "impact" / "bumper-a.toml")
-    with pytest.raises(bumpsim.InputError, match="known presets: thesis-flat"):
+    with pytest.raises(bumpsim.InputError, match="no test 'nope'; the tests: thesis-flat"):
         bumpsim.impact(car, bumper, case="nope")
+    # an old name is refused with the new one named
+    with pytest.raises(bumpsim.InputError, match="use 'rcar-structural-front'"):
+        bumpsim.impact(car, bumper, case="rcar-16")
     with pytest.raises(bumpsim.InputError, match="say what hits"):
         bumpsim.impact(car, bumper, speed=2.0)
     with pytest.raises(bumpsim.InputError, match="criterion"):
@@ -240,10 +243,27 @@ def test_a_preset_runs_with_its_tyre_law_as_in_the_cli(run, tmp_path, root):
 
 def test_planar_errors(root):
     car = bumpsim.PlanarCar.from_file(root / "examples" / "planar" / "saloon.toml")
-    with pytest.raises(bumpsim.InputError, match="known presets"):
+    with pytest.raises(bumpsim.InputError, match="no test 'nope'"):
         bumpsim.planar_impact(car, case="nope")
+    with pytest.raises(bumpsim.InputError, match="use 'iihs-bumper-corner-front'"):
+        bumpsim.planar_impact(car, case="iihs-corner-front")
     with pytest.raises(bumpsim.InputError, match="side"):
         bumpsim.planar_impact(car, angle=10.0, side="middle", speed=2.0)
+
+
+def test_the_one_table_lists_and_runs_the_same_tests_as_the_cli(run, root):
+    # the names of bumpsim.presets() are those `bumpsim planar --case list` prints
+    listed = run("planar", "--case", "list")
+    cli = {line.split()[0] for line in listed.splitlines()
+           if line and not line.startswith((" ", "#"))}
+    names = {p["name"] for p in bumpsim.presets()}
+    assert names == cli and len(names) == 33
+    corner = next(p for p in bumpsim.presets() if p["name"] == "rcar-structural-front")
+    assert "40 % overlap" in corner["dropped_in_1d"]
+    # every front end runs a table test: a pendulum of the vehicle's mass in planar
+    car = bumpsim.PlanarCar.from_file(root / "examples" / "planar" / "saloon.toml")
+    result = bumpsim.planar_impact(car, case="part581-corner-front-left")
+    assert result.result["peak_force"] > 0.0
 
 
 def test_doe_stiffness_equals_the_cli(run, tmp_path):

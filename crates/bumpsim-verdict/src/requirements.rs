@@ -250,6 +250,19 @@ const NO_HEIGHT: &str =
 const REPAIR: Judgement =
     not("repair costs, parts and labour are not modelled; the criteria bound the damage only");
 
+const LAB: &[Requirement] = &[
+    req(
+        "lab tests (no regulation)",
+        "the car's own damageability limits: parts behind the bumper, rails, crash boxes",
+        model(Kind::Clearance, "clearance to each item the car file lists"),
+    ),
+    req(
+        "lab tests (no regulation)",
+        "the rails not deformed",
+        model(Kind::RailForce, "rail force below the rails' yield"),
+    ),
+];
+
 const PART581: &[Requirement] = &[
     checked(
         "581.5(c)(1)",
@@ -372,10 +385,10 @@ const R42: &[Requirement] = &[
 const RCAR_BUMPER: &[Requirement] = &[
     req(
         "RCAR Bumper Test §5.1.2",
-        "the bumper beam reaches the qualifying height against the barrier face",
+        "the bumper beam reaches the qualifying height against the barrier face (455-555 mm or 405-505 mm by market, --market)",
         proxy(
             Kind::BeamEngagement,
-            "the beam overlapping half the barrier face's height",
+            "the beam overlapping half the barrier face's 100 mm height",
             "RCAR's qualifying-height rule was not available here: half the face is bumpsim's choice",
         ),
     ),
@@ -395,7 +408,7 @@ const RCAR_BUMPER: &[Requirement] = &[
     ),
     checked(
         "RCAR barrier spec. §2.2",
-        "the barrier carries a rigid backstop, 200 mm tall, 25 mm behind its face, above the absorber",
+        "the barrier carries a rigid backstop, 200 ± 2 mm tall, 25 ± 1 mm behind its steel face, on top of the barrier: bonnet, grille or lamps that reach it are damaged",
         not(
             "the backstop is not modelled: contact of the bonnet, grille or lamps with it is not computed",
         ),
@@ -516,6 +529,11 @@ const IIHS_BUMPER: &[Requirement] = &[
 /// Every protocol's requirements, in the order of
 /// [`crate::protocol::PROTOCOLS`].
 pub const REQUIREMENTS: &[Requirements] = &[
+    Requirements {
+        protocol: "lab",
+        source: "the thesis and papers A-C: no regulation; the car file's limits",
+        list: LAB,
+    },
     Requirements {
         protocol: "part581",
         source: "49 CFR 581.5(c), the protective criteria after every impact",

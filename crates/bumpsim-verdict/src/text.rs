@@ -214,9 +214,18 @@ pub fn summary(v: &Verdict) -> String {
 }
 
 /// The protocols and their tests, each test with its source and what is
-/// uncertain (`bumpsim verdict --protocol list`).
+/// uncertain (`bumpsim verdict --list`), heights for the default market.
 pub fn protocols() -> String {
-    let mut out = String::new();
+    protocols_for(bumpsim_io::protocols::Market::default())
+}
+
+/// [`protocols`] with the heights of the vehicle's target market.
+pub fn protocols_for(market: bumpsim_io::protocols::Market) -> String {
+    use bumpsim_io::protocols::{Market, RCAR_BACKSTOP};
+    let mut out = format!(
+        "the tests of the one table (bumpsim impact --case list, bumpsim planar --case list), by protocol; heights for the market {} (--market)\n",
+        market.name()
+    );
     for p in crate::protocol::PROTOCOLS {
         out += &format!("{}: {}\n", p.name, p.description);
         if let Some(r) = crate::requirements::of(p.name) {
@@ -225,15 +234,50 @@ pub fn protocols() -> String {
         for t in p
             .tests
             .iter()
-            .filter_map(|name| crate::protocol::test(name))
+            .filter_map(|name| crate::protocol::test_in(name, market))
         {
             out += &format!(
-                "  {}: {}\n    source: {}\n    uncertain: {}\n",
-                t.name, t.description, t.source, t.uncertain
+                "  {}: {}\n    speed {:.3} km/h; height: {}\n    source: {}\n    uncertain: {}\n",
+                t.name,
+                t.description,
+                t.speed() * 3.6,
+                height(&t.height),
+                t.source,
+                t.uncertain
             );
+            if t.entry.height == bumpsim_io::protocols::Height::RcarBarrier {
+                let other = match market {
+                    Market::NorthAmerica => Market::Europe,
+                    Market::Europe => Market::NorthAmerica,
+                };
+                let (b, h) = other.rcar_face();
+                out += &format!(
+                    "    barrier: {}; rigid backstop {:.0} mm tall above it, {:.0} mm behind the face (specification Issue 1, 2007, §2.2); {}: {:.0}-{:.0} mm; {}\n",
+                    height(&t.height),
+                    1e3 * RCAR_BACKSTOP.0,
+                    1e3 * RCAR_BACKSTOP.1,
+                    other.name(),
+                    1e3 * b,
+                    1e3 * h,
+                    bumpsim_io::protocols::MARKET_UNCERTAIN
+                );
+            }
         }
     }
     out
+}
+
+fn height(h: &crate::protocol::Height) -> String {
+    use crate::protocol::Height;
+    match *h {
+        Height::Ridge { low, high } if low == high => format!("line at {:.0} mm", 1e3 * low),
+        Height::Ridge { low, high } => {
+            format!("line at any height {:.0}-{:.0} mm", 1e3 * low, 1e3 * high)
+        }
+        Height::Face { bottom, top } => format!("face {:.0}-{:.0} mm", 1e3 * bottom, 1e3 * top),
+        Height::Full => "taller than any bumper".into(),
+        Height::Unknown => "not given by the source read here".into(),
+    }
 }
 
 /// The target region as a table: per whole-bumper stiffness (kN/mm), the

@@ -82,7 +82,7 @@ const SOURCES: &[(&str, f64, Option<f64>, f64, f64, Option<(f64, f64)>)] = &[
         None,
         0.0,
         1.0,
-        Some((0.405, 0.505)),
+        Some((0.455, 0.555)),
     ),
     (
         "rcar-bumper-corner-front",
@@ -98,7 +98,7 @@ const SOURCES: &[(&str, f64, Option<f64>, f64, f64, Option<(f64, f64)>)] = &[
         None,
         -10.0,
         0.15,
-        Some((0.405, 0.505)),
+        Some((0.455, 0.555)),
     ),
     (
         "iihs-bumper-front",
@@ -141,6 +141,27 @@ fn every_preset_matches_the_table_written_from_its_source() {
         };
         assert_eq!(range, height, "{name}: height");
         assert!(!t.source.is_empty() && !t.uncertain.is_empty(), "{name}");
+    }
+    // the market sets the RCAR barrier's lower edge, not the end struck
+    let europe = bumpsim_verdict::protocol::select_in(
+        &[
+            "rcar-bumper-front",
+            "rcar-bumper-rear",
+            "iihs-bumper-corner-front",
+        ],
+        bumpsim_io::protocols::Market::Europe,
+    )
+    .unwrap();
+    for t in europe {
+        assert_eq!(
+            t.height,
+            Height::Face {
+                bottom: 0.405,
+                top: 0.505
+            },
+            "{}",
+            t.name
+        );
     }
     // CMVSS 215 runs 49 CFR 581's tests
     assert_eq!(

@@ -22,6 +22,7 @@ mod impact;
 mod issue48;
 mod planar;
 mod planar_identify;
+mod presets;
 mod reports;
 mod reports_answer;
 mod robustness;

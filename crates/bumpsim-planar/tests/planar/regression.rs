@@ -10,9 +10,47 @@ use bumpsim_impact::bumper::Bumper;
 use bumpsim_peers::recorded::Recording;
 use bumpsim_planar::car::Layout;
 use bumpsim_planar::drive::{Drive, Driven, Load, Sensor, drive, segment_loads};
-use bumpsim_planar::presets::PRESETS;
 use bumpsim_planar::{Face, PlanarCar, PlanarResult, Settings, Side, Striker, simulate};
 use std::path::Path;
+
+/// The six strikers the recording was made with (the planar presets of
+/// that time, by their names of then; the flat 4.8 km/h corner faces are
+/// no longer a table test: the IIHS corner tests run into the RCAR barrier).
+fn recorded_strikers() -> [(&'static str, Striker); 6] {
+    let kmh = 1.0 / 3.6;
+    // the angle in radians as the presets wrote it, to the last bit
+    let plane = |degrees: f64, percent: f64, side| Face::Plane {
+        angle: degrees * std::f64::consts::PI / 180.0,
+        overlap: percent / 100.0,
+        side,
+    };
+    [
+        (
+            "rcar-structural-front",
+            Striker::barrier(plane(10.0, 40.0, Side::Left), 15.0 * kmh),
+        ),
+        (
+            "rcar-structural-rear",
+            Striker::pendulum(plane(10.0, 40.0, Side::Left), 1400.0, 15.0 * kmh),
+        ),
+        (
+            "iihs-angle-front",
+            Striker::barrier(plane(30.0, 100.0, Side::Left), 8.0 * kmh),
+        ),
+        (
+            "iihs-pole-rear",
+            Striker::barrier(Face::pole_of_diameter(0.1778, 0.0), 8.0 * kmh),
+        ),
+        (
+            "iihs-corner-front",
+            Striker::barrier(plane(10.0, 15.0, Side::Left), 4.8 * kmh),
+        ),
+        (
+            "iihs-corner-rear",
+            Striker::barrier(plane(-10.0, 15.0, Side::Right), 4.8 * kmh),
+        ),
+    ]
+}
 
 fn impact(out: &mut Recording, name: &str, r: &PlanarResult) {
     let mut history = |what: &str, values: &[f64]| out.history(&format!("{name}.{what}"), values);
@@ -113,9 +151,9 @@ fn planar_impacts_and_replays_are_as_recorded() {
         ("symmetric", symmetric()),
     ];
     for (car_name, car) in &cars {
-        for preset in PRESETS {
-            let r = simulate(car, &preset.striker, &short).unwrap();
-            impact(&mut out, &format!("{car_name}.{}", preset.name), &r);
+        for (name, striker) in recorded_strikers() {
+            let r = simulate(car, &striker, &short).unwrap();
+            impact(&mut out, &format!("{car_name}.{name}"), &r);
         }
     }
     let car = &cars[0].1;

@@ -465,7 +465,8 @@ class Impact:
         ``force [N]``, ``compression [m]``, ``x BODY [m]``, ``v BODY [m/s]``."""
 
 def presets() -> list[dict[str, Any]]:
-    """The load-case presets (name, speed_kmh, description, source)."""
+    """The one table of tests, as `bumpsim impact --case list` (name, protocol,
+    speed_kmh, description, source, uncertain, dropped_in_1d)."""
 
 def impact(
     car: CarLike,

@@ -38,6 +38,9 @@ pub struct StrikerArgs {
     pub pendulum: Option<f64>,
     /// Speed, m/s.
     pub speed: Option<f64>,
+    /// The car's total mass, kg (a preset's pendulum of the vehicle's mass).
+    #[serde(default)]
+    pub car_mass: Option<f64>,
 }
 
 #[derive(Serialize, Deserialize)]
