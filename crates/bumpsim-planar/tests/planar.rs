@@ -510,6 +510,8 @@ mod identification;
 mod independent;
 #[path = "planar/regression.rs"]
 mod regression;
+#[path = "planar/tyres.rs"]
+mod tyres;
 
 /// Runs the peer script `tests/peers/SCRIPT` on the parameter file `params`
 /// and returns what it prints (the planar tests' scipy oracles).

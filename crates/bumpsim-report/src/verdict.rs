@@ -51,7 +51,7 @@ pub fn verdict_report(
     let mut page = Html::new(&format!("bumpsim verdict: {}", v.car));
     page.heading("Verdict");
     page.paragraph(&format!(
-        "Each criterion passes when its margin is at least {} % of its limit.",
+        "Each criterion passes when its margin is at least {} % of its limit: the margin column's share, 100 % being the limit; a row that says \"of …\" takes that as its 100 % (a pendulum's beam engagement, whose limit is 0 mm, takes the ridge's height range).",
         100.0 * v.margin
     ));
     let (headers, rows) = bumpsim_verdict::text::columns(v);

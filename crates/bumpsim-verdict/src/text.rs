@@ -39,13 +39,29 @@ pub fn rows(v: &Verdict) -> Vec<[String; 7]> {
                 c.name.clone(),
                 q.format(c.value),
                 format!("{sign} {}", q.format(c.limit)),
-                format!("{} ({:+.1} %)", q.format(c.margin), 100.0 * c.ratio),
+                margin(c),
                 outcome(c).into(),
                 c.detail.clone(),
             ]);
         }
     }
     rows
+}
+
+/// A criterion's margin with its ratio, `53.33 mm (+88.9 %)` (a share of
+/// the limit), or with the ratio's reference where that is not the limit:
+/// `6.400 mm (+6.3 % of 101.6 mm)`.
+pub fn margin(c: &Criterion) -> String {
+    let q = c.quantity;
+    match c.of_limit() {
+        true => format!("{} ({:+.1} %)", q.format(c.margin), 100.0 * c.ratio),
+        false => format!(
+            "{} ({:+.1} % of {})",
+            q.format(c.margin),
+            100.0 * c.ratio,
+            q.format(c.reference)
+        ),
+    }
 }
 
 /// The column headers of [`rows`].
