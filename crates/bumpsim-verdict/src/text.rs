@@ -269,7 +269,11 @@ pub fn region(r: &Region) -> String {
         r.origin[1] / 1e3
     );
     for row in &r.rows {
-        out += &format!("  stiffness {:.2} kN/mm: ", row.stiffness / 1e6);
+        let own = match r.own_row() == Some(row) {
+            true => " (the car's)",
+            false => "",
+        };
+        out += &format!("  stiffness {:.2} kN/mm{own}: ", row.stiffness / 1e6);
         out += &match (&row.interval, &row.failing) {
             (Some([low, high]), _) => format!(
                 "force from {} to {}, stroke needed {}\n",
@@ -284,5 +288,33 @@ pub fn region(r: &Region) -> String {
             ),
         };
     }
+    out += &own(r);
     out
+}
+
+/// Where the car's own bumper lies against its stiffness's row: inside
+/// the passing force interval, below or above it, or in a row where
+/// nothing passes.
+pub fn own(r: &Region) -> String {
+    let Some(row) = r.own_row() else {
+        return String::new();
+    };
+    let force = r.origin[1];
+    let place = match &row.interval {
+        None => "nothing passes at its stiffness".to_string(),
+        Some([low, _]) if force < low.force => format!(
+            "below the least passing force {:.1} kN at its stiffness: it fails",
+            low.force / 1e3
+        ),
+        Some([_, high]) if force > high.force => format!(
+            "above the largest passing force {:.1} kN at its stiffness: it fails",
+            high.force / 1e3
+        ),
+        Some(_) => "within the passing force interval at its stiffness".to_string(),
+    };
+    format!(
+        "  the car's bumper ({:.2} kN/mm, {:.1} kN): {place}\n",
+        r.origin[0] / 1e6,
+        force / 1e3
+    )
 }
