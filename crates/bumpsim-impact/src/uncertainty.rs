@@ -106,11 +106,11 @@ pub const SAME_CAR: f64 = 1e-3;
 /// The message of [`UncertaintyError::Foreign`]: the parameter, both
 /// values, and the ways to go on.
 pub fn foreign(key: &str, car: f64, identified: f64) -> String {
-    let short = bumpsim_core::units::short;
+    let number = |v: f64| bumpsim_core::units::format_number(v, 6);
     format!(
-        "these spreads belong to another car: {key} is {} in the car file but {} where they were identified ({:+.1} %); an identification's spreads (SE/value) hold for the car it identified: run the identified car (identify --car, with its [damageability] merged: docs/verdict.md), or give this car's spreads as a TOML [uncertainty] table of relative standard deviations",
-        short(car),
-        short(identified),
+        "these spreads belong to another car: {key} is {} in the car file but {} where they were identified (SI units; {:+.1} %); an identification's spreads (SE/value) hold for the car it identified: run the identified car (identify --car, with its [damageability] merged: docs/verdict.md), or give this car's spreads as a TOML [uncertainty] table of relative standard deviations",
+        number(car),
+        number(identified),
         100.0 * (car / identified - 1.0)
     )
 }

@@ -4,6 +4,7 @@
 
 use crate::util::*;
 
+mod examples;
 mod regulation;
 
 fn car() -> std::path::PathBuf {
