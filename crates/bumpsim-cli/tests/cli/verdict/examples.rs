@@ -33,7 +33,7 @@ fn the_bundled_rear_car_is_assessed_and_margins_name_their_reference() {
     ]);
     let out = text(&run.stdout);
     assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
-    assert!(!out.contains("not assessed"), "{out}");
+    assert!(!out.contains("no car file of the rear end"), "{out}");
     assert_contains(
         &out,
         &[
