@@ -200,14 +200,14 @@ struct AxleFile {
 }
 
 impl AxleFile {
-    /// The axle (`name`: `front` or `rear`, for messages).
-    fn axle(&self, name: &str) -> Result<Axle, String> {
+    /// The axle (`name`: `front` or `rear`; `error` names the file).
+    fn axle(&self, name: &str, error: &dyn Fn(String) -> PlanarError) -> Result<Axle, PlanarError> {
         if let (TyreLaw::Rolling, Some(mu), None) =
             (self.law, self.mu_longitudinal, self.rolling_resistance)
         {
-            return Err(format!(
+            return Err(error(format!(
                 "tyres.{name}.mu_longitudinal = {mu:?} on a rolling axle without rolling_resistance: mu_longitudinal is the locked wheel's sliding grip along the wheel (about 0.7-0.8 on dry asphalt) and the rolling resistance is rolling_resistance (about 0.01-0.015); a car file written before issue 45 meant the rolling resistance: write rolling_resistance = {mu:?} (and mu_longitudinal only where the sliding grip along the wheel differs from mu_lateral; docs/planar.md)"
-            ));
+            )));
         }
         let d = Axle::default();
         Ok(Axle {
@@ -364,8 +364,8 @@ impl PlanarCar {
         let tyres = match file.tyres {
             None => Tyres::default(),
             Some(t) => Tyres {
-                front: t.front.axle("front").map_err(&error)?,
-                rear: t.rear.axle("rear").map_err(&error)?,
+                front: t.front.axle("front", &error)?,
+                rear: t.rear.axle("rear", &error)?,
                 slip_speed: t.slip_speed.unwrap_or(Tyres::default().slip_speed),
             },
         };
