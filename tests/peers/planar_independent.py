@@ -431,8 +431,8 @@ segments = 40
 curve = [{curve}]
 unloading = {b["unloading"] * b["strips"]}
 [tyres]
-front = {{ mu_longitudinal = 0.015, mu_lateral = 0.6 }}
-rear = {{ mu_longitudinal = 0.015, mu_lateral = 0.6 }}
+front = {{ rolling_resistance = 0.015, mu_lateral = 0.6 }}
+rear = {{ rolling_resistance = 0.015, mu_lateral = 0.6 }}
 """
     (out / "start.toml").write_text(text)
 

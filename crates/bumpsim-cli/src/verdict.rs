@@ -15,7 +15,7 @@ use bumpsim_verdict::prelude::*;
 use bumpsim_verdict::pulse::AsiMethod;
 use bumpsim_verdict::{probability, protocol, sensitivity, target, text};
 use indicatif::{ProgressBar, ProgressStyle};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `bumpsim verdict`.
 #[derive(Debug, clap::Args)]
@@ -23,6 +23,11 @@ pub struct Args {
     /// A planar car file with a [damageability] table; give one per end (front, rear).
     #[arg(long, value_name = "CAR.toml", required_unless_present = "list")]
     car: Vec<PathBuf>,
+    /// The clearances and limits of a car file that has no [damageability]
+    /// table (an identified car): a file with that table alone; one per
+    /// --car, in the same order.
+    #[arg(long, value_name = "LIMITS.toml")]
+    damageability: Vec<PathBuf>,
     /// Protocols or tests, comma-separated: lab, part581, cmvss215, r42, rcar-bumper,
     /// rcar-structural, iihs-1990s, iihs-bumper, a test name, or all.
     #[arg(long, value_delimiter = ',', default_value = "all")]
@@ -95,15 +100,24 @@ pub fn run(args: &Args) -> Result<()> {
     }
     let names: Vec<&str> = args.protocol.iter().map(String::as_str).collect();
     let tests = protocol::select_in(&names, market).context("--protocol")?;
+    let limits: Vec<Option<&Path>> = match args.damageability.len() {
+        0 => vec![None; args.car.len()],
+        n if n == args.car.len() => args
+            .damageability
+            .iter()
+            .map(|p| Some(p.as_path()))
+            .collect(),
+        n => anyhow::bail!(
+            "--damageability given {n} times for {} --car: give one per --car, in the same order, or none",
+            args.car.len()
+        ),
+    };
     let ends = args
         .car
         .iter()
-        .map(|path| {
-            let car = PlanarCar::read(path)?;
-            let limits = Damageability::read(path)?;
-            CarEnd::new(car, limits).with_context(|| path.display().to_string())
-        })
-        .collect::<Result<Vec<_>>>()?;
+        .zip(limits)
+        .map(|(path, limits)| CarEnd::read(path, limits))
+        .collect::<Result<Vec<_>, _>>()?;
     let mut setup = Setup::new(ends, tests, args.margin)?;
     setup.asi_method = args
         .asi_method

@@ -72,6 +72,19 @@ pub enum UncertaintyError {
         /// What is allowed.
         expected: String,
     },
+    /// An identification's spreads on a car that is not the one it
+    /// identified: a parameter's value differs beyond [`SAME_CAR`].
+    #[error("{path}: {}", foreign(key, *car, *identified))]
+    Foreign {
+        /// The identification's JSON.
+        path: String,
+        /// The parameter.
+        key: String,
+        /// Its value in the car file, SI.
+        car: f64,
+        /// Its value where the spreads were identified, SI.
+        identified: f64,
+    },
     /// A parameter the car does not have.
     #[error("{path}: {key} is missing: {expected}")]
     Missing {
@@ -84,12 +97,33 @@ pub enum UncertaintyError {
     },
 }
 
+/// How far (relative) a car file's parameter may lie from the value an
+/// identification's spreads belong to and still be that car: 0.1 %, room
+/// for a value rounded by hand to four digits; the identified car file
+/// (`identify --car`) carries the values exactly.
+pub const SAME_CAR: f64 = 1e-3;
+
+/// The message of [`UncertaintyError::Foreign`]: the parameter, both
+/// values, and the ways to go on.
+pub fn foreign(key: &str, car: f64, identified: f64) -> String {
+    let number = |v: f64| bumpsim_core::units::format_number(v, 6);
+    format!(
+        "these spreads belong to another car: {key} is {} in the car file but {} where they were identified (SI units; {:+.1} %); an identification's spreads (SE/value) hold for the car it identified: run the identified car (identify --car, with its [damageability] merged: docs/verdict.md), or give this car's spreads as a TOML [uncertainty] table of relative standard deviations",
+        number(car),
+        number(identified),
+        100.0 * (car / identified - 1.0)
+    )
+}
+
 /// The spreads an identification's JSON gives: names, spreads of the
 /// logarithms, their correlation and what was left out.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Identified {
     /// Car-file names.
     pub names: Vec<String>,
+    /// The identified values the spreads belong to, SI (in the order of
+    /// `names`; empty when the source does not say).
+    pub values: Vec<f64>,
     /// Standard deviations of the logarithms.
     pub log_sd: Vec<f64>,
     /// Their correlation.
@@ -116,6 +150,11 @@ pub trait Model: Clone + std::fmt::Debug + PartialEq + Send + Sync {
     /// The spreads of an identification's JSON document; `source` names
     /// the file in messages.
     fn identified(doc: &serde_json::Value, source: &str) -> Result<Identified, UncertaintyError>;
+    /// A parameter's value in a car, SI (`None`: not a single value, as a
+    /// scale of the bumper's force; or not compared).
+    fn value(_car: &Self::Car, _part: Self::Part) -> Option<f64> {
+        None
+    }
 }
 
 /// Fewest and most factors of a range: a ranged parameter lies within
@@ -225,6 +264,11 @@ pub struct Uncertainty<M> {
     pub left_out: Vec<String>,
     /// Each parameter's law.
     pub laws: Vec<Marginal>,
+    /// The identified values the spreads belong to, SI (an
+    /// identification's JSON; empty for relative spreads, which apply to
+    /// any car).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub estimates: Vec<f64>,
     #[serde(skip)]
     model: PhantomData<M>,
 }
@@ -286,6 +330,7 @@ impl<M: Model> Uncertainty<M> {
             laws.push(Marginal::Uniform { low, high });
         }
         let found = Identified {
+            values: vec![],
             log_sd: laws.iter().map(Marginal::log_sd).collect(),
             correlation: identity(names.len()),
             names,
@@ -325,6 +370,7 @@ impl<M: Model> Uncertainty<M> {
             correlation: found.correlation,
             left_out: found.left_out,
             laws,
+            estimates: found.values,
             model: PhantomData,
         };
         u.cholesky()?;
@@ -448,7 +494,11 @@ impl<M: Model> Uncertainty<M> {
         self.names.iter().filter_map(|n| M::part(n)).collect()
     }
 
-    /// Checks that every parameter exists in `car`.
+    /// Checks that every parameter exists in `car` and, for an
+    /// identification's spreads, that `car` is the car they were
+    /// identified on: each value within [`SAME_CAR`] of the identified one
+    /// (the spreads are relative to it: another car's would be applied
+    /// without a word otherwise).
     pub fn check(&self, car: &M::Car) -> Result<(), UncertaintyError> {
         for (name, p) in self.names.iter().zip(self.parts()) {
             if M::scaled(car, &[p], &[1.0]).is_none() {
@@ -456,6 +506,20 @@ impl<M: Model> Uncertainty<M> {
                     path: self.source.clone(),
                     key: name.clone(),
                     expected: format!("a parameter of the car: {}", M::known(car)),
+                });
+            }
+        }
+        let values = self.names.iter().zip(self.parts()).zip(&self.estimates);
+        for ((name, p), &identified) in values {
+            let Some(value) = M::value(car, p) else {
+                continue;
+            };
+            if (value / identified - 1.0).abs() > SAME_CAR {
+                return Err(UncertaintyError::Foreign {
+                    path: self.source.clone(),
+                    key: name.clone(),
+                    car: value,
+                    identified,
                 });
             }
         }

@@ -8,7 +8,7 @@
 
 use bumpsim_core::model::MsdModel;
 use bumpsim_impact::bumper::Bumper;
-use bumpsim_planar::car::{Layout, PlanarCar};
+use bumpsim_planar::car::{Axle, Layout, PlanarCar};
 use bumpsim_planar::drive::{Drive, Sensor, drive, segment_loads};
 use bumpsim_planar::{Face, Settings, Side, Striker, simulate};
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -22,8 +22,7 @@ fn benches(c: &mut Criterion) {
     };
     // free-rolling wheels: rolling resistance along, tyre grip across
     for axle in [&mut layout.tyres.front, &mut layout.tyres.rear] {
-        axle.mu_longitudinal = 0.015;
-        axle.mu_lateral = 0.8;
+        *axle = Axle::rolling(0.015, 0.8);
     }
     let car = PlanarCar::symmetric(&chain, &bumper, &layout).unwrap();
     let face = Face::Plane {

@@ -248,13 +248,29 @@ pub enum TyreLaw {
 /// resistance `F_x = −μ_x N v_x/√(v_x² + v_s²)`.
 ///
 /// **Sliding**: `F = −μ N v/√(v_x² + v_y² + v_s²)` per direction with μ_x and μ_y.
+///
+/// Rolling resistance and sliding grip are two coefficients (issue 45): a
+/// rolling tyre resists along the wheel with `rolling_resistance` (about
+/// 0.01–0.015 for passenger tyres on asphalt: Gillespie, *Fundamentals of
+/// Vehicle Dynamics* 1992, ch. 4; Wong, *Theory of Ground Vehicles*, 4th ed.
+/// 2008, ch. 1.2), a locked one slides along it with `mu_longitudinal`
+/// (about 0.7–0.8 on dry asphalt: Wong 2008, table 1.3, sliding peak
+/// 0.75 against 0.8–0.9 at the peak; locked-wheel skid tests give 0.7–0.8),
+/// so `--tyres sliding` on a rolling car takes the sliding grip, not the
+/// rolling resistance.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Axle {
-    /// Longitudinal friction coefficient μ_x (rolling: rolling resistance,
-    /// about 0.015; sliding: the braked tyre's μ), 1.
+    /// Sliding friction coefficient along the wheel μ_x, 1: a locked
+    /// wheel's grip (sliding law; about 0.7–0.8 on dry asphalt). A car
+    /// file without it takes `mu_lateral` (a locked tyre slides alike in
+    /// every direction).
     #[serde(default)]
     pub mu_longitudinal: f64,
+    /// Rolling resistance coefficient along the wheel, 1 (rolling law;
+    /// about 0.01–0.015).
+    #[serde(default)]
+    pub rolling_resistance: f64,
     /// Lateral friction coefficient μ_y (the saturation of a rolling tyre), 1.
     #[serde(default)]
     pub mu_lateral: f64,
@@ -294,6 +310,7 @@ impl Default for Axle {
     fn default() -> Self {
         Axle {
             mu_longitudinal: 0.0,
+            rolling_resistance: 0.0,
             mu_lateral: 0.0,
             law: TyreLaw::Rolling,
             cornering_stiffness: CORNERING_STIFFNESS.0,
@@ -313,11 +330,13 @@ impl Axle {
         }
     }
 
-    /// Rolling tyres with rolling resistance `mu_longitudinal`, grip
-    /// `mu_lateral` and the default cornering stiffness and relaxation.
-    pub fn rolling(mu_longitudinal: f64, mu_lateral: f64) -> Axle {
+    /// Rolling tyres with `rolling_resistance`, grip `mu_lateral` (also
+    /// their sliding grip along the wheel, should they lock) and the
+    /// default cornering stiffness and relaxation.
+    pub fn rolling(rolling_resistance: f64, mu_lateral: f64) -> Axle {
         Axle {
-            mu_longitudinal,
+            mu_longitudinal: mu_lateral,
+            rolling_resistance,
             mu_lateral,
             ..Axle::default()
         }
@@ -673,6 +692,7 @@ fn check_tyres(tyres: &Tyres) -> Result<(), PlanarError> {
     for (axle, a) in [("front", tyres.front), ("rear", tyres.rear)] {
         for (kind, mu) in [
             ("mu_longitudinal", a.mu_longitudinal),
+            ("rolling_resistance", a.rolling_resistance),
             ("mu_lateral", a.mu_lateral),
         ] {
             let name = format!("tyres.{axle}.{kind}");

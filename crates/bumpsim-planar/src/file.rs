@@ -41,10 +41,12 @@
 //! [tyres]                                 # optional; absent = frictionless
 //! slip_speed = 0.05                       # m/s, regularisation of the laws at standstill
 //! # law = "rolling" (default: free-rolling wheels, car in neutral) or "sliding"
-//! # (locked or braked); rolling: cornering_stiffness (N/rad per tyre, default
-//! # 60000) and relaxation_length (m, default 0.4; 0: instantaneous slip-angle law)
-//! front = { mu_longitudinal = 0.015, mu_lateral = 0.8 }
-//! rear = { mu_longitudinal = 0.8, mu_lateral = 0.8, law = "sliding" }   # e.g. parking brake on
+//! # (locked or braked); rolling: rolling_resistance along the wheel (default 0),
+//! # cornering_stiffness (N/rad per tyre, default 60000) and relaxation_length
+//! # (m, default 0.4; 0: instantaneous slip-angle law); mu_lateral the grip across;
+//! # mu_longitudinal the locked wheel's sliding grip along (default: mu_lateral)
+//! front = { rolling_resistance = 0.015, mu_lateral = 0.8 }
+//! rear = { mu_longitudinal = 0.75, mu_lateral = 0.8, law = "sliding" }   # e.g. parking brake on
 //!
 //! [damageability]                         # optional: clearances and limits of the
 //!                                         # damageability verdicts (docs/verdict.md)
@@ -175,9 +177,48 @@ fn block(file: &BumperFile, unit: f64, n: usize) -> Result<Option<Block>, Planar
 struct TyresFile {
     slip_speed: Option<f64>,
     #[serde(default)]
-    front: Axle,
+    front: AxleFile,
     #[serde(default)]
-    rear: Axle,
+    rear: AxleFile,
+}
+
+/// An axle as the car file gives it: the sliding grip along the wheel
+/// defaults to the lateral grip; a rolling axle's `mu_longitudinal`
+/// without `rolling_resistance` is a file from before issue 45 (where it
+/// was the rolling resistance) and is refused, naming the fix.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AxleFile {
+    mu_longitudinal: Option<f64>,
+    rolling_resistance: Option<f64>,
+    #[serde(default)]
+    mu_lateral: f64,
+    #[serde(default)]
+    law: TyreLaw,
+    cornering_stiffness: Option<f64>,
+    relaxation_length: Option<f64>,
+}
+
+impl AxleFile {
+    /// The axle (`name`: `front` or `rear`; `error` names the file).
+    fn axle(&self, name: &str, error: &dyn Fn(String) -> PlanarError) -> Result<Axle, PlanarError> {
+        if let (TyreLaw::Rolling, Some(mu), None) =
+            (self.law, self.mu_longitudinal, self.rolling_resistance)
+        {
+            return Err(error(format!(
+                "tyres.{name}.mu_longitudinal = {mu:?} on a rolling axle without rolling_resistance: mu_longitudinal is the locked wheel's sliding grip along the wheel (about 0.7-0.8 on dry asphalt) and the rolling resistance is rolling_resistance (about 0.01-0.015); a car file written before issue 45 meant the rolling resistance: write rolling_resistance = {mu:?} (and mu_longitudinal only where the sliding grip along the wheel differs from mu_lateral; docs/planar.md)"
+            )));
+        }
+        let d = Axle::default();
+        Ok(Axle {
+            mu_longitudinal: self.mu_longitudinal.unwrap_or(self.mu_lateral),
+            rolling_resistance: self.rolling_resistance.unwrap_or(0.0),
+            mu_lateral: self.mu_lateral,
+            law: self.law,
+            cornering_stiffness: self.cornering_stiffness.unwrap_or(d.cornering_stiffness),
+            relaxation_length: self.relaxation_length.unwrap_or(d.relaxation_length),
+        })
+    }
 }
 
 fn characteristic(c: &Characteristic, name: &str) -> Result<Option<Bumper>, PlanarError> {
@@ -320,11 +361,14 @@ impl PlanarCar {
         if beam.width.is_finite() && beam.side_member_spacing.is_finite() {
             check_beam_fits(&beam, &error)?;
         }
-        let tyres = file.tyres.map_or(Tyres::default(), |t| Tyres {
-            front: t.front,
-            rear: t.rear,
-            slip_speed: t.slip_speed.unwrap_or(Tyres::default().slip_speed),
-        });
+        let tyres = match file.tyres {
+            None => Tyres::default(),
+            Some(t) => Tyres {
+                front: t.front.axle("front", &error)?,
+                rear: t.rear.axle("rear", &error)?,
+                slip_speed: t.slip_speed.unwrap_or(Tyres::default().slip_speed),
+            },
+        };
         // a value out of range is named with the file it came from
         let car = PlanarCar::new(body, chain(file.left), chain(file.right), beam, tyres)
             .map_err(|e| error(e.to_string()))?;
@@ -413,8 +457,12 @@ impl PlanarCar {
                 TyreLaw::Sliding => "sliding",
             };
             format!(
-                "{{ mu_longitudinal = {:?}, mu_lateral = {:?}, law = \"{law}\", cornering_stiffness = {:?}, relaxation_length = {:?} }}",
-                a.mu_longitudinal, a.mu_lateral, a.cornering_stiffness, a.relaxation_length
+                "{{ rolling_resistance = {:?}, mu_longitudinal = {:?}, mu_lateral = {:?}, law = \"{law}\", cornering_stiffness = {:?}, relaxation_length = {:?} }}",
+                a.rolling_resistance,
+                a.mu_longitudinal,
+                a.mu_lateral,
+                a.cornering_stiffness,
+                a.relaxation_length
             )
         };
         s += &format!(
@@ -451,7 +499,12 @@ mod tests {
         assert!((car.beam().width - 1.6).abs() < 1e-12);
         assert_eq!(car.beam().segments.len(), 10);
         assert!((car.beam().segments[3].loading_force(1.0) - 6e3).abs() < 1e-9);
-        assert!((car.tyres().rear.mu_longitudinal - 0.8).abs() < 1e-12);
+        assert!((car.tyres().rear.mu_longitudinal - 0.75).abs() < 1e-12);
+        let front = car.tyres().front;
+        assert_eq!(
+            (front.rolling_resistance, front.mu_longitudinal),
+            (0.015, 0.8)
+        );
     }
 
     #[test]

@@ -51,7 +51,7 @@ impl Wheel {
             }
             TyreLaw::Rolling => {
                 let rolling = (v_e * v_e + slip * slip).sqrt();
-                let along = -a.mu_longitudinal * self.load * v_e / rolling;
+                let along = -a.rolling_resistance * self.load * v_e / rolling;
                 let grip = a.mu_lateral * self.load;
                 let across = if grip <= 0.0 {
                     0.0
@@ -92,7 +92,7 @@ impl Wheel {
         if a.law == TyreLaw::Sliding {
             return (self.load * a.mu_longitudinal.max(a.mu_lateral) / slip, 0.0);
         }
-        let along = self.load * a.mu_longitudinal / slip;
+        let along = self.load * a.rolling_resistance / slip;
         match (a.mu_lateral * self.load > 0.0, a.relaxation_length > 0.0) {
             (false, _) => (along, 0.0),
             (true, true) => (along, a.cornering_stiffness / a.relaxation_length),

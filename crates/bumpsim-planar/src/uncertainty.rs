@@ -35,7 +35,8 @@ use crate::result::PlanarResult;
 use bumpsim_core::units::Dimension;
 pub use bumpsim_impact::prediction::{History, Outputs, Scalar};
 pub use bumpsim_impact::uncertainty::{
-    Identified, Marginal, Model, RANGE_FACTORS, UncertaintyError, described, unreadable,
+    Identified, Marginal, Model, RANGE_FACTORS, SAME_CAR, UncertaintyError, described, foreign,
+    unreadable,
 };
 
 /// The planar car's parameters ([`Model`]).
@@ -173,6 +174,27 @@ impl Model for Planar {
     fn identified(doc: &serde_json::Value, source: &str) -> Result<Identified, UncertaintyError> {
         identified(doc, source)
     }
+
+    fn value(car: &PlanarCar, part: Part) -> Option<f64> {
+        value(car, part)
+    }
+}
+
+/// A parameter's value in the car, SI (the front axle's for the tyres;
+/// `None` for the bumper's force scale).
+pub fn value(car: &PlanarCar, part: Part) -> Option<f64> {
+    match part {
+        Part::Mass => Some(car.body().mass),
+        Part::YawInertia => Some(car.body().yaw_inertia),
+        Part::Chain { left, kind, index } => {
+            let chain = if left { car.left() } else { car.right() };
+            let values = [&chain.masses, &chain.dampers, &chain.springs];
+            values.get(kind)?.get(index).copied()
+        }
+        Part::MuLateral => Some(car.tyres().front.mu_lateral),
+        Part::Cornering => Some(car.tyres().front.cornering_stiffness),
+        Part::BumperForce => None,
+    }
 }
 
 /// The spreads of a planar identification's JSON document.
@@ -194,6 +216,7 @@ fn identified(doc: &serde_json::Value, source: &str) -> Result<Identified, Uncer
             (_, Some(v), Some(se)) if v > 0.0 && se > 0.0 => {
                 kept.push(i);
                 found.names.push(name.into());
+                found.values.push(v);
                 found.log_sd.push(se / v);
             }
             _ => found.left_out.push(format!(

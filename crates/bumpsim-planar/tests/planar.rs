@@ -514,6 +514,8 @@ mod regression;
 mod sensors;
 #[path = "planar/yaw_rate.rs"]
 mod yaw_rate;
+#[path = "planar/tyres.rs"]
+mod tyres;
 
 /// Runs the peer script `tests/peers/SCRIPT` on the parameter file `params`
 /// and returns what it prints (the planar tests' scipy oracles).

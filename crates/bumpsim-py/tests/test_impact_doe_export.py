@@ -225,8 +225,8 @@ def test_a_preset_runs_with_its_tyre_law_as_in_the_cli(run, tmp_path, root):
     prescribes free-rolling ones: Python ran the file's sliding tyres, the
     CLI the preset's rolling ones."""
     text = (root / "examples" / "planar" / "saloon.toml").read_text()
-    sliding = text.replace("front = { mu_longitudinal", 'front = { law = "sliding", mu_longitudinal')
-    sliding = sliding.replace("rear = { mu_longitudinal", 'rear = { law = "sliding", mu_longitudinal')
+    sliding = text.replace("front = { rolling_resistance", 'front = { law = "sliding", rolling_resistance')
+    sliding = sliding.replace("rear = { rolling_resistance", 'rear = { law = "sliding", rolling_resistance')
     assert sliding.count('law = "sliding"') == 2
     car_path = tmp_path / "sliding.toml"
     car_path.write_text(sliding)

@@ -12,7 +12,7 @@
 
 use crate::bar::BarPlot;
 use crate::html::Html;
-use crate::plot::{LinePlot, PlotError, Series, Style};
+use crate::plot::{Band, LinePlot, PlotError, Series, Style};
 use bumpsim_core::units::Dimension;
 use bumpsim_planar::PlanarResult;
 use bumpsim_verdict::sensitivity::{self, Sensitivity};
@@ -51,7 +51,7 @@ pub fn verdict_report(
     let mut page = Html::new(&format!("bumpsim verdict: {}", v.car));
     page.heading("Verdict");
     page.paragraph(&format!(
-        "Each criterion passes when its margin is at least {} % of its limit.",
+        "Each criterion passes when its margin is at least {} % of its limit: the margin column's share, 100 % being the limit; a row that says \"of …\" takes that as its 100 % (a pendulum's beam engagement, whose limit is 0 mm, takes the ridge's height range).",
         100.0 * v.margin
     ));
     let (headers, rows) = bumpsim_verdict::text::columns(v);
@@ -299,9 +299,15 @@ fn target(
         r.impacts,
         r.seconds
     ));
+    let svg = pass_region(r, v).svg()?;
+    page.figure(&svg, &format!("the pass region (whole bumper): at each stiffness searched, the force levels whose bumper passes every test (shaded; a stiffness where nothing passes is a marker at the car's force level), and the car's own bumper, which {}; between the rows the region is interpolated, so check a bumper with the verdict", own_outcome(v)));
+    figures.push(("pass-region.svg".into(), svg));
+    if let Some(line) = Some(bumpsim_verdict::text::own(r)).filter(|l| !l.is_empty()) {
+        page.paragraph(line.trim());
+    }
     if !r.corridor.deflection.is_empty() {
         let svg = corridor(r, v).svg()?;
-        page.figure(&svg, "force–deflection corridor of the passing bumpers (whole bumper): the least and the largest force of a passing characteristic at each deflection, and the car's own bumper; a curve inside the corridor is not guaranteed to pass, check it with the verdict");
+        page.figure(&svg, "force–deflection envelope of the passing bumpers (whole bumper): the least and the largest force of any passing characteristic at each deflection; an envelope, not a pass region: a curve inside it can fail (the car's own, dashed, does when the verdict fails), so read what passes from the pass region above");
         figures.push(("corridor.svg".into(), svg));
     }
     let headers = [
@@ -314,6 +320,81 @@ fn target(
     ];
     page.table(&headers, &limits(r));
     Ok(())
+}
+
+/// Whether the car's own bumper passes, as the figures say it.
+fn own_outcome(v: &Verdict) -> String {
+    match v.failures().first() {
+        None => "passes every test".into(),
+        Some((test, c)) => format!("fails ({} in {test})", c.name),
+    }
+}
+
+/// The pass region in the plane of the whole bumper's initial stiffness
+/// and force level: a band per run of rows with a passing interval,
+/// markers at the stiffnesses where nothing passes, the car's bumper.
+fn pass_region(r: &Region, v: &Verdict) -> LinePlot {
+    let mut plot = LinePlot::new(
+        "Bumper target: pass region",
+        Dimension::Stiffness,
+        Dimension::Force,
+    )
+    .quantities(
+        Some("whole-bumper initial stiffness"),
+        Some("whole-bumper force level"),
+    );
+    let runs = r
+        .rows
+        .chunk_by(|a, b| a.interval.is_some() == b.interval.is_some());
+    for run in runs.filter(|run| run[0].interval.is_some()) {
+        let bounds = |k: usize| {
+            let at = |row: &bumpsim_verdict::target::Row| {
+                row.interval.as_ref().map_or(f64::NAN, |i| i[k].force)
+            };
+            run.iter().map(at).collect::<Vec<f64>>()
+        };
+        let x: Vec<f64> = run.iter().map(|row| row.stiffness).collect();
+        let (low, high) = (bounds(0), bounds(1));
+        if x.len() == 1 {
+            // one row: its interval as a vertical line
+            plot.add(Series::new(
+                "passes every test",
+                vec![x[0]; 2],
+                vec![low[0], high[0]],
+                Style::Solid,
+            ));
+        } else {
+            plot.band(Band {
+                name: "passes every test".into(),
+                x,
+                low,
+                high,
+            });
+        }
+    }
+    let empty: Vec<f64> = r
+        .rows
+        .iter()
+        .filter(|row| row.interval.is_none())
+        .map(|row| row.stiffness)
+        .collect();
+    if !empty.is_empty() {
+        let n = empty.len();
+        plot.add(Series::new(
+            "nothing passes at this stiffness",
+            empty,
+            vec![r.origin[1]; n],
+            Style::Points,
+        ));
+    }
+    let name = format!("the car's bumper: {}", own_outcome(v));
+    plot.add(Series::new(
+        &name,
+        vec![r.origin[0]],
+        vec![r.origin[1]],
+        Style::Points,
+    ));
+    plot
 }
 
 fn corridor(r: &Region, v: &Verdict) -> LinePlot {
@@ -343,7 +424,7 @@ fn corridor(r: &Region, v: &Verdict) -> LinePlot {
     });
     if let Some(own) = own {
         plot.add(Series::new(
-            "the car's bumper",
+            &format!("the car's bumper ({})", own_outcome(v)),
             c.deflection.clone(),
             own,
             Style::Dashed,
@@ -364,7 +445,12 @@ fn limits(r: &Region) -> Vec<Vec<String>> {
     r.rows
         .iter()
         .map(|row| {
-            let stiffness = format!("{:.2}", row.stiffness / 1e6);
+            let own = if r.own_row() == Some(row) {
+                " (the car's)"
+            } else {
+                ""
+            };
+            let stiffness = format!("{:.2}{own}", row.stiffness / 1e6);
             match &row.interval {
                 Some([low, high]) => vec![
                     stiffness,
@@ -422,5 +508,54 @@ mod tests {
         assert!(html.contains("background:#d8f0d8\">pass</td>"));
         assert!(figures[1].1.contains("force [kN]") && figures[2].1.contains("crush [mm]"));
         assert!(html.contains("Assumptions") && html.contains("absorber"));
+    }
+
+    /// The target's pass region (issue 45): the band of passing force
+    /// levels per stiffness, a row at the car's own stiffness marked in the
+    /// table, and the car's bumper named as failing where the verdict fails
+    /// (the force–deflection envelope is captioned as no pass region).
+    #[test]
+    fn the_pass_region_shows_what_passes_and_the_failing_car() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../examples/verdict/car.toml");
+        let end = CarEnd::read(&path, None).unwrap();
+        let tests = bumpsim_verdict::protocol::select(&["rcar-bumper-corner-front"]).unwrap();
+        let setup = Setup::new(vec![end], tests, 0.0).unwrap();
+        let v = verdict(&setup).unwrap();
+        let options = TargetOptions {
+            stiffness: Some([2e6, 4.5e6]),
+            force: Some([60e3, 480e3]),
+            rows: 4,
+            levels: 5,
+            tolerance: 0.05,
+        };
+        let r = bumpsim_verdict::target::search(&setup, &options).unwrap();
+        let own = r.own_row().unwrap();
+        assert!((own.stiffness / 3e6 - 1.0).abs() < 1e-12, "{own:?}");
+        // 2, 2.62, 3.43 and 4.5 kN/mm, and the car's 3 kN/mm
+        assert_eq!(r.rows.len(), 5);
+        let [low, _] = own.interval.as_ref().unwrap();
+        assert!(low.force > 120e3, "{low:?}: the car's 120 kN fails");
+        let (html, figures) = verdict_report(&v, Some(&r), None).unwrap();
+        let svg = |name: &str| &figures.iter().find(|(n, _)| n == name).unwrap().1;
+        let region = svg("pass-region.svg");
+        assert!(region.contains("passes every test") && region.contains("<polygon"));
+        assert!(
+            region.contains(
+                "the car&apos;s bumper: fails (bumper stroke in rcar-bumper-corner-front)"
+            ) || region
+                .contains("the car's bumper: fails (bumper stroke in rcar-bumper-corner-front)"),
+            "{region}"
+        );
+        assert!(region.contains("whole-bumper initial stiffness [N/mm]"));
+        assert!(svg("corridor.svg").contains("fails (bumper stroke"));
+        assert!(
+            html.contains("3.00 (the car&apos;s)")
+                || html.contains("3.00 (the car's)")
+                || html.contains("3.00 (the car&#39;s)"),
+            "marked row"
+        );
+        assert!(html.contains("below the least passing force"));
+        assert!(html.contains("not a pass region"));
     }
 }

@@ -23,9 +23,11 @@
 //! - **Bumper energy share** (optional): the energy the bumper dissipates
 //!   against the bumper's and the structure's together.
 //!
-//! Every criterion has a margin in its own unit and a margin ratio (margin
-//! over the limit); a criterion passes when its ratio is at least the
-//! margin asked for.
+//! Every criterion has a margin in its own unit and a margin ratio: the
+//! margin over its reference, the quantity that is 100 % (the limit; for a
+//! pendulum's beam engagement, whose limit is 0 mm, the ridge's height
+//! range: [`Criterion::reference`]); a criterion passes when its ratio is
+//! at least the margin asked for.
 
 use crate::limits::{Closer, Damageability};
 use crate::protocol::{Height, Test};
@@ -111,8 +113,14 @@ pub struct Criterion {
     pub upper: bool,
     /// The margin, SI (positive: inside the limit).
     pub margin: f64,
-    /// The margin over the limit's scale, 1.
+    /// The margin over its reference ([`Criterion::reference`]), 1.
     pub ratio: f64,
+    /// What the margin ratio is a share of (100 %), SI: the limit's size,
+    /// or another scale where the limit is 0 ([`Criterion::reference_name`]).
+    pub reference: f64,
+    /// What [`Criterion::reference`] is: `the limit`, or e.g. `the
+    /// ridge's height range (406-508 mm)`.
+    pub reference_name: String,
     /// The outcome.
     pub outcome: Outcome,
     /// Its probability of passing over the car's uncertainty (None: not
@@ -139,9 +147,26 @@ impl Criterion {
             upper,
             margin,
             ratio: margin / limit.abs(),
+            reference: limit.abs(),
+            reference_name: "the limit".into(),
             outcome: Outcome::Info,
             probability: None,
         }
+    }
+
+    /// The margin ratio taken over `reference` (SI), named `name`, where
+    /// the limit cannot be the scale (a limit of 0).
+    fn relative_to(mut self, reference: f64, name: String) -> Criterion {
+        self.ratio = self.margin / reference;
+        self.reference = reference;
+        self.reference_name = name;
+        self
+    }
+
+    /// Whether the margin ratio is a share of the limit (else of
+    /// [`Criterion::reference_name`]).
+    pub fn of_limit(&self) -> bool {
+        self.reference_name == "the limit"
     }
 
     /// Judged against the margin ratio asked for.
@@ -437,6 +462,11 @@ enum Engagement {
     Assumed(String),
 }
 
+/// The least height range a pendulum's ridge is taken to span for the
+/// beam engagement's margin ratio, m: a ridge set at one height (a corner
+/// impact at 20 in) has no range of its own.
+const SPAN: f64 = 0.05;
+
 /// The beam's engagement with the striker.
 fn engagement(d: &Damageability, test: &Test) -> Engagement {
     let mm = |v: f64| format!("{:.0} mm", v * 1e3);
@@ -462,15 +492,23 @@ fn engagement(d: &Damageability, test: &Test) -> Engagement {
         Height::Full | Height::Unknown => Engagement::Whole,
         Height::Ridge { low, high } => {
             let cover = (low - bottom).min(top - high);
-            let span = (high - low).max(0.05);
+            // the limit is 0 mm (the ridge just within the beam): the share
+            // is of the heights the ridge may be set to, at least 50 mm
+            let (span, reference) = match high - low >= SPAN {
+                true => (high - low, "the ridge's height range".to_string()),
+                false => (
+                    SPAN,
+                    "the least ridge height range taken (the ridge is set at one height)".into(),
+                ),
+            };
             let detail = format!(
-                "ridge at {}-{}, beam at {}-{}",
+                "ridge at {}-{}, beam at {}-{}; the margin's share is of {reference}",
                 mm(low),
                 mm(high),
                 mm(bottom),
                 mm(top)
             );
-            let mut c = Criterion::new(
+            let c = Criterion::new(
                 "beam engagement".into(),
                 detail,
                 Quantity::Length,
@@ -478,8 +516,7 @@ fn engagement(d: &Damageability, test: &Test) -> Engagement {
                 0.0,
                 false,
             );
-            c.ratio = c.margin / span;
-            Engagement::Judged(c)
+            Engagement::Judged(c.relative_to(span, reference))
         }
         Height::Face {
             bottom: low,

@@ -63,6 +63,9 @@ pub enum VerdictError {
         /// Why.
         reason: String,
     },
+    /// The car file is not a valid planar car (the message names the file).
+    #[error(transparent)]
+    Car(PlanarError),
     /// The planar car, striker or simulation refused.
     #[error("{test}: {source}")]
     Planar {
@@ -97,6 +100,15 @@ impl From<bumpsim_planar::uncertainty::UncertaintyError> for VerdictError {
                 path,
                 key,
                 expected,
+            },
+            U::Foreign {
+                path,
+                key,
+                car,
+                identified,
+            } => VerdictError::File {
+                path,
+                message: bumpsim_planar::uncertainty::foreign(&key, car, identified),
             },
             other => VerdictError::File {
                 path: String::new(),

@@ -237,7 +237,7 @@ impl Damageability {
             expected: expected.into(),
         };
         let value = file.damageability.ok_or_else(|| {
-            missing(KEY, "the verdict needs the car's clearances and limits: add a [damageability] table (docs/verdict.md)")
+            missing(KEY, "the verdict needs the car's clearances and limits: add a [damageability] table (docs/verdict.md), or give them in a file of their own merged with the car (bumpsim verdict --damageability FILE, as examples/verdict/damageability.toml)")
         })?;
         let table: Table = value.try_into().map_err(|e: toml::de::Error| {
             file_error(format!("[{KEY}]: {}", e.message().trim_end()))
@@ -289,6 +289,17 @@ impl Damageability {
             message: format!("cannot read: {e}"),
         })?;
         Damageability::parse(&text, path)
+    }
+
+    /// Whether a car file carries a `[damageability]` table.
+    pub fn given(path: &Path) -> Result<bool, VerdictError> {
+        let file = |message: String| VerdictError::File {
+            path: path.display().to_string(),
+            message,
+        };
+        let text = std::fs::read_to_string(path).map_err(|e| file(format!("cannot read: {e}")))?;
+        let table: toml::Table = toml::from_str(&text).map_err(|e| file(e.message().into()))?;
+        Ok(table.contains_key(KEY))
     }
 
     /// Checks every limit on its own: within its plausible range (see

@@ -141,6 +141,14 @@ pub struct Region {
 }
 
 impl Region {
+    /// The row at the car's own stiffness, if the search range holds it.
+    pub fn own_row(&self) -> Option<&Row> {
+        let own = self.origin[0];
+        self.rows
+            .iter()
+            .find(|r| (r.stiffness / own - 1.0).abs() < 1e-9)
+    }
+
     /// Impacts per second of the search.
     pub fn rate(&self) -> f64 {
         self.impacts as f64 / self.seconds.max(1e-9)
@@ -391,6 +399,18 @@ fn spaced(range: [f64; 2], n: usize) -> Vec<f64> {
         .collect()
 }
 
+/// The rows' stiffnesses: `n` log-spaced over the range and, when it lies
+/// inside and is not one of them, the car's own, so that a row answers
+/// for the car's stiffness (issue 45).
+fn stiffnesses(range: [f64; 2], n: usize, own: f64) -> Vec<f64> {
+    let mut rows = spaced(range, n);
+    let listed = rows.iter().any(|x| (x / own - 1.0).abs() < 1e-9);
+    if own > range[0] && own < range[1] && !listed {
+        rows.insert(rows.partition_point(|&x| x < own), own);
+    }
+    rows
+}
+
 fn check(options: &TargetOptions, origin: [f64; 2]) -> Result<([f64; 2], [f64; 2]), VerdictError> {
     let ranges = [
         (
@@ -455,7 +475,7 @@ pub fn search(setup: &Setup, options: &TargetOptions) -> Result<Region, VerdictE
         family: family.clone(),
         impacts: &impacts,
     };
-    let rows = spaced(stiffness, options.rows)
+    let rows = stiffnesses(stiffness, options.rows, family.origin[0])
         .par_iter()
         .map(|&x| search.row(x, &levels, options.tolerance))
         .collect::<Result<Vec<_>, _>>()?;

@@ -39,13 +39,29 @@ pub fn rows(v: &Verdict) -> Vec<[String; 7]> {
                 c.name.clone(),
                 q.format(c.value),
                 format!("{sign} {}", q.format(c.limit)),
-                format!("{} ({:+.1} %)", q.format(c.margin), 100.0 * c.ratio),
+                margin(c),
                 outcome(c).into(),
                 c.detail.clone(),
             ]);
         }
     }
     rows
+}
+
+/// A criterion's margin with its ratio, `53.33 mm (+88.9 %)` (a share of
+/// the limit), or with the ratio's reference where that is not the limit:
+/// `6.400 mm (+6.3 % of 101.6 mm)`.
+pub fn margin(c: &Criterion) -> String {
+    let q = c.quantity;
+    match c.of_limit() {
+        true => format!("{} ({:+.1} %)", q.format(c.margin), 100.0 * c.ratio),
+        false => format!(
+            "{} ({:+.1} % of {})",
+            q.format(c.margin),
+            100.0 * c.ratio,
+            q.format(c.reference)
+        ),
+    }
 }
 
 /// The column headers of [`rows`].
@@ -297,7 +313,11 @@ pub fn region(r: &Region) -> String {
         r.origin[1] / 1e3
     );
     for row in &r.rows {
-        out += &format!("  stiffness {:.2} kN/mm: ", row.stiffness / 1e6);
+        let own = match r.own_row() == Some(row) {
+            true => " (the car's)",
+            false => "",
+        };
+        out += &format!("  stiffness {:.2} kN/mm{own}: ", row.stiffness / 1e6);
         out += &match (&row.interval, &row.failing) {
             (Some([low, high]), _) => format!(
                 "force from {} to {}, stroke needed {}\n",
@@ -312,5 +332,33 @@ pub fn region(r: &Region) -> String {
             ),
         };
     }
+    out += &own(r);
     out
+}
+
+/// Where the car's own bumper lies against its stiffness's row: inside
+/// the passing force interval, below or above it, or in a row where
+/// nothing passes.
+pub fn own(r: &Region) -> String {
+    let Some(row) = r.own_row() else {
+        return String::new();
+    };
+    let force = r.origin[1];
+    let place = match &row.interval {
+        None => "nothing passes at its stiffness".to_string(),
+        Some([low, _]) if force < low.force => format!(
+            "below the least passing force {:.1} kN at its stiffness: it fails",
+            low.force / 1e3
+        ),
+        Some([_, high]) if force > high.force => format!(
+            "above the largest passing force {:.1} kN at its stiffness: it fails",
+            high.force / 1e3
+        ),
+        Some(_) => "within the passing force interval at its stiffness".to_string(),
+    };
+    format!(
+        "  the car's bumper ({:.2} kN/mm, {:.1} kN): {place}\n",
+        r.origin[0] / 1e6,
+        force / 1e3
+    )
 }

@@ -19,6 +19,7 @@ use bumpsim_planar::result::Bottomed;
 use bumpsim_planar::{PlanarCar, PlanarResult, Settings, Striker, simulate};
 use rayon::prelude::*;
 use serde::Serialize;
+use std::path::Path;
 
 /// One end of a car: its planar car and its damageability data.
 #[derive(Debug, Clone, PartialEq)]
@@ -59,6 +60,52 @@ impl CarEnd {
             _ => car,
         };
         Ok(CarEnd { car, limits })
+    }
+
+    /// Reads one end of a car: a planar car file and its clearances and
+    /// limits, from the car file's `[damageability]` table or, for a car
+    /// file without one (an identified car, `identify --car`), from a
+    /// damageability file merged in: a `[damageability]` table alone, with
+    /// its own `length_unit` (`examples/verdict/damageability.toml`). A car
+    /// file with its own table and a damageability file is refused: an end
+    /// has one set of limits.
+    ///
+    /// ```
+    /// use bumpsim_verdict::prelude::*;
+    /// let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    /// let saloon = root.join("planar/saloon.toml"); // no [damageability]
+    /// let limits = root.join("verdict/damageability.toml");
+    /// let end = CarEnd::read(&saloon, Some(&limits)).unwrap();
+    /// assert_eq!(end.limits.clearances[0].name, "radiator");
+    /// let e = CarEnd::read(&saloon, None).unwrap_err().to_string();
+    /// assert!(e.contains("damageability"), "{e}");
+    /// ```
+    pub fn read(car: &Path, damageability: Option<&Path>) -> Result<CarEnd, VerdictError> {
+        // every refusal names the car file
+        let named = |e: VerdictError| match e.to_string().contains(&car.display().to_string()) {
+            true => e,
+            false => VerdictError::File {
+                path: car.display().to_string(),
+                message: e.to_string(),
+            },
+        };
+        CarEnd::read_named(car, damageability).map_err(named)
+    }
+
+    fn read_named(car: &Path, damageability: Option<&Path>) -> Result<CarEnd, VerdictError> {
+        let planar_car = PlanarCar::read(car).map_err(VerdictError::Car)?;
+        let limits = match damageability {
+            None => Damageability::read(car)?,
+            Some(file) if Damageability::given(car)? => {
+                return Err(VerdictError::Contradiction {
+                    first: format!("{} [damageability]", car.display()),
+                    second: file.display().to_string(),
+                    reason: "both give the car's clearances and limits: an end has one set; drop the table from the car file or the damageability file".into(),
+                });
+            }
+            Some(file) => Damageability::read(file)?,
+        };
+        CarEnd::new(planar_car, limits)
     }
 
     /// The same end with every bumper segment replaced by an equal share

@@ -371,7 +371,7 @@ fn hostile_planar_test_set_ups_get_clear_errors() {
     let start = std::fs::read_to_string(tests.join("start.toml")).unwrap();
     let flat = r#"striker = { speed = "8 km/h" }"#;
     let cell = "lateral = -0.72,";
-    let tyre = "front = { mu_longitudinal = 0.02, mu_lateral = 0.5 }";
+    let tyre = "front = { rolling_resistance = 0.02, mu_lateral = 0.5 }";
     let cases: &[(&str, &str, &str)] = &[
         (
             "direction = [-1.0, 0.0] }",

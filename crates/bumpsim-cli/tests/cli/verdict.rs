@@ -4,6 +4,7 @@
 
 use crate::util::*;
 
+mod examples;
 mod regulation;
 
 fn car() -> std::path::PathBuf {
@@ -136,17 +137,18 @@ fn the_report_shows_the_verdict_the_test_and_the_corridor() {
             "Bumper target",
             "binding below",
             "bumper stroke (rcar-bumper-corner-front)",
-            "corridor of the passing bumpers",
+            "envelope of the passing bumpers",
+            "the pass region",
             "<th>P(pass)</th>",
             "probability of passing with exact 95 % bounds over",
         ],
     );
-    assert_eq!(html.matches("<svg").count(), 4, "every figure inline");
+    assert_eq!(html.matches("<svg").count(), 5, "every figure inline");
     let stem = "rcar-bumper-corner-front";
     for name in ["top-view", "forces", "crush"]
         .map(|n| format!("{stem}-{n}.svg"))
         .into_iter()
-        .chain(["corridor.svg".to_string()])
+        .chain(["corridor.svg".to_string(), "pass-region.svg".to_string()])
     {
         let svg = std::fs::read_to_string(report.join(&name)).unwrap();
         let labels: Vec<&str> = svg
@@ -166,6 +168,15 @@ fn the_report_shows_the_verdict_the_test_and_the_corridor() {
     }
     let corridor = std::fs::read_to_string(report.join("corridor.svg")).unwrap();
     assert_contains(&corridor, &["deflection [mm]", "bumper force [kN]"]);
+    let region = std::fs::read_to_string(report.join("pass-region.svg")).unwrap();
+    assert_contains(
+        &region,
+        &[
+            "whole-bumper initial stiffness [N/mm]",
+            "passes every test",
+            "fails (bumper stroke",
+        ],
+    );
     let Some(browser) = chromium() else { return };
     let wide = overflowing(&browser, &report.join("index.html"));
     assert_eq!(wide, "[]", "text boxes wider than their box");

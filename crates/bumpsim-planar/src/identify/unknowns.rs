@@ -221,8 +221,15 @@ impl Unknowns {
         let mut tyres = *t.tyres();
         if self.friction {
             let mu = take(1)[0];
-            tyres.front.mu_lateral = mu;
-            tyres.rear.mu_lateral = mu;
+            for axle in [&mut tyres.front, &mut tyres.rear] {
+                // a sliding grip along the wheel equal to the lateral one
+                // (the car file's default) follows it: rolling tests do not
+                // see it apart
+                if axle.mu_longitudinal == axle.mu_lateral {
+                    axle.mu_longitudinal = mu;
+                }
+                axle.mu_lateral = mu;
+            }
         }
         if self.cornering {
             let c = take(1)[0];
