@@ -306,6 +306,8 @@ impl Mechanism for Run<'_> {
         self.track_contact(t + self.step);
         let bottomed = self.out.bottomed;
         self.out.bottomed = bottomed.or_else(|| self.contact.bottomed(self.car, t + self.step));
+        let boxed = self.out.box_bottomed;
+        self.out.box_bottomed = boxed.or_else(|| self.model.box_bottomed(q, t + self.step));
     }
 
     /// The work of forces from `v_{n−½}` over a step is `T F·(v_{n−½} +

@@ -227,12 +227,24 @@ fn clearance(car: &PlanarCar, r: &PlanarResult, c: &crate::limits::Clearance) ->
     )
 }
 
-/// The label of a criterion reached at `t` (s) once the bumper had
-/// bottomed: from then on the load goes through the block (issue 45).
-fn blocked(r: &PlanarResult, t: f64) -> &'static str {
-    match r.bottomed {
-        Some(b) if t >= b.time => ", after the bumper bottomed: on the blocked load path",
-        _ => "",
+/// The label of a criterion reached at `t` (s) once the bumper or a crash
+/// box had bottomed: from then on the load goes through the block
+/// (issue 45).
+fn blocked(r: &PlanarResult, t: f64) -> String {
+    let bumper = r
+        .bottomed
+        .filter(|b| t >= b.time)
+        .map(|_| "the bumper".to_string());
+    let boxed = r
+        .box_bottomed
+        .filter(|b| t >= b.time)
+        .map(|b| format!("the {} crash box", b.side.name()));
+    match (bumper, boxed) {
+        (None, None) => String::new(),
+        (Some(a), Some(b)) => format!(", after {a} and {b} bottomed: on the blocked load path"),
+        (Some(a), None) | (None, Some(a)) => {
+            format!(", after {a} bottomed: on the blocked load path")
+        }
     }
 }
 
@@ -407,8 +419,16 @@ fn crash_box(e: &Evidence, margin: f64) -> Option<Criterion> {
         [None, None] => return None,
     };
     let stroke = e.limits.crash_box_stroke;
+    let bottomed = match e.result.box_bottomed {
+        Some(b) => format!(
+            "; the {} crash box bottomed at t = {:.1} ms",
+            b.side.name(),
+            b.time * 1e3
+        ),
+        None => String::new(),
+    };
     let detail = format!(
-        "{side}: {:.0} % of the stroke{}",
+        "{side}: {:.0} % of the stroke{bottomed}{}",
         100.0 * used / stroke,
         blocked(e.result, at)
     );

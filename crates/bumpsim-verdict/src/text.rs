@@ -191,6 +191,15 @@ pub fn summary(v: &Verdict) -> String {
                 b.time * 1e3
             );
         }
+        if let Some(b) = t.box_bottomed {
+            out += &format!(
+                "  {}: the {} crash box (y = {:.0} mm) bottomed at t = {:.1} ms: from then on its force goes into the rail through the block\n",
+                t.test.name,
+                b.side.name(),
+                b.y * 1e3,
+                b.time * 1e3
+            );
+        }
     }
     let failures = v.failures();
     out += &match failures.is_empty() {

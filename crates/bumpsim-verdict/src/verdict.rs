@@ -15,7 +15,7 @@ use crate::uncertainty::Propagation;
 use bumpsim_estimate::propagate::Probability;
 use bumpsim_impact::bumper::Bumper;
 use bumpsim_planar::car::{Beam, Block};
-use bumpsim_planar::result::Bottomed;
+use bumpsim_planar::result::{Bottomed, BoxBottomed};
 use bumpsim_planar::{PlanarCar, PlanarResult, Settings, Striker, simulate};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -34,7 +34,9 @@ impl CarEnd {
     /// takes `damageability.bumper_stroke` (the same crushable depth) as
     /// its segments' depth, with the default block stiffness
     /// ([`bumpsim_planar::car::DEFAULT_BLOCK_STIFFNESS`]); one with both
-    /// must give the same depth.
+    /// must give the same depth. Likewise its crash boxes block at
+    /// `damageability.crash_box_stroke` unless `[crash_boxes] depth` says
+    /// the same ([`bumpsim_planar::car::DEFAULT_CRASH_BOX_BLOCK_STIFFNESS`]).
     pub fn new(car: PlanarCar, limits: Damageability) -> Result<CarEnd, VerdictError> {
         limits.check_car(&car)?;
         let car = match (car.beam().block, limits.bumper_stroke) {
@@ -45,18 +47,37 @@ impl CarEnd {
                 car.with_block(Some(block))
                     .map_err(|e| planar("bumper", e))?
             }
-            (Some(block), Some(stroke)) if (block.depth - stroke).abs() > 1e-9 => {
-                return Err(VerdictError::Contradiction {
-                    first: "bumper.depth".into(),
-                    second: "damageability.bumper_stroke".into(),
-                    reason: format!(
-                        "the segments block at {} mm but the bumper's stroke is {} mm: both are the bumper's crushable depth; give one, or the same",
-                        block.depth * 1e3,
-                        stroke * 1e3
-                    ),
-                });
+            (Some(block), Some(stroke)) => {
+                same_depth(
+                    "bumper.depth",
+                    block.depth,
+                    "damageability.bumper_stroke",
+                    stroke,
+                )?;
+                car
             }
             _ => car,
+        };
+        let stroke = limits.crash_box_stroke;
+        let car = match car.crash_boxes() {
+            None => {
+                let stiffness = bumpsim_planar::car::DEFAULT_CRASH_BOX_BLOCK_STIFFNESS;
+                let block = Block {
+                    depth: stroke,
+                    stiffness,
+                };
+                car.with_crash_boxes(Some(block))
+                    .map_err(|e| planar("crash boxes", e))?
+            }
+            Some(block) => {
+                same_depth(
+                    "crash_boxes.depth",
+                    block.depth,
+                    "damageability.crash_box_stroke",
+                    stroke,
+                )?;
+                car
+            }
         };
         Ok(CarEnd { car, limits })
     }
@@ -89,6 +110,7 @@ impl CarEnd {
             beam,
             *c.tyres(),
         )
+        .and_then(|car| car.with_crash_boxes(c.crash_boxes()))
         .map_err(|e| planar("bumper", e))?
         .with_name(c.name().map(str::to_string));
         Ok(CarEnd {
@@ -96,6 +118,23 @@ impl CarEnd {
             limits: self.limits.clone(),
         })
     }
+}
+
+/// The car's depth and the limits' stroke are the same crushable depth:
+/// both given, they must agree.
+fn same_depth(first: &str, depth: f64, second: &str, stroke: f64) -> Result<(), VerdictError> {
+    if (depth - stroke).abs() <= 1e-9 {
+        return Ok(());
+    }
+    Err(VerdictError::Contradiction {
+        first: first.into(),
+        second: second.into(),
+        reason: format!(
+            "the car blocks at {} mm but the stroke is {} mm: both are the same crushable depth; give one, or the same",
+            depth * 1e3,
+            stroke * 1e3
+        ),
+    })
 }
 
 fn planar(test: &str, source: bumpsim_planar::PlanarError) -> VerdictError {
@@ -202,6 +241,9 @@ pub struct TestVerdict {
     /// When and where the bumper bottomed (a segment crushed past its
     /// depth): criteria reached afterwards are on the blocked load path.
     pub bottomed: Option<Bottomed>,
+    /// When and where a crash box bottomed (compressed past its stroke):
+    /// criteria reached afterwards are on the blocked load path.
+    pub box_bottomed: Option<BoxBottomed>,
     /// What the verdict assumes.
     pub assumptions: Vec<String>,
     /// Metrics that could not be computed, and why.
@@ -333,6 +375,7 @@ pub(crate) fn assess(
         metrics: None,
         energies: None,
         bottomed: None,
+        box_bottomed: None,
         assumptions: vec![],
         notes: vec![],
         warnings: vec![],
@@ -367,6 +410,7 @@ pub(crate) fn assess(
     verdict.metrics = Some(metrics);
     verdict.energies = Some(energies);
     verdict.bottomed = result.bottomed;
+    verdict.box_bottomed = result.box_bottomed;
     verdict.assumptions = assumptions;
     verdict.notes = notes;
     verdict.warnings = result.warnings.clone();

@@ -95,6 +95,8 @@ struct PlanarResultDef {
     max_compression: f64,
     #[serde(default)]
     bottomed: Option<bumpsim_planar::result::Bottomed>,
+    #[serde(default)]
+    box_bottomed: Option<bumpsim_planar::result::BoxBottomed>,
     max_crush: Vec<f64>,
     remaining_crush: Vec<f64>,
     peak_yaw_rate: f64,

@@ -55,9 +55,26 @@ fn a_bumper_crushed_through_its_depth_blocks_and_the_verdict_names_the_instant()
         rail["detail"]
             .as_str()
             .unwrap()
-            .contains("after the bumper bottomed: on the blocked load path"),
+            .contains("after the bumper and the left crash box bottomed: on the blocked load path"),
         "{rail}"
     );
+    // its crash boxes block too (damageability.crash_box_stroke = 40 mm,
+    // the default 1e8 N/m a box): the left one bottoms after the bumper,
+    // and compresses past its 40 mm by no more than the block's compliance
+    // at the rail force; the rail takes more than the box's 3e6 N/m could
+    // pass at 40 mm (120 kN)
+    assert_contains(
+        &text(&run.stdout),
+        &["rcar-structural-front: the left crash box (y = 500 mm) bottomed at t = "],
+    );
+    let boxed = &test["box_bottomed"];
+    assert_eq!(boxed["side"], "left", "{boxed}");
+    let box_at = boxed["time"].as_f64().unwrap();
+    assert!(box_at > at && box_at < 0.1, "{box_at}");
+    let used = criterion("crash-box stroke")["value"].as_f64().unwrap();
+    assert!(used > 0.040, "{used}");
+    assert!(used <= 0.040 + rail_force / 1e8, "{used} {rail_force}");
+    assert!(rail_force > 3e6 * 0.040, "{rail_force}");
 }
 
 /// Issue 45 item 5: what the regulation requires and what of it is judged
