@@ -39,7 +39,7 @@
 //! segments, so that a full-width flat impact reduces exactly to the 1-D model.
 
 use bumpsim_core::model::MsdModel;
-use bumpsim_impact::bumper::{Bumper, BumperError};
+use bumpsim_impact::bumper::{Bumper, BumperError, BumperState};
 use serde::Serialize;
 
 /// Standard gravity, m/s².
@@ -369,6 +369,7 @@ pub struct PlanarCar {
     beam: Beam,
     tyres: Tyres,
     crash_boxes: Option<Block>,
+    damage: Vec<BumperState>,
 }
 
 /// Geometry and tyres that turn a 1-D chain into a symmetric planar car.
@@ -443,6 +444,7 @@ impl PlanarCar {
             beam,
             tyres,
             crash_boxes: None,
+            damage: Vec::new(),
         })
     }
 
@@ -544,6 +546,39 @@ impl PlanarCar {
         self.crash_boxes
     }
 
+    /// The same car carrying the damage earlier impacts left: each
+    /// segment's history (largest crush and its force, so its permanent
+    /// set), right to left; empty: undamaged. A test run after others on
+    /// the same car starts from it (issue 45 item 2): a segment then
+    /// carries no force until it is pushed past its set and reloads along
+    /// its unloading line.
+    pub fn with_damage(mut self, damage: Vec<BumperState>) -> Result<PlanarCar, PlanarError> {
+        let n = self.beam.segments.len();
+        require(
+            "damage",
+            damage.len() as f64,
+            "segments",
+            &format!("one history per segment ({n}), or none"),
+            damage.is_empty() || damage.len() == n,
+        )?;
+        for (j, d) in damage.iter().enumerate() {
+            require(
+                &format!("damage[{j}].max_compression"),
+                d.max_compression,
+                "m",
+                "must be finite and not negative",
+                d.max_compression >= 0.0 && d.peak_force.is_finite() && d.peak_force >= 0.0,
+            )?;
+        }
+        self.damage = damage;
+        Ok(self)
+    }
+
+    /// The damage earlier impacts left (see [`PlanarCar::with_damage`]).
+    pub fn damage(&self) -> &[BumperState] {
+        &self.damage
+    }
+
     /// The same car with a name.
     pub fn with_name(mut self, name: Option<String>) -> PlanarCar {
         self.name = name;
@@ -612,6 +647,7 @@ impl PlanarCar {
         let mut car = self.clone();
         std::mem::swap(&mut car.left, &mut car.right);
         car.beam.segments.reverse();
+        car.damage.reverse();
         car
     }
 }

@@ -741,6 +741,16 @@ impl Contact {
         })
     }
 
+    /// [`Contact::new`] with the segments' histories `damage` left by
+    /// earlier impacts (empty: undamaged).
+    pub fn damaged(segments: usize, damage: &[BumperState]) -> Contact {
+        let mut c = Contact::new(segments);
+        if damage.len() == segments {
+            c.states.copy_from_slice(damage);
+        }
+        c
+    }
+
     pub fn new(segments: usize) -> Contact {
         Contact {
             states: vec![BumperState::default(); segments],

@@ -158,6 +158,11 @@ pub struct PlanarResult {
     pub box_bottomed: Option<BoxBottomed>,
     /// Largest crush of each segment, m.
     pub max_crush: Vec<f64>,
+    /// Each segment's history at the end (its largest crush so far and
+    /// that force): the damage a next test on the same car starts from
+    /// (`PlanarCar::with_damage`). Not serialised.
+    #[serde(skip)]
+    pub damage: Vec<bumpsim_impact::bumper::BumperState>,
     /// Permanent crush of each segment after unloading, m.
     pub remaining_crush: Vec<f64>,
     /// The yaw rate of largest magnitude, rad/s (signed).

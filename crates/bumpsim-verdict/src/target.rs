@@ -33,7 +33,7 @@
 //! `the_search_step_keeps_every_margin_ratio_within_1e_3`).
 
 use crate::error::{VerdictError, require};
-use crate::verdict::{CarEnd, Setup, assess};
+use crate::verdict::{CarEnd, Setup};
 use bumpsim_impact::bumper::{Bumper, Loading};
 use bumpsim_planar::Settings;
 use rayon::prelude::*;
@@ -274,8 +274,8 @@ impl Search<'_> {
             }
         }
         let (mut pass, mut worst, mut crush) = (true, (f64::INFINITY, String::new()), 0.0f64);
-        for test in &setup.tests {
-            let v = assess(&setup, test, false)?;
+        for v in crate::sequence::run(&setup, false, false)? {
+            let test = v.test;
             if v.skipped.is_some() {
                 continue;
             }

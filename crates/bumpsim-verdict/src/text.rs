@@ -201,6 +201,7 @@ pub fn summary(v: &Verdict) -> String {
             );
         }
     }
+    out += &crate::sequence::text(&v.tests);
     let failures = v.failures();
     out += &match failures.is_empty() {
         true => "every assessed test passes\n".to_string(),

@@ -11,13 +11,13 @@ use crate::limits::{Damageability, End};
 use crate::protocol::Test;
 use crate::pulse::{AsiMethod, Metrics, Pulse};
 use crate::requirements::Requirements;
+use crate::sequence::Inherited;
 use crate::uncertainty::Propagation;
 use bumpsim_estimate::propagate::Probability;
 use bumpsim_impact::bumper::Bumper;
 use bumpsim_planar::car::{Beam, Block};
 use bumpsim_planar::result::{Bottomed, BoxBottomed};
 use bumpsim_planar::{PlanarCar, PlanarResult, Settings, Striker, simulate};
-use rayon::prelude::*;
 use serde::Serialize;
 
 /// One end of a car: its planar car and its damageability data.
@@ -159,6 +159,9 @@ pub struct Setup {
     pub settings: Settings,
     /// How the ASI averages the accelerations (EN 1317-1:2010 unless set).
     pub asi_method: AsiMethod,
+    /// Run the tests in order on one car per end, each from the damage the
+    /// earlier ones left ([`crate::sequence`]); off: each on a new car.
+    pub sequence: bool,
 }
 
 impl Setup {
@@ -202,6 +205,7 @@ impl Setup {
             margin,
             settings: Settings::default(),
             asi_method: AsiMethod::default(),
+            sequence: false,
         })
     }
 
@@ -244,6 +248,9 @@ pub struct TestVerdict {
     /// When and where a crash box bottomed (compressed past its stroke):
     /// criteria reached afterwards are on the blocked load path.
     pub box_bottomed: Option<BoxBottomed>,
+    /// In a sequence, what it inherited from the earlier tests on the same
+    /// car and what that changed (None: run on an undamaged car).
+    pub inherited: Option<Inherited>,
     /// What the verdict assumes.
     pub assumptions: Vec<String>,
     /// Metrics that could not be computed, and why.
@@ -328,11 +335,7 @@ impl Verdict {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn verdict(setup: &Setup) -> Result<Verdict, VerdictError> {
-    let tests = setup
-        .tests
-        .par_iter()
-        .map(|t| judge(setup, t))
-        .collect::<Result<Vec<_>, _>>()?;
+    let tests = crate::sequence::run(setup, true, true)?;
     Ok(Verdict {
         car: setup.name(),
         margin: setup.margin,
@@ -367,6 +370,16 @@ pub(crate) fn assess(
     test: &'static Test,
     pulse: bool,
 ) -> Result<TestVerdict, VerdictError> {
+    assess_on(setup, setup.end(test.end), test, pulse)
+}
+
+/// [`assess`] on the end `end` (None: not assessed).
+pub(crate) fn assess_on(
+    setup: &Setup,
+    end: Option<&CarEnd>,
+    test: &'static Test,
+    pulse: bool,
+) -> Result<TestVerdict, VerdictError> {
     let mut verdict = TestVerdict {
         test,
         skipped: None,
@@ -376,6 +389,7 @@ pub(crate) fn assess(
         energies: None,
         bottomed: None,
         box_bottomed: None,
+        inherited: None,
         assumptions: vec![],
         notes: vec![],
         warnings: vec![],
@@ -383,7 +397,7 @@ pub(crate) fn assess(
         result: None,
         run: None,
     };
-    let Some(end) = setup.end(test.end) else {
+    let Some(end) = end else {
         verdict.skipped = Some(format!(
             "no car file of the {} end was given",
             test.end.name()
