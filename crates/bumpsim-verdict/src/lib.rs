@@ -24,6 +24,7 @@
 //!   JSON or relative spreads;
 //! - [`target`]: the region of bumper characteristics that passes every
 //!   criterion with a margin, its binding criteria and corridor;
+//! - [`diagnosis`]: why no bumper passes, when none does;
 //! - [`text`]: the tables with units.
 //!
 //! ```
@@ -46,6 +47,7 @@
 //! ```
 
 pub mod criteria;
+pub mod diagnosis;
 pub mod error;
 pub mod limits;
 pub mod probability;

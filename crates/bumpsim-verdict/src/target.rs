@@ -138,6 +138,10 @@ pub struct Region {
     pub impacts: usize,
     /// Wall time of the search, s.
     pub seconds: f64,
+    /// When nothing passes at any stiffness: which criterion and test rule
+    /// out every bumper, the test's energy budget and what would have to
+    /// change ([`crate::diagnosis`]).
+    pub diagnosis: Option<String>,
 }
 
 impl Region {
@@ -460,7 +464,9 @@ pub fn search(setup: &Setup, options: &TargetOptions) -> Result<Region, VerdictE
         .map(|&x| search.row(x, &levels, options.tolerance))
         .collect::<Result<Vec<_>, _>>()?;
     let corridor = corridor(&family, &rows);
+    let diagnosis = crate::diagnosis::nothing_passes(setup, &rows)?;
     Ok(Region {
+        diagnosis,
         origin: family.origin,
         tabulated: family.tabulated,
         margin: setup.margin,

@@ -278,5 +278,8 @@ pub fn region(r: &Region) -> String {
             ),
         };
     }
+    if let Some(why) = &r.diagnosis {
+        out += &format!("  {why}\n");
+    }
     out
 }
