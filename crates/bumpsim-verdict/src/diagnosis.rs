@@ -11,7 +11,6 @@
 //! the bumper, has to change.
 
 use crate::error::VerdictError;
-use crate::target::Row;
 use crate::verdict::{Setup, judge};
 
 /// The energy stored by both crash boxes up to the usable stroke, J.
@@ -27,14 +26,19 @@ fn crash_box_capacity(setup: &Setup, test: &crate::protocol::Test) -> f64 {
         .sum()
 }
 
-/// The explanation when no row passes (None: some row passes): the
-/// criterion and test failing at every row's middle level, the test's
-/// energy budget and what would have to change.
-pub fn nothing_passes(setup: &Setup, rows: &[Row]) -> Result<Option<String>, VerdictError> {
-    if rows.is_empty() || rows.iter().any(|r| r.interval.is_some()) {
+/// The explanation when no stiffness row of the target search passes:
+/// `failing` holds each row's failing criterion ("name (test)") at its
+/// middle force level, None for a row where something passes (then the
+/// answer is None). The criterion and test failing at every row, the
+/// test's energy budget and what would have to change.
+pub fn nothing_passes(
+    setup: &Setup,
+    rows: &[Option<&str>],
+) -> Result<Option<String>, VerdictError> {
+    if rows.is_empty() || rows.iter().any(Option::is_none) {
         return Ok(None);
     }
-    let failing: Vec<&str> = rows.iter().filter_map(|r| r.failing.as_deref()).collect();
+    let failing: Vec<&str> = rows.iter().flatten().copied().collect();
     let Some(&first) = failing.first() else {
         return Ok(None);
     };

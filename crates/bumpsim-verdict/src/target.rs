@@ -278,7 +278,7 @@ impl Search<'_> {
             }
         }
         let (mut pass, mut worst, mut crush) = (true, (f64::INFINITY, String::new()), 0.0f64);
-        for v in crate::sequence::run(&setup, false, false)? {
+        for v in crate::verdict::run_all(&setup, false, false)? {
             let test = v.test;
             if v.skipped.is_some() {
                 continue;
@@ -464,7 +464,14 @@ pub fn search(setup: &Setup, options: &TargetOptions) -> Result<Region, VerdictE
         .map(|&x| search.row(x, &levels, options.tolerance))
         .collect::<Result<Vec<_>, _>>()?;
     let corridor = corridor(&family, &rows);
-    let diagnosis = crate::diagnosis::nothing_passes(setup, &rows)?;
+    let failing: Vec<Option<&str>> = rows
+        .iter()
+        .map(|r| match r.interval {
+            Some(_) => None,
+            None => Some(r.failing.as_deref().unwrap_or("")),
+        })
+        .collect();
+    let diagnosis = crate::diagnosis::nothing_passes(setup, &failing)?;
     Ok(Region {
         diagnosis,
         origin: family.origin,

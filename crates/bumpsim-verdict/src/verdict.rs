@@ -11,13 +11,15 @@ use crate::limits::{Damageability, End};
 use crate::protocol::Test;
 use crate::pulse::{AsiMethod, Metrics, Pulse};
 use crate::requirements::Requirements;
-use crate::sequence::Inherited;
+use crate::sequence::{Inherited, changes};
 use crate::uncertainty::Propagation;
 use bumpsim_estimate::propagate::Probability;
 use bumpsim_impact::bumper::Bumper;
+use bumpsim_impact::bumper::BumperState;
 use bumpsim_planar::car::{Beam, Block};
 use bumpsim_planar::result::{Bottomed, BoxBottomed};
 use bumpsim_planar::{PlanarCar, PlanarResult, Settings, Striker, simulate};
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// One end of a car: its planar car and its damageability data.
@@ -335,7 +337,7 @@ impl Verdict {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn verdict(setup: &Setup) -> Result<Verdict, VerdictError> {
-    let tests = crate::sequence::run(setup, true, true)?;
+    let tests = run_all(setup, true, true)?;
     Ok(Verdict {
         car: setup.name(),
         margin: setup.margin,
@@ -431,4 +433,106 @@ pub(crate) fn assess_on(
     verdict.result = Some(result);
     verdict.run = Some((car, striker));
     Ok(verdict)
+}
+
+/// The damage left on one end: the segments' histories and who left it.
+#[derive(Default)]
+struct Damage {
+    states: Vec<BumperState>,
+    from: Vec<&'static str>,
+}
+
+/// Every test of `setup`: alone and in parallel, or in sequence when
+/// `setup.sequence` ([`crate::sequence`]). `pulse`: [`crate::verdict::judge`]'s
+/// full pulse metrics; `explain`: also run each inherited test alone and
+/// list what changed.
+pub(crate) fn run_all(
+    setup: &Setup,
+    pulse: bool,
+    explain: bool,
+) -> Result<Vec<TestVerdict>, VerdictError> {
+    if !setup.sequence {
+        return setup
+            .tests
+            .par_iter()
+            .map(|t| assess_on(setup, setup.end(t.end), t, pulse))
+            .collect();
+    }
+    let mut damage = [Damage::default(), Damage::default()];
+    let mut out = Vec::with_capacity(setup.tests.len());
+    for test in &setup.tests {
+        let Some(end) = setup.end(test.end) else {
+            out.push(assess_on(setup, None, test, pulse)?);
+            continue;
+        };
+        let left = &mut damage[matches!(test.end, End::Rear) as usize];
+        let mut v = match left.from.is_empty() {
+            true => assess_on(setup, Some(end), test, pulse)?,
+            false => inherit(setup, end, test, left, pulse, explain)?,
+        };
+        if let Some(r) = &v.result {
+            left.states = r.damage.clone();
+            left.from.push(test.name);
+        }
+        v.assumptions
+            .retain(|a| !a.starts_with("run on the undamaged car"));
+        out.push(v);
+    }
+    Ok(out)
+}
+
+/// `test` on `end` carrying the damage `left`.
+fn inherit(
+    setup: &Setup,
+    end: &CarEnd,
+    test: &'static Test,
+    left: &Damage,
+    pulse: bool,
+    explain: bool,
+) -> Result<TestVerdict, VerdictError> {
+    let car = end
+        .car
+        .clone()
+        .with_damage(left.states.clone())
+        .map_err(|source| VerdictError::Planar {
+            test: test.name.into(),
+            source,
+        })?;
+    let damaged = CarEnd {
+        car,
+        limits: end.limits.clone(),
+    };
+    let mut v = assess_on(setup, Some(&damaged), test, pulse)?;
+    let segments = &end.car.beam().segments;
+    let sets = segments
+        .iter()
+        .zip(&left.states)
+        .map(|(b, s)| b.remaining(s));
+    let (segment, set) = sets.enumerate().fold(
+        (0, 0.0),
+        |best, (j, s)| if s > best.1 { (j, s) } else { best },
+    );
+    let changes = match explain {
+        true => changes(
+            &v.criteria,
+            &assess_on(setup, Some(end), test, pulse)?.criteria,
+        ),
+        false => vec![],
+    };
+    v.assumptions.insert(
+        0,
+        format!(
+            "run in sequence on the same car after {}: a permanent set of up to {:.2} mm (segment {}) inherited",
+            left.from.join(", "),
+            set * 1e3,
+            segment + 1
+        ),
+    );
+    v.inherited = Some(Inherited {
+        from: left.from.clone(),
+        set,
+        segment,
+        changes,
+    });
+    Ok(v)
 }

@@ -104,7 +104,7 @@ fn a_plastic_bumper_in_sequence_starts_each_test_from_the_set_left_before() {
     };
     let lamp = change("clearance: left headlamp").expect("the front travel changed");
     assert!(lamp.sequence > lamp.alone + 1e-3, "{lamp:?}");
-    let text = bumpsim_verdict::sequence::text(&sequence.tests);
+    let text = bumpsim_verdict::text::sequence(&sequence.tests);
     assert!(
         text.contains("part581-barrier-front in sequence after part581-pendulum-front, part581-corner-front-left, part581-corner-front-right: inherits a permanent set of up to"),
         "{text}"

@@ -171,7 +171,11 @@ fn a_sequence_names_what_each_test_inherited_and_changed() {
         .find(|t| t["test"]["name"] == "part581-barrier-front")
         .unwrap();
     let inherited = &barrier["inherited"];
-    assert_eq!(inherited["from"].as_array().unwrap().len(), 3, "{inherited}");
+    assert_eq!(
+        inherited["from"].as_array().unwrap().len(),
+        3,
+        "{inherited}"
+    );
     assert!(inherited["set"].as_f64().unwrap() > 0.01, "{inherited}");
     assert!(!inherited["changes"].as_array().unwrap().is_empty());
     assert!(tests[0]["inherited"].is_null());
