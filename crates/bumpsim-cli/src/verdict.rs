@@ -45,6 +45,12 @@ pub struct Args {
     /// Also search the region of bumper characteristics that passes every test.
     #[arg(long)]
     target: bool,
+    /// Run the tests in the order listed on one car per end, each from the
+    /// damage (the bumper's permanent set) the earlier ones left, as 49 CFR
+    /// 581.5(a) runs the pendulum and then the barrier impacts; without it
+    /// each test runs alone on an undamaged car.
+    #[arg(long)]
+    sequence: bool,
     /// Write the verdict (and the target region) as JSON.
     #[arg(long, value_name = "OUT.json")]
     json: Option<PathBuf>,
@@ -119,6 +125,7 @@ pub fn run(args: &Args) -> Result<()> {
         .map(|(path, limits)| CarEnd::read(path, limits))
         .collect::<Result<Vec<_>, _>>()?;
     let mut setup = Setup::new(ends, tests, args.margin)?;
+    setup.sequence = args.sequence;
     setup.asi_method = args
         .asi_method
         .parse()

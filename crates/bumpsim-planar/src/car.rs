@@ -23,6 +23,11 @@
 //!   growing linearly across the beam (an angled wall), and stiffens a local
 //!   dent (pole, overlap edge). A loaded segment that leaves the face keeps
 //!   its deflection in this energy, so it never jumps (see `docs/planar.md`).
+//! - **Crash boxes**: each side's first link (mass 1 to mass 2, or to the
+//!   body) is its crash box. With a crash-box [`Block`] (`[crash_boxes]`),
+//!   a link compressed `e = −(u_1 − u_2)` past the depth `D` adds the block
+//!   force `k_block (e − D)` (elastic), the folded box passing the load on
+//!   into the rail behind it (issue 45).
 //! - **Tyres**: four wheels at the axles (`±track/2`), static normal loads from
 //!   the total mass and the CG position, regularised Coulomb friction
 //!   `F = −μ N v / √(|v|² + v_s²)` per direction with `μ_x`, `μ_y` per axle
@@ -34,7 +39,7 @@
 //! segments, so that a full-width flat impact reduces exactly to the 1-D model.
 
 use bumpsim_core::model::MsdModel;
-use bumpsim_impact::bumper::{Bumper, BumperError};
+use bumpsim_impact::bumper::{Bumper, BumperError, BumperState};
 use serde::Serialize;
 
 /// Standard gravity, m/s².
@@ -195,6 +200,14 @@ pub struct Beam {
 /// and 150 mm long about 300 kN/mm), kept soft enough that the explicit
 /// step stays of the order of the bumper's own (docs/planar.md).
 pub const DEFAULT_BLOCK_STIFFNESS: f64 = 5e7;
+
+/// Default block stiffness of a crash box, N/m per box (100 kN/mm): an
+/// assumption chosen here, the order of the elastic axial stiffness E·A/L
+/// of the side member behind it, into which a crash box folded to its end
+/// passes the force (a steel rail, E = 210 GPa, of 2 mm walls, 100 × 60 mm
+/// and 1.2 m long: 2.1e11 · 6.4e-4 / 1.2 ≈ 112 kN/mm; the folded box's
+/// own solid stack is stiffer and in series). docs/planar.md.
+pub const DEFAULT_CRASH_BOX_BLOCK_STIFFNESS: f64 = 1e8;
 
 /// The end of a bumper segment's stroke (issue 45): beyond its `depth` the
 /// crushed beam blocks on the crash boxes and rails, and the segment's force
@@ -374,6 +387,8 @@ pub struct PlanarCar {
     right: SideChain,
     beam: Beam,
     tyres: Tyres,
+    crash_boxes: Option<Block>,
+    damage: Vec<BumperState>,
 }
 
 /// Geometry and tyres that turn a 1-D chain into a symmetric planar car.
@@ -447,6 +462,8 @@ impl PlanarCar {
             right,
             beam,
             tyres,
+            crash_boxes: None,
+            damage: Vec::new(),
         })
     }
 
@@ -532,6 +549,55 @@ impl PlanarCar {
         Ok(self)
     }
 
+    /// The same car with its crash boxes (each side's first chain link)
+    /// blocking at `block` (checked: a positive depth and stiffness).
+    pub fn with_crash_boxes(mut self, block: Option<Block>) -> Result<PlanarCar, PlanarError> {
+        if let Some(b) = block {
+            positive("crash_boxes.depth", b.depth, "m")?;
+            positive("crash_boxes.block_stiffness", b.stiffness, "N/m per box")?;
+        }
+        self.crash_boxes = block;
+        Ok(self)
+    }
+
+    /// The end of the crash boxes' stroke (None: they compress without end).
+    pub fn crash_boxes(&self) -> Option<Block> {
+        self.crash_boxes
+    }
+
+    /// The same car carrying the damage earlier impacts left: each
+    /// segment's history (largest crush and its force, so its permanent
+    /// set), right to left; empty: undamaged. A test run after others on
+    /// the same car starts from it (issue 45 item 2): a segment then
+    /// carries no force until it is pushed past its set and reloads along
+    /// its unloading line.
+    pub fn with_damage(mut self, damage: Vec<BumperState>) -> Result<PlanarCar, PlanarError> {
+        let n = self.beam.segments.len();
+        require(
+            "damage",
+            damage.len() as f64,
+            "segments",
+            &format!("one history per segment ({n}), or none"),
+            damage.is_empty() || damage.len() == n,
+        )?;
+        for (j, d) in damage.iter().enumerate() {
+            require(
+                &format!("damage[{j}].max_compression"),
+                d.max_compression,
+                "m",
+                "must be finite and not negative",
+                d.max_compression >= 0.0 && d.peak_force.is_finite() && d.peak_force >= 0.0,
+            )?;
+        }
+        self.damage = damage;
+        Ok(self)
+    }
+
+    /// The damage earlier impacts left (see [`PlanarCar::with_damage`]).
+    pub fn damage(&self) -> &[BumperState] {
+        &self.damage
+    }
+
     /// The same car with a name.
     pub fn with_name(mut self, name: Option<String>) -> PlanarCar {
         self.name = name;
@@ -600,6 +666,7 @@ impl PlanarCar {
         let mut car = self.clone();
         std::mem::swap(&mut car.left, &mut car.right);
         car.beam.segments.reverse();
+        car.damage.reverse();
         car
     }
 }
@@ -721,57 +788,5 @@ fn check_tyres(tyres: &Tyres) -> Result<(), PlanarError> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn chain() -> MsdModel {
-        MsdModel::new(vec![10.0, 20.0, 1000.0], vec![1e3, 2e3], vec![1e6, 2e6]).unwrap()
-    }
-
-    #[test]
-    fn symmetric_car_halves_the_chain_and_splits_the_bumper() {
-        let bumper = Bumper::three_part(1e6, 5e4, 4e6).unwrap();
-        let car = PlanarCar::symmetric(&chain(), &bumper, &Layout::default()).unwrap();
-        assert_eq!(car.left().masses, vec![5.0, 10.0]);
-        assert_eq!(car.right().springs, vec![5e5, 1e6]);
-        assert_eq!(car.body().mass, 1000.0);
-        assert_eq!(car.beam().segments.len(), 10);
-        assert!((car.beam().segments[0].loading_force(1.0) - 5e3).abs() < 1e-9);
-        assert!((car.total_mass() - 1030.0).abs() < 1e-12);
-        assert!((car.segment_centre(0) + 0.72).abs() < 1e-12);
-    }
-
-    #[test]
-    fn bad_parameters_name_themselves() {
-        let bumper = Bumper::three_part(1e6, 5e4, 4e6).unwrap();
-        let mut layout = Layout {
-            yaw_inertia: -5.0,
-            ..Layout::default()
-        };
-        let err = PlanarCar::symmetric(&chain(), &bumper, &layout).unwrap_err();
-        assert!(err.to_string().contains("body.yaw_inertia = -5"), "{err}");
-        layout.yaw_inertia = 2000.0;
-        layout.cg_behind_front_axle = 3.0;
-        let err = PlanarCar::symmetric(&chain(), &bumper, &layout).unwrap_err();
-        assert!(err.to_string().contains("between the axles"), "{err}");
-        layout.cg_behind_front_axle = 1.0;
-        let long = SideChain {
-            masses: vec![1.0; 1001],
-            dampers: vec![0.0; 1001],
-            springs: vec![1e6; 1001],
-        };
-        let car = PlanarCar::symmetric(&chain(), &bumper, &layout).unwrap();
-        let err = PlanarCar::new(
-            *car.body(),
-            long,
-            car.right().clone(),
-            car.beam().clone(),
-            *car.tyres(),
-        )
-        .unwrap_err();
-        assert!(err.to_string().contains("left.masses = 1001"), "{err}");
-        layout.tyres.front.mu_lateral = f64::NAN;
-        let err = PlanarCar::symmetric(&chain(), &bumper, &layout).unwrap_err();
-        assert!(err.to_string().contains("tyres.front.mu_lateral"), "{err}");
-    }
-}
+#[path = "car_tests.rs"]
+mod tests;

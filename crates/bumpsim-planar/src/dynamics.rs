@@ -7,19 +7,40 @@
 //! and the yaw's sine and cosine are computed once per position (a step's
 //! contact, tyre relaxation, accelerations and record share them).
 
-use crate::car::{GRAVITY, PlanarCar};
-use crate::result::Bottomed;
+use crate::car::{Block, GRAVITY, PlanarCar};
+use crate::result::{Bottomed, BoxBottomed, BoxSide};
 use crate::striker::{Placed, pole_profile};
 use crate::tyre::Wheel;
 use bumpsim_impact::bumper::{Bumper, BumperState};
 use std::cell::Cell;
 
-/// A chain link: `front` mass, `back` mass or the body, spring N/m, damper N·s/m.
+/// A chain link: `front` mass, `back` mass or the body, spring N/m, damper
+/// N·s/m, and for a side's first link (its crash box) the block at the end
+/// of its stroke.
 struct Link {
     front: usize,
     back: Option<usize>,
     spring: f64,
     damper: f64,
+    block: Option<Block>,
+}
+
+impl Link {
+    /// The link's elongation `u_front − u_back`, m (negative: compressed).
+    fn stretch(&self, q: &[f64]) -> f64 {
+        q[3 + self.front] - self.back.map_or(0.0, |i| q[3 + i])
+    }
+
+    /// The block's force at elongation `x`, N (≥ 0, pushing the masses apart).
+    fn blocking(&self, x: f64) -> f64 {
+        self.block.map_or(0.0, |b| b.force(-x))
+    }
+
+    /// The block's elastic energy at elongation `x`, J.
+    fn block_energy(&self, x: f64) -> f64 {
+        self.block
+            .map_or(0.0, |b| 0.5 * b.stiffness * (-x - b.depth).max(0.0).powi(2))
+    }
 }
 
 /// The prepared model.
@@ -130,6 +151,7 @@ impl Model {
                     back,
                     spring: chain.springs[i],
                     damper: chain.dampers[i],
+                    block: car.crash_boxes().filter(|_| i == 0),
                 });
             }
         }
@@ -392,10 +414,25 @@ impl Model {
         self.links
             .iter()
             .map(|l| {
-                let back = l.back.map_or(0.0, |i| q[3 + i]);
-                0.5 * l.spring * (q[3 + l.front] - back).powi(2)
+                let x = l.stretch(q);
+                0.5 * l.spring * x * x + l.block_energy(x)
             })
             .sum()
+    }
+
+    /// The first crash box (a side's first link) compressed past its
+    /// block's depth at positions `q`, as bottomed at `time` (s).
+    pub fn box_bottomed(&self, q: &[f64], time: f64) -> Option<BoxBottomed> {
+        let first = self.fronts.iter().enumerate().filter_map(|(side, f)| {
+            let l = self.links.iter().find(|l| Some(l.front) == *f)?;
+            let depth = l.block?.depth;
+            (-l.stretch(q) > depth).then(|| BoxBottomed {
+                time,
+                side: [BoxSide::Left, BoxSide::Right][side],
+                y: self.eta[l.front],
+            })
+        });
+        first.into_iter().next()
     }
 
     /// Power of the chain dampers' forces at velocities `v` on the motion at
@@ -486,7 +523,8 @@ impl Model {
         chain.iter_mut().for_each(|f| *f = 0.0);
         for l in &self.links {
             let (bx, bv) = l.back.map_or((0.0, 0.0), |i| (q[3 + i], v[3 + i]));
-            let f = l.spring * (q[3 + l.front] - bx) + l.damper * (v[3 + l.front] - bv);
+            let x = q[3 + l.front] - bx;
+            let f = l.spring * x - l.blocking(x) + l.damper * (v[3 + l.front] - bv);
             chain[l.front] -= f;
             if let Some(i) = l.back {
                 chain[i] += f;
@@ -634,15 +672,16 @@ impl Model {
         let mut damp = vec![0.0; self.masses.len()];
         let (mut body_k, mut body_c) = (0.0, 0.0);
         for l in &self.links {
-            stiff[l.front] += 2.0 * l.spring;
+            let spring = l.spring + l.block.map_or(0.0, |b| b.stiffness);
+            stiff[l.front] += 2.0 * spring;
             damp[l.front] += 2.0 * l.damper;
             match l.back {
                 Some(i) => {
-                    stiff[i] += 2.0 * l.spring;
+                    stiff[i] += 2.0 * spring;
                     damp[i] += 2.0 * l.damper;
                 }
                 None => {
-                    body_k += 2.0 * l.spring;
+                    body_k += 2.0 * spring;
                     body_c += 2.0 * l.damper;
                 }
             }
@@ -700,6 +739,16 @@ impl Contact {
             segment,
             centre,
         })
+    }
+
+    /// [`Contact::new`] with the segments' histories `damage` left by
+    /// earlier impacts (empty: undamaged).
+    pub fn damaged(segments: usize, damage: &[BumperState]) -> Contact {
+        let mut c = Contact::new(segments);
+        if damage.len() == segments {
+            c.states.copy_from_slice(damage);
+        }
+        c
     }
 
     pub fn new(segments: usize) -> Contact {

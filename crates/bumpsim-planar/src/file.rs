@@ -38,6 +38,12 @@
 //! block_stiffness = 5e7                   # N/m, whole bumper, split equally (default 5e7,
 //!                                         # car::DEFAULT_BLOCK_STIFFNESS; needs `depth`)
 //!
+//! [crash_boxes]                           # optional: each side's first link (mass 1 to
+//! depth = 40.0                            # the next) is its crash box; (length) its stroke,
+//!                                         # beyond which it blocks (docs/planar.md)
+//! block_stiffness = 1e8                   # N/m per box (default 1e8,
+//!                                         # car::DEFAULT_CRASH_BOX_BLOCK_STIFFNESS)
+//!
 //! [tyres]                                 # optional; absent = frictionless
 //! slip_speed = 0.05                       # m/s, regularisation of the laws at standstill
 //! # law = "rolling" (default: free-rolling wheels, car in neutral) or "sliding"
@@ -56,8 +62,8 @@
 //! only a convenience for the layout dimensions, which drawings give in mm.
 
 use crate::car::{
-    Axle, Beam, Block, Body, DEFAULT_BLOCK_STIFFNESS, MAX_SEGMENTS, PlanarCar, PlanarError,
-    SideChain, TyreLaw, Tyres,
+    Axle, Beam, Block, Body, DEFAULT_BLOCK_STIFFNESS, DEFAULT_CRASH_BOX_BLOCK_STIFFNESS,
+    MAX_SEGMENTS, PlanarCar, PlanarError, SideChain, TyreLaw, Tyres,
 };
 use bumpsim_impact::bumper::{Bumper, Loading};
 use serde::Deserialize;
@@ -96,6 +102,8 @@ struct PlanarFile {
     #[serde(default)]
     right: ChainFile,
     bumper: BumperFile,
+    #[serde(default)]
+    crash_boxes: Option<CrashBoxesFile>,
     #[serde(default)]
     tyres: Option<TyresFile>,
     /// Clearances and limits for damageability verdicts: read and checked
@@ -168,6 +176,29 @@ fn block(file: &BumperFile, unit: f64, n: usize) -> Result<Option<Block>, Planar
         (Some(depth), k) => Ok(Some(Block {
             depth: depth * unit,
             stiffness: k.unwrap_or(DEFAULT_BLOCK_STIFFNESS) / n.max(1) as f64,
+        })),
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CrashBoxesFile {
+    depth: Option<f64>,
+    block_stiffness: Option<f64>,
+}
+
+/// The crash boxes' block of a `[crash_boxes]` table: its depth (scaled
+/// by `unit`) and its stiffness per box.
+fn crash_boxes(file: &Option<CrashBoxesFile>, unit: f64) -> Result<Option<Block>, PlanarError> {
+    let Some(file) = file else { return Ok(None) };
+    match (file.depth, file.block_stiffness) {
+        (None, k) => Err(PlanarError::Missing {
+            name: format!("crash_boxes.block_stiffness = {k:?}"),
+            expected: "needs `crash_boxes.depth`, the stroke at which the crash boxes block".into(),
+        }),
+        (Some(depth), k) => Ok(Some(Block {
+            depth: depth * unit,
+            stiffness: k.unwrap_or(DEFAULT_CRASH_BOX_BLOCK_STIFFNESS),
         })),
     }
 }
@@ -370,7 +401,9 @@ impl PlanarCar {
             },
         };
         // a value out of range is named with the file it came from
+        let boxes = crash_boxes(&file.crash_boxes, unit).map_err(|e| error(e.to_string()))?;
         let car = PlanarCar::new(body, chain(file.left), chain(file.right), beam, tyres)
+            .and_then(|car| car.with_crash_boxes(boxes))
             .map_err(|e| error(e.to_string()))?;
         Ok(car.with_name(file.name))
     }
@@ -429,6 +462,12 @@ impl PlanarCar {
             );
         }
         s += "segment = [    # right to left, force per segment\n";
+        let boxes = self.crash_boxes().map(|b| {
+            format!(
+                "\n[crash_boxes]\ndepth = {:?}    # m\nblock_stiffness = {:?}    # N/m per box\n",
+                b.depth, b.stiffness
+            )
+        });
         for segment in &beam.segments {
             let unloading = segment.unloading_slope();
             s += &match segment.loading() {
@@ -471,7 +510,7 @@ impl PlanarCar {
             axle(&t.front),
             axle(&t.rear)
         );
-        s
+        s + &boxes.unwrap_or_default()
     }
 }
 

@@ -70,6 +70,38 @@ pub struct Bottomed {
     pub centre: f64,
 }
 
+/// The instant a crash box bottomed: its compression passed its depth
+/// (`car::PlanarCar::crash_boxes`) and the force went on into the rail.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
+pub struct BoxBottomed {
+    /// Time, s.
+    pub time: f64,
+    /// The side.
+    pub side: BoxSide,
+    /// Its lateral position, body frame, m.
+    pub y: f64,
+}
+
+/// The side of a crash box.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum BoxSide {
+    /// y = +b.
+    Left,
+    /// y = −b.
+    Right,
+}
+
+impl BoxSide {
+    /// "left" or "right".
+    pub fn name(self) -> &'static str {
+        match self {
+            BoxSide::Left => "left",
+            BoxSide::Right => "right",
+        }
+    }
+}
+
 /// Histories and results of a planar impact.
 #[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct PlanarResult {
@@ -121,8 +153,16 @@ pub struct PlanarResult {
     /// When and where a segment first crushed past its depth and the beam
     /// blocked (`car::Block`; None: it never did, or the car has no depth).
     pub bottomed: Option<Bottomed>,
+    /// When and where a crash box first compressed past its depth and
+    /// blocked (None: it never did, or the car has no crash-box depth).
+    pub box_bottomed: Option<BoxBottomed>,
     /// Largest crush of each segment, m.
     pub max_crush: Vec<f64>,
+    /// Each segment's history at the end (its largest crush so far and
+    /// that force): the damage a next test on the same car starts from
+    /// (`PlanarCar::with_damage`). Not serialised.
+    #[serde(skip)]
+    pub damage: Vec<bumpsim_impact::bumper::BumperState>,
     /// Permanent crush of each segment after unloading, m.
     pub remaining_crush: Vec<f64>,
     /// The yaw rate of largest magnitude, rad/s (signed).

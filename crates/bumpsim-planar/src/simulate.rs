@@ -260,6 +260,9 @@ struct Run<'a> {
     contact: Contact,
     previous_crush: Vec<f64>,
     previous_force: Vec<f64>,
+    /// Each segment's largest own crush in this run, m (a damaged car's
+    /// histories remember earlier runs' too).
+    reached: Vec<f64>,
     chain: Vec<f64>,
     /// The loads of the last accelerations and their external resultant
     /// (world force, moment about the origin).
@@ -301,11 +304,17 @@ impl Mechanism for Run<'_> {
         self.previous_crush.copy_from_slice(&self.contact.crush);
         self.previous_force.copy_from_slice(&self.contact.force);
         self.model.contact(q, self.car, &mut self.contact);
+        let c = &self.contact;
+        for (j, most) in self.reached.iter_mut().enumerate() {
+            *most = most.max(c.crush[j] - c.absorber[j]);
+        }
         self.model.relax(q, v, &mut self.contact, self.step);
         self.sums.crush += self.crush_work();
         self.track_contact(t + self.step);
         let bottomed = self.out.bottomed;
         self.out.bottomed = bottomed.or_else(|| self.contact.bottomed(self.car, t + self.step));
+        let boxed = self.out.box_bottomed;
+        self.out.box_bottomed = boxed.or_else(|| self.model.box_bottomed(q, t + self.step));
     }
 
     /// The work of forces from `v_{n−½}` over a step is `T F·(v_{n−½} +
@@ -384,9 +393,10 @@ impl<'a> Run<'a> {
             step,
             origin,
             settings,
-            contact: Contact::new(segments),
+            contact: Contact::damaged(segments, car.damage()),
             previous_crush: vec![0.0; segments],
             previous_force: vec![0.0; segments],
+            reached: vec![0.0; segments],
             chain,
             loads: Loads::default(),
             external: ([0.0; 2], 0.0),
@@ -562,12 +572,17 @@ impl<'a> Run<'a> {
         let mut out = std::mem::take(&mut self.out);
         out.energy = energy;
         out.segment_centres = self.model.segment_y.clone();
-        out.max_crush = states.iter().map(|s| s.max_compression).collect();
+        // a damaged car's histories hold the earlier runs' largest crush
+        out.max_crush = match self.car.damage().is_empty() {
+            true => states.iter().map(|s| s.max_compression).collect(),
+            false => self.reached.clone(),
+        };
         out.remaining_crush = segments
             .iter()
             .zip(states)
             .map(|(b, s)| b.remaining(s))
             .collect();
+        out.damage = states.clone();
         out.max_compression = out.max_crush.iter().copied().fold(0.0, f64::max);
         out.peak_force = sums.peak_force;
         out.peak_yaw_rate = out

@@ -150,6 +150,7 @@ pub fn scaled(car: &PlanarCar, parts: &[Part], factors: &[f64]) -> Option<Planar
     }
     let name = car.name().map(str::to_string);
     PlanarCar::new(body, left, right, beam, tyres)
+        .and_then(|c| c.with_crash_boxes(car.crash_boxes()))
         .ok()
         .map(|c| c.with_name(name))
 }

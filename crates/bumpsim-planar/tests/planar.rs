@@ -500,6 +500,8 @@ fn a_stiff_beam_that_chatters_off_the_face_still_completes_the_impact() {
 
 #[path = "planar/block.rs"]
 mod block;
+#[path = "planar/crash_box.rs"]
+mod crash_box;
 #[path = "planar/export.rs"]
 mod export;
 #[path = "planar/files.rs"]

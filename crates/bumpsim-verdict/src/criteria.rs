@@ -252,12 +252,24 @@ fn clearance(car: &PlanarCar, r: &PlanarResult, c: &crate::limits::Clearance) ->
     )
 }
 
-/// The label of a criterion reached at `t` (s) once the bumper had
-/// bottomed: from then on the load goes through the block (issue 45).
-fn blocked(r: &PlanarResult, t: f64) -> &'static str {
-    match r.bottomed {
-        Some(b) if t >= b.time => ", after the bumper bottomed: on the blocked load path",
-        _ => "",
+/// The label of a criterion reached at `t` (s) once the bumper or a crash
+/// box had bottomed: from then on the load goes through the block
+/// (issue 45).
+fn blocked(r: &PlanarResult, t: f64) -> String {
+    let bumper = r
+        .bottomed
+        .filter(|b| t >= b.time)
+        .map(|_| "the bumper".to_string());
+    let boxed = r
+        .box_bottomed
+        .filter(|b| t >= b.time)
+        .map(|b| format!("the {} crash box", b.side.name()));
+    match (bumper, boxed) {
+        (None, None) => String::new(),
+        (Some(a), Some(b)) => format!(", after {a} and {b} bottomed: on the blocked load path"),
+        (Some(a), None) | (None, Some(a)) => {
+            format!(", after {a} bottomed: on the blocked load path")
+        }
     }
 }
 
@@ -386,17 +398,23 @@ pub fn criteria(e: &Evidence, margin: f64) -> (Vec<Criterion>, Vec<String>) {
             ),
             None => "largest segment crush".into(),
         };
-        out.push(
-            Criterion::new(
-                "bumper stroke".into(),
-                detail,
-                Quantity::Length,
-                crush,
-                stroke,
-                true,
-            )
-            .judged(margin),
+        let judged = bumper_stroke_judged(e.test);
+        let detail = match judged {
+            true => detail,
+            false => format!("{detail}; {STRUCTURAL}"),
+        };
+        let c = Criterion::new(
+            "bumper stroke".into(),
+            detail,
+            Quantity::Length,
+            crush,
+            stroke,
+            true,
         );
+        out.push(match judged {
+            true => c.judged(margin),
+            false => c,
+        });
     }
     let mut assumptions = vec![e.test.uncertain.to_string()];
     match engagement(d, e.test) {
@@ -423,6 +441,20 @@ pub fn criteria(e: &Evidence, margin: f64) -> (Vec<Criterion>, Vec<String>) {
     (out, assumptions)
 }
 
+/// Why the bumper's stroke is reported, not judged, in RCAR's structural
+/// test (issue 45 item 8).
+pub const STRUCTURAL: &str = "reported, not judged: the structural test crushes the bumper into its crash boxes by design; it judges the crash-box stroke and the rails";
+
+/// Whether a test judges the bumper's stroke: every test but RCAR's
+/// structural one, which is run to crush the bumper beam into its crash
+/// boxes (RCAR structural protocol: the damage kept to the crash boxes and
+/// the rails undeformed; its requirements, [`crate::requirements`], list
+/// no bumper stroke). Judging it there made every bumper fail it
+/// (`--target` found nothing at any stiffness).
+pub fn bumper_stroke_judged(test: &Test) -> bool {
+    !test.name.starts_with("rcar-structural")
+}
+
 fn crash_box(e: &Evidence, margin: f64) -> Option<Criterion> {
     let boxes = crash_boxes(e.car, e.result);
     let ((used, at), side) = match boxes {
@@ -432,8 +464,16 @@ fn crash_box(e: &Evidence, margin: f64) -> Option<Criterion> {
         [None, None] => return None,
     };
     let stroke = e.limits.crash_box_stroke;
+    let bottomed = match e.result.box_bottomed {
+        Some(b) => format!(
+            "; the {} crash box bottomed at t = {:.1} ms",
+            b.side.name(),
+            b.time * 1e3
+        ),
+        None => String::new(),
+    };
     let detail = format!(
-        "{side}: {:.0} % of the stroke{}",
+        "{side}: {:.0} % of the stroke{bottomed}{}",
         100.0 * used / stroke,
         blocked(e.result, at)
     );

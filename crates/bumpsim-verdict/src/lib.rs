@@ -13,6 +13,8 @@
 //! - [`verdict`](mod@verdict): every test run and judged;
 //! - [`requirements`]: what each protocol requires, and whether the
 //!   model judges it, a proxy stands in, or the engineer must check it;
+//! - [`sequence`]: a protocol's impacts in order on one car, each from
+//!   the damage the earlier ones left (issue 45);
 //! - [`probability`]: the verdict propagated over the car's uncertainty:
 //!   each criterion's probability of passing (issue 39);
 //! - [`sensitivity`]: which uncertain parameters drive each criterion:
@@ -22,6 +24,7 @@
 //!   JSON or relative spreads;
 //! - [`target`]: the region of bumper characteristics that passes every
 //!   criterion with a margin, its binding criteria and corridor;
+//! - [`diagnosis`]: why no bumper passes, when none does;
 //! - [`text`]: the tables with units.
 //!
 //! ```
@@ -44,6 +47,7 @@
 //! ```
 
 pub mod criteria;
+pub mod diagnosis;
 pub mod error;
 pub mod limits;
 pub mod probability;
@@ -51,6 +55,7 @@ pub mod protocol;
 pub mod pulse;
 pub mod requirements;
 pub mod sensitivity;
+pub mod sequence;
 pub mod target;
 pub mod text;
 pub mod uncertainty;

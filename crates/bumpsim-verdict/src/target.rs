@@ -33,7 +33,7 @@
 //! `the_search_step_keeps_every_margin_ratio_within_1e_3`).
 
 use crate::error::{VerdictError, require};
-use crate::verdict::{CarEnd, Setup, assess};
+use crate::verdict::{CarEnd, Setup};
 use bumpsim_impact::bumper::{Bumper, Loading};
 use bumpsim_planar::Settings;
 use rayon::prelude::*;
@@ -138,6 +138,10 @@ pub struct Region {
     pub impacts: usize,
     /// Wall time of the search, s.
     pub seconds: f64,
+    /// When nothing passes at any stiffness: which criterion and test rule
+    /// out every bumper, the test's energy budget and what would have to
+    /// change ([`crate::diagnosis`]).
+    pub diagnosis: Option<String>,
 }
 
 impl Region {
@@ -282,8 +286,8 @@ impl Search<'_> {
             }
         }
         let (mut pass, mut worst, mut crush) = (true, (f64::INFINITY, String::new()), 0.0f64);
-        for test in &setup.tests {
-            let v = assess(&setup, test, false)?;
+        for v in crate::verdict::run_all(&setup, false, false)? {
+            let test = v.test;
             if v.skipped.is_some() {
                 continue;
             }
@@ -480,7 +484,16 @@ pub fn search(setup: &Setup, options: &TargetOptions) -> Result<Region, VerdictE
         .map(|&x| search.row(x, &levels, options.tolerance))
         .collect::<Result<Vec<_>, _>>()?;
     let corridor = corridor(&family, &rows);
+    let failing: Vec<Option<&str>> = rows
+        .iter()
+        .map(|r| match r.interval {
+            Some(_) => None,
+            None => Some(r.failing.as_deref().unwrap_or("")),
+        })
+        .collect();
+    let diagnosis = crate::diagnosis::nothing_passes(setup, &failing)?;
     Ok(Region {
+        diagnosis,
         origin: family.origin,
         tabulated: family.tabulated,
         margin: setup.margin,

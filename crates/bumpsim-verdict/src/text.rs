@@ -207,7 +207,17 @@ pub fn summary(v: &Verdict) -> String {
                 b.time * 1e3
             );
         }
+        if let Some(b) = t.box_bottomed {
+            out += &format!(
+                "  {}: the {} crash box (y = {:.0} mm) bottomed at t = {:.1} ms: from then on its force goes into the rail through the block\n",
+                t.test.name,
+                b.side.name(),
+                b.y * 1e3,
+                b.time * 1e3
+            );
+        }
     }
+    out += &sequence(&v.tests);
     let failures = v.failures();
     out += &match failures.is_empty() {
         true => "every assessed test passes\n".to_string(),
@@ -333,6 +343,47 @@ pub fn region(r: &Region) -> String {
         };
     }
     out += &own(r);
+    if let Some(why) = &r.diagnosis {
+        out += &format!("  {why}\n");
+    }
+    out
+}
+
+/// The lines that say what each test of a sequence inherited and what it
+/// changed (empty without a sequence).
+pub fn sequence(tests: &[crate::verdict::TestVerdict]) -> String {
+    let mut out = String::new();
+    for t in tests {
+        let Some(i) = &t.inherited else { continue };
+        out += &format!(
+            "  {} in sequence after {}: inherits a permanent set of up to {:.2} mm (segment {})",
+            t.test.name,
+            i.from.join(", "),
+            i.set * 1e3,
+            i.segment + 1
+        );
+        out += &match i.changes.is_empty() {
+            true => "; every criterion as run alone (the set is not reached or nil)\n".into(),
+            false => {
+                let each: Vec<String> = i
+                    .changes
+                    .iter()
+                    .map(|c| {
+                        format!(
+                            "{} {} (alone {})",
+                            c.criterion,
+                            c.quantity.format(c.sequence),
+                            c.quantity.format(c.alone)
+                        )
+                    })
+                    .collect();
+                format!(
+                    "; against the test run alone, the inherited damage changes: {}\n",
+                    each.join(", ")
+                )
+            }
+        };
+    }
     out
 }
 

@@ -11,11 +11,13 @@ use crate::limits::{Damageability, End};
 use crate::protocol::Test;
 use crate::pulse::{AsiMethod, Metrics, Pulse};
 use crate::requirements::Requirements;
+use crate::sequence::{Inherited, changes};
 use crate::uncertainty::Propagation;
 use bumpsim_estimate::propagate::Probability;
 use bumpsim_impact::bumper::Bumper;
+use bumpsim_impact::bumper::BumperState;
 use bumpsim_planar::car::{Beam, Block};
-use bumpsim_planar::result::Bottomed;
+use bumpsim_planar::result::{Bottomed, BoxBottomed};
 use bumpsim_planar::{PlanarCar, PlanarResult, Settings, Striker, simulate};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -35,7 +37,9 @@ impl CarEnd {
     /// takes `damageability.bumper_stroke` (the same crushable depth) as
     /// its segments' depth, with the default block stiffness
     /// ([`bumpsim_planar::car::DEFAULT_BLOCK_STIFFNESS`]); one with both
-    /// must give the same depth.
+    /// must give the same depth. Likewise its crash boxes block at
+    /// `damageability.crash_box_stroke` unless `[crash_boxes] depth` says
+    /// the same ([`bumpsim_planar::car::DEFAULT_CRASH_BOX_BLOCK_STIFFNESS`]).
     pub fn new(car: PlanarCar, limits: Damageability) -> Result<CarEnd, VerdictError> {
         limits.check_car(&car)?;
         let car = match (car.beam().block, limits.bumper_stroke) {
@@ -46,18 +50,37 @@ impl CarEnd {
                 car.with_block(Some(block))
                     .map_err(|e| planar("bumper", e))?
             }
-            (Some(block), Some(stroke)) if (block.depth - stroke).abs() > 1e-9 => {
-                return Err(VerdictError::Contradiction {
-                    first: "bumper.depth".into(),
-                    second: "damageability.bumper_stroke".into(),
-                    reason: format!(
-                        "the segments block at {} mm but the bumper's stroke is {} mm: both are the bumper's crushable depth; give one, or the same",
-                        block.depth * 1e3,
-                        stroke * 1e3
-                    ),
-                });
+            (Some(block), Some(stroke)) => {
+                same_depth(
+                    "bumper.depth",
+                    block.depth,
+                    "damageability.bumper_stroke",
+                    stroke,
+                )?;
+                car
             }
             _ => car,
+        };
+        let stroke = limits.crash_box_stroke;
+        let car = match car.crash_boxes() {
+            None => {
+                let stiffness = bumpsim_planar::car::DEFAULT_CRASH_BOX_BLOCK_STIFFNESS;
+                let block = Block {
+                    depth: stroke,
+                    stiffness,
+                };
+                car.with_crash_boxes(Some(block))
+                    .map_err(|e| planar("crash boxes", e))?
+            }
+            Some(block) => {
+                same_depth(
+                    "crash_boxes.depth",
+                    block.depth,
+                    "damageability.crash_box_stroke",
+                    stroke,
+                )?;
+                car
+            }
         };
         Ok(CarEnd { car, limits })
     }
@@ -136,6 +159,7 @@ impl CarEnd {
             beam,
             *c.tyres(),
         )
+        .and_then(|car| car.with_crash_boxes(c.crash_boxes()))
         .map_err(|e| planar("bumper", e))?
         .with_name(c.name().map(str::to_string));
         Ok(CarEnd {
@@ -143,6 +167,23 @@ impl CarEnd {
             limits: self.limits.clone(),
         })
     }
+}
+
+/// The car's depth and the limits' stroke are the same crushable depth:
+/// both given, they must agree.
+fn same_depth(first: &str, depth: f64, second: &str, stroke: f64) -> Result<(), VerdictError> {
+    if (depth - stroke).abs() <= 1e-9 {
+        return Ok(());
+    }
+    Err(VerdictError::Contradiction {
+        first: first.into(),
+        second: second.into(),
+        reason: format!(
+            "the car blocks at {} mm but the stroke is {} mm: both are the same crushable depth; give one, or the same",
+            depth * 1e3,
+            stroke * 1e3
+        ),
+    })
 }
 
 fn planar(test: &str, source: bumpsim_planar::PlanarError) -> VerdictError {
@@ -167,6 +208,9 @@ pub struct Setup {
     pub settings: Settings,
     /// How the ASI averages the accelerations (EN 1317-1:2010 unless set).
     pub asi_method: AsiMethod,
+    /// Run the tests in order on one car per end, each from the damage the
+    /// earlier ones left ([`crate::sequence`]); off: each on a new car.
+    pub sequence: bool,
 }
 
 impl Setup {
@@ -210,6 +254,7 @@ impl Setup {
             margin,
             settings: Settings::default(),
             asi_method: AsiMethod::default(),
+            sequence: false,
         })
     }
 
@@ -249,6 +294,12 @@ pub struct TestVerdict {
     /// When and where the bumper bottomed (a segment crushed past its
     /// depth): criteria reached afterwards are on the blocked load path.
     pub bottomed: Option<Bottomed>,
+    /// When and where a crash box bottomed (compressed past its stroke):
+    /// criteria reached afterwards are on the blocked load path.
+    pub box_bottomed: Option<BoxBottomed>,
+    /// In a sequence, what it inherited from the earlier tests on the same
+    /// car and what that changed (None: run on an undamaged car).
+    pub inherited: Option<Inherited>,
     /// What the verdict assumes.
     pub assumptions: Vec<String>,
     /// Metrics that could not be computed, and why.
@@ -333,11 +384,7 @@ impl Verdict {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn verdict(setup: &Setup) -> Result<Verdict, VerdictError> {
-    let tests = setup
-        .tests
-        .par_iter()
-        .map(|t| judge(setup, t))
-        .collect::<Result<Vec<_>, _>>()?;
+    let tests = run_all(setup, true, true)?;
     Ok(Verdict {
         car: setup.name(),
         margin: setup.margin,
@@ -372,6 +419,16 @@ pub(crate) fn assess(
     test: &'static Test,
     pulse: bool,
 ) -> Result<TestVerdict, VerdictError> {
+    assess_on(setup, setup.end(test.end), test, pulse)
+}
+
+/// [`assess`] on the end `end` (None: not assessed).
+pub(crate) fn assess_on(
+    setup: &Setup,
+    end: Option<&CarEnd>,
+    test: &'static Test,
+    pulse: bool,
+) -> Result<TestVerdict, VerdictError> {
     let mut verdict = TestVerdict {
         test,
         skipped: None,
@@ -380,6 +437,8 @@ pub(crate) fn assess(
         metrics: None,
         energies: None,
         bottomed: None,
+        box_bottomed: None,
+        inherited: None,
         assumptions: vec![],
         notes: vec![],
         warnings: vec![],
@@ -387,7 +446,7 @@ pub(crate) fn assess(
         result: None,
         run: None,
     };
-    let Some(end) = setup.end(test.end) else {
+    let Some(end) = end else {
         verdict.skipped = Some(format!(
             "no car file of the {} end was given",
             test.end.name()
@@ -414,10 +473,113 @@ pub(crate) fn assess(
     verdict.metrics = Some(metrics);
     verdict.energies = Some(energies);
     verdict.bottomed = result.bottomed;
+    verdict.box_bottomed = result.box_bottomed;
     verdict.assumptions = assumptions;
     verdict.notes = notes;
     verdict.warnings = result.warnings.clone();
     verdict.result = Some(result);
     verdict.run = Some((car, striker));
     Ok(verdict)
+}
+
+/// The damage left on one end: the segments' histories and who left it.
+#[derive(Default)]
+struct Damage {
+    states: Vec<BumperState>,
+    from: Vec<&'static str>,
+}
+
+/// Every test of `setup`: alone and in parallel, or in sequence when
+/// `setup.sequence` ([`crate::sequence`]). `pulse`: [`crate::verdict::judge`]'s
+/// full pulse metrics; `explain`: also run each inherited test alone and
+/// list what changed.
+pub(crate) fn run_all(
+    setup: &Setup,
+    pulse: bool,
+    explain: bool,
+) -> Result<Vec<TestVerdict>, VerdictError> {
+    if !setup.sequence {
+        return setup
+            .tests
+            .par_iter()
+            .map(|t| assess_on(setup, setup.end(t.end), t, pulse))
+            .collect();
+    }
+    let mut damage = [Damage::default(), Damage::default()];
+    let mut out = Vec::with_capacity(setup.tests.len());
+    for test in &setup.tests {
+        let Some(end) = setup.end(test.end) else {
+            out.push(assess_on(setup, None, test, pulse)?);
+            continue;
+        };
+        let left = &mut damage[matches!(test.end, End::Rear) as usize];
+        let mut v = match left.from.is_empty() {
+            true => assess_on(setup, Some(end), test, pulse)?,
+            false => inherit(setup, end, test, left, pulse, explain)?,
+        };
+        if let Some(r) = &v.result {
+            left.states = r.damage.clone();
+            left.from.push(test.name);
+        }
+        v.assumptions
+            .retain(|a| !a.starts_with("run on the undamaged car"));
+        out.push(v);
+    }
+    Ok(out)
+}
+
+/// `test` on `end` carrying the damage `left`.
+fn inherit(
+    setup: &Setup,
+    end: &CarEnd,
+    test: &'static Test,
+    left: &Damage,
+    pulse: bool,
+    explain: bool,
+) -> Result<TestVerdict, VerdictError> {
+    let car = end
+        .car
+        .clone()
+        .with_damage(left.states.clone())
+        .map_err(|source| VerdictError::Planar {
+            test: test.name.into(),
+            source,
+        })?;
+    let damaged = CarEnd {
+        car,
+        limits: end.limits.clone(),
+    };
+    let mut v = assess_on(setup, Some(&damaged), test, pulse)?;
+    let segments = &end.car.beam().segments;
+    let sets = segments
+        .iter()
+        .zip(&left.states)
+        .map(|(b, s)| b.remaining(s));
+    let (segment, set) = sets.enumerate().fold(
+        (0, 0.0),
+        |best, (j, s)| if s > best.1 { (j, s) } else { best },
+    );
+    let changes = match explain {
+        true => changes(
+            &v.criteria,
+            &assess_on(setup, Some(end), test, pulse)?.criteria,
+        ),
+        false => vec![],
+    };
+    v.assumptions.insert(
+        0,
+        format!(
+            "run in sequence on the same car after {}: a permanent set of up to {:.2} mm (segment {}) inherited",
+            left.from.join(", "),
+            set * 1e3,
+            segment + 1
+        ),
+    );
+    v.inherited = Some(Inherited {
+        from: left.from.clone(),
+        set,
+        segment,
+        changes,
+    });
+    Ok(v)
 }

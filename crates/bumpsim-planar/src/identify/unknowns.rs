@@ -237,6 +237,7 @@ impl Unknowns {
             tyres.rear.cornering_stiffness = c;
         }
         PlanarCar::new(body, left, right, t.beam().clone(), tyres)
+            .and_then(|c| c.with_crash_boxes(t.crash_boxes()))
             .map(|c| c.with_name(t.name().map(str::to_string)))
     }
 

@@ -98,7 +98,11 @@ struct PlanarResultDef {
     max_compression: f64,
     #[serde(default)]
     bottomed: Option<bumpsim_planar::result::Bottomed>,
+    #[serde(default)]
+    box_bottomed: Option<bumpsim_planar::result::BoxBottomed>,
     max_crush: Vec<f64>,
+    #[serde(skip)]
+    damage: Vec<bumpsim_impact::bumper::BumperState>,
     remaining_crush: Vec<f64>,
     peak_yaw_rate: f64,
     #[serde(with = "EnergyBalanceDef")]

@@ -147,6 +147,8 @@ struct RegionDef {
     corridor: Corridor,
     impacts: usize,
     seconds: f64,
+    #[serde(default)]
+    diagnosis: Option<String>,
 }
 
 super::remote_option!(region, Region, "RegionDef");

@@ -55,9 +55,26 @@ fn a_bumper_crushed_through_its_depth_blocks_and_the_verdict_names_the_instant()
         rail["detail"]
             .as_str()
             .unwrap()
-            .contains("after the bumper bottomed: on the blocked load path"),
+            .contains("after the bumper and the left crash box bottomed: on the blocked load path"),
         "{rail}"
     );
+    // its crash boxes block too (damageability.crash_box_stroke = 40 mm,
+    // the default 1e8 N/m a box): the left one bottoms after the bumper,
+    // and compresses past its 40 mm by no more than the block's compliance
+    // at the rail force; the rail takes more than the box's 3e6 N/m could
+    // pass at 40 mm (120 kN)
+    assert_contains(
+        &text(&run.stdout),
+        &["rcar-structural-front: the left crash box (y = 500 mm) bottomed at t = "],
+    );
+    let boxed = &test["box_bottomed"];
+    assert_eq!(boxed["side"], "left", "{boxed}");
+    let box_at = boxed["time"].as_f64().unwrap();
+    assert!(box_at > at && box_at < 0.1, "{box_at}");
+    let used = criterion("crash-box stroke")["value"].as_f64().unwrap();
+    assert!(used > 0.040, "{used}");
+    assert!(used <= 0.040 + rail_force / 1e8, "{used} {rail_force}");
+    assert!(rail_force > 3e6 * 0.040, "{rail_force}");
 }
 
 /// Issue 45 item 5: what the regulation requires and what of it is judged
@@ -125,6 +142,61 @@ fn the_verdict_lists_what_the_regulations_require_and_what_is_judged() {
             "judged by a proxy: the clearances to the lamps the car file lists; a lamp nothing reaches",
             "not judged: the exhaust is not modelled",
             "the engineer must check it",
+        ],
+    );
+}
+
+/// Issue 45 item 2: `--sequence` runs 49 CFR 581's front tests on one car;
+/// the barrier test inherits the set the pendulum and corners left and says
+/// what it changes against the test run alone; without it no test inherits.
+#[test]
+fn a_sequence_names_what_each_test_inherited_and_changed() {
+    let dir = scratch("verdict-sequence");
+    let json = dir.join("verdict.json");
+    let run = example("part581", &["--sequence", "--json", json.to_str().unwrap()]);
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    assert_contains(
+        &text(&run.stdout),
+        &[
+            "part581-barrier-front in sequence after part581-pendulum-front, part581-corner-front-left, part581-corner-front-right: inherits a permanent set of up to ",
+            "against the test run alone, the inherited damage changes: ",
+            "part581-barrier-front: run in sequence on the same car after ",
+        ],
+    );
+    let document: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let tests = document["verdict"]["tests"].as_array().unwrap();
+    let barrier = tests
+        .iter()
+        .find(|t| t["test"]["name"] == "part581-barrier-front")
+        .unwrap();
+    let inherited = &barrier["inherited"];
+    assert_eq!(
+        inherited["from"].as_array().unwrap().len(),
+        3,
+        "{inherited}"
+    );
+    assert!(inherited["set"].as_f64().unwrap() > 0.01, "{inherited}");
+    assert!(!inherited["changes"].as_array().unwrap().is_empty());
+    assert!(tests[0]["inherited"].is_null());
+    let alone = example("part581-barrier-front", &[]);
+    assert!(!text(&alone.stdout).contains("in sequence after"));
+}
+
+/// Issue 45 item 8: the target search of the RCAR structural test finds no
+/// bumper, and says which criterion rules out every one, the energy budget
+/// and what would have to change.
+#[test]
+fn a_target_that_finds_nothing_says_why_and_what_would_change() {
+    let run = example("rcar-structural-front", &["--target"]);
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    assert_contains(
+        &text(&run.stdout),
+        &[
+            "no bumper in the range passes: rail force in rcar-structural-front fails at every stiffness",
+            "the crash boxes store 4.80 kJ up to their usable stroke",
+            "This is the car's load path, not the bumper",
+            "reported, not judged: the structural test crushes the bumper",
         ],
     );
 }
