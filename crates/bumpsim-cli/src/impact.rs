@@ -23,8 +23,8 @@ use std::path::PathBuf;
 pub struct ImpactArgs {
     /// The car (TOML or identification JSON); one mass = a rigid vehicle;
     /// or a planar car (TOML with [body], docs/planar.md), which carries its bumper.
-    #[arg(long)]
-    car: PathBuf,
+    #[arg(long, required_unless_present = "case")]
+    car: Option<PathBuf>,
     /// The bumper characteristic (TOML: ramp, plateau, unloading; or curve, unloading);
     /// needed for a 1-D car.
     #[arg(long)]
@@ -54,6 +54,15 @@ pub struct ImpactArgs {
     files: crate::output::ResultFiles,
 }
 
+impl ImpactArgs {
+    /// The car file: needed for everything but `--case list`.
+    fn car_path(&self) -> Result<&std::path::Path> {
+        self.car
+            .as_deref()
+            .context("--car FILE is needed (only --case list runs without a car)")
+    }
+}
+
 /// `impact` with a planar car: the planar impact of `bumpsim planar`.
 fn planar_impact(args: &ImpactArgs) -> Result<()> {
     if args.bumper.is_some() {
@@ -65,8 +74,8 @@ fn planar_impact(args: &ImpactArgs) -> Result<()> {
         bail!("--width: a planar car has its bumper width ([bumper] width of its file)");
     }
     crate::planar::run_impact(&crate::planar::ImpactRequest {
-        path: &args.car,
-        car: bumpsim_planar::PlanarCar::read(&args.car)?,
+        path: args.car_path()?,
+        car: bumpsim_planar::PlanarCar::read(args.car_path()?)?,
         case: args.case.as_deref(),
         face: &args.face,
         pendulum: args.pendulum,
@@ -90,7 +99,7 @@ fn widened_impact(args: &ImpactArgs, car: &Car, bumper: &Bumper, width: &str) ->
         .context("--width: the symmetric planar car")?
         .with_name(car.name.clone());
     crate::planar::run_impact(&crate::planar::ImpactRequest {
-        path: &args.car,
+        path: args.car_path()?,
         car: planar,
         case: args.case.as_deref(),
         face: &args.face,
@@ -182,14 +191,15 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
         print!("{}", bumpsim_io::protocols::listing(true));
         return Ok(());
     }
-    let text = std::fs::read_to_string(&args.car).unwrap_or_default();
+    let car_path = args.car_path()?;
+    let text = std::fs::read_to_string(car_path).unwrap_or_default();
     if bumpsim_planar::file::is_planar_car(&text) {
         return planar_impact(args);
     }
     let Some(bumper_path) = &args.bumper else {
         bail!("--bumper FILE is needed for a 1-D car (docs/impact.md)");
     };
-    let car = Car::read_model_file(&args.car)?;
+    let car = Car::read_model_file(car_path)?;
     let bumper = Bumper::read(bumper_path)?;
     if let Some(width) = &args.width {
         return widened_impact(args, &car, &bumper, width);
@@ -207,7 +217,7 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
     let uncertain = Uncertain::<Chain>::read(&args.uncertain, &chain)?;
     let result =
         simulate(&car.model, &bumper, scenario, &Options::default()).with_context(|| {
-            let (car, bumper) = (args.car.display(), bumper_path.display());
+            let (car, bumper) = (car_path.display(), bumper_path.display());
             format!("--car {car} with --bumper {bumper}")
         })?;
     let warnings = result.warnings();
@@ -225,7 +235,7 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
     let name = car
         .name
         .clone()
-        .unwrap_or_else(|| args.car.display().to_string());
+        .unwrap_or_else(|| car_path.display().to_string());
     println!(
         "{} with {}: {label}",
         printable(&name),
