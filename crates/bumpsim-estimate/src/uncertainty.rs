@@ -144,6 +144,10 @@ pub enum Correlation {
     /// First-order autoregressive errors in each residual series: σ²
     /// inflated by `(1 + ρ)/(1 − ρ)`.
     Ar1,
+    /// Stationary errors of any correlation: σ² inflated by the integrated
+    /// autocorrelation time τ = n / n_eff of the residual series
+    /// ([`crate::effective`], Sokal's window; issue 44).
+    Spectral,
 }
 
 /// One residual series (a case's window of one signal): residual `start +
@@ -352,6 +356,10 @@ fn intervals(e: &Estimated) -> Uncertainty {
     let inflation = match e.correlation {
         Correlation::Independent => 1.0,
         Correlation::Ar1 => (1.0 + rho) / (1.0 - rho),
+        Correlation::Spectral => {
+            crate::effective::of_residuals(e.residuals, e.series, crate::effective::Method::Spectral)
+                .time
+        }
     };
     let names: Vec<String> = e.parameters.iter().map(|p| p.name.clone()).collect();
     let at_bound_free: Vec<bool> = (0..q_free)
