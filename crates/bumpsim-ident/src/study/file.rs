@@ -9,7 +9,7 @@ use std::path::PathBuf;
 
 /// The domain a study compares its cases in when it does not say
 /// (docs/identify.md shows the comparison that chose it).
-pub const DEFAULT_OBJECTIVE: crate::case::Domain = crate::case::Domain::Displacement;
+pub const DEFAULT_OBJECTIVE: crate::case::Domain = crate::case::Domain::Velocity;
 
 /// `dof = 3` or `dof = [1, 2, 3]`.
 #[derive(Debug, Clone, Deserialize)]
