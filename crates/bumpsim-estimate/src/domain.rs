@@ -122,9 +122,7 @@ impl Domain {
     /// the standard deviation of its values about their mean over samples
     /// `order..y.len()` (a pre-trigger, say); None with fewer than 3.
     pub fn noise(self, y: &[f64], h: f64) -> Option<f64> {
-        let values: Vec<f64> = (self.order()..y.len())
-            .map(|k| self.at(y, k, h))
-            .collect();
+        let values: Vec<f64> = (self.order()..y.len()).map(|k| self.at(y, k, h)).collect();
         if values.len() < 3 {
             return None;
         }
@@ -145,7 +143,10 @@ mod tests {
             assert_eq!(d.name().parse::<Domain>(), Ok(d));
         }
         let err = "speed".parse::<Domain>().unwrap_err().to_string();
-        assert!(err.contains("\"speed\"") && err.contains("velocity"), "{err}");
+        assert!(
+            err.contains("\"speed\"") && err.contains("velocity"),
+            "{err}"
+        );
     }
 
     #[test]
@@ -154,7 +155,11 @@ mod tests {
         let h = 0.01;
         let y: Vec<f64> = (0..10).map(|k| 3.0 * (k as f64 * h).powi(2)).collect();
         let t = 5.0 * h;
-        approx::assert_relative_eq!(Domain::Velocity.at(&y, 5, h), 6.0 * t - 3.0 * h, epsilon = 1e-9);
+        approx::assert_relative_eq!(
+            Domain::Velocity.at(&y, 5, h),
+            6.0 * t - 3.0 * h,
+            epsilon = 1e-9
+        );
         approx::assert_relative_eq!(Domain::Acceleration.at(&y, 5, h), 6.0, epsilon = 1e-9);
     }
 

@@ -357,8 +357,12 @@ fn intervals(e: &Estimated) -> Uncertainty {
         Correlation::Independent => 1.0,
         Correlation::Ar1 => (1.0 + rho) / (1.0 - rho),
         Correlation::Spectral => {
-            crate::effective::of_residuals(e.residuals, e.series, crate::effective::Method::Spectral)
-                .time
+            crate::effective::of_residuals(
+                e.residuals,
+                e.series,
+                crate::effective::Method::Spectral,
+            )
+            .time
         }
     };
     let names: Vec<String> = e.parameters.iter().map(|p| p.name.clone()).collect();

@@ -14,10 +14,10 @@
 //!   coverage, and the held-out fit (each test predicted by the model
 //!   refitted to the other two, [`cross_validate`]).
 
+use bumpsim_estimate::observer::Silent;
 use bumpsim_ident::crossval::cross_validate;
 use bumpsim_ident::study::DofSpec;
 use bumpsim_ident::{Identification, Study, identify};
-use bumpsim_estimate::observer::Silent;
 use std::path::{Path, PathBuf};
 
 /// Noise draws of the coverage test.
@@ -27,7 +27,10 @@ const COMPARED: usize = 10;
 
 /// The independent series (`DRAWS` noise draws), written once per target dir.
 fn series() -> Option<PathBuf> {
-    if !bumpsim_peers::present(bumpsim_peers::python_available("scipy"), "python3 with scipy") {
+    if !bumpsim_peers::present(
+        bumpsim_peers::python_available("scipy"),
+        "python3 with scipy",
+    ) {
         return None;
     }
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("pendulum-coverage");
@@ -58,7 +61,12 @@ fn identified(dir: &Path, k: usize, objective: &str) -> (Identification, f64) {
     let settings = study.settings(3).unwrap();
     let result = identify(&cases, &settings, &Silent).unwrap();
     let held_out = cross_validate(&cases, &settings, &result)
-        .map(|cv| cv.folds.iter().map(|f| f.fit_percent).fold(f64::INFINITY, f64::min))
+        .map(|cv| {
+            cv.folds
+                .iter()
+                .map(|f| f.fit_percent)
+                .fold(f64::INFINITY, f64::min)
+        })
         .unwrap_or(f64::NAN);
     (result, held_out)
 }
@@ -95,8 +103,14 @@ fn velocity_intervals_cover_an_independent_generators_truth() {
         total += truth.len();
     }
     let share = inside as f64 / total as f64;
-    println!("coverage of the 95 % intervals: {inside} of {total} ({:.1} %)", 100.0 * share);
-    assert!((0.85..=0.99).contains(&share), "coverage {share}: {inside} of {total}");
+    println!(
+        "coverage of the 95 % intervals: {inside} of {total} ({:.1} %)",
+        100.0 * share
+    );
+    assert!(
+        (0.85..=0.99).contains(&share),
+        "coverage {share}: {inside} of {total}"
+    );
 }
 
 #[test]
@@ -124,5 +138,8 @@ fn the_domains_compared_on_an_independent_series() {
         medians.push(median);
     }
     // the velocity domain's estimates are the closest to the truth
-    assert!(medians[1] < medians[0] && medians[1] < medians[2], "{medians:?}");
+    assert!(
+        medians[1] < medians[0] && medians[1] < medians[2],
+        "{medians:?}"
+    );
 }

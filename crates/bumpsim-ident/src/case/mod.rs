@@ -13,8 +13,8 @@
 //! the identification's iterations its modal form
 //! ([`bumpsim_core::modal`], `case::modal`) where that is precise enough.
 
-use bumpsim_estimate::lm::LeastSquares;
 pub use bumpsim_estimate::domain::{Domain, UnknownDomain};
+use bumpsim_estimate::lm::LeastSquares;
 
 mod direction;
 mod modal;
