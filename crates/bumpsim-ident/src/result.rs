@@ -104,7 +104,7 @@ pub struct Identification {
 }
 
 /// How an identification compared its cases beyond the thesis's objective.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct Compared {
     /// The domain ([`crate::case::Domain`]).
     pub domain: crate::case::Domain,

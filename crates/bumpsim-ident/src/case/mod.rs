@@ -93,7 +93,7 @@ pub struct LoadCase {
 }
 
 /// Where a case's displacement is compared, and its noise there.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Comparison {
     /// The domain ([`Domain`]): displacement (the thesis's), velocity or
     /// acceleration.
