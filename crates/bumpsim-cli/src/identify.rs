@@ -265,14 +265,27 @@ fn print_result(r: &Identification) {
             r.dof, r.objective, r.fit_percent
         ));
     }
+    let phrase = r.objective_phrase();
+    let compared = match phrase.is_empty() {
+        true => String::new(),
+        false => format!(" ({phrase})"),
+    };
+    let unit = r.objective_unit();
+    let unit = match unit.is_empty() {
+        true => unit,
+        false => format!(" {unit}"),
+    };
     println!(
-        "\n{}-DOF model: objective {} m², fit {} %",
+        "\n{}-DOF model: objective {}{unit}{compared}, fit {} %",
         r.dof,
         bumpsim_core::units::format_number(r.objective, 5),
         bumpsim_core::units::format_number(r.fit_percent, 4)
     );
     print!("{}", parameter_table(r));
     print!("{}", case_lines(r));
+    if let Some(line) = bumpsim_ident::text::residuals_line(r) {
+        println!("  {line}");
+    }
     println!("  {}", bumpsim_ident::text::starts_line(r));
     for w in &r.warnings {
         println!("  warning: {w}");

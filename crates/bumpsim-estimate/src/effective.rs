@@ -33,8 +33,43 @@
 //! assert!((spectral.time - 19.0).abs() < 4.0 && spectral.reliable, "{spectral:?}");
 //! ```
 
-use crate::uncertainty::Series;
 use serde::Serialize;
+
+/// One residual series (a case's window of one signal): residual `start +
+/// stride k` for `k < len`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Series {
+    /// Its first residual.
+    pub start: usize,
+    /// Its samples.
+    pub len: usize,
+    /// The distance between its consecutive samples among the residuals.
+    pub stride: usize,
+}
+
+impl Series {
+    /// Contiguous series of the given lengths, one after the other (stride 1).
+    ///
+    /// ```
+    /// use bumpsim_estimate::uncertainty::Series;
+    /// let s = Series::contiguous([3, 2].into_iter());
+    /// assert_eq!((s[1].start, s[1].len, s[1].stride), (3, 2, 1));
+    /// ```
+    pub fn contiguous(lengths: impl Iterator<Item = usize>) -> Vec<Series> {
+        let mut start = 0;
+        lengths
+            .map(|len| {
+                let s = Series {
+                    start,
+                    len,
+                    stride: 1,
+                };
+                start += len;
+                s
+            })
+            .collect()
+    }
+}
 
 /// Sokal's window constant: the window is the smallest M with M ≥ c τ(M).
 pub const WINDOW: f64 = 5.0;

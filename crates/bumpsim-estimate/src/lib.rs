@@ -14,6 +14,8 @@
 //! - [`uncertainty`]: standard errors, 95 % intervals, correlations, rank
 //!   and determination flags, the weakest direction, and the variance
 //!   inflation of AR(1) residuals;
+//! - [`domain`]: the domain a series is compared in (displacement,
+//!   velocity, acceleration; issue 44);
 //! - [`fit`]: the fit % of paper B and the negative-fit warning;
 //! - [`document`]: the prediction document every model's front end writes;
 //! - [`reduce`]: the simpler model the data cannot tell apart, with the
@@ -73,6 +75,7 @@
 pub mod binomial;
 pub mod bounds;
 pub mod document;
+pub mod domain;
 pub mod effective;
 pub mod fit;
 pub mod lm;

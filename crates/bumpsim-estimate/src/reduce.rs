@@ -92,6 +92,10 @@ pub trait Reducible {
     fn refit(&self, j: usize, target: f64) -> Option<Merged<Self::Model>>;
     /// What the reduced model is called (`2-DOF model`, `car`).
     fn reduced_name(&self) -> String;
+    /// The unit the objective prints with (`m²`; empty when dimensionless).
+    fn objective_unit(&self) -> String {
+        "m²".into()
+    }
 }
 
 /// The full model an advice is about: its parameters, values, uncertainty,
@@ -270,7 +274,7 @@ fn reduction<R: Reducible>(
         name.name,
         model.reduced_name(),
         format_quantity(merged.mass, Dimension::Mass),
-        comparison(merged.objective, full.objective),
+        comparison_in(merged.objective, full.objective, &model.objective_unit()),
     );
     Reduction {
         parameter: name.name.clone(),
@@ -287,8 +291,17 @@ fn reduction<R: Reducible>(
 /// the full model's search stopped short of it (issue 34: "fits within
 /// 0 %" of an objective 19× lower).
 pub fn comparison(reduced: f64, full: f64) -> String {
+    comparison_in(reduced, full, "m²")
+}
+
+/// [`comparison`] of objectives in `unit` (empty: dimensionless).
+pub fn comparison_in(reduced: f64, full: f64, unit: &str) -> String {
+    let unit = match unit.is_empty() {
+        true => String::new(),
+        false => format!(" {unit}"),
+    };
     let both = format!(
-        "{} m² against {} m²",
+        "{}{unit} against {}{unit}",
         format_number(reduced, 5),
         format_number(full, 5)
     );

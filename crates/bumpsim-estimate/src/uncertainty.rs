@@ -144,43 +144,13 @@ pub enum Correlation {
     /// First-order autoregressive errors in each residual series: σ²
     /// inflated by `(1 + ρ)/(1 − ρ)`.
     Ar1,
+    /// Stationary errors of any correlation: σ² inflated by the integrated
+    /// autocorrelation time τ = n / n_eff of the residual series
+    /// ([`crate::effective`], Sokal's window; issue 44).
+    Spectral,
 }
 
-/// One residual series (a case's window of one signal): residual `start +
-/// stride k` for `k < len`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Series {
-    /// Its first residual.
-    pub start: usize,
-    /// Its samples.
-    pub len: usize,
-    /// The distance between its consecutive samples among the residuals.
-    pub stride: usize,
-}
-
-impl Series {
-    /// Contiguous series of the given lengths, one after the other (stride 1).
-    ///
-    /// ```
-    /// use bumpsim_estimate::uncertainty::Series;
-    /// let s = Series::contiguous([3, 2].into_iter());
-    /// assert_eq!((s[1].start, s[1].len, s[1].stride), (3, 2, 1));
-    /// ```
-    pub fn contiguous(lengths: impl Iterator<Item = usize>) -> Vec<Series> {
-        let mut start = 0;
-        lengths
-            .map(|len| {
-                let s = Series {
-                    start,
-                    len,
-                    stride: 1,
-                };
-                start += len;
-                s
-            })
-            .collect()
-    }
-}
+pub use crate::effective::Series;
 
 /// Standard errors, intervals and correlations of the estimate.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -352,6 +322,14 @@ fn intervals(e: &Estimated) -> Uncertainty {
     let inflation = match e.correlation {
         Correlation::Independent => 1.0,
         Correlation::Ar1 => (1.0 + rho) / (1.0 - rho),
+        Correlation::Spectral => {
+            crate::effective::of_residuals(
+                e.residuals,
+                e.series,
+                crate::effective::Method::Spectral,
+            )
+            .time
+        }
     };
     let names: Vec<String> = e.parameters.iter().map(|p| p.name.clone()).collect();
     let at_bound_free: Vec<bool> = (0..q_free)

@@ -49,6 +49,7 @@ fn cases() -> Vec<LoadCase> {
                 output_dof: 1,
                 initial_velocity: 0.0,
                 window: (0, 499),
+                compare: Default::default(),
             };
             c.measured = c
                 .simulate(&truth)

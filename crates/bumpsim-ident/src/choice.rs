@@ -35,7 +35,8 @@
 //! let case = |name: &str, peak: f64, phase: f64| {
 //!     let force = (0..300).map(|k| peak * (k as f64 * 5e-4 * 50.0).sin().max(0.0)).collect();
 //!     let mut c = LoadCase { name: name.into(), start: 0.0, step: 5e-4, force,
-//!         measured: vec![], output_dof: 1, initial_velocity: 0.0, window: (0, 299) };
+//!         measured: vec![], output_dof: 1, initial_velocity: 0.0, window: (0, 299),
+//!         compare: Default::default() };
 //!     c.measured = c.simulate(&truth).unwrap();
 //!     // a slow drift on the measurement, as double integration leaves
 //!     for (k, x) in c.measured.iter_mut().enumerate() {

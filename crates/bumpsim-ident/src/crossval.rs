@@ -23,7 +23,8 @@
 //! let case = |name: &str, peak: f64| {
 //!     let force = (0..300).map(|k| peak * (k as f64 * 5e-4 * 40.0).sin().max(0.0)).collect();
 //!     let mut c = LoadCase { name: name.into(), start: 0.0, step: 5e-4, force,
-//!         measured: vec![], output_dof: 1, initial_velocity: 0.0, window: (0, 299) };
+//!         measured: vec![], output_dof: 1, initial_velocity: 0.0, window: (0, 299),
+//!         compare: Default::default() };
 //!     c.measured = c.simulate(&truth).unwrap();
 //!     c
 //! };

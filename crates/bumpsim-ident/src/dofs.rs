@@ -117,7 +117,7 @@ impl Sweep {
 /// let force: Vec<f64> = (0..300).map(|k| 2e4 * (k as f64 * 5e-4 * 50.0).sin().max(0.0)).collect();
 /// let mut case = LoadCase {
 ///     name: "flat".into(), start: 0.0, step: 5e-4, force, measured: vec![], output_dof: 1,
-///     initial_velocity: 0.0, window: (0, 299),
+///     initial_velocity: 0.0, window: (0, 299), compare: Default::default(),
 /// };
 /// case.measured = case.simulate(&truth).unwrap();
 /// let cases = vec![case];

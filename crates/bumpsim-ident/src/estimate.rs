@@ -189,11 +189,19 @@ fn summarise(
         .max(spread * f64::EPSILON * f64::EPSILON)
         .max(f64::MIN_POSITIVE);
     let ln_term = n as f64 * (resolved / n as f64).ln();
+    let compared = crate::result::Compared::of(cases);
+    // the fit % is the displacement's; beyond the thesis's objective its
+    // sum of squares is the cases' own
+    let displacement_sse = match compared {
+        None => sse,
+        Some(_) => fits.iter().map(|f| f.sse).sum(),
+    };
     Ok(Identification {
         dof: settings.dof,
         model,
         objective: sse,
-        fit_percent: bumpsim_estimate::fit::from_sums(sse, spread),
+        compared,
+        fit_percent: bumpsim_estimate::fit::from_sums(displacement_sse, spread),
         cases: fits,
         aic: ln_term + 2.0 * q as f64,
         bic: ln_term + q as f64 * (n as f64).ln(),

@@ -35,7 +35,7 @@
 //! let force: Vec<f64> = (0..400).map(|k| 3e4 * (k as f64 * 0.0005 * 40.0).sin().max(0.0)).collect();
 //! let mut case = LoadCase {
 //!     name: "flat".into(), start: 0.0, step: 5e-4, force, measured: vec![], output_dof: 1,
-//!     initial_velocity: 0.0, window: (0, 399),
+//!     initial_velocity: 0.0, window: (0, 399), compare: Default::default(),
 //! };
 //! case.measured = case.simulate(&truth).unwrap();
 //! let result = identify(&[case], &Settings::new(2, 4), &|| {}).unwrap();

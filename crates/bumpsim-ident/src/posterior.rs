@@ -22,7 +22,8 @@
 //! let truth = MsdModel::new(vec![30.0, 900.0], vec![3e3], vec![6e5]).unwrap();
 //! let force: Vec<f64> = (0..300).map(|k| 2e4 * (k as f64 * 5e-4 * 40.0).sin().max(0.0)).collect();
 //! let mut case = LoadCase { name: "flat".into(), start: 0.0, step: 5e-4, force,
-//!     measured: vec![], output_dof: 1, initial_velocity: 0.0, window: (0, 299) };
+//!     measured: vec![], output_dof: 1, initial_velocity: 0.0, window: (0, 299),
+//!     compare: Default::default() };
 //! case.measured = case.simulate(&truth).unwrap();
 //! for (k, x) in case.measured.iter_mut().enumerate() { *x += 2e-5 * (k as f64 * 1.7).sin(); }
 //! let settings = Settings::new(2, 4);

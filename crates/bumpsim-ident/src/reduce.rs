@@ -110,6 +110,10 @@ impl Reducible for Chain<'_> {
     fn reduced_name(&self) -> String {
         format!("{}-DOF model", self.result.dof - 1)
     }
+
+    fn objective_unit(&self) -> String {
+        self.result.objective_unit()
+    }
 }
 
 /// The first reduced model that fits as well, if any (see the module).

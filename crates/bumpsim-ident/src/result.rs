@@ -61,8 +61,14 @@ pub struct Identification {
     /// (N·s/m) and `springs` (N/m) at the top level of the result.
     #[serde(flatten)]
     pub model: MsdModel,
-    /// `F = Σ (x − x̂)²` over all cases, m².
+    /// `F = Σ (x − x̂)²` over all cases, m² (the thesis's objective); or
+    /// in the study's other domain, weighted ([`Identification::compared`]).
     pub objective: f64,
+    /// How the cases were compared when not as the thesis (displacement,
+    /// unweighted; then absent): their domain and whether each case's
+    /// residuals were divided by its noise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub compared: Option<Compared>,
     /// Per-case fit.
     pub cases: Vec<CaseFit>,
     /// Overall fit %, from all windows together.
@@ -99,6 +105,52 @@ pub struct Identification {
     /// Leave-one-load-case-out cross-validation, when a DOF table ran it
     /// ([`crate::crossval`]).
     pub cross_validation: Option<CrossValidation>,
+}
+
+/// How an identification compared its cases beyond the thesis's objective.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
+pub struct Compared {
+    /// The domain ([`crate::case::Domain`]).
+    pub domain: crate::case::Domain,
+    /// Whether the residuals were divided by each case's noise (then the
+    /// objective is dimensionless).
+    pub weighted: bool,
+}
+
+impl Compared {
+    /// How `cases` are compared; None for the thesis's objective.
+    pub fn of(cases: &[LoadCase]) -> Option<Compared> {
+        if cases.iter().all(|c| c.compare.is_thesis()) {
+            return None;
+        }
+        Some(Compared {
+            domain: cases.first().map(|c| c.compare.domain).unwrap_or_default(),
+            weighted: cases.iter().any(|c| c.compare.noise.is_some()),
+        })
+    }
+}
+
+impl Identification {
+    /// The unit of [`Identification::objective`] as printed after it:
+    /// `m²`, `(m/s)²`, `(m/s²)²`, or nothing when dimensionless (weighted).
+    pub fn objective_unit(&self) -> String {
+        match self.compared {
+            None => "m²".into(),
+            Some(Compared { weighted: true, .. }) => String::new(),
+            Some(Compared { domain, .. }) if domain.order() == 0 => "m²".into(),
+            Some(Compared { domain, .. }) => format!("({})²", domain.unit()),
+        }
+    }
+
+    /// What the objective compares, as a phrase (`acceleration, each case
+    /// weighted by its noise`); empty for the thesis's.
+    pub fn objective_phrase(&self) -> String {
+        match self.compared {
+            None => String::new(),
+            Some(c) if c.weighted => format!("{}, each case weighted by its noise", c.domain),
+            Some(c) => c.domain.to_string(),
+        }
+    }
 }
 
 /// The leave-one-load-case-out cross-validation of one model order
@@ -144,6 +196,7 @@ mod tests {
             output_dof: 1,
             initial_velocity: 0.0,
             window,
+            compare: Default::default(),
         }
     }
 

@@ -15,7 +15,7 @@ use crate::case::Objective;
 use bumpsim_core::model::{parameter_count, parameter_kind, parameter_name};
 use bumpsim_estimate::effective::{Effective, Method, of_residuals};
 use bumpsim_estimate::lm::LeastSquares;
-use bumpsim_estimate::uncertainty::{Correlation, Estimated, Parameter};
+use bumpsim_estimate::uncertainty::{Estimated, Parameter};
 use nalgebra::DMatrix;
 
 pub use bumpsim_estimate::uncertainty::{
@@ -66,7 +66,7 @@ pub fn uncertainty(
         residuals: &r,
         jacobian: &jacobian,
         series: &series,
-        correlation: Correlation::Independent,
+        correlation: objective.correlation(),
     });
     match evaluated {
         true => u,

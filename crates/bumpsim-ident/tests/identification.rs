@@ -41,6 +41,7 @@ fn case(name: &str, force: Vec<f64>, truth: &MsdModel) -> LoadCase {
         output_dof: 1,
         initial_velocity: 0.0,
         window: (0, n - 1),
+        compare: Default::default(),
     };
     c.measured = c.simulate(truth).unwrap();
     c

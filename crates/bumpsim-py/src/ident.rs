@@ -97,6 +97,7 @@ impl Case {
             output_dof,
             initial_velocity,
             window,
+            compare: Default::default(),
         };
         case.validate().map_err(input)?;
         Ok(Case::of(case))

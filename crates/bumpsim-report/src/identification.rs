@@ -307,12 +307,21 @@ fn section(
 ) -> Result<(), PlotError> {
     let dof = result.dof;
     page.heading(&format!("{dof}-DOF model"));
+    let unit = result.objective_unit();
+    let phrase = result.objective_phrase();
+    let objective = match (unit.is_empty(), phrase.is_empty()) {
+        (_, true) => format!("{} {unit}", format_number(result.objective, 5)),
+        (true, false) => format!("{} ({phrase})", format_number(result.objective, 5)),
+        (false, false) => format!("{} {unit} ({phrase})", format_number(result.objective, 5)),
+    };
     page.paragraph(&format!(
-        "Objective {} m², overall fit {} %; {}.",
-        format_number(result.objective, 5),
+        "Objective {objective}, overall fit {} %; {}.",
         format_number(result.fit_percent, 4),
         bumpsim_ident::text::starts_line(result)
     ));
+    if let Some(line) = bumpsim_ident::text::residuals_line(result) {
+        page.paragraph(&line);
+    }
     if tables {
         page.preformatted(&parameter_table(result));
         page.preformatted(&case_lines(result));

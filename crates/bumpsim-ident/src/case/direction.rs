@@ -39,6 +39,7 @@ impl LoadCase {
     ///     output_dof: 1,
     ///     initial_velocity: 0.0,
     ///     window: (0, n - 1),
+    ///     compare: Default::default(),
     /// };
     /// assert!(case.direction_warning().unwrap().contains("scale = -1.0"));
     /// ```
@@ -62,6 +63,7 @@ impl LoadCase {
     ///     output_dof: 1,
     ///     initial_velocity: 0.0,
     ///     window: (0, n - 1),
+    ///     compare: Default::default(),
     /// };
     /// let warning = case.direction_warning_given(&["10SIME*ACXP".into()]).unwrap();
     /// assert!(warning.contains("remove"), "{warning}");
@@ -139,6 +141,7 @@ mod tests {
             output_dof: 1,
             initial_velocity: sign * v0,
             window: (0, n - 1),
+            compare: Default::default(),
         }
     }
 

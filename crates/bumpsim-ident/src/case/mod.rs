@@ -13,6 +13,7 @@
 //! the identification's iterations its modal form
 //! ([`bumpsim_core::modal`], `case::modal`) where that is precise enough.
 
+pub use bumpsim_estimate::domain::{Domain, UnknownDomain};
 use bumpsim_estimate::lm::LeastSquares;
 
 mod direction;
@@ -87,6 +88,37 @@ pub struct LoadCase {
     pub initial_velocity: f64,
     /// First and last sample of the fit window (inclusive).
     pub window: (usize, usize),
+    /// Where and with which weight the case is compared (issue 44).
+    pub compare: Comparison,
+}
+
+/// Where a case's displacement is compared, and its noise there.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+pub struct Comparison {
+    /// The domain ([`Domain`]): displacement (the thesis's), velocity or
+    /// acceleration.
+    pub domain: Domain,
+    /// The measurement's noise in that domain (standard deviation, its SI
+    /// unit), from the pre-trigger or the study; the residuals are divided
+    /// by it. None: not weighted (the thesis's objective in m²).
+    pub noise: Option<f64>,
+}
+
+impl Comparison {
+    /// The comparison in `domain` with the residuals divided by `noise`.
+    pub fn new(domain: Domain, noise: Option<f64>) -> Comparison {
+        Comparison { domain, noise }
+    }
+
+    /// The factor of the case's residuals: 1 / noise, or 1.
+    pub fn weight(&self) -> f64 {
+        self.noise.map_or(1.0, f64::recip)
+    }
+
+    /// Whether this is the thesis's objective (displacement, unweighted).
+    pub fn is_thesis(&self) -> bool {
+        self.domain == Domain::Displacement && self.noise.is_none()
+    }
 }
 
 /// The largest initial velocity a case may give, m/s (either sign): far
@@ -117,6 +149,21 @@ impl LoadCase {
             return Err(invalid(format!(
                 "window samples {a}..{b} outside 0..{}",
                 self.force.len() - 1
+            )));
+        }
+        if b < self.compare.domain.order() {
+            return Err(invalid(format!(
+                "window samples {a}..{b}: comparing {} needs a window ending at sample {} or later",
+                self.compare.domain.name(),
+                self.compare.domain.order()
+            )));
+        }
+        if let Some(noise) = self.compare.noise
+            && !(noise.is_finite() && noise > 0.0)
+        {
+            return Err(invalid(format!(
+                "noise {noise} {}: expected a positive finite standard deviation",
+                self.compare.domain.unit()
             )));
         }
         if !(self.step.is_finite() && self.step > 0.0) || self.output_dof == 0 {
@@ -160,6 +207,18 @@ impl LoadCase {
     /// Number of samples in the window.
     pub fn window_len(&self) -> usize {
         self.window.1 - self.window.0 + 1
+    }
+
+    /// The first sample compared: the window's, or the first at which the
+    /// domain's difference has a value.
+    pub fn first_compared(&self) -> usize {
+        self.window.0.max(self.compare.domain.order())
+    }
+
+    /// Number of residuals the case gives (its window's samples that have
+    /// a value in its domain).
+    pub fn residual_len(&self) -> usize {
+        (self.window.1 + 1).saturating_sub(self.first_compared())
     }
 
     /// The initial state [x; v] of a `dof`-mass chain.
@@ -218,6 +277,8 @@ struct Buffers {
     initial: Vec<f64>,
     y: Vec<f64>,
     jac: Vec<f64>,
+    /// The Jacobian rows in a case's domain, weighted.
+    compared: Vec<f64>,
     work: Vec<f64>,
 }
 
@@ -257,9 +318,10 @@ impl<'a> Objective<'a> {
             initial: vec![0.0; 2 * dof],
             y: vec![0.0; longest],
             jac: vec![0.0; longest * p],
+            compared: Vec::new(),
             work: vec![0.0; (p + 2) * 2 * dof],
         };
-        let residuals = cases.iter().map(LoadCase::window_len).sum();
+        let residuals = cases.iter().map(LoadCase::residual_len).sum();
         Objective {
             cases,
             dof,
@@ -271,6 +333,22 @@ impl<'a> Objective<'a> {
         }
     }
 
+    /// Whether every case is compared as the thesis does (displacement,
+    /// unweighted): the modal form computes those.
+    pub fn is_thesis(&self) -> bool {
+        self.cases.iter().all(|c| c.compare.is_thesis())
+    }
+
+    /// The residuals' error model: independent for the thesis's objective
+    /// (as it always was), else correlated with the spectral inflation.
+    pub fn correlation(&self) -> bumpsim_estimate::uncertainty::Correlation {
+        use bumpsim_estimate::uncertainty::Correlation;
+        match self.is_thesis() {
+            true => Correlation::Independent,
+            false => Correlation::Spectral,
+        }
+    }
+
     /// Indices of the free parameters.
     pub fn free(&self) -> &[usize] {
         &self.free
@@ -279,7 +357,7 @@ impl<'a> Objective<'a> {
     /// The residual series: one per case, its window, in case order.
     pub fn series(&self) -> Vec<bumpsim_estimate::uncertainty::Series> {
         bumpsim_estimate::uncertainty::Series::contiguous(
-            self.cases.iter().map(LoadCase::window_len),
+            self.cases.iter().map(LoadCase::residual_len),
         )
     }
 
@@ -353,13 +431,31 @@ impl Objective<'_> {
             if simulated.is_err() {
                 return false;
             }
-            let (a, z) = case.window;
-            for k in a..=z {
-                residuals[row + k - a] = b.y[k] - case.measured[k];
-            }
-            let next = row + z - a + 1;
-            if sensitivities {
-                window(row, &b.jac[a * full..(z + 1) * full], &residuals[row..next]);
+            let (a, z) = (case.first_compared(), case.window.1);
+            let next = row + z + 1 - a;
+            if case.compare.is_thesis() {
+                for k in a..=z {
+                    residuals[row + k - a] = b.y[k] - case.measured[k];
+                }
+                if sensitivities {
+                    window(row, &b.jac[a * full..(z + 1) * full], &residuals[row..next]);
+                }
+            } else {
+                let (domain, w, h) = (case.compare.domain, case.compare.weight(), case.step);
+                for k in a..=z {
+                    let (y, m) = (domain.at(&b.y, k, h), domain.at(&case.measured, k, h));
+                    residuals[row + k - a] = w * (y - m);
+                }
+                if sensitivities {
+                    b.compared.clear();
+                    for k in a..=z {
+                        for i in 0..full {
+                            let column = |j: usize| b.jac[j * full + i];
+                            b.compared.push(w * domain.strided(column, k, h));
+                        }
+                    }
+                    window(row, &b.compared, &residuals[row..next]);
+                }
             }
             row = next;
         }

@@ -60,6 +60,9 @@ impl Objective<'_> {
     /// The residuals at the free log parameters `p`; false when the model
     /// cannot be evaluated.
     pub(super) fn residuals(&self, p: &[f64], residuals: &mut [f64]) -> bool {
+        if !self.is_thesis() {
+            return self.simulate(p, residuals, false, &mut |_, _, _| {});
+        }
         match self.modal_residuals(p, residuals) {
             Ok(ok) => ok,
             Err(refusal) => {
@@ -84,6 +87,11 @@ impl Objective<'_> {
         sums: &mut DMatrix<f64>,
         g: &mut DVector<f64>,
     ) -> bool {
+        if !self.is_thesis() {
+            return self.simulate(p, residuals, true, &mut |_, rows, r| {
+                accumulate(rows, r, sums, g);
+            });
+        }
         let known = self.refused_residuals(p, residuals);
         let jacobian_only = known
             || match self.modal_normal(p, residuals, sums, g) {

@@ -86,6 +86,13 @@ impl Study {
                     "a positive CFC class (60, 180, 600, 1000)",
                 ));
             }
+            if let Some(n) = case.noise.filter(|n| !(n.is_finite() && *n > 0.0)) {
+                return Err(error(
+                    "noise",
+                    short(n),
+                    "a positive standard deviation in the objective's unit (m, m/s or m/s²)",
+                ));
+            }
         }
         Ok(())
     }

@@ -5,7 +5,7 @@
 
 use super::error::{DefinitionError, StudyError, StudyValueError};
 use super::file::{CaseSpec, ChannelRef, OutputDof, Study, WindowSpec};
-use crate::case::LoadCase;
+use crate::case::{Comparison, Domain, LoadCase};
 use bumpsim_core::channel::Channel;
 use bumpsim_core::series::UniformSeries;
 use bumpsim_core::units::{Dimension, format_number, short};
@@ -277,18 +277,35 @@ impl CaseContext<'_> {
         if output_dof == 0 || output_dof > dof {
             return Err(self.case(DefinitionError::OutputDofRange { output_dof, dof }));
         }
+        let step = if time.len() > 1 { step } else { 0.0 };
+        let compare = self.comparison(&columns[1][..first], step);
         let case = LoadCase {
             name: self.spec.name.clone(),
             start,
-            step: if time.len() > 1 { step } else { 0.0 },
+            step,
             force,
             measured,
             output_dof,
             initial_velocity: self.spec.initial_velocity,
             window,
+            compare,
         };
         case.validate().map_err(|e| self.case(e))?;
         Ok(case)
+    }
+
+    /// The case's comparison: the study's domain, and the noise the case
+    /// gives or, beyond displacement, the spread of the processed
+    /// measurement's `pretrigger` (the samples before t = 0) in that
+    /// domain (none without a pre-trigger: not weighted).
+    fn comparison(&self, pretrigger: &[f64], step: f64) -> Comparison {
+        let domain = self.study.objective().unwrap_or_default();
+        let noise = match (self.spec.noise, domain) {
+            (Some(given), _) => Some(given),
+            (None, Domain::Displacement) => None,
+            (None, _) => domain.noise(pretrigger, step),
+        };
+        Comparison::new(domain, noise)
     }
 
     /// The fit window as sample indices counted from `first` (the sample at

@@ -7,6 +7,10 @@ use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
+/// The domain a study compares its cases in when it does not say
+/// (docs/identify.md shows the comparison that chose it).
+pub const DEFAULT_OBJECTIVE: crate::case::Domain = crate::case::Domain::Velocity;
+
 /// `dof = 3` or `dof = [1, 2, 3]`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(
@@ -149,6 +153,19 @@ pub struct CaseSpec {
     pub output_dof: Option<OutputDof>,
     /// Fit window.
     pub window: Option<WindowSpec>,
+    /// The measurement's noise in the objective's domain (standard
+    /// deviation, SI: m, m/s or m/s²); default: from the pre-trigger
+    /// (velocity and acceleration), none (displacement).
+    pub noise: Option<f64>,
+}
+
+/// The `[identification]` table.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IdentificationSpec {
+    /// The domain each case is compared in: `"displacement"` (the
+    /// thesis's), `"velocity"` or `"acceleration"` (issue 44).
+    pub objective: Option<String>,
 }
 
 impl CaseSpec {
@@ -170,6 +187,9 @@ impl CaseSpec {
 pub struct Study {
     /// Model settings.
     pub model: ModelSpec,
+    /// How the cases are compared.
+    #[serde(default)]
+    pub identification: IdentificationSpec,
     /// Load cases.
     pub case: Vec<CaseSpec>,
     /// Folder of the study file.
@@ -181,6 +201,15 @@ pub struct Study {
 }
 
 impl Study {
+    /// The domain the cases are compared in (`[identification]
+    /// objective`; default [`DEFAULT_OBJECTIVE`]).
+    pub fn objective(&self) -> Result<crate::case::Domain, crate::case::UnknownDomain> {
+        match &self.identification.objective {
+            Some(name) => name.parse(),
+            None => Ok(DEFAULT_OBJECTIVE),
+        }
+    }
+
     /// The DOF values to identify.
     pub fn dofs(&self) -> Vec<usize> {
         match &self.model.dof {

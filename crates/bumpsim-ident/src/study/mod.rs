@@ -29,7 +29,8 @@ pub use crate::case::MAX_INITIAL_VELOCITY;
 pub use context::{CaseNote, LoadedCases};
 pub use error::{DefinitionError, StudyError, StudyValueError};
 pub use file::{
-    CaseSpec, ChannelRef, DofSpec, ModelSpec, OutputDof, ParameterSet, Study, WindowSpec,
+    CaseSpec, ChannelRef, DEFAULT_OBJECTIVE, DofSpec, IdentificationSpec, ModelSpec, OutputDof,
+    ParameterSet, Study, WindowSpec,
 };
 
 use crate::case::LoadCase;
@@ -75,6 +76,9 @@ impl Study {
         study.check_tables().map_err(value)?;
         study.check_dofs().map_err(value)?;
         study.check_case_values().map_err(value)?;
+        study
+            .objective()
+            .map_err(|e| error(format!("[identification] {e}")))?;
         study.sheet_mass()?;
         Ok(study)
     }

@@ -69,6 +69,7 @@ fn case(truth: &MsdModel, peak: f64, duration: f64, shape: f64, rng: &mut ChaCha
         output_dof: 1,
         initial_velocity: 0.0,
         window: (0, SAMPLES - 1),
+        compare: Default::default(),
     };
     c.measured = c.simulate(truth).unwrap();
     for m in &mut c.measured {

@@ -41,6 +41,7 @@ pub fn pulse(
         output_dof: 1,
         initial_velocity: 0.0,
         window: (0, n - 1),
+        compare: Default::default(),
     };
     case.measured = case.simulate(truth).unwrap();
     case

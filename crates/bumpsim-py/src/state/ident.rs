@@ -103,6 +103,7 @@ pub struct LoadCaseDef {
     output_dof: usize,
     initial_velocity: f64,
     window: (usize, usize),
+    compare: bumpsim_ident::case::Comparison,
 }
 
 remote_seq!(load_cases, LoadCase, "LoadCaseDef");
@@ -178,6 +179,7 @@ remote_seq!(scales, Scale, "ScaleDef");
 enum CorrelationDef {
     Independent,
     Ar1,
+    Spectral,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -330,6 +332,7 @@ struct IdentificationDef {
     #[serde(with = "model")]
     model: MsdModel,
     objective: f64,
+    compared: Option<bumpsim_ident::result::Compared>,
     #[serde(with = "case_fits")]
     cases: Vec<CaseFit>,
     fit_percent: f64,

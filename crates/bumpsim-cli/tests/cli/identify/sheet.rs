@@ -18,14 +18,15 @@ fn with_mass(dir: &std::path::Path, value: &str) -> std::path::PathBuf {
 #[test]
 fn the_identified_masses_are_checked_against_the_test_sheet() {
     let dir = scratch("identify-sheet-mass");
-    // the example's true car weighs 30 + 250 + 1170 = 1450 kg; 3 masses
-    // identified from 4 starts sum to about 1342 kg, 7.4 % off
-    let study = with_mass(&dir, "\"1450 kg\"");
+    // the example's true car weighs 30 + 250 + 1170 = 1450 kg, and 3
+    // masses identified from 4 starts in the default (velocity) objective
+    // sum to about that: a sheet of 1600 kg is more than 2 % off
+    let study = with_mass(&dir, "\"1600 kg\"");
     let run = bumpsim(&["identify", study.to_str().unwrap(), "--starts", "4"]);
     let printed = text(&run.stdout) + &text(&run.stderr);
     assert_eq!(run.status.code(), Some(0), "{printed}");
     assert!(
-        printed.contains("% off the test sheet's 1450.0 kg (more than 2 %)"),
+        printed.contains("% off the test sheet's 1600.0 kg (more than 2 %)"),
         "{printed}"
     );
     // a sheet mass the model meets: no warning
