@@ -10,7 +10,6 @@
 use crate::{Folder, write};
 use anyhow::{Context, Result};
 use bumpsim_io::protocols::Market;
-use bumpsim_planar::PlanarCar;
 use bumpsim_verdict::prelude::*;
 use bumpsim_verdict::pulse::AsiMethod;
 use bumpsim_verdict::{probability, protocol, sensitivity, target, text};
