@@ -131,23 +131,37 @@
     const canvas = el('canvas', { width: 520, height: 360, class: 'topview' });
     const slider = el('input', { type: 'range', min: 0, max: n - 1, value: 0, class: 'topview-time' });
     const label = el('span', {});
-    const L = 2.6 * p.width;
+    // from the car's body when the result carries it (bumper line, CG, axles, track), else schematic
+    const b = p.body;
+    const ahead = b ? b.cg_behind_bumper : 0; // bumper line ahead of the CG, mm
+    const L = b ? b.cg_behind_bumper + b.wheelbase - b.cg_behind_front_axle : 2.6 * p.width;
+    const W = b ? Math.max(p.width, b.track) : p.width;
+    const note = b ? `outline from the car's bumper line, CG (dot), axles and track (wheels at their centres); the car file has no overall length or width, so it ends at the rear axle`
+      : `outline schematic: the result holds the bumper's width, not the body's length`;
     const reach = Math.max(...p.x.map(Math.abs));
     const side = Math.max(...p.y.map(Math.abs));
-    const scale = Math.min(canvas.width * 0.7 / (L + reach), canvas.height * 0.8 / (p.width + 2 * side));
+    const scale = Math.min(canvas.width * 0.7 / (L + reach), canvas.height * 0.8 / (W + 2 * side));
     const draw = (k) => {
       const ctx = canvas.getContext('2d');
+      const s = scale;
       ctx.clearRect(0, 0, canvas.width, canvas.height);
       ctx.save();
       // x forward to the right (the striker's line at the first contact), y to the left = up
       ctx.translate(canvas.width * 0.75, canvas.height / 2);
       ctx.strokeStyle = '#888'; ctx.beginPath(); ctx.moveTo(0, -canvas.height / 2); ctx.lineTo(0, canvas.height / 2); ctx.stroke();
-      ctx.translate(p.x[k] * scale, -p.y[k] * scale); ctx.rotate(-p.yaw[k] * Math.PI / 180);
+      // about the CG: it starts `ahead` behind the bumper line
+      ctx.translate((p.x[k] - ahead) * s, -p.y[k] * s); ctx.rotate(-p.yaw[k] * Math.PI / 180); ctx.translate(ahead * s, 0);
       ctx.fillStyle = 'rgba(29,53,87,0.15)'; ctx.strokeStyle = '#1d3557';
-      ctx.fillRect(-L * scale, -p.width / 2 * scale, L * scale, p.width * scale); ctx.strokeRect(-L * scale, -p.width / 2 * scale, L * scale, p.width * scale);
-      ctx.strokeStyle = '#d62728'; ctx.lineWidth = 3; ctx.beginPath(); ctx.moveTo(0, -p.width / 2 * scale); ctx.lineTo(0, p.width / 2 * scale); ctx.stroke();
+      ctx.fillRect(-L * s, -W / 2 * s, L * s, W * s); ctx.strokeRect(-L * s, -W / 2 * s, L * s, W * s);
+      if (b) {
+        ctx.fillStyle = '#1d3557';
+        const axles = [b.cg_behind_bumper - b.cg_behind_front_axle, b.cg_behind_bumper + b.wheelbase - b.cg_behind_front_axle];
+        for (const a of axles) for (const y of [-b.track / 2, b.track / 2]) ctx.fillRect(-a * s - 6, y * s - 2, 12, 4);
+        ctx.beginPath(); ctx.arc(-ahead * s, 0, 4, 0, 2 * Math.PI); ctx.fill();
+      }
+      ctx.strokeStyle = '#d62728'; ctx.lineWidth = 3; ctx.beginPath(); ctx.moveTo(0, -p.width / 2 * s); ctx.lineTo(0, p.width / 2 * s); ctx.stroke();
       ctx.restore();
-      label.textContent = `t = ${fmtTime(p.time[k])} ms · x = ${p.x[k].toFixed(1)} mm · y = ${p.y[k].toFixed(1)} mm · yaw = ${p.yaw[k].toFixed(2)}° · force = ${p.force[k].toFixed(2)} kN (outline schematic: the result holds the bumper's width, not the body's length)`;
+      label.textContent = `t = ${fmtTime(p.time[k])} ms · x = ${p.x[k].toFixed(1)} mm · y = ${p.y[k].toFixed(1)} mm · yaw = ${p.yaw[k].toFixed(2)}° · force = ${p.force[k].toFixed(2)} kN (${note})`;
       slider.value = k;
     };
     slider.addEventListener('input', () => draw(+slider.value));

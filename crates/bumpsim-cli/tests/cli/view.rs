@@ -563,6 +563,41 @@ fn an_identification_shows_the_fit_and_rating_identify_prints() {
     assert_ne!(at_start, later, "the slider moves the car");
     let plots = b.eval("document.querySelectorAll('.topview-curves .uplot').length");
     assert_eq!(plots, 2);
+    // the outline from the car's own body: planar --json carries it, and
+    // at t = 0 the CG dot lies cg_behind_bumper / (cg_behind_bumper +
+    // wheelbase − cg_behind_front_axle) = 2000/3600 of the way from the
+    // bumper (red) to the rear axle (the outline's rear edge)
+    let json: Value = serde_json::from_str(&std::fs::read_to_string(&planar).unwrap()).unwrap();
+    assert_eq!(json["body"]["wheelbase"], 2.7, "{}", json["body"]);
+    assert_eq!(json["body"]["cg_behind_bumper"], 2.0);
+    let label = b.eval("(() => { const s = document.querySelector('.topview-time'); s.value = 0; s.dispatchEvent(new Event('input')); return document.querySelector('.planar span').textContent; })()");
+    assert!(
+        label
+            .as_str()
+            .unwrap()
+            .contains("from the car's bumper line, CG (dot), axles and track"),
+        "{label}"
+    );
+    let row = b.eval("(() => { const c = document.querySelector('canvas.topview'); const d = c.getContext('2d').getImageData(0, c.height / 2, c.width, 1).data; const red = [], dark = []; for (let i = 0; i < c.width; i++) { const [r, g, bl, a] = d.slice(4 * i, 4 * i + 4); if (a < 200) continue; if (r > 180 && g < 90) red.push(i); if (r < 90 && g < 110 && bl > 50) dark.push(i); } return [red, dark]; })()");
+    let pixels = |k: usize| -> Vec<f64> {
+        row[k]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect()
+    };
+    let (red, dark) = (pixels(0), pixels(1));
+    let bumper = red.iter().sum::<f64>() / red.len() as f64;
+    let rear = dark[0];
+    let dot: Vec<f64> = dark.iter().copied().filter(|x| *x > rear + 3.0).collect();
+    let dot = dot.iter().sum::<f64>() / dot.len() as f64;
+    let share = (bumper - dot) / (bumper - rear);
+    assert!(
+        (share - 2000.0 / 3600.0).abs() < 0.02,
+        "CG at {share} of the outline: red {red:?} dark {dark:?}"
+    );
+    b.eval("(() => { const s = document.querySelector('.topview-time'); s.value = Math.round(s.max / 2); s.dispatchEvent(new Event('input')); return 0; })()");
     screenshot(&mut b, "planar.png");
 }
 
