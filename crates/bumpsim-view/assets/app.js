@@ -121,6 +121,7 @@
       if (r.criteria.length) holder.append(el('table', { class: 'criteria' }, el('tr', {}, ...['test', 'criterion', 'value (SI)', 'limit (SI)', 'margin', 'outcome'].map((h) => el('th', {}, h))), ...r.criteria.map((row) => el('tr', {}, ...row.map((v) => el('td', {}, v))))));
       if (rows.length) holder.append(el('table', { class: 'cases' }, el('tr', {}, el('th', {}, 'case'), el('th', {}, 'fit'), el('th', {}, 'ISO/TS 18571')), ...rows));
       else holder.append(el('table', { class: 'fields' }, ...fields));
+      if (r.note) holder.append(el('p', { class: 'note' }, r.note));
       for (const c of r.curves) holder.append(curvePlot(c));
       if (r.planar) holder.append(topView(r.planar));
     }

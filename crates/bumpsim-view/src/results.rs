@@ -4,7 +4,9 @@
 //! (`fit 99.69 %`, `ISO/TS 18571 rating 0.998 (excellent; corridor …)`,
 //! through [`Rating`]'s own text); a verdict (`verdict --json`) its
 //! criteria per test (value, limit, margin, outcome); any other result its
-//! top-level numbers and texts as a table.
+//! top-level numbers and texts as a table. A prediction's JSON holds no
+//! curves; given with its study, the model file it names (`model`, the
+//! path `predict` was given) is simulated on the study's cases.
 
 use crate::error::ViewError;
 use bumpsim_core::units::format_number;
@@ -47,7 +49,16 @@ pub struct ResultFile {
     pub curves: Vec<crate::curves::CaseCurves>,
     /// A planar result's top view over time.
     pub planar: Option<crate::planar_view::PlanarView>,
+    /// What the page says about the curves (a prediction's: where they
+    /// come from, or why there are none).
+    pub note: Option<String>,
+    /// The model file a prediction names (its `model`), when it is one.
+    #[serde(skip)]
+    pub model_file: Option<PathBuf>,
 }
+
+/// A prediction JSON holds each case's fit, not its curves.
+pub const PREDICTION_NOTE: &str = "the prediction JSON holds each case's fit and rating, not its curves: give its study too (bumpsim view STUDY.toml PREDICTION.json) and the model file it names is simulated on the study's cases";
 
 fn text_of(value: &Value) -> String {
     match value {
@@ -197,6 +208,11 @@ impl ResultFile {
             criteria,
             curves: Vec::new(),
             planar,
+            note: (kind == "prediction").then(|| PREDICTION_NOTE.to_string()),
+            model_file: value["model"]
+                .as_str()
+                .map(PathBuf::from)
+                .filter(|p| kind == "prediction" && p.is_file()),
         })
     }
 }

@@ -122,7 +122,8 @@ impl Session {
         Ok(session)
     }
 
-    /// Simulates each identification on the study given with it (one study).
+    /// Simulates each identification and prediction on the study given
+    /// with it (one study).
     fn model_against_test(&mut self, studies: &[PathBuf]) -> Result<(), ViewError> {
         let study = match studies {
             [] => return Ok(()),
@@ -136,19 +137,21 @@ impl Session {
                 });
             }
         };
-        let identifications = self
-            .results
-            .iter_mut()
-            .filter(|r| r.kind == "identification");
         let mut any = false;
-        for result in identifications {
-            result.curves = crate::curves::model_against_test(study, &result.path)?;
+        for result in &mut self.results {
+            match result.kind {
+                "identification" => {
+                    result.curves = crate::curves::model_against_test(study, &result.path)?;
+                }
+                "prediction" => crate::curves::prediction_curves(result, study)?,
+                _ => continue,
+            }
             any = true;
         }
         if !any {
             return Err(ViewError::Input {
                 path: study.clone(),
-                reason: "a study needs an identification result beside it (bumpsim view study.toml result.json)".into(),
+                reason: "a study needs an identification or prediction result beside it (bumpsim view study.toml result.json)".into(),
             });
         }
         Ok(())

@@ -602,6 +602,84 @@ fn an_identification_shows_the_fit_and_rating_identify_prints() {
 }
 
 #[test]
+fn a_prediction_shows_measured_against_the_model_it_names() {
+    let _one = one_browser();
+    let Some(chromium) = chromium() else { return };
+    let dir = scratch("view-predict");
+    let study = root().join("examples/identify/study.toml");
+    let truth = root().join("examples/identify/car-truth.toml");
+    // without its name the JSON's `model` is the car file's path
+    let car = dir.join("car.toml");
+    let unnamed: String = std::fs::read_to_string(&truth)
+        .unwrap()
+        .lines()
+        .filter(|l| !l.starts_with("name"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(&car, unnamed).unwrap();
+    let predict = |model: &Path, json: &Path| {
+        let run = bumpsim(&[
+            "predict",
+            model.to_str().unwrap(),
+            study.to_str().unwrap(),
+            "--case",
+            "600 mm",
+            "--case",
+            "pole",
+            "--json",
+            json.to_str().unwrap(),
+        ]);
+        assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    };
+    let (json, named) = (dir.join("p.json"), dir.join("named.json"));
+    predict(&car, &json);
+    predict(&truth, &named);
+    let mut b = Browser::start(&chromium, &dir);
+    let page = |result: &Path, name: &str| {
+        let page = dir.join(name);
+        let view = bumpsim(&[
+            "view",
+            study.to_str().unwrap(),
+            result.to_str().unwrap(),
+            "--html",
+            page.to_str().unwrap(),
+        ]);
+        assert_eq!(view.status.code(), Some(0), "{}", text(&view.stderr));
+        format!("file://{}", page.display())
+    };
+    b.open(&page(&json, "p.html"));
+    let note = b.eval("document.querySelector('#results p.note').textContent");
+    assert!(note.as_str().unwrap().starts_with("curves: "), "{note}");
+    // each predicted case's curves, their fit (the viewer's own simulation)
+    // the fit predict wrote (the table, from the JSON)
+    let plots = b.eval("[...document.querySelectorAll('#results .plot.case')].map(p => [p.dataset.case, p.querySelector('.u-title').textContent])");
+    let rows = b.eval("[...document.querySelectorAll('#results table.cases tr')].slice(1).map(r => [r.children[0].textContent, r.children[1].textContent])");
+    let (plots, rows) = (plots.as_array().unwrap(), rows.as_array().unwrap());
+    assert_eq!(plots.len(), 2, "{plots:?}");
+    assert_eq!(rows.len(), 2, "{rows:?}");
+    for (plot, row) in plots.iter().zip(rows) {
+        assert_eq!(plot[0], row[0]);
+        let title = plot[1].as_str().unwrap();
+        let fit = row[1].as_str().unwrap();
+        assert!(
+            title.contains(&format!(": {fit} ·")),
+            "{title} against {fit}"
+        );
+    }
+    // a model that is no file here: the fits, and the page says why no curves
+    b.open(&page(&named, "named.html"));
+    let note = b.eval("document.querySelector('#results p.note').textContent");
+    assert!(
+        note.as_str()
+            .unwrap()
+            .ends_with("its model is not a file here"),
+        "{note}"
+    );
+    let plots = b.eval("document.querySelectorAll('#results .plot.case').length");
+    assert_eq!(plots, 0);
+}
+
+#[test]
 fn the_exports_and_the_command_line_reproduce_the_view() {
     let dir = scratch("view-exports");
     let s = serve(&[&flat()], &["--export-dir", dir.to_str().unwrap()]);
