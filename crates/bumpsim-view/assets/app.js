@@ -118,7 +118,11 @@
       const rows = r.cases.map((c) => el('tr', {}, el('td', {}, c.name), el('td', { class: 'fit' }, c.fit), el('td', { class: 'rating' }, c.rating)));
       const fields = r.fields.map(([k, v]) => el('tr', {}, el('td', {}, k), el('td', {}, v)));
       holder.append(el('h2', {}, `${r.kind}: ${r.path}`), ...r.model.map((m) => el('div', { class: 'model' }, m)));
-      if (r.criteria.length) holder.append(el('table', { class: 'criteria' }, el('tr', {}, ...['test', 'criterion', 'value (SI)', 'limit (SI)', 'margin', 'outcome'].map((h) => el('th', {}, h))), ...r.criteria.map((row) => el('tr', {}, ...row.map((v) => el('td', {}, v))))));
+      // a test with histories: its name links to its top view and curves below
+      const drawn = new Set(r.tests.map((t) => t.name));
+      const cell = (v, i) => el('td', {}, i === 0 && drawn.has(v) ? el('a', { href: `#test-${v}` }, v) : v);
+      if (r.criteria.length) holder.append(el('table', { class: 'criteria' }, el('tr', {}, ...['test', 'criterion', 'value (SI)', 'limit (SI)', 'margin', 'outcome'].map((h) => el('th', {}, h))), ...r.criteria.map((row) => el('tr', {}, ...row.map(cell)))));
+      for (const t of r.tests) holder.append(el('h3', { id: `test-${t.name}` }, `${t.name}: the impact as the verdict ran it`), topView(t.planar, t.name));
       if (rows.length) holder.append(el('table', { class: 'cases' }, el('tr', {}, el('th', {}, 'case'), el('th', {}, 'fit'), el('th', {}, 'ISO/TS 18571')), ...rows));
       else holder.append(el('table', { class: 'fields' }, ...fields));
       if (r.note) holder.append(el('p', { class: 'note' }, r.note));
@@ -127,7 +131,7 @@
     }
   }
   // a planar result: the top view at the time of the slider (or the cursor), its curves beside
-  function topView(p) {
+  function topView(p, key = 'planar') {
     const n = p.time.length;
     const canvas = el('canvas', { width: 520, height: 360, class: 'topview' });
     const slider = el('input', { type: 'range', min: 0, max: n - 1, value: 0, class: 'topview-time' });
@@ -178,7 +182,7 @@
       title: label, width: 560, height: 170, scales: { x: { time: false } },
       series: [{ label: 'time [ms]', value: (u, v) => (v == null ? '' : fmtTime(v)) }, { label, stroke: color, width: 1.25 }],
       axes: [{ values: (u, splits) => splits.map(fmtTime) }, { size: 60 }],
-      cursor: { sync: { key: 'planar' } },
+      cursor: { sync: { key } },
       hooks: { setCursor: [(u) => { if (u.cursor.idx != null) draw(u.cursor.idx); }] },
     });
     new uPlot(opts('striker force [kN]', p.force, '#d62728'), [p.time, p.force], plots);

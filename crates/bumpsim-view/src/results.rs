@@ -49,6 +49,9 @@ pub struct ResultFile {
     pub curves: Vec<crate::curves::CaseCurves>,
     /// A planar result's top view over time.
     pub planar: Option<crate::planar_view::PlanarView>,
+    /// A verdict's tests with histories (`verdict --json`'s `history`):
+    /// each test's top view and curves, linked from its criteria.
+    pub tests: Vec<TestView>,
     /// What the page says about the curves (a prediction's: where they
     /// come from, or why there are none).
     pub note: Option<String>,
@@ -68,6 +71,37 @@ fn text_of(value: &Value) -> String {
     }
 }
 
+/// One test of a verdict, drawn from the histories its JSON holds.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TestView {
+    /// The test's name (the criteria table's first column).
+    pub name: String,
+    /// Its top view, force and yaw over time.
+    pub planar: crate::planar_view::PlanarView,
+}
+
+fn test_name(test: &Value) -> &str {
+    test["test"]["name"]
+        .as_str()
+        .or(test["test"].as_str())
+        .unwrap_or("test")
+}
+
+/// A verdict's tests that carry their histories.
+fn test_views(value: &Value) -> Vec<TestView> {
+    let verdict = value.get("verdict").unwrap_or(value);
+    let tests = verdict["tests"].as_array().into_iter().flatten();
+    tests
+        .filter_map(|test| {
+            let impact = serde_json::json!({ "result": test["history"], "body": test["body"] });
+            Some(TestView {
+                name: test_name(test).to_string(),
+                planar: crate::planar_view::planar_view(&impact)?,
+            })
+        })
+        .collect()
+}
+
 /// A verdict's rows: each test's criteria.
 fn criteria_rows(value: &Value) -> Vec<[String; 6]> {
     // `verdict --json` nests the verdict beside the bumper target
@@ -77,10 +111,7 @@ fn criteria_rows(value: &Value) -> Vec<[String; 6]> {
     };
     let mut rows = Vec::new();
     for test in tests {
-        let name = test["test"]["name"]
-            .as_str()
-            .or(test["test"].as_str())
-            .unwrap_or("test");
+        let name = test_name(test);
         for c in test["criteria"].as_array().into_iter().flatten() {
             rows.push([
                 name.to_string(),
@@ -208,6 +239,7 @@ impl ResultFile {
             criteria,
             curves: Vec::new(),
             planar,
+            tests: test_views(&value),
             note: (kind == "prediction").then(|| PREDICTION_NOTE.to_string()),
             model_file: value["model"]
                 .as_str()

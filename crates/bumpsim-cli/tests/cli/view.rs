@@ -532,6 +532,30 @@ fn an_identification_shows_the_fit_and_rating_identify_prints() {
         rows.contains("part581-pendulum-front clearance: radiator pass"),
         "{rows}"
     );
+    // each test the verdict ran links to its impact, drawn from the JSON's
+    // history: at the sample of the peak force the page shows that force
+    let json: Value = serde_json::from_str(&std::fs::read_to_string(&verdict).unwrap()).unwrap();
+    let ran: Vec<&Value> = json["verdict"]["tests"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|t| t["history"].is_object())
+        .collect();
+    assert!(ran.len() >= 2, "{}", ran.len());
+    for test in ran {
+        let name = test["test"]["name"].as_str().unwrap();
+        let force: Vec<f64> = floats(&test["history"]["force"]);
+        let peak = (0..force.len())
+            .max_by(|&i, &j| force[i].total_cmp(&force[j]))
+            .unwrap();
+        let shown = b.eval(&format!("(() => {{ const a = [...document.querySelectorAll('table.criteria a')].find(a => a.textContent === '{name}'); const h = document.getElementById(a.getAttribute('href').slice(1)); const v = h.nextElementSibling; const s = v.querySelector('.topview-time'); s.value = {peak}; s.dispatchEvent(new Event('input')); return [v.querySelector('span').textContent, v.querySelectorAll('.uplot').length]; }})()"));
+        let label = shown[0].as_str().unwrap();
+        assert!(
+            label.contains(&format!("force = {:.2} kN", force[peak] / 1e3)),
+            "{name}: {label}"
+        );
+        assert_eq!(shown[1], 2, "{name}");
+    }
     // a planar impact: the top view moves with its slider
     let planar = dir.join("planar.json");
     let car = root().join("examples/planar/saloon.toml");
