@@ -5,7 +5,8 @@
 //! measured and the model's displacement over time with the fitted window,
 //! the fit % and the ISO/TS 18571 rating in `identify`'s words. A
 //! prediction JSON (`predict --json`) names its model file: given with the
-//! study, that file is simulated the same way on the cases it predicted.
+//! study, that file is simulated the same way on the cases it predicted
+//! (the session calls [`model_against_test`] with it).
 
 use crate::error::ViewError;
 use bumpsim_core::units::format_number;
@@ -61,29 +62,4 @@ pub fn model_against_test(study: &Path, result: &Path) -> Result<Vec<CaseCurves>
             window: p.window,
         })
         .collect())
-}
-
-/// A prediction's curves: the model file its JSON names simulated on
-/// `study`'s cases (those the prediction holds), or a note saying why not.
-pub fn prediction_curves(
-    result: &mut crate::results::ResultFile,
-    study: &Path,
-) -> Result<(), ViewError> {
-    let Some(model) = result.model_file.clone() else {
-        result.note = Some(format!(
-            "{}; its model is not a file here",
-            crate::results::PREDICTION_NOTE
-        ));
-        return Ok(());
-    };
-    let predicted: Vec<&str> = result.cases.iter().map(|c| c.name.as_str()).collect();
-    let mut curves = model_against_test(study, &model)?;
-    curves.retain(|c| predicted.contains(&c.name.as_str()));
-    result.note = Some(format!(
-        "curves: {} simulated on {} by bumpsim-ident's predict, as bumpsim predict does",
-        model.display(),
-        study.display()
-    ));
-    result.curves = curves;
-    Ok(())
 }

@@ -143,7 +143,7 @@ impl Session {
                 "identification" => {
                     result.curves = crate::curves::model_against_test(study, &result.path)?;
                 }
-                "prediction" => crate::curves::prediction_curves(result, study)?,
+                "prediction" => prediction_curves(result, study)?,
                 _ => continue,
             }
             any = true;
@@ -304,4 +304,26 @@ fn resultant(raws: &[Channel], codes: &[&str]) -> Result<Channel, ViewError> {
         first.dimension,
         series,
     ))
+}
+
+/// A prediction's curves: the model file its JSON names simulated on
+/// `study`'s cases (those the prediction holds), or a note saying why not.
+fn prediction_curves(result: &mut ResultFile, study: &Path) -> Result<(), ViewError> {
+    let Some(model) = result.model_file.clone() else {
+        result.note = Some(format!(
+            "{}; its model is not a file here",
+            crate::results::PREDICTION_NOTE
+        ));
+        return Ok(());
+    };
+    let predicted: Vec<&str> = result.cases.iter().map(|c| c.name.as_str()).collect();
+    let mut curves = crate::curves::model_against_test(study, &model)?;
+    curves.retain(|c| predicted.contains(&c.name.as_str()));
+    result.note = Some(format!(
+        "curves: {} simulated on {} by bumpsim-ident's predict, as bumpsim predict does",
+        model.display(),
+        study.display()
+    ));
+    result.curves = curves;
+    Ok(())
 }
