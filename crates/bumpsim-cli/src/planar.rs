@@ -319,6 +319,7 @@ pub fn run_impact(request: &ImpactRequest) -> Result<()> {
         car: &name,
         striker: &striker,
         result: &result,
+        body: Some(car.body()),
     };
     let document = crate::planar::uncertain::with(serde_json::to_value(document)?, &predicted)?;
     let json = serde_json::to_string_pretty(&document)?;

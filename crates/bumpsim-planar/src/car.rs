@@ -150,7 +150,9 @@ fn positive(name: &str, value: f64, unit: &'static str) -> Result<(), PlanarErro
 }
 
 /// The rigid body.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+// Deserialize: Python's pickled impact keeps its car's body (a PlanarCar
+// is still validated whole when built from one)
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct Body {
     /// Mass M, kg.
     pub mass: f64,

@@ -3,6 +3,7 @@
 //! predict --json` with a planar car; Python's `to_json`): serialisable
 //! types, so each JSON is assembled once, here.
 
+use crate::car::Body;
 use crate::forward::Forward;
 use crate::identify::{CaseFit, PlanarIdentification};
 use crate::result::PlanarResult;
@@ -10,7 +11,10 @@ use crate::striker::Striker;
 use bumpsim_estimate::document::Predictions;
 use serde::Serialize;
 
-/// `bumpsim planar --json`: the car's name, the striker and the result.
+/// `bumpsim planar --json`: the car's name, the striker, the result and
+/// the car's body (mass, yaw inertia, CG behind the bumper, wheelbase, CG
+/// behind the front axle, track: what places the body's outline, e.g. in
+/// `bumpsim view`'s top view).
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct ImpactDocument<'a> {
     /// The car's name (or its file).
@@ -19,6 +23,9 @@ pub struct ImpactDocument<'a> {
     pub striker: &'a Striker,
     /// Histories, peaks and balances.
     pub result: &'a PlanarResult,
+    /// The car's body (left out when None).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub body: Option<&'a Body>,
 }
 
 /// `bumpsim identify --json` on a planar study: the identification, the

@@ -180,7 +180,12 @@ fn planar_impact(
         .map_or_else(|| path.display().to_string(), str::to_string);
     Ok(PlanarImpact {
         striker,
-        data: PlanarImpactState { name, spec, result },
+        data: PlanarImpactState {
+            name,
+            spec,
+            result,
+            body: Some(*car.body()),
+        },
         predicted,
     })
 }
@@ -217,6 +222,7 @@ impl PlanarImpact {
             car: &self.data.name,
             striker: &self.striker,
             result: &self.data.result,
+            body: self.data.body.as_ref(),
         };
         Predicted::with(&self.predicted, document)
     }

@@ -309,12 +309,61 @@ pub struct TestVerdict {
     /// The probability that every criterion passes over the car's
     /// uncertainty (None: not propagated; the probability module).
     pub probability: Option<Probability>,
-    /// The impact (histories), for plots.
-    #[serde(skip)]
+    /// The impact (histories), for plots; the JSON's `history` holds its
+    /// time, striker force, CG x, y and yaw and the segment centres under
+    /// `PlanarResult`'s own names (SI), so a viewer can draw the test.
+    #[serde(
+        rename = "history",
+        serialize_with = "history",
+        skip_serializing_if = "Option::is_none"
+    )]
     pub result: Option<PlanarResult>,
-    /// The car and striker as run, for the top view.
-    #[serde(skip)]
+    /// The car and striker as run, for the top view; the JSON's `body`
+    /// holds the car's body (its geometry places the outline).
+    #[serde(
+        rename = "body",
+        serialize_with = "body",
+        skip_serializing_if = "Option::is_none"
+    )]
     pub run: Option<(PlanarCar, Striker)>,
+}
+
+/// The histories a test's curves and top view need, under
+/// `PlanarResult`'s names.
+#[derive(Serialize)]
+struct History<'a> {
+    time: &'a [f64],
+    force: &'a [f64],
+    x: &'a [f64],
+    y: &'a [f64],
+    yaw: &'a [f64],
+    segment_centres: &'a [f64],
+}
+
+fn history<S: serde::Serializer>(
+    result: &Option<PlanarResult>,
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    result
+        .as_ref()
+        .map(|r| History {
+            time: &r.time,
+            force: &r.force,
+            x: &r.x,
+            y: &r.y,
+            yaw: &r.yaw,
+            segment_centres: &r.segment_centres,
+        })
+        .serialize(serializer)
+}
+
+fn body<S: serde::Serializer>(
+    run: &Option<(PlanarCar, Striker)>,
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    run.as_ref()
+        .map(|(car, _)| car.body())
+        .serialize(serializer)
 }
 
 impl TestVerdict {

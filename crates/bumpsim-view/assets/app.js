@@ -118,36 +118,55 @@
       const rows = r.cases.map((c) => el('tr', {}, el('td', {}, c.name), el('td', { class: 'fit' }, c.fit), el('td', { class: 'rating' }, c.rating)));
       const fields = r.fields.map(([k, v]) => el('tr', {}, el('td', {}, k), el('td', {}, v)));
       holder.append(el('h2', {}, `${r.kind}: ${r.path}`), ...r.model.map((m) => el('div', { class: 'model' }, m)));
-      if (r.criteria.length) holder.append(el('table', { class: 'criteria' }, el('tr', {}, ...['test', 'criterion', 'value (SI)', 'limit (SI)', 'margin', 'outcome'].map((h) => el('th', {}, h))), ...r.criteria.map((row) => el('tr', {}, ...row.map((v) => el('td', {}, v))))));
+      // a test with histories: its name links to its top view and curves below
+      const drawn = new Set(r.tests.map((t) => t.name));
+      const cell = (v, i) => el('td', {}, i === 0 && drawn.has(v) ? el('a', { href: `#test-${v}` }, v) : v);
+      if (r.criteria.length) holder.append(el('table', { class: 'criteria' }, el('tr', {}, ...['test', 'criterion', 'value (SI)', 'limit (SI)', 'margin', 'outcome'].map((h) => el('th', {}, h))), ...r.criteria.map((row) => el('tr', {}, ...row.map(cell)))));
+      for (const t of r.tests) holder.append(el('h3', { id: `test-${t.name}` }, `${t.name}: the impact as the verdict ran it`), topView(t.planar, t.name));
       if (rows.length) holder.append(el('table', { class: 'cases' }, el('tr', {}, el('th', {}, 'case'), el('th', {}, 'fit'), el('th', {}, 'ISO/TS 18571')), ...rows));
       else holder.append(el('table', { class: 'fields' }, ...fields));
+      if (r.note) holder.append(el('p', { class: 'note' }, r.note));
       for (const c of r.curves) holder.append(curvePlot(c));
       if (r.planar) holder.append(topView(r.planar));
     }
   }
   // a planar result: the top view at the time of the slider (or the cursor), its curves beside
-  function topView(p) {
+  function topView(p, key = 'planar') {
     const n = p.time.length;
     const canvas = el('canvas', { width: 520, height: 360, class: 'topview' });
     const slider = el('input', { type: 'range', min: 0, max: n - 1, value: 0, class: 'topview-time' });
     const label = el('span', {});
-    const L = 2.6 * p.width;
+    // from the car's body when the result carries it (bumper line, CG, axles, track), else schematic
+    const b = p.body;
+    const ahead = b ? b.cg_behind_bumper : 0; // bumper line ahead of the CG, mm
+    const L = b ? b.cg_behind_bumper + b.wheelbase - b.cg_behind_front_axle : 2.6 * p.width;
+    const W = b ? Math.max(p.width, b.track) : p.width;
+    const note = b ? `outline from the car's bumper line, CG (dot), axles and track (wheels at their centres); the car file has no overall length or width, so it ends at the rear axle`
+      : `outline schematic: the result holds the bumper's width, not the body's length`;
     const reach = Math.max(...p.x.map(Math.abs));
     const side = Math.max(...p.y.map(Math.abs));
-    const scale = Math.min(canvas.width * 0.7 / (L + reach), canvas.height * 0.8 / (p.width + 2 * side));
+    const scale = Math.min(canvas.width * 0.7 / (L + reach), canvas.height * 0.8 / (W + 2 * side));
     const draw = (k) => {
       const ctx = canvas.getContext('2d');
+      const s = scale;
       ctx.clearRect(0, 0, canvas.width, canvas.height);
       ctx.save();
       // x forward to the right (the striker's line at the first contact), y to the left = up
       ctx.translate(canvas.width * 0.75, canvas.height / 2);
       ctx.strokeStyle = '#888'; ctx.beginPath(); ctx.moveTo(0, -canvas.height / 2); ctx.lineTo(0, canvas.height / 2); ctx.stroke();
-      ctx.translate(p.x[k] * scale, -p.y[k] * scale); ctx.rotate(-p.yaw[k] * Math.PI / 180);
+      // about the CG: it starts `ahead` behind the bumper line
+      ctx.translate((p.x[k] - ahead) * s, -p.y[k] * s); ctx.rotate(-p.yaw[k] * Math.PI / 180); ctx.translate(ahead * s, 0);
       ctx.fillStyle = 'rgba(29,53,87,0.15)'; ctx.strokeStyle = '#1d3557';
-      ctx.fillRect(-L * scale, -p.width / 2 * scale, L * scale, p.width * scale); ctx.strokeRect(-L * scale, -p.width / 2 * scale, L * scale, p.width * scale);
-      ctx.strokeStyle = '#d62728'; ctx.lineWidth = 3; ctx.beginPath(); ctx.moveTo(0, -p.width / 2 * scale); ctx.lineTo(0, p.width / 2 * scale); ctx.stroke();
+      ctx.fillRect(-L * s, -W / 2 * s, L * s, W * s); ctx.strokeRect(-L * s, -W / 2 * s, L * s, W * s);
+      if (b) {
+        ctx.fillStyle = '#1d3557';
+        const axles = [b.cg_behind_bumper - b.cg_behind_front_axle, b.cg_behind_bumper + b.wheelbase - b.cg_behind_front_axle];
+        for (const a of axles) for (const y of [-b.track / 2, b.track / 2]) ctx.fillRect(-a * s - 6, y * s - 2, 12, 4);
+        ctx.beginPath(); ctx.arc(-ahead * s, 0, 4, 0, 2 * Math.PI); ctx.fill();
+      }
+      ctx.strokeStyle = '#d62728'; ctx.lineWidth = 3; ctx.beginPath(); ctx.moveTo(0, -p.width / 2 * s); ctx.lineTo(0, p.width / 2 * s); ctx.stroke();
       ctx.restore();
-      label.textContent = `t = ${fmtTime(p.time[k])} ms · x = ${p.x[k].toFixed(1)} mm · y = ${p.y[k].toFixed(1)} mm · yaw = ${p.yaw[k].toFixed(2)}° · force = ${p.force[k].toFixed(2)} kN (outline schematic: the result holds the bumper's width, not the body's length)`;
+      label.textContent = `t = ${fmtTime(p.time[k])} ms · x = ${p.x[k].toFixed(1)} mm · y = ${p.y[k].toFixed(1)} mm · yaw = ${p.yaw[k].toFixed(2)}° · force = ${p.force[k].toFixed(2)} kN (${note})`;
       slider.value = k;
     };
     slider.addEventListener('input', () => draw(+slider.value));
@@ -163,7 +182,7 @@
       title: label, width: 560, height: 170, scales: { x: { time: false } },
       series: [{ label: 'time [ms]', value: (u, v) => (v == null ? '' : fmtTime(v)) }, { label, stroke: color, width: 1.25 }],
       axes: [{ values: (u, splits) => splits.map(fmtTime) }, { size: 60 }],
-      cursor: { sync: { key: 'planar' } },
+      cursor: { sync: { key } },
       hooks: { setCursor: [(u) => { if (u.cursor.idx != null) draw(u.cursor.idx); }] },
     });
     new uPlot(opts('striker force [kN]', p.force, '#d62728'), [p.time, p.force], plots);

@@ -3,7 +3,10 @@
 //! of the study's cases by bumpsim-ident's own [`predict`] (the zoh
 //! simulation of `identify` and `predict`), and each case shows the
 //! measured and the model's displacement over time with the fitted window,
-//! the fit % and the ISO/TS 18571 rating in `identify`'s words.
+//! the fit % and the ISO/TS 18571 rating in `identify`'s words. A
+//! prediction JSON (`predict --json`) names its model file: given with the
+//! study, that file is simulated the same way on the cases it predicted
+//! (the session calls [`model_against_test`] with it).
 
 use crate::error::ViewError;
 use bumpsim_core::units::format_number;

@@ -2,8 +2,14 @@
 //! car) as the page animates it: the body's travel x, lateral y and yaw
 //! over time, the bumper's width from its segment centres (the span of the
 //! centres plus one segment), and the striker's force and the yaw beside
-//! it. The JSON holds no body length, so the page draws the outline
-//! schematically (2.6 bumper widths long) and says so.
+//! it. A result that carries the car's `body` (`planar --json` writes it)
+//! places the outline from the car's own numbers: the bumper line
+//! `cg_behind_bumper` ahead of the CG, the front axle
+//! `cg_behind_front_axle` ahead of it and the rear axle `wheelbase −
+//! cg_behind_front_axle` behind it, the wheels `±track/2` aside. The car
+//! file gives no overall length or width, so the outline ends at the rear
+//! axle and is as wide as the wider of bumper and track, and the page says
+//! so. Without `body` the outline is schematic (2.6 bumper widths long).
 
 use serde::Serialize;
 use serde_json::Value;
@@ -23,6 +29,37 @@ pub struct PlanarView {
     pub force: Vec<f64>,
     /// Bumper width, mm.
     pub width: f64,
+    /// The car's body geometry, when the result carries it.
+    pub body: Option<BodyGeometry>,
+}
+
+/// Where the car's bumper, CG and axles lie, mm.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BodyGeometry {
+    /// Bumper line ahead of the CG, mm.
+    pub cg_behind_bumper: f64,
+    /// Front axle ahead of the CG, mm.
+    pub cg_behind_front_axle: f64,
+    /// Wheelbase, mm.
+    pub wheelbase: f64,
+    /// Track, mm.
+    pub track: f64,
+}
+
+fn body_geometry(body: &Value) -> Option<BodyGeometry> {
+    let mm = |key: &str| {
+        body[key]
+            .as_f64()
+            .filter(|v| v.is_finite() && *v > 0.0)
+            .map(|v| v * 1e3)
+    };
+    let geometry = BodyGeometry {
+        cg_behind_bumper: mm("cg_behind_bumper")?,
+        cg_behind_front_axle: mm("cg_behind_front_axle")?,
+        wheelbase: mm("wheelbase")?,
+        track: mm("track")?,
+    };
+    (geometry.cg_behind_front_axle < geometry.wheelbase).then_some(geometry)
 }
 
 fn series(value: &Value, key: &str, factor: f64) -> Option<Vec<f64>> {
@@ -43,6 +80,7 @@ pub fn planar_view(value: &Value) -> Option<PlanarView> {
         yaw: series(r, "yaw", 180.0 / std::f64::consts::PI)?,
         force: series(r, "force", 1e-3)?,
         width: width(r),
+        body: body_geometry(&value["body"]),
         time,
     };
     let n = view.time.len();

@@ -4,7 +4,9 @@
 //! (`fit 99.69 %`, `ISO/TS 18571 rating 0.998 (excellent; corridor …)`,
 //! through [`Rating`]'s own text); a verdict (`verdict --json`) its
 //! criteria per test (value, limit, margin, outcome); any other result its
-//! top-level numbers and texts as a table.
+//! top-level numbers and texts as a table. A prediction's JSON holds no
+//! curves; given with its study, the model file it names (`model`, the
+//! path `predict` was given) is simulated on the study's cases.
 
 use crate::error::ViewError;
 use bumpsim_core::units::format_number;
@@ -47,7 +49,19 @@ pub struct ResultFile {
     pub curves: Vec<crate::curves::CaseCurves>,
     /// A planar result's top view over time.
     pub planar: Option<crate::planar_view::PlanarView>,
+    /// A verdict's tests with histories (`verdict --json`'s `history`):
+    /// each test's top view and curves, linked from its criteria.
+    pub tests: Vec<TestView>,
+    /// What the page says about the curves (a prediction's: where they
+    /// come from, or why there are none).
+    pub note: Option<String>,
+    /// The model file a prediction names (its `model`), when it is one.
+    #[serde(skip)]
+    pub model_file: Option<PathBuf>,
 }
+
+/// A prediction JSON holds each case's fit, not its curves.
+pub const PREDICTION_NOTE: &str = "the prediction JSON holds each case's fit and rating, not its curves: give its study too (bumpsim view STUDY.toml PREDICTION.json) and the model file it names is simulated on the study's cases";
 
 fn text_of(value: &Value) -> String {
     match value {
@@ -55,6 +69,37 @@ fn text_of(value: &Value) -> String {
         Value::Null => String::new(),
         other => other.to_string(),
     }
+}
+
+/// One test of a verdict, drawn from the histories its JSON holds.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TestView {
+    /// The test's name (the criteria table's first column).
+    pub name: String,
+    /// Its top view, force and yaw over time.
+    pub planar: crate::planar_view::PlanarView,
+}
+
+fn test_name(test: &Value) -> &str {
+    test["test"]["name"]
+        .as_str()
+        .or(test["test"].as_str())
+        .unwrap_or("test")
+}
+
+/// A verdict's tests that carry their histories.
+fn test_views(value: &Value) -> Vec<TestView> {
+    let verdict = value.get("verdict").unwrap_or(value);
+    let tests = verdict["tests"].as_array().into_iter().flatten();
+    tests
+        .filter_map(|test| {
+            let impact = serde_json::json!({ "result": test["history"], "body": test["body"] });
+            Some(TestView {
+                name: test_name(test).to_string(),
+                planar: crate::planar_view::planar_view(&impact)?,
+            })
+        })
+        .collect()
 }
 
 /// A verdict's rows: each test's criteria.
@@ -66,10 +111,7 @@ fn criteria_rows(value: &Value) -> Vec<[String; 6]> {
     };
     let mut rows = Vec::new();
     for test in tests {
-        let name = test["test"]["name"]
-            .as_str()
-            .or(test["test"].as_str())
-            .unwrap_or("test");
+        let name = test_name(test);
         for c in test["criteria"].as_array().into_iter().flatten() {
             rows.push([
                 name.to_string(),
@@ -197,6 +239,12 @@ impl ResultFile {
             criteria,
             curves: Vec::new(),
             planar,
+            tests: test_views(&value),
+            note: (kind == "prediction").then(|| PREDICTION_NOTE.to_string()),
+            model_file: value["model"]
+                .as_str()
+                .map(PathBuf::from)
+                .filter(|p| kind == "prediction" && p.is_file()),
         })
     }
 }

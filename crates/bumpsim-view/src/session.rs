@@ -122,7 +122,8 @@ impl Session {
         Ok(session)
     }
 
-    /// Simulates each identification on the study given with it (one study).
+    /// Simulates each identification and prediction on the study given
+    /// with it (one study).
     fn model_against_test(&mut self, studies: &[PathBuf]) -> Result<(), ViewError> {
         let study = match studies {
             [] => return Ok(()),
@@ -136,19 +137,21 @@ impl Session {
                 });
             }
         };
-        let identifications = self
-            .results
-            .iter_mut()
-            .filter(|r| r.kind == "identification");
         let mut any = false;
-        for result in identifications {
-            result.curves = crate::curves::model_against_test(study, &result.path)?;
+        for result in &mut self.results {
+            match result.kind {
+                "identification" => {
+                    result.curves = crate::curves::model_against_test(study, &result.path)?;
+                }
+                "prediction" => prediction_curves(result, study)?,
+                _ => continue,
+            }
             any = true;
         }
         if !any {
             return Err(ViewError::Input {
                 path: study.clone(),
-                reason: "a study needs an identification result beside it (bumpsim view study.toml result.json)".into(),
+                reason: "a study needs an identification or prediction result beside it (bumpsim view study.toml result.json)".into(),
             });
         }
         Ok(())
@@ -301,4 +304,26 @@ fn resultant(raws: &[Channel], codes: &[&str]) -> Result<Channel, ViewError> {
         first.dimension,
         series,
     ))
+}
+
+/// A prediction's curves: the model file its JSON names simulated on
+/// `study`'s cases (those the prediction holds), or a note saying why not.
+fn prediction_curves(result: &mut ResultFile, study: &Path) -> Result<(), ViewError> {
+    let Some(model) = result.model_file.clone() else {
+        result.note = Some(format!(
+            "{}; its model is not a file here",
+            crate::results::PREDICTION_NOTE
+        ));
+        return Ok(());
+    };
+    let predicted: Vec<&str> = result.cases.iter().map(|c| c.name.as_str()).collect();
+    let mut curves = crate::curves::model_against_test(study, &model)?;
+    curves.retain(|c| predicted.contains(&c.name.as_str()));
+    result.note = Some(format!(
+        "curves: {} simulated on {} by bumpsim-ident's predict, as bumpsim predict does",
+        model.display(),
+        study.display()
+    ));
+    result.curves = curves;
+    Ok(())
 }

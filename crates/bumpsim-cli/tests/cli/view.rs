@@ -532,6 +532,30 @@ fn an_identification_shows_the_fit_and_rating_identify_prints() {
         rows.contains("part581-pendulum-front clearance: radiator pass"),
         "{rows}"
     );
+    // each test the verdict ran links to its impact, drawn from the JSON's
+    // history: at the sample of the peak force the page shows that force
+    let json: Value = serde_json::from_str(&std::fs::read_to_string(&verdict).unwrap()).unwrap();
+    let ran: Vec<&Value> = json["verdict"]["tests"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|t| t["history"].is_object())
+        .collect();
+    assert!(ran.len() >= 2, "{}", ran.len());
+    for test in ran {
+        let name = test["test"]["name"].as_str().unwrap();
+        let force: Vec<f64> = floats(&test["history"]["force"]);
+        let peak = (0..force.len())
+            .max_by(|&i, &j| force[i].total_cmp(&force[j]))
+            .unwrap();
+        let shown = b.eval(&format!("(() => {{ const a = [...document.querySelectorAll('table.criteria a')].find(a => a.textContent === '{name}'); const h = document.getElementById(a.getAttribute('href').slice(1)); const v = h.nextElementSibling; const s = v.querySelector('.topview-time'); s.value = {peak}; s.dispatchEvent(new Event('input')); return [v.querySelector('span').textContent, v.querySelectorAll('.uplot').length]; }})()"));
+        let label = shown[0].as_str().unwrap();
+        assert!(
+            label.contains(&format!("force = {:.2} kN", force[peak] / 1e3)),
+            "{name}: {label}"
+        );
+        assert_eq!(shown[1], 2, "{name}");
+    }
     // a planar impact: the top view moves with its slider
     let planar = dir.join("planar.json");
     let car = root().join("examples/planar/saloon.toml");
@@ -563,7 +587,120 @@ fn an_identification_shows_the_fit_and_rating_identify_prints() {
     assert_ne!(at_start, later, "the slider moves the car");
     let plots = b.eval("document.querySelectorAll('.topview-curves .uplot').length");
     assert_eq!(plots, 2);
+    // the outline from the car's own body: planar --json carries it, and
+    // at t = 0 the CG dot lies cg_behind_bumper / (cg_behind_bumper +
+    // wheelbase − cg_behind_front_axle) = 2000/3600 of the way from the
+    // bumper (red) to the rear axle (the outline's rear edge)
+    let json: Value = serde_json::from_str(&std::fs::read_to_string(&planar).unwrap()).unwrap();
+    assert_eq!(json["body"]["wheelbase"], 2.7, "{}", json["body"]);
+    assert_eq!(json["body"]["cg_behind_bumper"], 2.0);
+    let label = b.eval("(() => { const s = document.querySelector('.topview-time'); s.value = 0; s.dispatchEvent(new Event('input')); return document.querySelector('.planar span').textContent; })()");
+    assert!(
+        label
+            .as_str()
+            .unwrap()
+            .contains("from the car's bumper line, CG (dot), axles and track"),
+        "{label}"
+    );
+    let row = b.eval("(() => { const c = document.querySelector('canvas.topview'); const d = c.getContext('2d').getImageData(0, c.height / 2, c.width, 1).data; const red = [], dark = []; for (let i = 0; i < c.width; i++) { const [r, g, bl, a] = d.slice(4 * i, 4 * i + 4); if (a < 200) continue; if (r > 180 && g < 90) red.push(i); if (r < 90 && g < 110 && bl > 50) dark.push(i); } return [red, dark]; })()");
+    let pixels = |k: usize| -> Vec<f64> {
+        row[k]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect()
+    };
+    let (red, dark) = (pixels(0), pixels(1));
+    let bumper = red.iter().sum::<f64>() / red.len() as f64;
+    let rear = dark[0];
+    let dot: Vec<f64> = dark.iter().copied().filter(|x| *x > rear + 3.0).collect();
+    let dot = dot.iter().sum::<f64>() / dot.len() as f64;
+    let share = (bumper - dot) / (bumper - rear);
+    assert!(
+        (share - 2000.0 / 3600.0).abs() < 0.02,
+        "CG at {share} of the outline: red {red:?} dark {dark:?}"
+    );
+    b.eval("(() => { const s = document.querySelector('.topview-time'); s.value = Math.round(s.max / 2); s.dispatchEvent(new Event('input')); return 0; })()");
     screenshot(&mut b, "planar.png");
+}
+
+#[test]
+fn a_prediction_shows_measured_against_the_model_it_names() {
+    let _one = one_browser();
+    let Some(chromium) = chromium() else { return };
+    let dir = scratch("view-predict");
+    let study = root().join("examples/identify/study.toml");
+    let truth = root().join("examples/identify/car-truth.toml");
+    // without its name the JSON's `model` is the car file's path
+    let car = dir.join("car.toml");
+    let unnamed: String = std::fs::read_to_string(&truth)
+        .unwrap()
+        .lines()
+        .filter(|l| !l.starts_with("name"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(&car, unnamed).unwrap();
+    let predict = |model: &Path, json: &Path| {
+        let run = bumpsim(&[
+            "predict",
+            model.to_str().unwrap(),
+            study.to_str().unwrap(),
+            "--case",
+            "600 mm",
+            "--case",
+            "pole",
+            "--json",
+            json.to_str().unwrap(),
+        ]);
+        assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    };
+    let (json, named) = (dir.join("p.json"), dir.join("named.json"));
+    predict(&car, &json);
+    predict(&truth, &named);
+    let mut b = Browser::start(&chromium, &dir);
+    let page = |result: &Path, name: &str| {
+        let page = dir.join(name);
+        let view = bumpsim(&[
+            "view",
+            study.to_str().unwrap(),
+            result.to_str().unwrap(),
+            "--html",
+            page.to_str().unwrap(),
+        ]);
+        assert_eq!(view.status.code(), Some(0), "{}", text(&view.stderr));
+        format!("file://{}", page.display())
+    };
+    b.open(&page(&json, "p.html"));
+    let note = b.eval("document.querySelector('#results p.note').textContent");
+    assert!(note.as_str().unwrap().starts_with("curves: "), "{note}");
+    // each predicted case's curves, their fit (the viewer's own simulation)
+    // the fit predict wrote (the table, from the JSON)
+    let plots = b.eval("[...document.querySelectorAll('#results .plot.case')].map(p => [p.dataset.case, p.querySelector('.u-title').textContent])");
+    let rows = b.eval("[...document.querySelectorAll('#results table.cases tr')].slice(1).map(r => [r.children[0].textContent, r.children[1].textContent])");
+    let (plots, rows) = (plots.as_array().unwrap(), rows.as_array().unwrap());
+    assert_eq!(plots.len(), 2, "{plots:?}");
+    assert_eq!(rows.len(), 2, "{rows:?}");
+    for (plot, row) in plots.iter().zip(rows) {
+        assert_eq!(plot[0], row[0]);
+        let title = plot[1].as_str().unwrap();
+        let fit = row[1].as_str().unwrap();
+        assert!(
+            title.contains(&format!(": {fit} ·")),
+            "{title} against {fit}"
+        );
+    }
+    // a model that is no file here: the fits, and the page says why no curves
+    b.open(&page(&named, "named.html"));
+    let note = b.eval("document.querySelector('#results p.note').textContent");
+    assert!(
+        note.as_str()
+            .unwrap()
+            .ends_with("its model is not a file here"),
+        "{note}"
+    );
+    let plots = b.eval("document.querySelectorAll('#results .plot.case').length");
+    assert_eq!(plots, 0);
 }
 
 #[test]

@@ -17,6 +17,9 @@ pub struct PlanarImpactState {
     /// The result.
     #[serde(with = "PlanarResultDef")]
     pub result: PlanarResult,
+    /// The car's body (`to_json`'s `body`; absent from older pickles).
+    #[serde(default)]
+    pub body: Option<bumpsim_planar::car::Body>,
 }
 
 /// The arguments of `planar_impact` that say what hits the car.
