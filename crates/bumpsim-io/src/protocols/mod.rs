@@ -206,6 +206,10 @@ pub struct Test {
     pub source: &'static str,
     /// What could not be checked.
     pub uncertain: &'static str,
+    /// Mass added to the car for the test, kg: UN R42's laden runs carry
+    /// their passengers ([`PASSENGERS`] of [`PASSENGER_MASS`]);
+    /// 0 for every other test (the car file's mass as given).
+    pub load: f64,
 }
 
 impl Test {
@@ -407,7 +411,7 @@ pub fn listing(one_d: bool) -> String {
 }
 
 mod table;
-pub use table::{PROTOCOLS, TESTS};
+pub use table::{PASSENGER_MASS, PASSENGERS, PROTOCOLS, TESTS};
 
 #[cfg(test)]
 mod tests {
