@@ -598,31 +598,11 @@ impl PlanarCar {
         &self.damage
     }
 
-    /// The same car carrying `load` kg more on its body (a protocol's
-    /// laden condition: UN R42's passengers), at the body's CG with the
-    /// body's radius of gyration: `M' = M + m`, `I_z' = I_z (M + m) / M`
-    /// (the yaw inertia scales with the mass). Checked: finite, not negative.
-    ///
-    /// ```
-    /// use bumpsim_planar::car::{Layout, PlanarCar};
-    /// let chain = bumpsim_core::model::MsdModel::new(vec![16.0, 1300.0], vec![4e3], vec![6e6]).unwrap();
-    /// let bumper = bumpsim_impact::bumper::Bumper::three_part(3e6, 200e3, 2e7).unwrap();
-    /// let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
-    /// let laden = car.clone().with_load(375.0).unwrap();
-    /// assert!((laden.total_mass() - car.total_mass() - 375.0).abs() < 1e-9);
-    /// assert!(car.clone().with_load(-1.0).is_err());
-    /// ```
+    /// The same car with `load` kg (≥ 0) more at the body's CG, `I_z` × (M + m)/M (R42's passengers).
     pub fn with_load(mut self, load: f64) -> Result<PlanarCar, PlanarError> {
-        require(
-            "load",
-            load,
-            "kg",
-            "must be finite and not negative",
-            load.is_finite() && load >= 0.0,
-        )?;
-        let m = self.body.mass;
-        self.body.yaw_inertia *= (m + load) / m;
-        self.body.mass = m + load;
+        require("load", load, "kg", "finite and not negative", load >= 0.0)?;
+        self.body.yaw_inertia *= (self.body.mass + load) / self.body.mass;
+        self.body.mass += load;
         Ok(self)
     }
 

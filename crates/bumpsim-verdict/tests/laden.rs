@@ -32,6 +32,8 @@ fn the_laden_car_carries_the_passengers_and_the_impactor_the_unladen_mass() {
     assert!((car.total_mass() - unladen.total_mass() - added).abs() < 1e-9);
     let (m, i) = (unladen.body().mass, unladen.body().yaw_inertia);
     let ratio = car.body().yaw_inertia / i;
+    assert!(unladen.clone().with_load(-1.0).is_err());
+    assert!(unladen.clone().with_load(f64::NAN).is_err());
     assert!((ratio - (m + added) / m).abs() < 1e-12, "{ratio}");
     // the striker: the unladen mass at 4 km/h (annex 3 §2.3.3, §2.7.5)
     let r = t.result.as_ref().unwrap();
