@@ -600,6 +600,14 @@ impl PlanarCar {
         &self.damage
     }
 
+    /// The same car with `load` kg (≥ 0) more at the body's CG, `I_z` × (M + m)/M (R42's passengers).
+    pub fn with_load(mut self, load: f64) -> Result<PlanarCar, PlanarError> {
+        require("load", load, "kg", "finite and not negative", load >= 0.0)?;
+        self.body.yaw_inertia *= (self.body.mass + load) / self.body.mass;
+        self.body.mass += load;
+        Ok(self)
+    }
+
     /// The same car with a name.
     pub fn with_name(mut self, name: Option<String>) -> PlanarCar {
         self.name = name;

@@ -235,8 +235,9 @@ pub struct StrikerSpec {
 }
 
 /// The car a run uses: with a preset, both axles' tyres under the law the
-/// test prescribes ([`PlanarPreset::tyres`]); otherwise the car as its
-/// file says. Every front end runs presets on this car.
+/// test prescribes ([`PlanarPreset::tyres`]) and a laden test's load on
+/// its body ([`crate::car::PlanarCar::with_load`]; the striker keeps the
+/// unladen mass); otherwise the car as its file says. Every front end runs presets on this car.
 ///
 /// ```
 /// use bumpsim_core::model::MsdModel;
@@ -257,7 +258,11 @@ pub fn prepared(
     preset: Option<&PlanarPreset>,
 ) -> crate::car::PlanarCar {
     match preset {
-        Some(p) => car.clone().with_tyre_law(tyres(p)),
+        // the table's loads are constants, finite and ≥ 0 (bumpsim-io's tests)
+        Some(p) => match car.clone().with_tyre_law(tyres(p)).with_load(p.load) {
+            Ok(laden) => laden,
+            Err(_) => car.clone().with_tyre_law(tyres(p)),
+        },
         None => car.clone(),
     }
 }

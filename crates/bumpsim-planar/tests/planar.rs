@@ -514,10 +514,10 @@ mod independent;
 mod regression;
 #[path = "planar/sensors.rs"]
 mod sensors;
-#[path = "planar/yaw_rate.rs"]
-mod yaw_rate;
 #[path = "planar/tyres.rs"]
 mod tyres;
+#[path = "planar/yaw_rate.rs"]
+mod yaw_rate;
 
 /// Runs the peer script `tests/peers/SCRIPT` on the parameter file `params`
 /// and returns what it prints (the planar tests' scipy oracles).

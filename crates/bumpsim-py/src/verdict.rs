@@ -74,9 +74,11 @@ fn protocol_names(value: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<String>> {
 /// table, or a list of them (one per end); `protocol` names protocols or
 /// tests (`"part581,rcar-bumper"`, a list, or `"all"`); `bumper` (a `Bumper`
 /// or its file) replaces the car's bumper, shared equally by its segments;
-/// `target` also searches the region of passing bumpers.
+/// `target` also searches the region of passing bumpers; `sequence` runs
+/// the tests in order on one car per end, each from the damage the earlier
+/// ones left (`--sequence`, `bumpsim_verdict::sequence`).
 #[pyfunction]
-#[pyo3(name = "verdict", signature = (car, protocol = None, margin = 0.0, bumper = None, target = false))]
+#[pyo3(name = "verdict", signature = (car, protocol = None, margin = 0.0, bumper = None, target = false, sequence = false))]
 fn judge(
     py: Python<'_>,
     car: &Bound<'_, PyAny>,
@@ -84,6 +86,7 @@ fn judge(
     margin: f64,
     bumper: Option<&Bound<'_, PyAny>>,
     target: bool,
+    sequence: bool,
 ) -> PyResult<Verdict> {
     let names = protocol_names(protocol)?;
     let names: Vec<&str> = names.iter().map(String::as_str).collect();
@@ -97,7 +100,8 @@ fn judge(
             .collect::<Result<_, _>>()
             .map_err(input)?;
     }
-    let setup = Setup::new(ends, tests, margin).map_err(input)?;
+    let mut setup = Setup::new(ends, tests, margin).map_err(input)?;
+    setup.sequence = sequence;
     py.detach(|| {
         let verdict = bumpsim_verdict::verdict(&setup).map_err(input)?;
         let target = match target {

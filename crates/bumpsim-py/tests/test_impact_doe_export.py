@@ -257,7 +257,7 @@ def test_the_one_table_lists_and_runs_the_same_tests_as_the_cli(run, root):
     cli = {line.split()[0] for line in listed.splitlines()
            if line and not line.startswith((" ", "#"))}
     names = {p["name"] for p in bumpsim.presets()}
-    assert names == cli and len(names) == 33
+    assert names == cli and len(names) == 35
     corner = next(p for p in bumpsim.presets() if p["name"] == "rcar-structural-front")
     assert "40 % overlap" in corner["dropped_in_1d"]
     # every front end runs a table test: a pendulum of the vehicle's mass in planar

@@ -161,3 +161,26 @@ def test_bad_inputs_raise_on_pythons_bases(car, root, tmp_path):
     with pytest.raises(ValueError, match="protocol"):
         bumpsim.verdict(car, protocol=3)
     assert "part581" in bumpsim.protocols() and "source" in bumpsim.protocols()
+
+
+# issue 45 item 2: R42 unladen then laden on one car, as `--sequence`
+SEQUENCE = "r42-longitudinal-front,r42-laden-longitudinal-front"
+
+
+def test_a_sequence_is_the_clis_and_the_laden_run_inherits_the_set(car, cli, tmp_path):
+    import subprocess
+
+    out = tmp_path / "sequence.json"
+    done = subprocess.run(
+        [str(cli), "verdict", "--car", str(car), "--protocol", SEQUENCE, "--sequence", "--json", str(out)],
+        capture_output=True, text=True,
+    )
+    assert done.returncode == 0, done.stderr
+    document = json.loads(bumpsim.verdict(car, protocol=SEQUENCE, sequence=True).to_json())
+    assert document == json.loads(out.read_text())
+    first, laden = document["verdict"]["tests"]
+    assert first["inherited"] is None
+    assert laden["inherited"]["from"] == ["r42-longitudinal-front"]
+    assert laden["inherited"]["set"] > 0.0
+    alone = json.loads(bumpsim.verdict(car, protocol=SEQUENCE).to_json())
+    assert alone["verdict"]["tests"][1]["inherited"] is None

@@ -450,8 +450,15 @@ pub fn run(
     test: &Test,
     settings: &Settings,
 ) -> Result<(PlanarCar, Striker, PlanarResult), VerdictError> {
-    let car = end.car.clone().with_tyre_law(test.tyres);
-    let striker = test.striker(car.total_mass())?;
+    let unladen = end.car.total_mass();
+    let car = end
+        .car
+        .clone()
+        .with_tyre_law(test.tyres)
+        .with_load(test.entry.load)
+        .map_err(|e| planar(test.name, e))?;
+    // R42's impactor keeps the vehicle's unladen mass (annex 3 §2.3.3)
+    let striker = test.striker(unladen)?;
     let result = simulate(&car, &striker, settings).map_err(|e| planar(test.name, e))?;
     Ok((car, striker, result))
 }
@@ -516,7 +523,7 @@ pub(crate) fn assess_on(
         energies: &energies,
     };
     let (criteria, assumptions) = criteria(&evidence, setup.margin);
-    let nominal = test.nominal(car.total_mass())?;
+    let nominal = test.nominal(end.car.total_mass())?;
     verdict.striker = bumpsim_planar::text::striker(&nominal);
     verdict.criteria = criteria;
     verdict.metrics = Some(metrics);

@@ -206,6 +206,10 @@ pub struct Test {
     pub source: &'static str,
     /// What could not be checked.
     pub uncertain: &'static str,
+    /// Mass added to the car for the test, kg: UN R42's laden runs carry
+    /// their passengers ([`PASSENGERS`] of [`PASSENGER_MASS`]);
+    /// 0 for every other test (the car file's mass as given).
+    pub load: f64,
 }
 
 impl Test {
@@ -247,6 +251,9 @@ impl Test {
         }
         if overlap < 1.0 {
             out.push(format!("the {:.0} % overlap", 100.0 * overlap));
+        }
+        if self.load > 0.0 {
+            out.push(format!("the laden car's {:.0} kg of passengers", self.load));
         }
         (!out.is_empty()).then(|| {
             format!(
@@ -407,7 +414,7 @@ pub fn listing(one_d: bool) -> String {
 }
 
 mod table;
-pub use table::{PROTOCOLS, TESTS};
+pub use table::{PASSENGER_MASS, PASSENGERS, PROTOCOLS, TESTS};
 
 #[cfg(test)]
 mod tests {
@@ -459,6 +466,18 @@ mod tests {
         assert!((kmh("part581-pendulum-front") - 2.5 * MPH).abs() < 1e-12);
         assert!((kmh("iihs-bumper-front") - 6.0 * MPH).abs() < 1e-12);
         assert!((kmh("r42-corner-front-left") - 2.5).abs() < 1e-12);
+        // R42's laden runs carry their passengers; every other test none
+        for t in TESTS {
+            let laden = t.name.starts_with("r42-laden-");
+            assert_eq!(t.load, if laden { 375.0 } else { 0.0 }, "{}", t.name);
+        }
+        let laden = find("r42-laden-longitudinal-rear").unwrap();
+        assert!(
+            laden
+                .dropped_in_1d()
+                .unwrap()
+                .contains("375 kg of passengers")
+        );
         assert!((kmh("rcar-structural-front") - 15.0).abs() < 1e-12);
         assert_eq!(Market::Europe.rcar_face(), (0.405, 0.505));
         assert_eq!(Market::parse("North-America"), Some(Market::NorthAmerica));

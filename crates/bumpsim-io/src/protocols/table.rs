@@ -69,7 +69,7 @@ const P581_BARRIER_WHY: &str =
     "run on the undamaged car: 581.5(a) runs it after the pendulum impacts";
 const R42: &str =
     "UN Regulation No. 42 (E/ECE/324/Rev.1/Add.41, 1980; Amend. 2, 2021), annex 3 §2.2-2.8";
-const R42_WHY: &str = "R42 runs each end unladen and laden (2-5 passengers of 75 kg): the unladen run only here; the impact contour's geometry (a 114 mm ridge on the 445 mm reference line) is read from a scanned figure and not modelled (a flat face); the ±25 mm first-contact tolerance and the two impacts 300 mm apart are one run; Supplement 1 to the 1980 text was not read";
+const R42_WHY: &str = "R42 runs each end unladen and laden (2-5 passengers of 75 kg): the longitudinal laden runs are r42-laden-* (the corners unladen only); the impact contour's geometry (a 114 mm ridge on the 445 mm reference line) is read from a scanned figure and not modelled (a flat face); the ±25 mm first-contact tolerance and the two impacts 300 mm apart are one run; Supplement 1 to the 1980 text was not read";
 const R42_TYRES: &str =
     "UN R42 annex 3 §2.2.4: brakes disengaged and the transmission in neutral: free-rolling wheels";
 const RCAR: &str = "RCAR Bumper Test, Issue 2.0 (September 2010) §6; barrier specification Issue 1 (September 2007) §2-3";
@@ -80,6 +80,24 @@ const IIHS_OLD: &str = "IIHS low-speed crash test protocol (1990s to 2006)";
 const IIHS_OLD_WHY: &str =
     "the protocol document was not available here: speed and set-up from IIHS publications";
 const IIHS_BUMPER: &str = "IIHS Bumper test protocol, Version I (2006), with the RCAR barrier";
+
+/// Passengers of an R42 laden run (assumed, see [`R42_LADEN_WHY`]).
+pub const PASSENGERS: f64 = 5.0;
+/// Mass of one passenger, kg (the 75 kg of R42 as the table reads it).
+pub const PASSENGER_MASS: f64 = 75.0;
+const R42_LADEN_WHY: &str = "as the unladen run (a flat face for the contour, one run for the two impacts, Supplement 1 not read); laden: 5 passengers of 75 kg (375 kg) added at the body's CG with its radius of gyration (yaw inertia scaled with the mass); the text of R42 on the laden condition (the number of passengers, 2-5 by the seats, and where they sit) was not found in a source read here: unverified, the upper end of 2-5 taken; the impactor keeps the vehicle's unladen mass (annex 3 §2.3.3); the car file has no suspension, so the heights are kept (the laden car's lower ride height is not modelled)";
+
+/// The laden run of an R42 unladen test: same face, speed and height, the
+/// passengers' mass added to the car.
+const fn laden(name: &'static str, description: &'static str, unladen: Test) -> Test {
+    Test {
+        name,
+        description,
+        uncertain: R42_LADEN_WHY,
+        load: PASSENGERS * PASSENGER_MASS,
+        ..unladen
+    }
+}
 
 /// A lab test: the car at rest, struck at its front.
 const fn lab(
@@ -104,6 +122,7 @@ const fn lab(
         tyres_why: LAB_TYRES,
         source,
         uncertain,
+        load: 0.0,
     }
 }
 
@@ -138,6 +157,7 @@ const fn pendulum(
         tyres_why,
         source,
         uncertain,
+        load: 0.0,
     }
 }
 
@@ -168,6 +188,7 @@ const fn insurance(
         tyres_why: FREE,
         source,
         uncertain,
+        load: 0.0,
     }
 }
 
@@ -388,6 +409,36 @@ pub const TESTS: &[Test] = &[
         R42,
         R42_WHY,
     ),
+    laden(
+        "r42-laden-longitudinal-front",
+        "laden (5 × 75 kg passengers): impactor of the vehicle's unladen mass, 4 km/h on the front, reference line at 445 mm",
+        pendulum(
+            "",
+            "r42",
+            End::Front,
+            "",
+            FLAT,
+            4.0 * KMH,
+            R42_HEIGHT,
+            R42,
+            R42_WHY,
+        ),
+    ),
+    laden(
+        "r42-laden-longitudinal-rear",
+        "laden (5 × 75 kg passengers): impactor of the vehicle's unladen mass, 4 km/h on the rear, reference line at 445 mm",
+        pendulum(
+            "",
+            "r42",
+            End::Rear,
+            "",
+            FLAT,
+            4.0 * KMH,
+            R42_HEIGHT,
+            R42,
+            R42_WHY,
+        ),
+    ),
     insurance(
         "rcar-bumper-front",
         "rcar-bumper",
@@ -605,6 +656,8 @@ pub const PROTOCOLS: &[Protocol] = &[
             "r42-corner-front-right",
             "r42-corner-rear-left",
             "r42-corner-rear-right",
+            "r42-laden-longitudinal-front",
+            "r42-laden-longitudinal-rear",
         ],
     },
     Protocol {

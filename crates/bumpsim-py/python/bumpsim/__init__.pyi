@@ -609,11 +609,14 @@ def verdict(
     margin: float = 0.0,
     bumper: Optional[Union["Bumper", StrPath]] = None,
     target: bool = False,
+    sequence: bool = False,
 ) -> Verdict:
-    """As ``bumpsim verdict --car CAR --protocol P --margin M [--target]``:
+    """As ``bumpsim verdict --car CAR --protocol P --margin M [--target] [--sequence]``:
     one planar car file with a ``[damageability]`` table per end; protocols
     or tests by name (comma-separated, a list, default ``"all"``); ``bumper``
-    replaces the car's, shared equally by its segments."""
+    replaces the car's, shared equally by its segments; ``sequence`` runs the
+    tests in order on one car per end, each from the damage the earlier ones
+    left (the JSON's ``inherited``)."""
 
 def protocols() -> str:
     """The protocols and their tests with sources and uncertainties (``bumpsim verdict --list``)."""
