@@ -385,8 +385,8 @@ segments = 32
 curve = [{curve}]
 unloading = {1.5 * b["contact"] * b["points"] * 0.1 ** 0.5:.6g}
 [tyres]
-front = {{ mu_longitudinal = 0.015, mu_lateral = 0.6 }}
-rear = {{ mu_longitudinal = 0.015, mu_lateral = 0.6 }}
+front = {{ rolling_resistance = 0.015, mu_lateral = 0.6 }}
+rear = {{ rolling_resistance = 0.015, mu_lateral = 0.6 }}
 """
     (out / "start.toml").write_text(text)
 
