@@ -5,7 +5,7 @@
 //! [`Objective`], with the thesis's parameter names (`m1`, `c1`, `k1`) and
 //! units.
 //!
-//! The errors are taken as independent ([`Correlation::Independent`]); the
+//! The errors are taken as independent ([`bumpsim_estimate::uncertainty::Correlation::Independent`]); the
 //! pooled lag-1 autocorrelation of the residuals is reported
 //! ([`Uncertainty::residual_correlation`]) so a user sees how far that
 //! holds (the planar car's intervals inflate for it; the 1-D model choice

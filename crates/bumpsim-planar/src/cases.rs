@@ -12,7 +12,7 @@
 //!   rest; the yaw rate as measured; displacements (film, string pots) as
 //!   measured, less their value at t = 0 and without the pre-trigger bias
 //!   (a film target moves before contact).
-//! - Each sensor's weight ([`weights`]): its noise in the compared domain,
+//! - Each sensor's weight (`weights`): its noise in the compared domain,
 //!   from the white noise level σ of its pre-trigger (the residual about a
 //!   straight line, unfiltered) or as the study gives it, over the fit
 //!   window's duration T: σ as measured, `σ √h T^{3/2}/√12` integrated

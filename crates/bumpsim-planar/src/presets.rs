@@ -235,7 +235,7 @@ pub struct StrikerSpec {
 }
 
 /// The car a run uses: with a preset, both axles' tyres under the law the
-/// test prescribes ([`PlanarPreset::tyres`]) and a laden test's load on
+/// test prescribes ([`tyres`]) and a laden test's load on
 /// its body ([`crate::car::PlanarCar::with_load`]; the striker keeps the
 /// unladen mass); otherwise the car as its file says. Every front end runs presets on this car.
 ///

@@ -81,7 +81,7 @@ const IIHS_OLD_WHY: &str =
     "the protocol document was not available here: speed and set-up from IIHS publications";
 const IIHS_BUMPER: &str = "IIHS Bumper test protocol, Version I (2006), with the RCAR barrier";
 
-/// Passengers of an R42 laden run (assumed, see [`R42_LADEN_WHY`]).
+/// Passengers of an R42 laden run (assumed: R42's laden load was not found in a text reachable here; the laden tests' uncertainty says so).
 pub const PASSENGERS: f64 = 5.0;
 /// Mass of one passenger, kg (the 75 kg of R42 as the table reads it).
 pub const PASSENGER_MASS: f64 = 75.0;
