@@ -75,7 +75,7 @@ pub struct Bumper {
 }
 
 /// The history a bumper remembers: largest compression and its force.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct BumperState {
     /// Largest compression reached, m.
     pub max_compression: f64,

@@ -207,6 +207,13 @@ impl Identification {
     fn cross_validation<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         from_json(py, &self.result().cross_validation)
     }
+    /// How the cases were compared when not in displacement (the study's
+    /// `objective`: domain, noises, residual correlation), as the CLI's JSON
+    /// `compared`; None for the thesis's displacement objective.
+    #[getter]
+    fn compared<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        crate::convert::from_json(py, &self.result().compared)
+    }
     /// Number of residuals (samples in all windows).
     #[getter]
     fn residuals(&self) -> usize {

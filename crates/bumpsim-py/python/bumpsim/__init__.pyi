@@ -265,6 +265,7 @@ class Identification:
     """Per-case fit: name, sse (m²), fit_percent, samples, rating, window (s)."""
     starts: dict[str, int]
     start: list[float]
+    compared: dict[str, Any] | None
     residuals: int
     iterations: int
     stop: Any

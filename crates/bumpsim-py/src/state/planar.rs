@@ -104,7 +104,7 @@ struct PlanarResultDef {
     #[serde(default)]
     box_bottomed: Option<bumpsim_planar::result::BoxBottomed>,
     max_crush: Vec<f64>,
-    #[serde(skip)]
+    #[serde(default)]
     damage: Vec<bumpsim_impact::bumper::BumperState>,
     remaining_crush: Vec<f64>,
     peak_yaw_rate: f64,
