@@ -42,11 +42,16 @@ pub fn python_available(module: &str) -> bool {
 }
 
 /// The folder `out` a generator script of `tests/peers/` writes (`python3
-/// SCRIPT OUT ARGS...`), run once: again only while `out/marker` is
-/// missing, so the tests of one target folder share one series. Panics with
-/// the script's stderr when it fails.
+/// SCRIPT OUT ARGS...`), run once per version of the script: again while
+/// `out/marker` is missing or the stamp `out/.generated-by` (a hash of the
+/// script's text and its arguments) differs, so the tests of one target
+/// folder share one series and a changed generator never leaves a stale
+/// one. Panics with the script's stderr when it fails.
 pub fn generated(script: &std::path::Path, out: &std::path::Path, args: &[&str], marker: &str) {
-    if out.join(marker).is_file() {
+    let stamp = out.join(".generated-by");
+    let version = script_version(script, args);
+    let current = std::fs::read_to_string(&stamp).is_ok_and(|s| s == version);
+    if current && out.join(marker).is_file() {
         return;
     }
     let run = Command::new("python3")
@@ -61,6 +66,18 @@ pub fn generated(script: &std::path::Path, out: &std::path::Path, args: &[&str],
         script.display(),
         String::from_utf8_lossy(&run.stderr)
     );
+    std::fs::write(&stamp, version).unwrap_or_else(|e| panic!("{}: {e}", stamp.display()));
+}
+
+/// A hash of `script`'s text and `args` (FNV-1a, 64 bits: stable across
+/// Rust versions, unlike `DefaultHasher`), in hex.
+fn script_version(script: &std::path::Path, args: &[&str]) -> String {
+    let text = std::fs::read(script).unwrap_or_else(|e| panic!("{}: {e}", script.display()));
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    for byte in text.iter().chain(args.join("\0").as_bytes()) {
+        hash = (hash ^ u64::from(*byte)).wrapping_mul(0x0100_0000_01b3);
+    }
+    format!("{hash:016x}")
 }
 
 /// Passes `found` through; when it is `false`, prints the skip message for
@@ -79,6 +96,25 @@ pub fn present(found: bool, what: &str) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_generator_runs_again_when_its_script_changes() {
+        let dir = std::env::temp_dir().join(format!("bumpsim-peers-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let script = dir.join("count.py");
+        let out = dir.join("out");
+        let body = "import sys, pathlib\np = pathlib.Path(sys.argv[1]); p.mkdir(exist_ok=True)\n";
+        let count =
+            "c = p / 'runs'; c.write_text(str(int(c.read_text()) + 1 if c.exists() else 1))\n";
+        std::fs::write(&script, format!("{body}{count}")).unwrap();
+        generated(&script, &out, &[], "runs");
+        generated(&script, &out, &[], "runs");
+        assert_eq!(std::fs::read_to_string(out.join("runs")).unwrap(), "1");
+        std::fs::write(&script, format!("{body}{count}# changed\n")).unwrap();
+        generated(&script, &out, &[], "runs");
+        assert_eq!(std::fs::read_to_string(out.join("runs")).unwrap(), "2");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     #[test]
     fn a_program_that_succeeds_is_available() {
