@@ -4,16 +4,23 @@
 
 use bumpsim_impact::bumper::Bumper;
 use bumpsim_planar::car::{Beam, Block, Body, SideChain, Tyres};
-use bumpsim_planar::{Face, PlanarCar, Settings, Side, Striker, simulate};
+use bumpsim_planar::{Face, PlanarCar, PlanarResult, Settings, Side, Striker, simulate};
 use std::path::Path;
 
-const MASS: f64 = 1200.0;
-const SPRING: f64 = 4e5;
-const DEPTH: f64 = 0.05;
-const BLOCK: f64 = 2e7;
-const SPEED: f64 = 2.0;
+pub(crate) const MASS: f64 = 1200.0;
+pub(crate) const SPRING: f64 = 4e5;
+pub(crate) const DEPTH: f64 = 0.05;
+pub(crate) const BLOCK: f64 = 2e7;
+pub(crate) const SPEED: f64 = 2.0;
 
 fn car(block: Option<Block>) -> PlanarCar {
+    elastic_car(block, SideChain::default())
+}
+
+/// A rigid car of [`MASS`] behind one elastic segment of [`SPRING`] (the
+/// same slope loading and unloading, no plateau in reach) with `block`, on
+/// the side chains `side` (shared with the crash-box test).
+pub(crate) fn elastic_car(block: Option<Block>, side: SideChain) -> PlanarCar {
     let body = Body {
         mass: MASS,
         yaw_inertia: 1500.0,
@@ -22,7 +29,6 @@ fn car(block: Option<Block>) -> PlanarCar {
         cg_behind_front_axle: 1.2,
         track: 1.4,
     };
-    // elastic: the same slope loading and unloading, no plateau in reach
     let beam = Beam {
         width: 1.2,
         side_member_spacing: 0.9,
@@ -30,23 +36,27 @@ fn car(block: Option<Block>) -> PlanarCar {
         bending: 0.0,
         block,
     };
-    let none = SideChain::default();
-    PlanarCar::new(body, none.clone(), none, beam, Tyres::default()).unwrap()
+    PlanarCar::new(body, side.clone(), side, beam, Tyres::default()).unwrap()
 }
 
-fn impact(block: Option<Block>) -> bumpsim_planar::PlanarResult {
+/// `car` into a flat wall at [`SPEED`] for `duration`, s, contact or not.
+pub(crate) fn into_wall(car: &PlanarCar, duration: f64) -> PlanarResult {
     let face = Face::Plane {
         angle: 0.0,
         overlap: 1.0,
         side: Side::Left,
     };
     let settings = Settings {
-        duration: 0.2,
+        duration,
         output_step: 1e-3,
         stop_after_contact: false,
         ..Settings::default()
     };
-    simulate(&car(block), &Striker::barrier(face, SPEED), &settings).unwrap()
+    simulate(car, &Striker::barrier(face, SPEED), &settings).unwrap()
+}
+
+fn impact(block: Option<Block>) -> PlanarResult {
+    into_wall(&car(block), 0.2)
 }
 
 #[test]

@@ -4,64 +4,33 @@
 //! independent scipy model of the same two masses with both blocks
 //! (tests/peers/scipy_block.py, its "box" case).
 
-use bumpsim_impact::bumper::Bumper;
-use bumpsim_planar::car::{Beam, Block, Body, SideChain, Tyres};
-use bumpsim_planar::{Face, PlanarCar, PlanarResult, Settings, Side, Striker, simulate};
+use super::block::{BLOCK, DEPTH, MASS, SPEED, SPRING, elastic_car, into_wall};
+use bumpsim_planar::car::{Block, SideChain};
+use bumpsim_planar::{PlanarCar, PlanarResult};
 use std::path::Path;
 
-const MASS: f64 = 1200.0;
 const TIP: f64 = 8.0;
-const SPRING: f64 = 4e5;
-const DEPTH: f64 = 0.05;
-const BLOCK: f64 = 2e7;
 const BOX: f64 = 1.5e6;
 const BOX_DEPTH: f64 = 0.02;
 const BOX_BLOCK: f64 = 2e7;
-const SPEED: f64 = 2.0;
 
 fn car(boxes: Option<Block>) -> PlanarCar {
-    let body = Body {
-        mass: MASS,
-        yaw_inertia: 1500.0,
-        cg_behind_bumper: 2.0,
-        wheelbase: 2.5,
-        cg_behind_front_axle: 1.2,
-        track: 1.4,
-    };
-    let beam = Beam {
-        width: 1.2,
-        side_member_spacing: 0.9,
-        segments: vec![Bumper::three_part(SPRING, 1e12, SPRING).unwrap()],
-        bending: 0.0,
-        block: Some(Block {
-            depth: DEPTH,
-            stiffness: BLOCK,
-        }),
+    let block = Block {
+        depth: DEPTH,
+        stiffness: BLOCK,
     };
     let side = SideChain {
         masses: vec![TIP],
         dampers: vec![0.0],
         springs: vec![BOX],
     };
-    PlanarCar::new(body, side.clone(), side, beam, Tyres::default())
-        .unwrap()
+    elastic_car(Some(block), side)
         .with_crash_boxes(boxes)
         .unwrap()
 }
 
 fn impact(boxes: Option<Block>) -> PlanarResult {
-    let face = Face::Plane {
-        angle: 0.0,
-        overlap: 1.0,
-        side: Side::Left,
-    };
-    let settings = Settings {
-        duration: 0.15,
-        output_step: 1e-3,
-        stop_after_contact: false,
-        ..Settings::default()
-    };
-    simulate(&car(boxes), &Striker::barrier(face, SPEED), &settings).unwrap()
+    into_wall(&car(boxes), 0.15)
 }
 
 /// The boxes' compression history, m (both sides alike).
