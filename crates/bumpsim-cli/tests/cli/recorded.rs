@@ -224,10 +224,10 @@ fn masked(text: &str) -> String {
         if trimmed.starts_with(" DOF") && trimmed.ends_with(" time") {
             in_dof_table = true;
         } else if in_dof_table
-            && !trimmed
+            && trimmed
                 .split_whitespace()
                 .next()
-                .is_some_and(|w| w.parse::<usize>().is_ok())
+                .is_none_or(|w| w.parse::<usize>().is_err())
         {
             in_dof_table = false;
         } else if in_dof_table {
