@@ -65,6 +65,11 @@ pub enum KindError {
     },
 }
 
+/// A declared kind that is not in the registry (its value).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("kind = {0:?} is not a model bumpsim has")]
+pub struct UnknownKind(pub String);
+
 impl ModelKind {
     /// Every kind with the name a file declares.
     pub const NAMES: &'static [(ModelKind, &'static str)] =
@@ -83,7 +88,7 @@ impl ModelKind {
     /// cannot be read or declares an unknown kind.
     pub fn of(path: &Path, role: Role) -> Result<ModelKind, KindError> {
         let text = std::fs::read_to_string(path)?;
-        Self::of_text(&text, role).map_err(|value| KindError::Unknown {
+        Self::of_text(&text, role).map_err(|UnknownKind(value)| KindError::Unknown {
             path: path.display().to_string(),
             value,
             known: Self::NAMES
@@ -104,7 +109,7 @@ impl ModelKind {
     }
 
     /// The kind of a file's text; `Err` holds an unknown declared value.
-    pub fn of_text(text: &str, role: Role) -> Result<ModelKind, String> {
+    pub fn of_text(text: &str, role: Role) -> Result<ModelKind, UnknownKind> {
         let (declared, planar) = match role {
             Role::Result => {
                 let value = serde_json::from_str::<serde_json::Value>(text).ok();
@@ -132,7 +137,7 @@ impl ModelKind {
                 .iter()
                 .find(|(_, name)| *name == value)
                 .map(|(kind, _)| *kind)
-                .ok_or(value),
+                .ok_or(UnknownKind(value)),
             None if planar => Ok(ModelKind::Planar),
             None => Ok(ModelKind::Chain),
         }
@@ -195,7 +200,10 @@ mod tests {
             of(r#"{"kind": "planar"}"#, Role::Result),
             Ok(ModelKind::Planar)
         );
-        assert_eq!(of("kind = \"tank\"", Role::Car), Err("tank".to_string()));
+        assert_eq!(
+            of("kind = \"tank\"", Role::Car),
+            Err(UnknownKind("tank".to_string()))
+        );
         for (kind, name) in ModelKind::NAMES {
             assert_eq!(kind.name(), *name);
         }
