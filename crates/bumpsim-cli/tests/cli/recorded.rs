@@ -337,3 +337,59 @@ fn the_commands_write_what_main_wrote() {
         differ.join("\n")
     );
 }
+
+#[test]
+fn a_declared_kind_picks_the_model_as_the_legacy_detection_did() {
+    let dir = scratch("declared-kind");
+    let examples = root().join("examples");
+    for head in ["FLAT", "P600", "POLE"] {
+        std::os::unix::fs::symlink(examples.join("identify").join(head), dir.join(head)).unwrap();
+    }
+    let study = std::fs::read_to_string(examples.join("identify/study.toml")).unwrap();
+    std::fs::write(
+        dir.join("declared.toml"),
+        format!("kind = \"chain\"\n{study}"),
+    )
+    .unwrap();
+    std::fs::write(dir.join("legacy.toml"), &study).unwrap();
+    std::fs::write(dir.join("tank.toml"), format!("kind = \"tank\"\n{study}")).unwrap();
+    let car = std::fs::read_to_string(examples.join("planar/saloon.toml")).unwrap();
+    std::fs::write(dir.join("saloon.toml"), format!("kind = \"planar\"\n{car}")).unwrap();
+    let identify = |study: &str| bumpsim_in(&dir, &["identify", study, "--starts", "2", "--quiet"]);
+    let (declared, legacy) = (identify("declared.toml"), identify("legacy.toml"));
+    assert_eq!(
+        declared.status.code(),
+        Some(0),
+        "{}",
+        text(&declared.stderr)
+    );
+    assert_eq!(
+        masked(&text(&declared.stdout)),
+        masked(&text(&legacy.stdout))
+    );
+    crate::util::assert_user_error(
+        &identify("tank.toml"),
+        "kind = \"tank\" is not a model bumpsim has (known: chain, planar)",
+    );
+    let planar = |car: &str| {
+        bumpsim_in(
+            &dir,
+            &["impact", "--car", car, "--case", "rcar-structural-front"],
+        )
+    };
+    let declared = planar("saloon.toml");
+    assert_eq!(
+        declared.status.code(),
+        Some(0),
+        "{}",
+        text(&declared.stderr)
+    );
+    let legacy = planar(examples.join("planar/saloon.toml").to_str().unwrap());
+    assert_eq!(
+        text(&declared.stdout),
+        text(&legacy.stdout).replace(
+            examples.join("planar/saloon.toml").to_str().unwrap(),
+            "saloon.toml"
+        )
+    );
+}
