@@ -4,16 +4,19 @@
 use crate::{Folder, write};
 use anyhow::{Context, Result};
 use bumpsim_ident::document::{Failed, IdentifyDocument, WithPosterior};
-use bumpsim_ident::dofs::{DofList, Sweep};
+use bumpsim_ident::dofs::DofList;
 use bumpsim_ident::estimate::Identification;
 use bumpsim_ident::explore::{predict, sensitivity};
 use bumpsim_ident::posterior::{Posterior, Request, Summary};
 use bumpsim_ident::settings::Settings;
+use bumpsim_ident::sizes::{Observer, Order, Overrides, Watch};
 use bumpsim_ident::study::{DofSpec, Study};
 use bumpsim_ident::text::{case_lines, dof_table, parameter_table};
 use bumpsim_io::car::Car;
+use bumpsim_io::kind::{ModelKind, Role};
 use bumpsim_report::identification::{DofOutcome, report_with_posterior};
 use indicatif::{ProgressBar, ProgressStyle};
+use std::cell::RefCell;
 use std::path::PathBuf;
 
 /// Arguments of `identify`.
@@ -97,9 +100,9 @@ fn progress(quiet: bool, dof: usize, starts: usize) -> ProgressBar {
     bar
 }
 
-/// Runs `identify`.
+/// Runs `identify`: the model is the study's kind (bumpsim_io::kind).
 pub fn run(args: &Args) -> Result<()> {
-    if bumpsim_planar::study::is_planar(&std::fs::read_to_string(&args.study).unwrap_or_default()) {
+    if ModelKind::of_path(&args.study, Role::Study)? == ModelKind::Planar {
         return run_planar(args);
     }
     if args.car.is_some() {
@@ -123,39 +126,34 @@ pub fn run(args: &Args) -> Result<()> {
                 .map_err(|e| anyhow::anyhow!("--{e}"))?;
         }
     }
-    let loaded = study.load(dofs.iter().copied().max().unwrap_or(1))?;
-    let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
-    print_notes(&notes);
-    loaded.warnings.iter().for_each(|w| crate::warn(w));
+    let overrides = Overrides {
+        starts: args.starts,
+        seed: args.seed,
+    };
+    let watch = Printed {
+        quiet: args.quiet,
+        many: dofs.len() > 1,
+        bar: RefCell::new(None),
+    };
+    let sizes = bumpsim_ident::sizes::identify(&study, &overrides, &watch)?;
+    let notes = sizes.notes;
     let mut outcomes = Vec::new();
     let mut done: Vec<Done> = Vec::new();
-    let mut sweep = Sweep::new().cross_validated(dofs.len() > 1);
-    for &dof in &dofs {
-        let mut settings = study.settings(dof)?;
-        settings.starts = args.starts.unwrap_or(settings.starts);
-        settings.seed = args.seed.unwrap_or(settings.seed);
-        let cases = study.retarget(&loaded.cases, dof);
-        let bar = progress(args.quiet, dof, settings.starts);
-        let result = sweep.identify(&cases, settings.clone(), &|| bar.inc(1));
-        bar.finish_and_clear();
-        match result {
+    for order in sizes.orders {
+        match order.result {
             Ok(result) => {
-                print_result(&result);
-                let predictions = predict(&cases, &result.model)?;
-                done.push((result.clone(), cases, settings));
+                let predictions = predict(&order.cases, &result.model)?;
+                done.push((result.clone(), order.cases, order.settings));
                 outcomes.push(DofOutcome::Done {
                     result: Box::new(result),
                     predictions,
                 });
             }
-            Err(e) if dofs.len() > 1 => {
-                eprintln!("error: {dof}-DOF model: {e} (the other models go on)");
-                outcomes.push(DofOutcome::Failed {
-                    dof,
-                    reason: e.to_string(),
-                });
-            }
-            Err(e) => return Err(e).context(format!("{dof}-DOF identification")),
+            Err(e) if dofs.len() > 1 => outcomes.push(DofOutcome::Failed {
+                dof: order.dof,
+                reason: e.to_string(),
+            }),
+            Err(e) => return Err(e).context(format!("{}-DOF identification", order.dof)),
         }
     }
     let results: Vec<Identification> = done.iter().map(|(r, ..)| r.clone()).collect();
@@ -199,6 +197,43 @@ pub fn run(args: &Args) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// The identification over the sizes as the terminal shows it: notes,
+/// a progress bar per size, each result as it is done.
+struct Printed {
+    quiet: bool,
+    many: bool,
+    bar: RefCell<Option<ProgressBar>>,
+}
+
+impl Watch for Printed {
+    fn loaded(&self, notes: &[String], warnings: &[String]) {
+        print_notes(notes);
+        warnings.iter().for_each(|w| crate::warn(w));
+    }
+
+    fn starting(&self, dof: usize, starts: usize) -> Box<dyn Observer + '_> {
+        let bar = progress(self.quiet, dof, starts);
+        *self.bar.borrow_mut() = Some(bar.clone());
+        Box::new(move || bar.inc(1))
+    }
+
+    fn done(&self, order: &Order) {
+        if let Some(bar) = self.bar.borrow_mut().take() {
+            bar.finish_and_clear();
+        }
+        match &order.result {
+            Ok(result) => print_result(result),
+            Err(e) if self.many => {
+                eprintln!(
+                    "error: {}-DOF model: {e} (the other models go on)",
+                    order.dof
+                )
+            }
+            Err(_) => {}
+        }
+    }
 }
 
 /// The selection notes (channels left out or used despite a mark).
@@ -374,30 +409,34 @@ fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
 /// Runs `predict`: a chain model on a chain study, or a planar car on a
 /// planar study.
 pub fn run_predict(args: &PredictArgs) -> Result<()> {
-    let model = std::fs::read_to_string(&args.model).unwrap_or_default();
-    let study = std::fs::read_to_string(&args.study).unwrap_or_default();
     match (
-        bumpsim_planar::file::is_planar_car(&model),
-        bumpsim_planar::study::is_planar(&study),
+        ModelKind::of_path(&args.model, Role::Car)?,
+        ModelKind::of_path(&args.study, Role::Study)?,
     ) {
-        (true, true) => crate::planar::run_predict(&crate::planar::PredictOptions {
-            car: &args.model,
-            study: &args.study,
-            cases: &args.cases,
-            plot: args.plot.as_deref(),
-            json: args.json.as_deref(),
-        }),
-        (true, false) => anyhow::bail!(
+        (ModelKind::Planar, ModelKind::Planar) => {
+            crate::planar::run_predict(&crate::planar::PredictOptions {
+                car: &args.model,
+                study: &args.study,
+                cases: &args.cases,
+                plot: args.plot.as_deref(),
+                json: args.json.as_deref(),
+            })
+        }
+        (ModelKind::Planar, ModelKind::Chain) => anyhow::bail!(
             "{}: a planar car predicts a planar study (`[model] planar = ...`, docs/planar.md); {} is a chain study",
             args.model.display(),
             args.study.display()
         ),
-        (false, true) if is_planar_identification(&model) => anyhow::bail!(
-            "{}: a planar identification's JSON (`identify --json`) holds the identified body, side chains and tyres but not the bumper beam (the start car's), so it is not a whole car: predict with the planar car file `bumpsim identify {} --car CAR.toml` writes",
-            args.model.display(),
-            args.study.display()
-        ),
-        (false, true) => {
+        (ModelKind::Chain, ModelKind::Planar)
+            if ModelKind::of_path(&args.model, Role::Result)? == ModelKind::Planar =>
+        {
+            anyhow::bail!(
+                "{}: a planar identification's JSON (`identify --json`) holds the identified body, side chains and tyres but not the bumper beam (the start car's), so it is not a whole car: predict with the planar car file `bumpsim identify {} --car CAR.toml` writes",
+                args.model.display(),
+                args.study.display()
+            )
+        }
+        (ModelKind::Chain, ModelKind::Planar) => {
             // a planar car file with a mistake is not recognised as one:
             // its own error says more than "not a planar car"
             bumpsim_planar::PlanarCar::read(&args.model).with_context(|| {
@@ -412,15 +451,8 @@ pub fn run_predict(args: &PredictArgs) -> Result<()> {
                 args.model.display()
             )
         }
-        (false, false) => run_predict_chain(args),
+        (ModelKind::Chain, ModelKind::Chain) => run_predict_chain(args),
     }
-}
-
-/// Whether a model file's text is the JSON `identify --json` writes on a
-/// planar study (its `result.car` has a `body`).
-fn is_planar_identification(text: &str) -> bool {
-    serde_json::from_str::<serde_json::Value>(text)
-        .is_ok_and(|v| v["result"]["car"]["body"].is_object())
 }
 
 /// `predict` of a chain model.

@@ -14,6 +14,7 @@ use bumpsim_impact::reduction::{
 };
 use bumpsim_impact::uncertainty::{Chain, ChainCar};
 use bumpsim_io::car::Car;
+use bumpsim_io::kind::{ModelKind, Role};
 use bumpsim_report::html::Html;
 use indicatif::ProgressBar;
 use std::path::PathBuf;
@@ -192,8 +193,7 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
         return Ok(());
     }
     let car_path = args.car_path()?;
-    let text = std::fs::read_to_string(car_path).unwrap_or_default();
-    if bumpsim_planar::file::is_planar_car(&text) {
+    if ModelKind::of_path(car_path, Role::Car)? == ModelKind::Planar {
         return planar_impact(args);
     }
     let Some(bumper_path) = &args.bumper else {
@@ -366,8 +366,8 @@ type Made = (
 );
 
 fn make(path: &std::path::Path) -> Result<Made> {
-    let text = std::fs::read_to_string(path).with_context(|| format!("{}", path.display()))?;
-    if !bumpsim_planar::series::is_planar(&text) {
+    let kind = ModelKind::of(path, Role::Series).with_context(|| format!("{}", path.display()))?;
+    if kind != ModelKind::Planar {
         let (heads, provenance) = bumpsim_impact::synth::make_series(path)?;
         return Ok((heads, provenance, Vec::new()));
     }

@@ -5,6 +5,7 @@
 //!   residuals and exact Jacobian, handed to the estimation layer);
 //! - [`settings`]: bounds, starts and solver, and their checks;
 //! - [`estimate`]: the data-derived start and the identification;
+//! - [`sizes`]: a study identified over its model sizes (the one loop of the front ends);
 //! - [`crossval`], [`choice`]: leave-one-load-case-out cross-validation and
 //!   the DOF table's recommendation with correlated residuals;
 //! - [`posterior`]: the parameters' posterior (ensemble sampler);
@@ -55,6 +56,7 @@ pub mod reduce;
 pub mod result;
 pub mod search;
 pub mod settings;
+pub mod sizes;
 pub mod stats;
 pub mod study;
 pub mod text;

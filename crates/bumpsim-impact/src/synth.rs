@@ -203,6 +203,10 @@ pub fn truth_comment(truth: &[f64], recorded: &[f64], step: f64) -> String {
 #[derive(Debug, Clone, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SeriesFile {
+    /// The declared model kind (`kind = "chain"`; issue 46), read by
+    /// `bumpsim_io::kind`, which chose this reader.
+    #[serde(default)]
+    pub kind: Option<String>,
     /// Car file (TOML or model JSON).
     pub car: std::path::PathBuf,
     /// Noise seed.

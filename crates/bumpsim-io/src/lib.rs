@@ -2,6 +2,7 @@
 //!
 //! - [`table`]: CSV with `name [unit]` headers, converted to SI on reading;
 //! - [`car`]: MSD car models in TOML;
+//! - [`kind`]: which car model a file is for (its `kind` key; the legacy detection);
 //! - [`response`]: simulation responses as CSV;
 //! - [`test_data`]: one view of a crash test in any format, channel selection;
 //! - [`isomme`] (`test_data::isomme`): ISO/TS 13499 ISO-MME folders, `.mme` and `.zip`, read and write;
@@ -31,6 +32,7 @@
 //! ```
 
 pub mod car;
+pub mod kind;
 pub mod mass;
 pub mod numbers;
 pub mod output;

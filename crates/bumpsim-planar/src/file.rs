@@ -94,6 +94,9 @@ fn check_beam_fits(beam: &Beam, error: &dyn Fn(String) -> PlanarError) -> Result
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct PlanarFile {
+    /// `kind = "planar"` (issue 46), read by `bumpsim_io::kind`.
+    #[serde(default, rename = "kind")]
+    _kind: Option<String>,
     name: Option<String>,
     length_unit: Option<String>,
     body: BodyFile,
@@ -316,13 +319,6 @@ fn segments(file: &BumperFile) -> Result<Vec<Bumper>, PlanarError> {
             ),
         }),
     }
-}
-
-/// Whether a car file's text is a planar car (it has a `[body]` table; the
-/// 1-D car file has none).
-pub fn is_planar_car(text: &str) -> bool {
-    toml::from_str::<toml::Table>(text)
-        .is_ok_and(|t| t.get("body").is_some_and(toml::Value::is_table))
 }
 
 impl PlanarCar {

@@ -38,6 +38,9 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SeriesFile {
+    /// `kind = "planar"` (issue 46), read by `bumpsim_io::kind`.
+    #[serde(default, rename = "kind")]
+    _kind: Option<String>,
     planar_car: PathBuf,
     start: Option<PathBuf>,
     #[serde(default = "one")]
@@ -81,11 +84,6 @@ pub struct Series {
     pub study: String,
     /// The text of the start's car file (`start.toml` in the output folder).
     pub start: String,
-}
-
-/// Whether a series file is planar (has `planar_car`) rather than 1-D.
-pub fn is_planar(text: &str) -> bool {
-    toml::from_str::<toml::Table>(text).is_ok_and(|t| t.contains_key("planar_car"))
 }
 
 fn file_error(path: &Path, message: String) -> PlanarError {
@@ -407,16 +405,5 @@ mod tests {
             );
         }
         assert!(striker_spec(&test("pole_offset = -0.3")).is_ok());
-    }
-
-    #[test]
-    fn planar_series_and_studies_are_told_from_1d_ones() {
-        assert!(is_planar(
-            "planar_car = \"car.toml\"\n[[test]]\nname = \"A\""
-        ));
-        assert!(!is_planar("car = \"car.toml\"\n[[head]]\nname = \"A\""));
-        assert!(crate::study::is_planar("[model]\nplanar = \"start.toml\""));
-        assert!(!crate::study::is_planar("[model]\ndof = 3"));
-        assert!(!crate::study::is_planar("not toml ["));
     }
 }

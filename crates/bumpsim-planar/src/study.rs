@@ -64,6 +64,9 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct StudyFile {
+    /// `kind = "planar"` (issue 46), read by `bumpsim_io::kind`.
+    #[serde(default, rename = "kind")]
+    _kind: Option<String>,
     model: ModelFile,
     case: Vec<CaseFile>,
 }
@@ -151,15 +154,6 @@ pub struct PlanarStudy {
     /// What the user should know of the loading, a line each (`case
     /// 'POLE': ... put on one time base ...`).
     pub notes: Vec<String>,
-}
-
-/// Whether a study file is planar (`[model] planar = ...`).
-pub fn is_planar(text: &str) -> bool {
-    toml::from_str::<toml::Table>(text).is_ok_and(|t| {
-        t.get("model")
-            .and_then(|m| m.as_table())
-            .is_some_and(|m| m.contains_key("planar"))
-    })
 }
 
 impl PlanarStudy {

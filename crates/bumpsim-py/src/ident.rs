@@ -13,8 +13,8 @@ use crate::state::ident::LoadCaseState;
 use bumpsim_core::series::UniformSeries;
 use bumpsim_ident::case::LoadCase;
 use bumpsim_ident::document::Failed;
-use bumpsim_ident::dofs::Sweep;
 use bumpsim_ident::estimate::{Settings, identify as core_identify};
+use bumpsim_ident::sizes::{Observer, Overrides, Watch};
 use bumpsim_ident::study::{DofSpec, Study};
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -264,25 +264,14 @@ fn study_of(
 }
 
 /// Starts and seed: the caller's, else the study's.
-struct Overrides {
-    starts: Option<usize>,
-    seed: Option<u64>,
-}
-
-impl Overrides {
-    fn of(starts: Option<&Bound<'_, PyAny>>, seed: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
-        Ok(Overrides {
-            starts: count_or(starts, "starts", 1, MAX_STARTS)?,
-            seed: self::seed(seed)?,
-        })
-    }
-
-    fn settings(&self, study: &Study, dof: usize) -> PyResult<Settings> {
-        let mut settings = study.settings(dof).map_err(input)?;
-        settings.starts = self.starts.unwrap_or(settings.starts);
-        settings.seed = self.seed.unwrap_or(settings.seed);
-        Ok(settings)
-    }
+fn overrides(
+    starts: Option<&Bound<'_, PyAny>>,
+    seed: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Overrides> {
+    Ok(Overrides {
+        starts: count_or(starts, "starts", 1, MAX_STARTS)?,
+        seed: self::seed(seed)?,
+    })
 }
 
 /// Identifies one MSD model from all load cases of the study file at
@@ -299,7 +288,7 @@ fn identify(
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Identification> {
     let dof = dof.map(one_dof).transpose()?;
-    let overrides = Overrides::of(starts, seed)?;
+    let overrides = overrides(starts, seed)?;
     let (path, file) = study_of(py, study, dof.map(|d| vec![d]))?;
     let [dof] = file.dofs()[..] else {
         return Err(invalid(format!(
@@ -311,7 +300,7 @@ fn identify(
     let tick = progress_callback(&progress);
     py.detach(|| {
         let loaded = file.load(dof).map_err(input)?;
-        let settings = overrides.settings(&file, dof)?;
+        let settings = overrides.settings(&file, dof).map_err(input)?;
         let cases = file.retarget(&loaded.cases, dof);
         let result = core_identify(&cases, &settings, &tick).map_err(|e| failed(dof, &e))?;
         let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
@@ -341,42 +330,44 @@ fn dof_table(
     progress: Option<Py<PyAny>>,
 ) -> PyResult<DofTable> {
     let orders = dofs.map(self::dofs).transpose()?;
-    let overrides = Overrides::of(starts, seed)?;
+    let overrides = overrides(starts, seed)?;
     let (path, file) = study_of(py, study, orders)?;
     let tick = progress_callback(&progress);
     py.detach(|| sweep(&path, &file, &overrides, &tick))
 }
 
-/// The CLI's loop over the orders (`bumpsim identify --dof 1..5`).
+/// The library's loop over the orders (`bumpsim identify --dof 1..5`).
 fn sweep(
     path: &Path,
     file: &Study,
     overrides: &Overrides,
     tick: &(impl Fn() + Sync),
 ) -> PyResult<DofTable> {
-    let orders = file.dofs();
-    let loaded = file
-        .load(orders.iter().copied().max().unwrap_or(1))
-        .map_err(input)?;
-    let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
-    let mut sweep = Sweep::new().cross_validated(orders.len() > 1);
+    let sizes = bumpsim_ident::sizes::identify(file, overrides, &Ticked(tick)).map_err(input)?;
     let (mut results, mut failures) = (Vec::new(), Vec::new());
-    for &dof in &orders {
-        let settings = overrides.settings(file, dof)?;
-        let cases = file.retarget(&loaded.cases, dof);
-        match sweep.identify(&cases, settings.clone(), tick) {
+    for order in sizes.orders {
+        match order.result {
             Ok(result) => results.push(Identification::new(
                 result,
-                cases,
-                notes.clone(),
+                order.cases,
+                sizes.notes.clone(),
                 Some(path.to_path_buf()),
-                &settings,
+                &order.settings,
             )),
             Err(e) => failures.push(Failed {
-                dof,
+                dof: order.dof,
                 reason: e.to_string(),
             }),
         }
     }
-    Ok(DofTable::new(results, failures, notes))
+    Ok(DofTable::new(results, failures, sizes.notes))
+}
+
+/// The progress callback as the library's watch: one tick per start.
+struct Ticked<'a, F: Fn() + Sync>(&'a F);
+
+impl<F: Fn() + Sync> Watch for Ticked<'_, F> {
+    fn starting(&self, _dof: usize, _starts: usize) -> Box<dyn Observer + '_> {
+        Box::new(self.0)
+    }
 }

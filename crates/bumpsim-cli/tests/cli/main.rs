@@ -23,6 +23,7 @@ mod issue48;
 mod planar;
 mod planar_identify;
 mod presets;
+mod recorded;
 mod reports;
 mod reports_answer;
 mod robustness;

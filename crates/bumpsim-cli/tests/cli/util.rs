@@ -28,6 +28,15 @@ pub fn bumpsim(args: &[&str]) -> Output {
         .unwrap()
 }
 
+/// The binary run in `dir` (its relative paths are `dir`'s).
+pub fn bumpsim_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_bumpsim"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .unwrap()
+}
+
 pub fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
 }

@@ -185,6 +185,10 @@ impl CaseSpec {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Study {
+    /// The declared model kind (`kind = "chain"`; issue 46), read by
+    /// `bumpsim_io::kind`, which chose this reader.
+    #[serde(default)]
+    pub kind: Option<String>,
     /// Model settings.
     pub model: ModelSpec,
     /// How the cases are compared.

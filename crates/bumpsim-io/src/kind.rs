@@ -1,0 +1,224 @@
+//! Which car model a file is for (issue 46): the registry of model kinds and
+//! the one place that decides a file's kind, so that no front end reads a
+//! file's contents to choose a model.
+//!
+//! A file declares its kind with a top-level key, `kind = "chain"` or
+//! `kind = "planar"` (TOML; `"kind": "planar"` in JSON). Files written
+//! before the key existed keep working: without it, [`ModelKind::of`] falls
+//! back to the legacy detection, which lives here and nowhere else:
+//!
+//! | role | planar when (legacy) |
+//! |---|---|
+//! | [`Role::Study`] | a `[model]` table with a `planar` key (the start car) |
+//! | [`Role::Car`] | a `[body]` table (the 1-D car file has none) |
+//! | [`Role::Series`] | a `planar_car` key (a `synth` series) |
+//! | [`Role::Result`] | JSON whose `result.car` has a `body` (`identify --json` of a planar study) |
+//!
+//! and the chain otherwise — also when the file cannot be read or parsed:
+//! the chain's reader then reports what is wrong, as before the registry.
+//!
+//! Adding a model: a variant here, its name in [`ModelKind::NAMES`], and (only
+//! if files without the key must be told apart) a legacy rule; see
+//! docs/architecture.md.
+
+use std::path::Path;
+
+/// The car models bumpsim has (the registry).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ModelKind {
+    /// The 1-D chain of masses, springs and dampers (bumpsim-ident,
+    /// bumpsim-impact).
+    Chain,
+    /// The planar car: body with yaw, two side chains, segmented bumper
+    /// beam, tyres (bumpsim-planar).
+    Planar,
+}
+
+/// What a file is to the command that reads it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    /// An identification study (`identify`, `predict`).
+    Study,
+    /// A car file (`impact`, `predict`), or a chain identification's JSON.
+    Car,
+    /// A synthetic test series (`synth`).
+    Series,
+    /// An identification's JSON (`identify --json`).
+    Result,
+}
+
+/// A file whose kind cannot be told.
+#[derive(Debug, thiserror::Error)]
+pub enum KindError {
+    /// The file cannot be read.
+    #[error(transparent)]
+    Read(#[from] std::io::Error),
+    /// The declared kind is not one bumpsim has.
+    #[error("{path}: kind = {value:?} is not a model bumpsim has (known: {known})")]
+    Unknown {
+        /// The file.
+        path: String,
+        /// The declared value.
+        value: String,
+        /// The known kinds, comma-separated.
+        known: String,
+    },
+}
+
+/// A declared kind that is not in the registry (its value).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("kind = {0:?} is not a model bumpsim has")]
+pub struct UnknownKind(pub String);
+
+impl ModelKind {
+    /// Every kind with the name a file declares.
+    pub const NAMES: &'static [(ModelKind, &'static str)] =
+        &[(ModelKind::Chain, "chain"), (ModelKind::Planar, "planar")];
+
+    /// The name a file declares (`kind = "..."`).
+    pub fn name(self) -> &'static str {
+        Self::NAMES
+            .iter()
+            .find(|(kind, _)| *kind == self)
+            .map_or("chain", |(_, name)| name)
+    }
+
+    /// The kind of the file at `path` in its `role`: the declared one, else
+    /// the legacy detection (see the module doc). Fails only when the file
+    /// cannot be read or declares an unknown kind.
+    pub fn of(path: &Path, role: Role) -> Result<ModelKind, KindError> {
+        let text = std::fs::read_to_string(path)?;
+        Self::of_text(&text, role).map_err(|UnknownKind(value)| KindError::Unknown {
+            path: path.display().to_string(),
+            value,
+            known: Self::NAMES
+                .iter()
+                .map(|(_, n)| *n)
+                .collect::<Vec<_>>()
+                .join(", "),
+        })
+    }
+
+    /// [`ModelKind::of`] on the text of a file that may be unreadable: an
+    /// unreadable file is the chain's (its reader says what is wrong).
+    pub fn of_path(path: &Path, role: Role) -> Result<ModelKind, KindError> {
+        match Self::of(path, role) {
+            Err(KindError::Read(_)) => Ok(ModelKind::Chain),
+            other => other,
+        }
+    }
+
+    /// The kind of a file's text; `Err` holds an unknown declared value.
+    pub fn of_text(text: &str, role: Role) -> Result<ModelKind, UnknownKind> {
+        let (declared, planar) = match role {
+            Role::Result => {
+                let value = serde_json::from_str::<serde_json::Value>(text).ok();
+                let declared = value
+                    .as_ref()
+                    .and_then(|v| v.get("kind"))
+                    .and_then(|k| k.as_str())
+                    .map(str::to_string);
+                let planar = value.is_some_and(|v| v["result"]["car"]["body"].is_object());
+                (declared, planar)
+            }
+            _ => {
+                let table = toml::from_str::<toml::Table>(text).ok();
+                let declared = table
+                    .as_ref()
+                    .and_then(|t| t.get("kind"))
+                    .and_then(|k| k.as_str())
+                    .map(str::to_string);
+                let planar = table.is_some_and(|t| legacy_planar(&t, role));
+                (declared, planar)
+            }
+        };
+        match declared {
+            Some(value) => Self::NAMES
+                .iter()
+                .find(|(_, name)| *name == value)
+                .map(|(kind, _)| *kind)
+                .ok_or(UnknownKind(value)),
+            None if planar => Ok(ModelKind::Planar),
+            None => Ok(ModelKind::Chain),
+        }
+    }
+}
+
+/// The legacy detection of a planar file without a `kind` key (the rules of
+/// the module doc's table; the only place they live).
+fn legacy_planar(table: &toml::Table, role: Role) -> bool {
+    match role {
+        Role::Study => table
+            .get("model")
+            .and_then(|m| m.as_table())
+            .is_some_and(|m| m.contains_key("planar")),
+        Role::Car => table.get("body").is_some_and(toml::Value::is_table),
+        Role::Series => table.contains_key("planar_car"),
+        Role::Result => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn legacy_files_are_told_apart_by_their_tables() {
+        let study = |t| ModelKind::of_text(t, Role::Study).unwrap();
+        assert_eq!(study("[model]\nplanar = \"start.toml\""), ModelKind::Planar);
+        assert_eq!(study("[model]\ndof = 3"), ModelKind::Chain);
+        assert_eq!(study("not toml ["), ModelKind::Chain);
+        let series = |t| ModelKind::of_text(t, Role::Series).unwrap();
+        assert_eq!(series("planar_car = \"car.toml\""), ModelKind::Planar);
+        assert_eq!(
+            series("car = \"car.toml\"\n[[head]]\nname = \"A\""),
+            ModelKind::Chain
+        );
+        let car = |t| ModelKind::of_text(t, Role::Car).unwrap();
+        assert_eq!(car("[body]\nmass = 1200.0"), ModelKind::Planar);
+        assert_eq!(car("body = 3\nmasses = [1.0]"), ModelKind::Chain);
+        let result = |t| ModelKind::of_text(t, Role::Result).unwrap();
+        assert_eq!(
+            result(r#"{"result": {"car": {"body": {}}}}"#),
+            ModelKind::Planar
+        );
+        assert_eq!(result(r#"{"result": {"model": {}}}"#), ModelKind::Chain);
+    }
+
+    #[test]
+    fn a_declared_kind_wins_and_an_unknown_one_is_refused() {
+        let of = |t, r| ModelKind::of_text(t, r);
+        assert_eq!(
+            of("kind = \"planar\"\n[model]\ndof = 3", Role::Study),
+            Ok(ModelKind::Planar)
+        );
+        assert_eq!(
+            of("kind = \"chain\"\n[body]\nmass = 1.0", Role::Car),
+            Ok(ModelKind::Chain)
+        );
+        assert_eq!(
+            of(r#"{"kind": "planar"}"#, Role::Result),
+            Ok(ModelKind::Planar)
+        );
+        assert_eq!(
+            of("kind = \"tank\"", Role::Car),
+            Err(UnknownKind("tank".to_string()))
+        );
+        for (kind, name) in ModelKind::NAMES {
+            assert_eq!(kind.name(), *name);
+        }
+    }
+
+    #[test]
+    fn an_unreadable_file_is_left_to_the_chain_reader() {
+        let missing = Path::new("/nonexistent/bumpsim/car.toml");
+        assert!(matches!(
+            ModelKind::of(missing, Role::Car),
+            Err(KindError::Read(_))
+        ));
+        assert_eq!(
+            ModelKind::of_path(missing, Role::Car).unwrap(),
+            ModelKind::Chain
+        );
+    }
+}
