@@ -198,14 +198,10 @@ mod tests {
     #[test]
     fn a_linear_models_band_is_its_closed_form_and_covers_its_draws() {
         let t: Vec<f64> = (0..11).map(|k| k as f64 * 0.1).collect();
-        let model =
-            |p: &[f64]| Some(t.iter().map(|t| p[0] + p[1] * t).collect::<Vec<f64>>());
+        let model = |p: &[f64]| Some(t.iter().map(|t| p[0] + p[1] * t).collect::<Vec<f64>>());
         let p = [1.0, -2.0];
         let (s0, s1, rho, noise) = (0.3, 0.5, -0.6, 0.1);
-        let cov = covariance(
-            &[s0, s1],
-            &[vec![None, Some(rho)], vec![Some(rho), None]],
-        );
+        let cov = covariance(&[s0, s1], &[vec![None, Some(rho)], vec![Some(rho), None]]);
         let s = sensitivities(&model, &p, 1e-3).unwrap();
         let center = model(&p).unwrap();
         let band = linearised(&center, &s, &cov, noise, 0.9);
