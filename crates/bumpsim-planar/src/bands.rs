@@ -438,10 +438,15 @@ mod tests {
             "{wide}"
         );
         let force = judged("force", 95.0, 40.0).statement().unwrap();
-        assert!(force.ends_with("add a test like it to the training"), "{force}");
+        assert!(
+            force.ends_with("add a test like it to the training"),
+            "{force}"
+        );
         let missed = judged("yaw", 17.0, 0.4).statement().unwrap();
         assert!(
-            missed.starts_with("OFFSET40's measured yaw lies inside its 90 % band (replay prediction) at only 17 %"),
+            missed.starts_with(
+                "OFFSET40's measured yaw lies inside its 90 % band (replay prediction) at only 17 %"
+            ),
             "{missed}"
         );
         assert!(judged("yaw", 75.0, 0.4).statement().is_none());

@@ -103,7 +103,10 @@ fn the_planar_series_identifies_a_car_that_predicts_the_held_out_test() {
     // the held-out replay and the forward predictions carry their 90 %
     // predictive bands (issue 44): judged in the summary and the JSON,
     // shaded in the report
-    assert_contains(&stdout, &["90 % predictive bands", "of measured samples inside"]);
+    assert_contains(
+        &stdout,
+        &["90 % predictive bands", "of measured samples inside"],
+    );
     let judged = r["bands"]["judged"].as_array().unwrap();
     let held_yaw = judged
         .iter()
