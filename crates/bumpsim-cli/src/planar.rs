@@ -387,16 +387,26 @@ pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
         .iter()
         .map(|c| predict(&result.car, c))
         .collect::<Result<_, _>>()?;
-    let validation: Vec<Prediction> = study
+    let mut validation: Vec<Prediction> = study
         .validation
         .iter()
         .map(|c| predict(&result.car, c))
         .collect::<Result<_, _>>()?;
     let validation_fits: Vec<_> = validation.iter().map(|p| p.fit.clone()).collect();
-    let forward = forward_predictions(&result.car, study.cases.iter().chain(&study.validation))?;
+    let mut forward =
+        forward_predictions(&result.car, study.cases.iter().chain(&study.validation))?;
+    let bands = bumpsim_planar::bands::attach(
+        &result,
+        &study.cases,
+        (&study.validation, &mut validation),
+        &mut forward,
+    )?;
     let summary = bumpsim_planar::text::identification_summary(&result, &validation_fits)
-        + &bumpsim_planar::text::forward_lines(&forward);
+        + &bumpsim_planar::text::forward_lines(&forward)
+        + &bands.lines();
     print!("{summary}");
+    // printed in the summary's band lines
+    crate::count_warnings(bands.statements().len());
     // printed in the summary, as the 1-D identification prints its own
     crate::count_warnings(
         bumpsim_planar::text::identification_warnings(&result, &validation_fits).len(),
@@ -412,6 +422,7 @@ pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
         validation: &validation_fits,
         forward: &forward,
         notes: &study.notes,
+        bands: Some(&bands),
     };
     let json = serde_json::to_string_pretty(&document)?;
     if let Some(path) = options.json {

@@ -28,6 +28,8 @@
 //! - [`sobol`]: Sobol' indices with bootstrap intervals (issue 39);
 //! - [`propagate`]: draws through a model: distributions, prediction bands
 //!   and probabilities of passing (issue 39);
+//! - [`band`]: linearised predictive bands of histories from the
+//!   parameters' covariance, their coverage and width (issue 44);
 //! - [`binomial`]: exact bounds of a probability from its draws, one-sided
 //!   when none fails (issue 45).
 //!
@@ -72,6 +74,7 @@
 //! assert!(found.starts.reached_best >= 2);
 //! ```
 
+pub mod band;
 pub mod binomial;
 pub mod bounds;
 pub mod document;

@@ -41,6 +41,10 @@ pub struct IdentificationDocument<'a> {
     pub forward: &'a [Forward],
     /// Notes on the channels' time base.
     pub notes: &'a [String],
+    /// The predictive bands of the held-out replays and forward
+    /// predictions, judged ([`crate::bands`]; left out when None).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bands: Option<&'a crate::bands::Bands>,
 }
 
 /// `bumpsim predict --json` with a planar car: the layer's document of each

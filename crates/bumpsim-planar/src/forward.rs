@@ -51,6 +51,10 @@ pub struct Channel {
     /// Measured.
     #[serde(skip)]
     pub measured: Vec<f64>,
+    /// The simulation's 90 % predictive band, when one was propagated
+    /// ([`crate::bands::attach`]; its level and noise in the JSON).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub band: Option<bumpsim_estimate::band::PredictiveBand>,
 }
 
 /// The forward prediction of one test.
@@ -126,6 +130,7 @@ pub fn forward(car: &PlanarCar, case: &PlanarCase) -> Result<Forward, PlanarErro
             time: time.clone(),
             simulated,
             measured,
+            band: None,
         }
     })
     .collect();

@@ -9,6 +9,7 @@
 //!   bumper beam, tyres — validated at construction;
 //! - [`file`](mod@file): the planar car TOML file;
 //! - [`forward`]: the forward prediction of a whole test (car, bumper, striker) against its measurement;
+//! - [`bands`]: the 90 % predictive bands of the held-out replays and forward predictions;
 //! - [`document`]: the JSON every front end writes (impact, identification, prediction);
 //! - [`drive`](mod@drive): the car driven by given forces (test replay, FE reference);
 //! - [`identify`](mod@identify): the planar car identified from several load cases;
@@ -42,6 +43,7 @@
 //! assert!(r.energy.relative_error < 1e-3);
 //! ```
 
+pub mod bands;
 pub mod barrier;
 pub mod car;
 pub mod cases;

@@ -498,6 +498,8 @@ fn a_stiff_beam_that_chatters_off_the_face_still_completes_the_impact() {
     }
 }
 
+#[path = "planar/bands.rs"]
+mod bands;
 #[path = "planar/block.rs"]
 mod block;
 #[path = "planar/crash_box.rs"]

@@ -4,7 +4,7 @@
 
 use crate::bar::BarPlot;
 use crate::html::Html;
-use crate::plot::{LinePlot, PlotError, Series, Span, Style};
+use crate::plot::{Band, LinePlot, PlotError, Series, Span, Style};
 use bumpsim_core::units::Dimension;
 use bumpsim_planar::PlanarResult;
 use bumpsim_planar::forward::Forward;
@@ -141,6 +141,7 @@ pub fn case_figures(
         .quantities(None, Some("displacement"));
     x.add(line("measured", &p.time, &p.x[1], Style::Solid));
     x.add(line("model", &p.time, &p.x[0], Style::Dashed));
+    shaded(&mut x, &p.time, p.x_band.as_ref());
     x.span(window.clone());
     let mut yaw = LinePlot::new(
         "Yaw (difference of the sills)",
@@ -149,19 +150,56 @@ pub fn case_figures(
     );
     yaw.add(line("measured", &p.time, &p.yaw[1], Style::Solid));
     yaw.add(line("model", &p.time, &p.yaw[0], Style::Dashed));
+    shaded(&mut yaw, &p.time, p.yaw_band.as_ref());
     yaw.span(window.clone());
     let stem = crate::file_name(&p.fit.name);
-    [("x", x, p.fit.fit_x), ("yaw", yaw, p.fit.fit_yaw)]
-        .into_iter()
-        .map(|(what, plot, fit)| {
-            let svg = plot.svg()?;
-            Ok((
-                format!("{stem}-{what}.svg"),
-                svg,
-                format!("{what}: fit {fit:.2} % over the shaded {}", window.name),
-            ))
-        })
-        .collect()
+    let at = |t: f64| p.time.iter().position(|s| *s >= t - 1e-12).unwrap_or(0);
+    let samples = (at(p.fit.window[0]), at(p.fit.window[1]));
+    [
+        ("x", x, p.fit.fit_x, &p.x_band, &p.x[1]),
+        ("yaw", yaw, p.fit.fit_yaw, &p.yaw_band, &p.yaw[1]),
+    ]
+    .into_iter()
+    .map(|(what, plot, fit, band, measured)| {
+        let svg = plot.svg()?;
+        Ok((
+            format!("{stem}-{what}.svg"),
+            svg,
+            format!(
+                "{what}: fit {fit:.2} % over the shaded {}{}",
+                window.name,
+                inside(band.as_ref(), measured, samples)
+            ),
+        ))
+    })
+    .collect()
+}
+
+/// `band` shaded on `plot` at `time`, named by its level, when there is one.
+fn shaded(plot: &mut LinePlot, time: &[f64], band: Option<&bumpsim_planar::bands::PredictiveBand>) {
+    if let Some(b) = band {
+        plot.band(Band {
+            name: format!("{:.0} % predictive band", 100.0 * b.level),
+            x: time.to_vec(),
+            low: b.low.clone(),
+            high: b.high.clone(),
+        });
+    }
+}
+
+/// `; 87 % of the measured samples inside the 90 % band`, or nothing without a band.
+fn inside(
+    band: Option<&bumpsim_planar::bands::PredictiveBand>,
+    measured: &[f64],
+    window: (usize, usize),
+) -> String {
+    band.map_or(String::new(), |b| {
+        format!(
+            "; {:.0} % of the measured samples inside the shaded {:.0} % predictive band",
+            100.0 * b.inside(measured, window),
+            100.0 * b.level
+        )
+    })
 }
 
 /// The forward prediction's plots of a case (force, x-acceleration, yaw
@@ -183,6 +221,7 @@ pub fn forward_figures(f: &Forward) -> Result<Vec<(String, String, String)>, Plo
                 LinePlot::new(&format!("Forward {}", c.name), Dimension::Time, dimension);
             plot.add(line("measured", &c.time, &c.measured, Style::Solid));
             plot.add(line("forward model", &c.time, &c.simulated, Style::Dashed));
+            shaded(&mut plot, &c.time, c.band.as_ref());
             let (a, b) = f.window;
             if let (Some(&start), Some(&end)) = (c.time.get(a), c.time.get(b)) {
                 plot.span(Span::window("scored", [start, end]));
@@ -192,8 +231,10 @@ pub fn forward_figures(f: &Forward) -> Result<Vec<(String, String, String)>, Plo
                 format!("{stem}-forward-{}.svg", c.name.replace(' ', "-")),
                 plot.svg()?,
                 format!(
-                    "forward {}: fit {:.2} %, ISO/TS 18571 {rating}",
-                    c.name, c.fit_percent
+                    "forward {}: fit {:.2} %, ISO/TS 18571 {rating}{}",
+                    c.name,
+                    c.fit_percent,
+                    inside(c.band.as_ref(), &c.measured, f.window)
                 ),
             ))
         })

@@ -21,6 +21,7 @@ mod identify;
 mod impact;
 mod issue48;
 mod planar;
+mod planar_coverage;
 mod planar_identify;
 mod presets;
 mod recorded;

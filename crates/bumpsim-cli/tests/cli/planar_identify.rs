@@ -100,6 +100,22 @@ fn the_planar_series_identifies_a_car_that_predicts_the_held_out_test() {
     }
     assert!(report.join("OFFSET-RIGHT-forward-yaw-rate.svg").is_file());
     assert!(html.contains("forward yaw rate: fit"));
+    // the held-out replay and the forward predictions carry their 90 %
+    // predictive bands (issue 44): judged in the summary and the JSON,
+    // shaded in the report
+    assert_contains(
+        &stdout,
+        &["90 % predictive bands", "of measured samples inside"],
+    );
+    let judged = r["bands"]["judged"].as_array().unwrap();
+    let held_yaw = judged
+        .iter()
+        .find(|j| j["case"] == "OFFSET-RIGHT" && j["channel"] == "yaw")
+        .unwrap();
+    let inside = held_yaw["inside_percent"].as_f64().unwrap();
+    assert!((0.0..=100.0).contains(&inside), "{held_yaw}");
+    assert!(offset["channels"][0]["band"]["level"] == 0.9);
+    assert!(html.contains("90 % predictive band") && html.contains("inside the shaded"));
     // the identified car is a planar car file the impact command reads
     let run = bumpsim(&[
         "planar",

@@ -10,6 +10,7 @@
 use super::{PlanarCase, check_case, spacing};
 use crate::car::{PlanarCar, PlanarError};
 use crate::drive::drive;
+use bumpsim_estimate::band::PredictiveBand;
 use bumpsim_estimate::fit::{negative_fit, percent};
 use bumpsim_signal::rating::{Rating, rate};
 use serde::Serialize;
@@ -59,6 +60,11 @@ pub struct Prediction {
     pub yaw: [Vec<f64>; 2],
     /// The fit over the case's window.
     pub fit: CaseFit,
+    /// The 90 % predictive band of the model's x, when one was propagated
+    /// ([`crate::bands::attach`]).
+    pub x_band: Option<PredictiveBand>,
+    /// The 90 % predictive band of the model's yaw, likewise.
+    pub yaw_band: Option<PredictiveBand>,
 }
 
 /// Replays `case` with `car` and compares it with the measurement.
@@ -103,6 +109,8 @@ pub fn predict(car: &PlanarCar, case: &PlanarCase) -> Result<Prediction, PlanarE
         x,
         yaw,
         fit,
+        x_band: None,
+        yaw_band: None,
     })
 }
 
