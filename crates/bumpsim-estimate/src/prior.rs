@@ -62,7 +62,9 @@ pub enum PriorError {
         value: f64,
     },
     /// Its spread is not a finite positive number.
-    #[error("prior '{name}': spread {value:?} must be finite and positive (the standard deviation of ln θ, e.g. 0.1 for ±10 %)")]
+    #[error(
+        "prior '{name}': spread {value:?} must be finite and positive (the standard deviation of ln θ, e.g. 0.1 for ±10 %)"
+    )]
     Spread {
         /// The prior's name.
         name: String,
@@ -481,7 +483,10 @@ mod tests {
         assert_relative_eq!(out[0].estimate, 150.0, epsilon = 1e-9);
         assert_eq!(warnings(&out).len(), 1);
         let line = text(&out, &|_, v| format!("{v:.0} kg·m²"));
-        assert!(line.contains("100 kg·m²") && line.contains("(geometry)") && line.contains("+4.05 sd"), "{line}");
+        assert!(
+            line.contains("100 kg·m²") && line.contains("(geometry)") && line.contains("+4.05 sd"),
+            "{line}"
+        );
     }
 
     #[test]

@@ -30,7 +30,9 @@ use nalgebra::{DMatrix, DVector};
 
 /// A map that does not fit its problem.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("a tie map of {given} entries for a problem of {count} parameters must cover each and use every reduced index 0..{reduced}")]
+#[error(
+    "a tie map of {given} entries for a problem of {count} parameters must cover each and use every reduced index 0..{reduced}"
+)]
 pub struct TieError {
     /// Entries given.
     pub given: usize,
@@ -69,6 +71,11 @@ impl<P: LeastSquares> Tied<P> {
         })
     }
 
+    /// The map: full parameter `i` is reduced parameter `map[i]`.
+    pub fn map(&self) -> &[usize] {
+        &self.map
+    }
+
     /// The full parameters of reduced `q`.
     pub fn expand(&self, q: &[f64]) -> Vec<f64> {
         self.map.iter().map(|&j| q[j]).collect()
@@ -78,7 +85,10 @@ impl<P: LeastSquares> Tied<P> {
     pub fn reduce(&self, p: &[f64]) -> Vec<f64> {
         (0..self.reduced)
             .map(|j| {
-                let tied: Vec<f64> = (0..p.len()).filter(|&i| self.map[i] == j).map(|i| p[i]).collect();
+                let tied: Vec<f64> = (0..p.len())
+                    .filter(|&i| self.map[i] == j)
+                    .map(|i| p[i])
+                    .collect();
                 tied.iter().sum::<f64>() / tied.len() as f64
             })
             .collect()
