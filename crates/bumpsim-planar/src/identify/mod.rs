@@ -72,7 +72,7 @@ use serde::Serialize;
 
 pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
-pub use priors::{MU, PriorSetting, TOTAL_MASS, priors};
+pub use priors::{MU, PriorSetting, TOTAL_MASS, priors, removing_all};
 pub use unknowns::{LINE_MARGIN, REACH, Unknowns};
 
 /// The reduced car, when a chain link is undetermined or not needed.
@@ -656,6 +656,7 @@ mod tests {
         let guess = [1000.0, 2500.0, 6.0, 1500.0, 1.2e6, 6.0, 1500.0, 1.2e6];
         let mut start = Setup::new(unknowns.car(&guess).unwrap());
         start.starts = 2;
+        start.priors = removing_all(&unknowns);
         let r = identify(&cases, &start, &|| {}).unwrap();
         let truth_values = unknowns.start();
         for (p, t) in r.parameters.iter().zip(&truth_values) {

@@ -115,6 +115,20 @@ pub fn priors(unknowns: &Unknowns, setup: &Setup) -> Result<Vec<Prior>, PlanarEr
     Ok(out)
 }
 
+/// Settings that remove every default prior of `unknowns` (a fit of the
+/// data alone: the tests of a model's own noise-free data).
+pub fn removing_all(unknowns: &Unknowns) -> Vec<PriorSetting> {
+    std::iter::once(TOTAL_MASS.to_string())
+        .chain(unknowns.names().into_iter().map(|(n, _)| n))
+        .filter(|n| !is_line(n))
+        .map(|name| PriorSetting {
+            name,
+            removed: true,
+            ..Default::default()
+        })
+        .collect()
+}
+
 fn is_line(name: &str) -> bool {
     name.starts_with("case '")
 }
