@@ -82,7 +82,10 @@ fn a_run_started_at_the_truth_does_not_leave_it_for_a_worse_predicting_car() {
     eprintln!("objective from the truth {:.4e} m²", from_truth.objective);
     // the run from the truth may improve the fit of the training tests (the
     // linear chain follows elastic-plastic boxes only on average), but must
-    // not trade the held-out yaw for it
+    // not trade the held-out yaw for it. Measured: the truth's offset yaw
+    // 95.5 %, the run's 90.2 % (I_z 2300 -> 2369 kg·m², the training 10°
+    // wall's yaw asks for more, the prior holds it); without the chain's
+    // priors it walked to a damper 50 times the truth's and 85 %
     for (t, f) in truth_fits.iter().zip(&fits) {
         assert!(
             f.fit_yaw >= t.fit_yaw - 10.0 && f.fit_x >= t.fit_x - 1.0,
