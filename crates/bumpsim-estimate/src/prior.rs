@@ -50,6 +50,11 @@ use serde::Serialize;
 /// (a 95 % two-sided disagreement).
 pub const MOVED_FAR: f64 = 2.0;
 
+/// A parameter whose posterior standard deviation of ln θ exceeds this
+/// fraction of its prior's spread is informed by its prior alone: the data
+/// carry less than half of its information (`1/s_post² < 2/s²`).
+pub const PRIOR_ONLY: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
 /// A prior that cannot be used.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum PriorError {
@@ -385,6 +390,25 @@ pub fn text(moved: &[Moved], format: &dyn Fn(&str, f64) -> String) -> String {
         .collect()
 }
 
+/// The priors on one parameter each whose parameter the data hardly
+/// inform: its posterior standard deviation of ln θ (`log_sd`, by
+/// parameter; `None`: none) above [`PRIOR_ONLY`] of the prior's spread.
+/// Returns the parameter's index and the prior.
+pub fn prior_only<'a>(priors: &'a [Prior], log_sd: &[Option<f64>]) -> Vec<(usize, &'a Prior)> {
+    priors
+        .iter()
+        .filter_map(|prior| match prior.terms.as_slice() {
+            [i] => log_sd
+                .get(*i)
+                .copied()
+                .flatten()
+                .filter(|sd| *sd > PRIOR_ONLY * prior.spread)
+                .map(|_| (*i, prior)),
+            _ => None,
+        })
+        .collect()
+}
+
 /// The warnings of priors the data moved by more than [`MOVED_FAR`].
 pub fn warnings(moved: &[Moved]) -> Vec<String> {
     moved
@@ -487,6 +511,19 @@ mod tests {
             line.contains("100 kg·m²") && line.contains("(geometry)") && line.contains("+4.05 sd"),
             "{line}"
         );
+    }
+
+    #[test]
+    fn a_parameter_the_data_hardly_inform_is_named() {
+        let priors = [
+            Prior::single("a", 0, 1.0, 0.2).unwrap(),
+            Prior::single("b", 1, 1.0, 0.2).unwrap(),
+            Prior::sum("ab", vec![0, 1], 2.0, 0.2).unwrap(),
+        ];
+        let found = prior_only(&priors, &[Some(0.19), Some(0.05)]);
+        assert_eq!(found.len(), 1);
+        assert_eq!((found[0].0, found[0].1.name.as_str()), (0, "a"));
+        assert!(prior_only(&priors, &[None, None]).is_empty());
     }
 
     #[test]

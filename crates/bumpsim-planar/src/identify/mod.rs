@@ -516,8 +516,11 @@ fn summarise(
         })
         .collect::<Result<Vec<_>, _>>()?;
     let negative = fits.iter().flat_map(CaseFit::warnings);
+    let mut uncertainty = uncertainty;
+    let prior_only = prior_only(priored, &theta, &mut uncertainty);
     let mut warnings = bumpsim_estimate::warnings(&uncertainty, &found.starts, best, negative);
     warnings.extend(bumpsim_estimate::prior::warnings(&moved));
+    warnings.extend(prior_only);
     let estimates = estimates(unknowns, &theta, &uncertainty);
     let mut result = PlanarIdentification {
         car,
@@ -541,6 +544,28 @@ fn summarise(
         result.warnings.push(r.statement.clone());
     }
     Ok(result)
+}
+
+/// The parameters the data hardly inform (their posterior spread near
+/// their prior's, [`bumpsim_estimate::prior::prior_only`]): marked not
+/// determined, a warning each.
+fn prior_only(priored: &Priored<Objective>, theta: &[f64], u: &mut Uncertainty) -> Vec<String> {
+    let log_sd: Vec<Option<f64>> = u
+        .standard_errors
+        .iter()
+        .zip(theta)
+        .map(|(se, t)| se.map(|se| se / t.abs()))
+        .collect();
+    bumpsim_estimate::prior::prior_only(priored.priors(), &log_sd)
+        .into_iter()
+        .map(|(i, prior)| {
+            u.determined[i] = Some(false);
+            format!(
+                "{} not determined by the data: its interval is mostly its prior's ({}, spread {:.3} of ln θ)",
+                prior.name, prior.source, prior.spread
+            )
+        })
+        .collect()
 }
 
 /// The estimates of the result, in the order of [`Unknowns::names`].
