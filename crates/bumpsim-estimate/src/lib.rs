@@ -30,6 +30,10 @@
 //!   and probabilities of passing (issue 39);
 //! - [`band`]: linearised predictive bands of histories from the
 //!   parameters' covariance, their coverage and width (issue 44);
+//! - [`prior`]: stated Gaussian priors on log parameters, added to any
+//!   problem as residuals, each reported with how far the data moved it;
+//!   [`tied`]: parameters tied together (a symmetric stage of a search)
+//!   (issue 44);
 //! - [`binomial`]: exact bounds of a probability from its draws, one-sided
 //!   when none fails (issue 45).
 //!
@@ -86,12 +90,14 @@ pub mod multistart;
 pub mod observer;
 pub mod polish;
 pub mod posterior;
+pub mod prior;
 pub mod propagate;
 pub mod reduce;
 pub mod sampler;
 pub mod search;
 pub mod sobol;
 pub mod text;
+pub mod tied;
 pub mod uncertainty;
 
 /// Every warning of an estimate, in the one order every model prints:

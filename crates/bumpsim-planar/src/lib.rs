@@ -62,6 +62,7 @@ pub mod series;
 pub mod simulate;
 pub mod striker;
 pub mod study;
+pub mod study_priors;
 pub mod synth;
 pub mod text;
 pub mod tyre;

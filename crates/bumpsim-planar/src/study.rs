@@ -11,6 +11,11 @@
 //! friction = false          # optional: estimate the lateral tyre friction μ_y of both axles
 //! cornering = false         # optional: estimate the tyres' cornering stiffness C_α
 //! mass = "1265 kg"          # optional: the test sheet's mass, checked against the identified car
+//!                           # and a prior on its total mass
+//!
+//! [priors]                  # optional: override ({ value, spread }), remove ("none") or add priors
+//! body.yaw_inertia = { value = "2300 kg m^2", spread = 0.2 }   # spread: sd of ln θ (0.2 ≈ ±20 %)
+//! tyres.mu_lateral = "none"
 //!
 //! [[case]]
 //! name = "angled"
@@ -69,6 +74,7 @@ struct StudyFile {
     _kind: Option<String>,
     model: ModelFile,
     case: Vec<CaseFile>,
+    priors: Option<toml::Table>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -188,6 +194,12 @@ impl PlanarStudy {
             friction: file.model.friction,
             cornering: file.model.cornering,
             mass,
+            priors: match &file.priors {
+                Some(table) => {
+                    crate::study_priors::settings(table).map_err(|e| error(e.to_string()))?
+                }
+                None => Vec::new(),
+            },
             ..defaults
         };
         let mut loader = Loader::new();

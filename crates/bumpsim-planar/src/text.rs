@@ -242,6 +242,7 @@ pub fn identification_summary(
         "  {}\n",
         bumpsim_estimate::text::starts_line(&result.starts, result.iterations, result.run_time)
     );
+    s += &prior_lines(result, &parameters);
     s += "  case fits (x: mean of the sills; yaw from their difference; each replayed from its time zero, in its files' time)\n";
     let fits = result
         .fits
@@ -265,6 +266,22 @@ pub fn identification_summary(
         s += &format!("  warning: {w}\n");
     }
     s
+}
+
+/// The stated priors, a line each, with how far the data moved them
+/// ([`bumpsim_estimate::prior::text`]); empty without any.
+fn prior_lines(
+    result: &crate::identify::PlanarIdentification,
+    parameters: &[bumpsim_estimate::uncertainty::Parameter],
+) -> String {
+    let format = |name: &str, value: f64| match parameters.iter().find(|p| p.name == name) {
+        Some(p) => p.format(value),
+        None => format_quantity(value, Dimension::Mass),
+    };
+    bumpsim_estimate::prior::text(&result.priors, &format)
+        .lines()
+        .map(|l| format!("  {l}\n"))
+        .collect()
 }
 
 /// The forward predictions' lines: each test's fit per channel and the

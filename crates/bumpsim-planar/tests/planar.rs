@@ -516,6 +516,8 @@ mod independent;
 mod regression;
 #[path = "planar/sensors.rs"]
 mod sensors;
+#[path = "planar/truth_start.rs"]
+mod truth_start;
 #[path = "planar/tyres.rs"]
 mod tyres;
 #[path = "planar/yaw_rate.rs"]

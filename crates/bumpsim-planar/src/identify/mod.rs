@@ -53,16 +53,18 @@
 mod objective;
 mod plausible;
 mod predict;
+mod priors;
 mod reduce;
+mod staged;
 mod unknowns;
 
 use crate::car::{Body, PlanarCar, PlanarError, SideChain, parameter};
 use crate::drive::{Drive, Sensor};
 use bumpsim_core::units::Dimension;
 use bumpsim_estimate::lm::{self, LeastSquares};
-use bumpsim_estimate::multistart::{self, Search, Searched, Starts};
+use bumpsim_estimate::multistart::{Searched, Starts};
 use bumpsim_estimate::observer::Observer;
-use bumpsim_estimate::search::exploring;
+use bumpsim_estimate::prior::Priored;
 use bumpsim_estimate::uncertainty::{Correlation, Estimated, Parameter, Uncertainty};
 use nalgebra::DMatrix;
 use objective::Objective;
@@ -70,6 +72,7 @@ use serde::Serialize;
 
 pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
+pub use priors::{MU, PriorSetting, TOTAL_MASS, priors, removing_all};
 pub use unknowns::{LINE_MARGIN, REACH, Unknowns};
 
 /// The reduced car, when a chain link is undetermined or not needed.
@@ -139,6 +142,13 @@ pub struct Setup {
     /// The test sheet's total mass of the car, kg: the identified car's is
     /// checked against it ([`crate::identify`]'s plausibility).
     pub mass: Option<f64>,
+    /// The study's settings of the stated priors ([`priors`]): overrides,
+    /// removals, additions of the defaults.
+    pub priors: Vec<PriorSetting>,
+    /// Search a symmetric car first and start the full search from it
+    /// (module `staged`); false: the starts are the template and random
+    /// points around it.
+    pub staged: bool,
 }
 
 impl Setup {
@@ -152,6 +162,8 @@ impl Setup {
             friction: false,
             cornering: false,
             mass: None,
+            priors: Vec::new(),
+            staged: true,
         }
     }
 }
@@ -201,6 +213,12 @@ pub struct PlanarIdentification {
     /// Warnings: parameters at a bound or not determined, starts, negative
     /// fits, the reduced car.
     pub warnings: Vec<String>,
+    /// The stated priors ([`priors`]), each with the estimate and how far
+    /// the data moved it, in prior standard deviations.
+    pub priors: Vec<bumpsim_estimate::prior::Moved>,
+    /// The noise of one residual the priors weigh against, m
+    /// ([`bumpsim_estimate::prior::noise`]).
+    pub prior_noise: f64,
     /// The reduced car that fits as well, if any; its `model` serialised as
     /// the car's parts.
     #[serde(serialize_with = "reduction_parts")]
@@ -406,36 +424,39 @@ pub fn identify(
 ) -> Result<PlanarIdentification, PlanarError> {
     let clock = std::time::Instant::now();
     let unknowns = check(cases, setup)?;
-    let start = unknowns.search(&unknowns.start());
+    let stated = priors(&unknowns, setup)?;
     let (lower, upper) = unknowns.bounds(&unknowns.start());
     let objective = Objective::new(cases, &unknowns)?;
-    let solver = solver();
-    let first = exploring(setup.starts, 1);
-    let points = (0..first)
-        .map(|k| match k {
-            0 => start.clone(),
-            k => unknowns.draw(&start, setup.spread, setup.seed, k as u64),
-        })
-        .collect();
-    let search = Search {
+    let plan = staged::Plan {
+        unknowns: &unknowns,
+        priors: &stated,
         starts: setup.starts,
         seed: setup.seed,
-        solver,
-        lower: &lower,
-        upper: &upper,
-        range: (&lower, &upper),
+        spread: setup.spread,
+        staged: setup.staged,
+        solver: solver(),
+        bounds: (&lower, &upper),
     };
-    let found =
-        multistart::search(&|| objective.clone(), points, &search, observer).map_err(|e| {
-            PlanarError::Missing {
-                name: "identification".into(),
-                expected: format!(
-                    "no start of {} could be evaluated: check the forces and the template",
-                    e.starts
-                ),
-            }
+    let found = staged::search(&objective, &plan, observer).map_err(|e| PlanarError::Missing {
+        name: "identification".into(),
+        expected: format!(
+            "no start of {} could be evaluated: check the forces and the template",
+            e.starts
+        ),
+    })?;
+    let priored =
+        Priored::new(objective.clone(), stated, found.noise).map_err(|e| PlanarError::Missing {
+            name: "[priors]".into(),
+            expected: e.to_string(),
         })?;
-    summarise(cases, setup, &objective, &found, (&lower, &upper), clock)
+    summarise(
+        cases,
+        setup,
+        &priored,
+        &found.searched,
+        (&lower, &upper),
+        clock,
+    )
 }
 
 /// The solver's tolerances: 300 iterations, relative decrease 1e-10, step 1e-8.
@@ -451,22 +472,25 @@ fn solver() -> lm::Settings {
 fn summarise(
     cases: &[PlanarCase],
     setup: &Setup,
-    objective: &Objective,
+    priored: &Priored<Objective>,
     found: &Searched,
     bounds: (&[f64], &[f64]),
     clock: std::time::Instant,
 ) -> Result<PlanarIdentification, PlanarError> {
     let best = found.best();
     let p = &best.parameters;
+    let objective = priored.problem();
     let unknowns = objective.unknowns();
     let theta = unknowns.theta(p);
     let car = unknowns.car(&theta)?;
-    let mut r = vec![0.0; objective.residual_count()];
+    let mut r = vec![0.0; priored.residual_count()];
     let mut jacobian = DMatrix::zeros(r.len(), p.len());
     let parameters = unknowns.parameters();
     let free: Vec<usize> = (0..p.len()).collect();
     // a Jacobian that cannot be evaluated leaves every parameter undetermined
-    let evaluated = objective.evaluate(p, &mut r, Some(&mut jacobian));
+    let evaluated = priored.evaluate(p, &mut r, Some(&mut jacobian));
+    let data: f64 = r[..objective.residual_count()].iter().map(|v| v * v).sum();
+    let moved = bumpsim_estimate::prior::moved(priored.priors(), p);
     let series = objective.series();
     let uncertainty = bumpsim_estimate::uncertainty::uncertainty(&Estimated {
         parameters: &parameters,
@@ -492,12 +516,16 @@ fn summarise(
         })
         .collect::<Result<Vec<_>, _>>()?;
     let negative = fits.iter().flat_map(CaseFit::warnings);
-    let warnings = bumpsim_estimate::warnings(&uncertainty, &found.starts, best, negative);
+    let mut uncertainty = uncertainty;
+    let prior_only = prior_only(priored, &theta, &mut uncertainty);
+    let mut warnings = bumpsim_estimate::warnings(&uncertainty, &found.starts, best, negative);
+    warnings.extend(bumpsim_estimate::prior::warnings(&moved));
+    warnings.extend(prior_only);
     let estimates = estimates(unknowns, &theta, &uncertainty);
     let mut result = PlanarIdentification {
         car,
         parameters: estimates,
-        objective: best.objective,
+        objective: data,
         starts: found.starts,
         iterations: best.iterations,
         run_time: clock.elapsed().as_secs_f64(),
@@ -505,6 +533,8 @@ fn summarise(
         inflation: uncertainty.inflation,
         uncertainty,
         warnings,
+        priors: moved,
+        prior_noise: priored.noise(),
         reduction: None,
     };
     let checks = plausible::checks(&result, setup);
@@ -514,6 +544,28 @@ fn summarise(
         result.warnings.push(r.statement.clone());
     }
     Ok(result)
+}
+
+/// The parameters the data hardly inform (their posterior spread near
+/// their prior's, [`bumpsim_estimate::prior::prior_only`]): marked not
+/// determined, a warning each.
+fn prior_only(priored: &Priored<Objective>, theta: &[f64], u: &mut Uncertainty) -> Vec<String> {
+    let log_sd: Vec<Option<f64>> = u
+        .standard_errors
+        .iter()
+        .zip(theta)
+        .map(|(se, t)| se.map(|se| se / t.abs()))
+        .collect();
+    bumpsim_estimate::prior::prior_only(priored.priors(), &log_sd)
+        .into_iter()
+        .map(|(i, prior)| {
+            u.determined[i] = Some(false);
+            format!(
+                "{} not determined by the data: its interval is mostly its prior's ({}, spread {:.3} of ln θ)",
+                prior.name, prior.source, prior.spread
+            )
+        })
+        .collect()
 }
 
 /// The estimates of the result, in the order of [`Unknowns::names`].
@@ -629,6 +681,7 @@ mod tests {
         let guess = [1000.0, 2500.0, 6.0, 1500.0, 1.2e6, 6.0, 1500.0, 1.2e6];
         let mut start = Setup::new(unknowns.car(&guess).unwrap());
         start.starts = 2;
+        start.priors = removing_all(&unknowns);
         let r = identify(&cases, &start, &|| {}).unwrap();
         let truth_values = unknowns.start();
         for (p, t) in r.parameters.iter().zip(&truth_values) {

@@ -237,8 +237,10 @@ mod tests {
     fn an_undetermined_side_chain_link_is_merged_and_named() {
         let truth = truth();
         let cases = [case(&truth, "left", 0.4), case(&truth, "right", -0.3)];
+        let unknowns = crate::identify::Unknowns::new(&truth, false, false, &cases);
         let setup = Setup {
             starts: 2,
+            priors: crate::identify::removing_all(&unknowns),
             ..Setup::new(truth.clone())
         };
         let result = identify(&cases, &setup, &|| {}).unwrap();

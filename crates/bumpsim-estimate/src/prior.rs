@@ -1,0 +1,535 @@
+//! Stated priors: what an engineer knows of a parameter before the test
+//! (the test sheet's mass, a yaw inertia from the car's geometry, a tyre's
+//! grip), as Gaussian priors on `ln θ` added to any least-squares problem
+//! (issue 44, item 3).
+//!
+//! A prior on `v(p) = ln Σ_{i∈S} e^{p_i}` (one parameter, or the sum of
+//! several: a total mass) with centre `c` and spread `s` (the standard
+//! deviation of `ln θ`, ≈ a relative spread: 0.02 is ±2 %) adds the
+//! residual `r = σ (v(p) − ln c)/s` to the problem's, where σ is the noise
+//! of one of the problem's residuals ([`noise`]). Minimising
+//! `F + σ² Σ z²` with `z = (v − ln c)/s` is then maximising the posterior
+//! `−F/(2σ²) − Σ z²/2` (Gaussian errors, log-normal priors; Tarantola 2005,
+//! ch. 3), and the problem's uncertainty ([`crate::uncertainty`]) taken over
+//! the extended residuals is the Laplace approximation of that posterior:
+//! `Cov(ln θ) = σ² (JᵀJ + σ² Σ g gᵀ / s²)⁻¹`, `g = ∇v`.
+//!
+//! The problem's own objective is untouched: [`Priored`] wraps it. Each
+//! prior is reported with how far the data moved the parameter from it,
+//! `z` in prior standard deviations ([`Moved`]): |z| above
+//! [`MOVED_FAR`] says the data and the prior disagree.
+//!
+//! ```
+//! use bumpsim_estimate::lm::{LeastSquares, minimise, Settings};
+//! use bumpsim_estimate::prior::{Prior, Priored, moved};
+//! use nalgebra::DMatrix;
+//! /// r = (p0 + p1 − 1): only the sum is determined
+//! struct Sum;
+//! impl LeastSquares for Sum {
+//!     fn residual_count(&self) -> usize { 1 }
+//!     fn parameter_count(&self) -> usize { 2 }
+//!     fn evaluate(&self, p: &[f64], r: &mut [f64], j: Option<&mut DMatrix<f64>>) -> bool {
+//!         r[0] = p[0] + p[1] - 1.0;
+//!         if let Some(j) = j { j[(0, 0)] = 1.0; j[(0, 1)] = 1.0; }
+//!         true
+//!     }
+//! }
+//! // a prior θ0 = e^0.2 ± 1 % separates them
+//! let prior = Prior::single("a", 0, 0.2f64.exp(), 0.01).unwrap();
+//! let problem = Priored::new(Sum, vec![prior.clone()], 0.1).unwrap();
+//! let out = minimise(&problem, &[0.0, 0.0], &[-5.0; 2], &[5.0; 2], &Settings::default());
+//! assert!((out.parameters[0] - 0.2).abs() < 1e-3 && (out.parameters[1] - 0.8).abs() < 1e-3);
+//! assert!(moved(&[prior], &out.parameters)[0].z.abs() < 0.1);
+//! ```
+
+use crate::lm::LeastSquares;
+use nalgebra::{DMatrix, DVector};
+use serde::Serialize;
+
+/// A prior's |z| above this: the data moved the parameter far from it
+/// (a 95 % two-sided disagreement).
+pub const MOVED_FAR: f64 = 2.0;
+
+/// A parameter whose posterior standard deviation of ln θ exceeds this
+/// fraction of its prior's spread is informed by its prior alone: the data
+/// carry less than half of its information (`1/s_post² < 2/s²`).
+pub const PRIOR_ONLY: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
+/// A prior that cannot be used.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PriorError {
+    /// Its centre is not a finite positive value.
+    #[error("prior '{name}': centre {value:?} must be finite and positive")]
+    Centre {
+        /// The prior's name.
+        name: String,
+        /// The value given.
+        value: f64,
+    },
+    /// Its spread is not a finite positive number.
+    #[error(
+        "prior '{name}': spread {value:?} must be finite and positive (the standard deviation of ln θ, e.g. 0.1 for ±10 %)"
+    )]
+    Spread {
+        /// The prior's name.
+        name: String,
+        /// The value given.
+        value: f64,
+    },
+    /// It names no parameter, or one the problem does not have.
+    #[error("prior '{name}': parameter index {index} outside the problem's {count} parameters")]
+    Index {
+        /// The prior's name.
+        name: String,
+        /// The index given.
+        index: usize,
+        /// The problem's parameter count.
+        count: usize,
+    },
+    /// The noise scale is not finite and positive.
+    #[error("the priors' noise scale {value:?} must be finite and positive")]
+    Noise {
+        /// The value given.
+        value: f64,
+    },
+}
+
+/// A Gaussian prior on `ln Σ_{i∈terms} θ_i` (see the module).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Prior {
+    /// Its name (`total_mass`, `body.yaw_inertia`).
+    pub name: String,
+    /// The log parameters whose values are summed (one: a prior on it).
+    pub terms: Vec<usize>,
+    /// The centre, SI (> 0).
+    pub centre: f64,
+    /// The standard deviation of the log, ≈ relative (> 0).
+    pub spread: f64,
+    /// Where it comes from, for the report (`the test sheet`).
+    pub source: String,
+}
+
+impl Prior {
+    /// A prior on the sum of the parameters `terms`, checked.
+    pub fn sum(
+        name: impl Into<String>,
+        terms: Vec<usize>,
+        centre: f64,
+        spread: f64,
+    ) -> Result<Prior, PriorError> {
+        let name = name.into();
+        if !(centre.is_finite() && centre > 0.0) {
+            return Err(PriorError::Centre {
+                name,
+                value: centre,
+            });
+        }
+        if !(spread.is_finite() && spread > 0.0) {
+            return Err(PriorError::Spread {
+                name,
+                value: spread,
+            });
+        }
+        if terms.is_empty() {
+            return Err(PriorError::Index {
+                name,
+                index: 0,
+                count: 0,
+            });
+        }
+        Ok(Prior {
+            name,
+            terms,
+            centre,
+            spread,
+            source: String::new(),
+        })
+    }
+
+    /// A prior on parameter `index` alone.
+    pub fn single(
+        name: impl Into<String>,
+        index: usize,
+        centre: f64,
+        spread: f64,
+    ) -> Result<Prior, PriorError> {
+        Prior::sum(name, vec![index], centre, spread)
+    }
+
+    /// The same prior, its source named.
+    pub fn from_source(self, source: impl Into<String>) -> Prior {
+        Prior {
+            source: source.into(),
+            ..self
+        }
+    }
+
+    /// `v(p) = ln Σ e^{p_i}` over the terms, and its gradient's entries
+    /// (the shares `e^{p_i}/Σ`), stably.
+    fn value(&self, p: &[f64]) -> (f64, Vec<f64>) {
+        let top = self
+            .terms
+            .iter()
+            .map(|&i| p[i])
+            .fold(f64::NEG_INFINITY, f64::max);
+        let weights: Vec<f64> = self.terms.iter().map(|&i| (p[i] - top).exp()).collect();
+        let total: f64 = weights.iter().sum();
+        (
+            top + total.ln(),
+            weights.iter().map(|w| w / total).collect(),
+        )
+    }
+
+    /// How many prior standard deviations `p` lies from the centre.
+    pub fn z(&self, p: &[f64]) -> f64 {
+        (self.value(p).0 - self.centre.ln()) / self.spread
+    }
+}
+
+/// A problem with priors: its residuals followed by one per prior.
+#[derive(Debug, Clone)]
+pub struct Priored<P> {
+    problem: P,
+    priors: Vec<Prior>,
+    noise: f64,
+}
+
+impl<P: LeastSquares> Priored<P> {
+    /// `problem` with `priors`, each residual `noise · z` (`noise`: the
+    /// standard deviation of one of the problem's residuals, [`noise`]).
+    pub fn new(problem: P, priors: Vec<Prior>, noise: f64) -> Result<Priored<P>, PriorError> {
+        let count = problem.parameter_count();
+        if !(noise.is_finite() && noise > 0.0) {
+            return Err(PriorError::Noise { value: noise });
+        }
+        for prior in &priors {
+            if let Some(&index) = prior.terms.iter().find(|&&i| i >= count) {
+                return Err(PriorError::Index {
+                    name: prior.name.clone(),
+                    index,
+                    count,
+                });
+            }
+        }
+        Ok(Priored {
+            problem,
+            priors,
+            noise,
+        })
+    }
+
+    /// The wrapped problem.
+    pub fn problem(&self) -> &P {
+        &self.problem
+    }
+
+    /// The priors.
+    pub fn priors(&self) -> &[Prior] {
+        &self.priors
+    }
+
+    /// The noise scale of the priors' residuals.
+    pub fn noise(&self) -> f64 {
+        self.noise
+    }
+
+    /// Writes the priors' residuals after the problem's `m` and, when
+    /// asked, their Jacobian rows; returns the rows' gradients.
+    fn rows(&self, p: &[f64], residuals: &mut [f64]) -> Vec<(f64, Vec<(usize, f64)>)> {
+        let m = self.problem.residual_count();
+        self.priors
+            .iter()
+            .enumerate()
+            .map(|(k, prior)| {
+                let (v, shares) = prior.value(p);
+                let factor = self.noise / prior.spread;
+                residuals[m + k] = factor * (v - prior.centre.ln());
+                let row = prior
+                    .terms
+                    .iter()
+                    .zip(shares)
+                    .map(|(&i, s)| (i, factor * s))
+                    .collect();
+                (residuals[m + k], row)
+            })
+            .collect()
+    }
+}
+
+impl<P: LeastSquares> LeastSquares for Priored<P> {
+    fn residual_count(&self) -> usize {
+        self.problem.residual_count() + self.priors.len()
+    }
+
+    fn parameter_count(&self) -> usize {
+        self.problem.parameter_count()
+    }
+
+    fn evaluate(
+        &self,
+        p: &[f64],
+        residuals: &mut [f64],
+        jacobian: Option<&mut DMatrix<f64>>,
+    ) -> bool {
+        let (m, n) = (self.problem.residual_count(), self.parameter_count());
+        let ok = match jacobian {
+            None => self.problem.evaluate(p, &mut residuals[..m], None),
+            Some(jac) => {
+                let mut inner = DMatrix::zeros(m, n);
+                let ok = self
+                    .problem
+                    .evaluate(p, &mut residuals[..m], Some(&mut inner));
+                jac.fill(0.0);
+                jac.rows_mut(0, m).copy_from(&inner);
+                let rows = self.rows(p, residuals);
+                for (k, (_, row)) in rows.into_iter().enumerate() {
+                    for (i, d) in row {
+                        jac[(m + k, i)] += d;
+                    }
+                }
+                return ok;
+            }
+        };
+        self.rows(p, residuals);
+        ok
+    }
+
+    fn normal(
+        &self,
+        p: &[f64],
+        residuals: &mut [f64],
+        jtj: &mut DMatrix<f64>,
+        gradient: &mut DVector<f64>,
+    ) -> bool {
+        let m = self.problem.residual_count();
+        let ok = self.problem.normal(p, &mut residuals[..m], jtj, gradient);
+        for (r, row) in self.rows(p, residuals) {
+            for &(i, a) in &row {
+                gradient[i] += r * a;
+                for &(j, b) in &row {
+                    jtj[(i, j)] += a * b;
+                }
+            }
+        }
+        ok
+    }
+}
+
+/// The noise of one residual the priors weigh against: `√(κ F/(n − q))`
+/// with F the problem's own objective, n its residuals, q its parameters
+/// and κ the variance inflation of its correlated residuals
+/// ([`crate::uncertainty::Uncertainty::inflation`]): the σ of the
+/// problem's uncertainty, so that the covariance of the priored problem is
+/// the posterior's. A floor keeps it positive on an exact fit.
+pub fn noise(objective: f64, residuals: usize, parameters: usize, inflation: f64) -> f64 {
+    let dof = residuals.saturating_sub(parameters).max(1) as f64;
+    let variance = inflation.max(1.0) * objective / dof;
+    match variance.is_finite() && variance > 0.0 {
+        true => variance.sqrt(),
+        false => f64::MIN_POSITIVE.sqrt(),
+    }
+}
+
+/// A prior and where the data left its parameter.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Moved {
+    /// The prior's name.
+    pub name: String,
+    /// Its centre, SI.
+    pub centre: f64,
+    /// Its spread (standard deviation of the log).
+    pub spread: f64,
+    /// Where it comes from.
+    pub source: String,
+    /// The estimate (of the sum, for a prior on several parameters), SI.
+    pub estimate: f64,
+    /// How far the data moved it, in prior standard deviations,
+    /// `(ln θ̂ − ln c)/s`.
+    pub z: f64,
+}
+
+/// Each prior with the estimate at `p` and how far the data moved it.
+pub fn moved(priors: &[Prior], p: &[f64]) -> Vec<Moved> {
+    priors
+        .iter()
+        .map(|prior| Moved {
+            name: prior.name.clone(),
+            centre: prior.centre,
+            spread: prior.spread,
+            source: prior.source.clone(),
+            estimate: prior.value(p).0.exp(),
+            z: prior.z(p),
+        })
+        .collect()
+}
+
+/// One line per prior: `prior body.yaw_inertia: 2137 ± 20 % (the car's
+/// geometry) -> 2290 (moved +0.36 sd)`, a warning where |z| > [`MOVED_FAR`];
+/// values printed by `format` (the model's units).
+pub fn text(moved: &[Moved], format: &dyn Fn(&str, f64) -> String) -> String {
+    moved
+        .iter()
+        .map(|m| {
+            let source = match m.source.is_empty() {
+                true => String::new(),
+                false => format!(" ({})", m.source),
+            };
+            let far = match m.z.abs() > MOVED_FAR {
+                true => ": the data disagree with the prior",
+                false => "",
+            };
+            format!(
+                "prior {}: {} ± {:.3} (ln){source} -> {} (moved {:+.2} sd){far}\n",
+                m.name,
+                format(&m.name, m.centre),
+                m.spread,
+                format(&m.name, m.estimate),
+                m.z
+            )
+        })
+        .collect()
+}
+
+/// The priors on one parameter each whose parameter the data hardly
+/// inform: its posterior standard deviation of ln θ (`log_sd`, by
+/// parameter; `None`: none) above [`PRIOR_ONLY`] of the prior's spread.
+/// Returns the parameter's index and the prior.
+pub fn prior_only<'a>(priors: &'a [Prior], log_sd: &[Option<f64>]) -> Vec<(usize, &'a Prior)> {
+    priors
+        .iter()
+        .filter_map(|prior| match prior.terms.as_slice() {
+            [i] => log_sd
+                .get(*i)
+                .copied()
+                .flatten()
+                .filter(|sd| *sd > PRIOR_ONLY * prior.spread)
+                .map(|_| (*i, prior)),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The warnings of priors the data moved by more than [`MOVED_FAR`].
+pub fn warnings(moved: &[Moved]) -> Vec<String> {
+    moved
+        .iter()
+        .filter(|m| m.z.abs() > MOVED_FAR)
+        .map(|m| {
+            format!(
+                "prior {}: the data moved it {:+.1} prior standard deviations (centre {:.4e}, estimate {:.4e}): the data and the prior disagree",
+                m.name, m.z, m.centre, m.estimate
+            )
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    /// Two residuals on three parameters: r = [p0 − 1, p1 + p2 − 2].
+    struct Linear;
+    impl LeastSquares for Linear {
+        fn residual_count(&self) -> usize {
+            2
+        }
+        fn parameter_count(&self) -> usize {
+            3
+        }
+        fn evaluate(&self, p: &[f64], r: &mut [f64], j: Option<&mut DMatrix<f64>>) -> bool {
+            r[0] = p[0] - 1.0;
+            r[1] = p[1] + p[2] - 2.0;
+            if let Some(j) = j {
+                j.fill(0.0);
+                j[(0, 0)] = 1.0;
+                j[(1, 1)] = 1.0;
+                j[(1, 2)] = 1.0;
+            }
+            true
+        }
+    }
+
+    #[test]
+    fn the_jacobian_and_the_normal_equations_agree_with_differences() {
+        let prior = Prior::sum("total", vec![0, 2], 5.0, 0.1).unwrap();
+        let single = Prior::single("one", 1, 2.0, 0.3).unwrap();
+        let problem = Priored::new(Linear, vec![prior, single], 0.5).unwrap();
+        let p = [0.3, -0.2, 1.1];
+        let mut r = vec![0.0; 4];
+        let mut jac = DMatrix::zeros(4, 3);
+        assert!(problem.evaluate(&p, &mut r, Some(&mut jac)));
+        // the sum prior's residual: 0.5 (ln(e^0.3 + e^1.1) − ln 5)/0.1
+        let v = (0.3f64.exp() + 1.1f64.exp()).ln();
+        assert_relative_eq!(r[2], 5.0 * (v - 5f64.ln()), epsilon = 1e-12);
+        for j in 0..3 {
+            let mut q = p;
+            q[j] += 1e-7;
+            let mut rq = vec![0.0; 4];
+            problem.evaluate(&q, &mut rq, None);
+            for i in 0..4 {
+                assert_relative_eq!((rq[i] - r[i]) / 1e-7, jac[(i, j)], epsilon = 1e-5);
+            }
+        }
+        let (mut jtj, mut g) = (DMatrix::zeros(3, 3), DVector::zeros(3));
+        let mut r2 = vec![0.0; 4];
+        assert!(problem.normal(&p, &mut r2, &mut jtj, &mut g));
+        assert_relative_eq!(jtj, jac.transpose() * &jac, epsilon = 1e-12);
+        assert_relative_eq!(
+            g,
+            jac.transpose() * DVector::from_column_slice(&r),
+            epsilon = 1e-12
+        );
+    }
+
+    #[test]
+    fn hostile_priors_are_refused_by_name() {
+        let e = |r: Result<Prior, PriorError>| r.unwrap_err().to_string();
+        assert!(e(Prior::single("m", 0, f64::NAN, 0.1)).contains("prior 'm': centre"));
+        assert!(e(Prior::single("m", 0, -3.0, 0.1)).contains("centre"));
+        assert!(e(Prior::single("m", 0, 3.0, -0.1)).contains("prior 'm': spread"));
+        assert!(e(Prior::single("m", 0, 3.0, f64::INFINITY)).contains("spread"));
+        let far = Prior::single("far", 7, 1.0, 0.1).unwrap();
+        let Err(err) = Priored::new(Linear, vec![far], 1.0) else {
+            panic!("an index beyond the problem is refused")
+        };
+        assert!(err.to_string().contains("prior 'far'"), "{err}");
+        assert!(Priored::new(Linear, vec![], f64::NAN).is_err());
+    }
+
+    #[test]
+    fn moved_counts_prior_standard_deviations_and_warns_beyond_two() {
+        let prior = Prior::single("I", 0, 100.0, 0.1)
+            .unwrap()
+            .from_source("geometry");
+        let out = moved(&[prior], &[(100f64 * 1.5).ln()]);
+        assert_relative_eq!(out[0].z, 1.5f64.ln() / 0.1, epsilon = 1e-12);
+        assert_relative_eq!(out[0].estimate, 150.0, epsilon = 1e-9);
+        assert_eq!(warnings(&out).len(), 1);
+        let line = text(&out, &|_, v| format!("{v:.0} kg·m²"));
+        assert!(
+            line.contains("100 kg·m²") && line.contains("(geometry)") && line.contains("+4.05 sd"),
+            "{line}"
+        );
+    }
+
+    #[test]
+    fn a_parameter_the_data_hardly_inform_is_named() {
+        let priors = [
+            Prior::single("a", 0, 1.0, 0.2).unwrap(),
+            Prior::single("b", 1, 1.0, 0.2).unwrap(),
+            Prior::sum("ab", vec![0, 1], 2.0, 0.2).unwrap(),
+        ];
+        let found = prior_only(&priors, &[Some(0.19), Some(0.05)]);
+        assert_eq!(found.len(), 1);
+        assert_eq!((found[0].0, found[0].1.name.as_str()), (0, "a"));
+        assert!(prior_only(&priors, &[None, None]).is_empty());
+    }
+
+    #[test]
+    fn noise_is_the_inflated_residual_deviation() {
+        assert_relative_eq!(noise(8.0, 10, 2, 1.0), 1.0);
+        assert_relative_eq!(noise(8.0, 10, 2, 4.0), 2.0);
+        assert!(noise(0.0, 10, 2, 1.0) > 0.0);
+    }
+}

@@ -1,0 +1,190 @@
+//! The staged search of a planar identification with its priors (issue 44,
+//! items 3 and 4).
+//!
+//! 1. **Symmetric stage.** When the two chains have the same size, the
+//!    right chain is tied to the left ([`bumpsim_estimate::tied`]) and the
+//!    tied car (body, one chain, tyres, lines of action) is searched from the
+//!    template and a few random starts: the 1-D-like fit of the tests'
+//!    common x motion, which the symmetric tests determine best.
+//! 2. **Full search** from the symmetric optimum, the template and random
+//!    starts within the study's `spread` of the template, refined and polished as every search of
+//!    the layer ([`bumpsim_estimate::multistart`]).
+//!
+//! The priors weigh against the noise of one residual,
+//! `σ = √(κ F/(n − q))` ([`bumpsim_estimate::prior::noise`]), which is
+//! known only at an optimum: each stage takes σ at the start it starts
+//! from (the symmetric stage's at the template, where the misfit makes the
+//! priors strong and keeps the first stage near them), and the best of the
+//! full search is polished again with σ at its own optimum until σ changes
+//! by less than 10 %.
+
+use super::Unknowns;
+use super::objective::Objective;
+use bumpsim_estimate::lm::{self, LeastSquares};
+use bumpsim_estimate::multistart::{self, AllFailed, Search, Searched};
+use bumpsim_estimate::observer::{Observer, Silent};
+use bumpsim_estimate::prior::{Prior, Priored, noise};
+use bumpsim_estimate::search::exploring;
+use bumpsim_estimate::tied::Tied;
+use bumpsim_estimate::uncertainty::lag_one;
+
+/// What the staged search found.
+pub(super) struct Found {
+    /// The full search (its best polished at the final noise).
+    pub searched: Searched,
+    /// The noise the priors weigh against at the best.
+    pub noise: f64,
+}
+
+/// How to search.
+pub(super) struct Plan<'a> {
+    pub unknowns: &'a Unknowns,
+    pub priors: &'a [Prior],
+    pub starts: usize,
+    pub seed: u64,
+    pub spread: f64,
+    pub staged: bool,
+    pub solver: lm::Settings,
+    pub bounds: (&'a [f64], &'a [f64]),
+}
+
+/// The noise of one residual of `objective` at `p` (∞-safe).
+pub(super) fn noise_at(objective: &Objective, p: &[f64]) -> f64 {
+    let mut r = vec![0.0; objective.residual_count()];
+    let ok = objective.evaluate(p, &mut r, None);
+    let f: f64 = r.iter().map(|v| v * v).sum();
+    let rho = lag_one(&r, &objective.series());
+    let inflation = (1.0 + rho) / (1.0 - rho);
+    match ok && f.is_finite() {
+        true => noise(f, r.len(), p.len(), inflation),
+        false => 1.0,
+    }
+}
+
+/// Runs the staged search (see the module).
+pub(super) fn search(
+    objective: &Objective,
+    plan: &Plan,
+    observer: &dyn Observer,
+) -> Result<Found, AllFailed> {
+    let (lower, upper) = plan.bounds;
+    let mut start = plan.unknowns.search(&plan.unknowns.start());
+    let mut sigma = noise_at(objective, &start);
+    if let Some(map) = plan.staged.then(|| ties(plan.unknowns)).flatten() {
+        let priored = Priored::new(objective.clone(), plan.priors.to_vec(), sigma)
+            .expect("the priors were checked");
+        let tied = Tied::new(priored, map).expect("a symmetric car's tie map");
+        let (lo, hi) = (tied.reduce(lower), tied.reduce(upper));
+        let centre = tied.reduce(&start);
+        let count = plan.starts.div_ceil(4).clamp(1, 4);
+        let points = (0..count)
+            .map(|k| match k {
+                0 => centre.clone(),
+                k => draw(&centre, plan, k),
+            })
+            .collect();
+        let search = Search {
+            starts: count,
+            seed: plan.seed,
+            solver: plan.solver,
+            lower: &lo,
+            upper: &hi,
+            range: (&lo, &hi),
+        };
+        let make = || {
+            let priored = Priored::new(objective.clone(), plan.priors.to_vec(), sigma)
+                .expect("the priors were checked");
+            Tied::new(priored, tied.map().to_vec()).expect("a symmetric car's tie map")
+        };
+        if let Ok(symmetric) = multistart::search(&make, points, &search, &Silent) {
+            start = tied.expand(&symmetric.best().parameters);
+            sigma = noise_at(objective, &start);
+        }
+    }
+    // the symmetric optimum, then the template and random points around it
+    // (around the symmetric optimum they would leave the range the
+    // template's integration step is stable in)
+    let template = plan.unknowns.search(&plan.unknowns.start());
+    let first = exploring(plan.starts, 1);
+    let points = (0..first)
+        .map(|k| match k {
+            0 => start.clone(),
+            1 => template.clone(),
+            k => draw(&template, plan, k),
+        })
+        .collect();
+    let search = Search {
+        starts: plan.starts,
+        seed: plan.seed,
+        solver: plan.solver,
+        lower,
+        upper,
+        range: (lower, upper),
+    };
+    let make = || {
+        Priored::new(objective.clone(), plan.priors.to_vec(), sigma)
+            .expect("the priors were checked")
+    };
+    let mut searched = multistart::search(&make, points, &search, observer)?;
+    for _ in 0..3 {
+        let best = searched.starts.best;
+        let at = noise_at(objective, &searched.runs[best].outcome.parameters);
+        if plan.priors.is_empty() || (at / sigma).ln().abs() < 0.1 {
+            break;
+        }
+        sigma = at;
+        let problem = Priored::new(objective.clone(), plan.priors.to_vec(), sigma)
+            .expect("the priors were checked");
+        let polished = lm::minimise(
+            &problem,
+            &searched.runs[best].outcome.parameters,
+            lower,
+            upper,
+            &plan.solver,
+        );
+        if polished.objective.is_finite() {
+            let run = &mut searched.runs[best].outcome;
+            let (iterations, evaluations) = (run.iterations, run.evaluations);
+            *run = lm::Outcome {
+                iterations: iterations + polished.iterations,
+                evaluations: evaluations + polished.evaluations,
+                ..polished
+            };
+        }
+    }
+    Ok(Found {
+        searched,
+        noise: sigma,
+    })
+}
+
+/// A random start of the search around `centre` (its lines anywhere on
+/// the bumper), index `k`.
+fn draw(centre: &[f64], plan: &Plan, k: usize) -> Vec<f64> {
+    plan.unknowns.draw(centre, plan.spread, plan.seed, k as u64)
+}
+
+/// The tie map of a car whose two chains have the same size: each
+/// `right.*` parameter takes its `left.*` twin's index; `None` otherwise.
+pub(super) fn ties(unknowns: &Unknowns) -> Option<Vec<usize>> {
+    let car = unknowns.template();
+    if car.left().masses.len() != car.right().masses.len() {
+        return None;
+    }
+    let names: Vec<String> = unknowns.names().into_iter().map(|(n, _)| n).collect();
+    let mut reduced = Vec::with_capacity(names.len());
+    let mut map = Vec::with_capacity(names.len());
+    for name in &names {
+        let twin = name
+            .strip_prefix("right.")
+            .and_then(|rest| names.iter().position(|n| *n == format!("left.{rest}")));
+        match twin {
+            Some(left) => map.push(map[left]),
+            None => {
+                map.push(reduced.len());
+                reduced.push(name.clone());
+            }
+        }
+    }
+    Some(map)
+}
