@@ -28,6 +28,8 @@
 //! - [`sobol`]: Sobol' indices with bootstrap intervals (issue 39);
 //! - [`propagate`]: draws through a model: distributions, prediction bands
 //!   and probabilities of passing (issue 39);
+//! - [`walk`]: the covariance when each residual series is a random walk
+//!   (integrated noise; issue 44);
 //! - [`binomial`]: exact bounds of a probability from its draws, one-sided
 //!   when none fails (issue 45).
 //!
@@ -90,6 +92,7 @@ pub mod search;
 pub mod sobol;
 pub mod text;
 pub mod uncertainty;
+pub mod walk;
 
 /// Every warning of an estimate, in the one order every model prints:
 /// the uncertainty's (bounds, rank, weak directions) and the determination

@@ -180,6 +180,7 @@ enum CorrelationDef {
     Independent,
     Ar1,
     Spectral,
+    RandomWalk,
 }
 
 #[derive(Serialize, Deserialize)]
