@@ -7,7 +7,8 @@
 //! - [`estimate`]: the data-derived start and the identification;
 //! - [`crossval`], [`choice`]: leave-one-load-case-out cross-validation and
 //!   the DOF table's recommendation with correlated residuals;
-//! - [`posterior`]: the parameters' posterior (ensemble sampler);
+//! - [`posterior`], [`whitened`]: the parameters' posterior (ensemble
+//!   sampler) and its whitened likelihood;
 //! - [`result`]: what an identification finds;
 //! - [`error`]: why it cannot run;
 //! - [`search`]: the starts: continuation across the DOF table;
@@ -58,6 +59,7 @@ pub mod settings;
 pub mod stats;
 pub mod study;
 pub mod text;
+pub mod whitened;
 
 pub use case::LoadCase;
 pub use dofs::DofList;

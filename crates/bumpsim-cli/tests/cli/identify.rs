@@ -7,6 +7,7 @@ use std::process::{Command, Output};
 use crate::util::*;
 
 mod band;
+mod bias;
 mod posterior;
 mod sheet;
 

@@ -370,6 +370,7 @@ struct BoundsDef {
 enum NoiseDef {
     Effective(f64),
     Known(f64),
+    Whitened,
 }
 
 #[derive(Serialize, Deserialize)]
