@@ -231,7 +231,7 @@ fn nhtsa_two_dof_fit_and_the_dof_table() {
     assert!(!undetermined.is_empty(), "{stdout}");
     // none determined (2 DOF: k1 at its bound) is said plainly
     let fixed = recommended["uncertainty"]["fixed"].as_array().unwrap();
-    let all = undetermined.len() == fixed.iter().filter(|f| f == &&false).count();
+    let all = undetermined.len() == fixed.iter().filter(|f| f.as_bool() == Some(false)).count();
     let named = match all {
         true => format!(
             "data determine none of its parameters ({};",
