@@ -34,6 +34,8 @@
 //!   problem as residuals, each reported with how far the data moved it;
 //!   [`tied`]: parameters tied together (a symmetric stage of a search)
 //!   (issue 44);
+//! - [`walk`]: the covariance when each residual series is a random walk
+//!   (integrated noise; issue 44);
 //! - [`binomial`]: exact bounds of a probability from its draws, one-sided
 //!   when none fails (issue 45).
 //!
@@ -99,6 +101,7 @@ pub mod sobol;
 pub mod text;
 pub mod tied;
 pub mod uncertainty;
+pub mod walk;
 
 /// Every warning of an estimate, in the one order every model prints:
 /// the uncertainty's (bounds, rank, weak directions) and the determination

@@ -79,6 +79,10 @@ pub enum Noise {
     Effective(f64),
     /// σ known (residual unit): `ln L = −F/(2σ²)`.
     Known(f64),
+    /// Residuals already whitened to unit variance (a quasi-likelihood
+    /// whose curvature is the local covariance, e.g. the chain's
+    /// random-walk covariance): `ln L = −F/2`.
+    Whitened,
 }
 
 impl Noise {
@@ -87,6 +91,7 @@ impl Noise {
         match self {
             Noise::Effective(n) => -0.5 * n * objective.ln(),
             Noise::Known(sigma) => -0.5 * objective / (sigma * sigma),
+            Noise::Whitened => -0.5 * objective,
         }
     }
 
@@ -95,6 +100,7 @@ impl Noise {
         match self {
             Noise::Effective(n) => objective / n,
             Noise::Known(sigma) => sigma * sigma,
+            Noise::Whitened => 1.0,
         }
     }
 }

@@ -16,6 +16,15 @@
 //! integrated from accelerations have strongly correlated errors; ρ is
 //! reported whatever the model's choice.
 //!
+//! **Random-walk errors** ([`Correlation::RandomWalk`], issue 44): when
+//! each series' error is integrated noise, one factor for every direction
+//! is wrong (the fit absorbs the walk's low frequencies along some
+//! directions more than others). The covariance is then the sandwich of
+//! [`crate::walk`] (`P Jᵀ Σ_walk J P`, `P = (JᵀJ)⁻¹`, the walk's start and
+//! bias window given by [`with_walks`]) plus the spectral covariance of
+//! what the fit leaves, `τ σ² P`; [`Uncertainty::inflation`] is the
+//! largest widening of a variance against independent errors.
+//!
 //! **Rank.** Directions whose singular value is below [`RANK_TOLERANCE`] of
 //! the largest carry no information at all (the Jacobian is numerically rank
 //! deficient): the covariance is the truncated pseudo-inverse over the
@@ -148,6 +157,11 @@ pub enum Correlation {
     /// autocorrelation time τ = n / n_eff of the residual series
     /// ([`crate::effective`], Sokal's window; issue 44).
     Spectral,
+    /// Each residual series a random walk (integrated stationary noise,
+    /// less its mean over a bias window): the sandwich covariance of
+    /// [`crate::walk`], weighing each direction by how the walk reaches it
+    /// (issue 44).
+    RandomWalk,
 }
 
 pub use crate::effective::Series;
@@ -195,7 +209,8 @@ pub struct Uncertainty {
     pub error_model: Correlation,
     /// Pooled lag-1 autocorrelation ρ of the residual series, in [0, 1).
     pub residual_correlation: f64,
-    /// The variance inflation κ applied: 1, or `(1 + ρ)/(1 − ρ)` under AR(1).
+    /// The variance inflation κ applied: 1, `(1 + ρ)/(1 − ρ)` under AR(1),
+    /// τ (spectral), or the largest of any parameter (random walk).
     pub inflation: f64,
     /// Warnings (parameters at bounds, poorly identifiable directions).
     pub warnings: Vec<String>,
@@ -278,7 +293,14 @@ pub fn is_determined(u: &Uncertainty, i: usize) -> Option<bool> {
 /// assert_eq!(u.determined, vec![Some(true)]);
 /// ```
 pub fn uncertainty(e: &Estimated) -> Uncertainty {
-    let mut u = intervals(e);
+    with_walks(e, &[])
+}
+
+/// [`uncertainty`] with the random walks of the series (used by
+/// [`Correlation::RandomWalk`]: where each walk starts and where its bias
+/// was removed; a series without one walks from its first residual).
+pub fn with_walks(e: &Estimated, walks: &[crate::walk::Walk]) -> Uncertainty {
+    let mut u = intervals(e, walks);
     u.determined = (0..u.names.len()).map(|i| is_determined(&u, i)).collect();
     u
 }
@@ -312,7 +334,7 @@ pub fn lag_one(residuals: &[f64], series: &[Series]) -> f64 {
 }
 
 /// [`uncertainty`] without the determination.
-fn intervals(e: &Estimated) -> Uncertainty {
+fn intervals(e: &Estimated, walks: &[crate::walk::Walk]) -> Uncertainty {
     let total = e.parameters.len();
     let (lower, upper) = e.bounds;
     let (p, free, theta) = (e.p, e.free, e.theta);
@@ -320,7 +342,7 @@ fn intervals(e: &Estimated) -> Uncertainty {
     let sse: f64 = e.residuals.iter().map(|v| v * v).sum();
     let rho = lag_one(e.residuals, e.series);
     let inflation = match e.correlation {
-        Correlation::Independent => 1.0,
+        Correlation::Independent | Correlation::RandomWalk => 1.0,
         Correlation::Ar1 => (1.0 + rho) / (1.0 - rho),
         Correlation::Spectral => {
             crate::effective::of_residuals(
@@ -372,7 +394,7 @@ fn intervals(e: &Estimated) -> Uncertainty {
         return result;
     }
     let je = DMatrix::from_fn(m, estimated.len(), |r, c| e.jacobian[(r, estimated[c])]);
-    let svd = je.svd(false, true);
+    let svd = je.clone().svd(false, true);
     let Some(v_t) = svd.v_t.as_ref() else {
         return result;
     };
@@ -394,13 +416,36 @@ fn intervals(e: &Estimated) -> Uncertainty {
             .push("the Jacobian is rank deficient: no standard errors".into());
         return result;
     }
-    let cov = DMatrix::from_fn(k, k, |a, b| {
+    let pseudo_inverse = DMatrix::from_fn(k, k, |a, b| {
         (0..k)
             .filter(|&s| kept(s))
             .map(|s| v_t[(s, a)] * v_t[(s, b)] / svd.singular_values[s].powi(2))
             .sum::<f64>()
-            * variance
     });
+    let cov = match e.correlation {
+        Correlation::RandomWalk => {
+            let omega2 = crate::walk::increment_variance(e.residuals, e.series);
+            let meat = crate::walk::meat(&je, e.series, walks, omega2);
+            // the walk's sandwich (what the fit absorbs along the
+            // Jacobian) plus the spectral covariance of what it leaves
+            let spectral = crate::effective::of_residuals(
+                e.residuals,
+                e.series,
+                crate::effective::Method::Spectral,
+            )
+            .time;
+            let cov =
+                &pseudo_inverse * meat * &pseudo_inverse + &pseudo_inverse * (variance * spectral);
+            // the largest widening of a standard error's square against
+            // independent errors, as the text reports it
+            result.inflation = (0..k)
+                .filter(|&a| pseudo_inverse[(a, a)] > 0.0)
+                .map(|a| cov[(a, a)] / (variance * pseudo_inverse[(a, a)]))
+                .fold(1.0, f64::max);
+            cov
+        }
+        _ => pseudo_inverse * variance,
+    };
     // a parameter with a share in a dropped direction is not determined
     let determined: Vec<bool> = (0..k)
         .map(|a| {

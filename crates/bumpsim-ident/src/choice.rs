@@ -298,12 +298,30 @@ pub fn lines(choice: &Choice) -> String {
         choice.rule.label(),
         choice.reason
     );
-    if !choice.undetermined.is_empty() {
-        out += &format!(
-            "  but the data do not determine its {} (see that model's warnings): its values are \
-             not to be quoted; add load cases that excite them, or fix them from other knowledge\n",
-            choice.undetermined.join(", ")
-        );
+    let estimated = choice
+        .rows
+        .iter()
+        .find(|r| r.dof == choice.dof)
+        .map_or(0, |r| r.parameters);
+    match choice.undetermined.len() {
+        0 => {}
+        n if n >= estimated => {
+            out += &format!(
+                "  but the data determine none of its parameters ({}; see that model's \
+                 warnings): this model is not identified by these tests and none of its values \
+                 is to be quoted; add load cases that excite them, fix some from other \
+                 knowledge, or take a smaller model\n",
+                choice.undetermined.join(", ")
+            )
+        }
+        _ => {
+            out += &format!(
+                "  but the data do not determine its {} (see that model's warnings): its values \
+                 are not to be quoted; add load cases that excite them, or fix them from other \
+                 knowledge\n",
+                choice.undetermined.join(", ")
+            )
+        }
     }
     out
 }

@@ -8,7 +8,8 @@
 //! - [`sizes`]: a study identified over its model sizes (the one loop of the front ends);
 //! - [`crossval`], [`choice`]: leave-one-load-case-out cross-validation and
 //!   the DOF table's recommendation with correlated residuals;
-//! - [`posterior`]: the parameters' posterior (ensemble sampler);
+//! - [`posterior`], [`whitened`]: the parameters' posterior (ensemble
+//!   sampler) and its whitened likelihood;
 //! - [`result`]: what an identification finds;
 //! - [`error`]: why it cannot run;
 //! - [`search`]: the starts: continuation across the DOF table;
@@ -60,6 +61,7 @@ pub mod sizes;
 pub mod stats;
 pub mod study;
 pub mod text;
+pub mod whitened;
 
 pub use case::LoadCase;
 pub use dofs::DofList;

@@ -2,12 +2,13 @@
 //! estimation layer's ensemble sampler ([`bumpsim_estimate::posterior`],
 //! Goodman & Weare 2010 as emcee runs it) on the chain's objective, in log
 //! parameters within the study's bounds, each side closed at a factor
-//! [`PRIOR_SPAN`] from the optimum (a proper log-uniform prior), with the
-//! noise model of the model choice: σ integrated out and the residuals
+//! [`PRIOR_SPAN`] from the optimum (a proper log-uniform prior). Its
+//! likelihood ([`noise`]) is the identification's own: with intervals from
+//! the integrated noise's random walk, the residuals whitened by that
+//! covariance ([`crate::whitened`], `ln p = −½ ‖m(θ)‖²`); otherwise the
+//! noise model of the model choice, σ integrated out and the residuals
 //! counted with their effective sample size,
-//! `ln p(θ | data) = −(n_eff/2) ln F(θ)` ([`noise`]). With correlated
-//! residuals (n_eff ≪ n) the posterior is as much wider than the local
-//! intervals as the data are worth fewer samples.
+//! `ln p(θ | data) = −(n_eff/2) ln F(θ)`.
 //!
 //! The walkers start at the optimum's local (Laplace) approximation, so
 //! the run explores the basin the multi-start found; its diagnostics
@@ -149,19 +150,7 @@ pub fn run(
         ensemble,
         ..sampling(result, request.seed)
     };
-    let make = || Objective::new(cases, settings.dof, &settings.bounds.fixed);
-    let (optimum, (lower, upper), free) = problem(&make(), settings, result);
-    let parameters = crate::stats::parameters(settings.dof);
-    let bounds = (lower.as_slice(), upper.as_slice());
-    let free = (free.as_slice(), optimum.as_slice());
-    Ok(layer::posterior_observed(
-        &make,
-        &parameters,
-        free,
-        bounds,
-        &sampling,
-        step,
-    )?)
+    Ok(sample(cases, settings, result, &sampling, step)?)
 }
 
 /// The posterior as a front end's JSON carries it: what [`Posterior`]
@@ -227,10 +216,20 @@ impl<'a> Summary<'a> {
     }
 }
 
-/// The noise model of `result`: σ integrated out, its residuals counted
-/// with their effective sample size.
+/// The noise model of `result`: whitened by its random-walk covariance
+/// when its intervals come from one and every free parameter has a
+/// standard error, else σ integrated out and its residuals counted with
+/// their effective sample size.
 pub fn noise(result: &Identification) -> Noise {
-    Noise::Effective(result.effective_samples.effective)
+    let whitened = result.uncertainty.error_model
+        == bumpsim_estimate::uncertainty::Correlation::RandomWalk
+        && (0..result.uncertainty.names.len()).all(|i| {
+            result.uncertainty.fixed[i] || result.uncertainty.standard_errors[i].is_some()
+        });
+    match whitened {
+        true => Noise::Whitened,
+        false => Noise::Effective(result.effective_samples.effective),
+    }
 }
 
 /// The layer's default run (4000 steps, 1000 burnt, 32 walkers at least)
@@ -268,17 +267,42 @@ pub fn posterior(
     result: &Identification,
     sampling: &layer::Settings,
 ) -> Result<Posterior, PosteriorError> {
+    sample(cases, settings, result, sampling, &|| {})
+}
+
+/// [`posterior`] calling `step` after every step: over the whitened
+/// moments ([`crate::whitened`]) when `sampling` asks for
+/// [`Noise::Whitened`] and the identification has a covariance of every
+/// free parameter, else over the residuals with their effective sample
+/// size.
+fn sample(
+    cases: &[LoadCase],
+    settings: &Settings,
+    result: &Identification,
+    sampling: &layer::Settings,
+    step: &(dyn Fn() + Sync),
+) -> Result<Posterior, PosteriorError> {
     let make = || Objective::new(cases, settings.dof, &settings.bounds.fixed);
     let (optimum, (lower, upper), free) = problem(&make(), settings, result);
     let parameters = crate::stats::parameters(settings.dof);
-    layer::posterior(
-        &make,
-        &parameters,
-        &free,
-        &optimum,
-        (&lower, &upper),
-        sampling,
-    )
+    let bounds = (lower.as_slice(), upper.as_slice());
+    let at = (free.as_slice(), optimum.as_slice());
+    let transform = (sampling.noise == Noise::Whitened)
+        .then(|| crate::whitened::transform(&make(), result, &optimum))
+        .flatten();
+    match transform {
+        Some(t) => {
+            let make = || crate::whitened::Whitened::new(make(), &t);
+            layer::posterior_observed(&make, &parameters, at, bounds, sampling, step)
+        }
+        None => {
+            let mut effective = *sampling;
+            if effective.noise == Noise::Whitened {
+                effective.noise = Noise::Effective(result.effective_samples.effective);
+            }
+            layer::posterior_observed(&make, &parameters, at, bounds, &effective, step)
+        }
+    }
 }
 
 /// The log posterior density the sampler runs on, over the free log
@@ -304,7 +328,7 @@ pub fn density<'a>(
 pub fn lines(post: &Posterior, result: &Identification) -> String {
     let runs = post.ensemble;
     let mut out = format!(
-        "posterior ({} walkers × {} steps, {} burnt, seed {}; σ integrated out, {}): median, 90 % and 95 % intervals; local 95 %\n",
+        "posterior ({} walkers × {} steps, {} burnt, seed {}; {}): median, 90 % and 95 % intervals; local 95 %\n",
         runs.walkers,
         runs.steps,
         runs.burn,
@@ -330,8 +354,9 @@ pub fn lines(post: &Posterior, result: &Identification) -> String {
 
 fn noise_words(noise: Noise) -> String {
     match noise {
-        Noise::Effective(n) => format!("{n:.1} effective samples"),
+        Noise::Effective(n) => format!("σ integrated out, {n:.1} effective samples"),
         Noise::Known(sigma) => format!("σ = {sigma:e} m known"),
+        Noise::Whitened => "residuals whitened by the intervals' random-walk covariance".into(),
     }
 }
 

@@ -5,11 +5,12 @@
 //! [`Objective`], with the thesis's parameter names (`m1`, `c1`, `k1`) and
 //! units.
 //!
-//! The errors are taken as independent ([`bumpsim_estimate::uncertainty::Correlation::Independent`]); the
-//! pooled lag-1 autocorrelation of the residuals is reported
-//! ([`Uncertainty::residual_correlation`]) so a user sees how far that
-//! holds (the planar car's intervals inflate for it; the 1-D model choice
-//! under correlated residuals is issue 39's).
+//! The error model is the objective's ([`Objective::correlation`]):
+//! independent errors for the thesis's displacements, a random walk of
+//! known start for velocities integrated from accelerations (the sandwich
+//! of [`bumpsim_estimate::walk`]), else the spectral inflation. The pooled
+//! lag-1 autocorrelation of the residuals is reported
+//! ([`Uncertainty::residual_correlation`]).
 
 use crate::case::Objective;
 use bumpsim_core::model::{parameter_count, parameter_kind, parameter_name};
@@ -57,17 +58,21 @@ pub fn uncertainty(
     let theta = objective.theta(p);
     let parameters = parameters(dof);
     let series = objective.series();
-    let u = bumpsim_estimate::uncertainty::uncertainty(&Estimated {
-        parameters: &parameters,
-        theta: &theta,
-        free: objective.free(),
-        p,
-        bounds: (lower, upper),
-        residuals: &r,
-        jacobian: &jacobian,
-        series: &series,
-        correlation: objective.correlation(),
-    });
+    let walks = objective.walks();
+    let u = bumpsim_estimate::uncertainty::with_walks(
+        &Estimated {
+            parameters: &parameters,
+            theta: &theta,
+            free: objective.free(),
+            p,
+            bounds: (lower, upper),
+            residuals: &r,
+            jacobian: &jacobian,
+            series: &series,
+            correlation: objective.correlation(),
+        },
+        &walks,
+    );
     match evaluated {
         true => u,
         false => bumpsim_estimate::uncertainty::unassessed(u),

@@ -39,12 +39,21 @@ pub fn residuals_line(result: &Identification) -> Option<String> {
     result.compared?;
     let u = &result.uncertainty;
     let e = &result.effective_samples;
+    let widened = match u.error_model {
+        bumpsim_estimate::uncertainty::Correlation::RandomWalk => format!(
+            "intervals from the integrated noise's random walk, widened by up to ×{}",
+            format_number(u.inflation.sqrt(), 3)
+        ),
+        _ => format!(
+            "intervals widened by ×{}",
+            format_number(u.inflation.sqrt(), 3)
+        ),
+    };
     Some(format!(
-        "residuals: lag-1 correlation {}, {} effective of {} samples (intervals widened by ×{})",
+        "residuals: lag-1 correlation {}, {} effective of {} samples ({widened})",
         format_number(u.residual_correlation, 3),
         format_number(e.effective, 3),
         e.samples,
-        format_number(u.inflation.sqrt(), 3)
     ))
 }
 

@@ -4,7 +4,8 @@
 //! - `objective = "displacement"` reproduces the figures the README printed
 //!   before the objective had a domain (main at 207566a);
 //! - the default (velocity, each case weighted by its pre-trigger noise,
-//!   intervals widened by the integrated autocorrelation time) gives 95 %
+//!   intervals from the random walk of the integrated accelerometer noise
+//!   plus the residuals' integrated autocorrelation time) gives 95 %
 //!   intervals that each contain the true car's value;
 //! - the velocity and acceleration residuals' Jacobian (the backward
 //!   differences of the exact displacement sensitivities) equals central
@@ -30,7 +31,7 @@ fn the_displacement_objective_reproduces_the_recorded_figures() {
     let mut study = example();
     study.identification.objective = Some("displacement".into());
     let cases = study.cases(3).unwrap();
-    assert!(cases.iter().all(|c| c.compare == Comparison::default()));
+    assert!(cases.iter().all(|c| c.compare.is_thesis()));
     let result = identify(&cases, &study.settings(3).unwrap(), &Silent).unwrap();
     assert!(result.compared.is_none());
     // README at 207566a: objective 6.8728e-5 m², fit 99.45 %, and the table
@@ -88,6 +89,10 @@ fn the_default_intervals_contain_the_true_car() {
         );
     }
     assert!(result.uncertainty.inflation > 1.0);
+    assert_eq!(
+        result.uncertainty.error_model,
+        bumpsim_estimate::uncertainty::Correlation::RandomWalk
+    );
 }
 
 #[test]
@@ -192,8 +197,12 @@ fn a_bad_objective_or_noise_is_refused_naming_the_key() {
     );
     let cases = Study::read(&path).unwrap().cases(3).unwrap();
     assert_eq!(
-        cases[0].compare,
-        Comparison::new(Domain::Acceleration, Some(2.5))
+        (cases[0].compare.domain, cases[0].compare.noise),
+        (Domain::Acceleration, Some(2.5))
     );
+    // integrated from accelerations: the walk starts at the pre-trigger's
+    // first sample, its bias removed over the whole pre-trigger (0.05 s)
+    let walk = cases[0].compare.integrated.unwrap();
+    assert_eq!((walk.lead, walk.bias), (500, Some((0, 500))));
     assert!(cases[1].compare.noise.is_some_and(|n| n != 2.5));
 }

@@ -102,12 +102,34 @@ pub struct Comparison {
     /// unit), from the pre-trigger or the study; the residuals are divided
     /// by it. None: not weighted (the thesis's objective in m²).
     pub noise: Option<f64>,
+    /// When the measured displacement was integrated from accelerations:
+    /// the samples integrated before t = 0 and the bias window (samples
+    /// from the integration's start), so that its velocity's error is a
+    /// random walk of known start ([`bumpsim_estimate::walk`]). None: a
+    /// measured displacement.
+    #[serde(default)]
+    pub integrated: Option<Walk>,
 }
+
+pub use bumpsim_estimate::walk::Walk;
 
 impl Comparison {
     /// The comparison in `domain` with the residuals divided by `noise`.
     pub fn new(domain: Domain, noise: Option<f64>) -> Comparison {
-        Comparison { domain, noise }
+        Comparison {
+            domain,
+            noise,
+            integrated: None,
+        }
+    }
+
+    /// The same comparison of a displacement integrated from
+    /// accelerations as `integrated` says.
+    pub fn integrated(self, integrated: Walk) -> Comparison {
+        Comparison {
+            integrated: Some(integrated),
+            ..self
+        }
     }
 
     /// The factor of the case's residuals: 1 / noise, or 1.
@@ -340,13 +362,36 @@ impl<'a> Objective<'a> {
     }
 
     /// The residuals' error model: independent for the thesis's objective
-    /// (as it always was), else correlated with the spectral inflation.
+    /// (as it always was); a random walk for velocities of displacements
+    /// integrated from accelerations (each case's error is the
+    /// accelerometers' noise integrated once); else correlated with the
+    /// spectral inflation.
     pub fn correlation(&self) -> bumpsim_estimate::uncertainty::Correlation {
         use bumpsim_estimate::uncertainty::Correlation;
-        match self.is_thesis() {
-            true => Correlation::Independent,
-            false => Correlation::Spectral,
+        let walks = self
+            .cases
+            .iter()
+            .all(|c| c.compare.domain == Domain::Velocity && c.compare.integrated.is_some());
+        match (self.is_thesis(), walks) {
+            (true, _) => Correlation::Independent,
+            (false, true) => Correlation::RandomWalk,
+            (false, false) => Correlation::Spectral,
         }
+    }
+
+    /// Each case's random walk from its first residual (the measurement's
+    /// integration start, its bias window; [`bumpsim_estimate::walk`]).
+    pub fn walks(&self) -> Vec<Walk> {
+        self.cases
+            .iter()
+            .map(|c| {
+                let w = c.compare.integrated.unwrap_or_default();
+                Walk {
+                    lead: w.lead + c.first_compared(),
+                    bias: w.bias,
+                }
+            })
+            .collect()
     }
 
     /// Indices of the free parameters.

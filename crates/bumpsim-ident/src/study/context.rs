@@ -5,7 +5,7 @@
 
 use super::error::{DefinitionError, StudyError, StudyValueError};
 use super::file::{CaseSpec, ChannelRef, OutputDof, Study, WindowSpec};
-use crate::case::{Comparison, Domain, LoadCase};
+use crate::case::{Comparison, Domain, LoadCase, Walk};
 use bumpsim_core::channel::Channel;
 use bumpsim_core::series::UniformSeries;
 use bumpsim_core::units::{Dimension, format_number, short};
@@ -278,7 +278,10 @@ impl CaseContext<'_> {
             return Err(self.case(DefinitionError::OutputDofRange { output_dof, dof }));
         }
         let step = if time.len() > 1 { step } else { 0.0 };
-        let compare = self.comparison(&columns[1][..first], step);
+        let mut compare = self.comparison(&columns[1][..first], step);
+        if self.spec.displacement.is_none() {
+            compare = compare.integrated(self.walk(&aligned, first));
+        }
         let case = LoadCase {
             name: self.spec.name.clone(),
             start,
@@ -306,6 +309,19 @@ impl CaseContext<'_> {
             (None, _) => domain.noise(pretrigger, step),
         };
         Comparison::new(domain, noise)
+    }
+
+    /// The random walk of a displacement integrated from accelerations
+    /// from the first aligned sample: `first` samples before t = 0, the
+    /// bias removed over the `bias` window or the pre-trigger.
+    fn walk(&self, aligned: &UniformSeries, first: usize) -> Walk {
+        let bias = match self.spec.bias {
+            Some([t0, t1]) => aligned
+                .window(t0, t1)
+                .map(|w| (*w.start(), w.end() + 1 - w.start())),
+            None => (first > 0).then_some((0, first)),
+        };
+        Walk { lead: first, bias }
     }
 
     /// The fit window as sample indices counted from `first` (the sample at

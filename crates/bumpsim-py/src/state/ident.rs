@@ -180,6 +180,7 @@ enum CorrelationDef {
     Independent,
     Ar1,
     Spectral,
+    RandomWalk,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -369,6 +370,7 @@ struct BoundsDef {
 enum NoiseDef {
     Effective(f64),
     Known(f64),
+    Whitened,
 }
 
 #[derive(Serialize, Deserialize)]

@@ -64,7 +64,7 @@ fn the_posterior_reaches_the_summary_the_json_and_the_report() {
         &stdout,
         &[
             "3-DOF posterior (16 walkers × 200 steps, 50 burnt, seed 3",
-            "effective samples): median, 90 % and 95 % intervals; local 95 %",
+            "residuals whitened by the intervals' random-walk covariance): median, 90 % and 95 % intervals; local 95 %",
             "local 95 % 26.",
             "autocorrelation time",
             "split-R̂",
