@@ -13,6 +13,7 @@
 //! - [`state_space`]: A, B and the elastic modes;
 //! - [`discrete`]: zoh, foh and taylor1 discretisations and the update loop
 //!   (Φ and Γ of the exact holds from one balanced exponential);
+//! - [`dual`]: dual numbers, exact first derivatives of code written over [`dual::Real`];
 //! - [`sensitivity`]: one output and its exact parameter sensitivities;
 //! - [`modal`]: the same zoh output and sensitivities in modal coordinates
 //!   (identification's fast form);
@@ -30,6 +31,7 @@
 
 pub mod channel;
 pub mod discrete;
+pub mod dual;
 pub mod energy;
 mod exponential;
 pub mod files;

@@ -22,6 +22,7 @@
 //! - [`presets`]: RCAR and IIHS asymmetric load cases with their sources;
 //! - [`barrier`]: the RCAR bumper barrier's curved face and energy absorber;
 //! - [`export`]: the car as an LS-DYNA include and a CalculiX deck;
+//! - [`sensitivity`]: the replay over dual numbers (the identification's exact Jacobian);
 //! - [`synth`]: synthetic asymmetric test series (load-cell wall, sills);
 //! - [`series`]: the planar series file of `bumpsim synth` and the study it writes;
 //! - [`study`]: the planar study file of `bumpsim identify`;
@@ -58,6 +59,7 @@ pub mod picture;
 pub mod presets;
 pub mod result;
 pub mod sensing;
+pub mod sensitivity;
 pub mod series;
 pub mod simulate;
 pub mod striker;

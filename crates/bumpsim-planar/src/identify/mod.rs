@@ -28,8 +28,8 @@
 //!
 //! **Search.** The estimation layer's ([`bumpsim_estimate`], shared with
 //! the 1-D chain): bounded Levenberg–Marquardt on `p = ln θ`, each
-//! parameter within a factor [`REACH`] of its start, the Jacobian by
-//! forward differences (module `objective`); the staged multi-start from the
+//! parameter within a factor [`REACH`] of its start, the exact Jacobian of
+//! the replay on dual numbers (module `objective`); the staged multi-start from the
 //! template and log-uniform points within a factor `spread` of it (seeded
 //! by `seed + start index`), refining rounds around the best when there are
 //! more than eight starts, the best few polished, every start tallied.

@@ -2,10 +2,11 @@
 //! each case replayed ([`crate::drive`]) with the car of `θ`, the residuals
 //! the modelled minus the measured sensor readings over each case's window
 //! (sensors interleaved), each times its sensor's weight
-//! ([`PlanarCase::weight`]), and their Jacobian by forward differences
-//! (step 1e-6 in ln θ, columns in parallel): the replay has no sensitivity
-//! recursion, and its steps are fixed per template car, so the objective
-//! does not jump where a trial car's own step would change.
+//! ([`PlanarCase::weight`]), and their exact Jacobian from the replay on
+//! dual numbers ([`jacobian`], [`crate::sensitivity`]; forward differences,
+//! step 1e-6 in ln θ, only for unknowns that module does not know). The
+//! replay's steps are fixed per template car, so the objective does not
+//! jump where a trial car's own step would change.
 
 use super::{PlanarCase, Unknowns};
 use crate::car::PlanarError;
@@ -16,6 +17,8 @@ use bumpsim_estimate::uncertainty::Series;
 use nalgebra::DMatrix;
 use rayon::prelude::*;
 use std::sync::{Arc, Mutex};
+
+mod jacobian;
 
 /// The fraction of the template's critical step a replay takes: an 8-fold
 /// margin to the stability limit for trial cars stiffer or lighter than the
@@ -35,6 +38,8 @@ pub(crate) struct Objective<'a> {
     count: usize,
     /// Integration steps per sample of each case.
     substeps: Vec<usize>,
+    /// What each unknown is in the replay (`None`: forward differences).
+    slots: Option<Vec<jacobian::Slot>>,
     /// The last point evaluated without its Jacobian and its residuals: LM
     /// asks for the Jacobian at a trial point it has just evaluated.
     last: Mutex<Option<(Vec<f64>, Vec<f64>)>>,
@@ -48,6 +53,7 @@ impl Clone for Objective<'_> {
             unknowns: self.unknowns,
             count: self.count,
             substeps: self.substeps.clone(),
+            slots: self.slots.clone(),
             last: Mutex::new(None),
         }
     }
@@ -67,11 +73,13 @@ impl<'a> Objective<'a> {
             .iter()
             .map(|c| substeps(unknowns.template(), c.drive.step, REPLAY_SAFETY))
             .collect::<Result<_, _>>()?;
+        let slots = jacobian::slots(unknowns, &cases);
         Ok(Objective {
             cases: Arc::new(cases),
             unknowns,
             count,
             substeps,
+            slots,
             last: Mutex::new(None),
         })
     }
@@ -156,6 +164,24 @@ impl LeastSquares for Objective<'_> {
             return true;
         };
         drop(last);
+        if let Some(slots) = &self.slots {
+            let theta = self.unknowns.theta(p);
+            return jacobian::jacobian(
+                self.unknowns,
+                &self.cases,
+                &self.substeps,
+                slots,
+                &theta,
+                jac,
+            );
+        }
+        self.differences(p, r, jac)
+    }
+}
+
+impl Objective<'_> {
+    /// The Jacobian by forward differences (step 1e-6 in `p`, columns in parallel).
+    fn differences(&self, p: &[f64], r: &[f64], jac: &mut DMatrix<f64>) -> bool {
         const H: f64 = 1e-6;
         let columns: Vec<Option<Vec<f64>>> = (0..p.len())
             .into_par_iter()
