@@ -262,7 +262,7 @@ impl LinkSettings {
             return bad("starts = 0: at least one start".into());
         }
         let names = layout.parameters();
-        for i in 0..p {
+        for (i, name) in names.iter().enumerate() {
             let (lo, hi, s) = (self.lower[i], self.upper[i], self.start[i]);
             if !(lo > 0.0
                 && lo <= hi
@@ -273,7 +273,7 @@ impl LinkSettings {
             {
                 return bad(format!(
                     "{}: bounds [{lo}, {hi}] and start {s} must be positive, finite and ordered",
-                    names[i].name
+                    name.name
                 ));
             }
         }
