@@ -19,7 +19,9 @@
 //!   (identification's fast form);
 //! - [`energy`]: exact per-step energy integrals;
 //! - [`leapfrog`]: the one explicit integrator of every impact (1-D and planar);
-//! - [`simulate`]: responses with forces and energies.
+//! - [`simulate`]: responses with forces and energies;
+//! - [`link`]: nonlinear links (progressive, yielding, plastic) and their history;
+//! - [`chain`]: the chain with nonlinear links, integrated by [`leapfrog`].
 //!
 //! ```
 //! use bumpsim_core::prelude::*;
@@ -29,6 +31,7 @@
 //! assert!(response.energy.relative_error() < 1e-9);
 //! ```
 
+pub mod chain;
 pub mod channel;
 pub mod discrete;
 pub mod dual;
@@ -37,6 +40,7 @@ mod exponential;
 pub mod files;
 pub mod fixed_width;
 pub mod leapfrog;
+pub mod link;
 pub mod modal;
 pub mod model;
 pub mod names;

@@ -1,0 +1,589 @@
+//! The chain with nonlinear links ([`crate::link`]) and its time-stepper
+//! (issue 46, item 2).
+//!
+//! Masses m1..mn in a line as in [`crate::model`]; between mass j and j+1 a
+//! link with a loading curve and unloading rule, `s_j = L_j(x_j − x_(j+1))`,
+//! and a viscous damper `d_j = c_j (v_j − v_(j+1))` in parallel (the rate
+//! dependence). The force f(t) acts on m1:
+//!
+//! ```text
+//! m_i x_i'' = f δ_i1 − s_i − d_i + s_(i−1) + d_(i−1)
+//! ```
+//!
+//! The links remember their largest compression, so the linear chain's
+//! exact exponential propagation does not apply: the chain is integrated by
+//! the one explicit integrator [`crate::leapfrog`] (central differences),
+//! at a step `safety · min(2/ω, 2/ω_c)` from Gershgorin bounds with the
+//! links' steepest slopes, rounded to divide the force's sample interval;
+//! the force is interpolated linearly between its samples (first-order
+//! hold). Each link's history is updated once per step, after the
+//! positions move ([`crate::leapfrog::Mechanism::moved`]).
+//!
+//! Energy balance (J), per sample: `E_kin + E_stored + W_viscous + W_plastic
+//! − W_force = E_kin(t0)`, with `E_stored = Σ` the links' elastic energies
+//! and `W_plastic` their plastic work (closed forms of [`crate::link`]),
+//! `W_viscous = Σ T d_j (v̄_j − v̄_(j+1))` and `W_force = Σ T f v̄_1` on the
+//! leapfrog's mean velocities. Its residual is O(T²), reported by
+//! [`ChainResponse::energy_error`].
+//!
+//! A link's crush depends on which way x points ([`Frame`]): in the
+//! pendulum's frame (x rearwards) link j is compressed by `x_j − x_(j+1)`,
+//! in a moving car's (x forwards, m1 at the front, the barrier's force on
+//! m1 negative) by `x_(j+1) − x_j`. A linear link gives the same motion in
+//! both.
+//!
+//! Driven by [`Drive::Barrier`] the car runs into a rigid wall at x = 0 instead
+//! (x positive into the wall; m1 starts at it). With a front link
+//! ([`Chain::with_front`], Kamal's crush zone ahead of the engine) the
+//! wall pushes m1 back by that link's force at the crush x1 (never
+//! pulling); without one by a stiff penalty spring and a damper near
+//! critical for m1. The recorded force is the wall's force on the car
+//! (negative, as the load-cell barrier's is).
+//!
+//! ```
+//! use bumpsim_core::chain::{Chain, Drive};
+//! use bumpsim_core::link::{Curve, Link, Unloading};
+//! // one mass into a wall through an elastic-perfectly-plastic link: the
+//! // crush is m V² / (2 F_y) + F_y / (2 k)
+//! let link = Link::new(Curve::bilinear(1e7, 1e5, 0.0).unwrap(), Unloading::Slope(1e7)).unwrap();
+//! let chain = Chain::new(vec![1.0, 1000.0], vec![0.0], vec![link]).unwrap();
+//! let r = chain.run(&Drive::Barrier { speed: 10.0, step: 1e-4, samples: 2000 }).unwrap();
+//! let crush = 1000.0 * 100.0 / 2e5 + 1e5 / 2e7;
+//! assert!((r.max_deformation(0) - crush).abs() < 0.02 * crush);
+//! ```
+
+use crate::leapfrog::{Leapfrog, Mechanism, Stepped, critical_step, stable_step, substeps};
+use crate::link::{Link, LinkState};
+use crate::model::{MAX_DOF, ModelError};
+
+/// A validated chain of masses joined by nonlinear links and dampers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Chain {
+    masses: Vec<f64>,
+    dampers: Vec<f64>,
+    links: Vec<Link>,
+    front: Option<Link>,
+}
+
+/// Why a chain cannot run.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ChainError {
+    /// The masses, dampers or links are not a valid chain.
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    /// A drive value is out of range.
+    #[error("{name} = {value}: {expected}")]
+    Drive {
+        /// The value's name.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// What is expected.
+        expected: &'static str,
+    },
+    /// The run would need more than [`MAX_STEPS`] steps.
+    #[error(
+        "{steps:.3e} integration steps needed (the links' steepest slope against the lightest mass): at most {MAX_STEPS}"
+    )]
+    TooManySteps {
+        /// Steps needed.
+        steps: f64,
+    },
+    /// The states left the finite range.
+    #[error("the simulation diverged at sample {sample}")]
+    Diverged {
+        /// First sample with a non-finite state.
+        sample: usize,
+    },
+}
+
+/// Most integration steps of one run.
+pub const MAX_STEPS: f64 = 5e7;
+
+/// Safety factor on the critical step.
+pub const SAFETY: f64 = 0.2;
+
+/// What drives the chain.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Drive<'a> {
+    /// A sampled force on m1 (N, interval `step` s), every mass moving at
+    /// `initial_velocity` m/s at the first sample.
+    Force {
+        /// The force samples, N.
+        force: &'a [f64],
+        /// Their interval, s.
+        step: f64,
+        /// m/s.
+        initial_velocity: f64,
+        /// Which way x points.
+        frame: Frame,
+    },
+    /// Into a rigid wall at `speed` m/s, recorded every `step` s for
+    /// `samples` samples.
+    Barrier {
+        /// m/s.
+        speed: f64,
+        /// s.
+        step: f64,
+        /// Number of samples.
+        samples: usize,
+    },
+}
+
+/// Which way x points, and so which relative motion crushes a link.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Frame {
+    /// x points rearwards into the car, m2 behind m1 at larger x (the
+    /// pendulum's frame of [`crate::model`]): link j is compressed by
+    /// `x_j − x_(j+1)`.
+    #[default]
+    Rearward,
+    /// x points the way the car travels, m1 at its front (a moving car
+    /// into a barrier, the force on m1 negative): link j is compressed by
+    /// `x_(j+1) − x_j`.
+    Forward,
+}
+
+impl Frame {
+    /// +1 (rearward) or −1 (forward).
+    pub fn sign(self) -> f64 {
+        match self {
+            Frame::Rearward => 1.0,
+            Frame::Forward => -1.0,
+        }
+    }
+}
+
+/// Histories at the samples; outer index = mass or link.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChainResponse {
+    /// Sample interval, s.
+    pub step: f64,
+    /// The force on m1 (given, or the wall's), N.
+    pub force: Vec<f64>,
+    /// Displacements, m.
+    pub displacement: Vec<Vec<f64>>,
+    /// Velocities, m/s.
+    pub velocity: Vec<Vec<f64>>,
+    /// Link (spring) forces, N, compression positive.
+    pub link_force: Vec<Vec<f64>>,
+    /// Kinetic energy, J.
+    pub kinetic: Vec<f64>,
+    /// Elastic energy stored in the links, J.
+    pub stored: Vec<f64>,
+    /// Viscous work of the dampers since t0, J.
+    pub viscous: Vec<f64>,
+    /// Plastic work of the links since t0, J.
+    pub plastic: Vec<f64>,
+    /// Work of the force on m1 since t0, J.
+    pub work: Vec<f64>,
+    /// Each link's plastic set at the end, m.
+    pub plastic_set: Vec<f64>,
+    /// Each link's largest compression, m.
+    pub reached: Vec<f64>,
+}
+
+impl ChainResponse {
+    /// The largest compression of link `j` (0-based), m.
+    pub fn max_deformation(&self, j: usize) -> f64 {
+        self.reached[j]
+    }
+
+    /// Largest |energy residual| relative to the largest energy term.
+    pub fn energy_error(&self) -> f64 {
+        let e0 = self.kinetic[0] + self.stored[0];
+        let terms = [
+            &self.kinetic,
+            &self.stored,
+            &self.viscous,
+            &self.plastic,
+            &self.work,
+        ];
+        let scale = terms
+            .iter()
+            .flat_map(|v| v.iter())
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
+        let worst = (0..self.kinetic.len())
+            .map(|k| {
+                self.kinetic[k] + self.stored[k] + self.viscous[k] + self.plastic[k]
+                    - self.work[k]
+                    - e0
+            })
+            .fold(0.0_f64, |m, r| m.max(r.abs()));
+        if scale > 0.0 { worst / scale } else { 0.0 }
+    }
+}
+
+impl Chain {
+    /// A chain from masses (kg), dampers (N·s/m) and links.
+    pub fn new(masses: Vec<f64>, dampers: Vec<f64>, links: Vec<Link>) -> Result<Chain, ModelError> {
+        let dof = masses.len();
+        if dof == 0 {
+            return Err(ModelError::NoMass);
+        }
+        if dof > MAX_DOF {
+            return Err(ModelError::TooManyMasses { dof });
+        }
+        for (kind, count) in [("dampers", dampers.len()), ("links", links.len())] {
+            if count != dof - 1 {
+                return Err(ModelError::Count {
+                    kind,
+                    dof,
+                    expected: dof - 1,
+                    count,
+                });
+            }
+        }
+        let bad = |parameter: String, value: f64, unit, requirement| ModelError::Value {
+            parameter,
+            value,
+            unit,
+            requirement,
+        };
+        if let Some(i) = masses.iter().position(|m| !(m.is_finite() && *m > 0.0)) {
+            let r = "a mass must be positive and finite";
+            return Err(bad(format!("m{}", i + 1), masses[i], "kg", r));
+        }
+        if let Some(j) = dampers.iter().position(|c| !(c.is_finite() && *c >= 0.0)) {
+            let r = "a damper must be finite and non-negative (0 = no damper)";
+            return Err(bad(format!("c{}", j + 1), dampers[j], "Ns/m", r));
+        }
+        Ok(Chain {
+            masses,
+            dampers,
+            links,
+            front: None,
+        })
+    }
+
+    /// Number of masses.
+    pub fn dof(&self) -> usize {
+        self.masses.len()
+    }
+
+    /// Masses, kg.
+    pub fn masses(&self) -> &[f64] {
+        &self.masses
+    }
+
+    /// Dampers, N·s/m.
+    pub fn dampers(&self) -> &[f64] {
+        &self.dampers
+    }
+
+    /// Links.
+    pub fn links(&self) -> &[Link] {
+        &self.links
+    }
+
+    /// The same chain with a front link: the crush zone between a rigid
+    /// wall and m1, compressed by m1's travel into the wall.
+    pub fn with_front(self, front: Link) -> Chain {
+        Chain {
+            front: Some(front),
+            ..self
+        }
+    }
+
+    /// The front link, if any.
+    pub fn front(&self) -> Option<&Link> {
+        self.front.as_ref()
+    }
+
+    /// The wall's penalty stiffness (N/m) and damper (N·s/m): 100 times
+    /// the steepest link slope, at least 1e9 N/m; the damper at 0.7 of
+    /// critical for m1.
+    pub fn wall(&self) -> (f64, f64) {
+        let steepest = self
+            .links
+            .iter()
+            .map(Link::steepest_slope)
+            .fold(0.0, f64::max);
+        if let Some(front) = &self.front {
+            return (front.steepest_slope(), 0.0);
+        }
+        let k = (100.0 * steepest).max(1e9);
+        (k, 1.4 * (k * self.masses[0]).sqrt())
+    }
+
+    /// The integration step for a sample interval `interval` (s).
+    fn integration_step(&self, interval: f64, wall: Option<(f64, f64)>) -> Result<f64, ChainError> {
+        let n = self.dof();
+        let (mut omega2, mut omega_c) = (0.0_f64, 0.0_f64);
+        for i in 0..n {
+            let (mut k, mut c) = (0.0, 0.0);
+            for j in [i.wrapping_sub(1), i] {
+                if j < n - 1 {
+                    k += 2.0 * self.links[j].steepest_slope();
+                    c += 2.0 * self.dampers[j];
+                }
+            }
+            if let (0, Some((kw, cw))) = (i, wall) {
+                k += kw;
+                c += cw;
+            }
+            omega2 = omega2.max(k / self.masses[i]);
+            omega_c = omega_c.max(c / self.masses[i]);
+        }
+        let raw = SAFETY * critical_step(omega2, omega_c);
+        let count = substeps(raw, interval);
+        if count > MAX_STEPS {
+            return Err(ChainError::TooManySteps { steps: count });
+        }
+        Ok(stable_step(raw.min(interval), interval))
+    }
+
+    /// Runs the chain under `drive`.
+    pub fn run(&self, drive: &Drive<'_>) -> Result<ChainResponse, ChainError> {
+        let (interval, samples, speed, wall, frame) = match *drive {
+            Drive::Force {
+                force,
+                step,
+                initial_velocity,
+                frame,
+            } => (step, force.len(), initial_velocity, None, frame),
+            Drive::Barrier {
+                speed,
+                step,
+                samples,
+            } => (step, samples, speed, Some(self.wall()), Frame::Forward),
+        };
+        check(
+            "step",
+            interval,
+            interval > 0.0,
+            "a positive sample interval, s",
+        )?;
+        check(
+            "speed",
+            speed,
+            speed.abs() <= 1e3,
+            "a finite speed of at most 1000 m/s",
+        )?;
+        if samples < 2 {
+            return Err(ChainError::Drive {
+                name: "samples",
+                value: samples as f64,
+                expected: "at least 2",
+            });
+        }
+        let h = self.integration_step(interval, wall)?;
+        let every = (interval / h).round() as usize;
+        if samples as f64 * every as f64 > MAX_STEPS {
+            return Err(ChainError::TooManySteps {
+                steps: samples as f64 * every as f64,
+            });
+        }
+        let n = self.dof();
+        let force = match drive {
+            Drive::Force { force, .. } => force,
+            Drive::Barrier { .. } => &[][..],
+        };
+        let mut m = Mover::new(self, force, every, wall, samples, frame.sign());
+        let mut state = Leapfrog::start(&mut m, vec![0.0; n], vec![speed; n], h);
+        let last = (samples - 1) * every;
+        state
+            .run(&mut m, every, last)
+            .map_err(|sample| ChainError::Diverged { sample })?;
+        Ok(m.finish(self, interval))
+    }
+}
+
+fn check(
+    name: &'static str,
+    value: f64,
+    ok: bool,
+    expected: &'static str,
+) -> Result<(), ChainError> {
+    if ok && value.is_finite() {
+        return Ok(());
+    }
+    Err(ChainError::Drive {
+        name,
+        value,
+        expected,
+    })
+}
+
+/// The mechanism of one run: forces, histories and records.
+struct Mover<'a> {
+    chain: &'a Chain,
+    force: &'a [f64],
+    every: usize,
+    wall: Option<(f64, f64)>,
+    sign: f64,
+    front: LinkState,
+    front_force: f64,
+    states: Vec<LinkState>,
+    springs: Vec<f64>,
+    applied: usize,
+    viscous: f64,
+    work: f64,
+    out: ChainResponse,
+}
+
+impl<'a> Mover<'a> {
+    fn new(
+        chain: &'a Chain,
+        force: &'a [f64],
+        every: usize,
+        wall: Option<(f64, f64)>,
+        samples: usize,
+        sign: f64,
+    ) -> Mover<'a> {
+        let (n, l) = (chain.dof(), chain.dof() - 1);
+        let series = |count: usize| vec![Vec::with_capacity(samples); count];
+        let mut m = Mover {
+            chain,
+            force,
+            every,
+            wall,
+            sign,
+            front: LinkState::default(),
+            front_force: 0.0,
+            states: vec![LinkState::default(); l],
+            springs: vec![0.0; l],
+            applied: 0,
+            viscous: 0.0,
+            work: 0.0,
+            out: ChainResponse {
+                step: 0.0,
+                force: Vec::with_capacity(samples),
+                displacement: series(n),
+                velocity: series(n),
+                link_force: series(l),
+                kinetic: Vec::with_capacity(samples),
+                stored: Vec::with_capacity(samples),
+                viscous: Vec::with_capacity(samples),
+                plastic: Vec::with_capacity(samples),
+                work: Vec::with_capacity(samples),
+                plastic_set: vec![],
+                reached: vec![],
+            },
+        };
+        m.moved(&vec![0.0; n], &vec![0.0; n], usize::MAX);
+        m
+    }
+
+    /// The force on m1 at integration step `k` (foh between samples), or
+    /// the wall's at position `x1` and velocity `v1`.
+    fn external(&self, k: usize, x1: f64, v1: f64) -> f64 {
+        if self.wall.is_some() && self.chain.front.is_some() {
+            return -self.front_force;
+        }
+        if let Some((kw, cw)) = self.wall {
+            return if x1 > 0.0 {
+                -(kw * x1 + cw * v1).max(0.0)
+            } else {
+                0.0
+            };
+        }
+        let sample = k / self.every;
+        let frac = (k % self.every) as f64 / self.every as f64;
+        match (self.force.get(sample), self.force.get(sample + 1)) {
+            (Some(a), Some(b)) => a + (b - a) * frac,
+            (Some(a), None) => *a,
+            _ => 0.0,
+        }
+    }
+
+    fn finish(mut self, chain: &Chain, interval: f64) -> ChainResponse {
+        self.out.step = interval;
+        self.out.plastic_set = self
+            .states
+            .iter()
+            .zip(&chain.links)
+            .map(|(s, l)| s.plastic_set(l))
+            .collect();
+        self.out.reached = self.states.iter().map(|s| s.reached).collect();
+        self.out
+    }
+}
+
+impl Mechanism for Mover<'_> {
+    type Error = usize;
+
+    fn moved(&mut self, q: &[f64], _v: &[f64], k: usize) {
+        for (j, link) in self.chain.links.iter().enumerate() {
+            let crush = self.sign * (q[j] - q[j + 1]);
+            self.springs[j] = self.sign * link.force(crush, &mut self.states[j]);
+        }
+        if let (Some(front), Some(_)) = (&self.chain.front, self.wall) {
+            self.front_force = front.force(q[0], &mut self.front).max(0.0);
+        }
+        self.applied = k.wrapping_add(1);
+    }
+
+    fn accelerations(&mut self, q: &[f64], v: &[f64], a: &mut [f64]) {
+        let k = self.applied;
+        let f = self.external(k, q[0], v[0]);
+        let c = &self.chain.dampers;
+        for (i, ai) in a.iter_mut().enumerate() {
+            let mut sum = if i == 0 { f } else { 0.0 };
+            if i + 1 < q.len() {
+                sum -= self.springs[i] + c[i] * (v[i] - v[i + 1]);
+            }
+            if i > 0 {
+                sum += self.springs[i - 1] + c[i - 1] * (v[i - 1] - v[i]);
+            }
+            *ai = sum / self.chain.masses[i];
+        }
+    }
+
+    fn stepped(&mut self, s: &Stepped<'_>) {
+        let c = &self.chain.dampers;
+        let k = if s.half { 0 } else { self.applied };
+        let f = self.external(k, s.q[0], s.before[0]);
+        if self.chain.front.is_none() || self.wall.is_none() {
+            self.work += s.length * f * s.mean[0];
+        }
+        for (j, cj) in c.iter().enumerate() {
+            let rate = s.before[j] - s.before[j + 1];
+            self.viscous += s.length * cj * rate * (s.mean[j] - s.mean[j + 1]);
+        }
+    }
+
+    fn record(&mut self, k: usize, state: &Leapfrog) -> Result<crate::leapfrog::Control, usize> {
+        let (q, v) = (state.q(), state.velocities());
+        if q.iter().chain(v).any(|x| !x.is_finite()) {
+            return Err(k / self.every);
+        }
+        let wall = self.external(k, q[0], v[0]);
+        let o = &mut self.out;
+        o.force.push(wall);
+        for (i, (x, w)) in q.iter().zip(v).enumerate() {
+            o.displacement[i].push(*x);
+            o.velocity[i].push(*w);
+        }
+        let (mut stored, mut plastic) = (0.0, 0.0);
+        for (j, link) in self.chain.links.iter().enumerate() {
+            o.link_force[j].push(self.sign * self.springs[j]);
+            stored += link.stored(self.sign * (q[j] - q[j + 1]), &self.states[j]);
+            plastic += self.states[j].dissipated(link);
+        }
+        if let (Some(front), Some(_)) = (&self.chain.front, self.wall) {
+            if self.front_force > 0.0 {
+                stored += front.stored(q[0], &self.front);
+            }
+            plastic += self.front.dissipated(front);
+        }
+        o.kinetic.push(
+            self.chain
+                .masses
+                .iter()
+                .zip(v)
+                .map(|(m, w)| 0.5 * m * w * w)
+                .sum(),
+        );
+        o.stored.push(stored);
+        o.plastic.push(plastic);
+        o.viscous.push(self.viscous);
+        o.work.push(self.work);
+        Ok(crate::leapfrog::Control::Continue)
+    }
+}
+
+#[cfg(test)]
+#[path = "chain_tests.rs"]
+mod tests;

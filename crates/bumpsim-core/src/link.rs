@@ -1,0 +1,588 @@
+//! Nonlinear links: a spring given by a loading curve and an unloading
+//! rule, with the history it carries (issue 46, item 2).
+//!
+//! Lumped crash models since Kamal (1970, "Analysis and simulation of
+//! vehicle to barrier impact", SAE 700414) join the masses of a car by
+//! springs that crush: the force follows a **loading curve** `F_L(δ)` while
+//! the deformation δ (m, positive in compression) grows past its largest
+//! value so far, and an **unloading rule** when it recedes.
+//!
+//! Loading curves ([`Curve`]), for δ ≥ 0:
+//!
+//! - linear: `F_L = k δ`;
+//! - progressive (stiffening) up to a limit deformation `δ_lim`, the tangent
+//!   there beyond: `F_L = k δ + k3 δ³` (δ ≤ δ_lim);
+//! - yielding with hardening (bilinear elasto-plastic): `F_L = k δ` up to
+//!   the yield force `F_y` (δ_y = F_y / k), then `F_L = F_y + r k (δ − δ_y)`
+//!   with the hardening ratio `0 ≤ r ≤ 1` (r = 0: perfectly plastic);
+//! - tabulated: piecewise linear through points `(δ_i, F_i)` from (0, 0),
+//!   δ increasing, F ≥ 0 (a crush force may fall after a fold buckles),
+//!   the last slope beyond the last point (held at its force when falling).
+//!
+//! Unloading rules ([`Unloading`]):
+//!
+//! - **elastic** along the same curve (`F = F_L(δ)`, odd in δ: tension
+//!   mirrors compression); nothing is dissipated;
+//! - **elastic slope** `k_u` from the reached deformation δ_max (the
+//!   elasto-plastic spring): `F = F_max − k_e (δ_max − δ)` below δ_max,
+//!   linear into tension, with the plastic set `δ_p = δ_max − F_max / k_e`.
+//!   The slope used is `k_e = max(k_u, F_max/δ_max, F_max²/(2 E_L))`,
+//!   `E_L = ∫₀^δmax F_L dδ`: the secant keeps the set non-negative and the
+//!   last term keeps the dissipated work non-negative on a stiffening
+//!   curve (both equal k on a linear curve, which then stays elastic).
+//!
+//! Energy: the elastic energy stored is `F² / (2 k_e)` (elastic rule:
+//! `∫₀^|δ| F_L`), and the plastic work dissipated so far is
+//! `W_p = E_L(δ_max) − F_max² / (2 k_e)`, exact for every curve (closed
+//! form; trapezoids are exact on a table). A chain's energy balance then
+//! closes with it (see [`crate::chain`]).
+//!
+//! Rate dependence is a viscous damper in parallel (the chain's `c_j`).
+//!
+//! ```
+//! use bumpsim_core::link::{Curve, Link, LinkState, Unloading};
+//! let link = Link::new(Curve::bilinear(1e6, 5e4, 0.1).unwrap(), Unloading::Slope(2e6)).unwrap();
+//! let mut state = LinkState::default();
+//! assert_eq!(link.force(0.01, &mut state), 1e4);            // elastic
+//! let top = link.force(0.2, &mut state);                     // yielded, hardening
+//! assert!((top - (5e4 + 0.1 * 1e6 * 0.15)).abs() < 1e-6);
+//! let back = link.force(0.19, &mut state);                   // unloads at 2e6 N/m
+//! assert!((back - (top - 2e6 * 0.01)).abs() < 1e-6);
+//! assert!((state.plastic_set(&link) - (0.2 - top / 2e6)).abs() < 1e-12);
+//! ```
+
+/// Why a link cannot be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum LinkError {
+    /// A parameter is out of its range.
+    #[error("{parameter} = {value} {unit}: {requirement}")]
+    Value {
+        /// The parameter (`stiffness`, `yield_force`, ...).
+        parameter: &'static str,
+        /// The value given, SI.
+        value: f64,
+        /// Its SI unit.
+        unit: &'static str,
+        /// What is expected.
+        requirement: &'static str,
+    },
+    /// A table of the loading curve is not usable.
+    #[error("loading table point {index}: {reason}")]
+    Table {
+        /// 0-based point.
+        index: usize,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+/// Most points of a tabulated curve.
+pub const MAX_TABLE_POINTS: usize = 10_000;
+
+/// A loading curve `F_L(δ)`, δ ≥ 0 in compression (m → N).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Curve {
+    /// `F = k δ`.
+    Linear {
+        /// k, N/m.
+        stiffness: f64,
+    },
+    /// `F = k δ + k3 δ³` up to `limit`, the tangent beyond.
+    Progressive {
+        /// k, N/m.
+        stiffness: f64,
+        /// k3, N/m³.
+        cubic: f64,
+        /// δ_lim, m.
+        limit: f64,
+    },
+    /// Elastic `k δ` up to `F_y`, then `F_y + r k (δ − δ_y)`.
+    Bilinear {
+        /// k, N/m.
+        stiffness: f64,
+        /// F_y, N.
+        yield_force: f64,
+        /// r, 0..=1.
+        hardening: f64,
+    },
+    /// Piecewise linear through `(δ_i, F_i)`, starting at (0, 0) (added
+    /// when absent); `[deformation m, force N]` pairs.
+    Table {
+        /// The points, the first (0, 0).
+        points: Vec<[f64; 2]>,
+    },
+}
+
+fn value(
+    parameter: &'static str,
+    value: f64,
+    unit: &'static str,
+    ok: bool,
+    requirement: &'static str,
+) -> Result<(), LinkError> {
+    if ok && value.is_finite() {
+        return Ok(());
+    }
+    Err(LinkError::Value {
+        parameter,
+        value,
+        unit,
+        requirement,
+    })
+}
+
+fn positive(parameter: &'static str, x: f64, unit: &'static str) -> Result<(), LinkError> {
+    value(parameter, x, unit, x > 0.0, "must be positive and finite")
+}
+
+impl Curve {
+    /// A linear curve.
+    pub fn linear(stiffness: f64) -> Result<Curve, LinkError> {
+        positive("stiffness", stiffness, "N/m")?;
+        Ok(Curve::Linear { stiffness })
+    }
+
+    /// A progressive curve `k δ + k3 δ³` up to `limit` (m).
+    pub fn progressive(stiffness: f64, cubic: f64, limit: f64) -> Result<Curve, LinkError> {
+        positive("stiffness", stiffness, "N/m")?;
+        value(
+            "cubic",
+            cubic,
+            "N/m^3",
+            cubic >= 0.0,
+            "must be finite and non-negative (0 = linear)",
+        )?;
+        positive("limit", limit, "m")?;
+        let slope = stiffness + 3.0 * cubic * limit * limit;
+        value(
+            "limit",
+            limit,
+            "m",
+            slope.is_finite(),
+            "gives an infinite slope with this cubic term",
+        )?;
+        Ok(Curve::Progressive {
+            stiffness,
+            cubic,
+            limit,
+        })
+    }
+
+    /// A yielding curve with hardening ratio `hardening` (0..=1).
+    pub fn bilinear(stiffness: f64, yield_force: f64, hardening: f64) -> Result<Curve, LinkError> {
+        positive("stiffness", stiffness, "N/m")?;
+        positive("yield_force", yield_force, "N")?;
+        value(
+            "hardening",
+            hardening,
+            "",
+            (0.0..=1.0).contains(&hardening),
+            "the hardening ratio must lie in 0..=1 (0 = perfectly plastic)",
+        )?;
+        Ok(Curve::Bilinear {
+            stiffness,
+            yield_force,
+            hardening,
+        })
+    }
+
+    /// A tabulated curve through `points` (`[δ m, F N]`).
+    pub fn table(points: Vec<[f64; 2]>) -> Result<Curve, LinkError> {
+        let mut points = points;
+        if points.first().is_none_or(|p| p[0] != 0.0) {
+            points.insert(0, [0.0, 0.0]);
+        }
+        let fail = |index: usize, reason: String| Err(LinkError::Table { index, reason });
+        if points.len() < 2 {
+            return fail(0, "a table needs a point past (0, 0)".into());
+        }
+        if points.len() > MAX_TABLE_POINTS {
+            return fail(
+                MAX_TABLE_POINTS,
+                format!("at most {MAX_TABLE_POINTS} points"),
+            );
+        }
+        if points[0][1] != 0.0 {
+            return fail(
+                0,
+                format!("the force at δ = 0 is {} N, expected 0", points[0][1]),
+            );
+        }
+        for (i, w) in points.windows(2).enumerate() {
+            let [[d0, _], [d1, f1]] = [w[0], w[1]];
+            if !(d1.is_finite() && f1.is_finite()) {
+                return fail(i + 1, format!("({d1} m, {f1} N) is not finite"));
+            }
+            if d1 <= d0 {
+                return fail(
+                    i + 1,
+                    format!("deformation {d1} m after {d0} m: expected increasing"),
+                );
+            }
+            if f1 < 0.0 {
+                return fail(
+                    i + 1,
+                    format!("force {f1} N: a crush force is not negative"),
+                );
+            }
+        }
+        let [d, f] = points[1];
+        if f / d <= 0.0 {
+            return fail(1, "the first segment must have a positive slope".into());
+        }
+        Ok(Curve::Table { points })
+    }
+
+    /// `F_L(δ)` for δ ≥ 0, N.
+    pub fn force(&self, d: f64) -> f64 {
+        match self {
+            Curve::Linear { stiffness } => stiffness * d,
+            Curve::Progressive {
+                stiffness,
+                cubic,
+                limit,
+            } => {
+                let e = d.min(*limit);
+                let base = stiffness * e + cubic * e * e * e;
+                base + (stiffness + 3.0 * cubic * e * e) * (d - e)
+            }
+            Curve::Bilinear {
+                stiffness,
+                yield_force,
+                hardening,
+            } => {
+                let elastic = stiffness * d;
+                if elastic <= *yield_force {
+                    elastic
+                } else {
+                    yield_force + hardening * (elastic - yield_force)
+                }
+            }
+            Curve::Table { points } => {
+                let i = segment(points, d);
+                let ([d0, f0], [d1, f1]) = (points[i], points[i + 1]);
+                let slope = (f1 - f0) / (d1 - d0);
+                if d > d1 && slope < 0.0 {
+                    return f1;
+                }
+                f0 + slope * (d - d0)
+            }
+        }
+    }
+
+    /// `E_L(δ) = ∫₀^δ F_L`, J, δ ≥ 0.
+    pub fn energy(&self, d: f64) -> f64 {
+        match self {
+            Curve::Linear { stiffness } => 0.5 * stiffness * d * d,
+            Curve::Progressive {
+                stiffness,
+                cubic,
+                limit,
+            } => {
+                let e = d.min(*limit);
+                let within = 0.5 * stiffness * e * e + 0.25 * cubic * e.powi(4);
+                within + 0.5 * (self.force(e) + self.force(d)) * (d - e)
+            }
+            Curve::Bilinear {
+                stiffness,
+                yield_force,
+                ..
+            } => {
+                let dy = yield_force / stiffness;
+                if d <= dy {
+                    0.5 * stiffness * d * d
+                } else {
+                    0.5 * yield_force * dy + 0.5 * (yield_force + self.force(d)) * (d - dy)
+                }
+            }
+            Curve::Table { points } => {
+                let i = segment(points, d);
+                let whole: f64 = points[..=i]
+                    .windows(2)
+                    .map(|w| 0.5 * (w[0][1] + w[1][1]) * (w[1][0] - w[0][0]))
+                    .sum();
+                let end = points[i + 1][0];
+                if d > end && self.force(d) == points[i + 1][1] && points[i + 1][1] < points[i][1] {
+                    let segment = 0.5 * (points[i][1] + points[i + 1][1]) * (end - points[i][0]);
+                    return whole + segment + points[i + 1][1] * (d - end);
+                }
+                whole + 0.5 * (points[i][1] + self.force(d)) * (d - points[i][0])
+            }
+        }
+    }
+
+    /// The initial slope, N/m.
+    pub fn initial_slope(&self) -> f64 {
+        match self {
+            Curve::Linear { stiffness }
+            | Curve::Progressive { stiffness, .. }
+            | Curve::Bilinear { stiffness, .. } => *stiffness,
+            Curve::Table { points } => points[1][1] / points[1][0],
+        }
+    }
+
+    /// The steepest slope anywhere on the curve, N/m (bounds the stable step).
+    pub fn steepest_slope(&self) -> f64 {
+        match self {
+            Curve::Progressive {
+                stiffness,
+                cubic,
+                limit,
+            } => stiffness + 3.0 * cubic * limit * limit,
+            Curve::Table { points } => points
+                .windows(2)
+                .map(|w| ((w[1][1] - w[0][1]) / (w[1][0] - w[0][0])).abs())
+                .fold(0.0, f64::max),
+            _ => self.initial_slope(),
+        }
+    }
+}
+
+/// Index of the table segment holding δ (the last beyond the last point).
+fn segment(points: &[[f64; 2]], d: f64) -> usize {
+    let last = points.len() - 2;
+    points[1..=last].partition_point(|p| p[0] <= d).min(last)
+}
+
+/// What a link does when its deformation recedes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Unloading {
+    /// Back along the loading curve: nonlinear elastic.
+    Elastic,
+    /// Along this slope (N/m) from the reached deformation (see the module
+    /// for the slope actually used): hysteresis and a plastic set.
+    Slope(f64),
+}
+
+/// A validated nonlinear link: loading curve and unloading rule.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Link {
+    curve: Curve,
+    unloading: Unloading,
+}
+
+/// What a link remembers: the largest compression reached, m.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LinkState {
+    /// δ_max, m (0 before any compression).
+    pub reached: f64,
+}
+
+impl LinkState {
+    /// The plastic set `δ_p = δ_max − F_max / k_e`, m (0 for an elastic link).
+    pub fn plastic_set(&self, link: &Link) -> f64 {
+        match link.unloading {
+            Unloading::Elastic => 0.0,
+            Unloading::Slope(_) => {
+                let (top, slope) = link.unloading_line(self.reached);
+                self.reached - top / slope
+            }
+        }
+    }
+
+    /// The plastic work dissipated so far, J (0 for an elastic link).
+    pub fn dissipated(&self, link: &Link) -> f64 {
+        match link.unloading {
+            Unloading::Elastic => 0.0,
+            Unloading::Slope(_) => {
+                let (top, slope) = link.unloading_line(self.reached);
+                (link.curve.energy(self.reached) - 0.5 * top * top / slope).max(0.0)
+            }
+        }
+    }
+}
+
+impl Link {
+    /// A link from its curve and unloading rule; an unloading slope must
+    /// be positive and finite.
+    pub fn new(curve: Curve, unloading: Unloading) -> Result<Link, LinkError> {
+        if let Unloading::Slope(k) = unloading {
+            positive("unloading", k, "N/m")?;
+        }
+        Ok(Link { curve, unloading })
+    }
+
+    /// A linear elastic link of stiffness k (N/m).
+    pub fn linear(stiffness: f64) -> Result<Link, LinkError> {
+        Link::new(Curve::linear(stiffness)?, Unloading::Elastic)
+    }
+
+    /// The loading curve.
+    pub fn curve(&self) -> &Curve {
+        &self.curve
+    }
+
+    /// The unloading rule.
+    pub fn unloading(&self) -> Unloading {
+        self.unloading
+    }
+
+    /// `(F_max, k_e)`: the top of the unloading line from δ_max and its slope.
+    fn unloading_line(&self, reached: f64) -> (f64, f64) {
+        let top = self.curve.force(reached);
+        let k0 = self.curve.initial_slope();
+        let given = match self.unloading {
+            Unloading::Slope(k) => k,
+            Unloading::Elastic => k0,
+        };
+        if reached <= 0.0 {
+            return (0.0, given.max(k0));
+        }
+        let secant = top / reached;
+        let energy = self.curve.energy(reached);
+        let balance = if energy > 0.0 {
+            0.5 * top * top / energy
+        } else {
+            k0
+        };
+        (top, given.max(secant).max(balance))
+    }
+
+    /// The spring force at deformation `d` (m, compression positive), N,
+    /// updating the history `state`.
+    pub fn force(&self, d: f64, state: &mut LinkState) -> f64 {
+        match self.unloading {
+            Unloading::Elastic => d.signum() * self.curve.force(d.abs()),
+            Unloading::Slope(_) => {
+                if d >= state.reached {
+                    state.reached = d;
+                    return self.curve.force(d);
+                }
+                let (top, slope) = self.unloading_line(state.reached);
+                top - slope * (state.reached - d)
+            }
+        }
+    }
+
+    /// The elastic energy stored at deformation `d` with history `state`, J.
+    pub fn stored(&self, d: f64, state: &LinkState) -> f64 {
+        match self.unloading {
+            Unloading::Elastic => self.curve.energy(d.abs()),
+            Unloading::Slope(_) => {
+                let (top, slope) = self.unloading_line(state.reached);
+                let f = if d >= state.reached {
+                    self.curve.force(d)
+                } else {
+                    top - slope * (state.reached - d)
+                };
+                0.5 * f * f / slope
+            }
+        }
+    }
+
+    /// The steepest slope the link can show, N/m (loading or unloading).
+    pub fn steepest_slope(&self) -> f64 {
+        let unloading = match self.unloading {
+            Unloading::Slope(k) => k,
+            Unloading::Elastic => 0.0,
+        };
+        self.curve.steepest_slope().max(unloading)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn construction_names_the_bad_parameter() {
+        let e = Curve::bilinear(1e6, -1.0, 0.1).unwrap_err();
+        assert!(e.to_string().starts_with("yield_force = -1 N"), "{e}");
+        let e = Curve::bilinear(1e6, 1e4, 1.5).unwrap_err();
+        assert!(e.to_string().contains("hardening"), "{e}");
+        assert!(Curve::linear(f64::NAN).is_err());
+        assert!(Curve::progressive(1e6, 1e300, 1e200).is_err());
+        let e = Link::new(Curve::linear(1.0).unwrap(), Unloading::Slope(0.0)).unwrap_err();
+        assert!(e.to_string().starts_with("unloading = 0 N/m"), "{e}");
+        let e = Curve::table(vec![[0.1, 10.0], [0.05, 20.0]]).unwrap_err();
+        assert!(e.to_string().contains("point 2"), "{e}");
+        assert!(Curve::table(vec![[0.1, 10.0], [0.2, -5.0]]).is_err());
+        assert!(Curve::table(vec![[0.0, 0.0]]).is_err());
+        assert!(Curve::table(vec![[0.1, 0.0], [0.2, 5.0]]).is_err());
+    }
+
+    #[test]
+    fn energies_are_the_integrals_of_the_curves() {
+        let curves = [
+            Curve::linear(2e5).unwrap(),
+            Curve::progressive(2e5, 4e7, 0.3).unwrap(),
+            Curve::bilinear(2e5, 1e4, 0.2).unwrap(),
+            Curve::table(vec![[0.05, 1e4], [0.1, 1.2e4], [0.3, 5e4]]).unwrap(),
+            Curve::table(vec![[0.05, 1e4], [0.1, 6e3], [0.2, 4e3]]).unwrap(),
+        ];
+        for curve in &curves {
+            for d in [0.01, 0.07, 0.25, 0.5] {
+                let n = 20_000;
+                let h = d / n as f64;
+                let simpson: f64 = (0..n)
+                    .map(|i| {
+                        let a = i as f64 * h;
+                        h / 6.0
+                            * (curve.force(a) + 4.0 * curve.force(a + 0.5 * h) + curve.force(a + h))
+                    })
+                    .sum();
+                assert_relative_eq!(curve.energy(d), simpson, max_relative = 1e-8);
+            }
+        }
+    }
+
+    #[test]
+    fn a_cycle_dissipates_the_hysteresis_and_keeps_the_set() {
+        let link = Link::new(
+            Curve::bilinear(1e6, 5e4, 0.0).unwrap(),
+            Unloading::Slope(1e6),
+        )
+        .unwrap();
+        let mut s = LinkState::default();
+        // load to 0.2 m (yield at 0.05 m), unload to zero force
+        let mut work = 0.0;
+        let mut last = (0.0, 0.0);
+        for i in 1..=4000 {
+            let d = if i <= 2000 {
+                0.2 * i as f64 / 2000.0
+            } else {
+                0.2 - 0.05 * (i - 2000) as f64 / 2000.0
+            };
+            let f = link.force(d, &mut s);
+            work += 0.5 * (f + last.1) * (d - last.0);
+            last = (d, f);
+        }
+        assert_relative_eq!(last.1, 0.0, epsilon = 1e-6);
+        assert_relative_eq!(s.plastic_set(&link), 0.15, max_relative = 1e-12);
+        // perfectly plastic: F_y times the plastic set
+        assert_relative_eq!(s.dissipated(&link), 5e4 * 0.15, max_relative = 1e-12);
+        assert_relative_eq!(work, s.dissipated(&link), max_relative = 1e-6);
+        assert_relative_eq!(link.stored(0.15, &s), 0.0, epsilon = 1e-9);
+    }
+
+    #[test]
+    fn a_linear_curve_stays_elastic_under_any_unloading_slope() {
+        let link = Link::new(Curve::linear(1e5).unwrap(), Unloading::Slope(1e3)).unwrap();
+        let mut s = LinkState::default();
+        link.force(0.3, &mut s);
+        assert_relative_eq!(link.force(0.1, &mut s), 1e4, max_relative = 1e-12);
+        assert_relative_eq!(s.plastic_set(&link), 0.0, epsilon = 1e-15);
+        assert_relative_eq!(s.dissipated(&link), 0.0, epsilon = 1e-9);
+    }
+
+    #[test]
+    fn a_stiffening_curve_never_gives_back_more_than_it_took() {
+        let link = Link::new(
+            Curve::progressive(1e5, 1e8, 0.5).unwrap(),
+            Unloading::Slope(1e4),
+        )
+        .unwrap();
+        let mut s = LinkState::default();
+        for d in [0.1, 0.2, 0.4] {
+            link.force(d, &mut s);
+            assert!(s.dissipated(&link) >= 0.0);
+            assert!(s.plastic_set(&link) >= 0.0);
+            assert!(link.stored(d, &s) <= link.curve().energy(d) * (1.0 + 1e-12));
+        }
+        let elastic = Link::new(link.curve().clone(), Unloading::Elastic).unwrap();
+        let mut e = LinkState::default();
+        assert_eq!(elastic.force(-0.1, &mut e), -elastic.force(0.1, &mut e));
+    }
+}
