@@ -10,7 +10,7 @@
 //! |---|---|---|---|
 //! | linear curve, either rule | `*MAT_SPRING_ELASTIC` K = k | `SPRINGA`, `*SPRING` k | exactly |
 //! | nonlinear curve, elastic | `*MAT_SPRING_NONLINEAR_ELASTIC`, odd `*DEFINE_CURVE` | `SPRINGA`, `*SPRING, NONLINEAR` odd table | exactly on the table's points |
-//! | nonlinear curve, slope k_u ≥ the curve's steepest slope | `*MAT_SPRING_INELASTIC` (LCFD = the curve, KU = k_u, compression only) | `C3D8` brick, `*ELASTIC` E, `*PLASTIC` table | exactly in compression |
+//! | nonlinear curve, slope k_u ≥ the curve's steepest slope | `*MAT_SPRING_INELASTIC` (LCFD = the curve in the first quadrant, KU = k_u, CTF = 1: compression only) | `C3D8` brick, `*ELASTIC` E, `*PLASTIC` table | exactly in compression |
 //! | nonlinear curve, slope k_u below the steepest slope | as above | as above, E from the steepest slope | approximately |
 //!
 //! Tables: a bilinear or tabulated curve is written at its corners, then
@@ -250,13 +250,12 @@ pub(crate) fn lsdyna_link(
                 crate::layout::real_field(k * units.stiffness(), 10),
                 crate::layout::real_field(1.0, 10)
             );
-            let mut rows: Vec<(f64, f64)> = points.iter().rev().map(|&(d, f)| (-d, -f)).collect();
-            rows.push((CURVE_SPAN, 0.0));
-            let rows = rows
-                .into_iter()
-                .map(|(d, f)| (d * units.length(), f * units.force()));
+            // the manual: in the first quadrant whichever way the spring acts
+            let rows = points
+                .iter()
+                .map(|&(d, f)| (d * units.length(), f * units.force()));
             let note = format!(
-                "loading curve of link {}: force ({f}) against elongation ({l}), compression negative",
+                "loading curve of link {}: force ({f}) against crush ({l}), first quadrant",
                 j + 1
             );
             cards::curve(deck, id, Some(&note), rows);

@@ -285,10 +285,14 @@ fn the_lsdyna_include_parses_in_ansys_dyna_core_with_every_id_defined() {
     ] {
         assert!(keywords.contains(kind), "{kind} missing: {keywords}");
     }
-    // link 1's loading curve (id 7000 + 5 + 1): compression negative, in mm and N
-    let curve = &verdict["curves"]["7006"];
-    let first = curve[0].as_array().unwrap();
-    assert_relative_eq!(first[0].as_f64().unwrap(), -1e4, max_relative = 1e-6);
+    // link 1's loading curve (id 7000 + 5 + 1): first quadrant, in mm and N
+    let curve = verdict["curves"]["7006"].as_array().unwrap();
+    let point = |i: usize| curve[i].as_array().unwrap().clone();
+    assert_eq!(point(0), [serde_json::json!(0.0), serde_json::json!(0.0)]);
+    assert_relative_eq!(point(1)[0].as_f64().unwrap(), 30.0, max_relative = 1e-6);
+    assert_relative_eq!(point(1)[1].as_f64().unwrap(), 6e4, max_relative = 1e-6);
+    let last = point(curve.len() - 1);
+    assert_relative_eq!(last[0].as_f64().unwrap(), 1e4, max_relative = 1e-6);
     let f = 6e4 + 0.1 * 2e6 * (10.0 - 0.03);
-    assert_relative_eq!(first[1].as_f64().unwrap(), -f, max_relative = 1e-3);
+    assert_relative_eq!(last[1].as_f64().unwrap(), f, max_relative = 1e-3);
 }
