@@ -33,9 +33,11 @@
 //! both.
 //!
 //! Driven by [`Drive::Barrier`] the car runs into a rigid wall at x = 0 instead
-//! (x positive into the wall; m1 starts at it): the wall pushes m1 back by
-//! a stiff penalty spring and a damper near critical for m1 (force never
-//! pulling), and the recorded force is the wall's force on the car
+//! (x positive into the wall; m1 starts at it). With a front link
+//! ([`Chain::with_front`], Kamal's crush zone ahead of the engine) the
+//! wall pushes m1 back by that link's force at the crush x1 (never
+//! pulling); without one by a stiff penalty spring and a damper near
+//! critical for m1. The recorded force is the wall's force on the car
 //! (negative, as the load-cell barrier's is).
 //!
 //! ```
@@ -60,6 +62,7 @@ pub struct Chain {
     masses: Vec<f64>,
     dampers: Vec<f64>,
     links: Vec<Link>,
+    front: Option<Link>,
 }
 
 /// Why a chain cannot run.
@@ -250,6 +253,7 @@ impl Chain {
             masses,
             dampers,
             links,
+            front: None,
         })
     }
 
@@ -273,6 +277,20 @@ impl Chain {
         &self.links
     }
 
+    /// The same chain with a front link: the crush zone between a rigid
+    /// wall and m1, compressed by m1's travel into the wall.
+    pub fn with_front(self, front: Link) -> Chain {
+        Chain {
+            front: Some(front),
+            ..self
+        }
+    }
+
+    /// The front link, if any.
+    pub fn front(&self) -> Option<&Link> {
+        self.front.as_ref()
+    }
+
     /// The wall's penalty stiffness (N/m) and damper (N·s/m): 100 times
     /// the steepest link slope, at least 1e9 N/m; the damper at 0.7 of
     /// critical for m1.
@@ -282,6 +300,9 @@ impl Chain {
             .iter()
             .map(Link::steepest_slope)
             .fold(0.0, f64::max);
+        if let Some(front) = &self.front {
+            return (front.steepest_slope(), 0.0);
+        }
         let k = (100.0 * steepest).max(1e9);
         (k, 1.4 * (k * self.masses[0]).sqrt())
     }
@@ -392,6 +413,8 @@ struct Mover<'a> {
     every: usize,
     wall: Option<(f64, f64)>,
     sign: f64,
+    front: LinkState,
+    front_force: f64,
     states: Vec<LinkState>,
     springs: Vec<f64>,
     applied: usize,
@@ -417,6 +440,8 @@ impl<'a> Mover<'a> {
             every,
             wall,
             sign,
+            front: LinkState::default(),
+            front_force: 0.0,
             states: vec![LinkState::default(); l],
             springs: vec![0.0; l],
             applied: 0,
@@ -444,6 +469,9 @@ impl<'a> Mover<'a> {
     /// The force on m1 at integration step `k` (foh between samples), or
     /// the wall's at position `x1` and velocity `v1`.
     fn external(&self, k: usize, x1: f64, v1: f64) -> f64 {
+        if self.wall.is_some() && self.chain.front.is_some() {
+            return -self.front_force;
+        }
         if let Some((kw, cw)) = self.wall {
             return if x1 > 0.0 {
                 -(kw * x1 + cw * v1).max(0.0)
@@ -481,6 +509,9 @@ impl Mechanism for Mover<'_> {
             let crush = self.sign * (q[j] - q[j + 1]);
             self.springs[j] = self.sign * link.force(crush, &mut self.states[j]);
         }
+        if let (Some(front), Some(_)) = (&self.chain.front, self.wall) {
+            self.front_force = front.force(q[0], &mut self.front).max(0.0);
+        }
         self.applied = k.wrapping_add(1);
     }
 
@@ -504,7 +535,9 @@ impl Mechanism for Mover<'_> {
         let c = &self.chain.dampers;
         let k = if s.half { 0 } else { self.applied };
         let f = self.external(k, s.q[0], s.before[0]);
-        self.work += s.length * f * s.mean[0];
+        if self.chain.front.is_none() || self.wall.is_none() {
+            self.work += s.length * f * s.mean[0];
+        }
         for (j, cj) in c.iter().enumerate() {
             let rate = s.before[j] - s.before[j + 1];
             self.viscous += s.length * cj * rate * (s.mean[j] - s.mean[j + 1]);
@@ -529,6 +562,12 @@ impl Mechanism for Mover<'_> {
             stored += link.stored(self.sign * (q[j] - q[j + 1]), &self.states[j]);
             plastic += self.states[j].dissipated(link);
         }
+        if let (Some(front), Some(_)) = (&self.chain.front, self.wall) {
+            if self.front_force > 0.0 {
+                stored += front.stored(q[0], &self.front);
+            }
+            plastic += self.front.dissipated(front);
+        }
         o.kinetic.push(
             self.chain
                 .masses
@@ -546,158 +585,5 @@ impl Mechanism for Mover<'_> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::discrete::Method;
-    use crate::link::{Curve, Unloading};
-    use crate::model::MsdModel;
-    use crate::series::UniformSeries;
-    use crate::simulate::{InitialState, simulate};
-    use approx::assert_relative_eq;
-
-    fn epp(k: f64, fy: f64) -> Link {
-        Link::new(Curve::bilinear(k, fy, 0.0).unwrap(), Unloading::Slope(k)).unwrap()
-    }
-
-    /// A mass M at V into a wall through an elastic-perfectly-plastic link
-    /// (k, F_y): crush `M V²/(2 F_y) + F_y/(2k)`, plastic set `crush − F_y/k`,
-    /// dissipated `F_y · set`, rebound `F_y / √(k M)`.
-    #[test]
-    fn an_elastic_perfectly_plastic_mass_into_a_wall_matches_the_closed_form() {
-        let (m, v, k, fy) = (1000.0, 10.0, 1e7, 1e5);
-        let chain = Chain::new(vec![0.01, m], vec![0.0], vec![epp(k, fy)]).unwrap();
-        let r = chain
-            .run(&Drive::Barrier {
-                speed: v,
-                step: 1e-4,
-                samples: 3000,
-            })
-            .unwrap();
-        let crush = m * v * v / (2.0 * fy) + fy / (2.0 * k);
-        assert_relative_eq!(r.max_deformation(0), crush, max_relative = 1e-3);
-        let set = crush - fy / k;
-        assert_relative_eq!(r.plastic_set[0], set, max_relative = 1e-3);
-        let plastic = *r.plastic.last().unwrap();
-        assert_relative_eq!(plastic, fy * set, max_relative = 1e-3);
-        let rebound = r.velocity[1].iter().fold(0.0_f64, |a, b| a.min(*b));
-        assert_relative_eq!(-rebound, fy / (k * m).sqrt(), max_relative = 0.02);
-        assert!(r.energy_error() < 1e-3, "{}", r.energy_error());
-    }
-
-    /// Linear links give the linear chain's exact (foh) response to O(T²).
-    #[test]
-    fn linear_links_follow_the_exact_linear_chain() {
-        let (masses, dampers, springs) =
-            (vec![20.0, 300.0, 900.0], vec![800.0, 2e3], vec![4e5, 9e5]);
-        let model = MsdModel::new(masses.clone(), dampers.clone(), springs.clone()).unwrap();
-        let links = springs.iter().map(|k| Link::linear(*k).unwrap()).collect();
-        let chain = Chain::new(masses, dampers, links).unwrap();
-        let force: Vec<f64> = (0..600)
-            .map(|k| -2e4 * (k as f64 * 0.01).sin().max(0.0))
-            .collect();
-        let series = UniformSeries::new(0.0, 1e-4, force.clone()).unwrap();
-        let exact = simulate(
-            &model,
-            &series,
-            Method::Foh,
-            &InitialState::UniformVelocity(3.0),
-        )
-        .unwrap();
-        let r = chain
-            .run(&Drive::Force {
-                force: &force,
-                step: 1e-4,
-                initial_velocity: 3.0,
-                frame: Frame::Rearward,
-            })
-            .unwrap();
-        let scale = exact.displacement[2]
-            .iter()
-            .fold(0.0_f64, |a, b| a.max(b.abs()));
-        for (a, b) in r.displacement[2].iter().zip(&exact.displacement[2]) {
-            assert!((a - b).abs() < 1e-4 * scale, "{a} {b}");
-        }
-        assert!(r.energy_error() < 1e-3, "{}", r.energy_error());
-    }
-
-    /// The balance closes with the plastic and viscous work in a
-    /// three-mass chain of yielding and stiffening links.
-    #[test]
-    fn the_energy_balance_closes_with_the_dissipated_work() {
-        let links = vec![
-            Link::new(
-                Curve::bilinear(2e6, 4e4, 0.1).unwrap(),
-                Unloading::Slope(4e6),
-            )
-            .unwrap(),
-            Link::new(
-                Curve::progressive(1e6, 5e7, 0.3).unwrap(),
-                Unloading::Slope(3e6),
-            )
-            .unwrap(),
-        ];
-        let chain = Chain::new(vec![10.0, 400.0, 1200.0], vec![500.0, 3e3], links).unwrap();
-        let r = chain
-            .run(&Drive::Barrier {
-                speed: 15.0,
-                step: 1e-4,
-                samples: 2000,
-            })
-            .unwrap();
-        assert!(r.plastic.last().unwrap() > &0.0 && r.viscous.last().unwrap() > &0.0);
-        assert!(r.energy_error() < 2e-3, "{}", r.energy_error());
-        assert!(r.plastic_set.iter().all(|s| *s >= 0.0));
-    }
-
-    #[test]
-    fn hostile_drives_are_refused() {
-        let chain =
-            Chain::new(vec![1.0, 2.0], vec![0.0], vec![Link::linear(1e3).unwrap()]).unwrap();
-        let bad = [
-            Drive::Barrier {
-                speed: f64::NAN,
-                step: 1e-3,
-                samples: 10,
-            },
-            Drive::Barrier {
-                speed: 1.0,
-                step: 0.0,
-                samples: 10,
-            },
-            Drive::Barrier {
-                speed: 1.0,
-                step: 1e-3,
-                samples: 1,
-            },
-            Drive::Force {
-                force: &[0.0, 1.0],
-                step: -1.0,
-                initial_velocity: 0.0,
-                frame: Frame::Forward,
-            },
-        ];
-        for drive in bad {
-            assert!(
-                matches!(chain.run(&drive), Err(ChainError::Drive { .. })),
-                "{drive:?}"
-            );
-        }
-        let stiff = Chain::new(
-            vec![1e-9, 2.0],
-            vec![0.0],
-            vec![Link::linear(1e12).unwrap()],
-        )
-        .unwrap();
-        let long = Drive::Barrier {
-            speed: 1.0,
-            step: 1.0,
-            samples: 10,
-        };
-        assert!(matches!(
-            stiff.run(&long),
-            Err(ChainError::TooManySteps { .. })
-        ));
-        assert!(Chain::new(vec![1.0, -2.0], vec![0.0], vec![Link::linear(1.0).unwrap()]).is_err());
-        assert!(Chain::new(vec![1.0, 2.0], vec![], vec![Link::linear(1.0).unwrap()]).is_err());
-    }
-}
+#[path = "chain_tests.rs"]
+mod tests;

@@ -16,7 +16,8 @@
 //!   the yield force `F_y` (δ_y = F_y / k), then `F_L = F_y + r k (δ − δ_y)`
 //!   with the hardening ratio `0 ≤ r ≤ 1` (r = 0: perfectly plastic);
 //! - tabulated: piecewise linear through points `(δ_i, F_i)` from (0, 0),
-//!   δ increasing, F not decreasing, the last slope beyond the last point.
+//!   δ increasing, F ≥ 0 (a crush force may fall after a fold buckles),
+//!   the last slope beyond the last point (held at its force when falling).
 //!
 //! Unloading rules ([`Unloading`]):
 //!
@@ -209,7 +210,7 @@ impl Curve {
             );
         }
         for (i, w) in points.windows(2).enumerate() {
-            let [[d0, f0], [d1, f1]] = [w[0], w[1]];
+            let [[d0, _], [d1, f1]] = [w[0], w[1]];
             if !(d1.is_finite() && f1.is_finite()) {
                 return fail(i + 1, format!("({d1} m, {f1} N) is not finite"));
             }
@@ -219,10 +220,10 @@ impl Curve {
                     format!("deformation {d1} m after {d0} m: expected increasing"),
                 );
             }
-            if f1 < f0 {
+            if f1 < 0.0 {
                 return fail(
                     i + 1,
-                    format!("force {f1} N after {f0} N: expected not decreasing"),
+                    format!("force {f1} N: a crush force is not negative"),
                 );
             }
         }
@@ -261,7 +262,11 @@ impl Curve {
             Curve::Table { points } => {
                 let i = segment(points, d);
                 let ([d0, f0], [d1, f1]) = (points[i], points[i + 1]);
-                f0 + (f1 - f0) / (d1 - d0) * (d - d0)
+                let slope = (f1 - f0) / (d1 - d0);
+                if d > d1 && slope < 0.0 {
+                    return f1;
+                }
+                f0 + slope * (d - d0)
             }
         }
     }
@@ -297,6 +302,11 @@ impl Curve {
                     .windows(2)
                     .map(|w| 0.5 * (w[0][1] + w[1][1]) * (w[1][0] - w[0][0]))
                     .sum();
+                let end = points[i + 1][0];
+                if d > end && self.force(d) == points[i + 1][1] && points[i + 1][1] < points[i][1] {
+                    let segment = 0.5 * (points[i][1] + points[i + 1][1]) * (end - points[i][0]);
+                    return whole + segment + points[i + 1][1] * (d - end);
+                }
                 whole + 0.5 * (points[i][1] + self.force(d)) * (d - points[i][0])
             }
         }
@@ -322,7 +332,7 @@ impl Curve {
             } => stiffness + 3.0 * cubic * limit * limit,
             Curve::Table { points } => points
                 .windows(2)
-                .map(|w| (w[1][1] - w[0][1]) / (w[1][0] - w[0][0]))
+                .map(|w| ((w[1][1] - w[0][1]) / (w[1][0] - w[0][0])).abs())
                 .fold(0.0, f64::max),
             _ => self.initial_slope(),
         }
@@ -488,7 +498,7 @@ mod tests {
         assert!(e.to_string().starts_with("unloading = 0 N/m"), "{e}");
         let e = Curve::table(vec![[0.1, 10.0], [0.05, 20.0]]).unwrap_err();
         assert!(e.to_string().contains("point 2"), "{e}");
-        assert!(Curve::table(vec![[0.1, 10.0], [0.2, 5.0]]).is_err());
+        assert!(Curve::table(vec![[0.1, 10.0], [0.2, -5.0]]).is_err());
         assert!(Curve::table(vec![[0.0, 0.0]]).is_err());
         assert!(Curve::table(vec![[0.1, 0.0], [0.2, 5.0]]).is_err());
     }
@@ -500,6 +510,7 @@ mod tests {
             Curve::progressive(2e5, 4e7, 0.3).unwrap(),
             Curve::bilinear(2e5, 1e4, 0.2).unwrap(),
             Curve::table(vec![[0.05, 1e4], [0.1, 1.2e4], [0.3, 5e4]]).unwrap(),
+            Curve::table(vec![[0.05, 1e4], [0.1, 6e3], [0.2, 4e3]]).unwrap(),
         ];
         for curve in &curves {
             for d in [0.01, 0.07, 0.25, 0.5] {

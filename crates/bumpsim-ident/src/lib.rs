@@ -12,6 +12,8 @@
 //! - [`error`]: why it cannot run;
 //! - [`search`]: the starts: continuation across the DOF table;
 //! - [`explore`]: predictions and the ±3 % sensitivity of the objective;
+//! - [`links`]: the chain with yielding links (issue 46): its parameters,
+//!   objective, identification and plastic sets;
 //! - [`reduce`]: the simpler chain when a spring is undetermined;
 //! - [`stats`]: standard errors, intervals, correlations, identifiability;
 //! - [`document`]: the JSON every front end writes (identification, prediction);
@@ -50,6 +52,7 @@ pub mod dofs;
 pub mod error;
 pub mod estimate;
 pub mod explore;
+pub mod links;
 pub mod posterior;
 pub mod reduce;
 pub mod result;

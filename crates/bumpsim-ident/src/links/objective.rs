@@ -1,0 +1,182 @@
+//! The objective of a chain with yielding links: the same residuals as the
+//! linear chain's (`case`), the output simulated by
+//! [`bumpsim_core::chain::Chain`] with its history, and a Jacobian by
+//! forward differences in the log parameters (the history makes the output
+//! piecewise smooth: a difference step of [`DIFFERENCE`] spans the kinks a
+//! sample interval makes).
+
+use super::{Layout, LinkIdentError};
+use crate::case::LoadCase;
+use bumpsim_core::chain::{Chain, Drive, Frame};
+use bumpsim_estimate::lm::LeastSquares;
+use nalgebra::DMatrix;
+use std::sync::Mutex;
+
+/// Forward-difference step in a log parameter.
+pub const DIFFERENCE: f64 = 1e-6;
+
+/// The frame of a case: forward (a moving car into a barrier) when its
+/// force on m1 is mostly negative, rearward (a pendulum) otherwise.
+pub fn frame(case: &LoadCase) -> Frame {
+    let (lo, hi) = case
+        .force
+        .iter()
+        .fold((0.0_f64, 0.0_f64), |(l, h), f| (l.min(*f), h.max(*f)));
+    if -lo > hi {
+        Frame::Forward
+    } else {
+        Frame::Rearward
+    }
+}
+
+/// The simulated displacement of a case's output mass, m.
+pub fn simulate(case: &LoadCase, chain: &Chain) -> Result<Vec<f64>, LinkIdentError> {
+    let drive = Drive::Force {
+        force: &case.force,
+        step: case.step,
+        initial_velocity: case.initial_velocity,
+        frame: frame(case),
+    };
+    let response = chain.run(&drive).map_err(|source| LinkIdentError::Chain {
+        case: case.name.clone(),
+        source,
+    })?;
+    let out = case
+        .output_dof
+        .checked_sub(1)
+        .and_then(|i| response.displacement.get(i));
+    out.cloned().ok_or_else(|| LinkIdentError::Output {
+        case: case.name.clone(),
+        output: case.output_dof,
+        dof: chain.dof(),
+    })
+}
+
+/// Each link's plastic set at the end of a case, m.
+pub fn plastic_set(case: &LoadCase, chain: &Chain) -> Result<Vec<f64>, LinkIdentError> {
+    let drive = Drive::Force {
+        force: &case.force,
+        step: case.step,
+        initial_velocity: case.initial_velocity,
+        frame: frame(case),
+    };
+    let response = chain.run(&drive).map_err(|source| LinkIdentError::Chain {
+        case: case.name.clone(),
+        source,
+    })?;
+    Ok(response.plastic_set)
+}
+
+/// The residuals of every case, in their domains and weights, from the
+/// SI parameters `theta`; None when the chain cannot run.
+fn residuals(cases: &[LoadCase], layout: &Layout, theta: &[f64], r: &mut [f64]) -> bool {
+    let Ok(chain) = layout.chain(theta) else {
+        return false;
+    };
+    let mut at = 0;
+    for case in cases {
+        let Ok(y) = simulate(case, &chain) else {
+            return false;
+        };
+        let domain = case.compare.domain;
+        let weight = case.compare.weight();
+        for k in case.first_compared()..=case.window.1 {
+            r[at] =
+                weight * (domain.at(&y, k, case.step) - domain.at(&case.measured, k, case.step));
+            at += 1;
+        }
+    }
+    r.iter().all(|v| v.is_finite())
+}
+
+/// The objective over the free log parameters.
+pub struct LinkObjective<'a> {
+    cases: &'a [LoadCase],
+    layout: Layout,
+    template: Vec<f64>,
+    free: Vec<usize>,
+    count: usize,
+    scratch: Mutex<(Vec<f64>, Vec<f64>)>,
+}
+
+impl<'a> LinkObjective<'a> {
+    /// The objective of `cases` for `layout`; `fixed[i]` holds a fixed SI value.
+    pub fn new(cases: &'a [LoadCase], layout: Layout, fixed: &[Option<f64>]) -> LinkObjective<'a> {
+        let p = layout.count();
+        let template = (0..p)
+            .map(|i| fixed.get(i).copied().flatten().map_or(0.0, f64::ln))
+            .collect();
+        let free = (0..p)
+            .filter(|&i| fixed.get(i).copied().flatten().is_none())
+            .collect();
+        let count = cases.iter().map(LoadCase::residual_len).sum();
+        LinkObjective {
+            cases,
+            layout,
+            template,
+            free,
+            count,
+            scratch: Mutex::new((vec![0.0; p], vec![0.0; count])),
+        }
+    }
+
+    /// The SI parameters of the free log parameters `p`.
+    pub fn theta(&self, p: &[f64]) -> Vec<f64> {
+        let mut full = self.template.clone();
+        for (&i, v) in self.free.iter().zip(p) {
+            full[i] = *v;
+        }
+        full.iter().map(|v| v.exp()).collect()
+    }
+
+    /// The layout.
+    pub fn layout(&self) -> Layout {
+        self.layout
+    }
+
+    /// Indices of the free parameters.
+    pub fn free(&self) -> &[usize] {
+        &self.free
+    }
+}
+
+impl LeastSquares for LinkObjective<'_> {
+    fn residual_count(&self) -> usize {
+        self.count
+    }
+
+    fn parameter_count(&self) -> usize {
+        self.free.len()
+    }
+
+    fn evaluate(&self, p: &[f64], r: &mut [f64], jacobian: Option<&mut DMatrix<f64>>) -> bool {
+        let mut guard = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
+        let (theta, shifted) = &mut *guard;
+        let mut full = self.template.clone();
+        for (&i, v) in self.free.iter().zip(p) {
+            full[i] = *v;
+        }
+        for (t, v) in theta.iter_mut().zip(&full) {
+            *t = v.exp();
+        }
+        if !residuals(self.cases, &self.layout, theta, r) {
+            return false;
+        }
+        let Some(j) = jacobian else {
+            return true;
+        };
+        for (column, &i) in self.free.iter().enumerate() {
+            let before = theta[i];
+            theta[i] = (full[i] + DIFFERENCE).exp();
+            let ok = residuals(self.cases, &self.layout, theta, shifted);
+            theta[i] = before;
+            if !ok {
+                return false;
+            }
+            for (row, (a, b)) in shifted.iter().zip(r.iter()).enumerate() {
+                j[(row, column)] = (a - b) / DIFFERENCE;
+            }
+        }
+        true
+    }
+}
