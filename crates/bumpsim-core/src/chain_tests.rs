@@ -81,8 +81,7 @@ fn one_mass_through_a_front_link_matches_the_closed_form() {
 /// Linear links give the linear chain's exact (foh) response to O(T²).
 #[test]
 fn linear_links_follow_the_exact_linear_chain() {
-    let (masses, dampers, springs) =
-        (vec![20.0, 300.0, 900.0], vec![800.0, 2e3], vec![4e5, 9e5]);
+    let (masses, dampers, springs) = (vec![20.0, 300.0, 900.0], vec![800.0, 2e3], vec![4e5, 9e5]);
     let model = MsdModel::new(masses.clone(), dampers.clone(), springs.clone()).unwrap();
     let links = springs.iter().map(|k| Link::linear(*k).unwrap()).collect();
     let chain = Chain::new(masses, dampers, links).unwrap();
@@ -145,8 +144,7 @@ fn the_energy_balance_closes_with_the_dissipated_work() {
 
 #[test]
 fn hostile_drives_are_refused() {
-    let chain =
-        Chain::new(vec![1.0, 2.0], vec![0.0], vec![Link::linear(1e3).unwrap()]).unwrap();
+    let chain = Chain::new(vec![1.0, 2.0], vec![0.0], vec![Link::linear(1e3).unwrap()]).unwrap();
     let bad = [
         Drive::Barrier {
             speed: f64::NAN,

@@ -141,11 +141,33 @@ pub fn calculix_deck(model: &MsdModel, options: &CalculixOptions) -> Result<Stri
     deck(model, None, options)
 }
 
-/// The deck of `model`, with the nonlinear links and barrier run of
-/// [`crate::chain`] when given.
+/// What a deck of nonlinear links adds to the linear chain's (the chain's
+/// CalculiX module implements it): extra ids, its springs, a front link,
+/// supports, ties and its own run.
+pub(crate) trait Extra {
+    /// Ids beyond the linear deck's.
+    fn extra_ids(&self) -> u64;
+    /// Spring `j` as element `id` in the set `elset`.
+    fn spring(&self, deck: &mut String, j: usize, elset: &str, id: u64, options: &CalculixOptions);
+    /// Cards after the springs (a front link).
+    fn front(&self, deck: &mut String, options: &CalculixOptions);
+    /// Supports beyond the mass nodes' cross directions.
+    fn held(&self, model: &MsdModel, options: &CalculixOptions) -> Vec<(String, usize, usize)>;
+    /// Equations after the coupling.
+    fn ties(&self, deck: &mut String, options: &CalculixOptions);
+    /// The step, when there is no force analysis.
+    fn run(
+        &self,
+        deck: &mut String,
+        model: &MsdModel,
+        options: &CalculixOptions,
+    ) -> Result<(), ExportError>;
+}
+
+/// The deck of `model`, with the nonlinear links and run of `chain` when given.
 pub(crate) fn deck(
     model: &MsdModel,
-    chain: Option<&crate::chain::ChainParts<'_>>,
+    chain: Option<&dyn Extra>,
     options: &CalculixOptions,
 ) -> Result<String, ExportError> {
     check_names(model, options, chain.map_or(0, |c| c.extra_ids()))?;
@@ -196,6 +218,9 @@ pub(crate) fn deck(
         inp::mass_element(&mut deck, &elset, id, id, mass * layout.units.mass());
     }
     links(&mut deck, model, chain, options);
+    if let Some(chain) = chain {
+        chain.front(&mut deck, options);
+    }
     let mut held: Vec<_> = layout
         .axis
         .other_dofs()
@@ -207,7 +232,7 @@ pub(crate) fn deck(
     inp::boundary(&mut deck, &held);
     coupling(&mut deck, options);
     if let Some(chain) = chain {
-        chain.ties(&mut deck, model, options);
+        chain.ties(&mut deck, options);
     }
     if let Some(v) = options.initial_velocity {
         let v = v * layout.axis.sign * layout.units.velocity();
@@ -216,7 +241,7 @@ pub(crate) fn deck(
     if let Some(analysis) = &options.analysis {
         transient(&mut deck, analysis, options)?;
     } else if let Some(chain) = chain {
-        chain.barrier_run(&mut deck, model, options)?;
+        chain.run(&mut deck, model, options)?;
     }
     Ok(deck)
 }
@@ -225,7 +250,7 @@ pub(crate) fn deck(
 fn links(
     deck: &mut String,
     model: &MsdModel,
-    chain: Option<&crate::chain::ChainParts<'_>>,
+    chain: Option<&dyn Extra>,
     options: &CalculixOptions,
 ) {
     let (n, units, set) = (model.dof() as u64, options.layout.units, &options.prefix);
@@ -240,7 +265,7 @@ fn links(
             let elset = format!("{set}{kind}{}", j + 1);
             let nodes = [node(j + 1), node(j + 2)];
             if let (Link::Spring, Some(chain)) = (link, chain) {
-                chain.calculix_link(deck, j, &elset, id, options);
+                chain.spring(deck, j, &elset, id, options);
                 continue;
             }
             inp::link_element(deck, link, &elset, id, nodes, value * factor);

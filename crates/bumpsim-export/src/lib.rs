@@ -4,7 +4,9 @@
 //! - [`lsdyna`]: an LS-DYNA keyword include file (fixed-format cards);
 //! - [`cards`]: the LS-DYNA card writers every include shares;
 //! - [`inp`]: the CalculiX/Abaqus card writers every deck shares;
-//! - [`chain`]: the chain with nonlinear links in both decks;
+//! - [`chain`]: the chain with nonlinear links: which element carries
+//!   which link, and its LS-DYNA include;
+//! - [`chain_calculix`]: its CalculiX deck, barrier run and link forces;
 //! - [`calculix`]: a CalculiX/Abaqus deck, optionally a complete transient
 //!   analysis under a force history, and reading its results back;
 //! - [`dat`]: the print blocks of any CalculiX `.dat` file;
@@ -23,6 +25,7 @@
 pub mod calculix;
 pub mod cards;
 pub mod chain;
+pub mod chain_calculix;
 pub mod dat;
 pub mod inp;
 pub mod layout;

@@ -129,11 +129,14 @@ pub fn lsdyna_include(model: &MsdModel, options: &LsDynaOptions) -> Result<Strin
     include(model, None, options)
 }
 
-/// The include of `model`, its springs replaced by the nonlinear `links`
-/// when given ([`crate::chain`]).
+/// Writes spring `j`'s material, curves and part (ids `id`) on `section`
+/// in the deck's units: a nonlinear link's cards.
+pub(crate) type SpringCards<'a> = &'a dyn Fn(&mut String, usize, u64, u64);
+
+/// The include of `model`, its springs written by `nonlinear` when given.
 pub(crate) fn include(
     model: &MsdModel,
-    nonlinear: Option<&[bumpsim_core::link::Link]>,
+    nonlinear: Option<SpringCards<'_>>,
     options: &LsDynaOptions,
 ) -> Result<String, ExportError> {
     let ids = ids(model, options)?;
@@ -271,7 +274,7 @@ fn masses(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Id
 fn links(
     deck: &mut String,
     model: &MsdModel,
-    nonlinear: Option<&[bumpsim_core::link::Link]>,
+    nonlinear: Option<SpringCards<'_>>,
     options: &LsDynaOptions,
     ids: &Ids,
 ) {
@@ -305,8 +308,8 @@ fn links(
         for (j, value) in values.iter().enumerate().filter(|(_, v)| **v > 0.0) {
             let title = format!("{what}{} between m{} and m{}", j + 1, j + 1, j + 2);
             let id = first_id + j as u64;
-            if let (Link::Spring, Some(links)) = (link, nonlinear) {
-                crate::chain::lsdyna_link(deck, &links[j], units, id, section, j);
+            if let (Link::Spring, Some(cards)) = (link, nonlinear) {
+                cards(deck, j, id, section);
                 continue;
             }
             cards::discrete_part(deck, link, value * factor, &unit, id, section, &title);

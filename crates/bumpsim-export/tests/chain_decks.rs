@@ -8,9 +8,8 @@ use bumpsim_core::chain::{Chain, Drive};
 use bumpsim_core::link::{Curve, Link, Unloading};
 use bumpsim_core::series::UniformSeries;
 use bumpsim_export::calculix::{CalculixOptions, read_results};
-use bumpsim_export::chain::{
-    Barrier, calculix_chain_deck, lsdyna_chain_include, mapping, read_link_forces,
-};
+use bumpsim_export::chain::{lsdyna_chain_include, mapping};
+use bumpsim_export::chain_calculix::{Barrier, calculix_chain_deck, read_link_forces};
 use bumpsim_export::layout::{Axis, Layout, UnitSystem};
 use bumpsim_export::lsdyna::LsDynaOptions;
 use bumpsim_peers::peer_available;
@@ -33,6 +32,18 @@ struct Fe {
 /// F / k_E on the unloading, which the elastic-plastic brick keeps
 /// constant until it is pulled).
 fn ccx_barrier(chain: &Chain, speed: f64, duration: f64, name: &str, layout: Layout) -> Fe {
+    ccx_link(chain, speed, duration, name, layout, "link_1")
+}
+
+/// [`ccx_barrier`] for the link `which` (`link_1` or `front_link`).
+fn ccx_link(
+    chain: &Chain,
+    speed: f64,
+    duration: f64,
+    name: &str,
+    layout: Layout,
+    which: &str,
+) -> Fe {
     let options = CalculixOptions {
         layout,
         title: name.into(),
@@ -63,17 +74,23 @@ fn ccx_barrier(chain: &Chain, speed: f64, duration: f64, name: &str, layout: Lay
     assert!(run.status.success() && !log.contains("*ERROR"), "{log}");
     let u = read_results(&path).unwrap();
     let f = read_link_forces(&path).unwrap();
-    assert_eq!(f.links[0].0, 0);
-    let force = &f.links[0].1;
+    let force = &f.links.iter().find(|l| l.0 == which).expect(which).1;
     assert_eq!(force.len(), u.time.len());
     let crush: Vec<f64> = (0..u.time.len())
-        .map(|k| u.displacement[0][k] - u.displacement[1][k])
+        .map(|k| match which {
+            "front_link" => -u.displacement[0][k],
+            _ => u.displacement[0][k] - u.displacement[1][k],
+        })
         .collect();
     let top = (0..crush.len())
         .max_by(|a, b| crush[*a].total_cmp(&crush[*b]))
         .unwrap();
     let peak_force = force.iter().fold(0.0_f64, |m, v| m.max(*v));
-    let k = bumpsim_export::chain::solver_unloading(&chain.links()[0]);
+    let link = match which {
+        "front_link" => chain.front().unwrap(),
+        _ => &chain.links()[0],
+    };
+    let k = bumpsim_export::chain::solver_unloading(link);
     // on the unloading, once the force is down to half its peak
     let after = (top..crush.len())
         .find(|&i| force[i] < 0.5 * peak_force)
@@ -185,6 +202,55 @@ fn a_yielding_chain_in_ccx_reproduces_the_impact_within_two_percent() {
     );
     assert_relative_eq!(fe.peak_force, peak, max_relative = 0.02);
     assert_relative_eq!(fe.residual, r.plastic_set[0], max_relative = 0.02);
+}
+
+/// A front link (the crush zone between the barrier and m1) ahead of a
+/// yielding link: ccx and `Chain::run` agree on the front link's peak
+/// force, largest crush and residual crush within 2 %.
+#[test]
+fn a_front_link_in_ccx_reproduces_the_impact_within_two_percent() {
+    if !ccx_available() {
+        return;
+    }
+    let yielding = |k: f64, fy: f64, r: f64| {
+        Link::new(Curve::bilinear(k, fy, r).unwrap(), Unloading::Slope(k)).unwrap()
+    };
+    let front = yielding(3e6, 8e4, 0.05);
+    let chain = Chain::new(
+        vec![300.0, 1000.0],
+        vec![0.0],
+        vec![yielding(5e6, 1.2e5, 0.0)],
+    )
+    .unwrap()
+    .with_front(front.clone());
+    let (v, duration) = (10.0, 0.25);
+    let fe = ccx_link(
+        &chain,
+        v,
+        duration,
+        "front",
+        Layout::default(),
+        "front_link",
+    );
+    let r = barrier_run(&chain, v, duration);
+    let peak = r.force.iter().fold(0.0_f64, |a, b| a.max(-b));
+    let mut state = bumpsim_core::link::LinkState::default();
+    for x in &r.displacement[0] {
+        front.force(*x, &mut state);
+    }
+    let (crush, set) = (state.reached, state.plastic_set(&front));
+    eprintln!(
+        "front: ccx peak {} N, crush {} m, set {} m; bumpsim {peak} N, {crush} m, {set} m",
+        fe.peak_force, fe.max_crush, fe.residual
+    );
+    assert_relative_eq!(fe.peak_force, peak, max_relative = 0.02);
+    assert_relative_eq!(fe.max_crush, crush, max_relative = 0.02);
+    assert_relative_eq!(fe.residual, set, max_relative = 0.02);
+    let dyna = lsdyna_chain_include(&chain, &LsDynaOptions::default()).unwrap();
+    assert!(
+        dyna.contains("$ front link: the barrier's fixed node 8"),
+        "{dyna}"
+    );
 }
 
 fn every_kind() -> Chain {
