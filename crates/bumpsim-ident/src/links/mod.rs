@@ -112,7 +112,7 @@ const BOUNDS: [(f64, f64); 6] = [
     (1.0, 1e7),
     (1e3, 1e8),
     (1e2, 1e7),
-    (1e-3, 1.0),
+    (1e-3, 0.5),
     (1.0, 30.0),
 ];
 
@@ -262,7 +262,7 @@ impl LinkSettings {
             return bad("starts = 0: at least one start".into());
         }
         let names = layout.parameters();
-        for i in 0..p {
+        for (i, name) in names.iter().enumerate() {
             let (lo, hi, s) = (self.lower[i], self.upper[i], self.start[i]);
             if !(lo > 0.0
                 && lo <= hi
@@ -273,7 +273,7 @@ impl LinkSettings {
             {
                 return bad(format!(
                     "{}: bounds [{lo}, {hi}] and start {s} must be positive, finite and ordered",
-                    names[i].name
+                    name.name
                 ));
             }
         }
@@ -488,4 +488,55 @@ fn plastic_sets(
             }
         })
         .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_layout_names_every_parameter_in_order() {
+        let names: Vec<String> = Layout { dof: 3 }
+            .parameters()
+            .into_iter()
+            .map(|p| p.name)
+            .collect();
+        let expected = "m1 m2 m3 c1 c2 k1 k2 Fy1 Fy2 r1 r2 u1 u2";
+        assert_eq!(names.join(" "), expected);
+    }
+
+    #[test]
+    fn hostile_settings_and_parameters_are_refused_with_their_name() {
+        let layout = Layout { dof: 2 };
+        let good = vec![10.0, 1000.0, 100.0, 1e6, 1e5, 0.2, 5.0];
+        assert!(layout.chain(&good).is_ok());
+        let mut bad = good.clone();
+        bad[4] = -1.0;
+        let e = layout.chain(&bad).unwrap_err().to_string();
+        assert!(e.starts_with("link 1: yield_force = -1 N"), "{e}");
+        bad = good.clone();
+        bad[1] = f64::NAN;
+        assert!(
+            layout
+                .chain(&bad)
+                .unwrap_err()
+                .to_string()
+                .starts_with("m2 = NaN kg")
+        );
+        assert!(layout.chain(&good[..6]).is_err());
+        let cases: Vec<LoadCase> = vec![];
+        let one = LinkSettings::new(1, 4, vec![1.0]);
+        assert!(matches!(
+            identify(&cases, &one, &bumpsim_estimate::observer::Silent),
+            Err(LinkIdentError::Settings(_))
+        ));
+        let mut s = LinkSettings::new(2, 4, good.clone());
+        s.lower[3] = 0.0;
+        let e = identify(&cases, &s, &bumpsim_estimate::observer::Silent)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("k1: bounds"), "{e}");
+        let s = LinkSettings::new(2, 0, good);
+        assert!(identify(&cases, &s, &bumpsim_estimate::observer::Silent).is_err());
+    }
 }
