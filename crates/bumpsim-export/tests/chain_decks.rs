@@ -362,3 +362,91 @@ fn the_lsdyna_include_parses_in_ansys_dyna_core_with_every_id_defined() {
     let f = 6e4 + 0.1 * 2e6 * (10.0 - 0.03);
     assert_relative_eq!(last[1].as_f64().unwrap(), f, max_relative = 1e-3);
 }
+
+/// Under a force history on m1 (the deck's `*CLOAD` path, mm-ms-kg units)
+/// the CalculiX deck of a chain with a yielding, a progressive elastic and
+/// a linear link follows `Chain::run` in the pendulum's frame: every
+/// mass's displacement within 1 % of its peak.
+#[test]
+fn a_forced_chain_in_ccx_follows_chain_run() {
+    if !ccx_available() {
+        return;
+    }
+    let links = vec![
+        Link::new(
+            Curve::bilinear(4e6, 3e4, 0.05).unwrap(),
+            Unloading::Slope(4e6),
+        )
+        .unwrap(),
+        Link::new(
+            Curve::progressive(1e6, 1e9, 0.2).unwrap(),
+            Unloading::Elastic,
+        )
+        .unwrap(),
+    ];
+    let chain = Chain::new(vec![20.0, 150.0, 900.0], vec![500.0, 0.0], links).unwrap();
+    let step = 2e-4;
+    let force: Vec<f64> = (0..=500)
+        .map(|k| {
+            let t = k as f64 * step;
+            if t < 0.04 {
+                6e4 * (std::f64::consts::PI * t / 0.04).sin()
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let r = chain
+        .run(&Drive::Force {
+            force: &force,
+            step,
+            initial_velocity: 0.0,
+            frame: bumpsim_core::chain::Frame::Rearward,
+        })
+        .unwrap();
+    assert!(
+        r.plastic_set[0] > 1e-3,
+        "the link yields: {:?}",
+        r.plastic_set
+    );
+    let options = CalculixOptions {
+        layout: Layout {
+            units: UnitSystem::MmMsKg,
+            ..Default::default()
+        },
+        analysis: Some(bumpsim_export::calculix::Analysis {
+            force: UniformSeries::new(0.0, step, force).unwrap(),
+            increment: None,
+            output_every: 1,
+        }),
+        ..Default::default()
+    };
+    let deck = calculix_chain_deck(&chain, &options, None).unwrap();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("chain-decks")
+        .join("forced");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("chain.inp");
+    std::fs::write(&path, &deck).unwrap();
+    let run = Command::new("ccx")
+        .args(["-i", "chain"])
+        .env("OMP_NUM_THREADS", "1")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success() && !log.contains("*ERROR"), "{log}");
+    let u = read_results(&path).unwrap();
+    // ccx prints from the first increment on: its row k is sample k + 1
+    assert_eq!(u.time.len() + 1, r.displacement[0].len());
+    for (i, ours) in r.displacement.iter().enumerate() {
+        let peak = ours.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let worst = u.displacement[i]
+            .iter()
+            .zip(&ours[1..])
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        eprintln!("forced: m{} differs by {worst} m of {peak} m", i + 1);
+        assert!(worst <= 0.01 * peak, "m{}: {worst} m of {peak} m", i + 1);
+    }
+}
