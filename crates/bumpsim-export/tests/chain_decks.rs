@@ -253,6 +253,30 @@ fn a_front_link_in_ccx_reproduces_the_impact_within_two_percent() {
     );
 }
 
+/// A softening table (the force falls after a fold buckles) maps to a
+/// softening `*PLASTIC` table: ccx follows `Chain::run` within 2 %.
+#[test]
+fn a_softening_link_in_ccx_reproduces_the_impact_within_two_percent() {
+    if !ccx_available() {
+        return;
+    }
+    let table = Curve::table(vec![[0.02, 8e4], [0.08, 5e4], [0.3, 6e4]]).unwrap();
+    let link = Link::new(table, Unloading::Slope(4e6)).unwrap();
+    assert!(mapping(&link).exact);
+    let chain = Chain::new(vec![0.5, 900.0], vec![0.0], vec![link]).unwrap();
+    let (v, duration) = (7.0, 0.25);
+    let fe = ccx_barrier(&chain, v, duration, "softening", Layout::default());
+    let r = barrier_run(&chain, v, duration);
+    let peak = r.link_force[0].iter().fold(0.0_f64, |a, b| a.max(*b));
+    eprintln!(
+        "softening: ccx peak {} N, crush {} m, set {} m; bumpsim {peak} N, {} m, {} m",
+        fe.peak_force, fe.max_crush, fe.residual, r.reached[0], r.plastic_set[0]
+    );
+    assert_relative_eq!(fe.peak_force, peak, max_relative = 0.02);
+    assert_relative_eq!(fe.max_crush, r.reached[0], max_relative = 0.02);
+    assert_relative_eq!(fe.residual, r.plastic_set[0], max_relative = 0.02);
+}
+
 fn every_kind() -> Chain {
     let links = vec![
         Link::new(
