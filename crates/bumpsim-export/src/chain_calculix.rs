@@ -466,3 +466,29 @@ pub fn read_link_forces(deck_path: &Path) -> Result<LinkForces, ExportError> {
     }
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::chain::CURVE_SPAN;
+
+    /// Elastic-plastic with E = k_u: yield where δ = F/k_u, then the
+    /// plastic strain of each point over L.
+    #[test]
+    fn the_hardening_table_starts_at_yield_and_follows_the_curve() {
+        let curve = Curve::bilinear(1e6, 5e4, 0.1).unwrap();
+        let table = hardening(&loading_points(&curve), 1e6);
+        assert_eq!(table.len(), 2);
+        assert_eq!(table[0], (5e4, 0.0));
+        let top = curve.force(CURVE_SPAN);
+        assert!((table[1].0 - top).abs() < 1e-6 * top);
+        let strain = (CURVE_SPAN - top / 1e6) / BRICK_LENGTH;
+        assert!((table[1].1 - strain).abs() < 1e-12);
+        // stiffer unloading: plastic from the start
+        let table = hardening(&loading_points(&curve), 2e6);
+        assert_eq!(table[0], (0.0, 0.0));
+        assert!((table[1].1 - (0.05 - 5e4 / 2e6) / BRICK_LENGTH).abs() < 1e-15);
+        // a linear curve at its own slope never yields
+        assert!(hardening(&loading_points(&Curve::linear(1e6).unwrap()), 1e6).is_empty());
+    }
+}
