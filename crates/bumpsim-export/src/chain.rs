@@ -26,7 +26,7 @@
 //! `σ = F_L(δ)/A` against plastic strain `ε_p = (δ − F_L(δ)/k_u)/L`
 //! follows it exactly. Below it, LS-DYNA unloads at the steepest slope
 //! (the manual: the larger of KU and the curve's largest slope) and so does
-//! the brick: the plastic set is smaller than bumpsim's.
+//! the brick: stiffer than bumpsim's, so their plastic set is larger.
 //!
 //! **Tension.** bumpsim's unloading line runs on into tension. LS-DYNA's
 //! inelastic spring (CTF = 1) carries none; CalculiX's brick (isotropic
