@@ -99,9 +99,12 @@ pub fn check_prefix(prefix: &str) -> Result<(), ExportError> {
     Ok(())
 }
 
-fn check_names(model: &MsdModel, options: &CalculixOptions) -> Result<(), ExportError> {
+fn check_names(model: &MsdModel, options: &CalculixOptions, extra: u64) -> Result<(), ExportError> {
     check_prefix(&options.prefix)?;
-    let last = options.id_offset.saturating_add(3 * model.dof() as u64);
+    let last = options
+        .id_offset
+        .saturating_add(3 * model.dof() as u64)
+        .saturating_add(extra);
     if last > MAX_CALCULIX_ID {
         return Err(ExportError::IdRange {
             offset: options.id_offset,
@@ -135,7 +138,39 @@ fn coupling(deck: &mut String, options: &CalculixOptions) {
 
 /// Writes the deck text.
 pub fn calculix_deck(model: &MsdModel, options: &CalculixOptions) -> Result<String, ExportError> {
-    check_names(model, options)?;
+    deck(model, None, options)
+}
+
+/// What a deck of nonlinear links adds to the linear chain's (the chain's
+/// CalculiX module implements it): extra ids, its springs, a front link,
+/// supports, ties and its own run.
+pub(crate) trait Extra {
+    /// Ids beyond the linear deck's.
+    fn extra_ids(&self) -> u64;
+    /// Spring `j` as element `id` in the set `elset`.
+    fn spring(&self, deck: &mut String, j: usize, elset: &str, id: u64, options: &CalculixOptions);
+    /// Cards after the springs (a front link).
+    fn front(&self, deck: &mut String, options: &CalculixOptions);
+    /// Supports beyond the mass nodes' cross directions.
+    fn held(&self, model: &MsdModel, options: &CalculixOptions) -> Vec<(String, usize, usize)>;
+    /// Equations after the coupling.
+    fn ties(&self, deck: &mut String, options: &CalculixOptions);
+    /// The step, when there is no force analysis.
+    fn run(
+        &self,
+        deck: &mut String,
+        model: &MsdModel,
+        options: &CalculixOptions,
+    ) -> Result<(), ExportError>;
+}
+
+/// The deck of `model`, with the nonlinear links and run of `chain` when given.
+pub(crate) fn deck(
+    model: &MsdModel,
+    chain: Option<&dyn Extra>,
+    options: &CalculixOptions,
+) -> Result<String, ExportError> {
+    check_names(model, options, chain.map_or(0, |c| c.extra_ids()))?;
     let analysis = options.analysis.as_ref();
     let increment = analysis
         .and_then(|a| a.increment)
@@ -153,9 +188,13 @@ pub fn calculix_deck(model: &MsdModel, options: &CalculixOptions) -> Result<Stri
     let mut deck = String::new();
     let start = options.analysis.as_ref().map_or(0.0, |a| a.force.start());
     let [m, l, t, f] = layout.units.symbols();
+    let what = match chain {
+        None => "MSD car model (Isaksson 2006, ch. 3.3)",
+        Some(_) => "car model with nonlinear links",
+    };
     let _ = writeln!(
         deck,
-        "** {}\n** bumpsim {}: {n}-DOF chain MSD car model (Isaksson 2006, ch. 3.3)",
+        "** {}\n** bumpsim {}: {n}-DOF chain {what}",
         bumpsim_core::names::printable(&options.title),
         env!("CARGO_PKG_VERSION")
     );
@@ -178,22 +217,42 @@ pub fn calculix_deck(model: &MsdModel, options: &CalculixOptions) -> Result<Stri
         let (elset, id) = (format!("{set}EM{}", i + 1), offset + i as u64 + 1);
         inp::mass_element(&mut deck, &elset, id, id, mass * layout.units.mass());
     }
-    links(&mut deck, model, options);
-    let held = layout.axis.other_dofs().map(|dof| (all.clone(), dof, dof));
+    links(&mut deck, model, chain, options);
+    if let Some(chain) = chain {
+        chain.front(&mut deck, options);
+    }
+    let mut held: Vec<_> = layout
+        .axis
+        .other_dofs()
+        .map(|dof| (all.clone(), dof, dof))
+        .into();
+    if let Some(chain) = chain {
+        held.extend(chain.held(model, options));
+    }
     inp::boundary(&mut deck, &held);
     coupling(&mut deck, options);
+    if let Some(chain) = chain {
+        chain.ties(&mut deck, options);
+    }
     if let Some(v) = options.initial_velocity {
         let v = v * layout.axis.sign * layout.units.velocity();
         inp::initial_velocity(&mut deck, &[(&all, layout.axis.dof(), v)]);
     }
     if let Some(analysis) = &options.analysis {
         transient(&mut deck, analysis, options)?;
+    } else if let Some(chain) = chain {
+        chain.run(&mut deck, model, options)?;
     }
     Ok(deck)
 }
 
 /// Springs are elements offset + n + j, dampers offset + 2n + j; a zero damper gets no element.
-fn links(deck: &mut String, model: &MsdModel, options: &CalculixOptions) {
+fn links(
+    deck: &mut String,
+    model: &MsdModel,
+    chain: Option<&dyn Extra>,
+    options: &CalculixOptions,
+) {
     let (n, units, set) = (model.dof() as u64, options.layout.units, &options.prefix);
     let links = [
         (Link::Spring, "EK", n, model.springs(), units.stiffness()),
@@ -205,6 +264,10 @@ fn links(deck: &mut String, model: &MsdModel, options: &CalculixOptions) {
             let id = options.id_offset + base + j as u64 + 1;
             let elset = format!("{set}{kind}{}", j + 1);
             let nodes = [node(j + 1), node(j + 2)];
+            if let (Link::Spring, Some(chain)) = (link, chain) {
+                chain.spring(deck, j, &elset, id, options);
+                continue;
+            }
             inp::link_element(deck, link, &elset, id, nodes, value * factor);
         }
     }

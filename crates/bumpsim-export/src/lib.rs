@@ -4,6 +4,9 @@
 //! - [`lsdyna`]: an LS-DYNA keyword include file (fixed-format cards);
 //! - [`cards`]: the LS-DYNA card writers every include shares;
 //! - [`inp`]: the CalculiX/Abaqus card writers every deck shares;
+//! - [`chain`]: the chain with nonlinear links: which element carries
+//!   which link, and its LS-DYNA include;
+//! - [`chain_calculix`]: its CalculiX deck, barrier run and link forces;
 //! - [`calculix`]: a CalculiX/Abaqus deck, optionally a complete transient
 //!   analysis under a force history, and reading its results back;
 //! - [`dat`]: the print blocks of any CalculiX `.dat` file;
@@ -21,6 +24,8 @@
 
 pub mod calculix;
 pub mod cards;
+pub mod chain;
+pub mod chain_calculix;
 pub mod dat;
 pub mod inp;
 pub mod layout;
@@ -170,6 +175,12 @@ pub enum ExportError {
         point: usize,
         /// What is wrong.
         reason: String,
+    },
+    /// A barrier run of a chain deck that cannot be written.
+    #[error("barrier run: {reason}")]
+    Barrier {
+        /// What is wrong.
+        reason: &'static str,
     },
     /// A results file that cannot be read.
     #[error("{}{}: {reason}", path.display(), if *line > 0 { format!(":{line}") } else { String::new() })]

@@ -126,6 +126,19 @@ fn ids(model: &MsdModel, options: &LsDynaOptions) -> Result<Ids, ExportError> {
 
 /// Writes the include file text.
 pub fn lsdyna_include(model: &MsdModel, options: &LsDynaOptions) -> Result<String, ExportError> {
+    include(model, None, options)
+}
+
+/// Writes spring `j`'s material, curves and part (ids `id`) on `section`
+/// in the deck's units: a nonlinear link's cards.
+pub(crate) type SpringCards<'a> = &'a dyn Fn(&mut String, usize, u64, u64);
+
+/// The include of `model`, its springs written by `nonlinear` when given.
+pub(crate) fn include(
+    model: &MsdModel,
+    nonlinear: Option<SpringCards<'_>>,
+    options: &LsDynaOptions,
+) -> Result<String, ExportError> {
     let ids = ids(model, options)?;
     let interval = options
         .output_interval
@@ -138,10 +151,10 @@ pub fn lsdyna_include(model: &MsdModel, options: &LsDynaOptions) -> Result<Strin
         interval.as_slice(),
     )?;
     let mut deck = String::new();
-    header(&mut deck, model, options);
+    header(&mut deck, model, options, nonlinear.is_some());
     nodes(&mut deck, model, options, &ids);
     masses(&mut deck, model, options, &ids);
-    links(&mut deck, model, options, &ids);
+    links(&mut deck, model, nonlinear, options, &ids);
     if !options.attach.is_empty() {
         coupling(&mut deck, options, &ids);
     }
@@ -212,11 +225,14 @@ fn history(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &I
     cards::history(deck, dt * options.layout.units.time(), &nodes);
 }
 
-fn header(deck: &mut String, model: &MsdModel, options: &LsDynaOptions) {
-    let what = format!(
-        "{}-DOF chain MSD car model (Isaksson 2006, ch. 3.3)",
-        model.dof()
-    );
+fn header(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, nonlinear: bool) {
+    let what = match nonlinear {
+        false => format!(
+            "{}-DOF chain MSD car model (Isaksson 2006, ch. 3.3)",
+            model.dof()
+        ),
+        true => format!("{}-DOF chain car model with nonlinear links", model.dof()),
+    };
     cards::header(deck, &options.title, &what, options.layout.units);
     let axis = options.layout.axis;
     let _ = writeln!(
@@ -255,7 +271,13 @@ fn masses(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Id
     }
 }
 
-fn links(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids) {
+fn links(
+    deck: &mut String,
+    model: &MsdModel,
+    nonlinear: Option<SpringCards<'_>>,
+    options: &LsDynaOptions,
+    ids: &Ids,
+) {
     if model.dof() < 2 {
         return; // a rigid vehicle: no links, no section, no discrete elements
     }
@@ -286,6 +308,10 @@ fn links(deck: &mut String, model: &MsdModel, options: &LsDynaOptions, ids: &Ids
         for (j, value) in values.iter().enumerate().filter(|(_, v)| **v > 0.0) {
             let title = format!("{what}{} between m{} and m{}", j + 1, j + 1, j + 2);
             let id = first_id + j as u64;
+            if let (Link::Spring, Some(cards)) = (link, nonlinear) {
+                cards(deck, j, id, section);
+                continue;
+            }
             cards::discrete_part(deck, link, value * factor, &unit, id, section, &title);
         }
     }

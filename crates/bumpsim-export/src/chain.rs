@@ -1,0 +1,322 @@
+//! The chain with nonlinear links ([`bumpsim_core::chain`]) as LS-DYNA and
+//! CalculiX decks (issue 46, item 2: "the exports").
+//!
+//! Masses, dampers, nodes, ids, units, coupling and force history are those
+//! of [`crate::lsdyna`] and [`crate::calculix`]; only the springs change.
+//! A link with loading curve `F_L(δ)` (δ > 0 in compression) and unloading
+//! rule ([`bumpsim_core::link`]) becomes:
+//!
+//! | link | LS-DYNA | CalculiX | maps |
+//! |---|---|---|---|
+//! | linear curve, either rule | `*MAT_SPRING_ELASTIC` K = k | `SPRINGA`, `*SPRING` k | exactly |
+//! | nonlinear curve, elastic | `*MAT_SPRING_NONLINEAR_ELASTIC`, odd `*DEFINE_CURVE` | `SPRINGA`, `*SPRING, NONLINEAR` odd table | exactly on the table's points |
+//! | nonlinear curve, slope k_u ≥ the curve's steepest slope | `*MAT_SPRING_INELASTIC` (LCFD = the curve in the first quadrant, KU = k_u, CTF = 1: compression only) | `C3D8` brick, `*ELASTIC` E, `*PLASTIC` table | exactly in compression |
+//! | nonlinear curve, slope k_u below the steepest slope | as above | as above, E from the steepest slope | approximately |
+//!
+//! Tables: a bilinear or tabulated curve is written at its corners, then
+//! to [`CURVE_SPAN`] along its last slope; a progressive one at
+//! [`PROGRESSIVE_POINTS`] points up to δ_lim (chords between them, an
+//! error below `(δ_lim/N)² · 3 k3 δ_lim / 4`).
+//!
+//! **Unloading.** bumpsim unloads from δ_max along `k_e = max(k_u,
+//! F_max/δ_max, F_max²/(2 E_L))`. When k_u is at least the curve's steepest
+//! slope the other two never exceed it and `k_e = k_u` at every δ_max: a
+//! spring with one unloading stiffness (LS-DYNA's KU) or an elastic-plastic
+//! continuum with modulus `E = k_u L / A` and hardening curve
+//! `σ = F_L(δ)/A` against plastic strain `ε_p = (δ − F_L(δ)/k_u)/L`
+//! follows it exactly. Below it, LS-DYNA unloads at the steepest slope
+//! (the manual: the larger of KU and the curve's largest slope) and so does
+//! the brick: stiffer than bumpsim's, so their plastic set is larger.
+//!
+//! **Tension.** bumpsim's unloading line runs on into tension. LS-DYNA's
+//! inelastic spring (CTF = 1) carries none; CalculiX's brick (isotropic
+//! hardening) yields again at −F_max, where bumpsim stays elastic. Both
+//! agree with bumpsim until the link is pulled.
+//!
+//! **The brick.** CalculiX has no hysteretic spring and expands its truss
+//! elements into bricks whose knots fail on yielding, so the link is one
+//! `C3D8` of length [`BRICK_LENGTH`] and square section [`BRICK_SIDE`]²
+//! beside the axis, small-strain (no NLGEOM), Poisson's ratio 0, two
+//! lateral faces on symmetry supports (uniaxial stress), its rear face
+//! following mass j and its front face mass j+1 along the axis by
+//! `*EQUATION`: its axial strain is the crush over L, and `EA/L = k_E`,
+//! `σ A = F`. A 100 m brick keeps a 1 m crush at 1 % strain.
+//!
+//! **Front link** ([`Chain::with_front`], the crush zone between the
+//! barrier and m1): written between a fixed wall node one spacing ahead of
+//! m1 and m1, with the same mapping; bumpsim's front link never pulls,
+//! LS-DYNA's inelastic spring neither, the others do.
+//!
+//! The CalculiX deck, its barrier run and the link forces read back:
+//! [`crate::chain_calculix`].
+
+use crate::ExportError;
+use crate::cards;
+use crate::layout::{Layout, UnitSystem};
+use crate::lsdyna::LsDynaOptions;
+use bumpsim_core::chain::Chain;
+use bumpsim_core::link::{Curve, Link, Unloading};
+use bumpsim_core::model::MsdModel;
+use std::fmt::Write;
+
+/// How far the written curves reach, m (beyond any car's crush).
+pub const CURVE_SPAN: f64 = 10.0;
+
+/// Points of a progressive curve up to its limit deformation.
+pub const PROGRESSIVE_POINTS: usize = 40;
+
+/// Length of a CalculiX link brick, m.
+pub const BRICK_LENGTH: f64 = 100.0;
+
+/// Side of a CalculiX link brick's square section, m.
+pub const BRICK_SIDE: f64 = 1.0;
+
+/// The loading curve as (δ m, F N) points from (0, 0) to [`CURVE_SPAN`]
+/// (or further along the last slope to the last table point).
+pub fn loading_points(curve: &Curve) -> Vec<(f64, f64)> {
+    let mut d: Vec<f64> = match curve {
+        Curve::Linear { .. } => vec![0.0],
+        Curve::Bilinear {
+            stiffness,
+            yield_force,
+            ..
+        } => vec![0.0, yield_force / stiffness],
+        Curve::Progressive { limit, .. } => (0..=PROGRESSIVE_POINTS)
+            .map(|i| limit * i as f64 / PROGRESSIVE_POINTS as f64)
+            .collect(),
+        Curve::Table { points } => points.iter().map(|p| p[0]).collect(),
+    };
+    if d.last().is_some_and(|&last| last < CURVE_SPAN) {
+        d.push(CURVE_SPAN);
+    }
+    d.into_iter().map(|d| (d, curve.force(d))).collect()
+}
+
+/// The stiffness a solver unloads at, N/m: the larger of k_u and the
+/// curve's steepest slope.
+pub fn solver_unloading(link: &Link) -> f64 {
+    match link.unloading() {
+        Unloading::Slope(k) => k.max(link.curve().steepest_slope()),
+        Unloading::Elastic => link.curve().steepest_slope(),
+    }
+}
+
+/// How a link is written, and whether the solvers follow bumpsim exactly.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinkMapping {
+    /// LS-DYNA material keyword.
+    pub lsdyna: &'static str,
+    /// CalculiX element and card.
+    pub calculix: &'static str,
+    /// Whether the decks follow bumpsim's link exactly (in compression).
+    pub exact: bool,
+    /// One line for the deck header.
+    pub note: String,
+}
+
+/// The mapping of `link`.
+pub fn mapping(link: &Link) -> LinkMapping {
+    let curve = link.curve();
+    let (lsdyna, calculix) = match (curve, link.unloading()) {
+        (Curve::Linear { .. }, _) => ("*MAT_SPRING_ELASTIC", "SPRINGA *SPRING"),
+        (_, Unloading::Elastic) => (
+            "*MAT_SPRING_NONLINEAR_ELASTIC",
+            "SPRINGA *SPRING, NONLINEAR",
+        ),
+        (_, Unloading::Slope(_)) => ("*MAT_SPRING_INELASTIC", "C3D8 *ELASTIC, *PLASTIC"),
+    };
+    let (exact, note) = match (curve, link.unloading()) {
+        (Curve::Linear { .. }, _) => (true, "linear: exact".to_string()),
+        (Curve::Progressive { .. }, Unloading::Elastic) => (
+            true,
+            format!(
+                "elastic along the curve: exact at {PROGRESSIVE_POINTS} points, chords between"
+            ),
+        ),
+        (_, Unloading::Elastic) => (true, "elastic along the curve: exact".to_string()),
+        (_, Unloading::Slope(k)) if k >= curve.steepest_slope() => (
+            true,
+            format!(
+                "unloading slope {k:e} N/m: exact in compression (tension: see docs/export.md)"
+            ),
+        ),
+        (_, Unloading::Slope(k)) => (
+            false,
+            format!(
+                "APPROXIMATE: unloads at the curve's steepest slope {:e} N/m, bumpsim at max({k:e} N/m, secant, energy term)",
+                curve.steepest_slope()
+            ),
+        ),
+    };
+    LinkMapping {
+        lsdyna,
+        calculix,
+        exact,
+        note,
+    }
+}
+
+/// The linear chain the decks share (masses, dampers, and each link's
+/// initial slope, for the layout, ids and unit checks).
+pub(crate) fn skeleton(chain: &Chain) -> MsdModel {
+    let springs = chain
+        .links()
+        .iter()
+        .map(|l| l.curve().initial_slope())
+        .collect();
+    MsdModel::new(chain.masses().to_vec(), chain.dampers().to_vec(), springs)
+        .expect("a valid chain is a valid linear chain")
+}
+
+/// Checks that every curve point stays finite in the deck's units.
+pub(crate) fn check_curves(chain: &Chain, units: UnitSystem) -> Result<(), ExportError> {
+    let front = chain.front().map(|f| ("the front link".to_string(), f));
+    let links = chain.links().iter().enumerate();
+    let links = links.map(|(j, l)| (format!("link {}", j + 1), l));
+    for (what, link) in links.chain(front) {
+        let fine = loading_points(link.curve())
+            .iter()
+            .all(|(d, f)| (d * units.length()).is_finite() && (f * units.force()).is_finite())
+            && (solver_unloading(link) * units.stiffness()).is_finite();
+        if !fine {
+            return Err(ExportError::Overflow {
+                what: format!("{what} (its loading curve to {CURVE_SPAN} m)"),
+                units: units.to_string(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The LS-DYNA include of `chain` (see [`crate::lsdyna`] for the rest).
+///
+/// ```
+/// use bumpsim_core::chain::Chain;
+/// use bumpsim_core::link::{Curve, Link, Unloading};
+/// use bumpsim_export::chain::lsdyna_chain_include;
+/// let link = Link::new(Curve::bilinear(1e6, 5e4, 0.1).unwrap(), Unloading::Slope(2e6)).unwrap();
+/// let chain = Chain::new(vec![2.0, 900.0], vec![0.0], vec![link]).unwrap();
+/// let deck = lsdyna_chain_include(&chain, &Default::default()).unwrap();
+/// assert!(deck.contains("*MAT_SPRING_INELASTIC"));
+/// ```
+pub fn lsdyna_chain_include(chain: &Chain, options: &LsDynaOptions) -> Result<String, ExportError> {
+    check_curves(chain, options.layout.units)?;
+    let units = options.layout.units;
+    let cards = |deck: &mut String, j: usize, id: u64, section: u64| {
+        let label = format!("link {}", j + 1);
+        let title = format!("link {} between m{} and m{}", j + 1, j + 1, j + 2);
+        lsdyna_link(deck, &chain.links()[j], units, id, section, &label, &title);
+    };
+    let deck = crate::lsdyna::include(&skeleton(chain), Some(&cards), options)?;
+    match chain.front() {
+        None => Ok(deck),
+        Some(front) => lsdyna_front(deck, chain, front, options),
+    }
+}
+
+/// The front link between a fixed wall node (the barrier) one spacing
+/// ahead of m1 and m1: node, section, material, curve, part and element
+/// all with id offset + 3n + 2, before `*END`.
+fn lsdyna_front(
+    deck: String,
+    chain: &Chain,
+    front: &Link,
+    options: &LsDynaOptions,
+) -> Result<String, ExportError> {
+    let n = chain.dof() as u64;
+    let id = options.id_offset + 3 * n + 2;
+    let limit = crate::lsdyna::MAX_ID;
+    if id > limit {
+        return Err(ExportError::IdRange {
+            offset: options.id_offset,
+            last: id,
+            limit,
+        });
+    }
+    if options.attach.contains(&id) {
+        return Err(ExportError::IdClash {
+            node: id,
+            first: id,
+            last: id,
+        });
+    }
+    let mut deck = deck
+        .strip_suffix("*END\n")
+        .map(str::to_string)
+        .unwrap_or(deck);
+    let layout = &options.layout;
+    let ahead = Layout {
+        origin: std::array::from_fn(|c| {
+            layout.origin[c] - layout.spacing * layout.axis.vector()[c]
+        }),
+        ..*layout
+    };
+    let _ = writeln!(deck, "$ front link: the barrier's fixed node {id} to m1");
+    cards::node(&mut deck, &[(id, ahead.node_position(0))], Some([7, 7]));
+    cards::discrete_section(&mut deck, id, cards::FieldNames::Written);
+    let title = "front link between the barrier and m1";
+    lsdyna_link(&mut deck, front, layout.units, id, id, "front link", title);
+    cards::element_discrete_header(&mut deck, cards::FieldNames::Written);
+    cards::element_discrete_line(&mut deck, id, id, id, options.id_offset + 1);
+    deck.push_str("*END\n");
+    Ok(deck)
+}
+
+/// Writes a link's material (id `id`), curve (id `id`) and part titled `title`.
+fn lsdyna_link(
+    deck: &mut String,
+    link: &Link,
+    units: UnitSystem,
+    id: u64,
+    section: u64,
+    label: &str,
+    title: &str,
+) {
+    let m = mapping(link);
+    let _ = writeln!(deck, "$ {label}: {}", m.note);
+    let [_, l, _, f] = units.symbols();
+    let points = loading_points(link.curve());
+    match (link.curve(), link.unloading()) {
+        (Curve::Linear { stiffness }, _) => {
+            let unit = format!("{f}/{l}");
+            let k = stiffness * units.stiffness();
+            cards::discrete_part(deck, cards::Link::Spring, k, &unit, id, section, title);
+            return;
+        }
+        (_, Unloading::Elastic) => {
+            let _ = writeln!(
+                deck,
+                "*MAT_SPRING_NONLINEAR_ELASTIC\n$    mid       lcd       lcr\n{}{}{}",
+                crate::layout::int_field(id, 10),
+                crate::layout::int_field(id, 10),
+                crate::layout::int_field(0, 10)
+            );
+            let mut rows: Vec<(f64, f64)> = points.iter().rev().map(|&(d, f)| (-d, -f)).collect();
+            rows.extend(points.iter().skip(1).copied());
+            let rows = rows
+                .into_iter()
+                .map(|(d, f)| (d * units.length(), f * units.force()));
+            let note = format!("curve of {label}: force ({f}) against elongation ({l}), odd");
+            cards::curve(deck, id, Some(&note), rows);
+        }
+        (_, Unloading::Slope(k)) => {
+            let _ = writeln!(
+                deck,
+                "*MAT_SPRING_INELASTIC\n$    mid      lcfd        ku       ctf  (ku {f}/{l})\n{}{}{}{}",
+                crate::layout::int_field(id, 10),
+                crate::layout::int_field(id, 10),
+                crate::layout::real_field(k * units.stiffness(), 10),
+                crate::layout::real_field(1.0, 10)
+            );
+            // the manual: in the first quadrant whichever way the spring acts
+            let rows = points
+                .iter()
+                .map(|&(d, f)| (d * units.length(), f * units.force()));
+            let note = format!(
+                "loading curve of {label}: force ({f}) against crush ({l}), first quadrant"
+            );
+            cards::curve(deck, id, Some(&note), rows);
+        }
+    }
+    cards::part(deck, title, id, section, id);
+}

@@ -1,0 +1,476 @@
+//! The chain with nonlinear links exported (issue 46): the CalculiX deck
+//! run in `ccx` against `Chain::run` into a barrier (peak link force and
+//! residual crush within 2 %), an elastic-perfectly-plastic closed form,
+//! and the LS-DYNA include parsed by ansys-dyna-core with every id defined.
+
+use approx::assert_relative_eq;
+use bumpsim_core::chain::{Chain, Drive};
+use bumpsim_core::link::{Curve, Link, Unloading};
+use bumpsim_core::series::UniformSeries;
+use bumpsim_export::calculix::{CalculixOptions, read_results};
+use bumpsim_export::chain::{lsdyna_chain_include, mapping};
+use bumpsim_export::chain_calculix::{Barrier, calculix_chain_deck, read_link_forces};
+use bumpsim_export::layout::{Axis, Layout, UnitSystem};
+use bumpsim_export::lsdyna::LsDynaOptions;
+use bumpsim_peers::peer_available;
+use std::path::PathBuf;
+use std::process::Command;
+
+fn ccx_available() -> bool {
+    peer_available("ccx (calculix-ccx)", "sh", &["-c", "command -v ccx"])
+}
+
+/// What the ccx run of a barrier deck shows of link 1.
+struct Fe {
+    peak_force: f64,
+    max_crush: f64,
+    residual: f64,
+}
+
+/// Writes the barrier deck of `chain` (units and axis given), runs ccx and
+/// reads link 1's peak force, largest crush and plastic set (crush −
+/// F / k_E on the unloading, which the elastic-plastic brick keeps
+/// constant until it is pulled).
+fn ccx_barrier(chain: &Chain, speed: f64, duration: f64, name: &str, layout: Layout) -> Fe {
+    ccx_link(chain, speed, duration, name, layout, "link_1")
+}
+
+/// [`ccx_barrier`] for the link `which` (`link_1` or `front_link`).
+fn ccx_link(
+    chain: &Chain,
+    speed: f64,
+    duration: f64,
+    name: &str,
+    layout: Layout,
+    which: &str,
+) -> Fe {
+    let options = CalculixOptions {
+        layout,
+        title: name.into(),
+        id_offset: 100,
+        ..Default::default()
+    };
+    let barrier = Barrier {
+        speed,
+        duration,
+        increment: 1e-4,
+        output_every: 1,
+    };
+    let deck = calculix_chain_deck(chain, &options, Some(&barrier)).unwrap();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("chain-decks")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("chain.inp");
+    std::fs::write(&path, &deck).unwrap();
+    let run = Command::new("ccx")
+        .args(["-i", "chain"])
+        .env("OMP_NUM_THREADS", "1")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success() && !log.contains("*ERROR"), "{log}");
+    let u = read_results(&path).unwrap();
+    let f = read_link_forces(&path).unwrap();
+    let force = &f.links.iter().find(|l| l.0 == which).expect(which).1;
+    assert_eq!(force.len(), u.time.len());
+    let crush: Vec<f64> = (0..u.time.len())
+        .map(|k| match which {
+            "front_link" => -u.displacement[0][k],
+            _ => u.displacement[0][k] - u.displacement[1][k],
+        })
+        .collect();
+    let top = (0..crush.len())
+        .max_by(|a, b| crush[*a].total_cmp(&crush[*b]))
+        .unwrap();
+    let peak_force = force.iter().fold(0.0_f64, |m, v| m.max(*v));
+    let link = match which {
+        "front_link" => chain.front().unwrap(),
+        _ => &chain.links()[0],
+    };
+    let k = bumpsim_export::chain::solver_unloading(link);
+    // on the unloading, once the force is down to half its peak
+    let after = (top..crush.len())
+        .find(|&i| force[i] < 0.5 * peak_force)
+        .expect("the link unloads within the run");
+    Fe {
+        peak_force,
+        max_crush: crush[top],
+        residual: crush[after] - force[after] / k,
+    }
+}
+
+fn barrier_run(chain: &Chain, speed: f64, duration: f64) -> bumpsim_core::chain::ChainResponse {
+    let samples = (duration / 1e-4).round() as usize + 1;
+    chain
+        .run(&Drive::Barrier {
+            speed,
+            step: 1e-4,
+            samples,
+        })
+        .unwrap()
+}
+
+fn mm_layout() -> Layout {
+    Layout {
+        units: UnitSystem::MmSTonne,
+        axis: Axis {
+            component: 1,
+            sign: -1.0,
+        },
+        origin: [1.0, 0.5, 0.0],
+        spacing: 0.2,
+    }
+}
+
+/// A mass M at V into the wall through an elastic-perfectly-plastic link:
+/// crush `M V²/(2 F_y) + F_y/(2k)`, set `crush − F_y/k`, peak force F_y.
+#[test]
+fn an_elastic_perfectly_plastic_link_in_ccx_matches_the_closed_form_and_the_chain() {
+    if !ccx_available() {
+        return;
+    }
+    let (m, v, k, fy) = (1000.0, 10.0, 1e7, 1e5);
+    let link = Link::new(Curve::bilinear(k, fy, 0.0).unwrap(), Unloading::Slope(k)).unwrap();
+    assert!(mapping(&link).exact);
+    let chain = Chain::new(vec![0.05, m], vec![0.0], vec![link]).unwrap();
+    let fe = ccx_barrier(&chain, v, 0.16, "epp", Layout::default());
+    let crush = m * v * v / (2.0 * fy) + fy / (2.0 * k);
+    let set = crush - fy / k;
+    eprintln!(
+        "epp: ccx peak {} N, crush {} m, set {} m; closed form {fy} N, {crush} m, {set} m",
+        fe.peak_force, fe.max_crush, fe.residual
+    );
+    assert_relative_eq!(fe.peak_force, fy, max_relative = 1e-3);
+    assert_relative_eq!(fe.max_crush, crush, max_relative = 2e-3);
+    assert_relative_eq!(fe.residual, set, max_relative = 2e-3);
+    let r = barrier_run(&chain, v, 0.16);
+    let bumpsim_peak = r.link_force[0].iter().fold(0.0_f64, |a, b| a.max(*b));
+    assert_relative_eq!(bumpsim_peak, fe.peak_force, max_relative = 0.02);
+    assert_relative_eq!(r.plastic_set[0], fe.residual, max_relative = 0.02);
+}
+
+/// Two masses with a hardening link into the wall behind a light m1, in
+/// mm-s-t units along −y: ccx and `Chain::run` agree on the peak link force
+/// and the residual crush within 2 %; and three masses with a tabulated
+/// yielding link and a progressive elastic one behind it.
+#[test]
+fn a_yielding_chain_in_ccx_reproduces_the_impact_within_two_percent() {
+    if !ccx_available() {
+        return;
+    }
+    let link = Link::new(
+        Curve::bilinear(2e6, 6e4, 0.1).unwrap(),
+        Unloading::Slope(4e6),
+    )
+    .unwrap();
+    let chain = Chain::new(vec![0.5, 1200.0], vec![0.0], vec![link]).unwrap();
+    let (v, duration) = (8.0, 0.3);
+    let fe = ccx_barrier(&chain, v, duration, "hardening", mm_layout());
+    let r = barrier_run(&chain, v, duration);
+    let peak = r.link_force[0].iter().fold(0.0_f64, |a, b| a.max(*b));
+    eprintln!(
+        "hardening: ccx peak {} N, crush {} m, set {} m; bumpsim {peak} N, {} m, {} m",
+        fe.peak_force, fe.max_crush, fe.residual, r.reached[0], r.plastic_set[0]
+    );
+    assert_relative_eq!(fe.peak_force, peak, max_relative = 0.02);
+    assert_relative_eq!(fe.max_crush, r.reached[0], max_relative = 0.02);
+    assert_relative_eq!(fe.residual, r.plastic_set[0], max_relative = 0.02);
+
+    let links = vec![
+        Link::new(
+            Curve::table(vec![[0.02, 4e4], [0.1, 6e4], [0.4, 1e5]]).unwrap(),
+            Unloading::Slope(2e6),
+        )
+        .unwrap(),
+        Link::new(
+            Curve::progressive(5e5, 2e8, 0.3).unwrap(),
+            Unloading::Elastic,
+        )
+        .unwrap(),
+    ];
+    let chain = Chain::new(vec![0.5, 60.0, 1100.0], vec![0.0, 2e3], links).unwrap();
+    let (v, duration) = (9.0, 0.3);
+    let fe = ccx_barrier(&chain, v, duration, "three", Layout::default());
+    let r = barrier_run(&chain, v, duration);
+    let peak = r.link_force[0].iter().fold(0.0_f64, |a, b| a.max(*b));
+    eprintln!(
+        "three masses: ccx peak {} N, crush {} m, set {} m; bumpsim {peak} N, {} m, {} m",
+        fe.peak_force, fe.max_crush, fe.residual, r.reached[0], r.plastic_set[0]
+    );
+    assert_relative_eq!(fe.peak_force, peak, max_relative = 0.02);
+    assert_relative_eq!(fe.residual, r.plastic_set[0], max_relative = 0.02);
+}
+
+/// A front link (the crush zone between the barrier and m1) ahead of a
+/// yielding link: ccx and `Chain::run` agree on the front link's peak
+/// force, largest crush and residual crush within 2 %.
+#[test]
+fn a_front_link_in_ccx_reproduces_the_impact_within_two_percent() {
+    if !ccx_available() {
+        return;
+    }
+    let yielding = |k: f64, fy: f64, r: f64| {
+        Link::new(Curve::bilinear(k, fy, r).unwrap(), Unloading::Slope(k)).unwrap()
+    };
+    let front = yielding(3e6, 8e4, 0.05);
+    let chain = Chain::new(
+        vec![300.0, 1000.0],
+        vec![0.0],
+        vec![yielding(5e6, 1.2e5, 0.0)],
+    )
+    .unwrap()
+    .with_front(front.clone());
+    let (v, duration) = (10.0, 0.25);
+    let fe = ccx_link(
+        &chain,
+        v,
+        duration,
+        "front",
+        Layout::default(),
+        "front_link",
+    );
+    let r = barrier_run(&chain, v, duration);
+    let peak = r.force.iter().fold(0.0_f64, |a, b| a.max(-b));
+    let mut state = bumpsim_core::link::LinkState::default();
+    for x in &r.displacement[0] {
+        front.force(*x, &mut state);
+    }
+    let (crush, set) = (state.reached, state.plastic_set(&front));
+    eprintln!(
+        "front: ccx peak {} N, crush {} m, set {} m; bumpsim {peak} N, {crush} m, {set} m",
+        fe.peak_force, fe.max_crush, fe.residual
+    );
+    assert_relative_eq!(fe.peak_force, peak, max_relative = 0.02);
+    assert_relative_eq!(fe.max_crush, crush, max_relative = 0.02);
+    assert_relative_eq!(fe.residual, set, max_relative = 0.02);
+    let dyna = lsdyna_chain_include(&chain, &LsDynaOptions::default()).unwrap();
+    assert!(
+        dyna.contains("$ front link: the barrier's fixed node 8"),
+        "{dyna}"
+    );
+}
+
+/// A softening table (the force falls after a fold buckles) maps to a
+/// softening `*PLASTIC` table: ccx follows `Chain::run` within 2 %.
+#[test]
+fn a_softening_link_in_ccx_reproduces_the_impact_within_two_percent() {
+    if !ccx_available() {
+        return;
+    }
+    let table = Curve::table(vec![[0.02, 8e4], [0.08, 5e4], [0.3, 6e4]]).unwrap();
+    let link = Link::new(table, Unloading::Slope(4e6)).unwrap();
+    assert!(mapping(&link).exact);
+    let chain = Chain::new(vec![0.5, 900.0], vec![0.0], vec![link]).unwrap();
+    let (v, duration) = (7.0, 0.25);
+    let fe = ccx_barrier(&chain, v, duration, "softening", Layout::default());
+    let r = barrier_run(&chain, v, duration);
+    let peak = r.link_force[0].iter().fold(0.0_f64, |a, b| a.max(*b));
+    eprintln!(
+        "softening: ccx peak {} N, crush {} m, set {} m; bumpsim {peak} N, {} m, {} m",
+        fe.peak_force, fe.max_crush, fe.residual, r.reached[0], r.plastic_set[0]
+    );
+    assert_relative_eq!(fe.peak_force, peak, max_relative = 0.02);
+    assert_relative_eq!(fe.max_crush, r.reached[0], max_relative = 0.02);
+    assert_relative_eq!(fe.residual, r.plastic_set[0], max_relative = 0.02);
+}
+
+fn every_kind() -> Chain {
+    let links = vec![
+        Link::new(
+            Curve::bilinear(2e6, 6e4, 0.1).unwrap(),
+            Unloading::Slope(4e6),
+        )
+        .unwrap(),
+        Link::new(
+            Curve::progressive(5e5, 2e8, 0.3).unwrap(),
+            Unloading::Elastic,
+        )
+        .unwrap(),
+        Link::new(
+            Curve::table(vec![[0.02, 4e4], [0.1, 6e4]]).unwrap(),
+            Unloading::Slope(1e6),
+        )
+        .unwrap(),
+        Link::linear(9e5).unwrap(),
+    ];
+    Chain::new(
+        vec![2.0, 40.0, 300.0, 800.0, 500.0],
+        vec![1e4, 0.0, 3e3, 2e3],
+        links,
+    )
+    .unwrap()
+}
+
+#[test]
+fn the_header_says_which_links_map_exactly() {
+    let chain = every_kind();
+    let deck = lsdyna_chain_include(&chain, &LsDynaOptions::default()).unwrap();
+    let notes: Vec<&str> = deck.lines().filter(|l| l.starts_with("$ link ")).collect();
+    assert_eq!(notes.len(), 4, "{notes:?}");
+    assert!(notes[0].contains("exact in compression"), "{}", notes[0]);
+    // the table's first slope 2e6 N/m is steeper than its unloading 1e6
+    assert!(notes[2].contains("APPROXIMATE"), "{}", notes[2]);
+    assert!(notes[3].contains("linear: exact"), "{}", notes[3]);
+    let ccx = calculix_chain_deck(&chain, &CalculixOptions::default(), None).unwrap();
+    assert_eq!(ccx.matches("*PLASTIC").count(), 2);
+    assert_eq!(ccx.matches("TYPE=C3D8").count(), 2);
+    assert_eq!(ccx.matches("NONLINEAR").count(), 1);
+    let bad = Barrier {
+        speed: -1.0,
+        duration: 0.1,
+        increment: 1e-4,
+        output_every: 1,
+    };
+    assert!(calculix_chain_deck(&chain, &CalculixOptions::default(), Some(&bad)).is_err());
+}
+
+#[test]
+fn the_lsdyna_include_parses_in_ansys_dyna_core_with_every_id_defined() {
+    if !peer_available(
+        "ansys-dyna-core",
+        "python3",
+        &["-c", "import ansys.dyna.core"],
+    ) {
+        return;
+    }
+    let force = UniformSeries::new(0.0, 1e-3, vec![0.0, -2e4, -5e4, -1e4, 0.0]).unwrap();
+    let options = LsDynaOptions {
+        layout: mm_layout(),
+        id_offset: 7000,
+        attach: vec![11, 12],
+        initial_velocity: Some(-4.0),
+        title: "nonlinear chain".into(),
+        force: Some(force),
+        output_interval: Some(1e-3),
+        standalone: true,
+    };
+    let deck = lsdyna_chain_include(&every_kind(), &options).unwrap();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("chain-decks");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("chain.k");
+    std::fs::write(&path, &deck).unwrap();
+    let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/dyna_deck.py");
+    let run = Command::new("python3")
+        .arg(script)
+        .arg(&path)
+        .args(["11", "12"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "dyna_deck.py: {stderr}");
+    let verdict: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    for empty in ["unprocessed", "errors", "undefined"] {
+        assert_eq!(verdict[empty], serde_json::json!([]), "{empty}: {verdict}");
+    }
+    assert_eq!(verdict["strings"], 0, "raw keywords: {verdict}");
+    let keywords = verdict["keywords"].to_string();
+    for kind in [
+        "MatSpringInelastic",
+        "MatSpringNonlinearElastic",
+        "MatSpringElastic",
+        "MatDamperViscous",
+    ] {
+        assert!(keywords.contains(kind), "{kind} missing: {keywords}");
+    }
+    // link 1's loading curve (id 7000 + 5 + 1): first quadrant, in mm and N
+    let curve = verdict["curves"]["7006"].as_array().unwrap();
+    let point = |i: usize| curve[i].as_array().unwrap().clone();
+    assert_eq!(point(0), [serde_json::json!(0.0), serde_json::json!(0.0)]);
+    assert_relative_eq!(point(1)[0].as_f64().unwrap(), 30.0, max_relative = 1e-6);
+    assert_relative_eq!(point(1)[1].as_f64().unwrap(), 6e4, max_relative = 1e-6);
+    let last = point(curve.len() - 1);
+    assert_relative_eq!(last[0].as_f64().unwrap(), 1e4, max_relative = 1e-6);
+    let f = 6e4 + 0.1 * 2e6 * (10.0 - 0.03);
+    assert_relative_eq!(last[1].as_f64().unwrap(), f, max_relative = 1e-3);
+}
+
+/// Under a force history on m1 (the deck's `*CLOAD` path, mm-ms-kg units)
+/// the CalculiX deck of a chain with a yielding, a progressive elastic and
+/// a linear link follows `Chain::run` in the pendulum's frame: every
+/// mass's displacement within 1 % of its peak.
+#[test]
+fn a_forced_chain_in_ccx_follows_chain_run() {
+    if !ccx_available() {
+        return;
+    }
+    let links = vec![
+        Link::new(
+            Curve::bilinear(4e6, 3e4, 0.05).unwrap(),
+            Unloading::Slope(4e6),
+        )
+        .unwrap(),
+        Link::new(
+            Curve::progressive(1e6, 1e9, 0.2).unwrap(),
+            Unloading::Elastic,
+        )
+        .unwrap(),
+    ];
+    let chain = Chain::new(vec![20.0, 150.0, 900.0], vec![500.0, 0.0], links).unwrap();
+    let step = 2e-4;
+    let force: Vec<f64> = (0..=500)
+        .map(|k| {
+            let t = k as f64 * step;
+            if t < 0.04 {
+                6e4 * (std::f64::consts::PI * t / 0.04).sin()
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let r = chain
+        .run(&Drive::Force {
+            force: &force,
+            step,
+            initial_velocity: 0.0,
+            frame: bumpsim_core::chain::Frame::Rearward,
+        })
+        .unwrap();
+    assert!(
+        r.plastic_set[0] > 1e-3,
+        "the link yields: {:?}",
+        r.plastic_set
+    );
+    let options = CalculixOptions {
+        layout: Layout {
+            units: UnitSystem::MmMsKg,
+            ..Default::default()
+        },
+        analysis: Some(bumpsim_export::calculix::Analysis {
+            force: UniformSeries::new(0.0, step, force).unwrap(),
+            increment: None,
+            output_every: 1,
+        }),
+        ..Default::default()
+    };
+    let deck = calculix_chain_deck(&chain, &options, None).unwrap();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("chain-decks")
+        .join("forced");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("chain.inp");
+    std::fs::write(&path, &deck).unwrap();
+    let run = Command::new("ccx")
+        .args(["-i", "chain"])
+        .env("OMP_NUM_THREADS", "1")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success() && !log.contains("*ERROR"), "{log}");
+    let u = read_results(&path).unwrap();
+    // ccx prints from the first increment on: its row k is sample k + 1
+    assert_eq!(u.time.len() + 1, r.displacement[0].len());
+    for (i, ours) in r.displacement.iter().enumerate() {
+        let peak = ours.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let worst = u.displacement[i]
+            .iter()
+            .zip(&ours[1..])
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        eprintln!("forced: m{} differs by {worst} m of {peak} m", i + 1);
+        assert!(worst <= 0.01 * peak, "m{}: {worst} m of {peak} m", i + 1);
+    }
+}
