@@ -93,7 +93,16 @@ impl Browser {
             .send(Message::text(message.to_string()))
             .unwrap();
         loop {
-            let Message::Text(text) = self.socket.read().unwrap() else {
+            let message = match self.socket.read() {
+                Ok(message) => message,
+                // a signal to this busy test process interrupts the read; the
+                // socket keeps its partial frame, so read again
+                Err(tungstenite::Error::Io(e)) if e.kind() == std::io::ErrorKind::Interrupted => {
+                    continue;
+                }
+                Err(e) => panic!("DevTools socket: {e}"),
+            };
+            let Message::Text(text) = message else {
                 continue;
             };
             let answer: Value = serde_json::from_str(&text).unwrap();
