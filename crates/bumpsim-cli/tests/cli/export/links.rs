@@ -1,0 +1,141 @@
+//! `bumpsim export` of a car file with nonlinear links (issue 46;
+//! examples/links/car.toml): both decks through the export crate's chain
+//! writers, the CalculiX deck run in `ccx`, and the commands that read
+//! linear cars only refusing the file with exit code 2.
+
+use super::{ccx_available, run_ccx};
+use crate::util::*;
+use std::path::Path;
+
+fn links_car() -> std::path::PathBuf {
+    root().join("examples/links/car.toml")
+}
+
+/// A half-sine push on m1: 150 kN for 30 ms, then 50 ms at rest, every
+/// 0.1 ms (it yields the tabulated link, 60 kN at 20 mm); as CSV and samples.
+fn push(dir: &Path) -> (std::path::PathBuf, Vec<f64>) {
+    let samples: Vec<f64> = (0..=800)
+        .map(|k| {
+            let t = k as f64 * 1e-4;
+            match t < 0.03 {
+                true => 1.5e5 * (std::f64::consts::PI * t / 0.03).sin(),
+                false => 0.0,
+            }
+        })
+        .collect();
+    let mut csv = String::from("time [s],force [N]\n");
+    for (k, f) in samples.iter().enumerate() {
+        csv.push_str(&format!("{:.4},{f}\n", k as f64 * 1e-4));
+    }
+    let path = dir.join("push.csv");
+    std::fs::write(&path, csv).unwrap();
+    (path, samples)
+}
+
+#[test]
+fn both_decks_of_a_car_with_links_are_written_by_the_chain_writers() {
+    let dir = scratch("export-links");
+    let car = links_car();
+    let deck = dir.join("car.k");
+    let run = bumpsim(&[
+        "export",
+        "lsdyna",
+        car.to_str().unwrap(),
+        "-o",
+        deck.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(text(&run.stdout).contains("critical explicit time step of the car alone: 2.813 ms"));
+    let k = std::fs::read_to_string(&deck).unwrap();
+    // yielding front link and tabulated link: inelastic; progressive elastic
+    assert_eq!(k.matches("*MAT_SPRING_INELASTIC").count(), 2, "{k}");
+    assert_eq!(k.matches("*MAT_SPRING_NONLINEAR_ELASTIC").count(), 1, "{k}");
+    let inp = dir.join("car.inp");
+    let run = bumpsim(&[
+        "export",
+        "calculix",
+        car.to_str().unwrap(),
+        "-o",
+        inp.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let deck = std::fs::read_to_string(&inp).unwrap();
+    assert!(
+        deck.contains("*PLASTIC") && deck.contains("EFRONT"),
+        "{deck}"
+    );
+}
+
+#[test]
+fn commands_for_linear_cars_refuse_a_car_with_links() {
+    let car = links_car();
+    let run = bumpsim(&[
+        "simulate",
+        "--car",
+        car.to_str().unwrap(),
+        "--force",
+        example("pendulum-force.csv").to_str().unwrap(),
+        "-o",
+        scratch("links-refused").join("r.csv").to_str().unwrap(),
+    ]);
+    assert_user_error(&run, "a chain with nonlinear links");
+    assert_user_error(
+        &run,
+        "`bumpsim export lsdyna` and `bumpsim export calculix` read this file",
+    );
+    let bumper = root().join("examples/impact/bumper-a.toml");
+    let run = bumpsim(&[
+        "impact",
+        "--car",
+        car.to_str().unwrap(),
+        "--bumper",
+        bumper.to_str().unwrap(),
+        "--barrier",
+        "--speed",
+        "15 km/h",
+    ]);
+    assert_user_error(&run, "a chain with nonlinear links");
+}
+
+/// Both CalculiX decks of the example (the transient under a push on m1)
+/// run cleanly in ccx and read back as three finite mass histories, the
+/// yielding links' bricks included. (Their motion is compared with
+/// `Chain::run` in barrier runs by bumpsim-export's tests/chain_decks.rs.)
+#[test]
+fn the_calculix_deck_of_a_car_with_links_runs_in_ccx() {
+    if !ccx_available() {
+        return;
+    }
+    let dir = scratch("export-links-ccx");
+    let (force, samples) = push(&dir);
+    let inp = dir.join("car.inp");
+    let car = links_car();
+    let run = bumpsim(&[
+        "export",
+        "calculix",
+        car.to_str().unwrap(),
+        "--force",
+        force.to_str().unwrap(),
+        "-o",
+        inp.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    run_ccx(&dir, "car");
+    let csv = dir.join("ccx.csv");
+    let read = bumpsim(&[
+        "export",
+        "read-calculix",
+        inp.to_str().unwrap(),
+        "-o",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(read.status.success(), "{}", text(&read.stderr));
+    let (header, rows) = read_csv(&csv);
+    assert_eq!(header, ["time [s]", "x1 [m]", "x2 [m]", "x3 [m]"]);
+    // ccx prints from the first increment on
+    assert_eq!(rows.len() + 1, samples.len());
+    assert!(rows.iter().flatten().all(|v| v.is_finite()));
+    // pushed rearwards, every mass has moved rearwards by the end
+    let last = rows.last().unwrap();
+    assert!(last[1..].iter().all(|x| *x > 0.0), "{last:?}");
+}
