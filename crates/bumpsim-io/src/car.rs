@@ -139,6 +139,13 @@ fn into_car(fields: ModelFields, path: &Path) -> Result<Car, CarError> {
     Ok(Car { name, model })
 }
 
+/// Whether a car file's TOML holds nonlinear links (`[[links]]` or
+/// `[front]`, [`crate::link_car`]): the chain's two file forms, told apart
+/// by the chain's own reader.
+pub fn has_links(table: &toml::Table) -> bool {
+    table.contains_key("links") || table.contains_key("front")
+}
+
 fn read_text(path: &Path) -> Result<String, CarError> {
     Ok(bumpsim_core::files::read_text(path)?)
 }
@@ -183,9 +190,7 @@ impl Car {
     pub fn parse(text: &str, path: &Path) -> Result<Car, CarError> {
         let fields: ModelFields =
             toml::from_str(text).map_err(|e| match toml::from_str::<toml::Table>(text) {
-                Ok(table) if crate::link_car::has_links(&table) => {
-                    CarError::NonlinearLinks { path: path.into() }
-                }
+                Ok(table) if has_links(&table) => CarError::NonlinearLinks { path: path.into() },
                 _ => CarError::Syntax {
                     path: path.into(),
                     message: crate::toml_message(text, &e),

@@ -31,6 +31,7 @@
 //! ```
 
 use crate::car::CarError;
+pub use crate::car::has_links;
 use bumpsim_core::chain::Chain;
 use bumpsim_core::link::{Curve, Link, Unloading};
 use bumpsim_core::units::{Dimension, parse_quantity};
@@ -44,13 +45,6 @@ pub struct LinkCar {
     pub name: Option<String>,
     /// The validated chain (with its front link, if the file has one).
     pub chain: Chain,
-}
-
-/// Whether a car file's TOML holds nonlinear links (`[[links]]` or
-/// `[front]`): the chain's two file forms, told apart by the chain's own
-/// reader.
-pub fn has_links(table: &Table) -> bool {
-    table.contains_key("links") || table.contains_key("front")
 }
 
 /// Where an error is: the link's name and the key.
