@@ -3,7 +3,7 @@
 //! writers, the CalculiX deck run in `ccx`, and the commands that read
 //! linear cars only refusing the file with exit code 2.
 
-use super::{ccx_available, run_ccx};
+use super::{ccx_available, dyna_core, dyna_core_available, run_ccx};
 use crate::util::*;
 use std::path::Path;
 
@@ -138,4 +138,37 @@ fn the_calculix_deck_of_a_car_with_links_runs_in_ccx() {
     // pushed rearwards, every mass has moved rearwards by the end
     let last = rows.last().unwrap();
     assert!(last[1..].iter().all(|x| *x > 0.0), "{last:?}");
+}
+
+/// The example's LS-DYNA include parses in ansys-dyna-core: every keyword
+/// read, no id undefined, the inelastic and nonlinear elastic springs there.
+#[test]
+fn the_lsdyna_include_of_a_car_with_links_parses_in_dyna_core() {
+    if !dyna_core_available() {
+        return;
+    }
+    let dir = scratch("export-links-dyna");
+    let deck = dir.join("car.k");
+    let car = links_car();
+    let args = [
+        "export",
+        "lsdyna",
+        car.to_str().unwrap(),
+        "-o",
+        deck.to_str().unwrap(),
+    ];
+    let run = bumpsim(&args);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let verdict = dyna_core(&deck, &[]);
+    for empty in ["unprocessed", "errors", "undefined"] {
+        assert_eq!(verdict[empty], serde_json::json!([]), "{empty}: {verdict}");
+    }
+    let keywords = verdict["keywords"].to_string();
+    for kind in [
+        "MatSpringInelastic",
+        "MatSpringNonlinearElastic",
+        "MatDamperViscous",
+    ] {
+        assert!(keywords.contains(kind), "{kind} missing: {keywords}");
+    }
 }
