@@ -6,53 +6,17 @@
 //! bench `crates/bumpsim-impact/benches/sobol.rs` (a timed test failed
 //! whenever the machine was busy).
 
-use bumpsim::core::MsdModel;
-use bumpsim::estimate::sobol::{Indices, Input, Settings, indices};
-use bumpsim::impact::impact::{Options, simulate};
-use bumpsim::impact::{Bumper, Scenario};
+use bumpsim::estimate::sobol::{Indices, Settings, indices};
 use std::io::Write;
 use std::process::{Command, Stdio};
 use std::sync::Mutex;
 
+#[path = "../crates/bumpsim-impact/benches/sobol/model.rs"]
+mod model;
+use model::{RANGES, inputs, peak_force};
+
 /// The two tests run one after the other: each sweep has both cores.
 static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
-
-/// The inputs: car front mass and spring, bumper stiffness and plateau,
-/// pendulum mass and speed.
-const RANGES: [(&str, f64, f64); 6] = [
-    ("m1 [kg]", 20.0, 60.0),
-    ("k1 [N/m]", 3e5, 9e5),
-    ("bumper stiffness [N/m]", 5e5, 2e6),
-    ("plateau [N]", 1.5e4, 4e4),
-    ("pendulum mass [kg]", 900.0, 1500.0),
-    ("speed [m/s]", 1.0, 1.5),
-];
-
-/// The peak contact force, N.
-fn peak_force(x: &[f64]) -> f64 {
-    let car = MsdModel::new(vec![x[0], 1200.0], vec![2e4], vec![x[1]]);
-    let bumper = Bumper::three_part(x[2], x[3], 5e6);
-    let (Ok(car), Ok(bumper)) = (car, bumper) else {
-        return f64::NAN;
-    };
-    let pendulum = Scenario::Impactor {
-        mass: x[4],
-        speed: x[5],
-    };
-    let options = Options {
-        duration: 0.3,
-        output_step: 1e-3,
-        ..Options::default()
-    };
-    simulate(&car, &bumper, pendulum, &options).map_or(f64::NAN, |r| r.peak_force)
-}
-
-fn inputs() -> Vec<Input> {
-    RANGES
-        .iter()
-        .map(|&(name, low, high)| Input::uniform(name, low, high))
-        .collect()
-}
 
 #[test]
 fn six_parameters_times_ten_thousand_base_samples_rank_the_speed_first() {

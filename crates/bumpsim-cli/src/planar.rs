@@ -11,7 +11,7 @@ use bumpsim_planar::identify::{Prediction, identify, predict};
 use bumpsim_planar::presets::{PlanarPreset, StrikerSpec};
 use bumpsim_planar::study::PlanarStudy;
 use bumpsim_planar::uncertainty::Planar;
-use bumpsim_planar::{PlanarCar, Settings, Side, Striker, simulate};
+use bumpsim_planar::{PlanarCar, Settings, Side, Striker, bands, simulate};
 use bumpsim_report::planar::CasePage;
 use indicatif::ProgressBar;
 use std::path::{Path, PathBuf};
@@ -395,7 +395,7 @@ pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
     let validation_fits: Vec<_> = validation.iter().map(|p| p.fit.clone()).collect();
     let mut forward =
         forward_predictions(&result.car, study.cases.iter().chain(&study.validation))?;
-    let bands = bumpsim_planar::bands::attach(
+    let bands = bands::attach(
         &result,
         &study.cases,
         (&study.validation, &mut validation),
