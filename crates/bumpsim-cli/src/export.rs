@@ -7,11 +7,14 @@ mod planar;
 use crate::simulate::{force_series, refuse_overwriting_inputs};
 use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, parse_quantity};
-use bumpsim_export::calculix::{Analysis, CalculixOptions, calculix_deck, read_results};
+use bumpsim_export::calculix::{Analysis, CalculixOptions, read_results};
+use bumpsim_export::car_deck::{
+    CarModel, below_minimum, calculix_car_deck, critical_time_step, lsdyna_car_include,
+};
 use bumpsim_export::layout::{Axis, Layout, UnitSystem};
-use bumpsim_export::lsdyna::{LsDynaOptions, lsdyna_include};
+use bumpsim_export::lsdyna::LsDynaOptions;
 use bumpsim_export::spring::{SpringCurve, SpringOptions, calculix_spring, lsdyna_spring};
-use bumpsim_io::car::Car;
+use bumpsim_io::link_car::ChainCar;
 use bumpsim_io::table::{OutputColumn, write_table};
 use deck::{Solver, origin, spacing, time, write_output};
 use std::path::{Path, PathBuf};
@@ -199,17 +202,26 @@ fn write_deck(common: &Common, inputs: &[&Path], text: &str, what: &str) -> Resu
     write_output(&common.output, common.units, inputs, text, what)
 }
 
-fn title(car: &Car, path: &Path) -> String {
+fn title(car: &ChainCar, path: &Path) -> String {
     format!(
         "{} (from {})",
-        car.name.as_deref().unwrap_or("MSD car model"),
+        car.name().unwrap_or("MSD car model"),
         path.display()
     )
 }
 
+/// The car file's model, in either chain form, for the export crate.
+fn car_model(car: &ChainCar) -> CarModel<'_> {
+    match car {
+        ChainCar::Linear(car) => CarModel::Linear(&car.model),
+        ChainCar::Links(car) => CarModel::Chain(&car.chain),
+    }
+}
+
 fn lsdyna(args: &LsDynaArgs) -> Result<()> {
     let common = &args.common;
-    let car = Car::read_model_file(&common.model)?;
+    let car = ChainCar::read(&common.model)?;
+    let model = car_model(&car);
     let force = args
         .force
         .as_deref()
@@ -229,13 +241,13 @@ fn lsdyna(args: &LsDynaArgs) -> Result<()> {
             .transpose()?,
         standalone: args.standalone,
     };
-    let step = bumpsim_export::timestep::critical_time_step(&car.model);
+    let step = critical_time_step(model);
     println!(
         "critical explicit time step of the car alone: {}",
         bumpsim_core::units::format_quantity(step, Dimension::Time)
     );
     let minimum = time("min-time-step", &args.min_time_step)?;
-    let below = bumpsim_export::timestep::below_minimum(&car.model, minimum)
+    let below = below_minimum(model, minimum)
         .with_context(|| format!("--min-time-step '{}'", args.min_time_step))?;
     if below.is_some() {
         crate::warn(&format!(
@@ -244,12 +256,12 @@ fn lsdyna(args: &LsDynaArgs) -> Result<()> {
             args.min_time_step
         ));
     }
-    let deck = lsdyna_include(&car.model, &options)?;
+    let deck = lsdyna_car_include(model, &options)?;
     let what = format!(
         "LS-DYNA include, {} masses on nodes {}..{}",
-        car.model.dof(),
+        model.dof(),
         args.id_offset + 1,
-        args.id_offset + car.model.dof() as u64
+        args.id_offset + model.dof() as u64
     );
     let inputs: Vec<&Path> = std::iter::once(common.model.as_path())
         .chain(args.force.as_deref())
@@ -259,7 +271,7 @@ fn lsdyna(args: &LsDynaArgs) -> Result<()> {
 
 fn calculix(args: &CalculixArgs) -> Result<()> {
     let common = &args.common;
-    let car = Car::read_model_file(&common.model)?;
+    let car = ChainCar::read(&common.model)?;
     let analysis = match &args.force {
         Some(path) => Some(Analysis {
             force: force_series(path, args.column.as_deref())?.0,
@@ -286,7 +298,7 @@ fn calculix(args: &CalculixArgs) -> Result<()> {
         prefix: args.prefix.clone(),
         attach: args.attach.clone(),
     };
-    let deck = calculix_deck(&car.model, &options)
+    let deck = calculix_car_deck(car_model(&car), &options)
         .map_err(|e| name_output_every(e.into(), args.output_every))?;
     let inputs: Vec<&Path> = std::iter::once(common.model.as_path())
         .chain(args.force.as_deref())

@@ -12,6 +12,7 @@
 //! - [`dat`]: the print blocks of any CalculiX `.dat` file;
 //! - [`layout`]: unit systems, axis and node placement shared by both;
 //! - [`spring`]: the bumper characteristic as a nonlinear discrete spring;
+//! - [`car_deck`]: a car of either chain form to its deck (picks the writer);
 //! - [`timestep`]: the car's explicit critical time step.
 //!
 //! ```
@@ -23,6 +24,7 @@
 //! ```
 
 pub mod calculix;
+pub mod car_deck;
 pub mod cards;
 pub mod chain;
 pub mod chain_calculix;

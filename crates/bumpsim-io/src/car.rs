@@ -59,6 +59,37 @@ pub enum CarError {
         /// Which parameter and why.
         source: ModelError,
     },
+    /// A key of a nonlinear link (or of a car with links) is missing,
+    /// unknown or out of range ([`crate::link_car`]).
+    #[error("{path}: {link}: {key}: {reason}")]
+    LinkKey {
+        /// The file.
+        path: PathBuf,
+        /// `link j`, `front link` or `car`.
+        link: String,
+        /// The key.
+        key: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A link's values do not make a valid link.
+    #[error("{path}: {link}: {source}")]
+    Link {
+        /// The file.
+        path: PathBuf,
+        /// `link j` or `front link`.
+        link: String,
+        /// Which parameter and why.
+        source: bumpsim_core::link::LinkError,
+    },
+    /// A car with nonlinear links given to a reader of linear cars.
+    #[error(
+        "{path}: a chain with nonlinear links ([[links]] or [front]): this command reads linear cars (springs = [...]) only; `bumpsim export lsdyna` and `bumpsim export calculix` read this file"
+    )]
+    NonlinearLinks {
+        /// The file.
+        path: PathBuf,
+    },
     /// The file cannot be written.
     #[error("{path}: cannot write: {source}")]
     Write {
@@ -108,6 +139,13 @@ fn into_car(fields: ModelFields, path: &Path) -> Result<Car, CarError> {
     Ok(Car { name, model })
 }
 
+/// Whether a car file's TOML holds nonlinear links (`[[links]]` or
+/// `[front]`, [`crate::link_car`]): the chain's two file forms, told apart
+/// by the chain's own reader.
+pub fn has_links(table: &toml::Table) -> bool {
+    table.contains_key("links") || table.contains_key("front")
+}
+
 fn read_text(path: &Path) -> Result<String, CarError> {
     Ok(bumpsim_core::files::read_text(path)?)
 }
@@ -150,10 +188,14 @@ impl Car {
 
     /// Parses car TOML; `path` is used in messages.
     pub fn parse(text: &str, path: &Path) -> Result<Car, CarError> {
-        let fields: ModelFields = toml::from_str(text).map_err(|e| CarError::Syntax {
-            path: path.into(),
-            message: crate::toml_message(text, &e),
-        })?;
+        let fields: ModelFields =
+            toml::from_str(text).map_err(|e| match toml::from_str::<toml::Table>(text) {
+                Ok(table) if has_links(&table) => CarError::NonlinearLinks { path: path.into() },
+                _ => CarError::Syntax {
+                    path: path.into(),
+                    message: crate::toml_message(text, &e),
+                },
+            })?;
         into_car(fields, path)
     }
 

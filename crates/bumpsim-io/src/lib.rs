@@ -2,6 +2,7 @@
 //!
 //! - [`table`]: CSV with `name [unit]` headers, converted to SI on reading;
 //! - [`car`]: MSD car models in TOML;
+//! - [`link_car`]: car files of a chain with nonlinear links;
 //! - [`kind`]: which car model a file is for (its `kind` key; the legacy detection);
 //! - [`response`]: simulation responses as CSV;
 //! - [`test_data`]: one view of a crash test in any format, channel selection;
@@ -33,6 +34,7 @@
 
 pub mod car;
 pub mod kind;
+pub mod link_car;
 pub mod mass;
 pub mod numbers;
 pub mod output;

@@ -4,6 +4,7 @@
 
 mod bumper;
 mod calculix;
+mod links;
 mod lsdyna;
 mod planar;
 

@@ -1,0 +1,249 @@
+//! `bumpsim export` of a car file with nonlinear links (issue 46;
+//! examples/links/car.toml): both decks through the export crate's chain
+//! writers, the CalculiX deck run in `ccx`, and the commands that read
+//! linear cars only refusing the file with exit code 2.
+
+use super::{ccx_available, dyna_core, dyna_core_available, run_ccx};
+use crate::util::*;
+use bumpsim_core::chain::{Drive, Frame};
+use bumpsim_io::link_car::LinkCar;
+use std::path::Path;
+
+fn links_car() -> std::path::PathBuf {
+    root().join("examples/links/car.toml")
+}
+
+/// A half-sine push on m1: 150 kN for 30 ms, then 50 ms at rest, every
+/// 0.1 ms (it yields the tabulated link, 60 kN at 20 mm); as CSV and samples.
+fn push(dir: &Path) -> (std::path::PathBuf, Vec<f64>) {
+    let samples: Vec<f64> = (0..=800)
+        .map(|k| {
+            let t = k as f64 * 1e-4;
+            match t < 0.03 {
+                true => 1.5e5 * (std::f64::consts::PI * t / 0.03).sin(),
+                false => 0.0,
+            }
+        })
+        .collect();
+    let mut csv = String::from("time [s],force [N]\n");
+    for (k, f) in samples.iter().enumerate() {
+        csv.push_str(&format!("{:.4},{f}\n", k as f64 * 1e-4));
+    }
+    let path = dir.join("push.csv");
+    std::fs::write(&path, csv).unwrap();
+    (path, samples)
+}
+
+#[test]
+fn both_decks_of_a_car_with_links_are_written_by_the_chain_writers() {
+    let dir = scratch("export-links");
+    let car = links_car();
+    let deck = dir.join("car.k");
+    let run = bumpsim(&[
+        "export",
+        "lsdyna",
+        car.to_str().unwrap(),
+        "-o",
+        deck.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(text(&run.stdout).contains("critical explicit time step of the car alone: 2.813 ms"));
+    let k = std::fs::read_to_string(&deck).unwrap();
+    // yielding front link and tabulated link: inelastic; progressive elastic
+    assert_eq!(k.matches("*MAT_SPRING_INELASTIC").count(), 2, "{k}");
+    assert_eq!(k.matches("*MAT_SPRING_NONLINEAR_ELASTIC").count(), 1, "{k}");
+    let inp = dir.join("car.inp");
+    let run = bumpsim(&[
+        "export",
+        "calculix",
+        car.to_str().unwrap(),
+        "-o",
+        inp.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let deck = std::fs::read_to_string(&inp).unwrap();
+    assert!(
+        deck.contains("*PLASTIC") && deck.contains("EFRONT"),
+        "{deck}"
+    );
+}
+
+#[test]
+fn commands_for_linear_cars_refuse_a_car_with_links() {
+    let car = links_car();
+    let run = bumpsim(&[
+        "simulate",
+        "--car",
+        car.to_str().unwrap(),
+        "--force",
+        example("pendulum-force.csv").to_str().unwrap(),
+        "-o",
+        scratch("links-refused").join("r.csv").to_str().unwrap(),
+    ]);
+    assert_user_error(&run, "a chain with nonlinear links");
+    assert_user_error(
+        &run,
+        "`bumpsim export lsdyna` and `bumpsim export calculix` read this file",
+    );
+    let bumper = root().join("examples/impact/bumper-a.toml");
+    let run = bumpsim(&[
+        "impact",
+        "--car",
+        car.to_str().unwrap(),
+        "--bumper",
+        bumper.to_str().unwrap(),
+        "--barrier",
+        "--speed",
+        "15 km/h",
+    ]);
+    assert_user_error(&run, "a chain with nonlinear links");
+}
+
+/// Both CalculiX decks of the example (the transient under a push on m1)
+/// run cleanly in ccx and read back as three finite mass histories, the
+/// yielding links' bricks included. (Their motion is compared with
+/// `Chain::run` in barrier runs by bumpsim-export's tests/chain_decks.rs.)
+#[test]
+fn the_calculix_deck_of_a_car_with_links_runs_in_ccx() {
+    if !ccx_available() {
+        return;
+    }
+    let dir = scratch("export-links-ccx");
+    let (force, samples) = push(&dir);
+    let inp = dir.join("car.inp");
+    let car = links_car();
+    let run = bumpsim(&[
+        "export",
+        "calculix",
+        car.to_str().unwrap(),
+        "--spacing",
+        "5 m",
+        "--force",
+        force.to_str().unwrap(),
+        "-o",
+        inp.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    run_ccx(&dir, "car");
+    let csv = dir.join("ccx.csv");
+    let read = bumpsim(&[
+        "export",
+        "read-calculix",
+        inp.to_str().unwrap(),
+        "-o",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(read.status.success(), "{}", text(&read.stderr));
+    let (header, rows) = read_csv(&csv);
+    assert_eq!(header, ["time [s]", "x1 [m]", "x2 [m]", "x3 [m]"]);
+    // ccx prints from the first increment on
+    assert_eq!(rows.len() + 1, samples.len());
+    assert!(rows.iter().flatten().all(|v| v.is_finite()));
+    // pushed rearwards, every mass has moved rearwards by the end
+    let last = rows.last().unwrap();
+    assert!(last[1..].iter().all(|x| *x > 0.0), "{last:?}");
+}
+
+/// Without its front link (which pulls in ccx, never in bumpsim) the
+/// example's CalculiX transient follows `Chain::run` under the same push:
+/// every mass within 2 % of m1's peak displacement, the tabulated link
+/// yielding. The nodes are 5 m apart: a `SPRINGA` acts along the line
+/// between its nodes, which a crush beyond the default 0.1 m spacing turns
+/// over (a linear car of the same masses under this push, at the default
+/// 0.1 m: ccx's m1 35 % beyond `simulate` and scipy's `solve_ivp` at 10 ms).
+#[test]
+fn without_its_front_link_the_calculix_run_follows_chain_run() {
+    if !ccx_available() {
+        return;
+    }
+    let dir = scratch("export-links-chain-run");
+    let full = std::fs::read_to_string(links_car()).unwrap();
+    let (head, rest) = full.split_once("[front]").unwrap();
+    let car_text = format!("{head}{}", &rest[rest.find("[[links]]").unwrap()..]);
+    let car_path = dir.join("car.toml");
+    std::fs::write(&car_path, &car_text).unwrap();
+    let car = LinkCar::parse(&car_text, &car_path).unwrap();
+    assert!(car.chain.front().is_none());
+    let (force, samples) = push(&dir);
+    let inp = dir.join("car.inp");
+    let run = bumpsim(&[
+        "export",
+        "calculix",
+        car_path.to_str().unwrap(),
+        "--force",
+        force.to_str().unwrap(),
+        "--spacing",
+        "5 m",
+        "-o",
+        inp.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    run_ccx(&dir, "car");
+    let csv = dir.join("ccx.csv");
+    let read = bumpsim(&[
+        "export",
+        "read-calculix",
+        inp.to_str().unwrap(),
+        "-o",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(read.status.success(), "{}", text(&read.stderr));
+    let (_, theirs) = read_csv(&csv);
+    let drive = Drive::Force {
+        force: &samples,
+        step: 1e-4,
+        initial_velocity: 0.0,
+        frame: Frame::Rearward,
+    };
+    let ours = car.chain.run(&drive).unwrap();
+    assert!(ours.plastic_set[1] > 1e-3, "{:?}", ours.plastic_set);
+    // ccx prints from the first increment on: its row k is our sample k + 1
+    assert_eq!(theirs.len() + 1, ours.displacement[0].len());
+    let peak = ours.displacement[0]
+        .iter()
+        .fold(0.0_f64, |m, x| m.max(x.abs()));
+    for mass in 0..3 {
+        let worst = theirs
+            .iter()
+            .zip(&ours.displacement[mass][1..])
+            .fold(0.0_f64, |m, (row, x)| m.max((row[mass + 1] - x).abs()));
+        assert!(
+            worst <= 0.02 * peak,
+            "m{} differs by {worst} m, m1's peak {peak} m",
+            mass + 1
+        );
+    }
+}
+
+/// The example's LS-DYNA include parses in ansys-dyna-core: every keyword
+/// read, no id undefined, the inelastic and nonlinear elastic springs there.
+#[test]
+fn the_lsdyna_include_of_a_car_with_links_parses_in_dyna_core() {
+    if !dyna_core_available() {
+        return;
+    }
+    let dir = scratch("export-links-dyna");
+    let deck = dir.join("car.k");
+    let car = links_car();
+    let args = [
+        "export",
+        "lsdyna",
+        car.to_str().unwrap(),
+        "-o",
+        deck.to_str().unwrap(),
+    ];
+    let run = bumpsim(&args);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let verdict = dyna_core(&deck, &[]);
+    for empty in ["unprocessed", "errors", "undefined"] {
+        assert_eq!(verdict[empty], serde_json::json!([]), "{empty}: {verdict}");
+    }
+    let keywords = verdict["keywords"].to_string();
+    for kind in [
+        "MatSpringInelastic",
+        "MatSpringNonlinearElastic",
+        "MatDamperViscous",
+    ] {
+        assert!(keywords.contains(kind), "{kind} missing: {keywords}");
+    }
+}

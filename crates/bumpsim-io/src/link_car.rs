@@ -1,0 +1,341 @@
+//! Car files of a chain with nonlinear links ([`bumpsim_core::chain`],
+//! [`bumpsim_core::link`]; issue 46): the linear car file's `masses` and
+//! `dampers`, and instead of `springs` one `[[links]]` table per link j
+//! (between mass j and j+1), optionally a `[front]` link (the crush zone
+//! between the barrier and m1). docs/formats.md has the full form.
+//!
+//! Each link gives its loading curve `F_L(δ)` (δ > 0 in compression):
+//!
+//! | `curve` | keys | curve |
+//! |---|---|---|
+//! | `linear` | `stiffness` | `k δ` |
+//! | `progressive` | `stiffness`, `limit`, `limit_force` | `k δ + k3 δ³` to δ_lim, `k3 = (F_lim − k δ_lim)/δ_lim³` |
+//! | `bilinear` | `stiffness`, `yield_force`, `hardening` (0..=1, default 0) | `k δ` to F_y, then slope `r k` |
+//! | `table` | `points = [[δ, F], ...]` | piecewise linear from (0, 0) |
+//!
+//! and `unloading = "elastic"` (default: back along the curve) or an
+//! unloading slope (`"2000 N/mm"`). Quantities are numbers in SI or text
+//! with a unit (`"1500 N/mm"`, `"80 kN"`, `"200 mm"`), converted to SI on
+//! reading. Unknown keys are errors; every error names the file, the link
+//! (`link 2`, `front link`) and the key.
+//!
+//! ```
+//! use bumpsim_io::link_car::LinkCar;
+//! let text = "masses = [2.0, 900.0]\ndampers = [0.0]\n[[links]]\ncurve = \"bilinear\"\n\
+//!             stiffness = \"1000 N/mm\"\nyield_force = \"50 kN\"\nunloading = \"2000 N/mm\"\n";
+//! let car = LinkCar::parse(text, "car.toml".as_ref()).unwrap();
+//! assert_eq!(car.chain.dof(), 2);
+//! let bad = text.replace("50 kN", "-50 kN");
+//! let err = LinkCar::parse(&bad, "car.toml".as_ref()).unwrap_err().to_string();
+//! assert!(err.starts_with("car.toml: link 1: yield_force"), "{err}");
+//! ```
+
+use crate::car::CarError;
+pub use crate::car::has_links;
+use bumpsim_core::chain::Chain;
+use bumpsim_core::link::{Curve, Link, Unloading};
+use bumpsim_core::units::{Dimension, parse_quantity};
+use std::path::Path;
+use toml::{Table, Value};
+
+/// A car whose links are nonlinear.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinkCar {
+    /// Optional name from the file.
+    pub name: Option<String>,
+    /// The validated chain (with its front link, if the file has one).
+    pub chain: Chain,
+}
+
+/// Where an error is: the link's name and the key.
+struct At<'a> {
+    path: &'a Path,
+    link: String,
+}
+
+impl At<'_> {
+    fn error(&self, key: &str, reason: impl Into<String>) -> CarError {
+        CarError::LinkKey {
+            path: self.path.into(),
+            link: self.link.clone(),
+            key: key.into(),
+            reason: reason.into(),
+        }
+    }
+
+    /// A quantity: a finite number (SI) or text with a unit of `dimension`.
+    fn quantity(&self, table: &Table, key: &str, dimension: Dimension) -> Result<f64, CarError> {
+        let value = table.get(key).ok_or_else(|| self.error(key, "missing"))?;
+        self.value(value, key, dimension)
+    }
+
+    fn value(&self, value: &Value, key: &str, dimension: Dimension) -> Result<f64, CarError> {
+        let number = match value {
+            Value::Float(v) => *v,
+            Value::Integer(v) => *v as f64,
+            Value::String(s) => {
+                return parse_quantity(s, dimension).map_err(|e| self.error(key, e.to_string()));
+            }
+            other => {
+                return Err(self.error(
+                    key,
+                    format!("{other}: expected a number or text with a unit"),
+                ));
+            }
+        };
+        match number.is_finite() {
+            true => Ok(number),
+            false => Err(self.error(key, format!("{number} is not a finite number"))),
+        }
+    }
+}
+
+fn unit_of(value: &Value) -> Option<String> {
+    value.as_str().map(str::to_string)
+}
+
+/// The keys each curve allows (besides `curve` and `unloading`).
+fn allowed(curve: &str) -> Option<&'static [&'static str]> {
+    Some(match curve {
+        "linear" => &["stiffness"],
+        "progressive" => &["stiffness", "limit", "limit_force"],
+        "bilinear" => &["stiffness", "yield_force", "hardening"],
+        "table" => &["points"],
+        _ => return None,
+    })
+}
+
+fn curve(at: &At<'_>, table: &Table) -> Result<Curve, CarError> {
+    let name = table
+        .get("curve")
+        .and_then(Value::as_str)
+        .ok_or_else(|| at.error("curve", "missing: linear, progressive, bilinear or table"))?;
+    let keys = allowed(name).ok_or_else(|| {
+        at.error(
+            "curve",
+            format!("{name:?} is not a curve (linear, progressive, bilinear, table)"),
+        )
+    })?;
+    if let Some(key) = table
+        .keys()
+        .find(|k| !keys.contains(&k.as_str()) && !["curve", "unloading"].contains(&k.as_str()))
+    {
+        return Err(at.error(
+            key,
+            format!(
+                "unknown key for curve = {name:?} (allowed: {})",
+                keys.join(", ")
+            ),
+        ));
+    }
+    let link = |source| CarError::Link {
+        path: at.path.into(),
+        link: at.link.clone(),
+        source,
+    };
+    let k = || at.quantity(table, "stiffness", Dimension::Stiffness);
+    match name {
+        "linear" => Curve::linear(k()?).map_err(link),
+        "progressive" => {
+            let (k, limit) = (k()?, at.quantity(table, "limit", Dimension::Length)?);
+            let top = at.quantity(table, "limit_force", Dimension::Force)?;
+            if !(limit > 0.0 && top >= k * limit) {
+                return Err(at.error(
+                    "limit_force",
+                    format!(
+                        "{top} N: must be at least stiffness × limit = {} N (limit > 0)",
+                        k * limit
+                    ),
+                ));
+            }
+            Curve::progressive(k, (top - k * limit) / limit.powi(3), limit).map_err(link)
+        }
+        "bilinear" => {
+            let hardening = match table.get("hardening") {
+                None => 0.0,
+                Some(v) => at.value(v, "hardening", Dimension::Dimensionless)?,
+            };
+            let yield_force = at.quantity(table, "yield_force", Dimension::Force)?;
+            Curve::bilinear(k()?, yield_force, hardening).map_err(link)
+        }
+        _ => Curve::table(points(at, table)?).map_err(link),
+    }
+}
+
+fn points(at: &At<'_>, table: &Table) -> Result<Vec<[f64; 2]>, CarError> {
+    let list = table
+        .get("points")
+        .and_then(Value::as_array)
+        .ok_or_else(|| at.error("points", "missing: a list of [deformation, force] pairs"))?;
+    let mut out = Vec::with_capacity(list.len());
+    for (i, point) in list.iter().enumerate() {
+        let key = format!("points[{}]", i + 1);
+        let pair = match point.as_array().map(Vec::as_slice) {
+            Some([d, f]) => [
+                at.value(d, &key, Dimension::Length)?,
+                at.value(f, &key, Dimension::Force)?,
+            ],
+            _ => return Err(at.error(&key, "expected a pair [deformation, force]")),
+        };
+        if let Some(before) = out
+            .last()
+            .map(|p: &[f64; 2]| p[0])
+            .filter(|d| pair[0] <= *d)
+        {
+            return Err(at.error(
+                &key,
+                format!("deformation {} m after {before} m: must increase", pair[0]),
+            ));
+        }
+        if pair[0] < 0.0 || pair[1] < 0.0 {
+            return Err(at.error(&key, "deformation and force must not be negative"));
+        }
+        out.push(pair);
+    }
+    Ok(out)
+}
+
+fn unloading(at: &At<'_>, table: &Table) -> Result<Unloading, CarError> {
+    match table.get("unloading") {
+        None => Ok(Unloading::Elastic),
+        Some(v) if unit_of(v).as_deref() == Some("elastic") => Ok(Unloading::Elastic),
+        Some(v) => Ok(Unloading::Slope(at.value(
+            v,
+            "unloading",
+            Dimension::Stiffness,
+        )?)),
+    }
+}
+
+fn link(path: &Path, name: String, value: &Value) -> Result<Link, CarError> {
+    let at = At { path, link: name };
+    let table = value.as_table().ok_or_else(|| {
+        at.error(
+            "",
+            "expected a table of keys (curve = ..., stiffness = ...)",
+        )
+    })?;
+    let curve = curve(&at, table)?;
+    let unloading = unloading(&at, table)?;
+    Link::new(curve, unloading).map_err(|source| CarError::Link {
+        path: path.into(),
+        link: at.link.clone(),
+        source,
+    })
+}
+
+/// A list of quantities (`masses`, `dampers`).
+fn list(path: &Path, table: &Table, key: &str, dimension: Dimension) -> Result<Vec<f64>, CarError> {
+    let at = At {
+        path,
+        link: "car".into(),
+    };
+    match table.get(key) {
+        None if key == "dampers" => Ok(Vec::new()),
+        None => Err(at.error(key, "missing")),
+        Some(Value::Array(values)) => values
+            .iter()
+            .enumerate()
+            .map(|(i, v)| at.value(v, &format!("{key}[{}]", i + 1), dimension))
+            .collect(),
+        Some(other) => Err(at.error(key, format!("{other}: expected a list"))),
+    }
+}
+
+impl LinkCar {
+    /// Parses car TOML with nonlinear links; `path` is used in messages.
+    pub fn parse(text: &str, path: &Path) -> Result<LinkCar, CarError> {
+        let table: Table = toml::from_str(text).map_err(|e| CarError::Syntax {
+            path: path.into(),
+            message: crate::toml_message(text, &e),
+        })?;
+        Self::from_table(&table, path)
+    }
+
+    /// The car of a parsed file.
+    pub fn from_table(table: &Table, path: &Path) -> Result<LinkCar, CarError> {
+        let at = At {
+            path,
+            link: "car".into(),
+        };
+        let known = ["kind", "name", "masses", "dampers", "links", "front"];
+        if let Some(key) = table.keys().find(|k| !known.contains(&k.as_str())) {
+            let hint = if key == "springs" {
+                " (a car with [[links]] gives every spring there)"
+            } else {
+                ""
+            };
+            return Err(at.error(key, format!("unknown key{hint}")));
+        }
+        if let Some(kind) = table.get("kind").filter(|k| k.as_str() != Some("chain")) {
+            return Err(at.error("kind", format!("{kind}: links belong to kind = \"chain\"")));
+        }
+        let name = match table.get("name") {
+            None => None,
+            Some(Value::String(s)) => Some(s.clone()),
+            Some(other) => return Err(at.error("name", format!("{other}: expected text"))),
+        };
+        let masses = list(path, table, "masses", Dimension::Mass)?;
+        let dampers = list(path, table, "dampers", Dimension::Damping)?;
+        let links = match table.get("links") {
+            None => Vec::new(),
+            Some(Value::Array(items)) => items
+                .iter()
+                .enumerate()
+                .map(|(j, v)| link(path, format!("link {}", j + 1), v))
+                .collect::<Result<_, _>>()?,
+            Some(_) => return Err(at.error("links", "expected [[links]] tables")),
+        };
+        let chain = Chain::new(masses, dampers, links).map_err(|source| CarError::Model {
+            path: path.into(),
+            source,
+        })?;
+        let chain = match table.get("front") {
+            None => chain,
+            Some(v) => chain.with_front(link(path, "front link".into(), v)?),
+        };
+        Ok(LinkCar { name, chain })
+    }
+}
+
+/// A car file of the chain in either form.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ChainCar {
+    /// Linear springs (`springs = [...]`), read by [`crate::car::Car`].
+    Linear(crate::car::Car),
+    /// Nonlinear links (`[[links]]`, `[front]`).
+    Links(LinkCar),
+}
+
+impl ChainCar {
+    /// The car's name, if the file gives one.
+    pub fn name(&self) -> Option<&str> {
+        match self {
+            ChainCar::Linear(car) => car.name.as_deref(),
+            ChainCar::Links(car) => car.name.as_deref(),
+        }
+    }
+
+    /// Reads a car file (or, for `.json`, an identification result) in
+    /// either form: a TOML file with `[[links]]` or `[front]` as
+    /// [`LinkCar`], everything else exactly as [`crate::car::Car::read_model_file`].
+    pub fn read(path: &Path) -> Result<ChainCar, CarError> {
+        let json = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("json"));
+        if json {
+            return Ok(ChainCar::Linear(crate::car::Car::read_model_file(path)?));
+        }
+        let text = bumpsim_core::files::read_text(path)?;
+        match toml::from_str::<Table>(&text) {
+            Ok(table) if has_links(&table) => {
+                Ok(ChainCar::Links(LinkCar::from_table(&table, path)?))
+            }
+            _ => Ok(ChainCar::Linear(crate::car::Car::parse(&text, path)?)),
+        }
+    }
+}
+
+#[cfg(test)]
+#[path = "link_car_tests.rs"]
+mod tests;
