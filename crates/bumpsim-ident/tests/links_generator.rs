@@ -109,3 +109,63 @@ fn a_crushing_bar_gives_its_yield_force_and_stiffnesses_within_their_intervals()
         );
     }
 }
+
+/// The same series identified as the car ran into the wall
+/// (`links::into_wall`): the wall force and the body's displacement
+/// together, the front bar as a 10-knot crush zone, the generator's total
+/// mass as the test sheet's (±1 %), nothing held.
+#[test]
+fn a_crushing_bar_identified_into_the_wall_covers_its_truth() {
+    let Some(dir) = series() else { return };
+    let truth: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("truth.json")).unwrap()).unwrap();
+    let case = crush_case(&dir, &truth);
+    let total = truth["total_mass"].as_f64().unwrap();
+    let peak = case.force.iter().fold(0.0_f64, |m, f| m.max(f.abs()));
+    let start = vec![0.25 * total, 0.75 * total, 100.0, 3e5, 0.3 * peak, 0.2, 3.0];
+    let settings = bumpsim_ident::links::barrier::BarrierSettings {
+        links: LinkSettings::new(2, 12, start),
+        knots: 10,
+        sheet_mass: Some((total, 0.01)),
+    };
+    let found =
+        bumpsim_ident::links::into_wall::identify(std::slice::from_ref(&case), &settings, &Silent)
+            .unwrap();
+    println!("{}", text(&found));
+    let u = &found.uncertainty;
+    let checks = [
+        ("m1", 0, truth["front_mass"].as_f64().unwrap() + 1.0),
+        ("k1", 3, truth["stiffness"].as_f64().unwrap()),
+        ("Fy1", 4, truth["yield_force"].as_f64().unwrap()),
+    ];
+    for (name, i, value) in checks {
+        let estimate = found.theta[i];
+        let interval = u.ci95[i];
+        let inside = interval.is_some_and(|[lo, hi]| lo <= value && value <= hi);
+        println!(
+            "{name}: truth {value:.4e}, estimate {estimate:.4e}, 95 % {interval:?}, truth inside: {inside}"
+        );
+    }
+}
+
+/// The generator's series as a load case.
+fn crush_case(dir: &Path, truth: &serde_json::Value) -> LoadCase {
+    let text_csv = std::fs::read_to_string(dir.join("crush.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = text_csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let n = rows.len();
+    LoadCase {
+        name: "crush-bar".into(),
+        start: 0.0,
+        step: rows[1][0] - rows[0][0],
+        force: rows.iter().map(|r| r[1]).collect(),
+        measured: rows.iter().map(|r| r[2]).collect(),
+        output_dof: 2,
+        initial_velocity: truth["speed"].as_f64().unwrap(),
+        window: (0, n - 1),
+        compare: Default::default(),
+    }
+}

@@ -10,6 +10,7 @@
 
 use bumpsim_core::chain::Drive;
 use bumpsim_estimate::observer::Silent;
+use bumpsim_ident::links::barrier::BarrierSettings;
 use bumpsim_ident::links::{Layout, LinkSettings, identify, text};
 use bumpsim_ident::{Settings, Study, identify as identify_linear};
 use std::path::PathBuf;
@@ -116,4 +117,72 @@ fn nhtsa_10146_with_yielding_links_fits_and_predicts_the_barrier() {
         run.energy_error()
     );
     assert_eq!(found.plastic_sets.len(), dof - 1);
+}
+
+/// Issue 46's acceptance on the car identified as it ran into the barrier
+/// (`links::into_wall`): the wall force and the crossmember together, the
+/// test sheet's 1719 kg as a prior (±1 %), the front crush zone a
+/// 10-knot table. The forward run into a rigid wall is the identified car
+/// itself, so its force and ΔV are read from it.
+#[test]
+fn nhtsa_10146_identified_into_the_barrier_predicts_force_and_delta_v() {
+    let Some(study) = study() else { return };
+    let dof: usize = std::env::var("LINKS_DOF")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(2);
+    let knots: usize = std::env::var("LINKS_KNOTS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(10);
+    let starts = std::env::var("LINKS_STARTS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(8);
+    let cases = study.cases(dof).unwrap();
+    let case = &cases[0];
+    let linear = identify_linear(
+        &cases,
+        &Settings {
+            starts: 8,
+            ..study.settings(dof).unwrap()
+        },
+        &|| {},
+    )
+    .unwrap();
+    let peak = case.force.iter().fold(0.0_f64, |m, f| m.max(f.abs()));
+    let start = Layout { dof }.start_from(&linear.model, 0.5 * peak);
+    let mut links = LinkSettings::new(dof, starts, start);
+    links.lower[0] = 100.0;
+    links.start[0] = links.start[0].max(100.0);
+    let mass = study.sheet_mass().unwrap().unwrap();
+    let settings = BarrierSettings {
+        links,
+        knots,
+        sheet_mass: Some((mass, 0.01)),
+    };
+    let found = bumpsim_ident::links::into_wall::identify(&cases, &settings, &Silent).unwrap();
+    println!(
+        "linear fit {:.2} %\n{}",
+        linear.cases[0].fit_percent,
+        text(&found)
+    );
+    let samples = case.window.1 + 1;
+    let run = found
+        .forward(case.initial_velocity, case.step, samples)
+        .unwrap();
+    let (a, b) = case.window;
+    let force_fit = bumpsim_estimate::fit::percent(&run.force[a..=b], &case.force[a..=b]);
+    let h = case.step;
+    let measured_dv = (case.measured[b] - case.measured[b - 1]) / h - case.initial_velocity;
+    let predicted_dv = run.velocity[dof - 1][b] - case.initial_velocity;
+    let dv_error = (predicted_dv - measured_dv).abs() / measured_dv.abs();
+    println!(
+        "forward into a rigid wall at {:.2} m/s: force fit {force_fit:.2} %, crossmember ΔV {predicted_dv:.3} m/s (measured {measured_dv:.3} m/s, {:.2} % off)",
+        case.initial_velocity,
+        100.0 * dv_error
+    );
+    let fit = found.fits[0].1;
+    assert!(fit >= 0.0, "fit {fit} %");
+    assert_eq!(found.plastic_sets.len(), dof);
 }
