@@ -144,7 +144,7 @@ pub fn front_start(
     let crush = rigid_crush(case, mass);
     let (a, b) = case.window;
     let reach = crush[a..=b].iter().fold(0.0_f64, |m, x| m.max(*x));
-    if !(reach > 0.0) || knots < 2 {
+    if reach.is_nan() || reach <= 0.0 || knots < 2 {
         return Err(LinkIdentError::Settings(format!(
             "load case '{}': a front zone needs a car moving into the barrier and 2 knots or more (the rigid car crushes {reach} m, {knots} knots)",
             case.name
@@ -385,5 +385,76 @@ impl Clone for BarrierObjective<'_> {
             count: self.count,
             scratch: Mutex::new((vec![0.0; self.layout.count()], vec![0.0; self.count])),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn case(force: f64, samples: usize) -> LoadCase {
+        LoadCase {
+            name: "wall".into(),
+            start: 0.0,
+            step: 1e-3,
+            force: vec![-force; samples],
+            measured: (0..samples).map(|k| k as f64).collect(),
+            output_dof: 2,
+            initial_velocity: 10.0,
+            window: (0, samples - 1),
+            compare: Default::default(),
+        }
+    }
+
+    /// A constant force F on a rigid car M from V: x = V t − F t² / (2 M)
+    /// (the semi-implicit sum lags by a t h / 2); the knots reach REACH
+    /// times its largest crush V² M / (2 F), each knot's force is F.
+    #[test]
+    fn a_constant_force_crushes_the_rigid_car_by_its_kinetic_energy() {
+        let (f, m) = (1e5, 1000.0);
+        let c = case(f, 200);
+        let x = rigid_crush(&c, m);
+        let t = 0.05;
+        let exact = 10.0 * t - f * t * t / (2.0 * m);
+        // the semi-implicit sum lags by a t h / 2 (velocity first)
+        let lag = f / m * t * 1e-3 / 2.0;
+        assert!((x[50] + lag - exact).abs() < 1e-9, "{} vs {exact}", x[50]);
+        let (knots, values) = front_start(&c, m, 5).unwrap();
+        let reach = 100.0 * m / (2.0 * f);
+        assert!((knots[4] / (REACH * reach) - 1.0).abs() < 0.01, "{knots:?}");
+        assert!(
+            values[..5].iter().all(|v| (v - f).abs() < 1e-6 * f),
+            "{values:?}"
+        );
+    }
+
+    #[test]
+    fn the_layout_names_the_front_and_refuses_a_wrong_vector() {
+        let layout = BarrierLayout {
+            chain: Layout { dof: 2 },
+            knots: vec![0.1, 0.2],
+        };
+        let names: Vec<String> = layout.parameters().into_iter().map(|p| p.name).collect();
+        assert_eq!(names.join(" "), "m1 m2 c1 k1 Fy1 r1 u1 Ff1 Ff2 kf");
+        let good = [300.0, 900.0, 100.0, 1e6, 5e4, 0.2, 3.0, 5e4, 6e4, 1e7];
+        let car = layout.car(&good).unwrap();
+        assert!(car.front().is_some());
+        assert!(layout.car(&good[..9]).is_err());
+        let mut bad = good;
+        bad[9] = -1.0;
+        assert!(
+            layout
+                .car(&bad)
+                .unwrap_err()
+                .to_string()
+                .starts_with("link 0")
+        );
+        // a car that does not move into the barrier is refused by name
+        let still = LoadCase {
+            initial_velocity: -10.0,
+            ..case(0.0, 10)
+        };
+        let e = front_start(&still, 1000.0, 4).unwrap_err().to_string();
+        assert!(e.contains("'wall'"), "{e}");
     }
 }

@@ -25,6 +25,9 @@ use bumpsim_estimate::search::{Draws, exploring};
 use bumpsim_estimate::uncertainty::{Correlation, Estimated, Uncertainty, uncertainty};
 use nalgebra::{DMatrix, DVector};
 
+/// Re-knotting, re-scaling and polishing rounds after the search.
+pub const POLISHING: usize = 3;
+
 /// Identifies the car of [`super::barrier`] from the barrier cases `cases`.
 pub fn identify(
     cases: &[LoadCase],
@@ -118,10 +121,10 @@ pub fn identify(
     };
     let found = multistart::search(&|| problem.clone(), points, &search, observer)?;
     // the knots moved to the crush the front reached, the channels' scales
-    // at the optimum, and a polishing run with them, twice
+    // at the optimum, and a polishing run with them, [`POLISHING`] times
     let (mut layout, mut p, mut scales) = (layout, found.best().parameters.clone(), vec![]);
     let mut objective_value = found.best().objective;
-    for _ in 0..2 {
+    for _ in 0..POLISHING {
         let theta = problem.problem().theta(&p);
         (layout, p) = reknotted(&layout, cases, &theta, &free, &lower, &upper)?;
         let objective = BarrierObjective::new(
@@ -204,15 +207,21 @@ pub fn identify(
     })
 }
 
+/// Quantities of the free log parameters (plastic sets), or why not.
+type Quantities<'a> = dyn Fn(&[f64]) -> Result<Vec<f64>, LinkIdentError> + 'a;
+
+/// A value and its 95 % interval, when the covariance gives one.
+type WithInterval = (f64, Option<[f64; 2]>);
+
 /// The values of `of` at `p` with their 95 % intervals by the delta method
 /// on the covariance of the free log parameters that `u` gives.
 pub(crate) fn intervals(
-    of: &dyn Fn(&[f64]) -> Result<Vec<f64>, LinkIdentError>,
+    of: &Quantities,
     p: &[f64],
     u: &Uncertainty,
     theta: &[f64],
     free: &[usize],
-) -> Result<Vec<(f64, Option<[f64; 2]>)>, LinkIdentError> {
+) -> Result<Vec<WithInterval>, LinkIdentError> {
     let nominal = of(p)?;
     let covariance = log_covariance(u, theta, free);
     let step = 1e-6;
