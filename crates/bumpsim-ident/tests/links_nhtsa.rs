@@ -260,8 +260,8 @@ fn nhtsa_10146_identified_into_the_barrier_fits_and_predicts_delta_v() {
 /// on another optimum, force 92.55 % and ΔV 1.65 % off but the
 /// crossmember at 96.65 % and the masses at 1811 kg, 5.2 prior sd above
 /// the test sheet's 1719 kg: the two channels disagree on the car's mass
-/// (the barrier's impulse over the crossmember's ΔV, printed, is above
-/// the sheet's), so with the sheet's mass held to ±1 % the likelihood
+/// (the barrier's impulse over the crossmember's ΔV, printed, is 1783 kg,
+/// 3.7 % above the sheet's), so with the sheet's mass held to ±1 % the likelihood
 /// trades the force against the crossmember. The chain's only path to
 /// the wall is its front zone, a function of m1's crush and history; a
 /// second load path (the engine striking the barrier, Kamal 1970's
