@@ -180,10 +180,15 @@ fn barrier() -> Option<Barrier> {
     links.lower[0] = 100.0;
     links.start[0] = links.start[0].max(100.0);
     let mass = study.sheet_mass().unwrap().unwrap();
+    // the test sheet weighs the car: ±1 % (`LINKS_MASS_SPREAD` widens it)
+    let spread = std::env::var("LINKS_MASS_SPREAD")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(0.01);
     let settings = BarrierSettings {
         links,
         knots,
-        sheet_mass: Some((mass, 0.01)),
+        sheet_mass: Some((mass, spread)),
     };
     let found = bumpsim_ident::links::into_wall::identify(&cases, &settings, &Silent).unwrap();
     println!(
@@ -262,7 +267,11 @@ fn nhtsa_10146_identified_into_the_barrier_fits_and_predicts_delta_v() {
 /// the test sheet's 1719 kg: the two channels disagree on the car's mass
 /// (the barrier's impulse over the crossmember's ΔV, printed, is 1783 kg,
 /// 3.7 % above the sheet's), so with the sheet's mass held to ±1 % the likelihood
-/// trades the force against the crossmember. The chain's only path to
+/// trades the force against the crossmember. That is not all of it: with
+/// the prior widened to ±4 % (`LINKS_MASS_SPREAD=0.04`) 16 knots gave
+/// force 84.0 % and crossmember 98.96 %, 24 knots 84.8 % and 97.3 %
+/// (ΔV within 0.2 % both): the optimum found moves with the knots and the
+/// prior, and none so far reaches both. The chain's only path to
 /// the wall is its front zone, a function of m1's crush and history; a
 /// second load path (the engine striking the barrier, Kamal 1970's
 /// engine spring) or a rate-dependent front, which the core's chain does
