@@ -3,13 +3,30 @@
 //! crushing front bar (10 elements), the engine, a crushing rear bar (5
 //! elements) and the body, with distributed mass, into a rigid wall at
 //! 10 m/s (numpy only). The rear bar is quasi-statically one bilinear link
-//! of known stiffness and yield force; the 2-mass chain identified from
-//! the wall force and the noisy body displacement (m1 held at the front's
-//! weighed mass) fits to the noise and finds each within 10 % (measured:
-//! yield force 81.6 kN for 80 kN, stiffness 1.84 MN/m for 2 MN/m). Issue
-//! 46 asks for the truth within the 95 % intervals: they are narrower
-//! than the lumping's bias (yield force interval [80.5, 82.8] kN), so
-//! that is printed, not asserted.
+//! (stiffness 2 MN/m, yield 80 kN, hardening 0.2, unloading 6 k), the
+//! truth of the identified chain's link between m1 (bumper, front bar,
+//! engine, half the rear bar: 305 kg) and m2 (the body).
+//!
+//! Why the force-driven chain missed its intervals (evidence, measured
+//! here): applying the wall force to m1 and fitting the body alone left
+//! a valley along which m1 trades against the yield force, so m1 had to
+//! be held; with it held the estimates came within 10 % (Fy1 81.6 kN, k1
+//! 1.84 MN/m) but the 95 % intervals ([80.5, 82.8] kN) missed the truth;
+//! and on the series with the bumper's contact damped (below) the same
+//! search lands on another optimum (k1 0.54 MN/m, Fy1 150.6 kN: the front
+//! bar's yield). The generator's undamped contact also rang the 2 kg
+//! bumper off the wall (a 440 kN spike, then no force for 5 ms), which no
+//! lumped car follows; a bumper beam crushes against a wall, so the
+//! contact now has a critical damper.
+//!
+//! Identified as it ran into the wall ([`bumpsim_ident::links::into_wall`]:
+//! the wall force and the body's displacement together, the total mass
+//! as the test sheet's ±1 %, nothing held) the car covers its truth:
+//! m1, k1, Fy1, r1 and u1 all lie within their 95 % intervals
+//! (seed 1: m1 304.1 kg [291.4, 317.3], k1 1.983 MN/m [1.903, 2.066],
+//! Fy1 79.49 kN [76.85, 82.21], r1 0.204 [0.1975, 0.2106], u1 6.02
+//! [5.84, 6.21]; wall force fit 90.7 %, body 99.86 %), and over noise
+//! seeds 2 to 6 (the ignored test) all 25 intervals held the truth.
 
 use bumpsim_estimate::observer::Silent;
 use bumpsim_ident::LoadCase;
@@ -17,19 +34,28 @@ use bumpsim_ident::links::{LinkSettings, identify, text};
 use std::path::{Path, PathBuf};
 
 fn series() -> Option<PathBuf> {
+    seeded(1)
+}
+
+/// The generator's series of noise seed `seed`.
+fn seeded(seed: u64) -> Option<PathBuf> {
     if !bumpsim_peers::present(
         bumpsim_peers::python_available("numpy"),
         "python3 with numpy",
     ) {
         return None;
     }
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("crush-bar");
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("crush-bar-{seed}"));
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/crush_bar.py");
-    bumpsim_peers::generated(&script, &out, &["1"], "truth.json");
+    bumpsim_peers::generated(&script, &out, &[&seed.to_string()], "truth.json");
     Some(out)
 }
 
+/// The force-driven chain (m1 held), kept for the comparison: measured
+/// k1 0.54 MN/m and Fy1 150.6 kN on the damped-contact series (see the
+/// module), far from the truth.
 #[test]
+#[ignore = "the force-driven chain misses the rear bar (k1 0.54 MN/m, Fy1 150.6 kN for 2 MN/m, 80 kN): superseded by the barrier identification below"]
 fn a_crushing_bar_gives_its_yield_force_and_stiffnesses_within_their_intervals() {
     let Some(dir) = series() else { return };
     let truth: serde_json::Value =
@@ -107,5 +133,101 @@ fn a_crushing_bar_gives_its_yield_force_and_stiffnesses_within_their_intervals()
             (estimate - value).abs() <= 0.1 * value,
             "{name}: {estimate} vs truth {value}"
         );
+    }
+}
+
+/// The car identified into the wall from seed `seed`'s series: each of
+/// m1, k1, Fy1, r1, u1 with its truth and whether its 95 % interval holds it.
+fn covered(seed: u64) -> Option<Vec<(&'static str, f64, f64, bool)>> {
+    let dir = seeded(seed)?;
+    let truth: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("truth.json")).unwrap()).unwrap();
+    let case = crush_case(&dir, &truth);
+    let total = truth["total_mass"].as_f64().unwrap();
+    let peak = case.force.iter().fold(0.0_f64, |m, f| m.max(f.abs()));
+    // a start that knows nothing of the bars: a quarter of the mass in
+    // front, a soft link yielding at 30 % of the peak wall force
+    let start = vec![0.25 * total, 0.75 * total, 100.0, 3e5, 0.3 * peak, 0.2, 3.0];
+    let settings = bumpsim_ident::links::barrier::BarrierSettings {
+        links: LinkSettings::new(2, 12, start),
+        knots: 10,
+        sheet_mass: Some((total, 0.01)),
+    };
+    let found =
+        bumpsim_ident::links::into_wall::identify(std::slice::from_ref(&case), &settings, &Silent)
+            .unwrap();
+    println!("seed {seed}\n{}", text(&found));
+    let u = &found.uncertainty;
+    let checks = [
+        ("m1", 0, truth["front_mass"].as_f64().unwrap() + 1.0),
+        ("k1", 3, truth["stiffness"].as_f64().unwrap()),
+        ("Fy1", 4, truth["yield_force"].as_f64().unwrap()),
+        ("r1", 5, truth["hardening"].as_f64().unwrap()),
+        ("u1", 6, truth["unloading"].as_f64().unwrap()),
+    ];
+    Some(
+        checks
+            .into_iter()
+            .map(|(name, i, value)| {
+                let estimate = found.theta[i];
+                let interval = u.ci95[i];
+                let inside = interval.is_some_and(|[lo, hi]| lo <= value && value <= hi);
+                println!(
+                    "{name}: truth {value:.4e}, estimate {estimate:.4e}, 95 % {interval:?}, truth inside: {inside}"
+                );
+                (name, value, estimate, inside)
+            })
+            .collect(),
+    )
+}
+
+/// Issue 46: the identified yield force and stiffness (and the rest of
+/// the link, and m1) lie within their 95 % intervals of the truth.
+#[test]
+fn a_crushing_bar_identified_into_the_wall_covers_its_truth() {
+    let Some(checks) = covered(1) else { return };
+    for (name, value, estimate, inside) in checks {
+        assert!(
+            inside,
+            "{name}: truth {value} outside the interval of {estimate}"
+        );
+    }
+}
+
+/// The intervals' coverage over further noise seeds (about a minute each
+/// in a debug build): `cargo test -p bumpsim-ident --test links_generator
+/// -- --ignored`.
+#[test]
+#[ignore = "five identifications: run on demand"]
+fn the_intervals_cover_the_truth_over_noise_seeds() {
+    let mut missed = vec![];
+    for seed in 2..=6 {
+        let Some(checks) = covered(seed) else { return };
+        missed.extend(checks.into_iter().filter(|c| !c.3).map(|c| (seed, c.0)));
+    }
+    println!("missed: {missed:?}");
+    // 25 intervals at 95 %: more than 4 misses has a chance below 1 %
+    assert!(missed.len() <= 4, "{missed:?}");
+}
+
+/// The generator's series as a load case.
+fn crush_case(dir: &Path, truth: &serde_json::Value) -> LoadCase {
+    let text_csv = std::fs::read_to_string(dir.join("crush.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = text_csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let n = rows.len();
+    LoadCase {
+        name: "crush-bar".into(),
+        start: 0.0,
+        step: rows[1][0] - rows[0][0],
+        force: rows.iter().map(|r| r[1]).collect(),
+        measured: rows.iter().map(|r| r[2]).collect(),
+        output_dof: 2,
+        initial_velocity: truth["speed"].as_f64().unwrap(),
+        window: (0, n - 1),
+        compare: Default::default(),
     }
 }

@@ -1,15 +1,33 @@
 //! Issue 46 on NHTSA test 10146 (2018 Camry, 57 km/h into the load-cell
 //! barrier): the chain with yielding links against the linear chain on the
-//! example study, and the identified car alone (with its front crush zone
-//! read off the identification) run into a rigid barrier at the test's
-//! speed; the plastic sets print with their intervals. What it reaches is
-//! stated at the assertions (the issue's acceptance is not reached yet).
+//! example study, and the identified car alone run into a rigid barrier at
+//! the test's speed; the plastic sets print with their intervals.
+//!
+//! Why the force-driven chain (the first test) cannot predict the barrier,
+//! with its numbers (2 masses, 8 starts): it applies the measured barrier
+//! force to m1 and sees only the crossmember, so m1 and the first link are
+//! free to do whatever moves the crossmember right. Its best fit (98.75 %)
+//! puts m1 at its 100 kg bound, the damper c1 at its bound and k1 at
+//! 99 kN/mm with an interval over six decades, and throws m1 through its
+//! link (plastic set 1017 mm, interval ±375 m): m1 rebounds while the
+//! prescribed force still pushes it. The front zone read off m1's travel
+//! then rebuilds a barrier force that fits 1.4 % and a crossmember ΔV of
+//! −22.06 m/s for −18.43 (19.7 % off, the unloading returns the energy).
+//! The masses sum to 1758 kg; the test sheet's 1719 kg was not used.
+//!
+//! The second test identifies the car as it ran into the barrier
+//! (`links::into_wall`): the wall force and the crossmember in one
+//! likelihood, each channel scaled by its own residual (maximum
+//! likelihood), the sheet's mass as a prior, the front zone a tabulated
+//! curve whose knots follow its reach. Its forward run is the identified
+//! car, so force and ΔV are what it fits (numbers at the tests).
 //!
 //! The data are read from `../shared` beside the repository or from
 //! `$BUMPSIM_SHARED`; the test skips with a message when they are absent.
 
 use bumpsim_core::chain::Drive;
 use bumpsim_estimate::observer::Silent;
+use bumpsim_ident::links::barrier::BarrierSettings;
 use bumpsim_ident::links::{Layout, LinkSettings, identify, text};
 use bumpsim_ident::{Settings, Study, identify as identify_linear};
 use std::path::PathBuf;
@@ -102,10 +120,9 @@ fn nhtsa_10146_with_yielding_links_fits_and_predicts_the_barrier() {
     );
     // measured on this test (2 DOF, 8 starts): fit 98.75 % against the
     // linear chain's 96.52 %, and BIC on the effective residuals prefers
-    // the yielding links. Issue 46's acceptance (fit >= 99 %, forward force
-    // >= 90 %, ΔV within 3 %) is NOT reached yet: the best fit throws m1
-    // through its link (m1 at its bound, the plastic set a metre), so the
-    // forward run is printed, not asserted.
+    // the yielding links. Its forward run is printed, not asserted (force
+    // fit 1.4 %, ΔV 19.7 % off: see the module); the car identified into
+    // the barrier (the second test) is the one that predicts.
     assert!(fit >= 98.5, "fit {fit} %");
     assert!(fit > linear.cases[0].fit_percent + 2.0);
     assert!(verdict.yielding, "{:?}", verdict.reasons);
@@ -116,4 +133,152 @@ fn nhtsa_10146_with_yielding_links_fits_and_predicts_the_barrier() {
         run.energy_error()
     );
     assert_eq!(found.plastic_sets.len(), dof - 1);
+}
+
+/// What the car identified into the barrier gives: its fit %, the
+/// forward run's force fit % and crossmember ΔV error (fraction), and the
+/// identification.
+struct Barrier {
+    fit: f64,
+    force_fit: f64,
+    dv_error: f64,
+    found: bumpsim_ident::links::LinkIdentification,
+}
+
+/// The car identified as it ran into the barrier (`links::into_wall`):
+/// the wall force and the crossmember together, the test sheet's 1719 kg
+/// as a prior (±1 %), the front crush zone a 16-knot table, 2 masses and
+/// 4 starts (8 found the same optimum) (`LINKS_DOF`, `LINKS_KNOTS`, `LINKS_STARTS` change them). The
+/// forward run into a rigid wall is the identified car itself.
+fn barrier() -> Option<Barrier> {
+    let study = study()?;
+    let number = |name: &str, default: usize| {
+        std::env::var(name)
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(default)
+    };
+    let (dof, knots, starts) = (
+        number("LINKS_DOF", 2),
+        number("LINKS_KNOTS", 16),
+        number("LINKS_STARTS", 4),
+    );
+    let cases = study.cases(dof).unwrap();
+    let case = &cases[0];
+    let linear = identify_linear(
+        &cases,
+        &Settings {
+            starts: 8,
+            ..study.settings(dof).unwrap()
+        },
+        &|| {},
+    )
+    .unwrap();
+    let peak = case.force.iter().fold(0.0_f64, |m, f| m.max(f.abs()));
+    let start = Layout { dof }.start_from(&linear.model, 0.5 * peak);
+    let mut links = LinkSettings::new(dof, starts, start);
+    links.lower[0] = 100.0;
+    links.start[0] = links.start[0].max(100.0);
+    let mass = study.sheet_mass().unwrap().unwrap();
+    // the test sheet weighs the car: ±1 % (`LINKS_MASS_SPREAD` widens it)
+    let spread = std::env::var("LINKS_MASS_SPREAD")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(0.01);
+    let settings = BarrierSettings {
+        links,
+        knots,
+        sheet_mass: Some((mass, spread)),
+    };
+    let found = bumpsim_ident::links::into_wall::identify(&cases, &settings, &Silent).unwrap();
+    println!(
+        "linear fit {:.2} %\n{}",
+        linear.cases[0].fit_percent,
+        text(&found)
+    );
+    let run = found
+        .forward(case.initial_velocity, case.step, case.window.1 + 1)
+        .unwrap();
+    let (a, b) = case.window;
+    let force_fit = bumpsim_estimate::fit::percent(&run.force[a..=b], &case.force[a..=b]);
+    let h = case.step;
+    let measured_dv = (case.measured[b] - case.measured[b - 1]) / h - case.initial_velocity;
+    let predicted_dv = run.velocity[dof - 1][b] - case.initial_velocity;
+    let dv_error = (predicted_dv - measured_dv).abs() / measured_dv.abs();
+    println!(
+        "forward into a rigid wall at {:.2} m/s: force fit {force_fit:.2} %, crossmember ΔV {predicted_dv:.3} m/s (measured {measured_dv:.3} m/s, {:.2} % off)",
+        case.initial_velocity,
+        100.0 * dv_error
+    );
+    // the barrier's impulse over the crossmember's ΔV: the mass the two
+    // channels imply, against the test sheet's
+    let impulse: f64 = case.force[a..=b].iter().sum::<f64>() * h;
+    println!(
+        "barrier impulse {impulse:.0} N·s over the crossmember's ΔV: {:.0} kg (test sheet {mass:.0} kg)",
+        impulse / measured_dv
+    );
+    assert!(
+        run.energy_error() < 0.01,
+        "energy balance {}",
+        run.energy_error()
+    );
+    Some(Barrier {
+        fit: found.fits[0].1,
+        force_fit,
+        dv_error,
+        found,
+    })
+}
+
+/// Issue 46's acceptance where it holds (measured, 2 masses, 16 knots, 4
+/// or 8 starts): the crossmember fits 99.71 % (the linear chain 96.52 %), the
+/// forward run's crossmember ΔV is 0.88 % off (−18.27 for −18.43 m/s), the
+/// plastic sets print with their intervals (front zone 573.5 mm [566.7,
+/// 580.3], link 1 146.4 mm [137.9, 154.9]) and the test sheet's mass is
+/// kept (1756 kg, +2.1 prior sd). The forward force fits 82.0 %: see
+/// the ignored test below.
+#[test]
+fn nhtsa_10146_identified_into_the_barrier_fits_and_predicts_delta_v() {
+    let Some(b) = barrier() else { return };
+    assert!(b.fit >= 99.0, "fit {} %", b.fit);
+    assert!(b.dv_error <= 0.03, "ΔV {} % off", 100.0 * b.dv_error);
+    assert!(b.force_fit >= 75.0, "force fit {} %", b.force_fit);
+    for set in &b.found.plastic_sets {
+        let [lo, hi] = set
+            .ci95
+            .unwrap_or_else(|| panic!("{set:?} has no interval"));
+        // a crush zone's set between nothing and a metre, its interval holding it
+        assert!(
+            lo <= set.value && set.value <= hi && (0.0..1.0).contains(&set.value),
+            "{set:?}"
+        );
+    }
+    assert!(
+        b.found.moved.iter().all(|m| m.z.abs() < 3.0),
+        "{:?}",
+        b.found.moved
+    );
+}
+
+/// Issue 46's forward force (≥ 90 %) together with the rest, not
+/// reached: measured 82.0 % with 16 knots. With 24 knots the search lands
+/// on another optimum, force 92.55 % and ΔV 1.65 % off but the
+/// crossmember at 96.65 % and the masses at 1811 kg, 5.2 prior sd above
+/// the test sheet's 1719 kg: the two channels disagree on the car's mass
+/// (the barrier's impulse over the crossmember's ΔV, printed, is 1783 kg,
+/// 3.7 % above the sheet's), so with the sheet's mass held to ±1 % the likelihood
+/// trades the force against the crossmember. That is not all of it: with
+/// the prior widened to ±4 % (`LINKS_MASS_SPREAD=0.04`) 16 knots gave
+/// force 84.0 % and crossmember 98.96 %, 24 knots 84.8 % and 97.3 %
+/// (ΔV within 0.2 % both): the optimum found moves with the knots and the
+/// prior, and none so far reaches both. The chain's only path to
+/// the wall is its front zone, a function of m1's crush and history; a
+/// second load path (the engine striking the barrier, Kamal 1970's
+/// engine spring) or a rate-dependent front, which the core's chain does
+/// not have, are the next candidates.
+#[test]
+#[ignore = "forward force fit 82.0 % on NHTSA 10146 (target 90 %): with 24 knots 92.6 % but the crossmember 96.7 % (see the doc)"]
+fn nhtsa_10146_identified_into_the_barrier_predicts_the_force() {
+    let Some(b) = barrier() else { return };
+    assert!(b.force_fit >= 90.0, "force fit {} %", b.force_fit);
 }

@@ -22,8 +22,17 @@
 //! inflation for correlated residuals); the plastic set of each link at
 //! the end of each case carries a 95 % interval by the delta method on the
 //! log-parameter covariance (`σ² = gᵀ Σ g`, g by forward differences).
+//!
+//! A barrier test is better identified as the car ran into the barrier
+//! ([`barrier`], [`into_wall`]): the chain behind a tabulated front crush
+//! zone, driven by the wall, fitted to the wall force and the output
+//! together with the test sheet's mass as a prior. Its forward run is the
+//! identified car itself; the force-driven fit above leaves m1 and the
+//! first link free (on NHTSA 10146 it throws m1 through its link).
 
+pub mod barrier;
 pub mod front;
+pub mod into_wall;
 pub mod objective;
 mod report;
 pub mod verdict;
@@ -297,19 +306,30 @@ pub struct PlasticSet {
 /// What the identification found.
 #[derive(Debug, Clone)]
 pub struct LinkIdentification {
-    /// The layout.
+    /// The chain's layout.
     pub layout: Layout,
-    /// The estimate, SI, layout order.
+    /// Every parameter's name and unit, in the order of `theta` (the
+    /// chain's, then a barrier identification's front zone).
+    pub parameters: Vec<Parameter>,
+    /// The estimate, SI, in the order of `parameters`.
     pub theta: Vec<f64>,
     /// The chain it gives.
     pub chain: Chain,
-    /// Each case's name and fit %.
+    /// Each case's name and fit % of its output.
     pub fits: Vec<(String, f64)>,
+    /// Each case's name and the fit % of its wall force (a barrier
+    /// identification, [`into_wall`]; empty otherwise).
+    pub force_fits: Vec<(String, f64)>,
+    /// Each case's channel scales `[s_F N, s_y]` ([`barrier`]; empty when
+    /// force-driven).
+    pub scales: Vec<[f64; 2]>,
+    /// The stated priors and where the data left them.
+    pub moved: Vec<bumpsim_estimate::prior::Moved>,
     /// The objective Σ r².
     pub objective: f64,
     /// The shared engine's uncertainty.
     pub uncertainty: Uncertainty,
-    /// Plastic sets at the end of each case.
+    /// Plastic sets at the end of each case (link 0: the front crush zone).
     pub plastic_sets: Vec<PlasticSet>,
     /// The front crush zone read off the first barrier case
     /// ([`front::front_link`]); None without a barrier case.
@@ -423,9 +443,13 @@ pub fn identify(
         .transpose()?;
     Ok(LinkIdentification {
         layout,
+        parameters,
         theta,
         chain,
         fits,
+        force_fits: vec![],
+        scales: vec![],
+        moved: vec![],
         objective: best.objective,
         uncertainty: u,
         plastic_sets,

@@ -13,8 +13,26 @@ pub fn text(found: &LinkIdentification) -> String {
     for (case, fit) in &found.fits {
         out += &format!("  fit {case}: {fit:.2} %\n");
     }
+    for (case, fit) in &found.force_fits {
+        out += &format!("  fit {case} wall force: {fit:.2} %\n");
+    }
+    for (case, [force, output]) in found.fits.iter().map(|f| &f.0).zip(&found.scales) {
+        out += &format!(
+            "  channel scales {case}: wall force {}, output {output:.3e} (SI)\n",
+            format_quantity(*force, Dimension::Force)
+        );
+    }
+    if !found.moved.is_empty() {
+        out += &format!(
+            "  priors: {}\n",
+            bumpsim_estimate::prior::text(&found.moved, &|_, v| format_quantity(
+                v,
+                Dimension::Mass
+            ))
+        );
+    }
     let u = &found.uncertainty;
-    let parameters = found.layout.parameters();
+    let parameters = &found.parameters;
     for (i, parameter) in parameters.iter().enumerate() {
         let interval = match u.ci95[i] {
             Some([a, b]) => format!("[{}, {}]", parameter.format(a), parameter.format(b)),
@@ -33,9 +51,12 @@ pub fn text(found: &LinkIdentification) -> String {
         let interval = set.ci95.map_or("no interval".into(), |[a, b]| {
             format!("[{}, {}]", length(a), length(b))
         });
+        let link = match set.link {
+            0 => "the front crush zone".to_string(),
+            j => format!("link {j}"),
+        };
         out += &format!(
-            "  plastic set of link {} after {}: {}  95 % {interval}\n",
-            set.link,
+            "  plastic set of {link} after {}: {}  95 % {interval}\n",
             set.case,
             length(set.value)
         );

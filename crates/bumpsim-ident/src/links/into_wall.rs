@@ -1,0 +1,335 @@
+//! The identification of [`super::barrier`]: a chain with yielding links
+//! behind a tabulated front crush zone, from each barrier case's wall
+//! force and output motion together, with the test sheet's mass as a
+//! stated prior. The search is the linear chain's (the staged multi-start
+//! bounded Levenberg–Marquardt of [`bumpsim_estimate::multistart`] on
+//! `p = ln θ`); the channel scales are re-estimated at its optimum and a
+//! polishing run follows ([`super::barrier`] says why). The uncertainty is
+//! the shared engine's on the extended residuals; each plastic set's 95 %
+//! interval is `±1.96 √(gᵀ Σ g)`, Σ the engine's covariance of the free
+//! log parameters (its standard errors and correlations), g by forward
+//! differences.
+
+use super::barrier::{
+    BarrierLayout, BarrierObjective, BarrierSettings, front_set, front_start, run,
+};
+use super::objective::frame;
+use super::{LinkIdentError, LinkIdentification, PlasticSet};
+use crate::case::LoadCase;
+use bumpsim_core::chain::Frame;
+use bumpsim_estimate::lm::{self, LeastSquares};
+use bumpsim_estimate::multistart::{self, AllFailed, Search};
+use bumpsim_estimate::observer::Observer;
+use bumpsim_estimate::prior::{Prior, Priored, moved};
+use bumpsim_estimate::search::{Draws, exploring};
+use bumpsim_estimate::uncertainty::{Correlation, Estimated, Uncertainty, uncertainty};
+use nalgebra::{DMatrix, DVector};
+
+/// Re-knotting, re-scaling and polishing rounds after the search.
+pub const POLISHING: usize = 3;
+
+/// Identifies the car of [`super::barrier`] from the barrier cases `cases`.
+pub fn identify(
+    cases: &[LoadCase],
+    settings: &BarrierSettings,
+    observer: &dyn Observer,
+) -> Result<LinkIdentification, LinkIdentError> {
+    let links = &settings.links;
+    let chain = links.check()?;
+    for case in cases {
+        case.validate()?;
+        if frame(case) != Frame::Forward {
+            return Err(LinkIdentError::Settings(format!(
+                "load case '{}': the barrier identification needs a car moving into the barrier (force on m1 mostly negative)",
+                case.name
+            )));
+        }
+    }
+    let Some(first) = cases.first() else {
+        return Err(LinkIdentError::Settings("no load case".into()));
+    };
+    let dof = chain.dof;
+    let mass = settings
+        .sheet_mass
+        .map_or_else(|| links.start[..dof].iter().sum(), |m| m.0);
+    let (knots, front) = front_start(first, mass, settings.knots)?;
+    let layout = BarrierLayout { chain, knots };
+    let (lower_si, upper_si) = {
+        let (lo, hi) = layout.bounds();
+        let c = chain.count();
+        (
+            [&links.lower[..], &lo[c..]].concat(),
+            [&links.upper[..], &hi[c..]].concat(),
+        )
+    };
+    let start_si = [&links.start[..], &front].concat();
+    let fixed = [&links.fixed[..], &vec![None; front.len()]].concat();
+    let unit = vec![[1.0, 1.0]; cases.len()];
+    let objective = BarrierObjective::new(cases, layout.clone(), &fixed, unit);
+    let free = objective.free().to_vec();
+    let log = |v: &[f64]| free.iter().map(|&i| v[i].ln()).collect::<Vec<f64>>();
+    let (lower, upper) = (log(&lower_si), log(&upper_si));
+    let first_p: Vec<f64> = log(&start_si)
+        .iter()
+        .zip(lower.iter().zip(&upper))
+        .map(|(p, (l, h))| p.clamp(*l, *h))
+        .collect();
+    let failed = || {
+        LinkIdentError::from(AllFailed {
+            starts: links.starts,
+        })
+    };
+    let scales = objective.channel_scales(&first_p).ok_or_else(failed)?;
+    let priors = match settings.sheet_mass {
+        Some((centre, spread)) => {
+            let terms: Vec<usize> = (0..free.len()).filter(|&j| free[j] < dof).collect();
+            match terms.is_empty() {
+                true => vec![],
+                false => vec![
+                    Prior::sum("total mass", terms, centre, spread)
+                        .map_err(|e| LinkIdentError::Settings(e.to_string()))?
+                        .from_source("the test sheet"),
+                ],
+            }
+        }
+        None => vec![],
+    };
+    let priored = |scales: Vec<[f64; 2]>, layout: &BarrierLayout| {
+        let objective = BarrierObjective::new(cases, layout.clone(), &fixed, scales);
+        Priored::new(objective, priors.clone(), 1.0)
+            .map_err(|e| LinkIdentError::Settings(e.to_string()))
+    };
+    let problem = priored(scales, &layout)?;
+    let explored = exploring(links.starts, 1);
+    let points = std::iter::once(first_p.clone())
+        .chain((1..explored).map(|k| {
+            let drawn = Draws::new(links.seed, k as u64).around(&first_p, 3.0);
+            drawn
+                .iter()
+                .zip(lower.iter().zip(&upper))
+                .map(|(p, (l, h))| p.clamp(*l, *h))
+                .collect()
+        }))
+        .collect();
+    let search = Search {
+        starts: links.starts,
+        seed: links.seed,
+        solver: links.solver,
+        lower: &lower,
+        upper: &upper,
+        range: (&lower, &upper),
+    };
+    let found = multistart::search(&|| problem.clone(), points, &search, observer)?;
+    // the knots moved to the crush the front reached, the channels' scales
+    // at the optimum, and a polishing run with them, [`POLISHING`] times
+    let (mut layout, mut p, mut scales) = (layout, found.best().parameters.clone(), vec![]);
+    let mut objective_value = found.best().objective;
+    for _ in 0..POLISHING {
+        let theta = problem.problem().theta(&p);
+        (layout, p) = reknotted(&layout, cases, &theta, &free, &lower, &upper)?;
+        let objective = BarrierObjective::new(
+            cases,
+            layout.clone(),
+            &fixed,
+            scales_or_unit(&scales, cases.len()),
+        );
+        scales = objective.channel_scales(&p).ok_or_else(failed)?;
+        let problem = priored(scales.clone(), &layout)?;
+        let polished = lm::minimise(&problem, &p, &lower, &upper, &links.solver);
+        (p, objective_value) = (polished.parameters, polished.objective);
+    }
+    let problem = priored(scales.clone(), &layout)?;
+    let theta = problem.problem().theta(&p);
+    let car = layout.car(&theta)?;
+    let mut r = vec![0.0; problem.residual_count()];
+    let mut jacobian = DMatrix::zeros(r.len(), free.len());
+    if !problem.evaluate(&p, &mut r, Some(&mut jacobian)) {
+        return Err(failed());
+    }
+    let parameters = layout.parameters();
+    let series = problem.problem().series();
+    let u = uncertainty(&Estimated {
+        parameters: &parameters,
+        theta: &theta,
+        free: &free,
+        p: &p,
+        bounds: (&lower, &upper),
+        residuals: &r,
+        jacobian: &jacobian,
+        series: &series,
+        correlation: Correlation::Spectral,
+    });
+    let (mut fits, mut force_fits) = (vec![], vec![]);
+    for case in cases {
+        let response = run(case, &car)?;
+        let (a, b) = case.window;
+        let y = &response.displacement[case.output_dof - 1];
+        fits.push((case.name.clone(), case.fit(y).1));
+        let force = bumpsim_estimate::fit::percent(&response.force[a..=b], &case.force[a..=b]);
+        force_fits.push((case.name.clone(), force));
+    }
+    let sets = |p: &[f64]| -> Result<Vec<f64>, LinkIdentError> {
+        let car = layout.car(&problem.problem().theta(p))?;
+        let mut out = vec![];
+        for case in cases {
+            let response = run(case, &car)?;
+            out.push(front_set(&car, &response));
+            out.extend(response.plastic_set.iter().copied());
+        }
+        Ok(out)
+    };
+    let plastic_sets = intervals(&sets, &p, &u, &theta, &free)?
+        .into_iter()
+        .enumerate()
+        .map(|(at, (value, ci95))| PlasticSet {
+            case: cases[at / dof].name.clone(),
+            link: at % dof,
+            value,
+            ci95,
+        })
+        .collect();
+    let c = chain.count();
+    let front_link = car.front().cloned();
+    Ok(LinkIdentification {
+        layout: chain,
+        parameters,
+        chain: chain.chain(&theta[..c])?,
+        theta,
+        fits,
+        force_fits,
+        scales,
+        moved: moved(problem.priors(), &p),
+        objective: objective_value,
+        uncertainty: u,
+        plastic_sets,
+        front: front_link,
+        starts: found.starts,
+    })
+}
+
+/// Quantities of the free log parameters (plastic sets), or why not.
+type Quantities<'a> = dyn Fn(&[f64]) -> Result<Vec<f64>, LinkIdentError> + 'a;
+
+/// A value and its 95 % interval, when the covariance gives one.
+type WithInterval = (f64, Option<[f64; 2]>);
+
+/// The values of `of` at `p` with their 95 % intervals by the delta method
+/// on the covariance of the free log parameters that `u` gives.
+pub(crate) fn intervals(
+    of: &Quantities,
+    p: &[f64],
+    u: &Uncertainty,
+    theta: &[f64],
+    free: &[usize],
+) -> Result<Vec<WithInterval>, LinkIdentError> {
+    let nominal = of(p)?;
+    let covariance = log_covariance(u, theta, free);
+    let step = 1e-6;
+    let mut gradients = vec![DVector::zeros(p.len()); nominal.len()];
+    for i in 0..p.len() {
+        let mut shifted = p.to_vec();
+        shifted[i] += step;
+        for (g, (a, b)) in gradients.iter_mut().zip(of(&shifted)?.iter().zip(&nominal)) {
+            g[i] = (a - b) / step;
+        }
+    }
+    Ok(nominal
+        .iter()
+        .zip(&gradients)
+        .map(|(value, g)| {
+            let ci = covariance.as_ref().and_then(|c| {
+                let var = (g.transpose() * c * g)[(0, 0)];
+                (var.is_finite() && var >= 0.0).then(|| {
+                    let half = 1.96 * var.sqrt();
+                    [value - half, value + half]
+                })
+            });
+            (*value, ci)
+        })
+        .collect())
+}
+
+/// The covariance of the free log parameters from `u`'s standard errors
+/// and correlations, a parameter at a bound held there (no variance, as
+/// the engine's intervals hold it); None when another lacks one (the data
+/// do not determine it).
+fn log_covariance(u: &Uncertainty, theta: &[f64], free: &[usize]) -> Option<DMatrix<f64>> {
+    let se: Vec<Option<f64>> = free
+        .iter()
+        .map(|&i| match (u.at_bound[i], u.standard_errors[i]) {
+            (true, _) => Some(None),
+            (false, Some(s)) => Some(Some(s / theta[i])),
+            (false, None) => None,
+        })
+        .collect::<Option<_>>()?;
+    let q = free.len();
+    let mut c = DMatrix::zeros(q, q);
+    for a in 0..q {
+        for b in 0..q {
+            if let (Some(sa), Some(sb)) = (se[a], se[b]) {
+                c[(a, b)] = u.correlation[free[a]][free[b]]? * sa * sb;
+            }
+        }
+    }
+    Some(c)
+}
+
+/// `scales`, or 1 for every channel when empty.
+fn scales_or_unit(scales: &[[f64; 2]], cases: usize) -> Vec<[f64; 2]> {
+    match scales.is_empty() {
+        true => vec![[1.0, 1.0]; cases],
+        false => scales.to_vec(),
+    }
+}
+
+/// The front's knots spread again up to 1.02 times the largest crush the
+/// car `theta` reaches in any case (a knot past it is never loaded, so
+/// undetermined), their forces read off its curve: the layout and the free
+/// log parameters.
+fn reknotted(
+    layout: &BarrierLayout,
+    cases: &[LoadCase],
+    theta: &[f64],
+    free: &[usize],
+    lower: &[f64],
+    upper: &[f64],
+) -> Result<(BarrierLayout, Vec<f64>), LinkIdentError> {
+    let car = layout.car(theta)?;
+    let mut reach = 0.0_f64;
+    for case in cases {
+        let response = run(case, &car)?;
+        reach = response.displacement[0]
+            .iter()
+            .fold(reach, |m, x| m.max(*x));
+    }
+    let count = layout.knots.len();
+    let c = layout.chain.count();
+    let Some(front) = car.front().filter(|_| reach > 0.0) else {
+        return Ok((
+            layout.clone(),
+            free.iter().map(|&i| theta[i].ln()).collect(),
+        ));
+    };
+    let knots: Vec<f64> = (1..=count)
+        .map(|i| 1.02 * reach * i as f64 / count as f64)
+        .collect();
+    let mut theta = theta.to_vec();
+    for (j, d) in knots.iter().enumerate() {
+        theta[c + j] = front
+            .curve()
+            .force(*d)
+            .max(1e-3 * front.curve().force(reach));
+    }
+    let p = free
+        .iter()
+        .zip(lower.iter().zip(upper))
+        .map(|(&i, (l, h))| theta[i].ln().clamp(*l, *h))
+        .collect();
+    Ok((
+        BarrierLayout {
+            chain: layout.chain,
+            knots,
+        },
+        p,
+    ))
+}
