@@ -511,7 +511,7 @@ fn the_front_ends_name_the_links_chain_at_most_once() {
 fn the_front_ends_name_the_planar_crate_less_and_less() {
     // lines of code naming bumpsim_planar: the ceiling of the day; lower it
     // when a command becomes a library request (the aim: one line each)
-    const CEILING: &[(&str, usize)] = &[("bumpsim-cli", 34), ("bumpsim-py", 12)];
+    const CEILING: &[(&str, usize)] = &[("bumpsim-cli", 33), ("bumpsim-py", 12)];
     let mut over = Vec::new();
     for &(front, ceiling) in CEILING {
         let lines: usize = front_end_code(front)

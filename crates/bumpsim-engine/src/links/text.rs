@@ -108,9 +108,10 @@ fn summary(figures: &[LinkFigures], crush: &Crush) -> String {
         format_quantity(crush.final_speed, Dimension::Velocity)
     );
     let e = crush.energy();
-    let wall = match e.wall {
-        0.0 => String::new(),
-        w => format!(" + wall contact {}", energy(w)),
+    // the penalty contact's share, only without a front link
+    let wall = match e.wall == 0.0 {
+        true => String::new(),
+        false => format!(" + wall contact {}", energy(e.wall)),
     };
     text += &format!(
         "  energy: initial kinetic {} = kinetic {} + stored {} + dissipated {} (viscous {}, plastic {}){wall}; relative energy balance error {:.2e}\n",
