@@ -8,7 +8,7 @@
 //!
 //! A model plugs in by implementing [`model::CarModel`] in its own module
 //! (today the chain with nonlinear links, [`links`]) and by one line in
-//! the registry [`model::registered`]; the front ends name no model for it.
+//! the registry [`registry::registered`]; the front ends name no model for it.
 //! docs/architecture.md walks through adding one.
 //!
 //! The engine sits on floor 8 (above the models, the verdicts and the
@@ -22,8 +22,10 @@ pub mod error;
 pub mod links;
 pub mod model;
 pub mod outcome;
+pub mod registry;
 pub mod synth;
 
 pub use error::EngineError;
-pub use model::{CarModel, ImpactRequest, impact};
+pub use model::{CarModel, ImpactRequest};
 pub use outcome::{Outcome, Report};
+pub use registry::{impact, registered};

@@ -1,8 +1,7 @@
-//! The registry of the car models the engine runs and the requests they
-//! answer (issue 46 item 1). A model implements [`CarModel`] in its own
-//! module and adds one line to [`registered`]; a front end asks
-//! [`bumpsim_io::kind::ModelKind::of`] for a file's kind once and hands
-//! the request to [`impact`], which finds the model here. No equations.
+//! What a car model answers the engine (issue 46 item 1): the requests
+//! ([`ImpactRequest`]) and the trait a model implements in its own module
+//! ([`CarModel`]); the registry of the models is [`crate::registry`]. No
+//! equations.
 
 use crate::{EngineError, Outcome};
 use bumpsim_io::kind::ModelKind;
@@ -79,42 +78,4 @@ pub trait CarModel: Sync {
 
     /// `impact`: the car of `request.car` in the request's scenario.
     fn impact(&self, request: &ImpactRequest<'_>) -> Result<Outcome, EngineError>;
-}
-
-/// The models the engine runs: one registration line each.
-pub fn registered() -> &'static [&'static dyn CarModel] {
-    &[&crate::links::Links]
-}
-
-/// The registered model of `kind`.
-pub fn model(kind: ModelKind) -> Result<&'static dyn CarModel, EngineError> {
-    registered()
-        .iter()
-        .copied()
-        .find(|m| m.kind() == kind)
-        .ok_or(EngineError::NotRegistered {
-            command: "impact",
-            kind: kind.name(),
-        })
-}
-
-/// `impact` of a car of `kind` (the front end asked the file's kind).
-pub fn impact(kind: ModelKind, request: &ImpactRequest<'_>) -> Result<Outcome, EngineError> {
-    model(kind)?.impact(request)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn every_registered_model_has_its_own_kind_and_the_others_are_refused() {
-        let kinds: Vec<ModelKind> = registered().iter().map(|m| m.kind()).collect();
-        assert_eq!(kinds, vec![ModelKind::Links]);
-        let refused = impact(ModelKind::Planar, &ImpactRequest::default()).unwrap_err();
-        assert!(
-            refused.to_string().starts_with("impact: a planar car"),
-            "{refused}"
-        );
-    }
 }

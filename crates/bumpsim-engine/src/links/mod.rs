@@ -45,7 +45,7 @@ pub const QUIET: f64 = 0.02;
 /// Largest relative energy balance error of a usable result.
 pub const ENERGY_TOLERANCE: f64 = 0.01;
 
-/// The chain with nonlinear links, registered in [`crate::model::registered`].
+/// The chain with nonlinear links, registered in [`crate::registry::registered`].
 #[derive(Debug, Clone, Copy)]
 pub struct Links;
 
