@@ -62,6 +62,8 @@
 pub use bumpsim_campaign as campaign;
 pub use bumpsim_core as core;
 pub use bumpsim_doe as doe;
+#[cfg(feature = "report")]
+pub use bumpsim_engine as engine;
 pub use bumpsim_estimate as estimate;
 pub use bumpsim_export as export;
 pub use bumpsim_fe as fe;

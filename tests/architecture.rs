@@ -35,6 +35,7 @@ const FLOORS: &[(&str, usize)] = &[
     ("bumpsim-verdict", 6),
     ("bumpsim-report", 7),
     ("bumpsim-campaign", 8),
+    ("bumpsim-engine", 8),
     ("bumpsim-view", 8),
     ("bumpsim-cli", 9),
     ("bumpsim-py", 9),
@@ -431,6 +432,8 @@ fn no_front_end_sniffs_a_file_to_choose_a_model() {
         "from_str::<toml::Value>",
         "get(\"body\")",
         "get(\"kind\")",
+        "has_links",
+        "contains_key(\"links\")",
     ];
     let mut found = Vec::new();
     for front in FRONT_ENDS {
@@ -470,10 +473,45 @@ fn the_identify_loop_over_model_sizes_exists_once() {
 }
 
 #[test]
+fn the_front_ends_name_the_links_chain_at_most_once() {
+    // the chain with nonlinear links plugs into the engine (bumpsim-engine's
+    // registry): outside its own modules a front end names it on at most
+    // one line, its registration
+    const NAMES: &[&str] = &[
+        "ModelKind::Links",
+        "link_car",
+        "LinkCar",
+        "ChainCar::Links",
+        "bumpsim_core::chain",
+        "bumpsim_core::link",
+        "engine::links",
+    ];
+    let mut over = Vec::new();
+    for front in ["bumpsim-cli", "bumpsim-py"] {
+        let lines: Vec<String> = front_end_code(front)
+            .iter()
+            .flat_map(|(file, code)| {
+                code.lines()
+                    .filter(|l| NAMES.iter().any(|n| l.contains(n)))
+                    .map(|l| format!("{}: {}", file.display(), l.trim()))
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+        if lines.len() > 1 {
+            over.push(format!(
+                "{front} names the links chain on {} lines: {lines:#?}",
+                lines.len()
+            ));
+        }
+    }
+    assert!(over.is_empty(), "{over:#?}");
+}
+
+#[test]
 fn the_front_ends_name_the_planar_crate_less_and_less() {
     // lines of code naming bumpsim_planar: the ceiling of the day; lower it
     // when a command becomes a library request (the aim: one line each)
-    const CEILING: &[(&str, usize)] = &[("bumpsim-cli", 34), ("bumpsim-py", 12)];
+    const CEILING: &[(&str, usize)] = &[("bumpsim-cli", 33), ("bumpsim-py", 12)];
     let mut over = Vec::new();
     for &(front, ceiling) in CEILING {
         let lines: usize = front_end_code(front)

@@ -9,7 +9,7 @@ use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, parse_quantity};
 use bumpsim_export::calculix::{Analysis, CalculixOptions, read_results};
 use bumpsim_export::car_deck::{
-    CarModel, below_minimum, calculix_car_deck, critical_time_step, lsdyna_car_include,
+    below_minimum, calculix_car_deck, critical_time_step, lsdyna_car_include,
 };
 use bumpsim_export::layout::{Axis, Layout, UnitSystem};
 use bumpsim_export::lsdyna::LsDynaOptions;
@@ -210,18 +210,10 @@ fn title(car: &ChainCar, path: &Path) -> String {
     )
 }
 
-/// The car file's model, in either chain form, for the export crate.
-fn car_model(car: &ChainCar) -> CarModel<'_> {
-    match car {
-        ChainCar::Linear(car) => CarModel::Linear(&car.model),
-        ChainCar::Links(car) => CarModel::Chain(&car.chain),
-    }
-}
-
 fn lsdyna(args: &LsDynaArgs) -> Result<()> {
     let common = &args.common;
     let car = ChainCar::read(&common.model)?;
-    let model = car_model(&car);
+    let model = bumpsim_engine::deck::model(&car);
     let force = args
         .force
         .as_deref()
@@ -298,7 +290,7 @@ fn calculix(args: &CalculixArgs) -> Result<()> {
         prefix: args.prefix.clone(),
         attach: args.attach.clone(),
     };
-    let deck = calculix_car_deck(car_model(&car), &options)
+    let deck = calculix_car_deck(bumpsim_engine::deck::model(&car), &options)
         .map_err(|e| name_output_every(e.into(), args.output_every))?;
     let inputs: Vec<&Path> = std::iter::once(common.model.as_path())
         .chain(args.force.as_deref())

@@ -452,6 +452,13 @@ pub fn run_predict(args: &PredictArgs) -> Result<()> {
             )
         }
         (ModelKind::Chain, ModelKind::Chain) => run_predict_chain(args),
+        (car, study) => anyhow::bail!(
+            "{}: predict runs a chain or planar car on a study of its kind; a {} car (on the {} study {}) is not predicted yet",
+            args.model.display(),
+            car.name(),
+            study.name(),
+            args.study.display()
+        ),
     }
 }
 

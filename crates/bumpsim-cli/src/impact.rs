@@ -112,6 +112,26 @@ fn widened_impact(args: &ImpactArgs, car: &Car, bumper: &Bumper, width: &str) ->
     })
 }
 
+/// `impact` of a car whose model the engine runs (bumpsim_engine's
+/// registry picks it by its kind): the arguments converted, the outcome
+/// printed and written.
+fn engine_impact(kind: ModelKind, args: &ImpactArgs) -> Result<()> {
+    let mut faces = args.face.names();
+    faces.extend(args.width.as_ref().map(|_| "--width"));
+    let request = bumpsim_engine::ImpactRequest {
+        car: args.car.as_deref(),
+        bumper: args.bumper.as_deref(),
+        case: args.case.as_deref(),
+        pendulum: args.pendulum,
+        barrier: args.barrier,
+        speed: args.speed.as_deref().map(speed).transpose()?,
+        faces: &faces,
+        uncertainty: args.uncertain.uncertainty.as_deref(),
+        report: args.files.report.is_some(),
+    };
+    crate::output::outcome(bumpsim_engine::impact(kind, &request)?, &args.files)
+}
+
 /// Arguments of `mass-reduction`.
 #[derive(Debug, clap::Args)]
 pub struct ReductionArgs {
@@ -193,8 +213,10 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
         return Ok(());
     }
     let car_path = args.car_path()?;
-    if ModelKind::of_path(car_path, Role::Car)? == ModelKind::Planar {
-        return planar_impact(args);
+    match ModelKind::of_path(car_path, Role::Car)? {
+        ModelKind::Planar => return planar_impact(args),
+        ModelKind::Chain => {}
+        kind => return engine_impact(kind, args),
     }
     let Some(bumper_path) = &args.bumper else {
         bail!("--bumper FILE is needed for a 1-D car (docs/impact.md)");
@@ -358,32 +380,10 @@ pub struct SynthArgs {
     output: PathBuf,
 }
 
-/// The tests of a series, its provenance and further files (name, text).
-type Made = (
-    Vec<bumpsim_impact::synth::SynthTest>,
-    String,
-    Vec<(&'static str, String)>,
-);
-
-fn make(path: &std::path::Path) -> Result<Made> {
-    let kind = ModelKind::of(path, Role::Series).with_context(|| format!("{}", path.display()))?;
-    if kind != ModelKind::Planar {
-        let (heads, provenance) = bumpsim_impact::synth::make_series(path)?;
-        return Ok((heads, provenance, Vec::new()));
-    }
-    let series = bumpsim_planar::series::make_series(path)?;
-    let tests = series
-        .tests
-        .into_iter()
-        .map(|t| (t.name.clone(), t.test_header(), t.channels))
-        .collect();
-    let extra = vec![("study.toml", series.study), ("start.toml", series.start)];
-    Ok((tests, series.provenance, extra))
-}
-
 /// Runs `synth`.
 pub fn run_synth(args: &SynthArgs) -> Result<()> {
-    let (heads, provenance, extra) = make(&args.series)?;
+    let made = bumpsim_engine::synth::make(&args.series)?;
+    let (heads, provenance, extra) = (made.tests, made.provenance, made.files);
     let existing = std::fs::read_dir(&args.output).is_ok_and(|mut d| d.next().is_some());
     if existing {
         bail!(

@@ -90,6 +90,24 @@ pub(crate) struct ResultFiles {
     pub report: Option<std::path::PathBuf>,
 }
 
+/// Prints a library request's outcome (its text, then its warnings, counted
+/// for `--strict`) and writes the result files asked for.
+pub(crate) fn outcome(outcome: bumpsim_engine::Outcome, files: &ResultFiles) -> Result<()> {
+    print!("{}", outcome.text);
+    outcome.warnings.iter().for_each(|w| crate::warn(w));
+    if let Some(path) = &files.json {
+        write(path, &outcome.json)?;
+    }
+    if let Some(path) = &files.csv {
+        write(path, &outcome.csv)?;
+    }
+    if let (Some(dir), Some(report)) = (&files.report, outcome.report) {
+        let json = (outcome.json, files.json.as_deref());
+        Folder::viewed_report(dir, &report.html, report.figures, json, &[])?;
+    }
+    Ok(())
+}
+
 /// Argument ids that name one input file, never a folder, with what the
 /// file is: a folder given there is refused as such before the outputs are
 /// checked (`identify . --json r.json` said "refusing to write inside the

@@ -145,6 +145,20 @@ pub struct FaceArgs {
 }
 
 impl FaceArgs {
+    /// The face options given, by name.
+    pub fn names(&self) -> Vec<&'static str> {
+        [
+            (self.angle.is_some(), "--angle"),
+            (self.overlap.is_some(), "--overlap"),
+            (self.side.is_some(), "--side"),
+            (self.pole.is_some(), "--pole"),
+            (self.pole_offset.is_some(), "--pole-offset"),
+        ]
+        .into_iter()
+        .filter_map(|(given, name)| given.then_some(name))
+        .collect()
+    }
+
     /// Whether any face option is given.
     pub fn given(&self) -> bool {
         self.angle.is_some()

@@ -2,8 +2,8 @@
 //! the one place that decides a file's kind, so that no front end reads a
 //! file's contents to choose a model.
 //!
-//! A file declares its kind with a top-level key, `kind = "chain"` or
-//! `kind = "planar"` (TOML; `"kind": "planar"` in JSON). Files written
+//! A file declares its kind with a top-level key, `kind = "chain"`,
+//! `kind = "planar"` or `kind = "links"` (TOML; `"kind": "planar"` in JSON). Files written
 //! before the key existed keep working: without it, [`ModelKind::of`] falls
 //! back to the legacy detection, which lives here and nowhere else:
 //!
@@ -13,6 +13,11 @@
 //! | [`Role::Car`] | a `[body]` table (the 1-D car file has none) |
 //! | [`Role::Series`] | a `planar_car` key (a `synth` series) |
 //! | [`Role::Result`] | JSON whose `result.car` has a `body` (`identify --json` of a planar study) |
+//!
+//!
+//! A car file with `[[links]]` or `[front]` (the chain with nonlinear links,
+//! [`crate::link_car`]) is [`ModelKind::Links`] without a key and also with
+//! `kind = "chain"`, which such files declared before `links` existed.
 //!
 //! and the chain otherwise — also when the file cannot be read or parsed:
 //! the chain's reader then reports what is wrong, as before the registry.
@@ -32,6 +37,10 @@ pub enum ModelKind {
     /// The planar car: body with yaw, two side chains, segmented bumper
     /// beam, tyres (bumpsim-planar).
     Planar,
+    /// The chain with nonlinear links: loading curves, unloading rules,
+    /// a front crush zone (bumpsim_core::chain, [`crate::link_car`]; run by
+    /// the engine, bumpsim-engine).
+    Links,
 }
 
 /// What a file is to the command that reads it.
@@ -72,8 +81,11 @@ pub struct UnknownKind(pub String);
 
 impl ModelKind {
     /// Every kind with the name a file declares.
-    pub const NAMES: &'static [(ModelKind, &'static str)] =
-        &[(ModelKind::Chain, "chain"), (ModelKind::Planar, "planar")];
+    pub const NAMES: &'static [(ModelKind, &'static str)] = &[
+        (ModelKind::Chain, "chain"),
+        (ModelKind::Planar, "planar"),
+        (ModelKind::Links, "links"),
+    ];
 
     /// The name a file declares (`kind = "..."`).
     pub fn name(self) -> &'static str {
@@ -128,7 +140,12 @@ impl ModelKind {
                     .and_then(|t| t.get("kind"))
                     .and_then(|k| k.as_str())
                     .map(str::to_string);
-                let planar = table.is_some_and(|t| legacy_planar(&t, role));
+                let planar = table.as_ref().is_some_and(|t| legacy_planar(t, role));
+                if table.is_some_and(|t| legacy_links(&t, role))
+                    && declared.as_deref().is_none_or(|d| d == "chain")
+                {
+                    return Ok(ModelKind::Links);
+                }
                 (declared, planar)
             }
         };
@@ -142,6 +159,13 @@ impl ModelKind {
             None => Ok(ModelKind::Chain),
         }
     }
+}
+
+/// The legacy detection of a car file with nonlinear links written before
+/// `kind = "links"` existed: `[[links]]` or `[front]` ([`crate::car::has_links`]),
+/// with `kind = "chain"` or no key.
+fn legacy_links(table: &toml::Table, role: Role) -> bool {
+    role == Role::Car && crate::car::has_links(table)
 }
 
 /// The legacy detection of a planar file without a `kind` key (the rules of
@@ -183,6 +207,26 @@ mod tests {
             ModelKind::Planar
         );
         assert_eq!(result(r#"{"result": {"model": {}}}"#), ModelKind::Chain);
+    }
+
+    #[test]
+    fn a_car_with_links_is_the_links_chain_declared_or_not() {
+        let car = |t: &str| ModelKind::of_text(t, Role::Car).unwrap();
+        let links = "masses = [1.0, 2.0]\n[[links]]\ncurve = \"linear\"";
+        assert_eq!(car(links), ModelKind::Links);
+        assert_eq!(car(&format!("kind = \"chain\"\n{links}")), ModelKind::Links);
+        assert_eq!(car(&format!("kind = \"links\"\n{links}")), ModelKind::Links);
+        assert_eq!(
+            car("masses = [1.0]\n[front]\ncurve = \"linear\""),
+            ModelKind::Links
+        );
+        assert_eq!(car("kind = \"links\"\nmasses = [1.0]"), ModelKind::Links);
+        assert_eq!(
+            car("masses = [1.0, 2.0]\nsprings = [3.0]"),
+            ModelKind::Chain
+        );
+        let study = |t| ModelKind::of_text(t, Role::Study).unwrap();
+        assert_eq!(study(links), ModelKind::Chain);
     }
 
     #[test]

@@ -267,8 +267,12 @@ impl LinkCar {
             };
             return Err(at.error(key, format!("unknown key{hint}")));
         }
-        if let Some(kind) = table.get("kind").filter(|k| k.as_str() != Some("chain")) {
-            return Err(at.error("kind", format!("{kind}: links belong to kind = \"chain\"")));
+        let kinds = [Some("links"), Some("chain")];
+        if let Some(kind) = table.get("kind").filter(|k| !kinds.contains(&k.as_str())) {
+            return Err(at.error(
+                "kind",
+                format!("{kind}: a car with links is kind = \"links\" (or \"chain\", as before)"),
+            ));
         }
         let name = match table.get("name") {
             None => None,

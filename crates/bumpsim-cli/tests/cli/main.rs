@@ -19,6 +19,7 @@ mod formats_letter;
 mod fuzz;
 mod identify;
 mod impact;
+mod impact_links;
 mod issue48;
 mod planar;
 mod planar_coverage;

@@ -369,7 +369,7 @@ fn a_declared_kind_picks_the_model_as_the_legacy_detection_did() {
     );
     crate::util::assert_user_error(
         &identify("tank.toml"),
-        "kind = \"tank\" is not a model bumpsim has (known: chain, planar)",
+        "kind = \"tank\" is not a model bumpsim has (known: chain, planar, links)",
     );
     let planar = |car: &str| {
         bumpsim_in(
