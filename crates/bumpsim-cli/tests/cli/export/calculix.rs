@@ -1,7 +1,7 @@
 //! CalculiX decks of the MSD car: a run against `simulate`, and the deck
 //! included in a model that has its own `Nall`.
 
-use super::{ccx_available, run_ccx};
+use super::{ccx_available, ccx_histories, run_ccx};
 use crate::util::*;
 
 #[test]
@@ -22,16 +22,7 @@ fn calculix_run_of_the_exported_deck_matches_simulate() {
         deck.to_str().unwrap(),
     ]);
     assert!(export.status.success(), "{}", text(&export.stderr));
-    run_ccx(&dir, "car");
-    let ccx_csv = dir.join("ccx.csv");
-    let read = bumpsim(&[
-        "export",
-        "read-calculix",
-        deck.to_str().unwrap(),
-        "-o",
-        ccx_csv.to_str().unwrap(),
-    ]);
-    assert!(read.status.success(), "{}", text(&read.stderr));
+    let ccx = ccx_histories(&dir);
     let sim_csv = dir.join("sim.csv");
     let sim = simulate(
         &example("car-3dof.toml"),
@@ -39,7 +30,7 @@ fn calculix_run_of_the_exported_deck_matches_simulate() {
         &["-o", sim_csv.to_str().unwrap()],
     );
     assert!(sim.status.success());
-    let ((_, ours), (header, theirs)) = (read_csv(&sim_csv), read_csv(&ccx_csv));
+    let ((_, ours), (header, theirs)) = (read_csv(&sim_csv), ccx);
     assert_eq!(&header[..2], ["time [s]", "x1 [m]"]);
     // ccx prints from the first increment on: its row k is our row k + 1
     assert_eq!(theirs.len() + 1, ours.len());
@@ -216,7 +207,10 @@ fn a_crush_beyond_the_node_spacing_runs_as_impact_does() {
     let column = |name: &str| header.iter().position(|h| h == name).unwrap();
     let x = ["x m1 [m]", "x m2 [m]", "x m3 [m]"].map(column);
     let force_csv = dir.join("force.csv");
-    let rows: String = ours.iter().map(|r| format!("{},{}\n", r[0], r[1])).collect();
+    let rows: String = ours
+        .iter()
+        .map(|r| format!("{},{}\n", r[0], r[1]))
+        .collect();
     std::fs::write(&force_csv, format!("time [s],force [N]\n{rows}")).unwrap();
     let deck = dir.join("car.inp");
     let speed = format!("{}", -30.0 / 3.6);
@@ -233,11 +227,7 @@ fn a_crush_beyond_the_node_spacing_runs_as_impact_does() {
         &path(&deck),
     ]);
     assert!(export.status.success(), "{}", text(&export.stderr));
-    run_ccx(&dir, "car");
-    let ccx_csv = dir.join("ccx.csv");
-    let read = bumpsim(&["export", "read-calculix", &path(&deck), "-o", &path(&ccx_csv)]);
-    assert!(read.status.success(), "{}", text(&read.stderr));
-    let (_, theirs) = read_csv(&ccx_csv);
+    let (_, theirs) = ccx_histories(&dir);
     // ccx prints from the first increment on: its row k is the impact's k + 1
     assert_eq!(theirs.len() + 1, ours.len());
     // crush of link j: the impact along the travel, ccx along the model's +x (rearwards)

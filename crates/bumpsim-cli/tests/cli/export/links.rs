@@ -3,7 +3,7 @@
 //! writers, the CalculiX deck run in `ccx`, and the commands that read
 //! linear cars only refusing the file with exit code 2.
 
-use super::{ccx_available, dyna_core, dyna_core_available, run_ccx};
+use super::{ccx_available, ccx_histories, dyna_core, dyna_core_available};
 use crate::util::*;
 use bumpsim_core::chain::{Drive, Frame};
 use bumpsim_io::link_car::LinkCar;
@@ -122,17 +122,7 @@ fn the_calculix_deck_of_a_car_with_links_runs_in_ccx() {
         inp.to_str().unwrap(),
     ]);
     assert!(run.status.success(), "{}", text(&run.stderr));
-    run_ccx(&dir, "car");
-    let csv = dir.join("ccx.csv");
-    let read = bumpsim(&[
-        "export",
-        "read-calculix",
-        inp.to_str().unwrap(),
-        "-o",
-        csv.to_str().unwrap(),
-    ]);
-    assert!(read.status.success(), "{}", text(&read.stderr));
-    let (header, rows) = read_csv(&csv);
+    let (header, rows) = ccx_histories(&dir);
     assert_eq!(header, ["time [s]", "x1 [m]", "x2 [m]", "x3 [m]"]);
     // ccx prints from the first increment on
     assert_eq!(rows.len() + 1, samples.len());
@@ -175,17 +165,7 @@ fn without_its_front_link_the_calculix_run_follows_chain_run() {
         inp.to_str().unwrap(),
     ]);
     assert!(run.status.success(), "{}", text(&run.stderr));
-    run_ccx(&dir, "car");
-    let csv = dir.join("ccx.csv");
-    let read = bumpsim(&[
-        "export",
-        "read-calculix",
-        inp.to_str().unwrap(),
-        "-o",
-        csv.to_str().unwrap(),
-    ]);
-    assert!(read.status.success(), "{}", text(&read.stderr));
-    let (_, theirs) = read_csv(&csv);
+    let (_, theirs) = ccx_histories(&dir);
     let drive = Drive::Force {
         force: &samples,
         step: 1e-4,
