@@ -133,7 +133,11 @@ fn scipy_filtfilt(x: &[f64], order: usize, cutoff: f64, padlen: usize) -> Vec<f6
         (1.0 / STEP).to_string(),
         padlen.to_string(),
     ];
-    let args = [args.map(std::ffi::OsString::from).as_slice(), &[input.into()]].concat();
+    let args = [
+        args.map(std::ffi::OsString::from).as_slice(),
+        &[input.into()],
+    ]
+    .concat();
     String::from_utf8(bumpsim_peers::python(&script, &args))
         .unwrap()
         .lines()

@@ -178,7 +178,7 @@ fn hostile_priors_of_a_planar_study_name_their_key() {
         ),
         (
             "body.yaw_inertia = { spread = 1e-300 }",
-            "[priors] body.yaw_inertia: spread = 1e-300: must be from 1e-6 to 100",
+            "[priors] body.yaw_inertia: spread = 1e-300: must be from 1e-6 to 1e2",
         ),
         (
             "body.yaw_inertia = { spread = 1e300 }",
