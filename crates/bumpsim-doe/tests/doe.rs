@@ -9,7 +9,6 @@ use bumpsim_doe::regression::{fit, terms};
 use rand_chacha::ChaCha8Rng;
 use rand_core::{Rng, SeedableRng};
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 fn data(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -122,17 +121,8 @@ fn regression_equals_statsmodels_on_random_designs() {
             text.push('\n');
         }
         std::fs::write(&file, text).unwrap();
-        let out = Command::new("python3")
-            .arg(&script)
-            .arg(&file)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let theirs: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let out = bumpsim_peers::python(&script, &[&file]);
+        let theirs: serde_json::Value = serde_json::from_slice(&out).unwrap();
         for j in 0..model_terms.len() {
             assert!(
                 close(ours.coefficients[j], theirs["params"][j].as_f64().unwrap()),
@@ -177,17 +167,7 @@ fn sorted(mut rows: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
 
 fn pydoe(kind: &str, arg: &str) -> Vec<Vec<f64>> {
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/pydoe3_designs.py");
-    let out = Command::new("python3")
-        .arg(script)
-        .args([kind, arg])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
+    serde_json::from_slice(&bumpsim_peers::python(&script, &[kind, arg])).unwrap()
 }
 
 #[test]

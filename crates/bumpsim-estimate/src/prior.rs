@@ -58,17 +58,17 @@ pub const PRIOR_ONLY: f64 = std::f64::consts::FRAC_1_SQRT_2;
 /// A prior that cannot be used.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum PriorError {
-    /// Its centre is not a finite positive value.
-    #[error("prior '{name}': centre {value:?} must be finite and positive")]
+    /// Its centre is outside [`CENTRE_RANGE`].
+    #[error("prior '{name}': centre {value:?} must be from 1e-12 to 1e15 (SI, the search's range)")]
     Centre {
         /// The prior's name.
         name: String,
         /// The value given.
         value: f64,
     },
-    /// Its spread is not a finite positive number.
+    /// Its spread is outside [`SPREAD_RANGE`].
     #[error(
-        "prior '{name}': spread {value:?} must be finite and positive (the standard deviation of ln θ, e.g. 0.1 for ±10 %)"
+        "prior '{name}': spread {value:?} must be from 1e-6 to 100 (the standard deviation of ln θ, e.g. 0.1 for ±10 %)"
     )]
     Spread {
         /// The prior's name.
@@ -94,6 +94,17 @@ pub enum PriorError {
     },
 }
 
+/// The centres a prior may have, SI: the range the searches work in
+/// (issue 44's hostile pass: a centre of 1e300 kg·m² ran to exit 0 with the
+/// car at its bounds).
+pub const CENTRE_RANGE: std::ops::RangeInclusive<f64> = 1e-12..=1e15;
+
+/// The spreads (sd of ln θ) a prior may have: below 1e-6 (a parameter
+/// known to a millionth: fix it instead) its weight overflowed the
+/// residuals (1e-300 failed every start, "check the forces"); above 100
+/// (a factor e^100 either way) it says nothing (write "none").
+pub const SPREAD_RANGE: std::ops::RangeInclusive<f64> = 1e-6..=100.0;
+
 /// A Gaussian prior on `ln Σ_{i∈terms} θ_i` (see the module).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Prior {
@@ -118,13 +129,13 @@ impl Prior {
         spread: f64,
     ) -> Result<Prior, PriorError> {
         let name = name.into();
-        if !(centre.is_finite() && centre > 0.0) {
+        if !CENTRE_RANGE.contains(&centre) {
             return Err(PriorError::Centre {
                 name,
                 value: centre,
             });
         }
-        if !(spread.is_finite() && spread > 0.0) {
+        if !SPREAD_RANGE.contains(&spread) {
             return Err(PriorError::Spread {
                 name,
                 value: spread,
@@ -489,6 +500,12 @@ mod tests {
         assert!(e(Prior::single("m", 0, -3.0, 0.1)).contains("centre"));
         assert!(e(Prior::single("m", 0, 3.0, -0.1)).contains("prior 'm': spread"));
         assert!(e(Prior::single("m", 0, 3.0, f64::INFINITY)).contains("spread"));
+        // issue 44's hostile pass: a centre beyond the search's range ran to
+        // exit 0 at the bounds, a spread of 1e-300 overflowed every start
+        assert!(e(Prior::single("m", 0, 1e300, 0.1)).contains("from 1e-12 to 1e15"));
+        assert!(e(Prior::single("m", 0, 1e-300, 0.1)).contains("centre"));
+        assert!(e(Prior::single("m", 0, 3.0, 1e-300)).contains("from 1e-6 to 100"));
+        assert!(e(Prior::single("m", 0, 3.0, 1e300)).contains("spread"));
         let far = Prior::single("far", 7, 1.0, 0.1).unwrap();
         let Err(err) = Priored::new(Linear, vec![far], 1.0) else {
             panic!("an index beyond the problem is refused")

@@ -2,8 +2,11 @@
 //! back (spec §8; CalculiX CrunchiX User's Manual 2.20).
 //!
 //! The deck: `*NODE` (node offset + i is m_i, on the axis), `*ELEMENT,
-//! TYPE=MASS` with `*MASS`, `TYPE=SPRINGA` with `*SPRING` (k_j) and
-//! `TYPE=DASHPOTA` with `*DASHPOT` (c_j) between nodes j and j+1, `*BOUNDARY`
+//! TYPE=MASS` with `*MASS`, `TYPE=SPRING2` with `*SPRING` (k_j, between
+//! the axis's degree of freedom of both nodes: F = k_j (u_{j+1} − u_j)
+//! whatever the crush, where a `SPRINGA` along the line between its nodes
+//! turns over once they cross) and `TYPE=DASHPOTA` with `*DASHPOT` (c_j)
+//! between nodes j and j+1, `*BOUNDARY`
 //! on the two directions across the axis, and optional `*INITIAL
 //! CONDITIONS, TYPE=VELOCITY`. With a force history it is a complete
 //! analysis: `*AMPLITUDE` (the force, time shifted so the first sample is at
@@ -268,7 +271,8 @@ fn links(
                 chain.spring(deck, j, &elset, id, options);
                 continue;
             }
-            inp::link_element(deck, link, &elset, id, nodes, value * factor);
+            let dof = options.layout.axis.dof();
+            inp::axial_link_element(deck, link, &elset, id, nodes, dof, value * factor);
         }
     }
 }

@@ -8,8 +8,8 @@
 //!
 //! | link | LS-DYNA | CalculiX | maps |
 //! |---|---|---|---|
-//! | linear curve, either rule | `*MAT_SPRING_ELASTIC` K = k | `SPRINGA`, `*SPRING` k | exactly |
-//! | nonlinear curve, elastic | `*MAT_SPRING_NONLINEAR_ELASTIC`, odd `*DEFINE_CURVE` | `SPRINGA`, `*SPRING, NONLINEAR` odd table | exactly on the table's points |
+//! | linear curve, either rule | `*MAT_SPRING_ELASTIC` K = k | `SPRING2`, `*SPRING` k | exactly |
+//! | nonlinear curve, elastic | `*MAT_SPRING_NONLINEAR_ELASTIC`, odd `*DEFINE_CURVE` | `SPRING2`, `*SPRING, NONLINEAR` odd table | exactly on the table's points |
 //! | nonlinear curve, slope k_u ≥ the curve's steepest slope | `*MAT_SPRING_INELASTIC` (LCFD = the curve in the first quadrant, KU = k_u, CTF = 1: compression only) | `C3D8` brick, `*ELASTIC` E, `*PLASTIC` table | exactly in compression |
 //! | nonlinear curve, slope k_u below the steepest slope | as above | as above, E from the steepest slope | approximately |
 //!
@@ -118,10 +118,10 @@ pub struct LinkMapping {
 pub fn mapping(link: &Link) -> LinkMapping {
     let curve = link.curve();
     let (lsdyna, calculix) = match (curve, link.unloading()) {
-        (Curve::Linear { .. }, _) => ("*MAT_SPRING_ELASTIC", "SPRINGA *SPRING"),
+        (Curve::Linear { .. }, _) => ("*MAT_SPRING_ELASTIC", "SPRING2 *SPRING"),
         (_, Unloading::Elastic) => (
             "*MAT_SPRING_NONLINEAR_ELASTIC",
-            "SPRINGA *SPRING, NONLINEAR",
+            "SPRING2 *SPRING, NONLINEAR",
         ),
         (_, Unloading::Slope(_)) => ("*MAT_SPRING_INELASTIC", "C3D8 *ELASTIC, *PLASTIC"),
     };

@@ -184,13 +184,20 @@ impl Parts<'_> {
         match (link.curve(), link.unloading()) {
             (Curve::Linear { stiffness }, _) => {
                 let k = stiffness * units.stiffness();
-                inp::link_element(deck, crate::cards::Link::Spring, elset, id, span.ends, k);
+                let (spring, dof) = (crate::cards::Link::Spring, options.layout.axis.dof());
+                inp::axial_link_element(deck, spring, elset, id, span.ends, dof, k);
             }
             (_, Unloading::Elastic) => {
-                inp::element_keyword(deck, "SPRINGA", elset);
-                let [a, b] = span.ends;
-                let _ = writeln!(deck, "{id}, {a}, {b}\n*SPRING, ELSET={elset}, NONLINEAR\n");
+                // SPRING2 on the axis's degree of freedom of both ends: a
+                // SPRINGA turned over once its ends crossed
+                inp::element_keyword(deck, "SPRING2", elset);
+                let ([a, b], dof) = (span.ends, options.layout.axis.dof());
+                let _ = writeln!(
+                    deck,
+                    "{id}, {a}, {b}\n*SPRING, ELSET={elset}, NONLINEAR\n{dof}, {dof}"
+                );
                 // (force, elongation): compression is negative, odd in δ
+                // (so the axis's sign, which flips u_b − u_a, does not matter)
                 let mut rows: Vec<(f64, f64)> =
                     points.iter().rev().map(|&(d, f)| (-f, -d)).collect();
                 rows.extend(points.iter().skip(1).map(|&(d, f)| (f, d)));

@@ -75,6 +75,48 @@ pub fn link_element(
     );
 }
 
+/// A link along one global direction: `*ELEMENT, TYPE=SPRING2` with
+/// `*SPRING` (stiffness `value`, acting between degree of freedom `dof` of
+/// both nodes) or `TYPE=DASHPOTA` with `*DASHPOT` (damping `value`),
+/// element `element` between `nodes` in the element set `elset`.
+///
+/// A `SPRINGA` acts along the current line between its nodes: once its
+/// nodes cross (a crush beyond their distance) its force turns over. A
+/// `SPRING2` between the same degree of freedom of both nodes,
+/// F = k (u_b − u_a), keeps its direction whatever the crush. (A
+/// `DASHPOTA`'s force, c (v_b − v_a)·e e, is unchanged when e flips, and
+/// CalculiX has no fixed-direction dashpot.) For the 1-D chain, whose
+/// masses move along the axis only.
+///
+/// ```
+/// use bumpsim_export::{cards::Link, inp};
+/// let mut deck = String::new();
+/// inp::axial_link_element(&mut deck, Link::Spring, "EK1", 4, [1, 2], 1, 5e5);
+/// assert_eq!(deck, "*ELEMENT, TYPE=SPRING2, ELSET=EK1\n4, 1, 2\n*SPRING, ELSET=EK1\n1, 1\n5.000000000000e5\n");
+/// ```
+pub fn axial_link_element(
+    deck: &mut String,
+    link: Link,
+    elset: &str,
+    element: u64,
+    nodes: [u64; 2],
+    dof: usize,
+    value: f64,
+) {
+    match link {
+        Link::Spring => {
+            let [a, b] = nodes;
+            element_keyword(deck, "SPRING2", elset);
+            let _ = writeln!(
+                deck,
+                "{element}, {a}, {b}\n*SPRING, ELSET={elset}\n{dof}, {dof}\n{}",
+                real(value)
+            );
+        }
+        Link::Damper => link_element(deck, link, elset, element, nodes, value),
+    }
+}
+
 /// `*INITIAL CONDITIONS, TYPE=VELOCITY`: one line per (node set or node,
 /// degree of freedom, velocity).
 pub fn initial_velocity(deck: &mut String, rows: &[(&str, usize, f64)]) {

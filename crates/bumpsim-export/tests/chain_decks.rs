@@ -57,21 +57,7 @@ fn ccx_link(
         output_every: 1,
     };
     let deck = calculix_chain_deck(chain, &options, Some(&barrier)).unwrap();
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join("chain-decks")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("chain.inp");
-    std::fs::write(&path, &deck).unwrap();
-    let run = Command::new("ccx")
-        .args(["-i", "chain"])
-        .env("OMP_NUM_THREADS", "1")
-        .current_dir(&dir)
-        .output()
-        .unwrap();
-    let log = String::from_utf8_lossy(&run.stdout);
-    assert!(run.status.success() && !log.contains("*ERROR"), "{log}");
+    let path = run_ccx(name, &deck);
     let u = read_results(&path).unwrap();
     let f = read_link_forces(&path).unwrap();
     let force = &f.links.iter().find(|l| l.0 == which).expect(which).1;
@@ -123,6 +109,28 @@ fn mm_layout() -> Layout {
         origin: [1.0, 0.5, 0.0],
         spacing: 0.2,
     }
+}
+
+/// Writes `deck` as `chain.inp` in a fresh folder `name` of the target's
+/// scratch space and runs it in ccx (one thread); fails unless it ends
+/// cleanly; returns the deck's path.
+fn run_ccx(name: &str, deck: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("chain-decks")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("chain.inp");
+    std::fs::write(&path, deck).unwrap();
+    let run = Command::new("ccx")
+        .args(["-i", "chain"])
+        .env("OMP_NUM_THREADS", "1")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success() && !log.contains("*ERROR"), "{log}");
+    path
 }
 
 /// A mass M at V into the wall through an elastic-perfectly-plastic link:
@@ -353,15 +361,9 @@ fn the_lsdyna_include_parses_in_ansys_dyna_core_with_every_id_defined() {
     let path = dir.join("chain.k");
     std::fs::write(&path, &deck).unwrap();
     let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/dyna_deck.py");
-    let run = Command::new("python3")
-        .arg(script)
-        .arg(&path)
-        .args(["11", "12"])
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&run.stderr);
-    assert!(run.status.success(), "dyna_deck.py: {stderr}");
-    let verdict: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    let args = [path.as_os_str(), "11".as_ref(), "12".as_ref()];
+    let verdict: serde_json::Value =
+        serde_json::from_slice(&bumpsim_peers::python(&script, &args)).unwrap();
     for empty in ["unprocessed", "errors", "undefined"] {
         assert_eq!(verdict[empty], serde_json::json!([]), "{empty}: {verdict}");
     }
@@ -446,21 +448,7 @@ fn a_forced_chain_in_ccx_follows_chain_run() {
         ..Default::default()
     };
     let deck = calculix_chain_deck(&chain, &options, None).unwrap();
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join("chain-decks")
-        .join("forced");
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("chain.inp");
-    std::fs::write(&path, &deck).unwrap();
-    let run = Command::new("ccx")
-        .args(["-i", "chain"])
-        .env("OMP_NUM_THREADS", "1")
-        .current_dir(&dir)
-        .output()
-        .unwrap();
-    let log = String::from_utf8_lossy(&run.stdout);
-    assert!(run.status.success() && !log.contains("*ERROR"), "{log}");
+    let path = run_ccx("forced", &deck);
     let u = read_results(&path).unwrap();
     // ccx prints from the first increment on: its row k is sample k + 1
     assert_eq!(u.time.len() + 1, r.displacement[0].len());

@@ -360,7 +360,10 @@ fn calculix_model_deck_fixes_the_cross_directions() {
     let deck = calculix_deck(&thesis_model(), &CalculixOptions::default()).unwrap();
     for expected in [
         "*ELEMENT, TYPE=MASS",
-        "*ELEMENT, TYPE=SPRINGA",
+        // a fixed-direction spring on x (DOF 1) of both nodes: a SPRINGA
+        // turned over once a crush beyond the spacing crossed its nodes
+        "*ELEMENT, TYPE=SPRING2",
+        "*SPRING, ELSET=BUMPSIM_EK1\n1, 1\n",
         "*ELEMENT, TYPE=DASHPOTA",
         "*BOUNDARY\nBUMPSIM_NALL, 2, 2\nBUMPSIM_NALL, 3, 3",
     ] {

@@ -54,9 +54,18 @@ pub fn generated(script: &std::path::Path, out: &std::path::Path, args: &[&str],
     if current && out.join(marker).is_file() {
         return;
     }
+    let mut all = vec![out.as_os_str()];
+    all.extend(args.iter().map(std::ffi::OsStr::new));
+    python(script, &all);
+    std::fs::write(&stamp, version).unwrap_or_else(|e| panic!("{}: {e}", stamp.display()));
+}
+
+/// Runs `python3 SCRIPT ARGS...` (a peer of `tests/peers/`) and returns
+/// its standard output; panics with the script's stderr when it fails.
+/// The one way the tests of every crate run a Python peer.
+pub fn python<A: AsRef<std::ffi::OsStr>>(script: &std::path::Path, args: &[A]) -> Vec<u8> {
     let run = Command::new("python3")
         .arg(script)
-        .arg(out)
         .args(args)
         .output()
         .unwrap_or_else(|e| panic!("python3 {}: {e}", script.display()));
@@ -66,7 +75,7 @@ pub fn generated(script: &std::path::Path, out: &std::path::Path, args: &[&str],
         script.display(),
         String::from_utf8_lossy(&run.stderr)
     );
-    std::fs::write(&stamp, version).unwrap_or_else(|e| panic!("{}: {e}", stamp.display()));
+    run.stdout
 }
 
 /// A hash of `script`'s text and `args` (FNV-1a, 64 bits: stable across

@@ -82,9 +82,25 @@ fn entry(name: String, table: &toml::Table) -> Result<PriorSetting, PriorsError>
             },
             other => return Err(error(format!("{field} = {other}: a number expected"))),
         };
-        match x.is_finite() && x > 0.0 {
-            true => Ok(x),
-            false => Err(error(format!("{field} = {x}: must be finite and positive"))),
+        let (range, what) = match field {
+            "value" => (
+                bumpsim_estimate::prior::CENTRE_RANGE,
+                "SI, the search's range",
+            ),
+            _ => (
+                bumpsim_estimate::prior::SPREAD_RANGE,
+                "sd of ln θ; \"none\" for no prior",
+            ),
+        };
+        match (x.is_finite() && x > 0.0, range.contains(&x)) {
+            (true, true) => Ok(x),
+            (false, _) => Err(error(format!("{field} = {x}: must be finite and positive"))),
+            (true, false) => Err(error(format!(
+                "{field} = {}: must be from {:e} to {:e} ({what})",
+                bumpsim_core::units::short(x),
+                range.start(),
+                range.end()
+            ))),
         }
     };
     Ok(PriorSetting {

@@ -8,7 +8,6 @@ use bumpsim_signal::filter::{Butterworth, Cfc, CfcStandard, j211_coefficients};
 use bumpsim_signal::integrate::cumulative_trapezoid;
 use std::f64::consts::PI;
 use std::path::Path;
-use std::process::Command;
 
 const STEP: f64 = 1e-4;
 
@@ -134,18 +133,12 @@ fn scipy_filtfilt(x: &[f64], order: usize, cutoff: f64, padlen: usize) -> Vec<f6
         (1.0 / STEP).to_string(),
         padlen.to_string(),
     ];
-    let out = Command::new("python3")
-        .arg(script)
-        .args(&args)
-        .arg(&input)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout)
+    let args = [
+        args.map(std::ffi::OsString::from).as_slice(),
+        &[input.into()],
+    ]
+    .concat();
+    String::from_utf8(bumpsim_peers::python(&script, &args))
         .unwrap()
         .lines()
         .map(|l| l.parse().unwrap())

@@ -32,6 +32,22 @@ pub(crate) fn run_ccx(dir: &std::path::Path, job: &str) -> String {
     log
 }
 
+/// Runs `dir/car.inp` in ccx and reads it back with `bumpsim export
+/// read-calculix` into `dir/ccx.csv`: its header and rows (time, x1, ...).
+pub(crate) fn ccx_histories(dir: &std::path::Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    run_ccx(dir, "car");
+    let (deck, csv) = (dir.join("car.inp"), dir.join("ccx.csv"));
+    let read = bumpsim(&[
+        "export",
+        "read-calculix",
+        deck.to_str().unwrap(),
+        "-o",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(read.status.success(), "{}", text(&read.stderr));
+    read_csv(&csv)
+}
+
 /// Whether python3 with ansys-dyna-core is available.
 pub(crate) fn dyna_core_available() -> bool {
     peer_available(

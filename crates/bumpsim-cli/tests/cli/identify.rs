@@ -8,6 +8,7 @@ use crate::util::*;
 
 mod band;
 mod bias;
+mod hostile;
 mod posterior;
 mod sheet;
 

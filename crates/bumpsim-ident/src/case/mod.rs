@@ -220,7 +220,8 @@ impl LoadCase {
             });
         if hi - lo <= 1e-12 * hi.abs().max(lo.abs()) {
             return Err(invalid(format!(
-                "the measured displacement is constant ({lo} m) over the window: it determines no model"
+                "the measured displacement is constant ({} m) over the window: it determines no model",
+                format_number(lo, 4)
             )));
         }
         Ok(())

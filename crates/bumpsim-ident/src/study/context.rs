@@ -6,7 +6,7 @@
 use super::error::{DefinitionError, StudyError, StudyValueError};
 use super::file::{CaseSpec, ChannelRef, OutputDof, Study, WindowSpec};
 use crate::case::{Comparison, Domain, LoadCase, Walk};
-use bumpsim_core::channel::Channel;
+use bumpsim_core::channel::{Channel, ChannelCode};
 use bumpsim_core::series::UniformSeries;
 use bumpsim_core::units::{Dimension, format_number, short};
 use bumpsim_signal::filter::CfcStandard;
@@ -56,7 +56,11 @@ impl CaseContext<'_> {
         let spec = self.spec;
         let force = self.force()?;
         let output = match (&spec.displacement, spec.acceleration.is_empty()) {
-            (Some(d), true) => self.channels(std::slice::from_ref(d), Combine::Mean)?,
+            (Some(d), true) => {
+                let displacement = std::slice::from_ref(d);
+                self.along_the_impact(displacement, "displacement channel")?;
+                self.channels(displacement, Combine::Mean)?
+            }
             (None, false) => self.displacement_from_acceleration()?,
             _ => return Err(self.case(DefinitionError::Output)),
         };
@@ -174,9 +178,40 @@ impl CaseContext<'_> {
         self.process(run(&self.conditioning(&raw)?, &raw))
     }
 
+    /// Refuses a channel of `refs` whose ISO code measures across the
+    /// impact (direction other than X; a code-less column is taken as
+    /// along it).
+    fn along_the_impact(
+        &mut self,
+        refs: &[ChannelRef],
+        signal: &'static str,
+    ) -> Result<(), StudyError> {
+        let sources: Vec<ChannelSource> = refs
+            .iter()
+            .map(|r| ChannelSource::new(self.study.base.join(&r.path), &r.channel, r.scale))
+            .collect();
+        // a selection that fails is reported by the loading that follows
+        let Ok(loaded) = self.loader.channels(&sources) else {
+            return Ok(());
+        };
+        let across = loaded.data.iter().find_map(|c| {
+            let direction = ChannelCode::parse(&c.code)?.direction.to_ascii_uppercase();
+            (direction != 'X').then(|| (c.code.clone(), direction))
+        });
+        match across {
+            Some((channel, direction)) => Err(self.case(DefinitionError::Across {
+                signal,
+                channel,
+                direction,
+            })),
+            None => Ok(()),
+        }
+    }
+
     fn displacement_from_acceleration(&mut self) -> Result<Channel, StudyError> {
-        let raw = self.channels(&self.spec.acceleration, Combine::Mean)?;
-        let what = "acceleration channel";
+        let (what, spec) = ("acceleration channel", self.spec);
+        self.along_the_impact(&spec.acceleration, what)?;
+        let raw = self.channels(&spec.acceleration, Combine::Mean)?;
         self.expect(&raw, Dimension::Acceleration, what, "an acceleration")?;
         let mut steps = self.conditioning(&raw)?;
         steps.extend([

@@ -221,6 +221,20 @@ pub enum DefinitionError {
         /// What it must be.
         expected: &'static str,
     },
+    /// A channel whose ISO code measures across the impact (a lateral
+    /// accelerometer, a yaw rate) in a chain study, which compares motion
+    /// along the impact only (issue 44's hostile pass: one was averaged in).
+    #[error(
+        "the {signal} {channel} measures along {direction}: a chain study compares motion along the impact (ISO direction X); a lateral or yaw sensor belongs in a planar study (docs/planar.md)"
+    )]
+    Across {
+        /// Which signal (`acceleration channel`, ...).
+        signal: &'static str,
+        /// The channel's code.
+        channel: String,
+        /// The direction letter of its code.
+        direction: char,
+    },
     /// The channels could not be made into one signal.
     #[error(transparent)]
     Load(LoadError),

@@ -71,11 +71,10 @@ pub fn priors(unknowns: &Unknowns, setup: &Setup) -> Result<Vec<Prior>, PlanarEr
         let key = format!("[priors] {}", setting.name);
         let known = setting.name == TOTAL_MASS || index(&setting.name).is_some();
         if !known || is_line(&setting.name) {
-            return Err(parameter(
-                &key,
-                f64::NAN,
-                "-",
-                &format!(
+            // (a NaN value stood in the message: "[priors] body.yaw = NaN -")
+            return Err(PlanarError::Missing {
+                name: key,
+                expected: format!(
                     "no such estimated car parameter; known: {TOTAL_MASS}, {}",
                     names
                         .iter()
@@ -84,7 +83,7 @@ pub fn priors(unknowns: &Unknowns, setup: &Setup) -> Result<Vec<Prior>, PlanarEr
                         .collect::<Vec<_>>()
                         .join(", ")
                 ),
-            ));
+            });
         }
         let at = out.iter().position(|p| p.name == setting.name);
         if setting.removed {
@@ -96,12 +95,10 @@ pub fn priors(unknowns: &Unknowns, setup: &Setup) -> Result<Vec<Prior>, PlanarEr
         let base = at.map(|k| out[k].clone());
         let value = setting.value.or(base.as_ref().map(|p| p.centre));
         let Some(value) = value else {
-            return Err(parameter(
-                &key,
-                f64::NAN,
-                "-",
-                "needs a value (no default prior on it)",
-            ));
+            return Err(PlanarError::Missing {
+                name: key,
+                expected: "needs a value (no default prior on it)".into(),
+            });
         };
         let spread = setting
             .spread

@@ -237,6 +237,16 @@ impl Context<'_> {
     fn bias(&self, [t0, t1]: [f64; 2]) -> Result<Channel, ProcessError> {
         let s = &self.channel.series;
         let pretrigger = matches!(self.step, "pretrigger_bias");
+        // a window reaching past the record took the mean of the test
+        // itself as the bias (issue 44's hostile pass: exit 0, a wrong fit)
+        let (first, last) = (s.start() - 0.5 * s.step(), s.end() + 0.5 * s.step());
+        if !pretrigger && (t0 < first || t1 > last) {
+            return Err(self.range(format!(
+                "the bias window [{t0}, {t1}] s reaches beyond the record, {} s to {} s",
+                s.start(),
+                s.end()
+            )));
+        }
         let inside = |t: f64| t >= t0 && (t < t1 || (!pretrigger && t <= t1));
         let picked: Vec<f64> = (0..s.len())
             .filter(|&i| inside(s.time(i)))

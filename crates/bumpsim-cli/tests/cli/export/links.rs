@@ -3,7 +3,7 @@
 //! writers, the CalculiX deck run in `ccx`, and the commands that read
 //! linear cars only refusing the file with exit code 2.
 
-use super::{ccx_available, dyna_core, dyna_core_available, run_ccx};
+use super::{ccx_available, ccx_histories, dyna_core, dyna_core_available};
 use crate::util::*;
 use bumpsim_core::chain::{Drive, Frame};
 use bumpsim_io::link_car::LinkCar;
@@ -120,25 +120,13 @@ fn the_calculix_deck_of_a_car_with_links_runs_in_ccx() {
         "export",
         "calculix",
         car.to_str().unwrap(),
-        "--spacing",
-        "5 m",
         "--force",
         force.to_str().unwrap(),
         "-o",
         inp.to_str().unwrap(),
     ]);
     assert!(run.status.success(), "{}", text(&run.stderr));
-    run_ccx(&dir, "car");
-    let csv = dir.join("ccx.csv");
-    let read = bumpsim(&[
-        "export",
-        "read-calculix",
-        inp.to_str().unwrap(),
-        "-o",
-        csv.to_str().unwrap(),
-    ]);
-    assert!(read.status.success(), "{}", text(&read.stderr));
-    let (header, rows) = read_csv(&csv);
+    let (header, rows) = ccx_histories(&dir);
     assert_eq!(header, ["time [s]", "x1 [m]", "x2 [m]", "x3 [m]"]);
     // ccx prints from the first increment on
     assert_eq!(rows.len() + 1, samples.len());
@@ -151,10 +139,11 @@ fn the_calculix_deck_of_a_car_with_links_runs_in_ccx() {
 /// Without its front link (which pulls in ccx, never in bumpsim) the
 /// example's CalculiX transient follows `Chain::run` under the same push:
 /// every mass within 2 % of m1's peak displacement, the tabulated link
-/// yielding. The nodes are 5 m apart: a `SPRINGA` acts along the line
-/// between its nodes, which a crush beyond the default 0.1 m spacing turns
-/// over (a linear car of the same masses under this push, at the default
-/// 0.1 m: ccx's m1 35 % beyond `simulate` and scipy's `solve_ivp` at 10 ms).
+/// yielding. At the default 0.1 m node spacing: the springs are `SPRING2`
+/// on the axis's degree of freedom, which a crush beyond the spacing does
+/// not turn over (the `SPRINGA`s before them did: a linear car of the same
+/// masses under this push put ccx's m1 35 % beyond `simulate` and scipy's
+/// `solve_ivp` at 10 ms).
 #[test]
 fn without_its_front_link_the_calculix_run_follows_chain_run() {
     if !ccx_available() {
@@ -176,23 +165,11 @@ fn without_its_front_link_the_calculix_run_follows_chain_run() {
         car_path.to_str().unwrap(),
         "--force",
         force.to_str().unwrap(),
-        "--spacing",
-        "5 m",
         "-o",
         inp.to_str().unwrap(),
     ]);
     assert!(run.status.success(), "{}", text(&run.stderr));
-    run_ccx(&dir, "car");
-    let csv = dir.join("ccx.csv");
-    let read = bumpsim(&[
-        "export",
-        "read-calculix",
-        inp.to_str().unwrap(),
-        "-o",
-        csv.to_str().unwrap(),
-    ]);
-    assert!(read.status.success(), "{}", text(&read.stderr));
-    let (_, theirs) = read_csv(&csv);
+    let (_, theirs) = ccx_histories(&dir);
     let drive = Drive::Force {
         force: &samples,
         step: 1e-4,
@@ -201,6 +178,10 @@ fn without_its_front_link_the_calculix_run_follows_chain_run() {
     };
     let ours = car.chain.run(&drive).unwrap();
     assert!(ours.plastic_set[1] > 1e-3, "{:?}", ours.plastic_set);
+    // the progressive link 1 crushes beyond the 0.1 m between its nodes
+    let crush = (ours.displacement[0].iter().zip(&ours.displacement[1]))
+        .fold(0.0_f64, |m, (x1, x2)| m.max(x1 - x2));
+    assert!(crush > 0.1, "link 1's largest crush {crush} m");
     // ccx prints from the first increment on: its row k is our sample k + 1
     assert_eq!(theirs.len() + 1, ours.displacement[0].len());
     let peak = ours.displacement[0]

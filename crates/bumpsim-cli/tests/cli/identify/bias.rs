@@ -21,7 +21,7 @@ fn hostile_bias_windows_exit_2_naming_the_case_and_key() {
     for (bias, expected) in [
         (
             "[5.0, 6.0]",
-            "'flat': channel P0IMPA000000FOXP: step 'bias': no samples in the bias window [5, 6] s",
+            "'flat': channel P0IMPA000000FOXP: step 'bias': the bias window [5, 6] s reaches beyond the record",
         ),
         (
             "[0.01, -0.01]",
