@@ -150,7 +150,20 @@ fn identify_only(
     };
     let make = || Objective::new(cases, settings.dof, &settings.bounds.fixed);
     let found = multistart::search(&make, points, &search, observer)?;
-    let mut result = summarise(cases, settings, &objective, &found, (&lower, &upper), clock)?;
+    let start = settings.start.clone().unwrap_or(data);
+    let priors = crate::priors::priors(settings, &start, &free).map_err(|e| IdentError::Setting {
+        name: "priors",
+        reason: e.to_string(),
+    })?;
+    let posed = crate::prior_fit::fit(
+        &make,
+        settings.dof,
+        &priors,
+        found.best(),
+        (&lower, &upper),
+        &settings.solver,
+    );
+    let mut result = summarise(cases, settings, &objective, &found, &posed, (&lower, &upper), clock)?;
     result.start = objective.theta(found.best_start());
     Ok(result)
 }
@@ -160,14 +173,17 @@ fn summarise(
     settings: &Settings,
     objective: &Objective,
     found: &Searched,
+    posed: &crate::prior_fit::Posed,
     (lower, upper): (&[f64], &[f64]),
     clock: Instant,
 ) -> Result<Identification, IdentError> {
-    let outcome = found.best();
+    let outcome = &posed.outcome;
     let theta = objective.theta(&outcome.parameters);
     let model = objective
         .model(&outcome.parameters)
-        .ok_or(IdentError::Parameters { theta })?;
+        .ok_or_else(|| IdentError::Parameters {
+            theta: theta.clone(),
+        })?;
     let fits = cases
         .iter()
         .map(|c| Ok(CaseFit::of(c, &c.simulate(&model)?)))
@@ -177,11 +193,13 @@ fn summarise(
     let sse = outcome.objective;
     let spread = total_spread(cases);
     let uncertainty = uncertainty(objective, &outcome.parameters, lower, upper, settings.dof);
+    let (uncertainty, moved, prior_warnings) = posed.posterior(uncertainty, &theta, objective.free());
     let effective_samples = crate::stats::effective(objective, &outcome.parameters);
     let negative = fits.iter().filter_map(|f| {
         bumpsim_estimate::fit::negative_fit(&f.name, "displacement", f.fit_percent)
     });
-    let warnings = bumpsim_estimate::warnings(&uncertainty, &found.starts, outcome, negative);
+    let mut warnings = bumpsim_estimate::warnings(&uncertainty, &found.starts, outcome, negative);
+    warnings.extend(prior_warnings);
     // An objective below the rounding of the data (an exact fit of exact
     // synthetic data) counts as that rounding: AIC and BIC stay finite and
     // the smallest exact model wins the comparison.
@@ -216,6 +234,9 @@ fn summarise(
         reduction: None,
         effective_samples,
         cross_validation: None,
+        priors: moved,
+        prior_noise: (!posed.priors.is_empty()).then_some(posed.noise),
+        stated: posed.priors.clone(),
     })
 }
 
