@@ -94,23 +94,22 @@ pub fn identify(
     if let Some(r) = &result.reduction {
         result.warnings.push(r.statement.clone());
     }
-    result
-        .warnings
-        .extend(sheet_mass_warning(&result, settings));
     Ok(result)
 }
 
-/// A warning when the identified masses sum to more than
-/// [`SHEET_MASS_TOLERANCE`] off the test sheet's mass.
-fn sheet_mass_warning(result: &Identification, settings: &Settings) -> Option<String> {
+/// A warning when the masses `theta` (SI, thesis order) the data alone
+/// identify (before any prior: a prior on the total mass would follow the
+/// sheet) sum to more than [`SHEET_MASS_TOLERANCE`] off the test sheet's
+/// mass.
+fn sheet_mass_warning(theta: &[f64], settings: &Settings) -> Option<String> {
     let sheet = settings.sheet_mass?;
-    let total: f64 = result.model.masses().iter().sum();
+    let total: f64 = theta[..settings.dof].iter().sum();
     let off = (total - sheet) / sheet;
     (off.abs() > SHEET_MASS_TOLERANCE).then(|| {
         format!(
-            "the identified masses sum to {} kg, {} % off the test sheet's {} kg (more than {} %): \
-             the tests do not determine the car's whole mass; bound or fix the heaviest mass, \
-             or compare another DOF",
+            "the masses the data alone identify sum to {} kg, {} % off the test sheet's {} kg (more than {} %): \
+             the tests do not determine the car's whole mass, or the sheet is not this car's; \
+             bound or fix the heaviest mass, or compare another DOF",
             format_number(total, 5),
             format_number(100.0 * off, 3),
             format_number(sheet, 5),
@@ -165,6 +164,10 @@ fn identify_only(
     );
     let mut result = summarise(cases, settings, &objective, &found, &posed, (&lower, &upper), clock)?;
     result.start = objective.theta(found.best_start());
+    let data_alone = objective.theta(&found.best().parameters);
+    result
+        .warnings
+        .extend(sheet_mass_warning(&data_alone, settings));
     Ok(result)
 }
 
