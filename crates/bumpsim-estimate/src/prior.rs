@@ -630,8 +630,8 @@ mod tests {
         let p = [2f64.ln(), 3f64.ln()];
         let prior = Prior::single("b", 1, 3.0, 0.3).unwrap();
         let out = with_priors(u, &[prior], &theta, &[0, 1], &p);
-        let c = DMatrix::from_row_slice(2, 2, &[0.04, 0.04, 0.04, 0.16]);
-        let expected = (c.try_inverse().unwrap() + DMatrix::from_row_slice(2, 2, &[0.0, 0.0, 0.0, 1.0 / 0.09]))
+        let c: DMatrix<f64> = DMatrix::from_row_slice(2, 2, &[0.04, 0.04, 0.04, 0.16]);
+        let expected: DMatrix<f64> = (c.try_inverse().unwrap() + DMatrix::from_row_slice(2, 2, &[0.0, 0.0, 0.0, 1.0 / 0.09]))
             .try_inverse()
             .unwrap();
         assert_relative_eq!(out.standard_errors[1].unwrap(), 3.0 * expected[(1, 1)].sqrt(), epsilon = 1e-12);

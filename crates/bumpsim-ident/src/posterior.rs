@@ -8,7 +8,9 @@
 //! covariance ([`crate::whitened`], `ln p = −½ ‖m(θ)‖²`); otherwise the
 //! noise model of the model choice, σ integrated out and the residuals
 //! counted with their effective sample size,
-//! `ln p(θ | data) = −(n_eff/2) ln F(θ)`.
+//! `ln p(θ | data) = −(n_eff/2) ln F(θ)`. The identification's stated
+//! priors ([`crate::priors`]) add `−z²/2` each (the whitening then uses the
+//! data's covariance without them, [`crate::whitened::transform`]).
 //!
 //! The walkers start at the optimum's local (Laplace) approximation, so
 //! the run explores the basin the multi-start found; its diagnostics

@@ -72,3 +72,43 @@ fn the_displacement_objective_has_no_priors_and_the_theses_figures() {
         .count();
     assert_eq!(outside, 7);
 }
+
+/// The bundled study with `extra` appended, in a folder of its own.
+fn variant(name: &str, extra: &str) -> std::path::PathBuf {
+    let source = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/identify");
+    let dir = std::env::temp_dir().join(format!("bumpsim-priors-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(source.join("study.toml")).unwrap();
+    let text = text.replace("path = \"", &format!("path = \"{}/", source.display()));
+    let path = dir.join("study.toml");
+    std::fs::write(&path, format!("{text}\n{extra}")).unwrap();
+    path
+}
+
+#[test]
+fn hostile_priors_are_refused_naming_the_key() {
+    for (name, extra, key) in [
+        ("negative", "[priors]\nm1 = { value = -3 }", "[priors] m1: value = -3"),
+        ("nan", "[priors]\nk1 = { spread = nan }", "[priors] k1: spread"),
+        ("unit", "[priors]\nk1 = { value = \"3 kg\" }", "[priors] k1: value"),
+        ("field", "[priors]\nm2 = { centre = 3 }", "[priors] m2: unknown field 'centre'"),
+        ("word", "[priors]\nm2 = \"some\"", "[priors] m2: "),
+    ] {
+        let e = Study::read(&variant(name, extra)).unwrap_err().to_string();
+        assert!(e.contains(key) && e.contains("study.toml"), "{name}: {e}");
+    }
+    // a name the model does not estimate: refused when identifying
+    let study = Study::read(&variant("unknown", "[priors]\nm9 = { value = 3 }")).unwrap();
+    let cases = study.cases(3).unwrap();
+    let mut settings = study.settings(3).unwrap();
+    settings.starts = 1;
+    let e = identify(&cases, &settings, &Silent).unwrap_err().to_string();
+    assert!(e.contains("[priors] m9: no such estimated parameter; known: total_mass, m1"), "{e}");
+    // removing every default leaves the data alone
+    let none = "[priors]\ntotal_mass = \"none\"\nm1 = \"none\"\nm2 = \"none\"\nm3 = \"none\"\nc1 = \"none\"\nc2 = \"none\"\nk1 = \"none\"\nk2 = \"none\"";
+    let study = Study::read(&variant("none", none)).unwrap();
+    let settings = study.settings(3).unwrap();
+    assert!(settings.default_priors);
+    let result = identify(&cases, &settings, &Silent).unwrap();
+    assert!(result.priors.is_empty());
+}
