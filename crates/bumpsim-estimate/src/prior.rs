@@ -471,7 +471,11 @@ pub fn with_priors(
     let k = known.len();
     let data = DMatrix::from_fn(k, k, |a, b| {
         let (ia, ib) = (known[a].1, known[b].1);
-        let rho = if a == b { Some(1.0) } else { u.correlation[ia][ib] };
+        let rho = if a == b {
+            Some(1.0)
+        } else {
+            u.correlation[ia][ib]
+        };
         rho.unwrap_or(0.0) * known[a].2 * known[b].2
     });
     let prior = information(priors, p);
@@ -486,7 +490,10 @@ pub fn with_priors(
         let sd = cov[(a, a)].sqrt();
         let quantile = u.ci95[i].map_or(1.96, |[_, high]| (high / theta[i]).ln() / log_se);
         u.standard_errors[i] = Some(theta[i] * sd);
-        u.ci95[i] = Some([theta[i] * (-quantile * sd).exp(), theta[i] * (quantile * sd).exp()]);
+        u.ci95[i] = Some([
+            theta[i] * (-quantile * sd).exp(),
+            theta[i] * (quantile * sd).exp(),
+        ]);
         for (b, &(_, ib, _)) in known.iter().enumerate() {
             u.correlation[i][ib] = Some(cov[(a, b)] / (sd * cov[(b, b)].sqrt()));
         }
@@ -631,13 +638,26 @@ mod tests {
         let prior = Prior::single("b", 1, 3.0, 0.3).unwrap();
         let out = with_priors(u, &[prior], &theta, &[0, 1], &p);
         let c: DMatrix<f64> = DMatrix::from_row_slice(2, 2, &[0.04, 0.04, 0.04, 0.16]);
-        let expected: DMatrix<f64> = (c.try_inverse().unwrap() + DMatrix::from_row_slice(2, 2, &[0.0, 0.0, 0.0, 1.0 / 0.09]))
-            .try_inverse()
-            .unwrap();
-        assert_relative_eq!(out.standard_errors[1].unwrap(), 3.0 * expected[(1, 1)].sqrt(), epsilon = 1e-12);
-        assert_relative_eq!(out.standard_errors[0].unwrap(), 2.0 * expected[(0, 0)].sqrt(), epsilon = 1e-12);
+        let expected: DMatrix<f64> = (c.try_inverse().unwrap()
+            + DMatrix::from_row_slice(2, 2, &[0.0, 0.0, 0.0, 1.0 / 0.09]))
+        .try_inverse()
+        .unwrap();
+        assert_relative_eq!(
+            out.standard_errors[1].unwrap(),
+            3.0 * expected[(1, 1)].sqrt(),
+            epsilon = 1e-12
+        );
+        assert_relative_eq!(
+            out.standard_errors[0].unwrap(),
+            2.0 * expected[(0, 0)].sqrt(),
+            epsilon = 1e-12
+        );
         let [low, high] = out.ci95[1].unwrap();
-        assert_relative_eq!((high / 3.0).ln(), 1.96 * expected[(1, 1)].sqrt(), epsilon = 1e-9);
+        assert_relative_eq!(
+            (high / 3.0).ln(),
+            1.96 * expected[(1, 1)].sqrt(),
+            epsilon = 1e-9
+        );
         assert_relative_eq!(low * high, 9.0, epsilon = 1e-9);
     }
 

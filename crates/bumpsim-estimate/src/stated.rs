@@ -271,14 +271,20 @@ mod tests {
         .unwrap();
         assert_eq!(out.len(), 2);
         assert_eq!((out[0].centre, out[0].spread), (10.0, 0.3));
-        assert_eq!((out[1].terms.clone(), out[1].spread), (vec![2], ADDED_SPREAD));
+        assert_eq!(
+            (out[1].terms.clone(), out[1].spread),
+            (vec![2], ADDED_SPREAD)
+        );
         let refused = |s: PriorSetting| {
             apply(defaults.clone(), &[s], &names, &["total_mass"])
                 .unwrap_err()
                 .to_string()
         };
         let e = refused(setting("m9", false, Some(1.0), None));
-        assert!(e.starts_with("[priors] m9") && e.contains("known: total_mass, m1"), "{e}");
+        assert!(
+            e.starts_with("[priors] m9") && e.contains("known: total_mass, m1"),
+            "{e}"
+        );
         let e = refused(setting("k1", false, None, Some(0.2)));
         assert!(e.contains("needs a value"), "{e}");
         let e = refused(setting("m1", false, Some(f64::NAN), None));

@@ -150,10 +150,11 @@ fn identify_only(
     let make = || Objective::new(cases, settings.dof, &settings.bounds.fixed);
     let found = multistart::search(&make, points, &search, observer)?;
     let start = settings.start.clone().unwrap_or(data);
-    let priors = crate::priors::priors(settings, &start, &free).map_err(|e| IdentError::Setting {
-        name: "priors",
-        reason: e.to_string(),
-    })?;
+    let priors =
+        crate::priors::priors(settings, &start, &free).map_err(|e| IdentError::Setting {
+            name: "priors",
+            reason: e.to_string(),
+        })?;
     let posed = crate::prior_fit::fit(
         &make,
         settings.dof,
@@ -162,7 +163,15 @@ fn identify_only(
         (&lower, &upper),
         &settings.solver,
     );
-    let mut result = summarise(cases, settings, &objective, &found, &posed, (&lower, &upper), clock)?;
+    let mut result = summarise(
+        cases,
+        settings,
+        &objective,
+        &found,
+        &posed,
+        (&lower, &upper),
+        clock,
+    )?;
     result.start = objective.theta(found.best_start());
     let data_alone = objective.theta(&found.best().parameters);
     result
@@ -196,7 +205,8 @@ fn summarise(
     let sse = outcome.objective;
     let spread = total_spread(cases);
     let uncertainty = uncertainty(objective, &outcome.parameters, lower, upper, settings.dof);
-    let (uncertainty, moved, prior_warnings) = posed.posterior(uncertainty, &theta, objective.free());
+    let (uncertainty, moved, prior_warnings) =
+        posed.posterior(uncertainty, &theta, objective.free());
     let effective_samples = crate::stats::effective(objective, &outcome.parameters);
     let negative = fits.iter().filter_map(|f| {
         bumpsim_estimate::fit::negative_fit(&f.name, "displacement", f.fit_percent)

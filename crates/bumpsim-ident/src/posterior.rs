@@ -46,8 +46,8 @@ use bumpsim_core::model::parameter_kind;
 use bumpsim_core::units::format_quantity;
 use bumpsim_estimate::lm::LeastSquares;
 use bumpsim_estimate::posterior::{self as layer, Density};
-use bumpsim_estimate::prior::{Prior, Priored};
 pub use bumpsim_estimate::posterior::{Noise, Posterior, PosteriorError, quantile};
+use bumpsim_estimate::prior::{Prior, Priored};
 pub use bumpsim_estimate::sampler::{Diagnostics, Ensemble};
 use serde::Serialize;
 

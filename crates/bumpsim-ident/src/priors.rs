@@ -102,9 +102,13 @@ mod tests {
         let names: Vec<&str> = p.iter().map(|p| p.name.as_str()).collect();
         assert_eq!(names, [TOTAL_MASS, "m2", "c1", "k1"]);
         assert_eq!((p[0].centre, p[0].terms.clone()), (980.0, vec![0]));
-        assert_eq!((p[3].centre, p[3].terms.clone(), p[3].spread), (8e5, vec![2], ELEMENT_SPREAD));
+        assert_eq!(
+            (p[3].centre, p[3].terms.clone(), p[3].spread),
+            (8e5, vec![2], ELEMENT_SPREAD)
+        );
         settings.priors = bumpsim_estimate::stated::settings(
-            &toml::from_str("total_mass = \"none\"\nk1 = { value = \"900 N/mm\", spread = 0.3 }").unwrap(),
+            &toml::from_str("total_mass = \"none\"\nk1 = { value = \"900 N/mm\", spread = 0.3 }")
+                .unwrap(),
             &dimension,
         )
         .unwrap();
@@ -116,6 +120,9 @@ mod tests {
         assert_eq!(p.len(), 1, "only what the study states");
         settings.priors[1].name = "m1".into();
         let e = priors(&settings, &start, &free).unwrap_err().to_string();
-        assert!(e.starts_with("[priors] m1") && e.contains("known: total_mass, m2, c1, k1"), "{e}");
+        assert!(
+            e.starts_with("[priors] m1") && e.contains("known: total_mass, m2, c1, k1"),
+            "{e}"
+        );
     }
 }

@@ -32,10 +32,16 @@ fn the_priors_keep_the_truth_in_the_intervals_and_the_walkers_off_the_bound() {
     let result = identify(&cases, &settings, &Silent).unwrap();
     for (i, truth) in TRUTH.iter().enumerate() {
         let [low, high] = result.uncertainty.ci95[i].unwrap();
-        assert!(low <= *truth && *truth <= high, "{i}: {truth} outside {low} .. {high}");
+        assert!(
+            low <= *truth && *truth <= high,
+            "{i}: {truth} outside {low} .. {high}"
+        );
     }
     let names: Vec<&str> = result.priors.iter().map(|m| m.name.as_str()).collect();
-    assert_eq!(names, ["total_mass", "m1", "m2", "m3", "c1", "c2", "k1", "k2"]);
+    assert_eq!(
+        names,
+        ["total_mass", "m1", "m2", "m3", "c1", "c2", "k1", "k2"]
+    );
     let total = &result.priors[0];
     assert!((total.estimate - 1450.0).abs() < 0.02 * 1450.0, "{total:?}");
     assert!(total.z.abs() < 1.0, "{total:?}");
@@ -49,7 +55,11 @@ fn the_priors_keep_the_truth_in_the_intervals_and_the_walkers_off_the_bound() {
         let [low, high] = post.ci90[i].unwrap();
         assert!(low <= post.median[i] && post.median[i] <= high, "{i}");
         let [low, high] = post.ci95[i].unwrap();
-        assert!(low <= TRUTH[i] && TRUTH[i] <= high, "{i}: {} outside {low} .. {high}", TRUTH[i]);
+        assert!(
+            low <= TRUTH[i] && TRUTH[i] <= high,
+            "{i}: {} outside {low} .. {high}",
+            TRUTH[i]
+        );
     }
 }
 
@@ -88,10 +98,26 @@ fn variant(name: &str, extra: &str) -> std::path::PathBuf {
 #[test]
 fn hostile_priors_are_refused_naming_the_key() {
     for (name, extra, key) in [
-        ("negative", "[priors]\nm1 = { value = -3 }", "[priors] m1: value = -3"),
-        ("nan", "[priors]\nk1 = { spread = nan }", "[priors] k1: spread"),
-        ("unit", "[priors]\nk1 = { value = \"3 kg\" }", "[priors] k1: value"),
-        ("field", "[priors]\nm2 = { centre = 3 }", "[priors] m2: unknown field 'centre'"),
+        (
+            "negative",
+            "[priors]\nm1 = { value = -3 }",
+            "[priors] m1: value = -3",
+        ),
+        (
+            "nan",
+            "[priors]\nk1 = { spread = nan }",
+            "[priors] k1: spread",
+        ),
+        (
+            "unit",
+            "[priors]\nk1 = { value = \"3 kg\" }",
+            "[priors] k1: value",
+        ),
+        (
+            "field",
+            "[priors]\nm2 = { value = 3, centre = 3 }",
+            "[priors] m2: unknown field 'centre'",
+        ),
         ("word", "[priors]\nm2 = \"some\"", "[priors] m2: "),
     ] {
         let e = Study::read(&variant(name, extra)).unwrap_err().to_string();
@@ -102,8 +128,13 @@ fn hostile_priors_are_refused_naming_the_key() {
     let cases = study.cases(3).unwrap();
     let mut settings = study.settings(3).unwrap();
     settings.starts = 1;
-    let e = identify(&cases, &settings, &Silent).unwrap_err().to_string();
-    assert!(e.contains("[priors] m9: no such estimated parameter; known: total_mass, m1"), "{e}");
+    let e = identify(&cases, &settings, &Silent)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("[priors] m9: no such estimated parameter; known: total_mass, m1"),
+        "{e}"
+    );
     // removing every default leaves the data alone
     let none = "[priors]\ntotal_mass = \"none\"\nm1 = \"none\"\nm2 = \"none\"\nm3 = \"none\"\nc1 = \"none\"\nc2 = \"none\"\nk1 = \"none\"\nk2 = \"none\"";
     let study = Study::read(&variant("none", none)).unwrap();

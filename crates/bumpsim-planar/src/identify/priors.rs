@@ -64,7 +64,9 @@ pub fn priors(unknowns: &Unknowns, setup: &Setup) -> Result<Vec<Prior>, PlanarEr
         })
         .collect();
     bumpsim_estimate::stated::apply(defaults, &setup.priors, &named, &[TOTAL_MASS]).map_err(|e| {
-        let message = e.message.replace("estimated parameter", "estimated car parameter");
+        let message = e
+            .message
+            .replace("estimated parameter", "estimated car parameter");
         parameter(&format!("[priors] {}", e.key), f64::NAN, "-", &message)
     })
 }
