@@ -51,14 +51,13 @@ fn the_priors_keep_the_truth_in_the_intervals_and_the_walkers_off_the_bound() {
     let post = posterior(&cases, &settings, &result, &run).unwrap();
     let [m2_low, _] = post.ci95[1].unwrap();
     assert!(m2_low > 20.0, "m2's 95 % interval reaches {m2_low} kg");
-    for i in 0..7 {
+    for (i, truth) in TRUTH.iter().enumerate() {
         let [low, high] = post.ci90[i].unwrap();
         assert!(low <= post.median[i] && post.median[i] <= high, "{i}");
         let [low, high] = post.ci95[i].unwrap();
         assert!(
-            low <= TRUTH[i] && TRUTH[i] <= high,
-            "{i}: {} outside {low} .. {high}",
-            TRUTH[i]
+            low <= *truth && *truth <= high,
+            "{i}: {truth} outside {low} .. {high}"
         );
     }
 }
