@@ -321,6 +321,7 @@ fn print_result(r: &Identification) {
     if let Some(line) = bumpsim_ident::text::residuals_line(r) {
         println!("  {line}");
     }
+    print!("{}", bumpsim_ident::text::prior_lines(r));
     println!("  {}", bumpsim_ident::text::starts_line(r));
     for w in &r.warnings {
         println!("  warning: {w}");

@@ -33,7 +33,8 @@
 //! - [`prior`]: stated Gaussian priors on log parameters, added to any
 //!   problem as residuals, each reported with how far the data moved it;
 //!   [`tied`]: parameters tied together (a symmetric stage of a search)
-//!   (issue 44);
+//!   (issue 44); [`stated`]: a study's `[priors]` table applied to a
+//!   model's default priors (the 1-D and planar studies');
 //! - [`walk`]: the covariance when each residual series is a random walk
 //!   (integrated noise; issue 44);
 //! - [`binomial`]: exact bounds of a probability from its draws, one-sided
@@ -98,6 +99,7 @@ pub mod reduce;
 pub mod sampler;
 pub mod search;
 pub mod sobol;
+pub mod stated;
 pub mod text;
 pub mod tied;
 pub mod uncertainty;

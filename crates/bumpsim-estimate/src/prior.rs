@@ -229,6 +229,15 @@ impl<P: LeastSquares> Priored<P> {
         })
     }
 
+    /// `problem` without priors (its own residuals only).
+    pub fn none(problem: P) -> Priored<P> {
+        Priored {
+            problem,
+            priors: Vec::new(),
+            noise: 1.0,
+        }
+    }
+
     /// The wrapped problem.
     pub fn problem(&self) -> &P {
         &self.problem
@@ -434,6 +443,78 @@ pub fn warnings(moved: &[Moved]) -> Vec<String> {
         .collect()
 }
 
+/// The priors' information on the free log parameters `p` (q of them):
+/// `Σ g gᵀ / s²`, `g = ∇v` (see the module).
+pub fn information(priors: &[Prior], p: &[f64]) -> DMatrix<f64> {
+    let mut out = DMatrix::zeros(p.len(), p.len());
+    for prior in priors {
+        let (_, shares) = prior.value(p);
+        let weight = prior.spread.powi(-2);
+        for (&i, a) in prior.terms.iter().zip(&shares) {
+            for (&j, b) in prior.terms.iter().zip(&shares) {
+                out[(i, j)] += weight * a * b;
+            }
+        }
+    }
+    out
+}
+
+/// `u`, the data's uncertainty of the estimate `theta` (free log
+/// parameters `p`, the model's parameters `free`), with the priors'
+/// information added: `Cov = (C⁻¹ + Σ g gᵀ/s²)⁻¹` over the parameters that
+/// have a standard error (C their data covariance, from the standard
+/// errors and correlations; the Laplace approximation of the posterior
+/// when the data's covariance is not `σ² (JᵀJ)⁻¹`, e.g. a random walk's
+/// sandwich). Standard errors, 95 % intervals (the same quantile) and
+/// correlations follow; `u` is returned as is when C cannot be inverted.
+pub fn with_priors(
+    mut u: crate::uncertainty::Uncertainty,
+    priors: &[Prior],
+    theta: &[f64],
+    free: &[usize],
+    p: &[f64],
+) -> crate::uncertainty::Uncertainty {
+    let known: Vec<(usize, usize, f64)> = free
+        .iter()
+        .enumerate()
+        .filter_map(|(j, &i)| u.standard_errors[i].map(|se| (j, i, se / theta[i])))
+        .collect();
+    let k = known.len();
+    let data = DMatrix::from_fn(k, k, |a, b| {
+        let (ia, ib) = (known[a].1, known[b].1);
+        let rho = if a == b {
+            Some(1.0)
+        } else {
+            u.correlation[ia][ib]
+        };
+        rho.unwrap_or(0.0) * known[a].2 * known[b].2
+    });
+    let prior = information(priors, p);
+    let precision = match data.try_inverse() {
+        Some(inverse) => inverse + DMatrix::from_fn(k, k, |a, b| prior[(known[a].0, known[b].0)]),
+        None => return u,
+    };
+    let Some(cov) = precision.try_inverse() else {
+        return u;
+    };
+    for (a, &(_, i, log_se)) in known.iter().enumerate() {
+        let sd = cov[(a, a)].sqrt();
+        let quantile = u.ci95[i].map_or(1.96, |[_, high]| (high / theta[i]).ln() / log_se);
+        u.standard_errors[i] = Some(theta[i] * sd);
+        u.ci95[i] = Some([
+            theta[i] * (-quantile * sd).exp(),
+            theta[i] * (quantile * sd).exp(),
+        ]);
+        for (b, &(_, ib, _)) in known.iter().enumerate() {
+            u.correlation[i][ib] = Some(cov[(a, b)] / (sd * cov[(b, b)].sqrt()));
+        }
+    }
+    u.determined = (0..u.names.len())
+        .map(|i| crate::uncertainty::is_determined(&u, i))
+        .collect();
+    u
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -541,6 +622,60 @@ mod tests {
         assert_eq!(found.len(), 1);
         assert_eq!((found[0].0, found[0].1.name.as_str()), (0, "a"));
         assert!(prior_only(&priors, &[None, None]).is_empty());
+    }
+
+    #[test]
+    fn the_priors_information_narrows_the_datas_covariance() {
+        use crate::uncertainty::{Correlation, Uncertainty};
+        // two parameters, data sd 0.2 and 0.4 of ln θ, correlated 0.5
+        let u = Uncertainty {
+            names: vec!["a".into(), "b".into()],
+            standard_errors: vec![Some(0.2 * 2.0), Some(0.4 * 3.0)],
+            ci95: vec![
+                Some([2.0 * (-0.392f64).exp(), 2.0 * 0.392f64.exp()]),
+                Some([3.0 * (-0.784f64).exp(), 3.0 * 0.784f64.exp()]),
+            ],
+            at_bound: vec![false; 2],
+            fixed: vec![false; 2],
+            correlation: vec![vec![Some(1.0), Some(0.5)], vec![Some(0.5), Some(1.0)]],
+            residual_std: 1.0,
+            degrees_of_freedom: 100,
+            singular_values: vec![],
+            condition: 1.0,
+            scales: vec![],
+            determined: vec![Some(true); 2],
+            weakest_direction: vec![],
+            error_model: Correlation::RandomWalk,
+            residual_correlation: 0.0,
+            inflation: 1.0,
+            warnings: vec![],
+        };
+        let theta = [2.0, 3.0];
+        let p = [2f64.ln(), 3f64.ln()];
+        let prior = Prior::single("b", 1, 3.0, 0.3).unwrap();
+        let out = with_priors(u, &[prior], &theta, &[0, 1], &p);
+        let c: DMatrix<f64> = DMatrix::from_row_slice(2, 2, &[0.04, 0.04, 0.04, 0.16]);
+        let expected: DMatrix<f64> = (c.try_inverse().unwrap()
+            + DMatrix::from_row_slice(2, 2, &[0.0, 0.0, 0.0, 1.0 / 0.09]))
+        .try_inverse()
+        .unwrap();
+        assert_relative_eq!(
+            out.standard_errors[1].unwrap(),
+            3.0 * expected[(1, 1)].sqrt(),
+            epsilon = 1e-12
+        );
+        assert_relative_eq!(
+            out.standard_errors[0].unwrap(),
+            2.0 * expected[(0, 0)].sqrt(),
+            epsilon = 1e-12
+        );
+        let [low, high] = out.ci95[1].unwrap();
+        assert_relative_eq!(
+            (high / 3.0).ln(),
+            1.96 * expected[(1, 1)].sqrt(),
+            epsilon = 1e-9
+        );
+        assert_relative_eq!(low * high, 9.0, epsilon = 1e-9);
     }
 
     #[test]

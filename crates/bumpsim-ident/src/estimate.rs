@@ -94,23 +94,22 @@ pub fn identify(
     if let Some(r) = &result.reduction {
         result.warnings.push(r.statement.clone());
     }
-    result
-        .warnings
-        .extend(sheet_mass_warning(&result, settings));
     Ok(result)
 }
 
-/// A warning when the identified masses sum to more than
-/// [`SHEET_MASS_TOLERANCE`] off the test sheet's mass.
-fn sheet_mass_warning(result: &Identification, settings: &Settings) -> Option<String> {
+/// A warning when the masses `theta` (SI, thesis order) the data alone
+/// identify (before any prior: a prior on the total mass would follow the
+/// sheet) sum to more than [`SHEET_MASS_TOLERANCE`] off the test sheet's
+/// mass.
+fn sheet_mass_warning(theta: &[f64], settings: &Settings) -> Option<String> {
     let sheet = settings.sheet_mass?;
-    let total: f64 = result.model.masses().iter().sum();
+    let total: f64 = theta[..settings.dof].iter().sum();
     let off = (total - sheet) / sheet;
     (off.abs() > SHEET_MASS_TOLERANCE).then(|| {
         format!(
-            "the identified masses sum to {} kg, {} % off the test sheet's {} kg (more than {} %): \
-             the tests do not determine the car's whole mass; bound or fix the heaviest mass, \
-             or compare another DOF",
+            "the masses the data alone identify sum to {} kg, {} % off the test sheet's {} kg (more than {} %): \
+             the tests do not determine the car's whole mass, or the sheet is not this car's; \
+             bound or fix the heaviest mass, or compare another DOF",
             format_number(total, 5),
             format_number(100.0 * off, 3),
             format_number(sheet, 5),
@@ -150,8 +149,34 @@ fn identify_only(
     };
     let make = || Objective::new(cases, settings.dof, &settings.bounds.fixed);
     let found = multistart::search(&make, points, &search, observer)?;
-    let mut result = summarise(cases, settings, &objective, &found, (&lower, &upper), clock)?;
+    let start = settings.start.clone().unwrap_or(data);
+    let priors =
+        crate::priors::priors(settings, &start, &free).map_err(|e| IdentError::Setting {
+            name: "priors",
+            reason: e.to_string(),
+        })?;
+    let posed = crate::prior_fit::fit(
+        &make,
+        settings.dof,
+        &priors,
+        found.best(),
+        (&lower, &upper),
+        &settings.solver,
+    );
+    let mut result = summarise(
+        cases,
+        settings,
+        &objective,
+        &found,
+        &posed,
+        (&lower, &upper),
+        clock,
+    )?;
     result.start = objective.theta(found.best_start());
+    let data_alone = objective.theta(&found.best().parameters);
+    result
+        .warnings
+        .extend(sheet_mass_warning(&data_alone, settings));
     Ok(result)
 }
 
@@ -160,14 +185,17 @@ fn summarise(
     settings: &Settings,
     objective: &Objective,
     found: &Searched,
+    posed: &crate::prior_fit::Posed,
     (lower, upper): (&[f64], &[f64]),
     clock: Instant,
 ) -> Result<Identification, IdentError> {
-    let outcome = found.best();
+    let outcome = &posed.outcome;
     let theta = objective.theta(&outcome.parameters);
     let model = objective
         .model(&outcome.parameters)
-        .ok_or(IdentError::Parameters { theta })?;
+        .ok_or_else(|| IdentError::Parameters {
+            theta: theta.clone(),
+        })?;
     let fits = cases
         .iter()
         .map(|c| Ok(CaseFit::of(c, &c.simulate(&model)?)))
@@ -177,11 +205,14 @@ fn summarise(
     let sse = outcome.objective;
     let spread = total_spread(cases);
     let uncertainty = uncertainty(objective, &outcome.parameters, lower, upper, settings.dof);
+    let (uncertainty, moved, prior_warnings) =
+        posed.posterior(uncertainty, &theta, objective.free());
     let effective_samples = crate::stats::effective(objective, &outcome.parameters);
     let negative = fits.iter().filter_map(|f| {
         bumpsim_estimate::fit::negative_fit(&f.name, "displacement", f.fit_percent)
     });
-    let warnings = bumpsim_estimate::warnings(&uncertainty, &found.starts, outcome, negative);
+    let mut warnings = bumpsim_estimate::warnings(&uncertainty, &found.starts, outcome, negative);
+    warnings.extend(prior_warnings);
     // An objective below the rounding of the data (an exact fit of exact
     // synthetic data) counts as that rounding: AIC and BIC stay finite and
     // the smallest exact model wins the comparison.
@@ -216,6 +247,9 @@ fn summarise(
         reduction: None,
         effective_samples,
         cross_validation: None,
+        priors: moved,
+        prior_noise: (!posed.priors.is_empty()).then_some(posed.noise),
+        stated: posed.priors.clone(),
     })
 }
 

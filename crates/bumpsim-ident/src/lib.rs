@@ -8,6 +8,8 @@
 //! - [`sizes`]: a study identified over its model sizes (the one loop of the front ends);
 //! - [`crossval`], [`choice`]: leave-one-load-case-out cross-validation and
 //!   the DOF table's recommendation with correlated residuals;
+//! - [`priors`]: the stated priors (the test sheet's mass, each element
+//!   near the start) and the study's `[priors]`; [`prior_fit`]: the fit with them;
 //! - [`posterior`], [`whitened`]: the parameters' posterior (ensemble
 //!   sampler) and its whitened likelihood;
 //! - [`result`]: what an identification finds;
@@ -56,6 +58,8 @@ pub mod estimate;
 pub mod explore;
 pub mod links;
 pub mod posterior;
+pub mod prior_fit;
+pub mod priors;
 pub mod reduce;
 pub mod result;
 pub mod search;

@@ -8,7 +8,9 @@
 //! covariance ([`crate::whitened`], `ln p = −½ ‖m(θ)‖²`); otherwise the
 //! noise model of the model choice, σ integrated out and the residuals
 //! counted with their effective sample size,
-//! `ln p(θ | data) = −(n_eff/2) ln F(θ)`.
+//! `ln p(θ | data) = −(n_eff/2) ln F(θ)`. The identification's stated
+//! priors ([`crate::priors`]) add `−z²/2` each (the whitening then uses the
+//! data's covariance without them, [`crate::whitened::transform`]).
 //!
 //! The walkers start at the optimum's local (Laplace) approximation, so
 //! the run explores the basin the multi-start found; its diagnostics
@@ -42,8 +44,10 @@ use crate::result::Identification;
 use crate::settings::Settings;
 use bumpsim_core::model::parameter_kind;
 use bumpsim_core::units::format_quantity;
+use bumpsim_estimate::lm::LeastSquares;
 use bumpsim_estimate::posterior::{self as layer, Density};
 pub use bumpsim_estimate::posterior::{Noise, Posterior, PosteriorError, quantile};
+use bumpsim_estimate::prior::{Prior, Priored};
 pub use bumpsim_estimate::sampler::{Diagnostics, Ensemble};
 use serde::Serialize;
 
@@ -290,9 +294,15 @@ fn sample(
     let transform = (sampling.noise == Noise::Whitened)
         .then(|| crate::whitened::transform(&make(), result, &optimum))
         .flatten();
+    let stated = &result.stated;
     match transform {
         Some(t) => {
-            let make = || crate::whitened::Whitened::new(make(), &t);
+            let make = || {
+                let moments = crate::whitened::Whitened::new(make(), &t);
+                with_stated(moments, stated, 1.0, &|| {
+                    crate::whitened::Whitened::new(make(), &t)
+                })
+            };
             layer::posterior_observed(&make, &parameters, at, bounds, sampling, step)
         }
         None => {
@@ -300,9 +310,28 @@ fn sample(
             if effective.noise == Noise::Whitened {
                 effective.noise = Noise::Effective(result.effective_samples.effective);
             }
+            // −(n_eff/2) ln(F + σ² Σ z²) ≈ const − Σ z²/2 near the optimum
+            let sigma = match effective.noise {
+                Noise::Effective(n) => (result.objective / n).sqrt(),
+                Noise::Known(sigma) => sigma,
+                Noise::Whitened => 1.0,
+            };
+            let make = || with_stated(make(), stated, sigma, &make);
             layer::posterior_observed(&make, &parameters, at, bounds, &effective, step)
         }
     }
+}
+
+/// `inner` with the stated priors weighed at `noise` (`again` makes
+/// another `inner` for the problem without them when they cannot be
+/// used: a noise that is not positive).
+fn with_stated<P: LeastSquares>(
+    inner: P,
+    stated: &[Prior],
+    noise: f64,
+    again: &dyn Fn() -> P,
+) -> Priored<P> {
+    Priored::new(inner, stated.to_vec(), noise).unwrap_or_else(|_| Priored::none(again()))
 }
 
 /// The log posterior density the sampler runs on, over the free log

@@ -105,6 +105,18 @@ pub struct Identification {
     /// Leave-one-load-case-out cross-validation, when a DOF table ran it
     /// ([`crate::crossval`]).
     pub cross_validation: Option<CrossValidation>,
+    /// The stated priors ([`crate::priors`]), each with how far the data
+    /// moved its parameter; absent without priors.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub priors: Vec<bumpsim_estimate::prior::Moved>,
+    /// The noise of one residual the priors weigh against
+    /// ([`bumpsim_estimate::prior::noise`]); absent without priors.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prior_noise: Option<f64>,
+    /// The stated priors themselves (their terms: free parameters), for
+    /// the posterior.
+    #[serde(skip)]
+    pub stated: Vec<bumpsim_estimate::prior::Prior>,
 }
 
 /// How an identification compared its cases beyond the thesis's objective.

@@ -92,6 +92,12 @@ pub struct Settings {
     /// The test sheet's mass of the car, kg: an identified model whose
     /// masses sum to more than [`SHEET_MASS_TOLERANCE`] off it is warned of.
     pub sheet_mass: Option<f64>,
+    /// Whether the default priors apply ([`crate::priors`]: the test
+    /// sheet's total mass, each element within a factor 10 of the start).
+    pub default_priors: bool,
+    /// The study's `[priors]`, applied to the defaults (or, without them,
+    /// the only priors).
+    pub priors: Vec<bumpsim_estimate::stated::PriorSetting>,
 }
 
 /// The identified masses' sum may differ from the test sheet's mass by this
@@ -111,6 +117,8 @@ impl Settings {
             split_links: Vec::new(),
             solver: lm::Settings::default(),
             sheet_mass: None,
+            default_priors: false,
+            priors: Vec::new(),
         }
     }
 

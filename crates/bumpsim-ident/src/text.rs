@@ -57,6 +57,22 @@ pub fn residuals_line(result: &Identification) -> Option<String> {
     ))
 }
 
+/// The stated priors, a line each (indented), with how far the data
+/// moved them ([`bumpsim_estimate::prior::text`]): `prior total_mass: 1450
+/// kg ± 0.010 (ln) (the test sheet) -> 1449 kg (moved -0.07 sd)`; empty
+/// without any.
+pub fn prior_lines(result: &Identification) -> String {
+    let parameters = crate::stats::parameters(result.dof);
+    let format = |name: &str, value: f64| match parameters.iter().find(|p| p.name == name) {
+        Some(p) => p.format(value),
+        None => format_quantity(value, Dimension::Mass),
+    };
+    bumpsim_estimate::prior::text(&result.priors, &format)
+        .lines()
+        .map(|l| format!("  {l}\n"))
+        .collect()
+}
+
 /// `ISO/TS 18571 rating 0.962 (excellent; corridor …, phase …, magnitude
 /// …, slope …)`, or why there is none.
 pub fn rating_line(rating: Option<&bumpsim_signal::rating::Rating>) -> String {

@@ -19,6 +19,7 @@
 
 use crate::case::Objective;
 use crate::result::Identification;
+use crate::stats::Uncertainty;
 use bumpsim_estimate::lm::LeastSquares;
 use nalgebra::DMatrix;
 
@@ -43,30 +44,46 @@ impl<'a> Whitened<'a> {
 }
 
 /// `L⁻¹ P Jᵀ` of `objective` around `result` (free log parameters
-/// `optimum`); None when a free parameter has no standard error (at a
-/// bound, undetermined) or a matrix is singular.
+/// `optimum`), `C` the data's covariance: the intervals' less the
+/// information of the result's stated priors (`C⁻¹ = C_post⁻¹ − Σ g gᵀ/s²`,
+/// undoing [`bumpsim_estimate::prior::with_priors`]; the posterior adds
+/// the priors itself); None when a free parameter has no standard error
+/// (at a bound, undetermined) or a matrix is singular.
 pub fn transform(
     objective: &Objective,
     result: &Identification,
     optimum: &[f64],
 ) -> Option<DMatrix<f64>> {
-    let covariance = covariance(result, objective.free())?;
+    let theta = result.model.parameters();
+    let mut covariance = covariance(&result.uncertainty, &theta, objective.free())?;
+    if !result.stated.is_empty() {
+        let information = bumpsim_estimate::prior::information(&result.stated, optimum);
+        covariance = (covariance.try_inverse()? - information).try_inverse()?;
+    }
+    transform_of(objective, &covariance, optimum)
+}
+
+/// `L⁻¹ P Jᵀ` of `objective` at `optimum` for the covariance `C = L Lᵀ`
+/// of its free log parameters.
+pub fn transform_of(
+    objective: &Objective,
+    covariance: &DMatrix<f64>,
+    optimum: &[f64],
+) -> Option<DMatrix<f64>> {
     let (n, q) = (objective.residual_count(), objective.free().len());
     let (mut r, mut j) = (vec![0.0; n], DMatrix::zeros(n, q));
     if !objective.evaluate(optimum, &mut r, Some(&mut j)) {
         return None;
     }
     let normal = (j.transpose() * &j).try_inverse()?;
-    let inverse = covariance.cholesky()?.l().try_inverse()?;
+    let inverse = covariance.clone().cholesky()?.l().try_inverse()?;
     let transform = inverse * normal * j.transpose();
     transform.iter().all(|v| v.is_finite()).then_some(transform)
 }
 
-/// The identification's covariance of the free log parameters `free`
-/// (from its standard errors and correlations); None when one is missing.
-fn covariance(result: &Identification, free: &[usize]) -> Option<DMatrix<f64>> {
-    let u = &result.uncertainty;
-    let theta = result.model.parameters();
+/// The covariance of the free log parameters `free` from the standard
+/// errors and correlations of `u` at `theta`; None when one is missing.
+pub fn covariance(u: &Uncertainty, theta: &[f64], free: &[usize]) -> Option<DMatrix<f64>> {
     let log_se: Vec<f64> = free
         .iter()
         .map(|&i| u.standard_errors[i].map(|se| se / theta[i]))

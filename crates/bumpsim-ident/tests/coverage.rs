@@ -12,7 +12,10 @@
 //! - **The default's evidence** (docs/identify.md prints this table): on
 //!   10 draws, the three domains' parameter errors against the truth, their
 //!   coverage, and the held-out fit (each test predicted by the model
-//!   refitted to the other two, [`cross_validate`]).
+//!   refitted to the other two, [`cross_validate`]), the domains compared
+//!   without the stated priors (with them, the element priors centred on
+//!   the data-derived start pull the weakly determined m2: the velocity
+//!   row's median worst error was 8.5 % against 7.2 %).
 
 use bumpsim_estimate::observer::Silent;
 use bumpsim_ident::crossval::cross_validate;
@@ -52,13 +55,16 @@ fn truth(dir: &Path) -> Vec<f64> {
         .collect()
 }
 
-/// Draw `k` identified with 3 masses in `objective`, 8 starts.
-fn identified(dir: &Path, k: usize, objective: &str) -> (Identification, f64) {
+/// Draw `k` identified with 3 masses in `objective`, 8 starts, with the
+/// study's default priors when `priors` (the draws' studies state no sheet
+/// mass: each element within a factor 10 of the start).
+fn identified(dir: &Path, k: usize, objective: &str, priors: bool) -> (Identification, f64) {
     let mut study = Study::read(&dir.join(format!("draw-{k}/study.toml"))).unwrap();
     study.identification.objective = Some(objective.into());
     study.model.dof = DofSpec::One(3);
     let cases = study.cases(3).unwrap();
-    let settings = study.settings(3).unwrap();
+    let mut settings = study.settings(3).unwrap();
+    settings.default_priors &= priors;
     let result = identify(&cases, &settings, &Silent).unwrap();
     let held_out = cross_validate(&cases, &settings, &result)
         .map(|cv| {
@@ -98,7 +104,7 @@ fn velocity_intervals_cover_an_independent_generators_truth() {
     let truth = truth(&dir);
     let (mut inside, mut total) = (0, 0);
     for k in 0..DRAWS {
-        let (result, _) = identified(&dir, k, "velocity");
+        let (result, _) = identified(&dir, k, "velocity", true);
         inside += covered(&result, &truth);
         total += truth.len();
     }
@@ -122,7 +128,7 @@ fn the_domains_compared_on_an_independent_series() {
     for objective in ["displacement", "velocity", "acceleration"] {
         let (mut errors, mut inside, mut held) = (Vec::new(), 0, f64::INFINITY);
         for k in 0..COMPARED {
-            let (result, held_out) = identified(&dir, k, objective);
+            let (result, held_out) = identified(&dir, k, objective, false);
             errors.push(worst_error(&result, &truth));
             inside += covered(&result, &truth);
             held = held.min(held_out);

@@ -4,114 +4,19 @@
 //! tables), each value `"none"` (no prior) or `{ value = …, spread = … }`
 //! (either may be left to the default). A value is SI, or text with a unit
 //! for a mass, spring or damper (`"1239 kg"`, `"900 N/mm"`); a spread is
-//! the standard deviation of ln θ, a positive number (0.2 ≈ ±20 %).
+//! the standard deviation of ln θ, a positive number (0.2 ≈ ±20 %). The
+//! reading is the estimation layer's ([`bumpsim_estimate::stated`]), one
+//! for the 1-D and the planar studies; this module names the dimensions.
 
 use crate::identify::PriorSetting;
-use bumpsim_core::units::{Dimension, parse_quantity};
+use bumpsim_core::units::Dimension;
 
-/// A `[priors]` entry that cannot be read.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("[priors] {key}: {message}")]
-pub struct PriorsError {
-    /// The key (`body.yaw_inertia`).
-    pub key: String,
-    /// What is wrong.
-    pub message: String,
-}
+pub use bumpsim_estimate::stated::PriorsError;
 
-/// The settings of a `[priors]` table.
+/// The settings of a `[priors]` table (read as the 1-D study's,
+/// [`bumpsim_estimate::stated::settings`]).
 pub fn settings(table: &toml::Table) -> Result<Vec<PriorSetting>, PriorsError> {
-    let mut out = Vec::new();
-    flatten("", table, &mut out)?;
-    Ok(out)
-}
-
-fn flatten(
-    prefix: &str,
-    table: &toml::Table,
-    out: &mut Vec<PriorSetting>,
-) -> Result<(), PriorsError> {
-    for (key, value) in table {
-        let name = match prefix.is_empty() {
-            true => key.clone(),
-            false => format!("{prefix}.{key}"),
-        };
-        match value {
-            toml::Value::String(word) if word.trim() == "none" => out.push(PriorSetting {
-                name,
-                removed: true,
-                ..Default::default()
-            }),
-            toml::Value::Table(t) if t.contains_key("value") || t.contains_key("spread") => {
-                out.push(entry(name, t)?)
-            }
-            toml::Value::Table(t) => flatten(&name, t, out)?,
-            other => {
-                return Err(PriorsError {
-                    key: name,
-                    message: format!(
-                        "{other} is neither \"none\" nor {{ value = ..., spread = ... }}"
-                    ),
-                });
-            }
-        }
-    }
-    Ok(())
-}
-
-fn entry(name: String, table: &toml::Table) -> Result<PriorSetting, PriorsError> {
-    let error = |message: String| PriorsError {
-        key: name.clone(),
-        message,
-    };
-    if let Some(k) = table.keys().find(|k| *k != "value" && *k != "spread") {
-        return Err(error(format!(
-            "unknown field '{k}': expected value, spread"
-        )));
-    }
-    let number = |field: &str, v: &toml::Value| -> Result<f64, PriorsError> {
-        let x = match v {
-            toml::Value::Float(x) => *x,
-            toml::Value::Integer(i) => *i as f64,
-            toml::Value::String(text) => match dimension(&name) {
-                Some(d) if field == "value" => parse_quantity(text, d)
-                    .map_err(|e| error(format!("{field} = {text:?}: {e}")))?,
-                _ => {
-                    return Err(error(format!("{field} = {text:?}: a number expected (SI)")));
-                }
-            },
-            other => return Err(error(format!("{field} = {other}: a number expected"))),
-        };
-        let (range, what) = match field {
-            "value" => (
-                bumpsim_estimate::prior::CENTRE_RANGE,
-                "SI, the search's range",
-            ),
-            _ => (
-                bumpsim_estimate::prior::SPREAD_RANGE,
-                "sd of ln θ; \"none\" for no prior",
-            ),
-        };
-        match (x.is_finite() && x > 0.0, range.contains(&x)) {
-            (true, true) => Ok(x),
-            (false, _) => Err(error(format!("{field} = {x}: must be finite and positive"))),
-            (true, false) => Err(error(format!(
-                "{field} = {}: must be from {:e} to {:e} ({what})",
-                bumpsim_core::units::short(x),
-                range.start(),
-                range.end()
-            ))),
-        }
-    };
-    Ok(PriorSetting {
-        value: table.get("value").map(|v| number("value", v)).transpose()?,
-        spread: table
-            .get("spread")
-            .map(|v| number("spread", v))
-            .transpose()?,
-        name: name.clone(),
-        removed: false,
-    })
+    bumpsim_estimate::stated::settings(table, &dimension)
 }
 
 /// The dimension of a value given with a unit, by the prior's name.

@@ -322,6 +322,10 @@ fn section(
     if let Some(line) = bumpsim_ident::text::residuals_line(result) {
         page.paragraph(&line);
     }
+    let priors = bumpsim_ident::text::prior_lines(result);
+    if !priors.is_empty() {
+        page.preformatted(&priors);
+    }
     if tables {
         page.preformatted(&parameter_table(result));
         page.preformatted(&case_lines(result));

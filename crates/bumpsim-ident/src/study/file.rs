@@ -194,6 +194,10 @@ pub struct Study {
     /// How the cases are compared.
     #[serde(default)]
     pub identification: IdentificationSpec,
+    /// The stated priors: `[priors]` overrides, removes (`"none"`) or adds
+    /// to the defaults ([`crate::priors`]).
+    #[serde(default)]
+    pub priors: Option<toml::Table>,
     /// Load cases.
     pub case: Vec<CaseSpec>,
     /// Folder of the study file.

@@ -80,6 +80,7 @@ impl Study {
             .objective()
             .map_err(|e| error(format!("[identification] {e}")))?;
         study.sheet_mass()?;
+        study.prior_settings()?;
         Ok(study)
     }
 
@@ -114,7 +115,31 @@ impl Study {
             seed: self.model.seed,
             start: self.start(dof)?,
             sheet_mass: self.sheet_mass()?,
+            default_priors: self.default_priors(),
+            priors: self.prior_settings()?,
             ..Settings::new(dof, 1)
+        })
+    }
+
+    /// Whether the default priors apply: in every domain but the thesis's
+    /// displacements (which reproduce the thesis's figures; there only
+    /// the study's `[priors]` apply).
+    pub fn default_priors(&self) -> bool {
+        !matches!(self.objective(), Ok(crate::case::Domain::Displacement))
+    }
+
+    /// The study's `[priors]` settings (empty without the table).
+    pub fn prior_settings(
+        &self,
+    ) -> Result<Vec<bumpsim_estimate::stated::PriorSetting>, StudyError> {
+        let Some(table) = &self.priors else {
+            return Ok(Vec::new());
+        };
+        bumpsim_estimate::stated::settings(table, &crate::priors::dimension).map_err(|e| {
+            StudyError::File {
+                path: self.path.clone(),
+                message: e.to_string(),
+            }
         })
     }
 

@@ -27,25 +27,13 @@
 //! (`"left.springs[0]" = { value = "900 N/mm", spread = 0.3 }`).
 
 use super::{Setup, Unknowns};
-use crate::car::{CORNERING_STIFFNESS, PlanarError, parameter};
+use crate::car::{CORNERING_STIFFNESS, PlanarError};
 use bumpsim_estimate::prior::Prior;
 
 /// The default centre of the lateral grip μ_y: a dry road tyre's.
 pub const MU: f64 = 0.8;
 
-/// A study's setting of one prior: `removed`, or its centre and spread
-/// (either left to the default).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct PriorSetting {
-    /// The prior's name (`total_mass`, `body.yaw_inertia`, a parameter's).
-    pub name: String,
-    /// `"none"`: no prior on it.
-    pub removed: bool,
-    /// Its centre, SI.
-    pub value: Option<f64>,
-    /// Its spread, the standard deviation of ln θ.
-    pub spread: Option<f64>,
-}
+pub use bumpsim_estimate::stated::PriorSetting;
 
 /// The spread of the yaw inertia's default prior: the dynamic index of
 /// passenger cars, 0.8–1.2 (Milliken & Milliken 1995, ch. 5.5), as ±2
@@ -66,57 +54,25 @@ pub const TOTAL_MASS: &str = "total_mass";
 pub fn priors(unknowns: &Unknowns, setup: &Setup) -> Result<Vec<Prior>, PlanarError> {
     let names: Vec<String> = unknowns.names().into_iter().map(|(n, _)| n).collect();
     let index = |name: &str| names.iter().position(|n| n == name);
-    let mut out = defaults(unknowns, setup, &index);
-    for setting in &setup.priors {
-        let key = format!("[priors] {}", setting.name);
-        let known = setting.name == TOTAL_MASS || index(&setting.name).is_some();
-        if !known || is_line(&setting.name) {
-            // (a NaN value stood in the message: "[priors] body.yaw = NaN -")
-            return Err(PlanarError::Missing {
-                name: key,
-                expected: format!(
-                    "no such estimated car parameter; known: {TOTAL_MASS}, {}",
-                    names
-                        .iter()
-                        .filter(|n| !is_line(n))
-                        .cloned()
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ),
-            });
+    let defaults = defaults(unknowns, setup, &index);
+    // a case's line of action takes no prior: it is left unnamed
+    let named: Vec<String> = names
+        .iter()
+        .map(|n| match is_line(n) {
+            true => String::new(),
+            false => n.clone(),
+        })
+        .collect();
+    bumpsim_estimate::stated::apply(defaults, &setup.priors, &named, &[TOTAL_MASS]).map_err(|e| {
+        let message = e
+            .message
+            .replace("estimated parameter", "estimated car parameter");
+        // the key alone: a NaN stood in the message ("[priors] body.yaw = NaN -")
+        PlanarError::Missing {
+            name: format!("[priors] {}", e.key),
+            expected: message,
         }
-        let at = out.iter().position(|p| p.name == setting.name);
-        if setting.removed {
-            if let Some(at) = at {
-                out.remove(at);
-            }
-            continue;
-        }
-        let base = at.map(|k| out[k].clone());
-        let value = setting.value.or(base.as_ref().map(|p| p.centre));
-        let Some(value) = value else {
-            return Err(PlanarError::Missing {
-                name: key,
-                expected: "needs a value (no default prior on it)".into(),
-            });
-        };
-        let spread = setting
-            .spread
-            .or(base.as_ref().map(|p| p.spread))
-            .unwrap_or(0.1);
-        let terms = match base.as_ref() {
-            Some(p) => p.terms.clone(),
-            None => vec![index(&setting.name).unwrap_or(0)],
-        };
-        let prior = Prior::sum(setting.name.clone(), terms, value, spread)
-            .map_err(|e| parameter(&key, value, "-", &e.to_string()))?
-            .from_source("the study's [priors]");
-        match at {
-            Some(at) => out[at] = prior,
-            None => out.push(prior),
-        }
-    }
-    Ok(out)
+    })
 }
 
 /// Settings that remove every default prior of `unknowns` (a fit of the
