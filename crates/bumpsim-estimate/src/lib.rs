@@ -100,6 +100,7 @@ pub mod search;
 pub mod sobol;
 pub mod text;
 pub mod tied;
+pub mod trust;
 pub mod uncertainty;
 pub mod walk;
 
