@@ -113,7 +113,7 @@ impl Subproblem {
             }
             // Newton on ψ = 1/‖s‖ − 1/Δ: ψ' = Σ c²/(Λ+λ)³ / ‖s‖³
             let next = lambda + (1.0 / radius - 1.0 / length) * length.powi(3) / cube;
-            if !(next > lambda) {
+            if next.partial_cmp(&lambda) != Some(std::cmp::Ordering::Greater) {
                 break;
             }
             lambda = next;
