@@ -102,6 +102,7 @@ pub mod sobol;
 pub mod stated;
 pub mod text;
 pub mod tied;
+pub mod trust;
 pub mod uncertainty;
 pub mod walk;
 

@@ -4,7 +4,11 @@
 //! iteration solves `(JᵀJ + λ D) δ = −Jᵀr` on the free parameters, with
 //! Marquardt's scaling `D = diag(JᵀJ)`; parameters at a bound whose
 //! gradient points outwards are held (active set), and the trial point is
-//! projected onto the box. λ follows Nielsen's update (gain ratio ρ).
+//! projected onto the box. λ follows Nielsen's update (gain ratio ρ), or
+//! ([`Damping::TrustRegion`], an option: not yet the default anywhere) is the one
+//! that keeps the scaled step within a trust radius Δ, which the gain ratio
+//! sets as scipy's `least_squares` does ([`crate::trust`]; Moré 1978): the
+//! Gauss–Newton step whenever it fits.
 //! Stopping rules, any of:
 //! - the thesis's directional derivative `|∇F · δ|` (fmincon's) below
 //!   `directional · F`, relative (see [`Settings::directional`]);
@@ -19,6 +23,7 @@
 //! dense LM on nalgebra's Cholesky is small, fast and testable; the method
 //! is the textbook one (Madsen, Nielsen & Tingleff 2004, ch. 3.2).
 
+use crate::trust::Subproblem;
 use nalgebra::{DMatrix, DVector};
 
 /// A least-squares problem: residuals and their Jacobian at a point.
@@ -102,6 +107,23 @@ pub struct Settings {
     /// still falling a part in 1e5 per step when F ≈ 1e-7 m², and would be
     /// unreachable at F ≈ 1 m². Relative, it means the same on any scale.
     pub directional: f64,
+    /// How each step's damping is chosen.
+    pub damping: Damping,
+}
+
+/// How LM damps its steps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Damping {
+    /// `(JᵀJ + λ diag(JᵀJ)) δ = −Jᵀr` with λ by Nielsen's update (Madsen,
+    /// Nielsen & Tingleff 2004, eq. 3.16), starting at 1e-3 of the largest
+    /// diagonal element.
+    #[default]
+    Nielsen,
+    /// A trust region on the step scaled by the column norms of J (Moré
+    /// 1978; [`crate::trust`]): the Gauss–Newton step whenever it fits, the
+    /// radius from the gain ratio as scipy's `least_squares` sets it, and
+    /// starting at 100 times the scaled length of the start (MINPACK's).
+    TrustRegion,
 }
 
 impl Default for Settings {
@@ -112,6 +134,7 @@ impl Default for Settings {
             xtol: 1e-10,
             gtol: 1e-12,
             directional: 1e-9,
+            damping: Damping::Nielsen,
         }
     }
 }
@@ -198,24 +221,21 @@ pub fn minimise(
             stop: Stop::BadStart,
         };
     }
-    let (mut lambda, mut nu) = (-1.0, 2.0);
+    let mut control = Control::new(settings.damping);
     let mut trial_r = vec![0.0; m];
     for iteration in 0..settings.max_iterations {
-        let (jtj, g) = (&s.jtj, &s.g);
         let free: Vec<usize> = (0..n)
-            .filter(|&i| !held(i, &s.p, g[i], lower, upper))
+            .filter(|&i| !held(i, &s.p, s.g[i], lower, upper))
             .collect();
-        let projected = free.iter().map(|&i| g[i].abs()).fold(0.0, f64::max);
+        let projected = free.iter().map(|&i| s.g[i].abs()).fold(0.0, f64::max);
         if projected <= settings.gtol * (1.0 + s.cost) {
             return finish(s, iteration, evaluations, Stop::Gradient);
         }
-        if lambda < 0.0 {
-            lambda = 1e-3 * (0..n).map(|i| jtj[(i, i)]).fold(0.0, f64::max);
-        }
+        control.prepare(&s, &free);
         let mut accepted = None;
         for _ in 0..60 {
-            let Some(delta) = solve(jtj, g, &free, lambda) else {
-                (lambda, nu) = (lambda * nu, nu * 2.0);
+            let Some(delta) = control.propose(&s, &free) else {
+                control.reject(0.0);
                 continue;
             };
             let trial = clamp(&(0..n).map(|i| s.p[i] + delta[i]).collect::<Vec<_>>());
@@ -223,15 +243,14 @@ pub fn minimise(
             evaluations += 1;
             let ok = problem.evaluate(&trial, &mut trial_r, None);
             let cost: f64 = trial_r.iter().map(|v| v * v).sum();
-            let predicted = -(2.0 * g.dot(&step) + step.dot(&(jtj * &step)));
+            let predicted = -(2.0 * s.g.dot(&step) + step.dot(&(&s.jtj * &step)));
             let rho = (s.cost - cost) / predicted;
             if ok && cost.is_finite() && cost < s.cost && rho > 0.0 {
-                lambda *= (1.0_f64 / 3.0).max(1.0 - (2.0 * rho - 1.0).powi(3));
-                nu = 2.0;
-                accepted = Some((trial, cost, step, g.clone()));
+                control.accept(rho, step.as_slice());
+                accepted = Some((trial, cost, step, s.g.clone()));
                 break;
             }
-            (lambda, nu) = (lambda * nu, nu * 2.0);
+            control.reject(control.length(step.as_slice()));
         }
         let Some((trial, cost, step, g)) = accepted else {
             return finish(s, iteration, evaluations, Stop::NoProgress);
@@ -259,6 +278,96 @@ pub fn minimise(
         }
     }
     finish(s, settings.max_iterations, evaluations, Stop::Iterations)
+}
+
+/// The damping's state between iterations ([`Damping`]).
+enum Control {
+    /// Nielsen's λ (negative: not yet set) and its growth factor ν.
+    Nielsen { lambda: f64, nu: f64 },
+    /// The trust radius (negative: not yet set) and this iteration's
+    /// decomposed subproblem.
+    Trust {
+        radius: f64,
+        subproblem: Option<Subproblem>,
+    },
+}
+
+impl Control {
+    fn new(damping: Damping) -> Control {
+        match damping {
+            Damping::Nielsen => Control::Nielsen {
+                lambda: -1.0,
+                nu: 2.0,
+            },
+            Damping::TrustRegion => Control::Trust {
+                radius: -1.0,
+                subproblem: None,
+            },
+        }
+    }
+
+    /// Sets up an iteration at the state `s` with the `free` parameters.
+    fn prepare(&mut self, s: &State, free: &[usize]) {
+        match self {
+            Control::Nielsen { lambda, .. } if *lambda < 0.0 => {
+                let n = s.g.len();
+                *lambda = 1e-3 * (0..n).map(|i| s.jtj[(i, i)]).fold(0.0, f64::max);
+            }
+            Control::Nielsen { .. } => {}
+            Control::Trust { radius, subproblem } => {
+                let problem = Subproblem::new(&s.jtj, &s.g, free);
+                if *radius < 0.0 {
+                    let length = problem.scaled_norm(&s.p);
+                    *radius = if length > 0.0 { 100.0 * length } else { 100.0 };
+                }
+                *subproblem = Some(problem);
+            }
+        }
+    }
+
+    /// The next trial step, `None` when it cannot be formed.
+    fn propose(&self, s: &State, free: &[usize]) -> Option<Vec<f64>> {
+        match self {
+            Control::Nielsen { lambda, .. } => solve(&s.jtj, &s.g, free, *lambda),
+            Control::Trust { radius, subproblem } => subproblem.as_ref()?.step(*radius),
+        }
+    }
+
+    /// The step's scaled length (the trust region's measure; 0 for Nielsen).
+    fn length(&self, step: &[f64]) -> f64 {
+        match self {
+            Control::Trust {
+                subproblem: Some(problem),
+                ..
+            } => problem.scaled_norm(step),
+            _ => 0.0,
+        }
+    }
+
+    /// A step with gain ratio `rho` was taken.
+    fn accept(&mut self, rho: f64, step: &[f64]) {
+        let length = self.length(step);
+        match self {
+            Control::Nielsen { lambda, nu } => {
+                *lambda *= (1.0_f64 / 3.0).max(1.0 - (2.0 * rho - 1.0).powi(3));
+                *nu = 2.0;
+            }
+            Control::Trust { radius, .. } if rho < 0.25 => *radius = 0.25 * length,
+            Control::Trust { radius, .. } if rho > 0.75 && length > 0.95 * *radius => {
+                *radius *= 2.0
+            }
+            Control::Trust { .. } => {}
+        }
+    }
+
+    /// A trial of scaled `length` was refused (or could not be formed: 0).
+    fn reject(&mut self, length: f64) {
+        match self {
+            Control::Nielsen { lambda, nu } => (*lambda, *nu) = (*lambda * *nu, *nu * 2.0),
+            Control::Trust { radius, .. } if length > 0.0 => *radius = 0.25 * length.min(*radius),
+            Control::Trust { radius, .. } => *radius *= 0.25,
+        }
+    }
 }
 
 fn finish(s: State, iterations: usize, evaluations: usize, stop: Stop) -> Outcome {

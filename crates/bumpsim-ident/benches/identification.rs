@@ -7,7 +7,7 @@
 //! three-test example. Figures: docs/benchmarks.md.
 
 use bumpsim_core::model::MsdModel;
-use bumpsim_estimate::lm::LeastSquares;
+use bumpsim_estimate::lm::{Damping, LeastSquares};
 use bumpsim_ident::case::{LoadCase, Objective};
 use bumpsim_ident::estimate::{Settings, identify};
 use bumpsim_ident::study::Study;
@@ -118,14 +118,26 @@ fn benches(c: &mut Criterion) {
     group.bench_function("bundled example, 3 tests", |b| {
         b.iter(|| table(&|dof| study.retarget(black_box(&bundled), dof)))
     });
+    // the same table with LM's trust-region damping (not yet the default),
+    // for a relative figure on the same load (issue 44 item 6)
+    group.bench_function("synthetic, 3 x 500 samples, trust region", |b| {
+        b.iter(|| table_with(&|_| black_box(&cases).clone(), Damping::TrustRegion))
+    });
     group.finish();
 }
 
 /// The DOF table as `bumpsim identify --dof 1..5 --starts 32` runs it: each
 /// model continued from the one before.
 fn table(cases_for: &dyn Fn(usize) -> Vec<LoadCase>) -> f64 {
+    table_with(cases_for, Damping::default())
+}
+
+/// [`table`] with LM's `damping`.
+fn table_with(cases_for: &dyn Fn(usize) -> Vec<LoadCase>, damping: Damping) -> f64 {
     bumpsim_ident::dofs::table(&[1, 2, 3, 4, 5], &|dof| {
-        (cases_for(dof), Settings::new(dof, 32))
+        let mut settings = Settings::new(dof, 32);
+        settings.solver.damping = damping;
+        (cases_for(dof), settings)
     })
     .iter()
     .map(|r| r.as_ref().unwrap().objective)

@@ -1,0 +1,90 @@
+//! Issue 44 item 6: from its default (data-derived) start, one start,
+//! bumpsim's LM with the trust region ([`Damping::TrustRegion`]; the 1-D
+//! identification's default is still Nielsen's damping, see
+//! docs/identify.md "Iterations") needs no more iterations than scipy's
+//! `least_squares`
+//! (trust-region-reflective, 2-point differences) needs Jacobian
+//! evaluations from the same start, for the same optimum (objectives within
+//! 1e-6, relative). The series is `bench/peers/scipy_identify.py`'s (three
+//! synthetic pendulum cases, 500 samples each), written and fitted by
+//! `tests/peers/scipy_trf_iterations.py`; skipped without scipy.
+
+use bumpsim_estimate::lm::Damping;
+use bumpsim_estimate::observer::Silent;
+use bumpsim_ident::{Study, identify};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn script() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/scipy_trf_iterations.py")
+}
+
+/// The series and its study, written once per target folder.
+fn series() -> Option<PathBuf> {
+    if !bumpsim_peers::python_available("scipy") {
+        return None;
+    }
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("scipy-trf-iterations");
+    bumpsim_peers::generated(&script(), &out, &[], "study.toml");
+    Some(out)
+}
+
+/// scipy's Jacobian evaluations and objective from `start` (SI).
+fn trf(out: &Path, objective: &str, start: &[f64]) -> (usize, f64) {
+    let run = Command::new("python3")
+        .arg(script())
+        .arg(out)
+        .arg(objective)
+        .args(start.iter().map(|v| format!("{v:e}")))
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let text = String::from_utf8(run.stdout).unwrap();
+    let mut words = text.split_whitespace();
+    let njev = words.next().unwrap().parse().unwrap();
+    (njev, words.next().unwrap().parse().unwrap())
+}
+
+fn compare(objective: &str) {
+    let Some(out) = series() else { return };
+    let mut study = Study::read(&out.join("study.toml")).unwrap();
+    study.identification.objective = Some(objective.into());
+    let cases = study.cases(3).unwrap();
+    let mut settings = study.settings(3).unwrap();
+    settings.solver.damping = Damping::TrustRegion;
+    let result = identify(&cases, &settings, &Silent).unwrap();
+    let (njev, value) = trf(&out, objective, &result.start);
+    eprintln!(
+        "{objective}: bumpsim {} iterations, objective {:e}; scipy TRF {njev} Jacobians, {value:e}",
+        result.iterations, result.objective
+    );
+    assert!(
+        (result.objective / value - 1.0).abs() < 1e-6,
+        "{objective}: objective {:e} against scipy's {value:e}",
+        result.objective
+    );
+    assert!(
+        result.iterations <= njev,
+        "{objective}: {} LM iterations against scipy's {njev} Jacobians",
+        result.iterations
+    );
+}
+
+/// Open (issue 44 item 6): the trust region takes 22 iterations here (the
+/// earlier damping 31) against scipy's 18; a prototype of the same rule in
+/// Python (`/tmp`-only, finite-difference Jacobian, no upper bound) took
+/// 13, so the path depends on details not yet found. Run with `--ignored`.
+#[test]
+#[ignore = "open: 22 LM iterations against scipy's 18 Jacobians (issue 44 item 6)"]
+fn velocity_iterations_are_no_more_than_scipy_trf_jacobians() {
+    compare("velocity");
+}
+
+#[test]
+fn displacement_iterations_are_no_more_than_scipy_trf_jacobians() {
+    compare("displacement");
+}
