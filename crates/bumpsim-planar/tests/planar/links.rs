@@ -79,11 +79,22 @@ fn the_energy_balance_closes_with_the_plastic_work() {
     eprintln!("{e:?}\nsets {:?}", r.link_set);
     assert!((total - e.initial).abs() < 1e-4 * e.initial, "{e:?}");
     assert!(e.max_relative_error < 1e-4, "{e:?}");
-    assert!(e.friction > 0.0 && e.bending >= 0.0 && e.dampers > 0.0, "{e:?}");
+    assert!(
+        e.friction > 0.0 && e.bending >= 0.0 && e.dampers > 0.0,
+        "{e:?}"
+    );
     assert!(e.plastic > 0.5 * e.initial, "{e:?}");
     assert_eq!(r.link_set.len(), 4);
-    assert!(r.link_set[0] > 0.0 && r.link_set[2] > 0.0, "{:?}", r.link_set);
-    assert_eq!((r.link_set[1], r.link_set[3]), (0.0, 0.0), "the rail is elastic");
+    assert!(
+        r.link_set[0] > 0.0 && r.link_set[2] > 0.0,
+        "{:?}",
+        r.link_set
+    );
+    assert_eq!(
+        (r.link_set[1], r.link_set[3]),
+        (0.0, 0.0),
+        "the rail is elastic"
+    );
 }
 
 /// Struck flat and centred, the symmetric planar car with identical
@@ -213,13 +224,33 @@ fn the_car_file_reads_writes_and_mirrors_links() {
         .collect::<Vec<_>>()
         .join(", ");
     let bad = [
-        ("yield_force = \"40 kN\"", "yield_force = nan", "left: link 1: yield_force"),
-        ("yield_force = \"40 kN\"", "yield_force = -4e4", "left: link 1: yield_force"),
-        ("hardening = 0.05", "hardening = 2.0", "left: link 1: hardening"),
-        ("unloading = \"4000 N/mm\"", "unloading = -1.0", "left: link 1: unloading"),
+        (
+            "yield_force = \"40 kN\"",
+            "yield_force = nan",
+            "left: link 1: yield_force",
+        ),
+        (
+            "yield_force = \"40 kN\"",
+            "yield_force = -4e4",
+            "left: link 1: yield_force",
+        ),
+        (
+            "hardening = 0.05",
+            "hardening = 2.0",
+            "left: link 1: hardening",
+        ),
+        (
+            "unloading = \"4000 N/mm\"",
+            "unloading = -1.0",
+            "left: link 1: unloading",
+        ),
         ("unloading = \"4000 N/mm\"", "unloading = 1e400", "c.toml"),
         ("limit = \"300 mm\"", "limit = inf", "left: link 2: limit"),
-        ("curve = \"bilinear\"", "curve = \"cubic\"", "left: link 1: curve"),
+        (
+            "curve = \"bilinear\"",
+            "curve = \"cubic\"",
+            "left: link 1: curve",
+        ),
         (
             "[[right.links]]\ncurve = \"bilinear\"",
             "[[right.links]]\ncurve = \"table\"\npoints = [[0.01, -5.0]]\nc = \"bilinear\"",
@@ -234,7 +265,9 @@ fn the_car_file_reads_writes_and_mirrors_links() {
     for (from, to, needle) in bad {
         assert!(saloon.contains(from), "{from}");
         let text = saloon.replacen(from, to, 1);
-        let e = PlanarCar::parse(&text, "c.toml".as_ref()).unwrap_err().to_string();
+        let e = PlanarCar::parse(&text, "c.toml".as_ref())
+            .unwrap_err()
+            .to_string();
         assert!(e.contains(needle), "{needle}: {e}");
         assert!(e.starts_with("c.toml"), "{e}");
     }
@@ -245,6 +278,41 @@ fn the_car_file_reads_writes_and_mirrors_links() {
         1,
     );
     assert_ne!(huge, saloon);
-    let e = PlanarCar::parse(&huge, "c.toml".as_ref()).unwrap_err().to_string();
+    let e = PlanarCar::parse(&huge, "c.toml".as_ref())
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("left: link 2: loading table point"), "{e}");
+}
+
+/// `synth` makes a series of a car whose side members crush (the bundled
+/// example): every test records, and its start car keeps the links.
+#[test]
+fn synth_records_a_series_of_a_car_with_nonlinear_side_members() {
+    let dir = std::env::temp_dir().join(format!("bumpsim-links-synth-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let car = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/planar/links.toml")
+        .canonicalize()
+        .unwrap();
+    let series = format!(
+        "planar_car = {:?}\nseed = 3\n[chain]\nstep = 1e-4\npretrigger = 0.01\nduration = 0.12\n\
+         force_noise = 20.0\nacceleration_noise = 0.05\nbiases = [0.0, 0.0]\nsensor = [0.6, 0.7]\n\
+         [[test]]\nname = \"FLAT\"\nspeed = \"15 km/h\"\n[[test]]\nname = \"ANGLED\"\nangle = 10.0\nspeed = \"15 km/h\"\n",
+        car.display().to_string()
+    );
+    let path = dir.join("series.toml");
+    std::fs::write(&path, series).unwrap();
+    let s = bumpsim_planar::series::make_series(&path).unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(s.tests.len(), 2);
+    for t in &s.tests {
+        let peak = t.channels[0]
+            .series
+            .values()
+            .iter()
+            .fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(peak > 0.0, "{}", t.name);
+    }
+    let start = PlanarCar::parse(&s.start, "start.toml".as_ref()).unwrap();
+    assert_eq!(start.left().links.len(), 2);
 }
