@@ -111,6 +111,8 @@ pub(crate) struct Contact {
     /// (compression positive; `Model::hold`).
     links: Vec<bumpsim_core::link::LinkState>,
     link_force: Vec<f64>,
+    /// Per chain link: its largest compression so far, m.
+    link_most: Vec<f64>,
 }
 
 /// Loads of one evaluation (world frame unless said otherwise).

@@ -26,10 +26,13 @@ impl Model {
         if c.links.len() != self.links.len() {
             c.links = vec![LinkState::default(); self.links.len()];
             c.link_force = vec![0.0; self.links.len()];
+            c.link_most = vec![0.0; self.links.len()];
         }
         for (k, l) in self.links.iter().enumerate() {
             if let Some(law) = &l.law {
-                c.link_force[k] = law.force(-l.stretch(q), &mut c.links[k]);
+                let crush = -l.stretch(q);
+                c.link_force[k] = law.force(crush, &mut c.links[k]);
+                c.link_most[k] = c.link_most[k].max(crush);
             }
         }
     }
@@ -51,9 +54,9 @@ impl Model {
         }
         self.links
             .iter()
-            .zip(&c.links)
-            .map(|(l, s)| match &l.law {
-                Some(law) => (s.plastic_set(law), s.reached),
+            .zip(c.links.iter().zip(&c.link_most))
+            .map(|(l, (s, most))| match &l.law {
+                Some(law) => (s.plastic_set(law), *most),
                 None => (0.0, 0.0),
             })
             .unzip()
@@ -105,6 +108,7 @@ impl Contact {
             absorbed: vec![BumperState::default(); segments],
             links: Vec::new(),
             link_force: Vec::new(),
+            link_most: Vec::new(),
         }
     }
 }

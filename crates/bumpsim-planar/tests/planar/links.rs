@@ -240,11 +240,11 @@ fn the_car_file_reads_writes_and_mirrors_links() {
             "left: link 1: hardening",
         ),
         (
-            "unloading = \"4000 N/mm\"",
+            "unloading = \"2000 N/mm\"",
             "unloading = -1.0",
             "left: link 1: unloading",
         ),
-        ("unloading = \"4000 N/mm\"", "unloading = 1e400", "c.toml"),
+        ("unloading = \"2000 N/mm\"", "unloading = 1e400", "c.toml"),
         ("limit = \"300 mm\"", "limit = inf", "left: link 2: limit"),
         (
             "curve = \"bilinear\"",
