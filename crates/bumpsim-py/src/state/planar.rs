@@ -56,6 +56,9 @@ struct EnergyBalanceDef {
     dampers: f64,
     crush: f64,
     friction: f64,
+    // the side members' plastic work (issue 46; absent from older pickles)
+    #[serde(default)]
+    plastic: f64,
     relative_error: f64,
     max_relative_error: f64,
 }
@@ -114,4 +117,9 @@ struct PlanarResultDef {
     momentum: MomentumBalance,
     step: f64,
     warnings: Vec<String>,
+    // the side members' links' sets (issue 46; absent from older pickles)
+    #[serde(default)]
+    link_set: Vec<f64>,
+    #[serde(default)]
+    link_reached: Vec<f64>,
 }
