@@ -207,7 +207,10 @@ fn unloading(at: &At<'_>, table: &Table) -> Result<Unloading, CarError> {
     }
 }
 
-fn link(path: &Path, name: String, value: &Value) -> Result<Link, CarError> {
+/// One link's table (a `[[links]]` entry, a `[front]` table, or a planar
+/// side member's `[[left.links]]`): errors name `path`, the link `name`
+/// (`link 2`, `left link 1`) and the key.
+pub fn link(path: &Path, name: String, value: &Value) -> Result<Link, CarError> {
     let at = At { path, link: name };
     let table = value.as_table().ok_or_else(|| {
         at.error(
@@ -222,6 +225,39 @@ fn link(path: &Path, name: String, value: &Value) -> Result<Link, CarError> {
         link: at.link.clone(),
         source,
     })
+}
+
+/// `link` as a TOML inline table in SI that [`link`] reads back (a
+/// progressive curve through its `limit_force`, so its cubic term comes
+/// back to rounding).
+pub fn link_toml(link: &Link) -> String {
+    let curve = match link.curve() {
+        Curve::Linear { stiffness } => format!("curve = \"linear\", stiffness = {stiffness:?}"),
+        Curve::Progressive {
+            stiffness, limit, ..
+        } => format!(
+            "curve = \"progressive\", stiffness = {stiffness:?}, limit = {limit:?}, limit_force = {:?}",
+            link.curve().force(*limit)
+        ),
+        Curve::Bilinear {
+            stiffness,
+            yield_force,
+            hardening,
+        } => format!(
+            "curve = \"bilinear\", stiffness = {stiffness:?}, yield_force = {yield_force:?}, hardening = {hardening:?}"
+        ),
+        Curve::Table { points } => {
+            let points: Vec<String> = points
+                .iter()
+                .map(|p| format!("[{:?}, {:?}]", p[0], p[1]))
+                .collect();
+            format!("curve = \"table\", points = [{}]", points.join(", "))
+        }
+    };
+    match link.unloading() {
+        Unloading::Elastic => format!("{{ {curve}, unloading = \"elastic\" }}"),
+        Unloading::Slope(k) => format!("{{ {curve}, unloading = {k:?} }}"),
+    }
 }
 
 /// A list of quantities (`masses`, `dampers`).

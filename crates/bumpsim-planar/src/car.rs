@@ -176,8 +176,16 @@ pub struct SideChain {
     pub masses: Vec<f64>,
     /// Dampers, N·s/m (one per mass).
     pub dampers: Vec<f64>,
-    /// Springs, N/m (one per mass).
+    /// Springs, N/m (one per mass); with `links`, each link's initial slope.
     pub springs: Vec<f64>,
+    /// Nonlinear links ([`bumpsim_core::link`], issue 46), one per mass
+    /// (link j behind mass j), or empty: every link linear with `springs`.
+    /// [`SideChain::linked`] builds a chain from its links.
+    #[serde(
+        skip_serializing_if = "Vec::is_empty",
+        serialize_with = "links::described"
+    )]
+    pub links: Vec<bumpsim_core::link::Link>,
 }
 
 /// The segmented bumper beam.
@@ -483,6 +491,7 @@ impl PlanarCar {
             masses: half(&chain.masses()[..n - 1]),
             dampers: half(chain.dampers()),
             springs: half(chain.springs()),
+            links: Vec::new(),
         };
         if layout.segments == 0 {
             return Err(parameter(
@@ -688,6 +697,7 @@ fn check_chain(side: &str, chain: &SideChain) -> Result<(), PlanarError> {
     for (i, &k) in chain.springs.iter().enumerate() {
         positive(&format!("{side}.springs[{}]", i + 1), k, "N/m")?;
     }
+    links::check(side, chain)?;
     for (i, &c) in chain.dampers.iter().enumerate() {
         let name = format!("{side}.dampers[{}]", i + 1);
         require(
@@ -758,6 +768,9 @@ fn check_tyres(tyres: &Tyres) -> Result<(), PlanarError> {
 
 #[path = "car_history.rs"]
 mod history;
+
+#[path = "car_links.rs"]
+mod links;
 
 #[cfg(test)]
 #[path = "car_tests.rs"]

@@ -37,6 +37,7 @@ fn bad_parameters_name_themselves() {
         masses: vec![1.0; 1001],
         dampers: vec![0.0; 1001],
         springs: vec![1e6; 1001],
+        links: Vec::new(),
     };
     let car = PlanarCar::symmetric(&chain(), &bumper, &layout).unwrap();
     let err = PlanarCar::new(

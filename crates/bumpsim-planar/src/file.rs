@@ -63,7 +63,7 @@
 
 use crate::car::{
     Axle, Beam, Block, Body, DEFAULT_BLOCK_STIFFNESS, DEFAULT_CRASH_BOX_BLOCK_STIFFNESS,
-    MAX_SEGMENTS, PlanarCar, PlanarError, SideChain, TyreLaw, Tyres,
+    MAX_SEGMENTS, PlanarCar, PlanarError, TyreLaw, Tyres,
 };
 use bumpsim_impact::bumper::{Bumper, Loading};
 use serde::Deserialize;
@@ -136,6 +136,9 @@ struct ChainFile {
     dampers: Vec<f64>,
     #[serde(default)]
     springs: Vec<f64>,
+    /// Nonlinear links, as the 1-D links car's `[[links]]` ([`links`]).
+    #[serde(default)]
+    links: Vec<toml::Value>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -372,11 +375,7 @@ impl PlanarCar {
             cg_behind_front_axle: b.cg_behind_front_axle * unit,
             track: b.track * unit,
         };
-        let chain = |c: ChainFile| SideChain {
-            masses: c.masses,
-            dampers: c.dampers,
-            springs: c.springs,
-        };
+        let chain = |side: &str, c: ChainFile| links::side_chain(side, c, &error);
         let segments = segments(&file.bumper).map_err(|e| error(e.to_string()))?;
         let beam = Beam {
             width: file.bumper.width * unit,
@@ -398,7 +397,8 @@ impl PlanarCar {
         };
         // a value out of range is named with the file it came from
         let boxes = crash_boxes(&file.crash_boxes, unit).map_err(|e| error(e.to_string()))?;
-        let car = PlanarCar::new(body, chain(file.left), chain(file.right), beam, tyres)
+        let (left, right) = (chain("left", file.left)?, chain("right", file.right)?);
+        let car = PlanarCar::new(body, left, right, beam, tyres)
             .and_then(|car| car.with_crash_boxes(boxes))
             .map_err(|e| error(e.to_string()))?;
         Ok(car.with_name(file.name))
@@ -440,10 +440,7 @@ impl PlanarCar {
             b.mass, b.yaw_inertia, b.cg_behind_bumper, b.wheelbase, b.cg_behind_front_axle, b.track
         );
         for (side, chain) in [("left", self.left()), ("right", self.right())] {
-            s += &format!(
-                "\n[{side}]\nmasses = {:?}    # kg\ndampers = {:?}    # N·s/m\nsprings = {:?}    # N/m\n",
-                chain.masses, chain.dampers, chain.springs
-            );
+            s += &links::side_toml(side, chain);
         }
         let beam = self.beam();
         s += &format!(
@@ -509,6 +506,9 @@ impl PlanarCar {
         s + &boxes.unwrap_or_default()
     }
 }
+
+#[path = "file_links.rs"]
+mod links;
 
 #[cfg(test)]
 mod tests {

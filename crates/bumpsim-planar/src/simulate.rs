@@ -635,11 +635,13 @@ mod tests {
             masses: vec![6.0, 30.0],
             dampers: vec![0.0, 50.0],
             springs: vec![8e5, 2e6],
+            links: Vec::new(),
         };
         let right = SideChain {
             masses: vec![9.0],
             dampers: vec![20.0],
             springs: vec![1.2e6],
+            links: Vec::new(),
         };
         let beam = Beam {
             width: 1.5,

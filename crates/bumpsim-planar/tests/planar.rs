@@ -44,11 +44,13 @@ fn asymmetric_car(mu: f64) -> PlanarCar {
         masses: vec![4.0, 18.0],
         dampers: vec![2e3, 6e3],
         springs: vec![1.1e6, 2.5e6],
+        links: Vec::new(),
     };
     let right = SideChain {
         masses: vec![5.0],
         dampers: vec![3e3],
         springs: vec![1.6e6],
+        links: Vec::new(),
     };
     let segments = (0..8)
         .map(|j| Bumper::three_part(2e5 + 1e4 * j as f64, 7e3 + 300.0 * j as f64, 9e5).unwrap())

@@ -204,6 +204,7 @@ mod tests {
             masses: vec![4.0, 2.0],
             dampers: vec![300.0, 2e3],
             springs: vec![1e10, 1.5e6],
+            links: Vec::new(),
         };
         PlanarCar::new(
             *symmetric.body(),

@@ -215,6 +215,7 @@ impl Unknowns {
             masses: take(n),
             dampers: take(n),
             springs: take(n),
+            links: Vec::new(),
         };
         let left = chain(t.left().masses.len());
         let right = chain(t.right().masses.len());

@@ -23,6 +23,7 @@ fn car(boxes: Option<Block>) -> PlanarCar {
         masses: vec![TIP],
         dampers: vec![0.0],
         springs: vec![BOX],
+        links: Vec::new(),
     };
     elastic_car(Some(block), side)
         .with_crash_boxes(boxes)

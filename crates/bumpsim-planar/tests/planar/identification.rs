@@ -12,11 +12,13 @@ fn identification_truth() -> PlanarCar {
         masses: vec![6.0],
         dampers: vec![1.5e3],
         springs: vec![1.8e6],
+        links: Vec::new(),
     };
     let right = SideChain {
         masses: vec![9.0],
         dampers: vec![2.5e3],
         springs: vec![1.2e6],
+        links: Vec::new(),
     };
     let segments = (0..10)
         .map(|j| Bumper::three_part(1.5e5 + 5e3 * j as f64, 6e3 + 200.0 * j as f64, 6e5).unwrap())
@@ -85,6 +87,7 @@ fn planar_identification_predicts_a_held_out_angled_test() {
         masses: vec![8.0],
         dampers: vec![2e3],
         springs: vec![1.5e6],
+        links: Vec::new(),
     };
     let body = Body {
         mass: 1050.0,
