@@ -50,6 +50,7 @@
 //! **Advice**: the reduced car when a chain link is undetermined or not
 //! needed (module `reduce`), in the same words as the 1-D chain's.
 
+mod links;
 mod objective;
 mod plausible;
 mod predict;
@@ -70,6 +71,7 @@ use nalgebra::DMatrix;
 use objective::Objective;
 use serde::Serialize;
 
+pub use links::{LinkLaw, LinkLaws};
 pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
 pub use priors::{MU, PriorSetting, TOTAL_MASS, priors, removing_all};

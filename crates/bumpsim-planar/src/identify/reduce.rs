@@ -56,6 +56,9 @@ impl Car<'_> {
         let m = chain.masses.remove(l.index);
         chain.dampers.remove(l.index);
         chain.springs.remove(l.index);
+        if !chain.links.is_empty() {
+            chain.links.remove(l.index);
+        }
         let mass = match chain.masses.get_mut(l.index) {
             Some(next) => {
                 *next += m;

@@ -37,7 +37,10 @@ fn offset_scores(study: &PlanarStudy, car: &PlanarCar, label: &str) -> (f64, f64
     let held = predict(car, offset).unwrap().fit;
     let ahead = forward(car, offset).unwrap();
     for c in &ahead.channels {
-        eprintln!("{label}: forward OFFSET40 {}: {:.2} %", c.name, c.fit_percent);
+        eprintln!(
+            "{label}: forward OFFSET40 {}: {:.2} %",
+            c.name, c.fit_percent
+        );
     }
     eprintln!(
         "{label}: held-out OFFSET40 x {:.2} %, yaw {:.2} %",
