@@ -211,10 +211,9 @@ impl Unknowns {
     pub fn draw(&self, start: &[f64], spread: f64, seed: u64, index: u64) -> Vec<f64> {
         let mut draws = bumpsim_estimate::search::Draws::new(seed, index);
         let cars = start.len() - self.lines.len();
+        // (a hardening ratio drawn above 1 is clamped into the box by the
+        // search; `start` may be a tied car's, shorter than the names)
         let mut point = draws.around(&start[..cars], spread);
-        for i in self.ratios() {
-            point[i] = point[i].min(0.0);
-        }
         let half = 0.5 * self.template.beam().width;
         point.extend(self.lines.iter().map(|_| half * (2.0 * draws.unit() - 1.0)));
         point
