@@ -51,6 +51,8 @@
 //! assert!((state.plastic_set(&link) - (0.2 - top / 2e6)).abs() < 1e-12);
 //! ```
 
+use crate::dual::Real;
+
 /// Why a link cannot be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -82,35 +84,35 @@ pub const MAX_TABLE_POINTS: usize = 10_000;
 
 /// A loading curve `F_L(δ)`, δ ≥ 0 in compression (m → N).
 #[derive(Debug, Clone, PartialEq)]
-pub enum Curve {
+pub enum Curve<T = f64> {
     /// `F = k δ`.
     Linear {
         /// k, N/m.
-        stiffness: f64,
+        stiffness: T,
     },
     /// `F = k δ + k3 δ³` up to `limit`, the tangent beyond.
     Progressive {
         /// k, N/m.
-        stiffness: f64,
+        stiffness: T,
         /// k3, N/m³.
-        cubic: f64,
+        cubic: T,
         /// δ_lim, m.
-        limit: f64,
+        limit: T,
     },
     /// Elastic `k δ` up to `F_y`, then `F_y + r k (δ − δ_y)`.
     Bilinear {
         /// k, N/m.
-        stiffness: f64,
+        stiffness: T,
         /// F_y, N.
-        yield_force: f64,
+        yield_force: T,
         /// r, 0..=1.
-        hardening: f64,
+        hardening: T,
     },
     /// Piecewise linear through `(δ_i, F_i)`, starting at (0, 0) (added
     /// when absent); `[deformation m, force N]` pairs.
     Table {
         /// The points, the first (0, 0).
-        points: Vec<[f64; 2]>,
+        points: Vec<[T; 2]>,
     },
 }
 
@@ -136,7 +138,112 @@ fn positive(parameter: &'static str, x: f64, unit: &'static str) -> Result<(), L
     value(parameter, x, unit, x > 0.0, "must be positive and finite")
 }
 
-impl Curve {
+/// The larger of two values (by value; `f64::max` on non-NaN values).
+fn larger<T: Real>(a: T, b: T) -> T {
+    match a.value() < b.value() {
+        true => b,
+        false => a,
+    }
+}
+
+impl<T: Real> Curve<T> {
+    /// `F_L(δ)` for δ ≥ 0, N.
+    pub fn force(&self, d: T) -> T {
+        match self {
+            Curve::Linear { stiffness } => *stiffness * d,
+            Curve::Progressive {
+                stiffness,
+                cubic,
+                limit,
+            } => {
+                let e = match d.value() < limit.value() {
+                    true => d,
+                    false => *limit,
+                };
+                let base = *stiffness * e + *cubic * e * e * e;
+                base + (*stiffness + *cubic * 3.0 * e * e) * (d - e)
+            }
+            Curve::Bilinear {
+                stiffness,
+                yield_force,
+                hardening,
+            } => {
+                let elastic = *stiffness * d;
+                if elastic.value() <= yield_force.value() {
+                    elastic
+                } else {
+                    *yield_force + *hardening * (elastic - *yield_force)
+                }
+            }
+            Curve::Table { points } => {
+                let i = segment(points, d.value());
+                let ([d0, f0], [d1, f1]) = (points[i], points[i + 1]);
+                let slope = (f1 - f0) / (d1 - d0);
+                if d.value() > d1.value() && slope.value() < 0.0 {
+                    return f1;
+                }
+                f0 + slope * (d - d0)
+            }
+        }
+    }
+
+    /// `E_L(δ) = ∫₀^δ F_L`, J, δ ≥ 0.
+    pub fn energy(&self, d: T) -> T {
+        match self {
+            Curve::Linear { stiffness } => *stiffness * 0.5 * d * d,
+            Curve::Progressive {
+                stiffness,
+                cubic,
+                limit,
+            } => {
+                let e = match d.value() < limit.value() {
+                    true => d,
+                    false => *limit,
+                };
+                let e2 = e * e;
+                let within = *stiffness * 0.5 * e * e + *cubic * 0.25 * (e2 * e2);
+                within + (self.force(e) + self.force(d)) * 0.5 * (d - e)
+            }
+            Curve::Bilinear {
+                stiffness,
+                yield_force,
+                ..
+            } => {
+                let dy = *yield_force / *stiffness;
+                if d.value() <= dy.value() {
+                    *stiffness * 0.5 * d * d
+                } else {
+                    *yield_force * 0.5 * dy + (*yield_force + self.force(d)) * 0.5 * (d - dy)
+                }
+            }
+            Curve::Table { points } => {
+                let i = segment(points, d.value());
+                let trapezoid = |a: [T; 2], b: [T; 2]| (a[1] + b[1]) * 0.5 * (b[0] - a[0]);
+                let whole = points[..=i]
+                    .windows(2)
+                    .fold(T::constant(0.0), |sum, w| sum + trapezoid(w[0], w[1]));
+                let ([d0, f0], [end, f1]) = (points[i], points[i + 1]);
+                let falling = f1.value() < f0.value();
+                if d.value() > end.value() && self.force(d).value() == f1.value() && falling {
+                    return whole + trapezoid(points[i], points[i + 1]) + f1 * (d - end);
+                }
+                whole + (f0 + self.force(d)) * 0.5 * (d - d0)
+            }
+        }
+    }
+
+    /// The initial slope, N/m.
+    pub fn initial_slope(&self) -> T {
+        match self {
+            Curve::Linear { stiffness }
+            | Curve::Progressive { stiffness, .. }
+            | Curve::Bilinear { stiffness, .. } => *stiffness,
+            Curve::Table { points } => points[1][1] / points[1][0],
+        }
+    }
+}
+
+impl Curve<f64> {
     /// A linear curve.
     pub fn linear(stiffness: f64) -> Result<Curve, LinkError> {
         positive("stiffness", stiffness, "N/m")?;
@@ -234,94 +341,6 @@ impl Curve {
         Ok(Curve::Table { points })
     }
 
-    /// `F_L(δ)` for δ ≥ 0, N.
-    pub fn force(&self, d: f64) -> f64 {
-        match self {
-            Curve::Linear { stiffness } => stiffness * d,
-            Curve::Progressive {
-                stiffness,
-                cubic,
-                limit,
-            } => {
-                let e = d.min(*limit);
-                let base = stiffness * e + cubic * e * e * e;
-                base + (stiffness + 3.0 * cubic * e * e) * (d - e)
-            }
-            Curve::Bilinear {
-                stiffness,
-                yield_force,
-                hardening,
-            } => {
-                let elastic = stiffness * d;
-                if elastic <= *yield_force {
-                    elastic
-                } else {
-                    yield_force + hardening * (elastic - yield_force)
-                }
-            }
-            Curve::Table { points } => {
-                let i = segment(points, d);
-                let ([d0, f0], [d1, f1]) = (points[i], points[i + 1]);
-                let slope = (f1 - f0) / (d1 - d0);
-                if d > d1 && slope < 0.0 {
-                    return f1;
-                }
-                f0 + slope * (d - d0)
-            }
-        }
-    }
-
-    /// `E_L(δ) = ∫₀^δ F_L`, J, δ ≥ 0.
-    pub fn energy(&self, d: f64) -> f64 {
-        match self {
-            Curve::Linear { stiffness } => 0.5 * stiffness * d * d,
-            Curve::Progressive {
-                stiffness,
-                cubic,
-                limit,
-            } => {
-                let e = d.min(*limit);
-                let within = 0.5 * stiffness * e * e + 0.25 * cubic * e.powi(4);
-                within + 0.5 * (self.force(e) + self.force(d)) * (d - e)
-            }
-            Curve::Bilinear {
-                stiffness,
-                yield_force,
-                ..
-            } => {
-                let dy = yield_force / stiffness;
-                if d <= dy {
-                    0.5 * stiffness * d * d
-                } else {
-                    0.5 * yield_force * dy + 0.5 * (yield_force + self.force(d)) * (d - dy)
-                }
-            }
-            Curve::Table { points } => {
-                let i = segment(points, d);
-                let whole: f64 = points[..=i]
-                    .windows(2)
-                    .map(|w| 0.5 * (w[0][1] + w[1][1]) * (w[1][0] - w[0][0]))
-                    .sum();
-                let end = points[i + 1][0];
-                if d > end && self.force(d) == points[i + 1][1] && points[i + 1][1] < points[i][1] {
-                    let segment = 0.5 * (points[i][1] + points[i + 1][1]) * (end - points[i][0]);
-                    return whole + segment + points[i + 1][1] * (d - end);
-                }
-                whole + 0.5 * (points[i][1] + self.force(d)) * (d - points[i][0])
-            }
-        }
-    }
-
-    /// The initial slope, N/m.
-    pub fn initial_slope(&self) -> f64 {
-        match self {
-            Curve::Linear { stiffness }
-            | Curve::Progressive { stiffness, .. }
-            | Curve::Bilinear { stiffness, .. } => *stiffness,
-            Curve::Table { points } => points[1][1] / points[1][0],
-        }
-    }
-
     /// The steepest slope anywhere on the curve, N/m (bounds the stable step).
     pub fn steepest_slope(&self) -> f64 {
         match self {
@@ -340,40 +359,52 @@ impl Curve {
 }
 
 /// Index of the table segment holding δ (the last beyond the last point).
-fn segment(points: &[[f64; 2]], d: f64) -> usize {
+fn segment<T: Real>(points: &[[T; 2]], d: f64) -> usize {
     let last = points.len() - 2;
-    points[1..=last].partition_point(|p| p[0] <= d).min(last)
+    points[1..=last]
+        .partition_point(|p| p[0].value() <= d)
+        .min(last)
 }
 
 /// What a link does when its deformation recedes.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Unloading {
+pub enum Unloading<T = f64> {
     /// Back along the loading curve: nonlinear elastic.
     Elastic,
     /// Along this slope (N/m) from the reached deformation (see the module
     /// for the slope actually used): hysteresis and a plastic set.
-    Slope(f64),
+    Slope(T),
 }
 
-/// A validated nonlinear link: loading curve and unloading rule.
+/// A validated nonlinear link: loading curve and unloading rule. On a
+/// [`Real`] other than `f64` (a [`crate::dual::Dual`]) it is the same law
+/// with parameters that carry derivatives ([`Link::with_parameters`]).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Link {
-    curve: Curve,
-    unloading: Unloading,
+pub struct Link<T = f64> {
+    curve: Curve<T>,
+    unloading: Unloading<T>,
 }
 
 /// What a link remembers: the largest compression reached, m.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct LinkState {
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinkState<T = f64> {
     /// δ_max, m (0 before any compression).
-    pub reached: f64,
+    pub reached: T,
 }
 
-impl LinkState {
+impl<T: Real> Default for LinkState<T> {
+    fn default() -> Self {
+        LinkState {
+            reached: T::constant(0.0),
+        }
+    }
+}
+
+impl<T: Real> LinkState<T> {
     /// The plastic set `δ_p = δ_max − F_max / k_e`, m (0 for an elastic link).
-    pub fn plastic_set(&self, link: &Link) -> f64 {
+    pub fn plastic_set(&self, link: &Link<T>) -> T {
         match link.unloading {
-            Unloading::Elastic => 0.0,
+            Unloading::Elastic => T::constant(0.0),
             Unloading::Slope(_) => {
                 let (top, slope) = link.unloading_line(self.reached);
                 self.reached - top / slope
@@ -382,18 +413,18 @@ impl LinkState {
     }
 
     /// The plastic work dissipated so far, J (0 for an elastic link).
-    pub fn dissipated(&self, link: &Link) -> f64 {
+    pub fn dissipated(&self, link: &Link<T>) -> T {
         match link.unloading {
-            Unloading::Elastic => 0.0,
+            Unloading::Elastic => T::constant(0.0),
             Unloading::Slope(_) => {
                 let (top, slope) = link.unloading_line(self.reached);
-                (link.curve.energy(self.reached) - 0.5 * top * top / slope).max(0.0)
+                (link.curve.energy(self.reached) - top * 0.5 * top / slope).max_constant(0.0)
             }
         }
     }
 }
 
-impl Link {
+impl Link<f64> {
     /// A link from its curve and unloading rule; an unloading slope must
     /// be positive and finite.
     pub fn new(curve: Curve, unloading: Unloading) -> Result<Link, LinkError> {
@@ -408,44 +439,58 @@ impl Link {
         Link::new(Curve::linear(stiffness)?, Unloading::Elastic)
     }
 
+    /// The steepest slope the link can show, N/m (loading or unloading).
+    pub fn steepest_slope(&self) -> f64 {
+        let unloading = match self.unloading {
+            Unloading::Slope(k) => k,
+            Unloading::Elastic => 0.0,
+        };
+        self.curve.steepest_slope().max(unloading)
+    }
+}
+
+impl<T: Real> Link<T> {
     /// The loading curve.
-    pub fn curve(&self) -> &Curve {
+    pub fn curve(&self) -> &Curve<T> {
         &self.curve
     }
 
     /// The unloading rule.
-    pub fn unloading(&self) -> Unloading {
+    pub fn unloading(&self) -> Unloading<T> {
         self.unloading
     }
 
     /// `(F_max, k_e)`: the top of the unloading line from δ_max and its slope.
-    fn unloading_line(&self, reached: f64) -> (f64, f64) {
+    fn unloading_line(&self, reached: T) -> (T, T) {
         let top = self.curve.force(reached);
         let k0 = self.curve.initial_slope();
         let given = match self.unloading {
             Unloading::Slope(k) => k,
             Unloading::Elastic => k0,
         };
-        if reached <= 0.0 {
-            return (0.0, given.max(k0));
+        if reached.value() <= 0.0 {
+            return (T::constant(0.0), larger(given, k0));
         }
         let secant = top / reached;
         let energy = self.curve.energy(reached);
-        let balance = if energy > 0.0 {
-            0.5 * top * top / energy
-        } else {
-            k0
+        let balance = match energy.value() > 0.0 {
+            true => top * 0.5 * top / energy,
+            false => k0,
         };
-        (top, given.max(secant).max(balance))
+        (top, larger(larger(given, secant), balance))
     }
 
     /// The spring force at deformation `d` (m, compression positive), N,
     /// updating the history `state`.
-    pub fn force(&self, d: f64, state: &mut LinkState) -> f64 {
+    pub fn force(&self, d: T, state: &mut LinkState<T>) -> T {
         match self.unloading {
-            Unloading::Elastic => d.signum() * self.curve.force(d.abs()),
+            // odd in δ (`signum(δ) F_L(|δ|)`, a negative zero included)
+            Unloading::Elastic => match d.value().is_sign_negative() {
+                true => -self.curve.force(-d),
+                false => self.curve.force(d),
+            },
             Unloading::Slope(_) => {
-                if d >= state.reached {
+                if d.value() >= state.reached.value() {
                     state.reached = d;
                     return self.curve.force(d);
                 }
@@ -456,30 +501,23 @@ impl Link {
     }
 
     /// The elastic energy stored at deformation `d` with history `state`, J.
-    pub fn stored(&self, d: f64, state: &LinkState) -> f64 {
+    pub fn stored(&self, d: T, state: &LinkState<T>) -> T {
         match self.unloading {
             Unloading::Elastic => self.curve.energy(d.abs()),
             Unloading::Slope(_) => {
                 let (top, slope) = self.unloading_line(state.reached);
-                let f = if d >= state.reached {
-                    self.curve.force(d)
-                } else {
-                    top - slope * (state.reached - d)
+                let f = match d.value() >= state.reached.value() {
+                    true => self.curve.force(d),
+                    false => top - slope * (state.reached - d),
                 };
-                0.5 * f * f / slope
+                f * 0.5 * f / slope
             }
         }
     }
-
-    /// The steepest slope the link can show, N/m (loading or unloading).
-    pub fn steepest_slope(&self) -> f64 {
-        let unloading = match self.unloading {
-            Unloading::Slope(k) => k,
-            Unloading::Elastic => 0.0,
-        };
-        self.curve.steepest_slope().max(unloading)
-    }
 }
+
+#[path = "link_parameters.rs"]
+mod parameters;
 
 #[cfg(test)]
 mod tests {

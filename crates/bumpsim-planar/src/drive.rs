@@ -472,8 +472,10 @@ impl<'a> Replay<'a> {
         }
     }
 
-    /// Fills the loads at sample `i` plus fraction `f` into the contact.
+    /// Fills the loads at sample `i` plus fraction `f` into the contact
+    /// (and the nonlinear links' forces at `q`).
     fn place(&mut self, q: &[f64], i: usize, f: f64) {
+        self.model.hold(q, &mut self.contact);
         let (sn, cs) = self.axes;
         for (k, load) in self.input.loads.iter().enumerate() {
             let next = load.force.get(i + 1).copied().unwrap_or(load.force[i]);

@@ -8,19 +8,20 @@
 //! contact, tyre relaxation, accelerations and record share them).
 
 use crate::car::{Block, GRAVITY, PlanarCar};
-use crate::result::{Bottomed, BoxBottomed, BoxSide};
+use crate::result::{BoxBottomed, BoxSide};
 use crate::striker::{Placed, pole_profile};
 use crate::tyre::Wheel;
 use bumpsim_impact::bumper::{Bumper, BumperState};
 use std::cell::Cell;
 
-/// A chain link: `front` mass, `back` mass or the body, spring N/m, damper
-/// N·s/m, and for a side's first link (its crash box) the block at the end
-/// of its stroke.
+/// A chain link: `front` mass, `back` mass or the body, spring N/m (or a
+/// nonlinear `law`, `crate::car::SideChain::links`), damper N·s/m, and for
+/// a side's first link (its crash box) the block at the end of its stroke.
 struct Link {
     front: usize,
     back: Option<usize>,
     spring: f64,
+    law: Option<bumpsim_core::link::Link>,
     damper: f64,
     block: Option<Block>,
 }
@@ -106,6 +107,10 @@ pub(crate) struct Contact {
     pub absorber: Vec<f64>,
     /// The absorbers' histories.
     absorbed: Vec<BumperState>,
+    /// Per chain link: a nonlinear link's history and its force, N
+    /// (compression positive; `Model::hold`).
+    links: Vec<bumpsim_core::link::LinkState>,
+    link_force: Vec<f64>,
 }
 
 /// Loads of one evaluation (world frame unless said otherwise).
@@ -150,6 +155,7 @@ impl Model {
                     front: first + i,
                     back,
                     spring: chain.springs[i],
+                    law: chain.links.get(i).cloned(),
                     damper: chain.dampers[i],
                     block: car.crash_boxes().filter(|_| i == 0),
                 });
@@ -189,7 +195,7 @@ impl Model {
             bending: car.beam().bending,
             wheels,
             slip: tyres.slip_speed,
-            absorbers: absorbers(car, &face),
+            absorbers: state::absorbers(car, &face),
             face,
             pendulum,
             half_step: 0.0,
@@ -342,6 +348,7 @@ impl Model {
             self.deflect(c, j, depth, covered);
         }
         self.bend(c);
+        self.hold(q, c);
     }
 
     /// The beam's deflection at segment `j` for the bending energy: the crush
@@ -409,15 +416,16 @@ impl Model {
         0.5 * self.bending * sum
     }
 
-    /// Energy in the chain springs, J.
-    pub fn spring_energy(&self, q: &[f64]) -> f64 {
-        self.links
-            .iter()
-            .map(|l| {
-                let x = l.stretch(q);
-                0.5 * l.spring * x * x + l.block_energy(x)
-            })
-            .sum()
+    /// Energy in the chain springs (a nonlinear link's elastic part), J.
+    pub fn spring_energy(&self, q: &[f64], c: &Contact) -> f64 {
+        let stored = |(k, l): (usize, &Link)| {
+            let x = l.stretch(q);
+            match &l.law {
+                None => 0.5 * l.spring * x * x + l.block_energy(x),
+                Some(law) => law.stored(-x, &c.links[k]) + l.block_energy(x),
+            }
+        };
+        self.links.iter().enumerate().map(stored).sum()
     }
 
     /// The first crash box (a side's first link) compressed past its
@@ -521,10 +529,14 @@ impl Model {
         // external forces in the body frame: e, n and moment about the CG
         let (mut fe, mut fn_, mut mz) = (0.0, 0.0, 0.0);
         chain.iter_mut().for_each(|f| *f = 0.0);
-        for l in &self.links {
+        for (k, l) in self.links.iter().enumerate() {
             let (bx, bv) = l.back.map_or((0.0, 0.0), |i| (q[3 + i], v[3 + i]));
             let x = q[3 + l.front] - bx;
-            let f = l.spring * x - l.blocking(x) + l.damper * (v[3 + l.front] - bv);
+            let spring = match l.law {
+                None => l.spring * x,
+                Some(_) => -c.link_force[k],
+            };
+            let f = spring - l.blocking(x) + l.damper * (v[3 + l.front] - bv);
             chain[l.front] -= f;
             if let Some(i) = l.back {
                 chain[i] += f;
@@ -672,7 +684,8 @@ impl Model {
         let mut damp = vec![0.0; self.masses.len()];
         let (mut body_k, mut body_c) = (0.0, 0.0);
         for l in &self.links {
-            let spring = l.spring + l.block.map_or(0.0, |b| b.stiffness);
+            let slope = l.law.as_ref().map_or(l.spring, |law| law.steepest_slope());
+            let spring = slope + l.block.map_or(0.0, |b| b.stiffness);
             stiff[l.front] += 2.0 * spring;
             damp[l.front] += 2.0 * l.damper;
             match l.back {
@@ -726,65 +739,5 @@ impl Model {
     }
 }
 
-impl Contact {
-    /// The first segment whose own crush (without the absorber's) has
-    /// passed the depth of `car`'s block, if any, as bottomed at `time` (s).
-    pub fn bottomed(&self, car: &PlanarCar, time: f64) -> Option<Bottomed> {
-        let block = car.beam().block?;
-        let segment =
-            (0..self.crush.len()).find(|&j| self.crush[j] - self.absorber[j] > block.depth)?;
-        let centre = car.segment_centre(segment);
-        Some(Bottomed {
-            time,
-            segment,
-            centre,
-        })
-    }
-
-    /// [`Contact::new`] with the segments' histories `damage` left by
-    /// earlier impacts (empty: undamaged).
-    pub fn damaged(segments: usize, damage: &[BumperState]) -> Contact {
-        let mut c = Contact::new(segments);
-        if damage.len() == segments {
-            c.states.copy_from_slice(damage);
-        }
-        c
-    }
-
-    pub fn new(segments: usize) -> Contact {
-        Contact {
-            states: vec![BumperState::default(); segments],
-            penetration: vec![0.0; segments],
-            crush: vec![0.0; segments],
-            force: vec![0.0; segments],
-            total: vec![0.0; segments],
-            direction: vec![[0.0; 2]; segments],
-            point: vec![[0.0; 2]; segments],
-            covered: vec![true; segments],
-            switched: vec![false; segments],
-            blocked: vec![false; segments],
-            deflection: vec![0.0; segments],
-            rest: vec![0.0; segments],
-            engaged: vec![false; segments],
-            patches: [0.0; 4],
-            absorber: vec![0.0; segments],
-            absorbed: vec![BumperState::default(); segments],
-        }
-    }
-}
-
-/// The absorber strips of a barrier face, one per segment (none for other
-/// faces). `striker::place` has checked the absorber, so its
-/// characteristic exists.
-fn absorbers(car: &PlanarCar, face: &Placed) -> Vec<Bumper> {
-    match face {
-        Placed::Barrier {
-            absorber: Some(absorber),
-            ..
-        } => absorber
-            .characteristic(car.segment_width())
-            .map(|strip| vec![strip; car.beam().segments.len()])
-            .unwrap_or_default(),
-        _ => Vec::new(),
-    }
-}
+#[path = "dynamics_state.rs"]
+mod state;

@@ -12,7 +12,7 @@
 
 use serde::Serialize;
 
-/// Energies, J; the balance `E0 = kinetic + springs + bending + dampers + crush + friction`.
+/// Energies, J; the balance `E0 = kinetic + springs + bending + dampers + crush + friction + plastic`.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct EnergyBalance {
     /// Initial kinetic energy of car and pendulum.
@@ -29,6 +29,10 @@ pub struct EnergyBalance {
     pub crush: f64,
     /// Dissipated by tyre friction.
     pub friction: f64,
+    /// Plastic work of the side members' nonlinear links (issue 46; 0 and
+    /// not serialised for linear ones).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub plastic: f64,
     /// `|E0 − Σ| / E0` at the end.
     pub relative_error: f64,
     /// The largest `|E0 − Σ| / E0` over the recorded samples.
@@ -175,6 +179,18 @@ pub struct PlanarResult {
     pub step: f64,
     /// Things the user should know (e.g. contact not ended within the duration).
     pub warnings: Vec<String>,
+    /// Each side-member link's plastic set at the end, m (left chain
+    /// first, link j behind mass j; empty for linear links, and then not
+    /// serialised).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub link_set: Vec<f64>,
+    /// Each side-member link's largest compression, m (as `link_set`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub link_reached: Vec<f64>,
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 impl PlanarResult {

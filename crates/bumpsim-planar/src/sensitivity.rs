@@ -14,7 +14,10 @@
 //! sliding), the Newton–Euler solve of the body and chain accelerations
 //! with the full-step yaw rate extrapolated, and the sensors' readings
 //! integrated alongside. What may vary ([`Parameters`]): the body's mass
-//! and yaw inertia, every chain mass, damper and spring, the tyres' lateral
+//! and yaw inertia, every chain mass, damper and spring (or a side member's
+//! nonlinear link, [`bumpsim_core::link`], whose one law runs here on the
+//! same [`Real`] with its history carried through the steps, its
+//! parameters in [`Parameters::links`]), the tyres' lateral
 //! grip (with a sliding grip along the wheel that follows it) and cornering
 //! stiffness, and each load's lateral position. The wheel loads follow the
 //! total mass. A wall cell's line of action is the crushed segments'
@@ -25,6 +28,7 @@
 use crate::car::{Axle, Block, GRAVITY, PlanarCar, PlanarError, TyreLaw};
 use crate::drive::{Drive, Sensor};
 use bumpsim_core::dual::Real;
+use bumpsim_core::link::{Link as Law, LinkState};
 use bumpsim_impact::bumper::Bumper;
 
 /// The car's quantities a replay may be differentiated by, in the model's
@@ -39,8 +43,12 @@ pub struct Parameters<T> {
     pub masses: Vec<T>,
     /// Chain dampers, N·s/m (link i behind mass i).
     pub dampers: Vec<T>,
-    /// Chain springs, N/m.
+    /// Chain springs, N/m (a link with a nonlinear law takes `links`).
     pub springs: Vec<T>,
+    /// Each chain link's nonlinear law (left chain first; `None`: the
+    /// linear spring). [`Parameters::of`] gives the car's links as
+    /// constants; [`bumpsim_core::link::Link::with_parameters`] seeds them.
+    pub links: Vec<Option<Law<T>>>,
     /// Lateral grip μ_y of both axles.
     pub mu_lateral: T,
     /// Sliding grip along the wheel μ_x of the front and rear axle.
@@ -66,6 +74,10 @@ impl<T: Real> Parameters<T> {
             masses: all(|s| &s.masses),
             dampers: all(|s| &s.dampers),
             springs: all(|s| &s.springs),
+            links: chains
+                .iter()
+                .flat_map(|s| (0..s.masses.len()).map(|i| s.links.get(i).map(Law::real)))
+                .collect(),
             mu_lateral: c(&tyres.front.mu_lateral),
             mu_longitudinal: [
                 c(&tyres.front.mu_longitudinal),
@@ -85,6 +97,7 @@ struct Link<T> {
     front: usize,
     back: Option<usize>,
     spring: T,
+    law: Option<Law<T>>,
     damper: T,
     block: Option<Block>,
 }
@@ -153,6 +166,9 @@ struct Replay<'a, T> {
     masses: Vec<T>,
     eta: Vec<f64>,
     links: Vec<Link<T>>,
+    /// The nonlinear links' histories and forces (compression positive).
+    states: Vec<LinkState<T>>,
+    link_force: Vec<T>,
     fronts: [Option<usize>; 2],
     b: f64,
     x_f: f64,
@@ -209,6 +225,7 @@ impl<'a, T: Real> Replay<'a, T> {
                     front: first + i,
                     back: (i + 1 < n).then_some(first + i + 1),
                     spring: p.springs[first + i],
+                    law: p.links.get(first + i).cloned().flatten(),
                     damper: p.dampers[first + i],
                     block: car.crash_boxes().filter(|_| i == 0),
                 });
@@ -248,6 +265,8 @@ impl<'a, T: Real> Replay<'a, T> {
             yaw_inertia: p.yaw_inertia,
             masses: p.masses.clone(),
             eta,
+            states: vec![LinkState::default(); links.len()],
+            link_force: vec![zero; links.len()],
             links,
             fronts,
             b,
@@ -345,8 +364,14 @@ impl<'a, T: Real> Replay<'a, T> {
         self.readings.iter_mut().for_each(|r| r[1] += r[2] * length);
     }
 
-    /// [`crate::drive`]'s `Replay::place`.
+    /// [`crate::drive`]'s `Replay::place` (and `Model::hold`).
     fn place(&mut self, q: &[T], i: usize, f: f64) {
+        for (k, l) in self.links.iter().enumerate() {
+            if let Some(law) = &l.law {
+                let x = q[3 + l.front] - l.back.map_or(T::constant(0.0), |i| q[3 + i]);
+                self.link_force[k] = law.force(-x, &mut self.states[k]);
+            }
+        }
         let (sn, cs) = self.axes;
         for k in 0..self.input.loads.len() {
             let load = &self.input.loads[k];
@@ -421,7 +446,7 @@ impl<'a, T: Real> Replay<'a, T> {
         let (sn, cs) = self.axes;
         let chain = &mut self.chain;
         chain.iter_mut().for_each(|f| *f = zero);
-        for l in &self.links {
+        for (k, l) in self.links.iter().enumerate() {
             let (bx, bv) = l.back.map_or((zero, zero), |i| (q[3 + i], v[3 + i]));
             let x = q[3 + l.front] - bx;
             let block = l.block.map_or(zero, |b| {
@@ -431,7 +456,11 @@ impl<'a, T: Real> Replay<'a, T> {
                     false => zero,
                 }
             });
-            let f = l.spring * x - block + l.damper * (v[3 + l.front] - bv);
+            let spring = match l.law {
+                None => l.spring * x,
+                Some(_) => -self.link_force[k],
+            };
+            let f = spring - block + l.damper * (v[3 + l.front] - bv);
             chain[l.front] -= f;
             if let Some(i) = l.back {
                 chain[i] += f;

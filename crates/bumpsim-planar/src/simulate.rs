@@ -492,14 +492,16 @@ impl<'a> Run<'a> {
         let mut e = EnergyBalance {
             initial: sums.initial,
             kinetic: self.model.kinetic(q, v),
-            springs: self.model.spring_energy(q),
+            springs: self.model.spring_energy(q, &self.contact),
             bending: self.model.bending_energy(&self.contact),
             dampers: sums.dampers - sums.pending.0,
             crush: sums.crush,
             friction: sums.friction - sums.pending.1,
+            plastic: self.model.plastic_work(&self.contact),
             ..EnergyBalance::default()
         };
         let total = e.kinetic + e.springs + e.bending + e.dampers + e.crush + e.friction;
+        let total = total + e.plastic;
         e.relative_error = (total - e.initial).abs() / e.initial;
         e.max_relative_error = self.out.energy.max_relative_error.max(e.relative_error);
         e
@@ -583,6 +585,7 @@ impl<'a> Run<'a> {
             .map(|(b, s)| b.remaining(s))
             .collect();
         out.damage = states.clone();
+        (out.link_set, out.link_reached) = self.model.link_sets(&self.contact);
         out.max_compression = out.max_crush.iter().copied().fold(0.0, f64::max);
         out.peak_force = sums.peak_force;
         out.peak_yaw_rate = out

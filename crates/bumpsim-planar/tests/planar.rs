@@ -514,6 +514,8 @@ mod files;
 mod identification;
 #[path = "planar/independent.rs"]
 mod independent;
+#[path = "planar/links.rs"]
+mod links;
 #[path = "planar/progressive.rs"]
 mod progressive;
 #[path = "planar/regression.rs"]
