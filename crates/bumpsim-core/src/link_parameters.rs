@@ -104,11 +104,7 @@ impl Link<f64> {
 
     /// The same link on any [`Real`], every parameter a constant.
     pub fn real<T: Real>(&self) -> Link<T> {
-        let values: Vec<T> = self
-            .parameters()
-            .iter()
-            .map(|v| T::constant(*v))
-            .collect();
+        let values: Vec<T> = self.parameters().iter().map(|v| T::constant(*v)).collect();
         self.with_parameters(&values)
     }
 }

@@ -79,11 +79,22 @@ fn the_energy_balance_closes_with_the_plastic_work() {
     eprintln!("{e:?}\nsets {:?}", r.link_set);
     assert!((total - e.initial).abs() < 1e-4 * e.initial, "{e:?}");
     assert!(e.max_relative_error < 1e-4, "{e:?}");
-    assert!(e.friction > 0.0 && e.bending >= 0.0 && e.dampers > 0.0, "{e:?}");
+    assert!(
+        e.friction > 0.0 && e.bending >= 0.0 && e.dampers > 0.0,
+        "{e:?}"
+    );
     assert!(e.plastic > 0.5 * e.initial, "{e:?}");
     assert_eq!(r.link_set.len(), 4);
-    assert!(r.link_set[0] > 0.0 && r.link_set[2] > 0.0, "{:?}", r.link_set);
-    assert_eq!((r.link_set[1], r.link_set[3]), (0.0, 0.0), "the rail is elastic");
+    assert!(
+        r.link_set[0] > 0.0 && r.link_set[2] > 0.0,
+        "{:?}",
+        r.link_set
+    );
+    assert_eq!(
+        (r.link_set[1], r.link_set[3]),
+        (0.0, 0.0),
+        "the rail is elastic"
+    );
 }
 
 /// Struck flat and centred, the symmetric planar car with identical
@@ -213,13 +224,33 @@ fn the_car_file_reads_writes_and_mirrors_links() {
         .collect::<Vec<_>>()
         .join(", ");
     let bad = [
-        ("yield_force = \"40 kN\"", "yield_force = nan", "left: link 1: yield_force"),
-        ("yield_force = \"40 kN\"", "yield_force = -4e4", "left: link 1: yield_force"),
-        ("hardening = 0.05", "hardening = 2.0", "left: link 1: hardening"),
-        ("unloading = \"4000 N/mm\"", "unloading = -1.0", "left: link 1: unloading"),
+        (
+            "yield_force = \"40 kN\"",
+            "yield_force = nan",
+            "left: link 1: yield_force",
+        ),
+        (
+            "yield_force = \"40 kN\"",
+            "yield_force = -4e4",
+            "left: link 1: yield_force",
+        ),
+        (
+            "hardening = 0.05",
+            "hardening = 2.0",
+            "left: link 1: hardening",
+        ),
+        (
+            "unloading = \"4000 N/mm\"",
+            "unloading = -1.0",
+            "left: link 1: unloading",
+        ),
         ("unloading = \"4000 N/mm\"", "unloading = 1e400", "c.toml"),
         ("limit = \"300 mm\"", "limit = inf", "left: link 2: limit"),
-        ("curve = \"bilinear\"", "curve = \"cubic\"", "left: link 1: curve"),
+        (
+            "curve = \"bilinear\"",
+            "curve = \"cubic\"",
+            "left: link 1: curve",
+        ),
         (
             "[[right.links]]\ncurve = \"bilinear\"",
             "[[right.links]]\ncurve = \"table\"\npoints = [[0.01, -5.0]]\nc = \"bilinear\"",
@@ -234,7 +265,9 @@ fn the_car_file_reads_writes_and_mirrors_links() {
     for (from, to, needle) in bad {
         assert!(saloon.contains(from), "{from}");
         let text = saloon.replacen(from, to, 1);
-        let e = PlanarCar::parse(&text, "c.toml".as_ref()).unwrap_err().to_string();
+        let e = PlanarCar::parse(&text, "c.toml".as_ref())
+            .unwrap_err()
+            .to_string();
         assert!(e.contains(needle), "{needle}: {e}");
         assert!(e.starts_with("c.toml"), "{e}");
     }
@@ -245,6 +278,8 @@ fn the_car_file_reads_writes_and_mirrors_links() {
         1,
     );
     assert_ne!(huge, saloon);
-    let e = PlanarCar::parse(&huge, "c.toml".as_ref()).unwrap_err().to_string();
+    let e = PlanarCar::parse(&huge, "c.toml".as_ref())
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("left: link 2: loading table point"), "{e}");
 }

@@ -120,7 +120,9 @@ fn progressive_side_members_predict_the_held_out_offset_test() {
     for reason in &verdict.reasons {
         eprintln!("links: {reason}");
     }
-    eprintln!("offset: linear yaw {yaw_l:.2} % force {force_l:.2} %; progressive yaw {yaw:.2} % force {force:.2} %");
+    eprintln!(
+        "offset: linear yaw {yaw_l:.2} % force {force_l:.2} %; progressive yaw {yaw:.2} % force {force:.2} %"
+    );
     assert!(yaw >= 85.0, "held-out offset yaw {yaw:.2} %");
     assert!(force >= 80.0, "forward offset force {force:.2} %");
     assert!(verdict.nonlinear, "{:?}", verdict.reasons);

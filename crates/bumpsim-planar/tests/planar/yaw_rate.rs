@@ -179,7 +179,8 @@ fn yielding_side_members_meet_issue_44s_thresholds() {
     let sheet: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
     let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
-    let result = super::progressive::identified(&study, bumpsim_planar::identify::LinkLaw::Yielding);
+    let result =
+        super::progressive::identified(&study, bumpsim_planar::identify::LinkLaw::Yielding);
     let fit = |name: &str| {
         let case = study.validation.iter().find(|c| c.name == name).unwrap();
         predict(&result.car, case).unwrap().fit
