@@ -7,7 +7,9 @@ Writes OUT_DIR/<TEST>.csv (10 kHz, `time [s]` from -20 ms; load cells in N,
 two sill accelerometers in m/s^2 and a yaw-rate sensor in rad/s),
 OUT_DIR/series.json (the truth, the test sheet, each test's set-up and the
 largest compression of every link), OUT_DIR/study.toml (a bumpsim planar
-study of the three training tests, the held-out tests as `validate = true`),
+study of the three training tests, the held-out tests as `validate = true`;
+linear side members), OUT_DIR/study-progressive.toml (the same, its side
+members identified progressive: `[model] links = "progressive"`),
 OUT_DIR/start.toml (a symmetric linear start a lab might write) and
 OUT_DIR/truth-linear.toml (bumpsim's planar car with the series' true masses,
 dampers and *initial* stiffnesses: what a linear chain makes of the truth).
@@ -335,14 +337,14 @@ def write(out, test, striker, rows, rng, index):
     (out / f"{test['name']}.csv").write_text("\n".join(lines) + "\n")
 
 
-def study(out, car, strikers):
+def study(out, car, strikers, file, links):
     s = car.c["sills"]
     lines = [
         "# A planar study of the series of tests/peers/planar_progressive.py",
         "# (progressive side members; sills and the yaw-rate sensor).",
         "[model]", 'planar = "start.toml"', "starts = 16", "seed = 1", "friction = true",
-        "cornering = false", f'mass = "{car.total_mass():.1f} kg"    # the test sheet', "",
-    ]
+        "cornering = false", f'mass = "{car.total_mass():.1f} kg"    # the test sheet',
+    ] + ([f'links = "{links}"'] if links else []) + [""]
     for test, st in zip(TESTS, strikers):
         name, path = test["name"], f"{test['name']}.csv"
         speed = 0.0 if st.kind == "pendulum" else st.speed
@@ -366,7 +368,7 @@ def study(out, car, strikers):
         lines.append(f'  {{ path = "{path}", channel = "sill_right", body = [{s["xi"]}, {-s["eta"]}] }},')
         lines.append(f'  {{ path = "{path}", channel = "yaw_rate" }},')
         lines += ["]", ""]
-    (out / "study.toml").write_text("\n".join(lines))
+    (out / file).write_text("\n".join(lines))
 
 
 def car_file(car, name, body_mass, inertia, left, right, mu):
@@ -424,7 +426,8 @@ def main(out):
              "mu": CAR["tyres"]["mu"], "car": CAR, "tests": TESTS, "peak_yaw_rate": peaks,
              "largest_link_compression": crush}
     (out / "series.json").write_text(json.dumps(sheet, indent=1))
-    study(out, car, strikers)  # last: the marker of a finished series
+    study(out, car, strikers, "study-progressive.toml", "progressive")
+    study(out, car, strikers, "study.toml", None)  # last: the marker of a finished series
 
 
 if __name__ == "__main__":

@@ -336,8 +336,8 @@ mod tests {
     /// progressive (its cubic term), the right one yielding (its yield
     /// force and hardening), each link's initial slope seeding its
     /// stiffness and unloading slope; the right link yields within the
-    /// cases' crush. Every column within 1e-4 of its largest entry (5e-6
-    /// seen at most: the history's kink is crossed at the same step).
+    /// cases' crush. Every column within 1e-4 of its largest entry (8e-6
+    /// seen at most, a damper; the history's kink is crossed at the same step).
     #[test]
     fn the_exact_jacobian_covers_nonlinear_links() {
         use super::super::super::{LinkLaw, LinkLaws};
