@@ -61,14 +61,24 @@ fn offset_scores(study: &PlanarStudy, car: &PlanarCar, label: &str) -> (f64, f64
 /// the series' true masses, dampers and initial stiffnesses (the
 /// generator's truth-linear.toml) cannot follow the stiffening side
 /// members. The issue states 53 % offset yaw and 4 % forward force on its
-/// own series of this kind; on this one (measured): see the asserts.
+/// own series of this kind. Measured on this one: the forward prediction
+/// of the offset test (car, bumper and striker alone) scores force 4.45 %,
+/// x-acceleration 4.07 %, yaw rate 39.3 % — the linear links at their
+/// initial slopes crush far too softly; the replay driven by the measured
+/// cell forces follows x at 98.6 % and the yaw at 95.3 % (the issue's 53 %
+/// is not reproduced here: the measured forces carry the yaw moment, the
+/// chain's stiffness matters little to the replayed turning).
 #[test]
 fn linear_links_at_the_true_initial_stiffnesses_miss_the_offset_test() {
     let Some(dir) = series() else { return };
     let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
     let car = PlanarCar::read(&dir.join("truth-linear.toml")).unwrap();
     let (yaw, force) = offset_scores(&study, &car, "truth, linear links");
-    assert!(yaw.is_finite() && force.is_finite());
+    assert!(
+        force < 10.0,
+        "the linear truth predicts the force at {force:.2} %"
+    );
+    assert!(yaw > 90.0, "the replay follows the yaw: {yaw:.2} %");
 }
 
 /// The study's cars identified with the side members of `law` (every link).
@@ -108,7 +118,12 @@ pub(super) fn identified(study: &PlanarStudy, law: LinkLaw) -> PlanarIdentificat
 /// side members (16 starts, the stated priors, the staged search), the
 /// held-out 40 % offset test's yaw ≥ 85 % and its forward force ≥ 80 %; and
 /// the comparison with linear side members says the data want them.
+///
+/// Not yet measured: three 16-start identifications (linear and
+/// progressive here) did not finish within the round's 45 minutes on the
+/// shared machine (load 20 on 2 cores); run it with `--ignored`.
 #[test]
+#[ignore = "issue 46 acceptance, not yet measured: two 16-start planar identifications (slow); run with --ignored"]
 fn progressive_side_members_predict_the_held_out_offset_test() {
     let Some(dir) = series() else { return };
     let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
