@@ -121,7 +121,34 @@ pub fn summary(r: &PlanarResult) -> String {
     text += &contact(r);
     text += &motion(r);
     text += &energy(r);
+    text += &side_members(r);
     text
+}
+
+/// The side members' nonlinear links (issue 46): their plastic work and
+/// each link's largest compression and plastic set; nothing for linear ones.
+fn side_members(r: &PlanarResult) -> String {
+    if r.link_set.is_empty() {
+        return String::new();
+    }
+    let q = |v, d| format_quantity(v, d);
+    let links: Vec<String> = r
+        .link_set
+        .iter()
+        .zip(&r.link_reached)
+        .map(|(set, most)| {
+            format!(
+                "{} ({})",
+                q(*most, Dimension::Length),
+                q(*set, Dimension::Length)
+            )
+        })
+        .collect();
+    format!(
+        "  side-member links: plastic work {}; largest compression (plastic set), left chain then right, front to back: {}\n",
+        q(r.energy.plastic, Dimension::Energy),
+        links.join(", ")
+    )
 }
 
 fn contact(r: &PlanarResult) -> String {

@@ -283,3 +283,36 @@ fn the_car_file_reads_writes_and_mirrors_links() {
         .to_string();
     assert!(e.contains("left: link 2: loading table point"), "{e}");
 }
+
+/// `synth` makes a series of a car whose side members crush (the bundled
+/// example): every test records, and its start car keeps the links.
+#[test]
+fn synth_records_a_series_of_a_car_with_nonlinear_side_members() {
+    let dir = std::env::temp_dir().join(format!("bumpsim-links-synth-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let car = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/planar/links.toml")
+        .canonicalize()
+        .unwrap();
+    let series = format!(
+        "planar_car = {:?}\nseed = 3\n[chain]\nstep = 1e-4\npretrigger = 0.01\nduration = 0.12\n\
+         force_noise = 20.0\nacceleration_noise = 0.05\nbiases = [0.0, 0.0]\nsensor = [0.6, 0.7]\n\
+         [[test]]\nname = \"FLAT\"\nspeed = \"15 km/h\"\n[[test]]\nname = \"ANGLED\"\nangle = 10.0\nspeed = \"15 km/h\"\n",
+        car.display().to_string()
+    );
+    let path = dir.join("series.toml");
+    std::fs::write(&path, series).unwrap();
+    let s = bumpsim_planar::series::make_series(&path).unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(s.tests.len(), 2);
+    for t in &s.tests {
+        let peak = t.channels[0]
+            .series
+            .values()
+            .iter()
+            .fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(peak > 0.0, "{}", t.name);
+    }
+    let start = PlanarCar::parse(&s.start, "start.toml".as_ref()).unwrap();
+    assert_eq!(start.left().links.len(), 2);
+}
