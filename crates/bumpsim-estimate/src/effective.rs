@@ -16,6 +16,11 @@
 //!   before the ratio (so a series of a noisier case weighs more, as its
 //!   squares do in the objective).
 //!
+//! **Model choice** ([`bic`]): the Bayesian information criterion on the
+//! effective number of residuals, `BIC = n_eff ln(F/n) + q ln n_eff`
+//! (Schwarz 1978; n residuals of objective F, q free parameters): the
+//! chain's and the planar car's link verdicts (issue 46 item 3).
+//!
 //! A window that would reach beyond the longest series cannot be trusted
 //! ([`Effective::reliable`] false; emcee raises its `AutocorrError`): the
 //! series are shorter than c τ.
@@ -202,6 +207,13 @@ fn integrated_time(series: &[&[f64]], longest: usize) -> (f64, usize, bool) {
         }
     }
     (tau.max(1.0), longest.saturating_sub(1), false)
+}
+
+/// The Bayesian information criterion of an objective `objective` (sum
+/// of squares) on `n` residuals of which `effective` are independent, with
+/// `q` free parameters (see the module): lower is preferred.
+pub fn bic(objective: f64, n: usize, effective: f64, q: usize) -> f64 {
+    effective * (objective / n as f64).ln() + q as f64 * effective.ln()
 }
 
 #[cfg(test)]

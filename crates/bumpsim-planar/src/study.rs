@@ -12,6 +12,9 @@
 //! cornering = false         # optional: estimate the tyres' cornering stiffness C_α
 //! mass = "1265 kg"          # optional: the test sheet's mass, checked against the identified car
 //!                           # and a prior on its total mass
+//! links = "linear"          # optional: the side members' law to identify: "linear", "progressive",
+//!                           # "yielding" (every link), a list link by link, or { left = ..., right = ... }
+//!                           # (default: the start car's links)
 //!
 //! [priors]                  # optional: override ({ value, spread }), remove ("none") or add priors
 //! body.yaw_inertia = { value = "2300 kg m^2", spread = 0.2 }   # spread: sd of ln θ (0.2 ≈ ±20 %)
@@ -54,7 +57,7 @@
 
 use crate::car::{PlanarCar, PlanarError};
 use crate::cases::{Placed, TestChannels, TimeZero};
-use crate::identify::{PlanarCase, Setup};
+use crate::identify::{LinkLaws, PlanarCase, Setup};
 use crate::presets::StrikerFields;
 use bumpsim_core::channel::Channel;
 use bumpsim_core::names::check_names;
@@ -89,6 +92,7 @@ struct ModelFile {
     #[serde(default)]
     cornering: bool,
     mass: Option<toml::Value>,
+    links: Option<toml::Value>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -179,7 +183,12 @@ impl PlanarStudy {
         check_names("[[case]]", file.case.iter().map(|c| c.name.as_str()))
             .map_err(|e| error(e.to_string()))?;
         let base = path.parent().unwrap_or(Path::new("."));
-        let template = PlanarCar::read(&base.join(&file.model.planar))?;
+        let mut template = PlanarCar::read(&base.join(&file.model.planar))?;
+        if let Some(laws) = &file.model.links {
+            template = LinkLaws::read(laws, &template)
+                .and_then(|l| l.apply(&template))
+                .map_err(|e| error(e.to_string()))?;
+        }
         let defaults = Setup::new(template);
         let mass = file
             .model

@@ -516,6 +516,8 @@ mod identification;
 mod independent;
 #[path = "planar/links.rs"]
 mod links;
+#[path = "planar/progressive.rs"]
+mod progressive;
 #[path = "planar/regression.rs"]
 mod regression;
 #[path = "planar/sensors.rs"]

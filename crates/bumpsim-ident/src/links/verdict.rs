@@ -26,7 +26,7 @@ pub struct Verdict {
 
 /// BIC on `n` residuals of which `effective` are independent.
 fn bic(objective: f64, n: usize, effective: f64, q: usize) -> f64 {
-    effective * (objective / n as f64).ln() + q as f64 * effective.ln()
+    bumpsim_estimate::effective::bic(objective, n, effective, q)
 }
 
 /// Compares a linear identification with a yielding one of the same cases.

@@ -50,6 +50,7 @@
 //! **Advice**: the reduced car when a chain link is undetermined or not
 //! needed (module `reduce`), in the same words as the 1-D chain's.
 
+mod links;
 mod objective;
 mod plausible;
 mod predict;
@@ -57,6 +58,7 @@ mod priors;
 mod reduce;
 mod staged;
 mod unknowns;
+mod verdict;
 
 use crate::car::{Body, PlanarCar, PlanarError, SideChain, parameter};
 use crate::drive::{Drive, Sensor};
@@ -70,10 +72,12 @@ use nalgebra::DMatrix;
 use objective::Objective;
 use serde::Serialize;
 
+pub use links::{LinkLaw, LinkLaws};
 pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
 pub use priors::{MU, PriorSetting, TOTAL_MASS, priors, removing_all};
 pub use unknowns::{LINE_MARGIN, REACH, Unknowns};
+pub use verdict::{LinkVerdict, compare_links};
 
 /// The reduced car, when a chain link is undetermined or not needed.
 pub type Reduction = bumpsim_estimate::reduce::Reduction<PlanarCar>;

@@ -12,7 +12,7 @@
 //! | `body.yaw_inertia` | `a b M` (dynamic index k²/(a b) = 1, [`super::DYNAMIC_INDEX`]) | [`INDEX_SPREAD`]: passenger cars' 0.8–1.2 as ±2 sd | the car's geometry (Milliken & Milliken 1995, ch. 5.5) |
 //! | `tyres.mu_lateral` | [`MU`] | 0.25 | a dry road tyre's lateral grip, 0.6–1.1 |
 //! | `tyres.cornering_stiffness` | [`crate::car::CORNERING_STIFFNESS`]'s nominal | ln(150/20)/4 | a passenger-car tyre's range as ±2 sd |
-//! | each chain mass, damper and spring | the start car's | [`CHAIN_SPREAD`] (a factor 10 at 2 sd) | the start car's chain: the engineer's guess |
+//! | each chain mass, damper and spring, and each nonlinear link's cubic term, yield force and hardening ratio ([`super::links`]) | the start car's | [`CHAIN_SPREAD`] (a factor 10 at 2 sd) | the start car's chain: the engineer's guess |
 //!
 //! The chain's priors keep a linear chain from mimicking what it cannot
 //! follow (the plastic crush of a crash box) with a damper 100 times the

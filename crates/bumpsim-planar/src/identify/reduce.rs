@@ -56,6 +56,9 @@ impl Car<'_> {
         let m = chain.masses.remove(l.index);
         chain.dampers.remove(l.index);
         chain.springs.remove(l.index);
+        if !chain.links.is_empty() {
+            chain.links.remove(l.index);
+        }
         let mass = match chain.masses.get_mut(l.index) {
             Some(next) => {
                 *next += m;
@@ -117,12 +120,11 @@ impl Reducible for Car<'_> {
 
     fn links(&self) -> Vec<Link> {
         let names = self.unknowns.with_template(self.car).names();
+        // by name: a nonlinear link's unknowns (cubic, yield force) follow
+        // each side's springs and shift the right chain's indices
         let spring = |l: ChainLink| {
-            let (left, right) = (self.car.left().masses.len(), self.car.right().masses.len());
-            match l.side {
-                0 => 2 + 2 * left + l.index,
-                _ => 2 + 3 * left + 2 * right + l.index,
-            }
+            let name = format!("{}.springs[{}]", ["left", "right"][l.side], l.index);
+            names.iter().position(|(n, _)| *n == name).unwrap_or(0)
         };
         self.links_of()
             .into_iter()

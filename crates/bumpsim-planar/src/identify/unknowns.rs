@@ -5,6 +5,11 @@
 //! force whose line of action the study leaves to the data (a pendulum's
 //! single load cell: `lateral = "estimate"`).
 //!
+//! A nonlinear link ([`super::links`]) adds its law's unknowns after
+//! each side's springs (`left.cubic[j]`, `left.yield_force[j]`,
+//! `left.hardening[j]`, the link's index j); a hardening ratio is searched
+//! up to 1 at most.
+//!
 //! The car's parameters are positive and span decades: they are searched
 //! in `ln θ`, each within a factor [`REACH`] of its start. A line of
 //! action is a position (m, left positive) and may be negative: it is
@@ -13,6 +18,7 @@
 //! bumper wide.
 
 use super::PlanarCase;
+use super::links::{self, LinkLaw};
 use crate::car::{Body, PlanarCar, PlanarError, SideChain};
 use bumpsim_core::units::Dimension;
 use bumpsim_estimate::uncertainty::Parameter;
@@ -109,6 +115,11 @@ impl Unknowns {
                     out.push((format!("{side}.{what}[{i}]"), unit));
                 }
             }
+            for (i, link) in chain.links.iter().enumerate() {
+                for (what, unit) in LinkLaw::of(link).extra() {
+                    out.push((format!("{side}.{what}[{i}]"), *unit));
+                }
+            }
         }
         if self.friction {
             out.push(("tyres.mu_lateral".to_string(), "-"));
@@ -129,6 +140,7 @@ impl Unknowns {
                 "kg" => Parameter::new(name, Dimension::Mass),
                 "N·s/m" => Parameter::new(name, Dimension::Damping),
                 "N/m" => Parameter::new(name, Dimension::Stiffness),
+                "N" => Parameter::new(name, Dimension::Force),
                 "m" => Parameter::new(name, Dimension::Length).linear(width),
                 symbol => Parameter::with_symbol(name, symbol),
             })
@@ -145,6 +157,7 @@ impl Unknowns {
                     .into_iter()
                     .flatten(),
             );
+            out.extend(chain.links.iter().flat_map(links::values));
         }
         if self.friction {
             out.push(car.tyres().front.mu_lateral);
@@ -184,6 +197,10 @@ impl Unknowns {
             .iter()
             .map(|t| (t.ln() - reach, t.ln() + reach))
             .unzip();
+        for i in self.ratios() {
+            upper[i] = upper[i].min(0.0);
+            lower[i] = lower[i].min(upper[i]);
+        }
         lower.extend(std::iter::repeat_n(-edge, self.lines.len()));
         upper.extend(std::iter::repeat_n(edge, self.lines.len()));
         (lower, upper)
@@ -194,6 +211,8 @@ impl Unknowns {
     pub fn draw(&self, start: &[f64], spread: f64, seed: u64, index: u64) -> Vec<f64> {
         let mut draws = bumpsim_estimate::search::Draws::new(seed, index);
         let cars = start.len() - self.lines.len();
+        // (a hardening ratio drawn above 1 is clamped into the box by the
+        // search; `start` may be a tied car's, shorter than the names)
         let mut point = draws.around(&start[..cars], spread);
         let half = 0.5 * self.template.beam().width;
         point.extend(self.lines.iter().map(|_| half * (2.0 * draws.unit() - 1.0)));
@@ -211,14 +230,31 @@ impl Unknowns {
             yaw_inertia: take(1)[0],
             ..*t.body()
         };
-        let mut chain = |n: usize| SideChain {
-            masses: take(n),
-            dampers: take(n),
-            springs: take(n),
-            links: Vec::new(),
+        let mut chain = |template: &SideChain| -> Result<SideChain, PlanarError> {
+            let n = template.masses.len();
+            let (masses, dampers, springs) = (take(n), take(n), take(n));
+            let linked = template
+                .links
+                .iter()
+                .zip(&springs)
+                .map(|(link, &k)| {
+                    let extra = take(LinkLaw::of(link).extra().len());
+                    links::with_values(link, k, &extra)
+                        .map_err(|e| crate::car::parameter("links", k, "N/m", &e.to_string()))
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok(match linked.is_empty() {
+                true => SideChain {
+                    masses,
+                    dampers,
+                    springs,
+                    links: Vec::new(),
+                },
+                false => SideChain::linked(masses, dampers, linked),
+            })
         };
-        let left = chain(t.left().masses.len());
-        let right = chain(t.right().masses.len());
+        let left = chain(t.left())?;
+        let right = chain(t.right())?;
         let mut tyres = *t.tyres();
         if self.friction {
             let mu = take(1)[0];
@@ -240,6 +276,16 @@ impl Unknowns {
         PlanarCar::new(body, left, right, t.beam().clone(), tyres)
             .and_then(|c| c.with_crash_boxes(t.crash_boxes()))
             .map(|c| c.with_name(t.name().map(str::to_string)))
+    }
+
+    /// The indices of the hardening ratios (searched up to 1).
+    fn ratios(&self) -> Vec<usize> {
+        self.names()
+            .iter()
+            .enumerate()
+            .filter(|(_, (n, _))| n.contains(".hardening["))
+            .map(|(i, _)| i)
+            .collect()
     }
 
     /// `case` (index `index`) with the lines of action of `theta`, when it

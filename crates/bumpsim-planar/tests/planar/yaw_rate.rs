@@ -165,3 +165,75 @@ fn the_yaw_rate_sensor_is_read_weighted_and_improves_the_held_out_yaw() {
             .any(|m| m.name == "body.yaw_inertia" && m.z.is_finite())
     );
 }
+
+/// Issue 44's thresholds on this series with yielding side members (issue
+/// 46: the generator's crash boxes are elastic-plastic with hardening), 16
+/// starts, the stated priors and the staged search: held-out offset x ≥
+/// 99.5 %, yaw ≥ 93 %; off-centre face x ≥ 99 %, yaw ≥ 80 %; the forward
+/// offset test's force, x-acceleration and yaw rate ≥ 90, 90, 85 %; I_z
+/// within 20 % and μ within 30 % of the truth; ≥ 4 of 16 starts reach the
+/// best.
+///
+/// Not yet measured (a 16-start identification did not finish within the
+/// round on the shared machine); run it with `--ignored`.
+#[test]
+#[ignore = "issue 44's thresholds with yielding side members, not yet measured (slow); run with --ignored"]
+fn yielding_side_members_meet_issue_44s_thresholds() {
+    let Some(dir) = series() else { return };
+    let sheet: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
+    let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
+    let result =
+        super::progressive::identified(&study, bumpsim_planar::identify::LinkLaw::Yielding);
+    let fit = |name: &str| {
+        let case = study.validation.iter().find(|c| c.name == name).unwrap();
+        predict(&result.car, case).unwrap().fit
+    };
+    let (offset, narrow) = (fit("OFFSET40"), fit("NARROW-OFFSET"));
+    let case = study
+        .validation
+        .iter()
+        .find(|c| c.name == "OFFSET40")
+        .unwrap();
+    let ahead = forward(&result.car, case).unwrap();
+    let channel = |name: &str| {
+        ahead
+            .channels
+            .iter()
+            .find(|c| c.name == name)
+            .unwrap()
+            .fit_percent
+    };
+    let value = |name: &str| {
+        result
+            .parameters
+            .iter()
+            .find(|p| p.name == name)
+            .unwrap()
+            .value
+    };
+    let inertia = value("body.yaw_inertia") / sheet["yaw_inertia"].as_f64().unwrap() - 1.0;
+    let mu = value("tyres.mu_lateral") / sheet["mu"].as_f64().unwrap() - 1.0;
+    eprintln!(
+        "yielding: held-out OFFSET40 x {:.2} % yaw {:.2} %; NARROW-OFFSET x {:.2} % yaw {:.2} %",
+        offset.fit_x, offset.fit_yaw, narrow.fit_x, narrow.fit_yaw
+    );
+    eprintln!(
+        "yielding: forward OFFSET40 force {:.2} %, x-acceleration {:.2} %, yaw rate {:.2} %",
+        channel("force"),
+        channel("x-acceleration"),
+        channel("yaw rate")
+    );
+    eprintln!(
+        "yielding: I_z {:+.1} %, μ {:+.1} % of the truth; {} of 16 starts reach the best",
+        100.0 * inertia,
+        100.0 * mu,
+        result.starts.reached_best
+    );
+    assert!(offset.fit_x >= 99.5 && offset.fit_yaw >= 93.0);
+    assert!(narrow.fit_x >= 99.0 && narrow.fit_yaw >= 80.0);
+    assert!(channel("force") >= 90.0 && channel("x-acceleration") >= 90.0);
+    assert!(channel("yaw rate") >= 85.0);
+    assert!(inertia.abs() <= 0.2 && mu.abs() <= 0.3);
+    assert!(result.starts.reached_best >= 4, "{:?}", result.starts);
+}
