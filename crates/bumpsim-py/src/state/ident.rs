@@ -10,6 +10,7 @@ use bumpsim_estimate::effective::{Effective, Method};
 use bumpsim_estimate::lm::Stop;
 use bumpsim_estimate::multistart::Starts;
 use bumpsim_estimate::posterior::{Noise, Posterior};
+use bumpsim_estimate::prior::{Moved, Prior};
 use bumpsim_estimate::reduce::Reduction;
 use bumpsim_estimate::sampler::{Diagnostics, Ensemble};
 use bumpsim_estimate::uncertainty::{Correlation, Scale, Share, Uncertainty};
@@ -355,7 +356,38 @@ struct IdentificationDef {
     effective_samples: Effective,
     #[serde(with = "cross_validation")]
     cross_validation: Option<CrossValidation>,
+    #[serde(with = "moved_priors", default)]
+    priors: Vec<Moved>,
+    #[serde(default)]
+    prior_noise: Option<f64>,
+    #[serde(with = "stated_priors", default)]
+    stated: Vec<Prior>,
 }
+
+#[derive(Serialize, Deserialize)]
+#[serde(remote = "Moved")]
+struct MovedDef {
+    name: String,
+    centre: f64,
+    spread: f64,
+    source: String,
+    estimate: f64,
+    z: f64,
+}
+
+remote_seq!(moved_priors, Moved, "MovedDef");
+
+#[derive(Serialize, Deserialize)]
+#[serde(remote = "Prior")]
+struct PriorDef {
+    name: String,
+    terms: Vec<usize>,
+    centre: f64,
+    spread: f64,
+    source: String,
+}
+
+remote_seq!(stated_priors, Prior, "PriorDef");
 
 #[derive(Serialize, Deserialize)]
 #[serde(remote = "Bounds")]
