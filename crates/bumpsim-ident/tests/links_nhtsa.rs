@@ -49,7 +49,12 @@ fn study() -> Option<Study> {
     }
     let text = std::fs::read_to_string(root().join("examples/nhtsa-10146/study.toml")).unwrap();
     let text = text.replace("../../../shared", shared.to_str().unwrap());
-    let dir = std::env::temp_dir().join(format!("bumpsim-links-nhtsa-{}", std::process::id()));
+    // one folder per call: the tests run in parallel threads of one process,
+    // and one's write must not truncate the file the other reads
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir =
+        std::env::temp_dir().join(format!("bumpsim-links-nhtsa-{}-{call}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("study.toml");
     std::fs::write(&path, text).unwrap();
