@@ -214,6 +214,19 @@ impl Identification {
     fn compared<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         crate::convert::from_json(py, &self.result().compared)
     }
+    /// The stated priors, each with its centre, spread (sd of ln θ), source,
+    /// the estimate and how far the data moved it in prior standard
+    /// deviations (the JSON's `priors`); empty without priors.
+    #[getter]
+    fn priors<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        crate::convert::from_json(py, &self.result().priors)
+    }
+    /// The noise of one residual the priors weigh against (the JSON's
+    /// `prior_noise`, in the objective's unit), or None without priors.
+    #[getter]
+    fn prior_noise(&self) -> Option<f64> {
+        self.result().prior_noise
+    }
     /// Number of residuals (samples in all windows).
     #[getter]
     fn residuals(&self) -> usize {

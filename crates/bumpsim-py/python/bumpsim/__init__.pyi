@@ -266,6 +266,10 @@ class Identification:
     starts: dict[str, int]
     start: list[float]
     compared: dict[str, Any] | None
+    priors: list[dict[str, Any]]
+    """The stated priors: name, centre (SI), spread (sd of ln θ), source,
+    estimate (SI), z (how far the data moved it, prior sd); empty without."""
+    prior_noise: Optional[float]
     residuals: int
     iterations: int
     stop: Any
