@@ -35,10 +35,12 @@ def main():
     # this parser reads one row per *ELEMENT_MASS: bumpsim writes one per mass
     masses = [int(m.nid) for m in kinds.get("ElementMass", [])]
     need("node", masses, nodes)
+    orientations = {int(v) for o in kinds.get("DefineSdOrientation", []) for v in o.vectors["vid"].dropna()}
     for e in kinds.get("ElementDiscrete", []):
         ends = column(e, "elements", "n1") + column(e, "elements", "n2")
         need("node", [n for n in ends if n not in external], nodes)
         need("part", column(e, "elements", "pid"), parts)
+        need("orientation", [v for v in column(e, "elements", "vid") if v != 0], orientations)
     for e in kinds.get("ElementBeam", []):
         ends = [n for name in ("n1", "n2", "n3") for n in column(e, "elements", name)]
         need("node", ends, nodes)
@@ -98,6 +100,7 @@ def main():
         "material": sorted(materials),
         "node set": sorted(sets),
         "curve": sorted(curves),
+        "orientation": sorted(orientations),
     }
     result = deck.validate()
     print(json.dumps({

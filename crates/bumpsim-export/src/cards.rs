@@ -206,15 +206,39 @@ pub fn element_discrete_header(deck: &mut String, names: FieldNames) {
 /// One `*ELEMENT_DISCRETE` line: element `id` of part `part` between `n1`
 /// and `n2` (along the line between them, scale 1).
 pub fn element_discrete_line(deck: &mut String, id: u64, part: u64, n1: u64, n2: u64) {
+    element_discrete_oriented(deck, id, part, [n1, n2], 0);
+}
+
+/// One `*ELEMENT_DISCRETE` line acting along the orientation `vid` (a
+/// [`sd_orientation`]; 0: along the current line between the nodes).
+pub fn element_discrete_oriented(deck: &mut String, id: u64, part: u64, nodes: [u64; 2], vid: u64) {
     let _ = writeln!(
         deck,
         "{}{}{}{}{}{}",
         int_field(id, 8),
         int_field(part, 8),
-        int_field(n1, 8),
-        int_field(n2, 8),
-        int_field(0, 8),
+        int_field(nodes[0], 8),
+        int_field(nodes[1], 8),
+        int_field(vid, 8),
         real_field(1.0, 16)
+    );
+}
+
+/// `*DEFINE_SD_ORIENTATION` `vid` with IOP = 0: discrete elements that
+/// name it deflect and push along the fixed unit `vector`, whatever the
+/// nodes' current positions. A spring along the line between its nodes
+/// turns over once a crush larger than the node spacing makes the nodes
+/// pass each other; along a fixed axis its deflection is the relative
+/// displacement along the axis, as in the lumped model.
+pub fn sd_orientation(deck: &mut String, vid: u64, vector: [f64; 3]) {
+    let _ = writeln!(
+        deck,
+        "*DEFINE_SD_ORIENTATION\n$    vid       iop        xt        yt        zt\n{}{}{}{}{}",
+        int_field(vid, 10),
+        int_field(0, 10),
+        real_field(vector[0], 10),
+        real_field(vector[1], 10),
+        real_field(vector[2], 10)
     );
 }
 

@@ -256,8 +256,9 @@ fn lsdyna_front(
     cards::discrete_section(&mut deck, id, cards::FieldNames::Written);
     let title = "front link between the barrier and m1";
     lsdyna_link(&mut deck, front, layout.units, id, id, "front link", title);
+    cards::sd_orientation(&mut deck, id, layout.axis.vector());
     cards::element_discrete_header(&mut deck, cards::FieldNames::Written);
-    cards::element_discrete_line(&mut deck, id, id, id, options.id_offset + 1);
+    cards::element_discrete_oriented(&mut deck, id, id, [id, options.id_offset + 1], id);
     deck.push_str("*END\n");
     Ok(deck)
 }

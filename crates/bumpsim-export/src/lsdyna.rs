@@ -11,7 +11,10 @@
 //! - `*SECTION_DISCRETE` (translational), `*MAT_SPRING_ELASTIC` (K = k_j),
 //!   `*MAT_DAMPER_VISCOUS` (DC = c_j), one `*PART` per spring and damper, and
 //!   `*ELEMENT_DISCRETE` between nodes j and j+1 (a spring and a damper in
-//!   parallel); a zero damper gets no element;
+//!   parallel) acting along the model axis (`*DEFINE_SD_ORIENTATION`, a fixed
+//!   vector, id = the section's), so a crush beyond the node spacing does not
+//!   turn a link over as a link along the nodes' current line would; a zero
+//!   damper gets no element;
 //! - with attachment nodes: `*SET_NODE_LIST` of m1's node and the user's
 //!   bumper attachment nodes, and `*CONSTRAINED_NODAL_RIGID_BODY_SPC` tying
 //!   them rigidly, its centre-of-mass constraint leaving translation along the
@@ -315,10 +318,13 @@ fn links(
             cards::discrete_part(deck, link, value * factor, &unit, id, section, &title);
         }
     }
+    // along the model axis, not the line between the nodes: a crush beyond
+    // the node spacing must not turn a link over (cards::sd_orientation)
+    cards::sd_orientation(deck, section, options.layout.axis.vector());
     cards::element_discrete_header(deck, FieldNames::All);
     for j in 0..model.springs().len() {
-        let id = ids.spring(j);
-        cards::element_discrete_line(deck, id, id, ids.node(j), ids.node(j + 1));
+        let (id, ends) = (ids.spring(j), [ids.node(j), ids.node(j + 1)]);
+        cards::element_discrete_oriented(deck, id, id, ends, section);
     }
     for (j, _) in model
         .dampers()
@@ -326,8 +332,8 @@ fn links(
         .enumerate()
         .filter(|(_, c)| **c > 0.0)
     {
-        let id = ids.damper(j);
-        cards::element_discrete_line(deck, id, id, ids.node(j), ids.node(j + 1));
+        let (id, ends) = (ids.damper(j), [ids.node(j), ids.node(j + 1)]);
+        cards::element_discrete_oriented(deck, id, id, ends, section);
     }
 }
 

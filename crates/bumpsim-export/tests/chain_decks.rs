@@ -374,9 +374,15 @@ fn the_lsdyna_include_parses_in_ansys_dyna_core_with_every_id_defined() {
         "MatSpringNonlinearElastic",
         "MatSpringElastic",
         "MatDamperViscous",
+        // the links act along the axis, not the nodes' line (a crush beyond
+        // the spacing would turn them over): every element names it
+        "DefineSdOrientation",
     ] {
         assert!(keywords.contains(kind), "{kind} missing: {keywords}");
     }
+    // one, shared by the links (a front link brings its own); "undefined"
+    // above is empty, so every element names a defined one
+    assert_eq!(verdict["ids"]["orientation"].as_array().unwrap().len(), 1);
     // link 1's loading curve (id 7000 + 5 + 1): first quadrant, in mm and N
     let curve = verdict["curves"]["7006"].as_array().unwrap();
     let point = |i: usize| curve[i].as_array().unwrap().clone();

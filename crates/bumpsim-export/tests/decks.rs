@@ -70,6 +70,15 @@ fn layout(keyword: &str) -> Vec<Option<Vec<(usize, Field)>>> {
             (8, Int),
             (16, Real),
         ])],
+        "*DEFINE_SD_ORIENTATION" => {
+            vec![w(&[
+                (10, Int),
+                (10, Int),
+                (10, Real),
+                (10, Real),
+                (10, Real),
+            ])]
+        }
         "*SET_NODE_LIST" => vec![w(&[(10, Int)]), w(&[(10, Int); 8])],
         "*CONSTRAINED_NODAL_RIGID_BODY_SPC" => vec![
             w(&[(10, Int), (10, Int), (10, Int)]),
@@ -176,6 +185,9 @@ fn check_ids(cards: &Cards, external_nodes: &[u64]) {
     rows(cards, "*SECTION_DISCRETE")
         .iter()
         .for_each(|r| define("section", r[0]));
+    rows(cards, "*DEFINE_SD_ORIENTATION")
+        .iter()
+        .for_each(|r| define("orientation", r[0]));
     let is = |kind: &str, id: f64| defined.get(kind).is_some_and(|s| s.contains(&(id as u64)));
     let node = |id: f64| is("node", id) || external_nodes.contains(&(id as u64));
     for r in rows(cards, "*ELEMENT_MASS") {
@@ -183,8 +195,8 @@ fn check_ids(cards: &Cards, external_nodes: &[u64]) {
     }
     for r in rows(cards, "*ELEMENT_DISCRETE") {
         assert!(
-            is("part", r[1]) && node(r[2]) && node(r[3]),
-            "discrete element {} references undefined ids",
+            is("part", r[1]) && node(r[2]) && node(r[3]) && is("orientation", r[4]),
+            "discrete element {} references undefined ids (or acts along the nodes' line)",
             r[0]
         );
     }
@@ -353,6 +365,16 @@ fn undamped_links_get_no_damper_and_axis_sets_constraints() {
     let nodes = rows(&cards, "*NODE");
     assert!(nodes.iter().all(|r| r[4] == 6.0 && r[5] == 7.0));
     assert_relative_eq!(nodes[1][2] - nodes[0][2], -0.1);
+    // the links act along the axis whatever the nodes' current line: a crush
+    // beyond the 0.1 m spacing must not turn a spring over
+    let orientation = rows(&cards, "*DEFINE_SD_ORIENTATION");
+    assert_eq!(orientation.len(), 1);
+    assert_eq!(orientation[0][1..], [0.0, 0.0, -1.0, 0.0]);
+    assert!(
+        rows(&cards, "*ELEMENT_DISCRETE")
+            .iter()
+            .all(|r| r[4] == orientation[0][0])
+    );
 }
 
 #[test]
