@@ -11,10 +11,12 @@
 //!
 //! - chain masses (`*ELEMENT, TYPE=MASS`) move freely along x; their y
 //!   follows the body at the bumper line (ξ = x_f), as in [`crate::drive`];
-//! - each chain's last link (`SPRINGA`, `DASHPOTA`, along x) ends on a body
-//!   node tied by `*EQUATION`s: x to the body, y to the chain's line (ccx's
-//!   SPRINGA acts along the current line between its nodes even in a linear
-//!   step, so every node of a chain shares one y);
+//! - the links are `SPRING2` on x (a fixed direction: a `SPRINGA` along the
+//!   nodes' current line turns over once a crush beyond the spacing crosses
+//!   them) and `DASHPOTA`; each chain's last link ends on a body node tied by
+//!   `*EQUATION`s: x to the body, y to the chain's line (a DASHPOTA acts along
+//!   the current line between its nodes even in a linear step, so every node
+//!   of a chain shares one y);
 //! - the user's attachment nodes follow their side's front mass in x and
 //!   the body in y;
 //! - the front forces (lever rule, see [`super`]) act on the front masses'
@@ -191,7 +193,10 @@ fn model(deck: &mut String, car: &PlanarCar, options: &PlanarExport, nodes: &Nod
     links(deck, car, options, nodes, element);
 }
 
-/// SPRINGA and DASHPOTA along each chain, the last link to the body end node.
+/// SPRING2 on x and DASHPOTA along each chain, the last link to the body
+/// end node: a SPRINGA along the nodes' current line turns over once a
+/// crush beyond the spacing crosses them ([`inp::axial_link_element`]);
+/// the chain masses move along x (small yaw), so x is the link's axis.
 fn links(deck: &mut String, car: &PlanarCar, options: &PlanarExport, nodes: &Nodes, first: u64) {
     let (set, u) = (&options.prefix, options.units);
     let mut element = first;
@@ -207,7 +212,7 @@ fn links(deck: &mut String, car: &PlanarCar, options: &PlanarExport, nodes: &Nod
             for (link, letter, value) in kinds.into_iter().filter(|k| k.2 > 0.0) {
                 element += 1;
                 let name = format!("{set}{letter}{element}");
-                inp::link_element(deck, link, &name, element, [ids[j], back], value);
+                inp::axial_link_element(deck, link, &name, element, [ids[j], back], 1, value);
             }
         }
     }
@@ -245,7 +250,7 @@ fn constraints(
         }
         let end = nodes.ends[side.index];
         equation(deck, (end, 1), &body.x(side.eta));
-        // on the chain's line: SPRINGA acts along the current node line
+        // on the chain's line: a DASHPOTA acts along the current node line
         equation(deck, (end, 2), &body.y(x_f));
     }
     for side in sides(car) {
