@@ -207,6 +207,21 @@ pub(crate) fn check(car: &PlanarCar, options: &PlanarExport) -> Result<(), Plana
     if let Some(forces) = &options.forces {
         check_forces(car, forces)?;
     }
+    // the decks write each link's spring as linear: a nonlinear side member
+    // exported as its initial slope would be a different car, silently
+    for (side, chain) in [("left", car.left()), ("right", car.right())] {
+        let links = chain.links.len() as f64;
+        let expected = "none: the planar decks carry linear side members only \
+             (a nonlinear link would be written as its initial slope); export \
+             the side member as a 1-D links chain, or a linear car";
+        require(
+            &format!("{side}.links"),
+            links,
+            "links",
+            expected,
+            links == 0.0,
+        )?;
+    }
     if let Some(dt) = options.output_interval {
         let duration = options.forces.as_ref().map(Forces::duration);
         bumpsim_export::check_interval(

@@ -383,3 +383,24 @@ fn lsdyna_include_parses_in_ansys_dyna_core_with_every_id_defined() {
         assert!(keywords.contains(kind), "{kind} missing: {keywords}");
     }
 }
+
+/// A car whose side members crush (nonlinear links) is refused by both
+/// decks, naming the side's links: they would carry each link's initial
+/// slope, a different car.
+#[test]
+fn nonlinear_side_members_are_refused_by_the_decks_not_linearised() {
+    let file =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/planar/links.toml");
+    let car = PlanarCar::read(&file).unwrap();
+    assert!(!car.left().links.is_empty());
+    let options = PlanarExport::default();
+    for message in [
+        calculix_deck(&car, &options).unwrap_err().to_string(),
+        lsdyna_include(&car, &options).unwrap_err().to_string(),
+    ] {
+        assert!(
+            message.contains("left.links") && message.contains("linear side members only"),
+            "{message}"
+        );
+    }
+}
