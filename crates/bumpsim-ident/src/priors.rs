@@ -21,11 +21,13 @@
 //! prior; its stiffness (the window taken as a half period) and damping
 //! (30 % of critical) still centre the factor-10 priors of the springs
 //! and dampers. A user's start is what the user knows, and centres every
-//! element. The priors keep a parameter the data leave free (a second
-//! mass traded against the third along the direction the tests cannot
-//! see) from walking to its bound: on the bundled example the posterior's
-//! walkers drifted to m2's 1 kg bound with no priors at all (split-R̂ 1.76
-//! at 4000 steps). A study's `[priors]` overrides each (`value`,
+//! element. The price: on the bundled example nothing stated holds the
+//! second mass, traded against the third along the direction the tests
+//! cannot see, so long posteriors walk down that tail (m2's 95 % interval
+//! from 3.8 kg at 12 000 steps; 70 kg at 16 000 with the equal split's
+//! prior; the 1 kg bound with no priors at all): a stated `[priors] m2`
+//! from the drawings is the remedy (docs/uncertainty.md). A study's
+//! `[priors]` overrides each (`value`,
 //! `spread`), removes it (`"none"`) or adds one
 //! ([`bumpsim_estimate::stated`]).
 
