@@ -4,20 +4,21 @@ generator for the identification with yielding links (issue 46).
 Another family than bumpsim's lumped chain: the car is a bumper, a front
 bar (the crush zone, 10 elements), the engine, a rear bar (the engine's
 load path into the body, 5 elements) and the body. Each bar has
-distributed mass (its nodes) and elements that are elasto-plastic springs
-(stiffness N k, yield force F_y, hardening ratio r, unloading stiffness
-N u k, the plastic strain kept). The bumper meets the wall through a stiff
-contact spring with a damper at critical for the bumper (compression
-only): a bumper beam that hits a wall crushes, it does not ring off it
-at the impact speed (an undamped contact made the 2 kg bumper bounce
-off the wall and back, the wall force alternating between a 440 kN
-spike and nothing for the first 5 ms). Integrated by symplectic Euler
-(velocities first) at a step far below the elements' period, numpy only,
-written from the equations alone. The bars are light (2 kg each, the
-bumper 2 kg): the lumped chain takes m1 as one rigid body, so heavy parts
-ahead of the engine, stopped by the wall before it, would bias the link
-it identifies beyond its interval (with 15 kg of bumper and 20 kg of
-front bar the yield force came out 17 % high).
+distributed mass (its nodes) and elements that are elasto-plastic
+springs (stiffness N k, yield force F_y, hardening ratio r, unloading
+stiffness N u k past yield, elastic along N k before it, the plastic
+strain kept). The bumper meets the wall through a stiff contact spring
+with a damper at critical for the bumper (compression only): a bumper
+beam that hits a wall crushes, it does not ring off it at the impact
+speed (an undamped contact made the 2 kg bumper bounce off the wall and
+back, the wall force alternating between a 440 kN spike and nothing for
+the first 5 ms). Integrated by symplectic Euler (velocities first) at a
+step far below the elements' period, numpy only, written from the
+equations alone. The bars are light (2 kg each, the bumper 2 kg): the
+lumped chain takes m1 as one rigid body, so heavy parts ahead of the
+engine, stopped by the wall before it, would bias the link it identifies
+beyond its interval (with 15 kg of bumper and 20 kg of front bar the
+yield force came out 17 % high).
 
 Quasi-statically a bar is one bilinear link: N identical elements in
 series yield together, so its stiffness is k, its yield force F_y, its
@@ -54,13 +55,16 @@ NOISE = 2e-4  # m
 
 def element_force(strain, state, k, fy, r, unload):
     """Elasto-plastic elements: bilinear loading, linear unloading about
-    the plastic set; `state` holds the largest compression reached."""
+    the plastic set; `state` holds the largest compression reached. An
+    element that never yielded (state <= dy) unloads elastically along k,
+    with no set, whatever its unloading stiffness."""
     dy = fy / k
     reached = np.maximum(state, strain)
     top = np.where(reached <= dy, k * reached, fy + r * k * (reached - dy))
     loading = strain >= state
     on_curve = np.where(strain <= dy, k * strain, fy + r * k * (strain - dy))
-    force = np.where(loading, on_curve, top - unload * (state - strain))
+    slope = np.where(state <= dy, k, unload)
+    force = np.where(loading, on_curve, top - slope * (state - strain))
     return force, reached
 
 
