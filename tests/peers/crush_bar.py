@@ -27,9 +27,10 @@ are the truth of the identified chain's link between m1 (bumper, front
 bar and engine) and m2 (the body), written beside the series
 (truth.json); the front bar is what the wall force measures.
 
-    python3 crush_bar.py OUT [SEED]
+    python3 crush_bar.py OUT [SEED] [SPEED]
 
-writes OUT/crush.csv (time s, wall force N (negative: on the car), body
+(SPEED m/s, 10 by default: another speed is a held-out test of the same
+car) writes OUT/crush.csv (time s, wall force N (negative: on the car), body
 displacement m with N(0, 0.2 mm) noise) and OUT/truth.json.
 """
 
@@ -71,6 +72,7 @@ def element_force(strain, state, k, fy, r, unload):
 def main():
     out = Path(sys.argv[1])
     seed = int(sys.argv[2]) if len(sys.argv) > 2 else 1
+    speed = float(sys.argv[3]) if len(sys.argv) > 3 else SPEED
     out.mkdir(parents=True, exist_ok=True)
     nf, nr = FRONT[0], REAR[0]
     nodes = nf + nr + 1
@@ -91,7 +93,7 @@ def main():
     h = SAMPLE / per_sample
     # x forwards; the wall at x = 0 ahead of the front node (node 0)
     x = np.zeros(nodes)
-    v = np.full(nodes, SPEED)
+    v = np.full(nodes, speed)
     reached = np.zeros(nodes - 1)
     samples = int(round(DURATION / SAMPLE)) + 1
     wall = np.zeros(samples)
@@ -122,8 +124,14 @@ def main():
         "yield_force": REAR[3],
         "hardening": REAR[4],
         "unloading": REAR[5],
+        "front": {
+            "stiffness": FRONT[2],
+            "yield_force": FRONT[3],
+            "hardening": FRONT[4],
+            "unloading": FRONT[5],
+        },
         "front_mass": BUMPER + FRONT[1] + ENGINE,  # kg, without the rear bar
-        "speed": SPEED,
+        "speed": speed,
         "noise": NOISE,
         "total_mass": BODY + BUMPER + ENGINE + FRONT[1] + REAR[1],
     }

@@ -193,6 +193,8 @@ fn barrier() -> Option<Barrier> {
     let settings = BarrierSettings {
         links,
         knots,
+        front_start: None,
+        path_knots: number("LINKS_PATH_KNOTS", 0),
         sheet_mass: Some((mass, spread)),
     };
     let found = bumpsim_ident::links::into_wall::identify(&cases, &settings, &Silent).unwrap();
@@ -215,6 +217,18 @@ fn barrier() -> Option<Barrier> {
         case.initial_velocity,
         100.0 * dv_error
     );
+    if let Some(path) = std::env::var_os("LINKS_DUMP") {
+        // time s, measured and forward wall force N, crossmember m
+        let y = &run.displacement[dof - 1];
+        let rows: String = (a..=b)
+            .map(|k| {
+                let t = k as f64 * h;
+                let (f, g, m) = (case.force[k], run.force[k], case.measured[k]);
+                format!("{t},{f},{g},{m},{}\n", y[k])
+            })
+            .collect();
+        std::fs::write(path, rows).unwrap();
+    }
     // the barrier's impulse over the crossmember's ΔV: the mass the two
     // channels imply, against the test sheet's
     let impulse: f64 = case.force[a..=b].iter().sum::<f64>() * h;
