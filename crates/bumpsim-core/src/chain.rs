@@ -367,10 +367,10 @@ impl Chain {
                 k += kw;
                 c += cw;
             }
-            if let (Some(path), Some(_)) = (&self.path, wall) {
-                if path.mass == i {
-                    k += path.link.steepest_slope();
-                }
+            if let (Some(path), Some(_)) = (&self.path, wall)
+                && path.mass == i
+            {
+                k += path.link.steepest_slope();
             }
             omega2 = omega2.max(k / self.masses[i]);
             omega_c = omega_c.max(c / self.masses[i]);

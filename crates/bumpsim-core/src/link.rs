@@ -661,7 +661,11 @@ mod tests {
         assert_relative_eq!(s.plastic_set(&link), 0.0, epsilon = 1e-15);
         link.force(0.15, &mut s);
         let top = fy + 0.1 * k * 0.1;
-        assert_relative_eq!(s.plastic_set(&link), 0.15 - top / (2.0 * k), max_relative = 1e-12);
+        assert_relative_eq!(
+            s.plastic_set(&link),
+            0.15 - top / (2.0 * k),
+            max_relative = 1e-12
+        );
         let linear = Link::new(Curve::linear(k).unwrap(), Unloading::Slope(3.0 * k)).unwrap();
         let mut s = LinkState::default();
         linear.force(0.3, &mut s);

@@ -22,11 +22,19 @@
 //! Identified as it ran into the wall ([`bumpsim_ident::links::into_wall`]:
 //! the wall force and the body's displacement together, the total mass
 //! as the test sheet's ±1 %, nothing held) the car covers its truth:
-//! m1, k1, Fy1, r1 and u1 all lie within their 95 % intervals
-//! (seed 1: m1 304.1 kg [291.4, 317.3], k1 1.983 MN/m [1.903, 2.066],
-//! Fy1 79.49 kN [76.85, 82.21], r1 0.204 [0.1975, 0.2106], u1 6.02
-//! [5.84, 6.21]; wall force fit 90.7 %, body 99.86 %), and over noise
-//! seeds 2 to 6 (the ignored test) all 25 intervals held the truth.
+//! m1, k1, Fy1, r1 and u1 all lie within their 95 % intervals (seed 1,
+//! with the link law and the generator's elements elastic until they
+//! yield: m1 304.5 kg [289.5, 320.2], k1 1.986 MN/m [1.871, 2.108], Fy1
+//! 79.52 kN [75.31, 83.97], r1 0.204 [0.193, 0.215], u1 6.03 [5.78,
+//! 6.29]; wall force fit 90.5 %, body 99.86 %). Over noise seeds 2 to 6
+//! (the ignored test) 23 of the 25 intervals hold the truth (all 25
+//! before that fix); seed 6 lands on another optimum (m1 269.5 kg
+//! [265.2, 273.8], Fy1 10.6 kN [2.9, 37.9]: the front bar's load taken
+//! by the front table, the link nearly perfectly plastic from the start).
+//!
+//! Started at the truth, the fit stays within those intervals and
+//! predicts a held-out 7 m/s run better than the truth's own lumped car
+//! (wall force 90.97 % against 83.78 %, body 99.46 % against 96.40 %).
 
 use bumpsim_estimate::observer::Silent;
 use bumpsim_ident::LoadCase;
@@ -260,7 +268,8 @@ fn a_barrier_fit_started_at_the_truth_stays_and_predicts_no_worse() {
     );
     let chain = vec![m1, total - m1, 1.0, k, fy, r, u];
     let (knots, _) = front_start(&case, total, 10).unwrap();
-    let bar = Curve::bilinear(front("stiffness"), front("yield_force"), front("hardening")).unwrap();
+    let bar =
+        Curve::bilinear(front("stiffness"), front("yield_force"), front("hardening")).unwrap();
     let mut table: Vec<f64> = knots.iter().map(|d| bar.force(*d)).collect();
     table.push(front("unloading") * front("stiffness"));
     let settings = BarrierSettings {
@@ -274,7 +283,13 @@ fn a_barrier_fit_started_at_the_truth_stays_and_predicts_no_worse() {
         bumpsim_ident::links::into_wall::identify(std::slice::from_ref(&case), &settings, &Silent)
             .unwrap();
     println!("started at the truth\n{}", text(&found));
-    for (name, i, truth) in [("m1", 0, m1), ("k1", 3, k), ("Fy1", 4, fy), ("r1", 5, r), ("u1", 6, u)] {
+    for (name, i, truth) in [
+        ("m1", 0, m1),
+        ("k1", 3, k),
+        ("Fy1", 4, fy),
+        ("r1", 5, r),
+        ("u1", 6, u),
+    ] {
         let interval = found.uncertainty.ci95[i];
         assert!(
             interval.is_some_and(|[lo, hi]| lo <= truth && truth <= hi),
@@ -304,8 +319,14 @@ fn a_barrier_fit_started_at_the_truth_stays_and_predicts_no_worse() {
         "held-out 7 m/s: wall force {:.2} % (truth's lumped car {:.2} %), body {:.2} % ({:.2} %)",
         found_fits.0, truth_fits.0, found_fits.1, truth_fits.1
     );
-    assert!(found_fits.0 >= truth_fits.0 - 1.0, "{found_fits:?} {truth_fits:?}");
-    assert!(found_fits.1 >= truth_fits.1 - 0.5, "{found_fits:?} {truth_fits:?}");
+    assert!(
+        found_fits.0 >= truth_fits.0 - 1.0,
+        "{found_fits:?} {truth_fits:?}"
+    );
+    assert!(
+        found_fits.1 >= truth_fits.1 - 0.5,
+        "{found_fits:?} {truth_fits:?}"
+    );
 }
 
 /// The generator's series as a load case.

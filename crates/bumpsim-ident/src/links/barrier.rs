@@ -24,7 +24,14 @@
 //! r = [ (F_sim − F_meas)_k / s_F,l ;  (y_sim − y_meas)_k / s_y,l ]
 //! ```
 //!
-//! over its window (y in the case's domain). `s_F` and `s_y` are each
+//! over its window (y in the case's domain).
+//!
+//! A second load path ([`BarrierLayout::path_knots`], Kamal's parallel
+//! paths; [`bumpsim_core::chain::Chain::with_path`]) adds a tabulated
+//! crush link from the last mass (the body) into the wall, J knots of the
+//! body's crush with forces `Fp1..FpJ` and an unloading slope `kp`; the
+//! front zone on m1 then plays the engine's path (its table may stay low
+//! over a gap), and the wall force is the sum of both. `s_F` and `s_y` are each
 //! channel's error scale, estimated by its own residuals (maximum
 //! likelihood with an unknown variance per channel, Bard 1974 §4-13): at
 //! the start, and again at the optimum before a polishing run. The model

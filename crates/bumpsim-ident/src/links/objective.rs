@@ -225,7 +225,8 @@ impl LeastSquares for LinkObjective<'_> {
     }
 
     fn evaluate(&self, p: &[f64], r: &mut [f64], jacobian: Option<&mut DMatrix<f64>>) -> bool {
-        let residuals = |theta: &[f64], r: &mut [f64]| residuals(self.cases, &self.layout, theta, r);
+        let residuals =
+            |theta: &[f64], r: &mut [f64]| residuals(self.cases, &self.layout, theta, r);
         self.parameters.evaluate(p, r, jacobian, &residuals)
     }
 }
