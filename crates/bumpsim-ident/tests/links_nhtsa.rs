@@ -326,6 +326,7 @@ fn nhtsa_10146_identified_into_the_barrier_fits_and_predicts_delta_v() {
 /// | 4 | 97.62 % | 79.55 % | 0.76 % | 1751 kg |
 /// | 12 | 99.54 % | 87.46 % | 3.23 % | 1825 kg (+6.0 sd) |
 /// | 12, mass ±0.3 % | 99.02 % | 89.82 % | 0.00 % | 1732 kg (+2.6 sd) |
+/// | 12, mass ±0.3 %, 10 path knots | 99.57 % | 88.39 % | 1.27 % | 1737 kg (+3.6 sd) |
 ///
 /// The last (`LINKS_MASS_SPREAD=0.003`: the sheet's mass held harder,
 /// against 1200 correlated force samples that each count as independent)
