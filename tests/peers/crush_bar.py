@@ -4,20 +4,21 @@ generator for the identification with yielding links (issue 46).
 Another family than bumpsim's lumped chain: the car is a bumper, a front
 bar (the crush zone, 10 elements), the engine, a rear bar (the engine's
 load path into the body, 5 elements) and the body. Each bar has
-distributed mass (its nodes) and elements that are elasto-plastic springs
-(stiffness N k, yield force F_y, hardening ratio r, unloading stiffness
-N u k, the plastic strain kept). The bumper meets the wall through a stiff
-contact spring with a damper at critical for the bumper (compression
-only): a bumper beam that hits a wall crushes, it does not ring off it
-at the impact speed (an undamped contact made the 2 kg bumper bounce
-off the wall and back, the wall force alternating between a 440 kN
-spike and nothing for the first 5 ms). Integrated by symplectic Euler
-(velocities first) at a step far below the elements' period, numpy only,
-written from the equations alone. The bars are light (2 kg each, the
-bumper 2 kg): the lumped chain takes m1 as one rigid body, so heavy parts
-ahead of the engine, stopped by the wall before it, would bias the link
-it identifies beyond its interval (with 15 kg of bumper and 20 kg of
-front bar the yield force came out 17 % high).
+distributed mass (its nodes) and elements that are elasto-plastic
+springs (stiffness N k, yield force F_y, hardening ratio r, unloading
+stiffness N u k past yield, elastic along N k before it, the plastic
+strain kept). The bumper meets the wall through a stiff contact spring
+with a damper at critical for the bumper (compression only): a bumper
+beam that hits a wall crushes, it does not ring off it at the impact
+speed (an undamped contact made the 2 kg bumper bounce off the wall and
+back, the wall force alternating between a 440 kN spike and nothing for
+the first 5 ms). Integrated by symplectic Euler (velocities first) at a
+step far below the elements' period, numpy only, written from the
+equations alone. The bars are light (2 kg each, the bumper 2 kg): the
+lumped chain takes m1 as one rigid body, so heavy parts ahead of the
+engine, stopped by the wall before it, would bias the link it identifies
+beyond its interval (with 15 kg of bumper and 20 kg of front bar the
+yield force came out 17 % high).
 
 Quasi-statically a bar is one bilinear link: N identical elements in
 series yield together, so its stiffness is k, its yield force F_y, its
@@ -26,9 +27,10 @@ are the truth of the identified chain's link between m1 (bumper, front
 bar and engine) and m2 (the body), written beside the series
 (truth.json); the front bar is what the wall force measures.
 
-    python3 crush_bar.py OUT [SEED]
+    python3 crush_bar.py OUT [SEED] [SPEED]
 
-writes OUT/crush.csv (time s, wall force N (negative: on the car), body
+(SPEED m/s, 10 by default: another speed is a held-out test of the same
+car) writes OUT/crush.csv (time s, wall force N (negative: on the car), body
 displacement m with N(0, 0.2 mm) noise) and OUT/truth.json.
 """
 
@@ -54,19 +56,23 @@ NOISE = 2e-4  # m
 
 def element_force(strain, state, k, fy, r, unload):
     """Elasto-plastic elements: bilinear loading, linear unloading about
-    the plastic set; `state` holds the largest compression reached."""
+    the plastic set; `state` holds the largest compression reached. An
+    element that never yielded (state <= dy) unloads elastically along k,
+    with no set, whatever its unloading stiffness."""
     dy = fy / k
     reached = np.maximum(state, strain)
     top = np.where(reached <= dy, k * reached, fy + r * k * (reached - dy))
     loading = strain >= state
     on_curve = np.where(strain <= dy, k * strain, fy + r * k * (strain - dy))
-    force = np.where(loading, on_curve, top - unload * (state - strain))
+    slope = np.where(state <= dy, k, unload)
+    force = np.where(loading, on_curve, top - slope * (state - strain))
     return force, reached
 
 
 def main():
     out = Path(sys.argv[1])
     seed = int(sys.argv[2]) if len(sys.argv) > 2 else 1
+    speed = float(sys.argv[3]) if len(sys.argv) > 3 else SPEED
     out.mkdir(parents=True, exist_ok=True)
     nf, nr = FRONT[0], REAR[0]
     nodes = nf + nr + 1
@@ -87,7 +93,7 @@ def main():
     h = SAMPLE / per_sample
     # x forwards; the wall at x = 0 ahead of the front node (node 0)
     x = np.zeros(nodes)
-    v = np.full(nodes, SPEED)
+    v = np.full(nodes, speed)
     reached = np.zeros(nodes - 1)
     samples = int(round(DURATION / SAMPLE)) + 1
     wall = np.zeros(samples)
@@ -118,8 +124,14 @@ def main():
         "yield_force": REAR[3],
         "hardening": REAR[4],
         "unloading": REAR[5],
+        "front": {
+            "stiffness": FRONT[2],
+            "yield_force": FRONT[3],
+            "hardening": FRONT[4],
+            "unloading": FRONT[5],
+        },
         "front_mass": BUMPER + FRONT[1] + ENGINE,  # kg, without the rear bar
-        "speed": SPEED,
+        "speed": speed,
         "noise": NOISE,
         "total_mass": BODY + BUMPER + ENGINE + FRONT[1] + REAR[1],
     }

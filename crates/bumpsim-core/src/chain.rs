@@ -40,6 +40,13 @@
 //! critical for m1. The recorded force is the wall's force on the car
 //! (negative, as the load-cell barrier's is).
 //!
+//! A second load path ([`Chain::with_path`], Kamal 1970's parallel paths:
+//! the body's rails beside the engine's, or the engine meeting the wall
+//! after the radiator's gap) is a crush link between the wall and another
+//! mass p, compressed by `x_p − g` (g ≥ 0 the gap), never pulling. The wall
+//! force is then the sum of both links' forces; the path's energies join
+//! the balance as the front link's do.
+//!
 //! ```
 //! use bumpsim_core::chain::{Chain, Drive};
 //! use bumpsim_core::link::{Curve, Link, Unloading};
@@ -63,6 +70,18 @@ pub struct Chain {
     dampers: Vec<f64>,
     links: Vec<Link>,
     front: Option<Link>,
+    path: Option<WallPath>,
+}
+
+/// A second load path into the wall ([`Chain::with_path`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WallPath {
+    /// The mass it pushes, 0-based.
+    pub mass: usize,
+    /// The gap before it touches, m (its crush is `x_mass − gap`).
+    pub gap: f64,
+    /// Its crush link.
+    pub link: Link,
 }
 
 /// Why a chain cannot run.
@@ -254,6 +273,7 @@ impl Chain {
             dampers,
             links,
             front: None,
+            path: None,
         })
     }
 
@@ -291,6 +311,30 @@ impl Chain {
         self.front.as_ref()
     }
 
+    /// The same chain with a second load path into the wall (it acts only
+    /// when driven by [`Drive::Barrier`]): `link` between the wall and
+    /// mass `mass` (0-based), compressed by that mass's travel past `gap`
+    /// (m, ≥ 0), never pulling.
+    pub fn with_path(self, mass: usize, gap: f64, link: Link) -> Result<Chain, ModelError> {
+        if mass >= self.dof() || !(gap.is_finite() && gap >= 0.0) {
+            return Err(ModelError::Value {
+                parameter: format!("second load path on mass {} with gap", mass + 1),
+                value: gap,
+                unit: "m",
+                requirement: "a mass of the chain and a finite, non-negative gap",
+            });
+        }
+        Ok(Chain {
+            path: Some(WallPath { mass, gap, link }),
+            ..self
+        })
+    }
+
+    /// The second load path, if any.
+    pub fn path(&self) -> Option<&WallPath> {
+        self.path.as_ref()
+    }
+
     /// The wall's penalty stiffness (N/m) and damper (N·s/m): 100 times
     /// the steepest link slope, at least 1e9 N/m; the damper at 0.7 of
     /// critical for m1.
@@ -322,6 +366,11 @@ impl Chain {
             if let (0, Some((kw, cw))) = (i, wall) {
                 k += kw;
                 c += cw;
+            }
+            if let (Some(path), Some(_)) = (&self.path, wall)
+                && path.mass == i
+            {
+                k += path.link.steepest_slope();
             }
             omega2 = omega2.max(k / self.masses[i]);
             omega_c = omega_c.max(c / self.masses[i]);
@@ -415,6 +464,8 @@ struct Mover<'a> {
     sign: f64,
     front: LinkState,
     front_force: f64,
+    path: LinkState,
+    path_force: f64,
     states: Vec<LinkState>,
     springs: Vec<f64>,
     applied: usize,
@@ -442,6 +493,8 @@ impl<'a> Mover<'a> {
             sign,
             front: LinkState::default(),
             front_force: 0.0,
+            path: LinkState::default(),
+            path_force: 0.0,
             states: vec![LinkState::default(); l],
             springs: vec![0.0; l],
             applied: 0,
@@ -512,6 +565,10 @@ impl Mechanism for Mover<'_> {
         if let (Some(front), Some(_)) = (&self.chain.front, self.wall) {
             self.front_force = front.force(q[0], &mut self.front).max(0.0);
         }
+        if let (Some(path), Some(_)) = (&self.chain.path, self.wall) {
+            let crush = q[path.mass] - path.gap;
+            self.path_force = path.link.force(crush, &mut self.path).max(0.0);
+        }
         self.applied = k.wrapping_add(1);
     }
 
@@ -526,6 +583,9 @@ impl Mechanism for Mover<'_> {
             }
             if i > 0 {
                 sum += self.springs[i - 1] + c[i - 1] * (v[i - 1] - v[i]);
+            }
+            if self.chain.path.as_ref().is_some_and(|p| p.mass == i) {
+                sum -= self.path_force;
             }
             *ai = sum / self.chain.masses[i];
         }
@@ -549,7 +609,7 @@ impl Mechanism for Mover<'_> {
         if q.iter().chain(v).any(|x| !x.is_finite()) {
             return Err(k / self.every);
         }
-        let wall = self.external(k, q[0], v[0]);
+        let wall = self.external(k, q[0], v[0]) - self.path_force;
         let o = &mut self.out;
         o.force.push(wall);
         for (i, (x, w)) in q.iter().zip(v).enumerate() {
@@ -567,6 +627,12 @@ impl Mechanism for Mover<'_> {
                 stored += front.stored(q[0], &self.front);
             }
             plastic += self.front.dissipated(front);
+        }
+        if let (Some(path), Some(_)) = (&self.chain.path, self.wall) {
+            if self.path_force > 0.0 {
+                stored += path.link.stored(q[path.mass] - path.gap, &self.path);
+            }
+            plastic += self.path.dissipated(&path.link);
         }
         o.kinetic.push(
             self.chain

@@ -192,3 +192,38 @@ fn hostile_drives_are_refused() {
     assert!(Chain::new(vec![1.0, -2.0], vec![0.0], vec![Link::linear(1.0).unwrap()]).is_err());
     assert!(Chain::new(vec![1.0, 2.0], vec![], vec![Link::linear(1.0).unwrap()]).is_err());
 }
+
+/// A second load path after a gap (Kamal's engine meeting the wall): one
+/// mass M at V through a front link (k, F_1) and a path (k, F_2) that
+/// touches after the gap g. Past both yields the work done is
+/// `F_1 (c − F_1/2k) + F_2 (c − g − F_2/2k) = M V²/2`, which gives the
+/// crush c; the wall force is −(F_1 + F_2) at it, and the balance closes.
+#[test]
+fn a_second_path_after_a_gap_adds_its_force_and_its_work() {
+    let (m, v, k, f1, f2, gap) = (1000.0, 10.0, 1e7, 1e5, 5e4, 0.1);
+    let chain = Chain::new(vec![m], vec![], vec![])
+        .unwrap()
+        .with_front(epp(k, f1))
+        .with_path(0, gap, epp(k, f2))
+        .unwrap();
+    let r = chain
+        .run(&Drive::Barrier {
+            speed: v,
+            step: 1e-4,
+            samples: 3000,
+        })
+        .unwrap();
+    let (d1, d2) = (f1 / (2.0 * k), f2 / (2.0 * k));
+    let crush = (0.5 * m * v * v + f1 * d1 + f2 * (gap + d2)) / (f1 + f2);
+    let reached = r.displacement[0].iter().fold(0.0_f64, |a, b| a.max(*b));
+    assert_relative_eq!(reached, crush, max_relative = 1e-3);
+    let peak = r.force.iter().fold(0.0_f64, |a, b| a.min(*b));
+    assert_relative_eq!(peak, -(f1 + f2), max_relative = 1e-9);
+    // before the gap closes only the front pushes
+    let early = r.displacement[0].iter().position(|x| *x > 0.05).unwrap();
+    assert_relative_eq!(r.force[early], -f1, max_relative = 1e-9);
+    assert!(r.energy_error() < 1e-3, "{}", r.energy_error());
+    let bad = Chain::new(vec![m], vec![], vec![]).unwrap();
+    assert!(bad.clone().with_path(1, 0.0, epp(k, f2)).is_err());
+    assert!(bad.with_path(0, -0.1, epp(k, f2)).is_err());
+}

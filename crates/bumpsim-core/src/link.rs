@@ -26,10 +26,20 @@
 //! - **elastic slope** `k_u` from the reached deformation δ_max (the
 //!   elasto-plastic spring): `F = F_max − k_e (δ_max − δ)` below δ_max,
 //!   linear into tension, with the plastic set `δ_p = δ_max − F_max / k_e`.
-//!   The slope used is `k_e = max(k_u, F_max/δ_max, F_max²/(2 E_L))`,
-//!   `E_L = ∫₀^δmax F_L dδ`: the secant keeps the set non-negative and the
-//!   last term keeps the dissipated work non-negative on a stiffening
-//!   curve (both equal k on a linear curve, which then stays elastic).
+//!   Past the curve's elastic limit δ_e the slope used is
+//!   `k_e = max(k_u, F_max/δ_max, F_max²/(2 E_L))`, `E_L = ∫₀^δmax F_L dδ`:
+//!   the secant keeps the set non-negative and the last term keeps the
+//!   dissipated work non-negative on a stiffening curve. Up to δ_e
+//!   (`δ_max ≤ δ_e`) the link is elastic whatever k_u: it unloads along its
+//!   initial slope k, with no set and nothing dissipated.
+//!   The elastic limit ([`Curve::elastic_limit`]): a linear curve's is
+//!   infinite (it never takes a set), a bilinear one's is its yield
+//!   deformation `δ_y = F_y / k`; progressive and tabulated curves have
+//!   none (δ_e = 0: a crush curve's unloading rule holds from the first
+//!   compression). A bilinear link with `k_u > k` therefore takes its set
+//!   at yield: it jumps from 0 to `δ_y (1 − k/k_u)` as δ_max passes δ_y
+//!   (as LS-DYNA's general nonlinear spring does past its initial yield
+//!   force); with `k_u ≤ k` the set grows from 0 continuously.
 //!
 //! Energy: the elastic energy stored is `F² / (2 k_e)` (elastic rule:
 //! `∫₀^|δ| F_L`), and the plastic work dissipated so far is
@@ -229,6 +239,22 @@ impl<T: Real> Curve<T> {
                 }
                 whole + (f0 + self.force(d)) * 0.5 * (d - d0)
             }
+        }
+    }
+
+    /// The elastic limit δ_e, m: up to it the link unloads along its
+    /// initial slope whatever its unloading rule (see the module). A
+    /// linear curve's is infinite, a bilinear one's `F_y / k`; progressive
+    /// and tabulated curves have none (0).
+    pub fn elastic_limit(&self) -> T {
+        match self {
+            Curve::Linear { .. } => T::constant(f64::INFINITY),
+            Curve::Bilinear {
+                stiffness,
+                yield_force,
+                ..
+            } => *yield_force / *stiffness,
+            Curve::Progressive { .. } | Curve::Table { .. } => T::constant(0.0),
         }
     }
 
@@ -471,6 +497,9 @@ impl<T: Real> Link<T> {
         if reached.value() <= 0.0 {
             return (T::constant(0.0), larger(given, k0));
         }
+        if reached.value() <= self.curve.elastic_limit().value() {
+            return (top, k0);
+        }
         let secant = top / reached;
         let energy = self.curve.energy(reached);
         let balance = match energy.value() > 0.0 {
@@ -603,6 +632,46 @@ mod tests {
         assert_relative_eq!(link.force(0.1, &mut s), 1e4, max_relative = 1e-12);
         assert_relative_eq!(s.plastic_set(&link), 0.0, epsilon = 1e-15);
         assert_relative_eq!(s.dissipated(&link), 0.0, epsilon = 1e-9);
+    }
+
+    /// Below its elastic limit a link unloads elastically whatever its
+    /// unloading slope: a bilinear link loaded to δ < δ_y = F_y/k and an
+    /// unloading slope twice k gives back F = k δ to zero, with no set
+    /// and nothing dissipated (the law took a set δ/2 here before), and a
+    /// linear curve stays elastic under a steeper unloading slope too.
+    /// Past δ_y the set is the unloading line's.
+    #[test]
+    fn below_the_elastic_limit_a_link_unloads_elastically() {
+        let (k, fy) = (1e6, 5e4);
+        let link = Link::new(
+            Curve::bilinear(k, fy, 0.1).unwrap(),
+            Unloading::Slope(2.0 * k),
+        )
+        .unwrap();
+        assert_relative_eq!(link.curve().elastic_limit(), 0.05, max_relative = 1e-15);
+        let mut s = LinkState::default();
+        assert_relative_eq!(link.force(0.02, &mut s), 2e4, max_relative = 1e-12);
+        assert_relative_eq!(link.force(0.01, &mut s), 1e4, max_relative = 1e-12);
+        assert_relative_eq!(link.force(0.0, &mut s), 0.0, epsilon = 1e-9);
+        assert_relative_eq!(s.plastic_set(&link), 0.0, epsilon = 1e-15);
+        assert_relative_eq!(s.dissipated(&link), 0.0, epsilon = 1e-12);
+        assert_relative_eq!(link.stored(0.01, &s), 0.5 * k * 1e-4, max_relative = 1e-12);
+        // at the elastic limit still elastic; past it the unloading line
+        link.force(0.05, &mut s);
+        assert_relative_eq!(s.plastic_set(&link), 0.0, epsilon = 1e-15);
+        link.force(0.15, &mut s);
+        let top = fy + 0.1 * k * 0.1;
+        assert_relative_eq!(
+            s.plastic_set(&link),
+            0.15 - top / (2.0 * k),
+            max_relative = 1e-12
+        );
+        let linear = Link::new(Curve::linear(k).unwrap(), Unloading::Slope(3.0 * k)).unwrap();
+        let mut s = LinkState::default();
+        linear.force(0.3, &mut s);
+        assert_relative_eq!(linear.force(0.1, &mut s), 1e5, max_relative = 1e-12);
+        assert_relative_eq!(s.plastic_set(&linear), 0.0, epsilon = 1e-15);
+        assert_relative_eq!(s.dissipated(&linear), 0.0, epsilon = 1e-9);
     }
 
     #[test]

@@ -296,19 +296,17 @@ fn exactly_one_function_computes_the_hold_discretisation() {
     found.sort();
     found.dedup();
     // besides the hold discretisation: scalar `f64::exp` of log-scale
-    // parameters (a band's car `bands::car`, the nonlinear links'
-    // `objective::{evaluate, theta}`, a prior's estimate `prior::moved`) and
-    // the log-sum-exp of a prior on a sum of parameters (`prior::value`),
-    // the links' barrier fit's log parameters (`barrier::{evaluate, theta}`)
-    // and a prior's interval on the parameter scale (`prior::with_priors`)
+    // parameters (a band's car `bands::car`, the nonlinear links' one
+    // `objective::{evaluate, fill}` for both their objectives, a prior's
+    // estimate `prior::moved`) and the log-sum-exp of a prior on a sum of
+    // parameters (`prior::value`), and a prior's interval on the parameter
+    // scale (`prior::with_priors`)
     let allowed = [
         "bands::car",
-        "barrier::evaluate",
-        "barrier::theta",
         "energy::step_integral",
         "exponential::hold_exponential",
         "objective::evaluate",
-        "objective::theta",
+        "objective::fill",
         "prior::moved",
         "prior::value",
         "prior::with_priors",

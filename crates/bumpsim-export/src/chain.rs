@@ -27,6 +27,11 @@
 //! follows it exactly. Below it, LS-DYNA unloads at the steepest slope
 //! (the manual: the larger of KU and the curve's largest slope) and so does
 //! the brick: stiffer than bumpsim's, so their plastic set is larger.
+//! One exception to "exactly": bumpsim keeps a bilinear link elastic until
+//! it yields (unloading along k before δ_y, [`bumpsim_core::link`]), while
+//! the inelastic spring and the brick with `E` from k_u > k take a set
+//! `δ (1 − k/k_u)` from the first compression; a link unloaded before its
+//! yield differs by that set (none once it has yielded).
 //!
 //! **Tension.** bumpsim's unloading line runs on into tension. LS-DYNA's
 //! inelastic spring (CTF = 1) carries none; CalculiX's brick (isotropic

@@ -22,11 +22,19 @@
 //! Identified as it ran into the wall ([`bumpsim_ident::links::into_wall`]:
 //! the wall force and the body's displacement together, the total mass
 //! as the test sheet's ±1 %, nothing held) the car covers its truth:
-//! m1, k1, Fy1, r1 and u1 all lie within their 95 % intervals
-//! (seed 1: m1 304.1 kg [291.4, 317.3], k1 1.983 MN/m [1.903, 2.066],
-//! Fy1 79.49 kN [76.85, 82.21], r1 0.204 [0.1975, 0.2106], u1 6.02
-//! [5.84, 6.21]; wall force fit 90.7 %, body 99.86 %), and over noise
-//! seeds 2 to 6 (the ignored test) all 25 intervals held the truth.
+//! m1, k1, Fy1, r1 and u1 all lie within their 95 % intervals (seed 1,
+//! with the link law and the generator's elements elastic until they
+//! yield: m1 304.5 kg [289.5, 320.2], k1 1.986 MN/m [1.871, 2.108], Fy1
+//! 79.52 kN [75.31, 83.97], r1 0.204 [0.193, 0.215], u1 6.03 [5.78,
+//! 6.29]; wall force fit 90.5 %, body 99.86 %). Over noise seeds 2 to 6
+//! (the ignored test) 23 of the 25 intervals hold the truth (all 25
+//! before that fix); seed 6 lands on another optimum (m1 269.5 kg
+//! [265.2, 273.8], Fy1 10.6 kN [2.9, 37.9]: the front bar's load taken
+//! by the front table, the link nearly perfectly plastic from the start).
+//!
+//! Started at the truth, the fit stays within those intervals and
+//! predicts a held-out 7 m/s run better than the truth's own lumped car
+//! (wall force 90.97 % against 83.78 %, body 99.46 % against 96.40 %).
 
 use bumpsim_estimate::observer::Silent;
 use bumpsim_ident::LoadCase;
@@ -37,17 +45,31 @@ fn series() -> Option<PathBuf> {
     seeded(1)
 }
 
-/// The generator's series of noise seed `seed`.
+/// The generator's series of noise seed `seed` at its 10 m/s.
 fn seeded(seed: u64) -> Option<PathBuf> {
+    at_speed(seed, 10.0)
+}
+
+/// The generator's series of noise seed `seed` at `speed` m/s.
+fn at_speed(seed: u64, speed: f64) -> Option<PathBuf> {
     if !bumpsim_peers::present(
         bumpsim_peers::python_available("numpy"),
         "python3 with numpy",
     ) {
         return None;
     }
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("crush-bar-{seed}"));
+    let name = match speed == 10.0 {
+        true => format!("crush-bar-{seed}"),
+        false => format!("crush-bar-{seed}-{speed}"),
+    };
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/crush_bar.py");
-    bumpsim_peers::generated(&script, &out, &[&seed.to_string()], "truth.json");
+    let args = [seed.to_string(), speed.to_string()];
+    let args: Vec<&str> = match speed == 10.0 {
+        true => vec![&args[0]],
+        false => vec![&args[0], &args[1]],
+    };
+    bumpsim_peers::generated(&script, &out, &args, "truth.json");
     Some(out)
 }
 
@@ -151,6 +173,8 @@ fn covered(seed: u64) -> Option<Vec<(&'static str, f64, f64, bool)>> {
     let settings = bumpsim_ident::links::barrier::BarrierSettings {
         links: LinkSettings::new(2, 12, start),
         knots: 10,
+        front_start: None,
+        path_knots: 0,
         sheet_mass: Some((total, 0.01)),
     };
     let found =
@@ -208,6 +232,101 @@ fn the_intervals_cover_the_truth_over_noise_seeds() {
     println!("missed: {missed:?}");
     // 25 intervals at 95 %: more than 4 misses has a chance below 1 %
     assert!(missed.len() <= 4, "{missed:?}");
+}
+
+/// The generator's series in `dir` with its truth.
+fn read(dir: &Path) -> (LoadCase, serde_json::Value) {
+    let truth: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("truth.json")).unwrap()).unwrap();
+    (crush_case(dir, &truth), truth)
+}
+
+/// Issue 44's lesson for the barrier fit: started at the generator's
+/// truth (the rear bar's link, m1 the mass ahead of its middle, c1 at its
+/// bound for the undamped bars, the front table at the front bar's
+/// bilinear curve), the fit must not walk away to a lower objective that
+/// predicts worse. It stays within the truth's 95 % intervals, and on a
+/// held-out run of the same generator at 7 m/s the identified car
+/// predicts the wall force and the body's motion at least as well as the
+/// truth's lumped car does (within 1 and 0.5 points of fit).
+#[test]
+fn a_barrier_fit_started_at_the_truth_stays_and_predicts_no_worse() {
+    use bumpsim_core::link::Curve;
+    use bumpsim_ident::links::barrier::{BarrierLayout, BarrierSettings, front_start, run};
+    let (Some(dir), Some(held)) = (seeded(1), at_speed(1, 7.0)) else {
+        return;
+    };
+    let ((case, truth), (held, _)) = (read(&dir), read(&held));
+    let value = |key: &str| truth[key].as_f64().unwrap();
+    let front = |key: &str| truth["front"][key].as_f64().unwrap();
+    let (total, m1) = (value("total_mass"), value("front_mass") + 1.0);
+    let (k, fy, r, u) = (
+        value("stiffness"),
+        value("yield_force"),
+        value("hardening"),
+        value("unloading"),
+    );
+    let chain = vec![m1, total - m1, 1.0, k, fy, r, u];
+    let (knots, _) = front_start(&case, total, 10).unwrap();
+    let bar =
+        Curve::bilinear(front("stiffness"), front("yield_force"), front("hardening")).unwrap();
+    let mut table: Vec<f64> = knots.iter().map(|d| bar.force(*d)).collect();
+    table.push(front("unloading") * front("stiffness"));
+    let settings = BarrierSettings {
+        links: LinkSettings::new(2, 1, chain.clone()),
+        knots: 10,
+        front_start: Some((knots.clone(), table.clone())),
+        path_knots: 0,
+        sheet_mass: Some((total, 0.01)),
+    };
+    let found =
+        bumpsim_ident::links::into_wall::identify(std::slice::from_ref(&case), &settings, &Silent)
+            .unwrap();
+    println!("started at the truth\n{}", text(&found));
+    for (name, i, truth) in [
+        ("m1", 0, m1),
+        ("k1", 3, k),
+        ("Fy1", 4, fy),
+        ("r1", 5, r),
+        ("u1", 6, u),
+    ] {
+        let interval = found.uncertainty.ci95[i];
+        assert!(
+            interval.is_some_and(|[lo, hi]| lo <= truth && truth <= hi),
+            "{name}: the fit walked from the truth {truth} to {} ({interval:?})",
+            found.theta[i]
+        );
+    }
+    let layout = BarrierLayout {
+        chain: bumpsim_ident::links::Layout { dof: 2 },
+        knots,
+        path_knots: vec![],
+    };
+    let lumped = layout.car(&[chain, table].concat()).unwrap();
+    let fits = |response: &bumpsim_core::chain::ChainResponse| {
+        let (a, b) = held.window;
+        let force = bumpsim_estimate::fit::percent(&response.force[a..=b], &held.force[a..=b]);
+        (force, held.fit(&response.displacement[1]).1)
+    };
+    let truth_fits = fits(&run(&held, &lumped).unwrap());
+    let step = held.step;
+    let found_fits = fits(
+        &found
+            .forward(held.initial_velocity, step, held.window.1 + 1)
+            .unwrap(),
+    );
+    println!(
+        "held-out 7 m/s: wall force {:.2} % (truth's lumped car {:.2} %), body {:.2} % ({:.2} %)",
+        found_fits.0, truth_fits.0, found_fits.1, truth_fits.1
+    );
+    assert!(
+        found_fits.0 >= truth_fits.0 - 1.0,
+        "{found_fits:?} {truth_fits:?}"
+    );
+    assert!(
+        found_fits.1 >= truth_fits.1 - 0.5,
+        "{found_fits:?} {truth_fits:?}"
+    );
 }
 
 /// The generator's series as a load case.

@@ -7,13 +7,16 @@
 //! with its numbers (2 masses, 8 starts): it applies the measured barrier
 //! force to m1 and sees only the crossmember, so m1 and the first link are
 //! free to do whatever moves the crossmember right. Its best fit (98.75 %)
-//! puts m1 at its 100 kg bound, the damper c1 at its bound and k1 at
-//! 99 kN/mm with an interval over six decades, and throws m1 through its
-//! link (plastic set 1017 mm, interval ±375 m): m1 rebounds while the
+//! puts m1 at its 100 kg bound, the damper c1 and k1 at theirs (100
+//! kN/mm; before the law's fix 99 kN/mm with an interval over six
+//! decades), and throws m1 through its link (plastic set 1015 mm,
+//! interval ±962 m; before 1017 mm, ±375 m): m1 rebounds while the
 //! prescribed force still pushes it. The front zone read off m1's travel
-//! then rebuilds a barrier force that fits 1.4 % and a crossmember ΔV of
-//! −22.06 m/s for −18.43 (19.7 % off, the unloading returns the energy).
-//! The masses sum to 1758 kg; the test sheet's 1719 kg was not used.
+//! then rebuilds a barrier force that fits 1.8 % and a crossmember ΔV of
+//! −21.97 m/s for −18.43 (19.2 % off, the unloading returns the energy;
+//! before the link law kept a bilinear link elastic until it yields:
+//! 1.4 % and −22.06 m/s).
+//! The masses sum to 1759 kg; the test sheet's 1719 kg was not used.
 //!
 //! The second test identifies the car as it ran into the barrier
 //! (`links::into_wall`): the wall force and the crossmember in one
@@ -21,6 +24,34 @@
 //! likelihood), the sheet's mass as a prior, the front zone a tabulated
 //! curve whose knots follow its reach. Its forward run is the identified
 //! car, so force and ΔV are what it fits (numbers at the tests).
+//!
+//! What the two channels say, measured on the raw data (the 174 valid
+//! barrier Fx cells summed, the accelerometers integrated from 57.09 km/h,
+//! pre-trigger bias removed; numbers without the CFC 60 filter):
+//!
+//! - **The mass.** Over 0–120 ms the barrier's impulse is 32.86 kN·s and
+//!   the crossmember's ΔV −18.43 m/s: 1783 kg against the sheet's 1719
+//!   (+3.7 %). It is not the crossmember's place in the car: at 290 ms,
+//!   long after separation, the impulse is 32.42 kN·s, the crossmember's
+//!   ΔV −18.13 m/s (1788 kg) and the engine's (channel 95, top of engine)
+//!   −17.80 m/s (1821 kg): both accelerometers put the car's ΔV at
+//!   17.8–18.1 m/s where the cells over the sheet's mass give 18.9. The
+//!   load cells' sum and the sheet's mass disagree by 4–6 %. With the mass
+//!   held to the sheet, a wall force of a perfect shape but 3.7 % low
+//!   would fit 93.9 %: that much of the 90 % target is spent before any
+//!   shape error.
+//! - **A second load path.** The engine's accelerometer falls from
+//!   13.4 m/s at 20 ms to −1.4 m/s at 40 ms (about 100 g) and then stays
+//!   near rest (0.44 m of travel, −0.5 m/s until 120 ms) while the
+//!   crossmember goes on to 0.745 m at 75 ms and rebounds at −2.5 m/s; the
+//!   wall force's 600–700 kN peak at 28–35 ms is the engine striking the
+//!   barrier, and the crossmember's deceleration dips while it does.
+//!   Kamal's engine path.
+//! - **After separation.** The force falls below 35 kN after 100 ms and
+//!   to zero by 120 ms: a tail of 100 → 0 kN over the body's last 70 mm of
+//!   rebound, softer than the crush zone's first unloading (450 → 100 kN
+//!   over about 25 mm, 75–90 ms). One unloading slope per link follows one
+//!   of the two; the identified cars drop to zero at 85–92 ms.
 //!
 //! The data are read from `../shared` beside the repository or from
 //! `$BUMPSIM_SHARED`; the test skips with a message when they are absent.
@@ -126,7 +157,7 @@ fn nhtsa_10146_with_yielding_links_fits_and_predicts_the_barrier() {
     // measured on this test (2 DOF, 8 starts): fit 98.75 % against the
     // linear chain's 96.52 %, and BIC on the effective residuals prefers
     // the yielding links. Its forward run is printed, not asserted (force
-    // fit 1.4 %, ΔV 19.7 % off: see the module); the car identified into
+    // fit 1.8 %, ΔV 19.2 % off: see the module); the car identified into
     // the barrier (the second test) is the one that predicts.
     assert!(fit >= 98.5, "fit {fit} %");
     assert!(fit > linear.cases[0].fit_percent + 2.0);
@@ -153,8 +184,11 @@ struct Barrier {
 /// The car identified as it ran into the barrier (`links::into_wall`):
 /// the wall force and the crossmember together, the test sheet's 1719 kg
 /// as a prior (±1 %), the front crush zone a 16-knot table, 2 masses and
-/// 4 starts (8 found the same optimum) (`LINKS_DOF`, `LINKS_KNOTS`, `LINKS_STARTS` change them). The
-/// forward run into a rigid wall is the identified car itself.
+/// 4 starts, no second load path (`LINKS_DOF`, `LINKS_KNOTS`,
+/// `LINKS_STARTS`, `LINKS_PATH_KNOTS`, `LINKS_MASS_SPREAD` change them;
+/// `LINKS_DUMP=file` writes the measured and forward force and
+/// crossmember). The forward run into a rigid wall is the identified car
+/// itself.
 fn barrier() -> Option<Barrier> {
     let study = study()?;
     let number = |name: &str, default: usize| {
@@ -193,6 +227,8 @@ fn barrier() -> Option<Barrier> {
     let settings = BarrierSettings {
         links,
         knots,
+        front_start: None,
+        path_knots: number("LINKS_PATH_KNOTS", 0),
         sheet_mass: Some((mass, spread)),
     };
     let found = bumpsim_ident::links::into_wall::identify(&cases, &settings, &Silent).unwrap();
@@ -215,6 +251,18 @@ fn barrier() -> Option<Barrier> {
         case.initial_velocity,
         100.0 * dv_error
     );
+    if let Some(path) = std::env::var_os("LINKS_DUMP") {
+        // time s, measured and forward wall force N, crossmember m
+        let y = &run.displacement[dof - 1];
+        let rows: String = (a..=b)
+            .map(|k| {
+                let t = k as f64 * h;
+                let (f, g, m) = (case.force[k], run.force[k], case.measured[k]);
+                format!("{t},{f},{g},{m},{}\n", y[k])
+            })
+            .collect();
+        std::fs::write(path, rows).unwrap();
+    }
     // the barrier's impulse over the crossmember's ΔV: the mass the two
     // channels imply, against the test sheet's
     let impulse: f64 = case.force[a..=b].iter().sum::<f64>() * h;
@@ -236,12 +284,14 @@ fn barrier() -> Option<Barrier> {
 }
 
 /// Issue 46's acceptance where it holds (measured, 2 masses, 16 knots, 4
-/// or 8 starts): the crossmember fits 99.71 % (the linear chain 96.52 %), the
-/// forward run's crossmember ΔV is 0.88 % off (−18.27 for −18.43 m/s), the
-/// plastic sets print with their intervals (front zone 573.5 mm [566.7,
-/// 580.3], link 1 146.4 mm [137.9, 154.9]) and the test sheet's mass is
-/// kept (1756 kg, +2.1 prior sd). The forward force fits 82.0 %: see
-/// the ignored test below.
+/// starts, with the link law elastic below its elastic limit): the
+/// crossmember fits 99.07 % (the linear chain 96.52 %), the forward run's
+/// crossmember ΔV is 0.44 % off (−18.51 for −18.43 m/s), the plastic sets
+/// print with their intervals (front zone 503.1 mm [476.3, 529.9], link 1
+/// 213.6 mm [188.0, 239.1]) and the test sheet's mass is kept (1745 kg,
+/// +1.5 prior sd). The forward force fits 83.58 %: see the ignored test
+/// below. (Before the law's fix, which took a set of a bilinear link
+/// before it yielded: 99.71 %, 0.88 %, force 82.0 %.)
 #[test]
 fn nhtsa_10146_identified_into_the_barrier_fits_and_predicts_delta_v() {
     let Some(b) = barrier() else { return };
@@ -266,7 +316,40 @@ fn nhtsa_10146_identified_into_the_barrier_fits_and_predicts_delta_v() {
 }
 
 /// Issue 46's forward force (≥ 90 %) together with the rest, not
-/// reached: measured 82.0 % with 16 knots. With 24 knots the search lands
+/// reached. With the second load path (`LINKS_PATH_KNOTS=8`, a tabulated
+/// crush link from the body, m2, into the wall beside the front zone on
+/// m1), measured after the law's fix:
+///
+/// | starts | crossmember | forward force | ΔV off | masses |
+/// |---|---|---|---|---|
+/// | 4 (no path) | 99.07 % | 83.58 % | 0.44 % | 1745 kg |
+/// | 4 | 97.62 % | 79.55 % | 0.76 % | 1751 kg |
+/// | 12 | 99.54 % | 87.46 % | 3.23 % | 1825 kg (+6.0 sd) |
+/// | 12, mass ±0.3 % | 99.02 % | 89.82 % | 0.00 % | 1732 kg (+2.6 sd) |
+/// | 12, mass ±0.3 %, 10 path knots | 99.57 % | 88.39 % | 1.27 % | 1737 kg (+3.6 sd) |
+///
+/// The last (`LINKS_MASS_SPREAD=0.003`: the sheet's mass held harder,
+/// against 1200 correlated force samples that each count as independent)
+/// comes within 0.2 points of the force target with the crossmember and
+/// ΔV inside theirs, but link 1 sits at its lowest stiffness (the engine
+/// and the body joined by the damper alone, c1 55 Ns/mm), so F_y1 and r1
+/// are not determined and the plastic sets lose their intervals (the
+/// acceptance test stops there): the next lead is a prior weighted by the
+/// residuals' effective count, and the tail's unloading.
+///
+/// (3 masses without the path, `LINKS_DOF=3`, 4 starts: not finished in
+/// 31 minutes on the loaded machine.)
+///
+/// With 12 starts the search finds Kamal's car by itself: the front table
+/// on m1 (710 kg) stays under 100 kN for its first eight of 16 knots
+/// (about 0.35 m: the radiator's gap), then the engine's 420–550 kN; the
+/// body's path carries 130–270 kN from its second knot on; link 1 stays
+/// elastic (k1 1815 N/mm, F_y at 2 MN); and the force follows the measured one to 80 ms
+/// (`LINKS_DUMP`); it misses the 45 Hz ripple of 50–75 ms and the tail
+/// after 85 ms (see the module), and it takes the load cells' mass, 6
+/// prior sd above the sheet, so the crossmember's ΔV goes 3.2 % off.
+///
+/// Before the fix, 82.0 % with 16 knots. With 24 knots the search lands
 /// on another optimum, force 92.55 % and ΔV 1.65 % off but the
 /// crossmember at 96.65 % and the masses at 1811 kg, 5.2 prior sd above
 /// the test sheet's 1719 kg: the two channels disagree on the car's mass
@@ -279,10 +362,12 @@ fn nhtsa_10146_identified_into_the_barrier_fits_and_predicts_delta_v() {
 /// prior, and none so far reaches both. The chain's only path to
 /// the wall is its front zone, a function of m1's crush and history; a
 /// second load path (the engine striking the barrier, Kamal 1970's
-/// engine spring) or a rate-dependent front, which the core's chain does
-/// not have, are the next candidates.
+/// engine spring, now `Chain::with_path`, measured above) or a
+/// rate-dependent front were the candidates; what is left is the tail's
+/// unloading (a softer second unloading slope or an unloading table) and
+/// the weight of the mass prior against 1200 correlated force samples.
 #[test]
-#[ignore = "forward force fit 82.0 % on NHTSA 10146 (target 90 %): with 24 knots 92.6 % but the crossmember 96.7 % (see the doc)"]
+#[ignore = "forward force fit 83.6 % on NHTSA 10146 (target 90 %); with the second load path 87.5 % but ΔV 3.2 % off and the mass 6 sd off the sheet (see the doc)"]
 fn nhtsa_10146_identified_into_the_barrier_predicts_the_force() {
     let Some(b) = barrier() else { return };
     assert!(b.force_fit >= 90.0, "force fit {} %", b.force_fit);

@@ -24,7 +24,14 @@
 //! r = [ (F_sim − F_meas)_k / s_F,l ;  (y_sim − y_meas)_k / s_y,l ]
 //! ```
 //!
-//! over its window (y in the case's domain). `s_F` and `s_y` are each
+//! over its window (y in the case's domain).
+//!
+//! A second load path ([`BarrierLayout::path_knots`], Kamal's parallel
+//! paths; [`bumpsim_core::chain::Chain::with_path`]) adds a tabulated
+//! crush link from the last mass (the body) into the wall, J knots of the
+//! body's crush with forces `Fp1..FpJ` and an unloading slope `kp`; the
+//! front zone on m1 then plays the engine's path (its table may stay low
+//! over a gap), and the wall force is the sum of both. `s_F` and `s_y` are each
 //! channel's error scale, estimated by its own residuals (maximum
 //! likelihood with an unknown variance per channel, Bard 1974 §4-13): at
 //! the start, and again at the optimum before a polishing run. The model
@@ -38,6 +45,7 @@
 //! channel), the plastic sets' (front zone and links) by the delta method
 //! on that covariance.
 
+use super::objective::LogParameters;
 use super::{Layout, LinkIdentError, LinkSettings};
 use crate::case::LoadCase;
 use bumpsim_core::chain::{Chain, ChainResponse, Drive};
@@ -46,7 +54,6 @@ use bumpsim_core::units::Dimension;
 use bumpsim_estimate::lm::LeastSquares;
 use bumpsim_estimate::uncertainty::Parameter;
 use nalgebra::DMatrix;
-use std::sync::Mutex;
 
 /// The knots reach this multiple of the rigid car's crush.
 pub const REACH: f64 = 1.3;
@@ -54,40 +61,63 @@ pub const REACH: f64 = 1.3;
 /// Bounds of a knot force (N) and of the front unloading slope (N/m).
 const FRONT_BOUNDS: [(f64, f64); 2] = [(1e2, 1e7), (1e4, 1e10)];
 
-/// The chain behind a tabulated front crush zone.
+/// The chain behind a tabulated front crush zone, with an optional second
+/// load path from the last mass (the body) into the wall.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BarrierLayout {
     /// The chain.
     pub chain: Layout,
     /// The front curve's knots, crush m (increasing, positive).
     pub knots: Vec<f64>,
+    /// The second path's knots, crush of the last mass m (increasing,
+    /// positive); empty: no second path.
+    pub path_knots: Vec<f64>,
 }
 
 impl BarrierLayout {
-    /// Number of parameters: the chain's, K knot forces, the unloading slope.
+    /// Number of parameters: the chain's, K knot forces, the unloading
+    /// slope, and the second path's J knot forces and unloading slope.
     pub fn count(&self) -> usize {
-        self.chain.count() + self.knots.len() + 1
+        let path = match self.path_knots.is_empty() {
+            true => 0,
+            false => self.path_knots.len() + 1,
+        };
+        self.chain.count() + self.knots.len() + 1 + path
     }
 
-    /// Names and units: the chain's, `Ff1..FfK`, `kf`.
+    /// Names and units: the chain's, `Ff1..FfK`, `kf`, then `Fp1..FpJ`,
+    /// `kp` with a second path.
     pub fn parameters(&self) -> Vec<Parameter> {
         let mut out = self.chain.parameters();
-        out.extend(
-            (1..=self.knots.len()).map(|i| Parameter::new(format!("Ff{i}"), Dimension::Force)),
-        );
-        out.push(Parameter::new("kf", Dimension::Stiffness));
+        let table = |letter: &str, knots: &[f64], out: &mut Vec<Parameter>| {
+            out.extend(
+                (1..=knots.len())
+                    .map(|i| Parameter::new(format!("F{letter}{i}"), Dimension::Force)),
+            );
+            out.push(Parameter::new(format!("k{letter}"), Dimension::Stiffness));
+        };
+        table("f", &self.knots, &mut out);
+        if !self.path_knots.is_empty() {
+            table("p", &self.path_knots, &mut out);
+        }
         out
     }
 
     /// Default bounds (SI).
     pub fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
         let (mut lower, mut upper) = self.chain.bounds();
-        for _ in &self.knots {
-            lower.push(FRONT_BOUNDS[0].0);
-            upper.push(FRONT_BOUNDS[0].1);
+        let tables = match self.path_knots.is_empty() {
+            true => vec![self.knots.len()],
+            false => vec![self.knots.len(), self.path_knots.len()],
+        };
+        for count in tables {
+            for _ in 0..count {
+                lower.push(FRONT_BOUNDS[0].0);
+                upper.push(FRONT_BOUNDS[0].1);
+            }
+            lower.push(FRONT_BOUNDS[1].0);
+            upper.push(FRONT_BOUNDS[1].1);
         }
-        lower.push(FRONT_BOUNDS[1].0);
-        upper.push(FRONT_BOUNDS[1].1);
         (lower, upper)
     }
 
@@ -103,22 +133,28 @@ impl BarrierLayout {
             )));
         }
         let chain = self.chain.chain(&theta[..c])?;
-        Ok(chain.with_front(self.front(&theta[c..])?))
+        let k = c + self.knots.len() + 1;
+        let car = chain.with_front(table_link(&self.knots, &theta[c..k], 0)?);
+        if self.path_knots.is_empty() {
+            return Ok(car);
+        }
+        let path = table_link(&self.path_knots, &theta[k..], self.chain.dof)?;
+        Ok(car.with_path(self.chain.dof - 1, 0.0, path)?)
     }
+}
 
-    /// The front link of its parameters `[Ff1..FfK, kf]`.
-    fn front(&self, values: &[f64]) -> Result<Link, LinkIdentError> {
-        let k = self.knots.len();
-        let points = self
-            .knots
-            .iter()
-            .zip(&values[..k])
-            .map(|(d, f)| [*d, *f])
-            .collect();
-        Curve::table(points)
-            .and_then(|curve| Link::new(curve, Unloading::Slope(values[k])))
-            .map_err(|source| LinkIdentError::Link { link: 0, source })
-    }
+/// A tabulated crush link of its parameters `[F1..FK, k_u]` at `knots`
+/// (`link`: its number in errors, 0 the front zone).
+fn table_link(knots: &[f64], values: &[f64], link: usize) -> Result<Link, LinkIdentError> {
+    let k = knots.len();
+    let points = knots
+        .iter()
+        .zip(&values[..k])
+        .map(|(d, f)| [*d, *f])
+        .collect();
+    Curve::table(points)
+        .and_then(|curve| Link::new(curve, Unloading::Slope(values[k])))
+        .map_err(|source| LinkIdentError::Link { link, source })
 }
 
 /// The rigid car's crush `V t + ∫∫ F/M` (m) at every sample of `case`.
@@ -195,6 +231,17 @@ pub fn front_set(car: &Chain, run: &ChainResponse) -> f64 {
         .map_or(0.0, |front| LinkState { reached }.plastic_set(front))
 }
 
+/// The second path's plastic set after `run` (its mass's largest travel
+/// past the gap), m; None without a second path.
+pub fn path_set(car: &Chain, run: &ChainResponse) -> Option<f64> {
+    car.path().map(|path| {
+        let reached = run.displacement[path.mass]
+            .iter()
+            .fold(0.0_f64, |m, x| m.max(*x - path.gap));
+        LinkState { reached }.plastic_set(&path.link)
+    })
+}
+
 /// Each case's residuals: force rows, then output rows (unweighted).
 fn raw(
     cases: &[LoadCase],
@@ -227,18 +274,14 @@ fn raw(
     r.iter().all(|v| v.is_finite())
 }
 
-/// Forward-difference step in a log parameter.
-const DIFFERENCE: f64 = 1e-6;
-
 /// The barrier objective over the free log parameters.
+#[derive(Clone)]
 pub struct BarrierObjective<'a> {
     cases: &'a [LoadCase],
     layout: BarrierLayout,
-    template: Vec<f64>,
-    free: Vec<usize>,
+    parameters: LogParameters,
     scales: Vec<[f64; 2]>,
     count: usize,
-    scratch: Mutex<(Vec<f64>, Vec<f64>)>,
 }
 
 impl<'a> BarrierObjective<'a> {
@@ -250,40 +293,27 @@ impl<'a> BarrierObjective<'a> {
         fixed: &[Option<f64>],
         scales: Vec<[f64; 2]>,
     ) -> BarrierObjective<'a> {
-        let p = layout.count();
-        let template = (0..p)
-            .map(|i| fixed.get(i).copied().flatten().map_or(0.0, f64::ln))
-            .collect();
-        let free = (0..p)
-            .filter(|&i| fixed.get(i).copied().flatten().is_none())
-            .collect();
         let count = cases
             .iter()
             .map(|c| c.window_len() + c.residual_len())
             .sum();
         BarrierObjective {
             cases,
+            parameters: LogParameters::new(layout.count(), fixed, count),
             layout,
-            template,
-            free,
             scales,
             count,
-            scratch: Mutex::new((vec![0.0; p], vec![0.0; count])),
         }
     }
 
     /// The SI parameters of the free log parameters `p`.
     pub fn theta(&self, p: &[f64]) -> Vec<f64> {
-        let mut full = self.template.clone();
-        for (&i, v) in self.free.iter().zip(p) {
-            full[i] = *v;
-        }
-        full.iter().map(|v| v.exp()).collect()
+        self.parameters.theta(p)
     }
 
     /// Indices of the free parameters.
     pub fn free(&self) -> &[usize] {
-        &self.free
+        self.parameters.free()
     }
 
     /// The residual series: per case its force rows, then its output rows.
@@ -326,38 +356,13 @@ impl LeastSquares for BarrierObjective<'_> {
     }
 
     fn parameter_count(&self) -> usize {
-        self.free.len()
+        self.parameters.free().len()
     }
 
     fn evaluate(&self, p: &[f64], r: &mut [f64], jacobian: Option<&mut DMatrix<f64>>) -> bool {
-        let mut guard = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
-        let (theta, shifted) = &mut *guard;
-        let mut full = self.template.clone();
-        for (&i, v) in self.free.iter().zip(p) {
-            full[i] = *v;
-        }
-        for (t, v) in theta.iter_mut().zip(&full) {
-            *t = v.exp();
-        }
-        if !raw(self.cases, &self.layout, theta, &self.scales, r) {
-            return false;
-        }
-        let Some(j) = jacobian else {
-            return true;
-        };
-        for (column, &i) in self.free.iter().enumerate() {
-            let before = theta[i];
-            theta[i] = (full[i] + DIFFERENCE).exp();
-            let ok = raw(self.cases, &self.layout, theta, &self.scales, shifted);
-            theta[i] = before;
-            if !ok {
-                return false;
-            }
-            for (row, (a, b)) in shifted.iter().zip(r.iter()).enumerate() {
-                j[(row, column)] = (a - b) / DIFFERENCE;
-            }
-        }
-        true
+        let residuals =
+            |theta: &[f64], r: &mut [f64]| raw(self.cases, &self.layout, theta, &self.scales, r);
+        self.parameters.evaluate(p, r, jacobian, &residuals)
     }
 }
 
@@ -369,23 +374,15 @@ pub struct BarrierSettings {
     pub links: LinkSettings,
     /// Knots of the front curve.
     pub knots: usize,
+    /// The front's start: its knots (m) and values `[F1..FK N, kf N/m]`;
+    /// None: [`front_start`] from the first case (`knots` knots).
+    pub front_start: Option<(Vec<f64>, Vec<f64>)>,
+    /// Knots of a second load path from the last mass into the wall (0:
+    /// none).
+    pub path_knots: usize,
     /// The test sheet's mass, kg, and the spread of its prior (standard
     /// deviation of ln M); None: no prior.
     pub sheet_mass: Option<(f64, f64)>,
-}
-
-impl Clone for BarrierObjective<'_> {
-    fn clone(&self) -> Self {
-        BarrierObjective {
-            cases: self.cases,
-            layout: self.layout.clone(),
-            template: self.template.clone(),
-            free: self.free.clone(),
-            scales: self.scales.clone(),
-            count: self.count,
-            scratch: Mutex::new((vec![0.0; self.layout.count()], vec![0.0; self.count])),
-        }
-    }
 }
 
 #[cfg(test)]
@@ -433,6 +430,7 @@ mod tests {
         let layout = BarrierLayout {
             chain: Layout { dof: 2 },
             knots: vec![0.1, 0.2],
+            path_knots: vec![],
         };
         let names: Vec<String> = layout.parameters().into_iter().map(|p| p.name).collect();
         assert_eq!(names.join(" "), "m1 m2 c1 k1 Fy1 r1 u1 Ff1 Ff2 kf");

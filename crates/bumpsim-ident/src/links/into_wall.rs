@@ -11,17 +11,16 @@
 //! differences.
 
 use super::barrier::{
-    BarrierLayout, BarrierObjective, BarrierSettings, front_set, front_start, run,
+    BarrierLayout, BarrierObjective, BarrierSettings, front_set, front_start, path_set, run,
 };
 use super::objective::frame;
-use super::{LinkIdentError, LinkIdentification, PlasticSet};
+use super::{LinkIdentError, LinkIdentification, PlasticSet, start_points};
 use crate::case::LoadCase;
 use bumpsim_core::chain::Frame;
 use bumpsim_estimate::lm::{self, LeastSquares};
 use bumpsim_estimate::multistart::{self, AllFailed, Search};
 use bumpsim_estimate::observer::Observer;
 use bumpsim_estimate::prior::{Prior, Priored, moved};
-use bumpsim_estimate::search::{Draws, exploring};
 use bumpsim_estimate::uncertainty::{Correlation, Estimated, Uncertainty, uncertainty};
 use nalgebra::{DMatrix, DVector};
 
@@ -52,8 +51,36 @@ pub fn identify(
     let mass = settings
         .sheet_mass
         .map_or_else(|| links.start[..dof].iter().sum(), |m| m.0);
-    let (knots, front) = front_start(first, mass, settings.knots)?;
-    let layout = BarrierLayout { chain, knots };
+    let (knots, mut front) = match &settings.front_start {
+        Some((knots, values)) if values.len() == knots.len() + 1 && knots.len() >= 2 => {
+            (knots.clone(), values.clone())
+        }
+        Some((knots, values)) => {
+            return Err(LinkIdentError::Settings(format!(
+                "a front start needs 2 knots or more and one force per knot and the unloading slope: {} knots, {} values",
+                knots.len(),
+                values.len()
+            )));
+        }
+        None => front_start(first, mass, settings.knots)?,
+    };
+    let (path_knots, path) = match settings.path_knots {
+        0 => (vec![], vec![]),
+        j => {
+            // the two paths share the rigid car's force at the start
+            let (at, mut values) = front_start(first, mass, j)?;
+            for v in values.iter_mut().chain(front.iter_mut()) {
+                *v *= 0.5;
+            }
+            (at, values)
+        }
+    };
+    let front = [front, path].concat();
+    let layout = BarrierLayout {
+        chain,
+        knots,
+        path_knots,
+    };
     let (lower_si, upper_si) = {
         let (lo, hi) = layout.bounds();
         let c = chain.count();
@@ -69,11 +96,8 @@ pub fn identify(
     let free = objective.free().to_vec();
     let log = |v: &[f64]| free.iter().map(|&i| v[i].ln()).collect::<Vec<f64>>();
     let (lower, upper) = (log(&lower_si), log(&upper_si));
-    let first_p: Vec<f64> = log(&start_si)
-        .iter()
-        .zip(lower.iter().zip(&upper))
-        .map(|(p, (l, h))| p.clamp(*l, *h))
-        .collect();
+    let points = start_points(&log(&start_si), (&lower, &upper), links.starts, links.seed);
+    let first_p = points[0].clone();
     let failed = || {
         LinkIdentError::from(AllFailed {
             starts: links.starts,
@@ -100,17 +124,6 @@ pub fn identify(
             .map_err(|e| LinkIdentError::Settings(e.to_string()))
     };
     let problem = priored(scales, &layout)?;
-    let explored = exploring(links.starts, 1);
-    let points = std::iter::once(first_p.clone())
-        .chain((1..explored).map(|k| {
-            let drawn = Draws::new(links.seed, k as u64).around(&first_p, 3.0);
-            drawn
-                .iter()
-                .zip(lower.iter().zip(&upper))
-                .map(|(p, (l, h))| p.clamp(*l, *h))
-                .collect()
-        }))
-        .collect();
     let search = Search {
         starts: links.starts,
         seed: links.seed,
@@ -175,21 +188,25 @@ pub fn identify(
             let response = run(case, &car)?;
             out.push(front_set(&car, &response));
             out.extend(response.plastic_set.iter().copied());
+            out.extend(path_set(&car, &response));
         }
         Ok(out)
     };
+    // per case: the front zone (0), the links (1..n−1), the second path (n)
+    let per_case = dof + usize::from(car.path().is_some());
     let plastic_sets = intervals(&sets, &p, &u, &theta, &free)?
         .into_iter()
         .enumerate()
         .map(|(at, (value, ci95))| PlasticSet {
-            case: cases[at / dof].name.clone(),
-            link: at % dof,
+            case: cases[at / per_case].name.clone(),
+            link: at % per_case,
             value,
             ci95,
         })
         .collect();
     let c = chain.count();
     let front_link = car.front().cloned();
+    let path = car.path().cloned();
     Ok(LinkIdentification {
         layout: chain,
         parameters,
@@ -203,6 +220,7 @@ pub fn identify(
         uncertainty: u,
         plastic_sets,
         front: front_link,
+        path,
         starts: found.starts,
     })
 }
@@ -282,10 +300,10 @@ fn scales_or_unit(scales: &[[f64; 2]], cases: usize) -> Vec<[f64; 2]> {
     }
 }
 
-/// The front's knots spread again up to 1.02 times the largest crush the
-/// car `theta` reaches in any case (a knot past it is never loaded, so
-/// undetermined), their forces read off its curve: the layout and the free
-/// log parameters.
+/// The front's knots (and the second path's) spread again up to 1.02
+/// times the largest crush the car `theta` reaches in any case (a knot past
+/// it is never loaded, so undetermined), their forces read off its curve:
+/// the layout and the free log parameters.
 fn reknotted(
     layout: &BarrierLayout,
     cases: &[LoadCase],
@@ -295,41 +313,43 @@ fn reknotted(
     upper: &[f64],
 ) -> Result<(BarrierLayout, Vec<f64>), LinkIdentError> {
     let car = layout.car(theta)?;
-    let mut reach = 0.0_f64;
+    let last = layout.chain.dof - 1;
+    let (mut reach, mut body) = (0.0_f64, 0.0_f64);
     for case in cases {
         let response = run(case, &car)?;
-        reach = response.displacement[0]
-            .iter()
-            .fold(reach, |m, x| m.max(*x));
+        let most = |x: &[f64], from: f64| x.iter().fold(from, |m, v| m.max(*v));
+        reach = most(&response.displacement[0], reach);
+        body = most(&response.displacement[last], body);
     }
-    let count = layout.knots.len();
-    let c = layout.chain.count();
-    let Some(front) = car.front().filter(|_| reach > 0.0) else {
-        return Ok((
-            layout.clone(),
-            free.iter().map(|&i| theta[i].ln()).collect(),
-        ));
-    };
-    let knots: Vec<f64> = (1..=count)
-        .map(|i| 1.02 * reach * i as f64 / count as f64)
-        .collect();
     let mut theta = theta.to_vec();
-    for (j, d) in knots.iter().enumerate() {
-        theta[c + j] = front
-            .curve()
-            .force(*d)
-            .max(1e-3 * front.curve().force(reach));
+    let mut out = layout.clone();
+    let c = layout.chain.count();
+    let k = c + layout.knots.len() + 1;
+    if let Some(front) = car.front().filter(|_| reach > 0.0) {
+        out.knots = spread(front.curve(), reach, &mut theta[c..k]);
+    }
+    if let Some(path) = car.path().filter(|_| body > 0.0) {
+        let end = k + layout.path_knots.len() + 1;
+        out.path_knots = spread(path.link.curve(), body, &mut theta[k..end]);
     }
     let p = free
         .iter()
         .zip(lower.iter().zip(upper))
         .map(|(&i, (l, h))| theta[i].ln().clamp(*l, *h))
         .collect();
-    Ok((
-        BarrierLayout {
-            chain: layout.chain,
-            knots,
-        },
-        p,
-    ))
+    Ok((out, p))
+}
+
+/// A table's knots spread up to 1.02 `reach`, as many as `values` holds
+/// forces before its unloading slope, the forces read off `curve` into
+/// `values`.
+fn spread(curve: &bumpsim_core::link::Curve, reach: f64, values: &mut [f64]) -> Vec<f64> {
+    let count = values.len().saturating_sub(1);
+    let knots: Vec<f64> = (1..=count)
+        .map(|i| 1.02 * reach * i as f64 / count as f64)
+        .collect();
+    for (value, d) in values.iter_mut().zip(&knots) {
+        *value = curve.force(*d).max(1e-3 * curve.force(reach));
+    }
+    knots
 }

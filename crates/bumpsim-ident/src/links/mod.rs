@@ -334,12 +334,17 @@ pub struct LinkIdentification {
     /// The front crush zone read off the first barrier case
     /// ([`front::front_link`]); None without a barrier case.
     pub front: Option<bumpsim_core::link::Link>,
+    /// The second load path into the wall (the barrier identification's,
+    /// [`barrier::BarrierLayout::path_knots`]); None otherwise. Plastic
+    /// set number n (the chain's masses) is its.
+    pub path: Option<bumpsim_core::chain::WallPath>,
     /// What became of the starts.
     pub starts: Starts,
 }
 
 impl LinkIdentification {
-    /// The identified car alone (the chain with its front link) into a
+    /// The identified car alone (the chain with its front link and second
+    /// path) into a
     /// rigid wall at `speed` m/s, recorded every `step` s for `samples`.
     pub fn forward(
         &self,
@@ -347,10 +352,13 @@ impl LinkIdentification {
         step: f64,
         samples: usize,
     ) -> Result<bumpsim_core::chain::ChainResponse, LinkIdentError> {
-        let chain = match &self.front {
+        let mut chain = match &self.front {
             Some(front) => self.chain.clone().with_front(front.clone()),
             None => self.chain.clone(),
         };
+        if let Some(path) = &self.path {
+            chain = chain.with_path(path.mass, path.gap, path.link.clone())?;
+        }
         let drive = bumpsim_core::chain::Drive::Barrier {
             speed,
             step,
@@ -377,22 +385,12 @@ pub fn identify(
     let free = objective.free().to_vec();
     let log = |v: &[f64]| free.iter().map(|&i| v[i].ln()).collect::<Vec<f64>>();
     let (lower, upper) = (log(&settings.lower), log(&settings.upper));
-    let first: Vec<f64> = log(&settings.start)
-        .iter()
-        .zip(lower.iter().zip(&upper))
-        .map(|(p, (l, h))| p.clamp(*l, *h))
-        .collect();
-    let explored = exploring(settings.starts, 1);
-    let points = std::iter::once(first.clone())
-        .chain((1..explored).map(|k| {
-            let drawn = Draws::new(settings.seed, k as u64).around(&first, 3.0);
-            drawn
-                .iter()
-                .zip(lower.iter().zip(&upper))
-                .map(|(p, (l, h))| p.clamp(*l, *h))
-                .collect()
-        }))
-        .collect();
+    let points = start_points(
+        &log(&settings.start),
+        (&lower, &upper),
+        settings.starts,
+        settings.seed,
+    );
     let search = Search {
         starts: settings.starts,
         seed: settings.seed,
@@ -454,8 +452,32 @@ pub fn identify(
         uncertainty: u,
         plastic_sets,
         front,
+        path: None,
         starts: found.starts,
     })
+}
+
+/// The explored start points of the multi-start search in log parameters:
+/// `first` clamped into `bounds`, then draws 3 log units around it (the
+/// estimation layer's [`Draws`]), each clamped, as many as
+/// [`exploring`] explores for `starts` starts.
+pub(crate) fn start_points(
+    first: &[f64],
+    (lower, upper): (&[f64], &[f64]),
+    starts: usize,
+    seed: u64,
+) -> Vec<Vec<f64>> {
+    let clamped = |v: &[f64]| -> Vec<f64> {
+        v.iter()
+            .zip(lower.iter().zip(upper))
+            .map(|(p, (l, h))| p.clamp(*l, *h))
+            .collect()
+    };
+    let first = clamped(first);
+    let drawn = (1..exploring(starts, 1))
+        .map(|k| clamped(&Draws::new(seed, k as u64).around(&first, 3.0)))
+        .collect::<Vec<_>>();
+    std::iter::once(first).chain(drawn).collect()
 }
 
 /// The plastic set of every link at the end of every case, with the

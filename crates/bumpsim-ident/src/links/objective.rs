@@ -89,86 +89,84 @@ fn residuals(cases: &[LoadCase], layout: &Layout, theta: &[f64], r: &mut [f64]) 
     r.iter().all(|v| v.is_finite())
 }
 
-/// The objective over the free log parameters.
-pub struct LinkObjective<'a> {
-    cases: &'a [LoadCase],
-    layout: Layout,
-    template: Vec<f64>,
+/// The free log parameters `p = ln θ` of a parameter vector with some
+/// entries fixed, and the one evaluation both links objectives share: the
+/// SI parameters filled into a buffer allocated once, the residuals, and
+/// the Jacobian by forward differences of [`DIFFERENCE`] in each free log
+/// parameter.
+#[derive(Debug)]
+pub(crate) struct LogParameters {
+    /// The fixed SI values (free entries: 1, overwritten).
+    fixed: Vec<f64>,
     free: Vec<usize>,
-    count: usize,
+    /// The SI parameters and the shifted residuals of the Jacobian.
     scratch: Mutex<(Vec<f64>, Vec<f64>)>,
 }
 
-impl<'a> LinkObjective<'a> {
-    /// The objective of `cases` for `layout`; `fixed[i]` holds a fixed SI value.
-    pub fn new(cases: &'a [LoadCase], layout: Layout, fixed: &[Option<f64>]) -> LinkObjective<'a> {
-        let p = layout.count();
-        let template = (0..p)
-            .map(|i| fixed.get(i).copied().flatten().map_or(0.0, f64::ln))
-            .collect();
-        let free = (0..p)
-            .filter(|&i| fixed.get(i).copied().flatten().is_none())
-            .collect();
-        let count = cases.iter().map(LoadCase::residual_len).sum();
-        LinkObjective {
-            cases,
-            layout,
-            template,
-            free,
-            count,
-            scratch: Mutex::new((vec![0.0; p], vec![0.0; count])),
+impl Clone for LogParameters {
+    fn clone(&self) -> Self {
+        let guard = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
+        LogParameters {
+            fixed: self.fixed.clone(),
+            free: self.free.clone(),
+            scratch: Mutex::new((guard.0.clone(), guard.1.clone())),
+        }
+    }
+}
+
+impl LogParameters {
+    /// `count` parameters, `fixed[i]` a fixed SI value, `residuals` rows.
+    pub(crate) fn new(count: usize, fixed: &[Option<f64>], residuals: usize) -> LogParameters {
+        let held = |i: usize| fixed.get(i).copied().flatten();
+        LogParameters {
+            fixed: (0..count).map(|i| held(i).unwrap_or(1.0)).collect(),
+            free: (0..count).filter(|&i| held(i).is_none()).collect(),
+            scratch: Mutex::new((vec![0.0; count], vec![0.0; residuals])),
+        }
+    }
+
+    /// Indices of the free parameters.
+    pub(crate) fn free(&self) -> &[usize] {
+        &self.free
+    }
+
+    /// The SI parameters of the free log parameters `p` into `theta`.
+    fn fill(&self, p: &[f64], theta: &mut [f64]) {
+        theta.copy_from_slice(&self.fixed);
+        for (&i, v) in self.free.iter().zip(p) {
+            theta[i] = v.exp();
         }
     }
 
     /// The SI parameters of the free log parameters `p`.
-    pub fn theta(&self, p: &[f64]) -> Vec<f64> {
-        let mut full = self.template.clone();
-        for (&i, v) in self.free.iter().zip(p) {
-            full[i] = *v;
-        }
-        full.iter().map(|v| v.exp()).collect()
+    pub(crate) fn theta(&self, p: &[f64]) -> Vec<f64> {
+        let mut theta = vec![0.0; self.fixed.len()];
+        self.fill(p, &mut theta);
+        theta
     }
 
-    /// The layout.
-    pub fn layout(&self) -> Layout {
-        self.layout
-    }
-
-    /// Indices of the free parameters.
-    pub fn free(&self) -> &[usize] {
-        &self.free
-    }
-}
-
-impl LeastSquares for LinkObjective<'_> {
-    fn residual_count(&self) -> usize {
-        self.count
-    }
-
-    fn parameter_count(&self) -> usize {
-        self.free.len()
-    }
-
-    fn evaluate(&self, p: &[f64], r: &mut [f64], jacobian: Option<&mut DMatrix<f64>>) -> bool {
+    /// `residuals(θ, r)` at `p` and, asked for, its Jacobian in `p` by
+    /// forward differences; false when the model cannot run.
+    pub(crate) fn evaluate(
+        &self,
+        p: &[f64],
+        r: &mut [f64],
+        jacobian: Option<&mut DMatrix<f64>>,
+        residuals: &dyn Fn(&[f64], &mut [f64]) -> bool,
+    ) -> bool {
         let mut guard = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
         let (theta, shifted) = &mut *guard;
-        let mut full = self.template.clone();
-        for (&i, v) in self.free.iter().zip(p) {
-            full[i] = *v;
-        }
-        for (t, v) in theta.iter_mut().zip(&full) {
-            *t = v.exp();
-        }
-        if !residuals(self.cases, &self.layout, theta, r) {
+        self.fill(p, theta);
+        if !residuals(theta, r) {
             return false;
         }
         let Some(j) = jacobian else {
             return true;
         };
-        for (column, &i) in self.free.iter().enumerate() {
+        for (column, (&i, pi)) in self.free.iter().zip(p).enumerate() {
             let before = theta[i];
-            theta[i] = (full[i] + DIFFERENCE).exp();
-            let ok = residuals(self.cases, &self.layout, theta, shifted);
+            theta[i] = (pi + DIFFERENCE).exp();
+            let ok = residuals(theta, shifted);
             theta[i] = before;
             if !ok {
                 return false;
@@ -178,5 +176,57 @@ impl LeastSquares for LinkObjective<'_> {
             }
         }
         true
+    }
+}
+
+/// The objective over the free log parameters.
+pub struct LinkObjective<'a> {
+    cases: &'a [LoadCase],
+    layout: Layout,
+    parameters: LogParameters,
+    count: usize,
+}
+
+impl<'a> LinkObjective<'a> {
+    /// The objective of `cases` for `layout`; `fixed[i]` holds a fixed SI value.
+    pub fn new(cases: &'a [LoadCase], layout: Layout, fixed: &[Option<f64>]) -> LinkObjective<'a> {
+        let count = cases.iter().map(LoadCase::residual_len).sum();
+        LinkObjective {
+            cases,
+            layout,
+            parameters: LogParameters::new(layout.count(), fixed, count),
+            count,
+        }
+    }
+
+    /// The SI parameters of the free log parameters `p`.
+    pub fn theta(&self, p: &[f64]) -> Vec<f64> {
+        self.parameters.theta(p)
+    }
+
+    /// The layout.
+    pub fn layout(&self) -> Layout {
+        self.layout
+    }
+
+    /// Indices of the free parameters.
+    pub fn free(&self) -> &[usize] {
+        self.parameters.free()
+    }
+}
+
+impl LeastSquares for LinkObjective<'_> {
+    fn residual_count(&self) -> usize {
+        self.count
+    }
+
+    fn parameter_count(&self) -> usize {
+        self.parameters.free().len()
+    }
+
+    fn evaluate(&self, p: &[f64], r: &mut [f64], jacobian: Option<&mut DMatrix<f64>>) -> bool {
+        let residuals =
+            |theta: &[f64], r: &mut [f64]| residuals(self.cases, &self.layout, theta, r);
+        self.parameters.evaluate(p, r, jacobian, &residuals)
     }
 }

@@ -53,6 +53,9 @@ pub fn text(found: &LinkIdentification) -> String {
         });
         let link = match set.link {
             0 => "the front crush zone".to_string(),
+            j if found.path.is_some() && j == found.layout.dof => {
+                "the second load path".to_string()
+            }
             j => format!("link {j}"),
         };
         out += &format!(
