@@ -1,11 +1,12 @@
 //! `bumpsim impact` and `bumpsim mass-reduction`: argument conversion and
 //! output around bumpsim-impact.
 
-use crate::planar::uncertain::{self, Uncertain};
+use crate::planar::speed;
 use crate::{Folder, write};
 use anyhow::{Context, Result, bail};
 use bumpsim_core::names::printable;
-use bumpsim_core::units::{Dimension, format_number, format_quantity, parse_quantity, short};
+use bumpsim_core::units::{Dimension, format_number, format_quantity, short};
+use bumpsim_engine::uncertain::{self, Uncertain};
 use bumpsim_impact::bumper::Bumper;
 use bumpsim_impact::impact::{Options, Scenario, simulate};
 use bumpsim_impact::presets::ScenarioSpec;
@@ -64,72 +65,31 @@ impl ImpactArgs {
     }
 }
 
-/// `impact` with a planar car: the planar impact of `bumpsim planar`.
-fn planar_impact(args: &ImpactArgs) -> Result<()> {
-    if args.bumper.is_some() {
-        bail!(
-            "--bumper: a planar car carries its bumper segments ([bumper] of its file); leave --bumper out"
-        );
+impl ImpactArgs {
+    /// The request as the engine takes it.
+    fn request(&self) -> Result<bumpsim_engine::ImpactRequest<'_>> {
+        Ok(bumpsim_engine::ImpactRequest {
+            car: self.car.as_deref(),
+            bumper: self.bumper.as_deref(),
+            case: self.case.as_deref(),
+            pendulum: self.pendulum,
+            barrier: self.barrier,
+            speed: self.speed.as_deref().map(speed).transpose()?,
+            face: self.face.face(),
+            width: self.width.as_deref(),
+            setup: bumpsim_engine::Setup::default(),
+            uncertainty: self.uncertain.options(),
+            report: self.files.report.is_some(),
+        })
     }
-    if args.width.is_some() {
-        bail!("--width: a planar car has its bumper width ([bumper] width of its file)");
-    }
-    crate::planar::run_impact(&crate::planar::ImpactRequest {
-        path: args.car_path()?,
-        car: bumpsim_planar::PlanarCar::read(args.car_path()?)?,
-        case: args.case.as_deref(),
-        face: &args.face,
-        pendulum: args.pendulum,
-        speed: args.speed.as_deref(),
-        setup: &crate::planar::SetupArgs::default(),
-        uncertain: &args.uncertain,
-        files: &args.files,
-    })
-}
-
-/// `impact --width`: the 1-D car as a symmetric planar car of that bumper
-/// width (`PlanarCar::symmetric_fitted` with the default layout), in the planar impact.
-fn widened_impact(args: &ImpactArgs, car: &Car, bumper: &Bumper, width: &str) -> Result<()> {
-    let width =
-        parse_quantity(width, Dimension::Length).with_context(|| format!("--width '{width}'"))?;
-    let layout = bumpsim_planar::car::Layout {
-        bumper_width: width,
-        ..bumpsim_planar::car::Layout::default()
-    };
-    let planar = bumpsim_planar::PlanarCar::symmetric_fitted(&car.model, bumper, &layout)
-        .context("--width: the symmetric planar car")?
-        .with_name(car.name.clone());
-    crate::planar::run_impact(&crate::planar::ImpactRequest {
-        path: args.car_path()?,
-        car: planar,
-        case: args.case.as_deref(),
-        face: &args.face,
-        pendulum: args.pendulum,
-        speed: args.speed.as_deref(),
-        setup: &crate::planar::SetupArgs::default(),
-        uncertain: &args.uncertain,
-        files: &args.files,
-    })
 }
 
 /// `impact` of a car whose model the engine runs (bumpsim_engine's
 /// registry picks it by its kind): the arguments converted, the outcome
 /// printed and written.
 fn engine_impact(kind: ModelKind, args: &ImpactArgs) -> Result<()> {
-    let mut faces = args.face.names();
-    faces.extend(args.width.as_ref().map(|_| "--width"));
-    let request = bumpsim_engine::ImpactRequest {
-        car: args.car.as_deref(),
-        bumper: args.bumper.as_deref(),
-        case: args.case.as_deref(),
-        pendulum: args.pendulum,
-        barrier: args.barrier,
-        speed: args.speed.as_deref().map(speed).transpose()?,
-        faces: &faces,
-        uncertainty: args.uncertain.uncertainty.as_deref(),
-        report: args.files.report.is_some(),
-    };
-    crate::output::outcome(bumpsim_engine::impact(kind, &request)?, &args.files)
+    let outcome = bumpsim_engine::impact(kind, &args.request()?)?;
+    crate::output::outcome(outcome, &args.files.written())
 }
 
 /// Arguments of `mass-reduction`.
@@ -171,10 +131,6 @@ pub struct ReductionArgs {
     report: Option<PathBuf>,
 }
 
-fn speed(text: &str) -> Result<f64> {
-    parse_quantity(text, Dimension::Velocity).with_context(|| format!("--speed '{text}'"))
-}
-
 fn scenario(args: &ImpactArgs, car_mass: f64) -> Result<(Scenario, String)> {
     let spec = ScenarioSpec {
         case: args.case.clone(),
@@ -214,7 +170,6 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
     }
     let car_path = args.car_path()?;
     match ModelKind::of_path(car_path, Role::Car)? {
-        ModelKind::Planar => return planar_impact(args),
         ModelKind::Chain => {}
         kind => return engine_impact(kind, args),
     }
@@ -223,10 +178,11 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
     };
     let car = Car::read_model_file(car_path)?;
     let bumper = Bumper::read(bumper_path)?;
-    if let Some(width) = &args.width {
-        return widened_impact(args, &car, &bumper, width);
+    if args.width.is_some() {
+        let outcome = bumpsim_engine::widened_impact(&args.request()?, &car, &bumper)?;
+        return crate::output::outcome(outcome, &args.files.written());
     }
-    if args.face.given() {
+    if args.face.face().given() {
         bail!(
             "--angle, --overlap, --side, --pole: faces other than flat need a planar car (--car with [body], docs/planar.md), or --width to make this 1-D car a symmetric one"
         );
@@ -236,7 +192,7 @@ pub fn run_impact(args: &ImpactArgs) -> Result<()> {
         model: car.model.clone(),
         bumper: bumper.clone(),
     };
-    let uncertain = Uncertain::<Chain>::read(&args.uncertain, &chain)?;
+    let uncertain = Uncertain::<Chain>::read(args.uncertain.options(), &chain)?;
     let result =
         simulate(&car.model, &bumper, scenario, &Options::default()).with_context(|| {
             let (car, bumper) = (car_path.display(), bumper_path.display());

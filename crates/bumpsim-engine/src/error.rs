@@ -47,6 +47,74 @@ pub enum EngineError {
         /// The mechanism's error.
         source: bumpsim_core::chain::ChainError,
     },
+    /// A quantity option is not a valid value of its dimension.
+    #[error("--{option} '{text}'")]
+    Quantity {
+        /// The option, without `--`.
+        option: &'static str,
+        /// The value as typed.
+        text: String,
+        /// Why.
+        #[source]
+        source: bumpsim_core::units::QuantityError,
+    },
+    /// The planar car refused a value; `context` names the option or step
+    /// (as given) behind it.
+    #[error("{context}")]
+    PlanarIn {
+        /// The option with its value as given, or what was being done.
+        context: String,
+        /// The planar car's refusal.
+        #[source]
+        source: bumpsim_planar::car::PlanarError,
+    },
+    /// The car's uncertainty options or file are not valid.
+    #[error("{option}")]
+    Uncertainty {
+        /// The option(s) concerned.
+        option: String,
+        /// Why.
+        #[source]
+        source: bumpsim_impact::propagation::PropagationError,
+    },
+    /// The propagation of the car's uncertainty failed.
+    #[error(transparent)]
+    Propagation(bumpsim_impact::propagation::PropagationError),
+    /// A file is not for what the command asks of it (a car of another
+    /// kind than its study, an identification that is not a whole car).
+    #[error("{path}: {reason}")]
+    Refused {
+        /// The file.
+        path: PathBuf,
+        /// Why, and what to give instead.
+        reason: String,
+    },
+    /// A replay of a study's case is not finite.
+    #[error(
+        "case '{case}': the replay with {car} is not finite (fit x {fit_x} %, yaw {fit_yaw} %): the car cannot be integrated at the study's sample interval"
+    )]
+    NotFinite {
+        /// The case.
+        case: String,
+        /// The car file.
+        car: PathBuf,
+        /// Fit of x, %.
+        fit_x: f64,
+        /// Fit of yaw, %.
+        fit_yaw: f64,
+    },
+    /// The planar car's deck cannot be written.
+    #[error(transparent)]
+    PlanarExport(bumpsim_planar::export::PlanarExportError),
+    /// An output interval of zero increments.
+    #[error("--output-every {every}")]
+    OutputEvery {
+        /// The value given.
+        every: usize,
+        /// The refusal.
+        #[source]
+        source: bumpsim_planar::export::PlanarExportError,
+    },
     /// No model of this kind answers the command through the engine.
     #[error("{command}: a {kind} car is not run by the engine (its front end runs it)")]
     NotRegistered {
