@@ -178,7 +178,7 @@ pub fn run(args: &Args) -> Result<()> {
         case: args.case.as_deref(),
         pendulum: args.pendulum,
         barrier: args.barrier,
-        speed: args.speed.as_deref().map(speed).transpose()?,
+        speed: args.speed.as_deref(),
         face: args.face.face(),
         setup: args.setup.setup(),
         uncertainty: args.uncertain.options(),

@@ -115,6 +115,35 @@ pub enum EngineError {
         #[source]
         source: bumpsim_planar::export::PlanarExportError,
     },
+    /// A needed input is missing.
+    #[error("{what}")]
+    Needed {
+        /// What is needed, and where it is described.
+        what: &'static str,
+    },
+    /// The bumper file is not a valid bumper characteristic.
+    #[error(transparent)]
+    Bumper(#[from] bumpsim_impact::bumper::BumperError),
+    /// The scenario (preset, pendulum, barrier, speed as given) is not valid.
+    #[error("--case, --pendulum, --barrier, --speed{speed}")]
+    ScenarioGiven {
+        /// ` 'SPEED'` as given, or nothing.
+        speed: String,
+        /// Why.
+        #[source]
+        source: bumpsim_impact::impact::ImpactError,
+    },
+    /// The chain's impact failed.
+    #[error("--car {car} with --bumper {bumper}")]
+    ChainRun {
+        /// The car file.
+        car: PathBuf,
+        /// The bumper file.
+        bumper: PathBuf,
+        /// Why.
+        #[source]
+        source: bumpsim_impact::impact::ImpactError,
+    },
     /// No model of this kind answers the command through the engine.
     #[error("{command}: a {kind} car is not run by the engine (its front end runs it)")]
     NotRegistered {

@@ -18,6 +18,7 @@
 
 #![deny(missing_docs)]
 
+pub mod chain;
 pub mod deck;
 pub mod error;
 pub mod links;
@@ -34,5 +35,4 @@ pub use model::{
     Progress, Setup, Side, Solver, UncertaintyOptions,
 };
 pub use outcome::{Outcome, Report};
-pub use planar::widened_impact;
 pub use registry::{export, identify, impact, predict, registered};

@@ -24,8 +24,8 @@ pub struct ImpactRequest<'a> {
     pub pendulum: Option<f64>,
     /// The car hits a rigid barrier.
     pub barrier: bool,
-    /// Impact speed, m/s (default: the preset's).
-    pub speed: Option<f64>,
+    /// Impact speed as typed: m/s, or with a unit (default: the preset's).
+    pub speed: Option<&'a str>,
     /// The planar faces (`--angle`, `--overlap`, `--side`, `--pole`, `--pole-offset`).
     pub face: Face<'a>,
     /// A bumper width as typed (`--width`: a 1-D car made a symmetric planar car).
@@ -102,6 +102,20 @@ pub struct UncertaintyOptions<'a> {
 }
 
 impl<'a> ImpactRequest<'a> {
+    /// The impact speed, m/s, read with its unit.
+    pub fn speed(&self) -> Result<Option<f64>, EngineError> {
+        self.speed
+            .map(|text| {
+                bumpsim_core::units::parse_quantity(text, bumpsim_core::units::Dimension::Velocity)
+                    .map_err(|source| EngineError::Quantity {
+                        option: "speed",
+                        text: text.into(),
+                        source,
+                    })
+            })
+            .transpose()
+    }
+
     /// The car file, needed by every model.
     pub fn car_path(&self) -> Result<&'a Path, EngineError> {
         self.car.ok_or_else(|| EngineError::Unsupported {

@@ -10,7 +10,11 @@ use bumpsim_io::kind::{ModelKind, Role};
 
 /// The models the engine runs: one registration line each.
 pub fn registered() -> &'static [&'static dyn CarModel] {
-    &[&crate::links::Links, &crate::planar::Planar]
+    &[
+        &crate::chain::Chain,
+        &crate::links::Links,
+        &crate::planar::Planar,
+    ]
 }
 
 /// The registered model of `kind`, for `command`.
@@ -109,10 +113,23 @@ mod tests {
     #[test]
     fn every_registered_model_has_its_own_kind_and_the_others_are_refused() {
         let kinds: Vec<ModelKind> = registered().iter().map(|m| m.kind()).collect();
-        assert_eq!(kinds, vec![ModelKind::Links, ModelKind::Planar]);
-        let refused = impact(ModelKind::Chain, &ImpactRequest::default()).unwrap_err();
+        assert_eq!(
+            kinds,
+            vec![ModelKind::Chain, ModelKind::Links, ModelKind::Planar]
+        );
+        let request = IdentifyRequest {
+            study: std::path::Path::new("study.toml"),
+            starts: None,
+            seed: None,
+            report: false,
+            posterior: false,
+            sizes: false,
+            sensitivity: false,
+            progress: &crate::model::Unwatched,
+        };
+        let refused = identify(ModelKind::Links, &request).unwrap_err();
         assert!(
-            refused.to_string().starts_with("impact: a chain car"),
+            refused.to_string().starts_with("identify: a links car"),
             "{refused}"
         );
     }

@@ -145,7 +145,7 @@ fn striker(
         pole: length("pole", face.pole)?,
         pole_offset: length("pole-offset", face.pole_offset)?,
         pendulum: request.pendulum,
-        speed: request.speed,
+        speed: request.speed()?,
         car_mass: Some(car.total_mass()),
     };
     let (striker, preset) = spec.striker().map_err(|source| EngineError::PlanarIn {
