@@ -12,7 +12,6 @@ use bumpsim_ident::settings::Settings;
 use bumpsim_ident::sizes::{Observer, Order, Overrides, Watch};
 use bumpsim_ident::study::{DofSpec, Study};
 use bumpsim_ident::text::{case_lines, dof_table, parameter_table};
-use bumpsim_io::car::Car;
 use bumpsim_io::kind::{ModelKind, Role};
 use bumpsim_report::identification::{DofOutcome, report_with_posterior};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -408,18 +407,9 @@ fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
     Ok(())
 }
 
-/// Runs `predict`: a chain model on a chain study here, any other car on
-/// a study of its kind through the engine (which refuses a car and a
-/// study of different kinds).
+/// Runs `predict`: the car on a study of its kind, one library request
+/// (the engine refuses a car and a study of different kinds).
 pub fn run_predict(args: &PredictArgs) -> Result<()> {
-    let chain = (ModelKind::Chain, ModelKind::Chain);
-    if (
-        ModelKind::of_path(&args.model, Role::Car)?,
-        ModelKind::of_path(&args.study, Role::Study)?,
-    ) == chain
-    {
-        return run_predict_chain(args);
-    }
     let request = bumpsim_engine::PredictRequest {
         car: &args.model,
         study: &args.study,
@@ -432,65 +422,6 @@ pub fn run_predict(args: &PredictArgs) -> Result<()> {
         ..Default::default()
     };
     crate::output::outcome(bumpsim_engine::predict(&request)?, &files)
-}
-
-/// `predict` of a chain model.
-fn run_predict_chain(args: &PredictArgs) -> Result<()> {
-    let car = Car::read_model_file(&args.model).with_context(|| {
-        format!(
-            "{}: a result of `bumpsim identify --json` for one DOF, or a car file",
-            args.model.display()
-        )
-    })?;
-    let study = Study::read(&args.study)?;
-    let loaded = study.load_named(car.model.dof(), &args.cases)?;
-    let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
-    print_notes(&notes);
-    loaded.warnings.iter().for_each(|w| crate::warn(w));
-    let predictions = predict(&loaded.cases, &car.model)?;
-    if let Some(p) = predictions
-        .iter()
-        .find(|p| !(p.fit.fit_percent.is_finite() && p.fit.sse.is_finite()))
-    {
-        anyhow::bail!(
-            "case '{}': the simulation with {} is not finite (fit {} %): the model is beyond what the zoh discretisation can represent at this sample interval",
-            p.fit.name,
-            args.model.display(),
-            p.fit.fit_percent
-        );
-    }
-    for p in &predictions {
-        println!(
-            "{}: fit {} %  SSE {} m²  ({} samples)",
-            p.fit.name,
-            bumpsim_core::units::format_number(p.fit.fit_percent, 4),
-            bumpsim_core::units::format_number(p.fit.sse, 4),
-            p.fit.samples
-        );
-        println!(
-            "  {}",
-            bumpsim_ident::text::rating_line(p.fit.rating.as_ref())
-        );
-    }
-    let name = car
-        .name
-        .clone()
-        .unwrap_or_else(|| args.model.display().to_string());
-    let document = bumpsim_ident::document::predictions(&name, &predictions, &notes);
-    document.warnings.iter().for_each(|w| crate::warn(w));
-    if let Some(path) = &args.json {
-        write(path, &serde_json::to_string_pretty(&document)?)?;
-    }
-    if let Some(dir) = &args.plot {
-        let folder = Folder::stage(dir)?;
-        for p in &predictions {
-            let svg = bumpsim_report::identification::fit_plot(p, car.model.dof())?;
-            let name = bumpsim_report::file_name(&p.fit.name);
-            folder.write(&format!("predict-{name}.svg"), &svg)?;
-        }
-        folder.commit()?;
-    }
-    Ok(())
 }
 
 /// A study of a model the engine identifies (the planar car's): one

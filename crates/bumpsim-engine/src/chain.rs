@@ -3,11 +3,12 @@
 //! simulates the car and its bumper against a pendulum or a rigid barrier
 //! ([`bumpsim_impact::impact::simulate`], spec §6) and, with the car's
 //! uncertainty, the results as distributions; with a bumper width the 1-D
-//! car becomes a symmetric planar car ([`crate::planar::widened_impact`]).
+//! car becomes a symmetric planar car ([`crate::planar::widened_impact`]);
+//! `predict` simulates a study's cases with the car and gives their fits.
 //! No equations here: the mechanism and its energy balance are
 //! `bumpsim_impact`'s.
 
-use crate::model::{CarModel, ImpactRequest};
+use crate::model::{CarModel, ImpactRequest, PredictRequest};
 use crate::uncertain::{self, Uncertain};
 use crate::{EngineError, Outcome, Report};
 use bumpsim_core::names::printable;
@@ -106,6 +107,70 @@ impl CarModel for Chain {
             ..Outcome::default()
         })
     }
+
+    fn predict(&self, request: &PredictRequest<'_>) -> Result<Outcome, EngineError> {
+        predict(request)
+    }
+}
+
+/// `predict` of a chain model (a car file, or an identification's JSON of
+/// one DOF) on a chain study: each case simulated with the case's measured
+/// force ([`bumpsim_ident::explore::predict`]) and its fit.
+fn predict(request: &PredictRequest<'_>) -> Result<Outcome, EngineError> {
+    let car = Car::read_model_file(request.car).map_err(|source| EngineError::CarIn {
+        context: format!(
+            "{}: a result of `bumpsim identify --json` for one DOF, or a car file",
+            request.car.display()
+        ),
+        source,
+    })?;
+    let study = bumpsim_ident::Study::read(request.study)?;
+    let loaded = study.load_named(car.model.dof(), request.cases)?;
+    let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
+    let mut text: String = notes.iter().map(|n| format!("note: {n}\n")).collect();
+    let mut warnings = loaded.warnings.clone();
+    let predictions = bumpsim_ident::explore::predict(&loaded.cases, &car.model)?;
+    if let Some(p) = predictions
+        .iter()
+        .find(|p| !(p.fit.fit_percent.is_finite() && p.fit.sse.is_finite()))
+    {
+        return Err(EngineError::Diverged {
+            case: p.fit.name.clone(),
+            car: request.car.into(),
+            fit: p.fit.fit_percent,
+        });
+    }
+    for p in &predictions {
+        text += &format!(
+            "{}: fit {} %  SSE {} m²  ({} samples)\n  {}\n",
+            p.fit.name,
+            format_number(p.fit.fit_percent, 4),
+            format_number(p.fit.sse, 4),
+            p.fit.samples,
+            bumpsim_ident::text::rating_line(p.fit.rating.as_ref())
+        );
+    }
+    let name = car
+        .name
+        .clone()
+        .unwrap_or_else(|| request.car.display().to_string());
+    let document = bumpsim_ident::document::predictions(&name, &predictions, &notes);
+    warnings.extend(document.warnings.iter().cloned());
+    let mut plots = Vec::new();
+    if request.plot {
+        for p in &predictions {
+            let svg = bumpsim_report::identification::fit_plot(p, car.model.dof())?;
+            let name = bumpsim_report::file_name(&p.fit.name);
+            plots.push((format!("predict-{name}.svg"), svg));
+        }
+    }
+    Ok(Outcome {
+        text,
+        warnings,
+        json: serde_json::to_string_pretty(&document)?,
+        plots,
+        ..Outcome::default()
+    })
 }
 
 /// The scenario of the request for a car of `car_mass` kg, and its label.

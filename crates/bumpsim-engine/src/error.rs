@@ -144,6 +144,33 @@ pub enum EngineError {
         #[source]
         source: bumpsim_impact::impact::ImpactError,
     },
+    /// The car file cannot be read; `context` says what was expected.
+    #[error("{context}")]
+    CarIn {
+        /// The file and what it should be.
+        context: String,
+        /// Why.
+        #[source]
+        source: bumpsim_io::car::CarError,
+    },
+    /// The chain study cannot be read or loaded.
+    #[error(transparent)]
+    Study(#[from] bumpsim_ident::StudyError),
+    /// A chain study's case cannot be simulated.
+    #[error(transparent)]
+    Case(#[from] bumpsim_ident::case::CaseError),
+    /// A simulation of a study's case with the chain is not finite.
+    #[error(
+        "case '{case}': the simulation with {car} is not finite (fit {fit} %): the model is beyond what the zoh discretisation can represent at this sample interval"
+    )]
+    Diverged {
+        /// The case.
+        case: String,
+        /// The car file.
+        car: PathBuf,
+        /// The fit, %.
+        fit: f64,
+    },
     /// No model of this kind answers the command through the engine.
     #[error("{command}: a {kind} car is not run by the engine (its front end runs it)")]
     NotRegistered {
