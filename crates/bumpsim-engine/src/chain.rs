@@ -122,14 +122,17 @@ fn predict(request: &PredictRequest<'_>) -> Result<Outcome, EngineError> {
             "{}: a result of `bumpsim identify --json` for one DOF, or a car file",
             request.car.display()
         ),
-        source,
+        source: Box::new(source),
     })?;
-    let study = bumpsim_ident::Study::read(request.study)?;
-    let loaded = study.load_named(car.model.dof(), request.cases)?;
+    let study = bumpsim_ident::Study::read(request.study).map_err(Box::new)?;
+    let loaded = study
+        .load_named(car.model.dof(), request.cases)
+        .map_err(Box::new)?;
     let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
     let mut text: String = notes.iter().map(|n| format!("note: {n}\n")).collect();
     let mut warnings = loaded.warnings.clone();
-    let predictions = bumpsim_ident::explore::predict(&loaded.cases, &car.model)?;
+    let predictions =
+        bumpsim_ident::explore::predict(&loaded.cases, &car.model).map_err(Box::new)?;
     if let Some(p) = predictions
         .iter()
         .find(|p| !(p.fit.fit_percent.is_finite() && p.fit.sse.is_finite()))

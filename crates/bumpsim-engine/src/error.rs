@@ -151,14 +151,14 @@ pub enum EngineError {
         context: String,
         /// Why.
         #[source]
-        source: bumpsim_io::car::CarError,
+        source: Box<bumpsim_io::car::CarError>,
     },
     /// The chain study cannot be read or loaded.
     #[error(transparent)]
-    Study(#[from] bumpsim_ident::StudyError),
+    Study(Box<bumpsim_ident::StudyError>),
     /// A chain study's case cannot be simulated.
     #[error(transparent)]
-    Case(#[from] bumpsim_ident::case::CaseError),
+    Case(Box<bumpsim_ident::case::CaseError>),
     /// A simulation of a study's case with the chain is not finite.
     #[error(
         "case '{case}': the simulation with {car} is not finite (fit {fit} %): the model is beyond what the zoh discretisation can represent at this sample interval"
@@ -185,4 +185,16 @@ pub enum EngineError {
     /// The JSON document could not be made.
     #[error("JSON document: {0}")]
     Json(#[from] serde_json::Error),
+}
+
+impl From<Box<bumpsim_ident::StudyError>> for EngineError {
+    fn from(error: Box<bumpsim_ident::StudyError>) -> Self {
+        EngineError::Study(error)
+    }
+}
+
+impl From<Box<bumpsim_ident::case::CaseError>> for EngineError {
+    fn from(error: Box<bumpsim_ident::case::CaseError>) -> Self {
+        EngineError::Case(error)
+    }
 }
