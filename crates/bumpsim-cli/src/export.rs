@@ -300,16 +300,12 @@ fn calculix(args: &CalculixArgs) -> Result<()> {
 
 /// Names `--output-every` in the refusal of a zero output interval (the
 /// library names the interval, not the flag).
-pub(crate) fn name_output_every(error: anyhow::Error, every: usize) -> anyhow::Error {
+fn name_output_every(error: anyhow::Error, every: usize) -> anyhow::Error {
     use bumpsim_export::ExportError::OutputInterval;
-    use bumpsim_planar::export::PlanarExportError;
     let zero = error.chain().any(|cause| {
         matches!(
             cause.downcast_ref::<bumpsim_export::ExportError>(),
             Some(OutputInterval)
-        ) || matches!(
-            cause.downcast_ref::<PlanarExportError>(),
-            Some(PlanarExportError::Export(OutputInterval))
         )
     });
     match zero {

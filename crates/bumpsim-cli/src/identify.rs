@@ -12,7 +12,6 @@ use bumpsim_ident::settings::Settings;
 use bumpsim_ident::sizes::{Observer, Order, Overrides, Watch};
 use bumpsim_ident::study::{DofSpec, Study};
 use bumpsim_ident::text::{case_lines, dof_table, parameter_table};
-use bumpsim_io::car::Car;
 use bumpsim_io::kind::{ModelKind, Role};
 use bumpsim_report::identification::{DofOutcome, report_with_posterior};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -102,8 +101,9 @@ fn progress(quiet: bool, dof: usize, starts: usize) -> ProgressBar {
 
 /// Runs `identify`: the model is the study's kind (bumpsim_io::kind).
 pub fn run(args: &Args) -> Result<()> {
-    if ModelKind::of_path(&args.study, Role::Study)? == ModelKind::Planar {
-        return run_planar(args);
+    match ModelKind::of_path(&args.study, Role::Study)? {
+        ModelKind::Chain => {}
+        kind => return run_engine(kind, args),
     }
     if args.car.is_some() {
         anyhow::bail!("--car: only a planar study identifies a planar car (docs/planar.md)");
@@ -407,140 +407,62 @@ fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
     Ok(())
 }
 
-/// Runs `predict`: a chain model on a chain study, or a planar car on a
-/// planar study.
+/// Runs `predict`: the car on a study of its kind, one library request
+/// (the engine refuses a car and a study of different kinds).
 pub fn run_predict(args: &PredictArgs) -> Result<()> {
-    match (
-        ModelKind::of_path(&args.model, Role::Car)?,
-        ModelKind::of_path(&args.study, Role::Study)?,
-    ) {
-        (ModelKind::Planar, ModelKind::Planar) => {
-            crate::planar::run_predict(&crate::planar::PredictOptions {
-                car: &args.model,
-                study: &args.study,
-                cases: &args.cases,
-                plot: args.plot.as_deref(),
-                json: args.json.as_deref(),
-            })
-        }
-        (ModelKind::Planar, ModelKind::Chain) => anyhow::bail!(
-            "{}: a planar car predicts a planar study (`[model] planar = ...`, docs/planar.md); {} is a chain study",
-            args.model.display(),
-            args.study.display()
-        ),
-        (ModelKind::Chain, ModelKind::Planar)
-            if ModelKind::of_path(&args.model, Role::Result)? == ModelKind::Planar =>
-        {
-            anyhow::bail!(
-                "{}: a planar identification's JSON (`identify --json`) holds the identified body, side chains and tyres but not the bumper beam (the start car's), so it is not a whole car: predict with the planar car file `bumpsim identify {} --car CAR.toml` writes",
-                args.model.display(),
-                args.study.display()
-            )
-        }
-        (ModelKind::Chain, ModelKind::Planar) => {
-            // a planar car file with a mistake is not recognised as one:
-            // its own error says more than "not a planar car"
-            bumpsim_planar::PlanarCar::read(&args.model).with_context(|| {
-                format!(
-                    "{}: a planar study needs a planar car (a car file with [body], docs/planar.md)",
-                    args.study.display()
-                )
-            })?;
-            anyhow::bail!(
-                "{}: a planar study needs a planar car (a car file with [body], docs/planar.md); {} is not one",
-                args.study.display(),
-                args.model.display()
-            )
-        }
-        (ModelKind::Chain, ModelKind::Chain) => run_predict_chain(args),
-        (car, study) => anyhow::bail!(
-            "{}: predict runs a chain or planar car on a study of its kind; a {} car (on the {} study {}) is not predicted yet",
-            args.model.display(),
-            car.name(),
-            study.name(),
-            args.study.display()
-        ),
-    }
+    let request = bumpsim_engine::PredictRequest {
+        car: &args.model,
+        study: &args.study,
+        cases: &args.cases,
+        plot: args.plot.is_some(),
+    };
+    let files = crate::output::Written {
+        json: args.json.as_deref(),
+        plot: args.plot.as_deref(),
+        ..Default::default()
+    };
+    crate::output::outcome(bumpsim_engine::predict(&request)?, &files)
 }
 
-/// `predict` of a chain model.
-fn run_predict_chain(args: &PredictArgs) -> Result<()> {
-    let car = Car::read_model_file(&args.model).with_context(|| {
-        format!(
-            "{}: a result of `bumpsim identify --json` for one DOF, or a car file",
-            args.model.display()
-        )
-    })?;
-    let study = Study::read(&args.study)?;
-    let loaded = study.load_named(car.model.dof(), &args.cases)?;
-    let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
-    print_notes(&notes);
-    loaded.warnings.iter().for_each(|w| crate::warn(w));
-    let predictions = predict(&loaded.cases, &car.model)?;
-    if let Some(p) = predictions
-        .iter()
-        .find(|p| !(p.fit.fit_percent.is_finite() && p.fit.sse.is_finite()))
-    {
-        anyhow::bail!(
-            "case '{}': the simulation with {} is not finite (fit {} %): the model is beyond what the zoh discretisation can represent at this sample interval",
-            p.fit.name,
-            args.model.display(),
-            p.fit.fit_percent
-        );
-    }
-    for p in &predictions {
-        println!(
-            "{}: fit {} %  SSE {} m²  ({} samples)",
-            p.fit.name,
-            bumpsim_core::units::format_number(p.fit.fit_percent, 4),
-            bumpsim_core::units::format_number(p.fit.sse, 4),
-            p.fit.samples
-        );
-        println!(
-            "  {}",
-            bumpsim_ident::text::rating_line(p.fit.rating.as_ref())
-        );
-    }
-    let name = car
-        .name
-        .clone()
-        .unwrap_or_else(|| args.model.display().to_string());
-    let document = bumpsim_ident::document::predictions(&name, &predictions, &notes);
-    document.warnings.iter().for_each(|w| crate::warn(w));
-    if let Some(path) = &args.json {
-        write(path, &serde_json::to_string_pretty(&document)?)?;
-    }
-    if let Some(dir) = &args.plot {
-        let folder = Folder::stage(dir)?;
-        for p in &predictions {
-            let svg = bumpsim_report::identification::fit_plot(p, car.model.dof())?;
-            let name = bumpsim_report::file_name(&p.fit.name);
-            folder.write(&format!("predict-{name}.svg"), &svg)?;
-        }
-        folder.commit()?;
-    }
-    Ok(())
-}
-
-/// A planar study (`[model] planar = ...`): the planar identification.
-fn run_planar(args: &Args) -> Result<()> {
-    if args.posterior {
-        anyhow::bail!(
-            "--posterior: the planar car's posterior is not in the command line yet (docs/uncertainty.md); a chain study samples it"
-        );
-    }
-    if args.dof.is_some() || args.sensitivity.is_some() {
-        anyhow::bail!(
-            "--dof and --sensitivity: a planar study takes its chain sizes from its start car (docs/planar.md)"
-        );
-    }
-    crate::planar::run_identify(&crate::planar::IdentifyOptions {
+/// A study of a model the engine identifies (the planar car's): one
+/// library request, its progress on a bar.
+fn run_engine(kind: ModelKind, args: &Args) -> Result<()> {
+    let bar = Bar(match args.quiet {
+        true => ProgressBar::hidden(),
+        false => ProgressBar::new(0),
+    });
+    let request = bumpsim_engine::IdentifyRequest {
         study: &args.study,
         starts: args.starts,
         seed: args.seed,
+        report: args.report.is_some(),
+        posterior: args.posterior,
+        sizes: args.dof.is_some(),
+        sensitivity: args.sensitivity.is_some(),
+        progress: &bar,
+    };
+    let files = crate::output::Written {
         json: args.json.as_deref(),
         report: args.report.as_deref(),
         car: args.car.as_deref(),
-        quiet: args.quiet,
-    })
+        ..Default::default()
+    };
+    crate::output::outcome(bumpsim_engine::identify(kind, &request)?, &files)
+}
+
+/// A progress bar of the starts.
+struct Bar(ProgressBar);
+
+impl bumpsim_engine::Progress for Bar {
+    fn begin(&self, starts: u64) {
+        self.0.set_length(starts);
+    }
+
+    fn start_finished(&self) {
+        self.0.inc(1);
+    }
+
+    fn end(&self) {
+        self.0.finish_and_clear();
+    }
 }

@@ -1,19 +1,15 @@
-//! `bumpsim impact` and `bumpsim mass-reduction`: argument conversion and
-//! output around bumpsim-impact.
+//! `bumpsim impact` and `bumpsim mass-reduction`: argument conversion
+//! around the engine's impact request (every car model) and bumpsim-impact's
+//! mass reduction.
 
-use crate::planar::uncertain::{self, Uncertain};
+use crate::planar::speed;
 use crate::{Folder, write};
 use anyhow::{Context, Result, bail};
-use bumpsim_core::names::printable;
-use bumpsim_core::units::{Dimension, format_number, format_quantity, parse_quantity, short};
+use bumpsim_core::units::{Dimension, format_number, format_quantity, short};
 use bumpsim_impact::bumper::Bumper;
-use bumpsim_impact::impact::{Options, Scenario, simulate};
-use bumpsim_impact::presets::ScenarioSpec;
 use bumpsim_impact::reduction::{
     Criterion, Grid, PaperSweep, ReductionError, TwoDof, equivalent_mass,
 };
-use bumpsim_impact::uncertainty::{Chain, ChainCar};
-use bumpsim_io::car::Car;
 use bumpsim_io::kind::{ModelKind, Role};
 use bumpsim_report::html::Html;
 use indicatif::ProgressBar;
@@ -64,72 +60,23 @@ impl ImpactArgs {
     }
 }
 
-/// `impact` with a planar car: the planar impact of `bumpsim planar`.
-fn planar_impact(args: &ImpactArgs) -> Result<()> {
-    if args.bumper.is_some() {
-        bail!(
-            "--bumper: a planar car carries its bumper segments ([bumper] of its file); leave --bumper out"
-        );
+impl ImpactArgs {
+    /// The request as the engine takes it.
+    fn request(&self) -> bumpsim_engine::ImpactRequest<'_> {
+        bumpsim_engine::ImpactRequest {
+            car: self.car.as_deref(),
+            bumper: self.bumper.as_deref(),
+            case: self.case.as_deref(),
+            pendulum: self.pendulum,
+            barrier: self.barrier,
+            speed: self.speed.as_deref(),
+            face: self.face.face(),
+            width: self.width.as_deref(),
+            setup: bumpsim_engine::Setup::default(),
+            uncertainty: self.uncertain.options(),
+            report: self.files.report.is_some(),
+        }
     }
-    if args.width.is_some() {
-        bail!("--width: a planar car has its bumper width ([bumper] width of its file)");
-    }
-    crate::planar::run_impact(&crate::planar::ImpactRequest {
-        path: args.car_path()?,
-        car: bumpsim_planar::PlanarCar::read(args.car_path()?)?,
-        case: args.case.as_deref(),
-        face: &args.face,
-        pendulum: args.pendulum,
-        speed: args.speed.as_deref(),
-        setup: &crate::planar::SetupArgs::default(),
-        uncertain: &args.uncertain,
-        files: &args.files,
-    })
-}
-
-/// `impact --width`: the 1-D car as a symmetric planar car of that bumper
-/// width (`PlanarCar::symmetric_fitted` with the default layout), in the planar impact.
-fn widened_impact(args: &ImpactArgs, car: &Car, bumper: &Bumper, width: &str) -> Result<()> {
-    let width =
-        parse_quantity(width, Dimension::Length).with_context(|| format!("--width '{width}'"))?;
-    let layout = bumpsim_planar::car::Layout {
-        bumper_width: width,
-        ..bumpsim_planar::car::Layout::default()
-    };
-    let planar = bumpsim_planar::PlanarCar::symmetric_fitted(&car.model, bumper, &layout)
-        .context("--width: the symmetric planar car")?
-        .with_name(car.name.clone());
-    crate::planar::run_impact(&crate::planar::ImpactRequest {
-        path: args.car_path()?,
-        car: planar,
-        case: args.case.as_deref(),
-        face: &args.face,
-        pendulum: args.pendulum,
-        speed: args.speed.as_deref(),
-        setup: &crate::planar::SetupArgs::default(),
-        uncertain: &args.uncertain,
-        files: &args.files,
-    })
-}
-
-/// `impact` of a car whose model the engine runs (bumpsim_engine's
-/// registry picks it by its kind): the arguments converted, the outcome
-/// printed and written.
-fn engine_impact(kind: ModelKind, args: &ImpactArgs) -> Result<()> {
-    let mut faces = args.face.names();
-    faces.extend(args.width.as_ref().map(|_| "--width"));
-    let request = bumpsim_engine::ImpactRequest {
-        car: args.car.as_deref(),
-        bumper: args.bumper.as_deref(),
-        case: args.case.as_deref(),
-        pendulum: args.pendulum,
-        barrier: args.barrier,
-        speed: args.speed.as_deref().map(speed).transpose()?,
-        faces: &faces,
-        uncertainty: args.uncertain.uncertainty.as_deref(),
-        report: args.files.report.is_some(),
-    };
-    crate::output::outcome(bumpsim_engine::impact(kind, &request)?, &args.files)
 }
 
 /// Arguments of `mass-reduction`.
@@ -171,116 +118,16 @@ pub struct ReductionArgs {
     report: Option<PathBuf>,
 }
 
-fn speed(text: &str) -> Result<f64> {
-    parse_quantity(text, Dimension::Velocity).with_context(|| format!("--speed '{text}'"))
-}
-
-fn scenario(args: &ImpactArgs, car_mass: f64) -> Result<(Scenario, String)> {
-    let spec = ScenarioSpec {
-        case: args.case.clone(),
-        pendulum: args.pendulum,
-        barrier: args.barrier,
-        speed: args.speed.as_deref().map(speed).transpose()?,
-    };
-    let (scenario, preset) = spec.scenario(car_mass).with_context(|| {
-        let given = args.speed.as_deref().map(|s| format!(" '{s}'"));
-        format!(
-            "--case, --pendulum, --barrier, --speed{}",
-            given.unwrap_or_default()
-        )
-    })?;
-    let label = match (preset, scenario) {
-        (Some(p), _) => format!(
-            "{} ({}, {}; {}){}",
-            p.name,
-            p.description,
-            format_number(p.speed_kmh(), 3) + " km/h",
-            p.source,
-            p.dropped_in_1d()
-                .map(|d| format!("; 1-D: {d}"))
-                .unwrap_or_default()
-        ),
-        (None, Scenario::Impactor { mass, .. }) => format!("{mass} kg pendulum"),
-        (None, Scenario::Barrier { .. }) => "rigid barrier".into(),
-    };
-    Ok((scenario, label))
-}
-
-/// Runs `impact`.
+/// Runs `impact`: the car file's kind picks the model (bumpsim_engine's
+/// registry), one library request.
 pub fn run_impact(args: &ImpactArgs) -> Result<()> {
     if args.case.as_deref() == Some("list") {
         print!("{}", bumpsim_io::protocols::listing(true));
         return Ok(());
     }
-    let car_path = args.car_path()?;
-    match ModelKind::of_path(car_path, Role::Car)? {
-        ModelKind::Planar => return planar_impact(args),
-        ModelKind::Chain => {}
-        kind => return engine_impact(kind, args),
-    }
-    let Some(bumper_path) = &args.bumper else {
-        bail!("--bumper FILE is needed for a 1-D car (docs/impact.md)");
-    };
-    let car = Car::read_model_file(car_path)?;
-    let bumper = Bumper::read(bumper_path)?;
-    if let Some(width) = &args.width {
-        return widened_impact(args, &car, &bumper, width);
-    }
-    if args.face.given() {
-        bail!(
-            "--angle, --overlap, --side, --pole: faces other than flat need a planar car (--car with [body], docs/planar.md), or --width to make this 1-D car a symmetric one"
-        );
-    }
-    let (scenario, label) = scenario(args, car.model.total_mass())?;
-    let chain = ChainCar {
-        model: car.model.clone(),
-        bumper: bumper.clone(),
-    };
-    let uncertain = Uncertain::<Chain>::read(&args.uncertain, &chain)?;
-    let result =
-        simulate(&car.model, &bumper, scenario, &Options::default()).with_context(|| {
-            let (car, bumper) = (car_path.display(), bumper_path.display());
-            format!("--car {car} with --bumper {bumper}")
-        })?;
-    let warnings = result.warnings();
-    warnings.iter().for_each(|w| crate::warn(w));
-    let run = |c: &ChainCar| simulate(&c.model, &c.bumper, scenario, &Options::default()).ok();
-    let predicted = uncertain
-        .map(|u| u.run(&chain, &result, &run))
-        .transpose()?;
-    let summary = bumpsim_impact::text::summary(&result)
-        + &warnings
-            .iter()
-            .map(|w| format!("warning: {w}\n"))
-            .collect::<String>()
-        + &predicted.as_ref().map_or(String::new(), |p| p.text.clone());
-    let name = car
-        .name
-        .clone()
-        .unwrap_or_else(|| car_path.display().to_string());
-    println!(
-        "{} with {}: {label}",
-        printable(&name),
-        bumper_path.display()
-    );
-    print!("{summary}");
-    let json = bumpsim_impact::document::ImpactSummary::of(scenario, &result);
-    let json = uncertain::with(serde_json::to_value(json)?, &predicted)?;
-    let json = serde_json::to_string_pretty(&json)?;
-    if let Some(path) = &args.files.json {
-        write(path, &json)?;
-    }
-    if let Some(path) = &args.files.csv {
-        write(path, &bumpsim_impact::text::histories(&result))?;
-    }
-    if let Some(dir) = &args.files.report {
-        let title = format!("{name} — {label}");
-        let shown = uncertain::summary(&summary, &predicted);
-        let (html, mut figures) = bumpsim_report::impact::impact_report(&title, &shown, &result)?;
-        uncertain::pages(&predicted, &title, &mut figures)?;
-        Folder::viewed_report(dir, &html, figures, (json, args.files.json.as_deref()), &[])?;
-    }
-    Ok(())
+    let kind = ModelKind::of_path(args.car_path()?, Role::Car)?;
+    let outcome = bumpsim_engine::impact(kind, &args.request())?;
+    crate::output::outcome(outcome, &args.files.written())
 }
 
 /// Runs `mass-reduction`.

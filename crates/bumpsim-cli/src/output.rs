@@ -90,20 +90,59 @@ pub(crate) struct ResultFiles {
     pub report: Option<std::path::PathBuf>,
 }
 
+impl ResultFiles {
+    /// The files asked for, as [`outcome`] writes them.
+    pub(crate) fn written(&self) -> Written<'_> {
+        Written {
+            json: self.json.as_deref(),
+            csv: self.csv.as_deref(),
+            report: self.report.as_deref(),
+            ..Written::default()
+        }
+    }
+}
+
+/// Where a request's outcome goes: each file or folder asked for.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Written<'a> {
+    /// The JSON document (`--json`).
+    pub json: Option<&'a Path>,
+    /// The histories (`--csv`).
+    pub csv: Option<&'a Path>,
+    /// The report folder (`--report`).
+    pub report: Option<&'a Path>,
+    /// The identified car (`identify --car`).
+    pub car: Option<&'a Path>,
+    /// The plots' folder (`predict --plot`).
+    pub plot: Option<&'a Path>,
+}
+
 /// Prints a library request's outcome (its text, then its warnings, counted
-/// for `--strict`) and writes the result files asked for.
-pub(crate) fn outcome(outcome: bumpsim_engine::Outcome, files: &ResultFiles) -> Result<()> {
+/// for `--strict` with those the text printed) and writes the files asked for.
+pub(crate) fn outcome(outcome: bumpsim_engine::Outcome, files: &Written) -> Result<()> {
     print!("{}", outcome.text);
+    crate::count_warnings(outcome.printed_warnings);
     outcome.warnings.iter().for_each(|w| crate::warn(w));
-    if let Some(path) = &files.json {
+    if let Some(path) = files.json {
         write(path, &outcome.json)?;
     }
-    if let Some(path) = &files.csv {
+    if let Some(path) = files.csv {
         write(path, &outcome.csv)?;
     }
-    if let (Some(dir), Some(report)) = (&files.report, outcome.report) {
-        let json = (outcome.json, files.json.as_deref());
-        Folder::viewed_report(dir, &report.html, report.figures, json, &[])?;
+    if let (Some(path), Some(car)) = (files.car, &outcome.car) {
+        write(path, car)?;
+    }
+    if let (Some(dir), Some(report)) = (files.report, outcome.report) {
+        let json = (outcome.json, files.json);
+        let inputs: Vec<&Path> = report.inputs.iter().map(|p| p.as_path()).collect();
+        Folder::viewed_report(dir, &report.html, report.figures, json, &inputs)?;
+    }
+    if let Some(dir) = files.plot {
+        let folder = Folder::stage(dir)?;
+        for (name, svg) in &outcome.plots {
+            folder.write(name, svg)?;
+        }
+        folder.commit()?;
     }
     Ok(())
 }

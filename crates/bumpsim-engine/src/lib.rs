@@ -7,7 +7,8 @@
 //! arguments, prints and writes.
 //!
 //! A model plugs in by implementing [`model::CarModel`] in its own module
-//! (today the chain with nonlinear links, [`links`]) and by one line in
+//! (today the chain with nonlinear links, [`links`], and the planar car,
+//! [`planar`]) and by one line in
 //! the registry [`registry::registered`]; the front ends name no model for it.
 //! docs/architecture.md walks through adding one.
 //!
@@ -17,15 +18,21 @@
 
 #![deny(missing_docs)]
 
+pub mod chain;
 pub mod deck;
 pub mod error;
 pub mod links;
 pub mod model;
 pub mod outcome;
+pub mod planar;
 pub mod registry;
 pub mod synth;
+pub mod uncertain;
 
 pub use error::EngineError;
-pub use model::{CarModel, ImpactRequest};
+pub use model::{
+    CarModel, Deck, ExportRequest, Face, ForceLoad, IdentifyRequest, ImpactRequest, PredictRequest,
+    Progress, Setup, Side, Solver, UncertaintyOptions,
+};
 pub use outcome::{Outcome, Report};
-pub use registry::{impact, registered};
+pub use registry::{export, identify, impact, predict, registered};

@@ -5,9 +5,13 @@
 
 use crate::{EngineError, Outcome};
 use bumpsim_io::kind::ModelKind;
+pub use bumpsim_planar::striker::Side;
 use std::path::Path;
 
-/// `impact` as a front end names it, its arguments converted (SI).
+/// `impact` (and `planar`) as a front end names it, its arguments
+/// converted (SI); quantities a model reads with their unit (the planar
+/// faces' lengths, the set-up's gap and duration) stay as typed, so that a
+/// refusal names the option with the value given.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ImpactRequest<'a> {
     /// The car file.
@@ -20,18 +24,98 @@ pub struct ImpactRequest<'a> {
     pub pendulum: Option<f64>,
     /// The car hits a rigid barrier.
     pub barrier: bool,
-    /// Impact speed, m/s (default: the preset's).
-    pub speed: Option<f64>,
-    /// The options of the planar faces (`--angle`, `--overlap`, `--side`,
-    /// `--pole`, `--width`) that were given, as the user typed them.
-    pub faces: &'a [&'a str],
-    /// The car's uncertainty file (`--uncertainty`).
-    pub uncertainty: Option<&'a Path>,
+    /// Impact speed as typed: m/s, or with a unit (default: the preset's).
+    pub speed: Option<&'a str>,
+    /// The planar faces (`--angle`, `--overlap`, `--side`, `--pole`, `--pole-offset`).
+    pub face: Face<'a>,
+    /// A bumper width as typed (`--width`: a 1-D car made a symmetric planar car).
+    pub width: Option<&'a str>,
+    /// The planar set-up (`--gap`, `--duration`, `--tyres`).
+    pub setup: Setup<'a>,
+    /// The car's uncertainty (`--uncertainty` and its options).
+    pub uncertainty: Option<UncertaintyOptions<'a>>,
     /// Draw the report's pages too.
     pub report: bool,
 }
 
+/// The striker's face options of a planar impact, as given.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Face<'a> {
+    /// Face angle, degrees, counter-clockwise seen from above.
+    pub angle: Option<f64>,
+    /// Overlap, percent of the bumper width.
+    pub overlap: Option<f64>,
+    /// Side the overlap is measured from.
+    pub side: Option<Side>,
+    /// A pole's diameter, as typed (m, or with a unit).
+    pub pole: Option<&'a str>,
+    /// The pole axis's lateral position, as typed (m, or with a unit).
+    pub pole_offset: Option<&'a str>,
+}
+
+impl Face<'_> {
+    /// The face options given, by name.
+    pub fn names(&self) -> Vec<&'static str> {
+        [
+            (self.angle.is_some(), "--angle"),
+            (self.overlap.is_some(), "--overlap"),
+            (self.side.is_some(), "--side"),
+            (self.pole.is_some(), "--pole"),
+            (self.pole_offset.is_some(), "--pole-offset"),
+        ]
+        .into_iter()
+        .filter_map(|(given, name)| given.then_some(name))
+        .collect()
+    }
+
+    /// Whether any face option is given.
+    pub fn given(&self) -> bool {
+        !self.names().is_empty()
+    }
+}
+
+/// The planar test set-up as given: the gap and the longest duration as
+/// typed (m or s, or with a unit), the tyres (`rolling` or `sliding`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Setup<'a> {
+    /// Initial gap between the striker and its first touch.
+    pub gap: Option<&'a str>,
+    /// Longest simulated time.
+    pub duration: Option<&'a str>,
+    /// The tyres of both axles: `rolling` or `sliding`.
+    pub tyres: Option<&'a str>,
+}
+
+/// The car's uncertainty carried through a run (issue 39).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UncertaintyOptions<'a> {
+    /// An identification's JSON or a TOML of relative deviations and ranges.
+    pub path: &'a Path,
+    /// Draws of the car's parameters.
+    pub samples: usize,
+    /// Seed of the draws.
+    pub seed: u64,
+    /// Level of the intervals and bands, in (0, 1).
+    pub level: f64,
+    /// Base samples of the Sobol indices, when asked.
+    pub sobol_base: Option<usize>,
+}
+
 impl<'a> ImpactRequest<'a> {
+    /// The impact speed, m/s, read with its unit.
+    pub fn speed(&self) -> Result<Option<f64>, EngineError> {
+        self.speed
+            .map(|text| {
+                bumpsim_core::units::parse_quantity(text, bumpsim_core::units::Dimension::Velocity)
+                    .map_err(|source| EngineError::Quantity {
+                        option: "speed",
+                        text: text.into(),
+                        source,
+                    })
+            })
+            .transpose()
+    }
+
     /// The car file, needed by every model.
     pub fn car_path(&self) -> Result<&'a Path, EngineError> {
         self.car.ok_or_else(|| EngineError::Unsupported {
@@ -55,7 +139,9 @@ impl<'a> ImpactRequest<'a> {
                 "carries its crush zone in its own file (a [front] link); leave --bumper out",
             );
         }
-        if let Some(option) = self.faces.first() {
+        let mut faces = self.face.names();
+        faces.extend(self.width.map(|_| "--width"));
+        if let Some(option) = faces.first() {
             return refuse(
                 (*option).into(),
                 "runs into a flat rigid barrier along its axis; faces other than flat need a planar car",
@@ -78,4 +164,146 @@ pub trait CarModel: Sync {
 
     /// `impact`: the car of `request.car` in the request's scenario.
     fn impact(&self, request: &ImpactRequest<'_>) -> Result<Outcome, EngineError>;
+
+    /// `identify`: the study of `request.study` (a model without an
+    /// identification through the engine refuses).
+    fn identify(&self, request: &IdentifyRequest<'_>) -> Result<Outcome, EngineError> {
+        let _ = request;
+        Err(self.not_registered("identify"))
+    }
+
+    /// `predict`: the car of `request.car` replaying the study's cases.
+    fn predict(&self, request: &PredictRequest<'_>) -> Result<Outcome, EngineError> {
+        let _ = request;
+        Err(self.not_registered("predict"))
+    }
+
+    /// `export`: the car of `request.car` as a solver's deck.
+    fn export(&self, request: &ExportRequest<'_>) -> Result<Deck, EngineError> {
+        let _ = request;
+        Err(self.not_registered("export"))
+    }
+
+    /// The refusal of a command this model does not run through the engine.
+    fn not_registered(&self, command: &'static str) -> EngineError {
+        EngineError::NotRegistered {
+            command,
+            kind: self.kind().name(),
+        }
+    }
+}
+
+/// `identify` as a front end names it.
+#[derive(Clone, Copy)]
+pub struct IdentifyRequest<'a> {
+    /// The study file.
+    pub study: &'a Path,
+    /// Starts instead of the study's.
+    pub starts: Option<usize>,
+    /// Seed of the random starts instead of the study's.
+    pub seed: Option<u64>,
+    /// Draw the report's pages too.
+    pub report: bool,
+    /// The posterior was asked for (`--posterior`).
+    pub posterior: bool,
+    /// Model sizes were given (`--dof`).
+    pub sizes: bool,
+    /// The sensitivities were asked for (`--sensitivity`).
+    pub sensitivity: bool,
+    /// Hears of the identification's progress.
+    pub progress: &'a dyn Progress,
+}
+
+/// A long request's progress, as a front end shows it (a progress bar, a
+/// callback); every method does nothing by default.
+pub trait Progress: Sync {
+    /// The run begins: `starts` starts to go.
+    fn begin(&self, starts: u64) {
+        let _ = starts;
+    }
+    /// One start has finished (from any thread).
+    fn start_finished(&self) {}
+    /// The run has ended.
+    fn end(&self) {}
+}
+
+/// A progress nobody watches.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Unwatched;
+
+impl Progress for Unwatched {}
+
+/// `predict` as a front end names it.
+#[derive(Debug, Clone, Copy)]
+pub struct PredictRequest<'a> {
+    /// The car (a car file, or an identification's JSON).
+    pub car: &'a Path,
+    /// The study.
+    pub study: &'a Path,
+    /// The cases to predict (all when empty).
+    pub cases: &'a [String],
+    /// Draw the plots of each case too.
+    pub plot: bool,
+}
+
+/// The solvers a deck is written for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Solver {
+    /// LS-DYNA keyword include.
+    Lsdyna,
+    /// CalculiX/Abaqus deck.
+    Calculix,
+}
+
+/// `export` as a front end names it, its options converted (SI).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExportRequest<'a> {
+    /// The car file.
+    pub car: &'a Path,
+    /// The solver.
+    pub solver: Solver,
+    /// Deck units.
+    pub units: bumpsim_export::layout::UnitSystem,
+    /// Position of the body's centre of gravity, m.
+    pub origin: [f64; 3],
+    /// Distance between neighbouring chain nodes, m.
+    pub spacing: f64,
+    /// Added to every id.
+    pub id_offset: u64,
+    /// The user's node ids coupled to the left and right front masses.
+    pub attach: [Vec<u64>; 2],
+    /// Initial forward speed of the whole car, m/s.
+    pub speed: Option<f64>,
+    /// A force history on the bumper line.
+    pub force: Option<ForceLoad<'a>>,
+    /// LS-DYNA history output interval, s.
+    pub output_interval: Option<f64>,
+    /// CalculiX fixed time increment, s.
+    pub increment: Option<f64>,
+    /// CalculiX: results every this many increments.
+    pub output_every: usize,
+    /// CalculiX: prefix of every set and amplitude name.
+    pub prefix: String,
+}
+
+/// A force history on the bumper line.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ForceLoad<'a> {
+    /// Sample interval, s.
+    pub step: f64,
+    /// The force, N, sample k at time k · step.
+    pub values: &'a [f64],
+    /// Lateral position on the bumper line, m, left positive.
+    pub lateral: f64,
+    /// Direction of the force on the car (world x, y).
+    pub direction: [f64; 2],
+}
+
+/// A deck and what it holds, in words.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Deck {
+    /// The deck's text.
+    pub text: String,
+    /// What it holds (after "wrote FILE: ").
+    pub what: String,
 }

@@ -17,6 +17,13 @@ pub struct Outcome {
     pub csv: String,
     /// The report, when the request asked for it.
     pub report: Option<Report>,
+    /// Warnings already printed in `text` (counted for `--strict`, not
+    /// printed again).
+    pub printed_warnings: usize,
+    /// The identified car as a car file (`identify --car`), when made.
+    pub car: Option<String>,
+    /// Plots (`predict --plot`): file name, SVG.
+    pub plots: Vec<(String, String)>,
 }
 
 /// A report: its index page and its figures and further pages.
@@ -26,4 +33,6 @@ pub struct Report {
     pub html: String,
     /// Further files of the folder: (file name, content).
     pub figures: Vec<(String, String)>,
+    /// The inputs the report's viewer also needs (a study's tests).
+    pub inputs: Vec<std::path::PathBuf>,
 }

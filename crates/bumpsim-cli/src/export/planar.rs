@@ -1,14 +1,13 @@
-//! `bumpsim export planar`: converts arguments into planar export options
-//! and writes the deck (docs/export.md, "The planar car").
+//! `bumpsim export planar`: converts arguments into the engine's export
+//! request and writes the deck (docs/export.md, "The planar car").
 
 use super::deck::{Solver, only_for, origin, spacing, time, write_output};
 use crate::simulate::force_series;
 use anyhow::{Context, Result, bail};
 use bumpsim_core::units::{Dimension, parse_quantity};
+use bumpsim_engine::{ExportRequest, ForceLoad};
 use bumpsim_export::layout::UnitSystem;
-use bumpsim_planar::PlanarCar;
-use bumpsim_planar::drive::Load;
-use bumpsim_planar::export::{Forces, PlanarExport, calculix_deck, lsdyna_include};
+use bumpsim_io::kind::ModelKind;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `bumpsim export planar`.
@@ -91,7 +90,8 @@ pub struct PlanarArgs {
     prefix: Option<String>,
 }
 
-/// Runs `bumpsim export planar`.
+/// Runs `bumpsim export planar`: the options converted, the deck one
+/// library request.
 pub fn run(args: &PlanarArgs) -> Result<()> {
     let lsdyna = [("output-interval", args.output_interval.is_some())];
     only_for(args.solver, Solver::Lsdyna, &lsdyna)?;
@@ -101,49 +101,31 @@ pub fn run(args: &PlanarArgs) -> Result<()> {
         ("prefix", args.prefix.is_some()),
     ];
     only_for(args.solver, Solver::Calculix, &calculix)?;
-    let car = PlanarCar::read(&args.car)?;
-    let options = options(args, &car)?;
-    let calculix = || {
-        calculix_deck(&car, &options)
-            .map_err(|e| super::name_output_every(e.into(), options.output_every))
-    };
-    let (deck, what) = match args.solver {
-        Solver::Lsdyna => (lsdyna_include(&car, &options)?, "LS-DYNA include"),
-        Solver::Calculix if options.forces.is_some() => {
-            (calculix()?, "CalculiX transient analysis (run: ccx JOB)")
-        }
-        Solver::Calculix => (calculix()?, "CalculiX model"),
-    };
-    let masses = car.left().masses.len() + car.right().masses.len();
-    let what = format!(
-        "{what} of the planar car, {masses} chain masses, ids from {}",
-        args.id_offset + 1
-    );
-    let inputs: Vec<&Path> = std::iter::once(args.car.as_path())
-        .chain(args.force.as_deref())
-        .collect();
-    write_output(&args.output, args.units, &inputs, &deck, &what)
-}
-
-fn options(args: &PlanarArgs, car: &PlanarCar) -> Result<PlanarExport> {
-    let speed = args
-        .initial_velocity
+    let series = args
+        .force
         .as_deref()
-        .map(|t| parse_quantity(t, Dimension::Velocity).context("--initial-velocity"))
+        .map(|path| force_series(path, args.column.as_deref()))
         .transpose()?;
-    let title = format!(
-        "{} (from {})",
-        car.name().unwrap_or("planar car"),
-        args.car.display()
-    );
-    Ok(PlanarExport {
+    let request = ExportRequest {
+        car: &args.car,
+        solver: match args.solver {
+            Solver::Lsdyna => bumpsim_engine::Solver::Lsdyna,
+            Solver::Calculix => bumpsim_engine::Solver::Calculix,
+        },
         units: args.units,
         origin: origin(&args.origin)?,
         spacing: spacing(&args.spacing)?,
         id_offset: args.id_offset,
         attach: [args.attach_left.clone(), args.attach_right.clone()],
-        speed,
-        forces: forces(args)?,
+        speed: args
+            .initial_velocity
+            .as_deref()
+            .map(|t| parse_quantity(t, Dimension::Velocity).context("--initial-velocity"))
+            .transpose()?,
+        force: series
+            .as_ref()
+            .map(|(series, _)| force(args, series.values(), series.step()))
+            .transpose()?,
         output_interval: args
             .output_interval
             .as_deref()
@@ -158,15 +140,16 @@ fn options(args: &PlanarArgs, car: &PlanarCar) -> Result<PlanarExport> {
         prefix: (args.prefix.as_deref())
             .unwrap_or(bumpsim_export::calculix::DEFAULT_PREFIX)
             .into(),
-        title,
-    })
+    };
+    let deck = bumpsim_engine::export(ModelKind::Planar, &request)?;
+    let inputs: Vec<&Path> = std::iter::once(args.car.as_path())
+        .chain(args.force.as_deref())
+        .collect();
+    write_output(&args.output, args.units, &inputs, &deck.text, &deck.what)
 }
 
-fn forces(args: &PlanarArgs) -> Result<Option<Forces>> {
-    let Some(path) = &args.force else {
-        return Ok(None);
-    };
-    let (series, _) = force_series(path, args.column.as_deref())?;
+/// The force on the bumper line: `--lateral` and `--direction` read.
+fn force<'a>(args: &PlanarArgs, values: &'a [f64], step: f64) -> Result<ForceLoad<'a>> {
     let lateral = parse_quantity(&args.lateral, Dimension::Length).context("--lateral")?;
     let parts: Vec<&str> = args.direction.split(',').collect();
     let direction = match parts.as_slice() {
@@ -176,15 +159,10 @@ fn forces(args: &PlanarArgs) -> Result<Option<Forces>> {
     let [Ok(x), Ok(y)] = direction else {
         bail!("--direction '{}': expected two numbers x,y", args.direction);
     };
-    let load = Load {
+    Ok(ForceLoad {
+        step,
+        values,
         lateral,
-        anchor: None,
-        cell: None,
         direction: [x, y],
-        force: series.values().to_vec(),
-    };
-    Ok(Some(Forces {
-        step: series.step(),
-        loads: vec![load],
-    }))
+    })
 }

@@ -64,7 +64,7 @@ impl CarModel for Links {
             case: request.case.map(str::to_string),
             pendulum: request.pendulum,
             barrier: request.barrier,
-            speed: request.speed,
+            speed: request.speed()?,
         };
         let (scenario, preset) = spec.scenario(total)?;
         let Scenario::Barrier { speed } = scenario else {

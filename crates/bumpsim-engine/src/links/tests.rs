@@ -54,7 +54,7 @@ fn a_pendulum_into_a_links_car_is_refused_by_name() {
     let request = ImpactRequest {
         car: Some(&path),
         pendulum: Some(1500.0),
-        speed: Some(2.0),
+        speed: Some("2 m/s"),
         ..ImpactRequest::default()
     };
     let error = Links.impact(&request).unwrap_err().to_string();

@@ -187,6 +187,7 @@ fn report(title: &str, summary: &str, crush: &Crush) -> Result<Report, EngineErr
     Ok(Report {
         html: page.finish(),
         figures: vec![("force.svg".into(), force), ("energy.svg".into(), energies)],
+        inputs: Vec::new(),
     })
 }
 
@@ -228,5 +229,6 @@ pub(super) fn outcome(
         json: serde_json::to_string_pretty(&document)?,
         csv: histories(chain, crush),
         report,
+        ..Outcome::default()
     })
 }
