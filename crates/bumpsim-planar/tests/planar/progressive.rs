@@ -216,8 +216,18 @@ fn progressive_side_members_predict_the_held_out_offset_test() {
 /// The same acceptance on a varied series: another noise seed and the
 /// right side members 30 % stiffer (a stronger left/right asymmetry), so
 /// that nothing passes by being tuned to one draw of the generator.
+///
+/// Measured (41 min under load 20, debug build): held-out offset yaw
+/// 95.78 % (✓), forward offset force 82.27 % (✓; linear links 72.62 %),
+/// but the verdict says "linear": the held-out criterion is the replay's
+/// x and yaw (75.40 % linear, 75.32 % nonlinear), which the measured
+/// forces drive and the chain's stiffness barely moves, and the BIC counts
+/// 2 effective of 3772 residuals. The cubic terms stay near their start
+/// (6.0e8–6.4e8 N/m³ against the truth's 2.6e9–3.8e9), the initial slopes
+/// rise to make up (3.0e6 against 1.1e6 N/m). Left: a held-out criterion
+/// that scores the forward force of cases with a striker.
 #[test]
-#[ignore = "issue 46 acceptance on a varied series, slow: two 16-start planar identifications; run with --ignored"]
+#[ignore = "issue 46 acceptance on a varied series (seed 7, right side 1.3x): yaw 95.78 %, force 82.27 % hold, the verdict picks linear links (held-out replay fits 75.40 vs 75.32 %); 41 min under load; run with --ignored"]
 fn progressive_side_members_predict_a_varied_series() {
     let args = ["--seed", "7", "--right-stiffness", "1.3"];
     let Some(dir) = series_of("planar-progressive-varied", &args) else {
