@@ -2,8 +2,9 @@
 //! progressive springs on two masses each, written by
 //! tests/peers/planar_progressive.py (another model family: a rigid beam
 //! bolted to two point masses a side, free in the plane, joined by bars
-//! whose compression carries `F = k d (1 + (d/d0)²)`; Hunt–Crossley contact,
-//! tyres without transient slip, symplectic Euler). Sensors as a test has
+//! whose compression carries `F = k d (1 + (d/d0)²)` and whose shear a
+//! lateral spring; Hunt–Crossley contact with a small rate term, tyres
+//! without transient slip, symplectic Euler). Sensors as a test has
 //! them: two sill accelerometers, a yaw-rate sensor, the barrier's load
 //! cells. Trained on a flat pendulum, a narrow centred face and a 10° wall;
 //! held out a 40 % offset 10° wall at 15 km/h and the narrow face 0.4 m off
@@ -18,13 +19,19 @@ use bumpsim_planar::study::PlanarStudy;
 use std::path::{Path, PathBuf};
 
 fn series() -> Option<PathBuf> {
+    series_of("planar-progressive", &[])
+}
+
+/// The generator's series in `name` (under the target's temporary folder),
+/// written with the generator's `args`; `None` without numpy.
+fn series_of(name: &str, args: &[&str]) -> Option<PathBuf> {
     if !bumpsim_peers::python_available("numpy") {
         return None;
     }
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("planar-progressive");
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
     let script =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/planar_progressive.py");
-    bumpsim_peers::generated(&script, &out, &[], "study.toml");
+    bumpsim_peers::generated(&script, &out, args, "study.toml");
     Some(out)
 }
 
@@ -62,10 +69,12 @@ fn offset_scores(study: &PlanarStudy, car: &PlanarCar, label: &str) -> (f64, f64
 /// generator's truth-linear.toml) cannot follow the stiffening side
 /// members. The issue states 53 % offset yaw and 4 % forward force on its
 /// own series of this kind. Measured on this one: the forward prediction
-/// of the offset test (car, bumper and striker alone) scores force 4.45 %,
-/// x-acceleration 4.07 %, yaw rate 39.3 % — the linear links at their
-/// initial slopes crush far too softly; the replay driven by the measured
-/// cell forces follows x at 98.6 % and the yaw at 95.3 % (the issue's 53 %
+/// of the offset test (car, bumper and striker alone) scores force 14.89 %,
+/// x-acceleration 14.78 %, yaw rate 37.06 % (4.45 % force on the
+/// generator's first version, whose contact's rate term stiffened the
+/// front) — the linear links at their initial slopes crush far too
+/// softly; the replay driven by the measured cell forces follows x at
+/// 98.64 % and the yaw at 93.99 % (the issue's 53 %
 /// is not reproduced here: the measured forces carry the yaw moment, the
 /// chain's stiffness matters little to the replayed turning).
 #[test]
@@ -75,10 +84,69 @@ fn linear_links_at_the_true_initial_stiffnesses_miss_the_offset_test() {
     let car = PlanarCar::read(&dir.join("truth-linear.toml")).unwrap();
     let (yaw, force) = offset_scores(&study, &car, "truth, linear links");
     assert!(
-        force < 10.0,
+        force < 25.0,
         "the linear truth predicts the force at {force:.2} %"
     );
     assert!(yaw > 90.0, "the replay follows the yaw: {yaw:.2} %");
+}
+
+/// Every test's forward force (%) of the series in `dir` run by the
+/// generator's truth in bumpsim's form (truth-progressive.toml: the true
+/// masses, dampers and progressive links, the contact's static curve as
+/// the bumper), printed; and the offset test's (yaw, force).
+fn truth_scores(dir: &Path, label: &str) -> (f64, f64) {
+    let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
+    let car = PlanarCar::read(&dir.join("truth-progressive.toml")).unwrap();
+    for case in study.cases.iter().chain(&study.validation) {
+        if let Ok(ahead) = forward(&car, case) {
+            eprintln!(
+                "{label}: forward {} force {:.2} %",
+                case.name, ahead.channels[0].fit_percent
+            );
+        }
+    }
+    offset_scores(&study, &car, label)
+}
+
+/// The model-family question, asked before any identification: bumpsim's
+/// car set to the series' truth (the progressive links with the true k, k3
+/// = k/d0², masses and dampers) run forward into the offset test's wall.
+/// Measured: force 88.55 %, x-acceleration 88.16 %, yaw rate 92.50 %;
+/// held-out replayed yaw 90.45 %. (The pendulum's force: 76.40 %: it loads
+/// as measured to 0.5 % and unloads faster, the bumper's linear unloading
+/// slope against the contact's nearly elastic return.) An identification
+/// cannot be asked to predict much better than this.
+#[test]
+fn the_truth_with_progressive_links_predicts_the_offset_test() {
+    let Some(dir) = series() else { return };
+    let (yaw, force) = truth_scores(&dir, "truth, progressive links");
+    assert!(
+        force >= 85.0,
+        "the true car predicts the force at {force:.2} %"
+    );
+    assert!(yaw >= 85.0, "the replay follows the yaw: {yaw:.2} %");
+}
+
+/// Why the generator's first version could not pass: its contact's
+/// Hunt–Crossley rate term (a = 0.25 s/m: 2.6 times the static force at
+/// first touch at 15 km/h, restitution about 0) and side members as soft
+/// across (1.5e6 N/m) as along. bumpsim's bumper has no rate term, so its
+/// car set to that series' truth predicts the offset force at 64.94 %
+/// (64.23 % with the first version's seven-knot bumper curve; the
+/// identified progressive car: 60.72 %); measured on that truth with a = 0:
+/// 78.2 %; with a = 0 and stiff side members: 91.1 %. Kept as the evidence
+/// that a rate-dependent bumper is beyond bumpsim's bumper law.
+#[test]
+fn a_rate_dependent_contact_is_beyond_the_bumper_law() {
+    let args = ["--contact-damping", "0.25", "--shear", "1.5e6"];
+    let Some(dir) = series_of("planar-progressive-rate", &args) else {
+        return;
+    };
+    let (_, force) = truth_scores(&dir, "truth, rate-dependent contact");
+    assert!(
+        force < 70.0,
+        "the true car with a static bumper predicts the force at {force:.2} %"
+    );
 }
 
 /// The study's cars identified with the side members of `law` (every link).
@@ -114,18 +182,12 @@ pub(super) fn identified(study: &PlanarStudy, law: LinkLaw) -> PlanarIdentificat
     result
 }
 
-/// Issue 46's acceptance on this generator: identified with progressive
-/// side members (16 starts, the stated priors, the staged search), the
-/// held-out 40 % offset test's yaw ≥ 85 % and its forward force ≥ 80 %; and
-/// the comparison with linear side members says the data want them.
-///
-/// Not yet measured: three 16-start identifications (linear and
-/// progressive here) did not finish within the round's 45 minutes on the
-/// shared machine (load 20 on 2 cores); run it with `--ignored`.
-#[test]
-#[ignore = "issue 46 acceptance, not yet measured: two 16-start planar identifications (slow); run with --ignored"]
-fn progressive_side_members_predict_the_held_out_offset_test() {
-    let Some(dir) = series() else { return };
+/// Issue 46's acceptance on the series in `dir`: identified with
+/// progressive side members (16 starts, the stated priors, the staged
+/// search), the held-out 40 % offset test's yaw ≥ 85 % and its forward
+/// force ≥ 80 %; and the comparison with linear side members says the data
+/// want them.
+fn acceptance(dir: &Path) {
     let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
     let linear = identified(&study, LinkLaw::Linear);
     let progressive = identified(&study, LinkLaw::Progressive);
@@ -141,4 +203,42 @@ fn progressive_side_members_predict_the_held_out_offset_test() {
     assert!(yaw >= 85.0, "held-out offset yaw {yaw:.2} %");
     assert!(force >= 80.0, "forward offset force {force:.2} %");
     assert!(verdict.nonlinear, "{:?}", verdict.reasons);
+}
+
+/// Issue 46's acceptance on this generator's series (see [`acceptance`]).
+///
+/// Measured (53 min under load 20, debug build; 190 s on the idle machine
+/// for the first version): held-out offset yaw 95.93 % (✓), forward offset
+/// force 81.94 % (✓; linear links 72.18 %; the generator's first version,
+/// whose contact no bumpsim bumper represents: 96.74 % / 60.72 %), but the
+/// verdict says "linear" (held-out replay fits 75.28 % linear, 75.18 %
+/// nonlinear; BIC on 2 effective residuals), as on the varied series.
+#[test]
+#[ignore = "issue 46 acceptance: yaw 95.93 %, force 81.94 % hold, the verdict picks linear links (held-out replay fits 75.28 vs 75.18 %); 53 min under load, 190 s idle; run with --ignored"]
+fn progressive_side_members_predict_the_held_out_offset_test() {
+    let Some(dir) = series() else { return };
+    acceptance(&dir);
+}
+
+/// The same acceptance on a varied series: another noise seed and the
+/// right side members 30 % stiffer (a stronger left/right asymmetry), so
+/// that nothing passes by being tuned to one draw of the generator.
+///
+/// Measured (41 min under load 20, debug build): held-out offset yaw
+/// 95.78 % (✓), forward offset force 82.27 % (✓; linear links 72.62 %),
+/// but the verdict says "linear": the held-out criterion is the replay's
+/// x and yaw (75.40 % linear, 75.32 % nonlinear), which the measured
+/// forces drive and the chain's stiffness barely moves, and the BIC counts
+/// 2 effective of 3772 residuals. The cubic terms stay near their start
+/// (6.0e8–6.4e8 N/m³ against the truth's 2.6e9–3.8e9), the initial slopes
+/// rise to make up (3.0e6 against 1.1e6 N/m). Left: a held-out criterion
+/// that scores the forward force of cases with a striker.
+#[test]
+#[ignore = "issue 46 acceptance on a varied series (seed 7, right side 1.3x): yaw 95.78 %, force 82.27 % hold, the verdict picks linear links (held-out replay fits 75.40 vs 75.32 %); 41 min under load; run with --ignored"]
+fn progressive_side_members_predict_a_varied_series() {
+    let args = ["--seed", "7", "--right-stiffness", "1.3"];
+    let Some(dir) = series_of("planar-progressive-varied", &args) else {
+        return;
+    };
+    acceptance(&dir);
 }
