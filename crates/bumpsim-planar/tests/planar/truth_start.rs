@@ -177,11 +177,13 @@ fn with_tyres(car: &PlanarCar, sigma: f64, cornering: f64) -> PlanarCar {
 ///   ≥ 80 % at once, so the relaxation length is not a missing unknown;
 ///   bumpsim's walls and the generator's disagree elsewhere (open);
 /// - the forward offset force is 84.1 % at the yielding truth (x-acceleration
-///   84.2 %, yaw rate 84.7 %): the simulated contact ends 18 ms early (the
-///   start car's bumper unloads along a slope 1.5 times its tangent at
-///   0.1 m, where the generator's Hunt–Crossley contact is elastic and
-///   rate-dependent) — the bumper, which no training replay identifies
-///   (they are driven by the measured forces).
+///   84.2 %, yaw rate 84.7 %): the simulated force rises later, stands
+///   4–5 % higher on its plateau and falls to zero about 10 ms before the
+///   measured one (the start car's bumper unloads along a slope 1.5 times
+///   its tangent at 0.1 m, and a bumper's unloading slope must be at least
+///   its curve's largest secant, where the generator's Hunt–Crossley
+///   contact is elastic and rate-dependent) — the bumper, which no training
+///   replay identifies (they are driven by the measured forces).
 #[test]
 fn the_off_centre_faces_yaw_is_the_tyres_not_the_side_members_yield() {
     let Some(dir) = series() else { return };
