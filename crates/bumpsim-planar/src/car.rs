@@ -560,6 +560,21 @@ impl PlanarCar {
         Ok(self)
     }
 
+    /// The same car with other bumper segments (checked: as many as before).
+    pub fn with_segments(mut self, segments: Vec<Bumper>) -> Result<PlanarCar, PlanarError> {
+        let n = self.beam.segments.len();
+        require(
+            "bumper.segments",
+            segments.len() as f64,
+            "",
+            "as many as the car's",
+            segments.len() == n,
+        )?;
+        self.beam.segments = segments;
+        check_beam(&self.beam)?;
+        Ok(self)
+    }
+
     /// The same car with its crash boxes (each side's first chain link)
     /// blocking at `block` (checked: a positive depth and stiffness).
     pub fn with_crash_boxes(mut self, block: Option<Block>) -> Result<PlanarCar, PlanarError> {

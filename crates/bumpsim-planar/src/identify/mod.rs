@@ -50,6 +50,7 @@
 //! **Advice**: the reduced car when a chain link is undetermined or not
 //! needed (module `reduce`), in the same words as the 1-D chain's.
 
+mod bumper;
 mod links;
 mod objective;
 mod plausible;
@@ -72,6 +73,7 @@ use nalgebra::DMatrix;
 use objective::Objective;
 use serde::Serialize;
 
+pub use bumper::{BumperFit, fit_bumper, transformed};
 pub use links::{LinkLaw, LinkLaws};
 pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
