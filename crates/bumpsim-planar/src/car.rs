@@ -399,6 +399,7 @@ pub struct PlanarCar {
     tyres: Tyres,
     crash_boxes: Option<Block>,
     damage: Vec<BumperState>,
+    contact_rate: f64,
 }
 
 /// Geometry and tyres that turn a 1-D chain into a symmetric planar car.
@@ -474,6 +475,7 @@ impl PlanarCar {
             tyres,
             crash_boxes: None,
             damage: Vec::new(),
+            contact_rate: 0.0,
         })
     }
 
@@ -556,21 +558,6 @@ impl PlanarCar {
     /// The same car with its segments blocking at `block` (checked).
     pub fn with_block(mut self, block: Option<Block>) -> Result<PlanarCar, PlanarError> {
         self.beam.block = block;
-        check_beam(&self.beam)?;
-        Ok(self)
-    }
-
-    /// The same car with other bumper segments (checked: as many as before).
-    pub fn with_segments(mut self, segments: Vec<Bumper>) -> Result<PlanarCar, PlanarError> {
-        let n = self.beam.segments.len();
-        require(
-            "bumper.segments",
-            segments.len() as f64,
-            "",
-            "as many as the car's",
-            segments.len() == n,
-        )?;
-        self.beam.segments = segments;
         check_beam(&self.beam)?;
         Ok(self)
     }
@@ -783,6 +770,11 @@ fn check_tyres(tyres: &Tyres) -> Result<(), PlanarError> {
 
 #[path = "car_history.rs"]
 mod history;
+
+#[path = "car_contact.rs"]
+mod contact;
+pub use contact::MAX_CONTACT_RATE;
+pub(crate) use contact::rated;
 
 #[path = "car_links.rs"]
 mod links;

@@ -9,7 +9,10 @@
 //! measured force, with the body and the side members held.
 //!
 //! Three parameters act on every segment alike, each on a log scale: a
-//! force scale `a`, a compression stretch `λ` and the unloading ratio `u`:
+//! force scale `a`, a compression stretch `λ` and the unloading ratio `u`;
+//! a fourth, when asked, is the contact's rate coefficient `c` (s/m, from 0
+//! to 3; [`crate::car`]'s rate term `F(d) · max(0, 1 + c ḋ)`, the
+//! Hunt–Crossley form):
 //!
 //! - loading `F(d) = a F₀(d/λ)` (a three-part curve: ramp `a s/λ`, plateau
 //!   `a F_max`; a table: points `(λ dᵢ, a Fᵢ)`);
@@ -21,12 +24,12 @@
 //! aligned at their onsets as [`crate::forward()`] aligns them, so each test
 //! weighs alike whatever its force. The bounded Levenberg–Marquardt of
 //! [`bumpsim_estimate::lm`] minimises them with a forward-difference Jacobian
-//! (step 1e-3 in the log parameters). Bounds: `a` and `λ` within 1/3 to 3
-//! of the start, `u` from 1 to 20.
+//! (step 1e-3 in the log parameters and in `c`). Bounds: `a` and `λ` within
+//! 1/3 to 3 of the start, `u` from 1 to 20.
 //!
-//! No rate term: bumpsim's bumper is rate-independent (paper A's
-//! characteristic, [`bumpsim_impact::bumper`]); a contact whose force grows
-//! with the closing speed (Hunt–Crossley, `F = k dⁿ (1 + 1.5 α ḋ)`) is
+//! Without the rate term the bumper is rate-independent (paper A's
+//! characteristic, [`bumpsim_impact::bumper`]): a contact whose force grows
+//! with the closing speed (Hunt–Crossley, `F = k dⁿ (1 + 1.5 α ḋ)`) is then
 //! represented at the training tests' speeds only.
 
 use crate::car::{PlanarCar, PlanarError};
@@ -49,6 +52,8 @@ pub struct BumperFit {
     pub stretch: f64,
     /// Unloading slope over the curve's steepest secant, `u` (≥ 1).
     pub unloading_ratio: f64,
+    /// The contact's rate coefficient `c`, s/m (0 when not fitted).
+    pub rate: f64,
     /// The tests run forward, by name, with their force fit % before and after.
     pub tests: Vec<(String, f64, f64)>,
     /// Σ r² at the start and at the end.
@@ -99,7 +104,8 @@ pub fn unloading_ratio(bumper: &Bumper) -> f64 {
     bumper.unloading_slope() / secant
 }
 
-/// `car` with every segment transformed by `p = [ln a, ln λ, ln u]`.
+/// `car` with every segment transformed by `p = [ln a, ln λ, ln u]` and,
+/// when `p` has a fourth, the rate coefficient `c = p[3]`.
 fn with_law(car: &PlanarCar, p: &[f64]) -> Result<PlanarCar, PlanarError> {
     let segments = car
         .beam()
@@ -115,13 +121,18 @@ fn with_law(car: &PlanarCar, p: &[f64]) -> Result<PlanarCar, PlanarError> {
             })
         })
         .collect::<Result<Vec<_>, _>>()?;
-    car.clone().with_segments(segments)
+    let car = car.clone().with_segments(segments)?;
+    match p.get(3) {
+        Some(&rate) => car.with_contact_rate(rate),
+        None => Ok(car),
+    }
 }
 
 struct Problem<'a> {
     car: &'a PlanarCar,
     cases: Vec<&'a PlanarCase>,
     count: usize,
+    parameters: usize,
 }
 
 impl Problem<'_> {
@@ -149,7 +160,7 @@ impl LeastSquares for Problem<'_> {
     }
 
     fn parameter_count(&self) -> usize {
-        3
+        self.parameters
     }
 
     fn evaluate(
@@ -163,7 +174,7 @@ impl LeastSquares for Problem<'_> {
         };
         residuals.copy_from_slice(&r);
         if let Some(j) = jacobian {
-            for i in 0..3 {
+            for i in 0..self.parameters {
                 let mut q = p.to_vec();
                 q[i] += STEP;
                 let Some(moved) = self.residuals(&q) else {
@@ -188,9 +199,14 @@ fn force_fit(car: &PlanarCar, case: &PlanarCase) -> Result<f64, PlanarError> {
         .map_or(f64::NAN, |c| c.fit_percent))
 }
 
-/// Fits `car`'s bumper law to the measured forces of the `cases` that carry
-/// a striker (see the module); an error when none does.
-pub fn fit_bumper(car: &PlanarCar, cases: &[PlanarCase]) -> Result<BumperFit, PlanarError> {
+/// Fits `car`'s bumper law (with the contact's rate coefficient when
+/// `rate`) to the measured forces of the `cases` that carry a striker (see
+/// the module); an error when none does.
+pub fn fit_bumper(
+    car: &PlanarCar,
+    cases: &[PlanarCase],
+    rate: bool,
+) -> Result<BumperFit, PlanarError> {
     let cases: Vec<&PlanarCase> = cases.iter().filter(|c| c.striker.is_some()).collect();
     let Some(first) = cases.first() else {
         return Err(PlanarError::Case {
@@ -200,10 +216,12 @@ pub fn fit_bumper(car: &PlanarCar, cases: &[PlanarCase]) -> Result<BumperFit, Pl
         });
     };
     let count = cases.iter().map(|c| c.window.1 - c.window.0 + 1).sum();
+    let parameters = if rate { 4 } else { 3 };
     let problem = Problem {
         car,
         cases: cases.clone(),
         count,
+        parameters,
     };
     let ratio = car
         .beam()
@@ -212,9 +230,10 @@ pub fn fit_bumper(car: &PlanarCar, cases: &[PlanarCase]) -> Result<BumperFit, Pl
         .map_or(1.0, unloading_ratio)
         .max(1.0);
     // u replaces the segments' own ratio: the start keeps the first one's
-    let start = [0.0, 0.0, ratio.ln()];
-    let lower = [-(3f64.ln()), -(3f64.ln()), 0.0];
-    let upper = [3f64.ln(), 3f64.ln(), 20f64.ln()];
+    let n = parameters;
+    let start = [0.0, 0.0, ratio.ln(), car.contact_rate()][..n].to_vec();
+    let lower = [-(3f64.ln()), -(3f64.ln()), 0.0, 0.0][..n].to_vec();
+    let upper = [3f64.ln(), 3f64.ln(), 20f64.ln(), 3.0][..n].to_vec();
     let mut r0 = vec![0.0; count];
     if !problem.evaluate(&start, &mut r0, None) {
         return Err(PlanarError::Case {
@@ -239,6 +258,7 @@ pub fn fit_bumper(car: &PlanarCar, cases: &[PlanarCase]) -> Result<BumperFit, Pl
         scale: p[0].exp(),
         stretch: p[1].exp(),
         unloading_ratio: p[2].exp(),
+        rate: p.get(3).copied().unwrap_or(0.0),
         tests,
         objective: (r0.iter().map(|v| v * v).sum(), outcome.objective),
         iterations: outcome.iterations,
@@ -302,11 +322,17 @@ mod tests {
         let truth_bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
         let truth = car(&truth_bumper);
         let cases = [test(&truth, 2.0), test(&truth, 5.0)];
-        let peak = cases[1].drive.loads[0].force.iter().fold(0.0f64, |m, f| m.max(*f));
-        assert!(peak > 60e3 * 0.999, "the fast test reaches the plateau: {peak} N");
+        let peak = cases[1].drive.loads[0]
+            .force
+            .iter()
+            .fold(0.0f64, |m, f| m.max(*f));
+        assert!(
+            peak > 60e3 * 0.999,
+            "the fast test reaches the plateau: {peak} N"
+        );
         // the start: 25 % stronger, 20 % shorter, unloading at 1.5 the ramp
         let start = car(&transformed(&truth_bumper, 1.25, 0.8, 1.5).unwrap());
-        let fit = fit_bumper(&start, &cases).unwrap();
+        let fit = fit_bumper(&start, &cases, false).unwrap();
         eprintln!("{fit:?}");
         assert!((fit.scale / 0.8 - 1.0).abs() < 0.02, "a {}", fit.scale);
         assert!((fit.stretch / 1.25 - 1.0).abs() < 0.02, "λ {}", fit.stretch);
@@ -324,11 +350,30 @@ mod tests {
     }
 
     #[test]
+    fn the_fit_recovers_a_rate_dependent_contact() {
+        let truth_bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        let truth = car(&truth_bumper).with_contact_rate(0.4).unwrap();
+        let cases = [test(&truth, 2.0), test(&truth, 5.0)];
+        let start = car(&transformed(&truth_bumper, 1.25, 0.8, 1.5).unwrap());
+        let fit = fit_bumper(&start, &cases, true).unwrap();
+        eprintln!(
+            "{:?}",
+            (fit.scale, fit.stretch, fit.unloading_ratio, fit.rate)
+        );
+        assert!((fit.rate / 0.4 - 1.0).abs() < 0.05, "c {}", fit.rate);
+        assert!((fit.scale / 0.8 - 1.0).abs() < 0.05, "a {}", fit.scale);
+        assert!(fit.objective.1 < 1e-3 * fit.objective.0);
+        // without the rate term the same tests are not fitted as well
+        let static_fit = fit_bumper(&start, &cases, false).unwrap();
+        assert!(static_fit.objective.1 > 10.0 * fit.objective.1);
+    }
+
+    #[test]
     fn a_study_without_strikers_is_refused() {
         let truth = car(&Bumper::three_part(1.5e6, 60e3, 6e6).unwrap());
         let mut case = test(&truth, 2.0);
         case.striker = None;
-        let err = fit_bumper(&truth, &[case]).unwrap_err().to_string();
+        let err = fit_bumper(&truth, &[case], false).unwrap_err().to_string();
         assert!(err.contains("striker"), "{err}");
     }
 }

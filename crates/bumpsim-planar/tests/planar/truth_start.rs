@@ -20,7 +20,7 @@ use bumpsim_planar::identify::{
 use bumpsim_planar::study::PlanarStudy;
 use std::path::{Path, PathBuf};
 
-fn series() -> Option<PathBuf> {
+pub(super) fn series() -> Option<PathBuf> {
     if !bumpsim_peers::python_available("numpy") {
         return None;
     }
@@ -56,7 +56,7 @@ fn truth(study: &PlanarStudy, sheet: &serde_json::Value) -> PlanarCar {
 /// force and its hardening as the bilinear law's ratio: the generator's
 /// isotropic hardening `h` after yield makes the force grow at
 /// `k h/(k + h)`, so `r = h/(k + h)`.
-fn truth_yielding(study: &PlanarStudy, sheet: &serde_json::Value) -> PlanarCar {
+pub(super) fn truth_yielding(study: &PlanarStudy, sheet: &serde_json::Value) -> PlanarCar {
     let car = &sheet["car"];
     let boxes = &car["crash_boxes"];
     let number = |v: &serde_json::Value| v.as_f64().unwrap();
