@@ -62,3 +62,54 @@ pub(crate) fn rated(c: &mut crate::dynamics::Contact, previous: &[f64], rate: f6
         c.total[j] += added;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::car::{Layout, PlanarCar};
+    use crate::simulate::{Settings, simulate};
+    use crate::striker::{Face, Striker};
+    use bumpsim_core::model::MsdModel;
+    use bumpsim_impact::bumper::Bumper;
+
+    fn car() -> PlanarCar {
+        let chain = MsdModel::new(vec![8.0, 1200.0], vec![2e3], vec![1.5e6]).unwrap();
+        let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap()
+    }
+
+    #[test]
+    fn the_rate_is_checked_written_and_read_back() {
+        for bad in [-0.1, f64::NAN, 11.0] {
+            let err = car().with_contact_rate(bad).unwrap_err().to_string();
+            assert!(err.contains("bumper.rate"), "{err}");
+        }
+        let rated = car().with_contact_rate(0.375).unwrap();
+        let text = rated.to_toml();
+        assert!(text.contains("rate = 0.375"), "{text}");
+        assert_eq!(PlanarCar::parse(&text, "car.toml".as_ref()).unwrap(), rated);
+        assert!(!car().to_toml().contains("rate ="), "no rate, no key");
+    }
+
+    /// Hunt–Crossley: the rate term stiffens the loading, so the force
+    /// peaks higher and earlier, and takes energy (a lower rebound); the
+    /// energy balance still closes (crush work from the rated force).
+    #[test]
+    fn the_rate_stiffens_the_loading_and_takes_energy() {
+        let striker = Striker::pendulum(Face::flat(), 1000.0, 3.0);
+        let settings = Settings {
+            output_step: 1e-4,
+            duration: 0.15,
+            stop_after_contact: false,
+            ..Settings::default()
+        };
+        let plain = simulate(&car(), &striker, &settings).unwrap();
+        let rated = simulate(&car().with_contact_rate(0.4).unwrap(), &striker, &settings).unwrap();
+        let peak = |f: &[f64]| f.iter().fold(0.0f64, |m, v| m.max(*v));
+        assert!(peak(&rated.force) > 1.05 * peak(&plain.force));
+        assert!(
+            rated.warnings.iter().all(|w| !w.contains("energy")),
+            "{:?}",
+            rated.warnings
+        );
+    }
+}

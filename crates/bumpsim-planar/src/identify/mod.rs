@@ -155,6 +155,10 @@ pub struct Setup {
     /// (module `staged`); false: the starts are the template and random
     /// points around it.
     pub staged: bool,
+    /// Fit the bumper's law and contact rate to the training tests' forward
+    /// runs once the car is identified ([`fit_bumper`]); false: the
+    /// template's bumper.
+    pub bumper: bool,
 }
 
 impl Setup {
@@ -170,6 +174,7 @@ impl Setup {
             mass: None,
             priors: Vec::new(),
             staged: true,
+            bumper: false,
         }
     }
 }
@@ -229,6 +234,10 @@ pub struct PlanarIdentification {
     /// the car's parts.
     #[serde(serialize_with = "reduction_parts")]
     pub reduction: Option<Reduction>,
+    /// The bumper's law fitted to the training tests' forward runs, when the
+    /// study asked (`[model] bumper = "fit"`); the car carries it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bumper: Option<BumperFit>,
 }
 
 fn reduction_parts<S: serde::Serializer>(
@@ -455,14 +464,20 @@ pub fn identify(
             name: "[priors]".into(),
             expected: e.to_string(),
         })?;
-    summarise(
+    let mut result = summarise(
         cases,
         setup,
         &priored,
         &found.searched,
         (&lower, &upper),
         clock,
-    )
+    )?;
+    if setup.bumper {
+        let fit = fit_bumper(&result.car, cases, true)?;
+        result.car = fit.car.clone();
+        result.bumper = Some(fit);
+    }
+    Ok(result)
 }
 
 /// The solver's tolerances: 300 iterations, relative decrease 1e-10, step 1e-8.
@@ -542,6 +557,7 @@ fn summarise(
         priors: moved,
         prior_noise: priored.noise(),
         reduction: None,
+        bumper: None,
     };
     let checks = plausible::checks(&result, setup);
     result.warnings.extend(checks);
