@@ -91,7 +91,8 @@ mod tests {
     }
 
     /// Hunt–Crossley: the rate term stiffens the loading, so the force
-    /// peaks higher and earlier, and takes energy (a lower rebound); the
+    /// rises faster (its first 3 ms carry 1.5 times the impulse; the peak,
+    /// at the largest crush where ḋ = 0, stays on the plateau), and the
     /// energy balance still closes (crush work from the rated force).
     #[test]
     fn the_rate_stiffens_the_loading_and_takes_energy() {
@@ -105,7 +106,15 @@ mod tests {
         let plain = simulate(&car(), &striker, &settings).unwrap();
         let rated = simulate(&car().with_contact_rate(0.4).unwrap(), &striker, &settings).unwrap();
         let peak = |f: &[f64]| f.iter().fold(0.0f64, |m, v| m.max(*v));
-        assert!(peak(&rated.force) > 1.05 * peak(&plain.force));
+        let early = |f: &[f64]| f[..30].iter().sum::<f64>();
+        eprintln!(
+            "peaks {} {} N, early {} {}",
+            peak(&rated.force),
+            peak(&plain.force),
+            early(&rated.force),
+            early(&plain.force)
+        );
+        assert!(early(&rated.force) > 1.2 * early(&plain.force));
         assert!(
             rated.warnings.iter().all(|w| !w.contains("energy")),
             "{:?}",

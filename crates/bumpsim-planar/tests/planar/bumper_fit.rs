@@ -62,6 +62,21 @@ fn the_bumper_fitted_at_the_yielding_truth_predicts_the_offset_force() {
         );
         eprintln!("rate {rate}: forward OFFSET40 force, x-acceleration, yaw rate {after:.2?} %");
         assert!(fit.objective.1 < fit.objective.0);
+        // measured (see docs/planar.md): no rate term 84.8, 84.8 %; with it
+        // c = 0.359 s/m against the generator's 1.5 α = 0.375, and 94.2,
+        // 94.1 % (the yaw rate falls from 84.7 to 77.3 %)
+        match rate {
+            false => assert!(after[0] < 90.0, "{after:?}"),
+            true => {
+                let truth = 1.5 * sheet["car"]["beam"]["hc_damping"].as_f64().unwrap();
+                assert!(
+                    (fit.rate / truth - 1.0).abs() < 0.1,
+                    "c {} against {truth}",
+                    fit.rate
+                );
+                assert!(after[0] >= 90.0 && after[1] >= 90.0, "{after:?}");
+            }
+        }
     }
 }
 
@@ -69,8 +84,17 @@ fn the_bumper_fitted_at_the_yielding_truth_predicts_the_offset_force() {
 /// car (yielding side members, C_α estimated, 16 starts, the stated priors
 /// and the staged search, as `yaw_rate.rs`'s issue-44 test) and the study's
 /// `bumper = "fit"`: force and x-acceleration ≥ 90 %.
+///
+/// Measured (release, 45 s): the start bumper 74.35, 74.07 % (yaw rate
+/// 87.91 %); fitted (c = 0.344 s/m) 83.94, 83.62 % (yaw rate 90.14 %) ✗.
+/// With the side-member values the training leaves open (the left crash
+/// box's hardening, the right box's stiffness and yield: only the left one
+/// yields in training, by 8.8 mm) set to the generator's and the bumper
+/// fitted again: 95.84, 95.60 % (c = 0.359 s/m; yaw rate 78.39 %). So the
+/// bumper is no longer what fails: the offset test's force rests on side
+/// members no training test loads.
 #[test]
-#[ignore = "a release identification of 16 starts (30–110 s); run with --ignored"]
+#[ignore = "issue 44's forward offset force with the fitted bumper: measured 83.94 % (74.35 % before), the undetermined side members (95.84 % when set to the generator's); a release identification of 16 starts; run with --ignored"]
 fn the_identified_car_with_the_fitted_bumper_predicts_the_offset_force() {
     let Some(dir) = series() else { return };
     let mut study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
@@ -123,6 +147,9 @@ fn the_identified_car_with_the_fitted_bumper_predicts_the_offset_force() {
         refit.rate,
         ahead(&refit.car, &study)
     );
+    assert!(after[0] >= before[0] + 5.0, "{after:?} against {before:?}");
+    let mended = ahead(&refit.car, &study);
+    assert!(mended[0] >= 90.0 && mended[1] >= 90.0, "{mended:?}");
     assert!(after[0] >= 90.0 && after[1] >= 90.0, "{after:?}");
 }
 
