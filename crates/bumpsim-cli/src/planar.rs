@@ -7,7 +7,7 @@ use bumpsim_core::names::printable;
 use bumpsim_core::units::{Dimension, parse_quantity, short};
 use bumpsim_planar::car::{PlanarError, TyreLaw};
 use bumpsim_planar::document::{IdentificationDocument, ImpactDocument};
-use bumpsim_planar::identify::{Prediction, identify, predict};
+use bumpsim_planar::identify::{Prediction, predict};
 use bumpsim_planar::presets::{PlanarPreset, StrikerSpec};
 use bumpsim_planar::study::PlanarStudy;
 use bumpsim_planar::uncertainty::Planar;
@@ -393,7 +393,7 @@ pub fn run_identify(options: &IdentifyOptions) -> Result<()> {
         true => ProgressBar::hidden(),
         false => ProgressBar::new(study.setup.starts as u64),
     };
-    let result = identify(&study.cases, &study.setup, &|| bar.inc(1));
+    let result = study.identified(&|| bar.inc(1));
     bar.finish_and_clear();
     let result = result.context("planar identification")?;
     let fitted: Vec<Prediction> = study

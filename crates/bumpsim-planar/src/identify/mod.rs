@@ -73,7 +73,7 @@ use nalgebra::DMatrix;
 use objective::Objective;
 use serde::Serialize;
 
-pub use bumper::{BumperFit, fit_bumper, transformed};
+pub use bumper::{BumperFit, transformed, unloading_ratio};
 pub use links::{LinkLaw, LinkLaws};
 pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
@@ -156,8 +156,8 @@ pub struct Setup {
     /// points around it.
     pub staged: bool,
     /// Fit the bumper's law and contact rate to the training tests' forward
-    /// runs once the car is identified ([`fit_bumper`]); false: the
-    /// template's bumper.
+    /// runs once the car is identified ([`crate::bumper_fit::identified`]);
+    /// false: the template's bumper.
     pub bumper: bool,
 }
 
@@ -464,20 +464,14 @@ pub fn identify(
             name: "[priors]".into(),
             expected: e.to_string(),
         })?;
-    let mut result = summarise(
+    summarise(
         cases,
         setup,
         &priored,
         &found.searched,
         (&lower, &upper),
         clock,
-    )?;
-    if setup.bumper {
-        let fit = fit_bumper(&result.car, cases, true)?;
-        result.car = fit.car.clone();
-        result.bumper = Some(fit);
-    }
-    Ok(result)
+    )
 }
 
 /// The solver's tolerances: 300 iterations, relative decrease 1e-10, step 1e-8.
