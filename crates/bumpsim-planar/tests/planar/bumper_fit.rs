@@ -209,3 +209,27 @@ fn the_progressive_series_with_the_fitted_bumper_predicts_the_offset_force() {
     );
     assert!(after[0] >= 80.0, "{after:?}");
 }
+
+/// `[model] bumper = "fit"` asks for the fit; "start" (or nothing) keeps
+/// the start car's bumper; anything else is refused by name.
+#[test]
+fn the_study_asks_for_the_fit_by_name() {
+    let Some(dir) = series() else { return };
+    let text = std::fs::read_to_string(dir.join("study.toml")).unwrap();
+    let with = |value: &str| {
+        let path = dir.join(format!("study-bumper-{value}.toml"));
+        let body = text.replacen("[model]", &format!("[model]\nbumper = \"{value}\""), 1);
+        std::fs::write(&path, body).unwrap();
+        PlanarStudy::read(&path)
+    };
+    assert!(with("fit").unwrap().setup.bumper);
+    assert!(!with("start").unwrap().setup.bumper);
+    assert!(
+        !PlanarStudy::read(&dir.join("study.toml"))
+            .unwrap()
+            .setup
+            .bumper
+    );
+    let err = with("foam").unwrap_err().to_string();
+    assert!(err.contains("[model] bumper = \"foam\""), "{err}");
+}
