@@ -399,6 +399,7 @@ pub struct PlanarCar {
     tyres: Tyres,
     crash_boxes: Option<Block>,
     damage: Vec<BumperState>,
+    contact_rate: f64,
 }
 
 /// Geometry and tyres that turn a 1-D chain into a symmetric planar car.
@@ -474,6 +475,7 @@ impl PlanarCar {
             tyres,
             crash_boxes: None,
             damage: Vec::new(),
+            contact_rate: 0.0,
         })
     }
 
@@ -768,6 +770,11 @@ fn check_tyres(tyres: &Tyres) -> Result<(), PlanarError> {
 
 #[path = "car_history.rs"]
 mod history;
+
+#[path = "car_contact.rs"]
+mod contact;
+pub use contact::MAX_CONTACT_RATE;
+pub(crate) use contact::rated;
 
 #[path = "car_links.rs"]
 mod links;

@@ -37,6 +37,8 @@
 //!                                         # beyond it the beam blocks (docs/planar.md)
 //! block_stiffness = 5e7                   # N/m, whole bumper, split equally (default 5e7,
 //!                                         # car::DEFAULT_BLOCK_STIFFNESS; needs `depth`)
+//! rate = 0.0                              # optional (0), s/m: the contact's rate term, each
+//!                                         # segment's force times max(0, 1 + rate·ḋ) (car_contact.rs)
 //!
 //! [crash_boxes]                           # optional: each side's first link (mass 1 to
 //! depth = 40.0                            # the next) is its crash box; (length) its stroke,
@@ -168,6 +170,8 @@ struct BumperFile {
     segment: Vec<Characteristic>,
     depth: Option<f64>,
     block_stiffness: Option<f64>,
+    #[serde(default)]
+    rate: f64,
 }
 
 /// The block of a `[bumper]` table: its depth (scaled by `unit`) and its
@@ -398,8 +402,10 @@ impl PlanarCar {
         // a value out of range is named with the file it came from
         let boxes = crash_boxes(&file.crash_boxes, unit).map_err(|e| error(e.to_string()))?;
         let (left, right) = (chain("left", file.left)?, chain("right", file.right)?);
+        let rate = file.bumper.rate;
         let car = PlanarCar::new(body, left, right, beam, tyres)
             .and_then(|car| car.with_crash_boxes(boxes))
+            .and_then(|car| car.with_contact_rate(rate))
             .map_err(|e| error(e.to_string()))?;
         Ok(car.with_name(file.name))
     }
@@ -447,6 +453,12 @@ impl PlanarCar {
             "\n[bumper]\nwidth = {:?}    # m\nside_member_spacing = {:?}    # m\nbending = {:?}    # N/m\n",
             beam.width, beam.side_member_spacing, beam.bending
         );
+        if self.contact_rate() > 0.0 {
+            s += &format!(
+                "rate = {:?}    # s/m, the contact's rate term\n",
+                self.contact_rate()
+            );
+        }
         if let Some(block) = beam.block {
             let whole = block.stiffness * beam.segments.len() as f64;
             s += &format!(

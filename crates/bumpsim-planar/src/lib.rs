@@ -46,6 +46,7 @@
 
 pub mod bands;
 pub mod barrier;
+pub mod bumper_fit;
 pub mod car;
 pub mod cases;
 pub mod document;

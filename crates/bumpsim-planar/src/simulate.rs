@@ -304,6 +304,10 @@ impl Mechanism for Run<'_> {
         self.previous_crush.copy_from_slice(&self.contact.crush);
         self.previous_force.copy_from_slice(&self.contact.force);
         self.model.contact(q, self.car, &mut self.contact);
+        let rate = self.car.contact_rate();
+        if rate > 0.0 {
+            crate::car::rated(&mut self.contact, &self.previous_crush, rate, self.step);
+        }
         let c = &self.contact;
         for (j, most) in self.reached.iter_mut().enumerate() {
             *most = most.max(c.crush[j] - c.absorber[j]);

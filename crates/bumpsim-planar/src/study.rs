@@ -15,6 +15,8 @@
 //! links = "linear"          # optional: the side members' law to identify: "linear", "progressive",
 //!                           # "yielding" (every link), a list link by link, or { left = ..., right = ... }
 //!                           # (default: the start car's links)
+//! bumper = "start"          # optional: "fit" fits the bumper's curve, unloading and contact rate
+//!                           # to the training tests' forward runs (their strikers) after the car
 //!
 //! [priors]                  # optional: override ({ value, spread }), remove ("none") or add priors
 //! body.yaw_inertia = { value = "2300 kg m^2", spread = 0.2 }   # spread: sd of ln θ (0.2 ≈ ±20 %)
@@ -93,6 +95,7 @@ struct ModelFile {
     cornering: bool,
     mass: Option<toml::Value>,
     links: Option<toml::Value>,
+    bumper: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -202,6 +205,15 @@ impl PlanarStudy {
             spread: file.model.spread.unwrap_or(defaults.spread),
             friction: file.model.friction,
             cornering: file.model.cornering,
+            bumper: match file.model.bumper.as_deref() {
+                None | Some("start") => false,
+                Some("fit") => true,
+                Some(other) => {
+                    return Err(error(format!(
+                        "[model] bumper = \"{other}\": expected \"start\" or \"fit\""
+                    )));
+                }
+            },
             mass,
             priors: match &file.priors {
                 Some(table) => {

@@ -504,6 +504,8 @@ fn a_stiff_beam_that_chatters_off_the_face_still_completes_the_impact() {
 mod bands;
 #[path = "planar/block.rs"]
 mod block;
+#[path = "planar/bumper_fit.rs"]
+mod bumper_fit;
 #[path = "planar/crash_box.rs"]
 mod crash_box;
 #[path = "planar/export.rs"]

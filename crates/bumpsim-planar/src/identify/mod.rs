@@ -50,6 +50,7 @@
 //! **Advice**: the reduced car when a chain link is undetermined or not
 //! needed (module `reduce`), in the same words as the 1-D chain's.
 
+mod bumper;
 mod links;
 mod objective;
 mod plausible;
@@ -72,6 +73,7 @@ use nalgebra::DMatrix;
 use objective::Objective;
 use serde::Serialize;
 
+pub use bumper::{BumperFit, transformed, unloading_ratio};
 pub use links::{LinkLaw, LinkLaws};
 pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
@@ -153,6 +155,10 @@ pub struct Setup {
     /// (module `staged`); false: the starts are the template and random
     /// points around it.
     pub staged: bool,
+    /// Fit the bumper's law and contact rate to the training tests' forward
+    /// runs once the car is identified ([`crate::bumper_fit::identified`]);
+    /// false: the template's bumper.
+    pub bumper: bool,
 }
 
 impl Setup {
@@ -168,6 +174,7 @@ impl Setup {
             mass: None,
             priors: Vec::new(),
             staged: true,
+            bumper: false,
         }
     }
 }
@@ -227,6 +234,10 @@ pub struct PlanarIdentification {
     /// the car's parts.
     #[serde(serialize_with = "reduction_parts")]
     pub reduction: Option<Reduction>,
+    /// The bumper's law fitted to the training tests' forward runs, when the
+    /// study asked (`[model] bumper = "fit"`); the car carries it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bumper: Option<BumperFit>,
 }
 
 fn reduction_parts<S: serde::Serializer>(
@@ -540,6 +551,7 @@ fn summarise(
         priors: moved,
         prior_noise: priored.noise(),
         reduction: None,
+        bumper: None,
     };
     let checks = plausible::checks(&result, setup);
     result.warnings.extend(checks);

@@ -1,0 +1,348 @@
+//! The bumper identified from the training tests' own forward runs.
+//! [`identified`] runs the identification ([`crate::identify::identify()`])
+//! and, when the study asks (`[model] bumper = "fit"`, `Setup::bumper`),
+//! this fit; its result's car then carries the fitted bumper.
+//!
+//! Every training replay is driven by the measured load-cell forces, so it
+//! never sees the bumper's law: the car's segments keep the study's start
+//! characteristic, and a forward prediction ([`crate::forward()`]), where the
+//! striker's contact with the bumper makes the force, rests on it. Here,
+//! after the car is identified, each training test that carries its
+//! striker is run forward and the segments' characteristic is fitted to the
+//! measured force, with the body and the side members held.
+//!
+//! Three parameters act on every segment alike, each on a log scale: a
+//! force scale `a`, a compression stretch `λ` and the unloading ratio `u`;
+//! a fourth, when asked, is the contact's rate coefficient `c` (s/m, from 0
+//! to 3; [`crate::car`]'s rate term `F(d) · max(0, 1 + c ḋ)`, the
+//! Hunt–Crossley form):
+//!
+//! - loading `F(d) = a F₀(d/λ)` (a three-part curve: ramp `a s/λ`, plateau
+//!   `a F_max`; a table: points `(λ dᵢ, a Fᵢ)`);
+//! - unloading slope `s_u = u · max_i(Fᵢ/dᵢ)` with `u ≥ 1`: the line must not
+//!   run below the loading curve ([`Bumper::table`]'s condition).
+//!
+//! Residuals, per forward-run test `c` over its window: `(F_sim − F_meas) /
+//! (max|F_meas| √n_c)`, the simulated and measured force magnitudes
+//! aligned at their onsets as [`crate::forward()`] aligns them, so each test
+//! weighs alike whatever its force. The bounded Levenberg–Marquardt of
+//! [`bumpsim_estimate::lm`] minimises them with a forward-difference Jacobian
+//! (step 1e-3 in the log parameters and in `c`). Bounds: `a` and `λ` within
+//! 1/3 to 3 of the start, `u` from 1 to 20.
+//!
+//! Without the rate term the bumper is rate-independent (paper A's
+//! characteristic, [`bumpsim_impact::bumper`]): a contact whose force grows
+//! with the closing speed (Hunt–Crossley, `F = k dⁿ (1 + 1.5 α ḋ)`) is then
+//! represented at the training tests' speeds only.
+
+use crate::car::{PlanarCar, PlanarError};
+use crate::forward::forward;
+use crate::identify::{
+    BumperFit, PlanarCase, PlanarIdentification, Setup, identify, transformed, unloading_ratio,
+};
+use bumpsim_estimate::lm::{LeastSquares, Settings, minimise};
+use bumpsim_estimate::observer::Observer;
+use nalgebra::DMatrix;
+
+impl crate::study::PlanarStudy {
+    /// The study's planar identification, its bumper fitted when it asks
+    /// ([`identified`]).
+    pub fn identified(&self, observer: &dyn Observer) -> Result<PlanarIdentification, PlanarError> {
+        identified(&self.cases, &self.setup, observer)
+    }
+}
+
+/// Step of the forward differences in the log parameters.
+const STEP: f64 = 1e-3;
+
+/// The planar identification of `cases` ([`identify()`]), then, when
+/// `setup.bumper`, the bumper fitted to the training tests' forward runs:
+/// the result's car carries it and `result.bumper` records it.
+pub fn identified(
+    cases: &[PlanarCase],
+    setup: &Setup,
+    observer: &dyn Observer,
+) -> Result<PlanarIdentification, PlanarError> {
+    let mut result = identify(cases, setup, observer)?;
+    if setup.bumper {
+        let fit = fit_bumper(&result.car, cases, true)?;
+        result.car = fit.car.clone();
+        result.bumper = Some(fit);
+    }
+    Ok(result)
+}
+
+/// `car` with every segment transformed by `p = [ln a, ln λ, ln u]` and,
+/// when `p` has a fourth, the rate coefficient `c = p[3]`.
+fn with_law(car: &PlanarCar, p: &[f64]) -> Result<PlanarCar, PlanarError> {
+    let segments = car
+        .beam()
+        .segments
+        .iter()
+        .enumerate()
+        .map(|(j, b)| {
+            transformed(b, p[0].exp(), p[1].exp(), p[2].exp()).map_err(|source| {
+                PlanarError::Bumper {
+                    name: format!("bumper.segment[{j}]"),
+                    source,
+                }
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let car = car.clone().with_segments(segments)?;
+    match p.get(3) {
+        Some(&rate) => car.with_contact_rate(rate),
+        None => Ok(car),
+    }
+}
+
+struct Problem<'a> {
+    car: &'a PlanarCar,
+    cases: Vec<&'a PlanarCase>,
+    count: usize,
+    parameters: usize,
+}
+
+impl Problem<'_> {
+    /// The residuals at `p` (None: a law that cannot be built or run).
+    fn residuals(&self, p: &[f64]) -> Option<Vec<f64>> {
+        let car = with_law(self.car, p).ok()?;
+        let mut r = Vec::with_capacity(self.count);
+        for case in &self.cases {
+            let run = forward(&car, case).ok()?;
+            let force = run.channels.iter().find(|c| c.name == "force")?;
+            let (a, b) = run.window;
+            let peak = force.measured[a..=b]
+                .iter()
+                .fold(0.0f64, |m, v| m.max(v.abs()));
+            let norm = peak.max(f64::MIN_POSITIVE) * ((b - a + 1) as f64).sqrt();
+            r.extend((a..=b).map(|k| (force.simulated[k] - force.measured[k]) / norm));
+        }
+        r.iter().all(|v| v.is_finite()).then_some(r)
+    }
+}
+
+impl LeastSquares for Problem<'_> {
+    fn residual_count(&self) -> usize {
+        self.count
+    }
+
+    fn parameter_count(&self) -> usize {
+        self.parameters
+    }
+
+    fn evaluate(
+        &self,
+        p: &[f64],
+        residuals: &mut [f64],
+        jacobian: Option<&mut DMatrix<f64>>,
+    ) -> bool {
+        let Some(r) = self.residuals(p) else {
+            return false;
+        };
+        residuals.copy_from_slice(&r);
+        if let Some(j) = jacobian {
+            for i in 0..self.parameters {
+                let mut q = p.to_vec();
+                q[i] += STEP;
+                let Some(moved) = self.residuals(&q) else {
+                    return false;
+                };
+                for (k, (m, r0)) in moved.iter().zip(&r).enumerate() {
+                    j[(k, i)] = (m - r0) / STEP;
+                }
+            }
+        }
+        true
+    }
+}
+
+/// The force fit % of `car`'s forward run of `case`.
+fn force_fit(car: &PlanarCar, case: &PlanarCase) -> Result<f64, PlanarError> {
+    let run = forward(car, case)?;
+    Ok(run
+        .channels
+        .iter()
+        .find(|c| c.name == "force")
+        .map_or(f64::NAN, |c| c.fit_percent))
+}
+
+/// Fits `car`'s bumper law (with the contact's rate coefficient when
+/// `rate`) to the measured forces of the `cases` that carry a striker (see
+/// the module); an error when none does.
+pub fn fit_bumper(
+    car: &PlanarCar,
+    cases: &[PlanarCase],
+    rate: bool,
+) -> Result<BumperFit, PlanarError> {
+    let cases: Vec<&PlanarCase> = cases.iter().filter(|c| c.striker.is_some()).collect();
+    let Some(first) = cases.first() else {
+        return Err(PlanarError::Case {
+            case: "training".into(),
+            message: "fitting the bumper needs training tests with their `striker = { ... }`"
+                .into(),
+        });
+    };
+    let count = cases.iter().map(|c| c.window.1 - c.window.0 + 1).sum();
+    let parameters = if rate { 4 } else { 3 };
+    let problem = Problem {
+        car,
+        cases: cases.clone(),
+        count,
+        parameters,
+    };
+    let ratio = car
+        .beam()
+        .segments
+        .first()
+        .map_or(1.0, unloading_ratio)
+        .max(1.0);
+    // u replaces the segments' own ratio: the start keeps the first one's
+    let n = parameters;
+    let start = [0.0, 0.0, ratio.ln(), car.contact_rate()][..n].to_vec();
+    let lower = [-(3f64.ln()), -(3f64.ln()), 0.0, 0.0][..n].to_vec();
+    let upper = [3f64.ln(), 3f64.ln(), 20f64.ln(), 3.0][..n].to_vec();
+    let mut r0 = vec![0.0; count];
+    if !problem.evaluate(&start, &mut r0, None) {
+        return Err(PlanarError::Case {
+            case: first.name.clone(),
+            message: "the start car's forward run cannot be evaluated".into(),
+        });
+    }
+    let settings = Settings {
+        max_iterations: 40,
+        ftol: 1e-8,
+        xtol: 1e-6,
+        ..Settings::default()
+    };
+    let outcome = minimise(&problem, &start, &lower, &upper, &settings);
+    let p = &outcome.parameters;
+    let fitted = with_law(car, p)?;
+    let tests = cases
+        .iter()
+        .map(|c| Ok((c.name.clone(), force_fit(car, c)?, force_fit(&fitted, c)?)))
+        .collect::<Result<Vec<_>, PlanarError>>()?;
+    Ok(BumperFit {
+        scale: p[0].exp(),
+        stretch: p[1].exp(),
+        unloading_ratio: p[2].exp(),
+        rate: p.get(3).copied().unwrap_or(0.0),
+        tests,
+        objective: (r0.iter().map(|v| v * v).sum(), outcome.objective),
+        iterations: outcome.iterations,
+        car: fitted,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::car::Layout;
+    use crate::drive::{Drive, Load, Sensor};
+    use crate::simulate::{Settings as Run, simulate};
+    use crate::striker::{Face, Striker};
+    use bumpsim_core::model::MsdModel;
+    use bumpsim_impact::bumper::Bumper;
+
+    fn car(bumper: &Bumper) -> PlanarCar {
+        let chain = MsdModel::new(vec![8.0, 1200.0], vec![2e3], vec![1.5e6]).unwrap();
+        PlanarCar::symmetric(&chain, bumper, &Layout::default()).unwrap()
+    }
+
+    /// A pendulum test of `truth` at `speed`: its simulated force as the
+    /// one load cell, the striker known.
+    fn test(truth: &PlanarCar, speed: f64) -> PlanarCase {
+        let striker = Striker::pendulum(Face::flat(), 1000.0, speed);
+        let step = 1e-4;
+        let settings = Run {
+            output_step: step,
+            duration: 0.12,
+            stop_after_contact: false,
+            ..Run::default()
+        };
+        let r = simulate(truth, &striker, &settings).unwrap();
+        let n = r.force.len();
+        let drive = Drive {
+            step,
+            loads: vec![Load {
+                lateral: 0.0,
+                anchor: None,
+                cell: None,
+                direction: [-1.0, 0.0],
+                force: r.force.clone(),
+            }],
+            speed: 0.0,
+            sensors: vec![Sensor::Body([0.6, 0.7]), Sensor::Body([0.6, -0.7])],
+        };
+        PlanarCase {
+            name: format!("{speed} m/s"),
+            drive,
+            measured: vec![vec![0.0; n]; 2],
+            window: (0, n - 1),
+            estimated: Vec::new(),
+            striker: Some(striker),
+            time_zero: 0.0,
+            weights: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn the_fit_recovers_the_bumper_a_car_was_simulated_with() {
+        let truth_bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        let truth = car(&truth_bumper);
+        let cases = [test(&truth, 2.0), test(&truth, 5.0)];
+        let peak = cases[1].drive.loads[0]
+            .force
+            .iter()
+            .fold(0.0f64, |m, f| m.max(*f));
+        assert!(
+            peak > 60e3 * 0.999,
+            "the fast test reaches the plateau: {peak} N"
+        );
+        // the start: 25 % stronger, 20 % shorter, unloading at 1.5 the ramp
+        let start = car(&transformed(&truth_bumper, 1.25, 0.8, 1.5).unwrap());
+        let fit = fit_bumper(&start, &cases, false).unwrap();
+        eprintln!("{fit:?}");
+        assert!((fit.scale / 0.8 - 1.0).abs() < 0.02, "a {}", fit.scale);
+        assert!((fit.stretch / 1.25 - 1.0).abs() < 0.02, "λ {}", fit.stretch);
+        assert!(
+            (fit.unloading_ratio / 4.0 - 1.0).abs() < 0.05,
+            "u {}",
+            fit.unloading_ratio
+        );
+        assert!(
+            fit.tests
+                .iter()
+                .all(|(_, before, after)| after > before && *after > 99.0)
+        );
+        assert!(fit.objective.1 < 1e-3 * fit.objective.0);
+    }
+
+    #[test]
+    fn the_fit_recovers_a_rate_dependent_contact() {
+        let truth_bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        let truth = car(&truth_bumper).with_contact_rate(0.4).unwrap();
+        let cases = [test(&truth, 2.0), test(&truth, 5.0)];
+        let start = car(&transformed(&truth_bumper, 1.25, 0.8, 1.5).unwrap());
+        let fit = fit_bumper(&start, &cases, true).unwrap();
+        eprintln!(
+            "{:?}",
+            (fit.scale, fit.stretch, fit.unloading_ratio, fit.rate)
+        );
+        assert!((fit.rate / 0.4 - 1.0).abs() < 0.05, "c {}", fit.rate);
+        assert!((fit.scale / 0.8 - 1.0).abs() < 0.05, "a {}", fit.scale);
+        assert!(fit.objective.1 < 1e-3 * fit.objective.0);
+        // without the rate term the same tests are not fitted as well
+        let static_fit = fit_bumper(&start, &cases, false).unwrap();
+        assert!(static_fit.objective.1 > 10.0 * fit.objective.1);
+    }
+
+    #[test]
+    fn a_study_without_strikers_is_refused() {
+        let truth = car(&Bumper::three_part(1.5e6, 60e3, 6e6).unwrap());
+        let mut case = test(&truth, 2.0);
+        case.striker = None;
+        let err = fit_bumper(&truth, &[case], false).unwrap_err().to_string();
+        assert!(err.contains("striker"), "{err}");
+    }
+}
