@@ -36,9 +36,9 @@ pub(super) fn identify(request: &IdentifyRequest<'_>) -> Result<Outcome, EngineE
     study.setup.seed = request.seed.unwrap_or(study.setup.seed);
     let progress = request.progress;
     progress.begin(study.setup.starts as u64);
-    let result = bumpsim_planar::identify::identify(&study.cases, &study.setup, &|| {
-        progress.start_finished()
-    });
+    // the identification, then the bumper from the training tests' forward
+    // runs when the study asks (`[model] bumper = "fit"`)
+    let result = study.identified(&|| progress.start_finished());
     progress.end();
     let result = result.map_err(|source| EngineError::PlanarIn {
         context: "planar identification".into(),
