@@ -5,7 +5,7 @@
 //!
 //! Every training replay is driven by the measured load-cell forces, so it
 //! never sees the bumper's law: the car's segments keep the study's start
-//! characteristic, and a forward prediction ([`crate::forward()`]), where the
+//! characteristic, and a forward prediction ([`crate::forward::forward()`]), where the
 //! striker's contact with the bumper makes the force, rests on it. Here,
 //! after the car is identified, each training test that carries its
 //! striker is run forward and the segments' characteristic is fitted to the
@@ -20,11 +20,11 @@
 //! - loading `F(d) = a F₀(d/λ)` (a three-part curve: ramp `a s/λ`, plateau
 //!   `a F_max`; a table: points `(λ dᵢ, a Fᵢ)`);
 //! - unloading slope `s_u = u · max_i(Fᵢ/dᵢ)` with `u ≥ 1`: the line must not
-//!   run below the loading curve ([`Bumper::table`]'s condition).
+//!   run below the loading curve ([`bumpsim_impact::bumper::Bumper::table`]'s condition).
 //!
 //! Residuals, per forward-run test `c` over its window: `(F_sim − F_meas) /
 //! (max|F_meas| √n_c)`, the simulated and measured force magnitudes
-//! aligned at their onsets as [`crate::forward()`] aligns them, so each test
+//! aligned at their onsets as [`crate::forward::forward()`] aligns them, so each test
 //! weighs alike whatever its force. The bounded Levenberg–Marquardt of
 //! [`bumpsim_estimate::lm`] minimises them with a forward-difference Jacobian
 //! (step 1e-3 in the log parameters and in `c`). Bounds: `a` and `λ` within
