@@ -300,9 +300,12 @@ fn exactly_one_function_computes_the_hold_discretisation() {
     // `objective::{evaluate, fill}` for both their objectives, a prior's
     // estimate `prior::moved`) and the log-sum-exp of a prior on a sum of
     // parameters (`prior::value`), and a prior's interval on the parameter
-    // scale (`prior::with_priors`)
+    // scale (`prior::with_priors`), and the fitted bumper's log-scale
+    // factors (`bumper_fit::{fit_bumper, with_law}`)
     let allowed = [
         "bands::car",
+        "bumper_fit::fit_bumper",
+        "bumper_fit::with_law",
         "energy::step_integral",
         "exponential::hold_exponential",
         "objective::evaluate",
