@@ -148,6 +148,14 @@ fn positive(parameter: &'static str, x: f64, unit: &'static str) -> Result<(), L
     value(parameter, x, unit, x > 0.0, "must be positive and finite")
 }
 
+/// The smaller of two values (by value; `f64::min` on non-NaN values).
+fn smaller<T: Real>(a: T, b: T) -> T {
+    match a.value() < b.value() {
+        true => a,
+        false => b,
+    }
+}
+
 /// The larger of two values (by value; `f64::max` on non-NaN values).
 fn larger<T: Real>(a: T, b: T) -> T {
     match a.value() < b.value() {
@@ -166,10 +174,7 @@ impl<T: Real> Curve<T> {
                 cubic,
                 limit,
             } => {
-                let e = match d.value() < limit.value() {
-                    true => d,
-                    false => *limit,
-                };
+                let e = smaller(d, *limit);
                 let base = *stiffness * e + *cubic * e * e * e;
                 base + (*stiffness + *cubic * 3.0 * e * e) * (d - e)
             }
@@ -206,10 +211,7 @@ impl<T: Real> Curve<T> {
                 cubic,
                 limit,
             } => {
-                let e = match d.value() < limit.value() {
-                    true => d,
-                    false => *limit,
-                };
+                let e = smaller(d, *limit);
                 let e2 = e * e;
                 let within = *stiffness * 0.5 * e * e + *cubic * 0.25 * (e2 * e2);
                 within + (self.force(e) + self.force(d)) * 0.5 * (d - e)

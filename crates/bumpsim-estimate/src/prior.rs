@@ -410,6 +410,21 @@ pub fn text(moved: &[Moved], format: &dyn Fn(&str, f64) -> String) -> String {
         .collect()
 }
 
+/// [`text`] indented by two spaces, each value printed in its parameter's
+/// unit (a sum's prior, named by no parameter, as a mass): the lines both
+/// cars' summaries print; empty without any prior.
+pub fn indented_text(moved: &[Moved], parameters: &[crate::uncertainty::Parameter]) -> String {
+    use bumpsim_core::units::{Dimension, format_quantity};
+    let format = |name: &str, value: f64| match parameters.iter().find(|p| p.name == name) {
+        Some(p) => p.format(value),
+        None => format_quantity(value, Dimension::Mass),
+    };
+    text(moved, &format)
+        .lines()
+        .map(|l| format!("  {l}\n"))
+        .collect()
+}
+
 /// The priors on one parameter each whose parameter the data hardly
 /// inform: its posterior standard deviation of ln θ (`log_sd`, by
 /// parameter; `None`: none) above [`PRIOR_ONLY`] of the prior's spread.

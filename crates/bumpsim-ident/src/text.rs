@@ -63,14 +63,7 @@ pub fn residuals_line(result: &Identification) -> Option<String> {
 /// without any.
 pub fn prior_lines(result: &Identification) -> String {
     let parameters = crate::stats::parameters(result.dof);
-    let format = |name: &str, value: f64| match parameters.iter().find(|p| p.name == name) {
-        Some(p) => p.format(value),
-        None => format_quantity(value, Dimension::Mass),
-    };
-    bumpsim_estimate::prior::text(&result.priors, &format)
-        .lines()
-        .map(|l| format!("  {l}\n"))
-        .collect()
+    bumpsim_estimate::prior::indented_text(&result.priors, &parameters)
 }
 
 /// `ISO/TS 18571 rating 0.962 (excellent; corridor …, phase …, magnitude

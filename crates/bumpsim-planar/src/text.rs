@@ -301,14 +301,7 @@ fn prior_lines(
     result: &crate::identify::PlanarIdentification,
     parameters: &[bumpsim_estimate::uncertainty::Parameter],
 ) -> String {
-    let format = |name: &str, value: f64| match parameters.iter().find(|p| p.name == name) {
-        Some(p) => p.format(value),
-        None => format_quantity(value, Dimension::Mass),
-    };
-    bumpsim_estimate::prior::text(&result.priors, &format)
-        .lines()
-        .map(|l| format!("  {l}\n"))
-        .collect()
+    bumpsim_estimate::prior::indented_text(&result.priors, parameters)
 }
 
 /// The forward predictions' lines: each test's fit per channel and the
