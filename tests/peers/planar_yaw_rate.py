@@ -22,7 +22,10 @@ planar car nor tests/peers/planar_independent.py:
   and its own rotation in the world: 3 DOF), joined to the body by two
   crash boxes at y = +/-b: each an axial bar, elastic-plastic with linear
   isotropic hardening (1-D return mapping) plus a viscous part, and a
-  linear shear spring across it; no masses on guides, no lever rule;
+  linear shear spring across it, clamped in the side member (its force
+  reaches the body through its front end: the pair on beam and body is
+  collinear, angular momentum is conserved); no masses on guides, no
+  lever rule;
 - the beam's face touches the striker at 31 points with Hunt-Crossley
   contact, F = k d^1.5 (1 + 1.5 a d'), elastic (no foam history);
 - tyres without transient slip: F_y = -mu N tanh(C_alpha alpha / (mu N)),
@@ -191,7 +194,14 @@ def accelerations(car, striker, st, q, v):
         F_beam += f_on_beam
         M_beam += cross(B - q[3:5], f_on_beam)
         F_body -= f_on_beam
-        M_body += cross(A - q[0:2], -f_on_beam)
+        # the crash box is clamped in the side member: the force it takes
+        # from the beam at B reaches the body with its moment about B (the
+        # root carries the shear's lever L0), so the pair on beam and body
+        # is collinear and the angular momentum is conserved. Applied at A
+        # instead, the pair's couple L0 x shear came from nothing: +15 % of
+        # the contact's angular impulse in the 10 deg walls, none in the
+        # narrow faces (no lateral load, no shear)
+        M_body += cross(B - q[0:2], -f_on_beam)
     # contact at the beam's face
     eb, nb = rot(q[5])
     points = q[3:5] + np.outer(car.y_pts, nb)
