@@ -55,6 +55,9 @@ pub struct Parameters<T> {
     pub mu_longitudinal: [T; 2],
     /// Cornering stiffness of both axles, N/rad.
     pub cornering: [T; 2],
+    /// Relaxation length of both axles' rolling tyres, m (0: the
+    /// instantaneous slip-angle law).
+    pub relaxation: [T; 2],
     /// Each load's lateral position on the bumper line, m.
     pub lateral: Vec<T>,
 }
@@ -87,6 +90,10 @@ impl<T: Real> Parameters<T> {
                 c(&tyres.front.cornering_stiffness),
                 c(&tyres.rear.cornering_stiffness),
             ],
+            relaxation: [
+                c(&tyres.front.relaxation_length),
+                c(&tyres.rear.relaxation_length),
+            ],
             lateral: input.loads.iter().map(|l| c(&l.lateral)).collect(),
         }
     }
@@ -111,6 +118,7 @@ struct Wheel<T> {
     mu_lateral: T,
     mu_longitudinal: T,
     cornering: T,
+    relaxation: T,
 }
 
 impl<T: Real> Wheel<T> {
@@ -132,7 +140,7 @@ impl<T: Real> Wheel<T> {
                 let across = if grip.value() <= 0.0 {
                     T::constant(0.0)
                 } else if a.relaxation_length > 0.0 {
-                    (-(self.cornering / a.relaxation_length) * y).clamp(-grip, grip)
+                    (-(self.cornering / self.relaxation) * y).clamp(-grip, grip)
                 } else {
                     let alpha = v_n.atan2(rolling);
                     -(grip * (self.cornering * alpha / grip).tanh())
@@ -150,7 +158,7 @@ impl<T: Real> Wheel<T> {
             *y = T::constant(0.0);
             return;
         }
-        let sigma = a.relaxation_length;
+        let sigma = self.relaxation;
         *y += (v_n - v_e.abs() / sigma * *y) * step;
         let limit = grip * sigma / self.cornering;
         *y = y.clamp(-limit, limit);
@@ -254,6 +262,7 @@ impl<'a, T: Real> Replay<'a, T> {
                     mu_lateral: p.mu_lateral,
                     mu_longitudinal: p.mu_longitudinal[axle_index],
                     cornering: p.cornering[axle_index],
+                    relaxation: p.relaxation[axle_index],
                 });
             }
         }

@@ -10,6 +10,8 @@
 //! spread = 10.0             # optional (10): random starts within this factor of the start
 //! friction = false          # optional: estimate the lateral tyre friction μ_y of both axles
 //! cornering = false         # optional: estimate the tyres' cornering stiffness C_α
+//! relaxation = false        # optional: estimate the rolling tyres' relaxation length σ
+//!                           # (searched from 0.01 m, the instantaneous law, to 2 m)
 //! mass = "1265 kg"          # optional: the test sheet's mass, checked against the identified car
 //!                           # and a prior on its total mass
 //! links = "linear"          # optional: the side members' law to identify: "linear", "progressive",
@@ -93,6 +95,8 @@ struct ModelFile {
     friction: bool,
     #[serde(default)]
     cornering: bool,
+    #[serde(default)]
+    relaxation: bool,
     mass: Option<toml::Value>,
     links: Option<toml::Value>,
     bumper: Option<String>,
@@ -205,6 +209,7 @@ impl PlanarStudy {
             spread: file.model.spread.unwrap_or(defaults.spread),
             friction: file.model.friction,
             cornering: file.model.cornering,
+            relaxation: file.model.relaxation,
             bumper: match file.model.bumper.as_deref() {
                 None | Some("start") => false,
                 Some("fit") => true,

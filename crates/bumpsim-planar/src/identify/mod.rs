@@ -145,6 +145,9 @@ pub struct Setup {
     pub friction: bool,
     /// Estimate the cornering stiffness C_α of every tyre (else the template's).
     pub cornering: bool,
+    /// Estimate the rolling tyres' relaxation length σ of both axles (else
+    /// the template's; [`Unknowns::with_relaxation`]).
+    pub relaxation: bool,
     /// The test sheet's total mass of the car, kg: the identified car's is
     /// checked against it ([`crate::identify`]'s plausibility).
     pub mass: Option<f64>,
@@ -171,6 +174,7 @@ impl Setup {
             spread: 10.0,
             friction: false,
             cornering: false,
+            relaxation: false,
             mass: None,
             priors: Vec::new(),
             staged: true,
@@ -297,6 +301,9 @@ pub fn parameters_of(result: &PlanarIdentification) -> Vec<Parameter> {
             "kg" => Parameter::new(e.name.clone(), Dimension::Mass),
             "N·s/m" => Parameter::new(e.name.clone(), Dimension::Damping),
             "N/m" => Parameter::new(e.name.clone(), Dimension::Stiffness),
+            "m" if e.name == "tyres.relaxation_length" => {
+                Parameter::new(e.name.clone(), Dimension::Length)
+            }
             "m" => Parameter::new(e.name.clone(), Dimension::Length).linear(f64::INFINITY),
             symbol => Parameter::with_symbol(e.name.clone(), symbol),
         })
@@ -333,7 +340,8 @@ fn check(cases: &[PlanarCase], setup: &Setup) -> Result<Unknowns, PlanarError> {
             message: e.to_string(),
         })?;
     }
-    let unknowns = Unknowns::new(&setup.template, setup.friction, setup.cornering, cases);
+    let unknowns = Unknowns::new(&setup.template, setup.friction, setup.cornering, cases)
+        .with_relaxation(setup.relaxation);
     let car_parameters =
         unknowns.names().len() - cases.iter().map(|c| c.estimated.len()).sum::<usize>();
     let start = unknowns.start();

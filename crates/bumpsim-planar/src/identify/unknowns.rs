@@ -1,7 +1,8 @@
 //! What a planar identification estimates, in the estimation layer's terms:
 //! the body's mass and yaw inertia, every mass, damper and spring of the two
 //! side chains, optionally the tyres' lateral grip μ_y and cornering
-//! stiffness C_α (both axles alike), and the lateral position of every
+//! stiffness C_α (both axles alike), their relaxation length σ when asked
+//! ([`Unknowns::with_relaxation`]), and the lateral position of every
 //! force whose line of action the study leaves to the data (a pendulum's
 //! single load cell: `lateral = "estimate"`).
 //!
@@ -15,7 +16,9 @@
 //! action is a position (m, left positive) and may be negative: it is
 //! searched as is, within [`LINE_MARGIN`] beyond the bumper's ends, and
 //! counts as determined when its 95 % interval is at most a quarter of the
-//! bumper wide.
+//! bumper wide. The relaxation length is searched from [`RELAXATION`]'s
+//! lower end (at 1 cm a tyre lags its slip by σ/v ≈ 5 ms at 8 km/h, far
+//! shorter than an impact: the instantaneous slip-angle law) to its upper.
 
 use super::PlanarCase;
 use super::links::{self, LinkLaw};
@@ -25,6 +28,9 @@ use bumpsim_estimate::uncertainty::Parameter;
 
 /// Each car parameter is searched within this factor of its start.
 pub const REACH: f64 = 1000.0;
+
+/// The relaxation lengths searched, m (see the module).
+pub const RELAXATION: (f64, f64) = (0.01, 2.0);
 
 /// A line of action is searched this far beyond the bumper's ends, m.
 pub const LINE_MARGIN: f64 = 0.25;
@@ -44,6 +50,7 @@ pub struct Unknowns {
     template: PlanarCar,
     friction: bool,
     cornering: bool,
+    relaxation: bool,
     lines: Vec<Line>,
 }
 
@@ -73,7 +80,22 @@ impl Unknowns {
             template: template.clone(),
             friction,
             cornering,
+            relaxation: false,
             lines,
+        }
+    }
+
+    /// The same unknowns with the rolling tyres' relaxation length σ of
+    /// both axles estimated too, when `estimated` and the template's tyres
+    /// have one (σ > 0 on both axles: a law without one stays without).
+    pub fn with_relaxation(self, estimated: bool) -> Unknowns {
+        let tyres = self.template.tyres();
+        let relaxed = [tyres.front, tyres.rear].iter().all(|a| {
+            a.law == crate::car::TyreLaw::Rolling && a.relaxation_length > 0.0
+        });
+        Unknowns {
+            relaxation: estimated && relaxed,
+            ..self
         }
     }
 
@@ -127,6 +149,9 @@ impl Unknowns {
         if self.cornering {
             out.push(("tyres.cornering_stiffness".to_string(), "N/rad"));
         }
+        if self.relaxation {
+            out.push(("tyres.relaxation_length".to_string(), "m"));
+        }
         out.extend(self.lines.iter().map(|l| (l.name.clone(), "m")));
         out
     }
@@ -141,6 +166,9 @@ impl Unknowns {
                 "N·s/m" => Parameter::new(name, Dimension::Damping),
                 "N/m" => Parameter::new(name, Dimension::Stiffness),
                 "N" => Parameter::new(name, Dimension::Force),
+                "m" if name == "tyres.relaxation_length" => {
+                    Parameter::new(name, Dimension::Length)
+                }
                 "m" => Parameter::new(name, Dimension::Length).linear(width),
                 symbol => Parameter::with_symbol(name, symbol),
             })
@@ -164,6 +192,9 @@ impl Unknowns {
         }
         if self.cornering {
             out.push(car.tyres().front.cornering_stiffness);
+        }
+        if self.relaxation {
+            out.push(car.tyres().front.relaxation_length);
         }
         out.extend(self.lines.iter().map(|l| l.start));
         out
@@ -200,6 +231,10 @@ impl Unknowns {
         for i in self.ratios() {
             upper[i] = upper[i].min(0.0);
             lower[i] = lower[i].min(upper[i]);
+        }
+        if let Some(i) = self.relaxation_index() {
+            upper[i] = RELAXATION.1.ln().max(start[i].ln());
+            lower[i] = RELAXATION.0.ln().min(start[i].ln());
         }
         lower.extend(std::iter::repeat_n(-edge, self.lines.len()));
         upper.extend(std::iter::repeat_n(edge, self.lines.len()));
@@ -273,6 +308,11 @@ impl Unknowns {
             tyres.front.cornering_stiffness = c;
             tyres.rear.cornering_stiffness = c;
         }
+        if self.relaxation {
+            let sigma = take(1)[0];
+            tyres.front.relaxation_length = sigma;
+            tyres.rear.relaxation_length = sigma;
+        }
         PlanarCar::new(body, left, right, t.beam().clone(), tyres)
             .and_then(|c| c.with_crash_boxes(t.crash_boxes()))
             .map(|c| c.with_name(t.name().map(str::to_string)))
@@ -286,6 +326,13 @@ impl Unknowns {
             .filter(|(_, (n, _))| n.contains(".hardening["))
             .map(|(i, _)| i)
             .collect()
+    }
+
+    /// The index of the relaxation length, when it is estimated.
+    fn relaxation_index(&self) -> Option<usize> {
+        self.names()
+            .iter()
+            .position(|(n, _)| n == "tyres.relaxation_length")
     }
 
     /// `case` (index `index`) with the lines of action of `theta`, when it

@@ -204,6 +204,7 @@ fn yielding_side_members_meet_issue_44s_thresholds() {
         serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
     let mut study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
     study.setup.cornering = true;
+    study.setup.relaxation = true;
     let result =
         super::progressive::identified(&study, bumpsim_planar::identify::LinkLaw::Yielding);
     let fit = |name: &str| {
@@ -244,6 +245,12 @@ fn yielding_side_members_meet_issue_44s_thresholds() {
         channel("force"),
         channel("x-acceleration"),
         channel("yaw rate")
+    );
+    eprintln!(
+        "yielding: C_α {:.0} N/rad, σ {:.3} m (truth {} N/rad, no relaxation)",
+        value("tyres.cornering_stiffness"),
+        value("tyres.relaxation_length"),
+        sheet["car"]["tyres"]["cornering_stiffness"]
     );
     eprintln!(
         "yielding: I_z {:+.1} %, μ {:+.1} % of the truth; {} of 16 starts reach the best",

@@ -42,6 +42,7 @@ pub(crate) enum Slot {
     },
     Grip,
     Cornering,
+    Relaxation,
     /// Load `load` of case `case`'s lateral position.
     Line {
         case: usize,
@@ -74,6 +75,7 @@ pub(crate) fn slots(unknowns: &Unknowns, cases: &[PlanarCase]) -> Option<Vec<Slo
             "body.yaw_inertia" => Some(Slot::YawInertia),
             "tyres.mu_lateral" => Some(Slot::Grip),
             "tyres.cornering_stiffness" => Some(Slot::Cornering),
+            "tyres.relaxation_length" => Some(Slot::Relaxation),
             line if line.starts_with("case '") && line.ends_with("].lateral") => {
                 lines.next().map(|(case, load)| Slot::Line { case, load })
             }
@@ -164,6 +166,7 @@ fn seeded(
                 }
             }
             Slot::Cornering => p.cornering = [x, x],
+            Slot::Relaxation => p.relaxation = [x, x],
             Slot::Line { case: c, load } if c == case.0 => p.lateral[load] = x,
             Slot::Line { .. } => {}
         }
@@ -367,9 +370,14 @@ mod tests {
     }
 
     fn matches_central_differences(start: &PlanarCar, cases: &[PlanarCase], tolerance: f64) {
-        let unknowns = Unknowns::new(start, true, true, cases);
+        let unknowns = Unknowns::new(start, true, true, cases).with_relaxation(true);
         let objective = Objective::new(cases, &unknowns).unwrap();
         assert!(objective.slots.is_some(), "every unknown has a slot");
+        let names = unknowns.names();
+        assert!(
+            names.iter().any(|(n, _)| n == "tyres.relaxation_length"),
+            "the rolling tyres' relaxation length is differentiated too: {names:?}"
+        );
         let mut p = unknowns.search(&unknowns.start());
         p.iter_mut()
             .enumerate()
