@@ -164,26 +164,27 @@ fn with_tyres(car: &PlanarCar, sigma: f64, cornering: f64) -> PlanarCar {
 /// figures printed):
 ///
 /// - the off-centre face's yaw is the same with linear and with yielding
-///   side members (−21.1 % both): its peak force, 59 kN at 0.4 m, loads the
+///   side members (−20.1 % both): its peak force, 59 kN at 0.4 m, loads the
 ///   left crash box with 0.9 × 59 = 53 kN by the lever rule, below its
 ///   75 kN yield, so no link yields in it;
-/// - it is the tyres: with the generator's own law (no transient slip,
-///   relaxation length 0, C_α 70 kN/rad) it is 98.5 %; the start car's
-///   rolling tyres (relaxation 0.4 m) lag by σ/v ≈ 0.2 s at 8 km/h, longer
-///   than the contact, and the car yaws twice the measured angle. But the
-///   same instantaneous tyres replay the 10° walls worse (WALL10 86.6 →
-///   74.0 %, OFFSET40 97.4 → 79.6 %): over σ 0–0.8 m and C_α 30–150 kN/rad
-///   no pair holds WALL10 ≥ 90 %, OFFSET40 ≥ 93 % and the off-centre face
-///   ≥ 80 % at once, so the relaxation length is not a missing unknown;
-///   bumpsim's walls and the generator's disagree elsewhere (open);
-/// - the forward offset force is 84.1 % at the yielding truth (x-acceleration
-///   84.2 %, yaw rate 84.7 %): the simulated force rises later, stands
-///   4–5 % higher on its plateau and falls to zero about 10 ms before the
-///   measured one (the start car's bumper unloads along a slope 1.5 times
-///   its tangent at 0.1 m, and a bumper's unloading slope must be at least
-///   its curve's largest secant, where the generator's Hunt–Crossley
-///   contact is elastic and rate-dependent) — the bumper, which no training
-///   replay identifies (they are driven by the measured forces).
+/// - it is the tyres' law: the start car's rolling tyres (relaxation length
+///   0.4 m) lag by σ/v ≈ 0.2 s at 8 km/h, longer than the contact, and the
+///   car yaws twice the measured angle; with the generator's own law (no
+///   transient slip, C_α 70 kN/rad) the three yaws hold at once: WALL10
+///   92.5 %, OFFSET40 98.4 %, the off-centre face 98.0 % (σ = 0; the same at
+///   the search's 1 cm), against 62.9, 78.1 and −20.1 % with σ = 0.4 m. So
+///   the relaxation length is an unknown of the identification
+///   (`[model] relaxation = true`). Before the generator's crash boxes
+///   passed their force to the body through their front ends (they applied
+///   it at the rear, and the pair's couple L0 × shear, +15 % of the
+///   contact's angular impulse in the 10° walls, came from nothing), the
+///   instantaneous tyres dropped the walls to 74.0 and 79.6 % and no
+///   (σ, C_α) pair held all three;
+/// - the forward offset force is 84.2 % at the yielding truth (x-acceleration
+///   84.2 %, yaw rate 84.4 %): the start car's bumper, which no training
+///   replay identifies (they are driven by the measured forces); fitted to
+///   the training tests' forward runs it is 93.3 %
+///   (tests/planar/bumper_fit.rs).
 #[test]
 fn the_off_centre_faces_yaw_is_the_tyres_not_the_side_members_yield() {
     let Some(dir) = series() else { return };
@@ -200,23 +201,30 @@ fn the_off_centre_faces_yaw_is_the_tyres_not_the_side_members_yield() {
         predict(car, case).unwrap().fit.fit_yaw
     };
     let (linear, yielding) = (truth(&study, &sheet), truth_yielding(&study, &sheet));
-    let instant = with_tyres(
-        &yielding,
-        0.0,
-        sheet["car"]["tyres"]["cornering_stiffness"]
-            .as_f64()
-            .unwrap(),
-    );
-    let narrow = [&linear, &yielding, &instant].map(|c| yaw(c, "NARROW-OFFSET"));
-    let walls = [&yielding, &instant].map(|c| [yaw(c, "WALL10"), yaw(c, "OFFSET40")]);
+    let cornering = sheet["car"]["tyres"]["cornering_stiffness"]
+        .as_f64()
+        .unwrap();
+    let narrow = [&linear, &yielding].map(|c| yaw(c, "NARROW-OFFSET"));
     eprintln!(
-        "NARROW-OFFSET yaw: linear truth {:.2} %, yielding truth {:.2} %, with instantaneous tyres {:.2} %",
-        narrow[0], narrow[1], narrow[2]
+        "NARROW-OFFSET yaw: linear truth {:.2} %, yielding truth {:.2} %",
+        narrow[0], narrow[1]
     );
-    eprintln!(
-        "WALL10, OFFSET40 yaw: yielding truth {:.2?} %, with instantaneous tyres {:.2?} %",
-        walls[0], walls[1]
+    // the side members' yield plays no part in the off-centre face's yaw
+    assert!(
+        (narrow[0] - narrow[1]).abs() < 2.0 && narrow[1] < 0.0,
+        "{narrow:?}"
     );
+    // the tyres' law does: the generator's (no transient slip) holds the
+    // three yaw targets, the start's relaxation length none of them
+    for (sigma, holds) in [(0.0, true), (0.01, true), (0.4, false)] {
+        let car = with_tyres(&yielding, sigma, cornering);
+        let fits = ["WALL10", "OFFSET40", "NARROW-OFFSET"].map(|n| yaw(&car, n));
+        eprintln!(
+            "tyres σ {sigma} m, C_α {cornering} N/rad: WALL10, OFFSET40, NARROW-OFFSET yaw {fits:.2?} %"
+        );
+        let all = fits[0] >= 90.0 && fits[1] >= 93.0 && fits[2] >= 80.0;
+        assert_eq!(all, holds, "σ {sigma} m: {fits:?}");
+    }
     let offset = study
         .validation
         .iter()
@@ -229,31 +237,6 @@ fn the_off_centre_faces_yaw_is_the_tyres_not_the_side_members_yield() {
             c.name, c.fit_percent
         );
     }
-    // the side members' yield plays no part in the off-centre face's yaw
-    assert!(
-        (narrow[0] - narrow[1]).abs() < 2.0 && narrow[1] < 0.0,
-        "{narrow:?}"
-    );
-    // the tyres' law does, and trades it against the walls' yaw
-    assert!(narrow[2] >= 95.0, "{narrow:?}");
-    assert!(
-        walls[1][0] < 90.0 && walls[1][1] < 93.0 && walls[0][1] >= 93.0,
-        "{walls:?}"
-    );
-    // no relaxation length and cornering stiffness hold the three at once
-    for sigma in [0.0, 0.03, 0.1, 0.2, 0.4, 0.8] {
-        for cornering in [30e3, 70e3, 150e3] {
-            let car = with_tyres(&yielding, sigma, cornering);
-            let fits = ["WALL10", "OFFSET40", "NARROW-OFFSET"].map(|n| yaw(&car, n));
-            eprintln!(
-                "tyres σ {sigma} m, C_α {cornering} N/rad: WALL10, OFFSET40, NARROW-OFFSET yaw {fits:.1?} %"
-            );
-            assert!(
-                !(fits[0] >= 90.0 && fits[1] >= 93.0 && fits[2] >= 80.0),
-                "σ {sigma}, C_α {cornering}: {fits:?}"
-            );
-        }
-    }
     // the truth's forward force misses issue 44's 90 %: the bumper
     let force = ahead
         .channels
@@ -265,26 +248,36 @@ fn the_off_centre_faces_yaw_is_the_tyres_not_the_side_members_yield() {
 }
 
 /// One run of the identification with yielding side members started at
-/// the yielding truth (one start, the stated priors, no staging). Measured
-/// (release): it leaves the truth for a lower objective that predicts
-/// worse: I_z 2300 → 2371 kg·m² (the training 10° wall asks for it, its yaw
-/// 86.6 → 93.0 %, the wall/tyre disagreement above) and the left crash box's
-/// stiffness 2.6 → 3.9 MN/m (+0.36 prior sd: the force-driven replays hardly
-/// see it); held-out offset yaw 97.4 → 92.5 %, off-centre face −21.1 →
-/// −12.8 %, forward offset force 84.1 → 73.2 %, x-acceleration 84.2 →
-/// 73.1 %, yaw rate 84.7 → 90.1 %.
+/// the yielding truth with the generator's tyre law (σ at the search's 1 cm
+/// floor, C_α 70 kN/rad; one start, the stated priors, no staging, C_α and
+/// σ estimated). Measured (release): it stays near the truth: I_z 2300 →
+/// 2220 kg·m² (−3.5 %), μ 0.800, C_α 66.9 kN/rad, σ 1 cm, the left crash
+/// box's yield 75 → 67.7 kN and hardening 0.058 → 0.056, its stiffness
+/// 2.6 → 3.7 MN/m (the force-driven replays hardly see it); held-out
+/// offset yaw 98.67 → 97.56 %, forward offset force 83.87 → 85.42 %.
+/// (Before the generator's crash-box couple was fixed and with the start's
+/// relaxed tyres, the run walked to I_z 2371 kg·m² and a forward force of
+/// 73 %: the objective did not point at the truth.)
 #[test]
-fn a_run_from_the_yielding_truth_leaves_it_for_a_worse_predicting_car() {
+fn a_run_from_the_yielding_truth_stays_near_it() {
     let Some(dir) = series() else { return };
     let sheet: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
     let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
-    let truth = truth_yielding(&study, &sheet);
+    let cornering = sheet["car"]["tyres"]["cornering_stiffness"]
+        .as_f64()
+        .unwrap();
+    let truth = with_tyres(&truth_yielding(&study, &sheet), 0.01, cornering);
     let mut setup = study.setup.clone();
     setup.template = truth.clone();
     setup.starts = 1;
     setup.staged = false;
+    setup.cornering = true;
+    setup.relaxation = true;
     let run = identify(&study.cases, &setup, &|| {}).unwrap();
+    for p in &run.parameters {
+        eprintln!("from the yielding truth: {:<28} {:>12.5e} {}", p.name, p.value, p.unit);
+    }
     for m in &run.priors {
         eprintln!(
             "prior {}: {:.4e} -> {:.4e} ({:+.2} sd)",
@@ -305,6 +298,9 @@ fn a_run_from_the_yielding_truth_leaves_it_for_a_worse_predicting_car() {
     eprintln!(
         "OFFSET40 held-out yaw, forward force: truth {at:.2?} %, the run from it {from:.2?} %"
     );
-    // the objective does not point at the truth (see the doc)
-    assert!(from[0] < at[0] && from[1] < at[1], "{at:?} {from:?}");
+    // the objective points at the truth: the run predicts as well (see the doc)
+    assert!(
+        from[0] >= at[0] - 3.0 && from[1] >= at[1] - 3.0,
+        "{at:?} {from:?}"
+    );
 }
