@@ -105,24 +105,27 @@ fn the_bumper_fitted_at_the_yielding_truth_predicts_the_offset_force() {
 }
 
 /// Issue 44's forward offset thresholds on this series with the identified
-/// car (yielding side members, C_α estimated, 16 starts, the stated priors
-/// and the staged search, as `yaw_rate.rs`'s issue-44 test) and the study's
-/// `bumper = "fit"`: force and x-acceleration ≥ 90 %.
+/// car (yielding side members, C_α and the relaxation length estimated, 16
+/// starts, the stated priors and the staged search, as `yaw_rate.rs`'s
+/// issue-44 test) and the study's `bumper = "fit"`: force and
+/// x-acceleration ≥ 90 %.
 ///
-/// Measured (release, 45 s): the start bumper 74.35, 74.07 % (yaw rate
-/// 87.91 %); fitted (c = 0.344 s/m) 83.94, 83.62 % (yaw rate 90.14 %) ✗.
+/// Measured (release, 22 s): the start bumper 80.79, 80.35 % (yaw rate
+/// 91.19 %); fitted (c = 0.325 s/m) 92.02, 91.96 % (yaw rate 85.31 %) ✓.
 /// With the side-member values the training leaves open (the left crash
-/// box's hardening, the right box's stiffness and yield: only the left one
-/// yields in training, by 8.8 mm) set to the generator's and the bumper
-/// fitted again: 95.84, 95.60 % (c = 0.359 s/m; yaw rate 78.39 %). So the
-/// bumper is no longer what fails: the offset test's force rests on side
-/// members no training test loads.
+/// box's hardening, the right box's stiffness and yield) set to the
+/// generator's and the bumper fitted again: 91.04, 91.35 % (c = 0.320 s/m;
+/// yaw rate 75.32 %): they no longer decide the forward force. (Before the
+/// generator's crash-box couple was fixed and with the start's relaxed
+/// tyres: 83.94 % fitted, 95.84 % with those values.) Ignored: the same
+/// identification runs in `yaw_rate.rs`'s acceptance.
 #[test]
-#[ignore = "issue 44's forward offset force with the fitted bumper: measured 83.94 % (74.35 % before), the undetermined side members (95.84 % when set to the generator's); a release identification of 16 starts; run with --ignored"]
+#[ignore = "issue 44's forward offset force with the fitted bumper: measured 92.02 % (80.79 % with the start bumper); the same identification as yaw_rate.rs's acceptance, which runs; run with --ignored"]
 fn the_identified_car_with_the_fitted_bumper_predicts_the_offset_force() {
     let Some(dir) = series() else { return };
     let mut study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
     study.setup.cornering = true;
+    study.setup.relaxation = true;
     study.setup.bumper = true;
     let result = identified(&study, LinkLaw::Yielding);
     let fit = result.bumper.as_ref().expect("the fitted bumper");
@@ -152,7 +155,8 @@ fn the_identified_car_with_the_fitted_bumper_predicts_the_offset_force() {
         study.setup.friction,
         true,
         &study.cases,
-    );
+    )
+    .with_relaxation(true);
     let theta: Vec<f64> = result
         .parameters
         .iter()
