@@ -355,3 +355,56 @@ impl Unknowns {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::car::{Axle, Layout};
+    use bumpsim_core::model::MsdModel;
+    use bumpsim_impact::bumper::Bumper;
+
+    fn car(relaxation: f64) -> PlanarCar {
+        let chain = MsdModel::new(vec![8.0, 1200.0], vec![2e3], vec![1.5e6]).unwrap();
+        let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
+        let mut tyres = *car.tyres();
+        tyres.front = Axle {
+            relaxation_length: relaxation,
+            ..Axle::rolling(0.015, 0.8)
+        };
+        tyres.rear = tyres.front;
+        PlanarCar::new(*car.body(), car.left().clone(), car.right().clone(), car.beam().clone(), tyres)
+            .unwrap()
+    }
+
+    /// The relaxation length is an unknown only when asked and when the
+    /// start's tyres have one; it is searched in ln σ from 1 cm to 2 m and
+    /// lands on both axles.
+    #[test]
+    fn the_relaxation_length_is_estimated_when_asked_and_the_tyres_relax() {
+        let relaxed = Unknowns::new(&car(0.4), false, true, &[]);
+        assert!(relaxed.names().iter().all(|(n, _)| n != "tyres.relaxation_length"));
+        let asked = relaxed.with_relaxation(true);
+        let names = asked.names();
+        let i = names
+            .iter()
+            .position(|(n, _)| n == "tyres.relaxation_length")
+            .expect("estimated");
+        assert_eq!(names[i].1, "m");
+        let start = asked.start();
+        assert_eq!(start[i], 0.4);
+        let p = asked.search(&start);
+        assert!((p[i] - 0.4f64.ln()).abs() < 1e-12, "searched in ln σ");
+        let (lower, upper) = asked.bounds(&start);
+        assert!((lower[i] - RELAXATION.0.ln()).abs() < 1e-12);
+        assert!((upper[i] - RELAXATION.1.ln()).abs() < 1e-12);
+        let mut theta = start.clone();
+        theta[i] = 0.05;
+        let tyres = *asked.car(&theta).unwrap().tyres();
+        assert_eq!(tyres.front.relaxation_length, 0.05);
+        assert_eq!(tyres.rear.relaxation_length, 0.05);
+        // an instantaneous law stays instantaneous (σ = 0 has no log)
+        let instant = Unknowns::new(&car(0.0), false, true, &[]).with_relaxation(true);
+        assert!(instant.names().iter().all(|(n, _)| n != "tyres.relaxation_length"));
+    }
+}
