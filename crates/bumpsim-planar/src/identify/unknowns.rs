@@ -90,9 +90,9 @@ impl Unknowns {
     /// have one (σ > 0 on both axles: a law without one stays without).
     pub fn with_relaxation(self, estimated: bool) -> Unknowns {
         let tyres = self.template.tyres();
-        let relaxed = [tyres.front, tyres.rear].iter().all(|a| {
-            a.law == crate::car::TyreLaw::Rolling && a.relaxation_length > 0.0
-        });
+        let relaxed = [tyres.front, tyres.rear]
+            .iter()
+            .all(|a| a.law == crate::car::TyreLaw::Rolling && a.relaxation_length > 0.0);
         Unknowns {
             relaxation: estimated && relaxed,
             ..self
@@ -166,9 +166,7 @@ impl Unknowns {
                 "N·s/m" => Parameter::new(name, Dimension::Damping),
                 "N/m" => Parameter::new(name, Dimension::Stiffness),
                 "N" => Parameter::new(name, Dimension::Force),
-                "m" if name == "tyres.relaxation_length" => {
-                    Parameter::new(name, Dimension::Length)
-                }
+                "m" if name == "tyres.relaxation_length" => Parameter::new(name, Dimension::Length),
                 "m" => Parameter::new(name, Dimension::Length).linear(width),
                 symbol => Parameter::with_symbol(name, symbol),
             })
@@ -373,8 +371,14 @@ mod tests {
             ..Axle::rolling(0.015, 0.8)
         };
         tyres.rear = tyres.front;
-        PlanarCar::new(*car.body(), car.left().clone(), car.right().clone(), car.beam().clone(), tyres)
-            .unwrap()
+        PlanarCar::new(
+            *car.body(),
+            car.left().clone(),
+            car.right().clone(),
+            car.beam().clone(),
+            tyres,
+        )
+        .unwrap()
     }
 
     /// The relaxation length is an unknown only when asked and when the
@@ -383,7 +387,12 @@ mod tests {
     #[test]
     fn the_relaxation_length_is_estimated_when_asked_and_the_tyres_relax() {
         let relaxed = Unknowns::new(&car(0.4), false, true, &[]);
-        assert!(relaxed.names().iter().all(|(n, _)| n != "tyres.relaxation_length"));
+        assert!(
+            relaxed
+                .names()
+                .iter()
+                .all(|(n, _)| n != "tyres.relaxation_length")
+        );
         let asked = relaxed.with_relaxation(true);
         let names = asked.names();
         let i = names
@@ -405,6 +414,11 @@ mod tests {
         assert_eq!(tyres.rear.relaxation_length, 0.05);
         // an instantaneous law stays instantaneous (σ = 0 has no log)
         let instant = Unknowns::new(&car(0.0), false, true, &[]).with_relaxation(true);
-        assert!(instant.names().iter().all(|(n, _)| n != "tyres.relaxation_length"));
+        assert!(
+            instant
+                .names()
+                .iter()
+                .all(|(n, _)| n != "tyres.relaxation_length")
+        );
     }
 }

@@ -125,7 +125,11 @@ fn the_yaw_rate_sensor_is_read_weighted_and_keeps_the_held_out_yaw() {
     // (σ = 0.4 m, C_α fixed) the training 10° wall's yaw asked for a yaw
     // inertia 11 % too large and the face's yaw was 12.6 %
     assert!(a.fit_yaw >= 93.0, "held-out offset yaw {}", a.fit_yaw);
-    assert!(b.fit_yaw >= 80.0, "held-out off-centre face yaw {}", b.fit_yaw);
+    assert!(
+        b.fit_yaw >= 80.0,
+        "held-out off-centre face yaw {}",
+        b.fit_yaw
+    );
     // the sills alone land near the same car (I_z 2180 against 2237
     // kg·m²) and the same offset yaw (98.46 % against 98.08 % with the
     // yaw-rate sensor): once the tyres' law is free the yaw-rate sensor
@@ -195,7 +199,11 @@ fn the_yaw_rate_sensor_is_read_weighted_and_keeps_the_held_out_yaw() {
 /// 75 kN), not its hardening (0.088 against 0.058) nor the right box's
 /// yield (45 kN, the start's, against 62 kN; it never yields in training
 /// nor in the offset test, where the lever rule puts it in tension).
+///
+/// Ignored for the suite's time only: it passes, with the same figures, in
+/// 208 s in a debug build on a loaded machine (19 s release).
 #[test]
+#[ignore = "issue 44's thresholds with yielding side members: passes (offset yaw 98.53 %, off-centre face 96.98 %, forward force 92.02 %, x-acceleration 91.96 %, yaw rate 85.31 %, 8 of 16), 16 starts and the bumper fit take 3.5 min in a debug build; run with --release --ignored"]
 fn yielding_side_members_meet_issue_44s_thresholds() {
     let Some(dir) = series() else { return };
     let sheet: serde_json::Value =
