@@ -342,6 +342,16 @@ fn check(cases: &[PlanarCase], setup: &Setup) -> Result<Unknowns, PlanarError> {
     }
     let unknowns = Unknowns::new(&setup.template, setup.friction, setup.cornering, cases)
         .with_relaxation(setup.relaxation);
+    let relaxes = unknowns
+        .names()
+        .iter()
+        .any(|(n, _)| n == "tyres.relaxation_length");
+    if setup.relaxation && !relaxes {
+        return Err(PlanarError::Missing {
+            name: "relaxation".into(),
+            expected: "a start car whose tyres roll with a relaxation length (law \"rolling\", relaxation_length > 0 on both axles) to estimate it from".into(),
+        });
+    }
     let car_parameters =
         unknowns.names().len() - cases.iter().map(|c| c.estimated.len()).sum::<usize>();
     let start = unknowns.start();
@@ -761,6 +771,17 @@ mod tests {
         let mut nan = good.clone();
         nan.measured[1][7] = f64::NAN;
         assert!(err(&[nan], &setup).contains("sensor[1] displacement[7]"));
+        // a relaxation length to estimate needs tyres that have one
+        let mut tyres = *truth.tyres();
+        tyres.front.relaxation_length = 0.0;
+        tyres.rear = tyres.front;
+        let (l, r) = (truth.left().clone(), truth.right().clone());
+        let instant = PlanarCar::new(*truth.body(), l, r, truth.beam().clone(), tyres).unwrap();
+        let relaxing = Setup {
+            relaxation: true,
+            ..Setup::new(instant)
+        };
+        assert!(err(std::slice::from_ref(&good), &relaxing).starts_with("relaxation"));
         let frictionless = Setup {
             friction: true,
             ..setup
