@@ -79,7 +79,10 @@ pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
 pub use priors::{MU, PriorSetting, TOTAL_MASS, priors, removing_all};
 pub use unknowns::{LINE_MARGIN, REACH, Unknowns};
-pub use verdict::{LinkVerdict, compare_links};
+pub use verdict::{
+    Criterion, HELD_OUT_MARGIN, HeldOutScore, INDISTINCT, Judged, LinkVerdict, compare_links,
+    decide,
+};
 
 /// The reduced car, when a chain link is undetermined or not needed.
 pub type Reduction = bumpsim_estimate::reduce::Reduction<PlanarCar>;
@@ -218,6 +221,11 @@ pub struct PlanarIdentification {
     pub fits: Vec<CaseFit>,
     /// The variance inflation `(1 + ρ)/(1 − ρ)` from the residuals' correlation, 1.
     pub inflation: f64,
+    /// The effective number of the data residuals at the optimum, spectral
+    /// (`n/τ`, τ their integrated autocorrelation time,
+    /// [`bumpsim_estimate::effective`]): the link verdict's BIC counts it.
+    #[serde(skip)]
+    pub effective: bumpsim_estimate::effective::Effective,
     /// The layer's uncertainty: intervals, correlations, determination,
     /// the weakest direction.
     pub uncertainty: Uncertainty,
@@ -507,6 +515,11 @@ fn summarise(
     let data: f64 = r[..objective.residual_count()].iter().map(|v| v * v).sum();
     let moved = bumpsim_estimate::prior::moved(priored.priors(), p);
     let series = objective.series();
+    let effective = bumpsim_estimate::effective::of_residuals(
+        &r[..objective.residual_count()],
+        &series,
+        bumpsim_estimate::effective::Method::Spectral,
+    );
     let uncertainty = bumpsim_estimate::uncertainty::uncertainty(&Estimated {
         parameters: &parameters,
         theta: &theta,
@@ -546,6 +559,7 @@ fn summarise(
         run_time: clock.elapsed().as_secs_f64(),
         fits,
         inflation: uncertainty.inflation,
+        effective,
         uncertainty,
         warnings,
         priors: moved,

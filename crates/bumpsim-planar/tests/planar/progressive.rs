@@ -10,12 +10,20 @@
 //! held out a 40 % offset 10° wall at 15 km/h and the narrow face 0.4 m off
 //! centre.
 
+use bumpsim_core::chain::Chain;
+use bumpsim_core::link::{Curve, Link, Unloading};
+use bumpsim_impact::bumper::Bumper;
 use bumpsim_planar::PlanarCar;
+use bumpsim_planar::car::Layout;
+use bumpsim_planar::cases::TestChannels;
 use bumpsim_planar::forward::forward;
 use bumpsim_planar::identify::{
-    LinkLaw, LinkLaws, PlanarIdentification, compare_links, identify, predict,
+    Criterion, LinkLaw, LinkLaws, LinkVerdict, PlanarCase, PlanarIdentification, Setup,
+    compare_links, identify, predict,
 };
 use bumpsim_planar::study::PlanarStudy;
+use bumpsim_planar::synth::{self, record};
+use bumpsim_planar::{Face, Side, Striker};
 use std::path::{Path, PathBuf};
 
 fn series() -> Option<PathBuf> {
@@ -151,14 +159,20 @@ fn a_rate_dependent_contact_is_beyond_the_bumper_law() {
 
 /// The study's cars identified with the side members of `law` (every link).
 pub(super) fn identified(study: &PlanarStudy, law: LinkLaw) -> PlanarIdentification {
-    let template = &study.setup.template;
+    identified_from(&study.cases, &study.setup, law)
+}
+
+/// `cases` identified under `setup` with the side members of `law` (every
+/// link), the parameters and fits printed.
+fn identified_from(cases: &[PlanarCase], setup: &Setup, law: LinkLaw) -> PlanarIdentification {
+    let template = &setup.template;
     let laws = LinkLaws {
         left: vec![law; template.left().masses.len()],
         right: vec![law; template.right().masses.len()],
     };
-    let mut setup = study.setup.clone();
+    let mut setup = setup.clone();
     setup.template = laws.apply(template).unwrap();
-    let result = identify(&study.cases, &setup, &|| {}).unwrap();
+    let result = identify(cases, &setup, &|| {}).unwrap();
     for p in &result.parameters {
         eprintln!(
             "{}: {:<24} {:>12.5e} {:<6} {:?}",
@@ -179,6 +193,20 @@ pub(super) fn identified(study: &PlanarStudy, law: LinkLaw) -> PlanarIdentificat
         );
     }
     eprintln!("{}: starts {:?}", law.word(), result.starts);
+    // the priors' weight against the data: σ² Σ z² against F
+    let z2: f64 = result.priors.iter().map(|m| m.z * m.z).sum();
+    for m in &result.priors {
+        eprintln!("{}: prior {:<24} z {:+.2}", law.word(), m.name, m.z);
+    }
+    eprintln!(
+        "{}: objective {:.4e} m², priors {:.4e} m² (noise {:.3e} m, inflation {:.1}, τ {:.1})",
+        law.word(),
+        result.objective,
+        result.prior_noise.powi(2) * z2,
+        result.prior_noise,
+        result.inflation,
+        result.effective.time
+    );
     result
 }
 
@@ -241,4 +269,95 @@ fn progressive_side_members_predict_a_varied_series() {
         return;
     };
     acceptance(&dir);
+}
+
+/// A car of one link a side (the link's forces halved onto each side, a
+/// 1200 kg body on the default layout, frictionless tyres) behind an
+/// elastic bumper of 3e6 N/m.
+fn one_link_car(link: Link, mass: f64, damper: f64) -> PlanarCar {
+    let chain = Chain::new(vec![mass, 1200.0], vec![damper], vec![link]).unwrap();
+    let bumper = Bumper::three_part(3e6, 1e12, 3e6).unwrap();
+    PlanarCar::symmetric_links(&chain, &bumper, &Layout::default()).unwrap()
+}
+
+/// `truth`'s synthetic series (synth's measurement chain with a yaw-rate
+/// sensor): trained on a flat wall and a 10° wall at 8 km/h, held out a
+/// 40 % offset 10° wall at 15 km/h with its striker (a forward run).
+fn synthetic_series(truth: &PlanarCar) -> (Vec<PlanarCase>, Vec<PlanarCase>) {
+    let chain = synth::Chain {
+        yaw_rate: Some(0.1f64.to_radians()),
+        ..synth::Chain::default()
+    };
+    let (slow, fast) = (8.0 / 3.6, 15.0 / 3.6);
+    let tests = [
+        ("flat", Striker::barrier(Face::flat(), slow)),
+        (
+            "angled",
+            Striker::barrier(Face::plane_in_degrees(10.0, 100.0, Side::Left), slow),
+        ),
+        (
+            "offset",
+            Striker::barrier(Face::plane_in_degrees(10.0, 40.0, Side::Left), fast),
+        ),
+    ];
+    let mut cases: Vec<PlanarCase> = tests
+        .iter()
+        .enumerate()
+        .map(|(k, (name, striker))| {
+            let recorded = record(truth, name, striker, &chain, k as u64).unwrap();
+            let mut case = TestChannels::of(&recorded).case().unwrap().0;
+            case.striker = Some(*striker);
+            case
+        })
+        .collect();
+    let held = cases.split_off(2);
+    (cases, held)
+}
+
+/// The link verdict on `truth`'s synthetic series, identified from a
+/// linear start 15–40 % off (3 starts).
+fn synthetic_verdict(truth: &PlanarCar) -> LinkVerdict {
+    let (training, held) = synthetic_series(truth);
+    let start = one_link_car(Link::linear(1.5e6).unwrap(), 10.0, 2e3);
+    let setup = Setup {
+        starts: 3,
+        ..Setup::new(start)
+    };
+    let linear = identified_from(&training, &setup, LinkLaw::Linear);
+    let progressive = identified_from(&training, &setup, LinkLaw::Progressive);
+    let verdict = compare_links(&linear, &progressive, &held).unwrap();
+    for reason in &verdict.reasons {
+        eprintln!("links: {reason}");
+    }
+    verdict
+}
+
+/// The verdict's known answers (issue 46 item 3), on the data of a car of
+/// bumpsim's own family: a car with linear side members (1.2e6 N/m) gets
+/// linear links — the nonlinear car predicts its held-out test no better
+/// and its BIC pays for the cubic terms.
+#[test]
+fn a_linear_car_s_data_want_linear_links() {
+    let truth = one_link_car(Link::linear(1.2e6).unwrap(), 8.0, 1.5e3);
+    let verdict = synthetic_verdict(&truth);
+    assert!(!verdict.nonlinear, "{:?}", verdict.reasons);
+    assert!(verdict.effective.effective > 2.0, "{:?}", verdict.effective);
+}
+
+/// ... and a strongly progressive car (`F = k δ (1 + (δ/0.03 m)²)`, the
+/// cubic three times the linear force at the training tests' 5 cm crush)
+/// gets progressive links, decided by the held-out test's forward run.
+#[test]
+fn a_strongly_progressive_car_s_data_want_progressive_links() {
+    let k = 1.0e6;
+    let curve = Curve::progressive(k, k / (0.03 * 0.03), 0.3).unwrap();
+    let truth = one_link_car(Link::new(curve, Unloading::Elastic).unwrap(), 8.0, 1.5e3);
+    let verdict = synthetic_verdict(&truth);
+    assert!(verdict.nonlinear, "{:?}", verdict.reasons);
+    assert_eq!(
+        verdict.criterion,
+        Criterion::HeldOut,
+        "{:?}",
+        verdict.reasons
+    );
 }
