@@ -8,7 +8,8 @@
 //! them: two sill accelerometers, a yaw-rate sensor, the barrier's load
 //! cells. Trained on a flat pendulum, a narrow centred face and a 10° wall;
 //! held out a 40 % offset 10° wall at 15 km/h and the narrow face 0.4 m off
-//! centre.
+//! centre. The link verdict's known answers (item 3) are checked on small
+//! series of bumpsim's own family (a linear and a strongly progressive car).
 
 use bumpsim_core::chain::Chain;
 use bumpsim_core::link::{Curve, Link, Unloading};
@@ -235,14 +236,22 @@ fn acceptance(dir: &Path) {
 
 /// Issue 46's acceptance on this generator's series (see [`acceptance`]).
 ///
-/// Measured (53 min under load 20, debug build; 190 s on the idle machine
-/// for the first version): held-out offset yaw 95.93 % (✓), forward offset
-/// force 81.94 % (✓; linear links 72.18 %; the generator's first version,
-/// whose contact no bumpsim bumper represents: 96.74 % / 60.72 %), but the
-/// verdict says "linear" (held-out replay fits 75.28 % linear, 75.18 %
-/// nonlinear; BIC on 2 effective residuals), as on the varied series.
+/// Measured (release build, 191 s under load 15; 53 min in the debug
+/// build): held-out offset yaw 95.93 % (✓), forward offset force 81.94 %
+/// (✓; linear links 72.18 %; the generator's first version, whose contact
+/// no bumpsim bumper represents: 96.74 % / 60.72 %). The verdict says
+/// "nonlinear", decided by the held-out tests: OFFSET40 run forward from
+/// its striker scores 81.20 % (mean of force, x-acceleration, yaw rate)
+/// against the linear car's 73.45 %; NARROW-OFFSET, which has no striker,
+/// is replayed (52.74 % against 52.70 %: the measured forces drive it);
+/// the means 66.97 % against 63.08 %. The training BIC alone would say
+/// "linear" (−162.1 against −173.3 on 14.4 effective of 3795 residuals,
+/// τ = 264 samples): the nonlinear car's training objective is 3.9 %
+/// *higher* than the linear one's, though it holds it — its priors weigh
+/// more than its data (1.68e-3 against 1.18e-3 m²), see
+/// [`without_their_priors_the_cubic_terms_leave_their_start`].
 #[test]
-#[ignore = "issue 46 acceptance: yaw 95.93 %, force 81.94 % hold, the verdict picks linear links (held-out replay fits 75.28 vs 75.18 %); 53 min under load, 190 s idle; run with --ignored"]
+#[ignore = "issue 46 acceptance: yaw 95.93 %, force 81.94 %, verdict nonlinear by the held-out forward run (81.20 vs 73.45 %); 191 s in release, 53 min in debug; run with --ignored"]
 fn progressive_side_members_predict_the_held_out_offset_test() {
     let Some(dir) = series() else { return };
     acceptance(&dir);
@@ -252,17 +261,17 @@ fn progressive_side_members_predict_the_held_out_offset_test() {
 /// right side members 30 % stiffer (a stronger left/right asymmetry), so
 /// that nothing passes by being tuned to one draw of the generator.
 ///
-/// Measured (41 min under load 20, debug build): held-out offset yaw
-/// 95.78 % (✓), forward offset force 82.27 % (✓; linear links 72.62 %),
-/// but the verdict says "linear": the held-out criterion is the replay's
-/// x and yaw (75.40 % linear, 75.32 % nonlinear), which the measured
-/// forces drive and the chain's stiffness barely moves, and the BIC counts
-/// 2 effective of 3772 residuals. The cubic terms stay near their start
-/// (6.0e8–6.4e8 N/m³ against the truth's 2.6e9–3.8e9), the initial slopes
-/// rise to make up (3.0e6 against 1.1e6 N/m). Left: a held-out criterion
-/// that scores the forward force of cases with a striker.
+/// Measured (release build, 125 s under load 15; 41 min in the debug
+/// build): held-out offset yaw 95.78 % (✓), forward offset force 82.27 %
+/// (✓; linear links 72.62 %); the verdict "nonlinear", decided by the
+/// held-out tests (OFFSET40 forward 81.27 % against 73.62 %, NARROW-OFFSET
+/// replayed 53.03 % against 52.93 %; means 67.15 % against 63.27 %; the
+/// BIC alone: −174.2 against −185.5, linear, on 15.0 effective residuals).
+/// The cubic terms stay near their start (6.0e8–6.4e8 N/m³ against the
+/// truth's 2.6e9–3.8e9), the initial slopes rise to make up (3.0e6
+/// against 1.1e6 N/m).
 #[test]
-#[ignore = "issue 46 acceptance on a varied series (seed 7, right side 1.3x): yaw 95.78 %, force 82.27 % hold, the verdict picks linear links (held-out replay fits 75.40 vs 75.32 %); 41 min under load; run with --ignored"]
+#[ignore = "issue 46 acceptance on a varied series (seed 7, right side 1.3x): yaw 95.78 %, force 82.27 %, verdict nonlinear by the held-out forward run (81.27 vs 73.62 %); 125 s in release, 41 min in debug; run with --ignored"]
 fn progressive_side_members_predict_a_varied_series() {
     let args = ["--seed", "7", "--right-stiffness", "1.3"];
     let Some(dir) = series_of("planar-progressive-varied", &args) else {
@@ -360,4 +369,71 @@ fn a_strongly_progressive_car_s_data_want_progressive_links() {
         "{:?}",
         verdict.reasons
     );
+}
+
+/// The series' progressive identification under `setup` (the study's
+/// cases) and the offset test's (yaw, force), printed with `label`.
+fn offset_of(study: &PlanarStudy, setup: &Setup, label: &str) -> (PlanarIdentification, f64, f64) {
+    let result = identified_from(&study.cases, setup, LinkLaw::Progressive);
+    let (yaw, force) = offset_scores(study, &result.car, label);
+    (result, yaw, force)
+}
+
+/// Item 3's check at the truth: the study's search started at the series'
+/// truth in bumpsim's form (truth-progressive.toml: the true masses,
+/// dampers and progressive links; its priors centred there) must not walk
+/// away to a car that predicts the held-out offset test worse than the
+/// acceptance's thresholds.
+#[test]
+#[ignore = "issue 46 item 3, a check at the truth: minutes in release; run with --ignored"]
+fn started_at_the_truth_the_progressive_fit_predicts_the_offset_test() {
+    let Some(dir) = series() else { return };
+    let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
+    let setup = Setup {
+        template: PlanarCar::read(&dir.join("truth-progressive.toml")).unwrap(),
+        ..study.setup.clone()
+    };
+    let (_, yaw, force) = offset_of(&study, &setup, "identified from the truth");
+    assert!(yaw >= 85.0, "held-out offset yaw {yaw:.2} %");
+    assert!(force >= 80.0, "forward offset force {force:.2} %");
+}
+
+/// Item 3, why the cubic terms stay near their start (6.0e8–6.4e8 N/m³
+/// against the truth's 2.6e9–3.8e9): the training tests (8–10 km/h) do not
+/// determine them, their priors (the start within a factor 10 at 2 sd)
+/// hold them. It is not the parameter's scaling (searched in ln k3 like
+/// every other). Measured without the cubic terms' priors (602 s in
+/// release under load 15): the left ones run to their upper bound (6e11,
+/// 1000 times the start), the right ones to their lower (6e5), none
+/// determined; the held-out offset yaw stays 94.38 % (the replay), the
+/// forward force falls to 13.98 % (81.94 % with the priors). The data
+/// objective is 1.28e-3 m² (1.18e-3 with them): no better a fit.
+#[test]
+#[ignore = "issue 46 item 3, the cubic terms without their priors run to their bounds: 602 s in release; run with --ignored"]
+fn without_their_priors_the_cubic_terms_are_not_determined() {
+    let Some(dir) = series() else { return };
+    let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
+    let mut setup = study.setup.clone();
+    setup.priors.extend(
+        ["left", "right"]
+            .iter()
+            .flat_map(|side| (0..2).map(move |j| format!("{side}.cubic[{j}]")))
+            .map(|name| bumpsim_estimate::stated::PriorSetting {
+                name,
+                removed: true,
+                ..Default::default()
+            }),
+    );
+    let (result, _, force) = offset_of(&study, &setup, "identified without cubic priors");
+    let cubic: Vec<_> = result
+        .parameters
+        .iter()
+        .filter(|p| p.name.contains(".cubic["))
+        .collect();
+    assert_eq!(cubic.len(), 4);
+    assert!(
+        cubic.iter().all(|p| p.determined != Some(true)),
+        "{cubic:?}"
+    );
+    assert!(force < 80.0, "forward offset force {force:.2} %");
 }
