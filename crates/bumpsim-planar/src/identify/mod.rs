@@ -59,7 +59,6 @@ mod priors;
 mod reduce;
 mod staged;
 mod unknowns;
-mod verdict;
 
 use crate::car::{Body, PlanarCar, PlanarError, SideChain, parameter};
 use crate::drive::{Drive, Sensor};
@@ -79,10 +78,6 @@ pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
 pub use priors::{MU, PriorSetting, TOTAL_MASS, priors, removing_all};
 pub use unknowns::{LINE_MARGIN, REACH, Unknowns};
-pub use verdict::{
-    Criterion, HELD_OUT_MARGIN, HeldOutScore, INDISTINCT, Judged, LinkVerdict, compare_links,
-    decide,
-};
 
 /// The reduced car, when a chain link is undetermined or not needed.
 pub type Reduction = bumpsim_estimate::reduce::Reduction<PlanarCar>;

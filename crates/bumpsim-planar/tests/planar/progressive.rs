@@ -19,9 +19,9 @@ use bumpsim_planar::car::Layout;
 use bumpsim_planar::cases::TestChannels;
 use bumpsim_planar::forward::forward;
 use bumpsim_planar::identify::{
-    Criterion, LinkLaw, LinkLaws, LinkVerdict, PlanarCase, PlanarIdentification, Setup,
-    compare_links, identify, predict,
+    LinkLaw, LinkLaws, PlanarCase, PlanarIdentification, Setup, identify, predict,
 };
+use bumpsim_planar::link_verdict::{Criterion, LinkVerdict, compare_links};
 use bumpsim_planar::study::PlanarStudy;
 use bumpsim_planar::synth::{self, record};
 use bumpsim_planar::{Face, Side, Striker};
@@ -384,8 +384,15 @@ fn offset_of(study: &PlanarStudy, setup: &Setup, label: &str) -> (PlanarIdentifi
 /// dampers and progressive links; its priors centred there) must not walk
 /// away to a car that predicts the held-out offset test worse than the
 /// acceptance's thresholds.
+///
+/// Measured (202 s in release under load 15): it stays near the truth (the
+/// cubic terms within 0.17 prior sd of it, 2.5e9–4.1e9 N/m³), held-out
+/// offset yaw 95.18 %, forward force 85.71 % (the truth itself: 88.55 %;
+/// from the lab's start: 81.94 %). Its data objective, 1.23e-3 m², is
+/// *higher* than the lab start's optimum (1.18e-3): the training tests do
+/// not prefer the true cubic terms, see the next test.
 #[test]
-#[ignore = "issue 46 item 3, a check at the truth: minutes in release; run with --ignored"]
+#[ignore = "issue 46 item 3, a check at the truth: yaw 95.18 %, force 85.71 %; 202 s in release; run with --ignored"]
 fn started_at_the_truth_the_progressive_fit_predicts_the_offset_test() {
     let Some(dir) = series() else { return };
     let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();

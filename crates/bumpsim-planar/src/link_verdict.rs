@@ -1,6 +1,6 @@
 //! Which links the planar data want (issue 46, item 3): the car with
 //! linear side members or with nonlinear ones (progressive, yielding:
-//! [`super::LinkLaws`]), each identified from the same cases, compared as
+//! [`crate::identify::LinkLaws`]), each identified from the same cases, compared as
 //! the 1-D DOF table compares model orders (`bumpsim_ident::choice`).
 //!
 //! **Held out.** Each of the study's `validate = true` cases is scored by
@@ -12,7 +12,7 @@
 //!   law decides: how hard the car pushes back at a crush the training
 //!   tests did not reach;
 //! - a case without one (or whose forward run fails for either car) is
-//!   **replayed** ([`super::predict`]), scored by the mean of its x and yaw
+//!   **replayed** ([`crate::identify::predict`]), scored by the mean of its x and yaw
 //!   fits. The measured forces drive the replay, so the side members'
 //!   stiffness moves it little: it can tell a wrong mass or yaw inertia,
 //!   hardly a wrong link law.
@@ -42,9 +42,9 @@
 //! The reasons (fits, objectives, parameters, τ, BIC, every held-out case's
 //! scores, the criterion that decided) are printed whatever the verdict.
 
-use super::{PlanarCase, PlanarIdentification, predict};
 use crate::car::{PlanarCar, PlanarError};
 use crate::forward::forward;
+use crate::identify::{PlanarCase, PlanarIdentification, predict};
 use bumpsim_estimate::effective::{Effective, bic};
 
 /// Mean held-out scores closer than this (percentage points of fit) do not
