@@ -13,6 +13,8 @@
 //! - [`document`]: the JSON every front end writes (impact, identification, prediction);
 //! - [`drive`](mod@drive): the car driven by given forces (test replay, FE reference);
 //! - [`identify`](mod@identify): the planar car identified from several load cases;
+//! - [`link_verdict`]: which side-member links the data want, linear or nonlinear
+//!   (held-out forward runs and replays, the BIC);
 //! - [`cases`]: load cases from test channels (conditioning, integration, window);
 //! - [`striker`]: rigid planes at an angle with an overlap, poles, and pendulums
 //!   carrying either face;
@@ -56,6 +58,7 @@ pub mod export;
 pub mod file;
 pub mod forward;
 pub mod identify;
+pub mod link_verdict;
 pub mod picture;
 pub mod presets;
 pub mod result;

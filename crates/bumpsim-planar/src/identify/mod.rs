@@ -59,7 +59,6 @@ mod priors;
 mod reduce;
 mod staged;
 mod unknowns;
-mod verdict;
 
 use crate::car::{Body, PlanarCar, PlanarError, SideChain, parameter};
 use crate::drive::{Drive, Sensor};
@@ -79,7 +78,6 @@ pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
 pub use priors::{MU, PriorSetting, TOTAL_MASS, priors, removing_all};
 pub use unknowns::{LINE_MARGIN, REACH, Unknowns};
-pub use verdict::{LinkVerdict, compare_links};
 
 /// The reduced car, when a chain link is undetermined or not needed.
 pub type Reduction = bumpsim_estimate::reduce::Reduction<PlanarCar>;
@@ -222,6 +220,11 @@ pub struct PlanarIdentification {
     pub fits: Vec<CaseFit>,
     /// The variance inflation `(1 + ρ)/(1 − ρ)` from the residuals' correlation, 1.
     pub inflation: f64,
+    /// The effective number of the data residuals at the optimum, spectral
+    /// (`n/τ`, τ their integrated autocorrelation time,
+    /// [`bumpsim_estimate::effective`]): the link verdict's BIC counts it.
+    #[serde(skip)]
+    pub effective: bumpsim_estimate::effective::Effective,
     /// The layer's uncertainty: intervals, correlations, determination,
     /// the weakest direction.
     pub uncertainty: Uncertainty,
@@ -525,6 +528,11 @@ fn summarise(
     let data: f64 = r[..objective.residual_count()].iter().map(|v| v * v).sum();
     let moved = bumpsim_estimate::prior::moved(priored.priors(), p);
     let series = objective.series();
+    let effective = bumpsim_estimate::effective::of_residuals(
+        &r[..objective.residual_count()],
+        &series,
+        bumpsim_estimate::effective::Method::Spectral,
+    );
     let uncertainty = bumpsim_estimate::uncertainty::uncertainty(&Estimated {
         parameters: &parameters,
         theta: &theta,
@@ -564,6 +572,7 @@ fn summarise(
         run_time: clock.elapsed().as_secs_f64(),
         fits,
         inflation: uncertainty.inflation,
+        effective,
         uncertainty,
         warnings,
         priors: moved,
