@@ -132,8 +132,8 @@ fn compare(objective: &str) {
 
 /// Open (issue 44 item 6): the trust region forms 23 Jacobians here (22
 /// accepted steps) against scipy's 18, to the same optimum (scipy's ends
-/// 1.2e-12 above bumpsim's, both stopped by their relative-decrease and
-/// directional rules; displacement: 39 against 60, objectives equal to
+/// 1.2e-12 above bumpsim's, scipy stopped by its `ftol`, bumpsim by its
+/// directional rule; displacement: 39 against 60, objectives equal to
 /// 1e-13). Both reach 3e-5 above the optimum at their 11th Jacobian;
 /// bumpsim then creeps along a curved valley (steps at the radius, 0.35
 /// and 0.7 scaled, the doubled radius refused each time), where scipy's
