@@ -325,3 +325,59 @@ pub fn lines(choice: &Choice) -> String {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bumpsim_estimate::effective::Method;
+
+    /// A recommendation of 2 DOF (3 parameters) with `undetermined` ones.
+    fn choice(undetermined: &[&str]) -> Choice {
+        let row = Row {
+            dof: 2,
+            parameters: 3,
+            samples: 1000,
+            objective: 1e-6,
+            aic: -100.0,
+            bic: -95.0,
+            p_value: None,
+            cross_validation: None,
+        };
+        Choice {
+            dof: 2,
+            rule: Rule::Bic,
+            indistinct: vec![2],
+            effective: Effective {
+                method: Method::Spectral,
+                samples: 1000,
+                effective: 10.0,
+                time: 100.0,
+                lag_one: 0.99,
+                window: 50,
+                reliable: true,
+            },
+            rows: vec![row],
+            reason: "counted with 10 effective samples".into(),
+            undetermined: undetermined.iter().map(|s| s.to_string()).collect(),
+        }
+    }
+
+    /// Issue 44: a recommended model never has undetermined parameters
+    /// without saying so, and says so plainly when none is determined.
+    #[test]
+    fn the_recommendation_names_what_the_data_do_not_determine() {
+        let text = lines(&choice(&[]));
+        assert!(text.contains("recommended: 2 DOF"), "{text}");
+        assert!(!text.contains("determine"), "{text}");
+        let text = lines(&choice(&["k1"]));
+        assert!(
+            text.contains("but the data do not determine its k1"),
+            "{text}"
+        );
+        let text = lines(&choice(&["m1", "c1", "k1"]));
+        assert!(
+            text.contains("but the data determine none of its parameters (m1, c1, k1;"),
+            "{text}"
+        );
+    }
+}

@@ -185,8 +185,9 @@ impl Posterior {
         let columns = self.core().names.len();
         cached2(py, &self.samples, &self.core().draws, columns)
     }
-    /// The posterior's lines of the summary: each parameter's mean and 90 %
-    /// interval next to its local 95 % interval, the diagnostics, warnings.
+    /// The posterior's lines of the summary: each parameter's median and
+    /// 90 % and 95 % intervals next to its local 95 % interval, the
+    /// diagnostics, warnings (the mean is in `mean` and the JSON).
     fn to_text(&self) -> String {
         lines(self.core(), &self.data.result)
     }
