@@ -7,7 +7,8 @@
 //! ([`bumpsim_estimate::fit`]: `100 (1 − √(SSE/SST))`) and by the ISO/TS
 //! 18571 rating ([`bumpsim_signal::rating`]) over the case's window.
 
-use super::{PlanarCase, check_case, spacing};
+use super::PlanarCase;
+use super::check::{check_case, spacing};
 use crate::car::{PlanarCar, PlanarError};
 use crate::drive::drive;
 use bumpsim_estimate::band::PredictiveBand;

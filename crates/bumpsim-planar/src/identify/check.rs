@@ -1,0 +1,147 @@
+//! The identification's input checks, before any simulation: the setup's
+//! counts and factors, each case's sensors, weights, measured
+//! displacements (finite, as many samples as the forces) and window, the
+//! drive against the start car, and a positive start for every parameter
+//! estimated on a log scale (bad input gets a clear error naming the case
+//! and the parameter).
+
+use super::{MAX_STARTS, PlanarCase, Setup, Unknowns};
+use crate::car::{PlanarError, parameter};
+use crate::drive::Sensor;
+
+/// The unknowns of `cases` under `setup`, or the first input error.
+pub(super) fn check(cases: &[PlanarCase], setup: &Setup) -> Result<Unknowns, PlanarError> {
+    let setting =
+        |name: &str, value: f64, unit, expected: &str| Err(parameter(name, value, unit, expected));
+    if cases.is_empty() {
+        return setting("cases", 0.0, "1", "at least one load case");
+    }
+    if setup.starts == 0 || setup.starts > MAX_STARTS {
+        return setting(
+            "starts",
+            setup.starts as f64,
+            "1",
+            &format!("1 to {MAX_STARTS}"),
+        );
+    }
+    if !(setup.spread.is_finite() && setup.spread > 1.0) {
+        return setting("spread", setup.spread, "1", "a finite factor above 1");
+    }
+    if let Some(m) = setup.mass.filter(|m| !(m.is_finite() && *m > 0.0)) {
+        return setting("mass", m, "kg", "the test sheet's mass must be positive");
+    }
+    for case in cases {
+        check_case(case)?;
+        crate::drive::validate(&setup.template, &case.drive).map_err(|e| PlanarError::Case {
+            case: case.name.clone(),
+            message: e.to_string(),
+        })?;
+    }
+    let unknowns = Unknowns::new(&setup.template, setup.friction, setup.cornering, cases)
+        .with_relaxation(setup.relaxation);
+    let relaxes = unknowns
+        .names()
+        .iter()
+        .any(|(n, _)| n == "tyres.relaxation_length");
+    if setup.relaxation && !relaxes {
+        return Err(PlanarError::Missing {
+            name: "relaxation".into(),
+            expected: "a start car whose tyres roll with a relaxation length (law \"rolling\", relaxation_length > 0 on both axles) to estimate it from".into(),
+        });
+    }
+    let car_parameters =
+        unknowns.names().len() - cases.iter().map(|c| c.estimated.len()).sum::<usize>();
+    let start = unknowns.start();
+    for ((name, unit), value) in unknowns.names().iter().zip(&start).take(car_parameters) {
+        if !(value.is_finite() && *value > 0.0) {
+            return setting(
+                name,
+                *value,
+                unit,
+                "the start must be positive to be estimated (on a log scale)",
+            );
+        }
+    }
+    Ok(unknowns)
+}
+
+/// Lateral spacing η_L − η_R of the first two sensors when both are x
+/// accelerometers on the body, m; NaN otherwise.
+pub(super) fn spacing(case: &PlanarCase) -> f64 {
+    match case.drive.sensors.as_slice() {
+        [Sensor::Body(left), Sensor::Body(right), ..] => left[1] - right[1],
+        _ => f64::NAN,
+    }
+}
+
+/// The first error in one case's sensors, weights, measured signals or window.
+pub(super) fn check_case(case: &PlanarCase) -> Result<(), PlanarError> {
+    let name = |what: &str| format!("case '{}': {what}", case.name);
+    let samples = case.drive.loads.first().map_or(0, |l| l.force.len());
+    let spacing = spacing(case);
+    if !(spacing.is_finite() && spacing > 0.0) {
+        return Err(parameter(
+            &name("sensors"),
+            spacing,
+            "m",
+            "the first two sensors x accelerometers on the body, left (larger η) then right",
+        ));
+    }
+    if !case.weights.is_empty() && case.weights.len() != case.drive.sensors.len() {
+        return Err(parameter(
+            &name("weights"),
+            case.weights.len() as f64,
+            "1",
+            &format!("one per sensor ({})", case.drive.sensors.len()),
+        ));
+    }
+    if let Some(k) = case
+        .weights
+        .iter()
+        .position(|w| !(w.is_finite() && *w > 0.0))
+    {
+        return Err(parameter(
+            &name(&format!("sensor[{k}] weight")),
+            case.weights[k],
+            "1",
+            "must be finite and positive",
+        ));
+    }
+    if case.measured.len() != case.drive.sensors.len() {
+        let n = case.measured.len() as f64;
+        return Err(parameter(
+            &name("measured"),
+            n,
+            "signals",
+            &format!("one per sensor ({})", case.drive.sensors.len()),
+        ));
+    }
+    for (s, m) in case.measured.iter().enumerate() {
+        if m.len() != samples {
+            return Err(parameter(
+                &name(&format!("sensor[{s}] displacement")),
+                m.len() as f64,
+                "samples",
+                &format!("as many samples as the forces ({samples})"),
+            ));
+        }
+        if let Some(k) = m.iter().position(|v| !v.is_finite()) {
+            return Err(parameter(
+                &name(&format!("sensor[{s}] displacement[{k}]")),
+                m[k],
+                "m",
+                "must be finite",
+            ));
+        }
+    }
+    let (a, b) = case.window;
+    if !(a < b && b < samples) {
+        return Err(parameter(
+            &name("window end"),
+            b as f64,
+            "sample",
+            &format!("a window of at least two samples within 0..{samples}"),
+        ));
+    }
+    Ok(())
+}
