@@ -287,7 +287,11 @@ fn dual_numbers_give_the_chain_s_derivatives_through_its_history() {
         frame: Frame::Rearward,
     };
     let run = chain.run(&drive).unwrap();
-    assert!(run.plastic_set.iter().all(|s| *s > 1e-3), "{:?}", run.plastic_set);
+    assert!(
+        run.plastic_set.iter().all(|s| *s > 1e-3),
+        "{:?}",
+        run.plastic_set
+    );
     let motion = chain.motion(&drive, &chain.values::<f64>()).unwrap();
     assert_eq!(motion.displacement, run.displacement);
     assert_eq!(motion.force, run.force);

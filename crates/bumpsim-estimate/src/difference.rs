@@ -50,13 +50,8 @@ pub fn forward_jacobian(
             let mut shifted = p.to_vec();
             shifted[j] += step;
             let mut column = vec![0.0; r.len()];
-            residuals(&shifted, &mut column).then(|| {
-                column
-                    .iter()
-                    .zip(r)
-                    .map(|(a, b)| (a - b) / step)
-                    .collect()
-            })
+            residuals(&shifted, &mut column)
+                .then(|| column.iter().zip(r).map(|(a, b)| (a - b) / step).collect())
         })
         .collect();
     for (j, column) in columns.into_iter().enumerate() {
