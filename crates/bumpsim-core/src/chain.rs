@@ -47,6 +47,17 @@
 //! force is then the sum of both links' forces; the path's energies join
 //! the balance as the front link's do.
 //!
+//! **Exact sensitivities.** The mechanism is written once over
+//! [`Real`] (`chain_mover.rs`): [`Chain::motion`] runs it on
+//! [`crate::dual::Dual`] numbers seeded in [`ChainValues`], so the
+//! displacements and the force on m1 carry their exact derivatives by
+//! those values — the forward sensitivity equations of the leapfrog
+//! (Griewank & Walther 2008, ch. 3), through the links' history: δ_max
+//! carries its derivative, and at every step the branch taken (loading,
+//! unloading, the wall in contact or not) is the one differentiated. The
+//! integration step, a piecewise constant function of the steepest slopes,
+//! is held at the chain's own.
+//!
 //! ```
 //! use bumpsim_core::chain::{Chain, Drive};
 //! use bumpsim_core::link::{Curve, Link, Unloading};
@@ -393,7 +404,7 @@ impl Chain {
     pub fn run(&self, drive: &Drive<'_>) -> Result<ChainResponse, ChainError> {
         let values = self.values::<f64>();
         match self.integrate(drive, &values, true)? {
-            Out::Full(response) => Ok(response),
+            Out::Full(response) => Ok(*response),
             Out::Motion(_) => unreachable!("a full run records in full"),
         }
     }
@@ -415,7 +426,7 @@ impl Chain {
     /// `values` (of the chain's shape, [`Chain::values`]), on any
     /// [`Real`]: on dual numbers, the exact derivatives of the discrete
     /// motion (displacements and the force on m1) by the seeded values,
-    /// through the links' history ([`chain_mover`](self#)). The step is
+    /// through the links' history. The step is
     /// the chain's own ([`Chain::run`]'s), so on `f64` with
     /// [`Chain::values`] it gives [`Chain::run`]'s displacements and force.
     pub fn motion<T: Real>(

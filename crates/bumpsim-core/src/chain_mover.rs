@@ -45,7 +45,7 @@ pub struct Motion<T> {
 /// What a run records.
 pub(super) enum Out<T> {
     /// Every history and the energy balance ([`ChainResponse`], values).
-    Full(ChainResponse),
+    Full(Box<ChainResponse>),
     /// Displacements and the force on m1, on `T`.
     Motion(Motion<T>),
 }
@@ -60,7 +60,7 @@ impl<T> Out<T> {
             });
         }
         let l = n - 1;
-        Out::Full(ChainResponse {
+        Out::Full(Box::new(ChainResponse {
             step: 0.0,
             force: Vec::with_capacity(samples),
             displacement: series(n, samples),
@@ -73,7 +73,7 @@ impl<T> Out<T> {
             work: Vec::with_capacity(samples),
             plastic_set: vec![],
             reached: vec![],
-        })
+        }))
     }
 }
 

@@ -186,7 +186,7 @@ mod tests {
         let p: Vec<f64> = truth
             .iter()
             .zip([1.1, 0.95, 1.3, 0.9, 1.08, 1.2, 0.85])
-            .map(|(t, f)| (t * f as f64).ln())
+            .map(|(t, f)| (t * f).ln())
             .collect();
         let rows = objective.residual_count();
         let (mut r, mut j) = (vec![0.0; rows], DMatrix::zeros(rows, 7));
