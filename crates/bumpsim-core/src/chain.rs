@@ -47,6 +47,17 @@
 //! force is then the sum of both links' forces; the path's energies join
 //! the balance as the front link's do.
 //!
+//! **Exact sensitivities.** The mechanism is written once over
+//! [`Real`] (`chain_mover.rs`): [`Chain::motion`] runs it on
+//! [`crate::dual::Dual`] numbers seeded in [`ChainValues`], so the
+//! displacements and the force on m1 carry their exact derivatives by
+//! those values — the forward sensitivity equations of the leapfrog
+//! (Griewank & Walther 2008, ch. 3), through the links' history: δ_max
+//! carries its derivative, and at every step the branch taken (loading,
+//! unloading, the wall in contact or not) is the one differentiated. The
+//! integration step, a piecewise constant function of the steepest slopes,
+//! is held at the chain's own.
+//!
 //! ```
 //! use bumpsim_core::chain::{Chain, Drive};
 //! use bumpsim_core::link::{Curve, Link, Unloading};
@@ -59,9 +70,15 @@
 //! assert!((r.max_deformation(0) - crush).abs() < 0.02 * crush);
 //! ```
 
-use crate::leapfrog::{Leapfrog, Mechanism, Stepped, critical_step, stable_step, substeps};
-use crate::link::{Link, LinkState};
+use crate::dual::Real;
+use crate::leapfrog::{Leapfrog, critical_step, stable_step, substeps};
+use crate::link::Link;
 use crate::model::{MAX_DOF, ModelError};
+pub use mover::{ChainValues, Motion};
+use mover::{Driven, Mover, Out};
+
+#[path = "chain_mover.rs"]
+mod mover;
 
 /// A validated chain of masses joined by nonlinear links and dampers.
 #[derive(Debug, Clone, PartialEq)]
@@ -385,6 +402,73 @@ impl Chain {
 
     /// Runs the chain under `drive`.
     pub fn run(&self, drive: &Drive<'_>) -> Result<ChainResponse, ChainError> {
+        let values = self.values::<f64>();
+        match self.integrate(drive, &values, true)? {
+            Out::Full(response) => Ok(*response),
+            Out::Motion(_) => unreachable!("a full run records in full"),
+        }
+    }
+
+    /// The chain's values on any [`Real`], every one a constant: seed the
+    /// ones [`Chain::motion`] should differentiate by.
+    pub fn values<T: Real>(&self) -> ChainValues<T> {
+        let c = |v: &f64| T::constant(*v);
+        ChainValues {
+            masses: self.masses.iter().map(c).collect(),
+            dampers: self.dampers.iter().map(c).collect(),
+            links: self.links.iter().map(Link::real).collect(),
+            front: self.front.as_ref().map(Link::real),
+            path: self.path.as_ref().map(|p| p.link.real()),
+        }
+    }
+
+    /// The motion under `drive` with the chain's values replaced by
+    /// `values` (of the chain's shape, [`Chain::values`]), on any
+    /// [`Real`]: on dual numbers, the exact derivatives of the discrete
+    /// motion (displacements and the force on m1) by the seeded values,
+    /// through the links' history. The step is
+    /// the chain's own ([`Chain::run`]'s), so on `f64` with
+    /// [`Chain::values`] it gives [`Chain::run`]'s displacements and force.
+    pub fn motion<T: Real>(
+        &self,
+        drive: &Drive<'_>,
+        values: &ChainValues<T>,
+    ) -> Result<Motion<T>, ChainError> {
+        let shape = |kind: &'static str, expected: usize, count: usize| match expected == count {
+            true => Ok(()),
+            false => Err(ModelError::Count {
+                kind,
+                dof: self.dof(),
+                expected,
+                count,
+            }),
+        };
+        shape("masses", self.dof(), values.masses.len())?;
+        shape("dampers", self.dof() - 1, values.dampers.len())?;
+        shape("links", self.dof() - 1, values.links.len())?;
+        shape(
+            "front links",
+            self.front.iter().count(),
+            values.front.iter().count(),
+        )?;
+        shape(
+            "path links",
+            self.path.iter().count(),
+            values.path.iter().count(),
+        )?;
+        match self.integrate(drive, values, false)? {
+            Out::Motion(motion) => Ok(motion),
+            Out::Full(_) => unreachable!("a motion run records the motion"),
+        }
+    }
+
+    /// The one integration of [`Chain::run`] and [`Chain::motion`].
+    fn integrate<T: Real>(
+        &self,
+        drive: &Drive<'_>,
+        values: &ChainValues<T>,
+        full: bool,
+    ) -> Result<Out<T>, ChainError> {
         let (interval, samples, speed, wall, frame) = match *drive {
             Drive::Force {
                 force,
@@ -429,13 +513,21 @@ impl Chain {
             Drive::Force { force, .. } => force,
             Drive::Barrier { .. } => &[][..],
         };
-        let mut m = Mover::new(self, force, every, wall, samples, frame.sign());
-        let mut state = Leapfrog::start(&mut m, vec![0.0; n], vec![speed; n], h);
+        let driven = Driven {
+            force,
+            every,
+            wall,
+            sign: frame.sign(),
+        };
+        let out = Out::new(full, n, samples);
+        let mut m = Mover::new(self, values, driven, out);
+        let (zero, speed) = (T::constant(0.0), T::constant(speed));
+        let mut state = Leapfrog::start(&mut m, vec![zero; n], vec![speed; n], h);
         let last = (samples - 1) * every;
         state
             .run(&mut m, every, last)
             .map_err(|sample| ChainError::Diverged { sample })?;
-        Ok(m.finish(self, interval))
+        Ok(m.finish(interval))
     }
 }
 
@@ -453,201 +545,6 @@ fn check(
         value,
         expected,
     })
-}
-
-/// The mechanism of one run: forces, histories and records.
-struct Mover<'a> {
-    chain: &'a Chain,
-    force: &'a [f64],
-    every: usize,
-    wall: Option<(f64, f64)>,
-    sign: f64,
-    front: LinkState,
-    front_force: f64,
-    path: LinkState,
-    path_force: f64,
-    states: Vec<LinkState>,
-    springs: Vec<f64>,
-    applied: usize,
-    viscous: f64,
-    work: f64,
-    out: ChainResponse,
-}
-
-impl<'a> Mover<'a> {
-    fn new(
-        chain: &'a Chain,
-        force: &'a [f64],
-        every: usize,
-        wall: Option<(f64, f64)>,
-        samples: usize,
-        sign: f64,
-    ) -> Mover<'a> {
-        let (n, l) = (chain.dof(), chain.dof() - 1);
-        let series = |count: usize| vec![Vec::with_capacity(samples); count];
-        let mut m = Mover {
-            chain,
-            force,
-            every,
-            wall,
-            sign,
-            front: LinkState::default(),
-            front_force: 0.0,
-            path: LinkState::default(),
-            path_force: 0.0,
-            states: vec![LinkState::default(); l],
-            springs: vec![0.0; l],
-            applied: 0,
-            viscous: 0.0,
-            work: 0.0,
-            out: ChainResponse {
-                step: 0.0,
-                force: Vec::with_capacity(samples),
-                displacement: series(n),
-                velocity: series(n),
-                link_force: series(l),
-                kinetic: Vec::with_capacity(samples),
-                stored: Vec::with_capacity(samples),
-                viscous: Vec::with_capacity(samples),
-                plastic: Vec::with_capacity(samples),
-                work: Vec::with_capacity(samples),
-                plastic_set: vec![],
-                reached: vec![],
-            },
-        };
-        m.moved(&vec![0.0; n], &vec![0.0; n], usize::MAX);
-        m
-    }
-
-    /// The force on m1 at integration step `k` (foh between samples), or
-    /// the wall's at position `x1` and velocity `v1`.
-    fn external(&self, k: usize, x1: f64, v1: f64) -> f64 {
-        if self.wall.is_some() && self.chain.front.is_some() {
-            return -self.front_force;
-        }
-        if let Some((kw, cw)) = self.wall {
-            return if x1 > 0.0 {
-                -(kw * x1 + cw * v1).max(0.0)
-            } else {
-                0.0
-            };
-        }
-        let sample = k / self.every;
-        let frac = (k % self.every) as f64 / self.every as f64;
-        match (self.force.get(sample), self.force.get(sample + 1)) {
-            (Some(a), Some(b)) => a + (b - a) * frac,
-            (Some(a), None) => *a,
-            _ => 0.0,
-        }
-    }
-
-    fn finish(mut self, chain: &Chain, interval: f64) -> ChainResponse {
-        self.out.step = interval;
-        self.out.plastic_set = self
-            .states
-            .iter()
-            .zip(&chain.links)
-            .map(|(s, l)| s.plastic_set(l))
-            .collect();
-        self.out.reached = self.states.iter().map(|s| s.reached).collect();
-        self.out
-    }
-}
-
-impl Mechanism for Mover<'_> {
-    type Error = usize;
-
-    fn moved(&mut self, q: &[f64], _v: &[f64], k: usize) {
-        for (j, link) in self.chain.links.iter().enumerate() {
-            let crush = self.sign * (q[j] - q[j + 1]);
-            self.springs[j] = self.sign * link.force(crush, &mut self.states[j]);
-        }
-        if let (Some(front), Some(_)) = (&self.chain.front, self.wall) {
-            self.front_force = front.force(q[0], &mut self.front).max(0.0);
-        }
-        if let (Some(path), Some(_)) = (&self.chain.path, self.wall) {
-            let crush = q[path.mass] - path.gap;
-            self.path_force = path.link.force(crush, &mut self.path).max(0.0);
-        }
-        self.applied = k.wrapping_add(1);
-    }
-
-    fn accelerations(&mut self, q: &[f64], v: &[f64], a: &mut [f64]) {
-        let k = self.applied;
-        let f = self.external(k, q[0], v[0]);
-        let c = &self.chain.dampers;
-        for (i, ai) in a.iter_mut().enumerate() {
-            let mut sum = if i == 0 { f } else { 0.0 };
-            if i + 1 < q.len() {
-                sum -= self.springs[i] + c[i] * (v[i] - v[i + 1]);
-            }
-            if i > 0 {
-                sum += self.springs[i - 1] + c[i - 1] * (v[i - 1] - v[i]);
-            }
-            if self.chain.path.as_ref().is_some_and(|p| p.mass == i) {
-                sum -= self.path_force;
-            }
-            *ai = sum / self.chain.masses[i];
-        }
-    }
-
-    fn stepped(&mut self, s: &Stepped<'_>) {
-        let c = &self.chain.dampers;
-        let k = if s.half { 0 } else { self.applied };
-        let f = self.external(k, s.q[0], s.before[0]);
-        if self.chain.front.is_none() || self.wall.is_none() {
-            self.work += s.length * f * s.mean[0];
-        }
-        for (j, cj) in c.iter().enumerate() {
-            let rate = s.before[j] - s.before[j + 1];
-            self.viscous += s.length * cj * rate * (s.mean[j] - s.mean[j + 1]);
-        }
-    }
-
-    fn record(&mut self, k: usize, state: &Leapfrog) -> Result<crate::leapfrog::Control, usize> {
-        let (q, v) = (state.q(), state.velocities());
-        if q.iter().chain(v).any(|x| !x.is_finite()) {
-            return Err(k / self.every);
-        }
-        let wall = self.external(k, q[0], v[0]) - self.path_force;
-        let o = &mut self.out;
-        o.force.push(wall);
-        for (i, (x, w)) in q.iter().zip(v).enumerate() {
-            o.displacement[i].push(*x);
-            o.velocity[i].push(*w);
-        }
-        let (mut stored, mut plastic) = (0.0, 0.0);
-        for (j, link) in self.chain.links.iter().enumerate() {
-            o.link_force[j].push(self.sign * self.springs[j]);
-            stored += link.stored(self.sign * (q[j] - q[j + 1]), &self.states[j]);
-            plastic += self.states[j].dissipated(link);
-        }
-        if let (Some(front), Some(_)) = (&self.chain.front, self.wall) {
-            if self.front_force > 0.0 {
-                stored += front.stored(q[0], &self.front);
-            }
-            plastic += self.front.dissipated(front);
-        }
-        if let (Some(path), Some(_)) = (&self.chain.path, self.wall) {
-            if self.path_force > 0.0 {
-                stored += path.link.stored(q[path.mass] - path.gap, &self.path);
-            }
-            plastic += self.path.dissipated(&path.link);
-        }
-        o.kinetic.push(
-            self.chain
-                .masses
-                .iter()
-                .zip(v)
-                .map(|(m, w)| 0.5 * m * w * w)
-                .sum(),
-        );
-        o.stored.push(stored);
-        o.plastic.push(plastic);
-        o.viscous.push(self.viscous);
-        o.work.push(self.work);
-        Ok(crate::leapfrog::Control::Continue)
-    }
 }
 
 #[cfg(test)]

@@ -34,6 +34,13 @@
 //! every recorded step, and [`Mechanism::finished`] to end early. Nothing
 //! here allocates after [`Leapfrog::start`].
 //!
+//! The state is written over any [`Real`] (`f64` by default): on
+//! [`crate::dual::Dual`] numbers the same steps carry the exact derivatives
+//! of the discrete motion with respect to whatever the mechanism seeded
+//! (the step `T` stays a plain number). Every product is written
+//! `value · T`, the `f64` one's operands as before (a product commutes
+//! bit for bit), so an `f64` run is what it was.
+//!
 //! ```
 //! use bumpsim_core::leapfrog::{Control, Leapfrog, Mechanism, critical_step, stable_step};
 //! /// An undamped oscillator m x'' = −k x.
@@ -57,6 +64,8 @@
 //! assert!(spring.x.iter().all(|x| x.abs() <= 0.5 * (1.0 + 1e-3)));
 //! ```
 
+use crate::dual::Real;
+
 /// What a mechanism says at a recorded step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Control {
@@ -68,7 +77,7 @@ pub enum Control {
 
 /// One completed step (or the first half step) as the hooks see it.
 #[derive(Debug, Clone, Copy)]
-pub struct Stepped<'a> {
+pub struct Stepped<'a, T = f64> {
     /// Index of the step just completed: it moved from `k` to `k + 1`
     /// (0 for the first half step).
     pub k: usize,
@@ -77,46 +86,46 @@ pub struct Stepped<'a> {
     /// Whether it is the first half step.
     pub half: bool,
     /// Positions at its end.
-    pub q: &'a [f64],
+    pub q: &'a [T],
     /// Velocities the forces were taken from (`v_{n−½}`; `v_0` for the half step).
-    pub before: &'a [f64],
+    pub before: &'a [T],
     /// Velocities after it (`v_{n+½}`).
-    pub after: &'a [f64],
+    pub after: &'a [T],
     /// Their mean, the full-step velocity of the leapfrog's kinetic-energy
     /// identity: a force from `before` does the work `T F · mean`.
-    pub mean: &'a [f64],
+    pub mean: &'a [T],
     /// The accelerations used.
-    pub a: &'a [f64],
+    pub a: &'a [T],
 }
 
-/// The physics of a system integrated by [`Leapfrog`].
-pub trait Mechanism {
+/// The physics of a system integrated by [`Leapfrog`], on the numbers `T`.
+pub trait Mechanism<T: Real = f64> {
     /// The error a record may end the integration with.
     type Error;
 
     /// Writes the generalised accelerations at positions `q` and the
     /// half-step velocities `v` (dissipative forces from `v`) into `a`,
     /// which holds the previous accelerations on entry (zeros at the start).
-    fn accelerations(&mut self, q: &[f64], v: &[f64], a: &mut [f64]);
+    fn accelerations(&mut self, q: &[T], v: &[T], a: &mut [T]);
 
     /// The positions moved to `q` in step `k` (from `k` to `k + 1`) at the
     /// half-step velocities `v` (`v_{k+½}`), before the accelerations there:
     /// contacts, history-dependent forces and any state that follows the
     /// motion (a tyre's patch).
-    fn moved(&mut self, _q: &[f64], _v: &[f64], _k: usize) {}
+    fn moved(&mut self, _q: &[T], _v: &[T], _k: usize) {}
 
     /// A step (or the first half step) is complete: running sums of work
     /// and impulse.
-    fn stepped(&mut self, _step: &Stepped<'_>) {}
+    fn stepped(&mut self, _step: &Stepped<'_, T>) {}
 
     /// Step `k` is recorded (every `every` steps of [`Leapfrog::run`]).
-    fn record(&mut self, _k: usize, _state: &Leapfrog) -> Result<Control, Self::Error> {
+    fn record(&mut self, _k: usize, _state: &Leapfrog<T>) -> Result<Control, Self::Error> {
         Ok(Control::Continue)
     }
 
     /// Whether the integration ends at step `k` (checked every step, after
     /// any record).
-    fn finished(&self, _k: usize, _state: &Leapfrog) -> bool {
+    fn finished(&self, _k: usize, _state: &Leapfrog<T>) -> bool {
         false
     }
 }
@@ -124,31 +133,32 @@ pub trait Mechanism {
 /// The integration state: positions, half-step, full-step and previous
 /// half-step velocities, accelerations; every buffer allocated once.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Leapfrog {
-    q: Vec<f64>,
-    v_half: Vec<f64>,
-    v_now: Vec<f64>,
-    previous: Vec<f64>,
-    a: Vec<f64>,
+pub struct Leapfrog<T = f64> {
+    q: Vec<T>,
+    v_half: Vec<T>,
+    v_now: Vec<T>,
+    previous: Vec<T>,
+    a: Vec<T>,
     step: f64,
 }
 
-impl Leapfrog {
+impl<T: Real> Leapfrog<T> {
     /// The state after the first half step from positions `q` and
     /// velocities `v` (of the same length) with step `step`, s. The
     /// mechanism is already prepared at `q` (its contacts evaluated there):
     /// [`Mechanism::moved`] is called from the first step on.
-    pub fn start<M: Mechanism + ?Sized>(
+    pub fn start<M: Mechanism<T> + ?Sized>(
         mechanism: &mut M,
-        q: Vec<f64>,
-        v: Vec<f64>,
+        q: Vec<T>,
+        v: Vec<T>,
         step: f64,
-    ) -> Leapfrog {
+    ) -> Leapfrog<T> {
         let n = q.len();
+        let zero = T::constant(0.0);
         let mut state = Leapfrog {
             v_now: v.clone(),
-            previous: vec![0.0; n],
-            a: vec![0.0; n],
+            previous: vec![zero; n],
+            a: vec![zero; n],
             v_half: v,
             q,
             step,
@@ -162,8 +172,8 @@ impl Leapfrog {
             .zip(&state.a)
         {
             let before = *h;
-            *h += half * a;
-            *p = 0.5 * (before + *h);
+            *h += *a * half;
+            *p = (before + *h) * 0.5;
         }
         mechanism.stepped(&Stepped {
             k: 0,
@@ -179,23 +189,23 @@ impl Leapfrog {
     }
 
     /// One step from step `k` to `k + 1`.
-    pub fn advance<M: Mechanism + ?Sized>(&mut self, mechanism: &mut M, k: usize) {
+    pub fn advance<M: Mechanism<T> + ?Sized>(&mut self, mechanism: &mut M, k: usize) {
         let t = self.step;
         self.q
             .iter_mut()
             .zip(&self.v_half)
-            .for_each(|(x, v)| *x += t * v);
+            .for_each(|(x, v)| *x += *v * t);
         mechanism.moved(&self.q, &self.v_half, k);
         self.previous.copy_from_slice(&self.v_half);
         mechanism.accelerations(&self.q, &self.v_half, &mut self.a);
         self.v_half
             .iter_mut()
             .zip(&self.a)
-            .for_each(|(v, a)| *v += t * a);
+            .for_each(|(v, a)| *v += *a * t);
         self.v_now
             .iter_mut()
             .zip(self.previous.iter().zip(&self.v_half))
-            .for_each(|(w, (p, h))| *w = 0.5 * (p + h));
+            .for_each(|(w, (p, h))| *w = (*p + *h) * 0.5);
         mechanism.stepped(&Stepped {
             k,
             length: t,
@@ -211,7 +221,7 @@ impl Leapfrog {
     /// Steps `k = 0 ..= last`: records every `every` steps (from step 0),
     /// ends when a record says [`Control::Stop`] or the mechanism is
     /// [`Mechanism::finished`], and otherwise advances (also after the last).
-    pub fn run<M: Mechanism + ?Sized>(
+    pub fn run<M: Mechanism<T> + ?Sized>(
         &mut self,
         mechanism: &mut M,
         every: usize,
@@ -231,22 +241,22 @@ impl Leapfrog {
     }
 
     /// Positions.
-    pub fn q(&self) -> &[f64] {
+    pub fn q(&self) -> &[T] {
         &self.q
     }
 
     /// Full-step velocities `v_n` (the start velocities before the first step).
-    pub fn velocities(&self) -> &[f64] {
+    pub fn velocities(&self) -> &[T] {
         &self.v_now
     }
 
     /// Half-step velocities `v_{n+½}`.
-    pub fn half_step_velocities(&self) -> &[f64] {
+    pub fn half_step_velocities(&self) -> &[T] {
         &self.v_half
     }
 
     /// The last accelerations.
-    pub fn accelerations(&self) -> &[f64] {
+    pub fn accelerations(&self) -> &[T] {
         &self.a
     }
 

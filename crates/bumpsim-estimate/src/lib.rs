@@ -37,6 +37,8 @@
 //!   model's default priors (the 1-D and planar studies');
 //! - [`walk`]: the covariance when each residual series is a random walk
 //!   (integrated noise; issue 44);
+//! - [`difference`]: the one forward-difference Jacobian, for residuals
+//!   without exact sensitivities;
 //! - [`binomial`]: exact bounds of a probability from its draws, one-sided
 //!   when none fails (issue 45).
 //!
@@ -84,6 +86,7 @@
 pub mod band;
 pub mod binomial;
 pub mod bounds;
+pub mod difference;
 pub mod document;
 pub mod domain;
 pub mod effective;

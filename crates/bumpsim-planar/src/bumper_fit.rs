@@ -26,9 +26,10 @@
 //! (max|F_meas| √n_c)`, the simulated and measured force magnitudes
 //! aligned at their onsets as [`crate::forward::forward()`] aligns them, so each test
 //! weighs alike whatever its force. The bounded Levenberg–Marquardt of
-//! [`bumpsim_estimate::lm`] minimises them with a forward-difference Jacobian
-//! (step 1e-3 in the log parameters and in `c`). Bounds: `a` and `λ` within
-//! 1/3 to 3 of the start, `u` from 1 to 20.
+//! [`bumpsim_estimate::lm`] minimises them with the forward-difference
+//! Jacobian of [`bumpsim_estimate::difference`] (step 1e-3 in the log
+//! parameters and in `c`). Bounds: `a` and `λ` within 1/3 to 3 of the
+//! start, `u` from 1 to 20.
 //!
 //! Without the rate term the bumper is rate-independent (paper A's
 //! characteristic, [`bumpsim_impact::bumper`]): a contact whose force grows
@@ -40,6 +41,7 @@ use crate::forward::forward;
 use crate::identify::{
     BumperFit, PlanarCase, PlanarIdentification, Setup, identify, transformed, unloading_ratio,
 };
+use bumpsim_estimate::difference::forward_jacobian;
 use bumpsim_estimate::lm::{LeastSquares, Settings, minimise};
 use bumpsim_estimate::observer::Observer;
 use nalgebra::DMatrix;
@@ -141,19 +143,17 @@ impl LeastSquares for Problem<'_> {
             return false;
         };
         residuals.copy_from_slice(&r);
-        if let Some(j) = jacobian {
-            for i in 0..self.parameters {
-                let mut q = p.to_vec();
-                q[i] += STEP;
-                let Some(moved) = self.residuals(&q) else {
-                    return false;
-                };
-                for (k, (m, r0)) in moved.iter().zip(&r).enumerate() {
-                    j[(k, i)] = (m - r0) / STEP;
-                }
+        let Some(j) = jacobian else {
+            return true;
+        };
+        let shifted = |q: &[f64], out: &mut [f64]| match self.residuals(q) {
+            Some(moved) => {
+                out.copy_from_slice(&moved);
+                true
             }
-        }
-        true
+            None => false,
+        };
+        forward_jacobian(p, &r, STEP, &shifted, j)
     }
 }
 

@@ -1,16 +1,23 @@
 //! The objective of a chain with yielding links: the same residuals as the
 //! linear chain's (`case`), the output simulated by
-//! [`bumpsim_core::chain::Chain`] with its history, and a Jacobian by
-//! forward differences in the log parameters (the history makes the output
-//! piecewise smooth: a difference step of [`DIFFERENCE`] spans the kinks a
+//! [`bumpsim_core::chain::Chain`] with its history, and their exact
+//! Jacobian in the log parameters by dual numbers through that history
+//! ([`jacobian`]). [`LogParameters`] also serves the barrier objective
+//! ([`super::barrier`]), whose Jacobian is still by forward differences
+//! ([`bumpsim_estimate::difference`], step [`DIFFERENCE`]: the history
+//! makes the output piecewise smooth, and the step spans the kinks a
 //! sample interval makes).
 
 use super::{Layout, LinkIdentError};
 use crate::case::LoadCase;
 use bumpsim_core::chain::{Chain, Drive, Frame};
+use bumpsim_estimate::difference::forward_jacobian;
 use bumpsim_estimate::lm::LeastSquares;
 use nalgebra::DMatrix;
 use std::sync::Mutex;
+
+#[path = "jacobian.rs"]
+pub mod jacobian;
 
 /// Forward-difference step in a log parameter.
 pub const DIFFERENCE: f64 = 1e-6;
@@ -99,8 +106,8 @@ pub(crate) struct LogParameters {
     /// The fixed SI values (free entries: 1, overwritten).
     fixed: Vec<f64>,
     free: Vec<usize>,
-    /// The SI parameters and the shifted residuals of the Jacobian.
-    scratch: Mutex<(Vec<f64>, Vec<f64>)>,
+    /// The SI parameters.
+    scratch: Mutex<Vec<f64>>,
 }
 
 impl Clone for LogParameters {
@@ -109,19 +116,19 @@ impl Clone for LogParameters {
         LogParameters {
             fixed: self.fixed.clone(),
             free: self.free.clone(),
-            scratch: Mutex::new((guard.0.clone(), guard.1.clone())),
+            scratch: Mutex::new(guard.clone()),
         }
     }
 }
 
 impl LogParameters {
     /// `count` parameters, `fixed[i]` a fixed SI value, `residuals` rows.
-    pub(crate) fn new(count: usize, fixed: &[Option<f64>], residuals: usize) -> LogParameters {
+    pub(crate) fn new(count: usize, fixed: &[Option<f64>], _residuals: usize) -> LogParameters {
         let held = |i: usize| fixed.get(i).copied().flatten();
         LogParameters {
             fixed: (0..count).map(|i| held(i).unwrap_or(1.0)).collect(),
             free: (0..count).filter(|&i| held(i).is_none()).collect(),
-            scratch: Mutex::new((vec![0.0; count], vec![0.0; residuals])),
+            scratch: Mutex::new(vec![0.0; count]),
         }
     }
 
@@ -146,36 +153,35 @@ impl LogParameters {
     }
 
     /// `residuals(θ, r)` at `p` and, asked for, its Jacobian in `p` by
-    /// forward differences; false when the model cannot run.
+    /// forward differences ([`forward_jacobian`], step [`DIFFERENCE`]);
+    /// false when the model cannot run.
     pub(crate) fn evaluate(
         &self,
         p: &[f64],
         r: &mut [f64],
         jacobian: Option<&mut DMatrix<f64>>,
-        residuals: &dyn Fn(&[f64], &mut [f64]) -> bool,
+        residuals: &(dyn Fn(&[f64], &mut [f64]) -> bool + Sync),
     ) -> bool {
-        let mut guard = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
-        let (theta, shifted) = &mut *guard;
-        self.fill(p, theta);
-        if !residuals(theta, r) {
+        if !self.residuals(p, r, residuals) {
             return false;
         }
         let Some(j) = jacobian else {
             return true;
         };
-        for (column, (&i, pi)) in self.free.iter().zip(p).enumerate() {
-            let before = theta[i];
-            theta[i] = (pi + DIFFERENCE).exp();
-            let ok = residuals(theta, shifted);
-            theta[i] = before;
-            if !ok {
-                return false;
-            }
-            for (row, (a, b)) in shifted.iter().zip(r.iter()).enumerate() {
-                j[(row, column)] = (a - b) / DIFFERENCE;
-            }
-        }
-        true
+        let shifted = |q: &[f64], out: &mut [f64]| residuals(&self.theta(q), out);
+        forward_jacobian(p, r, DIFFERENCE, &shifted, j)
+    }
+
+    /// `residuals(θ, r)` at `p`, θ filled into the buffer allocated once.
+    pub(crate) fn residuals(
+        &self,
+        p: &[f64],
+        r: &mut [f64],
+        residuals: &dyn Fn(&[f64], &mut [f64]) -> bool,
+    ) -> bool {
+        let mut theta = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
+        self.fill(p, &mut theta);
+        residuals(&theta, r)
     }
 }
 
@@ -227,6 +233,13 @@ impl LeastSquares for LinkObjective<'_> {
     fn evaluate(&self, p: &[f64], r: &mut [f64], jacobian: Option<&mut DMatrix<f64>>) -> bool {
         let residuals =
             |theta: &[f64], r: &mut [f64]| residuals(self.cases, &self.layout, theta, r);
-        self.parameters.evaluate(p, r, jacobian, &residuals)
+        if !self.parameters.residuals(p, r, &residuals) {
+            return false;
+        }
+        let Some(j) = jacobian else {
+            return true;
+        };
+        let theta = self.parameters.theta(p);
+        jacobian::exact(self.cases, self.layout, &theta, self.free(), j)
     }
 }

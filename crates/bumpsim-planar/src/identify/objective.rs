@@ -4,7 +4,8 @@
 //! (sensors interleaved), each times its sensor's weight
 //! ([`PlanarCase::weight`]), and their exact Jacobian from the replay on
 //! dual numbers ([`jacobian`], [`crate::sensitivity`]; forward differences,
-//! step 1e-6 in ln θ, only for unknowns that module does not know). The
+//! [`bumpsim_estimate::difference`] with step 1e-6 in ln θ, only for
+//! unknowns that module does not know). The
 //! replay's steps are fixed per template car, so the objective does not
 //! jump where a trial car's own step would change.
 
@@ -12,10 +13,10 @@ use super::{PlanarCase, Unknowns};
 use crate::car::PlanarError;
 use crate::drive::Load;
 use crate::drive::{sensor_readings, substeps};
+use bumpsim_estimate::difference::forward_jacobian;
 use bumpsim_estimate::lm::LeastSquares;
 use bumpsim_estimate::uncertainty::Series;
 use nalgebra::DMatrix;
-use rayon::prelude::*;
 use std::sync::{Arc, Mutex};
 
 mod jacobian;
@@ -175,36 +176,9 @@ impl LeastSquares for Objective<'_> {
                 jac,
             );
         }
-        self.differences(p, r, jac)
-    }
-}
-
-impl Objective<'_> {
-    /// The Jacobian by forward differences (step 1e-6 in `p`, columns in parallel).
-    fn differences(&self, p: &[f64], r: &[f64], jac: &mut DMatrix<f64>) -> bool {
-        const H: f64 = 1e-6;
-        let columns: Vec<Option<Vec<f64>>> = (0..p.len())
-            .into_par_iter()
-            .map(|j| {
-                let mut shifted = p.to_vec();
-                shifted[j] += H;
-                let mut column = vec![0.0; r.len()];
-                self.residuals(&shifted, &mut column).then(|| {
-                    column
-                        .iter()
-                        .zip(r.iter())
-                        .map(|(a, b)| (a - b) / H)
-                        .collect()
-                })
-            })
-            .collect();
-        for (j, column) in columns.into_iter().enumerate() {
-            let Some(column) = column else {
-                return false;
-            };
-            jac.column_mut(j).copy_from_slice(&column);
-        }
-        true
+        // forward differences, step 1e-6 in `p`
+        let residuals = |q: &[f64], out: &mut [f64]| self.residuals(q, out);
+        forward_jacobian(p, r, 1e-6, &residuals, jac)
     }
 }
 
