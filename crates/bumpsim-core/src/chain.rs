@@ -47,6 +47,13 @@
 //! force is then the sum of both links' forces; the path's energies join
 //! the balance as the front link's do.
 //!
+//! A rebound link ([`Chain::with_rebound`]) is one more such wall link in
+//! parallel (on any mass, with its gap), acting and balancing as the
+//! second path does: a crushed front's elastic springback over a longer
+//! stroke than the crush zone's own unloading (a bilinear link with a
+//! soft unloading slope adds a tail to the wall force while the car
+//! rebounds).
+//!
 //! ```
 //! use bumpsim_core::chain::{Chain, Drive};
 //! use bumpsim_core::link::{Curve, Link, Unloading};
@@ -71,6 +78,7 @@ pub struct Chain {
     links: Vec<Link>,
     front: Option<Link>,
     path: Option<WallPath>,
+    rebound: Option<WallPath>,
 }
 
 /// A second load path into the wall ([`Chain::with_path`]).
@@ -274,6 +282,7 @@ impl Chain {
             links,
             front: None,
             path: None,
+            rebound: None,
         })
     }
 
@@ -335,6 +344,31 @@ impl Chain {
         self.path.as_ref()
     }
 
+    /// The same chain with a rebound link into the wall, in parallel with
+    /// the front link and the second path (it acts only when driven by
+    /// [`Drive::Barrier`]): `link` between the wall and mass `mass`
+    /// (0-based), compressed by its travel past `gap` (m, ≥ 0), never
+    /// pulling.
+    pub fn with_rebound(self, mass: usize, gap: f64, link: Link) -> Result<Chain, ModelError> {
+        if mass >= self.dof() || !(gap.is_finite() && gap >= 0.0) {
+            return Err(ModelError::Value {
+                parameter: format!("rebound link on mass {} with gap", mass + 1),
+                value: gap,
+                unit: "m",
+                requirement: "a mass of the chain and a finite, non-negative gap",
+            });
+        }
+        Ok(Chain {
+            rebound: Some(WallPath { mass, gap, link }),
+            ..self
+        })
+    }
+
+    /// The rebound link, if any.
+    pub fn rebound(&self) -> Option<&WallPath> {
+        self.rebound.as_ref()
+    }
+
     /// The wall's penalty stiffness (N/m) and damper (N·s/m): 100 times
     /// the steepest link slope, at least 1e9 N/m; the damper at 0.7 of
     /// critical for m1.
@@ -371,6 +405,11 @@ impl Chain {
                 && path.mass == i
             {
                 k += path.link.steepest_slope();
+            }
+            if let (Some(rebound), Some(_)) = (&self.rebound, wall)
+                && rebound.mass == i
+            {
+                k += rebound.link.steepest_slope();
             }
             omega2 = omega2.max(k / self.masses[i]);
             omega_c = omega_c.max(c / self.masses[i]);
@@ -466,6 +505,8 @@ struct Mover<'a> {
     front_force: f64,
     path: LinkState,
     path_force: f64,
+    rebound: LinkState,
+    rebound_force: f64,
     states: Vec<LinkState>,
     springs: Vec<f64>,
     applied: usize,
@@ -495,6 +536,8 @@ impl<'a> Mover<'a> {
             front_force: 0.0,
             path: LinkState::default(),
             path_force: 0.0,
+            rebound: LinkState::default(),
+            rebound_force: 0.0,
             states: vec![LinkState::default(); l],
             springs: vec![0.0; l],
             applied: 0,
@@ -569,6 +612,10 @@ impl Mechanism for Mover<'_> {
             let crush = q[path.mass] - path.gap;
             self.path_force = path.link.force(crush, &mut self.path).max(0.0);
         }
+        if let (Some(rebound), Some(_)) = (&self.chain.rebound, self.wall) {
+            let crush = q[rebound.mass] - rebound.gap;
+            self.rebound_force = rebound.link.force(crush, &mut self.rebound).max(0.0);
+        }
         self.applied = k.wrapping_add(1);
     }
 
@@ -586,6 +633,9 @@ impl Mechanism for Mover<'_> {
             }
             if self.chain.path.as_ref().is_some_and(|p| p.mass == i) {
                 sum -= self.path_force;
+            }
+            if self.chain.rebound.as_ref().is_some_and(|p| p.mass == i) {
+                sum -= self.rebound_force;
             }
             *ai = sum / self.chain.masses[i];
         }
@@ -609,7 +659,7 @@ impl Mechanism for Mover<'_> {
         if q.iter().chain(v).any(|x| !x.is_finite()) {
             return Err(k / self.every);
         }
-        let wall = self.external(k, q[0], v[0]) - self.path_force;
+        let wall = self.external(k, q[0], v[0]) - self.path_force - self.rebound_force;
         let o = &mut self.out;
         o.force.push(wall);
         for (i, (x, w)) in q.iter().zip(v).enumerate() {
@@ -633,6 +683,14 @@ impl Mechanism for Mover<'_> {
                 stored += path.link.stored(q[path.mass] - path.gap, &self.path);
             }
             plastic += self.path.dissipated(&path.link);
+        }
+        if let (Some(rebound), Some(_)) = (&self.chain.rebound, self.wall) {
+            if self.rebound_force > 0.0 {
+                stored += rebound
+                    .link
+                    .stored(q[rebound.mass] - rebound.gap, &self.rebound);
+            }
+            plastic += self.rebound.dissipated(&rebound.link);
         }
         o.kinetic.push(
             self.chain

@@ -229,9 +229,16 @@ fn barrier() -> Option<Barrier> {
         knots,
         front_start: None,
         path_knots: number("LINKS_PATH_KNOTS", 0),
+        // LINKS_REBOUND=j: a rebound link on mass j (1-based), 0 none
+        rebound: number("LINKS_REBOUND", 0).checked_sub(1),
         sheet_mass: Some((mass, spread)),
     };
-    let found = bumpsim_ident::links::into_wall::identify(&cases, &settings, &Silent).unwrap();
+    let mut found = bumpsim_ident::links::into_wall::identify(&cases, &settings, &Silent).unwrap();
+    if let Some(mass) = number("LINKS_REBOUND_AFTER", 0).checked_sub(1) {
+        let again = bumpsim_ident::links::into_wall::with_rebound(&found, &settings, mass);
+        println!("first stage:\n{}", text(&found));
+        found = bumpsim_ident::links::into_wall::identify(&cases, &again, &Silent).unwrap();
+    }
     println!(
         "linear fit {:.2} %\n{}",
         linear.cases[0].fit_percent,
@@ -252,13 +259,15 @@ fn barrier() -> Option<Barrier> {
         100.0 * dv_error
     );
     if let Some(path) = std::env::var_os("LINKS_DUMP") {
-        // time s, measured and forward wall force N, crossmember m
+        // time s, measured and forward wall force N, crossmember m (measured,
+        // forward), m1 m
         let y = &run.displacement[dof - 1];
         let rows: String = (a..=b)
             .map(|k| {
                 let t = k as f64 * h;
                 let (f, g, m) = (case.force[k], run.force[k], case.measured[k]);
-                format!("{t},{f},{g},{m},{}\n", y[k])
+                let x1 = run.displacement[0][k];
+                format!("{t},{f},{g},{m},{},{x1}\n", y[k])
             })
             .collect();
         std::fs::write(path, rows).unwrap();

@@ -338,6 +338,10 @@ pub struct LinkIdentification {
     /// [`barrier::BarrierLayout::path_knots`]); None otherwise. Plastic
     /// set number n (the chain's masses) is its.
     pub path: Option<bumpsim_core::chain::WallPath>,
+    /// The rebound link into the wall (the barrier identification's,
+    /// [`barrier::BarrierLayout::rebound`]); None otherwise. Its plastic
+    /// set follows the second path's.
+    pub rebound: Option<bumpsim_core::chain::WallPath>,
     /// What became of the starts.
     pub starts: Starts,
 }
@@ -358,6 +362,9 @@ impl LinkIdentification {
         };
         if let Some(path) = &self.path {
             chain = chain.with_path(path.mass, path.gap, path.link.clone())?;
+        }
+        if let Some(rebound) = &self.rebound {
+            chain = chain.with_rebound(rebound.mass, rebound.gap, rebound.link.clone())?;
         }
         let drive = bumpsim_core::chain::Drive::Barrier {
             speed,
@@ -453,6 +460,7 @@ pub fn identify(
         plastic_sets,
         front,
         path: None,
+        rebound: None,
         starts: found.starts,
     })
 }
