@@ -214,8 +214,7 @@ pub fn identify(
     };
     // per case: the front zone (0), the links (1..n−1), the second path
     // (n), the rebound link (after them)
-    let per_case =
-        dof + usize::from(car.path().is_some()) + usize::from(car.rebound().is_some());
+    let per_case = dof + usize::from(car.path().is_some()) + usize::from(car.rebound().is_some());
     let plastic_sets = intervals(&sets, &p, &u, &theta, &free)?
         .into_iter()
         .enumerate()
@@ -281,7 +280,9 @@ fn rebound_start(case: &LoadCase, mass: f64) -> Result<Vec<f64>, LinkIdentError>
     let crush = super::barrier::rigid_crush(case, mass);
     let (a, b) = case.window;
     let reach = crush[a..=b].iter().fold(0.0_f64, |m, x| m.max(*x));
-    let peak = case.force[a..=b].iter().fold(0.0_f64, |m, f| m.max(f.abs()));
+    let peak = case.force[a..=b]
+        .iter()
+        .fold(0.0_f64, |m, f| m.max(f.abs()));
     if !(reach > 0.0 && peak > 0.0) {
         return Err(LinkIdentError::Settings(format!(
             "load case '{}': a rebound link needs a car that crushes against a force (crush {reach} m, force {peak} N)",

@@ -26,8 +26,9 @@
 //! A barrier test is better identified as the car ran into the barrier
 //! ([`barrier`], [`into_wall`]): the chain behind a tabulated front crush
 //! zone, driven by the wall, fitted to the wall force and the output
-//! together with the test sheet's mass as a prior. Its forward run is the
-//! identified car itself; the force-driven fit above leaves m1 and the
+//! together with the test sheet's mass as a prior, optionally with a
+//! second load path and a rebound link into the wall. Its forward run is
+//! the identified car itself; the force-driven fit above leaves m1 and the
 //! first link free (on NHTSA 10146 it throws m1 through its link).
 
 pub mod barrier;
