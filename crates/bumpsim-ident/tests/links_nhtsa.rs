@@ -361,7 +361,8 @@ fn nhtsa_10146_identified_into_the_barrier_fits_and_predicts_delta_v() {
 /// their intervals (front zone 507.7 mm [478.9, 536.6], second path
 /// 733.0 mm [732.0, 734.0], link 1 and the rebound link 0), the masses
 /// 1703 kg (0.9 % under the sheet: −3.1 sd of its ±0.3 % prior, asserted
-/// within 1 %). 235 s in a debug build on the loaded machine.
+/// within 1 %). 175–235 s alone in a debug build on the loaded machine
+/// (load 12–18 on 2 cores); the file's three tests together 320 s.
 ///
 /// Where the force was lost (`LINKS_DUMP`, [`PLAIN`], 83.58 %), each
 /// 10 ms window's share of the force's squared error: 0–10 ms 9 % (the
