@@ -446,3 +446,54 @@ fn spread(curve: &bumpsim_core::link::Curve, reach: f64, values: &mut [f64]) -> 
     }
     knots
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bumpsim_estimate::uncertainty::{Parameter, Series};
+
+    /// Two log parameters, the second without any effect on the residuals
+    /// (undetermined): a value of the first alone keeps its interval
+    /// (`1.96 σ_p0` for `p0` itself), one that moves with the second has
+    /// none.
+    #[test]
+    fn an_undetermined_parameter_leaves_only_the_values_that_depend_on_it_without_interval() {
+        let parameters = [
+            Parameter::with_symbol("a", "-"),
+            Parameter::with_symbol("b", "-"),
+        ];
+        let p = [0.0, 0.0];
+        let theta = [1.0, 1.0];
+        let rows = 40;
+        let jacobian = DMatrix::from_fn(rows, 2, |r, c| match c {
+            0 => 1.0 + 0.01 * r as f64,
+            _ => 0.0,
+        });
+        let residuals: Vec<f64> = (0..rows)
+            .map(|r| if r % 2 == 0 { 0.1 } else { -0.1 })
+            .collect();
+        let series = Series::contiguous(std::iter::once(rows));
+        let (lower, upper) = ([-5.0, -5.0], [5.0, 5.0]);
+        let u = uncertainty(&Estimated {
+            parameters: &parameters,
+            theta: &theta,
+            free: &[0, 1],
+            p: &p,
+            bounds: (&lower, &upper),
+            residuals: &residuals,
+            jacobian: &jacobian,
+            series: &series,
+            correlation: Correlation::Independent,
+        });
+        assert!(u.standard_errors[0].is_some() && u.standard_errors[1].is_none());
+        let of = |p: &[f64]| -> Result<Vec<f64>, LinkIdentError> { Ok(vec![p[0], p[0] + p[1]]) };
+        let out = intervals(&of, &p, &u, &theta, &[0, 1]).unwrap();
+        let [lo, hi] = out[0].1.expect("the first value does not depend on b");
+        let half = 1.96 * u.standard_errors[0].unwrap();
+        assert!(
+            (hi - lo - 2.0 * half).abs() < 1e-6 * half,
+            "{lo} {hi} {half}"
+        );
+        assert!(out[1].1.is_none(), "{:?}", out[1]);
+    }
+}
