@@ -58,6 +58,13 @@
 //! integration step, a piecewise constant function of the steepest slopes,
 //! is held at the chain's own.
 //!
+//! A rebound link ([`Chain::with_rebound`]) is one more such wall link in
+//! parallel (on any mass, with its gap), acting and balancing as the
+//! second path does: a crushed front's elastic springback over a longer
+//! stroke than the crush zone's own unloading (a bilinear link with a
+//! soft unloading slope adds a tail to the wall force while the car
+//! rebounds).
+//!
 //! ```
 //! use bumpsim_core::chain::{Chain, Drive};
 //! use bumpsim_core::link::{Curve, Link, Unloading};
@@ -88,6 +95,7 @@ pub struct Chain {
     links: Vec<Link>,
     front: Option<Link>,
     path: Option<WallPath>,
+    rebound: Option<WallPath>,
 }
 
 /// A second load path into the wall ([`Chain::with_path`]).
@@ -291,6 +299,7 @@ impl Chain {
             links,
             front: None,
             path: None,
+            rebound: None,
         })
     }
 
@@ -352,6 +361,31 @@ impl Chain {
         self.path.as_ref()
     }
 
+    /// The same chain with a rebound link into the wall, in parallel with
+    /// the front link and the second path (it acts only when driven by
+    /// [`Drive::Barrier`]): `link` between the wall and mass `mass`
+    /// (0-based), compressed by its travel past `gap` (m, ≥ 0), never
+    /// pulling.
+    pub fn with_rebound(self, mass: usize, gap: f64, link: Link) -> Result<Chain, ModelError> {
+        if mass >= self.dof() || !(gap.is_finite() && gap >= 0.0) {
+            return Err(ModelError::Value {
+                parameter: format!("rebound link on mass {} with gap", mass + 1),
+                value: gap,
+                unit: "m",
+                requirement: "a mass of the chain and a finite, non-negative gap",
+            });
+        }
+        Ok(Chain {
+            rebound: Some(WallPath { mass, gap, link }),
+            ..self
+        })
+    }
+
+    /// The rebound link, if any.
+    pub fn rebound(&self) -> Option<&WallPath> {
+        self.rebound.as_ref()
+    }
+
     /// The wall's penalty stiffness (N/m) and damper (N·s/m): 100 times
     /// the steepest link slope, at least 1e9 N/m; the damper at 0.7 of
     /// critical for m1.
@@ -389,6 +423,11 @@ impl Chain {
             {
                 k += path.link.steepest_slope();
             }
+            if let (Some(rebound), Some(_)) = (&self.rebound, wall)
+                && rebound.mass == i
+            {
+                k += rebound.link.steepest_slope();
+            }
             omega2 = omega2.max(k / self.masses[i]);
             omega_c = omega_c.max(c / self.masses[i]);
         }
@@ -419,6 +458,7 @@ impl Chain {
             links: self.links.iter().map(Link::real).collect(),
             front: self.front.as_ref().map(Link::real),
             path: self.path.as_ref().map(|p| p.link.real()),
+            rebound: self.rebound.as_ref().map(|p| p.link.real()),
         }
     }
 
@@ -455,6 +495,11 @@ impl Chain {
             "path links",
             self.path.iter().count(),
             values.path.iter().count(),
+        )?;
+        shape(
+            "rebound links",
+            self.rebound.iter().count(),
+            values.rebound.iter().count(),
         )?;
         match self.integrate(drive, values, false)? {
             Out::Motion(motion) => Ok(motion),

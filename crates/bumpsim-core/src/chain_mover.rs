@@ -30,6 +30,8 @@ pub struct ChainValues<T> {
     pub front: Option<Link<T>>,
     /// The second load path's link, when the chain has one.
     pub path: Option<Link<T>>,
+    /// The rebound link, when the chain has one.
+    pub rebound: Option<Link<T>>,
 }
 
 /// The motion of a run on the numbers `T` ([`Chain::motion`]): what the
@@ -94,6 +96,8 @@ pub(super) struct Mover<'a, T> {
     front_force: T,
     path: LinkState<T>,
     path_force: T,
+    rebound: LinkState<T>,
+    rebound_force: T,
     states: Vec<LinkState<T>>,
     springs: Vec<T>,
     applied: usize,
@@ -131,6 +135,8 @@ impl<'a, T: Real> Mover<'a, T> {
             front_force: zero,
             path: LinkState::default(),
             path_force: zero,
+            rebound: LinkState::default(),
+            rebound_force: zero,
             states: vec![LinkState::default(); l],
             springs: vec![zero; l],
             applied: 0,
@@ -203,6 +209,16 @@ impl<'a, T: Real> Mover<'a, T> {
             }
             plastic += self.path.dissipated(path).value();
         }
+        if let (Some(rebound), Some(wall), Some(_)) =
+            (&values.rebound, &self.chain.rebound, self.wall)
+        {
+            if self.rebound_force.value() > 0.0 {
+                stored += rebound
+                    .stored(q[wall.mass] - wall.gap, &self.rebound)
+                    .value();
+            }
+            plastic += self.rebound.dissipated(rebound).value();
+        }
         let kinetic = values
             .masses
             .iter()
@@ -229,6 +245,12 @@ impl<T: Real> Mechanism<T> for Mover<'_, T> {
             let crush = q[wall.mass] - wall.gap;
             self.path_force = path.force(crush, &mut self.path).max_constant(0.0);
         }
+        if let (Some(rebound), Some(wall), Some(_)) =
+            (&self.values.rebound, &self.chain.rebound, self.wall)
+        {
+            let crush = q[wall.mass] - wall.gap;
+            self.rebound_force = rebound.force(crush, &mut self.rebound).max_constant(0.0);
+        }
         self.applied = k.wrapping_add(1);
     }
 
@@ -237,6 +259,7 @@ impl<T: Real> Mechanism<T> for Mover<'_, T> {
         let f = self.external(k, q[0], v[0]);
         let (c, masses) = (&self.values.dampers, &self.values.masses);
         let path = self.chain.path.as_ref().map(|p| p.mass);
+        let rebound = self.chain.rebound.as_ref().map(|p| p.mass);
         for (i, ai) in a.iter_mut().enumerate() {
             let mut sum = if i == 0 { f } else { T::constant(0.0) };
             if i + 1 < q.len() {
@@ -247,6 +270,9 @@ impl<T: Real> Mechanism<T> for Mover<'_, T> {
             }
             if path == Some(i) {
                 sum -= self.path_force;
+            }
+            if rebound == Some(i) {
+                sum -= self.rebound_force;
             }
             *ai = sum / masses[i];
         }
@@ -273,7 +299,7 @@ impl<T: Real> Mechanism<T> for Mover<'_, T> {
         if q.iter().chain(v).any(|x| !x.value().is_finite()) {
             return Err(k / self.every);
         }
-        let wall = self.external(k, q[0], v[0]) - self.path_force;
+        let wall = self.external(k, q[0], v[0]) - self.path_force - self.rebound_force;
         let energies = match self.out {
             Out::Full(_) => self.energies(q, v),
             Out::Motion(_) => [0.0; 3],

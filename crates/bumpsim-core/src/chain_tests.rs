@@ -241,6 +241,7 @@ fn sensitivity_values<T: Real>(chain: &Chain, theta: &[T]) -> ChainValues<T> {
         ],
         front: None,
         path: None,
+        rebound: None,
     }
 }
 
@@ -411,4 +412,42 @@ fn dual_numbers_give_the_wall_force_s_derivatives_into_the_barrier() {
             );
         }
     }
+}
+
+/// A rebound link is a third wall link in parallel: with the front link
+/// (k, F_1), a path (k, F_2) after the gap g and a rebound link (k, F_3)
+/// on the same mass from its first touch, past every yield the work done is
+/// `F_1 (c − F_1/2k) + F_2 (c − g − F_2/2k) + F_3 (c − F_3/2k) = M V²/2`;
+/// the wall force is −(F_1 + F_2 + F_3) at the crush c; the balance closes;
+/// and the mass rebounds off the three unloading slopes at the end.
+#[test]
+fn a_rebound_link_adds_a_third_force_and_its_work() {
+    let (m, v, k, f1, f2, f3, gap) = (1000.0, 10.0, 1e7, 1e5, 5e4, 3e4, 0.1);
+    let chain = Chain::new(vec![m], vec![], vec![])
+        .unwrap()
+        .with_front(epp(k, f1))
+        .with_path(0, gap, epp(k, f2))
+        .unwrap()
+        .with_rebound(0, 0.0, epp(k, f3))
+        .unwrap();
+    assert!(chain.rebound().is_some());
+    let r = chain
+        .run(&Drive::Barrier {
+            speed: v,
+            step: 1e-4,
+            samples: 3000,
+        })
+        .unwrap();
+    let (d1, d2, d3) = (f1 / (2.0 * k), f2 / (2.0 * k), f3 / (2.0 * k));
+    let crush = (0.5 * m * v * v + f1 * d1 + f2 * (gap + d2) + f3 * d3) / (f1 + f2 + f3);
+    let reached = r.displacement[0].iter().fold(0.0_f64, |a, b| a.max(*b));
+    assert_relative_eq!(reached, crush, max_relative = 1e-3);
+    let peak = r.force.iter().fold(0.0_f64, |a, b| a.min(*b));
+    assert_relative_eq!(peak, -(f1 + f2 + f3), max_relative = 1e-9);
+    let early = r.displacement[0].iter().position(|x| *x > 0.05).unwrap();
+    assert_relative_eq!(r.force[early], -(f1 + f3), max_relative = 1e-9);
+    assert!(r.energy_error() < 1e-3, "{}", r.energy_error());
+    let bad = Chain::new(vec![m], vec![], vec![]).unwrap();
+    assert!(bad.clone().with_rebound(1, 0.0, epp(k, f3)).is_err());
+    assert!(bad.with_rebound(0, f64::NAN, epp(k, f3)).is_err());
 }

@@ -175,6 +175,7 @@ fn covered(seed: u64) -> Option<Vec<(&'static str, f64, f64, bool)>> {
         knots: 10,
         front_start: None,
         path_knots: 0,
+        rebound: None,
         sheet_mass: Some((total, 0.01)),
     };
     let found =
@@ -277,6 +278,7 @@ fn a_barrier_fit_started_at_the_truth_stays_and_predicts_no_worse() {
         knots: 10,
         front_start: Some((knots.clone(), table.clone())),
         path_knots: 0,
+        rebound: None,
         sheet_mass: Some((total, 0.01)),
     };
     let found =
@@ -301,6 +303,7 @@ fn a_barrier_fit_started_at_the_truth_stays_and_predicts_no_worse() {
         chain: bumpsim_ident::links::Layout { dof: 2 },
         knots,
         path_knots: vec![],
+        rebound: None,
     };
     let lumped = layout.car(&[chain, table].concat()).unwrap();
     let fits = |response: &bumpsim_core::chain::ChainResponse| {

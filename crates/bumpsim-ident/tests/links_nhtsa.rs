@@ -181,15 +181,46 @@ struct Barrier {
     found: bumpsim_ident::links::LinkIdentification,
 }
 
+/// How the car is identified into the barrier: front knots, second-path
+/// knots (0: none), the rebound link's mass (1-based, 0: none), starts and
+/// the spread of the sheet's mass prior (sd of ln M).
+struct Config {
+    knots: usize,
+    path_knots: usize,
+    rebound: usize,
+    starts: usize,
+    spread: f64,
+}
+
+/// 16 front knots, no second path, no rebound link, 4 starts, the sheet's
+/// mass ±1 %.
+const PLAIN: Config = Config {
+    knots: 16,
+    path_knots: 0,
+    rebound: 0,
+    starts: 4,
+    spread: 0.01,
+};
+
+/// Kamal's two paths with the force's tail: 20 front knots on m1, an
+/// 8-knot second path from the body, a rebound link on the body, 12
+/// starts, the sheet's mass ±0.3 %.
+const TWO_PATHS: Config = Config {
+    knots: 20,
+    path_knots: 8,
+    rebound: 2,
+    starts: 12,
+    spread: 0.003,
+};
+
 /// The car identified as it ran into the barrier (`links::into_wall`):
 /// the wall force and the crossmember together, the test sheet's 1719 kg
-/// as a prior (±1 %), the front crush zone a 16-knot table, 2 masses and
-/// 4 starts, no second load path (`LINKS_DOF`, `LINKS_KNOTS`,
-/// `LINKS_STARTS`, `LINKS_PATH_KNOTS`, `LINKS_MASS_SPREAD` change them;
-/// `LINKS_DUMP=file` writes the measured and forward force and
-/// crossmember). The forward run into a rigid wall is the identified car
-/// itself.
-fn barrier() -> Option<Barrier> {
+/// as a prior, 2 masses, as `config` says (`LINKS_DOF`, `LINKS_KNOTS`,
+/// `LINKS_STARTS`, `LINKS_PATH_KNOTS`, `LINKS_REBOUND`,
+/// `LINKS_MASS_SPREAD`, `LINKS_SEED` change it; `LINKS_DUMP=file` writes the measured
+/// and forward force and crossmember). The forward run into a rigid wall
+/// is the identified car itself.
+fn barrier(config: &Config) -> Option<Barrier> {
     let study = study()?;
     let number = |name: &str, default: usize| {
         std::env::var(name)
@@ -199,8 +230,8 @@ fn barrier() -> Option<Barrier> {
     };
     let (dof, knots, starts) = (
         number("LINKS_DOF", 2),
-        number("LINKS_KNOTS", 16),
-        number("LINKS_STARTS", 4),
+        number("LINKS_KNOTS", config.knots),
+        number("LINKS_STARTS", config.starts),
     );
     let cases = study.cases(dof).unwrap();
     let case = &cases[0];
@@ -218,20 +249,28 @@ fn barrier() -> Option<Barrier> {
     let mut links = LinkSettings::new(dof, starts, start);
     links.lower[0] = 100.0;
     links.start[0] = links.start[0].max(100.0);
+    links.seed = number("LINKS_SEED", 1) as u64;
     let mass = study.sheet_mass().unwrap().unwrap();
     // the test sheet weighs the car: ±1 % (`LINKS_MASS_SPREAD` widens it)
     let spread = std::env::var("LINKS_MASS_SPREAD")
         .ok()
         .and_then(|v| v.parse().ok())
-        .unwrap_or(0.01);
+        .unwrap_or(config.spread);
     let settings = BarrierSettings {
         links,
         knots,
         front_start: None,
-        path_knots: number("LINKS_PATH_KNOTS", 0),
+        path_knots: number("LINKS_PATH_KNOTS", config.path_knots),
+        // LINKS_REBOUND=j: a rebound link on mass j (1-based), 0 none
+        rebound: number("LINKS_REBOUND", config.rebound).checked_sub(1),
         sheet_mass: Some((mass, spread)),
     };
-    let found = bumpsim_ident::links::into_wall::identify(&cases, &settings, &Silent).unwrap();
+    let mut found = bumpsim_ident::links::into_wall::identify(&cases, &settings, &Silent).unwrap();
+    if let Some(mass) = number("LINKS_REBOUND_AFTER", 0).checked_sub(1) {
+        let again = bumpsim_ident::links::into_wall::with_rebound(&found, &settings, mass);
+        println!("first stage:\n{}", text(&found));
+        found = bumpsim_ident::links::into_wall::identify(&cases, &again, &Silent).unwrap();
+    }
     println!(
         "linear fit {:.2} %\n{}",
         linear.cases[0].fit_percent,
@@ -252,13 +291,15 @@ fn barrier() -> Option<Barrier> {
         100.0 * dv_error
     );
     if let Some(path) = std::env::var_os("LINKS_DUMP") {
-        // time s, measured and forward wall force N, crossmember m
+        // time s, measured and forward wall force N, crossmember m (measured,
+        // forward), m1 m
         let y = &run.displacement[dof - 1];
         let rows: String = (a..=b)
             .map(|k| {
                 let t = k as f64 * h;
                 let (f, g, m) = (case.force[k], run.force[k], case.measured[k]);
-                format!("{t},{f},{g},{m},{}\n", y[k])
+                let x1 = run.displacement[0][k];
+                format!("{t},{f},{g},{m},{},{x1}\n", y[k])
             })
             .collect();
         std::fs::write(path, rows).unwrap();
@@ -289,12 +330,12 @@ fn barrier() -> Option<Barrier> {
 /// crossmember ΔV is 0.44 % off (−18.51 for −18.43 m/s), the plastic sets
 /// print with their intervals (front zone 503.1 mm [476.3, 529.9], link 1
 /// 213.6 mm [188.0, 239.1]) and the test sheet's mass is kept (1745 kg,
-/// +1.5 prior sd). The forward force fits 83.58 %: see the ignored test
-/// below. (Before the law's fix, which took a set of a bilinear link
+/// +1.5 prior sd). The forward force fits 83.58 %: see the test below.
+/// (Before the law's fix, which took a set of a bilinear link
 /// before it yielded: 99.71 %, 0.88 %, force 82.0 %.)
 #[test]
 fn nhtsa_10146_identified_into_the_barrier_fits_and_predicts_delta_v() {
-    let Some(b) = barrier() else { return };
+    let Some(b) = barrier(&PLAIN) else { return };
     assert!(b.fit >= 99.0, "fit {} %", b.fit);
     assert!(b.dv_error <= 0.03, "ΔV {} % off", 100.0 * b.dv_error);
     assert!(b.force_fit >= 75.0, "force fit {} %", b.force_fit);
@@ -315,60 +356,91 @@ fn nhtsa_10146_identified_into_the_barrier_fits_and_predicts_delta_v() {
     );
 }
 
-/// Issue 46's forward force (≥ 90 %) together with the rest, not
-/// reached. With the second load path (`LINKS_PATH_KNOTS=8`, a tabulated
-/// crush link from the body, m2, into the wall beside the front zone on
-/// m1), measured after the law's fix:
+/// Issue 46's forward force (≥ 90 %) together with the rest, measured
+/// (round 3) on [`TWO_PATHS`]: crossmember 99.73 %, forward force
+/// 90.31 %, ΔV 1.14 % off (−18.64 for −18.43 m/s), the plastic sets with
+/// their intervals (front zone 507.7 mm [478.9, 536.6], second path
+/// 733.0 mm [732.0, 734.0], link 1 and the rebound link 0), the masses
+/// 1703 kg (0.9 % under the sheet: −3.1 sd of its ±0.3 % prior, asserted
+/// within 1 %). 175–235 s alone in a debug build on the loaded machine
+/// (load 12–18 on 2 cores); the file's three tests together 320 s.
 ///
-/// | starts | crossmember | forward force | ΔV off | masses |
-/// |---|---|---|---|---|
-/// | 4 (no path) | 99.07 % | 83.58 % | 0.44 % | 1745 kg |
-/// | 4 | 97.62 % | 79.55 % | 0.76 % | 1751 kg |
-/// | 12 | 99.54 % | 87.46 % | 3.23 % | 1825 kg (+6.0 sd) |
-/// | 12, mass ±0.3 % | 99.02 % | 89.82 % | 0.00 % | 1732 kg (+2.6 sd) |
-/// | 12, mass ±0.3 %, 10 path knots | 99.57 % | 88.39 % | 1.27 % | 1737 kg (+3.6 sd) |
+/// Where the force was lost (`LINKS_DUMP`, [`PLAIN`], 83.58 %), each
+/// 10 ms window's share of the force's squared error: 0–10 ms 9 % (the
+/// first knot's 52 kN where the bumper gives 10–45 kN), 40–60 ms 34 %
+/// and 70–80 ms 15 % (m1 stops crushing at 65 ms at 544 mm while the
+/// body goes on to 746 mm: from 40 ms on m1 moves 58 mm, under two knots,
+/// so a wall force read off m1's crush alone cannot follow the 45 Hz
+/// ripple nor hold 460–490 kN to 73 ms), 90–120 ms 29 % (one unloading
+/// slope ends the force at 93 ms, the measured tail runs to 117 ms).
+/// Loading to the peak (10–40 ms) is 6 %. So the loss is the second
+/// path's (the body's crush into the wall) and the tail's, not the
+/// loading curve's nor the rate's.
 ///
-/// The last (`LINKS_MASS_SPREAD=0.003`: the sheet's mass held harder,
-/// against 1200 correlated force samples that each count as independent)
-/// comes within 0.2 points of the force target with the crossmember and
-/// ΔV inside theirs, but link 1 sits at its lowest stiffness (the engine
-/// and the body joined by the damper alone, c1 55 Ns/mm), so F_y1 and r1
-/// are not determined and the plastic sets lose their intervals (the
-/// acceptance test stops there): the next lead is a prior weighted by the
-/// residuals' effective count, and the tail's unloading.
+/// The tail was given its own link (`LINKS_REBOUND=j`, a rebound link
+/// on mass j: elastic–perfectly-plastic, plateau `Ft`, slope `kt`, gap
+/// `gt`; `BarrierSettings.rebound`, off by default). Measured (2 masses,
+/// seed 1):
 ///
-/// (3 masses without the path, `LINKS_DOF=3`, 4 starts: not finished in
-/// 31 minutes on the loaded machine.)
+/// | configuration | crossmember | forward force | ΔV off | masses (prior sd) | set intervals |
+/// |---|---|---|---|---|---|
+/// | [`PLAIN`] (16 knots, 4 starts, ±1 %) | 99.07 % | 83.58 % | 0.44 % | 1745 kg (+1.5) | yes |
+/// | rebound on m1, no gap | 96.85 % | 90.51 % | 1.79 % | 1809 kg (+5.1) | yes |
+/// | rebound on m1 | 96.71 % | 91.56 % | 2.19 % | 1808 kg (+5.0) | yes |
+/// | `LINKS_REBOUND_AFTER=1` ([`PLAIN`], then the rebound link from its optimum) | 99.75 % | 79.76 % | 0.40 % | 1772 kg (+3.0) | yes |
+/// | the same, no gap | 99.79 % | 82.39 % | 0.46 % | 1769 kg (+2.9) | yes |
+/// | path 8 knots, 12 starts, ±0.3 %, no rebound (before) | 99.02 % | 89.82 % | 0.00 % | 1732 kg (+2.6) | no (then) |
+/// | the same, rebound on m1 | 99.52 % | 89.72 % | 1.66 % | 1763 kg (+8.5) | no |
+/// | the same, rebound on m2 | 99.88 % | 89.10 % | 0.40 % | 1717 kg (−0.3) | yes |
+/// | the same, ±1 % | 99.53 % | 86.18 % | 1.08 % | 1784 kg (+3.7) | no |
+/// | the same, 20 knots, ±0.5 % | 98.31 % | 83.00 % | 0.18 % | 1734 kg (+1.8) | no |
+/// | 20 knots, path 8, 12 starts, ±0.3 %, no rebound | 99.55 % | 88.76 % | 1.48 % | 1757 kg (+7.2) | yes |
+/// | [`TWO_PATHS`] (the same with the rebound on m2) | 99.73 % | 90.31 % | 1.14 % | 1703 kg (−3.1) | yes |
 ///
-/// With 12 starts the search finds Kamal's car by itself: the front table
-/// on m1 (710 kg) stays under 100 kN for its first eight of 16 knots
-/// (about 0.35 m: the radiator's gap), then the engine's 420–550 kN; the
-/// body's path carries 130–270 kN from its second knot on; link 1 stays
-/// elastic (k1 1815 N/mm, F_y at 2 MN); and the force follows the measured one to 80 ms
-/// (`LINKS_DUMP`); it misses the 45 Hz ripple of 50–75 ms and the tail
-/// after 85 ms (see the module), and it takes the load cells' mass, 6
-/// prior sd above the sheet, so the crossmember's ΔV goes 3.2 % off.
+/// Read with care. (1) The likelihood (each channel scaled by its own
+/// residual) rewards the crossmember's sub-percent residuals: where the
+/// rebound link alone reaches 91.6 % force the crossmember falls to
+/// 96.7 % and the masses to the load cells' 1808 kg; from the [`PLAIN`]
+/// optimum the same link buys crossmember (99.8 %) and gives up force.
+/// (2) The optimum found moves with the knots, the prior's spread and
+/// the parameter count (the start draws): [`TWO_PATHS`] reaches the four
+/// figures, but its rebound link ends past any crush (gap 1.9 m, never
+/// touching): its tail comes from the two paths' two unloading slopes
+/// (front kf 2019 N/mm soft, path kp 19057 N/mm steep) and its engine
+/// mounts stay elastic (k1 75 N/mm, c1 at its bound). The rebound link
+/// changed the start, not the car: the front table starts lower by the
+/// link's plateau past its gap, and the search from there ends here.
+/// The drawn starts' seed does not move it (`LINKS_SEED` 1, 2 and 3 give
+/// the same figures to the last digit). (3) The intervals
+/// of its plastic sets exist because link 1 never yields: its yield
+/// force and hardening are undetermined and the sets do not depend on
+/// them (`into_wall::intervals`, [`bumpsim_ident::links::into_wall::INDIFFERENT`]).
+/// An exact Jacobian (dual numbers) will move this search; re-measure
+/// then.
 ///
-/// Before the fix, 82.0 % with 16 knots. With 24 knots the search lands
-/// on another optimum, force 92.55 % and ΔV 1.65 % off but the
-/// crossmember at 96.65 % and the masses at 1811 kg, 5.2 prior sd above
-/// the test sheet's 1719 kg: the two channels disagree on the car's mass
-/// (the barrier's impulse over the crossmember's ΔV, printed, is 1783 kg,
-/// 3.7 % above the sheet's), so with the sheet's mass held to ±1 % the likelihood
-/// trades the force against the crossmember. That is not all of it: with
-/// the prior widened to ±4 % (`LINKS_MASS_SPREAD=0.04`) 16 knots gave
-/// force 84.0 % and crossmember 98.96 %, 24 knots 84.8 % and 97.3 %
-/// (ΔV within 0.2 % both): the optimum found moves with the knots and the
-/// prior, and none so far reaches both. The chain's only path to
-/// the wall is its front zone, a function of m1's crush and history; a
-/// second load path (the engine striking the barrier, Kamal 1970's
-/// engine spring, now `Chain::with_path`, measured above) or a
-/// rate-dependent front were the candidates; what is left is the tail's
-/// unloading (a softer second unloading slope or an unloading table) and
-/// the weight of the mass prior against 1200 correlated force samples.
+/// Before this round (no rebound link, sets without intervals whenever a
+/// parameter was undetermined): the path with 4 starts 97.62 % / 79.55 %;
+/// 12 starts ±1 % 99.54 % / 87.46 % with ΔV 3.23 % off at 1825 kg; 10
+/// path knots ±0.3 % 99.57 % / 88.39 %; 24 front knots without the path
+/// 96.65 % / 92.55 % at 1811 kg; the prior at ±4 %: 16 knots 98.96 % /
+/// 84.0 %, 24 knots 97.3 % / 84.8 %; 3 masses not finished in 31 min.
 #[test]
-#[ignore = "forward force fit 83.6 % on NHTSA 10146 (target 90 %); with the second load path 87.5 % but ΔV 3.2 % off and the mass 6 sd off the sheet (see the doc)"]
 fn nhtsa_10146_identified_into_the_barrier_predicts_the_force() {
-    let Some(b) = barrier() else { return };
+    let Some(b) = barrier(&TWO_PATHS) else { return };
     assert!(b.force_fit >= 90.0, "force fit {} %", b.force_fit);
+    assert!(b.fit >= 99.0, "fit {} %", b.fit);
+    assert!(b.dv_error <= 0.03, "ΔV {} % off", 100.0 * b.dv_error);
+    for set in &b.found.plastic_sets {
+        let [lo, hi] = set
+            .ci95
+            .unwrap_or_else(|| panic!("{set:?} has no interval"));
+        assert!(
+            lo <= set.value && set.value <= hi && (0.0..1.0).contains(&set.value),
+            "{set:?}"
+        );
+    }
+    // the masses within 1 % of the test sheet's (its ±0.3 % prior is
+    // moved 3.1 sd: see the doc)
+    let mass = &b.found.moved[0];
+    assert!((mass.estimate / mass.centre - 1.0).abs() < 0.01, "{mass:?}");
 }

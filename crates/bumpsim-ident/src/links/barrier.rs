@@ -39,6 +39,17 @@
 //! weighting by pre-trigger noise would let the quieter channel
 //! (the doubly integrated crossmember) drown the load cells.
 //!
+//! A rebound link ([`BarrierLayout::rebound`],
+//! [`bumpsim_core::chain::Chain::with_rebound`]) adds in parallel an
+//! elastic–perfectly-plastic link from a chosen mass into the wall after
+//! a gap `gt` (m), its plateau `Ft` (N) and its loading and unloading
+//! slope `kt` (N/m): while the car rebounds it gives back `Ft` over a
+//! stroke `Ft / kt`, the
+//! crushed front's springback that outlasts the crush zone's steep
+//! unloading (on NHTSA 10146 the wall force falls 450 → 100 kN over 25
+//! mm, then 100 → 0 kN over the last 70 mm: one unloading slope per link
+//! follows one of the two).
+//!
 //! With the test sheet's mass M the Gaussian prior `ln Σ m_i ~ N(ln M,
 //! s²)` ([`bumpsim_estimate::prior`]) joins them. The uncertainty is the
 //! shared engine's over the extended residuals (spectral inflation per
@@ -61,6 +72,9 @@ pub const REACH: f64 = 1.3;
 /// Bounds of a knot force (N) and of the front unloading slope (N/m).
 const FRONT_BOUNDS: [(f64, f64); 2] = [(1e2, 1e7), (1e4, 1e10)];
 
+/// Bounds of the rebound link's gap, m.
+const GAP_BOUNDS: (f64, f64) = (1e-3, 2.0);
+
 /// The chain behind a tabulated front crush zone, with an optional second
 /// load path from the last mass (the body) into the wall.
 #[derive(Debug, Clone, PartialEq)]
@@ -72,21 +86,26 @@ pub struct BarrierLayout {
     /// The second path's knots, crush of the last mass m (increasing,
     /// positive); empty: no second path.
     pub path_knots: Vec<f64>,
+    /// The mass (0-based) a rebound link pushes from the wall; None: no
+    /// rebound link.
+    pub rebound: Option<usize>,
 }
 
 impl BarrierLayout {
     /// Number of parameters: the chain's, K knot forces, the unloading
-    /// slope, and the second path's J knot forces and unloading slope.
+    /// slope, the second path's J knot forces and unloading slope, and
+    /// the rebound link's plateau and slope.
     pub fn count(&self) -> usize {
         let path = match self.path_knots.is_empty() {
             true => 0,
             false => self.path_knots.len() + 1,
         };
-        self.chain.count() + self.knots.len() + 1 + path
+        let rebound = 3 * usize::from(self.rebound.is_some());
+        self.chain.count() + self.knots.len() + 1 + path + rebound
     }
 
     /// Names and units: the chain's, `Ff1..FfK`, `kf`, then `Fp1..FpJ`,
-    /// `kp` with a second path.
+    /// `kp` with a second path, `Ft`, `kt`, `gt` with a rebound link.
     pub fn parameters(&self) -> Vec<Parameter> {
         let mut out = self.chain.parameters();
         let table = |letter: &str, knots: &[f64], out: &mut Vec<Parameter>| {
@@ -99,6 +118,11 @@ impl BarrierLayout {
         table("f", &self.knots, &mut out);
         if !self.path_knots.is_empty() {
             table("p", &self.path_knots, &mut out);
+        }
+        if self.rebound.is_some() {
+            out.push(Parameter::new("Ft", Dimension::Force));
+            out.push(Parameter::new("kt", Dimension::Stiffness));
+            out.push(Parameter::new("gt", Dimension::Length));
         }
         out
     }
@@ -118,6 +142,10 @@ impl BarrierLayout {
             lower.push(FRONT_BOUNDS[1].0);
             upper.push(FRONT_BOUNDS[1].1);
         }
+        if self.rebound.is_some() {
+            lower.extend([FRONT_BOUNDS[0].0, FRONT_BOUNDS[1].0, GAP_BOUNDS.0]);
+            upper.extend([FRONT_BOUNDS[0].1, FRONT_BOUNDS[1].1, GAP_BOUNDS.1]);
+        }
         (lower, upper)
     }
 
@@ -134,12 +162,20 @@ impl BarrierLayout {
         }
         let chain = self.chain.chain(&theta[..c])?;
         let k = c + self.knots.len() + 1;
-        let car = chain.with_front(table_link(&self.knots, &theta[c..k], 0)?);
-        if self.path_knots.is_empty() {
-            return Ok(car);
+        let mut car = chain.with_front(table_link(&self.knots, &theta[c..k], 0)?);
+        let end = match self.path_knots.is_empty() {
+            true => k,
+            false => k + self.path_knots.len() + 1,
+        };
+        if end > k {
+            let path = table_link(&self.path_knots, &theta[k..end], self.chain.dof)?;
+            car = car.with_path(self.chain.dof - 1, 0.0, path)?;
         }
-        let path = table_link(&self.path_knots, &theta[k..], self.chain.dof)?;
-        Ok(car.with_path(self.chain.dof - 1, 0.0, path)?)
+        if let Some(mass) = self.rebound {
+            let link = rebound_link(theta[end], theta[end + 1], self.chain.dof + 1)?;
+            car = car.with_rebound(mass, theta[end + 2], link)?;
+        }
+        Ok(car)
     }
 }
 
@@ -154,6 +190,15 @@ fn table_link(knots: &[f64], values: &[f64], link: usize) -> Result<Link, LinkId
         .collect();
     Curve::table(points)
         .and_then(|curve| Link::new(curve, Unloading::Slope(values[k])))
+        .map_err(|source| LinkIdentError::Link { link, source })
+}
+
+/// The rebound link of plateau `plateau` (N) and slope `slope` (N/m):
+/// elastic–perfectly-plastic, unloading along its loading slope (`link`:
+/// its number in errors).
+fn rebound_link(plateau: f64, slope: f64, link: usize) -> Result<Link, LinkIdentError> {
+    Curve::bilinear(slope, plateau, 0.0)
+        .and_then(|curve| Link::new(curve, Unloading::Slope(slope)))
         .map_err(|source| LinkIdentError::Link { link, source })
 }
 
@@ -229,6 +274,17 @@ pub fn front_set(car: &Chain, run: &ChainResponse) -> f64 {
     let reached = run.displacement[0].iter().fold(0.0_f64, |m, x| m.max(*x));
     car.front()
         .map_or(0.0, |front| LinkState { reached }.plastic_set(front))
+}
+
+/// The rebound link's plastic set after `run` (its mass's largest travel
+/// past the gap), m; None without one.
+pub fn rebound_set(car: &Chain, run: &ChainResponse) -> Option<f64> {
+    car.rebound().map(|link| {
+        let reached = run.displacement[link.mass]
+            .iter()
+            .fold(0.0_f64, |m, x| m.max(*x - link.gap));
+        LinkState { reached }.plastic_set(&link.link)
+    })
 }
 
 /// The second path's plastic set after `run` (its mass's largest travel
@@ -380,6 +436,9 @@ pub struct BarrierSettings {
     /// Knots of a second load path from the last mass into the wall (0:
     /// none).
     pub path_knots: usize,
+    /// The mass (0-based) of a rebound link into the wall
+    /// ([`BarrierLayout::rebound`]); None: none (the default before it).
+    pub rebound: Option<usize>,
     /// The test sheet's mass, kg, and the spread of its prior (standard
     /// deviation of ln M); None: no prior.
     pub sheet_mass: Option<(f64, f64)>,
@@ -431,6 +490,7 @@ mod tests {
             chain: Layout { dof: 2 },
             knots: vec![0.1, 0.2],
             path_knots: vec![],
+            rebound: None,
         };
         let names: Vec<String> = layout.parameters().into_iter().map(|p| p.name).collect();
         assert_eq!(names.join(" "), "m1 m2 c1 k1 Fy1 r1 u1 Ff1 Ff2 kf");

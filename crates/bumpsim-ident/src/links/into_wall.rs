@@ -11,7 +11,8 @@
 //! differences.
 
 use super::barrier::{
-    BarrierLayout, BarrierObjective, BarrierSettings, front_set, front_start, path_set, run,
+    BarrierLayout, BarrierObjective, BarrierSettings, front_set, front_start, path_set,
+    rebound_set, run,
 };
 use super::objective::frame;
 use super::{LinkIdentError, LinkIdentification, PlasticSet, start_points};
@@ -75,11 +76,29 @@ pub fn identify(
             (at, values)
         }
     };
-    let front = [front, path].concat();
+    let rebound = match settings.rebound {
+        Some(mass) if mass >= dof => {
+            return Err(LinkIdentError::Settings(format!(
+                "a rebound link on mass {} of a chain of {dof}",
+                mass + 1
+            )));
+        }
+        Some(_) => rebound_start(first, mass)?,
+        None => vec![],
+    };
+    if let [plateau, slope, gap] = rebound[..] {
+        // the front gives up what the rebound link carries while loading,
+        // so the car's loading force starts where it was
+        for (value, d) in front.iter_mut().zip(&knots) {
+            *value = (*value - plateau.min(slope * (d - gap).max(0.0))).max(0.2 * *value);
+        }
+    }
+    let front = [front, path, rebound].concat();
     let layout = BarrierLayout {
         chain,
         knots,
         path_knots,
+        rebound: settings.rebound,
     };
     let (lower_si, upper_si) = {
         let (lo, hi) = layout.bounds();
@@ -189,11 +208,13 @@ pub fn identify(
             out.push(front_set(&car, &response));
             out.extend(response.plastic_set.iter().copied());
             out.extend(path_set(&car, &response));
+            out.extend(rebound_set(&car, &response));
         }
         Ok(out)
     };
-    // per case: the front zone (0), the links (1..n−1), the second path (n)
-    let per_case = dof + usize::from(car.path().is_some());
+    // per case: the front zone (0), the links (1..n−1), the second path
+    // (n), the rebound link (after them)
+    let per_case = dof + usize::from(car.path().is_some()) + usize::from(car.rebound().is_some());
     let plastic_sets = intervals(&sets, &p, &u, &theta, &free)?
         .into_iter()
         .enumerate()
@@ -207,6 +228,7 @@ pub fn identify(
     let c = chain.count();
     let front_link = car.front().cloned();
     let path = car.path().cloned();
+    let rebound = car.rebound().cloned();
     Ok(LinkIdentification {
         layout: chain,
         parameters,
@@ -221,8 +243,54 @@ pub fn identify(
         plastic_sets,
         front: front_link,
         path,
+        rebound,
         starts: found.starts,
     })
+}
+
+/// The settings of a second stage: `settings` with a rebound link on
+/// mass `mass` (0-based), started from the identification `found`
+/// without one (its chain, its front table and unloading slope; a
+/// second path starts afresh).
+pub fn with_rebound(
+    found: &LinkIdentification,
+    settings: &BarrierSettings,
+    mass: usize,
+) -> BarrierSettings {
+    let mut out = settings.clone();
+    let c = found.layout.count();
+    out.links.start = found.theta[..c].to_vec();
+    if let Some(front) = &found.front
+        && let bumpsim_core::link::Curve::Table { points } = front.curve()
+        && let bumpsim_core::link::Unloading::Slope(slope) = front.unloading()
+    {
+        let knots = points[1..].iter().map(|p| p[0]).collect();
+        let mut values: Vec<f64> = points[1..].iter().map(|p| p[1]).collect();
+        values.push(slope);
+        out.front_start = Some((knots, values));
+    }
+    out.rebound = Some(mass);
+    out
+}
+
+/// A start for a rebound link `[Ft N, kt N/m, gt m]`: a plateau of 0.15
+/// times the case's largest force given back over a tenth of the rigid
+/// car's largest crush (its mass `mass`), after a gap of a quarter of it.
+fn rebound_start(case: &LoadCase, mass: f64) -> Result<Vec<f64>, LinkIdentError> {
+    let crush = super::barrier::rigid_crush(case, mass);
+    let (a, b) = case.window;
+    let reach = crush[a..=b].iter().fold(0.0_f64, |m, x| m.max(*x));
+    let peak = case.force[a..=b]
+        .iter()
+        .fold(0.0_f64, |m, f| m.max(f.abs()));
+    if !(reach > 0.0 && peak > 0.0) {
+        return Err(LinkIdentError::Settings(format!(
+            "load case '{}': a rebound link needs a car that crushes against a force (crush {reach} m, force {peak} N)",
+            case.name
+        )));
+    }
+    let plateau = 0.15 * peak;
+    Ok(vec![plateau, plateau / (0.1 * reach), 0.25 * reach])
 }
 
 /// Quantities of the free log parameters (plastic sets), or why not.
@@ -232,7 +300,12 @@ type Quantities<'a> = dyn Fn(&[f64]) -> Result<Vec<f64>, LinkIdentError> + 'a;
 type WithInterval = (f64, Option<[f64; 2]>);
 
 /// The values of `of` at `p` with their 95 % intervals by the delta method
-/// on the covariance of the free log parameters that `u` gives.
+/// on the covariance of the free log parameters that `u` gives. A free
+/// parameter the data leave undetermined (no standard error) leaves a
+/// value without an interval unless the value does not depend on it at
+/// all (its gradient below [`INDIFFERENT`]: a link that never yields
+/// leaves its yield force and hardening undetermined and its set at
+/// zero whatever they are); its variance then does not enter `gᵀ Σ g`.
 pub(crate) fn intervals(
     of: &Quantities,
     p: &[f64],
@@ -241,7 +314,7 @@ pub(crate) fn intervals(
     free: &[usize],
 ) -> Result<Vec<WithInterval>, LinkIdentError> {
     let nominal = of(p)?;
-    let covariance = log_covariance(u, theta, free);
+    let (covariance, undetermined) = log_covariance(u, theta, free);
     let step = 1e-6;
     let mut gradients = vec![DVector::zeros(p.len()); nominal.len()];
     for i in 0..p.len() {
@@ -255,7 +328,8 @@ pub(crate) fn intervals(
         .iter()
         .zip(&gradients)
         .map(|(value, g)| {
-            let ci = covariance.as_ref().and_then(|c| {
+            let indifferent = undetermined.iter().all(|&i| g[i].abs() < INDIFFERENT);
+            let ci = covariance.as_ref().filter(|_| indifferent).and_then(|c| {
                 let var = (g.transpose() * c * g)[(0, 0)];
                 (var.is_finite() && var >= 0.0).then(|| {
                     let half = 1.96 * var.sqrt();
@@ -267,29 +341,48 @@ pub(crate) fn intervals(
         .collect())
 }
 
+/// A value's gradient in an undetermined log parameter below this (m per
+/// unit of ln θ) is no dependence: the forward differences of a
+/// quantity that does not move with the parameter are this small or 0.
+pub const INDIFFERENT: f64 = 1e-7;
+
 /// The covariance of the free log parameters from `u`'s standard errors
 /// and correlations, a parameter at a bound held there (no variance, as
-/// the engine's intervals hold it); None when another lacks one (the data
-/// do not determine it).
-fn log_covariance(u: &Uncertainty, theta: &[f64], free: &[usize]) -> Option<DMatrix<f64>> {
+/// the engine's intervals hold it), and the free parameters (their
+/// positions in `free`) the data do not determine (no standard error:
+/// rows and columns of zeros here); None when a correlation between
+/// determined ones is missing.
+fn log_covariance(
+    u: &Uncertainty,
+    theta: &[f64],
+    free: &[usize],
+) -> (Option<DMatrix<f64>>, Vec<usize>) {
+    let mut undetermined = vec![];
     let se: Vec<Option<f64>> = free
         .iter()
-        .map(|&i| match (u.at_bound[i], u.standard_errors[i]) {
-            (true, _) => Some(None),
-            (false, Some(s)) => Some(Some(s / theta[i])),
-            (false, None) => None,
+        .enumerate()
+        .map(|(a, &i)| match (u.at_bound[i], u.standard_errors[i]) {
+            (true, _) => None,
+            (false, Some(s)) => Some(s / theta[i]),
+            (false, None) => {
+                undetermined.push(a);
+                None
+            }
         })
-        .collect::<Option<_>>()?;
+        .collect();
     let q = free.len();
     let mut c = DMatrix::zeros(q, q);
     for a in 0..q {
         for b in 0..q {
             if let (Some(sa), Some(sb)) = (se[a], se[b]) {
-                c[(a, b)] = u.correlation[free[a]][free[b]]? * sa * sb;
+                let Some(r) = u.correlation[free[a]][free[b]] else {
+                    return (None, undetermined);
+                };
+                c[(a, b)] = r * sa * sb;
             }
         }
     }
-    Some(c)
+    (Some(c), undetermined)
 }
 
 /// `scales`, or 1 for every channel when empty.
@@ -352,4 +445,55 @@ fn spread(curve: &bumpsim_core::link::Curve, reach: f64, values: &mut [f64]) -> 
         *value = curve.force(*d).max(1e-3 * curve.force(reach));
     }
     knots
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bumpsim_estimate::uncertainty::{Parameter, Series};
+
+    /// Two log parameters, the second without any effect on the residuals
+    /// (undetermined): a value of the first alone keeps its interval
+    /// (`1.96 σ_p0` for `p0` itself), one that moves with the second has
+    /// none.
+    #[test]
+    fn an_undetermined_parameter_leaves_only_the_values_that_depend_on_it_without_interval() {
+        let parameters = [
+            Parameter::with_symbol("a", "-"),
+            Parameter::with_symbol("b", "-"),
+        ];
+        let p = [0.0, 0.0];
+        let theta = [1.0, 1.0];
+        let rows = 40;
+        let jacobian = DMatrix::from_fn(rows, 2, |r, c| match c {
+            0 => 1.0 + 0.01 * r as f64,
+            _ => 0.0,
+        });
+        let residuals: Vec<f64> = (0..rows)
+            .map(|r| if r % 2 == 0 { 0.1 } else { -0.1 })
+            .collect();
+        let series = Series::contiguous(std::iter::once(rows));
+        let (lower, upper) = ([-5.0, -5.0], [5.0, 5.0]);
+        let u = uncertainty(&Estimated {
+            parameters: &parameters,
+            theta: &theta,
+            free: &[0, 1],
+            p: &p,
+            bounds: (&lower, &upper),
+            residuals: &residuals,
+            jacobian: &jacobian,
+            series: &series,
+            correlation: Correlation::Independent,
+        });
+        assert!(u.standard_errors[0].is_some() && u.standard_errors[1].is_none());
+        let of = |p: &[f64]| -> Result<Vec<f64>, LinkIdentError> { Ok(vec![p[0], p[0] + p[1]]) };
+        let out = intervals(&of, &p, &u, &theta, &[0, 1]).unwrap();
+        let [lo, hi] = out[0].1.expect("the first value does not depend on b");
+        let half = 1.96 * u.standard_errors[0].unwrap();
+        assert!(
+            (hi - lo - 2.0 * half).abs() < 1e-6 * half,
+            "{lo} {hi} {half}"
+        );
+        assert!(out[1].1.is_none(), "{:?}", out[1]);
+    }
 }

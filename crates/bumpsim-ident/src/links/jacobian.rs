@@ -57,6 +57,7 @@ pub fn values<T: Real>(layout: Layout, chain: &Chain, theta: &[T]) -> ChainValue
         links,
         front: None,
         path: None,
+        rebound: None,
     }
 }
 

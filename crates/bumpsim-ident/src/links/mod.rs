@@ -26,8 +26,9 @@
 //! A barrier test is better identified as the car ran into the barrier
 //! ([`barrier`], [`into_wall`]): the chain behind a tabulated front crush
 //! zone, driven by the wall, fitted to the wall force and the output
-//! together with the test sheet's mass as a prior. Its forward run is the
-//! identified car itself; the force-driven fit above leaves m1 and the
+//! together with the test sheet's mass as a prior, optionally with a
+//! second load path and a rebound link into the wall. Its forward run is
+//! the identified car itself; the force-driven fit above leaves m1 and the
 //! first link free (on NHTSA 10146 it throws m1 through its link).
 
 pub mod barrier;
@@ -338,6 +339,10 @@ pub struct LinkIdentification {
     /// [`barrier::BarrierLayout::path_knots`]); None otherwise. Plastic
     /// set number n (the chain's masses) is its.
     pub path: Option<bumpsim_core::chain::WallPath>,
+    /// The rebound link into the wall (the barrier identification's,
+    /// [`barrier::BarrierLayout::rebound`]); None otherwise. Its plastic
+    /// set follows the second path's.
+    pub rebound: Option<bumpsim_core::chain::WallPath>,
     /// What became of the starts.
     pub starts: Starts,
 }
@@ -358,6 +363,9 @@ impl LinkIdentification {
         };
         if let Some(path) = &self.path {
             chain = chain.with_path(path.mass, path.gap, path.link.clone())?;
+        }
+        if let Some(rebound) = &self.rebound {
+            chain = chain.with_rebound(rebound.mass, rebound.gap, rebound.link.clone())?;
         }
         let drive = bumpsim_core::chain::Drive::Barrier {
             speed,
@@ -453,6 +461,7 @@ pub fn identify(
         plastic_sets,
         front,
         path: None,
+        rebound: None,
         starts: found.starts,
     })
 }

@@ -56,6 +56,11 @@ pub fn text(found: &LinkIdentification) -> String {
             j if found.path.is_some() && j == found.layout.dof => {
                 "the second load path".to_string()
             }
+            j if found.rebound.is_some()
+                && j == found.layout.dof + usize::from(found.path.is_some()) =>
+            {
+                "the rebound link".to_string()
+            }
             j => format!("link {j}"),
         };
         out += &format!(
