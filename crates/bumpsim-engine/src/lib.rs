@@ -21,6 +21,7 @@
 pub mod chain;
 pub mod deck;
 pub mod error;
+pub mod held;
 pub mod links;
 pub mod model;
 pub mod outcome;
@@ -28,11 +29,13 @@ pub mod planar;
 pub mod registry;
 pub mod synth;
 pub mod uncertain;
+pub mod verdict;
 
 pub use error::EngineError;
 pub use model::{
     CarModel, Deck, ExportRequest, Face, ForceLoad, IdentifyRequest, ImpactRequest, PredictRequest,
-    Progress, Setup, Side, Solver, UncertaintyOptions,
+    Progress, Setup, Side, Solver, UncertaintyOptions, VerdictRequest, VerdictUncertainty,
 };
 pub use outcome::{Outcome, Report};
+pub use held::HeldCar;
 pub use registry::{export, identify, impact, predict, registered};
