@@ -27,6 +27,7 @@ pub mod model;
 pub mod outcome;
 pub mod planar;
 pub mod registry;
+pub mod sizes;
 pub mod synth;
 pub mod uncertain;
 pub mod verdict;

@@ -42,22 +42,22 @@ pub fn end(car: &HeldCar) -> Result<bumpsim_verdict::prelude::CarEnd, EngineErro
     model(car.kind(), "verdict")?.end(car)
 }
 
-/// The model that judges a car file of `kind`: a file the registry cannot
-/// tell from the 1-D chain (a planar car file with a mistake, which reads
-/// as the chain's) is judged by the one model with verdicts, whose reader
-/// then says what is wrong with it.
+/// The model that judges a car file of `kind`: a file the registry reads
+/// as the 1-D chain's (its fallback, also for a planar car file with a
+/// mistake) is judged by the model with verdicts, whose reader then says
+/// what is wrong with it; any other kind by its own model.
 fn judge(kind: ModelKind) -> ModelKind {
     let judges = |k: ModelKind| {
         crate::registry::registered()
             .iter()
             .any(|m| m.kind() == k && m.judges())
     };
-    match judges(kind) {
-        true => kind,
-        false => crate::registry::registered()
-            .iter()
-            .map(|m| m.kind())
-            .find(|&k| judges(k))
-            .unwrap_or(kind),
+    let fallback = crate::registry::registered()
+        .iter()
+        .map(|m| m.kind())
+        .find(|&k| judges(k));
+    match (kind, fallback) {
+        (ModelKind::Chain, Some(judge)) if !judges(kind) => judge,
+        _ => kind,
     }
 }
