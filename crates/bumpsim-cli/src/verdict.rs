@@ -114,12 +114,8 @@ pub fn run(args: &Args) -> Result<()> {
             args.car.len()
         ),
     };
-    let ends: Vec<(&Path, Option<&Path>)> = args
-        .car
-        .iter()
-        .map(PathBuf::as_path)
-        .zip(limits)
-        .collect();
+    let ends: Vec<(&Path, Option<&Path>)> =
+        args.car.iter().map(PathBuf::as_path).zip(limits).collect();
     let asi_method = args
         .asi_method
         .parse()

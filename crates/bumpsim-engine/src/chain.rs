@@ -112,9 +112,9 @@ impl CarModel for Chain {
         predict(request)
     }
 
-    fn synth(&self, path: &std::path::Path) -> Result<crate::synth::Made, EngineError> {
+    fn synth(&self, path: &std::path::Path) -> Result<crate::model::Made, EngineError> {
         let (tests, provenance) = bumpsim_impact::synth::make_series(path)?;
-        Ok(crate::synth::Made {
+        Ok(crate::model::Made {
             tests,
             provenance,
             files: Vec::new(),

@@ -4,20 +4,11 @@
 //! ([`crate::model::CarModel::car`]) as it would read the file. The front
 //! end names no model's crate for it. No equations here.
 
-use crate::registry::model;
 use crate::EngineError;
+use crate::model::CarText;
+use crate::registry::model;
 use bumpsim_io::kind::{KindError, ModelKind};
 use std::path::{Path, PathBuf};
-
-/// What a model reads from a car file's text: the car's name and the car
-/// written again as its own file (canonical: the same car reads back).
-#[derive(Debug, Clone, PartialEq)]
-pub struct CarText {
-    /// The name the file gives, if any.
-    pub name: Option<String>,
-    /// The car as its model writes its file.
-    pub toml: String,
-}
 
 /// A car file held in memory, read as a car of its kind.
 #[derive(Debug, Clone)]

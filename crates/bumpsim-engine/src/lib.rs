@@ -33,10 +33,10 @@ pub mod uncertain;
 pub mod verdict;
 
 pub use error::EngineError;
+pub use held::HeldCar;
 pub use model::{
     CarModel, Deck, ExportRequest, Face, ForceLoad, IdentifyRequest, ImpactRequest, PredictRequest,
     Progress, Setup, Side, Solver, UncertaintyOptions, VerdictRequest, VerdictUncertainty,
 };
 pub use outcome::{Outcome, Report};
-pub use held::HeldCar;
 pub use registry::{export, identify, impact, predict, registered};

@@ -3,9 +3,8 @@
 //! ([`CarModel`]); the registry of the models is [`crate::registry`]. No
 //! equations.
 
-use crate::held::{CarText, HeldCar};
-use crate::synth::Made;
 use crate::{EngineError, Outcome};
+use bumpsim_impact::synth::SynthTest;
 use bumpsim_io::kind::ModelKind;
 pub use bumpsim_planar::striker::Side;
 use std::path::Path;
@@ -211,8 +210,12 @@ pub trait CarModel: Sync {
 
     /// One end of a car for the verdicts ([`bumpsim_verdict::prelude::CarEnd`]):
     /// the held car with the limits of its file's `[damageability]`.
-    fn end(&self, car: &HeldCar) -> Result<bumpsim_verdict::prelude::CarEnd, EngineError> {
-        let _ = car;
+    fn end(
+        &self,
+        path: &Path,
+        text: &str,
+    ) -> Result<bumpsim_verdict::prelude::CarEnd, EngineError> {
+        let _ = (path, text);
         Err(self.not_registered("verdict"))
     }
 
@@ -383,4 +386,26 @@ pub struct VerdictUncertainty<'a> {
     pub seed: u64,
     /// Base samples of the Sobol indices, when asked.
     pub sobol_base: Option<usize>,
+}
+
+/// What a model reads from a car file's text: the car's name and the car
+/// written again as its own file (canonical: the same car reads back).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CarText {
+    /// The name the file gives, if any.
+    pub name: Option<String>,
+    /// The car as its model writes its file.
+    pub toml: String,
+}
+
+/// A made series.
+#[derive(Debug, Clone)]
+pub struct Made {
+    /// The tests, in the file's order: name, ISO-MME header, channels.
+    pub tests: Vec<SynthTest>,
+    /// The inputs' texts (for `generated-by.toml`).
+    pub provenance: String,
+    /// Further files of the output folder (name, text): the planar
+    /// series' `study.toml` and `start.toml`.
+    pub files: Vec<(&'static str, String)>,
 }

@@ -8,21 +8,10 @@
 //! writes the folder.
 
 use crate::EngineError;
-use bumpsim_impact::synth::SynthTest;
 use bumpsim_io::kind::{ModelKind, Role};
 use std::path::Path;
 
-/// A made series.
-#[derive(Debug, Clone)]
-pub struct Made {
-    /// The tests, in the file's order: name, ISO-MME header, channels.
-    pub tests: Vec<SynthTest>,
-    /// The inputs' texts (for `generated-by.toml`).
-    pub provenance: String,
-    /// Further files of the output folder (name, text): the planar
-    /// series' `study.toml` and `start.toml`.
-    pub files: Vec<(&'static str, String)>,
-}
+pub use crate::model::Made;
 
 /// Makes the series of the file at `path`, by its model.
 pub fn make(path: &Path) -> Result<Made, EngineError> {

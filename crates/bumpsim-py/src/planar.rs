@@ -123,9 +123,7 @@ fn planar_impact(
     sobol_base: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PlanarImpact> {
     let car = planar_car_of(car)?;
-    let side: Side = side
-        .parse()
-        .map_err(|e| invalid(format!("side: {e}")))?;
+    let side: Side = side.parse().map_err(|e| invalid(format!("side: {e}")))?;
     let arguments = Arguments {
         path: uncertainty,
         samples,

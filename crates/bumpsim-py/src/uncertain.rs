@@ -10,8 +10,8 @@
 use crate::arrays::array1;
 use crate::convert::{count_or, from_json, seed};
 use crate::errors::{input, invalid, message};
-use bumpsim_engine::EngineError;
 use crate::frames;
+use bumpsim_engine::EngineError;
 use bumpsim_impact::prediction::{self, Outputs, Sampling};
 use bumpsim_impact::propagation::{
     DEFAULT_SAMPLES, DEFAULT_SEED, DEFAULT_SOBOL_BASE, Propagation, PropagationError,

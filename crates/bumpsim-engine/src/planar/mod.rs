@@ -15,12 +15,10 @@ mod export;
 mod identify;
 mod verdict;
 
-use crate::held::{CarText, HeldCar};
 use crate::model::{
-    CarModel, Deck, ExportRequest, IdentifyRequest, ImpactRequest, PredictRequest, Setup,
-    VerdictRequest,
+    CarModel, CarText, Deck, ExportRequest, IdentifyRequest, ImpactRequest, Made, PredictRequest,
+    Setup, VerdictRequest,
 };
-use crate::synth::Made;
 use crate::uncertain::{self, Uncertain};
 use crate::{EngineError, Outcome, Report};
 use bumpsim_core::names::printable;
@@ -77,8 +75,12 @@ impl CarModel for Planar {
         verdict::verdict(request)
     }
 
-    fn end(&self, car: &HeldCar) -> Result<bumpsim_verdict::prelude::CarEnd, EngineError> {
-        verdict::end(car)
+    fn end(
+        &self,
+        path: &Path,
+        text: &str,
+    ) -> Result<bumpsim_verdict::prelude::CarEnd, EngineError> {
+        verdict::end(path, text)
     }
 
     fn synth(&self, path: &Path) -> Result<Made, EngineError> {

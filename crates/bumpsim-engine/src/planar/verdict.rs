@@ -4,12 +4,12 @@
 //! the probability of passing and the Sobol indices over the car's
 //! uncertainty ([`bumpsim_verdict`], issues 36 and 39). No equations here.
 
-use crate::held::HeldCar;
 use crate::model::VerdictRequest;
 use crate::{EngineError, Outcome, Report};
 use bumpsim_planar::PlanarCar;
 use bumpsim_verdict::prelude::*;
 use bumpsim_verdict::{probability, protocol, sensitivity, target, text};
+use std::path::Path;
 
 /// A refusal of the verdicts named by `context`.
 fn named(context: &str) -> impl Fn(VerdictError) -> EngineError + '_ {
@@ -92,11 +92,10 @@ pub(super) fn verdict(request: &VerdictRequest<'_>) -> Result<Outcome, EngineErr
     })
 }
 
-/// One end of a held planar car: the car with the limits of its file's
-/// `[damageability]`.
-pub(super) fn end(car: &HeldCar) -> Result<CarEnd, EngineError> {
-    let path = car.path();
-    let planar = PlanarCar::parse(car.text(), path)?;
+/// One end of a held planar car (its file's `text`, at `path`): the car
+/// with the limits of its file's `[damageability]`.
+pub(super) fn end(path: &Path, text: &str) -> Result<CarEnd, EngineError> {
+    let planar = PlanarCar::parse(text, path)?;
     let limits = Damageability::read(path)?;
     CarEnd::new(planar, limits).map_err(named(&path.display().to_string()))
 }
