@@ -184,7 +184,7 @@ pub enum EngineError {
     Plot(#[from] bumpsim_report::plot::PlotError),
     /// The verdicts refused a car, a protocol or an option.
     #[error(transparent)]
-    Verdict(#[from] bumpsim_verdict::VerdictError),
+    Verdict(Box<bumpsim_verdict::VerdictError>),
     /// The verdicts refused a value; `context` names the option or file.
     #[error("{context}")]
     VerdictIn {
@@ -192,7 +192,7 @@ pub enum EngineError {
         context: String,
         /// The verdicts' refusal.
         #[source]
-        source: bumpsim_verdict::VerdictError,
+        source: Box<bumpsim_verdict::VerdictError>,
     },
     /// The car's uncertainty file cannot be read.
     #[error(transparent)]
@@ -211,5 +211,11 @@ impl From<Box<bumpsim_ident::StudyError>> for EngineError {
 impl From<Box<bumpsim_ident::case::CaseError>> for EngineError {
     fn from(error: Box<bumpsim_ident::case::CaseError>) -> Self {
         EngineError::Case(error)
+    }
+}
+
+impl From<bumpsim_verdict::VerdictError> for EngineError {
+    fn from(error: bumpsim_verdict::VerdictError) -> Self {
+        EngineError::Verdict(Box::new(error))
     }
 }

@@ -31,7 +31,7 @@ pub struct Done {
 #[derive(Debug, Clone)]
 pub enum Size {
     /// Identified.
-    Done(Done),
+    Done(Box<Done>),
     /// Could not be identified.
     Failed {
         /// Number of masses.
@@ -71,11 +71,11 @@ impl Identified {
             .orders
             .into_iter()
             .map(|order| match order.result {
-                Ok(result) => Size::Done(Done {
+                Ok(result) => Size::Done(Box::new(Done {
                     result,
                     cases: order.cases,
                     settings: order.settings,
-                }),
+                })),
                 Err(error) => Size::Failed {
                     dof: order.dof,
                     error,
@@ -93,7 +93,7 @@ impl Identified {
         self.sizes
             .iter()
             .filter_map(|s| match s {
-                Size::Done(done) => Some(done),
+                Size::Done(done) => Some(done.as_ref()),
                 Size::Failed { .. } => None,
             })
             .collect()

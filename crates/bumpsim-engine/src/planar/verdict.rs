@@ -15,7 +15,7 @@ use std::path::Path;
 fn named(context: &str) -> impl Fn(VerdictError) -> EngineError + '_ {
     move |source| EngineError::VerdictIn {
         context: context.into(),
-        source,
+        source: Box::new(source),
     }
 }
 
