@@ -1,19 +1,15 @@
 //! `bumpsim identify` and `bumpsim predict`: argument conversion and output
 //! around bumpsim-ident and the identification report.
 
-use crate::{Folder, write};
 use anyhow::{Context, Result};
-use bumpsim_ident::document::{Failed, IdentifyDocument, WithPosterior};
+use bumpsim_engine::sizes::{Asked, Done, Identified, Size};
 use bumpsim_ident::dofs::DofList;
 use bumpsim_ident::estimate::Identification;
-use bumpsim_ident::explore::{predict, sensitivity};
-use bumpsim_ident::posterior::{Posterior, Request, Summary};
-use bumpsim_ident::settings::Settings;
+use bumpsim_ident::posterior::{Posterior, Request};
 use bumpsim_ident::sizes::{Observer, Order, Overrides, Watch};
 use bumpsim_ident::study::{DofSpec, Study};
 use bumpsim_ident::text::{case_lines, dof_table, parameter_table};
 use bumpsim_io::kind::{ModelKind, Role};
-use bumpsim_report::identification::{DofOutcome, report_with_posterior};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::cell::RefCell;
 use std::path::PathBuf;
@@ -136,55 +132,42 @@ pub fn run(args: &Args) -> Result<()> {
         bar: RefCell::new(None),
     };
     let sizes = bumpsim_ident::sizes::identify(&study, &overrides, &watch)?;
-    let notes = sizes.notes;
-    let mut outcomes = Vec::new();
-    let mut done: Vec<Done> = Vec::new();
-    for order in sizes.orders {
-        match order.result {
-            Ok(result) => {
-                let predictions = predict(&order.cases, &result.model)?;
-                done.push((result.clone(), order.cases, order.settings));
-                outcomes.push(DofOutcome::Done {
-                    result: Box::new(result),
-                    predictions,
-                });
-            }
-            Err(e) if dofs.len() > 1 => outcomes.push(DofOutcome::Failed {
-                dof: order.dof,
-                reason: e.to_string(),
-            }),
-            Err(e) => return Err(e).context(format!("{}-DOF identification", order.dof)),
-        }
+    let identified = Identified::of(sizes);
+    if let (false, Some(Size::Failed { dof, error })) = (watch.many, identified.sizes.first()) {
+        return Err(error.clone()).context(format!("{dof}-DOF identification"));
     }
-    let results: Vec<Identification> = done.iter().map(|(r, ..)| r.clone()).collect();
+    let results = identified.results();
     if results.len() > 1 {
         println!("\n{}", dof_table(&results));
     }
     let posterior = match &request {
-        Some(request) => sample_posterior(args.quiet, &done, request)?,
+        Some(request) => sample_posterior(args.quiet, &identified.done(), request)?,
         None => None,
     };
     // the ±3 % sweep (91 simulations per case) only when it is written
-    let wanted = args.sensitivity.is_some() || args.report.is_some();
-    let sweeps = done
-        .last()
-        .filter(|_| wanted)
-        .map(|(r, cases, _)| sensitivity(cases, &r.model, 0.03, 13))
-        .transpose()?;
-    let outputs = Outputs {
-        results: &results,
-        outcomes: &outcomes,
-        sweeps: sweeps.as_deref(),
-        notes: &notes,
-        posterior: posterior.as_ref().map(|(p, r)| (p, *r)),
+    let sweeps = match args.sensitivity.is_some() || args.report.is_some() {
+        true => identified.sweeps()?,
+        false => None,
     };
-    write_outputs(args, &study, &outputs)?;
-    let failed: Vec<String> = outcomes
+    let asked = Asked {
+        study: &args.study,
+        starts: args.starts.unwrap_or(study.model.starts),
+        seed: args.seed.unwrap_or(study.model.seed),
+        report: args.report.is_some(),
+    };
+    let posterior = posterior.as_ref().map(|(p, r)| (p, *r));
+    let outcome = identified.outcome(&asked, sweeps.as_deref(), posterior)?;
+    let files = crate::output::Written {
+        json: args.json.as_deref(),
+        csv: args.sensitivity.as_deref(),
+        report: args.report.as_deref(),
+        ..Default::default()
+    };
+    crate::output::outcome(outcome, &files)?;
+    let failed: Vec<String> = identified
+        .failed()
         .iter()
-        .filter_map(|o| match o {
-            DofOutcome::Failed { dof, .. } => Some(dof.to_string()),
-            DofOutcome::Done { .. } => None,
-        })
+        .map(|f| f.dof.to_string())
         .collect();
     if !failed.is_empty() {
         // the others' results are complete: they are delivered, then the exit is 2
@@ -192,7 +175,7 @@ pub fn run(args: &Args) -> Result<()> {
         anyhow::bail!(
             "{} of the {} models failed (DOF {}, see above); the others are reported",
             failed.len(),
-            outcomes.len(),
+            identified.sizes.len(),
             failed.join(", ")
         );
     }
@@ -243,31 +226,24 @@ fn print_notes(notes: &[String]) {
     }
 }
 
-/// What `identify` writes.
-struct Outputs<'a> {
-    results: &'a [Identification],
-    outcomes: &'a [DofOutcome],
-    sweeps: Option<&'a [bumpsim_ident::explore::Sweep]>,
-    notes: &'a [String],
-    posterior: Option<(&'a Posterior, &'a Identification)>,
-}
-
-/// One identified order: its result, load cases and settings.
-type Done = (Identification, Vec<bumpsim_ident::LoadCase>, Settings);
-
 /// The posterior of the identified order (or of the DOF table's
 /// recommendation), printed; `None` when no order was identified.
 fn sample_posterior<'a>(
     quiet: bool,
-    done: &'a [Done],
+    done: &[&'a Done],
     request: &Request,
 ) -> Result<Option<(Posterior, &'a Identification)>> {
-    let results: Vec<Identification> = done.iter().map(|(r, ..)| r.clone()).collect();
+    let results: Vec<Identification> = done.iter().map(|d| d.result.clone()).collect();
     let dof = match results.as_slice() {
         [one] => Some(one.dof),
         _ => bumpsim_ident::text::recommended_dof(&results),
     };
-    let Some((result, cases, settings)) = done.iter().find(|(r, ..)| Some(r.dof) == dof) else {
+    let Some(Done {
+        result,
+        cases,
+        settings,
+    }) = done.iter().copied().find(|d| Some(d.result.dof) == dof)
+    else {
         return Ok(None);
     };
     let ensemble = request
@@ -327,84 +303,6 @@ fn print_result(r: &Identification) {
         println!("  warning: {w}");
     }
     crate::count_warnings(r.warnings.len());
-}
-
-fn write_outputs(args: &Args, study: &Study, outputs: &Outputs) -> Result<()> {
-    let Outputs {
-        results,
-        outcomes,
-        sweeps,
-        notes,
-        posterior,
-    } = *outputs;
-    // the document --json writes; a report keeps a copy for the viewer
-    let json = if args.json.is_some() || args.report.is_some() {
-        let failed: Vec<Failed> = outcomes
-            .iter()
-            .filter_map(|o| match o {
-                DofOutcome::Failed { dof, reason } => Some(Failed {
-                    dof: *dof,
-                    reason: reason.clone(),
-                }),
-                DofOutcome::Done { .. } => None,
-            })
-            .collect();
-        let document = WithPosterior {
-            document: IdentifyDocument::new(results, &failed, notes),
-            posterior: posterior.map(|(p, r)| Summary::new(p, r)),
-        };
-        Some(serde_json::to_string_pretty(&document)?)
-    } else {
-        None
-    };
-    if let (Some(path), Some(json)) = (&args.json, &json) {
-        write(path, json)?;
-    }
-    if let (Some(path), Some(sweeps)) = (&args.sensitivity, sweeps) {
-        let mut csv = String::from("relative change [-]");
-        sweeps
-            .iter()
-            .for_each(|s| csv += &format!(",objective {} [m^2]", s.name));
-        csv.push('\n');
-        for j in 0..sweeps.first().map_or(0, |s| s.relative_change.len()) {
-            csv += &sweeps[0].relative_change[j].to_string();
-            sweeps
-                .iter()
-                .for_each(|s| csv += &format!(",{}", s.objective[j]));
-            csv.push('\n');
-        }
-        write(path, &csv)?;
-    }
-    if let Some(dir) = &args.report {
-        let inputs = std::fs::read_to_string(&args.study).unwrap_or_default();
-        let dofs: Vec<String> = outcomes
-            .iter()
-            .map(|o| match o {
-                DofOutcome::Done { result, .. } => result.dof.to_string(),
-                DofOutcome::Failed { dof, .. } => format!("{dof} (failed)"),
-            })
-            .collect();
-        let starts = args.starts.unwrap_or(study.model.starts);
-        let seed = args.seed.unwrap_or(study.model.seed);
-        let settings = format!(
-            "Study {}; DOF {}; {starts} starts, seed {seed}; exact zoh discretisation.",
-            args.study.display(),
-            dofs.join(", ")
-        );
-        let texts = ("bumpsim identification", inputs.as_str(), settings.as_str());
-        let (html, figures) = report_with_posterior(texts, notes, outcomes, sweeps, posterior)?;
-        match json {
-            Some(json) => Folder::viewed_report(
-                dir,
-                &html,
-                figures,
-                (json, args.json.as_deref()),
-                &[&args.study],
-            )?,
-            None => Folder::report(dir, &html, &figures)?,
-        }
-    }
-    Ok(())
 }
 
 /// Runs `predict`: the car on a study of its kind, one library request

@@ -65,6 +65,7 @@ impl ImpactArgs {
     fn request(&self) -> bumpsim_engine::ImpactRequest<'_> {
         bumpsim_engine::ImpactRequest {
             car: self.car.as_deref(),
+            car_text: None,
             bumper: self.bumper.as_deref(),
             case: self.case.as_deref(),
             pendulum: self.pendulum,

@@ -1,5 +1,5 @@
-//! `bumpsim verdict`: argument conversion and output around
-//! bumpsim-verdict (issue 36): one car (a planar car file per end with its
+//! `bumpsim verdict`: argument conversion around the engine's verdict
+//! request (`bumpsim_engine::verdict`, issue 36): one car (a planar car file per end with its
 //! `[damageability]`), a protocol set → per test and criterion the verdict
 //! and margin, the assumptions, and on request the bumper target region,
 //! the probability of passing and the Sobol indices over the car's
@@ -7,12 +7,10 @@
 //! Exit 0 whether the car passes or not (the verdict is the result); 2 on
 //! bad input.
 
-use crate::{Folder, write};
 use anyhow::{Context, Result};
 use bumpsim_io::protocols::Market;
-use bumpsim_verdict::prelude::*;
 use bumpsim_verdict::pulse::AsiMethod;
-use bumpsim_verdict::{probability, protocol, sensitivity, target, text};
+use bumpsim_verdict::{sensitivity, text};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
 
@@ -96,15 +94,14 @@ pub struct Args {
     sobol_base: usize,
 }
 
-/// Runs `bumpsim verdict`.
+/// Runs `bumpsim verdict`: one library request (the car files' kind picks
+/// the model that judges them).
 pub fn run(args: &Args) -> Result<()> {
     let market = Market::parse(&args.market).unwrap_or_default();
     if args.list {
         print!("{}", text::protocols_for(market));
         return Ok(());
     }
-    let names: Vec<&str> = args.protocol.iter().map(String::as_str).collect();
-    let tests = protocol::select_in(&names, market).context("--protocol")?;
     let limits: Vec<Option<&Path>> = match args.damageability.len() {
         0 => vec![None; args.car.len()],
         n if n == args.car.len() => args
@@ -117,78 +114,66 @@ pub fn run(args: &Args) -> Result<()> {
             args.car.len()
         ),
     };
-    let ends = args
-        .car
-        .iter()
-        .zip(limits)
-        .map(|(path, limits)| CarEnd::read(path, limits))
-        .collect::<Result<Vec<_>, _>>()?;
-    let mut setup = Setup::new(ends, tests, args.margin)?;
-    setup.sequence = args.sequence;
-    setup.asi_method = args
+    let ends: Vec<(&Path, Option<&Path>)> =
+        args.car.iter().map(PathBuf::as_path).zip(limits).collect();
+    let asi_method = args
         .asi_method
         .parse()
         .ok()
         .and_then(AsiMethod::of_year)
         .context("--asi-method: 2010 or 1998")?;
-    let mut v = verdict(&setup)?;
-    let mut indices = None;
-    if let Some(path) = &args.uncertainty {
-        let u = Uncertainty::read(path)?;
-        let settings = sensitivity::Settings::new(args.sobol_base, args.seed);
-        if args.sobol {
-            sensitivity::check(&setup, &u, &settings)?;
-        }
-        let sampling = Sampling {
+    let uncertainty = args
+        .uncertainty
+        .as_deref()
+        .map(|path| bumpsim_engine::VerdictUncertainty {
+            path,
             samples: args.samples,
             seed: args.seed,
-        };
-        probability::propagate(&setup, &mut v, &u, sampling)?;
-        if args.sobol {
-            indices = Some(sobol_indices(&setup, &v, &u, &settings)?);
-        }
-    }
-    let region = match args.target {
-        true => Some(target::search(&setup, &TargetOptions::default())?),
-        false => None,
+            sobol_base: args.sobol.then_some(args.sobol_base),
+        });
+    let bar = Bar(ProgressBar::hidden());
+    let request = bumpsim_engine::VerdictRequest {
+        ends: &ends,
+        protocols: &args.protocol,
+        market,
+        margin: args.margin,
+        target: args.target,
+        sequence: args.sequence,
+        asi_method,
+        uncertainty,
+        report: args.report.is_some(),
+        progress: &bar,
     };
-    let mut document = serde_json::json!({ "verdict": v, "target": region });
-    // only with --sobol: the document of a plain verdict stays as Python's
-    if let (Some(s), Some(fields)) = (&indices, document.as_object_mut()) {
-        fields.insert("sensitivity".into(), serde_json::to_value(s)?);
-    }
-    let json = serde_json::to_string_pretty(&document)?;
-    if let Some(path) = &args.json {
-        write(path, &json)?;
-    }
-    if let Some(dir) = &args.report {
-        let (html, figures) =
-            bumpsim_report::verdict::verdict_report(&v, region.as_ref(), indices.as_ref())?;
-        Folder::viewed_report(dir, &html, figures, (json, args.json.as_deref()), &[])?;
-    }
-    print!("{}", text::table(&v));
-    if let Some(r) = &region {
-        print!("{}", text::region(r));
-    }
-    if let Some(s) = &indices {
-        print!("{}", sensitivity::table(s));
-    }
-    Ok(())
+    let outcome = bumpsim_engine::verdict::verdict(&request)?;
+    let files = crate::output::Written {
+        json: args.json.as_deref(),
+        report: args.report.as_deref(),
+        ..Default::default()
+    };
+    crate::output::outcome(outcome, &files)
 }
 
-/// The Sobol indices with a progress bar over the verdicts they run.
-fn sobol_indices(
-    setup: &Setup,
-    v: &Verdict,
-    u: &Uncertainty,
-    settings: &sensitivity::Settings,
-) -> Result<sensitivity::Sensitivity> {
-    let bar = ProgressBar::new(sensitivity::evaluations(u, settings.base) as u64);
-    let style = ProgressStyle::with_template("{msg} [{bar:30}] {pos}/{len} verdicts ({elapsed})")
-        .unwrap_or(ProgressStyle::default_bar());
-    bar.set_style(style.progress_chars("=> "));
-    bar.set_message("Sobol indices");
-    let s = sensitivity::sensitivity(setup, v, u, settings, &|| bar.inc(1));
-    bar.finish_and_clear();
-    s.context("--sobol")
+/// The progress bar over the verdicts the Sobol indices run (drawn only
+/// when they run).
+struct Bar(ProgressBar);
+
+impl bumpsim_engine::Progress for Bar {
+    fn begin(&self, verdicts: u64) {
+        let style =
+            ProgressStyle::with_template("{msg} [{bar:30}] {pos}/{len} verdicts ({elapsed})")
+                .unwrap_or(ProgressStyle::default_bar());
+        self.0.set_style(style.progress_chars("=> "));
+        self.0.set_message("Sobol indices");
+        self.0.set_length(verdicts);
+        self.0
+            .set_draw_target(indicatif::ProgressDrawTarget::stderr());
+    }
+
+    fn start_finished(&self) {
+        self.0.inc(1);
+    }
+
+    fn end(&self) {
+        self.0.finish_and_clear();
+    }
 }

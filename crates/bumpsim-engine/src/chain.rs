@@ -111,6 +111,15 @@ impl CarModel for Chain {
     fn predict(&self, request: &PredictRequest<'_>) -> Result<Outcome, EngineError> {
         predict(request)
     }
+
+    fn synth(&self, path: &std::path::Path) -> Result<crate::model::Made, EngineError> {
+        let (tests, provenance) = bumpsim_impact::synth::make_series(path)?;
+        Ok(crate::model::Made {
+            tests,
+            provenance,
+            files: Vec::new(),
+        })
+    }
 }
 
 /// `predict` of a chain model (a car file, or an identification's JSON of

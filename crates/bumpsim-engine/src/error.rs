@@ -182,6 +182,21 @@ pub enum EngineError {
     /// A figure of the report could not be drawn.
     #[error("report: {0}")]
     Plot(#[from] bumpsim_report::plot::PlotError),
+    /// The verdicts refused a car, a protocol or an option.
+    #[error(transparent)]
+    Verdict(Box<bumpsim_verdict::VerdictError>),
+    /// The verdicts refused a value; `context` names the option or file.
+    #[error("{context}")]
+    VerdictIn {
+        /// The option or file concerned.
+        context: String,
+        /// The verdicts' refusal.
+        #[source]
+        source: Box<bumpsim_verdict::VerdictError>,
+    },
+    /// The car's uncertainty file cannot be read.
+    #[error(transparent)]
+    UncertaintyFile(#[from] bumpsim_impact::uncertainty::UncertaintyError),
     /// The JSON document could not be made.
     #[error("JSON document: {0}")]
     Json(#[from] serde_json::Error),
@@ -196,5 +211,11 @@ impl From<Box<bumpsim_ident::StudyError>> for EngineError {
 impl From<Box<bumpsim_ident::case::CaseError>> for EngineError {
     fn from(error: Box<bumpsim_ident::case::CaseError>) -> Self {
         EngineError::Case(error)
+    }
+}
+
+impl From<bumpsim_verdict::VerdictError> for EngineError {
+    fn from(error: bumpsim_verdict::VerdictError) -> Self {
+        EngineError::Verdict(Box::new(error))
     }
 }

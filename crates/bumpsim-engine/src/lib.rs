@@ -21,18 +21,22 @@
 pub mod chain;
 pub mod deck;
 pub mod error;
+pub mod held;
 pub mod links;
 pub mod model;
 pub mod outcome;
 pub mod planar;
 pub mod registry;
+pub mod sizes;
 pub mod synth;
 pub mod uncertain;
+pub mod verdict;
 
 pub use error::EngineError;
+pub use held::HeldCar;
 pub use model::{
     CarModel, Deck, ExportRequest, Face, ForceLoad, IdentifyRequest, ImpactRequest, PredictRequest,
-    Progress, Setup, Side, Solver, UncertaintyOptions,
+    Progress, Setup, Side, Solver, UncertaintyOptions, VerdictRequest, VerdictUncertainty,
 };
 pub use outcome::{Outcome, Report};
 pub use registry::{export, identify, impact, predict, registered};

@@ -4,6 +4,7 @@
 //! equations.
 
 use crate::{EngineError, Outcome};
+use bumpsim_impact::synth::SynthTest;
 use bumpsim_io::kind::ModelKind;
 pub use bumpsim_planar::striker::Side;
 use std::path::Path;
@@ -16,6 +17,10 @@ use std::path::Path;
 pub struct ImpactRequest<'a> {
     /// The car file.
     pub car: Option<&'a Path>,
+    /// The car file's text, when the front end holds the car
+    /// ([`crate::held::HeldCar`]): read instead of the file `car`, which
+    /// it names.
+    pub car_text: Option<&'a str>,
     /// A bumper file (`--bumper`; only the linear chain takes one).
     pub bumper: Option<&'a Path>,
     /// A load-case preset of the table of tests.
@@ -184,6 +189,42 @@ pub trait CarModel: Sync {
         Err(self.not_registered("export"))
     }
 
+    /// A car file of this model read (`text`, else the file at `path`):
+    /// its name and the car as its file, for a front end that holds the
+    /// car ([`crate::held::HeldCar`]).
+    fn car(&self, path: &Path, text: Option<&str>) -> Result<CarText, EngineError> {
+        let _ = (path, text);
+        Err(self.not_registered("car"))
+    }
+
+    /// `verdict`: the cars of `request.ends` in the protocols' tests.
+    fn verdict(&self, request: &VerdictRequest<'_>) -> Result<Outcome, EngineError> {
+        let _ = request;
+        Err(self.not_registered("verdict"))
+    }
+
+    /// Whether this model's cars are judged by `verdict`.
+    fn judges(&self) -> bool {
+        false
+    }
+
+    /// One end of a car for the verdicts ([`bumpsim_verdict::prelude::CarEnd`]):
+    /// the held car with the limits of its file's `[damageability]`.
+    fn end(
+        &self,
+        path: &Path,
+        text: &str,
+    ) -> Result<bumpsim_verdict::prelude::CarEnd, EngineError> {
+        let _ = (path, text);
+        Err(self.not_registered("verdict"))
+    }
+
+    /// `synth`: the test series of the file at `path`.
+    fn synth(&self, path: &Path) -> Result<Made, EngineError> {
+        let _ = path;
+        Err(self.not_registered("synth"))
+    }
+
     /// The refusal of a command this model does not run through the engine.
     fn not_registered(&self, command: &'static str) -> EngineError {
         EngineError::NotRegistered {
@@ -306,4 +347,65 @@ pub struct Deck {
     pub text: String,
     /// What it holds (after "wrote FILE: ").
     pub what: String,
+}
+
+/// `verdict` as a front end names it, its options converted.
+pub struct VerdictRequest<'a> {
+    /// Per end: the car file and, for a car file without a
+    /// `[damageability]` table, the file of its clearances and limits.
+    pub ends: &'a [(&'a Path, Option<&'a Path>)],
+    /// Protocols or tests by name (`all`, a protocol, a test's name).
+    pub protocols: &'a [String],
+    /// The vehicle's target market (the RCAR barrier's lower edge).
+    pub market: bumpsim_io::protocols::Market,
+    /// Least margin each criterion keeps, a share of its limit.
+    pub margin: f64,
+    /// Also search the region of passing bumper characteristics.
+    pub target: bool,
+    /// Run the tests in order, each from the damage the earlier ones left.
+    pub sequence: bool,
+    /// How the ASI averages the accelerations.
+    pub asi_method: bumpsim_verdict::pulse::AsiMethod,
+    /// The car's uncertainty: the probability of passing (and the Sobol
+    /// indices when asked).
+    pub uncertainty: Option<VerdictUncertainty<'a>>,
+    /// Draw the report's pages too.
+    pub report: bool,
+    /// Hears of the Sobol indices' verdicts, one "start" each.
+    pub progress: &'a dyn Progress,
+}
+
+/// The car's uncertainty in a verdict.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VerdictUncertainty<'a> {
+    /// An identification's JSON or a TOML of deviations and ranges.
+    pub path: &'a Path,
+    /// Draws of the car's parameters.
+    pub samples: usize,
+    /// Seed of the draws (and of the indices' bootstrap).
+    pub seed: u64,
+    /// Base samples of the Sobol indices, when asked.
+    pub sobol_base: Option<usize>,
+}
+
+/// What a model reads from a car file's text: the car's name and the car
+/// written again as its own file (canonical: the same car reads back).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CarText {
+    /// The name the file gives, if any.
+    pub name: Option<String>,
+    /// The car as its model writes its file.
+    pub toml: String,
+}
+
+/// A made series.
+#[derive(Debug, Clone)]
+pub struct Made {
+    /// The tests, in the file's order: name, ISO-MME header, channels.
+    pub tests: Vec<SynthTest>,
+    /// The inputs' texts (for `generated-by.toml`).
+    pub provenance: String,
+    /// Further files of the output folder (name, text): the planar
+    /// series' `study.toml` and `start.toml`.
+    pub files: Vec<(&'static str, String)>,
 }

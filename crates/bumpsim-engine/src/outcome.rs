@@ -4,8 +4,9 @@
 //! the report's pages. Nothing here is written: writing (whole, never onto
 //! an input) is the front end's (no equations here).
 
-/// The answer of one request.
-#[derive(Debug, Clone, PartialEq, Default)]
+/// The answer of one request; it serialises whole (the Python module
+/// pickles its results as their outcome).
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Outcome {
     /// Standard output, in order, each line ending in `\n`.
     pub text: String,
@@ -27,7 +28,7 @@ pub struct Outcome {
 }
 
 /// A report: its index page and its figures and further pages.
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Report {
     /// `index.html`.
     pub html: String,

@@ -11,8 +11,8 @@ use crate::frames;
 use crate::identification::{DofTable, Identification};
 use crate::state::ident::LoadCaseState;
 use bumpsim_core::series::UniformSeries;
+use bumpsim_engine::sizes::Identified;
 use bumpsim_ident::case::LoadCase;
-use bumpsim_ident::document::Failed;
 use bumpsim_ident::estimate::{Settings, identify as core_identify};
 use bumpsim_ident::sizes::{Observer, Overrides, Watch};
 use bumpsim_ident::study::{DofSpec, Study};
@@ -336,7 +336,8 @@ fn dof_table(
     py.detach(|| sweep(&path, &file, &overrides, &tick))
 }
 
-/// The library's loop over the orders (`bumpsim identify --dof 1..5`).
+/// The library's loop over the orders (`bumpsim identify --dof 1..5`),
+/// assembled by the engine ([`Identified`]).
 fn sweep(
     path: &Path,
     file: &Study,
@@ -344,23 +345,23 @@ fn sweep(
     tick: &(impl Fn() + Sync),
 ) -> PyResult<DofTable> {
     let sizes = bumpsim_ident::sizes::identify(file, overrides, &Ticked(tick)).map_err(input)?;
-    let (mut results, mut failures) = (Vec::new(), Vec::new());
-    for order in sizes.orders {
-        match order.result {
-            Ok(result) => results.push(Identification::new(
-                result,
-                order.cases,
-                sizes.notes.clone(),
+    // the sizes assembled as the command line's identify assembles them
+    let identified = Identified::of(sizes);
+    let results = identified
+        .done()
+        .into_iter()
+        .map(|d| {
+            Identification::new(
+                d.result.clone(),
+                d.cases.clone(),
+                identified.notes.clone(),
                 Some(path.to_path_buf()),
-                &order.settings,
-            )),
-            Err(e) => failures.push(Failed {
-                dof: order.dof,
-                reason: e.to_string(),
-            }),
-        }
-    }
-    Ok(DofTable::new(results, failures, sizes.notes))
+                &d.settings,
+            )
+        })
+        .collect();
+    let failed = identified.failed();
+    Ok(DofTable::new(results, failed, identified.notes))
 }
 
 /// The progress callback as the library's watch: one tick per start.

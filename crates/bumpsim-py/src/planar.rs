@@ -1,21 +1,24 @@
-//! The planar car (bumpsim-planar), the calls `bumpsim planar` makes:
-//! a preset or an angled/offset barrier, pendulum or pole striker, the
-//! library's simulation, the result with the JSON's fields. A function that
-//! takes a planar car takes a `PlanarCar` or the path of its file.
+//! The planar car, the calls `bumpsim planar` makes: a preset or an
+//! angled/offset barrier, pendulum or pole striker, as the engine's impact
+//! request ([`bumpsim_engine::impact`]) on the car the `PlanarCar` holds
+//! ([`bumpsim_engine::HeldCar`]); the result is the request's outcome,
+//! with the JSON's fields. A function that takes a planar car takes a
+//! `PlanarCar` or the path of its file.
 
 use crate::convert::from_json;
 use crate::errors::{input, invalid, reading};
 use crate::frames;
-use crate::impact::Predictable;
-use crate::state::planar::{PlanarImpactState, StrikerArgs};
 use crate::state::{decode, encode, reduce};
-use crate::uncertain::{Arguments, Predicted, Uncertain};
-use bumpsim_planar::presets::{PlanarPreset, StrikerSpec, prepared};
-use bumpsim_planar::uncertainty::Planar;
-use bumpsim_planar::{PlanarCar as CorePlanarCar, Settings, Side, Striker, simulate};
+use crate::uncertain::{Arguments, Predicted, engine};
+use bumpsim_engine::{Face, HeldCar, ImpactRequest, Outcome, Side, UncertaintyOptions};
+use bumpsim_io::kind::ModelKind;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple, PyType};
+use pyo3::types::{PyBytes, PyDict, PyTuple, PyType};
+use serde_json::Value;
 use std::path::PathBuf;
+
+/// The model a `PlanarCar` is read as.
+const PLANAR: ModelKind = ModelKind::Planar;
 
 /// Registers the classes and functions of this module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -28,19 +31,16 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 /// A planar car (yaw, left/right chains, segmented bumper beam, tyres).
 #[pyclass(frozen, module = "bumpsim")]
 pub struct PlanarCar {
-    inner: CorePlanarCar,
-    path: PathBuf,
+    inner: HeldCar,
 }
 
 /// The planar car of an argument: a `PlanarCar`, or the path of its file.
-pub(crate) fn planar_car_of(value: &Bound<'_, PyAny>) -> PyResult<(CorePlanarCar, PathBuf)> {
+pub(crate) fn planar_car_of(value: &Bound<'_, PyAny>) -> PyResult<HeldCar> {
     if let Ok(car) = value.cast::<PlanarCar>() {
-        let car = car.get();
-        return Ok((car.inner.clone(), car.path.clone()));
+        return Ok(car.get().inner.clone());
     }
     let path = crate::convert::path(value, "car", "a bumpsim.PlanarCar")?;
-    let car = CorePlanarCar::read(&path).map_err(|e| reading(&path, e))?;
-    Ok((car, path))
+    HeldCar::read(&path, PLANAR).map_err(|e| reading(&path, e))
 }
 
 #[pymethods]
@@ -48,8 +48,9 @@ impl PlanarCar {
     /// Reads a planar car file (TOML, docs/planar.md).
     #[staticmethod]
     fn from_file(path: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let (inner, path) = planar_car_of(path)?;
-        Ok(PlanarCar { inner, path })
+        Ok(PlanarCar {
+            inner: planar_car_of(path)?,
+        })
     }
     /// The name from the file, or None.
     #[getter]
@@ -59,58 +60,36 @@ impl PlanarCar {
     /// The file it was read from.
     #[getter]
     fn path(&self) -> PathBuf {
-        self.path.clone()
+        self.inner.path().to_path_buf()
     }
     /// The car as a planar car file (SI lengths), which reads back to the same car.
     fn to_toml(&self) -> String {
-        self.inner.to_toml()
+        self.inner.to_toml().to_string()
     }
     fn __eq__(&self, other: &Self) -> bool {
-        self.inner == other.inner && self.path == other.path
+        self.inner == other.inner
     }
     /// Pickles as its file text and path.
     fn __reduce__<'py>(
         slf: &Bound<'py, Self>,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
-        let car = slf.get();
+        let car = &slf.get().inner;
         let restore = slf.get_type().getattr("_from_toml")?;
-        let args = (car.inner.to_toml(), car.path.clone()).into_pyobject(slf.py())?;
+        let args = (car.to_toml(), car.path().to_path_buf()).into_pyobject(slf.py())?;
         Ok((restore, args))
     }
     /// The car from its file text (`to_toml`) and the path it names.
     #[classmethod]
     fn _from_toml(_cls: &Bound<'_, PyType>, text: &str, path: PathBuf) -> PyResult<Self> {
-        let inner = CorePlanarCar::parse(text, &path).map_err(input)?;
-        Ok(PlanarCar { inner, path })
+        let inner = HeldCar::parse(text, &path, PLANAR).map_err(input)?;
+        Ok(PlanarCar { inner })
     }
     fn __repr__(&self) -> String {
         format!(
             "PlanarCar({:?} from {:?})",
             self.inner.name().unwrap_or("unnamed"),
-            self.path
+            self.inner.path()
         )
-    }
-}
-
-impl StrikerArgs {
-    /// The striker these arguments ask for and its preset (bumpsim-planar's presets).
-    fn striker(&self) -> PyResult<(Striker, Option<&'static PlanarPreset>)> {
-        let side: Side = self
-            .side
-            .parse()
-            .map_err(|e: bumpsim_planar::striker::SideError| invalid(format!("side: {e}")))?;
-        let spec = StrikerSpec {
-            case: self.case.clone(),
-            angle: self.angle,
-            overlap: self.overlap,
-            side: Some(side),
-            pole: self.pole,
-            pole_offset: Some(self.pole_offset),
-            pendulum: self.pendulum,
-            speed: self.speed,
-            car_mass: self.car_mass,
-        };
-        spec.striker().map_err(input)
     }
 }
 
@@ -143,21 +122,8 @@ fn planar_impact(
     sobol: bool,
     sobol_base: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PlanarImpact> {
-    let (car, path) = planar_car_of(car)?;
-    let spec = StrikerArgs {
-        case,
-        angle,
-        overlap,
-        side: side.to_string(),
-        pole,
-        pole_offset,
-        pendulum,
-        speed,
-        car_mass: Some(car.total_mass()),
-    };
-    let (striker, preset) = spec.striker()?;
-    // a preset runs with the tyres its protocol prescribes, as in the CLI
-    let car = prepared(&car, preset);
+    let car = planar_car_of(car)?;
+    let side: Side = side.parse().map_err(|e| invalid(format!("side: {e}")))?;
     let arguments = Arguments {
         path: uncertainty,
         samples,
@@ -166,36 +132,69 @@ fn planar_impact(
         sobol,
         sobol_base,
     };
-    let uncertain = Uncertain::<Planar>::read(&arguments, &car)?;
-    let settings = Settings::default();
-    let result = py
-        .detach(|| simulate(&car, &striker, &settings))
-        .map_err(input)?;
-    let run = |c: &CorePlanarCar| simulate(c, &striker, &settings).ok();
-    let predicted = uncertain
-        .map(|u| u.run(py, &car, &result, &run))
-        .transpose()?;
-    let name = car
-        .name()
-        .map_or_else(|| path.display().to_string(), str::to_string);
-    Ok(PlanarImpact {
-        striker,
-        data: PlanarImpactState {
-            name,
-            spec,
-            result,
-            body: Some(*car.body()),
+    let checked = arguments.options()?;
+    // the numbers in SI, as the request reads an option's text
+    let (speed, pole, pole_offset) = (
+        speed.map(|v| v.to_string()),
+        pole.map(|v| v.to_string()),
+        pole_offset.to_string(),
+    );
+    let request = ImpactRequest {
+        car: Some(car.path()),
+        car_text: Some(car.text()),
+        case: case.as_deref(),
+        pendulum,
+        speed: speed.as_deref(),
+        face: Face {
+            angle,
+            overlap,
+            side: Some(side),
+            pole: pole.as_deref(),
+            pole_offset: Some(&pole_offset),
         },
-        predicted,
-    })
+        uncertainty: checked.as_ref().map(|c| UncertaintyOptions {
+            path: &c.path,
+            samples: c.samples,
+            seed: c.seed,
+            level,
+            sobol_base: c.sobol_base,
+        }),
+        ..ImpactRequest::default()
+    };
+    let outcome = py
+        .detach(|| bumpsim_engine::impact(car.kind(), &request))
+        .map_err(engine)?;
+    PlanarImpact::of(outcome)
 }
 
-/// The result of a planar impact, with the fields of `bumpsim planar --json`.
+/// The result of a planar impact, with the fields of `bumpsim planar --json`:
+/// the engine's outcome and its JSON document.
 #[pyclass(frozen, module = "bumpsim")]
 pub struct PlanarImpact {
-    data: PlanarImpactState,
-    striker: Striker,
-    predicted: Option<Predicted>,
+    data: Outcome,
+    document: Value,
+}
+
+impl PlanarImpact {
+    fn of(data: Outcome) -> PyResult<Self> {
+        let document = serde_json::from_str(&data.json).map_err(input)?;
+        Ok(PlanarImpact { data, document })
+    }
+
+    /// The prediction and the Sobol indices of the document, when asked.
+    fn predicted(&self) -> Option<Predicted> {
+        let prediction = self.document.get("prediction")?.clone();
+        let sensitivity = self.document.get("sensitivity").cloned();
+        Some(Predicted {
+            prediction,
+            sensitivity,
+        })
+    }
+
+    /// A number of the document's `result`.
+    fn number(&self, name: &str) -> f64 {
+        self.document["result"][name].as_f64().unwrap_or(f64::NAN)
+    }
 }
 
 #[pymethods]
@@ -204,89 +203,76 @@ impl PlanarImpact {
     /// balances, histories) as the JSON's `result`.
     #[getter]
     fn result<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        from_json(py, &self.data.result)
+        from_json(py, &self.document["result"])
     }
     /// Warnings about the result.
     #[getter]
     fn warnings(&self) -> Vec<String> {
-        self.data.result.warnings.clone()
+        self.data.warnings.clone()
     }
     /// The summary `bumpsim planar` prints.
     fn summary(&self) -> String {
-        bumpsim_planar::text::summary(&self.data.result)
+        self.data.text.clone()
     }
     /// The result as `bumpsim planar --json` writes it (with `prediction`
     /// and `sensitivity` when asked).
-    fn to_json(&self) -> PyResult<String> {
-        let document = bumpsim_planar::document::ImpactDocument {
-            car: &self.data.name,
-            striker: &self.striker,
-            result: &self.data.result,
-            body: self.data.body.as_ref(),
-        };
-        Predicted::with(&self.predicted, document)
+    fn to_json(&self) -> String {
+        self.data.json.clone()
     }
     /// The prediction over the car's uncertainty, the JSON's `prediction`
     /// (None without `uncertainty`).
     #[getter]
     fn prediction<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        Predicted::prediction(py, &self.predicted)
+        Predicted::prediction(py, &self.predicted())
     }
     /// The Sobol indices, the JSON's `sensitivity` (None without `sobol`).
     #[getter]
     fn sensitivity<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        Predicted::sensitivity(py, &self.predicted)
+        Predicted::sensitivity(py, &self.predicted())
     }
     /// The histories' bands over the draws: name → dict of arrays `time`
     /// [s], `nominal`, `low`, `median`, `high` (None without `uncertainty`).
     #[getter]
     fn bands<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
-        Predicted::bands(py, &self.predicted)
+        Predicted::bands(py, &self.predicted())
     }
     /// The prediction's spreads as a table: index `output`; columns `unit`,
     /// `nominal`, `median`, `low`, `high`, `mean`, `sd`; attrs: sampling,
     /// failed draws (None without `uncertainty`).
     fn prediction_to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        Predicted::frame(py, &self.predicted)
+        Predicted::frame(py, &self.predicted())
     }
     /// The histories as `bumpsim planar --csv` writes them: index `time
     /// [s]`, columns `force x [N]`, ..., `crush segment N [m]`; attrs: car,
     /// peak force, warnings.
     fn to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let r = &self.data.result;
         let attrs = PyDict::new(py);
-        attrs.set_item("car", &self.data.name)?;
-        attrs.set_item("peak_force [N]", r.peak_force)?;
-        attrs.set_item("max_compression [m]", r.max_compression)?;
-        attrs.set_item("warnings", &r.warnings)?;
-        frames::csv(py, &bumpsim_planar::text::histories(r), &attrs)
+        attrs.set_item("car", from_json(py, &self.document["car"])?)?;
+        attrs.set_item("peak_force [N]", self.number("peak_force"))?;
+        attrs.set_item("max_compression [m]", self.number("max_compression"))?;
+        attrs.set_item("warnings", &self.data.warnings)?;
+        frames::csv(py, &self.data.csv, &attrs)
     }
     fn __eq__(&self, other: &Self) -> bool {
-        self.data == other.data && self.predicted == other.predicted
+        self.data == other.data
     }
-    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Predictable<'py>> {
-        let (restore, (state,)) = reduce(slf.as_any(), &encode(&slf.get().data)?)?;
-        Ok((restore, (state, Predicted::state(&slf.get().predicted)?)))
+    /// Pickles as the request's outcome.
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyBytes>,))> {
+        reduce(slf.as_any(), &encode(&slf.get().data)?)
     }
     #[classmethod]
-    #[pyo3(signature = (state, predicted = None))]
-    fn _from_state(
-        _cls: &Bound<'_, PyType>,
-        state: &[u8],
-        predicted: Option<&str>,
-    ) -> PyResult<Self> {
-        let data: PlanarImpactState = decode(state, "PlanarImpact")?;
-        Ok(PlanarImpact {
-            striker: data.spec.striker()?.0,
-            data,
-            predicted: Predicted::of_state(predicted)?,
-        })
+    fn _from_state(_cls: &Bound<'_, PyType>, state: &[u8]) -> PyResult<Self> {
+        PlanarImpact::of(decode(state, "PlanarImpact")?)
     }
     fn __repr__(&self) -> String {
-        let r = &self.data.result;
         format!(
             "PlanarImpact({:?}, peak_force={} N, max_compression={} m, peak_yaw_rate={} rad/s)",
-            self.data.name, r.peak_force, r.max_compression, r.peak_yaw_rate
+            self.document["car"].as_str().unwrap_or("?"),
+            self.number("peak_force"),
+            self.number("max_compression"),
+            self.number("peak_yaw_rate")
         )
     }
 }

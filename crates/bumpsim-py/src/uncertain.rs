@@ -9,8 +9,9 @@
 
 use crate::arrays::array1;
 use crate::convert::{count_or, from_json, seed};
-use crate::errors::{invalid, message};
+use crate::errors::{input, invalid, message};
 use crate::frames;
+use bumpsim_engine::EngineError;
 use bumpsim_impact::prediction::{self, Outputs, Sampling};
 use bumpsim_impact::propagation::{
     DEFAULT_SAMPLES, DEFAULT_SEED, DEFAULT_SOBOL_BASE, Propagation, PropagationError,
@@ -65,35 +66,77 @@ fn named(error: &PropagationError) -> PyErr {
     }
 }
 
-impl<M: Model> Uncertain<M> {
-    /// The arguments checked against `car` (`None`: no `uncertainty`).
-    pub fn read(arguments: &Arguments, car: &M::Car) -> PyResult<Option<Self>> {
-        // a value given is used or refused, as the CLI's `requires`
+/// The uncertainty keyword arguments checked, for a request the engine
+/// runs (it reads the file against the car).
+pub struct Checked {
+    /// The file.
+    pub path: PathBuf,
+    /// Draws.
+    pub samples: usize,
+    /// Seed of the draws.
+    pub seed: u64,
+    /// Base samples of the Sobol indices, when asked.
+    pub sobol_base: Option<usize>,
+}
+
+impl Arguments<'_, '_> {
+    /// The arguments checked (`None`: no `uncertainty`): a value given
+    /// without a file, or `sobol_base` without `sobol`, is refused, as the
+    /// CLI's `requires`.
+    pub fn options(&self) -> PyResult<Option<Checked>> {
         let given = [
-            ("samples", arguments.samples.is_some()),
-            ("seed", arguments.seed.is_some()),
-            ("sobol", arguments.sobol),
-            ("sobol_base", arguments.sobol_base.is_some()),
+            ("samples", self.samples.is_some()),
+            ("seed", self.seed.is_some()),
+            ("sobol", self.sobol),
+            ("sobol_base", self.sobol_base.is_some()),
         ];
-        let Some(path) = &arguments.path else {
+        let Some(path) = &self.path else {
             return match given.iter().find(|(_, set)| *set) {
                 Some((name, _)) => Err(invalid(format!("{name}: needs uncertainty (a file)"))),
                 None => Ok(None),
             };
         };
-        if arguments.sobol_base.is_some() && !arguments.sobol {
+        if self.sobol_base.is_some() && !self.sobol {
             return Err(invalid("sobol_base: needs sobol=True"));
         }
         let limits = prediction::SAMPLES;
+        let samples =
+            count_or(self.samples, "samples", limits[0], limits[1])?.unwrap_or(DEFAULT_SAMPLES);
+        let seed = seed(self.seed)?.unwrap_or(DEFAULT_SEED);
+        let [low, high] = prediction::SOBOL_BASE;
+        let base = count_or(self.sobol_base, "sobol_base", low, high)?;
+        Ok(Some(Checked {
+            path: path.clone(),
+            samples,
+            seed,
+            sobol_base: self.sobol.then(|| base.unwrap_or(DEFAULT_SOBOL_BASE)),
+        }))
+    }
+}
+
+/// A refusal of an engine request as the exception it is: the car's
+/// uncertainty named by the keyword argument, the rest with the library's
+/// message.
+pub fn engine(error: EngineError) -> PyErr {
+    match &error {
+        EngineError::Uncertainty { source, .. } => named(source),
+        EngineError::Propagation(e) => invalid(format!("uncertainty: {}", message(e))),
+        _ => input(error),
+    }
+}
+
+impl<M: Model> Uncertain<M> {
+    /// The arguments checked against `car` (`None`: no `uncertainty`).
+    pub fn read(arguments: &Arguments, car: &M::Car) -> PyResult<Option<Self>> {
+        let Some(checked) = arguments.options()? else {
+            return Ok(None);
+        };
         let sampling = Sampling {
-            samples: count_or(arguments.samples, "samples", limits[0], limits[1])?
-                .unwrap_or(DEFAULT_SAMPLES),
-            seed: seed(arguments.seed)?.unwrap_or(DEFAULT_SEED),
+            samples: checked.samples,
+            seed: checked.seed,
             level: arguments.level,
         };
-        let [low, high] = prediction::SOBOL_BASE;
-        let base = count_or(arguments.sobol_base, "sobol_base", low, high)?;
-        let base = arguments.sobol.then(|| base.unwrap_or(DEFAULT_SOBOL_BASE));
+        let (path, base) = (&checked.path, checked.sobol_base);
         let propagation = Propagation::read(path, sampling, base, car).map_err(|e| named(&e))?;
         Ok(Some(Uncertain { propagation }))
     }

@@ -7,7 +7,7 @@
 //! per stiffness of the target region) and the CLI's text.
 
 use crate::convert::from_json;
-use crate::errors::{input, invalid, message, reading};
+use crate::errors::{input, invalid, reading};
 use crate::frames;
 use crate::impact::bumper_of;
 use crate::planar::planar_car_of;
@@ -36,9 +36,8 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 /// One end of the car: a `PlanarCar` or the path of its file, with the
 /// file's `[damageability]` (read from the file the car was read from).
 fn car_end(value: &Bound<'_, PyAny>) -> PyResult<CarEnd> {
-    let (car, path) = planar_car_of(value)?;
-    let limits = Damageability::read(&path).map_err(|e| reading(&path, e))?;
-    CarEnd::new(car, limits).map_err(|e| invalid(format!("{}: {}", path.display(), message(&e))))
+    let car = planar_car_of(value)?;
+    bumpsim_engine::verdict::end(&car).map_err(|e| reading(car.path(), e))
 }
 
 /// The ends of `car`: one car, or a list or tuple of them (one per end).

@@ -13,9 +13,11 @@
 
 mod export;
 mod identify;
+mod verdict;
 
 use crate::model::{
-    CarModel, Deck, ExportRequest, IdentifyRequest, ImpactRequest, PredictRequest, Setup,
+    CarModel, CarText, Deck, ExportRequest, IdentifyRequest, ImpactRequest, Made, PredictRequest,
+    Setup, VerdictRequest,
 };
 use crate::uncertain::{self, Uncertain};
 use crate::{EngineError, Outcome, Report};
@@ -54,7 +56,46 @@ impl CarModel for Planar {
                 reason: "a planar car has its bumper width ([bumper] width of its file)".into(),
             });
         }
-        run(PlanarCar::read(path)?, path, request)
+        run(read(path, request.car_text)?, path, request)
+    }
+
+    fn car(&self, path: &Path, text: Option<&str>) -> Result<CarText, EngineError> {
+        let car = read(path, text)?;
+        Ok(CarText {
+            name: car.name().map(str::to_string),
+            toml: car.to_toml(),
+        })
+    }
+
+    fn judges(&self) -> bool {
+        true
+    }
+
+    fn verdict(&self, request: &VerdictRequest<'_>) -> Result<Outcome, EngineError> {
+        verdict::verdict(request)
+    }
+
+    fn end(
+        &self,
+        path: &Path,
+        text: &str,
+    ) -> Result<bumpsim_verdict::prelude::CarEnd, EngineError> {
+        verdict::end(path, text)
+    }
+
+    fn synth(&self, path: &Path) -> Result<Made, EngineError> {
+        let series = bumpsim_planar::series::make_series(path)?;
+        let tests = series
+            .tests
+            .into_iter()
+            .map(|t| (t.name.clone(), t.test_header(), t.channels))
+            .collect();
+        let files = vec![("study.toml", series.study), ("start.toml", series.start)];
+        Ok(Made {
+            tests,
+            provenance: series.provenance,
+            files,
+        })
     }
 
     fn identify(&self, request: &IdentifyRequest<'_>) -> Result<Outcome, EngineError> {
@@ -67,6 +108,15 @@ impl CarModel for Planar {
 
     fn export(&self, request: &ExportRequest<'_>) -> Result<Deck, EngineError> {
         export::export(request)
+    }
+}
+
+/// The planar car of a file's `text` (held by the front end), else of the
+/// file at `path`.
+fn read(path: &Path, text: Option<&str>) -> Result<PlanarCar, PlanarError> {
+    match text {
+        Some(text) => PlanarCar::parse(text, path),
+        None => PlanarCar::read(path),
     }
 }
 

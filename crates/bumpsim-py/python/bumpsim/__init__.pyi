@@ -530,7 +530,10 @@ class PlanarImpact:
     def prediction_to_pandas(self) -> Optional[DataFrame]:
         """The spreads: index ``output``; ``unit``, ``nominal``, ``median``, ``low``,
         ``high``, ``mean``, ``sd``; attrs: sampling, failed. None without ``uncertainty``."""
-    def summary(self) -> str: ...
+    def summary(self) -> str:
+        """What ``bumpsim planar`` prints: the heading (car and striker), the
+        tyres a preset sets, the summary and, with ``uncertainty``, the
+        prediction's lines."""
     def to_json(self) -> str: ...
     def to_pandas(self) -> DataFrame:
         """As ``bumpsim planar --csv`` writes it: index ``time [s]``."""

@@ -14,7 +14,6 @@ pub mod campaign;
 pub mod doe;
 pub mod ident;
 pub mod impact;
-pub mod planar;
 pub mod verdict;
 
 use crate::errors::invalid;

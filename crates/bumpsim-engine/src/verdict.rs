@@ -1,0 +1,127 @@
+//! `verdict` as one request: the car files' declared kinds
+//! ([`ModelKind::of_path`] with [`Role::Car`]) pick the model that judges
+//! them ([`crate::model::CarModel::verdict`]; today the planar car's,
+//! [`crate::planar`]), and a held car becomes one end of the verdicts
+//! through its model ([`end`]). No equations here: the tests, criteria and
+//! margins are `bumpsim_verdict`'s.
+
+use crate::held::HeldCar;
+use crate::model::VerdictRequest;
+use crate::registry::model;
+use crate::{EngineError, Outcome};
+use bumpsim_io::kind::{ModelKind, Role};
+
+/// `verdict` of the request's cars: every end's car file is of one kind,
+/// whose model judges them.
+pub fn verdict(request: &VerdictRequest<'_>) -> Result<Outcome, EngineError> {
+    let mut kinds = Vec::new();
+    for (car, _) in request.ends {
+        kinds.push((ModelKind::of_path(car, Role::Car)?, *car));
+    }
+    let Some(&(kind, _)) = kinds.first() else {
+        return Err(EngineError::Needed {
+            what: "--car FILE is needed: a car file with a [damageability] table, one per end",
+        });
+    };
+    if let Some((other, path)) = kinds.iter().find(|(k, _)| *k != kind) {
+        return Err(EngineError::Refused {
+            path: path.to_path_buf(),
+            reason: format!(
+                "a {} car among {} cars: the ends of one car are of one model",
+                other.name(),
+                kind.name()
+            ),
+        });
+    }
+    model(judge(kind), "verdict")?.verdict(request)
+}
+
+/// One end of a car for the verdicts: the held car with its limits, by
+/// its model.
+pub fn end(car: &HeldCar) -> Result<bumpsim_verdict::prelude::CarEnd, EngineError> {
+    model(car.kind(), "verdict")?.end(car.path(), car.text())
+}
+
+/// The model that judges a car file of `kind`: a file the registry reads
+/// as the 1-D chain's (its fallback, also for a planar car file with a
+/// mistake) is judged by the model with verdicts, whose reader then says
+/// what is wrong with it; any other kind by its own model.
+fn judge(kind: ModelKind) -> ModelKind {
+    let judges = |k: ModelKind| {
+        crate::registry::registered()
+            .iter()
+            .any(|m| m.kind() == k && m.judges())
+    };
+    let fallback = crate::registry::registered()
+        .iter()
+        .map(|m| m.kind())
+        .find(|&k| judges(k));
+    match (kind, fallback) {
+        (ModelKind::Chain, Some(judge)) if !judges(kind) => judge,
+        _ => kind,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::verdict;
+    use crate::held::HeldCar;
+    use crate::model::{Unwatched, VerdictRequest};
+    use bumpsim_io::kind::ModelKind;
+    use std::path::{Path, PathBuf};
+
+    fn examples() -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
+    }
+
+    #[test]
+    fn a_held_planar_car_reads_back_to_the_same_car_through_its_model() {
+        let saloon = examples().join("planar/saloon.toml");
+        let held = HeldCar::read(&saloon, ModelKind::Planar).unwrap();
+        assert_eq!(held.kind(), ModelKind::Planar);
+        // the file is in mm; its canonical form in SI reads back the same
+        let again = HeldCar::parse(held.to_toml(), &saloon, ModelKind::Planar).unwrap();
+        assert_ne!(again.text(), held.text());
+        assert_eq!(again, held);
+        // a 1-D car file held as a planar car: the planar reader refuses it
+        let chain = examples().join("simulate/car-3dof.toml");
+        let refused = HeldCar::read(&chain, ModelKind::Planar).unwrap_err();
+        assert!(refused.to_string().contains("car-3dof.toml"), "{refused}");
+    }
+
+    #[test]
+    fn a_links_car_is_not_judged_and_the_planar_car_is() {
+        let dir = std::env::temp_dir().join(format!("bumpsim-engine-held-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let links = dir.join("links.toml");
+        let text = "kind = \"links\"\nmasses = [2.0, 900.0]\ndampers = [0.0]\n[[links]]\ncurve = \"linear\"\nstiffness = \"1000 N/mm\"\n";
+        std::fs::write(&links, text).unwrap();
+        let ends = [(links.as_path(), None)];
+        let protocols = vec!["part581".to_string()];
+        let request = VerdictRequest {
+            ends: &ends,
+            protocols: &protocols,
+            market: Default::default(),
+            margin: 0.0,
+            target: false,
+            sequence: false,
+            asi_method: bumpsim_verdict::pulse::AsiMethod::of_year(2010).unwrap(),
+            uncertainty: None,
+            report: false,
+            progress: &Unwatched,
+        };
+        let refused = verdict(&request).unwrap_err().to_string();
+        assert!(refused.starts_with("verdict: a links car"), "{refused}");
+        // the planar car with its limits is judged
+        let saloon = examples().join("planar/saloon.toml");
+        let limits = examples().join("verdict/damageability.toml");
+        let ends = [(saloon.as_path(), Some(limits.as_path()))];
+        let judged = verdict(&VerdictRequest {
+            ends: &ends,
+            ..request
+        })
+        .unwrap();
+        assert!(judged.json.contains("\"verdict\""), "{}", judged.json);
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}
