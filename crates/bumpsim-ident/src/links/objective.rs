@@ -2,7 +2,7 @@
 //! linear chain's (`case`), the output simulated by
 //! [`bumpsim_core::chain::Chain`] with its history, and their exact
 //! Jacobian in the log parameters by dual numbers through that history
-//! ([`jacobian`]). [`LogParameters`] also serves the barrier objective
+//! ([`jacobian`]). `LogParameters` also serves the barrier objective
 //! ([`super::barrier`]), whose Jacobian is still by forward differences
 //! ([`bumpsim_estimate::difference`], step [`DIFFERENCE`]: the history
 //! makes the output piecewise smooth, and the step spans the kinks a
