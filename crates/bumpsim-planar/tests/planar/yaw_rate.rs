@@ -200,10 +200,9 @@ fn the_yaw_rate_sensor_is_read_weighted_and_keeps_the_held_out_yaw() {
 /// yield (45 kN, the start's, against 62 kN; it never yields in training
 /// nor in the offset test, where the lever rule puts it in tension).
 ///
-/// Ignored for the suite's time only: it passes, with the same figures, in
-/// 208 s in a debug build on a loaded machine (19 s release).
+/// It runs in the suite: 208 s in a debug build on a loaded machine (19 s
+/// release), with the same figures.
 #[test]
-#[ignore = "issue 44's thresholds with yielding side members: passes (offset yaw 98.53 %, off-centre face 96.98 %, forward force 92.02 %, x-acceleration 91.96 %, yaw rate 85.31 %, 8 of 16), 16 starts and the bumper fit take 3.5 min in a debug build; run with --release --ignored"]
 fn yielding_side_members_meet_issue_44s_thresholds() {
     let Some(dir) = series() else { return };
     let sheet: serde_json::Value =
