@@ -22,8 +22,21 @@
 //! Error model (bumpsim_planar::identify::CORRELATION): each sensor weighed
 //! by its pre-trigger noise, σ² τ with τ the residuals' integrated
 //! autocorrelation time (the 1-D chain's estimator), the priors at their
-//! stated spreads (`bumpsim_estimate::information`). The measured figures
-//! are in the ignored test's reason and in the report of the round.
+//! stated spreads (`bumpsim_estimate::information`).
+//!
+//! Measured (2026-11-29, release build, seeds 0–9, about 30–60 s a series on
+//! 2 cores shared with seven agents): 23 of 30 intervals cover the truth
+//! (77 %, below 85 %). The total mass: 10 of 10, RMS z ≈ 0.75 (its
+//! interval about ±0.1 %, the load cells' impulse and the sheet's prior).
+//! The yaw inertia: 7 of 10, RMS z ≈ 1.6. The grip: 6 of 10, RMS z ≈ 2.1,
+//! every estimate low (0.60–0.81 of the truth but one): the generator's μ is
+//! the Magic Formula's peak, whose sliding force is `sin(C π/2) = 0.89` of
+//! it at its shape C = 1.3, and bumpsim's μ_y is the sliding level — a
+//! model-family offset the noise-based intervals do not hold. τ 30–96
+//! (the own generator's 72–148). What is left: a stated model-error term
+//! for the parameters the angled wall alone determines (I_z, μ_y), e.g.
+//! each series' own σ² τ in a sandwich instead of one pooled σ², since the
+//! angled wall's residuals are the ones the model family misses.
 
 use bumpsim_planar::identify::{PlanarIdentification, identify};
 use bumpsim_planar::study::PlanarStudy;
@@ -161,7 +174,7 @@ fn coverage(first: usize, count: usize) -> Option<(usize, usize)> {
 /// The full count: 50 series (`BUMPSIM_COVERAGE_SERIES` fewer, from seed
 /// `BUMPSIM_COVERAGE_FIRST`); 85–99 % of the intervals cover the truth.
 #[test]
-#[ignore = "issue 44: 50 series take about an hour on 2 shared cores; measured figures in the module and the round's report"]
+#[ignore = "issue 44: 50 series take about 30 min (release); measured on 10: 23 of 30 (77 %), the yaw inertia's and grip's intervals too narrow (RMS z 1.6, 2.1): see the module"]
 fn the_intervals_cover_an_independent_generators_truth() {
     let var = |name: &str, default: usize| {
         std::env::var(name)
