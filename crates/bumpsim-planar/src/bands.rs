@@ -386,8 +386,12 @@ pub fn attach(
         // the training residuals' level plus the model error they show in
         // proportion to this prediction's swing
         let noise = [
-            discrepancy.x.hypot(discrepancy.relative[0] * swing(&replay.x[0], case.window)),
-            discrepancy.yaw.hypot(discrepancy.relative[1] * swing(&replay.yaw[0], case.window)),
+            discrepancy
+                .x
+                .hypot(discrepancy.relative[0] * swing(&replay.x[0], case.window)),
+            discrepancy
+                .yaw
+                .hypot(discrepancy.relative[1] * swing(&replay.yaw[0], case.window)),
         ];
         let Some(mut b) = spread.bands(&model, &[n, n], &noise) else {
             continue;
