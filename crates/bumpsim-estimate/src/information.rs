@@ -83,8 +83,8 @@ pub fn counted(
         return noise;
     }
     let scale = noise / prior_noise;
-    for row in data..residuals.len() {
-        residuals[row] = 0.0;
+    residuals[data..].fill(0.0);
+    for row in data..jacobian.nrows() {
         jacobian.row_mut(row).scale_mut(scale);
     }
     noise
