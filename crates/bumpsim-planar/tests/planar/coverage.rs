@@ -24,15 +24,15 @@
 //! autocorrelation time (the 1-D chain's estimator), the priors at their
 //! stated spreads (`bumpsim_estimate::information`).
 //!
-//! Measured (2026-11-29, release build, seeds 0–9, about 30–60 s a series on
-//! 2 cores shared with seven agents): 23 of 30 intervals cover the truth
-//! (77 %, below 85 %). The total mass: 10 of 10, RMS z ≈ 0.75 (its
-//! interval about ±0.1 %).
-//! The yaw inertia: 7 of 10, RMS z ≈ 1.6. The grip: 6 of 10, RMS z ≈ 2.1,
-//! every estimate but one low (0.60–0.93 of the truth; one 1.12): the generator's μ is
-//! the Magic Formula's peak, whose sliding force is `sin(C π/2) = 0.89` of
-//! it at its shape C = 1.3, and bumpsim's μ_y is the sliding level — a
-//! model-family offset the noise-based intervals do not hold. τ 30–112
+//! Measured (2026-11-29, release build, seeds 0–49, 12 s for the 50
+//! identifications once the series are written): 120 of 150 intervals
+//! cover the truth (80 %, below 85 %). The total mass: 48 of 50, RMS z 0.83.
+//! The yaw inertia: 32 of 50, RMS z 1.91. The grip: 40 of 50, RMS z 1.55;
+//! on seeds 0–9 every estimate but one was low (0.60–0.93 of the truth; one
+//! 1.12): the generator's μ is the Magic Formula's peak, whose sliding
+//! force is `sin(C π/2) = 0.89` of it at its shape C = 1.3, and bumpsim's
+//! μ_y is the sliding level — a model-family offset the noise-based
+//! intervals do not hold. τ 30–127
 //! (the own generator's 72–148). What is left: a model-error term for
 //! the yaw inertia and the grip. Not tried yet: each series' own σ² τ in a
 //! sandwich instead of one pooled σ², in case the tests that determine
@@ -174,7 +174,7 @@ fn coverage(first: usize, count: usize) -> Option<(usize, usize)> {
 /// The full count: 50 series (`BUMPSIM_COVERAGE_SERIES` fewer, from seed
 /// `BUMPSIM_COVERAGE_FIRST`); 85–99 % of the intervals cover the truth.
 #[test]
-#[ignore = "issue 44: 50 series take about 30 min (release); measured on 10: 23 of 30 (77 %), the yaw inertia's and grip's intervals too narrow (RMS z 1.6, 2.1): see the module"]
+#[ignore = "issue 44: measured 120 of 150 (80 %; yaw inertia 32/50, RMS z 1.91; grip 40/50, 1.55): see the module; writing 50 series takes ~20 min of Python"]
 fn the_intervals_cover_an_independent_generators_truth() {
     let var = |name: &str, default: usize| {
         std::env::var(name)
