@@ -1,7 +1,15 @@
 #!/usr/bin/env python3
 """An independent planar crash-test series (issue 32): what a lab would record.
 
-Usage: planar_independent.py OUT_DIR
+Usage: planar_independent.py OUT_DIR [--seeds FIRST:COUNT]
+
+With --seeds FIRST:COUNT, seeds k = FIRST .. FIRST+COUNT-1 each write a
+complete series into OUT_DIR/seed-<k>/ of a car of its own (the base car's
+body mass, yaw inertia, grip and side members drawn log-normally with
+numpy seed 2000 + k, SPREADS) under noise of numpy seed 1000 + k (the
+coverage test of the planar intervals, issue 44: a fixed car would make
+the model family's offset the same in every seed); series.json then gives
+that car's truth. Without it: the base car, noise seed 11.
 
 Writes OUT_DIR/<TEST>.csv (10 kHz, `time [s]` from -20 ms, load cells in N,
 accelerometers in m/s^2) for five tests of one car, OUT_DIR/series.json
@@ -437,21 +445,50 @@ rear = {{ rolling_resistance = 0.015, mu_lateral = 0.6 }}
     (out / "start.toml").write_text(text)
 
 
-def main(out):
-    out = Path(out)
+# Log-normal spreads of the seeded cars (--seeds): each seed's car is the
+# base car with these parameters scaled by exp(spread * N(0, 1)).
+SPREADS = {"body_mass": 0.05, "yaw_inertia": 0.15, "mu": 0.15, "mass": 0.2, "spring": 0.15,
+           "damper": 0.2}
+
+
+def seeded(rng):
+    """The base car with its mass, yaw inertia, grip and side members drawn (SPREADS)."""
+    c = json.loads(json.dumps(CAR))
+    factor = lambda key: math.exp(SPREADS[key] * rng.standard_normal())
+    c["body_mass"] *= factor("body_mass")
+    c["yaw_inertia"] *= factor("yaw_inertia")
+    c["tyres"]["mu"] *= factor("mu")
+    for key in ("mass", "spring", "damper"):
+        c["members"][key] = [v * factor(key) for v in c["members"][key]]
+    return c
+
+
+def series(out, c, rng):
     out.mkdir(parents=True, exist_ok=True)
-    car = Car(CAR)
-    rng = np.random.default_rng(11)
+    car = Car(c)
     strikers = [Striker(t, car) for t in TESTS]
     for i, (test, st) in enumerate(zip(TESTS, strikers)):
         rows = simulate(car, st)
         write(out, car, test, rows, rng, i)
     study(out, car, TESTS, strikers)
     start(out, car)
-    sheet = {"total_mass": car.total_mass(), "yaw_inertia": CAR["yaw_inertia"], "car": CAR,
-             "tests": TESTS}
+    sheet = {"total_mass": car.total_mass(), "yaw_inertia": c["yaw_inertia"], "mu": c["tyres"]["mu"],
+             "car": c, "tests": TESTS}
     (out / "series.json").write_text(json.dumps(sheet, indent=1))
 
 
+def main(argv):
+    out = Path(argv[0])
+    if "--seeds" not in argv:
+        series(out, CAR, np.random.default_rng(11))
+        return
+    first, count = (int(v) for v in argv[argv.index("--seeds") + 1].split(":"))
+    for k in range(first, first + count):
+        here = out / f"seed-{k}"
+        if not (here / "series.json").exists():
+            series(here, seeded(np.random.default_rng(2000 + k)), np.random.default_rng(1000 + k))
+    (out / f"seeds-{first}-{count}.txt").write_text(f"{count}\n")  # last: the marker
+
+
 if __name__ == "__main__":
-    main(sys.argv[1])
+    main(sys.argv[1:])

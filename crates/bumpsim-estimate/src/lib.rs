@@ -35,6 +35,8 @@
 //!   [`tied`]: parameters tied together (a symmetric stage of a search)
 //!   (issue 44); [`stated`]: a study's `[priors]` table applied to a
 //!   model's default priors (the 1-D and planar studies');
+//! - [`information`]: a priored estimate's intervals with the data at the
+//!   noise the error model counts and each prior at its stated spread;
 //! - [`walk`]: the covariance when each residual series is a random walk
 //!   (integrated noise; issue 44);
 //! - [`difference`]: the one forward-difference Jacobian, for residuals
@@ -91,6 +93,7 @@ pub mod document;
 pub mod domain;
 pub mod effective;
 pub mod fit;
+pub mod information;
 pub mod lm;
 pub mod multistart;
 pub mod observer;

@@ -19,7 +19,13 @@
 //!   residual of the same channel over the training cases' windows (the
 //!   replays' x and yaw; the forward channels of the training cases that
 //!   give their striker, 0 when none does): measurement noise and model
-//!   error as the training data show them.
+//!   error as the training data show them. A held-out replay adds the
+//!   model error in proportion to its own swing,
+//!   `σ_e² = σ_train² + (ε s_ŷ)²`, ε the training replays' residual over
+//!   their swing (`√(Σ r²/Σ (y − ȳ)²)`, [`Discrepancy::relative`]) and
+//!   s_ŷ the prediction's RMS about its mean over the window: a test that
+//!   turns the car ten times as far as the training tests carries ten
+//!   times their model error in yaw.
 //!
 //! Each band is judged over its case's window: the share of measured
 //! samples inside it, and its relative width (the parameters' mean
@@ -139,7 +145,8 @@ impl Spread {
 
 /// What the model does not reproduce, from the training cases: the RMS
 /// residual of each channel over their windows (replay x in m, replay yaw
-/// in rad; forward force N, x-acceleration m/s², yaw rate rad/s).
+/// in rad; forward force N, x-acceleration m/s², yaw rate rad/s), and the
+/// replays' residuals relative to the measured swing.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Discrepancy {
     /// Replay x (mean of the sills), m.
@@ -148,6 +155,42 @@ pub struct Discrepancy {
     pub yaw: f64,
     /// Forward force, x-acceleration, yaw rate (0 without a training striker).
     pub forward: [f64; 3],
+    /// The replays' model error relative to the output's swing, x then
+    /// yaw: `√(Σ r² / Σ (y − ȳ)²)` over the training windows (ȳ each
+    /// case's mean; `1 − fit/100` pooled), 0 without swing.
+    pub relative: [f64; 2],
+}
+
+/// `√(Σ (model − measured)² / Σ (measured − its mean)²)` over the pairs'
+/// windows (0 without swing).
+fn relative<'a>(pairs: impl Iterator<Item = (&'a [f64], &'a [f64], (usize, usize))>) -> f64 {
+    let (mut residual, mut swing) = (0.0, 0.0);
+    for (model, measured, (a, b)) in pairs {
+        let last = b.min(model.len().min(measured.len()).saturating_sub(1));
+        if last < a {
+            continue;
+        }
+        let mean = measured[a..=last].iter().sum::<f64>() / (last + 1 - a) as f64;
+        for k in a..=last {
+            residual += (model[k] - measured[k]).powi(2);
+            swing += (measured[k] - mean).powi(2);
+        }
+    }
+    match swing > 0.0 {
+        true => (residual / swing).sqrt(),
+        false => 0.0,
+    }
+}
+
+/// The root-mean-square of `values[a..=b]` about their mean.
+fn swing(values: &[f64], (a, b): (usize, usize)) -> f64 {
+    let last = b.min(values.len().saturating_sub(1));
+    if values.is_empty() || last < a {
+        return 0.0;
+    }
+    let piece = &values[a..=last];
+    let mean = piece.iter().sum::<f64>() / piece.len() as f64;
+    (piece.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / piece.len() as f64).sqrt()
 }
 
 /// Root-mean-square of `model − measured` over the pairs' windows.
@@ -189,6 +232,18 @@ impl Discrepancy {
                 .iter()
                 .map(|(p, w)| (p.yaw[0].as_slice(), p.yaw[1].as_slice(), *w))),
             forward: [channel(0), channel(1), channel(2)],
+            relative: [
+                relative(
+                    replays
+                        .iter()
+                        .map(|(p, w)| (p.x[0].as_slice(), p.x[1].as_slice(), *w)),
+                ),
+                relative(
+                    replays
+                        .iter()
+                        .map(|(p, w)| (p.yaw[0].as_slice(), p.yaw[1].as_slice(), *w)),
+                ),
+            ],
         })
     }
 }
@@ -328,7 +383,17 @@ pub fn attach(
             let run = predict(&spread.car(car, p)?, case).ok()?;
             Some([run.x[0].clone(), run.yaw[0].clone()].concat())
         };
-        let Some(mut b) = spread.bands(&model, &[n, n], &[discrepancy.x, discrepancy.yaw]) else {
+        // the training residuals' level plus the model error they show in
+        // proportion to this prediction's swing
+        let noise = [
+            discrepancy
+                .x
+                .hypot(discrepancy.relative[0] * swing(&replay.x[0], case.window)),
+            discrepancy
+                .yaw
+                .hypot(discrepancy.relative[1] * swing(&replay.yaw[0], case.window)),
+        ];
+        let Some(mut b) = spread.bands(&model, &[n, n], &noise) else {
             continue;
         };
         let (yaw, x) = (b.pop(), b.pop());
@@ -458,6 +523,7 @@ mod tests {
                 x: 1e-4,
                 yaw: 1e-3,
                 forward: [0.0; 3],
+                relative: [0.0; 2],
             },
             judged: vec![judged("yaw", 95.0, 40.0)],
         };

@@ -260,7 +260,7 @@ pub fn identification_summary(
     }
     let u = &result.uncertainty;
     s += &format!(
-        "  objective {} m²; variance inflation {} for the residuals' correlation ρ = {}\n",
+        "  objective {} m²; variance inflation {} (the residuals' integrated autocorrelation time; lag-1 correlation ρ = {})\n",
         bumpsim_core::units::format_number(result.objective, 5),
         bumpsim_core::units::format_number(result.inflation, 3),
         bumpsim_core::units::format_number(u.residual_correlation, 4),

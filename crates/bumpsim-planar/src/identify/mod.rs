@@ -34,13 +34,17 @@
 //! by `seed + start index`), refining rounds around the best when there are
 //! more than eight starts, the best few polished, every start tallied.
 //!
-//! **Uncertainty**, as the layer gives it: `Cov(ln θ) = σ² (JᵀJ)⁻¹` at the
-//! optimum, intervals `θ exp(± t SE)`, rank and determination flags, the
-//! weakest direction, with σ² inflated by `(1 + ρ)/(1 − ρ)` for AR(1)
-//! residuals ([`bumpsim_estimate::uncertainty::Correlation::Ar1`]):
-//! displacements integrated from accelerations have strongly correlated
-//! errors, and without it the intervals of a synthetic series were too
-//! narrow to cover the truth.
+//! **Uncertainty**, as the layer gives it: `Cov(ln θ) = σ² τ (JᵀJ)⁻¹` at
+//! the optimum, intervals `θ exp(± t SE)`, rank and determination flags,
+//! the weakest direction. Each sensor's residuals are weighed by its
+//! pre-trigger noise ([`crate::cases`]); σ² is the weighted residuals'
+//! variance and τ their integrated autocorrelation time (Sokal's window,
+//! [`bumpsim_estimate::effective`], the estimator of the 1-D chain's
+//! intervals; [`CORRELATION`]): displacements integrated from
+//! accelerations have strongly correlated errors. The stated priors enter
+//! at their own spreads, not at the noise the search weighed them by
+//! ([`bumpsim_estimate::information`]): the covariance is the Gaussian
+//! posterior's, `(J_dᵀJ_d/(σ²τ) + Σ_p⁻¹)⁻¹`.
 //!
 //! **Fit** of a case ([`predict`]), as for the 1-D identification:
 //! `100 (1 − √(SSE/SST))` %, for x (mean of the sensors) and for the yaw:
@@ -219,7 +223,7 @@ pub struct PlanarIdentification {
     pub run_time: f64,
     /// Fits per case, %.
     pub fits: Vec<CaseFit>,
-    /// The variance inflation `(1 + ρ)/(1 − ρ)` from the residuals' correlation, 1.
+    /// The variance inflation of the residuals' correlation ([`CORRELATION`]: their integrated autocorrelation time τ), ≥ 1.
     pub inflation: f64,
     /// The effective number of the data residuals at the optimum, spectral
     /// (`n/τ`, τ their integrated autocorrelation time,
@@ -361,6 +365,10 @@ pub fn identify(
     )
 }
 
+/// The error model of the intervals: the residuals' integrated
+/// autocorrelation time, the 1-D chain's estimator ([`Correlation::Spectral`]).
+pub const CORRELATION: Correlation = Correlation::Spectral;
+
 /// The solver's tolerances: 300 iterations, relative decrease 1e-10, step 1e-8.
 fn solver() -> lm::Settings {
     lm::Settings {
@@ -399,6 +407,14 @@ fn summarise(
         &series,
         bumpsim_estimate::effective::Method::Spectral,
     );
+    // the data at the noise the intervals count, each prior at its spread
+    bumpsim_estimate::information::counted(
+        &mut r,
+        &mut jacobian,
+        &series,
+        CORRELATION,
+        priored.noise(),
+    );
     let uncertainty = bumpsim_estimate::uncertainty::uncertainty(&Estimated {
         parameters: &parameters,
         theta: &theta,
@@ -408,7 +424,7 @@ fn summarise(
         residuals: &r,
         jacobian: &jacobian,
         series: &series,
-        correlation: Correlation::Ar1,
+        correlation: CORRELATION,
     });
     let uncertainty = match evaluated {
         true => uncertainty,

@@ -74,18 +74,24 @@ fn the_held_out_yaw_lies_inside_its_predictive_band() {
             .flat_map(|f| &f.channels)
             .all(|c| c.band.is_some())
     );
-    // measured on main's identification (no priors; I_z 4980 kg·m² against
-    // the truth's 2300): the held-out yaw lies inside its band at 17 %
-    // (OFFSET40) and 20 % (NARROW-OFFSET) of the samples, the bands' width
-    // under 1 % of the yaw's range: the intervals say the car is
-    // determined, and the car misses the held-out tests by more. The issue
-    // asks for 80 % (the ignored test below); until then the summary must
-    // say so in words
+    // measured (2026-11-29, release): before the priors and with one AR(1)
+    // inflation the held-out yaw lay inside its band at 17 % (OFFSET40) and
+    // 20 % (NARROW-OFFSET) of the samples; with the priors, σ² τ intervals
+    // and the training replays' relative model error scaled to each
+    // prediction's swing in the band's noise, at 79.7 % and 31.8 % (67.2 %
+    // and 24.9 % without that term; half-widths from the parameters 1.5 %
+    // and 3.0 % of the yaw's range). The off-centre face's yaw fit is
+    // −10.6 %, and the truth-equivalent car itself scores −21 % there
+    // (tests/planar/truth_start.rs): a model error no band from these
+    // training tests covers. The issue asks for 80 % (the ignored test
+    // below); until then a band the measurement leaves (below the level
+    // less `MISSED`) must be said in words
     let statements = bands.statements();
     for case in ["OFFSET40", "NARROW-OFFSET"] {
         let yaw = judged(case, "yaw");
         assert!(
             yaw.inside_percent >= 80.0
+                || !yaw.missed()
                 || statements
                     .iter()
                     .any(|s| s
@@ -105,10 +111,11 @@ fn the_held_out_yaw_lies_inside_its_predictive_band() {
 }
 
 /// Issue 44's acceptance: the measured held-out yaw inside its 90 % band
-/// at ≥ 80 % of the samples. Fails on main's identification (17 % and
-/// 20 %); run with `--ignored` once the priors of item 3 are merged.
+/// at ≥ 80 % of the samples. Measured (2026-11-29, release): OFFSET40
+/// 79.7 %, NARROW-OFFSET 31.8 % (a yaw bumpsim's tyres cannot follow: the
+/// truth-equivalent car fits it at −21 %); run with `--ignored`.
 #[test]
-#[ignore = "issue 44: the held-out yaw lies inside its band at 17 % and 20 % without the priors of item 3"]
+#[ignore = "issue 44: the held-out yaw lies inside its band at 79.7 % (OFFSET40) and 31.8 % (NARROW-OFFSET, a model-family error)"]
 fn the_held_out_yaw_lies_inside_its_band_at_80_percent_of_the_samples() {
     let Some(dir) = series() else { return };
     let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();

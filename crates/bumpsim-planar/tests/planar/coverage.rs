@@ -1,0 +1,194 @@
+//! Issue 44: do the planar identification's 95 % intervals cover an
+//! independent generator's truth as often as they say? The series of
+//! tests/peers/planar_independent.py (another model family: progressive
+//! side-member springs on guides, a rigid beam on foam strips, Magic-Formula
+//! tyres with transient slip, RK4; two sill and two side-member
+//! accelerometers; trained on a flat pendulum, a centred pole and a 10°
+//! wall with four load cells) are written under `--seeds`: each seed a car
+//! of its own (body mass ±5 %, yaw inertia ±15 %, grip ±15 %, side members
+//! ±15–20 %, log-normal) under noise of its own, so the model family's
+//! offset differs between seeds as it does between real cars. Each series
+//! is identified as its study says (stated priors, staged search) with
+//! [`STARTS`] starts instead of 16.
+//!
+//! The generator's car is not bumpsim's, so only the parameters with a
+//! one-to-one meaning are compared: the total mass (the body and both
+//! chains' masses against the body and the side members; its interval from
+//! the estimates' covariance, `Var ln M = Σ w_i w_j Cov(ln θ_i, ln θ_j)`,
+//! `w_i = θ_i/M`), the yaw inertia and the lateral grip μ. The chains'
+//! links are another family's (a linear spring against a progressive one):
+//! they have no truth to cover.
+//!
+//! Error model (bumpsim_planar::identify::CORRELATION): each sensor weighed
+//! by its pre-trigger noise, σ² τ with τ the residuals' integrated
+//! autocorrelation time (the 1-D chain's estimator), the priors at their
+//! stated spreads (`bumpsim_estimate::information`).
+//!
+//! Measured (2026-11-29, release build, seeds 0–49, 12 s for the 50
+//! identifications once the series are written): 120 of 150 intervals
+//! cover the truth (80 %, below 85 %). The total mass: 48 of 50, RMS z 0.83.
+//! The yaw inertia: 32 of 50, RMS z 1.91. The grip: 40 of 50, RMS z 1.55;
+//! on seeds 0–9 every estimate but one was low (0.60–0.93 of the truth; one
+//! 1.12): the generator's μ is the Magic Formula's peak, whose sliding
+//! force is `sin(C π/2) = 0.89` of it at its shape C = 1.3, and bumpsim's
+//! μ_y is the sliding level — a model-family offset the noise-based
+//! intervals do not hold. τ 30–127
+//! (the own generator's 72–148). What is left: a model-error term for
+//! the yaw inertia and the grip. Not tried yet: each series' own σ² τ in a
+//! sandwich instead of one pooled σ², in case the tests that determine
+//! them carry larger residuals than the pool.
+
+use bumpsim_planar::identify::{PlanarIdentification, identify};
+use bumpsim_planar::study::PlanarStudy;
+use std::path::{Path, PathBuf};
+
+/// Seeds of the full count.
+const SERIES: usize = 50;
+
+/// Starts per identification (the study's 16 reduced).
+const STARTS: usize = 4;
+
+/// The series of seeds `first .. first + count` (None without numpy).
+fn series(first: usize, count: usize) -> Option<PathBuf> {
+    if !bumpsim_peers::python_available("numpy") {
+        return None;
+    }
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("planar-coverage");
+    let script =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/planar_independent.py");
+    let seeds = format!("{first}:{count}");
+    let marker = format!("seeds-{first}-{count}.txt");
+    bumpsim_peers::generated(&script, &out, &["--seeds", &seeds], &marker);
+    Some(out)
+}
+
+/// One compared quantity of one series: the estimate, its 95 % interval
+/// and the truth.
+#[derive(Debug, Clone, Copy)]
+struct Covered {
+    value: f64,
+    interval: Option<[f64; 2]>,
+    truth: f64,
+}
+
+impl Covered {
+    fn covers(&self) -> bool {
+        self.interval
+            .is_some_and(|[a, b]| a <= self.truth && self.truth <= b)
+    }
+
+    /// `ln(θ̂/θ)` over the interval's half width in standard errors.
+    fn z(&self) -> Option<f64> {
+        let [a, b] = self.interval?;
+        let se = (b / a).ln() / (2.0 * 1.96);
+        Some((self.value / self.truth).ln() / se)
+    }
+}
+
+/// The total mass's estimate and 95 % interval (see the module).
+fn total_mass(r: &PlanarIdentification) -> (f64, Option<[f64; 2]>) {
+    let masses: Vec<usize> = (0..r.parameters.len())
+        .filter(|&i| r.parameters[i].unit == "kg")
+        .collect();
+    let total: f64 = masses.iter().map(|&i| r.parameters[i].value).sum();
+    let mut variance = 0.0;
+    for &i in &masses {
+        for &j in &masses {
+            let (ei, ej) = (&r.parameters[i], &r.parameters[j]);
+            let (Some(si), Some(sj)) = (ei.standard_error, ej.standard_error) else {
+                return (total, None);
+            };
+            let Some(rho) = r.uncertainty.correlation[i][j] else {
+                return (total, None);
+            };
+            // SE(θ) = θ SE(ln θ): w_i SE(ln θ_i) = SE(θ_i)/M
+            variance += rho * si * sj / (total * total);
+        }
+    }
+    let half = 1.96 * variance.sqrt();
+    (total, Some([total * (-half).exp(), total * half.exp()]))
+}
+
+/// The compared quantities of the series in `dir` (total mass, yaw
+/// inertia, grip), identified as its study says with [`STARTS`] starts.
+fn compared(dir: &Path) -> [Covered; 3] {
+    let sheet: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
+    let mut study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
+    study.setup.starts = STARTS;
+    let r = identify(&study.cases, &study.setup, &|| {}).unwrap();
+    let named = |name: &str, truth: f64| {
+        let p = r.parameters.iter().find(|p| p.name == name).unwrap();
+        Covered {
+            value: p.value,
+            interval: p.ci95,
+            truth,
+        }
+    };
+    let truth = |key: &str| sheet[key].as_f64().unwrap();
+    let (value, interval) = total_mass(&r);
+    eprintln!(
+        "  objective {:.4e} m², variance inflation {:.1}, prior noise {:.3e} m",
+        r.objective, r.inflation, r.prior_noise
+    );
+    [
+        Covered {
+            value,
+            interval,
+            truth: truth("total_mass"),
+        },
+        named("body.yaw_inertia", truth("yaw_inertia")),
+        named("tyres.mu_lateral", truth("mu")),
+    ]
+}
+
+/// The coverage of seeds `first .. first + count`, printed per quantity
+/// with its RMS z: (covered, compared).
+fn coverage(first: usize, count: usize) -> Option<(usize, usize)> {
+    let dir = series(first, count)?;
+    let names = ["total mass", "yaw inertia", "lateral grip"];
+    let clock = std::time::Instant::now();
+    let mut all: Vec<[Covered; 3]> = Vec::new();
+    for k in first..first + count {
+        let one = compared(&dir.join(format!("seed-{k}")));
+        eprintln!("seed {k}: {one:?}");
+        all.push(one);
+    }
+    for (q, name) in names.iter().enumerate() {
+        let covered = all.iter().filter(|c| c[q].covers()).count();
+        let z: Vec<f64> = all.iter().filter_map(|c| c[q].z()).collect();
+        let rms = (z.iter().map(|z| z * z).sum::<f64>() / z.len().max(1) as f64).sqrt();
+        eprintln!(
+            "{name}: {covered} of {count} intervals cover the truth; RMS z {rms:.2} (1 for honest intervals)"
+        );
+    }
+    let covered = all.iter().flatten().filter(|c| c.covers()).count();
+    eprintln!(
+        "{covered} of {} intervals cover the truth in {:.0} s",
+        3 * count,
+        clock.elapsed().as_secs_f64()
+    );
+    Some((covered, 3 * count))
+}
+
+/// The full count: 50 series (`BUMPSIM_COVERAGE_SERIES` fewer, from seed
+/// `BUMPSIM_COVERAGE_FIRST`); 85–99 % of the intervals cover the truth.
+#[test]
+#[ignore = "issue 44: measured 120 of 150 (80 %; yaw inertia 32/50, RMS z 1.91; grip 40/50, 1.55): see the module; writing 50 series takes ~20 min of Python"]
+fn the_intervals_cover_an_independent_generators_truth() {
+    let var = |name: &str, default: usize| {
+        std::env::var(name)
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(default)
+    };
+    let (first, count) = (
+        var("BUMPSIM_COVERAGE_FIRST", 0),
+        var("BUMPSIM_COVERAGE_SERIES", SERIES),
+    );
+    let Some((covered, total)) = coverage(first, count) else {
+        return;
+    };
+    let share = covered as f64 / total as f64;
+    assert!((0.85..=0.99).contains(&share), "{covered} of {total}");
+}
