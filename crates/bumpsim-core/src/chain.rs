@@ -342,16 +342,8 @@ impl Chain {
     /// mass `mass` (0-based), compressed by that mass's travel past `gap`
     /// (m, ≥ 0), never pulling.
     pub fn with_path(self, mass: usize, gap: f64, link: Link) -> Result<Chain, ModelError> {
-        if mass >= self.dof() || !(gap.is_finite() && gap >= 0.0) {
-            return Err(ModelError::Value {
-                parameter: format!("second load path on mass {} with gap", mass + 1),
-                value: gap,
-                unit: "m",
-                requirement: "a mass of the chain and a finite, non-negative gap",
-            });
-        }
         Ok(Chain {
-            path: Some(WallPath { mass, gap, link }),
+            path: Some(self.wall_link("second load path", mass, gap, link)?),
             ..self
         })
     }
@@ -367,18 +359,30 @@ impl Chain {
     /// (0-based), compressed by its travel past `gap` (m, ≥ 0), never
     /// pulling.
     pub fn with_rebound(self, mass: usize, gap: f64, link: Link) -> Result<Chain, ModelError> {
+        Ok(Chain {
+            rebound: Some(self.wall_link("rebound link", mass, gap, link)?),
+            ..self
+        })
+    }
+
+    /// A wall link on mass `mass` (0-based) after `gap` (m), checked:
+    /// `what` names it in the error.
+    fn wall_link(
+        &self,
+        what: &str,
+        mass: usize,
+        gap: f64,
+        link: Link,
+    ) -> Result<WallPath, ModelError> {
         if mass >= self.dof() || !(gap.is_finite() && gap >= 0.0) {
             return Err(ModelError::Value {
-                parameter: format!("rebound link on mass {} with gap", mass + 1),
+                parameter: format!("{what} on mass {} with gap", mass + 1),
                 value: gap,
                 unit: "m",
                 requirement: "a mass of the chain and a finite, non-negative gap",
             });
         }
-        Ok(Chain {
-            rebound: Some(WallPath { mass, gap, link }),
-            ..self
-        })
+        Ok(WallPath { mass, gap, link })
     }
 
     /// The rebound link, if any.

@@ -14,8 +14,8 @@
 //! searched as `p = ln θ` by the estimation layer's staged multi-start
 //! bounded Levenberg–Marquardt ([`bumpsim_estimate::multistart`]) on the
 //! same residuals as the linear chain's (each case's output displacement
-//! in its domain and weight over its window), with the Jacobian by forward
-//! differences ([`objective`]). Starts: the linear chain's estimate when
+//! in its domain and weight over its window), with the exact Jacobian by
+//! dual numbers through the links' history ([`objective`]). Starts: the linear chain's estimate when
 //! given (its masses, dampers and springs, a yield force at half the
 //! largest force, r = 0.2, u = 5) and draws around it. The uncertainty is
 //! the shared engine's ([`bumpsim_estimate::uncertainty`], spectral
