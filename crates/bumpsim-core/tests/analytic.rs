@@ -297,7 +297,8 @@ fn exactly_one_function_computes_the_hold_discretisation() {
     found.dedup();
     // besides the hold discretisation: scalar `f64::exp` of log-scale
     // parameters (a band's car `bands::car`, the nonlinear links' one
-    // `objective::{evaluate, fill}` for both their objectives, a prior's
+    // `objective::fill` for both their objectives (the links' Jacobian is
+    // exact now, by dual numbers), a prior's
     // estimate `prior::moved`) and the log-sum-exp of a prior on a sum of
     // parameters (`prior::value`), and a prior's interval on the parameter
     // scale (`prior::with_priors`), and the fitted bumper's log-scale
@@ -308,7 +309,6 @@ fn exactly_one_function_computes_the_hold_discretisation() {
         "bumper_fit::with_law",
         "energy::step_integral",
         "exponential::hold_exponential",
-        "objective::evaluate",
         "objective::fill",
         "prior::moved",
         "prior::value",
