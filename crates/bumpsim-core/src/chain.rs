@@ -463,6 +463,8 @@ impl Chain {
             front: self.front.as_ref().map(Link::real),
             path: self.path.as_ref().map(|p| p.link.real()),
             rebound: self.rebound.as_ref().map(|p| p.link.real()),
+            path_gap: self.path.as_ref().map(|p| T::constant(p.gap)),
+            rebound_gap: self.rebound.as_ref().map(|p| T::constant(p.gap)),
         }
     }
 

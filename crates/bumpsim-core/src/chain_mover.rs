@@ -32,6 +32,11 @@ pub struct ChainValues<T> {
     pub path: Option<Link<T>>,
     /// The rebound link, when the chain has one.
     pub rebound: Option<Link<T>>,
+    /// The second load path's gap, m (None: the chain's own,
+    /// [`super::WallPath::gap`]).
+    pub path_gap: Option<T>,
+    /// The rebound link's gap, m (None: the chain's own).
+    pub rebound_gap: Option<T>,
 }
 
 /// The motion of a run on the numbers `T` ([`Chain::motion`]): what the
@@ -42,6 +47,9 @@ pub struct Motion<T> {
     pub displacement: Vec<Vec<T>>,
     /// The force on m1 (given, or the wall's), N.
     pub force: Vec<T>,
+    /// Each link's plastic set at the end of the run, m
+    /// ([`LinkState::plastic_set`], as [`ChainResponse::plastic_set`]).
+    pub plastic_set: Vec<T>,
 }
 
 /// What a run records.
@@ -59,6 +67,7 @@ impl<T> Out<T> {
             return Out::Motion(Motion {
                 displacement: series(n, samples),
                 force: Vec::with_capacity(samples),
+                plastic_set: Vec::with_capacity(n - 1),
             });
         }
         let l = n - 1;
@@ -174,15 +183,18 @@ impl<'a, T: Real> Mover<'a, T> {
     /// filled in a full run.
     pub(super) fn finish(self, interval: f64) -> Out<T> {
         let mut out = self.out;
-        if let Out::Full(o) = &mut out {
-            o.step = interval;
-            o.plastic_set = self
-                .states
-                .iter()
-                .zip(&self.values.links)
-                .map(|(s, l)| s.plastic_set(l).value())
-                .collect();
-            o.reached = self.states.iter().map(|s| s.reached.value()).collect();
+        let sets = self
+            .states
+            .iter()
+            .zip(&self.values.links)
+            .map(|(s, l)| s.plastic_set(l));
+        match &mut out {
+            Out::Full(o) => {
+                o.step = interval;
+                o.plastic_set = sets.map(|s| s.value()).collect();
+                o.reached = self.states.iter().map(|s| s.reached.value()).collect();
+            }
+            Out::Motion(o) => o.plastic_set = sets.collect(),
         }
         out
     }
@@ -242,13 +254,15 @@ impl<T: Real> Mechanism<T> for Mover<'_, T> {
         }
         if let (Some(path), Some(wall), Some(_)) = (&self.values.path, &self.chain.path, self.wall)
         {
-            let crush = q[wall.mass] - wall.gap;
+            let gap = self.values.path_gap.unwrap_or(T::constant(wall.gap));
+            let crush = q[wall.mass] - gap;
             self.path_force = path.force(crush, &mut self.path).max_constant(0.0);
         }
         if let (Some(rebound), Some(wall), Some(_)) =
             (&self.values.rebound, &self.chain.rebound, self.wall)
         {
-            let crush = q[wall.mass] - wall.gap;
+            let gap = self.values.rebound_gap.unwrap_or(T::constant(wall.gap));
+            let crush = q[wall.mass] - gap;
             self.rebound_force = rebound.force(crush, &mut self.rebound).max_constant(0.0);
         }
         self.applied = k.wrapping_add(1);

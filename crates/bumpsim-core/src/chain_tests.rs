@@ -242,6 +242,8 @@ fn sensitivity_values<T: Real>(chain: &Chain, theta: &[T]) -> ChainValues<T> {
         front: None,
         path: None,
         rebound: None,
+        path_gap: None,
+        rebound_gap: None,
     }
 }
 

@@ -7,14 +7,14 @@
 //! polishing run follows ([`super::barrier`] says why). The uncertainty is
 //! the shared engine's on the extended residuals; each plastic set's 95 %
 //! interval is `±1.96 √(gᵀ Σ g)`, Σ the engine's covariance of the free
-//! log parameters (its standard errors and correlations), g by forward
-//! differences.
+//! log parameters (its standard errors and correlations), g exact by dual
+//! numbers through the run ([`super::objective::jacobian::tangents`]).
 
 use super::barrier::{
-    BarrierLayout, BarrierObjective, BarrierSettings, front_set, front_start, path_set,
-    rebound_set, run,
+    BarrierLayout, BarrierObjective, BarrierSettings, front_start, motion, plastic_sets, run,
 };
 use super::objective::frame;
+use super::objective::jacobian::{Tangent, tangents};
 use super::{LinkIdentError, LinkIdentification, PlasticSet, start_points};
 use crate::case::LoadCase;
 use bumpsim_core::chain::Frame;
@@ -23,7 +23,7 @@ use bumpsim_estimate::multistart::{self, AllFailed, Search};
 use bumpsim_estimate::observer::Observer;
 use bumpsim_estimate::prior::{Prior, Priored, moved};
 use bumpsim_estimate::uncertainty::{Correlation, Estimated, Uncertainty, uncertainty};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 
 /// Re-knotting, re-scaling and polishing rounds after the search.
 pub const POLISHING: usize = 3;
@@ -200,22 +200,20 @@ pub fn identify(
         let force = bumpsim_estimate::fit::percent(&response.force[a..=b], &case.force[a..=b]);
         force_fits.push((case.name.clone(), force));
     }
-    let sets = |p: &[f64]| -> Result<Vec<f64>, LinkIdentError> {
-        let car = layout.car(&problem.problem().theta(p))?;
-        let mut out = vec![];
-        for case in cases {
-            let response = run(case, &car)?;
-            out.push(front_set(&car, &response));
-            out.extend(response.plastic_set.iter().copied());
-            out.extend(path_set(&car, &response));
-            out.extend(rebound_set(&car, &response));
-        }
-        Ok(out)
-    };
     // per case: the front zone (0), the links (1..n−1), the second path
-    // (n), the rebound link (after them)
+    // (n), the rebound link (after them), on dual numbers
     let per_case = dof + usize::from(car.path().is_some()) + usize::from(car.rebound().is_some());
-    let plastic_sets = intervals(&sets, &p, &u, &theta, &free)?
+    let sets = |theta: &[Tangent]| {
+        let values = layout.values(&car, theta);
+        let mut out = Vec::with_capacity(per_case * cases.len());
+        for case in cases {
+            let motion = motion(case, &car, &values).ok()?;
+            out.extend(plastic_sets(&car, &values, &motion));
+        }
+        Some(out)
+    };
+    let (values, gradients) = tangents(&theta, &free, &sets).ok_or_else(failed)?;
+    let plastic_sets = intervals(&values, &gradients, &u, &theta, &free)
         .into_iter()
         .enumerate()
         .map(|(at, (value, ci95))| PlasticSet {
@@ -293,44 +291,34 @@ fn rebound_start(case: &LoadCase, mass: f64) -> Result<Vec<f64>, LinkIdentError>
     Ok(vec![plateau, plateau / (0.1 * reach), 0.25 * reach])
 }
 
-/// Quantities of the free log parameters (plastic sets), or why not.
-type Quantities<'a> = dyn Fn(&[f64]) -> Result<Vec<f64>, LinkIdentError> + 'a;
-
 /// A value and its 95 % interval, when the covariance gives one.
-type WithInterval = (f64, Option<[f64; 2]>);
+pub(crate) type WithInterval = (f64, Option<[f64; 2]>);
 
-/// The values of `of` at `p` with their 95 % intervals by the delta method
-/// on the covariance of the free log parameters that `u` gives. A free
+/// The quantities `values` with their 95 % intervals by the delta method
+/// on the covariance of the free log parameters that `u` gives, row i of
+/// `gradients` the exact gradient of value i in them
+/// ([`super::objective::jacobian::tangents`]). A free
 /// parameter the data leave undetermined (no standard error) leaves a
 /// value without an interval unless the value does not depend on it at
 /// all (its gradient below [`INDIFFERENT`]: a link that never yields
 /// leaves its yield force and hardening undetermined and its set at
 /// zero whatever they are); its variance then does not enter `gᵀ Σ g`.
 pub(crate) fn intervals(
-    of: &Quantities,
-    p: &[f64],
+    values: &[f64],
+    gradients: &DMatrix<f64>,
     u: &Uncertainty,
     theta: &[f64],
     free: &[usize],
-) -> Result<Vec<WithInterval>, LinkIdentError> {
-    let nominal = of(p)?;
+) -> Vec<WithInterval> {
     let (covariance, undetermined) = log_covariance(u, theta, free);
-    let step = 1e-6;
-    let mut gradients = vec![DVector::zeros(p.len()); nominal.len()];
-    for i in 0..p.len() {
-        let mut shifted = p.to_vec();
-        shifted[i] += step;
-        for (g, (a, b)) in gradients.iter_mut().zip(of(&shifted)?.iter().zip(&nominal)) {
-            g[i] = (a - b) / step;
-        }
-    }
-    Ok(nominal
+    values
         .iter()
-        .zip(&gradients)
-        .map(|(value, g)| {
+        .enumerate()
+        .map(|(at, value)| {
+            let g = gradients.row(at).transpose();
             let indifferent = undetermined.iter().all(|&i| g[i].abs() < INDIFFERENT);
             let ci = covariance.as_ref().filter(|_| indifferent).and_then(|c| {
-                let var = (g.transpose() * c * g)[(0, 0)];
+                let var = (g.transpose() * c * &g)[(0, 0)];
                 (var.is_finite() && var >= 0.0).then(|| {
                     let half = 1.96 * var.sqrt();
                     [value - half, value + half]
@@ -338,12 +326,12 @@ pub(crate) fn intervals(
             });
             (*value, ci)
         })
-        .collect())
+        .collect()
 }
 
 /// A value's gradient in an undetermined log parameter below this (m per
-/// unit of ln θ) is no dependence: the forward differences of a
-/// quantity that does not move with the parameter are this small or 0.
+/// unit of ln θ) is no dependence: the exact derivative of a quantity
+/// that does not move with the parameter is 0 or round-off.
 pub const INDIFFERENT: f64 = 1e-7;
 
 /// The covariance of the free log parameters from `u`'s standard errors
@@ -486,8 +474,9 @@ mod tests {
             correlation: Correlation::Independent,
         });
         assert!(u.standard_errors[0].is_some() && u.standard_errors[1].is_none());
-        let of = |p: &[f64]| -> Result<Vec<f64>, LinkIdentError> { Ok(vec![p[0], p[0] + p[1]]) };
-        let out = intervals(&of, &p, &u, &theta, &[0, 1]).unwrap();
+        // the values p0 and p0 + p1 and their gradients
+        let gradients = DMatrix::from_row_slice(2, 2, &[1.0, 0.0, 1.0, 1.0]);
+        let out = intervals(&[p[0], p[0] + p[1]], &gradients, &u, &theta, &[0, 1]);
         let [lo, hi] = out[0].1.expect("the first value does not depend on b");
         let half = 1.96 * u.standard_errors[0].unwrap();
         assert!(

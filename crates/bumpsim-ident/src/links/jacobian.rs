@@ -21,18 +21,20 @@
 //! 8 tangents fill one 64-byte line. A 2-mass chain (7 parameters) is one
 //! pass; 13 (3 masses) two, 19 three; the blocks run in parallel.
 
-use super::frame;
+use super::drive;
 use crate::case::LoadCase;
 use crate::links::Layout;
-use bumpsim_core::chain::{Chain, ChainValues, Drive};
+use bumpsim_core::chain::{Chain, ChainValues};
 use bumpsim_core::dual::{Dual, Real};
+use bumpsim_estimate::domain::Domain;
 use nalgebra::DMatrix;
 use rayon::prelude::*;
 
 /// Log parameters differentiated in one run.
 pub const WIDTH: usize = 8;
 
-type Tangent = Dual<WIDTH>;
+/// A number with its derivatives along one block of log parameters.
+pub type Tangent = Dual<WIDTH>;
 
 /// The chain's values on `T` from the SI parameters `theta` in the
 /// layout's order (`chain` = `layout.chain(θ)`, for its shape).
@@ -58,6 +60,87 @@ pub fn values<T: Real>(layout: Layout, chain: &Chain, theta: &[T]) -> ChainValue
         front: None,
         path: None,
         rebound: None,
+        path_gap: None,
+        rebound_gap: None,
+    }
+}
+
+/// Quantities of the SI parameters θ computed on dual numbers (residual
+/// rows, plastic sets); None when they cannot be computed.
+pub type OnDuals<'a> = dyn Fn(&[Tangent]) -> Option<Vec<Tangent>> + Sync + 'a;
+
+/// The quantities `of` at the SI parameters `theta` and their exact
+/// derivatives in the free log parameters (`free`: their indices in θ,
+/// each seeded with `∂θ/∂p = θ`), [`WIDTH`] at a time, the blocks in
+/// parallel: their values and the matrix (rows: quantities, columns: the
+/// free parameters); None when a run fails or a value or derivative is
+/// not finite.
+pub fn tangents(theta: &[f64], free: &[usize], of: &OnDuals) -> Option<(Vec<f64>, DMatrix<f64>)> {
+    let blocks: Vec<&[usize]> = match free.is_empty() {
+        true => vec![&[]],
+        false => free.chunks(WIDTH).collect(),
+    };
+    let runs: Vec<Option<Vec<Tangent>>> = blocks
+        .par_iter()
+        .map(|block| of(&seeded(theta, block)))
+        .collect();
+    let mut values: Option<Vec<f64>> = None;
+    let mut matrix = DMatrix::zeros(0, free.len());
+    for (b, run) in runs.into_iter().enumerate() {
+        let run = run?;
+        if values.is_none() {
+            values = Some(run.iter().map(|q| q.real).collect());
+            matrix = DMatrix::zeros(run.len(), free.len());
+        }
+        if run.len() != matrix.nrows() {
+            return None;
+        }
+        for (row, q) in run.iter().enumerate() {
+            for (d, value) in q.tangent.iter().take(blocks[b].len()).enumerate() {
+                matrix[(row, b * WIDTH + d)] = *value;
+            }
+        }
+    }
+    let values = values?;
+    let finite = values.iter().chain(matrix.iter()).all(|v| v.is_finite());
+    finite.then_some((values, matrix))
+}
+
+/// θ on dual numbers, the parameters `block` (indices in θ, at most
+/// [`WIDTH`]) seeded in order with `∂θ/∂p = θ`, the others constant.
+fn seeded(theta: &[f64], block: &[usize]) -> Vec<Tangent> {
+    theta
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| match block.iter().position(|&b| b == i) {
+            Some(d) => Dual::seeded(v, d, v),
+            None => Dual::constant(v),
+        })
+        .collect()
+}
+
+/// The Jacobian of the residuals `of` gives (on dual numbers, from the SI
+/// parameters) in the free log parameters at `theta`, into `jacobian`
+/// ([`tangents`]); false when they cannot be computed or their count is
+/// not the Jacobian's rows.
+pub fn fill(theta: &[f64], free: &[usize], of: &OnDuals, jacobian: &mut DMatrix<f64>) -> bool {
+    match tangents(theta, free, of) {
+        Some((_, matrix)) if matrix.shape() == jacobian.shape() => {
+            jacobian.copy_from(&matrix);
+            true
+        }
+        _ => false,
+    }
+}
+
+/// Sample `k` of the series `y` (displacements, m, sampled every `step`
+/// s) in `domain`, on any [`Real`]: the same differences as
+/// [`Domain::strided`], so on `f64` its value bit for bit.
+pub fn in_domain<T: Real>(domain: Domain, y: &[T], k: usize, step: f64) -> T {
+    match domain {
+        Domain::Displacement => y[k],
+        Domain::Velocity => (y[k] - y[k - 1]) / step,
+        Domain::Acceleration => (y[k] - y[k - 1] * 2.0 + y[k - 2]) / (step * step),
     }
 }
 
@@ -74,63 +157,29 @@ pub fn exact(
     let Ok(chain) = layout.chain(theta) else {
         return false;
     };
-    let blocks: Vec<&[usize]> = free.chunks(WIDTH).collect();
-    let columns: Vec<Option<Vec<[f64; WIDTH]>>> = blocks
-        .par_iter()
-        .map(|block| block_rows(cases, layout, &chain, theta, block))
-        .collect();
-    for (b, rows) in columns.into_iter().enumerate() {
-        let Some(rows) = rows else {
-            return false;
-        };
-        for (row, tangent) in rows.iter().enumerate() {
-            for (d, value) in tangent.iter().take(blocks[b].len()).enumerate() {
-                jacobian[(row, b * WIDTH + d)] = *value;
-            }
-        }
-    }
-    true
+    let rows = |theta: &[Tangent]| rows(cases, layout, &chain, theta);
+    fill(theta, free, &rows, jacobian)
 }
 
-/// Every residual's derivatives along the parameters `block` (at most
-/// [`WIDTH`], indices in θ), one run per case; None when a run fails or a
-/// derivative is not finite.
-fn block_rows(
+/// Every case's residuals on dual numbers (one run per case), from θ.
+fn rows(
     cases: &[LoadCase],
     layout: Layout,
     chain: &Chain,
-    theta: &[f64],
-    block: &[usize],
-) -> Option<Vec<[f64; WIDTH]>> {
-    let seeded: Vec<Tangent> = theta
-        .iter()
-        .enumerate()
-        .map(|(i, &v)| match block.iter().position(|&b| b == i) {
-            Some(d) => Dual::seeded(v, d, v),
-            None => Dual::constant(v),
-        })
-        .collect();
-    let values = values(layout, chain, &seeded);
+    theta: &[Tangent],
+) -> Option<Vec<Tangent>> {
+    let values = values(layout, chain, theta);
     let mut rows = Vec::with_capacity(cases.iter().map(LoadCase::residual_len).sum());
     for case in cases {
-        let drive = Drive::Force {
-            force: &case.force,
-            step: case.step,
-            initial_velocity: case.initial_velocity,
-            frame: frame(case),
-        };
-        let motion = chain.motion(&drive, &values).ok()?;
+        let motion = chain.motion(&drive(case), &values).ok()?;
         let y = motion.displacement.get(case.output_dof.checked_sub(1)?)?;
         let (domain, weight) = (case.compare.domain, case.compare.weight());
         for k in case.first_compared()..=case.window.1 {
-            let mut row = [0.0; WIDTH];
-            for (d, value) in row.iter_mut().enumerate() {
-                *value = weight * domain.strided(|i| y[i].tangent[d], k, case.step);
-            }
-            rows.push(row);
+            let measured = domain.at(&case.measured, k, case.step);
+            rows.push((in_domain(domain, y, k, case.step) - measured) * weight);
         }
     }
-    rows.iter().flatten().all(|v| v.is_finite()).then_some(rows)
+    Some(rows)
 }
 
 #[cfg(test)]

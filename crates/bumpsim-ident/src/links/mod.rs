@@ -21,7 +21,7 @@
 //! the shared engine's ([`bumpsim_estimate::uncertainty`], spectral
 //! inflation for correlated residuals); the plastic set of each link at
 //! the end of each case carries a 95 % interval by the delta method on the
-//! log-parameter covariance (`σ² = gᵀ Σ g`, g by forward differences).
+//! log-parameter covariance (`σ² = gᵀ Σ g`, g exact by dual numbers).
 //!
 //! A barrier test is better identified as the car ran into the barrier
 //! ([`barrier`], [`into_wall`]): the chain behind a tabulated front crush
@@ -440,7 +440,7 @@ pub fn identify(
             Ok((case.name.clone(), case.fit(&y).1))
         })
         .collect::<Result<Vec<_>, LinkIdentError>>()?;
-    let plastic_sets = plastic_sets(cases, &objective, &best.parameters, &u, &jacobian)?;
+    let plastic_sets = plastic_sets(cases, &objective, &theta, &u)?;
     let barrier = cases
         .iter()
         .find(|c| objective::frame(c) == bumpsim_core::chain::Frame::Forward);
@@ -490,57 +490,38 @@ pub(crate) fn start_points(
 }
 
 /// The plastic set of every link at the end of every case, with the
-/// delta-method interval on the log-parameter covariance
-/// `Σ = σ² (JᵀJ)⁻¹` (σ the engine's inflated residual deviation).
+/// delta-method interval on the engine's covariance of the free log
+/// parameters ([`into_wall::intervals`]), each set's gradient exact by
+/// dual numbers through the run ([`objective::jacobian::tangents`]).
 fn plastic_sets(
     cases: &[LoadCase],
     objective: &LinkObjective,
-    p: &[f64],
+    theta: &[f64],
     u: &Uncertainty,
-    jacobian: &DMatrix<f64>,
 ) -> Result<Vec<PlasticSet>, LinkIdentError> {
-    let sets = |p: &[f64]| -> Result<Vec<f64>, LinkIdentError> {
-        let chain = objective.layout().chain(&objective.theta(p))?;
-        let mut out = Vec::new();
+    let layout = objective.layout();
+    let chain = layout.chain(theta)?;
+    let sets = |theta: &[objective::jacobian::Tangent]| {
+        let values = objective::jacobian::values(layout, &chain, theta);
+        let mut out = Vec::with_capacity(cases.len() * (layout.dof - 1));
         for case in cases {
-            out.extend(objective::plastic_set(case, &chain)?);
+            let motion = chain.motion(&objective::drive(case), &values).ok()?;
+            out.extend(motion.plastic_set);
         }
-        Ok(out)
+        Some(out)
     };
-    let nominal = sets(p)?;
-    let covariance = (jacobian.transpose() * jacobian)
-        .try_inverse()
-        .map(|inverse| inverse * u.residual_std.powi(2));
-    let mut gradients = vec![vec![0.0; p.len()]; nominal.len()];
-    for i in 0..p.len() {
-        let mut shifted = p.to_vec();
-        shifted[i] += objective::DIFFERENCE;
-        for (g, (a, b)) in gradients
-            .iter_mut()
-            .zip(sets(&shifted)?.iter().zip(&nominal))
-        {
-            g[i] = (a - b) / objective::DIFFERENCE;
-        }
-    }
-    let links = objective.layout().dof - 1;
-    Ok(nominal
-        .iter()
+    let free = objective.free();
+    let (values, gradients) =
+        objective::jacobian::tangents(theta, free, &sets).ok_or(AllFailed { starts: 1 })?;
+    let links = layout.dof - 1;
+    Ok(into_wall::intervals(&values, &gradients, u, theta, free)
+        .into_iter()
         .enumerate()
-        .map(|(at, value)| {
-            let ci95 = covariance.as_ref().and_then(|c| {
-                let g = nalgebra::DVector::from_column_slice(&gradients[at]);
-                let var = (g.transpose() * c * &g)[(0, 0)];
-                (var.is_finite() && var >= 0.0).then(|| {
-                    let half = 1.96 * var.sqrt();
-                    [value - half, value + half]
-                })
-            });
-            PlasticSet {
-                case: cases[at / links].name.clone(),
-                link: at % links + 1,
-                value: *value,
-                ci95,
-            }
+        .map(|(at, (value, ci95))| PlasticSet {
+            case: cases[at / links].name.clone(),
+            link: at % links + 1,
+            value,
+            ci95,
         })
         .collect())
 }

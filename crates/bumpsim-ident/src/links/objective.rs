@@ -3,24 +3,18 @@
 //! [`bumpsim_core::chain::Chain`] with its history, and their exact
 //! Jacobian in the log parameters by dual numbers through that history
 //! ([`jacobian`]). `LogParameters` also serves the barrier objective
-//! ([`super::barrier`]), whose Jacobian is still by forward differences
-//! ([`bumpsim_estimate::difference`], step [`DIFFERENCE`]: the history
-//! makes the output piecewise smooth, and the step spans the kinks a
-//! sample interval makes).
+//! ([`super::barrier`]), whose Jacobian is exact the same way (the car
+//! run into the wall on dual numbers, [`jacobian::fill`]).
 
 use super::{Layout, LinkIdentError};
 use crate::case::LoadCase;
 use bumpsim_core::chain::{Chain, Drive, Frame};
-use bumpsim_estimate::difference::forward_jacobian;
 use bumpsim_estimate::lm::LeastSquares;
 use nalgebra::DMatrix;
 use std::sync::Mutex;
 
 #[path = "jacobian.rs"]
 pub mod jacobian;
-
-/// Forward-difference step in a log parameter.
-pub const DIFFERENCE: f64 = 1e-6;
 
 /// The frame of a case: forward (a moving car into a barrier) when its
 /// force on m1 is mostly negative, rearward (a pendulum) otherwise.
@@ -36,18 +30,24 @@ pub fn frame(case: &LoadCase) -> Frame {
     }
 }
 
-/// The simulated displacement of a case's output mass, m.
-pub fn simulate(case: &LoadCase, chain: &Chain) -> Result<Vec<f64>, LinkIdentError> {
-    let drive = Drive::Force {
+/// A case's drive: its force on m1 in its frame.
+pub fn drive(case: &LoadCase) -> Drive<'_> {
+    Drive::Force {
         force: &case.force,
         step: case.step,
         initial_velocity: case.initial_velocity,
         frame: frame(case),
-    };
-    let response = chain.run(&drive).map_err(|source| LinkIdentError::Chain {
-        case: case.name.clone(),
-        source,
-    })?;
+    }
+}
+
+/// The simulated displacement of a case's output mass, m.
+pub fn simulate(case: &LoadCase, chain: &Chain) -> Result<Vec<f64>, LinkIdentError> {
+    let response = chain
+        .run(&drive(case))
+        .map_err(|source| LinkIdentError::Chain {
+            case: case.name.clone(),
+            source,
+        })?;
     let out = case
         .output_dof
         .checked_sub(1)
@@ -57,21 +57,6 @@ pub fn simulate(case: &LoadCase, chain: &Chain) -> Result<Vec<f64>, LinkIdentErr
         output: case.output_dof,
         dof: chain.dof(),
     })
-}
-
-/// Each link's plastic set at the end of a case, m.
-pub fn plastic_set(case: &LoadCase, chain: &Chain) -> Result<Vec<f64>, LinkIdentError> {
-    let drive = Drive::Force {
-        force: &case.force,
-        step: case.step,
-        initial_velocity: case.initial_velocity,
-        frame: frame(case),
-    };
-    let response = chain.run(&drive).map_err(|source| LinkIdentError::Chain {
-        case: case.name.clone(),
-        source,
-    })?;
-    Ok(response.plastic_set)
 }
 
 /// The residuals of every case, in their domains and weights, from the
@@ -97,10 +82,9 @@ fn residuals(cases: &[LoadCase], layout: &Layout, theta: &[f64], r: &mut [f64]) 
 }
 
 /// The free log parameters `p = ln θ` of a parameter vector with some
-/// entries fixed, and the one evaluation both links objectives share: the
-/// SI parameters filled into a buffer allocated once, the residuals, and
-/// the Jacobian by forward differences of [`DIFFERENCE`] in each free log
-/// parameter.
+/// entries fixed, and the one evaluation of the residuals both links
+/// objectives share: the SI parameters filled into a buffer allocated
+/// once.
 #[derive(Debug)]
 pub(crate) struct LogParameters {
     /// The fixed SI values (free entries: 1, overwritten).
@@ -150,26 +134,6 @@ impl LogParameters {
         let mut theta = vec![0.0; self.fixed.len()];
         self.fill(p, &mut theta);
         theta
-    }
-
-    /// `residuals(θ, r)` at `p` and, asked for, its Jacobian in `p` by
-    /// forward differences ([`forward_jacobian`], step [`DIFFERENCE`]);
-    /// false when the model cannot run.
-    pub(crate) fn evaluate(
-        &self,
-        p: &[f64],
-        r: &mut [f64],
-        jacobian: Option<&mut DMatrix<f64>>,
-        residuals: &(dyn Fn(&[f64], &mut [f64]) -> bool + Sync),
-    ) -> bool {
-        if !self.residuals(p, r, residuals) {
-            return false;
-        }
-        let Some(j) = jacobian else {
-            return true;
-        };
-        let shifted = |q: &[f64], out: &mut [f64]| residuals(&self.theta(q), out);
-        forward_jacobian(p, r, DIFFERENCE, &shifted, j)
     }
 
     /// `residuals(θ, r)` at `p`, θ filled into the buffer allocated once.
