@@ -42,16 +42,19 @@ use bumpsim_ident::links::{LinkSettings, identify, text};
 use std::path::{Path, PathBuf};
 
 fn series() -> Option<PathBuf> {
-    seeded(1)
+    seeded(1, "force-driven")
 }
 
-/// The generator's series of noise seed `seed` at its 10 m/s.
-fn seeded(seed: u64) -> Option<PathBuf> {
-    at_speed(seed, 10.0)
+/// The generator's series of noise seed `seed` at its 10 m/s, in the
+/// folder of the test `owner`.
+fn seeded(seed: u64, owner: &str) -> Option<PathBuf> {
+    at_speed(seed, 10.0, owner)
 }
 
-/// The generator's series of noise seed `seed` at `speed` m/s.
-fn at_speed(seed: u64, speed: f64) -> Option<PathBuf> {
+/// The generator's series of noise seed `seed` at `speed` m/s, written in
+/// a folder of the test `owner`'s own: the tests run in parallel threads,
+/// and two writing one folder race (one truncates what the other reads).
+fn at_speed(seed: u64, speed: f64, owner: &str) -> Option<PathBuf> {
     if !bumpsim_peers::present(
         bumpsim_peers::python_available("numpy"),
         "python3 with numpy",
@@ -59,8 +62,8 @@ fn at_speed(seed: u64, speed: f64) -> Option<PathBuf> {
         return None;
     }
     let name = match speed == 10.0 {
-        true => format!("crush-bar-{seed}"),
-        false => format!("crush-bar-{seed}-{speed}"),
+        true => format!("crush-bar-{owner}-{seed}"),
+        false => format!("crush-bar-{owner}-{seed}-{speed}"),
     };
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/crush_bar.py");
@@ -159,9 +162,10 @@ fn a_crushing_bar_gives_its_yield_force_and_stiffnesses_within_their_intervals()
 }
 
 /// The car identified into the wall from seed `seed`'s series: each of
-/// m1, k1, Fy1, r1, u1 with its truth and whether its 95 % interval holds it.
-fn covered(seed: u64) -> Option<Vec<(&'static str, f64, f64, bool)>> {
-    let dir = seeded(seed)?;
+/// m1, k1, Fy1, r1, u1 with its truth and whether its 95 % interval holds
+/// it (the series in the folder of the test `owner`).
+fn covered(seed: u64, owner: &str) -> Option<Vec<(&'static str, f64, f64, bool)>> {
+    let dir = seeded(seed, owner)?;
     let truth: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("truth.json")).unwrap()).unwrap();
     let case = crush_case(&dir, &truth);
@@ -210,7 +214,9 @@ fn covered(seed: u64) -> Option<Vec<(&'static str, f64, f64, bool)>> {
 /// the link, and m1) lie within their 95 % intervals of the truth.
 #[test]
 fn a_crushing_bar_identified_into_the_wall_covers_its_truth() {
-    let Some(checks) = covered(1) else { return };
+    let Some(checks) = covered(1, "covers") else {
+        return;
+    };
     for (name, value, estimate, inside) in checks {
         assert!(
             inside,
@@ -227,7 +233,9 @@ fn a_crushing_bar_identified_into_the_wall_covers_its_truth() {
 fn the_intervals_cover_the_truth_over_noise_seeds() {
     let mut missed = vec![];
     for seed in 2..=6 {
-        let Some(checks) = covered(seed) else { return };
+        let Some(checks) = covered(seed, "seeds") else {
+            return;
+        };
         missed.extend(checks.into_iter().filter(|c| !c.3).map(|c| (seed, c.0)));
     }
     println!("missed: {missed:?}");
@@ -254,7 +262,7 @@ fn read(dir: &Path) -> (LoadCase, serde_json::Value) {
 fn a_barrier_fit_started_at_the_truth_stays_and_predicts_no_worse() {
     use bumpsim_core::link::Curve;
     use bumpsim_ident::links::barrier::{BarrierLayout, BarrierSettings, front_start, run};
-    let (Some(dir), Some(held)) = (seeded(1), at_speed(1, 7.0)) else {
+    let (Some(dir), Some(held)) = (seeded(1, "stays"), at_speed(1, 7.0, "stays")) else {
         return;
     };
     let ((case, truth), (held, _)) = (read(&dir), read(&held));

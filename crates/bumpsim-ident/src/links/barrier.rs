@@ -528,6 +528,7 @@ pub struct BarrierSettings {
 
 #[cfg(test)]
 mod tests {
+    use super::super::objective::jacobian::tests::worst_column;
     use super::*;
 
     fn case(force: f64, samples: usize) -> LoadCase {
@@ -640,38 +641,6 @@ mod tests {
         let mut fixed = vec![None; truth.len()];
         fixed[1] = Some(1250.0);
         (case, layout, theta, fixed)
-    }
-
-    /// The worst difference between `exact`'s columns and the central
-    /// differences (step `h` in each log parameter) of `of`, each over its
-    /// column's largest central value; panics on a column of zeros.
-    fn worst_column(
-        exact: &DMatrix<f64>,
-        p: &[f64],
-        h: f64,
-        of: &dyn Fn(&[f64]) -> Vec<f64>,
-    ) -> f64 {
-        (0..p.len())
-            .map(|column| {
-                let at = |by: f64| {
-                    let mut q = p.to_vec();
-                    q[column] += by;
-                    of(&q)
-                };
-                let (up, down) = (at(h), at(-h));
-                let central: Vec<f64> = up
-                    .iter()
-                    .zip(&down)
-                    .map(|(a, b)| (a - b) / (2.0 * h))
-                    .collect();
-                let scale = central.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-                assert!(scale > 0.0, "column {column} is zero");
-                let worst = (0..central.len())
-                    .map(|k| (exact[(k, column)] - central[k]).abs())
-                    .fold(0.0_f64, f64::max);
-                worst / scale
-            })
-            .fold(0.0_f64, f64::max)
     }
 
     /// The barrier objective's exact Jacobian (dual numbers through the car
