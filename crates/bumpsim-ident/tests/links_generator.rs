@@ -181,6 +181,8 @@ fn covered(seed: u64, owner: &str) -> Option<Vec<(&'static str, f64, f64, bool)>
         path_knots: 0,
         rebound: None,
         sheet_mass: Some((total, 0.01)),
+        path_start: None,
+        rebound_start: None,
     };
     let found =
         bumpsim_ident::links::into_wall::identify(std::slice::from_ref(&case), &settings, &Silent)
@@ -288,6 +290,8 @@ fn a_barrier_fit_started_at_the_truth_stays_and_predicts_no_worse() {
         path_knots: 0,
         rebound: None,
         sheet_mass: Some((total, 0.01)),
+        path_start: None,
+        rebound_start: None,
     };
     let found =
         bumpsim_ident::links::into_wall::identify(std::slice::from_ref(&case), &settings, &Silent)

@@ -264,6 +264,33 @@ fn barrier(config: &Config) -> Option<Barrier> {
         // LINKS_REBOUND=j: a rebound link on mass j (1-based), 0 none
         rebound: number("LINKS_REBOUND", config.rebound).checked_sub(1),
         sheet_mass: Some((mass, spread)),
+        path_start: None,
+        rebound_start: None,
+    };
+    let settings = match std::env::var("LINKS_FROM").as_deref() {
+        // one start at the optimum of [`TWO_PATHS`] (its settings, the
+        // variables above aside): a polishing of it under this objective
+        Ok("two-paths") => {
+            let two = |v: f64| if v == 0.0 { None } else { Some(v as usize - 1) };
+            let from = BarrierSettings {
+                links: LinkSettings {
+                    starts: TWO_PATHS.starts,
+                    ..settings.links.clone()
+                },
+                knots: TWO_PATHS.knots,
+                path_knots: TWO_PATHS.path_knots,
+                rebound: two(TWO_PATHS.rebound as f64),
+                sheet_mass: Some((mass, TWO_PATHS.spread)),
+                ..settings.clone()
+            };
+            let optimum =
+                bumpsim_ident::links::into_wall::identify(&cases, &from, &Silent).unwrap();
+            println!("the two paths' optimum:\n{}", text(&optimum));
+            let mut again = bumpsim_ident::links::into_wall::started_at(&optimum, &settings);
+            again.links.starts = 1;
+            again
+        }
+        _ => settings,
     };
     let mut found = bumpsim_ident::links::into_wall::identify(&cases, &settings, &Silent).unwrap();
     if let Some(mass) = number("LINKS_REBOUND_AFTER", 0).checked_sub(1) {
@@ -304,6 +331,17 @@ fn barrier(config: &Config) -> Option<Barrier> {
             .collect();
         std::fs::write(path, rows).unwrap();
     }
+    // the likelihood with each channel's variance at its maximum (its
+    // scale s: n ln s per channel) and the prior: comparable between
+    // optima whose objectives are scaled differently
+    let lengths = [case.window_len(), case.residual_len()];
+    let concentrated: f64 = found
+        .scales
+        .iter()
+        .map(|s| lengths[0] as f64 * s[0].ln() + lengths[1] as f64 * s[1].ln())
+        .sum::<f64>()
+        + found.moved.iter().map(|m| 0.5 * m.z * m.z).sum::<f64>();
+    println!("concentrated negative log-likelihood {concentrated:.2} (scales in SI)");
     // the barrier's impulse over the crossmember's ΔV: the mass the two
     // channels imply, against the test sheet's
     let impulse: f64 = case.force[a..=b].iter().sum::<f64>() * h;

@@ -524,6 +524,13 @@ pub struct BarrierSettings {
     /// The test sheet's mass, kg, and the spread of its prior (standard
     /// deviation of ln M); None: no prior.
     pub sheet_mass: Option<(f64, f64)>,
+    /// The second path's start: its knots (m) and values `[F1..FJ N, kp
+    /// N/m]`; None: [`front_start`] with `path_knots` knots, the front's
+    /// and its forces halved (the two paths share the rigid car's force).
+    pub path_start: Option<(Vec<f64>, Vec<f64>)>,
+    /// The rebound link's start `[Ft N, kt N/m, gt m]`; None: a plateau
+    /// of 0.15 times the largest force, the front's start lowered by it.
+    pub rebound_start: Option<[f64; 3]>,
 }
 
 #[cfg(test)]

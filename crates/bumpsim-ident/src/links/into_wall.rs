@@ -52,22 +52,17 @@ pub fn identify(
     let mass = settings
         .sheet_mass
         .map_or_else(|| links.start[..dof].iter().sum(), |m| m.0);
-    let (knots, mut front) = match &settings.front_start {
-        Some((knots, values)) if values.len() == knots.len() + 1 && knots.len() >= 2 => {
-            (knots.clone(), values.clone())
-        }
-        Some((knots, values)) => {
-            return Err(LinkIdentError::Settings(format!(
-                "a front start needs 2 knots or more and one force per knot and the unloading slope: {} knots, {} values",
-                knots.len(),
-                values.len()
-            )));
-        }
+    let (knots, mut front) = match table_start(&settings.front_start, "front")? {
+        Some(given) => given,
         None => front_start(first, mass, settings.knots)?,
     };
-    let (path_knots, path) = match settings.path_knots {
-        0 => (vec![], vec![]),
-        j => {
+    let (path_knots, path) = match (
+        settings.path_knots,
+        table_start(&settings.path_start, "second path")?,
+    ) {
+        (0, _) => (vec![], vec![]),
+        (_, Some(given)) => given,
+        (j, None) => {
             // the two paths share the rigid car's force at the start
             let (at, mut values) = front_start(first, mass, j)?;
             for v in values.iter_mut().chain(front.iter_mut()) {
@@ -76,17 +71,18 @@ pub fn identify(
             (at, values)
         }
     };
-    let rebound = match settings.rebound {
-        Some(mass) if mass >= dof => {
+    let rebound = match (settings.rebound, settings.rebound_start) {
+        (Some(mass), _) if mass >= dof => {
             return Err(LinkIdentError::Settings(format!(
                 "a rebound link on mass {} of a chain of {dof}",
                 mass + 1
             )));
         }
-        Some(_) => rebound_start(first, mass)?,
-        None => vec![],
+        (Some(_), Some(given)) => given.to_vec(),
+        (Some(_), None) => rebound_start(first, mass)?,
+        (None, _) => vec![],
     };
-    if let [plateau, slope, gap] = rebound[..] {
+    if let ([plateau, slope, gap], None) = (&rebound[..], settings.rebound_start) {
         // the front gives up what the rebound link carries while loading,
         // so the car's loading force starts where it was
         for (value, d) in front.iter_mut().zip(&knots) {
@@ -246,29 +242,93 @@ pub fn identify(
     })
 }
 
+/// A tabulated link's start: its knots (m) and values `[F1..FK N, k_u
+/// N/m]`.
+type TableStart = (Vec<f64>, Vec<f64>);
+
+/// A table's start as given, checked; None when not given.
+fn table_start(
+    given: &Option<TableStart>,
+    what: &str,
+) -> Result<Option<TableStart>, LinkIdentError> {
+    match given {
+        Some((knots, values)) if values.len() == knots.len() + 1 && knots.len() >= 2 => {
+            Ok(Some((knots.clone(), values.clone())))
+        }
+        Some((knots, values)) => Err(LinkIdentError::Settings(format!(
+            "a {what} start needs 2 knots or more and one force per knot and the unloading slope: {} knots, {} values",
+            knots.len(),
+            values.len()
+        ))),
+        None => Ok(None),
+    }
+}
+
 /// The settings of a second stage: `settings` with a rebound link on
 /// mass `mass` (0-based), started from the identification `found`
 /// without one (its chain, its front table and unloading slope; a
-/// second path starts afresh).
+/// second path and the rebound link start afresh).
 pub fn with_rebound(
     found: &LinkIdentification,
     settings: &BarrierSettings,
     mass: usize,
 ) -> BarrierSettings {
+    let mut out = started_at(found, settings);
+    out.path_start = None;
+    out.rebound = Some(mass);
+    out.rebound_start = None;
+    out
+}
+
+/// `settings` started at the identification `found` (its optimum: the
+/// chain, the front table, the second path's and the rebound link's when
+/// `settings` has them too), each table read off `found`'s curve at as
+/// many knots as `settings` asks over the same reach: with one start, a
+/// polishing of `found` under `settings`' objective (does a search miss
+/// an optimum it would keep?).
+pub fn started_at(found: &LinkIdentification, settings: &BarrierSettings) -> BarrierSettings {
     let mut out = settings.clone();
     let c = found.layout.count();
     out.links.start = found.theta[..c].to_vec();
-    if let Some(front) = &found.front
-        && let bumpsim_core::link::Curve::Table { points } = front.curve()
-        && let bumpsim_core::link::Unloading::Slope(slope) = front.unloading()
-    {
-        let knots = points[1..].iter().map(|p| p[0]).collect();
-        let mut values: Vec<f64> = points[1..].iter().map(|p| p[1]).collect();
-        values.push(slope);
-        out.front_start = Some((knots, values));
-    }
-    out.rebound = Some(mass);
+    out.front_start = found
+        .front
+        .as_ref()
+        .and_then(|front| table_of(front, settings.knots));
+    out.path_start = found
+        .path
+        .as_ref()
+        .filter(|_| settings.path_knots > 0)
+        .and_then(|path| table_of(&path.link, settings.path_knots));
+    out.rebound_start = found
+        .rebound
+        .as_ref()
+        .filter(|_| settings.rebound.is_some())
+        .map(|rebound| {
+            let law = rebound.link.parameters();
+            [law[1], law[0], rebound.gap]
+        });
     out
+}
+
+/// A tabulated link's start at `count` knots over its reach (its own
+/// knots when it has as many), the forces read off its curve, and its
+/// unloading slope; None for another kind of link.
+fn table_of(link: &bumpsim_core::link::Link, count: usize) -> Option<TableStart> {
+    let (bumpsim_core::link::Curve::Table { points }, bumpsim_core::link::Unloading::Slope(slope)) =
+        (link.curve(), link.unloading())
+    else {
+        return None;
+    };
+    let reach = points.last()?[0];
+    let knots: Vec<f64> = match points.len() - 1 == count {
+        true => points[1..].iter().map(|p| p[0]).collect(),
+        false => (1..=count)
+            .map(|i| reach * i as f64 / count as f64)
+            .collect(),
+    };
+    let mut values: Vec<f64> = knots.iter().map(|d| link.curve().force(*d)).collect();
+    values.push(slope);
+    Some((knots, values))
 }
 
 /// A start for a rebound link `[Ft N, kt N/m, gt m]`: a plateau of 0.15
