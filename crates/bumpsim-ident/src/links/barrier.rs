@@ -51,7 +51,11 @@
 //! follows one of the two).
 //!
 //! With the test sheet's mass M the Gaussian prior `ln Σ m_i ~ N(ln M,
-//! s²)` ([`bumpsim_estimate::prior`]) joins them. The uncertainty is the
+//! s²)` ([`bumpsim_estimate::prior`]) joins them. The Jacobian is exact:
+//! the car runs into the wall once per block of 8 log parameters on dual
+//! numbers ([`BarrierLayout::values`], [`super::objective::jacobian`]),
+//! through the links' history, the front and path tables and the rebound
+//! link's gap. The uncertainty is the
 //! shared engine's over the extended residuals (spectral inflation per
 //! channel), the plastic sets' (front zone and links) by the delta method
 //! on that covariance.
