@@ -405,7 +405,9 @@ fn nhtsa_10146_identified_into_the_barrier_fits_and_predicts_delta_v() {
 /// (+5.9 sd of its ±0.3 % prior), between the sheet's 1719 kg and the
 /// load cells' impulse over the crossmember's ΔV (1783 kg), as asserted.
 /// The rebound link now acts (gap 686 mm, plateau 217 kN). 28 s in a
-/// release build on the loaded machine.
+/// release build on the loaded machine; the file's three tests together
+/// 214 s in a debug build at load 20 (round 3, forward differences:
+/// 320 s).
 ///
 /// Where the force was lost (`LINKS_DUMP`, [`PLAIN`], 83.58 %), each
 /// 10 ms window's share of the force's squared error: 0–10 ms 9 % (the
