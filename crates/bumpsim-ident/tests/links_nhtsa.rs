@@ -266,7 +266,23 @@ fn barrier(config: &Config) -> Option<Barrier> {
         sheet_mass: Some((mass, spread)),
         path_start: None,
         rebound_start: None,
+        scales: None,
     };
+    // LINKS_SCALES=signal: each channel held at its measured signal's
+    // spread (each channel weighed by its fit %), not re-estimated
+    let mut settings = settings;
+    if std::env::var("LINKS_SCALES").as_deref() == Ok("signal") {
+        let spread = |x: &[f64]| {
+            let mean = x.iter().sum::<f64>() / x.len() as f64;
+            (x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / x.len() as f64).sqrt()
+        };
+        let (a, b) = case.window;
+        let domain = case.compare.domain;
+        let y: Vec<f64> = (case.first_compared()..=b)
+            .map(|k| domain.at(&case.measured, k, case.step))
+            .collect();
+        settings.scales = Some(vec![[spread(&case.force[a..=b]), spread(&y)]]);
+    }
     let settings = match std::env::var("LINKS_FROM").as_deref() {
         // one start at the optimum of [`TWO_PATHS`] (its settings, the
         // variables above aside): a polishing of it under this objective
@@ -473,9 +489,31 @@ fn nhtsa_10146_identified_into_the_barrier_fits_and_predicts_delta_v() {
 /// 0.05 point of force. So
 /// the ≥ 90 % is the alternating scale-and-polish procedure's stopping
 /// point, not the objective's optimum; a robust ≥ 90 % needs an
-/// objective that weighs the wall force as the acceptance does (fixed
-/// channel weights, or the force's fit as the criterion), not more
+/// objective that weighs the wall force as the acceptance does, not more
 /// starts.
+///
+/// **The trade-off, measured.** With each channel held at its measured
+/// signal's spread instead (`LINKS_SCALES=signal`,
+/// `BarrierSettings.scales`: each channel weighed by its fit %, not
+/// re-estimated):
+///
+/// | configuration | crossmember | forward force | ΔV off | masses (prior sd) |
+/// |---|---|---|---|---|
+/// | [`PLAIN`] | 95.03 % | 91.61 % | 0.87 % | 1729 kg (+0.6) |
+/// | [`TWO_PATHS`] | 96.21 % | 93.12 % | 2.58 % | 1719 kg (+0.1) |
+/// | the same, no rebound | 96.32 % | 92.25 % | 1.72 % | 1720 kg (+0.1) |
+/// | the same, ±0.5 % | 96.03 % | 90.30 % | 0.37 % | 1721 kg (+0.2) |
+/// | 16 knots | 94.95 % | 90.72 % | 1.98 % | 1720 kg (+0.2) |
+/// | 16 knots, no rebound | 95.22 % | 90.62 % | 1.32 % | 1720 kg (+0.1) |
+/// | 16 knots, ±1 % | 95.23 % | 90.63 % | 1.01 % | 1726 kg (+0.4) |
+/// | 16 knots, rebound on m1 | 98.36 % | 93.11 % | 1.43 % | 1719 kg (0.0) |
+///
+/// The force holds ≥ 90 % in every variant and the sheet's mass is kept,
+/// but the crossmember falls under 99 %: this 2-mass car with two paths
+/// does not reach both figures at once, and the channels' weighting picks
+/// the point on that front. The maximum-likelihood weighting (the
+/// default) sits at the crossmember's end, where the force at 90 % is a
+/// matter of where the search stops.
 #[test]
 fn nhtsa_10146_identified_into_the_barrier_predicts_the_force() {
     let Some(b) = barrier(&TWO_PATHS) else { return };

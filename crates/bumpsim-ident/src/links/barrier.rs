@@ -535,6 +535,10 @@ pub struct BarrierSettings {
     /// The rebound link's start `[Ft N, kt N/m, gt m]`; None: a plateau
     /// of 0.15 times the largest force, the front's start lowered by it.
     pub rebound_start: Option<[f64; 3]>,
+    /// Each case's channel scales `[s_F N, s_y]` held fixed; None: each
+    /// channel's own residual, re-estimated at each polishing (the
+    /// maximum-likelihood weighting of the module).
+    pub scales: Option<Vec<[f64; 2]>>,
 }
 
 #[cfg(test)]

@@ -118,7 +118,17 @@ pub fn identify(
             starts: links.starts,
         })
     };
-    let scales = objective.channel_scales(&first_p).ok_or_else(failed)?;
+    let scales = match &settings.scales {
+        Some(fixed) if fixed.len() == cases.len() => fixed.clone(),
+        Some(fixed) => {
+            return Err(LinkIdentError::Settings(format!(
+                "{} channel scales for {} cases",
+                fixed.len(),
+                cases.len()
+            )));
+        }
+        None => objective.channel_scales(&first_p).ok_or_else(failed)?,
+    };
     let priors = match settings.sheet_mass {
         Some((centre, spread)) => {
             let terms: Vec<usize> = (0..free.len()).filter(|&j| free[j] < dof).collect();
@@ -161,7 +171,10 @@ pub fn identify(
             &fixed,
             scales_or_unit(&scales, cases.len()),
         );
-        scales = objective.channel_scales(&p).ok_or_else(failed)?;
+        scales = match &settings.scales {
+            Some(fixed) => fixed.clone(),
+            None => objective.channel_scales(&p).ok_or_else(failed)?,
+        };
         let problem = priored(scales.clone(), &layout)?;
         let polished = lm::minimise(&problem, &p, &lower, &upper, &links.solver);
         (p, objective_value) = (polished.parameters, polished.objective);
