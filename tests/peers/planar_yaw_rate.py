@@ -1,7 +1,15 @@
 #!/usr/bin/env python3
 """A second independent planar crash-test series (issue 44): sills and a yaw-rate sensor.
 
-Usage: planar_yaw_rate.py OUT_DIR
+Usage: planar_yaw_rate.py OUT_DIR [--seed N]
+
+`--seed N` (N >= 1) varies the car: the body and beam masses, the yaw
+inertia, the grip mu and the cornering stiffness, and each crash box's
+elastic stiffness, yield force, hardening and damper, each by a factor drawn
+uniformly within +/-15 % (numpy's generator seeded with N), and the channels'
+noise from a generator of its own (44 + 1000 N); the geometry, the sensors,
+the tests and the start car stay. Without it the car and noise are the
+defaults below (the series is byte-identical to the one before the option).
 
 Writes OUT_DIR/<TEST>.csv (10 kHz, `time [s]` from -20 ms; load cells in N,
 two sill accelerometers in m/s^2 and a yaw-rate sensor in rad/s, nothing
@@ -401,11 +409,28 @@ rear = {{ rolling_resistance = 0.015, mu_lateral = 0.6 }}
     (out / "start.toml").write_text(text)
 
 
-def main(out):
+def varied(seed):
+    """The default car with its masses, yaw inertia, tyres and crash boxes
+    each scaled by a factor within +/-15 % drawn from `seed`."""
+    draw = np.random.default_rng(seed)
+    scale = lambda v: float(v * draw.uniform(0.85, 1.15))
+    c = json.loads(json.dumps(CAR))
+    c["body_mass"] = scale(c["body_mass"])
+    c["yaw_inertia"] = scale(c["yaw_inertia"])
+    c["beam"]["mass"] = scale(c["beam"]["mass"])
+    for key in ("cornering_stiffness", "mu"):
+        c["tyres"][key] = scale(c["tyres"][key])
+    for key in ("elastic", "yield", "hardening", "damping"):
+        c["crash_boxes"][key] = [scale(v) for v in c["crash_boxes"][key]]
+    return c
+
+
+def main(out, seed=None):
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    car = Car(CAR)
-    rng = np.random.default_rng(44)
+    truth = CAR if seed is None else varied(seed)
+    car = Car(truth)
+    rng = np.random.default_rng(44 if seed is None else 44 + 1000 * seed)
     strikers = [Striker(t, car) for t in TESTS]
     peaks = {}
     for i, (test, st) in enumerate(zip(TESTS, strikers)):
@@ -414,11 +439,19 @@ def main(out):
         write(out, test, rows, rng, i)
     study(out, car, strikers, False, "study-sills.toml")
     start(out, car)
-    sheet = {"total_mass": car.total_mass(), "yaw_inertia": CAR["yaw_inertia"],
-             "mu": CAR["tyres"]["mu"], "car": CAR, "tests": TESTS, "peak_yaw_rate": peaks}
+    sheet = {"total_mass": car.total_mass(), "yaw_inertia": truth["yaw_inertia"],
+             "mu": truth["tyres"]["mu"], "car": truth, "tests": TESTS, "peak_yaw_rate": peaks}
+    if seed is not None:
+        sheet["seed"] = seed
     (out / "series.json").write_text(json.dumps(sheet, indent=1))
     study(out, car, strikers, True, "study.toml")  # last: the marker of a finished series
 
 
 if __name__ == "__main__":
-    main(sys.argv[1])
+    args = sys.argv[1:]
+    if len(args) == 3 and args[1] == "--seed" and args[2].isdigit() and int(args[2]) >= 1:
+        main(args[0], int(args[2]))
+    elif len(args) == 1:
+        main(args[0])
+    else:
+        sys.exit("usage: planar_yaw_rate.py OUT_DIR [--seed N], N >= 1")
