@@ -16,7 +16,9 @@ two sill accelerometers in m/s^2 and a yaw-rate sensor in rad/s, nothing
 else), OUT_DIR/series.json (the truth, the test sheet, each test's set-up),
 OUT_DIR/study.toml (a bumpsim planar study of the three training tests with
 the yaw-rate sensor, the held-out tests as `validate = true`),
-OUT_DIR/study-sills.toml (the same without the yaw-rate sensor) and
+OUT_DIR/study-sills.toml (the same without the yaw-rate sensor),
+OUT_DIR/study-doc.toml (the same study as docs/planar.md has a lab write
+it: the tyres' law by default, `links = "yielding"`, `bumper = "fit"`) and
 OUT_DIR/start.toml (a symmetric start a lab might write).
 
 Training: a flat pendulum, a narrow rigid face (0.3 m) centred, a 10 deg
@@ -336,14 +338,21 @@ def write(out, test, rows, rng, index):
     (out / f"{test['name']}.csv").write_text("\n".join(lines) + "\n")
 
 
-def study(out, car, strikers, yaw_rate, file):
+def study(out, car, strikers, yaw_rate, file, documented=False):
     c, s = car.c, car.c["sills"]
     lines = [
         "# A planar study of the series of tests/peers/planar_yaw_rate.py"
         + (" (sills and the yaw-rate sensor)." if yaw_rate else " (the sills alone)."),
         "[model]", 'planar = "start.toml"', "starts = 16", "seed = 1", "friction = true",
-        "cornering = false", f'mass = "{car.total_mass():.1f} kg"    # the test sheet', "",
     ]
+    if documented:
+        # as docs/planar.md ("Defaults chosen by evidence") has a lab write it:
+        # the tyres' law left to the default, the crash boxes' law named (they
+        # yield), the bumper fitted for the forward predictions
+        lines += ['links = "yielding"', 'bumper = "fit"']
+    else:
+        lines += ["cornering = false", "relaxation = false"]
+    lines += [f'mass = "{car.total_mass():.1f} kg"    # the test sheet', ""]
     for test, st in zip(TESTS, strikers):
         name, kind = test["name"], test["kind"]
         speed = 0.0 if kind == "pendulum" else test["speed_kmh"] / 3.6
@@ -444,6 +453,7 @@ def main(out, seed=None):
     if seed is not None:
         sheet["seed"] = seed
     (out / "series.json").write_text(json.dumps(sheet, indent=1))
+    study(out, car, strikers, True, "study-doc.toml", documented=True)
     study(out, car, strikers, True, "study.toml")  # last: the marker of a finished series
 
 
