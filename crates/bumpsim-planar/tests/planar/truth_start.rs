@@ -322,11 +322,18 @@ fn a_run_from_the_yielding_truth_stays_near_it() {
 /// [`a_run_from_the_yielding_truth_stays_near_it`]), the study's priors and
 /// C_α and σ estimated. The search only descends, so the run's objective
 /// is at most the truth's: the question is whether the lower objective
-/// predicts worse. Measured figures in docs/planar.md ("Defaults").
+/// predicts worse. Measured (release, 5 s for the three): car 2 stays
+/// (held-out yaw 98.5 / 98.9 → 98.5 / 99.7 %, forward force 83.0 → 85.1 %);
+/// **cars 1 and 3 leave it**: the off-centre face's held-out yaw 99.2 →
+/// 82.1 % and 98.6 → 85.8 %, the forward offset force 83.5 → 51.9 % and
+/// 84.1 → 76.2 % (I_z −10.5 and −2.7 %, C_α −16.5 and −3.9 %). So this
+/// test fails: the objective does not point at the truth on those cars
+/// (docs/planar.md, "Defaults chosen by evidence"). Left open.
 #[test]
-#[ignore = "about 20 s a series in release"]
+#[ignore = "fails on varied cars 1 and 3 (the objective leaves the truth), left open; 5 s in release"]
 fn runs_from_the_varied_truths_stay_near_them() {
     let seeds = std::env::var("BUMPSIM_SEEDS").unwrap_or_else(|_| "1,2,3".into());
+    let mut worse = Vec::new();
     for seed in seeds.split(',').map(|s| s.trim().parse::<u64>().unwrap()) {
         let Some(dir) = super::defaults::series(seed) else {
             return;
@@ -374,11 +381,12 @@ fn runs_from_the_varied_truths_stay_near_them() {
             100.0 * (value("tyres.cornering_stiffness") / cornering - 1.0),
             run.objective
         );
-        for (a, f) in at.iter().zip(&from) {
-            assert!(
-                f >= &(a - 3.0),
-                "seed {seed}: the run left the truth for a car that predicts worse: {at:?} -> {from:?}"
-            );
+        if at.iter().zip(&from).any(|(a, f)| *f < a - 3.0) {
+            worse.push(format!("seed {seed}: {at:.2?} -> {from:.2?}"));
         }
     }
+    assert!(
+        worse.is_empty(),
+        "runs that left the truth for a car that predicts worse: {worse:?}"
+    );
 }
