@@ -188,3 +188,33 @@ fn measured() {
         }
     }
 }
+
+/// The tyres' law's default (docs/planar.md, "Defaults chosen by
+/// evidence"): estimated when a training case carries a yaw-rate sensor and
+/// the start's tyres roll with a relaxation length; a study that says keeps
+/// what it says.
+#[test]
+fn the_tyres_law_is_estimated_by_default_with_a_yaw_rate_sensor() {
+    let Some(dir) = series(0) else { return };
+    let read = |file: &str, strip: bool| {
+        let text = std::fs::read_to_string(dir.join(file)).unwrap();
+        let text = match strip {
+            true => text
+                .replace("cornering = false\n", "")
+                .replace("relaxation = false\n", ""),
+            false => text,
+        };
+        let path = dir.join(format!("defaults-{strip}-{file}"));
+        std::fs::write(&path, text).unwrap();
+        let setup = PlanarStudy::read(&path).unwrap().setup;
+        (setup.cornering, setup.relaxation)
+    };
+    assert_eq!(read("study.toml", false), (false, false), "as written");
+    assert_eq!(read("study.toml", true), (true, true), "the default");
+    assert_eq!(
+        read("study-sills.toml", true),
+        (false, false),
+        "no yaw rate"
+    );
+    assert_eq!(read("study-doc.toml", false), (true, true));
+}
