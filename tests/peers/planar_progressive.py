@@ -361,7 +361,7 @@ def study(out, car, strikers, file, links):
         "# A planar study of the series of tests/peers/planar_progressive.py",
         "# (progressive side members; sills and the yaw-rate sensor).",
         "[model]", 'planar = "start.toml"', "starts = 16", "seed = 1", "friction = true",
-        "cornering = false", f'mass = "{car.total_mass():.1f} kg"    # the test sheet',
+        "cornering = false", "relaxation = false", f'mass = "{car.total_mass():.1f} kg"    # the test sheet',
     ] + ([f'links = "{links}"'] if links else []) + [""]
     for test, st in zip(TESTS, strikers):
         name, path = test["name"], f"{test['name']}.csv"

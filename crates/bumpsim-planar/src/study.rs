@@ -9,9 +9,12 @@
 //! seed = 1                  # optional (1)
 //! spread = 10.0             # optional (10): random starts within this factor of the start
 //! friction = false          # optional: estimate the lateral tyre friction μ_y of both axles
-//! cornering = false         # optional: estimate the tyres' cornering stiffness C_α
-//! relaxation = false        # optional: estimate the rolling tyres' relaxation length σ
-//!                           # (searched from 0.01 m, the instantaneous law, to 2 m)
+//! cornering = true          # optional: estimate the tyres' cornering stiffness C_α
+//! relaxation = true         # optional: estimate the rolling tyres' relaxation length σ
+//!                           # (searched from 0.01 m, the instantaneous law, to 2 m);
+//!                           # both default to true when a training case carries a yaw-rate
+//!                           # sensor and the start's tyres roll with a relaxation length,
+//!                           # else false (`tyres_law_estimated`)
 //! mass = "1265 kg"          # optional: the test sheet's mass, checked against the identified car
 //!                           # and a prior on its total mass
 //! links = "linear"          # optional: the side members' law to identify: "linear", "progressive",
@@ -93,10 +96,8 @@ struct ModelFile {
     spread: Option<f64>,
     #[serde(default)]
     friction: bool,
-    #[serde(default)]
-    cornering: bool,
-    #[serde(default)]
-    relaxation: bool,
+    cornering: Option<bool>,
+    relaxation: Option<bool>,
     mass: Option<toml::Value>,
     links: Option<toml::Value>,
     bumper: Option<String>,
@@ -203,13 +204,13 @@ impl PlanarStudy {
             .as_ref()
             .map(|m| sheet_mass(m).ok_or_else(|| error(format!("[model] mass = {m}: {EXPECTED}"))))
             .transpose()?;
-        let setup = Setup {
+        let mut setup = Setup {
             starts: file.model.starts.unwrap_or(defaults.starts),
             seed: file.model.seed.unwrap_or(defaults.seed),
             spread: file.model.spread.unwrap_or(defaults.spread),
             friction: file.model.friction,
-            cornering: file.model.cornering,
-            relaxation: file.model.relaxation,
+            cornering: file.model.cornering.unwrap_or(false),
+            relaxation: file.model.relaxation.unwrap_or(false),
             bumper: match file.model.bumper.as_deref() {
                 None | Some("start") => false,
                 Some("fit") => true,
@@ -245,6 +246,9 @@ impl PlanarStudy {
                 "every case is `validate = true`: at least one must be fitted".into(),
             ));
         }
+        let law = tyres_law_estimated(&setup.template, &cases);
+        setup.cornering = file.model.cornering.unwrap_or(law);
+        setup.relaxation = file.model.relaxation.unwrap_or(law);
         Ok(PlanarStudy {
             path: path.to_path_buf(),
             setup,
@@ -272,6 +276,23 @@ impl PlanarStudy {
             .filter(|c| names.is_empty() || names.contains(&c.name))
             .collect())
     }
+}
+
+/// Whether a study that does not say (`cornering`, `relaxation` absent)
+/// estimates the tyres' law, C_α and σ: when a training case carries a
+/// yaw-rate sensor and the start car's tyres roll with a relaxation length
+/// on both axles (σ's condition, [`crate::identify::Unknowns::with_relaxation`]).
+/// The yaw rate shows the yaw's time course, which the tyres' lag shapes,
+/// and the start's tyres are a guess: on issue 44's yaw-rate series and three
+/// varied cars of its generator the start's law (σ = 0.4 m, C_α fixed)
+/// scored the off-centre face's held-out yaw −6 to 32 %, the estimated one
+/// 82 to 92 % (docs/planar.md, "Defaults chosen by evidence").
+fn tyres_law_estimated(car: &PlanarCar, cases: &[PlanarCase]) -> bool {
+    let tyres = car.tyres();
+    let rolling = [tyres.front, tyres.rear]
+        .iter()
+        .all(|a| a.law == crate::car::TyreLaw::Rolling && a.relaxation_length > 0.0);
+    rolling && cases.iter().any(|c| c.yaw_rate().is_some())
 }
 
 /// A case's striker must meet the start car (angle, overlap, pole beside

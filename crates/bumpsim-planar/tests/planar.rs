@@ -510,6 +510,8 @@ mod bumper_fit;
 mod coverage;
 #[path = "planar/crash_box.rs"]
 mod crash_box;
+#[path = "planar/defaults.rs"]
+mod defaults;
 #[path = "planar/export.rs"]
 mod export;
 #[path = "planar/files.rs"]

@@ -315,3 +315,78 @@ fn a_run_from_the_yielding_truth_stays_near_it() {
         "{at:?} {from:?}"
     );
 }
+
+/// The truth-start lesson off the one car: on each varied series of
+/// `BUMPSIM_SEEDS` (default `1,2,3`; tests/peers/planar_yaw_rate.py `--seed`),
+/// one run from the yielding truth with the generator's tyre law (as
+/// [`a_run_from_the_yielding_truth_stays_near_it`]), the study's priors and
+/// C_α and σ estimated. The search only descends, so the run's objective
+/// is at most the truth's: the question is whether the lower objective
+/// predicts worse. Measured (release, 5 s for the three): car 2 stays
+/// (held-out yaw 98.5 / 98.9 → 98.5 / 99.7 %, forward force 83.0 → 85.1 %);
+/// **cars 1 and 3 leave it**: the off-centre face's held-out yaw 99.2 →
+/// 82.1 % and 98.6 → 85.8 %, the forward offset force 83.5 → 51.9 % and
+/// 84.1 → 76.2 % (I_z −10.5 and −2.7 %, C_α −16.5 and −3.9 %). So this
+/// test fails: the objective does not point at the truth on those cars
+/// (docs/planar.md, "Defaults chosen by evidence"). Left open.
+#[test]
+#[ignore = "fails on varied cars 1 and 3 (the objective leaves the truth), left open; 5 s in release"]
+fn runs_from_the_varied_truths_stay_near_them() {
+    let seeds = std::env::var("BUMPSIM_SEEDS").unwrap_or_else(|_| "1,2,3".into());
+    let mut worse = Vec::new();
+    for seed in seeds.split(',').map(|s| s.trim().parse::<u64>().unwrap()) {
+        let Some(dir) = super::defaults::series(seed) else {
+            return;
+        };
+        let sheet: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap())
+                .unwrap();
+        let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
+        let cornering = sheet["car"]["tyres"]["cornering_stiffness"]
+            .as_f64()
+            .unwrap();
+        let truth = with_tyres(&truth_yielding(&study, &sheet), 0.01, cornering);
+        let mut setup = study.setup.clone();
+        setup.template = truth.clone();
+        setup.starts = 1;
+        setup.staged = false;
+        setup.cornering = true;
+        setup.relaxation = true;
+        let run = identify(&study.cases, &setup, &|| {}).unwrap();
+        let scores = |car: &PlanarCar| {
+            let mut out = held(car, &study.validation)
+                .iter()
+                .map(|f| f.fit_yaw)
+                .collect::<Vec<_>>();
+            let offset = study
+                .validation
+                .iter()
+                .find(|c| c.name == "OFFSET40")
+                .unwrap();
+            out.push(forward(car, offset).unwrap().channels[0].fit_percent);
+            out
+        };
+        let (at, from) = (scores(&truth), scores(&run.car));
+        let value = |name: &str| {
+            run.parameters
+                .iter()
+                .find(|p| p.name == name)
+                .unwrap()
+                .value
+        };
+        eprintln!(
+            "seed {seed}: held-out yaw (OFFSET40, NARROW-OFFSET), forward offset force: truth {at:.2?} %, the run from it {from:.2?} %; I_z {:+.1} %, μ {:+.1} %, C_α {:+.1} %; objective {:.4e} m²",
+            100.0 * (value("body.yaw_inertia") / sheet["yaw_inertia"].as_f64().unwrap() - 1.0),
+            100.0 * (value("tyres.mu_lateral") / sheet["mu"].as_f64().unwrap() - 1.0),
+            100.0 * (value("tyres.cornering_stiffness") / cornering - 1.0),
+            run.objective
+        );
+        if at.iter().zip(&from).any(|(a, f)| *f < a - 3.0) {
+            worse.push(format!("seed {seed}: {at:.2?} -> {from:.2?}"));
+        }
+    }
+    assert!(
+        worse.is_empty(),
+        "runs that left the truth for a car that predicts worse: {worse:?}"
+    );
+}

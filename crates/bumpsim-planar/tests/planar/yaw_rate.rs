@@ -170,132 +170,80 @@ fn the_yaw_rate_sensor_is_read_weighted_and_keeps_the_held_out_yaw() {
     );
 }
 
-/// Issue 44's thresholds on this series with yielding side members (issue
-/// 46: the generator's crash boxes are elastic-plastic with hardening), 16
-/// starts, the stated priors and the staged search: held-out offset x ≥
-/// 99.5 %, yaw ≥ 93 %; off-centre face x ≥ 99 %, yaw ≥ 80 %; the forward
-/// offset test's force, x-acceleration and yaw rate ≥ 90, 90, 85 %; I_z
-/// within 20 % and μ within 30 % of the truth; ≥ 4 of 16 starts reach the
-/// best.
+/// Issue 44's thresholds on this series, with the study as docs/planar.md
+/// has a lab write it (`study-doc.toml`: 16 starts, the test sheet's mass,
+/// `links = "yielding"` for the generator's elastic-plastic crash boxes,
+/// `bumper = "fit"` for the forward predictions, the tyres' law left to the
+/// default, which estimates C_α and σ since the training carries a yaw-rate
+/// sensor; nothing set by the test): held-out offset x ≥ 99.5 %, yaw ≥ 93 %;
+/// off-centre face x ≥ 99 %, yaw ≥ 80 %; the forward offset test's force,
+/// x-acceleration and yaw rate ≥ 90, 90, 85 %; I_z within 20 % and μ within
+/// 30 % of the truth; ≥ 4 of 16 starts reach the best.
 ///
-/// The tyres' law is estimated (`[model] cornering = true`, `relaxation =
-/// true`): C_α 67.4 kN/rad (truth 70), σ at the search's 1 cm floor (the
-/// generator's tyres have no transient slip; the start car's 0.4 m made the
-/// off-centre face's yaw −1 % and the training wall ask for a larger I_z,
-/// tests/planar/truth_start.rs). The bumper is fitted to the training
-/// tests' forward runs (`[model] bumper = "fit"`: scale 0.354, stretch
-/// 0.532, contact rate 0.325 s/m), which the force-driven replays cannot
-/// identify.
-///
-/// Measured (release build, 19 s on a loaded machine): offset x 99.76 %,
+/// Measured (release build, 17 s on a loaded machine): offset x 99.76 %,
 /// yaw 98.53 % ✓; off-centre face x 99.14 %, yaw 96.98 % ✓; forward
-/// offset force 92.02 %, x-acceleration 91.96 %, yaw rate 85.31 % ✓ (the
+/// offset force 92.0 %, x-acceleration 92.0 %, yaw rate 85.3 % ✓ (the
 /// yaw rate thin); I_z −2.3 %, μ +0.1 % ✓; 8 of 16 starts reach the best ✓.
-/// Without the bumper fit the forward force is 80.79 %, x-acceleration
-/// 80.35 %, yaw rate 91.19 % (`BUMPSIM_NO_BUMPER_FIT=1`). Before the
-/// generator's crash-box couple was fixed and with the start's relaxed
-/// tyres: offset yaw 93.04 %, the face's −1.08 %, forward force 74.35 %.
-/// The training determines the left crash box's yield (67.2 kN against
-/// 75 kN), not its hardening (0.088 against 0.058) nor the right box's
-/// yield (45 kN, the start's, against 62 kN; it never yields in training
-/// nor in the offset test, where the lever rule puts it in tension).
+/// C_α 67.4 kN/rad (truth 70), σ at the search's 1 cm floor (the
+/// generator's tyres have no transient slip), bumper scale 0.354, stretch
+/// 0.532, contact rate 0.325 s/m. Without the bumper fit
+/// (`BUMPSIM_NO_BUMPER_FIT=1`) the forward force is 80.79 %, x-acceleration
+/// 80.35 %, yaw rate 91.19 %; with the start's tyre law (`cornering =
+/// false`, `relaxation = false`) and linear side members (the study before
+/// the defaults were chosen) the face's yaw is 12.6 % and the forward force
+/// −36 % (docs/planar.md, "Defaults chosen by evidence"). The training
+/// determines the left crash box's yield (67.2 kN against 75 kN), not its
+/// hardening (0.088 against 0.058) nor the right box's yield (45 kN, the
+/// start's, against 62 kN; it never yields in training nor in the offset
+/// test, where the lever rule puts it in tension).
 ///
-/// It runs in the suite: 208 s in a debug build on a loaded machine (19 s
+/// It runs in the suite: 208 s in a debug build on a loaded machine (17 s
 /// release), with the same figures.
 #[test]
-fn yielding_side_members_meet_issue_44s_thresholds() {
+fn the_documented_study_meets_issue_44s_thresholds() {
     let Some(dir) = series() else { return };
-    let sheet: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
-    let mut study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
-    study.setup.cornering = true;
-    study.setup.relaxation = true;
-    study.setup.bumper = std::env::var("BUMPSIM_NO_BUMPER_FIT").is_err();
-    let result = yielding(&study);
-    let fit = |name: &str| {
-        let case = study.validation.iter().find(|c| c.name == name).unwrap();
-        predict(&result.car, case).unwrap().fit
-    };
-    let (offset, narrow) = (fit("OFFSET40"), fit("NARROW-OFFSET"));
-    let case = study
-        .validation
-        .iter()
-        .find(|c| c.name == "OFFSET40")
-        .unwrap();
-    let ahead = forward(&result.car, case).unwrap();
-    let channel = |name: &str| {
-        ahead
-            .channels
-            .iter()
-            .find(|c| c.name == name)
-            .unwrap()
-            .fit_percent
-    };
-    let value = |name: &str| {
-        result
-            .parameters
-            .iter()
-            .find(|p| p.name == name)
-            .unwrap()
-            .value
-    };
-    let inertia = value("body.yaw_inertia") / sheet["yaw_inertia"].as_f64().unwrap() - 1.0;
-    let mu = value("tyres.mu_lateral") / sheet["mu"].as_f64().unwrap() - 1.0;
-    eprintln!(
-        "yielding: held-out OFFSET40 x {:.2} % yaw {:.2} %; NARROW-OFFSET x {:.2} % yaw {:.2} %",
-        offset.fit_x, offset.fit_yaw, narrow.fit_x, narrow.fit_yaw
-    );
-    eprintln!(
-        "yielding: forward OFFSET40 force {:.2} %, x-acceleration {:.2} %, yaw rate {:.2} %",
-        channel("force"),
-        channel("x-acceleration"),
-        channel("yaw rate")
-    );
-    eprintln!(
-        "yielding: C_α {:.0} N/rad, σ {:.3} m (truth {} N/rad, no relaxation)",
-        value("tyres.cornering_stiffness"),
-        value("tyres.relaxation_length"),
-        sheet["car"]["tyres"]["cornering_stiffness"]
-    );
-    eprintln!(
-        "yielding: I_z {:+.1} %, μ {:+.1} % of the truth; {} of 16 starts reach the best",
-        100.0 * inertia,
-        100.0 * mu,
-        result.starts.reached_best
-    );
-    assert!(offset.fit_x >= 99.5 && offset.fit_yaw >= 93.0);
-    assert!(narrow.fit_x >= 99.0 && narrow.fit_yaw >= 80.0);
-    assert!(channel("force") >= 90.0 && channel("x-acceleration") >= 90.0);
-    assert!(channel("yaw rate") >= 85.0);
-    assert!(inertia.abs() <= 0.2 && mu.abs() <= 0.3);
-    assert!(result.starts.reached_best >= 4, "{:?}", result.starts);
+    let mut study = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
+    // the study as written gets the tyres' law estimated (the default)
+    assert!(study.setup.cornering && study.setup.relaxation && study.setup.bumper);
+    if std::env::var("BUMPSIM_NO_BUMPER_FIT").is_ok() {
+        study.setup.bumper = false;
+    }
+    let scores = super::defaults::scores(&dir, &study);
+    eprintln!("{}", scores.row("documented study"));
+    assert!(scores.misses().is_empty(), "{:?}", scores.misses());
 }
 
-/// `study` identified with yielding side members (every link), its bumper
-/// fitted when it asks ([`bumpsim_planar::bumper_fit::identified`]).
-fn yielding(study: &PlanarStudy) -> PlanarIdentification {
-    use bumpsim_planar::identify::{LinkLaw, LinkLaws};
-    let template = &study.setup.template;
-    let laws = LinkLaws {
-        left: vec![LinkLaw::Yielding; template.left().masses.len()],
-        right: vec![LinkLaw::Yielding; template.right().masses.len()],
-    };
-    let mut setup = study.setup.clone();
-    setup.template = laws.apply(template).unwrap();
-    let result = bumpsim_planar::bumper_fit::identified(&study.cases, &setup, &|| {}).unwrap();
-    for p in &result.parameters {
-        eprintln!(
-            "yielding: {:<28} {:>12.5e} {:<6} {:?}",
-            p.name, p.value, p.unit, p.determined
-        );
+/// The documented study on three varied cars of the same generator
+/// (`planar_yaw_rate.py --seed 1..3`: masses, yaw inertia, grip, C_α and
+/// crash boxes within ±15 %), issue 44's "series you do not have".
+/// Measured (release, 13–18 s each):
+///
+/// | seed | offset x / yaw % | face x / yaw % | forward force / x-acc / yaw rate % | I_z | μ | at best |
+/// |---|---|---|---|---|---|---|
+/// | 1 | 99.76 / 95.73 | 99.46 / 81.91 | 69.7 / 69.1 / 89.5 | −10.5 % | −3.6 % | 11 |
+/// | 2 | 99.79 / 98.64 | 99.68 / 98.34 | 94.9 / 94.8 / 85.1 | −1.6 % | −1.8 % | 11 |
+/// | 3 | 99.81 / 97.59 | 99.62 / 87.07 | 79.2 / 79.2 / 93.5 | −1.7 % | −6.5 % | 13 |
+///
+/// The held-out replays, I_z, μ and the search hold issue 44's thresholds
+/// on every car; **the forward offset force does not** on seeds 1 and 3
+/// (69.7 and 79.2 % against 90 %): asserted here at what holds, the forward
+/// force at a floor of 65 % so that a loss shows.
+#[test]
+#[ignore = "three series, about 15 s each in release, 3-4 min each in debug"]
+fn the_documented_study_on_varied_cars() {
+    for seed in 1..=3 {
+        let Some(dir) = super::defaults::series(seed) else {
+            return;
+        };
+        let study = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
+        let scores = super::defaults::scores(&dir, &study);
+        eprintln!("{}", scores.row(&format!("seed {seed}, documented study")));
+        let held: Vec<&str> = scores
+            .misses()
+            .into_iter()
+            .filter(|m| !m.starts_with("forward"))
+            .collect();
+        assert!(held.is_empty(), "seed {seed}: {held:?}");
+        assert!(scores.forward[0] >= 65.0, "seed {seed}: {scores:?}");
     }
-    for f in &result.fits {
-        eprintln!(
-            "yielding: training {} x {:.2} %, yaw {:.2} %",
-            f.name, f.fit_x, f.fit_yaw
-        );
-    }
-    eprintln!("yielding: bumper {:?}", result.bumper);
-    eprintln!("yielding: starts {:?}", result.starts);
-    result
 }
