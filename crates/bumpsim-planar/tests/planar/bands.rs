@@ -7,11 +7,15 @@
 //! residuals' RMS ([`bumpsim_planar::bands`]); the share of measured
 //! samples inside each is printed, and the held-out yaw's is asserted.
 
-use bumpsim_planar::bands::attach;
+use bumpsim_estimate::band::TOO_WIDE;
+use bumpsim_planar::bands::{Bands, attach};
 use bumpsim_planar::forward::forward;
-use bumpsim_planar::identify::{identify, predict};
+use bumpsim_planar::identify::{
+    LinkLaw, LinkLaws, PlanarIdentification, Prediction, identify, predict,
+};
 use bumpsim_planar::study::PlanarStudy;
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 /// The series in a folder of its own (the yaw-rate test writes the same
 /// series concurrently into another).
@@ -77,15 +81,15 @@ fn the_held_out_yaw_lies_inside_its_predictive_band() {
     // measured (2026-11-29, release): before the priors and with one AR(1)
     // inflation the held-out yaw lay inside its band at 17 % (OFFSET40) and
     // 20 % (NARROW-OFFSET) of the samples; with the priors, σ² τ intervals
-    // and the training replays' relative model error scaled to each
-    // prediction's swing in the band's noise, at 79.7 % and 31.8 % (67.2 %
-    // and 24.9 % without that term; half-widths from the parameters 1.5 %
-    // and 3.0 % of the yaw's range). The off-centre face's yaw fit is
-    // −10.6 %, and the truth-equivalent car itself scores −21 % there
-    // (tests/planar/truth_start.rs): a model error no band from these
-    // training tests covers. The issue asks for 80 % (the ignored test
-    // below); until then a band the measurement leaves (below the level
-    // less `MISSED`) must be said in words
+    // and the training replays' relative model error in the band's noise,
+    // on the generator before its crash-box couple was fixed, at 79.7 % and
+    // 31.8 %; on the fixed generator, with this default study (linear side
+    // members, the start's tyres), at 100 % and 40.4 % (the face's yaw fit
+    // 12.6 %: a model error of the start's relaxed tyres,
+    // tests/planar/truth_start.rs). The issue's 80 % holds with the
+    // yaw-rate acceptance's set-up (the test below); here a band the
+    // measurement leaves (below the level less `MISSED`) must be said in
+    // words
     let statements = bands.statements();
     for case in ["OFFSET40", "NARROW-OFFSET"] {
         let yaw = judged(case, "yaw");
@@ -110,30 +114,126 @@ fn the_held_out_yaw_lies_inside_its_predictive_band() {
     );
 }
 
-/// Issue 44's acceptance: the measured held-out yaw inside its 90 % band
-/// at ≥ 80 % of the samples. Measured (2026-11-29, release): OFFSET40
-/// 79.7 %, NARROW-OFFSET 31.8 % (a yaw bumpsim's tyres cannot follow: the
-/// truth-equivalent car fits it at −21 %); run with `--ignored`.
-#[test]
-#[ignore = "issue 44: the held-out yaw lies inside its band at 79.7 % (OFFSET40) and 31.8 % (NARROW-OFFSET, a model-family error)"]
-fn the_held_out_yaw_lies_inside_its_band_at_80_percent_of_the_samples() {
-    let Some(dir) = series() else { return };
-    let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
-    let result = identify(&study.cases, &study.setup, &|| {}).unwrap();
+/// The yaw-rate acceptance's set-up (tests/planar/yaw_rate.rs,
+/// `yielding_side_members_meet_issue_44s_thresholds`): the tyres' C_α and
+/// relaxation length estimated, yielding side members, the bumper fitted
+/// to the training tests' forward runs; the study's 16 starts.
+fn acceptance(study: &PlanarStudy) -> PlanarIdentification {
+    let mut setup = study.setup.clone();
+    setup.cornering = true;
+    setup.relaxation = true;
+    setup.bumper = true;
+    let template = &setup.template;
+    let laws = LinkLaws {
+        left: vec![LinkLaw::Yielding; template.left().masses.len()],
+        right: vec![LinkLaw::Yielding; template.right().masses.len()],
+    };
+    setup.template = laws.apply(template).unwrap();
+    bumpsim_planar::bumper_fit::identified(&study.cases, &setup, &|| {}).unwrap()
+}
+
+/// The series' study and its identification with the yaw-rate
+/// acceptance's set-up ([`acceptance`]), made once per test binary: the
+/// acceptance of tests/planar/yaw_rate.rs identifies the same study with
+/// the same set-up and may take it from here (a debug build takes 3.5 min
+/// for one identification on a loaded machine). `None` without numpy.
+pub(super) fn acceptance_run() -> Option<&'static (PlanarStudy, PlanarIdentification)> {
+    static RUN: OnceLock<Option<(PlanarStudy, PlanarIdentification)>> = OnceLock::new();
+    RUN.get_or_init(|| {
+        let dir = series()?;
+        let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
+        let result = acceptance(&study);
+        Some((study, result))
+    })
+    .as_ref()
+}
+
+/// The held-out replays of `result` with their bands, judged.
+fn held_out_bands(study: &PlanarStudy, result: &PlanarIdentification) -> (Bands, Vec<Prediction>) {
     let mut held: Vec<_> = study
         .validation
         .iter()
         .map(|c| predict(&result.car, c).unwrap())
         .collect();
     let bands = attach(
-        &result,
+        result,
         &study.cases,
         (&study.validation, &mut held),
         &mut [],
     )
     .unwrap();
     eprint!("{}", bands.lines());
-    for j in bands.judged.iter().filter(|j| j.channel == "yaw") {
-        assert!(j.inside_percent >= 80.0, "{j:?}");
+    for p in &held {
+        eprintln!(
+            "{}: x {:.2} %, yaw {:.2} % (window {:?} s)",
+            p.fit.name, p.fit.fit_x, p.fit.fit_yaw, p.fit.window
+        );
+        dump(p);
+    }
+    (bands, held)
+}
+
+/// With `BUMPSIM_BANDS_DUMP=<folder>`, writes the held-out yaw, its model
+/// and band as `<case>.csv` there (for a plot).
+fn dump(p: &Prediction) {
+    let (Ok(folder), Some(band)) = (std::env::var("BUMPSIM_BANDS_DUMP"), &p.yaw_band) else {
+        return;
+    };
+    let mut text = String::from("time_s,measured_rad,model_rad,low_rad,high_rad\n");
+    for k in 0..p.time.len() {
+        text += &format!(
+            "{},{},{},{},{}\n",
+            p.time[k], p.yaw[1][k], p.yaw[0][k], band.low[k], band.high[k]
+        );
+    }
+    std::fs::create_dir_all(&folder).unwrap();
+    std::fs::write(Path::new(&folder).join(format!("{}.csv", p.fit.name)), text).unwrap();
+}
+
+/// Issue 44's acceptance: the measured held-out yaw inside its 90 % band
+/// at ≥ 80 % of the samples, with the yaw-rate acceptance's set-up
+/// ([`acceptance`]), every held-out replay carrying its band and no band
+/// uselessly wide (the whole band's mean half-width within a quarter of the
+/// yaw's range).
+///
+/// Measured (2026-11-29, release, the generator with its crash-box couple
+/// fixed): OFFSET40's yaw inside at 100 % of the samples, the band's mean
+/// half-width 1.9 % of the yaw's range (1.3 % from the parameters; the
+/// residual's RMS is 0.46 % of the range); NARROW-OFFSET's at 100 %, 6.7 %
+/// (6.3 %). The relaxation length, at its 1 cm floor, has no standard
+/// error and is named as left out. Before the bands made their cars through
+/// the identification's own unknowns, a linked chain's perturbed spring
+/// was no valid car and no band was made at all (the yielding side
+/// members'). With the default study (linear side members, C_α and σ
+/// fixed): OFFSET40 100 %, NARROW-OFFSET 40.4 % (its yaw fit 12.6 %: a
+/// model error, said as a missed band by the test above).
+#[test]
+fn the_held_out_yaw_lies_inside_its_band_at_80_percent_of_the_samples() {
+    let Some((study, result)) = acceptance_run() else {
+        return;
+    };
+    let (bands, held) = held_out_bands(study, result);
+    eprintln!("propagated: {:?}", bands.parameters);
+    assert!(
+        held.iter()
+            .all(|p| p.x_band.is_some() && p.yaw_band.is_some()),
+        "{bands:?}"
+    );
+    for case in ["OFFSET40", "NARROW-OFFSET"] {
+        let yaw = bands
+            .judged
+            .iter()
+            .find(|j| j.case == case && j.channel == "yaw")
+            .unwrap();
+        eprintln!("{yaw:?}");
+        assert!(yaw.inside_percent >= 80.0, "{yaw:?}");
+        assert!(
+            yaw.trusted && yaw.total_width_percent <= 100.0 * TOO_WIDE,
+            "{yaw:?}"
+        );
+    }
+    // the side members' yield is propagated with the rest of the car
+    for name in ["body.yaw_inertia", "left.yield_force[0]"] {
+        assert!(bands.parameters.iter().any(|n| n == name), "{bands:?}");
     }
 }
