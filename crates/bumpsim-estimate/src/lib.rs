@@ -102,6 +102,7 @@ pub mod posterior;
 pub mod prior;
 pub mod propagate;
 pub mod reduce;
+pub mod robust;
 pub mod sampler;
 pub mod search;
 pub mod sobol;
