@@ -49,7 +49,7 @@ pub fn inflation(residuals: &[f64], series: &[Series], correlation: Correlation)
             let rho = lag_one(residuals, series);
             (1.0 + rho) / (1.0 - rho)
         }
-        Correlation::Spectral | Correlation::RandomWalk | Correlation::Robust => {
+        Correlation::Spectral | Correlation::RandomWalk => {
             of_residuals(residuals, series, Method::Spectral).time
         }
     }

@@ -102,7 +102,6 @@ pub mod posterior;
 pub mod prior;
 pub mod propagate;
 pub mod reduce;
-pub mod robust;
 pub mod sampler;
 pub mod search;
 pub mod sobol;

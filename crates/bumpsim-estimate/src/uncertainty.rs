@@ -162,11 +162,6 @@ pub enum Correlation {
     /// [`crate::walk`], weighing each direction by how the walk reaches it
     /// (issue 44).
     RandomWalk,
-    /// Any errors, the model's own misfit included: the Huber–White
-    /// sandwich with each residual series' autocorrelation
-    /// ([`crate::robust`]; issue 44); the priors' rows at σ² τ (the
-    /// [`Correlation::Spectral`] variance they were scaled to).
-    Robust,
 }
 
 pub use crate::effective::Series;
@@ -349,7 +344,7 @@ fn intervals(e: &Estimated, walks: &[crate::walk::Walk]) -> Uncertainty {
     let inflation = match e.correlation {
         Correlation::Independent | Correlation::RandomWalk => 1.0,
         Correlation::Ar1 => (1.0 + rho) / (1.0 - rho),
-        Correlation::Spectral | Correlation::Robust => {
+        Correlation::Spectral => {
             crate::effective::of_residuals(
                 e.residuals,
                 e.series,
@@ -448,10 +443,6 @@ fn intervals(e: &Estimated, walks: &[crate::walk::Walk]) -> Uncertainty {
                 .map(|a| cov[(a, a)] / (variance * pseudo_inverse[(a, a)]))
                 .fold(1.0, f64::max);
             cov
-        }
-        Correlation::Robust => {
-            let meat = crate::robust::meat(&je, e.residuals, e.series, variance);
-            &pseudo_inverse * meat * &pseudo_inverse
         }
         _ => pseudo_inverse * variance,
     };
