@@ -245,14 +245,25 @@ pub struct IdentifyRequest<'a> {
     pub seed: Option<u64>,
     /// Draw the report's pages too.
     pub report: bool,
-    /// The posterior was asked for (`--posterior`).
-    pub posterior: bool,
-    /// Model sizes were given (`--dof`).
-    pub sizes: bool,
+    /// The posterior, when asked for (`--posterior`).
+    pub posterior: Option<PosteriorOptions>,
+    /// Model sizes (numbers of masses) instead of the study's (`--dof`).
+    pub sizes: Option<&'a [usize]>,
     /// The sensitivities were asked for (`--sensitivity`).
     pub sensitivity: bool,
-    /// Hears of the identification's progress.
+    /// The identified car as a car file was asked for (`--car`).
+    pub car: bool,
+    /// Hears of the identification's progress and its text as it comes.
     pub progress: &'a dyn Progress,
+}
+
+/// The posterior run's settings as given (`None`: the default).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PosteriorOptions {
+    /// Walkers of the ensemble sampler.
+    pub walkers: Option<usize>,
+    /// Steps, a quarter of them burnt.
+    pub steps: Option<usize>,
 }
 
 /// A long request's progress, as a front end shows it (a progress bar, a
@@ -262,10 +273,25 @@ pub trait Progress: Sync {
     fn begin(&self, starts: u64) {
         let _ = starts;
     }
-    /// One start has finished (from any thread).
+    /// A named stage of the run begins (`2-DOF`, `posterior 2-DOF`) with
+    /// `count` of `unit` (`starts`, `steps`) to go; by default [`Self::begin`].
+    fn stage(&self, name: &str, count: u64, unit: &str) {
+        let _ = (name, unit);
+        self.begin(count);
+    }
+    /// One start (or step) has finished (from any thread).
     fn start_finished(&self) {}
-    /// The run has ended.
+    /// The run (or stage) has ended.
     fn end(&self) {}
+    /// A part of the outcome's text as soon as it is known (a terminal
+    /// prints it as it comes; the outcome's text holds it too).
+    fn text(&self, text: &str) {
+        let _ = text;
+    }
+    /// A part of the run failed and the rest goes on: why.
+    fn part_failed(&self, why: &str) {
+        let _ = why;
+    }
 }
 
 /// A progress nobody watches.
