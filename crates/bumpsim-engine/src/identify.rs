@@ -297,3 +297,76 @@ impl Watched<'_, '_> {
         self.said.printed(r.warnings.len());
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::Mutex;
+
+    /// A progress that keeps what it hears.
+    #[derive(Default)]
+    struct Heard {
+        stages: Mutex<Vec<String>>,
+        starts: Mutex<usize>,
+        text: Mutex<String>,
+    }
+
+    impl Progress for Heard {
+        fn stage(&self, name: &str, count: u64, unit: &str) {
+            let stage = format!("{name}: {count} {unit}");
+            self.stages.lock().unwrap().push(stage);
+        }
+        fn start_finished(&self) {
+            *self.starts.lock().unwrap() += 1;
+        }
+        fn text(&self, text: &str) {
+            self.text.lock().unwrap().push_str(text);
+        }
+    }
+
+    #[test]
+    fn a_chain_study_is_one_request_whose_progress_hears_each_size_and_its_text() {
+        let study = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../examples/identify/study.toml");
+        let heard = Heard::default();
+        let sizes = [1, 2];
+        let request = IdentifyRequest {
+            study: &study,
+            starts: Some(2),
+            seed: None,
+            report: false,
+            posterior: None,
+            sizes: Some(&sizes),
+            sensitivity: false,
+            car: false,
+            progress: &heard,
+        };
+        let outcome = identify(&request).expect("the bundled study identifies");
+        assert_eq!(
+            *heard.stages.lock().unwrap(),
+            vec!["1-DOF: 2 starts", "2-DOF: 2 starts"]
+        );
+        assert!(*heard.starts.lock().unwrap() >= 4);
+        // the text heard as it came is the outcome's, in order
+        assert_eq!(*heard.text.lock().unwrap(), outcome.text);
+        let one = outcome.text.find("\n1-DOF model: objective").unwrap();
+        let two = outcome.text.find("\n2-DOF model: objective").unwrap();
+        let table = outcome.text.find(" DOF ").unwrap();
+        assert!(one < two && two < table, "{}", outcome.text);
+        assert!(outcome.failure.is_none() && outcome.json.contains("\"dof\": 2"));
+        // the same request through Python's door: the sizes as results
+        let identified = identified(&request).unwrap();
+        assert_eq!(identified.results().len(), 2);
+        // a chain study does not identify a planar car
+        let refused = identify(&IdentifyRequest {
+            car: true,
+            ..request
+        })
+        .unwrap_err();
+        assert!(
+            refused
+                .to_string()
+                .starts_with("--car: only a planar study")
+        );
+    }
+}

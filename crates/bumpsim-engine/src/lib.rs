@@ -36,7 +36,7 @@ pub mod verdict;
 pub use error::EngineError;
 pub use held::HeldCar;
 pub use model::{
-    CarModel, Deck, ExportRequest, Face, ForceLoad, IdentifyRequest, ImpactRequest,
+    CarModel, Deck, End, ExportRequest, Face, ForceLoad, IdentifyRequest, ImpactRequest,
     PosteriorOptions, PredictRequest, Progress, Setup, Side, Solver, UncertaintyOptions,
     VerdictRequest, VerdictUncertainty,
 };

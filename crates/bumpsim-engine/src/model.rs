@@ -197,8 +197,9 @@ pub trait CarModel: Sync {
         Err(self.not_registered("car"))
     }
 
-    /// `verdict`: the cars of `request.ends` in the protocols' tests.
-    fn verdict(&self, request: &VerdictRequest<'_>) -> Result<Outcome, EngineError> {
+    /// `verdict`: the cars of `request.ends` judged in the protocols' tests
+    /// (the engine makes the outcome, [`crate::verdict::verdict`]).
+    fn verdict(&self, request: &VerdictRequest<'_>) -> Result<Judged, EngineError> {
         let _ = request;
         Err(self.not_registered("verdict"))
     }
@@ -375,11 +376,43 @@ pub struct Deck {
     pub what: String,
 }
 
+/// One end of the car judged by `verdict`.
+#[derive(Debug, Clone, Copy)]
+pub enum End<'a> {
+    /// A car file and, for a car file without a `[damageability]` table,
+    /// the file of its clearances and limits.
+    File(&'a Path, Option<&'a Path>),
+    /// A car the front end holds ([`crate::held::HeldCar::end`]), with the
+    /// limits of its file's `[damageability]`.
+    Held {
+        /// The file it was read from (or that its text names).
+        path: &'a Path,
+        /// The file's text.
+        text: &'a str,
+        /// The model kind it is read as.
+        kind: ModelKind,
+    },
+}
+
+/// What `verdict` judged, before the engine makes its outcome: the
+/// verdict, the bumper target region and the Sobol indices when asked.
+#[derive(Debug, Clone)]
+pub struct Judged {
+    /// The verdict of every test.
+    pub verdict: bumpsim_verdict::verdict::Verdict,
+    /// The region of passing bumpers (`--target`).
+    pub region: Option<bumpsim_verdict::target::Region>,
+    /// The Sobol indices (`--sobol`).
+    pub indices: Option<bumpsim_verdict::sensitivity::Sensitivity>,
+}
+
 /// `verdict` as a front end names it, its options converted.
 pub struct VerdictRequest<'a> {
-    /// Per end: the car file and, for a car file without a
-    /// `[damageability]` table, the file of its clearances and limits.
-    pub ends: &'a [(&'a Path, Option<&'a Path>)],
+    /// The ends of the car, one per end.
+    pub ends: &'a [End<'a>],
+    /// A bumper that replaces every end's (Python's `bumper=`), shared
+    /// equally by its segments.
+    pub bumper: Option<&'a bumpsim_impact::bumper::Bumper>,
     /// Protocols or tests by name (`all`, a protocol, a test's name).
     pub protocols: &'a [String],
     /// The vehicle's target market (the RCAR barrier's lower edge).
