@@ -10,7 +10,10 @@
 //! - the CLI's normal build holds no bitmap stack (`image`, `png`, `jpeg-decoder`);
 //! - models plug in (issue 46): no front end (CLI, Python) reads a file's
 //!   contents to choose a model (`bumpsim_io::kind` does, once); the loop of
-//!   an identification over model sizes exists once (`bumpsim_ident::sizes`);
+//!   an identification over model sizes exists once (`bumpsim_ident::sizes`)
+//!   and runs for the engine's identify request alone; no front end runs
+//!   an identification over sizes or a verdict itself (they make the
+//!   engine's requests);
 //!   no front end names the planar crate or depends on it (the ceiling went
 //!   down to none as the commands became the engine's requests: the
 //!   command line's, then the Python module's).
@@ -474,6 +477,64 @@ fn the_identify_loop_over_model_sizes_exists_once() {
         loops,
         vec![one.display().to_string()],
         "the identify loop over model sizes is bumpsim_ident::sizes::identify"
+    );
+    // and it runs for one request: the engine's identify (a chain study's
+    // `IdentifyRequest`), which every front end makes
+    let callers: Vec<String> = files
+        .iter()
+        .filter(|f| f.components().any(|c| c.as_os_str() == "src"))
+        .filter(|f| !f.starts_with(root().join("crates/bumpsim-ident")))
+        .filter(|f| code(f).contains("sizes::identify("))
+        .map(|f| f.display().to_string())
+        .collect();
+    let request = root().join("crates/bumpsim-engine/src/identify.rs");
+    assert_eq!(
+        callers,
+        vec![request.display().to_string()],
+        "the loop over model sizes runs for the engine's identify request alone"
+    );
+}
+
+#[test]
+fn no_front_end_runs_an_identification_or_a_verdict_itself() {
+    // what a loop over a study's model sizes, or a verdict's set-up, is
+    // made of: a front end that names one runs the command itself instead
+    // of making the engine's request (`bumpsim_engine::identify`,
+    // `bumpsim_engine::verdict`)
+    const RUNS: &[&str] = &[
+        // a study identified over its sizes
+        "sizes::identify(",
+        "bumpsim_ident::sizes",
+        "Sweep::",
+        "dofs::table",
+        ".retarget(",
+        ".dofs()",
+        "DofSpec",
+        "Watch for",
+        // a verdict set up and run
+        "bumpsim_verdict::verdict(",
+        "Setup::new(",
+        "CarEnd::",
+        "with_bumper(",
+        "protocol::select",
+        "select_in(",
+        "target::search(",
+        "probability::propagate(",
+        "sensitivity::sensitivity(",
+    ];
+    let mut found = Vec::new();
+    for front in FRONT_ENDS {
+        for (file, code) in front_end_code(front) {
+            for run in RUNS {
+                if code.contains(run) {
+                    found.push(format!("{}: {run}", file.display()));
+                }
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "a front end runs what the engine's request runs: {found:#?}"
     );
 }
 

@@ -114,8 +114,12 @@ pub fn run(args: &Args) -> Result<()> {
             args.car.len()
         ),
     };
-    let ends: Vec<(&Path, Option<&Path>)> =
-        args.car.iter().map(PathBuf::as_path).zip(limits).collect();
+    let ends: Vec<bumpsim_engine::End> = args
+        .car
+        .iter()
+        .zip(limits)
+        .map(|(car, limits)| bumpsim_engine::End::File(car, limits))
+        .collect();
     let asi_method = args
         .asi_method
         .parse()
@@ -143,6 +147,7 @@ pub fn run(args: &Args) -> Result<()> {
         uncertainty,
         report: args.report.is_some(),
         progress: &bar,
+        bumper: None,
     };
     let outcome = bumpsim_engine::verdict::verdict(&request)?;
     let files = crate::output::Written {

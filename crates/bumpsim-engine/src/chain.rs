@@ -4,11 +4,12 @@
 //! ([`bumpsim_impact::impact::simulate`], spec §6) and, with the car's
 //! uncertainty, the results as distributions; with a bumper width the 1-D
 //! car becomes a symmetric planar car ([`crate::planar::widened_impact`]);
+//! `identify` runs the study over its model sizes ([`crate::identify`]);
 //! `predict` simulates a study's cases with the car and gives their fits.
 //! No equations here: the mechanism and its energy balance are
 //! `bumpsim_impact`'s.
 
-use crate::model::{CarModel, ImpactRequest, PredictRequest};
+use crate::model::{CarModel, IdentifyRequest, ImpactRequest, PredictRequest};
 use crate::uncertain::{self, Uncertain};
 use crate::{EngineError, Outcome, Report};
 use bumpsim_core::names::printable;
@@ -106,6 +107,10 @@ impl CarModel for Chain {
             report,
             ..Outcome::default()
         })
+    }
+
+    fn identify(&self, request: &IdentifyRequest<'_>) -> Result<Outcome, EngineError> {
+        crate::identify::identify(request)
     }
 
     fn predict(&self, request: &PredictRequest<'_>) -> Result<Outcome, EngineError> {

@@ -197,6 +197,27 @@ pub enum EngineError {
     /// The car's uncertainty file cannot be read.
     #[error(transparent)]
     UncertaintyFile(#[from] bumpsim_impact::uncertainty::UncertaintyError),
+    /// One model size (the only one asked) could not be identified.
+    #[error("{dof}-DOF identification")]
+    Size {
+        /// Number of masses.
+        dof: usize,
+        /// Why.
+        #[source]
+        source: Box<bumpsim_ident::IdentError>,
+    },
+    /// The posterior run cannot be made as asked (`--walkers`, `--steps`).
+    #[error("--{0}")]
+    Ensemble(Box<bumpsim_ident::posterior::SamplingError>),
+    /// The posterior run failed.
+    #[error("--posterior of the {dof}-DOF model")]
+    Posterior {
+        /// Number of masses.
+        dof: usize,
+        /// Why.
+        #[source]
+        source: Box<bumpsim_ident::posterior::SamplingError>,
+    },
     /// The JSON document could not be made.
     #[error("JSON document: {0}")]
     Json(#[from] serde_json::Error),

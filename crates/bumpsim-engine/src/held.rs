@@ -5,7 +5,7 @@
 //! end names no model's crate for it. No equations here.
 
 use crate::EngineError;
-use crate::model::CarText;
+use crate::model::{CarText, End};
 use crate::registry::model;
 use bumpsim_io::kind::{KindError, ModelKind};
 use std::path::{Path, PathBuf};
@@ -64,6 +64,15 @@ impl HeldCar {
     /// The name the file gives, if any.
     pub fn name(&self) -> Option<&str> {
         self.read.name.as_deref()
+    }
+
+    /// The car as one end of a verdict's car.
+    pub fn end(&self) -> End<'_> {
+        End::Held {
+            path: &self.path,
+            text: &self.text,
+            kind: self.kind,
+        }
     }
 
     /// The car as its model writes its file (it reads back to the same car).

@@ -22,6 +22,7 @@ pub mod chain;
 pub mod deck;
 pub mod error;
 pub mod held;
+pub mod identify;
 pub mod links;
 pub mod model;
 pub mod outcome;
@@ -35,8 +36,9 @@ pub mod verdict;
 pub use error::EngineError;
 pub use held::HeldCar;
 pub use model::{
-    CarModel, Deck, ExportRequest, Face, ForceLoad, IdentifyRequest, ImpactRequest, PredictRequest,
-    Progress, Setup, Side, Solver, UncertaintyOptions, VerdictRequest, VerdictUncertainty,
+    CarModel, Deck, End, ExportRequest, Face, ForceLoad, IdentifyRequest, ImpactRequest,
+    PosteriorOptions, PredictRequest, Progress, Setup, Side, Solver, UncertaintyOptions,
+    VerdictRequest, VerdictUncertainty,
 };
 pub use outcome::{Outcome, Report};
 pub use registry::{export, identify, impact, predict, registered};

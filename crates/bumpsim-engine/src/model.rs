@@ -197,8 +197,9 @@ pub trait CarModel: Sync {
         Err(self.not_registered("car"))
     }
 
-    /// `verdict`: the cars of `request.ends` in the protocols' tests.
-    fn verdict(&self, request: &VerdictRequest<'_>) -> Result<Outcome, EngineError> {
+    /// `verdict`: the cars of `request.ends` judged in the protocols' tests
+    /// (the engine makes the outcome, [`crate::verdict::verdict`]).
+    fn verdict(&self, request: &VerdictRequest<'_>) -> Result<Judged, EngineError> {
         let _ = request;
         Err(self.not_registered("verdict"))
     }
@@ -245,14 +246,25 @@ pub struct IdentifyRequest<'a> {
     pub seed: Option<u64>,
     /// Draw the report's pages too.
     pub report: bool,
-    /// The posterior was asked for (`--posterior`).
-    pub posterior: bool,
-    /// Model sizes were given (`--dof`).
-    pub sizes: bool,
+    /// The posterior, when asked for (`--posterior`).
+    pub posterior: Option<PosteriorOptions>,
+    /// Model sizes (numbers of masses) instead of the study's (`--dof`).
+    pub sizes: Option<&'a [usize]>,
     /// The sensitivities were asked for (`--sensitivity`).
     pub sensitivity: bool,
-    /// Hears of the identification's progress.
+    /// The identified car as a car file was asked for (`--car`).
+    pub car: bool,
+    /// Hears of the identification's progress and its text as it comes.
     pub progress: &'a dyn Progress,
+}
+
+/// The posterior run's settings as given (`None`: the default).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PosteriorOptions {
+    /// Walkers of the ensemble sampler.
+    pub walkers: Option<usize>,
+    /// Steps, a quarter of them burnt.
+    pub steps: Option<usize>,
 }
 
 /// A long request's progress, as a front end shows it (a progress bar, a
@@ -262,10 +274,25 @@ pub trait Progress: Sync {
     fn begin(&self, starts: u64) {
         let _ = starts;
     }
-    /// One start has finished (from any thread).
+    /// A named stage of the run begins (`2-DOF`, `posterior 2-DOF`) with
+    /// `count` of `unit` (`starts`, `steps`) to go; by default [`Self::begin`].
+    fn stage(&self, name: &str, count: u64, unit: &str) {
+        let _ = (name, unit);
+        self.begin(count);
+    }
+    /// One start (or step) has finished (from any thread).
     fn start_finished(&self) {}
-    /// The run has ended.
+    /// The run (or stage) has ended.
     fn end(&self) {}
+    /// A part of the outcome's text as soon as it is known (a terminal
+    /// prints it as it comes; the outcome's text holds it too).
+    fn text(&self, text: &str) {
+        let _ = text;
+    }
+    /// A part of the run failed and the rest goes on: why.
+    fn part_failed(&self, why: &str) {
+        let _ = why;
+    }
 }
 
 /// A progress nobody watches.
@@ -349,11 +376,43 @@ pub struct Deck {
     pub what: String,
 }
 
+/// One end of the car judged by `verdict`.
+#[derive(Debug, Clone, Copy)]
+pub enum End<'a> {
+    /// A car file and, for a car file without a `[damageability]` table,
+    /// the file of its clearances and limits.
+    File(&'a Path, Option<&'a Path>),
+    /// A car the front end holds ([`crate::held::HeldCar::end`]), with the
+    /// limits of its file's `[damageability]`.
+    Held {
+        /// The file it was read from (or that its text names).
+        path: &'a Path,
+        /// The file's text.
+        text: &'a str,
+        /// The model kind it is read as.
+        kind: ModelKind,
+    },
+}
+
+/// What `verdict` judged, before the engine makes its outcome: the
+/// verdict, the bumper target region and the Sobol indices when asked.
+#[derive(Debug, Clone)]
+pub struct Judged {
+    /// The verdict of every test.
+    pub verdict: bumpsim_verdict::verdict::Verdict,
+    /// The region of passing bumpers (`--target`).
+    pub region: Option<bumpsim_verdict::target::Region>,
+    /// The Sobol indices (`--sobol`).
+    pub indices: Option<bumpsim_verdict::sensitivity::Sensitivity>,
+}
+
 /// `verdict` as a front end names it, its options converted.
 pub struct VerdictRequest<'a> {
-    /// Per end: the car file and, for a car file without a
-    /// `[damageability]` table, the file of its clearances and limits.
-    pub ends: &'a [(&'a Path, Option<&'a Path>)],
+    /// The ends of the car, one per end.
+    pub ends: &'a [End<'a>],
+    /// A bumper that replaces every end's (Python's `bumper=`), shared
+    /// equally by its segments.
+    pub bumper: Option<&'a bumpsim_impact::bumper::Bumper>,
     /// Protocols or tests by name (`all`, a protocol, a test's name).
     pub protocols: &'a [String],
     /// The vehicle's target market (the RCAR barrier's lower edge).

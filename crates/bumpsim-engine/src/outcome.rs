@@ -25,6 +25,10 @@ pub struct Outcome {
     pub car: Option<String>,
     /// Plots (`predict --plot`): file name, SVG.
     pub plots: Vec<(String, String)>,
+    /// Part of the request failed (a model size of several): why; the
+    /// rest is delivered whole, then the command fails with this.
+    #[serde(default)]
+    pub failure: Option<String>,
 }
 
 /// A report: its index page and its figures and further pages.

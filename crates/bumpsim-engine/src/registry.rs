@@ -122,9 +122,10 @@ mod tests {
             starts: None,
             seed: None,
             report: false,
-            posterior: false,
-            sizes: false,
+            posterior: None,
+            sizes: None,
             sensitivity: false,
+            car: false,
             progress: &crate::model::Unwatched,
         };
         let refused = identify(ModelKind::Links, &request).unwrap_err();

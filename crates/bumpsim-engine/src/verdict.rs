@@ -1,22 +1,69 @@
 //! `verdict` as one request: the car files' declared kinds
 //! ([`ModelKind::of_path`] with [`Role::Car`]) pick the model that judges
 //! them ([`crate::model::CarModel::verdict`]; today the planar car's,
-//! [`crate::planar`]), and a held car becomes one end of the verdicts
-//! through its model ([`end`]). No equations here: the tests, criteria and
-//! margins are `bumpsim_verdict`'s.
+//! [`crate::planar`]), whose verdict becomes the outcome here, once for
+//! every front end (the command line prints and writes it, Python holds the
+//! [`Judged`]); a held car becomes one end of the verdicts through its
+//! model ([`end`]). No equations here: the tests, criteria and margins are
+//! `bumpsim_verdict`'s.
 
 use crate::held::HeldCar;
-use crate::model::VerdictRequest;
+use crate::model::{End, Judged, VerdictRequest};
 use crate::registry::model;
-use crate::{EngineError, Outcome};
+use crate::{EngineError, Outcome, Report};
 use bumpsim_io::kind::{ModelKind, Role};
+use bumpsim_verdict::{sensitivity, text};
 
-/// `verdict` of the request's cars: every end's car file is of one kind,
-/// whose model judges them.
+/// `verdict` of the request's cars: what the model judged
+/// ([`judged`]), as the text, the JSON document and the report.
 pub fn verdict(request: &VerdictRequest<'_>) -> Result<Outcome, EngineError> {
+    let Judged {
+        verdict: v,
+        region,
+        indices,
+    } = judged(request)?;
+    let mut document = serde_json::json!({ "verdict": v, "target": region });
+    // only with --sobol: the document of a plain verdict stays as Python's
+    if let (Some(s), Some(fields)) = (&indices, document.as_object_mut()) {
+        fields.insert("sensitivity".into(), serde_json::to_value(s)?);
+    }
+    let report = match request.report {
+        true => {
+            let (html, figures) =
+                bumpsim_report::verdict::verdict_report(&v, region.as_ref(), indices.as_ref())?;
+            Some(Report {
+                html,
+                figures,
+                inputs: Vec::new(),
+            })
+        }
+        false => None,
+    };
+    let mut printed = text::table(&v);
+    if let Some(r) = &region {
+        printed += &text::region(r);
+    }
+    if let Some(s) = &indices {
+        printed += &sensitivity::table(s);
+    }
+    Ok(Outcome {
+        text: printed,
+        json: serde_json::to_string_pretty(&document)?,
+        report,
+        ..Outcome::default()
+    })
+}
+
+/// The request's cars judged (the front ends that hold the verdict:
+/// Python's `verdict`): every end's car is of one kind, whose model
+/// judges them.
+pub fn judged(request: &VerdictRequest<'_>) -> Result<Judged, EngineError> {
     let mut kinds = Vec::new();
-    for (car, _) in request.ends {
-        kinds.push((ModelKind::of_path(car, Role::Car)?, *car));
+    for end in request.ends {
+        kinds.push(match end {
+            End::File(car, _) => (ModelKind::of_path(car, Role::Car)?, *car),
+            End::Held { kind, path, .. } => (*kind, *path),
+        });
     }
     let Some(&(kind, _)) = kinds.first() else {
         return Err(EngineError::Needed {
@@ -66,7 +113,7 @@ fn judge(kind: ModelKind) -> ModelKind {
 mod tests {
     use super::verdict;
     use crate::held::HeldCar;
-    use crate::model::{Unwatched, VerdictRequest};
+    use crate::model::{End, Unwatched, VerdictRequest};
     use bumpsim_io::kind::ModelKind;
     use std::path::{Path, PathBuf};
 
@@ -96,7 +143,7 @@ mod tests {
         let links = dir.join("links.toml");
         let text = "kind = \"links\"\nmasses = [2.0, 900.0]\ndampers = [0.0]\n[[links]]\ncurve = \"linear\"\nstiffness = \"1000 N/mm\"\n";
         std::fs::write(&links, text).unwrap();
-        let ends = [(links.as_path(), None)];
+        let ends = [End::File(links.as_path(), None)];
         let protocols = vec!["part581".to_string()];
         let request = VerdictRequest {
             ends: &ends,
@@ -109,13 +156,14 @@ mod tests {
             uncertainty: None,
             report: false,
             progress: &Unwatched,
+            bumper: None,
         };
         let refused = verdict(&request).unwrap_err().to_string();
         assert!(refused.starts_with("verdict: a links car"), "{refused}");
         // the planar car with its limits is judged
         let saloon = examples().join("planar/saloon.toml");
         let limits = examples().join("verdict/damageability.toml");
-        let ends = [(saloon.as_path(), Some(limits.as_path()))];
+        let ends = [End::File(saloon.as_path(), Some(limits.as_path()))];
         let judged = verdict(&VerdictRequest {
             ends: &ends,
             ..request

@@ -1,8 +1,9 @@
-//! Identification of MSD models (bumpsim-ident), the calls `bumpsim
-//! identify` makes: read the study, load its cases for the DOF, take its
-//! settings with the caller's starts and seed, identify (one order, or the
-//! DOF table over several, each continued from the last); and load cases
-//! built from numpy arrays. The results are in [`crate::identification`].
+//! Identification of MSD models: a study identified as `bumpsim identify`
+//! identifies it, by the same engine request
+//! (`bumpsim_engine::identify`: one order, or the DOF table over several,
+//! each continued from the last); and load cases built from numpy arrays
+//! identified with the library's defaults. The results are in
+//! [`crate::identification`].
 
 use crate::arrays::{cached1, vector};
 use crate::convert::{count_or, dofs, path, seed};
@@ -11,16 +12,15 @@ use crate::frames;
 use crate::identification::{DofTable, Identification};
 use crate::state::ident::LoadCaseState;
 use bumpsim_core::series::UniformSeries;
-use bumpsim_engine::sizes::Identified;
+use bumpsim_engine::sizes::{Identified, Size};
+use bumpsim_engine::{IdentifyRequest, Progress};
 use bumpsim_ident::case::LoadCase;
 use bumpsim_ident::estimate::{Settings, identify as core_identify};
-use bumpsim_ident::sizes::{Observer, Overrides, Watch};
-use bumpsim_ident::study::{DofSpec, Study};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBytes, PyDict, PyType};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Starts at most, as the CLI's `--starts`.
 const MAX_STARTS: usize = 100_000;
@@ -246,32 +246,40 @@ fn progress_callback(progress: &Option<Py<PyAny>>) -> impl Fn() + Sync + '_ {
     }
 }
 
-/// The study file with the DOF asked for, read as `bumpsim identify` does.
-fn study_of(
-    py: Python<'_>,
-    study: &Bound<'_, PyAny>,
-    dof: Option<Vec<usize>>,
-) -> PyResult<(PathBuf, Study)> {
-    let path = path(study, "study", "a study")?;
-    // boxed: the study's error is large (clippy::result_large_err)
-    let mut file = py
-        .detach(|| Study::read(&path).map_err(Box::new))
-        .map_err(|e| reading(&path, *e))?;
-    if let Some(dofs) = dof {
-        file.model.dof = DofSpec::Many(dofs);
-    }
-    Ok((path, file))
-}
-
-/// Starts and seed: the caller's, else the study's.
-fn overrides(
+/// The identify request on the study file at `path` (the model sizes
+/// `sizes` over the study's), as `bumpsim identify` makes it.
+fn request<'a>(
+    path: &'a Path,
+    sizes: Option<&'a [usize]>,
     starts: Option<&Bound<'_, PyAny>>,
     seed: Option<&Bound<'_, PyAny>>,
-) -> PyResult<Overrides> {
-    Ok(Overrides {
+    progress: &'a Ticks,
+) -> PyResult<IdentifyRequest<'a>> {
+    Ok(IdentifyRequest {
+        study: path,
         starts: count_or(starts, "starts", 1, MAX_STARTS)?,
         seed: self::seed(seed)?,
+        report: false,
+        posterior: None,
+        sizes,
+        sensitivity: false,
+        car: false,
+        progress,
     })
+}
+
+/// The model sizes the request asks, the study read (a study that cannot
+/// be read raises as its file).
+fn sizes(py: Python<'_>, request: &IdentifyRequest<'_>) -> PyResult<Vec<usize>> {
+    py.detach(|| bumpsim_engine::identify::sizes(request))
+        .map_err(|e| reading(request.study, e))
+}
+
+/// The study's identification over the sizes the request asks: the
+/// engine's one loop, as `bumpsim identify` runs it.
+fn identified(py: Python<'_>, request: &IdentifyRequest<'_>) -> PyResult<Identified> {
+    py.detach(|| bumpsim_engine::identify::identified(request))
+        .map_err(input)
 }
 
 /// Identifies one MSD model from all load cases of the study file at
@@ -287,31 +295,29 @@ fn identify(
     seed: Option<&Bound<'_, PyAny>>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Identification> {
-    let dof = dof.map(one_dof).transpose()?;
-    let overrides = overrides(starts, seed)?;
-    let (path, file) = study_of(py, study, dof.map(|d| vec![d]))?;
-    let [dof] = file.dofs()[..] else {
+    let dof = dof.map(one_dof).transpose()?.map(|d| [d]);
+    let path = path(study, "study", "a study")?;
+    let ticks = Ticks(progress);
+    let request = request(&path, dof.as_ref().map(|d| &d[..]), starts, seed, &ticks)?;
+    let sizes = self::sizes(py, &request)?;
+    if sizes.len() != 1 {
         return Err(invalid(format!(
-            "{}: the study asks for the DOF sweep {:?}; pass dof= for one model, or call bumpsim.dof_table",
+            "{}: the study asks for the DOF sweep {sizes:?}; pass dof= for one model, or call bumpsim.dof_table",
             path.display(),
-            file.dofs()
         )));
-    };
-    let tick = progress_callback(&progress);
-    py.detach(|| {
-        let loaded = file.load(dof).map_err(input)?;
-        let settings = overrides.settings(&file, dof).map_err(input)?;
-        let cases = file.retarget(&loaded.cases, dof);
-        let result = core_identify(&cases, &settings, &tick).map_err(|e| failed(dof, &e))?;
-        let notes: Vec<String> = loaded.notes.iter().map(ToString::to_string).collect();
-        Ok(Identification::new(
-            result,
-            cases,
-            notes,
+    }
+    let identified = self::identified(py, &request)?;
+    match identified.sizes.into_iter().next() {
+        Some(Size::Done(done)) => Ok(Identification::new(
+            done.result,
+            done.cases,
+            identified.notes,
             Some(path),
-            &settings,
-        ))
-    })
+            &done.settings,
+        )),
+        Some(Size::Failed { dof, error }) => Err(failed(dof, &error)),
+        None => Err(invalid(format!("{}: no model size", path.display()))),
+    }
 }
 
 /// The DOF table (the thesis's table 1) of the study file at `study` over
@@ -329,24 +335,12 @@ fn dof_table(
     seed: Option<&Bound<'_, PyAny>>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<DofTable> {
-    let orders = dofs.map(self::dofs).transpose()?;
-    let overrides = overrides(starts, seed)?;
-    let (path, file) = study_of(py, study, orders)?;
-    let tick = progress_callback(&progress);
-    py.detach(|| sweep(&path, &file, &overrides, &tick))
-}
-
-/// The library's loop over the orders (`bumpsim identify --dof 1..5`),
-/// assembled by the engine ([`Identified`]).
-fn sweep(
-    path: &Path,
-    file: &Study,
-    overrides: &Overrides,
-    tick: &(impl Fn() + Sync),
-) -> PyResult<DofTable> {
-    let sizes = bumpsim_ident::sizes::identify(file, overrides, &Ticked(tick)).map_err(input)?;
-    // the sizes assembled as the command line's identify assembles them
-    let identified = Identified::of(sizes);
+    let sizes = dofs.map(self::dofs).transpose()?;
+    let path = path(study, "study", "a study")?;
+    let ticks = Ticks(progress);
+    let request = request(&path, sizes.as_deref(), starts, seed, &ticks)?;
+    self::sizes(py, &request)?;
+    let identified = self::identified(py, &request)?;
     let results = identified
         .done()
         .into_iter()
@@ -355,7 +349,7 @@ fn sweep(
                 d.result.clone(),
                 d.cases.clone(),
                 identified.notes.clone(),
-                Some(path.to_path_buf()),
+                Some(path.clone()),
                 &d.settings,
             )
         })
@@ -364,11 +358,13 @@ fn sweep(
     Ok(DofTable::new(results, failed, identified.notes))
 }
 
-/// The progress callback as the library's watch: one tick per start.
-struct Ticked<'a, F: Fn() + Sync>(&'a F);
+/// The progress callback (if any) as the engine's progress: called once
+/// per finished start, with the GIL; an exception in it is printed, not
+/// raised.
+struct Ticks(Option<Py<PyAny>>);
 
-impl<F: Fn() + Sync> Watch for Ticked<'_, F> {
-    fn starting(&self, _dof: usize, _starts: usize) -> Box<dyn Observer + '_> {
-        Box::new(self.0)
+impl Progress for Ticks {
+    fn start_finished(&self) {
+        progress_callback(&self.0)();
     }
 }

@@ -1,5 +1,6 @@
-//! Damageability verdicts and bumper targets (bumpsim-verdict), the calls
-//! `bumpsim verdict` makes: one planar car file per end with its
+//! Damageability verdicts and bumper targets: the engine's verdict request
+//! (`bumpsim_engine::verdict`), the one `bumpsim verdict` makes: one planar
+//! car file per end with its
 //! `[damageability]`, a protocol set and a margin → per test and criterion
 //! the value, limit, margin and outcome; with `target=True` also the region
 //! of bumper characteristics that passes every criterion. The results come
@@ -7,17 +8,18 @@
 //! per stiffness of the target region) and the CLI's text.
 
 use crate::convert::from_json;
-use crate::errors::{input, invalid, reading};
+use crate::errors::{input, invalid};
 use crate::frames;
 use crate::impact::bumper_of;
 use crate::planar::planar_car_of;
 use crate::state::verdict::{CriterionView, RegionState, TestView, VerdictState};
 use crate::state::{decode, encode, reduce, same};
+use bumpsim_engine::model::Unwatched;
+use bumpsim_engine::{End, HeldCar, VerdictRequest};
 use bumpsim_verdict::criteria::{Criterion, Quantity};
-use bumpsim_verdict::prelude::*;
-use bumpsim_verdict::target::{self, Region};
-use bumpsim_verdict::verdict::Verdict as CoreVerdict;
-use bumpsim_verdict::{protocol, text};
+use bumpsim_verdict::target::Region;
+use bumpsim_verdict::text;
+use bumpsim_verdict::verdict::{TestVerdict, Verdict as CoreVerdict};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList, PyTuple, PyType};
 
@@ -33,19 +35,13 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// One end of the car: a `PlanarCar` or the path of its file, with the
-/// file's `[damageability]` (read from the file the car was read from).
-fn car_end(value: &Bound<'_, PyAny>) -> PyResult<CarEnd> {
-    let car = planar_car_of(value)?;
-    bumpsim_engine::verdict::end(&car).map_err(|e| reading(car.path(), e))
-}
-
-/// The ends of `car`: one car, or a list or tuple of them (one per end).
-fn car_ends(car: &Bound<'_, PyAny>) -> PyResult<Vec<CarEnd>> {
+/// The ends of `car` as held cars: one car (a `PlanarCar` or the path of
+/// its file), or a list or tuple of them (one per end).
+fn car_ends(car: &Bound<'_, PyAny>) -> PyResult<Vec<HeldCar>> {
     if car.is_instance_of::<PyList>() || car.is_instance_of::<PyTuple>() {
-        return car.try_iter()?.map(|c| car_end(&c?)).collect();
+        return car.try_iter()?.map(|c| planar_car_of(&c?)).collect();
     }
-    Ok(vec![car_end(car)?])
+    Ok(vec![planar_car_of(car)?])
 }
 
 /// Protocol and test names: one string, comma-separated as the CLI's
@@ -88,28 +84,28 @@ fn judge(
     sequence: bool,
 ) -> PyResult<Verdict> {
     let names = protocol_names(protocol)?;
-    let names: Vec<&str> = names.iter().map(String::as_str).collect();
-    let tests = protocol::select(&names).map_err(|e| invalid(format!("protocol: {e}")))?;
-    let mut ends = car_ends(car)?;
-    if let Some(bumper) = bumper {
-        let bumper = bumper_of(bumper)?;
-        ends = ends
-            .iter()
-            .map(|end| end.with_bumper(&bumper))
-            .collect::<Result<_, _>>()
-            .map_err(input)?;
-    }
-    let mut setup = Setup::new(ends, tests, margin).map_err(input)?;
-    setup.sequence = sequence;
-    py.detach(|| {
-        let verdict = bumpsim_verdict::verdict(&setup).map_err(input)?;
-        let target = match target {
-            true => Some(target::search(&setup, &TargetOptions::default()).map_err(input)?),
-            false => None,
-        };
-        Ok(Verdict {
-            data: state(&verdict, target)?,
-        })
+    let held = car_ends(car)?;
+    let ends: Vec<End> = held.iter().map(HeldCar::end).collect();
+    let bumper = bumper.map(bumper_of).transpose()?;
+    let request = VerdictRequest {
+        ends: &ends,
+        bumper: bumper.as_ref(),
+        protocols: &names,
+        market: Default::default(),
+        margin,
+        target,
+        sequence,
+        asi_method: Default::default(),
+        uncertainty: None,
+        report: false,
+        progress: &Unwatched,
+    };
+    // the request `bumpsim verdict` makes, the cars held here
+    let judged = py
+        .detach(|| bumpsim_engine::verdict::judged(&request))
+        .map_err(input)?;
+    Ok(Verdict {
+        data: state(&judged.verdict, judged.region)?,
     })
 }
 

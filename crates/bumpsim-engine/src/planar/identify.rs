@@ -17,13 +17,13 @@ use bumpsim_report::planar::CasePage;
 /// `identify` on a planar study: identifies, summarises, predicts the
 /// validation cases, and gives the document, the car file and the report.
 pub(super) fn identify(request: &IdentifyRequest<'_>) -> Result<Outcome, EngineError> {
-    if request.posterior {
+    if request.posterior.is_some() {
         return Err(EngineError::Unsupported {
             option: "--posterior".into(),
             reason: "the planar car's posterior is not in the command line yet (docs/uncertainty.md); a chain study samples it".into(),
         });
     }
-    if request.sizes || request.sensitivity {
+    if request.sizes.is_some() || request.sensitivity {
         return Err(EngineError::Unsupported {
             option: "--dof and --sensitivity".into(),
             reason: "a planar study takes its chain sizes from its start car (docs/planar.md)"

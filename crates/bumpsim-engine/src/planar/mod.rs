@@ -16,8 +16,8 @@ mod identify;
 mod verdict;
 
 use crate::model::{
-    CarModel, CarText, Deck, ExportRequest, IdentifyRequest, ImpactRequest, Made, PredictRequest,
-    Setup, VerdictRequest,
+    CarModel, CarText, Deck, ExportRequest, IdentifyRequest, ImpactRequest, Judged, Made,
+    PredictRequest, Setup, VerdictRequest,
 };
 use crate::uncertain::{self, Uncertain};
 use crate::{EngineError, Outcome, Report};
@@ -71,7 +71,7 @@ impl CarModel for Planar {
         true
     }
 
-    fn verdict(&self, request: &VerdictRequest<'_>) -> Result<Outcome, EngineError> {
+    fn verdict(&self, request: &VerdictRequest<'_>) -> Result<Judged, EngineError> {
         verdict::verdict(request)
     }
 

@@ -2,13 +2,14 @@
 //! `[damageability]` (or a limits file), the protocols' tests, the
 //! verdicts with their margins, and on request the bumper target region,
 //! the probability of passing and the Sobol indices over the car's
-//! uncertainty ([`bumpsim_verdict`], issues 36 and 39). No equations here.
+//! uncertainty ([`bumpsim_verdict`], issues 36 and 39); the engine makes
+//! the outcome ([`crate::verdict::verdict`]). No equations here.
 
-use crate::model::VerdictRequest;
-use crate::{EngineError, Outcome, Report};
+use crate::EngineError;
+use crate::model::{End, Judged, VerdictRequest};
 use bumpsim_planar::PlanarCar;
 use bumpsim_verdict::prelude::*;
-use bumpsim_verdict::{probability, protocol, sensitivity, target, text};
+use bumpsim_verdict::{probability, protocol, sensitivity, target};
 use std::path::Path;
 
 /// A refusal of the verdicts named by `context`.
@@ -20,14 +21,23 @@ fn named(context: &str) -> impl Fn(VerdictError) -> EngineError + '_ {
 }
 
 /// `verdict`: the ends judged in the tests, and what else was asked.
-pub(super) fn verdict(request: &VerdictRequest<'_>) -> Result<Outcome, EngineError> {
+pub(super) fn verdict(request: &VerdictRequest<'_>) -> Result<Judged, EngineError> {
     let names: Vec<&str> = request.protocols.iter().map(String::as_str).collect();
     let tests = protocol::select_in(&names, request.market).map_err(named("--protocol"))?;
-    let ends = request
+    let mut ends = request
         .ends
         .iter()
-        .map(|(path, limits)| CarEnd::read(path, *limits))
-        .collect::<Result<Vec<_>, _>>()?;
+        .map(|end| match end {
+            End::File(path, limits) => Ok(CarEnd::read(path, *limits)?),
+            End::Held { path, text, .. } => self::end(path, text),
+        })
+        .collect::<Result<Vec<_>, EngineError>>()?;
+    if let Some(bumper) = request.bumper {
+        ends = ends
+            .iter()
+            .map(|end| end.with_bumper(bumper))
+            .collect::<Result<_, _>>()?;
+    }
     let mut setup = Setup::new(ends, tests, request.margin)?;
     setup.sequence = request.sequence;
     setup.asi_method = request.asi_method;
@@ -60,35 +70,10 @@ pub(super) fn verdict(request: &VerdictRequest<'_>) -> Result<Outcome, EngineErr
         true => Some(target::search(&setup, &TargetOptions::default())?),
         false => None,
     };
-    let mut document = serde_json::json!({ "verdict": v, "target": region });
-    // only with --sobol: the document of a plain verdict stays as Python's
-    if let (Some(s), Some(fields)) = (&indices, document.as_object_mut()) {
-        fields.insert("sensitivity".into(), serde_json::to_value(s)?);
-    }
-    let report = match request.report {
-        true => {
-            let (html, figures) =
-                bumpsim_report::verdict::verdict_report(&v, region.as_ref(), indices.as_ref())?;
-            Some(Report {
-                html,
-                figures,
-                inputs: Vec::new(),
-            })
-        }
-        false => None,
-    };
-    let mut printed = text::table(&v);
-    if let Some(r) = &region {
-        printed += &text::region(r);
-    }
-    if let Some(s) = &indices {
-        printed += &sensitivity::table(s);
-    }
-    Ok(Outcome {
-        text: printed,
-        json: serde_json::to_string_pretty(&document)?,
-        report,
-        ..Outcome::default()
+    Ok(Judged {
+        verdict: v,
+        region,
+        indices,
     })
 }
 
