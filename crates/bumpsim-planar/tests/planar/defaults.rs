@@ -8,7 +8,7 @@
 //! study written from docs/planar.md should get without asking.
 
 use bumpsim_planar::forward::forward;
-use bumpsim_planar::identify::{LinkLaw, LinkLaws, predict};
+use bumpsim_planar::identify::{LinkLaw, LinkLaws, PlanarIdentification, predict};
 use bumpsim_planar::study::PlanarStudy;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -91,11 +91,21 @@ impl Scores {
 /// `study` identified as its set-up says (its bumper fitted when it asks)
 /// and scored against the series' truth in `dir`.
 pub(super) fn scores(dir: &Path, study: &PlanarStudy) -> Scores {
-    let sheet: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
     let clock = Instant::now();
     let result = study.identified(&|| {}).unwrap();
-    let seconds = clock.elapsed().as_secs_f64();
+    scored(dir, study, &result, clock.elapsed().as_secs_f64())
+}
+
+/// `result`, the identification of `study` that took `seconds`, scored
+/// against the series' truth in `dir`.
+pub(super) fn scored(
+    dir: &Path,
+    study: &PlanarStudy,
+    result: &PlanarIdentification,
+    seconds: f64,
+) -> Scores {
+    let sheet: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
     let case = |name: &str| study.validation.iter().find(|c| c.name == name).unwrap();
     let fit = |name: &str| predict(&result.car, case(name)).unwrap().fit;
     let (offset, narrow) = (fit("OFFSET40"), fit("NARROW-OFFSET"));
