@@ -778,6 +778,7 @@ pub(crate) use contact::rated;
 
 #[path = "car_links.rs"]
 mod links;
+pub(crate) use links::scaled as scaled_link;
 
 #[cfg(test)]
 #[path = "car_tests.rs"]

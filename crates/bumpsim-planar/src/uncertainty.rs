@@ -130,6 +130,12 @@ pub fn scaled(car: &PlanarCar, parts: &[Part], factors: &[f64]) -> Option<Planar
                 index,
             } => {
                 let chain = if l { &mut left } else { &mut right };
+                // a linked chain's spring is its link's initial slope: the
+                // link is scaled with it (its yield force alike)
+                if kind == 2 && !chain.links.is_empty() {
+                    let link = chain.links.get_mut(index)?;
+                    *link = crate::car::scaled_link(link, f).ok()?;
+                }
                 let values = [&mut chain.masses, &mut chain.dampers, &mut chain.springs];
                 *values.into_iter().nth(kind)?.get_mut(index)? *= f;
             }
@@ -151,6 +157,8 @@ pub fn scaled(car: &PlanarCar, parts: &[Part], factors: &[f64]) -> Option<Planar
     let name = car.name().map(str::to_string);
     PlanarCar::new(body, left, right, beam, tyres)
         .and_then(|c| c.with_crash_boxes(car.crash_boxes()))
+        .and_then(|c| c.with_contact_rate(car.contact_rate()))
+        .and_then(|c| c.with_damage(car.damage().to_vec()))
         .ok()
         .map(|c| c.with_name(name))
 }
@@ -316,6 +324,37 @@ mod tests {
         ] {
             assert_eq!(part(bad), None, "{bad}");
         }
+    }
+
+    /// A drawn car keeps what the identification gave it: a yielding side
+    /// member's link scales with its spring (yield force alike), the
+    /// bumper fit's contact rate stays.
+    #[test]
+    fn a_linked_car_scales_its_links_and_keeps_its_contact_rate() {
+        use crate::identify::{LinkLaw, LinkLaws};
+        use bumpsim_core::model::MsdModel;
+        use bumpsim_impact::bumper::Bumper;
+        let chain = MsdModel::new(vec![12.0, 1250.0], vec![3e3], vec![2.5e6]).unwrap();
+        let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        let car = PlanarCar::symmetric(&chain, &bumper, &crate::car::Layout::default()).unwrap();
+        let laws = LinkLaws {
+            left: vec![LinkLaw::Yielding],
+            right: vec![LinkLaw::Linear],
+        };
+        let car = laws.apply(&car).unwrap().with_contact_rate(0.3).unwrap();
+        let spring = Part::Chain {
+            left: true,
+            kind: 2,
+            index: 0,
+        };
+        let drawn = scaled(&car, &[spring], &[1.1]).expect("a valid car");
+        let (k, slope) = (
+            car.left().springs[0],
+            drawn.left().links[0].curve().initial_slope(),
+        );
+        approx::assert_relative_eq!(drawn.left().springs[0], 1.1 * k, max_relative = 1e-12);
+        approx::assert_relative_eq!(slope, 1.1 * k, max_relative = 1e-12);
+        approx::assert_relative_eq!(drawn.contact_rate(), 0.3, max_relative = 1e-12);
     }
 
     #[test]
