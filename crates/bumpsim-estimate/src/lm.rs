@@ -7,8 +7,8 @@
 //! projected onto the box. λ follows Nielsen's update (gain ratio ρ), or
 //! ([`Damping::TrustRegion`], an option: not yet the default anywhere) is the one
 //! that keeps the scaled step within a trust radius Δ, which the gain ratio
-//! sets as scipy's `least_squares` does ([`crate::trust`]; Moré 1978): the
-//! Gauss–Newton step whenever it fits.
+//! sets as scipy's `least_squares` does except that a refused trial halves
+//! it ([`crate::trust`]; Moré 1978): the Gauss–Newton step whenever it fits.
 //! Stopping rules, any of:
 //! - the thesis's directional derivative `|∇F · δ|` (fmincon's) below
 //!   `directional · F`, relative (see [`Settings::directional`]);
@@ -121,8 +121,9 @@ pub enum Damping {
     Nielsen,
     /// A trust region on the step scaled by the column norms of J (Moré
     /// 1978; [`crate::trust`]): the Gauss–Newton step whenever it fits, the
-    /// radius from the gain ratio as scipy's `least_squares` sets it, and
-    /// starting at 100 times the scaled length of the start (MINPACK's).
+    /// radius from the gain ratio as scipy's `least_squares` sets it (but
+    /// halved, not quartered, after a refused trial), and starting at 100
+    /// times the scaled length of the start (MINPACK's).
     TrustRegion,
 }
 
@@ -360,12 +361,17 @@ impl Control {
         }
     }
 
-    /// A trial of scaled `length` was refused (or could not be formed: 0).
+    /// A trial of scaled `length` was refused (or could not be formed: 0):
+    /// the trust region halves (Madsen, Nielsen & Tingleff 2004, eq. 2.19),
+    /// where scipy's TRF quarters it. On a curved valley a quarter makes
+    /// the radius cycle (refused at 2Δ, accepted at ½Δ, then Δ), two short
+    /// Jacobians per cycle; half of it is accepted at Δ (issue 44 item 6,
+    /// `bumpsim-ident/tests/iterations.rs`).
     fn reject(&mut self, length: f64) {
         match self {
             Control::Nielsen { lambda, nu } => (*lambda, *nu) = (*lambda * *nu, *nu * 2.0),
-            Control::Trust { radius, .. } if length > 0.0 => *radius = 0.25 * length.min(*radius),
-            Control::Trust { radius, .. } => *radius *= 0.25,
+            Control::Trust { radius, .. } if length > 0.0 => *radius = 0.5 * length.min(*radius),
+            Control::Trust { radius, .. } => *radius *= 0.5,
         }
     }
 }

@@ -10,8 +10,10 @@
 //! `ψ(λ) = 1/‖s(λ)‖ − 1/Δ`, which is concave and increasing, so that the
 //! iterates rise monotonically to the root from the lower bound
 //! `‖c‖/Δ − max Λ` (Moré & Sorensen 1983). The radius is updated by the
-//! caller from the gain ratio ρ as scipy's `least_squares` does: ×¼ of the
-//! step's length when ρ < ¼, ×2 when ρ > ¾ and the step reached the radius.
+//! caller from the gain ratio ρ: after an accepted step as scipy's
+//! `least_squares` does (¼ of the step's length when ρ < ¼, ×2 when ρ > ¾
+//! and the step reached the radius); after a refused trial it is halved
+//! (Madsen, Nielsen & Tingleff 2004, eq. 2.19), not quartered as scipy's.
 
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
 

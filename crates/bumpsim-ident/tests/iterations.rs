@@ -130,38 +130,52 @@ fn compare(objective: &str) {
     );
 }
 
-/// Open (issue 44 item 6): the trust region forms 23 Jacobians here (22
-/// accepted steps) against scipy's 18, to the same optimum (scipy's ends
-/// 1.2e-12 above bumpsim's, scipy stopped by its `ftol`, bumpsim by its
-/// directional rule; displacement: 39 against 60, objectives equal to
-/// 1e-13). Both reach 3e-5 above the optimum at their 11th Jacobian;
-/// bumpsim then creeps along a curved valley (steps at the radius, 0.35
-/// and 0.7 scaled, the doubled radius refused each time), where scipy's
-/// unscaled steps reach the optimum in 7 more. Measured 2026-11-29 on the
-/// data alone, iterations (Jacobians less one) of the variants of scipy's
-/// TRF tried in turn:
+/// Issue 44 item 6, velocity: 13 Jacobians (12 accepted steps) against
+/// scipy's 18, to the same optimum (scipy's ends 4e-13 above bumpsim's);
+/// displacement 15 against 60. Until 2026-11-29 (10:50) the trust region
+/// quartered its radius after a refused trial, as scipy's TRF does, and
+/// took 23 and 39: both reach 3e-5 above the optimum at their 11th
+/// Jacobian, then bumpsim crept along a curved valley with its radius
+/// cycling (refused at 2Δ, accepted at ½Δ and at Δ: two short Jacobians
+/// per cycle). Halving after a refusal (Madsen, Nielsen & Tingleff 2004,
+/// eq. 2.19) takes the step at Δ instead. Measured 2026-11-29, data alone,
+/// Jacobians (iterations + 1) of the trust-region variants tried in turn,
+/// against scipy TRF's 18 and 60:
 ///
-/// | step scaling, first radius | velocity | displacement |
+/// | step scaling, first radius, radius rules | velocity | displacement |
 /// |---|---|---|
-/// | column norms of J, 100 × ‖D p‖ (MINPACK's; this one) | 22 | 38 |
-/// | column norms of J, ‖D p‖ | 27 | 64 |
-/// | MINPACK's non-decreasing column norms (`D_k = max(D_k−1, ‖J_i‖)`), 100 × | 21 | 49 |
-/// | none (scipy's `x_scale = 1` in log parameters), 100 × ‖p‖ | **17** | 106 |
-/// | none, ‖p‖ | 29, stops 4e-6 above | 104, 2.6 % above |
-/// | Coleman–Li `√(p − lower)` where the gradient points at the bound (scipy's TRF), 100 × | 17, optimum 7e-6 above scipy's | 44, 1.6 % above |
-/// | column norms, MINPACK's radius update (`½ dirder/(dirder + ½ actred)` shrink, 2 ‖step‖ growth) | 27 | 60 |
-/// | column norms, the directional stop only after a Gauss–Newton (interior) step | 22 | 38 |
+/// | column norms of J, 100 × ‖D p‖, a refusal halves (**this one**) | **13** | **15** |
+/// | the same, a refusal quarters (scipy's; the previous one) | 23 | 39 |
+/// | the same, a refusal × 0.3 | 22 | 53 |
+/// | the same, a refusal × 0.4 | 16 | 79 |
+/// | the same, a refusal × 0.45 | 15 | 106 |
+/// | the same, a refusal × 0.55 | 11 | 61 |
+/// | the same, a refusal × 0.6 | 11 | 43 |
+/// | the same, halving, first radius ‖D p‖ | 14 | 47 |
+/// | MINPACK's non-decreasing column norms (`D_k = max(D_k−1, ‖J_i‖)`), halving | 12 | 53 |
+/// | MINPACK's non-decreasing column norms, quartering | 22 | 50 |
+/// | none (scipy's `x_scale = 1` in log parameters), quartering | 18 | 107 |
+/// | none, halving | 30 | 115 |
+/// | column norms, quartering, a step at a doubled radius tried (a residual evaluation) after each accepted one that grew it | 18 | 72 |
+/// | column norms, Madsen–Nielsen–Tingleff's whole rule (½ Δ when ρ < ¼, `max(Δ, 3‖δ‖)` when ρ > ¾) | 40, 4e-6 above | 70 |
 ///
-/// No one rule meets both: without scaling the velocity objective holds
-/// but the displacement one zigzags along its narrow valley (each trial
-/// at a doubled radius refused, the next accepted at a quarter). Not
-/// tried: geodesic acceleration (Transtrum & Sethna 2012) and Broyden's
-/// rank-1 updates of J between evaluations both need J or `Jᵀv` for a new
-/// vector, and LM's problems hand it only `JᵀJ` and `Jᵀr`
-/// (`LeastSquares::normal`, the modal form never stores J).
-/// Run with `--ignored`.
+/// Earlier rows (iterations, the quartering rule): column norms with first
+/// radius ‖D p‖ 27/64; no scaling, first radius ‖p‖ 29 (4e-6 above)/104
+/// (2.6 % above); Coleman–Li `√(p − lower)` (scipy's TRF) 17 (7e-6
+/// above)/44 (1.6 % above); MINPACK's radius update 27/60; the directional
+/// stop only after a Gauss–Newton step 22/38. **The displacement count is
+/// erratic in the shrink factor** (0.45: 106, 0.5: 15, 0.55: 61): its
+/// narrow valley is crossed in few steps only when the radius happens to
+/// fit it, so 15 is a lucky point of one series from one start, not a
+/// margin; the velocity count falls steadily from 0.45 on (15, 13, 11,
+/// 11). Halving is the textbook factor, and of those measured only 0.5
+/// and 0.6 meet both counts. Not tried:
+/// geodesic acceleration (Transtrum & Sethna 2012) and Broyden's rank-1
+/// updates of J between evaluations both need J or `Jᵀv` for a new vector,
+/// and LM's problems hand it only `JᵀJ` and `Jᵀr` (`LeastSquares::normal`,
+/// the modal form never stores J); a rank-1 update would also not be a
+/// Jacobian in scipy's `njev` sense.
 #[test]
-#[ignore = "open: 23 Jacobians against scipy's 18 (issue 44 item 6; variants in the doc)"]
 fn velocity_iterations_are_no_more_than_scipy_trf_jacobians() {
     compare("velocity");
 }
@@ -169,4 +183,14 @@ fn velocity_iterations_are_no_more_than_scipy_trf_jacobians() {
 #[test]
 fn displacement_iterations_are_no_more_than_scipy_trf_jacobians() {
     compare("displacement");
+}
+
+/// Not in issue 44's count (velocity and displacement): on the acceleration
+/// objective the trust region takes 10 Jacobians against scipy's 24 but
+/// stops (its directional rule) 1.6e-4 above scipy's optimum (quartering:
+/// 29 Jacobians, 2.1e-4 above), so the like-for-like comparison fails.
+#[test]
+#[ignore = "open: stops 1.6e-4 above scipy's optimum on the acceleration objective"]
+fn acceleration_iterations_are_no_more_than_scipy_trf_jacobians() {
+    compare("acceleration");
 }
