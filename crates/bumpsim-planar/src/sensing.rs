@@ -129,7 +129,14 @@ pub fn noise(value: &toml::Value, dimension: Dimension) -> Result<f64, SensingEr
     };
     sigma
         .filter(|s| bumpsim_estimate::domain::NOISE_RANGE.contains(s))
-        .ok_or_else(|| SensingError::Noise(value.to_string()))
+        .ok_or_else(|| {
+            // (TOML prints 1e-300 with all its 300 digits)
+            let shown = match value {
+                toml::Value::Float(v) => bumpsim_core::units::short(*v),
+                other => other.to_string(),
+            };
+            SensingError::Noise(shown)
+        })
 }
 
 #[cfg(test)]
