@@ -217,7 +217,15 @@ mod tests {
         assert!(e(kind(&av, None, None, Some(0))).contains("no chain"));
         assert!(e(kind(&channel("f", Dimension::Force), None, body, None)).contains("force"));
         assert!(e(kind(&channel("10SILBLE0000ACXP", acc), None, None, None)).contains("either"));
-        for bad in ["\"-1 deg/s\"", "\"nan deg/s\"", "\"2 m\"", "0.0", "true", "1e-300", "1e300"] {
+        for bad in [
+            "\"-1 deg/s\"",
+            "\"nan deg/s\"",
+            "\"2 m\"",
+            "0.0",
+            "true",
+            "1e-300",
+            "1e300",
+        ] {
             let v: toml::Value =
                 toml::from_str::<toml::Table>(&format!("n = {bad}")).unwrap()["n"].clone();
             assert!(noise(&v, Dimension::AngularVelocity).is_err(), "{bad}");

@@ -258,7 +258,11 @@ fn fuzz_study_objective_and_priors() {
     assert!(study.contains(case));
     let seeded = format!(
         "[identification]\nobjective = \"acceleration\"\n{}\n[priors]\ntotal_mass = {{ spread = 0.02 }}\nm1 = \"none\"\nk2 = {{ value = \"600 N/mm\", spread = 0.3 }}\n",
-        study.replacen(case, &format!("{case}noise = 0.002\nbias = [-0.01, 0.0]\n"), 1)
+        study.replacen(
+            case,
+            &format!("{case}noise = 0.002\nbias = [-0.01, 0.0]\n"),
+            1
+        )
     );
     fuzz("study-priors", seeded.into_bytes(), |dir, bytes| {
         let path = dir.join("study.toml");

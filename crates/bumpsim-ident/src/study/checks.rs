@@ -312,8 +312,14 @@ mod tests {
                 "'a': cfc = -180: expected a positive CFC class",
             ),
             ("cfc = inf", "'a': cfc = inf: expected a positive CFC class"),
-            ("noise = 1e-300", "'a': noise = 1e-300: expected a positive standard"),
-            ("noise = nan", "'a': noise = NaN: expected a positive standard"),
+            (
+                "noise = 1e-300",
+                "'a': noise = 1e-300: expected a positive standard",
+            ),
+            (
+                "noise = nan",
+                "'a': noise = NaN: expected a positive standard",
+            ),
         ] {
             let text = format!("[model]\ndof = 2\n[[case]]\nname = \"a\"\n{CASE}\n{line}\n");
             let err = file(&text).unwrap_err().to_string();

@@ -154,7 +154,9 @@ impl Study {
         largest: usize,
     ) -> Result<Vec<bumpsim_estimate::stated::PriorSetting>, StudyError> {
         let names = |n: usize| (0..parameter_count(n)).map(move |i| parameter_name(n, i));
-        let elsewhere: Vec<String> = names(largest).filter(|n| !names(dof).any(|m| m == *n)).collect();
+        let elsewhere: Vec<String> = names(largest)
+            .filter(|n| !names(dof).any(|m| m == *n))
+            .collect();
         let mut settings = self.prior_settings()?;
         settings.retain(|s| !elsewhere.contains(&s.name));
         Ok(settings)

@@ -94,8 +94,16 @@ fn a_planar_study_s_sensors_model_settings_and_priors() {
     let twice = "is picked by '{0}' and again by '{0}': it would count twice";
     let model = "[model]\n";
     let cases: Vec<(&str, String, String)> = vec![
-        (yaw, format!("{yaw},\n  {yaw}"), twice.replace("{0}", "10VEHC0000CGAVZP")),
-        (force, format!("{force},\n  {force}"), twice.replace("{0}", "B0LOMA010100FOXP")),
+        (
+            yaw,
+            format!("{yaw},\n  {yaw}"),
+            twice.replace("{0}", "10VEHC0000CGAVZP"),
+        ),
+        (
+            force,
+            format!("{force},\n  {force}"),
+            twice.replace("{0}", "B0LOMA010100FOXP"),
+        ),
         (
             yaw,
             yaw.replace(" }", ", noise = 1e-300 }"),
@@ -109,7 +117,8 @@ fn a_planar_study_s_sensors_model_settings_and_priors() {
         ),
         (
             yaw,
-            yaw.replace("FLAT/FLAT.mme", "FLAT.csv").replace(" }", ", axis = \"y\" }"),
+            yaw.replace("FLAT/FLAT.mme", "FLAT.csv")
+                .replace(" }", ", axis = \"y\" }"),
             "axis = \"y\", but the ISO code's direction is Z".into(),
         ),
         (
@@ -125,7 +134,8 @@ fn a_planar_study_s_sensors_model_settings_and_priors() {
         (
             model,
             format!("{model}links = \"elastic\"\n"),
-            "[model] links: \"elastic\": expected \"linear\", \"progressive\" or \"yielding\"".into(),
+            "[model] links: \"elastic\": expected \"linear\", \"progressive\" or \"yielding\""
+                .into(),
         ),
         (
             model,
@@ -156,7 +166,11 @@ fn a_planar_study_s_sensors_model_settings_and_priors() {
             "[priors] tyres.mu_lateral: spread = 1e-300: must be from 1e-6 to 1e2",
         ),
     ] {
-        std::fs::write(dir.join("ps/h.toml"), format!("{study}\n[priors]\n{prior}\n")).unwrap();
+        std::fs::write(
+            dir.join("ps/h.toml"),
+            format!("{study}\n[priors]\n{prior}\n"),
+        )
+        .unwrap();
         refused(&dir, &["identify", "ps/h.toml", "--quiet"], needle);
     }
 }
@@ -167,7 +181,8 @@ fn a_planar_study_s_sensors_model_settings_and_priors() {
 fn a_links_car_s_loading_tables() {
     let dir = examples("inputs-links");
     let car = std::fs::read_to_string(dir.join("ex/links/car.toml")).unwrap();
-    let table = "points = [[\"20 mm\", \"60 kN\"], [\"120 mm\", \"110 kN\"], [\"400 mm\", \"140 kN\"]]";
+    let table =
+        "points = [[\"20 mm\", \"60 kN\"], [\"120 mm\", \"110 kN\"], [\"400 mm\", \"140 kN\"]]";
     assert!(car.contains(table));
     // (a million points are refused alike; reading their 20 MB takes 8 s
     // of a debug build on a loaded machine)
@@ -175,7 +190,14 @@ fn a_links_car_s_loading_tables() {
         .map(|i| format!("[{}e-6, {}]", i, 1000 + i))
         .collect();
     let many = format!("points = [{}]", many.join(", "));
-    let impact = ["impact", "--car", "h.toml", "--barrier", "--speed", "15 km/h"];
+    let impact = [
+        "impact",
+        "--car",
+        "h.toml",
+        "--barrier",
+        "--speed",
+        "15 km/h",
+    ];
     for (points, needle) in [
         (
             "points = [[\"20 mm\", \"60 kN\"], [\"10 mm\", \"110 kN\"]]",
@@ -189,7 +211,10 @@ fn a_links_car_s_loading_tables() {
             "points = [[\"-20 mm\", \"60 kN\"]]",
             "link 2: points[1]: deformation and force must not be negative",
         ),
-        ("points = []", "link 2: loading table point 0: a table needs a point past (0, 0)"),
+        (
+            "points = []",
+            "link 2: loading table point 0: a table needs a point past (0, 0)",
+        ),
         (
             "points = [[\"20 mm\", \"1e300 N\"]]",
             "integration steps needed (the links' steepest slope against the lightest mass)",
