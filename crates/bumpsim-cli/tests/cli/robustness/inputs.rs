@@ -6,7 +6,8 @@
 //! 1-DOF model; a planar study summed a force named twice and weighed a
 //! yaw-rate sensor named twice, a sensor noise of 1e-300 or a sill at
 //! ξ = 1e300 m left "no start could be evaluated", `links = "elastic"`
-//! printed "links = NaN -"; a links car's table of a million points
+//! printed "links = NaN -", one with an integer beyond 64 bits was read
+//! as a chain study; a links car's table of a million points
 //! was converted whole before it was refused. Each now exits 2 naming the file, case or key.
 
 use super::{examples, run_in, stderr};
@@ -147,10 +148,19 @@ fn a_planar_study_s_sensors_model_settings_and_priors() {
             format!("{model}relaxation = \"yes\"\n"),
             "expected a boolean".into(),
         ),
+        // no valid TOML: it was read as a chain study ("unknown field `forces`")
+        (
+            "starts = 8",
+            "starts = 99999999999999999999".into(),
+            "h.toml: TOML parse error at line 4".into(),
+        ),
     ];
     for (old, new, needle) in &cases {
+        assert!(study.contains(old), "{old}");
         std::fs::write(dir.join("ps/h.toml"), study.replacen(old, new, 1)).unwrap();
         refused(&dir, &["identify", "ps/h.toml", "--quiet"], needle);
+        let (out, _) = run_in(&dir, &["identify", "ps/h.toml", "--quiet"]);
+        assert!(!stderr(&out).contains("`forces`"), "{}", stderr(&out));
     }
     for (prior, needle) in [
         (
