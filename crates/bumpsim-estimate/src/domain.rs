@@ -48,6 +48,12 @@ pub enum Domain {
     Acceleration,
 }
 
+/// The range of a measurement noise a study gives (its standard deviation,
+/// SI: m, m/s, m/s² or rad/s): a residual divided by it, squared and summed
+/// over any record, stays finite (a noise of 1e-300 m/s made every start
+/// fail "to be simulated"; a hostile pass, issue 44).
+pub const NOISE_RANGE: std::ops::RangeInclusive<f64> = 1e-12..=1e15;
+
 /// A domain name that is none of the three.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("objective \"{0}\": expected \"displacement\", \"velocity\" or \"acceleration\"")]

@@ -85,6 +85,13 @@ fn flatten(
             toml::Value::Table(t) if t.contains_key("value") || t.contains_key("spread") => {
                 out.push(entry(name, t, dimension)?)
             }
+            // `m2 = {}` set nothing and was passed over without a word
+            toml::Value::Table(t) if t.is_empty() => {
+                return Err(PriorsError {
+                    key: name,
+                    message: "an empty table: give { value = ..., spread = ... } (either may be left out) or \"none\"".into(),
+                });
+            }
             toml::Value::Table(t) => flatten(&name, t, dimension, out)?,
             other => {
                 return Err(PriorsError {
@@ -252,6 +259,8 @@ mod tests {
             ("m1 = { centre = 3 }", "m1"),
             ("m1 = 3", "m1"),
             ("m1 = \"some\"", "m1"),
+            ("m1 = {}", "m1"),
+            ("[body.yaw_inertia]", "body.yaw_inertia"),
         ] {
             let e = read(text).unwrap_err().to_string();
             assert!(e.starts_with(&format!("[priors] {key}")), "{text}: {e}");

@@ -135,6 +135,9 @@ impl ModelKind {
             }
             _ => {
                 let table = toml::from_str::<toml::Table>(text).ok();
+                if table.is_none() {
+                    return Self::known(recovered(text, role));
+                }
                 let declared = table
                     .as_ref()
                     .and_then(|t| t.get("kind"))
@@ -149,6 +152,11 @@ impl ModelKind {
                 (declared, planar)
             }
         };
+        Self::known((declared, planar))
+    }
+
+    /// The kind a file declares, else the legacy detection's.
+    fn known((declared, planar): (Option<String>, bool)) -> Result<ModelKind, UnknownKind> {
         match declared {
             Some(value) => Self::NAMES
                 .iter()
@@ -166,6 +174,35 @@ impl ModelKind {
 /// with `kind = "chain"` or no key.
 fn legacy_links(table: &toml::Table, role: Role) -> bool {
     role == Role::Car && crate::car::has_links(table)
+}
+
+/// The declared kind and the legacy planar clue of a text that is no
+/// valid TOML (a syntax error, an integer beyond 64 bits), read with the
+/// parser's recovery: the reader of the file's model then names the error
+/// (a planar study with `starts = 99999999999999999999` was read as a
+/// chain study and refused for its "unknown field `forces`").
+fn recovered(text: &str, role: Role) -> (Option<String>, bool) {
+    use toml::de::{DeTable, DeValue};
+    let (table, _) = DeTable::parse_recoverable(text);
+    let table = table.into_inner();
+    fn get<'i>(t: &DeTable<'i>, key: &str) -> Option<DeValue<'i>> {
+        t.iter()
+            .find(|(k, _)| k.get_ref().as_ref() == key)
+            .map(|(_, v)| v.get_ref().clone())
+    }
+    let declared = match get(&table, "kind") {
+        Some(DeValue::String(kind)) => Some(kind.into_owned()),
+        _ => None,
+    };
+    let planar = match role {
+        Role::Study => {
+            matches!(get(&table, "model"), Some(DeValue::Table(m)) if get(&m, "planar").is_some())
+        }
+        Role::Car => matches!(get(&table, "body"), Some(DeValue::Table(_))),
+        Role::Series => get(&table, "planar_car").is_some(),
+        Role::Result => false,
+    };
+    (declared, planar)
 }
 
 /// The legacy detection of a planar file without a `kind` key (the rules of
@@ -192,6 +229,14 @@ mod tests {
         assert_eq!(study("[model]\nplanar = \"start.toml\""), ModelKind::Planar);
         assert_eq!(study("[model]\ndof = 3"), ModelKind::Chain);
         assert_eq!(study("not toml ["), ModelKind::Chain);
+        // no valid TOML, yet the reader of its model names the error
+        let big = "[model]\nplanar = \"s.toml\"\nstarts = 99999999999999999999";
+        assert_eq!(study(big), ModelKind::Planar);
+        assert_eq!(
+            study("kind = \"planar\"\n[model]\nx = ["),
+            ModelKind::Planar
+        );
+        assert_eq!(study("[model]\ndof = 3\nx = ["), ModelKind::Chain);
         let series = |t| ModelKind::of_text(t, Role::Series).unwrap();
         assert_eq!(series("planar_car = \"car.toml\""), ModelKind::Planar);
         assert_eq!(

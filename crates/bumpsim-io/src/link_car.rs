@@ -167,6 +167,12 @@ fn points(at: &At<'_>, table: &Table) -> Result<Vec<[f64; 2]>, CarError> {
         .get("points")
         .and_then(Value::as_array)
         .ok_or_else(|| at.error("points", "missing: a list of [deformation, force] pairs"))?;
+    // refused before a million pairs are converted (seconds) only to be refused
+    let most = bumpsim_core::link::MAX_TABLE_POINTS;
+    if list.len() > most {
+        let count = list.len();
+        return Err(at.error("points", format!("{count} points: at most {most}")));
+    }
     let mut out = Vec::with_capacity(list.len());
     for (i, point) in list.iter().enumerate() {
         let key = format!("points[{}]", i + 1);

@@ -51,6 +51,11 @@ use bumpsim_core::leapfrog::{
 /// The widest wall cell, m: wider than any barrier's load-cell wall.
 pub const MAX_CELL: f64 = 10.0;
 
+/// The farthest a body sensor may sit from the CG along either body axis,
+/// m: beyond any car (a sill at ξ = 1e300 m left no start that could be
+/// evaluated, "check the forces and the template").
+pub const MAX_SENSOR_PLACE: f64 = 10.0;
+
 /// A given force on the bumper line.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Load {
@@ -241,13 +246,13 @@ fn check(input: &Drive, masses: usize) -> Result<usize, PlanarError> {
     }
     for (k, s) in input.sensors.iter().enumerate() {
         if let Some(p) = s.body() {
-            require(
-                &format!("sensor[{k}]"),
-                p[0] + p[1],
-                "m",
-                "must be finite",
-                true,
-            )?;
+            let far = match p.iter().all(|v| v.is_finite()) {
+                true => p[0].abs().max(p[1].abs()),
+                false => f64::NAN, // (f64::max passes over a NaN)
+            };
+            let expected = format!("finite, ξ and η within {MAX_SENSOR_PLACE} m of the CG");
+            let place = format!("sensor[{k}] body");
+            require(&place, far, "m", &expected, far <= MAX_SENSOR_PLACE)?;
         }
         if let Some(i) = s.chain() {
             require(

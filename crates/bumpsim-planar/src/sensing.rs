@@ -50,7 +50,7 @@ pub enum SensingError {
     Place(&'static str),
     /// A noise that is no positive finite quantity of the channel's dimension.
     #[error(
-        "{0}: expected the rms noise, positive, as text with a unit of the channel's dimension (\"0.05 g\", \"0.2 deg/s\") or an SI number"
+        "{0}: expected the rms noise, positive, as text with a unit of the channel's dimension (\"0.05 g\", \"0.2 deg/s\") or an SI number from 1e-12 to 1e15"
     )]
     Noise(String),
 }
@@ -118,7 +118,8 @@ fn direction(channel: &Channel, axis: Option<&str>) -> Result<char, SensingError
 }
 
 /// A sensor's given noise: text with a unit of `dimension` or an SI number,
-/// positive and finite.
+/// positive and finite, within [`bumpsim_estimate::domain::NOISE_RANGE`]
+/// (1e-300 rad/s left no start that could be evaluated).
 pub fn noise(value: &toml::Value, dimension: Dimension) -> Result<f64, SensingError> {
     let sigma = match value {
         toml::Value::Float(v) => Some(*v),
@@ -127,8 +128,15 @@ pub fn noise(value: &toml::Value, dimension: Dimension) -> Result<f64, SensingEr
         _ => None,
     };
     sigma
-        .filter(|s| s.is_finite() && *s > 0.0)
-        .ok_or_else(|| SensingError::Noise(value.to_string()))
+        .filter(|s| bumpsim_estimate::domain::NOISE_RANGE.contains(s))
+        .ok_or_else(|| {
+            // (TOML prints 1e-300 with all its 300 digits)
+            let shown = match value {
+                toml::Value::Float(v) => bumpsim_core::units::short(*v),
+                other => other.to_string(),
+            };
+            SensingError::Noise(shown)
+        })
 }
 
 #[cfg(test)]
@@ -209,7 +217,15 @@ mod tests {
         assert!(e(kind(&av, None, None, Some(0))).contains("no chain"));
         assert!(e(kind(&channel("f", Dimension::Force), None, body, None)).contains("force"));
         assert!(e(kind(&channel("10SILBLE0000ACXP", acc), None, None, None)).contains("either"));
-        for bad in ["\"-1 deg/s\"", "\"nan deg/s\"", "\"2 m\"", "0.0", "true"] {
+        for bad in [
+            "\"-1 deg/s\"",
+            "\"nan deg/s\"",
+            "\"2 m\"",
+            "0.0",
+            "true",
+            "1e-300",
+            "1e300",
+        ] {
             let v: toml::Value =
                 toml::from_str::<toml::Table>(&format!("n = {bad}")).unwrap()["n"].clone();
             assert!(noise(&v, Dimension::AngularVelocity).is_err(), "{bad}");

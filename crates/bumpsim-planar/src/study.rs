@@ -24,7 +24,7 @@
 //!                           # to the training tests' forward runs (their strikers) after the car
 //!
 //! [priors]                  # optional: override ({ value, spread }), remove ("none") or add priors
-//! body.yaw_inertia = { value = "2300 kg m^2", spread = 0.2 }   # spread: sd of ln θ (0.2 ≈ ±20 %)
+//! body.yaw_inertia = { value = 2300.0, spread = 0.2 }   # kg·m² (SI); spread: sd of ln θ (0.2 ≈ ±20 %)
 //! tyres.mu_lateral = "none"
 //!
 //! [[case]]
@@ -71,7 +71,7 @@ use bumpsim_core::names::check_names;
 use bumpsim_core::units::{Dimension, parse_quantity};
 use bumpsim_io::mass::{EXPECTED, sheet_mass};
 use bumpsim_io::speed::{SpeedError, speed_value};
-use bumpsim_signal::loader::{ChannelSource, Loader};
+use bumpsim_signal::loader::{ChannelSource, LoadError, Loader};
 use bumpsim_signal::process::Resampling;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -356,6 +356,24 @@ fn time_zero(value: Option<&toml::Value>) -> Option<TimeZero> {
     at.is_finite().then_some(TimeZero::At(at))
 }
 
+/// Each force and sensor channel of a case read once: a channel named
+/// twice was summed twice (a force) or weighed twice (a sensor) without a
+/// word, where the 1-D study refuses it ([`LoadError::Twice`]; a hostile
+/// pass, issue 44). Other failures of the selection are left to the
+/// loading of each channel, which names them.
+fn read_once(spec: &CaseFile, base: &Path, loader: &mut Loader) -> Result<(), LoadError> {
+    let forces = spec.forces.iter().map(|f| (&f.path, &f.channel));
+    let sensors = spec.sensors.iter().map(|s| (&s.path, &s.channel));
+    let sources: Vec<ChannelSource> = forces
+        .chain(sensors)
+        .map(|(path, code)| ChannelSource::new(base.join(path), code, 1.0))
+        .collect();
+    match loader.channels(&sources) {
+        Err(twice @ LoadError::Twice { .. }) => Err(twice),
+        _ => Ok(()),
+    }
+}
+
 fn load_case(
     spec: &CaseFile,
     base: &Path,
@@ -372,6 +390,7 @@ fn load_case(
             other => error(other.to_string()),
         })?,
     };
+    read_once(spec, base, loader).map_err(|e| error(e.to_string()))?;
     let mut channel =
         |path: &Path, code: &str, dimension: Option<Dimension>| -> Result<Channel, PlanarError> {
             let source = ChannelSource::new(base.join(path), code, 1.0);

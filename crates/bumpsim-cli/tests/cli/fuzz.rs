@@ -199,12 +199,34 @@ fn fuzz_planar_car_toml() {
         ..Settings::default()
     };
     let face = Face::plane_in_degrees(10.0, 40.0, Side::Left);
-    fuzz("planar", seed("tests/fuzz/planar.toml"), |_, bytes| {
+    let check = |_: &Path, bytes: &[u8]| {
         let text = String::from_utf8_lossy(bytes);
         if let Ok(car) = PlanarCar::parse(&text, Path::new("planar.toml"))
             && let Ok(r) = simulate(&car, &Striker::barrier(face, 4.0), &settings)
         {
             assert!(r.peak_force.is_finite() && r.energy.initial.is_finite());
+        }
+    };
+    fuzz("planar", seed("tests/fuzz/planar.toml"), check);
+    // side members of nonlinear links ([[left.links]] tables, issue 46)
+    fuzz("planar-links", seed("examples/planar/links.toml"), check);
+}
+
+/// A chain car of nonlinear links (issue 46: `[[links]]` and `[front]`
+/// loading curves and tables, unloading rules): read, every link's force
+/// and stored energy finite along its curve.
+#[test]
+fn fuzz_links_car_toml() {
+    fuzz("links-car", seed("examples/links/car.toml"), |_, bytes| {
+        let text = String::from_utf8_lossy(bytes);
+        if let Ok(car) = bumpsim_io::link_car::LinkCar::parse(&text, Path::new("car.toml")) {
+            let chain = &car.chain;
+            for link in chain.links().iter().chain(chain.front()) {
+                for d in [0.0, 1e-4, 0.02, 0.5, 3.0] {
+                    let (force, energy) = (link.curve().force(d), link.curve().energy(d));
+                    assert!(force.is_finite() && energy.is_finite(), "{link:?} at {d} m");
+                }
+            }
         }
     });
 }
@@ -224,6 +246,44 @@ fn fuzz_study_toml() {
             }
         },
     );
+}
+
+/// The chain study's issue-44 inputs: `[identification] objective`, a
+/// case's `noise` and `bias`, `[priors]`; the priors applied to the
+/// defaults of each model (their centres and spreads usable).
+#[test]
+fn fuzz_study_objective_and_priors() {
+    let study = String::from_utf8(seed("examples/identify/study.toml")).unwrap();
+    let case = "cfc = 180\noutput_dof = 1\n";
+    assert!(study.contains(case));
+    let seeded = format!(
+        "[identification]\nobjective = \"acceleration\"\n{}\n[priors]\ntotal_mass = {{ spread = 0.02 }}\nm1 = \"none\"\nk2 = {{ value = \"600 N/mm\", spread = 0.3 }}\n",
+        study.replacen(
+            case,
+            &format!("{case}noise = 0.002\nbias = [-0.01, 0.0]\n"),
+            1
+        )
+    );
+    fuzz("study-priors", seeded.into_bytes(), |dir, bytes| {
+        let path = dir.join("study.toml");
+        std::fs::write(&path, bytes).unwrap();
+        let Ok(study) = bumpsim_ident::study::Study::read(&path) else {
+            return;
+        };
+        for dof in study.dofs().into_iter().filter(|&d| d <= 3) {
+            let Ok(settings) = study.settings(dof) else {
+                continue;
+            };
+            let start = vec![100.0; bumpsim_core::model::parameter_count(dof)];
+            let free: Vec<usize> = (0..start.len()).collect();
+            if let Ok(priors) = bumpsim_ident::priors::priors(&settings, &start, &free) {
+                for p in priors {
+                    assert!(p.centre.is_finite() && p.centre > 0.0, "{p:?}");
+                    assert!(p.spread.is_finite() && p.spread > 0.0, "{p:?}");
+                }
+            }
+        }
+    });
 }
 
 #[test]
@@ -394,7 +454,13 @@ fn fuzz_planar_series_and_study() {
         bumpsim_io::isomme::write(&tests.join(&t.name), &t.name, &header, &t.channels).unwrap();
     }
     std::fs::write(tests.join("start.toml"), &series.start).unwrap();
-    fuzz("planar-study", series.study.into_bytes(), |_, bytes| {
+    // with issue 44's model settings and stated priors in the seed
+    let seeded = series.study.replacen(
+        "[model]\n",
+        "[model]\ncornering = true\nrelaxation = false\nbumper = \"start\"\n",
+        1,
+    ) + "\n[priors]\nbody.yaw_inertia = { value = 2300.0, spread = 0.2 }\ntyres.mu_lateral = \"none\"\n";
+    fuzz("planar-study", seeded.into_bytes(), |_, bytes| {
         let path = tests.join("study.toml");
         std::fs::write(&path, bytes).unwrap();
         if let Ok(study) = PlanarStudy::read(&path) {
@@ -404,6 +470,10 @@ fn fuzz_planar_series_and_study() {
                     "{}",
                     case.name
                 );
+            }
+            for p in &study.setup.priors {
+                let usable = |v: Option<f64>| v.is_none_or(|v| v.is_finite() && v > 0.0);
+                assert!(usable(p.value) && usable(p.spread), "{p:?}");
             }
         }
     });

@@ -13,6 +13,7 @@ use crate::util::{copy_tree, root};
 
 mod commit;
 mod flags;
+mod inputs;
 mod refusals;
 mod silent;
 

@@ -86,11 +86,12 @@ impl Study {
                     "a positive CFC class (60, 180, 600, 1000)",
                 ));
             }
-            if let Some(n) = case.noise.filter(|n| !(n.is_finite() && *n > 0.0)) {
+            let range = bumpsim_estimate::domain::NOISE_RANGE;
+            if let Some(n) = case.noise.filter(|n| !range.contains(n)) {
                 return Err(error(
                     "noise",
                     short(n),
-                    "a positive standard deviation in the objective's unit (m, m/s or m/s²)",
+                    "a positive standard deviation in the objective's unit (m, m/s or m/s²), from 1e-12 to 1e15",
                 ));
             }
         }
@@ -311,6 +312,14 @@ mod tests {
                 "'a': cfc = -180: expected a positive CFC class",
             ),
             ("cfc = inf", "'a': cfc = inf: expected a positive CFC class"),
+            (
+                "noise = 1e-300",
+                "'a': noise = 1e-300: expected a positive standard",
+            ),
+            (
+                "noise = nan",
+                "'a': noise = NaN: expected a positive standard",
+            ),
         ] {
             let text = format!("[model]\ndof = 2\n[[case]]\nname = \"a\"\n{CASE}\n{line}\n");
             let err = file(&text).unwrap_err().to_string();

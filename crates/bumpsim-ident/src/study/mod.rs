@@ -116,7 +116,7 @@ impl Study {
             start: self.start(dof)?,
             sheet_mass: self.sheet_mass()?,
             default_priors: self.default_priors(),
-            priors: self.prior_settings()?,
+            priors: self.priors_of(dof, largest)?,
             ..Settings::new(dof, 1)
         })
     }
@@ -141,6 +141,25 @@ impl Study {
                 message: e.to_string(),
             }
         })
+    }
+
+    /// The `[priors]` settings for a `dof`-mass model of a sweep whose
+    /// largest model has `largest` masses: one naming a parameter of the
+    /// largest model applies to each model that has it, as `bounds` and
+    /// `fixed` do (a `k2` prior failed the 1- and 2-DOF models of `dof = [1,
+    /// 2, 3]`); any other name is left to the identification to refuse.
+    fn priors_of(
+        &self,
+        dof: usize,
+        largest: usize,
+    ) -> Result<Vec<bumpsim_estimate::stated::PriorSetting>, StudyError> {
+        let names = |n: usize| (0..parameter_count(n)).map(move |i| parameter_name(n, i));
+        let elsewhere: Vec<String> = names(largest)
+            .filter(|n| !names(dof).any(|m| m == *n))
+            .collect();
+        let mut settings = self.prior_settings()?;
+        settings.retain(|s| !elsewhere.contains(&s.name));
+        Ok(settings)
     }
 
     /// The test sheet's mass, kg (`[model] mass`), if given.
@@ -546,6 +565,22 @@ mod tests {
         let three = sweep.settings(3).unwrap();
         assert_eq!(three.bounds.fixed[2], Some(7.0));
         assert_eq!((three.bounds.lower[6], three.bounds.upper[6]), (5.0, 9.0));
+    }
+
+    /// A prior on k2 in `dof = [1, 2, 3]` failed the 1- and 2-DOF models;
+    /// it applies where k2 exists, and an unknown name still reaches the
+    /// identification's refusal.
+    #[test]
+    fn a_sweep_s_prior_applies_to_the_models_that_have_its_parameter() {
+        let priors = format!("{CASE}\n[priors]\nk2 = {{ value = 6e5 }}\nm9 = \"none\"");
+        let sweep = study("dof = [1, 2, 3]", &priors, Path::new("/study"));
+        let names = |dof| -> Vec<String> {
+            let settings = sweep.settings(dof).unwrap();
+            settings.priors.into_iter().map(|p| p.name).collect()
+        };
+        assert_eq!(names(1), ["m9"]);
+        assert_eq!(names(2), ["m9"]);
+        assert_eq!(names(3), ["k2", "m9"]);
     }
 
     #[test]

@@ -18,7 +18,7 @@
 //! study makes nonlinear starts at [`PROGRESSIVE_SCALE`] or [`YIELD_CRUSH`]
 //! and [`HARDENING`].
 
-use crate::car::{PlanarCar, PlanarError, SideChain, parameter};
+use crate::car::{PlanarCar, PlanarError, SideChain};
 use bumpsim_core::link::{Curve, Link, LinkError, Unloading};
 
 /// A progressive link's start: its cubic term doubles the linear force at
@@ -223,8 +223,13 @@ pub(super) fn rebuilt(
         .map(|c| c.with_name(car.name().map(str::to_string)))
 }
 
+/// A refused `links` setting: its key and what it expects (no value: the
+/// setting is text, and "links = NaN -" stood in the message).
 fn refused(key: &str, expected: &str) -> PlanarError {
-    parameter(key, f64::NAN, "-", expected)
+    PlanarError::Missing {
+        name: key.into(),
+        expected: expected.into(),
+    }
 }
 
 /// A link of `law` with initial slope `k` at the module's default start.
