@@ -4,7 +4,7 @@
 //! ([`bumpsim_impact::impact::simulate`], spec §6) and, with the car's
 //! uncertainty, the results as distributions; with a bumper width the 1-D
 //! car becomes a symmetric planar car ([`crate::planar::widened_impact`]);
-//! `identify` runs the study over its model sizes ([`crate::identify`]);
+//! `identify` runs the study over its model sizes ([`mod@crate::identify`]);
 //! `predict` simulates a study's cases with the car and gives their fits.
 //! No equations here: the mechanism and its energy balance are
 //! `bumpsim_impact`'s.
