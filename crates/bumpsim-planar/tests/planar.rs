@@ -512,6 +512,8 @@ mod coverage;
 mod crash_box;
 #[path = "planar/defaults.rs"]
 mod defaults;
+#[path = "planar/diagnosis.rs"]
+mod diagnosis;
 #[path = "planar/export.rs"]
 mod export;
 #[path = "planar/files.rs"]

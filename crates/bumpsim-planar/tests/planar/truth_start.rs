@@ -142,7 +142,7 @@ fn a_run_started_at_the_truth_does_not_leave_it_for_a_worse_predicting_car() {
 
 /// `car` with both axles' tyres at relaxation length `sigma` (m) and
 /// cornering stiffness `cornering` (N/rad).
-fn with_tyres(car: &PlanarCar, sigma: f64, cornering: f64) -> PlanarCar {
+pub(super) fn with_tyres(car: &PlanarCar, sigma: f64, cornering: f64) -> PlanarCar {
     let mut tyres = *car.tyres();
     for axle in [&mut tyres.front, &mut tyres.rear] {
         axle.relaxation_length = sigma;
