@@ -270,15 +270,23 @@ pub fn identification_summary(
         bumpsim_estimate::text::starts_line(&result.starts, result.iterations, result.run_time)
     );
     s += &prior_lines(result, &parameters);
-    s += "  case fits (x: mean of the sills; yaw from their difference; each replayed from its time zero, in its files' time)\n";
-    let fits = result
+    let fits: Vec<_> = result
         .fits
         .iter()
         .map(|f| (f, "fitted"))
-        .chain(validation.iter().map(|f| (f, "validation")));
+        .chain(validation.iter().map(|f| (f, "validation")))
+        .collect();
+    s += &format!(
+        "  case fits (x: mean of the sills; {}; each replayed from its time zero, in its files' time)\n",
+        match fits.iter().any(|(f, _)| f.yaw_rate_sensor) {
+            true =>
+                "yaw: the yaw-rate sensor integrated where a case has one (marked), else the sills' difference",
+            false => "yaw from their difference",
+        }
+    );
     for (f, kind) in fits {
         s += &format!(
-            "    {:<16} {:<10}  x {:6.2} %   yaw {:6.2} %   peak yaw {:.3} deg   ISO/TS 18571 x {}, yaw {}   from {}\n",
+            "    {:<16} {:<10}  x {:6.2} %   yaw {:6.2} %   peak yaw {:.3} deg   ISO/TS 18571 x {}, yaw {}   from {}{}\n",
             f.name,
             kind,
             f.fit_x,
@@ -286,7 +294,12 @@ pub fn identification_summary(
             f.peak_yaw.to_degrees(),
             rating(&f.rating_x),
             rating(&f.rating_yaw),
-            format_quantity(f.time_zero, Dimension::Time)
+            format_quantity(f.time_zero, Dimension::Time),
+            if f.yaw_rate_sensor {
+                "   (yaw-rate sensor)"
+            } else {
+                ""
+            }
         );
     }
     for w in identification_warnings(result, validation) {

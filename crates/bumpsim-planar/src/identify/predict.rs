@@ -37,6 +37,10 @@ pub struct CaseFit {
     /// Times of the window's first and last sample, s from the replay's
     /// first sample (the plots' time): the span of the fits and ratings.
     pub window: [f64; 2],
+    /// Whether the yaw compared is the case's yaw-rate sensor integrated
+    /// (`true`) or the sills' difference (`false`, not written to JSON).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub yaw_rate_sensor: bool,
 }
 
 impl CaseFit {
@@ -104,6 +108,7 @@ pub fn predict(car: &PlanarCar, case: &PlanarCase) -> Result<Prediction, PlanarE
         rating_yaw: rate(&yaw[1][a..=b], &yaw[0][a..=b], step).ok(),
         time_zero: case.time_zero,
         window: [a, b].map(|k| k as f64 * step),
+        yaw_rate_sensor: case.yaw_rate().is_some(),
     };
     Ok(Prediction {
         time: replay.time,

@@ -281,7 +281,11 @@ fn the_car_file_reads_writes_and_mirrors_links() {
     let e = PlanarCar::parse(&huge, "c.toml".as_ref())
         .unwrap_err()
         .to_string();
-    assert!(e.contains("left: link 2: loading table point"), "{e}");
+    // refused by its count before any point is converted
+    assert!(
+        e.contains("left: link 2") && e.contains("10001 points: at most 10000"),
+        "{e}"
+    );
 }
 
 /// `synth` makes a series of a car whose side members crush (the bundled

@@ -75,6 +75,10 @@ fn a_synthetic_yaw_rate_channel_is_read_weighted_and_followed_by_the_truth() {
             case.name, fit.fit_yaw
         );
         assert!(fit.fit_yaw > 97.0 && fit.fit_x > 99.0, "{fit:?}");
+        // the fit says its yaw is the sensor's, and the summary marks it
+        assert!(fit.yaw_rate_sensor, "{fit:?}");
+        let json = serde_json::to_string(&fit).unwrap();
+        assert!(json.contains("\"yaw_rate_sensor\":true"), "{json}");
     }
 }
 
