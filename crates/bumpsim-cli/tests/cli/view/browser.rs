@@ -24,6 +24,26 @@ impl Drop for Browser {
     }
 }
 
+/// The DevTools WebSocket at `ws`, its handshake tried again when a
+/// signal interrupts it (EINTR: the suite's other tests start and reap
+/// processes meanwhile; seen once in the full run).
+fn connected(ws: &str) -> WebSocket<TcpStream> {
+    let host = ws.trim_start_matches("ws://").split('/').next().unwrap();
+    for attempt in 1.. {
+        let stream = TcpStream::connect(host).unwrap();
+        stream
+            .set_read_timeout(Some(Duration::from_secs(60)))
+            .unwrap();
+        match tungstenite::client(ws, stream) {
+            Ok((socket, _)) => return socket,
+            Err(tungstenite::HandshakeError::Failure(tungstenite::Error::Io(e)))
+                if e.kind() == std::io::ErrorKind::Interrupted && attempt < 5 => {}
+            Err(e) => panic!("DevTools handshake at {ws}: {e}"),
+        }
+    }
+    unreachable!("the loop returns or panics")
+}
+
 impl Browser {
     /// Starts Chromium (window 1280 × 900) with a profile in `dir`.
     pub fn start(chromium: &Path, dir: &Path) -> Browser {
@@ -58,12 +78,7 @@ impl Browser {
         let ws = rx
             .recv_timeout(Duration::from_secs(30))
             .expect("Chromium printed no DevTools address");
-        let host = ws.trim_start_matches("ws://").split('/').next().unwrap();
-        let stream = TcpStream::connect(host).unwrap();
-        stream
-            .set_read_timeout(Some(Duration::from_secs(60)))
-            .unwrap();
-        let (socket, _) = tungstenite::client(ws.as_str(), stream).unwrap();
+        let socket = connected(&ws);
         let mut browser = Browser {
             child,
             socket,
