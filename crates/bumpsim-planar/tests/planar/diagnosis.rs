@@ -15,12 +15,10 @@
 //! `cargo test --release -p bumpsim-planar --test planar
 //! diagnosis::measured -- --ignored --nocapture`.
 
-use super::truth_start::{truth_yielding, with_tyres};
 use bumpsim_planar::PlanarCar;
 use bumpsim_planar::drive::{drive_substeps, substeps};
 use bumpsim_planar::forward::forward;
 use bumpsim_planar::identify::{PlanarCase, Unknowns, identify, predict, priors};
-use bumpsim_planar::study::PlanarStudy;
 
 /// Per quarter of the window, each sensor's Σ w² (ŝ − s)² of `car` on `case`
 /// with the identification's replay step (the template's at 0.25).
@@ -103,31 +101,20 @@ fn measured() {
         let Some(dir) = super::defaults::series(seed) else {
             return;
         };
-        let sheet: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap())
-                .unwrap();
-        let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
-        let cornering = sheet["car"]["tyres"]["cornering_stiffness"]
-            .as_f64()
-            .unwrap();
         // `BUMPSIM_TRUTH_SIGMA` (m, default the search's 1 cm floor): the
         // truth's relaxation length; 0 gives the generator's own law
         // (instantaneous, `μN tanh(C_α α/μN)`), not estimated
         let sigma: f64 = std::env::var("BUMPSIM_TRUTH_SIGMA")
             .map(|s| s.parse().unwrap())
             .unwrap_or(0.01);
-        let truth = with_tyres(&truth_yielding(&study, &sheet), sigma, cornering);
+        let (_, study, truth, mut setup) = super::truth_start::from_the_yielding_truth(&dir, sigma);
         // `BUMPSIM_GENERATOR_BUMPER=1`: the bumper on the generator's 31
         // contact points (1.653 m wide) instead of the study's 32 segments
         let truth = match std::env::var("BUMPSIM_GENERATOR_BUMPER").is_ok() {
             true => generator_bumper(&truth),
             false => truth,
         };
-        let mut setup = study.setup.clone();
         setup.template = truth.clone();
-        setup.starts = 1;
-        setup.staged = false;
-        setup.cornering = true;
         setup.relaxation = sigma > 0.0;
         let run = identify(&study.cases, &setup, &|| {}).unwrap();
         let unknowns = Unknowns::new(&truth, setup.friction, setup.cornering, &study.cases)

@@ -14,6 +14,7 @@
 
 use bumpsim_planar::PlanarCar;
 use bumpsim_planar::forward::forward;
+use bumpsim_planar::identify::Setup as PlanarSetup;
 use bumpsim_planar::identify::{
     CaseFit, LinkLaw, LinkLaws, PlanarCase, Unknowns, identify, predict,
 };
@@ -255,6 +256,29 @@ fn the_off_centre_faces_yaw_is_the_tyres_not_the_side_members_yield() {
     assert!((80.0..90.0).contains(&force), "forward force {force:.2} %");
 }
 
+/// A series' sheet, study and yielding truth (its tyres' C_α, relaxation
+/// length `sigma`), and the set-up of one unstaged start from that truth
+/// with C_α and σ estimated.
+pub(super) fn from_the_yielding_truth(
+    dir: &Path,
+    sigma: f64,
+) -> (serde_json::Value, PlanarStudy, PlanarCar, PlanarSetup) {
+    let sheet: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
+    let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
+    let cornering = sheet["car"]["tyres"]["cornering_stiffness"]
+        .as_f64()
+        .unwrap();
+    let truth = with_tyres(&truth_yielding(&study, &sheet), sigma, cornering);
+    let mut setup = study.setup.clone();
+    setup.template = truth.clone();
+    setup.starts = 1;
+    setup.staged = false;
+    setup.cornering = true;
+    setup.relaxation = true;
+    (sheet, study, truth, setup)
+}
+
 /// One run of the identification with yielding side members started at
 /// the yielding truth with the generator's tyre law (σ at the search's 1 cm
 /// floor, C_α 70 kN/rad; one start, the stated priors, no staging, C_α and
@@ -269,19 +293,7 @@ fn the_off_centre_faces_yaw_is_the_tyres_not_the_side_members_yield() {
 #[test]
 fn a_run_from_the_yielding_truth_stays_near_it() {
     let Some(dir) = series() else { return };
-    let sheet: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
-    let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
-    let cornering = sheet["car"]["tyres"]["cornering_stiffness"]
-        .as_f64()
-        .unwrap();
-    let truth = with_tyres(&truth_yielding(&study, &sheet), 0.01, cornering);
-    let mut setup = study.setup.clone();
-    setup.template = truth.clone();
-    setup.starts = 1;
-    setup.staged = false;
-    setup.cornering = true;
-    setup.relaxation = true;
+    let (_, study, truth, setup) = from_the_yielding_truth(&dir, 0.01);
     let run = identify(&study.cases, &setup, &|| {}).unwrap();
     for p in &run.parameters {
         eprintln!(
@@ -386,20 +398,8 @@ fn runs_from_the_varied_truths_stay_near_them() {
         let Some(dir) = super::defaults::series(seed) else {
             return;
         };
-        let sheet: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap())
-                .unwrap();
-        let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
-        let cornering = sheet["car"]["tyres"]["cornering_stiffness"]
-            .as_f64()
-            .unwrap();
-        let truth = with_tyres(&truth_yielding(&study, &sheet), 0.01, cornering);
-        let mut setup = study.setup.clone();
-        setup.template = truth.clone();
-        setup.starts = 1;
-        setup.staged = false;
-        setup.cornering = true;
-        setup.relaxation = true;
+        let (sheet, study, truth, setup) = from_the_yielding_truth(&dir, 0.01);
+        let cornering = truth.tyres().front.cornering_stiffness;
         let run = identify(&study.cases, &setup, &|| {}).unwrap();
         let scores = |car: &PlanarCar| {
             let mut out = held(car, &study.validation)
