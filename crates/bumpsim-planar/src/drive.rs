@@ -44,7 +44,6 @@
 use crate::car::{PlanarCar, PlanarError, parameter, require};
 use crate::dynamics::{Contact, Model};
 use crate::striker::Placed;
-use crate::wall_cell::{Affine, line_of_action};
 use bumpsim_core::leapfrog::{
     Control, Leapfrog, Mechanism, Stepped, critical_step, substeps as substeps_of,
 };
@@ -69,9 +68,8 @@ pub struct Load {
     /// A load cell of a wall: the cell's width along the wall face, m; its
     /// `anchor` is the cell's centre on the face and its `direction` the
     /// wall's normal. Its line of action is found per step where the car's
-    /// bumper line crushes into the cell (the loading force per length along
-    /// the line at its penetration, [`crate::wall_cell`]), not fixed at the
-    /// cell's centre.
+    /// bumper crushes into the cell (each segment's loading force at its
+    /// penetration), not fixed at the cell's centre.
     pub cell: Option<f64>,
     /// Direction of the force on the car, world frame (normalised on use).
     pub direction: [f64; 2],
@@ -342,7 +340,7 @@ pub fn drive_substeps(
     )?;
     let mut model = model(car);
     model.half_step = 0.5 * input.step / substeps as f64;
-    Replay::new(model, input, car.beam(), substeps).run()
+    Replay::new(model, input, &car.beam().segments, substeps).run()
 }
 
 /// The sensors' readings of a replay of the first `samples` samples only
@@ -357,7 +355,7 @@ pub(crate) fn sensor_readings(
 ) -> Result<Vec<Vec<f64>>, PlanarError> {
     let mut model = model(car);
     model.half_step = 0.5 * input.step / substeps as f64;
-    let mut replay = Replay::new(model, input, car.beam(), substeps);
+    let mut replay = Replay::new(model, input, &car.beam().segments, substeps);
     replay.samples = samples.clamp(2, replay.samples);
     replay.lean = true;
     Ok(replay.run()?.sensor_reading)
@@ -381,9 +379,8 @@ fn model(car: &PlanarCar) -> Model {
 struct Replay<'a> {
     model: Model,
     input: &'a Drive,
-    /// The bumper (its width and its segments' loading curves place a wall
-    /// cell's contact).
-    beam: &'a crate::car::Beam,
+    /// The bumper's segments (their loading curves weigh a wall cell's contact).
+    segments: &'a [bumpsim_impact::bumper::Bumper],
     directions: Vec<[f64; 2]>,
     substeps: usize,
     samples: usize,
@@ -440,7 +437,7 @@ impl<'a> Replay<'a> {
     fn new(
         model: Model,
         input: &'a Drive,
-        beam: &'a crate::car::Beam,
+        segments: &'a [bumpsim_impact::bumper::Bumper],
         substeps: usize,
     ) -> Replay<'a> {
         let directions = input
@@ -472,7 +469,7 @@ impl<'a> Replay<'a> {
             axes: (0.0, 1.0),
             model,
             input,
-            beam,
+            segments,
             directions,
             substeps,
             samples,
@@ -504,32 +501,41 @@ impl<'a> Replay<'a> {
 
     /// Where load `k`, a wall cell `width` wide, meets the bumper at `q`
     /// (yaw's sine and cosine `axes`): the lateral position (body frame, m)
-    /// of the resultant of the bumper line's crush into the cell's band
-    /// ([`crate::wall_cell`]); `None` without a part of the beam in the band.
+    /// of the segments crushed into the cell's band, weighted by their
+    /// loading force at their penetration; the band's segment nearest the
+    /// face when none is crushed; `None` without a segment in the band.
     fn cell_contact(&self, q: &[f64], k: usize, width: f64, (sn, cs): (f64, f64)) -> Option<f64> {
-        let anchor = self.input.loads[k].anchor?;
+        let load = &self.input.loads[k];
+        let anchor = load.anchor?;
         let normal = self.directions[k];
         let tangent = [-normal[1], normal[0]];
         let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
+        let (face, centre) = (dot(normal, anchor), dot(tangent, anchor));
         let (e, n) = ([cs, sn], [-sn, cs]);
-        let world = |eta: f64| {
+        let (mut sum, mut weighted, mut nearest) = (0.0, 0.0, None::<(f64, f64)>);
+        for (segment, &eta) in self.segments.iter().zip(&self.model.segment_y) {
             let b = self.model.bumper_point(q, eta);
-            [
+            let p = [
                 q[0] + b[0] * e[0] + b[1] * n[0],
                 q[1] + b[0] * e[1] + b[1] * n[1],
-            ]
-        };
-        let (p, ahead) = (world(0.0), world(1.0));
-        let dp = [ahead[0] - p[0], ahead[1] - p[1]];
-        let along = Affine {
-            at_zero: dot(tangent, p) - dot(tangent, anchor),
-            slope: dot(tangent, dp),
-        };
-        let depth = Affine {
-            at_zero: dot(normal, anchor) - dot(normal, p),
-            slope: -dot(normal, dp),
-        };
-        line_of_action(&self.beam.segments, self.beam.width, width, along, depth)
+            ];
+            if (dot(tangent, p) - centre).abs() > 0.5 * width {
+                continue;
+            }
+            let depth = face - dot(normal, p);
+            if nearest.is_none_or(|(d, _)| depth > d) {
+                nearest = Some((depth, eta));
+            }
+            if depth > 0.0 {
+                let w = segment.loading_force(depth);
+                sum += w;
+                weighted += w * eta;
+            }
+        }
+        match sum > 0.0 {
+            true => Some(weighted / sum),
+            false => nearest.map(|(_, eta)| eta),
+        }
     }
 
     /// A sensor's body-frame point (ξ, η) at `q`, m, and its acceleration

@@ -73,7 +73,6 @@ pub mod synth;
 pub mod text;
 pub mod tyre;
 pub mod uncertainty;
-mod wall_cell;
 
 pub use car::{PlanarCar, PlanarError};
 pub use result::PlanarResult;

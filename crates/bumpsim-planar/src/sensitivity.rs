@@ -20,14 +20,13 @@
 //! parameters in [`Parameters::links`]), the tyres' lateral
 //! grip (with a sliding grip along the wheel that follows it) and cornering
 //! stiffness, and each load's lateral position. The wheel loads follow the
-//! total mass. A wall cell's line of action is [`crate::wall_cell`]'s
-//! resultant of the bumper line's crush in the cell's band; the loading
-//! curves' slopes in the crush are taken by a central difference
-//! (piecewise linear: exact away from their knees).
+//! total mass. A wall cell's line of action is the crushed segments'
+//! loading-force-weighted position; the weights' slopes in the crush are
+//! taken by a central difference of the segment's loading curve (piecewise
+//! linear: exact away from its knees).
 
 use crate::car::{Axle, Block, GRAVITY, PlanarCar, PlanarError, TyreLaw};
 use crate::drive::{Drive, Sensor};
-use crate::wall_cell::{Affine, line_of_action};
 use bumpsim_core::dual::Real;
 use bumpsim_core::link::{Link as Law, LinkState};
 use bumpsim_impact::bumper::Bumper;
@@ -170,8 +169,6 @@ impl<T: Real> Wheel<T> {
 struct Replay<'a, T> {
     input: &'a Drive,
     segments: &'a [Bumper],
-    /// The bumper's width, m.
-    width: f64,
     body_mass: T,
     yaw_inertia: T,
     masses: Vec<T>,
@@ -183,6 +180,7 @@ struct Replay<'a, T> {
     fronts: [Option<usize>; 2],
     b: f64,
     x_f: f64,
+    segment_y: Vec<f64>,
     wheels: Vec<Wheel<T>>,
     slip: f64,
     half_step: f64,
@@ -272,7 +270,6 @@ impl<'a, T: Real> Replay<'a, T> {
         Replay {
             input,
             segments: &car.beam().segments,
-            width: car.beam().width,
             body_mass: p.body_mass,
             yaw_inertia: p.yaw_inertia,
             masses: p.masses.clone(),
@@ -283,6 +280,9 @@ impl<'a, T: Real> Replay<'a, T> {
             fronts,
             b,
             x_f: body.cg_behind_bumper,
+            segment_y: (0..car.beam().segments.len())
+                .map(|j| car.segment_centre(j))
+                .collect(),
             wheels,
             slip: tyres.slip_speed,
             half_step: 0.5 * input.step / substeps as f64,
@@ -408,21 +408,29 @@ impl<'a, T: Real> Replay<'a, T> {
         let tangent = [-normal[1], normal[0]];
         let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
         let along = |a: [f64; 2], p: [T; 2]| p[0] * a[0] + p[1] * a[1];
-        let world = |eta: f64| {
+        let (face, centre) = (dot(normal, anchor), dot(tangent, anchor));
+        let (mut sum, mut weighted) = (T::constant(0.0), T::constant(0.0));
+        let mut nearest = None::<(f64, f64)>;
+        for (segment, &eta) in self.segments.iter().zip(&self.segment_y) {
             let b = self.bumper_point(q, T::constant(eta));
-            [q[0] + b[0] * cs - b[1] * sn, q[1] + b[0] * sn + b[1] * cs]
-        };
-        let (p, ahead) = (world(0.0), world(1.0));
-        let dp = [ahead[0] - p[0], ahead[1] - p[1]];
-        let across = Affine {
-            at_zero: along(tangent, p) - dot(tangent, anchor),
-            slope: along(tangent, dp),
-        };
-        let depth = Affine {
-            at_zero: -along(normal, p) + dot(normal, anchor),
-            slope: -along(normal, dp),
-        };
-        line_of_action(self.segments, self.width, width, across, depth)
+            let p = [q[0] + b[0] * cs - b[1] * sn, q[1] + b[0] * sn + b[1] * cs];
+            if (along(tangent, p).value() - centre).abs() > 0.5 * width {
+                continue;
+            }
+            let depth = -along(normal, p) + face;
+            if nearest.is_none_or(|(d, _)| depth.value() > d) {
+                nearest = Some((depth.value(), eta));
+            }
+            if depth.value() > 0.0 {
+                let w = loading(segment, depth);
+                sum += w;
+                weighted += w * eta;
+            }
+        }
+        match sum.value() > 0.0 {
+            true => Some(weighted / sum),
+            false => nearest.map(|(_, eta)| T::constant(eta)),
+        }
     }
 
     /// The bumper line's point at η, body frame.
@@ -576,6 +584,15 @@ impl<'a, T: Real> Replay<'a, T> {
             };
         }
     }
+}
+
+/// A segment's loading force at the crush `depth`, with its slope by a
+/// central difference of the loading curve.
+fn loading<T: Real>(segment: &Bumper, depth: T) -> T {
+    let d = depth.value();
+    let h = 1e-9_f64.max(1e-7 * d.abs());
+    let slope = (segment.loading_force(d + h) - segment.loading_force(d - h)) / (2.0 * h);
+    (depth - d) * slope + segment.loading_force(d)
 }
 
 #[cfg(test)]
