@@ -59,6 +59,7 @@
 use bumpsim_core::chain::Drive;
 use bumpsim_estimate::observer::Silent;
 use bumpsim_ident::links::barrier::BarrierSettings;
+use bumpsim_ident::links::weighting::{FLOOR, Weighting};
 use bumpsim_ident::links::{Layout, LinkSettings, identify, text};
 use bumpsim_ident::{Settings, Study, identify as identify_linear};
 use std::path::PathBuf;
@@ -182,24 +183,28 @@ struct Barrier {
 }
 
 /// How the car is identified into the barrier: front knots, second-path
-/// knots (0: none), the rebound link's mass (1-based, 0: none), starts and
-/// the spread of the sheet's mass prior (sd of ln M).
+/// knots (0: none), the rebound link's mass (1-based, 0: none), starts,
+/// the spread of the sheet's mass prior (sd of ln M) and the channels'
+/// weighting (`LINKS_SCALES` overrides it).
 struct Config {
     knots: usize,
     path_knots: usize,
     rebound: usize,
     starts: usize,
     spread: f64,
+    weighting: Weighting,
 }
 
 /// 16 front knots, no second path, no rebound link, 4 starts, the sheet's
-/// mass ±1 %.
+/// mass ±1 %, each channel weighted by its own residual (maximum
+/// likelihood: this one-path car follows the crossmember, not the force).
 const PLAIN: Config = Config {
     knots: 16,
     path_knots: 0,
     rebound: 0,
     starts: 4,
     spread: 0.01,
+    weighting: Weighting::Likelihood,
 };
 
 /// Kamal's two paths with the force's tail: 20 front knots on m1, an
@@ -211,7 +216,28 @@ const TWO_PATHS: Config = Config {
     rebound: 2,
     starts: 12,
     spread: 0.003,
+    weighting: Weighting::Floor(FLOOR),
 };
+
+/// The channels' weighting ([`bumpsim_ident::links::weighting`]):
+/// `LINKS_SCALES=ml` each channel's own residual (maximum likelihood),
+/// `signal` each channel's spread (a floor of 1 for both),
+/// `floor:F,Y` a model-error floor of F of the force's spread and Y of
+/// the crossmember's, `default` the library's (10 % of the force's, 1 % of
+/// the crossmember's: `weighting::FLOOR`); the configuration's otherwise.
+fn weighting(config: &Config) -> Weighting {
+    let var = std::env::var("LINKS_SCALES").unwrap_or_default();
+    match var.as_str() {
+        "ml" => Weighting::Likelihood,
+        "signal" => Weighting::Floor([1.0, 1.0]),
+        floor if floor.starts_with("floor:") => {
+            let f: Vec<f64> = floor[6..].split(',').map(|v| v.parse().unwrap()).collect();
+            Weighting::Floor([f[0], *f.last().unwrap()])
+        }
+        "default" => Weighting::default(),
+        _ => config.weighting.clone(),
+    }
+}
 
 /// The car identified as it ran into the barrier (`links::into_wall`):
 /// the wall force and the crossmember together, the test sheet's 1719 kg
@@ -266,23 +292,8 @@ fn barrier(config: &Config) -> Option<Barrier> {
         sheet_mass: Some((mass, spread)),
         path_start: None,
         rebound_start: None,
-        scales: None,
+        weighting: weighting(config),
     };
-    // LINKS_SCALES=signal: each channel held at its measured signal's
-    // spread (each channel weighed by its fit %), not re-estimated
-    let mut settings = settings;
-    if std::env::var("LINKS_SCALES").as_deref() == Ok("signal") {
-        let spread = |x: &[f64]| {
-            let mean = x.iter().sum::<f64>() / x.len() as f64;
-            (x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / x.len() as f64).sqrt()
-        };
-        let (a, b) = case.window;
-        let domain = case.compare.domain;
-        let y: Vec<f64> = (case.first_compared()..=b)
-            .map(|k| domain.at(&case.measured, k, case.step))
-            .collect();
-        settings.scales = Some(vec![[spread(&case.force[a..=b]), spread(&y)]]);
-    }
     let settings = match std::env::var("LINKS_FROM").as_deref() {
         // one start at the optimum of [`TWO_PATHS`] (its settings, the
         // variables above aside): a polishing of it under this objective
