@@ -61,7 +61,9 @@ pub enum ReadError {
         limit: u64,
     },
     /// A car file larger than [`MAX_CAR_BYTES`].
-    #[error("{path}: {size} bytes, larger than a car file may be ({limit} bytes, MAX_CAR_BYTES; docs/limits.md)")]
+    #[error(
+        "{path}: {size} bytes, larger than a car file may be ({limit} bytes, MAX_CAR_BYTES; docs/limits.md)"
+    )]
     CarTooLarge {
         /// The path.
         path: PathBuf,
