@@ -22,6 +22,15 @@ use std::path::{Path, PathBuf};
 /// samples a channel may have takes about 400 MB). docs/limits.md.
 pub const MAX_FILE_BYTES: u64 = 1 << 30;
 
+/// Largest car file (TOML) bumpsim reads: 4 MiB. A car of the most masses
+/// (1000) with linear links takes about 100 kB, a loading table at its
+/// 10 000-point limit (`bumpsim_core::link::MAX_TABLE_POINTS`) about
+/// 300 kB with units, so a dozen such tables fit. Checked on the file's
+/// size before it is read: a 20 MB table took 8 s of a debug build to parse
+/// (twice: the model's kind, then the car) only to be refused by its point
+/// count. docs/limits.md.
+pub const MAX_CAR_BYTES: u64 = 4 << 20;
+
 /// Most samples (rows) a channel of an input file may hold: 2 000 000,
 /// 200 s at 10 kHz or 20 s at 100 kHz, far beyond a low-speed crash test
 /// (0.1 to 0.3 s; ISO 6487 and NHTSA record at 10 to 20 kHz). Checked while
@@ -48,6 +57,18 @@ pub enum ReadError {
     TooLarge {
         /// The path.
         path: PathBuf,
+        /// The limit, bytes.
+        limit: u64,
+    },
+    /// A car file larger than [`MAX_CAR_BYTES`].
+    #[error(
+        "{path}: {size} bytes, larger than a car file may be ({limit} bytes, MAX_CAR_BYTES; docs/limits.md)"
+    )]
+    CarTooLarge {
+        /// The path.
+        path: PathBuf,
+        /// Its size, bytes.
+        size: u64,
         /// The limit, bytes.
         limit: u64,
     },
@@ -113,6 +134,26 @@ pub fn read_bytes(path: &Path) -> Result<Vec<u8>, ReadError> {
         return Err(too_large());
     }
     Ok(bytes)
+}
+
+/// Refuses a car file larger than [`MAX_CAR_BYTES`] by its size, before
+/// it is read (a path whose size cannot be read passes: its reader says
+/// why).
+pub fn check_car_size(path: &Path) -> Result<(), ReadError> {
+    match std::fs::metadata(path).map(|m| m.len()) {
+        Ok(size) if size > MAX_CAR_BYTES => Err(ReadError::CarTooLarge {
+            path: path.into(),
+            size,
+            limit: MAX_CAR_BYTES,
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// [`read_text`] of a car file, refused first by [`check_car_size`].
+pub fn read_car_text(path: &Path) -> Result<String, ReadError> {
+    check_car_size(path)?;
+    read_text(path)
 }
 
 /// Reads a regular UTF-8 text file of at most [`MAX_FILE_BYTES`] whole.

@@ -183,7 +183,7 @@ fn covered(seed: u64, owner: &str) -> Option<Vec<(&'static str, f64, f64, bool)>
         sheet_mass: Some((total, 0.01)),
         path_start: None,
         rebound_start: None,
-        scales: None,
+        weighting: Default::default(),
     };
     let found =
         bumpsim_ident::links::into_wall::identify(std::slice::from_ref(&case), &settings, &Silent)
@@ -293,7 +293,7 @@ fn a_barrier_fit_started_at_the_truth_stays_and_predicts_no_worse() {
         sheet_mass: Some((total, 0.01)),
         path_start: None,
         rebound_start: None,
-        scales: None,
+        weighting: Default::default(),
     };
     let found =
         bumpsim_ident::links::into_wall::identify(std::slice::from_ref(&case), &settings, &Silent)

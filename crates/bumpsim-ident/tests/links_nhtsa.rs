@@ -20,7 +20,9 @@
 //!
 //! The second test identifies the car as it ran into the barrier
 //! (`links::into_wall`): the wall force and the crossmember in one
-//! likelihood, each channel scaled by its own residual (maximum
+//! objective, each channel scaled by a stated model-error floor (10 % of
+//! the wall force's spread, 1 % of the crossmember's: the default
+//! weighting; the one-path car [`PLAIN`] by its own residual, maximum
 //! likelihood), the sheet's mass as a prior, the front zone a tabulated
 //! curve whose knots follow its reach. Its forward run is the identified
 //! car, so force and ΔV are what it fits (numbers at the tests).
@@ -59,6 +61,7 @@
 use bumpsim_core::chain::Drive;
 use bumpsim_estimate::observer::Silent;
 use bumpsim_ident::links::barrier::BarrierSettings;
+use bumpsim_ident::links::weighting::{FLOOR, Weighting};
 use bumpsim_ident::links::{Layout, LinkSettings, identify, text};
 use bumpsim_ident::{Settings, Study, identify as identify_linear};
 use std::path::PathBuf;
@@ -182,24 +185,28 @@ struct Barrier {
 }
 
 /// How the car is identified into the barrier: front knots, second-path
-/// knots (0: none), the rebound link's mass (1-based, 0: none), starts and
-/// the spread of the sheet's mass prior (sd of ln M).
+/// knots (0: none), the rebound link's mass (1-based, 0: none), starts,
+/// the spread of the sheet's mass prior (sd of ln M) and the channels'
+/// weighting (`LINKS_SCALES` overrides it).
 struct Config {
     knots: usize,
     path_knots: usize,
     rebound: usize,
     starts: usize,
     spread: f64,
+    weighting: Weighting,
 }
 
 /// 16 front knots, no second path, no rebound link, 4 starts, the sheet's
-/// mass ±1 %.
+/// mass ±1 %, each channel weighted by its own residual (maximum
+/// likelihood: this one-path car follows the crossmember, not the force).
 const PLAIN: Config = Config {
     knots: 16,
     path_knots: 0,
     rebound: 0,
     starts: 4,
     spread: 0.01,
+    weighting: Weighting::Likelihood,
 };
 
 /// Kamal's two paths with the force's tail: 20 front knots on m1, an
@@ -211,7 +218,28 @@ const TWO_PATHS: Config = Config {
     rebound: 2,
     starts: 12,
     spread: 0.003,
+    weighting: Weighting::Floor(FLOOR),
 };
+
+/// The channels' weighting ([`bumpsim_ident::links::weighting`]):
+/// `LINKS_SCALES=ml` each channel's own residual (maximum likelihood),
+/// `signal` each channel's spread (a floor of 1 for both),
+/// `floor:F,Y` a model-error floor of F of the force's spread and Y of
+/// the crossmember's, `default` the library's (10 % of the force's, 1 % of
+/// the crossmember's: `weighting::FLOOR`); the configuration's otherwise.
+fn weighting(config: &Config) -> Weighting {
+    let var = std::env::var("LINKS_SCALES").unwrap_or_default();
+    match var.as_str() {
+        "ml" => Weighting::Likelihood,
+        "signal" => Weighting::Floor([1.0, 1.0]),
+        floor if floor.starts_with("floor:") => {
+            let f: Vec<f64> = floor[6..].split(',').map(|v| v.parse().unwrap()).collect();
+            Weighting::Floor([f[0], *f.last().unwrap()])
+        }
+        "default" => Weighting::default(),
+        _ => config.weighting.clone(),
+    }
+}
 
 /// The car identified as it ran into the barrier (`links::into_wall`):
 /// the wall force and the crossmember together, the test sheet's 1719 kg
@@ -266,23 +294,8 @@ fn barrier(config: &Config) -> Option<Barrier> {
         sheet_mass: Some((mass, spread)),
         path_start: None,
         rebound_start: None,
-        scales: None,
+        weighting: weighting(config),
     };
-    // LINKS_SCALES=signal: each channel held at its measured signal's
-    // spread (each channel weighed by its fit %), not re-estimated
-    let mut settings = settings;
-    if std::env::var("LINKS_SCALES").as_deref() == Ok("signal") {
-        let spread = |x: &[f64]| {
-            let mean = x.iter().sum::<f64>() / x.len() as f64;
-            (x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / x.len() as f64).sqrt()
-        };
-        let (a, b) = case.window;
-        let domain = case.compare.domain;
-        let y: Vec<f64> = (case.first_compared()..=b)
-            .map(|k| domain.at(&case.measured, k, case.step))
-            .collect();
-        settings.scales = Some(vec![[spread(&case.force[a..=b]), spread(&y)]]);
-    }
     let settings = match std::env::var("LINKS_FROM").as_deref() {
         // one start at the optimum of [`TWO_PATHS`] (its settings, the
         // variables above aside): a polishing of it under this objective
@@ -413,17 +426,53 @@ fn nhtsa_10146_identified_into_the_barrier_fits_and_predicts_delta_v() {
 }
 
 /// Issue 46's forward force (≥ 90 %) together with the rest, measured
-/// (round 4, exact Jacobian by dual numbers) on [`TWO_PATHS`]: crossmember
-/// 99.48 %, forward force 92.65 %, ΔV 0.24 % off (−18.39 for −18.43 m/s),
-/// the plastic sets with their intervals (front zone 562.0 mm [536.1,
-/// 587.8], second path 744.5 mm [741.0, 748.0], rebound link 13.0 mm
-/// [0.9, 25.1], link 1 0), the masses 1749 kg: +1.8 % over the sheet
-/// (+5.9 sd of its ±0.3 % prior), between the sheet's 1719 kg and the
-/// load cells' impulse over the crossmember's ΔV (1783 kg), as asserted.
-/// The rebound link now acts (gap 686 mm, plateau 217 kN). 28 s in a
-/// release build on the loaded machine; the file's three tests together
-/// 214 s in a debug build at load 20 (round 3, forward differences:
-/// 320 s).
+/// (round 5, the default weighting: a model-error floor of 10 % of the
+/// wall force's spread and 1 % of the crossmember's, `weighting::FLOOR`;
+/// searched under the first start's residual scales, polished under the
+/// floors) on [`TWO_PATHS`]: crossmember 99.70 %, forward force 92.48 %,
+/// ΔV 0.77 % off, the plastic sets with their intervals (front zone
+/// 594.9 mm [569.4, 620.4], second path 741.9 mm [739.1, 744.6], rebound
+/// link 1.1 mm [−11.2, 13.5], link 1 0), the masses 1767 kg: +2.8 % over
+/// the sheet (+9.2 sd of its ±0.3 % prior), between the sheet's 1719 kg
+/// and the load cells' impulse over the crossmember's ΔV (1783 kg), as
+/// asserted. (Round 4, each channel scaled by its own residual: 99.48 %,
+/// 92.65 %, 0.24 %, 1749 kg.)
+///
+/// **The weighting, decided (round 5).** Each row a variant of the round-4
+/// table below (2 masses, seed 1, release build); crossmember fit /
+/// forward force / ΔV off / masses (prior sd); ✗ where the acceptance or
+/// the test's mass bound (−1 %..+3.7 %) fails:
+///
+/// | variant | likelihood (round 4) | floors 10 % / 1 % (the default) | one floor of 5 % | signal spread (round 4) |
+/// |---|---|---|---|---|
+/// | [`TWO_PATHS`] | 99.48 / 92.65 / 0.24 / 1749 | 99.70 / 92.48 / 0.77 / 1767 (+9.2) | 97.24 ✗ / 94.79 / 1.61 / 1801 ✗ | 96.21 ✗ / 93.12 / 2.58 / 1719 |
+/// | no rebound | 99.55 / 88.76 ✗ / 1.48 / 1757 | 99.42 / 90.08 / 1.12 / 1759 (+7.7) | 96.04 ✗ / 93.77 / 0.49 / 1805 ✗ | 96.32 ✗ / 92.25 / 1.72 / 1720 |
+/// | ±0.5 % | 99.76 / 87.82 ✗ / 0.37 / 1778 | 99.53 / 90.22 / 0.89 / 1786 ✗ (+7.7), the front's set without interval ✗ | 97.35 ✗ / 94.40 / 1.76 / 1759 | 96.03 ✗ / 90.30 / 0.37 / 1721 |
+/// | 16 knots | 99.88 / 89.15 ✗ / 0.40 / 1719 | 99.74 / 91.62 / 0.98 / 1723 (+0.7) | 99.07 / 93.72 / 0.19 / 1771 | 94.95 ✗ / 90.72 / 1.98 / 1720 |
+/// | 16 knots, no rebound | 99.02 / 89.82 ✗ / 0.00 / 1732 | 99.38 / 89.35 ✗ / 0.75 / 1760 (+7.9) | 94.84 ✗ / 93.86 / 1.04 / 1816 ✗ | 95.22 ✗ / 90.62 / 1.32 / 1720 |
+/// | 16 knots, ±1 % | 99.84 / 90.22 / 0.48 / 1735 | 99.71 / 91.39 / 0.21 / 1815 ✗ (+5.4) | 95.78 ✗ / 94.36 / 0.08 / 1824 ✗ | 95.23 ✗ / 90.63 / 1.01 / 1726 |
+/// | 16 knots, rebound on m1 | 99.79 / 91.25 / 0.70 / 1734 | 99.73 / 91.81 / 0.54 / 1728 (+1.7) | 97.51 ✗ / 93.04 / 3.79 ✗ / 1750 | 98.36 ✗ / 93.11 / 1.43 / 1719 |
+/// | [`PLAIN`] (one path) | 99.08 / 83.60 ✗ / 0.47 / 1744 | 99.25 / 80.77 ✗ / 0.14 / 1773 (+3.1) | 94.70 ✗ / 88.98 ✗ / 3.53 ✗ / 1843 ✗ | 95.03 ✗ / 91.61 / 0.87 / 1729 |
+/// | [`PLAIN`], rebound on m1 | 96.72 ✗ / 91.51 / 2.20 / 1808 ✗ | 97.53 ✗ / 81.21 ✗ / 0.51 / 1775 | 95.13 ✗ / 89.32 ✗ / 2.30 / 1825 ✗ | – |
+///
+/// On the seven two-path variants the floors hold the crossmember ≥ 99 %
+/// in all seven and the force ≥ 90 % in six (the likelihood three, the
+/// signal spread none at ≥ 99 %); ΔV stays within 1.2 %. Why this rule:
+/// on a crash test the residual is model error, not noise, so each
+/// channel's scale is the error a lumped car is expected to leave in it,
+/// stated (the load cells' sum carries the structure's ripple, the doubly
+/// integrated crossmember is smooth), with the pre-trigger noise in
+/// quadrature; the likelihood instead lets the channel fitted best
+/// outweigh the other, and one floor for both (5 %, or the signal spread
+/// with its prior then dominant) gives up the crossmember. The floors
+/// searched from the start (not under the first start's residual scales)
+/// stopped the 16-knot car at 96.45 % / 76.37 % and [`PLAIN`] at 97.52 % /
+/// 80.91 %. Still open: the masses leave the test's bound in two variants
+/// (the floors weigh the load cells, whose impulse says 1783 kg, more),
+/// one variant's force is 89.35 %, and a third mass (a rate term) was not
+/// measured in time (a 3-mass run did not finish in 15 min on the loaded
+/// machine). [`PLAIN`] keeps the likelihood: one path does not reach 90 %
+/// under any rule, and its test is the crossmember's.
 ///
 /// Where the force was lost (`LINKS_DUMP`, [`PLAIN`], 83.58 %), each
 /// 10 ms window's share of the force's squared error: 0–10 ms 9 % (the
@@ -438,8 +487,8 @@ fn nhtsa_10146_identified_into_the_barrier_fits_and_predicts_delta_v() {
 /// loading curve's nor the rate's.
 ///
 /// The variants (`LINKS_*`; a rebound link on mass j: elastic–perfectly
-/// plastic, plateau `Ft`, slope `kt`, gap `gt`), 2 masses, seed 1,
-/// measured in round 4 with the exact Jacobian (release build, 3–32 s
+/// plastic, plateau `Ft`, slope `kt`, gap `gt`), 2 masses, seed 1, each
+/// channel scaled by its own residual (`LINKS_SCALES=ml`), measured in round 4 with the exact Jacobian (release build, 3–32 s
 /// each); the forward-difference figures of round 3 in brackets where
 /// they differ by more than 0.1 point:
 ///
@@ -492,9 +541,10 @@ fn nhtsa_10146_identified_into_the_barrier_fits_and_predicts_delta_v() {
 /// objective that weighs the wall force as the acceptance does, not more
 /// starts.
 ///
-/// **The trade-off, measured.** With each channel held at its measured
-/// signal's spread instead (`LINKS_SCALES=signal`,
-/// `BarrierSettings.scales`: each channel weighed by its fit %, not
+/// **The trade-off, measured (round 4).** With each channel held at its measured
+/// signal's spread instead (`LINKS_SCALES=signal`, then
+/// `BarrierSettings.scales`, now `Weighting::Floor([1.0, 1.0])`, searched
+/// under those scales: each channel weighed by its fit %, not
 /// re-estimated):
 ///
 /// | configuration | crossmember | forward force | ΔV off | masses (prior sd) |
@@ -512,7 +562,7 @@ fn nhtsa_10146_identified_into_the_barrier_fits_and_predicts_delta_v() {
 /// but the crossmember falls under 99 %: this 2-mass car with two paths
 /// does not reach both figures at once, and the channels' weighting picks
 /// the point on that front. The maximum-likelihood weighting (the
-/// default) sits at the crossmember's end, where the force at 90 % is a
+/// default until round 5) sits at the crossmember's end, where the force at 90 % is a
 /// matter of where the search stops.
 #[test]
 fn nhtsa_10146_identified_into_the_barrier_predicts_the_force() {

@@ -151,9 +151,9 @@ fn read_text(path: &Path) -> Result<String, CarError> {
 }
 
 impl Car {
-    /// Reads a car file.
+    /// Reads a car file (at most `bumpsim_core::files::MAX_CAR_BYTES`).
     pub fn read(path: &Path) -> Result<Car, CarError> {
-        Self::parse(&read_text(path)?, path)
+        Self::parse(&bumpsim_core::files::read_car_text(path)?, path)
     }
 
     /// Reads a model from a car TOML file or, for a `.json` file, from the

@@ -62,6 +62,9 @@ pub enum KindError {
     /// The file cannot be read.
     #[error(transparent)]
     Read(#[from] std::io::Error),
+    /// A car file beyond its size limit, refused before it is parsed.
+    #[error(transparent)]
+    TooLarge(#[from] bumpsim_core::files::ReadError),
     /// The declared kind is not one bumpsim has.
     #[error("{path}: kind = {value:?} is not a model bumpsim has (known: {known})")]
     Unknown {
@@ -97,8 +100,16 @@ impl ModelKind {
 
     /// The kind of the file at `path` in its `role`: the declared one, else
     /// the legacy detection (see the module doc). Fails only when the file
-    /// cannot be read or declares an unknown kind.
+    /// cannot be read, declares an unknown kind or is a car file (TOML)
+    /// beyond `bumpsim_core::files::MAX_CAR_BYTES`.
     pub fn of(path: &Path, role: Role) -> Result<ModelKind, KindError> {
+        let json = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("json"));
+        if role == Role::Car && !json {
+            // before its text is parsed (twice: here and by the model's reader)
+            bumpsim_core::files::check_car_size(path)?;
+        }
         let text = std::fs::read_to_string(path)?;
         Self::of_text(&text, role).map_err(|UnknownKind(value)| KindError::Unknown {
             path: path.display().to_string(),

@@ -372,7 +372,7 @@ impl ChainCar {
         if json {
             return Ok(ChainCar::Linear(crate::car::Car::read_model_file(path)?));
         }
-        let text = bumpsim_core::files::read_text(path)?;
+        let text = bumpsim_core::files::read_car_text(path)?;
         match toml::from_str::<Table>(&text) {
             Ok(table) if has_links(&table) => {
                 Ok(ChainCar::Links(LinkCar::from_table(&table, path)?))

@@ -57,7 +57,8 @@ impl CarModel for Links {
     fn impact(&self, request: &ImpactRequest<'_>) -> Result<Outcome, EngineError> {
         let path = request.car_path()?;
         request.refuse_extras("a car with nonlinear links")?;
-        let text = bumpsim_core::files::read_text(path).map_err(bumpsim_io::car::CarError::from)?;
+        let text =
+            bumpsim_core::files::read_car_text(path).map_err(bumpsim_io::car::CarError::from)?;
         let car = LinkCar::parse(&text, path)?;
         let total: f64 = car.chain.masses().iter().sum();
         let spec = ScenarioSpec {

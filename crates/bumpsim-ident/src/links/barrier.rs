@@ -32,12 +32,17 @@
 //! body's crush with forces `Fp1..FpJ` and an unloading slope `kp`; the
 //! front zone on m1 then plays the engine's path (its table may stay low
 //! over a gap), and the wall force is the sum of both. `s_F` and `s_y` are each
-//! channel's error scale, estimated by its own residuals (maximum
-//! likelihood with an unknown variance per channel, Bard 1974 §4-13): at
-//! the start, and again at the optimum before a polishing run. The model
-//! error, not the sensor's pre-trigger noise, dominates both channels, so
-//! weighting by pre-trigger noise would let the quieter channel
-//! (the doubly integrated crossmember) drown the load cells.
+//! channel's error scale ([`super::weighting`]): by default its noise and
+//! a stated model-error floor (10 % of the measured wall force's spread,
+//! 1 % of the output's: [`super::weighting::FLOOR`]), held fixed, so that
+//! each channel's misfit counts against the error stated for it. The model
+//! error, not the sensor's pre-trigger noise, dominates both channels:
+//! weighting by pre-trigger noise alone would let the quieter channel
+//! (the doubly integrated crossmember) drown the load cells, and each
+//! channel's own residual (maximum likelihood, Bard 1974 §4-13,
+//! [`super::weighting::Weighting::Likelihood`], estimated at the start
+//! and again before each polishing run) lets the channel the model
+//! follows best outweigh the other.
 //!
 //! A rebound link ([`BarrierLayout::rebound`],
 //! [`bumpsim_core::chain::Chain::with_rebound`]) adds in parallel an
@@ -62,6 +67,7 @@
 
 use super::objective::LogParameters;
 use super::objective::jacobian::{Tangent, fill, in_domain};
+use super::weighting::Weighting;
 use super::{Layout, LinkIdentError, LinkSettings};
 use crate::case::LoadCase;
 use bumpsim_core::chain::{Chain, ChainResponse, ChainValues, Drive, Motion};
@@ -535,10 +541,12 @@ pub struct BarrierSettings {
     /// The rebound link's start `[Ft N, kt N/m, gt m]`; None: a plateau
     /// of 0.15 times the largest force, the front's start lowered by it.
     pub rebound_start: Option<[f64; 3]>,
-    /// Each case's channel scales `[s_F N, s_y]` held fixed; None: each
-    /// channel's own residual, re-estimated at each polishing (the
-    /// maximum-likelihood weighting of the module).
-    pub scales: Option<Vec<[f64; 2]>>,
+    /// How each channel's residuals are scaled ([`super::weighting`]):
+    /// by default its noise and a model-error floor of 10 % of the wall
+    /// force's spread and 1 % of the output's; [`Weighting::Likelihood`] re-estimates each
+    /// channel's scale from its residuals, [`Weighting::Given`] holds
+    /// given scales `[s_F N, s_y]` per case.
+    pub weighting: Weighting,
 }
 
 #[cfg(test)]

@@ -37,6 +37,7 @@ pub mod into_wall;
 pub mod objective;
 mod report;
 pub mod verdict;
+pub mod weighting;
 
 use bumpsim_core::chain::{Chain, ChainError};
 use bumpsim_core::link::{Curve, Link, LinkError, Unloading};

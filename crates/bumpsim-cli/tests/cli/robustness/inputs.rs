@@ -186,7 +186,8 @@ fn a_planar_study_s_sensors_model_settings_and_priors() {
 }
 
 /// A links car's loading table (docs/formats.md): the hostile shapes,
-/// and a table beyond its 10 000 points refused before it is converted.
+/// a table beyond its 10 000 points refused before it is converted, and a
+/// car file beyond 4 MiB (`MAX_CAR_BYTES`) by its size before it is parsed.
 #[test]
 fn a_links_car_s_loading_tables() {
     let dir = examples("inputs-links");
@@ -194,8 +195,12 @@ fn a_links_car_s_loading_tables() {
     let table =
         "points = [[\"20 mm\", \"60 kN\"], [\"120 mm\", \"110 kN\"], [\"400 mm\", \"140 kN\"]]";
     assert!(car.contains(table));
-    // (a million points are refused alike; reading their 20 MB takes 8 s
-    // of a debug build on a loaded machine)
+    // a million points (20 MB): refused by the file's size, before its
+    // TOML is parsed (that took 8 s of a debug build, twice)
+    let huge: Vec<String> = (1..=1_000_000)
+        .map(|i| format!("[{}e-6, {}]", i, 1000 + i))
+        .collect();
+    let huge = format!("points = [{}]", huge.join(", "));
     let many: Vec<String> = (1..=100_000)
         .map(|i| format!("[{}e-6, {}]", i, 1000 + i))
         .collect();
@@ -232,6 +237,10 @@ fn a_links_car_s_loading_tables() {
         (
             many.as_str(),
             "h.toml: link 2: points: 100000 points: at most 10000",
+        ),
+        (
+            huge.as_str(),
+            "bytes, larger than a car file may be (4194304 bytes, MAX_CAR_BYTES; docs/limits.md)",
         ),
     ] {
         std::fs::write(dir.join("h.toml"), car.replacen(table, points, 1)).unwrap();
