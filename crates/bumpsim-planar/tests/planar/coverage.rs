@@ -9,7 +9,12 @@
 //! ±15–20 %, log-normal) under noise of its own, so the model family's
 //! offset differs between seeds as it does between real cars. Each series
 //! is identified as its study says (stated priors, staged search) with
-//! [`STARTS`] starts instead of 16.
+//! [`STARTS`] starts instead of 16, **and the tyres' law estimated** (C_α
+//! and σ, `cornering = relaxation = true`) **under a stated prior on σ**
+//! ([`relaxation_prior`]): the study's choice for a car whose tyres nobody
+//! measured, made explicit here (the default turns them on only with a
+//! yaw-rate sensor, docs/planar.md "Defaults chosen by evidence"; these
+//! series carry sills and side members); why below.
 //!
 //! The generator's car is not bumpsim's, so only the parameters with a
 //! one-to-one meaning are compared: the total mass (the body and both
@@ -75,6 +80,59 @@
 //! 9 of 9 (|z| ≤ 1.07), the yaw inertia 7 of 9 (z −2.01 to 1.42), but on
 //! seeds 1 and 9 it lands 19–20 % high with z 6.7 and 7.4 (another basin
 //! or a bound, not looked into).
+//!
+//! **Seeds 1 and 9: a bound, not a basin** (debug build, 16 starts,
+//! `coverage::measured`, 2026-11-29). With C_α and σ estimated and no
+//! prior on σ, σ runs to its 2 m upper bound on both (the search's 0.01–2 m), 16 of
+//! 16 starts there (the staged search funnels them), and I_z rises with it
+//! along a valley the data hardly see; pinned at its truth (a prior of
+//! spread 0.005), the search ends at σ 0.47 m and a *lower* data objective:
+//!
+//! | seed | free: I_z/truth, σ, F | I_z pinned: σ, F | the yaw prior's centre a b M / truth |
+//! |---|---|---|---|
+//! | 1 | 1.189, 2.00 m, 9.482e-4 m² | 0.47 m, 9.459e-4 m² | 1.25 (2.2 of its sd) |
+//! | 9 | 1.199, 2.00 m, 5.741e-4 m² | 0.47 m, 5.402e-4 m² | 1.43 (3.5 of its sd) |
+//!
+//! What the search minimises adds the priors, and the yaw inertia's (a b M,
+//! spread 0.10) lies far above these two cars' truths, so the valley's far
+//! end wins. Not a second optimum of the data and not a missed basin (16
+//! starts find the same point): the intervals then hold σ at its bound and
+//! leave out the I_z–σ trade (SE 2 % on a 19 % error). A stated prior on σ
+//! (bumpsim's 0.4 m, about a passenger tyre's radius; 0.2–0.8 m as ±2 sd,
+//! read as the cornering stiffness's range is) keeps σ off the bound and
+//! puts the trade into the intervals: seeds 1 and 9 at 1.095 (z 1.83) and
+//! 1.132 (z 2.88), σ 0.48 and 0.53 m (truth 0.55), 4 starts.
+//!
+//! The generator draws I_z with a log-sd of 0.15 around 2050 kg·m²,
+//! independent of the mass: dynamic indices of about 0.70–1.30 at ±2 sd,
+//! wider than the prior's stated 0.8–1.2 (Milliken). A Bayesian interval
+//! covers at its rate over cars drawn from its prior; a car far outside it
+//! (seed 9, index ≈ 0.70) is pulled towards a b M, which is the prior
+//! saying what it was told. Neither changed here.
+//!
+//! **Measured with the tyres estimated and the σ prior** (2026-11-29, debug
+//! build, 4 starts, ~40-90 s an identification on a machine at load 20;
+//! the seeds the generator wrote in time):
+//!
+//! | | covered | RMS z | median θ̂/θ |
+//! |---|---|---|---|
+//! | total mass | 13 of 13 | 0.81 | 1.000 (1.00–1.00) |
+//! | yaw inertia | 12 of 13 | 1.33 | 0.993 (0.91–1.13) |
+//! | grip, against the sliding level | 13 of 13 | 1.00 | 0.935 (0.75–1.26) |
+//!
+//! Seeds 0–10, 25 and 26: 38 of 39 (97.4 %), inside 85–99 % but on 13
+//! cars, not 50 (the generator wrote ~1 series in 4 min under that load;
+//! `BUMPSIM_COVERAGE_DIR=<folder> BUMPSIM_COVERAGE_FIRST=k
+//! BUMPSIM_COVERAGE_SERIES=n` runs the seeds a folder holds). The one miss
+//! is seed 9's yaw inertia (1.132, z 2.88), the car far below its prior
+//! (above). Against the fixed tyres on seeds 0–19 (49 of 60): the yaw
+//! inertia's median ratio 0.970 → 0.993 and its standard errors 4–6 %
+//! instead of 1–2 %, σ and C_α now in its covariance; no model-error term
+//! was added (none is needed at this count, and one would push the share
+//! above 99 %). On seeds 0–4 and 9 σ ends 0.39–0.53 m (truth 0.55) and C_α
+//! 0.43–0.85 of the truth, both flagged "not determined by the data: its
+//! interval is mostly its prior's": the data do not pin the tyres, and the
+//! yaw inertia's interval now says what that costs it.
 
 use bumpsim_planar::identify::{PlanarIdentification, identify};
 use bumpsim_planar::study::PlanarStudy;
@@ -236,7 +294,7 @@ fn coverage(first: usize, count: usize) -> Option<(usize, usize)> {
 /// The full count: 50 series (`BUMPSIM_COVERAGE_SERIES` fewer, from seed
 /// `BUMPSIM_COVERAGE_FIRST`); 85–99 % of the intervals cover the truth.
 #[test]
-#[ignore = "issue 44: measured 49 of 60 on seeds 0-19 (81.7 %; yaw inertia 12/20, RMS z 1.83; grip 17/20, 1.21), 120 of 150 on 50 seeds with the grip's peak: see the module; writing 50 series takes 20-60 min of Python"]
+#[ignore = "issue 44: with the tyres estimated under a σ prior, 38 of 39 on 13 seeds (97.4 %; yaw inertia 12/13, RMS z 1.33; grip 13/13, 1.00; mass 13/13); the fixed tyres gave 49 of 60 on seeds 0-19: see the module; writing 50 series takes 20-60 min of Python"]
 fn the_intervals_cover_an_independent_generators_truth() {
     let var = |name: &str, default: usize| {
         std::env::var(name)
@@ -319,8 +377,14 @@ fn measured() {
         let truths = [
             ("body.yaw_inertia", truth_iz),
             ("tyres.mu_lateral", mu),
-            ("tyres.cornering_stiffness", tyre["cornering_stiffness"].as_f64().unwrap()),
-            ("tyres.relaxation_length", tyre["relaxation_length"].as_f64().unwrap()),
+            (
+                "tyres.cornering_stiffness",
+                tyre["cornering_stiffness"].as_f64().unwrap(),
+            ),
+            (
+                "tyres.relaxation_length",
+                tyre["relaxation_length"].as_f64().unwrap(),
+            ),
         ];
         let priored: f64 = r.objective
             + r.prior_noise * r.prior_noise * r.priors.iter().map(|m| m.z * m.z).sum::<f64>();
