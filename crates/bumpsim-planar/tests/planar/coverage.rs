@@ -9,7 +9,12 @@
 //! ±15–20 %, log-normal) under noise of its own, so the model family's
 //! offset differs between seeds as it does between real cars. Each series
 //! is identified as its study says (stated priors, staged search) with
-//! [`STARTS`] starts instead of 16.
+//! [`STARTS`] starts instead of 16, **and the tyres' law estimated** (C_α
+//! and σ, `cornering = relaxation = true`) **under a stated prior on σ**
+//! ([`relaxation_prior`]): the study's choice for a car whose tyres nobody
+//! measured, made explicit here (the default turns them on only with a
+//! yaw-rate sensor, docs/planar.md "Defaults chosen by evidence"; these
+//! series carry sills and side members); why below.
 //!
 //! The generator's car is not bumpsim's, so only the parameters with a
 //! one-to-one meaning are compared: the total mass (the body and both
@@ -75,6 +80,60 @@
 //! 9 of 9 (|z| ≤ 1.07), the yaw inertia 7 of 9 (z −2.01 to 1.42), but on
 //! seeds 1 and 9 it lands 19–20 % high with z 6.7 and 7.4 (another basin
 //! or a bound, not looked into).
+//!
+//! **Seeds 1 and 9: a bound, not a basin** (debug build, 16 starts,
+//! `coverage::measured`, 2026-11-29). With C_α and σ estimated and no
+//! prior on σ, σ runs to its 2 m upper bound on both (the search's 0.01–2 m), 16 of
+//! 16 starts there (the staged search funnels them), and I_z rises with it
+//! along a valley the data hardly see; pinned at its truth (a prior of
+//! spread 0.005), the search ends at σ 0.47 m and a *lower* data objective:
+//!
+//! | seed | free: I_z/truth, σ, F | I_z pinned: σ, F | the yaw prior's centre a b M / truth |
+//! |---|---|---|---|
+//! | 1 | 1.189, 2.00 m, 9.482e-4 m² | 0.47 m, 9.459e-4 m² | 1.25 (2.2 of its sd) |
+//! | 9 | 1.199, 2.00 m, 5.741e-4 m² | 0.47 m, 5.402e-4 m² | 1.43 (3.5 of its sd) |
+//!
+//! What the search minimises adds the priors, and the yaw inertia's (a b M,
+//! spread 0.10) lies far above these two cars' truths, so the valley's far
+//! end wins. Not a second optimum of the data and not a missed basin (16
+//! starts find the same point): the intervals then hold σ at its bound and
+//! leave out the I_z–σ trade (SE 2 % on a 19 % error). A stated prior on σ
+//! (bumpsim's 0.4 m, about a passenger tyre's radius; 0.2–0.8 m as ±2 sd,
+//! read as the cornering stiffness's range is) keeps σ off the bound and
+//! puts the trade into the intervals: seeds 1 and 9 at 1.095 (z 1.83) and
+//! 1.132 (z 2.88), σ 0.48 and 0.53 m (truth 0.55), 4 starts.
+//!
+//! The generator draws I_z with a log-sd of 0.15 around 2050 kg·m²,
+//! independent of the mass: dynamic indices of about 0.70–1.30 at ±2 sd,
+//! wider than the prior's stated 0.8–1.2 (Milliken). A Bayesian interval
+//! covers at its rate over cars drawn from its prior; a car far outside it
+//! (seed 9, index ≈ 0.70) is pulled towards a b M, which is the prior
+//! saying what it was told. Neither changed here.
+//!
+//! **Measured with the tyres estimated and the σ prior** (2026-11-29, debug
+//! build, 4 starts, ~40-90 s an identification on a machine at load 20;
+//! the seeds the generator wrote in time):
+//!
+//! | | covered | RMS z | median θ̂/θ |
+//! |---|---|---|---|
+//! | total mass | 18 of 18 | 0.76 | 1.000 (1.00–1.00) |
+//! | yaw inertia | 16 of 18 | 1.28 | 0.972 (0.88–1.13) |
+//! | grip, against the sliding level | 18 of 18 | 0.92 | 0.931 (0.75–1.26) |
+//!
+//! Seeds 0–15, 25 and 26: 52 of 54 (96.3 %), inside 85–99 % but on 18
+//! cars, not 50 (the generator wrote ~1 series in 4 min under that load;
+//! `BUMPSIM_COVERAGE_DIR=<folder> BUMPSIM_COVERAGE_FIRST=k
+//! BUMPSIM_COVERAGE_SERIES=n` runs the seeds a folder holds). The misses
+//! are the yaw inertia of seed 9 (1.132, z 2.88), the car far below its
+//! prior (above), and of seed 14 (0.875, z −1.99). Against the fixed tyres
+//! on seeds 0–19 (49 of 60): the yaw inertia's median ratio stays 0.97
+//! (0.970 then), its standard errors are 4–6 % instead of 1–2 %, σ and C_α
+//! now in its covariance; no model-error term
+//! was added (none is needed at this count, and one would push the share
+//! above 99 %). On seeds 0–4 and 9 σ ends 0.39–0.53 m (truth 0.55) and C_α
+//! 0.43–0.85 of the truth, both flagged "not determined by the data: its
+//! interval is mostly its prior's": the data do not pin the tyres, and the
+//! yaw inertia's interval now says what that costs it.
 
 use bumpsim_planar::identify::{PlanarIdentification, identify};
 use bumpsim_planar::study::PlanarStudy;
@@ -147,6 +206,19 @@ fn total_mass(r: &PlanarIdentification) -> (f64, Option<[f64; 2]>) {
     (total, Some([total * (-half).exp(), total * half.exp()]))
 }
 
+/// A stated prior on the tyres' relaxation length σ: bumpsim's default
+/// 0.4 m (about a passenger tyre's radius), 0.2–0.8 m as ±2 standard
+/// deviations of ln σ (the cornering stiffness's range is read the same
+/// way). See the module: without it σ runs to its 2 m bound on some seeds.
+fn relaxation_prior() -> bumpsim_estimate::stated::PriorSetting {
+    bumpsim_estimate::stated::PriorSetting {
+        name: "tyres.relaxation_length".into(),
+        removed: false,
+        value: Some(bumpsim_planar::car::RELAXATION_LENGTH),
+        spread: Some(4f64.ln() / 4.0),
+    }
+}
+
 /// The compared quantities of the series in `dir` (total mass, yaw
 /// inertia, grip), identified as its study says with [`STARTS`] starts.
 fn compared(dir: &Path) -> [Covered; 3] {
@@ -154,6 +226,9 @@ fn compared(dir: &Path) -> [Covered; 3] {
         serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
     let mut study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
     study.setup.starts = STARTS;
+    study.setup.cornering = true;
+    study.setup.relaxation = true;
+    study.setup.priors.push(relaxation_prior());
     let r = identify(&study.cases, &study.setup, &|| {}).unwrap();
     let named = |name: &str, truth: f64| {
         let p = r.parameters.iter().find(|p| p.name == name).unwrap();
@@ -186,7 +261,10 @@ fn compared(dir: &Path) -> [Covered; 3] {
 /// The coverage of seeds `first .. first + count`, printed per quantity
 /// with its RMS z: (covered, compared).
 fn coverage(first: usize, count: usize) -> Option<(usize, usize)> {
-    let dir = series(first, count)?;
+    let dir = match std::env::var("BUMPSIM_COVERAGE_DIR") {
+        Ok(d) => PathBuf::from(d),
+        Err(_) => series(first, count)?,
+    };
     let names = ["total mass", "yaw inertia", "lateral grip"];
     let clock = std::time::Instant::now();
     let mut all: Vec<[Covered; 3]> = Vec::new();
@@ -217,7 +295,7 @@ fn coverage(first: usize, count: usize) -> Option<(usize, usize)> {
 /// The full count: 50 series (`BUMPSIM_COVERAGE_SERIES` fewer, from seed
 /// `BUMPSIM_COVERAGE_FIRST`); 85–99 % of the intervals cover the truth.
 #[test]
-#[ignore = "issue 44: measured 49 of 60 on seeds 0-19 (81.7 %; yaw inertia 12/20, RMS z 1.83; grip 17/20, 1.21), 120 of 150 on 50 seeds with the grip's peak: see the module; writing 50 series takes 20-60 min of Python"]
+#[ignore = "issue 44: with the tyres estimated under a σ prior, 52 of 54 on 18 seeds (96.3 %; yaw inertia 16/18, RMS z 1.28; grip 18/18, 0.92; mass 18/18); the fixed tyres gave 49 of 60 on seeds 0-19: see the module; writing 50 series takes 20-60 min of Python"]
 fn the_intervals_cover_an_independent_generators_truth() {
     let var = |name: &str, default: usize| {
         std::env::var(name)
@@ -234,4 +312,116 @@ fn the_intervals_cover_an_independent_generators_truth() {
     };
     let share = covered as f64 / total as f64;
     assert!((0.85..=0.99).contains(&share), "{covered} of {total}");
+}
+
+/// The measurement behind the module's tyre question (ignored; release):
+/// each seed of `BUMPSIM_COVERAGE_SEEDS` (comma-separated, default
+/// `1,9,0,7`) of the series in `BUMPSIM_COVERAGE_DIR` (default: written
+/// under the target's tmp folder) identified with `BUMPSIM_COVERAGE_STARTS`
+/// starts (default [`STARTS`]), the tyres' C_α and σ estimated unless
+/// `BUMPSIM_COVERAGE_TYRES=0`, and with `BUMPSIM_COVERAGE_PIN=1` the yaw
+/// inertia pinned at its truth by a prior of spread 0.005: printed, each
+/// estimate against the truth, the data objective, the priored total
+/// `F + s² Σ z²` (the search's objective) and the starts at the best.
+#[test]
+#[ignore = "a measurement: minutes per seed"]
+fn measured() {
+    let var = |name: &str| std::env::var(name).ok();
+    let seeds: Vec<usize> = var("BUMPSIM_COVERAGE_SEEDS")
+        .unwrap_or("1,9,0,7".into())
+        .split(',')
+        .filter_map(|s| s.trim().parse().ok())
+        .collect();
+    let starts = var("BUMPSIM_COVERAGE_STARTS").and_then(|s| s.parse().ok());
+    let tyres = var("BUMPSIM_COVERAGE_TYRES").is_none_or(|v| v != "0");
+    let pin = var("BUMPSIM_COVERAGE_PIN").is_some_and(|v| v == "1");
+    let sigma = var("BUMPSIM_COVERAGE_SIGMA").is_some_and(|v| v == "1");
+    let dir = match var("BUMPSIM_COVERAGE_DIR") {
+        Some(d) => PathBuf::from(d),
+        None => {
+            let last = seeds.iter().max().copied().unwrap_or(0);
+            let Some(d) = series(0, last + 1) else {
+                return;
+            };
+            d
+        }
+    };
+    for k in seeds {
+        let here = dir.join(format!("seed-{k}"));
+        let sheet: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(here.join("series.json")).unwrap())
+                .unwrap();
+        let mut study = PlanarStudy::read(&here.join("study.toml")).unwrap();
+        study.setup.starts = starts.unwrap_or(STARTS);
+        study.setup.cornering = tyres;
+        study.setup.relaxation = tyres;
+        let truth_iz = sheet["yaw_inertia"].as_f64().unwrap();
+        if sigma {
+            study.setup.priors.push(relaxation_prior());
+        }
+        if pin {
+            study
+                .setup
+                .priors
+                .push(bumpsim_estimate::stated::PriorSetting {
+                    name: "body.yaw_inertia".into(),
+                    removed: false,
+                    value: Some(truth_iz),
+                    spread: Some(0.005),
+                });
+        }
+        let clock = std::time::Instant::now();
+        let r = identify(&study.cases, &study.setup, &|| {}).unwrap();
+        let shape = sheet["car"]["tyres"]["shape"].as_f64().unwrap();
+        let mu = sheet["mu"].as_f64().unwrap() * (shape * std::f64::consts::FRAC_PI_2).sin();
+        let tyre = &sheet["car"]["tyres"];
+        let truths = [
+            ("body.yaw_inertia", truth_iz),
+            ("tyres.mu_lateral", mu),
+            (
+                "tyres.cornering_stiffness",
+                tyre["cornering_stiffness"].as_f64().unwrap(),
+            ),
+            (
+                "tyres.relaxation_length",
+                tyre["relaxation_length"].as_f64().unwrap(),
+            ),
+        ];
+        let priored: f64 = r.objective
+            + r.prior_noise * r.prior_noise * r.priors.iter().map(|m| m.z * m.z).sum::<f64>();
+        eprintln!(
+            "seed {k} ({} starts, tyres {tyres}, σ prior {sigma}, pin {pin}, {:.0} s): F {:.5e} m², priored {:.5e} m², s {:.3e} m, τ {:.1}, best {}/{} ({} alone)",
+            study.setup.starts,
+            clock.elapsed().as_secs_f64(),
+            r.objective,
+            priored,
+            r.prior_noise,
+            r.inflation,
+            r.starts.reached_best,
+            r.starts.total,
+            r.starts.reached_best_alone
+        );
+        for (name, truth) in truths {
+            if let Some(p) = r.parameters.iter().find(|p| p.name == name) {
+                let z = Covered {
+                    value: p.value,
+                    interval: p.ci95,
+                    truth,
+                }
+                .z();
+                eprintln!(
+                    "  {name}: {:.4e} (truth {truth:.4e}, ratio {:.3}, 95 % {:?}, z {z:.2?})",
+                    p.value,
+                    p.value / truth,
+                    p.ci95
+                );
+            }
+        }
+        for m in &r.priors {
+            eprintln!("  prior {}: z {:.2}", m.name, m.z);
+        }
+        for w in &r.warnings {
+            eprintln!("  warning: {w}");
+        }
+    }
 }
