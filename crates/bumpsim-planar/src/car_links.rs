@@ -163,7 +163,83 @@ pub fn describe(link: &Link) -> String {
     }
 }
 
+/// The most a step load's force is amplified in a hardening link: a load
+/// F applied at once to a spring `F_L = k3 δ³` peaks where
+/// `k3 δ⁴/4 = F δ`, at `F_L = 4 F` (a linear spring's: `2 F`).
+pub const DYNAMIC_FACTOR: f64 = 4.0;
+
+/// The crush at which `curve` carries `force` (N), when that is below its
+/// progressive limit; `None` for any other curve or a force beyond the limit.
+fn reach(curve: &Curve, force: f64) -> Option<f64> {
+    let Curve::Progressive { limit, .. } = *curve else {
+        return None;
+    };
+    if !(force > 0.0 && force < curve.force(limit)) {
+        return None;
+    }
+    // bisection: the loading curve rises monotonically from 0
+    let (mut low, mut high) = (0.0, limit);
+    for _ in 0..64 {
+        let mid = 0.5 * (low + high);
+        match curve.force(mid) < force {
+            true => low = mid,
+            false => high = mid,
+        }
+    }
+    Some(high)
+}
+
+/// `link` with its progressive limit lowered to the crush at which it
+/// carries `force` (N), where that is below the limit; else `link`.
+fn within(link: &Link, force: f64) -> Result<Link, PlanarError> {
+    let Curve::Progressive {
+        stiffness, cubic, ..
+    } = *link.curve()
+    else {
+        return Ok(link.clone());
+    };
+    let Some(crush) = reach(link.curve(), force) else {
+        return Ok(link.clone());
+    };
+    Curve::progressive(stiffness, cubic, crush)
+        .and_then(|c| Link::new(c, link.unloading()))
+        .map_err(|e| parameter("limit", crush, "m", &e.to_string()))
+}
+
 impl PlanarCar {
+    /// The car as loads of at most `force` in all (N) can load its side
+    /// members, for the critical step of a replay under such loads
+    /// ([`crate::drive::substeps`]): each progressive link's limit lowered
+    /// to the crush at which it carries [`DYNAMIC_FACTOR`] × `force`,
+    /// where that is below its limit (past the limit the curve continues
+    /// along its tangent, so the link's steepest slope becomes the one the
+    /// loads can reach). Not a car to run: the links' curves beyond that
+    /// crush differ. (A progressive link's limit, 0.3 m by default, is
+    /// far past the crush of a low-speed test: its slope there, 109 times
+    /// the initial one at the identification's default start, made the
+    /// replays of issue 46's progressive series take five integration
+    /// steps per 0.3 ms sample; at the loads' reach they take one or two.)
+    pub fn within_force(&self, force: f64) -> Result<PlanarCar, PlanarError> {
+        let side = |chain: &SideChain| -> Result<SideChain, PlanarError> {
+            if chain.links.is_empty() {
+                return Ok(chain.clone());
+            }
+            let links = chain
+                .links
+                .iter()
+                .map(|l| within(l, DYNAMIC_FACTOR * force))
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok(SideChain::linked(
+                chain.masses.clone(),
+                chain.dampers.clone(),
+                links,
+            ))
+        };
+        let (left, right) = (side(self.left())?, side(self.right())?);
+        PlanarCar::new(self.body, left, right, self.beam.clone(), self.tyres)
+            .and_then(|c| c.with_crash_boxes(self.crash_boxes()))
+    }
+
     /// The symmetric planar car of a 1-D chain with nonlinear links
     /// ([`bumpsim_core::chain::Chain`], no front link): as
     /// [`PlanarCar::symmetric`], the last mass the body and the other
@@ -202,5 +278,45 @@ impl PlanarCar {
         )
         .scaled(0.5)?;
         PlanarCar::new(car.body, side.clone(), side, car.beam, car.tyres)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A car of one progressive link a side, `F = k δ + k3 δ³` up to 0.3 m.
+    fn progressive() -> PlanarCar {
+        let (k, k3) = (1.5e6, 6e8);
+        let link = Link::new(Curve::progressive(k, k3, 0.3).unwrap(), Unloading::Elastic).unwrap();
+        let chain = Chain::new(vec![8.0, 1200.0], vec![1500.0], vec![link]).unwrap();
+        let bumper = Bumper::three_part(3e6, 1e12, 3e6).unwrap();
+        PlanarCar::symmetric_links(&chain, &bumper, &Layout::default()).unwrap()
+    }
+
+    #[test]
+    fn a_force_bounds_the_progressive_links_slope_and_so_the_replay_step() {
+        let car = progressive();
+        let force = 6e4;
+        let within = car.within_force(force).unwrap();
+        for (link, original) in within.left().links.iter().zip(&car.left().links) {
+            let Curve::Progressive { limit, .. } = *link.curve() else {
+                panic!("a progressive link: {link:?}")
+            };
+            // the limit now carries four times the force (the half car's link)
+            let carried = original.curve().force(limit);
+            assert!(
+                (carried - DYNAMIC_FACTOR * force).abs() < 1e-6 * carried,
+                "{carried} N at {limit} m"
+            );
+            assert!(limit < 0.3 && link.steepest_slope() < original.steepest_slope());
+        }
+        let step = 3e-4;
+        let fewer = crate::drive::substeps(&within, step, 0.25).unwrap();
+        let limit = crate::drive::substeps(&car, step, 0.25).unwrap();
+        assert!(fewer < limit, "{fewer} against {limit} steps per sample");
+        // a force beyond the limit's, or none, leaves the car as it is
+        assert_eq!(car.within_force(1e12).unwrap(), car);
+        assert_eq!(car.within_force(0.0).unwrap(), car);
     }
 }

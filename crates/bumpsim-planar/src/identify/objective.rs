@@ -7,7 +7,10 @@
 //! [`bumpsim_estimate::difference`] with step 1e-6 in ln θ, only for
 //! unknowns that module does not know). The
 //! replay's steps are fixed per template car, so the objective does not
-//! jump where a trial car's own step would change.
+//! jump where a trial car's own step would change: the template's
+//! critical step with its progressive links' slopes at the crush the
+//! case's loads can reach ([`crate::car::PlanarCar::within_force`]), not
+//! at their limits.
 
 use super::{PlanarCase, Unknowns};
 use crate::car::PlanarError;
@@ -62,7 +65,8 @@ impl Clone for Objective<'_> {
 
 impl<'a> Objective<'a> {
     /// The problem, each case replayed with the step of the template at a
-    /// safety factor of [`REPLAY_SAFETY`].
+    /// safety factor of [`REPLAY_SAFETY`] (its progressive links as the
+    /// case's loads can crush them).
     pub fn new(cases: &[PlanarCase], unknowns: &'a Unknowns) -> Result<Objective<'a>, PlanarError> {
         let spacing = unknowns.template().beam().side_member_spacing;
         let cases: Vec<PlanarCase> = cases.iter().map(|c| merged(c, 0.5 * spacing)).collect();
@@ -72,7 +76,10 @@ impl<'a> Objective<'a> {
             .sum();
         let substeps = cases
             .iter()
-            .map(|c| substeps(unknowns.template(), c.drive.step, REPLAY_SAFETY))
+            .map(|c| {
+                let reach = unknowns.template().within_force(peak_load(c))?;
+                substeps(&reach, c.drive.step, REPLAY_SAFETY)
+            })
             .collect::<Result<_, _>>()?;
         let slots = jacobian::slots(unknowns, &cases);
         Ok(Objective {
@@ -180,6 +187,22 @@ impl LeastSquares for Objective<'_> {
         let residuals = |q: &[f64], out: &mut [f64]| self.residuals(q, out);
         forward_jacobian(p, r, 1e-6, &residuals, jac)
     }
+}
+
+/// The largest sum of `case`'s load magnitudes at one sample, N: the most
+/// its replay pushes on the car ([`crate::car::PlanarCar::within_force`]).
+fn peak_load(case: &PlanarCase) -> f64 {
+    let loads = &case.drive.loads;
+    let samples = loads.iter().map(|l| l.force.len()).max().unwrap_or(0);
+    (0..samples)
+        .map(|k| {
+            loads
+                .iter()
+                .filter_map(|l| l.force.get(k))
+                .map(|f| f.abs())
+                .sum::<f64>()
+        })
+        .fold(0.0, f64::max)
 }
 
 /// `case` with each group of three or more loads that act on the bumper

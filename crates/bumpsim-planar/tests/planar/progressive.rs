@@ -236,8 +236,7 @@ fn acceptance(dir: &Path) {
 
 /// Issue 46's acceptance on this generator's series (see [`acceptance`]).
 ///
-/// Measured (release build, 191 s under load 15; 53 min in the debug
-/// build): held-out offset yaw 95.93 % (✓), forward offset force 81.94 %
+/// Measured: held-out offset yaw 95.94 % (✓), forward offset force 81.93 %
 /// (✓; linear links 72.18 %; the generator's first version, whose contact
 /// no bumpsim bumper represents: 96.74 % / 60.72 %). The verdict says
 /// "nonlinear", decided by the held-out tests: OFFSET40 run forward from
@@ -245,13 +244,20 @@ fn acceptance(dir: &Path) {
 /// against the linear car's 73.45 %; NARROW-OFFSET, which has no striker,
 /// is replayed (52.74 % against 52.70 %: the measured forces drive it);
 /// the means 66.97 % against 63.08 %. The training BIC alone would say
-/// "linear" (−162.1 against −173.3 on 14.4 effective of 3795 residuals,
+/// "linear" (−162.0 against −173.2 on 14.4 effective of 3795 residuals,
 /// τ = 264 samples): the nonlinear car's training objective is 3.9 %
 /// *higher* than the linear one's, though it holds it — its priors weigh
 /// more than its data (1.68e-3 against 1.18e-3 m²), see
 /// [`without_their_priors_the_cubic_terms_leave_their_start`].
+///
+/// Run by the suite: both acceptances together took 99 s wall (30 s of CPU)
+/// in the test build under load 18, the series already written (its
+/// generator: about 14 s of CPU each). They took 191 s and 125 s in a
+/// release build and 53 and 41 min in the test build before the replay's
+/// step followed the loads' reach ([`bumpsim_planar::PlanarCar::within_force`]:
+/// five integration steps per sample became one or two) and the test
+/// build optimised `bumpsim-planar` (the workspace's Cargo.toml).
 #[test]
-#[ignore = "issue 46 acceptance: yaw 95.93 %, force 81.94 %, verdict nonlinear by the held-out forward run (81.20 vs 73.45 %); 191 s in release, 53 min in debug; run with --ignored"]
 fn progressive_side_members_predict_the_held_out_offset_test() {
     let Some(dir) = series() else { return };
     acceptance(&dir);
@@ -261,17 +267,15 @@ fn progressive_side_members_predict_the_held_out_offset_test() {
 /// right side members 30 % stiffer (a stronger left/right asymmetry), so
 /// that nothing passes by being tuned to one draw of the generator.
 ///
-/// Measured (release build, 125 s under load 15; 41 min in the debug
-/// build): held-out offset yaw 95.78 % (✓), forward offset force 82.27 %
+/// Measured: held-out offset yaw 95.78 % (✓), forward offset force 82.27 %
 /// (✓; linear links 72.62 %); the verdict "nonlinear", decided by the
 /// held-out tests (OFFSET40 forward 81.27 % against 73.62 %, NARROW-OFFSET
 /// replayed 53.03 % against 52.93 %; means 67.15 % against 63.27 %; the
-/// BIC alone: −174.2 against −185.5, linear, on 15.0 effective residuals).
+/// BIC alone: −174.3 against −185.6, linear, on 15.0 effective residuals).
 /// The cubic terms stay near their start (6.0e8–6.4e8 N/m³ against the
 /// truth's 2.6e9–3.8e9), the initial slopes rise to make up (3.0e6
 /// against 1.1e6 N/m).
 #[test]
-#[ignore = "issue 46 acceptance on a varied series (seed 7, right side 1.3x): yaw 95.78 %, force 82.27 %, verdict nonlinear by the held-out forward run (81.27 vs 73.62 %); 125 s in release, 41 min in debug; run with --ignored"]
 fn progressive_side_members_predict_a_varied_series() {
     let args = ["--seed", "7", "--right-stiffness", "1.3"];
     let Some(dir) = series_of("planar-progressive-varied", &args) else {
@@ -388,7 +392,7 @@ fn offset_of(study: &PlanarStudy, setup: &Setup, label: &str) -> (PlanarIdentifi
 /// Measured (202 s in release under load 15): it stays near the truth (the
 /// cubic terms within 0.17 prior sd of it, 2.5e9–4.1e9 N/m³), held-out
 /// offset yaw 95.18 %, forward force 85.71 % (the truth itself: 88.55 %;
-/// from the lab's start: 81.94 %). Its data objective, 1.23e-3 m², is
+/// from the lab's start: 81.93 %). Its data objective, 1.23e-3 m², is
 /// *higher* than the lab start's optimum (1.18e-3): the training tests do
 /// not prefer the true cubic terms, see the next test.
 #[test]
@@ -413,7 +417,7 @@ fn started_at_the_truth_the_progressive_fit_predicts_the_offset_test() {
 /// release under load 15): the left ones run to their upper bound (6e11,
 /// 1000 times the start), the right ones to their lower (6e5), none
 /// determined; the held-out offset yaw stays 94.38 % (the replay), the
-/// forward force falls to 13.98 % (81.94 % with the priors). The data
+/// forward force falls to 13.98 % (81.93 % with the priors). The data
 /// objective is 1.28e-3 m² (1.18e-3 with them): no better a fit.
 #[test]
 #[ignore = "issue 46 item 3, the cubic terms without their priors run to their bounds: 602 s in release; run with --ignored"]
