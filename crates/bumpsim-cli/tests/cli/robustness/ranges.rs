@@ -131,3 +131,36 @@ fn a_prior_s_spread_is_refused_beyond_its_range_and_printed_with_its_digits() {
     );
     assert!(!printed.contains("± 0.000"), "{printed}");
 }
+
+/// A links car (docs/formats.md): a negative progressive limit was refused
+/// as a `limit_force` below a negative product (the wrong key), and a
+/// hardening of 1e300 was quoted with its 301 digits.
+#[test]
+fn a_links_car_s_limit_and_hardening_are_named() {
+    let dir = examples("ranges-links");
+    let car = std::fs::read_to_string(dir.join("ex/links/car.toml")).unwrap();
+    for (old, new, needle) in [
+        (
+            "limit = \"300 mm\"",
+            "limit = \"-300 mm\"",
+            "h.toml: link 1: limit: -0.3 m: must be positive",
+        ),
+        (
+            "hardening = 0.05",
+            "hardening = 1e300",
+            "h.toml: front link: hardening = 1e300 : the hardening ratio must lie in 0..=1",
+        ),
+    ] {
+        assert!(car.contains(old), "{old}");
+        std::fs::write(dir.join("h.toml"), car.replacen(old, new, 1)).unwrap();
+        let args = [
+            "impact",
+            "--car",
+            "h.toml",
+            "--barrier",
+            "--speed",
+            "15 km/h",
+        ];
+        refused(&dir, &args, needle);
+    }
+}
