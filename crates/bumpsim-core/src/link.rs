@@ -68,7 +68,7 @@ use crate::dual::Real;
 #[non_exhaustive]
 pub enum LinkError {
     /// A parameter is out of its range.
-    #[error("{parameter} = {value} {unit}: {requirement}")]
+    #[error("{parameter} = {} {unit}: {requirement}", crate::units::short(*value))]
     Value {
         /// The parameter (`stiffness`, `yield_force`, ...).
         parameter: &'static str,

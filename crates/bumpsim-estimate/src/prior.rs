@@ -383,6 +383,16 @@ pub fn moved(priors: &[Prior], p: &[f64]) -> Vec<Moved> {
         .collect()
 }
 
+/// A spread (sd of ln θ) as the prior lines print it: three decimals from
+/// 0.01 on (`0.010`, `1.151`), three significant digits below, so that a
+/// tight prior reads `1.00e-6` rather than `0.000`.
+pub fn spread_text(spread: f64) -> String {
+    match spread >= 0.01 {
+        true => format!("{spread:.3}"),
+        false => bumpsim_core::units::format_number(spread, 3),
+    }
+}
+
 /// One line per prior: `prior body.yaw_inertia: 2137 ± 20 % (the car's
 /// geometry) -> 2290 (moved +0.36 sd)`, a warning where |z| > [`MOVED_FAR`];
 /// values printed by `format` (the model's units).
@@ -399,10 +409,10 @@ pub fn text(moved: &[Moved], format: &dyn Fn(&str, f64) -> String) -> String {
                 false => "",
             };
             format!(
-                "prior {}: {} ± {:.3} (ln){source} -> {} (moved {:+.2} sd){far}\n",
+                "prior {}: {} ± {} (ln){source} -> {} (moved {:+.2} sd){far}\n",
                 m.name,
                 format(&m.name, m.centre),
-                m.spread,
+                spread_text(m.spread),
                 format(&m.name, m.estimate),
                 m.z
             )
@@ -698,5 +708,25 @@ mod tests {
         assert_relative_eq!(noise(8.0, 10, 2, 1.0), 1.0);
         assert_relative_eq!(noise(8.0, 10, 2, 4.0), 2.0);
         assert!(noise(0.0, 10, 2, 1.0) > 0.0);
+    }
+
+    #[test]
+    fn a_tight_spread_prints_its_digits() {
+        // issue 44's hostile pass: a spread of 1e-6 printed "± 0.000"
+        assert_eq!(spread_text(1e-6), "1.00e-6");
+        assert_eq!(spread_text(0.005), "0.00500");
+        // the recorded outputs' spreads print as before
+        assert_eq!(spread_text(0.01), "0.010");
+        assert_eq!(spread_text(1.1513), "1.151");
+        let moved = Moved {
+            name: "m".into(),
+            centre: 2.0,
+            spread: 1e-6,
+            source: String::new(),
+            estimate: 2.0,
+            z: 0.0,
+        };
+        let line = text(&[moved], &|_, v| format!("{v} kg"));
+        assert!(line.contains("± 1.00e-6 (ln)"), "{line}");
     }
 }

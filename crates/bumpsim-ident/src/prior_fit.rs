@@ -163,8 +163,8 @@ impl Posed {
         for (j, prior) in prior::prior_only(&self.priors, &log_sd) {
             u.determined[free[j]] = Some(false);
             warnings.push(format!(
-                "{} not determined by the data: its interval is mostly its prior's ({}, spread {:.3} of ln θ)",
-                prior.name, prior.source, prior.spread
+                "{} not determined by the data: its interval is mostly its prior's ({}, spread {} of ln θ)",
+                prior.name, prior.source, prior::spread_text(prior.spread)
             ));
         }
         (u, moved, warnings)

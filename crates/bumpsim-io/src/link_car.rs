@@ -139,11 +139,17 @@ fn curve(at: &At<'_>, table: &Table) -> Result<Curve, CarError> {
         "progressive" => {
             let (k, limit) = (k()?, at.quantity(table, "limit", Dimension::Length)?);
             let top = at.quantity(table, "limit_force", Dimension::Force)?;
-            if !(limit > 0.0 && top >= k * limit) {
+            // a negative limit was refused as a limit_force below a
+            // negative product (the wrong key; round 5's hostile pass)
+            if limit.is_nan() || limit <= 0.0 {
+                let given = bumpsim_core::units::short(limit);
+                return Err(at.error("limit", format!("{given} m: must be positive")));
+            }
+            if top.is_nan() || top < k * limit {
                 return Err(at.error(
                     "limit_force",
                     format!(
-                        "{top} N: must be at least stiffness × limit = {} N (limit > 0)",
+                        "{top} N: must be at least stiffness × limit = {} N",
                         k * limit
                     ),
                 ));

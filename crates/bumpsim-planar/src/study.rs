@@ -69,7 +69,7 @@ use crate::presets::StrikerFields;
 use bumpsim_core::channel::Channel;
 use bumpsim_core::names::check_names;
 use bumpsim_core::units::{Dimension, parse_quantity};
-use bumpsim_io::mass::{EXPECTED, sheet_mass};
+use bumpsim_io::mass::{EXPECTED, quoted, sheet_mass};
 use bumpsim_io::speed::{SpeedError, speed_value};
 use bumpsim_signal::loader::{ChannelSource, LoadError, Loader};
 use bumpsim_signal::process::Resampling;
@@ -202,7 +202,10 @@ impl PlanarStudy {
             .model
             .mass
             .as_ref()
-            .map(|m| sheet_mass(m).ok_or_else(|| error(format!("[model] mass = {m}: {EXPECTED}"))))
+            .map(|m| {
+                sheet_mass(m)
+                    .ok_or_else(|| error(format!("[model] mass = {}: {EXPECTED}", quoted(m))))
+            })
             .transpose()?;
         let mut setup = Setup {
             starts: file.model.starts.unwrap_or(defaults.starts),

@@ -14,6 +14,7 @@ use crate::util::{copy_tree, root};
 mod commit;
 mod flags;
 mod inputs;
+mod ranges;
 mod refusals;
 mod silent;
 

@@ -171,7 +171,11 @@ impl Study {
             Some(mass) => Ok(Some(mass)),
             None => Err(StudyError::File {
                 path: self.path.clone(),
-                message: format!("[model] mass = {value}: {}", bumpsim_io::mass::EXPECTED),
+                message: format!(
+                    "[model] mass = {}: {}",
+                    bumpsim_io::mass::quoted(value),
+                    bumpsim_io::mass::EXPECTED
+                ),
             }),
         }
     }

@@ -5,7 +5,7 @@
 //! estimated on a log scale (bad input gets a clear error naming the case
 //! and the parameter).
 
-use super::{MAX_STARTS, PlanarCase, Setup, Unknowns};
+use super::{MAX_SPREAD, MAX_STARTS, PlanarCase, Setup, Unknowns};
 use crate::car::{PlanarError, parameter};
 use crate::drive::Sensor;
 
@@ -24,8 +24,9 @@ pub(super) fn check(cases: &[PlanarCase], setup: &Setup) -> Result<Unknowns, Pla
             &format!("1 to {MAX_STARTS}"),
         );
     }
-    if !(setup.spread.is_finite() && setup.spread > 1.0) {
-        return setting("spread", setup.spread, "1", "a finite factor above 1");
+    if !(setup.spread.is_finite() && setup.spread > 1.0 && setup.spread <= MAX_SPREAD) {
+        let expected = format!("a factor above 1, at most {MAX_SPREAD:e} (MAX_SPREAD)");
+        return setting("spread", setup.spread, "1", &expected);
     }
     if let Some(m) = setup.mass.filter(|m| !(m.is_finite() && *m > 0.0)) {
         return setting("mass", m, "kg", "the test sheet's mass must be positive");

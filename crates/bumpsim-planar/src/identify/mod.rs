@@ -321,6 +321,11 @@ pub fn parameters_of(result: &PlanarIdentification) -> Vec<Parameter> {
 /// Most starts of one planar identification.
 pub const MAX_STARTS: usize = 10_000;
 
+/// The largest factor the random starts are drawn within (`[model]
+/// spread`): six decades each way of the start already reach past every
+/// car (a spread of 1e300 drew starts of 0 and ∞ that failed, exit 0).
+pub const MAX_SPREAD: f64 = 1e6;
+
 /// Identifies the planar car from `cases`; `observer` hears of every
 /// finished start (from any thread; a closure `|| bar.inc(1)` is one).
 pub fn identify(
@@ -486,8 +491,8 @@ fn prior_only(priored: &Priored<Objective>, theta: &[f64], u: &mut Uncertainty) 
         .map(|(i, prior)| {
             u.determined[i] = Some(false);
             format!(
-                "{} not determined by the data: its interval is mostly its prior's ({}, spread {:.3} of ln θ)",
-                prior.name, prior.source, prior.spread
+                "{} not determined by the data: its interval is mostly its prior's ({}, spread {} of ln θ)",
+                prior.name, prior.source, bumpsim_estimate::prior::spread_text(prior.spread)
             )
         })
         .collect()

@@ -9,7 +9,7 @@ use crate::integrate::{cumulative_trapezoid, derivative};
 use crate::window::ContactThreshold;
 use bumpsim_core::channel::{Channel, ChannelCode};
 use bumpsim_core::series::{SeriesError, UniformSeries, WINDOW_TOLERANCE};
-use bumpsim_core::units::{Dimension, format_quantity};
+use bumpsim_core::units::{Dimension, format_quantity, short};
 use serde::Deserialize;
 
 /// A Butterworth low-pass step.
@@ -242,7 +242,9 @@ impl Context<'_> {
         let (first, last) = (s.start() - 0.5 * s.step(), s.end() + 0.5 * s.step());
         if !pretrigger && (t0 < first || t1 > last) {
             return Err(self.range(format!(
-                "the bias window [{t0}, {t1}] s reaches beyond the record, {} s to {} s",
+                "the bias window [{}, {}] s reaches beyond the record, {} s to {} s",
+                short(t0),
+                short(t1),
                 s.start(),
                 s.end()
             )));
@@ -255,7 +257,11 @@ impl Context<'_> {
         if picked.is_empty() {
             return Err(self.range(match pretrigger {
                 true => "no samples before t = 0 (no pre-trigger)".into(),
-                false => format!("no samples in the bias window [{t0}, {t1}] s"),
+                false => format!(
+                    "no samples in the bias window [{}, {}] s",
+                    short(t0),
+                    short(t1)
+                ),
             }));
         }
         let mean = picked.iter().sum::<f64>() / picked.len() as f64;
