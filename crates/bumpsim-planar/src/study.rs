@@ -69,6 +69,7 @@ use crate::presets::StrikerFields;
 use bumpsim_core::channel::Channel;
 use bumpsim_core::names::check_names;
 use bumpsim_core::units::{Dimension, parse_quantity};
+use bumpsim_estimate::domain::UnknownDomain;
 use bumpsim_io::mass::{EXPECTED, sheet_mass};
 use bumpsim_io::speed::{SpeedError, speed_value};
 use bumpsim_signal::loader::{ChannelSource, LoadError, Loader};
@@ -85,6 +86,16 @@ struct StudyFile {
     model: ModelFile,
     case: Vec<CaseFile>,
     priors: Option<toml::Table>,
+    identification: Option<IdentificationFile>,
+}
+
+/// The `[identification]` table, as the 1-D study's.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct IdentificationFile {
+    /// Where the accelerometers are compared: `"displacement"` (the
+    /// thesis's), `"velocity"` or `"acceleration"`.
+    objective: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -226,6 +237,12 @@ impl PlanarStudy {
                     crate::study_priors::settings(table).map_err(|e| error(e.to_string()))?
                 }
                 None => Vec::new(),
+            },
+            domain: match file.identification.and_then(|i| i.objective) {
+                Some(name) => name
+                    .parse()
+                    .map_err(|e: UnknownDomain| error(format!("[identification] {e}")))?,
+                None => defaults.domain,
             },
             ..defaults
         };

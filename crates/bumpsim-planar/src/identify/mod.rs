@@ -68,6 +68,7 @@ mod unknowns;
 use crate::car::{Body, PlanarCar, PlanarError, SideChain};
 use crate::drive::{Drive, Sensor};
 use bumpsim_core::units::Dimension;
+pub use bumpsim_estimate::domain::Domain;
 use bumpsim_estimate::lm::{self, LeastSquares};
 use bumpsim_estimate::multistart::{Searched, Starts};
 use bumpsim_estimate::observer::Observer;
@@ -165,6 +166,10 @@ pub struct Setup {
     /// runs once the car is identified ([`crate::bumper_fit::identified`]);
     /// false: the template's bumper.
     pub bumper: bool,
+    /// Where the accelerometers are compared (module `objective`):
+    /// displacement (the thesis's, m²), velocity or acceleration; the
+    /// yaw-rate sensor and displacement channels as measured.
+    pub domain: Domain,
 }
 
 impl Setup {
@@ -182,6 +187,7 @@ impl Setup {
             priors: Vec::new(),
             staged: true,
             bumper: false,
+            domain: Domain::Displacement,
         }
     }
 }
@@ -332,7 +338,7 @@ pub fn identify(
     let unknowns = check::check(cases, setup)?;
     let stated = priors(&unknowns, setup)?;
     let (lower, upper) = unknowns.bounds(&unknowns.start());
-    let objective = Objective::new(cases, &unknowns)?;
+    let objective = Objective::new(cases, &unknowns, setup.domain)?;
     let plan = staged::Plan {
         unknowns: &unknowns,
         priors: &stated,
@@ -464,7 +470,7 @@ fn summarise(
     };
     let checks = plausible::checks(&result, setup);
     result.warnings.extend(checks);
-    result.reduction = advice(cases, unknowns, &result);
+    result.reduction = advice(cases, unknowns, &result, setup.domain);
     if let Some(r) = &result.reduction {
         result.warnings.push(r.statement.clone());
     }
@@ -515,6 +521,7 @@ fn advice(
     cases: &[PlanarCase],
     unknowns: &Unknowns,
     result: &PlanarIdentification,
+    domain: Domain,
 ) -> Option<Reduction> {
     let parameters = unknowns.parameters();
     let theta: Vec<f64> = result.parameters.iter().map(|e| e.value).collect();
@@ -535,6 +542,7 @@ fn advice(
         car: &result.car,
         unknowns: &located,
         solver: solver(),
+        domain,
     };
     bumpsim_estimate::reduce::suggest(&car, &full)
 }

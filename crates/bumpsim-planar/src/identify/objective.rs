@@ -14,6 +14,7 @@ use crate::car::PlanarError;
 use crate::drive::Load;
 use crate::drive::{sensor_readings, substeps};
 use bumpsim_estimate::difference::forward_jacobian;
+use bumpsim_estimate::domain::Domain;
 use bumpsim_estimate::lm::LeastSquares;
 use bumpsim_estimate::uncertainty::Series;
 use nalgebra::DMatrix;
@@ -44,6 +45,8 @@ pub(crate) struct Objective<'a> {
     /// The last point evaluated without its Jacobian and its residuals: LM
     /// asks for the Jacobian at a trial point it has just evaluated.
     last: Mutex<Option<(Vec<f64>, Vec<f64>)>>,
+    /// Where the accelerometers are compared ([`compared`]).
+    domain: Domain,
 }
 
 /// A clone starts with no remembered point (one per solver run).
@@ -56,6 +59,7 @@ impl Clone for Objective<'_> {
             substeps: self.substeps.clone(),
             slots: self.slots.clone(),
             last: Mutex::new(None),
+            domain: self.domain,
         }
     }
 }
@@ -63,7 +67,11 @@ impl Clone for Objective<'_> {
 impl<'a> Objective<'a> {
     /// The problem, each case replayed with the step of the template at a
     /// safety factor of [`REPLAY_SAFETY`].
-    pub fn new(cases: &[PlanarCase], unknowns: &'a Unknowns) -> Result<Objective<'a>, PlanarError> {
+    pub fn new(
+        cases: &[PlanarCase],
+        unknowns: &'a Unknowns,
+        domain: Domain,
+    ) -> Result<Objective<'a>, PlanarError> {
         let spacing = unknowns.template().beam().side_member_spacing;
         let cases: Vec<PlanarCase> = cases.iter().map(|c| merged(c, 0.5 * spacing)).collect();
         let count = cases
@@ -82,6 +90,7 @@ impl<'a> Objective<'a> {
             substeps,
             slots,
             last: Mutex::new(None),
+            domain,
         })
     }
 
@@ -135,7 +144,104 @@ impl<'a> Objective<'a> {
                 }
             }
         }
+        compared(&self.cases, self.domain, r);
+        debiased(&self.cases, self.domain, r);
         r.iter().all(|v| v.is_finite())
+    }
+}
+
+/// EXPERIMENT (`BUMPSIM_PLANAR_BIAS_PRIOR` = a factor c): each case's
+/// accelerometer bias b a nuisance value with the prior `N(0, σ²/n)` of a
+/// pre-trigger mean over n = 200 samples of 100 µs, profiled out:
+/// `min_b ‖r − b g‖² + κ b²` with g the bias's reading in `domain` and
+/// `κ = c n s²`, s the accelerometer's per-sample noise in `domain` over
+/// the window for a unit σ; `r ← r − (1 − √(κ/(G+κ))) (ĝ·r) ĝ`.
+fn bias_prior() -> Option<f64> {
+    std::env::var("BUMPSIM_PLANAR_BIAS_PRIOR")
+        .ok()
+        .and_then(|v| v.parse::<f64>().ok())
+}
+
+fn debiased(cases: &[PlanarCase], domain: Domain, r: &mut [f64]) {
+    let Some(factor) = bias_prior() else { return };
+    let (pre, raw) = (200.0, 1e-4);
+    let mut at = 0;
+    for case in cases {
+        let (n, sensors) = (case.window.1 - case.window.0 + 1, case.measured.len());
+        let h = case.drive.step;
+        let duration = h * (n - 1) as f64;
+        let unit = crate::cases::domain_noise(1.0, raw, duration, 2 - domain.order());
+        let kappa = factor * pre * unit * unit;
+        // the bias's reading b t²/2 for b = 1, in `domain`
+        let mut g: Vec<f64> = (0..n)
+            .map(|k| {
+                let t = (case.window.0 + k) as f64 * h;
+                0.5 * t * t
+            })
+            .collect();
+        differenced(&mut g, (0, 1, n), domain.order(), h);
+        let gg: f64 = g.iter().map(|v| v * v).sum();
+        if gg <= 0.0 {
+            at += sensors * n;
+            continue;
+        }
+        let cut = 1.0 - (kappa / (gg + kappa)).sqrt();
+        for (s, sensor) in case.drive.sensors.iter().enumerate() {
+            if sensor.integrations() != 2 {
+                continue;
+            }
+            let rg: f64 = (0..n).map(|k| r[at + k * sensors + s] * g[k]).sum();
+            for (k, gk) in g.iter().enumerate() {
+                r[at + k * sensors + s] -= cut * rg / gg * gk;
+            }
+        }
+        at += sensors * n;
+    }
+}
+
+/// `r` (the displacement-domain residuals, or one Jacobian column) in
+/// `domain` ([`bumpsim_estimate::domain`]): per case, each accelerometer's
+/// series (integrated twice, [`crate::drive::Sensor::integrations`])
+/// differenced `order` times over the case's step within the window (its
+/// first `order` samples, which have no predecessor in the window, set to
+/// 0), every other sensor (yaw rate, displacement) left as measured with
+/// its weight rescaled from the accelerometers' displacement-domain noise
+/// to theirs in `domain` ([`crate::cases::domain_noise`]; `√6 / D` in
+/// velocity over a window of `D` s). Linear in `r`, so the Jacobian's
+/// columns transform alike. A constant accelerometer bias `b` reads as
+/// `b t²/2` in displacement, `b t` in velocity, `b` in acceleration.
+fn compared(cases: &[PlanarCase], domain: Domain, r: &mut [f64]) {
+    let order = domain.order();
+    if order == 0 {
+        return;
+    }
+    let mut at = 0;
+    for case in cases {
+        let (n, sensors) = (case.window.1 - case.window.0 + 1, case.measured.len());
+        let h = case.drive.step;
+        let duration = h * (n - 1) as f64;
+        let scale = crate::cases::domain_noise(1.0, h, duration, order)
+            / crate::cases::domain_noise(1.0, h, duration, 2);
+        for (s, sensor) in case.drive.sensors.iter().enumerate() {
+            if sensor.integrations() != 2 {
+                (0..n).for_each(|k| r[at + k * sensors + s] *= scale);
+                continue;
+            }
+            differenced(r, (at + s, sensors, n), order, h);
+        }
+        at += sensors * n;
+    }
+}
+
+/// The series `r[start + k stride]`, `k < n`, differenced `order` times
+/// over `h` in place, backward; its first `order` samples 0.
+fn differenced(r: &mut [f64], (start, stride, n): (usize, usize, usize), order: usize, h: f64) {
+    let i = |k: usize| start + k * stride;
+    for pass in 0..order.min(n) {
+        for k in (pass + 1..n).rev() {
+            r[i(k)] = (r[i(k)] - r[i(k - 1)]) / h;
+        }
+        r[i(pass)] = 0.0;
     }
 }
 
@@ -167,7 +273,7 @@ impl LeastSquares for Objective<'_> {
         drop(last);
         if let Some(slots) = &self.slots {
             let theta = self.unknowns.theta(p);
-            return jacobian::jacobian(
+            let done = jacobian::jacobian(
                 self.unknowns,
                 &self.cases,
                 &self.substeps,
@@ -175,6 +281,16 @@ impl LeastSquares for Objective<'_> {
                 &theta,
                 jac,
             );
+            if self.domain.order() > 0 || bias_prior().is_some() {
+                let mut column = vec![0.0; jac.nrows()];
+                for j in 0..jac.ncols() {
+                    column.copy_from_slice(jac.column(j).as_slice());
+                    compared(&self.cases, self.domain, &mut column);
+                    debiased(&self.cases, self.domain, &mut column);
+                    jac.column_mut(j).copy_from_slice(&column);
+                }
+            }
+            return done;
         }
         // forward differences, step 1e-6 in `p`
         let residuals = |q: &[f64], out: &mut [f64]| self.residuals(q, out);
@@ -238,4 +354,30 @@ fn merged(case: &PlanarCase, b: f64) -> PlanarCase {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::differenced;
+
+    /// A bias's displacement `t²/2` (two interleaved series, stride 2)
+    /// differenced once reads `t − h/2`, twice `1`; the other series and
+    /// the first `order` samples are left as stated.
+    #[test]
+    fn a_bias_reads_as_its_velocity_and_acceleration() {
+        let h = 1e-3;
+        let series = |k: usize| 0.5 * (k as f64 * h).powi(2);
+        let mut r: Vec<f64> = (0..10).flat_map(|k| [series(k), -1.0]).collect();
+        let mut once = r.clone();
+        differenced(&mut once, (0, 2, 10), 1, h);
+        differenced(&mut r, (0, 2, 10), 2, h);
+        for k in 1..10 {
+            let t = k as f64 * h;
+            assert!((once[2 * k] - (t - 0.5 * h)).abs() < 1e-12, "{once:?}");
+            assert_eq!(once[2 * k + 1], -1.0);
+        }
+        assert_eq!(once[0], 0.0);
+        assert!(r[4..].iter().step_by(2).all(|v| (v - 1.0).abs() < 1e-9));
+        assert_eq!((r[0], r[2]), (0.0, 0.0));
+    }
 }

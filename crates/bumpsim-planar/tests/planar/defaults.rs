@@ -228,3 +228,49 @@ fn the_tyres_law_is_estimated_by_default_with_a_yaw_rate_sensor() {
     );
     assert_eq!(read("study-doc.toml", false), (true, true));
 }
+
+/// Issue 44 item 2, the planar objective's domain chosen by evidence: the
+/// documented study (`study-doc.toml`) of every series of `BUMPSIM_SEEDS`
+/// (default `0,1,2,3`) identified with its accelerometers compared in each
+/// domain of `BUMPSIM_DOMAINS` (default `displacement,velocity`), one table
+/// row each, with the crash boxes' identified elastic stiffness. A
+/// measurement, not a check: it asserts only finite scores.
+/// `cargo test --release -p bumpsim-planar --test planar
+/// defaults::domains -- --ignored --nocapture`.
+#[test]
+#[ignore = "a measurement: 4 series x 2 domains, about 20 s each in release"]
+fn domains() {
+    let list = |name: &str, default: &str| -> Vec<String> {
+        std::env::var(name)
+            .unwrap_or_else(|_| default.into())
+            .split(',')
+            .map(|s| s.trim().to_string())
+            .collect()
+    };
+    for seed in list("BUMPSIM_SEEDS", "0,1,2,3") {
+        let Some(dir) = series(seed.parse().unwrap()) else {
+            return;
+        };
+        for domain in list("BUMPSIM_DOMAINS", "displacement,velocity") {
+            let mut study = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
+            study.setup.domain = domain.parse().unwrap();
+            let clock = Instant::now();
+            let result = study.identified(&|| {}).unwrap();
+            let s = scored(&dir, &study, &result, clock.elapsed().as_secs_f64());
+            let value = |name: &str| {
+                result
+                    .parameters
+                    .iter()
+                    .find(|p| p.name == name)
+                    .map_or(f64::NAN, |p| p.value)
+            };
+            eprintln!(
+                "{} left/right springs[0] {:.0} / {:.0} N/mm",
+                s.row(&format!("seed {seed}, {domain}")),
+                value("left.springs[0]") / 1e3,
+                value("right.springs[0]") / 1e3
+            );
+            assert!(s.offset.iter().chain(&s.narrow).all(|v| v.is_finite()));
+        }
+    }
+}

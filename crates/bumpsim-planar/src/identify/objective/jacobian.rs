@@ -242,6 +242,7 @@ mod tests {
     use crate::simulate::{Settings, simulate};
     use crate::striker::{Face, Placed, Side, Striker, place};
     use bumpsim_core::model::MsdModel;
+    use bumpsim_estimate::domain::Domain;
     use bumpsim_estimate::lm::LeastSquares;
     use bumpsim_impact::bumper::Bumper;
 
@@ -332,7 +333,19 @@ mod tests {
     fn the_exact_jacobian_matches_central_differences() {
         let start = car(1250.0, 2.5e6);
         let cases = cases(&start);
-        matches_central_differences(&start, &cases, 1e-4);
+        matches_central_differences(&start, &cases, 1e-4, Domain::Displacement);
+    }
+
+    /// The same in the velocity and acceleration domains (the objective's
+    /// differences of the columns, `super::compared`): a linear map, so
+    /// the exact columns still match.
+    #[test]
+    fn the_exact_jacobian_matches_central_differences_in_every_domain() {
+        let start = car(1250.0, 2.5e6);
+        let cases = cases(&start);
+        for domain in [Domain::Velocity, Domain::Acceleration] {
+            matches_central_differences(&start, &cases, 1e-4, domain);
+        }
     }
 
     /// The same with nonlinear side members (issue 46): the left link
@@ -366,12 +379,17 @@ mod tests {
         );
         let start =
             super::super::super::links::rebuilt(&applied, applied.left().clone(), right).unwrap();
-        matches_central_differences(&start, &cases, 1e-4);
+        matches_central_differences(&start, &cases, 1e-4, Domain::Displacement);
     }
 
-    fn matches_central_differences(start: &PlanarCar, cases: &[PlanarCase], tolerance: f64) {
+    fn matches_central_differences(
+        start: &PlanarCar,
+        cases: &[PlanarCase],
+        tolerance: f64,
+        domain: Domain,
+    ) {
         let unknowns = Unknowns::new(start, true, true, cases).with_relaxation(true);
-        let objective = Objective::new(cases, &unknowns).unwrap();
+        let objective = Objective::new(cases, &unknowns, domain).unwrap();
         assert!(objective.slots.is_some(), "every unknown has a slot");
         let names = unknowns.names();
         assert!(
