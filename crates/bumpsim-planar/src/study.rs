@@ -23,6 +23,14 @@
 //! bumper = "start"          # optional: "fit" fits the bumper's curve, unloading and contact rate
 //!                           # to the training tests' forward runs (their strikers) after the car
 //!
+//! [identification]          # optional
+//! objective = "displacement" # where the accelerometers are compared: "displacement" (default,
+//!                           # the thesis's), "velocity" or "acceleration"; a yaw-rate sensor
+//!                           # and displacement channels as measured (`identify` module `objective`)
+//! bias = "pretrigger"       # the accelerometers' biases: removed as the pre-trigger's mean
+//!                           # (default) or "nuisance": also estimated per case, with the
+//!                           # pre-trigger mean's uncertainty as their prior
+//!
 //! [priors]                  # optional: override ({ value, spread }), remove ("none") or add priors
 //! body.yaw_inertia = { value = 2300.0, spread = 0.2 }   # kg·m² (SI); spread: sd of ln θ (0.2 ≈ ±20 %)
 //! tyres.mu_lateral = "none"
@@ -64,7 +72,7 @@
 
 use crate::car::{PlanarCar, PlanarError};
 use crate::cases::{Placed, TestChannels, TimeZero};
-use crate::identify::{LinkLaws, PlanarCase, Setup};
+use crate::identify::{Bias, LinkLaws, PlanarCase, Setup};
 use crate::presets::StrikerFields;
 use bumpsim_core::channel::Channel;
 use bumpsim_core::names::check_names;
@@ -96,6 +104,9 @@ struct IdentificationFile {
     /// Where the accelerometers are compared: `"displacement"` (the
     /// thesis's), `"velocity"` or `"acceleration"`.
     objective: Option<String>,
+    /// The accelerometers' biases: `"pretrigger"` (removed as its mean)
+    /// or `"nuisance"` (also estimated, with the pre-trigger's prior).
+    bias: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -215,6 +226,7 @@ impl PlanarStudy {
             .as_ref()
             .map(|m| sheet_mass(m).ok_or_else(|| error(format!("[model] mass = {m}: {EXPECTED}"))))
             .transpose()?;
+        let identification = file.identification.as_ref();
         let mut setup = Setup {
             starts: file.model.starts.unwrap_or(defaults.starts),
             seed: file.model.seed.unwrap_or(defaults.seed),
@@ -238,11 +250,21 @@ impl PlanarStudy {
                 }
                 None => Vec::new(),
             },
-            domain: match file.identification.and_then(|i| i.objective) {
+            domain: match identification.and_then(|i| i.objective.as_deref()) {
                 Some(name) => name
                     .parse()
                     .map_err(|e: UnknownDomain| error(format!("[identification] {e}")))?,
                 None => defaults.domain,
+            },
+            bias: match identification.and_then(|i| i.bias.as_deref()) {
+                None => defaults.bias,
+                Some("pretrigger") => Bias::Pretrigger,
+                Some("nuisance") => Bias::Nuisance,
+                Some(other) => {
+                    return Err(error(format!(
+                        "[identification] bias = \"{other}\": expected \"pretrigger\" or \"nuisance\""
+                    )));
+                }
             },
             ..defaults
         };

@@ -76,6 +76,7 @@ use bumpsim_estimate::prior::Priored;
 use bumpsim_estimate::uncertainty::{Correlation, Estimated, Parameter, Uncertainty};
 use nalgebra::DMatrix;
 use objective::Objective;
+pub use objective::{BIAS_INFLATION, Bias};
 use serde::Serialize;
 
 pub use bumper::{BumperFit, transformed, unloading_ratio};
@@ -117,6 +118,10 @@ pub struct PlanarCase {
     /// accelerometers, their noise over its own for the others); empty:
     /// all 1.
     pub weights: Vec<f64>,
+    /// How long a pre-trigger the accelerometers' biases were taken from,
+    /// s (0: none): the spread of a bias nuisance's prior
+    /// ([`Bias::Nuisance`]).
+    pub pretrigger: f64,
 }
 
 impl PlanarCase {
@@ -170,6 +175,10 @@ pub struct Setup {
     /// displacement (the thesis's, m²), velocity or acceleration; the
     /// yaw-rate sensor and displacement channels as measured.
     pub domain: Domain,
+    /// The accelerometers' constant biases: removed over the pre-trigger
+    /// alone (the default) or also estimated as nuisances with the
+    /// pre-trigger's prior ([`Bias`]).
+    pub bias: Bias,
 }
 
 impl Setup {
@@ -188,6 +197,7 @@ impl Setup {
             staged: true,
             bumper: false,
             domain: Domain::Displacement,
+            bias: Bias::Pretrigger,
         }
     }
 }
@@ -338,7 +348,7 @@ pub fn identify(
     let unknowns = check::check(cases, setup)?;
     let stated = priors(&unknowns, setup)?;
     let (lower, upper) = unknowns.bounds(&unknowns.start());
-    let objective = Objective::new(cases, &unknowns, setup.domain)?;
+    let objective = Objective::new(cases, &unknowns, (setup.domain, setup.bias))?;
     let plan = staged::Plan {
         unknowns: &unknowns,
         priors: &stated,
@@ -470,7 +480,7 @@ fn summarise(
     };
     let checks = plausible::checks(&result, setup);
     result.warnings.extend(checks);
-    result.reduction = advice(cases, unknowns, &result, setup.domain);
+    result.reduction = advice(cases, unknowns, &result, (setup.domain, setup.bias));
     if let Some(r) = &result.reduction {
         result.warnings.push(r.statement.clone());
     }
@@ -521,7 +531,7 @@ fn advice(
     cases: &[PlanarCase],
     unknowns: &Unknowns,
     result: &PlanarIdentification,
-    domain: Domain,
+    domain: (Domain, Bias),
 ) -> Option<Reduction> {
     let parameters = unknowns.parameters();
     let theta: Vec<f64> = result.parameters.iter().map(|e| e.value).collect();
@@ -603,6 +613,7 @@ mod tests {
             striker: None,
             time_zero: 0.0,
             weights: Vec::new(),
+            pretrigger: 0.0,
         }
     }
 

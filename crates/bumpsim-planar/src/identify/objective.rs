@@ -47,6 +47,8 @@ pub(crate) struct Objective<'a> {
     last: Mutex<Option<(Vec<f64>, Vec<f64>)>>,
     /// Where the accelerometers are compared ([`compared`]).
     domain: Domain,
+    /// Their biases ([`debiased`]).
+    bias: Bias,
 }
 
 /// A clone starts with no remembered point (one per solver run).
@@ -60,6 +62,7 @@ impl Clone for Objective<'_> {
             slots: self.slots.clone(),
             last: Mutex::new(None),
             domain: self.domain,
+            bias: self.bias,
         }
     }
 }
@@ -70,7 +73,7 @@ impl<'a> Objective<'a> {
     pub fn new(
         cases: &[PlanarCase],
         unknowns: &'a Unknowns,
-        domain: Domain,
+        (domain, bias): (Domain, Bias),
     ) -> Result<Objective<'a>, PlanarError> {
         let spacing = unknowns.template().beam().side_member_spacing;
         let cases: Vec<PlanarCase> = cases.iter().map(|c| merged(c, 0.5 * spacing)).collect();
@@ -91,6 +94,7 @@ impl<'a> Objective<'a> {
             slots,
             last: Mutex::new(None),
             domain,
+            bias,
         })
     }
 
@@ -113,6 +117,15 @@ impl<'a> Objective<'a> {
             at += sensors * n;
         }
         out
+    }
+
+    /// `r`, residuals or a Jacobian column in displacement, in the
+    /// objective's domain ([`compared`]) and with its biases ([`debiased`]).
+    fn transformed(&self, r: &mut [f64]) {
+        compared(&self.cases, self.domain, r);
+        if self.bias == Bias::Nuisance {
+            debiased(&self.cases, self.domain, r);
+        }
     }
 
     /// Each case's sensor readings up to its window's end with the car of `p`.
@@ -144,34 +157,56 @@ impl<'a> Objective<'a> {
                 }
             }
         }
-        compared(&self.cases, self.domain, r);
-        debiased(&self.cases, self.domain, r);
+        self.transformed(r);
         r.iter().all(|v| v.is_finite())
     }
 }
 
-/// EXPERIMENT (`BUMPSIM_PLANAR_BIAS_PRIOR` = a factor c): each case's
-/// accelerometer bias b a nuisance value with the prior `N(0, σ²/n)` of a
-/// pre-trigger mean over n = 200 samples of 100 µs, profiled out:
-/// `min_b ‖r − b g‖² + κ b²` with g the bias's reading in `domain` and
-/// `κ = c n s²`, s the accelerometer's per-sample noise in `domain` over
-/// the window for a unit σ; `r ← r − (1 − √(κ/(G+κ))) (ĝ·r) ĝ`.
-fn bias_prior() -> Option<f64> {
-    std::env::var("BUMPSIM_PLANAR_BIAS_PRIOR")
-        .ok()
-        .and_then(|v| v.parse::<f64>().ok())
+/// How the accelerometers' constant biases are handled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Bias {
+    /// Removed as the pre-trigger's mean ([`crate::cases`]), nothing more:
+    /// the mean's error (σ/√n) stays in the data.
+    #[default]
+    Pretrigger,
+    /// Removed as the pre-trigger's mean and, per case and accelerometer, a
+    /// remaining bias b estimated with the car as a nuisance value under
+    /// the pre-trigger mean's own uncertainty as its prior (see [`debiased`]).
+    Nuisance,
 }
 
+/// The data's per-sample count against the bias's prior in [`debiased`]:
+/// the displacement and velocity residuals are strongly correlated
+/// (variance inflation 50–230 on issue 44's yaw-rate series), so a
+/// white-noise count would make the prior negligible; 100 counts the data
+/// at about one effective sample per hundred. Chosen among 10, 100 and
+/// 1000 on the varied cars (docs/planar.md, "The objective's domain").
+pub const BIAS_INFLATION: f64 = 100.0;
+
+/// Each case's accelerometer bias `b` (left after the pre-trigger's mean
+/// was removed) profiled out as a nuisance value with the prior
+/// `N(0, σ²/n)` of a mean over the `n = T/h` pre-trigger samples
+/// ([`PlanarCase::pretrigger`] `T`): `min_b ‖r − b g‖² + κ b²`, g the
+/// bias's reading (`t²/2` differenced into `domain`), `κ = c n s²` with s
+/// the accelerometer's per-sample noise in `domain` over the window for a
+/// unit σ ([`crate::cases::domain_noise`]) and c [`BIAS_INFLATION`]
+/// (velocity: `κ = c T D / 2`, displacement `c T D³ / 12`). The profiled
+/// objective is `‖A r‖²` with `A = I − (1 − √(κ/(G+κ))) ĝĝᵀ`, `G = gᵀg`:
+/// linear in `r`, so Jacobian columns transform alike. A case with no
+/// pre-trigger keeps its residuals.
 fn debiased(cases: &[PlanarCase], domain: Domain, r: &mut [f64]) {
-    let Some(factor) = bias_prior() else { return };
-    let (pre, raw) = (200.0, 1e-4);
     let mut at = 0;
     for case in cases {
         let (n, sensors) = (case.window.1 - case.window.0 + 1, case.measured.len());
         let h = case.drive.step;
+        if case.pretrigger <= 0.0 || n < 3 {
+            at += sensors * n;
+            continue;
+        }
         let duration = h * (n - 1) as f64;
-        let unit = crate::cases::domain_noise(1.0, raw, duration, 2 - domain.order());
-        let kappa = factor * pre * unit * unit;
+        let unit = crate::cases::domain_noise(1.0, h, duration, 2 - domain.order());
+        let kappa = BIAS_INFLATION * (case.pretrigger / h) * unit * unit;
         // the bias's reading b t²/2 for b = 1, in `domain`
         let mut g: Vec<f64> = (0..n)
             .map(|k| {
@@ -181,13 +216,9 @@ fn debiased(cases: &[PlanarCase], domain: Domain, r: &mut [f64]) {
             .collect();
         differenced(&mut g, (0, 1, n), domain.order(), h);
         let gg: f64 = g.iter().map(|v| v * v).sum();
-        if gg <= 0.0 {
-            at += sensors * n;
-            continue;
-        }
         let cut = 1.0 - (kappa / (gg + kappa)).sqrt();
         for (s, sensor) in case.drive.sensors.iter().enumerate() {
-            if sensor.integrations() != 2 {
+            if sensor.integrations() != 2 || sensor.displacement() || gg <= 0.0 {
                 continue;
             }
             let rg: f64 = (0..n).map(|k| r[at + k * sensors + s] * g[k]).sum();
@@ -281,12 +312,11 @@ impl LeastSquares for Objective<'_> {
                 &theta,
                 jac,
             );
-            if self.domain.order() > 0 || bias_prior().is_some() {
+            if self.domain.order() > 0 || self.bias == Bias::Nuisance {
                 let mut column = vec![0.0; jac.nrows()];
                 for j in 0..jac.ncols() {
                     column.copy_from_slice(jac.column(j).as_slice());
-                    compared(&self.cases, self.domain, &mut column);
-                    debiased(&self.cases, self.domain, &mut column);
+                    self.transformed(&mut column);
                     jac.column_mut(j).copy_from_slice(&column);
                 }
             }

@@ -29,8 +29,8 @@ pub(super) struct Car<'a> {
     /// What the identification estimated, its lines of action at their estimates.
     pub unknowns: &'a Unknowns,
     pub solver: lm::Settings,
-    /// Where the accelerometers are compared (the identification's).
-    pub domain: bumpsim_estimate::domain::Domain,
+    /// Where the accelerometers are compared and their biases (the identification's).
+    pub domain: (bumpsim_estimate::domain::Domain, super::Bias),
 }
 
 impl Car<'_> {
@@ -116,7 +116,7 @@ impl Car<'_> {
 fn problem<'b>(
     cases: &'b [super::PlanarCase],
     unknowns: &'b Unknowns,
-    domain: bumpsim_estimate::domain::Domain,
+    domain: (bumpsim_estimate::domain::Domain, super::Bias),
 ) -> Option<Objective<'b>> {
     Objective::new(cases, unknowns, domain).ok()
 }
