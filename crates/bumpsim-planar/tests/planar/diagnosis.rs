@@ -12,6 +12,8 @@
 //! with each one of the run's alone). Switches: `BUMPSIM_GENERATOR_BUMPER=1`
 //! puts the truth's bumper on the generator's 31 contact points,
 //! `BUMPSIM_TRUTH_SIGMA=0` gives it the generator's instantaneous tyre law.
+//! (With the cells' line of action on the bumper line instead of the
+//! segment centres, tried and reverted, truth_start.rs has the figures.)
 //! `cargo test --release -p bumpsim-planar --test planar
 //! diagnosis::measured -- --ignored --nocapture`.
 

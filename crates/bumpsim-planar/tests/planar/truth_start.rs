@@ -389,6 +389,29 @@ fn a_run_from_the_yielding_truth_stays_near_it() {
 /// the forward force hangs on the left crash box's elastic stiffness,
 /// which the force-driven replays determine to 34–82 % (one standard
 /// error of the runs from the truths): no fix is committed.
+///
+/// Tried next (w11-h1, commit 4d292e32 on that branch, reverted): each wall
+/// cell's line of action at the resultant of the bumper LINE's crush in the
+/// cell's band (depth affine along the straight beam to its ends ±w/2, each
+/// segment's loading curve integrated by 2-point Gauss–Legendre; 16, 32 and
+/// 64 segments agree within 0.3 mm where the centres differ by 3–38 mm).
+/// The truths' data fall 3.3× (car 1, 5.01e-4 → 1.53e-4) and 4.1× (car 3,
+/// 3.26e-4 → 8.0e-5); WALL10's yaw-rate offset halves (+0.011 → +0.0048 and
+/// +0.0055 rad/s) but its sills keep opposite offsets (car 1 −0.028 /
+/// +0.060, car 3 −0.040 / +0.036 m/s²). The runs still leave (held-out
+/// OFFSET40 / NARROW-OFFSET yaw, forward force, %): car 0 [95.58, 99.01,
+/// 83.87] → [95.12, 97.10, 85.36] stays; car 1 [95.68, 99.20, 83.53] →
+/// [99.11, 89.84, 57.96]; car 2 [95.21, 98.91, 83.03] → [92.99, 92.80,
+/// 85.89] (C_α +22 %: it stayed before); car 3 [95.85, 98.59, 84.05] →
+/// [97.28, 91.66, 76.46]. The truths' OFFSET40 yaw drops 3 points (98.5 →
+/// 95.2 on car 2). The line differs from the centres' rule only in the
+/// first 2 cm of crush (≤ 1 mm beyond); the generator's 31 equal points
+/// act ~2 cm further out at every crush (its end points carry a whole
+/// point's share: a continuous beam 1.653 m wide), and with that width the
+/// yaw-rate offset flips to −0.0048 rad/s (car 1). What is left of the arm
+/// is the generator's own discretisation, so a rule of the line cannot
+/// close it without being tuned to it: next, the cells' line of action as a
+/// per-case nuisance offset with a stated prior (identify/*).
 #[test]
 #[ignore = "fails on varied cars 1 and 3 (the objective leaves the truth), left open; 5 s in release"]
 fn runs_from_the_varied_truths_stay_near_them() {

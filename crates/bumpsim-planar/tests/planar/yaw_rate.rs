@@ -240,7 +240,17 @@ fn the_documented_study_meets_issue_44s_thresholds() {
 /// (car 1) and the left box's hardening (car 3) against the sills'
 /// pre-trigger bias and the struck cells' moment. Projecting the sills'
 /// biases out of the objective (tried, not kept) gives car 1 80.9 % but
-/// costs car 0 its 92.0 % (81.6 %).
+/// costs car 0 its 92.0 % (81.6 %). The wall cells' line of action at the
+/// resultant of the bumper line's crush instead of the crushed segment
+/// centres (tried, w11-h1 commit 4d292e32, reverted; truth_start.rs has
+/// why) breaks car 0 and car 1 and is mixed on cars 2 and 3:
+///
+/// | seed | offset x / yaw % | face x / yaw % | forward force / x-acc / yaw rate % | I_z | μ | at best |
+/// |---|---|---|---|---|---|---|
+/// | 0 | 99.27 / 67.04 | 99.13 / 85.22 | 53.7 / 54.1 / 53.0 | −7.1 % | −0.3 % | 1 |
+/// | 1 | 99.07 / 76.64 | 99.09 / 77.53 | 62.5 / 62.7 / 69.3 | −17.8 % | +6.1 % | 1 |
+/// | 2 | 99.82 / 92.76 | 99.69 / 92.13 | 95.4 / 95.4 / 80.4 | +0.0 % | +0.2 % | 11 |
+/// | 3 | 99.81 / 95.46 | 99.61 / 92.95 | 82.5 / 82.6 / 95.4 | +2.8 % | −5.7 % | 12 |
 ///
 /// With `[identification] objective = "velocity"` and `bias = "nuisance"`
 /// (the sills' bias estimated with the pre-trigger mean's prior; measured
