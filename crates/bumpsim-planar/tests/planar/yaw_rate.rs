@@ -180,6 +180,14 @@ fn the_yaw_rate_sensor_is_read_weighted_and_keeps_the_held_out_yaw() {
 /// x-acceleration and yaw rate ≥ 90, 90, 85 %; I_z within 20 % and μ within
 /// 30 % of the truth; ≥ 4 of 16 starts reach the best.
 ///
+/// With the sills compared as measured (acceleration, the study's default
+/// since issue 44's domain measurement, `bumpsim_planar::study::DOMAIN`;
+/// release, 38 s on a loaded machine): offset x 99.65 %, yaw 98.06 %;
+/// face x 99.24 %, yaw 96.03 %; forward force 94.2 %, x-acceleration
+/// 94.4 %, yaw rate 86.1 %; I_z +1.6 %, μ −1.8 %; 13 of 16 starts at the
+/// best. The figures below are displacement's (`objective =
+/// "displacement"`), the default before.
+///
 /// Measured (release build, 17 s on a loaded machine): offset x 99.76 %,
 /// yaw 98.53 % ✓; off-centre face x 99.14 %, yaw 96.98 % ✓; forward
 /// offset force 92.0 %, x-acceleration 92.0 %, yaw rate 85.3 % ✓ (the
@@ -257,7 +265,18 @@ fn the_documented_study_meets_issue_44s_thresholds() {
 /// by `defaults::domains`, docs/planar.md "The objective's domain"): the
 /// forward offset force 92.1 / 81.0 / 93.5 / 87.5 % on cars 0–3 (yaw rate
 /// 89.4 / 86.4 / 93.9 / 96.5 %), every other threshold holding; the
-/// default stays displacement, which this test runs.
+/// default was displacement then.
+///
+/// As measured (acceleration, now the default, which this test runs):
+///
+/// | seed | offset x / yaw % | face x / yaw % | forward force / x-acc / yaw rate % | I_z | μ | at best |
+/// |---|---|---|---|---|---|---|
+/// | 1 | 99.65 / 95.99 | 99.50 / 93.73 | 94.0 / 94.1 / 92.0 | −3.7 % | −1.7 % | 14 |
+/// | 2 | 99.96 / 98.62 | 99.39 / 98.24 | 96.8 / 96.8 / 85.5 | −0.6 % | +0.3 % | 14 |
+/// | 3 | 99.85 / 97.19 | 99.62 / 90.27 | 90.3 / 90.3 / 97.0 | −1.8 % | −3.7 % | 14 |
+///
+/// Every threshold of issue 44 holds on every car, and is asserted (car
+/// 3's forward force with 0.3 points to spare).
 #[test]
 #[ignore = "three series, about 15 s each in release, 3-4 min each in debug"]
 fn the_documented_study_on_varied_cars() {
@@ -268,12 +287,6 @@ fn the_documented_study_on_varied_cars() {
         let study = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
         let scores = super::defaults::scores(&dir, &study);
         eprintln!("{}", scores.row(&format!("seed {seed}, documented study")));
-        let held: Vec<&str> = scores
-            .misses()
-            .into_iter()
-            .filter(|m| !m.starts_with("forward"))
-            .collect();
-        assert!(held.is_empty(), "seed {seed}: {held:?}");
-        assert!(scores.forward[0] >= 65.0, "seed {seed}: {scores:?}");
+        assert!(scores.misses().is_empty(), "seed {seed}: {scores:?}");
     }
 }
