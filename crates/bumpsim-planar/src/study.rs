@@ -24,9 +24,9 @@
 //!                           # to the training tests' forward runs (their strikers) after the car
 //!
 //! [identification]          # optional
-//! objective = "acceleration" # where the accelerometers are compared: "acceleration" (default,
-//!                           # as measured, [`DOMAIN`]), "velocity" or "displacement" (the
-//!                           # thesis's, the default before issue 44); a yaw-rate sensor
+//! objective = "displacement" # where the accelerometers are compared: "displacement" (default,
+//!                           # the thesis's, [`DOMAIN`]), "velocity" or "acceleration" (as
+//!                           # measured: better on issue 44's series); a yaw-rate sensor
 //!                           # and displacement channels as measured (`identify` module `objective`)
 //! bias = "pretrigger"       # the accelerometers' biases: removed as the pre-trigger's mean
 //!                           # (default) or "nuisance": also estimated per case, with the
@@ -86,15 +86,16 @@ use bumpsim_signal::process::Resampling;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
-/// Where a study that does not say compares its accelerometers: as
-/// measured (the second difference of the twice-integrated reading),
-/// chosen by evidence on issue 44's yaw-rate series and three varied cars
-/// (docs/planar.md, "The objective's domain"): the only choice that holds
-/// every threshold on all four, the forward offset force 94.2 / 94.0 /
-/// 96.8 / 90.3 % against displacement's 92.0 / 69.7 / 94.9 / 79.2 %.
-/// `objective = "displacement"` gives the thesis's objective and the
-/// figures before this choice.
-pub const DOMAIN: Domain = Domain::Acceleration;
+/// Where a study that does not say compares its accelerometers: in
+/// displacement, the thesis's objective and the figures of every planar
+/// test. As measured (`objective = "acceleration"`) is the better choice on
+/// issue 44's yaw-rate series and three varied cars (docs/planar.md, "The
+/// objective's domain": every threshold holds on all four, the forward
+/// offset force 94.2 / 94.0 / 96.8 / 90.3 % against 92.0 / 69.7 / 94.9 /
+/// 79.2 %), but as the default it fails
+/// `independent::an_independent_asymmetric_series_predicts_its_held_out_tests`
+/// (not yet re-measured), so the switch waits for that.
+pub const DOMAIN: Domain = Domain::Displacement;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]

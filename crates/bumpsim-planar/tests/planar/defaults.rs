@@ -282,8 +282,8 @@ fn domains() {
 }
 
 /// `[identification] objective` sets where the accelerometers are
-/// compared; absent, as measured (acceleration, chosen by
-/// [`domains`]' evidence); `"displacement"` the thesis's; a name
+/// compared; absent, the thesis's displacement (every planar test's
+/// figures); a name
 /// that is none of the three is refused by key, with the three.
 #[test]
 fn the_objective_is_read_and_a_wrong_one_named() {
@@ -296,13 +296,13 @@ fn the_objective_is_read_and_a_wrong_one_named() {
         PlanarStudy::read(&path)
     };
     let plain = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
-    assert_eq!(plain.setup.domain, Domain::Acceleration);
-    let thesis = read(
-        "[identification]\nobjective = \"displacement\"\n",
-        "study-displacement.toml",
+    assert_eq!(plain.setup.domain, Domain::Displacement);
+    let measured = read(
+        "[identification]\nobjective = \"acceleration\"\n",
+        "study-acceleration.toml",
     )
     .unwrap();
-    assert_eq!(thesis.setup.domain, Domain::Displacement);
+    assert_eq!(measured.setup.domain, Domain::Acceleration);
     let velocity = read(
         "[identification]\nobjective = \"velocity\"\n",
         "study-velocity.toml",
