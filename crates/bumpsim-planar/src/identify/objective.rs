@@ -166,7 +166,7 @@ impl<'a> Objective<'a> {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Bias {
-    /// Removed as the pre-trigger's mean ([`crate::cases`]), nothing more:
+    /// Removed as the pre-trigger's mean (the cases module), nothing more:
     /// the mean's error (σ/√n) stays in the data.
     #[default]
     Pretrigger,
@@ -190,7 +190,7 @@ pub const BIAS_INFLATION: f64 = 100.0;
 /// ([`PlanarCase::pretrigger`] `T`): `min_b ‖r − b g‖² + κ b²`, g the
 /// bias's reading (`t²/2` differenced into `domain`), `κ = c n s²` with s
 /// the accelerometer's per-sample noise in `domain` over the window for a
-/// unit σ ([`crate::cases::domain_noise`]) and c [`BIAS_INFLATION`]
+/// unit σ (the cases module's `domain_noise`) and c [`BIAS_INFLATION`]
 /// (velocity: `κ = c T D / 2`, displacement `c T D³ / 12`). The profiled
 /// objective is `‖A r‖²` with `A = I − (1 − √(κ/(G+κ))) ĝĝᵀ`, `G = gᵀg`:
 /// linear in `r`, so Jacobian columns transform alike. A case with no
@@ -205,7 +205,7 @@ fn debiased(cases: &[PlanarCase], domain: Domain, r: &mut [f64]) {
             continue;
         }
         let duration = h * (n - 1) as f64;
-        let unit = crate::cases::domain_noise(1.0, h, duration, 2 - domain.order());
+        let unit = domain_noise(h, duration, 2 - domain.order());
         let kappa = BIAS_INFLATION * (case.pretrigger / h) * unit * unit;
         // the bias's reading b t²/2 for b = 1, in `domain`
         let mut g: Vec<f64> = (0..n)
@@ -237,7 +237,7 @@ fn debiased(cases: &[PlanarCase], domain: Domain, r: &mut [f64]) {
 /// first `order` samples, which have no predecessor in the window, set to
 /// 0), every other sensor (yaw rate, displacement) left as measured with
 /// its weight rescaled from the accelerometers' displacement-domain noise
-/// to theirs in `domain` ([`crate::cases::domain_noise`]; `√6 / D` in
+/// to theirs in `domain` (the cases module's `domain_noise`; `√6 / D` in
 /// velocity over a window of `D` s). Linear in `r`, so the Jacobian's
 /// columns transform alike. A constant accelerometer bias `b` reads as
 /// `b t²/2` in displacement, `b t` in velocity, `b` in acceleration.
@@ -251,8 +251,7 @@ fn compared(cases: &[PlanarCase], domain: Domain, r: &mut [f64]) {
         let (n, sensors) = (case.window.1 - case.window.0 + 1, case.measured.len());
         let h = case.drive.step;
         let duration = h * (n - 1) as f64;
-        let scale = crate::cases::domain_noise(1.0, h, duration, order)
-            / crate::cases::domain_noise(1.0, h, duration, 2);
+        let scale = domain_noise(h, duration, 2 - order) / domain_noise(h, duration, 2);
         for (s, sensor) in case.drive.sensors.iter().enumerate() {
             if sensor.integrations() != 2 {
                 (0..n).for_each(|k| r[at + k * sensors + s] *= scale);
@@ -261,6 +260,17 @@ fn compared(cases: &[PlanarCase], domain: Domain, r: &mut [f64]) {
             differenced(r, (at + s, sensors, n), order, h);
         }
         at += sensors * n;
+    }
+}
+
+/// White noise of unit level sampled every `step` in the domain of
+/// `integrations` integrals, its rms over `duration`: the cases module's
+/// `domain_noise` for σ = 1 (not called, to keep `identify` below it).
+fn domain_noise(step: f64, duration: f64, integrations: usize) -> f64 {
+    match integrations {
+        0 => 1.0,
+        1 => (0.5 * step * duration).sqrt(),
+        _ => step.sqrt() * duration.powf(1.5) / 12f64.sqrt(),
     }
 }
 
