@@ -339,8 +339,23 @@ impl TestChannels {
             striker: None,
             time_zero: zero,
             weights,
+            pretrigger: self.pretrigger(),
         };
         Ok((case, resampled))
+    }
+
+    /// The shortest pre-trigger (record before the file's t = 0) of the
+    /// accelerometers, over which their biases are removed, s (0: one has
+    /// none).
+    fn pretrigger(&self) -> f64 {
+        self.sensors
+            .iter()
+            .zip(&self.positions)
+            .filter(|(_, place)| !place.displacement() && place.integrations() == 2)
+            .map(|(c, _)| (-c.series.start()).max(0.0))
+            .reduce(f64::min)
+            .filter(|t| t.is_finite())
+            .unwrap_or(0.0)
     }
 
     /// Time zero before the summed conditioned forces' onset ([`onset`],

@@ -23,6 +23,15 @@
 //! bumper = "start"          # optional: "fit" fits the bumper's curve, unloading and contact rate
 //!                           # to the training tests' forward runs (their strikers) after the car
 //!
+//! [identification]          # optional
+//! objective = "displacement" # where the accelerometers are compared: "displacement" (default,
+//!                           # the thesis's, [`DOMAIN`]), "velocity" or "acceleration" (as
+//!                           # measured: better on issue 44's series); a yaw-rate sensor
+//!                           # and displacement channels as measured (`identify` module `objective`)
+//! bias = "pretrigger"       # the accelerometers' biases: removed as the pre-trigger's mean
+//!                           # (default) or "nuisance": also estimated per case, with the
+//!                           # pre-trigger mean's uncertainty as their prior
+//!
 //! [priors]                  # optional: override ({ value, spread }), remove ("none") or add priors
 //! body.yaw_inertia = { value = 2300.0, spread = 0.2 }   # kg·m² (SI); spread: sd of ln θ (0.2 ≈ ±20 %)
 //! tyres.mu_lateral = "none"
@@ -64,17 +73,32 @@
 
 use crate::car::{PlanarCar, PlanarError};
 use crate::cases::{Placed, TestChannels, TimeZero};
-use crate::identify::{LinkLaws, PlanarCase, Setup};
+use crate::identify::{Bias, LinkLaws, PlanarCase, Setup};
 use crate::presets::StrikerFields;
 use bumpsim_core::channel::Channel;
 use bumpsim_core::names::check_names;
 use bumpsim_core::units::{Dimension, parse_quantity};
+use bumpsim_estimate::domain::{Domain, UnknownDomain};
 use bumpsim_io::mass::{EXPECTED, quoted, sheet_mass};
 use bumpsim_io::speed::{SpeedError, speed_value};
 use bumpsim_signal::loader::{ChannelSource, LoadError, Loader};
 use bumpsim_signal::process::Resampling;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
+
+/// Where a study that does not say compares its accelerometers: in
+/// displacement, the thesis's objective and the figures of every planar
+/// test. As measured (`objective = "acceleration"`) is the better choice on
+/// issue 44's yaw-rate series and three varied cars (docs/planar.md, "The
+/// objective's domain": every threshold holds on all four, the forward
+/// offset force 94.2 / 94.0 / 96.8 / 90.3 % against 92.0 / 69.7 / 94.9 /
+/// 79.2 %), but as the default it fails
+/// `independent::an_independent_asymmetric_series_predicts_its_held_out_tests`
+/// (not yet re-measured), and those figures were taken with the yaw-rate
+/// sensor nearly unweighted in acceleration; weighted (fixed since), the
+/// forward force is 89.5 / 83.7 / 91.4 / 87.0 %: no domain holds on all
+/// four yet.
+pub const DOMAIN: Domain = Domain::Displacement;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -85,6 +109,19 @@ struct StudyFile {
     model: ModelFile,
     case: Vec<CaseFile>,
     priors: Option<toml::Table>,
+    identification: Option<IdentificationFile>,
+}
+
+/// The `[identification]` table, as the 1-D study's.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct IdentificationFile {
+    /// Where the accelerometers are compared: `"displacement"` (the
+    /// thesis's), `"velocity"` or `"acceleration"`.
+    objective: Option<String>,
+    /// The accelerometers' biases: `"pretrigger"` (removed as its mean)
+    /// or `"nuisance"` (also estimated, with the pre-trigger's prior).
+    bias: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -207,6 +244,7 @@ impl PlanarStudy {
                     .ok_or_else(|| error(format!("[model] mass = {}: {EXPECTED}", quoted(m))))
             })
             .transpose()?;
+        let identification = file.identification.as_ref();
         let mut setup = Setup {
             starts: file.model.starts.unwrap_or(defaults.starts),
             seed: file.model.seed.unwrap_or(defaults.seed),
@@ -229,6 +267,22 @@ impl PlanarStudy {
                     crate::study_priors::settings(table).map_err(|e| error(e.to_string()))?
                 }
                 None => Vec::new(),
+            },
+            domain: match identification.and_then(|i| i.objective.as_deref()) {
+                Some(name) => name
+                    .parse()
+                    .map_err(|e: UnknownDomain| error(format!("[identification] {e}")))?,
+                None => DOMAIN,
+            },
+            bias: match identification.and_then(|i| i.bias.as_deref()) {
+                None => defaults.bias,
+                Some("pretrigger") => Bias::Pretrigger,
+                Some("nuisance") => Bias::Nuisance,
+                Some(other) => {
+                    return Err(error(format!(
+                        "[identification] bias = \"{other}\": expected \"pretrigger\" or \"nuisance\""
+                    )));
+                }
             },
             ..defaults
         };

@@ -68,6 +68,7 @@ mod unknowns;
 use crate::car::{Body, PlanarCar, PlanarError, SideChain};
 use crate::drive::{Drive, Sensor};
 use bumpsim_core::units::Dimension;
+pub use bumpsim_estimate::domain::Domain;
 use bumpsim_estimate::lm::{self, LeastSquares};
 use bumpsim_estimate::multistart::{Searched, Starts};
 use bumpsim_estimate::observer::Observer;
@@ -75,6 +76,7 @@ use bumpsim_estimate::prior::Priored;
 use bumpsim_estimate::uncertainty::{Correlation, Estimated, Parameter, Uncertainty};
 use nalgebra::DMatrix;
 use objective::Objective;
+pub use objective::{BIAS_INFLATION, Bias};
 use serde::Serialize;
 
 pub use bumper::{BumperFit, transformed, unloading_ratio};
@@ -116,6 +118,10 @@ pub struct PlanarCase {
     /// accelerometers, their noise over its own for the others); empty:
     /// all 1.
     pub weights: Vec<f64>,
+    /// How long a pre-trigger the accelerometers' biases were taken from,
+    /// s (0: none): the spread of a bias nuisance's prior
+    /// ([`Bias::Nuisance`]).
+    pub pretrigger: f64,
 }
 
 impl PlanarCase {
@@ -165,6 +171,14 @@ pub struct Setup {
     /// runs once the car is identified ([`crate::bumper_fit::identified`]);
     /// false: the template's bumper.
     pub bumper: bool,
+    /// Where the accelerometers are compared (module `objective`):
+    /// displacement (the thesis's, m²), velocity or acceleration; the
+    /// yaw-rate sensor and displacement channels as measured.
+    pub domain: Domain,
+    /// The accelerometers' constant biases: removed over the pre-trigger
+    /// alone (the default) or also estimated as nuisances with the
+    /// pre-trigger's prior ([`Bias`]).
+    pub bias: Bias,
 }
 
 impl Setup {
@@ -182,6 +196,8 @@ impl Setup {
             priors: Vec::new(),
             staged: true,
             bumper: false,
+            domain: Domain::Displacement,
+            bias: Bias::Pretrigger,
         }
     }
 }
@@ -337,7 +353,7 @@ pub fn identify(
     let unknowns = check::check(cases, setup)?;
     let stated = priors(&unknowns, setup)?;
     let (lower, upper) = unknowns.bounds(&unknowns.start());
-    let objective = Objective::new(cases, &unknowns)?;
+    let objective = Objective::new(cases, &unknowns, (setup.domain, setup.bias))?;
     let plan = staged::Plan {
         unknowns: &unknowns,
         priors: &stated,
@@ -469,7 +485,7 @@ fn summarise(
     };
     let checks = plausible::checks(&result, setup);
     result.warnings.extend(checks);
-    result.reduction = advice(cases, unknowns, &result);
+    result.reduction = advice(cases, unknowns, &result, (setup.domain, setup.bias));
     if let Some(r) = &result.reduction {
         result.warnings.push(r.statement.clone());
     }
@@ -520,6 +536,7 @@ fn advice(
     cases: &[PlanarCase],
     unknowns: &Unknowns,
     result: &PlanarIdentification,
+    domain: (Domain, Bias),
 ) -> Option<Reduction> {
     let parameters = unknowns.parameters();
     let theta: Vec<f64> = result.parameters.iter().map(|e| e.value).collect();
@@ -540,6 +557,7 @@ fn advice(
         car: &result.car,
         unknowns: &located,
         solver: solver(),
+        domain,
     };
     bumpsim_estimate::reduce::suggest(&car, &full)
 }
@@ -600,6 +618,7 @@ mod tests {
             striker: None,
             time_zero: 0.0,
             weights: Vec::new(),
+            pretrigger: 0.0,
         }
     }
 

@@ -29,6 +29,8 @@ pub(super) struct Car<'a> {
     /// What the identification estimated, its lines of action at their estimates.
     pub unknowns: &'a Unknowns,
     pub solver: lm::Settings,
+    /// Where the accelerometers are compared and their biases (the identification's).
+    pub domain: (bumpsim_estimate::domain::Domain, super::Bias),
 }
 
 impl Car<'_> {
@@ -111,8 +113,12 @@ impl Car<'_> {
 }
 
 /// The problem of `cases` with `unknowns`.
-fn problem<'b>(cases: &'b [super::PlanarCase], unknowns: &'b Unknowns) -> Option<Objective<'b>> {
-    Objective::new(cases, unknowns).ok()
+fn problem<'b>(
+    cases: &'b [super::PlanarCase],
+    unknowns: &'b Unknowns,
+    domain: (bumpsim_estimate::domain::Domain, super::Bias),
+) -> Option<Objective<'b>> {
+    Objective::new(cases, unknowns, domain).ok()
 }
 
 impl Reducible for Car<'_> {
@@ -149,7 +155,7 @@ impl Reducible for Car<'_> {
         let (car, _) = self.merged(link)?;
         let cases = self.retargeted(link);
         let unknowns = self.unknowns.with_template(&car);
-        let problem = problem(&cases, &unknowns)?;
+        let problem = problem(&cases, &unknowns, self.domain)?;
         let p = unknowns.search(&unknowns.start());
         let mut r = vec![0.0; problem.residual_count()];
         problem
@@ -164,7 +170,7 @@ impl Reducible for Car<'_> {
         let theta = unknowns.start();
         let (lower, upper) = unknowns.bounds(&theta);
         let cases = self.retargeted(link);
-        let problem = problem(&cases, &unknowns)?;
+        let problem = problem(&cases, &unknowns, self.domain)?;
         let start = unknowns.search(&theta);
         let outcome = refit(&|| &problem, start, (&lower, &upper), &self.solver, target)?;
         let refitted = unknowns.car(&unknowns.theta(&outcome.parameters)).ok()?;

@@ -228,3 +228,95 @@ fn the_tyres_law_is_estimated_by_default_with_a_yaw_rate_sensor() {
     );
     assert_eq!(read("study-doc.toml", false), (true, true));
 }
+
+/// Issue 44 item 2, the planar objective's domain chosen by evidence: the
+/// documented study (`study-doc.toml`) of every series of `BUMPSIM_SEEDS`
+/// (default `0,1,2,3`) identified with its accelerometers compared in each
+/// domain of `BUMPSIM_DOMAINS` (default `displacement,velocity,acceleration`; `+nuisance`
+/// after one: the sills' biases estimated with their prior), one table
+/// row each, with the crash boxes' identified elastic stiffness. A
+/// measurement, not a check: it asserts only finite scores.
+/// `cargo test --release -p bumpsim-planar --test planar
+/// defaults::domains -- --ignored --nocapture`.
+#[test]
+#[ignore = "a measurement: 4 series x 3 domains, about 20 s each in release"]
+fn domains() {
+    let list = |name: &str, default: &str| -> Vec<String> {
+        std::env::var(name)
+            .unwrap_or_else(|_| default.into())
+            .split(',')
+            .map(|s| s.trim().to_string())
+            .collect()
+    };
+    for seed in list("BUMPSIM_SEEDS", "0,1,2,3") {
+        let Some(dir) = series(seed.parse().unwrap()) else {
+            return;
+        };
+        for domain in list("BUMPSIM_DOMAINS", "displacement,velocity,acceleration") {
+            let mut study = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
+            let (name, bias) = domain.split_once('+').unwrap_or((&domain, "pretrigger"));
+            study.setup.domain = name.parse().unwrap();
+            study.setup.bias = match bias {
+                "nuisance" => bumpsim_planar::identify::Bias::Nuisance,
+                _ => bumpsim_planar::identify::Bias::Pretrigger,
+            };
+            let clock = Instant::now();
+            let result = study.identified(&|| {}).unwrap();
+            let s = scored(&dir, &study, &result, clock.elapsed().as_secs_f64());
+            let value = |name: &str| {
+                result
+                    .parameters
+                    .iter()
+                    .find(|p| p.name == name)
+                    .map_or(f64::NAN, |p| p.value)
+            };
+            eprintln!(
+                "{} left/right springs[0] {:.0} / {:.0} N/mm",
+                s.row(&format!("seed {seed}, {domain}")),
+                value("left.springs[0]") / 1e3,
+                value("right.springs[0]") / 1e3
+            );
+            assert!(s.offset.iter().chain(&s.narrow).all(|v| v.is_finite()));
+        }
+    }
+}
+
+/// `[identification] objective` sets where the accelerometers are
+/// compared; absent, the thesis's displacement (every planar test's
+/// figures); a name
+/// that is none of the three is refused by key, with the three.
+#[test]
+fn the_objective_is_read_and_a_wrong_one_named() {
+    use bumpsim_planar::identify::Domain;
+    let Some(dir) = series(0) else { return };
+    let text = std::fs::read_to_string(dir.join("study-doc.toml")).unwrap();
+    let read = |extra: &str, file: &str| {
+        let path = dir.join(file);
+        std::fs::write(&path, format!("{text}\n{extra}")).unwrap();
+        PlanarStudy::read(&path)
+    };
+    let plain = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
+    assert_eq!(plain.setup.domain, Domain::Displacement);
+    let measured = read(
+        "[identification]\nobjective = \"acceleration\"\n",
+        "study-acceleration.toml",
+    )
+    .unwrap();
+    assert_eq!(measured.setup.domain, Domain::Acceleration);
+    let velocity = read(
+        "[identification]\nobjective = \"velocity\"\n",
+        "study-velocity.toml",
+    )
+    .unwrap();
+    assert_eq!(velocity.setup.domain, Domain::Velocity);
+    let e = read(
+        "[identification]\nobjective = \"speed\"\n",
+        "study-speed.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("[identification] objective \"speed\"") && e.contains("\"velocity\""),
+        "{e}"
+    );
+}

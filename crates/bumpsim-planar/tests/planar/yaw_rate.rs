@@ -180,6 +180,14 @@ fn the_yaw_rate_sensor_is_read_weighted_and_keeps_the_held_out_yaw() {
 /// x-acceleration and yaw rate ≥ 90, 90, 85 %; I_z within 20 % and μ within
 /// 30 % of the truth; ≥ 4 of 16 starts reach the best.
 ///
+/// With the sills compared as measured (`objective = "acceleration"`,
+/// issue 44's domain measurement, docs/planar.md "The objective's domain";
+/// release, 38 s on a loaded machine): offset x 99.65 %, yaw 98.06 %;
+/// face x 99.24 %, yaw 96.03 %; forward force 94.2 %, x-acceleration
+/// 94.4 %, yaw rate 86.1 %; I_z +1.6 %, μ −1.8 %; 13 of 16 starts at the
+/// best. The figures below are displacement's, the study's default, which
+/// this test runs.
+///
 /// Measured (release build, 17 s on a loaded machine): offset x 99.76 %,
 /// yaw 98.53 % ✓; off-centre face x 99.14 %, yaw 96.98 % ✓; forward
 /// offset force 92.0 %, x-acceleration 92.0 %, yaw rate 85.3 % ✓ (the
@@ -251,6 +259,26 @@ fn the_documented_study_meets_issue_44s_thresholds() {
 /// | 1 | 99.07 / 76.64 | 99.09 / 77.53 | 62.5 / 62.7 / 69.3 | −17.8 % | +6.1 % | 1 |
 /// | 2 | 99.82 / 92.76 | 99.69 / 92.13 | 95.4 / 95.4 / 80.4 | +0.0 % | +0.2 % | 11 |
 /// | 3 | 99.81 / 95.46 | 99.61 / 92.95 | 82.5 / 82.6 / 95.4 | +2.8 % | −5.7 % | 12 |
+///
+/// With `[identification] objective = "velocity"` and `bias = "nuisance"`
+/// (the sills' bias estimated with the pre-trigger mean's prior; measured
+/// by `defaults::domains`, docs/planar.md "The objective's domain"): the
+/// forward offset force 92.1 / 81.0 / 93.5 / 87.5 % on cars 0–3 (yaw rate
+/// 89.4 / 86.4 / 93.9 / 96.5 %), every other threshold holding.
+///
+/// As measured (`objective = "acceleration"`) with the yaw-rate sensor
+/// nearly unweighted (a weighting bug, fixed since):
+///
+/// | seed | offset x / yaw % | face x / yaw % | forward force / x-acc / yaw rate % | I_z | μ | at best |
+/// |---|---|---|---|---|---|---|
+/// | 1 | 99.65 / 95.99 | 99.50 / 93.73 | 94.0 / 94.1 / 92.0 | −3.7 % | −1.7 % | 14 |
+/// | 2 | 99.96 / 98.62 | 99.39 / 98.24 | 96.8 / 96.8 / 85.5 | −0.6 % | +0.3 % | 14 |
+/// | 3 | 99.85 / 97.19 | 99.62 / 90.27 | 90.3 / 90.3 / 97.0 | −1.8 % | −3.7 % | 14 |
+///
+/// every threshold held on every car. With the yaw rate weighted as in
+/// the other domains the forward offset force is 89.5 / 83.7 / 91.4 /
+/// 87.0 % on cars 0–3 (docs/planar.md, "The objective's domain"). This
+/// test runs the default (displacement) and asserts what holds there.
 #[test]
 #[ignore = "three series, about 15 s each in release, 3-4 min each in debug"]
 fn the_documented_study_on_varied_cars() {
