@@ -139,6 +139,25 @@ impl Domain {
     }
 }
 
+/// White noise of level `sigma` (an accelerometer's, m/s²) sampled every
+/// `step` (s), integrated `integrations` times: its rms over `duration` (s).
+/// Once, a random walk: `σ √(h T / 2)`; twice, `σ √h T^{3/2} / √12`
+/// (the rms over the window of the integrated walk).
+///
+/// ```
+/// use bumpsim_estimate::domain::integrated_noise;
+/// assert_eq!(integrated_noise(0.5, 1e-4, 0.1, 0), 0.5);
+/// let twice = integrated_noise(1.0, 1e-4, 0.1, 2);
+/// assert!((twice - 1e-2 * 0.1f64.powf(1.5) / 12f64.sqrt()).abs() < 1e-15);
+/// ```
+pub fn integrated_noise(sigma: f64, step: f64, duration: f64, integrations: usize) -> f64 {
+    match integrations {
+        0 => sigma,
+        1 => sigma * (0.5 * step * duration).sqrt(),
+        _ => sigma * step.sqrt() * duration.powf(1.5) / 12f64.sqrt(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

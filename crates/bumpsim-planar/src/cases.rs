@@ -421,11 +421,7 @@ pub const PRETRIGGER_SAMPLES: usize = 20;
 /// White noise of level `sigma` sampled every `step` in the domain of
 /// `integrations` integrals: its rms over `duration` (see the module).
 pub fn domain_noise(sigma: f64, step: f64, duration: f64, integrations: usize) -> f64 {
-    match integrations {
-        0 => sigma,
-        1 => sigma * (0.5 * step * duration).sqrt(),
-        _ => sigma * step.sqrt() * duration.powf(1.5) / 12f64.sqrt(),
-    }
+    bumpsim_estimate::domain::integrated_noise(sigma, step, duration, integrations)
 }
 
 /// Each sensor's residual weight (see the module): 1 for the x

@@ -271,14 +271,9 @@ fn compared(cases: &[PlanarCase], domain: Domain, r: &mut [f64]) {
 }
 
 /// White noise of unit level sampled every `step` in the domain of
-/// `integrations` integrals, its rms over `duration`: the cases module's
-/// `domain_noise` for σ = 1 (not called, to keep `identify` below it).
+/// `integrations` integrals, its rms over `duration`.
 fn domain_noise(step: f64, duration: f64, integrations: usize) -> f64 {
-    match integrations {
-        0 => 1.0,
-        1 => (0.5 * step * duration).sqrt(),
-        _ => step.sqrt() * duration.powf(1.5) / 12f64.sqrt(),
-    }
+    bumpsim_estimate::domain::integrated_noise(1.0, step, duration, integrations)
 }
 
 /// The series `r[start + k stride]`, `k < n`, differenced `order` times
