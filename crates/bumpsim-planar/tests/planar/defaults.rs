@@ -164,6 +164,16 @@ fn switched(study: &PlanarStudy, code: &str) -> PlanarStudy {
     study
 }
 
+/// The comma-separated list of the environment variable `name`, else of
+/// `default` (the measurements' switches).
+fn list(name: &str, default: &str) -> Vec<String> {
+    std::env::var(name)
+        .unwrap_or_else(|_| default.into())
+        .split(',')
+        .map(|s| s.trim().to_string())
+        .collect()
+}
+
 /// The measurement behind the defaults (docs/planar.md, "Defaults"):
 /// every set-up of `BUMPSIM_SETUPS` (comma-separated codes of [`switched`],
 /// default `doc,-,C,R,CR,CRB,YCRB`) on every series of `BUMPSIM_SEEDS`
@@ -174,13 +184,6 @@ fn switched(study: &PlanarStudy, code: &str) -> PlanarStudy {
 #[test]
 #[ignore = "a measurement: 4 series x 7 set-ups, about 20 s each in release"]
 fn measured() {
-    let list = |name: &str, default: &str| -> Vec<String> {
-        std::env::var(name)
-            .unwrap_or_else(|_| default.into())
-            .split(',')
-            .map(|s| s.trim().to_string())
-            .collect()
-    };
     let seeds = list("BUMPSIM_SEEDS", "0,1,2,3");
     let setups = list("BUMPSIM_SETUPS", "doc,-,C,R,CR,CRB,YCRB");
     eprintln!(
@@ -241,13 +244,6 @@ fn the_tyres_law_is_estimated_by_default_with_a_yaw_rate_sensor() {
 #[test]
 #[ignore = "a measurement: 4 series x 3 domains, about 20 s each in release"]
 fn domains() {
-    let list = |name: &str, default: &str| -> Vec<String> {
-        std::env::var(name)
-            .unwrap_or_else(|_| default.into())
-            .split(',')
-            .map(|s| s.trim().to_string())
-            .collect()
-    };
     for seed in list("BUMPSIM_SEEDS", "0,1,2,3") {
         let Some(dir) = series(seed.parse().unwrap()) else {
             return;

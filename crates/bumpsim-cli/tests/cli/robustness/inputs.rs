@@ -16,7 +16,7 @@ use std::time::Duration;
 
 /// Exit 2 within 5 s with `needle` in the message, and no NaN of ours
 /// ("= NaN -") printed.
-fn refused(dir: &Path, args: &[&str], needle: &str) {
+pub(super) fn refused(dir: &Path, args: &[&str], needle: &str) {
     let (out, took) = run_in(dir, args);
     let err = stderr(&out);
     assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");

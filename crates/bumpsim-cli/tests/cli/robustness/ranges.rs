@@ -6,19 +6,8 @@
 //! 1e300 s was quoted with its 301 digits. Each now exits 2 naming the key
 //! and its limit, or prints its digits.
 
+use super::inputs::refused;
 use super::{examples, run_in, stderr};
-use std::path::Path;
-use std::time::Duration;
-
-/// Exit 2 within 5 s with `needle` in the message and no NaN printed.
-fn refused(dir: &Path, args: &[&str], needle: &str) {
-    let (out, took) = run_in(dir, args);
-    let err = stderr(&out);
-    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
-    assert!(took < Duration::from_secs(5), "{args:?} took {took:?}");
-    assert!(err.contains(needle), "{args:?}: '{needle}' not in: {err}");
-    assert!(!err.contains("NaN"), "{args:?}: {err}");
-}
 
 #[test]
 fn a_sheet_mass_beyond_any_car_is_refused_in_both_studies() {
