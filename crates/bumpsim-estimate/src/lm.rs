@@ -474,6 +474,65 @@ mod tests {
         assert_relative_eq!(out.parameters[1], 1.0, epsilon = 1e-6);
     }
 
+    /// Rosenbrock with its residuals multiplied by `scale`.
+    struct Scaled(f64);
+
+    impl LeastSquares for Scaled {
+        fn residual_count(&self) -> usize {
+            2
+        }
+        fn parameter_count(&self) -> usize {
+            2
+        }
+        fn evaluate(&self, p: &[f64], r: &mut [f64], mut jac: Option<&mut DMatrix<f64>>) -> bool {
+            let ok = Rosenbrock.evaluate(p, r, jac.as_deref_mut());
+            if let Some(j) = jac {
+                *j *= self.0;
+            }
+            r.iter_mut().for_each(|v| *v *= self.0);
+            ok
+        }
+        fn normal(
+            &self,
+            p: &[f64],
+            r: &mut [f64],
+            jtj: &mut DMatrix<f64>,
+            g: &mut DVector<f64>,
+        ) -> bool {
+            let ok = Rosenbrock.normal(p, r, jtj, g);
+            r.iter_mut().for_each(|v| *v *= self.0);
+            *jtj *= self.0 * self.0;
+            *g *= self.0 * self.0;
+            ok
+        }
+    }
+
+    /// A scaling of the residuals (a noise of 1e-8 against 1e-3) leaves
+    /// the scaled damping's path alone: the same iterations, the same point.
+    #[test]
+    fn the_scaled_damping_does_not_depend_on_the_residuals_scale() {
+        let settings = Settings {
+            damping: Damping::Scaled,
+            ..Settings::default()
+        };
+        let run = |scale| {
+            minimise(
+                &Scaled(scale),
+                &[-1.2, 1.0],
+                &[-5.0; 2],
+                &[5.0; 2],
+                &settings,
+            )
+        };
+        let (coarse, fine) = (run(1e3), run(1e8));
+        assert!(coarse.stop.converged() && fine.stop.converged());
+        assert_eq!(coarse.iterations, fine.iterations);
+        for (a, b) in coarse.parameters.iter().zip(&fine.parameters) {
+            assert_relative_eq!(*a, *b, max_relative = 1e-9);
+            assert_relative_eq!(*a, 1.0, epsilon = 1e-6);
+        }
+    }
+
     #[test]
     fn respects_bounds_and_stops_on_the_active_bound() {
         // minimum at (1, 1) is outside p0 <= 0.5: the constrained optimum is on p0 = 0.5
