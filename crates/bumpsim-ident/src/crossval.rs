@@ -87,7 +87,7 @@ fn fold(
     let (lower, upper) = (log(&settings.bounds.lower), log(&settings.bounds.upper));
     let solver = lm::Settings {
         max_iterations: settings.solver.max_iterations.min(ITERATIONS),
-        ..settings.solver_for(cases)
+        ..settings.solver
     };
     let refit = lm::minimise(&objective, &log(&theta), &lower, &upper, &solver);
     let model = objective.model(&refit.parameters)?;

@@ -89,10 +89,6 @@ pub fn identify(
     settings: &Settings,
     observer: &dyn Observer,
 ) -> Result<Identification, IdentError> {
-    let settings = &Settings {
-        solver: settings.solver_for(cases),
-        ..settings.clone()
-    };
     let mut result = identify_only(cases, settings, observer)?;
     result.reduction = crate::reduce::suggest(cases, &result, settings);
     if let Some(r) = &result.reduction {

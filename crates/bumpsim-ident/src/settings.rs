@@ -111,7 +111,10 @@ impl Settings {
     /// ([`lm::Damping::Scaled`]), so that the search does not depend on
     /// the noise's scale (a given 1e-8 m/s stopped it at its start, issue
     /// 44). The thesis's objective, in m², keeps the start it had, and
-    /// with it every figure it reproduces.
+    /// with it every figure it reproduces. Not yet the identification's
+    /// default: it moved the recommended model of 2 of 10 independent
+    /// series (`tests/choice.rs`) and the unconverged posterior printed in
+    /// docs/uncertainty.md (docs/identify.md "Iterations").
     pub fn solver_for(&self, cases: &[LoadCase]) -> lm::Settings {
         let weighted = cases.iter().any(|c| !c.compare.is_thesis());
         match self.solver.damping {

@@ -2,7 +2,9 @@
 //! depend on the scale of a given `noise`: the residuals are divided by
 //! it, so every objective is multiplied by 1/σ², and the search must end
 //! at the same parameters whatever σ is (a given 1e-8 m/s, inside the
-//! accepted range, stopped the search at its start).
+//! accepted range, stopped the search at its start). With
+//! [`bumpsim_ident::Settings::solver_for`] (LM's λ starting dimensionless)
+//! it does not; that is not yet the default (docs/identify.md).
 
 use bumpsim_estimate::observer::Silent;
 use bumpsim_ident::{Study, identify};
@@ -26,6 +28,9 @@ fn the_parameters_do_not_depend_on_the_noise_scale() {
         let cases = study.cases(3).unwrap();
         let mut settings = study.settings(3).unwrap();
         settings.starts = 4;
+        // the scaled start is not yet the identification's default (see
+        // docs/identify.md "Iterations"): asked for here
+        settings.solver = settings.solver_for(&cases);
         let result = identify(&cases, &settings, &Silent).unwrap();
         eprintln!(
             "noise {noise:e}: {:?} objective {:e} fit {} % stop {:?} iterations {} warnings {:?}",
