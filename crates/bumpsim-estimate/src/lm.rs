@@ -119,6 +119,16 @@ pub enum Damping {
     /// diagonal element.
     #[default]
     Nielsen,
+    /// Nielsen's update of a dimensionless λ, starting at 1e-3: with
+    /// Marquardt's scaling `D = diag(JᵀJ)` the damped system
+    /// `(JᵀJ + λ D) δ = −Jᵀr` is invariant under a scaling of the residuals
+    /// only if λ carries no unit. [`Damping::Nielsen`]'s start, 1e-3 of the
+    /// largest diagonal element (Madsen, Nielsen & Tingleff's τ for
+    /// `D = I`), carries the residuals' unit squared: residuals divided by
+    /// a noise of 1e-8 m/s made it 1e14 and the first steps 1e-15 long, and
+    /// the search stopped at its start (issue 44). The steps of this one
+    /// do not depend on the residuals' scale.
+    Scaled,
     /// A trust region on the step scaled by the column norms of J (Moré
     /// 1978; [`crate::trust`]): the Gauss–Newton step whenever it fits, the
     /// radius from the gain ratio as scipy's `least_squares` sets it (but
@@ -283,8 +293,9 @@ pub fn minimise(
 
 /// The damping's state between iterations ([`Damping`]).
 enum Control {
-    /// Nielsen's λ (negative: not yet set) and its growth factor ν.
-    Nielsen { lambda: f64, nu: f64 },
+    /// Nielsen's λ (negative: not yet set), its growth factor ν, and
+    /// whether λ starts dimensionless ([`Damping::Scaled`]).
+    Nielsen { lambda: f64, nu: f64, scaled: bool },
     /// The trust radius (negative: not yet set) and this iteration's
     /// decomposed subproblem.
     Trust {
@@ -296,9 +307,10 @@ enum Control {
 impl Control {
     fn new(damping: Damping) -> Control {
         match damping {
-            Damping::Nielsen => Control::Nielsen {
+            Damping::Nielsen | Damping::Scaled => Control::Nielsen {
                 lambda: -1.0,
                 nu: 2.0,
+                scaled: damping == Damping::Scaled,
             },
             Damping::TrustRegion => Control::Trust {
                 radius: -1.0,
@@ -310,6 +322,7 @@ impl Control {
     /// Sets up an iteration at the state `s` with the `free` parameters.
     fn prepare(&mut self, s: &State, free: &[usize]) {
         match self {
+            Control::Nielsen { lambda, scaled, .. } if *lambda < 0.0 && *scaled => *lambda = 1e-3,
             Control::Nielsen { lambda, .. } if *lambda < 0.0 => {
                 let n = s.g.len();
                 *lambda = 1e-3 * (0..n).map(|i| s.jtj[(i, i)]).fold(0.0, f64::max);
@@ -349,7 +362,7 @@ impl Control {
     fn accept(&mut self, rho: f64, step: &[f64]) {
         let length = self.length(step);
         match self {
-            Control::Nielsen { lambda, nu } => {
+            Control::Nielsen { lambda, nu, .. } => {
                 *lambda *= (1.0_f64 / 3.0).max(1.0 - (2.0 * rho - 1.0).powi(3));
                 *nu = 2.0;
             }
@@ -369,7 +382,7 @@ impl Control {
     /// `bumpsim-ident/tests/iterations.rs`).
     fn reject(&mut self, length: f64) {
         match self {
-            Control::Nielsen { lambda, nu } => (*lambda, *nu) = (*lambda * *nu, *nu * 2.0),
+            Control::Nielsen { lambda, nu, .. } => (*lambda, *nu) = (*lambda * *nu, *nu * 2.0),
             Control::Trust { radius, .. } if length > 0.0 => *radius = 0.5 * length.min(*radius),
             Control::Trust { radius, .. } => *radius *= 0.5,
         }
@@ -459,6 +472,65 @@ mod tests {
         assert!(out.stop.converged(), "{:?}", out.stop);
         assert_relative_eq!(out.parameters[0], 1.0, epsilon = 1e-6);
         assert_relative_eq!(out.parameters[1], 1.0, epsilon = 1e-6);
+    }
+
+    /// Rosenbrock with its residuals multiplied by `scale`.
+    struct Scaled(f64);
+
+    impl LeastSquares for Scaled {
+        fn residual_count(&self) -> usize {
+            2
+        }
+        fn parameter_count(&self) -> usize {
+            2
+        }
+        fn evaluate(&self, p: &[f64], r: &mut [f64], mut jac: Option<&mut DMatrix<f64>>) -> bool {
+            let ok = Rosenbrock.evaluate(p, r, jac.as_deref_mut());
+            if let Some(j) = jac {
+                *j *= self.0;
+            }
+            r.iter_mut().for_each(|v| *v *= self.0);
+            ok
+        }
+        fn normal(
+            &self,
+            p: &[f64],
+            r: &mut [f64],
+            jtj: &mut DMatrix<f64>,
+            g: &mut DVector<f64>,
+        ) -> bool {
+            let ok = Rosenbrock.normal(p, r, jtj, g);
+            r.iter_mut().for_each(|v| *v *= self.0);
+            *jtj *= self.0 * self.0;
+            *g *= self.0 * self.0;
+            ok
+        }
+    }
+
+    /// A scaling of the residuals (a noise of 1e-8 against 1e-3) leaves
+    /// the scaled damping's path alone: the same iterations, the same point.
+    #[test]
+    fn the_scaled_damping_does_not_depend_on_the_residuals_scale() {
+        let settings = Settings {
+            damping: Damping::Scaled,
+            ..Settings::default()
+        };
+        let run = |scale| {
+            minimise(
+                &Scaled(scale),
+                &[-1.2, 1.0],
+                &[-5.0; 2],
+                &[5.0; 2],
+                &settings,
+            )
+        };
+        let (coarse, fine) = (run(1e3), run(1e8));
+        assert!(coarse.stop.converged() && fine.stop.converged());
+        assert_eq!(coarse.iterations, fine.iterations);
+        for (a, b) in coarse.parameters.iter().zip(&fine.parameters) {
+            assert_relative_eq!(*a, *b, max_relative = 1e-9);
+            assert_relative_eq!(*a, 1.0, epsilon = 1e-6);
+        }
     }
 
     #[test]

@@ -105,6 +105,27 @@ pub struct Settings {
 pub const SHEET_MASS_TOLERANCE: f64 = 0.02;
 
 impl Settings {
+    /// The solver for `cases`: Nielsen's damping as given, except that on a
+    /// weighted comparison (residuals divided by a noise, any domain but
+    /// the thesis's unweighted displacement) its λ starts dimensionless
+    /// ([`lm::Damping::Scaled`]), so that the search does not depend on
+    /// the noise's scale (a given 1e-8 m/s stopped it at its start, issue
+    /// 44). The thesis's objective, in m², keeps the start it had, and
+    /// with it every figure it reproduces. Not yet the identification's
+    /// default: it moved the recommended model of 2 of 10 independent
+    /// series (`tests/choice.rs`) and the unconverged posterior printed in
+    /// docs/uncertainty.md (docs/identify.md "Iterations").
+    pub fn solver_for(&self, cases: &[LoadCase]) -> lm::Settings {
+        let weighted = cases.iter().any(|c| !c.compare.is_thesis());
+        match self.solver.damping {
+            lm::Damping::Nielsen if weighted => lm::Settings {
+                damping: lm::Damping::Scaled,
+                ..self.solver
+            },
+            _ => self.solver,
+        }
+    }
+
     /// Thesis defaults: every parameter ≥ 1, `starts` starts, seed 1.
     pub fn new(dof: usize, starts: usize) -> Settings {
         Settings {

@@ -1,6 +1,7 @@
 //! Issue 44 item 6: from its default (data-derived) start, one start,
 //! bumpsim's LM with the trust region ([`Damping::TrustRegion`]; the 1-D
-//! identification's default is still Nielsen's damping, see
+//! identification's default is still Nielsen's damping, 24 and 77; with
+//! a dimensionless start, [`Damping::Scaled`], 27 and 77: see
 //! docs/identify.md "Iterations") needs no more Jacobians than scipy's
 //! `least_squares` (trust-region-reflective, 2-point differences) evaluates
 //! from the same start, for the same optimum (objectives within 1e-9,
