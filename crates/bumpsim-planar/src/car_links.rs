@@ -210,7 +210,7 @@ impl PlanarCar {
     /// The car as loads of at most `force` in all (N) can load its side
     /// members, for the critical step of a replay under such loads
     /// ([`crate::drive::substeps`]): each progressive link's limit lowered
-    /// to the crush at which it carries [`DYNAMIC_FACTOR`] × `force`,
+    /// to the crush at which it carries `DYNAMIC_FACTOR` (4) × `force`,
     /// where that is below its limit (past the limit the curve continues
     /// along its tangent, so the link's steepest slope becomes the one the
     /// loads can reach). Not a car to run: the links' curves beyond that

@@ -179,11 +179,11 @@ pub enum Bias {
     Pretrigger,
     /// Removed as the pre-trigger's mean and, per case and accelerometer, a
     /// remaining bias b estimated with the car as a nuisance value under
-    /// the pre-trigger mean's own uncertainty as its prior (see [`debiased`]).
+    /// the pre-trigger mean's own uncertainty as its prior (see the objective's `debiased`).
     Nuisance,
 }
 
-/// The data's per-sample count against the bias's prior in [`debiased`]:
+/// The data's per-sample count against the bias's prior in the objective's `debiased`:
 /// the displacement and velocity residuals are strongly correlated
 /// (variance inflation 50–230 on issue 44's yaw-rate series), so a
 /// white-noise count would make the prior negligible; 100 counts the data
