@@ -21,7 +21,9 @@ pub fn settings(table: &toml::Table) -> Result<Vec<PriorSetting>, PriorsError> {
 
 /// The dimension of a value given with a unit, by the prior's name.
 fn dimension(name: &str) -> Option<Dimension> {
-    if name == crate::identify::TOTAL_MASS || name == "body.mass" || name.contains(".masses[") {
+    if name.starts_with(crate::identify::MIRROR) {
+        None
+    } else if name == crate::identify::TOTAL_MASS || name == "body.mass" || name.contains(".masses[") {
         Some(Dimension::Mass)
     } else if name.contains(".springs[") {
         Some(Dimension::Stiffness)
