@@ -23,7 +23,10 @@ pub fn settings(table: &toml::Table) -> Result<Vec<PriorSetting>, PriorsError> {
 fn dimension(name: &str) -> Option<Dimension> {
     if name.starts_with(crate::identify::MIRROR) {
         None
-    } else if name == crate::identify::TOTAL_MASS || name == "body.mass" || name.contains(".masses[") {
+    } else if name == crate::identify::TOTAL_MASS
+        || name == "body.mass"
+        || name.contains(".masses[")
+    {
         Some(Dimension::Mass)
     } else if name.contains(".springs[") {
         Some(Dimension::Stiffness)

@@ -80,7 +80,7 @@ fn a_ratio_priors_gradient_information_and_line_are_its_difference_of_logs() {
     assert_relative_eq!(jac[(2, 1)], 2.5, epsilon = 1e-12);
     assert_relative_eq!(jac[(2, 2)], -2.5, epsilon = 1e-12);
     let (mut jtj, mut g) = (DMatrix::zeros(3, 3), DVector::zeros(3));
-    assert!(problem.normal(&p, &mut vec![0.0; 3], &mut jtj, &mut g));
+    assert!(problem.normal(&p, &mut [0.0; 3], &mut jtj, &mut g));
     assert_relative_eq!(jtj, jac.transpose() * &jac, epsilon = 1e-12);
     // its information is (e1 − e2)(e1 − e2)ᵀ/s²: none on the level
     let info = information(std::slice::from_ref(&ratio), &p);

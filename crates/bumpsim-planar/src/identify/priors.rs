@@ -307,7 +307,10 @@ mod tests {
         assert!(p.iter().all(|p| p.name != "left/right.masses[0]"));
         // the ratio the study names: ln θ4 − ln θ7 (the unknowns: body mass
         // and yaw inertia, then the left chain 2-4 and the right 5-7)
-        let mirror = p.iter().find(|p| p.name == "left/right.springs[0]").unwrap();
+        let mirror = p
+            .iter()
+            .find(|p| p.name == "left/right.springs[0]")
+            .unwrap();
         assert!(mirror.is_ratio() && mirror.centre == 1.0 && mirror.spread == 0.1);
         assert_eq!(
             (mirror.terms.as_slice(), mirror.less.as_slice()),
