@@ -14,6 +14,13 @@
 //! the extended residuals is the Laplace approximation of that posterior:
 //! `Cov(ln θ) = σ² (JᵀJ + σ² Σ g gᵀ / s²)⁻¹`, `g = ∇v`.
 //!
+//! A ratio prior ([`Prior::ratio`]) is the same on `v(p) = p_i − p_j`,
+//! `ln(θ_i/θ_j)`: what an engineer knows of two parameters' ratio and not
+//! of their level (a car's left and right crash boxes are mirror images of
+//! one part: their stiffnesses' ratio is near 1, whatever the stiffness);
+//! its gradient is `+1` on `i`, `−1` on `j`. In general `v` is
+//! `ln Σ_{i∈S} e^{p_i} − ln Σ_{j∈L} e^{p_j}` ([`Prior::less`]).
+//!
 //! The problem's own objective is untouched: [`Priored`] wraps it. Each
 //! prior is reported with how far the data moved the parameter from it,
 //! `z` in prior standard deviations ([`Moved`]): |z| above
@@ -112,7 +119,11 @@ pub struct Prior {
     pub name: String,
     /// The log parameters whose values are summed (one: a prior on it).
     pub terms: Vec<usize>,
-    /// The centre, SI (> 0).
+    /// The log parameters whose values' sum divides the terms' (empty
+    /// but for a ratio prior, [`Prior::ratio`]).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub less: Vec<usize>,
+    /// The centre, SI (> 0; a ratio's is dimensionless).
     pub centre: f64,
     /// The standard deviation of the log, ≈ relative (> 0).
     pub spread: f64,
@@ -151,6 +162,7 @@ impl Prior {
         Ok(Prior {
             name,
             terms,
+            less: Vec::new(),
             centre,
             spread,
             source: String::new(),
@@ -167,6 +179,34 @@ impl Prior {
         Prior::sum(name, vec![index], centre, spread)
     }
 
+    /// A prior on the ratio `θ_numerator/θ_denominator` (a difference of
+    /// their logs; see the module), checked: the two must differ.
+    pub fn ratio(
+        name: impl Into<String>,
+        numerator: usize,
+        denominator: usize,
+        centre: f64,
+        spread: f64,
+    ) -> Result<Prior, PriorError> {
+        let prior = Prior::single(name, numerator, centre, spread)?;
+        if numerator == denominator {
+            return Err(PriorError::Index {
+                name: prior.name,
+                index: denominator,
+                count: 0,
+            });
+        }
+        Ok(Prior {
+            less: vec![denominator],
+            ..prior
+        })
+    }
+
+    /// Whether it is a prior on a ratio (its centre dimensionless).
+    pub fn is_ratio(&self) -> bool {
+        !self.less.is_empty()
+    }
+
     /// The same prior, its source named.
     pub fn from_source(self, source: impl Into<String>) -> Prior {
         Prior {
@@ -175,26 +215,41 @@ impl Prior {
         }
     }
 
-    /// `v(p) = ln Σ e^{p_i}` over the terms, and its gradient's entries
-    /// (the shares `e^{p_i}/Σ`), stably.
-    fn value(&self, p: &[f64]) -> (f64, Vec<f64>) {
-        let top = self
-            .terms
-            .iter()
-            .map(|&i| p[i])
-            .fold(f64::NEG_INFINITY, f64::max);
-        let weights: Vec<f64> = self.terms.iter().map(|&i| (p[i] - top).exp()).collect();
-        let total: f64 = weights.iter().sum();
-        (
-            top + total.ln(),
-            weights.iter().map(|w| w / total).collect(),
-        )
+    /// `v(p) = ln Σ e^{p_i}` over the terms less the same over
+    /// [`Prior::less`], and its gradient (index, entry): the shares
+    /// `e^{p_i}/Σ`, negative for `less`), stably.
+    fn value(&self, p: &[f64]) -> (f64, Vec<(usize, f64)>) {
+        let (v, mut gradient) = log_sum(&self.terms, p);
+        if self.less.is_empty() {
+            return (v, gradient);
+        }
+        let (w, less) = log_sum(&self.less, p);
+        gradient.extend(less.into_iter().map(|(i, s)| (i, -s)));
+        (v - w, gradient)
     }
 
     /// How many prior standard deviations `p` lies from the centre.
     pub fn z(&self, p: &[f64]) -> f64 {
         (self.value(p).0 - self.centre.ln()) / self.spread
     }
+}
+
+/// `ln Σ e^{p_i}` over `terms` and its shares `e^{p_i}/Σ`, stably.
+fn log_sum(terms: &[usize], p: &[f64]) -> (f64, Vec<(usize, f64)>) {
+    let top = terms
+        .iter()
+        .map(|&i| p[i])
+        .fold(f64::NEG_INFINITY, f64::max);
+    let weights: Vec<f64> = terms.iter().map(|&i| (p[i] - top).exp()).collect();
+    let total: f64 = weights.iter().sum();
+    (
+        top + total.ln(),
+        terms
+            .iter()
+            .zip(&weights)
+            .map(|(&i, w)| (i, w / total))
+            .collect(),
+    )
 }
 
 /// A problem with priors: its residuals followed by one per prior.
@@ -214,7 +269,7 @@ impl<P: LeastSquares> Priored<P> {
             return Err(PriorError::Noise { value: noise });
         }
         for prior in &priors {
-            if let Some(&index) = prior.terms.iter().find(|&&i| i >= count) {
+            if let Some(&index) = prior.terms.iter().chain(&prior.less).find(|&&i| i >= count) {
                 return Err(PriorError::Index {
                     name: prior.name.clone(),
                     index,
@@ -261,15 +316,10 @@ impl<P: LeastSquares> Priored<P> {
             .iter()
             .enumerate()
             .map(|(k, prior)| {
-                let (v, shares) = prior.value(p);
+                let (v, gradient) = prior.value(p);
                 let factor = self.noise / prior.spread;
                 residuals[m + k] = factor * (v - prior.centre.ln());
-                let row = prior
-                    .terms
-                    .iter()
-                    .zip(shares)
-                    .map(|(&i, s)| (i, factor * s))
-                    .collect();
+                let row = gradient.into_iter().map(|(i, s)| (i, factor * s)).collect();
                 (residuals[m + k], row)
             })
             .collect()
@@ -361,6 +411,9 @@ pub struct Moved {
     pub spread: f64,
     /// Where it comes from.
     pub source: String,
+    /// Whether it is a prior on a ratio ([`Prior::ratio`]).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub ratio: bool,
     /// The estimate (of the sum, for a prior on several parameters), SI.
     pub estimate: f64,
     /// How far the data moved it, in prior standard deviations,
@@ -377,6 +430,7 @@ pub fn moved(priors: &[Prior], p: &[f64]) -> Vec<Moved> {
             centre: prior.centre,
             spread: prior.spread,
             source: prior.source.clone(),
+            ratio: prior.is_ratio(),
             estimate: prior.value(p).0.exp(),
             z: prior.z(p),
         })
@@ -408,12 +462,16 @@ pub fn text(moved: &[Moved], format: &dyn Fn(&str, f64) -> String) -> String {
                 true => ": the data disagree with the prior",
                 false => "",
             };
+            let (kind, value): (&str, &dyn Fn(f64) -> String) = match m.ratio {
+                true => ("left/right ratio ", &|v| format!("{v:.3}")),
+                false => ("", &|v| format(&m.name, v)),
+            };
             format!(
-                "prior {}: {} ± {} (ln){source} -> {} (moved {:+.2} sd){far}\n",
+                "prior {}: {kind}{} ± {} (ln){source} -> {} (moved {:+.2} sd){far}\n",
                 m.name,
-                format(&m.name, m.centre),
+                value(m.centre),
                 spread_text(m.spread),
-                format(&m.name, m.estimate),
+                value(m.estimate),
                 m.z
             )
         })
@@ -442,6 +500,7 @@ pub fn indented_text(moved: &[Moved], parameters: &[crate::uncertainty::Paramete
 pub fn prior_only<'a>(priors: &'a [Prior], log_sd: &[Option<f64>]) -> Vec<(usize, &'a Prior)> {
     priors
         .iter()
+        .filter(|prior| !prior.is_ratio())
         .filter_map(|prior| match prior.terms.as_slice() {
             [i] => log_sd
                 .get(*i)
@@ -473,10 +532,10 @@ pub fn warnings(moved: &[Moved]) -> Vec<String> {
 pub fn information(priors: &[Prior], p: &[f64]) -> DMatrix<f64> {
     let mut out = DMatrix::zeros(p.len(), p.len());
     for prior in priors {
-        let (_, shares) = prior.value(p);
+        let (_, gradient) = prior.value(p);
         let weight = prior.spread.powi(-2);
-        for (&i, a) in prior.terms.iter().zip(&shares) {
-            for (&j, b) in prior.terms.iter().zip(&shares) {
+        for &(i, a) in &gradient {
+            for &(j, b) in &gradient {
                 out[(i, j)] += weight * a * b;
             }
         }
@@ -541,192 +600,4 @@ pub fn with_priors(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use approx::assert_relative_eq;
-
-    /// Two residuals on three parameters: r = [p0 − 1, p1 + p2 − 2].
-    struct Linear;
-    impl LeastSquares for Linear {
-        fn residual_count(&self) -> usize {
-            2
-        }
-        fn parameter_count(&self) -> usize {
-            3
-        }
-        fn evaluate(&self, p: &[f64], r: &mut [f64], j: Option<&mut DMatrix<f64>>) -> bool {
-            r[0] = p[0] - 1.0;
-            r[1] = p[1] + p[2] - 2.0;
-            if let Some(j) = j {
-                j.fill(0.0);
-                j[(0, 0)] = 1.0;
-                j[(1, 1)] = 1.0;
-                j[(1, 2)] = 1.0;
-            }
-            true
-        }
-    }
-
-    #[test]
-    fn the_jacobian_and_the_normal_equations_agree_with_differences() {
-        let prior = Prior::sum("total", vec![0, 2], 5.0, 0.1).unwrap();
-        let single = Prior::single("one", 1, 2.0, 0.3).unwrap();
-        let problem = Priored::new(Linear, vec![prior, single], 0.5).unwrap();
-        let p = [0.3, -0.2, 1.1];
-        let mut r = vec![0.0; 4];
-        let mut jac = DMatrix::zeros(4, 3);
-        assert!(problem.evaluate(&p, &mut r, Some(&mut jac)));
-        // the sum prior's residual: 0.5 (ln(e^0.3 + e^1.1) − ln 5)/0.1
-        let v = (0.3f64.exp() + 1.1f64.exp()).ln();
-        assert_relative_eq!(r[2], 5.0 * (v - 5f64.ln()), epsilon = 1e-12);
-        for j in 0..3 {
-            let mut q = p;
-            q[j] += 1e-7;
-            let mut rq = vec![0.0; 4];
-            problem.evaluate(&q, &mut rq, None);
-            for i in 0..4 {
-                assert_relative_eq!((rq[i] - r[i]) / 1e-7, jac[(i, j)], epsilon = 1e-5);
-            }
-        }
-        let (mut jtj, mut g) = (DMatrix::zeros(3, 3), DVector::zeros(3));
-        let mut r2 = vec![0.0; 4];
-        assert!(problem.normal(&p, &mut r2, &mut jtj, &mut g));
-        assert_relative_eq!(jtj, jac.transpose() * &jac, epsilon = 1e-12);
-        assert_relative_eq!(
-            g,
-            jac.transpose() * DVector::from_column_slice(&r),
-            epsilon = 1e-12
-        );
-    }
-
-    #[test]
-    fn hostile_priors_are_refused_by_name() {
-        let e = |r: Result<Prior, PriorError>| r.unwrap_err().to_string();
-        assert!(e(Prior::single("m", 0, f64::NAN, 0.1)).contains("prior 'm': centre"));
-        assert!(e(Prior::single("m", 0, -3.0, 0.1)).contains("centre"));
-        assert!(e(Prior::single("m", 0, 3.0, -0.1)).contains("prior 'm': spread"));
-        assert!(e(Prior::single("m", 0, 3.0, f64::INFINITY)).contains("spread"));
-        // issue 44's hostile pass: a centre beyond the search's range ran to
-        // exit 0 at the bounds, a spread of 1e-300 overflowed every start
-        assert!(e(Prior::single("m", 0, 1e300, 0.1)).contains("from 1e-12 to 1e15"));
-        assert!(e(Prior::single("m", 0, 1e-300, 0.1)).contains("centre"));
-        assert!(e(Prior::single("m", 0, 3.0, 1e-300)).contains("from 1e-6 to 100"));
-        assert!(e(Prior::single("m", 0, 3.0, 1e300)).contains("spread"));
-        let far = Prior::single("far", 7, 1.0, 0.1).unwrap();
-        let Err(err) = Priored::new(Linear, vec![far], 1.0) else {
-            panic!("an index beyond the problem is refused")
-        };
-        assert!(err.to_string().contains("prior 'far'"), "{err}");
-        assert!(Priored::new(Linear, vec![], f64::NAN).is_err());
-    }
-
-    #[test]
-    fn moved_counts_prior_standard_deviations_and_warns_beyond_two() {
-        let prior = Prior::single("I", 0, 100.0, 0.1)
-            .unwrap()
-            .from_source("geometry");
-        let out = moved(&[prior], &[(100f64 * 1.5).ln()]);
-        assert_relative_eq!(out[0].z, 1.5f64.ln() / 0.1, epsilon = 1e-12);
-        assert_relative_eq!(out[0].estimate, 150.0, epsilon = 1e-9);
-        assert_eq!(warnings(&out).len(), 1);
-        let line = text(&out, &|_, v| format!("{v:.0} kg·m²"));
-        assert!(
-            line.contains("100 kg·m²") && line.contains("(geometry)") && line.contains("+4.05 sd"),
-            "{line}"
-        );
-    }
-
-    #[test]
-    fn a_parameter_the_data_hardly_inform_is_named() {
-        let priors = [
-            Prior::single("a", 0, 1.0, 0.2).unwrap(),
-            Prior::single("b", 1, 1.0, 0.2).unwrap(),
-            Prior::sum("ab", vec![0, 1], 2.0, 0.2).unwrap(),
-        ];
-        let found = prior_only(&priors, &[Some(0.19), Some(0.05)]);
-        assert_eq!(found.len(), 1);
-        assert_eq!((found[0].0, found[0].1.name.as_str()), (0, "a"));
-        assert!(prior_only(&priors, &[None, None]).is_empty());
-    }
-
-    #[test]
-    fn the_priors_information_narrows_the_datas_covariance() {
-        use crate::uncertainty::{Correlation, Uncertainty};
-        // two parameters, data sd 0.2 and 0.4 of ln θ, correlated 0.5
-        let u = Uncertainty {
-            names: vec!["a".into(), "b".into()],
-            standard_errors: vec![Some(0.2 * 2.0), Some(0.4 * 3.0)],
-            ci95: vec![
-                Some([2.0 * (-0.392f64).exp(), 2.0 * 0.392f64.exp()]),
-                Some([3.0 * (-0.784f64).exp(), 3.0 * 0.784f64.exp()]),
-            ],
-            at_bound: vec![false; 2],
-            fixed: vec![false; 2],
-            correlation: vec![vec![Some(1.0), Some(0.5)], vec![Some(0.5), Some(1.0)]],
-            residual_std: 1.0,
-            degrees_of_freedom: 100,
-            singular_values: vec![],
-            condition: 1.0,
-            scales: vec![],
-            determined: vec![Some(true); 2],
-            weakest_direction: vec![],
-            error_model: Correlation::RandomWalk,
-            residual_correlation: 0.0,
-            inflation: 1.0,
-            warnings: vec![],
-        };
-        let theta = [2.0, 3.0];
-        let p = [2f64.ln(), 3f64.ln()];
-        let prior = Prior::single("b", 1, 3.0, 0.3).unwrap();
-        let out = with_priors(u, &[prior], &theta, &[0, 1], &p);
-        let c: DMatrix<f64> = DMatrix::from_row_slice(2, 2, &[0.04, 0.04, 0.04, 0.16]);
-        let expected: DMatrix<f64> = (c.try_inverse().unwrap()
-            + DMatrix::from_row_slice(2, 2, &[0.0, 0.0, 0.0, 1.0 / 0.09]))
-        .try_inverse()
-        .unwrap();
-        assert_relative_eq!(
-            out.standard_errors[1].unwrap(),
-            3.0 * expected[(1, 1)].sqrt(),
-            epsilon = 1e-12
-        );
-        assert_relative_eq!(
-            out.standard_errors[0].unwrap(),
-            2.0 * expected[(0, 0)].sqrt(),
-            epsilon = 1e-12
-        );
-        let [low, high] = out.ci95[1].unwrap();
-        assert_relative_eq!(
-            (high / 3.0).ln(),
-            1.96 * expected[(1, 1)].sqrt(),
-            epsilon = 1e-9
-        );
-        assert_relative_eq!(low * high, 9.0, epsilon = 1e-9);
-    }
-
-    #[test]
-    fn noise_is_the_inflated_residual_deviation() {
-        assert_relative_eq!(noise(8.0, 10, 2, 1.0), 1.0);
-        assert_relative_eq!(noise(8.0, 10, 2, 4.0), 2.0);
-        assert!(noise(0.0, 10, 2, 1.0) > 0.0);
-    }
-
-    #[test]
-    fn a_tight_spread_prints_its_digits() {
-        // issue 44's hostile pass: a spread of 1e-6 printed "± 0.000"
-        assert_eq!(spread_text(1e-6), "1.00e-6");
-        assert_eq!(spread_text(0.005), "0.00500");
-        // the recorded outputs' spreads print as before
-        assert_eq!(spread_text(0.01), "0.010");
-        assert_eq!(spread_text(1.1513), "1.151");
-        let moved = Moved {
-            name: "m".into(),
-            centre: 2.0,
-            spread: 1e-6,
-            source: String::new(),
-            estimate: 2.0,
-            z: 0.0,
-        };
-        let line = text(&[moved], &|_, v| format!("{v} kg"));
-        assert!(line.contains("± 1.00e-6 (ln)"), "{line}");
-    }
-}
+mod tests;

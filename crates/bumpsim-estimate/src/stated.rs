@@ -213,9 +213,11 @@ pub fn apply(
             (None, Some(i)) => vec![i],
             (None, None) => return Err(error("needs a value (no default prior on it)".into())),
         };
+        let less = base.as_ref().map(|p| p.less.clone()).unwrap_or_default();
         let prior = Prior::sum(setting.name.clone(), terms, value, spread)
             .map_err(|e| error(e.to_string()))?
             .from_source("the study's [priors]");
+        let prior = Prior { less, ..prior };
         match at {
             Some(at) => out[at] = prior,
             None => out.push(prior),

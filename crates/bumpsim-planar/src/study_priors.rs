@@ -21,7 +21,12 @@ pub fn settings(table: &toml::Table) -> Result<Vec<PriorSetting>, PriorsError> {
 
 /// The dimension of a value given with a unit, by the prior's name.
 fn dimension(name: &str) -> Option<Dimension> {
-    if name == crate::identify::TOTAL_MASS || name == "body.mass" || name.contains(".masses[") {
+    if name.starts_with(crate::identify::MIRROR) {
+        None
+    } else if name == crate::identify::TOTAL_MASS
+        || name == "body.mass"
+        || name.contains(".masses[")
+    {
         Some(Dimension::Mass)
     } else if name.contains(".springs[") {
         Some(Dimension::Stiffness)
@@ -51,6 +56,8 @@ mod tests {
         assert!(by("tyres.mu_lateral").removed);
         assert!((by("total_mass").value.unwrap() - 1239.0).abs() < 1e-9);
         assert!((by("left.springs[0]").value.unwrap() - 9e5).abs() < 1e-6);
+        let ratio = read("\"left/right.springs[0]\" = { value = 1.1, spread = 0.2 }").unwrap();
+        assert_eq!((ratio[0].value, ratio[0].spread), (Some(1.1), Some(0.2)));
     }
 
     #[test]
@@ -67,6 +74,11 @@ mod tests {
             ("body.mass = { centre = 3 }", "body.mass"),
             ("body.mass = 3", "body.mass"),
             ("body.mass = \"some\"", "body.mass"),
+            // a left/right ratio is a number, not a stiffness
+            (
+                "\"left/right.springs[0]\" = { value = \"900 N/mm\" }",
+                "left/right.springs[0]",
+            ),
         ] {
             let e = read(text).unwrap_err().to_string();
             assert!(e.starts_with(&format!("[priors] {key}")), "{text}: {e}");

@@ -83,7 +83,7 @@ pub use bumper::{BumperFit, transformed, unloading_ratio};
 pub use links::{LinkLaw, LinkLaws};
 pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
-pub use priors::{MU, PriorSetting, TOTAL_MASS, priors, removing_all};
+pub use priors::{MIRROR, MIRROR_SPREAD, MU, PriorSetting, TOTAL_MASS, priors, removing_all};
 pub use unknowns::{LINE_MARGIN, REACH, Unknowns};
 
 /// The reduced car, when a chain link is undetermined or not needed.
