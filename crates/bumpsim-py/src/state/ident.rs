@@ -373,6 +373,8 @@ struct MovedDef {
     source: String,
     estimate: f64,
     z: f64,
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    ratio: bool,
 }
 
 remote_seq!(moved_priors, Moved, "MovedDef");
@@ -382,6 +384,8 @@ remote_seq!(moved_priors, Moved, "MovedDef");
 struct PriorDef {
     name: String,
     terms: Vec<usize>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    less: Vec<usize>,
     centre: f64,
     spread: f64,
     source: String,
