@@ -52,6 +52,10 @@ pub(crate) struct Objective<'a> {
     domain: Domain,
     /// Their biases ([`debiased`]).
     bias: Bias,
+    /// With [`Bias::Nuisance`], each case's bias reading and its profile
+    /// factor ([`bias_readings`]), made once: the objective is evaluated
+    /// thousands of times.
+    readings: Arc<Vec<Option<BiasReading>>>,
 }
 
 /// A clone starts with no remembered point (one per solver run).
@@ -66,6 +70,7 @@ impl Clone for Objective<'_> {
             last: Mutex::new(None),
             domain: self.domain,
             bias: self.bias,
+            readings: Arc::clone(&self.readings),
         }
     }
 }
@@ -93,6 +98,10 @@ impl<'a> Objective<'a> {
             })
             .collect::<Result<_, _>>()?;
         let slots = jacobian::slots(unknowns, &cases);
+        let readings = match bias {
+            Bias::Nuisance => bias_readings(&cases, domain),
+            Bias::Pretrigger => Vec::new(),
+        };
         Ok(Objective {
             cases: Arc::new(cases),
             unknowns,
@@ -102,6 +111,7 @@ impl<'a> Objective<'a> {
             last: Mutex::new(None),
             domain,
             bias,
+            readings: Arc::new(readings),
         })
     }
 
@@ -131,7 +141,7 @@ impl<'a> Objective<'a> {
     fn transformed(&self, r: &mut [f64]) {
         compared(&self.cases, self.domain, r);
         if self.bias == Bias::Nuisance {
-            debiased(&self.cases, self.domain, r);
+            debiased(&self.cases, &self.readings, r);
         }
     }
 
@@ -202,39 +212,62 @@ pub const BIAS_INFLATION: f64 = 100.0;
 /// objective is `‖A r‖²` with `A = I − (1 − √(κ/(G+κ))) ĝĝᵀ`, `G = gᵀg`:
 /// linear in `r`, so Jacobian columns transform alike. A case with no
 /// pre-trigger keeps its residuals.
-fn debiased(cases: &[PlanarCase], domain: Domain, r: &mut [f64]) {
+fn debiased(cases: &[PlanarCase], readings: &[Option<BiasReading>], r: &mut [f64]) {
     let mut at = 0;
-    for case in cases {
+    for (case, reading) in cases.iter().zip(readings) {
         let (n, sensors) = (case.window.1 - case.window.0 + 1, case.measured.len());
-        let h = case.drive.step;
-        if case.pretrigger <= 0.0 || n < 3 {
-            at += sensors * n;
-            continue;
-        }
-        let duration = h * (n - 1) as f64;
-        let unit = domain_noise(h, duration, 2 - domain.order());
-        let kappa = BIAS_INFLATION * (case.pretrigger / h) * unit * unit;
-        // the bias's reading b t²/2 for b = 1, in `domain`
-        let mut g: Vec<f64> = (0..n)
-            .map(|k| {
-                let t = (case.window.0 + k) as f64 * h;
-                0.5 * t * t
-            })
-            .collect();
-        differenced(&mut g, (0, 1, n), domain.order(), h);
-        let gg: f64 = g.iter().map(|v| v * v).sum();
-        let cut = 1.0 - (kappa / (gg + kappa)).sqrt();
-        for (s, sensor) in case.drive.sensors.iter().enumerate() {
-            if sensor.integrations() != 2 || sensor.displacement() || gg <= 0.0 {
-                continue;
-            }
-            let rg: f64 = (0..n).map(|k| r[at + k * sensors + s] * g[k]).sum();
-            for (k, gk) in g.iter().enumerate() {
-                r[at + k * sensors + s] -= cut * rg / gg * gk;
+        if let Some(BiasReading { g, gg, cut }) = reading {
+            for (s, sensor) in case.drive.sensors.iter().enumerate() {
+                if sensor.integrations() != 2 || sensor.displacement() {
+                    continue;
+                }
+                let rg: f64 = (0..n).map(|k| r[at + k * sensors + s] * g[k]).sum();
+                for (k, gk) in g.iter().enumerate() {
+                    r[at + k * sensors + s] -= cut * rg / gg * gk;
+                }
             }
         }
         at += sensors * n;
     }
+}
+
+/// A case's accelerometer bias reading for a unit bias, in the compared
+/// domain (`g`), `G = gᵀg` and the profile factor `1 − √(κ/(G+κ))` of
+/// [`debiased`].
+#[derive(Debug)]
+struct BiasReading {
+    g: Vec<f64>,
+    gg: f64,
+    cut: f64,
+}
+
+/// Each case's [`BiasReading`] (None: no pre-trigger, fewer than 3
+/// samples or a reading of no length).
+fn bias_readings(cases: &[PlanarCase], domain: Domain) -> Vec<Option<BiasReading>> {
+    cases
+        .iter()
+        .map(|case| {
+            let n = case.window.1 - case.window.0 + 1;
+            let h = case.drive.step;
+            if case.pretrigger <= 0.0 || n < 3 {
+                return None;
+            }
+            let duration = h * (n - 1) as f64;
+            let unit = domain_noise(h, duration, 2 - domain.order());
+            let kappa = BIAS_INFLATION * (case.pretrigger / h) * unit * unit;
+            // the bias's reading b t²/2 for b = 1, in `domain`
+            let mut g: Vec<f64> = (0..n)
+                .map(|k| {
+                    let t = (case.window.0 + k) as f64 * h;
+                    0.5 * t * t
+                })
+                .collect();
+            differenced(&mut g, (0, 1, n), domain.order(), h);
+            let gg: f64 = g.iter().map(|v| v * v).sum();
+            let cut = 1.0 - (kappa / (gg + kappa)).sqrt();
+            (gg > 0.0).then_some(BiasReading { g, gg, cut })
+        })
+        .collect()
 }
 
 /// `r` (the displacement-domain residuals, or one Jacobian column) in
@@ -416,7 +449,52 @@ fn merged(case: &PlanarCase, b: f64) -> PlanarCase {
 
 #[cfg(test)]
 mod tests {
-    use super::differenced;
+    use super::{BiasReading, Domain, bias_readings, debiased, differenced};
+    use crate::car::{Layout, PlanarCar};
+    use crate::drive::Sensor;
+    use bumpsim_core::model::MsdModel;
+    use bumpsim_impact::bumper::Bumper;
+
+    /// The profiled bias (`debiased`, velocity): on a sill, a residual that
+    /// is exactly the bias's reading g is shrunk to √(κ/(G+κ)) g, one
+    /// orthogonal to g is kept; the yaw-rate sensor's residual is not an
+    /// accelerometer's and is kept whole.
+    #[test]
+    fn a_bias_reading_is_profiled_to_its_prior_and_nothing_else_moves() {
+        let chain = MsdModel::new(vec![8.0, 1200.0], vec![2e3], vec![1.5e6]).unwrap();
+        let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
+        let mut case = crate::identify::tests::pushed(&car, "push", 0.0, Sensor::YawRate);
+        case.pretrigger = 0.02;
+        let cases = [case];
+        let readings = bias_readings(&cases, Domain::Velocity);
+        let BiasReading { g, gg, cut } = readings[0].as_ref().expect("a reading");
+        assert!(*cut > 0.0 && *cut < 1.0, "{cut}");
+        let (n, sensors) = (g.len(), cases[0].measured.len());
+        let along = g.iter().sum::<f64>() / gg;
+        let orthogonal: Vec<f64> = g.iter().map(|v| 1.0 - along * v).collect();
+        let mut r = vec![0.0; n * sensors];
+        for k in 0..n {
+            r[k * sensors] = g[k];
+            r[k * sensors + 1] = orthogonal[k];
+            r[k * sensors + 3] = g[k];
+        }
+        debiased(&cases, &readings, &mut r);
+        let kept = 1.0 - cut;
+        for k in 0..n {
+            let tolerance = 1e-12 * (1.0 + g[k].abs());
+            assert!(
+                (r[k * sensors] - kept * g[k]).abs() < tolerance,
+                "sample {k}"
+            );
+            assert!(
+                (r[k * sensors + 1] - orthogonal[k]).abs() < tolerance,
+                "sample {k}"
+            );
+            assert_eq!(r[k * sensors + 2], 0.0);
+            assert_eq!(r[k * sensors + 3], g[k]);
+        }
+    }
 
     /// A bias's displacement `t²/2` (two interleaved series, stride 2)
     /// differenced once reads `t − h/2`, twice `1`; the other series and
