@@ -65,6 +65,10 @@ pub enum KindError {
     /// A car file beyond its size limit, refused before it is parsed.
     #[error(transparent)]
     TooLarge(#[from] bumpsim_core::files::ReadError),
+    /// A device, pipe or socket (a FIFO given as a study blocked for ever
+    /// when read): refused by name before it is opened.
+    #[error(transparent)]
+    NotAFile(bumpsim_core::files::ReadError),
     /// The declared kind is not one bumpsim has.
     #[error("{path}: kind = {value:?} is not a model bumpsim has (known: {known})")]
     Unknown {
@@ -100,9 +104,11 @@ impl ModelKind {
 
     /// The kind of the file at `path` in its `role`: the declared one, else
     /// the legacy detection (see the module doc). Fails only when the file
-    /// cannot be read, declares an unknown kind or is a car file (TOML)
-    /// beyond `bumpsim_core::files::MAX_CAR_BYTES`.
+    /// cannot be read, is a device, pipe or socket (never opened),
+    /// declares an unknown kind or is a car file (TOML) beyond
+    /// `bumpsim_core::files::MAX_CAR_BYTES`.
     pub fn of(path: &Path, role: Role) -> Result<ModelKind, KindError> {
+        refuse_stream(path)?;
         let json = path
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("json"));
@@ -180,6 +186,20 @@ impl ModelKind {
     }
 }
 
+/// Refuses a device, pipe or socket by name without opening it (opening a
+/// FIFO without a writer blocks); a folder passes, for its reader to name.
+fn refuse_stream(path: &Path) -> Result<(), KindError> {
+    match bumpsim_core::files::not_a_file(path) {
+        Ok(Some(kind)) if kind != "a folder" => Err(KindError::NotAFile(
+            bumpsim_core::files::ReadError::NotAFile {
+                path: path.into(),
+                kind,
+            },
+        )),
+        _ => Ok(()),
+    }
+}
+
 /// The legacy detection of a car file with nonlinear links written before
 /// `kind = "links"` existed: `[[links]]` or `[front]` ([`crate::car::has_links`]),
 /// with `kind = "chain"` or no key.
@@ -233,6 +253,36 @@ fn legacy_planar(table: &toml::Table, role: Role) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[cfg(unix)]
+    #[test]
+    fn a_fifo_is_refused_by_name_without_being_opened() {
+        let dir = std::env::temp_dir().join(format!("bumpsim-kind-fifo-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let fifo = dir.join("study.toml");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+        // opening it would block this test for ever; a refusal returns
+        for role in [Role::Study, Role::Car, Role::Series, Role::Result] {
+            let e = ModelKind::of(&fifo, role).unwrap_err();
+            assert!(matches!(e, KindError::NotAFile(_)), "{e}");
+            let text = e.to_string();
+            assert!(
+                text.contains("study.toml: is a device, pipe or socket"),
+                "{text}"
+            );
+            assert!(ModelKind::of_path(&fifo, role).is_err(), "{role:?}");
+        }
+        let e = ModelKind::of(Path::new("/dev/zero"), Role::Study).unwrap_err();
+        assert!(matches!(e, KindError::NotAFile(_)), "{e}");
+        // a folder is its reader's to name, as before
+        assert_eq!(
+            ModelKind::of_path(&dir, Role::Study).unwrap(),
+            ModelKind::Chain
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     #[test]
     fn legacy_files_are_told_apart_by_their_tables() {
