@@ -8,6 +8,7 @@
 //!   through its run (spreads, bands, Sobol' indices);
 //! - [`reduction`]: the reduced point mass of paper A and its sweeps;
 //! - [`synth`]: synthetic pendulum test series with a measurement chain;
+//! - [`barrier_series`]: synthetic rigid-barrier test series of a car with nonlinear links;
 //! - [`text`]: summaries and CSV of results.
 //!
 //! A 1000 kg pendulum at 4 km/h into a 2-DOF car behind paper A's
@@ -26,6 +27,7 @@
 //! assert!(r.energy.relative_error.abs() < 1e-2);
 //! ```
 
+pub mod barrier_series;
 pub mod bumper;
 pub mod document;
 pub mod impact;

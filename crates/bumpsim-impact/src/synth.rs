@@ -117,6 +117,74 @@ pub fn record(
             (at(v1, k + 1) - at(v1, k.saturating_sub(1))) / (fine * if k == 0 { 1.0 } else { 2.0 })
         })
         .collect();
+    let signals = [
+        ("P0IMPA000000FOXP", "Pendulum load cell X", force, 0.0),
+        (
+            "10SIMELE0000ACXP",
+            "Side member left X",
+            accel.clone(),
+            chain.biases[0],
+        ),
+        (
+            "10SIMERI0000ACXP",
+            "Side member right X",
+            accel,
+            chain.biases[1],
+        ),
+    ];
+    let mut channels = measure(signals.map(Signal::from), chain, index)?;
+    // the pendulum is test object 2 (see `test_header`)
+    channels[0].set_meta("Test object number", "2");
+    Ok(channels)
+}
+
+/// A true signal before the measurement chain: its ISO code, name, the
+/// values on the fine grid (interval `T/10`) and the sensor's bias (SI);
+/// its noise is the chain's for its dimension (force or acceleration).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Signal {
+    /// ISO code.
+    pub code: &'static str,
+    /// Channel name.
+    pub name: &'static str,
+    /// Physical dimension (force or acceleration).
+    pub dimension: Dimension,
+    /// The true values on the fine grid, SI.
+    pub values: Vec<f64>,
+    /// The sensor's constant bias, SI.
+    pub bias: f64,
+}
+
+impl From<(&'static str, &'static str, Vec<f64>, f64)> for Signal {
+    /// A force channel when the code's dimension letters are `FO`, else an
+    /// acceleration.
+    fn from((code, name, values, bias): (&'static str, &'static str, Vec<f64>, f64)) -> Self {
+        let dimension = match code.get(12..14) {
+            Some("FO") => Dimension::Force,
+            _ => Dimension::Acceleration,
+        };
+        Signal {
+            code,
+            name,
+            dimension,
+            values,
+            bias,
+        }
+    }
+}
+
+/// The measurement chain on true signals (one test, noise stream `index`):
+/// each passes the causal anti-alias filter, is sampled every `T`, gets
+/// its bias and Gaussian noise (drawn signal by signal, in order) and
+/// becomes a channel starting at `−pretrigger` whose `Comments` rate it
+/// against its noise-free samples ([`truth_comment`]); forces are written
+/// in kN, accelerations in g.
+pub fn measure(
+    signals: impl IntoIterator<Item = Signal>,
+    chain: &Chain,
+    index: u64,
+) -> Result<Vec<Channel>, ImpactError> {
+    let fine = chain.step / 10.0;
     let mut rng = ChaCha8Rng::seed_from_u64(chain.seed.wrapping_mul(1000).wrapping_add(index));
     let anti_alias =
         Butterworth::new(4, 0.25 / chain.step, fine).map_err(|_| ImpactError::Parameter {
@@ -124,59 +192,33 @@ pub fn record(
             value: chain.step,
             expected: "positive and finite",
         })?;
-    let sample = |signal: &[f64]| -> Vec<f64> {
-        anti_alias.causal(signal).into_iter().step_by(10).collect()
-    };
-    let mut channels = Vec::new();
-    let mut noisy = |values: Vec<f64>, sigma: f64, bias: f64| -> Vec<f64> {
-        values
-            .into_iter()
-            .map(|v| v + bias + sigma * gaussian(&mut rng))
-            .collect()
-    };
-    let load = noisy(sample(&force), chain.force_noise, 0.0);
-    let left = noisy(sample(&accel), chain.acceleration_noise, chain.biases[0]);
-    let right = noisy(sample(&accel), chain.acceleration_noise, chain.biases[1]);
-    let truth = |signal: &[f64]| -> Vec<f64> { signal.iter().step_by(10).copied().collect() };
-    let (true_force, true_accel) = (truth(&force), truth(&accel));
-    let truths = [&true_force, &true_accel, &true_accel];
-    for ((code, name, dimension, values), truth) in [
-        (
-            "P0IMPA000000FOXP",
-            "Pendulum load cell X",
-            Dimension::Force,
-            load,
-        ),
-        (
-            "10SIMELE0000ACXP",
-            "Side member left X",
-            Dimension::Acceleration,
-            left,
-        ),
-        (
-            "10SIMERI0000ACXP",
-            "Side member right X",
-            Dimension::Acceleration,
-            right,
-        ),
-    ]
-    .into_iter()
-    .zip(truths)
-    {
-        let comment = truth_comment(truth, &values, chain.step);
+    let signals: Vec<Signal> = signals.into_iter().collect();
+    let mut noisy = Vec::with_capacity(signals.len());
+    for s in &signals {
+        let sigma = match s.dimension {
+            Dimension::Force => chain.force_noise,
+            _ => chain.acceleration_noise,
+        };
+        let sampled = anti_alias.causal(&s.values).into_iter().step_by(10);
+        let values: Vec<f64> = sampled
+            .map(|v| v + s.bias + sigma * gaussian(&mut rng))
+            .collect();
+        noisy.push(values);
+    }
+    let mut channels = Vec::with_capacity(signals.len());
+    for (s, values) in signals.iter().zip(noisy) {
+        let truth: Vec<f64> = s.values.iter().step_by(10).copied().collect();
+        let comment = truth_comment(&truth, &values, chain.step);
         let series = UniformSeries::new(-chain.pretrigger, chain.step, values).map_err(|_| {
             ImpactError::NoSeparation {
                 duration: chain.duration,
             }
         })?;
-        let mut c = Channel::new(code, name, dimension, series);
+        let mut c = Channel::new(s.code, s.name, s.dimension, series);
         c.set_meta("Comments", &comment);
-        c.source_unit = if dimension == Dimension::Force {
-            // the pendulum is test object 2 (see `test_header`)
-            c.set_meta("Test object number", "2");
-            "kN".into()
-        } else {
-            "g".into()
+        c.source_unit = match s.dimension {
+            Dimension::Force => "kN".into(),
+            _ => "g".into(),
         };
         channels.push(c);
     }
@@ -302,6 +344,15 @@ pub enum SynthError {
     /// The car file (its message names the file).
     #[error(transparent)]
     Car(#[from] bumpsim_io::car::CarError),
+    /// A links car's run into the barrier (a `kind = "links"` series,
+    /// [`crate::barrier_series`]).
+    #[error("test '{test}': {source}")]
+    Barrier {
+        /// The test.
+        test: String,
+        /// The cause.
+        source: bumpsim_core::chain::ChainError,
+    },
     /// The impact.
     #[error("head '{head}': {source}")]
     Impact {
@@ -357,6 +408,37 @@ pub enum SeriesError {
     /// A head name that cannot name a folder.
     #[error("head name {0}")]
     HeadName(bumpsim_core::names::FolderNameError),
+    /// A test name (of a links series) that cannot name a folder.
+    #[error("test name {0}")]
+    TestName(bumpsim_core::names::FolderNameError),
+    /// A links series test's speed outside
+    /// [`crate::impact::SPEED_RANGE`] (the car moves into the barrier).
+    #[error(
+        "test '{test}': speed {speed:?} m/s: the car must move into the barrier at a positive speed of 0.001 to 1000 m/s (SPEED_RANGE)"
+    )]
+    BarrierSpeed {
+        /// The test.
+        test: String,
+        /// The speed given, m/s.
+        speed: f64,
+    },
+    /// A links series' `accelerometers` list.
+    #[error("accelerometers: {reason}")]
+    Accelerometers {
+        /// What is wrong.
+        reason: String,
+    },
+    /// A links series whose fine histories of one test would hold more
+    /// than [`crate::barrier_series::MAX_HISTORY_VALUES`] values.
+    #[error(
+        "[chain] {values:.3e} history values per test (duration over step/10, times 3 per mass + 6): at most {max:.0e} (limit MAX_HISTORY_VALUES); shorten duration, lengthen step or use fewer masses"
+    )]
+    History {
+        /// Values per test.
+        values: f64,
+        /// The most allowed.
+        max: f64,
+    },
     /// A head's speed.
     #[error("head '{head}': {source}")]
     Speed {
@@ -408,7 +490,7 @@ pub fn check_noise(chain: &Chain) -> Result<(), SeriesError> {
 
 /// The chain's times are finite and positive, and the fine simulation grid
 /// (10 points per sample) stays within [`bumpsim_io::output::MAX_SAMPLES`].
-fn check_chain(chain: &Chain) -> Result<(), SeriesError> {
+pub fn check_chain(chain: &Chain) -> Result<(), SeriesError> {
     check_noise(chain)?;
     for (name, value) in [
         ("step", chain.step),
@@ -438,10 +520,23 @@ fn check_chain(chain: &Chain) -> Result<(), SeriesError> {
 /// ([`bumpsim_core::names::check_names`]), plain (no path separator, not
 /// `.` or `..`) and without surrounding spaces.
 fn check_names(heads: &[HeadFile]) -> Result<(), SeriesError> {
-    let names = heads.iter().map(|h| h.name.as_str());
-    bumpsim_core::names::check_names("[[head]]", names)?;
-    for h in heads {
-        bumpsim_core::names::check_folder_name(&h.name).map_err(SeriesError::HeadName)?;
+    check_test_names("[[head]]", heads.iter().map(|h| h.name.as_str()))
+}
+
+/// Test names (of the `table`, `[[head]]` or `[[test]]`) become folder and
+/// file names: printable, distinct names ([`bumpsim_core::names::check_names`]),
+/// plain (no path separator, not `.` or `..`) and without surrounding spaces.
+pub fn check_test_names<'a>(
+    table: &'static str,
+    names: impl Iterator<Item = &'a str> + Clone,
+) -> Result<(), SeriesError> {
+    bumpsim_core::names::check_names(table, names.clone())?;
+    let error = match table {
+        "[[head]]" => SeriesError::HeadName,
+        _ => SeriesError::TestName,
+    };
+    for name in names {
+        bumpsim_core::names::check_folder_name(name).map_err(error)?;
     }
     Ok(())
 }

@@ -21,6 +21,7 @@ mod identify;
 mod impact;
 mod impact_links;
 mod issue48;
+mod links_series;
 mod planar;
 mod planar_coverage;
 mod planar_identify;

@@ -22,6 +22,7 @@
 //! the penalty contact's (0 with a front link). A pendulum (or a moving
 //! barrier) into a car with links is not modelled yet: refused by name.
 
+mod synth;
 mod text;
 
 use crate::model::{CarModel, ImpactRequest};
@@ -86,6 +87,10 @@ impl CarModel for Links {
             &crush,
             request.report,
         )
+    }
+
+    fn synth(&self, path: &Path) -> Result<crate::model::Made, EngineError> {
+        synth::make(path)
     }
 }
 
