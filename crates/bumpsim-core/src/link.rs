@@ -475,6 +475,21 @@ impl Link<f64> {
         };
         self.curve.steepest_slope().max(unloading)
     }
+
+    /// When the unloading rule replaced the given slope: from a reached
+    /// compression `reached` (m) past the elastic limit, a link with an
+    /// unloading slope k_u unloads at `k_e = max(k_u, F_max/δ_max,
+    /// F_max²/(2 E_L))`; `Some((k_u, k_e))` when that is steeper than k_u,
+    /// N/m, else `None` (an elastic link, or one that has not yielded).
+    pub fn replaced_unloading(&self, reached: f64) -> Option<(f64, f64)> {
+        match self.unloading {
+            Unloading::Slope(given) if reached > self.curve.elastic_limit() => {
+                let (_, used) = self.unloading_line(reached);
+                (used > given).then_some((given, used))
+            }
+            _ => None,
+        }
+    }
 }
 
 impl<T: Real> Link<T> {
@@ -570,6 +585,25 @@ mod tests {
         assert!(Curve::table(vec![[0.1, 10.0], [0.2, -5.0]]).is_err());
         assert!(Curve::table(vec![[0.0, 0.0]]).is_err());
         assert!(Curve::table(vec![[0.1, 0.0], [0.2, 5.0]]).is_err());
+    }
+
+    #[test]
+    fn a_replaced_unloading_slope_is_told_with_the_slope_used() {
+        // elastic-perfectly-plastic, k = 1e6 N/m, F_y = 1e4 N: at 0.1 m the
+        // secant is 1e5 N/m, the balance F²/(2 E_L) = 1e8 / (2 · 950) N/m
+        let curve = Curve::bilinear(1e6, 1e4, 0.0).unwrap();
+        let tiny = Link::new(curve.clone(), Unloading::Slope(1e-297)).unwrap();
+        let (given, used) = tiny.replaced_unloading(0.1).unwrap();
+        assert_eq!(given, 1e-297);
+        assert_relative_eq!(used, 1e5, max_relative = 1e-12);
+        let set = LinkState { reached: 0.1 }.plastic_set(&tiny);
+        assert!(set.abs() < 1e-12, "{set}");
+        // a slope steeper than the rule's is kept; before yield nothing is told
+        let steep = Link::new(curve.clone(), Unloading::Slope(2e6)).unwrap();
+        assert_eq!(steep.replaced_unloading(0.1), None);
+        assert_eq!(tiny.replaced_unloading(0.005), None);
+        let elastic = Link::new(curve, Unloading::Elastic).unwrap();
+        assert_eq!(elastic.replaced_unloading(0.1), None);
     }
 
     #[test]

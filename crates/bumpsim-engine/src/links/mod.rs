@@ -24,6 +24,7 @@
 
 mod synth;
 mod text;
+mod unloading;
 
 use crate::model::{CarModel, ImpactRequest};
 use crate::{EngineError, Outcome};

@@ -201,7 +201,8 @@ pub(super) fn outcome(
 ) -> Result<Outcome, EngineError> {
     let figures = links(chain, crush);
     let summary = summary(&figures, crush);
-    let warnings = crush.warnings();
+    let mut warnings = crush.warnings();
+    warnings.extend(super::unloading::replaced(chain, crush));
     let heading = format!("{name}: {label}");
     let e = crush.energy();
     let document = LinksImpact {
