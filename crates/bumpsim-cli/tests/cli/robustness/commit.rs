@@ -202,8 +202,25 @@ fn sigkill_during_a_folder_commit_leaves_the_old_or_the_new_folder() {
         with_notes(folder(&dir.join("new"))),
     );
     assert_ne!(old, new);
+    // the kill delays span the whole run as this machine runs it now (the
+    // fixed 0..120 ms missed its end on a loaded 2-core machine): 20 delays
+    // from 0 to 1.5 × an uninterrupted run's time; if still none finished
+    // (the load grew), the delay doubles until one does, up to 30 s
+    let full = {
+        let plots = dir.join("timed");
+        crate::util::copy_tree(&dir.join("old"), &plots);
+        let started = std::time::Instant::now();
+        let (out, _) = run_in(&dir, &export("2", "timed").each_ref().map(String::as_str));
+        assert_eq!(out.status.code(), Some(0), "{}", super::stderr(&out));
+        started.elapsed()
+    };
+    let spread = (0..20u32).map(|k| full.mul_f64(1.5 * f64::from(k) / 19.0));
+    let longer = (1..=10u32).map(|k| full.mul_f64(1.5 * f64::from(1u32 << k)));
     let (mut olds, mut news) = (0, 0);
-    for delay_ms in (0..120u64).step_by(6) {
+    for (n, delay) in spread.chain(longer).enumerate() {
+        if n >= 20 && (news > 0 || delay > Duration::from_secs(30)) {
+            break;
+        }
         let plots = dir.join("plots");
         let _ = std::fs::remove_dir_all(&plots);
         crate::util::copy_tree(&dir.join("old"), &plots);
@@ -215,16 +232,19 @@ fn sigkill_during_a_folder_commit_leaves_the_old_or_the_new_folder() {
             .stderr(std::process::Stdio::null())
             .spawn()
             .unwrap();
-        std::thread::sleep(Duration::from_millis(delay_ms));
+        std::thread::sleep(delay);
         let _ = child.kill(); // SIGKILL
         let _ = child.wait();
         let now = folder(&plots);
         assert!(
             now == old || now == new,
-            "killed after {delay_ms} ms: a mixed folder {:?}",
+            "killed after {delay:?}: a mixed folder {:?}",
             now.iter().map(|(n, b)| (n, b.len())).collect::<Vec<_>>()
         );
         if now == old { olds += 1 } else { news += 1 }
     }
-    assert!(news > 0, "no run finished: {olds} old, {news} new");
+    assert!(
+        news > 0,
+        "no run finished within 30 s of kill delays (an uninterrupted run took {full:?}): {olds} old, {news} new"
+    );
 }
