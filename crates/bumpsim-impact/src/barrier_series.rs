@@ -294,8 +294,8 @@ pub fn make_barrier_series(path: &Path) -> Result<BarrierSeries, SynthError> {
 /// A test's speed: finite and within [`crate::impact::SPEED_RANGE`] (the
 /// car moves into the barrier).
 fn test_speed(test: &BarrierTestFile) -> Result<f64, SeriesError> {
-    let speed = speed_value(&test.speed).map_err(|source| SeriesError::Speed {
-        head: test.name.clone(),
+    let speed = speed_value(&test.speed).map_err(|source| SeriesError::TestSpeed {
+        test: test.name.clone(),
         source,
     })?;
     match crate::impact::SPEED_RANGE.contains(&speed) {

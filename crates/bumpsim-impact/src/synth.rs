@@ -411,6 +411,14 @@ pub enum SeriesError {
     /// A test name (of a links series) that cannot name a folder.
     #[error("test name {0}")]
     TestName(bumpsim_core::names::FolderNameError),
+    /// A links series test's speed that is no speed.
+    #[error("test '{test}': {source}")]
+    TestSpeed {
+        /// The test.
+        test: String,
+        /// What is wrong with it.
+        source: bumpsim_io::speed::SpeedError,
+    },
     /// A links series test's speed outside
     /// [`crate::impact::SPEED_RANGE`] (the car moves into the barrier).
     #[error(

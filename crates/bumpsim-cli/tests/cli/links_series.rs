@@ -118,14 +118,17 @@ fn synth_of_a_links_series_agrees_with_impact_and_keeps_momentum() {
         let end = (DURATION / STEP).round() as usize;
         let at_end = |start: &str| column(&history, start)[end];
         // the body's ΔV from its two accelerometers (pre-trigger mean
-        // removed, integrated) within 1 % of V + 0.1 m/s (noise, biases)
+        // removed, integrated): within 1 % of it plus 3 σ of the bias
+        // estimate's error over the record, σ = 0.4 g / √(2 · pre) · 0.25 s
+        // (0.07 m/s; the example's noise, two sensors averaged)
         let pre = time.iter().filter(|t| **t < 0.0).count();
         let mean: Vec<f64> = left.iter().zip(right).map(|(l, r)| 0.5 * (l + r)).collect();
         let bias = mean[..pre].iter().sum::<f64>() / pre as f64;
         let made_dv: f64 = mean[pre..].iter().map(|a| (a - bias) * STEP).sum();
         let dv = at_end("v m3") - speed;
+        let sigma = 0.4 * 9.80665 / (2.0 * pre as f64).sqrt() * DURATION;
         assert!(
-            (made_dv - dv).abs() < 0.01 * speed + 0.1,
+            (made_dv - dv).abs() < 0.01 * dv.abs() + 3.0 * sigma,
             "{name}: made ΔV {made_dv} m/s, impact {dv} m/s"
         );
         assert!(dv < -0.5 * speed, "{name}: the body slows ({dv} m/s)");
@@ -229,7 +232,7 @@ fn hostile_links_series_are_refused_by_name() {
             (
                 "speed = \"15 km/h\"",
                 "speed = nan",
-                "is not a finite number",
+                "test 'B15': 'nan' is not a finite number",
             ),
             (
                 "speed = \"15 km/h\"",
@@ -299,7 +302,7 @@ fn impact_warns_when_the_rule_replaces_a_links_unloading_slope() {
     assert_contains(
         &all,
         &[
-            "front link: unloading = 1e-300 N/mm is below the rule k_e = max(k_u, F_max/δ_max, F_max²/(2 E_L)) at its largest compression ",
+            "front link: unloading = 1.000e-300 N/mm is below the rule k_e = max(k_u, F_max/δ_max, F_max²/(2 E_L)) at its largest compression ",
             "it unloads at ",
             "plastic set 0 mm",
         ],
