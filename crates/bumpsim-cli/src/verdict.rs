@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 /// Arguments of `bumpsim verdict`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// A planar car file with a [damageability] table; give one per end (front, rear).
+    /// A car file with a [damageability] table (a planar car, or a chain with nonlinear links); give one per end (front, rear).
     #[arg(long, value_name = "CAR.toml", required_unless_present = "list")]
     car: Vec<PathBuf>,
     /// The clearances and limits of a car file that has no [damageability]

@@ -40,6 +40,20 @@
 //! critical for m1. The recorded force is the wall's force on the car
 //! (negative, as the load-cell barrier's is).
 //!
+//! Driven by [`Drive::Striker`] the wall is a free rigid mass M (a
+//! pendulum or a moving barrier) at x_s, moving at −V onto the car at rest
+//! (x as the barrier run's: the car is pushed towards −x): every wall link
+//! is compressed by the travel relative to it, `x_i − x_s` (the front
+//! link by `x_1 − x_s`, the penalty contact likewise with
+//! `v_1 − v_s`), pushes only — the contact separates when it would pull
+//! and a link's plastic set stays — and the striker takes the reaction,
+//! `M x_s'' = F_wall` (the sum of the wall links' forces). Its kinetic
+//! energy joins `E_kin`, and the penalty contact's work is taken on the
+//! relative velocity, `W_force = Σ T f (v̄_1 − v̄_s)`, so the balance is
+//! the barrier's with `W_contact = −W_force`; as M → ∞ it is the barrier
+//! run seen from the wall. The striker's x and v are recorded
+//! ([`ChainResponse::striker_velocity`]).
+//!
 //! A second load path ([`Chain::with_path`], Kamal 1970's parallel paths:
 //! the body's rails beside the engine's, or the engine meeting the wall
 //! after the radiator's gap) is a crush link between the wall and another
@@ -173,6 +187,19 @@ pub enum Drive<'a> {
         /// Number of samples.
         samples: usize,
     },
+    /// A rigid striker (a pendulum or a moving barrier) of `mass` kg at
+    /// `speed` m/s hits m1 of the car at rest, recorded every `step` s for
+    /// `samples` samples: the wall of [`Drive::Barrier`] made a free mass.
+    Striker {
+        /// kg.
+        mass: f64,
+        /// m/s.
+        speed: f64,
+        /// s.
+        step: f64,
+        /// Number of samples.
+        samples: usize,
+    },
 }
 
 /// Which way x points, and so which relative motion crushes a link.
@@ -226,6 +253,12 @@ pub struct ChainResponse {
     pub plastic_set: Vec<f64>,
     /// Each link's largest compression, m.
     pub reached: Vec<f64>,
+    /// The striker's displacement, m (empty unless driven by
+    /// [`Drive::Striker`]; x as the car's, so negative while it pushes).
+    pub striker_displacement: Vec<f64>,
+    /// The striker's velocity, m/s (empty unless driven by
+    /// [`Drive::Striker`]; its impact speed is `−speed`).
+    pub striker_velocity: Vec<f64>,
 }
 
 impl ChainResponse {
@@ -406,8 +439,14 @@ impl Chain {
         (k, 1.4 * (k * self.masses[0]).sqrt())
     }
 
-    /// The integration step for a sample interval `interval` (s).
-    fn integration_step(&self, interval: f64, wall: Option<(f64, f64)>) -> Result<f64, ChainError> {
+    /// The integration step for a sample interval `interval` (s), with
+    /// a striker of mass `striker` kg when there is one.
+    fn integration_step(
+        &self,
+        interval: f64,
+        wall: Option<(f64, f64)>,
+        striker: Option<f64>,
+    ) -> Result<f64, ChainError> {
         let n = self.dof();
         let (mut omega2, mut omega_c) = (0.0_f64, 0.0_f64);
         for i in 0..n {
@@ -434,6 +473,18 @@ impl Chain {
             }
             omega2 = omega2.max(k / self.masses[i]);
             omega_c = omega_c.max(c / self.masses[i]);
+        }
+        if let (Some(mass), Some((kw, cw))) = (striker, wall) {
+            // the striker carries every wall link's reaction
+            let paths = [&self.path, &self.rebound];
+            let k = kw
+                + paths
+                    .iter()
+                    .flat_map(|p| p.iter())
+                    .map(|p| p.link.steepest_slope())
+                    .sum::<f64>();
+            omega2 = omega2.max(k / mass);
+            omega_c = omega_c.max(cw / mass);
         }
         let raw = SAFETY * critical_step(omega2, omega_c);
         let count = substeps(raw, interval);
@@ -531,7 +582,21 @@ impl Chain {
                 speed,
                 step,
                 samples,
+            }
+            | Drive::Striker {
+                speed,
+                step,
+                samples,
+                ..
             } => (step, samples, speed, Some(self.wall()), Frame::Forward),
+        };
+        let striker = match *drive {
+            Drive::Striker { mass, .. } => {
+                let expected = "a positive, finite striker mass, kg";
+                check("mass", mass, mass > 0.0, expected)?;
+                Some(mass)
+            }
+            _ => None,
         };
         check(
             "step",
@@ -552,7 +617,7 @@ impl Chain {
                 expected: "at least 2",
             });
         }
-        let h = self.integration_step(interval, wall)?;
+        let h = self.integration_step(interval, wall, striker)?;
         let every = (interval / h).round() as usize;
         if samples as f64 * every as f64 > MAX_STEPS {
             return Err(ChainError::TooManySteps {
@@ -562,18 +627,29 @@ impl Chain {
         let n = self.dof();
         let force = match drive {
             Drive::Force { force, .. } => force,
-            Drive::Barrier { .. } => &[][..],
+            Drive::Barrier { .. } | Drive::Striker { .. } => &[][..],
         };
         let driven = Driven {
             force,
             every,
             wall,
             sign: frame.sign(),
+            striker,
         };
-        let out = Out::new(full, n, samples);
+        let out = Out::new(full, n, samples, striker.is_some());
         let mut m = Mover::new(self, values, driven, out);
-        let (zero, speed) = (T::constant(0.0), T::constant(speed));
-        let mut state = Leapfrog::start(&mut m, vec![zero; n], vec![speed; n], h);
+        let zero = T::constant(0.0);
+        let (q, v) = match striker {
+            // the striker (last) moves at −speed onto m1 at rest, x as the
+            // barrier run's: its force on m1 is negative
+            Some(_) => {
+                let mut v = vec![zero; n + 1];
+                v[n] = T::constant(-speed);
+                (vec![zero; n + 1], v)
+            }
+            None => (vec![zero; n], vec![T::constant(speed); n]),
+        };
+        let mut state = Leapfrog::start(&mut m, q, v, h);
         let last = (samples - 1) * every;
         state
             .run(&mut m, every, last)
@@ -601,3 +677,7 @@ fn check(
 #[cfg(test)]
 #[path = "chain_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "chain_striker_tests.rs"]
+mod striker_tests;

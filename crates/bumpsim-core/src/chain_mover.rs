@@ -62,7 +62,7 @@ pub(super) enum Out<T> {
 
 impl<T> Out<T> {
     /// The records of a chain of `n` masses for `samples` samples.
-    pub(super) fn new(full: bool, n: usize, samples: usize) -> Out<T> {
+    pub(super) fn new(full: bool, n: usize, samples: usize, striker: bool) -> Out<T> {
         if !full {
             return Out::Motion(Motion {
                 displacement: series(n, samples),
@@ -84,6 +84,8 @@ impl<T> Out<T> {
             work: Vec::with_capacity(samples),
             plastic_set: vec![],
             reached: vec![],
+            striker_displacement: Vec::with_capacity(samples * striker as usize),
+            striker_velocity: Vec::with_capacity(samples * striker as usize),
         }))
     }
 }
@@ -101,6 +103,7 @@ pub(super) struct Mover<'a, T> {
     every: usize,
     wall: Option<(f64, f64)>,
     sign: f64,
+    striker: Option<f64>,
     front: LinkState<T>,
     front_force: T,
     path: LinkState<T>,
@@ -122,6 +125,9 @@ pub(super) struct Driven<'a> {
     pub(super) every: usize,
     pub(super) wall: Option<(f64, f64)>,
     pub(super) sign: f64,
+    /// The striker's mass, kg ([`super::Drive::Striker`]; its state is
+    /// the last of the integrated ones).
+    pub(super) striker: Option<f64>,
 }
 
 impl<'a, T: Real> Mover<'a, T> {
@@ -140,6 +146,7 @@ impl<'a, T: Real> Mover<'a, T> {
             every: driven.every,
             wall: driven.wall,
             sign: driven.sign,
+            striker: driven.striker,
             front: LinkState::default(),
             front_force: zero,
             path: LinkState::default(),
@@ -153,12 +160,22 @@ impl<'a, T: Real> Mover<'a, T> {
             work: zero,
             out,
         };
-        m.moved(&vec![zero; n], &vec![zero; n], usize::MAX);
+        let states = n + m.striker.is_some() as usize;
+        m.moved(&vec![zero; states], &vec![zero; states], usize::MAX);
         m
     }
 
+    /// Mass `i`'s travel into the wall, `x_i` (a rigid wall at 0) or
+    /// `x_i − x_s` (the striker's face at `x_s`); the same of velocities.
+    fn into_wall(&self, x: &[T], i: usize) -> T {
+        match self.striker {
+            None => x[i],
+            Some(_) => x[i] - x[self.chain.dof()],
+        }
+    }
+
     /// The force on m1 at integration step `k` (foh between samples), or
-    /// the wall's at position `x1` and velocity `v1`.
+    /// the wall's at m1's travel `x1` into it and its rate `v1`.
     fn external(&self, k: usize, x1: T, v1: T) -> T {
         if self.wall.is_some() && self.values.front.is_some() {
             return -self.front_force;
@@ -211,13 +228,14 @@ impl<'a, T: Real> Mover<'a, T> {
         }
         if let (Some(front), Some(_)) = (&values.front, self.wall) {
             if self.front_force.value() > 0.0 {
-                stored += front.stored(q[0], &self.front).value();
+                stored += front.stored(self.into_wall(q, 0), &self.front).value();
             }
             plastic += self.front.dissipated(front).value();
         }
         if let (Some(path), Some(wall), Some(_)) = (&values.path, &self.chain.path, self.wall) {
             if self.path_force.value() > 0.0 {
-                stored += path.stored(q[wall.mass] - wall.gap, &self.path).value();
+                let crush = self.into_wall(q, wall.mass) - wall.gap;
+                stored += path.stored(crush, &self.path).value();
             }
             plastic += self.path.dissipated(path).value();
         }
@@ -225,18 +243,21 @@ impl<'a, T: Real> Mover<'a, T> {
             (&values.rebound, &self.chain.rebound, self.wall)
         {
             if self.rebound_force.value() > 0.0 {
-                stored += rebound
-                    .stored(q[wall.mass] - wall.gap, &self.rebound)
-                    .value();
+                let crush = self.into_wall(q, wall.mass) - wall.gap;
+                stored += rebound.stored(crush, &self.rebound).value();
             }
             plastic += self.rebound.dissipated(rebound).value();
         }
-        let kinetic = values
+        let mut kinetic: f64 = values
             .masses
             .iter()
             .zip(v)
             .map(|(m, w)| 0.5 * m.value() * w.value() * w.value())
             .sum();
+        if let Some(mass) = self.striker {
+            let w = v[self.chain.dof()].value();
+            kinetic += 0.5 * mass * w * w;
+        }
         [kinetic, stored, plastic]
     }
 }
@@ -250,19 +271,20 @@ impl<T: Real> Mechanism<T> for Mover<'_, T> {
             self.springs[j] = link.force(crush, &mut self.states[j]) * self.sign;
         }
         if let (Some(front), Some(_)) = (&self.values.front, self.wall) {
-            self.front_force = front.force(q[0], &mut self.front).max_constant(0.0);
+            let crush = self.into_wall(q, 0);
+            self.front_force = front.force(crush, &mut self.front).max_constant(0.0);
         }
         if let (Some(path), Some(wall), Some(_)) = (&self.values.path, &self.chain.path, self.wall)
         {
             let gap = self.values.path_gap.unwrap_or(T::constant(wall.gap));
-            let crush = q[wall.mass] - gap;
+            let crush = self.into_wall(q, wall.mass) - gap;
             self.path_force = path.force(crush, &mut self.path).max_constant(0.0);
         }
         if let (Some(rebound), Some(wall), Some(_)) =
             (&self.values.rebound, &self.chain.rebound, self.wall)
         {
             let gap = self.values.rebound_gap.unwrap_or(T::constant(wall.gap));
-            let crush = q[wall.mass] - gap;
+            let crush = self.into_wall(q, wall.mass) - gap;
             self.rebound_force = rebound.force(crush, &mut self.rebound).max_constant(0.0);
         }
         self.applied = k.wrapping_add(1);
@@ -270,13 +292,19 @@ impl<T: Real> Mechanism<T> for Mover<'_, T> {
 
     fn accelerations(&mut self, q: &[T], v: &[T], a: &mut [T]) {
         let k = self.applied;
-        let f = self.external(k, q[0], v[0]);
+        let f = self.external(k, self.into_wall(q, 0), self.into_wall(v, 0));
         let (c, masses) = (&self.values.dampers, &self.values.masses);
         let path = self.chain.path.as_ref().map(|p| p.mass);
         let rebound = self.chain.rebound.as_ref().map(|p| p.mass);
-        for (i, ai) in a.iter_mut().enumerate() {
+        let n = self.chain.dof();
+        if let Some(mass) = self.striker {
+            // the striker takes the reaction of every wall link
+            let on_car = f - self.path_force - self.rebound_force;
+            a[n] = -on_car / T::constant(mass);
+        }
+        for (i, ai) in a[..n].iter_mut().enumerate() {
             let mut sum = if i == 0 { f } else { T::constant(0.0) };
-            if i + 1 < q.len() {
+            if i + 1 < n {
                 sum -= self.springs[i] + c[i] * (v[i] - v[i + 1]);
             }
             if i > 0 {
@@ -298,9 +326,10 @@ impl<T: Real> Mechanism<T> for Mover<'_, T> {
         }
         let c = &self.values.dampers;
         let k = if s.half { 0 } else { self.applied };
-        let f = self.external(k, s.q[0], s.before[0]);
+        let f = self.external(k, self.into_wall(s.q, 0), self.into_wall(s.before, 0));
         if self.values.front.is_none() || self.wall.is_none() {
-            self.work += f * s.length * s.mean[0];
+            // on m1's travel into the wall (the striker takes −f)
+            self.work += f * s.length * self.into_wall(s.mean, 0);
         }
         for (j, cj) in c.iter().enumerate() {
             let rate = s.before[j] - s.before[j + 1];
@@ -313,7 +342,8 @@ impl<T: Real> Mechanism<T> for Mover<'_, T> {
         if q.iter().chain(v).any(|x| !x.value().is_finite()) {
             return Err(k / self.every);
         }
-        let wall = self.external(k, q[0], v[0]) - self.path_force - self.rebound_force;
+        let (x1, v1) = (self.into_wall(q, 0), self.into_wall(v, 0));
+        let wall = self.external(k, x1, v1) - self.path_force - self.rebound_force;
         let energies = match self.out {
             Out::Full(_) => self.energies(q, v),
             Out::Motion(_) => [0.0; 3],
@@ -327,7 +357,7 @@ impl<T: Real> Mechanism<T> for Mover<'_, T> {
             }
             Out::Full(o) => {
                 o.force.push(wall.value());
-                for (i, (x, w)) in q.iter().zip(v).enumerate() {
+                for (i, (x, w)) in q.iter().zip(v).take(self.chain.dof()).enumerate() {
                     o.displacement[i].push(x.value());
                     o.velocity[i].push(w.value());
                 }
@@ -335,6 +365,11 @@ impl<T: Real> Mechanism<T> for Mover<'_, T> {
                     o.link_force[j].push((*spring * self.sign).value());
                 }
                 let [kinetic, stored, plastic] = energies;
+                if self.striker.is_some() {
+                    let s = self.chain.dof();
+                    o.striker_displacement.push(q[s].value());
+                    o.striker_velocity.push(v[s].value());
+                }
                 o.kinetic.push(kinetic);
                 o.stored.push(stored);
                 o.plastic.push(plastic);

@@ -209,6 +209,14 @@ pub trait CarModel: Sync {
         false
     }
 
+    /// Whether `verdict` hands this model the car files the registry
+    /// reads as the 1-D chain's (which does not judge): its reader then
+    /// says what is wrong with them (the planar car's, whose files with a
+    /// mistake fall back to the chain's kind).
+    fn judges_unmarked(&self) -> bool {
+        false
+    }
+
     /// One end of a car for the verdicts ([`bumpsim_verdict::prelude::CarEnd`]):
     /// the held car with the limits of its file's `[damageability]`.
     fn end(

@@ -1,7 +1,7 @@
 //! `verdict` as one request: the car files' declared kinds
 //! ([`ModelKind::of_path`] with [`Role::Car`]) pick the model that judges
-//! them ([`crate::model::CarModel::verdict`]; today the planar car's,
-//! [`crate::planar`]), whose verdict becomes the outcome here, once for
+//! them ([`crate::model::CarModel::verdict`]: the planar car's and the
+//! links car's), whose verdict becomes the outcome here, once for
 //! every front end (the command line prints and writes it, Python holds the
 //! [`Judged`]); a held car becomes one end of the verdicts through its
 //! model ([`end`]). No equations here: the tests, criteria and margins are
@@ -101,8 +101,8 @@ fn judge(kind: ModelKind) -> ModelKind {
     };
     let fallback = crate::registry::registered()
         .iter()
-        .map(|m| m.kind())
-        .find(|&k| judges(k));
+        .find(|m| m.judges() && m.judges_unmarked())
+        .map(|m| m.kind());
     match (kind, fallback) {
         (ModelKind::Chain, Some(judge)) if !judges(kind) => judge,
         _ => kind,
@@ -137,7 +137,7 @@ mod tests {
     }
 
     #[test]
-    fn a_links_car_is_not_judged_and_the_planar_car_is() {
+    fn a_links_car_and_the_planar_car_are_judged_by_their_models() {
         let dir = std::env::temp_dir().join(format!("bumpsim-engine-held-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let links = dir.join("links.toml");
@@ -158,8 +158,27 @@ mod tests {
             progress: &Unwatched,
             bumper: None,
         };
-        let refused = verdict(&request).unwrap_err().to_string();
-        assert!(refused.starts_with("verdict: a links car"), "{refused}");
+        // judged by its own model: without its limits it is refused
+        // naming the table, with them it is judged
+        let refused = verdict(&request).unwrap_err();
+        let why = std::error::Error::source(&refused).map(ToString::to_string);
+        let refused = format!("{refused}: {}", why.unwrap_or_default());
+        assert!(
+            refused.contains("links.toml") && refused.contains("damageability"),
+            "{refused}"
+        );
+        let limits = examples().join("verdict/damageability.toml");
+        let ends = [End::File(links.as_path(), Some(limits.as_path()))];
+        let judged = verdict(&VerdictRequest {
+            ends: &ends,
+            ..request
+        })
+        .unwrap();
+        assert!(
+            judged.text.contains("part581-pendulum-front"),
+            "{}",
+            judged.text
+        );
         // the planar car with its limits is judged
         let saloon = examples().join("planar/saloon.toml");
         let limits = examples().join("verdict/damageability.toml");

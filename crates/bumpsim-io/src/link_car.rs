@@ -306,7 +306,18 @@ impl LinkCar {
             path,
             link: "car".into(),
         };
-        let known = ["kind", "name", "masses", "dampers", "links", "front"];
+        // the verdict's limits ([damageability], lengths in its
+        // length_unit) are read by `verdict`, docs/verdict.md
+        let known = [
+            "kind",
+            "name",
+            "masses",
+            "dampers",
+            "links",
+            "front",
+            "damageability",
+            "length_unit",
+        ];
         if let Some(key) = table.keys().find(|k| !known.contains(&k.as_str())) {
             let hint = if key == "springs" {
                 " (a car with [[links]] gives every spring there)"

@@ -129,7 +129,7 @@ pub struct Criterion {
 }
 
 impl Criterion {
-    fn new(
+    pub(crate) fn new(
         name: String,
         detail: String,
         quantity: Quantity,
@@ -170,7 +170,7 @@ impl Criterion {
     }
 
     /// Judged against the margin ratio asked for.
-    fn judged(mut self, margin: f64) -> Criterion {
+    pub(crate) fn judged(mut self, margin: f64) -> Criterion {
         self.outcome = match self.ratio >= margin {
             true => Outcome::Pass,
             false => Outcome::Fail,
@@ -492,7 +492,7 @@ fn crash_box(e: &Evidence, margin: f64) -> Option<Criterion> {
 }
 
 /// What can be said of the beam's engagement with the striker.
-enum Engagement {
+pub(crate) enum Engagement {
     /// A criterion, judged from the beam's and the striker's heights.
     Judged(Criterion),
     /// Nothing to judge: the striker covers the whole front or its
@@ -508,7 +508,7 @@ enum Engagement {
 const SPAN: f64 = 0.05;
 
 /// The beam's engagement with the striker.
-fn engagement(d: &Damageability, test: &Test) -> Engagement {
+pub(crate) fn engagement(d: &Damageability, test: &Test) -> Engagement {
     let mm = |v: f64| format!("{:.0} mm", v * 1e3);
     let Some([bottom, top]) = d.beam_height else {
         return match test.height {
@@ -584,7 +584,7 @@ fn engagement(d: &Damageability, test: &Test) -> Engagement {
     }
 }
 
-fn pulse(d: &Damageability, m: &Metrics, margin: f64) -> Vec<Criterion> {
+pub(crate) fn pulse(d: &Damageability, m: &Metrics, margin: f64) -> Vec<Criterion> {
     let mut out = Vec::new();
     let limited = [
         (

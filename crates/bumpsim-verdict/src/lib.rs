@@ -8,6 +8,8 @@
 //! - [`limits`]: the car's clearances and limits (`[damageability]` of the
 //!   planar car file);
 //! - [`criteria`]: each criterion's value, limit and margin;
+//! - [`line`]: the same criteria for a car along a line (the chain with
+//!   nonlinear links), from its model's 1-D runs;
 //! - [`pulse`]: peak and 3 ms clip deceleration, delta-V, OLC, ASI
 //!   (EN 1317-1:2010 or 1998), to a defined contact end;
 //! - [`verdict`](mod@verdict): every test run and judged;
@@ -50,6 +52,7 @@ pub mod criteria;
 pub mod diagnosis;
 pub mod error;
 pub mod limits;
+pub mod line;
 pub mod probability;
 pub mod protocol;
 pub mod pulse;

@@ -223,6 +223,47 @@ impl Pulse {
         }
     }
 
+    /// The pulse of a body moving along a line (a 1-D car,
+    /// [`crate::line`]): its velocity `velocity` (m/s, along x towards the
+    /// struck end) at the samples `time` with the striker's force `force`
+    /// (N); the same as [`Pulse::of`] with no yaw and no lateral motion:
+    /// the deceleration by central differences, ΔV to the contact end,
+    /// the record after it rolling on.
+    pub fn along(time: &[f64], force: &[f64], velocity: &[f64]) -> Pulse {
+        let n = time.len().min(velocity.len());
+        let last = time.last().copied().unwrap_or(0.0);
+        let end = contact_end(time, force).unwrap_or(last);
+        let mut velocity = velocity[..n].to_vec();
+        let mut deceleration = vec![0.0; n];
+        for (k, d) in deceleration.iter_mut().enumerate() {
+            let (a, b) = (k.saturating_sub(1), (k + 1).min(n - 1));
+            if b != a {
+                *d = -(velocity[b] - velocity[a]) / (time[b] - time[a]);
+            }
+        }
+        let delta_v = match n {
+            0 => 0.0,
+            _ => (at(time, &velocity, end) - at(time, &velocity, 0.0)).abs(),
+        };
+        let after = time[..n].partition_point(|&t| t <= end);
+        let keep = (after + 1).min(n);
+        if after < n {
+            let rolling = at(time, &velocity, end);
+            velocity[after..].iter_mut().for_each(|v| *v = rolling);
+            deceleration[after..].iter_mut().for_each(|a| *a = 0.0);
+        }
+        velocity.truncate(keep);
+        deceleration.truncate(keep);
+        Pulse {
+            time: time[..keep].to_vec(),
+            velocity,
+            deceleration,
+            lateral: vec![0.0; keep],
+            delta_v,
+            contact_end: end,
+        }
+    }
+
     /// The pulse continued to `until` s at its last velocity and zero
     /// acceleration (the car rolling on after the record).
     pub fn extended(&self, until: f64) -> Pulse {

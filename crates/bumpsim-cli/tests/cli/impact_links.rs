@@ -2,11 +2,14 @@
 //! request runs the chain of `bumpsim_core::chain` into the rigid barrier;
 //! its figures are checked against the chain run directly, the energy
 //! balance against ½ M V², and the options it has no use for are refused
-//! by name with exit code 2.
+//! by name with exit code 2. A pendulum into the car is checked against
+//! an independent integration of the same chain (scipy, tests/peers).
 
 use crate::util::*;
 use bumpsim_core::chain::Drive;
 use bumpsim_io::link_car::LinkCar;
+
+mod pendulum;
 
 const SPEED: f64 = 15.0 / 3.6;
 
@@ -122,8 +125,8 @@ fn impact_refuses_what_a_links_car_has_no_use_for_by_name() {
     let bumper = bumper.to_str().unwrap();
     let refused: &[(&[&str], &str)] = &[
         (
-            &["--pendulum", "1500", "--speed", "8 km/h"],
-            "--pendulum: a car with nonlinear links runs into the rigid barrier only",
+            &["--pendulum", "1500", "--speed", "8 km/h", "--angle", "10"],
+            "--angle: a car with nonlinear links runs into a flat rigid barrier",
         ),
         (
             &["--barrier", "--speed", "8 km/h", "--bumper", bumper],

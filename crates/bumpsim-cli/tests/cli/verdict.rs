@@ -5,6 +5,7 @@
 use crate::util::*;
 
 mod examples;
+mod links;
 mod regulation;
 
 fn car() -> std::path::PathBuf {

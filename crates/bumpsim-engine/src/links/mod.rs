@@ -19,18 +19,23 @@
 //! ```
 //!
 //! with `W_viscous + W_plastic` the dissipated work and `W_wall = −W_force`
-//! the penalty contact's (0 with a front link). A pendulum (or a moving
-//! barrier) into a car with links is not modelled yet: refused by name.
+//! the penalty contact's (0 with a front link). A pendulum or a moving
+//! barrier into the car (`--pendulum`, a preset of those kinds) is the
+//! same run with the wall made a free striker ([`Drive::Striker`],
+//! `struck.rs`); the striker's kinetic energy joins `E_kin`. `verdict`
+//! judges a links car file with a `[damageability]` table in the
+//! protocols' tests (`verdict.rs`).
 
+mod struck;
 mod synth;
 mod text;
 mod unloading;
+mod verdict;
 
-use crate::model::{CarModel, ImpactRequest};
+use crate::model::{CarModel, ImpactRequest, Judged, VerdictRequest};
 use crate::{EngineError, Outcome};
 use bumpsim_core::chain::{Chain, ChainResponse, Drive};
 use bumpsim_core::link::LinkState;
-use bumpsim_impact::impact::Scenario;
 use bumpsim_impact::presets::{Preset, ScenarioSpec};
 use bumpsim_io::kind::ModelKind;
 use bumpsim_io::link_car::LinkCar;
@@ -70,20 +75,15 @@ impl CarModel for Links {
             speed: request.speed()?,
         };
         let (scenario, preset) = spec.scenario(total)?;
-        let Scenario::Barrier { speed } = scenario else {
-            return Err(EngineError::Unsupported {
-                option: request.case.map_or("--pendulum".into(), |c| format!("--case {c}")),
-                reason: "a car with nonlinear links runs into the rigid barrier only (--barrier, or a fixed-barrier case); a pendulum or moving barrier into it is not modelled yet".into(),
-            });
-        };
-        let crush = Crush::run(&car.chain, speed, path)?;
+        let crush = Crush::of_scenario(&car.chain, scenario, path)?;
+        let speed = crush.speed;
         let name = car
             .name
             .clone()
             .unwrap_or_else(|| path.display().to_string());
         text::outcome(
             &name,
-            &label(preset, speed),
+            &label(preset, speed, crush.striker),
             &car.chain,
             &crush,
             request.report,
@@ -93,10 +93,26 @@ impl CarModel for Links {
     fn synth(&self, path: &Path) -> Result<crate::model::Made, EngineError> {
         synth::make(path)
     }
+
+    fn judges(&self) -> bool {
+        true
+    }
+
+    fn verdict(&self, request: &VerdictRequest<'_>) -> Result<Judged, EngineError> {
+        verdict::verdict(request)
+    }
+
+    fn end(
+        &self,
+        path: &Path,
+        _text: &str,
+    ) -> Result<bumpsim_verdict::prelude::CarEnd, EngineError> {
+        Err(verdict::end(path))
+    }
 }
 
-/// What hit what, as the heading says it.
-fn label(preset: Option<&Preset>, speed: f64) -> String {
+/// What hit what, as the heading says it (`striker`: its mass, kg).
+fn label(preset: Option<&Preset>, speed: f64, striker: Option<f64>) -> String {
     let speed = bumpsim_core::units::format_number(speed * 3.6, 4) + " km/h";
     match preset {
         Some(p) => format!(
@@ -108,7 +124,7 @@ fn label(preset: Option<&Preset>, speed: f64) -> String {
                 .map(|d| format!("; 1-D: {d}"))
                 .unwrap_or_default()
         ),
-        None => format!("rigid barrier at {speed}"),
+        None => struck::label(striker, &speed),
     }
 }
 
@@ -129,20 +145,41 @@ pub struct Crush {
     pub final_speed: f64,
     /// Whether the wall stopped pushing before the run's end.
     pub ended: bool,
+    /// The striker's mass, kg (None: the rigid barrier).
+    pub striker: Option<f64>,
 }
 
 impl Crush {
     /// Runs `chain` into the wall at `speed` m/s (doubling the duration
     /// until the contact has ended, up to [`LONGEST`]).
     pub fn run(chain: &Chain, speed: f64, path: &Path) -> Result<Crush, EngineError> {
+        Crush::driven(chain, speed, None, path)
+    }
+
+    /// [`Crush::run`], or with a striker of `striker` kg into the car at
+    /// rest ([`Drive::Striker`]).
+    fn driven(
+        chain: &Chain,
+        speed: f64,
+        striker: Option<f64>,
+        path: &Path,
+    ) -> Result<Crush, EngineError> {
         let quiet = (QUIET / STEP).round() as usize;
         let mut duration = FIRST_DURATION;
         loop {
             let samples = (duration / STEP).round() as usize + 1;
-            let drive = Drive::Barrier {
-                speed,
-                step: STEP,
-                samples,
+            let drive = match striker {
+                None => Drive::Barrier {
+                    speed,
+                    step: STEP,
+                    samples,
+                },
+                Some(mass) => Drive::Striker {
+                    mass,
+                    speed,
+                    step: STEP,
+                    samples,
+                },
             };
             let response = chain.run(&drive).map_err(|source| EngineError::Run {
                 path: path.into(),
@@ -150,13 +187,19 @@ impl Crush {
             })?;
             let ended = response.force.iter().rev().take(quiet).all(|f| *f == 0.0);
             if ended || duration >= LONGEST {
-                return Ok(Crush::of(chain, speed, response, ended));
+                return Ok(Crush::of(chain, speed, response, ended, striker));
             }
             duration = (2.0 * duration).min(LONGEST);
         }
     }
 
-    fn of(chain: &Chain, speed: f64, response: ChainResponse, ended: bool) -> Crush {
+    fn of(
+        chain: &Chain,
+        speed: f64,
+        response: ChainResponse,
+        ended: bool,
+        striker: Option<f64>,
+    ) -> Crush {
         let (k, peak) = response
             .force
             .iter()
@@ -165,9 +208,7 @@ impl Crush {
                 if f.abs() > b { (k, f.abs()) } else { (kb, b) }
             });
         let front = chain.front().map(|link| {
-            let reached = response.displacement[0]
-                .iter()
-                .fold(0.0_f64, |m, x| m.max(*x));
+            let reached = struck::front_crush(&response).fold(0.0_f64, |m, x| m.max(x));
             (reached, LinkState { reached }.plastic_set(link))
         });
         let last = response.force.iter().rposition(|f| *f != 0.0);
@@ -187,6 +228,7 @@ impl Crush {
             final_speed,
             ended,
             response,
+            striker,
         }
     }
 
@@ -219,8 +261,9 @@ impl Crush {
             out.push(format!("{name} is {v}: the result is not usable"));
         }
         if !self.ended {
+            let what = self.striker.map_or("the wall", |_| "the striker");
             out.push(format!(
-                "the wall still pushes at the end of the run ({LONGEST} s): the figures at the end are not the impact's final state"
+                "{what} still pushes at the end of the run ({LONGEST} s): the figures at the end are not the impact's final state"
             ));
         }
         if e.relative_error > ENERGY_TOLERANCE {

@@ -2,6 +2,7 @@
 //! figures of [`super::Crush`]; no equations beyond the sums of its
 //! energy terms: dissipated = viscous + plastic).
 
+use super::struck::StrikerFigures;
 use super::{Crush, Energy};
 use crate::{EngineError, Outcome, Report};
 use bumpsim_core::chain::Chain;
@@ -46,6 +47,9 @@ struct LinksImpact<'a> {
     energy: Energy,
     /// Dissipated work (viscous + plastic), J.
     dissipated: f64,
+    /// The striker's figures (a pendulum or moving barrier run only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    striker: Option<StrikerFigures>,
     /// Sample interval of the histories, s.
     step: f64,
     /// The result's own checks.
@@ -86,8 +90,12 @@ fn energy(x: f64) -> String {
 /// The summary lines.
 fn summary(figures: &[LinkFigures], crush: &Crush) -> String {
     let (peak, at) = crush.peak;
+    let what = match crush.striker {
+        None => "barrier",
+        Some(_) => "contact",
+    };
     let mut text = format!(
-        "  peak barrier force {} at {}\n",
+        "  peak {what} force {} at {}\n",
         format_quantity(peak, Dimension::Force),
         format_quantity(at, Dimension::Time)
     );
@@ -102,11 +110,14 @@ fn summary(figures: &[LinkFigures], crush: &Crush) -> String {
             length(f.plastic_set)
         );
     }
-    text += &format!(
-        "  contact time {}; speed of the centre of mass at the end {}\n",
-        format_quantity(crush.contact_time, Dimension::Time),
-        format_quantity(crush.final_speed, Dimension::Velocity)
-    );
+    let contact = format_quantity(crush.contact_time, Dimension::Time);
+    text += &match crush.striker_figures() {
+        None => format!(
+            "  contact time {contact}; speed of the centre of mass at the end {}\n",
+            format_quantity(crush.final_speed, Dimension::Velocity)
+        ),
+        Some(figures) => super::struck::summary(&contact, &figures),
+    };
     let e = crush.energy();
     // the penalty contact's share, only without a front link
     let wall = match e.wall == 0.0 {
@@ -217,6 +228,7 @@ pub(super) fn outcome(
         links: figures,
         energy: e,
         dissipated: e.viscous + e.plastic,
+        striker: crush.striker_figures(),
         step: crush.response.step,
         warnings: warnings.clone(),
     };

@@ -71,6 +71,10 @@ impl CarModel for Planar {
         true
     }
 
+    fn judges_unmarked(&self) -> bool {
+        true
+    }
+
     fn verdict(&self, request: &VerdictRequest<'_>) -> Result<Judged, EngineError> {
         verdict::verdict(request)
     }
