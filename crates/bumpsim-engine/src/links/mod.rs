@@ -21,10 +21,16 @@
 //! with `W_viscous + W_plastic` the dissipated work and `W_wall = −W_force`
 //! the penalty contact's (0 with a front link). A pendulum (or a moving
 //! barrier) into a car with links is not modelled yet: refused by name.
+//!
+//! `identify` of a links study ([`identify`]) identifies the car as it
+//! ran into the barrier and runs it forward; `predict` runs a links car
+//! into the wall at each case's speed of a links study ([`forward`]).
 
+mod forward;
+mod identify;
 mod text;
 
-use crate::model::{CarModel, ImpactRequest};
+use crate::model::{CarModel, IdentifyRequest, ImpactRequest, PredictRequest};
 use crate::{EngineError, Outcome};
 use bumpsim_core::chain::{Chain, ChainResponse, Drive};
 use bumpsim_core::link::LinkState;
@@ -86,6 +92,28 @@ impl CarModel for Links {
             &crush,
             request.report,
         )
+    }
+
+    fn identify(&self, request: &IdentifyRequest<'_>) -> Result<Outcome, EngineError> {
+        identify::identify(request)
+    }
+
+    fn predict(&self, request: &PredictRequest<'_>) -> Result<Outcome, EngineError> {
+        let text = bumpsim_core::files::read_car_text(request.car)
+            .map_err(bumpsim_io::car::CarError::from)?;
+        let car = LinkCar::parse(&text, request.car)?;
+        let study = bumpsim_ident::Study::read(request.study).map_err(Box::new)?;
+        let loaded = study
+            .load_named(car.chain.dof(), request.cases)
+            .map_err(Box::new)?;
+        let name = car
+            .name
+            .clone()
+            .unwrap_or_else(|| request.car.display().to_string());
+        let mut outcome =
+            forward::predict(&name, &car.chain, request.car, &loaded.cases, request.plot)?;
+        outcome.warnings.splice(0..0, loaded.warnings);
+        Ok(outcome)
     }
 }
 
