@@ -419,10 +419,7 @@ fn keys(inline: &str) -> String {
             _ => out.push(ch),
         }
     }
-    out.lines()
-        .map(str::trim)
-        .collect::<Vec<_>>()
-        .join("\n")
+    out.lines().map(str::trim).collect::<Vec<_>>().join("\n")
 }
 
 /// A wall link's table (`[path]`, `[rebound]`): `mass` (1-based, of a

@@ -183,9 +183,21 @@ fn wall_links_are_read_written_back_and_refused_by_key() {
     assert_eq!(parse(&written).unwrap(), car, "{written}");
     let refusals = [
         ("mass = 3\ngap", "mass = 4\ngap", "second load path: mass"),
-        ("gap = \"30 mm\"", "gap = \"-30 mm\"", "second load path: gap"),
-        ("[rebound]\nmass = 3\n", "[rebound]\n", "rebound link: mass: missing"),
-        ("[rebound]\nmass = 3\n", "[rebound]\nmass = 3\nspeed = 2\n", "rebound link: speed"),
+        (
+            "gap = \"30 mm\"",
+            "gap = \"-30 mm\"",
+            "second load path: gap",
+        ),
+        (
+            "[rebound]\nmass = 3\n",
+            "[rebound]\n",
+            "rebound link: mass: missing",
+        ),
+        (
+            "[rebound]\nmass = 3\n",
+            "[rebound]\nmass = 3\nspeed = 2\n",
+            "rebound link: speed",
+        ),
     ];
     for (from, to, said) in refusals {
         let err = parse(&walls.replacen(from, to, 1)).unwrap_err().to_string();

@@ -79,18 +79,29 @@ fn the_links_study_of_nhtsa_10146_meets_the_acceptance_through_identify_impact_a
     assert!(force >= 90.0, "forward force fit {force} %\n{stdout}");
     assert!(dv < 0.03, "ΔV {} % off\n{stdout}", 100.0 * dv);
     let sets = doc["plastic_sets"].as_array().unwrap();
-    assert_eq!(sets.len(), 4, "front, link 1, second path, rebound: {sets:?}");
+    assert_eq!(
+        sets.len(),
+        4,
+        "front, link 1, second path, rebound: {sets:?}"
+    );
     for set in sets {
         let value = number(&set["value"]);
         let [lo, hi] = [number(&set["ci95"][0]), number(&set["ci95"][1])];
         assert!(lo <= value && value <= hi, "{set}");
         assert!(
-            stdout.contains(&format!("plastic set of the {} after", set["name"].as_str().unwrap())),
+            stdout.contains(&format!(
+                "plastic set of the {} after",
+                set["name"].as_str().unwrap()
+            )),
             "{set}"
         );
     }
     assert!(stdout.matches("  95 % [").count() >= 4, "{stdout}");
-    for file in ["index.html", "force-ncap-57kph.svg", "output-ncap-57kph.svg"] {
+    for file in [
+        "index.html",
+        "force-ncap-57kph.svg",
+        "output-ncap-57kph.svg",
+    ] {
         assert!(report.join(file).is_file(), "{file}");
     }
     impact_agrees(&dir, &car, &doc);
@@ -157,13 +168,19 @@ fn predict_agrees(dir: &Path, car: &Path, study: &Path, forward: &Value) {
     assert!(run.status.success(), "{}", text(&run.stderr));
     assert_contains(
         &stdout,
-        &["ncap-57kph: into a rigid wall at 57.09 km/h: wall force fit ", "plastic set of the front crush zone: "],
+        &[
+            "ncap-57kph: into a rigid wall at 57.09 km/h: wall force fit ",
+            "plastic set of the front crush zone: ",
+        ],
     );
     let doc: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let case = &doc["cases"][0];
     for key in ["force_fit", "output_fit", "delta_v", "peak_force"] {
         let (a, b) = (number(&case[key]), number(&forward[key]));
-        assert!((a - b).abs() <= 1e-9 * b.abs().max(1.0), "{key}: {a} vs {b}");
+        assert!(
+            (a - b).abs() <= 1e-9 * b.abs().max(1.0),
+            "{key}: {a} vs {b}"
+        );
     }
 }
 
@@ -177,7 +194,10 @@ fn hostile_links_keys_are_refused_by_name() {
     let chain = std::fs::read_to_string(dir.join("study.toml")).unwrap();
     let links = format!("kind = \"links\"\n{}", chain.replace("dof = 3", "dof = 2"));
     let refused = [
-        ("knots = -1", "[links] knots = -1: expected a whole number from 2 to 64"),
+        (
+            "knots = -1",
+            "[links] knots = -1: expected a whole number from 2 to 64",
+        ),
         ("knots = 1e9", "[links] knots = 1000000000.0"),
         ("path_knots = 100000", "[links] path_knots = 100000"),
         ("rebound = \"first\"", "[links] rebound = \"first\""),
@@ -185,7 +205,10 @@ fn hostile_links_keys_are_refused_by_name() {
         ("mass_spread = -0.5", "[links] mass_spread = -0.5"),
         ("floor = [0.1, inf]", "[links] floor = inf"),
         ("weighting = \"noise\"", "[links] weighting = \"noise\""),
-        ("front_mass_min = \"-3 kg\"", "[links] front_mass_min = \"-3 kg\""),
+        (
+            "front_mass_min = \"-3 kg\"",
+            "[links] front_mass_min = \"-3 kg\"",
+        ),
         ("linear_starts = 0", "[links] linear_starts = 0"),
         ("nots = 3", "[links] nots: unknown key"),
         ("rebound = 5", "[links] rebound = 5: the chain has 2 masses"),
@@ -208,5 +231,8 @@ fn hostile_links_keys_are_refused_by_name() {
     let posterior = dir.join("posterior.toml");
     std::fs::write(&posterior, &links).unwrap();
     let run = bumpsim(&["identify", posterior.to_str().unwrap(), "--posterior"]);
-    assert_user_error(&run, "--posterior: a links study has no posterior sampling yet");
+    assert_user_error(
+        &run,
+        "--posterior: a links study has no posterior sampling yet",
+    );
 }

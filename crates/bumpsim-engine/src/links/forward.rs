@@ -193,15 +193,35 @@ impl Forward {
             Dimension::Time,
             Dimension::Force,
         );
-        force.add(Series::new("measured", t.clone(), f_meas.clone(), Style::Solid));
-        force.add(Series::new("forward", t.clone(), f_sim.clone(), Style::Dashed));
+        force.add(Series::new(
+            "measured",
+            t.clone(),
+            f_meas.clone(),
+            Style::Solid,
+        ));
+        force.add(Series::new(
+            "forward",
+            t.clone(),
+            f_sim.clone(),
+            Style::Dashed,
+        ));
         let mut output = LinePlot::new(
             &format!("{}: output displacement", self.case),
             Dimension::Time,
             Dimension::Length,
         );
-        output.add(Series::new("measured", t.clone(), y_meas.clone(), Style::Solid));
-        output.add(Series::new("forward", t.clone(), y_sim.clone(), Style::Dashed));
+        output.add(Series::new(
+            "measured",
+            t.clone(),
+            y_meas.clone(),
+            Style::Solid,
+        ));
+        output.add(Series::new(
+            "forward",
+            t.clone(),
+            y_sim.clone(),
+            Style::Dashed,
+        ));
         Ok([force.svg()?, output.svg()?])
     }
 }

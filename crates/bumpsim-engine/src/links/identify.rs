@@ -50,7 +50,11 @@ pub(super) fn identify(request: &IdentifyRequest<'_>) -> Result<Outcome, EngineE
     let loaded = study.load(dof).map_err(Box::new)?;
     let cases = &loaded.cases;
     let said = Said::new(request.progress);
-    let notes: String = loaded.notes.iter().map(|n| format!("note: {n}\n")).collect();
+    let notes: String = loaded
+        .notes
+        .iter()
+        .map(|n| format!("note: {n}\n"))
+        .collect();
     said.say(notes);
     let (starts, seed) = (
         request.starts.unwrap_or(study.model.starts),
@@ -60,7 +64,11 @@ pub(super) fn identify(request: &IdentifyRequest<'_>) -> Result<Outcome, EngineE
     (settings.starts, settings.seed) = (spec.linear_starts, seed);
     let progress = request.progress;
     let observer = || progress.start_finished();
-    progress.stage(&format!("linear {dof}-DOF"), settings.starts as u64, "starts");
+    progress.stage(
+        &format!("linear {dof}-DOF"),
+        settings.starts as u64,
+        "starts",
+    );
     let linear = bumpsim_ident::identify(cases, &settings, &observer);
     progress.end();
     let linear = linear.map_err(|e| EngineError::Size {
@@ -84,8 +92,8 @@ pub(super) fn identify(request: &IdentifyRequest<'_>) -> Result<Outcome, EngineE
         .map(|case| Forward::run(case, &whole, path))
         .collect::<Result<Vec<_>, _>>()?;
     said.say(found_lines(&found, &forward, sheet, &spec));
-    let verdict = compare_outputs(&linear, &found, cases)
-        .map_err(|e| EngineError::LinkIdent(Box::new(e)))?;
+    let verdict =
+        compare_outputs(&linear, &found, cases).map_err(|e| EngineError::LinkIdent(Box::new(e)))?;
     said.say(format!(
         "which links the data want (on the linear chain's residuals of the output):\n{}",
         verdict
@@ -119,7 +127,9 @@ pub(super) fn identify(request: &IdentifyRequest<'_>) -> Result<Outcome, EngineE
 
 /// The identified car whole: its chain, front zone, second path and
 /// rebound link.
-pub(super) fn car_of(found: &LinkIdentification) -> Result<bumpsim_core::chain::Chain, EngineError> {
+pub(super) fn car_of(
+    found: &LinkIdentification,
+) -> Result<bumpsim_core::chain::Chain, EngineError> {
     let mut chain = found.chain.clone();
     if let Some(front) = &found.front {
         chain = chain.with_front(front.clone());
@@ -303,7 +313,11 @@ fn found_lines(
             None if u.at_bound[i] => "at a bound".into(),
             None => "no interval".into(),
         };
-        out += &format!("    {:<4} {:>14}  {interval}\n", p.name, p.format(found.theta[i]));
+        out += &format!(
+            "    {:<4} {:>14}  {interval}\n",
+            p.name,
+            p.format(found.theta[i])
+        );
     }
     let total: f64 = found.chain.masses().iter().sum();
     out += &format!("  total mass {}", format_quantity(total, Dimension::Mass));

@@ -158,7 +158,11 @@ fn fraction(value: &Value, key: &str) -> Result<f64, LinksStudyError> {
     };
     match number {
         Some(f) if f > 0.0 && f <= 1.0 => Ok(f),
-        _ => Err(refused(key, value, "expected a number above 0 and at most 1")),
+        _ => Err(refused(
+            key,
+            value,
+            "expected a number above 0 and at most 1",
+        )),
     }
 }
 
@@ -198,7 +202,8 @@ impl LinksStudy {
             }
         };
         let spread = table.get("mass_spread");
-        let mass_spread = spread.map_or(Ok(defaults.mass_spread), |v| fraction(v, "mass_spread"))?;
+        let mass_spread =
+            spread.map_or(Ok(defaults.mass_spread), |v| fraction(v, "mass_spread"))?;
         let weighting = weighting(table)?;
         let front_mass_min = match table.get("front_mass_min") {
             None => defaults.front_mass_min,
@@ -212,7 +217,12 @@ impl LinksStudy {
             spread_given: spread.is_some(),
             weighting,
             front_mass_min,
-            linear_starts: count(table, "linear_starts", 1..=MAX_STARTS, defaults.linear_starts)?,
+            linear_starts: count(
+                table,
+                "linear_starts",
+                1..=MAX_STARTS,
+                defaults.linear_starts,
+            )?,
         })
     }
 
