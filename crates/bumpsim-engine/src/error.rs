@@ -218,6 +218,19 @@ pub enum EngineError {
         #[source]
         source: Box<bumpsim_ident::posterior::SamplingError>,
     },
+    /// A links study's `[links]` table (or what the rest of the study
+    /// says against it) is not valid.
+    #[error("{path}: {source}")]
+    LinksStudy {
+        /// The study file.
+        path: PathBuf,
+        /// The key and why.
+        #[source]
+        source: bumpsim_ident::links::study::LinksStudyError,
+    },
+    /// The identification with nonlinear links failed.
+    #[error("identification with nonlinear links: {0}")]
+    LinkIdent(Box<bumpsim_ident::links::LinkIdentError>),
     /// The JSON document could not be made.
     #[error("JSON document: {0}")]
     Json(#[from] serde_json::Error),

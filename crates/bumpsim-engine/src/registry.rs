@@ -97,7 +97,7 @@ pub fn predict(request: &PredictRequest<'_>) -> Result<Outcome, EngineError> {
         (c, s) => Err(refused(
             car,
             format!(
-                "predict runs a chain or planar car on a study of its kind; a {} car (on the {} study {}) is not predicted yet",
+                "predict runs a chain, links or planar car on a study of its kind; a {} car (on the {} study {}) is not predicted yet",
                 c.name(),
                 s.name(),
                 study.display()
@@ -128,9 +128,10 @@ mod tests {
             car: false,
             progress: &crate::model::Unwatched,
         };
+        // a links study reaches its model, which reads the (absent) study
         let refused = identify(ModelKind::Links, &request).unwrap_err();
         assert!(
-            refused.to_string().starts_with("identify: a links car"),
+            refused.to_string().starts_with("study.toml: cannot read"),
             "{refused}"
         );
     }

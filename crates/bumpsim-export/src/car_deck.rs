@@ -53,7 +53,10 @@ pub fn lsdyna_car_include(
 ) -> Result<String, ExportError> {
     match model {
         CarModel::Linear(model) => crate::lsdyna::lsdyna_include(model, options),
-        CarModel::Chain(chain) => crate::chain::lsdyna_chain_include(chain, options),
+        CarModel::Chain(chain) => {
+            exportable(chain)?;
+            crate::chain::lsdyna_chain_include(chain, options)
+        }
     }
 }
 
@@ -65,7 +68,24 @@ pub fn calculix_car_deck(
 ) -> Result<String, ExportError> {
     match model {
         CarModel::Linear(model) => crate::calculix::calculix_deck(model, options),
-        CarModel::Chain(chain) => crate::chain_calculix::calculix_chain_deck(chain, options, None),
+        CarModel::Chain(chain) => {
+            exportable(chain)?;
+            crate::chain_calculix::calculix_chain_deck(chain, options, None)
+        }
+    }
+}
+
+/// Refuses a chain with a wall link (a second load path, a rebound
+/// link): the decks write the chain and its front link only.
+fn exportable(chain: &Chain) -> Result<(), ExportError> {
+    match (chain.path(), chain.rebound()) {
+        (Some(_), _) => Err(ExportError::WallLink {
+            what: "second load path",
+        }),
+        (None, Some(_)) => Err(ExportError::WallLink {
+            what: "rebound link",
+        }),
+        (None, None) => Ok(()),
     }
 }
 

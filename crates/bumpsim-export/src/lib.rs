@@ -194,6 +194,14 @@ pub enum ExportError {
         /// What is wrong.
         reason: String,
     },
+    /// A chain with a wall link the decks do not write yet.
+    #[error(
+        "the car's {what} ([path] or [rebound], a wall link from a mass into the barrier) is not exported yet: the deck would leave it out; run it with `bumpsim impact --barrier`"
+    )]
+    WallLink {
+        /// `second load path` or `rebound link`.
+        what: &'static str,
+    },
 }
 
 /// Checks the user's attachment nodes: none of the include's own nodes

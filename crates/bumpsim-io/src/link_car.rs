@@ -317,6 +317,8 @@ impl LinkCar {
             "front",
             "damageability",
             "length_unit",
+            "path",
+            "rebound",
         ];
         if let Some(key) = table.keys().find(|k| !known.contains(&k.as_str())) {
             let hint = if key == "springs" {
@@ -353,12 +355,119 @@ impl LinkCar {
             path: path.into(),
             source,
         })?;
-        let chain = match table.get("front") {
+        let mut chain = match table.get("front") {
             None => chain,
             Some(v) => chain.with_front(link(path, "front link".into(), v)?),
         };
+        let model = |source| CarError::Model {
+            path: path.into(),
+            source,
+        };
+        if let Some(v) = table.get("path") {
+            let (mass, gap, link) = wall_link(path, "second load path", v, chain.dof())?;
+            chain = chain.with_path(mass, gap, link).map_err(model)?;
+        }
+        if let Some(v) = table.get("rebound") {
+            let (mass, gap, link) = wall_link(path, "rebound link", v, chain.dof())?;
+            chain = chain.with_rebound(mass, gap, link).map_err(model)?;
+        }
         Ok(LinkCar { name, chain })
     }
+
+    /// The car as a car file (`kind = "links"`, SI) that
+    /// [`LinkCar::parse`] reads back to the same chain (numbers written
+    /// in full precision).
+    pub fn to_toml(&self) -> String {
+        let c = &self.chain;
+        let list = |v: &[f64]| {
+            let items: Vec<String> = v.iter().map(|x| format!("{x:?}")).collect();
+            format!("[{}]", items.join(", "))
+        };
+        let mut out = String::from("kind = \"links\"\n");
+        if let Some(name) = &self.name {
+            out += &format!("name = {}\n", Value::String(name.clone()));
+        }
+        out += &format!("masses = {}  # kg\n", list(c.masses()));
+        out += &format!("dampers = {}  # N·s/m\n", list(c.dampers()));
+        let entry = |link: &Link| {
+            let inline = link_toml(link);
+            inline[1..inline.len() - 1].trim().to_string()
+        };
+        for l in c.links() {
+            out += &format!("\n[[links]]\n{}\n", keys(&entry(l)));
+        }
+        if let Some(front) = c.front() {
+            out += &format!("\n[front]\n{}\n", keys(&entry(front)));
+        }
+        let walls = [("path", c.path()), ("rebound", c.rebound())];
+        for (name, wall) in walls {
+            if let Some(w) = wall {
+                out += &format!(
+                    "\n[{name}]\nmass = {}\ngap = {:?}  # m\n{}\n",
+                    w.mass + 1,
+                    w.gap,
+                    keys(&entry(&w.link))
+                );
+            }
+        }
+        out
+    }
+}
+
+/// An inline table's `a = 1, b = [..]` as one key per line (commas inside
+/// brackets kept).
+fn keys(inline: &str) -> String {
+    let mut out = String::new();
+    let mut depth = 0_i32;
+    for ch in inline.chars() {
+        match ch {
+            '[' => depth += 1,
+            ']' => depth -= 1,
+            _ => {}
+        }
+        match (ch, depth) {
+            (',', 0) => out.push('\n'),
+            _ => out.push(ch),
+        }
+    }
+    out.lines().map(str::trim).collect::<Vec<_>>().join("\n")
+}
+
+/// A wall link's table (`[path]`, `[rebound]`): `mass` (1-based, of a
+/// chain of `dof`), `gap` (m, default 0) and the link's keys.
+fn wall_link(
+    path: &Path,
+    name: &str,
+    value: &Value,
+    dof: usize,
+) -> Result<(usize, f64, Link), CarError> {
+    let at = At {
+        path,
+        link: name.into(),
+    };
+    let mut table = value
+        .as_table()
+        .cloned()
+        .ok_or_else(|| at.error("", "expected a table (mass = ..., gap = ..., curve = ...)"))?;
+    let mass = match table.remove("mass") {
+        Some(Value::Integer(m)) if (1..=dof as i64).contains(&m) => m as usize - 1,
+        Some(other) => {
+            return Err(at.error(
+                "mass",
+                format!("{other}: expected the number of a mass of the chain, 1 to {dof}"),
+            ));
+        }
+        None => return Err(at.error("mass", format!("missing: the mass it pushes, 1 to {dof}"))),
+    };
+    let gap = match table.remove("gap") {
+        None => 0.0,
+        Some(v) => at.value(&v, "gap", Dimension::Length)?,
+    };
+    if gap < 0.0 {
+        return Err(at.error("gap", format!("{gap} m: must not be negative")));
+    }
+    let link = link(path, name.into(), &Value::Table(table))?;
+    Ok((mass, gap, link))
 }
 
 /// A car file of the chain in either form.

@@ -165,3 +165,42 @@ fn linear_readers_refuse_links_and_the_chain_reader_takes_both() {
     assert!(matches!(ChainCar::read(&linear), Ok(ChainCar::Linear(_))));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A second load path and a rebound link: read with their mass and gap,
+/// written back by [`LinkCar::to_toml`] to the same chain, refused by key.
+#[test]
+fn wall_links_are_read_written_back_and_refused_by_key() {
+    let walls = format!(
+        "{CAR}\n[path]\nmass = 3\ngap = \"30 mm\"\ncurve = \"table\"\npoints = [[0.1, 2e5], [0.3, 3e5]]\nunloading = \"8000 N/mm\"\n\n[rebound]\nmass = 3\ncurve = \"bilinear\"\nstiffness = 1e6\nyield_force = 5e4\nunloading = 1e6\n"
+    );
+    let car = parse(&walls).unwrap();
+    let path = car.chain.path().unwrap();
+    assert_eq!((path.mass, path.gap), (2, 0.03));
+    let rebound = car.chain.rebound().unwrap();
+    assert_eq!((rebound.mass, rebound.gap), (2, 0.0));
+    let written = car.to_toml();
+    assert!(written.starts_with("kind = \"links\"\n"), "{written}");
+    assert_eq!(parse(&written).unwrap(), car, "{written}");
+    let refusals = [
+        ("mass = 3\ngap", "mass = 4\ngap", "second load path: mass"),
+        (
+            "gap = \"30 mm\"",
+            "gap = \"-30 mm\"",
+            "second load path: gap",
+        ),
+        (
+            "[rebound]\nmass = 3\n",
+            "[rebound]\n",
+            "rebound link: mass: missing",
+        ),
+        (
+            "[rebound]\nmass = 3\n",
+            "[rebound]\nmass = 3\nspeed = 2\n",
+            "rebound link: speed",
+        ),
+    ];
+    for (from, to, said) in refusals {
+        let err = parse(&walls.replacen(from, to, 1)).unwrap_err().to_string();
+        assert!(err.contains(said), "{to}: {err}");
+    }
+}

@@ -18,6 +18,7 @@ mod formats;
 mod formats_letter;
 mod fuzz;
 mod identify;
+mod identify_links;
 mod impact;
 mod impact_links;
 mod issue48;

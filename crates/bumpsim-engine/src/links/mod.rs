@@ -25,14 +25,22 @@
 //! `struck.rs`); the striker's kinetic energy joins `E_kin`. `verdict`
 //! judges a links car file with a `[damageability]` table in the
 //! protocols' tests (`verdict.rs`).
+//!
+//! `identify` of a links study ([`identify`]) identifies the car as it
+//! ran into the barrier and runs it forward; `predict` runs a links car
+//! into the wall at each case's speed of a links study ([`forward`]).
 
+mod forward;
+mod identify;
 mod struck;
 mod synth;
 mod text;
 mod unloading;
 mod verdict;
 
-use crate::model::{CarModel, ImpactRequest, Judged, VerdictRequest};
+use crate::model::{
+    CarModel, IdentifyRequest, ImpactRequest, Judged, PredictRequest, VerdictRequest,
+};
 use crate::{EngineError, Outcome};
 use bumpsim_core::chain::{Chain, ChainResponse, Drive};
 use bumpsim_core::link::LinkState;
@@ -108,6 +116,28 @@ impl CarModel for Links {
         _text: &str,
     ) -> Result<bumpsim_verdict::prelude::CarEnd, EngineError> {
         Err(verdict::end(path))
+    }
+
+    fn identify(&self, request: &IdentifyRequest<'_>) -> Result<Outcome, EngineError> {
+        identify::identify(request)
+    }
+
+    fn predict(&self, request: &PredictRequest<'_>) -> Result<Outcome, EngineError> {
+        let text = bumpsim_core::files::read_car_text(request.car)
+            .map_err(bumpsim_io::car::CarError::from)?;
+        let car = LinkCar::parse(&text, request.car)?;
+        let study = bumpsim_ident::Study::read(request.study).map_err(Box::new)?;
+        let loaded = study
+            .load_named(car.chain.dof(), request.cases)
+            .map_err(Box::new)?;
+        let name = car
+            .name
+            .clone()
+            .unwrap_or_else(|| request.car.display().to_string());
+        let mut outcome =
+            forward::predict(&name, &car.chain, request.car, &loaded.cases, request.plot)?;
+        outcome.warnings.splice(0..0, loaded.warnings);
+        Ok(outcome)
     }
 }
 

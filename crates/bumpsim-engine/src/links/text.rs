@@ -76,7 +76,16 @@ fn links(chain: &Chain, crush: &Crush) -> Vec<LinkFigures> {
         max_compression: r.reached[j].max(sampled(j)),
         plastic_set: r.plastic_set[j],
     });
-    front.into_iter().chain(between).collect()
+    // the wall links (second path, rebound link): their mass's travel past the gap
+    let walls = super::forward::sets(chain, r)
+        .into_iter()
+        .filter(|s| ["second load path", "rebound link"].contains(&s.name.as_str()))
+        .map(|s| LinkFigures {
+            name: s.name,
+            max_compression: s.max_compression,
+            plastic_set: s.plastic_set,
+        });
+    front.into_iter().chain(between).chain(walls).collect()
 }
 
 fn length(x: f64) -> String {

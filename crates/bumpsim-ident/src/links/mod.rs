@@ -36,6 +36,7 @@ pub mod front;
 pub mod into_wall;
 pub mod objective;
 mod report;
+pub mod study;
 pub mod verdict;
 pub mod weighting;
 

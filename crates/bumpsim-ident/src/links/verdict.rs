@@ -9,8 +9,16 @@
 //! `BIC = n_eff ln(F/n) + q ln n_eff` (Schwarz 1978). The yielding links
 //! are preferred when their BIC is lower; the reasons (fits, objectives,
 //! parameters, BIC) are printed whatever the verdict.
+//!
+//! A car identified into the barrier ([`super::into_wall`]) fits another
+//! objective (the wall force and the output, scaled, with a prior):
+//! [`compare_outputs`] compares it on the linear chain's own residuals,
+//! those of its output run into the wall (`r_k = w (y_k − ŷ_k)` in the
+//! case's domain over its window, w its weight), counting all its free
+//! parameters, the front's and paths' too.
 
-use super::LinkIdentification;
+use super::{LinkIdentError, LinkIdentification};
+use crate::case::LoadCase;
 use crate::result::Identification;
 
 /// The comparison and its reasons.
@@ -31,13 +39,58 @@ fn bic(objective: f64, n: usize, effective: f64, q: usize) -> f64 {
 
 /// Compares a linear identification with a yielding one of the same cases.
 pub fn compare(linear: &Identification, yielding: &LinkIdentification) -> Verdict {
+    let fits: Vec<f64> = yielding.fits.iter().map(|f| f.1).collect();
+    let q = yielding.uncertainty.fixed.iter().filter(|f| !**f).count();
+    weighed(linear, &fits, yielding.objective, q)
+}
+
+/// Compares a linear identification with a car identified into the
+/// barrier, on the linear chain's residuals of `cases` (the module's).
+pub fn compare_outputs(
+    linear: &Identification,
+    yielding: &LinkIdentification,
+    cases: &[LoadCase],
+) -> Result<Verdict, LinkIdentError> {
+    let mut objective = 0.0;
+    for case in cases {
+        let run = yielding.forward(case.initial_velocity, case.step, case.window.1 + 1)?;
+        let y = run
+            .displacement
+            .get(case.output_dof.wrapping_sub(1))
+            .ok_or_else(|| LinkIdentError::Output {
+                case: case.name.clone(),
+                output: case.output_dof,
+                dof: yielding.layout.dof,
+            })?;
+        let (domain, w, h) = (case.compare.domain, case.compare.weight(), case.step);
+        for k in case.first_compared()..=case.window.1 {
+            let r = match case.compare.is_thesis() {
+                true => y[k] - case.measured[k],
+                false => w * (domain.at(y, k, h) - domain.at(&case.measured, k, h)),
+            };
+            objective += r * r;
+        }
+    }
+    let fits: Vec<f64> = yielding.fits.iter().map(|f| f.1).collect();
+    let q = yielding.uncertainty.fixed.iter().filter(|f| !**f).count();
+    Ok(weighed(linear, &fits, objective, q))
+}
+
+/// The comparison of `linear` with a yielding chain of fits `fits` %,
+/// objective `objective` on the linear chain's residuals and `q_yielding`
+/// free parameters.
+fn weighed(
+    linear: &Identification,
+    yielding_fits: &[f64],
+    objective: f64,
+    q_yielding: usize,
+) -> Verdict {
     let n = linear.residuals;
     let effective = linear.effective_samples.effective.clamp(2.0, n as f64);
     let q_linear = linear.uncertainty.fixed.iter().filter(|f| !**f).count();
-    let q_yielding = yielding.uncertainty.fixed.iter().filter(|f| !**f).count();
     let bic = [
         bic(linear.objective, n, effective, q_linear),
-        bic(yielding.objective, n, effective, q_yielding),
+        bic(objective, n, effective, q_yielding),
     ];
     let fit = |fits: &[f64]| {
         fits.iter()
@@ -46,19 +99,18 @@ pub fn compare(linear: &Identification, yielding: &LinkIdentification) -> Verdic
             .join(", ")
     };
     let linear_fits: Vec<f64> = linear.cases.iter().map(|c| c.fit_percent).collect();
-    let yielding_fits: Vec<f64> = yielding.fits.iter().map(|f| f.1).collect();
     let prefer = bic[1] < bic[0];
     let reasons = vec![
         format!(
             "fit: linear {} , yielding {}",
             fit(&linear_fits),
-            fit(&yielding_fits)
+            fit(yielding_fits)
         ),
         format!(
             "objective: linear {:.4e}, yielding {:.4e} ({:.1} % lower)",
             linear.objective,
-            yielding.objective,
-            100.0 * (1.0 - yielding.objective / linear.objective)
+            objective,
+            100.0 * (1.0 - objective / linear.objective)
         ),
         format!(
             "free parameters: linear {q_linear}, yielding {q_yielding}; {effective:.0} effective of {n} residuals"

@@ -198,6 +198,10 @@ pub struct Study {
     /// to the defaults ([`crate::priors`]).
     #[serde(default)]
     pub priors: Option<toml::Table>,
+    /// The barrier identification's settings of a links study (`kind =
+    /// "links"`), read by [`crate::links::study::LinksStudy::of`].
+    #[serde(default)]
+    pub links: Option<toml::Table>,
     /// Load cases.
     pub case: Vec<CaseSpec>,
     /// Folder of the study file.

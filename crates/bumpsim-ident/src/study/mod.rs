@@ -62,6 +62,11 @@ impl Study {
                 study.model.method
             )));
         }
+        if study.links.is_some() && study.kind.as_deref() != Some("links") {
+            return Err(error(
+                "[links] holds the settings of a links study: declare kind = \"links\" (docs/identify.md), or leave [links] out".into(),
+            ));
+        }
         if study.case.is_empty() {
             return Err(error(
                 "no [[case]]: a study needs at least one load case".into(),
