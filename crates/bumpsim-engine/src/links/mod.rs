@@ -22,9 +22,9 @@
 //! the penalty contact's (0 with a front link). A pendulum (or a moving
 //! barrier) into a car with links is not modelled yet: refused by name.
 //!
-//! `identify` of a links study ([`identify`]) identifies the car as it
-//! ran into the barrier and runs it forward; `predict` runs a links car
-//! into the wall at each case's speed of a links study ([`forward`]).
+//! `identify` of a links study (the `identify` module) identifies the car
+//! as it ran into the barrier and runs it forward; `predict` runs a links
+//! car into the wall at each case's speed of a links study (`forward`).
 
 mod forward;
 mod identify;
