@@ -235,3 +235,38 @@ fn hostile_links_keys_are_refused_by_name() {
         "--posterior: a links study has no posterior sampling yet",
     );
 }
+
+/// A car with a second load path runs into the barrier with its plastic
+/// set printed, and `export` refuses it by name (its decks would leave the
+/// wall link out).
+#[test]
+fn a_car_with_a_second_path_runs_into_the_barrier_and_export_refuses_it() {
+    let dir = scratch("links-wall-path");
+    let car = std::fs::read_to_string(root().join("examples/links/car.toml")).unwrap();
+    let path = dir.join("car.toml");
+    let wall = "\n[path]\nmass = 3\ngap = \"200 mm\"\ncurve = \"bilinear\"\nstiffness = \"2000 N/mm\"\nyield_force = \"60 kN\"\nunloading = \"4000 N/mm\"\n";
+    std::fs::write(&path, format!("{car}{wall}")).unwrap();
+    let run = bumpsim(&[
+        "impact",
+        "--car",
+        path.to_str().unwrap(),
+        "--barrier",
+        "--speed",
+        "40 km/h",
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert_contains(
+        &text(&run.stdout),
+        &["  second load path: largest compression "],
+    );
+    let deck = dir.join("car.k");
+    let run = bumpsim(&[
+        "export",
+        "lsdyna",
+        path.to_str().unwrap(),
+        "-o",
+        deck.to_str().unwrap(),
+    ]);
+    assert_user_error(&run, "second load path ([path] or [rebound]");
+    assert!(!deck.exists());
+}

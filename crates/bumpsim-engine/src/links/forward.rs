@@ -141,7 +141,7 @@ impl Forward {
         let delta_v = v[b] - v0;
         let mut warnings = Vec::new();
         let energy = r.energy_error();
-        if !(energy < super::ENERGY_TOLERANCE) {
+        if energy.is_nan() || energy >= super::ENERGY_TOLERANCE {
             warnings.push(format!(
                 "case '{}': the forward run's energy balance error {energy:.3} exceeds {}",
                 case.name,

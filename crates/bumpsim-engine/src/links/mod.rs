@@ -26,9 +26,9 @@
 //! judges a links car file with a `[damageability]` table in the
 //! protocols' tests (`verdict.rs`).
 //!
-//! `identify` of a links study ([`identify`]) identifies the car as it
-//! ran into the barrier and runs it forward; `predict` runs a links car
-//! into the wall at each case's speed of a links study ([`forward`]).
+//! `identify` of a links study (the `identify` module) identifies the car
+//! as it ran into the barrier and runs it forward; `predict` runs a links
+//! car into the wall at each case's speed of a links study (`forward`).
 
 mod forward;
 mod identify;
