@@ -17,8 +17,6 @@
 //! - [`domain`]: the domain a series is compared in (displacement,
 //!   velocity, acceleration; issue 44);
 //! - [`fit`]: the fit % of paper B and the negative-fit warning;
-//! - [`floor`]: a channel's error scale with a stated model-error floor
-//!   (issue 44, 46);
 //! - [`document`]: the prediction document every model's front end writes;
 //! - [`reduce`]: the simpler model the data cannot tell apart, with the
 //!   F-test;
@@ -95,7 +93,6 @@ pub mod document;
 pub mod domain;
 pub mod effective;
 pub mod fit;
-pub mod floor;
 pub mod information;
 pub mod lm;
 pub mod multistart;

@@ -283,7 +283,6 @@ mod tests {
             striker: Some(striker),
             time_zero: 0.0,
             weights: Vec::new(),
-            noise: 0.0,
             pretrigger: 0.0,
         }
     }

@@ -324,7 +324,7 @@ impl TestChannels {
             .map_err(|e| error(format!("force: {e}")))?;
         let step = step * every as f64;
         let duration = step * (window.last - window.first) as f64;
-        let (weights, noise) = weights(self, duration)?;
+        let weights = weights(self, duration)?;
         let case = PlanarCase {
             name: self.name.clone(),
             drive: Drive {
@@ -339,7 +339,6 @@ impl TestChannels {
             striker: None,
             time_zero: zero,
             weights,
-            noise,
             pretrigger: self.pretrigger(),
         };
         Ok((case, resampled))
@@ -426,11 +425,9 @@ pub fn domain_noise(sigma: f64, step: f64, duration: f64, integrations: usize) -
 }
 
 /// Each sensor's residual weight (see the module): 1 for the x
-/// accelerometers, their pooled noise over its own for every other; and
-/// that pooled noise in displacement, m (0 where a study of x
-/// accelerometers alone has none to estimate); an error names a sensor
-/// whose noise is neither given nor estimable.
-fn weights(channels: &TestChannels, duration: f64) -> Result<(Vec<f64>, f64), PlanarError> {
+/// accelerometers, their pooled noise over its own for every other; an
+/// error names a sensor whose noise is neither given nor estimable.
+fn weights(channels: &TestChannels, duration: f64) -> Result<Vec<f64>, PlanarError> {
     let noise: Vec<Option<f64>> = channels
         .sensors
         .iter()
@@ -443,6 +440,9 @@ fn weights(channels: &TestChannels, duration: f64) -> Result<(Vec<f64>, f64), Pl
             (domain.is_finite() && domain > 0.0).then_some(domain)
         })
         .collect();
+    if channels.positions.iter().all(Sensor::along_x) {
+        return Ok(vec![1.0; channels.positions.len()]);
+    }
     let x: Vec<f64> = noise
         .iter()
         .zip(&channels.positions)
@@ -450,13 +450,6 @@ fn weights(channels: &TestChannels, duration: f64) -> Result<(Vec<f64>, f64), Pl
         .map(|(n, _)| n.unwrap_or(f64::NAN))
         .collect();
     let pooled = (x.iter().map(|v| v * v).sum::<f64>() / x.len().max(1) as f64).sqrt();
-    if channels.positions.iter().all(Sensor::along_x) {
-        let known = match pooled.is_finite() && pooled > 0.0 {
-            true => pooled,
-            false => 0.0,
-        };
-        return Ok((vec![1.0; channels.positions.len()], known));
-    }
     let unknown = |k: usize| PlanarError::Case {
         case: channels.name.clone(),
         message: format!(
@@ -470,12 +463,11 @@ fn weights(channels: &TestChannels, duration: f64) -> Result<(Vec<f64>, f64), Pl
             .unwrap_or(0);
         return Err(unknown(k));
     }
-    let weights = (0..noise.len())
+    (0..noise.len())
         .map(|k| match (channels.positions[k].along_x(), noise[k]) {
             (true, _) => Ok(1.0),
             (false, Some(own)) => Ok(pooled / own),
             (false, None) => Err(unknown(k)),
         })
-        .collect::<Result<_, _>>()?;
-    Ok((weights, pooled))
+        .collect()
 }

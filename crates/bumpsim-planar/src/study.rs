@@ -31,9 +31,6 @@
 //! bias = "pretrigger"       # the accelerometers' biases: removed as the pre-trigger's mean
 //!                           # (default) or "nuisance": also estimated per case, with the
 //!                           # pre-trigger mean's uncertainty as their prior
-//! floor = { accelerometers = 0.01, yaw_rate = 0.05 }  # optional: model-error floors, fractions
-//!                           # of each channel's spread added to its noise (`identify::Floors`;
-//!                           # a kind not named: 0, its noise alone); absent: the noise alone
 //!
 //! [priors]                  # optional: override ({ value, spread }), remove ("none") or add priors
 //! body.yaw_inertia = { value = 2300.0, spread = 0.2 }   # kg·m² (SI); spread: sd of ln θ (0.2 ≈ ±20 %)
@@ -76,7 +73,7 @@
 
 use crate::car::{PlanarCar, PlanarError};
 use crate::cases::{Placed, TestChannels, TimeZero};
-use crate::identify::{Bias, Floors, LinkLaws, PlanarCase, Setup};
+use crate::identify::{Bias, LinkLaws, PlanarCase, Setup};
 use crate::presets::StrikerFields;
 use bumpsim_core::channel::Channel;
 use bumpsim_core::names::check_names;
@@ -125,33 +122,6 @@ struct IdentificationFile {
     /// The accelerometers' biases: `"pretrigger"` (removed as its mean)
     /// or `"nuisance"` (also estimated, with the pre-trigger's prior).
     bias: Option<String>,
-    /// The sensors' model-error floors ([`crate::identify::Floors`]).
-    floor: Option<FloorFile>,
-}
-
-/// `[identification] floor`: a fraction of each kind's spread (absent: 0).
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct FloorFile {
-    accelerometers: Option<f64>,
-    yaw_rate: Option<f64>,
-    displacement: Option<f64>,
-}
-
-/// The floors of `[identification] floor`; an error names one outside
-/// [0, 1].
-fn floors(file: &FloorFile) -> Result<Floors, String> {
-    let floors = Floors {
-        accelerometers: file.accelerometers.unwrap_or(0.0),
-        yaw_rate: file.yaw_rate.unwrap_or(0.0),
-        displacement: file.displacement.unwrap_or(0.0),
-    };
-    match floors.invalid() {
-        Some((key, value)) => Err(format!(
-            "[identification] floor.{key} = {value}: expected a fraction of the channel's spread in [0, 1]"
-        )),
-        None => Ok(floors),
-    }
 }
 
 #[derive(Debug, Deserialize)]
@@ -314,10 +284,6 @@ impl PlanarStudy {
                     )));
                 }
             },
-            floors: identification
-                .and_then(|i| i.floor.as_ref())
-                .map(|f| floors(f).map_err(error))
-                .transpose()?,
             ..defaults
         };
         let mut loader = Loader::new();

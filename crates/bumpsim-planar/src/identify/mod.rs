@@ -56,7 +56,6 @@
 
 mod bumper;
 mod check;
-mod floors;
 mod links;
 mod objective;
 mod plausible;
@@ -81,7 +80,6 @@ pub use objective::{BIAS_INFLATION, Bias};
 use serde::Serialize;
 
 pub use bumper::{BumperFit, transformed, unloading_ratio};
-pub use floors::{Floors, floored};
 pub use links::{LinkLaw, LinkLaws};
 pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
@@ -120,10 +118,6 @@ pub struct PlanarCase {
     /// accelerometers, their noise over its own for the others); empty:
     /// all 1.
     pub weights: Vec<f64>,
-    /// The x accelerometers' pooled noise in displacement over the window,
-    /// m: the noise of every weighted residual ([`crate::cases`]; 0:
-    /// unknown). The model-error floors ([`Floors`]) add to it.
-    pub noise: f64,
     /// How long a pre-trigger the accelerometers' biases were taken from,
     /// s (0: none): the spread of a bias nuisance's prior
     /// ([`Bias::Nuisance`]).
@@ -185,9 +179,6 @@ pub struct Setup {
     /// alone (the default) or also estimated as nuisances with the
     /// pre-trigger's prior ([`Bias`]).
     pub bias: Bias,
-    /// The model-error floors of the sensors' residuals ([`floored`]);
-    /// `None` (the default): each weighed by its noise alone.
-    pub floors: Option<Floors>,
 }
 
 impl Setup {
@@ -207,7 +198,6 @@ impl Setup {
             bumper: false,
             domain: Domain::Displacement,
             bias: Bias::Pretrigger,
-            floors: None,
         }
     }
 }
@@ -361,11 +351,6 @@ pub fn identify(
 ) -> Result<PlanarIdentification, PlanarError> {
     let clock = std::time::Instant::now();
     let unknowns = check::check(cases, setup)?;
-    let floored = match &setup.floors {
-        Some(floors) => floored(cases, setup.domain, floors)?,
-        None => cases.to_vec(),
-    };
-    let cases = floored.as_slice();
     let stated = priors(&unknowns, setup)?;
     let (lower, upper) = unknowns.bounds(&unknowns.start());
     let objective = Objective::new(cases, &unknowns, (setup.domain, setup.bias))?;
@@ -633,7 +618,6 @@ mod tests {
             striker: None,
             time_zero: 0.0,
             weights: Vec::new(),
-            noise: 0.0,
             pretrigger: 0.0,
         }
     }

@@ -315,7 +315,6 @@ mod tests {
                     striker: None,
                     time_zero: 0.0,
                     weights: vec![1.0, 1.0, 0.05],
-                    noise: 0.0,
                     pretrigger: 0.0,
                 });
             }
