@@ -530,6 +530,8 @@ mod progressive;
 mod regression;
 #[path = "planar/sensors.rs"]
 mod sensors;
+#[path = "planar/split.rs"]
+mod split;
 #[path = "planar/truth_start.rs"]
 mod truth_start;
 #[path = "planar/tyres.rs"]

@@ -316,3 +316,48 @@ fn the_objective_is_read_and_a_wrong_one_named() {
         "{e}"
     );
 }
+
+/// Study options measured on the documented study: every set-up of
+/// `BUMPSIM_EXTRAS` (TOML appended to `study-doc.toml`, set-ups separated
+/// by `|`, `\n` for a line break; e.g. `[identification]\nobjective =
+/// "velocity"\nbias = "nuisance"`) on
+/// every series of `BUMPSIM_SEEDS` (default `0,1,2,3`), one table row
+/// each with the crash boxes' identified elastic stiffness; the study file
+/// is read as a lab's would be. A measurement, not a check: it asserts only
+/// finite scores.
+/// `BUMPSIM_EXTRAS=... cargo test --release -p bumpsim-planar --test planar
+/// defaults::options -- --ignored --nocapture`.
+#[test]
+#[ignore = "a measurement: about 20 s per series and set-up in release"]
+fn options() {
+    let extras = std::env::var("BUMPSIM_EXTRAS").unwrap_or_default();
+    for seed in list("BUMPSIM_SEEDS", "0,1,2,3") {
+        let Some(dir) = series(seed.parse().unwrap()) else {
+            return;
+        };
+        let text = std::fs::read_to_string(dir.join("study-doc.toml")).unwrap();
+        for (k, extra) in extras.split('|').enumerate() {
+            let extra = extra.replace("\\n", "\n");
+            let path = dir.join(format!("study-option-{k}.toml"));
+            std::fs::write(&path, format!("{text}\n{extra}\n")).unwrap();
+            let study = PlanarStudy::read(&path).unwrap();
+            let clock = Instant::now();
+            let result = study.identified(&|| {}).unwrap();
+            let s = scored(&dir, &study, &result, clock.elapsed().as_secs_f64());
+            let value = |name: &str| {
+                result
+                    .parameters
+                    .iter()
+                    .find(|p| p.name == name)
+                    .map_or(f64::NAN, |p| p.value)
+            };
+            eprintln!(
+                "{} left/right springs[0] {:.0} / {:.0} N/mm",
+                s.row(&format!("seed {seed}, {}", extra.replace('\n', " "))),
+                value("left.springs[0]") / 1e3,
+                value("right.springs[0]") / 1e3
+            );
+            assert!(s.offset.iter().chain(&s.narrow).all(|v| v.is_finite()));
+        }
+    }
+}

@@ -301,6 +301,34 @@ fn the_documented_study_meets_issue_44s_thresholds() {
 /// ridge that any nudge to the left/right split moves. The generator's
 /// crash boxes are not mirror images (elastic 2.6 / 2.1 MN/m, each varied
 /// car ±15 % more per side), so the premise does not hold on this series.
+///
+/// Combined (w12-h3, `defaults::options`, release), forward force /
+/// x-acceleration / yaw rate % on cars 0–3, every other threshold holding:
+///
+/// | set-up | car 0 | car 1 | car 2 | car 3 |
+/// |---|---|---|---|---|
+/// | velocity + nuisance (re-measured) | 92.1 / 92.0 / 89.4 | 81.0 / 81.0 / 86.4 | 93.5 / 93.5 / 93.9 | 87.5 / 87.5 / 96.5 |
+/// | velocity + nuisance, springs 0.1 | 92.3 / 92.3 / 89.4 | 86.8 / 86.7 / 95.6 | 95.3 / 95.4 / 94.6 | 89.2 / 89.3 / 95.3 |
+/// | velocity + nuisance, springs 0.2 | 92.3 / 92.3 / 89.4 | 86.5 / 86.4 / 93.5 | 94.6 / 94.7 / 91.5 | 89.2 / 89.2 / 95.3 |
+/// | velocity + nuisance, springs and masses 0.1 | 92.4 / 92.3 / 89.4 | 86.5 / 86.5 / 93.5 | 95.2 / 95.3 / 94.7 | 89.4 / 89.4 / 95.2 |
+/// | velocity + nuisance, springs and masses 0.2 | 92.4 / 92.3 / 89.4 | 86.7 / 86.6 / 95.5 | 94.5 / 94.6 / 91.7 | 89.3 / 89.4 / 95.2 |
+/// | acceleration, springs 0.1 | 90.9 / 91.0 / 89.7 | 87.6 / 87.6 / 93.8 | 92.6 / 92.7 / 88.7 | 88.8 / 88.9 / 96.2 |
+/// | acceleration, springs and masses 0.05 | 90.8 / 90.9 / 89.9 | 90.1 / 90.1 / 93.3 | 92.7 / 92.8 / 88.7 | 88.7 / 88.8 / 96.0 |
+/// | acceleration, springs and masses 0.1 | 90.8 / 90.9 / 90.0 | 90.0 / 90.1 / 93.3 | 92.7 / 92.8 / 88.7 | 88.7 / 88.8 / 96.1 |
+/// | acceleration, springs and masses 0.2 | 90.8 / 90.9 / 90.0 | 86.6 / 86.6 / 95.9 | 92.6 / 92.8 / 88.7 | 88.7 / 88.8 / 96.2 |
+///
+/// In velocity with the nuisance bias the ratio prior keeps car 0's yaw
+/// rate (89.4 %); the nearest to issue 44 is acceleration with both ratios
+/// at 0.05–0.1: cars 0–2 hold every threshold (car 1 at 90.0–90.1 %), car
+/// 3's forward force is 88.7 %. None holds on all four, so the documented
+/// study is unchanged. Model-error floors per sensor kind (`[identification]
+/// floor`, w12-h3 commit ce2cf5a, reverted) lowered the forward force on
+/// cars 0 and 2 in every combination (displacement φ 0.01 / 0.05: 91.8 /
+/// 56.7 / 94.7 / 86.9 %, yaw rate 79.2 / 66.4 / 78.6 / 97.0 %; velocity +
+/// nuisance φ 0.01 / 0.05: 78.7 / 84.8 / 75.3 / 76.8 %; docs/planar.md
+/// has every row). Why car 0's forward yaw rate moves with the split:
+/// `split::measured` and docs/planar.md (its peak is 8 % low whatever the
+/// split; most of the ratio prior's loss is the bumper fitted after it).
 #[test]
 #[ignore = "three series, about 15 s each in release, 3-4 min each in debug"]
 fn the_documented_study_on_varied_cars() {
