@@ -303,7 +303,11 @@ impl Input {
             measured: (first..=last)
                 .map(|k| w * (domain.at(&case.measured, k, h) - rigid))
                 .collect(),
-            initial_velocity: if q == 0 { w * case.initial_velocity } else { 0.0 },
+            initial_velocity: if q == 0 {
+                w * case.initial_velocity
+            } else {
+                0.0
+            },
         }
     }
 }
@@ -352,7 +356,11 @@ mod tests {
                     .map(|k| {
                         let t = k as f64 * STEP - 2e-3;
                         let inside = (0.0..duration).contains(&t);
-                        if inside { peak * (std::f64::consts::PI * t / duration).sin() } else { 0.0 }
+                        if inside {
+                            peak * (std::f64::consts::PI * t / duration).sin()
+                        } else {
+                            0.0
+                        }
                     })
                     .collect();
                 let mut case = LoadCase {
@@ -380,7 +388,11 @@ mod tests {
 
     /// Largest difference relative to `scale`.
     fn relative(a: &[f64], b: &[f64], scale: f64) -> f64 {
-        let worst = a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+        let worst = a
+            .iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max);
         worst / scale
     }
 
@@ -410,7 +422,10 @@ mod tests {
             let (mut modal, mut state) = (vec![0.0; m], vec![0.0; m]);
             let (mut jtj, mut g) = (DMatrix::zeros(7, 7), DVector::zeros(7));
             let used = objective.modal_normal(&p, &mut modal, &mut jtj, &mut g);
-            assert!(matches!(used, Ok(true)), "{domain:?}: the modal form refused");
+            assert!(
+                matches!(used, Ok(true)),
+                "{domain:?}: the modal form refused"
+            );
             let (mut jtj_state, mut g_state) = (DMatrix::zeros(7, 7), DVector::zeros(7));
             assert!(objective.simulate(&p, &mut state, true, &mut |_, rows, r| {
                 accumulate(rows, r, &mut jtj_state, &mut g_state);
@@ -423,10 +438,16 @@ mod tests {
                 relative(jtj.as_slice(), jtj_state.as_slice(), scale),
                 relative(g.as_slice(), g_state.as_slice(), scale.sqrt() * r_norm),
             ];
-            assert!(errors.iter().all(|e| *e < 1e-9), "{domain:?} {noise:?}: {errors:?}");
+            assert!(
+                errors.iter().all(|e| *e < 1e-9),
+                "{domain:?} {noise:?}: {errors:?}"
+            );
             // the trial steps' residuals too
             let mut trial = vec![0.0; m];
-            assert!(matches!(objective.modal_residuals(&p, &mut trial), Ok(true)));
+            assert!(matches!(
+                objective.modal_residuals(&p, &mut trial),
+                Ok(true)
+            ));
             let error = relative(&trial, &state, largest(&state));
             assert!(error < 1e-9, "{domain:?} {noise:?}: residuals {error:.1e}");
         }
