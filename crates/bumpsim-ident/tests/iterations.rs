@@ -176,6 +176,23 @@ fn compare(objective: &str) {
 /// and LM's problems hand it only `JᵀJ` and `Jᵀr` (`LeastSquares::normal`,
 /// the modal form never stores J); a rank-1 update would also not be a
 /// Jacobian in scipy's `njev` sense.
+///
+/// **Why Nielsen's damping (the default) needs more** (traced 2026-11-29,
+/// λ and gain ratio ρ of every trial): on the velocity objective it
+/// reaches 1.4e-4 above the optimum at its 7th Jacobian, then creeps with
+/// ρ between 0.74 and 0.93, where Nielsen's factor `max(⅓, 1 − (2ρ − 1)³)`
+/// lowers λ by only 0.88–0.95 per step (λ from 1.5e-3 to 1.6e-5 of
+/// `diag(JᵀJ)` over 16 steps of 6e-2 to 1e-3 in ln θ): 24. On the
+/// displacement objective it enters a curved valley at its 12th Jacobian
+/// (45 % above the optimum) and follows it for 60 steps of 1–3 % in ln θ
+/// (ρ 0.65–0.8, λ 3e-4 falling to 2e-7): 77; the trust region's 15 come
+/// from another early path that lands on the optimum from the other side
+/// without entering that valley (the luck the table above shows). Nielsen's update with a faster fall
+/// of λ after a good step, tried in turn (velocity, displacement): ÷3
+/// whenever ρ > ¾ 22, 74; ÷10 whenever ρ > ¾ 20, 75; at most ½ whenever
+/// ρ > ½ 21, 84; ÷3 whenever ρ > ½ 19, 77: the velocity count falls to
+/// near scipy's 18, the displacement one does not move, so the step rule
+/// alone does not cross the valley.
 #[test]
 fn velocity_iterations_are_no_more_than_scipy_trf_jacobians() {
     compare("velocity");

@@ -323,6 +323,8 @@ pub struct Objective<'a> {
     buffers: Mutex<Buffers>,
     /// The modal forms of the last point (`case::modal`).
     modal: Mutex<modal::Cache>,
+    /// Each case as the modal form takes it.
+    inputs: Vec<modal::Input>,
 }
 
 impl<'a> Objective<'a> {
@@ -353,6 +355,7 @@ impl<'a> Objective<'a> {
             residuals,
             buffers: Mutex::new(buffers),
             modal: Mutex::new(modal::Cache::default()),
+            inputs: cases.iter().map(modal::Input::new).collect(),
         }
     }
 
