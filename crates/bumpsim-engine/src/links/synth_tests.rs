@@ -19,7 +19,8 @@ fn the_example_series_makes_its_tests_and_a_links_study_of_them() {
             ["B0LOMASU0000FOXP", "10SECMLE0000ACXP", "10SECMRI0000ACXP"]
         );
         let mass = header.iter().find(|(k, _)| k == "Mass test object 1");
-        assert_eq!(mass.map(|(_, v)| v.as_str()), Some("1436"));
+        let mass: Option<f64> = mass.and_then(|(_, v)| v.parse().ok());
+        assert_eq!(mass, Some(1436.0));
     }
     assert!(made.provenance.contains("# car file "));
     let [(name, study)] = made.files.as_slice() else {
