@@ -41,7 +41,8 @@ fn bic(objective: f64, n: usize, effective: f64, q: usize) -> f64 {
 pub fn compare(linear: &Identification, yielding: &LinkIdentification) -> Verdict {
     let fits: Vec<f64> = yielding.fits.iter().map(|f| f.1).collect();
     let q = yielding.uncertainty.fixed.iter().filter(|f| !**f).count();
-    weighed(linear, &fits, yielding.objective, q)
+    let effective = linear.effective_samples.effective;
+    weighed(linear, &fits, yielding.objective, q, effective)
 }
 
 /// Compares a linear identification with a car identified into the
@@ -51,7 +52,7 @@ pub fn compare_outputs(
     yielding: &LinkIdentification,
     cases: &[LoadCase],
 ) -> Result<Verdict, LinkIdentError> {
-    let mut objective = 0.0;
+    let mut residuals: Vec<Vec<f64>> = Vec::with_capacity(cases.len());
     for case in cases {
         let run = yielding.forward(case.initial_velocity, case.step, case.window.1 + 1)?;
         let y = run
@@ -63,30 +64,34 @@ pub fn compare_outputs(
                 dof: yielding.layout.dof,
             })?;
         let (domain, w, h) = (case.compare.domain, case.compare.weight(), case.step);
-        for k in case.first_compared()..=case.window.1 {
-            let r = match case.compare.is_thesis() {
+        let series =
+            (case.first_compared()..=case.window.1).map(|k| match case.compare.is_thesis() {
                 true => y[k] - case.measured[k],
                 false => w * (domain.at(y, k, h) - domain.at(&case.measured, k, h)),
-            };
-            objective += r * r;
-        }
+            });
+        residuals.push(series.collect());
     }
+    let objective: f64 = residuals.iter().flatten().map(|r| r * r).sum();
+    let views: Vec<&[f64]> = residuals.iter().map(Vec::as_slice).collect();
+    let method = linear.effective_samples.method;
+    let effective = bumpsim_estimate::effective::of_series(&views, method, false).effective;
     let fits: Vec<f64> = yielding.fits.iter().map(|f| f.1).collect();
     let q = yielding.uncertainty.fixed.iter().filter(|f| !**f).count();
-    Ok(weighed(linear, &fits, objective, q))
+    Ok(weighed(linear, &fits, objective, q, effective))
 }
 
 /// The comparison of `linear` with a yielding chain of fits `fits` %,
 /// objective `objective` on the linear chain's residuals and `q_yielding`
-/// free parameters.
+/// free parameters, `effective` of the residuals independent.
 fn weighed(
     linear: &Identification,
     yielding_fits: &[f64],
     objective: f64,
     q_yielding: usize,
+    effective: f64,
 ) -> Verdict {
     let n = linear.residuals;
-    let effective = linear.effective_samples.effective.clamp(2.0, n as f64);
+    let effective = effective.clamp(2.0, n as f64);
     let q_linear = linear.uncertainty.fixed.iter().filter(|f| !**f).count();
     let bic = [
         bic(linear.objective, n, effective, q_linear),
