@@ -52,7 +52,10 @@ fn a_pendulum_into_the_links_car_matches_an_independent_scipy_integration() {
     let total = 6.0 + 180.0 + 1250.0;
     let momentum =
         MASS * s["final_speed"].as_f64().unwrap() + total * s["car_final_speed"].as_f64().unwrap();
-    assert!((momentum - MASS * SPEED).abs() < 1e-9 * MASS * SPEED, "{momentum}");
+    assert!(
+        (momentum - MASS * SPEED).abs() < 1e-9 * MASS * SPEED,
+        "{momentum}"
+    );
     if !python_available("scipy") {
         return;
     }
@@ -60,7 +63,12 @@ fn a_pendulum_into_the_links_car_matches_an_independent_scipy_integration() {
     let peer = Command::new("python3")
         .arg(&script)
         .arg(&car)
-        .args([MASS.to_string(), SPEED.to_string(), "1e-4".into(), "0.25".into()])
+        .args([
+            MASS.to_string(),
+            SPEED.to_string(),
+            "1e-4".into(),
+            "0.25".into(),
+        ])
         .output()
         .unwrap();
     assert!(peer.status.success(), "{}", text(&peer.stderr));
@@ -89,8 +97,18 @@ fn a_pendulum_into_the_links_car_matches_an_independent_scipy_integration() {
     // the crash zone yielded and the tabulated link kept a set
     assert!(number(&scipy["plastic_set"][0]) > 0.05 && number(&scipy["plastic_set"][2]) > 0.03);
     let speed = |key: &str| number(&scipy[key]);
-    close(number(&s["final_speed"]), speed("striker_final_speed"), SPEED, "striker");
-    close(number(&s["car_final_speed"]), speed("car_final_speed"), SPEED, "car");
+    close(
+        number(&s["final_speed"]),
+        speed("striker_final_speed"),
+        SPEED,
+        "striker",
+    );
+    close(
+        number(&s["car_final_speed"]),
+        speed("car_final_speed"),
+        SPEED,
+        "car",
+    );
     let plastic = speed("plastic");
     close(number(&e["plastic"]), plastic, plastic, "plastic work");
 }
@@ -105,6 +123,9 @@ fn the_pendulum_and_moving_barrier_presets_run_into_a_links_car() {
         let run = bumpsim(&["impact", "--car", car.to_str().unwrap(), "--case", case]);
         let stdout = text(&run.stdout);
         assert!(run.status.success(), "{case}: {}", text(&run.stderr));
-        assert_contains(&stdout, &[case, needle, "  peak contact force ", "striker "]);
+        assert_contains(
+            &stdout,
+            &[case, needle, "  peak contact force ", "striker "],
+        );
     }
 }

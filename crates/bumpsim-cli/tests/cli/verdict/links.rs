@@ -81,7 +81,12 @@ fn a_links_car_is_judged_in_the_protocols_tests_along_its_centre_line() {
     let peer = Command::new("python3")
         .arg(&script)
         .arg(&car)
-        .args([f64::to_string(&mass), "1.1176".into(), "1e-4".into(), "0.3".into()])
+        .args([
+            f64::to_string(&mass),
+            "1.1176".into(),
+            "1e-4".into(),
+            "0.3".into(),
+        ])
         .output()
         .unwrap();
     assert!(peer.status.success(), "{}", text(&peer.stderr));
