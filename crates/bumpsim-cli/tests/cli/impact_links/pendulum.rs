@@ -75,10 +75,11 @@ fn a_pendulum_into_the_links_car_matches_an_independent_scipy_integration() {
     let scipy: serde_json::Value = serde_json::from_str(&text(&peer.stdout)).unwrap();
     let number = |v: &serde_json::Value| v.as_f64().unwrap();
     // the leapfrog's O((ωT)²) with ωT ≤ 0.08 on the 6 kg beam, and the
-    // samples' maxima at 0.1 ms: 1 % of the forces, speeds and crushes
+    // samples' maxima at 0.1 ms: 0.2 % of the forces, speeds and crushes
+    // (measured: at most 2.4e-4 of them, on the sets)
     let close = |ours: f64, theirs: f64, scale: f64, what: &str| {
         assert!(
-            (ours - theirs).abs() <= 0.01 * scale,
+            (ours - theirs).abs() <= 0.002 * scale,
             "{what}: bumpsim {ours}, scipy {theirs}"
         );
     };
@@ -90,7 +91,7 @@ fn a_pendulum_into_the_links_car_matches_an_independent_scipy_integration() {
         let reached = number(&scipy["max_compression"][j]);
         let what = link["name"].as_str().unwrap();
         close(number(&link["max_compression"]), reached, reached, what);
-        // a set is a difference: 1 % of the largest crush
+        // a set is a difference: 0.2 % of the largest crush
         let set = number(&scipy["plastic_set"][j]);
         close(number(&link["plastic_set"]), set, crush, what);
     }
