@@ -167,7 +167,7 @@ impl<'a, T: Real> Mover<'a, T> {
 
     /// Mass `i`'s travel into the wall, `x_i` (a rigid wall at 0) or
     /// `x_i − x_s` (the striker's face at `x_s`); the same of velocities.
-    fn into_wall(&self, x: &[T], i: usize) -> T {
+    fn wall_travel(&self, x: &[T], i: usize) -> T {
         match self.striker {
             None => x[i],
             Some(_) => x[i] - x[self.chain.dof()],
@@ -228,13 +228,13 @@ impl<'a, T: Real> Mover<'a, T> {
         }
         if let (Some(front), Some(_)) = (&values.front, self.wall) {
             if self.front_force.value() > 0.0 {
-                stored += front.stored(self.into_wall(q, 0), &self.front).value();
+                stored += front.stored(self.wall_travel(q, 0), &self.front).value();
             }
             plastic += self.front.dissipated(front).value();
         }
         if let (Some(path), Some(wall), Some(_)) = (&values.path, &self.chain.path, self.wall) {
             if self.path_force.value() > 0.0 {
-                let crush = self.into_wall(q, wall.mass) - wall.gap;
+                let crush = self.wall_travel(q, wall.mass) - wall.gap;
                 stored += path.stored(crush, &self.path).value();
             }
             plastic += self.path.dissipated(path).value();
@@ -243,7 +243,7 @@ impl<'a, T: Real> Mover<'a, T> {
             (&values.rebound, &self.chain.rebound, self.wall)
         {
             if self.rebound_force.value() > 0.0 {
-                let crush = self.into_wall(q, wall.mass) - wall.gap;
+                let crush = self.wall_travel(q, wall.mass) - wall.gap;
                 stored += rebound.stored(crush, &self.rebound).value();
             }
             plastic += self.rebound.dissipated(rebound).value();
@@ -271,20 +271,20 @@ impl<T: Real> Mechanism<T> for Mover<'_, T> {
             self.springs[j] = link.force(crush, &mut self.states[j]) * self.sign;
         }
         if let (Some(front), Some(_)) = (&self.values.front, self.wall) {
-            let crush = self.into_wall(q, 0);
+            let crush = self.wall_travel(q, 0);
             self.front_force = front.force(crush, &mut self.front).max_constant(0.0);
         }
         if let (Some(path), Some(wall), Some(_)) = (&self.values.path, &self.chain.path, self.wall)
         {
             let gap = self.values.path_gap.unwrap_or(T::constant(wall.gap));
-            let crush = self.into_wall(q, wall.mass) - gap;
+            let crush = self.wall_travel(q, wall.mass) - gap;
             self.path_force = path.force(crush, &mut self.path).max_constant(0.0);
         }
         if let (Some(rebound), Some(wall), Some(_)) =
             (&self.values.rebound, &self.chain.rebound, self.wall)
         {
             let gap = self.values.rebound_gap.unwrap_or(T::constant(wall.gap));
-            let crush = self.into_wall(q, wall.mass) - gap;
+            let crush = self.wall_travel(q, wall.mass) - gap;
             self.rebound_force = rebound.force(crush, &mut self.rebound).max_constant(0.0);
         }
         self.applied = k.wrapping_add(1);
@@ -292,7 +292,7 @@ impl<T: Real> Mechanism<T> for Mover<'_, T> {
 
     fn accelerations(&mut self, q: &[T], v: &[T], a: &mut [T]) {
         let k = self.applied;
-        let f = self.external(k, self.into_wall(q, 0), self.into_wall(v, 0));
+        let f = self.external(k, self.wall_travel(q, 0), self.wall_travel(v, 0));
         let (c, masses) = (&self.values.dampers, &self.values.masses);
         let path = self.chain.path.as_ref().map(|p| p.mass);
         let rebound = self.chain.rebound.as_ref().map(|p| p.mass);
@@ -326,10 +326,10 @@ impl<T: Real> Mechanism<T> for Mover<'_, T> {
         }
         let c = &self.values.dampers;
         let k = if s.half { 0 } else { self.applied };
-        let f = self.external(k, self.into_wall(s.q, 0), self.into_wall(s.before, 0));
+        let f = self.external(k, self.wall_travel(s.q, 0), self.wall_travel(s.before, 0));
         if self.values.front.is_none() || self.wall.is_none() {
             // on m1's travel into the wall (the striker takes −f)
-            self.work += f * s.length * self.into_wall(s.mean, 0);
+            self.work += f * s.length * self.wall_travel(s.mean, 0);
         }
         for (j, cj) in c.iter().enumerate() {
             let rate = s.before[j] - s.before[j + 1];
@@ -342,7 +342,7 @@ impl<T: Real> Mechanism<T> for Mover<'_, T> {
         if q.iter().chain(v).any(|x| !x.value().is_finite()) {
             return Err(k / self.every);
         }
-        let (x1, v1) = (self.into_wall(q, 0), self.into_wall(v, 0));
+        let (x1, v1) = (self.wall_travel(q, 0), self.wall_travel(v, 0));
         let wall = self.external(k, x1, v1) - self.path_force - self.rebound_force;
         let energies = match self.out {
             Out::Full(_) => self.energies(q, v),

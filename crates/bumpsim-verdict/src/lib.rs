@@ -8,7 +8,7 @@
 //! - [`limits`]: the car's clearances and limits (`[damageability]` of the
 //!   planar car file);
 //! - [`criteria`]: each criterion's value, limit and margin;
-//! - [`line`]: the same criteria for a car along a line (the chain with
+//! - [`line`](mod@line): the same criteria for a car along a line (the chain with
 //!   nonlinear links), from its model's 1-D runs;
 //! - [`pulse`]: peak and 3 ms clip deceleration, delta-V, OLC, ASI
 //!   (EN 1317-1:2010 or 1998), to a defined contact end;

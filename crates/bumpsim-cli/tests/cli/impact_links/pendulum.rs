@@ -52,7 +52,10 @@ fn a_pendulum_into_the_links_car_matches_an_independent_scipy_integration() {
     let total = 6.0 + 180.0 + 1250.0;
     let momentum =
         MASS * s["final_speed"].as_f64().unwrap() + total * s["car_final_speed"].as_f64().unwrap();
-    assert!((momentum - MASS * SPEED).abs() < 1e-9 * MASS * SPEED, "{momentum}");
+    assert!(
+        (momentum - MASS * SPEED).abs() < 1e-9 * MASS * SPEED,
+        "{momentum}"
+    );
     if !python_available("scipy") {
         return;
     }
@@ -60,17 +63,23 @@ fn a_pendulum_into_the_links_car_matches_an_independent_scipy_integration() {
     let peer = Command::new("python3")
         .arg(&script)
         .arg(&car)
-        .args([MASS.to_string(), SPEED.to_string(), "1e-4".into(), "0.25".into()])
+        .args([
+            MASS.to_string(),
+            SPEED.to_string(),
+            "1e-4".into(),
+            "0.25".into(),
+        ])
         .output()
         .unwrap();
     assert!(peer.status.success(), "{}", text(&peer.stderr));
     let scipy: serde_json::Value = serde_json::from_str(&text(&peer.stdout)).unwrap();
     let number = |v: &serde_json::Value| v.as_f64().unwrap();
     // the leapfrog's O((ωT)²) with ωT ≤ 0.08 on the 6 kg beam, and the
-    // samples' maxima at 0.1 ms: 1 % of the forces, speeds and crushes
+    // samples' maxima at 0.1 ms: 0.2 % of the forces, speeds and crushes
+    // (measured: at most 2.4e-4 of them, on the sets)
     let close = |ours: f64, theirs: f64, scale: f64, what: &str| {
         assert!(
-            (ours - theirs).abs() <= 0.01 * scale,
+            (ours - theirs).abs() <= 0.002 * scale,
             "{what}: bumpsim {ours}, scipy {theirs}"
         );
     };
@@ -82,15 +91,25 @@ fn a_pendulum_into_the_links_car_matches_an_independent_scipy_integration() {
         let reached = number(&scipy["max_compression"][j]);
         let what = link["name"].as_str().unwrap();
         close(number(&link["max_compression"]), reached, reached, what);
-        // a set is a difference: 1 % of the largest crush
+        // a set is a difference: 0.2 % of the largest crush
         let set = number(&scipy["plastic_set"][j]);
         close(number(&link["plastic_set"]), set, crush, what);
     }
     // the crash zone yielded and the tabulated link kept a set
     assert!(number(&scipy["plastic_set"][0]) > 0.05 && number(&scipy["plastic_set"][2]) > 0.03);
     let speed = |key: &str| number(&scipy[key]);
-    close(number(&s["final_speed"]), speed("striker_final_speed"), SPEED, "striker");
-    close(number(&s["car_final_speed"]), speed("car_final_speed"), SPEED, "car");
+    close(
+        number(&s["final_speed"]),
+        speed("striker_final_speed"),
+        SPEED,
+        "striker",
+    );
+    close(
+        number(&s["car_final_speed"]),
+        speed("car_final_speed"),
+        SPEED,
+        "car",
+    );
     let plastic = speed("plastic");
     close(number(&e["plastic"]), plastic, plastic, "plastic work");
 }
@@ -105,6 +124,9 @@ fn the_pendulum_and_moving_barrier_presets_run_into_a_links_car() {
         let run = bumpsim(&["impact", "--car", car.to_str().unwrap(), "--case", case]);
         let stdout = text(&run.stdout);
         assert!(run.status.success(), "{case}: {}", text(&run.stderr));
-        assert_contains(&stdout, &[case, needle, "  peak contact force ", "striker "]);
+        assert_contains(
+            &stdout,
+            &[case, needle, "  peak contact force ", "striker "],
+        );
     }
 }

@@ -62,9 +62,12 @@ fn a_links_car_is_judged_in_the_protocols_tests_along_its_centre_line() {
             .all(|c| c["outcome"] != "fail"),
         "{pendulum}"
     );
-    // the pulse is the body's: ΔV below the pendulum's 1.1176 m/s
+    // the pulse is the body's: an equal mass at 1.1176 m/s that nothing
+    // yields under gives the car between the plastic impact's half and
+    // the elastic exchange's whole of it (the links' vibration at the
+    // contact's end a little more)
     let dv = pendulum["metrics"]["delta_v"].as_f64().unwrap();
-    assert!(dv > 0.3 && dv < 1.1176, "{dv}");
+    assert!(dv > 0.5 * 1.1176 && dv < 1.02 * 1.1176, "{dv}");
     // RCAR's structural test crushes the bumper further than its bumper test
     let bumper = |name: &str| criterion(test(name), "bumper stroke");
     assert!(bumper("rcar-structural-front") > bumper("rcar-bumper-front"));
@@ -78,7 +81,12 @@ fn a_links_car_is_judged_in_the_protocols_tests_along_its_centre_line() {
     let peer = Command::new("python3")
         .arg(&script)
         .arg(&car)
-        .args([f64::to_string(&mass), "1.1176".into(), "1e-4".into(), "0.3".into()])
+        .args([
+            f64::to_string(&mass),
+            "1.1176".into(),
+            "1e-4".into(),
+            "0.3".into(),
+        ])
         .output()
         .unwrap();
     assert!(peer.status.success(), "{}", text(&peer.stderr));
