@@ -66,6 +66,8 @@ fn the_links_study_of_nhtsa_10146_meets_the_acceptance_through_identify_impact_a
             "test sheet 1719 kg",
             "which links the data want",
             "BIC: linear ",
+            // on the links car's residuals (32 effective of 1201)
+            "the data want yielding links",
         ],
     );
     let doc: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
