@@ -398,23 +398,7 @@ pub fn criteria(e: &Evidence, margin: f64) -> (Vec<Criterion>, Vec<String>) {
             ),
             None => "largest segment crush".into(),
         };
-        let judged = bumper_stroke_judged(e.test);
-        let detail = match judged {
-            true => detail,
-            false => format!("{detail}; {STRUCTURAL}"),
-        };
-        let c = Criterion::new(
-            "bumper stroke".into(),
-            detail,
-            Quantity::Length,
-            crush,
-            stroke,
-            true,
-        );
-        out.push(match judged {
-            true => c.judged(margin),
-            false => c,
-        });
+        out.push(bumper_stroke(e.test, detail, crush, stroke, margin));
     }
     let mut assumptions = vec![e.test.uncertain.to_string()];
     match engagement(d, e.test) {
@@ -453,6 +437,35 @@ pub const STRUCTURAL: &str = "reported, not judged: the structural test crushes 
 /// (`--target` found nothing at any stiffness).
 pub fn bumper_stroke_judged(test: &Test) -> bool {
     !test.name.starts_with("rcar-structural")
+}
+
+/// The bumper stroke's criterion in `test`: the largest crush `crush`
+/// against `stroke` (m), judged with `margin` where the test judges it
+/// ([`bumper_stroke_judged`]), else reported with why.
+pub(crate) fn bumper_stroke(
+    test: &Test,
+    detail: String,
+    crush: f64,
+    stroke: f64,
+    margin: f64,
+) -> Criterion {
+    let judged = bumper_stroke_judged(test);
+    let detail = match judged {
+        true => detail,
+        false => format!("{detail}; {STRUCTURAL}"),
+    };
+    let c = Criterion::new(
+        "bumper stroke".into(),
+        detail,
+        Quantity::Length,
+        crush,
+        stroke,
+        true,
+    );
+    match judged {
+        true => c.judged(margin),
+        false => c,
+    }
 }
 
 fn crash_box(e: &Evidence, margin: f64) -> Option<Criterion> {

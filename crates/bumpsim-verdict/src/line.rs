@@ -30,7 +30,7 @@
 //! car, and the car is free along the line (no rolling resistance).
 
 use crate::criteria::{
-    Criterion, Energies, Engagement, Quantity, STRUCTURAL, bumper_stroke_judged, engagement, pulse,
+    Criterion, Energies, Engagement, Quantity, bumper_stroke, engagement, pulse,
 };
 use crate::error::VerdictError;
 use crate::limits::{Closer, Damageability};
@@ -103,21 +103,8 @@ pub fn check(limits: &Damageability) -> Result<(), VerdictError> {
 /// A test with nothing judged yet (`skipped`: why it is not assessed).
 fn empty(test: &'static Test, skipped: Option<String>) -> TestVerdict {
     TestVerdict {
-        test,
         skipped,
-        striker: String::new(),
-        criteria: vec![],
-        metrics: None,
-        energies: None,
-        bottomed: None,
-        box_bottomed: None,
-        inherited: None,
-        assumptions: vec![],
-        notes: vec![],
-        warnings: vec![],
-        probability: None,
-        result: None,
-        run: None,
+        ..TestVerdict::empty(test)
     }
 }
 
@@ -211,23 +198,7 @@ fn structure(j: &Judging<'_>, run: &LineRun) -> Vec<Criterion> {
             Some(_) => format!("the front link's largest crush, {}", ms(at)),
             None => "no front link: the striker meets m1".into(),
         };
-        let judged = bumper_stroke_judged(j.test);
-        let detail = match judged {
-            true => detail,
-            false => format!("{detail}; {STRUCTURAL}"),
-        };
-        let c = Criterion::new(
-            "bumper stroke".into(),
-            detail,
-            Quantity::Length,
-            crush,
-            stroke,
-            true,
-        );
-        out.push(match judged {
-            true => c.judged(j.margin),
-            false => c,
-        });
+        out.push(bumper_stroke(j.test, detail, crush, stroke, j.margin));
     }
     out
 }

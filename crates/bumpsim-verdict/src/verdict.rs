@@ -367,6 +367,28 @@ fn body<S: serde::Serializer>(
 }
 
 impl TestVerdict {
+    /// The verdict of `test` before anything is judged: assessed, no
+    /// criteria, no run.
+    pub(crate) fn empty(test: &'static Test) -> TestVerdict {
+        TestVerdict {
+            test,
+            skipped: None,
+            striker: String::new(),
+            criteria: vec![],
+            metrics: None,
+            energies: None,
+            bottomed: None,
+            box_bottomed: None,
+            inherited: None,
+            assumptions: vec![],
+            notes: vec![],
+            warnings: vec![],
+            probability: None,
+            result: None,
+            run: None,
+        }
+    }
+
     /// Whether every judged criterion passes (None: not assessed).
     pub fn passed(&self) -> Option<bool> {
         self.skipped
@@ -485,23 +507,7 @@ pub(crate) fn assess_on(
     test: &'static Test,
     pulse: bool,
 ) -> Result<TestVerdict, VerdictError> {
-    let mut verdict = TestVerdict {
-        test,
-        skipped: None,
-        striker: String::new(),
-        criteria: vec![],
-        metrics: None,
-        energies: None,
-        bottomed: None,
-        box_bottomed: None,
-        inherited: None,
-        assumptions: vec![],
-        notes: vec![],
-        warnings: vec![],
-        probability: None,
-        result: None,
-        run: None,
-    };
+    let mut verdict = TestVerdict::empty(test);
     let Some(end) = end else {
         verdict.skipped = Some(format!(
             "no car file of the {} end was given",
