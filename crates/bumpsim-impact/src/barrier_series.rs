@@ -332,9 +332,9 @@ pub fn study_text(series: &BarrierSeries, path: &Path) -> String {
          # recorded (negative: it decelerates the car), the output m{} read by its\n\
          # left and right X accelerometers (vehicle frame, negative while it\n\
          # decelerates), the initial velocity the test's speed: x forward.\n\
-         # The links identification's own [links] table (which links, their\n\
-         # curves and starts; issue 46) is not written here: add it for the\n\
-         # links identification.\n\
+         # `bumpsim identify` runs it as it is, with the [links] table's\n\
+         # defaults (docs/identify.md, \"Nonlinear links\"): add a [links]\n\
+         # table to choose the front knots, a second path or a rebound link.\n\
          kind = \"links\"\n\n[model]\ndof = {n}\nmass = {}   # the car's total mass (the tests' \"Mass test object 1\")\nstarts = 16\nseed = 1\n",
         path.display().to_string().escape_debug(),
         series.car_file.display().to_string().escape_debug(),
