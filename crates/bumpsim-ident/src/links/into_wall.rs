@@ -224,11 +224,13 @@ pub fn identify(
     let plastic_sets = intervals(&values, &gradients, &u, &theta, &free)
         .into_iter()
         .enumerate()
-        .map(|(at, (value, ci95))| PlasticSet {
-            case: cases[at / per_case].name.clone(),
-            link: at % per_case,
-            value,
-            ci95,
+        .map(|(at, (value, ci95))| {
+            PlasticSet::new(
+                cases[at / per_case].name.clone(),
+                at % per_case,
+                value,
+                ci95,
+            )
         })
         .collect();
     let c = chain.count();

@@ -306,6 +306,38 @@ pub struct PlasticSet {
     pub ci95: Option<[f64; 2]>,
 }
 
+/// Below this, m, a plastic set or its interval's half width is the
+/// run's round-off (a link that never yields has δ_p = 0 and gradient 0,
+/// which floating point gives as ±1e-17 m): 1 nm.
+pub const SET_ROUND_OFF: f64 = 1e-9;
+
+impl PlasticSet {
+    /// The set `value` of `link` after `case` with its delta-method
+    /// interval, read as a plastic set: round-off (below
+    /// [`SET_ROUND_OFF`]) is zero, and the interval is clipped at zero (a
+    /// set is never negative; the delta method's symmetric interval can
+    /// reach below, and clipping it keeps every set it held).
+    pub fn new(case: String, link: usize, value: f64, ci95: Option<[f64; 2]>) -> PlasticSet {
+        let clean = |v: f64| {
+            if v.abs() < SET_ROUND_OFF {
+                0.0
+            } else {
+                v.max(0.0)
+            }
+        };
+        let ci95 = ci95.map(|[lo, hi]| match (hi - lo) / 2.0 < SET_ROUND_OFF {
+            true => [clean(value); 2],
+            false => [clean(lo), clean(hi)],
+        });
+        PlasticSet {
+            case,
+            link,
+            value: clean(value),
+            ci95,
+        }
+    }
+}
+
 /// What the identification found.
 #[derive(Debug, Clone)]
 pub struct LinkIdentification {
@@ -519,11 +551,8 @@ fn plastic_sets(
     Ok(into_wall::intervals(&values, &gradients, u, theta, free)
         .into_iter()
         .enumerate()
-        .map(|(at, (value, ci95))| PlasticSet {
-            case: cases[at / links].name.clone(),
-            link: at % links + 1,
-            value,
-            ci95,
+        .map(|(at, (value, ci95))| {
+            PlasticSet::new(cases[at / links].name.clone(), at % links + 1, value, ci95)
         })
         .collect())
 }
@@ -531,6 +560,22 @@ fn plastic_sets(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_plastic_set_is_read_without_round_off_and_its_interval_clipped_at_zero() {
+        let set = |v: f64, ci: [f64; 2]| PlasticSet::new("c".into(), 1, v, Some(ci));
+        // a link that never yields: ±1e-17 m of round-off is no set
+        let none = set(-1.7e-18, [-1.4e-17, 1.4e-17]);
+        assert_eq!((none.value, none.ci95), (0.0, Some([0.0, 0.0])));
+        // the delta method's symmetric interval reaching below zero
+        let small = set(1.132e-3, [-11.24e-3, 13.50e-3]);
+        assert_eq!(small.ci95, Some([0.0, 13.50e-3]));
+        assert!((small.value - 1.132e-3).abs() < 1e-15);
+        // a set well inside its interval is kept as it is
+        let kept = set(0.5949, [0.5694, 0.6204]);
+        assert_eq!(kept.ci95, Some([0.5694, 0.6204]));
+        assert!(PlasticSet::new("c".into(), 1, 0.1, None).ci95.is_none());
+    }
 
     #[test]
     fn the_layout_names_every_parameter_in_order() {
