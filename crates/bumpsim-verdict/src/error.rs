@@ -76,6 +76,20 @@ pub enum VerdictError {
     },
 }
 
+impl VerdictError {
+    /// Two car files given for the same `end` of one verdict.
+    pub fn two_cars_for(end: crate::limits::End) -> VerdictError {
+        VerdictError::Contradiction {
+            first: "damageability.end".into(),
+            second: "damageability.end".into(),
+            reason: format!(
+                "two car files describe the {} end: give one car per end",
+                end.name()
+            ),
+        }
+    }
+}
+
 impl From<bumpsim_planar::uncertainty::UncertaintyError> for VerdictError {
     fn from(e: bumpsim_planar::uncertainty::UncertaintyError) -> VerdictError {
         use bumpsim_planar::uncertainty::UncertaintyError as U;

@@ -236,14 +236,7 @@ impl Setup {
                 End::Rear => &mut rear,
             };
             if slot.is_some() {
-                return Err(VerdictError::Contradiction {
-                    first: "damageability.end".into(),
-                    second: "damageability.end".into(),
-                    reason: format!(
-                        "two car files describe the {} end: give one car per end",
-                        end.limits.end.name()
-                    ),
-                });
+                return Err(VerdictError::two_cars_for(end.limits.end));
             }
             *slot = Some(end);
         }

@@ -15,11 +15,13 @@
 //! (second path, rebound link) its mass's largest travel past its gap.
 //! The report draws the measured and forward wall force and output.
 
+use crate::model::PredictRequest;
 use crate::{EngineError, Outcome, Report};
 use bumpsim_core::chain::{Chain, ChainResponse, Drive};
 use bumpsim_core::link::LinkState;
 use bumpsim_core::units::{Dimension, format_number, format_quantity};
 use bumpsim_ident::case::LoadCase;
+use bumpsim_io::link_car::LinkCar;
 use bumpsim_report::html::Html;
 use bumpsim_report::plot::{LinePlot, Series, Style};
 use serde::Serialize;
@@ -246,6 +248,25 @@ pub fn report(title: &str, text: &str, forward: &[Forward]) -> Result<Report, En
         figures,
         inputs: Vec::new(),
     })
+}
+
+/// `predict` as a request asks it: the links car file and the study's
+/// cases (those named, or all) read, then [`predict`].
+pub fn requested(request: &PredictRequest<'_>) -> Result<Outcome, EngineError> {
+    let text =
+        bumpsim_core::files::read_car_text(request.car).map_err(bumpsim_io::car::CarError::from)?;
+    let car = LinkCar::parse(&text, request.car)?;
+    let study = bumpsim_ident::Study::read(request.study).map_err(Box::new)?;
+    let loaded = study
+        .load_named(car.chain.dof(), request.cases)
+        .map_err(Box::new)?;
+    let name = car
+        .name
+        .clone()
+        .unwrap_or_else(|| request.car.display().to_string());
+    let mut outcome = predict(&name, &car.chain, request.car, &loaded.cases, request.plot)?;
+    outcome.warnings.splice(0..0, loaded.warnings);
+    Ok(outcome)
 }
 
 /// `predict` of a links car on the cases of a links study: each case run

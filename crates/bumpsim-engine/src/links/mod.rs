@@ -123,21 +123,7 @@ impl CarModel for Links {
     }
 
     fn predict(&self, request: &PredictRequest<'_>) -> Result<Outcome, EngineError> {
-        let text = bumpsim_core::files::read_car_text(request.car)
-            .map_err(bumpsim_io::car::CarError::from)?;
-        let car = LinkCar::parse(&text, request.car)?;
-        let study = bumpsim_ident::Study::read(request.study).map_err(Box::new)?;
-        let loaded = study
-            .load_named(car.chain.dof(), request.cases)
-            .map_err(Box::new)?;
-        let name = car
-            .name
-            .clone()
-            .unwrap_or_else(|| request.car.display().to_string());
-        let mut outcome =
-            forward::predict(&name, &car.chain, request.car, &loaded.cases, request.plot)?;
-        outcome.warnings.splice(0..0, loaded.warnings);
-        Ok(outcome)
+        forward::requested(request)
     }
 }
 

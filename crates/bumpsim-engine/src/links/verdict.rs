@@ -59,15 +59,7 @@ pub(super) fn verdict(request: &VerdictRequest<'_>) -> Result<Judged, EngineErro
     for end in &ends {
         let slot = &mut slots[matches!(end.limits.end, Side::Rear) as usize];
         if slot.is_some() {
-            return Err(VerdictError::Contradiction {
-                first: "damageability.end".into(),
-                second: "damageability.end".into(),
-                reason: format!(
-                    "two car files describe the {} end: give one car per end",
-                    end.limits.end.name()
-                ),
-            }
-            .into());
+            return Err(VerdictError::two_cars_for(end.limits.end).into());
         }
         *slot = Some(end);
     }
