@@ -137,7 +137,7 @@ impl StudyIdentification {
         let mut outputs = Outputs::new();
         outputs.input_with_references(&self.held.study);
         py.detach(|| outputs.write_file(&path, car.as_bytes()))
-            .map_err(|e| crate::errors::file_or_input(e))
+            .map_err(crate::errors::file_or_input)
     }
     /// A table of the document (a top-level field whose value is a list:
     /// `parameters`, `plastic_sets`, `forward`, `fits`, ...) as a
@@ -154,10 +154,7 @@ impl StudyIdentification {
             )));
         };
         let intervals = intervals(entries);
-        let rows: Vec<Value> = entries
-            .iter()
-            .map(|e| row(table, e, &intervals))
-            .collect();
+        let rows: Vec<Value> = entries.iter().map(|e| row(table, e, &intervals)).collect();
         let index: Vec<&str> = ["case", "name"]
             .into_iter()
             .filter(|k| !rows.is_empty() && rows.iter().all(|r| r.get(*k).is_some()))
