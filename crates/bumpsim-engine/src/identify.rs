@@ -21,13 +21,13 @@ use std::cell::RefCell;
 /// The request's study with the sizes asked (`--dof`) over its own.
 fn study(request: &IdentifyRequest<'_>) -> Result<Study, EngineError> {
     let mut study = Study::read(request.study).map_err(Box::new)?;
-    // a study of another kind read here (Python's identify) is not a
+    // a study of another kind read here (Python's dof_table) is not a
     // chain study to identify as one
     if let Some(kind) = study.kind.as_deref().filter(|k| *k != "chain") {
         return Err(EngineError::Refused {
             path: request.study.into(),
             reason: format!(
-                "kind = \"{kind}\": this identification takes chain studies; `bumpsim identify` runs a {kind} study"
+                "kind = \"{kind}\": this identification takes chain studies; `bumpsim identify` (and Python's `bumpsim.identify`) runs a {kind} study"
             ),
         });
     }

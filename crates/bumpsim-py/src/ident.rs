@@ -1,8 +1,10 @@
 //! Identification of MSD models: a study identified as `bumpsim identify`
 //! identifies it, by the same engine request
-//! (`bumpsim_engine::identify`: one order, or the DOF table over several,
-//! each continued from the last); and load cases built from numpy arrays
-//! identified with the library's defaults. The results are in
+//! (`bumpsim_engine::identify`: for a chain study one order, or the DOF
+//! table over several, each continued from the last; a study of another
+//! model, its kind declared, through the engine's registry,
+//! [`crate::identified`]); and load cases built from numpy arrays
+//! identified with the library's defaults. The chain's results are in
 //! [`crate::identification`].
 
 use crate::arrays::{cached1, vector};
@@ -16,6 +18,7 @@ use bumpsim_engine::sizes::{Identified, Size};
 use bumpsim_engine::{IdentifyRequest, Progress};
 use bumpsim_ident::case::LoadCase;
 use bumpsim_ident::estimate::{Settings, identify as core_identify};
+use bumpsim_io::kind::{ModelKind, Role};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
@@ -282,37 +285,51 @@ fn identified(py: Python<'_>, request: &IdentifyRequest<'_>) -> PyResult<Identif
         .map_err(input)
 }
 
-/// Identifies one MSD model from all load cases of the study file at
-/// `study`, as `bumpsim identify STUDY --dof N --starts S --seed X`;
-/// `progress` (optional) is called once per finished start.
+/// Identifies the study file at `study` as `bumpsim identify STUDY --dof N
+/// --starts S --seed X` does, by the model its declared kind names: a
+/// chain study's one MSD model from all its load cases (an
+/// [`Identification`]), a study of another model (links, planar) as the
+/// engine's identify request on it (a
+/// [`crate::identified::StudyIdentification`]); `progress` (optional) is
+/// called once per finished start.
 #[pyfunction]
 #[pyo3(signature = (study, dof = None, starts = None, seed = None, progress = None))]
-fn identify(
-    py: Python<'_>,
-    study: &Bound<'_, PyAny>,
-    dof: Option<&Bound<'_, PyAny>>,
-    starts: Option<&Bound<'_, PyAny>>,
-    seed: Option<&Bound<'_, PyAny>>,
+fn identify<'py>(
+    py: Python<'py>,
+    study: &Bound<'py, PyAny>,
+    dof: Option<&Bound<'py, PyAny>>,
+    starts: Option<&Bound<'py, PyAny>>,
+    seed: Option<&Bound<'py, PyAny>>,
     progress: Option<Py<PyAny>>,
-) -> PyResult<Identification> {
+) -> PyResult<Bound<'py, PyAny>> {
     let dof = dof.map(one_dof).transpose()?.map(|d| [d]);
     let path = path(study, "study", "a study")?;
     let ticks = Ticks(progress);
     let request = request(&path, dof.as_ref().map(|d| &d[..]), starts, seed, &ticks)?;
-    let sizes = self::sizes(py, &request)?;
+    let kind = ModelKind::of_path(&path, Role::Study).map_err(|e| reading(&path, e))?;
+    if kind != ModelKind::Chain {
+        let identified = crate::identified::identify(py, kind, &request)?;
+        return Ok(Bound::new(py, identified)?.into_any());
+    }
+    Ok(Bound::new(py, chain(py, &path, &request)?)?.into_any())
+}
+
+/// A chain study's one model size identified.
+fn chain(py: Python<'_>, path: &Path, request: &IdentifyRequest<'_>) -> PyResult<Identification> {
+    let sizes = self::sizes(py, request)?;
     if sizes.len() != 1 {
         return Err(invalid(format!(
             "{}: the study asks for the DOF sweep {sizes:?}; pass dof= for one model, or call bumpsim.dof_table",
             path.display(),
         )));
     }
-    let identified = self::identified(py, &request)?;
+    let identified = self::identified(py, request)?;
     match identified.sizes.into_iter().next() {
         Some(Size::Done(done)) => Ok(Identification::new(
             done.result,
             done.cases,
             identified.notes,
-            Some(path),
+            Some(path.to_path_buf()),
             &done.settings,
         )),
         Some(Size::Failed { dof, error }) => Err(failed(dof, &error)),

@@ -20,6 +20,7 @@ mod export;
 mod frames;
 mod ident;
 mod identification;
+mod identified;
 mod impact;
 mod model;
 mod planar;
@@ -39,6 +40,7 @@ fn _bumpsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     model::register(m)?;
     signal::register(m)?;
     ident::register(m)?;
+    identified::register(m)?;
     impact::register(m)?;
     doe::register(m)?;
     export::register(m)?;

@@ -68,6 +68,8 @@ CLASSES = [
 ]
 # pickled, compared and printed in test_campaign.py
 CAMPAIGN_CLASSES = ["Campaign", "CampaignStatus", "Collected"]
+# pickled, compared and printed in test_identify_links.py (a links identification)
+STUDY_CLASSES = ["StudyIdentification"]
 
 
 def test_every_public_class_is_checked():
@@ -75,7 +77,7 @@ def test_every_public_class_is_checked():
         name for name in dir(bumpsim._native)
         if isinstance(getattr(bumpsim, name), type) and not issubclass(getattr(bumpsim, name), Exception)
     }
-    assert classes == set(CLASSES) | set(CAMPAIGN_CLASSES)
+    assert classes == set(CLASSES) | set(CAMPAIGN_CLASSES) | set(STUDY_CLASSES)
 
 
 @pytest.mark.parametrize("name", CLASSES)

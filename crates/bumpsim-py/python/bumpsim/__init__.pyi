@@ -353,10 +353,45 @@ def identify(
     starts: Optional[int] = None,
     seed: Optional[int] = None,
     progress: Optional[Callable[[], Any]] = None,
-) -> Identification:
-    """Identifies one MSD model from the study file's load cases, as
-    ``bumpsim identify STUDY --dof N --starts S --seed X``; ``progress`` is
-    called once per finished start."""
+) -> Union[Identification, "StudyIdentification"]:
+    """Identifies the study file as ``bumpsim identify STUDY --dof N --starts S
+    --seed X`` does, by the model its ``kind`` declares: a chain study's one
+    MSD model from its load cases (an :class:`Identification`); a links or
+    planar study through the same engine request as the CLI (a
+    :class:`StudyIdentification`). ``progress`` is called once per finished
+    start."""
+
+class StudyIdentification:
+    """A links or planar study identified by the engine, as ``bumpsim
+    identify STUDY`` identifies it: every field of its ``--json`` document is
+    an attribute (a links study's ``parameters`` with units and 95 %
+    intervals, ``fits`` and ``force_fits`` per test in %, ``linear``,
+    ``verdict`` of linear vs nonlinear links, ``plastic_sets`` with 95 %
+    intervals, ``forward`` runs into a rigid wall; SI)."""
+
+    kind: str
+    """The study's model kind: ``links`` or ``planar``."""
+    study: pathlib.Path
+    document: dict[str, Any]
+    """The whole ``identify --json`` document."""
+    warnings: list[str]
+    car_toml: Optional[str]
+    """The identified car file, as ``identify --car`` writes it."""
+    def summary(self) -> str:
+        """What ``bumpsim identify STUDY`` prints."""
+    def to_json(self) -> str:
+        """The document as ``bumpsim identify --json`` writes it."""
+    def write_car(self, path: StrPath) -> None:
+        """Writes the identified car file as ``identify --car`` does: whole (a
+        temporary file renamed), never onto the study or a file it names."""
+    def to_pandas(self, table: str) -> DataFrame:
+        """A list of the document (``parameters``, ``plastic_sets``,
+        ``forward``, ``fits``, ...) as a table: a row per entry, indexed by
+        ``case`` and ``name`` where every entry has them; an interval becomes
+        ``ci95_low`` and ``ci95_high``; a ``[name, value]`` pair a row
+        ``name``, column the field (SI; units in a ``unit`` column)."""
+    def __getattr__(self, name: str) -> Any:
+        """A field of the ``identify --json`` document."""
 
 class DofTable:
     """Models of several orders from one study (the thesis's table 1), each
