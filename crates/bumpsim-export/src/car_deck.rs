@@ -8,8 +8,10 @@
 //! The critical explicit step of a chain ([`critical_time_step`]) is that of
 //! [`crate::timestep`] with every link at its steepest slope (loading or
 //! unloading, [`bumpsim_core::link::Link::steepest_slope`]), the front link
-//! as a spring from m1 to a fixed wall: `ω² = Σ k_j (1/m_j + 1/m_(j+1))`
-//! (Gershgorin) bounds the highest frequency the links can reach.
+//! as a spring from m1 to a fixed wall and a wall link (second load path,
+//! rebound link) as one from its mass: the largest row sum `ω² = max_i (Σ
+//! k_j (1/m_j + 1/m_(j+1)) + Σ k_w / m_i)` over the links and wall springs
+//! at mass i (Gershgorin) bounds the highest frequency the links can reach.
 //!
 //! ```
 //! use bumpsim_core::chain::Chain;
@@ -53,10 +55,7 @@ pub fn lsdyna_car_include(
 ) -> Result<String, ExportError> {
     match model {
         CarModel::Linear(model) => crate::lsdyna::lsdyna_include(model, options),
-        CarModel::Chain(chain) => {
-            exportable(chain)?;
-            crate::chain::lsdyna_chain_include(chain, options)
-        }
+        CarModel::Chain(chain) => crate::chain::lsdyna_chain_include(chain, options),
     }
 }
 
@@ -68,52 +67,45 @@ pub fn calculix_car_deck(
 ) -> Result<String, ExportError> {
     match model {
         CarModel::Linear(model) => crate::calculix::calculix_deck(model, options),
-        CarModel::Chain(chain) => {
-            exportable(chain)?;
-            crate::chain_calculix::calculix_chain_deck(chain, options, None)
+        CarModel::Chain(chain) => crate::chain_calculix::calculix_chain_deck(chain, options, None),
+    }
+}
+
+/// The critical step of a chain: Gershgorin's row sums of `k (1/m_j +
+/// 1/m_(j+1))` over the links at their steepest slopes, `k/m` on the mass a
+/// wall spring (front link, second load path, rebound link) pushes, and the
+/// dampers' rates likewise; `min(2/ω, 2/γ)` as [`crate::timestep`].
+fn chain_step(chain: &Chain) -> f64 {
+    let slope = |l: &bumpsim_core::link::Link| l.steepest_slope().max(f64::MIN_POSITIVE);
+    let m = chain.masses();
+    let mut omega2 = vec![0.0; m.len()];
+    let mut gamma = vec![0.0; m.len()];
+    if let Some(front) = chain.front() {
+        omega2[0] += slope(front) / m[0];
+    }
+    for (j, (link, c)) in chain.links().iter().zip(chain.dampers()).enumerate() {
+        let inverse = 1.0 / m[j] + 1.0 / m[j + 1];
+        for node in [j, j + 1] {
+            omega2[node] += slope(link) * inverse;
+            gamma[node] += c * inverse;
         }
     }
-}
-
-/// Refuses a chain with a wall link (a second load path, a rebound
-/// link): the decks write the chain and its front link only.
-fn exportable(chain: &Chain) -> Result<(), ExportError> {
-    match (chain.path(), chain.rebound()) {
-        (Some(_), _) => Err(ExportError::WallLink {
-            what: "second load path",
-        }),
-        (None, Some(_)) => Err(ExportError::WallLink {
-            what: "rebound link",
-        }),
-        (None, None) => Ok(()),
+    for (_, _, wall) in crate::chain::wall_links(chain) {
+        omega2[wall.mass] += slope(&wall.link) / m[wall.mass];
     }
-}
-
-/// A mass standing for the fixed wall of a front link, kg (1/m ≈ 0).
-const WALL_MASS: f64 = 1e30;
-
-/// The linear chain whose critical step bounds the car's: the links at
-/// their steepest slopes, a front link on a wall of [`WALL_MASS`].
-fn steepest(chain: &Chain) -> Option<MsdModel> {
-    let slope = |l: &bumpsim_core::link::Link| l.steepest_slope().max(f64::MIN_POSITIVE);
-    let mut masses = chain.masses().to_vec();
-    let mut dampers = chain.dampers().to_vec();
-    let mut springs: Vec<f64> = chain.links().iter().map(slope).collect();
-    if let Some(front) = chain.front() {
-        masses.insert(0, WALL_MASS);
-        dampers.insert(0, 0.0);
-        springs.insert(0, slope(front));
-    }
-    MsdModel::new(masses, dampers, springs).ok()
+    let limit = |rate: f64| match rate > 0.0 {
+        true => 2.0 / rate,
+        false => f64::INFINITY,
+    };
+    let omega = omega2.iter().copied().fold(0.0, f64::max).sqrt();
+    limit(omega).min(limit(gamma.iter().copied().fold(0.0, f64::max)))
 }
 
 /// The car's critical explicit time step, s (infinite without links).
 pub fn critical_time_step(model: CarModel<'_>) -> f64 {
     match model {
         CarModel::Linear(model) => crate::timestep::critical_time_step(model),
-        CarModel::Chain(chain) => {
-            steepest(chain).map_or(f64::INFINITY, |m| crate::timestep::critical_time_step(&m))
-        }
+        CarModel::Chain(chain) => chain_step(chain),
     }
 }
 

@@ -20,7 +20,8 @@
 use crate::ExportError;
 use crate::calculix::{CalculixOptions, Extra, dynamic_step};
 use crate::chain::{
-    BRICK_LENGTH, BRICK_SIDE, check_curves, loading_points, mapping, skeleton, solver_unloading,
+    BRICK_LENGTH, BRICK_SIDE, CURVE_SPAN, check_curves, gapped_points, loading_points, mapping,
+    skeleton, solver_unloading, wall_links, wall_note,
 };
 use crate::inp::{self, Print, real};
 use crate::layout::{Layout, UnitSystem};
@@ -97,7 +98,9 @@ pub fn calculix_chain_deck(
             elset: format!("{}EK{}", options.prefix, j + 1),
             ends: [j + 1, j + 2].map(|k| options.id_offset + k as u64),
             slot: j,
+            first: brick_nodes(options, n, j),
             at: j as f64,
+            gap: None,
         })
         .collect();
     if let Some(link) = chain.front() {
@@ -107,14 +110,20 @@ pub fn calculix_chain_deck(
             elset: format!("{}EFRONT", options.prefix),
             ends: [wall, options.id_offset + 1],
             slot: n.saturating_sub(1),
+            first: brick_nodes(options, n, n.saturating_sub(1)),
             at: -1.0,
+            gap: None,
         });
     }
+    let walls = wall_spans(chain, options)?;
+    let extra = walls.iter().map(|w| w.1).max().unwrap_or(0);
     let parts = Parts {
         spans,
+        walls: walls.into_iter().map(|w| w.0).collect(),
         front: chain.front().is_some(),
         barrier,
         n,
+        extra,
     };
     crate::calculix::deck(&skeleton(chain), Some(&parts), options)
 }
@@ -124,19 +133,87 @@ struct Span<'a> {
     link: &'a Link,
     label: String,
     elset: String,
-    /// Node ids of its rear (towards the barrier) and front ends.
+    /// Node ids of its rear (towards the barrier) and front ends: of its
+    /// brick when it is one.
     ends: [u64; 2],
-    /// Brick node block.
+    /// Its place beside the axis when it is a brick.
     slot: usize,
+    /// The first of its brick's 8 nodes.
+    first: u64,
     /// Position of its first end, in mass spacings from m1.
     at: f64,
+    /// A wall link's gap.
+    gap: Option<Gap>,
+}
+
+/// The gap of a wall link ([`Chain::path`], [`Chain::rebound`]) and the
+/// mass it pushes.
+#[derive(Debug, Clone, Copy)]
+struct Gap {
+    /// The gap, m.
+    gap: f64,
+    /// The node of the mass it pushes.
+    mass: u64,
 }
 
 struct Parts<'a> {
     spans: Vec<Span<'a>>,
+    /// The wall links, after the front link.
+    walls: Vec<Span<'a>>,
     front: bool,
     barrier: Option<&'a Barrier>,
     n: usize,
+    /// Ids the wall links take after the front link's wall node.
+    extra: u64,
+}
+
+/// The first node of brick block `slot`.
+fn brick_nodes(options: &CalculixOptions, n: usize, slot: usize) -> u64 {
+    options.id_offset + 3 * n as u64 + 8 * slot as u64 + 1
+}
+
+/// The wall links as spans: wall link of slot s ([`wall_links`]) is node
+/// and element offset + 11n + 1 + s (its wall node, held, set
+/// `<elset>_WALL`, and its `SPRING2`), with the number of ids it takes
+/// beyond the front link's wall node.
+fn wall_spans<'a>(
+    chain: &'a Chain,
+    options: &CalculixOptions,
+) -> Result<Vec<(Span<'a>, u64)>, ExportError> {
+    let n = chain.dof();
+    let mut spans = vec![];
+    for (slot, label, wall) in wall_links(chain) {
+        let id = options.id_offset + 11 * n as u64 + 1 + slot;
+        if options.attach.contains(&id) {
+            return Err(ExportError::IdClash {
+                node: id,
+                first: id,
+                last: id,
+            });
+        }
+        let mass = options.id_offset + wall.mass as u64 + 1;
+        let tag = match slot {
+            1 => "PATH",
+            _ => "REBOUND",
+        };
+        spans.push((
+            Span {
+                link: &wall.link,
+                label: label.to_string(),
+                elset: format!("{}E{tag}", options.prefix),
+                ends: [id, mass],
+                slot: n - 1 + slot as usize,
+                first: id,
+                at: -1.0,
+                gap: Some(Gap {
+                    gap: wall.gap,
+                    mass,
+                }),
+            },
+            slot,
+        ));
+    }
+    Ok(spans)
 }
 
 /// Local corner i of a brick: (along, across 1, across 2) in 0/1.
@@ -166,18 +243,21 @@ fn across(layout: &Layout) -> [usize; 2] {
 }
 
 impl Parts<'_> {
-    fn nodes(&self, options: &CalculixOptions, span: &Span) -> [u64; 8] {
-        let first = options.id_offset + 3 * self.n as u64 + 8 * span.slot as u64 + 1;
-        std::array::from_fn(|i| first + i as u64)
+    fn nodes(&self, span: &Span) -> [u64; 8] {
+        std::array::from_fn(|i| span.first + i as u64)
     }
 
     fn bricks(&self) -> impl Iterator<Item = &Span<'_>> {
+        // a wall link is a spring, whatever its unloading
         self.spans.iter().filter(|s| is_brick(s.link))
     }
 
     /// A link as element `id`.
     fn element(&self, deck: &mut String, span: &Span, id: u64, options: &CalculixOptions) {
         let (link, elset) = (span.link, &span.elset);
+        if let Some(gap) = span.gap {
+            return self.wall_element(deck, span, gap, id, options);
+        }
         let units = options.layout.units;
         let _ = writeln!(deck, "** {}: {}", span.label, mapping(link).note);
         let points = loading_points(link.curve());
@@ -210,6 +290,57 @@ impl Parts<'_> {
         }
     }
 
+    /// A wall link's fixed node (held: the barrier).
+    fn wall_nodes(&self, deck: &mut String, span: &Span, options: &CalculixOptions) {
+        let Some(gap) = span.gap else {
+            return;
+        };
+        let mass = gap.mass - options.id_offset;
+        let _ = writeln!(
+            deck,
+            "** the barrier: the {}'s fixed end, on m{mass} after a gap of {} m",
+            span.label,
+            real(gap.gap)
+        );
+        let at = position(&options.layout, -1.0);
+        inp::node_keyword(deck, &format!("{}_WALL", span.elset));
+        inp::node_line(deck, span.ends[0], at);
+    }
+
+    /// A wall link as element `id`: one `SPRING2` from the wall node to
+    /// the mass, its table the loading curve shifted by the gap in
+    /// compression, zero before it and in tension (it never pulls). Exact
+    /// for a linear link or one elastic along its curve. A yielding link
+    /// (an unloading slope) unloads along its curve here, without its
+    /// plastic set: the brick the chain's links use needs a gap element in
+    /// series and a free node between the two, and ccx 2.20's fixed-increment
+    /// Newton did not converge once that gap closed (measured: a `SPRING2`
+    /// table, a smoothed one and a `GAPUNI`, with and without a mass on the
+    /// node, all stopped at the increment the gap closed). Its loading, and
+    /// so the peak barrier force, is exact; LS-DYNA's deck keeps the set.
+    fn wall_element(
+        &self,
+        deck: &mut String,
+        span: &Span,
+        gap: Gap,
+        id: u64,
+        options: &CalculixOptions,
+    ) {
+        let link = span.link;
+        let note = match is_brick(link) {
+            true => "APPROXIMATE: loads along the curve after the gap, unloads along it (no plastic set in ccx; docs/export.md)".to_string(),
+            false => wall_note(link),
+        };
+        let _ = writeln!(deck, "** {}: {note}", span.label);
+        let mut rows: Vec<(f64, f64)> = gapped_points(link.curve(), gap.gap)
+            .iter()
+            .rev()
+            .map(|&(d, f)| (-f, -d))
+            .collect();
+        rows.push((0.0, CURVE_SPAN));
+        spring_table(deck, &span.elset, id, span.ends, &rows, options);
+    }
+
     fn brick(
         &self,
         deck: &mut String,
@@ -231,7 +362,7 @@ impl Parts<'_> {
             real(area),
             layout.axis.component,
         );
-        let nodes = self.nodes(options, span);
+        let nodes = self.nodes(span);
         for (corner, node) in CORNERS.iter().zip(nodes) {
             let mut p = base;
             for c in 0..3 {
@@ -265,6 +396,40 @@ impl Parts<'_> {
     }
 }
 
+/// A `SPRING2` `id` between `nodes` (rear, front) on the axis's degree of
+/// freedom with the nonlinear table `rows` of (force N, elongation m) along
+/// the axis (compression negative), ascending. Written as ccx 2.20 reads a
+/// one-sided table: both columns times −(the axis's sign), ascending again.
+/// Measured: a `SPRING2` from node 1 to node 2 on x with the table (0, 0),
+/// (1e6, 10) stops node 2 moving towards −x (100 kg at 1 m/s: 30.2 mm,
+/// `√(m/k)` = 31.6 mm) and lets it go towards +x; the table (−1e6, −10),
+/// (0, 0), (0, 10) does the reverse. (An odd table, as the chain's elastic
+/// links have, reads the same either way.)
+fn spring_table(
+    deck: &mut String,
+    elset: &str,
+    id: u64,
+    nodes: [u64; 2],
+    rows: &[(f64, f64)],
+    options: &CalculixOptions,
+) {
+    let (units, sign) = (options.layout.units, options.layout.axis.sign);
+    let ([a, b], dof) = (nodes, options.layout.axis.dof());
+    inp::element_keyword(deck, "SPRING2", elset);
+    let _ = writeln!(
+        deck,
+        "{id}, {a}, {b}\n*SPRING, ELSET={elset}, NONLINEAR\n{dof}, {dof}"
+    );
+    let mut rows: Vec<(f64, f64)> = rows.iter().map(|&(f, e)| (-sign * f, -sign * e)).collect();
+    if sign > 0.0 {
+        rows.reverse();
+    }
+    for (force, elongation) in rows {
+        let (f, e) = (force * units.force(), elongation * units.length());
+        let _ = writeln!(deck, "{}, {}", real(f), real(e));
+    }
+}
+
 /// A point `at` mass spacings from m1 along the axis, in deck units.
 fn position(layout: &Layout, at: f64) -> [f64; 3] {
     let axis = layout.axis.vector();
@@ -275,7 +440,7 @@ fn position(layout: &Layout, at: f64) -> [f64; 3] {
 
 impl Extra for Parts<'_> {
     fn extra_ids(&self) -> u64 {
-        8 * self.n as u64 + 1
+        8 * self.n as u64 + 1 + self.extra
     }
 
     fn spring(
@@ -290,28 +455,34 @@ impl Extra for Parts<'_> {
     }
 
     fn front(&self, deck: &mut String, options: &CalculixOptions) {
-        let (true, Some(span)) = (self.front, self.spans.last()) else {
-            return;
-        };
-        let wall = span.ends[0];
-        let _ = writeln!(deck, "** the barrier: the front link's fixed end");
-        inp::node_keyword(deck, &format!("{}WALL", options.prefix));
-        inp::node_line(deck, wall, position(&options.layout, -1.0));
-        let id = options.id_offset + 2 * self.n as u64;
-        self.element(deck, span, id, options);
+        if let (true, Some(span)) = (self.front, self.spans.last()) {
+            let wall = span.ends[0];
+            let _ = writeln!(deck, "** the barrier: the front link's fixed end");
+            inp::node_keyword(deck, &format!("{}WALL", options.prefix));
+            inp::node_line(deck, wall, position(&options.layout, -1.0));
+            let id = options.id_offset + 2 * self.n as u64;
+            self.element(deck, span, id, options);
+        }
+        for span in &self.walls {
+            self.wall_nodes(deck, span, options);
+            self.element(deck, span, span.ends[0], options);
+        }
     }
 
     fn held(&self, _model: &MsdModel, options: &CalculixOptions) -> Vec<(String, usize, usize)> {
         let across = across(&options.layout);
         let mut held = vec![];
         for span in self.bricks() {
-            for (corner, node) in CORNERS.iter().zip(self.nodes(options, span)) {
+            for (corner, node) in CORNERS.iter().zip(self.nodes(span)) {
                 for (c, dir) in across.iter().enumerate() {
                     if corner[1 + c] == 0.0 {
                         held.push((node.to_string(), dir + 1, dir + 1));
                     }
                 }
             }
+        }
+        for span in &self.walls {
+            held.push((format!("{}_WALL", span.elset), 1, 3));
         }
         if self.front {
             held.push((format!("{}WALL", options.prefix), 1, 3));
@@ -330,7 +501,7 @@ impl Extra for Parts<'_> {
                 "** {} brick: rear face follows node {}, front face node {}\n*EQUATION",
                 span.label, span.ends[0], span.ends[1]
             );
-            for (corner, node) in CORNERS.iter().zip(self.nodes(options, span)) {
+            for (corner, node) in CORNERS.iter().zip(self.nodes(span)) {
                 let end = span.ends[corner[0] as usize];
                 let _ = writeln!(deck, "2\n{node}, {dof}, 1.0, {end}, {dof}, -1.0");
             }
@@ -477,7 +648,6 @@ pub fn read_link_forces(deck_path: &Path) -> Result<LinkForces, ExportError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::chain::CURVE_SPAN;
 
     /// Elastic-plastic with E = k_u: yield where δ = F/k_u, then the
     /// plastic strain of each point over L.
