@@ -469,9 +469,9 @@ fn a_forced_chain_in_ccx_follows_chain_run() {
     }
 }
 
-/// A yielding front link, a second load path on m2 (a hardening table
-/// unloading at a slope) after 150 mm and a rebound link on m3
-/// (progressive, elastic) after 300 mm.
+/// A yielding front link, a second load path on m2 (a table, elastic
+/// along it) after 150 mm and a rebound link on m3 (progressive, elastic)
+/// after 100 mm: wall links both decks write exactly.
 fn walled() -> Chain {
     let front = Link::new(
         Curve::bilinear(1.5e6, 8e4, 0.05).unwrap(),
@@ -492,7 +492,7 @@ fn walled() -> Chain {
     ];
     let path = Link::new(
         Curve::table(vec![[0.03, 6e4], [0.2, 1.2e5], [0.8, 1.5e5]]).unwrap(),
-        Unloading::Slope(5e6),
+        Unloading::Elastic,
     )
     .unwrap();
     let rebound = Link::new(
@@ -519,12 +519,13 @@ fn replay(link: &Link, crush: impl Iterator<Item = f64>) -> (f64, f64, Vec<f64>)
 
 /// The wall links in ccx (mm-s-t along −y: the one-sided tables' signs
 /// flip) against `Chain::run` into the barrier at 40 km/h: the peak
-/// barrier force (the front brick's stress, and the wall springs' tables
-/// on ccx's crush: each loads along its curve after its gap), the front
-/// link's largest compression and residual crush, and the path's and the
-/// rebound link's largest compression, within 2 %. The path yields in
-/// bumpsim and unloads along its curve in ccx (no plastic set there,
-/// docs/export.md): its set is printed, not compared.
+/// barrier force (the front brick's stress, and the wall springs' curves
+/// on ccx's crush, which is what their tables carry), the front link's
+/// largest compression and residual crush, and the path's and the rebound
+/// link's largest compression, within 2 %. (A path that yields unloads
+/// along its curve in ccx, docs/export.md; with this path unloading at
+/// 5000 N/mm the peak barrier force came out 508.0 kN in ccx against
+/// 469.5 kN, the path still loaded in ccx as it springs back.)
 #[test]
 fn wall_links_in_ccx_reproduce_the_impact_within_two_percent() {
     if !ccx_available() {
@@ -555,9 +556,8 @@ fn wall_links_in_ccx_reproduce_the_impact_within_two_percent() {
         u.displacement[mass].iter().map(|x| -x - gap).collect()
     };
     let front_crush = crush(0, 0.0);
-    let elastic = |l: &Link| Link::new(l.curve().clone(), Unloading::Elastic).unwrap();
     let (path_crush, rebound_crush) = (crush(p.mass, p.gap), crush(r.mass, r.gap));
-    let (_, _, second) = replay(&elastic(&p.link), path_crush.iter().copied());
+    let (_, _, second) = replay(&p.link, path_crush.iter().copied());
     let (_, _, rebound) = replay(&r.link, rebound_crush.iter().copied());
     let reach = |c: &[f64]| c.iter().fold(f64::MIN, |m, v| m.max(*v));
     let (path_reach, rebound_reach) = (reach(&path_crush), reach(&rebound_crush));
@@ -565,12 +565,6 @@ fn wall_links_in_ccx_reproduce_the_impact_within_two_percent() {
         .map(|k| front[k] + second[k] + rebound[k])
         .collect();
     let peak = wall.iter().fold(0.0_f64, |m, v| m.max(*v));
-    eprintln!(
-        "second {:?} rebound {:?} x3 {}",
-        second.iter().fold(0.0_f64, |m, v| m.max(*v)),
-        rebound.iter().fold(0.0_f64, |m, v| m.max(*v)),
-        ours_x3(&chain, v, duration)
-    );
     let k = bumpsim_export::chain::solver_unloading(chain.front().unwrap());
     let top = (0..front_crush.len())
         .max_by(|a, b| front_crush[*a].total_cmp(&front_crush[*b]))
@@ -585,53 +579,16 @@ fn wall_links_in_ccx_reproduce_the_impact_within_two_percent() {
     let our_peak = ours.force.iter().fold(0.0_f64, |m, v| m.max(-v));
     let x = &ours.displacement;
     let (our_front, our_front_set, _) = replay(chain.front().unwrap(), x[0].iter().copied());
-    let (our_path, our_path_set, _) = replay(&p.link, x[p.mass].iter().map(|x| x - p.gap));
-    let (_, _, our_rebound_force) = replay(&r.link, x[r.mass].iter().map(|x| x - r.gap));
+    let our_path = reach(&x[p.mass]) - p.gap;
     let our_rebound = reach(&x[r.mass]) - r.gap;
-    {
-        let (_, _, a) = replay(chain.front().unwrap(), x[0].iter().copied());
-        let (_, _, b) = replay(&p.link, x[p.mass].iter().map(|x| x - p.gap));
-        let sum: Vec<f64> = (0..a.len())
-            .map(|k| a[k] + b[k] + our_rebound_force[k])
-            .collect();
-        let kk = (0..sum.len())
-            .max_by(|i, j| sum[*i].total_cmp(&sum[*j]))
-            .unwrap();
-        let kf = (0..sum.len())
-            .max_by(|i, j| (-ours.force[*i]).total_cmp(&-ours.force[*j]))
-            .unwrap();
-        let kc = (0..wall.len())
-            .max_by(|i, j| wall[*i].total_cmp(&wall[*j]))
-            .unwrap();
-        eprintln!(
-            "replayed sum peak {} at {kk} ({} {} {}), force peak at {kf}: {}, ccx at {kc}: {} {} {}",
-            sum[kk],
-            a[kk],
-            b[kk],
-            our_rebound_force[kk],
-            ours.force[kf],
-            front[kc],
-            second[kc],
-            rebound[kc]
-        );
-    }
     eprintln!(
-        "walls: ccx peak {peak} N, front {} m set {front_set} m, path {path_reach} m, rebound {rebound_reach} m; bumpsim {our_peak} N, front {our_front} m set {our_front_set} m, path {our_path} m set {our_path_set} m, rebound {our_rebound} m",
+        "walls: ccx peak {peak} N, front {} m set {front_set} m, path {path_reach} m, rebound {rebound_reach} m; bumpsim {our_peak} N, front {our_front} m set {our_front_set} m, path {our_path} m, rebound {our_rebound} m",
         reach(&front_crush)
     );
-    assert!(
-        our_path_set > 0.01 && our_rebound > 0.01,
-        "both wall links act"
-    );
+    assert!(our_path > 0.01 && our_rebound > 0.01, "both wall links act");
     assert_relative_eq!(peak, our_peak, max_relative = 0.02);
     assert_relative_eq!(reach(&front_crush), our_front, max_relative = 0.02);
     assert_relative_eq!(front_set, our_front_set, max_relative = 0.02);
     assert_relative_eq!(path_reach, our_path, max_relative = 0.02);
     assert_relative_eq!(rebound_reach, our_rebound, max_relative = 0.02);
-}
-
-fn ours_x3(chain: &Chain, v: f64, duration: f64) -> f64 {
-    barrier_run(chain, v, duration).displacement[2]
-        .iter()
-        .fold(0.0_f64, |m, v| m.max(*v))
 }
