@@ -52,6 +52,16 @@
 //! m1 and m1, with the same mapping; bumpsim's front link never pulls,
 //! LS-DYNA's inelastic spring neither, the others do.
 //!
+//! **Wall links** ([`Chain::path`], [`Chain::rebound`]: a link from the
+//! barrier into mass p, compressed by `x_p − g` past its gap g, never
+//! pulling): each from its own fixed node one spacing ahead of m1 (LS-DYNA
+//! ids offset + 3n + 3 and + 4) to mass p, its loading curve shifted by the
+//! gap ([`gapped_points`]: `F(δ) = 0` for δ ≤ g, `F_L(δ − g)` beyond). A
+//! yielding link with an unloading slope is `*MAT_SPRING_INELASTIC` (CTF =
+//! 1), any other `*MAT_SPRING_NONLINEAR_ELASTIC` with zero force in tension:
+//! both never pull and map as the chain's links do. A gap that makes two
+//! written points coincide is refused ([`ExportError::WallGap`]).
+//!
 //! The CalculiX deck, its barrier run and the link forces read back:
 //! [`crate::chain_calculix`].
 

@@ -9,6 +9,13 @@
 //! The brick of link j has nodes offset + 3n + 8(j − 1) + 1..8, the front
 //! link's the block after the last link's.
 //!
+//! A wall link (second load path, rebound link) is one `SPRING2` from its
+//! own held wall node (node and element offset + 11n + 2 and + 3, sets
+//! `<prefix>EPATH`, `<prefix>EREBOUND`) to its mass, with the loading curve
+//! shifted by its gap as a one-sided table: force 0 before the gap and in
+//! tension, `F_L(δ − g)` beyond (exact for a linear or elastic link; a
+//! yielding one unloads along its curve, see `wall_element`).
+//!
 //! **Barrier run** ([`Barrier`]): without a front link m1 is held at the
 //! wall and the other masses move at the speed towards it
 //! ([`bumpsim_core::chain::Drive::Barrier`] with a massless m1); with one,
