@@ -232,7 +232,8 @@ fn apart(points: &[(f64, f64)], units: UnitSystem) -> Result<(), f64> {
             .unwrap_or(f64::NAN)
     };
     for pair in points.windows(2) {
-        if !(written(pair[1].0) > written(pair[0].0)) {
+        let rising = written(pair[1].0).partial_cmp(&written(pair[0].0));
+        if rising != Some(std::cmp::Ordering::Greater) {
             return Err(pair[1].0);
         }
     }
