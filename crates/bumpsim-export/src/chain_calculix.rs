@@ -105,7 +105,6 @@ pub fn calculix_chain_deck(
             elset: format!("{}EK{}", options.prefix, j + 1),
             ends: [j + 1, j + 2].map(|k| options.id_offset + k as u64),
             slot: j,
-            first: brick_nodes(options, n, j),
             at: j as f64,
             gap: None,
         })
@@ -117,7 +116,6 @@ pub fn calculix_chain_deck(
             elset: format!("{}EFRONT", options.prefix),
             ends: [wall, options.id_offset + 1],
             slot: n.saturating_sub(1),
-            first: brick_nodes(options, n, n.saturating_sub(1)),
             at: -1.0,
             gap: None,
         });
@@ -140,13 +138,10 @@ struct Span<'a> {
     link: &'a Link,
     label: String,
     elset: String,
-    /// Node ids of its rear (towards the barrier) and front ends: of its
-    /// brick when it is one.
+    /// Node ids of its rear (towards the barrier) and front ends.
     ends: [u64; 2],
-    /// Its place beside the axis when it is a brick.
+    /// Brick node block.
     slot: usize,
-    /// The first of its brick's 8 nodes.
-    first: u64,
     /// Position of its first end, in mass spacings from m1.
     at: f64,
     /// A wall link's gap.
@@ -172,11 +167,6 @@ struct Parts<'a> {
     n: usize,
     /// Ids the wall links take after the front link's wall node.
     extra: u64,
-}
-
-/// The first node of brick block `slot`.
-fn brick_nodes(options: &CalculixOptions, n: usize, slot: usize) -> u64 {
-    options.id_offset + 3 * n as u64 + 8 * slot as u64 + 1
 }
 
 /// The wall links as spans: wall link of slot s ([`wall_links`]) is node
@@ -209,8 +199,7 @@ fn wall_spans<'a>(
                 label: label.to_string(),
                 elset: format!("{}E{tag}", options.prefix),
                 ends: [id, mass],
-                slot: n - 1 + slot as usize,
-                first: id,
+                slot: n - 1 + slot as usize, // unused: never a brick
                 at: -1.0,
                 gap: Some(Gap {
                     gap: wall.gap,
@@ -250,8 +239,9 @@ fn across(layout: &Layout) -> [usize; 2] {
 }
 
 impl Parts<'_> {
-    fn nodes(&self, span: &Span) -> [u64; 8] {
-        std::array::from_fn(|i| span.first + i as u64)
+    fn nodes(&self, options: &CalculixOptions, span: &Span) -> [u64; 8] {
+        let first = options.id_offset + 3 * self.n as u64 + 8 * span.slot as u64 + 1;
+        std::array::from_fn(|i| first + i as u64)
     }
 
     fn bricks(&self) -> impl Iterator<Item = &Span<'_>> {
@@ -369,7 +359,7 @@ impl Parts<'_> {
             real(area),
             layout.axis.component,
         );
-        let nodes = self.nodes(span);
+        let nodes = self.nodes(options, span);
         for (corner, node) in CORNERS.iter().zip(nodes) {
             let mut p = base;
             for c in 0..3 {
@@ -480,7 +470,7 @@ impl Extra for Parts<'_> {
         let across = across(&options.layout);
         let mut held = vec![];
         for span in self.bricks() {
-            for (corner, node) in CORNERS.iter().zip(self.nodes(span)) {
+            for (corner, node) in CORNERS.iter().zip(self.nodes(options, span)) {
                 for (c, dir) in across.iter().enumerate() {
                     if corner[1 + c] == 0.0 {
                         held.push((node.to_string(), dir + 1, dir + 1));
@@ -508,7 +498,7 @@ impl Extra for Parts<'_> {
                 "** {} brick: rear face follows node {}, front face node {}\n*EQUATION",
                 span.label, span.ends[0], span.ends[1]
             );
-            for (corner, node) in CORNERS.iter().zip(self.nodes(span)) {
+            for (corner, node) in CORNERS.iter().zip(self.nodes(options, span)) {
                 let end = span.ends[corner[0] as usize];
                 let _ = writeln!(deck, "2\n{node}, {dof}, 1.0, {end}, {dof}, -1.0");
             }
