@@ -52,6 +52,16 @@
 //! m1 and m1, with the same mapping; bumpsim's front link never pulls,
 //! LS-DYNA's inelastic spring neither, the others do.
 //!
+//! **Wall links** ([`Chain::path`], [`Chain::rebound`]: a link from the
+//! barrier into mass p, compressed by `x_p − g` past its gap g, never
+//! pulling): each from its own fixed node one spacing ahead of m1 (LS-DYNA
+//! ids offset + 3n + 3 and + 4) to mass p, its loading curve shifted by the
+//! gap ([`gapped_points`]: `F(δ) = 0` for δ ≤ g, `F_L(δ − g)` beyond). A
+//! yielding link with an unloading slope is `*MAT_SPRING_INELASTIC` (CTF =
+//! 1), any other `*MAT_SPRING_NONLINEAR_ELASTIC` with zero force in tension:
+//! both never pull and map as the chain's links do. A gap that makes two
+//! written points coincide is refused ([`ExportError::WallGap`]).
+//!
 //! The CalculiX deck, its barrier run and the link forces read back:
 //! [`crate::chain_calculix`].
 
@@ -59,7 +69,7 @@ use crate::ExportError;
 use crate::cards;
 use crate::layout::{Layout, UnitSystem};
 use crate::lsdyna::LsDynaOptions;
-use bumpsim_core::chain::Chain;
+use bumpsim_core::chain::{Chain, WallPath};
 use bumpsim_core::link::{Curve, Link, Unloading};
 use bumpsim_core::model::MsdModel;
 use std::fmt::Write;
@@ -173,13 +183,25 @@ pub(crate) fn skeleton(chain: &Chain) -> MsdModel {
         .expect("a valid chain is a valid linear chain")
 }
 
-/// Checks that every curve point stays finite in the deck's units.
+/// Checks that every curve point stays finite in the deck's units, and
+/// that a wall link's curve, shifted by its gap, keeps its points apart
+/// once written (a gap so large that `gap + δ` rounds to the gap would
+/// fold the curve onto a vertical step).
 pub(crate) fn check_curves(chain: &Chain, units: UnitSystem) -> Result<(), ExportError> {
-    let front = chain.front().map(|f| ("the front link".to_string(), f));
+    let front = chain
+        .front()
+        .map(|f| ("the front link".to_string(), f, None));
     let links = chain.links().iter().enumerate();
-    let links = links.map(|(j, l)| (format!("link {}", j + 1), l));
-    for (what, link) in links.chain(front) {
-        let fine = loading_points(link.curve())
+    let links = links.map(|(j, l)| (format!("link {}", j + 1), l, None));
+    let walls = wall_links(chain)
+        .into_iter()
+        .map(|(_, label, w)| (format!("the {label}"), &w.link, Some(w.gap)));
+    for (what, link, gap) in links.chain(front).chain(walls) {
+        let points = match gap {
+            None => loading_points(link.curve()),
+            Some(gap) => gapped_points(link.curve(), gap),
+        };
+        let fine = points
             .iter()
             .all(|(d, f)| (d * units.length()).is_finite() && (f * units.force()).is_finite())
             && (solver_unloading(link) * units.stiffness()).is_finite();
@@ -188,6 +210,31 @@ pub(crate) fn check_curves(chain: &Chain, units: UnitSystem) -> Result<(), Expor
                 what: format!("{what} (its loading curve to {CURVE_SPAN} m)"),
                 units: units.to_string(),
             });
+        }
+        if let Some(gap) = gap {
+            apart(&points, units).map_err(|at| ExportError::WallGap {
+                what: what.clone(),
+                gap,
+                at,
+            })?;
+        }
+    }
+    Ok(())
+}
+
+/// Checks that the points' deformations, in the deck's units and written
+/// to 13 significant digits ([`crate::inp::real`], the coarser of the two
+/// decks), strictly increase; the first deformation (m) that does not.
+fn apart(points: &[(f64, f64)], units: UnitSystem) -> Result<(), f64> {
+    let written = |d: f64| {
+        crate::inp::real(d * units.length())
+            .parse::<f64>()
+            .unwrap_or(f64::NAN)
+    };
+    for pair in points.windows(2) {
+        let rising = written(pair[1].0).partial_cmp(&written(pair[0].0));
+        if rising != Some(std::cmp::Ordering::Greater) {
+            return Err(pair[1].0);
         }
     }
     Ok(())
@@ -213,32 +260,70 @@ pub fn lsdyna_chain_include(chain: &Chain, options: &LsDynaOptions) -> Result<St
         lsdyna_link(deck, &chain.links()[j], units, id, section, &label, &title);
     };
     let deck = crate::lsdyna::include(&skeleton(chain), Some(&cards), options)?;
-    match chain.front() {
-        None => Ok(deck),
-        Some(front) => lsdyna_front(deck, chain, front, options),
-    }
+    lsdyna_walls(deck, chain, options)
 }
 
-/// The front link between a fixed wall node (the barrier) one spacing
-/// ahead of m1 and m1: node, section, material, curve, part and element
-/// all with id offset + 3n + 2, before `*END`.
-fn lsdyna_front(
+/// A link from the barrier's fixed node into a mass: the front link (on m1,
+/// no gap) or a wall link ([`Chain::path`], [`Chain::rebound`]).
+struct WallSpring<'a> {
+    /// Node, section, material, curve, part and element id.
+    id: u64,
+    link: &'a Link,
+    /// The mass it pushes, 0-based.
+    mass: usize,
+    /// Its gap, m: `None` for the front link (written as a chain link).
+    gap: Option<f64>,
+    label: &'static str,
+}
+
+/// The chain's springs on the barrier, with ids offset + 3n + 2 (front),
+/// + 3 (second load path) and + 4 (rebound link).
+fn wall_springs<'a>(chain: &'a Chain, options: &LsDynaOptions) -> Vec<WallSpring<'a>> {
+    let first = options.id_offset + 3 * chain.dof() as u64 + 2;
+    let front = chain.front().map(|link| WallSpring {
+        id: first,
+        link,
+        mass: 0,
+        gap: None,
+        label: "front link",
+    });
+    let walls = wall_links(chain)
+        .into_iter()
+        .map(|(slot, label, wall)| WallSpring {
+            id: first + slot,
+            link: &wall.link,
+            mass: wall.mass,
+            gap: Some(wall.gap),
+            label,
+        });
+    front.into_iter().chain(walls).collect()
+}
+
+/// The wall springs written before `*END`, each from its own fixed node
+/// (the barrier) one spacing ahead of m1: node, section, material, curve,
+/// part and element all with the spring's id.
+fn lsdyna_walls(
     deck: String,
     chain: &Chain,
-    front: &Link,
     options: &LsDynaOptions,
 ) -> Result<String, ExportError> {
-    let n = chain.dof() as u64;
-    let id = options.id_offset + 3 * n + 2;
+    let springs = wall_springs(chain, options);
+    let Some(last) = springs.last().map(|s| s.id) else {
+        return Ok(deck);
+    };
     let limit = crate::lsdyna::MAX_ID;
-    if id > limit {
+    if last > limit {
         return Err(ExportError::IdRange {
             offset: options.id_offset,
-            last: id,
+            last,
             limit,
         });
     }
-    if options.attach.contains(&id) {
+    if let Some(id) = springs
+        .iter()
+        .map(|s| s.id)
+        .find(|id| options.attach.contains(id))
+    {
         return Err(ExportError::IdClash {
             node: id,
             first: id,
@@ -249,6 +334,15 @@ fn lsdyna_front(
         .strip_suffix("*END\n")
         .map(str::to_string)
         .unwrap_or(deck);
+    for spring in &springs {
+        lsdyna_wall(&mut deck, spring, options);
+    }
+    deck.push_str("*END\n");
+    Ok(deck)
+}
+
+/// One wall spring's cards.
+fn lsdyna_wall(deck: &mut String, spring: &WallSpring, options: &LsDynaOptions) {
     let layout = &options.layout;
     let ahead = Layout {
         origin: std::array::from_fn(|c| {
@@ -256,16 +350,133 @@ fn lsdyna_front(
         }),
         ..*layout
     };
-    let _ = writeln!(deck, "$ front link: the barrier's fixed node {id} to m1");
-    cards::node(&mut deck, &[(id, ahead.node_position(0))], Some([7, 7]));
-    cards::discrete_section(&mut deck, id, cards::FieldNames::Written);
-    let title = "front link between the barrier and m1";
-    lsdyna_link(&mut deck, front, layout.units, id, id, "front link", title);
-    cards::sd_orientation(&mut deck, id, layout.axis.vector());
-    cards::element_discrete_header(&mut deck, cards::FieldNames::Written);
-    cards::element_discrete_oriented(&mut deck, id, id, [id, options.id_offset + 1], id);
-    deck.push_str("*END\n");
-    Ok(deck)
+    let (id, m) = (spring.id, spring.mass + 1);
+    let [_, l, _, _] = layout.units.symbols();
+    match spring.gap {
+        None => {
+            let _ = writeln!(deck, "$ front link: the barrier's fixed node {id} to m1");
+        }
+        Some(gap) => {
+            let gap = crate::layout::real_field(gap * layout.units.length(), 10);
+            let _ = writeln!(
+                deck,
+                "$ {}: the barrier's fixed node {id} to m{m}, touching after a gap of {} {l}",
+                spring.label,
+                gap.trim()
+            );
+        }
+    }
+    cards::node(deck, &[(id, ahead.node_position(0))], Some([7, 7]));
+    cards::discrete_section(deck, id, cards::FieldNames::Written);
+    let title = format!("{} between the barrier and m{m}", spring.label);
+    match spring.gap {
+        None => lsdyna_link(
+            deck,
+            spring.link,
+            layout.units,
+            id,
+            id,
+            spring.label,
+            &title,
+        ),
+        Some(gap) => lsdyna_gapped(deck, spring, gap, layout.units, &title),
+    }
+    cards::sd_orientation(deck, id, layout.axis.vector());
+    cards::element_discrete_header(deck, cards::FieldNames::Written);
+    let node = options.id_offset + spring.mass as u64 + 1;
+    cards::element_discrete_oriented(deck, id, id, [id, node], id);
+}
+
+/// A wall link's material, curve and part (all id `spring.id`): its
+/// loading curve shifted by the gap ([`gapped_points`]), zero before it.
+///
+/// Why a shifted curve and not the element's `OFFSET`: the curve carries
+/// the gap where the parser and a reader see it, the same in both decks,
+/// and needs no convention for the offset's sign under `CTF`. A yielding
+/// link with an unloading slope is `*MAT_SPRING_INELASTIC` (CTF = 1:
+/// compression only, so it never pulls): its curve is a yield bound in the
+/// first quadrant, 0 up to the gap, and its elastic trial at KU ≥ every
+/// slope of the curve follows the curve past it and unloads at KU down to
+/// zero force. Any other link (linear, or elastic along its curve) is
+/// `*MAT_SPRING_NONLINEAR_ELASTIC` on one curve against elongation, the
+/// shifted curve in compression (negative: the mass moves towards the
+/// barrier node, against the axis) and zero in tension: it never pulls
+/// either. Both follow bumpsim's wall link exactly where its chain link
+/// does ([`mapping`]).
+fn lsdyna_gapped(deck: &mut String, spring: &WallSpring, gap: f64, units: UnitSystem, title: &str) {
+    let (link, id, label) = (spring.link, spring.id, spring.label);
+    let [_, l, _, f] = units.symbols();
+    let points = gapped_points(link.curve(), gap);
+    let scaled = |(d, force): (f64, f64)| (d * units.length(), force * units.force());
+    match (link.curve(), link.unloading()) {
+        (Curve::Linear { .. }, _) | (_, Unloading::Elastic) => {
+            let _ = writeln!(
+                deck,
+                "$ {label}: {}\n*MAT_SPRING_NONLINEAR_ELASTIC\n$    mid       lcd       lcr\n{}{}{}",
+                wall_note(link),
+                crate::layout::int_field(id, 10),
+                crate::layout::int_field(id, 10),
+                crate::layout::int_field(0, 10)
+            );
+            let mut rows: Vec<(f64, f64)> = points.iter().rev().map(|&(d, f)| (-d, -f)).collect();
+            rows.push((CURVE_SPAN, 0.0));
+            let note = format!(
+                "curve of the {label}: force ({f}) against elongation ({l}), zero in tension and before the gap"
+            );
+            cards::curve(deck, id, Some(&note), rows.into_iter().map(scaled));
+        }
+        (_, Unloading::Slope(k)) => {
+            let _ = writeln!(
+                deck,
+                "$ {label}: {}\n*MAT_SPRING_INELASTIC\n$    mid      lcfd        ku       ctf  (ku {f}/{l})\n{}{}{}{}",
+                wall_note(link),
+                crate::layout::int_field(id, 10),
+                crate::layout::int_field(id, 10),
+                crate::layout::real_field(k * units.stiffness(), 10),
+                crate::layout::real_field(1.0, 10)
+            );
+            let note = format!(
+                "loading curve of the {label}: force ({f}) against crush ({l}), zero before the gap"
+            );
+            cards::curve(deck, id, Some(&note), points.into_iter().map(scaled));
+        }
+    }
+    cards::part(deck, title, id, id, id);
+}
+
+/// The header note of a wall link: the chain link's, its tension rule
+/// replaced (a wall link never pulls, nor do its springs).
+pub(crate) fn wall_note(link: &Link) -> String {
+    let m = mapping(link);
+    match (m.exact, link.curve(), link.unloading()) {
+        (false, _, _) => m.note,
+        (true, Curve::Progressive { .. }, Unloading::Elastic) => format!(
+            "along the curve after the gap: exact at {PROGRESSIVE_POINTS} points, chords between; never pulls"
+        ),
+        (true, _, _) => "after the gap: exact in compression; never pulls".to_string(),
+    }
+}
+
+/// The chain's wall links besides the front link, with their id slots
+/// after the front link's (1, 2) and labels: [`Chain::path`] and
+/// [`Chain::rebound`].
+pub fn wall_links(chain: &Chain) -> Vec<(u64, &'static str, &WallPath)> {
+    let path = chain.path().map(|w| (1, "second load path", w));
+    let rebound = chain.rebound().map(|w| (2, "rebound link", w));
+    path.into_iter().chain(rebound).collect()
+}
+
+/// A wall link's loading curve shifted by its gap `gap` (m): (0, 0), then
+/// (gap, 0) when the gap is positive, then each point of
+/// [`loading_points`] past the first moved on by the gap.
+pub fn gapped_points(curve: &Curve, gap: f64) -> Vec<(f64, f64)> {
+    let points = loading_points(curve);
+    let mut out = vec![(0.0, 0.0)];
+    if gap > 0.0 {
+        out.push((gap, 0.0));
+    }
+    out.extend(points.iter().skip(1).map(|&(d, f)| (gap + d, f)));
+    out
 }
 
 /// Writes a link's material (id `id`), curve (id `id`) and part titled `title`.

@@ -9,6 +9,13 @@
 //! The brick of link j has nodes offset + 3n + 8(j − 1) + 1..8, the front
 //! link's the block after the last link's.
 //!
+//! A wall link (second load path, rebound link) is one `SPRING2` from its
+//! own held wall node (node and element offset + 11n + 2 and + 3, sets
+//! `<prefix>EPATH`, `<prefix>EREBOUND`) to its mass, with the loading curve
+//! shifted by its gap as a one-sided table: force 0 before the gap and in
+//! tension, `F_L(δ − g)` beyond (exact for a linear or elastic link; a
+//! yielding one unloads along its curve, see `wall_element`).
+//!
 //! **Barrier run** ([`Barrier`]): without a front link m1 is held at the
 //! wall and the other masses move at the speed towards it
 //! ([`bumpsim_core::chain::Drive::Barrier`] with a massless m1); with one,
@@ -20,7 +27,8 @@
 use crate::ExportError;
 use crate::calculix::{CalculixOptions, Extra, dynamic_step};
 use crate::chain::{
-    BRICK_LENGTH, BRICK_SIDE, check_curves, loading_points, mapping, skeleton, solver_unloading,
+    BRICK_LENGTH, BRICK_SIDE, CURVE_SPAN, check_curves, gapped_points, loading_points, mapping,
+    skeleton, solver_unloading, wall_links, wall_note,
 };
 use crate::inp::{self, Print, real};
 use crate::layout::{Layout, UnitSystem};
@@ -98,6 +106,7 @@ pub fn calculix_chain_deck(
             ends: [j + 1, j + 2].map(|k| options.id_offset + k as u64),
             slot: j,
             at: j as f64,
+            gap: None,
         })
         .collect();
     if let Some(link) = chain.front() {
@@ -108,13 +117,18 @@ pub fn calculix_chain_deck(
             ends: [wall, options.id_offset + 1],
             slot: n.saturating_sub(1),
             at: -1.0,
+            gap: None,
         });
     }
+    let walls = wall_spans(chain, options)?;
+    let extra = walls.iter().map(|w| w.1).max().unwrap_or(0);
     let parts = Parts {
         spans,
+        walls: walls.into_iter().map(|w| w.0).collect(),
         front: chain.front().is_some(),
         barrier,
         n,
+        extra,
     };
     crate::calculix::deck(&skeleton(chain), Some(&parts), options)
 }
@@ -130,13 +144,72 @@ struct Span<'a> {
     slot: usize,
     /// Position of its first end, in mass spacings from m1.
     at: f64,
+    /// A wall link's gap.
+    gap: Option<Gap>,
+}
+
+/// The gap of a wall link ([`Chain::path`], [`Chain::rebound`]) and the
+/// mass it pushes.
+#[derive(Debug, Clone, Copy)]
+struct Gap {
+    /// The gap, m.
+    gap: f64,
+    /// The node of the mass it pushes.
+    mass: u64,
 }
 
 struct Parts<'a> {
     spans: Vec<Span<'a>>,
+    /// The wall links, after the front link.
+    walls: Vec<Span<'a>>,
     front: bool,
     barrier: Option<&'a Barrier>,
     n: usize,
+    /// Ids the wall links take after the front link's wall node.
+    extra: u64,
+}
+
+/// The wall links as spans: wall link of slot s ([`wall_links`]) is node
+/// and element offset + 11n + 1 + s (its wall node, held, set
+/// `<elset>_WALL`, and its `SPRING2`), with the number of ids it takes
+/// beyond the front link's wall node.
+fn wall_spans<'a>(
+    chain: &'a Chain,
+    options: &CalculixOptions,
+) -> Result<Vec<(Span<'a>, u64)>, ExportError> {
+    let n = chain.dof();
+    let mut spans = vec![];
+    for (slot, label, wall) in wall_links(chain) {
+        let id = options.id_offset + 11 * n as u64 + 1 + slot;
+        if options.attach.contains(&id) {
+            return Err(ExportError::IdClash {
+                node: id,
+                first: id,
+                last: id,
+            });
+        }
+        let mass = options.id_offset + wall.mass as u64 + 1;
+        let tag = match slot {
+            1 => "PATH",
+            _ => "REBOUND",
+        };
+        spans.push((
+            Span {
+                link: &wall.link,
+                label: label.to_string(),
+                elset: format!("{}E{tag}", options.prefix),
+                ends: [id, mass],
+                slot: n - 1 + slot as usize, // unused: never a brick
+                at: -1.0,
+                gap: Some(Gap {
+                    gap: wall.gap,
+                    mass,
+                }),
+            },
+            slot,
+        ));
+    }
+    Ok(spans)
 }
 
 /// Local corner i of a brick: (along, across 1, across 2) in 0/1.
@@ -172,12 +245,16 @@ impl Parts<'_> {
     }
 
     fn bricks(&self) -> impl Iterator<Item = &Span<'_>> {
+        // a wall link is a spring, whatever its unloading
         self.spans.iter().filter(|s| is_brick(s.link))
     }
 
     /// A link as element `id`.
     fn element(&self, deck: &mut String, span: &Span, id: u64, options: &CalculixOptions) {
         let (link, elset) = (span.link, &span.elset);
+        if let Some(gap) = span.gap {
+            return self.wall_element(deck, span, gap, id, options);
+        }
         let units = options.layout.units;
         let _ = writeln!(deck, "** {}: {}", span.label, mapping(link).note);
         let points = loading_points(link.curve());
@@ -208,6 +285,57 @@ impl Parts<'_> {
             }
             (_, Unloading::Slope(_)) => self.brick(deck, span, id, options, &points),
         }
+    }
+
+    /// A wall link's fixed node (held: the barrier).
+    fn wall_nodes(&self, deck: &mut String, span: &Span, options: &CalculixOptions) {
+        let Some(gap) = span.gap else {
+            return;
+        };
+        let mass = gap.mass - options.id_offset;
+        let _ = writeln!(
+            deck,
+            "** the barrier: the {}'s fixed end, on m{mass} after a gap of {} m",
+            span.label,
+            real(gap.gap)
+        );
+        let at = position(&options.layout, -1.0);
+        inp::node_keyword(deck, &format!("{}_WALL", span.elset));
+        inp::node_line(deck, span.ends[0], at);
+    }
+
+    /// A wall link as element `id`: one `SPRING2` from the wall node to
+    /// the mass, its table the loading curve shifted by the gap in
+    /// compression, zero before it and in tension (it never pulls). Exact
+    /// for a linear link or one elastic along its curve. A yielding link
+    /// (an unloading slope) unloads along its curve here, without its
+    /// plastic set: the brick the chain's links use needs a gap element in
+    /// series and a free node between the two, and ccx 2.20's fixed-increment
+    /// Newton did not converge once that gap closed (measured: a `SPRING2`
+    /// table, a smoothed one and a `GAPUNI`, with and without a mass on the
+    /// node, all stopped at the increment the gap closed). Its loading, and
+    /// so the peak barrier force, is exact; LS-DYNA's deck keeps the set.
+    fn wall_element(
+        &self,
+        deck: &mut String,
+        span: &Span,
+        gap: Gap,
+        id: u64,
+        options: &CalculixOptions,
+    ) {
+        let link = span.link;
+        let note = match is_brick(link) {
+            true => "APPROXIMATE: loads along the curve after the gap, unloads along it (no plastic set in ccx; docs/export.md)".to_string(),
+            false => wall_note(link),
+        };
+        let _ = writeln!(deck, "** {}: {note}", span.label);
+        let mut rows: Vec<(f64, f64)> = gapped_points(link.curve(), gap.gap)
+            .iter()
+            .rev()
+            .map(|&(d, f)| (-f, -d))
+            .collect();
+        rows.push((0.0, CURVE_SPAN));
+        spring_table(deck, &span.elset, id, span.ends, &rows, options);
     }
 
     fn brick(
@@ -265,6 +393,40 @@ impl Parts<'_> {
     }
 }
 
+/// A `SPRING2` `id` between `nodes` (rear, front) on the axis's degree of
+/// freedom with the nonlinear table `rows` of (force N, elongation m) along
+/// the axis (compression negative), ascending. Written as ccx 2.20 reads a
+/// one-sided table: both columns times −(the axis's sign), ascending again.
+/// Measured: a `SPRING2` from node 1 to node 2 on x with the table (0, 0),
+/// (1e6, 10) stops node 2 moving towards −x (100 kg at 1 m/s: 30.2 mm,
+/// `√(m/k)` = 31.6 mm) and lets it go towards +x; the table (−1e6, −10),
+/// (0, 0), (0, 10) does the reverse. (An odd table, as the chain's elastic
+/// links have, reads the same either way.)
+fn spring_table(
+    deck: &mut String,
+    elset: &str,
+    id: u64,
+    nodes: [u64; 2],
+    rows: &[(f64, f64)],
+    options: &CalculixOptions,
+) {
+    let (units, sign) = (options.layout.units, options.layout.axis.sign);
+    let ([a, b], dof) = (nodes, options.layout.axis.dof());
+    inp::element_keyword(deck, "SPRING2", elset);
+    let _ = writeln!(
+        deck,
+        "{id}, {a}, {b}\n*SPRING, ELSET={elset}, NONLINEAR\n{dof}, {dof}"
+    );
+    let mut rows: Vec<(f64, f64)> = rows.iter().map(|&(f, e)| (-sign * f, -sign * e)).collect();
+    if sign > 0.0 {
+        rows.reverse();
+    }
+    for (force, elongation) in rows {
+        let (f, e) = (force * units.force(), elongation * units.length());
+        let _ = writeln!(deck, "{}, {}", real(f), real(e));
+    }
+}
+
 /// A point `at` mass spacings from m1 along the axis, in deck units.
 fn position(layout: &Layout, at: f64) -> [f64; 3] {
     let axis = layout.axis.vector();
@@ -275,7 +437,7 @@ fn position(layout: &Layout, at: f64) -> [f64; 3] {
 
 impl Extra for Parts<'_> {
     fn extra_ids(&self) -> u64 {
-        8 * self.n as u64 + 1
+        8 * self.n as u64 + 1 + self.extra
     }
 
     fn spring(
@@ -290,15 +452,18 @@ impl Extra for Parts<'_> {
     }
 
     fn front(&self, deck: &mut String, options: &CalculixOptions) {
-        let (true, Some(span)) = (self.front, self.spans.last()) else {
-            return;
-        };
-        let wall = span.ends[0];
-        let _ = writeln!(deck, "** the barrier: the front link's fixed end");
-        inp::node_keyword(deck, &format!("{}WALL", options.prefix));
-        inp::node_line(deck, wall, position(&options.layout, -1.0));
-        let id = options.id_offset + 2 * self.n as u64;
-        self.element(deck, span, id, options);
+        if let (true, Some(span)) = (self.front, self.spans.last()) {
+            let wall = span.ends[0];
+            let _ = writeln!(deck, "** the barrier: the front link's fixed end");
+            inp::node_keyword(deck, &format!("{}WALL", options.prefix));
+            inp::node_line(deck, wall, position(&options.layout, -1.0));
+            let id = options.id_offset + 2 * self.n as u64;
+            self.element(deck, span, id, options);
+        }
+        for span in &self.walls {
+            self.wall_nodes(deck, span, options);
+            self.element(deck, span, span.ends[0], options);
+        }
     }
 
     fn held(&self, _model: &MsdModel, options: &CalculixOptions) -> Vec<(String, usize, usize)> {
@@ -312,6 +477,9 @@ impl Extra for Parts<'_> {
                     }
                 }
             }
+        }
+        for span in &self.walls {
+            held.push((format!("{}_WALL", span.elset), 1, 3));
         }
         if self.front {
             held.push((format!("{}WALL", options.prefix), 1, 3));
@@ -477,7 +645,6 @@ pub fn read_link_forces(deck_path: &Path) -> Result<LinkForces, ExportError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::chain::CURVE_SPAN;
 
     /// Elastic-plastic with E = k_u: yield where δ = F/k_u, then the
     /// plastic strain of each point over L.

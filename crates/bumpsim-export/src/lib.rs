@@ -194,13 +194,18 @@ pub enum ExportError {
         /// What is wrong.
         reason: String,
     },
-    /// A chain with a wall link the decks do not write yet.
+    /// A wall link whose gap is too large for its curve's points to stay
+    /// apart once written.
     #[error(
-        "the car's {what} ([path] or [rebound], a wall link from a mass into the barrier) is not exported yet: the deck would leave it out; run it with `bumpsim impact --barrier`"
+        "{what}: its gap of {gap} m leaves its curve degenerate: the point at {at} m past the barrier rounds onto the one before it in the deck (13 significant digits); expected a gap small against the curve's first deformation"
     )]
-    WallLink {
-        /// `second load path` or `rebound link`.
-        what: &'static str,
+    WallGap {
+        /// `the second load path` or `the rebound link`.
+        what: String,
+        /// Its gap, m.
+        gap: f64,
+        /// The deformation (m, the gap included) that collapses.
+        at: f64,
     },
 }
 

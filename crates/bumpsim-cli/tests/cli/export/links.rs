@@ -232,3 +232,184 @@ fn the_lsdyna_include_of_a_car_with_links_parses_in_dyna_core() {
         assert!(keywords.contains(kind), "{kind} missing: {keywords}");
     }
 }
+
+/// The links car of the wall-link tests: the example's masses and links,
+/// a second load path on m2 (a table, elastic along it) after 150 mm and a
+/// rebound link on m3 (progressive, elastic) after 100 mm.
+const WALLED: &str = r#"kind = "links"
+name = "links car with a second load path and a rebound link"
+masses = ["6 kg", "180 kg", "1250 kg"]
+dampers = ["0.5 Ns/mm", "2 Ns/mm"]
+
+[front]
+curve = "bilinear"
+stiffness = "1500 N/mm"
+yield_force = "80 kN"
+hardening = 0.05
+unloading = "2000 N/mm"
+
+[[links]]
+curve = "progressive"
+stiffness = "500 N/mm"
+limit = "300 mm"
+limit_force = "420 kN"
+unloading = "elastic"
+
+[[links]]
+curve = "table"
+points = [["20 mm", "60 kN"], ["120 mm", "110 kN"], ["400 mm", "140 kN"]]
+unloading = "4000 N/mm"
+
+[path]
+mass = 2
+gap = "150 mm"
+curve = "table"
+points = [["30 mm", "60 kN"], ["200 mm", "120 kN"], ["800 mm", "150 kN"]]
+unloading = "elastic"
+
+[rebound]
+mass = 3
+gap = "100 mm"
+curve = "progressive"
+stiffness = "200 N/mm"
+limit = "500 mm"
+limit_force = "725 kN"
+unloading = "elastic"
+"#;
+
+/// The number before `unit` in the line of `text` that starts with `label`.
+fn printed(text: &str, label: &str, after: &str, unit: &str) -> f64 {
+    let line = text
+        .lines()
+        .find(|l| l.trim_start().starts_with(label))
+        .unwrap_or_else(|| panic!("no '{label}' in {text}"));
+    let rest = &line[line.find(after).unwrap() + after.len()..];
+    rest[..rest.find(unit).unwrap()].trim().parse().unwrap()
+}
+
+/// A links car with a second load path and a rebound link exported to
+/// CalculiX as a barrier run (every mass at −40 km/h along the axis, no
+/// force, the front link on the held barrier node) and run in ccx: the
+/// peak barrier force (the car's links on ccx's crush histories: the front
+/// brick, the path and rebound springs each after its gap) and the front
+/// link's residual crush within 2 % of `bumpsim impact --barrier`.
+#[test]
+fn a_car_with_wall_links_in_ccx_reproduces_impact_within_two_percent() {
+    if !ccx_available() {
+        return;
+    }
+    let dir = scratch("export-links-walls");
+    let car_path = dir.join("car.toml");
+    std::fs::write(&car_path, WALLED).unwrap();
+    let car = LinkCar::parse(WALLED, &car_path).unwrap();
+    let impact = bumpsim(&[
+        "impact",
+        "--car",
+        car_path.to_str().unwrap(),
+        "--barrier",
+        "--speed",
+        "40 km/h",
+    ]);
+    assert!(impact.status.success(), "{}", text(&impact.stderr));
+    let out = text(&impact.stdout);
+    let peak = 1e3 * printed(&out, "peak barrier force", "force", "kN");
+    let set = 1e-3 * printed(&out, "front link (crush zone)", "plastic set", "mm");
+    let mut csv = String::from("time [s],force [N]\n");
+    for k in 0..=2500 {
+        csv.push_str(&format!("{:.4},0\n", k as f64 * 1e-4));
+    }
+    let force = dir.join("rest.csv");
+    std::fs::write(&force, csv).unwrap();
+    let inp = dir.join("car.inp");
+    let run = bumpsim(&[
+        "export",
+        "calculix",
+        car_path.to_str().unwrap(),
+        "--initial-velocity",
+        "-40 km/h",
+        "--force",
+        force.to_str().unwrap(),
+        "-o",
+        inp.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let (_, rows) = ccx_histories(&dir);
+    let chain = &car.chain;
+    let (front, p, r) = (
+        chain.front().unwrap(),
+        chain.path().unwrap(),
+        chain.rebound().unwrap(),
+    );
+    let mut states = [bumpsim_core::link::LinkState::default(); 3];
+    let mut most = [0.0_f64; 3];
+    let wall = rows.iter().map(|row| {
+        let [a, b, c] = &mut states;
+        let forces = [
+            front.force(-row[1], a),
+            p.link.force(-row[1 + p.mass] - p.gap, b),
+            r.link.force(-row[1 + r.mass] - r.gap, c),
+        ]
+        .map(|f| f.max(0.0));
+        for (m, f) in most.iter_mut().zip(forces) {
+            *m = m.max(f);
+        }
+        forces.iter().sum::<f64>()
+    });
+    let theirs = wall.fold(0.0_f64, f64::max);
+    let their_set = states[0].plastic_set(front);
+    eprintln!("walls: ccx {theirs} N, set {their_set} m; impact {peak} N, set {set} m");
+    assert!(
+        most[1] > 1e4 && most[2] > 1e4,
+        "both wall links act: {most:?} N"
+    );
+    assert!(
+        (theirs - peak).abs() <= 0.02 * peak,
+        "peak {theirs} N, impact {peak} N"
+    );
+    assert!(
+        (their_set - set).abs() <= 0.02 * set,
+        "set {their_set} m, impact {set} m"
+    );
+}
+
+/// The same car's LS-DYNA include parses in ansys-dyna-core with every id
+/// defined; the path's curve (id 3n + 3 = 12) is zero up to its 150 mm gap
+/// and in tension.
+#[test]
+fn the_lsdyna_include_of_a_car_with_wall_links_parses_in_dyna_core() {
+    if !dyna_core_available() {
+        return;
+    }
+    let dir = scratch("export-links-walls-dyna");
+    let car_path = dir.join("car.toml");
+    std::fs::write(&car_path, WALLED).unwrap();
+    let deck = dir.join("car.k");
+    let run = bumpsim(&[
+        "export",
+        "lsdyna",
+        car_path.to_str().unwrap(),
+        "-o",
+        deck.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let verdict = dyna_core(&deck, &[]);
+    for empty in ["unprocessed", "errors", "undefined"] {
+        assert_eq!(verdict[empty], serde_json::json!([]), "{empty}: {verdict}");
+    }
+    // force against elongation: compression beyond the gap, zero before
+    // it and in tension
+    let curve = |id: &str| -> Vec<[f64; 2]> {
+        let points = verdict["curves"][id].as_array().expect(id);
+        let value = |v: &serde_json::Value, i: usize| v[i].as_f64().unwrap();
+        points.iter().map(|p| [value(p, 0), value(p, 1)]).collect()
+    };
+    let path = curve("12");
+    let at = path.iter().position(|p| p[0] == -0.15).expect("the gap");
+    assert!(path[at..].iter().all(|p| p[1] == 0.0), "{path:?}");
+    assert!(path[..at].iter().all(|p| p[1] < 0.0), "{path:?}");
+    assert_eq!(path.last(), Some(&[10.0, 0.0]));
+    assert!(
+        verdict["curves"]["13"].is_array(),
+        "the rebound link's curve"
+    );
+}
