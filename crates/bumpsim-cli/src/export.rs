@@ -199,6 +199,9 @@ fn initial_velocity(common: &Common) -> Result<Option<f64>> {
 }
 
 fn write_deck(common: &Common, inputs: &[&Path], text: &str, what: &str) -> Result<()> {
+    for note in bumpsim_export::car_deck::approximations(text) {
+        crate::warn(&format!("the deck approximates: {note}"));
+    }
     write_output(&common.output, common.units, inputs, text, what)
 }
 

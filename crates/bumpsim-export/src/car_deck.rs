@@ -71,6 +71,20 @@ pub fn calculix_car_deck(
     }
 }
 
+/// The deck's own notes of where it departs from bumpsim's model: every
+/// comment line (`$` in LS-DYNA, `**` in CalculiX) that says
+/// `APPROXIMATE`, as the front end repeats them to the user (a yielding
+/// wall link in CalculiX unloads along its curve, an unloading slope below
+/// the curve's steepest in LS-DYNA).
+pub fn approximations(deck: &str) -> Vec<&str> {
+    deck.lines()
+        .map(str::trim)
+        .filter(|l| l.starts_with('$') || l.starts_with("**"))
+        .filter(|l| l.contains("APPROXIMATE"))
+        .map(|l| l.trim_start_matches(['$', '*', ' ']))
+        .collect()
+}
+
 /// The critical step of a chain: Gershgorin's row sums of `k (1/m_j +
 /// 1/m_(j+1))` over the links at their steepest slopes, `k/m` on the mass a
 /// wall spring (front link, second load path, rebound link) pushes, and the
@@ -280,6 +294,14 @@ mod tests {
         assert!(deck.contains("124, 124, 102\n*SPRING, ELSET=BUMPSIM_EPATH, NONLINEAR"));
         assert!(deck.contains("125, 125, 102\n*SPRING, ELSET=BUMPSIM_EREBOUND, NONLINEAR"));
         assert!(deck.contains("** second load path: APPROXIMATE"), "{deck}");
+        // the front end repeats it: the yielding path only, the elastic
+        // rebound link is exact
+        let notes = approximations(&deck);
+        assert_eq!(notes.len(), 1, "{notes:?}");
+        assert!(
+            notes[0].starts_with("second load path: APPROXIMATE"),
+            "{notes:?}"
+        );
         // axis +x: compression is positive in ccx's table (its measure)
         assert!(
             deck.contains(
