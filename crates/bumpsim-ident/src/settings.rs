@@ -136,7 +136,10 @@ impl Settings {
             start: None,
             seeds: Vec::new(),
             split_links: Vec::new(),
-            solver: lm::Settings::default(),
+            solver: lm::Settings {
+                acceleration: Some(lm::ACCELERATION_LIMIT),
+                ..lm::Settings::default()
+            },
             sheet_mass: None,
             default_priors: false,
             priors: Vec::new(),
