@@ -9,8 +9,8 @@
 //! that keeps the scaled step within a trust radius Δ, which the gain ratio
 //! sets as scipy's `least_squares` does except that a refused trial halves
 //! it ([`crate::trust`]; Moré 1978): the Gauss–Newton step whenever it fits.
-//! With [`Settings::acceleration`] (the 1-D identification's; Nielsen's
-//! damping only) each trial is the geodesic step `v + a/2` (Transtrum &
+//! With [`Settings::acceleration`] (an option, not yet the default
+//! anywhere; Nielsen's damping only) each trial is the geodesic step `v + a/2` (Transtrum &
 //! Sethna 2012, GSL's `lmaccel`): v the damped step, and a the solution of
 //! the same damped system for `Jᵀ r''`, where the residuals' second
 //! directional derivative along v comes from one residual evaluation,
@@ -447,8 +447,7 @@ impl Control {
     }
 }
 
-/// The largest `2‖a‖/‖v‖` of an accelerated step the 1-D identification
-/// accepts ([`Settings::acceleration`]). Transtrum & Sethna suggest 0.75;
+/// The largest `2‖a‖/‖v‖` of an accelerated step to accept ([`Settings::acceleration`]). Transtrum & Sethna suggest 0.75;
 /// on the peer series of `bumpsim-ident/tests/iterations.rs` 0.75 took 22
 /// Jacobians on the velocity objective (scipy TRF 18), 1.0 took 18 (42
 /// against 60 on the displacement one).

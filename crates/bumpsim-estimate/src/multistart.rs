@@ -126,8 +126,8 @@ pub fn search<P: LeastSquares>(
         .residual_count()
         .saturating_sub(problem.parameter_count());
     let (lower, upper) = (search.lower, search.upper);
-    // the screening of the explored starts runs without the solver's
-    // geodesic acceleration, the refining and polishing runs with it: over
+    // with a solver's geodesic acceleration, the screening of the explored
+    // starts runs without it, the refining and polishing runs with it: over
     // the DOF table it cost about 6 % more CPU on every run and saved about
     // 20 % on these alone (docs/benchmarks.md, issue 44 item 6)
     let solve = |start: &[f64], iterations: usize, ftol: f64, accelerated: bool| {

@@ -136,10 +136,7 @@ impl Settings {
             start: None,
             seeds: Vec::new(),
             split_links: Vec::new(),
-            solver: lm::Settings {
-                acceleration: Some(lm::ACCELERATION_LIMIT),
-                ..lm::Settings::default()
-            },
+            solver: lm::Settings::default(),
             sheet_mass: None,
             default_priors: false,
             priors: Vec::new(),

@@ -1,7 +1,7 @@
 //! Issue 44 item 6: from its default (data-derived) start, one start,
-//! bumpsim's LM as the 1-D identification runs it (Nielsen's damping with
-//! the geodesic acceleration, `lm::Settings::acceleration`, 2026-11-29:
-//! 18 and 42 Jacobians; without it 24 and 77; the trust region,
+//! bumpsim's LM with Nielsen's damping and the geodesic acceleration
+//! (`lm::Settings::acceleration`, 2026-11-29: 18 and 42 Jacobians; not yet
+//! the identification's default, which takes 24 and 77; the trust region,
 //! [`Damping::TrustRegion`], 13 and 15: see docs/identify.md "Iterations")
 //! needs no more Jacobians than scipy's
 //! `least_squares` (trust-region-reflective, 2-point differences) evaluates
@@ -93,9 +93,8 @@ fn trf(out: &Path, objective: &str, start: &[f64]) -> (usize, f64) {
     (njev, words.next().unwrap().parse().unwrap())
 }
 
-/// From the default start, LM with the identification's own solver
-/// (`damping` None: Nielsen's with the geodesic acceleration) or with
-/// `damping` and no acceleration.
+/// From the default start, LM with the identification's own solver and
+/// (`damping` None) the geodesic acceleration, or with `damping` and none.
 fn compare(objective: &str, damping: Option<Damping>) {
     let Some(out) = series() else { return };
     let mut study = Study::read(&out.join("study.toml")).unwrap();
@@ -110,7 +109,10 @@ fn compare(objective: &str, damping: Option<Damping>) {
             acceleration: None,
             ..settings.solver
         },
-        None => settings.solver,
+        None => lm::Settings {
+            acceleration: Some(lm::ACCELERATION_LIMIT),
+            ..settings.solver
+        },
     };
     let start = data_start(&cases, 3);
     let log = |v: &[f64]| -> Vec<f64> { v.iter().map(|x| x.ln()).collect() };
@@ -149,7 +151,7 @@ fn compare(objective: &str, damping: Option<Damping>) {
     );
 }
 
-/// Issue 44 item 6, the default (2026-11-29, 21:00): Nielsen's damping
+/// Issue 44 item 6 (2026-11-29, 21:00): Nielsen's damping
 /// with the geodesic acceleration (Transtrum & Sethna 2012; the step
 /// `v + a/2`, `a` from the residuals' second directional derivative by one
 /// residual evaluation at `p + 0.1 v` and `Jᵀ` of it by the modal form's
