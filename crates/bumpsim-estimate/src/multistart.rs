@@ -126,16 +126,21 @@ pub fn search<P: LeastSquares>(
         .residual_count()
         .saturating_sub(problem.parameter_count());
     let (lower, upper) = (search.lower, search.upper);
-    let solve = |start: &[f64], iterations: usize, ftol: f64| {
+    // with a solver's geodesic acceleration, the screening of the explored
+    // starts runs without it, the refining and polishing runs with it: over
+    // the DOF table it cost about 6 % more CPU on every run and saved about
+    // 20 % on these alone (docs/benchmarks.md, issue 44 item 6)
+    let solve = |start: &[f64], iterations: usize, ftol: f64, accelerated: bool| {
         let solver = lm::Settings {
             max_iterations: iterations,
             ftol,
+            acceleration: search.solver.acceleration.filter(|_| accelerated),
             ..search.solver
         };
         lm::minimise(&make(), start, lower, upper, &solver)
     };
     let (limit, ftol) = (search.solver.max_iterations, search.solver.ftol);
-    let screen = |p: &[f64], n| solve(p, n, ftol.max(SCREEN_FTOL));
+    let screen = |p: &[f64], n| solve(p, n, ftol.max(SCREEN_FTOL), false);
     // a run is raced for the best fit: within one noise variance of the best
     let goal = Goal {
         iterations: limit,
@@ -162,7 +167,7 @@ pub fn search<P: LeastSquares>(
             ..goal
         };
         let offset = runs.len();
-        let refine = |p: &[f64], n| solve(p, n, ftol.max(REFINE_FTOL));
+        let refine = |p: &[f64], n| solve(p, n, ftol.max(REFINE_FTOL), true);
         runs.extend(
             staged(&more, within, &refine, observer)
                 .into_iter()
@@ -177,7 +182,7 @@ pub fn search<P: LeastSquares>(
         refined -= round;
     }
     let chosen = candidates(&mut runs);
-    polish(&mut runs, &chosen, goal, &|p, n| solve(p, n, ftol));
+    polish(&mut runs, &chosen, goal, &|p, n| solve(p, n, ftol, true));
     let starts = tally(&runs, freedom, first)?;
     Ok(Searched {
         runs,

@@ -383,6 +383,21 @@ impl<P: LeastSquares> LeastSquares for Priored<P> {
         }
         ok
     }
+
+    /// The problem's `Jᵀv` on its residuals plus the priors' rows'.
+    fn transposed(&self, p: &[f64], v: &[f64], product: &mut DVector<f64>) -> bool {
+        let m = self.problem.residual_count();
+        if v.len() != self.residual_count() || !self.problem.transposed(p, &v[..m], product) {
+            return false;
+        }
+        let mut scratch = vec![0.0; self.residual_count()];
+        for (k, (_, row)) in self.rows(p, &mut scratch).into_iter().enumerate() {
+            for (i, a) in row {
+                product[i] += a * v[m + k];
+            }
+        }
+        true
+    }
 }
 
 /// The noise of one residual the priors weigh against: `√(κ F/(n − q))`

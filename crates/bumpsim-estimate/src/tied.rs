@@ -141,6 +141,20 @@ impl<P: LeastSquares> LeastSquares for Tied<P> {
         }
         ok
     }
+
+    /// The full problem's `Jᵀv`, each tied group's entries summed.
+    fn transposed(&self, q: &[f64], v: &[f64], product: &mut DVector<f64>) -> bool {
+        let p = self.expand(q);
+        let mut full = DVector::zeros(p.len());
+        if !self.problem.transposed(&p, v, &mut full) {
+            return false;
+        }
+        product.fill(0.0);
+        for (a, &j) in self.map.iter().enumerate() {
+            product[j] += full[a];
+        }
+        true
+    }
 }
 
 #[cfg(test)]

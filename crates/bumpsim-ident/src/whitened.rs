@@ -124,4 +124,15 @@ impl LeastSquares for Whitened<'_> {
         }
         out.iter().all(|v| v.is_finite())
     }
+
+    /// `(T J)ᵀ v = Jᵀ (Tᵀ v)`, T the transform: the objective's own.
+    fn transposed(&self, p: &[f64], v: &[f64], product: &mut nalgebra::DVector<f64>) -> bool {
+        if v.len() != self.residual_count() {
+            return false;
+        }
+        let pulled = self
+            .transform
+            .tr_mul(&nalgebra::DVector::from_column_slice(v));
+        self.objective.transposed(p, pulled.as_slice(), product)
+    }
 }

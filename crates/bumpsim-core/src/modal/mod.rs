@@ -374,6 +374,49 @@ impl ModalForm {
         self.normal_equations(&run, (residuals, true), &mut [], jtj, gradient)
     }
 
+    /// `Jᵀv` of a fit window for a vector `v` other than its residuals
+    /// (m; LM's geodesic acceleration projects the residuals' second
+    /// derivative so): adds to `product` (P) the sensitivities of the last
+    /// `v.len()` samples of `force` times `v`. By the basis recursion alone,
+    /// without the Gram matrix of [`ModalForm::normal`]: about the cost of
+    /// [`ModalForm::simulate`]. Needs the sensitivities. Not checked for
+    /// precision: the caller uses it at a form whose Jacobian
+    /// [`ModalForm::normal`] or [`ModalForm::jacobian`] accepted.
+    pub fn transposed(
+        &self,
+        step: f64,
+        force: &[f64],
+        v: &[f64],
+        product: &mut [f64],
+    ) -> Result<(), ModalError> {
+        check(step, force, force)?;
+        let fits = OutputError::fits;
+        let (n, p) = (v.len(), self.parameter_count());
+        fits("window", n, force.len(), n <= force.len())?;
+        fits("sensitivities", p, 1, p > 0)?;
+        fits("Jᵀv", product.len(), p, product.len() == p)?;
+        let run = Run {
+            step,
+            initial_velocity: 0.0,
+            force,
+        };
+        let b = self.basis_len();
+        SCRATCH.with_borrow_mut(|(basis, _)| {
+            basis.resize(n * b, 0.0);
+            macro_rules! sizes {
+                ($($l:literal => $b:literal);*) => {
+                    match self.slots.len() {
+                        $($l => sweep::transposed::<$l, $b>(self, &run, v, basis, product),)*
+                        _ => unreachable!("at most MAX_DOF − 1 slots"),
+                    }
+                };
+            }
+            sizes!(0 => 1; 1 => 5; 2 => 9; 3 => 13; 4 => 17; 5 => 21; 6 => 25; 7 => 29;
+                8 => 33; 9 => 37);
+        });
+        Ok(())
+    }
+
     /// [`ModalForm::normal`] (`window.1` false: `window.0` is measured) or
     /// [`ModalForm::jacobian`] (true: it holds the residuals).
     fn normal_equations(
@@ -587,6 +630,43 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// `Jᵀv` by the basis alone equals the state-space sensitivities' for
+    /// a vector that is not the residuals, relative to `‖J‖ ‖v‖`; a buffer
+    /// of the wrong length is refused.
+    #[test]
+    fn the_transposed_product_equals_the_state_space_one() {
+        let (f, first) = (force(700), 100);
+        for dof in 1..=6 {
+            let model = chain(dof);
+            let (_, jac) = reference(&model, dof - 1, 1.3, &f);
+            let form = ModalForm::new(&model, dof - 1, true).unwrap();
+            let p = form.parameter_count();
+            let v: Vec<f64> = (first..f.len()).map(|k| (k as f64 * 0.37).sin()).collect();
+            let mut product = vec![0.0; p];
+            form.transposed(STEP, &f, &v, &mut product).unwrap();
+            let expected: Vec<f64> = (0..p)
+                .map(|i| {
+                    (first..f.len())
+                        .map(|k| jac[k * p + i] * v[k - first])
+                        .sum()
+                })
+                .collect();
+            let j_norm = jac.iter().map(|x| x * x).sum::<f64>().sqrt();
+            let v_norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+            let error = difference(&product, &expected) / (j_norm * v_norm);
+            assert!(error < 1e-9, "{dof} masses: Jᵀv {error:.1e}");
+        }
+        let form = ModalForm::new(&chain(3), 0, true).unwrap();
+        assert!(
+            form.transposed(STEP, &f, &[0.0; 10], &mut [0.0; 3])
+                .is_err()
+        );
+        assert!(
+            form.transposed(STEP, &f[..5], &[0.0; 10], &mut [0.0; 7])
+                .is_err()
+        );
     }
 
     proptest! {

@@ -206,3 +206,43 @@ pub(super) fn normal<const L: usize, const B: usize, const P: usize, const V: us
     }
     precision
 }
+
+/// `Jᵀv` of the window (the run's last `v.len()` samples) added to
+/// `product` (P): the recursion writes the window's basis rows into
+/// `basis`, their moments `Bᵀv` are summed and `Cᵀ (Bᵀv)` added (J = B C).
+/// No projection and no Gram matrix: about a simulation's cost. Nothing
+/// allocated.
+pub(super) fn transposed<const L: usize, const B: usize>(
+    form: &ModalForm,
+    run: &Run,
+    v: &[f64],
+    basis: &mut [f64],
+    product: &mut [f64],
+) {
+    let window = v.len();
+    let constants = SlotConstants::<L>::new(&form.slots, run.step);
+    let basis = &mut basis[..window * B];
+    pulp::Arch::new().dispatch(Recursion::<L, B, true> {
+        constants: &constants,
+        step: run.step,
+        velocity: 0.0,
+        force: run.force,
+        first: run.force.len() - window,
+        rows: basis,
+        coefficients: &[],
+        out: &mut [],
+    });
+    let mut moments = [0.0; B];
+    for (row, &x) in basis.chunks_exact(B).zip(v) {
+        for (m, b) in moments.iter_mut().zip(row) {
+            *m = b.mul_add(x, *m);
+        }
+    }
+    let p = product.len();
+    for (u, m) in moments.iter().enumerate() {
+        let column = &form.coefficients[u * p..(u + 1) * p];
+        for (out, c) in product.iter_mut().zip(column) {
+            *out = c.mul_add(*m, *out);
+        }
+    }
+}

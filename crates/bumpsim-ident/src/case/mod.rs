@@ -590,4 +590,19 @@ impl LeastSquares for Objective<'_> {
         }
         ok
     }
+
+    /// `Jᵀv` by the modal forms of the last normal equations, when the
+    /// modal form made them at `p` (about a simulation's cost); false
+    /// otherwise: no Jacobian is formed for it, and LM takes its step
+    /// without the acceleration.
+    fn transposed(&self, p: &[f64], v: &[f64], product: &mut DVector<f64>) -> bool {
+        let mut full = vec![0.0; parameter_count(self.dof)];
+        if v.len() != self.residuals || !self.modal_transposed(p, v, &mut full) {
+            return false;
+        }
+        for (a, &i) in self.free.iter().enumerate() {
+            product[a] = full[i];
+        }
+        true
+    }
 }

@@ -52,6 +52,9 @@ pub(super) struct Cache {
     /// The state-space residuals at the point where the modal form refused
     /// its own (empty otherwise; the buffer is kept across points).
     refused: Vec<f64>,
+    /// The point of the last normal equations the modal form made, and its
+    /// forms: `Jᵀv` there for another vector ([`Objective::modal_transposed`]).
+    normal: Option<(Vec<f64>, Arc<Forms>)>,
 }
 
 /// Why the modal form gave no result at a point.
@@ -101,9 +104,10 @@ impl Objective<'_> {
         g: &mut DVector<f64>,
     ) -> bool {
         let known = self.refused_residuals(p, residuals);
+        self.modal.lock().unwrap_or_else(|e| e.into_inner()).normal = None;
         let jacobian_only = known
             || match self.modal_normal(p, residuals, sums, g) {
-                Ok(ok) => return ok,
+                Ok(ok) => return ok && self.keep_normal(p),
                 Err(Refusal::Output) => true,
                 Err(Refusal::Other) => false,
             };
@@ -114,7 +118,7 @@ impl Objective<'_> {
                 return false;
             }
             if self.modal_jacobian(p, residuals, sums, g) {
-                return true;
+                return self.keep_normal(p);
             }
         }
         sums.fill(0.0);
@@ -122,6 +126,42 @@ impl Objective<'_> {
         self.simulate(p, residuals, true, &mut |_, rows, r| {
             accumulate(rows, r, sums, g);
         })
+    }
+
+    /// Keeps the forms of `p`, whose normal equations the modal form made,
+    /// for [`Objective::modal_transposed`]; true.
+    fn keep_normal(&self, p: &[f64]) -> bool {
+        let mut cache = self.modal.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(Ok(forms)) = cache.forms.as_ref().filter(|_| cache.point == p) {
+            cache.normal = Some((p.to_vec(), Arc::clone(forms)));
+        }
+        true
+    }
+
+    /// `Jᵀv` (all parameters) at `p` for a vector `v` of the residuals'
+    /// length into `product` (zero on entry), by the modal forms of the
+    /// last normal equations, when they were made at `p` by the modal
+    /// form; false otherwise (no Jacobian is made for it).
+    pub(super) fn modal_transposed(&self, p: &[f64], v: &[f64], product: &mut [f64]) -> bool {
+        let forms = {
+            let cache = self.modal.lock().unwrap_or_else(|e| e.into_inner());
+            match &cache.normal {
+                Some((point, forms)) if point == p => Arc::clone(forms),
+                _ => return false,
+            }
+        };
+        let mut row = 0;
+        for (input, form) in forms.zip(&self.inputs) {
+            let next = row + input.measured.len();
+            if form
+                .transposed(input.step, &input.force, &v[row..next], product)
+                .is_err()
+            {
+                return false;
+            }
+            row = next;
+        }
+        product.iter().all(|x| x.is_finite())
     }
 
     /// The modal forms (with sensitivities) of each distinct output mass at
