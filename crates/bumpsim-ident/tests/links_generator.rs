@@ -32,9 +32,21 @@
 //! [265.2, 273.8], Fy1 10.6 kN [2.9, 37.9]: the front bar's load taken
 //! by the front table, the link nearly perfectly plastic from the start).
 //!
-//! Started at the truth, the fit stays within those intervals and
-//! predicts a held-out 7 m/s run better than the truth's own lumped car
-//! (wall force 90.97 % against 83.78 %, body 99.46 % against 96.40 %).
+//! Started at the truth (issue 44's lesson, [`truth_car`]), the fit leaves
+//! the truth's objective for one a quarter as large (5.5006e3 → 1.3863e3:
+//! the body's term 3.874e3 → 29.0, the wall force's 1.627e3 → 1.357e3),
+//! but the chain hardly moves (m1 +0.10, m2 −0.38, k1 −0.03, Fy1 −0.22, r1
+//! +0.42, u1 +0.06 standard errors; c1 1 → 72 N·s/m, +0.19): the lower
+//! objective is the front table's (the front bar's quasi-static bilinear
+//! curve is not its dynamic crush force, distributed mass and all), and
+//! it predicts a held-out 7 m/s run better than the truth's own lumped car
+//! (wall force 90.95 % against 83.78 %, body 99.52 % against 96.40 %). So
+//! the objective points at the truth where the truth is a lumped car's,
+//! and nothing needs fixing. The 12-start search from a start that knows
+//! nothing of the bars reaches 1.3844e3 (0.14 % below the run from the
+//! truth, 74.8 % below the truth's), but only 1 of its 12 starts reaches
+//! that best (to 1e-6, and within the noise): the basin is found, not
+//! often.
 
 use bumpsim_estimate::observer::Silent;
 use bumpsim_ident::LoadCase;
@@ -229,7 +241,11 @@ fn covered(seed: u64, owner: &str) -> Option<Vec<(&'static str, f64, f64, bool)>
 }
 
 /// Issue 46: the identified yield force and stiffness (and the rest of
-/// the link, and m1) lie within their 95 % intervals of the truth.
+/// the link, and m1) lie within their 95 % intervals of the truth; and
+/// (issue 44's lesson) the multi-start's best objective is at most the
+/// truth's ([`truth_car`] on the same objective). Measured (seed 1,
+/// printed): best 1.384364e3 against the truth's 5.500581e3 (−74.83 %);
+/// 1 of the 12 starts reached the best.
 #[test]
 fn a_crushing_bar_identified_into_the_wall_covers_its_truth() {
     let Some(checks) = covered(1, "covers") else {
@@ -272,10 +288,17 @@ fn read(dir: &Path) -> (LoadCase, serde_json::Value) {
 /// truth (the rear bar's link, m1 the mass ahead of its middle, c1 at its
 /// bound for the undamped bars, the front table at the front bar's
 /// bilinear curve), the fit must not walk away to a lower objective that
-/// predicts worse. It stays within the truth's 95 % intervals, and on a
+/// predicts worse. It descends (the objective at its end at most the
+/// truth's, re-evaluated on the identification's own objective by
+/// [`objective_at`]), stays within the truth's 95 % intervals, and on a
 /// held-out run of the same generator at 7 m/s the identified car
 /// predicts the wall force and the body's motion at least as well as the
-/// truth's lumped car does (within 1 and 0.5 points of fit).
+/// truth's lumped car does (within 1 and 0.5 points of fit). Measured
+/// (seed 1, printed): objective 5.500581e3 at the truth, 1.386337e3 at the
+/// end (terms wall force, output, prior: 1.6267e3, 3.8739e3, 0 → 1.3573e3,
+/// 28.98, 0.0446); the chain's parameters moved by at most 0.42 of their
+/// standard errors (r1; m2 −0.38); held-out wall force 90.95 % (truth's
+/// lumped car 83.78 %), body 99.52 % (96.40 %).
 #[test]
 fn a_barrier_fit_started_at_the_truth_stays_and_predicts_no_worse() {
     use bumpsim_ident::links::barrier::{BarrierSettings, run};
@@ -301,6 +324,15 @@ fn a_barrier_fit_started_at_the_truth_stays_and_predicts_no_worse() {
     println!("started at the truth\n{}", text(&found));
     let [at_truth, end] = objectives(&case, &truth, &found);
     println!("objective at the truth {at_truth:.6e}, at the end {end:.6e}");
+    let terms = [
+        terms_at(&case, total, &layout, &truth_theta),
+        terms_at(&case, total, &found_layout(&found), &found.theta),
+    ];
+    println!(
+        "its terms (wall force, output, prior): at the truth [{}], at the end [{}]",
+        terms[0].map(|t| format!("{t:.4e}")).join(", "),
+        terms[1].map(|t| format!("{t:.4e}")).join(", ")
+    );
     let names = ["m1", "m2", "c1", "k1", "Fy1", "r1", "u1"];
     for (i, name) in names.iter().enumerate() {
         let se = found.uncertainty.standard_errors[i];
@@ -408,6 +440,12 @@ fn truth_car(case: &LoadCase, truth: &serde_json::Value) -> (BarrierLayout, Vec<
 /// on `layout`: what [`into_wall::identify`] reports as `objective` for
 /// its optimum, evaluated anywhere.
 fn objective_at(case: &LoadCase, total: f64, layout: &BarrierLayout, theta: &[f64]) -> f64 {
+    terms_at(case, total, layout, theta).iter().sum()
+}
+
+/// [`objective_at`]'s terms: the wall force's, the output's and the
+/// prior's.
+fn terms_at(case: &LoadCase, total: f64, layout: &BarrierLayout, theta: &[f64]) -> [f64; 3] {
     use bumpsim_estimate::lm::LeastSquares;
     use bumpsim_estimate::prior::{Prior, Priored};
     let cases = std::slice::from_ref(case);
@@ -420,7 +458,14 @@ fn objective_at(case: &LoadCase, total: f64, layout: &BarrierLayout, theta: &[f6
     let p: Vec<f64> = theta.iter().map(|v| v.ln()).collect();
     let mut r = vec![0.0; problem.residual_count()];
     assert!(problem.evaluate(&p, &mut r, None), "the car cannot be run");
-    r.iter().map(|v| v * v).sum()
+    let square = |rows: &[f64]| rows.iter().map(|v| v * v).sum::<f64>();
+    let force = case.window_len();
+    let output = force + case.residual_len();
+    [
+        square(&r[..force]),
+        square(&r[force..output]),
+        square(&r[output..]),
+    ]
 }
 
 /// The layout the identification `found` ended on (its front table's

@@ -213,9 +213,12 @@ impl LoadCase {
                 )));
             }
             if let Some(k) = values.iter().position(|v| v.abs() > limit) {
+                // (t = 0 read off a time base that starts at -1e-17 s)
+                let t = self.start + k as f64 * self.step;
+                let t = if t.abs() < 1e-6 * self.step { 0.0 } else { t };
                 return Err(invalid(format!(
                     "{what} sample {k} (t = {} s) is {} {unit}: expected at most {} {unit} in size (check the channels' samples and their scale)",
-                    format_number(self.start + k as f64 * self.step, 4),
+                    format_number(t, 4),
                     format_number(values[k], 4),
                     format_number(limit, 4)
                 )));
