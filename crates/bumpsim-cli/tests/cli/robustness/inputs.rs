@@ -350,7 +350,8 @@ fn a_chain_or_links_study_s_scales_samples_and_huge_values() {
 }
 
 /// Round 5 on a planar study: a sill given `chain = 99` printed "sensors =
-/// NaN m"; a force's anchor of 1e300 m, a case's speed of 1e300 m/s and a
+/// NaN m"; a case with a yaw-rate sensor alone blamed its pre-trigger (of
+/// 500 samples) for "no noise to weigh it by"; a force's anchor of 1e300 m, a case's speed of 1e300 m/s and a
 /// yaw-rate sample of 1e308 left "no start could be evaluated". Each now
 /// names the case, the sensor or force and what was expected.
 #[test]
@@ -382,6 +383,23 @@ fn a_planar_study_s_places_speeds_and_huge_readings() {
         std::fs::write(dir.join("ps/h.toml"), study.replacen(old, new, 1)).unwrap();
         refused(&dir, &["identify", "ps/h.toml", "--quiet"], needle);
     }
+    // the flat test with its yaw-rate sensor alone: the yaw-rate sensor's
+    // pre-trigger was blamed
+    let mut yaw_alone = study.clone();
+    for code in ["SILBLE", "SILBRI", "SIMELE", "SIMERI"] {
+        let line = yaw_alone
+            .lines()
+            .find(|l| l.contains("FLAT/FLAT.mme") && l.contains(code))
+            .unwrap()
+            .to_string();
+        yaw_alone = yaw_alone.replacen(&format!("{line}\n"), "", 1);
+    }
+    std::fs::write(dir.join("ps/h.toml"), yaw_alone).unwrap();
+    refused(
+        &dir,
+        &["identify", "ps/h.toml", "--quiet"],
+        "case 'FLAT': sensors: no x accelerometer, which the other sensors are weighed against",
+    );
     // a yaw-rate sample of 1e308
     let chn = std::fs::read_to_string(dir.join("ps/FLAT/Channel/FLAT.chn")).unwrap();
     let line = chn
