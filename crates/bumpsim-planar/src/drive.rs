@@ -218,17 +218,10 @@ fn check(input: &Drive, masses: usize) -> Result<usize, PlanarError> {
         let name = |what: &str| format!("load[{k}].{what}");
         require(&name("lateral"), load.lateral, "m", "must be finite", true)?;
         if let Some(p) = load.anchor {
-            // an anchor of 1e300 m left "no start could be evaluated"
-            require(&name("anchor"), p[0] + p[1], "m", "must be finite", true)?;
-            let far = p[0].abs().max(p[1].abs());
-            let expected = format!("ξ and η within {MAX_SENSOR_PLACE} m of the CG");
-            require(
-                &name("anchor"),
-                far,
-                "m",
-                &expected,
-                far <= MAX_SENSOR_PLACE,
-            )?;
+            // (1e300 m left "no start could be evaluated"; NaN: not finite)
+            let far = p[0].abs().max(p[1].abs()) + 0.0 * (p[0] + p[1]);
+            let near = format!("finite, ξ and η within {MAX_SENSOR_PLACE} m of the CG");
+            require(&name("anchor"), far, "m", &near, far <= MAX_SENSOR_PLACE)?;
         }
         if let Some(width) = load.cell {
             require(

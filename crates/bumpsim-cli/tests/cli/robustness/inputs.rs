@@ -371,7 +371,7 @@ fn a_planar_study_s_places_speeds_and_huge_readings() {
         (
             force,
             force.replace(" }", ", anchor = [1e300, 0.0] }"),
-            "case 'FLAT': load[0].anchor = 1e300 m: ξ and η within 10 m of the CG",
+            "case 'FLAT': load[0].anchor = 1e300 m: finite, ξ and η within 10 m of the CG",
         ),
         (
             speed,
