@@ -32,13 +32,27 @@
 //! [265.2, 273.8], Fy1 10.6 kN [2.9, 37.9]: the front bar's load taken
 //! by the front table, the link nearly perfectly plastic from the start).
 //!
-//! Started at the truth, the fit stays within those intervals and
-//! predicts a held-out 7 m/s run better than the truth's own lumped car
-//! (wall force 90.97 % against 83.78 %, body 99.46 % against 96.40 %).
+//! Started at the truth (issue 44's lesson, [`truth_car`]), the fit leaves
+//! the truth's objective for one a quarter as large (5.5006e3 → 1.3863e3:
+//! the body's term 3.874e3 → 29.0, the wall force's 1.627e3 → 1.357e3),
+//! but the chain hardly moves (m1 +0.10, m2 −0.38, k1 −0.03, Fy1 −0.22, r1
+//! +0.42, u1 +0.06 standard errors; c1 1 → 72 N·s/m, +0.19): the lower
+//! objective is the front table's (the front bar's quasi-static bilinear
+//! curve is not its dynamic crush force, distributed mass and all), and
+//! it predicts a held-out 7 m/s run better than the truth's own lumped car
+//! (wall force 90.95 % against 83.78 %, body 99.52 % against 96.40 %). So
+//! the objective points at the truth where the truth is a lumped car's,
+//! and nothing needs fixing. The 12-start search from a start that knows
+//! nothing of the bars reaches 1.3844e3 (0.14 % below the run from the
+//! truth, 74.8 % below the truth's), but only 1 of its 12 starts reaches
+//! that best (to 1e-6, and within the noise): the basin is found, not
+//! often.
 
 use bumpsim_estimate::observer::Silent;
 use bumpsim_ident::LoadCase;
-use bumpsim_ident::links::{LinkSettings, identify, text};
+use bumpsim_ident::links::barrier::{BarrierLayout, BarrierObjective};
+use bumpsim_ident::links::weighting::Weighting;
+use bumpsim_ident::links::{LinkIdentification, LinkSettings, identify, into_wall, text};
 use std::path::{Path, PathBuf};
 
 fn series() -> Option<PathBuf> {
@@ -189,6 +203,19 @@ fn covered(seed: u64, owner: &str) -> Option<Vec<(&'static str, f64, f64, bool)>
         bumpsim_ident::links::into_wall::identify(std::slice::from_ref(&case), &settings, &Silent)
             .unwrap();
     println!("seed {seed}\n{}", text(&found));
+    let [at_truth, best] = objectives(&case, &truth, &found);
+    println!(
+        "seed {seed}: the 12 starts' best objective {best:.6e} against the truth's {at_truth:.6e} ({:+.2} %); of {} starts {} reached the best to 1e-6, {} its fit within the noise",
+        100.0 * (best / at_truth - 1.0),
+        found.starts.total,
+        found.starts.reached_best,
+        found.starts.reached_best_fit
+    );
+    // the search finds a basin at least as deep as the truth's
+    assert!(
+        best <= at_truth,
+        "seed {seed}: best {best} above the truth's {at_truth}"
+    );
     let u = &found.uncertainty;
     let checks = [
         ("m1", 0, truth["front_mass"].as_f64().unwrap() + 1.0),
@@ -214,7 +241,11 @@ fn covered(seed: u64, owner: &str) -> Option<Vec<(&'static str, f64, f64, bool)>
 }
 
 /// Issue 46: the identified yield force and stiffness (and the rest of
-/// the link, and m1) lie within their 95 % intervals of the truth.
+/// the link, and m1) lie within their 95 % intervals of the truth; and
+/// (issue 44's lesson) the multi-start's best objective is at most the
+/// truth's ([`truth_car`] on the same objective). Measured (seed 1,
+/// printed): best 1.384364e3 against the truth's 5.500581e3 (−74.83 %);
+/// 1 of the 12 starts reached the best.
 #[test]
 fn a_crushing_bar_identified_into_the_wall_covers_its_truth() {
     let Some(checks) = covered(1, "covers") else {
@@ -257,37 +288,31 @@ fn read(dir: &Path) -> (LoadCase, serde_json::Value) {
 /// truth (the rear bar's link, m1 the mass ahead of its middle, c1 at its
 /// bound for the undamped bars, the front table at the front bar's
 /// bilinear curve), the fit must not walk away to a lower objective that
-/// predicts worse. It stays within the truth's 95 % intervals, and on a
+/// predicts worse. It descends (the objective at its end at most the
+/// truth's, re-evaluated on the identification's own objective by
+/// [`objective_at`]), stays within the truth's 95 % intervals, and on a
 /// held-out run of the same generator at 7 m/s the identified car
 /// predicts the wall force and the body's motion at least as well as the
-/// truth's lumped car does (within 1 and 0.5 points of fit).
+/// truth's lumped car does (within 1 and 0.5 points of fit). Measured
+/// (seed 1, printed): objective 5.500581e3 at the truth, 1.386337e3 at the
+/// end (terms wall force, output, prior: 1.6267e3, 3.8739e3, 0 → 1.3573e3,
+/// 28.98, 0.0446); the chain's parameters moved by at most 0.42 of their
+/// standard errors (r1; m2 −0.38); held-out wall force 90.95 % (truth's
+/// lumped car 83.78 %), body 99.52 % (96.40 %).
 #[test]
 fn a_barrier_fit_started_at_the_truth_stays_and_predicts_no_worse() {
-    use bumpsim_core::link::Curve;
-    use bumpsim_ident::links::barrier::{BarrierLayout, BarrierSettings, front_start, run};
+    use bumpsim_ident::links::barrier::{BarrierSettings, run};
     let (Some(dir), Some(held)) = (seeded(1, "stays"), at_speed(1, 7.0, "stays")) else {
         return;
     };
     let ((case, truth), (held, _)) = (read(&dir), read(&held));
-    let value = |key: &str| truth[key].as_f64().unwrap();
-    let front = |key: &str| truth["front"][key].as_f64().unwrap();
-    let (total, m1) = (value("total_mass"), value("front_mass") + 1.0);
-    let (k, fy, r, u) = (
-        value("stiffness"),
-        value("yield_force"),
-        value("hardening"),
-        value("unloading"),
-    );
-    let chain = vec![m1, total - m1, 1.0, k, fy, r, u];
-    let (knots, _) = front_start(&case, total, 10).unwrap();
-    let bar =
-        Curve::bilinear(front("stiffness"), front("yield_force"), front("hardening")).unwrap();
-    let mut table: Vec<f64> = knots.iter().map(|d| bar.force(*d)).collect();
-    table.push(front("unloading") * front("stiffness"));
+    let total = truth["total_mass"].as_f64().unwrap();
+    let (layout, truth_theta) = truth_car(&case, &truth);
+    let (chain, table) = truth_theta.split_at(7);
     let settings = BarrierSettings {
-        links: LinkSettings::new(2, 1, chain.clone()),
+        links: LinkSettings::new(2, 1, chain.to_vec()),
         knots: 10,
-        front_start: Some((knots.clone(), table.clone())),
+        front_start: Some((layout.knots.clone(), table.to_vec())),
         path_knots: 0,
         rebound: None,
         sheet_mass: Some((total, 0.01)),
@@ -295,31 +320,40 @@ fn a_barrier_fit_started_at_the_truth_stays_and_predicts_no_worse() {
         rebound_start: None,
         weighting: Default::default(),
     };
-    let found =
-        bumpsim_ident::links::into_wall::identify(std::slice::from_ref(&case), &settings, &Silent)
-            .unwrap();
+    let found = into_wall::identify(std::slice::from_ref(&case), &settings, &Silent).unwrap();
     println!("started at the truth\n{}", text(&found));
-    for (name, i, truth) in [
-        ("m1", 0, m1),
-        ("k1", 3, k),
-        ("Fy1", 4, fy),
-        ("r1", 5, r),
-        ("u1", 6, u),
-    ] {
+    let [at_truth, end] = objectives(&case, &truth, &found);
+    println!("objective at the truth {at_truth:.6e}, at the end {end:.6e}");
+    let terms = [
+        terms_at(&case, total, &layout, &truth_theta),
+        terms_at(&case, total, &found_layout(&found), &found.theta),
+    ];
+    println!(
+        "its terms (wall force, output, prior): at the truth [{}], at the end [{}]",
+        terms[0].map(|t| format!("{t:.4e}")).join(", "),
+        terms[1].map(|t| format!("{t:.4e}")).join(", ")
+    );
+    let names = ["m1", "m2", "c1", "k1", "Fy1", "r1", "u1"];
+    for (i, name) in names.iter().enumerate() {
+        let se = found.uncertainty.standard_errors[i];
+        let moved = se.map(|se| (found.theta[i] - chain[i]) / se);
+        println!(
+            "{name}: truth {:.4e}, end {:.4e}, moved {moved:+.2?} standard errors",
+            chain[i], found.theta[i]
+        );
+    }
+    // the search descends from the truth (the re-knotting may not raise it)
+    assert!(end <= at_truth, "{end} above the truth's {at_truth}");
+    for (name, i) in [("m1", 0), ("k1", 3), ("Fy1", 4), ("r1", 5), ("u1", 6)] {
         let interval = found.uncertainty.ci95[i];
         assert!(
-            interval.is_some_and(|[lo, hi]| lo <= truth && truth <= hi),
-            "{name}: the fit walked from the truth {truth} to {} ({interval:?})",
+            interval.is_some_and(|[lo, hi]| lo <= chain[i] && chain[i] <= hi),
+            "{name}: the fit walked from the truth {} to {} ({interval:?})",
+            chain[i],
             found.theta[i]
         );
     }
-    let layout = BarrierLayout {
-        chain: bumpsim_ident::links::Layout { dof: 2 },
-        knots,
-        path_knots: vec![],
-        rebound: None,
-    };
-    let lumped = layout.car(&[chain, table].concat()).unwrap();
+    let lumped = layout.car(&truth_theta).unwrap();
     let fits = |response: &bumpsim_core::chain::ChainResponse| {
         let (a, b) = held.window;
         let force = bumpsim_estimate::fit::percent(&response.force[a..=b], &held.force[a..=b]);
@@ -366,4 +400,100 @@ fn crush_case(dir: &Path, truth: &serde_json::Value) -> LoadCase {
         window: (0, n - 1),
         compare: Default::default(),
     }
+}
+
+/// The generator's truth as the barrier identification's car: the rear
+/// bar's link between m1 (the mass ahead of its middle) and the body, c1
+/// at its bound (the bars are undamped), the front table at the front
+/// bar's bilinear curve read at the 10 knots the identification starts
+/// from; its layout and parameters (SI).
+fn truth_car(case: &LoadCase, truth: &serde_json::Value) -> (BarrierLayout, Vec<f64>) {
+    use bumpsim_core::link::Curve;
+    let value = |key: &str| truth[key].as_f64().unwrap();
+    let front = |key: &str| truth["front"][key].as_f64().unwrap();
+    let (total, m1) = (value("total_mass"), value("front_mass") + 1.0);
+    let chain = [
+        m1,
+        total - m1,
+        1.0,
+        value("stiffness"),
+        value("yield_force"),
+        value("hardening"),
+        value("unloading"),
+    ];
+    let (knots, _) = bumpsim_ident::links::barrier::front_start(case, total, 10).unwrap();
+    let bar =
+        Curve::bilinear(front("stiffness"), front("yield_force"), front("hardening")).unwrap();
+    let mut table: Vec<f64> = knots.iter().map(|d| bar.force(*d)).collect();
+    table.push(front("unloading") * front("stiffness"));
+    let layout = BarrierLayout {
+        chain: bumpsim_ident::links::Layout { dof: 2 },
+        knots,
+        path_knots: vec![],
+        rebound: None,
+    };
+    (layout, [&chain[..], &table].concat())
+}
+
+/// The identification's objective Σ r² (each channel over its default
+/// floor's scale, the test sheet's mass prior at ±1 %) of the car `theta`
+/// on `layout`: what [`into_wall::identify`] reports as `objective` for
+/// its optimum, evaluated anywhere.
+fn objective_at(case: &LoadCase, total: f64, layout: &BarrierLayout, theta: &[f64]) -> f64 {
+    terms_at(case, total, layout, theta).iter().sum()
+}
+
+/// [`objective_at`]'s terms: the wall force's, the output's and the
+/// prior's.
+fn terms_at(case: &LoadCase, total: f64, layout: &BarrierLayout, theta: &[f64]) -> [f64; 3] {
+    use bumpsim_estimate::lm::LeastSquares;
+    use bumpsim_estimate::prior::{Prior, Priored};
+    let cases = std::slice::from_ref(case);
+    let scales = Weighting::default().fixed(cases).unwrap().unwrap();
+    let fixed = vec![None; layout.count()];
+    let objective = BarrierObjective::new(cases, layout.clone(), &fixed, scales);
+    let dof = layout.chain.dof;
+    let prior = Prior::sum("total mass", (0..dof).collect(), total, 0.01).unwrap();
+    let problem = Priored::new(objective, vec![prior], 1.0).unwrap();
+    let p: Vec<f64> = theta.iter().map(|v| v.ln()).collect();
+    let mut r = vec![0.0; problem.residual_count()];
+    assert!(problem.evaluate(&p, &mut r, None), "the car cannot be run");
+    let square = |rows: &[f64]| rows.iter().map(|v| v * v).sum::<f64>();
+    let force = case.window_len();
+    let output = force + case.residual_len();
+    [
+        square(&r[..force]),
+        square(&r[force..output]),
+        square(&r[output..]),
+    ]
+}
+
+/// The layout the identification `found` ended on (its front table's
+/// knots after the re-knotting).
+fn found_layout(found: &LinkIdentification) -> BarrierLayout {
+    let Some(bumpsim_core::link::Curve::Table { points }) = found.front.as_ref().map(|f| f.curve())
+    else {
+        panic!("a barrier identification has a tabulated front");
+    };
+    BarrierLayout {
+        chain: found.layout,
+        knots: points[1..].iter().map(|p| p[0]).collect(),
+        path_knots: vec![],
+        rebound: None,
+    }
+}
+
+/// The objective at the end of `found` re-evaluated by [`objective_at`]
+/// (checked against the identification's own figure, to 1e-9), and the
+/// truth's on the same objective.
+fn objectives(case: &LoadCase, truth: &serde_json::Value, found: &LinkIdentification) -> [f64; 2] {
+    let total = truth["total_mass"].as_f64().unwrap();
+    let end = objective_at(case, total, &found_layout(found), &found.theta);
+    assert!(
+        (end - found.objective).abs() <= 1e-9 * found.objective,
+        "the objective re-evaluated {end} against the identification's {}",
+        found.objective
+    );
+    let (layout, theta) = truth_car(case, truth);
+    [objective_at(case, total, &layout, &theta), end]
 }

@@ -449,7 +449,15 @@ fn weights(channels: &TestChannels, duration: f64) -> Result<Vec<f64>, PlanarErr
         .filter(|(_, p)| p.along_x())
         .map(|(n, _)| n.unwrap_or(f64::NAN))
         .collect();
-    let pooled = (x.iter().map(|v| v * v).sum::<f64>() / x.len().max(1) as f64).sqrt();
+    if x.is_empty() {
+        // it blamed the first sensor's pre-trigger (a yaw-rate sensor's,
+        // with 500 samples of it): issue 44's hostile pass
+        return Err(PlanarError::Case {
+            case: channels.name.clone(),
+            message: "sensors: no x accelerometer, which the other sensors are weighed against: the first two sensors are x accelerometers on the body (body = [ξ, η] m), left then right".into(),
+        });
+    }
+    let pooled = (x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64).sqrt();
     let unknown = |k: usize| PlanarError::Case {
         case: channels.name.clone(),
         message: format!(

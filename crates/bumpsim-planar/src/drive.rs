@@ -184,6 +184,10 @@ pub struct Driven {
     pub chains: Vec<Vec<f64>>,
 }
 
+/// The largest speed of a replay's car at time zero, m/s, either sign
+/// (a speed of 1e300 left "no start could be evaluated"; docs/limits.md).
+pub const MAX_SPEED: f64 = 1000.0;
+
 /// Most samples of one replay (as a simulation's output, docs/limits.md).
 pub const MAX_SAMPLES: usize = 10_000_000;
 
@@ -195,7 +199,13 @@ fn check(input: &Drive, masses: usize) -> Result<usize, PlanarError> {
         "must be positive",
         input.step > 0.0,
     )?;
-    require("speed", input.speed, "m/s", "must be finite", true)?;
+    require(
+        "speed",
+        input.speed,
+        "m/s",
+        &format!("finite, at most {MAX_SPEED} m/s in size (a crash test's is a few m/s)"),
+        input.speed.abs() <= MAX_SPEED,
+    )?;
     let samples = input.loads.first().map_or(0, |l| l.force.len());
     require(
         "samples",
@@ -208,7 +218,10 @@ fn check(input: &Drive, masses: usize) -> Result<usize, PlanarError> {
         let name = |what: &str| format!("load[{k}].{what}");
         require(&name("lateral"), load.lateral, "m", "must be finite", true)?;
         if let Some(p) = load.anchor {
-            require(&name("anchor"), p[0] + p[1], "m", "must be finite", true)?;
+            // (1e300 m left "no start could be evaluated"; NaN: not finite)
+            let far = p[0].abs().max(p[1].abs()) + 0.0 * (p[0] + p[1]);
+            let near = format!("finite, ξ and η within {MAX_SENSOR_PLACE} m of the CG");
+            require(&name("anchor"), far, "m", &near, far <= MAX_SENSOR_PLACE)?;
         }
         if let Some(width) = load.cell {
             require(

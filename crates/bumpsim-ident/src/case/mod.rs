@@ -148,6 +148,13 @@ impl Comparison {
 /// instead of overflowing every simulation ("all starts failed").
 pub const MAX_INITIAL_VELOCITY: f64 = 1000.0;
 
+/// The largest force (N) and displacement (m) a case's measurement may
+/// hold, in size: far beyond any crash test (a few MN, a few m), below
+/// where the squared residuals overflow. An accelerometer sample of 1e308
+/// integrated into a displacement of 1e299 m failed every start ("the
+/// model could not be simulated") instead of naming the measurement.
+pub const MAX_MEASURED: [f64; 2] = [1e12, 1e6];
+
 impl LoadCase {
     /// Checks lengths, window and values.
     pub fn validate(&self) -> Result<(), CaseError> {
@@ -194,12 +201,26 @@ impl LoadCase {
                 self.step, self.output_dof
             )));
         }
-        let signals = [("force", &self.force), ("displacement", &self.measured)];
-        for (what, values) in signals {
+        let signals = [
+            ("force", &self.force, "N", MAX_MEASURED[0]),
+            ("displacement", &self.measured, "m", MAX_MEASURED[1]),
+        ];
+        for (what, values, unit, limit) in signals {
             if let Some(k) = values.iter().position(|v| !v.is_finite()) {
                 return Err(invalid(format!(
                     "{what} sample {k} is {}: expected finite values",
                     values[k]
+                )));
+            }
+            if let Some(k) = values.iter().position(|v| v.abs() > limit) {
+                // (t = 0 read off a time base that starts at -1e-17 s)
+                let t = self.start + k as f64 * self.step;
+                let t = if t.abs() < 1e-6 * self.step { 0.0 } else { t };
+                return Err(invalid(format!(
+                    "{what} sample {k} (t = {} s) is {} {unit}: expected at most {} {unit} in size (check the channels' samples and their scale)",
+                    format_number(t, 4),
+                    format_number(values[k], 4),
+                    format_number(limit, 4)
                 )));
             }
         }

@@ -25,7 +25,7 @@ use super::weighting::{FLOOR, Weighting};
 use super::{Layout, LinkSettings};
 use crate::case::LoadCase;
 use bumpsim_core::model::MsdModel;
-use bumpsim_core::units::{Dimension, parse_quantity};
+use bumpsim_core::units::{Dimension, parse_quantity, short};
 use toml::{Table, Value};
 
 /// Most knots of a tabulated curve the table takes (the acceptance's
@@ -121,9 +121,14 @@ impl Default for LinksStudy {
 }
 
 fn refused(key: &str, value: &Value, expected: impl Into<String>) -> LinksStudyError {
+    // a float as TOML writes it has all its digits (1e300: 301 of them)
+    let value = match value {
+        Value::Float(f) if f.abs() >= 1e15 && f.is_finite() => format!("{f:?}"),
+        other => other.to_string(),
+    };
     LinksStudyError::Value {
         key: key.into(),
-        value: value.to_string(),
+        value,
         expected: expected.into(),
     }
 }
@@ -292,7 +297,8 @@ impl LinksStudy {
         if links.upper[0] < links.lower[0] {
             return study(format!(
                 "[links] front_mass_min = {} kg: above the masses' upper bound {} kg",
-                self.front_mass_min, links.upper[0]
+                short(self.front_mass_min),
+                short(links.upper[0])
             ));
         }
         Ok(BarrierSettings {
@@ -416,6 +422,12 @@ mod tests {
             let err = read(text).unwrap_err().to_string();
             assert!(err.starts_with(&format!("[links] {key}")), "{text}: {err}");
         }
+        // a huge number is printed short, not with its 301 digits
+        let err = read("rebound = 1e300").unwrap_err().to_string();
+        assert!(
+            err.starts_with("[links] rebound = 1e300: expected"),
+            "{err}"
+        );
         let err = read("weighting = \"likelihood\"\nfloor = [0.1, 0.1]").unwrap_err();
         assert!(err.to_string().contains("floor"), "{err}");
     }

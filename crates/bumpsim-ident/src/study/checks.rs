@@ -10,6 +10,21 @@ use bumpsim_core::names::check_names;
 use bumpsim_core::units::short;
 use bumpsim_io::numbers::Numbers;
 
+/// The smallest and largest size of a channel's `scale` factor: a unit
+/// conversion or a sign (−1, 9.80665, 1e-3, 1e6) lies far inside; 0 or a
+/// factor of 1e-300 made an accelerometer silently zero (a mean of it and
+/// its pair: half the car's motion) and 1e300 overflowed every simulation
+/// ("all starts failed"), issue 44's hostile pass.
+pub const SCALE_RANGE: (f64, f64) = (1e-9, 1e9);
+
+const SCALE_EXPECTED: &str =
+    "a finite factor from 1e-9 to 1e9 in size, either sign (a unit conversion, or -1 for a sign)";
+
+/// Whether a channel's `scale` is finite and within [`SCALE_RANGE`] in size.
+pub fn usable_scale(scale: f64) -> bool {
+    scale.is_finite() && (SCALE_RANGE.0..=SCALE_RANGE.1).contains(&scale.abs())
+}
+
 impl Study {
     /// `lower_bound` and `upper_bound` apply to every parameter, `bounds`
     /// and `fixed` to one: checked here, where their keys can be named
@@ -58,8 +73,9 @@ impl Study {
     }
 
     /// Each case's fit window and bias window are two finite times in
-    /// order, and its CFC class is a positive finite number (the class the
-    /// channel's sample rate allows is checked when it is loaded).
+    /// order, its CFC class is a positive finite number (the class the
+    /// channel's sample rate allows is checked when it is loaded) and each
+    /// channel's `scale` a factor [`usable_scale`] takes.
     pub(super) fn check_case_values(&self) -> Result<(), StudyValueError> {
         for case in &self.case {
             let error = |key, value: String, expected: &str| StudyValueError::CaseValue {
@@ -84,6 +100,17 @@ impl Study {
                     "cfc",
                     short(c),
                     "a positive CFC class (60, 180, 600, 1000)",
+                ));
+            }
+            if let Some((what, channel)) = case.channels().find(|(_, c)| !usable_scale(c.scale)) {
+                return Err(error(
+                    "scale",
+                    format!(
+                        "{} (the {what} channel '{}')",
+                        short(channel.scale),
+                        channel.channel
+                    ),
+                    SCALE_EXPECTED,
                 ));
             }
             let range = bumpsim_estimate::domain::NOISE_RANGE;

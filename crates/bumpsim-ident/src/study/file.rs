@@ -169,6 +169,14 @@ pub struct IdentificationSpec {
 }
 
 impl CaseSpec {
+    /// The case's channel references with the signal each is (`force`,
+    /// `acceleration`, `displacement`).
+    pub fn channels(&self) -> impl Iterator<Item = (&'static str, &ChannelRef)> {
+        std::iter::once(("force", &self.force))
+            .chain(self.acceleration.iter().map(|r| ("acceleration", r)))
+            .chain(self.displacement.iter().map(|r| ("displacement", r)))
+    }
+
     /// The selectors of the case's channels given a negative scale (turned
     /// in sign by the study), for the fix a sign warning names.
     pub fn turned_channels(&self) -> Vec<String> {

@@ -26,6 +26,7 @@ mod file;
 use context::CaseContext;
 
 pub use crate::case::MAX_INITIAL_VELOCITY;
+pub use checks::{SCALE_RANGE, usable_scale};
 pub use context::{CaseNote, LoadedCases};
 pub use error::{DefinitionError, StudyError, StudyValueError};
 pub use file::{

@@ -9,6 +9,10 @@ use super::{MAX_SPREAD, MAX_STARTS, PlanarCase, Setup, Unknowns};
 use crate::car::{PlanarError, parameter};
 use crate::drive::Sensor;
 
+/// The largest compared reading of a sensor, in size (SI: m, or rad/s):
+/// far beyond any crash test, below where the squared residuals overflow.
+pub(crate) const MAX_MEASURED: f64 = 1e6;
+
 /// The unknowns of `cases` under `setup`, or the first input error.
 pub(super) fn check(cases: &[PlanarCase], setup: &Setup) -> Result<Unknowns, PlanarError> {
     let setting =
@@ -79,7 +83,34 @@ pub(super) fn spacing(case: &PlanarCase) -> f64 {
 pub(super) fn check_case(case: &PlanarCase) -> Result<(), PlanarError> {
     let name = |what: &str| format!("case '{}': {what}", case.name);
     let samples = case.drive.loads.first().map_or(0, |l| l.force.len());
+    let speed = case.drive.speed;
+    if !(speed.is_finite() && speed.abs() <= crate::drive::MAX_SPEED) {
+        return Err(parameter(
+            &name("speed"),
+            speed,
+            "m/s",
+            &format!(
+                "finite, at most {} m/s in size (a crash test's is a few m/s)",
+                crate::drive::MAX_SPEED
+            ),
+        ));
+    }
     let spacing = spacing(case);
+    let sensors = &case.drive.sensors;
+    if let Some(k) = (0..2).find(|&k| !matches!(sensors.get(k), Some(Sensor::Body(_)))) {
+        // a sill given `chain = 99` printed "sensors = NaN m" (issue 44's
+        // hostile pass): name the sensor and what it is instead
+        let found = match sensors.get(k) {
+            None => format!("the case has {} sensors", sensors.len()),
+            Some(sensor) => format!("sensor[{k}] is {}", sensor_kind(sensor)),
+        };
+        return Err(PlanarError::Case {
+            case: case.name.clone(),
+            message: format!(
+                "sensors: the first two must be x accelerometers on the body (body = [ξ, η] m), left (larger η) then right: {found}"
+            ),
+        });
+    }
     if !(spacing.is_finite() && spacing > 0.0) {
         return Err(parameter(
             &name("sensors"),
@@ -134,6 +165,17 @@ pub(super) fn check_case(case: &PlanarCase) -> Result<(), PlanarError> {
                 "must be finite",
             ));
         }
+        // a yaw-rate sample of 1e308 left "no start could be evaluated"
+        if let Some(k) = m.iter().position(|v| v.abs() > MAX_MEASURED) {
+            return Err(parameter(
+                &name(&format!("sensor[{s}] reading[{k}]")),
+                m[k],
+                "SI",
+                &format!(
+                    "at most {MAX_MEASURED:e} in size (m, or rad/s for a yaw rate): check the channel's samples"
+                ),
+            ));
+        }
     }
     let (a, b) = case.window;
     if !(a < b && b < samples) {
@@ -145,4 +187,16 @@ pub(super) fn check_case(case: &PlanarCase) -> Result<(), PlanarError> {
         ));
     }
     Ok(())
+}
+
+/// What a sensor is, in a message.
+fn sensor_kind(sensor: &Sensor) -> &'static str {
+    match sensor {
+        Sensor::Body(_) => "an x accelerometer on the body",
+        Sensor::Chain(_) => "an x accelerometer on a chain mass (chain = i)",
+        Sensor::Lateral(_) => "a lateral accelerometer",
+        Sensor::YawRate => "a yaw-rate sensor",
+        Sensor::Film(_) => "a film target's displacement",
+        Sensor::Crush(_) => "a chain mass's displacement (a string pot)",
+    }
 }
