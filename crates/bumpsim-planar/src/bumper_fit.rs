@@ -108,20 +108,47 @@ struct Problem<'a> {
 impl Problem<'_> {
     /// The residuals at `p` (None: a law that cannot be built or run).
     fn residuals(&self, p: &[f64]) -> Option<Vec<f64>> {
-        let car = with_law(self.car, p).ok()?;
-        let mut r = Vec::with_capacity(self.count);
-        for case in &self.cases {
-            let run = forward(&car, case).ok()?;
-            let force = run.channels.iter().find(|c| c.name == "force")?;
-            let (a, b) = run.window;
-            let peak = force.measured[a..=b]
-                .iter()
-                .fold(0.0f64, |m, v| m.max(v.abs()));
-            let norm = peak.max(f64::MIN_POSITIVE) * ((b - a + 1) as f64).sqrt();
-            r.extend((a..=b).map(|k| (force.simulated[k] - force.measured[k]) / norm));
-        }
-        r.iter().all(|v| v.is_finite()).then_some(r)
+        force_residuals(self.car, &self.cases, p)
     }
+}
+
+/// The force residuals (see the module) of `car` with the bumper law `p`
+/// (`[ln a, ln λ, ln u]`, and `c` when it has four) over the forward runs of
+/// `cases` (each with its striker); None: a law that cannot be built or run.
+pub(crate) fn force_residuals(car: &PlanarCar, cases: &[&PlanarCase], p: &[f64]) -> Option<Vec<f64>> {
+    let car = with_law(car, p).ok()?;
+    let mut r = Vec::new();
+    for case in cases {
+        let run = forward(&car, case).ok()?;
+        let force = run.channels.iter().find(|c| c.name == "force")?;
+        let (a, b) = run.window;
+        let peak = force.measured[a..=b]
+            .iter()
+            .fold(0.0f64, |m, v| m.max(v.abs()));
+        let norm = peak.max(f64::MIN_POSITIVE) * ((b - a + 1) as f64).sqrt();
+        r.extend((a..=b).map(|k| (force.simulated[k] - force.measured[k]) / norm));
+    }
+    r.iter().all(|v| v.is_finite()).then_some(r)
+}
+
+/// The bumper law's search variables of `fit`, `[ln a, ln λ, ln u, c]`.
+pub(crate) fn law(fit: &BumperFit) -> [f64; 4] {
+    [
+        fit.scale.ln(),
+        fit.stretch.ln(),
+        fit.unloading_ratio.ln(),
+        fit.rate,
+    ]
+}
+
+/// The bumper law's bounds, lower and upper: `a` and `λ` within 1/3 to 3,
+/// `u` from 1 to 20, `c` from 0 to 3 s/m (see the module).
+pub(crate) fn law_bounds() -> ([f64; 4], [f64; 4]) {
+    let third = 3f64.ln();
+    (
+        [-third, -third, 0.0, 0.0],
+        [third, third, 20f64.ln(), 3.0],
+    )
 }
 
 impl LeastSquares for Problem<'_> {
@@ -200,8 +227,8 @@ pub fn fit_bumper(
     // u replaces the segments' own ratio: the start keeps the first one's
     let n = parameters;
     let start = [0.0, 0.0, ratio.ln(), car.contact_rate()][..n].to_vec();
-    let lower = [-(3f64.ln()), -(3f64.ln()), 0.0, 0.0][..n].to_vec();
-    let upper = [3f64.ln(), 3f64.ln(), 20f64.ln(), 3.0][..n].to_vec();
+    let (lower, upper) = law_bounds();
+    let (lower, upper) = (lower[..n].to_vec(), upper[..n].to_vec());
     let mut r0 = vec![0.0; count];
     if !problem.evaluate(&start, &mut r0, None) {
         return Err(PlanarError::Case {

@@ -56,6 +56,7 @@
 
 mod bumper;
 mod check;
+mod joint;
 mod links;
 mod objective;
 mod plausible;
@@ -80,6 +81,7 @@ pub use objective::{BIAS_INFLATION, Bias};
 use serde::Serialize;
 
 pub use bumper::{BumperFit, transformed, unloading_ratio};
+pub use joint::JOINT_BALANCE;
 pub use links::{LinkLaw, LinkLaws};
 pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
@@ -171,6 +173,12 @@ pub struct Setup {
     /// runs once the car is identified ([`crate::bumper_fit::identified`]);
     /// false: the template's bumper.
     pub bumper: bool,
+    /// With `bumper`, polish the searched car and the bumper's law together
+    /// on the replays and the training tests' forward runs, the forward
+    /// runs weighing this much (β) against the replays at the start (module
+    /// `joint`; a measurement's set-up, not a study key); None: the bumper
+    /// fitted to the car as searched.
+    pub joint: Option<f64>,
     /// Where the accelerometers are compared (module `objective`):
     /// displacement (the thesis's, m²), velocity or acceleration; the
     /// yaw-rate sensor and displacement channels as measured.
@@ -196,6 +204,7 @@ impl Setup {
             priors: Vec::new(),
             staged: true,
             bumper: false,
+            joint: None,
             domain: Domain::Displacement,
             bias: Bias::Pretrigger,
         }
@@ -376,11 +385,17 @@ pub fn identify(
             name: "[priors]".into(),
             expected: e.to_string(),
         })?;
+    let searched = match (setup.bumper, setup.joint) {
+        (true, Some(balance)) => {
+            joint::polished(&priored, cases, found.searched, (&lower, &upper), balance)?
+        }
+        _ => found.searched,
+    };
     summarise(
         cases,
         setup,
         &priored,
-        &found.searched,
+        &searched,
         (&lower, &upper),
         clock,
     )

@@ -323,8 +323,12 @@ fn the_objective_is_read_and_a_wrong_one_named() {
 /// "velocity"\nbias = "nuisance"`) on
 /// every series of `BUMPSIM_SEEDS` (default `0,1,2,3`), one table row
 /// each with the crash boxes' identified elastic stiffness; the study file
-/// is read as a lab's would be. A measurement, not a check: it asserts only
-/// finite scores.
+/// is read as a lab's would be. Each set-up runs once per entry of
+/// `BUMPSIM_JOINT` (comma-separated; default `-`): a number β polishes the
+/// car and the bumper's law together with the forward runs weighing β
+/// against the replays (`Setup::joint`, identify module `joint`), `-` fits
+/// the bumper after the car (the study as read). A measurement, not a
+/// check: it asserts only finite scores.
 /// `BUMPSIM_EXTRAS=... cargo test --release -p bumpsim-planar --test planar
 /// defaults::options -- --ignored --nocapture`.
 #[test]
@@ -340,24 +344,30 @@ fn options() {
             let extra = extra.replace("\\n", "\n");
             let path = dir.join(format!("study-option-{k}.toml"));
             std::fs::write(&path, format!("{text}\n{extra}\n")).unwrap();
-            let study = PlanarStudy::read(&path).unwrap();
-            let clock = Instant::now();
-            let result = study.identified(&|| {}).unwrap();
-            let s = scored(&dir, &study, &result, clock.elapsed().as_secs_f64());
-            let value = |name: &str| {
-                result
-                    .parameters
-                    .iter()
-                    .find(|p| p.name == name)
-                    .map_or(f64::NAN, |p| p.value)
-            };
-            eprintln!(
-                "{} left/right springs[0] {:.0} / {:.0} N/mm",
-                s.row(&format!("seed {seed}, {}", extra.replace('\n', " "))),
-                value("left.springs[0]") / 1e3,
-                value("right.springs[0]") / 1e3
-            );
-            assert!(s.offset.iter().chain(&s.narrow).all(|v| v.is_finite()));
+            for joint in list("BUMPSIM_JOINT", "-") {
+                let mut study = PlanarStudy::read(&path).unwrap();
+                study.setup.joint = joint.parse().ok();
+                let clock = Instant::now();
+                let result = study.identified(&|| {}).unwrap();
+                let s = scored(&dir, &study, &result, clock.elapsed().as_secs_f64());
+                let value = |name: &str| {
+                    result
+                        .parameters
+                        .iter()
+                        .find(|p| p.name == name)
+                        .map_or(f64::NAN, |p| p.value)
+                };
+                eprintln!(
+                    "{} left/right springs[0] {:.0} / {:.0} N/mm",
+                    s.row(&format!(
+                        "seed {seed}, {}, joint {joint}",
+                        extra.replace('\n', " ")
+                    )),
+                    value("left.springs[0]") / 1e3,
+                    value("right.springs[0]") / 1e3
+                );
+                assert!(s.offset.iter().chain(&s.narrow).all(|v| v.is_finite()));
+            }
         }
     }
 }
