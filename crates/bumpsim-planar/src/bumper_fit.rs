@@ -115,7 +115,11 @@ impl Problem<'_> {
 /// The force residuals (see the module) of `car` with the bumper law `p`
 /// (`[ln a, ln λ, ln u]`, and `c` when it has four) over the forward runs of
 /// `cases` (each with its striker); None: a law that cannot be built or run.
-pub(crate) fn force_residuals(car: &PlanarCar, cases: &[&PlanarCase], p: &[f64]) -> Option<Vec<f64>> {
+pub(crate) fn force_residuals(
+    car: &PlanarCar,
+    cases: &[&PlanarCase],
+    p: &[f64],
+) -> Option<Vec<f64>> {
     let car = with_law(car, p).ok()?;
     let mut r = Vec::new();
     for case in cases {
@@ -145,10 +149,7 @@ pub(crate) fn law(fit: &BumperFit) -> [f64; 4] {
 /// `u` from 1 to 20, `c` from 0 to 3 s/m (see the module).
 pub(crate) fn law_bounds() -> ([f64; 4], [f64; 4]) {
     let third = 3f64.ln();
-    (
-        [-third, -third, 0.0, 0.0],
-        [third, third, 20f64.ln(), 3.0],
-    )
+    ([-third, -third, 0.0, 0.0], [third, third, 20f64.ln(), 3.0])
 }
 
 impl LeastSquares for Problem<'_> {

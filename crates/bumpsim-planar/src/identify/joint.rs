@@ -90,7 +90,10 @@ impl LeastSquares for Joint<'_, '_> {
     fn evaluate(&self, q: &[f64], r: &mut [f64], jacobian: Option<&mut DMatrix<f64>>) -> bool {
         let (n, m) = (self.cars(), self.priored.residual_count());
         let mut replays = jacobian.as_ref().map(|_| DMatrix::zeros(m, n));
-        if !self.priored.evaluate(&q[..n], &mut r[..m], replays.as_mut()) {
+        if !self
+            .priored
+            .evaluate(&q[..n], &mut r[..m], replays.as_mut())
+        {
             return false;
         }
         let Some(f) = self.forces_at(q) else {
@@ -105,7 +108,11 @@ impl LeastSquares for Joint<'_, '_> {
         let columns: Vec<Option<(f64, Vec<f64>)>> = (0..q.len())
             .into_par_iter()
             .map(|i| {
-                let h = if q[i] + STEP > self.upper[i] { -STEP } else { STEP };
+                let h = if q[i] + STEP > self.upper[i] {
+                    -STEP
+                } else {
+                    STEP
+                };
                 let mut moved = q.to_vec();
                 moved[i] += h;
                 self.forces_at(&moved).map(|c| (h, c))

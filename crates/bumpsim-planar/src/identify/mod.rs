@@ -391,14 +391,7 @@ pub fn identify(
         }
         _ => found.searched,
     };
-    summarise(
-        cases,
-        setup,
-        &priored,
-        &searched,
-        (&lower, &upper),
-        clock,
-    )
+    summarise(cases, setup, &priored, &searched, (&lower, &upper), clock)
 }
 
 /// The error model of the intervals: the residuals' integrated
