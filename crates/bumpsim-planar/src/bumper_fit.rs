@@ -35,16 +35,25 @@
 //! characteristic, [`bumpsim_impact::bumper`]): a contact whose force grows
 //! with the closing speed (Hunt–Crossley, `F = k dⁿ (1 + 1.5 α ḋ)`) is then
 //! represented at the training tests' speeds only.
+//!
+//! With `Setup::joint` the car and the bumper's law are first polished
+//! together on the replays and the forward runs (submodule `joint`,
+//! src/joint_fit.rs), then the bumper is fitted to the polished car.
 
 use crate::car::{PlanarCar, PlanarError};
 use crate::forward::forward;
 use crate::identify::{
-    BumperFit, PlanarCase, PlanarIdentification, Setup, identify, transformed, unloading_ratio,
+    BumperFit, PlanarCase, PlanarIdentification, Setup, Unknowns, identify_polished, transformed,
+    unloading_ratio,
 };
 use bumpsim_estimate::difference::forward_jacobian;
 use bumpsim_estimate::lm::{LeastSquares, Settings, minimise};
+use bumpsim_estimate::multistart::Searched;
 use bumpsim_estimate::observer::Observer;
 use nalgebra::DMatrix;
+
+#[path = "joint_fit.rs"]
+mod joint;
 
 impl crate::study::PlanarStudy {
     /// The study's planar identification, its bumper fitted when it asks
@@ -65,7 +74,14 @@ pub fn identified(
     setup: &Setup,
     observer: &dyn Observer,
 ) -> Result<PlanarIdentification, PlanarError> {
-    let mut result = identify(cases, setup, observer)?;
+    let polish = |problem: (&(dyn LeastSquares + Sync), &Unknowns),
+                  searched: Searched,
+                  bounds: (&[f64], &[f64])| {
+        let balance = setup.joint.unwrap_or(1.0);
+        joint::polished(problem, cases, searched, bounds, balance)
+    };
+    let joint = setup.bumper && setup.joint.is_some();
+    let mut result = identify_polished(cases, setup, observer, joint.then_some(&polish as _))?;
     if setup.bumper {
         let fit = fit_bumper(&result.car, cases, true)?;
         result.car = fit.car.clone();

@@ -56,7 +56,6 @@
 
 mod bumper;
 mod check;
-mod joint;
 mod links;
 mod objective;
 mod plausible;
@@ -81,7 +80,6 @@ pub use objective::{BIAS_INFLATION, Bias};
 use serde::Serialize;
 
 pub use bumper::{BumperFit, transformed, unloading_ratio};
-pub use joint::JOINT_BALANCE;
 pub use links::{LinkLaw, LinkLaws};
 pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
@@ -175,9 +173,9 @@ pub struct Setup {
     pub bumper: bool,
     /// With `bumper`, polish the searched car and the bumper's law together
     /// on the replays and the training tests' forward runs, the forward
-    /// runs weighing this much (β) against the replays at the start (module
-    /// `joint`; a measurement's set-up, not a study key); None: the bumper
-    /// fitted to the car as searched.
+    /// runs weighing this much (β) against the replays at the start
+    /// (the joint final stage of [`crate::bumper_fit`], `[model] joint`); None: the bumper fitted to
+    /// the car as searched.
     pub joint: Option<f64>,
     /// Where the accelerometers are compared (module `objective`):
     /// displacement (the thesis's, m²), velocity or acceleration; the
@@ -358,6 +356,27 @@ pub fn identify(
     setup: &Setup,
     observer: &dyn Observer,
 ) -> Result<PlanarIdentification, PlanarError> {
+    identify_polished(cases, setup, observer, None)
+}
+
+/// A final stage on the search's best before the summary: given the
+/// priored problem, the unknowns, the search and its bounds, the search
+/// with its best run replaced (the joint final stage of
+/// [`crate::bumper_fit`]).
+pub(crate) type Polish<'a> = dyn Fn(
+        (&(dyn LeastSquares + Sync), &Unknowns),
+        Searched,
+        (&[f64], &[f64]),
+    ) -> Result<Searched, PlanarError>
+    + 'a;
+
+/// [`identify()`] with `polish` run on the search's best, when given.
+pub(crate) fn identify_polished(
+    cases: &[PlanarCase],
+    setup: &Setup,
+    observer: &dyn Observer,
+    polish: Option<&Polish>,
+) -> Result<PlanarIdentification, PlanarError> {
     let clock = std::time::Instant::now();
     let unknowns = check::check(cases, setup)?;
     let stated = priors(&unknowns, setup)?;
@@ -385,11 +404,9 @@ pub fn identify(
             name: "[priors]".into(),
             expected: e.to_string(),
         })?;
-    let searched = match (setup.bumper, setup.joint) {
-        (true, Some(balance)) => {
-            joint::polished(&priored, cases, found.searched, (&lower, &upper), balance)?
-        }
-        _ => found.searched,
+    let searched = match polish {
+        Some(polish) => polish((&priored, &unknowns), found.searched, (&lower, &upper))?,
+        None => found.searched,
     };
     summarise(cases, setup, &priored, &searched, (&lower, &upper), clock)
 }

@@ -1,4 +1,4 @@
-//! The joint final stage ([`super::Setup::joint`], with `bumper`):
+//! The joint final stage ([`crate::identify::Setup::joint`], with `bumper`):
 //! the searched car and the bumper's law polished together on both things
 //! the training tests measure, the sensors' replays and the forward runs'
 //! force.
@@ -9,7 +9,7 @@
 //! elastic stiffness, in series with the bumper in every forward run) is
 //! then left where the replays' noise put it, and the bumper is fitted
 //! around it. Here the search variables are `(p, b)`: the identification's
-//! `p` (ln θ and the lines of action, [`super::Unknowns`]) and the bumper
+//! `p` (ln θ and the lines of action, [`crate::identify::Unknowns`]) and the bumper
 //! law's `b = [ln a, ln λ, ln u, c]` ([`crate::bumper_fit`]), and the
 //! residuals are the identification's (data and stated priors,
 //! [`bumpsim_estimate::prior::Priored`]) followed by the bumper fit's force
@@ -19,7 +19,7 @@
 //! `F_J(p, b) = F_P(p) + w² Σ r_f(p, b)²`, `w² = β F_P(p₀) / Σ r_f(p₀, b₀)²`,
 //!
 //! `p₀` the search's best, `b₀` the bumper fitted to its car: β
-//! (`Setup::joint`; [`JOINT_BALANCE`] is the one measured) is how much the forward runs
+//! (`Setup::joint`, the study's `[model] joint`) is how much the forward runs
 //! weigh against the replays at the stage's start. The bounded
 //! Levenberg–Marquardt of [`bumpsim_estimate::lm`] minimises `F_J` from
 //! `(p₀, b₀)` within the search's bounds and the bumper fit's, with the
@@ -31,33 +31,28 @@
 //! bumper segments (which weigh a wall cell's line of action), as in the
 //! search.
 
-use super::PlanarCase;
-use super::objective::Objective;
-use crate::bumper_fit::{fit_bumper, force_residuals, law, law_bounds};
-use crate::car::{PlanarCar, PlanarError};
+use super::{fit_bumper, force_residuals, law, law_bounds};
+use crate::car::PlanarError;
+use crate::identify::{PlanarCase, Unknowns};
 use bumpsim_estimate::lm::{self, LeastSquares, minimise};
 use bumpsim_estimate::multistart::Searched;
-use bumpsim_estimate::prior::Priored;
 use nalgebra::DMatrix;
 use rayon::prelude::*;
-
-/// The forward runs' weight against the replays at the joint stage's
-/// start, β (see the module), unless the study says.
-pub const JOINT_BALANCE: f64 = 1.0;
 
 /// Step of the forward runs' forward differences (ln θ, m, bumper law).
 pub const STEP: f64 = 1e-3;
 
 /// The joint problem (see the module).
-struct Joint<'a, 'b> {
-    priored: &'a Priored<Objective<'b>>,
+struct Joint<'a> {
+    priored: &'a (dyn LeastSquares + Sync),
+    unknowns: &'a Unknowns,
     strikers: Vec<&'a PlanarCase>,
     weight: f64,
     upper: Vec<f64>,
     forces: usize,
 }
 
-impl Joint<'_, '_> {
+impl Joint<'_> {
     /// The car parameters' count (`p`'s length).
     fn cars(&self) -> usize {
         self.priored.parameter_count()
@@ -66,19 +61,13 @@ impl Joint<'_, '_> {
     /// The weighted force residuals at `q = (p, b)`.
     fn forces_at(&self, q: &[f64]) -> Option<Vec<f64>> {
         let (p, b) = q.split_at(self.cars());
-        let car = made(self.priored, p)?;
+        let car = self.unknowns.car(&self.unknowns.theta(p)).ok()?;
         let r = force_residuals(&car, &self.strikers, b)?;
         (r.len() == self.forces).then(|| r.iter().map(|v| self.weight * v).collect())
     }
 }
 
-/// The car of the search variables `p` (None: one that cannot be made).
-fn made(priored: &Priored<Objective<'_>>, p: &[f64]) -> Option<PlanarCar> {
-    let unknowns = priored.problem().unknowns();
-    unknowns.car(&unknowns.theta(p)).ok()
-}
-
-impl LeastSquares for Joint<'_, '_> {
+impl LeastSquares for Joint<'_> {
     fn residual_count(&self) -> usize {
         self.priored.residual_count() + self.forces
     }
@@ -135,8 +124,8 @@ impl LeastSquares for Joint<'_, '_> {
 /// replays at the start; unchanged when the polish does not lower `F_J`.
 /// An error when no training case carries a striker or the start's
 /// forward runs cannot be evaluated.
-pub(super) fn polished(
-    priored: &Priored<Objective<'_>>,
+pub(crate) fn polished(
+    (priored, unknowns): (&(dyn LeastSquares + Sync), &Unknowns),
     cases: &[PlanarCase],
     mut searched: Searched,
     bounds: (&[f64], &[f64]),
@@ -144,7 +133,6 @@ pub(super) fn polished(
 ) -> Result<Searched, PlanarError> {
     let best = searched.starts.best;
     let p0 = searched.runs[best].outcome.parameters.clone();
-    let unknowns = priored.problem().unknowns();
     let car = unknowns.car(&unknowns.theta(&p0))?;
     let b0 = law(&fit_bumper(&car, cases, true)?);
     let strikers: Vec<&PlanarCase> = cases.iter().filter(|c| c.striker.is_some()).collect();
@@ -164,6 +152,7 @@ pub(super) fn polished(
     let lower: Vec<f64> = bounds.0.iter().chain(&lower_b).copied().collect();
     let problem = Joint {
         priored,
+        unknowns,
         strikers,
         weight: (balance * replays / forces.max(f64::MIN_POSITIVE)).sqrt(),
         upper: upper.clone(),
