@@ -66,7 +66,7 @@ impl crate::study::PlanarStudy {
 /// Step of the forward differences in the log parameters.
 const STEP: f64 = 1e-3;
 
-/// The planar identification of `cases` ([`identify()`]), then, when
+/// The planar identification of `cases` ([`crate::identify::identify()`]), then, when
 /// `setup.bumper`, the bumper fitted to the training tests' forward runs:
 /// the result's car carries it and `result.bumper` records it.
 pub fn identified(
