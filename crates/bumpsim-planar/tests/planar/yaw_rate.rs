@@ -360,7 +360,7 @@ fn the_documented_study_meets_issue_44s_thresholds() {
 /// `split::measured` and docs/planar.md (its peak is 8 % low whatever the
 /// split; most of the ratio prior's loss is the bumper fitted after it).
 #[test]
-#[ignore = "three series, about 40 s each in release"]
+#[ignore = "three series, 11-54 s each in release (idle to loaded)"]
 fn the_documented_study_on_varied_cars() {
     for seed in 1..=3 {
         let Some(dir) = super::defaults::series(seed) else {
