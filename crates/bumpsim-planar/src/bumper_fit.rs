@@ -35,16 +35,25 @@
 //! characteristic, [`bumpsim_impact::bumper`]): a contact whose force grows
 //! with the closing speed (Hunt–Crossley, `F = k dⁿ (1 + 1.5 α ḋ)`) is then
 //! represented at the training tests' speeds only.
+//!
+//! With `Setup::joint` the car and the bumper's law are first polished
+//! together on the replays and the forward runs (submodule `joint`,
+//! src/joint_fit.rs), then the bumper is fitted to the polished car.
 
 use crate::car::{PlanarCar, PlanarError};
 use crate::forward::forward;
 use crate::identify::{
-    BumperFit, PlanarCase, PlanarIdentification, Setup, identify, transformed, unloading_ratio,
+    BumperFit, PlanarCase, PlanarIdentification, Setup, Unknowns, identify_polished, transformed,
+    unloading_ratio,
 };
 use bumpsim_estimate::difference::forward_jacobian;
 use bumpsim_estimate::lm::{LeastSquares, Settings, minimise};
+use bumpsim_estimate::multistart::Searched;
 use bumpsim_estimate::observer::Observer;
 use nalgebra::DMatrix;
+
+#[path = "joint_fit.rs"]
+mod joint;
 
 impl crate::study::PlanarStudy {
     /// The study's planar identification, its bumper fitted when it asks
@@ -57,7 +66,7 @@ impl crate::study::PlanarStudy {
 /// Step of the forward differences in the log parameters.
 const STEP: f64 = 1e-3;
 
-/// The planar identification of `cases` ([`identify()`]), then, when
+/// The planar identification of `cases` ([`crate::identify::identify()`]), then, when
 /// `setup.bumper`, the bumper fitted to the training tests' forward runs:
 /// the result's car carries it and `result.bumper` records it.
 pub fn identified(
@@ -65,7 +74,14 @@ pub fn identified(
     setup: &Setup,
     observer: &dyn Observer,
 ) -> Result<PlanarIdentification, PlanarError> {
-    let mut result = identify(cases, setup, observer)?;
+    let polish = |problem: (&(dyn LeastSquares + Sync), &Unknowns),
+                  searched: Searched,
+                  bounds: (&[f64], &[f64])| {
+        let balance = setup.joint.unwrap_or(1.0);
+        joint::polished(problem, cases, searched, bounds, balance)
+    };
+    let joint = setup.bumper && setup.joint.is_some();
+    let mut result = identify_polished(cases, setup, observer, joint.then_some(&polish as _))?;
     if setup.bumper {
         let fit = fit_bumper(&result.car, cases, true)?;
         result.car = fit.car.clone();
@@ -108,20 +124,48 @@ struct Problem<'a> {
 impl Problem<'_> {
     /// The residuals at `p` (None: a law that cannot be built or run).
     fn residuals(&self, p: &[f64]) -> Option<Vec<f64>> {
-        let car = with_law(self.car, p).ok()?;
-        let mut r = Vec::with_capacity(self.count);
-        for case in &self.cases {
-            let run = forward(&car, case).ok()?;
-            let force = run.channels.iter().find(|c| c.name == "force")?;
-            let (a, b) = run.window;
-            let peak = force.measured[a..=b]
-                .iter()
-                .fold(0.0f64, |m, v| m.max(v.abs()));
-            let norm = peak.max(f64::MIN_POSITIVE) * ((b - a + 1) as f64).sqrt();
-            r.extend((a..=b).map(|k| (force.simulated[k] - force.measured[k]) / norm));
-        }
-        r.iter().all(|v| v.is_finite()).then_some(r)
+        force_residuals(self.car, &self.cases, p)
     }
+}
+
+/// The force residuals (see the module) of `car` with the bumper law `p`
+/// (`[ln a, ln λ, ln u]`, and `c` when it has four) over the forward runs of
+/// `cases` (each with its striker); None: a law that cannot be built or run.
+pub(crate) fn force_residuals(
+    car: &PlanarCar,
+    cases: &[&PlanarCase],
+    p: &[f64],
+) -> Option<Vec<f64>> {
+    let car = with_law(car, p).ok()?;
+    let mut r = Vec::new();
+    for case in cases {
+        let run = forward(&car, case).ok()?;
+        let force = run.channels.iter().find(|c| c.name == "force")?;
+        let (a, b) = run.window;
+        let peak = force.measured[a..=b]
+            .iter()
+            .fold(0.0f64, |m, v| m.max(v.abs()));
+        let norm = peak.max(f64::MIN_POSITIVE) * ((b - a + 1) as f64).sqrt();
+        r.extend((a..=b).map(|k| (force.simulated[k] - force.measured[k]) / norm));
+    }
+    r.iter().all(|v| v.is_finite()).then_some(r)
+}
+
+/// The bumper law's search variables of `fit`, `[ln a, ln λ, ln u, c]`.
+pub(crate) fn law(fit: &BumperFit) -> [f64; 4] {
+    [
+        fit.scale.ln(),
+        fit.stretch.ln(),
+        fit.unloading_ratio.ln(),
+        fit.rate,
+    ]
+}
+
+/// The bumper law's bounds, lower and upper: `a` and `λ` within 1/3 to 3,
+/// `u` from 1 to 20, `c` from 0 to 3 s/m (see the module).
+pub(crate) fn law_bounds() -> ([f64; 4], [f64; 4]) {
+    let third = 3f64.ln();
+    ([-third, -third, 0.0, 0.0], [third, third, 20f64.ln(), 3.0])
 }
 
 impl LeastSquares for Problem<'_> {
@@ -200,8 +244,8 @@ pub fn fit_bumper(
     // u replaces the segments' own ratio: the start keeps the first one's
     let n = parameters;
     let start = [0.0, 0.0, ratio.ln(), car.contact_rate()][..n].to_vec();
-    let lower = [-(3f64.ln()), -(3f64.ln()), 0.0, 0.0][..n].to_vec();
-    let upper = [3f64.ln(), 3f64.ln(), 20f64.ln(), 3.0][..n].to_vec();
+    let (lower, upper) = law_bounds();
+    let (lower, upper) = (lower[..n].to_vec(), upper[..n].to_vec());
     let mut r0 = vec![0.0; count];
     if !problem.evaluate(&start, &mut r0, None) {
         return Err(PlanarError::Case {

@@ -22,6 +22,9 @@
 //!                           # (default: the start car's links)
 //! bumper = "start"          # optional: "fit" fits the bumper's curve, unloading and contact rate
 //!                           # to the training tests' forward runs (their strikers) after the car
+//! joint = 2.0               # optional, with bumper = "fit": polish the car and the bumper's law
+//!                           # together on the replays and the forward runs, these weighing β
+//!                           # (> 0, at most 100) against the replays (identify module `joint`)
 //!
 //! [identification]          # optional
 //! objective = "displacement" # where the accelerometers are compared: "displacement" (default,
@@ -138,6 +141,7 @@ struct ModelFile {
     mass: Option<toml::Value>,
     links: Option<toml::Value>,
     bumper: Option<String>,
+    joint: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -286,6 +290,7 @@ impl PlanarStudy {
             },
             ..defaults
         };
+        setup.joint = joint(file.model.joint, setup.bumper).map_err(|m| error(m.0))?;
         let mut loader = Loader::new();
         let (mut cases, mut validation, mut notes) = (Vec::new(), Vec::new(), Vec::new());
         for spec in &file.case {
@@ -365,6 +370,31 @@ fn check_striker(car: &PlanarCar, case: &PlanarCase) -> Result<(), PlanarError> 
             message: format!("striker: {e}"),
         })
 }
+
+/// The largest `[model] joint` balance β: beyond it the replays hardly count.
+pub const MAX_JOINT: f64 = 100.0;
+
+/// `[model] joint = β` (the joint final stage, identify module `joint`):
+/// a number above 0 and at most [`MAX_JOINT`], with `bumper = "fit"`.
+fn joint(balance: Option<f64>, bumper: bool) -> Result<Option<f64>, JointKey> {
+    let refused = |m: String| Err(JointKey(m));
+    match balance {
+        None => Ok(None),
+        Some(b) if !(b > 0.0 && b <= MAX_JOINT) => refused(format!(
+            "[model] joint = {b}: expected the forward runs' weight against the replays, above 0 and at most {MAX_JOINT}"
+        )),
+        Some(_) if !bumper => refused(
+            "[model] joint polishes the car with the bumper's law: it needs bumper = \"fit\""
+                .into(),
+        ),
+        Some(b) => Ok(Some(b)),
+    }
+}
+
+/// A refused `[model] joint`: what is expected (the study file's error
+/// names the file).
+#[derive(Debug, Clone, PartialEq)]
+struct JointKey(String);
 
 /// A case's forces placed on the bumper line (no anchor, position not
 /// estimated) lie on it: a load cell at `lateral = -1.0` on a 1.6 m bumper
@@ -578,5 +608,23 @@ mod tests {
             "the end of the bumper"
         );
         assert_eq!(off_bumper(0.8, &[load(1e300, None)], &[]), Some((0, 1e300)));
+    }
+
+    /// `[model] joint` is a positive balance at most 100, with the bumper
+    /// fitted; anything else is refused by key, with what is expected.
+    #[test]
+    fn the_joint_balance_is_checked() {
+        assert_eq!(joint(None, false), Ok(None));
+        assert_eq!(joint(Some(2.0), true), Ok(Some(2.0)));
+        assert_eq!(joint(Some(MAX_JOINT), true), Ok(Some(MAX_JOINT)));
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, 101.0] {
+            let e = joint(Some(bad), true).unwrap_err().0;
+            assert!(
+                e.starts_with("[model] joint = ") && e.contains("above 0"),
+                "{e}"
+            );
+        }
+        let e = joint(Some(2.0), false).unwrap_err().0;
+        assert!(e.contains("bumper = \"fit\""), "{e}");
     }
 }

@@ -171,6 +171,12 @@ pub struct Setup {
     /// runs once the car is identified ([`crate::bumper_fit::identified`]);
     /// false: the template's bumper.
     pub bumper: bool,
+    /// With `bumper`, polish the searched car and the bumper's law together
+    /// on the replays and the training tests' forward runs, the forward
+    /// runs weighing this much (β) against the replays at the start
+    /// (the joint final stage of [`crate::bumper_fit`], `[model] joint`); None: the bumper fitted to
+    /// the car as searched.
+    pub joint: Option<f64>,
     /// Where the accelerometers are compared (module `objective`):
     /// displacement (the thesis's, m²), velocity or acceleration; the
     /// yaw-rate sensor and displacement channels as measured.
@@ -196,6 +202,7 @@ impl Setup {
             priors: Vec::new(),
             staged: true,
             bumper: false,
+            joint: None,
             domain: Domain::Displacement,
             bias: Bias::Pretrigger,
         }
@@ -349,6 +356,27 @@ pub fn identify(
     setup: &Setup,
     observer: &dyn Observer,
 ) -> Result<PlanarIdentification, PlanarError> {
+    identify_polished(cases, setup, observer, None)
+}
+
+/// A final stage on the search's best before the summary: given the
+/// priored problem, the unknowns, the search and its bounds, the search
+/// with its best run replaced (the joint final stage of
+/// [`crate::bumper_fit`]).
+pub(crate) type Polish<'a> = dyn Fn(
+        (&(dyn LeastSquares + Sync), &Unknowns),
+        Searched,
+        (&[f64], &[f64]),
+    ) -> Result<Searched, PlanarError>
+    + 'a;
+
+/// [`identify()`] with `polish` run on the search's best, when given.
+pub(crate) fn identify_polished(
+    cases: &[PlanarCase],
+    setup: &Setup,
+    observer: &dyn Observer,
+    polish: Option<&Polish>,
+) -> Result<PlanarIdentification, PlanarError> {
     let clock = std::time::Instant::now();
     let unknowns = check::check(cases, setup)?;
     let stated = priors(&unknowns, setup)?;
@@ -376,14 +404,11 @@ pub fn identify(
             name: "[priors]".into(),
             expected: e.to_string(),
         })?;
-    summarise(
-        cases,
-        setup,
-        &priored,
-        &found.searched,
-        (&lower, &upper),
-        clock,
-    )
+    let searched = match polish {
+        Some(polish) => polish((&priored, &unknowns), found.searched, (&lower, &upper))?,
+        None => found.searched,
+    };
+    summarise(cases, setup, &priored, &searched, (&lower, &upper), clock)
 }
 
 /// The error model of the intervals: the residuals' integrated

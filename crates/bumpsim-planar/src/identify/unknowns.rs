@@ -252,8 +252,8 @@ impl Unknowns {
         point
     }
 
-    /// The car of `theta` (the template's geometry, beam and the tyres'
-    /// other coefficients).
+    /// The car of `theta` (the template's geometry, beam, crash boxes'
+    /// stroke, contact rate and the tyres' other coefficients).
     pub fn car(&self, theta: &[f64]) -> Result<PlanarCar, PlanarError> {
         let t = &self.template;
         let mut next = theta.iter().copied();
@@ -313,6 +313,7 @@ impl Unknowns {
         }
         PlanarCar::new(body, left, right, t.beam().clone(), tyres)
             .and_then(|c| c.with_crash_boxes(t.crash_boxes()))
+            .and_then(|c| c.with_contact_rate(t.contact_rate()))
             .map(|c| c.with_name(t.name().map(str::to_string)))
     }
 
@@ -379,6 +380,20 @@ mod tests {
             tyres,
         )
         .unwrap()
+    }
+
+    /// A car made of θ keeps what θ does not hold: the template's crash
+    /// boxes' stroke, name and bumper contact rate (a fitted bumper's rate
+    /// was dropped by a re-made car).
+    #[test]
+    fn a_made_car_keeps_the_templates_contact_rate() {
+        let template = car(0.4).with_contact_rate(0.3).unwrap();
+        let unknowns = Unknowns::new(&template, true, true, &[]);
+        let made = unknowns.car(&unknowns.start()).unwrap();
+        assert_eq!(made.contact_rate(), 0.3);
+        assert_eq!(made, template);
+        let plain = Unknowns::new(&car(0.4), false, false, &[]);
+        assert_eq!(plain.car(&plain.start()).unwrap().contact_rate(), 0.0);
     }
 
     /// The relaxation length is an unknown only when asked and when the

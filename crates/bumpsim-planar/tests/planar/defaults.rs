@@ -285,14 +285,34 @@ fn domains() {
 fn the_objective_is_read_and_a_wrong_one_named() {
     use bumpsim_planar::identify::Domain;
     let Some(dir) = series(0) else { return };
-    let text = std::fs::read_to_string(dir.join("study-doc.toml")).unwrap();
+    let text = std::fs::read_to_string(dir.join("study.toml")).unwrap();
     let read = |extra: &str, file: &str| {
         let path = dir.join(file);
         std::fs::write(&path, format!("{text}\n{extra}")).unwrap();
         PlanarStudy::read(&path)
     };
-    let plain = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
+    let plain = PlanarStudy::read(&dir.join("study.toml")).unwrap();
     assert_eq!(plain.setup.domain, Domain::Displacement);
+    // the documented study says velocity, the biases as nuisances and the
+    // joint final stage
+    let documented = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
+    assert_eq!(documented.setup.domain, Domain::Velocity);
+    assert_eq!(
+        documented.setup.bias,
+        bumpsim_planar::identify::Bias::Nuisance
+    );
+    assert_eq!(documented.setup.joint, Some(2.0));
+    // `joint` needs the bumper fitted, and a balance above 0
+    for (model, expected) in [
+        ("joint = 2.0\n", "bumper = \"fit\""),
+        ("joint = 0.0\nbumper = \"fit\"\n", "above 0"),
+    ] {
+        let doc = text.replacen("[model]\n", &format!("[model]\n{model}"), 1);
+        let path = dir.join("study-joint.toml");
+        std::fs::write(&path, doc).unwrap();
+        let e = PlanarStudy::read(&path).unwrap_err().to_string();
+        assert!(e.contains("[model] joint") && e.contains(expected), "{e}");
+    }
     let measured = read(
         "[identification]\nobjective = \"acceleration\"\n",
         "study-acceleration.toml",
@@ -323,8 +343,13 @@ fn the_objective_is_read_and_a_wrong_one_named() {
 /// "velocity"\nbias = "nuisance"`) on
 /// every series of `BUMPSIM_SEEDS` (default `0,1,2,3`), one table row
 /// each with the crash boxes' identified elastic stiffness; the study file
-/// is read as a lab's would be. A measurement, not a check: it asserts only
-/// finite scores.
+/// is read as a lab's would be (an extra must not repeat a table the study
+/// has: `study-doc.toml` has `[identification]`). Each set-up runs once per
+/// entry of `BUMPSIM_JOINT` (comma-separated; default `-`): a number β
+/// polishes the car and the bumper's law together with the forward runs
+/// weighing β against the replays (`[model] joint`, identify module
+/// `joint`), `none` fits the bumper after the car, `-` leaves the study as
+/// read. A measurement, not a check: it asserts only finite scores.
 /// `BUMPSIM_EXTRAS=... cargo test --release -p bumpsim-planar --test planar
 /// defaults::options -- --ignored --nocapture`.
 #[test]
@@ -340,24 +365,34 @@ fn options() {
             let extra = extra.replace("\\n", "\n");
             let path = dir.join(format!("study-option-{k}.toml"));
             std::fs::write(&path, format!("{text}\n{extra}\n")).unwrap();
-            let study = PlanarStudy::read(&path).unwrap();
-            let clock = Instant::now();
-            let result = study.identified(&|| {}).unwrap();
-            let s = scored(&dir, &study, &result, clock.elapsed().as_secs_f64());
-            let value = |name: &str| {
-                result
-                    .parameters
-                    .iter()
-                    .find(|p| p.name == name)
-                    .map_or(f64::NAN, |p| p.value)
-            };
-            eprintln!(
-                "{} left/right springs[0] {:.0} / {:.0} N/mm",
-                s.row(&format!("seed {seed}, {}", extra.replace('\n', " "))),
-                value("left.springs[0]") / 1e3,
-                value("right.springs[0]") / 1e3
-            );
-            assert!(s.offset.iter().chain(&s.narrow).all(|v| v.is_finite()));
+            for joint in list("BUMPSIM_JOINT", "-") {
+                let mut study = PlanarStudy::read(&path).unwrap();
+                match joint.as_str() {
+                    "-" => {}
+                    "none" => study.setup.joint = None,
+                    beta => study.setup.joint = Some(beta.parse().unwrap()),
+                }
+                let clock = Instant::now();
+                let result = study.identified(&|| {}).unwrap();
+                let s = scored(&dir, &study, &result, clock.elapsed().as_secs_f64());
+                let value = |name: &str| {
+                    result
+                        .parameters
+                        .iter()
+                        .find(|p| p.name == name)
+                        .map_or(f64::NAN, |p| p.value)
+                };
+                eprintln!(
+                    "{} left/right springs[0] {:.0} / {:.0} N/mm",
+                    s.row(&format!(
+                        "seed {seed}, {}, joint {joint}",
+                        extra.replace('\n', " ")
+                    )),
+                    value("left.springs[0]") / 1e3,
+                    value("right.springs[0]") / 1e3
+                );
+                assert!(s.offset.iter().chain(&s.narrow).all(|v| v.is_finite()));
+            }
         }
     }
 }

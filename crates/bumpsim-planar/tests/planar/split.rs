@@ -104,20 +104,14 @@ fn measured() {
         )
         .with_relaxation(setup.relaxation);
         let (ta, tb) = (values(&a), values(&b));
-        // `Unknowns::car` builds a car without the fitted bumper's contact
-        // rate: put each template's back
+        // each car made on the other's template keeps that template's
+        // bumper and contact rate (`Unknowns::car`)
         let (on_a, on_b) = (
             unknowns.with_template(&a.car),
             unknowns.with_template(&b.car),
         );
-        let rebuilt = |on: &Unknowns, from: &PlanarCar, theta: &[f64]| {
-            on.car(theta)
-                .unwrap()
-                .with_contact_rate(from.contact_rate())
-                .unwrap()
-        };
-        let on_a = |theta: &[f64]| rebuilt(&on_a, &a.car, theta);
-        let on_b = |theta: &[f64]| rebuilt(&on_b, &b.car, theta);
+        let on_a = |theta: &[f64]| on_a.car(theta).unwrap();
+        let on_b = |theta: &[f64]| on_b.car(theta).unwrap();
         eprintln!(
             "seed {seed} rebuilt: A {:.1?}, B {:.1?}; A's parameters with B's bumper {:.1?}, B's with A's bumper {:.1?} (force, yaw rate %)",
             fits(&on_a(&ta), offset),

@@ -173,9 +173,12 @@ fn the_yaw_rate_sensor_is_read_weighted_and_keeps_the_held_out_yaw() {
 /// Issue 44's thresholds on this series, with the study as docs/planar.md
 /// has a lab write it (`study-doc.toml`: 16 starts, the test sheet's mass,
 /// `links = "yielding"` for the generator's elastic-plastic crash boxes,
-/// `bumper = "fit"` for the forward predictions, the tyres' law left to the
-/// default, which estimates C_α and σ since the training carries a yaw-rate
-/// sensor; nothing set by the test): held-out offset x ≥ 99.5 %, yaw ≥ 93 %;
+/// `bumper = "fit"` for the forward predictions with `joint = 2.0` (the car
+/// and the bumper's law polished together, identify module `joint`), the
+/// sills compared in velocity with their biases as nuisances
+/// (`[identification] objective = "velocity"`, `bias = "nuisance"`), the
+/// tyres' law left to the default, which estimates C_α and σ since the
+/// training carries a yaw-rate sensor; nothing set by the test): held-out offset x ≥ 99.5 %, yaw ≥ 93 %;
 /// off-centre face x ≥ 99 %, yaw ≥ 80 %; the forward offset test's force,
 /// x-acceleration and yaw rate ≥ 90, 90, 85 %; I_z within 20 % and μ within
 /// 30 % of the truth; ≥ 4 of 16 starts reach the best.
@@ -187,6 +190,13 @@ fn the_yaw_rate_sensor_is_read_weighted_and_keeps_the_held_out_yaw() {
 /// 94.4 %, yaw rate 86.1 %; I_z +1.6 %, μ −1.8 %; 13 of 16 starts at the
 /// best. The figures below are displacement's, the study's default, which
 /// this test runs.
+///
+/// Measured with that study (w13-h4, release, 48 s on a loaded machine):
+/// offset x 99.72 %, yaw 98.18 %; face x 99.32 %, yaw 90.13 %; forward
+/// offset force 90.7 %, x-acceleration 90.7 %, yaw rate 89.3 %; I_z
+/// +1.2 %, μ −3.9 %; 11 of 16 starts at the best: every threshold holds,
+/// the forward force and x-acceleration by 0.7 points. The figures below
+/// are the study before (displacement, the bumper fitted after the car).
 ///
 /// Measured (release build, 17 s on a loaded machine): offset x 99.76 %,
 /// yaw 98.53 % ✓; off-centre face x 99.14 %, yaw 96.98 % ✓; forward
@@ -205,8 +215,9 @@ fn the_yaw_rate_sensor_is_read_weighted_and_keeps_the_held_out_yaw() {
 /// start's, against 62 kN; it never yields in training nor in the offset
 /// test, where the lever rule puts it in tension).
 ///
-/// It runs in the suite: 208 s in a debug build on a loaded machine (17 s
-/// release), with the same figures.
+/// It runs in the suite (before the joint stage: 208 s in a debug build on
+/// a loaded machine, 17 s release; the joint stage's forward differences
+/// add 20–40 s in release).
 #[test]
 fn the_documented_study_meets_issue_44s_thresholds() {
     let scores = if std::env::var("BUMPSIM_NO_BUMPER_FIT").is_ok() {
@@ -221,6 +232,7 @@ fn the_documented_study_meets_issue_44s_thresholds() {
         };
         // the study as written gets the tyres' law estimated (the default)
         assert!(study.setup.cornering && study.setup.relaxation && study.setup.bumper);
+        assert_eq!(study.setup.joint, Some(2.0));
         super::defaults::scored(dir, study, result, *seconds)
     };
     eprintln!("{}", scores.row("documented study"));
@@ -230,7 +242,26 @@ fn the_documented_study_meets_issue_44s_thresholds() {
 /// The documented study on three varied cars of the same generator
 /// (`planar_yaw_rate.py --seed 1..3`: masses, yaw inertia, grip, C_α and
 /// crash boxes within ±15 %), issue 44's "series you do not have".
-/// Measured (release, 13–18 s each):
+///
+/// With the study as documented since w13-h4 (the sills in velocity, their
+/// biases as nuisances, `joint = 2.0`: the car and the bumper's law
+/// polished together on the replays and the training tests' forward runs;
+/// docs/planar.md, "The joint final stage"), every threshold holds on
+/// every car and is asserted (release, `defaults::options` with
+/// `BUMPSIM_JOINT=2`, before the generator wrote that study):
+///
+/// | seed | offset x / yaw % | face x / yaw % | forward force / x-acc / yaw rate % | I_z | μ | at best |
+/// |---|---|---|---|---|---|---|
+/// | 1 | 99.74 / 97.12 | 99.41 / 91.43 | 90.0 / 90.0 / 92.8 | −2.5 % | −2.0 % | 12 |
+/// | 2 | 99.91 / 96.74 | 99.41 / 90.53 | 95.7 / 95.7 / 92.3 | −0.2 % | −4.0 % | 13 |
+/// | 3 | 99.78 / 97.83 | 99.53 / 90.29 | 90.9 / 91.0 / 94.9 | +0.5 % | −4.9 % | 12 |
+///
+/// Car 1's forward force holds by a hair (90.0 %). With the joint stage in
+/// displacement (β = 1): forward force 95.5 / 87.4 / 97.7 / 82.8 % on cars
+/// 0–3, car 0's yaw rate 81.1 %; docs/planar.md has every row.
+///
+/// Before (displacement, the bumper fitted after the car; release, 13–18 s
+/// each):
 ///
 /// | seed | offset x / yaw % | face x / yaw % | forward force / x-acc / yaw rate % | I_z | μ | at best |
 /// |---|---|---|---|---|---|---|
@@ -238,10 +269,9 @@ fn the_documented_study_meets_issue_44s_thresholds() {
 /// | 2 | 99.79 / 98.64 | 99.68 / 98.34 | 94.9 / 94.8 / 85.1 | −1.6 % | −1.8 % | 11 |
 /// | 3 | 99.81 / 97.59 | 99.62 / 87.07 | 79.2 / 79.2 / 93.5 | −1.7 % | −6.5 % | 13 |
 ///
-/// The held-out replays, I_z, μ and the search hold issue 44's thresholds
-/// on every car; **the forward offset force does not** on seeds 1 and 3
-/// (69.7 and 79.2 % against 90 %): asserted here at what holds, the forward
-/// force at a floor of 65 % so that a loss shows. Why (measured from the
+/// The held-out replays, I_z, μ and the search held issue 44's thresholds
+/// on every car; **the forward offset force did not** on seeds 1 and 3
+/// (69.7 and 79.2 % against 90 %). Why (measured from the
 /// truth, tests/planar/truth_start.rs `runs_from_the_varied_truths_stay_near_them`):
 /// the forward offset force hangs on the left crash box's elastic stiffness,
 /// which the training replays hardly determine, and the objective trades it
@@ -330,7 +360,7 @@ fn the_documented_study_meets_issue_44s_thresholds() {
 /// `split::measured` and docs/planar.md (its peak is 8 % low whatever the
 /// split; most of the ratio prior's loss is the bumper fitted after it).
 #[test]
-#[ignore = "three series, about 15 s each in release, 3-4 min each in debug"]
+#[ignore = "three series, 11-54 s each in release (idle to loaded)"]
 fn the_documented_study_on_varied_cars() {
     for seed in 1..=3 {
         let Some(dir) = super::defaults::series(seed) else {
@@ -339,12 +369,6 @@ fn the_documented_study_on_varied_cars() {
         let study = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
         let scores = super::defaults::scores(&dir, &study);
         eprintln!("{}", scores.row(&format!("seed {seed}, documented study")));
-        let held: Vec<&str> = scores
-            .misses()
-            .into_iter()
-            .filter(|m| !m.starts_with("forward"))
-            .collect();
-        assert!(held.is_empty(), "seed {seed}: {held:?}");
-        assert!(scores.forward[0] >= 65.0, "seed {seed}: {scores:?}");
+        assert!(scores.misses().is_empty(), "seed {seed}: {scores:?}");
     }
 }
