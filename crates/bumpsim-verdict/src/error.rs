@@ -77,15 +77,13 @@ pub enum VerdictError {
 }
 
 impl VerdictError {
-    /// Two car files given for the same `end` of one verdict.
-    pub fn two_cars_for(end: crate::limits::End) -> VerdictError {
+    /// Two car files given for the same end of one verdict (`end`: its
+    /// name, `front` or `rear`).
+    pub fn two_cars_for(end: &str) -> VerdictError {
         VerdictError::Contradiction {
             first: "damageability.end".into(),
             second: "damageability.end".into(),
-            reason: format!(
-                "two car files describe the {} end: give one car per end",
-                end.name()
-            ),
+            reason: format!("two car files describe the {end} end: give one car per end"),
         }
     }
 }

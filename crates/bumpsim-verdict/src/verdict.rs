@@ -236,7 +236,7 @@ impl Setup {
                 End::Rear => &mut rear,
             };
             if slot.is_some() {
-                return Err(VerdictError::two_cars_for(end.limits.end));
+                return Err(VerdictError::two_cars_for(end.limits.end.name()));
             }
             *slot = Some(end);
         }

@@ -59,7 +59,7 @@ pub(super) fn verdict(request: &VerdictRequest<'_>) -> Result<Judged, EngineErro
     for end in &ends {
         let slot = &mut slots[matches!(end.limits.end, Side::Rear) as usize];
         if slot.is_some() {
-            return Err(VerdictError::two_cars_for(end.limits.end).into());
+            return Err(VerdictError::two_cars_for(end.limits.end.name()).into());
         }
         *slot = Some(end);
     }
