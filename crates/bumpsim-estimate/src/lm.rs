@@ -283,19 +283,21 @@ pub fn minimise(
                 control.reject(0.0);
                 continue;
             };
-            let delta = match (settings.acceleration, &control) {
+            // with acceleration, `along` keeps the velocity the model's
+            // decrease is measured along
+            let (delta, along) = match (settings.acceleration, &control) {
                 (Some(limit), Control::Nielsen { lambda, .. }) => {
                     evaluations += 1;
                     let lambda = *lambda;
                     match accelerated(problem, &s, &free, &velocity, lambda, limit, &mut trial_r) {
-                        Some(delta) => delta,
+                        Some(delta) => (delta, Some(velocity)),
                         None => {
                             control.reject(0.0);
                             continue;
                         }
                     }
                 }
-                _ => velocity.clone(),
+                _ => (velocity, None),
             };
             let trial = clamp(&(0..n).map(|i| s.p[i] + delta[i]).collect::<Vec<_>>());
             let step: DVector<f64> = DVector::from_iterator(n, (0..n).map(|i| trial[i] - s.p[i]));
@@ -305,14 +307,17 @@ pub fn minimise(
             // with acceleration, the gain ratio against the model's decrease
             // along the velocity (against the whole step's it took 32 and 107
             // Jacobians on tests/iterations.rs's series instead of 22 and 42)
-            let model = match settings.acceleration {
-                Some(_) => {
+            let decrease = |d: &DVector<f64>| -(2.0 * s.g.dot(d) + d.dot(&(&s.jtj * d)));
+            let predicted = match &along {
+                Some(velocity) => {
                     let moved = clamp(&(0..n).map(|i| s.p[i] + velocity[i]).collect::<Vec<_>>());
-                    DVector::from_iterator(n, (0..n).map(|i| moved[i] - s.p[i]))
+                    decrease(&DVector::from_iterator(
+                        n,
+                        (0..n).map(|i| moved[i] - s.p[i]),
+                    ))
                 }
-                None => step.clone(),
+                None => decrease(&step),
             };
-            let predicted = -(2.0 * s.g.dot(&model) + model.dot(&(&s.jtj * &model)));
             let rho = (s.cost - cost) / predicted;
             if ok && cost.is_finite() && cost < s.cost && rho > 0.0 {
                 control.accept(rho, step.as_slice());
