@@ -226,3 +226,21 @@ fn the_held_out_yaw_lies_inside_its_band_at_80_percent_of_the_samples() {
         assert!(bands.parameters.iter().any(|n| n == name), "{bands:?}");
     }
 }
+
+/// The held-out yaw's 90 % band of `result` judged on each held-out case
+/// of `study` (OFFSET40, NARROW-OFFSET): issue 44's "the measured held-out
+/// yaw inside its 90 % band at ≥ 80 % of samples", for the varied cars.
+pub(super) fn held_out_yaw(
+    study: &PlanarStudy,
+    result: &PlanarIdentification,
+) -> [bumpsim_planar::bands::Judged; 2] {
+    let (bands, _) = held_out_bands(study, result);
+    ["OFFSET40", "NARROW-OFFSET"].map(|case| {
+        bands
+            .judged
+            .iter()
+            .find(|j| j.case == case && j.channel == "yaw" && j.prediction == "replay")
+            .unwrap()
+            .clone()
+    })
+}

@@ -45,6 +45,9 @@ pub(super) struct Scores {
     pub grip: f64,
     pub reached: usize,
     pub seconds: f64,
+    /// The measured held-out yaw inside its 90 % band, % of the samples
+    /// (OFFSET40, NARROW-OFFSET), when judged (`bands::held_out_yaw`).
+    pub band: Option<[f64; 2]>,
 }
 
 impl Scores {
@@ -61,14 +64,20 @@ impl Scores {
             (self.inertia.abs() <= 0.2, "I_z"),
             (self.grip.abs() <= 0.3, "μ"),
             (self.reached >= 4, "starts"),
+            (self.band.is_none_or(|b| b[0] >= 80.0), "offset band"),
+            (self.band.is_none_or(|b| b[1] >= 80.0), "face band"),
         ];
         checks.iter().filter(|c| !c.0).map(|c| c.1).collect()
     }
 
-    /// One line of the measurement table.
+    /// One line of the measurement table (with the held-out yaw's band
+    /// column when judged).
     pub fn row(&self, label: &str) -> String {
+        let band = self
+            .band
+            .map_or(String::new(), |b| format!(" {:.1} / {:.1} |", b[0], b[1]));
         format!(
-            "| {label} | {:.2} / {:.2} | {:.2} / {:.2} | {:.1} / {:.1} / {:.1} | {:+.1} | {:+.1} | {} | {:.0} s | {} |",
+            "| {label} | {:.2} / {:.2} | {:.2} / {:.2} | {:.1} / {:.1} / {:.1} | {:+.1} | {:+.1} | {} |{band} {:.0} s | {} |",
             self.offset[0],
             self.offset[1],
             self.narrow[0],
@@ -138,6 +147,7 @@ pub(super) fn scored(
         grip: value("tyres.mu_lateral") / sheet["mu"].as_f64().unwrap() - 1.0,
         reached: result.starts.reached_best,
         seconds,
+        band: None,
     }
 }
 

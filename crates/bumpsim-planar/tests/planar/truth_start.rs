@@ -461,3 +461,131 @@ fn runs_from_the_varied_truths_stay_near_them() {
         "runs that left the truth for a car that predicts worse: {worse:?}"
     );
 }
+
+/// Issue 44's lesson through the whole documented study: on each series of
+/// `BUMPSIM_SEEDS` (default `0,1,2,3`), one start at the yielding truth
+/// with the generator's tyre law (σ at the search's 1 cm floor), then
+/// `study-doc.toml`'s set-up as a lab runs it (the sills in velocity, their
+/// biases as nuisances, C_α and σ estimated, the bumper fitted and the
+/// joint final stage, `joint = 2.0`; one start, unstaged). "The truth"
+/// here is the truth-equivalent car with the bumper fitted to it
+/// (`fit_bumper`, as the study fits the identified car's): the bumper is
+/// of another family and has no bumpsim truth. Printed per car: the held-out
+/// yaw (OFFSET40, NARROW-OFFSET) and the forward offset force, x-acceleration
+/// and yaw rate at the truth and after the run, and every parameter the
+/// run moved by more than 5 % from the truth with the run's scores when
+/// that one parameter is put back at the truth's.
+///
+/// Measured (w14-h3, release, 110–160 s each on a loaded machine), held-out
+/// yaw OFFSET40 / NARROW-OFFSET, forward force / yaw rate %:
+///
+/// | car | at the truth | the run from it |
+/// |---|---|---|
+/// | 0 | 97.78 / 99.01, 93.0 / 82.7 | 97.69 / 90.09, 93.7 / 87.9 |
+/// | 1 | 97.94 / 99.20, 93.5 / 88.3 | 96.24 / 91.42, 95.0 / 89.8 |
+/// | 2 | 97.78 / 98.91, 93.6 / 87.3 | 96.54 / 90.96, 97.0 / 90.7 |
+/// | 3 | 98.20 / 98.59, 93.8 / 88.6 | 95.87 / 86.56, 87.3 / 93.1 |
+///
+/// **Every run leaves the truth for a car that predicts the off-centre
+/// face's yaw worse** (8–12 points; the forward force rises on cars 0–2
+/// and falls 6.5 points on car 3). Put back one at a time: on car 3 the
+/// face's yaw loss is the grip (μ −6.3 %; the run with the truth's μ:
+/// 95.11 %) and the forward force's the left crash box's hardening (+50 %;
+/// with the truth's 95.02 %); on car 0 the cornering stiffness takes a
+/// part (C_α −11.7 %; 93.68 %), no single parameter the rest (I_z and μ
+/// moved less than 5 %). Every run lowers the left box's elastic stiffness
+/// by 15–19 % (cars 0–2) and raises its hardening by 28–64 %: the joint
+/// stage's effective box, which predicts the forward force better with the
+/// fitted bumper law (car 0 with the truth's stiffness: 83.5 %). The
+/// objective or the priors are to be fixed (issue 44's lesson), not done
+/// here: this test asserts what holds: the held-out offset yaw within 3
+/// points of the truth's, the face's yaw at issue 44's 80 % and the
+/// forward force at 85 %.
+#[test]
+#[ignore = "a measurement: one joint-stage run per car, 110-160 s each in release on a loaded machine"]
+fn runs_from_the_truths_through_the_documented_study() {
+    let seeds = std::env::var("BUMPSIM_SEEDS").unwrap_or_else(|_| "0,1,2,3".into());
+    for seed in seeds.split(',').map(|s| s.trim().parse::<u64>().unwrap()) {
+        let Some(dir) = super::defaults::series(seed) else {
+            return;
+        };
+        let (at, from) = through_the_documented_study(seed, &dir);
+        assert!(
+            from[0] >= at[0] - 3.0 && from[1] >= 80.0 && from[2] >= 85.0,
+            "seed {seed}: {at:.2?} -> {from:.2?}"
+        );
+    }
+}
+
+/// One run of [`runs_from_the_truths_through_the_documented_study`]: the
+/// scores (held-out yaw OFFSET40, NARROW-OFFSET; forward offset force,
+/// x-acceleration, yaw rate, %) at the truth and after the run.
+fn through_the_documented_study(seed: u64, dir: &Path) -> ([f64; 5], [f64; 5]) {
+    let sheet: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
+    let study = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
+    let cornering = sheet["car"]["tyres"]["cornering_stiffness"]
+        .as_f64()
+        .unwrap();
+    let truth = with_tyres(&truth_yielding(&study, &sheet), 0.01, cornering);
+    let fitted = bumpsim_planar::bumper_fit::fit_bumper(&truth, &study.cases, true)
+        .unwrap()
+        .car;
+    let mut setup = study.setup.clone();
+    setup.template = truth.clone();
+    setup.starts = 1;
+    setup.staged = false;
+    let run = bumpsim_planar::bumper_fit::identified(&study.cases, &setup, &|| {}).unwrap();
+    let offset = study
+        .validation
+        .iter()
+        .find(|c| c.name == "OFFSET40")
+        .unwrap();
+    let scores = |car: &PlanarCar| {
+        let yaw = held(car, &study.validation)
+            .iter()
+            .map(|f| f.fit_yaw)
+            .collect::<Vec<_>>();
+        let ahead = forward(car, offset).unwrap();
+        let channel = |name: &str| {
+            ahead
+                .channels
+                .iter()
+                .find(|c| c.name == name)
+                .unwrap()
+                .fit_percent
+        };
+        [
+            yaw[0],
+            yaw[1],
+            channel("force"),
+            channel("x-acceleration"),
+            channel("yaw rate"),
+        ]
+    };
+    let (at, from) = (scores(&fitted), scores(&run.car));
+    eprintln!(
+        "seed {seed}: held-out yaw OFFSET40 / NARROW-OFFSET, forward force / x-acc / yaw rate: truth {at:.2?} %, the run from it {from:.2?} %; objective {:.4e}",
+        run.objective
+    );
+    // every parameter the run moved by more than 5 %, and the scores of
+    // the run's car with that one parameter put back at the truth's
+    let unknowns = Unknowns::new(&run.car, true, true, &[]).with_relaxation(true);
+    let ran = unknowns.start();
+    let true_theta = unknowns.with_template(&truth).start();
+    for (i, (name, unit)) in unknowns.names().iter().enumerate() {
+        let moved = ran[i] / true_theta[i] - 1.0;
+        if moved.abs() > 0.05 {
+            let mut theta = ran.clone();
+            theta[i] = true_theta[i];
+            let back = scores(&unknowns.car(&theta).unwrap());
+            eprintln!(
+                "seed {seed}: {name} {:.4e} -> {:.4e} {unit} ({:+.1} %); the run with the truth's: {back:.2?} %",
+                true_theta[i],
+                ran[i],
+                100.0 * moved
+            );
+        }
+    }
+    (at, from)
+}

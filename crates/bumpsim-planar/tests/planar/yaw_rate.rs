@@ -10,8 +10,11 @@
 //! both with the default stated priors and the staged search (issue 44
 //! items 3 and 4).
 
+use super::defaults::Scores;
+use bumpsim_planar::PlanarCar;
+use bumpsim_planar::bumper_fit::fit_bumper;
 use bumpsim_planar::forward::forward;
-use bumpsim_planar::identify::{CaseFit, PlanarIdentification, identify, predict};
+use bumpsim_planar::identify::{CaseFit, PlanarIdentification, Unknowns, identify, predict};
 use bumpsim_planar::study::PlanarStudy;
 use std::path::{Path, PathBuf};
 
@@ -362,13 +365,149 @@ fn the_documented_study_meets_issue_44s_thresholds() {
 #[test]
 #[ignore = "three series, 11-54 s each in release (idle to loaded)"]
 fn the_documented_study_on_varied_cars() {
-    for seed in 1..=3 {
-        let Some(dir) = super::defaults::series(seed) else {
-            return;
-        };
-        let study = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
-        let scores = super::defaults::scores(&dir, &study);
-        eprintln!("{}", scores.row(&format!("seed {seed}, documented study")));
+    for (seed, scores) in documented_on(&seeds("1,2,3")) {
         assert!(scores.misses().is_empty(), "seed {seed}: {scores:?}");
     }
+}
+
+/// The seeds of `BUMPSIM_SEEDS` (comma-separated), else of `default`.
+fn seeds(default: &str) -> Vec<u64> {
+    std::env::var("BUMPSIM_SEEDS")
+        .unwrap_or_else(|_| default.into())
+        .split(',')
+        .map(|s| s.trim().parse().unwrap())
+        .collect()
+}
+
+/// The documented study (`study-doc.toml`) identified on the series of
+/// each of `seeds` and scored against its truth, the held-out yaw's 90 %
+/// band judged too; one table row each (with the crash boxes' identified
+/// elastic stiffness and the truth's, and the forward offset test with
+/// the truth's stiffness, [`true_boxes`]). Returns each car's scores
+/// (none without numpy).
+fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
+    let mut out = Vec::new();
+    for &seed in seeds {
+        let Some(dir) = super::defaults::series(seed) else {
+            return out;
+        };
+        let study = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
+        let clock = std::time::Instant::now();
+        let result = study.identified(&|| {}).unwrap();
+        let mut scores =
+            super::defaults::scored(&dir, &study, &result, clock.elapsed().as_secs_f64());
+        let yaw = super::bands::held_out_yaw(&study, &result);
+        scores.band = Some(yaw.clone().map(|j| j.inside_percent));
+        let sheet: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap())
+                .unwrap();
+        let truth = |i: usize| sheet["car"]["crash_boxes"]["elastic"][i].as_f64().unwrap() / 1e3;
+        let value = |name: &str| {
+            result
+                .parameters
+                .iter()
+                .find(|p| p.name == name)
+                .map_or(f64::NAN, |p| p.value / 1e3)
+        };
+        eprintln!(
+            "{} left / right box {:.0} / {:.0} N/mm (truth {:.0} / {:.0}); bands trusted {:?}",
+            scores.row(&format!("seed {seed}, documented study")),
+            value("left.springs[0]"),
+            value("right.springs[0]"),
+            truth(0),
+            truth(1),
+            yaw.each_ref().map(|j| j.trusted)
+        );
+        eprintln!(
+            "seed {seed}: forward OFFSET40 force / x-acc / yaw rate with the crash boxes' elastic stiffness at the truth, the bumper fitted again: {:.1?} %",
+            true_boxes(&result.car, &sheet, &study)
+        );
+        out.push((seed, scores));
+    }
+    out
+}
+
+/// Issue 44's "series you do not have": the documented study on six cars
+/// the set-up was never measured or tuned on (`planar_yaw_rate.py --seed
+/// 4..9`, each car's masses, yaw inertia, grip, C_α and crash boxes drawn
+/// within ±15 % as for seeds 1–3), every acceptance figure and the
+/// held-out yaw's band per car (docs/planar.md, "Cars nobody tuned for").
+///
+/// Measured (w14-h3, release, 47–105 s each on a loaded machine; band:
+/// the measured held-out yaw inside its 90 % band, % of the samples):
+///
+/// | seed | offset x / yaw % | face x / yaw % | forward force / x-acc / yaw rate % | I_z | μ | at best | band offset / face % | misses |
+/// |---|---|---|---|---|---|---|---|---|
+/// | 4 | 99.97 / 97.39 | 99.91 / 93.57 | 94.6 / 94.7 / 90.0 | +2.1 % | −2.5 % | 11 | 100.0 / 76.9 | face band |
+/// | 5 | 99.91 / 96.72 | 99.20 / 93.29 | 96.3 / 96.4 / 91.9 | +1.3 % | −3.7 % | 14 | 100.0 / 100.0 | none |
+/// | 6 | 99.38 / 98.33 | 99.65 / 91.05 | 88.5 / 88.5 / 93.4 | +1.7 % | −3.6 % | 11 | 100.0 / 100.0 | offset x, forward force, x-acc |
+/// | 7 | 99.90 / 98.63 | 99.16 / 90.93 | 87.7 / 87.8 / 90.0 | +0.5 % | −3.1 % | 12 | 100.0 / 30.0 | forward force, x-acc, face band |
+/// | 8 | 99.78 / 97.00 | 99.61 / 89.47 | 89.1 / 89.3 / 92.6 | −2.2 % | −2.8 % | 12 | 100.0 / 69.3 | forward force, x-acc, face band |
+/// | 9 | 99.96 / 98.52 | 99.01 / 92.14 | 91.3 / 91.5 / 90.2 | +2.6 % | −3.6 % | 12 | 100.0 / 100.0 | none |
+///
+/// Two of the six cars hold every threshold. What holds on all six and
+/// is asserted: the held-out offset yaw, the face's x and yaw, the
+/// forward yaw rate, I_z, μ, the starts at the best and the offset's band.
+/// What does not: the forward offset force and x-acceleration (87.7–96.3 %,
+/// below 90 % on three cars; asserted ≥ 85 %), the held-out offset x on
+/// car 6 (99.38 %; asserted ≥ 99 %) and the face's yaw band (30–100 %, below
+/// 80 % on three cars: the face's yaw fits 89–94 % while the truth-equivalent
+/// car replays it at 99 %, and the band does not cover the gap; not
+/// asserted). With the crash boxes' elastic stiffness put back at the
+/// truth and the bumper fitted again ([`true_boxes`]) the forward force
+/// falls on every car (81.6–88.3 %): the identified stiffness (16–28 %
+/// below the truth) is the one that, with the fitted bumper law, predicts.
+#[test]
+#[ignore = "six series, 47-105 s each in release on a loaded machine"]
+fn the_documented_study_on_unseen_cars() {
+    let unmet = ["offset x", "forward force", "forward x-acc", "face band"];
+    for (seed, scores) in documented_on(&seeds("4,5,6,7,8,9")) {
+        let misses: Vec<_> = scores
+            .misses()
+            .into_iter()
+            .filter(|m| !unmet.contains(m))
+            .collect();
+        assert!(misses.is_empty(), "seed {seed}: {misses:?} {scores:?}");
+        // the measured floors of the thresholds that miss on some car
+        assert!(scores.offset[0] >= 99.0, "seed {seed}: {scores:?}");
+        assert!(
+            scores.forward[0] >= 85.0 && scores.forward[1] >= 85.0,
+            "seed {seed}: {scores:?}"
+        );
+    }
+}
+
+/// The forward OFFSET40 force, x-acceleration and yaw rate fit % of `car`
+/// with both crash boxes' elastic stiffness set to the series' truth
+/// (`sheet`) and the bumper's law fitted again to the training tests'
+/// forward runs: how much of a forward miss is the boxes' stiffness.
+fn true_boxes(car: &PlanarCar, sheet: &serde_json::Value, study: &PlanarStudy) -> [f64; 3] {
+    let unknowns = Unknowns::new(car, true, true, &[]).with_relaxation(true);
+    let mut theta = unknowns.start();
+    for (i, (name, _)) in unknowns.names().iter().enumerate() {
+        let side = ["left.springs[0]", "right.springs[0]"]
+            .iter()
+            .position(|n| n == name);
+        if let Some(side) = side {
+            theta[i] = sheet["car"]["crash_boxes"]["elastic"][side]
+                .as_f64()
+                .unwrap();
+        }
+    }
+    let swapped = unknowns.car(&theta).unwrap();
+    let fitted = fit_bumper(&swapped, &study.cases, true).unwrap().car;
+    let offset = study
+        .validation
+        .iter()
+        .find(|c| c.name == "OFFSET40")
+        .unwrap();
+    let ahead = forward(&fitted, offset).unwrap();
+    ["force", "x-acceleration", "yaw rate"].map(|name| {
+        ahead
+            .channels
+            .iter()
+            .find(|c| c.name == name)
+            .unwrap()
+            .fit_percent
+    })
 }
