@@ -43,7 +43,7 @@ fn quarters(car: &PlanarCar, template: &PlanarCar, case: &PlanarCase) -> Vec<[f6
 
 /// `car` with its bumper on the generator's 31 points: 31 segments of the
 /// same characteristic over 1.653 m (their centres on the points).
-fn generator_bumper(car: &PlanarCar) -> PlanarCar {
+pub(super) fn generator_bumper(car: &PlanarCar) -> PlanarCar {
     let mut beam = car.beam().clone();
     beam.width = 1.6 * 31.0 / 30.0;
     beam.segments = vec![beam.segments[0].clone(); 31];

@@ -496,7 +496,13 @@ fn runs_from_the_varied_truths_stay_near_them() {
 /// moved less than 5 %). Every run lowers the left box's elastic stiffness
 /// by 15–19 % (cars 0–2) and raises its hardening by 28–64 %: the joint
 /// stage's effective box, which predicts the forward force better with the
-/// fitted bumper law (car 0 with the truth's stiffness: 83.5 %). The
+/// fitted bumper law (car 0 with the truth's stiffness: 83.5 %). With
+/// `BUMPSIM_GENERATOR_BUMPER=1` (the truth's bumper on the generator's 31
+/// points, the struck cells' line of action where the generator's is) the
+/// runs stay: car 3 [98.21, 98.59, 95.96, 95.89, 98.49] → [98.53, 97.64,
+/// 96.53, 96.57, 97.35] %, car 0 [97.98, 99.01, 95.08, 94.98, 96.36] →
+/// [98.44, 95.93, 96.08, 96.05, 93.35] % (μ and C_α within 5 %): the
+/// objective leaves the truth through the cells' line of action. The
 /// objective or the priors are to be fixed (issue 44's lesson), not done
 /// here: this test asserts what holds: the held-out offset yaw within 3
 /// points of the truth's, the face's yaw at issue 44's 80 % and the
@@ -528,6 +534,13 @@ fn through_the_documented_study(seed: u64, dir: &Path) -> ([f64; 5], [f64; 5]) {
         .as_f64()
         .unwrap();
     let truth = with_tyres(&truth_yielding(&study, &sheet), 0.01, cornering);
+    // `BUMPSIM_GENERATOR_BUMPER`: the truth (and so the run's template)
+    // with its bumper on the generator's 31 points, the struck cells' line
+    // of action where the generator's is (`diagnosis::generator_bumper`)
+    let truth = match std::env::var("BUMPSIM_GENERATOR_BUMPER") {
+        Ok(_) => super::diagnosis::generator_bumper(&truth),
+        Err(_) => truth,
+    };
     let fitted = bumpsim_planar::bumper_fit::fit_bumper(&truth, &study.cases, true)
         .unwrap()
         .car;
