@@ -365,8 +365,17 @@ fn the_documented_study_meets_issue_44s_thresholds() {
 #[test]
 #[ignore = "three series, 11-54 s each in release (idle to loaded)"]
 fn the_documented_study_on_varied_cars() {
+    // the held-out yaw's band, judged since w14-h3 (offset / face, % inside):
+    // car 1 100.0 / 86.1, car 2 100.0 / 100.0, car 3 79.9 / 20.3: it misses
+    // on car 3 and is not asserted here (docs/planar.md, "Cars nobody tuned
+    // for"); every other threshold holds on every car
     for (seed, scores) in documented_on(&seeds("1,2,3")) {
-        assert!(scores.misses().is_empty(), "seed {seed}: {scores:?}");
+        let misses: Vec<_> = scores
+            .misses()
+            .into_iter()
+            .filter(|m| !m.ends_with("band"))
+            .collect();
+        assert!(misses.is_empty(), "seed {seed}: {misses:?} {scores:?}");
     }
 }
 
@@ -439,7 +448,7 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
 /// within ±15 % as for seeds 1–3), every acceptance figure and the
 /// held-out yaw's band per car (docs/planar.md, "Cars nobody tuned for").
 ///
-/// Measured (w14-h3, release, 47–105 s each on a loaded machine; band:
+/// Measured (w14-h3, release, 47–111 s each on a loaded machine; band:
 /// the measured held-out yaw inside its 90 % band, % of the samples):
 ///
 /// | seed | offset x / yaw % | face x / yaw % | forward force / x-acc / yaw rate % | I_z | μ | at best | band offset / face % | misses |
@@ -469,7 +478,7 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
 /// cars 0–9 (91.2–97.3 %) and seven of ten hold every threshold
 /// (docs/planar.md, "The truth through the joint stage").
 #[test]
-#[ignore = "six series, 47-105 s each in release on a loaded machine"]
+#[ignore = "six series, 47-111 s each in release on a loaded machine"]
 fn the_documented_study_on_unseen_cars() {
     let unmet = ["offset x", "forward force", "forward x-acc", "face band"];
     for (seed, scores) in documented_on(&seeds("4,5,6,7,8,9")) {
