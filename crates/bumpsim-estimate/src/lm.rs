@@ -28,6 +28,13 @@
 //! - a projected gradient below `gtol · (1 + F)`;
 //! - the iteration limit (reported as not converged).
 //!
+//! The rules but the gradient's need only the accepted step, the two
+//! objectives and the gradient where the step began, so they are tested
+//! before the normal equations at the new point are formed: a run that
+//! stops by them forms none at its last point, where nothing would use
+//! them (a polish forms its own at its start): one Jacobian fewer per
+//! converged run, the same path and result.
+//!
 //! Why by hand: no long-proven bounded least-squares crate exists for Rust
 //! (`levenberg-marquardt` has no bounds and pins an older nalgebra; `basin`
 //! is young). The problems here have at most a few dozen parameters, so a
@@ -321,23 +328,25 @@ pub fn minimise(
             let rho = (s.cost - cost) / predicted;
             if ok && cost.is_finite() && cost < s.cost && rho > 0.0 {
                 control.accept(rho, step.as_slice());
-                accepted = Some((trial, cost, step, s.g.clone()));
+                accepted = Some((trial, cost, step));
                 break;
             }
             control.reject(control.length(step.as_slice()));
         }
-        let Some((trial, cost, step, g)) = accepted else {
+        let Some((trial, cost, step)) = accepted else {
             return finish(s, iteration, evaluations, Stop::NoProgress);
         };
         let decrease = (s.cost - cost) / s.cost.max(f64::MIN_POSITIVE);
-        let directional = (2.0 * g.dot(&step)).abs();
+        let directional = (2.0 * s.g.dot(&step)).abs();
         s.p = trial;
-        evaluations += 1;
-        let ok = problem.normal(&s.p, &mut s.r, &mut s.jtj, &mut s.g);
         s.cost = cost;
-        if !ok {
-            return finish(s, iteration + 1, evaluations, Stop::NoProgress);
-        }
+        // the stopping rules need only the step, the two objectives and the
+        // gradient where the step began: a run that stops by them forms no
+        // normal equations at its last point, which nothing would use (a
+        // polish forms its own at its start; issue 44 item 6). At the
+        // iteration limit they are formed, as before: a point where they
+        // cannot be formed ends the run (no progress) instead of being
+        // handed on to a next stage that could not start from it.
         let stop = if directional < settings.directional * s.cost {
             Some(Stop::Directional)
         } else if decrease < settings.ftol {
@@ -349,6 +358,10 @@ pub fn minimise(
         };
         if let Some(stop) = stop {
             return finish(s, iteration + 1, evaluations, stop);
+        }
+        evaluations += 1;
+        if !problem.normal(&s.p, &mut s.r, &mut s.jtj, &mut s.g) {
+            return finish(s, iteration + 1, evaluations, Stop::NoProgress);
         }
     }
     finish(s, settings.max_iterations, evaluations, Stop::Iterations)
@@ -664,6 +677,52 @@ mod tests {
             accelerated.iterations,
             plain.iterations
         );
+    }
+
+    /// Rosenbrock counting the normal equations LM forms.
+    struct Counted(std::cell::Cell<usize>);
+
+    impl LeastSquares for Counted {
+        fn residual_count(&self) -> usize {
+            2
+        }
+        fn parameter_count(&self) -> usize {
+            2
+        }
+        fn evaluate(&self, p: &[f64], r: &mut [f64], jac: Option<&mut DMatrix<f64>>) -> bool {
+            Rosenbrock.evaluate(p, r, jac)
+        }
+        fn normal(
+            &self,
+            p: &[f64],
+            r: &mut [f64],
+            jtj: &mut DMatrix<f64>,
+            g: &mut DVector<f64>,
+        ) -> bool {
+            self.0.set(self.0.get() + 1);
+            Rosenbrock.normal(p, r, jtj, g)
+        }
+    }
+
+    /// The start's normal equations and one set per accepted step but the
+    /// last: a run that a stopping rule ends (here on the bound p0 ≤ 0.5,
+    /// where the residuals do not vanish) forms none at its last point
+    /// (nothing would use them); at the iteration limit it does.
+    #[test]
+    fn no_normal_equations_are_formed_at_the_last_point() {
+        for (limit, upper) in [(5, 5.0), (1000, 0.5)] {
+            let problem = Counted(std::cell::Cell::new(0));
+            let settings = Settings {
+                max_iterations: limit,
+                ..Settings::default()
+            };
+            let out = minimise(&problem, &[-1.2, 1.0], &[-5.0; 2], &[upper, 5.0], &settings);
+            let by_rule = matches!(out.stop, Stop::Directional | Stop::Objective | Stop::Step);
+            assert_eq!(by_rule, limit == 1000, "{:?}", out.stop);
+            assert!(out.iterations > 1);
+            let last = usize::from(!by_rule);
+            assert_eq!(problem.0.get(), out.iterations + last, "{:?}", out.stop);
+        }
     }
 
     #[test]

@@ -1,34 +1,39 @@
 //! Issue 44 item 6: from its default (data-derived) start, one start,
 //! bumpsim's LM with Nielsen's damping and the geodesic acceleration
-//! (`lm::Settings::acceleration`, 2026-11-29: 18 and 42 Jacobians; not yet
-//! the identification's default, which takes 24 and 77; the trust region,
-//! [`Damping::TrustRegion`], 13 and 15: see docs/identify.md "Iterations")
-//! needs no more Jacobians than scipy's
-//! `least_squares` (trust-region-reflective, 2-point differences) evaluates
-//! from the same start, for the same optimum (objectives within 1e-9,
-//! relative: both stop at the same precision, so neither count is bought
-//! with a looser tolerance). Like for like: scipy's `njev` counts the
-//! start's Jacobian and one per accepted step; bumpsim's count is the
-//! normal equations LM forms (`LeastSquares::normal`: the start's and one
-//! per accepted step, its iterations + 1), counted on the problem itself.
-//! The series is `bench/peers/scipy_identify.py`'s (three synthetic
-//! pendulum cases, 500 samples each), written and fitted by
-//! `tests/peers/scipy_trf_iterations.py`; skipped without scipy.
+//! (`lm::Settings::acceleration`: 17 and 41 Jacobians since 2026-11-30,
+//! 18 and 42 before; the trust region, [`Damping::TrustRegion`], 12 and
+//! 14) needs no more Jacobians than scipy's `least_squares`
+//! (trust-region-reflective, 2-point differences) evaluates from the same
+//! start, for the same optimum (objectives within 1e-9, relative: both stop
+//! at the same precision, so neither count is bought with a looser
+//! tolerance). **Not the identification's default**, which takes plain
+//! steps (23 and 76 in one LM run; 31 and 76 in the identification's own
+//! one-start search, the ignored test at the end): see docs/identify.md
+//! "Iterations". Counted: scipy's `njev` (the start's Jacobian and one per
+//! accepted step, the last point's included); bumpsim's, the normal
+//! equations LM forms (`LeastSquares::normal`: the start's and one per
+//! accepted step but the last, its iterations: since 2026-11-30 a run that
+//! stops forms none at its last point, where nothing uses them), counted
+//! on the problem itself. The series is `bench/peers/scipy_identify.py`'s
+//! (three synthetic pendulum cases, 500 samples each), written and fitted
+//! by `tests/peers/scipy_trf_iterations.py`; skipped without scipy.
 
 use bumpsim_estimate::lm::{self, Damping, LeastSquares};
 use bumpsim_ident::Study;
 use bumpsim_ident::case::Objective;
 use bumpsim_ident::estimate::data_start;
 use nalgebra::{DMatrix, DVector};
-use std::cell::Cell;
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// A problem that counts the Jacobians (normal equations) LM asks for.
+/// A problem that counts the Jacobians (normal equations) LM asks for, and
+/// the `Jᵀv` products; shared counters, so that a multi-start's runs (one
+/// problem each) add to the same count.
 struct Counted<'a> {
     objective: Objective<'a>,
-    jacobians: Cell<usize>,
-    products: Cell<usize>,
+    jacobians: &'a AtomicUsize,
+    products: &'a AtomicUsize,
 }
 
 impl LeastSquares for Counted<'_> {
@@ -40,7 +45,7 @@ impl LeastSquares for Counted<'_> {
     }
     fn evaluate(&self, p: &[f64], r: &mut [f64], jacobian: Option<&mut DMatrix<f64>>) -> bool {
         self.jacobians
-            .set(self.jacobians.get() + usize::from(jacobian.is_some()));
+            .fetch_add(usize::from(jacobian.is_some()), Ordering::Relaxed);
         self.objective.evaluate(p, r, jacobian)
     }
     fn normal(
@@ -50,11 +55,11 @@ impl LeastSquares for Counted<'_> {
         jtj: &mut DMatrix<f64>,
         g: &mut DVector<f64>,
     ) -> bool {
-        self.jacobians.set(self.jacobians.get() + 1);
+        self.jacobians.fetch_add(1, Ordering::Relaxed);
         self.objective.normal(p, r, jtj, g)
     }
     fn transposed(&self, p: &[f64], v: &[f64], product: &mut DVector<f64>) -> bool {
-        self.products.set(self.products.get() + 1);
+        self.products.fetch_add(1, Ordering::Relaxed);
         self.objective.transposed(p, v, product)
     }
 }
@@ -116,10 +121,11 @@ fn compare(objective: &str, damping: Option<Damping>) {
     };
     let start = data_start(&cases, 3);
     let log = |v: &[f64]| -> Vec<f64> { v.iter().map(|x| x.ln()).collect() };
+    let (jacobians, products) = (AtomicUsize::new(0), AtomicUsize::new(0));
     let problem = Counted {
         objective: Objective::new(&cases, 3, &settings.bounds.fixed),
-        jacobians: Cell::new(0),
-        products: Cell::new(0),
+        jacobians: &jacobians,
+        products: &products,
     };
     let outcome = lm::minimise(
         &problem,
@@ -129,16 +135,15 @@ fn compare(objective: &str, damping: Option<Damping>) {
         &solver,
     );
     assert!(outcome.stop.converged(), "{:?}", outcome.stop);
-    let jacobians = problem.jacobians.get();
-    assert_eq!(jacobians, outcome.iterations + 1, "one per accepted step");
+    let (jacobians, products) = (jacobians.into_inner(), products.into_inner());
+    assert_eq!(
+        jacobians, outcome.iterations,
+        "one per accepted step but the last"
+    );
     let (njev, value) = trf(&out, objective, &start);
     eprintln!(
         "{objective}: bumpsim {jacobians} Jacobians ({} iterations, {} residual evaluations, {} products), objective {:e} ({:?}); scipy TRF {njev} Jacobians, {value:e}",
-        outcome.iterations,
-        outcome.evaluations,
-        problem.products.get(),
-        outcome.objective,
-        outcome.stop
+        outcome.iterations, outcome.evaluations, products, outcome.objective, outcome.stop
     );
     assert!(
         (outcome.objective / value - 1.0).abs() < 1e-9,
@@ -156,9 +161,11 @@ fn compare(objective: &str, damping: Option<Damping>) {
 /// `v + a/2`, `a` from the residuals' second directional derivative by one
 /// residual evaluation at `p + 0.1 v` and `Jᵀ` of it by the modal form's
 /// basis alone; refused when `2‖a‖/‖v‖ > 1`; the gain ratio against the
-/// model's decrease along v) takes **18 Jacobians against scipy's 18 on the
-/// velocity objective and 42 against 60 on the displacement one** (59 and
-/// 148 residual evaluations, 24 and 52 `Jᵀv` products), to the same optimum.
+/// model's decrease along v) takes **17 Jacobians against scipy's 18 on the
+/// velocity objective and 41 against 60 on the displacement one** (58 and
+/// 147 residual evaluations, 24 and 52 `Jᵀv` products), to the same
+/// optimum; until 2026-11-30 LM also formed the normal equations at the
+/// point it stopped at, one more (18 and 42; the figures below are of then).
 /// By the largest ratio accepted (velocity, displacement): 0.5 26, 54;
 /// 0.75 (Transtrum & Sethna's) 22, 42; **1.0 18, 42**; 1.25 18, 37; 1.5 19,
 /// 34; 2 17, 33; 3 or none 15 and a displacement run that stops 4e4 times
@@ -167,9 +174,10 @@ fn compare(objective: &str, damping: Option<Damping>) {
 /// margin (1.5 gives 19): the acceleration does the displacement's curved
 /// valley (77 → 42), not the velocity objective's slow linear creep.
 ///
-/// The trust region, velocity: 13 Jacobians (12 accepted steps) against
+/// The trust region, velocity: 13 Jacobians (12 accepted steps; 12 since
+/// 2026-11-30, no Jacobian at the last point) against
 /// scipy's 18, to the same optimum (scipy's ends 4e-13 above bumpsim's);
-/// displacement 15 against 60. Until 2026-11-29 (10:50) the trust region
+/// displacement 15 (14 since 2026-11-30) against 60. Until 2026-11-29 (10:50) the trust region
 /// quartered its radius after a refused trial, as scipy's TRF does, and
 /// took 23 and 39: both reach 3e-5 above the optimum at their 11th
 /// Jacobian, then bumpsim crept along a curved valley with its radius
@@ -254,4 +262,87 @@ fn the_trust_region_needs_no_more_than_scipy_trf_either() {
 #[ignore = "open: stops 1.6e-4 above scipy's optimum on the acceleration objective"]
 fn acceleration_iterations_are_no_more_than_scipy_trf_jacobians() {
     compare("acceleration", None);
+}
+
+/// Issue 44 item 6 as the identification runs it: the multi-start search
+/// of `identify` (the layer's `multistart::search` with the study's own
+/// settings, unchanged) from its one start, the default one: a screening
+/// run (relative decrease 1e-6) and the polish of its optimum (1e-12), two
+/// LM runs, each forming its start's Jacobian. The count is checked
+/// against `identify` itself (the same objective and iterations, bit for
+/// bit, where no prior is stated). With the default settings (plain steps
+/// in the screening; the solver's acceleration is `None`) this takes **31
+/// Jacobians against scipy's 18 (velocity) and 76 against 60
+/// (displacement)**; with the acceleration in every stage of the search
+/// (measured 2026-11-30 with a temporary switch, removed) 17 and 41, but so
+/// made the default, two tests of `tests/identification.rs` fail
+/// (docs/identify.md "Iterations"). Open.
+#[test]
+#[ignore = "open: the identification's default takes 31 and 76 Jacobians from its one start (scipy 18, 60)"]
+fn the_identifications_own_start_needs_no_more_than_scipy_trf_jacobians() {
+    searched("velocity");
+    searched("displacement");
+}
+
+/// The identification's own search from its default start, counted.
+fn searched(objective: &str) {
+    use bumpsim_estimate::multistart::{Search, search};
+    use bumpsim_ident::case::VALID_RANGE;
+    let Some(out) = series() else { return };
+    let mut study = Study::read(&out.join("study.toml")).unwrap();
+    study.identification.objective = Some(objective.into());
+    let cases = study.cases(3).unwrap();
+    let settings = study.settings(3).unwrap();
+    assert_eq!(settings.starts, 1, "the default start alone");
+    let start = data_start(&cases, 3);
+    let log = |v: &[f64]| -> Vec<f64> { v.iter().map(|x| x.ln()).collect() };
+    let (lower, upper) = (log(&settings.bounds.lower), log(&settings.bounds.upper));
+    let (floor, ceiling) = (
+        vec![VALID_RANGE.start().ln(); start.len()],
+        vec![VALID_RANGE.end().ln(); start.len()],
+    );
+    let (jacobians, products) = (AtomicUsize::new(0), AtomicUsize::new(0));
+    let make = || Counted {
+        objective: Objective::new(&cases, 3, &settings.bounds.fixed),
+        jacobians: &jacobians,
+        products: &products,
+    };
+    let found = search(
+        &make,
+        vec![log(&start)],
+        &Search {
+            starts: settings.starts,
+            seed: settings.seed,
+            solver: settings.solver,
+            lower: &lower,
+            upper: &upper,
+            range: (&floor, &ceiling),
+        },
+        &|| {},
+    )
+    .unwrap();
+    let best = found.best();
+    let identified = bumpsim_ident::identify(&cases, &settings, &|| {}).unwrap();
+    if identified.stated.is_empty() {
+        assert_eq!(best.objective, identified.objective, "identify's own run");
+        assert_eq!(best.iterations, identified.iterations, "identify's own run");
+    }
+    let jacobians = jacobians.into_inner();
+    let (njev, value) = trf(&out, objective, &start);
+    eprintln!(
+        "{objective}, the identification's search: {jacobians} Jacobians ({} iterations, {} products), objective {:e} ({:?}); scipy TRF {njev} Jacobians, {value:e}",
+        best.iterations,
+        products.into_inner(),
+        best.objective,
+        best.stop
+    );
+    assert!(
+        (best.objective / value - 1.0).abs() < 1e-9,
+        "{objective}: objective {:e} against scipy's {value:e}",
+        best.objective
+    );
+    assert!(
+        jacobians <= njev,
+        "{objective}: {jacobians} Jacobians against scipy's {njev}"
+    );
 }
