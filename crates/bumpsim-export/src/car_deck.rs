@@ -277,8 +277,8 @@ mod tests {
         assert!(rebound.iter().all(pushes), "{rebound:?}");
     }
 
-    /// CalculiX: each wall link from its held wall node (ids offset + 11n
-    /// + 2 and + 3: 124 and 125 here); the elastic rebound link a `SPRING2`
+    /// CalculiX: each wall link from its held wall node (ids offset +
+    /// 11n + 2 and + 3: 124 and 125 here); the elastic rebound link a `SPRING2`
     /// with its table zero up to the gap, the yielding path a brick to its
     /// free node 126 and a one-sided `SPRINGA` from there (k_p = 2 k_u =
     /// 4e6 N/m after 0.15 m); neither approximate; every node and element

@@ -9,12 +9,15 @@
 //! The brick of link j has nodes offset + 3n + 8(j − 1) + 1..8, the front
 //! link's the block after the last link's.
 //!
-//! A wall link (second load path, rebound link) is one `SPRING2` from its
-//! own held wall node (node and element offset + 11n + 2 and + 3, sets
-//! `<prefix>EPATH`, `<prefix>EREBOUND`) to its mass, with the loading curve
-//! shifted by its gap as a one-sided table: force 0 before the gap and in
-//! tension, `F_L(δ − g)` beyond (exact for a linear or elastic link; a
-//! yielding one unloads along its curve, see `wall_element`).
+//! A wall link (second load path, rebound link) runs from its own held
+//! wall node (node and element offset + 11n + 2 and + 3, sets
+//! `<prefix>EPATH`, `<prefix>EREBOUND`) to its mass. A linear or elastic
+//! one is one `SPRING2` with the loading curve shifted by its gap as a
+//! one-sided table: force 0 before the gap and in tension, `F_L(δ − g)`
+//! beyond. A yielding one (an unloading slope) is the chain's brick (set
+//! `<prefix>EPATHB`, …) from the wall node to a free node, and a one-sided
+//! `SPRINGA` from there to the mass (module `walls`, private: the series
+//! pair, its ids offset + 11n + 3 + 9(s − 1) + 1..9, and why).
 //!
 //! **Barrier run** ([`Barrier`]): without a front link m1 is held at the
 //! wall and the other masses move at the speed towards it
@@ -22,7 +25,7 @@
 //! every mass moves and the front link meets the wall node (which holds
 //! on in tension, where bumpsim's front link lets go). `*NODE PRINT` of
 //! U, `*EL PRINT` of the bricks' stresses; [`read_link_forces`] turns them
-//! into link forces (mean axial stress × section).
+//! into link forces (mean axial less lateral stress × section).
 
 use crate::ExportError;
 use crate::calculix::{CalculixOptions, Extra, dynamic_step};

@@ -31,7 +31,8 @@
 //! only in the `SPRINGA` branch), so a `SPRING2` gap table closed with a
 //! zero tangent and Newton cycled between open and closed; a `SPRINGA`
 //! gets its slope at its actual elongation. F without a mass (only the
-//! brick's 10⁻⁴ kg) cycled at the hardening table's corners; with
+//! brick's 10⁻⁴ kg) cycled at the hardening table's corners (measured
+//! with the brick's lateral faces free, before they were tied); with
 //! `M_F/(β Δt²) = 4 (k_p + k_b)` (β = 1/4) every increment converges, and
 //! F's inertia (`M_F a`, a contact knock of about `v √(M_F k_p)` when F is
 //! set moving) stays within 0.02 % of the peak force in that case.
