@@ -41,11 +41,18 @@
 //! **The brick.** CalculiX has no hysteretic spring and expands its truss
 //! elements into bricks whose knots fail on yielding, so the link is one
 //! `C3D8` of length [`BRICK_LENGTH`] and square section [`BRICK_SIDE`]²
-//! beside the axis, small-strain (no NLGEOM), Poisson's ratio 0, two
-//! lateral faces on symmetry supports (uniaxial stress), its rear face
-//! following mass j and its front face mass j+1 along the axis by
-//! `*EQUATION`: its axial strain is the crush over L, and `EA/L = k_E`,
-//! `σ A = F`. A 100 m brick keeps a 1 m crush at 1 % strain.
+//! beside the axis, small-strain (no NLGEOM), Poisson's ratio 0, its rear
+//! face following mass j and its front face mass j+1 along the axis by
+//! `*EQUATION`: its axial strain ε is the crush over L. Two lateral faces
+//! sit on symmetry supports, the other two follow ε as an incompressible
+//! flow does (`u = −ε w/2` across, by `*EQUATION`; left free, these
+//! massless nodes made ccx's Newton diverge on softening tables). The
+//! strain is then deviatoric, the von Mises stress `σ_eq = σ_axial −
+//! σ_lateral`, and the force on the ends (the work of all faces)
+//! `F = σ_eq A`, elastic `3 E A/(2L) δ`: so `E = 2 k_E L/(3 A)`, and the
+//! `*PLASTIC` table (`σ_eq` against the equivalent plastic strain, here the
+//! axial one) is `F/A` against `(δ − F/k_E)/L`, as for a bar in uniaxial
+//! stress. A 100 m brick keeps a 1 m crush at 1 % strain.
 //!
 //! **Front link** ([`Chain::with_front`], the crush zone between the
 //! barrier and m1): written between a fixed wall node one spacing ahead of
@@ -59,7 +66,10 @@
 //! gap ([`gapped_points`]: `F(δ) = 0` for δ ≤ g, `F_L(δ − g)` beyond). A
 //! yielding link with an unloading slope is `*MAT_SPRING_INELASTIC` (CTF =
 //! 1), any other `*MAT_SPRING_NONLINEAR_ELASTIC` with zero force in tension:
-//! both never pull and map as the chain's links do. A gap that makes two
+//! both never pull and map as the chain's links do. In CalculiX an elastic
+//! one is a one-sided `SPRING2` table, a yielding one the chain's brick
+//! behind a one-sided `SPRINGA` (`crate::chain_calculix`, its `walls`
+//! module): both exact as the chain's links are. A gap that makes two
 //! written points coincide is refused ([`ExportError::WallGap`]).
 //!
 //! The CalculiX deck, its barrier run and the link forces read back:

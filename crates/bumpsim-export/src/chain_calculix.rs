@@ -9,12 +9,15 @@
 //! The brick of link j has nodes offset + 3n + 8(j − 1) + 1..8, the front
 //! link's the block after the last link's.
 //!
-//! A wall link (second load path, rebound link) is one `SPRING2` from its
-//! own held wall node (node and element offset + 11n + 2 and + 3, sets
-//! `<prefix>EPATH`, `<prefix>EREBOUND`) to its mass, with the loading curve
-//! shifted by its gap as a one-sided table: force 0 before the gap and in
-//! tension, `F_L(δ − g)` beyond (exact for a linear or elastic link; a
-//! yielding one unloads along its curve, see `wall_element`).
+//! A wall link (second load path, rebound link) runs from its own held
+//! wall node (node and element offset + 11n + 2 and + 3, sets
+//! `<prefix>EPATH`, `<prefix>EREBOUND`) to its mass. A linear or elastic
+//! one is one `SPRING2` with the loading curve shifted by its gap as a
+//! one-sided table: force 0 before the gap and in tension, `F_L(δ − g)`
+//! beyond. A yielding one (an unloading slope) is the chain's brick (set
+//! `<prefix>EPATHB`, …) from the wall node to a free node, and a one-sided
+//! `SPRINGA` from there to the mass (module `walls`, private: the series
+//! pair, its ids offset + 11n + 3 + 9(s − 1) + 1..9, and why).
 //!
 //! **Barrier run** ([`Barrier`]): without a front link m1 is held at the
 //! wall and the other masses move at the speed towards it
@@ -22,7 +25,7 @@
 //! every mass moves and the front link meets the wall node (which holds
 //! on in tension, where bumpsim's front link lets go). `*NODE PRINT` of
 //! U, `*EL PRINT` of the bricks' stresses; [`read_link_forces`] turns them
-//! into link forces (mean axial stress × section).
+//! into link forces (mean axial less lateral stress × section).
 
 use crate::ExportError;
 use crate::calculix::{CalculixOptions, Extra, dynamic_step};
@@ -37,6 +40,9 @@ use bumpsim_core::link::{Curve, Link, Unloading};
 use bumpsim_core::model::MsdModel;
 use std::fmt::Write;
 use std::path::Path;
+
+#[path = "chain_calculix_walls.rs"]
+mod walls;
 
 /// A barrier run of the CalculiX deck.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -154,8 +160,11 @@ struct Span<'a> {
 struct Gap {
     /// The gap, m.
     gap: f64,
-    /// The node of the mass it pushes.
+    /// The node of the mass it pushes (0-based index `mass − offset − 1`).
     mass: u64,
+    /// The id before the block of a yielding wall link's own ids (its free
+    /// node, brick nodes and elements; [`walls`]).
+    block: u64,
 }
 
 struct Parts<'a> {
@@ -171,8 +180,9 @@ struct Parts<'a> {
 
 /// The wall links as spans: wall link of slot s ([`wall_links`]) is node
 /// and element offset + 11n + 1 + s (its wall node, held, set
-/// `<elset>_WALL`, and its `SPRING2`), with the number of ids it takes
-/// beyond the front link's wall node.
+/// `<elset>_WALL`, and its spring), a yielding one also the block of nine
+/// ids after offset + 11n + 3 + 9(s − 1) ([`walls`]), with the number of
+/// ids it takes beyond the front link's wall node.
 fn wall_spans<'a>(
     chain: &'a Chain,
     options: &CalculixOptions,
@@ -193,20 +203,38 @@ fn wall_spans<'a>(
             1 => "PATH",
             _ => "REBOUND",
         };
+        let block = options.id_offset + 11 * n as u64 + 3 + 9 * (slot - 1);
+        let yielding = is_brick(&wall.link);
+        let block_ids = [block + 1, block + walls::BLOCK];
+        if let Some(&node) = options
+            .attach
+            .iter()
+            .find(|a| yielding && (block_ids[0]..=block_ids[1]).contains(a))
+        {
+            return Err(ExportError::IdClash {
+                node,
+                first: block_ids[0],
+                last: block_ids[1],
+            });
+        }
         spans.push((
             Span {
                 link: &wall.link,
                 label: label.to_string(),
                 elset: format!("{}E{tag}", options.prefix),
                 ends: [id, mass],
-                slot: n - 1 + slot as usize, // unused: never a brick
+                slot: n - 1 + slot as usize, // beside the links' bricks
                 at: -1.0,
                 gap: Some(Gap {
                     gap: wall.gap,
                     mass,
+                    block,
                 }),
             },
-            slot,
+            match yielding {
+                true => block_ids[1] - (options.id_offset + 11 * n as u64 + 1),
+                false => slot,
+            },
         ));
     }
     Ok(spans)
@@ -224,6 +252,15 @@ const CORNERS: [[f64; 3]; 8] = [
     [0.0, 1.0, 1.0],
 ];
 
+/// The element set of a link's brick: a wall link's spring keeps the
+/// link's set, its brick takes the set with a `B` after it.
+fn brick_elset(span: &Span) -> String {
+    match span.gap {
+        Some(_) => format!("{}B", span.elset),
+        None => span.elset.clone(),
+    }
+}
+
 fn is_brick(link: &Link) -> bool {
     !matches!(link.curve(), Curve::Linear { .. }) && matches!(link.unloading(), Unloading::Slope(_))
 }
@@ -240,20 +277,26 @@ fn across(layout: &Layout) -> [usize; 2] {
 
 impl Parts<'_> {
     fn nodes(&self, options: &CalculixOptions, span: &Span) -> [u64; 8] {
-        let first = options.id_offset + 3 * self.n as u64 + 8 * span.slot as u64 + 1;
+        let first = match span.gap {
+            Some(gap) => walls::brick_nodes(gap),
+            None => options.id_offset + 3 * self.n as u64 + 8 * span.slot as u64 + 1,
+        };
         std::array::from_fn(|i| first + i as u64)
     }
 
+    /// The links written as bricks: the chain's, then the wall links'.
     fn bricks(&self) -> impl Iterator<Item = &Span<'_>> {
-        // a wall link is a spring, whatever its unloading
-        self.spans.iter().filter(|s| is_brick(s.link))
+        let spans = self.spans.iter().chain(&self.walls);
+        spans.filter(|s| is_brick(s.link))
     }
 
     /// A link as element `id`.
     fn element(&self, deck: &mut String, span: &Span, id: u64, options: &CalculixOptions) {
         let (link, elset) = (span.link, &span.elset);
-        if let Some(gap) = span.gap {
-            return self.wall_element(deck, span, gap, id, options);
+        match span.gap {
+            Some(gap) if is_brick(link) => return self.yielding_wall(deck, span, gap, id, options),
+            Some(gap) => return self.wall_element(deck, span, gap, id, options),
+            None => {}
         }
         let units = options.layout.units;
         let _ = writeln!(deck, "** {}: {}", span.label, mapping(link).note);
@@ -283,7 +326,10 @@ impl Parts<'_> {
                     let _ = writeln!(deck, "{}, {}", real(f), real(e));
                 }
             }
-            (_, Unloading::Slope(_)) => self.brick(deck, span, id, options, &points),
+            (_, Unloading::Slope(_)) => {
+                let k = solver_unloading(link);
+                self.brick(deck, span, id, options, &points, k)
+            }
         }
     }
 
@@ -304,17 +350,10 @@ impl Parts<'_> {
         inp::node_line(deck, span.ends[0], at);
     }
 
-    /// A wall link as element `id`: one `SPRING2` from the wall node to
-    /// the mass, its table the loading curve shifted by the gap in
-    /// compression, zero before it and in tension (it never pulls). Exact
-    /// for a linear link or one elastic along its curve. A yielding link
-    /// (an unloading slope) unloads along its curve here, without its
-    /// plastic set: the brick the chain's links use needs a gap element in
-    /// series and a free node between the two, and ccx 2.20's fixed-increment
-    /// Newton did not converge once that gap closed (measured: a `SPRING2`
-    /// table, a smoothed one and a `GAPUNI`, with and without a mass on the
-    /// node, all stopped at the increment the gap closed). Its loading, and
-    /// so the peak barrier force, is exact; LS-DYNA's deck keeps the set.
+    /// A wall link elastic along its curve as element `id`: one `SPRING2`
+    /// from the wall node to the mass, its table the loading curve shifted
+    /// by the gap in compression, zero before it and in tension (it never
+    /// pulls). A yielding one: [`walls`].
     fn wall_element(
         &self,
         deck: &mut String,
@@ -324,11 +363,7 @@ impl Parts<'_> {
         options: &CalculixOptions,
     ) {
         let link = span.link;
-        let note = match is_brick(link) {
-            true => "APPROXIMATE: loads along the curve after the gap, unloads along it (no plastic set in ccx; docs/export.md)".to_string(),
-            false => wall_note(link),
-        };
-        let _ = writeln!(deck, "** {}: {note}", span.label);
+        let _ = writeln!(deck, "** {}: {}", span.label, wall_note(link));
         let mut rows: Vec<(f64, f64)> = gapped_points(link.curve(), gap.gap)
             .iter()
             .rev()
@@ -345,6 +380,7 @@ impl Parts<'_> {
         id: u64,
         options: &CalculixOptions,
         points: &[(f64, f64)],
+        k: f64,
     ) {
         let (layout, units, elset) = (&options.layout, options.layout.units, &span.elset);
         let (length, side) = (BRICK_LENGTH * units.length(), BRICK_SIDE * units.length());
@@ -373,16 +409,17 @@ impl Parts<'_> {
         inp::element_keyword(deck, "C3D8", elset);
         let list: Vec<String> = nodes.iter().map(u64::to_string).collect();
         let _ = writeln!(deck, "{id}, {}", list.join(", "));
-        let k = solver_unloading(span.link);
         let material = format!("{elset}_MATERIAL");
-        let modulus = k * units.stiffness() * length / area;
+        // E A / L = 2 k / 3: with the lateral faces tied the brick's axial
+        // stiffness is 3 E A / (2 L) (module docs of `crate::chain`)
+        let modulus = 2.0 / 3.0 * k * units.stiffness() * length / area;
         let _ = writeln!(
             deck,
             "*SOLID SECTION, ELSET={elset}, MATERIAL={material}\n*MATERIAL, NAME={material}\n*ELASTIC\n{}, 0.0\n*DENSITY\n{}",
             real(modulus),
             real(BRICK_DENSITY * units.mass() / units.length().powi(3))
         );
-        let table = hardening(points, k);
+        let table = hardening(points, solver_unloading(span.link));
         if !table.is_empty() {
             deck.push_str("*PLASTIC\n");
             for (force, strain) in table {
@@ -424,6 +461,33 @@ fn spring_table(
     for (force, elongation) in rows {
         let (f, e) = (force * units.force(), elongation * units.length());
         let _ = writeln!(deck, "{}, {}", real(f), real(e));
+    }
+}
+
+/// The brick's free lateral faces follow its axial strain ε as an
+/// incompressible flow does: `u = −ε w / 2` across (w the side), one
+/// three-term `*EQUATION` per free lateral degree of freedom,
+/// `u + c s u_front − c s u_rear = 0` with `c = w/(2L)` and s the axis's
+/// sign. Left free, the lateral nodes (massless, held by the brick alone)
+/// made ccx's Newton diverge on a softening table (the identified NHTSA
+/// 10146 car stopped at 13 ms; tied, it runs to the end).
+fn lateral_ties(deck: &mut String, nodes: &[u64; 8], ends: [u64; 2], options: &CalculixOptions) {
+    let (dof, sign) = (options.layout.axis.dof(), options.layout.axis.sign);
+    let c = sign * BRICK_SIDE / (2.0 * BRICK_LENGTH);
+    let across = across(&options.layout);
+    let [rear, front] = ends;
+    for (corner, node) in CORNERS.iter().zip(nodes) {
+        for (k, direction) in across.iter().enumerate() {
+            if corner[1 + k] == 1.0 {
+                let _ = writeln!(
+                    deck,
+                    "3\n{node}, {}, 1.0, {front}, {dof}, {}, {rear}, {dof}, {}",
+                    direction + 1,
+                    real(c),
+                    real(-c)
+                );
+            }
+        }
     }
 }
 
@@ -480,6 +544,11 @@ impl Extra for Parts<'_> {
         }
         for span in &self.walls {
             held.push((format!("{}_WALL", span.elset), 1, 3));
+            if let (Some(gap), true) = (span.gap, is_brick(span.link)) {
+                for dof in options.layout.axis.other_dofs() {
+                    held.push((walls::free_node(gap).to_string(), dof, dof));
+                }
+            }
         }
         if self.front {
             held.push((format!("{}WALL", options.prefix), 1, 3));
@@ -493,15 +562,20 @@ impl Extra for Parts<'_> {
     fn ties(&self, deck: &mut String, options: &CalculixOptions) {
         let dof = options.layout.axis.dof();
         for span in self.bricks() {
+            let ends = match span.gap {
+                Some(gap) => [span.ends[0], walls::free_node(gap)],
+                None => span.ends,
+            };
             let _ = writeln!(
                 deck,
                 "** {} brick: rear face follows node {}, front face node {}\n*EQUATION",
-                span.label, span.ends[0], span.ends[1]
+                span.label, ends[0], ends[1]
             );
             for (corner, node) in CORNERS.iter().zip(self.nodes(options, span)) {
-                let end = span.ends[corner[0] as usize];
+                let end = ends[corner[0] as usize];
                 let _ = writeln!(deck, "2\n{node}, {dof}, 1.0, {end}, {dof}, -1.0");
             }
+            lateral_ties(deck, &self.nodes(options, span), ends, options);
         }
     }
 
@@ -537,7 +611,7 @@ impl Extra for Parts<'_> {
         let every = Print::Every(b.output_every);
         inp::node_print(deck, &format!("{}NALL", options.prefix), every, "U");
         for span in self.bricks() {
-            inp::element_print(deck, &span.elset, every, "S");
+            inp::element_print(deck, &brick_elset(span), every, "S");
         }
         deck.push_str("*END STEP\n");
         Ok(())
@@ -577,8 +651,10 @@ pub struct LinkForces {
 }
 
 /// Reads the bricks' axial forces of a deck written by
-/// [`calculix_chain_deck`] from the `.dat` beside it: the mean axial
-/// stress of the integration points times the section.
+/// [`calculix_chain_deck`] from the `.dat` beside it: the mean over the
+/// integration points of the axial stress less the mean lateral stress,
+/// times the section (the work of the tied lateral faces goes to the
+/// ends: `F = (σ_axial − σ_lateral) A`).
 pub fn read_link_forces(deck_path: &Path) -> Result<LinkForces, ExportError> {
     let fail = |path: &Path, reason: String| ExportError::Dat {
         path: path.into(),
@@ -623,10 +699,16 @@ pub fn read_link_forces(deck_path: &Path) -> Result<LinkForces, ExportError> {
         }
         let mut force = Vec::with_capacity(blocks.len());
         for b in blocks {
+            // the axial stress less the lateral faces' mean (which carry
+            // the tied flow's share; zero on a deck with free faces)
             let stress: Vec<f64> = b
                 .rows
                 .iter()
-                .filter_map(|r| r.values.get(1 + component).copied())
+                .filter_map(|r| {
+                    let s = r.values.get(1..4)?;
+                    let lateral = (s.iter().sum::<f64>() - s.get(component)?) / 2.0;
+                    Some(s.get(component)? - lateral)
+                })
                 .collect();
             if stress.is_empty() {
                 return Err(fail(

@@ -473,6 +473,11 @@ fn a_forced_chain_in_ccx_follows_chain_run() {
 /// along it) after 150 mm and a rebound link on m3 (progressive, elastic)
 /// after 100 mm: wall links both decks write exactly.
 fn walled() -> Chain {
+    walled_with(Unloading::Elastic)
+}
+
+/// [`walled`] with its path unloading by `unloading`.
+fn walled_with(unloading: Unloading) -> Chain {
     let front = Link::new(
         Curve::bilinear(1.5e6, 8e4, 0.05).unwrap(),
         Unloading::Slope(2e6),
@@ -492,7 +497,7 @@ fn walled() -> Chain {
     ];
     let path = Link::new(
         Curve::table(vec![[0.03, 6e4], [0.2, 1.2e5], [0.8, 1.5e5]]).unwrap(),
-        Unloading::Elastic,
+        unloading,
     )
     .unwrap();
     let rebound = Link::new(
@@ -591,4 +596,90 @@ fn wall_links_in_ccx_reproduce_the_impact_within_two_percent() {
     assert_relative_eq!(front_set, our_front_set, max_relative = 0.02);
     assert_relative_eq!(path_reach, our_path, max_relative = 0.02);
     assert_relative_eq!(rebound_reach, our_rebound, max_relative = 0.02);
+}
+
+/// The index of the largest value.
+fn top(values: &[f64]) -> usize {
+    (0..values.len())
+        .max_by(|a, b| values[*a].total_cmp(&values[*b]))
+        .unwrap()
+}
+
+/// A link's set on the unloading of a run: its crush less force over the
+/// unloading slope `k`, once the force has fallen below half its peak.
+fn set_of(crush: &[f64], force: &[f64], k: f64) -> f64 {
+    let peak = force.iter().fold(0.0_f64, |m, v| m.max(*v));
+    let after = (top(crush)..force.len())
+        .find(|&i| force[i] < 0.5 * peak && force[i] > 0.0)
+        .expect("the link unloads within the run");
+    crush[after] - force[after] / k
+}
+
+/// The walled car with its path yielding (unloading at 5000 N/mm, above
+/// its table's steepest slope 2000 N/mm: exact) in ccx against
+/// `Chain::run` into the barrier at 40 km/h: the peak barrier force (the
+/// front and path bricks' stresses, the rebound spring's curve on ccx's
+/// crush), the path's largest crush and plastic set (ccx: crush less
+/// force / k_u on the unloading; bumpsim: the link's set), the front link's
+/// largest crush and set, within 2 %. (Before the path was a brick, its
+/// spring unloaded along its curve: 508.0 kN against 469.5 kN.)
+#[test]
+fn a_yielding_wall_link_in_ccx_reproduces_the_impact_within_two_percent() {
+    if !ccx_available() {
+        return;
+    }
+    let chain = walled_with(Unloading::Slope(5e6));
+    assert!(mapping(&chain.path().unwrap().link).exact);
+    let (v, duration) = (40.0 / 3.6, 0.25);
+    let options = CalculixOptions {
+        layout: mm_layout(),
+        title: "yielding wall link".into(),
+        id_offset: 100,
+        ..Default::default()
+    };
+    let barrier = Barrier {
+        speed: v,
+        duration,
+        increment: 1e-4,
+        output_every: 1,
+    };
+    let deck = calculix_chain_deck(&chain, &options, Some(&barrier)).unwrap();
+    assert!(!deck.contains("APPROXIMATE"), "{deck}");
+    let path = run_ccx("yielding-wall", &deck);
+    let u = read_results(&path).unwrap();
+    let f = read_link_forces(&path).unwrap();
+    let force = |label: &str| &f.links.iter().find(|l| l.0 == label).expect(label).1;
+    let (front, second) = (force("front_link"), force("second_load_path"));
+    let (p, r) = (chain.path().unwrap(), chain.rebound().unwrap());
+    let crush = |mass: usize, gap: f64| -> Vec<f64> {
+        u.displacement[mass].iter().map(|x| -x - gap).collect()
+    };
+    let (front_crush, path_crush) = (crush(0, 0.0), crush(p.mass, p.gap));
+    let (_, _, rebound) = replay(&r.link, crush(r.mass, r.gap).into_iter());
+    let wall: Vec<f64> = (0..front.len())
+        .map(|k| front[k] + second[k] + rebound[k])
+        .collect();
+    let peak = wall.iter().fold(0.0_f64, |m, v| m.max(*v));
+    let k_front = bumpsim_export::chain::solver_unloading(chain.front().unwrap());
+    let k_path = bumpsim_export::chain::solver_unloading(&p.link);
+    let front_set = set_of(&front_crush, front, k_front);
+    let path_set = set_of(&path_crush, second, k_path);
+    let (front_reach, path_reach) = (front_crush[top(&front_crush)], path_crush[top(&path_crush)]);
+    let ours = barrier_run(&chain, v, duration);
+    let our_peak = ours.force.iter().fold(0.0_f64, |m, v| m.max(-v));
+    let x = &ours.displacement;
+    let (our_front, our_front_set, _) = replay(chain.front().unwrap(), x[0].iter().copied());
+    let (our_path, our_path_set, _) = replay(&p.link, x[p.mass].iter().map(|x| x - p.gap));
+    eprintln!(
+        "yielding wall: ccx peak {peak} N, front {front_reach} m set {front_set} m, path {path_reach} m set {path_set} m; bumpsim {our_peak} N, front {our_front} m set {our_front_set} m, path {our_path} m set {our_path_set} m"
+    );
+    assert!(
+        our_path_set > 0.01,
+        "the path takes a set: {our_path_set} m"
+    );
+    assert_relative_eq!(peak, our_peak, max_relative = 0.02);
+    assert_relative_eq!(path_reach, our_path, max_relative = 0.02);
+    assert_relative_eq!(path_set, our_path_set, max_relative = 0.02);
+    assert_relative_eq!(front_reach, our_front, max_relative = 0.02);
+    assert_relative_eq!(front_set, our_front_set, max_relative = 0.02);
 }

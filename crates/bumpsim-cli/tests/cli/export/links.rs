@@ -287,35 +287,49 @@ fn printed(text: &str, label: &str, after: &str, unit: &str) -> f64 {
     rest[..rest.find(unit).unwrap()].trim().parse().unwrap()
 }
 
-/// A links car with a second load path and a rebound link exported to
-/// CalculiX as a barrier run (every mass at −40 km/h along the axis, no
-/// force, the front link on the held barrier node) and run in ccx: the
-/// peak barrier force (the car's links on ccx's crush histories: the front
-/// brick, the path and rebound springs each after its gap) and the front
-/// link's residual crush within 2 % of `bumpsim impact --barrier`.
-#[test]
-fn a_car_with_wall_links_in_ccx_reproduces_impact_within_two_percent() {
-    if !ccx_available() {
-        return;
-    }
-    let dir = scratch("export-links-walls");
-    let car_path = dir.join("car.toml");
-    std::fs::write(&car_path, WALLED).unwrap();
-    let car = LinkCar::parse(WALLED, &car_path).unwrap();
+/// What ccx shows of a links car's barrier run beside `bumpsim impact
+/// --barrier`: the peak barrier force (N), the front link's and the second
+/// path's plastic sets (m), and each wall-side link's largest force (front,
+/// path, rebound; N).
+struct AgainstImpact {
+    ccx_peak: f64,
+    impact_peak: f64,
+    ccx_sets: [f64; 2],
+    impact_sets: [f64; 2],
+    most: [f64; 3],
+}
+
+/// Runs the car at `car_path` into the barrier at `speed` (km/h) for
+/// `samples` steps of 0.1 ms in `impact --barrier` and as a CalculiX deck
+/// (every mass at −speed along the axis, a zero force, the front link on
+/// the held barrier node) in ccx; ccx's side: the car's links replayed on
+/// ccx's crush histories (the front link on m1's, each wall link on its
+/// mass's past its gap), as bumpsim reads a crush.
+fn against_impact(dir: &Path, car_path: &Path, speed: f64, samples: usize) -> AgainstImpact {
+    let text_of_car = std::fs::read_to_string(car_path).unwrap();
+    let car = LinkCar::parse(&text_of_car, car_path).unwrap();
+    let speed = format!("{speed} km/h");
     let impact = bumpsim(&[
         "impact",
         "--car",
         car_path.to_str().unwrap(),
         "--barrier",
         "--speed",
-        "40 km/h",
+        &speed,
     ]);
     assert!(impact.status.success(), "{}", text(&impact.stderr));
     let out = text(&impact.stdout);
-    let peak = 1e3 * printed(&out, "peak barrier force", "force", "kN");
-    let set = 1e-3 * printed(&out, "front link (crush zone)", "plastic set", "mm");
+    let impact_peak = 1e3 * printed(&out, "peak barrier force", "force", "kN");
+    let set = |label: &str| 1e-3 * printed(&out, label, "plastic set", "mm");
+    let path_set = match car.chain.path() {
+        Some(p) if matches!(p.link.unloading(), bumpsim_core::link::Unloading::Slope(_)) => {
+            set("second load path")
+        }
+        _ => 0.0,
+    };
+    let impact_sets = [set("front link (crush zone)"), path_set];
     let mut csv = String::from("time [s],force [N]\n");
-    for k in 0..=2500 {
+    for k in 0..=samples {
         csv.push_str(&format!("{:.4},0\n", k as f64 * 1e-4));
     }
     let force = dir.join("rest.csv");
@@ -326,14 +340,15 @@ fn a_car_with_wall_links_in_ccx_reproduces_impact_within_two_percent() {
         "calculix",
         car_path.to_str().unwrap(),
         "--initial-velocity",
-        "-40 km/h",
+        &format!("-{speed}"),
         "--force",
         force.to_str().unwrap(),
         "-o",
         inp.to_str().unwrap(),
     ]);
     assert!(run.status.success(), "{}", text(&run.stderr));
-    let (_, rows) = ccx_histories(&dir);
+    let (_, rows) = ccx_histories(dir);
+    assert_eq!(rows.len(), samples, "ccx runs to the end");
     let chain = &car.chain;
     let (front, p, r) = (
         chain.front().unwrap(),
@@ -355,12 +370,38 @@ fn a_car_with_wall_links_in_ccx_reproduces_impact_within_two_percent() {
         }
         forces.iter().sum::<f64>()
     });
-    let theirs = wall.fold(0.0_f64, f64::max);
-    let their_set = states[0].plastic_set(front);
+    let ccx_peak = wall.fold(0.0_f64, f64::max);
+    AgainstImpact {
+        ccx_peak,
+        impact_peak,
+        ccx_sets: [states[0].plastic_set(front), states[1].plastic_set(&p.link)],
+        impact_sets,
+        most,
+    }
+}
+
+/// A links car with a second load path and a rebound link exported to
+/// CalculiX as a barrier run and run in ccx ([`against_impact`]): the
+/// peak barrier force and the front link's residual crush within 2 % of
+/// `bumpsim impact --barrier`.
+#[test]
+fn a_car_with_wall_links_in_ccx_reproduces_impact_within_two_percent() {
+    if !ccx_available() {
+        return;
+    }
+    let dir = scratch("export-links-walls");
+    let car_path = dir.join("car.toml");
+    std::fs::write(&car_path, WALLED).unwrap();
+    let c = against_impact(&dir, &car_path, 40.0, 2500);
+    let ([theirs, peak], [their_set, set]) = (
+        [c.ccx_peak, c.impact_peak],
+        [c.ccx_sets[0], c.impact_sets[0]],
+    );
     eprintln!("walls: ccx {theirs} N, set {their_set} m; impact {peak} N, set {set} m");
     assert!(
-        most[1] > 1e4 && most[2] > 1e4,
-        "both wall links act: {most:?} N"
+        c.most[1] > 1e4 && c.most[2] > 1e4,
+        "both wall links act: {:?} N",
+        c.most
     );
     assert!(
         (theirs - peak).abs() <= 0.02 * peak,
@@ -370,6 +411,55 @@ fn a_car_with_wall_links_in_ccx_reproduces_impact_within_two_percent() {
         (their_set - set).abs() <= 0.02 * set,
         "set {their_set} m, impact {set} m"
     );
+}
+
+/// Issue 46's "exported decks run" on the real car: the car `identify
+/// --car` writes for NHTSA 10146 (a 20-knot front table that softens to
+/// 0.1 kN, a yielding second path from 0 m, a yielding rebound link after
+/// 0.69 m) exported to CalculiX at the test's 57.09 km/h and run for
+/// 150 ms: ccx runs to the end, and the peak barrier force and the
+/// residual crush of the front link and of the second path lie within
+/// 2 % of `bumpsim impact --barrier`. (Before: ccx stopped at 28.4 ms.)
+#[test]
+fn the_identified_nhtsa_car_in_ccx_reproduces_impact_within_two_percent() {
+    if !ccx_available() {
+        return;
+    }
+    let Some(ev5) = nhtsa_ev5() else { return };
+    let dir = scratch("export-links-nhtsa");
+    let study = crate::identify_links::links_study(&dir, &ev5);
+    let car_path = dir.join("car.toml");
+    let run = bumpsim(&[
+        "identify",
+        study.to_str().unwrap(),
+        "--car",
+        car_path.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let c = against_impact(&dir, &car_path, 57.09, 1500);
+    eprintln!(
+        "nhtsa: ccx {} N, sets {:?} m; impact {} N, sets {:?} m; largest forces {:?} N",
+        c.ccx_peak, c.ccx_sets, c.impact_peak, c.impact_sets, c.most
+    );
+    assert!(
+        c.most.iter().all(|f| *f > 1e4),
+        "every wall-side link acts: {:?} N",
+        c.most
+    );
+    assert!(
+        (c.ccx_peak - c.impact_peak).abs() <= 0.02 * c.impact_peak,
+        "peak {} N, impact {} N",
+        c.ccx_peak,
+        c.impact_peak
+    );
+    for (theirs, ours) in c.ccx_sets.iter().zip(c.impact_sets) {
+        assert!(ours > 0.1, "a set worth comparing: {ours} m");
+        assert!(
+            (theirs - ours).abs() <= 0.02 * ours,
+            "set {theirs} m, impact {ours} m"
+        );
+    }
 }
 
 /// The same car's LS-DYNA include parses in ansys-dyna-core with every id
