@@ -647,11 +647,12 @@ mod tests {
             windowed("[0.001, 0.005]").unwrap().cases[0].window,
             (10, 50)
         );
+        // a start in the pre-trigger is the replay's start, t = 0
         assert_eq!(
-            windowed("[-1.0, 0.00505]").unwrap().cases[0].window,
+            windowed("[-0.005, 0.00505]").unwrap().cases[0].window,
             (0, 50)
         );
-        for empty in ["[-1.0, -0.002]", "[0.00101, 0.00109]", "[0.5, 0.6]"] {
+        for empty in ["[-0.005, -0.002]", "[0.00101, 0.00109]"] {
             let err = windowed(empty).unwrap_err();
             assert!(
                 matches!(
@@ -664,6 +665,25 @@ mod tests {
                 "{empty}: {err}"
             );
         }
+        // a window reaching past the record (-0.005 s to 0.0149 s) is
+        // refused by the file, the case and the key with the record's span,
+        // as a bias window is (it was cut to the record without a word)
+        for (beyond, given) in [
+            ("[0.0, 1e300]", "[0, 1e300]"),
+            ("[0.001, 0.5]", "[0.001, 0.5]"),
+            ("[-1.0, 0.005]", "[-1, 0.005]"),
+            ("[0.5, 0.6]", "[0.5, 0.6]"),
+        ] {
+            let err = windowed(beyond).unwrap_err().to_string();
+            assert!(
+                err.contains(&format!("study.toml: [[case]] 'a': window = {given}: expected times within the record of the case's channels, -0.005000 s to 0.01490 s (0.01990 s long")),
+                "{beyond}: {err}"
+            );
+        }
+        assert_eq!(
+            windowed("[0.001, 0.01495]").unwrap().cases[0].window,
+            (10, 149)
+        );
         let err = windowed("\"somewhere\"").unwrap_err().to_string();
         assert!(err.contains("case 'a': window 'somewhere'"), "{err}");
     }
