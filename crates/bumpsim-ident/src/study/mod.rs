@@ -114,6 +114,8 @@ impl Study {
                 bounds.fixed[i] = Some(*value);
             }
         }
+        let priors = self.priors_of(dof, largest)?;
+        self.check_prior_names(&priors, dof, &bounds.fixed)?;
         Ok(Settings {
             dof,
             bounds,
@@ -122,8 +124,45 @@ impl Study {
             start: self.start(dof)?,
             sheet_mass: self.sheet_mass()?,
             default_priors: self.default_priors(),
-            priors: self.priors_of(dof, largest)?,
+            priors,
             ..Settings::new(dof, 1)
+        })
+    }
+
+    /// Refuses a `[priors]` entry that names no estimated parameter of the
+    /// `dof`-mass model (none of the study's models, or one `fixed`), by
+    /// the study file and the section: it was refused only after the
+    /// search, without the file ("3-DOF identification: identification
+    /// setting priors: [priors] m5: ..."; a hostile pass, issue 44).
+    fn check_prior_names(
+        &self,
+        priors: &[bumpsim_estimate::stated::PriorSetting],
+        dof: usize,
+        fixed: &[Option<f64>],
+    ) -> Result<(), StudyError> {
+        let free: Vec<String> = (0..parameter_count(dof))
+            .filter(|&i| fixed[i].is_none())
+            .map(|i| parameter_name(dof, i))
+            .collect();
+        let total = crate::priors::TOTAL_MASS;
+        let Some(unknown) = priors
+            .iter()
+            .find(|p| p.name != total && !free.contains(&p.name))
+        else {
+            return Ok(());
+        };
+        let is_fixed = self.model.fixed.contains_key(&unknown.name);
+        let why = match is_fixed {
+            true => "fixed ([model] fixed): a fixed parameter is not estimated and takes no prior",
+            false => "no such estimated parameter",
+        };
+        Err(StudyError::File {
+            path: self.path.clone(),
+            message: format!(
+                "[priors] {}: {why} of the {dof}-DOF model; known: {total}, {}",
+                unknown.name,
+                free.join(", ")
+            ),
         })
     }
 
