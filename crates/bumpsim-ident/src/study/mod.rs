@@ -159,7 +159,7 @@ impl Study {
         Err(StudyError::File {
             path: self.path.clone(),
             message: format!(
-                "[priors] {}: {why} of the {dof}-DOF model; known: {total}, {}",
+                "[priors] {}: {why}; known for the {dof}-DOF model: {total}, {}",
                 unknown.name,
                 free.join(", ")
             ),
@@ -617,19 +617,39 @@ mod tests {
     }
 
     /// A prior on k2 in `dof = [1, 2, 3]` failed the 1- and 2-DOF models;
-    /// it applies where k2 exists, and an unknown name still reaches the
-    /// identification's refusal.
+    /// it applies where k2 exists. A name of no model (m9) is refused with
+    /// the study file when the settings are made, before any search (it
+    /// was refused by the identification after its search, without the
+    /// file), and so is a prior on a fixed parameter.
     #[test]
     fn a_sweep_s_prior_applies_to_the_models_that_have_its_parameter() {
-        let priors = format!("{CASE}\n[priors]\nk2 = {{ value = 6e5 }}\nm9 = \"none\"");
+        let priors = format!("{CASE}\n[priors]\nk2 = {{ value = 6e5 }}");
         let sweep = study("dof = [1, 2, 3]", &priors, Path::new("/study"));
         let names = |dof| -> Vec<String> {
             let settings = sweep.settings(dof).unwrap();
             settings.priors.into_iter().map(|p| p.name).collect()
         };
-        assert_eq!(names(1), ["m9"]);
-        assert_eq!(names(2), ["m9"]);
-        assert_eq!(names(3), ["k2", "m9"]);
+        assert!(names(1).is_empty() && names(2).is_empty());
+        assert_eq!(names(3), ["k2"]);
+        let unknown = format!("{CASE}\n[priors]\nm9 = \"none\"");
+        let err = study("dof = [1, 2, 3]", &unknown, Path::new("/study"))
+            .settings(2)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("/study/study.toml: [priors] m9: no such estimated parameter; known for the 2-DOF model: total_mass, m1, m2, c1, k1"),
+            "{err}"
+        );
+        let fixed = study(
+            "dof = 2\nfixed = { k1 = 5e5 }",
+            &priors.replace("k2", "k1"),
+            Path::new("/study"),
+        );
+        let err = fixed.settings(2).unwrap_err().to_string();
+        assert!(
+            err.ends_with("[priors] k1: fixed ([model] fixed): a fixed parameter is not estimated and takes no prior; known for the 2-DOF model: total_mass, m1, m2, c1"),
+            "{err}"
+        );
     }
 
     #[test]

@@ -105,7 +105,7 @@ fn an_unknown_prior_names_the_study_file() {
             format!("{t}\n[priors]\n{prior} = {{ value = 100.0, spread = 0.3 }}\n")
         });
         let needle = format!(
-            "h.toml: [priors] {prior}: {why} of the 3-DOF model; known: total_mass, m1, m2, m3, c1, c2, k1"
+            "h.toml: [priors] {prior}: {why}; known for the 3-DOF model: total_mass, m1, m2, m3, c1, c2, k1"
         );
         refused(&dir, &[&["identify", study][..], &quick].concat(), &needle);
     }
