@@ -78,7 +78,7 @@ def write_study(folder, data, thesis_start=True):
         path = os.path.join(folder, f"case{i}.csv")
         np.savetxt(path, np.column_stack([t, f, x]), delimiter=",", header="time [s],force [N],x1 [m]", comments="")
         lines += ["[[case]]", f'name = "case{i}"', f'force = {{ path = "case{i}.csv", channel = "force" }}',
-                  f'displacement = {{ path = "case{i}.csv", channel = "x1" }}', "window = [0.0, 1.0]", ""]
+                  f'displacement = {{ path = "case{i}.csv", channel = "x1" }}', f"window = [0.0, {float(t[-1])!r}]", ""]
     study = os.path.join(folder, "study.toml" if thesis_start else "default.toml")
     with open(study, "w") as fh:
         fh.write("\n".join(lines))

@@ -273,8 +273,11 @@ impl Watched<'_, '_> {
     fn result(&self, r: &Identification) {
         if !(r.objective.is_finite() && r.fit_percent.is_finite()) {
             self.said.warnings.borrow_mut().push(format!(
-                "{}-DOF model: objective {} m², fit {} %: the measured data do not determine the model",
-                r.dof, r.objective, r.fit_percent
+                "{}-DOF model: objective {} {}, fit {} %: the measured data do not determine the model",
+                r.dof,
+                r.objective,
+                r.objective_unit(),
+                r.fit_percent
             ));
         }
         let phrase = r.objective_phrase();
@@ -283,12 +286,8 @@ impl Watched<'_, '_> {
             false => format!(" ({phrase})"),
         };
         let unit = r.objective_unit();
-        let unit = match unit.is_empty() {
-            true => unit,
-            false => format!(" {unit}"),
-        };
         let mut text = format!(
-            "\n{}-DOF model: objective {}{unit}{compared}, fit {} %\n",
+            "\n{}-DOF model: objective {} {unit}{compared}, fit {} %\n",
             r.dof,
             bumpsim_core::units::format_number(r.objective, 5),
             bumpsim_core::units::format_number(r.fit_percent, 4)

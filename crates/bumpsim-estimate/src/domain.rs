@@ -54,16 +54,21 @@ pub enum Domain {
 /// fail "to be simulated"; a hostile pass, issue 44).
 pub const NOISE_RANGE: std::ops::RangeInclusive<f64> = 1e-12..=1e15;
 
-/// A domain name that is none of the three.
+/// A domain name that is none of the three, written exactly (`"Velocity"`
+/// and `"velocity "` were taken for `"velocity"`, while every other name of
+/// a study is exact; a hostile pass, issue 44). The message names the key,
+/// the value as given and the accepted names.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("objective \"{0}\": expected \"displacement\", \"velocity\" or \"acceleration\"")]
+#[error(
+    "objective {0:?}: expected \"displacement\", \"velocity\" or \"acceleration\", written exactly (lower case, no spaces)"
+)]
 pub struct UnknownDomain(pub String);
 
 impl FromStr for Domain {
     type Err = UnknownDomain;
 
     fn from_str(s: &str) -> Result<Domain, UnknownDomain> {
-        match s.trim().to_ascii_lowercase().as_str() {
+        match s {
             "displacement" => Ok(Domain::Displacement),
             "velocity" => Ok(Domain::Velocity),
             "acceleration" => Ok(Domain::Acceleration),
@@ -169,9 +174,18 @@ mod tests {
         }
         let err = "speed".parse::<Domain>().unwrap_err().to_string();
         assert!(
-            err.contains("\"speed\"") && err.contains("velocity"),
+            err.contains("objective \"speed\"") && err.contains("velocity"),
             "{err}"
         );
+        // the names are exact: another case or a space is refused, named
+        for near in ["Displacement", "displacement ", " velocity", "ACCELERATION"] {
+            let err = near.parse::<Domain>().unwrap_err().to_string();
+            assert!(
+                err.starts_with(&format!("objective {near:?}: expected \"displacement\""))
+                    && err.ends_with("written exactly (lower case, no spaces)"),
+                "{err}"
+            );
+        }
     }
 
     #[test]

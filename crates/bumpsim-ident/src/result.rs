@@ -127,31 +127,51 @@ pub struct Compared {
     /// Whether the residuals were divided by each case's noise (then the
     /// objective is dimensionless).
     pub weighted: bool,
+    /// Whether some cases were weighted and others not (a case without a
+    /// noise given or a pre-trigger to estimate it from): the objective
+    /// then sums dimensionless terms and terms in the domain's unit squared.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub partly: bool,
 }
 
 impl Compared {
+    /// The unit of the objective of cases compared so
+    /// ([`Identification::objective_unit`]).
+    pub fn objective_unit(self) -> String {
+        let squared = match self.domain.order() {
+            0 => "m²".to_string(),
+            _ => format!("({})²", self.domain.unit()),
+        };
+        match (self.weighted, self.partly) {
+            (false, _) => squared,
+            (true, false) => "dimensionless".into(),
+            (true, true) => format!("dimensionless + {squared}"),
+        }
+    }
+
     /// How `cases` are compared; None for the thesis's objective.
     pub fn of(cases: &[LoadCase]) -> Option<Compared> {
         if cases.iter().all(|c| c.compare.is_thesis()) {
             return None;
         }
+        let weighted = cases.iter().filter(|c| c.compare.noise.is_some()).count();
         Some(Compared {
             domain: cases.first().map(|c| c.compare.domain).unwrap_or_default(),
-            weighted: cases.iter().any(|c| c.compare.noise.is_some()),
+            weighted: weighted > 0,
+            partly: weighted > 0 && weighted < cases.len(),
         })
     }
 }
 
 impl Identification {
-    /// The unit of [`Identification::objective`] as printed after it:
-    /// `m²`, `(m/s)²`, `(m/s²)²`, or nothing when dimensionless (weighted).
+    /// The unit of [`Identification::objective`] as printed after it, what
+    /// it sums: `m²`, `(m/s)²` or `(m/s²)²` (the domain's unit squared),
+    /// `dimensionless` when every case's residuals are divided by its noise
+    /// (the line had no unit then), `dimensionless + (m/s)²` when only some
+    /// are.
     pub fn objective_unit(&self) -> String {
-        match self.compared {
-            None => "m²".into(),
-            Some(Compared { weighted: true, .. }) => String::new(),
-            Some(Compared { domain, .. }) if domain.order() == 0 => "m²".into(),
-            Some(Compared { domain, .. }) => format!("({})²", domain.unit()),
-        }
+        self.compared
+            .map_or_else(|| "m²".into(), |c| c.objective_unit())
     }
 
     /// What the objective compares, as a phrase (`acceleration, each case
@@ -159,6 +179,10 @@ impl Identification {
     pub fn objective_phrase(&self) -> String {
         match self.compared {
             None => String::new(),
+            Some(c) if c.partly => format!(
+                "{}, the cases with a noise weighted by it, the others not",
+                c.domain
+            ),
             Some(c) if c.weighted => format!("{}, each case weighted by its noise", c.domain),
             Some(c) => c.domain.to_string(),
         }
@@ -232,5 +256,33 @@ mod tests {
         );
         let json = serde_json::to_value(&fit).unwrap();
         assert!(json["rating"]["corridor"].is_number() && json["fit_percent"].is_number());
+    }
+
+    /// What the objective sums: the domain's unit squared, or nothing
+    /// (dimensionless) when each residual is divided by its case's noise.
+    #[test]
+    fn the_objective_s_unit_is_what_it_sums() {
+        use crate::case::{Comparison, Domain};
+        let compared = |domain: Domain, noises: &[Option<f64>]| {
+            let cases: Vec<LoadCase> = noises
+                .iter()
+                .map(|&noise| LoadCase {
+                    compare: Comparison::new(domain, noise),
+                    ..case(vec![0.0; 10], (0, 9))
+                })
+                .collect();
+            Compared::of(&cases).map_or_else(|| "m²".into(), |c| c.objective_unit())
+        };
+        assert_eq!(compared(Domain::Displacement, &[None, None]), "m²");
+        assert_eq!(compared(Domain::Velocity, &[None]), "(m/s)²");
+        assert_eq!(compared(Domain::Acceleration, &[None]), "(m/s²)²");
+        let weighted = [Some(0.01), Some(0.02)];
+        for domain in [Domain::Displacement, Domain::Velocity, Domain::Acceleration] {
+            assert_eq!(compared(domain, &weighted), "dimensionless", "{domain}");
+        }
+        assert_eq!(
+            compared(Domain::Velocity, &[Some(0.01), None]),
+            "dimensionless + (m/s)²"
+        );
     }
 }

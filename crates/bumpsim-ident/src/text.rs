@@ -93,13 +93,20 @@ pub fn recommended_dof(results: &[Identification]) -> Option<usize> {
 /// counted), time; then the criteria with the effective sample size and
 /// the recommendation with the rule that decided ([`crate::choice::lines`]).
 pub fn dof_table(results: &[Identification]) -> String {
+    // the objective's unit, what it sums (every size compares the same
+    // cases alike): the header said m² over dimensionless figures
+    let unit = results
+        .first()
+        .map_or_else(|| "m²".into(), Identification::objective_unit);
+    let objective = format!("objective {unit}");
+    let width = objective.chars().count().max(14);
     let mut out = format!(
-        "{:>4} {:>14} {:>9} {:>12} {:>12} {:>10}\n",
-        "DOF", "objective m²", "fit %", "AIC", "BIC", "time"
+        "{:>4} {:>width$} {:>9} {:>12} {:>12} {:>10}\n",
+        "DOF", objective, "fit %", "AIC", "BIC", "time"
     );
     for r in results {
         out += &format!(
-            "{:>4} {:>14} {:>9} {:>12} {:>12} {:>10}\n",
+            "{:>4} {:>width$} {:>9} {:>12} {:>12} {:>10}\n",
             r.dof,
             format_number(r.objective, 5),
             format_number(r.fit_percent, 4),

@@ -33,6 +33,7 @@ use crate::synth::{
     measure, speed_value,
 };
 use bumpsim_core::chain::{Chain as LinkChain, Drive};
+use bumpsim_core::units::format_number;
 use bumpsim_io::link_car::LinkCar;
 use std::path::{Path, PathBuf};
 
@@ -341,11 +342,16 @@ pub fn study_text(series: &BarrierSeries, path: &Path) -> String {
         output + 1,
         quoted(&format!("{total} kg")),
     );
-    let end = series.chain.duration;
-    for (name, &speed) in series.tests.iter().map(|t| &t.0).zip(&series.speeds) {
+    for ((name, _, channels), &speed) in series.tests.iter().zip(&series.speeds) {
+        // the record's last sample (one step before the duration's end: a
+        // window reaching past the record is refused, docs/identify.md)
+        let end = channels
+            .first()
+            .map_or(series.chain.duration, |c| c.series.end());
+        let end = format_number(end, 6);
         let file = quoted(&format!("{name}/{name}.mme"));
         text += &format!(
-            "\n[[case]]\nname = {}\nforce = {{ path = {file}, channel = {} }}\nacceleration = [\n  {{ path = {file}, channel = {} }},\n  {{ path = {file}, channel = {} }},\n]\ncfc = 60\ninitial_velocity = {speed:?}   # m/s, {} km/h\noutput_dof = {}\nwindow = [0.0, {end:?}]\n",
+            "\n[[case]]\nname = {}\nforce = {{ path = {file}, channel = {} }}\nacceleration = [\n  {{ path = {file}, channel = {} }},\n  {{ path = {file}, channel = {} }},\n]\ncfc = 60\ninitial_velocity = {speed:?}   # m/s, {} km/h\noutput_dof = {}\nwindow = [0.0, {end}]\n",
             quoted(name),
             quoted(FORCE_CODE.0),
             quoted(codes[0].0),

@@ -405,6 +405,9 @@ pub enum SeriesError {
     /// The head names as a list (empty, repeated, invisible characters).
     #[error(transparent)]
     Names(#[from] bumpsim_core::names::NameError),
+    /// More tests than [`bumpsim_io::output::MAX_TESTS`].
+    #[error(transparent)]
+    Tests(#[from] bumpsim_io::output::TooManyTests),
     /// A head name that cannot name a folder.
     #[error("head name {0}")]
     HeadName(bumpsim_core::names::FolderNameError),
@@ -533,11 +536,13 @@ fn check_names(heads: &[HeadFile]) -> Result<(), SeriesError> {
 
 /// Test names (of the `table`, `[[head]]` or `[[test]]`) become folder and
 /// file names: printable, distinct names ([`bumpsim_core::names::check_names`]),
-/// plain (no path separator, not `.` or `..`) and without surrounding spaces.
+/// plain (no path separator, not `.` or `..`) and without surrounding spaces;
+/// at most [`bumpsim_io::output::MAX_TESTS`] of them.
 pub fn check_test_names<'a>(
     table: &'static str,
     names: impl Iterator<Item = &'a str> + Clone,
 ) -> Result<(), SeriesError> {
+    bumpsim_io::output::series_size(table, names.clone().count())?;
     bumpsim_core::names::check_names(table, names.clone())?;
     let error = match table {
         "[[head]]" => SeriesError::HeadName,

@@ -83,9 +83,14 @@ pub fn kind(
         (Dimension::Acceleration, 'X') => place(Sensor::Body, Some(Sensor::Chain)),
         (Dimension::Acceleration, 'Y') => place(Sensor::Lateral, None),
         (Dimension::Length, 'X') => place(Sensor::Film, Some(Sensor::Crush)),
-        (Dimension::AngularVelocity, 'Z') => match chain {
-            None => Ok(Sensor::YawRate),
-            Some(_) => Err(SensingError::Place(
+        // a place given is refused, not dropped: the user may have meant
+        // another channel (an accelerometer at that place)
+        (Dimension::AngularVelocity, 'Z') => match (body, chain) {
+            (None, None) => Ok(Sensor::YawRate),
+            (Some(_), _) => Err(SensingError::Place(
+                "a yaw-rate channel takes no `body`: a yaw-rate sensor reads the body's rotation, the same everywhere (remove body = [ξ, η], or name the accelerometer meant)",
+            )),
+            (None, Some(_)) => Err(SensingError::Place(
                 "a yaw-rate sensor reads the body's rotation, the same everywhere: it takes no chain",
             )),
         },
@@ -215,6 +220,8 @@ mod tests {
         assert!(e(kind(&channel("10SILBLE0000ACYP", acc), None, None, Some(0))).contains("body"));
         let av = channel("10VEHC0000CGAVZP", Dimension::AngularVelocity);
         assert!(e(kind(&av, None, None, Some(0))).contains("no chain"));
+        // a place on a yaw-rate sensor was dropped without a word
+        assert!(e(kind(&av, None, body, None)).starts_with("a yaw-rate channel takes no `body`"));
         assert!(e(kind(&channel("f", Dimension::Force), None, body, None)).contains("force"));
         assert!(e(kind(&channel("10SILBLE0000ACXP", acc), None, None, None)).contains("either"));
         for bad in [

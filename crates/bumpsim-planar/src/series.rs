@@ -118,6 +118,9 @@ pub enum SeriesError {
     /// The test names as a list (empty, repeated, invisible characters).
     #[error(transparent)]
     Names(#[from] bumpsim_core::names::NameError),
+    /// More tests than [`bumpsim_io::output::MAX_TESTS`].
+    #[error(transparent)]
+    Tests(#[from] bumpsim_io::output::TooManyTests),
     /// A test name that cannot name a folder.
     #[error("test name {0}")]
     TestName(bumpsim_core::names::FolderNameError),
@@ -252,6 +255,7 @@ fn names(tests: &[TestFile]) -> Result<(), SeriesError> {
     if tests.is_empty() {
         return Err(SeriesError::NoTest);
     }
+    bumpsim_io::output::series_size("[[test]]", tests.len())?;
     let names = tests.iter().map(|t| t.name.as_str());
     bumpsim_core::names::check_names("[[test]]", names)?;
     for t in tests {

@@ -309,10 +309,9 @@ fn section(
     page.heading(&format!("{dof}-DOF model"));
     let unit = result.objective_unit();
     let phrase = result.objective_phrase();
-    let objective = match (unit.is_empty(), phrase.is_empty()) {
-        (_, true) => format!("{} {unit}", format_number(result.objective, 5)),
-        (true, false) => format!("{} ({phrase})", format_number(result.objective, 5)),
-        (false, false) => format!("{} {unit} ({phrase})", format_number(result.objective, 5)),
+    let objective = match phrase.is_empty() {
+        true => format!("{} {unit}", format_number(result.objective, 5)),
+        false => format!("{} {unit} ({phrase})", format_number(result.objective, 5)),
     };
     page.paragraph(&format!(
         "Objective {objective}, overall fit {} %; {}.",

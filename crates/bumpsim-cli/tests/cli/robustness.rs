@@ -11,6 +11,7 @@ use std::time::{Duration, Instant};
 
 use crate::util::{copy_tree, root};
 
+mod careful;
 mod commit;
 mod flags;
 mod inputs;

@@ -228,9 +228,10 @@ fn mm(x: f64) -> String {
 /// The linear chain's lines.
 fn linear_lines(linear: &bumpsim_ident::estimate::Identification) -> String {
     let mut out = format!(
-        "linear chain, {}-DOF (the staged start): objective {}\n",
+        "linear chain, {}-DOF (the staged start): objective {} {}\n",
         linear.dof,
-        format_number(linear.objective, 5)
+        format_number(linear.objective, 5),
+        linear.objective_unit()
     );
     for case in &linear.cases {
         out += &format!("  fit {}: {}\n", case.name, percent(case.fit_percent));

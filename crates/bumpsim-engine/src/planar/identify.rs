@@ -40,8 +40,10 @@ pub(super) fn identify(request: &IdentifyRequest<'_>) -> Result<Outcome, EngineE
     // runs when the study asks (`[model] bumper = "fit"`)
     let result = study.identified(&|| progress.start_finished());
     progress.end();
+    // the study file named: a `[priors]` entry the identification refuses
+    // (its names depend on what the study estimates) named no file
     let result = result.map_err(|source| EngineError::PlanarIn {
-        context: "planar identification".into(),
+        context: format!("planar identification of {}", request.study.display()),
         source,
     })?;
     let fitted: Vec<Prediction> = study

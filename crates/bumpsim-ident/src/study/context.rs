@@ -368,6 +368,7 @@ impl CaseContext<'_> {
             Some(WindowSpec::Named(s)) if s.eq_ignore_ascii_case("contact") => self.contact(force),
             Some(WindowSpec::Named(s)) => Err(self.case(DefinitionError::WindowName(s.clone()))),
             Some(WindowSpec::Times(bumpsim_io::numbers::Numbers([t0, t1]))) => {
+                self.within_record(aligned, [*t0, *t1])?;
                 let empty = || self.case(DefinitionError::EmptyWindow { t0: *t0, t1: *t1 });
                 let inside = aligned.window(*t0, *t1).ok_or_else(empty)?;
                 let (a, b) = (*inside.start().max(&first), *inside.end());
@@ -377,6 +378,35 @@ impl CaseContext<'_> {
                 Ok((a - first, b - first))
             }
         }
+    }
+
+    /// A fit window `[t0, t1]` s lies within the record of the case's
+    /// aligned channels (half a sample's slack at each end), as a `bias`
+    /// window must: one reaching past it was cut to the record without a
+    /// word (`window = [0, 1e300]` fitted the record's 0.16 s), so the fit
+    /// %, SSE and rating were taken over another window than the one given.
+    /// A start within the pre-trigger (before t = 0) is the replay's start,
+    /// t = 0 (docs/identify.md).
+    fn within_record(&self, aligned: &UniformSeries, [t0, t1]: [f64; 2]) -> Result<(), StudyError> {
+        let slack = 0.5 * aligned.step();
+        let (first, last) = (aligned.start(), aligned.end());
+        if t0 >= first - slack && t1 <= last + slack {
+            return Ok(());
+        }
+        Err(StudyError::Value {
+            path: self.study.path.clone(),
+            source: StudyValueError::CaseValue {
+                case: self.spec.name.clone(),
+                key: "window",
+                value: format!("[{}, {}]", short(t0), short(t1)),
+                expected: format!(
+                    "times within the record of the case's channels, {} s to {} s ({} s long; a bias window must lie within it too)",
+                    format_number(first, 4),
+                    format_number(last, 4),
+                    format_number(last - first, 4)
+                ),
+            },
+        })
     }
 
     fn contact(&self, force: &[f64]) -> Result<(usize, usize), StudyError> {

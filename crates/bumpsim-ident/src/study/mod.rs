@@ -114,6 +114,8 @@ impl Study {
                 bounds.fixed[i] = Some(*value);
             }
         }
+        let priors = self.priors_of(dof, largest)?;
+        self.check_prior_names(&priors, dof, &bounds.fixed)?;
         Ok(Settings {
             dof,
             bounds,
@@ -122,8 +124,45 @@ impl Study {
             start: self.start(dof)?,
             sheet_mass: self.sheet_mass()?,
             default_priors: self.default_priors(),
-            priors: self.priors_of(dof, largest)?,
+            priors,
             ..Settings::new(dof, 1)
+        })
+    }
+
+    /// Refuses a `[priors]` entry that names no estimated parameter of the
+    /// `dof`-mass model (none of the study's models, or one `fixed`), by
+    /// the study file and the section: it was refused only after the
+    /// search, without the file ("3-DOF identification: identification
+    /// setting priors: [priors] m5: ..."; a hostile pass, issue 44).
+    fn check_prior_names(
+        &self,
+        priors: &[bumpsim_estimate::stated::PriorSetting],
+        dof: usize,
+        fixed: &[Option<f64>],
+    ) -> Result<(), StudyError> {
+        let free: Vec<String> = (0..parameter_count(dof))
+            .filter(|&i| fixed[i].is_none())
+            .map(|i| parameter_name(dof, i))
+            .collect();
+        let total = crate::priors::TOTAL_MASS;
+        let Some(unknown) = priors
+            .iter()
+            .find(|p| p.name != total && !free.contains(&p.name))
+        else {
+            return Ok(());
+        };
+        let is_fixed = self.model.fixed.contains_key(&unknown.name);
+        let why = match is_fixed {
+            true => "fixed ([model] fixed): a fixed parameter is not estimated and takes no prior",
+            false => "no such estimated parameter",
+        };
+        Err(StudyError::File {
+            path: self.path.clone(),
+            message: format!(
+                "[priors] {}: {why}; known for the {dof}-DOF model: {total}, {}",
+                unknown.name,
+                free.join(", ")
+            ),
         })
     }
 
@@ -578,19 +617,39 @@ mod tests {
     }
 
     /// A prior on k2 in `dof = [1, 2, 3]` failed the 1- and 2-DOF models;
-    /// it applies where k2 exists, and an unknown name still reaches the
-    /// identification's refusal.
+    /// it applies where k2 exists. A name of no model (m9) is refused with
+    /// the study file when the settings are made, before any search (it
+    /// was refused by the identification after its search, without the
+    /// file), and so is a prior on a fixed parameter.
     #[test]
     fn a_sweep_s_prior_applies_to_the_models_that_have_its_parameter() {
-        let priors = format!("{CASE}\n[priors]\nk2 = {{ value = 6e5 }}\nm9 = \"none\"");
+        let priors = format!("{CASE}\n[priors]\nk2 = {{ value = 6e5 }}");
         let sweep = study("dof = [1, 2, 3]", &priors, Path::new("/study"));
         let names = |dof| -> Vec<String> {
             let settings = sweep.settings(dof).unwrap();
             settings.priors.into_iter().map(|p| p.name).collect()
         };
-        assert_eq!(names(1), ["m9"]);
-        assert_eq!(names(2), ["m9"]);
-        assert_eq!(names(3), ["k2", "m9"]);
+        assert!(names(1).is_empty() && names(2).is_empty());
+        assert_eq!(names(3), ["k2"]);
+        let unknown = format!("{CASE}\n[priors]\nm9 = \"none\"");
+        let err = study("dof = [1, 2, 3]", &unknown, Path::new("/study"))
+            .settings(2)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("/study/study.toml: [priors] m9: no such estimated parameter; known for the 2-DOF model: total_mass, m1, m2, c1, k1"),
+            "{err}"
+        );
+        let fixed = study(
+            "dof = 2\nfixed = { k1 = 5e5 }",
+            &priors.replace("k2", "k1"),
+            Path::new("/study"),
+        );
+        let err = fixed.settings(2).unwrap_err().to_string();
+        assert!(
+            err.ends_with("[priors] k1: fixed ([model] fixed): a fixed parameter is not estimated and takes no prior; known for the 2-DOF model: total_mass, m1, m2, c1"),
+            "{err}"
+        );
     }
 
     #[test]
@@ -647,11 +706,12 @@ mod tests {
             windowed("[0.001, 0.005]").unwrap().cases[0].window,
             (10, 50)
         );
+        // a start in the pre-trigger is the replay's start, t = 0
         assert_eq!(
-            windowed("[-1.0, 0.00505]").unwrap().cases[0].window,
+            windowed("[-0.005, 0.00505]").unwrap().cases[0].window,
             (0, 50)
         );
-        for empty in ["[-1.0, -0.002]", "[0.00101, 0.00109]", "[0.5, 0.6]"] {
+        for empty in ["[-0.005, -0.002]", "[0.00101, 0.00109]"] {
             let err = windowed(empty).unwrap_err();
             assert!(
                 matches!(
@@ -664,6 +724,25 @@ mod tests {
                 "{empty}: {err}"
             );
         }
+        // a window reaching past the record (-0.005 s to 0.0149 s) is
+        // refused by the file, the case and the key with the record's span,
+        // as a bias window is (it was cut to the record without a word)
+        for (beyond, given) in [
+            ("[0.0, 1e300]", "[0, 1e300]"),
+            ("[0.001, 0.5]", "[0.001, 0.5]"),
+            ("[-1.0, 0.005]", "[-1, 0.005]"),
+            ("[0.5, 0.6]", "[0.5, 0.6]"),
+        ] {
+            let err = windowed(beyond).unwrap_err().to_string();
+            assert!(
+                err.contains(&format!("study.toml: [[case]] 'a': window = {given}: expected times within the record of the case's channels, -0.005000 s to 0.01490 s (0.01990 s long")),
+                "{beyond}: {err}"
+            );
+        }
+        assert_eq!(
+            windowed("[0.001, 0.01495]").unwrap().cases[0].window,
+            (10, 149)
+        );
         let err = windowed("\"somewhere\"").unwrap_err().to_string();
         assert!(err.contains("case 'a': window 'somewhere'"), "{err}");
     }

@@ -94,3 +94,40 @@ pub use write::write_atomic;
 /// (about 160 MB of values): beyond it the command refuses instead of
 /// exhausting memory (docs/limits.md).
 pub const MAX_SAMPLES: usize = 20_000_000;
+
+/// Most tests one synthetic series may hold (`synth`, every model's
+/// series; docs/limits.md). A series is made in one run, with no progress
+/// shown, and its folder written whole (staged, then moved into place), as
+/// a campaign's design is refused beyond its `MAX_POINTS` before any point
+/// runs: 2000 tests of the bundled pendulum series ran past 120 s without
+/// a word (about 0.1 s a test in the debug build, 0.3 MB of files each).
+/// A larger set of tests is several series, or a campaign.
+pub const MAX_TESTS: usize = 1000;
+
+/// A series with more than [`MAX_TESTS`] tests.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error(
+    "{table}: {count} tests: a series holds at most {max} (limit MAX_TESTS, docs/limits.md: it is made in one run and written whole); split it into several series files",
+    max = MAX_TESTS
+)]
+pub struct TooManyTests {
+    /// The table of tests (`[[head]]`, `[[test]]`).
+    pub table: &'static str,
+    /// The tests given.
+    pub count: usize,
+}
+
+/// Refuses a series of more than [`MAX_TESTS`] tests, before any is made.
+///
+/// ```
+/// use bumpsim_io::output::{MAX_TESTS, series_size};
+/// assert!(series_size("[[head]]", 3).is_ok());
+/// let err = series_size("[[test]]", MAX_TESTS + 1).unwrap_err().to_string();
+/// assert!(err.starts_with("[[test]]: 1001 tests: a series holds at most 1000"));
+/// ```
+pub fn series_size(table: &'static str, count: usize) -> Result<(), TooManyTests> {
+    match count > MAX_TESTS {
+        true => Err(TooManyTests { table, count }),
+        false => Ok(()),
+    }
+}

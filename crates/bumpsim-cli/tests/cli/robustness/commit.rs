@@ -18,12 +18,19 @@ fn long_force(path: &Path, rows: usize) {
     std::fs::write(path, text).unwrap();
 }
 
-/// Kills `args` after increasing delays; each time the output must be the
-/// complete old file or a complete new one (`complete` decides).
-fn kill_during_write(dir: &Path, args: &[&str], output: &str, complete: &dyn Fn(&[u8]) -> bool) {
-    let old = b"old complete output\n".to_vec();
-    for delay_ms in [50u64, 200, 500, 1000, 2000, 4000] {
-        std::fs::write(dir.join(output), &old).unwrap();
+/// Runs `args` in `dir` once per delay and kills it (SIGKILL) after that
+/// delay: `before` sets the outputs up before each run, `after` checks
+/// them after it and says whether to go on (the one kill loop of the
+/// kill-mid-write tests below).
+fn kill_at(
+    dir: &Path,
+    args: &[&str],
+    delays: impl IntoIterator<Item = Duration>,
+    before: &mut dyn FnMut(),
+    after: &mut dyn FnMut(Duration) -> bool,
+) {
+    for delay in delays {
+        before();
         let mut child = Command::new(env!("CARGO_BIN_EXE_bumpsim"))
             .args(args)
             .current_dir(dir)
@@ -31,16 +38,30 @@ fn kill_during_write(dir: &Path, args: &[&str], output: &str, complete: &dyn Fn(
             .stderr(std::process::Stdio::null())
             .spawn()
             .unwrap();
-        std::thread::sleep(Duration::from_millis(delay_ms));
+        std::thread::sleep(delay);
         let _ = child.kill(); // SIGKILL on Unix
         let _ = child.wait();
+        if !after(delay) {
+            break;
+        }
+    }
+}
+
+/// Kills `args` after increasing delays; each time the output must be the
+/// complete old file or a complete new one (`complete` decides).
+fn kill_during_write(dir: &Path, args: &[&str], output: &str, complete: &dyn Fn(&[u8]) -> bool) {
+    let old = b"old complete output\n".to_vec();
+    let delays = [50u64, 200, 500, 1000, 2000, 4000].map(Duration::from_millis);
+    let before = &mut || std::fs::write(dir.join(output), &old).unwrap();
+    kill_at(dir, args, delays, before, &mut |delay| {
         let now = snapshot(&dir.join(output));
         assert!(
             now == old || complete(&now),
-            "{args:?} killed after {delay_ms} ms left a partial {output} ({} bytes)",
+            "{args:?} killed after {delay:?} left a partial {output} ({} bytes)",
             now.len()
         );
-    }
+        true
+    });
 }
 
 #[test]
@@ -215,34 +236,32 @@ fn sigkill_during_a_folder_commit_leaves_the_old_or_the_new_folder() {
         started.elapsed()
     };
     let spread = (0..20u32).map(|k| full.mul_f64(1.5 * f64::from(k) / 19.0));
-    let longer = (1..=10u32).map(|k| full.mul_f64(1.5 * f64::from(1u32 << k)));
+    let longer = (1..=10u32)
+        .map(|k| full.mul_f64(1.5 * f64::from(1u32 << k)))
+        .take_while(|delay| *delay <= Duration::from_secs(30));
+    let plots = dir.join("plots");
     let (mut olds, mut news) = (0, 0);
-    for (n, delay) in spread.chain(longer).enumerate() {
-        if n >= 20 && (news > 0 || delay > Duration::from_secs(30)) {
-            break;
-        }
-        let plots = dir.join("plots");
+    let before = &mut || {
         let _ = std::fs::remove_dir_all(&plots);
         crate::util::copy_tree(&dir.join("old"), &plots);
         std::fs::write(plots.join("notes.txt"), "mine").unwrap();
-        let mut child = Command::new(env!("CARGO_BIN_EXE_bumpsim"))
-            .args(export("2", "plots"))
-            .current_dir(&dir)
-            .stdout(std::process::Stdio::null())
-            .stderr(std::process::Stdio::null())
-            .spawn()
-            .unwrap();
-        std::thread::sleep(delay);
-        let _ = child.kill(); // SIGKILL
-        let _ = child.wait();
+    };
+    let args = export("2", "plots");
+    let args = args.each_ref().map(String::as_str);
+    kill_at(&dir, &args, spread.chain(longer), before, &mut |delay| {
         let now = folder(&plots);
         assert!(
             now == old || now == new,
             "killed after {delay:?}: a mixed folder {:?}",
             now.iter().map(|(n, b)| (n, b.len())).collect::<Vec<_>>()
         );
-        if now == old { olds += 1 } else { news += 1 }
-    }
+        if now == old {
+            olds += 1
+        } else {
+            news += 1
+        }
+        olds + news < 20 || news == 0
+    });
     assert!(
         news > 0,
         "no run finished within 30 s of kill delays (an uninterrupted run took {full:?}): {olds} old, {news} new"
@@ -295,19 +314,12 @@ fn sigkill_during_a_links_synth_leaves_no_folder_or_the_whole_one() {
     let whole = tree(&dir.join("whole"));
     assert!(whole.len() > 10, "{}", whole.len());
     let (mut absent, mut complete) = (0, 0);
-    for k in 0..16u32 {
-        let delay = full.mul_f64(1.5 * f64::from(k) / 15.0);
+    let delays = (0..16u32).map(|k| full.mul_f64(1.5 * f64::from(k) / 15.0));
+    let before = &mut || {
         let _ = std::fs::remove_dir_all(dir.join("out"));
-        let mut child = Command::new(env!("CARGO_BIN_EXE_bumpsim"))
-            .args([&args[..], &["out"]].concat())
-            .current_dir(&dir)
-            .stdout(std::process::Stdio::null())
-            .stderr(std::process::Stdio::null())
-            .spawn()
-            .unwrap();
-        std::thread::sleep(delay);
-        let _ = child.kill(); // SIGKILL
-        let _ = child.wait();
+    };
+    let killed = [&args[..], &["out"]].concat();
+    kill_at(&dir, &killed, delays, before, &mut |delay| {
         match dir.join("out").exists() {
             false => absent += 1,
             true => {
@@ -320,7 +332,8 @@ fn sigkill_during_a_links_synth_leaves_no_folder_or_the_whole_one() {
                 complete += 1;
             }
         }
-    }
+        true
+    });
     assert!(absent > 0, "every run finished: the kills came too late");
     println!("{absent} absent, {complete} whole");
 }

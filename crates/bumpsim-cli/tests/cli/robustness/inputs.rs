@@ -27,7 +27,7 @@ pub(super) fn refused(dir: &Path, args: &[&str], needle: &str) {
 }
 
 /// The bundled chain study edited by `edit`, written as `ex/identify/h.toml`.
-fn chain(dir: &Path, edit: impl Fn(&str) -> String) -> &'static str {
+pub(super) fn chain(dir: &Path, edit: impl Fn(&str) -> String) -> &'static str {
     let study = std::fs::read_to_string(dir.join("ex/identify/study.toml")).unwrap();
     std::fs::write(dir.join("ex/identify/h.toml"), edit(&study)).unwrap();
     "ex/identify/h.toml"
@@ -73,7 +73,7 @@ fn a_chain_study_s_priors_noise_and_sweep() {
 
 /// The bundled planar series with a yaw-rate sensor, synthesised into
 /// `dir/ps`; its study's text.
-fn planar_series(dir: &Path) -> String {
+pub(super) fn planar_series(dir: &Path) -> String {
     let series = std::fs::read_to_string(dir.join("ex/planar/identify/series.toml")).unwrap();
     let sill = "sensor = [0.6, 0.7]";
     assert!(series.contains(sill));
