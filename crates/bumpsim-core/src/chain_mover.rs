@@ -51,7 +51,7 @@ pub struct Motion<T> {
     /// The force on m1 (given, or the wall's), N.
     pub force: Vec<T>,
     /// Each link's plastic set at the end of the run, m
-    /// ([`LinkState::plastic_set`], as [`ChainResponse::plastic_set`]).
+    /// ([`crate::link::LinkState::plastic_set`], as [`ChainResponse::plastic_set`]).
     pub plastic_set: Vec<T>,
 }
 
