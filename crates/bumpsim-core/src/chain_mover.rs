@@ -9,11 +9,14 @@
 //! those of [`super`]; every product keeps the `f64` run's operands in
 //! their order, so a run on `f64` is bit for bit the same. Nothing is
 //! allocated after the start: the records are reserved for every sample.
+//! Each link's unloading line is kept while its δ_max stays
+//! ([`Remembered`]): a run into the barrier unloads over most of its
+//! samples.
 
 use super::{Chain, ChainResponse};
 use crate::dual::Real;
 use crate::leapfrog::{Control, Leapfrog, Mechanism, Stepped};
-use crate::link::{Link, LinkState};
+use crate::link::{Link, Remembered};
 
 /// A chain's values on the numbers `T`, in the chain's shape: what a run
 /// on dual numbers differentiates ([`Chain::values`] gives them as
@@ -48,7 +51,7 @@ pub struct Motion<T> {
     /// The force on m1 (given, or the wall's), N.
     pub force: Vec<T>,
     /// Each link's plastic set at the end of the run, m
-    /// ([`LinkState::plastic_set`], as [`ChainResponse::plastic_set`]).
+    /// ([`crate::link::LinkState::plastic_set`], as [`ChainResponse::plastic_set`]).
     pub plastic_set: Vec<T>,
 }
 
@@ -104,13 +107,13 @@ pub(super) struct Mover<'a, T> {
     wall: Option<(f64, f64)>,
     sign: f64,
     striker: Option<f64>,
-    front: LinkState<T>,
+    front: Remembered<T>,
     front_force: T,
-    path: LinkState<T>,
+    path: Remembered<T>,
     path_force: T,
-    rebound: LinkState<T>,
+    rebound: Remembered<T>,
     rebound_force: T,
-    states: Vec<LinkState<T>>,
+    states: Vec<Remembered<T>>,
     springs: Vec<T>,
     applied: usize,
     viscous: T,
@@ -147,13 +150,13 @@ impl<'a, T: Real> Mover<'a, T> {
             wall: driven.wall,
             sign: driven.sign,
             striker: driven.striker,
-            front: LinkState::default(),
+            front: Remembered::default(),
             front_force: zero,
-            path: LinkState::default(),
+            path: Remembered::default(),
             path_force: zero,
-            rebound: LinkState::default(),
+            rebound: Remembered::default(),
             rebound_force: zero,
-            states: vec![LinkState::default(); l],
+            states: vec![Remembered::default(); l],
             springs: vec![zero; l],
             applied: 0,
             viscous: zero,
@@ -204,12 +207,16 @@ impl<'a, T: Real> Mover<'a, T> {
             .states
             .iter()
             .zip(&self.values.links)
-            .map(|(s, l)| s.plastic_set(l));
+            .map(|(s, l)| s.state.plastic_set(l));
         match &mut out {
             Out::Full(o) => {
                 o.step = interval;
                 o.plastic_set = sets.map(|s| s.value()).collect();
-                o.reached = self.states.iter().map(|s| s.reached.value()).collect();
+                o.reached = self
+                    .states
+                    .iter()
+                    .map(|s| s.state.reached.value())
+                    .collect();
             }
             Out::Motion(o) => o.plastic_set = sets.collect(),
         }
@@ -222,31 +229,33 @@ impl<'a, T: Real> Mover<'a, T> {
         let values = self.values;
         for (j, link) in values.links.iter().enumerate() {
             stored += link
-                .stored((q[j] - q[j + 1]) * self.sign, &self.states[j])
+                .stored((q[j] - q[j + 1]) * self.sign, &self.states[j].state)
                 .value();
-            plastic += self.states[j].dissipated(link).value();
+            plastic += self.states[j].state.dissipated(link).value();
         }
         if let (Some(front), Some(_)) = (&values.front, self.wall) {
             if self.front_force.value() > 0.0 {
-                stored += front.stored(self.wall_travel(q, 0), &self.front).value();
+                stored += front
+                    .stored(self.wall_travel(q, 0), &self.front.state)
+                    .value();
             }
-            plastic += self.front.dissipated(front).value();
+            plastic += self.front.state.dissipated(front).value();
         }
         if let (Some(path), Some(wall), Some(_)) = (&values.path, &self.chain.path, self.wall) {
             if self.path_force.value() > 0.0 {
                 let crush = self.wall_travel(q, wall.mass) - wall.gap;
-                stored += path.stored(crush, &self.path).value();
+                stored += path.stored(crush, &self.path.state).value();
             }
-            plastic += self.path.dissipated(path).value();
+            plastic += self.path.state.dissipated(path).value();
         }
         if let (Some(rebound), Some(wall), Some(_)) =
             (&values.rebound, &self.chain.rebound, self.wall)
         {
             if self.rebound_force.value() > 0.0 {
                 let crush = self.wall_travel(q, wall.mass) - wall.gap;
-                stored += rebound.stored(crush, &self.rebound).value();
+                stored += rebound.stored(crush, &self.rebound.state).value();
             }
-            plastic += self.rebound.dissipated(rebound).value();
+            plastic += self.rebound.state.dissipated(rebound).value();
         }
         let mut kinetic: f64 = values
             .masses
@@ -268,24 +277,30 @@ impl<T: Real> Mechanism<T> for Mover<'_, T> {
     fn moved(&mut self, q: &[T], _v: &[T], k: usize) {
         for (j, link) in self.values.links.iter().enumerate() {
             let crush = (q[j] - q[j + 1]) * self.sign;
-            self.springs[j] = link.force(crush, &mut self.states[j]) * self.sign;
+            self.springs[j] = link.remembered_force(crush, &mut self.states[j]) * self.sign;
         }
         if let (Some(front), Some(_)) = (&self.values.front, self.wall) {
             let crush = self.wall_travel(q, 0);
-            self.front_force = front.force(crush, &mut self.front).max_constant(0.0);
+            self.front_force = front
+                .remembered_force(crush, &mut self.front)
+                .max_constant(0.0);
         }
         if let (Some(path), Some(wall), Some(_)) = (&self.values.path, &self.chain.path, self.wall)
         {
             let gap = self.values.path_gap.unwrap_or(T::constant(wall.gap));
             let crush = self.wall_travel(q, wall.mass) - gap;
-            self.path_force = path.force(crush, &mut self.path).max_constant(0.0);
+            self.path_force = path
+                .remembered_force(crush, &mut self.path)
+                .max_constant(0.0);
         }
         if let (Some(rebound), Some(wall), Some(_)) =
             (&self.values.rebound, &self.chain.rebound, self.wall)
         {
             let gap = self.values.rebound_gap.unwrap_or(T::constant(wall.gap));
             let crush = self.wall_travel(q, wall.mass) - gap;
-            self.rebound_force = rebound.force(crush, &mut self.rebound).max_constant(0.0);
+            self.rebound_force = rebound
+                .remembered_force(crush, &mut self.rebound)
+                .max_constant(0.0);
         }
         self.applied = k.wrapping_add(1);
     }

@@ -428,6 +428,29 @@ impl<T: Real> Default for LinkState<T> {
     }
 }
 
+/// A link's history in a run with its unloading line kept: the line
+/// `(F_max, k_e)` from δ_max ([`Link::force`]'s) depends on δ_max alone,
+/// so it is computed once per reached compression instead of at every
+/// unloading step (for a table, `E_L(δ_max)` sums every segment below
+/// it); [`Link::remembered_force`] gives [`Link::force`]'s value bit for
+/// bit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Remembered<T = f64> {
+    /// The history.
+    pub state: LinkState<T>,
+    /// The unloading line from `state.reached`, once computed.
+    line: Option<(T, T)>,
+}
+
+impl<T: Real> Default for Remembered<T> {
+    fn default() -> Self {
+        Remembered {
+            state: LinkState::default(),
+            line: None,
+        }
+    }
+}
+
 impl<T: Real> LinkState<T> {
     /// The plastic set `δ_p = δ_max − F_max / k_e`, m (0 for an elastic link).
     pub fn plastic_set(&self, link: &Link<T>) -> T {
@@ -546,6 +569,27 @@ impl<T: Real> Link<T> {
         }
     }
 
+    /// [`Link::force`] with the history `memory`, its unloading line kept
+    /// while δ_max stays ([`Remembered`]): the same value.
+    pub fn remembered_force(&self, d: T, memory: &mut Remembered<T>) -> T {
+        match self.unloading {
+            Unloading::Elastic => self.force(d, &mut memory.state),
+            Unloading::Slope(_) => {
+                if d.value() >= memory.state.reached.value() {
+                    memory.state.reached = d;
+                    memory.line = None;
+                    return self.curve.force(d);
+                }
+                let reached = memory.state.reached;
+                let (top, slope) = match memory.line {
+                    Some(line) => line,
+                    None => *memory.line.insert(self.unloading_line(reached)),
+                };
+                top - slope * (reached - d)
+            }
+        }
+    }
+
     /// The elastic energy stored at deformation `d` with history `state`, J.
     pub fn stored(&self, d: T, state: &LinkState<T>) -> T {
         match self.unloading {
@@ -627,6 +671,25 @@ mod tests {
                     })
                     .sum();
                 assert_relative_eq!(curve.energy(d), simpson, max_relative = 1e-8);
+            }
+        }
+    }
+
+    /// Load, unload, reload past δ_max and unload again: the kept line
+    /// gives every force and the history bit for bit.
+    #[test]
+    fn the_remembered_force_is_the_force() {
+        let table = Curve::table(vec![[0.05, 1e4], [0.1, 1.2e4], [0.3, 5e4]]).unwrap();
+        for unloading in [Unloading::Slope(4e5), Unloading::Elastic] {
+            let link = Link::new(table.clone(), unloading).unwrap();
+            let (mut state, mut memory) = (LinkState::default(), Remembered::default());
+            for d in [0.02, 0.12, 0.1, 0.05, 0.0, 0.08, 0.15, 0.2, 0.13, -0.01] {
+                let force = link.force(d, &mut state);
+                assert_eq!(
+                    link.remembered_force(d, &mut memory).to_bits(),
+                    force.to_bits()
+                );
+                assert_eq!(memory.state, state);
             }
         }
     }
