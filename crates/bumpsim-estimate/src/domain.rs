@@ -112,6 +112,16 @@ impl Domain {
         }
     }
 
+    /// The unit of a sum of its values squared (an objective compared in
+    /// it): m², (m/s)², (m/s²)².
+    pub fn squared_unit(self) -> &'static str {
+        match self {
+            Domain::Displacement => "m²",
+            Domain::Velocity => "(m/s)²",
+            Domain::Acceleration => "(m/s²)²",
+        }
+    }
+
     /// Its value at sample `k ≥ order` of the displacement series `y` on
     /// step `h`.
     pub fn at(self, y: &[f64], k: usize, h: f64) -> f64 {

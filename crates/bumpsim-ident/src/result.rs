@@ -138,12 +138,9 @@ impl Compared {
     /// The unit of the objective of cases compared so
     /// ([`Identification::objective_unit`]).
     pub fn objective_unit(self) -> String {
-        let squared = match self.domain.order() {
-            0 => "m²".to_string(),
-            _ => format!("({})²", self.domain.unit()),
-        };
+        let squared = self.domain.squared_unit();
         match (self.weighted, self.partly) {
-            (false, _) => squared,
+            (false, _) => squared.into(),
             (true, false) => "dimensionless".into(),
             (true, true) => format!("dimensionless + {squared}"),
         }

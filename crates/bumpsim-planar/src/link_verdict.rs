@@ -220,11 +220,12 @@ pub fn compare_links(
         [mean(0), mean(1)]
     });
     let (prefer, criterion) = decide(held_out, bics);
+    let unit = linear.domain.squared_unit();
     let mut reasons = vec![
         format!("training fit: linear {}", fits(linear)),
         format!("training fit: nonlinear {}", fits(nonlinear)),
         format!(
-            "objective: linear {:.4e} m², nonlinear {:.4e} m² ({:.1} % lower)",
+            "objective: linear {:.4e} {unit}, nonlinear {:.4e} {unit} ({:.1} % lower)",
             linear.objective,
             nonlinear.objective,
             100.0 * (1.0 - nonlinear.objective / linear.objective)

@@ -260,8 +260,9 @@ pub fn identification_summary(
     }
     let u = &result.uncertainty;
     s += &format!(
-        "  objective {} m²; variance inflation {} (the residuals' integrated autocorrelation time; lag-1 correlation ρ = {})\n",
+        "  objective {} {}; variance inflation {} (the residuals' integrated autocorrelation time; lag-1 correlation ρ = {})\n",
         bumpsim_core::units::format_number(result.objective, 5),
+        result.domain.squared_unit(),
         bumpsim_core::units::format_number(result.inflation, 3),
         bumpsim_core::units::format_number(u.residual_correlation, 4),
     );

@@ -236,8 +236,13 @@ pub struct PlanarIdentification {
     pub car: PlanarCar,
     /// The estimates, in the order of [`Unknowns::names`].
     pub parameters: Vec<Estimate>,
-    /// Objective F at the optimum, m².
+    /// Objective F at the optimum, in the square of [`Self::domain`]'s unit
+    /// (m² for displacement, (m/s)² for velocity, (m/s²)² for acceleration).
     pub objective: f64,
+    /// Where the x accelerometers were compared (the setup's), which gives
+    /// the objective its unit.
+    #[serde(skip)]
+    pub domain: Domain,
     /// The starts (the layer's tally).
     pub starts: Starts,
     /// Solver iterations of the best start (screening and polishing).
@@ -495,6 +500,7 @@ fn summarise(
         car,
         parameters: estimates,
         objective: data,
+        domain: setup.domain,
         starts: found.starts,
         iterations: best.iterations,
         run_time: clock.elapsed().as_secs_f64(),
