@@ -522,36 +522,44 @@ fn replay(link: &Link, crush: impl Iterator<Item = f64>) -> (f64, f64, Vec<f64>)
     (state.reached, state.plastic_set(link), force)
 }
 
+/// The walled cars' barrier run: speed, m/s, and duration, s.
+const WALLED_RUN: (f64, f64) = (40.0 / 3.6, 0.25);
+
+/// `chain`'s CalculiX barrier deck (mm-s-t, 0.1 ms increments, the walled
+/// run) and the path of its ccx results, run under `name`.
+fn walled_in_ccx(chain: &Chain, title: &str, name: &str) -> (String, PathBuf) {
+    let options = CalculixOptions {
+        layout: mm_layout(),
+        title: title.into(),
+        id_offset: 100,
+        ..Default::default()
+    };
+    let barrier = Barrier {
+        speed: WALLED_RUN.0,
+        duration: WALLED_RUN.1,
+        increment: 1e-4,
+        output_every: 1,
+    };
+    let deck = calculix_chain_deck(chain, &options, Some(&barrier)).unwrap();
+    let path = run_ccx(name, &deck);
+    (deck, path)
+}
+
 /// The wall links in ccx (mm-s-t along −y: the one-sided tables' signs
 /// flip) against `Chain::run` into the barrier at 40 km/h: the peak
 /// barrier force (the front brick's stress, and the wall springs' curves
 /// on ccx's crush, which is what their tables carry), the front link's
 /// largest compression and residual crush, and the path's and the rebound
-/// link's largest compression, within 2 %. (A path that yields unloads
-/// along its curve in ccx, docs/export.md; with this path unloading at
-/// 5000 N/mm the peak barrier force came out 508.0 kN in ccx against
-/// 469.5 kN, the path still loaded in ccx as it springs back.)
+/// link's largest compression, within 2 %. (A path that yields: the next
+/// test.)
 #[test]
 fn wall_links_in_ccx_reproduce_the_impact_within_two_percent() {
     if !ccx_available() {
         return;
     }
     let chain = walled();
-    let (v, duration) = (40.0 / 3.6, 0.25);
-    let options = CalculixOptions {
-        layout: mm_layout(),
-        title: "wall links".into(),
-        id_offset: 100,
-        ..Default::default()
-    };
-    let barrier = Barrier {
-        speed: v,
-        duration,
-        increment: 1e-4,
-        output_every: 1,
-    };
-    let deck = calculix_chain_deck(&chain, &options, Some(&barrier)).unwrap();
-    let path = run_ccx("walls", &deck);
+    let (_, path) = walled_in_ccx(&chain, "wall links", "walls");
+    let (v, duration) = WALLED_RUN;
     let u = read_results(&path).unwrap();
     let f = read_link_forces(&path).unwrap();
     let front = f.links.iter().find(|l| l.0 == "front_link").unwrap();
@@ -630,22 +638,9 @@ fn a_yielding_wall_link_in_ccx_reproduces_the_impact_within_two_percent() {
     }
     let chain = walled_with(Unloading::Slope(5e6));
     assert!(mapping(&chain.path().unwrap().link).exact);
-    let (v, duration) = (40.0 / 3.6, 0.25);
-    let options = CalculixOptions {
-        layout: mm_layout(),
-        title: "yielding wall link".into(),
-        id_offset: 100,
-        ..Default::default()
-    };
-    let barrier = Barrier {
-        speed: v,
-        duration,
-        increment: 1e-4,
-        output_every: 1,
-    };
-    let deck = calculix_chain_deck(&chain, &options, Some(&barrier)).unwrap();
+    let (deck, path) = walled_in_ccx(&chain, "yielding wall link", "yielding-wall");
     assert!(!deck.contains("APPROXIMATE"), "{deck}");
-    let path = run_ccx("yielding-wall", &deck);
+    let (v, duration) = WALLED_RUN;
     let u = read_results(&path).unwrap();
     let f = read_link_forces(&path).unwrap();
     let force = |label: &str| &f.links.iter().find(|l| l.0 == label).expect(label).1;
