@@ -72,6 +72,17 @@ pub struct Forward {
     pub warnings: Vec<String>,
 }
 
+impl Forward {
+    /// The fit % of its channel `name` (`"force"`, `"x-acceleration"`,
+    /// `"yaw rate"`, ...), if it compared one.
+    pub fn fit_of(&self, name: &str) -> Option<f64> {
+        self.channels
+            .iter()
+            .find(|c| c.name == name)
+            .map(|c| c.fit_percent)
+    }
+}
+
 /// Simulates `case`'s striker against `car` and compares it with the case's
 /// measurement (see the module); an error when the case has no striker or
 /// no left and right sills.

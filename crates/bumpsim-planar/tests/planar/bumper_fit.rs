@@ -52,13 +52,7 @@ fn ahead(car: &PlanarCar, study: &PlanarStudy) -> [f64; 3] {
         .find(|c| c.name == "OFFSET40")
         .unwrap();
     let run = forward(car, case).unwrap();
-    ["force", "x-acceleration", "yaw rate"].map(|name| {
-        run.channels
-            .iter()
-            .find(|c| c.name == name)
-            .unwrap()
-            .fit_percent
-    })
+    ["force", "x-acceleration", "yaw rate"].map(|name| run.fit_of(name).unwrap())
 }
 
 #[test]

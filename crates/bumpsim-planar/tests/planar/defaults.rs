@@ -119,14 +119,7 @@ pub(super) fn scored(
     let fit = |name: &str| predict(&result.car, case(name)).unwrap().fit;
     let (offset, narrow) = (fit("OFFSET40"), fit("NARROW-OFFSET"));
     let ahead = forward(&result.car, case("OFFSET40")).unwrap();
-    let channel = |name: &str| {
-        ahead
-            .channels
-            .iter()
-            .find(|c| c.name == name)
-            .unwrap()
-            .fit_percent
-    };
+    let channel = |name: &str| ahead.fit_of(name).unwrap();
     let value = |name: &str| {
         result
             .parameters

@@ -91,14 +91,7 @@ fn an_independent_asymmetric_series_predicts_its_held_out_tests() {
         fit("POLE-OFFSET").fit_x >= 99.3 && fit("POLE-OFFSET").fit_yaw > 0.0,
         "{held:?}"
     );
-    let channel = |name: &str| {
-        ahead
-            .channels
-            .iter()
-            .find(|c| c.name == name)
-            .unwrap()
-            .fit_percent
-    };
+    let channel = |name: &str| ahead.fit_of(name).unwrap();
     assert!(
         channel("force") >= 85.0 && channel("x-acceleration") >= 85.0,
         "{ahead:?}"

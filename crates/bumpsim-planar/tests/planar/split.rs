@@ -49,13 +49,7 @@ fn channels(car: &PlanarCar, case: &PlanarCase) -> String {
 /// The forward fits (force, yaw rate) of `car` on `case`, %.
 fn fits(car: &PlanarCar, case: &PlanarCase) -> [f64; 2] {
     let ahead = forward(car, case).unwrap();
-    let fit = |name: &str| {
-        ahead
-            .channels
-            .iter()
-            .find(|c| c.name == name)
-            .map_or(f64::NAN, |c| c.fit_percent)
-    };
+    let fit = |name: &str| ahead.fit_of(name).unwrap_or(f64::NAN);
     [fit("force"), fit("yaw rate")]
 }
 

@@ -560,14 +560,7 @@ fn through_the_documented_study(seed: u64, dir: &Path) -> ([f64; 5], [f64; 5]) {
             .map(|f| f.fit_yaw)
             .collect::<Vec<_>>();
         let ahead = forward(car, offset).unwrap();
-        let channel = |name: &str| {
-            ahead
-                .channels
-                .iter()
-                .find(|c| c.name == name)
-                .unwrap()
-                .fit_percent
-        };
+        let channel = |name: &str| ahead.fit_of(name).unwrap();
         [
             yaw[0],
             yaw[1],

@@ -522,12 +522,5 @@ fn true_boxes(car: &PlanarCar, sheet: &serde_json::Value, study: &PlanarStudy) -
         .find(|c| c.name == "OFFSET40")
         .unwrap();
     let ahead = forward(&fitted, offset).unwrap();
-    ["force", "x-acceleration", "yaw rate"].map(|name| {
-        ahead
-            .channels
-            .iter()
-            .find(|c| c.name == name)
-            .unwrap()
-            .fit_percent
-    })
+    ["force", "x-acceleration", "yaw rate"].map(|name| ahead.fit_of(name).unwrap())
 }
