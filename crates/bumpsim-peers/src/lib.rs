@@ -78,15 +78,59 @@ pub fn python<A: AsRef<std::ffi::OsStr>>(script: &std::path::Path, args: &[A]) -
     run.stdout
 }
 
-/// A hash of `script`'s text and `args` (FNV-1a, 64 bits: stable across
-/// Rust versions, unlike `DefaultHasher`), in hex.
+/// A hash of `script`'s text, of the repository's peer modules it imports
+/// ([`imported`]) and of `args` (FNV-1a, 64 bits: stable across Rust
+/// versions, unlike `DefaultHasher`), in hex: a generator whose helper
+/// module changed is run again too.
 fn script_version(script: &std::path::Path, args: &[&str]) -> String {
-    let text = std::fs::read(script).unwrap_or_else(|e| panic!("{}: {e}", script.display()));
+    let mut files = vec![script.to_path_buf()];
+    imported(script, &mut files);
     let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    for byte in text.iter().chain(args.join("\0").as_bytes()) {
-        hash = (hash ^ u64::from(*byte)).wrapping_mul(0x0100_0000_01b3);
+    let mut add = |bytes: &[u8]| {
+        for byte in bytes {
+            hash = (hash ^ u64::from(*byte)).wrapping_mul(0x0100_0000_01b3);
+        }
+    };
+    for file in &files {
+        add(&std::fs::read(file).unwrap_or_else(|e| panic!("{}: {e}", file.display())));
     }
+    add(args.join("\0").as_bytes());
     format!("{hash:016x}")
+}
+
+/// The peer modules `script` imports, transitively, appended to `files`:
+/// each `import NAME` / `from NAME import` whose `NAME.py` lies beside the
+/// script or in the repository's `tests/peers` or `bench/peers` (where the
+/// peers put themselves on `sys.path`). Library modules (numpy, scipy) are
+/// not files there and are skipped.
+fn imported(script: &std::path::Path, files: &mut Vec<std::path::PathBuf>) {
+    let Ok(text) = std::fs::read_to_string(script) else {
+        return;
+    };
+    let here = script.parent().unwrap_or(std::path::Path::new("."));
+    let root = here.join("../..");
+    let folders = [
+        here.to_path_buf(),
+        root.join("tests/peers"),
+        root.join("bench/peers"),
+    ];
+    for line in text.lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        let name = match words.as_slice() {
+            ["import", name, ..] | ["from", name, "import", ..] => name.trim_end_matches(','),
+            _ => continue,
+        };
+        let found = folders
+            .iter()
+            .map(|f| f.join(format!("{name}.py")))
+            .find(|p| p.is_file());
+        if let Some(path) = found.and_then(|p| p.canonicalize().ok())
+            && !files.contains(&path)
+        {
+            files.push(path.clone());
+            imported(&path, files);
+        }
+    }
 }
 
 /// Passes `found` through; when it is `false`, prints the skip message for
@@ -120,6 +164,25 @@ mod tests {
         generated(&script, &out, &[], "runs");
         assert_eq!(std::fs::read_to_string(out.join("runs")).unwrap(), "1");
         std::fs::write(&script, format!("{body}{count}# changed\n")).unwrap();
+        generated(&script, &out, &[], "runs");
+        assert_eq!(std::fs::read_to_string(out.join("runs")).unwrap(), "2");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_generator_runs_again_when_a_module_it_imports_changes() {
+        let dir = std::env::temp_dir().join(format!("bumpsim-peers-import-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (script, helper, out) = (dir.join("gen.py"), dir.join("helper.py"), dir.join("out"));
+        let body = "import sys, pathlib\nimport helper  # noqa: E402\np = pathlib.Path(sys.argv[1]); p.mkdir(exist_ok=True)\n";
+        let count =
+            "c = p / 'runs'; c.write_text(str(int(c.read_text()) + 1 if c.exists() else 1))\n";
+        std::fs::write(&script, format!("{body}{count}")).unwrap();
+        std::fs::write(&helper, "WINDOW = 1.0\n").unwrap();
+        generated(&script, &out, &[], "runs");
+        generated(&script, &out, &[], "runs");
+        assert_eq!(std::fs::read_to_string(out.join("runs")).unwrap(), "1");
+        std::fs::write(&helper, "WINDOW = 0.0998\n").unwrap();
         generated(&script, &out, &[], "runs");
         assert_eq!(std::fs::read_to_string(out.join("runs")).unwrap(), "2");
         std::fs::remove_dir_all(&dir).unwrap();
