@@ -256,6 +256,24 @@ fn the_off_centre_faces_yaw_is_the_tyres_not_the_side_members_yield() {
     assert!((80.0..90.0).contains(&force), "forward force {force:.2} %");
 }
 
+/// A series' sheet (`series.json`), its study `study_file` and the
+/// generator's yielding truth with its tyres (the sheet's C_α, relaxation
+/// length `sigma`).
+fn yielding_truth_of(
+    dir: &Path,
+    study_file: &str,
+    sigma: f64,
+) -> (serde_json::Value, PlanarStudy, PlanarCar) {
+    let sheet: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
+    let study = PlanarStudy::read(&dir.join(study_file)).unwrap();
+    let cornering = sheet["car"]["tyres"]["cornering_stiffness"]
+        .as_f64()
+        .unwrap();
+    let truth = with_tyres(&truth_yielding(&study, &sheet), sigma, cornering);
+    (sheet, study, truth)
+}
+
 /// A series' sheet, study and yielding truth (its tyres' C_α, relaxation
 /// length `sigma`), and the set-up of one unstaged start from that truth
 /// with C_α and σ estimated.
@@ -263,13 +281,7 @@ pub(super) fn from_the_yielding_truth(
     dir: &Path,
     sigma: f64,
 ) -> (serde_json::Value, PlanarStudy, PlanarCar, PlanarSetup) {
-    let sheet: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
-    let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
-    let cornering = sheet["car"]["tyres"]["cornering_stiffness"]
-        .as_f64()
-        .unwrap();
-    let truth = with_tyres(&truth_yielding(&study, &sheet), sigma, cornering);
+    let (sheet, study, truth) = yielding_truth_of(dir, "study.toml", sigma);
     let mut setup = study.setup.clone();
     setup.template = truth.clone();
     setup.starts = 1;
@@ -527,13 +539,7 @@ fn runs_from_the_truths_through_the_documented_study() {
 /// scores (held-out yaw OFFSET40, NARROW-OFFSET; forward offset force,
 /// x-acceleration, yaw rate, %) at the truth and after the run.
 fn through_the_documented_study(seed: u64, dir: &Path) -> ([f64; 5], [f64; 5]) {
-    let sheet: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
-    let study = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
-    let cornering = sheet["car"]["tyres"]["cornering_stiffness"]
-        .as_f64()
-        .unwrap();
-    let truth = with_tyres(&truth_yielding(&study, &sheet), 0.01, cornering);
+    let (_, study, truth) = yielding_truth_of(dir, "study-doc.toml", 0.01);
     // `BUMPSIM_GENERATOR_BUMPER`: the truth (and so the run's template)
     // with its bumper on the generator's 31 points, the struck cells' line
     // of action where the generator's is (`diagnosis::generator_bumper`)
