@@ -552,6 +552,18 @@ impl<T: Real> Link<T> {
     /// The spring force at deformation `d` (m, compression positive), N,
     /// updating the history `state`.
     pub fn force(&self, d: T, state: &mut LinkState<T>) -> T {
+        self.force_along(d, state, &mut None)
+    }
+
+    /// [`Link::force`] with the history `memory`, its unloading line kept
+    /// while δ_max stays ([`Remembered`]): the same value.
+    pub fn remembered_force(&self, d: T, memory: &mut Remembered<T>) -> T {
+        self.force_along(d, &mut memory.state, &mut memory.line)
+    }
+
+    /// The force of both: `line` the unloading line from `state.reached`
+    /// if known (made when needed, dropped when δ_max grows).
+    fn force_along(&self, d: T, state: &mut LinkState<T>, line: &mut Option<(T, T)>) -> T {
         match self.unloading {
             // odd in δ (`signum(δ) F_L(|δ|)`, a negative zero included)
             Unloading::Elastic => match d.value().is_sign_negative() {
@@ -561,31 +573,11 @@ impl<T: Real> Link<T> {
             Unloading::Slope(_) => {
                 if d.value() >= state.reached.value() {
                     state.reached = d;
+                    *line = None;
                     return self.curve.force(d);
                 }
-                let (top, slope) = self.unloading_line(state.reached);
+                let (top, slope) = *line.get_or_insert_with(|| self.unloading_line(state.reached));
                 top - slope * (state.reached - d)
-            }
-        }
-    }
-
-    /// [`Link::force`] with the history `memory`, its unloading line kept
-    /// while δ_max stays ([`Remembered`]): the same value.
-    pub fn remembered_force(&self, d: T, memory: &mut Remembered<T>) -> T {
-        match self.unloading {
-            Unloading::Elastic => self.force(d, &mut memory.state),
-            Unloading::Slope(_) => {
-                if d.value() >= memory.state.reached.value() {
-                    memory.state.reached = d;
-                    memory.line = None;
-                    return self.curve.force(d);
-                }
-                let reached = memory.state.reached;
-                let (top, slope) = match memory.line {
-                    Some(line) => line,
-                    None => *memory.line.insert(self.unloading_line(reached)),
-                };
-                top - slope * (reached - d)
             }
         }
     }
