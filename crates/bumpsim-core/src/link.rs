@@ -384,6 +384,20 @@ impl Curve<f64> {
             _ => self.initial_slope(),
         }
     }
+
+    /// The steepest rising slope of the curve, N/m: what an unloading
+    /// slope must reach for a solver's plasticity to follow the curve
+    /// (a falling, softening segment needs none; LS-DYNA's
+    /// `*MAT_SPRING_INELASTIC` unloads at the larger of its `KU` and this).
+    pub fn steepest_rise(&self) -> f64 {
+        match self {
+            Curve::Table { points } => points
+                .windows(2)
+                .map(|w| (w[1][1] - w[0][1]) / (w[1][0] - w[0][0]))
+                .fold(0.0, f64::max),
+            _ => self.steepest_slope(),
+        }
+    }
 }
 
 /// Index of the table segment holding δ (the last beyond the last point).
@@ -621,6 +635,20 @@ mod tests {
         assert!(Curve::table(vec![[0.1, 10.0], [0.2, -5.0]]).is_err());
         assert!(Curve::table(vec![[0.0, 0.0]]).is_err());
         assert!(Curve::table(vec![[0.1, 0.0], [0.2, 5.0]]).is_err());
+    }
+
+    #[test]
+    fn a_softening_fall_steeper_than_the_rise_needs_no_stiffer_unloading() {
+        // rises at 1e6 N/m to 10 kN, falls at 1.8e6 N/m to 1 kN, rises at
+        // 2e5 N/m: unloaded at 1.2e6 N/m, bumpsim's k_e is k_u at every
+        // reached crush (secant and energy terms stay under the rise)
+        let curve = Curve::table(vec![[0.01, 1e4], [0.015, 1e3], [0.03, 4e3]]).unwrap();
+        assert!((curve.steepest_slope() - 1.8e6).abs() < 1.0);
+        assert!((curve.steepest_rise() - 1e6).abs() < 1e-3);
+        let link = Link::new(curve, Unloading::Slope(1.2e6)).unwrap();
+        for reached in [0.005, 0.01, 0.012, 0.015, 0.02, 0.03, 0.1] {
+            assert_eq!(link.replaced_unloading(reached), None, "at {reached} m");
+        }
     }
 
     #[test]

@@ -10,8 +10,8 @@
 //! |---|---|---|---|
 //! | linear curve, either rule | `*MAT_SPRING_ELASTIC` K = k | `SPRING2`, `*SPRING` k | exactly |
 //! | nonlinear curve, elastic | `*MAT_SPRING_NONLINEAR_ELASTIC`, odd `*DEFINE_CURVE` | `SPRING2`, `*SPRING, NONLINEAR` odd table | exactly on the table's points |
-//! | nonlinear curve, slope k_u ≥ the curve's steepest slope | `*MAT_SPRING_INELASTIC` (LCFD = the curve in the first quadrant, KU = k_u, CTF = 1: compression only) | `C3D8` brick, `*ELASTIC` E, `*PLASTIC` table | exactly in compression |
-//! | nonlinear curve, slope k_u below the steepest slope | as above | as above, E from the steepest slope | approximately |
+//! | nonlinear curve, slope k_u ≥ the curve's steepest rising slope | `*MAT_SPRING_INELASTIC` (LCFD = the curve in the first quadrant, KU = k_u, CTF = 1: compression only) | `C3D8` brick, `*ELASTIC` E, `*PLASTIC` table | exactly in compression |
+//! | nonlinear curve, slope k_u below the steepest rising slope | as above | as above, E from the steepest rising slope | approximately |
 //!
 //! Tables: a bilinear or tabulated curve is written at its corners, then
 //! to [`CURVE_SPAN`] along its last slope; a progressive one at
@@ -20,11 +20,12 @@
 //!
 //! **Unloading.** bumpsim unloads from δ_max along `k_e = max(k_u,
 //! F_max/δ_max, F_max²/(2 E_L))`. When k_u is at least the curve's steepest
-//! slope the other two never exceed it and `k_e = k_u` at every δ_max: a
+//! rising slope the other two never exceed it (a softening segment lowers
+//! F_max, not the slope that reached it) and `k_e = k_u` at every δ_max: a
 //! spring with one unloading stiffness (LS-DYNA's KU) or an elastic-plastic
 //! continuum with modulus `E = k_u L / A` and hardening curve
 //! `σ = F_L(δ)/A` against plastic strain `ε_p = (δ − F_L(δ)/k_u)/L`
-//! follows it exactly. Below it, LS-DYNA unloads at the steepest slope
+//! follows it exactly. Below it, LS-DYNA unloads at the steepest rising slope
 //! (the manual: the larger of KU and the curve's largest slope) and so does
 //! the brick: stiffer than bumpsim's, so their plastic set is larger.
 //! One exception to "exactly": bumpsim keeps a bilinear link elastic until
@@ -118,10 +119,12 @@ pub fn loading_points(curve: &Curve) -> Vec<(f64, f64)> {
 }
 
 /// The stiffness a solver unloads at, N/m: the larger of k_u and the
-/// curve's steepest slope.
+/// curve's steepest rising slope ([`Curve::steepest_rise`]: a softening
+/// segment, however steep, asks no stiffer unloading of the solvers'
+/// plasticity).
 pub fn solver_unloading(link: &Link) -> f64 {
     match link.unloading() {
-        Unloading::Slope(k) => k.max(link.curve().steepest_slope()),
+        Unloading::Slope(k) => k.max(link.curve().steepest_rise()),
         Unloading::Elastic => link.curve().steepest_slope(),
     }
 }
@@ -159,7 +162,7 @@ pub fn mapping(link: &Link) -> LinkMapping {
             ),
         ),
         (_, Unloading::Elastic) => (true, "elastic along the curve: exact".to_string()),
-        (_, Unloading::Slope(k)) if k >= curve.steepest_slope() => (
+        (_, Unloading::Slope(k)) if k >= curve.steepest_rise() => (
             true,
             format!(
                 "unloading slope {k:e} N/m: exact in compression (tension: see docs/export.md)"
@@ -168,8 +171,8 @@ pub fn mapping(link: &Link) -> LinkMapping {
         (_, Unloading::Slope(k)) => (
             false,
             format!(
-                "APPROXIMATE: unloads at the curve's steepest slope {:e} N/m, bumpsim at max({k:e} N/m, secant, energy term)",
-                curve.steepest_slope()
+                "APPROXIMATE: unloads at the curve's steepest rising slope {:e} N/m, bumpsim at max({k:e} N/m, secant, energy term)",
+                curve.steepest_rise()
             ),
         ),
     };

@@ -297,6 +297,8 @@ struct AgainstImpact {
     ccx_sets: [f64; 2],
     impact_sets: [f64; 2],
     most: [f64; 3],
+    /// What `export` printed on stderr (its warnings).
+    warnings: String,
 }
 
 /// Runs the car at `car_path` into the barrier at `speed` (km/h) for
@@ -347,6 +349,7 @@ fn against_impact(dir: &Path, car_path: &Path, speed: f64, samples: usize) -> Ag
         inp.to_str().unwrap(),
     ]);
     assert!(run.status.success(), "{}", text(&run.stderr));
+    let warnings = text(&run.stderr);
     let (_, rows) = ccx_histories(dir);
     assert_eq!(rows.len(), samples, "ccx runs to the end");
     let chain = &car.chain;
@@ -377,6 +380,7 @@ fn against_impact(dir: &Path, car_path: &Path, speed: f64, samples: usize) -> Ag
         ccx_sets: [states[0].plastic_set(front), states[1].plastic_set(&p.link)],
         impact_sets,
         most,
+        warnings,
     }
 }
 
@@ -438,6 +442,9 @@ fn the_identified_nhtsa_car_in_ccx_reproduces_impact_within_two_percent() {
     ]);
     assert!(run.status.success(), "{}", text(&run.stderr));
     let c = against_impact(&dir, &car_path, 57.09, 1500);
+    // its front table softens at 1.43e7 N/m, steeper than its unloading:
+    // a fall asks no stiffer unloading of the solvers, so every link is exact
+    assert!(!c.warnings.contains("APPROXIMATE"), "{}", c.warnings);
     eprintln!(
         "nhtsa: ccx {} N, sets {:?} m; impact {} N, sets {:?} m; largest forces {:?} N",
         c.ccx_peak, c.ccx_sets, c.impact_peak, c.impact_sets, c.most
