@@ -14,7 +14,7 @@ use super::defaults::Scores;
 use bumpsim_planar::PlanarCar;
 use bumpsim_planar::bumper_fit::fit_bumper;
 use bumpsim_planar::forward::forward;
-use bumpsim_planar::identify::{CaseFit, PlanarIdentification, Unknowns, identify, predict};
+use bumpsim_planar::identify::{ARM, CaseFit, PlanarIdentification, Unknowns, identify, predict};
 use bumpsim_planar::study::PlanarStudy;
 use std::path::{Path, PathBuf};
 
@@ -407,6 +407,11 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
         if std::env::var("BUMPSIM_GENERATOR_BUMPER").is_ok() {
             study.setup.template = super::diagnosis::generator_bumper(&study.setup.template);
         }
+        // `BUMPSIM_NO_ARM`: the wall cells' line of action by the
+        // segments' rule alone (no arm nuisance, as before it)
+        if std::env::var("BUMPSIM_NO_ARM").is_ok() {
+            study.setup.arms = false;
+        }
         let clock = std::time::Instant::now();
         let result = study.identified(&|| {}).unwrap();
         let mut scores =
@@ -437,6 +442,14 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
             "seed {seed}: forward OFFSET40 force / x-acc / yaw rate with the crash boxes' elastic stiffness at the truth, the bumper fitted again: {:.1?} %",
             true_boxes(&result.car, &sheet, &study)
         );
+        // each wall case's cells' arm: its estimate and how far the data
+        // moved it from its prior (in prior standard deviations)
+        for m in result.priors.iter().filter(|m| m.name.ends_with(ARM)) {
+            eprintln!(
+                "seed {seed}: {} {:.4} (prior {:.2}, {:+.2} sd)",
+                m.name, m.estimate, m.centre, m.z
+            );
+        }
         out.push((seed, scores));
     }
     out
