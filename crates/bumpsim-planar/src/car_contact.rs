@@ -149,7 +149,10 @@ mod tests {
     /// 2 % of the yaw the 4 cm move it by; measured 1.2 and 1.4 %).
     #[test]
     fn a_wall_cells_line_of_action_moves_with_the_arm() {
-        let car = car();
+        // a rigid car: its bumper line stays straight
+        let chain = MsdModel::new(vec![1200.0], vec![], vec![]).unwrap();
+        let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
         let x_f = car.body().cg_behind_bumper;
         let load = |lateral: f64, cell: bool| Load {
             lateral,

@@ -34,8 +34,8 @@
 //! bias = "pretrigger"       # the accelerometers' biases: removed as the pre-trigger's mean
 //!                           # (default) or "nuisance": also estimated per case, with the
 //!                           # pre-trigger mean's uncertainty as their prior
-//! arm = true                # optional (true): estimate each case's wall cells' arm, a
-//!                           # nuisance with a stated prior (`case 'NAME' cells.arm` in
+//! arm = false               # optional (false): true estimates each case's wall cells' arm,
+//!                           # a nuisance with a stated prior (`case 'NAME' cells.arm` in
 //!                           # [priors]; identify module `unknowns`); false: the segments' rule
 //!
 //! [priors]                  # optional: override ({ value, spread }), remove ("none") or add priors
@@ -128,7 +128,7 @@ struct IdentificationFile {
     /// The accelerometers' biases: `"pretrigger"` (removed as its mean)
     /// or `"nuisance"` (also estimated, with the pre-trigger's prior).
     bias: Option<String>,
-    /// Estimate each case's wall cells' arm (default true).
+    /// Estimate each case's wall cells' arm (default false).
     arm: Option<bool>,
 }
 

@@ -188,7 +188,8 @@ pub struct Setup {
     /// pre-trigger's prior ([`Bias`]).
     pub bias: Bias,
     /// Estimate each case's wall cells' arm as a nuisance with its stated
-    /// prior ([`Unknowns::with_arms`]); false: the segments' rule.
+    /// prior ([`Unknowns::with_arms`]); false (the default, chosen by
+    /// docs/planar.md's measurement): the segments' rule.
     pub arms: bool,
 }
 
@@ -210,7 +211,7 @@ impl Setup {
             joint: None,
             domain: Domain::Displacement,
             bias: Bias::Pretrigger,
-            arms: true,
+            arms: false,
         }
     }
 }

@@ -554,6 +554,8 @@ fn through_the_documented_study(seed: u64, dir: &Path) -> ([f64; 5], [f64; 5]) {
     setup.template = truth.clone();
     setup.starts = 1;
     setup.staged = false;
+    // `BUMPSIM_ARM=1`: the wall cells' arm estimated (yaw_rate.rs's switch)
+    setup.arms = std::env::var("BUMPSIM_ARM").is_ok();
     let run = bumpsim_planar::bumper_fit::identified(&study.cases, &setup, &|| {}).unwrap();
     let offset = study
         .validation
@@ -580,6 +582,9 @@ fn through_the_documented_study(seed: u64, dir: &Path) -> ([f64; 5], [f64; 5]) {
         "seed {seed}: held-out yaw OFFSET40 / NARROW-OFFSET, forward force / x-acc / yaw rate: truth {at:.2?} %, the run from it {from:.2?} %; objective {:.4e}",
         run.objective
     );
+    for m in (run.priors.iter()).filter(|m| m.name.ends_with(" cells.arm")) {
+        eprintln!("seed {seed}: {} {:.4} ({:+.2} sd)", m.name, m.estimate, m.z);
+    }
     // every parameter the run moved by more than 5 %, and the scores of
     // the run's car with that one parameter put back at the truth's
     let unknowns = Unknowns::new(&run.car, true, true, &[]).with_relaxation(true);

@@ -407,10 +407,10 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
         if std::env::var("BUMPSIM_GENERATOR_BUMPER").is_ok() {
             study.setup.template = super::diagnosis::generator_bumper(&study.setup.template);
         }
-        // `BUMPSIM_NO_ARM`: the wall cells' line of action by the
-        // segments' rule alone (no arm nuisance, as before it)
-        if std::env::var("BUMPSIM_NO_ARM").is_ok() {
-            study.setup.arms = false;
+        // `BUMPSIM_ARM=1`: each wall case's cells' arm estimated, a
+        // nuisance with its stated prior (not the default: docs/planar.md)
+        if std::env::var("BUMPSIM_ARM").is_ok() {
+            study.setup.arms = true;
         }
         let clock = std::time::Instant::now();
         let result = study.identified(&|| {}).unwrap();
