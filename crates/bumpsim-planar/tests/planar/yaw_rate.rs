@@ -489,7 +489,10 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
 /// (`BUMPSIM_GENERATOR_BUMPER=1`, a diagnosis: the struck cells' line of
 /// action where the generator's is) the forward force holds on all ten
 /// cars 0–9 (91.2–97.3 %) and seven of ten hold every threshold
-/// (docs/planar.md, "The truth through the joint stage").
+/// (docs/planar.md, "The truth through the joint stage"). With
+/// `BUMPSIM_ARM=1` (each wall case's cells' arm estimated, w15-h2) three
+/// of ten cars hold every threshold (0, 2, 5) against five without it
+/// (docs/planar.md, "The struck cells' arm"): not the default.
 #[test]
 #[ignore = "six series, 47-111 s each in release on a loaded machine"]
 fn the_documented_study_on_unseen_cars() {
