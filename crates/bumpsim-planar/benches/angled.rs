@@ -50,6 +50,7 @@ fn benches(c: &mut Criterion) {
         step: 1e-4,
         loads,
         speed: 8.0 / 3.6,
+        arm: 1.0,
         sensors,
     };
     let samples = r.time.len();

@@ -316,6 +316,7 @@ mod tests {
                 force: r.force.clone(),
             }],
             speed: 0.0,
+            arm: 1.0,
             sensors: vec![Sensor::Body([0.6, 0.7]), Sensor::Body([0.6, -0.7])],
         };
         PlanarCase {

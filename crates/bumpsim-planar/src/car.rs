@@ -773,8 +773,8 @@ mod history;
 
 #[path = "car_contact.rs"]
 mod contact;
-pub use contact::MAX_CONTACT_RATE;
-pub(crate) use contact::rated;
+pub use contact::{ARM_RANGE, MAX_CONTACT_RATE};
+pub(crate) use contact::{check_arm, rated};
 
 #[path = "car_links.rs"]
 mod links;

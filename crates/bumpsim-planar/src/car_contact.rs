@@ -8,9 +8,27 @@
 //! while the bumper is crushed and softens it while the bumper springs
 //! back: the work it takes is part of the crush work. `c = 0` (every car
 //! unless asked) leaves the characteristic as it is.
+//!
+//! Wall cells' arm ([`crate::drive::Drive::arm`]): a replay driven by a
+//! load-cell wall puts each cell's line of action at λ times the lateral
+//! position its crushed segments give (their loading forces at their
+//! penetrations weighing their centres). Where a real bumper's stiffness
+//! ends is not known to the segments, so an identification estimates λ per
+//! case as a nuisance with a stated prior ([`crate::identify::Unknowns`]).
 
 use super::{PlanarCar, PlanarError, require};
 use bumpsim_impact::bumper::Bumper;
+
+/// The wall cells' arms a replay takes: a line of action moved by half of
+/// itself either way is no longer the bumper's.
+pub const ARM_RANGE: std::ops::RangeInclusive<f64> = 0.5..=2.0;
+
+/// Checks a replay's wall cells' arm against [`ARM_RANGE`].
+pub(crate) fn check_arm(arm: f64) -> Result<(), PlanarError> {
+    let (low, high) = (ARM_RANGE.start(), ARM_RANGE.end());
+    let expected = format!("the wall cells' arm, from {low} to {high}");
+    require("arm", arm, "1", &expected, ARM_RANGE.contains(&arm))
+}
 
 /// Largest rate coefficient a car may carry, s/m.
 pub const MAX_CONTACT_RATE: f64 = 10.0;
@@ -66,6 +84,7 @@ pub(crate) fn rated(c: &mut crate::dynamics::Contact, previous: &[f64], rate: f6
 #[cfg(test)]
 mod tests {
     use crate::car::{Layout, PlanarCar};
+    use crate::drive::{Drive, Load, drive};
     use crate::simulate::{Settings, simulate};
     use crate::striker::{Face, Striker};
     use bumpsim_core::model::MsdModel;
@@ -120,5 +139,53 @@ mod tests {
             "{:?}",
             rated.warnings
         );
+    }
+
+    /// A wall cell's line of action times the drive's arm: a cell over the
+    /// left half of a flat face 1 cm into the bumper (every segment in its
+    /// band crushed alike: the line at the band's centre, 0.4 m) turns the
+    /// car as a load at 0.4 m, and with arm 1.1 as one at 0.44 m (to the
+    /// small shift the car's own motion gives the crushed segments: below
+    /// 2 % of the yaw the 4 cm move it by; measured 1.2 and 1.4 %).
+    #[test]
+    fn a_wall_cells_line_of_action_moves_with_the_arm() {
+        // a rigid car: its bumper line stays straight
+        let chain = MsdModel::new(vec![1200.0], vec![], vec![]).unwrap();
+        let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
+        let x_f = car.body().cg_behind_bumper;
+        let load = |lateral: f64, cell: bool| Load {
+            lateral,
+            anchor: cell.then_some([x_f - 0.01, 0.4]),
+            cell: cell.then_some(0.8),
+            direction: [-1.0, 0.0],
+            force: vec![2e3; 501],
+        };
+        let yaw = |l: Load, arm: f64| {
+            let input = Drive {
+                step: 1e-4,
+                loads: vec![l],
+                speed: 0.0,
+                arm,
+                sensors: vec![],
+            };
+            *drive(&car, &input, 0.05).unwrap().yaw.last().unwrap()
+        };
+        let (fixed, moved) = (yaw(load(0.4, false), 1.0), yaw(load(0.44, false), 1.0));
+        let (cell, armed) = (yaw(load(0.0, true), 1.0), yaw(load(0.0, true), 1.1));
+        eprintln!("yaw: fixed {fixed:e} {moved:e}, cell {cell:e} {armed:e} rad");
+        assert!((cell - fixed).abs() < 0.02 * (moved - fixed).abs());
+        assert!((armed - moved).abs() < 0.02 * (moved - fixed).abs());
+        for bad in [0.4, 2.5, f64::NAN] {
+            let input = Drive {
+                step: 1e-4,
+                loads: vec![load(0.0, true)],
+                speed: 0.0,
+                arm: bad,
+                sensors: vec![],
+            };
+            let err = drive(&car, &input, 0.05).unwrap_err().to_string();
+            assert!(err.contains("arm"), "{err}");
+        }
     }
 }

@@ -331,6 +331,7 @@ impl TestChannels {
                 step,
                 loads,
                 speed: self.speed,
+                arm: 1.0,
                 sensors: self.positions.clone(),
             },
             measured: columns[n..].iter().map(|c| kept(c)).collect(),

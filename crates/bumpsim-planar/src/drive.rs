@@ -34,7 +34,7 @@
 //! let bumper = Bumper::three_part(1e6, 1e5, 1e7).unwrap();
 //! let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
 //! let load = Load { lateral: 0.0, anchor: None, cell: None, direction: [-1.0, 0.0], force: vec![1e3; 1001] };
-//! let input = Drive { step: 1e-4, loads: vec![load], speed: 0.0, sensors: vec![] };
+//! let input = Drive { step: 1e-4, loads: vec![load], speed: 0.0, arm: 1.0, sensors: vec![] };
 //! let r = drive(&car, &input, 0.05).unwrap();
 //! let expected = -0.5 * 1.0 * 0.1f64.powi(2);              // x = ½ (F/M) t²
 //! assert!((r.x.last().unwrap() - expected).abs() < 1e-9);
@@ -86,6 +86,8 @@ pub struct Drive {
     pub loads: Vec<Load>,
     /// Initial forward speed of the whole car, m/s (x, towards the bumper).
     pub speed: f64,
+    /// The wall cells' arm (1: the segments' rule; [`crate::car::ARM_RANGE`]).
+    pub arm: f64,
     /// The accelerometers.
     pub sensors: Vec<Sensor>,
 }
@@ -206,6 +208,7 @@ fn check(input: &Drive, masses: usize) -> Result<usize, PlanarError> {
         &format!("finite, at most {MAX_SPEED} m/s in size (a crash test's is a few m/s)"),
         input.speed.abs() <= MAX_SPEED,
     )?;
+    crate::car::check_arm(input.arm)?;
     let samples = input.loads.first().map_or(0, |l| l.force.len());
     require(
         "samples",
@@ -516,7 +519,7 @@ impl<'a> Replay<'a> {
     /// (yaw's sine and cosine `axes`): the lateral position (body frame, m)
     /// of the segments crushed into the cell's band, weighted by their
     /// loading force at their penetration; the band's segment nearest the
-    /// face when none is crushed; `None` without a segment in the band.
+    /// face when none is crushed (times [`Drive::arm`]); `None` without one.
     fn cell_contact(&self, q: &[f64], k: usize, width: f64, (sn, cs): (f64, f64)) -> Option<f64> {
         let load = &self.input.loads[k];
         let anchor = load.anchor?;
@@ -546,14 +549,13 @@ impl<'a> Replay<'a> {
             }
         }
         match sum > 0.0 {
-            true => Some(weighted / sum),
-            false => nearest.map(|(_, eta)| eta),
+            true => Some(self.input.arm * weighted / sum),
+            false => nearest.map(|(_, eta)| self.input.arm * eta),
         }
     }
 
     /// A sensor's body-frame point (ξ, η) at `q`, m, and its acceleration
-    /// along the body axis relative to the body (from the generalised
-    /// accelerations `a`), m/s².
+    /// along the body axis relative to the body (from the accelerations `a`), m/s².
     fn point(&self, sensor: Sensor, q: &[f64], a: &[f64]) -> ([f64; 2], f64) {
         match (sensor.body(), sensor.chain()) {
             (Some(p), _) => (p, 0.0),
@@ -682,6 +684,7 @@ mod tests {
             step: 1e-4,
             loads: vec![load],
             speed: 2.0,
+            arm: 1.0,
             sensors: vec![Sensor::Body([1.0, 0.7]), Sensor::Body([1.0, -0.7])],
         };
         let r = drive(&rigid, &input, 0.05).unwrap();
@@ -727,6 +730,7 @@ mod tests {
             step: 1e-4,
             loads,
             speed: 15.0 / 3.6,
+            arm: 1.0,
             sensors: vec![],
         };
         let d = drive(&car, &input, 0.05).unwrap();
@@ -760,6 +764,7 @@ mod tests {
             step: 1e-4,
             loads,
             speed: 0.0,
+            arm: 1.0,
             sensors: vec![],
         };
         let cases = [

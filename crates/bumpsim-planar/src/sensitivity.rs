@@ -21,7 +21,8 @@
 //! grip (with a sliding grip along the wheel that follows it) and cornering
 //! stiffness, and each load's lateral position. The wheel loads follow the
 //! total mass. A wall cell's line of action is the crushed segments'
-//! loading-force-weighted position; the weights' slopes in the crush are
+//! loading-force-weighted position times the drive's arm (a parameter
+//! too, [`Parameters::arm`]); the weights' slopes in the crush are
 //! taken by a central difference of the segment's loading curve (piecewise
 //! linear: exact away from its knees).
 
@@ -60,6 +61,8 @@ pub struct Parameters<T> {
     pub relaxation: [T; 2],
     /// Each load's lateral position on the bumper line, m.
     pub lateral: Vec<T>,
+    /// The wall cells' arm ([`crate::drive::Drive::arm`]).
+    pub arm: T,
 }
 
 impl<T: Real> Parameters<T> {
@@ -95,6 +98,7 @@ impl<T: Real> Parameters<T> {
                 c(&tyres.rear.relaxation_length),
             ],
             lateral: input.loads.iter().map(|l| c(&l.lateral)).collect(),
+            arm: c(&input.arm),
         }
     }
 }
@@ -185,6 +189,8 @@ struct Replay<'a, T> {
     slip: f64,
     half_step: f64,
     lateral: Vec<T>,
+    /// The wall cells' arm.
+    arm: T,
     directions: Vec<[f64; 2]>,
     /// Per load: magnitude, direction and point (body frame).
     total: Vec<f64>,
@@ -287,6 +293,7 @@ impl<'a, T: Real> Replay<'a, T> {
             slip: tyres.slip_speed,
             half_step: 0.5 * input.step / substeps as f64,
             lateral: p.lateral.clone(),
+            arm: p.arm,
             directions: input
                 .loads
                 .iter()
@@ -428,8 +435,8 @@ impl<'a, T: Real> Replay<'a, T> {
             }
         }
         match sum.value() > 0.0 {
-            true => Some(weighted / sum),
-            false => nearest.map(|(_, eta)| T::constant(eta)),
+            true => Some(self.arm * weighted / sum),
+            false => nearest.map(|(_, eta)| self.arm * eta),
         }
     }
 
@@ -628,6 +635,7 @@ mod tests {
             step: 1e-4,
             loads: segment_loads(&r, normal),
             speed: 15.0 / 3.6,
+            arm: 1.0,
             sensors: vec![
                 Sensor::Body([0.6, 0.7]),
                 Sensor::Chain(0),

@@ -34,6 +34,9 @@
 //! bias = "pretrigger"       # the accelerometers' biases: removed as the pre-trigger's mean
 //!                           # (default) or "nuisance": also estimated per case, with the
 //!                           # pre-trigger mean's uncertainty as their prior
+//! arm = false               # optional (false): true estimates each case's wall cells' arm,
+//!                           # a nuisance with a stated prior (`case 'NAME' cells.arm` in
+//!                           # [priors]; identify module `unknowns`); false: the segments' rule
 //!
 //! [priors]                  # optional: override ({ value, spread }), remove ("none") or add priors
 //! body.yaw_inertia = { value = 2300.0, spread = 0.2 }   # kg·m² (SI); spread: sd of ln θ (0.2 ≈ ±20 %)
@@ -125,6 +128,8 @@ struct IdentificationFile {
     /// The accelerometers' biases: `"pretrigger"` (removed as its mean)
     /// or `"nuisance"` (also estimated, with the pre-trigger's prior).
     bias: Option<String>,
+    /// Estimate each case's wall cells' arm (default false).
+    arm: Option<bool>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -288,6 +293,7 @@ impl PlanarStudy {
                     )));
                 }
             },
+            arms: identification.and_then(|i| i.arm).unwrap_or(defaults.arms),
             ..defaults
         };
         setup.joint = joint(file.model.joint, setup.bumper).map_err(|m| error(m.0))?;

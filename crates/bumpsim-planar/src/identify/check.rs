@@ -43,7 +43,8 @@ pub(super) fn check(cases: &[PlanarCase], setup: &Setup) -> Result<Unknowns, Pla
         })?;
     }
     let unknowns = Unknowns::new(&setup.template, setup.friction, setup.cornering, cases)
-        .with_relaxation(setup.relaxation);
+        .with_relaxation(setup.relaxation)
+        .with_arms(setup.arms);
     let relaxes = unknowns
         .names()
         .iter()

@@ -83,8 +83,10 @@ pub use bumper::{BumperFit, transformed, unloading_ratio};
 pub use links::{LinkLaw, LinkLaws};
 pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
-pub use priors::{MIRROR, MIRROR_SPREAD, MU, PriorSetting, TOTAL_MASS, priors, removing_all};
-pub use unknowns::{LINE_MARGIN, REACH, Unknowns};
+pub use priors::{
+    ARM_SPREAD, MIRROR, MIRROR_SPREAD, MU, PriorSetting, TOTAL_MASS, priors, removing_all,
+};
+pub use unknowns::{ARM, ARM_REACH, LINE_MARGIN, REACH, Unknowns};
 
 /// The reduced car, when a chain link is undetermined or not needed.
 pub type Reduction = bumpsim_estimate::reduce::Reduction<PlanarCar>;
@@ -185,6 +187,10 @@ pub struct Setup {
     /// alone (the default) or also estimated as nuisances with the
     /// pre-trigger's prior ([`Bias`]).
     pub bias: Bias,
+    /// Estimate each case's wall cells' arm as a nuisance with its stated
+    /// prior ([`Unknowns::with_arms`]); false (the default, chosen by
+    /// docs/planar.md's measurement): the segments' rule.
+    pub arms: bool,
 }
 
 impl Setup {
@@ -205,6 +211,7 @@ impl Setup {
             joint: None,
             domain: Domain::Displacement,
             bias: Bias::Pretrigger,
+            arms: false,
         }
     }
 }
@@ -637,6 +644,7 @@ mod tests {
             step: 1e-4,
             loads: vec![load],
             speed: 2.0,
+            arm: 1.0,
             sensors,
         };
         let replay = crate::drive::drive(truth, &drive, 0.05).unwrap();

@@ -118,6 +118,7 @@ fn calculix_deck_in_ccx_matches_drive_within_one_percent_of_peak() {
             force: half_sine(1e3, 0.06, step, end),
         }],
         speed: 8.0 / 3.6,
+        arm: 1.0,
         sensors: vec![Sensor::Body([-1.0, 0.7])],
     };
     let angle = 30f64.to_radians();

@@ -142,6 +142,7 @@ fn the_dual_jacobian_of_a_yielding_side_member_matches_central_differences() {
         step: 1e-4,
         loads,
         speed,
+        arm: 1.0,
         sensors: vec![Sensor::Body([0.5, 0.7]), Sensor::Crush(0), Sensor::YawRate],
     };
     let n = substeps(&car, input.step, 0.2).unwrap();

@@ -192,6 +192,7 @@ fn planar_impacts_and_replays_are_as_recorded() {
         step: 1e-4,
         loads: segment_loads(&r, normal),
         speed: 15.0 / 3.6,
+        arm: 1.0,
         sensors: sensors.clone(),
     };
     replay(&mut out, "replay-rcar", &drive(car, &input, 0.05).unwrap());
@@ -210,6 +211,7 @@ fn planar_impacts_and_replays_are_as_recorded() {
         step: 1e-4,
         loads: vec![pole],
         speed: 2.0,
+        arm: 1.0,
         sensors,
     };
     replay(&mut out, "replay-pole", &drive(car, &input, 0.3).unwrap());

@@ -43,6 +43,10 @@ pub(crate) enum Slot {
     Grip,
     Cornering,
     Relaxation,
+    /// Case `case`'s wall cells' arm.
+    Arm {
+        case: usize,
+    },
     /// Load `load` of case `case`'s lateral position.
     Line {
         case: usize,
@@ -76,6 +80,12 @@ pub(crate) fn slots(unknowns: &Unknowns, cases: &[PlanarCase]) -> Option<Vec<Slo
             "tyres.mu_lateral" => Some(Slot::Grip),
             "tyres.cornering_stiffness" => Some(Slot::Cornering),
             "tyres.relaxation_length" => Some(Slot::Relaxation),
+            arm if arm.starts_with("case '") && arm.ends_with(super::super::unknowns::ARM) => {
+                let case = cases.iter().position(|c| {
+                    arm == format!("case '{}'{}", c.name, super::super::unknowns::ARM)
+                })?;
+                Some(Slot::Arm { case })
+            }
             line if line.starts_with("case '") && line.ends_with("].lateral") => {
                 lines.next().map(|(case, load)| Slot::Line { case, load })
             }
@@ -169,6 +179,8 @@ fn seeded(
             Slot::Relaxation => p.relaxation = [x, x],
             Slot::Line { case: c, load } if c == case.0 => p.lateral[load] = x,
             Slot::Line { .. } => {}
+            Slot::Arm { case: c } if c == case.0 => p.arm = x,
+            Slot::Arm { .. } => {}
         }
     }
     for (i, law) in laws.iter().enumerate() {
@@ -259,8 +271,9 @@ mod tests {
 
     /// Three cases measured on a car 8 % heavier and 20 % stiffer than the
     /// start: a 10° wall and a 40 % offset wall replayed from their segment
-    /// forces, and the offset's total force as one load whose line of
-    /// action is estimated; two sill accelerometers and a yaw-rate sensor.
+    /// forces, the 10° wall's as two load cells (their arm estimated), and
+    /// the offset's total force as one load whose line of action is
+    /// estimated; two sill accelerometers and a yaw-rate sensor.
     fn cases(start: &PlanarCar) -> Vec<PlanarCase> {
         let truth = car(1350.0, 3e6);
         let faces = [
@@ -275,10 +288,34 @@ mod tests {
         for (i, face) in faces.into_iter().enumerate() {
             let striker = Striker::barrier(face, 15.0 / 3.6);
             let r = simulate(start, &striker, &settings).unwrap();
-            let Placed::Plane { normal, .. } = place(start, &striker).unwrap() else {
+            let Placed::Plane { normal, offset, .. } = place(start, &striker).unwrap() else {
                 unreachable!("a plane face")
             };
             let loads = segment_loads(&r, normal);
+            // the wall's two halves as load cells on its face (centred on
+            // the bumper's halves), their lines of action the segments'
+            let tangent = [-normal[1], normal[0]];
+            let half = |side: f64| {
+                let centre = tangent[0] * start.body().cg_behind_bumper + tangent[1] * 0.4 * side;
+                Load {
+                    lateral: 0.0,
+                    anchor: Some([
+                        offset * normal[0] + centre * tangent[0],
+                        offset * normal[1] + centre * tangent[1],
+                    ]),
+                    cell: Some(0.8),
+                    direction: normal,
+                    force: (0..loads[0].force.len())
+                        .map(|k| {
+                            (loads.iter())
+                                .filter(|l| l.lateral * side > 0.0)
+                                .map(|l| l.force[k])
+                                .sum()
+                        })
+                        .collect(),
+                }
+            };
+            let cells = vec![half(1.0), half(-1.0)];
             let total: Vec<f64> = (0..loads[0].force.len())
                 .map(|k| loads.iter().map(|l| l.force[k]).sum())
                 .collect();
@@ -290,7 +327,7 @@ mod tests {
                 force: total,
             };
             let variants = match i {
-                0 => vec![(loads, vec![])],
+                0 => vec![(loads, vec![]), (cells, vec![])],
                 _ => vec![(loads, vec![]), (vec![single], vec![0])],
             };
             for (loads, estimated) in variants {
@@ -298,6 +335,7 @@ mod tests {
                     step: 2e-4,
                     loads,
                     speed: 15.0 / 3.6,
+                    arm: 1.0,
                     sensors: vec![
                         Sensor::Body([0.6, 0.7]),
                         Sensor::Body([0.6, -0.7]),
@@ -325,7 +363,7 @@ mod tests {
     /// The dual-number Jacobian against central differences of the
     /// residuals (step 1e-5 in `p`: truncation ~1e-10 of a column, rounding
     /// ~1e-11 of the residuals over the step) at a point off the start, with
-    /// grip, cornering stiffness and a line of action estimated (11
+    /// grip, cornering stiffness and a line of action and a wall's cells' arm estimated (13
     /// unknowns: two passes of eight), rolling tyres with relaxation (grip
     /// 0.8): every column within 1e-4 of its largest entry (1.3e-5 seen at
     /// most, the body mass's column, whose differences cross the tyres'
