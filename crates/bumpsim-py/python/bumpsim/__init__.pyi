@@ -425,7 +425,9 @@ def dof_table(
 class LoadCase:
     """A load case from numpy arrays: force on m1 (N) and the measured
     displacement (m) of mass ``output_dof`` (1 = m1) at uniform ``time`` (s);
-    ``window`` (t0, t1) s is the fit window (default: every sample)."""
+    ``window`` (t0, t1) s is the fit window (default: every sample); one
+    reaching past the record (beyond half a sample) is refused with
+    ``InputError``, as the CLI refuses a study's, not cut to it."""
 
     name: str
     output_dof: int
