@@ -121,10 +121,7 @@ pub fn search<P: LeastSquares>(
     search: &Search,
     observer: &dyn Observer,
 ) -> Result<Searched, AllFailed> {
-    let problem = make();
-    let freedom = problem
-        .residual_count()
-        .saturating_sub(problem.parameter_count());
+    let freedom = freedom(&make());
     let (lower, upper) = (search.lower, search.upper);
     // with a solver's geodesic acceleration, the screening of the explored
     // starts runs without it, the refining and polishing runs with it: over
@@ -210,21 +207,26 @@ pub fn alone<P: LeastSquares>(
     observer: &dyn Observer,
 ) -> Result<Searched, AllFailed> {
     let problem = make();
-    let freedom = problem
-        .residual_count()
-        .saturating_sub(problem.parameter_count());
     let outcome = lm::minimise(&problem, &start, search.lower, search.upper, &search.solver);
     observer.start_finished();
     let runs = vec![Run {
         outcome,
         fate: Fate::Finished,
     }];
-    let starts = tally(&runs, freedom, 1)?;
+    let starts = tally(&runs, freedom(&problem), 1)?;
     Ok(Searched {
         runs,
         points: vec![start],
         starts,
     })
+}
+
+/// The degrees of freedom n − q of a problem (residuals less parameters):
+/// one noise variance of its best fit is `F_best / (n − q)`.
+fn freedom(problem: &impl LeastSquares) -> usize {
+    problem
+        .residual_count()
+        .saturating_sub(problem.parameter_count())
 }
 
 /// The outcome of the best finished run with a finite objective.
