@@ -121,10 +121,7 @@ pub fn search<P: LeastSquares>(
     search: &Search,
     observer: &dyn Observer,
 ) -> Result<Searched, AllFailed> {
-    let problem = make();
-    let freedom = problem
-        .residual_count()
-        .saturating_sub(problem.parameter_count());
+    let freedom = freedom(&make());
     let (lower, upper) = (search.lower, search.upper);
     // with a solver's geodesic acceleration, the screening of the explored
     // starts runs without it, the refining and polishing runs with it: over
@@ -189,6 +186,47 @@ pub fn search<P: LeastSquares>(
         points,
         starts,
     })
+}
+
+/// The search of one start in all: its one solver run, to the full
+/// tolerances and the iteration limit (one call: nothing to race it
+/// against). With nothing to rank there is nothing to screen: [`search`]
+/// screens a lone start (to [`SCREEN_FTOL`]) and then polishes its optimum
+/// in a second LM run that starts afresh (its damping λ reset); from the
+/// 1-D identification's default start on the peer series of
+/// `bumpsim-ident/tests/iterations.rs` that took 31 Jacobians where one run
+/// takes 23 (velocity objective; 76 and 76 on the displacement one). The
+/// 1-D identification takes it (`bumpsim_ident::estimate::search_of`); the
+/// planar and link identifications still screen and polish a lone start
+/// (the planar one's symmetric stage has one start, and its recorded
+/// figures would move in their twelfth digit).
+pub fn alone<P: LeastSquares>(
+    make: &dyn Fn() -> P,
+    start: Vec<f64>,
+    search: &Search,
+    observer: &dyn Observer,
+) -> Result<Searched, AllFailed> {
+    let problem = make();
+    let outcome = lm::minimise(&problem, &start, search.lower, search.upper, &search.solver);
+    observer.start_finished();
+    let runs = vec![Run {
+        outcome,
+        fate: Fate::Finished,
+    }];
+    let starts = tally(&runs, freedom(&problem), 1)?;
+    Ok(Searched {
+        runs,
+        points: vec![start],
+        starts,
+    })
+}
+
+/// The degrees of freedom n − q of a problem (residuals less parameters):
+/// one noise variance of its best fit is `F_best / (n − q)`.
+fn freedom(problem: &impl LeastSquares) -> usize {
+    problem
+        .residual_count()
+        .saturating_sub(problem.parameter_count())
 }
 
 /// The outcome of the best finished run with a finite objective.
@@ -369,6 +407,67 @@ mod tests {
             (2, 2, 1)
         );
         assert_eq!(starts.converged, 4);
+    }
+
+    /// `a e^(−b t) − y` at t = 0, 0.5, …, 4.5 for y from a = 2, b = 0.5,
+    /// in the log parameters (ln a, ln b).
+    struct Decay;
+
+    impl LeastSquares for Decay {
+        fn residual_count(&self) -> usize {
+            10
+        }
+        fn parameter_count(&self) -> usize {
+            2
+        }
+        fn evaluate(
+            &self,
+            p: &[f64],
+            r: &mut [f64],
+            jacobian: Option<&mut nalgebra::DMatrix<f64>>,
+        ) -> bool {
+            let (a, b) = (p[0].exp(), p[1].exp());
+            let times = (0..10).map(|i| 0.5 * i as f64);
+            for (i, t) in times.clone().enumerate() {
+                r[i] = a * (-b * t).exp() - 2.0 * (-0.5 * t).exp();
+            }
+            if let Some(j) = jacobian {
+                for (i, t) in times.enumerate() {
+                    j[(i, 0)] = a * (-b * t).exp();
+                    j[(i, 1)] = -a * b * t * (-b * t).exp();
+                }
+            }
+            true
+        }
+    }
+
+    /// One start in all is one solver run, the run `lm::minimise` makes
+    /// from it with the search's solver, tallied as one converged start
+    /// that reached the best.
+    #[test]
+    fn a_lone_start_is_one_run() {
+        let (lower, upper) = ([-5.0; 2], [5.0; 2]);
+        let search = Search {
+            starts: 1,
+            seed: 1,
+            solver: lm::Settings::default(),
+            lower: &lower,
+            upper: &upper,
+            range: (&lower, &upper),
+        };
+        let heard = std::sync::atomic::AtomicUsize::new(0);
+        let observer = || {
+            heard.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        };
+        let start = vec![1.0, 0.0];
+        let found = alone(&|| Decay, start.clone(), &search, &observer).unwrap();
+        let run = lm::minimise(&Decay, &start, &lower, &upper, &search.solver);
+        assert_eq!(found.best(), &run);
+        assert_eq!((found.best_start(), heard.into_inner()), (&start[..], 1));
+        let s = found.starts;
+        assert_eq!((s.total, s.converged, s.reached_best, s.best), (1, 1, 1, 0));
+        assert!((run.parameters[0] - 2f64.ln()).abs() < 1e-6, "{run:?}");
+        assert!((run.parameters[1] - 0.5f64.ln()).abs() < 1e-6, "{run:?}");
     }
 
     fn starts(total: usize, refined: usize, explored_best_fit: usize) -> Starts {

@@ -17,7 +17,9 @@
 //! A start *reaches the best* when the polished run of its cluster ends
 //! within 1e-6 (relative) of the best objective; starts of a cluster not
 //! polished do not (they are counted as such). With one start (or a user's
-//! start alone) the one run is polished: it ends as an unscreened run would.
+//! start alone) the one run is polished: it ends as an unscreened run would,
+//! on another path (the polish restarts LM's damping λ); a search of one
+//! start in all need not screen at all ([`crate::multistart::alone`]).
 
 use crate::lm::Outcome;
 use crate::search::{Fate, Goal, Run, near, race};

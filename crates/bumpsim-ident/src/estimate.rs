@@ -19,7 +19,7 @@ use crate::stats::uncertainty;
 use bumpsim_core::model::{ParameterKind, parameter_count, parameter_kind};
 use bumpsim_core::units::format_number;
 use bumpsim_estimate::lm::LeastSquares;
-use bumpsim_estimate::multistart::{self, Search, Searched};
+use bumpsim_estimate::multistart::{self, AllFailed, Search, Searched};
 use bumpsim_estimate::observer::Observer;
 use bumpsim_estimate::search::exploring;
 use std::time::Instant;
@@ -128,28 +128,13 @@ fn identify_only(
     let clock = Instant::now();
     let objective = Objective::new(cases, settings.dof, &settings.bounds.fixed);
     let free = objective.free().to_vec();
-    let log = |v: &[f64]| -> Vec<f64> { free.iter().map(|&i| v[i].ln()).collect() };
-    let (lower, upper) = (log(&settings.bounds.lower), log(&settings.bounds.upper));
-    let data = data_start(cases, settings.dof);
-    let fixed = (&settings.start, data.as_slice(), settings.seeds.as_slice());
-    let given = usize::from(settings.start.is_some()) + 1 + settings.seeds.len();
-    let first = exploring(settings.starts, given);
-    let points = starting_points(first, settings.seed, fixed, &settings.split_links, &free);
-    let (floor, ceiling) = (
-        vec![VALID_RANGE.start().ln(); free.len()],
-        vec![VALID_RANGE.end().ln(); free.len()],
-    );
-    let search = Search {
-        starts: settings.starts,
-        seed: settings.seed,
-        solver: settings.solver,
-        lower: &lower,
-        upper: &upper,
-        range: (&floor, &ceiling),
-    };
+    let (lower, upper) = log_bounds(settings, &free);
     let make = || Objective::new(cases, settings.dof, &settings.bounds.fixed);
-    let found = multistart::search(&make, points, &search, observer)?;
-    let start = settings.start.clone().unwrap_or(data);
+    let found = search_of(cases, settings, &make, observer)?;
+    let start = settings
+        .start
+        .clone()
+        .unwrap_or_else(|| data_start(cases, settings.dof));
     let priors =
         crate::priors::priors(settings, &start, &free).map_err(|e| IdentError::Setting {
             name: "priors",
@@ -178,6 +163,52 @@ fn identify_only(
         .warnings
         .extend(sheet_mass_warning(&data_alone, settings));
     Ok(result)
+}
+
+/// The bounds of the free parameters (`free`, thesis order) in log
+/// parameters.
+fn log_bounds(settings: &Settings, free: &[usize]) -> (Vec<f64>, Vec<f64>) {
+    let log = |v: &[f64]| -> Vec<f64> { free.iter().map(|&i| v[i].ln()).collect() };
+    (log(&settings.bounds.lower), log(&settings.bounds.upper))
+}
+
+/// The multi-start search [`identify`] runs, of the problems `make` builds
+/// (the identification's [`Objective`] of `cases`, or one that wraps it):
+/// the starts (the user's, the data-derived, the continuation ones, random
+/// ones), bounds and solver of `settings`. One start in all is one solver
+/// run to the full tolerances ([`multistart::alone`]: no screening, with
+/// nothing to rank); more are [`multistart::search`]'s staged search.
+pub fn search_of<P: LeastSquares>(
+    cases: &[LoadCase],
+    settings: &Settings,
+    make: &(dyn Fn() -> P + Sync),
+    observer: &dyn Observer,
+) -> Result<Searched, AllFailed> {
+    let free = Objective::new(cases, settings.dof, &settings.bounds.fixed)
+        .free()
+        .to_vec();
+    let (lower, upper) = log_bounds(settings, &free);
+    let data = data_start(cases, settings.dof);
+    let fixed = (&settings.start, data.as_slice(), settings.seeds.as_slice());
+    let given = usize::from(settings.start.is_some()) + 1 + settings.seeds.len();
+    let first = exploring(settings.starts, given);
+    let mut points = starting_points(first, settings.seed, fixed, &settings.split_links, &free);
+    let (floor, ceiling) = (
+        vec![VALID_RANGE.start().ln(); free.len()],
+        vec![VALID_RANGE.end().ln(); free.len()],
+    );
+    let search = Search {
+        starts: settings.starts,
+        seed: settings.seed,
+        solver: settings.solver,
+        lower: &lower,
+        upper: &upper,
+        range: (&floor, &ceiling),
+    };
+    match (points.len(), settings.starts) {
+        (1, 0 | 1) => multistart::alone(make, points.remove(0), &search, observer),
+        _ => multistart::search(make, points, &search, observer),
+    }
 }
 
 fn summarise(

@@ -61,7 +61,9 @@ pub struct Sweep {
     pub name: String,
     /// Relative changes δ.
     pub relative_change: Vec<f64>,
-    /// Objective at each δ, m².
+    /// Objective at each δ: the thesis's, the displacement's squared
+    /// errors summed over the windows ([`objective`]), m², whatever domain
+    /// the cases are compared in.
     pub objective: Vec<f64>,
 }
 
@@ -100,7 +102,44 @@ pub fn sensitivity(
         .collect()
 }
 
-/// `F = Σ (x − x̂)²` over the windows of `cases`, m².
+/// `F = Σ (x − x̂)²` over the windows of `cases`, m²: the thesis's
+/// displacement objective, also for cases compared in another domain (their
+/// identification minimised that domain's, [`crate::case::Comparison`]).
 pub fn objective(cases: &[LoadCase], model: &MsdModel) -> Result<f64, CaseError> {
     cases.iter().map(|c| Ok(c.fit(&c.simulate(model)?).0)).sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case::{Comparison, Domain};
+
+    /// The sweep's objective is the displacement's squared errors in m²
+    /// (what `--sensitivity`'s `[m^2]` header says) also for a case the
+    /// identification compares in velocity, weighted: at δ = 0 it is the
+    /// case's SSE, not the weighted velocity objective.
+    #[test]
+    fn the_sweep_is_of_the_displacement_error_in_any_domain() {
+        let truth = MsdModel::from_parameters(1, &[1000.0]).unwrap();
+        let force: Vec<f64> = (0..200).map(|k| (k as f64 * 0.03).sin() * 1e4).collect();
+        let mut case = LoadCase {
+            name: "c".into(),
+            start: 0.0,
+            step: 1e-3,
+            force,
+            measured: vec![0.0; 200],
+            output_dof: 1,
+            initial_velocity: 0.0,
+            window: (0, 199),
+            compare: Comparison::new(Domain::Velocity, Some(1e-6)),
+        };
+        let simulated = case.simulate(&truth).unwrap();
+        case.measured = simulated.iter().map(|x| 1.01 * x + 1e-4).collect();
+        let model = MsdModel::from_parameters(1, &[1000.0]).unwrap();
+        let sweeps = sensitivity(std::slice::from_ref(&case), &model, 0.03, 13).unwrap();
+        let sse = CaseFit::of(&case, &case.simulate(&model).unwrap()).sse;
+        assert!(sse > 0.0);
+        assert_eq!(sweeps[0].relative_change[6], 0.0);
+        assert_eq!(sweeps[0].objective[6], sse);
+    }
 }

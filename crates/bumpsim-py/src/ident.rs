@@ -16,7 +16,7 @@ use crate::state::ident::LoadCaseState;
 use bumpsim_core::series::UniformSeries;
 use bumpsim_engine::sizes::{Identified, Size};
 use bumpsim_engine::{IdentifyRequest, Progress};
-use bumpsim_ident::case::LoadCase;
+use bumpsim_ident::case::{LoadCase, fit_window};
 use bumpsim_ident::estimate::{Settings, identify as core_identify};
 use bumpsim_io::kind::{ModelKind, Role};
 use numpy::PyArray1;
@@ -82,14 +82,7 @@ impl Case {
         let last = force.len() - 1;
         let window = match window {
             None => (0, last),
-            Some((t0, t1)) => force
-                .window(t0, t1)
-                .map(|w| (*w.start(), *w.end()))
-                .ok_or_else(|| {
-                    invalid(format!(
-                        "case '{name}': no sample inside the window [{t0}, {t1}] s"
-                    ))
-                })?,
+            Some((t0, t1)) => fit_window(&name, &force, [t0, t1]).map_err(input)?,
         };
         let case = LoadCase {
             start: force.start(),

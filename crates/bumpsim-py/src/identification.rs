@@ -29,6 +29,15 @@ use std::path::PathBuf;
 /// What `__reduce__` returns.
 type Reduced<'py> = (Bound<'py, PyAny>, (Bound<'py, PyBytes>,));
 
+/// The DataFrame key (column or attrs) of an identification's objective:
+/// its unit ([`CoreIdentification::objective_unit`]) in ASCII, so
+/// `objective [m^2]` for the thesis's displacement objective, `objective
+/// [(m/s)^2]` compared in velocity, `objective [(m/s^2)^2]` in
+/// acceleration, `objective [dimensionless]` weighted by the noise.
+fn objective_key(r: &CoreIdentification) -> String {
+    format!("objective [{}]", r.objective_unit().replace('²', "^2"))
+}
+
 /// Registers the classes of this module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Identification>()?;
@@ -147,10 +156,21 @@ impl Identification {
     fn uncertainty<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         from_json(py, &self.result().uncertainty)
     }
-    /// Σ (x − x̂)² over all cases, m².
+    /// The objective at the optimum, in `objective_unit`: Σ (x − x̂)² over
+    /// all cases in m² for the thesis's displacement objective, the
+    /// domain's unit squared or dimensionless for the study's other
+    /// comparisons.
     #[getter]
     fn objective(&self) -> f64 {
         self.result().objective
+    }
+    /// The objective's unit as the CLI prints it after the objective: `m²`,
+    /// `(m/s)²`, `(m/s²)²` (the compared domain's unit squared),
+    /// `dimensionless` when every case is weighted by its noise,
+    /// `dimensionless + (m/s)²` when some are.
+    #[getter]
+    fn objective_unit(&self) -> String {
+        self.result().objective_unit()
     }
     /// Overall fit, %.
     #[getter]
@@ -301,7 +321,7 @@ impl Identification {
         ];
         let attrs = PyDict::new(py);
         attrs.set_item("dof", r.dof)?;
-        attrs.set_item("objective [m^2]", r.objective)?;
+        attrs.set_item(objective_key(r), r.objective)?;
         attrs.set_item("fit [%]", r.fit_percent)?;
         attrs.set_item("warnings", &r.warnings)?;
         let index = ("parameter".into(), names.into_pyobject(py)?.into_any());
@@ -424,9 +444,10 @@ impl Identification {
     fn __repr__(&self) -> String {
         let r = self.result();
         format!(
-            "Identification(dof={}, objective={:e} m², fit={:.2} %, {} cases)",
+            "Identification(dof={}, objective={:e} {}, fit={:.2} %, {} cases)",
             r.dof,
             r.objective,
+            r.objective_unit(),
             r.fit_percent,
             r.cases.len()
         )
@@ -607,7 +628,8 @@ impl DofTable {
         let document = IdentifyDocument::new(&results, &failed, &self.data.notes);
         serde_json::to_string_pretty(&document).map_err(input)
     }
-    /// The table: index `dof`, columns `objective [m^2]`, `fit [%]`,
+    /// The table: index `dof`, columns `objective [UNIT]` (as
+    /// `objective_key`), `fit [%]`,
     /// `aic [-]`, `bic [-]`, `parameters`, `run_time [s]`; attrs:
     /// recommended (as the CLI's), failed (DOF → reason).
     fn to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
@@ -615,7 +637,7 @@ impl DofTable {
         for r in self.results() {
             let row = PyDict::new(py);
             row.set_item("dof", r.dof)?;
-            row.set_item("objective [m^2]", r.objective)?;
+            row.set_item(objective_key(&r), r.objective)?;
             row.set_item("fit [%]", r.fit_percent)?;
             row.set_item("aic [-]", r.aic)?;
             row.set_item("bic [-]", r.bic)?;

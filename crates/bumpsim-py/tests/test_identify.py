@@ -130,7 +130,15 @@ def test_load_case_errors():
     with pytest.raises(bumpsim.InputError, match="constant"):
         bumpsim.LoadCase("a", time, np.ones(10), np.zeros(10))
     with pytest.raises(bumpsim.InputError, match=r"no sample inside the window"):
-        bumpsim.LoadCase("a", time, np.ones(10), np.arange(10.0), window=(1.0, 2.0))
+        bumpsim.LoadCase("a", time, np.ones(10), np.arange(10.0), window=(0.0021, 0.0029))
+    # a window reaching past the record is refused as the CLI refuses a
+    # study's, not cut to the record (its fit would be over another window)
+    past = r"window \[0.002, 0.02\] s: expected times within the record, 0 s to 0.009000 s"
+    for window, match in [((0.002, 0.02), past), ((-1.0, 0.005), "within the record")]:
+        with pytest.raises(bumpsim.InputError, match=match):
+            bumpsim.LoadCase("a", time, np.ones(10), np.arange(10.0), window=window)
+    inside = bumpsim.LoadCase("a", time, np.ones(10), np.arange(10.0), window=(0.002, 0.009))
+    assert inside.window == pytest.approx((0.002, 0.009))
     with pytest.raises(bumpsim.InputError, match=r"displacement: expected a 1-D numpy array of float64"):
         bumpsim.LoadCase("a", time, np.ones(10), np.arange(10))
 

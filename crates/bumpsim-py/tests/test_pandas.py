@@ -67,9 +67,16 @@ def test_identification_parameters_with_intervals_cases_and_dof_table(root):
     prediction = result.predict()[0].to_pandas()
     assert prediction.index.name == "time [s]"
     assert list(prediction.columns) == ["measured [m]", "simulated [m]"]
+    # the objective's key carries its unit, as the CLI prints it after it
+    # (the bundled study compares velocities: not m²)
+    key = "objective [" + result.objective_unit.replace("²", "^2") + "]"
+    assert result.objective_unit != "m²" and "objective [m^2]" not in frame.attrs
+    assert frame.attrs[key] == result.objective
+    assert f"{result.objective_unit}, fit=" in repr(result)
     table = bumpsim.dof_table(study, dofs="1..2", starts=4, seed=1)
     frame = table.to_pandas()
     assert list(frame.index) == [1, 2] and frame.index.name == "dof"
+    assert list(frame[key]) == [r.objective for r in table.results]
     assert "bic [-]" in frame.columns and frame.attrs["recommended"] in (1, 2)
     assert pickle_equal(table)
 

@@ -21,9 +21,46 @@ mod modal;
 use bumpsim_core::discrete::{DiscreteModel, DiscretiseError, Method};
 use bumpsim_core::model::{MsdModel, parameter_count};
 use bumpsim_core::sensitivity::OutputError;
+use bumpsim_core::series::UniformSeries;
 use bumpsim_core::units::format_number;
 use nalgebra::{DMatrix, DMatrixView, DVector, DVectorView};
 use std::sync::Mutex;
+
+/// Whether the times `[t0, t1]` s lie within `record` (half a sample's
+/// slack at each end): a fit or bias window must (a NaN bound does not).
+pub fn within_record(record: &UniformSeries, [t0, t1]: [f64; 2]) -> bool {
+    let slack = 0.5 * record.step();
+    t0 >= record.start() - slack && t1 <= record.end() + slack
+}
+
+/// The first and last sample of the fit window `[t0, t1]` s of case `case`
+/// recorded on `record` (its force). Refused, as a study's window is, when
+/// it reaches past the record ([`within_record`]: one cut to the record
+/// without a word had the fit %, SSE and rating taken over another window
+/// than the one given) or holds no sample.
+pub fn fit_window(
+    case: &str,
+    record: &UniformSeries,
+    [t0, t1]: [f64; 2],
+) -> Result<(usize, usize), CaseError> {
+    let invalid = |reason| CaseError::Invalid {
+        case: case.into(),
+        reason,
+    };
+    if !within_record(record, [t0, t1]) {
+        let (first, last) = (record.start(), record.end());
+        return Err(invalid(format!(
+            "window [{t0}, {t1}] s: expected times within the record, {} s to {} s ({} s long)",
+            format_number(first, 4),
+            format_number(last, 4),
+            format_number(last - first, 4)
+        )));
+    }
+    let inside = record
+        .window(t0, t1)
+        .ok_or_else(|| invalid(format!("no sample inside the window [{t0}, {t1}] s")))?;
+    Ok((*inside.start(), *inside.end()))
+}
 
 /// Why a load case or parameter set is not usable.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -625,5 +662,32 @@ impl LeastSquares for Objective<'_> {
             product[a] = full[i];
         }
         true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A fit window within the record (half a sample's slack at each end)
+    /// gives its samples; one reaching past the record, or with a NaN
+    /// bound, is refused naming the record's span instead of being cut to
+    /// it, and one between two samples holds none.
+    #[test]
+    fn a_fit_window_past_the_record_is_refused() {
+        let record = UniformSeries::new(0.0, 1e-3, vec![0.0; 11]).unwrap();
+        assert_eq!(fit_window("c", &record, [0.002, 0.0104]), Ok((2, 10)));
+        for window in [[0.002, 0.02], [-0.001, 0.005], [f64::NAN, 0.005]] {
+            let refused = fit_window("c", &record, window).unwrap_err().to_string();
+            assert!(
+                refused.starts_with("load case 'c': window [")
+                    && refused.ends_with(
+                        "expected times within the record, 0 s to 0.01000 s (0.01000 s long)"
+                    ),
+                "{refused}"
+            );
+        }
+        let empty = fit_window("c", &record, [0.0021, 0.0029]).unwrap_err();
+        assert!(empty.to_string().contains("no sample inside"), "{empty}");
     }
 }

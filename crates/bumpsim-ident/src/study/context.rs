@@ -388,9 +388,8 @@ impl CaseContext<'_> {
     /// A start within the pre-trigger (before t = 0) is the replay's start,
     /// t = 0 (docs/identify.md).
     fn within_record(&self, aligned: &UniformSeries, [t0, t1]: [f64; 2]) -> Result<(), StudyError> {
-        let slack = 0.5 * aligned.step();
         let (first, last) = (aligned.start(), aligned.end());
-        if t0 >= first - slack && t1 <= last + slack {
+        if crate::case::within_record(aligned, [t0, t1]) {
             return Ok(());
         }
         Err(StudyError::Value {

@@ -257,7 +257,13 @@ class Identification:
     standard_errors: list[Optional[float]]
     uncertainty: dict[str, Any]
     objective: float
-    """Σ (x − x̂)² over all cases, m²."""
+    """The objective at the optimum, in ``objective_unit``: Σ (x − x̂)² over
+    all cases in m² for the thesis's displacement objective, else the
+    compared domain's unit squared, or dimensionless when weighted by the
+    noise."""
+    objective_unit: str
+    """``m²``, ``(m/s)²``, ``(m/s²)²``, ``dimensionless`` or
+    ``dimensionless + (m/s)²`` (some cases weighted), as the CLI prints it."""
     fit_percent: float
     aic: float
     bic: float
@@ -293,10 +299,14 @@ class Identification:
     def to_pandas(self) -> DataFrame:
         """The parameters: index ``parameter``, columns value, standard_error,
         ci95_low, ci95_high (SI, in the row's ``unit``), unit, determined,
-        at_bound, fixed."""
+        at_bound, fixed; attrs: dof, the objective keyed by its unit
+        (``objective [m^2]``, ``objective [(m/s)^2]``, ``objective
+        [(m/s^2)^2]``, ``objective [dimensionless]``), ``fit [%]``,
+        warnings."""
     def cases_to_pandas(self) -> DataFrame:
-        """The per-case fits: index ``case``, columns ``sse [m^2]``, ``fit [%]``,
-        samples and the ISO/TS 18571 ratings."""
+        """The per-case fits: index ``case``, columns ``sse [m^2]`` (the
+        displacement's, whatever the objective's domain, as the CLI prints
+        it), ``fit [%]``, samples and the ISO/TS 18571 ratings."""
     def predict(self) -> list[Prediction]:
         """Simulates the study's load cases with the identified model."""
     def report(self) -> tuple[str, dict[str, str]]:
@@ -407,7 +417,8 @@ class DofTable:
     def to_json(self) -> str:
         """The table as ``bumpsim identify --dof 1..5 --json`` writes it."""
     def to_pandas(self) -> DataFrame:
-        """Index ``dof``, columns ``objective [m^2]``, ``fit [%]``, ``aic [-]``,
+        """Index ``dof``, columns ``objective [UNIT]`` (keyed as in
+        ``Identification.to_pandas``), ``fit [%]``, ``aic [-]``,
         ``bic [-]``, parameters, ``run_time [s]``; attrs: recommended, failed."""
     def __len__(self) -> int: ...
 
@@ -425,7 +436,9 @@ def dof_table(
 class LoadCase:
     """A load case from numpy arrays: force on m1 (N) and the measured
     displacement (m) of mass ``output_dof`` (1 = m1) at uniform ``time`` (s);
-    ``window`` (t0, t1) s is the fit window (default: every sample)."""
+    ``window`` (t0, t1) s is the fit window (default: every sample); one
+    reaching past the record (beyond half a sample) is refused with
+    ``InputError``, as the CLI refuses a study's, not cut to it."""
 
     name: str
     output_dof: int
