@@ -333,9 +333,7 @@ impl LinksStudy {
             weighting: self.weighting.clone(),
         })
     }
-}
 
-impl LinksStudy {
     /// The lightest m1, kg: `front_mass_min` when given, else
     /// [`FRONT_SHARE`] of the sheet's mass `sheet_mass` or, without one,
     /// of the linear chain's total `linear`.
