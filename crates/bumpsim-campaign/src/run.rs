@@ -228,7 +228,18 @@ mod tests {
         crate::init::init(&dir.join("c.toml"), &c).unwrap();
         let summary = run(&c, &RunOptions::default()).unwrap();
         assert_eq!((summary.done, summary.submitted), (60, 60));
-        assert!(zombies() <= 2, "{} zombies", zombies());
+        // Other tests of this binary spawn and wait for short commands at
+        // the same time; their children are zombies for a moment until
+        // waited. A leaked task stays a zombie for good, so wait out the
+        // transient ones (up to 5 s) before counting.
+        let settled = (0..50).any(|_| {
+            let calm = zombies() <= 2;
+            if !calm {
+                std::thread::sleep(std::time::Duration::from_millis(100));
+            }
+            calm
+        });
+        assert!(settled, "{} zombies", zombies());
         let journal = std::fs::read_to_string(c.join(crate::state::STATE_FILE)).unwrap();
         assert_eq!(journal.lines().count(), 1 + 60);
         std::fs::remove_dir_all(&dir).unwrap();
