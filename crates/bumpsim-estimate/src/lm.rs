@@ -9,8 +9,9 @@
 //! that keeps the scaled step within a trust radius Δ, which the gain ratio
 //! sets as scipy's `least_squares` does except that a refused trial halves
 //! it ([`crate::trust`]; Moré 1978): the Gauss–Newton step whenever it fits.
-//! With [`Settings::acceleration`] (an option, not yet the default
-//! anywhere; Nielsen's damping only) each trial is the geodesic step `v + a/2` (Transtrum &
+//! With [`Settings::acceleration`] (Nielsen's damping only; not the
+//! default of [`Settings`], but of a search's lone start,
+//! [`crate::multistart::alone`]) each trial is the geodesic step `v + a/2` (Transtrum &
 //! Sethna 2012, GSL's `lmaccel`): v the damped step, and a the solution of
 //! the same damped system for `Jᵀ r''`, where the residuals' second
 //! directional derivative along v comes from one residual evaluation,

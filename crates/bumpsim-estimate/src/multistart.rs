@@ -190,16 +190,23 @@ pub fn search<P: LeastSquares>(
 
 /// The search of one start in all: its one solver run, to the full
 /// tolerances and the iteration limit (one call: nothing to race it
-/// against). With nothing to rank there is nothing to screen: [`search`]
-/// screens a lone start (to [`SCREEN_FTOL`]) and then polishes its optimum
-/// in a second LM run that starts afresh (its damping λ reset); from the
-/// 1-D identification's default start on the peer series of
-/// `bumpsim-ident/tests/iterations.rs` that took 31 Jacobians where one run
-/// takes 23 (velocity objective; 76 and 76 on the displacement one). The
-/// 1-D identification takes it (`bumpsim_ident::estimate::search_of`); the
-/// planar and link identifications still screen and polish a lone start
-/// (the planar one's symmetric stage has one start, and its recorded
-/// figures would move in their twelfth digit).
+/// against), with the geodesic acceleration: the solver's limit if it
+/// names one, else [`lm::ACCELERATION_LIMIT`]. With nothing to rank there
+/// is nothing to screen: [`search`] screens a lone start (to
+/// [`SCREEN_FTOL`]) and then polishes its optimum in a second LM run that
+/// starts afresh (its damping λ reset); from the 1-D identification's
+/// default start on the peer series of `bumpsim-ident/tests/iterations.rs`
+/// that took 31 Jacobians, one plain run 23 and one accelerated run 17
+/// (velocity objective; 76, 76 and 41 on the displacement one; scipy TRF
+/// 18 and 60). A lone start reaches its optimum in the fewest Jacobians
+/// with the acceleration, and there are no other starts whose ranking it
+/// could change; [`search`]'s stages keep the solver's own steps (plain by
+/// default: the acceleration there finds other, deeper minima that few
+/// starts reach, docs/identify.md "Iterations"). The 1-D identification
+/// takes it (`bumpsim_ident::estimate::search_of`); the planar and link
+/// identifications still screen and polish a lone start (the planar one's
+/// symmetric stage has one start, and its recorded figures would move in
+/// their twelfth digit).
 pub fn alone<P: LeastSquares>(
     make: &dyn Fn() -> P,
     start: Vec<f64>,
@@ -207,7 +214,8 @@ pub fn alone<P: LeastSquares>(
     observer: &dyn Observer,
 ) -> Result<Searched, AllFailed> {
     let problem = make();
-    let outcome = lm::minimise(&problem, &start, search.lower, search.upper, &search.solver);
+    let solver = lone_solver(&search.solver);
+    let outcome = lm::minimise(&problem, &start, search.lower, search.upper, &solver);
     observer.start_finished();
     let runs = vec![Run {
         outcome,
@@ -219,6 +227,15 @@ pub fn alone<P: LeastSquares>(
         points: vec![start],
         starts,
     })
+}
+
+/// The solver of [`alone`]'s one run: `solver` with the geodesic
+/// acceleration, its own limit or [`lm::ACCELERATION_LIMIT`].
+fn lone_solver(solver: &lm::Settings) -> lm::Settings {
+    lm::Settings {
+        acceleration: solver.acceleration.or(Some(lm::ACCELERATION_LIMIT)),
+        ..*solver
+    }
 }
 
 /// The degrees of freedom n − q of a problem (residuals less parameters):
@@ -442,8 +459,8 @@ mod tests {
     }
 
     /// One start in all is one solver run, the run `lm::minimise` makes
-    /// from it with the search's solver, tallied as one converged start
-    /// that reached the best.
+    /// from it with the search's solver and the geodesic acceleration,
+    /// tallied as one converged start that reached the best.
     #[test]
     fn a_lone_start_is_one_run() {
         let (lower, upper) = ([-5.0; 2], [5.0; 2]);
@@ -461,7 +478,12 @@ mod tests {
         };
         let start = vec![1.0, 0.0];
         let found = alone(&|| Decay, start.clone(), &search, &observer).unwrap();
-        let run = lm::minimise(&Decay, &start, &lower, &upper, &search.solver);
+        let accelerated = lm::Settings {
+            acceleration: Some(lm::ACCELERATION_LIMIT),
+            ..search.solver
+        };
+        assert_eq!(lone_solver(&search.solver), accelerated);
+        let run = lm::minimise(&Decay, &start, &lower, &upper, &accelerated);
         assert_eq!(found.best(), &run);
         assert_eq!((found.best_start(), heard.into_inner()), (&start[..], 1));
         let s = found.starts;
