@@ -176,8 +176,10 @@ fn log_bounds(settings: &Settings, free: &[usize]) -> (Vec<f64>, Vec<f64>) {
 /// (the identification's [`Objective`] of `cases`, or one that wraps it):
 /// the starts (the user's, the data-derived, the continuation ones, random
 /// ones), bounds and solver of `settings`. One start in all is one solver
-/// run to the full tolerances ([`multistart::alone`]: no screening, with
-/// nothing to rank); more are [`multistart::search`]'s staged search.
+/// run to the full tolerances with LM's geodesic acceleration
+/// ([`multistart::alone`]: no screening, with nothing to rank; issue 44
+/// item 6); more are [`multistart::search`]'s staged search, whose stages
+/// take the solver's own steps.
 pub fn search_of<P: LeastSquares>(
     cases: &[LoadCase],
     settings: &Settings,
