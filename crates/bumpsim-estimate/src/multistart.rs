@@ -199,8 +199,9 @@ pub fn search<P: LeastSquares>(
 /// that took 31 Jacobians, one plain run 23 and one accelerated run 17
 /// (velocity objective; 76, 76 and 41 on the displacement one; scipy TRF
 /// 18 and 60). A lone start reaches its optimum in the fewest Jacobians
-/// with the acceleration, and there are no other starts whose ranking it
-/// could change; [`search`]'s stages keep the solver's own steps (plain by
+/// with the acceleration (not always in less time: each trial adds a
+/// residual evaluation and a `Jᵀv`, docs/benchmarks.md), and there are no
+/// other starts whose ranking it could change; [`search`]'s stages keep the solver's own steps (plain by
 /// default: the acceleration there finds other, deeper minima that few
 /// starts reach, docs/identify.md "Iterations"). The 1-D identification
 /// takes it (`bumpsim_ident::estimate::search_of`); the planar and link

@@ -87,7 +87,9 @@ pub struct Settings {
     /// random starts around that seed draw this link over its whole range
     /// ([`crate::search`]).
     pub split_links: Vec<Option<usize>>,
-    /// Solver tolerances.
+    /// Solver tolerances and steps (plain by default; a search of one
+    /// start in all accelerates its one run whatever `acceleration` says,
+    /// `bumpsim_estimate::multistart::alone`).
     pub solver: lm::Settings,
     /// The test sheet's mass of the car, kg: an identified model whose
     /// masses sum to more than [`SHEET_MASS_TOLERANCE`] off it is warned of.
