@@ -2,7 +2,7 @@
 //! kernels are in `modal::kernels`), and the estimate of how precisely a
 //! run's results come out of their modal terms.
 
-use super::kernels::{Lane, Projection, Recursion, Tiles};
+use super::kernels::{Lane, Moments, Projection, Recursion, Tiles};
 use super::propagator::SlotConstants;
 use super::{JACOBIAN_PRECISION, ModalError, ModalForm, OUTPUT_PRECISION};
 
@@ -232,17 +232,10 @@ pub(super) fn transposed<const L: usize, const B: usize>(
         coefficients: &[],
         out: &mut [],
     });
-    let mut moments = [0.0; B];
-    for (row, &x) in basis.chunks_exact(B).zip(v) {
-        for (m, b) in moments.iter_mut().zip(row) {
-            *m = b.mul_add(x, *m);
-        }
-    }
-    let p = product.len();
-    for (u, m) in moments.iter().enumerate() {
-        let column = &form.coefficients[u * p..(u + 1) * p];
-        for (out, c) in product.iter_mut().zip(column) {
-            *out = c.mul_add(*m, *out);
-        }
-    }
+    pulp::Arch::new().dispatch(Moments::<B> {
+        basis,
+        v,
+        coefficients: &form.coefficients,
+        product,
+    });
 }
