@@ -25,6 +25,10 @@
 //! joint = 2.0               # optional, with bumper = "fit": polish the car and the bumper's law
 //!                           # together on the replays and the forward runs, these weighing β
 //!                           # (> 0, at most 100) against the replays (identify module `joint`)
+//! effective_width = false   # optional (false): true estimates the bumper's effective width, a
+//!                           # property of the car (its segments' contact points' span) with a
+//!                           # stated prior, written into the identified car (identify module
+//!                           # `unknowns`)
 //!
 //! [identification]          # optional
 //! objective = "displacement" # where the accelerometers are compared: "displacement" (default,
@@ -147,6 +151,7 @@ struct ModelFile {
     links: Option<toml::Value>,
     bumper: Option<String>,
     joint: Option<f64>,
+    effective_width: Option<bool>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -294,6 +299,7 @@ impl PlanarStudy {
                 }
             },
             arms: identification.and_then(|i| i.arm).unwrap_or(defaults.arms),
+            width: file.model.effective_width.unwrap_or(defaults.width),
             ..defaults
         };
         setup.joint = joint(file.model.joint, setup.bumper).map_err(|m| error(m.0))?;

@@ -554,6 +554,12 @@ fn through_the_documented_study(seed: u64, dir: &Path) -> ([f64; 5], [f64; 5]) {
         Ok(_) => super::diagnosis::generator_bumper(&truth),
         Err(_) => truth,
     };
+    // `BUMPSIM_TRUTH_WIDTH=1.653` (m): the truth's bumper acting that wide
+    // (the generator's 31 points over 1.6 m span 1.653 m as segments)
+    let truth = match std::env::var("BUMPSIM_TRUTH_WIDTH") {
+        Ok(w) => truth.with_effective_width(w.parse().unwrap()).unwrap(),
+        Err(_) => truth,
+    };
     let fitted = bumpsim_planar::bumper_fit::fit_bumper(&truth, &study.cases, true)
         .unwrap()
         .car;
@@ -563,6 +569,16 @@ fn through_the_documented_study(seed: u64, dir: &Path) -> ([f64; 5], [f64; 5]) {
     setup.staged = false;
     // `BUMPSIM_ARM=1`: the wall cells' arm estimated (yaw_rate.rs's switch)
     setup.arms = std::env::var("BUMPSIM_ARM").is_ok();
+    // `BUMPSIM_WIDTH=1`: the bumper's effective width estimated (yaw_rate.rs's switch)
+    setup.width = std::env::var("BUMPSIM_WIDTH").is_ok();
+    if let Ok(spread) = std::env::var("BUMPSIM_WIDTH_SPREAD") {
+        setup.priors.push(bumpsim_planar::identify::PriorSetting {
+            name: "bumper.effective_width".into(),
+            removed: false,
+            value: None,
+            spread: Some(spread.parse().unwrap()),
+        });
+    }
     let run = bumpsim_planar::bumper_fit::identified(&study.cases, &setup, &|| {}).unwrap();
     let offset = study
         .validation
@@ -589,7 +605,8 @@ fn through_the_documented_study(seed: u64, dir: &Path) -> ([f64; 5], [f64; 5]) {
         "seed {seed}: held-out yaw OFFSET40 / NARROW-OFFSET, forward force / x-acc / yaw rate: truth {at:.2?} %, the run from it {from:.2?} %; objective {:.4e}",
         run.objective
     );
-    for m in (run.priors.iter()).filter(|m| m.name.ends_with(" cells.arm")) {
+    let width = |m: &&bumpsim_estimate::prior::Moved| m.name == "bumper.effective_width";
+    for m in (run.priors.iter()).filter(|m| m.name.ends_with(" cells.arm") || width(m)) {
         eprintln!("seed {seed}: {} {:.4} ({:+.2} sd)", m.name, m.estimate, m.z);
     }
     // every parameter the run moved by more than 5 %, and the scores of

@@ -14,7 +14,9 @@ use super::defaults::Scores;
 use bumpsim_planar::PlanarCar;
 use bumpsim_planar::bumper_fit::fit_bumper;
 use bumpsim_planar::forward::forward;
-use bumpsim_planar::identify::{ARM, CaseFit, PlanarIdentification, Unknowns, identify, predict};
+use bumpsim_planar::identify::{
+    ARM, CaseFit, EFFECTIVE_WIDTH, PlanarIdentification, Unknowns, identify, predict,
+};
 use bumpsim_planar::study::PlanarStudy;
 use std::path::{Path, PathBuf};
 
@@ -412,6 +414,23 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
         if std::env::var("BUMPSIM_ARM").is_ok() {
             study.setup.arms = true;
         }
+        // `BUMPSIM_WIDTH=1`: the bumper's effective width estimated, a
+        // property of the car (`[model] effective_width = true`)
+        if std::env::var("BUMPSIM_WIDTH").is_ok() {
+            study.setup.width = true;
+        }
+        // `BUMPSIM_WIDTH_SPREAD=0.02`: its prior's spread (`[priors]`)
+        if let Ok(spread) = std::env::var("BUMPSIM_WIDTH_SPREAD") {
+            study
+                .setup
+                .priors
+                .push(bumpsim_planar::identify::PriorSetting {
+                    name: EFFECTIVE_WIDTH.into(),
+                    removed: false,
+                    value: None,
+                    spread: Some(spread.parse().unwrap()),
+                });
+        }
         let clock = std::time::Instant::now();
         let result = study.identified(&|| {}).unwrap();
         let mut scores =
@@ -444,7 +463,12 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
         );
         // each wall case's cells' arm: its estimate and how far the data
         // moved it from its prior (in prior standard deviations)
-        for m in result.priors.iter().filter(|m| m.name.ends_with(ARM)) {
+        let width = |m: &&bumpsim_estimate::prior::Moved| m.name == EFFECTIVE_WIDTH;
+        for m in result
+            .priors
+            .iter()
+            .filter(|m| m.name.ends_with(ARM) || width(m))
+        {
             eprintln!(
                 "seed {seed}: {} {:.4} (prior {:.2}, {:+.2} sd)",
                 m.name, m.estimate, m.centre, m.z
