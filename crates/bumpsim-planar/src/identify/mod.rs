@@ -194,7 +194,8 @@ pub struct Setup {
     pub arms: bool,
     /// Estimate the bumper's effective width, a property of the car with
     /// its stated prior ([`Unknowns::with_width`], `[model]
-    /// effective_width`); false: the start car's.
+    /// effective_width`; a study's default: true when a training case has
+    /// a wall's load cells, docs/planar.md); false: the start car's.
     pub width: bool,
 }
 
