@@ -230,4 +230,12 @@ fn the_study_asks_for_the_fit_by_name() {
     );
     let err = with("foam").unwrap_err().to_string();
     assert!(err.contains("[model] bumper = \"foam\""), "{err}");
+    // the bumper's effective width: estimated by default on a study with
+    // wall cells, `effective_width = false` keeps the start car's
+    let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
+    assert!(study.setup.width, "wall cells: the width estimated");
+    let path = dir.join("study-width-false.toml");
+    let body = text.replacen("[model]", "[model]\neffective_width = false", 1);
+    std::fs::write(&path, body).unwrap();
+    assert!(!PlanarStudy::read(&path).unwrap().setup.width);
 }
