@@ -194,6 +194,12 @@ fn the_progressive_series_with_the_fitted_bumper_predicts_the_offset_force() {
     bumpsim_peers::generated(&script, &dir, &[], "study.toml");
     let mut study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
     study.setup.bumper = true;
+    // `BUMPSIM_NO_WIDTH=1`: the drawn width. The study's default estimates
+    // the effective width from its wall cells (w16-h1, release): forward
+    // force / x-acc / yaw rate with the fitted bumper 66.40 / 66.51 /
+    // 72.38 %, with the drawn width 65.51 / 65.64 / 73.34 % (the 70.75 % of
+    // the ignore note is older); the assertion fails either way
+    study.setup.width &= std::env::var("BUMPSIM_NO_WIDTH").is_err();
     let result = identified(&study, LinkLaw::Progressive);
     let fit = result.bumper.as_ref().expect("the fitted bumper");
     let before = ahead(&start_bumper(&result.car, &study), &study);
