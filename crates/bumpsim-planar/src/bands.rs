@@ -108,7 +108,8 @@ fn unknowns_of(result: &PlanarIdentification) -> Option<(Unknowns, Vec<f64>)> {
         has("tyres.cornering_stiffness"),
         &[],
     )
-    .with_relaxation(has("tyres.relaxation_length"));
+    .with_relaxation(has("tyres.relaxation_length"))
+    .with_width(has(crate::identify::EFFECTIVE_WIDTH));
     let names = unknowns.names();
     let same = names.len() <= result.parameters.len()
         && names

@@ -400,6 +400,8 @@ pub struct PlanarCar {
     crash_boxes: Option<Block>,
     damage: Vec<BumperState>,
     contact_rate: f64,
+    /// The width the segments' contact points span, m (`car_contact.rs`).
+    effective_width: f64,
 }
 
 /// Geometry and tyres that turn a 1-D chain into a symmetric planar car.
@@ -471,6 +473,7 @@ impl PlanarCar {
             body,
             left,
             right,
+            effective_width: beam.width,
             beam,
             tyres,
             crash_boxes: None,
@@ -629,15 +632,17 @@ impl PlanarCar {
             + self.right.masses.iter().sum::<f64>()
     }
 
-    /// Lateral centre of segment `j` (0 = rightmost), m.
+    /// Lateral centre of segment `j` (0 = rightmost) across the
+    /// [`PlanarCar::effective_width`], m.
     pub fn segment_centre(&self, j: usize) -> f64 {
         let s = self.beam.segments.len() as f64;
-        -0.5 * self.beam.width + (j as f64 + 0.5) * self.beam.width / s
+        let w = self.effective_width;
+        -0.5 * w + (j as f64 + 0.5) * w / s
     }
 
-    /// Width of one segment, m.
+    /// Width of one segment's contact strip, m (the effective width's share).
     pub fn segment_width(&self) -> f64 {
-        self.beam.width / self.beam.segments.len() as f64
+        self.effective_width / self.beam.segments.len() as f64
     }
 
     /// The car mirrored about its x axis: left and right chains swap and the
@@ -773,7 +778,7 @@ mod history;
 
 #[path = "car_contact.rs"]
 mod contact;
-pub use contact::{ARM_RANGE, MAX_CONTACT_RATE};
+pub use contact::{ARM_RANGE, EFFECTIVE_WIDTH_RANGE, MAX_CONTACT_RATE};
 pub(crate) use contact::{check_arm, rated};
 
 #[path = "car_links.rs"]

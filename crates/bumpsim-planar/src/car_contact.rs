@@ -15,6 +15,18 @@
 //! penetrations weighing their centres). Where a real bumper's stiffness
 //! ends is not known to the segments, so an identification estimates λ per
 //! case as a nuisance with a stated prior ([`crate::identify::Unknowns`]).
+//!
+//! Effective width ([`PlanarCar::effective_width`], the car file's
+//! `bumper.effective_width`): the width `w_e` the segments' contact points
+//! and strips span, centred on the car's axis, segment j's centre at
+//! `η_j = −w_e/2 + (j + ½) w_e/S`: where the beam's stiffness acts across
+//! the car, a property of the car used by every run (impacts, forward
+//! predictions, replays). It defaults to the drawn `bumper.width`, which
+//! alone places a striker (an overlap is a fraction of the drawn width, as
+//! a lab measures it). A beam whose stiff ends reach beyond the drawn
+//! segments' centres (a continuous beam whose end points carry a whole
+//! point's share) acts wider than drawn; an identification may estimate it
+//! with a stated prior ([`crate::identify::Unknowns::with_width`]).
 
 use super::{PlanarCar, PlanarError, require};
 use bumpsim_impact::bumper::Bumper;
@@ -29,6 +41,10 @@ pub(crate) fn check_arm(arm: f64) -> Result<(), PlanarError> {
     let expected = format!("the wall cells' arm, from {low} to {high}");
     require("arm", arm, "1", &expected, ARM_RANGE.contains(&arm))
 }
+
+/// The effective widths a car takes, as a fraction of its drawn width: a
+/// beam acting half or twice as wide as it is drawn is another beam.
+pub const EFFECTIVE_WIDTH_RANGE: std::ops::RangeInclusive<f64> = 0.5..=2.0;
 
 /// Largest rate coefficient a car may carry, s/m.
 pub const MAX_CONTACT_RATE: f64 = 10.0;
@@ -66,6 +82,28 @@ impl PlanarCar {
     /// The contact's rate coefficient `c`, s/m (0: none).
     pub fn contact_rate(&self) -> f64 {
         self.contact_rate
+    }
+
+    /// The same car with its segments' contact points spread over `width`
+    /// (m, within [`EFFECTIVE_WIDTH_RANGE`] of the drawn width; see the
+    /// module).
+    pub fn with_effective_width(mut self, width: f64) -> Result<PlanarCar, PlanarError> {
+        let drawn = self.beam.width;
+        let (low, high) = (EFFECTIVE_WIDTH_RANGE.start(), EFFECTIVE_WIDTH_RANGE.end());
+        let expected = format!(
+            "from {low} to {high} times bumper.width ({drawn} m): where the segments' contact points reach"
+        );
+        let ratio = width / drawn;
+        let ok = EFFECTIVE_WIDTH_RANGE.contains(&ratio);
+        require("bumper.effective_width", width, "m", &expected, ok)?;
+        self.effective_width = width;
+        Ok(self)
+    }
+
+    /// The width the segments' contact points span, m (the drawn
+    /// `bumper.width` unless given; see the module).
+    pub fn effective_width(&self) -> f64 {
+        self.effective_width
     }
 }
 
@@ -187,5 +225,60 @@ mod tests {
             let err = drive(&car, &input, 0.05).unwrap_err().to_string();
             assert!(err.contains("arm"), "{err}");
         }
+    }
+    /// The effective width is checked, written and read back, and kept by
+    /// a car made again from its chains; absent, it is the drawn width.
+    #[test]
+    fn the_effective_width_is_checked_written_and_read_back() {
+        let drawn = car().beam().width;
+        assert_eq!(car().effective_width(), drawn);
+        for bad in [0.4 * drawn, 2.1 * drawn, f64::NAN, -1.0] {
+            let err = car().with_effective_width(bad).unwrap_err().to_string();
+            assert!(err.contains("bumper.effective_width"), "{err}");
+        }
+        let wide = car().with_effective_width(1.05 * drawn).unwrap();
+        let text = wide.to_toml();
+        assert!(text.contains("effective_width = "), "{text}");
+        assert_eq!(PlanarCar::parse(&text, "car.toml".as_ref()).unwrap(), wide);
+        assert!(!car().to_toml().contains("effective_width"), "none, no key");
+        let bad = text.replace("effective_width = ", "effective_width = 9");
+        let err = PlanarCar::parse(&bad, "car.toml".as_ref()).unwrap_err();
+        assert!(err.to_string().contains("bumper.effective_width"), "{err}");
+    }
+
+    /// The effective width places the contact points as a beam drawn that
+    /// wide does: a pole 0.6 m left of the axis strikes a 1.6 m beam acting
+    /// 1.76 m wide exactly as it strikes a beam drawn 1.76 m wide (the same
+    /// segments' centres, the same forces, the same yaw), and not as the
+    /// 1.6 m beam (its segments 1.6–7.2 cm further in).
+    #[test]
+    fn the_effective_width_places_the_contact_points() {
+        let drawn = car();
+        let layout = Layout {
+            bumper_width: 1.1 * drawn.beam().width,
+            ..Layout::default()
+        };
+        let chain = MsdModel::new(vec![8.0, 1200.0], vec![2e3], vec![1.5e6]).unwrap();
+        let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
+        let wider = PlanarCar::symmetric(&chain, &bumper, &layout).unwrap();
+        let acting = car().with_effective_width(layout.bumper_width).unwrap();
+        let striker = Striker::pendulum(Face::pole_of_diameter(0.2, 0.6), 1000.0, 3.0);
+        let settings = Settings {
+            output_step: 1e-4,
+            duration: 0.05,
+            ..Settings::default()
+        };
+        let run = |c: &PlanarCar| simulate(c, &striker, &settings).unwrap();
+        let (a, b, c) = (run(&acting), run(&wider), run(&drawn));
+        assert_eq!(a.segment_centres, b.segment_centres);
+        let last = |r: &crate::result::PlanarResult| *r.yaw.last().unwrap();
+        eprintln!(
+            "yaw: acting {} wider {} drawn {} rad",
+            last(&a),
+            last(&b),
+            last(&c)
+        );
+        assert!((last(&a) - last(&b)).abs() <= 1e-12 * last(&b).abs());
+        assert!((last(&a) - last(&c)).abs() > 0.02 * last(&c).abs());
     }
 }

@@ -238,6 +238,7 @@ impl PlanarCar {
         let (left, right) = (side(self.left())?, side(self.right())?);
         PlanarCar::new(self.body, left, right, self.beam.clone(), self.tyres)
             .and_then(|c| c.with_crash_boxes(self.crash_boxes()))
+            .and_then(|c| c.with_effective_width(self.effective_width))
     }
 
     /// The symmetric planar car of a 1-D chain with nonlinear links

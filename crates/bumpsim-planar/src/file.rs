@@ -25,6 +25,8 @@
 //!
 //! [bumper]
 //! width = 1600.0                          # (length), centred on the car's axis
+//! effective_width = 1650.0                # optional (length; default `width`): the width the
+//!                                         # segments' contact points span (car_contact.rs)
 //! side_member_spacing = 1000.0            # (length) 2b
 //! segments = 10                           # the whole-bumper curve is split equally
 //! bending = 1e5                           # N/m between neighbouring segments
@@ -172,6 +174,7 @@ struct BumperFile {
     block_stiffness: Option<f64>,
     #[serde(default)]
     rate: f64,
+    effective_width: Option<f64>,
 }
 
 /// The block of a `[bumper]` table: its depth (scaled by `unit`) and its
@@ -403,9 +406,14 @@ impl PlanarCar {
         let boxes = crash_boxes(&file.crash_boxes, unit).map_err(|e| error(e.to_string()))?;
         let (left, right) = (chain("left", file.left)?, chain("right", file.right)?);
         let rate = file.bumper.rate;
+        let effective = file.bumper.effective_width.map(|w| w * unit);
         let car = PlanarCar::new(body, left, right, beam, tyres)
             .and_then(|car| car.with_crash_boxes(boxes))
             .and_then(|car| car.with_contact_rate(rate))
+            .and_then(|car| match effective {
+                Some(w) => car.with_effective_width(w),
+                None => Ok(car),
+            })
             .map_err(|e| error(e.to_string()))?;
         Ok(car.with_name(file.name))
     }
@@ -457,6 +465,12 @@ impl PlanarCar {
             s += &format!(
                 "rate = {:?}    # s/m, the contact's rate term\n",
                 self.contact_rate()
+            );
+        }
+        if self.effective_width() != beam.width {
+            s += &format!(
+                "effective_width = {:?}    # m, where the segments' contact points reach\n",
+                self.effective_width()
             );
         }
         if let Some(block) = beam.block {

@@ -22,7 +22,9 @@
 //! stiffness, and each load's lateral position. The wheel loads follow the
 //! total mass. A wall cell's line of action is the crushed segments'
 //! loading-force-weighted position times the drive's arm (a parameter
-//! too, [`Parameters::arm`]); the weights' slopes in the crush are
+//! too, [`Parameters::arm`]), the segments' positions spread over the
+//! car's effective width ([`Parameters::width`]: `η_j = w_e r_j`, exact
+//! in value to the car's [`PlanarCar::segment_centre`]); the weights' slopes in the crush are
 //! taken by a central difference of the segment's loading curve (piecewise
 //! linear: exact away from its knees).
 
@@ -63,6 +65,8 @@ pub struct Parameters<T> {
     pub lateral: Vec<T>,
     /// The wall cells' arm ([`crate::drive::Drive::arm`]).
     pub arm: T,
+    /// The bumper's effective width, m ([`PlanarCar::effective_width`]).
+    pub width: T,
 }
 
 impl<T: Real> Parameters<T> {
@@ -99,6 +103,7 @@ impl<T: Real> Parameters<T> {
             ],
             lateral: input.loads.iter().map(|l| c(&l.lateral)).collect(),
             arm: c(&input.arm),
+            width: c(&car.effective_width()),
         }
     }
 }
@@ -169,6 +174,21 @@ impl<T: Real> Wheel<T> {
     }
 }
 
+/// The segments' centres `η_j = w_e r_j` of `car` with its effective
+/// width `width` (a parameter): `r_j = η_j / w_e` of the car's centres, the
+/// value put back exactly on the car's (`a + (η_j − a)` is exact for the
+/// nearby `a = w_e r_j`), so a replay on `f64` is the car's to the bit.
+fn segment_y<T: Real>(car: &PlanarCar, width: T) -> Vec<T> {
+    let w = car.effective_width();
+    (0..car.beam().segments.len())
+        .map(|j| {
+            let centre = car.segment_centre(j);
+            let near = width * (centre / w);
+            near + T::constant(centre - near.value())
+        })
+        .collect()
+}
+
 /// The replay's state and the car's prepared model.
 struct Replay<'a, T> {
     input: &'a Drive,
@@ -184,7 +204,7 @@ struct Replay<'a, T> {
     fronts: [Option<usize>; 2],
     b: f64,
     x_f: f64,
-    segment_y: Vec<f64>,
+    segment_y: Vec<T>,
     wheels: Vec<Wheel<T>>,
     slip: f64,
     half_step: f64,
@@ -286,9 +306,7 @@ impl<'a, T: Real> Replay<'a, T> {
             fronts,
             b,
             x_f: body.cg_behind_bumper,
-            segment_y: (0..car.beam().segments.len())
-                .map(|j| car.segment_centre(j))
-                .collect(),
+            segment_y: segment_y(car, p.width),
             wheels,
             slip: tyres.slip_speed,
             half_step: 0.5 * input.step / substeps as f64,
@@ -417,9 +435,9 @@ impl<'a, T: Real> Replay<'a, T> {
         let along = |a: [f64; 2], p: [T; 2]| p[0] * a[0] + p[1] * a[1];
         let (face, centre) = (dot(normal, anchor), dot(tangent, anchor));
         let (mut sum, mut weighted) = (T::constant(0.0), T::constant(0.0));
-        let mut nearest = None::<(f64, f64)>;
+        let mut nearest = None::<(f64, T)>;
         for (segment, &eta) in self.segments.iter().zip(&self.segment_y) {
-            let b = self.bumper_point(q, T::constant(eta));
+            let b = self.bumper_point(q, eta);
             let p = [q[0] + b[0] * cs - b[1] * sn, q[1] + b[0] * sn + b[1] * cs];
             if (along(tangent, p).value() - centre).abs() > 0.5 * width {
                 continue;

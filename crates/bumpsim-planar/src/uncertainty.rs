@@ -158,6 +158,7 @@ pub fn scaled(car: &PlanarCar, parts: &[Part], factors: &[f64]) -> Option<Planar
     PlanarCar::new(body, left, right, beam, tyres)
         .and_then(|c| c.with_crash_boxes(car.crash_boxes()))
         .and_then(|c| c.with_contact_rate(car.contact_rate()))
+        .and_then(|c| c.with_effective_width(car.effective_width()))
         .and_then(|c| c.with_damage(car.damage().to_vec()))
         .ok()
         .map(|c| c.with_name(name))

@@ -44,7 +44,8 @@ pub(super) fn check(cases: &[PlanarCase], setup: &Setup) -> Result<Unknowns, Pla
     }
     let unknowns = Unknowns::new(&setup.template, setup.friction, setup.cornering, cases)
         .with_relaxation(setup.relaxation)
-        .with_arms(setup.arms);
+        .with_arms(setup.arms)
+        .with_width(setup.width);
     let relaxes = unknowns
         .names()
         .iter()

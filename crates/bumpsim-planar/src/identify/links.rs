@@ -220,6 +220,7 @@ pub(super) fn rebuilt(
 ) -> Result<PlanarCar, PlanarError> {
     PlanarCar::new(*car.body(), left, right, car.beam().clone(), *car.tyres())
         .and_then(|c| c.with_crash_boxes(car.crash_boxes()))
+        .and_then(|c| c.with_effective_width(car.effective_width()))
         .map(|c| c.with_name(car.name().map(str::to_string)))
 }
 

@@ -84,9 +84,10 @@ pub use links::{LinkLaw, LinkLaws};
 pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
 pub use priors::{
-    ARM_SPREAD, MIRROR, MIRROR_SPREAD, MU, PriorSetting, TOTAL_MASS, priors, removing_all,
+    ARM_SPREAD, MIRROR, MIRROR_SPREAD, MU, PriorSetting, TOTAL_MASS, WIDTH_SPREAD, priors,
+    removing_all,
 };
-pub use unknowns::{ARM, ARM_REACH, LINE_MARGIN, REACH, Unknowns};
+pub use unknowns::{ARM, ARM_REACH, EFFECTIVE_WIDTH, LINE_MARGIN, REACH, Unknowns};
 
 /// The reduced car, when a chain link is undetermined or not needed.
 pub type Reduction = bumpsim_estimate::reduce::Reduction<PlanarCar>;
@@ -191,6 +192,11 @@ pub struct Setup {
     /// prior ([`Unknowns::with_arms`]); false (the default, chosen by
     /// docs/planar.md's measurement): the segments' rule.
     pub arms: bool,
+    /// Estimate the bumper's effective width, a property of the car with
+    /// its stated prior ([`Unknowns::with_width`], `[model]
+    /// effective_width`; a study's default: true when a training case has
+    /// a wall's load cells, docs/planar.md); false: the start car's.
+    pub width: bool,
 }
 
 impl Setup {
@@ -212,6 +218,7 @@ impl Setup {
             domain: Domain::Displacement,
             bias: Bias::Pretrigger,
             arms: false,
+            width: false,
         }
     }
 }

@@ -12,6 +12,7 @@
 //! | `body.yaw_inertia` | `a b M` (dynamic index k²/(a b) = 1, [`super::DYNAMIC_INDEX`]) | [`INDEX_SPREAD`]: passenger cars' 0.8–1.2 as ±2 sd | the car's geometry (Milliken & Milliken 1995, ch. 5.5) |
 //! | `tyres.mu_lateral` | [`MU`] | 0.25 | a dry road tyre's lateral grip, 0.6–1.1 |
 //! | `tyres.cornering_stiffness` | [`crate::car::CORNERING_STIFFNESS`]'s nominal | ln(150/20)/4 | a passenger-car tyre's range as ±2 sd |
+//! | `bumper.effective_width` ([`super::Unknowns::with_width`]) | the start car's (its drawn width unless given) | [`WIDTH_SPREAD`] | the bumper's stiff ends known to a segment or two |
 //! | each case's wall cells' arm `case 'NAME' cells.arm` ([`super::Unknowns`]) | 1 (the segments' rule) | [`ARM_SPREAD`] | the bumper's end known to a segment or two |
 //! | each chain mass, damper and spring, and each nonlinear link's cubic term, yield force and hardening ratio ([`super::links`]) | the start car's | [`CHAIN_SPREAD`] (a factor 10 at 2 sd) | the start car's chain: the engineer's guess |
 //!
@@ -63,6 +64,18 @@ pub const CHAIN_SPREAD: f64 = std::f64::consts::LN_10 / 2.0;
 /// deviation; the independent series of tests/peers/planar_yaw_rate.py
 /// needs about +3 % (its beam's end points carry a whole point's share).
 pub const ARM_SPREAD: f64 = 0.05;
+
+/// The spread of the bumper's effective width's default prior (centre the
+/// start car's, its drawn width unless the car file gives one): where a
+/// bumper's stiff ends act is known to a fraction of a segment, ±1.6 cm at
+/// each end of a 1.6 m beam at one standard deviation (a third of a 5-cm
+/// segment; a segment at 3 sd). The independent series of
+/// tests/peers/planar_yaw_rate.py needs +3.3 % (its beam's end points
+/// carry a whole point's share: 1.653 m where it draws 1.6 m, 1.65 sd).
+/// Chosen by measurement (docs/planar.md, "The bumper's effective width"):
+/// 0.05 let the width trade with the yaw inertia (4 of 10 cars held issue
+/// 44's thresholds, I_z −16.6 % on one), 0.02 held 6 of 10.
+pub const WIDTH_SPREAD: f64 = 0.02;
 
 /// The names the defaults use besides the parameters' own.
 pub const TOTAL_MASS: &str = "total_mass";
@@ -226,6 +239,13 @@ fn defaults(
                 "the bumper's end known to a segment or two",
             );
         }
+    }
+    if let Some(i) = index(super::EFFECTIVE_WIDTH) {
+        let centre = unknowns.template().effective_width();
+        add(
+            Prior::single(super::EFFECTIVE_WIDTH, i, centre, WIDTH_SPREAD),
+            "the bumper's stiff ends known to a segment or two",
+        );
     }
     if let Some(i) = index("tyres.cornering_stiffness") {
         let range = &CORNERING_STIFFNESS.1;

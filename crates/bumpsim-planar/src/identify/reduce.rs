@@ -79,6 +79,7 @@ impl Car<'_> {
             self.car.beam().clone(),
             *self.car.tyres(),
         )
+        .and_then(|c| c.with_effective_width(self.car.effective_width()))
         .ok()?
         .with_name(self.car.name().map(str::to_string));
         Some((car, mass))

@@ -17,6 +17,13 @@
 //! in ln λ within [`ARM_REACH`] of 1, and left at 1 in the held-out
 //! replays (no case's nuisance carries over).
 //!
+//! The bumper's effective width ([`crate::car::PlanarCar::effective_width`],
+//! `bumper.effective_width`), when asked ([`Unknowns::with_width`]): a
+//! property of the car, so the identified car carries it into every
+//! replay, held-out prediction and forward run (unlike the arm). Searched
+//! in ln w_e within [`ARM_REACH`] of the start car's, its prior centred
+//! there ([`super::priors`]).
+//!
 //! A nonlinear link ([`super::links`]) adds its law's unknowns after
 //! each side's springs (`left.cubic[j]`, `left.yield_force[j]`,
 //! `left.hardening[j]`, the link's index j); a hardening ratio is searched
@@ -49,6 +56,9 @@ pub const LINE_MARGIN: f64 = 0.25;
 /// A case's cells' arm is searched within this factor of 1.
 pub const ARM_REACH: f64 = 1.25;
 
+/// The bumper's effective width's name.
+pub const EFFECTIVE_WIDTH: &str = "bumper.effective_width";
+
 /// The suffix of a cells' arm's name (`case 'WALL10' cells.arm`).
 pub const ARM: &str = " cells.arm";
 
@@ -76,6 +86,7 @@ pub struct Unknowns {
     friction: bool,
     cornering: bool,
     relaxation: bool,
+    width: bool,
     arms: Vec<Arm>,
     lines: Vec<Line>,
 }
@@ -122,6 +133,7 @@ impl Unknowns {
             friction,
             cornering,
             relaxation: false,
+            width: false,
             arms,
             lines,
         }
@@ -137,6 +149,15 @@ impl Unknowns {
             .all(|a| a.law == crate::car::TyreLaw::Rolling && a.relaxation_length > 0.0);
         Unknowns {
             relaxation: estimated && relaxed,
+            ..self
+        }
+    }
+
+    /// The same unknowns with the bumper's effective width estimated too
+    /// when `estimated` (see the module).
+    pub fn with_width(self, estimated: bool) -> Unknowns {
+        Unknowns {
+            width: estimated,
             ..self
         }
     }
@@ -211,6 +232,9 @@ impl Unknowns {
         if self.relaxation {
             out.push(("tyres.relaxation_length".to_string(), "m"));
         }
+        if self.width {
+            out.push((EFFECTIVE_WIDTH.to_string(), "m"));
+        }
         out.extend(self.arms.iter().map(|a| (a.name.clone(), "-")));
         out.extend(self.lines.iter().map(|l| (l.name.clone(), "m")));
         out
@@ -226,7 +250,9 @@ impl Unknowns {
                 "N·s/m" => Parameter::new(name, Dimension::Damping),
                 "N/m" => Parameter::new(name, Dimension::Stiffness),
                 "N" => Parameter::new(name, Dimension::Force),
-                "m" if name == "tyres.relaxation_length" => Parameter::new(name, Dimension::Length),
+                "m" if name == "tyres.relaxation_length" || name == EFFECTIVE_WIDTH => {
+                    Parameter::new(name, Dimension::Length)
+                }
                 "m" => Parameter::new(name, Dimension::Length).linear(width),
                 symbol => Parameter::with_symbol(name, symbol),
             })
@@ -253,6 +279,9 @@ impl Unknowns {
         }
         if self.relaxation {
             out.push(car.tyres().front.relaxation_length);
+        }
+        if self.width {
+            out.push(car.effective_width());
         }
         out.extend(self.arms.iter().map(|a| a.start));
         out.extend(self.lines.iter().map(|l| l.start));
@@ -295,9 +324,14 @@ impl Unknowns {
             upper[i] = RELAXATION.1.ln().max(start[i].ln());
             lower[i] = RELAXATION.0.ln().min(start[i].ln());
         }
-        for i in self.arm_indices() {
-            upper[i] = ARM_REACH.ln().max(start[i].ln());
-            lower[i] = (-ARM_REACH.ln()).min(start[i].ln());
+        let nuisances = self.arm_indices().chain(self.width_index());
+        for i in nuisances {
+            let centre = match self.width_index() == Some(i) {
+                true => self.template.effective_width().ln(),
+                false => 0.0,
+            };
+            upper[i] = (centre + ARM_REACH.ln()).max(start[i].ln());
+            lower[i] = (centre - ARM_REACH.ln()).min(start[i].ln());
         }
         lower.extend(std::iter::repeat_n(-edge, self.lines.len()));
         upper.extend(std::iter::repeat_n(edge, self.lines.len()));
@@ -312,8 +346,8 @@ impl Unknowns {
         // (a hardening ratio drawn above 1 is clamped into the box by the
         // search; `start` may be a tied car's, shorter than the names)
         let mut point = draws.around(&start[..cars], spread);
-        // a nuisance starts where its prior is
-        for i in self.arm_indices() {
+        // a nuisance (and the effective width) starts where its prior is
+        for i in self.arm_indices().chain(self.width_index()) {
             if let Some(p) = point.get_mut(i) {
                 *p = start[i];
             }
@@ -382,9 +416,14 @@ impl Unknowns {
             tyres.front.relaxation_length = sigma;
             tyres.rear.relaxation_length = sigma;
         }
+        let width = match self.width {
+            true => take(1)[0],
+            false => t.effective_width(),
+        };
         PlanarCar::new(body, left, right, t.beam().clone(), tyres)
             .and_then(|c| c.with_crash_boxes(t.crash_boxes()))
             .and_then(|c| c.with_contact_rate(t.contact_rate()))
+            .and_then(|c| c.with_effective_width(width))
             .map(|c| c.with_name(t.name().map(str::to_string)))
     }
 
@@ -402,6 +441,11 @@ impl Unknowns {
     fn arm_indices(&self) -> std::ops::Range<usize> {
         let end = self.names().len() - self.lines.len();
         end - self.arms.len()..end
+    }
+
+    /// The index of the effective width, when it is estimated.
+    fn width_index(&self) -> Option<usize> {
+        self.names().iter().position(|(n, _)| n == EFFECTIVE_WIDTH)
     }
 
     /// The index of the relaxation length, when it is estimated.
@@ -518,5 +562,30 @@ mod tests {
                 .iter()
                 .all(|(n, _)| n != "tyres.relaxation_length")
         );
+    }
+    /// The effective width is an unknown only when asked: searched in
+    /// ln w_e within [`ARM_REACH`] of the start car's, started there by
+    /// every draw, and carried by the car made of θ.
+    #[test]
+    fn the_effective_width_is_estimated_when_asked_and_lands_on_the_car() {
+        let plain = Unknowns::new(&car(0.4), true, true, &[]);
+        assert!(plain.names().iter().all(|(n, _)| n != EFFECTIVE_WIDTH));
+        let asked = plain.with_width(true);
+        let i = asked.width_index().expect("estimated");
+        let start = asked.start();
+        let drawn = car(0.4).beam().width;
+        assert_eq!(start[i], drawn);
+        let p = asked.search(&start);
+        assert!((p[i] - drawn.ln()).abs() < 1e-12, "searched in ln w_e");
+        let (lower, upper) = asked.bounds(&start);
+        assert!((upper[i] - (drawn * ARM_REACH).ln()).abs() < 1e-12);
+        assert!((lower[i] - (drawn / ARM_REACH).ln()).abs() < 1e-12);
+        assert_eq!(asked.draw(&p, 10.0, 1, 3)[i], p[i]);
+        let mut theta = start.clone();
+        theta[i] = 1.03 * drawn;
+        let made = asked.car(&theta).unwrap();
+        assert_eq!(made.effective_width(), 1.03 * drawn);
+        assert_eq!(made.beam().width, drawn, "the drawn width stays");
+        assert_eq!(asked.with_template(&made).start()[i], 1.03 * drawn);
     }
 }

@@ -194,6 +194,12 @@ fn the_progressive_series_with_the_fitted_bumper_predicts_the_offset_force() {
     bumpsim_peers::generated(&script, &dir, &[], "study.toml");
     let mut study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
     study.setup.bumper = true;
+    // `BUMPSIM_NO_WIDTH=1`: the drawn width. The study's default estimates
+    // the effective width from its wall cells (w16-h1, release): forward
+    // force / x-acc / yaw rate with the fitted bumper 66.40 / 66.51 /
+    // 72.38 %, with the drawn width 65.51 / 65.64 / 73.34 % (the 70.75 % of
+    // the ignore note is older); the assertion fails either way
+    study.setup.width &= std::env::var("BUMPSIM_NO_WIDTH").is_err();
     let result = identified(&study, LinkLaw::Progressive);
     let fit = result.bumper.as_ref().expect("the fitted bumper");
     let before = ahead(&start_bumper(&result.car, &study), &study);
@@ -230,4 +236,12 @@ fn the_study_asks_for_the_fit_by_name() {
     );
     let err = with("foam").unwrap_err().to_string();
     assert!(err.contains("[model] bumper = \"foam\""), "{err}");
+    // the bumper's effective width: estimated by default on a study with
+    // wall cells, `effective_width = false` keeps the start car's
+    let study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
+    assert!(study.setup.width, "wall cells: the width estimated");
+    let path = dir.join("study-width-false.toml");
+    let body = text.replacen("[model]", "[model]\neffective_width = false", 1);
+    std::fs::write(&path, body).unwrap();
+    assert!(!PlanarStudy::read(&path).unwrap().setup.width);
 }

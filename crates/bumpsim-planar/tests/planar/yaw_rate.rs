@@ -14,7 +14,9 @@ use super::defaults::Scores;
 use bumpsim_planar::PlanarCar;
 use bumpsim_planar::bumper_fit::fit_bumper;
 use bumpsim_planar::forward::forward;
-use bumpsim_planar::identify::{ARM, CaseFit, PlanarIdentification, Unknowns, identify, predict};
+use bumpsim_planar::identify::{
+    ARM, CaseFit, EFFECTIVE_WIDTH, PlanarIdentification, Unknowns, identify, predict,
+};
 use bumpsim_planar::study::PlanarStudy;
 use std::path::{Path, PathBuf};
 
@@ -366,15 +368,13 @@ fn the_documented_study_meets_issue_44s_thresholds() {
 #[ignore = "three series, 11-54 s each in release (idle to loaded)"]
 fn the_documented_study_on_varied_cars() {
     // the held-out yaw's band, judged since w14-h3 (offset / face, % inside):
-    // car 1 100.0 / 86.1, car 2 100.0 / 100.0, car 3 79.9 / 20.3: it misses
-    // on car 3 and is not asserted here (docs/planar.md, "Cars nobody tuned
-    // for"); every other threshold holds on every car
+    // car 1 100.0 / 86.1, car 2 100.0 / 100.0, car 3 79.9 / 20.3 with the
+    // drawn width; with the bumper's effective width estimated (the default
+    // since w16-h1) 87.4 / 86.5, 100.0 / 100.0, 100.0 / 100.0: every
+    // threshold holds on every car, the bands too (docs/planar.md, "The
+    // bumper's effective width")
     for (seed, scores) in documented_on(&seeds("1,2,3")) {
-        let misses: Vec<_> = scores
-            .misses()
-            .into_iter()
-            .filter(|m| !m.ends_with("band"))
-            .collect();
+        let misses = scores.misses();
         assert!(misses.is_empty(), "seed {seed}: {misses:?} {scores:?}");
     }
 }
@@ -412,6 +412,23 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
         if std::env::var("BUMPSIM_ARM").is_ok() {
             study.setup.arms = true;
         }
+        // `BUMPSIM_WIDTH=1`: the bumper's effective width estimated, a
+        // property of the car (`[model] effective_width = true`)
+        if std::env::var("BUMPSIM_WIDTH").is_ok() {
+            study.setup.width = true;
+        }
+        // `BUMPSIM_WIDTH_SPREAD=0.02`: its prior's spread (`[priors]`)
+        if let Ok(spread) = std::env::var("BUMPSIM_WIDTH_SPREAD") {
+            study
+                .setup
+                .priors
+                .push(bumpsim_planar::identify::PriorSetting {
+                    name: EFFECTIVE_WIDTH.into(),
+                    removed: false,
+                    value: None,
+                    spread: Some(spread.parse().unwrap()),
+                });
+        }
         let clock = std::time::Instant::now();
         let result = study.identified(&|| {}).unwrap();
         let mut scores =
@@ -444,7 +461,12 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
         );
         // each wall case's cells' arm: its estimate and how far the data
         // moved it from its prior (in prior standard deviations)
-        for m in result.priors.iter().filter(|m| m.name.ends_with(ARM)) {
+        let width = |m: &&bumpsim_estimate::prior::Moved| m.name == EFFECTIVE_WIDTH;
+        for m in result
+            .priors
+            .iter()
+            .filter(|m| m.name.ends_with(ARM) || width(m))
+        {
             eprintln!(
                 "seed {seed}: {} {:.4} (prior {:.2}, {:+.2} sd)",
                 m.name, m.estimate, m.centre, m.z
@@ -493,10 +515,33 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
 /// `BUMPSIM_ARM=1` (each wall case's cells' arm estimated, w15-h2) three
 /// of ten cars hold every threshold (0, 2, 5) against five without it
 /// (docs/planar.md, "The struck cells' arm"): not the default.
+///
+/// With the bumper's effective width estimated (the default since w16-h1,
+/// a wall's load cells in training; docs/planar.md, "The bumper's
+/// effective width"), release, 11–18 s each:
+///
+/// | seed | offset x / yaw % | face x / yaw % | forward force / x-acc / yaw rate % | I_z | μ | at best | band offset / face % | misses |
+/// |---|---|---|---|---|---|---|---|---|
+/// | 4 | 99.95 / 98.86 | 99.89 / 97.83 | 95.6 / 95.6 / 91.3 | +4.6 % | −0.7 % | 10 | 100.0 / 100.0 | none |
+/// | 5 | 99.90 / 97.10 | 99.19 / 96.02 | 96.2 / 96.3 / 92.7 | +2.5 % | −3.0 % | 12 | 100.0 / 100.0 | none |
+/// | 6 | 99.44 / 97.78 | 99.67 / 95.06 | 93.7 / 93.7 / 91.0 | +3.0 % | −2.8 % | 11 | 100.0 / 100.0 | offset x |
+/// | 7 | 99.90 / 98.56 | 99.17 / 89.39 | 88.1 / 88.2 / 89.6 | −0.0 % | −3.6 % | 12 | 100.0 / 77.7 | forward force, x-acc, face band |
+/// | 8 | 99.77 / 97.02 | 99.60 / 85.78 | 88.9 / 89.1 / 92.2 | −3.5 % | −3.6 % | 12 | 100.0 / 69.1 | forward force, x-acc, face band |
+/// | 9 | 99.96 / 98.71 | 99.00 / 95.88 | 91.6 / 91.7 / 91.8 | +3.8 % | −2.9 % | 12 | 100.0 / 100.0 | face x (99.00 % as printed: just below 99) |
+///
+/// Asserted: what holds on all six, and the measured floors of the rest
+/// (offset x ≥ 99.4 %, face x ≥ 98.95 %, forward force and x-acceleration
+/// ≥ 87.5 %).
 #[test]
-#[ignore = "six series, 47-111 s each in release on a loaded machine"]
+#[ignore = "six series, 11-18 s each in release"]
 fn the_documented_study_on_unseen_cars() {
-    let unmet = ["offset x", "forward force", "forward x-acc", "face band"];
+    let unmet = [
+        "offset x",
+        "face x",
+        "forward force",
+        "forward x-acc",
+        "face band",
+    ];
     for (seed, scores) in documented_on(&seeds("4,5,6,7,8,9")) {
         let misses: Vec<_> = scores
             .misses()
@@ -505,9 +550,10 @@ fn the_documented_study_on_unseen_cars() {
             .collect();
         assert!(misses.is_empty(), "seed {seed}: {misses:?} {scores:?}");
         // the measured floors of the thresholds that miss on some car
-        assert!(scores.offset[0] >= 99.0, "seed {seed}: {scores:?}");
+        assert!(scores.offset[0] >= 99.4, "seed {seed}: {scores:?}");
+        assert!(scores.narrow[0] >= 98.95, "seed {seed}: {scores:?}");
         assert!(
-            scores.forward[0] >= 85.0 && scores.forward[1] >= 85.0,
+            scores.forward[0] >= 87.5 && scores.forward[1] >= 87.5,
             "seed {seed}: {scores:?}"
         );
     }

@@ -43,6 +43,8 @@ pub(crate) enum Slot {
     Grip,
     Cornering,
     Relaxation,
+    /// The bumper's effective width.
+    Width,
     /// Case `case`'s wall cells' arm.
     Arm {
         case: usize,
@@ -80,6 +82,7 @@ pub(crate) fn slots(unknowns: &Unknowns, cases: &[PlanarCase]) -> Option<Vec<Slo
             "tyres.mu_lateral" => Some(Slot::Grip),
             "tyres.cornering_stiffness" => Some(Slot::Cornering),
             "tyres.relaxation_length" => Some(Slot::Relaxation),
+            super::super::EFFECTIVE_WIDTH => Some(Slot::Width),
             arm if arm.starts_with("case '") && arm.ends_with(super::super::unknowns::ARM) => {
                 let case = cases.iter().position(|c| {
                     arm == format!("case '{}'{}", c.name, super::super::unknowns::ARM)
@@ -177,6 +180,7 @@ fn seeded(
             }
             Slot::Cornering => p.cornering = [x, x],
             Slot::Relaxation => p.relaxation = [x, x],
+            Slot::Width => p.width = x,
             Slot::Line { case: c, load } if c == case.0 => p.lateral[load] = x,
             Slot::Line { .. } => {}
             Slot::Arm { case: c } if c == case.0 => p.arm = x,
@@ -363,8 +367,9 @@ mod tests {
     /// The dual-number Jacobian against central differences of the
     /// residuals (step 1e-5 in `p`: truncation ~1e-10 of a column, rounding
     /// ~1e-11 of the residuals over the step) at a point off the start, with
-    /// grip, cornering stiffness and a line of action and a wall's cells' arm estimated (13
-    /// unknowns: two passes of eight), rolling tyres with relaxation (grip
+    /// grip, cornering stiffness and a line of action and a wall's cells' arm
+    /// estimated (13 unknowns: two passes of eight; then the bumper's
+    /// effective width too, 14: its column's gap 1.0e-10 of 3.3e-2), rolling tyres with relaxation (grip
     /// 0.8): every column within 1e-4 of its largest entry (1.3e-5 seen at
     /// most, the body mass's column, whose differences cross the tyres'
     /// saturation kinks; the others 1e-5 to 1e-8).
@@ -373,6 +378,10 @@ mod tests {
         let start = car(1250.0, 2.5e6);
         let cases = cases(&start);
         matches_central_differences(&start, &cases, 1e-4, Domain::Displacement);
+        let unknowns = Unknowns::new(&start, true, true, &cases)
+            .with_relaxation(true)
+            .with_width(true);
+        columns_match(&unknowns, &cases, 1e-4, Domain::Displacement);
     }
 
     /// The same in the velocity domain (the objective's differences of the
@@ -428,8 +437,12 @@ mod tests {
         domain: Domain,
     ) {
         let unknowns = Unknowns::new(start, true, true, cases).with_relaxation(true);
+        columns_match(&unknowns, cases, tolerance, domain);
+    }
+
+    fn columns_match(unknowns: &Unknowns, cases: &[PlanarCase], tolerance: f64, domain: Domain) {
         let objective =
-            Objective::new(cases, &unknowns, (domain, super::super::Bias::Pretrigger)).unwrap();
+            Objective::new(cases, unknowns, (domain, super::super::Bias::Pretrigger)).unwrap();
         assert!(objective.slots.is_some(), "every unknown has a slot");
         let names = unknowns.names();
         assert!(
