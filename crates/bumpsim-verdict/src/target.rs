@@ -566,6 +566,24 @@ mod tests {
         Setup::new(vec![end], select(&["part581", "rcar-bumper"]).unwrap(), 0.0).unwrap()
     }
 
+    /// A target candidate's car is the user's car with other segments:
+    /// its contact rate and effective width stay (they were dropped when
+    /// the end was rebuilt from its parts).
+    #[test]
+    fn a_candidate_keeps_the_cars_contact_rate_and_effective_width() {
+        let end = &example().front.unwrap();
+        let car = end.car.clone().with_contact_rate(0.5).unwrap();
+        let width = 1.05 * car.effective_width();
+        let car = car.with_effective_width(width).unwrap();
+        let end = CarEnd::new(car, end.limits.clone()).unwrap();
+        let family = Family::of(&end);
+        let [x0, y0] = family.origin;
+        let segments = family.segments(1.5 * x0, 0.8 * y0).unwrap();
+        let candidate = end.with_segments(segments).unwrap();
+        assert!((candidate.car.contact_rate() - 0.5).abs() < 1e-12);
+        assert!((candidate.car.effective_width() - width).abs() < 1e-12);
+    }
+
     /// Every criterion's margin ratio at the search's step and recording
     /// against the verdict's, at the corners and the centre of the
     /// default search range: within 1e-3 (4e-4 measured), far inside the

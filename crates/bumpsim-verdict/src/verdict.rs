@@ -16,7 +16,7 @@ use crate::uncertainty::Propagation;
 use bumpsim_estimate::propagate::Probability;
 use bumpsim_impact::bumper::Bumper;
 use bumpsim_impact::bumper::BumperState;
-use bumpsim_planar::car::{Beam, Block};
+use bumpsim_planar::car::Block;
 use bumpsim_planar::result::{Bottomed, BoxBottomed};
 use bumpsim_planar::{PlanarCar, PlanarResult, Settings, Striker, simulate};
 use rayon::prelude::*;
@@ -145,23 +145,15 @@ impl CarEnd {
         self.with_segments(vec![segment; n])
     }
 
-    /// The same end with these segment characteristics.
+    /// The same end with these segment characteristics (as many as the
+    /// car's); everything else of the car (its crash boxes, contact rate,
+    /// effective width, name) kept.
     pub fn with_segments(&self, segments: Vec<Bumper>) -> Result<CarEnd, VerdictError> {
-        let c = &self.car;
-        let beam = Beam {
-            segments,
-            ..c.beam().clone()
-        };
-        let car = PlanarCar::new(
-            *c.body(),
-            c.left().clone(),
-            c.right().clone(),
-            beam,
-            *c.tyres(),
-        )
-        .and_then(|car| car.with_crash_boxes(c.crash_boxes()))
-        .map_err(|e| planar("bumper", e))?
-        .with_name(c.name().map(str::to_string));
+        let car = self
+            .car
+            .clone()
+            .with_segments(segments)
+            .map_err(|e| planar("bumper", e))?;
         Ok(CarEnd {
             car,
             limits: self.limits.clone(),
