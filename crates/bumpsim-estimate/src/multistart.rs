@@ -201,9 +201,10 @@ pub fn search<P: LeastSquares>(
 /// 18 and 60). A lone start reaches its optimum in the fewest Jacobians
 /// with the acceleration (not always in less time: each trial adds a
 /// residual evaluation and a `Jᵀv`, docs/benchmarks.md), and there are no
-/// other starts whose ranking it could change; [`search`]'s stages keep the solver's own steps (plain by
-/// default: the acceleration there finds other, deeper minima that few
-/// starts reach, docs/identify.md "Iterations"). The 1-D identification
+/// other starts whose ranking it could change; [`search`]'s stages keep
+/// the solver's own steps (plain by default: the acceleration there finds
+/// other, deeper minima that few starts reach, docs/identify.md
+/// "Iterations"). The 1-D identification
 /// takes it (`bumpsim_ident::estimate::search_of`); the planar and link
 /// identifications still screen and polish a lone start (the planar one's
 /// symmetric stage has one start, and its recorded figures would move in
