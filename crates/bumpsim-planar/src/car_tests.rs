@@ -53,3 +53,14 @@ fn bad_parameters_name_themselves() {
     let err = PlanarCar::symmetric(&chain(), &bumper, &layout).unwrap_err();
     assert!(err.to_string().contains("tyres.front.mu_lateral"), "{err}");
 }
+
+#[test]
+fn an_echoed_value_carries_no_unit_conversion_noise() {
+    let echo = |v: f64| parameter("x", v, "m", "ok").to_string();
+    assert_eq!(echo(3300.0 * 0.001), "x = 3.3 m: ok");
+    assert_eq!(echo(-5.0), "x = -5.0 m: ok");
+    assert_eq!(echo(1e-300), "x = 1e-300 m: ok");
+    assert_eq!(echo(f64::NAN), "x = NaN m: ok");
+    assert_eq!(echo(f64::INFINITY), "x = inf m: ok");
+    assert_eq!(echo(0.1 + 0.2), "x = 0.3 m: ok");
+}
