@@ -65,7 +65,7 @@ fn the_bumper_fitted_at_the_yielding_truth_predicts_the_offset_force() {
     let before = ahead(&truth, &study);
     eprintln!("forward OFFSET40 force, x-acceleration, yaw rate: start bumper {before:.2?} %");
     for rate in [false, true] {
-        let fit = fit_bumper(&truth, &study.cases, rate).unwrap();
+        let fit = fit_bumper(&truth, &study.cases, rate, study.setup.cells).unwrap();
         let after = ahead(&fit.car, &study);
         eprintln!(
             "rate {rate}: a {:.4}, λ {:.4}, u {:.3}, c {:.4} s/m; objective {:.4e} → {:.4e} in {} iterations; training force {:.2?}",
@@ -162,7 +162,7 @@ fn the_identified_car_with_the_fitted_bumper_predicts_the_offset_force() {
         })
         .collect();
     let mended = unknowns.car(&theta).unwrap();
-    let refit = fit_bumper(&mended, &study.cases, true).unwrap();
+    let refit = fit_bumper(&mended, &study.cases, true, study.setup.cells).unwrap();
     eprintln!(
         "identified, side members the training leaves open set to the generator's: c {:.4} s/m, forward OFFSET40 {:.2?} %",
         refit.rate,
