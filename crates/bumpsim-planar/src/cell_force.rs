@@ -221,13 +221,13 @@ mod tests {
         let total = &ahead.channels[0].simulated;
         let peak = total.iter().fold(0.0f64, |m, v| m.max(*v));
         assert!(peak > 10e3, "the wall is struck: {peak} N");
-        for k in 0..total.len() {
+        for (k, t) in total.iter().enumerate() {
             let (left, right) = (cells[0].simulated[k], cells[1].simulated[k]);
             assert!(
                 (left - right).abs() <= 1e-9 * peak,
                 "sample {k}: {left} against {right} N"
             );
-            assert!((left + right - total[k]).abs() <= 1e-9 * peak, "sample {k}");
+            assert!((left + right - t).abs() <= 1e-9 * peak, "sample {k}");
         }
     }
 
