@@ -25,8 +25,12 @@
 //! Residuals, per forward-run test `c` over its window: `(F_sim − F_meas) /
 //! (max|F_meas| √n_c)`, the simulated and measured force magnitudes
 //! aligned at their onsets as [`crate::forward::forward()`] aligns them, so each test
-//! weighs alike whatever its force. The bounded Levenberg–Marquardt of
-//! [`bumpsim_estimate::lm`] minimises them with the forward-difference
+//! weighs alike whatever its force. With [`crate::identify::Setup::cells`]
+//! a test whose wall has load cells is compared cell by cell instead
+//! ([`crate::cell_force`]): `(F_k,sim − F_k,meas) / (max|F_meas| √n_c)` for
+//! each cell k, the same peak total force and window.
+//!
+//! The bounded Levenberg–Marquardt of [`bumpsim_estimate::lm`] minimises them with the forward-difference
 //! Jacobian of [`bumpsim_estimate::difference`] (step 1e-3 in the log
 //! parameters and in `c`). Bounds: `a` and `λ` within 1/3 to 3 of the
 //! start, `u` from 1 to 20.

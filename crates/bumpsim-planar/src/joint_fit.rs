@@ -13,7 +13,8 @@
 //! law's `b = [ln a, ln λ, ln u, c]` ([`crate::bumper_fit`]), and the
 //! residuals are the identification's (data and stated priors,
 //! [`bumpsim_estimate::prior::Priored`]) followed by the bumper fit's force
-//! residuals `r_f(p, b)` of the training tests that carry a striker, times
+//! residuals `r_f(p, b)` of the training tests that carry a striker (a
+//! wall's load cells one by one with `Setup::cells`), times
 //! a weight `w`:
 //!
 //! `F_J(p, b) = F_P(p) + w² Σ r_f(p, b)²`, `w² = β F_P(p₀) / Σ r_f(p₀, b₀)²`,

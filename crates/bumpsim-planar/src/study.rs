@@ -428,8 +428,9 @@ fn joint(balance: Option<f64>, bumper: bool) -> Result<Option<f64>, JointKey> {
 /// forward runs are compared in an identification; absent, true when the
 /// bumper is fitted and a training case has a wall's load cells (`walled`).
 /// On issue 44's independent generator (20 cars) the documented study held
-/// its thresholds on 15 cars with them against 11 by the total force
-/// (docs/planar.md, "The wall's cells one by one").
+/// its thresholds on 15 cars with them (and the width's prior then 0.05
+/// wide) against 11 by the total force (docs/planar.md, "The wall's cells
+/// one by one").
 fn cells(cells: Option<bool>, bumper: bool, walled: bool) -> Result<bool, JointKey> {
     match (cells, bumper) {
         (Some(true), false) => Err(JointKey(

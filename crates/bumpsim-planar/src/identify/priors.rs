@@ -84,7 +84,7 @@ pub const WIDTH_SPREAD: f64 = 0.02;
 /// (docs/planar.md, "The wall's cells one by one"): with the cells, 0.05
 /// held issue 44's thresholds on 15 of 20 cars of
 /// tests/peers/planar_yaw_rate.py and moved the width towards the
-/// generator's 1.653 m (1.65 m on four cars), 0.02 on 10.
+/// generator's 1.653 m (1.64–1.65 m on eight cars), 0.02 on 10.
 pub const CELLS_WIDTH_SPREAD: f64 = 0.05;
 
 /// The names the defaults use besides the parameters' own.
