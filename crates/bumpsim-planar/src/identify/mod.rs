@@ -200,7 +200,8 @@ pub struct Setup {
     /// With `bumper`, compare a training test's forward run with a wall's
     /// load cells one by one ([`crate::cell_force`], `[model] cells`), in
     /// the bumper fit and the joint stage, the effective width's prior then
-    /// [`CELLS_WIDTH_SPREAD`] wide; false: by the total force (a study's
+    /// [`CELLS_WIDTH_SPREAD`] wide with the joint stage; false: by the
+    /// total force (a study's
     /// default: true with the bumper fitted and a wall's load cells in
     /// training, docs/planar.md).
     pub cells: bool,
