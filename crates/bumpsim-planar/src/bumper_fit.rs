@@ -25,8 +25,12 @@
 //! Residuals, per forward-run test `c` over its window: `(F_sim − F_meas) /
 //! (max|F_meas| √n_c)`, the simulated and measured force magnitudes
 //! aligned at their onsets as [`crate::forward::forward()`] aligns them, so each test
-//! weighs alike whatever its force. The bounded Levenberg–Marquardt of
-//! [`bumpsim_estimate::lm`] minimises them with the forward-difference
+//! weighs alike whatever its force. With [`crate::identify::Setup::cells`]
+//! a test whose wall has load cells is compared cell by cell instead
+//! ([`crate::cell_force`]): `(F_k,sim − F_k,meas) / (max|F_meas| √n_c)` for
+//! each cell k, the same peak total force and window.
+//!
+//! The bounded Levenberg–Marquardt of [`bumpsim_estimate::lm`] minimises them with the forward-difference
 //! Jacobian of [`bumpsim_estimate::difference`] (step 1e-3 in the log
 //! parameters and in `c`). Bounds: `a` and `λ` within 1/3 to 3 of the
 //! start, `u` from 1 to 20.
@@ -41,7 +45,7 @@
 //! src/joint_fit.rs), then the bumper is fitted to the polished car.
 
 use crate::car::{PlanarCar, PlanarError};
-use crate::forward::forward;
+use crate::forward::{self, forward};
 use crate::identify::{
     BumperFit, PlanarCase, PlanarIdentification, Setup, Unknowns, identify_polished, transformed,
     unloading_ratio,
@@ -78,12 +82,12 @@ pub fn identified(
                   searched: Searched,
                   bounds: (&[f64], &[f64])| {
         let balance = setup.joint.unwrap_or(1.0);
-        joint::polished(problem, cases, searched, bounds, balance)
+        joint::polished(problem, cases, searched, bounds, (balance, setup.cells))
     };
     let joint = setup.bumper && setup.joint.is_some();
     let mut result = identify_polished(cases, setup, observer, joint.then_some(&polish as _))?;
     if setup.bumper {
-        let fit = fit_bumper(&result.car, cases, true)?;
+        let fit = fit_bumper(&result.car, cases, true, setup.cells)?;
         result.car = fit.car.clone();
         result.bumper = Some(fit);
     }
@@ -119,34 +123,48 @@ struct Problem<'a> {
     cases: Vec<&'a PlanarCase>,
     count: usize,
     parameters: usize,
+    cells: bool,
 }
 
 impl Problem<'_> {
     /// The residuals at `p` (None: a law that cannot be built or run).
     fn residuals(&self, p: &[f64]) -> Option<Vec<f64>> {
-        force_residuals(self.car, &self.cases, p)
+        force_residuals(self.car, &self.cases, p, self.cells)
     }
 }
 
 /// The force residuals (see the module) of `car` with the bumper law `p`
 /// (`[ln a, ln λ, ln u]`, and `c` when it has four) over the forward runs of
-/// `cases` (each with its striker); None: a law that cannot be built or run.
+/// `cases` (each with its striker); with `cells`, a case whose wall has
+/// load cells compared cell by cell ([`crate::cell_force`]: each cell's
+/// residuals over the window, normalised by the case's peak total force
+/// and window as the total's are); None: a law that cannot be built or run.
 pub(crate) fn force_residuals(
     car: &PlanarCar,
     cases: &[&PlanarCase],
     p: &[f64],
+    cells: bool,
 ) -> Option<Vec<f64>> {
     let car = with_law(car, p).ok()?;
     let mut r = Vec::new();
     for case in cases {
-        let run = forward(&car, case).ok()?;
-        let force = run.channels.iter().find(|c| c.name == "force")?;
-        let (a, b) = run.window;
+        let (ahead, run) = forward::run(&car, case).ok()?;
+        let force = ahead.channels.iter().find(|c| c.name == "force")?;
+        let (a, b) = ahead.window;
         let peak = force.measured[a..=b]
             .iter()
             .fold(0.0f64, |m, v| m.max(v.abs()));
         let norm = peak.max(f64::MIN_POSITIVE) * ((b - a + 1) as f64).sqrt();
-        r.extend((a..=b).map(|k| (force.simulated[k] - force.measured[k]) / norm));
+        let split = match cells {
+            true => crate::cell_force::of_run(&car, case, &run, ahead.shift),
+            false => Vec::new(),
+        };
+        if split.is_empty() {
+            r.extend((a..=b).map(|k| (force.simulated[k] - force.measured[k]) / norm));
+        }
+        for cell in &split {
+            r.extend((a..=b).map(|k| (cell.simulated[k] - cell.measured[k]) / norm));
+        }
     }
     r.iter().all(|v| v.is_finite()).then_some(r)
 }
@@ -213,11 +231,13 @@ fn force_fit(car: &PlanarCar, case: &PlanarCase) -> Result<f64, PlanarError> {
 
 /// Fits `car`'s bumper law (with the contact's rate coefficient when
 /// `rate`) to the measured forces of the `cases` that carry a striker (see
-/// the module); an error when none does.
+/// the module), a wall's load cells one by one when `cells`
+/// ([`crate::identify::Setup::cells`]); an error when none carries a striker.
 pub fn fit_bumper(
     car: &PlanarCar,
     cases: &[PlanarCase],
     rate: bool,
+    cells: bool,
 ) -> Result<BumperFit, PlanarError> {
     let cases: Vec<&PlanarCase> = cases.iter().filter(|c| c.striker.is_some()).collect();
     let Some(first) = cases.first() else {
@@ -227,14 +247,7 @@ pub fn fit_bumper(
                 .into(),
         });
     };
-    let count = cases.iter().map(|c| c.window.1 - c.window.0 + 1).sum();
     let parameters = if rate { 4 } else { 3 };
-    let problem = Problem {
-        car,
-        cases: cases.clone(),
-        count,
-        parameters,
-    };
     let ratio = car
         .beam()
         .segments
@@ -246,13 +259,17 @@ pub fn fit_bumper(
     let start = [0.0, 0.0, ratio.ln(), car.contact_rate()][..n].to_vec();
     let (lower, upper) = law_bounds();
     let (lower, upper) = (lower[..n].to_vec(), upper[..n].to_vec());
-    let mut r0 = vec![0.0; count];
-    if !problem.evaluate(&start, &mut r0, None) {
-        return Err(PlanarError::Case {
-            case: first.name.clone(),
-            message: "the start car's forward run cannot be evaluated".into(),
-        });
-    }
+    let r0 = force_residuals(car, &cases, &start, cells).ok_or_else(|| PlanarError::Case {
+        case: first.name.clone(),
+        message: "the start car's forward run cannot be evaluated".into(),
+    })?;
+    let problem = Problem {
+        car,
+        cases: cases.clone(),
+        count: r0.len(),
+        parameters,
+        cells,
+    };
     let settings = Settings {
         max_iterations: 40,
         ftol: 1e-8,
@@ -347,7 +364,7 @@ mod tests {
         );
         // the start: 25 % stronger, 20 % shorter, unloading at 1.5 the ramp
         let start = car(&transformed(&truth_bumper, 1.25, 0.8, 1.5).unwrap());
-        let fit = fit_bumper(&start, &cases, false).unwrap();
+        let fit = fit_bumper(&start, &cases, false, false).unwrap();
         eprintln!("{fit:?}");
         assert!((fit.scale / 0.8 - 1.0).abs() < 0.02, "a {}", fit.scale);
         assert!((fit.stretch / 1.25 - 1.0).abs() < 0.02, "λ {}", fit.stretch);
@@ -370,7 +387,7 @@ mod tests {
         let truth = car(&truth_bumper).with_contact_rate(0.4).unwrap();
         let cases = [test(&truth, 2.0), test(&truth, 5.0)];
         let start = car(&transformed(&truth_bumper, 1.25, 0.8, 1.5).unwrap());
-        let fit = fit_bumper(&start, &cases, true).unwrap();
+        let fit = fit_bumper(&start, &cases, true, false).unwrap();
         eprintln!(
             "{:?}",
             (fit.scale, fit.stretch, fit.unloading_ratio, fit.rate)
@@ -379,7 +396,7 @@ mod tests {
         assert!((fit.scale / 0.8 - 1.0).abs() < 0.05, "a {}", fit.scale);
         assert!(fit.objective.1 < 1e-3 * fit.objective.0);
         // without the rate term the same tests are not fitted as well
-        let static_fit = fit_bumper(&start, &cases, false).unwrap();
+        let static_fit = fit_bumper(&start, &cases, false, false).unwrap();
         assert!(static_fit.objective.1 > 10.0 * fit.objective.1);
     }
 
@@ -388,7 +405,9 @@ mod tests {
         let truth = car(&Bumper::three_part(1.5e6, 60e3, 6e6).unwrap());
         let mut case = test(&truth, 2.0);
         case.striker = None;
-        let err = fit_bumper(&truth, &[case], false).unwrap_err().to_string();
+        let err = fit_bumper(&truth, &[case], false, false)
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("striker"), "{err}");
     }
 }

@@ -87,6 +87,15 @@ impl Forward {
 /// measurement (see the module); an error when the case has no striker or
 /// no left and right sills.
 pub fn forward(car: &PlanarCar, case: &PlanarCase) -> Result<Forward, PlanarError> {
+    run(car, case).map(|(ahead, _)| ahead)
+}
+
+/// [`forward()`] and the simulation it compared (its time zero `shift`
+/// after the case's).
+pub(crate) fn run(
+    car: &PlanarCar,
+    case: &PlanarCase,
+) -> Result<(Forward, crate::PlanarResult), PlanarError> {
     let missing = |expected: &str| PlanarError::Case {
         case: case.name.clone(),
         message: expected.into(),
@@ -145,19 +154,19 @@ pub fn forward(car: &PlanarCar, case: &PlanarCase) -> Result<Forward, PlanarErro
         }
     })
     .collect();
-    Ok(Forward {
+    let ahead = Forward {
         case: case.name.clone(),
         shift,
         channels,
         window: (a, b),
         // the run lasts as long as the test's record: a contact that
         // outlasts it is the record's length, not a duration to raise
-        warnings: r
-            .warnings
-            .into_iter()
+        warnings: (r.warnings.iter())
             .filter(|w| !w.contains("raise the duration"))
+            .cloned()
             .collect(),
-    })
+    };
+    Ok((ahead, r))
 }
 
 /// The measured force magnitude, sills' mean x-acceleration and yaw rate.
@@ -220,7 +229,7 @@ fn difference(v: &[f64], step: f64) -> Vec<f64> {
 }
 
 /// `v` at fractional sample `k` (linear; 0 before the first, the last after).
-fn sample(v: &[f64], k: f64) -> f64 {
+pub(crate) fn sample(v: &[f64], k: f64) -> f64 {
     if k <= 0.0 || v.is_empty() {
         return if k < 0.0 {
             0.0

@@ -13,7 +13,8 @@
 //! law's `b = [ln a, ln λ, ln u, c]` ([`crate::bumper_fit`]), and the
 //! residuals are the identification's (data and stated priors,
 //! [`bumpsim_estimate::prior::Priored`]) followed by the bumper fit's force
-//! residuals `r_f(p, b)` of the training tests that carry a striker, times
+//! residuals `r_f(p, b)` of the training tests that carry a striker (a
+//! wall's load cells one by one with `Setup::cells`), times
 //! a weight `w`:
 //!
 //! `F_J(p, b) = F_P(p) + w² Σ r_f(p, b)²`, `w² = β F_P(p₀) / Σ r_f(p₀, b₀)²`,
@@ -50,6 +51,8 @@ struct Joint<'a> {
     weight: f64,
     upper: Vec<f64>,
     forces: usize,
+    /// A wall's load cells compared one by one ([`crate::identify::Setup::cells`]).
+    cells: bool,
 }
 
 impl Joint<'_> {
@@ -62,7 +65,7 @@ impl Joint<'_> {
     fn forces_at(&self, q: &[f64]) -> Option<Vec<f64>> {
         let (p, b) = q.split_at(self.cars());
         let car = self.unknowns.car(&self.unknowns.theta(p)).ok()?;
-        let r = force_residuals(&car, &self.strikers, b)?;
+        let r = force_residuals(&car, &self.strikers, b, self.cells)?;
         (r.len() == self.forces).then(|| r.iter().map(|v| self.weight * v).collect())
     }
 }
@@ -121,7 +124,8 @@ impl LeastSquares for Joint<'_> {
 
 /// `searched` with its best run polished jointly with the bumper's law
 /// (see the module), the forward runs weighing `balance` (β) against the
-/// replays at the start; unchanged when the polish does not lower `F_J`.
+/// replays at the start, a wall's load cells compared one by one when
+/// `cells`; unchanged when the polish does not lower `F_J`.
 /// An error when no training case carries a striker or the start's
 /// forward runs cannot be evaluated.
 pub(crate) fn polished(
@@ -129,18 +133,18 @@ pub(crate) fn polished(
     cases: &[PlanarCase],
     mut searched: Searched,
     bounds: (&[f64], &[f64]),
-    balance: f64,
+    (balance, cells): (f64, bool),
 ) -> Result<Searched, PlanarError> {
     let best = searched.starts.best;
     let p0 = searched.runs[best].outcome.parameters.clone();
     let car = unknowns.car(&unknowns.theta(&p0))?;
-    let b0 = law(&fit_bumper(&car, cases, true)?);
+    let b0 = law(&fit_bumper(&car, cases, true, cells)?);
     let strikers: Vec<&PlanarCase> = cases.iter().filter(|c| c.striker.is_some()).collect();
     let unevaluated = || PlanarError::Case {
         case: "training".into(),
         message: "the joint stage cannot evaluate the searched car's forward runs".into(),
     };
-    let f0 = force_residuals(&car, &strikers, &b0).ok_or_else(unevaluated)?;
+    let f0 = force_residuals(&car, &strikers, &b0, cells).ok_or_else(unevaluated)?;
     let mut r = vec![0.0; priored.residual_count()];
     if !priored.evaluate(&p0, &mut r, None) {
         return Err(unevaluated());
@@ -157,6 +161,7 @@ pub(crate) fn polished(
         weight: (balance * replays / forces.max(f64::MIN_POSITIVE)).sqrt(),
         upper: upper.clone(),
         forces: f0.len(),
+        cells,
     };
     let start: Vec<f64> = p0.iter().chain(&b0).copied().collect();
     let settings = lm::Settings {

