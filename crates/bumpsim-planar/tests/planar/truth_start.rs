@@ -623,6 +623,17 @@ fn through_the_documented_study(seed: u64, dir: &Path) -> ([f64; 5], [f64; 5]) {
             channel("yaw rate"),
         ]
     };
+    let xs = |car: &PlanarCar| {
+        held(car, &study.validation)
+            .iter()
+            .map(|f| f.fit_x)
+            .collect::<Vec<_>>()
+    };
+    eprintln!(
+        "seed {seed}: held-out x OFFSET40 / NARROW-OFFSET: truth {:.3?} %, the run {:.3?} %",
+        xs(&fitted),
+        xs(&run.car)
+    );
     let (at, from) = (scores(&fitted), scores(&run.car));
     eprintln!(
         "seed {seed}: held-out yaw OFFSET40 / NARROW-OFFSET, forward force / x-acc / yaw rate: truth {at:.2?} %, the run from it {from:.2?} %; objective {:.4e}",

@@ -476,6 +476,7 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
             truth(1),
             yaw.each_ref().map(|j| j.trusted)
         );
+        eprintln!("seed {seed}: objective {:.4e}", result.objective);
         eprintln!(
             "seed {seed}: forward OFFSET40 force / x-acc / yaw rate with the crash boxes' elastic stiffness at the truth, the bumper fitted again: {:.1?} %",
             true_boxes(&result.car, &sheet, &study)
@@ -564,23 +565,28 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
 /// | 8 | 99.30 / 91.34 | 99.89 / 86.61 | 93.6 / 93.7 / 92.9 | −15.8 % | +2.4 % | 1 | 73.1 / 100.0 | offset x, offset yaw, starts, offset band |
 /// | 9 | 99.95 / 98.52 | 98.98 / 92.59 | 92.2 / 92.2 / 94.1 | +7.6 % | −0.6 % | 12 | 100.0 / 100.0 | face x |
 ///
+/// Car 8's search there, one start at its best with I_z −15.8 %, was the
+/// width trading with the yaw inertia again. The multi-start stages now
+/// search with the width held within the 0.02 prior and polish the best
+/// under the stated 0.05 (`identify::staged`, a continuation; the same
+/// day, release, 8–16 s each):
+///
+/// | seed | offset x / yaw % | face x / yaw % | forward force / x-acc / yaw rate % | I_z | μ | at best | band offset / face % | misses |
+/// |---|---|---|---|---|---|---|---|---|
+/// | 4 | 99.94 / 95.29 | 99.87 / 91.94 | 94.5 / 94.5 / 95.5 | +7.0 % | +0.3 % | 10 | 100.0 / 100.0 | none |
+/// | 5 | 99.89 / 99.29 | 99.16 / 96.12 | 94.3 / 94.3 / 96.1 | +5.5 % | −1.3 % | 12 | 100.0 / 100.0 | none |
+/// | 6 | 99.41 / 98.45 | 99.69 / 92.89 | 89.0 / 89.0 / 89.8 | +6.6 % | −0.5 % | 11 | 100.0 / 100.0 | offset x, forward force, x-acc |
+/// | 7 | 99.92 / 98.20 | 99.14 / 95.53 | 90.6 / 90.6 / 94.7 | +2.3 % | −2.2 % | 12 | 100.0 / 100.0 | none |
+/// | 8 | 99.66 / 95.67 | 99.71 / 82.48 | 93.1 / 93.2 / 95.7 | −7.3 % | −3.5 % | 12 | 100.0 / 85.6 | none |
+/// | 9 | 99.95 / 98.38 | 98.99 / 92.43 | 92.1 / 92.2 / 94.0 | +7.6 % | −0.6 % | 12 | 100.0 / 100.0 | face x |
+///
 /// Asserted: what holds on all six, and the measured floors of the rest
-/// (offset x ≥ 99.25 %, offset yaw ≥ 91 %, face x ≥ 98.95 %, forward
-/// force and x-acceleration ≥ 87.5 %; car 8's search, one start at its
-/// best with I_z −15.8 %, is the width trading with the yaw inertia again).
+/// (offset x ≥ 99.3 %, face x ≥ 98.95 %, forward force and
+/// x-acceleration ≥ 88.5 %).
 #[test]
 #[ignore = "six series, 8-17 s each in release"]
 fn the_documented_study_on_unseen_cars() {
-    let unmet = [
-        "offset x",
-        "offset yaw",
-        "face x",
-        "forward force",
-        "forward x-acc",
-        "face band",
-        "offset band",
-        "starts",
-    ];
+    let unmet = ["offset x", "face x", "forward force", "forward x-acc"];
     for (seed, scores) in documented_on(&seeds("4,5,6,7,8,9")) {
         let misses: Vec<_> = scores
             .misses()
@@ -589,11 +595,10 @@ fn the_documented_study_on_unseen_cars() {
             .collect();
         assert!(misses.is_empty(), "seed {seed}: {misses:?} {scores:?}");
         // the measured floors of the thresholds that miss on some car
-        assert!(scores.offset[0] >= 99.25, "seed {seed}: {scores:?}");
-        assert!(scores.offset[1] >= 91.0, "seed {seed}: {scores:?}");
+        assert!(scores.offset[0] >= 99.3, "seed {seed}: {scores:?}");
         assert!(scores.narrow[0] >= 98.95, "seed {seed}: {scores:?}");
         assert!(
-            scores.forward[0] >= 87.5 && scores.forward[1] >= 87.5,
+            scores.forward[0] >= 88.5 && scores.forward[1] >= 88.5,
             "seed {seed}: {scores:?}"
         );
     }
