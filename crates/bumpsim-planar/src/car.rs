@@ -49,7 +49,7 @@ pub const GRAVITY: f64 = 9.80665;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum PlanarError {
     /// A parameter is out of range.
-    #[error("{name} = {} {unit}: {expected}", Echo(*value))]
+    #[error("{name} = {} {unit}: {expected}", crate::echo::Echo(*value))]
     Parameter {
         /// The parameter, as named in the car file.
         name: String,
@@ -122,19 +122,6 @@ pub(crate) fn parameter(name: &str, value: f64, unit: &'static str, expected: &s
         value,
         unit,
         expected: expected.into(),
-    }
-}
-
-/// A value as an error message echoes it: rounded to 12 significant digits,
-/// so a length given in mm is not echoed with the unit conversion's float
-/// noise (3300 mm is `3.3 m`, not `3.3000000000000003 m`); `NaN` and
-/// infinities as they are.
-struct Echo(f64);
-
-impl std::fmt::Display for Echo {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let rounded = format!("{:.11e}", self.0).parse().unwrap_or(self.0);
-        write!(f, "{rounded:?}")
     }
 }
 

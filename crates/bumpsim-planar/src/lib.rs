@@ -56,6 +56,7 @@ pub mod cell_force;
 pub mod document;
 pub mod drive;
 mod dynamics;
+mod echo;
 pub mod export;
 pub mod file;
 pub mod forward;
