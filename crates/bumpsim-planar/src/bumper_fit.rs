@@ -156,14 +156,15 @@ pub(crate) fn force_residuals(
             .fold(0.0f64, |m, v| m.max(v.abs()));
         let norm = peak.max(f64::MIN_POSITIVE) * ((b - a + 1) as f64).sqrt();
         let split = match cells {
-            true => crate::cell_force::of_run(&car, case, &run, ahead.shift),
+            true => crate::cell_force::simulated_cells(&car, case, &run, ahead.shift),
             false => Vec::new(),
         };
         if split.is_empty() {
             r.extend((a..=b).map(|k| (force.simulated[k] - force.measured[k]) / norm));
         }
-        for cell in &split {
-            r.extend((a..=b).map(|k| (cell.simulated[k] - cell.measured[k]) / norm));
+        for (load, simulated) in &split {
+            let measured = &case.drive.loads[*load].force;
+            r.extend((a..=b).map(|k| (simulated[k] - measured[k]) / norm));
         }
     }
     r.iter().all(|v| v.is_finite()).then_some(r)

@@ -119,31 +119,41 @@ fn simulated(
     cells
 }
 
-/// The cells' forces of `case` in `car`'s forward run `run`, whose time
-/// zero lies `shift` (s) after the case's (see the module); empty when the
-/// case's wall has no cells.
-pub(crate) fn of_run(
+/// Each cell's load index and simulated force at the case's samples, in
+/// `car`'s forward run `run`, whose time zero lies `shift` (s) after the
+/// case's (see the module); empty when the case's wall has no cells. The
+/// residuals' path: nothing of the measurement is copied.
+pub(crate) fn simulated_cells(
     car: &PlanarCar,
     case: &PlanarCase,
     run: &PlanarResult,
     shift: f64,
-) -> Vec<CellForce> {
+) -> Vec<(usize, Vec<f64>)> {
     let Some((bands, tangent)) = bands(case) else {
         return Vec::new();
     };
     let step = case.drive.step;
     let histories = simulated(car, run, (&bands, tangent), case.drive.speed * shift);
+    let at = |load: usize, history: &[f64]| -> Vec<f64> {
+        (0..case.drive.loads[load].force.len())
+            .map(|k| crate::forward::sample(history, k as f64 - shift / step))
+            .collect()
+    };
+    (bands.iter().zip(histories))
+        .map(|(band, history)| (band.load, at(band.load, &history)))
+        .collect()
+}
+
+/// [`simulated_cells`] with each cell's measurement and fit % over the
+/// case's window.
+fn of_run(car: &PlanarCar, case: &PlanarCase, run: &PlanarResult, shift: f64) -> Vec<CellForce> {
     let (a, b) = case.window;
-    bands
-        .iter()
-        .zip(histories)
-        .map(|(band, history)| {
-            let measured = case.drive.loads[band.load].force.clone();
-            let simulated: Vec<f64> = (0..measured.len())
-                .map(|k| crate::forward::sample(&history, k as f64 - shift / step))
-                .collect();
+    simulated_cells(car, case, run, shift)
+        .into_iter()
+        .map(|(load, simulated)| {
+            let measured = case.drive.loads[load].force.clone();
             CellForce {
-                load: band.load,
+                load,
                 fit_percent: bumpsim_estimate::fit::percent(&simulated[a..=b], &measured[a..=b]),
                 simulated,
                 measured,
@@ -210,16 +220,22 @@ mod tests {
         (car, case)
     }
 
+    /// The cells' forces, the total force and its peak (N) of the forward
+    /// run of `(car, case)`.
+    fn struck((car, case): (PlanarCar, PlanarCase)) -> (Vec<CellForce>, Vec<f64>, f64) {
+        let cells = cell_forces(&car, &case).unwrap();
+        let ahead = crate::forward::forward(&car, &case).unwrap();
+        let total = ahead.channels[0].simulated.clone();
+        let peak = total.iter().fold(0.0f64, |m, v| m.max(*v));
+        (cells, total, peak)
+    }
+
     /// Mirror symmetry: a symmetric car square on a flat wall loads the
     /// left and right halves alike, and the two halves together carry the
     /// striker's whole force, sample by sample.
     #[test]
     fn a_flat_wall_splits_a_symmetric_car_s_force_in_halves() {
-        let (car, case) = flat_wall(0.5, 1.0);
-        let cells = cell_forces(&car, &case).unwrap();
-        let ahead = crate::forward::forward(&car, &case).unwrap();
-        let total = &ahead.channels[0].simulated;
-        let peak = total.iter().fold(0.0f64, |m, v| m.max(*v));
+        let (cells, total, peak) = struck(flat_wall(0.5, 1.0));
         assert!(peak > 10e3, "the wall is struck: {peak} N");
         for (k, t) in total.iter().enumerate() {
             let (left, right) = (cells[0].simulated[k], cells[1].simulated[k]);
@@ -235,11 +251,7 @@ mod tests {
     /// the nearest cell, so the cells still carry the whole force.
     #[test]
     fn a_segment_beyond_every_band_counts_in_the_nearest_cell() {
-        let (car, case) = flat_wall(0.15, 0.3);
-        let cells = cell_forces(&car, &case).unwrap();
-        let ahead = crate::forward::forward(&car, &case).unwrap();
-        let total = &ahead.channels[0].simulated;
-        let peak = total.iter().fold(0.0f64, |m, v| m.max(*v));
+        let (cells, total, peak) = struck(flat_wall(0.15, 0.3));
         for (k, t) in total.iter().enumerate() {
             let sum = cells[0].simulated[k] + cells[1].simulated[k];
             assert!(

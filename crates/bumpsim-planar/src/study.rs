@@ -328,9 +328,9 @@ impl PlanarStudy {
         let law = tyres_law_estimated(&setup.template, &cases);
         setup.cornering = file.model.cornering.unwrap_or(law);
         setup.relaxation = file.model.relaxation.unwrap_or(law);
-        setup.width = (file.model.effective_width).unwrap_or_else(|| width_estimated(&cases));
-        setup.cells = cells(file.model.cells, setup.bumper, width_estimated(&cases))
-            .map_err(|m| error(m.0))?;
+        let walled = width_estimated(&cases);
+        setup.width = (file.model.effective_width).unwrap_or(walled);
+        setup.cells = cells(file.model.cells, setup.bumper, walled).map_err(|m| error(m.0))?;
         Ok(PlanarStudy {
             path: path.to_path_buf(),
             setup,
