@@ -34,6 +34,11 @@
 //!                           # with load cells cell by cell (module `cell_force`), not by their
 //!                           # total force; default: true with bumper = "fit" and a training
 //!                           # case with a wall's load cells (`width_estimated`), else false
+//! confirm = false           # optional (false): true runs the full search again from its
+//!                           # polished best, the priors weighed at the noise there, until
+//!                           # the starts ran within a factor 2 of the final noise, so that
+//!                           # their tally counts the final objective (two or three times the
+//!                           # search's time; identify module `staged`)
 //!
 //! [identification]          # optional
 //! objective = "displacement" # where the accelerometers are compared: "displacement" (default,
@@ -158,6 +163,8 @@ struct ModelFile {
     joint: Option<f64>,
     effective_width: Option<bool>,
     cells: Option<bool>,
+    #[serde(default)]
+    confirm: bool,
 }
 
 #[derive(Debug, Deserialize)]
@@ -331,6 +338,7 @@ impl PlanarStudy {
         let walled = width_estimated(&cases);
         setup.width = (file.model.effective_width).unwrap_or(walled);
         setup.cells = cells(file.model.cells, setup.bumper, walled).map_err(|m| error(m.0))?;
+        setup.confirm = file.model.confirm;
         Ok(PlanarStudy {
             path: path.to_path_buf(),
             setup,

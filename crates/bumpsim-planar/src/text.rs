@@ -270,6 +270,7 @@ pub fn identification_summary(
         "  {}\n",
         bumpsim_estimate::text::starts_line(&result.starts, result.iterations, result.run_time)
     );
+    s += &search_noise_line(result);
     s += &prior_lines(result, &parameters);
     let fits: Vec<_> = result
         .fits
@@ -307,6 +308,23 @@ pub fn identification_summary(
         s += &format!("  warning: {w}\n");
     }
     s
+}
+
+/// The line saying that the starts ran with the priors weighed at a noise
+/// more than twice the final one (identify module `staged`): their tally
+/// then counts the priors' basin; empty otherwise.
+fn search_noise_line(result: &crate::identify::PlanarIdentification) -> String {
+    let ratio = result.search_noise / result.prior_noise;
+    if result.priors.is_empty() || !ratio.is_finite() || ratio <= 2.0 {
+        return String::new();
+    }
+    let unit = result.domain.unit();
+    format!(
+        "    the starts weighed the priors at a noise of {} {unit}, {}× the final {} {unit}: they searched near the priors' centres, the polishing then moved the car to the data, and the tally counts that first basin ([model] confirm = true searches again at the final noise)\n",
+        bumpsim_core::units::format_number(result.search_noise, 4),
+        bumpsim_core::units::format_number(ratio, 3),
+        bumpsim_core::units::format_number(result.prior_noise, 4),
+    )
 }
 
 /// The stated priors, a line each, with how far the data moved them

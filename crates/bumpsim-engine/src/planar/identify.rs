@@ -35,7 +35,13 @@ pub(super) fn identify(request: &IdentifyRequest<'_>) -> Result<Outcome, EngineE
     study.setup.starts = request.starts.unwrap_or(study.setup.starts);
     study.setup.seed = request.seed.unwrap_or(study.setup.seed);
     let progress = request.progress;
-    progress.begin(study.setup.starts as u64);
+    // with `confirm` the full search's starts run up to 1 + CONFIRMING
+    // times (the bar may finish early)
+    let passes = match study.setup.confirm {
+        true => 1 + bumpsim_planar::identify::CONFIRMING as u64,
+        false => 1,
+    };
+    progress.begin(study.setup.starts as u64 * passes);
     // the identification, then the bumper from the training tests' forward
     // runs when the study asks (`[model] bumper = "fit"`)
     let result = study.identified(&|| progress.start_finished());

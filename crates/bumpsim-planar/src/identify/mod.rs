@@ -87,6 +87,7 @@ pub use priors::{
     ARM_SPREAD, CELLS_WIDTH_SPREAD, MIRROR, MIRROR_SPREAD, MU, PriorSetting, TOTAL_MASS,
     WIDTH_SPREAD, priors, removing_all,
 };
+pub use staged::{CONFIRMED, CONFIRMING};
 pub use unknowns::{ARM, ARM_REACH, EFFECTIVE_WIDTH, LINE_MARGIN, REACH, Unknowns};
 
 /// The reduced car, when a chain link is undetermined or not needed.
@@ -205,6 +206,14 @@ pub struct Setup {
     /// default: true with the bumper fitted and a wall's load cells in
     /// training, docs/planar.md).
     pub cells: bool,
+    /// Run the full search again from its polished best with the priors
+    /// weighed at the noise there, until its starts ran within a factor
+    /// [`CONFIRMED`] of the final noise (at most [`CONFIRMING`] more
+    /// searches), so that the starts' tally counts the final objective
+    /// (module `staged`, `[model] confirm`; two or three times the search's
+    /// time); false (the default): once, the starts weighing the priors at
+    /// the symmetric optimum's noise.
+    pub confirm: bool,
 }
 
 impl Setup {
@@ -228,6 +237,7 @@ impl Setup {
             arms: false,
             width: false,
             cells: false,
+            confirm: false,
         }
     }
 }
@@ -293,6 +303,11 @@ pub struct PlanarIdentification {
     /// The noise of one residual the priors weigh against, m
     /// ([`bumpsim_estimate::prior::noise`]).
     pub prior_noise: f64,
+    /// The noise the priors were weighed against while the search's starts
+    /// ran, in the unit of [`PlanarIdentification::prior_noise`]: far above
+    /// it, the starts searched near the priors' centres and their tally
+    /// counts that basin, not the final objective's ([`Setup::confirm`]).
+    pub search_noise: f64,
     /// The reduced car that fits as well, if any; its `model` serialised as
     /// the car's parts.
     #[serde(serialize_with = "reduction_parts")]
@@ -419,6 +434,7 @@ pub(crate) fn identify_polished(
         staged: setup.staged,
         solver: solver(),
         bounds: (&lower, &upper),
+        confirm: setup.confirm,
     };
     let found = staged::search(&objective, &plan, observer).map_err(|e| PlanarError::Missing {
         name: "identification".into(),
@@ -436,7 +452,11 @@ pub(crate) fn identify_polished(
         Some(polish) => polish((&priored, &unknowns), found.searched, (&lower, &upper))?,
         None => found.searched,
     };
-    summarise(cases, setup, &priored, &searched, (&lower, &upper), clock)
+    let result = summarise(cases, setup, &priored, &searched, (&lower, &upper), clock)?;
+    Ok(PlanarIdentification {
+        search_noise: found.search_noise,
+        ..result
+    })
 }
 
 /// The error model of the intervals: the residuals' integrated
@@ -534,6 +554,8 @@ fn summarise(
         warnings,
         priors: moved,
         prior_noise: priored.noise(),
+        // the search's own noise is the caller's (`identify_polished`)
+        search_noise: priored.noise(),
         reduction: None,
         bumper: None,
     };

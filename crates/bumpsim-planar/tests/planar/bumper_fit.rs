@@ -292,4 +292,9 @@ fn the_study_asks_for_the_fit_by_name() {
     );
     let err = cells("[model]\ncells = \"yes\"").unwrap_err().to_string();
     assert!(err.contains("cells"), "{err}");
+    // the search confirmed at the final noise only when asked
+    assert!(!study.setup.confirm);
+    assert!(cells("[model]\nconfirm = true").unwrap().setup.confirm);
+    let err = cells("[model]\nconfirm = \"yes\"").unwrap_err().to_string();
+    assert!(err.contains("confirm"), "{err}");
 }

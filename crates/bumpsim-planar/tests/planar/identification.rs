@@ -33,17 +33,16 @@ fn identification_truth() -> PlanarCar {
     PlanarCar::new(body, left, right, beam, Tyres::default()).unwrap()
 }
 
-/// Issue 15's identification criterion: a series made by a differently
-/// configured generator (the impact simulation with contact at a coarser
-/// step, an anti-alias filter, noise and biases, 10 kHz) of a known planar
-/// car in flat, 600-mm, pole and angled tests; the model identified from
-/// those four predicts a held-out RCAR-type angled test (the other side,
-/// 40 % overlap, faster) with fit ≥ 99 % on x and ≥ 95 % on yaw, and the
-/// truth's I_z lies in its 95 % interval.
-#[test]
-fn planar_identification_predicts_a_held_out_angled_test() {
+/// The series of [`planar_identification_predicts_a_held_out_angled_test`]
+/// (four training tests and the held-out one, last), its truth and the
+/// symmetric start.
+fn series_of_the_truth() -> (
+    PlanarCar,
+    Vec<bumpsim_planar::identify::PlanarCase>,
+    PlanarCar,
+) {
     use bumpsim_planar::cases::TestChannels;
-    use bumpsim_planar::identify::{Setup, identify, predict};
+    use bumpsim_planar::identify::predict;
     use bumpsim_planar::synth::{Chain, record};
     let truth = identification_truth();
     let speed = 8.0 / 3.6;
@@ -102,6 +101,20 @@ fn planar_identification_predicts_a_held_out_angled_test() {
         Tyres::default(),
     )
     .unwrap();
+    (truth, cases, template)
+}
+
+/// Issue 15's identification criterion: a series made by a differently
+/// configured generator (the impact simulation with contact at a coarser
+/// step, an anti-alias filter, noise and biases, 10 kHz) of a known planar
+/// car in flat, 600-mm, pole and angled tests; the model identified from
+/// those four predicts a held-out RCAR-type angled test (the other side,
+/// 40 % overlap, faster) with fit ≥ 99 % on x and ≥ 95 % on yaw, and the
+/// truth's I_z lies in its 95 % interval.
+#[test]
+fn planar_identification_predicts_a_held_out_angled_test() {
+    use bumpsim_planar::identify::{Setup, identify, predict};
+    let (truth, cases, template) = series_of_the_truth();
     let setup = Setup {
         starts: 4,
         ..Setup::new(template)
@@ -141,4 +154,38 @@ fn planar_identification_predicts_a_held_out_angled_test() {
         high / low < 2.0,
         "an interval that says something: {inertia:?}"
     );
+}
+
+/// The starts' noise (docs/planar.md, "What the starts search"): the
+/// search records the noise its starts weighed the priors at, above the
+/// final one from the symmetric stage's optimum; `confirm` searches again
+/// until the starts ran within a factor `CONFIRMED` of the final noise, and
+/// the car it finds predicts the held-out test as well.
+#[test]
+fn a_confirmed_search_runs_its_starts_at_the_final_noise() {
+    use bumpsim_planar::identify::{CONFIRMED, Setup, identify, predict};
+    let (_, cases, template) = series_of_the_truth();
+    let setup = Setup {
+        starts: 4,
+        ..Setup::new(template)
+    };
+    let once = identify(&cases[..4], &setup, &|| {}).unwrap();
+    let confirmed = Setup {
+        confirm: true,
+        ..setup
+    };
+    let again = identify(&cases[..4], &confirmed, &|| {}).unwrap();
+    eprintln!(
+        "noise of the starts / final: once {:.4e} / {:.4e}, confirmed {:.4e} / {:.4e}; starts at the best fit {} and {}",
+        once.search_noise,
+        once.prior_noise,
+        again.search_noise,
+        again.prior_noise,
+        once.starts.reached_best_fit,
+        again.starts.reached_best_fit
+    );
+    assert!(once.search_noise > CONFIRMED * once.prior_noise, "{once:?}");
+    assert!(again.search_noise <= CONFIRMED * again.prior_noise);
+    let held = predict(&again.car, &cases[4]).unwrap().fit;
+    assert!(held.fit_x >= 99.0 && held.fit_yaw >= 95.0, "{held:?}");
 }

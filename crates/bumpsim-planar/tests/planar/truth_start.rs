@@ -653,9 +653,10 @@ fn through_the_documented_study(seed: u64, dir: &Path) -> ([f64; 5], [f64; 5]) {
         if moved.abs() > 0.05 {
             let mut theta = ran.clone();
             theta[i] = true_theta[i];
-            let back = scores(&unknowns.car(&theta).unwrap());
+            let back_car = unknowns.car(&theta).unwrap();
+            let (back, back_x) = (scores(&back_car), xs(&back_car));
             eprintln!(
-                "seed {seed}: {name} {:.4e} -> {:.4e} {unit} ({:+.1} %); the run with the truth's: {back:.2?} %",
+                "seed {seed}: {name} {:.4e} -> {:.4e} {unit} ({:+.1} %); the run with the truth's: {back:.2?} %, held-out x {back_x:.3?} %",
                 true_theta[i],
                 ran[i],
                 100.0 * moved

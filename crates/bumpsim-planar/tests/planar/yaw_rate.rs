@@ -444,6 +444,32 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
         if let Ok(cells) = std::env::var("BUMPSIM_CELLS") {
             study.setup.cells = cells != "0";
         }
+        // `BUMPSIM_MIRROR=masses[0],…`: a left/right ratio prior on each
+        // named chain stage (`[priors] "left/right.masses[0]" = {}`)
+        if let Ok(names) = std::env::var("BUMPSIM_MIRROR") {
+            for name in names.split(',') {
+                study
+                    .setup
+                    .priors
+                    .push(bumpsim_planar::identify::PriorSetting {
+                        name: format!("left/right.{name}"),
+                        removed: false,
+                        value: None,
+                        spread: None,
+                    });
+            }
+        }
+        // `BUMPSIM_CONFIRM=1`: the full search run again at its best's
+        // noise (`[model] confirm = true`; docs/planar.md, "What the starts
+        // search")
+        if std::env::var("BUMPSIM_CONFIRM").is_ok() {
+            study.setup.confirm = true;
+        }
+        // `BUMPSIM_JOINT=β`: the joint stage's weight of the forward runs
+        // (`[model] joint`; absent: the study's)
+        if let Ok(beta) = std::env::var("BUMPSIM_JOINT") {
+            study.setup.joint = Some(beta.parse().unwrap());
+        }
         // `BUMPSIM_WIDTH_SPREAD=0.02`: its prior's spread (`[priors]`)
         if let Ok(spread) = std::env::var("BUMPSIM_WIDTH_SPREAD") {
             study
@@ -482,7 +508,10 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
             truth(1),
             yaw.each_ref().map(|j| j.trusted)
         );
-        eprintln!("seed {seed}: objective {:.4e}", result.objective);
+        eprintln!(
+            "seed {seed}: objective {:.4e}; the starts ran at a noise of {:.4e}, the final {:.4e}",
+            result.objective, result.search_noise, result.prior_noise
+        );
         eprintln!(
             "seed {seed}: forward OFFSET40 force / x-acc / yaw rate with the crash boxes' elastic stiffness at the truth, the bumper fitted again: {:.1?} %",
             true_boxes(&result.car, &sheet, &study)
