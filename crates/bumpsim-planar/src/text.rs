@@ -311,11 +311,12 @@ pub fn identification_summary(
 }
 
 /// The line saying that the starts ran with the priors weighed at a noise
-/// more than twice the final one (identify module `staged`): their tally
-/// then counts the priors' basin; empty otherwise.
+/// more than [`crate::identify::CONFIRMED`] times the final one (identify
+/// module `staged`): their tally then counts the priors' basin; empty
+/// otherwise.
 fn search_noise_line(result: &crate::identify::PlanarIdentification) -> String {
     let ratio = result.search_noise / result.prior_noise;
-    if result.priors.is_empty() || !ratio.is_finite() || ratio <= 2.0 {
+    if result.priors.is_empty() || !ratio.is_finite() || ratio <= crate::identify::CONFIRMED {
         return String::new();
     }
     let unit = result.domain.unit();

@@ -16,8 +16,8 @@
 //!
 //! **What the starts search.** The full search weighs the priors at the
 //! noise of the symmetric optimum, which fits far worse than the final
-//! car: on tests/peers/planar_yaw_rate.py and the bundled series that
-//! noise is 20–100 times the final one, the priors dominate and the starts
+//! car: on cars 0–19 of tests/peers/planar_yaw_rate.py that noise is 8–132
+//! times the final one, 20 times on the bundled series; the priors dominate and the starts
 //! converge to one point near their centres; the polishing that follows
 //! (the noise re-estimated at each optimum) is what moves the car to the
 //! data, one path from that point (a continuation in the priors' weight).
