@@ -41,8 +41,9 @@ use super::objective::Objective;
 use bumpsim_estimate::lm::{self, LeastSquares};
 use bumpsim_estimate::multistart::{self, AllFailed, Search, Searched};
 use bumpsim_estimate::observer::{Observer, Silent};
+use bumpsim_estimate::posterior::gaussian;
 use bumpsim_estimate::prior::{Prior, Priored, noise};
-use bumpsim_estimate::search::exploring;
+use bumpsim_estimate::search::{Draws, exploring};
 use bumpsim_estimate::tied::Tied;
 use bumpsim_estimate::uncertainty::lag_one;
 
@@ -133,7 +134,15 @@ pub(super) fn search(
             sigma = noise_at(objective, &start);
         }
     }
-    let (mut searched, mut noise) = full(objective, plan, &searching, (start, sigma), observer)?;
+    let first = (start, sigma);
+    let (mut searched, mut noise) = full(
+        objective,
+        plan,
+        &searching,
+        first,
+        Drawn::Template,
+        observer,
+    )?;
     let mut search_noise = sigma;
     // confirmed: searched again from the best until the starts ran within
     // a factor [`CONFIRMED`] of the final noise (at most [`CONFIRMING`] more)
@@ -146,7 +155,8 @@ pub(super) fn search(
             .parameters
             .clone();
         search_noise = noise_at(objective, &best);
-        (searched, noise) = full(objective, plan, &searching, (best, search_noise), observer)?;
+        let again = (best, search_noise);
+        (searched, noise) = full(objective, plan, &searching, again, Drawn::Priors, observer)?;
     }
     Ok(Found {
         searched,
@@ -164,6 +174,7 @@ fn full(
     plan: &Plan,
     searching: &[Prior],
     (start, mut sigma): (Vec<f64>, f64),
+    drawn: Drawn,
     observer: &dyn Observer,
 ) -> Result<(Searched, f64), AllFailed> {
     let (lower, upper) = plan.bounds;
@@ -176,7 +187,10 @@ fn full(
         .map(|k| match k {
             0 => start.clone(),
             1 => template.clone(),
-            k => draw(&template, plan, k),
+            k => match drawn {
+                Drawn::Template => draw(&template, plan, k),
+                Drawn::Priors => from_priors(draw(&template, plan, k), searching, plan.seed, k),
+            },
         })
         .collect();
     let search = Search {
@@ -221,6 +235,38 @@ fn full(
     }
     Ok((searched, sigma))
 }
+
+/// Where a full search draws its random starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Drawn {
+    /// Within the study's spread of the template (log-uniform).
+    Template,
+    /// Each parameter with a prior of its own from that prior (normal in
+    /// the log, its centre and spread), the others as [`Drawn::Template`]:
+    /// the confirming searches, where the priors weigh what the engineer
+    /// knows against the data at the final noise.
+    Priors,
+}
+
+/// `point` (a start drawn around the template, index `k` under `seed`)
+/// with each parameter that has a prior of its own among `priors` drawn
+/// from it.
+fn from_priors(mut point: Vec<f64>, priors: &[Prior], seed: u64, k: usize) -> Vec<f64> {
+    // a stream apart from the template's draws of the same start
+    let mut draws = Draws::new(seed ^ PRIOR_STREAM, k as u64);
+    for prior in priors
+        .iter()
+        .filter(|p| p.terms.len() == 1 && p.less.is_empty())
+    {
+        if let Some(p) = point.get_mut(prior.terms[0]) {
+            *p = prior.centre.ln() + prior.spread * gaussian(&mut draws);
+        }
+    }
+    point
+}
+
+/// The seed offset of [`from_priors`]' stream.
+const PRIOR_STREAM: u64 = 0x5052_494f_5253;
 
 /// The priors the multi-start stages search under: the stated ones with
 /// the bumper's effective width held within [`super::WIDTH_SPREAD`] of its
@@ -287,5 +333,25 @@ mod tests {
         assert_eq!(searching[1], mass);
         // a narrower stated prior is searched as stated
         assert_eq!(held(&[width(0.01)]), vec![width(0.01)]);
+    }
+
+    #[test]
+    fn confirming_starts_draw_each_parameter_with_a_prior_of_its_own_from_it() {
+        let inertia = Prior::single("body.yaw_inertia", 1, 2000.0, 0.1).unwrap();
+        let total = Prior::sum("total_mass", vec![0, 2], 1300.0, 0.01).unwrap();
+        let point = vec![7.0, 8.0, 1.5, 0.3];
+        let drawn = |k| from_priors(point.clone(), &[inertia.clone(), total.clone()], 1, k);
+        // reproducible; only the single prior's parameter moves
+        assert_eq!(drawn(3), drawn(3));
+        let values: Vec<f64> = (0..400).map(|k| drawn(k)[1]).collect();
+        for k in 0..400 {
+            let p = drawn(k);
+            assert_eq!((p[0], p[2], p[3]), (7.0, 1.5, 0.3));
+        }
+        // normal in the log about the centre with the prior's spread
+        let mean = values.iter().sum::<f64>() / 400.0;
+        let sd = (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / 399.0).sqrt();
+        assert!((mean - 2000f64.ln()).abs() < 0.03, "{mean}");
+        assert!((sd / 0.1 - 1.0).abs() < 0.15, "{sd}");
     }
 }
