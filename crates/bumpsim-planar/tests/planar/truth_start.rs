@@ -594,6 +594,9 @@ fn through_the_documented_study(seed: u64, dir: &Path) -> ([f64; 5], [f64; 5]) {
     // study's default with its wall cells; yaw_rate.rs's switch)
     setup.width |= std::env::var("BUMPSIM_WIDTH").is_ok();
     setup.cells = cells;
+    // `BUMPSIM_CONFIRM=1`: the search repeated at the final noise
+    // (`[model] confirm`, yaw_rate.rs's switch)
+    setup.confirm = std::env::var("BUMPSIM_CONFIRM").is_ok();
     if let Ok(spread) = std::env::var("BUMPSIM_WIDTH_SPREAD") {
         setup.priors.push(bumpsim_planar::identify::PriorSetting {
             name: "bumper.effective_width".into(),
