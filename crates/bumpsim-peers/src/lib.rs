@@ -47,7 +47,19 @@ pub fn python_available(module: &str) -> bool {
 /// script's text and its arguments) differs, so the tests of one target
 /// folder share one series and a changed generator never leaves a stale
 /// one. Panics with the script's stderr when it fails.
+///
+/// The tests of one binary run on parallel threads and often share a
+/// series: one lock serialises the check and the generation, so a thread
+/// never reads a file another thread's generator is rewriting (a clean
+/// checkout's first run would otherwise regenerate the folder once per
+/// thread, and a reader could meet a truncated CSV).
 pub fn generated(script: &std::path::Path, out: &std::path::Path, args: &[&str], marker: &str) {
+    static GENERATING: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    // A generator that panicked in another test leaves the lock poisoned;
+    // the stamp decides what is current, so the guard is taken regardless.
+    let _guard = GENERATING
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
     let stamp = out.join(".generated-by");
     let version = script_version(script, args);
     let current = std::fs::read_to_string(&stamp).is_ok_and(|s| s == version);
