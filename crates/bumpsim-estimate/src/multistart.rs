@@ -8,6 +8,14 @@
 //! `F ≤ F_best (1 + 1/(n − q))` with n residuals and q free parameters: the
 //! data cannot tell such a fit from the best (its likelihood-ratio
 //! statistic `n ln(F/F_best)` is about 1, where a 5 % test needs 3.84).
+//!
+//! That treats the residuals as independent. Sampled test channels are
+//! not: with a lag-1 correlation ρ each residual carries 1/κ of an
+//! independent one, κ = (1 + ρ)/(1 − ρ) the variance inflation the
+//! intervals already use, and the data cannot tell apart fits within
+//! `F ≤ F_best (1 + κ/(n − q))`. A model that knows κ at the best counts
+//! the starts by that bar too ([`Searched::count_correlated`],
+//! [`Starts::reached_correlated`]); the race keeps the first bar.
 
 use crate::lm::{self, LeastSquares, Outcome};
 use crate::observer::Observer;
@@ -46,6 +54,15 @@ pub struct Starts {
     pub reached_best_fit: usize,
     /// Starts of `reached_best_fit` that got there by their own run.
     pub reached_best_fit_alone: usize,
+    /// Starts that reached the best fit with the residuals' correlation
+    /// counted: their run (or the one they merged into) ended within `F ≤
+    /// F_best (1 + κ/(n − q))`, κ = [`Starts::inflation`]. Equals
+    /// `reached_best_fit` until a model states κ
+    /// ([`Searched::count_correlated`]).
+    pub reached_correlated: usize,
+    /// The variance inflation κ ≥ 1 (dimensionless) at the best that
+    /// `reached_correlated` counts with; 1 where the model stated none.
+    pub inflation: f64,
     /// Starts abandoned at a stage end, too far above the incumbent
     /// ([`crate::search::STAGES`]).
     pub abandoned: usize,
@@ -96,6 +113,8 @@ pub struct Searched {
     pub points: Vec<Vec<f64>>,
     /// The tally.
     pub starts: Starts,
+    /// n − q of the problem (residuals less free parameters).
+    freedom: usize,
 }
 
 impl Searched {
@@ -107,6 +126,49 @@ impl Searched {
     /// Where the best run started (log parameters).
     pub fn best_start(&self) -> &[f64] {
         &self.points[self.starts.best]
+    }
+
+    /// Counts [`Starts::reached_correlated`] again with the variance
+    /// inflation `inflation` (κ, dimensionless; below 1 or not finite
+    /// taken as 1) at the best run, before anything changes the runs'
+    /// objectives (a polish under other weights).
+    ///
+    /// ```
+    /// # use bumpsim_estimate::lm::{self, LeastSquares};
+    /// # use bumpsim_estimate::multistart::{self, Search};
+    /// # use nalgebra::DMatrix;
+    /// /// r = (p − 1, p + 1): F = 2 + 2p², least at p = 0 (F = 2).
+    /// struct Bowl;
+    /// impl LeastSquares for Bowl {
+    ///     fn residual_count(&self) -> usize { 2 }
+    ///     fn parameter_count(&self) -> usize { 1 }
+    ///     fn evaluate(&self, p: &[f64], r: &mut [f64], j: Option<&mut DMatrix<f64>>) -> bool {
+    ///         r[0] = p[0] - 1.0;
+    ///         r[1] = p[0] + 1.0;
+    ///         if let Some(j) = j { j[(0, 0)] = 1.0; j[(1, 0)] = 1.0; }
+    ///         true
+    ///     }
+    /// }
+    /// let search = Search {
+    ///     starts: 2, seed: 1, solver: lm::Settings::default(),
+    ///     lower: &[-10.0], upper: &[10.0], range: (&[-10.0], &[10.0]),
+    /// };
+    /// let points = vec![vec![3.0], vec![-2.0]];
+    /// # use bumpsim_estimate::observer::Silent;
+    /// let mut found = multistart::search(&|| Bowl, points, &search, &Silent).unwrap();
+    /// found.count_correlated(50.0);
+    /// assert_eq!(found.starts.reached_correlated, 2);
+    /// assert!((found.starts.inflation - 50.0).abs() < 1e-12);
+    /// ```
+    pub fn count_correlated(&mut self, inflation: f64) {
+        let inflation = match inflation.is_finite() {
+            true => inflation.max(1.0),
+            false => 1.0,
+        };
+        let best = self.runs[self.starts.best].outcome.objective;
+        let bar = best * (1.0 + inflation / self.freedom.max(1) as f64) + 1e-300;
+        self.starts.reached_correlated = reached_within(&self.runs, bar, true).0;
+        self.starts.inflation = inflation;
     }
 }
 
@@ -185,6 +247,7 @@ pub fn search<P: LeastSquares>(
         runs,
         points,
         starts,
+        freedom,
     })
 }
 
@@ -223,11 +286,13 @@ pub fn alone<P: LeastSquares>(
         outcome,
         fate: Fate::Finished,
     }];
-    let starts = tally(&runs, freedom(&problem), 1)?;
+    let freedom = freedom(&problem);
+    let starts = tally(&runs, freedom, 1)?;
     Ok(Searched {
         runs,
         points: vec![start],
         starts,
+        freedom,
     })
 }
 
@@ -275,25 +340,10 @@ pub fn tally(runs: &[Run], freedom: usize, exploring: usize) -> Result<Starts, A
         .ok_or(AllFailed { starts: runs.len() })?;
     let exact = outcome.objective * (1.0 + 1e-6) + 1e-300;
     let noise = outcome.objective * (1.0 + 1.0 / freedom.max(1) as f64) + 1e-300;
-    // a run that ended below `bar` by itself: polished, or a screened
-    // optimum left unpolished (for the noise bar only: the exact bar asks
-    // for the thesis's tolerances)
-    let own = |i: usize, bar: f64, screened: bool| {
-        let ended =
-            runs[i].fate == Fate::Finished || (screened && runs[i].fate == Fate::Unpolished);
-        ended && runs[i].outcome.objective <= bar
-    };
-    let reached = |i: usize, bar: f64, screened: bool| own(representative(runs, i), bar, screened);
-    let count = |bar: f64, screened: bool| {
-        let alone = (0..runs.len()).filter(|&i| own(i, bar, screened)).count();
-        let all = (0..runs.len())
-            .filter(|&i| reached(i, bar, screened))
-            .count();
-        (all, alone)
-    };
     let exploring = exploring.min(runs.len());
-    let ((reached_best, reached_best_alone), (reached_best_fit, reached_best_fit_alone)) =
-        (count(exact, false), count(noise, true));
+    // the exact bar asks for the thesis's tolerances: polished runs only
+    let (reached_best, reached_best_alone) = reached_within(runs, exact, false);
+    let (reached_best_fit, reached_best_fit_alone) = reached_within(runs, noise, true);
     let fate = |f: fn(&Fate) -> bool| runs.iter().filter(|r| f(&r.fate)).count();
     Ok(Starts {
         total: runs.len(),
@@ -306,13 +356,36 @@ pub fn tally(runs: &[Run], freedom: usize, exploring: usize) -> Result<Starts, A
         reached_best_alone,
         reached_best_fit,
         reached_best_fit_alone,
+        reached_correlated: reached_best_fit,
+        inflation: 1.0,
         abandoned: fate(|f| *f == Fate::Abandoned),
         merged: fate(|f| matches!(f, Fate::Merged(_))),
         unpolished: fate(|f| *f == Fate::Unpolished),
         refined: runs.len() - exploring,
-        explored_best_fit: (0..exploring).filter(|&i| reached(i, noise, true)).count(),
+        explored_best_fit: (0..exploring)
+            .filter(|&i| ended_below(runs, representative(runs, i), noise, true))
+            .count(),
         best,
     })
+}
+
+/// Whether run `i` ended below `bar` by itself: polished, or (`screened`)
+/// a screened optimum left unpolished.
+fn ended_below(runs: &[Run], i: usize, bar: f64, screened: bool) -> bool {
+    let ended = runs[i].fate == Fate::Finished || (screened && runs[i].fate == Fate::Unpolished);
+    ended && runs[i].outcome.objective <= bar
+}
+
+/// How many starts reached `bar` (by their own run or the run they merged
+/// into), and how many of them by their own run.
+fn reached_within(runs: &[Run], bar: f64, screened: bool) -> (usize, usize) {
+    let all = (0..runs.len())
+        .filter(|&i| ended_below(runs, representative(runs, i), bar, screened))
+        .count();
+    let alone = (0..runs.len())
+        .filter(|&i| ended_below(runs, i, bar, screened))
+        .count();
+    (all, alone)
 }
 
 /// The warnings a search's tally carries: failed starts, a best found by
@@ -503,12 +576,52 @@ mod tests {
             reached_best_alone: 1,
             reached_best_fit: total,
             reached_best_fit_alone: 1,
+            reached_correlated: total,
+            inflation: 1.0,
             abandoned: 0,
             merged: total - 1,
             unpolished: 0,
             refined,
             explored_best_fit,
             best: 0,
+        }
+    }
+
+    /// Three finished runs at F = 1, 1.002 and 1.2 with n − q = 1000: the
+    /// white bar (1.001) counts the best alone; κ = 100 (bar 1.1) adds the
+    /// second, κ = 300 (bar 1.3) all three; κ below 1 or NaN counts as 1.
+    #[test]
+    fn the_correlated_count_widens_the_bar_by_the_inflation() {
+        let run = |objective: f64| Run {
+            outcome: Outcome {
+                parameters: vec![objective],
+                objective,
+                iterations: 1,
+                evaluations: 1,
+                stop: Stop::Objective,
+            },
+            fate: Fate::Finished,
+        };
+        let runs = vec![run(1.2), run(1.0), run(1.002)];
+        let starts = tally(&runs, 1000, 3).unwrap();
+        let mut found = Searched {
+            points: vec![vec![0.0]; 3],
+            runs,
+            starts,
+            freedom: 1000,
+        };
+        let counted = |found: &Searched| {
+            let s = found.starts;
+            (s.reached_best_fit, s.reached_correlated, s.inflation)
+        };
+        assert_eq!(counted(&found), (1, 1, 1.0));
+        found.count_correlated(100.0);
+        assert_eq!(counted(&found), (1, 2, 100.0));
+        found.count_correlated(300.0);
+        assert_eq!(counted(&found), (1, 3, 300.0));
+        for nonsense in [0.5, f64::NAN, f64::INFINITY] {
+            found.count_correlated(nonsense);
+            assert_eq!(counted(&found), (1, 1, 1.0), "{nonsense}");
         }
     }
 

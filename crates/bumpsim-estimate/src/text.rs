@@ -5,7 +5,7 @@
 
 use crate::multistart::Starts;
 use crate::uncertainty::{Parameter, Uncertainty};
-use bumpsim_core::units::{Dimension, format_quantity};
+use bumpsim_core::units::{Dimension, format_number, format_quantity};
 
 /// The parameter table: name, value, standard error, 95 % interval, and a
 /// note: fixed, at bound, or not determined by the data
@@ -81,7 +81,22 @@ pub fn starts_line(s: &Starts, iterations: usize, run_time: f64) -> String {
             s.reached_best, s.reached_best_alone
         ),
     ]
+    .into_iter()
+    .chain(correlated_line(s))
+    .collect::<Vec<_>>()
     .join("\n  ")
+}
+
+/// With the residuals' correlation stated (κ > 1), how many starts the data
+/// cannot tell from the best ([`Starts::reached_correlated`]).
+fn correlated_line(s: &Starts) -> Option<String> {
+    (s.inflation > 1.0).then(|| {
+        format!(
+            "  {} reached a fit the data cannot tell from the best (F within κ = {} noise variances)",
+            s.reached_correlated,
+            format_number(s.inflation, 4)
+        )
+    })
 }
 
 #[cfg(test)]
@@ -99,6 +114,8 @@ mod tests {
             reached_best_alone: many,
             reached_best_fit: many,
             reached_best_fit_alone: many,
+            reached_correlated: many,
+            inflation: 1.0,
             abandoned: many,
             merged: many,
             unpolished: many,
@@ -108,7 +125,17 @@ mod tests {
         };
         let text = starts_line(&s, 123_456, 1234.5);
         assert_eq!(text.lines().count(), 4, "{text}");
-        for line in text.lines() {
+        let inflated = Starts {
+            inflation: 1234.567,
+            ..s
+        };
+        let correlated = starts_line(&inflated, 123_456, 1234.5);
+        assert_eq!(correlated.lines().count(), 5, "{correlated}");
+        assert!(
+            correlated.ends_with("10000 reached a fit the data cannot tell from the best (F within κ = 1235 noise variances)"),
+            "{correlated}"
+        );
+        for line in text.lines().chain(correlated.lines()) {
             // printed after the caller's two-space indent
             assert!(
                 line.chars().count() + 2 <= 100,

@@ -130,7 +130,10 @@ fn identify_only(
     let free = objective.free().to_vec();
     let (lower, upper) = log_bounds(settings, &free);
     let make = || Objective::new(cases, settings.dof, &settings.bounds.fixed);
-    let found = search_of(cases, settings, &make, observer)?;
+    let mut found = search_of(cases, settings, &make, observer)?;
+    // the starts counted by what the data can tell apart as well: the
+    // residuals' variance inflation at the best (the effective samples)
+    found.count_correlated(crate::stats::effective(&objective, &found.best().parameters).time);
     let start = settings
         .start
         .clone()

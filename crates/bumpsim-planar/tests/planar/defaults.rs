@@ -43,7 +43,15 @@ pub(super) struct Scores {
     pub forward: [f64; 3],
     pub inertia: f64,
     pub grip: f64,
+    /// Starts at the best objective to 1e-6.
     pub reached: usize,
+    /// Starts at a fit the data cannot tell from the best (within κ noise
+    /// variances, `Starts::reached_correlated`).
+    pub correlated: usize,
+    /// Whether the starts ran at the final objective (their noise within
+    /// `CONFIRMED` of the final one): else they counted a first,
+    /// prior-dominated basin and say nothing of the final one.
+    pub at_final_noise: bool,
     pub seconds: f64,
     /// The measured held-out yaw inside its 90 % band, % of the samples
     /// (OFFSET40, NARROW-OFFSET), when judged (`bands::held_out_yaw`).
@@ -63,7 +71,7 @@ impl Scores {
             (self.forward[2] >= 85.0, "forward yaw rate"),
             (self.inertia.abs() <= 0.2, "I_z"),
             (self.grip.abs() <= 0.3, "μ"),
-            (self.reached >= 4, "starts"),
+            (self.correlated >= 4 && self.at_final_noise, "starts"),
             (self.band.is_none_or(|b| b[0] >= 80.0), "offset band"),
             (self.band.is_none_or(|b| b[1] >= 80.0), "face band"),
         ];
@@ -77,7 +85,7 @@ impl Scores {
             .band
             .map_or(String::new(), |b| format!(" {:.1} / {:.1} |", b[0], b[1]));
         format!(
-            "| {label} | {:.2} / {:.2} | {:.2} / {:.2} | {:.1} / {:.1} / {:.1} | {:+.1} | {:+.1} | {} |{band} {:.0} s | {} |",
+            "| {label} | {:.2} / {:.2} | {:.2} / {:.2} | {:.1} / {:.1} / {:.1} | {:+.1} | {:+.1} | {} / {}{} |{band} {:.0} s | {} |",
             self.offset[0],
             self.offset[1],
             self.narrow[0],
@@ -88,6 +96,12 @@ impl Scores {
             100.0 * self.inertia,
             100.0 * self.grip,
             self.reached,
+            self.correlated,
+            if self.at_final_noise {
+                ""
+            } else {
+                " (first basin)"
+            },
             self.seconds,
             match self.misses() {
                 m if m.is_empty() => "all hold".to_string(),
@@ -139,6 +153,9 @@ pub(super) fn scored(
         inertia: value("body.yaw_inertia") / sheet["yaw_inertia"].as_f64().unwrap() - 1.0,
         grip: value("tyres.mu_lateral") / sheet["mu"].as_f64().unwrap() - 1.0,
         reached: result.starts.reached_best,
+        correlated: result.starts.reached_correlated,
+        at_final_noise: result.search_noise
+            <= bumpsim_planar::identify::CONFIRMED * result.prior_noise,
         seconds,
         band: None,
     }

@@ -186,7 +186,12 @@ fn the_yaw_rate_sensor_is_read_weighted_and_keeps_the_held_out_yaw() {
 /// training carries a yaw-rate sensor; nothing set by the test): held-out offset x ≥ 99.5 %, yaw ≥ 93 %;
 /// off-centre face x ≥ 99 %, yaw ≥ 80 %; the forward offset test's force,
 /// x-acceleration and yaw rate ≥ 90, 90, 85 %; I_z within 20 % and μ within
-/// 30 % of the truth; ≥ 4 of 16 starts reach the best.
+/// 30 % of the truth. The fourth criterion, ≥ 4 of 16 starts at the best,
+/// is not judged here: the default search's starts ran at many times the
+/// final noise and count a first, prior-dominated basin (docs/planar.md,
+/// "What the starts search"); with `confirm` the starts run at the final
+/// noise, and [`the_confirmed_documented_study_meets_every_threshold`]
+/// judges them.
 ///
 /// With the sills compared as measured (`objective = "acceleration"`,
 /// issue 44's domain measurement, docs/planar.md "The objective's domain";
@@ -254,6 +259,35 @@ fn the_documented_study_meets_issue_44s_thresholds() {
         super::defaults::scored(dir, study, result, *seconds)
     };
     eprintln!("{}", scores.row("documented study"));
+    let misses: Vec<_> = scores
+        .misses()
+        .into_iter()
+        .filter(|m| *m != "starts")
+        .collect();
+    assert!(misses.is_empty(), "{misses:?}");
+}
+
+/// The same study with `[model] confirm = true`: the full search repeated
+/// at the final noise, its starts drawn from the priors and eased
+/// (identify module `staged`). Every threshold of issue 44 holds, the
+/// fourth too: ≥ 4 of 16 starts reach a fit the data cannot tell from the
+/// best (within κ noise variances, `Starts::reached_correlated`), and they
+/// ran at the final noise. Measured (release, 12 s): offset x 99.75 %, yaw
+/// 99.61 %; face x 99.37 %, yaw 96.87 %; forward force 91.7 %,
+/// x-acceleration 91.6 %, yaw rate 94.3 %; I_z +6.0 %, μ −1.2 %; 5 of 16
+/// starts at the best (5 to 1e-6); bands 100.0 / 100.0 % inside.
+#[test]
+fn the_confirmed_documented_study_meets_every_threshold() {
+    let Some(dir) = series() else { return };
+    let mut study = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
+    study.setup.confirm = true;
+    let clock = std::time::Instant::now();
+    let result = study.identified(&|| {}).unwrap();
+    let mut scores = super::defaults::scored(&dir, &study, &result, clock.elapsed().as_secs_f64());
+    let yaw = super::bands::held_out_yaw(&study, &result);
+    scores.band = Some(yaw.map(|j| j.inside_percent));
+    eprintln!("{}", scores.row("documented study, confirmed"));
+    assert!(scores.at_final_noise, "{result:?}");
     assert!(scores.misses().is_empty(), "{:?}", scores.misses());
 }
 
@@ -391,7 +425,12 @@ fn the_documented_study_on_varied_cars() {
     // width held in the search (ca350d7) car 3's forward x-acceleration
     // prints 90.0 % and lies just below 90 (the measured floor, 89.9 %)
     for (seed, scores) in documented_on(&seeds("1,2,3")) {
-        let misses = scores.misses();
+        // the default search's starts count a first, prior-dominated basin
+        let misses: Vec<_> = scores
+            .misses()
+            .into_iter()
+            .filter(|m| *m != "starts")
+            .collect();
         let floor = misses == ["forward x-acc"] && scores.forward[1] >= 89.9;
         assert!(
             misses.is_empty() || floor,
@@ -621,7 +660,15 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
 #[test]
 #[ignore = "six series, 8-17 s each in release"]
 fn the_documented_study_on_unseen_cars() {
-    let unmet = ["offset x", "face x", "forward force", "forward x-acc"];
+    // the default search's starts count a first, prior-dominated basin
+    // (`BUMPSIM_CONFIRM=1` judges them at the final noise)
+    let unmet = [
+        "offset x",
+        "face x",
+        "forward force",
+        "forward x-acc",
+        "starts",
+    ];
     for (seed, scores) in documented_on(&seeds("4,5,6,7,8,9")) {
         let misses: Vec<_> = scores
             .misses()

@@ -219,6 +219,8 @@ struct StartsDef {
     reached_best_alone: usize,
     reached_best_fit: usize,
     reached_best_fit_alone: usize,
+    reached_correlated: usize,
+    inflation: f64,
     abandoned: usize,
     merged: usize,
     unpolished: usize,
