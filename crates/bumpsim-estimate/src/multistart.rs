@@ -60,6 +60,10 @@ pub struct Starts {
     /// `reached_best_fit` until a model states κ
     /// ([`Searched::count_correlated`]).
     pub reached_correlated: usize,
+    /// Exploring starts of `reached_correlated` (`explored_best_fit` with
+    /// the residuals' correlation counted): independent draws that found a
+    /// fit the data cannot tell from the best.
+    pub explored_correlated: usize,
     /// The variance inflation κ ≥ 1 (dimensionless) at the best that
     /// `reached_correlated` counts with; 1 where the model stated none.
     pub inflation: f64,
@@ -115,6 +119,8 @@ pub struct Searched {
     pub starts: Starts,
     /// n − q of the problem (residuals less free parameters).
     freedom: usize,
+    /// How many of `runs` (the first ones) explored.
+    exploring: usize,
 }
 
 impl Searched {
@@ -168,6 +174,7 @@ impl Searched {
         let best = self.runs[self.starts.best].outcome.objective;
         let bar = best * (1.0 + inflation / self.freedom.max(1) as f64) + 1e-300;
         self.starts.reached_correlated = reached_within(&self.runs, bar, true).0;
+        self.starts.explored_correlated = explored_within(&self.runs, self.exploring, bar);
         self.starts.inflation = inflation;
     }
 }
@@ -248,6 +255,7 @@ pub fn search<P: LeastSquares>(
         points,
         starts,
         freedom,
+        exploring: first,
     })
 }
 
@@ -293,6 +301,7 @@ pub fn alone<P: LeastSquares>(
         points: vec![start],
         starts,
         freedom,
+        exploring: 1,
     })
 }
 
@@ -362,9 +371,8 @@ pub fn tally(runs: &[Run], freedom: usize, exploring: usize) -> Result<Starts, A
         merged: fate(|f| matches!(f, Fate::Merged(_))),
         unpolished: fate(|f| *f == Fate::Unpolished),
         refined: runs.len() - exploring,
-        explored_best_fit: (0..exploring)
-            .filter(|&i| ended_below(runs, representative(runs, i), noise, true))
-            .count(),
+        explored_best_fit: explored_within(runs, exploring, noise),
+        explored_correlated: explored_within(runs, exploring, noise),
         best,
     })
 }
@@ -374,6 +382,14 @@ pub fn tally(runs: &[Run], freedom: usize, exploring: usize) -> Result<Starts, A
 fn ended_below(runs: &[Run], i: usize, bar: f64, screened: bool) -> bool {
     let ended = runs[i].fate == Fate::Finished || (screened && runs[i].fate == Fate::Unpolished);
     ended && runs[i].outcome.objective <= bar
+}
+
+/// How many of the first `exploring` starts reached `bar` (screened
+/// optima count), by their own run or the run they merged into.
+fn explored_within(runs: &[Run], exploring: usize, bar: f64) -> usize {
+    (0..exploring.min(runs.len()))
+        .filter(|&i| ended_below(runs, representative(runs, i), bar, true))
+        .count()
 }
 
 /// How many starts reached `bar` (by their own run or the run they merged
@@ -413,9 +429,16 @@ pub fn warnings(starts: &Starts, best: &Outcome) -> Vec<String> {
 /// no better one exists.
 pub fn single_start_warning(starts: &Starts) -> Option<String> {
     let exploring = starts.total - starts.refined;
-    if exploring < 2 || starts.explored_best_fit > 1 {
+    if exploring < 2 || starts.explored_correlated > 1 {
         return None;
     }
+    let within = match starts.inflation > 1.0 {
+        true => format!(
+            "within κ = {} noise variances",
+            bumpsim_core::units::format_number(starts.inflation, 4)
+        ),
+        false => "within the noise".to_string(),
+    };
     let around = match starts.refined {
         0 => String::new(),
         n => format!(
@@ -423,8 +446,8 @@ pub fn single_start_warning(starts: &Starts) -> Option<String> {
         ),
     };
     Some(format!(
-        "{} of the {exploring} exploring starts came within the noise of the best objective{around}: a better minimum may exist; raise the number of starts",
-        starts.explored_best_fit
+        "{} of the {exploring} exploring starts came {within} of the best objective{around}: a better minimum may exist; raise the number of starts",
+        starts.explored_correlated
     ))
 }
 
@@ -577,6 +600,7 @@ mod tests {
             reached_best_fit: total,
             reached_best_fit_alone: 1,
             reached_correlated: total,
+            explored_correlated: explored_best_fit,
             inflation: 1.0,
             abandoned: 0,
             merged: total - 1,
@@ -603,25 +627,38 @@ mod tests {
             fate: Fate::Finished,
         };
         let runs = vec![run(1.2), run(1.0), run(1.002)];
-        let starts = tally(&runs, 1000, 3).unwrap();
+        let starts = tally(&runs, 1000, 2).unwrap();
         let mut found = Searched {
             points: vec![vec![0.0]; 3],
             runs,
             starts,
             freedom: 1000,
+            exploring: 2,
         };
         let counted = |found: &Searched| {
             let s = found.starts;
             (s.reached_best_fit, s.reached_correlated, s.inflation)
         };
+        let explored = |found: &Searched| found.starts.explored_correlated;
         assert_eq!(counted(&found), (1, 1, 1.0));
+        // the first two starts explored: only the best within the noise
+        let warned = single_start_warning(&found.starts).unwrap();
+        assert!(
+            warned.starts_with("1 of the 2 exploring starts came within the noise of"),
+            "{warned}"
+        );
         found.count_correlated(100.0);
-        assert_eq!(counted(&found), (1, 2, 100.0));
+        assert_eq!((counted(&found), explored(&found)), ((1, 2, 100.0), 1));
         found.count_correlated(300.0);
-        assert_eq!(counted(&found), (1, 3, 300.0));
+        assert_eq!((counted(&found), explored(&found)), ((1, 3, 300.0), 2));
+        assert_eq!(single_start_warning(&found.starts), None);
         for nonsense in [0.5, f64::NAN, f64::INFINITY] {
             found.count_correlated(nonsense);
-            assert_eq!(counted(&found), (1, 1, 1.0), "{nonsense}");
+            assert_eq!(
+                (counted(&found), explored(&found)),
+                ((1, 1, 1.0), 1),
+                "{nonsense}"
+            );
         }
     }
 

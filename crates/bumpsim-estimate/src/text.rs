@@ -115,6 +115,7 @@ mod tests {
             reached_best_fit: many,
             reached_best_fit_alone: many,
             reached_correlated: many,
+            explored_correlated: many,
             inflation: 1.0,
             abandoned: many,
             merged: many,

@@ -220,6 +220,7 @@ struct StartsDef {
     reached_best_fit: usize,
     reached_best_fit_alone: usize,
     reached_correlated: usize,
+    explored_correlated: usize,
     inflation: f64,
     abandoned: usize,
     merged: usize,
