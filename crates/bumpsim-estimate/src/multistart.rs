@@ -10,10 +10,10 @@
 //! statistic `n ln(F/F_best)` is about 1, where a 5 % test needs 3.84).
 //!
 //! That treats the residuals as independent. Sampled test channels are
-//! not: with a lag-1 correlation ρ each residual carries 1/κ of an
-//! independent one, κ = (1 + ρ)/(1 − ρ) the variance inflation the
-//! intervals already use, and the data cannot tell apart fits within
-//! `F ≤ F_best (1 + κ/(n − q))`. A model that knows κ at the best counts
+//! not: each residual carries 1/κ of an independent one, κ the variance
+//! inflation (the integrated autocorrelation time, `(1 + ρ)/(1 − ρ)` for
+//! a lag-1 correlation ρ alone; [`crate::effective`]), and the data cannot
+//! tell apart fits within `F ≤ F_best (1 + κ/(n − q))`. A model that knows κ at the best counts
 //! the starts by that bar too ([`Searched::count_correlated`],
 //! [`Starts::reached_correlated`]); the race keeps the first bar.
 

@@ -79,21 +79,25 @@ pub(super) struct Plan<'a> {
 
 /// The noise of one residual of `objective` at `p` (∞-safe).
 pub(super) fn noise_at(objective: &Objective, p: &[f64]) -> f64 {
-    match fit_at(objective, p) {
-        Some((f, n, inflation)) => noise(f, n, p.len(), inflation),
-        None => 1.0,
-    }
-}
-
-/// The objective F (m²), the residual count and the residuals' variance
-/// inflation κ = (1 + ρ)/(1 − ρ) (ρ their lag-1 correlation) at `p`;
-/// `None` where the car cannot be simulated.
-fn fit_at(objective: &Objective, p: &[f64]) -> Option<(f64, usize, f64)> {
     let mut r = vec![0.0; objective.residual_count()];
     let ok = objective.evaluate(p, &mut r, None);
     let f: f64 = r.iter().map(|v| v * v).sum();
     let rho = lag_one(&r, &objective.series());
-    (ok && f.is_finite()).then_some((f, r.len(), (1.0 + rho) / (1.0 - rho)))
+    let inflation = (1.0 + rho) / (1.0 - rho);
+    match ok && f.is_finite() {
+        true => noise(f, r.len(), p.len(), inflation),
+        false => 1.0,
+    }
+}
+
+/// The residuals' integrated autocorrelation time τ at `p` (the variance
+/// inflation the intervals count, [`super::CORRELATION`]); `None` where the
+/// car cannot be simulated.
+fn spectral_inflation(objective: &Objective, p: &[f64]) -> Option<f64> {
+    let mut r = vec![0.0; objective.residual_count()];
+    let ok = objective.evaluate(p, &mut r, None) && r.iter().all(|v| v.is_finite());
+    let method = bumpsim_estimate::effective::Method::Spectral;
+    ok.then(|| bumpsim_estimate::effective::of_residuals(&r, &objective.series(), method).time)
 }
 
 /// With `confirm` ([`super::Setup::confirm`]), the full search runs again while its starts
@@ -220,9 +224,9 @@ fn full(
     };
     let mut searched = multistart::search(&make, points, &search, observer)?;
     // the starts counted by what the data can tell apart (the residuals'
-    // correlation at the search's best), before the polish below changes
-    // the best run's objective
-    if let Some((_, _, inflation)) = fit_at(objective, &searched.best().parameters) {
+    // correlation at the search's best, the intervals' τ), before the
+    // polish below changes the best run's objective
+    if let Some(inflation) = spectral_inflation(objective, &searched.best().parameters) {
         searched.count_correlated(inflation);
     }
     // held priors: the best is polished at least once under the stated ones
