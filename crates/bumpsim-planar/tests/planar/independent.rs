@@ -103,7 +103,44 @@ fn an_independent_asymmetric_series_predicts_its_held_out_tests() {
     );
     let close = (inertia.value - truth_inertia).abs() <= 0.25 * truth_inertia;
     assert!(close || inertia.determined == Some(false), "{inertia:?}");
-    assert!(result.starts.reached_best_fit >= 4, "{:?}", result.starts);
+}
+
+/// Issue 44's search criterion on this series: ≥ 4 of 16 starts reach a
+/// fit the data cannot tell from the best, counted where the starts ran at
+/// the final noise. The default search's starts weigh the priors at 10.2×
+/// it (`bumpsim identify` on the series' `study.toml` prints so) and count
+/// that first basin (16 of 16); with `confirm` the search runs again at
+/// the final noise. Measured (release, 2 s): 16 of 16 there, within κ =
+/// 34.3 noise variances; held-out OFFSET40 x 99.85 %, yaw 96.07 %,
+/// POLE-OFFSET x 99.31 %, yaw 97.68 %.
+#[test]
+fn the_confirmed_search_finds_its_best_from_most_starts() {
+    use bumpsim_planar::identify::CONFIRMED;
+    let Some(dir) = series() else { return };
+    let mut study = PlanarStudy::read(&dir.join("study.toml")).unwrap();
+    let first = identify(&study.cases, &study.setup, &|| {}).unwrap();
+    assert!(
+        first.search_noise > CONFIRMED * first.prior_noise,
+        "{first:?}"
+    );
+    study.setup.confirm = true;
+    let result = identify(&study.cases, &study.setup, &|| {}).unwrap();
+    eprintln!("starts {:?}", result.starts);
+    assert!(result.search_noise <= CONFIRMED * result.prior_noise);
+    assert!(result.starts.reached_correlated >= 4, "{:?}", result.starts);
+    assert!(result.starts.inflation > 1.0, "{:?}", result.starts);
+    let held: Vec<_> = study
+        .validation
+        .iter()
+        .map(|c| predict(&result.car, c).unwrap().fit)
+        .collect();
+    for f in &held {
+        eprintln!(
+            "held out {}: x {:.2} %, yaw {:.2} %",
+            f.name, f.fit_x, f.fit_yaw
+        );
+    }
+    assert!(held[0].fit_x >= 99.5 && held[0].fit_yaw >= 95.0, "{held:?}");
 }
 
 /// Issue 32: results stable to input rounding. A direction written with
