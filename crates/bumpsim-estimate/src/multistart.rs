@@ -13,9 +13,10 @@
 //! not: each residual carries 1/κ of an independent one, κ the variance
 //! inflation (the integrated autocorrelation time, `(1 + ρ)/(1 − ρ)` for
 //! a lag-1 correlation ρ alone; [`crate::effective`]), and the data cannot
-//! tell apart fits within `F ≤ F_best (1 + κ/(n − q))`. A model that knows κ at the best counts
-//! the starts by that bar too ([`Searched::count_correlated`],
-//! [`Starts::reached_correlated`]); the race keeps the first bar.
+//! tell apart fits within `F ≤ F_best (1 + κ/(n − q))`. A model that knows
+//! κ at the best counts the starts by that bar too
+//! ([`Searched::count_correlated`], [`Starts::reached_correlated`]); the
+//! race keeps the first bar.
 
 use crate::lm::{self, LeastSquares, Outcome};
 use crate::observer::Observer;
