@@ -65,8 +65,12 @@ pub struct Starts {
     /// the residuals' correlation counted): independent draws that found a
     /// fit the data cannot tell from the best.
     pub explored_correlated: usize,
-    /// The variance inflation κ ≥ 1 (dimensionless) at the best that
-    /// `reached_correlated` counts with; 1 where the model stated none.
+    /// The variance inflation κ ≥ 1 (dimensionless) that
+    /// `reached_correlated` counts with: the model's, at the search's best
+    /// before any polish (the planar and 1-D identifications state the
+    /// residuals' integrated autocorrelation time there; not necessarily
+    /// the inflation their intervals apply at the final car); 1 where the
+    /// model stated none.
     pub inflation: f64,
     /// Starts abandoned at a stage end, too far above the incumbent
     /// ([`crate::search::STAGES`]).

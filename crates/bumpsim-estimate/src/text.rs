@@ -57,9 +57,10 @@ pub fn parameter_table(parameters: &[Parameter], theta: &[f64], u: &Uncertainty)
 /// The start statistics: run (and refined around the best), converged,
 /// abandoned, not polished, failed; the best start's iterations; time (s);
 /// reached the best fit (within the noise) and the best objective (to
-/// 1e-6), and by how many runs of their own. Four lines of at most about
-/// 100 characters (one line ran to 300), the later ones indented by four
-/// spaces under the caller's own two.
+/// 1e-6), and by how many runs of their own; with κ stated, a fifth: the
+/// starts within κ noise variances. Lines of at most about 100 characters
+/// (one line ran to 300), the later ones indented by four spaces under the
+/// caller's own two.
 pub fn starts_line(s: &Starts, iterations: usize, run_time: f64) -> String {
     [
         format!(

@@ -49,15 +49,17 @@ pub fn python_available(module: &str) -> bool {
 /// one. Panics with the script's stderr when it fails.
 ///
 /// The tests of one binary run on parallel threads and often share a
-/// series: one lock serialises the check and the generation, so a thread
-/// never reads a file another thread's generator is rewriting (a clean
-/// checkout's first run would otherwise regenerate the folder once per
-/// thread, and a reader could meet a truncated CSV).
+/// series: a lock per folder serialises its check and generation, so a
+/// thread never reads a file another thread's generator is rewriting (a
+/// clean checkout's first run would otherwise regenerate the folder once
+/// per thread, and a reader could meet a truncated CSV), while series in
+/// other folders are generated alongside.
 pub fn generated(script: &std::path::Path, out: &std::path::Path, args: &[&str], marker: &str) {
-    static GENERATING: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    let folder = folder_lock(out);
     // A generator that panicked in another test leaves the lock poisoned;
-    // the stamp decides what is current, so the guard is taken regardless.
-    let _guard = GENERATING
+    // its stamp was removed before it ran, so the folder counts as stale
+    // and the guard is taken regardless.
+    let _guard = folder
         .lock()
         .unwrap_or_else(std::sync::PoisonError::into_inner);
     let stamp = out.join(".generated-by");
@@ -66,10 +68,27 @@ pub fn generated(script: &std::path::Path, out: &std::path::Path, args: &[&str],
     if current && out.join(marker).is_file() {
         return;
     }
+    // a run that fails half-way must not leave a current stamp behind
+    let _ = std::fs::remove_file(&stamp);
     let mut all = vec![out.as_os_str()];
     all.extend(args.iter().map(std::ffi::OsStr::new));
     python(script, &all);
     std::fs::write(&stamp, version).unwrap_or_else(|e| panic!("{}: {e}", stamp.display()));
+}
+
+/// The lock of one generated folder ([`generated`]), made on first use.
+fn folder_lock(out: &std::path::Path) -> std::sync::Arc<std::sync::Mutex<()>> {
+    type Locks =
+        std::collections::HashMap<std::path::PathBuf, std::sync::Arc<std::sync::Mutex<()>>>;
+    static LOCKS: std::sync::Mutex<Option<Locks>> = std::sync::Mutex::new(None);
+    let mut locks = LOCKS
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    locks
+        .get_or_insert_with(Locks::new)
+        .entry(out.to_path_buf())
+        .or_default()
+        .clone()
 }
 
 /// Runs `python3 SCRIPT ARGS...` (a peer of `tests/peers/`) and returns
@@ -227,6 +246,20 @@ mod tests {
             !out.status.success(),
             "the probe must panic under {REQUIRE}"
         );
+    }
+
+    /// One lock per generated folder: the same path shares it, another
+    /// folder has its own (generated alongside).
+    #[test]
+    fn a_folder_has_one_lock_and_another_folder_its_own() {
+        let dir = std::env::temp_dir();
+        let (a, b) = (folder_lock(&dir.join("a")), folder_lock(&dir.join("a")));
+        let c = folder_lock(&dir.join("c"));
+        assert!(std::sync::Arc::ptr_eq(&a, &b));
+        assert!(!std::sync::Arc::ptr_eq(&a, &c));
+        let _held = a.lock().unwrap();
+        assert!(c.try_lock().is_ok(), "another folder waits for nobody");
+        assert!(b.try_lock().is_err(), "the same folder waits");
     }
 
     #[test]

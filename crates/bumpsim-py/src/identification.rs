@@ -194,7 +194,8 @@ impl Identification {
         from_json(py, &self.result().cases)
     }
     /// Start statistics (total, converged, failed, reached_best_fit,
-    /// reached_best_fit_alone, reached_correlated and its inflation κ,
+    /// reached_best_fit_alone, reached_correlated and explored_correlated
+    /// with their inflation κ,
     /// reached_best, reached_best_alone,
     /// explored_best_fit, abandoned, merged, unpolished, refined, best).
     #[getter]

@@ -90,14 +90,18 @@ pub(super) fn noise_at(objective: &Objective, p: &[f64]) -> f64 {
     }
 }
 
-/// The residuals' integrated autocorrelation time τ at `p` (the variance
-/// inflation the intervals count, [`super::CORRELATION`]); `None` where the
-/// car cannot be simulated.
-fn spectral_inflation(objective: &Objective, p: &[f64]) -> Option<f64> {
+/// The starts of `searched` counted by what the data can tell apart: with
+/// the residuals' integrated autocorrelation time τ at its best (the
+/// inflation the intervals count, [`super::CORRELATION`]); left as tallied
+/// where the car cannot be simulated there.
+fn count_correlated(objective: &Objective, searched: &mut Searched) {
     let mut r = vec![0.0; objective.residual_count()];
-    let ok = objective.evaluate(p, &mut r, None) && r.iter().all(|v| v.is_finite());
-    let method = bumpsim_estimate::effective::Method::Spectral;
-    ok.then(|| bumpsim_estimate::effective::of_residuals(&r, &objective.series(), method).time)
+    let ok = objective.evaluate(&searched.best().parameters, &mut r, None);
+    if ok && r.iter().all(|v| v.is_finite()) {
+        let method = bumpsim_estimate::effective::Method::Spectral;
+        let tau = bumpsim_estimate::effective::of_residuals(&r, &objective.series(), method).time;
+        searched.count_correlated(tau);
+    }
 }
 
 /// With `confirm` ([`super::Setup::confirm`]), the full search runs again while its starts
@@ -223,12 +227,8 @@ fn full(
         Priored::new(objective.clone(), searching.to_vec(), sigma).expect("the priors were checked")
     };
     let mut searched = multistart::search(&make, points, &search, observer)?;
-    // the starts counted by what the data can tell apart (the residuals'
-    // correlation at the search's best, the intervals' τ), before the
-    // polish below changes the best run's objective
-    if let Some(inflation) = spectral_inflation(objective, &searched.best().parameters) {
-        searched.count_correlated(inflation);
-    }
+    // before the polish below changes the best run's objective
+    count_correlated(objective, &mut searched);
     // held priors: the best is polished at least once under the stated ones
     let mut held = searching != plan.priors;
     for _ in 0..3 {

@@ -183,7 +183,10 @@ fn series(first: usize, count: usize) -> Option<PathBuf> {
     if !bumpsim_peers::python_available("numpy") {
         return None;
     }
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("planar-coverage");
+    // a folder per seed range: two ranges in one folder would flip its
+    // stamp and rewrite it under the other test's reads
+    let out =
+        Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("planar-coverage-{first}-{count}"));
     let script =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/planar_independent.py");
     let seeds = format!("{first}:{count}");

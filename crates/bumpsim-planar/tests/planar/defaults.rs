@@ -154,8 +154,9 @@ pub(super) fn scored(
         grip: value("tyres.mu_lateral") / sheet["mu"].as_f64().unwrap() - 1.0,
         reached: result.starts.reached_best,
         correlated: result.starts.reached_correlated,
-        at_final_noise: result.search_noise
-            <= bumpsim_planar::identify::CONFIRMED * result.prior_noise,
+        // without priors the noise weighs nothing: every search is final
+        at_final_noise: result.priors.is_empty()
+            || result.search_noise <= bumpsim_planar::identify::CONFIRMED * result.prior_noise,
         seconds,
         band: None,
     }

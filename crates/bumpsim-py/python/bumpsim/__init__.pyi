@@ -269,7 +269,9 @@ class Identification:
     bic: float
     cases: list[dict[str, Any]]
     """Per-case fit: name, sse (m²), fit_percent, samples, rating, window (s)."""
-    starts: dict[str, int]
+    starts: dict[str, int | float]
+    """Start counts; ``inflation`` (κ, the residuals' variance inflation the
+    ``reached_correlated`` and ``explored_correlated`` counts use) a float."""
     start: list[float]
     compared: dict[str, Any] | None
     priors: list[dict[str, Any]]

@@ -219,8 +219,11 @@ struct StartsDef {
     reached_best_alone: usize,
     reached_best_fit: usize,
     reached_best_fit_alone: usize,
+    #[serde(default)]
     reached_correlated: usize,
+    #[serde(default)]
     explored_correlated: usize,
+    #[serde(default = "unit_inflation")]
     inflation: f64,
     abandoned: usize,
     merged: usize,
@@ -228,6 +231,32 @@ struct StartsDef {
     refined: usize,
     explored_best_fit: usize,
     best: usize,
+}
+
+/// An identification pickled before the correlated counts: κ 1, whose
+/// counts are the white ones ([`starts_state`]).
+fn unit_inflation() -> f64 {
+    1.0
+}
+
+/// [`Starts`] through [`StartsDef`]; where κ is 1 (none stated, or a
+/// pickle from before the correlated counts) the correlated counts are the
+/// white ones, as the tally sets them.
+mod starts_state {
+    use super::*;
+
+    pub fn serialize<S: serde::Serializer>(s: &Starts, serializer: S) -> Result<S::Ok, S::Error> {
+        StartsDef::serialize(s, serializer)
+    }
+
+    pub fn deserialize<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Starts, D::Error> {
+        let mut s = StartsDef::deserialize(d)?;
+        if s.inflation <= 1.0 {
+            s.reached_correlated = s.reached_best_fit;
+            s.explored_correlated = s.explored_best_fit;
+        }
+        Ok(s)
+    }
 }
 
 /// The simpler model, its chain model as parts.
@@ -346,7 +375,7 @@ struct IdentificationDef {
     residuals: usize,
     #[serde(with = "UncertaintyDef")]
     uncertainty: Uncertainty,
-    #[serde(with = "StartsDef")]
+    #[serde(with = "starts_state")]
     starts: Starts,
     iterations: usize,
     start: Vec<f64>,
