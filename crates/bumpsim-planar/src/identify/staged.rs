@@ -302,8 +302,9 @@ pub const EASED_ITERATIONS: usize = 100;
 /// weighed at [`EASED`] times `sigma` (kept where that fit fails): on the
 /// yaw-rate generator's cars the confirming starts drawn from the priors
 /// and run at the final noise alone ended far above the best (10 of 20
-/// cars reached it from 4 or more of 16 starts); eased, 15 of 20
-/// (docs/planar.md, "What the starts search").
+/// cars reached it to 1e-6 from 4 or more of 16 starts); eased, 15 of 20
+/// (all 20 within κ noise variances; docs/planar.md, "What the starts
+/// search").
 fn eased(
     points: Vec<Vec<f64>>,
     objective: &Objective,
