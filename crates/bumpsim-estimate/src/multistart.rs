@@ -66,11 +66,12 @@ pub struct Starts {
     /// fit the data cannot tell from the best.
     pub explored_correlated: usize,
     /// The variance inflation κ ≥ 1 (dimensionless) that
-    /// `reached_correlated` counts with: the model's, at the search's best
-    /// before any polish (the planar and 1-D identifications state the
-    /// residuals' integrated autocorrelation time there; not necessarily
-    /// the inflation their intervals apply at the final car); 1 where the
-    /// model stated none.
+    /// `reached_correlated` counts with: the model's, at the best of the
+    /// objective the runs ended in (the 1-D identification states the
+    /// residuals' integrated autocorrelation time at its data-only search's
+    /// best, not necessarily the inflation its intervals apply; the planar
+    /// one at its final best, after its starts were carried there, the τ
+    /// its intervals count); 1 where the model stated none.
     pub inflation: f64,
     /// Starts abandoned at a stage end, too far above the incumbent
     /// ([`crate::search::STAGES`]).
@@ -181,6 +182,52 @@ impl Searched {
         self.starts.reached_correlated = reached_within(&self.runs, bar, true).0;
         self.starts.explored_correlated = explored_within(&self.runs, self.exploring, bar);
         self.starts.inflation = inflation;
+    }
+}
+
+impl Searched {
+    /// Tallies the starts again after their runs' outcomes changed: each
+    /// run carried on into another objective (the planar identification
+    /// carries its starts along its continuation in the priors' weight),
+    /// the best and every count anew in that objective; κ back to 1 until
+    /// [`Searched::count_correlated`] states it again. An error when no run
+    /// is left finished with a finite objective.
+    ///
+    /// ```
+    /// # use bumpsim_estimate::lm::{self, LeastSquares};
+    /// # use bumpsim_estimate::multistart::{self, Search};
+    /// # use bumpsim_estimate::observer::Silent;
+    /// # use nalgebra::DMatrix;
+    /// /// r = (p² − 1, 0.3): F = (p² − 1)² + 0.09, least at p = −1 and at p = 1.
+    /// struct Wells;
+    /// impl LeastSquares for Wells {
+    ///     fn residual_count(&self) -> usize { 2 }
+    ///     fn parameter_count(&self) -> usize { 1 }
+    ///     fn evaluate(&self, p: &[f64], r: &mut [f64], j: Option<&mut DMatrix<f64>>) -> bool {
+    ///         r[0] = p[0] * p[0] - 1.0;
+    ///         r[1] = 0.3;
+    ///         if let Some(j) = j { j[(0, 0)] = 2.0 * p[0]; j[(1, 0)] = 0.0; }
+    ///         true
+    ///     }
+    /// }
+    /// let search = Search {
+    ///     starts: 2, seed: 1, solver: lm::Settings::default(),
+    ///     lower: &[-10.0], upper: &[10.0], range: (&[-10.0], &[10.0]),
+    /// };
+    /// let points = vec![vec![3.0], vec![-2.0]];
+    /// let mut found = multistart::search(&|| Wells, points, &search, &Silent).unwrap();
+    /// // both wells are as deep: both starts at the best
+    /// assert_eq!(found.starts.reached_best, 2);
+    /// // the best start carried on to a higher objective elsewhere
+    /// let (best, other) = (found.starts.best, 1 - found.starts.best);
+    /// found.runs[best].outcome.objective = 5.0;
+    /// found.tally_again().unwrap();
+    /// assert_eq!(found.starts.best, other);
+    /// assert_eq!(found.starts.reached_best, 1);
+    /// ```
+    pub fn tally_again(&mut self) -> Result<(), AllFailed> {
+        self.starts = tally(&self.runs, self.freedom, self.exploring)?;
+        Ok(())
     }
 }
 

@@ -37,7 +37,7 @@
 //! confirm = false           # optional (false): true runs the full search again from its
 //!                           # polished best, the priors weighed at the noise there, until
 //!                           # the starts ran within a factor 2 of the final noise, so that
-//!                           # their tally counts the final objective (two or three times the
+//!                           # they search the final objective itself (two or three times the
 //!                           # search's time; identify module `staged`)
 //!
 //! [identification]          # optional

@@ -312,7 +312,8 @@ pub fn identification_summary(
 
 /// The line saying that the starts ran with the priors weighed at a noise
 /// more than [`crate::identify::CONFIRMED`] times the final one (identify
-/// module `staged`): their tally then counts the priors' basin; empty
+/// module `staged`): each start then reached the data along the
+/// continuation in the priors' weight, where the tally counts them; empty
 /// otherwise.
 fn search_noise_line(result: &crate::identify::PlanarIdentification) -> String {
     let ratio = result.search_noise / result.prior_noise;
@@ -321,7 +322,7 @@ fn search_noise_line(result: &crate::identify::PlanarIdentification) -> String {
     }
     let unit = result.domain.unit();
     format!(
-        "    the starts weighed the priors at a noise of {} {unit}, {}× the final {} {unit}: they searched near the priors' centres, the polishing then moved the car to the data, and the tally counts that first basin ([model] confirm = true searches again at the final noise)\n",
+        "    the starts weighed the priors at a noise of {} {unit}, {}× the final {} {unit}: they searched near the priors' centres, each start that ended on its own was then carried along the polishing's continuation to the data (those merged into it with it), and the tally counts where they ended ([model] confirm = true searches again at the final noise)\n",
         bumpsim_core::units::format_number(result.search_noise, 4),
         bumpsim_core::units::format_number(ratio, 3),
         bumpsim_core::units::format_number(result.prior_noise, 4),

@@ -209,8 +209,8 @@ pub struct Setup {
     /// Run the full search again from its polished best with the priors
     /// weighed at the noise there, until its starts ran within a factor
     /// [`CONFIRMED`] of the final noise (at most [`CONFIRMING`] more
-    /// searches), so that the starts' tally counts the final objective
-    /// (module `staged`, `[model] confirm`; two or three times the search's
+    /// searches), so that the starts search the final objective itself, not
+    /// only their continuations end in it (module `staged`, `[model] confirm`; two or three times the search's
     /// time); false (the default): once, the starts weighing the priors at
     /// the symmetric optimum's noise.
     pub confirm: bool,

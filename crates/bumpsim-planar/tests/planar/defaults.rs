@@ -48,10 +48,6 @@ pub(super) struct Scores {
     /// Starts at a fit the data cannot tell from the best (within κ noise
     /// variances, `Starts::reached_correlated`).
     pub correlated: usize,
-    /// Whether the starts ran at the final objective (their noise within
-    /// `CONFIRMED` of the final one): else they counted a first,
-    /// prior-dominated basin and say nothing of the final one.
-    pub at_final_noise: bool,
     pub seconds: f64,
     /// The measured held-out yaw inside its 90 % band, % of the samples
     /// (OFFSET40, NARROW-OFFSET), when judged (`bands::held_out_yaw`).
@@ -71,7 +67,7 @@ impl Scores {
             (self.forward[2] >= 85.0, "forward yaw rate"),
             (self.inertia.abs() <= 0.2, "I_z"),
             (self.grip.abs() <= 0.3, "μ"),
-            (self.correlated >= 4 && self.at_final_noise, "starts"),
+            (self.correlated >= 4, "starts"),
             (self.band.is_none_or(|b| b[0] >= 80.0), "offset band"),
             (self.band.is_none_or(|b| b[1] >= 80.0), "face band"),
         ];
@@ -85,7 +81,7 @@ impl Scores {
             .band
             .map_or(String::new(), |b| format!(" {:.1} / {:.1} |", b[0], b[1]));
         format!(
-            "| {label} | {:.2} / {:.2} | {:.2} / {:.2} | {:.1} / {:.1} / {:.1} | {:+.1} | {:+.1} | {} / {}{} |{band} {:.0} s | {} |",
+            "| {label} | {:.2} / {:.2} | {:.2} / {:.2} | {:.1} / {:.1} / {:.1} | {:+.1} | {:+.1} | {} / {} |{band} {:.0} s | {} |",
             self.offset[0],
             self.offset[1],
             self.narrow[0],
@@ -97,11 +93,6 @@ impl Scores {
             100.0 * self.grip,
             self.reached,
             self.correlated,
-            if self.at_final_noise {
-                ""
-            } else {
-                " (first basin)"
-            },
             self.seconds,
             match self.misses() {
                 m if m.is_empty() => "all hold".to_string(),
@@ -154,9 +145,6 @@ pub(super) fn scored(
         grip: value("tyres.mu_lateral") / sheet["mu"].as_f64().unwrap() - 1.0,
         reached: result.starts.reached_best,
         correlated: result.starts.reached_correlated,
-        // without priors the noise weighs nothing: every search is final
-        at_final_noise: result.priors.is_empty()
-            || result.search_noise <= bumpsim_planar::identify::CONFIRMED * result.prior_noise,
         seconds,
         band: None,
     }

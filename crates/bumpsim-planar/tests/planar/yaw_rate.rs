@@ -186,12 +186,13 @@ fn the_yaw_rate_sensor_is_read_weighted_and_keeps_the_held_out_yaw() {
 /// training carries a yaw-rate sensor; nothing set by the test): held-out offset x ≥ 99.5 %, yaw ≥ 93 %;
 /// off-centre face x ≥ 99 %, yaw ≥ 80 %; the forward offset test's force,
 /// x-acceleration and yaw rate ≥ 90, 90, 85 %; I_z within 20 % and μ within
-/// 30 % of the truth. The fourth criterion, ≥ 4 of 16 starts at the best,
-/// is not judged here: the default search's starts ran at many times the
-/// final noise and count a first, prior-dominated basin (docs/planar.md,
-/// "What the starts search"); with `confirm` the starts run at the final
-/// noise, and [`the_confirmed_documented_study_meets_every_threshold`]
-/// judges them.
+/// 30 % of the truth; ≥ 4 of 16 starts at a fit the data cannot tell from
+/// the best (within κ noise variances): the default search's starts ran
+/// at many times the final noise and are each carried along the best's
+/// continuation to the final objective, where they are counted
+/// (docs/planar.md, "What the starts search"; measured: 11 of 16).
+/// [`the_confirmed_documented_study_meets_every_threshold`] judges the
+/// same with `confirm`.
 ///
 /// With the sills compared as measured (`objective = "acceleration"`,
 /// issue 44's domain measurement, docs/planar.md "The objective's domain";
@@ -259,11 +260,7 @@ fn the_documented_study_meets_issue_44s_thresholds() {
         super::defaults::scored(dir, study, result, *seconds)
     };
     eprintln!("{}", scores.row("documented study"));
-    let misses: Vec<_> = scores
-        .misses()
-        .into_iter()
-        .filter(|m| *m != "starts")
-        .collect();
+    let misses = scores.misses();
     assert!(misses.is_empty(), "{misses:?}");
 }
 
@@ -287,7 +284,8 @@ fn the_confirmed_documented_study_meets_every_threshold() {
     let yaw = super::bands::held_out_yaw(&study, &result);
     scores.band = Some(yaw.map(|j| j.inside_percent));
     eprintln!("{}", scores.row("documented study, confirmed"));
-    assert!(scores.at_final_noise, "{result:?}");
+    let confirmed = bumpsim_planar::identify::CONFIRMED * result.prior_noise;
+    assert!(result.search_noise <= confirmed, "{result:?}");
     assert!(scores.misses().is_empty(), "{:?}", scores.misses());
 }
 
@@ -425,12 +423,7 @@ fn the_documented_study_on_varied_cars() {
     // width held in the search (ca350d7) car 3's forward x-acceleration
     // prints 90.0 % and lies just below 90 (the measured floor, 89.9 %)
     for (seed, scores) in documented_on(&seeds("1,2,3")) {
-        // the default search's starts count a first, prior-dominated basin
-        let misses: Vec<_> = scores
-            .misses()
-            .into_iter()
-            .filter(|m| *m != "starts")
-            .collect();
+        let misses = scores.misses();
         let floor = misses == ["forward x-acc"] && scores.forward[1] >= 89.9;
         assert!(
             misses.is_empty() || floor,
@@ -660,15 +653,7 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
 #[test]
 #[ignore = "six series, 8-17 s each in release"]
 fn the_documented_study_on_unseen_cars() {
-    // the default search's starts count a first, prior-dominated basin
-    // (`BUMPSIM_CONFIRM=1` judges them at the final noise)
-    let unmet = [
-        "offset x",
-        "face x",
-        "forward force",
-        "forward x-acc",
-        "starts",
-    ];
+    let unmet = ["offset x", "face x", "forward force", "forward x-acc"];
     for (seed, scores) in documented_on(&seeds("4,5,6,7,8,9")) {
         let misses: Vec<_> = scores
             .misses()
