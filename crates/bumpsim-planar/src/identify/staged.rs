@@ -235,9 +235,9 @@ fn full(
     let held = searching != plan.priors;
     let first_best = searched.starts.best;
     let best = &mut searched.runs[first_best].outcome;
-    let path = continuation(objective, plan, best, sigma, held);
+    let (path, ended) = continuation(objective, plan, best, sigma, held);
     let sigma = path.last().copied().unwrap_or(sigma);
-    carried(objective, plan, &mut searched, first_best, &path)?;
+    carried(objective, plan, &mut searched, (first_best, ended), &path)?;
     count_correlated(objective, &mut searched);
     Ok((searched, sigma))
 }
@@ -257,15 +257,16 @@ fn full(
 /// and of cars 4, 6, 12 and 14 of tests/peers/planar_yaw_rate.py ended
 /// within one noise variance of their best as their representative did,
 /// every one, at 23–34 % more search time (docs/planar.md, "Each start
-/// carried to the final objective"). `done`: the run already carried;
-/// nothing to do without a continuation (`path` empty: the search noise
+/// carried to the final objective"). `done`: the run already carried,
+/// and whether its last polish held (else it is valued like the runs
+/// whose carrying failed part-way); nothing to do without a continuation (`path` empty: the search noise
 /// already within 10 % of the final one and no prior held apart, or no
 /// stated priors).
 fn carried(
     objective: &Objective,
     plan: &Plan,
     searched: &mut Searched,
-    done: usize,
+    (done, done_ended): (usize, bool),
     path: &[f64],
 ) -> Result<(), AllFailed> {
     let Some(&last) = path.last() else {
@@ -276,10 +277,16 @@ fn carried(
         if !counted || !run.outcome.objective.is_finite() {
             return;
         }
-        if i != done && run.fate == Fate::Finished {
-            carry_one(objective, plan, &mut run.outcome, path);
+        // a run whose last polish held has its objective in the last noise's
+        let ended = match (i == done, run.fate) {
+            (true, _) => done_ended,
+            (false, Fate::Finished) => carry_one(objective, plan, &mut run.outcome, path),
+            _ => false,
+        };
+        if !ended {
+            let problem = priored(objective, plan, last);
+            run.outcome.objective = valued(&problem, &run.outcome.parameters);
         }
-        run.outcome.objective = valued(&priored(objective, plan, last), &run.outcome.parameters);
     };
     searched.runs.par_iter_mut().enumerate().for_each(carry);
     searched.tally_again()
@@ -289,15 +296,17 @@ fn carried(
 /// `sigma`: polished under the stated priors with the noise re-estimated
 /// at its optimum each time, until it changes by less than 10 % (at most
 /// three times; at least once when `held`, the search's priors held apart
-/// from the stated ones). The noises it was polished at, in order.
+/// from the stated ones). The noises it was polished at, in order, and
+/// whether the last polish held (`outcome` then ended in that noise's
+/// objective).
 fn continuation(
     objective: &Objective,
     plan: &Plan,
     outcome: &mut lm::Outcome,
     mut sigma: f64,
     mut held: bool,
-) -> Vec<f64> {
-    let mut path = Vec::new();
+) -> (Vec<f64>, bool) {
+    let (mut path, mut ended) = (Vec::new(), false);
     for _ in 0..3 {
         let at = noise_at(objective, &outcome.parameters);
         if !std::mem::take(&mut held) && (plan.priors.is_empty() || (at / sigma).ln().abs() < 0.1) {
@@ -305,21 +314,19 @@ fn continuation(
         }
         sigma = at;
         path.push(sigma);
-        polish_at(objective, plan, outcome, sigma);
+        ended = polish_at(objective, plan, outcome, sigma);
     }
-    path
+    (path, ended)
 }
 
 /// `outcome` polished under the stated priors at each noise of `path` in
-/// turn; where a polish fails (the car not simulable from there) it keeps
-/// the last that did, which [`carried`] then values in the final
+/// turn: whether every polish held (`outcome` then ended in the last
+/// noise's objective); where one fails (the car not simulable from there)
+/// it keeps the last that did, which [`carried`] then values in the final
 /// objective.
-fn carry_one(objective: &Objective, plan: &Plan, outcome: &mut lm::Outcome, path: &[f64]) {
-    for &sigma in path {
-        if !polish_at(objective, plan, outcome, sigma) {
-            return;
-        }
-    }
+fn carry_one(objective: &Objective, plan: &Plan, outcome: &mut lm::Outcome, path: &[f64]) -> bool {
+    path.iter()
+        .all(|&sigma| polish_at(objective, plan, outcome, sigma))
 }
 
 /// `outcome` polished under the stated priors weighed at the noise
