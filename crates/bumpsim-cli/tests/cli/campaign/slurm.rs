@@ -2,7 +2,10 @@
 //! faults, `scancel` and a killed controller, a refused `sbatch`, a
 //! campaign larger than the cluster's MaxArraySize, and a node failure.
 
-use super::{Fake, Faults, NO_FAULTS, path, point, run, slurm_cluster, slurm_cluster_alone};
+use super::{
+    Fake, Faults, NO_FAULTS, path, point, run, slurm_cluster, slurm_cluster_alone, slurm_node,
+    slurm_resume,
+};
 use crate::util::{
     assert_contains, assert_user_error, bumpsim, peer_available, root, scratch, text,
 };
@@ -247,11 +250,11 @@ fn scontrol(args: &[&str]) {
 
 /// Puts the node back in service, whatever the test did (it may be back
 /// already: ReturnToService=2).
-struct Resume(String);
+struct Resume;
 
 impl Drop for Resume {
     fn drop(&mut self) {
-        scontrol(&["update", &format!("nodename={}", self.0), "state=resume"]);
+        slurm_resume();
     }
 }
 
@@ -282,11 +285,8 @@ fn a_node_failure_requeue_is_recorded_with_its_reason_and_counted() {
         );
         std::thread::sleep(Duration::from_millis(100));
     }
-    let host = text(&Command::new("hostname").arg("-s").output().unwrap().stdout)
-        .trim()
-        .to_string();
-    let _resume = Resume(host.clone());
-    let node = format!("nodename={host}");
+    let _resume = Resume;
+    let node = format!("nodename={}", slurm_node());
     scontrol(&[
         "update",
         &node,
