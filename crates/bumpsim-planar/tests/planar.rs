@@ -530,6 +530,8 @@ mod links;
 mod progressive;
 #[path = "planar/regression.rs"]
 mod regression;
+#[path = "planar/same_objective.rs"]
+mod same_objective;
 #[path = "planar/sensors.rs"]
 mod sensors;
 #[path = "planar/split.rs"]

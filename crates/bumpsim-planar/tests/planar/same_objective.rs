@@ -1,0 +1,90 @@
+//! Issue 44, item 4's other half: the best the documented study's search
+//! reaches is at least as low as the one reached from the true parameters
+//! of the independent series of tests/peers/planar_yaw_rate.py, both in
+//! the search's own objective.
+//!
+//! The runs of tests/planar/truth_start.rs start at the truth with the
+//! study's priors centred there (the chain's priors are the start car's),
+//! and with the generator's 1-cm tyre relaxation: another objective. Here
+//! the run from the truth keeps every prior centre and spread of the
+//! search's (pinned as `[priors]` settings) and the study's relaxation
+//! length (not estimated), so the two differ only in where they start and
+//! in the noise σ each ends at; both are valued at the search's σ,
+//! `J = F + σ² Σ zᵢ²` (F the data objective, zᵢ each prior's distance in
+//! its standard deviations, [`bumpsim_estimate::prior::Priored`]).
+//!
+//! The search may end above the truth's run by less than one noise
+//! variance σ²: that is one unit of χ², a difference that moves a
+//! parameter by one standard deviation, below what the data tell apart.
+
+use super::truth_start::{with_tyres, yielding_truth_of};
+use bumpsim_planar::bumper_fit::identified;
+use bumpsim_planar::identify::{PlanarIdentification, PriorSetting};
+
+/// The objective of `run` at the priors' noise `sigma`: F + σ² Σ z².
+fn valued(run: &PlanarIdentification, sigma: f64) -> f64 {
+    run.objective + sigma * sigma * run.priors.iter().map(|m| m.z * m.z).sum::<f64>()
+}
+
+/// The search's priors as `[priors]` settings: their centres and spreads
+/// pinned whatever the start car.
+fn pinned(run: &PlanarIdentification) -> Vec<PriorSetting> {
+    (run.priors.iter().filter(|m| !m.ratio))
+        .map(|m| PriorSetting {
+            name: m.name.clone(),
+            removed: false,
+            value: Some(m.centre),
+            spread: Some(m.spread),
+        })
+        .collect()
+}
+
+/// Measured (release, `BUMPSIM_SEEDS=0,…,19`), J at the search's σ: see
+/// docs/planar.md, "The search against a run from the truth, in one
+/// objective (w19)": within −0.17 to +0.15 σ² on all twenty.
+#[test]
+#[ignore = "a measurement: the documented study and a run from the truth, about 30 s per car in release"]
+fn the_search_ends_as_low_as_a_run_from_the_truth_in_its_own_objective() {
+    let seeds = std::env::var("BUMPSIM_SEEDS").unwrap_or_else(|_| "0,6,12".into());
+    let mut above = Vec::new();
+    for seed in seeds.split(',').map(|s| s.trim().parse::<u64>().unwrap()) {
+        let Some(dir) = super::defaults::series(seed) else {
+            return;
+        };
+        let (_, study, truth) = yielding_truth_of(&dir, "study-doc.toml", 0.01);
+        let tyres = study.setup.template.tyres().front;
+        let truth = with_tyres(
+            &truth,
+            tyres.relaxation_length,
+            truth.tyres().front.cornering_stiffness,
+        );
+        let searched = identified(&study.cases, &study.setup, &|| {}).unwrap();
+        let mut setup = study.setup.clone();
+        setup.template = truth;
+        setup.starts = 1;
+        setup.staged = false;
+        setup.priors = pinned(&searched);
+        let from_truth = identified(&study.cases, &setup, &|| {}).unwrap();
+        let sigma = searched.prior_noise;
+        let (search, truth) = (valued(&searched, sigma), valued(&from_truth, sigma));
+        eprintln!(
+            "seed {seed}: at σ {sigma:.4e}: the search {search:.5e} (F {:.5e}, {} of {} starts at it), from the truth {truth:.5e} (F {:.5e}): {:+.3} σ²; I_z {:.0} / {:.0} kg·m², μ {:.3} / {:.3}",
+            searched.objective,
+            searched.starts.reached_best,
+            searched.starts.total,
+            from_truth.objective,
+            (search - truth) / (sigma * sigma),
+            searched.car.body().yaw_inertia,
+            from_truth.car.body().yaw_inertia,
+            searched.car.tyres().front.mu_lateral,
+            from_truth.car.tyres().front.mu_lateral,
+        );
+        if search > truth + sigma * sigma {
+            above.push(seed);
+        }
+    }
+    assert!(
+        above.is_empty(),
+        "the search above the run from the truth by more than σ² on cars {above:?}"
+    );
+}
