@@ -20,6 +20,7 @@ mod slurm;
 
 use crate::util::{bumpsim, scratch, text};
 use bumpsim_campaign::state::State;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output};
 use std::sync::{RwLock, RwLockReadGuard, RwLockWriteGuard};
@@ -42,19 +43,20 @@ fn slurm_cluster_alone() -> Option<RwLockWriteGuard<'static, ()>> {
 }
 
 /// Whether a Slurm cluster answers, its node in service (idle, or busy
-/// with other tests' tasks). With `BUMPSIM_REQUIRE_SLURM` set (as
-/// scripts/test does after scripts/slurm-up) the cluster is asked again for
-/// up to 120 s, its node resumed as slurm-up does: a controller on a loaded
-/// machine can miss sinfo's timeout, and the node-failure test leaves the
-/// node down for a moment. A controller silent for 10 s is started again
-/// by scripts/slurm-up (idempotent; what runs is left running), saying so:
-/// the test cluster's daemons are the fixture, not what these tests test.
-/// Still no answer then fails the test, with what sinfo said and the
-/// controller's log. Without the variable the test skips at once.
+/// with other tests' tasks; not `idle*`, a node whose slurmd does not
+/// answer). With `BUMPSIM_REQUIRE_SLURM` set (as scripts/test does after
+/// scripts/slurm-up) the cluster is asked again until 120 s have passed,
+/// its node resumed as slurm-up does: a controller on a loaded machine can
+/// miss sinfo's timeout, and a node failure leaves the node down. Once 10 s
+/// have passed without an answer, scripts/slurm-up runs again (idempotent:
+/// what runs is left running; at most once per test process, within 300 s),
+/// saying so on the test's stderr even when the test passes: the test
+/// cluster's daemons are the fixture, not what these tests test. Still no
+/// answer then fails the test, with what sinfo said, what slurm-up printed
+/// and the controller's log. Without the variable the test skips at once.
 fn slurm_available() -> bool {
     let required = std::env::var_os("BUMPSIM_REQUIRE_SLURM").is_some();
     let start = Instant::now();
-    let mut restarted = false;
     let said = loop {
         let said = sinfo();
         if said.up {
@@ -64,18 +66,18 @@ fn slurm_available() -> bool {
             break said;
         }
         slurm_resume();
-        if !restarted && start.elapsed() > Duration::from_secs(10) {
+        if start.elapsed() > Duration::from_secs(10) {
             slurm_up(&said);
-            restarted = true;
         }
         std::thread::sleep(Duration::from_secs(1));
     };
     assert!(
         !required,
         "BUMPSIM_REQUIRE_SLURM is set but no Slurm cluster answered in {:.0} s \
-         (scripts/slurm-up starts one); sinfo: {}\nslurmctld.log ends:\n{}",
+         (scripts/slurm-up starts one); sinfo: {}\nscripts/slurm-up again: {}\nslurmctld.log ends:\n{}",
         start.elapsed().as_secs_f64(),
         said.text,
+        SLURM_UP.get().map_or("not run", String::as_str),
         log_tail("/var/log/slurm/slurmctld.log", 20)
     );
     eprintln!(
@@ -90,15 +92,21 @@ struct Sinfo {
     text: String,
 }
 
+/// The node states of a node in service (`sinfo -o %T`, whole words: a
+/// trailing `*` marks a node whose slurmd does not answer).
+const IN_SERVICE: [&str; 4] = ["idle", "mixed", "allocated", "completing"];
+
 fn sinfo() -> Sinfo {
-    match Command::new("sinfo").args(["-h", "-o", "%T"]).output() {
+    match bounded("sinfo", &["-h", "-o", "%T"]).output() {
         Ok(o) => {
             let states = text(&o.stdout);
-            let up = o.status.success()
-                && ["idle", "mix", "alloc", "completing"]
-                    .iter()
-                    .any(|s| states.contains(s));
-            let text = format!("{} {}{}", o.status, states.trim(), text(&o.stderr).trim());
+            let up = o.status.success() && states.lines().any(|s| IN_SERVICE.contains(&s.trim()));
+            let text = format!(
+                "{}; stdout {:?}; stderr {:?}",
+                o.status,
+                states.trim(),
+                text(&o.stderr).trim()
+            );
             Sinfo { up, text }
         }
         Err(e) => Sinfo {
@@ -108,25 +116,41 @@ fn sinfo() -> Sinfo {
     }
 }
 
-/// Runs scripts/slurm-up again (one test at a time), unless another test
-/// brought the cluster back meanwhile; says why and what it printed.
+/// `program ARGS` killed after 15 s: a client waits MessageTimeout (10 s)
+/// for a silent controller.
+fn bounded(program: &str, args: &[&str]) -> Command {
+    let mut command = Command::new("timeout");
+    command.args(["-k", "5", "15", program]).args(args);
+    command
+}
+
+/// What scripts/slurm-up printed when it ran again (once per process).
+static SLURM_UP: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+
+/// Runs scripts/slurm-up again, once per test process (other tests wait
+/// for it), within 300 s, its output to a file (no daemon it starts can
+/// hold a pipe open); says why and what it printed on stderr, uncaptured.
 fn slurm_up(said: &Sinfo) {
-    static RESTART: std::sync::Mutex<()> = std::sync::Mutex::new(());
-    let _one = RESTART.lock().unwrap_or_else(|e| e.into_inner());
-    if sinfo().up {
-        return;
-    }
-    let out = Command::new(crate::util::root().join("scripts/slurm-up")).output();
-    let printed = out.map_or_else(
-        |e| format!("not run ({e})"),
-        |o| format!("{}: {}{}", o.status, text(&o.stdout), text(&o.stderr)),
-    );
-    eprintln!(
-        "the Slurm cluster stopped answering (sinfo: {}); scripts/slurm-up again: {}\nslurmctld.log ends:\n{}",
-        said.text,
-        printed.trim(),
-        log_tail("/var/log/slurm/slurmctld.log", 20)
-    );
+    SLURM_UP.get_or_init(|| {
+        let log = crate::util::scratch("campaign-slurm-up-again").join("slurm-up.log");
+        let file = std::fs::File::create(&log).unwrap();
+        let status = Command::new("timeout")
+            .args(["-k", "10", "300"])
+            .arg(crate::util::root().join("scripts/slurm-up"))
+            .stdin(std::process::Stdio::null())
+            .stdout(file.try_clone().unwrap())
+            .stderr(file)
+            .status();
+        let printed = std::fs::read_to_string(&log).unwrap_or_default();
+        let report = format!("{status:?}: {}", printed.trim());
+        let _ = writeln!(
+            std::io::stderr(),
+            "the Slurm cluster did not answer (sinfo: {}); scripts/slurm-up again: {report}\nslurmctld.log ends:\n{}",
+            said.text,
+            log_tail("/var/log/slurm/slurmctld.log", 20)
+        );
+        report
+    });
 }
 
 /// The test cluster's node name (scripts/slurm-up names it `hostname -s`).
@@ -140,7 +164,7 @@ fn slurm_node() -> String {
 /// Puts the node back in service; a refusal (the node up already, no
 /// controller) is ignored, as the next sinfo says what it is.
 fn slurm_resume() {
-    let _ = Command::new("scontrol")
+    let _ = bounded("scontrol", &[])
         .args([
             "update",
             &format!("nodename={}", slurm_node()),
