@@ -164,12 +164,17 @@ fn slurm_node() -> String {
 /// Puts the node back in service; a refusal (the node up already, no
 /// controller) is ignored, as the next sinfo says what it is.
 fn slurm_resume() {
-    let _ = bounded("scontrol", &[])
-        .args([
-            "update",
-            &format!("nodename={}", slurm_node()),
-            "state=resume",
-        ])
+    scontrol(&[
+        "update",
+        &format!("nodename={}", slurm_node()),
+        "state=resume",
+    ]);
+}
+
+/// `scontrol ARGS` within 15 s, its refusals ignored (a node already up, a
+/// job already running, no controller: what follows says what it is).
+fn scontrol(args: &[&str]) {
+    let _ = bounded("scontrol", args)
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::null())
         .status();

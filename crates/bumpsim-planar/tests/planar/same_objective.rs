@@ -55,9 +55,8 @@ fn pinned(study: &[PriorSetting], run: &PlanarIdentification) -> Vec<PriorSettin
 #[test]
 #[ignore = "a measurement: the documented study and a run from the truth, about 10 s per car in release"]
 fn the_search_ends_as_low_as_a_run_from_the_truth_in_its_own_objective() {
-    let seeds = std::env::var("BUMPSIM_SEEDS").unwrap_or_else(|_| "0,6,12".into());
     let mut above = Vec::new();
-    for seed in seeds.split(',').map(|s| s.trim().parse::<u64>().unwrap()) {
+    for seed in super::yaw_rate::seeds("0,6,12") {
         let Some(dir) = super::defaults::series(seed) else {
             return;
         };
@@ -73,8 +72,9 @@ fn the_search_ends_as_low_as_a_run_from_the_truth_in_its_own_objective() {
         let (sigma, own) = (searched.prior_noise, from_truth.prior_noise);
         let (search, truth) = (valued(&searched, sigma), valued(&from_truth, sigma));
         let at_own = (valued(&searched, own) - valued(&from_truth, own)) / (own * own);
+        let (u, u2) = (searched.domain.unit(), searched.domain.squared_unit());
         eprintln!(
-            "seed {seed}: at σ {sigma:.4e}: the search {search:.5e} (F {:.5e}, {} of {} starts at it), from the truth {truth:.5e} (F {:.5e}): {:+.3} σ²; at the truth run's σ {own:.4e}: {at_own:+.3} σ²; I_z {:.0} / {:.0} kg·m², μ {:.3} / {:.3}",
+            "seed {seed}: at σ {sigma:.4e} {u}: the search {search:.5e} {u2} (F {:.5e} {u2}, {} of {} starts at it), from the truth {truth:.5e} {u2} (F {:.5e} {u2}): {:+.3} σ²; at the truth run's σ {own:.4e} {u}: {at_own:+.3} σ²; I_z {:.0} / {:.0} kg·m², μ {:.3} / {:.3}",
             searched.objective,
             searched.starts.reached_best,
             searched.starts.total,

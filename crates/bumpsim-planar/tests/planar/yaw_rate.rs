@@ -433,7 +433,7 @@ fn the_documented_study_on_varied_cars() {
 }
 
 /// The seeds of `BUMPSIM_SEEDS` (comma-separated), else of `default`.
-fn seeds(default: &str) -> Vec<u64> {
+pub(super) fn seeds(default: &str) -> Vec<u64> {
     std::env::var("BUMPSIM_SEEDS")
         .unwrap_or_else(|_| default.into())
         .split(',')

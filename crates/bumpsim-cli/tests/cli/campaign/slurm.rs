@@ -3,8 +3,8 @@
 //! campaign larger than the cluster's MaxArraySize, and a node failure.
 
 use super::{
-    Fake, Faults, NO_FAULTS, path, point, run, slurm_cluster, slurm_cluster_alone, slurm_node,
-    slurm_resume,
+    Fake, Faults, NO_FAULTS, path, point, run, scontrol, slurm_cluster, slurm_cluster_alone,
+    slurm_node, slurm_resume,
 };
 use crate::util::{
     assert_contains, assert_user_error, bumpsim, peer_available, root, scratch, text,
@@ -240,14 +240,6 @@ fn a_campaign_larger_than_max_array_size_runs_like_the_local_executor() {
     assert_eq!(tables[0], tables[1]);
 }
 
-/// `scontrol ARGS`, its refusals ignored (a node already up, a job already running).
-fn scontrol(args: &[&str]) {
-    let _ = Command::new("scontrol")
-        .args(args)
-        .stderr(std::process::Stdio::null())
-        .status();
-}
-
 /// Puts the node back in service, whatever the test did (it may be back
 /// already: ReturnToService=2).
 struct Resume;
@@ -305,7 +297,7 @@ fn a_node_failure_requeue_is_recorded_with_its_reason_and_counted() {
         );
         // the node back (ReturnToService may have done it), and the requeued
         // tasks released: Slurm holds them back for 120 s
-        scontrol(&["update", &node, "state=resume"]);
+        slurm_resume();
         for job in array_jobs(&fake.state()) {
             scontrol(&["update", &format!("jobid={job}"), "starttime=now"]);
         }
