@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """An independent planar crash-test series (issue 32): what a lab would record.
 
-Usage: planar_independent.py OUT_DIR [--seeds FIRST:COUNT]
+Usage: planar_independent.py OUT_DIR [--seeds FIRST:COUNT] [--yaw-rate]
 
 With --seeds FIRST:COUNT, seeds k = FIRST .. FIRST+COUNT-1 each write a
 complete series into OUT_DIR/seed-<k>/ of a car of its own (the base car's
@@ -10,6 +10,15 @@ numpy seed 2000 + k, SPREADS) under noise of numpy seed 1000 + k (the
 coverage test of the planar intervals, issue 44: a fixed car would make
 the model family's offset the same in every seed); series.json then gives
 that car's truth. Without it: the base car, noise seed 11.
+
+With --yaw-rate the series is issue 44's low-information layout in this
+family: the two sills and a yaw-rate sensor (0.1 deg/s white noise), no
+side-member accelerometers; the held-out offset test is a 40 % offset 10 deg
+wall at 15 km/h (YAW_RATE_TESTS); and OUT_DIR/study-doc.toml is the study as
+docs/planar.md has a lab write it (the tyres' law by default, the side
+members' law named, here "progressive", the bumper fitted with the joint
+stage, the sills in velocity with nuisance biases). Without it every file is
+byte-identical to the one before the option.
 
 Writes OUT_DIR/<TEST>.csv (10 kHz, `time [s]` from -20 ms, load cells in N,
 accelerometers in m/s^2) for five tests of one car, OUT_DIR/series.json
@@ -72,6 +81,9 @@ TESTS = [
     {"name": "POLE-OFFSET", "kind": "pole", "diameter": 0.254, "offset": -0.35,
      "speed_kmh": 8.0, "train": False},
 ]
+
+# --yaw-rate: issue 44's held-out offset test, a 40 % offset 10 deg wall
+YAW_RATE_TESTS = TESTS[:3] + [dict(TESTS[3], angle_deg=10.0)] + TESTS[4:]
 
 STEP, SAMPLE, PRE, DURATION, GAP = 20e-6, 1e-4, 0.02, 0.18, 0.004
 
@@ -289,7 +301,8 @@ def record(car, striker, state, extras, t):
     along = A @ e
     sills = [along - psidd * s["eta"] - w * w * s["xi"], along + psidd * s["eta"] - w * w * s["xi"]]
     members = [along - psidd * car.eta_m[i] - w * w * (car.xf + u[i]) + udd[i] for i in range(2)]
-    return {"t": t, "cells": cells(striker, vec, points), "sills": sills, "members": members}
+    return {"t": t, "cells": cells(striker, vec, points), "sills": sills, "members": members,
+            "yaw_rate": float(w)}
 
 
 def cells(striker, vec, points):
@@ -335,26 +348,30 @@ def cell_centres(striker):
     return centres
 
 
-def write(out, car, test, rows, rng, index):
-    noise_f, noise_a = 30.0, 0.05 * G
+def write(out, car, test, rows, rng, index, yaw_rate=False):
+    noise_f, noise_a, noise_w = 30.0, 0.05 * G, math.radians(0.1)
     bias = [0.02 * G * (1 if index % 2 else -1), -0.015 * G]
     cols = ["time [s]"]
     n_cells = len(rows[0]["cells"])
     names = {"pendulum": ["pendulum"], "pole": ["pole_x", "pole_y"]}.get(test["kind"],
                                                                        [f"cell{j + 1}" for j in range(4)])
     cols += [f"{nm} [N]" for nm in names[:n_cells]]
-    cols += ["sill_left [m/s^2]", "sill_right [m/s^2]", "member_left [m/s^2]", "member_right [m/s^2]"]
+    cols += ["sill_left [m/s^2]", "sill_right [m/s^2]"]
+    cols += ["yaw_rate [rad/s]"] if yaw_rate else ["member_left [m/s^2]", "member_right [m/s^2]"]
     lines = [",".join(cols)]
     for r in rows:
         vals = [r["t"]]
         vals += [c + rng.normal(0, noise_f) for c in r["cells"]]
         vals += [r["sills"][i] + bias[i] + rng.normal(0, noise_a) for i in range(2)]
-        vals += [r["members"][i] + rng.normal(0, noise_a) for i in range(2)]
+        if yaw_rate:
+            vals.append(r["yaw_rate"] + rng.normal(0, noise_w))
+        else:
+            vals += [r["members"][i] + rng.normal(0, noise_a) for i in range(2)]
         lines.append(",".join(f"{v:.9g}" for v in vals))
     (out / f"{test['name']}.csv").write_text("\n".join(lines) + "\n")
 
 
-def study(out, car, tests, strikers):
+def study(out, car, tests, strikers, documented=False):
     c = car.c
     s = c["sills"]
     lines = [
@@ -364,13 +381,24 @@ def study(out, car, tests, strikers):
         "starts = 16",
         "seed = 1",
         "friction = true",
-        "# the cornering stiffness stays the start's (60 kN/rad per tyre): these tests",
-        "# hardly load the tyres sideways, so they do not determine it (cornering = true",
-        "# estimates it, and the identification then says it is not determined)",
-        "cornering = false",
-        f'mass = "{car.total_mass():.1f} kg"    # the test sheet',
-        "",
     ]
+    if documented:
+        # as docs/planar.md ("Defaults chosen by evidence") has a lab write it:
+        # the tyres' law left to the default, the side members' law named
+        # (this car's crush springs are progressive), the bumper fitted for
+        # the forward predictions jointly with the car, the sills compared in
+        # velocity with their biases as nuisances
+        lines += ['links = "progressive"', 'bumper = "fit"', "joint = 2.0"]
+    else:
+        lines += [
+            "# the cornering stiffness stays the start's (60 kN/rad per tyre): these tests",
+            "# hardly load the tyres sideways, so they do not determine it (cornering = true",
+            "# estimates it, and the identification then says it is not determined)",
+            "cornering = false",
+        ]
+    lines += [f'mass = "{car.total_mass():.1f} kg"    # the test sheet', ""]
+    if documented:
+        lines += ["[identification]", 'objective = "velocity"', 'bias = "nuisance"', ""]
     for test, st in zip(tests, strikers):
         name, kind = test["name"], test["kind"]
         speed = 0.0 if kind == "pendulum" else test["speed_kmh"] / 3.6
@@ -399,11 +427,14 @@ def study(out, car, tests, strikers):
         lines.append("sensors = [")
         lines.append(f'  {{ path = "{path}", channel = "sill_left", body = [{s["xi"]}, {s["eta"]}] }},')
         lines.append(f'  {{ path = "{path}", channel = "sill_right", body = [{s["xi"]}, {-s["eta"]}] }},')
-        lines.append(f'  {{ path = "{path}", channel = "member_left", chain = 0 }},')
-        lines.append(f'  {{ path = "{path}", channel = "member_right", chain = 1 }},')
+        if documented:
+            lines.append(f'  {{ path = "{path}", channel = "yaw_rate" }},')
+        else:
+            lines.append(f'  {{ path = "{path}", channel = "member_left", chain = 0 }},')
+            lines.append(f'  {{ path = "{path}", channel = "member_right", chain = 1 }},')
         lines.append("]")
         lines.append("")
-    (out / "study.toml").write_text("\n".join(lines))
+    (out / ("study-doc.toml" if documented else "study.toml")).write_text("\n".join(lines))
 
 
 def start(out, car):
@@ -463,30 +494,34 @@ def seeded(rng):
     return c
 
 
-def series(out, c, rng):
+def series(out, c, rng, yaw_rate=False):
     out.mkdir(parents=True, exist_ok=True)
     car = Car(c)
-    strikers = [Striker(t, car) for t in TESTS]
-    for i, (test, st) in enumerate(zip(TESTS, strikers)):
+    tests = YAW_RATE_TESTS if yaw_rate else TESTS
+    strikers = [Striker(t, car) for t in tests]
+    for i, (test, st) in enumerate(zip(tests, strikers)):
         rows = simulate(car, st)
-        write(out, car, test, rows, rng, i)
-    study(out, car, TESTS, strikers)
+        write(out, car, test, rows, rng, i, yaw_rate)
     start(out, car)
     sheet = {"total_mass": car.total_mass(), "yaw_inertia": c["yaw_inertia"], "mu": c["tyres"]["mu"],
-             "car": c, "tests": TESTS}
+             "car": c, "tests": tests}
     (out / "series.json").write_text(json.dumps(sheet, indent=1))
+    # last: the marker of a finished series
+    study(out, car, tests, strikers, documented=yaw_rate)
 
 
 def main(argv):
     out = Path(argv[0])
+    yaw_rate = "--yaw-rate" in argv
     if "--seeds" not in argv:
-        series(out, CAR, np.random.default_rng(11))
+        series(out, CAR, np.random.default_rng(11), yaw_rate)
         return
     first, count = (int(v) for v in argv[argv.index("--seeds") + 1].split(":"))
     for k in range(first, first + count):
         here = out / f"seed-{k}"
-        if not (here / "series.json").exists():
-            series(here, seeded(np.random.default_rng(2000 + k)), np.random.default_rng(1000 + k))
+        if not (here / ("study-doc.toml" if yaw_rate else "study.toml")).exists():
+            series(here, seeded(np.random.default_rng(2000 + k)), np.random.default_rng(1000 + k),
+                   yaw_rate)
     (out / f"seeds-{first}-{count}.txt").write_text(f"{count}\n")  # last: the marker
 
 

@@ -235,7 +235,8 @@ pub(super) fn held_out_yaw(
     result: &PlanarIdentification,
 ) -> [bumpsim_planar::bands::Judged; 2] {
     let (bands, _) = held_out_bands(study, result);
-    ["OFFSET40", "NARROW-OFFSET"].map(|case| {
+    let off_centre = super::defaults::off_centre(study);
+    ["OFFSET40", off_centre.as_str()].map(|case| {
         bands
             .judged
             .iter()

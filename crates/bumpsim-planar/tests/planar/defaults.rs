@@ -50,7 +50,7 @@ pub(super) struct Scores {
     pub correlated: usize,
     pub seconds: f64,
     /// The measured held-out yaw inside its 90 % band, % of the samples
-    /// (OFFSET40, NARROW-OFFSET), when judged (`bands::held_out_yaw`).
+    /// (OFFSET40, the off-centre case), when judged (`bands::held_out_yaw`).
     pub band: Option<[f64; 2]>,
 }
 
@@ -122,7 +122,7 @@ pub(super) fn scored(
         serde_json::from_str(&std::fs::read_to_string(dir.join("series.json")).unwrap()).unwrap();
     let case = |name: &str| study.validation.iter().find(|c| c.name == name).unwrap();
     let fit = |name: &str| predict(&result.car, case(name)).unwrap().fit;
-    let (offset, narrow) = (fit("OFFSET40"), fit("NARROW-OFFSET"));
+    let (offset, narrow) = (fit("OFFSET40"), fit(&off_centre(study)));
     let ahead = forward(&result.car, case("OFFSET40")).unwrap();
     let channel = |name: &str| ahead.fit_of(name).unwrap();
     let value = |name: &str| {
@@ -148,6 +148,35 @@ pub(super) fn scored(
         seconds,
         band: None,
     }
+}
+
+/// `BUMPSIM_INERTIA_SPREAD=s|none`: the yaw inertia's prior widened to
+/// spread `s` or removed (`[priors] "body.yaw_inertia"`), a measurement's
+/// switch.
+pub(super) fn inertia_prior_from_env(study: &mut PlanarStudy) {
+    if let Ok(spread) = std::env::var("BUMPSIM_INERTIA_SPREAD") {
+        study
+            .setup
+            .priors
+            .push(bumpsim_planar::identify::PriorSetting {
+                name: "body.yaw_inertia".into(),
+                removed: spread == "none",
+                value: None,
+                spread: spread.parse().ok(),
+            });
+    }
+}
+
+/// The held-out case struck off the centre line: the validation case other
+/// than OFFSET40 (NARROW-OFFSET of the yaw-rate series, POLE-OFFSET of
+/// planar_independent.py's).
+pub(super) fn off_centre(study: &PlanarStudy) -> String {
+    study
+        .validation
+        .iter()
+        .map(|c| c.name.clone())
+        .find(|n| n != "OFFSET40")
+        .unwrap()
 }
 
 /// `study` with its `[model]` switches set by `code`: `C` cornering, `R`

@@ -6,7 +6,10 @@
 //! reactions are solved for, a rigid beam on 16 foam strips with
 //! bottoming, Magic-Formula tyres with transient slip, RK4): a flat
 //! pendulum, a centred pole and a 10° wall with four load cells to train
-//! on; a 40 % offset at 15 km/h and an offset pole held out.
+//! on; a 40 % offset at 15 km/h and an offset pole held out. With
+//! `--yaw-rate` the same family in issue 44's layout (the sills and a
+//! yaw-rate sensor, the held-out offset a 10° wall): the documented study's
+//! measurement at the end.
 
 use bumpsim_planar::forward::forward;
 use bumpsim_planar::identify::{CaseFit, identify, predict};
@@ -169,5 +172,78 @@ fn a_direction_rounded_otherwise_moves_no_parameter_beyond_its_interval() {
             a.value,
             b.value
         );
+    }
+}
+
+/// The series of this family in issue 44's low-information layout
+/// (`--yaw-rate`: the sills and a yaw-rate sensor only, the held-out
+/// offset a 10° wall), of the base car (seed 0) or seeded car `seed`.
+fn yaw_rate_series(seed: u64) -> Option<PathBuf> {
+    if !bumpsim_peers::python_available("numpy") {
+        return None;
+    }
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR"));
+    let script =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/planar_independent.py");
+    if seed == 0 {
+        let out = tmp.join("planar-independent-yaw-rate");
+        bumpsim_peers::generated(&script, &out, &["--yaw-rate"], "study-doc.toml");
+        return Some(out);
+    }
+    let out = tmp.join(format!("planar-independent-yaw-rate-seed-{seed}"));
+    let seeds = format!("{seed}:1");
+    let marker = format!("seeds-{seed}-1.txt");
+    bumpsim_peers::generated(&script, &out, &["--seeds", &seeds, "--yaw-rate"], &marker);
+    Some(out.join(format!("seed-{seed}")))
+}
+
+/// Issue 44's thresholds on a third model family: this generator's cars
+/// (progressive side members on guides, foam strips, Magic-Formula tyres
+/// with transient slip, RK4), recorded as the issue's series was (two
+/// sills and a yaw-rate sensor; a flat pendulum, a centred pole and a 10°
+/// wall to train on; a 40 % offset 10° wall at 15 km/h and the pole 0.35 m
+/// off centre held out), identified with the study as docs/planar.md has a
+/// lab write it (`study-doc.toml`). A measurement over `BUMPSIM_SEEDS`
+/// (default `0`: the base car; k: the k-th seeded car of the coverage
+/// test), one table row per car (docs/planar.md, "Issue 44's thresholds on
+/// a third family (w20)": every threshold held on 6 of cars 0–19); it
+/// asserts the floors that held on every car measured and prints the rest.
+/// `BUMPSIM_INERTIA_SPREAD=s|none` widens or removes the yaw inertia's
+/// prior, `BUMPSIM_START_BUMPER=1` keeps the start car's bumper.
+#[test]
+#[ignore = "a measurement: 16 starts on each car, release build"]
+fn the_documented_study_on_a_third_family_with_a_yaw_rate_sensor() {
+    for seed in super::yaw_rate::seeds("0") {
+        let Some(dir) = yaw_rate_series(seed) else {
+            return;
+        };
+        let mut study = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
+        super::defaults::inertia_prior_from_env(&mut study);
+        // `BUMPSIM_START_BUMPER=1`: the start car's bumper, not fitted
+        // (`[model] bumper` and `joint` left out)
+        if std::env::var("BUMPSIM_START_BUMPER").is_ok() {
+            study.setup.bumper = false;
+            study.setup.joint = None;
+        }
+        let clock = std::time::Instant::now();
+        let result = study.identified(&|| {}).unwrap();
+        let mut scores =
+            super::defaults::scored(&dir, &study, &result, clock.elapsed().as_secs_f64());
+        let yaw = super::bands::held_out_yaw(&study, &result);
+        scores.band = Some(yaw.map(|j| j.inside_percent));
+        eprintln!("{}", scores.row(&format!("seed {seed}")));
+        let misses = scores.misses();
+        eprintln!("seed {seed}: misses {misses:?}");
+        // the floors that held on cars 0–19 (docs/planar.md, "Issue 44's
+        // thresholds on a third family"); the base car holds every threshold
+        assert!(
+            scores.inertia.abs() <= 0.2 && scores.grip.abs() <= 0.3,
+            "seed {seed}: {scores:?}"
+        );
+        assert!(
+            scores.offset[0] >= 99.3 && scores.narrow[0] >= 99.0,
+            "seed {seed}: {scores:?}"
+        );
+        assert!(seed != 0 || misses.is_empty(), "{misses:?}");
     }
 }

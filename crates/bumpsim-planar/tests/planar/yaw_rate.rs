@@ -514,6 +514,7 @@ fn documented_on(seeds: &[u64]) -> Vec<(u64, Scores)> {
                     spread: Some(spread.parse().unwrap()),
                 });
         }
+        super::defaults::inertia_prior_from_env(&mut study);
         let clock = std::time::Instant::now();
         let result = study.identified(&|| {}).unwrap();
         let mut scores =
