@@ -34,7 +34,7 @@ The model is written here, not taken from bumpsim, and is of another family:
   damper; the equations are Newton-Euler with the guides' reaction forces
   solved as unknowns (a 7 x 7 linear system per evaluation), not eliminated;
 - a rigid bumper beam rests on the two side-member tips (lever rule); its
-  face is 16 foam strips, each elastic-plastic with hardening and bottoming
+  face is 40 foam strips, each elastic-plastic with hardening and bottoming
   (F = min(k_r d, F_p + k_h (d - F_p/k_r)) + k_b max(d - d_b, 0) on
   loading, elastic unloading from the largest crush at slope k_u);
 - four rolling tyres with transient slip (Pacejka's first-order relaxation,

@@ -228,7 +228,7 @@ fn the_held_out_yaw_lies_inside_its_band_at_80_percent_of_the_samples() {
 }
 
 /// The held-out yaw's 90 % band of `result` judged on each held-out case
-/// of `study` (OFFSET40, NARROW-OFFSET): issue 44's "the measured held-out
+/// of `study` (OFFSET40 and the off-centre case): issue 44's "the measured held-out
 /// yaw inside its 90 % band at ≥ 80 % of samples", for the varied cars.
 pub(super) fn held_out_yaw(
     study: &PlanarStudy,

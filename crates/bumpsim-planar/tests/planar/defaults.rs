@@ -162,7 +162,7 @@ pub(super) fn inertia_prior_from_env(study: &mut PlanarStudy) {
                 name: "body.yaw_inertia".into(),
                 removed: spread == "none",
                 value: None,
-                spread: spread.parse().ok(),
+                spread: (spread != "none").then(|| spread.parse().unwrap()),
             });
     }
 }

@@ -3,7 +3,7 @@
 //!
 //! The series is written by tests/peers/planar_independent.py, a model of
 //! another family (progressive side-member springs on guides whose
-//! reactions are solved for, a rigid beam on 16 foam strips with
+//! reactions are solved for, a rigid beam on 40 foam strips with
 //! bottoming, Magic-Formula tyres with transient slip, RK4): a flat
 //! pendulum, a centred pole and a 10° wall with four load cells to train
 //! on; a 40 % offset at 15 km/h and an offset pole held out. With
@@ -207,12 +207,17 @@ fn yaw_rate_series(seed: u64) -> Option<PathBuf> {
 /// (default `0`: the base car; k: the k-th seeded car of the coverage
 /// test), one table row per car (docs/planar.md, "Issue 44's thresholds on
 /// a third family (w20)": every threshold held on 6 of cars 0–19); it
-/// asserts the floors that held on every car measured and prints the rest.
+/// asserts, after every car has run, the floors that held on every car
+/// measured, and the base car's every threshold without a switch.
 /// `BUMPSIM_INERTIA_SPREAD=s|none` widens or removes the yaw inertia's
 /// prior, `BUMPSIM_START_BUMPER=1` keeps the start car's bumper.
 #[test]
 #[ignore = "a measurement: 16 starts on each car, release build"]
 fn the_documented_study_on_a_third_family_with_a_yaw_rate_sensor() {
+    let switched = ["BUMPSIM_INERTIA_SPREAD", "BUMPSIM_START_BUMPER"]
+        .iter()
+        .any(|v| std::env::var(v).is_ok());
+    let mut failed = Vec::new();
     for seed in super::yaw_rate::seeds("0") {
         let Some(dir) = yaw_rate_series(seed) else {
             return;
@@ -235,15 +240,16 @@ fn the_documented_study_on_a_third_family_with_a_yaw_rate_sensor() {
         let misses = scores.misses();
         eprintln!("seed {seed}: misses {misses:?}");
         // the floors that held on cars 0–19 (docs/planar.md, "Issue 44's
-        // thresholds on a third family"); the base car holds every threshold
-        assert!(
-            scores.inertia.abs() <= 0.2 && scores.grip.abs() <= 0.3,
-            "seed {seed}: {scores:?}"
-        );
-        assert!(
-            scores.offset[0] >= 99.3 && scores.narrow[0] >= 99.0,
-            "seed {seed}: {scores:?}"
-        );
-        assert!(seed != 0 || misses.is_empty(), "{misses:?}");
+        // thresholds on a third family"); the base car holds every
+        // threshold with the study as written
+        let floors = scores.inertia.abs() <= 0.2
+            && scores.grip.abs() <= 0.3
+            && scores.offset[0] >= 99.3
+            && scores.narrow[0] >= 99.0;
+        let base = seed != 0 || switched || misses.is_empty();
+        if !(floors && base) {
+            failed.push(format!("seed {seed}: {misses:?} {scores:?}"));
+        }
     }
+    assert!(failed.is_empty(), "{failed:#?}");
 }
