@@ -17,13 +17,19 @@ use bumpsim_planar::study::PlanarStudy;
 use std::path::{Path, PathBuf};
 
 fn series() -> Option<PathBuf> {
+    generated("planar-independent", &[], "study.toml")
+}
+
+/// The generator run with `args` into the test target's folder `name`,
+/// once (None without numpy).
+fn generated(name: &str, args: &[&str], marker: &str) -> Option<PathBuf> {
     if !bumpsim_peers::python_available("numpy") {
         return None;
     }
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("planar-independent");
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
     let script =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/planar_independent.py");
-    bumpsim_peers::generated(&script, &out, &[], "study.toml");
+    bumpsim_peers::generated(&script, &out, args, marker);
     Some(out)
 }
 
@@ -179,21 +185,16 @@ fn a_direction_rounded_otherwise_moves_no_parameter_beyond_its_interval() {
 /// (`--yaw-rate`: the sills and a yaw-rate sensor only, the held-out
 /// offset a 10° wall), of the base car (seed 0) or seeded car `seed`.
 fn yaw_rate_series(seed: u64) -> Option<PathBuf> {
-    if !bumpsim_peers::python_available("numpy") {
-        return None;
-    }
-    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR"));
-    let script =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/peers/planar_independent.py");
     if seed == 0 {
-        let out = tmp.join("planar-independent-yaw-rate");
-        bumpsim_peers::generated(&script, &out, &["--yaw-rate"], "study-doc.toml");
-        return Some(out);
+        return generated(
+            "planar-independent-yaw-rate",
+            &["--yaw-rate"],
+            "study-doc.toml",
+        );
     }
-    let out = tmp.join(format!("planar-independent-yaw-rate-seed-{seed}"));
-    let seeds = format!("{seed}:1");
-    let marker = format!("seeds-{seed}-1.txt");
-    bumpsim_peers::generated(&script, &out, &["--seeds", &seeds, "--yaw-rate"], &marker);
+    let name = format!("planar-independent-yaw-rate-seed-{seed}");
+    let (seeds, marker) = (format!("{seed}:1"), format!("seeds-{seed}-1.txt"));
+    let out = generated(&name, &["--seeds", &seeds, "--yaw-rate"], &marker)?;
     Some(out.join(format!("seed-{seed}")))
 }
 
