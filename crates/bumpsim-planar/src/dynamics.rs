@@ -9,7 +9,7 @@
 
 use crate::car::{Block, GRAVITY, PlanarCar};
 use crate::result::{BoxBottomed, BoxSide};
-use crate::striker::{Placed, pole_profile};
+use crate::striker::{Placed, pole_contact_span, pole_profile};
 use crate::tyre::Wheel;
 use bumpsim_impact::bumper::{Bumper, BumperState};
 use std::cell::Cell;
@@ -296,9 +296,10 @@ impl Model {
             Placed::Pole { centre, radius } => {
                 let r = [centre[0] - q[0], centre[1] - q[1]];
                 let (xc, yc) = (r[0] * e[0] + r[1] * e[1], r[0] * n[0] + r[1] * n[1]);
-                let eta = yc.clamp(y - self.half_width, y + self.half_width);
+                let span = pole_contact_span(radius, self.half_width);
+                let eta = yc.clamp(y - span, y + span);
                 let (reach, mut lateral) = pole_profile(radius, eta - yc);
-                if eta == yc {
+                if span > 0.0 && eta == yc {
                     // the contact follows the axis along the tilted beam line
                     lateral += self.tilt(q);
                 }

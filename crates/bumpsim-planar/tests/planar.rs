@@ -526,6 +526,8 @@ mod identification;
 mod independent;
 #[path = "planar/links.rs"]
 mod links;
+#[path = "planar/pole_contact.rs"]
+mod pole_contact;
 #[path = "planar/progressive.rs"]
 mod progressive;
 #[path = "planar/regression.rs"]
