@@ -16,9 +16,10 @@
 //!   (−θ, other side).
 //! - **Pole**: radius `r`, axis at world `y = lateral`.
 //!
-//! The striker is placed so that it just touches the nearest segment point at
-//! t = 0. A pendulum starts there at `speed` towards the car (along −x) with
-//! the car at rest; a fixed striker is hit by the car at `speed` along +x.
+//! The striker is placed so that it just touches the segments' nearest contact
+//! point at t = 0 (a pole's: see `pole_contact_span`). A pendulum starts
+//! there at `speed` towards the car (along −x) with the car at rest; a fixed
+//! striker is hit by the car at `speed` along +x.
 //! The pendulum is guided: it neither turns nor moves sideways; its guide's
 //! reactions are reported in the momentum balance.
 
@@ -41,9 +42,10 @@ const GRAZING: f64 = 3.0;
 /// - a strip narrow against the pole (`w ≤ r/2`) sees the pole's profile
 ///   nearly as a parabola, and the crush at its centre is its mean crush to
 ///   within `h²/(6r)` (the midpoint rule), where the crush at its point
-///   nearest the axis overstates a flank strip's by up to `(2 s h − ⅔ h²)/(2r)`,
+///   nearest the axis overstates a flank strip's by about `(2 s h − ⅔ h²)/(2r)`,
 ///   `s` the centre's distance from the axis. On a 40-strip 1.6 m bumper
-///   under a 254 mm pole that was up to 9 mm, and a bumper fitted to a pole
+///   under a 254 mm pole that was 8.6 mm for a strip centred 60 mm off the
+///   axis, and a bumper fitted to a pole
 ///   test came out 16 % soft (docs/planar.md, "The pole's contact point");
 /// - a strip as wide as the pole's radius or wider (`w ≥ r`) is covered
 ///   only in part, its centre may lie beside the pole, and its deepest

@@ -1,6 +1,6 @@
 //! A pole's contact on a finely divided bumper (w21, docs/planar.md "Pole
 //! contact"): a strip narrow against the pole is crushed at its centre,
-//! whose crush is the strip's mean to within w²/(24 r), so the peak force
+//! whose crush is the strip's mean to about w²/(24 r), so the peak force
 //! of 40 strips lies within 2 % of that of 640, the foam taken as a
 //! continuum (+1.2 % measured). The rule before w21 (every strip at its
 //! point nearest the axis) put it 6.8 % above.
