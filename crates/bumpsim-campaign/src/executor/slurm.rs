@@ -21,7 +21,7 @@
 
 mod query;
 
-use super::{Executor, Submitted, Task, command_output};
+use super::{Executor, Submitted, Task, TaskState, command_output};
 use crate::error::{CampaignError, Result};
 use crate::spec::{ExecutorSpec, SlurmSpec, find_program};
 use crate::state::Point;
@@ -193,6 +193,46 @@ pub fn check_programs() -> Result<()> {
     Ok(())
 }
 
+/// Longest wait for cancelled tasks to end. `scancel` returns before
+/// Slurm has stopped them: their node signals them, and kills them
+/// `KillWait` (30 s by default) later, while squeue shows them COMPLETING.
+pub const CANCEL_WAIT: Duration = Duration::from_secs(120);
+
+/// Waits until no task of `points` is queued or running any more (squeue),
+/// so a point marked pending is not still being solved; an error naming
+/// them after `limit`.
+fn wait_ended(points: &[&Point], limit: Duration) -> Result<()> {
+    let mut jobs: Vec<&str> = points.iter().filter_map(|p| job_of(p)).collect();
+    jobs.sort_unstable();
+    jobs.dedup();
+    let start = std::time::Instant::now();
+    loop {
+        let queue = query::squeue(&jobs)?;
+        let live: Vec<&str> = (points.iter().map(|p| task_of(p)))
+            .filter(|id| {
+                queue.get(*id).is_some_and(|row| {
+                    let state = query::task_state(&row.state, &row.reason);
+                    matches!(state, TaskState::Queued | TaskState::Running)
+                })
+            })
+            .collect();
+        if live.is_empty() {
+            return Ok(());
+        }
+        if start.elapsed() >= limit {
+            return Err(CampaignError::Scheduler {
+                command: "scancel".into(),
+                message: format!(
+                    "{} still queued or running {} s after the cancel; their points stay in flight: run `campaign abort` again once Slurm has stopped them",
+                    live.join(", "),
+                    limit.as_secs()
+                ),
+            });
+        }
+        std::thread::sleep(Duration::from_millis(200));
+    }
+}
+
 /// The array job id of `slurm:JOB_INDEX`.
 fn job_of(point: &Point) -> Option<&str> {
     point.job.strip_prefix("slurm:")?.split('_').next()
@@ -294,10 +334,11 @@ impl Executor for Slurm {
 
     fn cancel(&mut self, points: &[&Point]) -> Result<()> {
         let ids: Vec<String> = points.iter().map(|p| task_of(p).to_string()).collect();
-        if !ids.is_empty() {
-            command_output("scancel", &ids)?;
+        if ids.is_empty() {
+            return Ok(());
         }
-        Ok(())
+        command_output("scancel", &ids)?;
+        wait_ended(points, CANCEL_WAIT)
     }
 
     fn interval(&self, _idle: u32) -> Duration {
