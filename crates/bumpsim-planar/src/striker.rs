@@ -41,7 +41,7 @@ const GRAZING: f64 = 3.0;
 ///
 /// - a strip narrow against the pole (`w ≤ r/2`) sees the pole's profile
 ///   nearly as a parabola, and the crush at its centre is its mean crush to
-///   within `h²/(6r)` (the midpoint rule), where the crush at its point
+///   about `h²/(6r)` near the axis (the midpoint rule), where the crush at its point
 ///   nearest the axis overstates a flank strip's by about `(2 s h − ⅔ h²)/(2r)`,
 ///   `s` the centre's distance from the axis. On a 40-strip 1.6 m bumper
 ///   under a 254 mm pole that was 8.6 mm for a strip centred 60 mm off the
