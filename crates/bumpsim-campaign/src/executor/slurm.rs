@@ -193,9 +193,11 @@ pub fn check_programs() -> Result<()> {
     Ok(())
 }
 
-/// Longest wait for cancelled tasks to end. `scancel` returns before
-/// Slurm has stopped them: their node signals them, and kills them
-/// `KillWait` (30 s by default) later, while squeue shows them COMPLETING.
+/// Shortest longest wait for cancelled tasks to end. `scancel` returns
+/// before Slurm has stopped them: their node signals them, and kills them
+/// `KillWait` (30 s by default) later, while squeue shows them COMPLETING;
+/// a cluster whose `KillWait + UnkillableStepTimeout` (`scontrol show
+/// config`) is longer is waited for that long plus 30 s.
 pub const CANCEL_WAIT: Duration = Duration::from_secs(120);
 
 /// Waits until no task of `points` is queued or running any more (squeue),
@@ -338,7 +340,7 @@ impl Executor for Slurm {
             return Ok(());
         }
         command_output("scancel", &ids)?;
-        wait_ended(points, CANCEL_WAIT)
+        wait_ended(points, query::config().cancel_wait(CANCEL_WAIT))
     }
 
     fn interval(&self, _idle: u32) -> Duration {

@@ -17,7 +17,27 @@ pub(super) struct Config {
     pub max_array_size: Option<usize>,
     /// `MaxJobCount`: jobs the controller keeps at once.
     pub max_job_count: Option<usize>,
+    /// `KillWait`, s: how long a node waits between a cancelled task's
+    /// SIGTERM and its SIGKILL.
+    pub kill_wait: Option<u64>,
+    /// `UnkillableStepTimeout`, s: how long a node then waits for a task
+    /// that ignores SIGKILL before it gives up on it.
+    pub unkillable_step_timeout: Option<u64>,
 }
+
+impl Config {
+    /// How long after `scancel` a cancelled task may still run on its node:
+    /// `KillWait + UnkillableStepTimeout` plus a margin of [`CANCEL_MARGIN`]
+    /// for the node's report to reach squeue, at least `floor`.
+    pub fn cancel_wait(&self, floor: std::time::Duration) -> std::time::Duration {
+        let known = self.kill_wait.unwrap_or(0) + self.unkillable_step_timeout.unwrap_or(0);
+        floor.max(std::time::Duration::from_secs(known + CANCEL_MARGIN))
+    }
+}
+
+/// Seconds added to the cluster's kill timeouts when waiting for a
+/// cancelled task to leave squeue ([`Config::cancel_wait`]).
+pub(super) const CANCEL_MARGIN: u64 = 30;
 
 /// `scontrol show config`'s limits (none known if it fails).
 pub(super) fn config() -> Config {
@@ -26,15 +46,20 @@ pub(super) fn config() -> Config {
 }
 
 fn parse_config(text: &str) -> Config {
-    let value = |key: &str| {
+    // `KEY = VALUE [unit]` (`KillWait = 30 sec`): the value's first word
+    let word = |key: &str| {
         text.lines()
             .filter_map(|l| l.split_once('='))
             .find(|(k, _)| k.trim() == key)
-            .and_then(|(_, v)| v.trim().parse().ok())
+            .and_then(|(_, v)| v.split_whitespace().next().map(str::to_owned))
     };
+    let count = |key: &str| word(key).and_then(|v| v.parse::<usize>().ok());
+    let seconds = |key: &str| word(key).and_then(|v| v.parse::<u64>().ok());
     Config {
-        max_array_size: value("MaxArraySize"),
-        max_job_count: value("MaxJobCount"),
+        max_array_size: count("MaxArraySize"),
+        max_job_count: count("MaxJobCount"),
+        kill_wait: seconds("KillWait"),
+        unkillable_step_timeout: seconds("UnkillableStepTimeout"),
     }
 }
 
@@ -252,6 +277,26 @@ mod tests {
             (Some(10), Some(200_000))
         );
         assert_eq!(parse_config("").max_array_size, None);
+    }
+
+    #[test]
+    fn the_cancel_wait_covers_the_kill_timeouts() {
+        let floor = std::time::Duration::from_secs(120);
+        let text = "KillWait                = 300 sec\nUnkillableStepTimeout   = 60 sec\n";
+        let config = parse_config(text);
+        assert_eq!(
+            (config.kill_wait, config.unkillable_step_timeout),
+            (Some(300), Some(60))
+        );
+        assert_eq!(
+            config.cancel_wait(floor).as_secs(),
+            300 + 60 + CANCEL_MARGIN
+        );
+        // Slurm's defaults (30 s, 60 s) and an unknown configuration: the floor
+        let defaults = parse_config("KillWait = 30 sec\nUnkillableStepTimeout = 60 sec\n");
+        assert_eq!(defaults.cancel_wait(floor), floor);
+        assert_eq!(parse_config("").cancel_wait(floor), floor);
+        assert_eq!(parse_config("KillWait = soon\n").kill_wait, None);
     }
 
     #[test]
