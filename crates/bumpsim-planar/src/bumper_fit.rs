@@ -347,6 +347,7 @@ mod tests {
             time_zero: 0.0,
             weights: Vec::new(),
             pretrigger: 0.0,
+            cfc: None,
         }
     }
 

@@ -341,6 +341,7 @@ impl TestChannels {
             time_zero: zero,
             weights,
             pretrigger: self.pretrigger(),
+            cfc: self.cfc,
         };
         Ok((case, resampled))
     }

@@ -133,10 +133,15 @@ pub(crate) fn simulated_cells(
         return Vec::new();
     };
     let step = case.drive.step;
+    let lead = crate::forward::lead(step);
     let histories = simulated(car, run, (&bands, tangent), case.drive.speed * shift);
     let at = |load: usize, history: &[f64]| -> Vec<f64> {
+        // as the forward run's channels: filtered as the cells' measurement
+        // was (the class checked there, so an error here leaves the raw)
+        let conditioned = crate::forward::as_measured(case, history, step, lead)
+            .unwrap_or_else(|_| [vec![0.0; lead], history.to_vec()].concat());
         (0..case.drive.loads[load].force.len())
-            .map(|k| crate::forward::sample(history, k as f64 - shift / step))
+            .map(|k| crate::forward::sample(&conditioned, k as f64 - shift / step + lead as f64))
             .collect()
     };
     (bands.iter().zip(histories))
@@ -216,6 +221,7 @@ mod tests {
             time_zero: 0.0,
             weights: Vec::new(),
             pretrigger: 0.0,
+            cfc: None,
         };
         (car, case)
     }

@@ -126,6 +126,10 @@ pub struct PlanarCase {
     /// s (0: none): the spread of a bias nuisance's prior
     /// ([`Bias::Nuisance`]).
     pub pretrigger: f64,
+    /// The CFC class (SAE J211-1) the measured channels were filtered at,
+    /// if any: a forward prediction filters its simulated channels alike
+    /// before it compares them ([`crate::forward`]).
+    pub cfc: Option<f64>,
 }
 
 impl PlanarCase {
@@ -696,6 +700,7 @@ mod tests {
             time_zero: 0.0,
             weights: Vec::new(),
             pretrigger: 0.0,
+            cfc: None,
         }
     }
 

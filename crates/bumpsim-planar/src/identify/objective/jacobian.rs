@@ -358,6 +358,7 @@ mod tests {
                     time_zero: 0.0,
                     weights: vec![1.0, 1.0, 0.05],
                     pretrigger: 0.0,
+                    cfc: None,
                 });
             }
         }
