@@ -159,8 +159,8 @@ pub(crate) fn absolute(dir: &Path) -> Result<std::path::PathBuf> {
 
 /// Cancels every in-flight task of campaign folder `dir` and marks those
 /// points pending again: Slurm tasks by `scancel`, waiting until Slurm has
-/// stopped them (an error after `CANCEL_WAIT` or the cluster's kill
-/// timeouts when longer, their points left in
+/// stopped them (an error after the longer of `CANCEL_WAIT` and the
+/// cluster's kill timeouts plus 30 s, their points left in
 /// flight), local ones by SIGTERM (by each point's job id, whichever
 /// executor submitted it). Stop the controller first (Ctrl-C): abort takes
 /// the lock.

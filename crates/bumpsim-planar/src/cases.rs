@@ -323,6 +323,17 @@ impl TestChannels {
             .detect(&total)
             .map_err(|e| error(format!("force: {e}")))?;
         let step = step * every as f64;
+        // the forward runs filter their simulated channels at this class and
+        // the kept samples' interval (crate::forward): checked here, once
+        if let Some(class) = self.cfc {
+            bumpsim_signal::filter::Cfc::new(class, Default::default())
+                .and_then(|f| f.design(step))
+                .map_err(|e| {
+                    error(format!(
+                        "cfc = {class} at the kept samples' interval {step} s: {e}"
+                    ))
+                })?;
+        }
         let duration = step * (window.last - window.first) as f64;
         let weights = weights(self, duration)?;
         let case = PlanarCase {

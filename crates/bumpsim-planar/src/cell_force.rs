@@ -26,7 +26,9 @@
 //! ([`crate::forward::Forward::shift`]), in which time the car travelled
 //! `v₀ · shift` along x untouched, so `p_j` in the case's frame is the
 //! run's plus `(v₀ · shift, 0)`. The simulated histories are then aligned
-//! on the test's samples with the run's shift, as the total force is.
+//! on the test's samples with the run's shift, as the total force is, and
+//! filtered at the case's CFC as its channels were
+//! ([`crate::forward`]'s conditioning).
 
 use crate::PlanarResult;
 use crate::car::{PlanarCar, PlanarError};
@@ -37,7 +39,7 @@ use crate::identify::PlanarCase;
 pub struct CellForce {
     /// The cell's load (index into the case's `drive.loads`).
     pub load: usize,
-    /// Simulated, aligned as the run's total force is, N.
+    /// Simulated, aligned and filtered as the run's total force is, N.
     pub simulated: Vec<f64>,
     /// Measured (the cell's conditioned channel), N.
     pub measured: Vec<f64>,
@@ -121,39 +123,44 @@ fn simulated(
 
 /// Each cell's load index and simulated force at the case's samples, in
 /// `car`'s forward run `run`, whose time zero lies `shift` (s) after the
-/// case's (see the module); empty when the case's wall has no cells. The
-/// residuals' path: nothing of the measurement is copied.
+/// case's (see the module), filtered as the case's channels were; empty
+/// when the case's wall has no cells, an error when its CFC cannot filter
+/// at its sample interval. The residuals' path: nothing of the measurement
+/// is copied.
 pub(crate) fn simulated_cells(
     car: &PlanarCar,
     case: &PlanarCase,
     run: &PlanarResult,
     shift: f64,
-) -> Vec<(usize, Vec<f64>)> {
+) -> Result<Vec<(usize, Vec<f64>)>, PlanarError> {
     let Some((bands, tangent)) = bands(case) else {
-        return Vec::new();
+        return Ok(Vec::new());
     };
     let step = case.drive.step;
     let lead = crate::forward::lead(step);
     let histories = simulated(car, run, (&bands, tangent), case.drive.speed * shift);
-    let at = |load: usize, history: &[f64]| -> Vec<f64> {
-        // as the forward run's channels: filtered as the cells' measurement
-        // was (the class checked there, so an error here leaves the raw)
-        let conditioned = crate::forward::as_measured(case, history, step, lead)
-            .unwrap_or_else(|_| [vec![0.0; lead], history.to_vec()].concat());
-        (0..case.drive.loads[load].force.len())
+    let at = |load: usize, history: &[f64]| -> Result<Vec<f64>, PlanarError> {
+        // as the forward run's channels: filtered as the cells' measurement was
+        let conditioned = crate::forward::as_measured(case, history, step, lead)?;
+        Ok((0..case.drive.loads[load].force.len())
             .map(|k| crate::forward::sample(&conditioned, k as f64 - shift / step + lead as f64))
-            .collect()
+            .collect())
     };
     (bands.iter().zip(histories))
-        .map(|(band, history)| (band.load, at(band.load, &history)))
+        .map(|(band, history)| Ok((band.load, at(band.load, &history)?)))
         .collect()
 }
 
 /// [`simulated_cells`] with each cell's measurement and fit % over the
 /// case's window.
-fn of_run(car: &PlanarCar, case: &PlanarCase, run: &PlanarResult, shift: f64) -> Vec<CellForce> {
+fn of_run(
+    car: &PlanarCar,
+    case: &PlanarCase,
+    run: &PlanarResult,
+    shift: f64,
+) -> Result<Vec<CellForce>, PlanarError> {
     let (a, b) = case.window;
-    simulated_cells(car, case, run, shift)
+    Ok(simulated_cells(car, case, run, shift)?
         .into_iter()
         .map(|(load, simulated)| {
             let measured = case.drive.loads[load].force.clone();
@@ -164,7 +171,7 @@ fn of_run(car: &PlanarCar, case: &PlanarCase, run: &PlanarResult, shift: f64) ->
                 measured,
             }
         })
-        .collect()
+        .collect())
 }
 
 /// The forward run of `case` on `car` compared cell by cell (see the
@@ -172,7 +179,7 @@ fn of_run(car: &PlanarCar, case: &PlanarCase, run: &PlanarResult, shift: f64) ->
 /// [`crate::forward::forward()`]'s.
 pub fn cell_forces(car: &PlanarCar, case: &PlanarCase) -> Result<Vec<CellForce>, PlanarError> {
     let (ahead, run) = crate::forward::run(car, case)?;
-    Ok(of_run(car, case, &run, ahead.shift))
+    of_run(car, case, &run, ahead.shift)
 }
 
 #[cfg(test)]

@@ -4,8 +4,9 @@
 //!
 //! Compared channels, each over the test's contact window:
 //!
-//! - **force**: the magnitude of the striker's force on the car, simulated,
-//!   against `|Σ_k F_k d_k|` of the measured load cells (their directions);
+//! - **force**: the magnitude of the striker's force on the car (of its
+//!   filtered x and y components, below), simulated, against `|Σ_k F_k
+//!   d_k|` of the measured load cells (their directions);
 //! - **x-acceleration**: the mean of the two sills' body-x accelerations,
 //!   `A_x − ψ̇² ξ` (the yaw accelerations cancel), simulated from the CG's
 //!   velocity history, measured as the second difference of the sills'
@@ -20,15 +21,19 @@
 //! histories' onsets (the first sample above [`ONSET`] of the peak) are
 //! aligned, and the shift is reported.
 //!
-//! Conditioning: the measured channels were filtered at the case's CFC
-//! class (SAE J211-1, zero phase) over their pre-trigger, so each simulated
-//! channel is filtered alike (`as_measured`) before onsets are found and
-//! channels compared: [`LEAD`] of its state at first touch put before it,
-//! into which the filter spreads its onset as it spread the measured one
-//! into the pre-trigger. Unfiltered, a fast transient the filter smoothed
-//! in the measurement (a pendulum's first foam spike) counts as a model
-//! error, and a bumper fitted to such a test is pulled by it. Each channel is scored by the fit % of the estimation
-//! layer ([`bumpsim_estimate::fit`]) and by the ISO/TS 18571 rating
+//! Conditioning: a case with a `cfc` had its measured channels filtered at
+//! that CFC class (SAE J211-1, zero phase) over their pre-trigger when it
+//! was read, so each simulated channel is filtered alike (`as_measured`)
+//! before onsets are found and channels compared: [`LEAD`] of its state at
+//! first touch put before it, into which the filter spreads its onset as it
+//! spread the measured one into the pre-trigger. Unfiltered, a fast
+//! transient the filter smoothed in the measurement (a pendulum's first
+//! foam spike) counts as a model error, and it enters the residuals of a
+//! bumper fitted to such a test. A case without `cfc` is compared
+//! unfiltered.
+//!
+//! Each channel is scored by the fit % of the estimation layer
+//! ([`bumpsim_estimate::fit`]) and by the ISO/TS 18571 rating
 //! ([`bumpsim_signal::rating`]).
 
 use crate::car::{PlanarCar, PlanarError};
@@ -130,8 +135,9 @@ impl Forward {
 }
 
 /// Simulates `case`'s striker against `car` and compares it with the case's
-/// measurement (see the module); an error when the case has no striker or
-/// no left and right sills.
+/// measurement (see the module); an error when the case has no striker,
+/// no left and right sills, or a CFC class its sample interval cannot
+/// filter at.
 pub fn forward(car: &PlanarCar, case: &PlanarCase) -> Result<Forward, PlanarError> {
     run(car, case).map(|(ahead, _)| ahead)
 }
@@ -168,18 +174,9 @@ pub(crate) fn run(
     let r = simulate(car, &striker, &settings)?;
     let measured = measured(case, eta_left - eta_right);
     let lead = lead(step);
-    let [along, rate] = simulated(&r, xi);
-    // the magnitude of the filtered components, as the cells' sum was taken
-    let (fx, fy) = (
-        as_measured(case, &r.force_x, step, lead)?,
-        as_measured(case, &r.force_y, step, lead)?,
-    );
-    let simulated = [
-        fx.iter().zip(&fy).map(|(x, y)| x.hypot(*y)).collect(),
-        as_measured(case, &along, step, lead)?,
-        as_measured(case, &rate, step, lead)?,
-    ];
-    let shift = (onset(&measured[0]) as f64 - (onset(&simulated[0]) as f64 - lead as f64)) * step;
+    let simulated = conditioned(case, &r, xi, lead)?;
+    let at = |f: &[f64], otherwise: usize| onset(f).unwrap_or(otherwise) as f64;
+    let shift = (at(&measured[0], 0) - (at(&simulated[0], lead) - lead as f64)) * step;
     let time: Vec<f64> = (0..samples).map(|k| k as f64 * step).collect();
     let (a, b) = case.window;
     let channels = [
@@ -222,10 +219,31 @@ pub(crate) fn run(
     Ok((ahead, r))
 }
 
-/// A force history's onset: its first sample above [`ONSET`] of its peak.
-fn onset(f: &[f64]) -> usize {
+/// A force history's onset: its first sample above [`ONSET`] of its peak
+/// (none when it never rises).
+fn onset(f: &[f64]) -> Option<usize> {
     let peak = f.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    f.iter().position(|v| v.abs() > ONSET * peak).unwrap_or(0)
+    f.iter().position(|v| v.abs() > ONSET * peak)
+}
+
+/// The run's force, x-acceleration and yaw rate conditioned as the case's
+/// channels were ([`as_measured`], `lead` samples before first touch); the
+/// force the magnitude of its filtered components, as the cells' sum is.
+fn conditioned(
+    case: &PlanarCase,
+    r: &crate::PlanarResult,
+    xi: f64,
+    lead: usize,
+) -> Result<[Vec<f64>; 3], PlanarError> {
+    let step = case.drive.step;
+    let [along, rate] = simulated(r, xi);
+    let fx = as_measured(case, &r.force_x, step, lead)?;
+    let fy = as_measured(case, &r.force_y, step, lead)?;
+    Ok([
+        fx.iter().zip(&fy).map(|(x, y)| x.hypot(*y)).collect(),
+        as_measured(case, &along, step, lead)?,
+        as_measured(case, &rate, step, lead)?,
+    ])
 }
 
 /// The measured force magnitude, sills' mean x-acceleration and yaw rate.
@@ -304,7 +322,7 @@ pub(crate) fn sample(v: &[f64], k: f64) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::car::Layout;
     use crate::drive::{Drive, Load};
@@ -333,6 +351,18 @@ mod tests {
         let held = [vec![0.0; lead], r.force.clone()].concat();
         let cfc = bumpsim_signal::filter::Cfc::new(class, Default::default()).unwrap();
         let force = cfc.filter(&held, step).unwrap()[lead - BEFORE..].to_vec();
+        pendulum_case("pendulum", striker, force, step, said.then_some(class))
+    }
+
+    /// A pendulum case: `force` (N, every `step` s) as its one load cell
+    /// along −x, two sills with no readings, the whole record its window.
+    pub(crate) fn pendulum_case(
+        name: &str,
+        striker: Striker,
+        force: Vec<f64>,
+        step: f64,
+        cfc: Option<f64>,
+    ) -> PlanarCase {
         let n = force.len();
         let drive = Drive {
             step,
@@ -348,7 +378,7 @@ mod tests {
             sensors: vec![Sensor::Body([0.6, 0.7]), Sensor::Body([0.6, -0.7])],
         };
         PlanarCase {
-            name: "pendulum".into(),
+            name: name.into(),
             drive,
             measured: vec![vec![0.0; n]; 2],
             window: (0, n - 1),
@@ -357,7 +387,7 @@ mod tests {
             time_zero: 0.0,
             weights: Vec::new(),
             pretrigger: 0.0,
-            cfc: said.then_some(class),
+            cfc,
         }
     }
 

@@ -193,11 +193,12 @@ pub fn check_programs() -> Result<()> {
     Ok(())
 }
 
-/// Shortest longest wait for cancelled tasks to end. `scancel` returns
-/// before Slurm has stopped them: their node signals them, and kills them
-/// `KillWait` (30 s by default) later, while squeue shows them COMPLETING;
-/// a cluster whose `KillWait + UnkillableStepTimeout` (`scontrol show
-/// config`) is longer is waited for that long plus 30 s.
+/// The least time `abort` waits for cancelled tasks to end (the floor of
+/// `query::Config::cancel_wait`). `scancel` returns before Slurm has
+/// stopped them: their node signals them, and kills them `KillWait` (30 s
+/// by default) later, while squeue shows them COMPLETING. `abort` waits the
+/// longer of this and the cluster's `KillWait + UnkillableStepTimeout`
+/// (`scontrol show config`) plus 30 s.
 pub const CANCEL_WAIT: Duration = Duration::from_secs(120);
 
 /// Waits until no task of `points` is queued or running any more (squeue),

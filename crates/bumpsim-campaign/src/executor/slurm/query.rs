@@ -26,12 +26,14 @@ pub(super) struct Config {
 }
 
 impl Config {
-    /// How long after `scancel` a cancelled task may still run on its node:
-    /// `KillWait + UnkillableStepTimeout` plus a margin of [`CANCEL_MARGIN`]
-    /// for the node's report to reach squeue, at least `floor`.
+    /// How long `abort` waits after `scancel` for its tasks to end: the
+    /// longer of `floor` and `KillWait + UnkillableStepTimeout` plus a
+    /// margin of [`CANCEL_MARGIN`] for the node's report to reach squeue.
     pub fn cancel_wait(&self, floor: std::time::Duration) -> std::time::Duration {
-        let known = self.kill_wait.unwrap_or(0) + self.unkillable_step_timeout.unwrap_or(0);
-        floor.max(std::time::Duration::from_secs(known + CANCEL_MARGIN))
+        let known = (self.kill_wait.unwrap_or(0))
+            .saturating_add(self.unkillable_step_timeout.unwrap_or(0))
+            .saturating_add(CANCEL_MARGIN);
+        floor.max(std::time::Duration::from_secs(known))
     }
 }
 
@@ -297,6 +299,11 @@ mod tests {
         assert_eq!(defaults.cancel_wait(floor), floor);
         assert_eq!(parse_config("").cancel_wait(floor), floor);
         assert_eq!(parse_config("KillWait = soon\n").kill_wait, None);
+        let huge = format!(
+            "KillWait = {} sec\nUnkillableStepTimeout = 60 sec\n",
+            u64::MAX
+        );
+        assert_eq!(parse_config(&huge).cancel_wait(floor).as_secs(), u64::MAX);
     }
 
     #[test]
