@@ -308,6 +308,16 @@ pub struct Axle {
     /// 0: the instantaneous slip-angle law).
     #[serde(default = "default_relaxation_length")]
     pub relaxation_length: f64,
+    /// The Magic-Formula shape factor C of the lateral force, 1 (rolling;
+    /// `None`: the linear law clamped at μ_y N). With it the rolling tyre
+    /// pushes back with `F_y = −μ_y N sin(C atan(B α'))`,
+    /// `B = C_α / (C μ_y N)`, `α' = y/σ` the relaxed slip (or the slip
+    /// angle α without relaxation): the same cornering stiffness at small
+    /// slip, a rounded peak μ_y N at `B α' = tan(π/(2C))`, and a fall
+    /// towards `μ_y N sin(Cπ/2)` at large slip, as real tyres do (Pacejka
+    /// 2012, ch. 4.3.2: C ≈ 1.3 for the lateral force; 1 ≤ C < 2).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shape: Option<f64>,
 }
 
 /// The default cornering stiffness of a passenger-car tyre, N/rad, and the
@@ -338,6 +348,7 @@ impl Default for Axle {
             law: TyreLaw::Rolling,
             cornering_stiffness: CORNERING_STIFFNESS.0,
             relaxation_length: RELAXATION_LENGTH,
+            shape: None,
         }
     }
 }
@@ -595,6 +606,13 @@ impl PlanarCar {
         self
     }
 
+    /// The same car on `tyres`, checked as [`PlanarCar::new`] checks them.
+    pub fn with_tyres(mut self, tyres: Tyres) -> Result<PlanarCar, PlanarError> {
+        check_tyres(&tyres)?;
+        self.tyres = tyres;
+        Ok(self)
+    }
+
     /// The name, if any.
     pub fn name(&self) -> Option<&str> {
         self.name.as_deref()
@@ -769,6 +787,15 @@ fn check_tyres(tyres: &Tyres) -> Result<(), PlanarError> {
             "must be finite and not negative (0: the instantaneous slip-angle law)",
             a.relaxation_length >= 0.0 && a.relaxation_length <= 10.0,
         )?;
+        if let Some(c) = a.shape {
+            require(
+                &format!("tyres.{axle}.shape"),
+                c,
+                "1",
+                "must lie in [1, 2) (the Magic Formula's shape factor C; about 1.3 for the lateral force)",
+                (1.0..2.0).contains(&c),
+            )?;
+        }
     }
     positive("tyres.slip_speed", tyres.slip_speed, "m/s")
 }

@@ -54,7 +54,9 @@
 //! # (locked or braked); rolling: rolling_resistance along the wheel (default 0),
 //! # cornering_stiffness (N/rad per tyre, default 60000) and relaxation_length
 //! # (m, default 0.4; 0: instantaneous slip-angle law); mu_lateral the grip across;
-//! # mu_longitudinal the locked wheel's sliding grip along (default: mu_lateral)
+//! # mu_longitudinal the locked wheel's sliding grip along (default: mu_lateral);
+//! # shape: the Magic Formula's shape factor C (about 1.3; default: none, the
+//! # linear law clamped at mu_lateral N)
 //! front = { rolling_resistance = 0.015, mu_lateral = 0.8 }
 //! rear = { mu_longitudinal = 0.75, mu_lateral = 0.8, law = "sliding" }   # e.g. parking brake on
 //!
@@ -241,6 +243,7 @@ struct AxleFile {
     law: TyreLaw,
     cornering_stiffness: Option<f64>,
     relaxation_length: Option<f64>,
+    shape: Option<f64>,
 }
 
 impl AxleFile {
@@ -261,6 +264,7 @@ impl AxleFile {
             law: self.law,
             cornering_stiffness: self.cornering_stiffness.unwrap_or(d.cornering_stiffness),
             relaxation_length: self.relaxation_length.unwrap_or(d.relaxation_length),
+            shape: self.shape,
         })
     }
 }
@@ -514,8 +518,11 @@ impl PlanarCar {
                 TyreLaw::Rolling => "rolling",
                 TyreLaw::Sliding => "sliding",
             };
+            let shape = a
+                .shape
+                .map_or(String::new(), |c| format!(", shape = {c:?}"));
             format!(
-                "{{ rolling_resistance = {:?}, mu_longitudinal = {:?}, mu_lateral = {:?}, law = \"{law}\", cornering_stiffness = {:?}, relaxation_length = {:?} }}",
+                "{{ rolling_resistance = {:?}, mu_longitudinal = {:?}, mu_lateral = {:?}, law = \"{law}\", cornering_stiffness = {:?}, relaxation_length = {:?}{shape} }}",
                 a.rolling_resistance,
                 a.mu_longitudinal,
                 a.mu_lateral,
@@ -643,7 +650,8 @@ mod tests {
     }
 
     /// A drawn symmetric car with a name TOML must escape (quotes,
-    /// backslashes, controls, non-ASCII) or none.
+    /// backslashes, controls, non-ASCII) or none, its front tyres rolling
+    /// with a Magic-Formula shape or without one.
     fn car() -> impl Strategy<Value = PlanarCar> {
         let name = proptest::option::of("[a-zA-Z0-9 \"\\\\\t\u{1}\u{7f}\u{e9}\u{3a9}#=]{0,20}");
         let chain = (1..4usize).prop_flat_map(|dof| {
@@ -660,12 +668,19 @@ mod tests {
                 bending,
                 ..Layout::default()
             });
-        (chain, bumper(), layout, name).prop_map(|((m, c, k), bumper, layout, name)| {
-            let chain = MsdModel::new(m, c, k).unwrap();
-            PlanarCar::symmetric(&chain, &bumper, &layout)
-                .unwrap()
-                .with_name(name)
-        })
+        let shape = proptest::option::of(1.0..2.0f64);
+        (chain, bumper(), layout, name, shape).prop_map(
+            |((m, c, k), bumper, layout, name, shape)| {
+                let chain = MsdModel::new(m, c, k).unwrap();
+                let car = PlanarCar::symmetric(&chain, &bumper, &layout).unwrap();
+                let mut tyres = *car.tyres();
+                tyres.front = Axle {
+                    shape,
+                    ..Axle::rolling(0.015, 0.8)
+                };
+                car.with_tyres(tyres).unwrap().with_name(name)
+            },
+        )
     }
 
     proptest! {

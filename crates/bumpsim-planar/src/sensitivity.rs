@@ -146,13 +146,22 @@ impl<T: Real> Wheel<T> {
                 let rolling = (v_e * v_e + slip * slip).sqrt();
                 let along = -(self.load * a.rolling_resistance) * v_e / rolling;
                 let grip = self.mu_lateral * self.load;
-                let across = if grip.value() <= 0.0 {
-                    T::constant(0.0)
-                } else if a.relaxation_length > 0.0 {
-                    (-(self.cornering / self.relaxation) * y).clamp(-grip, grip)
+                let relaxed = a.relaxation_length > 0.0;
+                let slip = if relaxed {
+                    y / self.relaxation
                 } else {
-                    let alpha = v_n.atan2(rolling);
-                    -(grip * (self.cornering * alpha / grip).tanh())
+                    v_n.atan2(rolling)
+                };
+                let across = match (grip.value() <= 0.0, a.shape) {
+                    (true, _) => T::constant(0.0),
+                    (false, Some(c)) => {
+                        let b = (self.cornering * slip / (grip * c)).atan2(T::constant(1.0));
+                        -(grip * (b * c).sin_cos().0)
+                    }
+                    (false, None) if relaxed => {
+                        (-(self.cornering / self.relaxation) * y).clamp(-grip, grip)
+                    }
+                    (false, None) => -(grip * (self.cornering * slip / grip).tanh()),
                 };
                 (along, across)
             }
@@ -169,8 +178,10 @@ impl<T: Real> Wheel<T> {
         }
         let sigma = self.relaxation;
         *y += (v_n - v_e.abs() / sigma * *y) * step;
-        let limit = grip * sigma / self.cornering;
-        *y = y.clamp(-limit, limit);
+        if a.shape.is_none() {
+            let limit = grip * sigma / self.cornering;
+            *y = y.clamp(-limit, limit);
+        }
     }
 }
 

@@ -53,13 +53,21 @@ impl Wheel {
                 let rolling = (v_e * v_e + slip * slip).sqrt();
                 let along = -a.rolling_resistance * self.load * v_e / rolling;
                 let grip = a.mu_lateral * self.load;
-                let across = if grip <= 0.0 {
-                    0.0
-                } else if a.relaxation_length > 0.0 {
-                    (-(a.cornering_stiffness / a.relaxation_length) * y).clamp(-grip, grip)
+                let relaxed = a.relaxation_length > 0.0;
+                let slip = if relaxed {
+                    y / a.relaxation_length
                 } else {
-                    let alpha = v_n.atan2(rolling);
-                    -grip * (a.cornering_stiffness * alpha / grip).tanh()
+                    v_n.atan2(rolling)
+                };
+                let across = match (grip <= 0.0, a.shape) {
+                    (true, _) => 0.0,
+                    (false, Some(c)) => {
+                        -grip * (c * (a.cornering_stiffness * slip / (c * grip)).atan()).sin()
+                    }
+                    (false, None) if relaxed => {
+                        (-(a.cornering_stiffness / a.relaxation_length) * y).clamp(-grip, grip)
+                    }
+                    (false, None) => -grip * (a.cornering_stiffness * slip / grip).tanh(),
                 };
                 (along, across)
             }
@@ -68,8 +76,10 @@ impl Wheel {
 
     /// Advances the patch deflection `y` of a rolling tyre with relaxation
     /// over `step` (s) at the wheel centre's velocity `(v_e, v_n)`:
-    /// `y += T (v_n − |v_e| y / σ)`, then clamped where the patch slides
-    /// (`|C_α y / σ| ≤ μ_y N`). Any other tyre has no deflection.
+    /// `y += T (v_n − |v_e| y / σ)`, then, with the clamped linear law,
+    /// clamped where the patch slides (`|C_α y / σ| ≤ μ_y N`; a Magic
+    /// Formula saturates in its force instead). Any other tyre has no
+    /// deflection.
     pub fn relax(&self, v_e: f64, v_n: f64, y: &mut f64, step: f64) {
         let a = &self.axle;
         let grip = a.mu_lateral * self.load;
@@ -79,8 +89,10 @@ impl Wheel {
         }
         let sigma = a.relaxation_length;
         *y += step * (v_n - v_e.abs() / sigma * *y);
-        let limit = grip * sigma / a.cornering_stiffness;
-        *y = y.clamp(-limit, limit);
+        if a.shape.is_none() {
+            let limit = grip * sigma / a.cornering_stiffness;
+            *y = y.clamp(-limit, limit);
+        }
     }
 
     /// The linearised damping (N·s/m) and stiffness (N/m) of this tyre
@@ -133,6 +145,39 @@ mod tests {
         }
         let (_, across) = w.force(v_e, 0.5, y, 0.05);
         assert!((across + 0.9 * 3500.0).abs() < 1e-9, "{across}");
+    }
+
+    /// The Magic Formula (shape 1.3, Pacejka 2012 ch. 4.3.2) has the
+    /// cornering stiffness at small slip, its peak μN at
+    /// `B α' = tan(π/(2C))` and falls to `μN sin(Cπ/2)` at large slip; its
+    /// patch is not clamped, and without a shape the law is the clamped
+    /// linear one.
+    #[test]
+    fn the_magic_formula_rounds_the_peak_and_falls_past_it() {
+        let shaped = wheel(Axle {
+            shape: Some(1.3),
+            ..Axle::rolling(0.0, 0.9)
+        });
+        let (grip, sigma, c) = (0.9 * 3500.0, 0.4, 60e3);
+        let at = |slip: f64| shaped.force(4.0, 0.0, slip * sigma, 0.05).1;
+        let small = at(1e-5);
+        assert!((small + c * 1e-5).abs() < 1e-6 * c * 1e-5, "{small}");
+        let b = c / (1.3 * grip);
+        let peak = at((std::f64::consts::PI / 2.6).tan() / b);
+        assert!((peak + grip).abs() < 1e-9 * grip, "{peak}");
+        let far = at(1e3);
+        let fall = grip * (1.3 * std::f64::consts::FRAC_PI_2).sin();
+        assert!((far + fall).abs() < 1e-3 * grip, "{far} {fall}");
+        let mut y = 0.0;
+        for _ in 0..20_000 {
+            shaped.relax(4.0, 0.5, &mut y, 1e-4);
+        }
+        assert!(y > 1.01 * grip * sigma / c, "not clamped: {y}");
+        let plain = wheel(Axle::rolling(0.0, 0.9)).force(4.0, 0.1, 2e-3, 0.05).1;
+        assert!(
+            (plain + (c / sigma) * 2e-3).abs() <= 1e-15 * plain.abs(),
+            "{plain}"
+        );
     }
 
     /// At standstill the relaxed tyre is a spring C_α/σ, not a damper:

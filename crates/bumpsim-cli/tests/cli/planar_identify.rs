@@ -475,6 +475,16 @@ fn hostile_planar_test_set_ups_get_clear_errors() {
             "front = { relaxation_length = -0.1, mu_lateral = 0.5 }",
             "relaxation",
         ),
+        (
+            "front = { shape = nan, mu_lateral = 0.5 }",
+            "tyres.front.shape",
+        ),
+        (
+            "front = { shape = 2.0, mu_lateral = 0.5 }",
+            "tyres.front.shape",
+        ),
+        ("front = { shape = 0.9, mu_lateral = 0.5 }", "[1, 2)"),
+        (r#"front = { shape = "1.3", mu_lateral = 0.5 }"#, "shape"),
     ]
     .into_iter()
     .enumerate()

@@ -211,13 +211,19 @@ fn yaw_rate_series(seed: u64) -> Option<PathBuf> {
 /// asserts, after every car has run, the floors that held on every car
 /// measured, and the base car's every threshold without a switch.
 /// `BUMPSIM_INERTIA_SPREAD=s|none` widens or removes the yaw inertia's
-/// prior, `BUMPSIM_START_BUMPER=1` keeps the start car's bumper.
+/// prior, `BUMPSIM_START_BUMPER=1` keeps the start car's bumper,
+/// `BUMPSIM_TYRE_SHAPE=C` gives the start car's tyres the Magic Formula
+/// with shape factor C (this generator's law, `C = 1.3`).
 #[test]
 #[ignore = "a measurement: 16 starts on each car, release build"]
 fn the_documented_study_on_a_third_family_with_a_yaw_rate_sensor() {
-    let switched = ["BUMPSIM_INERTIA_SPREAD", "BUMPSIM_START_BUMPER"]
-        .iter()
-        .any(|v| std::env::var(v).is_ok());
+    let switched = [
+        "BUMPSIM_INERTIA_SPREAD",
+        "BUMPSIM_START_BUMPER",
+        "BUMPSIM_TYRE_SHAPE",
+    ]
+    .iter()
+    .any(|v| std::env::var(v).is_ok());
     let mut failed = Vec::new();
     for seed in super::yaw_rate::seeds("0") {
         let Some(dir) = yaw_rate_series(seed) else {
@@ -231,6 +237,7 @@ fn the_documented_study_on_a_third_family_with_a_yaw_rate_sensor() {
             study.setup.bumper = false;
             study.setup.joint = None;
         }
+        shape_from_env(&mut study);
         let clock = std::time::Instant::now();
         let result = study.identified(&|| {}).unwrap();
         let mut scores =
@@ -253,4 +260,17 @@ fn the_documented_study_on_a_third_family_with_a_yaw_rate_sensor() {
         }
     }
     assert!(failed.is_empty(), "{failed:#?}");
+}
+
+/// `BUMPSIM_TYRE_SHAPE=C`: the study's start car with Magic-Formula tyres
+/// of shape factor C on both axles.
+fn shape_from_env(study: &mut PlanarStudy) {
+    let Ok(shape) = std::env::var("BUMPSIM_TYRE_SHAPE") else {
+        return;
+    };
+    let shape: f64 = shape.parse().expect("BUMPSIM_TYRE_SHAPE: a number");
+    let mut tyres = *study.setup.template.tyres();
+    tyres.front.shape = Some(shape);
+    tyres.rear.shape = Some(shape);
+    study.setup.template = study.setup.template.clone().with_tyres(tyres).unwrap();
 }

@@ -431,6 +431,22 @@ mod tests {
         matches_central_differences(&start, &cases, 1e-4, Domain::Displacement);
     }
 
+    /// The same with Magic-Formula tyres (shape factor 1.3: no clamp on
+    /// the patch, the force rounded at its peak): every column within 1e-4
+    /// of its largest entry.
+    #[test]
+    fn the_exact_jacobian_covers_the_magic_formula() {
+        let linear = car(1250.0, 2.5e6);
+        let mut tyres = *linear.tyres();
+        tyres.front.shape = Some(1.3);
+        tyres.rear.shape = Some(1.3);
+        let (left, right) = (linear.left().clone(), linear.right().clone());
+        let start =
+            PlanarCar::new(*linear.body(), left, right, linear.beam().clone(), tyres).unwrap();
+        let cases = cases(&start);
+        matches_central_differences(&start, &cases, 1e-4, Domain::Displacement);
+    }
+
     fn matches_central_differences(
         start: &PlanarCar,
         cases: &[PlanarCase],
