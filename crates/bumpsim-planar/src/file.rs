@@ -55,8 +55,9 @@
 //! # cornering_stiffness (N/rad per tyre, default 60000) and relaxation_length
 //! # (m, default 0.4; 0: instantaneous slip-angle law); mu_lateral the grip across;
 //! # mu_longitudinal the locked wheel's sliding grip along (default: mu_lateral);
-//! # shape: the Magic Formula's shape factor C (about 1.3; default: none, the
-//! # linear law clamped at mu_lateral N)
+//! # shape (rolling only): the Magic Formula's shape factor C in [1, 2) (about
+//! # 1.3; default: none, the linear law clamped at mu_lateral N, or its tanh
+//! # with relaxation_length = 0)
 //! front = { rolling_resistance = 0.015, mu_lateral = 0.8 }
 //! rear = { mu_longitudinal = 0.75, mu_lateral = 0.8, law = "sliding" }   # e.g. parking brake on
 //!

@@ -147,7 +147,7 @@ impl<T: Real> Wheel<T> {
                 let along = -(self.load * a.rolling_resistance) * v_e / rolling;
                 let grip = self.mu_lateral * self.load;
                 let relaxed = a.relaxation_length > 0.0;
-                let slip = if relaxed {
+                let alpha = if relaxed {
                     y / self.relaxation
                 } else {
                     v_n.atan2(rolling)
@@ -155,13 +155,13 @@ impl<T: Real> Wheel<T> {
                 let across = match (grip.value() <= 0.0, a.shape) {
                     (true, _) => T::constant(0.0),
                     (false, Some(c)) => {
-                        let b = (self.cornering * slip / (grip * c)).atan2(T::constant(1.0));
+                        let b = (self.cornering * alpha / (grip * c)).atan2(T::constant(1.0));
                         -(grip * (b * c).sin_cos().0)
                     }
                     (false, None) if relaxed => {
                         (-(self.cornering / self.relaxation) * y).clamp(-grip, grip)
                     }
-                    (false, None) => -(grip * (self.cornering * slip / grip).tanh()),
+                    (false, None) => -(grip * (self.cornering * alpha / grip).tanh()),
                 };
                 (along, across)
             }
@@ -651,6 +651,30 @@ mod tests {
         let chain = MsdModel::new(vec![12.0, 1250.0], vec![3e3], vec![2.5e6]).unwrap();
         let bumper = Bumper::three_part(1.5e6, 60e3, 6e6).unwrap();
         let car = PlanarCar::symmetric(&chain, &bumper, &Layout::default()).unwrap();
+        replays_alike(&car);
+        // rolling tyres with grip, relaxed in front and instantaneous at
+        // the rear, each with a Magic-Formula shape
+        let front = Axle {
+            shape: Some(1.3),
+            ..Axle::rolling(0.012, 0.8)
+        };
+        let rear = Axle {
+            shape: Some(1.6),
+            relaxation_length: 0.0,
+            ..Axle::rolling(0.012, 0.8)
+        };
+        let tyres = crate::car::Tyres {
+            front,
+            rear,
+            slip_speed: 0.05,
+        };
+        replays_alike(&car.with_tyres(tyres).unwrap());
+    }
+
+    /// The generic replay in f64 and in dual numbers reads what
+    /// [`drive_substeps`] reads, for every sensor kind, on an angled wall.
+    fn replays_alike(car: &PlanarCar) {
+        let car = car.clone();
         let striker = Striker::barrier(Face::plane_in_degrees(10.0, 40.0, Side::Left), 15.0 / 3.6);
         let settings = Settings {
             output_step: 1e-4,

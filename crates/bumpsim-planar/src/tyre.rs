@@ -54,7 +54,7 @@ impl Wheel {
                 let along = -a.rolling_resistance * self.load * v_e / rolling;
                 let grip = a.mu_lateral * self.load;
                 let relaxed = a.relaxation_length > 0.0;
-                let slip = if relaxed {
+                let alpha = if relaxed {
                     y / a.relaxation_length
                 } else {
                     v_n.atan2(rolling)
@@ -62,12 +62,12 @@ impl Wheel {
                 let across = match (grip <= 0.0, a.shape) {
                     (true, _) => 0.0,
                     (false, Some(c)) => {
-                        -grip * (c * (a.cornering_stiffness * slip / (c * grip)).atan()).sin()
+                        -grip * (c * (a.cornering_stiffness * alpha / (c * grip)).atan()).sin()
                     }
                     (false, None) if relaxed => {
                         (-(a.cornering_stiffness / a.relaxation_length) * y).clamp(-grip, grip)
                     }
-                    (false, None) => -grip * (a.cornering_stiffness * slip / grip).tanh(),
+                    (false, None) => -grip * (a.cornering_stiffness * alpha / grip).tanh(),
                 };
                 (along, across)
             }

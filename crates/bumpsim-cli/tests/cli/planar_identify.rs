@@ -484,7 +484,10 @@ fn hostile_planar_test_set_ups_get_clear_errors() {
             "tyres.front.shape",
         ),
         ("front = { shape = 0.9, mu_lateral = 0.5 }", "[1, 2)"),
-        (r#"front = { shape = "1.3", mu_lateral = 0.5 }"#, "shape"),
+        (
+            r#"front = { shape = "1.3", mu_lateral = 0.5 }"#,
+            "expected f64",
+        ),
     ]
     .into_iter()
     .enumerate()
