@@ -438,7 +438,13 @@ proptest! {
 
     /// Any face at any speed and pendulum mass, sensible or not: a clear
     /// error, or a result whose numbers are all finite and whose energy
-    /// closes (or, far beyond the low-speed range, a warning that it does not).
+    /// closes, or a warning that it does not. Within the low-speed
+    /// programme (≤ 16 km/h; a barrier, or a pendulum of 100 kg or more:
+    /// the programmes' pendulums weigh what the car does) it closes. A
+    /// pendulum of a few kg rattles against the car's 4 kg tip, each
+    /// rebound starting mid-step: a 9.5 kg one at 3.3 m/s into a pole
+    /// closed to 0.13 % (proptest, CI of 2026-12-02), 0.015 % at a safety
+    /// of 0.02, and warned.
     #[test]
     fn any_striker_gives_an_error_or_finite_numbers(
         face in any_face(),
@@ -458,12 +464,13 @@ proptest! {
                 let series = [&r.x, &r.y, &r.yaw, &r.force, &r.side_force_left, &r.side_force_right];
                 prop_assert!(series.iter().all(|s| s.iter().all(|v| v.is_finite())));
                 prop_assert!(r.line_of_action.iter().flatten().all(|v| v.is_finite()));
-                // within the low-speed programme (≤ 16 km/h) the balance closes to
-                // 0.1 %; beyond it, where a weak bumper may crush far past the
-                // striker, it closes or the result says it does not
+                // within the low-speed programme the balance closes to 0.1 %;
+                // beyond it (a weak bumper crushed far past the striker, a
+                // pendulum of a few kg) it closes or the result says it does not
                 let closes = r.energy.max_relative_error < 1e-3;
                 let warned = r.warnings.iter().any(|w| w.contains("energy balance"));
-                prop_assert!(closes || (speed > 16.0 / 3.6 && warned), "{:?}", r.energy);
+                let programme = speed <= 16.0 / 3.6 && mass.is_none_or(|m| m >= 100.0);
+                prop_assert!(closes || (!programme && warned), "{:?}", r.energy);
             }
         }
     }
