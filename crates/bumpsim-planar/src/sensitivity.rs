@@ -674,14 +674,13 @@ mod tests {
     /// The generic replay in f64 and in dual numbers reads what
     /// [`drive_substeps`] reads, for every sensor kind, on an angled wall.
     fn replays_alike(car: &PlanarCar) {
-        let car = car.clone();
         let striker = Striker::barrier(Face::plane_in_degrees(10.0, 40.0, Side::Left), 15.0 / 3.6);
         let settings = Settings {
             output_step: 1e-4,
             ..Settings::default()
         };
-        let r = simulate(&car, &striker, &settings).unwrap();
-        let Placed::Plane { normal, .. } = place(&car, &striker).unwrap() else {
+        let r = simulate(car, &striker, &settings).unwrap();
+        let Placed::Plane { normal, .. } = place(car, &striker).unwrap() else {
             unreachable!("a plane face")
         };
         let input = Drive {
@@ -698,13 +697,13 @@ mod tests {
                 Sensor::Crush(1),
             ],
         };
-        let n = substeps(&car, input.step, 0.25).unwrap();
-        let expected = drive_substeps(&car, &input, n).unwrap().sensor_reading;
+        let n = substeps(car, input.step, 0.25).unwrap();
+        let expected = drive_substeps(car, &input, n).unwrap().sensor_reading;
         let samples = expected[0].len();
-        let plain = sensor_readings::<f64>(&car, &Parameters::of(&car, &input), &input, n, samples)
-            .unwrap();
+        let plain =
+            sensor_readings::<f64>(car, &Parameters::of(car, &input), &input, n, samples).unwrap();
         let dual =
-            sensor_readings::<Dual<2>>(&car, &Parameters::of(&car, &input), &input, n, samples)
+            sensor_readings::<Dual<2>>(car, &Parameters::of(car, &input), &input, n, samples)
                 .unwrap();
         for (k, want) in expected.iter().enumerate() {
             let peak = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
