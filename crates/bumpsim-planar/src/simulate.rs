@@ -93,7 +93,19 @@ pub struct Settings {
     /// ISO 6487 and SAE J211: first contact), so the record starts at
     /// `−gap / speed`; `duration` counts from the start.
     pub gap: f64,
+    /// How many times a run whose energy balance misses
+    /// [`ENERGY_TOLERANCE`] is repeated at half the safety factor (0: never;
+    /// a given `step` is never refined). The result is the run that closes,
+    /// else the one that closes best; its `step` says which ran. Off by
+    /// default, so a search's objective keeps one step; the engine's
+    /// `impact` refines three times (a light pendulum rattling against a
+    /// light tip leaves 0.1–0.2 % open at safety 0.05, and closes at 0.0125).
+    pub refine: u32,
 }
+
+/// The energy balance's largest relative error that passes without a
+/// warning (and without a refinement, [`Settings::refine`]).
+pub const ENERGY_TOLERANCE: f64 = 1e-3;
 
 impl Default for Settings {
     fn default() -> Self {
@@ -104,6 +116,7 @@ impl Default for Settings {
             step: None,
             stop_after_contact: true,
             gap: 0.0,
+            refine: 0,
         }
     }
 }
@@ -182,8 +195,32 @@ fn check_steps(step: f64, settings: &Settings) -> Result<(), PlanarError> {
     )
 }
 
-/// Simulates a striker hitting a planar car.
+/// Simulates a striker hitting a planar car; a run whose energy balance
+/// misses [`ENERGY_TOLERANCE`] is repeated at half the safety factor up to
+/// [`Settings::refine`] times.
 pub fn simulate(
+    car: &PlanarCar,
+    striker: &Striker,
+    settings: &Settings,
+) -> Result<PlanarResult, PlanarError> {
+    let mut best = simulate_once(car, striker, settings)?;
+    let mut finer = *settings;
+    for _ in 0..settings.refine {
+        if settings.step.is_some() || best.energy.max_relative_error <= ENERGY_TOLERANCE {
+            break;
+        }
+        finer.safety /= 2.0;
+        // a finer run refused (over MAX_STEPS) or no better keeps the best
+        match simulate_once(car, striker, &finer) {
+            Ok(r) if r.energy.max_relative_error < best.energy.max_relative_error => best = r,
+            _ => break,
+        }
+    }
+    Ok(best)
+}
+
+/// One run at the settings' step.
+fn simulate_once(
     car: &PlanarCar,
     striker: &Striker,
     settings: &Settings,
@@ -598,10 +635,15 @@ impl<'a> Run<'a> {
             .copied()
             .fold(0.0, |a, b| if b.abs() > a.abs() { b } else { a });
         out.step = self.step;
-        if out.energy.max_relative_error > 1e-3 {
+        if out.energy.max_relative_error > ENERGY_TOLERANCE {
+            let at = match self.settings.step {
+                Some(_) => "the given step".to_string(),
+                None => format!("safety {}", self.settings.safety),
+            };
             out.warnings.push(format!(
-                "the energy balance is off by up to {:.2} % of the initial kinetic energy: lower the safety factor, or check that the crush stays within the striker's reach",
-                out.energy.max_relative_error * 100.0
+                "the energy balance is off by up to {:.2} % of the initial kinetic energy at a step of {:e} s ({at}): check that the crush stays within the striker's reach, or run at a finer step",
+                out.energy.max_relative_error * 100.0,
+                self.step
             ));
         }
         if out.contact_start.is_none() {

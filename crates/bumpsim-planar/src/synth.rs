@@ -377,6 +377,7 @@ pub fn record(
         step: None,
         stop_after_contact: false,
         gap: 0.0,
+        refine: 0,
     };
     let r = simulate(car, striker, &settings)?;
     let sensors = sensors(car, chain.sensor);
