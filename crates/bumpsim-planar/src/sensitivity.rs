@@ -28,8 +28,9 @@
 //! taken by a central difference of the segment's loading curve (piecewise
 //! linear: exact away from its knees).
 
-use crate::car::{Axle, Block, GRAVITY, PlanarCar, PlanarError, TyreLaw};
+use crate::car::{Block, GRAVITY, PlanarCar, PlanarError};
 use crate::drive::{Drive, Sensor};
+use crate::tyre::Grip;
 use bumpsim_core::dual::Real;
 use bumpsim_core::link::{Link as Law, LinkState};
 use bumpsim_impact::bumper::Bumper;
@@ -118,71 +119,12 @@ struct Link<T> {
     block: Option<Block>,
 }
 
-/// A wheel with its load and coefficients.
+/// A wheel where it is on the body (ξ ahead of and η left of the CG, m)
+/// with its law on the replay's numbers.
 struct Wheel<T> {
     xi: f64,
     eta: f64,
-    load: T,
-    axle: Axle,
-    mu_lateral: T,
-    mu_longitudinal: T,
-    cornering: T,
-    relaxation: T,
-}
-
-impl<T: Real> Wheel<T> {
-    /// [`crate::tyre::Wheel::force`].
-    fn force(&self, v_e: T, v_n: T, y: T, slip: f64) -> (T, T) {
-        let a = &self.axle;
-        match a.law {
-            TyreLaw::Sliding => {
-                let scale = self.load / (v_e * v_e + v_n * v_n + slip * slip).sqrt();
-                (
-                    -(self.mu_longitudinal * scale * v_e),
-                    -(self.mu_lateral * scale * v_n),
-                )
-            }
-            TyreLaw::Rolling => {
-                let rolling = (v_e * v_e + slip * slip).sqrt();
-                let along = -(self.load * a.rolling_resistance) * v_e / rolling;
-                let grip = self.mu_lateral * self.load;
-                let relaxed = a.relaxation_length > 0.0;
-                let alpha = if relaxed {
-                    y / self.relaxation
-                } else {
-                    v_n.atan2(rolling)
-                };
-                let across = match (grip.value() <= 0.0, a.shape) {
-                    (true, _) => T::constant(0.0),
-                    (false, Some(c)) => {
-                        let b = (self.cornering * alpha / (grip * c)).atan2(T::constant(1.0));
-                        -(grip * (b * c).sin_cos().0)
-                    }
-                    (false, None) if relaxed => {
-                        (-(self.cornering / self.relaxation) * y).clamp(-grip, grip)
-                    }
-                    (false, None) => -(grip * (self.cornering * alpha / grip).tanh()),
-                };
-                (along, across)
-            }
-        }
-    }
-
-    /// [`crate::tyre::Wheel::relax`].
-    fn relax(&self, v_e: T, v_n: T, y: &mut T, step: f64) {
-        let a = &self.axle;
-        let grip = self.mu_lateral * self.load;
-        if a.law != TyreLaw::Rolling || a.relaxation_length <= 0.0 || grip.value() <= 0.0 {
-            *y = T::constant(0.0);
-            return;
-        }
-        let sigma = self.relaxation;
-        *y += (v_n - v_e.abs() / sigma * *y) * step;
-        if a.shape.is_none() {
-            let limit = grip * sigma / self.cornering;
-            *y = y.clamp(-limit, limit);
-        }
-    }
+    grip: Grip<T>,
 }
 
 /// The segments' centres `η_j = w_e r_j` of `car` with its effective
@@ -291,16 +233,15 @@ impl<'a, T: Real> Replay<'a, T> {
         .enumerate()
         {
             for eta in [0.5 * body.track, -0.5 * body.track] {
-                wheels.push(Wheel {
-                    xi,
-                    eta,
-                    load: load * 0.5,
+                let grip = Grip {
                     axle,
+                    load: load * 0.5,
                     mu_lateral: p.mu_lateral,
                     mu_longitudinal: p.mu_longitudinal[axle_index],
                     cornering: p.cornering[axle_index],
                     relaxation: p.relaxation[axle_index],
-                });
+                };
+                wheels.push(Wheel { xi, eta, grip });
             }
         }
         let loads = input.loads.len();
@@ -481,7 +422,9 @@ impl<'a, T: Real> Replay<'a, T> {
         let (sn, cs) = self.axes;
         let (ve, vn, w) = (v[0] * cs + v[1] * sn, -(v[0] * sn) + v[1] * cs, v[2]);
         for (wheel, y) in self.wheels.iter().zip(&mut self.patches) {
-            wheel.relax(ve - w * wheel.eta, vn + w * wheel.xi, y, step);
+            wheel
+                .grip
+                .relax(ve - w * wheel.eta, vn + w * wheel.xi, y, step);
         }
     }
 
@@ -531,7 +474,9 @@ impl<'a, T: Real> Replay<'a, T> {
         let (ve, vn, w) = (v[0] * cs + v[1] * sn, -(v[0] * sn) + v[1] * cs, v[2]);
         let (mut te, mut tn, mut tm) = (zero, zero, zero);
         for (wheel, &y) in self.wheels.iter().zip(&self.patches) {
-            let (pe, pn) = wheel.force(ve - w * wheel.eta, vn + w * wheel.xi, y, self.slip);
+            let (pe, pn) = wheel
+                .grip
+                .force(ve - w * wheel.eta, vn + w * wheel.xi, y, self.slip);
             te += pe;
             tn += pn;
             tm += pn * wheel.xi - pe * wheel.eta;
@@ -634,6 +579,7 @@ fn loading<T: Real>(segment: &Bumper, depth: T) -> T {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::car::Axle;
     use crate::car::Layout;
     use crate::drive::{drive_substeps, segment_loads, substeps};
     use crate::simulate::{Settings, simulate};

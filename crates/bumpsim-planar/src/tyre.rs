@@ -20,6 +20,7 @@
 //! ```
 
 use crate::car::{Axle, TyreLaw};
+use bumpsim_core::dual::Real;
 
 /// A wheel: where it is on the body, what it carries, its axle's tyres.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -40,38 +41,7 @@ impl Wheel {
     /// patch deflection `y` (m, rolling with relaxation) and the slip
     /// speed `slip` (m/s) that regularises the laws at standstill.
     pub fn force(&self, v_e: f64, v_n: f64, y: f64, slip: f64) -> (f64, f64) {
-        let a = &self.axle;
-        match a.law {
-            TyreLaw::Sliding => {
-                let scale = self.load / (v_e * v_e + v_n * v_n + slip * slip).sqrt();
-                (
-                    -a.mu_longitudinal * scale * v_e,
-                    -a.mu_lateral * scale * v_n,
-                )
-            }
-            TyreLaw::Rolling => {
-                let rolling = (v_e * v_e + slip * slip).sqrt();
-                let along = -a.rolling_resistance * self.load * v_e / rolling;
-                let grip = a.mu_lateral * self.load;
-                let relaxed = a.relaxation_length > 0.0;
-                let alpha = if relaxed {
-                    y / a.relaxation_length
-                } else {
-                    v_n.atan2(rolling)
-                };
-                let across = match (grip <= 0.0, a.shape) {
-                    (true, _) => 0.0,
-                    (false, Some(c)) => {
-                        -grip * (c * (a.cornering_stiffness * alpha / (c * grip)).atan()).sin()
-                    }
-                    (false, None) if relaxed => {
-                        (-(a.cornering_stiffness / a.relaxation_length) * y).clamp(-grip, grip)
-                    }
-                    (false, None) => -grip * (a.cornering_stiffness * alpha / grip).tanh(),
-                };
-                (along, across)
-            }
-        }
+        self.grip().force(v_e, v_n, y, slip)
     }
 
     /// Advances the patch deflection `y` of a rolling tyre with relaxation
@@ -81,17 +51,19 @@ impl Wheel {
     /// Formula saturates in its force instead). Any other tyre has no
     /// deflection.
     pub fn relax(&self, v_e: f64, v_n: f64, y: &mut f64, step: f64) {
+        self.grip().relax(v_e, v_n, y, step)
+    }
+
+    /// This wheel's law on `f64`.
+    fn grip(&self) -> Grip<f64> {
         let a = &self.axle;
-        let grip = a.mu_lateral * self.load;
-        if a.law != TyreLaw::Rolling || a.relaxation_length <= 0.0 || grip <= 0.0 {
-            *y = 0.0;
-            return;
-        }
-        let sigma = a.relaxation_length;
-        *y += step * (v_n - v_e.abs() / sigma * *y);
-        if a.shape.is_none() {
-            let limit = grip * sigma / a.cornering_stiffness;
-            *y = y.clamp(-limit, limit);
+        Grip {
+            axle: *a,
+            load: self.load,
+            mu_lateral: a.mu_lateral,
+            mu_longitudinal: a.mu_longitudinal,
+            cornering: a.cornering_stiffness,
+            relaxation: a.relaxation_length,
         }
     }
 
@@ -109,6 +81,85 @@ impl Wheel {
             (false, _) => (along, 0.0),
             (true, true) => (along, a.cornering_stiffness / a.relaxation_length),
             (true, false) => (along.max(a.cornering_stiffness / slip), 0.0),
+        }
+    }
+}
+
+/// The one tyre law on any [`Real`]: `f64` in a run ([`Wheel`]), dual
+/// numbers in the identification's exact derivatives
+/// ([`crate::sensitivity`]), where the load and the coefficients are
+/// parameters. The axle gives the law, its shape and whether the tyre
+/// relaxes; the coefficients here override its values.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Grip<T> {
+    /// The law, shape and relaxation switch.
+    pub axle: Axle,
+    /// Normal load, N.
+    pub load: T,
+    /// Lateral grip μ_y.
+    pub mu_lateral: T,
+    /// Sliding grip along the wheel μ_x.
+    pub mu_longitudinal: T,
+    /// Cornering stiffness C_α, N/rad.
+    pub cornering: T,
+    /// Relaxation length σ, m.
+    pub relaxation: T,
+}
+
+impl<T: Real> Grip<T> {
+    /// [`Wheel::force`].
+    pub fn force(&self, v_e: T, v_n: T, y: T, slip: f64) -> (T, T) {
+        match self.axle.law {
+            TyreLaw::Sliding => {
+                let scale = self.load / (v_e * v_e + v_n * v_n + slip * slip).sqrt();
+                (
+                    -(self.mu_longitudinal * scale * v_e),
+                    -(self.mu_lateral * scale * v_n),
+                )
+            }
+            TyreLaw::Rolling => {
+                let rolling = (v_e * v_e + slip * slip).sqrt();
+                let along = -(self.load * self.axle.rolling_resistance) * v_e / rolling;
+                (along, self.lateral(v_n, y, rolling))
+            }
+        }
+    }
+
+    /// A rolling tyre's side force from its slip (relaxed: `y/σ`; else the
+    /// slip angle), saturated at `μ_y N` by the axle's law.
+    fn lateral(&self, v_n: T, y: T, rolling: T) -> T {
+        let grip = self.mu_lateral * self.load;
+        let relaxed = self.axle.relaxation_length > 0.0;
+        let alpha = match relaxed {
+            true => y / self.relaxation,
+            false => v_n.atan2(rolling),
+        };
+        match (grip.value() <= 0.0, self.axle.shape) {
+            (true, _) => T::constant(0.0),
+            (false, Some(c)) => {
+                let b = (self.cornering * alpha / (grip * c)).atan2(T::constant(1.0));
+                -(grip * (b * c).sin_cos().0)
+            }
+            (false, None) if relaxed => {
+                (-(self.cornering / self.relaxation) * y).clamp(-grip, grip)
+            }
+            (false, None) => -(grip * (self.cornering * alpha / grip).tanh()),
+        }
+    }
+
+    /// [`Wheel::relax`].
+    pub fn relax(&self, v_e: T, v_n: T, y: &mut T, step: f64) {
+        let a = &self.axle;
+        let grip = self.mu_lateral * self.load;
+        if a.law != TyreLaw::Rolling || a.relaxation_length <= 0.0 || grip.value() <= 0.0 {
+            *y = T::constant(0.0);
+            return;
+        }
+        let sigma = self.relaxation;
+        *y += (v_n - v_e.abs() / sigma * *y) * step;
+        if a.shape.is_none() {
+            let limit = grip * sigma / self.cornering;
+            *y = y.clamp(-limit, limit);
         }
     }
 }
