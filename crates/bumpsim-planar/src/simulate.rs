@@ -98,8 +98,9 @@ pub struct Settings {
     /// a given `step` is never refined). The result is the run that closes,
     /// else the one that closes best; its `step` says which ran. Off by
     /// default, so a search's objective keeps one step; the engine's
-    /// `impact` refines three times (a light pendulum rattling against a
-    /// light tip leaves 0.1–0.2 % open at safety 0.05, and closes at 0.0125).
+    /// `impact` refines three times (a pendulum of a few kg rattling against
+    /// a 4 kg tip left up to 0.33 % open at safety 0.05, and closed within
+    /// three halvings: docs/planar.md).
     pub refine: u32,
 }
 
