@@ -140,6 +140,46 @@ impl Searched {
         &self.points[self.starts.best]
     }
 
+    /// Whether an objective `other` lies below `best` by more than the data
+    /// can tell apart: `other (1 + κ/(n − q)) < best`, with κ the
+    /// inflation of the last [`Searched::count_correlated`] (1 before it),
+    /// the bar that counts the starts within κ noise variances of the
+    /// best.
+    ///
+    /// ```
+    /// # use bumpsim_estimate::lm::{self, LeastSquares};
+    /// # use bumpsim_estimate::multistart::{self, Search};
+    /// # use bumpsim_estimate::observer::Silent;
+    /// # use nalgebra::DMatrix;
+    /// /// r = (p − 1, p + 1): F = 2 + 2p², least at p = 0 (F = 2); n − q = 1.
+    /// struct Bowl;
+    /// impl LeastSquares for Bowl {
+    ///     fn residual_count(&self) -> usize { 2 }
+    ///     fn parameter_count(&self) -> usize { 1 }
+    ///     fn evaluate(&self, p: &[f64], r: &mut [f64], j: Option<&mut DMatrix<f64>>) -> bool {
+    ///         r[0] = p[0] - 1.0;
+    ///         r[1] = p[0] + 1.0;
+    ///         if let Some(j) = j { j[(0, 0)] = 1.0; j[(1, 0)] = 1.0; }
+    ///         true
+    ///     }
+    /// }
+    /// let search = Search {
+    ///     starts: 1, seed: 1, solver: lm::Settings::default(),
+    ///     lower: &[-10.0], upper: &[10.0], range: (&[-10.0], &[10.0]),
+    /// };
+    /// let mut found = multistart::search(&|| Bowl, vec![vec![3.0]], &search, &Silent).unwrap();
+    /// // κ = 1: one noise variance is F/(n − q), the whole objective here
+    /// assert!(!found.lower_beyond_noise(1.2, 2.0));
+    /// assert!(found.lower_beyond_noise(0.8, 2.0));
+    /// found.count_correlated(4.0);
+    /// assert!(!found.lower_beyond_noise(0.8, 2.0));
+    /// assert!(found.lower_beyond_noise(0.3, 2.0));
+    /// ```
+    pub fn lower_beyond_noise(&self, other: f64, best: f64) -> bool {
+        let kappa = self.starts.inflation.max(1.0);
+        other * (1.0 + kappa / self.freedom.max(1) as f64) < best
+    }
+
     /// Counts [`Starts::reached_correlated`] again with the variance
     /// inflation `inflation` (κ, dimensionless; below 1 or not finite
     /// taken as 1) at the best run, before anything changes the runs'

@@ -35,13 +35,9 @@ pub(super) fn identify(request: &IdentifyRequest<'_>) -> Result<Outcome, EngineE
     study.setup.starts = request.starts.unwrap_or(study.setup.starts);
     study.setup.seed = request.seed.unwrap_or(study.setup.seed);
     let progress = request.progress;
-    // with `confirm` the full search's starts run up to 1 + CONFIRMING
-    // times (the bar may finish early)
-    let passes = match study.setup.confirm {
-        true => 1 + bumpsim_planar::identify::CONFIRMING as u64,
-        false => 1,
-    };
-    progress.begin(study.setup.starts as u64 * passes);
+    // the starts of every search the identification runs (the bar may
+    // finish early: `confirm` searches again only while it must)
+    progress.begin(study.setup.start_count() as u64);
     // the identification, then the bumper from the training tests' forward
     // runs when the study asks (`[model] bumper = "fit"`)
     let result = study.identified(&|| progress.start_finished());

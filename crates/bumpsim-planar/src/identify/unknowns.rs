@@ -444,7 +444,7 @@ impl Unknowns {
     }
 
     /// The index of the effective width, when it is estimated.
-    fn width_index(&self) -> Option<usize> {
+    pub(crate) fn width_index(&self) -> Option<usize> {
         self.names().iter().position(|(n, _)| n == EFFECTIVE_WIDTH)
     }
 

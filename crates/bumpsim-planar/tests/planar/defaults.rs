@@ -110,6 +110,20 @@ pub(super) fn scores(dir: &Path, study: &PlanarStudy) -> Scores {
     scored(dir, study, &result, clock.elapsed().as_secs_f64())
 }
 
+/// `study` (of the series in `dir`) identified and scored against the
+/// series' truth, with the held-out yaw's band.
+pub(super) fn identified_and_scored(
+    dir: &Path,
+    study: &PlanarStudy,
+) -> (PlanarIdentification, Scores) {
+    let clock = Instant::now();
+    let result = study.identified(&|| {}).unwrap();
+    let mut scores = scored(dir, study, &result, clock.elapsed().as_secs_f64());
+    let yaw = super::bands::held_out_yaw(study, &result);
+    scores.band = Some(yaw.map(|j| j.inside_percent));
+    (result, scores)
+}
+
 /// `result`, the identification of `study` that took `seconds`, scored
 /// against the series' truth in `dir`.
 pub(super) fn scored(
@@ -151,8 +165,9 @@ pub(super) fn scored(
 }
 
 /// `BUMPSIM_INERTIA_SPREAD=s|none`: the yaw inertia's prior widened to
-/// spread `s` or removed (`[priors] "body.yaw_inertia"`), a measurement's
-/// switch.
+/// spread `s` or removed (`[priors] "body.yaw_inertia"`), and
+/// `BUMPSIM_WIDTH_FIXED=1`: the bumper's effective width not estimated
+/// (`[model] effective_width = false`); a measurement's switches.
 pub(super) fn inertia_prior_from_env(study: &mut PlanarStudy) {
     if let Ok(spread) = std::env::var("BUMPSIM_INERTIA_SPREAD") {
         study
@@ -164,6 +179,9 @@ pub(super) fn inertia_prior_from_env(study: &mut PlanarStudy) {
                 value: None,
                 spread: (spread != "none").then(|| spread.parse().unwrap()),
             });
+    }
+    if std::env::var("BUMPSIM_WIDTH_FIXED").is_ok() {
+        study.setup.width = false;
     }
 }
 

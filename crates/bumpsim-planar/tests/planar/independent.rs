@@ -211,7 +211,8 @@ fn yaw_rate_series(seed: u64) -> Option<PathBuf> {
 /// asserts, after every car has run, the floors that held on every car
 /// measured, and the base car's every threshold without a switch.
 /// `BUMPSIM_INERTIA_SPREAD=s|none` widens or removes the yaw inertia's
-/// prior, `BUMPSIM_START_BUMPER=1` keeps the start car's bumper,
+/// prior, `BUMPSIM_WIDTH_FIXED=1` keeps the drawn width,
+/// `BUMPSIM_START_BUMPER=1` keeps the start car's bumper,
 /// `BUMPSIM_TYRE_SHAPE=C` gives the start car's tyres the Magic Formula
 /// with shape factor C (this generator's law, `C = 1.3`).
 #[test]
@@ -219,6 +220,7 @@ fn yaw_rate_series(seed: u64) -> Option<PathBuf> {
 fn the_documented_study_on_a_third_family_with_a_yaw_rate_sensor() {
     let switched = [
         "BUMPSIM_INERTIA_SPREAD",
+        "BUMPSIM_WIDTH_FIXED",
         "BUMPSIM_START_BUMPER",
         "BUMPSIM_TYRE_SHAPE",
     ]
@@ -238,15 +240,19 @@ fn the_documented_study_on_a_third_family_with_a_yaw_rate_sensor() {
             study.setup.joint = None;
         }
         shape_from_env(&mut study);
-        let clock = std::time::Instant::now();
-        let result = study.identified(&|| {}).unwrap();
-        let mut scores =
-            super::defaults::scored(&dir, &study, &result, clock.elapsed().as_secs_f64());
-        let yaw = super::bands::held_out_yaw(&study, &result);
-        scores.band = Some(yaw.map(|j| j.inside_percent));
+        let (result, scores) = super::defaults::identified_and_scored(&dir, &study);
         eprintln!("{}", scores.row(&format!("seed {seed}")));
         let misses = scores.misses();
         eprintln!("seed {seed}: misses {misses:?}");
+        let width = result
+            .parameters
+            .iter()
+            .find(|p| p.name == "bumper.effective_width")
+            .map(|p| p.value);
+        eprintln!(
+            "seed {seed}: objective {:.4e}, effective width {width:?}",
+            result.objective
+        );
         // the floors that held on cars 0–19 (docs/planar.md, "Issue 44's
         // thresholds on a third family"); the base car holds every
         // threshold with the study as written
@@ -260,6 +266,30 @@ fn the_documented_study_on_a_third_family_with_a_yaw_rate_sensor() {
         }
     }
     assert!(failed.is_empty(), "{failed:#?}");
+}
+
+/// Issue 44's every threshold on one car of the third family, in the
+/// suite: car 2 (`--seeds 2:1 --yaw-rate`), whose search with the width
+/// held near the drawn width ended at 4.54e-3 (m/s)² under the priors and
+/// predicted the held-out offset yaw at 85.35 %; the second search, with
+/// the width pinned, ends at 3.38e-3 and 99.44 % (docs/planar.md, "The
+/// width pinned in a second search (w25)"). Asserted: every threshold
+/// (held-out x and yaw, the forward offset prediction, the starts at the
+/// best, I_z within 20 % and μ within 30 % of the truth, the held-out
+/// yaw inside its band).
+#[test]
+fn the_third_familys_car_2_holds_every_threshold() {
+    let Some(dir) = yaw_rate_series(2) else {
+        return;
+    };
+    let study = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
+    let (_, scores) = super::defaults::identified_and_scored(&dir, &study);
+    eprintln!("{}", scores.row("seed 2"));
+    assert!(
+        scores.misses().is_empty(),
+        "{:?} {scores:?}",
+        scores.misses()
+    );
 }
 
 /// `BUMPSIM_TYRE_SHAPE=C`: the study's start car with Magic-Formula tyres

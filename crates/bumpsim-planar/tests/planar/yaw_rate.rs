@@ -284,11 +284,7 @@ fn the_confirmed_documented_study_meets_every_threshold() {
     let Some(dir) = series() else { return };
     let mut study = PlanarStudy::read(&dir.join("study-doc.toml")).unwrap();
     study.setup.confirm = true;
-    let clock = std::time::Instant::now();
-    let result = study.identified(&|| {}).unwrap();
-    let mut scores = super::defaults::scored(&dir, &study, &result, clock.elapsed().as_secs_f64());
-    let yaw = super::bands::held_out_yaw(&study, &result);
-    scores.band = Some(yaw.map(|j| j.inside_percent));
+    let (result, scores) = super::defaults::identified_and_scored(&dir, &study);
     eprintln!("{}", scores.row("documented study, confirmed"));
     let confirmed = bumpsim_planar::identify::CONFIRMED * result.prior_noise;
     assert!(result.search_noise <= confirmed, "{result:?}");
