@@ -145,7 +145,8 @@ pub(super) fn search(
 }
 
 /// The staged search with the bumper's effective width pinned at its
-/// prior's centre (the start car's width where the prior was removed),
+/// prior's centre (the start car's width where the prior was removed; a
+/// centre outside the search's bounds at the nearer bound),
 /// its best then released: continued under the stated priors with the
 /// width free, every other start carried along. None where the width is
 /// not estimated or the search fails.
@@ -169,6 +170,8 @@ fn pinned(objective: &Objective, plan: &Plan, observer: &dyn Observer) -> Option
             || plan.unknowns.search(&plan.unknowns.start())[i],
             |p| p.centre.ln(),
         );
+    // a stated centre outside the search's range is pinned at its edge
+    let centre = centre.clamp(plan.bounds.0[i], plan.bounds.1[i]);
     let (mut lower, mut upper) = (plan.bounds.0.to_vec(), plan.bounds.1.to_vec());
     (lower[i], upper[i]) = (centre, centre);
     let pinned = Plan {
