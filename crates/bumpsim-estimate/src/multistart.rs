@@ -24,6 +24,11 @@ use crate::polish::{REFINE_FTOL, SCREEN_FTOL, candidates, polish};
 use crate::search::{Fate, Goal, ROUND, Run, around, representative, staged};
 use serde::Serialize;
 
+/// The likelihood-ratio statistic a fit must beat another's by to be told
+/// apart from it at 5 %: the 95 % quantile of χ² with one degree of
+/// freedom (dimensionless; checked against statrs in the tests).
+pub const DISTINGUISHED: f64 = 3.841_458_820_694_124;
+
 /// Every start failed.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("all {starts} starts failed: the model could not be simulated from any of them")]
@@ -141,10 +146,12 @@ impl Searched {
     }
 
     /// Whether an objective `other` lies below `best` by more than the data
-    /// can tell apart: `other (1 + κ/(n − q)) < best`, with κ the
-    /// inflation of the last [`Searched::count_correlated`] (1 before it),
-    /// the bar that counts the starts within κ noise variances of the
-    /// best.
+    /// can tell apart, by a likelihood-ratio test at 5 %: `((n − q)/κ)
+    /// ln(best/other) > 3.84` ([`DISTINGUISHED`]), κ the inflation of the
+    /// last [`Searched::count_correlated`] (1 before it). A choice between
+    /// two fits that replaces one by the other asks that much; the tally
+    /// of the starts that reached the best asks only that they lie within
+    /// one noise variance (the module).
     ///
     /// ```
     /// # use bumpsim_estimate::lm::{self, LeastSquares};
@@ -168,16 +175,18 @@ impl Searched {
     ///     lower: &[-10.0], upper: &[10.0], range: (&[-10.0], &[10.0]),
     /// };
     /// let mut found = multistart::search(&|| Bowl, vec![vec![3.0]], &search, &Silent).unwrap();
-    /// // κ = 1: one noise variance is F/(n − q), the whole objective here
-    /// assert!(!found.lower_beyond_noise(1.2, 2.0));
-    /// assert!(found.lower_beyond_noise(0.8, 2.0));
+    /// // κ = 1 and n − q = 1: lower beyond the noise below 2/e^3.84 = 0.043
+    /// assert!(!found.lower_beyond_noise(0.05, 2.0));
+    /// assert!(found.lower_beyond_noise(0.04, 2.0));
+    /// // κ = 4: four times as far in ln F
     /// found.count_correlated(4.0);
-    /// assert!(!found.lower_beyond_noise(0.8, 2.0));
-    /// assert!(found.lower_beyond_noise(0.3, 2.0));
+    /// assert!(!found.lower_beyond_noise(0.04, 2.0));
+    /// assert!(found.lower_beyond_noise(1e-7, 2.0));
     /// ```
     pub fn lower_beyond_noise(&self, other: f64, best: f64) -> bool {
         let kappa = self.starts.inflation.max(1.0);
-        other * (1.0 + kappa / self.freedom.max(1) as f64) < best
+        let statistic = self.freedom.max(1) as f64 / kappa * (best / other).ln();
+        statistic > DISTINGUISHED
     }
 
     /// Counts [`Starts::reached_correlated`] again with the variance
@@ -549,6 +558,13 @@ mod tests {
     use crate::lm::Stop;
     use crate::polish::{candidates, polish};
     use crate::search::staged;
+
+    #[test]
+    fn the_distinguishing_bar_is_chi_squared_of_one_degree_at_95_percent() {
+        use statrs::distribution::{ChiSquared, ContinuousCDF};
+        let quantile = ChiSquared::new(1.0).unwrap().inverse_cdf(0.95);
+        approx::assert_relative_eq!(super::DISTINGUISHED, quantile, max_relative = 1e-9);
+    }
 
     /// A scripted solver on one parameter: minima at 0 (F = 1), 1 (F = 1.1)
     /// and 5 (F = 100) reached at once; a flat valley near 7 (F = 5) that
