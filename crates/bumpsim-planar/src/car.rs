@@ -84,13 +84,18 @@ pub enum PlanarError {
         /// What is wrong (with line and column where the parser gives them).
         message: String,
     },
-    /// The integration diverged (a step too large for the given safety factor).
+    /// The integration diverged: the state grew without bound (non-finite,
+    /// beyond 1 km or 1000 rad, or twice the energy the run started with),
+    /// which a car of plausible parts does not do at the step from its
+    /// stiffest element.
     #[error(
-        "the integration diverged at t = {time} s: lower the safety factor or the step, or check the car for implausible geometry or stiffness"
+        "the integration diverged at t = {time} s with a step of {step} s: check the car for implausible geometry or stiffness (an element far stiffer or lighter than a car's, side members far apart)"
     )]
     Diverged {
-        /// Time of the first non-finite state, s.
+        /// Time of the first diverged sample, s.
         time: f64,
+        /// The integration step the run took, s.
+        step: f64,
     },
     /// A load case cannot be built from its channels.
     #[error("case '{case}': {message}")]

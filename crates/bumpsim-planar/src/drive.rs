@@ -616,7 +616,8 @@ impl<'a> Replay<'a> {
         // an explicit step too large for the car grows without bound:
         // 1e3 m (or rad) is far beyond any impact, so it counts as diverged
         if !q.iter().all(|x| x.abs() < 1e3) {
-            return Err(PlanarError::Diverged { time });
+            let step = self.input.step / self.substeps as f64;
+            return Err(PlanarError::Diverged { time, step });
         }
         for k in 0..self.input.sensors.len() {
             let reading = self.reading(k, q);

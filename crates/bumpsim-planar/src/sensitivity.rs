@@ -316,7 +316,8 @@ impl<'a, T: Real> Replay<'a, T> {
                 let i = k / substeps;
                 if !q.iter().all(|x| x.value().abs() < 1e3) {
                     let time = i as f64 * self.input.step;
-                    return Err(PlanarError::Diverged { time });
+                    let step = self.input.step / substeps as f64;
+                    return Err(PlanarError::Diverged { time, step });
                 }
                 for (s, history) in out.iter_mut().enumerate() {
                     history.push(self.reading(s, &q));

@@ -197,27 +197,53 @@ fn check_steps(step: f64, settings: &Settings) -> Result<(), PlanarError> {
 }
 
 /// Simulates a striker hitting a planar car; a run whose energy balance
-/// misses [`ENERGY_TOLERANCE`] is repeated at half the safety factor up to
-/// [`Settings::refine`] times.
+/// misses [`ENERGY_TOLERANCE`], or that diverges, is repeated at half the
+/// safety factor up to [`Settings::refine`] times (never with a given
+/// `step`). A finer run replaces a diverged one whatever it gives, and a
+/// finished one only when its balance closes better; else the refining
+/// stops.
 pub fn simulate(
     car: &PlanarCar,
     striker: &Striker,
     settings: &Settings,
 ) -> Result<PlanarResult, PlanarError> {
-    let mut best = simulate_once(car, striker, settings)?;
+    let mut best = simulate_once(car, striker, settings);
     let mut finer = *settings;
     for _ in 0..settings.refine {
-        if settings.step.is_some() || best.energy.max_relative_error <= ENERGY_TOLERANCE {
+        if settings.step.is_some() || !open(&best) {
             break;
         }
         finer.safety /= 2.0;
-        // a finer run refused (over MAX_STEPS) or no better keeps the best
-        match simulate_once(car, striker, &finer) {
-            Ok(r) if r.energy.max_relative_error < best.energy.max_relative_error => best = r,
-            _ => break,
+        let run = simulate_once(car, striker, &finer);
+        if !better(&run, &best) {
+            break;
         }
+        best = run;
     }
-    Ok(best)
+    best
+}
+
+/// Whether a run is worth repeating finer: it diverged, or its energy
+/// balance misses [`ENERGY_TOLERANCE`].
+fn open(run: &Result<PlanarResult, PlanarError>) -> bool {
+    match run {
+        Ok(r) => r.energy.max_relative_error > ENERGY_TOLERANCE,
+        Err(e) => matches!(e, PlanarError::Diverged { .. }),
+    }
+}
+
+/// Whether the finer `run` replaces `best`: any outcome after a divergence
+/// (a refusal over [`MAX_STEPS`] names the car's stiffness too), a balance
+/// that closes better after a finished run.
+fn better(
+    run: &Result<PlanarResult, PlanarError>,
+    best: &Result<PlanarResult, PlanarError>,
+) -> bool {
+    match (run, best) {
+        (_, Err(_)) => true,
+        (Ok(r), Ok(b)) => r.energy.max_relative_error < b.energy.max_relative_error,
+        (Err(_), Ok(_)) => false,
+    }
 }
 
 /// One run at the settings' step.
@@ -392,7 +418,10 @@ impl Mechanism for Run<'_> {
         let t = self.time(k);
         let (q, v) = (state.q(), state.velocities());
         if !q.iter().chain(v).all(|x| x.is_finite()) {
-            return Err(PlanarError::Diverged { time: t });
+            return Err(PlanarError::Diverged {
+                time: t,
+                step: self.step,
+            });
         }
         self.record_sample(t, q, v);
         // a passive car cannot end with more than twice the energy it
@@ -400,7 +429,10 @@ impl Mechanism for Run<'_> {
         // not a result (side members 1000 m apart gave 1.8e10 with exit 0
         // and a warning)
         if self.out.energy.relative_error > 1.0 {
-            return Err(PlanarError::Diverged { time: t });
+            return Err(PlanarError::Diverged {
+                time: t,
+                step: self.step,
+            });
         }
         Ok(Control::Continue)
     }

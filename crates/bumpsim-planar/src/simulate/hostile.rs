@@ -32,6 +32,39 @@ fn an_unusable_closing_energy_is_refused_by_name() {
     assert!(r.energy.relative_error.is_finite());
 }
 
+/// A diverging run is repeated at half the safety factor as often as
+/// `refine` allows, and refused with the smallest step it took, named in
+/// the message with what to check.
+#[test]
+fn a_diverging_run_is_refined_and_refused_with_its_step() {
+    let rcar = Striker::barrier(Face::plane_in_degrees(10.0, 40.0, Side::Left), 15.0 / 3.6);
+    let step = |refine| match simulate(
+        &wide_car(1e3),
+        &rcar,
+        &Settings {
+            refine,
+            ..Settings::default()
+        },
+    ) {
+        Err(PlanarError::Diverged { step, .. }) => step,
+        other => panic!("{other:?}"),
+    };
+    let (coarse, fine) = (step(0), step(2));
+    // a quarter of the step, to the rounding of the step onto the output
+    // interval (a whole number of steps per sample)
+    assert!(
+        fine <= 0.3 * coarse && fine >= 0.2 * coarse,
+        "{coarse} {fine}"
+    );
+    let err = simulate(&wide_car(1e3), &rcar, &Settings::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("with a step of") && err.contains("side members far apart"),
+        "{err}"
+    );
+}
+
 /// A gap is free travel before the same impact: the record starts at
 /// −gap/v and the impact is the gap-less one to within its step.
 #[test]
