@@ -191,7 +191,7 @@ fn energy(r: &PlanarResult) -> String {
     let e = &r.energy;
     let q = |v| format_quantity(v, Dimension::Energy);
     format!(
-        "  energy {} at the start: bumper {}, dampers {}, tyres {}, springs and beam {}, kinetic at the end {}\n  relative energy balance error {:.2e} of the initial energy (largest {:.2e})\n  relative momentum residuals {:.2e} linear, {:.2e} angular (of the initial momentum)\n",
+        "  energy {} at the start: bumper {}, dampers {}, tyres {}, springs and beam {}, kinetic at the end {}\n  relative energy balance error {:.2e} of the initial energy (largest {:.2e}), integration step {}\n  relative momentum residuals {:.2e} linear, {:.2e} angular (of the initial momentum)\n",
         q(e.initial),
         q(e.crush),
         q(e.dampers),
@@ -200,6 +200,7 @@ fn energy(r: &PlanarResult) -> String {
         q(e.kinetic),
         e.relative_error,
         e.max_relative_error,
+        format_quantity(r.step, Dimension::Time),
         r.momentum.linear_residual,
         r.momentum.angular_residual
     )

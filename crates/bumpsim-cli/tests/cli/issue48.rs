@@ -292,7 +292,8 @@ fn planar_times_are_rounded_to_the_sample_and_checks_say_relative() {
     ]);
     let stdout = text(&run.stdout);
     assert!(run.status.success(), "{}", text(&run.stderr));
-    assert!(!stdout.contains("0.03333 ms"), "{stdout}");
+    // (the integration step, 0.03333 ms, is printed as such)
+    assert!(!stdout.contains("contact from 0.03333 ms"), "{stdout}");
     assert_contains(
         &stdout,
         &[
