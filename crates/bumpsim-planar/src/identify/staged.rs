@@ -133,7 +133,8 @@ impl super::Setup {
 /// Runs the staged search (see the module); where the bumper's effective
 /// width is estimated, twice (see [`pinned`]; the two side by side, so
 /// that one's serial polish overlaps the other's starts), keeping the
-/// lower.
+/// lower ([`lower`]), or the pinned one where every start of the other
+/// failed.
 pub(super) fn search(
     objective: &Objective,
     plan: &Plan,
