@@ -613,8 +613,7 @@ impl<'a> Replay<'a> {
 
     fn record_sample(&mut self, i: usize, q: &[f64]) -> Result<(), PlanarError> {
         let time = i as f64 * self.input.step;
-        // an explicit step too large for the car grows without bound:
-        // 1e3 m (or rad) is far beyond any impact, so it counts as diverged
+        // a step too large grows without bound: past 1e3 m (or rad), diverged
         if !q.iter().all(|x| x.abs() < 1e3) {
             let step = self.input.step / self.substeps as f64;
             return Err(PlanarError::Diverged { time, step });

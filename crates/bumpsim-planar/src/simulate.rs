@@ -223,29 +223,6 @@ pub fn simulate(
     best
 }
 
-/// Whether a run is worth repeating finer: it diverged, or its energy
-/// balance misses [`ENERGY_TOLERANCE`].
-fn open(run: &Result<PlanarResult, PlanarError>) -> bool {
-    match run {
-        Ok(r) => r.energy.max_relative_error > ENERGY_TOLERANCE,
-        Err(e) => matches!(e, PlanarError::Diverged { .. }),
-    }
-}
-
-/// Whether the finer `run` replaces `best`: any outcome after a divergence
-/// (a refusal over [`MAX_STEPS`] names the car's stiffness too), a balance
-/// that closes better after a finished run.
-fn better(
-    run: &Result<PlanarResult, PlanarError>,
-    best: &Result<PlanarResult, PlanarError>,
-) -> bool {
-    match (run, best) {
-        (_, Err(_)) => true,
-        (Ok(r), Ok(b)) => r.energy.max_relative_error < b.energy.max_relative_error,
-        (Err(_), Ok(_)) => false,
-    }
-}
-
 /// One run at the settings' step.
 fn simulate_once(
     car: &PlanarCar,
@@ -801,6 +778,9 @@ mod tests {
         assert!(r.momentum.linear_residual <= 1e-6, "{:?}", r.momentum);
     }
 }
+
+mod refine;
+use refine::{better, open};
 
 #[cfg(test)]
 mod hostile;
