@@ -205,8 +205,8 @@ fn pinned(objective: &Objective, plan: &Plan, observer: &dyn Observer) -> Option
 /// tests/peers/planar_yaw_rate.py the pinned best lay 0.6 % lower, a
 /// statistic of 1.0 at κ = 20.6, and forecast the offset test's force at
 /// 86.4 % against the held best's 90.7 %. Of 19 cars of two families where
-/// the pinned best was the lower, the 13 that keep it lie 6.1 to 98 above
-/// the bar's 3.84, the 6 that no longer do 1.0 to 3.5 (docs/planar.md,
+/// the pinned best was the lower, the 13 that keep it have statistics of
+/// 6.1 to 98, the 6 that no longer do 1.0 to 3.5 (docs/planar.md,
 /// "The pinned search kept by a test (w26)").
 fn lower(objective: &Objective, plan: &Plan, held: Found, pinned: Found) -> Found {
     let problem = priored(objective, plan, held.noise.min(pinned.noise));
