@@ -39,6 +39,7 @@
 //! segments, so that a full-width flat impact reduces exactly to the 1-D model.
 
 use bumpsim_core::model::MsdModel;
+use bumpsim_core::units::{Dimension, format_quantity};
 use bumpsim_impact::bumper::{Bumper, BumperError, BumperState};
 use serde::Serialize;
 
@@ -89,7 +90,9 @@ pub enum PlanarError {
     /// which a car of plausible parts does not do at the step from its
     /// stiffest element.
     #[error(
-        "the integration diverged at t = {time} s with a step of {step} s: check the car for implausible geometry or stiffness (an element far stiffer or lighter than a car's, side members far apart)"
+        "the integration diverged at t = {} with a step of {}: check the car for implausible geometry or stiffness (an element far stiffer or lighter than a car's, side members far apart)",
+        format_quantity(*time, Dimension::Time),
+        format_quantity(*step, Dimension::Time)
     )]
     Diverged {
         /// Time of the first diverged sample, s.

@@ -60,7 +60,7 @@ fn a_diverging_run_is_refined_and_refused_with_its_step() {
         .unwrap_err()
         .to_string();
     assert!(
-        err.contains("with a step of") && err.contains("side members far apart"),
+        err.contains(" ms with a step of ") && err.contains("side members far apart"),
         "{err}"
     );
 }
