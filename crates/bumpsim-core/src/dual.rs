@@ -9,7 +9,7 @@
 //!
 //! Rules, for `x = a + b·ε`, `y = c + d·ε`:
 //! `x y = ac + (ad + bc) ε`, `x / y = a/c + (b c − a d)/c² ε`,
-//! `f(x) = f(a) + f'(a) b ε` for `sqrt`, `sin`, `cos`, `tanh`, `atan2`, `abs`.
+//! `f(x) = f(a) + f'(a) b ε` for `sqrt`, `sin`, `cos`, `tanh`, `exp`, `atan2`, `abs`.
 //! Comparisons, `max`/`min` and `clamp` act on the values (the branch taken
 //! is differentiated; at a kink the side taken's derivative).
 //!
@@ -53,6 +53,8 @@ pub trait Real:
     fn sin_cos(self) -> (Self, Self);
     /// The hyperbolic tangent.
     fn tanh(self) -> Self;
+    /// The exponential.
+    fn exp(self) -> Self;
     /// The four-quadrant arc tangent of `self / x`.
     fn atan2(self, x: Self) -> Self;
     /// The absolute value (derivative `sign(a)`, 0 at 0).
@@ -96,6 +98,9 @@ impl Real for f64 {
     }
     fn tanh(self) -> f64 {
         f64::tanh(self)
+    }
+    fn exp(self) -> f64 {
+        f64::exp(self)
     }
     fn atan2(self, x: f64) -> f64 {
         f64::atan2(self, x)
@@ -274,6 +279,10 @@ impl<const N: usize> Real for Dual<N> {
         let t = self.real.tanh();
         self.chain(t, 1.0 - t * t)
     }
+    fn exp(self) -> Self {
+        let e = self.real.exp();
+        self.chain(e, e)
+    }
     fn atan2(self, x: Self) -> Self {
         // d atan2(y, x) = (x dy − y dx) / (x² + y²)
         let (y, r2) = (self.real, self.real * self.real + x.real * x.real);
@@ -299,7 +308,7 @@ mod tests {
         fn f<T: Real>(x: T, y: T) -> T {
             let (s, c) = (x * y).sin_cos();
             let a = (x * x + y * 3.0).sqrt() / (y + 2.0) - x.atan2(y) * c;
-            a * s.tanh() + (x - y * 4.0).abs() + x.clamp(y, y * 3.0) - (-x / 2.0)
+            a * s.tanh() + (x - y * 4.0).abs() + x.clamp(y, y * 3.0) - (-x / 2.0) + (x * y).exp()
         }
         let (x0, y0) = (0.7, 0.4);
         let x = Dual::<2>::seeded(x0, 0, 1.0);

@@ -88,7 +88,7 @@ pub use priors::{
     WIDTH_SPREAD, priors, removing_all,
 };
 pub use staged::{CONFIRMED, CONFIRMING};
-pub use unknowns::{ARM, ARM_REACH, EFFECTIVE_WIDTH, LINE_MARGIN, REACH, Unknowns};
+pub use unknowns::{ARM, ARM_REACH, EFFECTIVE_WIDTH, LINE_MARGIN, REACH, RELAXATION, Unknowns};
 
 /// The reduced car, when a chain link is undetermined or not needed.
 pub type Reduction = bumpsim_estimate::reduce::Reduction<PlanarCar>;

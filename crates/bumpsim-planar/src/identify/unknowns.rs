@@ -35,8 +35,14 @@
 //! searched as is, within [`LINE_MARGIN`] beyond the bumper's ends, and
 //! counts as determined when its 95 % interval is at most a quarter of the
 //! bumper wide. The relaxation length is searched from [`RELAXATION`]'s
-//! lower end (at 1 cm a tyre lags its slip by σ/v ≈ 5 ms at 8 km/h, far
-//! shorter than an impact: the instantaneous slip-angle law) to its upper.
+//! lower end to its upper. The lower end stands for a tyre without
+//! transient (the slip-angle law at once): a lag σ/|v| of 0.1 ms at
+//! 8 km/h, but the lag grows as the car stops and rebounds, where the
+//! relaxed tyre is a lateral spring C_α/σ. At 1 cm that spring (6 kN/mm)
+//! still lets the car turn: on the yaw-rate generator, whose tyres have no
+//! transient, the off-centre face's yaw replays at 86 % with σ = 1 cm and
+//! 95 % with 1 mm, the other parameters held (docs/planar.md, "The tyres'
+//! relaxation at its floor (w27)").
 
 use super::PlanarCase;
 use super::links::{self, LinkLaw};
@@ -48,7 +54,7 @@ use bumpsim_estimate::uncertainty::Parameter;
 pub const REACH: f64 = 1000.0;
 
 /// The relaxation lengths searched, m (see the module).
-pub const RELAXATION: (f64, f64) = (0.01, 2.0);
+pub const RELAXATION: (f64, f64) = (0.001, 2.0);
 
 /// A line of action is searched this far beyond the bumper's ends, m.
 pub const LINE_MARGIN: f64 = 0.25;
@@ -524,7 +530,7 @@ mod tests {
     }
 
     /// The relaxation length is an unknown only when asked and when the
-    /// start's tyres have one; it is searched in ln σ from 1 cm to 2 m and
+    /// start's tyres have one; it is searched in ln σ from 1 mm to 2 m and
     /// lands on both axles.
     #[test]
     fn the_relaxation_length_is_estimated_when_asked_and_the_tyres_relax() {

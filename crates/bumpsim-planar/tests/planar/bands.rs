@@ -189,7 +189,7 @@ fn dump(p: &Prediction) {
 /// half-width 0.7 % of the yaw's range (1.1 % in all); NARROW-OFFSET's at
 /// 87.3 %, 3.8 % (4.1 %). Before (displacement, the bumper fitted after the
 /// car): OFFSET40 100 %, 1.9 % (1.3 % from the parameters);
-/// NARROW-OFFSET 100 %, 6.7 % (6.3 %). The relaxation length, at its 1 cm floor, has no standard
+/// NARROW-OFFSET 100 %, 6.7 % (6.3 %). The relaxation length, at its 1 cm floor (1 mm since w27), has no standard
 /// error and is named as left out. Before the bands made their cars through
 /// the identification's own unknowns, a linked chain's perturbed spring
 /// was no valid car and no band was made at all (the yielding side

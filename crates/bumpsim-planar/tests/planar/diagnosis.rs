@@ -103,12 +103,12 @@ fn measured() {
         let Some(dir) = super::defaults::series(seed) else {
             return;
         };
-        // `BUMPSIM_TRUTH_SIGMA` (m, default the search's 1 cm floor): the
+        // `BUMPSIM_TRUTH_SIGMA` (m, default the search's floor): the
         // truth's relaxation length; 0 gives the generator's own law
         // (instantaneous, `μN tanh(C_α α/μN)`), not estimated
         let sigma: f64 = std::env::var("BUMPSIM_TRUTH_SIGMA")
             .map(|s| s.parse().unwrap())
-            .unwrap_or(0.01);
+            .unwrap_or(bumpsim_planar::identify::RELAXATION.0);
         let (_, study, truth, mut setup) = super::truth_start::from_the_yielding_truth(&dir, sigma);
         // `BUMPSIM_GENERATOR_BUMPER=1`: the bumper on the generator's 31
         // contact points (1.653 m wide) instead of the study's 32 segments

@@ -232,7 +232,7 @@ fn the_yaw_rate_sensor_is_read_weighted_and_keeps_the_held_out_yaw() {
 /// yaw 98.53 % ✓; off-centre face x 99.14 %, yaw 96.98 % ✓; forward
 /// offset force 92.0 %, x-acceleration 92.0 %, yaw rate 85.3 % ✓ (the
 /// yaw rate thin); I_z −2.3 %, μ +0.1 % ✓; 8 of 16 starts reach the best ✓.
-/// C_α 67.4 kN/rad (truth 70), σ at the search's 1 cm floor (the
+/// C_α 67.4 kN/rad (truth 70), σ at the search's 1 cm floor (1 mm since w27) (the
 /// generator's tyres have no transient slip), bumper scale 0.354, stretch
 /// 0.532, contact rate 0.325 s/m. Without the bumper fit
 /// (`BUMPSIM_NO_BUMPER_FIT=1`) the forward force is 80.79 %, x-acceleration
