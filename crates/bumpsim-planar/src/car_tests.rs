@@ -52,6 +52,17 @@ fn bad_parameters_name_themselves() {
     layout.tyres.front.mu_lateral = f64::NAN;
     let err = PlanarCar::symmetric(&chain(), &bumper, &layout).unwrap_err();
     assert!(err.to_string().contains("tyres.front.mu_lateral"), "{err}");
+    // a relaxation length so short that |v|/σ overflows to NaN in a run
+    layout.tyres.front.mu_lateral = 0.8;
+    layout.tyres.rear.relaxation_length = 1e-320;
+    let err = PlanarCar::symmetric(&chain(), &bumper, &layout).unwrap_err();
+    assert!(
+        err.to_string().contains("tyres.rear.relaxation_length")
+            && err.to_string().contains("from 1e-6 m to 10 m"),
+        "{err}"
+    );
+    layout.tyres.rear.relaxation_length = 0.0;
+    assert!(PlanarCar::symmetric(&chain(), &bumper, &layout).is_ok());
 }
 
 #[test]

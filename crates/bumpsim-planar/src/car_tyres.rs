@@ -104,6 +104,12 @@ pub const CORNERING_STIFFNESS: (f64, std::ops::RangeInclusive<f64>) = (60e3, 20e
 /// The default relaxation length, m (about a passenger tyre's radius).
 pub const RELAXATION_LENGTH: f64 = 0.4;
 
+/// The shortest relaxation length a car takes, m, other than 0 (the
+/// instantaneous law): shorter, the relaxation rate `|v|/σ` of a tyre at
+/// road speed overflows (σ = 1e-320 m: ∞ · 0 = NaN at y = 0), and the tyre's standstill
+/// spring `C_α/σ` would ask for a step the run refuses anyway.
+pub const SHORTEST_RELAXATION: f64 = 1e-6;
+
 fn default_cornering_stiffness() -> f64 {
     CORNERING_STIFFNESS.0
 }
@@ -199,8 +205,9 @@ pub(crate) fn check_tyres(tyres: &Tyres) -> Result<(), PlanarError> {
             &format!("tyres.{axle}.relaxation_length"),
             a.relaxation_length,
             "m",
-            "must be finite and not negative (0: the instantaneous slip-angle law)",
-            a.relaxation_length >= 0.0 && a.relaxation_length <= 10.0,
+            "must be 0 (the instantaneous slip-angle law) or from 1e-6 m to 10 m",
+            a.relaxation_length == 0.0
+                || (SHORTEST_RELAXATION..=10.0).contains(&a.relaxation_length),
         )?;
         check_shape(axle, a.shape)?;
     }

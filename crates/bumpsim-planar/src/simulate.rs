@@ -71,6 +71,9 @@ use crate::dynamics::{Contact, Loads, Model};
 use crate::result::{EnergyBalance, MomentumBalance, PlanarResult};
 use crate::striker::{Motion, Striker, place};
 use bumpsim_core::leapfrog::{Control, Leapfrog, Mechanism, Stepped, critical_step, stable_step};
+use refine::{better, open};
+
+mod refine;
 
 /// Integration settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -778,9 +781,6 @@ mod tests {
         assert!(r.momentum.linear_residual <= 1e-6, "{:?}", r.momentum);
     }
 }
-
-mod refine;
-use refine::{better, open};
 
 #[cfg(test)]
 mod hostile;

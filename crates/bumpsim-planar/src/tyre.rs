@@ -47,8 +47,8 @@ impl Wheel {
     /// Advances the patch deflection `y` of a rolling tyre with relaxation
     /// over `step` (s) at the wheel centre's velocity `(v_e, v_n)`:
     /// `ẏ = v_n − λ y`, `λ = |v_e|/σ`, solved exactly for the velocities
-    /// held over the step, `y ← y e^{−λT} + v_n (1 − e^{−λT})/λ`, then, with the clamped linear law,
-    /// clamped where the patch slides (`|C_α y / σ| ≤ μ_y N`; a Magic
+    /// held over the step (`y += (v_n − λ y) T (1 − e^{−λT})/(λT)`), then,
+    /// with the clamped linear law, clamped where the patch slides (`|C_α y / σ| ≤ μ_y N`; a Magic
     /// Formula saturates in its force instead). Any other tyre has no
     /// deflection.
     pub fn relax(&self, v_e: f64, v_n: f64, y: &mut f64, step: f64) {

@@ -476,6 +476,10 @@ fn hostile_planar_test_set_ups_get_clear_errors() {
             "relaxation",
         ),
         (
+            "front = { relaxation_length = 1e-320, mu_lateral = 0.5 }",
+            "from 1e-6 m to 10 m",
+        ),
+        (
             "front = { shape = nan, mu_lateral = 0.5 }",
             "tyres.front.shape",
         ),

@@ -366,16 +366,16 @@ mod tests {
     }
 
     /// The dual-number Jacobian against central differences of the
-    /// residuals (steps 1e-5 and 1e-6 in `p`, the smaller gap: truncation
-    /// ~1e-10 of a column, rounding ~1e-11 of the residuals over the step)
-    /// at a point off the start, with
+    /// residuals (step 1e-5 in `p`, 1e-6 for a column that misses there:
+    /// truncation ~1e-10 of a column, rounding ~1e-11 of the residuals over
+    /// the step) at a point off the start, with
     /// grip, cornering stiffness and a line of action and a wall's cells' arm
     /// estimated (13 unknowns: two passes of eight; then the bumper's
     /// effective width too, 14: its column's gap 1.0e-10 of 3.3e-2), rolling tyres with relaxation (grip
-    /// 0.8): every column within 1e-4 of its largest entry (1.5e-5 seen at
-    /// most, a damper's small column; at the one step 1e-5 the body mass's
-    /// and μ's columns crossed the tyres' saturation kinks, 1.3e-5 and
-    /// 1.4e-4).
+    /// 0.8): every column within 1e-4 of its largest entry (1.0e-5 seen at
+    /// most, the body mass's column, whose differences cross the tyres'
+    /// saturation kinks; μ's column crosses one at 1e-5, 1.4e-4, and
+    /// matches at 1e-6, 9e-9).
     #[test]
     fn the_exact_jacobian_matches_central_differences() {
         let start = car(1250.0, 2.5e6);
@@ -389,9 +389,11 @@ mod tests {
 
     /// The same in the velocity domain (the objective's differences of the
     /// columns, `super::compared`): a linear map, so the exact columns
-    /// still match (gaps 3e-8 absolute seen: the differences' rounding over
-    /// the sample step). In acceleration the central differences' own
-    /// rounding over h² (2e-4 absolute) is the gap, so it is not compared.
+    /// still match (2.2e-5 of the column seen at most, the body mass's,
+    /// whose differences cross the tyres' saturation kinks; the others
+    /// 9e-6 and below, the dampers' small columns). In acceleration the
+    /// central differences' own rounding over h² (2e-4 absolute) is the
+    /// gap, so it is not compared.
     #[test]
     fn the_exact_jacobian_matches_central_differences_in_velocity() {
         let start = car(1250.0, 2.5e6);
@@ -476,10 +478,10 @@ mod tests {
         assert!(n > WIDTH, "more unknowns than one pass");
         let (mut r, mut jac) = (vec![0.0; m], DMatrix::zeros(m, n));
         assert!(objective.evaluate(&p, &mut r, Some(&mut jac)));
-        // each column against central differences at two steps, the
-        // smaller gap counted: 1e-5 rounds least, 1e-6 is ten times less
-        // likely to straddle one of the tyres' saturation kinks (μ's column
-        // at 1e-5: 1.4e-4 with the exact relaxation update; 4e-7 at 1e-6)
+        // each column against central differences at 1e-5, which rounds
+        // least, and where that misses at 1e-6, ten times less likely to
+        // straddle one of the tyres' saturation kinks (μ's column at 1e-5:
+        // 1.4e-4 with the exact relaxation update; 4e-7 at 1e-6)
         let column = |j: usize, h: f64| {
             let (mut up, mut down) = (p.clone(), p.clone());
             up[j] += h;
@@ -496,10 +498,9 @@ mod tests {
             (gap, scale)
         };
         for j in 0..n {
-            let ((gap, scale), (fine, fine_scale)) = (column(j, 1e-5), column(j, 1e-6));
-            let (gap, scale) = match fine / fine_scale < gap / scale {
-                true => (fine, fine_scale),
-                false => (gap, scale),
+            let (gap, scale) = match column(j, 1e-5) {
+                (gap, scale) if gap <= tolerance * scale => (gap, scale),
+                _ => column(j, 1e-6),
             };
             let name = &unknowns.names()[j].0;
             eprintln!("column {j} ({name}): gap {gap:.1e} of {scale:.1e}");
