@@ -353,6 +353,7 @@ impl TestChannels {
             weights,
             pretrigger: self.pretrigger(),
             cfc: self.cfc,
+            nuisance: false,
         };
         Ok((case, resampled))
     }

@@ -229,6 +229,7 @@ mod tests {
             weights: Vec::new(),
             pretrigger: 0.0,
             cfc: None,
+            nuisance: false,
         };
         (car, case)
     }

@@ -388,6 +388,7 @@ pub(crate) mod tests {
             weights: Vec::new(),
             pretrigger: 0.0,
             cfc,
+            nuisance: false,
         }
     }
 

@@ -332,6 +332,10 @@ impl PlanarStudy {
                 "every case is `validate = true`: at least one must be fitted".into(),
             ));
         }
+        // a replay estimates the biases the objective profiles out
+        for case in cases.iter_mut().chain(&mut validation) {
+            case.nuisance = setup.bias == Bias::Nuisance;
+        }
         let law = tyres_law_estimated(&setup.template, &cases);
         setup.cornering = file.model.cornering.unwrap_or(law);
         setup.relaxation = file.model.relaxation.unwrap_or(law);

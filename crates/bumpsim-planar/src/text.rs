@@ -280,7 +280,11 @@ pub fn identification_summary(
         .chain(validation.iter().map(|f| (f, "validation")))
         .collect();
     s += &format!(
-        "  case fits (x: mean of the sills; {}; each replayed from its time zero, in its files' time)\n",
+        "  case fits (x: mean of the sills{}; {}; each replayed from its time zero, in its files' time)\n",
+        match fits.iter().any(|(f, _)| f.bias_x.is_some()) {
+            true => ", less their bias read after the contact (given per case)",
+            false => "",
+        },
         match fits.iter().any(|(f, _)| f.yaw_rate_sensor) {
             true =>
                 "yaw: the yaw-rate sensor integrated where a case has one (marked), else the sills' difference",
@@ -289,7 +293,7 @@ pub fn identification_summary(
     );
     for (f, kind) in fits {
         s += &format!(
-            "    {:<16} {:<10}  x {:6.2} %   yaw {:6.2} %   peak yaw {:.3} deg   ISO/TS 18571 x {}, yaw {}   from {}{}\n",
+            "    {:<16} {:<10}  x {:6.2} %   yaw {:6.2} %   peak yaw {:.3} deg   ISO/TS 18571 x {}, yaw {}   from {}{}{}\n",
             f.name,
             kind,
             f.fit_x,
@@ -302,7 +306,11 @@ pub fn identification_summary(
                 "   (yaw-rate sensor)"
             } else {
                 ""
-            }
+            },
+            f.bias_x.map_or_else(String::new, |b| format!(
+                "   (x bias {})",
+                format_quantity(b, Dimension::Acceleration)
+            ))
         );
     }
     for w in identification_warnings(result, validation) {

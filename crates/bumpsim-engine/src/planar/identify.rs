@@ -6,7 +6,7 @@
 
 use crate::model::{IdentifyRequest, PredictRequest};
 use crate::{EngineError, Outcome, Report};
-use bumpsim_core::units::format_number;
+use bumpsim_core::units::{Dimension, format_number, format_quantity};
 use bumpsim_planar::PlanarCar;
 use bumpsim_planar::document::{IdentificationDocument, forward_warnings};
 use bumpsim_planar::forward::Forward;
@@ -147,11 +147,15 @@ pub(super) fn predict(request: &PredictRequest<'_>) -> Result<Outcome, EngineErr
     for p in &predictions {
         let f = &p.fit;
         text += &format!(
-            "{}: fit x {} %  yaw {} %  (peak yaw {} deg)\n",
+            "{}: fit x {} %  yaw {} %  (peak yaw {} deg){}\n",
             f.name,
             format_number(f.fit_x, 4),
             format_number(f.fit_yaw, 4),
-            format_number(f.peak_yaw.to_degrees(), 4)
+            format_number(f.peak_yaw.to_degrees(), 4),
+            f.bias_x.map_or_else(String::new, |b| format!(
+                "  (x less its bias read after the contact, {})",
+                format_quantity(b, Dimension::Acceleration)
+            ))
         );
     }
     let name = car

@@ -56,6 +56,7 @@
 
 mod bumper;
 mod check;
+pub mod free_bias;
 mod links;
 mod objective;
 mod plausible;
@@ -130,6 +131,11 @@ pub struct PlanarCase {
     /// if any: a forward prediction filters its simulated channels alike
     /// before it compares them ([`crate::forward`]).
     pub cfc: Option<f64>,
+    /// Whether its accelerometers' remaining biases are unknowns (the
+    /// study's `bias = "nuisance"`): [`predict`] then reads them after the
+    /// contact ([`free_bias`]) before it scores x and yaw; `false`: the
+    /// pre-trigger's mean only.
+    pub nuisance: bool,
 }
 
 impl PlanarCase {
@@ -701,6 +707,7 @@ mod tests {
             weights: Vec::new(),
             pretrigger: 0.0,
             cfc: None,
+            nuisance: false,
         }
     }
 

@@ -6,9 +6,14 @@
 //! sills, each scored by the fit % of the estimation layer
 //! ([`bumpsim_estimate::fit`]: `100 (1 − √(SSE/SST))`) and by the ISO/TS
 //! 18571 rating ([`bumpsim_signal::rating`]) over the case's window.
+//!
+//! With nuisance biases ([`PlanarCase::nuisance`], the study's `bias =
+//! "nuisance"`) each accelerometer's remaining bias is read after the
+//! contact, where the car rolls free, and their mean removed from the
+//! measured x before it is scored ([`super::free_bias`]).
 
-use super::PlanarCase;
 use super::check::{check_case, spacing};
+use super::{PlanarCase, free_bias};
 use crate::car::{PlanarCar, PlanarError};
 use crate::drive::drive;
 use bumpsim_estimate::band::PredictiveBand;
@@ -37,6 +42,10 @@ pub struct CaseFit {
     /// Times of the window's first and last sample, s from the replay's
     /// first sample (the plots' time): the span of the fits and ratings.
     pub window: [f64; 2],
+    /// The bias removed from the measured x before the comparison, m/s²
+    /// ([`super::free_bias::x_bias`]; `None`: the pre-trigger's mean only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bias_x: Option<f64>,
     /// Whether the yaw compared is the case's yaw-rate sensor integrated
     /// (`true`) or the sills' difference (`false`, not written to JSON).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
@@ -89,7 +98,9 @@ pub fn predict(car: &PlanarCar, case: &PlanarCase) -> Result<Prediction, PlanarE
             .map(|(l, r)| ((r - l) / spacing).clamp(-1.0, 1.0).asin())
             .collect::<Vec<_>>()
     };
-    let x = [mean(&replay.sensor_reading), mean(&case.measured)];
+    let bias_x = free_bias::x_bias(case, &replay.sensor_reading);
+    let mut x = [mean(&replay.sensor_reading), mean(&case.measured)];
+    free_bias::removed(&mut x[1], bias_x.unwrap_or(0.0), case.drive.step);
     let yaw = match case.yaw_rate() {
         Some(k) => [
             replay.yaw.clone(),
@@ -108,6 +119,7 @@ pub fn predict(car: &PlanarCar, case: &PlanarCase) -> Result<Prediction, PlanarE
         rating_yaw: rate(&yaw[1][a..=b], &yaw[0][a..=b], step).ok(),
         time_zero: case.time_zero,
         window: [a, b].map(|k| k as f64 * step),
+        bias_x,
         yaw_rate_sensor: case.yaw_rate().is_some(),
     };
     Ok(Prediction {

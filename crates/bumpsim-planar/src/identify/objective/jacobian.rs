@@ -359,6 +359,7 @@ mod tests {
                     weights: vec![1.0, 1.0, 0.05],
                     pretrigger: 0.0,
                     cfc: None,
+                    nuisance: false,
                 });
             }
         }
