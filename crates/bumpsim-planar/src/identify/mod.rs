@@ -132,9 +132,9 @@ pub struct PlanarCase {
     /// before it compares them ([`crate::forward`]).
     pub cfc: Option<f64>,
     /// Whether its accelerometers' remaining biases are unknowns (the
-    /// study's `bias = "nuisance"`): [`predict`] then reads them after the
-    /// contact ([`free_bias`]) before it scores x and yaw; `false`: the
-    /// pre-trigger's mean only.
+    /// study's `bias = "nuisance"`): [`predict`] then reads the sills' bias
+    /// after the contact and removes it from the measured x before it
+    /// scores x; `false`: the pre-trigger's mean only.
     pub nuisance: bool,
 }
 

@@ -10,7 +10,7 @@
 //! With nuisance biases ([`PlanarCase::nuisance`], the study's `bias =
 //! "nuisance"`) each accelerometer's remaining bias is read after the
 //! contact, where the car rolls free, and their mean removed from the
-//! measured x before it is scored ([`super::free_bias`]).
+//! measured x before it is scored (`identify::free_bias`).
 
 use super::check::{check_case, spacing};
 use super::{PlanarCase, free_bias};
@@ -43,7 +43,8 @@ pub struct CaseFit {
     /// first sample (the plots' time): the span of the fits and ratings.
     pub window: [f64; 2],
     /// The bias removed from the measured x before the comparison, m/s²
-    /// ([`super::free_bias::x_bias`]; `None`: the pre-trigger's mean only).
+    /// (read after the contact, `identify::free_bias`; `None`: the
+    /// pre-trigger's mean only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub bias_x: Option<f64>,
     /// Whether the yaw compared is the case's yaw-rate sensor integrated
@@ -68,7 +69,8 @@ impl CaseFit {
 pub struct Prediction {
     /// Time from the first sample, s.
     pub time: Vec<f64>,
-    /// Model and measured x (mean of the sensors), m.
+    /// Model and measured x (mean of the sensors; the measured less the
+    /// bias [`CaseFit::bias_x`] when the case reads one), m.
     pub x: [Vec<f64>; 2],
     /// Model and measured yaw, rad.
     pub yaw: [Vec<f64>; 2],
