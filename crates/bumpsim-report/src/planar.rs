@@ -139,7 +139,11 @@ pub fn case_figures(
     let window = Span::window(if fitted { "fitted" } else { "scored" }, p.fit.window);
     let mut x = LinePlot::new("x (mean of the sills)", Dimension::Time, Dimension::Length)
         .quantities(None, Some("displacement"));
-    x.add(line("measured", &p.time, &p.x[1], Style::Solid));
+    let measured = match p.fit.bias_x {
+        Some(_) => "measured, less its bias read after the contact",
+        None => "measured",
+    };
+    x.add(line(measured, &p.time, &p.x[1], Style::Solid));
     x.add(line("model", &p.time, &p.x[0], Style::Dashed));
     shaded(&mut x, &p.time, p.x_band.as_ref());
     x.span(window.clone());
