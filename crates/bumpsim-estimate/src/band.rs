@@ -135,6 +135,19 @@ fn quantile(level: f64) -> f64 {
 }
 
 impl PredictiveBand {
+    /// The band widened by a further independent error of standard
+    /// deviation `sd(k)` at sample `k` (the measurement's own, e.g. an
+    /// accelerometer's bias integrated twice): each half-width `w` about
+    /// the same centre becomes `√(w² + (z sd_k)²)`, z of the band's level.
+    pub fn widened(&mut self, sd: impl Fn(usize) -> f64) {
+        let z = quantile(self.level);
+        for k in 0..self.low.len().min(self.high.len()) {
+            let centre = 0.5 * (self.low[k] + self.high[k]);
+            let half = (0.5 * (self.high[k] - self.low[k])).hypot(z * sd(k));
+            (self.low[k], self.high[k]) = (centre - half, centre + half);
+        }
+    }
+
     /// The share (0..1) of `measured` samples `a..=b` inside the band; NaN
     /// for an empty window.
     pub fn inside(&self, measured: &[f64], (a, b): (usize, usize)) -> f64 {
@@ -241,6 +254,22 @@ mod tests {
         assert!((band.inside(&measured, (0, 10)) - 10.0 / 11.0).abs() < 1e-12);
         let mean_half: f64 = band.parameters.iter().sum::<f64>() / 11.0;
         assert!((band.relative_width(&center, (0, 10)) - mean_half / 2.0).abs() < 1e-12);
+    }
+
+    /// Widening by an independent error adds it in quadrature: a band of
+    /// noise σ_e widened by σ_m is the band of noise √(σ_e² + σ_m²).
+    #[test]
+    fn a_widened_band_adds_the_error_in_quadrature() {
+        let center = vec![1.0, 2.0, 3.0];
+        let s = vec![vec![0.1, 0.2, 0.3]];
+        let cov = covariance(&[0.5], &[vec![None]]);
+        let mut band = linearised(&center, &s, &cov, 0.3, 0.9);
+        band.widened(|k| 0.4 * k as f64);
+        for k in 0..3 {
+            let whole = linearised(&center, &s, &cov, 0.3f64.hypot(0.4 * k as f64), 0.9);
+            approx::assert_relative_eq!(band.high[k], whole.high[k], max_relative = 1e-12);
+            approx::assert_relative_eq!(band.low[k], whole.low[k], max_relative = 1e-12);
+        }
     }
 
     #[test]

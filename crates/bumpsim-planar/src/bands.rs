@@ -41,6 +41,10 @@
 //!   a missed band (the default study's off-centre face, whose error comes
 //!   early, 40 % → 31 %), so it stays constant. σ_train counts the
 //!   training wall's model error a second time: on the safe side.
+//! - **The measured x's own error**: the bias left on the sills' mean,
+//!   `σ_b = x_noise/√T` over the time T it was read
+//!   (`identify::free_bias::x_bias_spread`), reads as `σ_b t²/2` in x and
+//!   widens the x band in quadrature ([`PredictiveBand::widened`]).
 //!
 //! Each band is judged over its case's window: the share of measured
 //! samples inside it, and its relative width (the parameters' mean
@@ -510,7 +514,14 @@ pub fn attach(
         let Some(mut b) = spread.bands(&model, &[n, n], &noise) else {
             continue;
         };
-        let (yaw, x) = (b.pop(), b.pop());
+        let (yaw, mut x) = (b.pop(), b.pop());
+        // the measured x's own error: the bias its sills' means leave,
+        // integrated twice from time zero
+        let bias = crate::identify::free_bias::x_bias_spread(case);
+        let h = case.drive.step;
+        if let Some(band) = x.as_mut() {
+            band.widened(|k| bias * 0.5 * (k as f64 * h).powi(2));
+        }
         for (channel, unit, band, [center, measured]) in
             [("x", "m", &x, &replay.x), ("yaw", "rad", &yaw, &replay.yaw)]
         {

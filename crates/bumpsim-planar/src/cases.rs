@@ -354,8 +354,30 @@ impl TestChannels {
             pretrigger: self.pretrigger(),
             cfc: self.cfc,
             nuisance: false,
+            x_noise: self.x_noise(),
         };
         Ok((case, resampled))
+    }
+
+    /// The noise density of the first two sensors' mean (the sills),
+    /// (m/s²)·√s: `√((σ_L² h_L + σ_R² h_R)/4)`, each σ as the study gives
+    /// it or from its pre-trigger ([`pretrigger_noise`]) at its step h; 0
+    /// when either is unknown.
+    fn x_noise(&self) -> f64 {
+        let density = |k: usize| {
+            let c = self.sensors.get(k)?;
+            let sigma = self
+                .noise
+                .get(k)
+                .copied()
+                .flatten()
+                .or_else(|| pretrigger_noise(c))?;
+            Some(sigma * sigma * c.series.step())
+        };
+        match (density(0), density(1)) {
+            (Some(l), Some(r)) if (l + r).is_finite() => (0.25 * (l + r)).sqrt(),
+            _ => 0.0,
+        }
     }
 
     /// The shortest pre-trigger (record before the file's t = 0) of the

@@ -230,6 +230,7 @@ mod tests {
             pretrigger: 0.0,
             cfc: None,
             nuisance: false,
+            x_noise: 0.0,
         };
         (car, case)
     }

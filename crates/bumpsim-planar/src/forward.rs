@@ -389,6 +389,7 @@ pub(crate) mod tests {
             pretrigger: 0.0,
             cfc,
             nuisance: false,
+            x_noise: 0.0,
         }
     }
 

@@ -94,6 +94,23 @@ pub(crate) fn x_bias(case: &PlanarCase, model: &[Vec<f64>]) -> Option<f64> {
     }
 }
 
+/// The spread of the bias left in `case`'s measured x, m/s²: `x_noise /
+/// √T`, T the time its bias was read over (the pre-trigger, and the free
+/// window when the case reads one there, [`x_bias`]); 0 when either is
+/// unknown ([`PlanarCase::x_noise`]). It reads as `σ_b t²/2` in x.
+pub(crate) fn x_bias_spread(case: &PlanarCase) -> f64 {
+    let samples = case.measured.iter().map(Vec::len).min().unwrap_or(0);
+    let free = match case.nuisance {
+        true => free_window(case, samples).map_or(0.0, |(a, b)| (b - a) as f64 * case.drive.step),
+        false => 0.0,
+    };
+    let read = case.pretrigger.max(0.0) + free;
+    match case.x_noise > 0.0 && read > 0.0 {
+        true => case.x_noise / read.sqrt(),
+        false => 0.0,
+    }
+}
+
 /// `x` (sampled every `step` from time zero) less the reading `b t²/2` of
 /// a bias `b`.
 pub(crate) fn removed(x: &mut [f64], b: f64, step: f64) {
@@ -155,6 +172,7 @@ mod tests {
             pretrigger: 0.02,
             cfc: None,
             nuisance: true,
+            x_noise: 0.0,
         }
     }
 
@@ -194,6 +212,23 @@ mod tests {
             fit(&truth),
             fit(&heavy)
         );
+    }
+
+    #[test]
+    fn the_bias_spread_shrinks_with_the_time_it_was_read_over() {
+        let truth = car(1200.0);
+        let mut case = case(&truth, [0.0, 0.0]);
+        case.x_noise = 0.01;
+        let free = (799 - 349) as f64 * 1e-4;
+        let spread = x_bias_spread(&case);
+        assert!(
+            (spread - 0.01 / (0.02 + free).sqrt()).abs() < 1e-12,
+            "{spread}"
+        );
+        case.nuisance = false;
+        assert!((x_bias_spread(&case) - 0.01 / 0.02f64.sqrt()).abs() < 1e-12);
+        case.x_noise = 0.0;
+        assert_eq!(x_bias_spread(&case), 0.0);
     }
 
     #[test]
