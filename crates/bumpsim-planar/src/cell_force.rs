@@ -219,18 +219,8 @@ mod tests {
             sensors: vec![Sensor::Body([0.6, 0.7]), Sensor::Body([0.6, -0.7])],
         };
         let case = PlanarCase {
-            name: "flat".into(),
-            drive,
-            measured: vec![vec![0.0; n]; 2],
-            window: (0, n - 1),
-            estimated: Vec::new(),
             striker: Some(Striker::barrier(flat, 4.0)),
-            time_zero: 0.0,
-            weights: Vec::new(),
-            pretrigger: 0.0,
-            cfc: None,
-            nuisance: false,
-            x_noise: 0.0,
+            ..PlanarCase::replayed("flat", drive, vec![vec![0.0; n]; 2])
         };
         (car, case)
     }

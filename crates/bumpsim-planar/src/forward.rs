@@ -378,18 +378,9 @@ pub(crate) mod tests {
             sensors: vec![Sensor::Body([0.6, 0.7]), Sensor::Body([0.6, -0.7])],
         };
         PlanarCase {
-            name: name.into(),
-            drive,
-            measured: vec![vec![0.0; n]; 2],
-            window: (0, n - 1),
-            estimated: Vec::new(),
             striker: Some(striker),
-            time_zero: 0.0,
-            weights: Vec::new(),
-            pretrigger: 0.0,
             cfc,
-            nuisance: false,
-            x_noise: 0.0,
+            ..PlanarCase::replayed(name, drive, vec![vec![0.0; n]; 2])
         }
     }
 

@@ -161,18 +161,9 @@ mod tests {
             removed(x, -b, step);
         }
         PlanarCase {
-            name: "offset".into(),
-            drive: drive_,
-            measured,
-            window: (0, 799),
-            estimated: Vec::new(),
-            striker: None,
-            time_zero: 0.0,
-            weights: Vec::new(),
             pretrigger: 0.02,
-            cfc: None,
             nuisance: true,
-            x_noise: 0.0,
+            ..PlanarCase::replayed("offset", drive_, measured)
         }
     }
 

@@ -145,6 +145,38 @@ pub struct PlanarCase {
 }
 
 impl PlanarCase {
+    /// A case of `drive` and its `measured` sensor readings: every sample
+    /// in its window, time zero at its first sample, no striker, estimated
+    /// line of action, pre-trigger, filter, weights or nuisance biases; a
+    /// case with more sets them by struct update.
+    ///
+    /// ```
+    /// use bumpsim_planar::drive::{Drive, Load, Sensor};
+    /// use bumpsim_planar::identify::PlanarCase;
+    /// let load = Load { lateral: 0.0, anchor: None, cell: None, direction: [-1.0, 0.0], force: vec![1e4; 10] };
+    /// let sensors = vec![Sensor::Body([0.6, 0.7]), Sensor::Body([0.6, -0.7])];
+    /// let drive = Drive { step: 1e-4, loads: vec![load], speed: 2.0, arm: 1.0, sensors };
+    /// let case = PlanarCase { pretrigger: 0.02, ..PlanarCase::replayed("push", drive, vec![vec![0.0; 10]; 2]) };
+    /// assert_eq!(case.window, (0, 9));
+    /// ```
+    pub fn replayed(name: &str, drive: Drive, measured: Vec<Vec<f64>>) -> PlanarCase {
+        let n = measured.iter().map(Vec::len).min().unwrap_or(0);
+        PlanarCase {
+            name: name.into(),
+            drive,
+            measured,
+            window: (0, n.saturating_sub(1)),
+            estimated: Vec::new(),
+            striker: None,
+            time_zero: 0.0,
+            weights: Vec::new(),
+            pretrigger: 0.0,
+            cfc: None,
+            nuisance: false,
+            x_noise: 0.0,
+        }
+    }
+
     /// Sensor `k`'s residual weight.
     pub fn weight(&self, k: usize) -> f64 {
         self.weights.get(k).copied().unwrap_or(1.0)

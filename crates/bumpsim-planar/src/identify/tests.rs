@@ -46,20 +46,7 @@ pub(super) fn pushed(truth: &PlanarCar, name: &str, lateral: f64, right: Sensor)
         sensors,
     };
     let replay = crate::drive::drive(truth, &drive, 0.05).unwrap();
-    PlanarCase {
-        name: name.into(),
-        drive,
-        measured: replay.sensor_reading,
-        window: (0, 399),
-        estimated: Vec::new(),
-        striker: None,
-        time_zero: 0.0,
-        weights: Vec::new(),
-        pretrigger: 0.0,
-        cfc: None,
-        nuisance: false,
-        x_noise: 0.0,
-    }
+    PlanarCase::replayed(name, drive, replay.sensor_reading)
 }
 
 #[test]

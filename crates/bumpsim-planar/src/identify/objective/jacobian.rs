@@ -348,19 +348,12 @@ mod tests {
                 };
                 let measured = drive(&truth, &drive_input, 0.25).unwrap().sensor_reading;
                 let n = measured[0].len();
+                let name = format!("case {}", out.len());
                 out.push(PlanarCase {
-                    name: format!("case {}", out.len()),
-                    drive: drive_input,
-                    measured,
                     window: (5, n - 1),
                     estimated,
-                    striker: None,
-                    time_zero: 0.0,
                     weights: vec![1.0, 1.0, 0.05],
-                    pretrigger: 0.0,
-                    cfc: None,
-                    nuisance: false,
-                    x_noise: 0.0,
+                    ..PlanarCase::replayed(&name, drive_input, measured)
                 });
             }
         }
